@@ -1,0 +1,174 @@
+// The C API: model and data lifetime, and the per-pose solve dispatched on the fidelity level.
+#include <cmath>
+#include <cstring>
+#include <new>
+
+#include "model.hpp"
+#include "util/message.hpp"
+
+using stewart::clear_message;
+using stewart::set_message;
+
+extern "C" void stewart_options_default(stewart_options *o) {
+    if (!o) return;
+    o->fidelity = STEWART_MASSLESS;
+    o->tolerance = 1e-12;
+    o->max_iterations = 20;
+    o->modified_newton = 0;
+    o->warn_condition = 1e3;
+    o->singular_condition = 1e10;
+}
+
+extern "C" stewart_status stewart_options_check(const stewart_options *o, char *msg, size_t size) {
+    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
+    if (o->fidelity < STEWART_KINEMATIC || o->fidelity > STEWART_FULL)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fidelity = %d must be 0 (kinematic), 1 (massless) or 2 (full)",
+                           (int)o->fidelity);
+    if (!(std::isfinite(o->tolerance) && o->tolerance > 0))
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "tolerance = %g must be > 0",
+                           o->tolerance);
+    if (o->max_iterations < 1)
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "max_iterations = %d must be >= 1",
+                           o->max_iterations);
+    if (o->modified_newton != 0 && o->modified_newton != 1)
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "modified_newton = %d must be 0 or 1",
+                           o->modified_newton);
+    if (!(o->warn_condition >= 1 && o->singular_condition >= o->warn_condition &&
+          std::isfinite(o->singular_condition)))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "condition limits warn = %g, singular = %g must satisfy "
+                           "1 <= warn_condition <= singular_condition < inf",
+                           o->warn_condition, o->singular_condition);
+    return clear_message(msg, size);
+}
+
+extern "C" stewart_model *stewart_model_create(const stewart_params *params, char *msg,
+                                               size_t size) {
+    if (stewart_params_check(params, msg, size) != STEWART_OK) return nullptr;
+    stewart_model *m = new (std::nothrow) stewart_model;
+    if (!m) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the model");
+        return nullptr;
+    }
+    m->params = *params;
+    m->geometry = stewart::platform_geometry(*params);
+    m->platform = stewart::lumped_platform(*params);
+    m->gravity = Eigen::Vector3d(params->gravity);
+    return m;
+}
+
+extern "C" void stewart_model_free(stewart_model *m) { delete m; }
+
+extern "C" const stewart_params *stewart_model_params(const stewart_model *m) {
+    return m ? &m->params : nullptr;
+}
+
+extern "C" stewart_data *stewart_data_create(const stewart_model *m) {
+    if (!m) return nullptr;
+    stewart_data *d = new (std::nothrow) stewart_data;
+    if (!d) return nullptr;
+    d->model = m;
+    stewart_data_reset(d);
+    return d;
+}
+
+extern "C" void stewart_data_free(stewart_data *d) { delete d; }
+
+extern "C" stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src) {
+    if (!dst || !src || dst->model != src->model) return STEWART_ERR_ARGUMENT;
+    *dst = *src;
+    return STEWART_OK;
+}
+
+extern "C" void stewart_data_reset(stewart_data *d) {
+    if (!d) return;
+    d->message[0] = '\0';
+}
+
+extern "C" const char *stewart_data_message(const stewart_data *d) {
+    return d ? d->message : "data is NULL";
+}
+
+extern "C" const char *stewart_status_name(stewart_status s) {
+    switch (s) {
+        case STEWART_OK: return "ok";
+        case STEWART_ERR_ARGUMENT: return "invalid argument";
+        case STEWART_ERR_PARAMETER: return "invalid parameter";
+        case STEWART_ERR_SINGULAR: return "singular";
+        case STEWART_ERR_UNREACHABLE: return "unreachable pose";
+        case STEWART_ERR_NOT_CONVERGED: return "not converged";
+        case STEWART_ERR_UNSUPPORTED: return "unsupported";
+        case STEWART_ERR_MEMORY: return "out of memory";
+    }
+    return "unknown status";
+}
+
+namespace {
+
+const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size) {
+    const double *rows[3] = {pose.q, pose.q_dot, pose.q_ddot};
+    const char *suffix[3] = {"", "_dot", "_ddot"};
+    for (int r = 0; r < 3; ++r)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(rows[r][i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "pose input %s%s is %g: it must be finite", kPoseNames[i],
+                                   suffix[r], rows[r][i]);
+    return STEWART_OK;
+}
+
+int stroke_and_condition_warnings(const stewart_params &p, const stewart_options &o,
+                                  const stewart_output &out) {
+    int w = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (out.length[k] < p.stroke_min || out.length[k] > p.stroke_max) w |= STEWART_WARN_STROKE;
+    if (out.condition > o.warn_condition) w |= STEWART_WARN_NEAR_SINGULAR;
+    return w;
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
+                                        const stewart_options *o, const stewart_pose *pose,
+                                        stewart_output *output) {
+    if (!m || !d || !o || !pose || !output) {
+        if (d) set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "NULL argument");
+        return STEWART_ERR_ARGUMENT;
+    }
+    char *msg = d->message;
+    const size_t size = sizeof d->message;
+    stewart_status s = stewart_options_check(o, msg, size);
+    if (s != STEWART_OK) return s;
+    if ((s = check_pose(*pose, msg, size)) != STEWART_OK) return s;
+
+    const stewart::RigidMotion motion = stewart::rigid_motion(*pose);
+    stewart::LegKinematics legs;
+    if ((s = stewart::leg_kinematics(m->geometry, motion, legs, msg, size)) != STEWART_OK) return s;
+
+    stewart_output out{};
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        out.length[k] = legs.length[k];
+        out.length_rate[k] = legs.rate[k];
+        out.length_accel[k] = legs.accel[k];
+    }
+    switch (o->fidelity) {
+        case STEWART_KINEMATIC:
+            break;
+        case STEWART_MASSLESS:
+            s = stewart::massless_forces(m->geometry, m->platform, m->gravity, motion, legs,
+                                         o->singular_condition, out, msg, size);
+            break;
+        case STEWART_FULL:
+            s = set_message(msg, size, STEWART_ERR_UNSUPPORTED,
+                            "fidelity 2 (full 14-body model) is not available in this build");
+            break;
+    }
+    if (s != STEWART_OK) return s;
+    out.warnings = stroke_and_condition_warnings(m->params, *o, out);
+    *output = out;
+    msg[0] = '\0';
+    return STEWART_OK;
+}

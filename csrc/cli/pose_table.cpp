@@ -1,0 +1,155 @@
+#include "cli/pose_table.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace stewart {
+
+namespace {
+
+const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+std::vector<std::string> split(const std::string &line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) {
+        const size_t b = cell.find_first_not_of(" \t\r");
+        const size_t e = cell.find_last_not_of(" \t\r");
+        out.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+    }
+    return out;
+}
+
+int find_column(const std::vector<std::string> &header, const std::string &name) {
+    for (size_t i = 0; i < header.size(); ++i)
+        if (header[i] == name) return static_cast<int>(i);
+    return -1;
+}
+
+// Weights of f[i-1], f[i], f[i+1] for the first or second derivative at the middle point of
+// three samples spaced h1 then h2 (exact for quadratics).
+void central_weights(double h1, double h2, int order, double w[3]) {
+    if (order == 1) {
+        w[0] = -h2 / (h1 * (h1 + h2));
+        w[1] = (h2 - h1) / (h1 * h2);
+        w[2] = h1 / (h2 * (h1 + h2));
+    } else {
+        w[0] = 2.0 / (h1 * (h1 + h2));
+        w[1] = -2.0 / (h1 * h2);
+        w[2] = 2.0 / (h2 * (h1 + h2));
+    }
+}
+
+}  // namespace
+
+std::vector<double> finite_difference(const std::vector<double> &t, const std::vector<double> &f,
+                                      int order) {
+    const size_t n = t.size();
+    std::vector<double> d(n, 0.0);
+    if (n < 2) return d;
+    if (n == 2) {
+        if (order == 1) d[0] = d[1] = (f[1] - f[0]) / (t[1] - t[0]);
+        return d;
+    }
+    double w[3];
+    for (size_t i = 1; i + 1 < n; ++i) {
+        central_weights(t[i] - t[i - 1], t[i + 1] - t[i], order, w);
+        d[i] = w[0] * f[i - 1] + w[1] * f[i] + w[2] * f[i + 1];
+    }
+    // Ends: differentiate the quadratic through the three end samples at the end point.
+    {
+        const double h1 = t[1] - t[0], h2 = t[2] - t[1];
+        if (order == 1) {
+            d[0] = -(2 * h1 + h2) / (h1 * (h1 + h2)) * f[0] + (h1 + h2) / (h1 * h2) * f[1] -
+                   h1 / (h2 * (h1 + h2)) * f[2];
+        } else {
+            central_weights(h1, h2, 2, w);
+            d[0] = w[0] * f[0] + w[1] * f[1] + w[2] * f[2];
+        }
+    }
+    {
+        const double h1 = t[n - 2] - t[n - 3], h2 = t[n - 1] - t[n - 2];
+        if (order == 1) {
+            d[n - 1] = h2 / (h1 * (h1 + h2)) * f[n - 3] - (h1 + h2) / (h1 * h2) * f[n - 2] +
+                       (2 * h2 + h1) / (h2 * (h1 + h2)) * f[n - 1];
+        } else {
+            central_weights(h1, h2, 2, w);
+            d[n - 1] = w[0] * f[n - 3] + w[1] * f[n - 2] + w[2] * f[n - 1];
+        }
+    }
+    return d;
+}
+
+std::string read_pose_table(const std::string &path, PoseTable &table) {
+    std::ifstream in(path);
+    if (!in) return "cannot open " + path;
+    std::string line;
+    if (!std::getline(in, line)) return path + " is empty: expected the header t,x,y,z,roll,pitch,yaw";
+    const std::vector<std::string> header = split(line);
+
+    int col_t = find_column(header, "t");
+    int col[3][6];
+    bool have[3] = {true, true, true};
+    int found[3] = {0, 0, 0};
+    const char *suffix[3] = {"", "_dot", "_ddot"};
+    for (int r = 0; r < 3; ++r)
+        for (int i = 0; i < 6; ++i) {
+            col[r][i] = find_column(header, std::string(kPose[i]) + suffix[r]);
+            if (col[r][i] < 0) have[r] = false; else ++found[r];
+        }
+    if (col_t < 0 || !have[0])
+        return path + ": the header must contain t,x,y,z,roll,pitch,yaw";
+    for (int r = 1; r < 3; ++r)
+        if (found[r] != 0 && found[r] != 6)
+            return path + ": the " + suffix[r] + " columns must be all six (x" + suffix[r] +
+                   " ... yaw" + suffix[r] + ") or none";
+
+    table.t.clear();
+    table.poses.clear();
+    int line_no = 1;
+    while (std::getline(in, line)) {
+        ++line_no;
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const std::vector<std::string> cells = split(line);
+        if (cells.size() != header.size())
+            return path + " line " + std::to_string(line_no) + ": " + std::to_string(cells.size()) +
+                   " values for " + std::to_string(header.size()) + " columns";
+        std::vector<double> v(cells.size());
+        for (size_t c = 0; c < cells.size(); ++c) {
+            char *end = nullptr;
+            v[c] = std::strtod(cells[c].c_str(), &end);
+            if (cells[c].empty() || *end != '\0' || !std::isfinite(v[c]))
+                return path + " line " + std::to_string(line_no) + ": column " + header[c] +
+                       " = '" + cells[c] + "' is not a finite number";
+        }
+        if (!table.t.empty() && !(v[col_t] > table.t.back()))
+            return path + " line " + std::to_string(line_no) + ": t = " + cells[col_t] +
+                   " does not increase";
+        stewart_pose pose{};
+        for (int r = 0; r < 3; ++r)
+            if (have[r]) {
+                double *dst = r == 0 ? pose.q : r == 1 ? pose.q_dot : pose.q_ddot;
+                for (int i = 0; i < 6; ++i) dst[i] = v[col[r][i]];
+            }
+        table.t.push_back(v[col_t]);
+        table.poses.push_back(pose);
+    }
+    if (table.t.empty()) return path + " has no data rows";
+
+    for (int r = 1; r < 3; ++r) {
+        if (have[r]) continue;
+        for (int i = 0; i < 6; ++i) {
+            std::vector<double> f(table.t.size());
+            for (size_t j = 0; j < f.size(); ++j) f[j] = table.poses[j].q[i];
+            const std::vector<double> d = finite_difference(table.t, f, r);
+            for (size_t j = 0; j < f.size(); ++j)
+                (r == 1 ? table.poses[j].q_dot : table.poses[j].q_ddot)[i] = d[j];
+        }
+    }
+    return "";
+}
+
+}  // namespace stewart

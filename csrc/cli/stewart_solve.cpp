@@ -1,0 +1,131 @@
+// stewart-solve: pose trajectory CSV in, actuator lengths, rates, accelerations and forces out.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "cli/pose_table.hpp"
+#include "stewart/stewart.h"
+
+namespace {
+
+int usage(FILE *to) {
+    std::fprintf(to,
+                 "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
+                 "IN.csv OUT.csv\n"
+                 "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
+                 "x_ddot..yaw_ddot\n"
+                 "           (missing derivatives come from finite differences of the samples)\n"
+                 "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations\n");
+    return to == stderr ? 2 : 0;
+}
+
+bool parse_fidelity(const char *s, stewart_fidelity &f) {
+    if (!std::strcmp(s, "kinematic")) f = STEWART_KINEMATIC;
+    else if (!std::strcmp(s, "massless")) f = STEWART_MASSLESS;
+    else if (!std::strcmp(s, "full")) f = STEWART_FULL;
+    else return false;
+    return true;
+}
+
+void write_header(FILE *out) {
+    std::fprintf(out, "t");
+    const char *groups[4] = {"L", "L_dot", "L_ddot", "F"};
+    for (const char *g : groups)
+        for (int k = 1; k <= STEWART_LEGS; ++k) std::fprintf(out, ",%s%d", g, k);
+    std::fprintf(out, ",condition,iterations\n");
+}
+
+void write_row(FILE *out, double t, const stewart_output &o) {
+    std::fprintf(out, "%.17g", t);
+    const double *groups[4] = {o.length, o.length_rate, o.length_accel, o.force};
+    for (const double *g : groups)
+        for (int k = 0; k < STEWART_LEGS; ++k) std::fprintf(out, ",%.17g", g[k]);
+    std::fprintf(out, ",%.17g,%d\n", o.condition, o.iterations);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    stewart_options options;
+    stewart_options_default(&options);
+    const char *paths[2] = {nullptr, nullptr};
+    int n_paths = 0;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
+        if (!std::strcmp(argv[i], "--fidelity") && i + 1 < argc) {
+            if (!parse_fidelity(argv[++i], options.fidelity)) {
+                std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", argv[i]);
+                return usage(stderr);
+            }
+        } else if (!std::strcmp(argv[i], "--tolerance") && i + 1 < argc) {
+            char *end = nullptr;
+            options.tolerance = std::strtod(argv[++i], &end);
+            if (*end != '\0') {
+                std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", argv[i]);
+                return 2;
+            }
+        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            std::fprintf(stderr, "stewart-solve: unknown option '%s'\n", argv[i]);
+            return usage(stderr);
+        } else if (n_paths < 2) {
+            paths[n_paths++] = argv[i];
+        } else {
+            return usage(stderr);
+        }
+    }
+    if (n_paths != 2) return usage(stderr);
+
+    char message[STEWART_MESSAGE_SIZE];
+    if (stewart_options_check(&options, message, sizeof message) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: %s\n", message);
+        return 2;
+    }
+    stewart::PoseTable table;
+    const std::string read_error = stewart::read_pose_table(paths[0], table);
+    if (!read_error.empty()) {
+        std::fprintf(stderr, "stewart-solve: %s\n", read_error.c_str());
+        return 1;
+    }
+
+    stewart_params params;
+    stewart_params_default(&params);
+    stewart_model *model = stewart_model_create(&params, message, sizeof message);
+    stewart_data *data = model ? stewart_data_create(model) : nullptr;
+    if (!data) {
+        std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
+        stewart_model_free(model);
+        return 1;
+    }
+
+    // Solve everything before writing, so a failed run leaves no partial OUT.csv behind.
+    std::vector<stewart_output> outputs(table.t.size());
+    int status = 0;
+    for (size_t j = 0; j < table.t.size(); ++j) {
+        const stewart_status s =
+            stewart_solve(model, data, &options, &table.poses[j], &outputs[j]);
+        if (s != STEWART_OK) {
+            std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s: %s\n", j + 1, table.t[j],
+                         stewart_status_name(s), stewart_data_message(data));
+            status = 1;
+            break;
+        }
+    }
+    stewart_data_free(data);
+    stewart_model_free(model);
+    if (status != 0) return status;
+
+    FILE *out = std::fopen(paths[1], "w");
+    if (!out) {
+        std::fprintf(stderr, "stewart-solve: cannot write %s\n", paths[1]);
+        return 1;
+    }
+    write_header(out);
+    for (size_t j = 0; j < table.t.size(); ++j) write_row(out, table.t[j], outputs[j]);
+    if (std::fclose(out) != 0) {
+        std::fprintf(stderr, "stewart-solve: error writing %s\n", paths[1]);
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,147 @@
+/*
+ * Stewart platform inverse kinematics and inverse dynamics: the C API.
+ *
+ * Conventions (../shared/design/model.md §3): SI units; world frame at the base centre, z up;
+ * pose (x, y, z, roll, pitch, yaw) with R = Rz(yaw) Ry(pitch) Rx(roll); leg k joins base angle
+ * beta_k to platform angle tau_k; actuator length L_k = |p + R b_k - a_k|; actuator force F_k > 0
+ * pushes the platform away from the base.
+ *
+ * Usage: fill a stewart_params (stewart_params_default gives the thesis platform), build an
+ * immutable stewart_model from it, make one stewart_data per independent run (it holds the state
+ * and every workspace a solve needs), then call stewart_solve once per pose. Nothing here keeps
+ * global state; models and data blocks are independent of each other (a model may be shared by
+ * several data blocks, read-only).
+ */
+#ifndef STEWART_STEWART_H
+#define STEWART_STEWART_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define STEWART_LEGS 6
+#define STEWART_MESSAGE_SIZE 256
+
+typedef enum stewart_status {
+    STEWART_OK = 0,
+    STEWART_ERR_ARGUMENT = -1,      /* null pointer, or a pose value that is NaN or infinite */
+    STEWART_ERR_PARAMETER = -2,     /* a parameter out of its valid range */
+    STEWART_ERR_SINGULAR = -3,      /* the leg Jacobian (or the constraint Jacobian) is singular */
+    STEWART_ERR_UNREACHABLE = -4,   /* the pose puts a platform point on its base point */
+    STEWART_ERR_NOT_CONVERGED = -5, /* the position Newton problem did not converge */
+    STEWART_ERR_UNSUPPORTED = -6,   /* the requested fidelity level is not available */
+    STEWART_ERR_MEMORY = -7
+} stewart_status;
+
+typedef enum stewart_fidelity {
+    STEWART_KINEMATIC = 0, /* lengths, rates and accelerations only; forces are zero */
+    STEWART_MASSLESS = 1,  /* Newton-Euler on the platform, legs as massless two-force members */
+    STEWART_FULL = 2       /* the 14-body constraint-and-multiplier model */
+} stewart_fidelity;
+
+/* Bits of stewart_output.warnings: the solve succeeded but the result deserves attention. */
+enum {
+    STEWART_WARN_STROKE = 1,        /* some length is outside [stroke_min, stroke_max] */
+    STEWART_WARN_NEAR_SINGULAR = 2  /* condition number above stewart_options.warn_condition */
+};
+
+/* Geometry and mass parameters. Inertias are principal moments about the body's own centre of
+ * mass, on the axes of its frame (platform frame for platform and payload; for the leg bodies
+ * x along the Cardan cross arm, z along the leg axis from base toward platform). */
+typedef struct stewart_params {
+    double base_radius;                     /* r_b [m] */
+    double platform_radius;                 /* r_t [m] */
+    double base_angle[STEWART_LEGS];        /* beta_k [rad] */
+    double platform_angle[STEWART_LEGS];    /* tau_k [rad], in the platform frame */
+    double home_height;                     /* z of the home pose [m] */
+    double gravity[3];                      /* [m/s^2], world frame */
+
+    double platform_mass;                   /* [kg] */
+    double platform_com[3];                 /* platform centre of mass, platform frame [m] */
+    double platform_inertia[3];             /* [kg m^2] */
+    double payload_mass;                    /* [kg], 0 for none */
+    double payload_com[3];                  /* payload centre of mass, platform frame [m] */
+    double payload_inertia[3];              /* [kg m^2] */
+
+    double cylinder_mass;                   /* lower leg body, on the base Cardan [kg] */
+    double cylinder_inertia[3];             /* [kg m^2] */
+    double cylinder_com;                    /* from the base Cardan centre along the leg [m] */
+    double piston_mass;                     /* upper leg body, on the platform Cardan [kg] */
+    double piston_inertia[3];               /* [kg m^2] */
+    double piston_com;                      /* from the platform Cardan centre toward the base [m] */
+
+    double stroke_min;                      /* shortest allowed actuator length [m] */
+    double stroke_max;                      /* longest allowed actuator length [m] */
+} stewart_params;
+
+/* Solver settings; stewart_options_default gives the values documented here. */
+typedef struct stewart_options {
+    stewart_fidelity fidelity;   /* default STEWART_MASSLESS */
+    double tolerance;            /* Newton residual tolerance, max-norm (full level); 1e-12 */
+    int max_iterations;          /* Newton iteration cap (full level); 20 */
+    int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
+    double warn_condition;       /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
+    double singular_condition;   /* condition above which the solve fails as singular; 1e10 */
+} stewart_options;
+
+/* Platform pose and its first and second time derivatives, each ordered
+ * (x, y, z [m], roll, pitch, yaw [rad]). */
+typedef struct stewart_pose {
+    double q[6];
+    double q_dot[6];
+    double q_ddot[6];
+} stewart_pose;
+
+typedef struct stewart_output {
+    double length[STEWART_LEGS];        /* L_k [m] */
+    double length_rate[STEWART_LEGS];   /* dL_k/dt [m/s] */
+    double length_accel[STEWART_LEGS];  /* d2L_k/dt2 [m/s^2] */
+    double force[STEWART_LEGS];         /* F_k [N], > 0 pushes the platform away; 0 if kinematic */
+    double condition;       /* 1-norm condition number of the leg Jacobian; 0 if kinematic */
+    int iterations;         /* Newton iterations of the position problem; 0 below full level */
+    double residual;        /* max-norm of the constraint residual after the solve [m] */
+    double base_force[3];   /* force the legs put on the base, world frame [N] */
+    double base_torque[3];  /* torque of that wrench about the world origin [N m] */
+    int warnings;           /* STEWART_WARN_* bits */
+} stewart_output;
+
+typedef struct stewart_model stewart_model;
+typedef struct stewart_data stewart_data;
+
+/* The thesis platform in SI (model.md §2). */
+void stewart_params_default(stewart_params *params);
+/* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the parameter and its value. */
+stewart_status stewart_params_check(const stewart_params *params, char *message, size_t size);
+void stewart_options_default(stewart_options *options);
+/* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the option and its value. */
+stewart_status stewart_options_check(const stewart_options *options, char *message, size_t size);
+
+/* NULL if the parameters are invalid (message says why) or memory is short. */
+stewart_model *stewart_model_create(const stewart_params *params, char *message, size_t size);
+void stewart_model_free(stewart_model *model);
+const stewart_params *stewart_model_params(const stewart_model *model);
+
+stewart_data *stewart_data_create(const stewart_model *model);
+void stewart_data_free(stewart_data *data);
+/* Copies the whole state of src into dst (both made from the same model): a rollback point. */
+stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src);
+/* Forgets the history (warm start) as if the data block were new. */
+void stewart_data_reset(stewart_data *data);
+/* The message of the last solve that did not return STEWART_OK, else "". */
+const char *stewart_data_message(const stewart_data *data);
+
+/* Actuator lengths, rates, accelerations and forces for one pose. On error the output is left
+ * unchanged and stewart_data_message names the offending value. Never writes NaN. */
+stewart_status stewart_solve(const stewart_model *model, stewart_data *data,
+                             const stewart_options *options, const stewart_pose *pose,
+                             stewart_output *output);
+
+const char *stewart_status_name(stewart_status status);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* STEWART_STEWART_H */

@@ -1,0 +1,122 @@
+#include "platform/closed_form.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+
+#include "util/message.hpp"
+
+namespace stewart {
+
+PlatformGeometry platform_geometry(const stewart_params &p) {
+    PlatformGeometry g;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        g.base_points.col(k) << p.base_radius * std::cos(p.base_angle[k]),
+            p.base_radius * std::sin(p.base_angle[k]), 0.0;
+        g.platform_points.col(k) << p.platform_radius * std::cos(p.platform_angle[k]),
+            p.platform_radius * std::sin(p.platform_angle[k]), 0.0;
+    }
+    return g;
+}
+
+namespace {
+
+// Inertia of a body about a point displaced by d from its centre of mass (parallel axes).
+Eigen::Matrix3d shifted_inertia(const Eigen::Matrix3d &I, double m, const Eigen::Vector3d &d) {
+    return I + m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+}
+
+}  // namespace
+
+LumpedBody lumped_platform(const stewart_params &p) {
+    const Eigen::Vector3d c_plate(p.platform_com), c_load(p.payload_com);
+    LumpedBody b;
+    b.mass = p.platform_mass + p.payload_mass;
+    b.com = (p.platform_mass * c_plate + p.payload_mass * c_load) / b.mass;
+    const Eigen::Matrix3d I_plate = Eigen::Vector3d(p.platform_inertia).asDiagonal();
+    const Eigen::Matrix3d I_load = Eigen::Vector3d(p.payload_inertia).asDiagonal();
+    b.inertia = shifted_inertia(I_plate, p.platform_mass, c_plate - b.com) +
+                shifted_inertia(I_load, p.payload_mass, c_load - b.com);
+    return b;
+}
+
+stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, LegKinematics &out,
+                              char *msg, size_t size) {
+    out.arm.noalias() = m.rotation * g.platform_points;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Eigen::Vector3d r = out.arm.col(k);
+        const Eigen::Vector3d d = m.position + r - g.base_points.col(k);
+        const double L = d.norm();
+        // A leg of (nearly) zero length has no direction: no force or rate can be defined.
+        if (!(L > 1e-9 * (1.0 + g.base_points.col(k).norm())))
+            return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                               "leg %d has length %g m at this pose: its platform point lies on its "
+                               "base point", k + 1, L);
+        const Eigen::Vector3d n = d / L;
+        const Eigen::Vector3d v = m.velocity + m.omega.cross(r);
+        const Eigen::Vector3d a =
+            m.acceleration + m.alpha.cross(r) + m.omega.cross(m.omega.cross(r));
+        const double L_dot = n.dot(v);
+        out.axis.col(k) = n;
+        out.length[k] = L;
+        out.rate[k] = L_dot;
+        // From d(d.d)/dt twice: L L_ddot = |d_dot|^2 - L_dot^2 + d.d_ddot.
+        out.accel[k] = (v.squaredNorm() - L_dot * L_dot) / L + n.dot(a);
+    }
+    return STEWART_OK;
+}
+
+Matrix6 leg_jacobian_transposed(const LegKinematics &legs) {
+    Matrix6 Jt;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Eigen::Vector3d n = legs.axis.col(k);
+        Jt.block<3, 1>(0, k) = n;
+        Jt.block<3, 1>(3, k) = legs.arm.col(k).cross(n);
+    }
+    return Jt;
+}
+
+void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
+                            const double force[STEWART_LEGS], stewart_output &out) {
+    Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Eigen::Vector3d on_base = -force[k] * legs.axis.col(k);
+        f += on_base;
+        t += g.base_points.col(k).cross(on_base);
+    }
+    for (int i = 0; i < 3; ++i) {
+        out.base_force[i] = f[i];
+        out.base_torque[i] = t[i];
+    }
+}
+
+stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body,
+                               const Eigen::Vector3d &gravity, const RigidMotion &m,
+                               const LegKinematics &legs, double singular_condition,
+                               stewart_output &out, char *msg, size_t size) {
+    // Newton-Euler for the lumped body; moments taken about the platform origin.
+    const Eigen::Vector3d c = m.rotation * body.com;
+    const Eigen::Vector3d a_c =
+        m.acceleration + m.alpha.cross(c) + m.omega.cross(m.omega.cross(c));
+    const Eigen::Matrix3d I_world = m.rotation * body.inertia * m.rotation.transpose();
+    Vector6 wrench;
+    wrench.head<3>() = body.mass * (a_c - gravity);
+    wrench.tail<3>() = I_world * m.alpha + m.omega.cross(I_world * m.omega) +
+                       c.cross(wrench.head<3>());
+
+    const Matrix6 Jt = leg_jacobian_transposed(legs);
+    const Matrix6 Jt_inv = Eigen::PartialPivLU<Matrix6>(Jt).inverse();
+    // cond_1(J) = ||J^T||_inf ||J^-T||_inf; exact for 6x6, and the inverse serves the solve too.
+    const double condition = Jt.rowwise().lpNorm<1>().maxCoeff() *
+                             Jt_inv.rowwise().lpNorm<1>().maxCoeff();
+    if (!std::isfinite(condition) || condition > singular_condition)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "leg Jacobian is singular at this pose: condition number %g exceeds "
+                           "singular_condition %g", condition, singular_condition);
+    const Vector6 F = Jt_inv * wrench;
+    for (int k = 0; k < STEWART_LEGS; ++k) out.force[k] = F[k];
+    out.condition = condition;
+    base_wrench_from_axial(g, legs, out.force, out);
+    return STEWART_OK;
+}
+
+}  // namespace stewart

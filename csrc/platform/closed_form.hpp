@@ -1,0 +1,58 @@
+// The two closed-form fidelity levels: leg kinematics, and forces with massless legs.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "platform/rigid_motion.hpp"
+#include "stewart/stewart.h"
+
+namespace stewart {
+
+using Matrix36 = Eigen::Matrix<double, 3, STEWART_LEGS>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+// Attachment points from the parameters: a_k in the world, b_k in the platform frame.
+struct PlatformGeometry {
+    Matrix36 base_points;
+    Matrix36 platform_points;
+};
+PlatformGeometry platform_geometry(const stewart_params &p);
+
+// Platform and payload lumped into one rigid body, in the platform frame.
+struct LumpedBody {
+    double mass;
+    Eigen::Vector3d com;
+    Eigen::Matrix3d inertia;  // about com
+};
+LumpedBody lumped_platform(const stewart_params &p);
+
+// Per-leg kinematics along a pose.
+struct LegKinematics {
+    Matrix36 arm;       // R b_k: platform point relative to the platform origin, world
+    Matrix36 axis;      // unit vector n_k from base point toward platform point
+    Vector6 length, rate, accel;
+};
+
+// Fails with STEWART_ERR_UNREACHABLE (message names the leg) when a leg has zero length.
+stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, LegKinematics &out,
+                              char *msg, size_t size);
+
+// Transposed leg Jacobian about the platform origin: column k = (n_k, (R b_k) x n_k), so that
+// J^T F is the wrench of the leg forces on the platform (moments about its origin) and
+// J (v, omega) = L_dot.
+Matrix6 leg_jacobian_transposed(const LegKinematics &legs);
+
+// Massless legs: solves J^T F = wrench needed by Newton-Euler for the lumped body, fills
+// force, condition and the base wrench. STEWART_ERR_SINGULAR if the condition number is above
+// singular_condition (or not finite).
+stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body,
+                               const Eigen::Vector3d &gravity, const RigidMotion &m,
+                               const LegKinematics &legs, double singular_condition,
+                               stewart_output &out, char *msg, size_t size);
+
+// The wrench the legs put on the base, from the forces along the leg axes (massless legs).
+void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
+                            const double force[STEWART_LEGS], stewart_output &out);
+
+}  // namespace stewart

@@ -1,0 +1,45 @@
+#include "platform/rigid_motion.hpp"
+
+#include <cmath>
+
+namespace stewart {
+
+Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
+    const double cr = std::cos(roll), sr = std::sin(roll);
+    const double cp = std::cos(pitch), sp = std::sin(pitch);
+    const double cy = std::cos(yaw), sy = std::sin(yaw);
+    Eigen::Matrix3d R;
+    R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+         sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+         -sp,     cp * sr,                cp * cr;
+    return R;
+}
+
+RigidMotion rigid_motion(const stewart_pose &pose) {
+    RigidMotion m;
+    m.position = Eigen::Vector3d(pose.q[0], pose.q[1], pose.q[2]);
+    m.velocity = Eigen::Vector3d(pose.q_dot[0], pose.q_dot[1], pose.q_dot[2]);
+    m.acceleration = Eigen::Vector3d(pose.q_ddot[0], pose.q_ddot[1], pose.q_ddot[2]);
+    const double roll = pose.q[3], pitch = pose.q[4], yaw = pose.q[5];
+    m.rotation = rotation_from_rpy(roll, pitch, yaw);
+
+    // omega = roll_dot Rz Ry ex + pitch_dot Rz ey + yaw_dot ez.
+    const double cp = std::cos(pitch), sp = std::sin(pitch);
+    const double cy = std::cos(yaw), sy = std::sin(yaw);
+    Eigen::Matrix3d E;
+    E << cy * cp, -sy, 0,
+         sy * cp,  cy, 0,
+         -sp,      0,  1;
+    const Eigen::Vector3d rate(pose.q_dot[3], pose.q_dot[4], pose.q_dot[5]);
+    const Eigen::Vector3d accel(pose.q_ddot[3], pose.q_ddot[4], pose.q_ddot[5]);
+    const double pd = rate[1], yd = rate[2];
+    Eigen::Matrix3d E_dot;
+    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, 0,
+              cy * yd * cp - sy * sp * pd, -sy * yd, 0,
+             -cp * pd,                      0,       0;
+    m.omega = E * rate;
+    m.alpha = E * accel + E_dot * rate;
+    return m;
+}
+
+}  // namespace stewart

@@ -1,0 +1,135 @@
+/* Bad input: every case returns an error code and a message naming the value, leaves the output
+ * untouched, and the data block stays usable. */
+#include <math.h>
+#include <string.h>
+
+#include "test_support.h"
+#include "unity.h"
+
+static stewart_params params;
+static stewart_model *model;
+static stewart_data *data;
+static char msg[STEWART_MESSAGE_SIZE];
+
+void setUp(void) {
+    stewart_params_default(&params);
+    model = test_model(&params);
+    data = stewart_data_create(model);
+}
+
+void tearDown(void) {
+    stewart_data_free(data);
+    stewart_model_free(model);
+}
+
+static void assert_contains(const char *haystack, const char *needle) {
+    if (!strstr(haystack, needle)) {
+        char text[2 * STEWART_MESSAGE_SIZE];
+        snprintf(text, sizeof text, "'%s' does not mention '%s'", haystack, needle);
+        TEST_FAIL_MESSAGE(text);
+    }
+}
+
+/* The output keeps its sentinel after a failed solve, and a good pose right after succeeds. */
+static void assert_rejected(const stewart_pose *pose, stewart_fidelity f, stewart_status expected,
+                            const char *mention) {
+    stewart_options o = test_options(f);
+    stewart_output out;
+    memset(&out, 0x5a, sizeof out);
+    stewart_output sentinel = out;
+    TEST_ASSERT_EQUAL_INT(expected, stewart_solve(model, data, &o, pose, &out));
+    TEST_ASSERT_EQUAL_MEMORY(&sentinel, &out, sizeof out);
+    assert_contains(stewart_data_message(data), mention);
+    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    stewart_output good = solve_ok(model, data, f, &home);
+    TEST_ASSERT_FALSE(isnan(good.force[0]));
+    TEST_ASSERT_EQUAL_STRING("", stewart_data_message(data));
+}
+
+static void test_nan_and_inf_pose_components_are_named(void) {
+    const char *names[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+    char expected[32];
+    for (int row = 0; row < 3; ++row)
+        for (int i = 0; i < 6; ++i) {
+            stewart_pose pose = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+            double *v = row == 0 ? pose.q : row == 1 ? pose.q_dot : pose.q_ddot;
+            v[i] = (i % 2) ? NAN : -INFINITY;
+            snprintf(expected, sizeof expected, "%s%s is", names[i],
+                     row == 0 ? "" : row == 1 ? "_dot" : "_ddot");
+            assert_rejected(&pose, STEWART_MASSLESS, STEWART_ERR_ARGUMENT, expected);
+        }
+}
+
+/* z = 0 and yaw = 30 degrees puts platform point 1 (at 330 deg) onto base point 1 (at 0 deg). */
+static void test_leg_of_zero_length_is_unreachable(void) {
+    stewart_pose pose = {{0, 0, 0, 0, 0, M_PI / 6}, {0}, {0}};
+    assert_rejected(&pose, STEWART_KINEMATIC, STEWART_ERR_UNREACHABLE, "leg 1");
+}
+
+/* Legs all vertical (platform angles equal to base angles) cannot resist a yaw moment. */
+static void test_singular_leg_jacobian(void) {
+    memcpy(params.platform_angle, params.base_angle, sizeof params.base_angle);
+    tearDown();
+    model = test_model(&params);
+    data = stewart_data_create(model);
+    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    stewart_options o = test_options(STEWART_MASSLESS);
+    stewart_output out;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, stewart_solve(model, data, &o, &home, &out));
+    assert_contains(stewart_data_message(data), "singular");
+    /* the kinematic level needs no inverse and still answers */
+    solve_ok(model, data, STEWART_KINEMATIC, &home);
+}
+
+static void expect_bad_params(const stewart_params *p, const char *mention) {
+    TEST_ASSERT_NULL(stewart_model_create(p, msg, sizeof msg));
+    assert_contains(msg, mention);
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_params_check(p, msg, sizeof msg));
+}
+
+static void test_invalid_parameters_are_named(void) {
+    stewart_params p;
+    stewart_params_default(&p); p.base_radius = 0;          expect_bad_params(&p, "base_radius = 0");
+    stewart_params_default(&p); p.platform_radius = -1;     expect_bad_params(&p, "platform_radius = -1");
+    stewart_params_default(&p); p.platform_mass = 0;        expect_bad_params(&p, "platform_mass = 0");
+    stewart_params_default(&p); p.payload_mass = -5;        expect_bad_params(&p, "payload_mass = -5");
+    stewart_params_default(&p); p.piston_mass = -1;         expect_bad_params(&p, "piston_mass");
+    stewart_params_default(&p); p.gravity[2] = NAN;         expect_bad_params(&p, "gravity[2]");
+    stewart_params_default(&p); p.platform_angle[4] = INFINITY; expect_bad_params(&p, "platform_angle[4]");
+    stewart_params_default(&p); p.platform_inertia[2] = 0;  expect_bad_params(&p, "platform_inertia");
+    /* principal moments that break the triangle inequality are no rigid body's */
+    stewart_params_default(&p); p.payload_inertia[0] = 1; p.payload_inertia[1] = 1;
+    p.payload_inertia[2] = 3;                                expect_bad_params(&p, "payload_inertia");
+    stewart_params_default(&p); p.stroke_max = p.stroke_min; expect_bad_params(&p, "stroke");
+    TEST_ASSERT_NULL(stewart_model_create(NULL, msg, sizeof msg));
+}
+
+static void test_invalid_options_and_null_arguments(void) {
+    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    stewart_output out;
+    stewart_options o = test_options(STEWART_MASSLESS);
+    o.fidelity = (stewart_fidelity)7;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_solve(model, data, &o, &home, &out));
+    assert_contains(stewart_data_message(data), "fidelity = 7");
+    o = test_options(STEWART_MASSLESS);
+    o.tolerance = -1;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_solve(model, data, &o, &home, &out));
+    assert_contains(stewart_data_message(data), "tolerance = -1");
+    o = test_options(STEWART_MASSLESS);
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(model, data, &o, NULL, &out));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(NULL, data, &o, &home, &out));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(model, NULL, &o, &home, &out));
+    TEST_ASSERT_NULL(stewart_data_create(NULL));
+    stewart_model_free(NULL);
+    stewart_data_free(NULL);
+}
+
+int main(void) {
+    UNITY_BEGIN();
+    RUN_TEST(test_nan_and_inf_pose_components_are_named);
+    RUN_TEST(test_leg_of_zero_length_is_unreachable);
+    RUN_TEST(test_singular_leg_jacobian);
+    RUN_TEST(test_invalid_parameters_are_named);
+    RUN_TEST(test_invalid_options_and_null_arguments);
+    return UNITY_END();
+}

@@ -1,0 +1,26 @@
+/* Shared helpers of the Unity tests: models, poses, and trajectories with exact derivatives. */
+#ifndef STEWART_TEST_SUPPORT_H
+#define STEWART_TEST_SUPPORT_H
+
+#include "stewart/stewart.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Fails the current test (with the library's message) if the model cannot be built. */
+stewart_model *test_model(const stewart_params *params);
+stewart_options test_options(stewart_fidelity fidelity);
+
+/* A smooth combined manoeuvre: every pose component a sinusoid (amplitudes within the thesis
+ * platform's workspace), with exact first and second derivatives. */
+stewart_pose combined_pose(double t);
+/* One thesis manoeuvre at 5 rad/s: component 2 (z) heave of 0.04 m about 0.5 m, or component
+ * 3/4/5 (roll/pitch/yaw) of amplitude pi/18 with z held at 0.5 m. */
+stewart_pose thesis_pose(int component, double t);
+
+/* Solves and fails the test with the library's message unless the status is STEWART_OK. */
+stewart_output solve_ok(const stewart_model *m, stewart_data *d, stewart_fidelity f,
+                        const stewart_pose *pose);
+
+#endif
