@@ -24,18 +24,29 @@ function(_unity_verified out)
 endfunction()
 
 _unity_verified(_unity_ok)
+set(UNITY_WHEEL_DIR "" CACHE PATH "Folder holding vyperling-0.0.4-*.whl (else it is downloaded from PyPI)")
+
 if(NOT _unity_ok)
   find_package(Python3 REQUIRED COMPONENTS Interpreter)
-  set(_wheel_dir "${CMAKE_BINARY_DIR}/_deps/wheel")
-  file(REMOVE_RECURSE "${_wheel_dir}")
-  execute_process(
-    COMMAND "${Python3_EXECUTABLE}" -m pip download --no-deps --only-binary=:all:
-            --disable-pip-version-check -q -d "${_wheel_dir}" vyperling==0.0.4
-    RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "Could not download vyperling==0.0.4 (Unity) from PyPI with ${Python3_EXECUTABLE}")
+  set(_wheel "")
+  if(UNITY_WHEEL_DIR)
+    file(GLOB _wheel "${UNITY_WHEEL_DIR}/vyperling-0.0.4-*.whl")
   endif()
-  file(GLOB _wheel "${_wheel_dir}/vyperling-0.0.4-*.whl")
+  if(NOT _wheel)
+    set(_wheel_dir "${CMAKE_BINARY_DIR}/_deps/wheel")
+    execute_process(
+      COMMAND "${Python3_EXECUTABLE}" -m pip download --no-deps --only-binary=:all:
+              --disable-pip-version-check -q -d "${_wheel_dir}" vyperling==0.0.4
+      RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "Could not download vyperling==0.0.4 (Unity) from PyPI with ${Python3_EXECUTABLE}")
+    endif()
+    file(GLOB _wheel "${_wheel_dir}/vyperling-0.0.4-*.whl")
+  endif()
+  if(NOT _wheel)
+    message(FATAL_ERROR "No vyperling-0.0.4 wheel found or downloaded")
+  endif()
+  list(GET _wheel 0 _wheel)
   execute_process(
     COMMAND "${Python3_EXECUTABLE}" -c
       "import sys, zipfile; z = zipfile.ZipFile(sys.argv[1]); [open(sys.argv[2] + '/' + n, 'wb').write(z.read('vyperling/c/' + n)) for n in sys.argv[3:]]"

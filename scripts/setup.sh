@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs everything the project needs on a Debian machine: the Debian packages (apt-get), a venv
+# at .venv with the pinned Python packages, and the Unity wheel. Run again, it is quick and
+# changes nothing.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+debian_packages=(cmake make g++ binutils libsundials-dev libeigen3-dev python3 python3-venv)
+missing=()
+for p in "${debian_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  as_root=""; [ "$(id -u)" -eq 0 ] || as_root="sudo"
+  $as_root apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $as_root apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# The venv is built from Debian's interpreter, whatever else is on PATH.
+if [ ! -x .venv/bin/python ]; then
+  echo "setup: creating .venv"
+  /usr/bin/python3 -m venv .venv
+fi
+if ! cmp -s scripts/requirements.txt .venv/installed-requirements.txt; then
+  echo "setup: installing Python packages (scripts/requirements.txt)"
+  .venv/bin/pip install -q --disable-pip-version-check -r scripts/requirements.txt
+  cp scripts/requirements.txt .venv/installed-requirements.txt
+fi
+
+# Unity 2.6.1 comes in the vyperling wheel; CMake extracts it and checks its sha256
+# (cmake/FetchUnity.cmake).
+if ! ls .cache/wheels/vyperling-0.0.4-*.whl >/dev/null 2>&1; then
+  echo "setup: fetching Unity (vyperling==0.0.4) from PyPI"
+  .venv/bin/pip download -q --disable-pip-version-check --no-deps --only-binary=:all: \
+    -d .cache/wheels vyperling==0.0.4
+fi

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# The test command: set up, build, then run every test (Unity through ctest, then pytest).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+(cd build && ctest --output-on-failure)
+STEWART_BUILD_DIR="$PWD/build" .venv/bin/python -m pytest tests/python -q
