@@ -1,8 +1,8 @@
 #include "platform/closed_form.hpp"
 
-#include <Eigen/LU>
 #include <cmath>
 
+#include "platform/small_inverse.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -15,6 +15,7 @@ PlatformGeometry platform_geometry(const stewart_params &p) {
         g.platform_points.col(k) << p.platform_radius * std::cos(p.platform_angle[k]),
             p.platform_radius * std::sin(p.platform_angle[k]), 0.0;
     }
+    g.min_length = 1e-12 * (p.base_radius + p.platform_radius);
     return g;
 }
 
@@ -47,11 +48,12 @@ stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, L
         const Eigen::Vector3d d = m.position + r - g.base_points.col(k);
         const double L = d.norm();
         // A leg of (nearly) zero length has no direction: no force or rate can be defined.
-        if (!(L > 1e-9 * (1.0 + g.base_points.col(k).norm())))
+        if (!(L > g.min_length))
             return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                "leg %d has length %g m at this pose: its platform point lies on its "
                                "base point", k + 1, L);
-        const Eigen::Vector3d n = d / L;
+        const double inv_L = 1.0 / L;  // one division per leg, in the hot path
+        const Eigen::Vector3d n = d * inv_L;
         const Eigen::Vector3d v = m.velocity + m.omega.cross(r);
         const Eigen::Vector3d a =
             m.acceleration + m.alpha.cross(r) + m.omega.cross(m.omega.cross(r));
@@ -60,7 +62,7 @@ stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, L
         out.length[k] = L;
         out.rate[k] = L_dot;
         // From d(d.d)/dt twice: L L_ddot = |d_dot|^2 - L_dot^2 + d.d_ddot.
-        out.accel[k] = (v.squaredNorm() - L_dot * L_dot) / L + n.dot(a);
+        out.accel[k] = (v.squaredNorm() - L_dot * L_dot) * inv_L + n.dot(a);
     }
     return STEWART_OK;
 }
@@ -104,11 +106,13 @@ stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body
                        c.cross(wrench.head<3>());
 
     const Matrix6 Jt = leg_jacobian_transposed(legs);
-    const Matrix6 Jt_inv = Eigen::PartialPivLU<Matrix6>(Jt).inverse();
+    Matrix6 Jt_inv;
+    const bool invertible = invert_6x6(Jt, Jt_inv);
     // cond_1(J) = ||J^T||_inf ||J^-T||_inf; exact for 6x6, and the inverse serves the solve too.
-    const double condition = Jt.rowwise().lpNorm<1>().maxCoeff() *
-                             Jt_inv.rowwise().lpNorm<1>().maxCoeff();
-    if (!std::isfinite(condition) || condition > singular_condition)
+    const double condition = invertible ? Jt.cwiseAbs().rowwise().sum().maxCoeff() *
+                                              Jt_inv.cwiseAbs().rowwise().sum().maxCoeff()
+                                        : HUGE_VAL;
+    if (!(condition <= singular_condition))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "leg Jacobian is singular at this pose: condition number %g exceeds "
                            "singular_condition %g", condition, singular_condition);

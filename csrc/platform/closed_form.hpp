@@ -16,6 +16,7 @@ using Vector6 = Eigen::Matrix<double, 6, 1>;
 struct PlatformGeometry {
     Matrix36 base_points;
     Matrix36 platform_points;
+    double min_length;  // below it a leg has no direction: the pose is unreachable [m]
 };
 PlatformGeometry platform_geometry(const stewart_params &p);
 

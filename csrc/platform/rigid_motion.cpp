@@ -4,10 +4,9 @@
 
 namespace stewart {
 
-Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
-    const double cr = std::cos(roll), sr = std::sin(roll);
-    const double cp = std::cos(pitch), sp = std::sin(pitch);
-    const double cy = std::cos(yaw), sy = std::sin(yaw);
+namespace {
+
+Eigen::Matrix3d rotation_from_trig(double cr, double sr, double cp, double sp, double cy, double sy) {
     Eigen::Matrix3d R;
     R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
          sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
@@ -15,17 +14,24 @@ Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
     return R;
 }
 
+}  // namespace
+
+Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
+    return rotation_from_trig(std::cos(roll), std::sin(roll), std::cos(pitch), std::sin(pitch),
+                              std::cos(yaw), std::sin(yaw));
+}
+
 RigidMotion rigid_motion(const stewart_pose &pose) {
     RigidMotion m;
     m.position = Eigen::Vector3d(pose.q[0], pose.q[1], pose.q[2]);
     m.velocity = Eigen::Vector3d(pose.q_dot[0], pose.q_dot[1], pose.q_dot[2]);
     m.acceleration = Eigen::Vector3d(pose.q_ddot[0], pose.q_ddot[1], pose.q_ddot[2]);
-    const double roll = pose.q[3], pitch = pose.q[4], yaw = pose.q[5];
-    m.rotation = rotation_from_rpy(roll, pitch, yaw);
+    const double cr = std::cos(pose.q[3]), sr = std::sin(pose.q[3]);
+    const double cp = std::cos(pose.q[4]), sp = std::sin(pose.q[4]);
+    const double cy = std::cos(pose.q[5]), sy = std::sin(pose.q[5]);
+    m.rotation = rotation_from_trig(cr, sr, cp, sp, cy, sy);
 
     // omega = roll_dot Rz Ry ex + pitch_dot Rz ey + yaw_dot ez.
-    const double cp = std::cos(pitch), sp = std::sin(pitch);
-    const double cy = std::cos(yaw), sy = std::sin(yaw);
     Eigen::Matrix3d E;
     E << cy * cp, -sy, 0,
          sy * cp,  cy, 0,
