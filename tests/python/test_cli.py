@@ -157,3 +157,39 @@ def test_bad_command_lines(solve, tmp_path):
     result = solve(tmp_path / "missing.csv", tmp_path / "out.csv")
     assert result.returncode == 1 and "cannot open" in result.stderr
     assert "usage" in solve("--help").stdout
+
+
+def leg_jacobian(q, beta, tau, radius=0.5):
+    """J with rows (n_k, (R b_k) x n_k), from the pose alone, built with numpy."""
+    x, y, z, roll, pitch, yaw = q
+    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
+                              math.cos(yaw), math.sin(yaw))
+    Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    R = Rz @ Ry @ Rx
+    rows = []
+    for b_angle, a_angle in zip(tau, beta):
+        arm = R @ (radius * np.array([math.cos(b_angle), math.sin(b_angle), 0]))
+        d = np.array([x, y, z]) + arm - radius * np.array([math.cos(a_angle), math.sin(a_angle), 0])
+        n = d / np.linalg.norm(d)
+        rows.append(np.concatenate([n, np.cross(arm, n)]))
+    return np.array(rows)
+
+
+def test_condition_is_the_one_norm_condition_of_the_leg_jacobian(solve, tmp_path):
+    pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
+    rng = np.random.default_rng(7)
+    poses = np.column_stack([rng.uniform(-0.05, 0.05, 20), rng.uniform(-0.05, 0.05, 20),
+                             rng.uniform(0.45, 0.55, 20), *(rng.uniform(-0.3, 0.3, (3, 20)))])
+    with open(pose_csv, "w") as f:
+        f.write("t,x,y,z,roll,pitch,yaw\n")
+        for i, q in enumerate(poses):
+            f.write(",".join(repr(float(v)) for v in [i, *q]) + "\n")
+    result = solve(pose_csv, out_csv)
+    assert result.returncode == 0, result.stderr
+    header, data = read(out_csv)
+    beta = np.radians([0, 30, 120, 150, 240, 270])
+    tau = np.radians([330, 60, 90, 180, 210, 300])
+    expected = [np.linalg.cond(leg_jacobian(q, beta, tau), 1) for q in poses]
+    np.testing.assert_allclose(column(header, data, "condition"), expected, rtol=1e-9)
