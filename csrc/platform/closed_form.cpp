@@ -16,6 +16,7 @@ PlatformGeometry platform_geometry(const stewart_params &p) {
             p.platform_radius * std::sin(p.platform_angle[k]), 0.0;
     }
     g.min_length = 1e-12 * (p.base_radius + p.platform_radius);
+    g.characteristic_length = p.platform_radius;
     return g;
 }
 
@@ -67,14 +68,18 @@ stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, L
     return STEWART_OK;
 }
 
-Matrix6 leg_jacobian_transposed(const LegKinematics &legs) {
-    Matrix6 Jt;
+void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacobian &out) {
+    const double inv_length = 1.0 / g.characteristic_length;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d n = legs.axis.col(k);
-        Jt.block<3, 1>(0, k) = n;
-        Jt.block<3, 1>(3, k) = legs.arm.col(k).cross(n);
+        out.transposed.block<3, 1>(0, k) = n;
+        out.transposed.block<3, 1>(3, k) = legs.arm.col(k).cross(n) * inv_length;
     }
-    return Jt;
+    // cond_1(J) = ||J^T||_inf ||J^-T||_inf; exact for 6x6, and the inverse serves the solve too.
+    out.condition = invert_6x6(out.transposed, out.inverse_transposed)
+                        ? out.transposed.cwiseAbs().rowwise().sum().maxCoeff() *
+                              out.inverse_transposed.cwiseAbs().rowwise().sum().maxCoeff()
+                        : HUGE_VAL;
 }
 
 void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
@@ -105,20 +110,17 @@ stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body
     wrench.tail<3>() = I_world * m.alpha + m.omega.cross(I_world * m.omega) +
                        c.cross(wrench.head<3>());
 
-    const Matrix6 Jt = leg_jacobian_transposed(legs);
-    Matrix6 Jt_inv;
-    const bool invertible = invert_6x6(Jt, Jt_inv);
-    // cond_1(J) = ||J^T||_inf ||J^-T||_inf; exact for 6x6, and the inverse serves the solve too.
-    const double condition = invertible ? Jt.cwiseAbs().rowwise().sum().maxCoeff() *
-                                              Jt_inv.cwiseAbs().rowwise().sum().maxCoeff()
-                                        : HUGE_VAL;
-    if (!(condition <= singular_condition))
+    LegJacobian J;
+    leg_jacobian(g, legs, J);
+    if (!(J.condition <= singular_condition))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "leg Jacobian is singular at this pose: condition number %g exceeds "
-                           "singular_condition %g", condition, singular_condition);
-    const Vector6 F = Jt_inv * wrench;
+                           "singular_condition %g", J.condition, singular_condition);
+    // J^T F = wrench, with the moment rows scaled as the Jacobian's.
+    wrench.tail<3>() /= g.characteristic_length;
+    const Vector6 F = J.inverse_transposed * wrench;
     for (int k = 0; k < STEWART_LEGS; ++k) out.force[k] = F[k];
-    out.condition = condition;
+    out.condition = J.condition;
     base_wrench_from_axial(g, legs, out.force, out);
     return STEWART_OK;
 }

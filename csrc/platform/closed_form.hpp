@@ -17,6 +17,7 @@ struct PlatformGeometry {
     Matrix36 base_points;
     Matrix36 platform_points;
     double min_length;  // below it a leg has no direction: the pose is unreachable [m]
+    double characteristic_length;  // platform radius: scales the angular part of the Jacobian
 };
 PlatformGeometry platform_geometry(const stewart_params &p);
 
@@ -39,10 +40,15 @@ struct LegKinematics {
 stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, LegKinematics &out,
                               char *msg, size_t size);
 
-// Transposed leg Jacobian about the platform origin: column k = (n_k, (R b_k) x n_k), so that
-// J^T F is the wrench of the leg forces on the platform (moments about its origin) and
-// J (v, omega) = L_dot.
-Matrix6 leg_jacobian_transposed(const LegKinematics &legs);
+// The leg Jacobian J maps the platform twist (v, omega) at its origin to the leg rates L_dot.
+// Its angular columns are divided by the characteristic length (the platform radius), so that
+// the condition number is dimensionless and the same for a platform of any size.
+struct LegJacobian {
+    Matrix6 transposed;  // column k = (n_k, (R b_k) x n_k / length)
+    Matrix6 inverse_transposed;
+    double condition;    // 1-norm condition number; +inf if singular
+};
+void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacobian &out);
 
 // Massless legs: solves J^T F = wrench needed by Newton-Euler for the lumped body, fills
 // force, condition and the base wrench. STEWART_ERR_SINGULAR if the condition number is above

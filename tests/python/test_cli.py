@@ -160,7 +160,7 @@ def test_bad_command_lines(solve, tmp_path):
 
 
 def leg_jacobian(q, beta, tau, radius=0.5):
-    """J with rows (n_k, (R b_k) x n_k), from the pose alone, built with numpy."""
+    """J with rows (n_k, (R b_k) x n_k / radius), from the pose alone, built with numpy."""
     x, y, z, roll, pitch, yaw = q
     cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
                               math.cos(yaw), math.sin(yaw))
@@ -173,7 +173,7 @@ def leg_jacobian(q, beta, tau, radius=0.5):
         arm = R @ (radius * np.array([math.cos(b_angle), math.sin(b_angle), 0]))
         d = np.array([x, y, z]) + arm - radius * np.array([math.cos(a_angle), math.sin(a_angle), 0])
         n = d / np.linalg.norm(d)
-        rows.append(np.concatenate([n, np.cross(arm, n)]))
+        rows.append(np.concatenate([n, np.cross(arm, n) / radius]))
     return np.array(rows)
 
 

@@ -99,7 +99,8 @@ typedef struct stewart_output {
     double length_rate[STEWART_LEGS];   /* dL_k/dt [m/s] */
     double length_accel[STEWART_LEGS];  /* d2L_k/dt2 [m/s^2] */
     double force[STEWART_LEGS];         /* F_k [N], > 0 pushes the platform away; 0 if kinematic */
-    double condition;       /* 1-norm condition number of the leg Jacobian; 0 if kinematic */
+    double condition;       /* 1-norm condition number of the leg Jacobian, its angular columns
+                               scaled by the platform radius (dimensionless); 0 if kinematic */
     int iterations;         /* Newton iterations of the position problem; 0 below full level */
     double residual;        /* max-norm of the constraint residual after the solve [m] */
     double base_force[3];   /* force the legs put on the base, world frame [N] */
