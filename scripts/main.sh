@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 mkdir -p out
-.venv/bin/python scripts/manoeuvres.py yaw out/yaw_pose.csv
+.venv/bin/python scripts/scenes.py yaw out/yaw_pose.csv --dt 0.1
 build/stewart-solve --fidelity massless out/yaw_pose.csv out/yaw.csv
 .venv/bin/python scripts/plot_legs.py out/yaw.csv out/yaw.png --title "Yaw ±10° at 5 rad/s, massless legs"
 echo "main: wrote out/yaw.csv and out/yaw.png"

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-import manoeuvres
+import scenes
 
 LEGS = range(1, 7)
 EXPECTED_HEADER = (["t"] + [f"L{k}" for k in LEGS] + [f"L_dot{k}" for k in LEGS]
@@ -26,7 +26,7 @@ def column(header, data, name):
 
 def run_manoeuvre(solve, tmp_path, name, *, dt=0.1, derivatives=True, fidelity="massless"):
     pose_csv, out_csv = tmp_path / f"{name}_in.csv", tmp_path / f"{name}_{fidelity}_out.csv"
-    manoeuvres.write_csv(name, pose_csv, dt=dt, derivatives=derivatives)
+    scenes.write_pose_csv(name, pose_csv, dt=dt, derivatives=derivatives)
     result = solve("--fidelity", fidelity, pose_csv, out_csv)
     assert result.returncode == 0, result.stderr
     return read(out_csv)
@@ -103,7 +103,7 @@ def test_full_level_close_to_massless(solve, tmp_path):
     """The thesis' legs weigh 0.14 kg per body against a 106 kg platform: the full model's
     forces stay within 2 % of the massless ones, and its lengths are the same."""
     pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "full.csv"
-    manoeuvres.write_csv("pitch", pose_csv)
+    scenes.write_pose_csv("pitch", pose_csv, dt=0.1)
     result = solve("--fidelity", "full", pose_csv, out_csv)
     if result.returncode != 0 and "not available" in result.stderr:
         pytest.skip("this build has no full 14-body level")
