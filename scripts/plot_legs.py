@@ -4,20 +4,10 @@
 usage: plot_legs.py IN.csv OUT.png [--title TEXT]
 """
 import argparse
-import csv
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-PANELS = (("L", "length L [m]"), ("L_dot", "rate dL/dt [m/s]"), ("F", "force F [N]"))
-
-
-def read_columns(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {key: [float(r[key]) for r in rows] for key in rows[0]}
+import plots
 
 
 def main():
@@ -26,20 +16,10 @@ def main():
     parser.add_argument("png")
     parser.add_argument("--title", default="")
     args = parser.parse_args()
-    data = read_columns(args.csv)
-    fig, axes = plt.subplots(len(PANELS), 1, sharex=True, figsize=(9, 9))
-    for ax, (prefix, label) in zip(axes, PANELS):
-        for k in range(1, 7):
-            ax.plot(data["t"], data[f"{prefix}{k}"], label=f"leg {k}",
-                    linestyle="-" if k % 2 else "--")
-        ax.set_ylabel(label)
-        ax.grid(True, alpha=0.3)
-    axes[0].legend(ncol=6, fontsize="small", loc="upper center", bbox_to_anchor=(0.5, 1.25))
-    axes[-1].set_xlabel("time t [s]")
-    if args.title:
-        fig.suptitle(args.title)
-    fig.tight_layout()
-    fig.savefig(args.png, dpi=110)
+    data = np.genfromtxt(args.csv, delimiter=",", names=True)
+    series = {key: np.column_stack([data[f"{key}{k}"] for k in range(1, 7)])
+              for key, _ in plots.LEG_PANELS}
+    plots.plot_legs(data["t"], series, args.png, args.title)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,97 @@
+"""Plots shared by the scripts: per-leg time series, forces per fidelity, platform animation."""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib import animation  # noqa: E402
+
+LEG_PANELS = (("L", "length L [m]"), ("L_dot", "rate dL/dt [m/s]"), ("F", "force F [N]"))
+FIDELITY_NAMES = {0: "kinematic", 1: "massless legs", 2: "full 14-body"}
+
+
+def _leg_style(k):
+    return {"label": f"leg {k}", "linestyle": "-" if k % 2 else "--"}
+
+
+def plot_legs(t, series, path, title=""):
+    """series: {'L': (N, 6), 'L_dot': (N, 6), 'F': (N, 6)} → one panel each, a line per leg."""
+    fig, axes = plt.subplots(len(LEG_PANELS), 1, sharex=True, figsize=(9, 9))
+    for ax, (key, label) in zip(axes, LEG_PANELS):
+        for k in range(6):
+            ax.plot(t, series[key][:, k], **_leg_style(k + 1))
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(ncol=6, fontsize="small", loc="lower center", bbox_to_anchor=(0.5, 1.0))
+    axes[-1].set_xlabel("time t [s]")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot_forces_per_fidelity(t, forces, path, title=""):
+    """forces: {fidelity: (N, 6)} → top: every leg's force at each level; bottom: each level's
+    difference from the highest level given."""
+    levels = sorted(forces)
+    best = levels[-1]
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(9, 8),
+                                      gridspec_kw={"height_ratios": [2, 1]})
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for level, style in zip(levels, ("-", "--", ":")[::-1][-len(levels):][::-1]):
+        for k in range(6):
+            top.plot(t, forces[level][:, k], color=colors[k], linestyle=style,
+                     label=f"leg {k + 1}" if level == best else None)
+    for level in levels[:-1]:
+        for k in range(6):
+            bottom.plot(t, forces[level][:, k] - forces[best][:, k], color=colors[k],
+                        linestyle="--")
+    top.set_ylabel("force F [N]")
+    names = ", ".join(f"{FIDELITY_NAMES[lv]} {s}" for lv, s in zip(levels, ("solid", "dashed")[::-1][-len(levels):][::-1]))
+    top.set_title(names, fontsize="small")
+    top.legend(ncol=6, fontsize="small", loc="lower center", bbox_to_anchor=(0.5, 1.08))
+    bottom.set_ylabel(f"F − F({FIDELITY_NAMES[best]}) [N]")
+    bottom.set_xlabel("time t [s]")
+    for ax in (top, bottom):
+        ax.grid(True, alpha=0.3)
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def rotation(roll, pitch, yaw):
+    cr, sr, cp, sp, cy, sy = np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def animate_platform(t, q, path, base_points, platform_points, title="", frames=90):
+    """A GIF of the platform moving: base and platform hexagons and the six legs."""
+    idx = np.linspace(0, len(t) - 1, min(frames, len(t))).astype(int)
+    fig = plt.figure(figsize=(6, 6))
+    ax = fig.add_subplot(projection="3d")
+    r = np.max(np.linalg.norm(base_points, axis=1))
+    ax.set_xlim(-r, r), ax.set_ylim(-r, r), ax.set_zlim(0, 1.4 * np.max(q[:, 2]))
+    ax.set_xlabel("x [m]"), ax.set_ylabel("y [m]"), ax.set_zlabel("z [m]")
+    closed = list(range(6)) + [0]
+    ax.plot(*base_points[closed].T, color="gray")
+    plate, = ax.plot([], [], [], color="tab:blue", linewidth=2)
+    legs = [ax.plot([], [], [], color="tab:orange")[0] for _ in range(6)]
+    label = ax.set_title(title)
+
+    def draw(frame):
+        i = idx[frame]
+        top = q[i, :3] + platform_points @ rotation(*q[i, 3:]).T
+        plate.set_data_3d(*top[closed].T)
+        for k, line in enumerate(legs):
+            line.set_data_3d(*np.vstack([base_points[k], top[k]]).T)
+        label.set_text(f"{title}  t = {t[i]:.2f} s")
+        return [plate, *legs]
+
+    anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
+    anim.save(path, writer=animation.PillowWriter(fps=15))
+    plt.close(fig)
