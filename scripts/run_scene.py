@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+"""Runs a scene (scenes/*.json) through the FMI 2.0 FMU with fmpy; writes a CSV of every output
+and PNG plots (and a GIF for scenes with "animate": true) into the output folder.
+
+At each communication point the master sets the pose (and, with derivatives = 1, its exact first
+and second derivatives), reads the outputs (a direct function of the inputs set), then steps.
+
+usage: run_scene.py SCENE [--fmu PATH] [--out DIR] [--fidelity 0|1|2] [--derivatives 0|1]
+                          [--compare 1,2]
+"""
+import argparse
+import pathlib
+import shutil
+import sys
+
+import numpy as np
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+
+import plots
+import scenes
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+LEG_OUTPUTS = ("L", "L_dot", "L_ddot", "F")
+REAL_OUTPUTS = ([f"{g}[{k}]" for g in LEG_OUTPUTS for k in range(1, 7)] + ["condition", "residual"]
+                + [f"base_force[{i}]" for i in range(1, 4)] + [f"base_torque[{i}]" for i in range(1, 4)])
+INTEGER_OUTPUTS = ("newton_iterations", "status")
+
+
+class Unit:
+    """One FMI 2 co-simulation instance of the Stewart platform FMU."""
+
+    def __init__(self, fmu_path, parameters=None, name="stewart"):
+        self.md = read_model_description(fmu_path)
+        self.vr = {v.name: v.valueReference for v in self.md.modelVariables}
+        self.types = {v.name: v.type for v in self.md.modelVariables}
+        self.unzipped = extract(fmu_path)
+        self.fmu = FMU2Slave(guid=self.md.guid, unzipDirectory=self.unzipped,
+                             modelIdentifier=self.md.coSimulation.modelIdentifier,
+                             instanceName=name)
+        self.fmu.instantiate()
+        self.fmu.setupExperiment(startTime=0.0)
+        self.fmu.enterInitializationMode()
+        for key, value in (parameters or {}).items():
+            self.set(key, value)
+        self.fmu.exitInitializationMode()
+
+    def set(self, name, value):
+        if self.types[name] == "Integer":
+            self.fmu.setInteger([self.vr[name]], [int(value)])
+        else:
+            self.fmu.setReal([self.vr[name]], [float(value)])
+
+    def set_pose(self, q, qd=None, qdd=None):
+        names = list(scenes.POSE)
+        values = list(q)
+        if qd is not None:
+            names += list(scenes.DOT) + list(scenes.DDOT)
+            values += list(qd) + list(qdd)
+        self.fmu.setReal([self.vr[n] for n in names], values)
+
+    def outputs(self):
+        reals = self.fmu.getReal([self.vr[n] for n in REAL_OUTPUTS])
+        ints = self.fmu.getInteger([self.vr[n] for n in INTEGER_OUTPUTS])
+        return dict(zip(REAL_OUTPUTS, reals)) | dict(zip(INTEGER_OUTPUTS, ints))
+
+    def close(self):
+        self.fmu.terminate()
+        self.fmu.freeInstance()
+        shutil.rmtree(self.unzipped, ignore_errors=True)
+
+
+def run(fmu_path, scene, fidelity=2, derivatives=1, dt=None, parameters=None):
+    """Every output at every communication point: {name: array}, plus 't' and the pose."""
+    t = scenes.times(scene, dt)
+    q, qd, qdd = scenes.pose(scene, t)
+    unit = Unit(fmu_path, {"fidelity": fidelity, "derivatives": derivatives,
+                           **scene.get("parameters", {}), **(parameters or {})})
+    rows = []
+    try:
+        for i, ti in enumerate(t):
+            unit.set_pose(q[i], *((qd[i], qdd[i]) if derivatives else ()))
+            rows.append(unit.outputs())
+            if i + 1 < len(t):
+                status = unit.fmu.doStep(ti, t[i + 1] - ti)
+                if status > 1:  # fmi2Warning is fine: status output says why
+                    raise RuntimeError(f"doStep at t = {ti} returned {status}")
+    finally:
+        unit.close()
+    result = {"t": t, **{name: q[:, i] for i, name in enumerate(scenes.POSE)}}
+    for name in rows[0]:
+        result[name] = np.array([r[name] for r in rows])
+    return result
+
+
+def legs(result, group):
+    return np.column_stack([result[f"{group}[{k}]"] for k in range(1, 7)])
+
+
+def write_csv(result, path):
+    names = list(result)
+    np.savetxt(path, np.column_stack([result[n] for n in names]), delimiter=",",
+               header=",".join(names), comments="", fmt="%.17g")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("scene")
+    parser.add_argument("--fmu", default=str(ROOT / "build/fmus/2.0/StewartPlatform.fmu"))
+    parser.add_argument("--out", default=str(ROOT / "out"))
+    parser.add_argument("--fidelity", type=int, default=2)
+    parser.add_argument("--derivatives", type=int, default=1)
+    parser.add_argument("--compare", default="1,2",
+                        help="fidelity levels whose forces share one chart ('' for none)")
+    args = parser.parse_args()
+    scene = scenes.load(args.scene)
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    name, title = scene["name"], scene.get("title", scene["name"])
+
+    result = run(args.fmu, scene, args.fidelity, args.derivatives)
+    write_csv(result, out / f"{name}.csv")
+    level = plots.FIDELITY_NAMES[args.fidelity]
+    plots.plot_legs(result["t"], {g: legs(result, g) for g in ("L", "L_dot", "F")},
+                    out / f"{name}.png", f"{title} — {level}")
+    written = [f"{name}.csv", f"{name}.png"]
+    if args.compare:
+        levels = [int(v) for v in args.compare.split(",")]
+        forces = {lv: legs(run(args.fmu, scene, lv, args.derivatives), "F") for lv in levels}
+        plots.plot_forces_per_fidelity(result["t"], forces, out / f"{name}_fidelity.png", title)
+        written.append(f"{name}_fidelity.png")
+    if scene.get("animate"):
+        base, top = platform_points(scene)
+        q = np.column_stack([result[n] for n in scenes.POSE])
+        plots.animate_platform(result["t"], q, out / f"{name}.gif", base, top, title=name)
+        written.append(f"{name}.gif")
+    print(f"run_scene: wrote {', '.join(str(out / w) for w in written)}")
+
+
+def platform_points(scene):
+    """Attachment points for the drawing, from the scene's parameters or the thesis defaults."""
+    p = scene.get("parameters", {})
+    rb, rt = p.get("base_radius", 0.5), p.get("platform_radius", 0.5)
+    beta = np.radians([0, 30, 120, 150, 240, 270])
+    tau = np.radians([330, 60, 90, 180, 210, 300])
+    base = rb * np.column_stack([np.cos(beta), np.sin(beta), np.zeros(6)])
+    top = rt * np.column_stack([np.cos(tau), np.sin(tau), np.zeros(6)])
+    return base, top
+
+
+if __name__ == "__main__":
+    sys.exit(main())
