@@ -24,7 +24,7 @@ extern "C" stewart_status stewart_options_check(const stewart_options *o, char *
     if (o->fidelity < STEWART_KINEMATIC || o->fidelity > STEWART_FULL)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "fidelity = %d must be 0 (kinematic), 1 (massless) or 2 (full)",
-                           (int)o->fidelity);
+                           o->fidelity);
     if (!(std::isfinite(o->tolerance) && o->tolerance > 0))
         return set_message(msg, size, STEWART_ERR_PARAMETER, "tolerance = %g must be > 0",
                            o->tolerance);

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# The test command: set up, build, then run every test (Unity through ctest, then pytest).
+# The test command: set up, build, then run every test: Unity through ctest, the same under
+# AddressSanitizer + UndefinedBehaviorSanitizer, then pytest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 (cd build && ctest --output-on-failure)
+bash scripts/sanitize.sh
 STEWART_BUILD_DIR="$PWD/build" .venv/bin/python -m pytest tests/python -q

@@ -21,7 +21,7 @@ int usage(FILE *to) {
     return to == stderr ? 2 : 0;
 }
 
-bool parse_fidelity(const char *s, stewart_fidelity &f) {
+bool parse_fidelity(const char *s, int &f) {
     if (!std::strcmp(s, "kinematic")) f = STEWART_KINEMATIC;
     else if (!std::strcmp(s, "massless")) f = STEWART_MASSLESS;
     else if (!std::strcmp(s, "full")) f = STEWART_FULL;

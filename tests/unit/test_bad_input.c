@@ -108,7 +108,7 @@ static void test_invalid_options_and_null_arguments(void) {
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
     stewart_output out;
     stewart_options o = test_options(STEWART_MASSLESS);
-    o.fidelity = (stewart_fidelity)7;
+    o.fidelity = 7;
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_solve(model, data, &o, &home, &out));
     assert_contains(stewart_data_message(data), "fidelity = 7");
     o = test_options(STEWART_MASSLESS);

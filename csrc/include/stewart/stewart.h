@@ -78,7 +78,7 @@ typedef struct stewart_params {
 
 /* Solver settings; stewart_options_default gives the values documented here. */
 typedef struct stewart_options {
-    stewart_fidelity fidelity;   /* default STEWART_MASSLESS */
+    int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
     double tolerance;            /* Newton residual tolerance, max-norm (full level); 1e-12 */
     int max_iterations;          /* Newton iteration cap (full level); 20 */
     int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
