@@ -120,6 +120,19 @@ stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size) {
     return STEWART_OK;
 }
 
+// Finite inputs can still overflow (|z| = 1e154 squares to inf): the last guard before output.
+const char *first_non_finite(const stewart_output &o) {
+    static const char *const names[4] = {"length", "length_rate", "length_accel", "force"};
+    const double *groups[4] = {o.length, o.length_rate, o.length_accel, o.force};
+    for (int g = 0; g < 4; ++g)
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            if (!std::isfinite(groups[g][k])) return names[g];
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(o.base_force[i]) || !std::isfinite(o.base_torque[i])) return "base wrench";
+    if (!std::isfinite(o.condition)) return "condition";
+    return nullptr;
+}
+
 int stroke_and_condition_warnings(const stewart_params &p, const stewart_options &o,
                                   const stewart_output &out) {
     int w = 0;
@@ -167,6 +180,10 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
             break;
     }
     if (s != STEWART_OK) return s;
+    if (const char *name = first_non_finite(out))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "the pose inputs are out of range: the %s overflows (x = %g, y = %g, "
+                           "z = %g m)", name, pose->q[0], pose->q[1], pose->q[2]);
     out.warnings = stroke_and_condition_warnings(m->params, *o, out);
     *output = out;
     msg[0] = '\0';

@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 bash scripts/setup.sh
-for p in clang libclang-rt-14-dev; do
+# libomp: SUNDIALS's CMake package asks for OpenMP, which clang finds only with it.
+for p in clang libclang-rt-14-dev libomp-14-dev; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="${missing:-} $p"
 done
 if [ -n "${missing:-}" ]; then
@@ -21,7 +22,8 @@ cmake --build build-fuzz -j"$(nproc)" --target stewart
 clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include tests/fuzz/fuzz_api.cpp \
   build-fuzz/csrc/libstewart.a -o build-fuzz/fuzz_api
 mkdir -p build-fuzz/corpus
-./build-fuzz/fuzz_api -max_total_time="$seconds" -max_len=4096 build-fuzz/corpus tests/fuzz/corpus/api
+./build-fuzz/fuzz_api -max_total_time="$seconds" -max_len=4096 -artifact_prefix=build-fuzz/ \
+  build-fuzz/corpus tests/fuzz/corpus/api
 # Keep only inputs that add coverage to the committed corpus.
 ./build-fuzz/fuzz_api -merge=1 tests/fuzz/corpus/api build-fuzz/corpus
 echo "fuzz: corpus now $(ls tests/fuzz/corpus/api | wc -l) inputs"

@@ -66,6 +66,14 @@ static void test_leg_of_zero_length_is_unreachable(void) {
     assert_rejected(&pose, STEWART_KINEMATIC, STEWART_ERR_UNREACHABLE, "leg 1");
 }
 
+/* Finite but huge inputs overflow inside the solve: an error, never an infinite output. */
+static void test_overflowing_pose_is_rejected(void) {
+    stewart_pose far = {{0, 0, -2.7e154, 0, 0, 0}, {0}, {0}};
+    assert_rejected(&far, STEWART_KINEMATIC, STEWART_ERR_ARGUMENT, "out of range");
+    stewart_pose fast = {{0, 0, 0.5, 0, 0, 0}, {1e200, 0, 0, 0, 0, 0}, {0}};
+    assert_rejected(&fast, STEWART_MASSLESS, STEWART_ERR_ARGUMENT, "out of range");
+}
+
 /* Legs all vertical (platform angles equal to base angles) cannot resist a yaw moment. */
 static void test_singular_leg_jacobian(void) {
     memcpy(params.platform_angle, params.base_angle, sizeof params.base_angle);
@@ -128,6 +136,7 @@ int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_nan_and_inf_pose_components_are_named);
     RUN_TEST(test_leg_of_zero_length_is_unreachable);
+    RUN_TEST(test_overflowing_pose_is_rejected);
     RUN_TEST(test_singular_leg_jacobian);
     RUN_TEST(test_invalid_parameters_are_named);
     RUN_TEST(test_invalid_options_and_null_arguments);
