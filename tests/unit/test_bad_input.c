@@ -3,24 +3,11 @@
 #include <math.h>
 #include <string.h>
 
+#include "platform_fixture.h"
 #include "test_support.h"
 #include "unity.h"
 
-static stewart_params params;
-static stewart_model *model;
-static stewart_data *data;
 static char msg[STEWART_MESSAGE_SIZE];
-
-void setUp(void) {
-    stewart_params_default(&params);
-    model = test_model(&params);
-    data = stewart_data_create(model);
-}
-
-void tearDown(void) {
-    stewart_data_free(data);
-    stewart_model_free(model);
-}
 
 static void assert_contains(const char *haystack, const char *needle) {
     if (!strstr(haystack, needle)) {
@@ -77,9 +64,7 @@ static void test_overflowing_pose_is_rejected(void) {
 /* Legs all vertical (platform angles equal to base angles) cannot resist a yaw moment. */
 static void test_singular_leg_jacobian(void) {
     memcpy(params.platform_angle, params.base_angle, sizeof params.base_angle);
-    tearDown();
-    model = test_model(&params);
-    data = stewart_data_create(model);
+    rebuild_platform();
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
     stewart_options o = test_options(STEWART_MASSLESS);
     stewart_output out;

@@ -3,29 +3,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "platform_fixture.h"
 #include "test_support.h"
 #include "unity.h"
-
-static stewart_params params;
-static stewart_model *model;
-static stewart_data *data;
-
-void setUp(void) {
-    stewart_params_default(&params);
-    model = test_model(&params);
-    data = stewart_data_create(model);
-}
-
-void tearDown(void) {
-    stewart_data_free(data);
-    stewart_model_free(model);
-}
-
-static void rebuild(void) {
-    tearDown();
-    model = test_model(&params);
-    data = stewart_data_create(model);
-}
 
 static stewart_pose yawed(double yaw) {
     stewart_pose p = {{0, 0, 0.5, 0, 0, yaw}, {0}, {0}};
@@ -78,7 +58,7 @@ static void test_scaled_platform_is_similar(void) {
         params.stroke_max *= s;
         /* the inertia of the disc scales as s^2 (it plays no part at rest) */
         for (int j = 0; j < 3; ++j) params.platform_inertia[j] *= s * s;
-        rebuild();
+        rebuild_platform();
         stewart_pose p = home;
         for (int j = 0; j < 3; ++j) p.q[j] *= s;
         stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &p);
@@ -95,7 +75,7 @@ static void test_scaled_platform_is_similar(void) {
 static void test_payload_far_outside(void) {
     params.payload_mass = 50;
     params.payload_com[0] = 10.0;
-    rebuild();
+    rebuild_platform();
     stewart_pose home = yawed(0);
     stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &home);
     int tension = 0;

@@ -2,23 +2,9 @@
  * against finite differences of the lengths. */
 #include <math.h>
 
+#include "platform_fixture.h"
 #include "test_support.h"
 #include "unity.h"
-
-static stewart_params params;
-static stewart_model *model;
-static stewart_data *data;
-
-void setUp(void) {
-    stewart_params_default(&params);
-    model = test_model(&params);
-    data = stewart_data_create(model);
-}
-
-void tearDown(void) {
-    stewart_data_free(data);
-    stewart_model_free(model);
-}
 
 /* At home every leg spans a 30 degree chord of the 0.5 m circles and rises 0.5 m:
  * L^2 = (2 r sin 15deg)^2 + h^2. */

@@ -3,23 +3,9 @@
 #include <math.h>
 #include <string.h>
 
+#include "platform_fixture.h"
 #include "test_support.h"
 #include "unity.h"
-
-static stewart_params params;
-static stewart_model *model;
-static stewart_data *data;
-
-void setUp(void) {
-    stewart_params_default(&params);
-    model = test_model(&params);
-    data = stewart_data_create(model);
-}
-
-void tearDown(void) {
-    stewart_data_free(data);
-    stewart_model_free(model);
-}
 
 /* At home, six identical legs share the weight: F = m g L / (6 h), h = 0.5 m. */
 static void test_static_home_shares_weight(void) {
@@ -58,10 +44,7 @@ static void test_static_offset_payload_balances(void) {
     params.payload_com[1] = -0.1;
     params.payload_com[2] = 0.3;
     params.payload_inertia[0] = params.payload_inertia[1] = params.payload_inertia[2] = 2.0;
-    stewart_model_free(model);
-    stewart_data_free(data);
-    model = test_model(&params);
-    data = stewart_data_create(model);
+    rebuild_platform();
 
     const double x = 0.03, y = -0.02, z = 0.52, yaw = 0.2; /* no roll or pitch: R = Rz(yaw) */
     stewart_pose pose = {{x, y, z, 0, 0, yaw}, {0}, {0}};
