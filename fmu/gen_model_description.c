@@ -179,8 +179,10 @@ int main(int argc, char **argv) {
     variable(vr, name, 1, "parameter", "fixed", "exact", 1, o.field, unit, NULL, 0, 0, 0, desc);
 #define FMU_PARAM(vr, id, name, field, unit, display, desc) \
     variable(vr, name, 1, "parameter", "fixed", "exact", 1, p.field, unit, display, 0, 0, 0, desc);
+/* FMI 3 requires the independent variable; FMI 2 does not, and FMI Library (libcosim) rejects
+ * an FMI 2 independent variable without a start value, so FMI 2 leaves it out. */
 #define FMU_INDEPENDENT(vr, id, name, unit, desc) \
-    variable(vr, name, 1, "independent", "continuous", NULL, 0, 0, unit, NULL, 0, 0, 0, desc);
+    if (version == 3) variable(vr, name, 1, "independent", "continuous", NULL, 0, 0, unit, NULL, 0, 0, 0, desc);
 #define FMU_LOG_CATEGORY(...)
 #include "variables.def"
     fputs("  </ModelVariables>\n", out);
@@ -189,10 +191,13 @@ int main(int argc, char **argv) {
     fputs("  <ModelStructure>\n", out);
     for (int pass = 0; pass < 2; ++pass) {
         if (version == 2) fputs(pass == 0 ? "    <Outputs>\n" : "    <InitialUnknowns>\n", out);
+        size_t index = 0; /* 1-based position in the FMI 2 ModelVariables */
         for (size_t i = 0; i < fmu_n_variables; ++i) {
+            if (version == 2 && fmu_variables[i].causality == FMU_INDEPENDENT_VAR) continue;
+            ++index;
             if (fmu_variables[i].causality != FMU_OUTPUT_VAR) continue;
             if (version == 2)
-                fprintf(out, "      <Unknown index=\"%zu\"/>\n", i + 1);
+                fprintf(out, "      <Unknown index=\"%zu\"/>\n", index);
             else
                 fprintf(out, "    <%s valueReference=\"%u\"/>\n",
                         pass == 0 ? "Output" : "InitialUnknown", fmu_variables[i].vr);

@@ -121,7 +121,8 @@ def test_reset(version):
         # back to the start values
         assert u.enter_init() == OK
         assert u.get(["base_radius", "z", "fidelity"]) == [0.5, 0.5, 2]
-        assert u.get(["time"])[0] == 0.0
+        if version == "3.0":
+            assert u.get(["time"])[0] == 0.0
         u.set(fidelity=1, base_radius=0.55, z=0.6)
         assert u.exit_init() == OK
         assert u.get_reals(REAL_OUTPUTS).tobytes() == first.tobytes()
