@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, L, POSE, POSE_DOT, POSE_DDOT, OK, WARNING,
-                         DISCARD, ERROR, Unit, closed_form_lengths, reference_matrix,
+                         DISCARD, ERROR, Unit, closed_form_lengths, require_fidelity, reference_matrix,
                          stewart_solve, thesis_manoeuvre)
 
 
@@ -29,11 +29,13 @@ def _poses(n, t0=0.0, kind="roll", h=0.1):
 
 
 @pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("fidelity", [1, 2])
 @pytest.mark.parametrize("derivatives", [0, 1])
-def test_rollback_reproduces_outputs_bit_for_bit(version, derivatives):
+def test_rollback_reproduces_outputs_bit_for_bit(version, fidelity, derivatives):
+    require_fidelity(version, fidelity)
     u = Unit(version)
     try:
-        assert u.init(fidelity=1, derivatives=derivatives, x_dot=0.1, roll_ddot=0.5) == OK
+        assert u.init(fidelity=fidelity, derivatives=derivatives, x_dot=0.1, roll_ddot=0.5) == OK
         _, t = _drive(u, 0.0, _poses(5))
         state = u.get_state()
         poses = _poses(6, t)
@@ -48,7 +50,10 @@ def test_rollback_reproduces_outputs_bit_for_bit(version, derivatives):
         restored = u.deserialize(blob)
         u.set_state(restored)
         third, _ = _drive(u, t, poses)
-        assert first.tobytes() == third.tobytes()
+        if fidelity < 2:
+            assert first.tobytes() == third.tobytes()
+        else:  # the C API cannot serialise the solver's warm start: equal to its tolerance
+            np.testing.assert_allclose(third, first, rtol=1e-9, atol=1e-9)
         u.free_state(restored)
     finally:
         u.free()
