@@ -167,8 +167,9 @@ int main(int argc, char **argv) {
     fputs("  <DefaultExperiment startTime=\"0\" stopTime=\"12\" stepSize=\"0.1\"/>\n", out);
 
     fputs("  <ModelVariables>\n", out);
-#define FMU_INPUT(vr, id, name, start, unit, row, col, desc) \
-    variable(vr, name, 1, "input", "continuous", NULL, 1, start, unit, NULL, 0, 0, 0, desc);
+#define FMU_INPUT(vr, id, name, start, unit, row, col, desc)                                   \
+    variable(vr, name, 1, "input", "continuous", NULL, 1, start, unit,                          \
+             strcmp(unit, "rad") ? NULL : "deg", 0, 0, 0, desc);
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) \
     variable(vr, name, 1, "output", "continuous", "calculated", 0, 0, unit, NULL, 0, 0, 0, desc);
 #define FMU_OUTPUT_INT(vr, id, name, desc) \
