@@ -309,3 +309,61 @@ def test_calls_out_of_sequence_are_errors(version):
         assert u.do_step(0.0, -0.1) == ERROR
     finally:
         u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_misuse_returns_error_and_does_not_crash(version):
+    import ctypes
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1) == OK
+        d, c = u.dll, u.c
+        vr = (ctypes.c_uint32 * 1)(9999)
+        vr_int = (ctypes.c_uint32 * 1)(u.vr["fidelity"])
+        val = (ctypes.c_double * 1)()
+        ival = (ctypes.c_int32 * 1)()
+        if version == "2.0":
+            assert d.fmi2GetReal(c, vr, 1, val) == ERROR            # no such variable
+            assert d.fmi2GetReal(c, vr_int, 1, val) == ERROR        # an Integer asked as Real
+            assert d.fmi2GetInteger(c, vr_int, 1, ival) == OK and ival[0] == 1
+            assert d.fmi2GetReal(c, None, 1, None) == ERROR         # NULL arrays
+            assert d.fmi2GetBoolean(c, vr, 1, ival) == ERROR
+            assert d.fmi2SetRealInputDerivatives(c, vr_int, 1, (ctypes.c_int * 1)(1), val) == ERROR
+            assert d.fmi2DeSerializeFMUstate(c, b"garbage", 7, ctypes.byref(ctypes.c_void_p())) == ERROR
+            assert d.fmi2FreeFMUstate(c, ctypes.byref(ctypes.c_void_p())) == OK
+            assert d.fmi2GetDerivatives(c, val, 1) == ERROR        # model exchange: not provided
+            assert d.fmi2Terminate(c) == OK
+            assert d.fmi2DoStep(c, 0.0, 0.1, 1) == ERROR            # after Terminate
+            assert d.fmi2GetReal(c, (ctypes.c_uint32 * 1)(u.vr["L[1]"]), 1, val) == OK
+        else:
+            assert d.fmi3GetFloat64(c, vr, 1, val, 1) == ERROR
+            assert d.fmi3GetFloat64(c, vr_int, 1, val, 1) == ERROR
+            assert d.fmi3GetFloat64(c, (ctypes.c_uint32 * 1)(u.vr["L[1]"]), 1, val, 2) == ERROR
+            assert d.fmi3GetInt32(c, vr_int, 1, ival, 1) == OK and ival[0] == 1
+            assert d.fmi3GetFloat64(c, None, 1, None, 1) == ERROR
+            assert d.fmi3GetBoolean(c, vr, 1, (ctypes.c_bool * 1)(), 1) == ERROR
+            assert d.fmi3DeserializeFMUState(c, (ctypes.c_ubyte * 7)(*b"garbage"), 7,
+                                             ctypes.byref(ctypes.c_void_p())) == ERROR
+            assert d.fmi3EnterStepMode(c) == ERROR
+            assert d.fmi3Terminate(c) == OK
+            assert d.fmi3EnterInitializationMode(c, 0, 0.0, 0.0, 0, 0.0) == ERROR
+        assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
+        assert any(c_ == "logStatusError" for s, c_, m in u.messages if s == ERROR)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_instantiation_checks_the_token(version):
+    from fmpy.fmi2 import FMU2Slave
+    from fmpy.fmi3 import FMU3Slave
+    from fmu_support import unzipped
+    cls = FMU2Slave if version == "2.0" else FMU3Slave
+    f = cls(guid="{00000000-0000-0000-0000-000000000000}", unzipDirectory=unzipped(version),
+            modelIdentifier="StewartPlatform", instanceName="wrong")
+    with pytest.raises(Exception):
+        if version == "2.0":
+            f.instantiate()
+        else:
+            f.instantiate(logMessage=lambda *a: None)
+    f.freeLibrary()
