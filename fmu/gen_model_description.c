@@ -184,7 +184,6 @@ int main(int argc, char **argv) {
  * an FMI 2 independent variable without a start value, so FMI 2 leaves it out. */
 #define FMU_INDEPENDENT(vr, id, name, unit, desc) \
     if (version == 3) variable(vr, name, 1, "independent", "continuous", NULL, 0, 0, unit, NULL, 0, 0, 0, desc);
-#define FMU_LOG_CATEGORY(...)
 #include "variables.def"
     fputs("  </ModelVariables>\n", out);
 

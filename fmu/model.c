@@ -102,16 +102,7 @@ static void set_start_values(fmu_values *v) {
 #define FMU_OPTION_REAL(vr, id, name, field, unit, desc) v->real[vr] = o.field;
 #define FMU_PARAM(vr, id, name, field, unit, display, desc) v->real[vr] = p.field;
 #define FMU_INDEPENDENT(vr, id, name, unit, desc) v->real[vr] = 0.0;
-#define FMU_LOG_CATEGORY(...)
 #include "variables.def"
-#undef FMU_INPUT
-#undef FMU_OUTPUT
-#undef FMU_OUTPUT_INT
-#undef FMU_OPTION_INT
-#undef FMU_OPTION_REAL
-#undef FMU_PARAM
-#undef FMU_INDEPENDENT
-#undef FMU_LOG_CATEGORY
     v->integer[VR_status] = 3; /* nothing solved yet */
     v->mode = MODE_INSTANTIATED;
 }
@@ -119,31 +110,13 @@ static void set_start_values(fmu_values *v) {
 static void params_from_values(const fmu_values *v, stewart_params *p) {
     stewart_params_default(p);
 #define FMU_PARAM(vr, id, name, field, unit, display, desc) p->field = v->real[vr];
-#define FMU_INPUT(...)
-#define FMU_OUTPUT(...)
-#define FMU_OUTPUT_INT(...)
-#define FMU_OPTION_INT(...)
-#define FMU_OPTION_REAL(...)
-#define FMU_INDEPENDENT(...)
-#define FMU_LOG_CATEGORY(...)
 #include "variables.def"
-#undef FMU_PARAM
-#undef FMU_OPTION_REAL
 }
 
 static void options_from_values(const fmu_values *v, stewart_options *o) {
     stewart_options_default(o);
-#define FMU_PARAM(...)
 #define FMU_OPTION_REAL(vr, id, name, field, unit, desc) o->field = v->real[vr];
 #include "variables.def"
-#undef FMU_INPUT
-#undef FMU_OUTPUT
-#undef FMU_OUTPUT_INT
-#undef FMU_OPTION_INT
-#undef FMU_OPTION_REAL
-#undef FMU_PARAM
-#undef FMU_INDEPENDENT
-#undef FMU_LOG_CATEGORY
     o->fidelity = (stewart_fidelity)v->integer[VR_fidelity];
     o->max_iterations = v->integer[VR_max_iterations];
     o->modified_newton = v->integer[VR_modified_newton];
@@ -151,22 +124,7 @@ static void options_from_values(const fmu_values *v, stewart_options *o) {
 
 static void outputs_to_values(fmu_values *v, const stewart_output *out) {
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out->field;
-#define FMU_INPUT(...)
-#define FMU_OUTPUT_INT(...)
-#define FMU_OPTION_INT(...)
-#define FMU_OPTION_REAL(...)
-#define FMU_PARAM(...)
-#define FMU_INDEPENDENT(...)
-#define FMU_LOG_CATEGORY(...)
 #include "variables.def"
-#undef FMU_INPUT
-#undef FMU_OUTPUT
-#undef FMU_OUTPUT_INT
-#undef FMU_OPTION_INT
-#undef FMU_OPTION_REAL
-#undef FMU_PARAM
-#undef FMU_INDEPENDENT
-#undef FMU_LOG_CATEGORY
     v->integer[VR_newton_iterations] = out->iterations;
 }
 
@@ -407,6 +365,15 @@ fmu_status fmu_terminate(fmu_instance *inst) {
     return FMU_OK;
 }
 
+/* The pose q at communication point t joins the finite-difference history. */
+static void commit_pose(fmu_values *v, double t, const double q[6]) {
+    v->history_t[0] = v->history_t[1];
+    memcpy(v->history_q[0], v->history_q[1], sizeof v->history_q[0]);
+    v->history_t[1] = t;
+    memcpy(v->history_q[1], q, sizeof v->history_q[1]);
+    if (v->n_history < 2) ++v->n_history;
+}
+
 fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
     if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) return FMU_ERROR;
     fmu_values *v = &inst->v;
@@ -433,12 +400,11 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
         return s;
     }
     if (taylor_mode(v)) {
-        /* Advance the pose to t + h along its Taylor expansion; undo everything on failure. */
-        double saved_in[18], saved_out[FMU_NVR - 100];
-        int32_t saved_int[2] = {v->integer[VR_newton_iterations], v->integer[VR_status]};
+        /* Advance the pose to t + h along its Taylor expansion; undo it on failure (a failed
+         * solve leaves the outputs untouched and only sets status = 3). */
+        double saved_in[12];
+        const int32_t saved_status = v->integer[VR_status];
         memcpy(saved_in, &v->real[VR_x], sizeof saved_in);
-        memcpy(saved_out, &v->real[100], sizeof saved_out);
-        const int saved_flag = v->input_derivatives;
         for (int i = 0; i < 6; ++i) {
             const double q = v->real[VR_x + i], qd = v->real[VR_x_dot + i],
                          qdd = v->real[VR_x_ddot + i];
@@ -450,12 +416,9 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
         const fmu_status s2 = solve_current(inst);
         if (s2 == FMU_DISCARD || s2 == FMU_ERROR) {
             memcpy(&v->real[VR_x], saved_in, sizeof saved_in);
-            memcpy(&v->real[100], saved_out, sizeof saved_out);
-            v->integer[VR_newton_iterations] = saved_int[0];
-            v->integer[VR_status] = saved_int[1];
-            v->input_derivatives = saved_flag;
+            v->integer[VR_status] = saved_status;
             v->time = t;
-            v->solve_status = s;
+            v->solve_status = s; /* the outputs are still those of the inputs at t */
             v->last_successful_time = t;
             return s2;
         }
@@ -463,20 +426,12 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
         /* the derivatives given through fmi2SetRealInputDerivatives served this step only;
          * the outputs just computed used them, so they stay valid */
         v->input_derivatives = 0;
-        /* commit the pose at t */
-        v->history_t[0] = v->history_t[1];
-        memcpy(v->history_q[0], v->history_q[1], sizeof v->history_q[0]);
-        v->history_t[1] = t;
-        for (int i = 0; i < 6; ++i) v->history_q[1][i] = saved_in[i];
+        commit_pose(v, t, saved_in);
     } else {
         /* Hold: the outputs stay those of the inputs at t until the master sets new inputs. */
-        v->history_t[0] = v->history_t[1];
-        memcpy(v->history_q[0], v->history_q[1], sizeof v->history_q[0]);
-        v->history_t[1] = t;
-        for (int i = 0; i < 6; ++i) v->history_q[1][i] = v->real[VR_x + i];
+        commit_pose(v, t, &v->real[VR_x]);
         v->time = t + h;
     }
-    if (v->n_history < 2) ++v->n_history;
     v->real[VR_time] = v->time;
     v->last_successful_time = v->time;
     return s;

@@ -8,17 +8,9 @@
 #define FMU_OPTION_REAL(vr, id, name, ...) {vr, name, FMU_REAL, FMU_PARAMETER_VAR},
 #define FMU_PARAM(vr, id, name, ...) {vr, name, FMU_REAL, FMU_PARAMETER_VAR},
 #define FMU_INDEPENDENT(vr, id, name, ...) {vr, name, FMU_REAL, FMU_INDEPENDENT_VAR},
-#define FMU_LOG_CATEGORY(...)
 const fmu_variable fmu_variables[] = {
 #include "variables.def"
 };
-#undef FMU_INPUT
-#undef FMU_OUTPUT
-#undef FMU_OUTPUT_INT
-#undef FMU_OPTION_INT
-#undef FMU_OPTION_REAL
-#undef FMU_PARAM
-#undef FMU_INDEPENDENT
 const size_t fmu_n_variables = sizeof fmu_variables / sizeof fmu_variables[0];
 
 /* Index into fmu_variables + 1 per value reference (0: unused); every vr must be < FMU_NVR. */
@@ -33,32 +25,16 @@ enum { fmu_counter_base_ = __COUNTER__ };
 static const unsigned short kIndex[FMU_NVR] = {
 #include "variables.def"
 };
-#undef FMU_INPUT
-#undef FMU_OUTPUT
-#undef FMU_OUTPUT_INT
-#undef FMU_OPTION_INT
-#undef FMU_OPTION_REAL
-#undef FMU_PARAM
-#undef FMU_INDEPENDENT
-#undef FMU_LOG_CATEGORY
 
 const fmu_variable *fmu_variable_by_vr(unsigned vr) {
     if (vr >= FMU_NVR || kIndex[vr] == 0) return NULL;
     return &fmu_variables[kIndex[vr] - 1];
 }
 
-#define FMU_INPUT(...)
-#define FMU_OUTPUT(...)
-#define FMU_OUTPUT_INT(...)
-#define FMU_OPTION_INT(...)
-#define FMU_OPTION_REAL(...)
-#define FMU_PARAM(...)
-#define FMU_INDEPENDENT(...)
 #define FMU_LOG_CATEGORY(id, name, description) [id] = name,
 const char *const fmu_log_category_names[FMU_N_LOG_CATEGORIES] = {
 #include "variables.def"
 };
-#undef FMU_LOG_CATEGORY
 #define FMU_LOG_CATEGORY(id, name, description) [id] = description,
 const char *const fmu_log_category_descriptions[FMU_N_LOG_CATEGORIES] = {
 #include "variables.def"

@@ -31,38 +31,14 @@ enum fmu_value_reference {
 #define FMU_OPTION_REAL(vr, id, ...) VR_##id = vr,
 #define FMU_PARAM(vr, id, ...) VR_##id = vr,
 #define FMU_INDEPENDENT(vr, id, ...) VR_##id = vr,
-#define FMU_LOG_CATEGORY(id, ...)
 #include "variables.def"
-#undef FMU_INPUT
-#undef FMU_OUTPUT
-#undef FMU_OUTPUT_INT
-#undef FMU_OPTION_INT
-#undef FMU_OPTION_REAL
-#undef FMU_PARAM
-#undef FMU_INDEPENDENT
-#undef FMU_LOG_CATEGORY
     VR_END_OF_TABLE_ = -1
 };
 
 /* Log categories: LOG_EVENTS, ... and their count. */
 enum fmu_log_category {
 #define FMU_LOG_CATEGORY(id, ...) id,
-#define FMU_INPUT(...)
-#define FMU_OUTPUT(...)
-#define FMU_OUTPUT_INT(...)
-#define FMU_OPTION_INT(...)
-#define FMU_OPTION_REAL(...)
-#define FMU_PARAM(...)
-#define FMU_INDEPENDENT(...)
 #include "variables.def"
-#undef FMU_INPUT
-#undef FMU_OUTPUT
-#undef FMU_OUTPUT_INT
-#undef FMU_OPTION_INT
-#undef FMU_OPTION_REAL
-#undef FMU_PARAM
-#undef FMU_INDEPENDENT
-#undef FMU_LOG_CATEGORY
     FMU_N_LOG_CATEGORIES
 };
 
