@@ -4,6 +4,9 @@
  * that both give the same finite outputs with status OK, and prints the median time per doStep
  * (and per full communication step: set inputs, doStep, get outputs), in microseconds.
  *
+ * It also counts heap allocations (malloc, calloc, realloc interposed below, glibc) while the
+ * steps run: a step must not allocate.
+ *
  * usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]
  */
 #include <dlfcn.h>
@@ -26,6 +29,25 @@ static void real_outputs(unsigned vr[N_OUT]) {
     int n = 0;
     for (unsigned r = VR_L1; r <= 133; ++r)
         if (r != 125 && r != VR_STATUS) vr[n++] = r;
+}
+
+/* ---- allocation counter: the executable's definitions interpose on the FMU's calls (glibc) */
+extern void *__libc_malloc(size_t);
+extern void *__libc_calloc(size_t, size_t);
+extern void *__libc_realloc(void *, size_t);
+static long allocations = 0;
+static int counting = 0;
+void *malloc(size_t n) {
+    allocations += counting;
+    return __libc_malloc(n);
+}
+void *calloc(size_t n, size_t size) {
+    allocations += counting;
+    return __libc_calloc(n, size);
+}
+void *realloc(void *p, size_t n) {
+    allocations += counting;
+    return __libc_realloc(p, n);
 }
 
 static int failures = 0;
@@ -128,6 +150,7 @@ static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, doub
     for (int j = 0; j < steps; ++j) {
         const double t = j * h;
         pose_at(t, q);
+        counting = 1;
         const double t0 = now_us();
         fmi2Status s = set_real(c, in_vr, derivatives ? 18 : 6, q);
         const double t1 = now_us();
@@ -135,6 +158,7 @@ static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, doub
         const double t2 = now_us();
         s |= get_real(c, out_vr, N_OUT, outputs + (size_t)j * N_OUT);
         const double t3 = now_us();
+        counting = 0;
         CHECK(s == fmi2OK, "fmi2 set/doStep/get status %d at t = %g", s, t);
         t_step[j] = t2 - t1;
         t_cycle[j] = t3 - t0;
@@ -201,12 +225,14 @@ static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, doub
         const double t = j * h;
         pose_at(t, q);
         const double t0 = now_us();
+        counting = 1;
         fmi3Status s = set_real(c, in_vr, derivatives ? 18 : 6, q, derivatives ? 18 : 6);
         const double t1 = now_us();
         s |= do_step(c, t, h, fmi3True, &event, &term, &early, &last);
         const double t2 = now_us();
         s |= get_real(c, out_vr, n_out, outputs + (size_t)j * N_OUT, n_out);
         const double t3 = now_us();
+        counting = 0;
         CHECK(s == fmi3OK, "fmi3 set/doStep/get status %d at t = %g", s, t);
         t_step[j] = t2 - t1;
         t_cycle[j] = t3 - t0;
@@ -275,6 +301,18 @@ int main(int argc, char **argv) {
                         level[fid], src, a.step_us, a.cycle_us, level[fid], src, b.step_us,
                         b.cycle_us);
         }
+    CHECK(allocations == 0, "%ld heap allocations during the steps", allocations);
+    printf("heap allocations during the steps: %ld\n", allocations);
+    {   /* the counter works: instantiation does allocate */
+        fmi2InstantiateTYPE *instantiate = sym(lib2, "fmi2Instantiate");
+        fmi2FreeInstanceTYPE *free_instance = sym(lib2, "fmi2FreeInstance");
+        const fmi2CallbackFunctions cb = {logger2, calloc, free, NULL, NULL};
+        counting = 1;
+        fmi2Component c = instantiate("probe", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
+        counting = 0;
+        CHECK(c != NULL && allocations > 0, "the allocation counter does not see the FMU's calls");
+        free_instance(c);
+    }
     free(o2);
     free(o3);
     if (out) fclose(out);
