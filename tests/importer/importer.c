@@ -329,6 +329,7 @@ int main(int argc, char **argv) {
     }
 #else
     (void)counting;
+    (void)allocations;
     printf("heap allocations during the steps: not counted under AddressSanitizer\n");
 #endif
     free(o2);
