@@ -3,10 +3,12 @@ the thesis manoeuvres, stewart-solve as the reference, and independent closed fo
 
 The build directory comes from STEWART_BUILD_DIR (default `build` relative to the repository root).
 """
+import atexit
 import csv
 import math
 import os
 import pathlib
+import shutil
 import subprocess
 import tempfile
 import zipfile
@@ -68,6 +70,7 @@ def model_description(version):
 def unzipped(version):
     if version not in _unzipped:
         d = tempfile.mkdtemp(prefix=f"stewart_fmu{version[0]}_")
+        atexit.register(shutil.rmtree, d, ignore_errors=True)
         with zipfile.ZipFile(fmu_path(version)) as z:
             z.extractall(d)
         _unzipped[version] = d
