@@ -211,7 +211,6 @@ static fmu_status apply_parameters(fmu_instance *inst) {
 
 /* ---------------------------------------------------------------- the solve */
 
-
 static int taylor_mode(const fmu_values *v) {
     return v->integer[VR_derivatives] == 1 || v->input_derivatives;
 }
