@@ -1,0 +1,658 @@
+/* The model behind both FMI layers (see model.h). */
+#include "model.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---------------------------------------------------------------- state machine (one table) */
+
+#define ANY_MODE (MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED | MODE_ERROR)
+static const int kAllowed[CALL_COUNT] = {
+    [CALL_SET_DEBUG_LOGGING] = ANY_MODE,
+    [CALL_SETUP_EXPERIMENT] = MODE_INSTANTIATED,
+    [CALL_ENTER_INITIALIZATION] = MODE_INSTANTIATED,
+    [CALL_EXIT_INITIALIZATION] = MODE_INITIALIZATION,
+    [CALL_DO_STEP] = MODE_STEP,
+    [CALL_TERMINATE] = MODE_STEP,
+    [CALL_RESET] = ANY_MODE,
+    [CALL_GET] = MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED | MODE_ERROR,
+    [CALL_SET] = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP,
+    [CALL_SET_INPUT_DERIVATIVES] = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP,
+    [CALL_GET_STATUS] = MODE_STEP | MODE_TERMINATED | MODE_ERROR,
+    [CALL_GET_FMU_STATE] = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED,
+    [CALL_SET_FMU_STATE] = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED,
+    [CALL_SERIALIZE] = ANY_MODE,
+};
+
+static const char *mode_name(int mode) {
+    switch (mode) {
+        case MODE_INSTANTIATED: return "instantiated";
+        case MODE_INITIALIZATION: return "initialization mode";
+        case MODE_STEP: return "step mode";
+        case MODE_TERMINATED: return "terminated";
+        case MODE_ERROR: return "error";
+    }
+    return "?";
+}
+
+fmu_status fmu_check_call(fmu_instance *inst, fmu_call call, const char *function) {
+    if (!inst) return FMU_ERROR;
+    if (kAllowed[call] & inst->v.mode) return FMU_OK;
+    fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s is not allowed in %s", function,
+            mode_name(inst->v.mode));
+    return FMU_ERROR;
+}
+
+/* ---------------------------------------------------------------- logging */
+
+void fmu_log(const fmu_instance *inst, fmu_status status, int category, const char *fmt, ...) {
+    if (!inst || !inst->log_fn || !inst->logging_on || category < 0 ||
+        category >= FMU_N_LOG_CATEGORIES || !inst->category_on[category])
+        return;
+    char buffer[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buffer, sizeof buffer, fmt, ap);
+    va_end(ap);
+    /* FMI 2 loggers treat the message as a format string and '#' as a variable escape. */
+    for (char *c = buffer; *c; ++c)
+        if (*c == '%' || *c == '#') *c = ' ';
+    inst->log_fn(inst, status, fmu_log_category_names[category], buffer);
+}
+
+fmu_status fmu_set_debug_logging(fmu_instance *inst, int on, size_t n, const char *const cats[]) {
+    if (fmu_check_call(inst, CALL_SET_DEBUG_LOGGING, "SetDebugLogging") != FMU_OK) return FMU_ERROR;
+    inst->logging_on = 1; /* so the error below can be reported if categories are on */
+    if (n == 0) {
+        for (int c = 0; c < FMU_N_LOG_CATEGORIES; ++c) inst->category_on[c] = on;
+    } else {
+        for (size_t i = 0; i < n; ++i) {
+            int found = -1;
+            for (int c = 0; c < FMU_N_LOG_CATEGORIES; ++c)
+                if (cats && cats[i] && !strcmp(cats[i], fmu_log_category_names[c])) found = c;
+            if (found < 0) {
+                fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetDebugLogging: unknown log category '%s'",
+                        cats && cats[i] ? cats[i] : "(null)");
+                return FMU_ERROR;
+            }
+            inst->category_on[found] = on;
+        }
+    }
+    inst->logging_on = 0;
+    for (int c = 0; c < FMU_N_LOG_CATEGORIES; ++c)
+        if (inst->category_on[c]) inst->logging_on = 1;
+    return FMU_OK;
+}
+
+/* ---------------------------------------------------------------- start values */
+
+static void set_start_values(fmu_values *v) {
+    stewart_params p;
+    stewart_options o;
+    stewart_params_default(&p);
+    stewart_options_default(&o);
+    memset(v, 0, sizeof *v);
+#define FMU_INPUT(vr, id, name, start, unit, row, col, desc) v->real[vr] = start;
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
+#define FMU_OUTPUT_INT(vr, id, name, desc) v->integer[vr] = 0;
+#define FMU_OPTION_INT(vr, id, name, start, min, max, desc) v->integer[vr] = start;
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) v->real[vr] = o.field;
+#define FMU_PARAM(vr, id, name, field, unit, display, desc) v->real[vr] = p.field;
+#define FMU_INDEPENDENT(vr, id, name, unit, desc) v->real[vr] = 0.0;
+#include "variables.def"
+    v->integer[VR_status] = 3; /* nothing solved yet */
+    v->mode = MODE_INSTANTIATED;
+}
+
+static void params_from_values(const fmu_values *v, stewart_params *p) {
+    stewart_params_default(p);
+#define FMU_PARAM(vr, id, name, field, unit, display, desc) p->field = v->real[vr];
+#include "variables.def"
+}
+
+static void options_from_values(const fmu_values *v, stewart_options *o) {
+    stewart_options_default(o);
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) o->field = v->real[vr];
+#include "variables.def"
+    o->fidelity = (stewart_fidelity)v->integer[VR_fidelity];
+    o->max_iterations = v->integer[VR_max_iterations];
+    o->modified_newton = v->integer[VR_modified_newton];
+}
+
+static void outputs_to_values(fmu_values *v, const stewart_output *out) {
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out->field;
+#include "variables.def"
+    v->integer[VR_newton_iterations] = out->iterations;
+}
+
+/* ---------------------------------------------------------------- lifetime */
+
+fmu_instance *fmu_instantiate(const char *name, fmu_version version, fmu_log_fn log_fn,
+                              const void *callbacks, void *environment, int logging_on) {
+    fmu_instance *inst = (fmu_instance *)calloc(1, sizeof *inst);
+    if (!inst) return NULL;
+    const char *n = name ? name : "";
+    inst->name = (char *)malloc(strlen(n) + 1);
+    if (!inst->name) {
+        free(inst);
+        return NULL;
+    }
+    strcpy(inst->name, n);
+    inst->version = version;
+    inst->log_fn = log_fn;
+    inst->callbacks = callbacks;
+    inst->environment = environment;
+    inst->logging_on = logging_on ? 1 : 0;
+    for (int c = 0; c < FMU_N_LOG_CATEGORIES; ++c) inst->category_on[c] = inst->logging_on;
+    set_start_values(&inst->v);
+    stewart_options_default(&inst->options);
+    return inst;
+}
+
+void fmu_free(fmu_instance *inst) {
+    if (!inst) return;
+    stewart_data_free(inst->data);
+    stewart_model_free(inst->model);
+    free(inst->name);
+    free(inst);
+}
+
+fmu_status fmu_reset(fmu_instance *inst) {
+    if (fmu_check_call(inst, CALL_RESET, "Reset") != FMU_OK) return FMU_ERROR;
+    /* The model (immutable) is kept and reused if the parameters come back the same. */
+    set_start_values(&inst->v);
+    if (inst->data) stewart_data_reset(inst->data);
+    fmu_log(inst, FMU_OK, LOG_EVENTS, "reset to the start values");
+    return FMU_OK;
+}
+
+/* Builds (or keeps) the model for the current parameters and checks the options. */
+static fmu_status apply_parameters(fmu_instance *inst) {
+    const fmu_values *v = &inst->v;
+    if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "invalid parameter derivatives = %d: it must be 0 (finite differences) or 1 "
+                "(the *_dot and *_ddot inputs)", (int)v->integer[VR_derivatives]);
+        return FMU_ERROR;
+    }
+    stewart_options o;
+    options_from_values(v, &o);
+    if (stewart_options_check(&o, inst->message, sizeof inst->message) != STEWART_OK) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", inst->message);
+        return FMU_ERROR;
+    }
+    stewart_params p;
+    params_from_values(v, &p);
+    if (!inst->model || memcmp(&p, &inst->model_params, sizeof p) != 0) {
+        stewart_model *m = stewart_model_create(&p, inst->message, sizeof inst->message);
+        if (!m) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", inst->message);
+            return FMU_ERROR;
+        }
+        stewart_data *d = stewart_data_create(m);
+        if (!d) {
+            stewart_model_free(m);
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "out of memory creating the solver data");
+            return FMU_ERROR;
+        }
+        stewart_data_free(inst->data);
+        stewart_model_free(inst->model);
+        inst->model = m;
+        inst->data = d;
+        inst->model_params = p;
+        fmu_log(inst, FMU_OK, LOG_EVENTS, "model built from the parameters");
+    }
+    inst->options = o;
+    return FMU_OK;
+}
+
+/* ---------------------------------------------------------------- the solve */
+
+static int taylor_mode(const fmu_values *v) {
+    return v->integer[VR_derivatives] == 1 || v->input_derivatives;
+}
+
+/* The pose at v->time: inputs, and derivatives from the inputs or by finite differences of the
+ * poses at earlier communication points (quadratic through the last three poses; with only one
+ * earlier pose, the quadratic through both that is at rest at the first; none: at rest). */
+static void current_pose(const fmu_values *v, stewart_pose *pose) {
+    for (int i = 0; i < 6; ++i) pose->q[i] = v->real[VR_x + i];
+    if (taylor_mode(v)) {
+        for (int i = 0; i < 6; ++i) {
+            pose->q_dot[i] = v->real[VR_x_dot + i];
+            pose->q_ddot[i] = v->real[VR_x_ddot + i];
+        }
+        return;
+    }
+    const double t = v->time;
+    if (v->n_history == 0) {
+        for (int i = 0; i < 6; ++i) pose->q_dot[i] = pose->q_ddot[i] = 0.0;
+    } else if (v->n_history == 1) {
+        const double h = t - v->history_t[1];
+        for (int i = 0; i < 6; ++i) {
+            const double dq = pose->q[i] - v->history_q[1][i];
+            pose->q_dot[i] = 2.0 * dq / h;
+            pose->q_ddot[i] = 2.0 * dq / (h * h);
+        }
+    } else {
+        const double h1 = v->history_t[1] - v->history_t[0], h2 = t - v->history_t[1];
+        const double a0 = h2 / (h1 * (h1 + h2)), a1 = -(h1 + h2) / (h1 * h2),
+                     a2 = (2.0 * h2 + h1) / (h2 * (h1 + h2));
+        const double b0 = 2.0 / (h1 * (h1 + h2)), b1 = -2.0 / (h1 * h2),
+                     b2 = 2.0 / (h2 * (h1 + h2));
+        for (int i = 0; i < 6; ++i) {
+            const double q0 = v->history_q[0][i], q1 = v->history_q[1][i], q2 = pose->q[i];
+            pose->q_dot[i] = a0 * q0 + a1 * q1 + a2 * q2;
+            pose->q_ddot[i] = b0 * q0 + b1 * q1 + b2 * q2;
+        }
+    }
+}
+
+static fmu_status map_solve_error(stewart_status s) {
+    switch (s) {
+        case STEWART_ERR_ARGUMENT:
+        case STEWART_ERR_SINGULAR:
+        case STEWART_ERR_UNREACHABLE:
+        case STEWART_ERR_NOT_CONVERGED:
+            return FMU_DISCARD;
+        default:
+            return FMU_ERROR;
+    }
+}
+
+/* Solves for the current inputs unless already done. OK / Warning (status 1 or 2) / Discard
+ * (status 3, outputs keep their last valid values) / Error (unsupported fidelity, memory). */
+static fmu_status solve_current(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    if (v->solved) return v->solve_status;
+    /* Every input must be finite, used or not. */
+    for (unsigned vr = VR_x; vr <= VR_yaw_ddot; ++vr)
+        if (!isfinite(v->real[vr])) {
+            v->integer[VR_status] = 3;
+            v->solved = 1;
+            v->solve_status = FMU_DISCARD;
+            fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                    "t = %.17g: input %s = %g is not finite; outputs keep their last valid values",
+                    v->time, fmu_variable_by_vr(vr)->name, v->real[vr]);
+            return FMU_DISCARD;
+        }
+    stewart_pose pose;
+    current_pose(v, &pose);
+    stewart_output out;
+    const stewart_status s = stewart_solve(inst->model, inst->data, &inst->options, &pose, &out);
+    if (s != STEWART_OK) {
+        const fmu_status fs = map_solve_error(s);
+        v->integer[VR_status] = 3;
+        v->solved = 1;
+        v->solve_status = fs;
+        fmu_log(inst, fs, fs == FMU_DISCARD ? LOG_DISCARD : LOG_ERROR,
+                "t = %.17g: pose (x, y, z, roll, pitch, yaw) = (%g, %g, %g, %g, %g, %g) not solved "
+                "(%s): %s; outputs keep their last valid values",
+                v->time, pose.q[0], pose.q[1], pose.q[2], pose.q[3], pose.q[4], pose.q[5],
+                stewart_status_name(s), stewart_data_message(inst->data));
+        return fs;
+    }
+    outputs_to_values(v, &out);
+    v->solved = 1;
+    fmu_status fs = FMU_OK;
+    int status = 0;
+    if (out.warnings & STEWART_WARN_STROKE) {
+        status = 1;
+        fs = FMU_WARNING;
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            if (out.length[k] < inst->model_params.stroke_min ||
+                out.length[k] > inst->model_params.stroke_max)
+                fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                        "t = %.17g: L[%d] = %g m is outside the stroke [%g, %g] m", v->time, k + 1,
+                        out.length[k], inst->model_params.stroke_min,
+                        inst->model_params.stroke_max);
+    }
+    if (out.warnings & STEWART_WARN_NEAR_SINGULAR) {
+        status = 2;
+        fs = FMU_WARNING;
+        fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                "t = %.17g: near singular pose: condition = %g > warn_condition = %g", v->time,
+                out.condition, inst->options.warn_condition);
+    }
+    v->integer[VR_status] = status;
+    v->solve_status = fs;
+    return fs;
+}
+
+/* ---------------------------------------------------------------- modes */
+
+fmu_status fmu_enter_initialization(fmu_instance *inst, double start_time) {
+    if (fmu_check_call(inst, CALL_ENTER_INITIALIZATION, "EnterInitializationMode") != FMU_OK)
+        return FMU_ERROR;
+    if (!isfinite(start_time)) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "startTime = %g must be finite", start_time);
+        return FMU_ERROR;
+    }
+    inst->v.time = start_time;
+    inst->v.real[VR_time] = start_time;
+    inst->v.last_successful_time = start_time;
+    inst->v.solved = 0;
+    inst->v.mode = MODE_INITIALIZATION;
+    return FMU_OK;
+}
+
+static fmu_status fail(fmu_instance *inst) {
+    inst->v.mode = MODE_ERROR;
+    return FMU_ERROR;
+}
+
+fmu_status fmu_exit_initialization(fmu_instance *inst) {
+    if (fmu_check_call(inst, CALL_EXIT_INITIALIZATION, "ExitInitializationMode") != FMU_OK)
+        return FMU_ERROR;
+    if (apply_parameters(inst) != FMU_OK) return fail(inst);
+    inst->v.solved = 0;
+    fmu_status s = solve_current(inst);
+    if (s == FMU_ERROR) return fail(inst);
+    if (s == FMU_DISCARD) s = FMU_WARNING; /* status = 3: the master sees the pose is bad */
+    inst->v.mode = MODE_STEP;
+    fmu_log(inst, FMU_OK, LOG_EVENTS, "initialised at t = %.17g (fidelity %d, derivatives %d)",
+            inst->v.time, (int)inst->v.integer[VR_fidelity], (int)inst->v.integer[VR_derivatives]);
+    return s;
+}
+
+fmu_status fmu_terminate(fmu_instance *inst) {
+    if (fmu_check_call(inst, CALL_TERMINATE, "Terminate") != FMU_OK) return FMU_ERROR;
+    inst->v.mode = MODE_TERMINATED;
+    return FMU_OK;
+}
+
+/* The pose q at communication point t joins the finite-difference history. */
+static void commit_pose(fmu_values *v, double t, const double q[6]) {
+    v->history_t[0] = v->history_t[1];
+    memcpy(v->history_q[0], v->history_q[1], sizeof v->history_q[0]);
+    v->history_t[1] = t;
+    memcpy(v->history_q[1], q, sizeof v->history_q[1]);
+    if (v->n_history < 2) ++v->n_history;
+}
+
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
+    if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) return FMU_ERROR;
+    fmu_values *v = &inst->v;
+    if (!(isfinite(t) && isfinite(h) && h > 0)) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: currentCommunicationPoint = %g and communicationStepSize = %g must be "
+                "finite and the step > 0", t, h);
+        return FMU_ERROR;
+    }
+    if (v->n_history > 0 && !(t > v->history_t[1])) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: currentCommunicationPoint = %.17g is not after the last accepted "
+                "communication point %.17g", t, v->history_t[1]);
+        return FMU_ERROR;
+    }
+    if (t != v->time) { /* the master moved the communication point (e.g. after a Discard) */
+        v->time = t;
+        v->real[VR_time] = t;
+        v->solved = 0;
+    }
+    fmu_status s = solve_current(inst);
+    if (s == FMU_DISCARD || s == FMU_ERROR) {
+        v->last_successful_time = t;
+        return s;
+    }
+    if (taylor_mode(v)) {
+        /* Advance the pose to t + h along its Taylor expansion; undo it on failure (a failed
+         * solve leaves the outputs untouched and only sets status = 3). */
+        double saved_in[12];
+        const int32_t saved_status = v->integer[VR_status];
+        memcpy(saved_in, &v->real[VR_x], sizeof saved_in);
+        for (int i = 0; i < 6; ++i) {
+            const double q = v->real[VR_x + i], qd = v->real[VR_x_dot + i],
+                         qdd = v->real[VR_x_ddot + i];
+            v->real[VR_x + i] = q + h * (qd + 0.5 * h * qdd);
+            v->real[VR_x_dot + i] = qd + h * qdd;
+        }
+        v->time = t + h;
+        v->solved = 0;
+        const fmu_status s2 = solve_current(inst);
+        if (s2 == FMU_DISCARD || s2 == FMU_ERROR) {
+            memcpy(&v->real[VR_x], saved_in, sizeof saved_in);
+            v->integer[VR_status] = saved_status;
+            v->time = t;
+            v->solve_status = s; /* the outputs are still those of the inputs at t */
+            v->last_successful_time = t;
+            return s2;
+        }
+        s = s2;
+        /* the derivatives given through fmi2SetRealInputDerivatives served this step only;
+         * the outputs just computed used them, so they stay valid */
+        v->input_derivatives = 0;
+        commit_pose(v, t, saved_in);
+    } else {
+        /* Hold: the outputs stay those of the inputs at t until the master sets new inputs. */
+        commit_pose(v, t, &v->real[VR_x]);
+        v->time = t + h;
+    }
+    v->real[VR_time] = v->time;
+    v->last_successful_time = v->time;
+    return s;
+}
+
+/* ---------------------------------------------------------------- get and set */
+
+static fmu_status bad_vr(fmu_instance *inst, const char *what, unsigned vr) {
+    fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: value reference %u is not a variable of that type",
+            what, vr);
+    return FMU_ERROR;
+}
+
+/* Outputs asked for: solve for the current inputs first (they are a direct function of them). */
+static fmu_status refresh_outputs(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    if (v->solved || !(v->mode & (MODE_INITIALIZATION | MODE_STEP))) return FMU_OK;
+    if (v->mode == MODE_INITIALIZATION && apply_parameters(inst) != FMU_OK) return fail(inst);
+    const fmu_status s = solve_current(inst);
+    if (s == FMU_ERROR) return fail(inst);
+    /* Discard and Warning are reported by status; the values returned are well defined. */
+    return FMU_OK;
+}
+
+fmu_status fmu_get_real(fmu_instance *inst, const unsigned vr[], size_t n, double value[]) {
+    if (fmu_check_call(inst, CALL_GET, "GetReal") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return bad_vr(inst, "GetReal (NULL array)", 0);
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_variable *var = fmu_variable_by_vr(vr[i]);
+        if (!var || var->type != FMU_REAL) return bad_vr(inst, "GetReal", vr[i]);
+        if (var->causality == FMU_OUTPUT_VAR && refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        value[i] = inst->v.real[vr[i]];
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_get_integer(fmu_instance *inst, const unsigned vr[], size_t n, int32_t value[]) {
+    if (fmu_check_call(inst, CALL_GET, "GetInteger") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return bad_vr(inst, "GetInteger (NULL array)", 0);
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_variable *var = fmu_variable_by_vr(vr[i]);
+        if (!var || var->type != FMU_INTEGER) return bad_vr(inst, "GetInteger", vr[i]);
+        if (var->causality == FMU_OUTPUT_VAR && refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        value[i] = inst->v.integer[vr[i]];
+    }
+    return FMU_OK;
+}
+
+/* Inputs may be set in any mode before Terminate; parameters (fixed) only before the end of
+ * initialisation; outputs and time never. */
+static fmu_status check_settable(fmu_instance *inst, const fmu_variable *var, const char *what,
+                                 unsigned vr, fmu_type type) {
+    if (!var || var->type != type) return bad_vr(inst, what, vr);
+    if (var->causality == FMU_INPUT_VAR) return FMU_OK;
+    if (var->causality == FMU_PARAMETER_VAR &&
+        (inst->v.mode & (MODE_INSTANTIATED | MODE_INITIALIZATION)))
+        return FMU_OK;
+    fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: variable %s cannot be set in %s", what, var->name,
+            mode_name(inst->v.mode));
+    return FMU_ERROR;
+}
+
+fmu_status fmu_set_real(fmu_instance *inst, const unsigned vr[], size_t n, const double value[]) {
+    if (fmu_check_call(inst, CALL_SET, "SetReal") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return bad_vr(inst, "SetReal (NULL array)", 0);
+    for (size_t i = 0; i < n; ++i)
+        if (check_settable(inst, fmu_variable_by_vr(vr[i]), "SetReal", vr[i], FMU_REAL) != FMU_OK)
+            return FMU_ERROR;
+    for (size_t i = 0; i < n; ++i) inst->v.real[vr[i]] = value[i];
+    if (n > 0) inst->v.solved = 0;
+    return FMU_OK;
+}
+
+fmu_status fmu_set_integer(fmu_instance *inst, const unsigned vr[], size_t n,
+                           const int32_t value[]) {
+    if (fmu_check_call(inst, CALL_SET, "SetInteger") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return bad_vr(inst, "SetInteger (NULL array)", 0);
+    for (size_t i = 0; i < n; ++i)
+        if (check_settable(inst, fmu_variable_by_vr(vr[i]), "SetInteger", vr[i], FMU_INTEGER) !=
+            FMU_OK)
+            return FMU_ERROR;
+    for (size_t i = 0; i < n; ++i) inst->v.integer[vr[i]] = value[i];
+    if (n > 0) inst->v.solved = 0;
+    return FMU_OK;
+}
+
+fmu_status fmu_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
+                                     const int order[], const double value[]) {
+    if (fmu_check_call(inst, CALL_SET_INPUT_DERIVATIVES, "SetRealInputDerivatives") != FMU_OK)
+        return FMU_ERROR;
+    if (n > 0 && (!vr || !order || !value)) return bad_vr(inst, "SetRealInputDerivatives", 0);
+    for (size_t i = 0; i < n; ++i) {
+        const int pose = vr[i] <= VR_yaw, rate = vr[i] >= VR_x_dot && vr[i] <= VR_yaw_dot;
+        if (!((pose && (order[i] == 1 || order[i] == 2)) || (rate && order[i] == 1))) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                    "SetRealInputDerivatives: derivative of order %d of value reference %u is "
+                    "not supported (orders 1 and 2 of the pose inputs, order 1 of *_dot)",
+                    order[i], vr[i]);
+            return FMU_ERROR;
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        const unsigned base = vr[i] <= VR_yaw ? vr[i] : vr[i] - VR_x_dot;
+        inst->v.real[(order[i] == 1 && vr[i] <= VR_yaw ? VR_x_dot : VR_x_ddot) + base] = value[i];
+    }
+    if (n > 0) {
+        inst->v.input_derivatives = 1;
+        inst->v.solved = 0;
+    }
+    return FMU_OK;
+}
+
+/* ---------------------------------------------------------------- FMU state */
+
+struct fmu_snapshot {
+    fmu_values v;
+    stewart_data *data;         /* NULL if the instance had no model yet, or deserialised */
+    const stewart_model *model; /* the model data belongs to */
+};
+
+fmu_status fmu_get_state(fmu_instance *inst, fmu_snapshot **state) {
+    if (fmu_check_call(inst, CALL_GET_FMU_STATE, "GetFMUState") != FMU_OK) return FMU_ERROR;
+    if (!state) return bad_vr(inst, "GetFMUState (NULL state pointer)", 0);
+    fmu_snapshot *s = *state;
+    if (s && s->model != inst->model) { /* reused snapshot of another model: start afresh */
+        stewart_data_free(s->data);
+        s->data = NULL;
+    }
+    if (!s) {
+        s = (fmu_snapshot *)calloc(1, sizeof *s);
+        if (!s) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetFMUState: out of memory");
+            return FMU_ERROR;
+        }
+    }
+    if (inst->data && !s->data) s->data = stewart_data_create(inst->model);
+    if (inst->data && (!s->data || stewart_data_copy(s->data, inst->data) != STEWART_OK)) {
+        stewart_data_free(s->data);
+        free(s);
+        *state = NULL;
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetFMUState: cannot copy the solver data");
+        return FMU_ERROR;
+    }
+    s->model = inst->model;
+    s->v = inst->v;
+    *state = s;
+    return FMU_OK;
+}
+
+fmu_status fmu_set_state(fmu_instance *inst, const fmu_snapshot *s) {
+    if (fmu_check_call(inst, CALL_SET_FMU_STATE, "SetFMUState") != FMU_OK) return FMU_ERROR;
+    if (!s) return bad_vr(inst, "SetFMUState (NULL state)", 0);
+    inst->v = s->v;
+    if (inst->v.mode & (MODE_STEP | MODE_TERMINATED)) {
+        /* the snapshot was taken after initialisation: make sure a model for its parameters
+         * exists (allocation here is fine: this is not a step) */
+        if (apply_parameters(inst) != FMU_OK) return fail(inst);
+    }
+    if (inst->data) {
+        if (s->data && s->model == inst->model)
+            stewart_data_copy(inst->data, s->data);
+        else
+            stewart_data_reset(inst->data); /* deserialised: no warm start to restore */
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_free_state(fmu_instance *inst, fmu_snapshot **state) {
+    (void)inst;
+    if (!state || !*state) return FMU_OK;
+    stewart_data_free((*state)->data);
+    free(*state);
+    *state = NULL;
+    return FMU_OK;
+}
+
+/* Serialised form: magic, sizeof(fmu_values), the values. The solver data block is opaque in the
+ * C API (no serialisation), so a deserialised state restarts it: outputs, inputs and history are
+ * restored exactly; only a warm start of the full model would be lost. */
+static const unsigned char kMagic[8] = {'S', 'T', 'W', 'F', 'M', 'U', '0', '1'};
+
+size_t fmu_serialized_size(void) { return sizeof kMagic + sizeof(uint64_t) + sizeof(fmu_values); }
+
+fmu_status fmu_serialize_state(fmu_instance *inst, const fmu_snapshot *s, unsigned char *out,
+                               size_t size) {
+    if (fmu_check_call(inst, CALL_SERIALIZE, "SerializeFMUState") != FMU_OK) return FMU_ERROR;
+    if (!s || !out || size < fmu_serialized_size()) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "SerializeFMUState: buffer of %zu bytes, need %zu",
+                size, fmu_serialized_size());
+        return FMU_ERROR;
+    }
+    const uint64_t n = sizeof(fmu_values);
+    memcpy(out, kMagic, sizeof kMagic);
+    memcpy(out + sizeof kMagic, &n, sizeof n);
+    memcpy(out + sizeof kMagic + sizeof n, &s->v, sizeof s->v);
+    return FMU_OK;
+}
+
+fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, size_t size,
+                                 fmu_snapshot **state) {
+    if (fmu_check_call(inst, CALL_SERIALIZE, "DeserializeFMUState") != FMU_OK) return FMU_ERROR;
+    uint64_t n = 0;
+    if (in && size == fmu_serialized_size()) memcpy(&n, in + sizeof kMagic, sizeof n);
+    if (!in || !state || size != fmu_serialized_size() || memcmp(in, kMagic, sizeof kMagic) ||
+        n != sizeof(fmu_values)) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DeserializeFMUState: %zu bytes are not a state of this FMU", size);
+        return FMU_ERROR;
+    }
+    fmu_snapshot *s = *state;
+    if (!s) s = (fmu_snapshot *)calloc(1, sizeof *s);
+    if (!s) return FMU_ERROR;
+    stewart_data_free(s->data);
+    s->data = NULL;
+    s->model = NULL;
+    memcpy(&s->v, in + sizeof kMagic + sizeof n, sizeof s->v);
+    if (!(s->v.mode & (MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED))) {
+        fmu_free_state(inst, &s);
+        *state = NULL;
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "DeserializeFMUState: corrupt state");
+        return FMU_ERROR;
+    }
+    *state = s;
+    return FMU_OK;
+}

@@ -1,0 +1,345 @@
+/*
+ * A small FMI importer without Python: loads the StewartPlatform shared objects with dlopen, runs
+ * the FMI 2.0 and FMI 3.0 co-simulation call sequences on a combined thesis-like manoeuvre, checks
+ * that both give the same finite outputs with status OK, and prints the median time per doStep
+ * (and per full communication step: set inputs, doStep, get outputs), in microseconds.
+ *
+ * It also counts heap allocations (malloc, calloc, realloc interposed below, glibc) while the
+ * steps run: a step must not allocate.
+ *
+ * usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]
+ */
+#include <dlfcn.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "fmi2Functions.h"
+#include "fmi3Functions.h"
+
+#define GUID "{5d0f6a3e-9b1c-4c2e-a7f4-3e8b2c7d1a04}"
+/* Value references (modelDescription.xml) */
+enum { VR_X = 0, VR_X_DOT = 6, VR_X_DDOT = 12, VR_L1 = 100, VR_STATUS = 127, VR_FIDELITY = 200,
+       VR_DERIVATIVES = 201 };
+#define N_OUT 32 /* Real outputs: value references 100..133 except the Integers 125 and 127 */
+
+static void real_outputs(unsigned vr[N_OUT]) {
+    int n = 0;
+    for (unsigned r = VR_L1; r <= 133; ++r)
+        if (r != 125 && r != VR_STATUS) vr[n++] = r;
+}
+
+/* ---- allocation counter: the executable's definitions interpose on the FMU's calls (glibc).
+ * Not under AddressSanitizer, which intercepts the allocator itself. */
+#if defined(__SANITIZE_ADDRESS__)
+#define COUNT_ALLOCATIONS 0
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define COUNT_ALLOCATIONS 0
+#endif
+#endif
+#ifndef COUNT_ALLOCATIONS
+#define COUNT_ALLOCATIONS 1
+#endif
+static long allocations = 0;
+static int counting = 0;
+#if COUNT_ALLOCATIONS
+extern void *__libc_malloc(size_t);
+extern void *__libc_calloc(size_t, size_t);
+extern void *__libc_realloc(void *, size_t);
+void *malloc(size_t n) {
+    allocations += counting;
+    return __libc_malloc(n);
+}
+void *calloc(size_t n, size_t size) {
+    allocations += counting;
+    return __libc_calloc(n, size);
+}
+void *realloc(void *p, size_t n) {
+    allocations += counting;
+    return __libc_realloc(p, n);
+}
+#endif
+
+static int failures = 0;
+#define CHECK(cond, ...)                                      \
+    do {                                                      \
+        if (!(cond) && ++failures <= 10) {                    \
+            fprintf(stderr, "importer: FAILED: " __VA_ARGS__); \
+            fputc('\n', stderr);                              \
+        }                                                     \
+    } while (0)
+
+static double now_us(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, size_t n) {
+    qsort(v, n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Combined manoeuvre: heave, roll, pitch and yaw at once (half the thesis amplitudes, so that
+ * the legs stay inside the stroke; 5 rad/s). */
+static void pose_at(double t, double q[18]) {
+    const double w = 5.0, a = 0.02, b = 3.14159265358979323846 / 36;
+    const double s = sin(w * t), c = cos(w * t);
+    memset(q, 0, 18 * sizeof(double));
+    q[2] = 0.5 + a * s;            q[8] = a * w * c;      q[14] = -a * w * w * s;
+    for (int i = 3; i < 6; ++i) {
+        q[i] = b * s;              q[i + 6] = b * w * c;  q[i + 12] = -b * w * w * s;
+    }
+}
+
+static void *sym(void *lib, const char *name) {
+    void *f = dlsym(lib, name);
+    if (!f) {
+        fprintf(stderr, "importer: %s not found: %s\n", name, dlerror());
+        exit(2);
+    }
+    return f;
+}
+
+typedef struct {
+    double step_us;   /* median doStep */
+    double cycle_us;  /* median set + doStep + get */
+    int ran;          /* 0: fidelity unsupported in this build */
+} timing;
+
+/* ------------------------------------------------------------------ FMI 2 */
+
+static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
+                    fmi2String category, fmi2String message, ...) {
+    (void)env;
+    if (status != fmi2OK) fprintf(stderr, "  [fmi2 %s %d %s] %s\n", name, status, category, message);
+}
+
+static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, double *outputs) {
+    fmi2InstantiateTYPE *instantiate = sym(lib, "fmi2Instantiate");
+    fmi2FreeInstanceTYPE *free_instance = sym(lib, "fmi2FreeInstance");
+    fmi2SetupExperimentTYPE *setup = sym(lib, "fmi2SetupExperiment");
+    fmi2EnterInitializationModeTYPE *enter = sym(lib, "fmi2EnterInitializationMode");
+    fmi2ExitInitializationModeTYPE *exit_init = sym(lib, "fmi2ExitInitializationMode");
+    fmi2SetIntegerTYPE *set_int = sym(lib, "fmi2SetInteger");
+    fmi2SetRealTYPE *set_real = sym(lib, "fmi2SetReal");
+    fmi2GetRealTYPE *get_real = sym(lib, "fmi2GetReal");
+    fmi2GetIntegerTYPE *get_int = sym(lib, "fmi2GetInteger");
+    fmi2DoStepTYPE *do_step = sym(lib, "fmi2DoStep");
+    fmi2TerminateTYPE *terminate = sym(lib, "fmi2Terminate");
+
+    timing tm = {0, 0, 0};
+    const fmi2CallbackFunctions cb = {logger2, calloc, free, NULL, NULL};
+    fmi2Component c = instantiate("importer", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
+    CHECK(c != NULL, "fmi2Instantiate");
+    if (!c) return tm;
+    const fmi2ValueReference pvr[2] = {VR_FIDELITY, VR_DERIVATIVES};
+    const fmi2Integer pval[2] = {fidelity, derivatives};
+    fmi2ValueReference in_vr[18], out_vr[N_OUT];
+    for (int i = 0; i < 18; ++i) in_vr[i] = VR_X + i;
+    real_outputs(out_vr);
+    double q[18];
+    pose_at(0.0, q);
+    CHECK(set_int(c, pvr, 2, pval) == fmi2OK, "fmi2SetInteger");
+    CHECK(set_real(c, in_vr, 18, q) == fmi2OK, "fmi2SetReal");
+    CHECK(setup(c, fmi2False, 0, 0.0, fmi2False, 0) == fmi2OK, "fmi2SetupExperiment");
+    CHECK(enter(c) == fmi2OK, "fmi2EnterInitializationMode");
+    if (exit_init(c) != fmi2OK) { /* fidelity not available */
+        free_instance(c);
+        return tm;
+    }
+    tm.ran = 1;
+    double *t_step = malloc(steps * sizeof(double)), *t_cycle = malloc(steps * sizeof(double));
+    const double h = 1e-3;
+    const fmi2ValueReference status_vr = VR_STATUS;
+    for (int j = 0; j < steps; ++j) {
+        const double t = j * h;
+        pose_at(t, q);
+        counting = 1;
+        const double t0 = now_us();
+        fmi2Status s = set_real(c, in_vr, derivatives ? 18 : 6, q);
+        const double t1 = now_us();
+        s |= do_step(c, t, h, fmi2True);
+        const double t2 = now_us();
+        s |= get_real(c, out_vr, N_OUT, outputs + (size_t)j * N_OUT);
+        const double t3 = now_us();
+        counting = 0;
+        CHECK(s == fmi2OK, "fmi2 set/doStep/get status %d at t = %g", s, t);
+        t_step[j] = t2 - t1;
+        t_cycle[j] = t3 - t0;
+        fmi2Integer st = -1;
+        get_int(c, &status_vr, 1, &st);
+        CHECK(st == 0, "fmi2 status %d at t = %g", st, t);
+    }
+    tm.step_us = median(t_step, steps);
+    tm.cycle_us = median(t_cycle, steps);
+    free(t_step);
+    free(t_cycle);
+    CHECK(terminate(c) == fmi2OK, "fmi2Terminate");
+    free_instance(c);
+    return tm;
+}
+
+/* ------------------------------------------------------------------ FMI 3 */
+
+static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
+                    fmi3String message) {
+    (void)env;
+    if (status != fmi3OK) fprintf(stderr, "  [fmi3 %d %s] %s\n", status, category, message);
+}
+
+static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, double *outputs) {
+    fmi3InstantiateCoSimulationTYPE *instantiate = sym(lib, "fmi3InstantiateCoSimulation");
+    fmi3FreeInstanceTYPE *free_instance = sym(lib, "fmi3FreeInstance");
+    fmi3EnterInitializationModeTYPE *enter = sym(lib, "fmi3EnterInitializationMode");
+    fmi3ExitInitializationModeTYPE *exit_init = sym(lib, "fmi3ExitInitializationMode");
+    fmi3SetInt32TYPE *set_int = sym(lib, "fmi3SetInt32");
+    fmi3SetFloat64TYPE *set_real = sym(lib, "fmi3SetFloat64");
+    fmi3GetFloat64TYPE *get_real = sym(lib, "fmi3GetFloat64");
+    fmi3GetInt32TYPE *get_int = sym(lib, "fmi3GetInt32");
+    fmi3DoStepTYPE *do_step = sym(lib, "fmi3DoStep");
+    fmi3TerminateTYPE *terminate = sym(lib, "fmi3Terminate");
+
+    timing tm = {0, 0, 0};
+    fmi3Instance c = instantiate("importer", GUID, "", fmi3False, fmi3False, fmi3False, fmi3False,
+                                 NULL, 0, NULL, logger3, NULL);
+    CHECK(c != NULL, "fmi3InstantiateCoSimulation");
+    if (!c) return tm;
+    const fmi3ValueReference pvr[2] = {VR_FIDELITY, VR_DERIVATIVES};
+    const fmi3Int32 pval[2] = {fidelity, derivatives};
+    fmi3ValueReference in_vr[18], out_vr[N_OUT];
+    for (int i = 0; i < 18; ++i) in_vr[i] = VR_X + i;
+    real_outputs(out_vr);
+    const int n_out = N_OUT;
+    double q[18];
+    pose_at(0.0, q);
+    CHECK(set_int(c, pvr, 2, pval, 2) == fmi3OK, "fmi3SetInt32");
+    CHECK(set_real(c, in_vr, 18, q, 18) == fmi3OK, "fmi3SetFloat64");
+    CHECK(enter(c, fmi3False, 0, 0.0, fmi3False, 0) == fmi3OK, "fmi3EnterInitializationMode");
+    if (exit_init(c) != fmi3OK) {
+        free_instance(c);
+        return tm;
+    }
+    tm.ran = 1;
+    double *t_step = malloc(steps * sizeof(double)), *t_cycle = malloc(steps * sizeof(double));
+    const double h = 1e-3;
+    const fmi3ValueReference status_vr = VR_STATUS;
+    fmi3Boolean event, term, early;
+    fmi3Float64 last;
+    for (int j = 0; j < steps; ++j) {
+        const double t = j * h;
+        pose_at(t, q);
+        const double t0 = now_us();
+        counting = 1;
+        fmi3Status s = set_real(c, in_vr, derivatives ? 18 : 6, q, derivatives ? 18 : 6);
+        const double t1 = now_us();
+        s |= do_step(c, t, h, fmi3True, &event, &term, &early, &last);
+        const double t2 = now_us();
+        s |= get_real(c, out_vr, n_out, outputs + (size_t)j * N_OUT, n_out);
+        const double t3 = now_us();
+        counting = 0;
+        CHECK(s == fmi3OK, "fmi3 set/doStep/get status %d at t = %g", s, t);
+        t_step[j] = t2 - t1;
+        t_cycle[j] = t3 - t0;
+        fmi3Int32 st = -1;
+        get_int(c, &status_vr, 1, &st, 1);
+        CHECK(st == 0, "fmi3 status %d at t = %g", st, t);
+    }
+    tm.step_us = median(t_step, steps);
+    tm.cycle_us = median(t_cycle, steps);
+    free(t_step);
+    free(t_cycle);
+    CHECK(terminate(c) == fmi3OK, "fmi3Terminate");
+    free_instance(c);
+    return tm;
+}
+
+int main(int argc, char **argv) {
+    if (argc < 3) {
+        fprintf(stderr, "usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]\n");
+        return 2;
+    }
+    const int steps = argc > 4 ? atoi(argv[4]) : 20000;
+    void *lib2 = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
+    if (!lib2) { fprintf(stderr, "importer: %s\n", dlerror()); return 2; }
+    void *lib3 = dlopen(argv[2], RTLD_NOW | RTLD_LOCAL);
+    if (!lib3) { fprintf(stderr, "importer: %s\n", dlerror()); return 2; }
+    FILE *out = argc > 3 ? fopen(argv[3], "w") : NULL;
+    if (argc > 3 && !out) { fprintf(stderr, "importer: cannot write %s\n", argv[3]); return 2; }
+
+    static const char *const level[3] = {"kinematic", "massless", "full"};
+    double *o2 = calloc((size_t)steps * N_OUT, sizeof(double));
+    double *o3 = calloc((size_t)steps * N_OUT, sizeof(double));
+    printf("%-6s %-10s %-12s %10s %10s   (median microseconds, %d steps of 1 ms)\n", "fmi",
+           "fidelity", "derivatives", "doStep", "cycle", steps);
+    for (int fid = 0; fid <= 2; ++fid)
+        for (int der = 0; der <= 1; ++der) {
+            const timing a = run_fmi2(lib2, fid, der, steps, o2);
+            const timing b = run_fmi3(lib3, fid, der, steps, o3);
+            CHECK(a.ran == b.ran, "fidelity %d available in one FMI version only", fid);
+            const char *src = der ? "inputs" : "fd";
+            if (!a.ran) {
+                printf("%-6s %-10s %-12s %10s %10s\n", "2+3", level[fid], src, "n/a", "n/a");
+                if (out) fprintf(out, "fmi2 fidelity=%s derivatives=%s unsupported\n"
+                                      "fmi3 fidelity=%s derivatives=%s unsupported\n",
+                                 level[fid], src, level[fid], src);
+                continue;
+            }
+            /* same outputs from both versions, bit for bit, all finite; lengths near 0.56 m */
+            unsigned vr[N_OUT];
+            real_outputs(vr);
+            for (int j = 0; j < steps; ++j) {
+                const double *r2 = o2 + (size_t)j * N_OUT, *r3 = o3 + (size_t)j * N_OUT;
+                for (int i = 0; i < N_OUT; ++i) {
+                    CHECK(isfinite(r2[i]), "non-finite output %u", vr[i]);
+                    CHECK(r2[i] == r3[i], "FMI 2 and FMI 3 differ: vr %u step %d: %.17g vs %.17g",
+                          vr[i], j, r2[i], r3[i]);
+                }
+                for (int k = 0; k < 6; ++k)
+                    CHECK(r2[k] > 0.45 && r2[k] < 0.65, "L[%d] = %g at step %d", k + 1, r2[k], j);
+            }
+            printf("%-6s %-10s %-12s %10.3f %10.3f\n", "2", level[fid], src, a.step_us, a.cycle_us);
+            printf("%-6s %-10s %-12s %10.3f %10.3f\n", "3", level[fid], src, b.step_us, b.cycle_us);
+            if (out)
+                fprintf(out, "fmi2 fidelity=%s derivatives=%s doStep_us=%.3f cycle_us=%.3f\n"
+                             "fmi3 fidelity=%s derivatives=%s doStep_us=%.3f cycle_us=%.3f\n",
+                        level[fid], src, a.step_us, a.cycle_us, level[fid], src, b.step_us,
+                        b.cycle_us);
+        }
+#if COUNT_ALLOCATIONS
+    CHECK(allocations == 0, "%ld heap allocations during the steps", allocations);
+    printf("heap allocations during the steps: %ld\n", allocations);
+    {   /* the counter works: instantiation does allocate */
+        fmi2InstantiateTYPE *instantiate = sym(lib2, "fmi2Instantiate");
+        fmi2FreeInstanceTYPE *free_instance = sym(lib2, "fmi2FreeInstance");
+        const fmi2CallbackFunctions cb = {logger2, calloc, free, NULL, NULL};
+        counting = 1;
+        fmi2Component c = instantiate("probe", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
+        counting = 0;
+        CHECK(c != NULL && allocations > 0, "the allocation counter does not see the FMU's calls");
+        free_instance(c);
+    }
+#else
+    (void)counting;
+    (void)allocations;
+    printf("heap allocations during the steps: not counted under AddressSanitizer\n");
+#endif
+    free(o2);
+    free(o3);
+    if (out) fclose(out);
+    dlclose(lib2);
+    dlclose(lib3);
+    if (failures) {
+        fprintf(stderr, "importer: %d check(s) failed\n", failures);
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,369 @@
+"""What a master relies on: rollback, serialisation, several instances, reset, logging, bad
+input, invalid parameters, warnings. FMI 2 and FMI 3."""
+import math
+
+import numpy as np
+import pytest
+
+from fmu_support import (VERSIONS, REAL_OUTPUTS, L, POSE, POSE_DOT, POSE_DDOT, OK, WARNING,
+                         DISCARD, ERROR, Unit, closed_form_lengths, require_fidelity, reference_matrix,
+                         stewart_solve, thesis_manoeuvre)
+
+
+def _drive(u, t0, poses, h=0.1):
+    """Sets each pose at t0 + j h, records all outputs, steps; returns (n, m) outputs."""
+    rows = []
+    t = t0
+    for p in poses:
+        u.set_values(dict(zip(POSE, p)))
+        r, i = u.outputs()
+        rows.append(np.concatenate([r, [i["status"]]]))
+        assert u.do_step(t, h) in (OK, WARNING)
+        t += h
+    return np.array(rows), t
+
+
+def _poses(n, t0=0.0, kind="roll", h=0.1):
+    q, _, _ = thesis_manoeuvre(kind, t0 + h * np.arange(n))
+    return q
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("fidelity", [1, 2])
+@pytest.mark.parametrize("derivatives", [0, 1])
+def test_rollback_reproduces_outputs_bit_for_bit(version, fidelity, derivatives):
+    require_fidelity(version, fidelity)
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=fidelity, derivatives=derivatives, x_dot=0.1, roll_ddot=0.5) == OK
+        _, t = _drive(u, 0.0, _poses(5))
+        state = u.get_state()
+        poses = _poses(6, t)
+        first, _ = _drive(u, t, poses)
+        u.set_state(state)
+        second, _ = _drive(u, t, poses)
+        assert first.tobytes() == second.tobytes()
+        # and through serialisation
+        blob = u.serialize(state)
+        u.free_state(state)
+        _drive(u, t + 0.6, _poses(3, t + 0.6))
+        restored = u.deserialize(blob)
+        u.set_state(restored)
+        third, _ = _drive(u, t, poses)
+        if fidelity < 2:
+            assert first.tobytes() == third.tobytes()
+        else:  # the C API cannot serialise the solver's warm start: equal to its tolerance
+            np.testing.assert_allclose(third, first, rtol=1e-9, atol=1e-9)
+        u.free_state(restored)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_rollback_with_a_variable_step(version):
+    """A rejected step is redone with a smaller one: the result equals a fresh run that took the
+    smaller step directly."""
+    q = _poses(4)
+    u, v = Unit(version, "a"), Unit(version, "b")
+    try:
+        for w in (u, v):
+            assert w.init(fidelity=1) == OK
+            _drive(w, 0.0, q[:3])
+        s = u.get_state()
+        u.set_values(dict(zip(POSE, q[3])))
+        assert u.do_step(0.3, 0.1) == OK
+        u.set_state(s)
+        u.free_state(s)
+        later = _poses(1, 0.35)[0]
+        for w in (u, v):
+            w.set_values(dict(zip(POSE, later)))
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == v.get_reals(REAL_OUTPUTS).tobytes()
+    finally:
+        u.free()
+        v.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_two_instances_side_by_side(version):
+    """Two instances with different parameters, stepped interleaved in one process, each equal
+    to its own closed form / reference."""
+    a, b = Unit(version, "a"), Unit(version, "b")
+    try:
+        assert a.init(fidelity=1) == OK
+        assert b.init(fidelity=0, base_radius=0.6, platform_radius=0.45) == OK
+        q = _poses(8, kind="yaw")
+        ta = []
+        for j, p in enumerate(q):
+            for u in (a, b):
+                u.set_values(dict(zip(POSE, p)))
+            np.testing.assert_allclose(a.get_reals(L), closed_form_lengths(p), rtol=1e-12)
+            np.testing.assert_allclose(b.get_reals(L), closed_form_lengths(p, 0.6, 0.45),
+                                       rtol=1e-12)
+            assert np.all(b.get_reals(("F[1]", "F[6]")) == 0.0)
+            ta.append(a.get_reals(L + tuple(f"F[{k}]" for k in range(1, 7))))
+            for u in (a, b):
+                assert u.do_step(0.1 * j, 0.1) == OK
+        from fmu_support import backward_fd
+        t = 0.1 * np.arange(len(q))
+        qd, qdd = backward_fd(t, q)
+        ref = reference_matrix(stewart_solve(t, q, qd, qdd))
+        np.testing.assert_allclose(np.array(ta), np.hstack([ref[:, :6], ref[:, 18:]]),
+                                   rtol=1e-9, atol=1e-9)
+    finally:
+        a.free()
+        b.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_reset(version):
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1, base_radius=0.55) == OK
+        u.set(z=0.6)
+        first = u.get_reals(REAL_OUTPUTS)
+        u.do_step(0.0, 0.1)
+        assert u.reset() == OK
+        # back to the start values
+        assert u.enter_init() == OK
+        assert u.get(["base_radius", "z", "fidelity"]) == [0.5, 0.5, 2]
+        if version == "3.0":
+            assert u.get(["time"])[0] == 0.0
+        u.set(fidelity=1, base_radius=0.55, z=0.6)
+        assert u.exit_init() == OK
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == first.tobytes()
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("name,value", [("x", math.nan), ("yaw", math.inf), ("z_dot", -math.inf),
+                                        ("pitch_ddot", math.nan)])
+def test_non_finite_input_is_discarded(version, name, value):
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1) == OK
+        q = _poses(3)
+        _drive(u, 0.0, q[:2])
+        before = u.get_reals(REAL_OUTPUTS)
+        u.set_values({name: value})
+        assert u.get(["status"])[0] == 3
+        after = u.get_reals(REAL_OUTPUTS)
+        assert after.tobytes() == before.tobytes()  # last valid outputs, no NaN
+        assert u.do_step(0.2, 0.1) == DISCARD
+        text = u.messages_text()
+        assert f"input {name} = " in text and ("nan" in text or "inf" in text), text
+        assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
+        # the next good step succeeds
+        u.set_values({name: 0.0})
+        u.set_values(dict(zip(POSE, q[2])))
+        assert u.get(["status"])[0] == 0
+        assert u.do_step(0.2, 0.1) == OK
+        np.testing.assert_allclose(u.get_reals(L), closed_form_lengths(q[2]), rtol=1e-12)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_unreachable_pose_is_discarded(version):
+    """z = 0 with yaw = 30 deg puts platform point 1 on base point 1 (closed form: L1 = 0)."""
+    bad = [0.0, 0.0, 0.0, 0.0, 0.0, math.radians(30)]
+    assert closed_form_lengths(bad)[0] < 1e-12
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1) == OK
+        before = u.get_reals(REAL_OUTPUTS)
+        u.set_values(dict(zip(POSE, bad)))
+        assert u.do_step(0.0, 0.1) == DISCARD
+        assert u.get(["status"])[0] == 3
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
+        discard = [m for s, c, m in u.messages if s == DISCARD]
+        assert discard and "yaw" in discard[-1] and "0.523599" in discard[-1], u.messages
+        assert all(c == "logStatusDiscard" for s, c, m in u.messages if s == DISCARD)
+        u.set(z=0.5, yaw=0.0)
+        assert u.do_step(0.0, 0.1) == OK
+        assert u.get(["status"])[0] == 0
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_taylor_advance_into_an_unreachable_pose_is_discarded(version):
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1, derivatives=1, z_dot=-5.0) == OK
+        before = u.get_reals(REAL_OUTPUTS)
+        assert u.do_step(0.0, 0.1) == DISCARD  # z would reach 0
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
+        assert u.get(["z"])[0] == 0.5
+        u.set(z_dot=0.0)
+        assert u.do_step(0.0, 0.1) == OK
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("name,value,words", [
+    ("base_radius", -0.1, "base_radius"),
+    ("platform_mass", math.nan, "platform_mass"),
+    ("stroke_max", 0.3, "stroke"),
+    ("tolerance", 0.0, "tolerance"),
+    ("derivatives", 3, "derivatives"),
+    ("fidelity", 7, "fidelity"),
+])
+def test_invalid_parameter_at_initialisation_is_an_error(version, name, value, words):
+    u = Unit(version)
+    try:
+        u.set_values({name: value})
+        assert u.enter_init() == OK
+        assert u.exit_init() == ERROR
+        errors = [m for s, c, m in u.messages if s == ERROR]
+        assert errors and words in errors[-1], u.messages
+        assert u.reset() == OK  # and the instance can be reset and used
+        assert u.init(fidelity=1) == OK
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_stroke_limit_gives_warning_and_status_1(version):
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1) == OK
+        u.set(z=0.75)  # closed form: every leg longer than stroke_max = 0.7 m
+        assert np.all(closed_form_lengths([0, 0, 0.75, 0, 0, 0]) > 0.7)
+        assert u.get(["status"])[0] == 1
+        assert u.do_step(0.0, 0.1) == WARNING
+        warnings = [(c, m) for s, c, m in u.messages if s == WARNING]
+        assert warnings and warnings[-1][0] == "logStatusWarning" and "stroke" in warnings[-1][1]
+        assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_near_singular_gives_warning_and_status_2(version):
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1, warn_condition=1.0) == WARNING
+        assert u.get(["status"])[0] == 2
+        assert u.do_step(0.0, 0.1) == WARNING
+        assert any("singular" in m for s, c, m in u.messages if s == WARNING)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_singular_is_discarded(version):
+    u = Unit(version)
+    try:
+        s = u.init(fidelity=1, warn_condition=1.0, singular_condition=1.0)
+        assert s == WARNING and u.get(["status"])[0] == 3  # initial pose not solved
+        assert u.do_step(0.0, 0.1) == DISCARD
+        assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_only_enabled_log_categories_reach_the_logger(version):
+    u = Unit(version)
+    try:
+        u.set_debug_logging(False, [])          # all off
+        u.set_debug_logging(True, ["logStatusDiscard"])
+        assert u.init(fidelity=1) == OK
+        u.set(z=0.75)
+        assert u.do_step(0.0, 0.1) == WARNING   # not logged: category off
+        u.set(x=math.nan)
+        assert u.do_step(0.1, 0.1) == DISCARD   # logged
+        assert u.messages and all(c == "logStatusDiscard" for _, c, _ in u.messages), u.messages
+        n = len(u.messages)
+        u.set_debug_logging(False, ["logStatusDiscard"])
+        u.set(x=math.inf)
+        assert u.do_step(0.1, 0.1) == DISCARD
+        assert len(u.messages) == n
+    finally:
+        u.free()
+    v = Unit(version, logging=False)
+    try:
+        v.set(x=math.nan)
+        assert v.init(fidelity=1) == WARNING
+        assert v.messages == []
+    finally:
+        v.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_calls_out_of_sequence_are_errors(version):
+    u = Unit(version)
+    try:
+        assert u.do_step(0.0, 0.1) == ERROR
+        assert u.init(fidelity=1) == OK
+        vr = u.vr["base_radius"]
+        setter = u.dll.fmi2SetReal if version == "2.0" else u.dll.fmi3SetFloat64
+        import ctypes
+        arr_vr = (ctypes.c_uint32 * 1)(vr)
+        val = (ctypes.c_double * 1)(0.7)
+        args = (u.c, arr_vr, 1, val) if version == "2.0" else (u.c, arr_vr, 1, val, 1)
+        assert setter(*args) == ERROR  # fixed parameter after initialisation
+        assert any("base_radius" in m for s, c, m in u.messages if s == ERROR)
+        assert u.do_step(0.0, -0.1) == ERROR
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_misuse_returns_error_and_does_not_crash(version):
+    import ctypes
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1) == OK
+        d, c = u.dll, u.c
+        vr = (ctypes.c_uint32 * 1)(9999)
+        vr_int = (ctypes.c_uint32 * 1)(u.vr["fidelity"])
+        val = (ctypes.c_double * 1)()
+        ival = (ctypes.c_int32 * 1)()
+        if version == "2.0":
+            assert d.fmi2GetReal(c, vr, 1, val) == ERROR            # no such variable
+            assert d.fmi2GetReal(c, vr_int, 1, val) == ERROR        # an Integer asked as Real
+            assert d.fmi2GetInteger(c, vr_int, 1, ival) == OK and ival[0] == 1
+            assert d.fmi2GetReal(c, None, 1, None) == ERROR         # NULL arrays
+            assert d.fmi2GetBoolean(c, vr, 1, ival) == ERROR
+            assert d.fmi2SetRealInputDerivatives(c, vr_int, 1, (ctypes.c_int * 1)(1), val) == ERROR
+            assert d.fmi2DeSerializeFMUstate(c, b"garbage", 7, ctypes.byref(ctypes.c_void_p())) == ERROR
+            assert d.fmi2FreeFMUstate(c, ctypes.byref(ctypes.c_void_p())) == OK
+            assert d.fmi2GetDerivatives(c, val, 1) == ERROR        # model exchange: not provided
+            assert d.fmi2Terminate(c) == OK
+            assert d.fmi2DoStep(c, 0.0, 0.1, 1) == ERROR            # after Terminate
+            assert d.fmi2GetReal(c, (ctypes.c_uint32 * 1)(u.vr["L[1]"]), 1, val) == OK
+        else:
+            assert d.fmi3GetFloat64(c, vr, 1, val, 1) == ERROR
+            assert d.fmi3GetFloat64(c, vr_int, 1, val, 1) == ERROR
+            assert d.fmi3GetFloat64(c, (ctypes.c_uint32 * 1)(u.vr["L[1]"]), 1, val, 2) == ERROR
+            assert d.fmi3GetInt32(c, vr_int, 1, ival, 1) == OK and ival[0] == 1
+            assert d.fmi3GetFloat64(c, None, 1, None, 1) == ERROR
+            assert d.fmi3GetBoolean(c, vr, 1, (ctypes.c_bool * 1)(), 1) == ERROR
+            assert d.fmi3DeserializeFMUState(c, (ctypes.c_ubyte * 7)(*b"garbage"), 7,
+                                             ctypes.byref(ctypes.c_void_p())) == ERROR
+            assert d.fmi3EnterStepMode(c) == ERROR
+            assert d.fmi3Terminate(c) == OK
+            assert d.fmi3EnterInitializationMode(c, 0, 0.0, 0.0, 0, 0.0) == ERROR
+        assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
+        assert any(c_ == "logStatusError" for s, c_, m in u.messages if s == ERROR)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_instantiation_checks_the_token(version):
+    from fmpy.fmi2 import FMU2Slave
+    from fmpy.fmi3 import FMU3Slave
+    from fmu_support import unzipped
+    cls = FMU2Slave if version == "2.0" else FMU3Slave
+    f = cls(guid="{00000000-0000-0000-0000-000000000000}", unzipDirectory=unzipped(version),
+            modelIdentifier="StewartPlatform", instanceName="wrong")
+    with pytest.raises(Exception):
+        if version == "2.0":
+            f.instantiate()
+        else:
+            f.instantiate(logMessage=lambda *a: None)
+    f.freeLibrary()
