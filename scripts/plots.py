@@ -36,20 +36,22 @@ def plot_forces_per_fidelity(t, forces, path, title=""):
     difference from the highest level given."""
     levels = sorted(forces)
     best = levels[-1]
+    style = {best: "-"} | dict(zip(levels[:-1][::-1], ("--", ":")))
+    style_name = {"-": "solid", "--": "dashed", ":": "dotted"}
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(9, 8),
                                       gridspec_kw={"height_ratios": [2, 1]})
     colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for level, style in zip(levels, ("-", "--", ":")[::-1][-len(levels):][::-1]):
+    for level in levels:
         for k in range(6):
-            top.plot(t, forces[level][:, k], color=colors[k], linestyle=style,
+            top.plot(t, forces[level][:, k], color=colors[k], linestyle=style[level],
                      label=f"leg {k + 1}" if level == best else None)
     for level in levels[:-1]:
         for k in range(6):
             bottom.plot(t, forces[level][:, k] - forces[best][:, k], color=colors[k],
-                        linestyle="--")
+                        linestyle=style[level])
     top.set_ylabel("force F [N]")
-    names = ", ".join(f"{FIDELITY_NAMES[lv]} {s}" for lv, s in zip(levels, ("solid", "dashed")[::-1][-len(levels):][::-1]))
-    top.set_title(names, fontsize="small")
+    top.set_title(", ".join(f"{FIDELITY_NAMES[lv]} {style_name[style[lv]]}" for lv in levels[::-1]),
+                  fontsize="small")
     top.legend(ncol=6, fontsize="small", loc="lower center", bbox_to_anchor=(0.5, 1.08))
     bottom.set_ylabel(f"F − F({FIDELITY_NAMES[best]}) [N]")
     bottom.set_xlabel("time t [s]")
@@ -69,10 +71,10 @@ def rotation(roll, pitch, yaw):
                      [-sp, cp * sr, cp * cr]])
 
 
-def animate_platform(t, q, path, base_points, platform_points, title="", frames=90):
+def animate_platform(t, q, path, base_points, platform_points, title="", frames=60):
     """A GIF of the platform moving: base and platform hexagons and the six legs."""
     idx = np.linspace(0, len(t) - 1, min(frames, len(t))).astype(int)
-    fig = plt.figure(figsize=(6, 6))
+    fig = plt.figure(figsize=(5, 5), dpi=80)
     ax = fig.add_subplot(projection="3d")
     r = np.max(np.linalg.norm(base_points, axis=1))
     ax.set_xlim(-r, r), ax.set_ylim(-r, r), ax.set_zlim(0, 1.4 * np.max(q[:, 2]))
