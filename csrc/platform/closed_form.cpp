@@ -75,6 +75,14 @@ Matrix6 leg_jacobian_transposed(const LegKinematics &legs) {
     return Jt;
 }
 
+double leg_condition(const LegKinematics &legs) {
+    const Matrix6 Jt = leg_jacobian_transposed(legs);
+    const Eigen::PartialPivLU<Matrix6> lu(Jt);
+    const Matrix6 Jt_inv = lu.inverse();
+    const double c = Jt.rowwise().lpNorm<1>().maxCoeff() * Jt_inv.rowwise().lpNorm<1>().maxCoeff();
+    return std::isfinite(c) ? c : INFINITY;
+}
+
 void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
                             const double force[STEWART_LEGS], stewart_output &out) {
     Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();

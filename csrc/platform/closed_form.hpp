@@ -43,6 +43,9 @@ stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, L
 // J (v, omega) = L_dot.
 Matrix6 leg_jacobian_transposed(const LegKinematics &legs);
 
+// 1-norm condition number of the leg Jacobian (infinite if singular).
+double leg_condition(const LegKinematics &legs);
+
 // Massless legs: solves J^T F = wrench needed by Newton-Euler for the lumped body, fills
 // force, condition and the base wrench. STEWART_ERR_SINGULAR if the condition number is above
 // singular_condition (or not finite).
