@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "model.hpp"
@@ -115,6 +116,7 @@ int main(int argc, char **argv) {
     dense.kinsol_dense = true;
 
     const Result a = run(*model, ours, true, coarse, 200);
+    if (std::getenv("BENCH_OURS_ONLY")) { run(*model, ours, true, coarse, 2000); return 0; }
     const Result b = run(*model, dense, true, coarse, 5);
     const Result c = run(*model, ours, false, fine, 3);
     const Result d = run(*model, dense, false, fine, 1);

@@ -7,7 +7,10 @@ namespace mbs {
 
 bool lu_factor(double *a, int m, int n, int width, int *pivot) {
     double scale = 0;
-    for (int i = 0; i < m * width; ++i) scale = std::fmax(scale, std::fabs(a[i]));
+    for (int i = 0; i < m * width; ++i) {
+        const double v = std::fabs(a[i]);
+        if (v > scale) scale = v;
+    }
     const double tiny = 1e-14 * (scale > 0 ? scale : 1.0);
     for (int k = 0; k < n; ++k) {
         int p = k;

@@ -45,6 +45,25 @@ inline Mat34 rotate_jacobian(const double *p, const Vec3 &u) {
     return B;
 }
 
+// The symmetric bilinear form behind A: C(p, p) u = A(p) u, so d(A u)/dt = 2 C(p, p_dot) u and
+// the velocity-quadratic part of d2(A u)/dt2 is 2 C(p_dot, p_dot) u = 2 A(p_dot) u.
+inline Vec3 bilinear(const double *p, const double *q, const Vec3 &u) {
+    const Vec3 ep(p[1], p[2], p[3]), eq(q[1], q[2], q[3]);
+    return (p[0] * q[0] - ep.dot(eq)) * u + ep * eq.dot(u) + eq * ep.dot(u) +
+           (p[0] * eq + q[0] * ep).cross(u);
+}
+
+// v^T B(p, u) as a row, without forming B.
+inline Eigen::Matrix<double, 1, 4> row_of_rotate_jacobian(const double *p, const Vec3 &u,
+                                                          const Vec3 &v) {
+    const double e0 = p[0];
+    const Vec3 e(p[1], p[2], p[3]);
+    Eigen::Matrix<double, 1, 4> r;
+    r[0] = 2.0 * (e0 * v.dot(u) + v.dot(e.cross(u)));
+    r.tail<3>() = 2.0 * (v.dot(e) * u - v.dot(u) * e + e.dot(u) * v + e0 * u.cross(v));
+    return r;
+}
+
 // G(p) = [-e, e0 I - skew(e)]: body angular velocity w' = 2 G p_dot.
 inline Mat34 G_matrix(const double *p) {
     const Vec3 e(p[1], p[2], p[3]);

@@ -1,30 +1,26 @@
 // The building blocks every joint is made of: a point coincidence (3 rows), a perpendicularity of
 // two body vectors ("dot-1", 1 row) and a perpendicularity of a body vector to the vector between
-// two points ("dot-2", 1 row). Each writes Phi, its Jacobian rows and gamma.
+// two points ("dot-2", 1 row). Each writes Phi, its Jacobian rows, Phi_t and gamma, computing
+// only what the output asks for.
 #pragma once
 
 #include "core/joint.hpp"
 
 namespace mbs {
 
-// A body-fixed vector u seen in the world, with everything its derivatives need.
+// A body-fixed vector u seen in the world, with the derivatives gamma needs.
 struct Attached {
     Vec3 world;  // A u
-    Mat34 B;     // d(A u)/dp
-    Vec3 rate;   // d(A u)/dt = B p_dot
-    Vec3 quad;   // the velocity-quadratic part of d2(A u)/dt2: 2 A(p_dot) u
+    Vec3 rate;   // d(A u)/dt = B(p, u) p_dot
+    Vec3 quad;   // velocity-quadratic part of d2(A u)/dt2: 2 A(p_dot) u
 };
 
 inline Attached attach(const double *q, const double *v, const Vec3 &u) {
     Attached a;
     a.world = rotate(q + 3, u);
-    a.B = rotate_jacobian(q + 3, u);
     if (v) {
-        a.rate = a.B * Eigen::Map<const Vec4>(v + 3);
+        a.rate = 2.0 * bilinear(q + 3, v + 3, u);
         a.quad = 2.0 * rotate(v + 3, u);
-    } else {
-        a.rate.setZero();
-        a.quad.setZero();
     }
     return a;
 }
