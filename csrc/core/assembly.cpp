@@ -1,5 +1,7 @@
 #include "core/assembly.hpp"
 
+#include <algorithm>
+
 namespace mbs {
 
 void evaluate_joint(const Mechanism &m, int k, const double *q, const double *q_dot,
@@ -32,9 +34,15 @@ void assemble_jacobian(const Mechanism &m, const double *q, const DriverValue *d
 }
 
 void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv, double *phi_t) {
-    for (size_t k = 0; k < m.joints.size(); ++k)
+    for (size_t k = 0; k < m.joints.size(); ++k) {
+        const JointTypeInfo &info = joint_type(m.joints[k].type);
+        if (info.drivers == 0) {  // only drivers depend on time
+            std::fill(phi_t + m.first_row[k], phi_t + m.first_row[k] + info.equations, 0.0);
+            continue;
+        }
         evaluate_joint(m, static_cast<int>(k), q, nullptr, drv,
                        JointOutput{nullptr, nullptr, nullptr, phi_t + m.first_row[k], nullptr});
+    }
 }
 
 void assemble_gamma(const Mechanism &m, const double *q, const double *q_dot,

@@ -22,11 +22,13 @@ struct PositionSolver::Impl {
     State &state;
     bool dense = false;
     SUNContext context = nullptr;
-    N_Vector u = nullptr, scale = nullptr;
+    N_Vector u = nullptr, scale = nullptr, work = nullptr;
+    N_Vector scale_work() { return work; }
     SUNMatrix matrix = nullptr;
     SUNLinearSolver linear = nullptr;
     void *kinsol = nullptr;
     char kinsol_message[STEWART_MESSAGE_SIZE] = "";
+    double last_residual = 0;  // max-norm of the last residual evaluated (INFINITY if not finite)
     explicit Impl(State &s) : state(s) {}
 };
 
@@ -34,11 +36,22 @@ namespace {
 
 using Impl = PositionSolver::Impl;
 
+double max_norm(const double *v, int n) {
+    double r = 0;
+    for (int i = 0; i < n; ++i) {
+        const double a = std::fabs(v[i]);
+        if (!(a <= r)) r = a;  // a NaN sticks
+    }
+    return std::isfinite(r) ? r : INFINITY;
+}
+
 int residual(N_Vector u, N_Vector f, void *user) {
     Impl &im = *static_cast<Impl *>(user);
     const State &s = im.state;
-    assemble_residual(s.mechanism, N_VGetArrayPointer(u), s.drive.data(), N_VGetArrayPointer(f));
-    return 0;
+    double *fd = N_VGetArrayPointer(f);
+    assemble_residual(s.mechanism, N_VGetArrayPointer(u), s.drive.data(), fd);
+    im.last_residual = max_norm(fd, s.mechanism.equations);
+    return std::isfinite(im.last_residual) ? 0 : 1;  // 1: recoverable, KINSOL may step shorter
 }
 
 // KINSOL asks for the Jacobian at u: values in the mechanism's pattern, kept in the state.
@@ -105,7 +118,8 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
     }
     im.u = N_VNew_Serial(n, im.context);
     im.scale = N_VNew_Serial(n, im.context);
-    if (!im.u || !im.scale) {
+    im.work = N_VNew_Serial(n, im.context);
+    if (!im.u || !im.scale || !im.work) {
         set_message(msg, size, STEWART_ERR_MEMORY, "N_VNew_Serial(%ld) failed", (long)n);
         return;
     }
@@ -161,6 +175,7 @@ PositionSolver::~PositionSolver() {
     if (im.matrix) SUNMatDestroy(im.matrix);
     if (im.u) N_VDestroy(im.u);
     if (im.scale) N_VDestroy(im.scale);
+    if (im.work) N_VDestroy(im.work);
     if (im.context) SUNContext_Free(&im.context);
     delete impl_;
 }
@@ -181,21 +196,25 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
                            flag, o.tolerance, o.max_iterations, im.kinsol_message);
     double *u = N_VGetArrayPointer(im.u);
     std::copy(s.q.begin(), s.q.end(), u);
-    im.kinsol_message[0] = '\0';
-    flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
+    // KINSOL's own first test (initial guess accepted if ||F|| <= 0.01 tolerance), done here so
+    // a step that needs no iteration does not pay for KINSOL's set-up.
+    residual(im.u, im.scale_work(), &im);
     long iterations = 0;
-    KINGetNumNonlinSolvIters(im.kinsol, &iterations);
-    s.stats.iterations = static_cast<int>(iterations);
-    // Our own check of the answer, whatever KINSOL says: max-norm of the residual.
-    assemble_residual(s.mechanism, u, s.drive.data(), s.rhs.data());
-    double residual = 0;
-    bool finite = true;
-    for (int i = 0; i < n; ++i) {
-        finite = finite && std::isfinite(s.rhs[i]) && std::isfinite(u[i]);
-        residual = std::max(residual, std::fabs(s.rhs[i]));
+    if (!(im.last_residual <= 0.01 * o.tolerance)) {
+        im.kinsol_message[0] = '\0';
+        flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
+        KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        // With no line search every evaluated iterate is accepted: the last residual is the
+        // final one's. A failure may have stopped elsewhere, so recompute then.
+        if (flag < 0) residual(im.u, im.scale_work(), &im);
+    } else {
+        flag = KIN_INITIAL_GUESS_OK;
     }
-    s.stats.residual = finite ? residual : INFINITY;
-    if (flag < 0 || !finite || !(residual <= o.tolerance)) {
+    s.stats.iterations = static_cast<int>(iterations);
+    s.stats.residual = im.last_residual;
+    bool finite = std::isfinite(im.last_residual);
+    for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
+    if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
             return set_message(msg, size, STEWART_ERR_SINGULAR,
                                "the constraint Jacobian is singular during the position solve "
