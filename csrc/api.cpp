@@ -55,6 +55,13 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
     m->geometry = stewart::platform_geometry(*params);
     m->platform = stewart::lumped_platform(*params);
     m->gravity = Eigen::Vector3d(params->gravity);
+    m->full = stewart::build_full_platform(*params, stewart::FullDrive::ActuatorLengths,
+                                           m->full_layout, msg, size);
+    if (!m->full) {
+        delete m;
+        return nullptr;
+    }
+    clear_message(msg, size);
     return m;
 }
 
@@ -69,6 +76,11 @@ extern "C" stewart_data *stewart_data_create(const stewart_model *m) {
     stewart_data *d = new (std::nothrow) stewart_data;
     if (!d) return nullptr;
     d->model = m;
+    d->full.reset(new (std::nothrow) mbs_data(m->full.get(), mbs::SolverOptions()));
+    if (!d->full || !d->full->state.ok()) {
+        delete d;
+        return nullptr;
+    }
     stewart_data_reset(d);
     return d;
 }
@@ -77,13 +89,20 @@ extern "C" void stewart_data_free(stewart_data *d) { delete d; }
 
 extern "C" stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src) {
     if (!dst || !src || dst->model != src->model) return STEWART_ERR_ARGUMENT;
-    *dst = *src;
+    std::memcpy(dst->message, src->message, sizeof dst->message);
+    mbs::copy_state(dst->full->state, src->full->state);
     return STEWART_OK;
 }
 
 extern "C" void stewart_data_reset(stewart_data *d) {
     if (!d) return;
     d->message[0] = '\0';
+    if (d->full) {
+        mbs::State &s = d->full->state;
+        mbs::reset_history(s);
+        for (size_t b = 0; b < s.mechanism.bodies.size(); ++b)
+            for (int c = 0; c < 7; ++c) s.q[7 * b + c] = s.mechanism.bodies[b].q_reference[c];
+    }
 }
 
 extern "C" const char *stewart_data_message(const stewart_data *d) {
@@ -174,10 +193,21 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
             s = stewart::massless_forces(m->geometry, m->platform, m->gravity, motion, legs,
                                          o->singular_condition, out, msg, size);
             break;
-        case STEWART_FULL:
-            s = set_message(msg, size, STEWART_ERR_UNSUPPORTED,
-                            "fidelity 2 (full 14-body model) is not available in this build");
+        case STEWART_FULL: {
+            stewart::LegJacobian jacobian;
+            stewart::leg_jacobian(m->geometry, legs, jacobian);
+            out.condition = jacobian.condition;
+            if (!(out.condition <= o->singular_condition)) {
+                s = set_message(msg, size, STEWART_ERR_SINGULAR,
+                                "leg Jacobian is singular at this pose: condition number %g "
+                                "exceeds singular_condition %g", out.condition,
+                                o->singular_condition);
+                break;
+            }
+            s = stewart::full_solve(m->full_layout, d->full->state, *o, motion, legs, out, msg,
+                                    size);
             break;
+        }
     }
     if (s != STEWART_OK) return s;
     if (const char *name = first_non_finite(out))

@@ -1,0 +1,78 @@
+#include "core/dense_lu.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace mbs {
+
+bool lu_factor(double *a, int m, int n, int width, int *pivot) {
+    double scale = 0;
+    for (int i = 0; i < m * width; ++i) {
+        const double v = std::fabs(a[i]);
+        if (v > scale) scale = v;
+    }
+    const double tiny = 1e-14 * (scale > 0 ? scale : 1.0);
+    for (int k = 0; k < n; ++k) {
+        int p = k;
+        double best = std::fabs(a[k * width + k]);
+        for (int i = k + 1; i < m; ++i)
+            if (std::fabs(a[i * width + k]) > best) best = std::fabs(a[i * width + k]), p = i;
+        pivot[k] = p;
+        if (!(best > tiny)) return false;
+        if (p != k)
+            for (int c = 0; c < width; ++c) std::swap(a[k * width + c], a[p * width + c]);
+        const double *row_k = a + k * width;
+        const double inv = 1.0 / row_k[k];
+        for (int i = k + 1; i < m; ++i) {
+            double *row_i = a + i * width;
+            const double l = row_i[k] * inv;
+            row_i[k] = l;
+            if (l != 0.0)
+                for (int c = k + 1; c < width; ++c) row_i[c] -= l * row_k[c];
+        }
+    }
+    return true;
+}
+
+void lu_forward(const double *a, int m, int n, int width, const int *pivot, double *t) {
+    for (int k = 0; k < n; ++k)
+        if (pivot[k] != k) std::swap(t[k], t[pivot[k]]);
+    for (int k = 0; k < n; ++k) {
+        const double tk = t[k];
+        if (tk != 0.0)
+            for (int i = k + 1; i < m; ++i) t[i] -= a[i * width + k] * tk;
+    }
+}
+
+void lu_backward(const double *a, int n, int width, const double *t, const double *y, double *x) {
+    const int carried = width - n;
+    for (int k = n - 1; k >= 0; --k) {
+        const double *row = a + k * width;
+        double s = t[k];
+        for (int c = k + 1; c < n; ++c) s -= row[c] * x[c];
+        if (y)
+            for (int c = 0; c < carried; ++c) s -= row[n + c] * y[c];
+        x[k] = s / row[k];
+    }
+}
+
+void lu_forward_transposed(const double *a, int n, int width, const double *g, double *mu) {
+    for (int k = 0; k < n; ++k) {
+        double s = g[k];
+        for (int j = 0; j < k; ++j) s -= a[j * width + k] * mu[j];
+        mu[k] = s / a[k * width + k];
+    }
+}
+
+void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot,
+                            double *t) {
+    for (int k = n - 1; k >= 0; --k) {
+        double s = t[k];
+        for (int i = k + 1; i < m; ++i) s -= a[i * width + k] * t[i];
+        t[k] = s;
+    }
+    for (int k = n - 1; k >= 0; --k)
+        if (pivot[k] != k) std::swap(t[k], t[pivot[k]]);
+}
+
+}  // namespace mbs

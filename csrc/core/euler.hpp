@@ -1,0 +1,88 @@
+// Euler-parameter kinematics (model.md §1): p = (e0, e), rotation A(p) = E(p) G(p)^T.
+// A is written in its homogeneous quadratic form, so its derivative B(p, u) = d(A(p) u)/dp is
+// exact off the unit sphere too (Newton steps leave it) and B is linear in p.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace mbs {
+
+using Vec3 = Eigen::Vector3d;
+using Vec4 = Eigen::Vector4d;
+using Mat3 = Eigen::Matrix3d;
+using Mat34 = Eigen::Matrix<double, 3, 4>;
+using Row7 = Eigen::Matrix<double, 1, 7>;
+
+inline Mat3 skew(const Vec3 &v) {
+    Mat3 s;
+    s << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return s;
+}
+
+// A(p) = (e0^2 - e.e) I + 2 e e^T + 2 e0 skew(e).
+inline Mat3 rotation(const double *p) {
+    const double e0 = p[0];
+    const Vec3 e(p[1], p[2], p[3]);
+    return (e0 * e0 - e.squaredNorm()) * Mat3::Identity() + 2.0 * e * e.transpose() +
+           2.0 * e0 * skew(e);
+}
+
+// A(p) u without forming A.
+inline Vec3 rotate(const double *p, const Vec3 &u) {
+    const double e0 = p[0];
+    const Vec3 e(p[1], p[2], p[3]);
+    return (e0 * e0 - e.squaredNorm()) * u + 2.0 * e * e.dot(u) + 2.0 * e0 * e.cross(u);
+}
+
+// B(p, u) = d(A(p) u)/dp.
+inline Mat34 rotate_jacobian(const double *p, const Vec3 &u) {
+    const double e0 = p[0];
+    const Vec3 e(p[1], p[2], p[3]);
+    Mat34 B;
+    B.col(0) = 2.0 * (e0 * u + e.cross(u));
+    B.rightCols<3>() = 2.0 * (e * u.transpose() - u * e.transpose() +
+                              e.dot(u) * Mat3::Identity() - e0 * skew(u));
+    return B;
+}
+
+// The symmetric bilinear form behind A: C(p, p) u = A(p) u, so d(A u)/dt = 2 C(p, p_dot) u and
+// the velocity-quadratic part of d2(A u)/dt2 is 2 C(p_dot, p_dot) u = 2 A(p_dot) u.
+inline Vec3 bilinear(const double *p, const double *q, const Vec3 &u) {
+    const Vec3 ep(p[1], p[2], p[3]), eq(q[1], q[2], q[3]);
+    return (p[0] * q[0] - ep.dot(eq)) * u + ep * eq.dot(u) + eq * ep.dot(u) +
+           (p[0] * eq + q[0] * ep).cross(u);
+}
+
+// v^T B(p, u) as a row, without forming B.
+inline Eigen::Matrix<double, 1, 4> row_of_rotate_jacobian(const double *p, const Vec3 &u,
+                                                          const Vec3 &v) {
+    const double e0 = p[0];
+    const Vec3 e(p[1], p[2], p[3]);
+    Eigen::Matrix<double, 1, 4> r;
+    r[0] = 2.0 * (e0 * v.dot(u) + v.dot(e.cross(u)));
+    r.tail<3>() = 2.0 * (v.dot(e) * u - v.dot(u) * e + e.dot(u) * v + e0 * u.cross(v));
+    return r;
+}
+
+// G(p) = [-e, e0 I - skew(e)]: body angular velocity w' = 2 G p_dot.
+inline Mat34 G_matrix(const double *p) {
+    const Vec3 e(p[1], p[2], p[3]);
+    Mat34 G;
+    G.col(0) = -e;
+    G.rightCols<3>() = p[0] * Mat3::Identity() - skew(e);
+    return G;
+}
+
+// E(p) = [-e, e0 I + skew(e)]: world angular velocity w = 2 E p_dot.
+inline Mat34 E_matrix(const double *p) {
+    const Vec3 e(p[1], p[2], p[3]);
+    Mat34 E;
+    E.col(0) = -e;
+    E.rightCols<3>() = p[0] * Mat3::Identity() + skew(e);
+    return E;
+}
+
+// Euler parameters of a rotation matrix (Shepperd), sign chosen with e0 >= 0.
+Vec4 euler_parameters(const Mat3 &R);
+
+}  // namespace mbs

@@ -1,0 +1,18 @@
+// Cylindrical joint (4 equations): body j's axis v_j = axis_j[2] stays parallel to body i's axis
+// (perpendicular to v1 = axis_i[0] and v2 = axis_i[1]), and the vector between the two points
+// stays on the axis.
+#include "core/joints/primitives.hpp"
+
+namespace mbs {
+
+static void evaluate_cylindrical(const JointInput &in, const JointOutput &out) {
+    const RowWriter w{out};
+    dot1(in, w, 0, in.def.axis_i[0], in.def.axis_j[2]);
+    dot1(in, w, 1, in.def.axis_i[1], in.def.axis_j[2]);
+    dot2(in, w, 2, in.def.axis_i[0]);
+    dot2(in, w, 3, in.def.axis_i[1]);
+}
+
+extern const JointTypeInfo kCylindrical = {"cylindrical", 4, 0, 2, evaluate_cylindrical};
+
+}  // namespace mbs

@@ -1,0 +1,75 @@
+#include "core/joints/primitives.hpp"
+
+namespace mbs {
+
+namespace {
+Eigen::Map<const Vec3> position(const double *q) { return Eigen::Map<const Vec3>(q); }
+Vec3 velocity(const double *v) { return v ? Vec3(v[0], v[1], v[2]) : Vec3::Zero(); }
+const double *rate_source(const JointInput &in, bool body_i, const JointOutput &out) {
+    return out.gamma ? (body_i ? in.v_i : in.v_j) : nullptr;
+}
+}  // namespace
+
+void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
+    const Attached ui = attach(in.q_i, rate_source(in, true, w.out), in.def.point_i);
+    const Attached uj = attach(in.q_j, rate_source(in, false, w.out), in.def.point_j);
+    if (w.out.phi) {
+        const Vec3 phi = position(in.q_i) + ui.world - position(in.q_j) - uj.world;
+        for (int k = 0; k < 3; ++k) w.phi(row + k, phi[k]);
+    }
+    if (w.out.gamma) {
+        const Vec3 gamma = uj.quad - ui.quad;
+        for (int k = 0; k < 3; ++k) w.gamma(row + k, gamma[k]);
+    }
+    for (int k = 0; k < 3; ++k) w.phi_t(row + k, 0.0);
+    if (w.want_jac()) {
+        const Mat34 Bi = rotate_jacobian(in.q_i + 3, in.def.point_i);
+        const Mat34 Bj = rotate_jacobian(in.q_j + 3, in.def.point_j);
+        for (int k = 0; k < 3; ++k) {
+            double *ri = w.jac_i(row + k), *rj = w.jac_j(row + k);
+            for (int c = 0; c < 3; ++c) ri[c] = (c == k) ? 1.0 : 0.0, rj[c] = (c == k) ? -1.0 : 0.0;
+            for (int c = 0; c < 4; ++c) ri[3 + c] = Bi(k, c), rj[3 + c] = -Bj(k, c);
+        }
+    }
+}
+
+void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
+          const Vec3 &b_local) {
+    const Attached a = attach(in.q_i, rate_source(in, true, w.out), a_local);
+    const Attached b = attach(in.q_j, rate_source(in, false, w.out), b_local);
+    w.phi(row, a.world.dot(b.world));
+    w.phi_t(row, 0.0);
+    if (w.out.gamma)
+        w.gamma(row, -(a.quad.dot(b.world) + 2.0 * a.rate.dot(b.rate) + a.world.dot(b.quad)));
+    if (w.want_jac()) {
+        const Vec3 zero = Vec3::Zero();
+        put(w.jac_i(row), zero, row_of_rotate_jacobian(in.q_i + 3, a_local, b.world));
+        put(w.jac_j(row), zero, row_of_rotate_jacobian(in.q_j + 3, b_local, a.world));
+    }
+}
+
+void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
+          const DriverValue *target) {
+    const double *vi = rate_source(in, true, w.out), *vj = rate_source(in, false, w.out);
+    const Attached a = attach(in.q_i, vi, a_local);
+    const Attached ui = attach(in.q_i, vi, in.def.point_i);
+    const Attached uj = attach(in.q_j, vj, in.def.point_j);
+    const Vec3 d = position(in.q_j) + uj.world - position(in.q_i) - ui.world;
+    w.phi(row, a.world.dot(d) - (target ? target->value : 0.0));
+    w.phi_t(row, target ? -target->rate : 0.0);
+    if (w.out.gamma) {
+        const Vec3 d_rate = velocity(vj) + uj.rate - velocity(vi) - ui.rate;
+        const Vec3 d_quad = uj.quad - ui.quad;
+        double gamma = -(a.quad.dot(d) + 2.0 * a.rate.dot(d_rate) + a.world.dot(d_quad));
+        if (target) gamma += target->accel;  // -Phi_tt
+        w.gamma(row, gamma);
+    }
+    if (w.want_jac()) {
+        put(w.jac_i(row), -a.world,
+            row_of_rotate_jacobian(in.q_i + 3, a_local, d) -
+                row_of_rotate_jacobian(in.q_i + 3, in.def.point_i, a.world));
+        put(w.jac_j(row), a.world, row_of_rotate_jacobian(in.q_j + 3, in.def.point_j, a.world));
+    }
+}
+
+}  // namespace mbs

@@ -1,0 +1,53 @@
+// The building blocks every joint is made of: a point coincidence (3 rows), a perpendicularity of
+// two body vectors ("dot-1", 1 row) and a perpendicularity of a body vector to the vector between
+// two points ("dot-2", 1 row). Each writes Phi, its Jacobian rows, Phi_t and gamma, computing
+// only what the output asks for.
+#pragma once
+
+#include "core/joint.hpp"
+
+namespace mbs {
+
+// A body-fixed vector u seen in the world, with the derivatives gamma needs.
+struct Attached {
+    Vec3 world;  // A u
+    Vec3 rate;   // d(A u)/dt = B(p, u) p_dot
+    Vec3 quad;   // velocity-quadratic part of d2(A u)/dt2: 2 A(p_dot) u
+};
+
+inline Attached attach(const double *q, const double *v, const Vec3 &u) {
+    Attached a;
+    a.world = rotate(q + 3, u);
+    if (v) {
+        a.rate = 2.0 * bilinear(q + 3, v + 3, u);
+        a.quad = 2.0 * rotate(v + 3, u);
+    }
+    return a;
+}
+
+// Writes row `row` of the outputs; jacobian rows as 7-vectors (r part, p part).
+struct RowWriter {
+    const JointOutput &out;
+    void phi(int row, double value) const { if (out.phi) out.phi[row] = value; }
+    void gamma(int row, double value) const { if (out.gamma) out.gamma[row] = value; }
+    void phi_t(int row, double value) const { if (out.phi_t) out.phi_t[row] = value; }
+    bool want_jac() const { return out.jac_i != nullptr; }
+    double *jac_i(int row) const { return out.jac_i + 7 * row; }
+    double *jac_j(int row) const { return out.jac_j + 7 * row; }
+};
+
+inline void put(double *row7, const Vec3 &r, const Eigen::Matrix<double, 1, 4> &p) {
+    for (int c = 0; c < 3; ++c) row7[c] = r[c];
+    for (int c = 0; c < 4; ++c) row7[3 + c] = p[c];
+}
+
+// r_i + A_i u_i - r_j - A_j u_j = 0, rows row..row+2.
+void point_coincidence(const JointInput &in, const RowWriter &w, int row);
+// (A_i a)^T (A_j b) = 0.
+void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Vec3 &b);
+// (A_i a)^T d = 0 with d = r_j + A_j u_j - r_i - A_i u_i; `target` (value, rate, accel) turns it
+// into the driver (A_i a)^T d - f(t) = 0.
+void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a,
+          const DriverValue *target = nullptr);
+
+}  // namespace mbs

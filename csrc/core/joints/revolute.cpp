@@ -1,0 +1,16 @@
+// Revolute joint (5 equations): points coincide and the axes (axis_i[2] on i, axis_j[2] on j)
+// stay parallel.
+#include "core/joints/primitives.hpp"
+
+namespace mbs {
+
+static void evaluate_revolute(const JointInput &in, const JointOutput &out) {
+    const RowWriter w{out};
+    point_coincidence(in, w, 0);
+    dot1(in, w, 3, in.def.axis_i[0], in.def.axis_j[2]);
+    dot1(in, w, 4, in.def.axis_i[1], in.def.axis_j[2]);
+}
+
+extern const JointTypeInfo kRevolute = {"revolute", 5, 0, 2, evaluate_revolute};
+
+}  // namespace mbs

@@ -1,0 +1,287 @@
+#include "core/linear_solver.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "core/dense_lu.hpp"
+
+namespace mbs {
+
+namespace {
+
+// Rows that are a fixed body's identity, and which coordinate each one fixes.
+void fixed_body_rows(const Mechanism &m, std::vector<int> &rows, std::vector<int> &cols) {
+    for (size_t k = 0; k < m.joints.size(); ++k)
+        if (m.joints[k].type == JointType::FixedBody)
+            for (int c = 0; c < 7; ++c) {
+                rows.push_back(m.first_row[k] + c);
+                cols.push_back(7 * m.joints[k].body_i + c);
+            }
+}
+
+}  // namespace
+
+std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
+    auto plan = std::make_shared<BlockPlan>();
+    BlockPlan &p = *plan;
+    const int nbodies = static_cast<int>(m.bodies.size());
+    fixed_body_rows(m, p.fixed_rows, p.fixed_cols);
+
+    // Hubs: free bodies joined to three or more other free bodies.
+    std::vector<std::set<int>> neighbours(nbodies);
+    for (const JointDef &j : m.joints)
+        if (j.body_j >= 0 && !m.bodies[j.body_i].fixed && !m.bodies[j.body_j].fixed) {
+            neighbours[j.body_i].insert(j.body_j);
+            neighbours[j.body_j].insert(j.body_i);
+        }
+    std::vector<int> border_index(nbodies, -1), group_of(nbodies, -1);
+    for (int b = 0; b < nbodies; ++b)
+        if (!m.bodies[b].fixed && neighbours[b].size() >= 3) {
+            border_index[b] = static_cast<int>(p.border_cols.size()) / 7;
+            for (int c = 0; c < 7; ++c) p.border_cols.push_back(7 * b + c);
+        }
+    p.border = static_cast<int>(p.border_cols.size());
+    if (p.border == 0) return nullptr;
+
+    // Groups: connected components of the other free bodies.
+    for (int b = 0; b < nbodies; ++b) {
+        if (m.bodies[b].fixed || border_index[b] >= 0 || group_of[b] >= 0) continue;
+        const int g = static_cast<int>(p.groups.size());
+        p.groups.emplace_back();
+        std::vector<int> stack{b};
+        group_of[b] = g;
+        while (!stack.empty()) {
+            const int u = stack.back();
+            stack.pop_back();
+            for (int c = 0; c < 7; ++c) p.groups[g].cols.push_back(7 * u + c);
+            for (int v : neighbours[u])
+                if (border_index[v] < 0 && group_of[v] < 0) {
+                    group_of[v] = g;
+                    stack.push_back(v);
+                }
+        }
+    }
+
+    // Each equation goes to the group whose bodies it touches, else to the border.
+    std::vector<int> row_group(m.equations, -2);  // -2 fixed-body row, -1 border row
+    for (size_t k = 0; k < m.joints.size(); ++k) {
+        const JointDef &j = m.joints[k];
+        if (j.type == JointType::FixedBody) continue;
+        int g = -1;
+        for (int b : {j.body_i, j.body_j})
+            if (b >= 0 && group_of[b] >= 0) g = group_of[b];
+        const int n = joint_type(j.type).equations;
+        for (int r = 0; r < n; ++r) {
+            const int row = m.first_row[k] + r;
+            row_group[row] = g;
+            if (g >= 0)
+                p.groups[g].rows.push_back(row);
+            else
+                p.border_rows.push_back(row);
+        }
+    }
+    int leftover = 0;
+    for (BlockGroup &g : p.groups) {
+        if (g.rows.size() < g.cols.size()) return nullptr;
+        g.first_leftover = leftover;
+        leftover += static_cast<int>(g.rows.size() - g.cols.size());
+    }
+    if (leftover + static_cast<int>(p.border_rows.size()) != p.border) return nullptr;
+
+    // Workspace layout and where each Jacobian value lands.
+    for (BlockGroup &g : p.groups) {
+        g.offset = p.workspace;
+        g.pivot_offset = p.pivots;
+        p.workspace += static_cast<int>(g.rows.size()) * (static_cast<int>(g.cols.size()) + p.border);
+        p.pivots += static_cast<int>(g.cols.size());
+    }
+    p.border_offset = p.workspace;
+    p.workspace += p.border * p.border;
+    std::vector<int> local_row(m.equations, -1), local_col(m.coordinates, -1),
+        border_col(m.coordinates, -1), fixed_col(m.coordinates, 0);
+    for (const BlockGroup &g : p.groups) {
+        for (size_t r = 0; r < g.rows.size(); ++r) local_row[g.rows[r]] = static_cast<int>(r);
+        for (size_t c = 0; c < g.cols.size(); ++c) local_col[g.cols[c]] = static_cast<int>(c);
+    }
+    for (size_t r = 0; r < p.border_rows.size(); ++r)
+        local_row[p.border_rows[r]] = leftover + static_cast<int>(r);
+    for (int c = 0; c < p.border; ++c) border_col[p.border_cols[c]] = c;
+    for (int c : p.fixed_cols) fixed_col[c] = 1;
+    for (int t = 0; t < m.values(); ++t) {
+        const int row = m.pattern_row[t], col = m.pattern_col[t];
+        const int g = row_group[row];
+        int dest = -1;
+        if (g == -2) {
+            dest = -1;  // identity rows of fixed bodies are known
+        } else if (fixed_col[col]) {
+            dest = -2 - static_cast<int>(p.coupling_row.size());
+            p.coupling_row.push_back(row);
+            p.coupling_col.push_back(col);
+        } else if (g >= 0) {
+            const BlockGroup &grp = p.groups[g];
+            const int n = static_cast<int>(grp.cols.size());
+            const int c = (group_of[col / 7] == g) ? local_col[col] : n + border_col[col];
+            if (c < 0) return nullptr;
+            dest = grp.offset + local_row[row] * (n + p.border) + c;
+        } else {
+            if (border_col[col] < 0) return nullptr;
+            dest = p.border_offset + local_row[row] * p.border + border_col[col];
+        }
+        p.value_dest.push_back(dest);
+    }
+    return plan;
+}
+
+namespace {
+
+class DenseSolver final : public LinearSolver {
+public:
+    explicit DenseSolver(const Mechanism &m)
+        : m_(m), n_(m.equations), a_(n_ * n_), pivot_(n_), work_(n_) {}
+    bool factor(const double *values) override {
+        std::fill(a_.begin(), a_.end(), 0.0);
+        for (int t = 0; t < m_.values(); ++t)
+            a_[m_.pattern_row[t] * n_ + m_.pattern_col[t]] = values[t];
+        return lu_factor(a_.data(), n_, n_, n_, pivot_.data());
+    }
+    void solve(double *x) override {
+        lu_forward(a_.data(), n_, n_, n_, pivot_.data(), x);
+        std::copy(x, x + n_, work_.begin());
+        lu_backward(a_.data(), n_, n_, work_.data(), nullptr, x);
+    }
+    void solve_transposed(double *x) override {
+        std::copy(x, x + n_, work_.begin());
+        lu_forward_transposed(a_.data(), n_, n_, work_.data(), x);
+        lu_backward_transposed(a_.data(), n_, n_, n_, pivot_.data(), x);
+    }
+    const char *name() const override { return "dense LU"; }
+
+private:
+    const Mechanism &m_;
+    int n_;
+    std::vector<double> a_;
+    std::vector<int> pivot_;
+    std::vector<double> work_;
+};
+
+class BlockSolver final : public LinearSolver {
+public:
+    explicit BlockSolver(const Mechanism &m)
+        : m_(m), p_(*m.block_plan), ws_(p_.workspace), coupling_(p_.coupling_row.size()),
+          pivot_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
+          border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
+          coupling_fixed_row_(p_.coupling_row.size()) {
+        // Fixed coordinate -> its identity row, for the transposed solve.
+        std::vector<int> row_of(m.coordinates, -1);
+        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
+        for (size_t k = 0; k < p_.coupling_col.size(); ++k)
+            coupling_fixed_row_[k] = row_of[p_.coupling_col[k]];
+    }
+
+    bool factor(const double *values) override {
+        std::fill(ws_.begin(), ws_.end(), 0.0);
+        for (int t = 0; t < m_.values(); ++t) {
+            const int d = p_.value_dest[t];
+            if (d >= 0)
+                ws_[d] = values[t];
+            else if (d <= -2)
+                coupling_[-2 - d] = values[t];
+        }
+        const int nb = p_.border;
+        double *border = ws_.data() + p_.border_offset;
+        for (const BlockGroup &g : p_.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            double *a = ws_.data() + g.offset;
+            if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+            for (int r = ng; r < mg; ++r)
+                std::copy(a + r * (ng + nb) + ng, a + (r + 1) * (ng + nb),
+                          border + (g.first_leftover + r - ng) * nb);
+        }
+        return lu_factor(border, nb, nb, nb, border_pivot_.data());
+    }
+
+    void solve(double *x) override {
+        std::copy(x, x + m_.equations, rhs_.begin());
+        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_cols[i]] = rhs_[p_.fixed_rows[i]];
+        for (size_t k = 0; k < coupling_.size(); ++k)
+            rhs_[p_.coupling_row[k]] -= coupling_[k] * x[p_.coupling_col[k]];
+        const int nb = p_.border;
+        double *t = group_t_.data();
+        for (const BlockGroup &g : p_.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
+            lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
+            for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r];
+            t += mg;
+        }
+        const int leftover = nb - static_cast<int>(p_.border_rows.size());
+        for (size_t r = 0; r < p_.border_rows.size(); ++r) border_[leftover + r] = rhs_[p_.border_rows[r]];
+        const double *s = ws_.data() + p_.border_offset;
+        lu_forward(s, nb, nb, nb, border_pivot_.data(), border_.data());
+        lu_backward(s, nb, nb, border_.data(), nullptr, border_work_.data());
+        for (int c = 0; c < nb; ++c) x[p_.border_cols[c]] = border_work_[c];
+        t = group_t_.data();
+        for (const BlockGroup &g : p_.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            lu_backward(ws_.data() + g.offset, ng, ng + nb, t, border_work_.data(), group_x_.data());
+            for (int c = 0; c < ng; ++c) x[g.cols[c]] = group_x_[c];
+            t += mg;
+        }
+    }
+
+    void solve_transposed(double *x) override {
+        std::copy(x, x + m_.coordinates, rhs_.begin());  // g, coordinate order
+        const int nb = p_.border;
+        for (int c = 0; c < nb; ++c) border_[c] = rhs_[p_.border_cols[c]];
+        double *t = group_t_.data();
+        for (const BlockGroup &g : p_.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            const double *a = ws_.data() + g.offset;
+            for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
+            lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
+            for (int k = 0; k < ng; ++k) {
+                const double mu = t[k];
+                const double *w = a + k * (ng + nb) + ng;
+                for (int b = 0; b < nb; ++b) border_[b] -= w[b] * mu;
+            }
+            t += mg;
+        }
+        const double *s = ws_.data() + p_.border_offset;
+        lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
+        lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
+        t = group_t_.data();
+        for (const BlockGroup &g : p_.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            for (int r = ng; r < mg; ++r) t[r] = border_work_[g.first_leftover + r - ng];
+            lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
+                                   pivot_.data() + g.pivot_offset, t);
+            for (int r = 0; r < mg; ++r) x[g.rows[r]] = t[r];
+            t += mg;
+        }
+        const int leftover = nb - static_cast<int>(p_.border_rows.size());
+        for (size_t r = 0; r < p_.border_rows.size(); ++r) x[p_.border_rows[r]] = border_work_[leftover + r];
+        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_rows[i]] = rhs_[p_.fixed_cols[i]];
+        for (size_t k = 0; k < coupling_.size(); ++k)
+            x[coupling_fixed_row_[k]] -= coupling_[k] * x[p_.coupling_row[k]];
+    }
+
+    const char *name() const override { return "bordered block LU"; }
+
+private:
+    const Mechanism &m_;
+    const BlockPlan &p_;
+    std::vector<double> ws_, coupling_;
+    std::vector<int> pivot_, border_pivot_;
+    std::vector<double> rhs_, group_t_, border_, border_work_, group_x_;
+    std::vector<int> coupling_fixed_row_;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_linear_solver(const Mechanism &m, LinearSolverKind kind) {
+    if (kind != LinearSolverKind::Dense && m.block_plan) return std::make_unique<BlockSolver>(m);
+    if (kind == LinearSolverKind::Block && !m.block_plan) return nullptr;
+    return std::make_unique<DenseSolver>(m);
+}
+
+}  // namespace mbs

@@ -1,0 +1,53 @@
+#include "core/mechanism.hpp"
+
+#include "core/linear_solver.hpp"
+#include "util/message.hpp"
+
+namespace mbs {
+
+bool finalize(Mechanism &m, char *msg, size_t size) {
+    if (m.finalized) return true;
+    for (size_t b = 0; b < m.bodies.size(); ++b)
+        if (!m.bodies[b].fixed && !m.bodies[b].pose_driven) {
+            JointDef n;
+            n.type = JointType::Normalization;
+            n.body_i = static_cast<int>(b);
+            m.joints.push_back(n);
+        }
+    m.coordinates = 7 * static_cast<int>(m.bodies.size());
+    m.equations = 0;
+    m.drivers = 0;
+    m.first_row.clear();
+    m.first_value.clear();
+    m.pattern_row.clear();
+    m.pattern_col.clear();
+    m.driver_joint.clear();
+    for (size_t k = 0; k < m.joints.size(); ++k) {
+        const JointDef &j = m.joints[k];
+        const JointTypeInfo &info = joint_type(j.type);
+        m.first_row.push_back(m.equations);
+        m.first_value.push_back(static_cast<int>(m.pattern_row.size()));
+        const int bodies[2] = {j.body_i, j.body_j};
+        for (int side = 0; side < info.bodies; ++side)
+            for (int r = 0; r < info.equations; ++r)
+                for (int c = 0; c < 7; ++c) {
+                    m.pattern_row.push_back(m.equations + r);
+                    m.pattern_col.push_back(7 * bodies[side] + c);
+                }
+        m.equations += info.equations;
+        for (int d = 0; d < info.drivers; ++d) m.driver_joint.push_back(static_cast<int>(k));
+        m.drivers += info.drivers;
+    }
+    if (m.equations != m.coordinates) {
+        stewart::set_message(msg, size, STEWART_ERR_PARAMETER,
+                             "the mechanism has %d constraint equations for %d coordinates: it "
+                             "must have exactly as many (add or remove drivers)",
+                             m.equations, m.coordinates);
+        return false;
+    }
+    m.block_plan = plan_blocks(m);
+    m.finalized = true;
+    return true;
+}
+
+}  // namespace mbs

@@ -1,0 +1,46 @@
+// A mechanism as data: bodies and constraints, finalised once into an immutable layout
+// (equation rows, Jacobian pattern, linear-solver plan). Nothing here changes during a run.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/joint.hpp"
+
+namespace mbs {
+
+// Reference point at the centre of mass, axes on the principal axes of inertia.
+struct Body {
+    std::string name;
+    double mass = 0;
+    Vec3 inertia = Vec3::Zero();          // principal moments about the centre of mass
+    double q_reference[7] = {0, 0, 0, 1, 0, 0, 0};  // assembly configuration
+    bool fixed = false;
+    bool pose_driven = false;             // a pose driver replaces its normalisation
+};
+
+struct BlockPlan;  // linear_solver.hpp
+
+struct Mechanism {
+    std::vector<Body> bodies;
+    std::vector<JointDef> joints;
+    Vec3 gravity = Vec3::Zero();
+
+    // Filled by finalize().
+    bool finalized = false;
+    int coordinates = 0, equations = 0, drivers = 0;
+    std::vector<int> first_row;       // per joint
+    std::vector<int> first_value;     // per joint: offset of its Jacobian blocks in the values
+    std::vector<int> pattern_row, pattern_col;  // per Jacobian value
+    std::vector<int> driver_joint;    // per driver slot: the joint that reads it
+    std::shared_ptr<const BlockPlan> block_plan;  // null if the structure is not bordered blocks
+
+    int values() const { return static_cast<int>(pattern_row.size()); }
+};
+
+// Adds the normalisations, lays out rows and the Jacobian pattern, plans the linear solver.
+// False (message says why) if the equations do not match the coordinates.
+bool finalize(Mechanism &m, char *msg, size_t size);
+
+}  // namespace mbs

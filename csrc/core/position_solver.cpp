@@ -1,0 +1,232 @@
+#include "core/position_solver.hpp"
+
+#include <kinsol/kinsol.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/assembly.hpp"
+#include "util/message.hpp"
+
+using stewart::set_message;
+
+namespace mbs {
+
+struct PositionSolver::Impl {
+    State &state;
+    bool dense = false;
+    SUNContext context = nullptr;
+    N_Vector u = nullptr, scale = nullptr, work = nullptr;
+    N_Vector scale_work() { return work; }
+    SUNMatrix matrix = nullptr;
+    SUNLinearSolver linear = nullptr;
+    void *kinsol = nullptr;
+    char kinsol_message[STEWART_MESSAGE_SIZE] = "";
+    double last_residual = 0;  // max-norm of the last residual evaluated (INFINITY if not finite)
+    explicit Impl(State &s) : state(s) {}
+};
+
+namespace {
+
+using Impl = PositionSolver::Impl;
+
+double max_norm(const double *v, int n) {
+    double r = 0;
+    for (int i = 0; i < n; ++i) {
+        const double a = std::fabs(v[i]);
+        if (!(a <= r)) r = a;  // a NaN sticks
+    }
+    return std::isfinite(r) ? r : INFINITY;
+}
+
+int residual(N_Vector u, N_Vector f, void *user) {
+    Impl &im = *static_cast<Impl *>(user);
+    const State &s = im.state;
+    double *fd = N_VGetArrayPointer(f);
+    assemble_residual(s.mechanism, N_VGetArrayPointer(u), s.drive.data(), fd);
+    im.last_residual = max_norm(fd, s.mechanism.equations);
+    return std::isfinite(im.last_residual) ? 0 : 1;  // 1: recoverable, KINSOL may step shorter
+}
+
+// KINSOL asks for the Jacobian at u: values in the mechanism's pattern, kept in the state.
+int jacobian(N_Vector u, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vector) {
+    Impl &im = *static_cast<Impl *>(user);
+    State &s = im.state;
+    const Mechanism &m = s.mechanism;
+    assemble_jacobian(m, N_VGetArrayPointer(u), s.drive.data(), s.values.data());
+    s.factor_current = false;
+    if (im.dense)
+        for (int t = 0; t < m.values(); ++t)
+            SM_ELEMENT_D(J, m.pattern_row[t], m.pattern_col[t]) = s.values[t];
+    return 0;
+}
+
+// The custom SUNMatrix: its content is the Impl; values live in state.values.
+SUNMatrix_ID matrix_id(SUNMatrix) { return SUNMATRIX_CUSTOM; }
+int matrix_zero(SUNMatrix) { return 0; }  // every value is overwritten by the Jacobian
+void matrix_destroy(SUNMatrix A) { SUNMatFreeEmpty(A); }
+
+SUNLinearSolver_Type solver_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
+SUNLinearSolver_ID solver_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
+int solver_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
+int solver_setup(SUNLinearSolver S, SUNMatrix) {
+    State &s = static_cast<Impl *>(S->content)->state;
+    if (!s.linear->factor(s.values.data())) return SUNLS_LUFACT_FAIL;
+    s.factor_current = false;  // at the Newton iterate, not (yet) at the solution
+    return SUNLS_SUCCESS;
+}
+int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
+    State &s = static_cast<Impl *>(S->content)->state;
+    const int n = s.mechanism.equations;
+    double *xd = N_VGetArrayPointer(x);
+    std::copy(N_VGetArrayPointer(b), N_VGetArrayPointer(b) + n, xd);
+    s.linear->solve(xd);
+    return SUNLS_SUCCESS;
+}
+sunindextype solver_last_flag(SUNLinearSolver) { return 0; }
+int solver_free(SUNLinearSolver S) {
+    S->content = nullptr;
+    SUNLinSolFreeEmpty(S);
+    return 0;
+}
+
+void error_handler(int code, const char *module, const char *function, char *text, void *user) {
+    Impl &im = *static_cast<Impl *>(user);
+    std::snprintf(im.kinsol_message, sizeof im.kinsol_message, "%s %s (%d): %s", module, function,
+                  code, text);
+}
+
+}  // namespace
+
+PositionSolver::PositionSolver(State &state, const SolverOptions &options)
+    : impl_(new Impl(state)) {
+    Impl &im = *impl_;
+    const Mechanism &m = state.mechanism;
+    const sunindextype n = m.equations;
+    im.dense = options.kinsol_dense;
+    char *msg = state.message;
+    const size_t size = sizeof state.message;
+    if (SUNContext_Create(nullptr, &im.context) != 0) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "SUNContext_Create failed");
+        return;
+    }
+    im.u = N_VNew_Serial(n, im.context);
+    im.scale = N_VNew_Serial(n, im.context);
+    im.work = N_VNew_Serial(n, im.context);
+    if (!im.u || !im.scale || !im.work) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "N_VNew_Serial(%ld) failed", (long)n);
+        return;
+    }
+    N_VConst(1.0, im.scale);
+    if (im.dense) {
+        im.matrix = SUNDenseMatrix(n, n, im.context);
+        im.linear = im.matrix ? SUNLinSol_Dense(im.u, im.matrix, im.context) : nullptr;
+    } else {
+        im.matrix = SUNMatNewEmpty(im.context);
+        im.linear = SUNLinSolNewEmpty(im.context);
+        if (im.matrix && im.linear) {
+            im.matrix->content = &im;
+            im.matrix->ops->getid = matrix_id;
+            im.matrix->ops->zero = matrix_zero;
+            im.matrix->ops->destroy = matrix_destroy;
+            im.linear->content = &im;
+            im.linear->ops->gettype = solver_type;
+            im.linear->ops->getid = solver_id;
+            im.linear->ops->initialize = solver_initialize;
+            im.linear->ops->setup = solver_setup;
+            im.linear->ops->solve = solver_solve;
+            im.linear->ops->lastflag = solver_last_flag;
+            im.linear->ops->free = solver_free;
+        }
+    }
+    if (!im.matrix || !im.linear) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "could not create the KINSOL linear solver");
+        return;
+    }
+    im.kinsol = KINCreate(im.context);
+    if (!im.kinsol) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "KINCreate failed");
+        return;
+    }
+    int flag;
+    if ((flag = KINSetErrHandlerFn(im.kinsol, error_handler, &im)) != KIN_SUCCESS ||
+        (flag = KINInit(im.kinsol, residual, im.u)) != KIN_SUCCESS ||
+        (flag = KINSetUserData(im.kinsol, &im)) != KIN_SUCCESS ||
+        (flag = KINSetLinearSolver(im.kinsol, im.linear, im.matrix)) != KINLS_SUCCESS ||
+        (flag = KINSetJacFn(im.kinsol, jacobian)) != KINLS_SUCCESS ||
+        (flag = KINSetScaledStepTol(im.kinsol, 1e-300)) != KIN_SUCCESS) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "KINSOL setup failed with flag %d: %s", flag,
+                    im.kinsol_message);
+        return;
+    }
+    ok_ = true;
+}
+
+PositionSolver::~PositionSolver() {
+    Impl &im = *impl_;
+    if (im.kinsol) KINFree(&im.kinsol);
+    if (im.linear) SUNLinSolFree(im.linear);
+    if (im.matrix) SUNMatDestroy(im.matrix);
+    if (im.u) N_VDestroy(im.u);
+    if (im.scale) N_VDestroy(im.scale);
+    if (im.work) N_VDestroy(im.work);
+    if (im.context) SUNContext_Free(&im.context);
+    delete impl_;
+}
+
+stewart_status PositionSolver::solve(const SolverOptions &o) {
+    Impl &im = *impl_;
+    State &s = im.state;
+    char *msg = s.message;
+    const size_t size = sizeof s.message;
+    const int n = s.mechanism.equations;
+    int flag;
+    if ((flag = KINSetFuncNormTol(im.kinsol, o.tolerance)) != KIN_SUCCESS ||
+        (flag = KINSetNumMaxIters(im.kinsol, o.max_iterations)) != KIN_SUCCESS ||
+        (flag = KINSetMaxSetupCalls(im.kinsol, o.modified_newton ? 10 : 1)) != KIN_SUCCESS)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "KINSOL rejected the options (flag %d): tolerance = %g, "
+                           "max_iterations = %d: %s",
+                           flag, o.tolerance, o.max_iterations, im.kinsol_message);
+    double *u = N_VGetArrayPointer(im.u);
+    std::copy(s.q.begin(), s.q.end(), u);
+    // KINSOL's own first test (initial guess accepted if ||F|| <= 0.01 tolerance), done here so
+    // a step that needs no iteration does not pay for KINSOL's set-up.
+    residual(im.u, im.scale_work(), &im);
+    long iterations = 0;
+    if (!(im.last_residual <= 0.01 * o.tolerance)) {
+        im.kinsol_message[0] = '\0';
+        flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
+        KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        // With no line search every evaluated iterate is accepted: the last residual is the
+        // final one's. A failure may have stopped elsewhere, so recompute then.
+        if (flag < 0) residual(im.u, im.scale_work(), &im);
+    } else {
+        flag = KIN_INITIAL_GUESS_OK;
+    }
+    s.stats.iterations = static_cast<int>(iterations);
+    s.stats.residual = im.last_residual;
+    bool finite = std::isfinite(im.last_residual);
+    for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
+    if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
+        if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
+            return set_message(msg, size, STEWART_ERR_SINGULAR,
+                               "the constraint Jacobian is singular during the position solve "
+                               "(KINSOL flag %d after %ld iterations)", flag, iterations);
+        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                           "position problem not converged: residual %g > tolerance %g after "
+                           "%ld iterations (KINSOL flag %d%s%s)",
+                           s.stats.residual, o.tolerance, iterations, flag,
+                           im.kinsol_message[0] ? ": " : "", im.kinsol_message);
+    }
+    std::copy(u, u + n, s.q.begin());
+    return STEWART_OK;
+}
+
+}  // namespace mbs

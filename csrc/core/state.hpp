@@ -1,0 +1,57 @@
+// The mutable data of one mechanism run: state, driver values, statistics and every workspace a
+// step needs (allocated here, once). Copying it (copy_state) is a rollback point.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/linear_solver.hpp"
+#include "stewart/stewart.h"
+
+namespace mbs {
+
+class PositionSolver;
+
+struct SolverOptions {
+    double tolerance = 1e-12;       // max-norm of the residual
+    int max_iterations = 20;
+    bool modified_newton = false;   // keep the Jacobian across Newton iterations
+    LinearSolverKind linear = LinearSolverKind::Automatic;
+    bool kinsol_dense = false;      // KINSOL's own dense matrix and solver (a baseline)
+};
+
+struct SolveStats {
+    int iterations = 0;
+    double residual = 0;
+};
+
+struct State {
+    // Allocates every workspace; ok() false (message says why) if that failed.
+    State(const Mechanism &m, const SolverOptions &kind = SolverOptions());
+    bool ok() const { return newton != nullptr && linear != nullptr; }
+    ~State();
+    State(const State &) = delete;
+    State &operator=(const State &) = delete;
+
+    const Mechanism &mechanism;
+    std::vector<double> q, q_dot, q_ddot, lambda;
+    std::vector<DriverValue> drive;
+    double time = 0;
+    bool has_history = false;       // q, q_dot, q_ddot hold the solution at `time`
+    SolveStats stats;
+    char message[STEWART_MESSAGE_SIZE] = "";
+
+    // Workspaces.
+    std::vector<double> values, rhs, force;
+    std::unique_ptr<LinearSolver> linear;
+    bool factor_current = false;    // linear holds the factorisation at q
+    std::unique_ptr<PositionSolver> newton;
+    SolverOptions newton_options;   // the options the Newton solver is configured with
+};
+
+// Copies the state (not the workspaces) of src into dst, both of the same mechanism.
+void copy_state(State &dst, const State &src);
+// Forgets the history: the next position solve starts from q as it is.
+void reset_history(State &s);
+
+}  // namespace mbs

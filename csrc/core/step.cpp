@@ -1,0 +1,86 @@
+#include "core/step.hpp"
+
+#include <cmath>
+
+#include "core/assembly.hpp"
+#include "core/dynamics.hpp"
+#include "core/position_solver.hpp"
+#include "util/message.hpp"
+
+using stewart::set_message;
+
+namespace mbs {
+
+namespace {
+
+stewart_status ensure_factor(State &s) {
+    if (s.factor_current) return STEWART_OK;
+    assemble_jacobian(s.mechanism, s.q.data(), s.drive.data(), s.values.data());
+    if (!s.linear->factor(s.values.data()))
+        return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
+                           "the constraint Jacobian Phi_q is singular at this configuration");
+    s.factor_current = true;
+    return STEWART_OK;
+}
+
+stewart_status check_finite(State &s, const std::vector<double> &v, const char *what) {
+    for (size_t i = 0; i < v.size(); ++i)
+        if (!std::isfinite(v[i]))
+            return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
+                               "%s[%zu] is %g: the constraint Jacobian is (nearly) singular",
+                               what, i, v[i]);
+    return STEWART_OK;
+}
+
+}  // namespace
+
+stewart_status solve_position(State &s, double t, const SolverOptions &o, bool use_predictor) {
+    if (!s.ok())
+        return set_message(s.message, sizeof s.message, STEWART_ERR_MEMORY, "solver not created");
+    if (use_predictor && s.has_history) {
+        const double h = t - s.time;
+        for (size_t i = 0; i < s.q.size(); ++i)
+            s.q[i] += h * s.q_dot[i] + 0.5 * h * h * s.q_ddot[i];
+    }
+    s.factor_current = false;
+    s.time = t;
+    return s.newton->solve(o);
+}
+
+stewart_status solve_velocity(State &s) {
+    stewart_status st = ensure_factor(s);
+    if (st != STEWART_OK) return st;
+    assemble_phi_t(s.mechanism, s.q.data(), s.drive.data(), s.q_dot.data());
+    for (double &v : s.q_dot) v = -v;
+    s.linear->solve(s.q_dot.data());
+    return check_finite(s, s.q_dot, "q_dot");
+}
+
+stewart_status solve_acceleration(State &s) {
+    stewart_status st = ensure_factor(s);
+    if (st != STEWART_OK) return st;
+    assemble_gamma(s.mechanism, s.q.data(), s.q_dot.data(), s.drive.data(), s.q_ddot.data());
+    s.linear->solve(s.q_ddot.data());
+    return check_finite(s, s.q_ddot, "q_ddot");
+}
+
+stewart_status solve_multipliers(State &s) {
+    stewart_status st = ensure_factor(s);
+    if (st != STEWART_OK) return st;
+    applied_minus_inertial(s.mechanism, s.q.data(), s.q_dot.data(), s.q_ddot.data(),
+                           s.lambda.data());
+    s.linear->solve_transposed(s.lambda.data());
+    return check_finite(s, s.lambda, "lambda");
+}
+
+stewart_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor) {
+    s.message[0] = '\0';
+    stewart_status st = solve_position(s, t, o, use_predictor);
+    if (st == STEWART_OK) st = solve_velocity(s);
+    if (st == STEWART_OK) st = solve_acceleration(s);
+    if (st == STEWART_OK) st = solve_multipliers(s);
+    s.has_history = (st == STEWART_OK);
+    return st;
+}
+
+}  // namespace mbs

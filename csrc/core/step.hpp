@@ -1,0 +1,21 @@
+// One step of kinematics and inverse dynamics on a State: position (KINSOL), velocity,
+// acceleration, multipliers, all on one factorisation of Phi_q at the solution.
+#pragma once
+
+#include "core/state.hpp"
+
+namespace mbs {
+
+// Newton from state.q; with use_predictor and a known previous step, first moves q by
+// h q_dot + h^2/2 q_ddot (h = t - previous time).
+stewart_status solve_position(State &s, double t, const SolverOptions &o, bool use_predictor);
+// Phi_q q_dot = -Phi_t.
+stewart_status solve_velocity(State &s);
+// Phi_q q_ddot = gamma.
+stewart_status solve_acceleration(State &s);
+// Phi_q^T lambda = Q - M q_ddot.
+stewart_status solve_multipliers(State &s);
+// All four; marks the state as history for the next predictor.
+stewart_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor);
+
+}  // namespace mbs

@@ -1,0 +1,32 @@
+/*
+ * The full fidelity level's multibody model, for inspection (and for the FMU's state).
+ * Bodies: 0 base (fixed), 1-6 cylinders, 7-12 pistons (leg k = 1..6 in that order), 13 platform
+ * (with the payload; its frame at their joint centre of mass on principal axes). Joints:
+ * per leg base Cardan, platform Cardan, cylindrical; then 6 actuator-length drivers (driver
+ * slot k-1 is leg k; multiplier = -F_k); then the normalisations.
+ */
+#ifndef STEWART_STEWART_FULL_H
+#define STEWART_STEWART_FULL_H
+
+#include "stewart/mbs.h"
+#include "stewart/stewart.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+const mbs_model *stewart_model_mechanism(const stewart_model *model);
+/* The state after the last full-level solve. */
+const mbs_data *stewart_data_mechanism(const stewart_data *data);
+
+/* Actuator forces the thesis' way, on a second mechanism driven by the 7 platform coordinates:
+ * the platform wrench from the pose drivers' multipliers, mapped to leg forces by virtual
+ * power as a square 6 x 6 solve. Allocates: for checks, not for a stepping loop. */
+stewart_status stewart_thesis_forces(const stewart_params *params, const stewart_pose *pose,
+                                     double force[STEWART_LEGS], char *message, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* STEWART_STEWART_FULL_H */

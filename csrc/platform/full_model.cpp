@@ -1,0 +1,255 @@
+#include "platform/full_model.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "core/dynamics.hpp"
+#include "core/step.hpp"
+#include "util/message.hpp"
+
+namespace stewart {
+
+namespace {
+
+using mbs::Vec3;
+using mbs::Vec4;
+
+Vec3 tangential(double angle) { return Vec3(-std::sin(angle), std::cos(angle), 0.0); }
+
+// The leg body frame: z along the leg, x the Cardan arm perpendicular to the plate's arm s.
+Eigen::Matrix3d leg_frame(const Vec3 &n, const Vec3 &s) {
+    Eigen::Matrix3d A;
+    const Vec3 x = s.cross(n).normalized();
+    A.col(0) = x;
+    A.col(1) = n.cross(x);
+    A.col(2) = n;
+    return A;
+}
+
+void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) {
+    double *q = s.q.data() + 7 * body;
+    Vec4 p = mbs::euler_parameters(A);
+    // p and -p are the same rotation: stay on the side of the previous solution.
+    if (s.has_history && p.dot(Eigen::Map<const Vec4>(q + 3)) < 0) p = -p;
+    for (int c = 0; c < 3; ++c) q[c] = r[c];
+    for (int c = 0; c < 4; ++c) q[3 + c] = p[c];
+}
+
+struct Placement {
+    Vec3 r_cylinder[STEWART_LEGS], r_piston[STEWART_LEGS], r_platform;
+    Eigen::Matrix3d A_cylinder[STEWART_LEGS], A_piston[STEWART_LEGS], A_platform;
+};
+
+Placement place(const FullLayout &l, const Vec3 &position, const Eigen::Matrix3d &R) {
+    Placement pl;
+    pl.r_platform = position + R * l.com;
+    pl.A_platform = R * l.axes;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Vec3 a = l.geometry.base_points.col(k);
+        const Vec3 P = position + R * l.geometry.platform_points.col(k);
+        const Vec3 n = (P - a).normalized();
+        pl.A_cylinder[k] = leg_frame(n, tangential(l.base_angle[k]));
+        pl.A_piston[k] = leg_frame(n, R * tangential(l.platform_angle[k]));
+        pl.r_cylinder[k] = a + l.cylinder_com * n;
+        pl.r_piston[k] = P - l.piston_com * n;
+    }
+    return pl;
+}
+
+}  // namespace
+
+std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDrive drive,
+                                               FullLayout &l, char *msg, size_t size) {
+    std::unique_ptr<mbs_model> model(new (std::nothrow) mbs_model);
+    if (!model) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory building the full model");
+        return nullptr;
+    }
+    l.drive = drive;
+    l.geometry = platform_geometry(p);
+    l.cylinder_com = p.cylinder_com;
+    l.piston_com = p.piston_com;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        l.base_angle[k] = p.base_angle[k];
+        l.platform_angle[k] = p.platform_angle[k];
+    }
+
+    // Platform and payload as one body, on its own principal axes at its centre of mass.
+    const LumpedBody lumped = lumped_platform(p);
+    l.com = lumped.com;
+    Eigen::Matrix3d I = lumped.inertia;
+    Vec3 principal;
+    const double off = std::fabs(I(0, 1)) + std::fabs(I(0, 2)) + std::fabs(I(1, 2));
+    if (off <= 1e-15 * I.trace()) {
+        l.axes.setIdentity();
+        principal = I.diagonal();
+    } else {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(I);
+        l.axes = eig.eigenvectors();
+        if (l.axes.determinant() < 0) l.axes.col(2) = -l.axes.col(2);
+        principal = eig.eigenvalues();
+    }
+
+    const Placement home = place(l, Vec3(0, 0, p.home_height), Eigen::Matrix3d::Identity());
+    mbs::Mechanism &m = model->mechanism;
+    m.gravity = Vec3(p.gravity);
+    mbs::Builder b{m, msg, size};
+    auto reference = [](const Vec3 &r, const Eigen::Matrix3d &A, double q[7]) {
+        const Vec4 e = mbs::euler_parameters(A);
+        for (int c = 0; c < 3; ++c) q[c] = r[c];
+        for (int c = 0; c < 4; ++c) q[3 + c] = e[c];
+    };
+    double q[7];
+    reference(Vec3::Zero(), Eigen::Matrix3d::Identity(), q);
+    l.base = b.body("base", 0.0, Vec3::Zero(), q);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        reference(home.r_cylinder[k], home.A_cylinder[k], q);
+        l.cylinder[k] = b.body("cylinder", p.cylinder_mass, Vec3(p.cylinder_inertia), q);
+    }
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        reference(home.r_piston[k], home.A_piston[k], q);
+        l.piston[k] = b.body("piston", p.piston_mass, Vec3(p.piston_inertia), q);
+    }
+    reference(home.r_platform, home.A_platform, q);
+    l.platform = b.body("platform", lumped.mass, principal, q);
+    if (l.platform < 0 || b.fix(l.base) < 0) return nullptr;
+
+    const Vec3 ez = Vec3::UnitZ(), ex = Vec3::UnitX();
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Vec3 base_point = l.geometry.base_points.col(k);
+        const Vec3 plate_point = l.axes.transpose() * (l.geometry.platform_points.col(k) - l.com);
+        const Vec3 plate_arm = l.axes.transpose() * tangential(p.platform_angle[k]);
+        const Vec3 cyl_end(0, 0, -p.cylinder_com), pis_end(0, 0, p.piston_com);
+        l.base_cardan[k] = b.cardan(l.base, base_point, tangential(p.base_angle[k]),
+                                    l.cylinder[k], cyl_end, ex);
+        if (b.cardan(l.platform, plate_point, plate_arm, l.piston[k], pis_end, ex) < 0) return nullptr;
+        l.cylindrical[k] = b.cylindrical(l.cylinder[k], cyl_end, ez, l.piston[k], pis_end, ez);
+        if (l.base_cardan[k] < 0 || l.cylindrical[k] < 0) return nullptr;
+    }
+    if (drive == FullDrive::ActuatorLengths) {
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            if ((l.driver_joint[k] = b.distance_driver(l.cylindrical[k], nullptr)) < 0) return nullptr;
+    } else if ((l.pose_joint = b.pose_driver(l.platform, nullptr)) < 0) {
+        return nullptr;
+    }
+    if (!mbs::finalize(m, msg, size)) return nullptr;
+    return model;
+}
+
+void full_initial_guess(const FullLayout &l, const RigidMotion &motion, mbs::State &s) {
+    const Placement pl = place(l, motion.position, motion.rotation);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        put_body(s, l.cylinder[k], pl.r_cylinder[k], pl.A_cylinder[k]);
+        put_body(s, l.piston[k], pl.r_piston[k], pl.A_piston[k]);
+    }
+    put_body(s, l.platform, pl.r_platform, pl.A_platform);
+}
+
+void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinematics &legs,
+                      mbs::State &s) {
+    const mbs::Mechanism &m = s.mechanism;
+    if (l.drive == FullDrive::ActuatorLengths) {
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            s.drive[m.joints[l.driver_joint[k]].driver] =
+                mbs::DriverValue{legs.length[k], legs.rate[k], legs.accel[k]};
+        return;
+    }
+    const Vec3 c = mo.rotation * l.com;
+    const Vec3 r = mo.position + c;
+    const Vec3 v = mo.velocity + mo.omega.cross(c);
+    const Vec3 a = mo.acceleration + mo.alpha.cross(c) + mo.omega.cross(mo.omega.cross(c));
+    Vec4 p = mbs::euler_parameters(mo.rotation * l.axes);
+    const double *prev = s.q.data() + 7 * l.platform + 3;
+    if (p.dot(Eigen::Map<const Vec4>(prev)) < 0) p = -p;
+    const mbs::Mat34 E = mbs::E_matrix(p.data());
+    const Vec4 p_dot = 0.5 * E.transpose() * mo.omega;
+    const Vec4 p_ddot = 0.5 * E.transpose() * mo.alpha - p_dot.squaredNorm() * p;
+    mbs::DriverValue *d = s.drive.data() + m.joints[l.pose_joint].driver;
+    for (int i = 0; i < 3; ++i) d[i] = mbs::DriverValue{r[i], v[i], a[i]};
+    for (int i = 0; i < 4; ++i) d[3 + i] = mbs::DriverValue{p[i], p_dot[i], p_ddot[i]};
+}
+
+stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_options &o,
+                          const RigidMotion &motion, const LegKinematics &legs,
+                          stewart_output &out, char *msg, size_t size) {
+    const mbs::Mechanism &m = s.mechanism;
+    full_initial_guess(l, motion, s);
+    full_set_drivers(l, motion, legs, s);
+    mbs::SolverOptions so = s.newton_options;
+    so.tolerance = o.tolerance;
+    so.max_iterations = o.max_iterations;
+    so.modified_newton = o.modified_newton != 0;
+    const stewart_status st = mbs::solve_step(s, 0.0, so, false);
+    if (st != STEWART_OK) return set_message(msg, size, st, "full model: %s", s.message);
+
+    // Leg lengths and their rates from the solved bodies: the two Cardan centres.
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const double *qc = s.q.data() + 7 * l.cylinder[k], *qp = s.q.data() + 7 * l.piston[k];
+        const double *vc = s.q_dot.data() + 7 * l.cylinder[k], *vp = s.q_dot.data() + 7 * l.piston[k];
+        const double *ac = s.q_ddot.data() + 7 * l.cylinder[k], *ap = s.q_ddot.data() + 7 * l.piston[k];
+        const Vec3 uc(0, 0, -l.cylinder_com), up(0, 0, l.piston_com);
+        auto point = [](const double *q, const Vec3 &u) {
+            return Vec3(Eigen::Map<const Vec3>(q) + mbs::rotate(q + 3, u));
+        };
+        auto rate = [](const double *q, const double *v, const Vec3 &u) {
+            return Vec3(Eigen::Map<const Vec3>(v) +
+                        mbs::rotate_jacobian(q + 3, u) * Eigen::Map<const Vec4>(v + 3));
+        };
+        auto accel = [](const double *q, const double *v, const double *a, const Vec3 &u) {
+            return Vec3(Eigen::Map<const Vec3>(a) +
+                        mbs::rotate_jacobian(q + 3, u) * Eigen::Map<const Vec4>(a + 3) +
+                        2.0 * mbs::rotate(v + 3, u));
+        };
+        const Vec3 d = point(qp, up) - point(qc, uc);
+        const Vec3 d_dot = rate(qp, vp, up) - rate(qc, vc, uc);
+        const Vec3 d_ddot = accel(qp, vp, ap, up) - accel(qc, vc, ac, uc);
+        const double L = d.norm(), L_dot = d.dot(d_dot) / L;
+        out.length[k] = L;
+        out.length_rate[k] = L_dot;
+        out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L;
+        out.force[k] = 0;
+    }
+    if (l.drive == FullDrive::ActuatorLengths)
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            out.force[k] = -s.lambda[m.first_row[l.driver_joint[k]]];
+    else
+        thesis_forces(l, s, out.force);
+
+    // The wrench of the base Cardans on the base, about the world origin.
+    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+    const Vec3 r_base(s.q.data() + 7 * l.base);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        Vec3 fk, nk;
+        mbs::joint_reaction(m, s, l.base_cardan[k], 0, fk, nk);
+        f += fk;
+        t += nk + r_base.cross(fk);
+    }
+    for (int i = 0; i < 3; ++i) out.base_force[i] = f[i], out.base_torque[i] = t[i];
+    out.iterations = s.stats.iterations;
+    out.residual = s.stats.residual;
+    return STEWART_OK;
+}
+
+void thesis_forces(const FullLayout &l, const mbs::State &s, double force[STEWART_LEGS]) {
+    const mbs::Mechanism &m = s.mechanism;
+    // The pose drivers' reaction on the platform: force, and torque about its origin.
+    const double *lambda = s.lambda.data() + m.first_row[l.pose_joint];
+    const double *q = s.q.data() + 7 * l.platform;
+    Matrix6 Jt;
+    Vector6 wrench;
+    wrench.head<3>() = -Vec3(lambda);
+    wrench.tail<3>() = mbs::rotate(q + 3, -0.5 * mbs::G_matrix(q + 3) * Vec4(lambda + 3));
+    // Virtual power: sum F_k dL_k = wrench . twist, dL_k = n_k . (v + w x (P_k - r)).
+    const Vec3 r(q);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Vec3 P = r + mbs::rotate(q + 3, l.axes.transpose() *
+                                                  (l.geometry.platform_points.col(k) - l.com));
+        const Vec3 n = (P - l.geometry.base_points.col(k)).normalized();
+        Jt.block<3, 1>(0, k) = n;
+        Jt.block<3, 1>(3, k) = (P - r).cross(n);
+    }
+    const Vector6 F = Jt.partialPivLu().solve(wrench);
+    for (int k = 0; k < STEWART_LEGS; ++k) force[k] = F[k];
+}
+
+}  // namespace stewart

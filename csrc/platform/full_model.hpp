@@ -1,0 +1,53 @@
+// The thesis' 14-body Stewart platform (model.md §2) built on the multibody core: a builder that
+// turns the parameters into bodies and joints, the closed-form initial guess, and the solve that
+// fills stewart_output at the full fidelity level.
+#pragma once
+
+#include <memory>
+
+#include "core/mbs_handles.hpp"
+#include "platform/closed_form.hpp"
+
+namespace stewart {
+
+enum class FullDrive {
+    ActuatorLengths,  // 6 distance drivers on the cylindrical joints: multipliers = -forces
+    PlatformPose      // 7 pose drivers on the platform (the thesis' way)
+};
+
+// Which bodies and joints are which, and where the platform body sits in the plate frame.
+struct FullLayout {
+    FullDrive drive = FullDrive::ActuatorLengths;
+    int base = 0, platform = 13;
+    int cylinder[STEWART_LEGS], piston[STEWART_LEGS];
+    int base_cardan[STEWART_LEGS], cylindrical[STEWART_LEGS];
+    int driver_joint[STEWART_LEGS];  // length drivers (ActuatorLengths)
+    int pose_joint = -1;             // pose driver (PlatformPose)
+    Eigen::Vector3d com;             // platform body origin (lumped centre of mass), plate frame
+    Eigen::Matrix3d axes;            // platform body axes (principal) in the plate frame
+    double cylinder_com = 0, piston_com = 0;
+    double base_angle[STEWART_LEGS], platform_angle[STEWART_LEGS];
+    PlatformGeometry geometry;
+};
+
+// Builds and finalises the mechanism; null (message says why) on failure.
+std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDrive drive,
+                                               FullLayout &layout, char *msg, size_t size);
+
+// Every body placed in closed form for the platform motion (Euler-parameter signs kept
+// continuous with the previous solution, if any), and the drivers set for that motion.
+void full_initial_guess(const FullLayout &l, const RigidMotion &motion, mbs::State &s);
+void full_set_drivers(const FullLayout &l, const RigidMotion &motion, const LegKinematics &legs,
+                      mbs::State &s);
+
+// Position, velocity, acceleration, multipliers; fills lengths, rates, accelerations, forces,
+// iterations, residual and the base wrench (condition and warnings are the caller's).
+stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_options &o,
+                          const RigidMotion &motion, const LegKinematics &legs,
+                          stewart_output &out, char *msg, size_t size);
+
+// The thesis' way, on a PlatformPose model: the platform wrench from the 7 pose-driver
+// multipliers, mapped to leg forces by virtual power (J^T F = wrench, 6 x 6).
+void thesis_forces(const FullLayout &l, const mbs::State &s, double force[STEWART_LEGS]);
+
+}  // namespace stewart

@@ -1,0 +1,264 @@
+/* Full (14-body) level against independent references: the closed-form leg lengths, the
+ * massless-leg level when the legs weigh nothing, the power balance of the 13 moving bodies,
+ * the thesis' pose-driver formulation, and Euler-parameter normalisation over a long run. */
+#include <math.h>
+#include <string.h>
+
+#include "stewart/stewart_full.h"
+#include "test_support.h"
+#include "unity.h"
+
+static stewart_params params;
+static stewart_model *model;
+static stewart_data *data;
+
+void setUp(void) {
+    stewart_params_default(&params);
+    model = test_model(&params);
+    data = stewart_data_create(model);
+    TEST_ASSERT_NOT_NULL(data);
+}
+
+void tearDown(void) {
+    stewart_data_free(data);
+    stewart_model_free(model);
+}
+
+static void rebuild(void) {
+    stewart_data_free(data);
+    stewart_model_free(model);
+    model = test_model(&params);
+    data = stewart_data_create(model);
+    TEST_ASSERT_NOT_NULL(data);
+}
+
+/* |p + R b_k - a_k| from the pose, written out here. */
+static double closed_form_length(const stewart_pose *pose, int k) {
+    const double cr = cos(pose->q[3]), sr = sin(pose->q[3]), cp = cos(pose->q[4]),
+                 sp = sin(pose->q[4]), cy = cos(pose->q[5]), sy = sin(pose->q[5]);
+    const double R[3][3] = {{cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr},
+                            {sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr},
+                            {-sp, cp * sr, cp * cr}};
+    const double b[3] = {params.platform_radius * cos(params.platform_angle[k]),
+                         params.platform_radius * sin(params.platform_angle[k]), 0};
+    const double a[3] = {params.base_radius * cos(params.base_angle[k]),
+                         params.base_radius * sin(params.base_angle[k]), 0};
+    double d2 = 0;
+    for (int i = 0; i < 3; ++i) {
+        const double d = pose->q[i] + R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2] - a[i];
+        d2 += d * d;
+    }
+    return sqrt(d2);
+}
+
+static stewart_pose manoeuvre(int which, double t) {
+    return which == 6 ? combined_pose(t) : thesis_pose(which, t);
+}
+
+static void test_lengths_match_closed_form(void) {
+    const int which[5] = {2, 3, 4, 5, 6};
+    for (int w = 0; w < 5; ++w)
+        for (int i = 0; i <= 120; ++i) {
+            stewart_pose pose = manoeuvre(which[w], 0.1 * i);
+            stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
+            for (int k = 0; k < 6; ++k)
+                TEST_ASSERT_DOUBLE_WITHIN(1e-11, closed_form_length(&pose, k), out.length[k]);
+            TEST_ASSERT_TRUE(out.residual <= 1e-12);
+            TEST_ASSERT_TRUE(out.iterations <= 2);
+        }
+}
+
+static void expect_relative(double expected, double actual, double rel) {
+    TEST_ASSERT_DOUBLE_WITHIN(rel * (1.0 + fabs(expected)), expected, actual);
+}
+
+static void compare_with_massless(void) {
+    for (int w = 2; w <= 6; ++w)
+        for (int i = 0; i <= 120; i += 3) {
+            stewart_pose pose = manoeuvre(w, 0.1 * i);
+            stewart_output full = solve_ok(model, data, STEWART_FULL, &pose);
+            stewart_output mass = solve_ok(model, data, STEWART_MASSLESS, &pose);
+            for (int k = 0; k < 6; ++k) {
+                expect_relative(mass.force[k], full.force[k], 1e-9);
+                expect_relative(mass.length_rate[k], full.length_rate[k], 1e-9);
+                expect_relative(mass.length_accel[k], full.length_accel[k], 1e-9);
+            }
+            for (int i3 = 0; i3 < 3; ++i3) {
+                expect_relative(mass.base_force[i3], full.base_force[i3], 1e-9);
+                expect_relative(mass.base_torque[i3], full.base_torque[i3], 1e-9);
+            }
+            TEST_ASSERT_EQUAL_DOUBLE(mass.condition, full.condition);
+        }
+}
+
+/* Weightless legs: the full model must reduce to the massless-leg level. */
+static void test_weightless_legs_equal_massless_level(void) {
+    params.cylinder_mass = params.piston_mass = 0;
+    for (int i = 0; i < 3; ++i) params.cylinder_inertia[i] = params.piston_inertia[i] = 0;
+    rebuild();
+    compare_with_massless();
+}
+
+/* The same with an off-centre payload whose inertia is not diagonal in the plate frame. */
+static void test_weightless_legs_with_offset_payload(void) {
+    params.cylinder_mass = params.piston_mass = 0;
+    for (int i = 0; i < 3; ++i) params.cylinder_inertia[i] = params.piston_inertia[i] = 0;
+    params.payload_mass = 40;
+    params.payload_com[0] = 0.1, params.payload_com[1] = -0.05, params.payload_com[2] = 0.2;
+    params.payload_inertia[0] = 1.0, params.payload_inertia[1] = 1.5, params.payload_inertia[2] = 2.0;
+    rebuild();
+    compare_with_massless();
+}
+
+/* Kinetic + potential energy of the 13 moving bodies, from their coordinates. */
+static double energy(const double *q, const double *v) {
+    double e = 0;
+    for (int b = 1; b <= 13; ++b) {
+        const double *r = q + 7 * b, *p = q + 7 * b + 3, *rd = v + 7 * b, *pd = v + 7 * b + 3;
+        double m;
+        const double *J;
+        if (b <= 6) m = params.cylinder_mass, J = params.cylinder_inertia;
+        else if (b <= 12) m = params.piston_mass, J = params.piston_inertia;
+        else m = params.platform_mass, J = params.platform_inertia;
+        /* body angular velocity w' = 2 G p_dot, G = [-e, e0 I - skew(e)] */
+        const double w[3] = {2 * (-p[1] * pd[0] + p[0] * pd[1] + p[3] * pd[2] - p[2] * pd[3]),
+                             2 * (-p[2] * pd[0] - p[3] * pd[1] + p[0] * pd[2] + p[1] * pd[3]),
+                             2 * (-p[3] * pd[0] + p[2] * pd[1] - p[1] * pd[2] + p[0] * pd[3])};
+        e += 0.5 * m * (rd[0] * rd[0] + rd[1] * rd[1] + rd[2] * rd[2]);
+        e += 0.5 * (J[0] * w[0] * w[0] + J[1] * w[1] * w[1] + J[2] * w[2] * w[2]);
+        e += m * 9.81 * r[2];
+    }
+    return e;
+}
+
+static double energy_at(double t, int which) {
+    stewart_pose pose = manoeuvre(which, t);
+    solve_ok(model, data, STEWART_FULL, &pose);
+    const mbs_data *md = stewart_data_mechanism(data);
+    return energy(mbs_q(md), mbs_q_dot(md));
+}
+
+/* sum F_k L_dot_k = dE/dt along the four thesis manoeuvres (and a combined one). */
+static void test_power_balance(void) {
+    for (int w = 2; w <= 6; ++w)
+        for (int i = 1; i <= 120; i += 7) {
+            const double t = 0.1 * i, h = 1e-5;
+            const double dE = (energy_at(t + h, w) - energy_at(t - h, w)) / (2 * h);
+            stewart_pose pose = manoeuvre(w, t);
+            stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
+            double power = 0, scale = 0;
+            for (int k = 0; k < 6; ++k) {
+                power += out.force[k] * out.length_rate[k];
+                scale += fabs(out.force[k] * out.length_rate[k]);
+            }
+            TEST_ASSERT_DOUBLE_WITHIN(1e-7 * (1 + scale), dE, power);
+        }
+}
+
+/* The thesis' way (pose drivers + virtual power) against the actuator-length multipliers. */
+static void test_thesis_formulation_agrees(void) {
+    params.payload_mass = 25;
+    params.payload_com[0] = -0.05, params.payload_com[2] = 0.1;
+    params.payload_inertia[0] = 0.5, params.payload_inertia[1] = 0.7, params.payload_inertia[2] = 0.9;
+    rebuild();
+    for (int w = 2; w <= 6; ++w)
+        for (int i = 0; i <= 120; i += 8) {
+            stewart_pose pose = manoeuvre(w, 0.1 * i);
+            stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
+            double thesis[6];
+            char msg[STEWART_MESSAGE_SIZE];
+            TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, thesis, msg, sizeof msg), msg);
+            for (int k = 0; k < 6; ++k) expect_relative(out.force[k], thesis[k], 1e-9);
+        }
+}
+
+/* Heavier legs carry more than the massless level, and the platform at rest loads them. */
+static void test_massive_legs_at_rest(void) {
+    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    stewart_output full = solve_ok(model, data, STEWART_FULL, &home);
+    const double total = params.platform_mass + 6 * (params.cylinder_mass + params.piston_mass);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9 * total * 9.81, -total * 9.81, full.base_force[2]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.0, full.base_force[0]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.0, full.base_torque[2]);
+    for (int k = 0; k < 6; ++k) TEST_ASSERT_TRUE(full.force[k] > 0);
+}
+
+/* |p|^2 - 1 stays within 1e-12 for every body over 1e5 steps of the yaw manoeuvre. */
+static void test_normalisation_long_run(void) {
+    double worst = 0;
+    for (int i = 0; i < 100000; ++i) {
+        stewart_pose pose = thesis_pose(5, 1.2e-4 * i);
+        solve_ok(model, data, STEWART_FULL, &pose);
+        const double *q = mbs_q(stewart_data_mechanism(data));
+        for (int b = 0; b < 14; ++b) {
+            const double *p = q + 7 * b + 3;
+            const double e = fabs(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1);
+            if (e > worst) worst = e;
+        }
+    }
+    TEST_ASSERT_TRUE(worst <= 1e-12);
+}
+
+/* A copy is a rollback point: solving on after restoring it repeats the same outputs. */
+static void test_copy_is_rollback(void) {
+    stewart_data *saved = stewart_data_create(model);
+    stewart_pose a = combined_pose(0.3), b = combined_pose(0.7);
+    solve_ok(model, data, STEWART_FULL, &a);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(saved, data));
+    stewart_output first = solve_ok(model, data, STEWART_FULL, &b);
+    stewart_pose c = combined_pose(2.0);
+    solve_ok(model, data, STEWART_FULL, &c);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(data, saved));
+    stewart_output again = solve_ok(model, data, STEWART_FULL, &b);
+    TEST_ASSERT_EQUAL_MEMORY(&first, &again, sizeof first);
+    stewart_data_reset(data);
+    stewart_output fresh = solve_ok(model, data, STEWART_FULL, &b);
+    for (int k = 0; k < 6; ++k) TEST_ASSERT_DOUBLE_WITHIN(1e-9, first.force[k], fresh.force[k]);
+    stewart_data_free(saved);
+}
+
+/* KINSOL from a poor guess (the home configuration) to a far pose, on the platform's mechanism:
+ * exact and modified Newton, block and dense linear solvers land on the same solution. */
+static void test_newton_from_home(void) {
+    const mbs_model *mech = stewart_model_mechanism(model);
+    stewart_pose target = {{0.03, -0.02, 0.53, 0.12, -0.08, 0.15}, {0}, {0}};
+    double L[6];
+    for (int k = 0; k < 6; ++k) L[k] = closed_form_length(&target, k);
+    const mbs_linear_solver kinds[3] = {MBS_LINEAR_AUTOMATIC, MBS_LINEAR_DENSE, MBS_LINEAR_KINSOL_DENSE};
+    double lambda0[98];
+    for (int kind = 0; kind < 3; ++kind)
+        for (int modified = 0; modified <= 1; ++modified) {
+            mbs_data *d = mbs_data_create(mech, kinds[kind]);
+            TEST_ASSERT_NOT_NULL(d);
+            for (int k = 0; k < 6; ++k) mbs_set_driver(d, k, L[k], 0, 0);
+            mbs_options o;
+            mbs_options_default(&o);
+            o.modified_newton = modified;
+            o.max_iterations = 50;
+            TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, 0, &o), mbs_data_message(d));
+            TEST_ASSERT_TRUE(mbs_iterations(d) >= 3);
+            TEST_ASSERT_TRUE(mbs_residual(d) <= 1e-12);
+            const double *q = mbs_q(d);
+            /* The platform (body 13, centre of mass at the plate centre here) reaches the pose. */
+            for (int i = 0; i < 3; ++i) TEST_ASSERT_DOUBLE_WITHIN(1e-10, target.q[i], q[7 * 13 + i]);
+            if (kind == 0 && modified == 0)
+                memcpy(lambda0, mbs_lambda(d), sizeof lambda0);
+            else
+                for (int i = 0; i < 98; ++i) expect_relative(lambda0[i], mbs_lambda(d)[i], 1e-9);
+            mbs_data_free(d);
+        }
+}
+
+int main(void) {
+    UNITY_BEGIN();
+    RUN_TEST(test_lengths_match_closed_form);
+    RUN_TEST(test_weightless_legs_equal_massless_level);
+    RUN_TEST(test_weightless_legs_with_offset_payload);
+    RUN_TEST(test_power_balance);
+    RUN_TEST(test_thesis_formulation_agrees);
+    RUN_TEST(test_massive_legs_at_rest);
+    RUN_TEST(test_copy_is_rollback);
+    RUN_TEST(test_newton_from_home);
+    RUN_TEST(test_normalisation_long_run);
+    return UNITY_END();
+}
