@@ -265,6 +265,12 @@ static fmu_status map_solve_error(stewart_status s) {
 
 /* Solves for the current inputs unless already done. OK / Warning (status 1 or 2) / Discard
  * (status 3, outputs keep their last valid values) / Error (unsupported fidelity, memory). */
+static int inputs_finite(const fmu_values *v) {
+    for (unsigned vr = VR_x; vr <= VR_yaw_ddot; ++vr)
+        if (!isfinite(v->real[vr])) return 0;
+    return 1;
+}
+
 static fmu_status solve_current(fmu_instance *inst) {
     fmu_values *v = &inst->v;
     if (v->solved) return v->solve_status;
@@ -393,12 +399,18 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
         v->real[VR_time] = t;
         v->solved = 0;
     }
-    fmu_status s = solve_current(inst);
-    if (s == FMU_DISCARD || s == FMU_ERROR) {
-        v->last_successful_time = t;
-        return s;
+    /* With a Taylor advance the solution at t itself is needed only if the master asked for it,
+     * if an input is not finite (that is reported against t), or if t + h fails below. */
+    const int advance = taylor_mode(v);
+    fmu_status s = FMU_OK;
+    if (!advance || v->solved || !inputs_finite(v)) {
+        s = solve_current(inst);
+        if (s == FMU_DISCARD || s == FMU_ERROR) {
+            v->last_successful_time = t;
+            return s;
+        }
     }
-    if (taylor_mode(v)) {
+    if (advance) {
         /* Advance the pose to t + h along its Taylor expansion; undo it on failure (a failed
          * solve leaves the outputs untouched and only sets status = 3). */
         double saved_in[12];
@@ -411,15 +423,24 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
             v->real[VR_x_dot + i] = qd + h * qdd;
         }
         v->time = t + h;
+        const int solved_at_t = v->solved; /* the outputs at t were computed above or before */
         v->solved = 0;
         const fmu_status s2 = solve_current(inst);
         if (s2 == FMU_DISCARD || s2 == FMU_ERROR) {
             memcpy(&v->real[VR_x], saved_in, sizeof saved_in);
-            v->integer[VR_status] = saved_status;
             v->time = t;
-            v->solve_status = s; /* the outputs are still those of the inputs at t */
             v->last_successful_time = t;
-            return s2;
+            if (solved_at_t) {
+                v->integer[VR_status] = saved_status;
+                v->solve_status = s; /* the outputs are still those of the inputs at t */
+                v->solved = 1;
+                return s2;
+            }
+            /* Not solved at t yet: do it now, so the outputs are those of the inputs at t and
+             * a bad pose at t is reported as such. */
+            v->solved = 0;
+            s = solve_current(inst);
+            return (s == FMU_DISCARD || s == FMU_ERROR) ? s : s2;
         }
         s = s2;
         /* the derivatives given through fmi2SetRealInputDerivatives served this step only;
