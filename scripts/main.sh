@@ -1,11 +1,9 @@
 #!/usr/bin/env bash
-# The main job: set up, build, and run the thesis' yaw manoeuvre (±10° at 5 rad/s for 12 s) at
-# the massless-leg level, writing out/yaw_pose.csv (the input), out/yaw.csv and out/yaw.png.
+# The main job: set up, build, and run the default scene — the thesis' yaw manoeuvre (±10° at
+# 5 rad/s for 12 s) at full fidelity through the FMI 2.0 FMU with fmpy — writing out/yaw.csv (every
+# output), out/yaw.png (lengths, rates, forces per leg) and out/yaw_fidelity.png (forces of the
+# massless and full models on one chart).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
-mkdir -p out
-.venv/bin/python scripts/scenes.py yaw out/yaw_pose.csv --dt 0.1
-build/stewart-solve --fidelity massless out/yaw_pose.csv out/yaw.csv
-.venv/bin/python scripts/plot_legs.py out/yaw.csv out/yaw.png --title "Yaw ±10° at 5 rad/s, massless legs"
-echo "main: wrote out/yaw.csv and out/yaw.png"
+.venv/bin/python scripts/run_scene.py yaw --fidelity 2 --derivatives 1 --compare 1,2 --out out

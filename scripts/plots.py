@@ -97,3 +97,20 @@ def animate_platform(t, q, path, base_points, platform_points, title="", frames=
     anim = animation.FuncAnimation(fig, draw, frames=len(idx), blit=False)
     anim.save(path, writer=animation.PillowWriter(fps=15))
     plt.close(fig)
+
+
+def plot_slider_crank(data, path, title=""):
+    """data: slider-crank-solve columns → slider position, velocity, acceleration and crank torque."""
+    panels = (("slider_x", "slider x [m]"), ("slider_v", "slider velocity [m/s]"),
+              ("slider_a", "slider acceleration [m/s²]"), ("crank_torque", "crank torque [N m]"))
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(9, 9))
+    for ax, (key, label) in zip(axes, panels):
+        ax.plot(data["t"], data[key])
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    axes[-1].set_xlabel("time t [s]")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Runs a scene (scenes/*.json) through the FMI 2.0 FMU with fmpy; writes a CSV of every output
-and PNG plots (and a GIF for scenes with "animate": true) into the output folder.
+and PNG plots (and a GIF for scenes with "animate": true) into the output folder. The slider-crank
+scene runs build/slider-crank-solve instead.
 
 At each communication point the master sets the pose (and, with derivatives = 1, its exact first
 and second derivatives), reads the outputs (a direct function of the inputs set), then steps.
@@ -11,6 +12,7 @@ usage: run_scene.py SCENE [--fmu PATH] [--out DIR] [--fidelity 0|1|2] [--derivat
 import argparse
 import pathlib
 import shutil
+import subprocess
 import sys
 
 import numpy as np
@@ -116,6 +118,8 @@ def main():
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     name, title = scene["name"], scene.get("title", scene["name"])
+    if scene.get("mechanism") == "slider-crank":
+        return run_slider_crank(scene, out, name, title)
 
     result = run(args.fmu, scene, args.fidelity, args.derivatives)
     write_csv(result, out / f"{name}.csv")
@@ -134,6 +138,16 @@ def main():
         plots.animate_platform(result["t"], q, out / f"{name}.gif", base, top, title=name)
         written.append(f"{name}.gif")
     print(f"run_scene: wrote {', '.join(str(out / w) for w in written)}")
+
+
+def run_slider_crank(scene, out, name, title):
+    csv_path = out / f"{name}.csv"
+    subprocess.run([str(ROOT / "build/slider-crank-solve"), "--rpm", str(scene["rpm"]),
+                    "--turns", str(scene["turns"]), "--dt", str(scene["step"]), str(csv_path)],
+                   check=True)
+    data = np.genfromtxt(csv_path, delimiter=",", names=True)
+    plots.plot_slider_crank(data, out / f"{name}.png", title)
+    print(f"run_scene: wrote {csv_path}, {out / f'{name}.png'}")
 
 
 def platform_points(scene):

@@ -3,7 +3,8 @@
 
 A scene's pose is a sum of one sinusoid per component, value = mean + amplitude sin(omega t + phase),
 so its first and second derivatives are exact. The thesis manoeuvres (heave, roll, pitch, yaw) and
-a combined cue are in scenes/.
+a combined cue are in scenes/; scenes/slider_crank.json ("mechanism": "slider-crank") is the
+thesis' other mechanism, run by build/slider-crank-solve instead of the FMU.
 
 usage: scenes.py SCENE OUT.csv [--dt DT] [--no-derivatives]
   writes the scene's poses as a stewart-solve input CSV (SCENE is a name in scenes/ or a path).
@@ -27,7 +28,7 @@ def load(scene):
         path = ROOT / "scenes" / f"{scene}.json"
     data = json.loads(path.read_text())
     data.setdefault("name", path.stem)
-    unknown = set(data["pose"]) - set(POSE)
+    unknown = set(data.get("pose", {})) - set(POSE)
     if unknown:
         raise ValueError(f"{path}: unknown pose components {sorted(unknown)}")
     return data
