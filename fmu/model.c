@@ -184,6 +184,16 @@ static fmu_status apply_parameters(fmu_instance *inst) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", inst->message);
         return FMU_ERROR;
     }
+    /* Non-finite parameters are named here with their FMU names (the library counts array
+     * elements from 0, the model description from 1). */
+#define FMU_PARAM(vr, id, name, field, unit, display, desc)                                     \
+    if (!isfinite(v->real[vr])) {                                                               \
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,                                                     \
+                "invalid parameter %s = %g %s: every parameter must be finite", name,          \
+                v->real[vr], unit);                                                             \
+        return FMU_ERROR;                                                                       \
+    }
+#include "variables.def"
     stewart_params p;
     params_from_values(v, &p);
     if (!inst->model || memcmp(&p, &inst->model_params, sizeof p) != 0) {
@@ -380,6 +390,15 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: currentCommunicationPoint = %g and communicationStepSize = %g must be "
                 "finite and the step > 0", t, h);
+        return FMU_ERROR;
+    }
+    if (!(t + h > t && isfinite(t + h))) {
+        /* h below the resolution of t (t + h == t) would not advance time; t + h overflowing
+         * would make it infinite. Neither is a step. */
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: communicationStepSize = %g does not advance currentCommunicationPoint = "
+                "%.17g (t + h = %.17g): the step is below the resolution of t or overflows", h, t,
+                t + h);
         return FMU_ERROR;
     }
     if (v->n_history > 0 && !(t > v->history_t[1])) {
