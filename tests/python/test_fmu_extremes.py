@@ -749,3 +749,36 @@ def test_long_run(version, fidelity):
         assert _rss_kib() - rss_early < 1024, (rss_early, _rss_kib())  # < 1 MiB
     finally:
         u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_finite_differences_over_vanishing_steps(version):
+    """derivatives = 0 with steps of 1e-300 s (1/h^2 overflows): a pose that does not move is at
+    rest (zero rates, the static closed-form forces), not NaN; a pose that moves over such a step
+    has no finite acceleration: Discard with a message saying so, outputs kept; a later step of
+    ordinary size is solved with the finite differences over the points actually committed."""
+    u = new_unit(version, fidelity=1, derivatives=0)
+    try:
+        home = yawed(0.0)
+        assert u.do_step(0.0, 1e-300) == OK
+        assert u.do_step(1e-300, 1e-300) == OK  # history: two points 1e-300 s apart, same pose
+        assert u.do_step(2e-300, 1e-300) == OK
+        np.testing.assert_array_equal(u.get_reals(L_DOT + L_DDOT), 0.0)
+        np.testing.assert_allclose(u.get_reals(F), static_forces(home), rtol=1e-12)
+        before = u.get_reals(REAL_OUTPUTS)
+        u.set(z=0.51)
+        assert u.get(["status"])[0] == 3
+        assert u.do_step(3e-300, 1e-300) == DISCARD
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
+        m = step_messages(u, DISCARD)[-1]
+        assert "finite-difference" in m and "derivatives = 1" in m and " z " in m, m
+        # an ordinary step later: the quadratic through (1e-300, home), (2e-300, home) and
+        # (0.1, z = 0.51) is, to 1e-298, z = 0.5 + t^2: z' = 0.2 m/s, z'' = 2 m/s^2 at t = 0.1
+        assert u.do_step(0.1, 0.1) == OK
+        qs = np.array([[0, 0, 0.51, 0, 0, 0]])
+        qd, qdd = np.array([[0, 0, 0.2, 0, 0, 0]]), np.array([[0, 0, 2.0, 0, 0, 0]])
+        ref = reference_matrix(stewart_solve(np.arange(1), qs, qd, qdd))[0]
+        assert_within(u.get_reals(L + L_DOT + L_DDOT + F), ref,
+                      1e-10 * np.max(np.abs(ref.reshape(4, 6)), axis=1).repeat(6))
+    finally:
+        u.free()
