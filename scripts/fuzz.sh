@@ -27,7 +27,7 @@ clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include tests/fuzz/fuzz_api.c
 # The FMU target: the FMU's model code compiled in, FMI headers from fmpy (as fmu/CMakeLists.txt).
 fmi_headers=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
 mkdir -p build-fuzz/fmu_objs
-for f in model variables fmi2_functions; do
+for f in model variables fmi2_functions fmi3_functions; do
   clang -std=c11 $flags -Icsrc/include -Ifmu -I"$fmi_headers" -c fmu/$f.c -o build-fuzz/fmu_objs/$f.o
 done
 clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include -Ifmu -I"$fmi_headers" \

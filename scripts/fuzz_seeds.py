@@ -51,7 +51,7 @@ SEEDS = {
 
 
 # ---- the FMU target: byte 0 flags (bit 0 logging on, bit 1 initialise at once with fidelity =
-# bits 2-3 and derivatives = bit 4), then operations,
+# bits 2-3 and derivatives = bit 4; bit 5 FMI 3 instead of FMI 2), then operations,
 # each an opcode byte (tests/fuzz/fuzz_fmu.cpp: 0 SetReal any, 1 SetReal pose input (vr 0..17),
 # 2 SetInteger, 3 DoStep, 4 read outputs, 5 SetRealInputDerivatives, 6 GetFMUstate, 7 SetFMUstate,
 # 8 serialise round trip, 9 Reset, 10 Terminate, 11 initialise, 12 SetDebugLogging, 13 read all)
@@ -83,8 +83,9 @@ READ = bytes([4])
 FIDELITY, DERIVATIVES = 2, 3
 
 
-def fmu_seed(*ops, logging=True, init=True, fidelity=1, derivatives=0):
-    flags = (1 if logging else 0) | (2 if init else 0) | (fidelity << 2) | (derivatives << 4)
+def fmu_seed(*ops, logging=True, init=True, fidelity=1, derivatives=0, fmi3=False):
+    flags = ((1 if logging else 0) | (2 if init else 0) | (fidelity << 2) | (derivatives << 4) |
+             (32 if fmi3 else 0))
     return bytes([flags]) + b"".join(ops)
 
 
@@ -122,6 +123,9 @@ FMU_SEEDS = {
     "logging": fmu_seed(bytes([12, 0]), bytes([12, 3]), bytes([12, 9]), set_pose("x", math.inf),
                         step(0.1), READ),
 }
+# the same sequences through the FMI 3 layer
+FMU_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
+                  for name, seed in list(FMU_SEEDS.items())})
 
 
 def main(argv):
