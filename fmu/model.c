@@ -184,6 +184,16 @@ static fmu_status apply_parameters(fmu_instance *inst) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", inst->message);
         return FMU_ERROR;
     }
+    /* Non-finite parameters are named here with their FMU names (the library counts array
+     * elements from 0, the model description from 1). */
+#define FMU_PARAM(vr, id, name, field, unit, display, desc)                                     \
+    if (!isfinite(v->real[vr])) {                                                               \
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,                                                     \
+                "invalid parameter %s = %g %s: every parameter must be finite", name,          \
+                v->real[vr], unit);                                                             \
+        return FMU_ERROR;                                                                       \
+    }
+#include "variables.def"
     stewart_params p;
     params_from_values(v, &p);
     if (!inst->model || memcmp(&p, &inst->model_params, sizeof p) != 0) {
@@ -227,26 +237,26 @@ static void current_pose(const fmu_values *v, stewart_pose *pose) {
         }
         return;
     }
+    /* Divided differences, so that a coordinate that does not move has zero rate and acceleration
+     * however small the steps (the Lagrange weights overflow below h ~ 1e-154 and gave inf * 0). */
     const double t = v->time;
     if (v->n_history == 0) {
         for (int i = 0; i < 6; ++i) pose->q_dot[i] = pose->q_ddot[i] = 0.0;
     } else if (v->n_history == 1) {
         const double h = t - v->history_t[1];
         for (int i = 0; i < 6; ++i) {
-            const double dq = pose->q[i] - v->history_q[1][i];
-            pose->q_dot[i] = 2.0 * dq / h;
-            pose->q_ddot[i] = 2.0 * dq / (h * h);
+            const double d = (pose->q[i] - v->history_q[1][i]) / h;
+            pose->q_dot[i] = 2.0 * d;
+            pose->q_ddot[i] = 2.0 * d / h;
         }
     } else {
         const double h1 = v->history_t[1] - v->history_t[0], h2 = t - v->history_t[1];
-        const double a0 = h2 / (h1 * (h1 + h2)), a1 = -(h1 + h2) / (h1 * h2),
-                     a2 = (2.0 * h2 + h1) / (h2 * (h1 + h2));
-        const double b0 = 2.0 / (h1 * (h1 + h2)), b1 = -2.0 / (h1 * h2),
-                     b2 = 2.0 / (h2 * (h1 + h2));
         for (int i = 0; i < 6; ++i) {
             const double q0 = v->history_q[0][i], q1 = v->history_q[1][i], q2 = pose->q[i];
-            pose->q_dot[i] = a0 * q0 + a1 * q1 + a2 * q2;
-            pose->q_ddot[i] = b0 * q0 + b1 * q1 + b2 * q2;
+            const double d1 = (q1 - q0) / h1, d2 = (q2 - q1) / h2;
+            const double dd = (d2 - d1) / (h1 + h2); /* q[t0, t1, t2] */
+            pose->q_dot[i] = d2 + h2 * dd;
+            pose->q_ddot[i] = 2.0 * dd;
         }
     }
 }
@@ -287,6 +297,23 @@ static fmu_status solve_current(fmu_instance *inst) {
         }
     stewart_pose pose;
     current_pose(v, &pose);
+    if (!taylor_mode(v))
+        for (int i = 0; i < 6; ++i)
+            if (!isfinite(pose.q_dot[i]) || !isfinite(pose.q_ddot[i])) {
+                v->integer[VR_status] = 3;
+                v->solved = 1;
+                v->solve_status = FMU_DISCARD;
+                fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                        "t = %.17g: the finite-difference %s of %s (%g, from the poses at the last "
+                        "communication points, the last %g s ago) is not finite: the steps are too "
+                        "small for this motion; use derivatives = 1 or larger steps. Outputs keep "
+                        "their last valid values",
+                        v->time, isfinite(pose.q_dot[i]) ? "acceleration" : "rate",
+                        fmu_variable_by_vr(VR_x + i)->name,
+                        isfinite(pose.q_dot[i]) ? pose.q_ddot[i] : pose.q_dot[i],
+                        v->time - v->history_t[1]);
+                return FMU_DISCARD;
+            }
     stewart_output out;
     const stewart_status s = stewart_solve(inst->model, inst->data, &inst->options, &pose, &out);
     if (s != STEWART_OK) {
@@ -386,6 +413,15 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: currentCommunicationPoint = %g and communicationStepSize = %g must be "
                 "finite and the step > 0", t, h);
+        return FMU_ERROR;
+    }
+    if (!(t + h > t && isfinite(t + h))) {
+        /* h below the resolution of t (t + h == t) would not advance time; t + h overflowing
+         * would make it infinite. Neither is a step. */
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: communicationStepSize = %g does not advance currentCommunicationPoint = "
+                "%.17g (t + h = %.17g): the step is below the resolution of t or overflows", h, t,
+                t + h);
         return FMU_ERROR;
     }
     if (v->n_history > 0 && !(t > v->history_t[1])) {

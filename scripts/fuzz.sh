@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# Fuzzes the C API with libFuzzer (clang from Debian) for a bounded time, with AddressSanitizer
-# and UndefinedBehaviorSanitizer, and merges what it finds into tests/fuzz/corpus/api (which the
-# test suite replays). usage: scripts/fuzz.sh [SECONDS=60]
+# Fuzzes the C API (tests/fuzz/fuzz_api.cpp) and the FMU's FMI 2 set/step/get sequence
+# (tests/fuzz/fuzz_fmu.cpp) with libFuzzer (clang from Debian) for a bounded time each, with
+# AddressSanitizer and UndefinedBehaviorSanitizer, and merges what they find into
+# tests/fuzz/corpus/api and tests/fuzz/corpus/fmu (which the test suite replays).
+# usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|both=both]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
+targets=${2:-both}
 bash scripts/setup.sh
 # libomp: SUNDIALS's CMake package asks for OpenMP, which clang finds only with it.
 for p in clang libclang-rt-14-dev libomp-14-dev; do
@@ -21,9 +24,28 @@ cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
 cmake --build build-fuzz -j"$(nproc)" --target stewart
 clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include tests/fuzz/fuzz_api.cpp \
   build-fuzz/csrc/libstewart.a -o build-fuzz/fuzz_api
-mkdir -p build-fuzz/corpus
-./build-fuzz/fuzz_api -max_total_time="$seconds" -max_len=4096 -artifact_prefix=build-fuzz/ \
-  build-fuzz/corpus tests/fuzz/corpus/api
-# Keep only inputs that add coverage to the committed corpus.
-./build-fuzz/fuzz_api -merge=1 tests/fuzz/corpus/api build-fuzz/corpus
-echo "fuzz: corpus now $(ls tests/fuzz/corpus/api | wc -l) inputs"
+# The FMU target: the FMU's model code compiled in, FMI headers from fmpy (as fmu/CMakeLists.txt).
+fmi_headers=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
+mkdir -p build-fuzz/fmu_objs
+for f in model variables fmi2_functions fmi3_functions; do
+  clang -std=c11 $flags -Icsrc/include -Ifmu -I"$fmi_headers" -c fmu/$f.c -o build-fuzz/fmu_objs/$f.o
+done
+clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include -Ifmu -I"$fmi_headers" \
+  tests/fuzz/fuzz_fmu.cpp build-fuzz/fmu_objs/*.o build-fuzz/csrc/libstewart.a -o build-fuzz/fuzz_fmu
+
+# run TARGET CORPUS: fuzz for $seconds from the committed corpus, then keep only the inputs that
+# add coverage to it. Prints the number of executions.
+run() {
+  local target=$1 corpus=$2
+  mkdir -p build-fuzz/corpus_$target "$corpus"
+  ./build-fuzz/$target -max_total_time="$seconds" -max_len=4096 -artifact_prefix=build-fuzz/$target- \
+    -print_final_stats=1 build-fuzz/corpus_$target "$corpus" 2>build-fuzz/$target.log || {
+    tail -50 build-fuzz/$target.log; echo "fuzz: $target FAILED (artifact in build-fuzz/)"; exit 1; }
+  ./build-fuzz/$target -merge=1 "$corpus" build-fuzz/corpus_$target 2>>build-fuzz/$target.log
+  echo "fuzz: $target $(grep -m1 stat::number_of_executed_units build-fuzz/$target.log | awk '{print $2}') executions in ${seconds} s; corpus now $(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
+}
+case "$targets" in
+  api) run fuzz_api tests/fuzz/corpus/api ;;
+  fmu) run fuzz_fmu tests/fuzz/corpus/fmu ;;
+  *) run fuzz_api tests/fuzz/corpus/api; run fuzz_fmu tests/fuzz/corpus/fmu ;;
+esac
