@@ -1,8 +1,10 @@
 #include "core/linear_solver.hpp"
 
 #include <algorithm>
+#include <random>
 #include <set>
 
+#include "core/assembly.hpp"
 #include "core/dense_lu.hpp"
 
 namespace mbs {
@@ -17,6 +19,27 @@ void fixed_body_rows(const Mechanism &m, std::vector<int> &rows, std::vector<int
                 rows.push_back(m.first_row[k] + c);
                 cols.push_back(7 * m.joints[k].body_i + c);
             }
+}
+
+// Jacobian values at the reference configuration, and which are structurally nonzero: nonzero
+// at the reference or at random configurations (zeros at all of them are structural).
+void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::vector<char> &nonzero) {
+    std::vector<double> q(m.coordinates), values(m.values());
+    std::vector<DriverValue> drive(m.drivers);
+    for (size_t b = 0; b < m.bodies.size(); ++b)
+        for (int c = 0; c < 7; ++c) q[7 * b + c] = m.bodies[b].q_reference[c];
+    reference.assign(m.values(), 0.0);
+    assemble_jacobian(m, q.data(), drive.data(), reference.data());
+    nonzero.assign(m.values(), 0);
+    for (int t = 0; t < m.values(); ++t) nonzero[t] = reference[t] != 0.0;
+    std::mt19937 random(20201);  // fixed seed: the plan is reproducible
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    for (int sample = 0; sample < 3; ++sample) {
+        for (double &v : q) v += 0.3 * uniform(random);
+        for (DriverValue &d : drive) d.value = uniform(random);
+        assemble_jacobian(m, q.data(), drive.data(), values.data());
+        for (int t = 0; t < m.values(); ++t) nonzero[t] |= values[t] != 0.0;
+    }
 }
 
 }  // namespace
@@ -88,6 +111,40 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
     }
     if (leftover + static_cast<int>(p.border_rows.size()) != p.border) return nullptr;
 
+    // Pivot order and elimination program of each group, from sample values.
+    std::vector<double> reference;
+    std::vector<char> structural;
+    sample_jacobian(m, reference, structural);
+    {
+        std::vector<int> row_local(m.equations, -1), col_local(m.coordinates, -1);
+        for (int c = 0; c < p.border; ++c) col_local[p.border_cols[c]] = c;  // + n below
+        for (BlockGroup &g : p.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            const int width = ng + p.border;
+            std::vector<double> a(mg * width, 0.0);
+            std::vector<char> nz(mg * width, 0);
+            for (int r = 0; r < mg; ++r) row_local[g.rows[r]] = r;
+            std::vector<int> group_col(m.coordinates, -1);
+            for (int c = 0; c < ng; ++c) group_col[g.cols[c]] = c;
+            for (int t = 0; t < m.values(); ++t) {
+                const int row = m.pattern_row[t], col = m.pattern_col[t];
+                if (row_group[row] != &g - p.groups.data()) continue;
+                const int c = group_col[col] >= 0 ? group_col[col]
+                              : col_local[col] >= 0 ? ng + col_local[col] : -1;
+                if (c < 0) continue;  // a fixed body's column
+                a[row_local[row] * width + c] = reference[t];
+                nz[row_local[row] * width + c] = structural[t];
+            }
+            const std::vector<int> order = choose_pivot_order(a, nz, mg, ng, width, g.program);
+            g.has_program = !order.empty();
+            if (g.has_program) {
+                std::vector<int> rows(mg);
+                for (int r = 0; r < mg; ++r) rows[r] = g.rows[order[r]];
+                g.rows = rows;
+            }
+        }
+    }
+
     // Workspace layout and where each Jacobian value lands.
     for (BlockGroup &g : p.groups) {
         g.offset = p.workspace;
@@ -123,6 +180,8 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
             const int c = (group_of[col / 7] == g) ? local_col[col] : n + border_col[col];
             if (c < 0) return nullptr;
             dest = grp.offset + local_row[row] * (n + p.border) + c;
+            p.groups[g].value_index.push_back(t);
+            p.groups[g].value_dest.push_back(dest);
         } else {
             if (border_col[col] < 0) return nullptr;
             dest = p.border_offset + local_row[row] * p.border + border_col[col];
@@ -170,7 +229,7 @@ public:
         : m_(m), p_(*m.block_plan), ws_(p_.workspace), coupling_(p_.coupling_row.size()),
           pivot_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
-          coupling_fixed_row_(p_.coupling_row.size()) {
+          coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0) {
         // Fixed coordinate -> its identity row, for the transposed solve.
         std::vector<int> row_of(m.coordinates, -1);
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
@@ -192,7 +251,15 @@ public:
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             double *a = ws_.data() + g.offset;
-            if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+            const size_t gi = &g - p_.groups.data();
+            static_used_[gi] = g.has_program && lu_factor_static(a, g.program);
+            if (!static_used_[gi]) {
+                // The fixed pivot order is unsafe here: partial pivoting on fresh values.
+                std::fill(a, a + mg * (ng + nb), 0.0);
+                for (size_t v = 0; v < g.value_index.size(); ++v)
+                    ws_[g.value_dest[v]] = values[g.value_index[v]];
+                if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+            }
             for (int r = ng; r < mg; ++r)
                 std::copy(a + r * (ng + nb) + ng, a + (r + 1) * (ng + nb),
                           border + (g.first_leftover + r - ng) * nb);
@@ -210,7 +277,10 @@ public:
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
-            lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
+            if (static_used_[&g - p_.groups.data()])
+                lu_forward_static(ws_.data() + g.offset, g.program, t);
+            else
+                lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
             for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r];
             t += mg;
         }
@@ -223,7 +293,12 @@ public:
         t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            lu_backward(ws_.data() + g.offset, ng, ng + nb, t, border_work_.data(), group_x_.data());
+            if (static_used_[&g - p_.groups.data()])
+                lu_backward_static(ws_.data() + g.offset, g.program, t, border_work_.data(),
+                                   group_x_.data());
+            else
+                lu_backward(ws_.data() + g.offset, ng, ng + nb, t, border_work_.data(),
+                            group_x_.data());
             for (int c = 0; c < ng; ++c) x[g.cols[c]] = group_x_[c];
             t += mg;
         }
@@ -238,11 +313,15 @@ public:
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             const double *a = ws_.data() + g.offset;
             for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
-            lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
-            for (int k = 0; k < ng; ++k) {
-                const double mu = t[k];
-                const double *w = a + k * (ng + nb) + ng;
-                for (int b = 0; b < nb; ++b) border_[b] -= w[b] * mu;
+            if (static_used_[&g - p_.groups.data()]) {
+                lu_forward_transposed_static(a, g.program, group_x_.data(), t, border_.data());
+            } else {
+                lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
+                for (int k = 0; k < ng; ++k) {
+                    const double mu = t[k];
+                    const double *w = a + k * (ng + nb) + ng;
+                    for (int b = 0; b < nb; ++b) border_[b] -= w[b] * mu;
+                }
             }
             t += mg;
         }
@@ -253,8 +332,11 @@ public:
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             for (int r = ng; r < mg; ++r) t[r] = border_work_[g.first_leftover + r - ng];
-            lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
-                                   pivot_.data() + g.pivot_offset, t);
+            if (static_used_[&g - p_.groups.data()])
+                lu_backward_transposed_static(ws_.data() + g.offset, g.program, t);
+            else
+                lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
+                                       pivot_.data() + g.pivot_offset, t);
             for (int r = 0; r < mg; ++r) x[g.rows[r]] = t[r];
             t += mg;
         }
@@ -274,6 +356,7 @@ private:
     std::vector<int> pivot_, border_pivot_;
     std::vector<double> rhs_, group_t_, border_, border_work_, group_x_;
     std::vector<int> coupling_fixed_row_;
+    std::vector<char> static_used_;  // per group: factored with its fixed pivot order
 };
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/mechanism.hpp"
+#include "core/sparse_lu.hpp"
 
 namespace mbs {
 
@@ -22,6 +23,9 @@ struct BlockGroup {
     int offset = 0;               // of its m x (n + border) row-major block in the workspace
     int first_leftover = 0;       // its first row in the border system
     int pivot_offset = 0;
+    bool has_program = false;     // rows are in a chosen pivot order with this program
+    EliminationProgram program;
+    std::vector<int> value_index, value_dest;  // its Jacobian values (for a re-scatter)
 };
 
 struct BlockPlan {
