@@ -235,17 +235,18 @@ public:
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
         for (size_t k = 0; k < p_.coupling_col.size(); ++k)
             coupling_fixed_row_[k] = row_of[p_.coupling_col[k]];
+        coupling_from_.resize(p_.coupling_row.size());
+        for (int t = 0; t < m.values(); ++t) {
+            const int d = p_.value_dest[t];
+            if (d >= 0) scatter_from_.push_back(t), scatter_to_.push_back(d);
+            if (d <= -2) coupling_from_[-2 - d] = t;
+        }
     }
 
     bool factor(const double *values) override {
         std::fill(ws_.begin(), ws_.end(), 0.0);
-        for (int t = 0; t < m_.values(); ++t) {
-            const int d = p_.value_dest[t];
-            if (d >= 0)
-                ws_[d] = values[t];
-            else if (d <= -2)
-                coupling_[-2 - d] = values[t];
-        }
+        for (size_t v = 0; v < scatter_from_.size(); ++v) ws_[scatter_to_[v]] = values[scatter_from_[v]];
+        for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
         for (const BlockGroup &g : p_.groups) {
@@ -357,6 +358,7 @@ private:
     std::vector<double> rhs_, group_t_, border_, border_work_, group_x_;
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
+    std::vector<int> scatter_from_, scatter_to_, coupling_from_;  // Jacobian value -> workspace
 };
 
 }  // namespace

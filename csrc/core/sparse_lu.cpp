@@ -56,6 +56,12 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
     }
     p.below_start.push_back(static_cast<int>(p.below.size()));
     p.right_start.push_back(static_cast<int>(p.right.size()));
+    // Columns were pushed in increasing order: the carried ones close each pivot's list.
+    for (int k = 0; k < n; ++k) {
+        int s = p.right_start[k];
+        while (s < p.right_start[k + 1] && p.right[s] < n) ++s;
+        p.right_carried.push_back(s);
+    }
     std::vector<int> position(m);
     for (int r = 0; r < m; ++r) position[order[r]] = r;
     for (int &i : p.below) i = position[i];
@@ -99,10 +105,11 @@ void lu_backward_static(const double *a, const EliminationProgram &p, const doub
     for (int k = p.n - 1; k >= 0; --k) {
         const double *row = a + k * p.width;
         double sum = t[k];
-        for (int s = p.right_start[k]; s < p.right_start[k + 1]; ++s) {
-            const int c = p.right[s];
-            sum -= row[c] * (c < p.n ? x[c] : y[c - p.n]);
-        }
+        const int split = p.right_carried[k];
+        for (int s = p.right_start[k]; s < split; ++s) sum -= row[p.right[s]] * x[p.right[s]];
+        if (y)
+            for (int s = split; s < p.right_start[k + 1]; ++s)
+                sum -= row[p.right[s]] * y[p.right[s] - p.n];
         x[k] = sum / row[k];
     }
 }
@@ -113,13 +120,10 @@ void lu_forward_transposed_static(const double *a, const EliminationProgram &p, 
     for (int k = 0; k < p.n; ++k) {
         const double *row = a + k * p.width;
         const double mk = (mu[k] /= row[k]);
-        for (int s = p.right_start[k]; s < p.right_start[k + 1]; ++s) {
-            const int c = p.right[s];
-            if (c < p.n)
-                mu[c] -= row[c] * mk;
-            else
-                carried[c - p.n] -= row[c] * mk;
-        }
+        const int split = p.right_carried[k];
+        for (int s = p.right_start[k]; s < split; ++s) mu[p.right[s]] -= row[p.right[s]] * mk;
+        for (int s = split; s < p.right_start[k + 1]; ++s)
+            carried[p.right[s] - p.n] -= row[p.right[s]] * mk;
     }
 }
 

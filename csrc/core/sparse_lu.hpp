@@ -13,6 +13,7 @@ struct EliminationProgram {
     int m = 0, n = 0, width = 0;
     std::vector<int> below_start, below;  // per pivot k: rows i > k with a structural a(i, k)
     std::vector<int> right_start, right;  // per pivot k: columns c > k with a structural a(k, c)
+    std::vector<int> right_carried;       // per pivot k: where its carried columns (c >= n) start
 };
 
 // Chooses the pivot order on the m x width row-major sample `a` (overwritten) with structure
