@@ -33,6 +33,17 @@ void assemble_jacobian(const Mechanism &m, const double *q, const DriverValue *d
     }
 }
 
+void assemble_residual_and_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
+                                    double *phi, double *values) {
+    for (size_t k = 0; k < m.joints.size(); ++k) {
+        double *block = values + m.first_value[k];
+        const int n = joint_type(m.joints[k].type).equations;
+        double *block_j = m.joints[k].body_j >= 0 ? block + 7 * n : nullptr;
+        evaluate_joint(m, static_cast<int>(k), q, nullptr, drv,
+                       JointOutput{phi + m.first_row[k], block, block_j, nullptr, nullptr});
+    }
+}
+
 void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv, double *phi_t) {
     for (size_t k = 0; k < m.joints.size(); ++k) {
         const JointTypeInfo &info = joint_type(m.joints[k].type);

@@ -61,6 +61,7 @@ int jacobian(N_Vector u, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vector) 
     const Mechanism &m = s.mechanism;
     assemble_jacobian(m, N_VGetArrayPointer(u), s.drive.data(), s.values.data());
     s.factor_current = false;
+    s.values_current = false;  // at an iterate, not (yet) at the solution
     if (im.dense)
         for (int t = 0; t < m.values(); ++t)
             SM_ELEMENT_D(J, m.pattern_row[t], m.pattern_col[t]) = s.values[t];
@@ -198,10 +199,16 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     std::copy(s.q.begin(), s.q.end(), u);
     // KINSOL's own first test (initial guess accepted if ||F|| <= 0.01 tolerance), done here so
     // a step that needs no iteration does not pay for KINSOL's set-up.
-    residual(im.u, im.scale_work(), &im);
+    // The Jacobian comes along (it shares most of the work): if the guess is accepted it is the
+    // one velocities, accelerations and multipliers need.
+    assemble_residual_and_jacobian(s.mechanism, u, s.drive.data(), N_VGetArrayPointer(im.work),
+                                   s.values.data());
+    im.last_residual = max_norm(N_VGetArrayPointer(im.work), n);
+    s.values_current = true;
     long iterations = 0;
     if (!(im.last_residual <= 0.01 * o.tolerance)) {
         im.kinsol_message[0] = '\0';
+        s.values_current = false;
         flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
         KINGetNumNonlinSolvIters(im.kinsol, &iterations);
         // With no line search every evaluated iterate is accepted: the last residual is the
