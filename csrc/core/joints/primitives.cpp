@@ -48,25 +48,32 @@ void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local
     }
 }
 
-void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
-          const DriverValue *target) {
-    const double *vi = rate_source(in, true, w.out), *vj = rate_source(in, false, w.out);
-    const Attached a = attach(in.q_i, vi, a_local);
+Separation separation(const JointInput &in, const JointOutput &out) {
+    const double *vi = rate_source(in, true, out), *vj = rate_source(in, false, out);
     const Attached ui = attach(in.q_i, vi, in.def.point_i);
     const Attached uj = attach(in.q_j, vj, in.def.point_j);
-    const Vec3 d = position(in.q_j) + uj.world - position(in.q_i) - ui.world;
-    w.phi(row, a.world.dot(d) - (target ? target->value : 0.0));
+    Separation s;
+    s.d = position(in.q_j) + uj.world - position(in.q_i) - ui.world;
+    if (out.gamma) {
+        s.rate = velocity(vj) + uj.rate - velocity(vi) - ui.rate;
+        s.quad = uj.quad - ui.quad;
+    }
+    return s;
+}
+
+void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
+          const Separation &sep, const DriverValue *target) {
+    const Attached a = attach(in.q_i, rate_source(in, true, w.out), a_local);
+    w.phi(row, a.world.dot(sep.d) - (target ? target->value : 0.0));
     w.phi_t(row, target ? -target->rate : 0.0);
     if (w.out.gamma) {
-        const Vec3 d_rate = velocity(vj) + uj.rate - velocity(vi) - ui.rate;
-        const Vec3 d_quad = uj.quad - ui.quad;
-        double gamma = -(a.quad.dot(d) + 2.0 * a.rate.dot(d_rate) + a.world.dot(d_quad));
+        double gamma = -(a.quad.dot(sep.d) + 2.0 * a.rate.dot(sep.rate) + a.world.dot(sep.quad));
         if (target) gamma += target->accel;  // -Phi_tt
         w.gamma(row, gamma);
     }
     if (w.want_jac()) {
         put(w.jac_i(row), -a.world,
-            row_of_rotate_jacobian(in.q_i + 3, a_local, d) -
+            row_of_rotate_jacobian(in.q_i + 3, a_local, sep.d) -
                 row_of_rotate_jacobian(in.q_i + 3, in.def.point_i, a.world));
         put(w.jac_j(row), a.world, row_of_rotate_jacobian(in.q_j + 3, in.def.point_j, a.world));
     }

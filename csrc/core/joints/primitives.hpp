@@ -45,9 +45,15 @@ inline void put(double *row7, const Vec3 &r, const Eigen::Matrix<double, 1, 4> &
 void point_coincidence(const JointInput &in, const RowWriter &w, int row);
 // (A_i a)^T (A_j b) = 0.
 void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Vec3 &b);
-// (A_i a)^T d = 0 with d = r_j + A_j u_j - r_i - A_i u_i; `target` (value, rate, accel) turns it
-// into the driver (A_i a)^T d - f(t) = 0.
-void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a,
+// The vector between the joint's two points, d = r_j + A_j u_j - r_i - A_i u_i, with its rate and
+// velocity-quadratic part: computed once for all the dot-2 rows of a joint.
+struct Separation {
+    Vec3 d, rate, quad;
+};
+Separation separation(const JointInput &in, const JointOutput &out);
+
+// (A_i a)^T d = 0; `target` (value, rate, accel) turns it into the driver (A_i a)^T d - f(t) = 0.
+void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Separation &d,
           const DriverValue *target = nullptr);
 
 }  // namespace mbs
