@@ -27,11 +27,15 @@ inline Mat3 rotation(const double *p) {
            2.0 * e0 * skew(e);
 }
 
-// A(p) u without forming A.
+// A(p) u without forming A (scalar code: this is the innermost operation of every joint).
 inline Vec3 rotate(const double *p, const Vec3 &u) {
-    const double e0 = p[0];
-    const Vec3 e(p[1], p[2], p[3]);
-    return (e0 * e0 - e.squaredNorm()) * u + 2.0 * e * e.dot(u) + 2.0 * e0 * e.cross(u);
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double s = e0 * e0 - (e1 * e1 + e2 * e2 + e3 * e3);
+    const double eu2 = 2.0 * (e1 * u[0] + e2 * u[1] + e3 * u[2]);
+    const double c0 = 2.0 * e0;
+    return Vec3(s * u[0] + eu2 * e1 + c0 * (e2 * u[2] - e3 * u[1]),
+                s * u[1] + eu2 * e2 + c0 * (e3 * u[0] - e1 * u[2]),
+                s * u[2] + eu2 * e3 + c0 * (e1 * u[1] - e2 * u[0]));
 }
 
 // B(p, u) = d(A(p) u)/dp.
@@ -48,9 +52,14 @@ inline Mat34 rotate_jacobian(const double *p, const Vec3 &u) {
 // The symmetric bilinear form behind A: C(p, p) u = A(p) u, so d(A u)/dt = 2 C(p, p_dot) u and
 // the velocity-quadratic part of d2(A u)/dt2 is 2 C(p_dot, p_dot) u = 2 A(p_dot) u.
 inline Vec3 bilinear(const double *p, const double *q, const Vec3 &u) {
-    const Vec3 ep(p[1], p[2], p[3]), eq(q[1], q[2], q[3]);
-    return (p[0] * q[0] - ep.dot(eq)) * u + ep * eq.dot(u) + eq * ep.dot(u) +
-           (p[0] * eq + q[0] * ep).cross(u);
+    const double s = p[0] * q[0] - (p[1] * q[1] + p[2] * q[2] + p[3] * q[3]);
+    const double qu = q[1] * u[0] + q[2] * u[1] + q[3] * u[2];
+    const double pu = p[1] * u[0] + p[2] * u[1] + p[3] * u[2];
+    const double w1 = p[0] * q[1] + q[0] * p[1], w2 = p[0] * q[2] + q[0] * p[2],
+                 w3 = p[0] * q[3] + q[0] * p[3];
+    return Vec3(s * u[0] + p[1] * qu + q[1] * pu + (w2 * u[2] - w3 * u[1]),
+                s * u[1] + p[2] * qu + q[2] * pu + (w3 * u[0] - w1 * u[2]),
+                s * u[2] + p[3] * qu + q[3] * pu + (w1 * u[1] - w2 * u[0]));
 }
 
 // v^T B(p, u) as a row, without forming B.

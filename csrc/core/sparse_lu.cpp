@@ -75,8 +75,10 @@ bool lu_factor_static(double *a, const EliminationProgram &p) {
         double *row_k = a + k * w;
         const double pivot = row_k[k];
         double column_max = 0;
-        for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t)
-            column_max = std::fmax(column_max, std::fabs(a[below[t] * w + k]));
+        for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
+            const double v = std::fabs(a[below[t] * w + k]);
+            if (v > column_max) column_max = v;
+        }
         if (!(std::fabs(pivot) > kRuntimeThreshold * column_max) || pivot == 0.0) return false;
         const double inv = 1.0 / pivot;
         const int r0 = p.right_start[k], r1 = p.right_start[k + 1];
