@@ -38,14 +38,25 @@ inline Vec3 rotate(const double *p, const Vec3 &u) {
                 s * u[2] + eu2 * e3 + c0 * (e1 * u[1] - e2 * u[0]));
 }
 
-// B(p, u) = d(A(p) u)/dp.
+// B(p, u) = d(A(p) u)/dp: column 0 is 2 (e0 u + e x u); columns 1..3 are
+// 2 (e u^T - u e^T + (e.u) I - e0 skew(u)).
 inline Mat34 rotate_jacobian(const double *p, const Vec3 &u) {
-    const double e0 = p[0];
-    const Vec3 e(p[1], p[2], p[3]);
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double u0 = u[0], u1 = u[1], u2 = u[2];
+    const double eu = e1 * u0 + e2 * u1 + e3 * u2;
     Mat34 B;
-    B.col(0) = 2.0 * (e0 * u + e.cross(u));
-    B.rightCols<3>() = 2.0 * (e * u.transpose() - u * e.transpose() +
-                              e.dot(u) * Mat3::Identity() - e0 * skew(u));
+    B(0, 0) = 2.0 * (e0 * u0 + e2 * u2 - e3 * u1);
+    B(1, 0) = 2.0 * (e0 * u1 + e3 * u0 - e1 * u2);
+    B(2, 0) = 2.0 * (e0 * u2 + e1 * u1 - e2 * u0);
+    B(0, 1) = 2.0 * (e1 * u0 - u0 * e1 + eu);
+    B(0, 2) = 2.0 * (e1 * u1 - u0 * e2 + e0 * u2);
+    B(0, 3) = 2.0 * (e1 * u2 - u0 * e3 - e0 * u1);
+    B(1, 1) = 2.0 * (e2 * u0 - u1 * e1 - e0 * u2);
+    B(1, 2) = 2.0 * (e2 * u1 - u1 * e2 + eu);
+    B(1, 3) = 2.0 * (e2 * u2 - u1 * e3 + e0 * u0);
+    B(2, 1) = 2.0 * (e3 * u0 - u2 * e1 + e0 * u1);
+    B(2, 2) = 2.0 * (e3 * u1 - u2 * e2 - e0 * u0);
+    B(2, 3) = 2.0 * (e3 * u2 - u2 * e3 + eu);
     return B;
 }
 
