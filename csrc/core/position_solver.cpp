@@ -210,7 +210,10 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
         im.kinsol_message[0] = '\0';
         s.values_current = false;
         flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
-        KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        if (stats_flag != KIN_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // With no line search every evaluated iterate is accepted: the last residual is the
         // final one's. A failure may have stopped elsewhere, so recompute then.
         if (flag < 0) residual(im.u, im.scale_work(), &im);
