@@ -4,16 +4,33 @@
 
 namespace mbs {
 
+namespace {
+
+void make_frame(const double *q, const double *v, BodyFrame &f) {
+    f.A = rotation(q + 3);
+    if (v) {
+        f.rate = 2.0 * bilinear_matrix(q + 3, v + 3);
+        f.quad = 2.0 * rotation(v + 3);
+    }
+}
+
+}  // namespace
+
 void evaluate_joint(const Mechanism &m, int k, const double *q, const double *q_dot,
                     const DriverValue *drv, const JointOutput &out) {
     const JointDef &j = m.joints[k];
-    const JointInput in{j,
-                        q + 7 * j.body_i,
-                        j.body_j >= 0 ? q + 7 * j.body_j : nullptr,
-                        q_dot ? q_dot + 7 * j.body_i : nullptr,
-                        (q_dot && j.body_j >= 0) ? q_dot + 7 * j.body_j : nullptr,
-                        j.driver >= 0 ? drv + j.driver : nullptr};
-    joint_type(j.type).evaluate(in, out);
+    const JointTypeInfo &info = joint_type(j.type);
+    const double *qi = q + 7 * j.body_i, *qj = j.body_j >= 0 ? q + 7 * j.body_j : nullptr;
+    const double *vi = q_dot ? q_dot + 7 * j.body_i : nullptr;
+    const double *vj = (q_dot && j.body_j >= 0) ? q_dot + 7 * j.body_j : nullptr;
+    BodyFrame fi, fj;
+    if (info.bodies == 2) {
+        make_frame(qi, vi, fi);
+        make_frame(qj, vj, fj);
+    }
+    const JointInput in{j, qi, qj, vi, vj, j.driver >= 0 ? drv + j.driver : nullptr,
+                        info.bodies == 2 ? &fi : nullptr, info.bodies == 2 ? &fj : nullptr};
+    info.evaluate(in, out);
 }
 
 void assemble_residual(const Mechanism &m, const double *q, const DriverValue *drv, double *phi) {

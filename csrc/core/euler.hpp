@@ -21,10 +21,13 @@ inline Mat3 skew(const Vec3 &v) {
 
 // A(p) = (e0^2 - e.e) I + 2 e e^T + 2 e0 skew(e).
 inline Mat3 rotation(const double *p) {
-    const double e0 = p[0];
-    const Vec3 e(p[1], p[2], p[3]);
-    return (e0 * e0 - e.squaredNorm()) * Mat3::Identity() + 2.0 * e * e.transpose() +
-           2.0 * e0 * skew(e);
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double s = e0 * e0 - (e1 * e1 + e2 * e2 + e3 * e3);
+    Mat3 A;
+    A(0, 0) = s + 2 * e1 * e1, A(0, 1) = 2 * (e1 * e2 - e0 * e3), A(0, 2) = 2 * (e1 * e3 + e0 * e2);
+    A(1, 0) = 2 * (e2 * e1 + e0 * e3), A(1, 1) = s + 2 * e2 * e2, A(1, 2) = 2 * (e2 * e3 - e0 * e1);
+    A(2, 0) = 2 * (e3 * e1 - e0 * e2), A(2, 1) = 2 * (e3 * e2 + e0 * e1), A(2, 2) = s + 2 * e3 * e3;
+    return A;
 }
 
 // A(p) u without forming A (scalar code: this is the innermost operation of every joint).
@@ -100,6 +103,18 @@ inline Mat34 E_matrix(const double *p) {
     E.col(0) = -e;
     E.rightCols<3>() = p[0] * Mat3::Identity() + skew(e);
     return E;
+}
+
+// C(p, q) as a matrix: C(p, q) u = bilinear(p, q, u).
+inline Mat3 bilinear_matrix(const double *p, const double *q) {
+    const Vec3 ep(p[1], p[2], p[3]), eq(q[1], q[2], q[3]);
+    const Vec3 w = p[0] * eq + q[0] * ep;
+    Mat3 C = ep * eq.transpose() + eq * ep.transpose();
+    const double s = p[0] * q[0] - ep.dot(eq);
+    C(0, 0) += s, C(1, 1) += s, C(2, 2) += s;
+    C(0, 1) -= w.z(), C(0, 2) += w.y(), C(1, 0) += w.z();
+    C(1, 2) -= w.x(), C(2, 0) -= w.y(), C(2, 1) += w.x();
+    return C;
 }
 
 // Euler parameters of a rotation matrix (Shepperd), sign chosen with e0 >= 0.

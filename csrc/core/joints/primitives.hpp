@@ -15,12 +15,12 @@ struct Attached {
     Vec3 quad;   // velocity-quadratic part of d2(A u)/dt2: 2 A(p_dot) u
 };
 
-inline Attached attach(const double *q, const double *v, const Vec3 &u) {
+inline Attached attach(const BodyFrame &f, bool rates, const Vec3 &u) {
     Attached a;
-    a.world = rotate(q + 3, u);
-    if (v) {
-        a.rate = 2.0 * bilinear(q + 3, v + 3, u);
-        a.quad = 2.0 * rotate(v + 3, u);
+    a.world.noalias() = f.A * u;
+    if (rates) {
+        a.rate.noalias() = f.rate * u;
+        a.quad.noalias() = f.quad * u;
     }
     return a;
 }
