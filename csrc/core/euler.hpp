@@ -107,13 +107,13 @@ inline Mat34 E_matrix(const double *p) {
 
 // C(p, q) as a matrix: C(p, q) u = bilinear(p, q, u).
 inline Mat3 bilinear_matrix(const double *p, const double *q) {
-    const Vec3 ep(p[1], p[2], p[3]), eq(q[1], q[2], q[3]);
-    const Vec3 w = p[0] * eq + q[0] * ep;
-    Mat3 C = ep * eq.transpose() + eq * ep.transpose();
-    const double s = p[0] * q[0] - ep.dot(eq);
-    C(0, 0) += s, C(1, 1) += s, C(2, 2) += s;
-    C(0, 1) -= w.z(), C(0, 2) += w.y(), C(1, 0) += w.z();
-    C(1, 2) -= w.x(), C(2, 0) -= w.y(), C(2, 1) += w.x();
+    const double p1 = p[1], p2 = p[2], p3 = p[3], q1 = q[1], q2 = q[2], q3 = q[3];
+    const double w1 = p[0] * q1 + q[0] * p1, w2 = p[0] * q2 + q[0] * p2, w3 = p[0] * q3 + q[0] * p3;
+    const double s = p[0] * q[0] - (p1 * q1 + p2 * q2 + p3 * q3);
+    Mat3 C;
+    C(0, 0) = s + 2 * p1 * q1, C(0, 1) = p1 * q2 + q1 * p2 - w3, C(0, 2) = p1 * q3 + q1 * p3 + w2;
+    C(1, 0) = p2 * q1 + q2 * p1 + w3, C(1, 1) = s + 2 * p2 * q2, C(1, 2) = p2 * q3 + q2 * p3 - w1;
+    C(2, 0) = p3 * q1 + q3 * p1 - w2, C(2, 1) = p3 * q2 + q3 * p2 + w1, C(2, 2) = s + 2 * p3 * q3;
     return C;
 }
 

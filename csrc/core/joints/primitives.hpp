@@ -15,12 +15,19 @@ struct Attached {
     Vec3 quad;   // velocity-quadratic part of d2(A u)/dt2: 2 A(p_dot) u
 };
 
+// M u written out: Eigen does not inline this small product at -O2.
+inline Vec3 times(const Mat3 &M, const Vec3 &u) {
+    return Vec3(M(0, 0) * u[0] + M(0, 1) * u[1] + M(0, 2) * u[2],
+                M(1, 0) * u[0] + M(1, 1) * u[1] + M(1, 2) * u[2],
+                M(2, 0) * u[0] + M(2, 1) * u[1] + M(2, 2) * u[2]);
+}
+
 inline Attached attach(const BodyFrame &f, bool rates, const Vec3 &u) {
     Attached a;
-    a.world.noalias() = f.A * u;
+    a.world = times(f.A, u);
     if (rates) {
-        a.rate.noalias() = f.rate * u;
-        a.quad.noalias() = f.quad * u;
+        a.rate = times(f.rate, u);
+        a.quad = times(f.quad, u);
     }
     return a;
 }
