@@ -137,6 +137,7 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
             }
             const std::vector<int> order = choose_pivot_order(a, nz, mg, ng, width, g.program);
             g.has_program = !order.empty();
+            g.structure = nz;
             if (g.has_program) {
                 std::vector<int> rows(mg);
                 for (int r = 0; r < mg; ++r) rows[r] = g.rows[order[r]];
@@ -188,6 +189,15 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
         }
         p.value_dest.push_back(dest);
     }
+    // Fill positions: zeroed before each refactorisation (nothing else is ever written there).
+    for (BlockGroup &g : p.groups) {
+        if (!g.has_program) continue;
+        const int width = static_cast<int>(g.cols.size()) + p.border;
+        std::vector<char> scattered(g.rows.size() * width, 0);
+        for (int d : g.value_dest) scattered[d - g.offset] = 1;
+        for (size_t i = 0; i < scattered.size(); ++i)
+            if (g.structure[i] && !scattered[i]) g.fill.push_back(g.offset + static_cast<int>(i));
+    }
     return plan;
 }
 
@@ -229,7 +239,8 @@ public:
         : m_(m), p_(*m.block_plan), ws_(p_.workspace), coupling_(p_.coupling_row.size()),
           pivot_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
-          coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0) {
+          coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0),
+          dirty_(p_.groups.size(), 0) {
         // Fixed coordinate -> its identity row, for the transposed solve.
         std::vector<int> row_of(m.coordinates, -1);
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
@@ -244,7 +255,19 @@ public:
     }
 
     bool factor(const double *values) override {
-        std::fill(ws_.begin(), ws_.end(), 0.0);
+        // Blocks factored by their program keep zeros wherever the program does not write; only
+        // the fill needs clearing. Others (and the border system) are cleared whole.
+        for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
+            const BlockGroup &g = p_.groups[gi];
+            if (g.has_program && !dirty_[gi]) {
+                for (int f : g.fill) ws_[f] = 0.0;
+            } else {
+                const size_t size = g.rows.size() * (g.cols.size() + p_.border);
+                std::fill(ws_.begin() + g.offset, ws_.begin() + g.offset + size, 0.0);
+                dirty_[gi] = 0;
+            }
+        }
+        std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
         for (size_t v = 0; v < scatter_from_.size(); ++v) ws_[scatter_to_[v]] = values[scatter_from_[v]];
         for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
         const int nb = p_.border;
@@ -259,6 +282,7 @@ public:
                 std::fill(a, a + mg * (ng + nb), 0.0);
                 for (size_t v = 0; v < g.value_index.size(); ++v)
                     ws_[g.value_dest[v]] = values[g.value_index[v]];
+                dirty_[gi] = 1;
                 if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
             }
             for (int r = ng; r < mg; ++r)
@@ -358,6 +382,7 @@ private:
     std::vector<double> rhs_, group_t_, border_, border_work_, group_x_;
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
+    std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
     std::vector<int> scatter_from_, scatter_to_, coupling_from_;  // Jacobian value -> workspace
 };
 

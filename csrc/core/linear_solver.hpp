@@ -26,6 +26,8 @@ struct BlockGroup {
     bool has_program = false;     // rows are in a chosen pivot order with this program
     EliminationProgram program;
     std::vector<int> value_index, value_dest;  // its Jacobian values (for a re-scatter)
+    std::vector<char> structure;  // m x width, in pivot order: structural nonzeros and fill
+    std::vector<int> fill;        // workspace indices the program fills but no value lands on
 };
 
 struct BlockPlan {
