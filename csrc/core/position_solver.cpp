@@ -223,6 +223,9 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     s.stats.iterations = static_cast<int>(iterations);
     s.stats.residual = im.last_residual;
     bool finite = std::isfinite(im.last_residual);
+    if (iterations == 0) return finite ? STEWART_OK  // q is the accepted guess
+                                       : set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                                                     "the residual at the initial guess is not finite");
     for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
     if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)

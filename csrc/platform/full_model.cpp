@@ -191,13 +191,12 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
         auto point = [](const double *q, const Vec3 &u) {
             return Vec3(Eigen::Map<const Vec3>(q) + mbs::rotate(q + 3, u));
         };
+        // d(A u)/dt = B(p, u) p_dot = 2 C(p, p_dot) u; d2(A u)/dt2 adds 2 A(p_dot) u.
         auto rate = [](const double *q, const double *v, const Vec3 &u) {
-            return Vec3(Eigen::Map<const Vec3>(v) +
-                        mbs::rotate_jacobian(q + 3, u) * Eigen::Map<const Vec4>(v + 3));
+            return Vec3(Eigen::Map<const Vec3>(v) + 2.0 * mbs::bilinear(q + 3, v + 3, u));
         };
         auto accel = [](const double *q, const double *v, const double *a, const Vec3 &u) {
-            return Vec3(Eigen::Map<const Vec3>(a) +
-                        mbs::rotate_jacobian(q + 3, u) * Eigen::Map<const Vec4>(a + 3) +
+            return Vec3(Eigen::Map<const Vec3>(a) + 2.0 * mbs::bilinear(q + 3, a + 3, u) +
                         2.0 * mbs::rotate(v + 3, u));
         };
         const Vec3 d = point(qp, up) - point(qc, uc);
