@@ -29,7 +29,7 @@ static void random_configuration(double *q) {
     }
 }
 
-enum kind { SPHERICAL, CARDAN, CYLINDRICAL, REVOLUTE, PRISMATIC, WELD, DISTANCE, ANGLE, POSE };
+enum kind { SPHERICAL, CARDAN, CYLINDRICAL, REVOLUTE, PRISMATIC, WELD, DISTANCE, ANGLE, POSE, FIXED };
 
 /* Two free bodies, the joint under test, and coordinate drivers to make the system square. */
 static mbs_model *build(enum kind k, int *drivers) {
@@ -58,13 +58,14 @@ static mbs_model *build(enum kind k, int *drivers) {
             n = mbs_add_angle_driver(m, joint, &slot) >= 0 ? 6 : -1;
             break;
         case POSE: n = mbs_add_pose_driver(m, bj, &slot) >= 0 ? 6 : -1; break; /* 7 - its normalisation */
+        case FIXED: n = mbs_fix_body(m, bi) == STEWART_OK ? 6 : -1; break;     /* 7 - its normalisation */
     }
     TEST_ASSERT_TRUE_MESSAGE(n > 0, mbs_model_message(m));
     *drivers = (slot >= 0) ? (k == POSE ? 7 : 1) : 0;
     /* Fill with coordinate drivers: 2 normalisations + n equations + fill = 14. */
     for (int c = 0; c < 12 - n; ++c) {
         int s;
-        TEST_ASSERT_TRUE(mbs_add_coordinate_driver(m, c < 7 ? bi : bj, c % 7, &s) >= 0);
+        TEST_ASSERT_TRUE(mbs_add_coordinate_driver(m, (c < 7 && k != FIXED) ? bi : bj, c % 7, &s) >= 0);
         ++*drivers;
     }
     char msg[STEWART_MESSAGE_SIZE];
@@ -144,6 +145,7 @@ static void test_weld(void) { check_kind(WELD); }
 static void test_distance_driver(void) { check_kind(DISTANCE); }
 static void test_angle_driver(void) { check_kind(ANGLE); }
 static void test_pose_driver(void) { check_kind(POSE); }
+static void test_fixed_body(void) { check_kind(FIXED); }
 
 /* A model whose equation count does not match its coordinates is refused with a message. */
 static void test_non_square_refused(void) {
@@ -169,6 +171,7 @@ int main(void) {
     RUN_TEST(test_distance_driver);
     RUN_TEST(test_angle_driver);
     RUN_TEST(test_pose_driver);
+    RUN_TEST(test_fixed_body);
     RUN_TEST(test_non_square_refused);
     return UNITY_END();
 }
