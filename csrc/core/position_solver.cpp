@@ -29,6 +29,7 @@ struct PositionSolver::Impl {
     void *kinsol = nullptr;
     char kinsol_message[STEWART_MESSAGE_SIZE] = "";
     double last_residual = 0;  // max-norm of the last residual evaluated (INFINITY if not finite)
+    bool values_at_guess = false;  // state.values hold Phi_q at state.q (the initial guess)
     explicit Impl(State &s) : state(s) {}
 };
 
@@ -59,7 +60,11 @@ int jacobian(N_Vector u, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vector) 
     Impl &im = *static_cast<Impl *>(user);
     State &s = im.state;
     const Mechanism &m = s.mechanism;
-    assemble_jacobian(m, N_VGetArrayPointer(u), s.drive.data(), s.values.data());
+    const double *ud = N_VGetArrayPointer(u);
+    // The first iteration's Jacobian is the one evaluated with the residual at the guess (q).
+    const bool at_guess = im.values_at_guess && std::equal(ud, ud + m.coordinates, s.q.begin());
+    if (!at_guess) assemble_jacobian(m, ud, s.drive.data(), s.values.data());
+    im.values_at_guess = false;
     s.factor_current = false;
     s.values_current = false;  // at an iterate, not (yet) at the solution
     if (im.dense)
@@ -209,6 +214,7 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     if (!(im.last_residual <= 0.01 * o.tolerance)) {
         im.kinsol_message[0] = '\0';
         s.values_current = false;
+        im.values_at_guess = true;
         flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
         const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
         if (stats_flag != KIN_SUCCESS)
