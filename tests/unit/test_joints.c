@@ -159,6 +159,39 @@ static void test_non_square_refused(void) {
     mbs_model_free(m);
 }
 
+/* Bad input is refused with a status and a message naming the variable and its value. */
+static void test_bad_input_named(void) {
+    mbs_model *m = mbs_model_create();
+    double I[3] = {1, 1, 1}, q[7] = {0, 0, 0, 1, 0, 0, 0}, zero[3] = {0, 0, 0};
+    TEST_ASSERT_EQUAL(STEWART_ERR_PARAMETER, mbs_add_body(m, "bad", -2.0, I, q));
+    TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "mass of body bad = -2"));
+    double q_bad[7] = {0, 0, 0, 2, 0, 0, 0};
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_body(m, "p", 1.0, I, q_bad));
+    TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "norm^2 4"));
+    const int a = mbs_add_body(m, "a", 1.0, I, q), b = mbs_add_body(m, "b", 1.0, I, q);
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_cardan(m, a, zero, zero, b, zero, zero));
+    TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "s_i = (0, 0, 0)"));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_coordinate_driver(m, a, 9, NULL));
+    TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "coordinate = 9"));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_distance_driver(m, 42, NULL));
+    TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "joint = 42"));
+    mbs_fix_body(m, a);
+    mbs_add_weld(m, a, zero, b, zero);
+    char msg[STEWART_MESSAGE_SIZE];
+    TEST_ASSERT_EQUAL(STEWART_OK, mbs_model_finalize(m, msg, sizeof msg));
+    mbs_data *d = mbs_data_create(m, MBS_LINEAR_AUTOMATIC);
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_set_driver(d, 0, 1, 0, 0));
+    TEST_ASSERT_NOT_NULL(strstr(mbs_data_message(d), "driver = 0"));
+    mbs_options o;
+    mbs_options_default(&o);
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_step(d, NAN, &o));
+    TEST_ASSERT_NOT_NULL(strstr(mbs_data_message(d), "t = nan"));
+    TEST_ASSERT_EQUAL(STEWART_OK, mbs_step(d, 0, &o)); /* the weld holds b on a */
+    TEST_ASSERT_DOUBLE_WITHIN(1e-12, 1.0, mbs_q(d)[7 + 3]);
+    mbs_data_free(d);
+    mbs_model_free(m);
+}
+
 int main(void) {
     srand(12345);
     UNITY_BEGIN();
@@ -173,5 +206,6 @@ int main(void) {
     RUN_TEST(test_pose_driver);
     RUN_TEST(test_fixed_body);
     RUN_TEST(test_non_square_refused);
+    RUN_TEST(test_bad_input_named);
     return UNITY_END();
 }
