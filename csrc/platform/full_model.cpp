@@ -48,8 +48,8 @@ Placement place(const FullLayout &l, const Vec3 &position, const Eigen::Matrix3d
         const Vec3 a = l.geometry.base_points.col(k);
         const Vec3 P = position + R * l.geometry.platform_points.col(k);
         const Vec3 n = (P - a).normalized();
-        pl.A_cylinder[k] = leg_frame(n, tangential(l.base_angle[k]));
-        pl.A_piston[k] = leg_frame(n, R * tangential(l.platform_angle[k]));
+        pl.A_cylinder[k] = leg_frame(n, l.base_arm.col(k));
+        pl.A_piston[k] = leg_frame(n, R * l.platform_arm.col(k));
         pl.r_cylinder[k] = a + l.cylinder_com * n;
         pl.r_piston[k] = P - l.piston_com * n;
     }
@@ -70,8 +70,8 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDriv
     l.cylinder_com = p.cylinder_com;
     l.piston_com = p.piston_com;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        l.base_angle[k] = p.base_angle[k];
-        l.platform_angle[k] = p.platform_angle[k];
+        l.base_arm.col(k) = tangential(p.base_angle[k]);
+        l.platform_arm.col(k) = tangential(p.platform_angle[k]);
     }
 
     // Platform and payload as one body, on its own principal axes at its centre of mass.
