@@ -96,6 +96,19 @@ inline Mat34 G_matrix(const double *p) {
     return G;
 }
 
+// G(p) x (x: 4 values) and G(p)^T y (y: 3 values), written out.
+inline void G_times(const double *p, const double *x, double out[3]) {
+    out[0] = -p[1] * x[0] + p[0] * x[1] + p[3] * x[2] - p[2] * x[3];
+    out[1] = -p[2] * x[0] - p[3] * x[1] + p[0] * x[2] + p[1] * x[3];
+    out[2] = -p[3] * x[0] + p[2] * x[1] - p[1] * x[2] + p[0] * x[3];
+}
+inline void G_transpose_times(const double *p, const double *y, double out[4]) {
+    out[0] = -p[1] * y[0] - p[2] * y[1] - p[3] * y[2];
+    out[1] = p[0] * y[0] - p[3] * y[1] + p[2] * y[2];
+    out[2] = p[3] * y[0] + p[0] * y[1] - p[1] * y[2];
+    out[3] = -p[2] * y[0] + p[1] * y[1] + p[0] * y[2];
+}
+
 // E(p) = [-e, e0 I + skew(e)]: world angular velocity w = 2 E p_dot.
 inline Mat34 E_matrix(const double *p) {
     const Vec3 e(p[1], p[2], p[3]);
