@@ -115,6 +115,7 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
     std::vector<double> reference;
     std::vector<char> structural;
     sample_jacobian(m, reference, structural);
+    p.structural = structural;
     {
         std::vector<int> row_local(m.equations, -1), col_local(m.coordinates, -1);
         for (int c = 0; c < p.border; ++c) col_local[p.border_cols[c]] = c;  // + n below
@@ -194,7 +195,8 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
         if (!g.has_program) continue;
         const int width = static_cast<int>(g.cols.size()) + p.border;
         std::vector<char> scattered(g.rows.size() * width, 0);
-        for (int d : g.value_dest) scattered[d - g.offset] = 1;
+        for (size_t v = 0; v < g.value_dest.size(); ++v)
+            if (p.structural[g.value_index[v]]) scattered[g.value_dest[v] - g.offset] = 1;
         for (size_t i = 0; i < scattered.size(); ++i)
             if (g.structure[i] && !scattered[i]) g.fill.push_back(g.offset + static_cast<int>(i));
     }
@@ -249,7 +251,9 @@ public:
         coupling_from_.resize(p_.coupling_row.size());
         for (int t = 0; t < m.values(); ++t) {
             const int d = p_.value_dest[t];
-            if (d >= 0) scatter_from_.push_back(t), scatter_to_.push_back(d);
+            // Identically zero values need no scatter: their places are cleared whole or never
+            // written by a program.
+            if (d >= 0 && p_.structural[t]) scatter_from_.push_back(t), scatter_to_.push_back(d);
             if (d <= -2) coupling_from_[-2 - d] = t;
         }
     }

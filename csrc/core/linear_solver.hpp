@@ -39,6 +39,7 @@ struct BlockPlan {
     std::vector<int> value_dest;         // per Jacobian value: workspace index, -1 ignored,
                                          // -2 - k: coupling entry k
     std::vector<int> coupling_row, coupling_col;  // values of fixed columns in other rows
+    std::vector<char> structural;        // per Jacobian value: not identically zero
     int workspace = 0, border_offset = 0, pivots = 0;
 };
 

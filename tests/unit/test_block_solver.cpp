@@ -22,10 +22,8 @@ void setUp(void) {
 
 void tearDown(void) { stewart_model_free(model); }
 
-static void compare(const mbs::Mechanism &m, const std::vector<double> &values) {
-    auto dense = mbs::make_linear_solver(m, mbs::LinearSolverKind::Dense);
-    auto block = mbs::make_linear_solver(m, mbs::LinearSolverKind::Block);
-    TEST_ASSERT_NOT_NULL(block.get());
+static void compare_with(const mbs::Mechanism &m, const std::vector<double> &values,
+                         mbs::LinearSolver *dense, mbs::LinearSolver *block) {
     TEST_ASSERT_TRUE(dense->factor(values.data()));
     TEST_ASSERT_TRUE(block->factor(values.data()));
     std::mt19937 random(7);
@@ -46,6 +44,13 @@ static void compare(const mbs::Mechanism &m, const std::vector<double> &values) 
         for (int i = 0; i < m.equations; ++i)
             TEST_ASSERT_DOUBLE_WITHIN(1e-9 * (1 + scale), x1[i], x2[i]);
     }
+}
+
+static void compare(const mbs::Mechanism &m, const std::vector<double> &values) {
+    auto dense = mbs::make_linear_solver(m, mbs::LinearSolverKind::Dense);
+    auto block = mbs::make_linear_solver(m, mbs::LinearSolverKind::Block);
+    TEST_ASSERT_NOT_NULL(block.get());
+    compare_with(m, values, dense.get(), block.get());
 }
 
 static std::vector<double> jacobian_at(const mbs::Mechanism &m, const std::vector<double> &q) {
@@ -112,10 +117,29 @@ static void test_fallback_when_a_planned_pivot_is_tiny(void) {
     compare(m, values);
 }
 
+/* One solver refactorised again and again (nothing of an earlier factorisation may leak into a
+ * later one), a fallback in between included. */
+static void test_repeated_factorisations(void) {
+    const mbs::Mechanism &m = model->full->mechanism;
+    auto dense = mbs::make_linear_solver(m, mbs::LinearSolverKind::Dense);
+    auto block = mbs::make_linear_solver(m, mbs::LinearSolverKind::Block);
+    const std::vector<double> q = reference(m);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    for (int trial = 0; trial < 30; ++trial) {
+        std::vector<double> p = q;
+        for (double &v : p) v += 0.03 * uniform(random);
+        std::vector<double> values = jacobian_at(m, p);
+        if (trial == 10) values[m.block_plan->groups[2].value_index[0]] *= 1e-6;
+        compare_with(m, values, dense.get(), block.get());
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_structure_detected);
     RUN_TEST(test_agrees_at_reference_and_random_configurations);
     RUN_TEST(test_fallback_when_a_planned_pivot_is_tiny);
+    RUN_TEST(test_repeated_factorisations);
     return UNITY_END();
 }
