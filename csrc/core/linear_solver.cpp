@@ -298,9 +298,14 @@ public:
 
     void solve(double *x) override {
         std::copy(x, x + m_.equations, rhs_.begin());
-        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_cols[i]] = rhs_[p_.fixed_rows[i]];
-        for (size_t k = 0; k < coupling_.size(); ++k)
-            rhs_[p_.coupling_row[k]] -= coupling_[k] * x[p_.coupling_col[k]];
+        bool fixed_move = false;  // fixed bodies usually stay put: then the coupling adds nothing
+        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) {
+            x[p_.fixed_cols[i]] = rhs_[p_.fixed_rows[i]];
+            fixed_move = fixed_move || rhs_[p_.fixed_rows[i]] != 0.0;
+        }
+        if (fixed_move)
+            for (size_t k = 0; k < coupling_.size(); ++k)
+                rhs_[p_.coupling_row[k]] -= coupling_[k] * x[p_.coupling_col[k]];
         const int nb = p_.border;
         double *t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {

@@ -71,24 +71,25 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
 bool lu_factor_static(double *a, const EliminationProgram &p) {
     const int w = p.width;
     const int *below = p.below.data(), *right = p.right.data();
+    // |pivot| >= threshold * |a(i, k)| for every i below is |l_i| <= 1 / threshold: checked on
+    // the multipliers as they are made (a failed block is re-scattered by the caller).
+    const double limit = 1.0 / kRuntimeThreshold;
     for (int k = 0; k < p.n; ++k) {
-        double *row_k = a + k * w;
+        const double *row_k = a + k * w;
         const double pivot = row_k[k];
-        double column_max = 0;
-        for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
-            const double v = std::fabs(a[below[t] * w + k]);
-            if (v > column_max) column_max = v;
-        }
-        if (!(std::fabs(pivot) > kRuntimeThreshold * column_max) || pivot == 0.0) return false;
+        if (pivot == 0.0) return false;
         const double inv = 1.0 / pivot;
         const int r0 = p.right_start[k], r1 = p.right_start[k + 1];
+        double largest = 0;
         for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
             double *row_i = a + below[t] * w;
             const double l = row_i[k] * inv;
             row_i[k] = l;
-            if (l != 0.0)
-                for (int s = r0; s < r1; ++s) row_i[right[s]] -= l * row_k[right[s]];
+            const double size = std::fabs(l);
+            if (size > largest) largest = size;
+            for (int s = r0; s < r1; ++s) row_i[right[s]] -= l * row_k[right[s]];
         }
+        if (!(largest <= limit)) return false;
     }
     return true;
 }
