@@ -239,7 +239,7 @@ class BlockSolver final : public LinearSolver {
 public:
     explicit BlockSolver(const Mechanism &m)
         : m_(m), p_(*m.block_plan), ws_(p_.workspace), coupling_(p_.coupling_row.size()),
-          pivot_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
+          pivot_(p_.pivots), inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
           coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0),
           dirty_(p_.groups.size(), 0) {
@@ -280,7 +280,8 @@ public:
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
-            static_used_[gi] = g.has_program && lu_factor_static(a, g.program);
+            static_used_[gi] =
+                g.has_program && lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
             if (!static_used_[gi]) {
                 // The fixed pivot order is unsafe here: partial pivoting on fresh values.
                 std::fill(a, a + mg * (ng + nb), 0.0);
@@ -328,7 +329,8 @@ public:
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             if (static_used_[&g - p_.groups.data()])
-                lu_backward_static(ws_.data() + g.offset, g.program, t, border_work_.data(),
+                lu_backward_static(ws_.data() + g.offset, g.program,
+                                   inv_diag_.data() + g.pivot_offset, t, border_work_.data(),
                                    group_x_.data());
             else
                 lu_backward(ws_.data() + g.offset, ng, ng + nb, t, border_work_.data(),
@@ -348,7 +350,8 @@ public:
             const double *a = ws_.data() + g.offset;
             for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
             if (static_used_[&g - p_.groups.data()]) {
-                lu_forward_transposed_static(a, g.program, group_x_.data(), t, border_.data());
+                lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
+                                             group_x_.data(), t, border_.data());
             } else {
                 lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
                 for (int k = 0; k < ng; ++k) {
@@ -387,7 +390,9 @@ private:
     const Mechanism &m_;
     const BlockPlan &p_;
     std::vector<double> ws_, coupling_;
-    std::vector<int> pivot_, border_pivot_;
+    std::vector<int> pivot_;
+    std::vector<double> inv_diag_;  // reciprocal pivots of the groups factored by their program
+    std::vector<int> border_pivot_;
     std::vector<double> rhs_, group_t_, border_, border_work_, group_x_;
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order

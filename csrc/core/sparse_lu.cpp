@@ -68,7 +68,7 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
     return order;
 }
 
-bool lu_factor_static(double *a, const EliminationProgram &p) {
+bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
     const int w = p.width;
     const int *below = p.below.data(), *right = p.right.data();
     // |pivot| >= threshold * |a(i, k)| for every i below is |l_i| <= 1 / threshold: checked on
@@ -79,6 +79,7 @@ bool lu_factor_static(double *a, const EliminationProgram &p) {
         const double pivot = row_k[k];
         if (pivot == 0.0) return false;
         const double inv = 1.0 / pivot;
+        inv_diag[k] = inv;
         const int r0 = p.right_start[k], r1 = p.right_start[k + 1];
         double largest = 0;
         for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
@@ -103,8 +104,8 @@ void lu_forward_static(const double *a, const EliminationProgram &p, double *t) 
     }
 }
 
-void lu_backward_static(const double *a, const EliminationProgram &p, const double *t,
-                        const double *y, double *x) {
+void lu_backward_static(const double *a, const EliminationProgram &p, const double *inv_diag,
+                        const double *t, const double *y, double *x) {
     for (int k = p.n - 1; k >= 0; --k) {
         const double *row = a + k * p.width;
         double sum = t[k];
@@ -113,16 +114,17 @@ void lu_backward_static(const double *a, const EliminationProgram &p, const doub
         if (y)
             for (int s = split; s < p.right_start[k + 1]; ++s)
                 sum -= row[p.right[s]] * y[p.right[s] - p.n];
-        x[k] = sum / row[k];
+        x[k] = sum * inv_diag[k];
     }
 }
 
-void lu_forward_transposed_static(const double *a, const EliminationProgram &p, const double *g,
-                                  double *mu, double *carried) {
+void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
+                                  const double *inv_diag, const double *g, double *mu,
+                                  double *carried) {
     for (int k = 0; k < p.n; ++k) mu[k] = g[k];
     for (int k = 0; k < p.n; ++k) {
         const double *row = a + k * p.width;
-        const double mk = (mu[k] /= row[k]);
+        const double mk = (mu[k] *= inv_diag[k]);
         const int split = p.right_carried[k];
         for (int s = p.right_start[k]; s < split; ++s) mu[p.right[s]] -= row[p.right[s]] * mk;
         for (int s = split; s < p.right_start[k + 1]; ++s)

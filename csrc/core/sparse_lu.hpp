@@ -23,16 +23,19 @@ struct EliminationProgram {
 std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nonzero, int m,
                                     int n, int width, EliminationProgram &program);
 
-// In place on the block (rows in pivot order). False if a pivot is below the threshold.
-bool lu_factor_static(double *a, const EliminationProgram &p);
+// In place on the block (rows in pivot order), with the reciprocal pivots in inv_diag (n values:
+// the solves multiply, since a division chain would bound their speed). False if a pivot is below
+// the threshold.
+bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag);
 // t <- L^-1 t.
 void lu_forward_static(const double *a, const EliminationProgram &p, double *t);
 // x <- U^-1 (t - W y).
-void lu_backward_static(const double *a, const EliminationProgram &p, const double *t,
-                        const double *y, double *x);
+void lu_backward_static(const double *a, const EliminationProgram &p, const double *inv_diag,
+                        const double *t, const double *y, double *x);
 // mu <- U^-T g (n values); carried -= W^T mu (width - n values).
-void lu_forward_transposed_static(const double *a, const EliminationProgram &p, const double *g,
-                                  double *mu, double *carried);
+void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
+                                  const double *inv_diag, const double *g, double *mu,
+                                  double *carried);
 // t <- L^-T t (m values).
 void lu_backward_transposed_static(const double *a, const EliminationProgram &p, double *t);
 
