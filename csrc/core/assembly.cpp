@@ -4,33 +4,88 @@
 
 namespace mbs {
 
+namespace {
+
+void make_frame(const double *q, const double *v, BodyFrame &f) {
+    f.A = rotation(q + 3);
+    if (v) {
+        f.rate = 2.0 * bilinear_matrix(q + 3, v + 3);
+        f.quad = 2.0 * rotation(v + 3);
+    }
+}
+
+// Frames of every body, formed once per pass (on the stack: no allocation in a step); larger
+// mechanisms form them per joint instead.
+constexpr size_t kFrameCache = 64;
+
+void evaluate_with_frames(const Mechanism &m, int k, const double *q, const double *q_dot,
+                          const DriverValue *drv, const JointOutput &out,
+                          const BodyFrame *frames) {
+    const JointDef &j = m.joints[k];
+    const JointTypeInfo &info = joint_type(j.type);
+    const double *qi = q + 7 * j.body_i, *qj = j.body_j >= 0 ? q + 7 * j.body_j : nullptr;
+    const double *vi = q_dot ? q_dot + 7 * j.body_i : nullptr;
+    const double *vj = (q_dot && j.body_j >= 0) ? q_dot + 7 * j.body_j : nullptr;
+    BodyFrame fi, fj;
+    const BodyFrame *pi = nullptr, *pj = nullptr;
+    if (info.bodies == 2) {
+        if (frames) {
+            pi = frames + j.body_i, pj = frames + j.body_j;
+        } else {
+            make_frame(qi, vi, fi);
+            make_frame(qj, vj, fj);
+            pi = &fi, pj = &fj;
+        }
+    }
+    const JointInput in{j, qi, qj, vi, vj, j.driver >= 0 ? drv + j.driver : nullptr, pi, pj};
+    info.evaluate(in, out);
+}
+
+// Calls output(k) for the outputs of joint k and evaluates every joint.
+template <class Outputs>
+void assemble(const Mechanism &m, const double *q, const double *q_dot, const DriverValue *drv,
+              Outputs output) {
+    BodyFrame cache[kFrameCache];
+    const bool cached = m.bodies.size() <= kFrameCache;
+    if (cached)
+        for (size_t b = 0; b < m.bodies.size(); ++b)
+            make_frame(q + 7 * b, q_dot ? q_dot + 7 * b : nullptr, cache[b]);
+    for (size_t k = 0; k < m.joints.size(); ++k)
+        evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k),
+                             cached ? cache : nullptr);
+}
+
+}  // namespace
+
 void evaluate_joint(const Mechanism &m, int k, const double *q, const double *q_dot,
                     const DriverValue *drv, const JointOutput &out) {
-    const JointDef &j = m.joints[k];
-    const JointInput in{j,
-                        q + 7 * j.body_i,
-                        j.body_j >= 0 ? q + 7 * j.body_j : nullptr,
-                        q_dot ? q_dot + 7 * j.body_i : nullptr,
-                        (q_dot && j.body_j >= 0) ? q_dot + 7 * j.body_j : nullptr,
-                        j.driver >= 0 ? drv + j.driver : nullptr};
-    joint_type(j.type).evaluate(in, out);
+    evaluate_with_frames(m, k, q, q_dot, drv, out, nullptr);
 }
 
 void assemble_residual(const Mechanism &m, const double *q, const DriverValue *drv, double *phi) {
-    for (size_t k = 0; k < m.joints.size(); ++k)
-        evaluate_joint(m, static_cast<int>(k), q, nullptr, drv,
-                       JointOutput{phi + m.first_row[k], nullptr, nullptr, nullptr, nullptr});
+    assemble(m, q, nullptr, drv, [&](size_t k) {
+        return JointOutput{phi + m.first_row[k], nullptr, nullptr, nullptr, nullptr};
+    });
 }
+
+namespace {
+JointOutput jacobian_blocks(const Mechanism &m, size_t k, double *values, double *phi) {
+    double *block = values + m.first_value[k];
+    const int n = joint_type(m.joints[k].type).equations;
+    double *block_j = m.joints[k].body_j >= 0 ? block + 7 * n : nullptr;
+    return JointOutput{phi ? phi + m.first_row[k] : nullptr, block, block_j, nullptr, nullptr};
+}
+}  // namespace
 
 void assemble_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
                        double *values) {
-    for (size_t k = 0; k < m.joints.size(); ++k) {
-        double *block = values + m.first_value[k];
-        const int n = joint_type(m.joints[k].type).equations;
-        double *block_j = m.joints[k].body_j >= 0 ? block + 7 * n : nullptr;
-        evaluate_joint(m, static_cast<int>(k), q, nullptr, drv,
-                       JointOutput{nullptr, block, block_j, nullptr, nullptr});
-    }
+    assemble(m, q, nullptr, drv,
+             [&](size_t k) { return jacobian_blocks(m, k, values, nullptr); });
+}
+
+void assemble_residual_and_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
+                                    double *phi, double *values) {
+    assemble(m, q, nullptr, drv, [&](size_t k) { return jacobian_blocks(m, k, values, phi); });
 }
 
 void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv, double *phi_t) {
@@ -47,9 +102,9 @@ void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv,
 
 void assemble_gamma(const Mechanism &m, const double *q, const double *q_dot,
                     const DriverValue *drv, double *gamma) {
-    for (size_t k = 0; k < m.joints.size(); ++k)
-        evaluate_joint(m, static_cast<int>(k), q, q_dot, drv,
-                       JointOutput{nullptr, nullptr, nullptr, nullptr, gamma + m.first_row[k]});
+    assemble(m, q, q_dot, drv, [&](size_t k) {
+        return JointOutput{nullptr, nullptr, nullptr, nullptr, gamma + m.first_row[k]};
+    });
 }
 
 }  // namespace mbs

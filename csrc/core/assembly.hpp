@@ -9,6 +9,9 @@ namespace mbs {
 void assemble_residual(const Mechanism &m, const double *q, const DriverValue *drv, double *phi);
 void assemble_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
                        double *values);
+// Both in one pass (they share most of the work).
+void assemble_residual_and_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
+                                    double *phi, double *values);
 void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv, double *phi_t);
 void assemble_gamma(const Mechanism &m, const double *q, const double *q_dot,
                     const DriverValue *drv, double *gamma);

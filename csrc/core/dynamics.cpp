@@ -11,12 +11,16 @@ void applied_minus_inertial(const Mechanism &m, const double *q, const double *q
         const double *qb = q + 7 * b, *vb = q_dot + 7 * b, *ab = q_ddot + 7 * b;
         double *o = out + 7 * b;
         for (int c = 0; c < 3; ++c) o[c] = body.mass * (m.gravity[c] - ab[c]);
-        const Mat34 G = G_matrix(qb + 3), G_dot = G_matrix(vb + 3);
-        const Eigen::Map<const Vec4> p(qb + 3), p_ddot(ab + 3);
-        const Vec3 J = body.inertia;
-        const Vec4 rot = 8.0 * G_dot.transpose() * (J.asDiagonal() * (G_dot * p)) -
-                         4.0 * G.transpose() * (J.asDiagonal() * (G * p_ddot));
-        for (int c = 0; c < 4; ++c) o[3 + c] = rot[c];
+        // 8 G_dot^T J' G_dot p - 4 G^T J' G p_ddot = G_dot^T (8 J' G_dot p) - G^T (4 J' G p_ddot).
+        const double *p = qb + 3, *pd = vb + 3, *pdd = ab + 3;
+        double wd[3], wa[3];
+        G_times(pd, p, wd);
+        G_times(p, pdd, wa);
+        for (int c = 0; c < 3; ++c) wd[c] *= 8.0 * body.inertia[c], wa[c] *= 4.0 * body.inertia[c];
+        double ra[4], rb[4];
+        G_transpose_times(pd, wd, ra);
+        G_transpose_times(p, wa, rb);
+        for (int c = 0; c < 4; ++c) o[3 + c] = ra[c] - rb[c];
     }
 }
 
@@ -24,13 +28,20 @@ void joint_reaction(const Mechanism &m, const State &s, int joint, int side, Vec
                     Vec3 &torque) {
     const JointDef &j = m.joints[joint];
     const int n = joint_type(j.type).equations;
-    double jac[2][7 * 7];
-    evaluate_joint(m, joint, s.q.data(), nullptr, s.drive.data(),
-                   JointOutput{nullptr, jac[0], j.body_j >= 0 ? jac[1] : nullptr, nullptr, nullptr});
+    // The joint's Jacobian blocks: from the assembled values when they are at q, else evaluated.
+    double jac[2 * 7 * 7];
+    const double *block = s.values.data() + m.first_value[joint];
+    if (!s.values_current) {
+        evaluate_joint(m, joint, s.q.data(), nullptr, s.drive.data(),
+                       JointOutput{nullptr, jac, j.body_j >= 0 ? jac + 7 * n : nullptr, nullptr,
+                                   nullptr});
+        block = jac;
+    }
+    const double *rows = block + side * 7 * n;
     // Generalised reaction -Phi_q^T lambda on the body's 7 coordinates.
     double g[7] = {0, 0, 0, 0, 0, 0, 0};
     for (int r = 0; r < n; ++r)
-        for (int c = 0; c < 7; ++c) g[c] -= jac[side][7 * r + c] * s.lambda[m.first_row[joint] + r];
+        for (int c = 0; c < 7; ++c) g[c] -= rows[7 * r + c] * s.lambda[m.first_row[joint] + r];
     const int body = side == 0 ? j.body_i : j.body_j;
     const double *p = s.q.data() + 7 * body + 3;
     force = Vec3(g[0], g[1], g[2]);

@@ -21,36 +21,59 @@ inline Mat3 skew(const Vec3 &v) {
 
 // A(p) = (e0^2 - e.e) I + 2 e e^T + 2 e0 skew(e).
 inline Mat3 rotation(const double *p) {
-    const double e0 = p[0];
-    const Vec3 e(p[1], p[2], p[3]);
-    return (e0 * e0 - e.squaredNorm()) * Mat3::Identity() + 2.0 * e * e.transpose() +
-           2.0 * e0 * skew(e);
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double s = e0 * e0 - (e1 * e1 + e2 * e2 + e3 * e3);
+    Mat3 A;
+    A(0, 0) = s + 2 * e1 * e1, A(0, 1) = 2 * (e1 * e2 - e0 * e3), A(0, 2) = 2 * (e1 * e3 + e0 * e2);
+    A(1, 0) = 2 * (e2 * e1 + e0 * e3), A(1, 1) = s + 2 * e2 * e2, A(1, 2) = 2 * (e2 * e3 - e0 * e1);
+    A(2, 0) = 2 * (e3 * e1 - e0 * e2), A(2, 1) = 2 * (e3 * e2 + e0 * e1), A(2, 2) = s + 2 * e3 * e3;
+    return A;
 }
 
-// A(p) u without forming A.
+// A(p) u without forming A (scalar code: this is the innermost operation of every joint).
 inline Vec3 rotate(const double *p, const Vec3 &u) {
-    const double e0 = p[0];
-    const Vec3 e(p[1], p[2], p[3]);
-    return (e0 * e0 - e.squaredNorm()) * u + 2.0 * e * e.dot(u) + 2.0 * e0 * e.cross(u);
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double s = e0 * e0 - (e1 * e1 + e2 * e2 + e3 * e3);
+    const double eu2 = 2.0 * (e1 * u[0] + e2 * u[1] + e3 * u[2]);
+    const double c0 = 2.0 * e0;
+    return Vec3(s * u[0] + eu2 * e1 + c0 * (e2 * u[2] - e3 * u[1]),
+                s * u[1] + eu2 * e2 + c0 * (e3 * u[0] - e1 * u[2]),
+                s * u[2] + eu2 * e3 + c0 * (e1 * u[1] - e2 * u[0]));
 }
 
-// B(p, u) = d(A(p) u)/dp.
+// B(p, u) = d(A(p) u)/dp: column 0 is 2 (e0 u + e x u); columns 1..3 are
+// 2 (e u^T - u e^T + (e.u) I - e0 skew(u)).
 inline Mat34 rotate_jacobian(const double *p, const Vec3 &u) {
-    const double e0 = p[0];
-    const Vec3 e(p[1], p[2], p[3]);
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double u0 = u[0], u1 = u[1], u2 = u[2];
+    const double eu = e1 * u0 + e2 * u1 + e3 * u2;
     Mat34 B;
-    B.col(0) = 2.0 * (e0 * u + e.cross(u));
-    B.rightCols<3>() = 2.0 * (e * u.transpose() - u * e.transpose() +
-                              e.dot(u) * Mat3::Identity() - e0 * skew(u));
+    B(0, 0) = 2.0 * (e0 * u0 + e2 * u2 - e3 * u1);
+    B(1, 0) = 2.0 * (e0 * u1 + e3 * u0 - e1 * u2);
+    B(2, 0) = 2.0 * (e0 * u2 + e1 * u1 - e2 * u0);
+    B(0, 1) = 2.0 * (e1 * u0 - u0 * e1 + eu);
+    B(0, 2) = 2.0 * (e1 * u1 - u0 * e2 + e0 * u2);
+    B(0, 3) = 2.0 * (e1 * u2 - u0 * e3 - e0 * u1);
+    B(1, 1) = 2.0 * (e2 * u0 - u1 * e1 - e0 * u2);
+    B(1, 2) = 2.0 * (e2 * u1 - u1 * e2 + eu);
+    B(1, 3) = 2.0 * (e2 * u2 - u1 * e3 + e0 * u0);
+    B(2, 1) = 2.0 * (e3 * u0 - u2 * e1 + e0 * u1);
+    B(2, 2) = 2.0 * (e3 * u1 - u2 * e2 - e0 * u0);
+    B(2, 3) = 2.0 * (e3 * u2 - u2 * e3 + eu);
     return B;
 }
 
 // The symmetric bilinear form behind A: C(p, p) u = A(p) u, so d(A u)/dt = 2 C(p, p_dot) u and
 // the velocity-quadratic part of d2(A u)/dt2 is 2 C(p_dot, p_dot) u = 2 A(p_dot) u.
 inline Vec3 bilinear(const double *p, const double *q, const Vec3 &u) {
-    const Vec3 ep(p[1], p[2], p[3]), eq(q[1], q[2], q[3]);
-    return (p[0] * q[0] - ep.dot(eq)) * u + ep * eq.dot(u) + eq * ep.dot(u) +
-           (p[0] * eq + q[0] * ep).cross(u);
+    const double s = p[0] * q[0] - (p[1] * q[1] + p[2] * q[2] + p[3] * q[3]);
+    const double qu = q[1] * u[0] + q[2] * u[1] + q[3] * u[2];
+    const double pu = p[1] * u[0] + p[2] * u[1] + p[3] * u[2];
+    const double w1 = p[0] * q[1] + q[0] * p[1], w2 = p[0] * q[2] + q[0] * p[2],
+                 w3 = p[0] * q[3] + q[0] * p[3];
+    return Vec3(s * u[0] + p[1] * qu + q[1] * pu + (w2 * u[2] - w3 * u[1]),
+                s * u[1] + p[2] * qu + q[2] * pu + (w3 * u[0] - w1 * u[2]),
+                s * u[2] + p[3] * qu + q[3] * pu + (w1 * u[1] - w2 * u[0]));
 }
 
 // v^T B(p, u) as a row, without forming B.
@@ -73,6 +96,19 @@ inline Mat34 G_matrix(const double *p) {
     return G;
 }
 
+// G(p) x (x: 4 values) and G(p)^T y (y: 3 values), written out.
+inline void G_times(const double *p, const double *x, double out[3]) {
+    out[0] = -p[1] * x[0] + p[0] * x[1] + p[3] * x[2] - p[2] * x[3];
+    out[1] = -p[2] * x[0] - p[3] * x[1] + p[0] * x[2] + p[1] * x[3];
+    out[2] = -p[3] * x[0] + p[2] * x[1] - p[1] * x[2] + p[0] * x[3];
+}
+inline void G_transpose_times(const double *p, const double *y, double out[4]) {
+    out[0] = -p[1] * y[0] - p[2] * y[1] - p[3] * y[2];
+    out[1] = p[0] * y[0] - p[3] * y[1] + p[2] * y[2];
+    out[2] = p[3] * y[0] + p[0] * y[1] - p[1] * y[2];
+    out[3] = -p[2] * y[0] + p[1] * y[1] + p[0] * y[2];
+}
+
 // E(p) = [-e, e0 I + skew(e)]: world angular velocity w = 2 E p_dot.
 inline Mat34 E_matrix(const double *p) {
     const Vec3 e(p[1], p[2], p[3]);
@@ -80,6 +116,18 @@ inline Mat34 E_matrix(const double *p) {
     E.col(0) = -e;
     E.rightCols<3>() = p[0] * Mat3::Identity() + skew(e);
     return E;
+}
+
+// C(p, q) as a matrix: C(p, q) u = bilinear(p, q, u).
+inline Mat3 bilinear_matrix(const double *p, const double *q) {
+    const double p1 = p[1], p2 = p[2], p3 = p[3], q1 = q[1], q2 = q[2], q3 = q[3];
+    const double w1 = p[0] * q1 + q[0] * p1, w2 = p[0] * q2 + q[0] * p2, w3 = p[0] * q3 + q[0] * p3;
+    const double s = p[0] * q[0] - (p1 * q1 + p2 * q2 + p3 * q3);
+    Mat3 C;
+    C(0, 0) = s + 2 * p1 * q1, C(0, 1) = p1 * q2 + q1 * p2 - w3, C(0, 2) = p1 * q3 + q1 * p3 + w2;
+    C(1, 0) = p2 * q1 + q2 * p1 + w3, C(1, 1) = s + 2 * p2 * q2, C(1, 2) = p2 * q3 + q2 * p3 - w1;
+    C(2, 0) = p3 * q1 + q3 * p1 - w2, C(2, 1) = p3 * q2 + q3 * p2 + w1, C(2, 2) = s + 2 * p3 * q3;
+    return C;
 }
 
 // Euler parameters of a rotation matrix (Shepperd), sign chosen with e0 >= 0.

@@ -43,11 +43,18 @@ struct JointDef {
     double q_fixed[7] = {0, 0, 0, 1, 0, 0, 0};  // fixed body
 };
 
+// A body's rotation and the matrices of its derivatives, formed once per joint evaluation:
+// A u, d(A u)/dt = rate u, velocity-quadratic part of d2(A u)/dt2 = quad u.
+struct BodyFrame {
+    Mat3 A, rate, quad;
+};
+
 struct JointInput {
     const JointDef &def;
     const double *q_i, *q_j;  // 7 coordinates of each body (q_j null for one body)
     const double *v_i, *v_j;  // their velocities; null unless gamma is asked for
     const DriverValue *drive; // the joint's driver slots, null if none
+    const BodyFrame *frame_i, *frame_j;  // two-body joints only; rate and quad only with v
 };
 
 // Any pointer may be null: that output is not wanted.

@@ -1,8 +1,10 @@
 #include "core/linear_solver.hpp"
 
 #include <algorithm>
+#include <random>
 #include <set>
 
+#include "core/assembly.hpp"
 #include "core/dense_lu.hpp"
 
 namespace mbs {
@@ -17,6 +19,27 @@ void fixed_body_rows(const Mechanism &m, std::vector<int> &rows, std::vector<int
                 rows.push_back(m.first_row[k] + c);
                 cols.push_back(7 * m.joints[k].body_i + c);
             }
+}
+
+// Jacobian values at the reference configuration, and which are structurally nonzero: nonzero
+// at the reference or at random configurations (zeros at all of them are structural).
+void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::vector<char> &nonzero) {
+    std::vector<double> q(m.coordinates), values(m.values());
+    std::vector<DriverValue> drive(m.drivers);
+    for (size_t b = 0; b < m.bodies.size(); ++b)
+        for (int c = 0; c < 7; ++c) q[7 * b + c] = m.bodies[b].q_reference[c];
+    reference.assign(m.values(), 0.0);
+    assemble_jacobian(m, q.data(), drive.data(), reference.data());
+    nonzero.assign(m.values(), 0);
+    for (int t = 0; t < m.values(); ++t) nonzero[t] = reference[t] != 0.0;
+    std::mt19937 random(20201);  // fixed seed: the plan is reproducible
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    for (int sample = 0; sample < 3; ++sample) {
+        for (double &v : q) v += 0.3 * uniform(random);
+        for (DriverValue &d : drive) d.value = uniform(random);
+        assemble_jacobian(m, q.data(), drive.data(), values.data());
+        for (int t = 0; t < m.values(); ++t) nonzero[t] |= values[t] != 0.0;
+    }
 }
 
 }  // namespace
@@ -88,6 +111,42 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
     }
     if (leftover + static_cast<int>(p.border_rows.size()) != p.border) return nullptr;
 
+    // Pivot order and elimination program of each group, from sample values.
+    std::vector<double> reference;
+    std::vector<char> structural;
+    sample_jacobian(m, reference, structural);
+    p.structural = structural;
+    {
+        std::vector<int> row_local(m.equations, -1), col_local(m.coordinates, -1);
+        for (int c = 0; c < p.border; ++c) col_local[p.border_cols[c]] = c;  // + n below
+        for (BlockGroup &g : p.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            const int width = ng + p.border;
+            std::vector<double> a(mg * width, 0.0);
+            std::vector<char> nz(mg * width, 0);
+            for (int r = 0; r < mg; ++r) row_local[g.rows[r]] = r;
+            std::vector<int> group_col(m.coordinates, -1);
+            for (int c = 0; c < ng; ++c) group_col[g.cols[c]] = c;
+            for (int t = 0; t < m.values(); ++t) {
+                const int row = m.pattern_row[t], col = m.pattern_col[t];
+                if (row_group[row] != &g - p.groups.data()) continue;
+                const int c = group_col[col] >= 0 ? group_col[col]
+                              : col_local[col] >= 0 ? ng + col_local[col] : -1;
+                if (c < 0) continue;  // a fixed body's column
+                a[row_local[row] * width + c] = reference[t];
+                nz[row_local[row] * width + c] = structural[t];
+            }
+            const std::vector<int> order = choose_pivot_order(a, nz, mg, ng, width, g.program);
+            g.has_program = !order.empty();
+            g.structure = nz;
+            if (g.has_program) {
+                std::vector<int> rows(mg);
+                for (int r = 0; r < mg; ++r) rows[r] = g.rows[order[r]];
+                g.rows = rows;
+            }
+        }
+    }
+
     // Workspace layout and where each Jacobian value lands.
     for (BlockGroup &g : p.groups) {
         g.offset = p.workspace;
@@ -123,11 +182,23 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
             const int c = (group_of[col / 7] == g) ? local_col[col] : n + border_col[col];
             if (c < 0) return nullptr;
             dest = grp.offset + local_row[row] * (n + p.border) + c;
+            p.groups[g].value_index.push_back(t);
+            p.groups[g].value_dest.push_back(dest);
         } else {
             if (border_col[col] < 0) return nullptr;
             dest = p.border_offset + local_row[row] * p.border + border_col[col];
         }
         p.value_dest.push_back(dest);
+    }
+    // Fill positions: zeroed before each refactorisation (nothing else is ever written there).
+    for (BlockGroup &g : p.groups) {
+        if (!g.has_program) continue;
+        const int width = static_cast<int>(g.cols.size()) + p.border;
+        std::vector<char> scattered(g.rows.size() * width, 0);
+        for (size_t v = 0; v < g.value_dest.size(); ++v)
+            if (p.structural[g.value_index[v]]) scattered[g.value_dest[v] - g.offset] = 1;
+        for (size_t i = 0; i < scattered.size(); ++i)
+            if (g.structure[i] && !scattered[i]) g.fill.push_back(g.offset + static_cast<int>(i));
     }
     return plan;
 }
@@ -168,31 +239,57 @@ class BlockSolver final : public LinearSolver {
 public:
     explicit BlockSolver(const Mechanism &m)
         : m_(m), p_(*m.block_plan), ws_(p_.workspace), coupling_(p_.coupling_row.size()),
-          pivot_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
+          pivot_(p_.pivots), inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
-          coupling_fixed_row_(p_.coupling_row.size()) {
+          coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0),
+          dirty_(p_.groups.size(), 0) {
         // Fixed coordinate -> its identity row, for the transposed solve.
         std::vector<int> row_of(m.coordinates, -1);
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
         for (size_t k = 0; k < p_.coupling_col.size(); ++k)
             coupling_fixed_row_[k] = row_of[p_.coupling_col[k]];
+        coupling_from_.resize(p_.coupling_row.size());
+        for (int t = 0; t < m.values(); ++t) {
+            const int d = p_.value_dest[t];
+            // Identically zero values need no scatter: their places are cleared whole or never
+            // written by a program.
+            if (d >= 0 && p_.structural[t]) scatter_from_.push_back(t), scatter_to_.push_back(d);
+            if (d <= -2) coupling_from_[-2 - d] = t;
+        }
     }
 
     bool factor(const double *values) override {
-        std::fill(ws_.begin(), ws_.end(), 0.0);
-        for (int t = 0; t < m_.values(); ++t) {
-            const int d = p_.value_dest[t];
-            if (d >= 0)
-                ws_[d] = values[t];
-            else if (d <= -2)
-                coupling_[-2 - d] = values[t];
+        // Blocks factored by their program keep zeros wherever the program does not write; only
+        // the fill needs clearing. Others (and the border system) are cleared whole.
+        for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
+            const BlockGroup &g = p_.groups[gi];
+            if (g.has_program && !dirty_[gi]) {
+                for (int f : g.fill) ws_[f] = 0.0;
+            } else {
+                const size_t size = g.rows.size() * (g.cols.size() + p_.border);
+                std::fill(ws_.begin() + g.offset, ws_.begin() + g.offset + size, 0.0);
+                dirty_[gi] = 0;
+            }
         }
+        std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
+        for (size_t v = 0; v < scatter_from_.size(); ++v) ws_[scatter_to_[v]] = values[scatter_from_[v]];
+        for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             double *a = ws_.data() + g.offset;
-            if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+            const size_t gi = &g - p_.groups.data();
+            static_used_[gi] =
+                g.has_program && lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
+            if (!static_used_[gi]) {
+                // The fixed pivot order is unsafe here: partial pivoting on fresh values.
+                std::fill(a, a + mg * (ng + nb), 0.0);
+                for (size_t v = 0; v < g.value_index.size(); ++v)
+                    ws_[g.value_dest[v]] = values[g.value_index[v]];
+                dirty_[gi] = 1;
+                if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+            }
             for (int r = ng; r < mg; ++r)
                 std::copy(a + r * (ng + nb) + ng, a + (r + 1) * (ng + nb),
                           border + (g.first_leftover + r - ng) * nb);
@@ -202,15 +299,23 @@ public:
 
     void solve(double *x) override {
         std::copy(x, x + m_.equations, rhs_.begin());
-        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_cols[i]] = rhs_[p_.fixed_rows[i]];
-        for (size_t k = 0; k < coupling_.size(); ++k)
-            rhs_[p_.coupling_row[k]] -= coupling_[k] * x[p_.coupling_col[k]];
+        bool fixed_move = false;  // fixed bodies usually stay put: then the coupling adds nothing
+        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) {
+            x[p_.fixed_cols[i]] = rhs_[p_.fixed_rows[i]];
+            fixed_move = fixed_move || rhs_[p_.fixed_rows[i]] != 0.0;
+        }
+        if (fixed_move)
+            for (size_t k = 0; k < coupling_.size(); ++k)
+                rhs_[p_.coupling_row[k]] -= coupling_[k] * x[p_.coupling_col[k]];
         const int nb = p_.border;
         double *t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
-            lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
+            if (static_used_[&g - p_.groups.data()])
+                lu_forward_static(ws_.data() + g.offset, g.program, t);
+            else
+                lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
             for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r];
             t += mg;
         }
@@ -223,7 +328,13 @@ public:
         t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            lu_backward(ws_.data() + g.offset, ng, ng + nb, t, border_work_.data(), group_x_.data());
+            if (static_used_[&g - p_.groups.data()])
+                lu_backward_static(ws_.data() + g.offset, g.program,
+                                   inv_diag_.data() + g.pivot_offset, t, border_work_.data(),
+                                   group_x_.data());
+            else
+                lu_backward(ws_.data() + g.offset, ng, ng + nb, t, border_work_.data(),
+                            group_x_.data());
             for (int c = 0; c < ng; ++c) x[g.cols[c]] = group_x_[c];
             t += mg;
         }
@@ -238,11 +349,16 @@ public:
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             const double *a = ws_.data() + g.offset;
             for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
-            lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
-            for (int k = 0; k < ng; ++k) {
-                const double mu = t[k];
-                const double *w = a + k * (ng + nb) + ng;
-                for (int b = 0; b < nb; ++b) border_[b] -= w[b] * mu;
+            if (static_used_[&g - p_.groups.data()]) {
+                lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
+                                             group_x_.data(), t, border_.data());
+            } else {
+                lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
+                for (int k = 0; k < ng; ++k) {
+                    const double mu = t[k];
+                    const double *w = a + k * (ng + nb) + ng;
+                    for (int b = 0; b < nb; ++b) border_[b] -= w[b] * mu;
+                }
             }
             t += mg;
         }
@@ -253,8 +369,11 @@ public:
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             for (int r = ng; r < mg; ++r) t[r] = border_work_[g.first_leftover + r - ng];
-            lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
-                                   pivot_.data() + g.pivot_offset, t);
+            if (static_used_[&g - p_.groups.data()])
+                lu_backward_transposed_static(ws_.data() + g.offset, g.program, t);
+            else
+                lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
+                                       pivot_.data() + g.pivot_offset, t);
             for (int r = 0; r < mg; ++r) x[g.rows[r]] = t[r];
             t += mg;
         }
@@ -271,9 +390,14 @@ private:
     const Mechanism &m_;
     const BlockPlan &p_;
     std::vector<double> ws_, coupling_;
-    std::vector<int> pivot_, border_pivot_;
+    std::vector<int> pivot_;
+    std::vector<double> inv_diag_;  // reciprocal pivots of the groups factored by their program
+    std::vector<int> border_pivot_;
     std::vector<double> rhs_, group_t_, border_, border_work_, group_x_;
     std::vector<int> coupling_fixed_row_;
+    std::vector<char> static_used_;  // per group: factored with its fixed pivot order
+    std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
+    std::vector<int> scatter_from_, scatter_to_, coupling_from_;  // Jacobian value -> workspace
 };
 
 }  // namespace

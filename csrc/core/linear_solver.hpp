@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/mechanism.hpp"
+#include "core/sparse_lu.hpp"
 
 namespace mbs {
 
@@ -22,6 +23,11 @@ struct BlockGroup {
     int offset = 0;               // of its m x (n + border) row-major block in the workspace
     int first_leftover = 0;       // its first row in the border system
     int pivot_offset = 0;
+    bool has_program = false;     // rows are in a chosen pivot order with this program
+    EliminationProgram program;
+    std::vector<int> value_index, value_dest;  // its Jacobian values (for a re-scatter)
+    std::vector<char> structure;  // m x width, in pivot order: structural nonzeros and fill
+    std::vector<int> fill;        // workspace indices the program fills but no value lands on
 };
 
 struct BlockPlan {
@@ -33,6 +39,7 @@ struct BlockPlan {
     std::vector<int> value_dest;         // per Jacobian value: workspace index, -1 ignored,
                                          // -2 - k: coupling entry k
     std::vector<int> coupling_row, coupling_col;  // values of fixed columns in other rows
+    std::vector<char> structural;        // per Jacobian value: not identically zero
     int workspace = 0, border_offset = 0, pivots = 0;
 };
 

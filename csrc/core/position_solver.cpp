@@ -29,6 +29,7 @@ struct PositionSolver::Impl {
     void *kinsol = nullptr;
     char kinsol_message[STEWART_MESSAGE_SIZE] = "";
     double last_residual = 0;  // max-norm of the last residual evaluated (INFINITY if not finite)
+    bool values_at_guess = false;  // state.values hold Phi_q at state.q (the initial guess)
     explicit Impl(State &s) : state(s) {}
 };
 
@@ -59,8 +60,13 @@ int jacobian(N_Vector u, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vector) 
     Impl &im = *static_cast<Impl *>(user);
     State &s = im.state;
     const Mechanism &m = s.mechanism;
-    assemble_jacobian(m, N_VGetArrayPointer(u), s.drive.data(), s.values.data());
+    const double *ud = N_VGetArrayPointer(u);
+    // The first iteration's Jacobian is the one evaluated with the residual at the guess (q).
+    const bool at_guess = im.values_at_guess && std::equal(ud, ud + m.coordinates, s.q.begin());
+    if (!at_guess) assemble_jacobian(m, ud, s.drive.data(), s.values.data());
+    im.values_at_guess = false;
     s.factor_current = false;
+    s.values_current = false;  // at an iterate, not (yet) at the solution
     if (im.dense)
         for (int t = 0; t < m.values(); ++t)
             SM_ELEMENT_D(J, m.pattern_row[t], m.pattern_col[t]) = s.values[t];
@@ -198,12 +204,22 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     std::copy(s.q.begin(), s.q.end(), u);
     // KINSOL's own first test (initial guess accepted if ||F|| <= 0.01 tolerance), done here so
     // a step that needs no iteration does not pay for KINSOL's set-up.
-    residual(im.u, im.scale_work(), &im);
+    // The Jacobian comes along (it shares most of the work): if the guess is accepted it is the
+    // one velocities, accelerations and multipliers need.
+    assemble_residual_and_jacobian(s.mechanism, u, s.drive.data(), N_VGetArrayPointer(im.work),
+                                   s.values.data());
+    im.last_residual = max_norm(N_VGetArrayPointer(im.work), n);
+    s.values_current = true;
     long iterations = 0;
     if (!(im.last_residual <= 0.01 * o.tolerance)) {
         im.kinsol_message[0] = '\0';
+        s.values_current = false;
+        im.values_at_guess = true;
         flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
-        KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        if (stats_flag != KIN_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // With no line search every evaluated iterate is accepted: the last residual is the
         // final one's. A failure may have stopped elsewhere, so recompute then.
         if (flag < 0) residual(im.u, im.scale_work(), &im);
@@ -213,6 +229,9 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     s.stats.iterations = static_cast<int>(iterations);
     s.stats.residual = im.last_residual;
     bool finite = std::isfinite(im.last_residual);
+    if (iterations == 0) return finite ? STEWART_OK  // q is the accepted guess
+                                       : set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                                                     "the residual at the initial guess is not finite");
     for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
     if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)

@@ -36,11 +36,13 @@ void copy_state(State &dst, const State &src) {
     dst.stats = src.stats;
     std::copy(src.message, src.message + sizeof src.message, dst.message);
     dst.factor_current = false;
+    dst.values_current = false;
 }
 
 void reset_history(State &s) {
     s.has_history = false;
     s.factor_current = false;
+    s.values_current = false;
     s.stats = SolveStats{};
     s.message[0] = '\0';
 }

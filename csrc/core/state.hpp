@@ -45,6 +45,7 @@ struct State {
     std::vector<double> values, rhs, force;
     std::unique_ptr<LinearSolver> linear;
     bool factor_current = false;    // linear holds the factorisation at q
+    bool values_current = false;    // values hold Phi_q at q
     std::unique_ptr<PositionSolver> newton;
     SolverOptions newton_options;   // the options the Newton solver is configured with
 };

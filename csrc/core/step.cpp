@@ -15,7 +15,9 @@ namespace {
 
 stewart_status ensure_factor(State &s) {
     if (s.factor_current) return STEWART_OK;
-    assemble_jacobian(s.mechanism, s.q.data(), s.drive.data(), s.values.data());
+    if (!s.values_current)
+        assemble_jacobian(s.mechanism, s.q.data(), s.drive.data(), s.values.data());
+    s.values_current = true;
     if (!s.linear->factor(s.values.data()))
         return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
                            "the constraint Jacobian Phi_q is singular at this configuration");
@@ -43,6 +45,7 @@ stewart_status solve_position(State &s, double t, const SolverOptions &o, bool u
             s.q[i] += h * s.q_dot[i] + 0.5 * h * h * s.q_ddot[i];
     }
     s.factor_current = false;
+    s.values_current = false;
     s.time = t;
     return s.newton->solve(o);
 }

@@ -48,8 +48,8 @@ Placement place(const FullLayout &l, const Vec3 &position, const Eigen::Matrix3d
         const Vec3 a = l.geometry.base_points.col(k);
         const Vec3 P = position + R * l.geometry.platform_points.col(k);
         const Vec3 n = (P - a).normalized();
-        pl.A_cylinder[k] = leg_frame(n, tangential(l.base_angle[k]));
-        pl.A_piston[k] = leg_frame(n, R * tangential(l.platform_angle[k]));
+        pl.A_cylinder[k] = leg_frame(n, l.base_arm.col(k));
+        pl.A_piston[k] = leg_frame(n, R * l.platform_arm.col(k));
         pl.r_cylinder[k] = a + l.cylinder_com * n;
         pl.r_piston[k] = P - l.piston_com * n;
     }
@@ -70,8 +70,8 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDriv
     l.cylinder_com = p.cylinder_com;
     l.piston_com = p.piston_com;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        l.base_angle[k] = p.base_angle[k];
-        l.platform_angle[k] = p.platform_angle[k];
+        l.base_arm.col(k) = tangential(p.base_angle[k]);
+        l.platform_arm.col(k) = tangential(p.platform_angle[k]);
     }
 
     // Platform and payload as one body, on its own principal axes at its centre of mass.
@@ -191,13 +191,12 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
         auto point = [](const double *q, const Vec3 &u) {
             return Vec3(Eigen::Map<const Vec3>(q) + mbs::rotate(q + 3, u));
         };
+        // d(A u)/dt = B(p, u) p_dot = 2 C(p, p_dot) u; d2(A u)/dt2 adds 2 A(p_dot) u.
         auto rate = [](const double *q, const double *v, const Vec3 &u) {
-            return Vec3(Eigen::Map<const Vec3>(v) +
-                        mbs::rotate_jacobian(q + 3, u) * Eigen::Map<const Vec4>(v + 3));
+            return Vec3(Eigen::Map<const Vec3>(v) + 2.0 * mbs::bilinear(q + 3, v + 3, u));
         };
         auto accel = [](const double *q, const double *v, const double *a, const Vec3 &u) {
-            return Vec3(Eigen::Map<const Vec3>(a) +
-                        mbs::rotate_jacobian(q + 3, u) * Eigen::Map<const Vec4>(a + 3) +
+            return Vec3(Eigen::Map<const Vec3>(a) + 2.0 * mbs::bilinear(q + 3, a + 3, u) +
                         2.0 * mbs::rotate(v + 3, u));
         };
         const Vec3 d = point(qp, up) - point(qc, uc);

@@ -26,7 +26,8 @@ struct FullLayout {
     Eigen::Vector3d com;             // platform body origin (lumped centre of mass), plate frame
     Eigen::Matrix3d axes;            // platform body axes (principal) in the plate frame
     double cylinder_com = 0, piston_com = 0;
-    double base_angle[STEWART_LEGS], platform_angle[STEWART_LEGS];
+    Matrix36 base_arm;      // Cardan cross arm on the base, world (tangential)
+    Matrix36 platform_arm;  // Cardan cross arm on the platform, plate frame (tangential)
     PlatformGeometry geometry;
 };
 

@@ -217,6 +217,72 @@ static void test_copy_is_rollback(void) {
     stewart_data_free(saved);
 }
 
+/* q_dot and q_ddot of all 98 coordinates against central differences of q(t) along the
+ * combined manoeuvre (each neighbour solved on a copy, so Euler-parameter signs stay put). */
+static void test_rates_against_finite_differences(void) {
+    stewart_data *side = stewart_data_create(model);
+    double q0[98], qp[98], qm[98], v[98], a[98];
+    const double steps[2] = {1e-4, 1e-3}; /* first, second difference (Newton noise ~1e-12) */
+    for (int i = 0; i <= 120; i += 11)
+        for (int which = 0; which < 2; ++which) {
+            const double t = 0.1 * i, h = steps[which];
+            stewart_pose pose = combined_pose(t), pp = combined_pose(t + h), pm = combined_pose(t - h);
+            solve_ok(model, data, STEWART_FULL, &pose);
+            const mbs_data *md = stewart_data_mechanism(data);
+            memcpy(q0, mbs_q(md), sizeof q0);
+            memcpy(v, mbs_q_dot(md), sizeof v);
+            memcpy(a, mbs_q_ddot(md), sizeof a);
+            TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(side, data));
+            solve_ok(model, side, STEWART_FULL, &pp);
+            memcpy(qp, mbs_q(stewart_data_mechanism(side)), sizeof qp);
+            TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(side, data));
+            solve_ok(model, side, STEWART_FULL, &pm);
+            memcpy(qm, mbs_q(stewart_data_mechanism(side)), sizeof qm);
+            for (int k = 0; k < 98; ++k) {
+                if (which == 0)
+                    TEST_ASSERT_DOUBLE_WITHIN(1e-7, (qp[k] - qm[k]) / (2 * h), v[k]);
+                else
+                    TEST_ASSERT_DOUBLE_WITHIN(1e-5, (qp[k] - 2 * q0[k] + qm[k]) / (h * h), a[k]);
+            }
+        }
+    stewart_data_free(side);
+}
+
+/* Two models and three data blocks side by side, interleaved: each gives what it gives alone
+ * (no shared state). */
+static void test_instances_side_by_side(void) {
+    stewart_params heavy = params;
+    heavy.payload_mass = 60;
+    heavy.piston_mass = 0.5;
+    stewart_model *other = test_model(&heavy);
+    stewart_data *a = stewart_data_create(model), *b = stewart_data_create(other),
+                 *c = stewart_data_create(model);
+    stewart_output alone_a[20], alone_b[20];
+    for (int i = 0; i < 20; ++i) {
+        stewart_pose pose = combined_pose(0.05 * i);
+        alone_a[i] = solve_ok(model, data, STEWART_FULL, &pose);
+    }
+    stewart_data_reset(data);
+    for (int i = 0; i < 20; ++i) {
+        stewart_pose pose = combined_pose(0.05 * i);
+        alone_b[i] = solve_ok(other, b, STEWART_FULL, &pose);
+    }
+    stewart_data_reset(b);
+    for (int i = 0; i < 20; ++i) {
+        stewart_pose pose = combined_pose(0.05 * i), away = thesis_pose(3, 0.3 * i);
+        stewart_output oa = solve_ok(model, a, STEWART_FULL, &pose);
+        solve_ok(model, c, STEWART_FULL, &away);
+        stewart_output ob = solve_ok(other, b, STEWART_FULL, &pose);
+        TEST_ASSERT_EQUAL_MEMORY(&alone_a[i], &oa, sizeof oa);
+        TEST_ASSERT_EQUAL_MEMORY(&alone_b[i], &ob, sizeof ob);
+        TEST_ASSERT_TRUE(ob.force[0] > oa.force[0]); /* the payload weighs */
+    }
+    stewart_data_free(a);
+    stewart_data_free(b);
+    stewart_data_free(c);
+    stewart_model_free(other);
+}
+
 /* KINSOL from a poor guess (the home configuration) to a far pose, on the platform's mechanism:
  * exact and modified Newton, block and dense linear solvers land on the same solution. */
 static void test_newton_from_home(void) {
@@ -258,6 +324,8 @@ int main(void) {
     RUN_TEST(test_thesis_formulation_agrees);
     RUN_TEST(test_massive_legs_at_rest);
     RUN_TEST(test_copy_is_rollback);
+    RUN_TEST(test_rates_against_finite_differences);
+    RUN_TEST(test_instances_side_by_side);
     RUN_TEST(test_newton_from_home);
     RUN_TEST(test_normalisation_long_run);
     return UNITY_END();

@@ -9,8 +9,9 @@ static void evaluate_cylindrical(const JointInput &in, const JointOutput &out) {
     const RowWriter w{out};
     dot1(in, w, 0, in.def.axis_i[0], in.def.axis_j[2]);
     dot1(in, w, 1, in.def.axis_i[1], in.def.axis_j[2]);
-    dot2(in, w, 2, in.def.axis_i[0]);
-    dot2(in, w, 3, in.def.axis_i[1]);
+    const Separation d = separation(in, out);
+    dot2(in, w, 2, in.def.axis_i[0], d);
+    dot2(in, w, 3, in.def.axis_i[1], d);
 }
 
 extern const JointTypeInfo kCylindrical = {"cylindrical", 4, 0, 2, evaluate_cylindrical};

@@ -6,7 +6,7 @@
 namespace mbs {
 
 static void evaluate_distance_driver(const JointInput &in, const JointOutput &out) {
-    dot2(in, RowWriter{out}, 0, in.def.axis_i[2], in.drive);
+    dot2(in, RowWriter{out}, 0, in.def.axis_i[2], separation(in, out), in.drive);
 }
 
 extern const JointTypeInfo kDistanceDriver = {"distance driver", 1, 1, 2,

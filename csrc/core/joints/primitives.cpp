@@ -8,11 +8,17 @@ Vec3 velocity(const double *v) { return v ? Vec3(v[0], v[1], v[2]) : Vec3::Zero(
 const double *rate_source(const JointInput &in, bool body_i, const JointOutput &out) {
     return out.gamma ? (body_i ? in.v_i : in.v_j) : nullptr;
 }
+Attached attach_i(const JointInput &in, const JointOutput &out, const Vec3 &u) {
+    return attach(*in.frame_i, out.gamma && in.v_i, u);
+}
+Attached attach_j(const JointInput &in, const JointOutput &out, const Vec3 &u) {
+    return attach(*in.frame_j, out.gamma && in.v_j, u);
+}
 }  // namespace
 
 void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
-    const Attached ui = attach(in.q_i, rate_source(in, true, w.out), in.def.point_i);
-    const Attached uj = attach(in.q_j, rate_source(in, false, w.out), in.def.point_j);
+    const Attached ui = attach_i(in, w.out, in.def.point_i);
+    const Attached uj = attach_j(in, w.out, in.def.point_j);
     if (w.out.phi) {
         const Vec3 phi = position(in.q_i) + ui.world - position(in.q_j) - uj.world;
         for (int k = 0; k < 3; ++k) w.phi(row + k, phi[k]);
@@ -35,8 +41,8 @@ void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
 
 void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
           const Vec3 &b_local) {
-    const Attached a = attach(in.q_i, rate_source(in, true, w.out), a_local);
-    const Attached b = attach(in.q_j, rate_source(in, false, w.out), b_local);
+    const Attached a = attach_i(in, w.out, a_local);
+    const Attached b = attach_j(in, w.out, b_local);
     w.phi(row, a.world.dot(b.world));
     w.phi_t(row, 0.0);
     if (w.out.gamma)
@@ -48,25 +54,32 @@ void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local
     }
 }
 
+Separation separation(const JointInput &in, const JointOutput &out) {
+    const double *vi = rate_source(in, true, out), *vj = rate_source(in, false, out);
+    const Attached ui = attach_i(in, out, in.def.point_i);
+    const Attached uj = attach_j(in, out, in.def.point_j);
+    Separation s;
+    s.d = position(in.q_j) + uj.world - position(in.q_i) - ui.world;
+    if (out.gamma) {
+        s.rate = velocity(vj) + uj.rate - velocity(vi) - ui.rate;
+        s.quad = uj.quad - ui.quad;
+    }
+    return s;
+}
+
 void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
-          const DriverValue *target) {
-    const double *vi = rate_source(in, true, w.out), *vj = rate_source(in, false, w.out);
-    const Attached a = attach(in.q_i, vi, a_local);
-    const Attached ui = attach(in.q_i, vi, in.def.point_i);
-    const Attached uj = attach(in.q_j, vj, in.def.point_j);
-    const Vec3 d = position(in.q_j) + uj.world - position(in.q_i) - ui.world;
-    w.phi(row, a.world.dot(d) - (target ? target->value : 0.0));
+          const Separation &sep, const DriverValue *target) {
+    const Attached a = attach_i(in, w.out, a_local);
+    w.phi(row, a.world.dot(sep.d) - (target ? target->value : 0.0));
     w.phi_t(row, target ? -target->rate : 0.0);
     if (w.out.gamma) {
-        const Vec3 d_rate = velocity(vj) + uj.rate - velocity(vi) - ui.rate;
-        const Vec3 d_quad = uj.quad - ui.quad;
-        double gamma = -(a.quad.dot(d) + 2.0 * a.rate.dot(d_rate) + a.world.dot(d_quad));
+        double gamma = -(a.quad.dot(sep.d) + 2.0 * a.rate.dot(sep.rate) + a.world.dot(sep.quad));
         if (target) gamma += target->accel;  // -Phi_tt
         w.gamma(row, gamma);
     }
     if (w.want_jac()) {
         put(w.jac_i(row), -a.world,
-            row_of_rotate_jacobian(in.q_i + 3, a_local, d) -
+            row_of_rotate_jacobian(in.q_i + 3, a_local, sep.d) -
                 row_of_rotate_jacobian(in.q_i + 3, in.def.point_i, a.world));
         put(w.jac_j(row), a.world, row_of_rotate_jacobian(in.q_j + 3, in.def.point_j, a.world));
     }

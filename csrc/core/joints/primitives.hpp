@@ -15,12 +15,19 @@ struct Attached {
     Vec3 quad;   // velocity-quadratic part of d2(A u)/dt2: 2 A(p_dot) u
 };
 
-inline Attached attach(const double *q, const double *v, const Vec3 &u) {
+// M u written out: Eigen does not inline this small product at -O2.
+inline Vec3 times(const Mat3 &M, const Vec3 &u) {
+    return Vec3(M(0, 0) * u[0] + M(0, 1) * u[1] + M(0, 2) * u[2],
+                M(1, 0) * u[0] + M(1, 1) * u[1] + M(1, 2) * u[2],
+                M(2, 0) * u[0] + M(2, 1) * u[1] + M(2, 2) * u[2]);
+}
+
+inline Attached attach(const BodyFrame &f, bool rates, const Vec3 &u) {
     Attached a;
-    a.world = rotate(q + 3, u);
-    if (v) {
-        a.rate = 2.0 * bilinear(q + 3, v + 3, u);
-        a.quad = 2.0 * rotate(v + 3, u);
+    a.world = times(f.A, u);
+    if (rates) {
+        a.rate = times(f.rate, u);
+        a.quad = times(f.quad, u);
     }
     return a;
 }
@@ -45,9 +52,15 @@ inline void put(double *row7, const Vec3 &r, const Eigen::Matrix<double, 1, 4> &
 void point_coincidence(const JointInput &in, const RowWriter &w, int row);
 // (A_i a)^T (A_j b) = 0.
 void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Vec3 &b);
-// (A_i a)^T d = 0 with d = r_j + A_j u_j - r_i - A_i u_i; `target` (value, rate, accel) turns it
-// into the driver (A_i a)^T d - f(t) = 0.
-void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a,
+// The vector between the joint's two points, d = r_j + A_j u_j - r_i - A_i u_i, with its rate and
+// velocity-quadratic part: computed once for all the dot-2 rows of a joint.
+struct Separation {
+    Vec3 d, rate, quad;
+};
+Separation separation(const JointInput &in, const JointOutput &out);
+
+// (A_i a)^T d = 0; `target` (value, rate, accel) turns it into the driver (A_i a)^T d - f(t) = 0.
+void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Separation &d,
           const DriverValue *target = nullptr);
 
 }  // namespace mbs

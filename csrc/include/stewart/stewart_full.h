@@ -2,8 +2,9 @@
  * The full fidelity level's multibody model, for inspection (and for the FMU's state).
  * Bodies: 0 base (fixed), 1-6 cylinders, 7-12 pistons (leg k = 1..6 in that order), 13 platform
  * (with the payload; its frame at their joint centre of mass on principal axes). Joints:
- * per leg base Cardan, platform Cardan, cylindrical; then 6 actuator-length drivers (driver
- * slot k-1 is leg k; multiplier = -F_k); then the normalisations.
+ * 0 fixes the base; then per leg base Cardan, platform Cardan, cylindrical; then 6
+ * actuator-length drivers (driver slot k-1 is leg k; multiplier = -F_k); then the 13
+ * normalisations. mbs_joint_first_row gives each joint's rows in mbs_lambda.
  */
 #ifndef STEWART_STEWART_FULL_H
 #define STEWART_STEWART_FULL_H

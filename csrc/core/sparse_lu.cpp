@@ -1,0 +1,144 @@
+#include "core/sparse_lu.hpp"
+
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+namespace mbs {
+
+namespace {
+constexpr double kThreshold = 0.1;        // pivot choice: within 10 % of the column maximum
+constexpr double kRuntimeThreshold = 1e-3; // refactorisation: give up below 0.1 %
+}  // namespace
+
+std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nz, int m, int n,
+                                    int width, EliminationProgram &p) {
+    std::vector<int> order(m);
+    std::iota(order.begin(), order.end(), 0);
+    p = EliminationProgram{};
+    p.m = m, p.n = n, p.width = width;
+    auto swap_rows = [&](int r, int s) {
+        for (int c = 0; c < width; ++c) {
+            std::swap(a[r * width + c], a[s * width + c]);
+            std::swap(nz[r * width + c], nz[s * width + c]);
+        }
+        std::swap(order[r], order[s]);
+    };
+    for (int k = 0; k < n; ++k) {
+        double column_max = 0;
+        for (int i = k; i < m; ++i) column_max = std::fmax(column_max, std::fabs(a[i * width + k]));
+        if (!(column_max > 0)) return {};
+        // Threshold Markowitz: among acceptable pivots, the row with the fewest nonzeros.
+        int best = -1, best_count = 0;
+        for (int i = k; i < m; ++i) {
+            if (!(std::fabs(a[i * width + k]) >= kThreshold * column_max)) continue;
+            int count = 0;
+            for (int c = k; c < width; ++c) count += nz[i * width + c];
+            if (best < 0 || count < best_count) best = i, best_count = count;
+        }
+        if (best != k) swap_rows(k, best);
+        p.below_start.push_back(static_cast<int>(p.below.size()));
+        p.right_start.push_back(static_cast<int>(p.right.size()));
+        for (int c = k + 1; c < width; ++c)
+            if (nz[k * width + c]) p.right.push_back(c);
+        const double pivot = a[k * width + k];
+        for (int i = k + 1; i < m; ++i) {
+            if (!nz[i * width + k]) continue;
+            p.below.push_back(order[i]);  // by identity: later swaps move rows
+            const double l = a[i * width + k] / pivot;
+            a[i * width + k] = l;
+            for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t) {
+                const int c = p.right[t];
+                a[i * width + c] -= l * a[k * width + c];
+                nz[i * width + c] = 1;
+            }
+        }
+    }
+    p.below_start.push_back(static_cast<int>(p.below.size()));
+    p.right_start.push_back(static_cast<int>(p.right.size()));
+    // Columns were pushed in increasing order: the carried ones close each pivot's list.
+    for (int k = 0; k < n; ++k) {
+        int s = p.right_start[k];
+        while (s < p.right_start[k + 1] && p.right[s] < n) ++s;
+        p.right_carried.push_back(s);
+    }
+    std::vector<int> position(m);
+    for (int r = 0; r < m; ++r) position[order[r]] = r;
+    for (int &i : p.below) i = position[i];
+    return order;
+}
+
+bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
+    const int w = p.width;
+    const int *below = p.below.data(), *right = p.right.data();
+    // |pivot| >= threshold * |a(i, k)| for every i below is |l_i| <= 1 / threshold: checked on
+    // the multipliers as they are made (a failed block is re-scattered by the caller).
+    const double limit = 1.0 / kRuntimeThreshold;
+    for (int k = 0; k < p.n; ++k) {
+        const double *row_k = a + k * w;
+        const double pivot = row_k[k];
+        if (pivot == 0.0) return false;
+        const double inv = 1.0 / pivot;
+        inv_diag[k] = inv;
+        const int r0 = p.right_start[k], r1 = p.right_start[k + 1];
+        double largest = 0;
+        for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
+            double *row_i = a + below[t] * w;
+            const double l = row_i[k] * inv;
+            row_i[k] = l;
+            const double size = std::fabs(l);
+            if (size > largest) largest = size;
+            for (int s = r0; s < r1; ++s) row_i[right[s]] -= l * row_k[right[s]];
+        }
+        if (!(largest <= limit)) return false;
+    }
+    return true;
+}
+
+void lu_forward_static(const double *a, const EliminationProgram &p, double *t) {
+    for (int k = 0; k < p.n; ++k) {
+        const double tk = t[k];
+        if (tk != 0.0)
+            for (int s = p.below_start[k]; s < p.below_start[k + 1]; ++s)
+                t[p.below[s]] -= a[p.below[s] * p.width + k] * tk;
+    }
+}
+
+void lu_backward_static(const double *a, const EliminationProgram &p, const double *inv_diag,
+                        const double *t, const double *y, double *x) {
+    for (int k = p.n - 1; k >= 0; --k) {
+        const double *row = a + k * p.width;
+        double sum = t[k];
+        const int split = p.right_carried[k];
+        for (int s = p.right_start[k]; s < split; ++s) sum -= row[p.right[s]] * x[p.right[s]];
+        if (y)
+            for (int s = split; s < p.right_start[k + 1]; ++s)
+                sum -= row[p.right[s]] * y[p.right[s] - p.n];
+        x[k] = sum * inv_diag[k];
+    }
+}
+
+void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
+                                  const double *inv_diag, const double *g, double *mu,
+                                  double *carried) {
+    for (int k = 0; k < p.n; ++k) mu[k] = g[k];
+    for (int k = 0; k < p.n; ++k) {
+        const double *row = a + k * p.width;
+        const double mk = (mu[k] *= inv_diag[k]);
+        const int split = p.right_carried[k];
+        for (int s = p.right_start[k]; s < split; ++s) mu[p.right[s]] -= row[p.right[s]] * mk;
+        for (int s = split; s < p.right_start[k + 1]; ++s)
+            carried[p.right[s] - p.n] -= row[p.right[s]] * mk;
+    }
+}
+
+void lu_backward_transposed_static(const double *a, const EliminationProgram &p, double *t) {
+    for (int k = p.n - 1; k >= 0; --k) {
+        double sum = t[k];
+        for (int s = p.below_start[k]; s < p.below_start[k + 1]; ++s)
+            sum -= a[p.below[s] * p.width + k] * t[p.below[s]];
+        t[k] = sum;
+    }
+}
+
+}  // namespace mbs

@@ -1,0 +1,42 @@
+// LU of a group block with a pivot order fixed in advance (rows already in pivot order), running
+// only over the structural nonzeros found when the order was chosen (the fill included): the
+// "refactorisation" half of a sparse direct solver. The pivot order is chosen once by a threshold
+// Markowitz rule on sample values; a factorisation whose pivot falls below the threshold reports
+// failure so the caller can fall back to partial pivoting.
+#pragma once
+
+#include <vector>
+
+namespace mbs {
+
+struct EliminationProgram {
+    int m = 0, n = 0, width = 0;
+    std::vector<int> below_start, below;  // per pivot k: rows i > k with a structural a(i, k)
+    std::vector<int> right_start, right;  // per pivot k: columns c > k with a structural a(k, c)
+    std::vector<int> right_carried;       // per pivot k: where its carried columns (c >= n) start
+};
+
+// Chooses the pivot order on the m x width row-major sample `a` (overwritten) with structure
+// `nonzero` (overwritten with the fill), both in the current row order: returns the new order of
+// the rows (a permutation of 0..m-1) and fills the program, or returns an empty vector if some
+// column has no usable pivot.
+std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nonzero, int m,
+                                    int n, int width, EliminationProgram &program);
+
+// In place on the block (rows in pivot order), with the reciprocal pivots in inv_diag (n values:
+// the solves multiply, since a division chain would bound their speed). False if a pivot is below
+// the threshold.
+bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag);
+// t <- L^-1 t.
+void lu_forward_static(const double *a, const EliminationProgram &p, double *t);
+// x <- U^-1 (t - W y).
+void lu_backward_static(const double *a, const EliminationProgram &p, const double *inv_diag,
+                        const double *t, const double *y, double *x);
+// mu <- U^-T g (n values); carried -= W^T mu (width - n values).
+void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
+                                  const double *inv_diag, const double *g, double *mu,
+                                  double *carried);
+// t <- L^-T t (m values).
+void lu_backward_transposed_static(const double *a, const EliminationProgram &p, double *t);
+
+}  // namespace mbs

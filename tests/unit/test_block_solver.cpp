@@ -1,0 +1,145 @@
+/* The bordered-block solver against the dense LU on the platform's Jacobian: at assembled and at
+ * random configurations, and with a planned pivot forced to zero so the refactorisation must
+ * fall back to partial pivoting. Solves and transposed solves must agree. */
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/assembly.hpp"
+#include "core/linear_solver.hpp"
+#include "model.hpp"
+#include "unity.h"
+
+static stewart_model *model;
+
+void setUp(void) {
+    stewart_params p;
+    stewart_params_default(&p);
+    char msg[STEWART_MESSAGE_SIZE];
+    model = stewart_model_create(&p, msg, sizeof msg);
+    if (!model) TEST_FAIL_MESSAGE(msg);
+}
+
+void tearDown(void) { stewart_model_free(model); }
+
+static void compare_with(const mbs::Mechanism &m, const std::vector<double> &values,
+                         mbs::LinearSolver *dense, mbs::LinearSolver *block) {
+    TEST_ASSERT_TRUE(dense->factor(values.data()));
+    TEST_ASSERT_TRUE(block->factor(values.data()));
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    for (int transposed = 0; transposed <= 1; ++transposed) {
+        std::vector<double> x1(m.equations), x2;
+        for (double &v : x1) v = uniform(random);
+        x2 = x1;
+        if (transposed) {
+            dense->solve_transposed(x1.data());
+            block->solve_transposed(x2.data());
+        } else {
+            dense->solve(x1.data());
+            block->solve(x2.data());
+        }
+        double scale = 0;
+        for (double v : x1) scale = std::fmax(scale, std::fabs(v));
+        for (int i = 0; i < m.equations; ++i)
+            TEST_ASSERT_DOUBLE_WITHIN(1e-9 * (1 + scale), x1[i], x2[i]);
+    }
+}
+
+static void compare(const mbs::Mechanism &m, const std::vector<double> &values) {
+    auto dense = mbs::make_linear_solver(m, mbs::LinearSolverKind::Dense);
+    auto block = mbs::make_linear_solver(m, mbs::LinearSolverKind::Block);
+    TEST_ASSERT_NOT_NULL(block.get());
+    compare_with(m, values, dense.get(), block.get());
+}
+
+static std::vector<double> jacobian_at(const mbs::Mechanism &m, const std::vector<double> &q) {
+    std::vector<double> values(m.values());
+    std::vector<mbs::DriverValue> drive(m.drivers);
+    mbs::assemble_jacobian(m, q.data(), drive.data(), values.data());
+    return values;
+}
+
+static std::vector<double> reference(const mbs::Mechanism &m) {
+    std::vector<double> q(m.coordinates);
+    for (size_t b = 0; b < m.bodies.size(); ++b)
+        for (int c = 0; c < 7; ++c) q[7 * b + c] = m.bodies[b].q_reference[c];
+    return q;
+}
+
+static void test_structure_detected(void) {
+    const mbs::Mechanism &m = model->full->mechanism;
+    TEST_ASSERT_NOT_NULL(m.block_plan.get());
+    const mbs::BlockPlan &plan = *m.block_plan;
+    TEST_ASSERT_EQUAL(7, plan.border);             /* the platform */
+    TEST_ASSERT_EQUAL(6, (int)plan.groups.size()); /* the legs */
+    for (const mbs::BlockGroup &g : plan.groups) {
+        TEST_ASSERT_EQUAL(15, (int)g.rows.size());
+        TEST_ASSERT_EQUAL(14, (int)g.cols.size());
+        TEST_ASSERT_TRUE(g.has_program);
+    }
+}
+
+static void test_agrees_at_reference_and_random_configurations(void) {
+    const mbs::Mechanism &m = model->full->mechanism;
+    std::vector<double> q = reference(m);
+    compare(m, jacobian_at(m, q));
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    for (int trial = 0; trial < 20; ++trial) {
+        std::vector<double> p = q;
+        for (double &v : p) v += 0.05 * uniform(random);
+        compare(m, jacobian_at(m, p));
+    }
+}
+
+/* A planned pivot made tiny next to the rest of its column: the refactorisation must refuse it
+ * and pivot afresh (the matrix itself stays regular). */
+static void test_fallback_when_a_planned_pivot_is_tiny(void) {
+    const mbs::Mechanism &m = model->full->mechanism;
+    const mbs::BlockPlan &plan = *m.block_plan;
+    std::vector<double> values = jacobian_at(m, reference(m));
+    int changed = 0;
+    for (const mbs::BlockGroup &g : plan.groups) {
+        const int width = (int)g.cols.size() + plan.border;
+        for (int k = 0; k < (int)g.cols.size() && !changed; ++k) {
+            if (g.program.below_start[k + 1] == g.program.below_start[k]) continue;
+            for (size_t v = 0; v < g.value_dest.size(); ++v)
+                if (g.value_dest[v] == g.offset + k * width + k && values[g.value_index[v]] != 0.0) {
+                    values[g.value_index[v]] *= 1e-5;
+                    ++changed;
+                    break;
+                }
+        }
+        if (changed) break;
+    }
+    TEST_ASSERT_TRUE(changed > 0);
+    compare(m, values);
+}
+
+/* One solver refactorised again and again (nothing of an earlier factorisation may leak into a
+ * later one), a fallback in between included. */
+static void test_repeated_factorisations(void) {
+    const mbs::Mechanism &m = model->full->mechanism;
+    auto dense = mbs::make_linear_solver(m, mbs::LinearSolverKind::Dense);
+    auto block = mbs::make_linear_solver(m, mbs::LinearSolverKind::Block);
+    const std::vector<double> q = reference(m);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    for (int trial = 0; trial < 30; ++trial) {
+        std::vector<double> p = q;
+        for (double &v : p) v += 0.03 * uniform(random);
+        std::vector<double> values = jacobian_at(m, p);
+        if (trial == 10) values[m.block_plan->groups[2].value_index[0]] *= 1e-6;
+        compare_with(m, values, dense.get(), block.get());
+    }
+}
+
+int main(void) {
+    UNITY_BEGIN();
+    RUN_TEST(test_structure_detected);
+    RUN_TEST(test_agrees_at_reference_and_random_configurations);
+    RUN_TEST(test_fallback_when_a_planned_pivot_is_tiny);
+    RUN_TEST(test_repeated_factorisations);
+    return UNITY_END();
+}

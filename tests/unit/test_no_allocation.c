@@ -1,0 +1,96 @@
+/* No allocation inside a step: malloc and friends are interposed here and counted while the
+ * full level (and the slider-crank on the core) step along a manoeuvre. */
+#include <stddef.h>
+#include <string.h>
+
+#include "stewart/slider_crank.h"
+#include "stewart/stewart_full.h"
+#include "test_support.h"
+#include "unity.h"
+
+extern void *__libc_malloc(size_t);
+extern void *__libc_calloc(size_t, size_t);
+extern void *__libc_realloc(void *, size_t);
+extern void *__libc_memalign(size_t, size_t);
+extern void __libc_free(void *);
+
+static volatile long allocations = 0;
+
+void *malloc(size_t n) { ++allocations; return __libc_malloc(n); }
+void *calloc(size_t n, size_t s) { ++allocations; return __libc_calloc(n, s); }
+void *realloc(void *p, size_t n) { ++allocations; return __libc_realloc(p, n); }
+void *memalign(size_t a, size_t n) { ++allocations; return __libc_memalign(a, n); }
+int posix_memalign(void **out, size_t a, size_t n) {
+    ++allocations;
+    *out = __libc_memalign(a, n);
+    return *out ? 0 : 12;
+}
+void *aligned_alloc(size_t a, size_t n) { ++allocations; return __libc_memalign(a, n); }
+void free(void *p) { __libc_free(p); }
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static void test_full_level_steps_do_not_allocate(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    stewart_model *model = test_model(&params);
+    stewart_data *data = stewart_data_create(model);
+    stewart_data *saved = stewart_data_create(model);
+    stewart_options o = test_options(STEWART_FULL);
+    stewart_output out;
+    stewart_pose first = combined_pose(0);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_solve(model, data, &o, &first, &out));
+    const long before = allocations;
+    for (int i = 1; i < 500; ++i) {
+        stewart_pose pose = combined_pose(0.01 * i);
+        o.modified_newton = i % 2;
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_solve(model, data, &o, &pose, &out));
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(saved, data)); /* the FMU rollback */
+    }
+    TEST_ASSERT_EQUAL(before, allocations);
+    /* A step that needs Newton iterations (KINSOL) allocates nothing either; creating the data
+     * block does (which shows the counter counts). */
+    const mbs_model *mech = stewart_model_mechanism(model);
+    mbs_data *d = mbs_data_create(mech, MBS_LINEAR_AUTOMATIC);
+    TEST_ASSERT_TRUE(allocations > before);
+    mbs_options mo;
+    mbs_options_default(&mo);
+    const long before_newton = allocations;
+    for (int k = 0; k < 6; ++k) mbs_set_driver(d, k, 0.58 + 0.004 * k, 0, 0);
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, 0, &mo), mbs_data_message(d));
+    TEST_ASSERT_TRUE(mbs_iterations(d) > 0);
+    TEST_ASSERT_EQUAL(before_newton, allocations);
+    mbs_data_free(d);
+    stewart_data_free(saved);
+    stewart_data_free(data);
+    stewart_model_free(model);
+}
+
+static void test_slider_crank_steps_do_not_allocate(void) {
+    slider_crank_params p;
+    slider_crank_layout l;
+    slider_crank_params_default(&p);
+    char msg[STEWART_MESSAGE_SIZE];
+    mbs_model *m = slider_crank_create(&p, &l, msg, sizeof msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(m, msg);
+    mbs_data *d = mbs_data_create(m, MBS_LINEAR_AUTOMATIC);
+    mbs_options o;
+    mbs_options_default(&o);
+    const long before = allocations;
+    for (int i = 0; i < 600; ++i) {
+        const double t = 0.02 * i, w = M_PI / 3;
+        mbs_set_driver(d, l.crank_driver, w * t, w, 0);
+        TEST_ASSERT_EQUAL(STEWART_OK, mbs_step(d, t, &o));
+    }
+    TEST_ASSERT_EQUAL(before, allocations);
+    mbs_data_free(d);
+    mbs_model_free(m);
+}
+
+int main(void) {
+    UNITY_BEGIN();
+    RUN_TEST(test_full_level_steps_do_not_allocate);
+    RUN_TEST(test_slider_crank_steps_do_not_allocate);
+    return UNITY_END();
+}
