@@ -18,7 +18,7 @@ import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, L, L_DOT, L_DDOT, F, POSE, POSE_DOT, POSE_DDOT,
                          OK, WARNING, DISCARD, ERROR, Unit, backward_fd, closed_form_lengths,
-                         fidelity_available, reference_matrix, require_fidelity, rotation,
+                         reference_matrix, require_fidelity, rotation,
                          stewart_solve)
 
 G = 9.81
