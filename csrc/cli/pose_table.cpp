@@ -29,19 +29,20 @@ int find_column(const std::vector<std::string> &header, const std::string &name)
     return -1;
 }
 
-// Weights of f[i-1], f[i], f[i+1] for the first or second derivative at the middle point of
-// three samples spaced h1 then h2 (exact for quadratics).
-void central_weights(double h1, double h2, int order, double w[3]) {
-    if (order == 1) {
-        w[0] = -h2 / (h1 * (h1 + h2));
-        w[1] = (h2 - h1) / (h1 * h2);
-        w[2] = h1 / (h2 * (h1 + h2));
-    } else {
-        w[0] = 2.0 / (h1 * (h1 + h2));
-        w[1] = -2.0 / (h1 * h2);
-        w[2] = 2.0 / (h2 * (h1 + h2));
+// The quadratic through three samples in Newton's divided-difference form,
+// p(t) = f0 + d1 (t - t0) + dd (t - t0)(t - t1): differences of values first, so a coordinate that
+// does not move has exactly zero rate and acceleration however close the samples are.
+struct Quadratic {
+    double d1, dd, h1, h2;
+    Quadratic(const double *t, const double *f) {
+        h1 = t[1] - t[0];
+        h2 = t[2] - t[1];
+        d1 = (f[1] - f[0]) / h1;
+        dd = ((f[2] - f[1]) / h2 - d1) / (h1 + h2);
     }
-}
+    // p' at the first, middle (1) or last (2) sample; p'' = 2 dd everywhere.
+    double slope(int at) const { return d1 + dd * (at == 0 ? -h1 : at == 1 ? h1 : h1 + 2 * h2); }
+};
 
 }  // namespace
 
@@ -54,31 +55,13 @@ std::vector<double> finite_difference(const std::vector<double> &t, const std::v
         if (order == 1) d[0] = d[1] = (f[1] - f[0]) / (t[1] - t[0]);
         return d;
     }
-    double w[3];
-    for (size_t i = 1; i + 1 < n; ++i) {
-        central_weights(t[i] - t[i - 1], t[i + 1] - t[i], order, w);
-        d[i] = w[0] * f[i - 1] + w[1] * f[i] + w[2] * f[i + 1];
-    }
-    // Ends: differentiate the quadratic through the three end samples at the end point.
-    {
-        const double h1 = t[1] - t[0], h2 = t[2] - t[1];
-        if (order == 1) {
-            d[0] = -(2 * h1 + h2) / (h1 * (h1 + h2)) * f[0] + (h1 + h2) / (h1 * h2) * f[1] -
-                   h1 / (h2 * (h1 + h2)) * f[2];
-        } else {
-            central_weights(h1, h2, 2, w);
-            d[0] = w[0] * f[0] + w[1] * f[1] + w[2] * f[2];
-        }
-    }
-    {
-        const double h1 = t[n - 2] - t[n - 3], h2 = t[n - 1] - t[n - 2];
-        if (order == 1) {
-            d[n - 1] = h2 / (h1 * (h1 + h2)) * f[n - 3] - (h1 + h2) / (h1 * h2) * f[n - 2] +
-                       (2 * h2 + h1) / (h2 * (h1 + h2)) * f[n - 1];
-        } else {
-            central_weights(h1, h2, 2, w);
-            d[n - 1] = w[0] * f[n - 3] + w[1] * f[n - 2] + w[2] * f[n - 1];
-        }
+    for (size_t i = 0; i + 2 < n; ++i) {
+        const Quadratic p(&t[i], &f[i]);
+        const double value = order == 1 ? p.slope(1) : 2 * p.dd;
+        d[i + 1] = value;
+        // The ends take the derivative of the quadratic through the three end samples.
+        if (i == 0) d[0] = order == 1 ? p.slope(0) : value;
+        if (i + 3 == n) d[n - 1] = order == 1 ? p.slope(2) : value;
     }
     return d;
 }

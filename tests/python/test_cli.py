@@ -193,3 +193,17 @@ def test_condition_is_the_one_norm_condition_of_the_leg_jacobian(solve, tmp_path
     tau = np.radians([330, 60, 90, 180, 210, 300])
     expected = [np.linalg.cond(leg_jacobian(q, beta, tau), 1) for q in poses]
     np.testing.assert_allclose(column(header, data, "condition"), expected, rtol=1e-9)
+
+
+def test_still_pose_at_vanishing_spacing_stays_at_rest(solve, tmp_path):
+    """Finite differences in divided-difference form: a pose that does not move has zero rates
+    even when the samples are 1e-200 s apart (weights of 1/h^2 would overflow to inf * 0)."""
+    pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
+    pose_csv.write_text("t,x,y,z,roll,pitch,yaw\n" + "".join(
+        f"{i * 1e-200!r},0.01,0,0.5,0,0,0.1\n" for i in range(4)))
+    result = solve(pose_csv, out_csv)
+    assert result.returncode == 0, result.stderr
+    header, data = read(out_csv)
+    for k in LEGS:
+        assert np.all(column(header, data, f"L_dot{k}") == 0)
+        assert np.all(column(header, data, f"L_ddot{k}") == 0)
