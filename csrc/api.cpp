@@ -94,6 +94,24 @@ extern "C" stewart_status stewart_data_copy(stewart_data *dst, const stewart_dat
     return STEWART_OK;
 }
 
+extern "C" size_t stewart_data_state_size(const stewart_data *d) {
+    return d && d->full ? mbs::saved_state_size(d->full->state) : 0;
+}
+
+extern "C" stewart_status stewart_data_save(const stewart_data *d, void *buffer, size_t size) {
+    if (!d || !d->full || !buffer || size < stewart_data_state_size(d)) return STEWART_ERR_ARGUMENT;
+    mbs::save_state(d->full->state, static_cast<unsigned char *>(buffer));
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_data_load(stewart_data *d, const void *buffer, size_t size) {
+    if (!d || !d->full || !buffer ||
+        !mbs::load_state(d->full->state, static_cast<const unsigned char *>(buffer), size))
+        return STEWART_ERR_ARGUMENT;
+    d->message[0] = '\0';
+    return STEWART_OK;
+}
+
 extern "C" void stewart_data_reset(stewart_data *d) {
     if (!d) return;
     d->message[0] = '\0';

@@ -133,9 +133,8 @@ fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *state) {
 }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t *size) {
-    (void)state;
     if (!c || !size) return fmi2Error;
-    *size = fmu_serialized_size();
+    *size = fmu_serialized_size((const fmu_snapshot *)state);
     return fmi2OK;
 }
 

@@ -196,9 +196,8 @@ fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState) {
     return (fmi3Status)fmu_free_state(INST, (fmu_snapshot **)FMUState);
 }
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUState, size_t *size) {
-    (void)FMUState;
     if (!instance || !size) return fmi3Error;
-    *size = fmu_serialized_size();
+    *size = fmu_serialized_size((const fmu_snapshot *)FMUState);
     return fmi3OK;
 }
 fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState,

@@ -606,7 +606,15 @@ struct fmu_snapshot {
     fmu_values v;
     stewart_data *data;         /* NULL if the instance had no model yet, or deserialised */
     const stewart_model *model; /* the model data belongs to */
+    unsigned char *data_bytes;  /* deserialised: the saved data block (stewart_data_save) */
+    size_t data_size;
 };
+
+static void drop_data_bytes(fmu_snapshot *s) {
+    free(s->data_bytes);
+    s->data_bytes = NULL;
+    s->data_size = 0;
+}
 
 fmu_status fmu_get_state(fmu_instance *inst, fmu_snapshot **state) {
     if (fmu_check_call(inst, CALL_GET_FMU_STATE, "GetFMUState") != FMU_OK) return FMU_ERROR;
@@ -631,6 +639,7 @@ fmu_status fmu_get_state(fmu_instance *inst, fmu_snapshot **state) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetFMUState: cannot copy the solver data");
         return FMU_ERROR;
     }
+    drop_data_bytes(s);
     s->model = inst->model;
     s->v = inst->v;
     *state = s;
@@ -649,8 +658,9 @@ fmu_status fmu_set_state(fmu_instance *inst, const fmu_snapshot *s) {
     if (inst->data) {
         if (s->data && s->model == inst->model)
             stewart_data_copy(inst->data, s->data);
-        else
-            stewart_data_reset(inst->data); /* deserialised: no warm start to restore */
+        else if (!s->data_bytes ||
+                 stewart_data_load(inst->data, s->data_bytes, s->data_size) != STEWART_OK)
+            stewart_data_reset(inst->data); /* nothing that fits this model: start afresh */
     }
     return FMU_OK;
 }
@@ -659,40 +669,57 @@ fmu_status fmu_free_state(fmu_instance *inst, fmu_snapshot **state) {
     (void)inst;
     if (!state || !*state) return FMU_OK;
     stewart_data_free((*state)->data);
+    drop_data_bytes(*state);
     free(*state);
     *state = NULL;
     return FMU_OK;
 }
 
-/* Serialised form: magic, sizeof(fmu_values), the values. The solver data block is opaque in the
- * C API (no serialisation), so a deserialised state restarts it: outputs, inputs and history are
- * restored exactly; only a warm start of the full model would be lost. */
-static const unsigned char kMagic[8] = {'S', 'T', 'W', 'F', 'M', 'U', '0', '1'};
+/* Serialised form: magic, sizeof(fmu_values), the values, then the size of the solver data
+ * block's saved state and its bytes (stewart_data_save; 0 bytes before a model exists). */
+static const unsigned char kMagic[8] = {'S', 'T', 'W', 'F', 'M', 'U', '0', '2'};
+enum { HEADER = sizeof kMagic + sizeof(uint64_t) + sizeof(fmu_values) + sizeof(uint64_t) };
 
-size_t fmu_serialized_size(void) { return sizeof kMagic + sizeof(uint64_t) + sizeof(fmu_values); }
+static size_t data_bytes_of(const fmu_snapshot *s) {
+    return s->data ? stewart_data_state_size(s->data) : s->data_size;
+}
+
+size_t fmu_serialized_size(const fmu_snapshot *s) { return HEADER + (s ? data_bytes_of(s) : 0); }
 
 fmu_status fmu_serialize_state(fmu_instance *inst, const fmu_snapshot *s, unsigned char *out,
                                size_t size) {
     if (fmu_check_call(inst, CALL_SERIALIZE, "SerializeFMUState") != FMU_OK) return FMU_ERROR;
-    if (!s || !out || size < fmu_serialized_size()) {
+    if (!s || !out || size < fmu_serialized_size(s)) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "SerializeFMUState: buffer of %zu bytes, need %zu",
-                size, fmu_serialized_size());
+                size, fmu_serialized_size(s));
         return FMU_ERROR;
     }
-    const uint64_t n = sizeof(fmu_values);
+    const uint64_t n = sizeof(fmu_values), data_size = data_bytes_of(s);
     memcpy(out, kMagic, sizeof kMagic);
     memcpy(out + sizeof kMagic, &n, sizeof n);
     memcpy(out + sizeof kMagic + sizeof n, &s->v, sizeof s->v);
+    memcpy(out + HEADER - sizeof data_size, &data_size, sizeof data_size);
+    if (s->data) {
+        if (stewart_data_save(s->data, out + HEADER, data_size) != STEWART_OK) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "SerializeFMUState: cannot save the solver data");
+            return FMU_ERROR;
+        }
+    } else if (data_size) {
+        memcpy(out + HEADER, s->data_bytes, data_size);
+    }
     return FMU_OK;
 }
 
 fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, size_t size,
                                  fmu_snapshot **state) {
     if (fmu_check_call(inst, CALL_SERIALIZE, "DeserializeFMUState") != FMU_OK) return FMU_ERROR;
-    uint64_t n = 0;
-    if (in && size == fmu_serialized_size()) memcpy(&n, in + sizeof kMagic, sizeof n);
-    if (!in || !state || size != fmu_serialized_size() || memcmp(in, kMagic, sizeof kMagic) ||
-        n != sizeof(fmu_values)) {
+    uint64_t n = 0, data_size = 0;
+    if (in && size >= HEADER) {
+        memcpy(&n, in + sizeof kMagic, sizeof n);
+        memcpy(&data_size, in + HEADER - sizeof data_size, sizeof data_size);
+    }
+    if (!in || !state || size < HEADER || memcmp(in, kMagic, sizeof kMagic) ||
+        n != sizeof(fmu_values) || data_size != size - HEADER) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DeserializeFMUState: %zu bytes are not a state of this FMU", size);
         return FMU_ERROR;
@@ -703,7 +730,19 @@ fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, si
     stewart_data_free(s->data);
     s->data = NULL;
     s->model = NULL;
+    drop_data_bytes(s);
     memcpy(&s->v, in + sizeof kMagic + sizeof n, sizeof s->v);
+    if (data_size) {
+        s->data_bytes = (unsigned char *)malloc(data_size);
+        if (!s->data_bytes) {
+            fmu_free_state(inst, &s);
+            *state = NULL;
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "DeserializeFMUState: out of memory");
+            return FMU_ERROR;
+        }
+        memcpy(s->data_bytes, in + HEADER, data_size);
+        s->data_size = data_size;
+    }
     if (!(s->v.mode & (MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED))) {
         fmu_free_state(inst, &s);
         *state = NULL;

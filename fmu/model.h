@@ -108,7 +108,8 @@ typedef struct fmu_snapshot fmu_snapshot;
 fmu_status fmu_get_state(fmu_instance *inst, fmu_snapshot **state);
 fmu_status fmu_set_state(fmu_instance *inst, const fmu_snapshot *state);
 fmu_status fmu_free_state(fmu_instance *inst, fmu_snapshot **state);
-size_t fmu_serialized_size(void);
+/* Bytes of a serialised snapshot (its values, and the solver data block when it has one). */
+size_t fmu_serialized_size(const fmu_snapshot *state);
 fmu_status fmu_serialize_state(fmu_instance *inst, const fmu_snapshot *state, unsigned char *out,
                                size_t size);
 fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, size_t size,

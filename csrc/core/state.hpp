@@ -52,6 +52,11 @@ struct State {
 
 // Copies the state (not the workspaces) of src into dst, both of the same mechanism.
 void copy_state(State &dst, const State &src);
+// The state copy_state copies, as bytes: a tag, the sizes, then the values (same machine).
+size_t saved_state_size(const State &s);
+void save_state(const State &s, unsigned char *out);
+// False (s unchanged) unless the bytes are a saved state of a mechanism of s's shape.
+bool load_state(State &s, const unsigned char *in, size_t size);
 // Forgets the history: the next position solve starts from q as it is.
 void reset_history(State &s);
 

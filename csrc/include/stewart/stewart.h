@@ -128,6 +128,12 @@ stewart_data *stewart_data_create(const stewart_model *model);
 void stewart_data_free(stewart_data *data);
 /* Copies the whole state of src into dst (both made from the same model): a rollback point. */
 stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src);
+/* The state of a data block (what stewart_data_copy copies) as bytes, to save a run and resume
+ * it in another process (FMU state serialisation). The size depends on the model only. */
+size_t stewart_data_state_size(const stewart_data *data);
+stewart_status stewart_data_save(const stewart_data *data, void *buffer, size_t size);
+/* STEWART_ERR_ARGUMENT (data unchanged) if the bytes are not a saved state of this model's shape. */
+stewart_status stewart_data_load(stewart_data *data, const void *buffer, size_t size);
 /* Forgets the history (warm start) as if the data block were new. */
 void stewart_data_reset(stewart_data *data);
 /* The message of the last solve that did not return STEWART_OK, else "". */
