@@ -14,21 +14,29 @@ def _leg_style(k):
     return {"label": f"leg {k}", "linestyle": "-" if k % 2 else "--"}
 
 
-def plot_legs(t, series, path, title=""):
-    """series: {'L': (N, 6), 'L_dot': (N, 6), 'F': (N, 6)} → one panel each, a line per leg."""
-    fig, axes = plt.subplots(len(LEG_PANELS), 1, sharex=True, figsize=(9, 9))
-    for ax, (key, label) in zip(axes, LEG_PANELS):
-        for k in range(6):
-            ax.plot(t, series[key][:, k], **_leg_style(k + 1))
+def _stacked_panels(t, panels, draw, path, title, legend=False):
+    """One panel per (key, label) against time, drawn by draw(ax, key), saved to path."""
+    fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(9, 9))
+    for ax, (key, label) in zip(axes, panels):
+        draw(ax, key)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
-    axes[0].legend(ncol=6, fontsize="small", loc="lower center", bbox_to_anchor=(0.5, 1.0))
+    if legend:
+        axes[0].legend(ncol=6, fontsize="small", loc="lower center", bbox_to_anchor=(0.5, 1.0))
     axes[-1].set_xlabel("time t [s]")
     if title:
         fig.suptitle(title)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+
+
+def plot_legs(t, series, path, title=""):
+    """series: {'L': (N, 6), 'L_dot': (N, 6), 'F': (N, 6)} → one panel each, a line per leg."""
+    def draw(ax, key):
+        for k in range(6):
+            ax.plot(t, series[key][:, k], **_leg_style(k + 1))
+    _stacked_panels(t, LEG_PANELS, draw, path, title, legend=True)
 
 
 def plot_forces_per_fidelity(t, forces, path, title=""):
@@ -103,14 +111,4 @@ def plot_slider_crank(data, path, title=""):
     """data: slider-crank-solve columns → slider position, velocity, acceleration and crank torque."""
     panels = (("slider_x", "slider x [m]"), ("slider_v", "slider velocity [m/s]"),
               ("slider_a", "slider acceleration [m/s²]"), ("crank_torque", "crank torque [N m]"))
-    fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(9, 9))
-    for ax, (key, label) in zip(axes, panels):
-        ax.plot(data["t"], data[key])
-        ax.set_ylabel(label)
-        ax.grid(True, alpha=0.3)
-    axes[-1].set_xlabel("time t [s]")
-    if title:
-        fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _stacked_panels(data["t"], panels, lambda ax, key: ax.plot(data["t"], data[key]), path, title)

@@ -18,17 +18,20 @@
 
 #include "fmi2Functions.h"
 #include "fmi3Functions.h"
+#include "variables.h"
 
-#define GUID "{5d0f6a3e-9b1c-4c2e-a7f4-3e8b2c7d1a04}"
-/* Value references (modelDescription.xml) */
-enum { VR_X = 0, VR_X_DOT = 6, VR_X_DDOT = 12, VR_L1 = 100, VR_STATUS = 127, VR_FIDELITY = 200,
-       VR_DERIVATIVES = 201 };
-#define N_OUT 32 /* Real outputs: value references 100..133 except the Integers 125 and 127 */
+#define GUID FMU_GUID
+#define N_OUT 32 /* Real outputs */
 
+/* Every Real output, in table order (L[1..6] first), from the FMU's own variable table. */
 static void real_outputs(unsigned vr[N_OUT]) {
     int n = 0;
-    for (unsigned r = VR_L1; r <= 133; ++r)
-        if (r != 125 && r != VR_STATUS) vr[n++] = r;
+    for (size_t i = 0; i < fmu_n_variables; ++i)
+        if (fmu_variables[i].causality == FMU_OUTPUT_VAR && fmu_variables[i].type == FMU_REAL) {
+            if (n == N_OUT) { fprintf(stderr, "importer: more than %d Real outputs\n", N_OUT); exit(2); }
+            vr[n++] = fmu_variables[i].vr;
+        }
+    if (n != N_OUT) { fprintf(stderr, "importer: %d Real outputs, expected %d\n", n, N_OUT); exit(2); }
 }
 
 /* ---- allocation counter: the executable's definitions interpose on the FMU's calls (glibc).
@@ -141,10 +144,10 @@ static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, doub
     fmi2Component c = instantiate("importer", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
     CHECK(c != NULL, "fmi2Instantiate");
     if (!c) return tm;
-    const fmi2ValueReference pvr[2] = {VR_FIDELITY, VR_DERIVATIVES};
+    const fmi2ValueReference pvr[2] = {VR_fidelity, VR_derivatives};
     const fmi2Integer pval[2] = {fidelity, derivatives};
     fmi2ValueReference in_vr[18], out_vr[N_OUT];
-    for (int i = 0; i < 18; ++i) in_vr[i] = VR_X + i;
+    for (int i = 0; i < 18; ++i) in_vr[i] = VR_x + i;
     real_outputs(out_vr);
     double q[18];
     pose_at(0.0, q);
@@ -159,7 +162,7 @@ static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, doub
     tm.ran = 1;
     double *t_step = malloc(steps * sizeof(double)), *t_cycle = malloc(steps * sizeof(double));
     const double h = 1e-3;
-    const fmi2ValueReference status_vr = VR_STATUS;
+    const fmi2ValueReference status_vr = VR_status;
     for (int j = 0; j < steps; ++j) {
         const double t = j * h;
         pose_at(t, q);
@@ -213,10 +216,10 @@ static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, doub
                                  NULL, 0, NULL, logger3, NULL);
     CHECK(c != NULL, "fmi3InstantiateCoSimulation");
     if (!c) return tm;
-    const fmi3ValueReference pvr[2] = {VR_FIDELITY, VR_DERIVATIVES};
+    const fmi3ValueReference pvr[2] = {VR_fidelity, VR_derivatives};
     const fmi3Int32 pval[2] = {fidelity, derivatives};
     fmi3ValueReference in_vr[18], out_vr[N_OUT];
-    for (int i = 0; i < 18; ++i) in_vr[i] = VR_X + i;
+    for (int i = 0; i < 18; ++i) in_vr[i] = VR_x + i;
     real_outputs(out_vr);
     const int n_out = N_OUT;
     double q[18];
@@ -231,7 +234,7 @@ static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, doub
     tm.ran = 1;
     double *t_step = malloc(steps * sizeof(double)), *t_cycle = malloc(steps * sizeof(double));
     const double h = 1e-3;
-    const fmi3ValueReference status_vr = VR_STATUS;
+    const fmi3ValueReference status_vr = VR_status;
     fmi3Boolean event, term, early;
     fmi3Float64 last;
     for (int j = 0; j < steps; ++j) {
