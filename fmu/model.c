@@ -1,6 +1,7 @@
 /* The model behind both FMI layers (see model.h). */
 #include "model.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -213,6 +214,7 @@ static fmu_status apply_parameters(fmu_instance *inst) {
         inst->model = m;
         inst->data = d;
         inst->model_params = p;
+        ++inst->model_generation;
         fmu_log(inst, FMU_OK, LOG_EVENTS, "model built from the parameters");
     }
     inst->options = o;
@@ -227,7 +229,9 @@ static int taylor_mode(const fmu_values *v) {
 
 /* The pose at v->time: inputs, and derivatives from the inputs or by finite differences of the
  * poses at earlier communication points (quadratic through the last three poses; with only one
- * earlier pose, the quadratic through both that is at rest at the first; none: at rest). */
+ * earlier pose, the chord through both and zero acceleration; none: at rest). Assuming rest at the
+ * first point instead would give a motion already under way an acceleration 2 v / h: unbounded as
+ * h shrinks. */
 static void current_pose(const fmu_values *v, stewart_pose *pose) {
     for (int i = 0; i < 6; ++i) pose->q[i] = v->real[VR_x + i];
     if (taylor_mode(v)) {
@@ -245,9 +249,8 @@ static void current_pose(const fmu_values *v, stewart_pose *pose) {
     } else if (v->n_history == 1) {
         const double h = t - v->history_t[1];
         for (int i = 0; i < 6; ++i) {
-            const double d = (pose->q[i] - v->history_q[1][i]) / h;
-            pose->q_dot[i] = 2.0 * d;
-            pose->q_ddot[i] = 2.0 * d / h;
+            pose->q_dot[i] = (pose->q[i] - v->history_q[1][i]) / h;
+            pose->q_ddot[i] = 0.0;
         }
     } else {
         const double h1 = v->history_t[1] - v->history_t[0], h2 = t - v->history_t[1];
@@ -273,28 +276,29 @@ static fmu_status map_solve_error(stewart_status s) {
     }
 }
 
-/* Solves for the current inputs unless already done. OK / Warning (status 1 or 2) / Discard
- * (status 3, outputs keep their last valid values) / Error (unsupported fidelity, memory). */
-static int inputs_finite(const fmu_values *v) {
+/* The value reference of the first input that is not finite, or -1. */
+static int first_nonfinite_input(const fmu_values *v) {
     for (unsigned vr = VR_x; vr <= VR_yaw_ddot; ++vr)
-        if (!isfinite(v->real[vr])) return 0;
-    return 1;
+        if (!isfinite(v->real[vr])) return (int)vr;
+    return -1;
 }
 
+/* Solves for the current inputs unless already done. OK / Warning (status 1 or 2) / Discard
+ * (status 3, outputs keep their last valid values) / Error (unsupported fidelity, memory). */
 static fmu_status solve_current(fmu_instance *inst) {
     fmu_values *v = &inst->v;
     if (v->solved) return v->solve_status;
     /* Every input must be finite, used or not. */
-    for (unsigned vr = VR_x; vr <= VR_yaw_ddot; ++vr)
-        if (!isfinite(v->real[vr])) {
-            v->integer[VR_status] = 3;
-            v->solved = 1;
-            v->solve_status = FMU_DISCARD;
-            fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
-                    "t = %.17g: input %s = %g is not finite; outputs keep their last valid values",
-                    v->time, fmu_variable_by_vr(vr)->name, v->real[vr]);
-            return FMU_DISCARD;
-        }
+    const int bad = first_nonfinite_input(v);
+    if (bad >= 0) {
+        v->integer[VR_status] = 3;
+        v->solved = 1;
+        v->solve_status = FMU_DISCARD;
+        fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                "t = %.17g: input %s = %g is not finite; outputs keep their last valid values",
+                v->time, fmu_variable_by_vr((unsigned)bad)->name, v->real[bad]);
+        return FMU_DISCARD;
+    }
     stewart_pose pose;
     current_pose(v, &pose);
     if (!taylor_mode(v))
@@ -430,7 +434,17 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
                 "communication point %.17g", t, v->history_t[1]);
         return FMU_ERROR;
     }
-    if (t != v->time) { /* the master moved the communication point (e.g. after a Discard) */
+    /* A master may pass t a few roundings off the unit's own time (start + n h against the sum
+     * of its steps), never earlier by more: that would take the pose of time v->time for an
+     * earlier one. */
+    const double last_step = v->n_history > 0 ? v->time - v->history_t[1] : 0.0;
+    if (t < v->time - (1e-9 * last_step + 8.0 * DBL_EPSILON * fabs(v->time))) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: currentCommunicationPoint = %.17g is before the unit's time %.17g (the "
+                "end of the last step); to go back, restore an FMU state", t, v->time);
+        return FMU_ERROR;
+    }
+    if (t != v->time) { /* a rounding off the unit's time, or later (after a Discard) */
         v->time = t;
         v->real[VR_time] = t;
         v->solved = 0;
@@ -439,7 +453,7 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
      * if an input is not finite (that is reported against t), or if t + h fails below. */
     const int advance = taylor_mode(v);
     fmu_status s = FMU_OK;
-    if (!advance || v->solved || !inputs_finite(v)) {
+    if (!advance || v->solved || first_nonfinite_input(v) >= 0) {
         s = solve_current(inst);
         if (s == FMU_DISCARD || s == FMU_ERROR) {
             v->last_successful_time = t;
@@ -589,6 +603,12 @@ fmu_status fmu_set_input_derivatives(fmu_instance *inst, const unsigned vr[], si
             return FMU_ERROR;
         }
     }
+    /* With derivatives = 0 the *_dot and *_ddot slots hold only what this call and the others
+     * before the same step give: an order the master does not give is zero for the step, never
+     * a value left from an earlier step. */
+    if (n > 0 && !inst->v.input_derivatives && inst->v.integer[VR_derivatives] == 0)
+        for (unsigned vr_slot = VR_x_dot; vr_slot <= VR_yaw_ddot; ++vr_slot)
+            inst->v.real[vr_slot] = 0.0;
     for (size_t i = 0; i < n; ++i) {
         const unsigned base = vr[i] <= VR_yaw ? vr[i] : vr[i] - VR_x_dot;
         inst->v.real[(order[i] == 1 && vr[i] <= VR_yaw ? VR_x_dot : VR_x_ddot) + base] = value[i];
@@ -605,10 +625,17 @@ fmu_status fmu_set_input_derivatives(fmu_instance *inst, const unsigned vr[], si
 struct fmu_snapshot {
     fmu_values v;
     stewart_data *data;         /* NULL if the instance had no model yet, or deserialised */
-    const stewart_model *model; /* the model data belongs to */
+    /* The model data belongs to: the instance's model of that generation. A pointer to the
+     * model would not do: a freed model's address can come back for another one. */
+    const fmu_instance *owner;
+    unsigned long model_generation;
     unsigned char *data_bytes;  /* deserialised: the saved data block (stewart_data_save) */
     size_t data_size;
 };
+
+static int data_fits(const fmu_instance *inst, const fmu_snapshot *s) {
+    return s->data && s->owner == inst && s->model_generation == inst->model_generation;
+}
 
 static void drop_data_bytes(fmu_snapshot *s) {
     free(s->data_bytes);
@@ -620,7 +647,7 @@ fmu_status fmu_get_state(fmu_instance *inst, fmu_snapshot **state) {
     if (fmu_check_call(inst, CALL_GET_FMU_STATE, "GetFMUState") != FMU_OK) return FMU_ERROR;
     if (!state) return bad_vr(inst, "GetFMUState (NULL state pointer)", 0);
     fmu_snapshot *s = *state;
-    if (s && s->model != inst->model) { /* reused snapshot of another model: start afresh */
+    if (s && s->data && !data_fits(inst, s)) { /* reused snapshot of another model */
         stewart_data_free(s->data);
         s->data = NULL;
     }
@@ -633,14 +660,14 @@ fmu_status fmu_get_state(fmu_instance *inst, fmu_snapshot **state) {
     }
     if (inst->data && !s->data) s->data = stewart_data_create(inst->model);
     if (inst->data && (!s->data || stewart_data_copy(s->data, inst->data) != STEWART_OK)) {
-        stewart_data_free(s->data);
-        free(s);
+        fmu_free_state(inst, &s);
         *state = NULL;
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetFMUState: cannot copy the solver data");
         return FMU_ERROR;
     }
     drop_data_bytes(s);
-    s->model = inst->model;
+    s->owner = inst;
+    s->model_generation = inst->model_generation;
     s->v = inst->v;
     *state = s;
     return FMU_OK;
@@ -656,7 +683,7 @@ fmu_status fmu_set_state(fmu_instance *inst, const fmu_snapshot *s) {
         if (apply_parameters(inst) != FMU_OK) return fail(inst);
     }
     if (inst->data) {
-        if (s->data && s->model == inst->model)
+        if (data_fits(inst, s))
             stewart_data_copy(inst->data, s->data);
         else if (!s->data_bytes ||
                  stewart_data_load(inst->data, s->data_bytes, s->data_size) != STEWART_OK)
@@ -710,6 +737,40 @@ fmu_status fmu_serialize_state(fmu_instance *inst, const fmu_snapshot *s, unsign
     return FMU_OK;
 }
 
+/* Why deserialised values cannot be a state of this FMU, or NULL if they can: bytes that pass
+ * here never give a NaN output, a status outside 0..3 or an impossible mode. */
+static const char *corrupt_values(const fmu_values *v) {
+    const int modes = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED;
+    if (!(v->mode & modes) || (v->mode & ~modes) || (v->mode & (v->mode - 1)))
+        return "mode is not one of instantiated, initialization, step, terminated";
+    if (v->n_history < 0 || v->n_history > 2) return "finite-difference history is not 0..2 poses";
+    if ((v->input_derivatives & ~1) || (v->solved & ~1) || v->solve_status < FMU_OK ||
+        v->solve_status > FMU_ERROR)
+        return "a flag is out of range";
+    if (!isfinite(v->time) || !isfinite(v->last_successful_time)) return "time is not finite";
+    for (int j = 2 - v->n_history; j < 2; ++j) {
+        if (!(v->history_t[j] < v->time) || (j == 0 && !(v->history_t[0] < v->history_t[1])))
+            return "finite-difference history is not before the current time and ordered";
+        for (int i = 0; i < 6; ++i)
+            if (!isfinite(v->history_q[j][i])) return "finite-difference history is not finite";
+    }
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) \
+    if (!isfinite(v->real[vr])) return "output " name " is not finite";
+#include "variables.def"
+    if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
+    if (v->integer[VR_newton_iterations] < 0) return "newton_iterations is negative";
+    if (v->mode & (MODE_STEP | MODE_TERMINATED)) { /* parameters were checked at initialisation */
+#define FMU_PARAM(vr, id, name, field, unit, display, desc) \
+        if (!isfinite(v->real[vr])) return "parameter " name " is not finite";
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) \
+        if (!isfinite(v->real[vr])) return "option " name " is not finite";
+#define FMU_OPTION_INT(vr, id, name, start, min, max, desc) \
+        if (v->integer[vr] < (min) || v->integer[vr] > (max)) return "option " name " is out of range";
+#include "variables.def"
+    }
+    return NULL;
+}
+
 fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, size_t size,
                                  fmu_snapshot **state) {
     if (fmu_check_call(inst, CALL_SERIALIZE, "DeserializeFMUState") != FMU_OK) return FMU_ERROR;
@@ -729,7 +790,7 @@ fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, si
     if (!s) return FMU_ERROR;
     stewart_data_free(s->data);
     s->data = NULL;
-    s->model = NULL;
+    s->owner = NULL;
     drop_data_bytes(s);
     memcpy(&s->v, in + sizeof kMagic + sizeof n, sizeof s->v);
     if (data_size) {
@@ -743,10 +804,11 @@ fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, si
         memcpy(s->data_bytes, in + HEADER, data_size);
         s->data_size = data_size;
     }
-    if (!(s->v.mode & (MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED))) {
+    const char *corrupt = corrupt_values(&s->v);
+    if (corrupt) {
         fmu_free_state(inst, &s);
         *state = NULL;
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "DeserializeFMUState: corrupt state");
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "DeserializeFMUState: corrupt state: %s", corrupt);
         return FMU_ERROR;
     }
     *state = s;

@@ -63,6 +63,7 @@ struct fmu_instance {
     stewart_model *model;      /* built from the parameters when initialisation ends */
     stewart_data *data;
     stewart_params model_params;  /* the parameters `model` was built from */
+    unsigned long model_generation; /* counts the models built: tells FMU states which fits */
     stewart_options options;
     fmu_version version;
     char *name;

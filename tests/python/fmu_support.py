@@ -287,18 +287,15 @@ def reference_matrix(ref):
 
 def backward_fd(ts, qs):
     """The FMU's documented finite differences, written independently: derivatives at the newest
-    point of the quadratic through the last three poses; with two poses, the quadratic through
-    both with zero velocity at the first; with one pose, at rest."""
+    point of the quadratic through the last three poses; with two poses, the chord's slope and
+    zero acceleration; with one pose, at rest."""
     n = len(ts)
     qd = np.zeros_like(qs); qdd = np.zeros_like(qs)
     for j in range(n):
         if j == 0:
             continue
         if j == 1:
-            h = ts[1] - ts[0]
-            # q(t) = q0 + c (t - t0)^2 through q1
-            c = (qs[1] - qs[0]) / h ** 2
-            qd[1], qdd[1] = 2 * c * h, 2 * c
+            qd[1] = (qs[1] - qs[0]) / (ts[1] - ts[0])
             continue
         t0, t1, t2 = ts[j - 2], ts[j - 1], ts[j]
         # Lagrange quadratic through the three points, differentiated at t2

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, L, POSE, POSE_DOT, POSE_DDOT, OK, WARNING,
-                         DISCARD, ERROR, Unit, closed_form_lengths, require_fidelity, reference_matrix,
-                         stewart_solve, thesis_manoeuvre)
+                         DISCARD, ERROR, Unit, closed_form_lengths, model_description,
+                         require_fidelity, reference_matrix, stewart_solve, thesis_manoeuvre)
 
 
 def _drive(u, t0, poses, h=0.1):
@@ -53,6 +53,87 @@ def test_rollback_reproduces_outputs_bit_for_bit(version, fidelity, derivatives)
         assert first.tobytes() == third.tobytes()  # the solver's data block travels too
         assert u.serialize(restored) == blob
         u.free_state(restored)
+    finally:
+        u.free()
+
+
+def _layout(u, blob):
+    """Offsets of fields in a serialised state: magic (8 bytes), sizeof(fmu_values) (uint64), then
+    fmu_values: real[NVR], integer[NVR] by value reference, ..., last_successful_time, mode (its
+    last members). The test checks each offset against a known value before it corrupts it."""
+    n = int.from_bytes(blob[8:16], "little")
+    # both versions number their variables alike; FMI 3's also lists `time`, the largest
+    nvr = max(v.valueReference for v in model_description("3.0").modelVariables) + 1
+    return dict(real=lambda vr: 16 + 8 * vr, integer=lambda vr: 16 + 8 * nvr + 4 * vr,
+                last_successful_time=16 + n - 16, mode=16 + n - 8)
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("field,value,words", [
+    ("L[1]", math.nan, "output L[1] is not finite"),
+    ("F[6]", math.inf, "output F[6] is not finite"),
+    ("status", 64, "status is not 0..3"),
+    ("fidelity", 7, "option fidelity is out of range"),
+    ("derivatives", -1, "option derivatives is out of range"),
+    ("mode", 0, "mode is not one of"),
+    ("mode", 4 | 8, "mode is not one of"),
+    ("mode", 16, "mode is not one of"),                 # error mode: no state is taken there
+    ("last_successful_time", math.nan, "time is not finite"),
+])
+def test_corrupt_serialised_state_is_refused(version, field, value, words):
+    """A serialised state whose bytes are intact in size and header but hold values no instance
+    can have is an Error naming what is wrong, never a state that gives NaN outputs or an
+    impossible status; the instance stays usable and the intact bytes still restore."""
+    import struct
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1) == OK
+        _, t = _drive(u, 0.0, _poses(3))
+        state = u.get_state()
+        blob = bytearray(u.serialize(state))
+        at = _layout(u, blob)
+        if field in ("mode", "last_successful_time"):
+            offset = at[field]
+            fmt = "<i" if field == "mode" else "<d"
+            expected = 4 if field == "mode" else t   # MODE_STEP; the time after the last step
+        else:
+            var = u.vr[field]
+            integer = field in ("status", "fidelity", "derivatives")
+            offset, fmt = (at["integer"](var), "<i") if integer else (at["real"](var), "<d")
+            expected = u.get([field])[0]
+        assert struct.unpack_from(fmt, blob, offset)[0] == pytest.approx(expected, rel=1e-15)
+        struct.pack_into(fmt, blob, offset, value)
+        u.messages.clear()
+        with pytest.raises(Exception):
+            u.deserialize(bytes(blob))
+        m = [x for s, c, x in u.messages if s == ERROR]
+        assert m and "corrupt state" in m[-1] and words in m[-1], u.messages
+        restored = u.deserialize(bytes(u.serialize(state)))
+        u.set_state(restored)
+        assert u.do_step(t, 0.1) == OK
+        assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
+        u.free_state(restored)
+        u.free_state(state)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_step_from_before_the_units_time_is_an_error(version):
+    """doStep(t, h) with t before the end of the last step (and after the one before) would take
+    the pose of the unit's time for an earlier one: Error naming both times; a t off by a
+    rounding is accepted, and going back works through an FMU state."""
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1) == OK
+        _, t = _drive(u, 0.0, _poses(3))       # t = 0.3; the last accepted point is 0.2
+        before = u.get_reals(REAL_OUTPUTS)
+        u.messages.clear()
+        assert u.do_step(t - 0.05, 0.1) == ERROR
+        m = [x for s, c, x in u.messages if s == ERROR]
+        assert m and "is before the unit's time" in m[-1], u.messages
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
+        assert u.do_step(3 * 0.1, 0.1) == OK   # 0.30000000000000004 against 0.1 + 0.1 + 0.1
     finally:
         u.free()
 

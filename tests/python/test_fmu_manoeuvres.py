@@ -72,22 +72,29 @@ def test_thesis_manoeuvre_with_finite_differences(version, fidelity, kind):
 
 
 @pytest.mark.parametrize("version", VERSIONS)
-def test_finite_differences_are_exact_for_a_quadratic_from_rest(version):
-    """A motion starting at rest with constant acceleration: every finite difference the FMU can
-    form is exact, so derivatives = 0 gives the derivative-input result (and the closed-form
-    derivatives of the pose)."""
+def test_finite_differences_are_exact_for_a_quadratic(version):
+    """A motion with constant acceleration: the quadratic through three poses is exact, so from
+    the third point on derivatives = 0 gives the derivative-input result (and the closed-form
+    derivatives of the pose). At the second point the rate is the chord's slope, the mean of the
+    rates at the two ends, and the acceleration zero."""
     t = np.array([0.0, 0.05, 0.12, 0.2, 0.33, 0.4, 0.52])
     a = np.array([0.1, -0.2, 0.3, 0.2, -0.1, 0.25])
+    v0 = np.array([0.05, 0.02, -0.04, 0.1, 0.03, -0.2])   # already under way at the first point
     q0 = np.array([0.0, 0.0, 0.5, 0.0, 0.0, 0.0])
-    q = q0 + 0.5 * a * t[:, None] ** 2
-    qd = a * t[:, None]
+    q = q0 + v0 * t[:, None] + 0.5 * a * t[:, None] ** 2
+    qd = v0 + a * t[:, None]
     qdd = np.tile(a, (len(t), 1))
     fd = _run(version, 1, 0, t, q)
     exact = _run(version, 1, 1, t, q, qd, qdd)
-    # the first point is taken at rest (zero acceleration too); from the second on, exact
-    np.testing.assert_allclose(fd[0, :12], exact[0, :12], rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(fd[1:], exact[1:], rtol=1e-7, atol=1e-7)
-    # and the rates are not trivially zero
+    # the first point is taken at rest: its lengths are exact
+    np.testing.assert_allclose(fd[0, :6], exact[0, :6], rtol=1e-12, atol=1e-12)
+    # the second: the pose moving at the chord's rate (qd0 + qd1) / 2 without acceleration
+    chord_rate = np.tile((qd[0] + qd[1]) / 2, (2, 1))
+    chord = _run(version, 1, 1, t[:2], q[:2], chord_rate, np.zeros((2, 6)))
+    np.testing.assert_allclose(fd[1], chord[1], rtol=1e-9, atol=1e-9)
+    # and from the third on, exact
+    np.testing.assert_allclose(fd[2:], exact[2:], rtol=1e-7, atol=1e-7)
+    # the rates are not trivially zero
     assert np.max(np.abs(exact[1:, 6:12])) > 1e-3
 
 
@@ -146,6 +153,34 @@ def test_fmi2_input_derivatives_interpolate_over_the_step():
         assert u.do_step(1.3, h) == OK
         p, v = q[0] + qd[0] * h + 0.5 * qdd[0] * h * h, qd[0] + qdd[0] * h
         ref = reference_matrix(stewart_solve(np.array([1.3 + h]), p[None], v[None], qdd))[0]
+        np.testing.assert_allclose(u.get_reals(OUT), ref, rtol=1e-12, atol=1e-12)
+    finally:
+        u.free()
+
+
+def test_fmi2_input_derivatives_not_given_are_zero():
+    """An order the master does not give before a step is zero for that step: the second step
+    gets only first derivatives, so its acceleration is zero, not the one of the first step."""
+    q, qd, qdd = thesis_manoeuvre("yaw", np.array([1.3, 1.4]))
+    qdd = qdd + [0.5, 0.2, -0.3, 0.3, 0.1, -0.2]  # large, so a left-over one would show
+    u = Unit("2.0")
+    try:
+        u.set(fidelity=1, derivatives=0)
+        assert u.enter_init(1.3) == OK and u.exit_init() == OK
+        vrs = [u.vr[n] for n in POSE]
+        u.set_values(dict(zip(POSE, q[0])))
+        u.fmu.setRealInputDerivatives(vrs, [1] * 6, list(qd[0]))
+        u.fmu.setRealInputDerivatives(vrs, [2] * 6, list(qdd[0]))
+        assert u.do_step(1.3, 0.1) == OK
+        u.set_values(dict(zip(POSE, q[1])))
+        u.fmu.setRealInputDerivatives(vrs, [1] * 6, list(qd[1]))
+        ref = reference_matrix(stewart_solve(np.array([1.4]), q[1:], qd[1:], np.zeros((1, 6))))[0]
+        np.testing.assert_allclose(u.get_reals(OUT), ref, rtol=1e-12, atol=1e-12)
+        h = 0.05
+        assert u.do_step(1.4, h) == OK
+        p = q[1] + qd[1] * h
+        ref = reference_matrix(stewart_solve(np.array([1.4 + h]), p[None], qd[1:],
+                                             np.zeros((1, 6))))[0]
         np.testing.assert_allclose(u.get_reals(OUT), ref, rtol=1e-12, atol=1e-12)
     finally:
         u.free()
