@@ -261,6 +261,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 if (u.serialize(state, buf) != 0) break;
                 const uint8_t corrupt = in.byte();
                 if (corrupt & 1) buf[in.byte() % n] ^= in.byte();
+                if (corrupt & 4) {  // a whole field: any value (NaN, Inf, huge) at an 8-byte slot
+                    const double value = in.value();
+                    const size_t at = (static_cast<size_t>(in.byte()) * 8 + 16) % (n - 7);
+                    std::memcpy(&buf[at], &value, sizeof value);
+                }
                 const size_t m = (corrupt & 2) ? n - 1 : n;
                 void *other = nullptr;
                 if (u.deserialize(buf, m, &other) == 0) {
