@@ -100,8 +100,10 @@ def test_kinematic_level_has_no_forces(solve, tmp_path):
 
 
 def test_full_level_close_to_massless(solve, tmp_path):
-    """The thesis' legs weigh 0.14 kg per body against a 106 kg platform: the full model's
-    forces stay within 2 % of the massless ones, and its lengths are the same."""
+    """The thesis' legs weigh 0.143 kg per body against a 106.03 kg platform: the lengths are
+    the same, and the full model's forces exceed the massless ones by more than nothing and by
+    less than the legs' whole weight can add: 12 x 0.143 / 106.03 = 1.62 % (the manoeuvre is
+    slow, so inertia adds little; measured: 0.72 % to 0.88 %)."""
     pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "full.csv"
     scenes.write_pose_csv("pitch", pose_csv, dt=0.1)
     result = solve("--fidelity", "full", pose_csv, out_csv)
@@ -113,8 +115,8 @@ def test_full_level_close_to_massless(solve, tmp_path):
     for k in LEGS:
         np.testing.assert_allclose(column(header, full, f"L{k}"), column(header, massless, f"L{k}"),
                                    atol=1e-11)
-        np.testing.assert_allclose(column(header, full, f"F{k}"), column(header, massless, f"F{k}"),
-                                   rtol=0.02)
+        ratio = column(header, full, f"F{k}") / column(header, massless, f"F{k}")
+        assert np.all(ratio > 1.003) and np.all(ratio < 1 + 12 * 0.143 / 106.03), ratio
 
 
 def test_single_row_is_a_platform_at_rest(solve, tmp_path):

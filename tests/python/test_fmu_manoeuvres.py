@@ -1,5 +1,10 @@
 """The thesis manoeuvres through the FMU equal stewart-solve on the same poses, for each fidelity
-level and each derivative source, FMI 2 and FMI 3."""
+level and each derivative source, FMI 2 and FMI 3.
+
+Both paths end in the same library, so these tests check the unit's plumbing (inputs, derivative
+sources, Taylor advance, finite-difference history, outputs), not the physics: that is checked
+against closed forms, finite differences and balances in tests/unit and test_cli.py, and through
+the FMU in test_fmu_extremes.py (numpy closed forms, weight on the base)."""
 import numpy as np
 import pytest
 
