@@ -11,14 +11,12 @@
  *                  [--set NAME=VALUE ...] [--out OUT.csv]
  * --set gives any parameter of the FMU by its name (e.g. --set cylinder_mass=20).
  */
-#include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-#include "fmi2Functions.h"
+#include "importer_support.h"
 #include "variables.h"
 
 typedef struct {
@@ -34,30 +32,10 @@ static void pose_at(const scene *s, double t, double q[18]) {
     }
 }
 
-static double now_us(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                    fmi2String category, fmi2String message, ...) {
     (void)env;
     if (status > fmi2Warning) fprintf(stderr, "[%s %d %s] %s\n", name, status, category, message);
-}
-
-static void *sym(void *lib, const char *name) {
-    void *f = dlsym(lib, name);
-    if (!f) {
-        fprintf(stderr, "fmu_bench: %s not found\n", name);
-        exit(2);
-    }
-    return f;
 }
 
 int main(int argc, char **argv) {
@@ -97,19 +75,10 @@ int main(int argc, char **argv) {
 
     void *lib = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
     if (!lib) { fprintf(stderr, "fmu_bench: %s\n", dlerror()); return 2; }
-    fmi2InstantiateTYPE *instantiate = sym(lib, "fmi2Instantiate");
-    fmi2FreeInstanceTYPE *free_instance = sym(lib, "fmi2FreeInstance");
-    fmi2SetupExperimentTYPE *setup = sym(lib, "fmi2SetupExperiment");
-    fmi2EnterInitializationModeTYPE *enter = sym(lib, "fmi2EnterInitializationMode");
-    fmi2ExitInitializationModeTYPE *exit_init = sym(lib, "fmi2ExitInitializationMode");
-    fmi2SetIntegerTYPE *set_int = sym(lib, "fmi2SetInteger");
-    fmi2SetRealTYPE *set_real = sym(lib, "fmi2SetReal");
-    fmi2GetRealTYPE *get_real = sym(lib, "fmi2GetReal");
-    fmi2GetIntegerTYPE *get_int = sym(lib, "fmi2GetInteger");
-    fmi2DoStepTYPE *do_step = sym(lib, "fmi2DoStep");
+    const fmi2_api f = fmi2_api_load(lib);
 
     const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
-    fmi2Component c = instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, fmi2False, fmi2False);
+    fmi2Component c = f.instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, fmi2False, fmi2False);
     if (!c) return 1;
     const fmi2ValueReference ivr[4] = {VR_fidelity, VR_derivatives, VR_modified_newton,
                                        VR_max_iterations};
@@ -136,19 +105,19 @@ int main(int argc, char **argv) {
         const fmi2ValueReference vr = var->vr;
         const double value = atof(eq + 1);
         const fmi2Integer int_value = (fmi2Integer)value;
-        if ((var->type == FMU_REAL ? set_real(c, &vr, 1, &value) : set_int(c, &vr, 1, &int_value)) != fmi2OK) {
+        if ((var->type == FMU_REAL ? f.set_real(c, &vr, 1, &value) : f.set_int(c, &vr, 1, &int_value)) != fmi2OK) {
             fprintf(stderr, "fmu_bench: --set %s refused\n", sets[i]);
             return 2;
         }
     }
     double q[18];
     pose_at(&sc, 0.0, q);
-    int ok = set_int(c, ivr, 4, ival) == fmi2OK && set_real(c, &tol_vr, 1, &tolerance) == fmi2OK &&
-             set_real(c, in_vr, 18, q) == fmi2OK && setup(c, fmi2False, 0, 0, fmi2False, 0) == fmi2OK &&
-             enter(c) == fmi2OK && exit_init(c) <= fmi2Warning;
+    int ok = f.set_int(c, ivr, 4, ival) == fmi2OK && f.set_real(c, &tol_vr, 1, &tolerance) == fmi2OK &&
+             f.set_real(c, in_vr, 18, q) == fmi2OK && f.setup(c, fmi2False, 0, 0, fmi2False, 0) == fmi2OK &&
+             f.enter(c) == fmi2OK && f.exit_init(c) <= fmi2Warning;
     if (!ok) {
         fprintf(stderr, "fmu_bench: initialisation failed\n");
-        free_instance(c);
+        f.free_instance(c);
         return 1;
     }
     FILE *out = out_path ? fopen(out_path, "w") : NULL;
@@ -165,14 +134,14 @@ int main(int argc, char **argv) {
     for (long j = 0; j < steps; ++j) {
         const double t = j * h;
         pose_at(&sc, t, q);
-        set_real(c, in_vr, derivatives ? 18 : 6, q);
+        f.set_real(c, in_vr, derivatives ? 18 : 6, q);
         const double t0 = now_us();
-        const fmi2Status s = do_step(c, t, h, fmi2True);
+        const fmi2Status s = f.do_step(c, t, h, fmi2True);
         t_step[j] = now_us() - t0;
         failed += s > fmi2Warning;
-        get_real(c, out_vr, 24, y);
+        f.get_real(c, out_vr, 24, y);
         fmi2Integer iv[2];
-        get_int(c, int_out, 2, iv);
+        f.get_int(c, int_out, 2, iv);
         iterations += iv[0];
         if (out) {
             fprintf(out, "%.17g", (j + 1) * h);
@@ -180,12 +149,12 @@ int main(int argc, char **argv) {
             fprintf(out, ",%d,%d\n", iv[0], iv[1]);
         }
     }
-    qsort(t_step, steps, sizeof *t_step, cmp_double);
+    qsort(t_step, steps, sizeof *t_step, importer_cmp_double);
     printf("doStep_us_median=%.4f doStep_us_p90=%.4f iterations_mean=%.4f steps=%ld failed=%ld\n",
            t_step[steps / 2], t_step[steps * 9 / 10], (double)iterations / steps, steps, failed);
     free(t_step);
     if (out) fclose(out);
-    free_instance(c);
+    f.free_instance(c);
     dlclose(lib);
     return failed ? 1 : 0;
 }

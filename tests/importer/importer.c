@@ -9,14 +9,12 @@
  *
  * usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]
  */
-#include <dlfcn.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-#include "fmi2Functions.h"
+#include "importer_support.h"
 #include "fmi3Functions.h"
 #include "variables.h"
 
@@ -75,22 +73,6 @@ static int failures = 0;
         }                                                     \
     } while (0)
 
-static double now_us(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e6 + ts.tv_nsec * 1e-3;
-}
-
-static int cmp_double(const void *a, const void *b) {
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, size_t n) {
-    qsort(v, n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /* Combined manoeuvre: heave, roll, pitch and yaw at once (half the thesis amplitudes, so that
  * the legs stay inside the stroke; 5 rad/s). */
 static void pose_at(double t, double q[18]) {
@@ -101,15 +83,6 @@ static void pose_at(double t, double q[18]) {
     for (int i = 3; i < 6; ++i) {
         q[i] = b * s;              q[i + 6] = b * w * c;  q[i + 12] = -b * w * w * s;
     }
-}
-
-static void *sym(void *lib, const char *name) {
-    void *f = dlsym(lib, name);
-    if (!f) {
-        fprintf(stderr, "importer: %s not found: %s\n", name, dlerror());
-        exit(2);
-    }
-    return f;
 }
 
 typedef struct {
@@ -127,21 +100,11 @@ static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status st
 }
 
 static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, double *outputs) {
-    fmi2InstantiateTYPE *instantiate = sym(lib, "fmi2Instantiate");
-    fmi2FreeInstanceTYPE *free_instance = sym(lib, "fmi2FreeInstance");
-    fmi2SetupExperimentTYPE *setup = sym(lib, "fmi2SetupExperiment");
-    fmi2EnterInitializationModeTYPE *enter = sym(lib, "fmi2EnterInitializationMode");
-    fmi2ExitInitializationModeTYPE *exit_init = sym(lib, "fmi2ExitInitializationMode");
-    fmi2SetIntegerTYPE *set_int = sym(lib, "fmi2SetInteger");
-    fmi2SetRealTYPE *set_real = sym(lib, "fmi2SetReal");
-    fmi2GetRealTYPE *get_real = sym(lib, "fmi2GetReal");
-    fmi2GetIntegerTYPE *get_int = sym(lib, "fmi2GetInteger");
-    fmi2DoStepTYPE *do_step = sym(lib, "fmi2DoStep");
-    fmi2TerminateTYPE *terminate = sym(lib, "fmi2Terminate");
+    const fmi2_api f = fmi2_api_load(lib);
 
     timing tm = {0, 0, 0};
     const fmi2CallbackFunctions cb = {logger2, calloc, free, NULL, NULL};
-    fmi2Component c = instantiate("importer", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
+    fmi2Component c = f.instantiate("importer", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
     CHECK(c != NULL, "fmi2Instantiate");
     if (!c) return tm;
     const fmi2ValueReference pvr[2] = {VR_fidelity, VR_derivatives};
@@ -151,12 +114,12 @@ static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, doub
     real_outputs(out_vr);
     double q[18];
     pose_at(0.0, q);
-    CHECK(set_int(c, pvr, 2, pval) == fmi2OK, "fmi2SetInteger");
-    CHECK(set_real(c, in_vr, 18, q) == fmi2OK, "fmi2SetReal");
-    CHECK(setup(c, fmi2False, 0, 0.0, fmi2False, 0) == fmi2OK, "fmi2SetupExperiment");
-    CHECK(enter(c) == fmi2OK, "fmi2EnterInitializationMode");
-    if (exit_init(c) != fmi2OK) { /* fidelity not available */
-        free_instance(c);
+    CHECK(f.set_int(c, pvr, 2, pval) == fmi2OK, "fmi2SetInteger");
+    CHECK(f.set_real(c, in_vr, 18, q) == fmi2OK, "fmi2SetReal");
+    CHECK(f.setup(c, fmi2False, 0, 0.0, fmi2False, 0) == fmi2OK, "fmi2SetupExperiment");
+    CHECK(f.enter(c) == fmi2OK, "fmi2EnterInitializationMode");
+    if (f.exit_init(c) != fmi2OK) { /* fidelity not available */
+        f.free_instance(c);
         return tm;
     }
     tm.ran = 1;
@@ -168,26 +131,26 @@ static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, doub
         pose_at(t, q);
         counting = 1;
         const double t0 = now_us();
-        fmi2Status s = set_real(c, in_vr, derivatives ? 18 : 6, q);
+        fmi2Status s = f.set_real(c, in_vr, derivatives ? 18 : 6, q);
         const double t1 = now_us();
-        s |= do_step(c, t, h, fmi2True);
+        s |= f.do_step(c, t, h, fmi2True);
         const double t2 = now_us();
-        s |= get_real(c, out_vr, N_OUT, outputs + (size_t)j * N_OUT);
+        s |= f.get_real(c, out_vr, N_OUT, outputs + (size_t)j * N_OUT);
         const double t3 = now_us();
         counting = 0;
         CHECK(s == fmi2OK, "fmi2 set/doStep/get status %d at t = %g", s, t);
         t_step[j] = t2 - t1;
         t_cycle[j] = t3 - t0;
         fmi2Integer st = -1;
-        get_int(c, &status_vr, 1, &st);
+        f.get_int(c, &status_vr, 1, &st);
         CHECK(st == 0, "fmi2 status %d at t = %g", st, t);
     }
     tm.step_us = median(t_step, steps);
     tm.cycle_us = median(t_cycle, steps);
     free(t_step);
     free(t_cycle);
-    CHECK(terminate(c) == fmi2OK, "fmi2Terminate");
-    free_instance(c);
+    CHECK(f.terminate(c) == fmi2OK, "fmi2Terminate");
+    f.free_instance(c);
     return tm;
 }
 
@@ -200,16 +163,16 @@ static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String c
 }
 
 static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, double *outputs) {
-    fmi3InstantiateCoSimulationTYPE *instantiate = sym(lib, "fmi3InstantiateCoSimulation");
-    fmi3FreeInstanceTYPE *free_instance = sym(lib, "fmi3FreeInstance");
-    fmi3EnterInitializationModeTYPE *enter = sym(lib, "fmi3EnterInitializationMode");
-    fmi3ExitInitializationModeTYPE *exit_init = sym(lib, "fmi3ExitInitializationMode");
-    fmi3SetInt32TYPE *set_int = sym(lib, "fmi3SetInt32");
-    fmi3SetFloat64TYPE *set_real = sym(lib, "fmi3SetFloat64");
-    fmi3GetFloat64TYPE *get_real = sym(lib, "fmi3GetFloat64");
-    fmi3GetInt32TYPE *get_int = sym(lib, "fmi3GetInt32");
-    fmi3DoStepTYPE *do_step = sym(lib, "fmi3DoStep");
-    fmi3TerminateTYPE *terminate = sym(lib, "fmi3Terminate");
+    fmi3InstantiateCoSimulationTYPE *instantiate = importer_symbol(lib, "fmi3InstantiateCoSimulation");
+    fmi3FreeInstanceTYPE *free_instance = importer_symbol(lib, "fmi3FreeInstance");
+    fmi3EnterInitializationModeTYPE *enter = importer_symbol(lib, "fmi3EnterInitializationMode");
+    fmi3ExitInitializationModeTYPE *exit_init = importer_symbol(lib, "fmi3ExitInitializationMode");
+    fmi3SetInt32TYPE *set_int = importer_symbol(lib, "fmi3SetInt32");
+    fmi3SetFloat64TYPE *set_real = importer_symbol(lib, "fmi3SetFloat64");
+    fmi3GetFloat64TYPE *get_real = importer_symbol(lib, "fmi3GetFloat64");
+    fmi3GetInt32TYPE *get_int = importer_symbol(lib, "fmi3GetInt32");
+    fmi3DoStepTYPE *do_step = importer_symbol(lib, "fmi3DoStep");
+    fmi3TerminateTYPE *terminate = importer_symbol(lib, "fmi3Terminate");
 
     timing tm = {0, 0, 0};
     fmi3Instance c = instantiate("importer", GUID, "", fmi3False, fmi3False, fmi3False, fmi3False,
@@ -321,14 +284,13 @@ int main(int argc, char **argv) {
     CHECK(allocations == 0, "%ld heap allocations during the steps", allocations);
     printf("heap allocations during the steps: %ld\n", allocations);
     {   /* the counter works: instantiation does allocate */
-        fmi2InstantiateTYPE *instantiate = sym(lib2, "fmi2Instantiate");
-        fmi2FreeInstanceTYPE *free_instance = sym(lib2, "fmi2FreeInstance");
+        const fmi2_api f = fmi2_api_load(lib2);
         const fmi2CallbackFunctions cb = {logger2, calloc, free, NULL, NULL};
         counting = 1;
-        fmi2Component c = instantiate("probe", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
+        fmi2Component c = f.instantiate("probe", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
         counting = 0;
         CHECK(c != NULL && allocations > 0, "the allocation counter does not see the FMU's calls");
-        free_instance(c);
+        f.free_instance(c);
     }
 #else
     (void)counting;
