@@ -8,21 +8,10 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "fuzz_reader.hpp"
 #include "stewart/stewart.h"
 
 namespace {
-
-struct Reader {
-    const uint8_t *p;
-    size_t left;
-    bool take(void *out, size_t n) {
-        if (left < n) return false;
-        std::memcpy(out, p, n);
-        p += n;
-        left -= n;
-        return true;
-    }
-};
 
 void require_finite(const stewart_output &o) {
     const double *all[] = {o.length, o.length_rate, o.length_accel, o.force};
