@@ -11,6 +11,7 @@ void setUp(void) {
     stewart_params_default(&params);
     model = test_model(&params);
     data = stewart_data_create(model);
+    TEST_ASSERT_NOT_NULL(data);
 }
 
 void tearDown(void) {
@@ -24,4 +25,5 @@ void rebuild_platform(void) {
     tearDown();
     model = test_model(&params);
     data = stewart_data_create(model);
+    TEST_ASSERT_NOT_NULL(data);
 }

@@ -4,52 +4,10 @@
 #include <math.h>
 #include <string.h>
 
+#include "platform_fixture.h"
 #include "stewart/stewart_full.h"
 #include "test_support.h"
 #include "unity.h"
-
-static stewart_params params;
-static stewart_model *model;
-static stewart_data *data;
-
-void setUp(void) {
-    stewart_params_default(&params);
-    model = test_model(&params);
-    data = stewart_data_create(model);
-    TEST_ASSERT_NOT_NULL(data);
-}
-
-void tearDown(void) {
-    stewart_data_free(data);
-    stewart_model_free(model);
-}
-
-static void rebuild(void) {
-    stewart_data_free(data);
-    stewart_model_free(model);
-    model = test_model(&params);
-    data = stewart_data_create(model);
-    TEST_ASSERT_NOT_NULL(data);
-}
-
-/* |p + R b_k - a_k| from the pose, written out here. */
-static double closed_form_length(const stewart_pose *pose, int k) {
-    const double cr = cos(pose->q[3]), sr = sin(pose->q[3]), cp = cos(pose->q[4]),
-                 sp = sin(pose->q[4]), cy = cos(pose->q[5]), sy = sin(pose->q[5]);
-    const double R[3][3] = {{cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr},
-                            {sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr},
-                            {-sp, cp * sr, cp * cr}};
-    const double b[3] = {params.platform_radius * cos(params.platform_angle[k]),
-                         params.platform_radius * sin(params.platform_angle[k]), 0};
-    const double a[3] = {params.base_radius * cos(params.base_angle[k]),
-                         params.base_radius * sin(params.base_angle[k]), 0};
-    double d2 = 0;
-    for (int i = 0; i < 3; ++i) {
-        const double d = pose->q[i] + R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2] - a[i];
-        d2 += d * d;
-    }
-    return sqrt(d2);
-}
 
 static stewart_pose manoeuvre(int which, double t) {
     return which == 6 ? combined_pose(t) : thesis_pose(which, t);
@@ -62,7 +20,7 @@ static void test_lengths_match_closed_form(void) {
             stewart_pose pose = manoeuvre(which[w], 0.1 * i);
             stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
             for (int k = 0; k < 6; ++k)
-                TEST_ASSERT_DOUBLE_WITHIN(1e-11, closed_form_length(&pose, k), out.length[k]);
+                TEST_ASSERT_DOUBLE_WITHIN(1e-11, closed_form_length(&params, &pose, k), out.length[k]);
             TEST_ASSERT_TRUE(out.residual <= 1e-12);
             TEST_ASSERT_TRUE(out.iterations <= 2);
         }
@@ -95,7 +53,7 @@ static void compare_with_massless(void) {
 static void test_weightless_legs_equal_massless_level(void) {
     params.cylinder_mass = params.piston_mass = 0;
     for (int i = 0; i < 3; ++i) params.cylinder_inertia[i] = params.piston_inertia[i] = 0;
-    rebuild();
+    rebuild_platform();
     compare_with_massless();
 }
 
@@ -106,7 +64,7 @@ static void test_weightless_legs_with_offset_payload(void) {
     params.payload_mass = 40;
     params.payload_com[0] = 0.1, params.payload_com[1] = -0.05, params.payload_com[2] = 0.2;
     params.payload_inertia[0] = 1.0, params.payload_inertia[1] = 1.5, params.payload_inertia[2] = 2.0;
-    rebuild();
+    rebuild_platform();
     compare_with_massless();
 }
 
@@ -160,7 +118,7 @@ static void test_thesis_formulation_agrees(void) {
     params.payload_mass = 25;
     params.payload_com[0] = -0.05, params.payload_com[2] = 0.1;
     params.payload_inertia[0] = 0.5, params.payload_inertia[1] = 0.7, params.payload_inertia[2] = 0.9;
-    rebuild();
+    rebuild_platform();
     for (int w = 2; w <= 6; ++w)
         for (int i = 0; i <= 120; i += 8) {
             stewart_pose pose = manoeuvre(w, 0.1 * i);
@@ -289,7 +247,7 @@ static void test_newton_from_home(void) {
     const mbs_model *mech = stewart_model_mechanism(model);
     stewart_pose target = {{0.03, -0.02, 0.53, 0.12, -0.08, 0.15}, {0}, {0}};
     double L[6];
-    for (int k = 0; k < 6; ++k) L[k] = closed_form_length(&target, k);
+    for (int k = 0; k < 6; ++k) L[k] = closed_form_length(&params, &target, k);
     const mbs_linear_solver kinds[3] = {MBS_LINEAR_AUTOMATIC, MBS_LINEAR_DENSE, MBS_LINEAR_KINSOL_DENSE};
     double lambda0[98];
     for (int kind = 0; kind < 3; ++kind)

@@ -1,7 +1,6 @@
 /* Massless-leg level: forces against statics by hand, heave in closed form, the power balance
  * of the platform, and the wrench on the base. */
 #include <math.h>
-#include <string.h>
 
 #include "platform_fixture.h"
 #include "test_support.h"
@@ -89,15 +88,7 @@ static double platform_energy(double t, double h) {
     double R[3][3], Ra[3][3], Rb[3][3];
     const stewart_pose *ps[3] = {&p, &a, &b};
     double (*Rs[3])[3] = {R, Ra, Rb};
-    for (int j = 0; j < 3; ++j) {
-        const double cr = cos(ps[j]->q[3]), sr = sin(ps[j]->q[3]);
-        const double cp = cos(ps[j]->q[4]), sp = sin(ps[j]->q[4]);
-        const double cy = cos(ps[j]->q[5]), sy = sin(ps[j]->q[5]);
-        const double M[3][3] = {{cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr},
-                                {sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr},
-                                {-sp, cp * sr, cp * cr}};
-        memcpy(Rs[j], M, sizeof M);
-    }
+    for (int j = 0; j < 3; ++j) pose_rotation(ps[j], Rs[j]);
     /* skew(w') = R^T R_dot */
     double W[3][3];
     for (int i = 0; i < 3; ++i)

@@ -47,6 +47,29 @@ stewart_pose thesis_pose(int component, double t) {
     return p;
 }
 
+void pose_rotation(const stewart_pose *pose, double R[3][3]) {
+    const double cr = cos(pose->q[3]), sr = sin(pose->q[3]), cp = cos(pose->q[4]),
+                 sp = sin(pose->q[4]), cy = cos(pose->q[5]), sy = sin(pose->q[5]);
+    R[0][0] = cy * cp, R[0][1] = cy * sp * sr - sy * cr, R[0][2] = cy * sp * cr + sy * sr;
+    R[1][0] = sy * cp, R[1][1] = sy * sp * sr + cy * cr, R[1][2] = sy * sp * cr - cy * sr;
+    R[2][0] = -sp, R[2][1] = cp * sr, R[2][2] = cp * cr;
+}
+
+double closed_form_length(const stewart_params *params, const stewart_pose *pose, int k) {
+    double R[3][3];
+    pose_rotation(pose, R);
+    const double b[3] = {params->platform_radius * cos(params->platform_angle[k]),
+                         params->platform_radius * sin(params->platform_angle[k]), 0};
+    const double a[3] = {params->base_radius * cos(params->base_angle[k]),
+                         params->base_radius * sin(params->base_angle[k]), 0};
+    double d2 = 0;
+    for (int i = 0; i < 3; ++i) {
+        const double d = pose->q[i] + R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2] - a[i];
+        d2 += d * d;
+    }
+    return sqrt(d2);
+}
+
 stewart_output solve_ok(const stewart_model *m, stewart_data *d, stewart_fidelity f,
                         const stewart_pose *pose) {
     stewart_options o = test_options(f);

@@ -19,6 +19,12 @@ stewart_pose combined_pose(double t);
  * 3/4/5 (roll/pitch/yaw) of amplitude pi/18 with z held at 0.5 m. */
 stewart_pose thesis_pose(int component, double t);
 
+/* R = Rz(yaw) Ry(pitch) Rx(roll) of the pose, written out (model.md §3). */
+void pose_rotation(const stewart_pose *pose, double R[3][3]);
+/* Leg k's length |p + R b_k - a_k| from the pose and the attachment points of params, written out
+ * here: the reference the library's lengths are checked against. */
+double closed_form_length(const stewart_params *params, const stewart_pose *pose, int k);
+
 /* Solves and fails the test with the library's message unless the status is STEWART_OK. */
 stewart_output solve_ok(const stewart_model *m, stewart_data *d, stewart_fidelity f,
                         const stewart_pose *pose);
