@@ -143,20 +143,6 @@ extern "C" const char *stewart_status_name(stewart_status s) {
 
 namespace {
 
-const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
-
-stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size) {
-    const double *rows[3] = {pose.q, pose.q_dot, pose.q_ddot};
-    const char *suffix[3] = {"", "_dot", "_ddot"};
-    for (int r = 0; r < 3; ++r)
-        for (int i = 0; i < 6; ++i)
-            if (!std::isfinite(rows[r][i]))
-                return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                                   "pose input %s%s is %g: it must be finite", kPoseNames[i],
-                                   suffix[r], rows[r][i]);
-    return STEWART_OK;
-}
-
 // Finite inputs can still overflow (|z| = 1e154 squares to inf): the last guard before output.
 const char *first_non_finite(const stewart_output &o) {
     static const char *const names[4] = {"length", "length_rate", "length_accel", "force"};
@@ -192,7 +178,7 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
     const size_t size = sizeof d->message;
     stewart_status s = stewart_options_check(o, msg, size);
     if (s != STEWART_OK) return s;
-    if ((s = check_pose(*pose, msg, size)) != STEWART_OK) return s;
+    if ((s = stewart::check_pose(*pose, msg, size)) != STEWART_OK) return s;
 
     const stewart::RigidMotion motion = stewart::rigid_motion(*pose);
     stewart::LegKinematics legs;
@@ -215,13 +201,9 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
             stewart::LegJacobian jacobian;
             stewart::leg_jacobian(m->geometry, legs, jacobian);
             out.condition = jacobian.condition;
-            if (!(out.condition <= o->singular_condition)) {
-                s = set_message(msg, size, STEWART_ERR_SINGULAR,
-                                "leg Jacobian is singular at this pose: condition number %g "
-                                "exceeds singular_condition %g", out.condition,
-                                o->singular_condition);
+            if ((s = stewart::check_condition(out.condition, o->singular_condition, msg,
+                                              size)) != STEWART_OK)
                 break;
-            }
             s = stewart::full_solve(m->full_layout, d->full->state, *o, motion, legs, out, msg,
                                     size);
             break;

@@ -82,6 +82,14 @@ void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacob
                         : HUGE_VAL;
 }
 
+stewart_status check_condition(double condition, double singular_condition, char *msg,
+                               size_t size) {
+    if (condition <= singular_condition) return STEWART_OK;
+    return set_message(msg, size, STEWART_ERR_SINGULAR,
+                       "leg Jacobian is singular at this pose: condition number %g exceeds "
+                       "singular_condition %g", condition, singular_condition);
+}
+
 void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
                             const double force[STEWART_LEGS], stewart_output &out) {
     Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
@@ -112,10 +120,8 @@ stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body
 
     LegJacobian J;
     leg_jacobian(g, legs, J);
-    if (!(J.condition <= singular_condition))
-        return set_message(msg, size, STEWART_ERR_SINGULAR,
-                           "leg Jacobian is singular at this pose: condition number %g exceeds "
-                           "singular_condition %g", J.condition, singular_condition);
+    const stewart_status s = check_condition(J.condition, singular_condition, msg, size);
+    if (s != STEWART_OK) return s;
     // J^T F = wrench, with the moment rows scaled as the Jacobian's.
     wrench.tail<3>() /= g.characteristic_length;
     const Vector6 F = J.inverse_transposed * wrench;

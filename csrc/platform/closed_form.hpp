@@ -50,6 +50,11 @@ struct LegJacobian {
 };
 void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacobian &out);
 
+// STEWART_ERR_SINGULAR (message names both numbers) unless condition <= singular_condition: the
+// pose check of the force levels, shared so that every caller gives the same verdict.
+stewart_status check_condition(double condition, double singular_condition, char *msg,
+                               size_t size);
+
 // Massless legs: solves J^T F = wrench needed by Newton-Euler for the lumped body, fills
 // force, condition and the base wrench. STEWART_ERR_SINGULAR if the condition number is above
 // singular_condition (or not finite).

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "util/message.hpp"
+
 namespace stewart {
 
 namespace {
@@ -14,7 +16,21 @@ Eigen::Matrix3d rotation_from_trig(double cr, double sr, double cp, double sp, d
     return R;
 }
 
+const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
 }  // namespace
+
+stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size) {
+    const double *rows[3] = {pose.q, pose.q_dot, pose.q_ddot};
+    const char *suffix[3] = {"", "_dot", "_ddot"};
+    for (int r = 0; r < 3; ++r)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(rows[r][i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "pose input %s%s is %g: it must be finite", kPoseNames[i],
+                                   suffix[r], rows[r][i]);
+    return STEWART_OK;
+}
 
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
     return rotation_from_trig(std::cos(roll), std::sin(roll), std::cos(pitch), std::sin(pitch),

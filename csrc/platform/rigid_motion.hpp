@@ -14,6 +14,10 @@ struct RigidMotion {
     Eigen::Vector3d omega, alpha;                      // angular velocity and acceleration, world
 };
 
+// STEWART_ERR_ARGUMENT (message names the component, e.g. "roll_dot", and its value) unless
+// every pose component and derivative is finite.
+stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size);
+
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw);
 
 // omega = E(pitch, yaw) * (roll_dot, pitch_dot, yaw_dot); alpha = E * angles_ddot + E_dot * angles_dot.

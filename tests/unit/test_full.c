@@ -1,6 +1,7 @@
 /* Full (14-body) level against independent references: the closed-form leg lengths, the
  * massless-leg level when the legs weigh nothing, the power balance of the 13 moving bodies,
  * the thesis' pose-driver formulation, and Euler-parameter normalisation over a long run. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -128,6 +129,98 @@ static void test_thesis_formulation_agrees(void) {
             TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, thesis, msg, sizeof msg), msg);
             for (int k = 0; k < 6; ++k) expect_relative(out.force[k], thesis[k], 1e-9);
         }
+}
+
+/* |det| of the test's own leg Jacobian (rows n_k and (P_k - p) x n_k / radius, from the closed
+ * form of the pose) over the product of its row norms: 0 for a singular matrix, 1 for an
+ * orthogonal one. Gaussian elimination with partial pivoting. */
+static double jacobian_det_ratio(const stewart_pose *pose) {
+    double R[3][3], J[6][6], scale = 1;
+    pose_rotation(pose, R);
+    for (int k = 0; k < 6; ++k) {
+        const double b[3] = {params.platform_radius * cos(params.platform_angle[k]),
+                             params.platform_radius * sin(params.platform_angle[k]), 0};
+        const double a[3] = {params.base_radius * cos(params.base_angle[k]),
+                             params.base_radius * sin(params.base_angle[k]), 0};
+        double arm[3], n[3];
+        for (int i = 0; i < 3; ++i) arm[i] = R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2];
+        for (int i = 0; i < 3; ++i) n[i] = (pose->q[i] + arm[i] - a[i]) / closed_form_length(&params, pose, k);
+        J[k][0] = n[0], J[k][1] = n[1], J[k][2] = n[2];
+        J[k][3] = (arm[1] * n[2] - arm[2] * n[1]) / params.platform_radius;
+        J[k][4] = (arm[2] * n[0] - arm[0] * n[2]) / params.platform_radius;
+        J[k][5] = (arm[0] * n[1] - arm[1] * n[0]) / params.platform_radius;
+        double norm = 0;
+        for (int j = 0; j < 6; ++j) norm += J[k][j] * J[k][j];
+        scale *= sqrt(norm);
+    }
+    double det = 1;
+    for (int c = 0; c < 6; ++c) {
+        int p = c;
+        for (int r = c + 1; r < 6; ++r)
+            if (fabs(J[r][c]) > fabs(J[p][c])) p = r;
+        if (p != c)
+            for (int j = 0; j < 6; ++j) {
+                const double t = J[c][j];
+                J[c][j] = J[p][j], J[p][j] = t;
+            }
+        det *= J[c][c];
+        if (J[c][c] == 0) break;
+        for (int r = c + 1; r < 6; ++r) {
+            const double f = J[r][c] / J[c][c];
+            for (int j = c; j < 6; ++j) J[r][j] -= f * J[c][j];
+        }
+    }
+    return fabs(det) / scale;
+}
+
+/* Yaw = pi/2 exactly: the leg Jacobian is singular (checked here from the geometry alone), so the
+ * thesis' way must refuse the pose as stewart_solve does (it returned forces of 4.7e18 N),
+ * leaving force untouched; the same platform a little off that yaw still answers. */
+static void test_thesis_forces_refuse_a_singular_pose(void) {
+    stewart_pose pose = {{0, 0, 0.5, 0, 0, M_PI / 2}, {0}, {0}};
+    TEST_ASSERT_TRUE(jacobian_det_ratio(&pose) < 1e-14);
+    stewart_options o = test_options(STEWART_FULL);
+    stewart_output out;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, stewart_solve(model, data, &o, &pose, &out));
+
+    double force[6];
+    for (int k = 0; k < 6; ++k) force[k] = 1000.0 + k;
+    char msg[STEWART_MESSAGE_SIZE] = "";
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR,
+                          stewart_thesis_forces(&params, &pose, force, msg, sizeof msg));
+    for (int k = 0; k < 6; ++k) TEST_ASSERT_EQUAL_DOUBLE(1000.0 + k, force[k]);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "condition number"), msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "singular_condition 1e+10"), msg);
+    TEST_ASSERT_EQUAL_STRING(stewart_data_message(data), msg);
+
+    /* 0.1 rad away the Jacobian is regular and both ways give the same forces. */
+    pose.q[5] = M_PI / 2 - 0.1;
+    TEST_ASSERT_TRUE(jacobian_det_ratio(&pose) > 1e-3);
+    out = solve_ok(model, data, STEWART_FULL, &pose);
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, force, msg, sizeof msg), msg);
+    for (int k = 0; k < 6; ++k) expect_relative(out.force[k], force[k], 1e-9);
+}
+
+/* Forces whose exact value exceeds DBL_MAX: refused, never a NaN or infinite force. Near the
+ * yaw singularity (condition 4.5e6) with z_ddot = 1e298 the forces are about 4e305 N; they are
+ * linear in z_ddot (gravity is negligible), so at 1e302 they would be 1e4 times that, beyond
+ * DBL_MAX (the thesis' way returned NaN there). */
+static void test_thesis_forces_never_overflow(void) {
+    stewart_pose pose = {{0, 0, 0.5, 0, 0, M_PI / 2 - 1e-6}, {0}, {0, 0, 1e298, 0, 0, 0}};
+    double force[6];
+    char msg[STEWART_MESSAGE_SIZE] = "";
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, force, msg, sizeof msg), msg);
+    double largest = 0;
+    for (int k = 0; k < 6; ++k) largest = fmax(largest, fabs(force[k]));
+    TEST_ASSERT_TRUE(largest > 1e305 && largest < 1e306);
+    TEST_ASSERT_TRUE(largest * 1e4 > DBL_MAX);
+
+    pose.q_ddot[2] = 1e302;
+    for (int k = 0; k < 6; ++k) force[k] = k + 1.0;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_thesis_forces(&params, &pose, force, msg, sizeof msg));
+    for (int k = 0; k < 6; ++k) TEST_ASSERT_EQUAL_DOUBLE(k + 1.0, force[k]);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "not finite"), msg);
 }
 
 /* Heavier legs carry more than the massless level, and the platform at rest loads them. */
@@ -280,6 +373,8 @@ int main(void) {
     RUN_TEST(test_weightless_legs_with_offset_payload);
     RUN_TEST(test_power_balance);
     RUN_TEST(test_thesis_formulation_agrees);
+    RUN_TEST(test_thesis_forces_refuse_a_singular_pose);
+    RUN_TEST(test_thesis_forces_never_overflow);
     RUN_TEST(test_massive_legs_at_rest);
     RUN_TEST(test_copy_is_rollback);
     RUN_TEST(test_rates_against_finite_differences);
