@@ -229,22 +229,31 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     s.stats.iterations = static_cast<int>(iterations);
     s.stats.residual = im.last_residual;
     bool finite = std::isfinite(im.last_residual);
-    if (iterations == 0) return finite ? STEWART_OK  // q is the accepted guess
-                                       : set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                                                     "the residual at the initial guess is not finite");
+    if (iterations == 0 && !finite)
+        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                           "the residual at the initial guess is not finite");
+    // No iteration is no licence: KINSOL may also stop before its first one with an error (its
+    // set-up failing), leaving the guess and its residual above the tolerance. The guess stands
+    // only on the same terms as an iterate.
     for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
     if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
             return set_message(msg, size, STEWART_ERR_SINGULAR,
                                "the constraint Jacobian is singular during the position solve "
                                "(KINSOL flag %d after %ld iterations)", flag, iterations);
+        if (im.last_residual <= o.tolerance)  // small enough, but KINSOL reported a failure
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "position solve failed: KINSOL flag %d after %ld iterations "
+                               "(residual %g, tolerance %g)%s%s",
+                               flag, iterations, s.stats.residual, o.tolerance,
+                               im.kinsol_message[0] ? ": " : "", im.kinsol_message);
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "position problem not converged: residual %g > tolerance %g after "
                            "%ld iterations (KINSOL flag %d%s%s)",
                            s.stats.residual, o.tolerance, iterations, flag,
                            im.kinsol_message[0] ? ": " : "", im.kinsol_message);
     }
-    std::copy(u, u + n, s.q.begin());
+    if (iterations > 0) std::copy(u, u + n, s.q.begin());  // else q is the accepted guess
     return STEWART_OK;
 }
 

@@ -366,6 +366,37 @@ static void test_newton_from_home(void) {
         }
 }
 
+/* The same Newton iteration capped short of convergence: every capped step is reported as not
+ * converged (never as a solution), and the residuals it stops at fall quadratically, as exact
+ * Newton's must near a regular solution (r_k+1 <= r_k^2 here, r_k in metres). */
+static void test_newton_capped_is_not_converged(void) {
+    const mbs_model *mech = stewart_model_mechanism(model);
+    stewart_pose target = {{0.03, -0.02, 0.53, 0.12, -0.08, 0.15}, {0}, {0}};
+    double previous = INFINITY;
+    for (int cap = 1; cap <= 4; ++cap) {
+        mbs_data *d = mbs_data_create(mech, MBS_LINEAR_AUTOMATIC);
+        TEST_ASSERT_NOT_NULL(d);
+        for (int k = 0; k < 6; ++k) mbs_set_driver(d, k, closed_form_length(&params, &target, k), 0, 0);
+        mbs_options o;
+        mbs_options_default(&o);
+        o.max_iterations = cap;
+        const stewart_status s = mbs_step(d, 0, &o);
+        const double r = mbs_residual(d);
+        TEST_ASSERT_EQUAL_INT(cap, mbs_iterations(d));
+        if (cap < 4) {
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_NOT_CONVERGED, s, mbs_data_message(d));
+            TEST_ASSERT_TRUE(r > o.tolerance);
+            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(mbs_data_message(d), "not converged"), mbs_data_message(d));
+        } else {
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, s, mbs_data_message(d));
+            TEST_ASSERT_TRUE(r <= o.tolerance);
+        }
+        TEST_ASSERT_TRUE(r < 0.1 && r <= previous * previous);
+        previous = r;
+        mbs_data_free(d);
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_lengths_match_closed_form);
@@ -380,6 +411,7 @@ int main(void) {
     RUN_TEST(test_rates_against_finite_differences);
     RUN_TEST(test_instances_side_by_side);
     RUN_TEST(test_newton_from_home);
+    RUN_TEST(test_newton_capped_is_not_converged);
     RUN_TEST(test_normalisation_long_run);
     return UNITY_END();
 }
