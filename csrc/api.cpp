@@ -9,6 +9,10 @@
 using stewart::clear_message;
 using stewart::set_message;
 
+namespace {
+constexpr double kMinTolerance = 2.5e-16;  // smallest tolerance the full level can meet
+}  // namespace
+
 extern "C" void stewart_options_default(stewart_options *o) {
     if (!o) return;
     o->fidelity = STEWART_MASSLESS;
@@ -28,6 +32,14 @@ extern "C" stewart_status stewart_options_check(const stewart_options *o, char *
     if (!(std::isfinite(o->tolerance) && o->tolerance > 0))
         return set_message(msg, size, STEWART_ERR_PARAMETER, "tolerance = %g must be > 0",
                            o->tolerance);
+    // The full level's max-norm position residual floors at 2.2e-16 (one rounding of coordinates
+    // of order 1): at or below that no pose ever converges; 2.3e-16 still does, with up to 5
+    // iterations.
+    if (o->tolerance < kMinTolerance)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "tolerance = %g is below what the position residual can reach (about "
+                           "2.2e-16, machine precision on the coordinates): use at least %g",
+                           o->tolerance, kMinTolerance);
     if (o->max_iterations < 1)
         return set_message(msg, size, STEWART_ERR_PARAMETER, "max_iterations = %d must be >= 1",
                            o->max_iterations);

@@ -1,5 +1,6 @@
 /* Bad input: every case returns an error code and a message naming the value, leaves the output
  * untouched, and the data block stays usable. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -117,6 +118,36 @@ static void test_invalid_options_and_null_arguments(void) {
     stewart_data_free(NULL);
 }
 
+/* The full level's position residual (max-norm, m) cannot go below one rounding of coordinates
+ * of order 1, DBL_EPSILON = 2.2e-16: a tolerance at or below it is refused by name, and 2.5e-16
+ * is accepted and met along the combined manoeuvre (lengths still the closed form). */
+static void test_tolerance_below_machine_precision(void) {
+    const double refused[3] = {1e-16, 1e-17, DBL_EPSILON};
+    const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17", "tolerance = 2.22045e-16"};
+    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    stewart_output out;
+    for (int i = 0; i < 3; ++i) {
+        stewart_options o = test_options(STEWART_FULL);
+        o.tolerance = refused[i];
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_options_check(&o, msg, sizeof msg));
+        assert_contains(msg, named[i]);
+        assert_contains(msg, "use at least 2.5e-16");
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_solve(model, data, &o, &home, &out));
+        assert_contains(stewart_data_message(data), named[i]);
+    }
+    stewart_options o = test_options(STEWART_FULL);
+    o.tolerance = 2.5e-16;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_options_check(&o, msg, sizeof msg), msg);
+    for (int i = 0; i < 300; ++i) {
+        stewart_pose pose = combined_pose(0.01 * i);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_solve(model, data, &o, &pose, &out),
+                                      stewart_data_message(data));
+        TEST_ASSERT_TRUE(out.residual <= 2.5e-16);
+        for (int k = 0; k < 6; ++k)
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &pose, k), out.length[k]);
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_nan_and_inf_pose_components_are_named);
@@ -125,5 +156,6 @@ int main(void) {
     RUN_TEST(test_singular_leg_jacobian);
     RUN_TEST(test_invalid_parameters_are_named);
     RUN_TEST(test_invalid_options_and_null_arguments);
+    RUN_TEST(test_tolerance_below_machine_precision);
     return UNITY_END();
 }

@@ -79,7 +79,8 @@ typedef struct stewart_params {
 /* Solver settings; stewart_options_default gives the values documented here. */
 typedef struct stewart_options {
     int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
-    double tolerance;            /* Newton residual tolerance, max-norm (full level); 1e-12 */
+    double tolerance;            /* Newton residual tolerance, max-norm (full level); 1e-12;
+                                    >= 2.5e-16 (the residual floors at 2.2e-16) */
     int max_iterations;          /* Newton iteration cap (full level); 20 */
     int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
     double warn_condition;       /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
