@@ -54,15 +54,21 @@ int main(int argc, char **argv) {
     int n_paths = 0;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
-        if (!std::strcmp(argv[i], "--fidelity") && i + 1 < argc) {
+        const bool fidelity = !std::strcmp(argv[i], "--fidelity");
+        if ((fidelity || !std::strcmp(argv[i], "--tolerance")) && i + 1 == argc) {
+            std::fprintf(stderr, "stewart-solve: %s needs a value (%s)\n", argv[i],
+                         fidelity ? "kinematic|massless|full" : "a positive number");
+            return usage(stderr);
+        }
+        if (fidelity) {
             if (!parse_fidelity(argv[++i], options.fidelity)) {
                 std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", argv[i]);
                 return usage(stderr);
             }
-        } else if (!std::strcmp(argv[i], "--tolerance") && i + 1 < argc) {
+        } else if (!std::strcmp(argv[i], "--tolerance")) {
             char *end = nullptr;
             options.tolerance = std::strtod(argv[++i], &end);
-            if (*end != '\0') {
+            if (end == argv[i] || *end != '\0') {
                 std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", argv[i]);
                 return 2;
             }
