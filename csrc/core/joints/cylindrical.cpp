@@ -5,13 +5,20 @@
 
 namespace mbs {
 
-static void evaluate_cylindrical(const JointInput &in, const JointOutput &out) {
-    const RowWriter w{out};
-    dot1(in, w, 0, in.def.axis_i[0], in.def.axis_j[2]);
-    dot1(in, w, 1, in.def.axis_i[1], in.def.axis_j[2]);
+void parallel_axes(const JointInput &in, const RowWriter &w, int row) {
+    dot1(in, w, row, in.def.axis_i[0], in.def.axis_j[2]);
+    dot1(in, w, row + 1, in.def.axis_i[1], in.def.axis_j[2]);
+}
+
+void cylindrical_rows(const JointInput &in, const JointOutput &out, const RowWriter &w) {
+    parallel_axes(in, w, 0);
     const Separation d = separation(in, out);
     dot2(in, w, 2, in.def.axis_i[0], d);
     dot2(in, w, 3, in.def.axis_i[1], d);
+}
+
+static void evaluate_cylindrical(const JointInput &in, const JointOutput &out) {
+    cylindrical_rows(in, out, RowWriter{out});
 }
 
 extern const JointTypeInfo kCylindrical = {"cylindrical", 4, 0, 2, evaluate_cylindrical};

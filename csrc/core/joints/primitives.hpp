@@ -63,4 +63,11 @@ Separation separation(const JointInput &in, const JointOutput &out);
 void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Separation &d,
           const DriverValue *target = nullptr);
 
+// Body j's axis axis_j[2] stays parallel to body i's axis: perpendicular to axis_i[0] and
+// axis_i[1] (dot-1 rows row, row + 1). Revolute, cylindrical and prismatic joints.
+void parallel_axes(const JointInput &in, const RowWriter &w, int row);
+// The cylindrical joint's rows 0..3: parallel axes, and the vector between the points
+// perpendicular to axis_i[0] and axis_i[1]. The prismatic joint adds a fifth.
+void cylindrical_rows(const JointInput &in, const JointOutput &out, const RowWriter &w);
+
 }  // namespace mbs

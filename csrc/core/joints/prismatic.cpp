@@ -6,11 +6,7 @@ namespace mbs {
 
 static void evaluate_prismatic(const JointInput &in, const JointOutput &out) {
     const RowWriter w{out};
-    dot1(in, w, 0, in.def.axis_i[0], in.def.axis_j[2]);
-    dot1(in, w, 1, in.def.axis_i[1], in.def.axis_j[2]);
-    const Separation d = separation(in, out);
-    dot2(in, w, 2, in.def.axis_i[0], d);
-    dot2(in, w, 3, in.def.axis_i[1], d);
+    cylindrical_rows(in, out, w);
     dot1(in, w, 4, in.def.axis_i[0], in.def.axis_j[1]);
 }
 

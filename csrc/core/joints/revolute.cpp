@@ -7,8 +7,7 @@ namespace mbs {
 static void evaluate_revolute(const JointInput &in, const JointOutput &out) {
     const RowWriter w{out};
     point_coincidence(in, w, 0);
-    dot1(in, w, 3, in.def.axis_i[0], in.def.axis_j[2]);
-    dot1(in, w, 4, in.def.axis_i[1], in.def.axis_j[2]);
+    parallel_axes(in, w, 3);
 }
 
 extern const JointTypeInfo kRevolute = {"revolute", 5, 0, 2, evaluate_revolute};
