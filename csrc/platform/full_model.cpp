@@ -26,13 +26,22 @@ Eigen::Matrix3d leg_frame(const Vec3 &n, const Vec3 &s) {
     return A;
 }
 
-void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) {
-    double *q = s.q.data() + 7 * body;
-    Vec4 p = mbs::euler_parameters(A);
-    // p and -p are the same rotation: stay on the side of the previous solution.
-    if (s.has_history && p.dot(Eigen::Map<const Vec4>(q + 3)) < 0) p = -p;
+// p and -p are the same rotation: the one on the side of `previous` (Euler parameters).
+Vec4 same_side(const Vec4 &p, const double *previous) {
+    return p.dot(Eigen::Map<const Vec4>(previous)) < 0 ? Vec4(-p) : p;
+}
+
+// A body's 7 coordinates: position r, and the Euler parameters of A.
+void store_pose(double q[7], const Vec3 &r, const Vec4 &p) {
     for (int c = 0; c < 3; ++c) q[c] = r[c];
     for (int c = 0; c < 4; ++c) q[3 + c] = p[c];
+}
+
+void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) {
+    double *q = s.q.data() + 7 * body;
+    const Vec4 p = mbs::euler_parameters(A);
+    // Stay on the side of the previous solution.
+    store_pose(q, r, s.has_history ? same_side(p, q + 3) : p);
 }
 
 struct Placement {
@@ -95,9 +104,7 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDriv
     m.gravity = Vec3(p.gravity);
     mbs::Builder b{m, msg, size};
     auto reference = [](const Vec3 &r, const Eigen::Matrix3d &A, double q[7]) {
-        const Vec4 e = mbs::euler_parameters(A);
-        for (int c = 0; c < 3; ++c) q[c] = r[c];
-        for (int c = 0; c < 4; ++c) q[3 + c] = e[c];
+        store_pose(q, r, mbs::euler_parameters(A));
     };
     double q[7];
     reference(Vec3::Zero(), Eigen::Matrix3d::Identity(), q);
@@ -158,9 +165,8 @@ void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinem
     const Vec3 r = mo.position + c;
     const Vec3 v = mo.velocity + mo.omega.cross(c);
     const Vec3 a = mo.acceleration + mo.alpha.cross(c) + mo.omega.cross(mo.omega.cross(c));
-    Vec4 p = mbs::euler_parameters(mo.rotation * l.axes);
-    const double *prev = s.q.data() + 7 * l.platform + 3;
-    if (p.dot(Eigen::Map<const Vec4>(prev)) < 0) p = -p;
+    const Vec4 p = same_side(mbs::euler_parameters(mo.rotation * l.axes),
+                             s.q.data() + 7 * l.platform + 3);
     const mbs::Mat34 E = mbs::E_matrix(p.data());
     const Vec4 p_dot = 0.5 * E.transpose() * mo.omega;
     const Vec4 p_ddot = 0.5 * E.transpose() * mo.alpha - p_dot.squaredNorm() * p;
