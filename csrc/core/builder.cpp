@@ -23,6 +23,14 @@ void perpendiculars(const Vec3 &v, Vec3 &v1, Vec3 &v2) {
     v2 = v.cross(v1);
 }
 
+// A joint of `type` between body bi (point u_i) and body bj (point u_j), axes to be filled.
+JointDef two_body(JointType type, int bi, const Vec3 &ui, int bj, const Vec3 &uj) {
+    JointDef j;
+    j.type = type;
+    j.body_i = bi, j.body_j = bj, j.point_i = ui, j.point_j = uj;
+    return j;
+}
+
 }  // namespace
 
 int Builder::check_open() {
@@ -47,6 +55,13 @@ int Builder::check_pair(int bi, int bj) {
     if (bi == bj)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "body_i = body_j = %d: a joint needs two different bodies", bi);
+    return STEWART_OK;
+}
+
+int Builder::check_free(int b) {
+    if (m.bodies[b].fixed || m.bodies[b].pose_driven)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "body %d is already fixed or pose-driven", b);
     return STEWART_OK;
 }
 
@@ -115,10 +130,7 @@ int Builder::body(const char *name, double mass, const Vec3 &I, const double q[7
 
 int Builder::fix(int b) {
     int s;
-    if ((s = check_open()) || (s = check_body(b, "body"))) return s;
-    if (m.bodies[b].fixed || m.bodies[b].pose_driven)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                           "body %d is already fixed or pose-driven", b);
+    if ((s = check_open()) || (s = check_body(b, "body")) || (s = check_free(b))) return s;
     m.bodies[b].fixed = true;
     JointDef j;
     j.type = JointType::FixedBody;
@@ -130,34 +142,27 @@ int Builder::fix(int b) {
 int Builder::spherical(int bi, const Vec3 &ui, int bj, const Vec3 &uj) {
     int s;
     if ((s = check_pair(bi, bj))) return s;
-    JointDef j;
-    j.type = JointType::Spherical;
-    j.body_i = bi, j.body_j = bj, j.point_i = ui, j.point_j = uj;
-    return add(j);
+    return add(two_body(JointType::Spherical, bi, ui, bj, uj));
 }
 
 int Builder::cardan(int bi, const Vec3 &ui, const Vec3 &si, int bj, const Vec3 &uj,
                     const Vec3 &sj) {
     int s;
-    JointDef j;
+    JointDef j = two_body(JointType::Cardan, bi, ui, bj, uj);
     if ((s = check_pair(bi, bj)) || (s = check_direction(si, "s_i", j.axis_i[0])) ||
         (s = check_direction(sj, "s_j", j.axis_j[0])))
         return s;
-    j.type = JointType::Cardan;
-    j.body_i = bi, j.body_j = bj, j.point_i = ui, j.point_j = uj;
     return add(j);
 }
 
 int Builder::cylindrical(int bi, const Vec3 &ui, const Vec3 &vi, int bj, const Vec3 &uj,
                          const Vec3 &vj) {
     int s;
-    JointDef j;
+    JointDef j = two_body(JointType::Cylindrical, bi, ui, bj, uj);
     if ((s = check_pair(bi, bj)) || (s = check_direction(vi, "v_i", j.axis_i[2])) ||
         (s = check_direction(vj, "v_j", j.axis_j[2])))
         return s;
     perpendiculars(j.axis_i[2], j.axis_i[0], j.axis_i[1]);
-    j.type = JointType::Cylindrical;
-    j.body_i = bi, j.body_j = bj, j.point_i = ui, j.point_j = uj;
     return add(j);
 }
 
@@ -184,9 +189,7 @@ int Builder::prismatic(int bi, const Vec3 &ui, const Vec3 &vi, int bj, const Vec
 int Builder::weld(int bi, const Vec3 &ui, int bj, const Vec3 &uj) {
     int s;
     if ((s = check_pair(bi, bj))) return s;
-    JointDef j;
-    j.type = JointType::Weld;
-    j.body_i = bi, j.body_j = bj, j.point_i = ui, j.point_j = uj;
+    JointDef j = two_body(JointType::Weld, bi, ui, bj, uj);
     for (int c = 0; c < 3; ++c) {
         j.axis_i[c] = Vec3::Unit(c);
         j.axis_j[c] = reference_image(bi, bj, j.axis_i[c]);
@@ -209,10 +212,7 @@ int Builder::coordinate_driver(int b, int coordinate, int *slot) {
 
 int Builder::pose_driver(int b, int *slot) {
     int s;
-    if ((s = check_open()) || (s = check_body(b, "body"))) return s;
-    if (m.bodies[b].fixed || m.bodies[b].pose_driven)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                           "body %d is already fixed or pose-driven", b);
+    if ((s = check_open()) || (s = check_body(b, "body")) || (s = check_free(b))) return s;
     m.bodies[b].pose_driven = true;
     JointDef j;
     j.type = JointType::PoseDriver;

@@ -31,6 +31,7 @@ private:
     int check_open();
     int check_body(int b, const char *what);
     int check_pair(int bi, int bj);
+    int check_free(int b);  // neither fixed nor pose-driven yet
     int check_direction(const Vec3 &v, const char *what, Vec3 &unit);
     int add(JointDef j);
     int add_driver(JointDef j, int *slot);
