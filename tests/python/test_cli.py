@@ -159,6 +159,12 @@ def test_bad_command_lines(solve, tmp_path):
     result = solve(tmp_path / "missing.csv", tmp_path / "out.csv")
     assert result.returncode == 1 and "cannot open" in result.stderr
     assert "usage" in solve("--help").stdout
+    for option, words in (("--fidelity", "--fidelity needs a value (kinematic|massless|full)"),
+                          ("--tolerance", "--tolerance needs a value")):
+        result = solve(option)
+        assert result.returncode == 2 and words in result.stderr, result.stderr
+    result = solve("--tolerance", "1e-16", tmp_path / "in.csv", tmp_path / "out.csv")
+    assert result.returncode != 0 and "tolerance" in result.stderr, result.stderr
 
 
 def leg_jacobian(q, beta, tau, radius=0.5):
