@@ -25,12 +25,29 @@ stewart_status ensure_factor(State &s) {
     return STEWART_OK;
 }
 
-stewart_status check_finite(State &s, const std::vector<double> &v, const char *what) {
-    for (size_t i = 0; i < v.size(); ++i)
-        if (!std::isfinite(v[i]))
-            return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
-                               "%s[%zu] is %g: the constraint Jacobian is (nearly) singular",
-                               what, i, v[i]);
+// Largest magnitude of a right-hand side; infinite if any entry is not finite.
+double largest_magnitude(const std::vector<double> &v) {
+    double m = 0.0;
+    for (double x : v) m = std::isfinite(x) ? std::fmax(m, std::fabs(x)) : INFINITY;
+    return m;
+}
+
+// A solution that is not finite comes from a right-hand side too large to solve with (inputs out
+// of range: an argument error, as at the closed-form levels) or from a (nearly) singular Phi_q.
+stewart_status check_finite(State &s, const std::vector<double> &v, double rhs_max,
+                            const char *what) {
+    const double kOutOfRange = 1e150;  // its square overflows
+    for (size_t i = 0; i < v.size(); ++i) {
+        if (std::isfinite(v[i])) continue;
+        if (!(rhs_max <= kOutOfRange))
+            return set_message(s.message, sizeof s.message, STEWART_ERR_ARGUMENT,
+                               "%s[%zu] is %g: its right-hand side reaches %g: the inputs (driver "
+                               "values, rates, accelerations or forces) are out of range",
+                               what, i, v[i], rhs_max);
+        return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
+                           "%s[%zu] is %g: the constraint Jacobian is (nearly) singular", what, i,
+                           v[i]);
+    }
     return STEWART_OK;
 }
 
@@ -55,16 +72,18 @@ stewart_status solve_velocity(State &s) {
     if (st != STEWART_OK) return st;
     assemble_phi_t(s.mechanism, s.q.data(), s.drive.data(), s.q_dot.data());
     for (double &v : s.q_dot) v = -v;
+    const double rhs_max = largest_magnitude(s.q_dot);
     s.linear->solve(s.q_dot.data());
-    return check_finite(s, s.q_dot, "q_dot");
+    return check_finite(s, s.q_dot, rhs_max, "q_dot");
 }
 
 stewart_status solve_acceleration(State &s) {
     stewart_status st = ensure_factor(s);
     if (st != STEWART_OK) return st;
     assemble_gamma(s.mechanism, s.q.data(), s.q_dot.data(), s.drive.data(), s.q_ddot.data());
+    const double rhs_max = largest_magnitude(s.q_ddot);
     s.linear->solve(s.q_ddot.data());
-    return check_finite(s, s.q_ddot, "q_ddot");
+    return check_finite(s, s.q_ddot, rhs_max, "q_ddot");
 }
 
 stewart_status solve_multipliers(State &s) {
@@ -72,8 +91,9 @@ stewart_status solve_multipliers(State &s) {
     if (st != STEWART_OK) return st;
     applied_minus_inertial(s.mechanism, s.q.data(), s.q_dot.data(), s.q_ddot.data(),
                            s.lambda.data());
+    const double rhs_max = largest_magnitude(s.lambda);
     s.linear->solve_transposed(s.lambda.data());
-    return check_finite(s, s.lambda, "lambda");
+    return check_finite(s, s.lambda, rhs_max, "lambda");
 }
 
 stewart_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor) {

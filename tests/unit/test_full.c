@@ -223,6 +223,23 @@ static void test_thesis_forces_never_overflow(void) {
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "not finite"), msg);
 }
 
+/* Inputs so large that the solve overflows are out of range (an argument error, as at the
+ * massless level), not a singular Jacobian: at home Phi_q is far from singular (condition 11). */
+static void test_huge_accelerations_are_out_of_range(void) {
+    stewart_pose pose = {{0, 0, 0.5, 0, 0, 0}, {0}, {0, 0, 1e307, 0, 0, 0}};
+    stewart_options o;
+    stewart_options_default(&o);
+    stewart_output out;
+    for (int fidelity = STEWART_MASSLESS; fidelity <= STEWART_FULL; ++fidelity) {
+        o.fidelity = fidelity;
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(model, data, &o, &pose, &out));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_data_message(data), "out of range"),
+                                     stewart_data_message(data));
+    }
+    pose.q_ddot[2] = 1.0; /* and the next ordinary pose is solved */
+    solve_ok(model, data, STEWART_FULL, &pose);
+}
+
 /* Heavier legs carry more than the massless level, and the platform at rest loads them. */
 static void test_massive_legs_at_rest(void) {
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
@@ -406,6 +423,7 @@ int main(void) {
     RUN_TEST(test_thesis_formulation_agrees);
     RUN_TEST(test_thesis_forces_refuse_a_singular_pose);
     RUN_TEST(test_thesis_forces_never_overflow);
+    RUN_TEST(test_huge_accelerations_are_out_of_range);
     RUN_TEST(test_massive_legs_at_rest);
     RUN_TEST(test_copy_is_rollback);
     RUN_TEST(test_rates_against_finite_differences);
