@@ -1,9 +1,11 @@
 // Parameter defaults (the thesis platform in SI, model.md §2) and their validation.
 #include "stewart/stewart.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstring>
 
 #include "util/message.hpp"
 
@@ -72,17 +74,56 @@ const Field kFields[] = {
     STEWART_FIELD(stroke_min),      STEWART_FIELD(stroke_max)};
 #undef STEWART_FIELD
 
-// "gravity[2]" for the double at byte offset `offset` of stewart_params.
+// "gravity[3]" for the double at byte offset `offset` of stewart_params: array elements counted
+// from 1, as in the FMU's model description, scene files and stewart-solve --param.
 void field_name(size_t offset, char *out, size_t size) {
     for (const Field &f : kFields)
         if (offset >= f.offset && offset < f.offset + f.count * sizeof(double)) {
             if (f.count == 1)
                 std::snprintf(out, size, "%s", f.name);
             else
-                std::snprintf(out, size, "%s[%zu]", f.name, (offset - f.offset) / sizeof(double));
+                std::snprintf(out, size, "%s[%zu]", f.name, (offset - f.offset) / sizeof(double) + 1);
             return;
         }
     std::snprintf(out, size, "?");
+}
+
+// Levenshtein distance of the part of `a` before any '[' to `b` (both short names).
+size_t edit_distance(const char *a, const char *b) {
+    const size_t n = std::strcspn(a, "["), m = std::strlen(b);
+    size_t row[64];
+    if (n >= 64 || m >= 64) return static_cast<size_t>(-1);
+    for (size_t j = 0; j <= m; ++j) row[j] = j;
+    for (size_t i = 1; i <= n; ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= m; ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+            diagonal = up;
+        }
+    }
+    return row[m];
+}
+
+// The field named `name` ("payload_mass", "base_angle[2]"): its double, or nullptr.
+double *field_by_name(stewart_params *p, const char *name) {
+    const char *bracket = std::strchr(name, '[');
+    const size_t base = bracket ? static_cast<size_t>(bracket - name) : std::strlen(name);
+    for (const Field &f : kFields) {
+        if (std::strlen(f.name) != base || std::strncmp(f.name, name, base) != 0) continue;
+        int index = 1;
+        if (f.count > 1) {
+            char close = 0, extra = 0;
+            if (!bracket || std::sscanf(bracket, "[%d%c%c", &index, &close, &extra) != 2 ||
+                close != ']' || index < 1 || index > f.count)
+                return nullptr;
+        } else if (bracket) {
+            return nullptr;
+        }
+        return reinterpret_cast<double *>(reinterpret_cast<char *>(p) + f.offset) + (index - 1);
+    }
+    return nullptr;
 }
 
 // Principal moments of a rigid body must be non-negative and satisfy the triangle inequalities.
@@ -152,4 +193,27 @@ extern "C" stewart_status stewart_params_check(const stewart_params *p, char *ms
                            "stroke limits [%g, %g] m must satisfy 0 < stroke_min < stroke_max",
                            p->stroke_min, p->stroke_max);
     return clear_message(msg, size);
+}
+
+extern "C" stewart_status stewart_params_set(stewart_params *p, const char *name, double value,
+                                             char *msg, size_t size) {
+    using stewart::set_message;
+    if (!p || !name) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
+    double *field = field_by_name(p, name);
+    if (!field) {
+        const Field *nearest = &kFields[0];
+        size_t best = static_cast<size_t>(-1);
+        for (const Field &f : kFields) {
+            const size_t d = edit_distance(name, f.name);
+            if (d < best) best = d, nearest = &f;
+        }
+        char suffix[16];
+        std::snprintf(suffix, sizeof suffix, "[1..%d]", nearest->count);
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "no parameter is named '%s'; the nearest is %s%s (names as in the FMU's "
+                           "model description: arrays take an element counted from 1)",
+                           name, nearest->name, nearest->count > 1 ? suffix : "");
+    }
+    *field = value;
+    return stewart::clear_message(msg, size);
 }

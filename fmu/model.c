@@ -185,8 +185,8 @@ static fmu_status apply_parameters(fmu_instance *inst) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", inst->message);
         return FMU_ERROR;
     }
-    /* Non-finite parameters are named here with their FMU names (the library counts array
-     * elements from 0, the model description from 1). */
+    /* Non-finite parameters are named here, with their units (the library's message names
+     * them alike, without the unit). */
 #define FMU_PARAM(vr, id, name, field, unit, display, desc)                                     \
     if (!isfinite(v->real[vr])) {                                                               \
         fmu_log(inst, FMU_ERROR, LOG_ERROR,                                                     \

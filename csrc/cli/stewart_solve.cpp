@@ -13,7 +13,10 @@ namespace {
 int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
-                 "IN.csv OUT.csv\n"
+                 "[--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "  --param: any platform parameter by its FMU name, SI units (e.g. "
+                 "payload_mass=50,\n"
+                 "           base_angle[2]=0.5236); the others are the thesis platform's\n"
                  "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
                  "x_ddot..yaw_ddot\n"
                  "           (missing derivatives come from finite differences of the samples)\n"
@@ -45,22 +48,50 @@ void write_row(FILE *out, double t, const stewart_output &o) {
     std::fprintf(out, ",%.17g,%d\n", o.condition, o.iterations);
 }
 
+// NAME=VALUE into params; false with a message on stderr.
+bool set_param(const char *assignment, stewart_params &params) {
+    const char *eq = std::strchr(assignment, '=');
+    if (!eq) {
+        std::fprintf(stderr, "stewart-solve: --param '%s' is not NAME=VALUE\n", assignment);
+        return false;
+    }
+    const std::string name(assignment, eq);
+    char *end = nullptr;
+    const double value = std::strtod(eq + 1, &end);
+    if (end == eq + 1 || *end != '\0') {
+        std::fprintf(stderr, "stewart-solve: --param %s: '%s' is not a number\n", name.c_str(), eq + 1);
+        return false;
+    }
+    char message[STEWART_MESSAGE_SIZE];
+    if (stewart_params_set(&params, name.c_str(), value, message, sizeof message) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: --param: %s\n", message);
+        return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
     stewart_options options;
     stewart_options_default(&options);
+    stewart_params params;
+    stewart_params_default(&params);
     const char *paths[2] = {nullptr, nullptr};
     int n_paths = 0;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
         const bool fidelity = !std::strcmp(argv[i], "--fidelity");
-        if ((fidelity || !std::strcmp(argv[i], "--tolerance")) && i + 1 == argc) {
+        const bool param = !std::strcmp(argv[i], "--param");
+        if ((fidelity || param || !std::strcmp(argv[i], "--tolerance")) && i + 1 == argc) {
             std::fprintf(stderr, "stewart-solve: %s needs a value (%s)\n", argv[i],
-                         fidelity ? "kinematic|massless|full" : "a positive number");
+                         fidelity ? "kinematic|massless|full"
+                                  : param ? "NAME=VALUE" : "a positive number");
             return usage(stderr);
         }
-        if (fidelity) {
+        if (param) {
+            if (!set_param(argv[++i], params)) return 2;
+        } else if (fidelity) {
             if (!parse_fidelity(argv[++i], options.fidelity)) {
                 std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", argv[i]);
                 return usage(stderr);
@@ -95,8 +126,6 @@ int main(int argc, char **argv) {
         return 1;
     }
 
-    stewart_params params;
-    stewart_params_default(&params);
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
     stewart_data *data = model ? stewart_data_create(model) : nullptr;
     if (!data) {

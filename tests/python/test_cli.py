@@ -167,6 +167,51 @@ def test_bad_command_lines(solve, tmp_path):
     assert result.returncode != 0 and "tolerance" in result.stderr, result.stderr
 
 
+def test_parameters_from_the_command_line(solve, tmp_path):
+    """--param NAME=VALUE (the FMU's names): another geometry gives the closed-form lengths
+    |p + R b - a| computed here, and a payload at rest is carried by the six legs:
+    sum_k F_k n_kz = (platform + payload mass) g, all six equal by symmetry."""
+    from fmu_support import closed_form_lengths
+    pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
+    pose = [0.01, -0.02, 0.55, 0.05, -0.03, 0.1]
+    pose_csv.write_text("t,x,y,z,roll,pitch,yaw\n0," + ",".join(map(str, pose)) + "\n")
+    beta = (5, 25, 125, 145, 245, 265)
+    args = ["--param", "base_radius=0.6", "--param", "platform_radius=0.4"]
+    for k, b in enumerate(beta):
+        args += ["--param", f"base_angle[{k + 1}]={math.radians(b)!r}"]
+    result = solve(*args, pose_csv, out_csv)
+    assert result.returncode == 0, result.stderr
+    header, data = read(out_csv)
+    got = np.array([column(header, data, f"L{k}")[0] for k in LEGS])
+    np.testing.assert_allclose(got, closed_form_lengths(pose, 0.6, 0.4, beta), rtol=1e-13)
+
+    home = [0.0, 0.0, 0.5, 0.0, 0.0, 0.0]
+    pose_csv.write_text("t,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,0\n")
+    result = solve("--param", "payload_mass=50", pose_csv, out_csv)
+    assert result.returncode == 0, result.stderr
+    header, data = read(out_csv)
+    forces = np.array([column(header, data, f"F{k}")[0] for k in LEGS])
+    n_z = 0.5 / closed_form_lengths(home)          # vertical component of each leg's axis
+    platform_mass = 2700 * math.pi * 0.5 ** 2 * 0.05  # thesis 4.2.8, model.md section 2
+    np.testing.assert_allclose(forces, (platform_mass + 50) * 9.81 / (6 * n_z), rtol=1e-12)
+
+
+@pytest.mark.parametrize("assignment,words,code", [
+    ("payload_mas=1", "the nearest is payload_mass", 2),
+    ("base_angle[7]=1", "no parameter is named 'base_angle[7]'", 2),
+    ("payload_mass", "is not NAME=VALUE", 2),
+    ("payload_mass=heavy", "'heavy' is not a number", 2),
+    ("payload_mass=-1", "payload_mass = -1 kg must be >= 0", 1),
+    ("gravity[3]=nan", "parameter gravity[3] is nan", 1),
+])
+def test_bad_parameters_on_the_command_line(solve, tmp_path, assignment, words, code):
+    pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
+    pose_csv.write_text("t,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,0\n")
+    result = solve("--param", assignment, pose_csv, out_csv)
+    assert result.returncode == code and words in result.stderr, result.stderr
+    assert not out_csv.exists()
+
+
 def leg_jacobian(q, beta, tau, radius=0.5):
     """J with rows (n_k, (R b_k) x n_k / radius), from the pose alone, built with numpy."""
     x, y, z, roll, pitch, yaw = q

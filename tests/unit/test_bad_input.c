@@ -88,8 +88,8 @@ static void test_invalid_parameters_are_named(void) {
     stewart_params_default(&p); p.platform_mass = 0;        expect_bad_params(&p, "platform_mass = 0");
     stewart_params_default(&p); p.payload_mass = -5;        expect_bad_params(&p, "payload_mass = -5");
     stewart_params_default(&p); p.piston_mass = -1;         expect_bad_params(&p, "piston_mass");
-    stewart_params_default(&p); p.gravity[2] = NAN;         expect_bad_params(&p, "gravity[2]");
-    stewart_params_default(&p); p.platform_angle[4] = INFINITY; expect_bad_params(&p, "platform_angle[4]");
+    stewart_params_default(&p); p.gravity[2] = NAN;         expect_bad_params(&p, "gravity[3]");
+    stewart_params_default(&p); p.platform_angle[4] = INFINITY; expect_bad_params(&p, "platform_angle[5]");
     stewart_params_default(&p); p.platform_inertia[2] = 0;  expect_bad_params(&p, "platform_inertia");
     /* principal moments that break the triangle inequality are no rigid body's */
     stewart_params_default(&p); p.payload_inertia[0] = 1; p.payload_inertia[1] = 1;

@@ -116,6 +116,12 @@ typedef struct stewart_data stewart_data;
 void stewart_params_default(stewart_params *params);
 /* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the parameter and its value. */
 stewart_status stewart_params_check(const stewart_params *params, char *message, size_t size);
+/* Sets one parameter by its name: the field's name, with the element counted from 1 for arrays
+ * ("payload_mass", "base_angle[1]" .. "base_angle[6]", "gravity[3]"), as the FMU's model
+ * description and scene files name them. STEWART_ERR_ARGUMENT for an unknown name (the message
+ * lists the names); the value is checked when a model is built (stewart_params_check). */
+stewart_status stewart_params_set(stewart_params *params, const char *name, double value,
+                                  char *message, size_t size);
 void stewart_options_default(stewart_options *options);
 /* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the option and its value. */
 stewart_status stewart_options_check(const stewart_options *options, char *message, size_t size);
