@@ -92,7 +92,7 @@ void field_name(size_t offset, char *out, size_t size) {
 size_t edit_distance(const char *a, const char *b) {
     const size_t n = std::strcspn(a, "["), m = std::strlen(b);
     size_t row[64];
-    if (n >= 64 || m >= 64) return static_cast<size_t>(-1);
+    if (n >= 64 || m >= 64) return n > m ? n : m; // no field name is that long: far from all
     for (size_t j = 0; j <= m; ++j) row[j] = j;
     for (size_t i = 1; i <= n; ++i) {
         size_t diagonal = row[0];
@@ -114,10 +114,11 @@ double *field_by_name(stewart_params *p, const char *name) {
         if (std::strlen(f.name) != base || std::strncmp(f.name, name, base) != 0) continue;
         int index = 1;
         if (f.count > 1) {
-            char close = 0, extra = 0;
-            if (!bracket || std::sscanf(bracket, "[%d%c%c", &index, &close, &extra) != 2 ||
-                close != ']' || index < 1 || index > f.count)
+            // "[k]" with k a single digit 1..count (every array has at most 6 elements)
+            if (!bracket || bracket[1] < '1' || bracket[1] > '0' + f.count || bracket[2] != ']' ||
+                bracket[3] != '\0')
                 return nullptr;
+            index = bracket[1] - '0';
         } else if (bracket) {
             return nullptr;
         }

@@ -764,9 +764,16 @@ static const char *corrupt_values(const fmu_values *v) {
         if (!isfinite(v->real[vr])) return "parameter " name " is not finite";
 #define FMU_OPTION_REAL(vr, id, name, field, unit, desc) \
         if (!isfinite(v->real[vr])) return "option " name " is not finite";
-#define FMU_OPTION_INT(vr, id, name, start, min, max, desc) \
-        if (v->integer[vr] < (min) || v->integer[vr] > (max)) return "option " name " is out of range";
 #include "variables.def"
+        /* exactly what initialisation accepted (apply_parameters) */
+        if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1)
+            return "option derivatives is out of range";
+        stewart_options o;
+        options_from_values(v, &o);
+        if (stewart_options_check(&o, NULL, 0) != STEWART_OK) return "an option is out of range";
+        stewart_params p;
+        params_from_values(v, &p);
+        if (stewart_params_check(&p, NULL, 0) != STEWART_OK) return "a parameter is invalid";
     }
     return NULL;
 }

@@ -227,11 +227,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 std::vector<uint8_t> buf(n);
                 if (u.serialize(state, buf) != 0) break;
                 const uint8_t corrupt = in.byte();
-                if (corrupt & 1) buf[in.byte() % n] ^= in.byte();
-                if (corrupt & 4) {  // a whole field: any value (NaN, Inf, huge) at an 8-byte slot
+                // anywhere in the state: two bytes of offset (states are a few kB)
+                auto offset = [&in](size_t limit) {
+                    const size_t lo = in.byte(), hi = in.byte();
+                    return (lo | hi << 8) % limit;
+                };
+                if (corrupt & 1) buf[offset(n)] ^= in.byte();
+                if (corrupt & 4) {  // a whole double field: any value (NaN, Inf, huge)
                     const double value = in.value();
-                    const size_t at = (static_cast<size_t>(in.byte()) * 8 + 16) % (n - 7);
-                    std::memcpy(&buf[at], &value, sizeof value);
+                    std::memcpy(&buf[offset(n - 7)], &value, sizeof value);
+                }
+                if (corrupt & 8) {  // a whole int32 field (mode, status, flags, options)
+                    int32_t value = static_cast<int8_t>(in.byte());  // small, negative, or raw
+                    if (value == 127) in.take(&value, sizeof value);
+                    std::memcpy(&buf[offset(n - 3)], &value, sizeof value);
                 }
                 const size_t m = (corrupt & 2) ? n - 1 : n;
                 void *other = nullptr;

@@ -32,7 +32,8 @@ static void test_every_fmu_parameter_name_sets_its_field(void) {
 
 static void test_names_that_are_not_parameters(void) {
     const char *bad[] = {"payload_mas", "base_angle", "base_angle[0]", "base_angle[7]",
-                         "base_angle[1]x", "base_angle[-1]", "payload_mass[1]", "", "gravity[1",
+                         "base_angle[1]x", "base_angle[-1]", "base_angle[4294967298]", "base_angle[ 2]",
+                         "base_angle[+2]", "base_angle[01]", "gravity[4]", "payload_mass[1]", "", "gravity[1",
                          "Payload_mass", "fidelity"};
     stewart_params p, untouched;
     stewart_params_default(&p);

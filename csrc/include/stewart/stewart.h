@@ -80,7 +80,8 @@ typedef struct stewart_params {
 typedef struct stewart_options {
     int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
     double tolerance;            /* Newton residual tolerance, max-norm (full level); 1e-12;
-                                    >= 2.5e-16 (the residual floors at 2.2e-16) */
+                                    >= 2.5e-16 (the residual floors at 2.2e-16
+                                    for coordinates of order 1 m; larger platforms need more) */
     int max_iterations;          /* Newton iteration cap (full level); 20 */
     int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
     double warn_condition;       /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
