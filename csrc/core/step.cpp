@@ -34,19 +34,25 @@ double largest_magnitude(const std::vector<double> &v) {
 
 // A solution that is not finite comes from a right-hand side too large to solve with (inputs out
 // of range: an argument error, as at the closed-form levels) or from a (nearly) singular Phi_q.
-stewart_status check_finite(State &s, const std::vector<double> &v, double rhs_max,
-                            const char *what) {
+// Only then is the right-hand side assembled again (into v, whose values are lost anyway) to
+// tell which: the common, finite case costs one sweep.
+template <class AssembleRhs>
+stewart_status check_finite(State &s, std::vector<double> &v, const char *what,
+                            AssembleRhs assemble_rhs) {
     const double kOutOfRange = 1e150;  // within 1e4 of where squares overflow (1.3e154)
     for (size_t i = 0; i < v.size(); ++i) {
         if (std::isfinite(v[i])) continue;
+        const double bad = v[i];
+        assemble_rhs();
+        const double rhs_max = largest_magnitude(v);
         if (!(rhs_max <= kOutOfRange))
             return set_message(s.message, sizeof s.message, STEWART_ERR_ARGUMENT,
                                "%s[%zu] is %g: its right-hand side reaches %g: the inputs (driver "
                                "values, rates, accelerations or forces) are out of range",
-                               what, i, v[i], rhs_max);
+                               what, i, bad, rhs_max);
         return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
                            "%s[%zu] is %g: the constraint Jacobian is (nearly) singular", what, i,
-                           v[i]);
+                           bad);
     }
     return STEWART_OK;
 }
@@ -70,30 +76,34 @@ stewart_status solve_position(State &s, double t, const SolverOptions &o, bool u
 stewart_status solve_velocity(State &s) {
     stewart_status st = ensure_factor(s);
     if (st != STEWART_OK) return st;
-    assemble_phi_t(s.mechanism, s.q.data(), s.drive.data(), s.q_dot.data());
+    auto rhs = [&s] { assemble_phi_t(s.mechanism, s.q.data(), s.drive.data(), s.q_dot.data()); };
+    rhs();
     for (double &v : s.q_dot) v = -v;
-    const double rhs_max = largest_magnitude(s.q_dot);
     s.linear->solve(s.q_dot.data());
-    return check_finite(s, s.q_dot, rhs_max, "q_dot");
+    return check_finite(s, s.q_dot, "q_dot", rhs);
 }
 
 stewart_status solve_acceleration(State &s) {
     stewart_status st = ensure_factor(s);
     if (st != STEWART_OK) return st;
-    assemble_gamma(s.mechanism, s.q.data(), s.q_dot.data(), s.drive.data(), s.q_ddot.data());
-    const double rhs_max = largest_magnitude(s.q_ddot);
+    auto rhs = [&s] {
+        assemble_gamma(s.mechanism, s.q.data(), s.q_dot.data(), s.drive.data(), s.q_ddot.data());
+    };
+    rhs();
     s.linear->solve(s.q_ddot.data());
-    return check_finite(s, s.q_ddot, rhs_max, "q_ddot");
+    return check_finite(s, s.q_ddot, "q_ddot", rhs);
 }
 
 stewart_status solve_multipliers(State &s) {
     stewart_status st = ensure_factor(s);
     if (st != STEWART_OK) return st;
-    applied_minus_inertial(s.mechanism, s.q.data(), s.q_dot.data(), s.q_ddot.data(),
-                           s.lambda.data());
-    const double rhs_max = largest_magnitude(s.lambda);
+    auto rhs = [&s] {
+        applied_minus_inertial(s.mechanism, s.q.data(), s.q_dot.data(), s.q_ddot.data(),
+                               s.lambda.data());
+    };
+    rhs();
     s.linear->solve_transposed(s.lambda.data());
-    return check_finite(s, s.lambda, rhs_max, "lambda");
+    return check_finite(s, s.lambda, "lambda", rhs);
 }
 
 stewart_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor) {

@@ -120,7 +120,7 @@ stewart_status stewart_params_check(const stewart_params *params, char *message,
 /* Sets one parameter by its name: the field's name, with the element counted from 1 for arrays
  * ("payload_mass", "base_angle[1]" .. "base_angle[6]", "gravity[3]"), as the FMU's model
  * description and scene files name them. STEWART_ERR_ARGUMENT for an unknown name (the message
- * lists the names); the value is checked when a model is built (stewart_params_check). */
+ * gives the nearest name); the value is checked when a model is built (stewart_params_check). */
 stewart_status stewart_params_set(stewart_params *params, const char *name, double value,
                                   char *message, size_t size);
 void stewart_options_default(stewart_options *options);
