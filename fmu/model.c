@@ -759,13 +759,8 @@ static const char *corrupt_values(const fmu_values *v) {
 #include "variables.def"
     if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
     if (v->integer[VR_newton_iterations] < 0) return "newton_iterations is negative";
-    if (v->mode & (MODE_STEP | MODE_TERMINATED)) { /* parameters were checked at initialisation */
-#define FMU_PARAM(vr, id, name, field, unit, display, desc) \
-        if (!isfinite(v->real[vr])) return "parameter " name " is not finite";
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) \
-        if (!isfinite(v->real[vr])) return "option " name " is not finite";
-#include "variables.def"
-        /* exactly what initialisation accepted (apply_parameters) */
+    if (v->mode & (MODE_STEP | MODE_TERMINATED)) {
+        /* parameters and options: exactly what initialisation accepted (apply_parameters) */
         if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1)
             return "option derivatives is out of range";
         stewart_options o;
