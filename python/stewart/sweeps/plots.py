@@ -23,7 +23,7 @@ def _envelope(out: pathlib.Path) -> list[pathlib.Path]:
     import matplotlib.pyplot as plt
     t = pq.read_table(out / "envelope.parquet")
     cols = {k: t[k].to_numpy(zero_copy_only=False) for k in t.column_names}
-    force = np.nanmax(np.column_stack([np.asarray(cols[f"peak_force_{k}"], dtype=float)
+    force = np.max(np.column_stack([np.asarray(cols[f"peak_force_{k}"], dtype=float)
                                        for k in range(1, 7)]), axis=1)
     panels = (("peak |F| over legs [N]", force),
               ("peak |power| [W]", np.asarray(cols["peak_power"], dtype=float)),
@@ -35,7 +35,7 @@ def _envelope(out: pathlib.Path) -> list[pathlib.Path]:
             for name in sorted(set(cols["manoeuvre"])):
                 sel = (cols["fidelity"] == level) & (cols["manoeuvre"] == name) & (cols["status"] == 0)
                 masses = np.unique(cols["payload_mass"][sel])
-                worst = [(np.nanmin if label.startswith("smallest") else np.nanmax)(
+                worst = [(np.min if label.startswith("smallest") else np.nanmax)(
                     values[sel & (cols["payload_mass"] == m)]) for m in masses]
                 ax.plot(masses, worst, marker="o", label=name)
             ax.set_ylabel(label)
