@@ -105,7 +105,7 @@ class _client:
         else:
             self.cluster = LocalCluster(n_workers=self.workers or os.cpu_count() or 1,
                                         threads_per_worker=1, processes=True,
-                                        dashboard_address=None)
+                                        host="127.0.0.1", dashboard_address=":0")
             self.client = Client(self.cluster)
         return self.client
 
