@@ -69,7 +69,7 @@ extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_da
         std::memcpy(pose.q, q + 6 * j, sizeof pose.q);
         if (q_dot) std::memcpy(pose.q_dot, q_dot + 6 * j, sizeof pose.q_dot);
         if (q_ddot) std::memcpy(pose.q_ddot, q_ddot + 6 * j, sizeof pose.q_ddot);
-        stewart_output o_j{};
+        stewart_output o_j;  // written whole by a successful solve, zeroed on failure
         const stewart_status s = stewart_solve(m, d, o, &pose, &o_j);
         if (s != STEWART_OK) {
             o_j = stewart_output{};

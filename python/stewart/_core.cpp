@@ -66,25 +66,23 @@ public:
     // 0, its index or n, its message, [(row, message)] of up to max_messages failing rows).
     std::tuple<int, size_t, std::string, std::vector<std::pair<size_t, std::string>>> solve(
         Poses q, std::optional<Poses> q_dot, std::optional<Poses> q_ddot,
-        const std::vector<std::pair<std::string, double>> &option_values, Rows<double, 6> length,
-        Rows<double, 6> length_rate, Rows<double, 6> length_accel, Rows<double, 6> force,
-        Column<double> condition, Column<double> residual, Rows<double, 3> base_force,
-        Rows<double, 3> base_torque, Column<int> iterations, Column<int> warnings,
+        const std::vector<std::pair<std::string, double>> &option_values,
+        std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
+        std::optional<Rows<double, 6>> length_accel, std::optional<Rows<double, 6>> force,
+        std::optional<Column<double>> condition, std::optional<Column<double>> residual,
+        std::optional<Rows<double, 3>> base_force, std::optional<Rows<double, 3>> base_torque,
+        std::optional<Column<int>> iterations, std::optional<Column<int>> warnings,
         Column<int> status, size_t max_messages) {
         const size_t n = q.shape(0);
-        for (auto *a : {&length, &length_rate, &length_accel, &force})
-            if (a->shape(0) != n) fail("output arrays must have as many rows as the poses");
         if ((q_dot && q_dot->shape(0) != n) || (q_ddot && q_ddot->shape(0) != n))
             fail("rates and accels must have as many rows as the poses");
-        if (condition.shape(0) != n || residual.shape(0) != n || base_force.shape(0) != n ||
-            base_torque.shape(0) != n || iterations.shape(0) != n || warnings.shape(0) != n ||
-            status.shape(0) != n)
-            fail("output arrays must have as many rows as the poses");
+        if (status.shape(0) != n) fail("output arrays must have as many rows as the poses");
         stewart_options options = make_options(option_values);
         const stewart_batch_outputs out = {
-            length.data(),     length_rate.data(), length_accel.data(), force.data(),
-            condition.data(),  residual.data(),    base_force.data(),   base_torque.data(),
-            iterations.data(), warnings.data(),    status.data()};
+            rows_of(length, n),     rows_of(length_rate, n), rows_of(length_accel, n),
+            rows_of(force, n),      rows_of(condition, n),   rows_of(residual, n),
+            rows_of(base_force, n), rows_of(base_torque, n), rows_of(iterations, n),
+            rows_of(warnings, n),   status.data()};
         std::vector<size_t> rows(max_messages);
         std::vector<char> text(max_messages * STEWART_MESSAGE_SIZE);
         stewart_batch_messages messages = {max_messages, 0, rows.data(), text.data()};
@@ -109,6 +107,14 @@ public:
     }
 
 private:
+    // The data of an output array of n rows, or nullptr for an output the caller skips (None).
+    template <typename Array>
+    static auto rows_of(std::optional<Array> &a, size_t n) -> decltype(a->data()) {
+        if (!a) return nullptr;
+        if (a->shape(0) != n) fail("output arrays must have as many rows as the poses");
+        return a->data();
+    }
+
     // Options by name over stewart_options_default, checked by the library.
     static stewart_options make_options(const std::vector<std::pair<std::string, double>> &values) {
         stewart_options o;
@@ -139,9 +145,11 @@ NB_MODULE(_core, m) {
     nb::class_<Model>(m, "Model")
         .def(nb::init<const std::vector<std::pair<std::string, double>> &>(), nb::arg("assignments"))
         .def("solve", &Model::solve, nb::arg("q"), nb::arg("q_dot").none(), nb::arg("q_ddot").none(),
-             nb::arg("options"), nb::arg("length"), nb::arg("length_rate"), nb::arg("length_accel"),
-             nb::arg("force"), nb::arg("condition"), nb::arg("residual"), nb::arg("base_force"),
-             nb::arg("base_torque"), nb::arg("iterations"), nb::arg("warnings"), nb::arg("status"),
+             nb::arg("options"), nb::arg("length").none(), nb::arg("length_rate").none(),
+             nb::arg("length_accel").none(), nb::arg("force").none(), nb::arg("condition").none(),
+             nb::arg("residual").none(), nb::arg("base_force").none(),
+             nb::arg("base_torque").none(), nb::arg("iterations").none(),
+             nb::arg("warnings").none(), nb::arg("status"),
              nb::arg("max_messages"));
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {

@@ -124,7 +124,8 @@ class Platform:
               fidelity: Union[Fidelity, int, str] = Fidelity.MASSLESS, *,
               tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
               modified_newton: Optional[bool] = None, warn_condition: Optional[float] = None,
-              singular_condition: Optional[float] = None, max_messages: int = 100) -> Solution:
+              singular_condition: Optional[float] = None, max_messages: int = 100,
+              out: Optional[Solution] = None) -> Solution:
         """Inverse kinematics and dynamics of N poses in one call into the library.
 
         poses, rates, accels: (N, 6) arrays of (x, y, z [m], roll, pitch, yaw [rad]) and their
@@ -134,7 +135,9 @@ class Platform:
         numbers bit for bit. A row that fails (non-finite value, unreachable or singular pose,
         no convergence) gets its status and, for the first max_messages failing rows, a message;
         the other rows are still solved. Bad options raise ParameterError. Options left None keep
-        the library's defaults (stewart_options_default)."""
+        the library's defaults (stewart_options_default). out: a Solution of as many rows to
+        write into (its arrays are reused, which saves allocating and first-touching fresh
+        memory in a loop of equal batches); it is returned."""
         level = Fidelity.of(fidelity)
         q = _rows("poses", poses, None)
         n = q.shape[0]
@@ -149,12 +152,9 @@ class Platform:
                 options.append((name, float(value)))
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
-        out = Solution(
-            length=np.empty((n, 6)), length_rate=np.empty((n, 6)), length_accel=np.empty((n, 6)),
-            force=np.empty((n, 6)), condition=np.empty(n), residual=np.empty(n),
-            base_force=np.empty((n, 3)), base_torque=np.empty((n, 3)),
-            iterations=np.empty(n, dtype=np.int32), warnings=np.empty(n, dtype=np.int32),
-            status=np.empty(n, dtype=np.int32))
+        if out is not None and len(out) != n:
+            raise ValueError(f"out has {len(out)} rows but poses has {n}")
+        out = out if out is not None else _empty_solution(n)
         try:
             _, _, _, kept = self._model.solve(
                 q, q_dot, q_ddot, options, out.length, out.length_rate, out.length_accel,
@@ -164,6 +164,16 @@ class Platform:
             raise ParameterError(str(e)) from None
         out.messages = dict(kept)
         return out
+
+
+def _empty_solution(n: int) -> Solution:
+    """A Solution of n rows, uninitialised (the batch writes every row)."""
+    return Solution(
+        length=np.empty((n, 6)), length_rate=np.empty((n, 6)), length_accel=np.empty((n, 6)),
+        force=np.empty((n, 6)), condition=np.empty(n), residual=np.empty(n),
+        base_force=np.empty((n, 3)), base_torque=np.empty((n, 3)),
+        iterations=np.empty(n, dtype=np.int32), warnings=np.empty(n, dtype=np.int32),
+        status=np.empty(n, dtype=np.int32))
 
 
 def _rebuild(params: dict) -> Platform:

@@ -191,3 +191,14 @@ def test_a_platform_pickles_and_solves_alike_in_threads():
                                 [p, copy, p, copy]))
     for r in results:
         np.testing.assert_array_equal(r, ref)
+
+
+def test_solving_into_a_reused_solution_gives_the_same_numbers():
+    q, qd, qdd = thesis_manoeuvre("heave", THESIS_T)
+    p = stewart.Platform()
+    fresh = p.solve(q, qd, qdd, fidelity="massless")
+    reused = p.solve(q[::-1], fidelity="massless")
+    assert p.solve(q, qd, qdd, fidelity="massless", out=reused) is reused
+    np.testing.assert_array_equal(_matrix(reused), _matrix(fresh))
+    with pytest.raises(ValueError, match="out has 121 rows but poses has 2"):
+        p.solve(q[:2], out=reused)
