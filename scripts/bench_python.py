@@ -78,8 +78,10 @@ def sweep(spec, workers, tmp):
     poses = sum(c["poses"] for c in summary["computed"])
     cases = sum(c["cases"] for c in summary["computed"])
     wall = summary["wall_seconds"]
+    out = pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}"
+    size = sum(f.stat().st_size for f in out.glob("*.parquet"))
     return {"workers": workers, "wall": wall, "total": total, "compute": compute, "poses": poses,
-            "cases": cases, "overhead": 1 - compute / (wall * workers)}
+            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size}
 
 
 ENVELOPE = {"kind": "envelope", "fidelity": ["full"], "payload_mass": {"start": 0, "stop": 100, "num": 21},
@@ -126,7 +128,10 @@ def main():
                         f"{r['overhead']:.1%}, {r['poses'] / r['wall']:.3g} poses/s "
                         f"({per_core:.3g} per core)" +
                         (f", {r['cases'] / r['wall']:.3g} cases/s" if r["cases"] else ""))
-                lines.append(f"  speed-up 2 vs 1 worker: {rows[0]['wall'] / rows[1]['wall']:.2f}x")
+                lines.append(f"  speed-up 2 vs 1 worker: {rows[0]['wall'] / rows[1]['wall']:.2f}x; "
+                             f"merged Parquet {rows[0]['bytes'] / 1e6:.1f} MB "
+                             f"({rows[0]['bytes'] / (rows[0]['cases'] or rows[0]['poses']):.0f} B per "
+                             f"{'case' if rows[0]['cases'] else 'pose'})")
                 print("\n".join(lines[-4:]), flush=True)
     if args.file:
         pathlib.Path(args.file).write_text("\n".join(lines) + "\n")

@@ -17,7 +17,8 @@ from fmu_support import POSE, POSE_DDOT, POSE_DOT, rotation, stewart_solve_path
 stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
 pq = pytest.importorskip("pyarrow.parquet")
 pytest.importorskip("distributed")
-from stewart.sweeps import SpecError, resolve, run  # noqa: E402
+from stewart.sweeps import SpecError, chunks, resolve, run  # noqa: E402
+from stewart.sweeps.run import compute_chunk  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCENES = ROOT / "scenes"
@@ -240,3 +241,14 @@ def test_failing_cases_are_recorded_and_a_rerun_computes_only_missing_chunks(tmp
     _, second = _sweep(tmp_path, spec, "fail", workers=1)
     assert sorted(c["chunk"] for c in second["computed"]) == [f.name for f in chunk_files[1:3]]
     _assert_tables_equal(_table(out, "envelope.parquet"), t)
+
+
+def test_a_worker_that_cannot_see_out_dir_sends_its_table(envelope_runs, tmp_path):
+    """Workers on another machine return their chunk's table for the client to write: the same
+    table the workers that saw OUT_DIR wrote."""
+    out = envelope_runs[1]
+    spec = json.loads((out / "spec.json").read_text())
+    chunk = chunks(spec)[2]
+    table, stats = compute_chunk(spec, chunk, str(tmp_path / "not-there"))
+    assert stats["worker"] == "local" and stats["cases"] == chunk.stop - chunk.start
+    assert table.equals(pq.read_table(out / "chunks" / chunk.file_name))

@@ -3,7 +3,8 @@ chunk's Parquet file written as it arrives, then the merged results and plots.
 
 OUT_DIR layout: spec.json (the resolved spec), version.json, chunks/*.parquet (one per chunk;
 a rerun computes only the missing ones), envelope.parquet or workspace_<slice>.parquet, *.png,
-run.json (timings and which worker computed each chunk: not results)."""
+run.json (timings and which worker computed each chunk: not results). Workers that see OUT_DIR
+write their chunk files themselves; others send their tables to this process, which writes them."""
 from __future__ import annotations
 
 import json
@@ -12,6 +13,7 @@ import pathlib
 import platform as host
 import sys
 import time
+import uuid
 from typing import Callable, Optional
 
 import numpy as np
@@ -22,8 +24,10 @@ from .spec import Chunk, SpecError, chunks, load, slice_size
 from .work import envelope_chunk, workspace_chunk
 
 
-def compute_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
-    """One chunk's table and its statistics (seconds, poses, cases, worker address)."""
+def compute_chunk(spec: dict, chunk: Chunk, out_dir: str) -> tuple[Optional[pa.Table], dict]:
+    """One chunk's statistics (seconds, poses, cases, worker address) and its table. A worker
+    that sees OUT_DIR (same machine, or a shared file system) writes the chunk file itself and
+    returns no table, which saves sending the results through the scheduler's connection."""
     work = envelope_chunk if spec["kind"] == "envelope" else workspace_chunk
     table, stats = work(spec, chunk)
     try:
@@ -31,7 +35,21 @@ def compute_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
         stats["worker"] = get_worker().address
     except (ImportError, ValueError):
         stats["worker"] = "local"
+    out = pathlib.Path(out_dir)
+    if (out / "chunks").is_dir() and (out / "spec.json").is_file() and \
+            json.loads((out / "spec.json").read_text()) == spec:
+        write_chunk(table, out, chunk)
+        return None, stats
     return table, stats
+
+
+def write_chunk(table: pa.Table, out: pathlib.Path, chunk: Chunk) -> None:
+    """Writes the chunk's file under a unique temporary name, then renames it into place, so a
+    chunk file exists only when complete (an interrupted run leaves it missing)."""
+    path = out / "chunks" / chunk.file_name
+    tmp = path.with_name(f".{chunk.file_name}.{uuid.uuid4().hex}.tmp")
+    pq.write_table(table, tmp)
+    os.replace(tmp, path)
 
 
 def versions() -> dict:
@@ -79,8 +97,10 @@ def run(spec_path, out_dir, scene_dir, workers: Optional[int] = None,
         started = time.perf_counter()
         with _client(workers, scheduler) as client:
             summary["workers"] = len(client.scheduler_info()["workers"])
+            summary["startup_seconds"] = time.perf_counter() - started
+            started = time.perf_counter()
             _compute_all(client, spec, todo, out, summary, progress, log)
-        summary["wall_seconds"] = time.perf_counter() - started
+            summary["wall_seconds"] = time.perf_counter() - started
     merge(spec, out)
     from .plots import plot
     plot(spec, out)
@@ -119,7 +139,8 @@ def _compute_all(client, spec, todo, out, summary, progress, log):
     from distributed import as_completed
     from tqdm import tqdm
     spec_future = client.scatter(spec, broadcast=True)
-    futures = {client.submit(compute_chunk, spec_future, c, pure=False): c for c in todo}
+    futures = {client.submit(compute_chunk, spec_future, c, str(out.resolve()), pure=False): c
+               for c in todo}
     unit = "case" if spec["kind"] == "envelope" else "pose"
     sizes = {c: c.stop - c.start for c in todo}
     with tqdm(total=sum(sizes.values()), unit=unit, disable=not progress, smoothing=0.1) as bar:
@@ -131,9 +152,8 @@ def _compute_all(client, spec, todo, out, summary, progress, log):
                 log(f"sweep: chunk {chunk.file_name} raised {type(e).__name__}: {e}")
                 summary["failed_chunks"].append({"chunk": chunk.file_name, "error": str(e)})
                 continue
-            path = out / "chunks" / chunk.file_name
-            pq.write_table(table, path.with_suffix(".tmp"))
-            os.replace(path.with_suffix(".tmp"), path)
+            if table is not None:  # the worker could not write it
+                write_chunk(table, out, chunk)
             summary["computed"].append({"chunk": chunk.file_name, **stats})
             bar.update(sizes[chunk])
 
