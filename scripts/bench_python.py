@@ -7,8 +7,10 @@ usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
    manoeuvre that build/bench-closed-form and build/bench-full time), median of repeated calls,
    against those C benchmarks run in the same invocation.
 2. Sweeps of >= 1e6 poses through scripts/sweep.py's engine on a LocalCluster of 1 and 2
-   workers: an envelope at the full level and a workspace slice at the massless level; wall time,
-   the workers' own compute time, Dask's overhead (1 - compute / (wall x workers)), speed-up.
+   workers: an envelope at the full level and a workspace slice at the massless level; wall time
+   from the first submission to the last result (cluster start-up apart), the workers' own time
+   (solving, building the table, writing its Parquet file), Dask's overhead
+   (1 - workers' time / (wall x workers)), the speed-up.
 """
 import argparse
 import json
@@ -74,7 +76,7 @@ def sweep(spec, workers, tmp):
     summary = run(path, pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}", ROOT / "scenes",
                   workers=workers, progress=False, log=lambda m: None)
     total = time.perf_counter() - start
-    compute = sum(c["seconds"] for c in summary["computed"])
+    compute = sum(c["seconds"] + c.get("write_seconds", 0.0) for c in summary["computed"])
     poses = sum(c["poses"] for c in summary["computed"])
     cases = sum(c["cases"] for c in summary["computed"])
     wall = summary["wall_seconds"]
@@ -124,7 +126,7 @@ def main():
                     per_core = r["poses"] / (r["wall"] * r["workers"])
                     lines.append(
                         f"  {r['workers']} worker(s): wall {r['wall']:.2f} s (with start-up, merge, plots "
-                        f"{r['total']:.2f} s), workers' compute {r['compute']:.2f} s, Dask overhead "
+                        f"{r['total']:.2f} s), workers' own time {r['compute']:.2f} s, Dask overhead "
                         f"{r['overhead']:.1%}, {r['poses'] / r['wall']:.3g} poses/s "
                         f"({per_core:.3g} per core)" +
                         (f", {r['cases'] / r['wall']:.3g} cases/s" if r["cases"] else ""))
