@@ -7,6 +7,7 @@ run.json (timings and which worker computed each chunk: not results). Workers th
 write their chunk files themselves; others send their tables to this process, which writes them."""
 from __future__ import annotations
 
+import importlib
 import json
 import os
 import pathlib
@@ -106,6 +107,9 @@ def run(spec_path, out_dir, scene_dir, workers: Optional[int] = None,
         started = time.perf_counter()
         with _client(workers, scheduler) as client:
             summary["workers"] = len(client.scheduler_info()["workers"])
+            # Workers import the solver and pyarrow now, as part of the start-up, not in the
+            # first chunk each computes.
+            client.run(importlib.import_module, "stewart.sweeps.work")
             summary["startup_seconds"] = time.perf_counter() - started
             started = time.perf_counter()
             _compute_all(client, spec, todo, out, summary, progress, log)
