@@ -10,7 +10,8 @@ usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
    workers: an envelope at the full level and a workspace slice at the massless level; wall time
    from the first submission to the last result (cluster start-up apart), the workers' own time
    (solving, building the table, writing its Parquet file), Dask's overhead
-   (1 - workers' time / (wall x workers)), the speed-up.
+   (1 - workers' time / (wall x workers)), the speed-up, and the workers' CPU time over the wall
+   time (how many cores they really had: on a shared machine, fewer than the workers).
 """
 import argparse
 import json
@@ -77,13 +78,14 @@ def sweep(spec, workers, tmp):
                   workers=workers, progress=False, log=lambda m: None)
     total = time.perf_counter() - start
     compute = sum(c["seconds"] + c.get("write_seconds", 0.0) for c in summary["computed"])
+    cpu = sum(c["cpu_seconds"] for c in summary["computed"])
     poses = sum(c["poses"] for c in summary["computed"])
     cases = sum(c["cases"] for c in summary["computed"])
     wall = summary["wall_seconds"]
     out = pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}"
     size = sum(f.stat().st_size for f in out.glob("*.parquet"))
     return {"workers": workers, "wall": wall, "total": total, "compute": compute, "poses": poses,
-            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size}
+            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size, "cpu": cpu}
 
 
 ENVELOPE = {"kind": "envelope", "fidelity": ["full"], "payload_mass": {"start": 0, "stop": 100, "num": 21},
@@ -128,7 +130,8 @@ def main():
                         f"  {r['workers']} worker(s): wall {r['wall']:.2f} s (with start-up, merge, plots "
                         f"{r['total']:.2f} s), workers' own time {r['compute']:.2f} s, Dask overhead "
                         f"{r['overhead']:.1%}, {r['poses'] / r['wall']:.3g} poses/s "
-                        f"({per_core:.3g} per core)" +
+                        f"({per_core:.3g} per core); workers' CPU {r['cpu']:.2f} s = "
+                        f"{r['cpu'] / r['wall']:.2f} cores busy on average" +
                         (f", {r['cases'] / r['wall']:.3g} cases/s" if r["cases"] else ""))
                 lines.append(f"  speed-up 2 vs 1 worker: {rows[0]['wall'] / rows[1]['wall']:.2f}x; "
                              f"merged Parquet {rows[0]['bytes'] / 1e6:.1f} MB "

@@ -30,6 +30,7 @@ def compute_chunk(spec: dict, chunk: Chunk, out_dir: str) -> tuple[Optional[pa.T
     that sees OUT_DIR (same machine, or a shared file system) writes the chunk file itself and
     returns no table, which saves sending the results through the scheduler's connection."""
     work = envelope_chunk if spec["kind"] == "envelope" else workspace_chunk
+    cpu = time.process_time()
     table, stats = work(spec, chunk)
     try:
         from distributed import get_worker
@@ -42,7 +43,10 @@ def compute_chunk(spec: dict, chunk: Chunk, out_dir: str) -> tuple[Optional[pa.T
         started = time.perf_counter()
         write_chunk(table, out, chunk)
         stats["write_seconds"] = time.perf_counter() - started
-        return None, stats
+        table = None
+    # CPU time of this (single-threaded) worker process: on a shared machine it tells how much
+    # of a core the chunk really got.
+    stats["cpu_seconds"] = time.process_time() - cpu
     return table, stats
 
 
