@@ -200,6 +200,8 @@ def test_workspace_values_at_sample_points_equal_direct_calls(workspace_run):
     ({"fidelity": ["massless", "fast"]}, ["fidelity[1]", "fast"]),
     ({"options": {"tolerance": -1}}, ["options", "tolerance = -1"]),
     ({"payloads": [1]}, ["unknown field 'payloads'"]),
+    ({"manoeuvres": [{"scene": {"pose": {"z": 0.5}, "duration": 1, "step": 0.1}}]},
+     ["manoeuvres[0].scene.pose.z = 0.5"]),
 ])
 def test_bad_specs_fail_before_any_work_naming_the_field(tmp_path, change, words):
     spec = {**ENVELOPE, **change}

@@ -168,6 +168,9 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
     if not isinstance(pose, dict) or set(pose) - set(POSE):
         raise SpecError(f"{field}.scene: pose = {pose!r} must map components of {POSE} to sinusoids")
     for comp, s in pose.items():
+        if not isinstance(s, dict):
+            raise SpecError(f"{field}.scene.pose.{comp} = {s!r} must be an object (mean, "
+                            "amplitude, omega, phase)")
         for key in ("mean", "amplitude", "omega", "phase"):
             if not isinstance(s.get(key, 0.0), (int, float)) or not math.isfinite(s.get(key, 0.0)):
                 raise SpecError(f"{field}.scene.pose.{comp}.{key} = {s.get(key)!r} must be a finite number")
