@@ -90,8 +90,10 @@ public:
         stewart_status first;
         std::string first_message;
         {
-            std::lock_guard<std::mutex> lock(mutex_);
+            // The GIL goes first and comes back last: a thread waiting for the mutex must not
+            // hold the GIL that the solving thread needs to return.
             nb::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(mutex_);
             stewart_data_reset(data_);
             first = stewart_solve_batch(model_, data_, &options, n, q.data(),
                                         q_dot ? q_dot->data() : nullptr,

@@ -186,9 +186,11 @@ def test_a_platform_pickles_and_solves_alike_in_threads():
     p = stewart.Platform(payload_mass=20.0)
     ref = _matrix(p.solve(q, qd, qdd, fidelity="full"))
     copy = pickle.loads(pickle.dumps(p))
+    # Many more calls than threads on a shared Platform: threads queue for its data block
+    # while another solves (a deadlock here once: the GIL held while waiting for the block).
     with ThreadPoolExecutor(4) as pool:
         results = list(pool.map(lambda pl: _matrix(pl.solve(q, qd, qdd, fidelity="full")),
-                                [p, copy, p, copy]))
+                                [p, copy] * 20))
     for r in results:
         np.testing.assert_array_equal(r, ref)
 
