@@ -68,8 +68,7 @@ fmu_status fmu_set_state(fmu_instance *inst, const fmu_snapshot *s) {
 }
 
 fmu_status fmu_free_state(fmu_instance *inst, fmu_snapshot **state) {
-    if (inst && fmu_check_call(inst, CALL_FREE_FMU_STATE, "FreeFMUState") != FMU_OK)
-        return FMU_ERROR;
+    if (fmu_check_call(inst, CALL_FREE_FMU_STATE, "FreeFMUState") != FMU_OK) return FMU_ERROR;
     if (!state || !*state) return FMU_OK;
     free((*state)->bytes);
     free(*state);
