@@ -26,6 +26,9 @@ void model_start_values(fmu_values *v) {
 #define FMU_PARAM(vr, id, name, field, unit, display, desc) v->real[vr] = p.field;
 #define FMU_INDEPENDENT(vr, id, name, unit, desc) v->real[vr] = 0.0;
 #include "variables.def"
+#ifdef STEWART_PARAM_TABLE
+    v->integer[VR_fidelity] = STEWART_FULL; /* the FMU's default; the library's is massless */
+#endif
     v->integer[VR_status] = 3; /* nothing solved yet */
     memset(&v->model, 0, sizeof v->model);
 }
@@ -68,16 +71,6 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
         return FMU_ERROR;
     }
-    /* Non-finite parameters are named here, with their units (the library's message names
-     * them alike, without the unit). */
-#define FMU_PARAM(vr, id, name, field, unit, display, desc)                                     \
-    if (!isfinite(v->real[vr])) {                                                               \
-        fmu_log(inst, FMU_ERROR, LOG_ERROR,                                                     \
-                "invalid parameter %s = %g %s: every parameter must be finite", name,          \
-                v->real[vr], unit);                                                             \
-        return FMU_ERROR;                                                                       \
-    }
-#include "variables.def"
     stewart_params p;
     inverse_params_from_values(v, &p);
     if (!r->model || memcmp(&p, &r->params, sizeof p) != 0) {
