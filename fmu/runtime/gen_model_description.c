@@ -42,7 +42,32 @@ static void attr_int(const char *name, long v) {
     attr(name, b);
 }
 
-/* One variable. start_kind: 0 none, 1 real start, 2 integer start. */
+/* The attributes every variable has, in both versions. */
+static void common_attributes(unsigned vr, const char *name, const char *causality,
+                              const char *variability, const char *initial,
+                              const char *description) {
+    attr("name", name);
+    attr_int("valueReference", vr);
+    attr("description", description);
+    attr("causality", causality);
+    attr("variability", variability);
+    attr("initial", initial);
+}
+
+/* The attributes of the value: unit, range, start. start_kind: 0 none, 1 real, 2 integer. */
+static void value_attributes(const char *unit, const char *display_unit, int has_range, long min,
+                             long max, int start_kind, double start) {
+    attr("unit", unit);
+    attr("displayUnit", display_unit);
+    if (has_range) {
+        attr_int("min", min);
+        attr_int("max", max);
+    }
+    if (start_kind == 1) attr_double("start", start);
+    if (start_kind == 2) attr_int("start", (long)start);
+}
+
+/* One variable: FMI 2 nests the value's element in ScalarVariable, FMI 3 names the type. */
 static void variable(unsigned vr, const char *name, int is_real, const char *causality,
                      const char *variability, const char *initial, int start_kind, double start,
                      const char *unit, const char *display_unit, int has_range, long min, long max,
@@ -50,40 +75,16 @@ static void variable(unsigned vr, const char *name, int is_real, const char *cau
     if (unit && !strcmp(unit, "1")) unit = NULL;
     if (version == 2) {
         fputs("    <ScalarVariable", out);
-        attr("name", name);
-        attr_int("valueReference", vr);
-        attr("description", description);
-        attr("causality", causality);
-        attr("variability", variability);
-        attr("initial", initial);
+        common_attributes(vr, name, causality, variability, initial, description);
         fputs(">\n      <", out);
         fputs(is_real ? "Real" : "Integer", out);
-        attr("unit", unit);
-        attr("displayUnit", display_unit);
-        if (has_range) {
-            attr_int("min", min);
-            attr_int("max", max);
-        }
-        if (start_kind == 1) attr_double("start", start);
-        if (start_kind == 2) attr_int("start", (long)start);
+        value_attributes(unit, display_unit, has_range, min, max, start_kind, start);
         fputs("/>\n    </ScalarVariable>\n", out);
     } else {
         fputs("    <", out);
         fputs(is_real ? "Float64" : "Int32", out);
-        attr("name", name);
-        attr_int("valueReference", vr);
-        attr("description", description);
-        attr("causality", causality);
-        attr("variability", variability);
-        attr("initial", initial);
-        attr("unit", unit);
-        attr("displayUnit", display_unit);
-        if (has_range) {
-            attr_int("min", min);
-            attr_int("max", max);
-        }
-        if (start_kind == 1) attr_double("start", start);
-        if (start_kind == 2) attr_int("start", (long)start);
+        common_attributes(vr, name, causality, variability, initial, description);
+        value_attributes(unit, display_unit, has_range, min, max, start_kind, start);
         fputs("/>\n", out);
     }
 }

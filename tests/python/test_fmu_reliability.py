@@ -46,6 +46,17 @@ def _solver_block(blob):
     return 24 + n
 
 
+def _full_model_state(version):
+    """An instance at fidelity 2 after three steps, with a state taken there: (unit, t, state);
+    skips where the build has no full model (the solver block is its state)."""
+    if not fidelity_available(version, 2):
+        pytest.skip("the solver block exists at fidelity 2")
+    u = Unit(version)
+    assert u.init(fidelity=2) in (OK, WARNING)
+    _, t = _drive(u, 0.0, _poses(3))
+    return u, t, u.get_state()
+
+
 def _first_q(blob):
     """Offset of q[0] (the base body's x) in the solver block: tag (8), three uint64 counts, two
     int32 flags, then q (7 per body: position, then the Euler parameters)."""
@@ -112,14 +123,8 @@ def test_solver_data_the_library_refuses_is_refused(version, index):
     the library has always refused) is an Error of DeserializeFMUState or SetFMUState with a
     message, never accepted with the data silently reset; the instance stays usable and the
     intact bytes still restore."""
-    require = 2 if fidelity_available(version, 2) else None
-    if require is None:
-        pytest.skip("the solver block exists at fidelity 2")
-    u = Unit(version)
+    u, t, state = _full_model_state(version)
     try:
-        assert u.init(fidelity=2) in (OK, WARNING)
-        _, t = _drive(u, 0.0, _poses(3))
-        state = u.get_state()
         blob = bytearray(u.serialize(state))
         struct.pack_into("<d", blob, _first_q(blob) + 8 * index, math.nan)
         u.messages.clear()
@@ -155,13 +160,8 @@ def test_corrupt_euler_parameter_is_refused_or_harmless(version, value):
     """The probe's case: one of the base body's Euler parameters changed inside a serialised
     state. Either the state is refused with a message, or the instance is not stuck: the next
     good steps give what the intact state gives."""
-    if not fidelity_available(version, 2):
-        pytest.skip("the solver block exists at fidelity 2")
-    u = Unit(version)
+    u, t, state = _full_model_state(version)
     try:
-        assert u.init(fidelity=2) in (OK, WARNING)
-        _, t = _drive(u, 0.0, _poses(3))
-        state = u.get_state()
         later = _poses(4, t)
         expected, _ = _drive(u, t, later)
         blob = bytearray(u.serialize(state))
