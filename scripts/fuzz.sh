@@ -18,23 +18,13 @@ if [ -n "${missing:-}" ]; then
   DEBIAN_FRONTEND=noninteractive $as_root apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g"
+# Both targets are built by CMake (tests/CMakeLists.txt, STEWART_FUZZ): the library and the FMU's
+# objects are compiled once, with the sanitizer flags, exactly as the replay tests use them.
 cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
+  -DSTEWART_FUZZ=ON \
   -DPython3_EXECUTABLE="$PWD/.venv/bin/python" -DUNITY_WHEEL_DIR="$PWD/.cache/wheels" >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target stewart
-# libstewart.a needs KINSOL (Debian's static archive carries it with the serial vector and the
-# dense solver it uses).
-kinsol=$(dpkg -L libsundials-dev | grep '/libsundials_kinsol\.a$' | head -1)
-clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include tests/fuzz/fuzz_api.cpp \
-  build-fuzz/csrc/libstewart.a "$kinsol" -o build-fuzz/fuzz_api
-# The FMU target: the FMU's model code compiled in, FMI headers from fmpy (as fmu/CMakeLists.txt).
-fmi_headers=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
-mkdir -p build-fuzz/fmu_objs
-for f in model variables fmi2_functions fmi3_functions; do
-  clang -std=c11 $flags -Icsrc/include -Ifmu -I"$fmi_headers" -c fmu/$f.c -o build-fuzz/fmu_objs/$f.o
-done
-clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include -Ifmu -I"$fmi_headers" \
-  tests/fuzz/fuzz_fmu.cpp build-fuzz/fmu_objs/*.o build-fuzz/csrc/libstewart.a "$kinsol" -o build-fuzz/fuzz_fmu
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu
 
 # run TARGET CORPUS: fuzz for $seconds from the committed corpus, then keep only the inputs that
 # add coverage to it. Prints the number of executions.

@@ -1,5 +1,5 @@
-// libFuzzer target over the FMU's set/step/get sequence: the FMU's model code (fmu/model.c,
-// fmu/variables.c, fmu/fmi2_functions.c, fmu/fmi3_functions.c) is linked in statically and driven
+// libFuzzer target over the FMU's set/step/get sequence: the FMU's code (the runtime, fmu/runtime,
+// with the inverse model, fmu/models/inverse, and both FMI layers) is linked in statically and driven
 // through the fmi2* or the fmi3* functions (flag bit 5) with random calls and random values (NaN, Inf, huge, tiny and ordinary numbers), random
 // step sizes (zero, negative, huge, below the resolution of t) and random call order (the state
 // machine must refuse what is out of sequence).

@@ -1,18 +1,18 @@
-/* The variable table (variables.def) as C: value reference constants and a descriptor list. */
+/*
+ * A model's variable list (its variables.def) as C: value reference constants VR_<id>, log
+ * category ids, and the descriptor table that value binding and the model-description generator
+ * iterate. Compiled once per model, with that model's folder on the include path.
+ */
 #ifndef STEWART_FMU_VARIABLES_H
 #define STEWART_FMU_VARIABLES_H
 
 #include <stddef.h>
 
+#include "config.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* Every value reference is below this bound (checked at compile time in variables.c). */
-#define FMU_NVR 301
-
-#define FMU_GUID "{5d0f6a3e-9b1c-4c2e-a7f4-3e8b2c7d1a04}"
-#define FMU_MODEL_IDENTIFIER "StewartPlatform"
 
 typedef enum { FMU_REAL = 1, FMU_INTEGER = 2 } fmu_type;
 typedef enum {
@@ -42,17 +42,26 @@ enum fmu_log_category {
     FMU_N_LOG_CATEGORIES
 };
 
+/* One scalar variable as the model description shows it (the start value comes from the model's
+ * model_start_values, so that defaults are written once, where the model takes them from). */
 typedef struct fmu_variable {
     unsigned vr;
     const char *name;
     fmu_type type;
     fmu_causality causality;
+    const char *unit;          /* "" if none */
+    const char *display_unit;  /* "" if none */
+    int has_range;             /* min and max below apply (integers) */
+    long min, max;
+    const char *description;
 } fmu_variable;
 
 /* All variables in table order, and per value reference (NULL where unused). */
 extern const fmu_variable fmu_variables[];
 extern const size_t fmu_n_variables;
 const fmu_variable *fmu_variable_by_vr(unsigned vr);
+/* The value reference of the independent variable (time). */
+extern const unsigned fmu_time_vr;
 
 extern const char *const fmu_log_category_names[FMU_N_LOG_CATEGORIES];
 extern const char *const fmu_log_category_descriptions[FMU_N_LOG_CATEGORIES];

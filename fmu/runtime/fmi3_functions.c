@@ -1,15 +1,22 @@
-/* FMI 3.0 co-simulation layer: translates fmi3* calls onto model.h. */
+/* FMI 3.0 co-simulation layer: each fmi3* function translates its arguments onto one runtime
+ * call (which checks the call order); it never touches the instance's fields. */
 #include <string.h>
 
 #include "fmi3Functions.h"
-#include "model.h"
+#include "instance.h"
+#include "logging.h"
+#include "state.h"
+#include "values.h"
 
 #define INST ((fmu_instance *)instance)
+/* The runtime's statuses are numbered as fmi3Status. */
+#define CALL(expression) return (fmi3Status)(expression)
 
-static void log_fmi3(const fmu_instance *inst, fmu_status status, const char *category,
-                     const char *message) {
-    fmi3LogMessageCallback cb = (fmi3LogMessageCallback)(uintptr_t)inst->callbacks;
-    if (cb) cb(inst->environment, (fmi3Status)status, category, message);
+static void log_fmi3(const void *callbacks, void *environment, const char *instance_name,
+                     fmu_status status, const char *category, const char *message) {
+    (void)instance_name;
+    fmi3LogMessageCallback cb = (fmi3LogMessageCallback)(uintptr_t)callbacks;
+    if (cb) cb(environment, (fmi3Status)status, category, message);
 }
 
 static fmi3Status unsupported(fmi3Instance instance, const char *function) {
@@ -21,8 +28,7 @@ const char *fmi3GetVersion(void) { return fmi3Version; }
 
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[]) {
-    if (!instance) return fmi3Error;
-    return (fmi3Status)fmu_set_debug_logging(INST, loggingOn, nCategories, categories);
+    CALL(fmu_set_debug_logging(INST, loggingOn, nCategories, categories));
 }
 
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String instantiationToken,
@@ -44,7 +50,8 @@ fmi3Instance fmi3InstantiateCoSimulation(
     fmi3Boolean earlyReturnAllowed, const fmi3ValueReference requiredIntermediateVariables[],
     size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
     fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate) {
-    (void)resourcePath; (void)visible; (void)earlyReturnAllowed;
+    (void)resourcePath; /* the unit needs no resources */
+    (void)visible; (void)earlyReturnAllowed;
     (void)requiredIntermediateVariables; (void)nRequiredIntermediateVariables;
     (void)intermediateUpdate;
     const char *problem = NULL;
@@ -56,7 +63,6 @@ fmi3Instance fmi3InstantiateCoSimulation(
         if (logMessage) logMessage(instanceEnvironment, fmi3Error, "logStatusError", problem);
         return NULL;
     }
-    (void)instanceName;
     return fmu_instantiate(instanceName, FMU_VERSION_3, log_fmi3,
                            (const void *)(uintptr_t)logMessage, instanceEnvironment, loggingOn);
 }
@@ -80,18 +86,18 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
                                        fmi3Float64 tolerance, fmi3Float64 startTime,
                                        fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
     (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
-    return (fmi3Status)fmu_enter_initialization(INST, startTime);
+    CALL(fmu_enter_initialization(INST, 1, startTime));
 }
 
 fmi3Status fmi3ExitInitializationMode(fmi3Instance instance) {
-    return (fmi3Status)fmu_exit_initialization(INST);
+    CALL(fmu_exit_initialization(INST));
 }
 
 fmi3Status fmi3EnterEventMode(fmi3Instance instance) {
     return unsupported(instance, "fmi3EnterEventMode");
 }
-fmi3Status fmi3Terminate(fmi3Instance instance) { return (fmi3Status)fmu_terminate(INST); }
-fmi3Status fmi3Reset(fmi3Instance instance) { return (fmi3Status)fmu_reset(INST); }
+fmi3Status fmi3Terminate(fmi3Instance instance) { CALL(fmu_terminate(INST)); }
+fmi3Status fmi3Reset(fmi3Instance instance) { CALL(fmu_reset(INST)); }
 
 static fmi3Status check_counts(fmi3Instance instance, const char *f, size_t nvr, size_t nv) {
     if (nvr == nv) return fmi3OK;
@@ -104,25 +110,25 @@ static fmi3Status check_counts(fmi3Instance instance, const char *f, size_t nvr,
 fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                           fmi3Float64 values[], size_t nValues) {
     if (check_counts(instance, "fmi3GetFloat64", nvr, nValues) != fmi3OK) return fmi3Error;
-    return (fmi3Status)fmu_get_real(INST, vr, nvr, values);
+    CALL(fmu_get_real(INST, vr, nvr, values));
 }
 
 fmi3Status fmi3GetInt32(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                         fmi3Int32 values[], size_t nValues) {
     if (check_counts(instance, "fmi3GetInt32", nvr, nValues) != fmi3OK) return fmi3Error;
-    return (fmi3Status)fmu_get_integer(INST, vr, nvr, values);
+    CALL(fmu_get_integer(INST, vr, nvr, values));
 }
 
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                           const fmi3Float64 values[], size_t nValues) {
     if (check_counts(instance, "fmi3SetFloat64", nvr, nValues) != fmi3OK) return fmi3Error;
-    return (fmi3Status)fmu_set_real(INST, vr, nvr, values);
+    CALL(fmu_set_real(INST, vr, nvr, values));
 }
 
 fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                         const fmi3Int32 values[], size_t nValues) {
     if (check_counts(instance, "fmi3SetInt32", nvr, nValues) != fmi3OK) return fmi3Error;
-    return (fmi3Status)fmu_set_integer(INST, vr, nvr, values);
+    CALL(fmu_set_integer(INST, vr, nvr, values));
 }
 
 /* Types without variables: only the empty call succeeds. */
@@ -187,28 +193,24 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference
 }
 
 fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState *FMUState) {
-    return (fmi3Status)fmu_get_state(INST, (fmu_snapshot **)FMUState);
+    CALL(fmu_get_state(INST, (fmu_snapshot **)FMUState));
 }
 fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState FMUState) {
-    return (fmi3Status)fmu_set_state(INST, (const fmu_snapshot *)FMUState);
+    CALL(fmu_set_state(INST, (const fmu_snapshot *)FMUState));
 }
 fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState *FMUState) {
-    return (fmi3Status)fmu_free_state(INST, (fmu_snapshot **)FMUState);
+    CALL(fmu_free_state(INST, (fmu_snapshot **)FMUState));
 }
 fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState FMUState, size_t *size) {
-    if (!instance || !size) return fmi3Error;
-    *size = fmu_serialized_size((const fmu_snapshot *)FMUState);
-    return fmi3OK;
+    CALL(fmu_serialized_size(INST, (const fmu_snapshot *)FMUState, size));
 }
 fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState FMUState,
                                  fmi3Byte serializedState[], size_t size) {
-    return (fmi3Status)fmu_serialize_state(INST, (const fmu_snapshot *)FMUState, serializedState,
-                                           size);
+    CALL(fmu_serialize_state(INST, (const fmu_snapshot *)FMUState, serializedState, size));
 }
 fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte serializedState[],
                                    size_t size, fmi3FMUState *FMUState) {
-    return (fmi3Status)fmu_deserialize_state(INST, serializedState, size,
-                                             (fmu_snapshot **)FMUState);
+    CALL(fmu_deserialize_state(INST, serializedState, size, (fmu_snapshot **)FMUState));
 }
 
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[],
@@ -348,12 +350,10 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                       fmi3Boolean *eventHandlingNeeded, fmi3Boolean *terminateSimulation,
                       fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime) {
     (void)noSetFMUStatePriorToCurrentPoint;
-    const fmu_status s = fmu_do_step(INST, currentCommunicationPoint, communicationStepSize);
     if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;
-    if (lastSuccessfulTime && instance) *lastSuccessfulTime = INST->v.last_successful_time;
-    return (fmi3Status)s;
+    CALL(fmu_do_step(INST, currentCommunicationPoint, communicationStepSize, lastSuccessfulTime));
 }
 
 fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,
