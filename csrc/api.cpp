@@ -9,52 +9,6 @@
 using stewart::clear_message;
 using stewart::set_message;
 
-namespace {
-constexpr double kMinTolerance = 2.5e-16;  // smallest tolerance the full level can meet
-}  // namespace
-
-extern "C" void stewart_options_default(stewart_options *o) {
-    if (!o) return;
-    o->fidelity = STEWART_MASSLESS;
-    o->tolerance = 1e-12;
-    o->max_iterations = 20;
-    o->modified_newton = 0;
-    o->warn_condition = 1e3;
-    o->singular_condition = 1e10;
-}
-
-extern "C" stewart_status stewart_options_check(const stewart_options *o, char *msg, size_t size) {
-    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    if (o->fidelity < STEWART_KINEMATIC || o->fidelity > STEWART_FULL)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "fidelity = %d must be 0 (kinematic), 1 (massless) or 2 (full)",
-                           o->fidelity);
-    if (!(std::isfinite(o->tolerance) && o->tolerance > 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "tolerance = %g must be > 0",
-                           o->tolerance);
-    // The full level's max-norm position residual floors at 2.2e-16 (one rounding of coordinates
-    // of order 1): at or below that no pose ever converges; 2.3e-16 still does, with up to 5
-    // iterations.
-    if (o->tolerance < kMinTolerance)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "tolerance = %g is below what the position residual can reach (about "
-                           "2.2e-16, machine precision on the coordinates): use at least %g",
-                           o->tolerance, kMinTolerance);
-    if (o->max_iterations < 1)
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "max_iterations = %d must be >= 1",
-                           o->max_iterations);
-    if (o->modified_newton != 0 && o->modified_newton != 1)
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "modified_newton = %d must be 0 or 1",
-                           o->modified_newton);
-    if (!(o->warn_condition >= 1 && o->singular_condition >= o->warn_condition &&
-          std::isfinite(o->singular_condition)))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "condition limits warn = %g, singular = %g must satisfy "
-                           "1 <= warn_condition <= singular_condition < inf",
-                           o->warn_condition, o->singular_condition);
-    return clear_message(msg, size);
-}
-
 extern "C" stewart_model *stewart_model_create(const stewart_params *params, char *msg,
                                                size_t size) {
     if (stewart_params_check(params, msg, size) != STEWART_OK) return nullptr;

@@ -123,7 +123,7 @@ static void test_invalid_options_and_null_arguments(void) {
  * is accepted and met along the combined manoeuvre (lengths still the closed form). */
 static void test_tolerance_below_machine_precision(void) {
     const double refused[3] = {1e-16, 1e-17, DBL_EPSILON};
-    const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17", "tolerance = 2.22045e-16"};
+    const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17", "tolerance = 2.220446049250313e-16"};
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
     stewart_output out;
     for (int i = 0; i < 3; ++i) {
