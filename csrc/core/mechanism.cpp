@@ -1,7 +1,7 @@
 #include "core/mechanism.hpp"
 
 #include "core/linear_solver.hpp"
-#include "util/message.hpp"
+#include "core/message.hpp"
 
 namespace mbs {
 
@@ -39,7 +39,7 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
         m.drivers += info.drivers;
     }
     if (m.equations != m.coordinates) {
-        stewart::set_message(msg, size, STEWART_ERR_PARAMETER,
+        mbs::set_message(msg, size, MBS_ERR_PARAMETER,
                              "the mechanism has %d constraint equations for %d coordinates: it "
                              "must have exactly as many (add or remove drivers)",
                              m.equations, m.coordinates);

@@ -6,15 +6,15 @@
 #include <vector>
 
 #include "core/linear_solver.hpp"
-#include "stewart/stewart.h"
+#include "mbs/mbs.h"
 
 namespace mbs {
 
 class PositionSolver;
 
 struct SolverOptions {
-    double tolerance = 1e-12;       // max-norm of the residual
-    int max_iterations = 20;
+    double tolerance = MBS_DEFAULT_TOLERANCE;  // max-norm of the residual
+    int max_iterations = MBS_DEFAULT_MAX_ITERATIONS;
     bool modified_newton = false;   // keep the Jacobian across Newton iterations
     LinearSolverKind linear = LinearSolverKind::Automatic;
     bool kinsol_dense = false;      // KINSOL's own dense matrix and solver (a baseline)
@@ -39,7 +39,7 @@ struct State {
     double time = 0;
     bool has_history = false;       // q, q_dot, q_ddot hold the solution at `time`
     SolveStats stats;
-    char message[STEWART_MESSAGE_SIZE] = "";
+    char message[MBS_MESSAGE_SIZE] = "";
 
     // Workspaces.
     std::vector<double> values, rhs, force;

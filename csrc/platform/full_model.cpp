@@ -185,8 +185,8 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
     so.tolerance = o.tolerance;
     so.max_iterations = o.max_iterations;
     so.modified_newton = o.modified_newton != 0;
-    const stewart_status st = mbs::solve_step(s, 0.0, so, false);
-    if (st != STEWART_OK) return set_message(msg, size, st, "full model: %s", s.message);
+    const mbs_status st = mbs::solve_step(s, 0.0, so, false);
+    if (st != MBS_OK) return set_message(msg, size, from_mbs(st), "full model: %s", s.message);
 
     // Leg lengths and their rates from the solved bodies: the two Cardan centres.
     for (int k = 0; k < STEWART_LEGS; ++k) {

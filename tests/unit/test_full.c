@@ -369,7 +369,7 @@ static void test_newton_from_home(void) {
             mbs_options_default(&o);
             o.modified_newton = modified;
             o.max_iterations = 50;
-            TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, 0, &o), mbs_data_message(d));
+            TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_step(d, 0, &o), mbs_data_message(d));
             TEST_ASSERT_TRUE(mbs_iterations(d) >= 3);
             TEST_ASSERT_TRUE(mbs_residual(d) <= 1e-12);
             const double *q = mbs_q(d);
@@ -397,15 +397,15 @@ static void test_newton_capped_is_not_converged(void) {
         mbs_options o;
         mbs_options_default(&o);
         o.max_iterations = cap;
-        const stewart_status s = mbs_step(d, 0, &o);
+        const mbs_status s = mbs_step(d, 0, &o);
         const double r = mbs_residual(d);
         TEST_ASSERT_EQUAL_INT(cap, mbs_iterations(d));
         if (cap < 4) {
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_NOT_CONVERGED, s, mbs_data_message(d));
+            TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_ERR_NOT_CONVERGED, s, mbs_data_message(d));
             TEST_ASSERT_TRUE(r > o.tolerance);
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(mbs_data_message(d), "not converged"), mbs_data_message(d));
         } else {
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, s, mbs_data_message(d));
+            TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, s, mbs_data_message(d));
             TEST_ASSERT_TRUE(r <= o.tolerance);
         }
         TEST_ASSERT_TRUE(r < 0.1 && r <= previous * previous);

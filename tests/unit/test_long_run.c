@@ -56,7 +56,7 @@ static void test_forward_kinematics_by_newton_over_a_long_run(void) {
         const stewart_output legs = solve_ok(model, data, STEWART_KINEMATIC, &pose);
         for (int k = 0; k < 6; ++k)
             mbs_set_driver(mech, k, legs.length[k], legs.length_rate[k], legs.length_accel[k]);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, mbs_step(mech, t, &o), mbs_data_message(mech));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, mbs_step(mech, t, &o), mbs_data_message(mech));
         if (i > 0 && mbs_iterations(mech) > worst_iterations) worst_iterations = mbs_iterations(mech);
         if (i % 1000 != 0 && i != steps - 1) continue;
         solve_ok(model, data, STEWART_FULL, &pose);

@@ -9,7 +9,7 @@
 #ifndef STEWART_STEWART_FULL_H
 #define STEWART_STEWART_FULL_H
 
-#include "stewart/mbs.h"
+#include "mbs/mbs.h"
 #include "stewart/stewart.h"
 
 #ifdef __cplusplus

@@ -29,6 +29,7 @@
 #include <float.h>
 #include <stddef.h>
 
+#include "mbs/mbs.h"
 #include "stewart/stewart.h"
 
 #ifdef __cplusplus
@@ -100,10 +101,11 @@ extern "C" {
 #define STEWART_OPTION_TABLE(X)                                                                  \
     X(200, fidelity, int, "", 0, 1, 2, 1, STEWART_MASSLESS,                                      \
       "0 kinematic, 1 massless legs, 2 full 14-body model")                                      \
-    X(202, tolerance, double, "1", 2.5e-16, 1, DBL_MAX, 1, 1e-12,                                \
+    X(202, tolerance, double, "1", 2.5e-16, 1, DBL_MAX, 1, MBS_DEFAULT_TOLERANCE,               \
       "Newton residual tolerance (fidelity 2), max-norm, relative to the platform's size "        \
       "max(1 m, base_radius, platform_radius, home_height, |pose position|)")                    \
-    X(203, max_iterations, int, "", 1, 1, 2147483647, 1, 20, "Newton iteration cap (fidelity 2)") \
+    X(203, max_iterations, int, "", 1, 1, 2147483647, 1, MBS_DEFAULT_MAX_ITERATIONS,             \
+      "Newton iteration cap (fidelity 2)")                                                       \
     X(204, modified_newton, int, "", 0, 1, 1, 1, 0,                                              \
       "0 exact Newton, 1 Jacobian kept over a step (fidelity 2)")                                \
     X(205, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \

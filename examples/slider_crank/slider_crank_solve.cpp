@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "stewart/slider_crank.h"
+#include "slider_crank.h"
 
 namespace {
 
@@ -50,7 +50,7 @@ int main(int argc, char **argv) {
     slider_crank_params params;
     slider_crank_params_default(&params);
     slider_crank_layout layout;
-    char message[STEWART_MESSAGE_SIZE];
+    char message[MBS_MESSAGE_SIZE];
     mbs_model *model = slider_crank_create(&params, &layout, message, sizeof message);
     if (!model) {
         std::fprintf(stderr, "slider-crank-solve: %s\n", message);
@@ -76,7 +76,7 @@ int main(int argc, char **argv) {
     for (long j = 0; j <= samples; ++j) {
         const double t = j * dt;
         mbs_set_driver(data, layout.crank_driver, omega * t, omega, 0.0);
-        if (mbs_step(data, t, &options) != STEWART_OK) {
+        if (mbs_step(data, t, &options) != MBS_OK) {
             std::fprintf(stderr, "slider-crank-solve: t = %g: %s\n", t, mbs_data_message(data));
             status = 1;
             break;

@@ -4,8 +4,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "stewart/slider_crank.h"
-#include "test_support.h"
+#include "slider_crank.h"
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 #include "unity.h"
 
 #define NQ 28
@@ -19,7 +21,7 @@ static const double omega = 10.0 * 2.0 * M_PI / 60.0; /* 10 rpm */
 
 void setUp(void) {
     slider_crank_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
+    char msg[MBS_MESSAGE_SIZE];
     model = slider_crank_create(&params, &layout, msg, sizeof msg);
     if (!model) TEST_FAIL_MESSAGE(msg);
     TEST_ASSERT_EQUAL(NQ, mbs_coordinate_count(model));
@@ -35,7 +37,7 @@ void tearDown(void) {
 
 static void step(mbs_data *d, double t) {
     mbs_set_driver(d, layout.crank_driver, omega * t, omega, 0.0);
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, t, &options), mbs_data_message(d));
+    TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_step(d, t, &options), mbs_data_message(d));
 }
 
 /* Two turns: x = r cos phi + sqrt(l^2 - r^2 sin^2 phi) and its derivatives at constant phi_dot. */
@@ -81,10 +83,10 @@ static void test_rates_against_finite_differences(void) {
             double qp[NQ], qm[NQ], q0[NQ];
             /* Step a side copy to t - h and t + h so Euler-parameter signs stay continuous. */
             step(data, t);
-            TEST_ASSERT_EQUAL(STEWART_OK, mbs_data_copy(side, data));
+            TEST_ASSERT_EQUAL(MBS_OK, mbs_data_copy(side, data));
             step(side, t + h);
             memcpy(qp, mbs_q(side), sizeof qp);
-            TEST_ASSERT_EQUAL(STEWART_OK, mbs_data_copy(side, data));
+            TEST_ASSERT_EQUAL(MBS_OK, mbs_data_copy(side, data));
             step(side, t - h);
             memcpy(qm, mbs_q(side), sizeof qm);
             memcpy(q0, mbs_q(data), sizeof q0);
@@ -147,7 +149,7 @@ static void test_modified_newton(void) {
         const double t = 0.02 * i;
         step(data, t);
         mbs_set_driver(other, layout.crank_driver, omega * t, omega, 0.0);
-        TEST_ASSERT_EQUAL(STEWART_OK, mbs_step(other, t, &modified));
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_step(other, t, &modified));
         for (int k = 0; k < NQ; ++k) TEST_ASSERT_DOUBLE_WITHIN(1e-11, mbs_q(data)[k], mbs_q(other)[k]);
     }
     mbs_data_free(other);
