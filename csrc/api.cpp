@@ -54,7 +54,10 @@ extern "C" stewart_data *stewart_data_create(const stewart_model *m) {
 extern "C" void stewart_data_free(stewart_data *d) { delete d; }
 
 extern "C" stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src) {
-    if (!dst || !src || dst->model != src->model) return STEWART_ERR_ARGUMENT;
+    if (!dst || !src) return STEWART_ERR_ARGUMENT;
+    if (dst->model != src->model)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
+                           "the data blocks were made for different models");
     std::memcpy(dst->message, src->message, sizeof dst->message);
     mbs::copy_state(dst->full->state, src->full->state);
     return STEWART_OK;
@@ -71,9 +74,13 @@ extern "C" stewart_status stewart_data_save(const stewart_data *d, void *buffer,
 }
 
 extern "C" stewart_status stewart_data_load(stewart_data *d, const void *buffer, size_t size) {
-    if (!d || !d->full || !buffer ||
-        !mbs::load_state(d->full->state, static_cast<const unsigned char *>(buffer), size))
-        return STEWART_ERR_ARGUMENT;
+    if (!d || !d->full) return STEWART_ERR_ARGUMENT;
+    if (!buffer) return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
+    char why[MBS_MESSAGE_SIZE];
+    if (!mbs::load_state(d->full->state, static_cast<const unsigned char *>(buffer), size, why,
+                         sizeof why))
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "state not loaded (the data block is unchanged): %s", why);
     d->message[0] = '\0';
     return STEWART_OK;
 }
@@ -142,6 +149,10 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
     }
     char *msg = d->message;
     const size_t size = sizeof d->message;
+    if (d->model != m)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "this data block was made for another model: make one for this model "
+                           "with stewart_data_create");
     stewart_status s = stewart_options_check(o, msg, size);
     if (s != STEWART_OK) return s;
     if ((s = stewart::check_pose(*pose, msg, size)) != STEWART_OK) return s;
@@ -149,6 +160,13 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
     const stewart::RigidMotion motion = stewart::rigid_motion(*pose);
     stewart::LegKinematics legs;
     if ((s = stewart::leg_kinematics(m->geometry, motion, legs, msg, size)) != STEWART_OK) return s;
+    // Rates and accelerations too large to solve with are the inputs' fault: named as such.
+    if (legs.length.allFinite()) {
+        if (!legs.rate.allFinite())
+            return stewart::input_out_of_range(*pose, 1, 1, "leg length rates", msg, size);
+        if (!legs.accel.allFinite())
+            return stewart::input_out_of_range(*pose, 1, 2, "leg length accelerations", msg, size);
+    }
 
     stewart_output out{};
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -172,14 +190,16 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
                 break;
             s = stewart::full_solve(m->full_layout, d->full->state, *o, motion, legs, out, msg,
                                     size);
+            if (s == STEWART_ERR_ARGUMENT)  // the core's rates, accelerations or multipliers
+                s = stewart::input_out_of_range(*pose, 1, 2, "full model's rates or forces", msg,
+                                                size);
             break;
         }
     }
     if (s != STEWART_OK) return s;
     if (const char *name = first_non_finite(out))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                           "the pose inputs are out of range: the %s overflows (x = %g, y = %g, "
-                           "z = %g m)", name, pose->q[0], pose->q[1], pose->q[2]);
+        return stewart::input_out_of_range(*pose, std::strcmp(name, "length") ? 1 : 0,
+                                           std::strcmp(name, "length") ? 2 : 0, name, msg, size);
     out.warnings = stroke_and_condition_warnings(m->params, *o, out);
     *output = out;
     msg[0] = '\0';

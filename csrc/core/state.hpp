@@ -42,7 +42,10 @@ struct State {
     char message[MBS_MESSAGE_SIZE] = "";
 
     // Workspaces.
-    std::vector<double> values, rhs, force;
+    std::vector<double> values;
+    // A state being loaded (load_state), checked here before it replaces the current one.
+    std::vector<double> load_q, load_phi;
+    std::vector<DriverValue> load_drive;
     std::unique_ptr<LinearSolver> linear;
     bool factor_current = false;    // linear holds the factorisation at q
     bool values_current = false;    // values hold Phi_q at q
@@ -55,8 +58,12 @@ void copy_state(State &dst, const State &src);
 // The state copy_state copies, as bytes: a tag, the sizes, then the values (same machine).
 size_t saved_state_size(const State &s);
 void save_state(const State &s, unsigned char *out);
-// False (s unchanged) unless the bytes are a saved state of a mechanism of s's shape.
-bool load_state(State &s, const unsigned char *in, size_t size);
+// False (s unchanged, msg says why) unless the bytes are a saved state of a mechanism of s's
+// shape that fits s's mechanism: every value finite, fixed bodies at their placement, Euler
+// parameters of the other bodies unit (|p.p - 1| <= kLoadNormalization), and, for a solved state,
+// the constraint residual no larger than the state records (twice, plus a few roundings).
+bool load_state(State &s, const unsigned char *in, size_t size, char *msg, size_t msg_size);
+constexpr double kLoadNormalization = 1e-6;
 // Forgets the history: the next position solve starts from q as it is.
 void reset_history(State &s);
 

@@ -1,10 +1,13 @@
 #include "platform/full_model.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/dynamics.hpp"
 #include "core/step.hpp"
+#include "stewart/stewart_table.h"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -65,10 +68,32 @@ Placement place(const FullLayout &l, const Vec3 &position, const Eigen::Matrix3d
     return pl;
 }
 
+// The parameters with lengths in units of L0 (a power of two: exact), by the table's units.
+stewart_params in_length_unit(const stewart_params &si, double L0) {
+    stewart_params p = si;
+    for (int i = 0; i < stewart_param_count(); ++i) {
+        const char *unit = stewart_param(i)->unit;
+        const double factor = !std::strcmp(unit, "m") || !std::strcmp(unit, "m/s2") ? 1.0 / L0
+                              : !std::strcmp(unit, "kg.m2")                          ? 1.0 / (L0 * L0)
+                                                                                     : 1.0;
+        for (int e = 0; e < stewart_param(i)->count; ++e) *stewart_param_element(&p, i, e) *= factor;
+    }
+    return p;
+}
+
 }  // namespace
 
-std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDrive drive,
+double length_unit(const stewart_params &p) {
+    const double size = std::max({p.base_radius, p.platform_radius, p.home_height});
+    int exponent = 0;
+    const double mantissa = std::frexp(2.0 * size, &exponent);  // 2 size = mantissa 2^exponent
+    return std::ldexp(1.0, mantissa == 0.5 ? exponent - 1 : exponent);
+}
+
+std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDrive drive,
                                                FullLayout &l, char *msg, size_t size) {
+    l.length_unit = length_unit(si);
+    const stewart_params p = in_length_unit(si, l.length_unit);
     std::unique_ptr<mbs_model> model(new (std::nothrow) mbs_model);
     if (!model) {
         set_message(msg, size, STEWART_ERR_MEMORY, "out of memory building the full model");
@@ -176,9 +201,15 @@ void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinem
 }
 
 stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_options &o,
-                          const RigidMotion &motion, const LegKinematics &legs,
+                          const RigidMotion &si_motion, const LegKinematics &si_legs,
                           stewart_output &out, char *msg, size_t size) {
     const mbs::Mechanism &m = s.mechanism;
+    const double L0 = l.length_unit, per_L0 = 1.0 / L0;  // powers of two: exact
+    RigidMotion motion = si_motion;
+    motion.position *= per_L0, motion.velocity *= per_L0, motion.acceleration *= per_L0;
+    LegKinematics legs;
+    legs.length = si_legs.length * per_L0, legs.rate = si_legs.rate * per_L0;
+    legs.accel = si_legs.accel * per_L0;
     full_initial_guess(l, motion, s);
     full_set_drivers(l, motion, legs, s);
     mbs::SolverOptions so = s.newton_options;
@@ -209,16 +240,16 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
         const Vec3 d_dot = rate(qp, vp, up) - rate(qc, vc, uc);
         const Vec3 d_ddot = accel(qp, vp, ap, up) - accel(qc, vc, ac, uc);
         const double L = d.norm(), L_dot = d.dot(d_dot) / L;
-        out.length[k] = L;
-        out.length_rate[k] = L_dot;
-        out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L;
+        out.length[k] = L * L0;
+        out.length_rate[k] = L_dot * L0;
+        out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L * L0;
         out.force[k] = 0;
     }
     if (l.drive == FullDrive::ActuatorLengths)
         for (int k = 0; k < STEWART_LEGS; ++k)
-            out.force[k] = -s.lambda[m.first_row[l.driver_joint[k]]];
+            out.force[k] = -s.lambda[m.first_row[l.driver_joint[k]]] * L0;
     else
-        thesis_forces(l, s, out.force);
+        thesis_forces(l, s, out.force);  // in units of L0 N, scaled below
 
     // The wrench of the base Cardans on the base, about the world origin.
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();
@@ -229,9 +260,11 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
         f += fk;
         t += nk + r_base.cross(fk);
     }
-    for (int i = 0; i < 3; ++i) out.base_force[i] = f[i], out.base_torque[i] = t[i];
+    if (l.drive == FullDrive::PlatformPose)
+        for (int k = 0; k < STEWART_LEGS; ++k) out.force[k] *= L0;
+    for (int i = 0; i < 3; ++i) out.base_force[i] = f[i] * L0, out.base_torque[i] = t[i] * L0 * L0;
     out.iterations = s.stats.iterations;
-    out.residual = s.stats.residual;
+    out.residual = s.stats.residual * L0;
     return STEWART_OK;
 }
 

@@ -18,6 +18,12 @@ struct RigidMotion {
 // every pose component and derivative is finite.
 stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size);
 
+// STEWART_ERR_ARGUMENT naming the pose input of largest magnitude in rows first_row..last_row
+// (0 pose, 1 rates, 2 accelerations; the position if every derivative there is 0) and its value:
+// the input that made `what` overflow.
+stewart_status input_out_of_range(const stewart_pose &pose, int first_row, int last_row,
+                                  const char *what, char *msg, size_t size);
+
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw);
 
 // omega = E(pitch, yaw) * (roll_dot, pitch_dot, yaw_dot); alpha = E * angles_ddot + E_dot * angles_dot.

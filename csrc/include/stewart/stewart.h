@@ -79,9 +79,12 @@ typedef struct stewart_params {
 /* Solver settings; stewart_options_default gives the values documented here. */
 typedef struct stewart_options {
     int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
-    double tolerance;            /* Newton residual tolerance, max-norm (full level); 1e-12;
-                                    >= 2.5e-16 (the residual floors at 2.2e-16
-                                    for coordinates of order 1 m; larger platforms need more) */
+    double tolerance;            /* Newton residual tolerance (full level), max-norm, relative to
+                                    the platform's size: lengths are measured in units of L0, the
+                                    power of two with max(base_radius, platform_radius,
+                                    home_height) / L0 in (0.25, 0.5] (1 m for the thesis
+                                    platform; stewart_model_length_unit). 1e-12; >= 2.5e-16 (the
+                                    residual floors at about 2.2e-16 L0) */
     int max_iterations;          /* Newton iteration cap (full level); 20 */
     int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
     double warn_condition;       /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
@@ -104,7 +107,8 @@ typedef struct stewart_output {
     double condition;       /* 1-norm condition number of the leg Jacobian, its angular columns
                                scaled by the platform radius (dimensionless); 0 if kinematic */
     int iterations;         /* Newton iterations of the position problem; 0 below full level */
-    double residual;        /* max-norm of the constraint residual after the solve [m] */
+    double residual;        /* max-norm of the constraint residual after the solve [m]
+                               (tolerance x L0 at most) */
     double base_force[3];   /* force the legs put on the base, world frame [N] */
     double base_torque[3];  /* torque of that wrench about the world origin [N m] */
     int warnings;           /* STEWART_WARN_* bits */
@@ -134,13 +138,17 @@ const stewart_params *stewart_model_params(const stewart_model *model);
 
 stewart_data *stewart_data_create(const stewart_model *model);
 void stewart_data_free(stewart_data *data);
-/* Copies the whole state of src into dst (both made from the same model): a rollback point. */
+/* Copies the whole state of src into dst (both made from the same model, else
+ * STEWART_ERR_ARGUMENT): a rollback point. */
 stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src);
 /* The state of a data block (what stewart_data_copy copies) as bytes, to save a run and resume
  * it in another process (FMU state serialisation). The size depends on the model only. */
 size_t stewart_data_state_size(const stewart_data *data);
 stewart_status stewart_data_save(const stewart_data *data, void *buffer, size_t size);
-/* STEWART_ERR_ARGUMENT (data unchanged) if the bytes are not a saved state of this model's shape. */
+/* STEWART_ERR_ARGUMENT (data unchanged, stewart_data_message says why) unless the bytes are a
+ * saved state that fits this model: of its shape, every value finite, the fixed base at its
+ * placement, every other body's Euler parameters unit (to 1e-6), and for a state saved after a
+ * successful solve, the constraint residual no larger than the state records. */
 stewart_status stewart_data_load(stewart_data *data, const void *buffer, size_t size);
 /* Forgets the history (warm start) as if the data block were new. */
 void stewart_data_reset(stewart_data *data);
@@ -148,7 +156,9 @@ void stewart_data_reset(stewart_data *data);
 const char *stewart_data_message(const stewart_data *data);
 
 /* Actuator lengths, rates, accelerations and forces for one pose. On error the output is left
- * unchanged and stewart_data_message names the offending value. Never writes NaN. */
+ * unchanged and stewart_data_message names the offending value (a pose input too large to solve
+ * with is named, e.g. "x_dot", with its value). Never writes NaN. data must have been made for
+ * model (else STEWART_ERR_ARGUMENT). */
 stewart_status stewart_solve(const stewart_model *model, stewart_data *data,
                              const stewart_options *options, const stewart_pose *pose,
                              stewart_output *output);
