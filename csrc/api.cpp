@@ -88,12 +88,7 @@ extern "C" stewart_status stewart_data_load(stewart_data *d, const void *buffer,
 extern "C" void stewart_data_reset(stewart_data *d) {
     if (!d) return;
     d->message[0] = '\0';
-    if (d->full) {
-        mbs::State &s = d->full->state;
-        mbs::reset_history(s);
-        for (size_t b = 0; b < s.mechanism.bodies.size(); ++b)
-            for (int c = 0; c < 7; ++c) s.q[7 * b + c] = s.mechanism.bodies[b].q_reference[c];
-    }
+    if (d->full) mbs::reset(d->full->state);
 }
 
 extern "C" const char *stewart_data_message(const stewart_data *d) {

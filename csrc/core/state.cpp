@@ -16,8 +16,7 @@ State::State(const Mechanism &m, const SolverOptions &kind)
     : mechanism(m), q(m.coordinates), q_dot(m.coordinates), q_ddot(m.coordinates),
       lambda(m.equations), drive(m.drivers), values(m.values()), load_q(m.coordinates),
       load_phi(m.equations), load_drive(m.drivers) {
-    for (size_t b = 0; b < m.bodies.size(); ++b)
-        for (int c = 0; c < 7; ++c) q[7 * b + c] = m.bodies[b].q_reference[c];
+    place_at_reference(m, q.data());
     linear = make_linear_solver(m, kind.linear);
     if (!linear) {
         std::snprintf(message, sizeof message, "the requested block linear solver does not fit "
@@ -97,7 +96,7 @@ bool fits_mechanism(State &s, bool solved, double recorded_residual, char *msg, 
     double largest = 1.0;
     for (size_t b = 0; b < m.bodies.size(); ++b) {
         const Body &body = m.bodies[b];
-        const double *qb = q + 7 * b;
+        const double *qb = body_r(q, b);
         for (int c = 0; c < 3; ++c) largest = std::fmax(largest, std::fabs(qb[c]));
         if (body.fixed) {
             for (int c = 0; c < 7; ++c)
@@ -183,6 +182,11 @@ bool load_state(State &s, const unsigned char *in, size_t size, char *msg, size_
     s.factor_current = false;
     s.values_current = false;
     return true;
+}
+
+void reset(State &s) {
+    reset_history(s);
+    place_at_reference(s.mechanism, s.q.data());
 }
 
 void reset_history(State &s) {

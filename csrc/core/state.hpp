@@ -66,5 +66,7 @@ bool load_state(State &s, const unsigned char *in, size_t size, char *msg, size_
 constexpr double kLoadNormalization = 1e-6;
 // Forgets the history: the next position solve starts from q as it is.
 void reset_history(State &s);
+// Forgets the history and puts every body back at its reference configuration: as new.
+void reset(State &s);
 
 }  // namespace mbs

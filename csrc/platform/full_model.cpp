@@ -41,10 +41,10 @@ void store_pose(double q[7], const Vec3 &r, const Vec4 &p) {
 }
 
 void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) {
-    double *q = s.q.data() + 7 * body;
+    double *q = mbs::body_r(s.q.data(), body);
     const Vec4 p = mbs::euler_parameters(A);
     // Stay on the side of the previous solution.
-    store_pose(q, r, s.has_history ? same_side(p, q + 3) : p);
+    store_pose(q, r, s.has_history ? same_side(p, mbs::body_p(s.q.data(), body)) : p);
 }
 
 struct Placement {
@@ -191,7 +191,7 @@ void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinem
     const Vec3 v = mo.velocity + mo.omega.cross(c);
     const Vec3 a = mo.acceleration + mo.alpha.cross(c) + mo.omega.cross(mo.omega.cross(c));
     const Vec4 p = same_side(mbs::euler_parameters(mo.rotation * l.axes),
-                             s.q.data() + 7 * l.platform + 3);
+                             mbs::body_p(s.q.data(), l.platform));
     const mbs::Mat34 E = mbs::E_matrix(p.data());
     const Vec4 p_dot = 0.5 * E.transpose() * mo.omega;
     const Vec4 p_ddot = 0.5 * E.transpose() * mo.alpha - p_dot.squaredNorm() * p;
@@ -221,9 +221,12 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
 
     // Leg lengths and their rates from the solved bodies: the two Cardan centres.
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double *qc = s.q.data() + 7 * l.cylinder[k], *qp = s.q.data() + 7 * l.piston[k];
-        const double *vc = s.q_dot.data() + 7 * l.cylinder[k], *vp = s.q_dot.data() + 7 * l.piston[k];
-        const double *ac = s.q_ddot.data() + 7 * l.cylinder[k], *ap = s.q_ddot.data() + 7 * l.piston[k];
+        using mbs::body_r;
+        const double *qc = body_r(s.q.data(), l.cylinder[k]), *qp = body_r(s.q.data(), l.piston[k]);
+        const double *vc = body_r(s.q_dot.data(), l.cylinder[k]);
+        const double *vp = body_r(s.q_dot.data(), l.piston[k]);
+        const double *ac = body_r(s.q_ddot.data(), l.cylinder[k]);
+        const double *ap = body_r(s.q_ddot.data(), l.piston[k]);
         const Vec3 uc(0, 0, -l.cylinder_com), up(0, 0, l.piston_com);
         auto point = [](const double *q, const Vec3 &u) {
             return Vec3(Eigen::Map<const Vec3>(q) + mbs::rotate(q + 3, u));
@@ -253,7 +256,7 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
 
     // The wrench of the base Cardans on the base, about the world origin.
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    const Vec3 r_base(s.q.data() + 7 * l.base);
+    const Vec3 r_base(mbs::body_r(s.q.data(), l.base));
     for (int k = 0; k < STEWART_LEGS; ++k) {
         Vec3 fk, nk;
         mbs::joint_reaction(m, s, l.base_cardan[k], 0, fk, nk);
@@ -272,7 +275,7 @@ void thesis_forces(const FullLayout &l, const mbs::State &s, double force[STEWAR
     const mbs::Mechanism &m = s.mechanism;
     // The pose drivers' reaction on the platform: force, and torque about its origin.
     const double *lambda = s.lambda.data() + m.first_row[l.pose_joint];
-    const double *q = s.q.data() + 7 * l.platform;
+    const double *q = mbs::body_r(s.q.data(), l.platform);
     Matrix6 Jt;
     Vector6 wrench;
     wrench.head<3>() = -Vec3(lambda);

@@ -69,7 +69,7 @@ int main(int argc, char **argv) {
     const double omega = rpm * 2 * M_PI / 60;
     const double duration = turns * 2 * M_PI / omega;
     const long samples = std::lround(duration / dt);
-    const int slider = 7 * layout.slider;
+    const int slider = MBS_BODY_R(layout.slider);
     const int torque_row = mbs_joint_first_row(model, layout.crank_driver_joint);
     std::fprintf(out, "t,crank_angle,slider_x,slider_v,slider_a,crank_torque,iterations,residual\n");
     int status = 0;

@@ -53,13 +53,13 @@ static void test_slider_closed_form(void) {
         const double x_dot = -omega * r * s * (1 + r * c / D);
         const double x_ddot =
             -omega * omega * (r * c + r * r * (c * c - s * s) / D + pow(r * r * s * c, 2) / pow(D, 3));
-        const int b = 7 * layout.slider;
+        const int b = MBS_BODY_R(layout.slider);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, x, mbs_q(data)[b]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, 0.0, mbs_q(data)[b + 1]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, x_dot, mbs_q_dot(data)[b]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, x_ddot, mbs_q_ddot(data)[b]);
         /* The crank pin stays on its circle. */
-        const double *qc = mbs_q(data) + 7 * layout.crank;
+        const double *qc = mbs_q(data) + MBS_BODY_R(layout.crank);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, 0.5 * c, qc[0]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, 0.5 * s, qc[1]);
         if (x < x_min) x_min = mbs_q(data)[b];
@@ -107,7 +107,7 @@ static double energy(const double *q, const double *v) {
     const double mass[3] = {1.0, 2.0, 3.0}, inertia[3] = {1.0 / 12, 2.0 * 4 / 12, 0.0};
     double e = 0;
     for (int i = 0; i < 3; ++i) {
-        const double *r = q + 7 * bodies[i], *rd = v + 7 * bodies[i];
+        const double *r = q + MBS_BODY_R(bodies[i]), *rd = v + MBS_BODY_R(bodies[i]);
         const double *p = r + 3, *pd = rd + 3;
         /* planar rotation about z: p = (cos th/2, 0, 0, sin th/2), th_dot = 2 (e0 e3_dot - e3 e0_dot) */
         const double th_dot = 2 * (p[0] * pd[3] - p[3] * pd[0]);

@@ -103,8 +103,7 @@ static std::vector<double> jacobian_at(const mbs::Mechanism &m, const std::vecto
 
 static std::vector<double> reference(const mbs::Mechanism &m) {
     std::vector<double> q(m.coordinates);
-    for (size_t b = 0; b < m.bodies.size(); ++b)
-        for (int c = 0; c < 7; ++c) q[7 * b + c] = m.bodies[b].q_reference[c];
+    mbs::place_at_reference(m, q.data());
     return q;
 }
 

@@ -114,12 +114,12 @@ static void test_states_that_do_not_fit_the_model_are_refused(void) {
                 expect_refused(bytes, size, c, base_values[i], "fixed");
     expect_refused(bytes, size, 0, 1e-3, "fixed"); /* the base moved */
     /* the platform's (body 13) Euler parameters off the unit sphere */
-    expect_refused(bytes, size, 7 * 13 + 3, 0.0, "Euler parameters");
-    expect_refused(bytes, size, 7 * 13 + 5, 1e3, "Euler parameters");
+    expect_refused(bytes, size, MBS_BODY_P(13), 0.0, "Euler parameters");
+    expect_refused(bytes, size, MBS_BODY_P(13) + 2, 1e3, "Euler parameters");
     /* a solved state whose bodies no longer meet at their joints */
     double z;
-    memcpy(&z, bytes + q_at + (7 * 13 + 2) * sizeof z, sizeof z);
-    expect_refused(bytes, size, 7 * 13 + 2, z + 1e-6, "residual");
+    memcpy(&z, bytes + q_at + (MBS_BODY_R(13) + 2) * sizeof z, sizeof z);
+    expect_refused(bytes, size, MBS_BODY_R(13) + 2, z + 1e-6, "residual");
     /* the state as saved still loads */
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_data_load(data, bytes, size), stewart_data_message(data));
     free(bytes);

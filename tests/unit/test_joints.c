@@ -21,8 +21,8 @@ static void random_vector(double *v, int n, double scale) {
 
 static void random_configuration(double *q) {
     for (int b = 0; b < 2; ++b) {
-        random_vector(q + 7 * b, 3, 1.0);
-        double *p = q + 7 * b + 3, n = 0;
+        random_vector(q + MBS_BODY_R(b), 3, 1.0);
+        double *p = q + MBS_BODY_P(b), n = 0;
         random_vector(p, 4, 1.0);
         for (int i = 0; i < 4; ++i) n += p[i] * p[i];
         for (int i = 0; i < 4; ++i) p[i] /= sqrt(n);

@@ -37,6 +37,12 @@ typedef enum mbs_status {
 #define MBS_DEFAULT_TOLERANCE 1e-12
 #define MBS_DEFAULT_MAX_ITERATIONS 20
 
+/* Each body has MBS_BODY_COORDINATES coordinates in q (and in q_dot, q_ddot), body after body:
+ * its position r (3), then its Euler parameters p (4). */
+#define MBS_BODY_COORDINATES 7
+#define MBS_BODY_R(body) (MBS_BODY_COORDINATES * (body))     /* index of body's r in q */
+#define MBS_BODY_P(body) (MBS_BODY_COORDINATES * (body) + 3) /* index of body's p in q */
+
 typedef struct mbs_model mbs_model;
 typedef struct mbs_data mbs_data;
 
