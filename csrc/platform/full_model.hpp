@@ -1,4 +1,4 @@
-// The thesis' 14-body Stewart platform (model.md §2) built on the multibody core: a builder that
+// The thesis' 14-body Stewart platform (docs/model.md) built on the multibody core: a builder that
 // turns the parameters into bodies and joints, the closed-form initial guess, and the solve that
 // fills stewart_output at the full fidelity level.
 #pragma once

@@ -1,5 +1,5 @@
 // Motion of the platform frame from the pose (x, y, z, roll, pitch, yaw) and its time derivatives,
-// with R = Rz(yaw) Ry(pitch) Rx(roll) (model.md §3).
+// with R = Rz(yaw) Ry(pitch) Rx(roll) (docs/model.md).
 #pragma once
 
 #include <Eigen/Dense>

@@ -1,7 +1,7 @@
 /*
  * Stewart platform inverse kinematics and inverse dynamics: the C API.
  *
- * Conventions (../shared/design/model.md §3): SI units; world frame at the base centre, z up;
+ * Conventions (docs/model.md): SI units; world frame at the base centre, z up;
  * pose (x, y, z, roll, pitch, yaw) with R = Rz(yaw) Ry(pitch) Rx(roll); leg k joins base angle
  * beta_k to platform angle tau_k; actuator length L_k = |p + R b_k - a_k|; actuator force F_k > 0
  * pushes the platform away from the base.
@@ -11,6 +11,10 @@
  * and every workspace a solve needs), then call stewart_solve once per pose. Nothing here keeps
  * global state; models and data blocks are independent of each other (a model may be shared by
  * several data blocks, read-only).
+ *
+ * Every parameter and option, with its id, unit, range, default and description, is listed once
+ * in stewart/stewart_table.h, which also lets a caller iterate them. The full level is built on
+ * the multibody core (mbs/mbs.h; stewart/stewart_full.h shows its mechanism).
  */
 #ifndef STEWART_STEWART_H
 #define STEWART_STEWART_H
@@ -117,7 +121,7 @@ typedef struct stewart_output {
 typedef struct stewart_model stewart_model;
 typedef struct stewart_data stewart_data;
 
-/* The thesis platform in SI (model.md §2). */
+/* The thesis platform in SI (docs/model.md): the defaults of stewart/stewart_table.h. */
 void stewart_params_default(stewart_params *params);
 /* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the parameter and its value. */
 stewart_status stewart_params_check(const stewart_params *params, char *message, size_t size);

@@ -1,10 +1,14 @@
 /*
- * A general multibody kinematics and inverse-dynamics core: the C API.
+ * A general multibody kinematics and inverse-dynamics core: the C API. It stands alone (library
+ * mbs, no header of the Stewart platform); the platform library and the slider-crank example
+ * (examples/slider_crank) are built on it.
  *
  * A mechanism is data: add bodies and joints to an mbs_model, finalise it, then make one mbs_data
  * per independent run and step it. Bodies have reference-point coordinates q = (r, p): the
- * position of the centre of mass and the Euler parameters of the principal axes (7 per body).
- * All vectors given to a joint are in the frames of its bodies. SI units. No global state.
+ * position of the centre of mass and the Euler parameters of the principal axes
+ * (MBS_BODY_COORDINATES = 7 per body, MBS_BODY_R and MBS_BODY_P locate them). All vectors given
+ * to a joint are in the frames of its bodies. Any consistent units (SI in the examples; the
+ * Stewart platform measures lengths in a power-of-two unit near its size). No global state.
  *
  * Drivers prescribe a function of time; the caller gives its value, first and second time
  * derivative before each step (mbs_set_driver). A driver's multiplier is the generalised force
@@ -118,7 +122,9 @@ int mbs_joint_equations(const mbs_model *m, int joint);
 /* NULL if the model is not finalised or memory is short. */
 mbs_data *mbs_data_create(const mbs_model *m, mbs_linear_solver solver);
 void mbs_data_free(mbs_data *d);
+/* Copies the state of src into dst (both of the same model, else MBS_ERR_ARGUMENT). */
 mbs_status mbs_data_copy(mbs_data *dst, const mbs_data *src);
+/* Forgets the history (the predictor's previous step); q stays as the next initial guess. */
 void mbs_data_reset(mbs_data *d);
 const char *mbs_data_message(const mbs_data *d);
 
