@@ -155,13 +155,6 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
     const stewart::RigidMotion motion = stewart::rigid_motion(*pose);
     stewart::LegKinematics legs;
     if ((s = stewart::leg_kinematics(m->geometry, motion, legs, msg, size)) != STEWART_OK) return s;
-    // Rates and accelerations too large to solve with are the inputs' fault: named as such.
-    if (legs.length.allFinite()) {
-        if (!legs.rate.allFinite())
-            return stewart::input_out_of_range(*pose, 1, 1, "leg length rates", msg, size);
-        if (!legs.accel.allFinite())
-            return stewart::input_out_of_range(*pose, 1, 2, "leg length accelerations", msg, size);
-    }
 
     stewart_output out{};
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -177,6 +170,13 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
                                          o->singular_condition, out, msg, size);
             break;
         case STEWART_FULL: {
+            // Rates and accelerations too large to solve with are the inputs' fault (the closed
+            // levels find them in their outputs).
+            if (legs.length.allFinite() && !(legs.rate.allFinite() && legs.accel.allFinite())) {
+                s = stewart::input_out_of_range(*pose, 1, 2, "leg length rates or accelerations",
+                                                msg, size);
+                break;
+            }
             stewart::LegJacobian jacobian;
             stewart::leg_jacobian(m->geometry, legs, jacobian);
             out.condition = jacobian.condition;
@@ -192,9 +192,11 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
         }
     }
     if (s != STEWART_OK) return s;
-    if (const char *name = first_non_finite(out))
-        return stewart::input_out_of_range(*pose, std::strcmp(name, "length") ? 1 : 0,
-                                           std::strcmp(name, "length") ? 2 : 0, name, msg, size);
+    if (const char *name = first_non_finite(out)) {
+        // The outputs of the positions, the rates, or of rates and accelerations.
+        const int last_row = !std::strcmp(name, "length") ? 0 : !std::strcmp(name, "length_rate") ? 1 : 2;
+        return stewart::input_out_of_range(*pose, last_row > 0 ? 1 : 0, last_row, name, msg, size);
+    }
     out.warnings = stroke_and_condition_warnings(m->params, *o, out);
     *output = out;
     msg[0] = '\0';

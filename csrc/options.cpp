@@ -37,8 +37,23 @@ static_assert(sizeof(Mirror) == sizeof(stewart_options), "STEWART_OPTION_TABLE l
 STEWART_OPTION_TABLE(SAME)
 #undef SAME
 
-// The tolerance's lower end is where the residual floors; its refusal says so.
-int tolerance_index() { return stewart_option_find("tolerance"); }
+// The message for option i's value outside its range. The tolerance's lower end is where the
+// residual floors: its refusal says so.
+stewart_status refuse(int i, double value, char *msg, size_t size) {
+    const stewart_option_info &info = kOptions[i];
+    if (!std::strcmp(info.name, "tolerance") && value > 0 && value < info.min)
+        // The full level's max-norm position residual floors at 2.2e-16 (one rounding of
+        // coordinates of order 1, in the platform's length unit): at or below that no pose ever
+        // converges; 2.3e-16 still does, with up to 5 iterations.
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "tolerance = %s is below what the position residual can reach (about "
+                           "2.2e-16, machine precision on the coordinates): use at least %s",
+                           ExactText(value).c_str(), ExactText(info.min).c_str());
+    char range[96];
+    stewart::describe_range(info.min, info.min_closed, info.max, info.max_closed, range, sizeof range);
+    return set_message(msg, size, STEWART_ERR_PARAMETER, "%s = %s must be %s (%s)", info.name,
+                       ExactText(value).c_str(), range, info.description);
+}
 
 }  // namespace
 
@@ -97,25 +112,14 @@ void stewart_options_default(stewart_options *o) {
 
 stewart_status stewart_options_check(const stewart_options *o, char *msg, size_t size) {
     if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    for (int i = 0; i < kOptionCount; ++i) {
-        const stewart_option_info &info = kOptions[i];
-        const double value = stewart_option_get(o, i);
-        if (stewart::in_range(value, info.min, info.min_closed, info.max, info.max_closed)) continue;
-        if (i == tolerance_index() && value > 0 && value < info.min)
-            // The full level's max-norm position residual floors at 2.2e-16 (one rounding of
-            // coordinates of order 1, relative to the platform's size): at or below that no
-            // pose ever converges; 2.3e-16 still does, with up to 5 iterations.
-            return set_message(msg, size, STEWART_ERR_PARAMETER,
-                               "tolerance = %s is below what the position residual can reach "
-                               "(about 2.2e-16, machine precision on the coordinates): use at "
-                               "least %s",
-                               ExactText(value).c_str(), ExactText(info.min).c_str());
-        char range[96];
-        stewart::describe_range(info.min, info.min_closed, info.max, info.max_closed, range,
-                                sizeof range);
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "%s = %s must be %s (%s)", info.name,
-                           ExactText(value).c_str(), range, info.description);
-    }
+    // Every solve checks its options: the ranges are compile-time constants here.
+    int i = 0;
+#define CHECK(id, name, type, unit, min, min_closed, max, max_closed, fallback, text)            \
+    if (!stewart::in_range(static_cast<double>(o->name), min, min_closed, max, max_closed))      \
+        return refuse(i, static_cast<double>(o->name), msg, size);                               \
+    ++i;
+    STEWART_OPTION_TABLE(CHECK)
+#undef CHECK
     if (!(o->singular_condition >= o->warn_condition))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "condition limits warn = %s, singular = %s must satisfy "
