@@ -12,9 +12,9 @@
 #include <cmath>
 
 #include "core/assembly.hpp"
-#include "util/message.hpp"
+#include "core/message.hpp"
 
-using stewart::set_message;
+using mbs::set_message;
 
 namespace mbs {
 
@@ -27,7 +27,7 @@ struct PositionSolver::Impl {
     SUNMatrix matrix = nullptr;
     SUNLinearSolver linear = nullptr;
     void *kinsol = nullptr;
-    char kinsol_message[STEWART_MESSAGE_SIZE] = "";
+    char kinsol_message[MBS_MESSAGE_SIZE] = "";
     double last_residual = 0;  // max-norm of the last residual evaluated (INFINITY if not finite)
     bool values_at_guess = false;  // state.values hold Phi_q at state.q (the initial guess)
     explicit Impl(State &s) : state(s) {}
@@ -119,14 +119,14 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
     char *msg = state.message;
     const size_t size = sizeof state.message;
     if (SUNContext_Create(nullptr, &im.context) != 0) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "SUNContext_Create failed");
+        set_message(msg, size, MBS_ERR_MEMORY, "SUNContext_Create failed");
         return;
     }
     im.u = N_VNew_Serial(n, im.context);
     im.scale = N_VNew_Serial(n, im.context);
     im.work = N_VNew_Serial(n, im.context);
     if (!im.u || !im.scale || !im.work) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "N_VNew_Serial(%ld) failed", (long)n);
+        set_message(msg, size, MBS_ERR_MEMORY, "N_VNew_Serial(%ld) failed", (long)n);
         return;
     }
     N_VConst(1.0, im.scale);
@@ -152,12 +152,12 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
         }
     }
     if (!im.matrix || !im.linear) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "could not create the KINSOL linear solver");
+        set_message(msg, size, MBS_ERR_MEMORY, "could not create the KINSOL linear solver");
         return;
     }
     im.kinsol = KINCreate(im.context);
     if (!im.kinsol) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "KINCreate failed");
+        set_message(msg, size, MBS_ERR_MEMORY, "KINCreate failed");
         return;
     }
     int flag;
@@ -167,7 +167,7 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
         (flag = KINSetLinearSolver(im.kinsol, im.linear, im.matrix)) != KINLS_SUCCESS ||
         (flag = KINSetJacFn(im.kinsol, jacobian)) != KINLS_SUCCESS ||
         (flag = KINSetScaledStepTol(im.kinsol, 1e-300)) != KIN_SUCCESS) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "KINSOL setup failed with flag %d: %s", flag,
+        set_message(msg, size, MBS_ERR_MEMORY, "KINSOL setup failed with flag %d: %s", flag,
                     im.kinsol_message);
         return;
     }
@@ -186,7 +186,7 @@ PositionSolver::~PositionSolver() {
     delete impl_;
 }
 
-stewart_status PositionSolver::solve(const SolverOptions &o) {
+mbs_status PositionSolver::solve(const SolverOptions &o) {
     Impl &im = *impl_;
     State &s = im.state;
     char *msg = s.message;
@@ -196,7 +196,7 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     if ((flag = KINSetFuncNormTol(im.kinsol, o.tolerance)) != KIN_SUCCESS ||
         (flag = KINSetNumMaxIters(im.kinsol, o.max_iterations)) != KIN_SUCCESS ||
         (flag = KINSetMaxSetupCalls(im.kinsol, o.modified_newton ? 10 : 1)) != KIN_SUCCESS)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
+        return set_message(msg, size, MBS_ERR_PARAMETER,
                            "KINSOL rejected the options (flag %d): tolerance = %g, "
                            "max_iterations = %d: %s",
                            flag, o.tolerance, o.max_iterations, im.kinsol_message);
@@ -218,7 +218,7 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
         flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
         const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
         if (stats_flag != KIN_SUCCESS)
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+            return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                                "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // With no line search every evaluated iterate is accepted: the last residual is the
         // final one's. A failure may have stopped elsewhere, so recompute then.
@@ -230,7 +230,7 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     s.stats.residual = im.last_residual;
     bool finite = std::isfinite(im.last_residual);
     if (iterations == 0 && !finite)
-        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+        return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                            "the residual at the initial guess is not finite");
     // No iteration is no licence: KINSOL may also stop before its first one with an error (its
     // set-up failing), leaving the guess and its residual above the tolerance. The guess stands
@@ -238,23 +238,23 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
     if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
-            return set_message(msg, size, STEWART_ERR_SINGULAR,
+            return set_message(msg, size, MBS_ERR_SINGULAR,
                                "the constraint Jacobian is singular during the position solve "
                                "(KINSOL flag %d after %ld iterations)", flag, iterations);
         if (im.last_residual <= o.tolerance)  // small enough, but KINSOL reported a failure
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+            return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                                "position solve failed: KINSOL flag %d after %ld iterations "
                                "(residual %g, tolerance %g)%s%s",
                                flag, iterations, s.stats.residual, o.tolerance,
                                im.kinsol_message[0] ? ": " : "", im.kinsol_message);
-        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+        return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                            "position problem not converged: residual %g > tolerance %g after "
                            "%ld iterations (KINSOL flag %d%s%s)",
                            s.stats.residual, o.tolerance, iterations, flag,
                            im.kinsol_message[0] ? ": " : "", im.kinsol_message);
     }
     if (iterations > 0) std::copy(u, u + n, s.q.begin());  // else q is the accepted guess
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 }  // namespace mbs

@@ -3,7 +3,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "stewart/slider_crank.h"
+#include "slider_crank.h"
 #include "stewart/stewart_full.h"
 #include "test_support.h"
 #include "unity.h"
@@ -58,7 +58,7 @@ static void test_full_level_steps_do_not_allocate(void) {
     mbs_options_default(&mo);
     const long before_newton = allocations;
     for (int k = 0; k < 6; ++k) mbs_set_driver(d, k, 0.58 + 0.004 * k, 0, 0);
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, 0, &mo), mbs_data_message(d));
+    TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_step(d, 0, &mo), mbs_data_message(d));
     TEST_ASSERT_TRUE(mbs_iterations(d) > 0);
     TEST_ASSERT_EQUAL(before_newton, allocations);
     mbs_data_free(d);
@@ -81,7 +81,7 @@ static void test_slider_crank_steps_do_not_allocate(void) {
     for (int i = 0; i < 600; ++i) {
         const double t = 0.02 * i, w = M_PI / 3;
         mbs_set_driver(d, l.crank_driver, w * t, w, 0);
-        TEST_ASSERT_EQUAL(STEWART_OK, mbs_step(d, t, &o));
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_step(d, t, &o));
     }
     TEST_ASSERT_EQUAL(before, allocations);
     mbs_data_free(d);

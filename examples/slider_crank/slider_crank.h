@@ -5,10 +5,10 @@
  * x. Motion in the xy-plane, gravity along -y. Bars are slender rods with the centre of mass at
  * mid-length; the crank is driven by an angle driver whose multiplier is the driving torque.
  */
-#ifndef STEWART_SLIDER_CRANK_H
-#define STEWART_SLIDER_CRANK_H
+#ifndef SLIDER_CRANK_H
+#define SLIDER_CRANK_H
 
-#include "stewart/mbs.h"
+#include "mbs/mbs.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -35,4 +35,4 @@ mbs_model *slider_crank_create(const slider_crank_params *params, slider_crank_l
 }
 #endif
 
-#endif /* STEWART_SLIDER_CRANK_H */
+#endif /* SLIDER_CRANK_H */

@@ -1,11 +1,8 @@
 // The slider-crank builder: nothing but bodies and joints through the mbs C API.
-#include "stewart/slider_crank.h"
+#include "slider_crank.h"
 
 #include <cmath>
-
-#include "util/message.hpp"
-
-using stewart::set_message;
+#include <cstdio>
 
 extern "C" void slider_crank_params_default(slider_crank_params *p) {
     if (!p) return;
@@ -20,14 +17,15 @@ extern "C" void slider_crank_params_default(slider_crank_params *p) {
 extern "C" mbs_model *slider_crank_create(const slider_crank_params *p, slider_crank_layout *l,
                                           char *msg, size_t size) {
     if (!p || !l) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
+        if (msg && size) std::snprintf(msg, size, "NULL argument");
         return nullptr;
     }
-    if (!(p->crank_length > 0 && p->rod_length > p->crank_length))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "crank_length = %g, rod_length = %g: need 0 < crank < rod",
-                           p->crank_length, p->rod_length),
-               nullptr;
+    if (!(p->crank_length > 0 && p->rod_length > p->crank_length)) {
+        if (msg && size)
+            std::snprintf(msg, size, "crank_length = %.17g, rod_length = %.17g: need 0 < crank < rod",
+                          p->crank_length, p->rod_length);
+        return nullptr;
+    }
     const double r = p->crank_length, L = p->rod_length;
     mbs_model *m = mbs_model_create();
     if (!m) return nullptr;
@@ -51,17 +49,17 @@ extern "C" mbs_model *slider_crank_create(const slider_crank_params *p, slider_c
     const double rod_start[3] = {-L / 2, 0, 0}, rod_end[3] = {L / 2, 0, 0};
     const int crank_pivot = mbs_add_revolute(m, l->ground, origin, ez, l->crank, crank_root, ez);
     const int ok =
-        mbs_fix_body(m, l->ground) == STEWART_OK && crank_pivot >= 0 &&
+        mbs_fix_body(m, l->ground) == MBS_OK && crank_pivot >= 0 &&
         mbs_add_spherical(m, l->crank, crank_pin, l->rod, rod_start) >= 0 &&
         mbs_add_cardan(m, l->rod, rod_end, ey, l->slider, origin, ez) >= 0 &&
         mbs_add_prismatic(m, l->ground, origin, ex, l->slider, origin, ex) >= 0 &&
         (l->crank_driver_joint = mbs_add_angle_driver(m, crank_pivot, &l->crank_driver)) >= 0;
     if (!ok) {
-        set_message(msg, size, STEWART_ERR_PARAMETER, "slider-crank: %s", mbs_model_message(m));
+        if (msg && size) std::snprintf(msg, size, "slider-crank: %s", mbs_model_message(m));
         mbs_model_free(m);
         return nullptr;
     }
-    if (mbs_model_finalize(m, msg, size) != STEWART_OK) {
+    if (mbs_model_finalize(m, msg, size) != MBS_OK) {
         mbs_model_free(m);
         return nullptr;
     }

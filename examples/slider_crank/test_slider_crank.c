@@ -4,8 +4,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "stewart/slider_crank.h"
-#include "test_support.h"
+#include "slider_crank.h"
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 #include "unity.h"
 
 #define NQ 28
@@ -19,7 +21,7 @@ static const double omega = 10.0 * 2.0 * M_PI / 60.0; /* 10 rpm */
 
 void setUp(void) {
     slider_crank_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
+    char msg[MBS_MESSAGE_SIZE];
     model = slider_crank_create(&params, &layout, msg, sizeof msg);
     if (!model) TEST_FAIL_MESSAGE(msg);
     TEST_ASSERT_EQUAL(NQ, mbs_coordinate_count(model));
@@ -35,7 +37,7 @@ void tearDown(void) {
 
 static void step(mbs_data *d, double t) {
     mbs_set_driver(d, layout.crank_driver, omega * t, omega, 0.0);
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, t, &options), mbs_data_message(d));
+    TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_step(d, t, &options), mbs_data_message(d));
 }
 
 /* Two turns: x = r cos phi + sqrt(l^2 - r^2 sin^2 phi) and its derivatives at constant phi_dot. */
@@ -51,13 +53,13 @@ static void test_slider_closed_form(void) {
         const double x_dot = -omega * r * s * (1 + r * c / D);
         const double x_ddot =
             -omega * omega * (r * c + r * r * (c * c - s * s) / D + pow(r * r * s * c, 2) / pow(D, 3));
-        const int b = 7 * layout.slider;
+        const int b = MBS_BODY_R(layout.slider);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, x, mbs_q(data)[b]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, 0.0, mbs_q(data)[b + 1]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, x_dot, mbs_q_dot(data)[b]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-9, x_ddot, mbs_q_ddot(data)[b]);
         /* The crank pin stays on its circle. */
-        const double *qc = mbs_q(data) + 7 * layout.crank;
+        const double *qc = mbs_q(data) + MBS_BODY_R(layout.crank);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, 0.5 * c, qc[0]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, 0.5 * s, qc[1]);
         if (x < x_min) x_min = mbs_q(data)[b];
@@ -81,10 +83,10 @@ static void test_rates_against_finite_differences(void) {
             double qp[NQ], qm[NQ], q0[NQ];
             /* Step a side copy to t - h and t + h so Euler-parameter signs stay continuous. */
             step(data, t);
-            TEST_ASSERT_EQUAL(STEWART_OK, mbs_data_copy(side, data));
+            TEST_ASSERT_EQUAL(MBS_OK, mbs_data_copy(side, data));
             step(side, t + h);
             memcpy(qp, mbs_q(side), sizeof qp);
-            TEST_ASSERT_EQUAL(STEWART_OK, mbs_data_copy(side, data));
+            TEST_ASSERT_EQUAL(MBS_OK, mbs_data_copy(side, data));
             step(side, t - h);
             memcpy(qm, mbs_q(side), sizeof qm);
             memcpy(q0, mbs_q(data), sizeof q0);
@@ -105,7 +107,7 @@ static double energy(const double *q, const double *v) {
     const double mass[3] = {1.0, 2.0, 3.0}, inertia[3] = {1.0 / 12, 2.0 * 4 / 12, 0.0};
     double e = 0;
     for (int i = 0; i < 3; ++i) {
-        const double *r = q + 7 * bodies[i], *rd = v + 7 * bodies[i];
+        const double *r = q + MBS_BODY_R(bodies[i]), *rd = v + MBS_BODY_R(bodies[i]);
         const double *p = r + 3, *pd = rd + 3;
         /* planar rotation about z: p = (cos th/2, 0, 0, sin th/2), th_dot = 2 (e0 e3_dot - e3 e0_dot) */
         const double th_dot = 2 * (p[0] * pd[3] - p[3] * pd[0]);
@@ -147,7 +149,7 @@ static void test_modified_newton(void) {
         const double t = 0.02 * i;
         step(data, t);
         mbs_set_driver(other, layout.crank_driver, omega * t, omega, 0.0);
-        TEST_ASSERT_EQUAL(STEWART_OK, mbs_step(other, t, &modified));
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_step(other, t, &modified));
         for (int k = 0; k < NQ; ++k) TEST_ASSERT_DOUBLE_WITHIN(1e-11, mbs_q(data)[k], mbs_q(other)[k]);
     }
     mbs_data_free(other);

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "stewart/slider_crank.h"
+#include "slider_crank.h"
 
 namespace {
 
@@ -50,7 +50,7 @@ int main(int argc, char **argv) {
     slider_crank_params params;
     slider_crank_params_default(&params);
     slider_crank_layout layout;
-    char message[STEWART_MESSAGE_SIZE];
+    char message[MBS_MESSAGE_SIZE];
     mbs_model *model = slider_crank_create(&params, &layout, message, sizeof message);
     if (!model) {
         std::fprintf(stderr, "slider-crank-solve: %s\n", message);
@@ -69,14 +69,14 @@ int main(int argc, char **argv) {
     const double omega = rpm * 2 * M_PI / 60;
     const double duration = turns * 2 * M_PI / omega;
     const long samples = std::lround(duration / dt);
-    const int slider = 7 * layout.slider;
+    const int slider = MBS_BODY_R(layout.slider);
     const int torque_row = mbs_joint_first_row(model, layout.crank_driver_joint);
     std::fprintf(out, "t,crank_angle,slider_x,slider_v,slider_a,crank_torque,iterations,residual\n");
     int status = 0;
     for (long j = 0; j <= samples; ++j) {
         const double t = j * dt;
         mbs_set_driver(data, layout.crank_driver, omega * t, omega, 0.0);
-        if (mbs_step(data, t, &options) != STEWART_OK) {
+        if (mbs_step(data, t, &options) != MBS_OK) {
             std::fprintf(stderr, "slider-crank-solve: t = %g: %s\n", t, mbs_data_message(data));
             status = 1;
             break;
