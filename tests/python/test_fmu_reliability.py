@@ -152,8 +152,6 @@ def test_solver_data_the_library_refuses_is_refused(version, index):
         u.free()
 
 
-@pytest.mark.xfail(strict=True, reason="needs the library's strict stewart_data_load (issue 15 "
-                   "item 2, core branch): remove this mark when it is merged")
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("value", [0.0, -1.0, 1e3, 1e300])
 def test_corrupt_euler_parameter_is_refused_or_harmless(version, value):

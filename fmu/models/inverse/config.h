@@ -8,13 +8,9 @@
 #define STEWART_FMU_CONFIG_H
 
 #include "stewart/stewart.h"
-/* The library's parameter and option tables, where the library has them: variables.def then
- * expands them instead of listing the parameters itself. */
-#if defined(__has_include)
-#if __has_include("stewart/stewart_table.h")
+/* The library's parameter and option tables: variables.def expands them (no parameter is
+ * listed twice). */
 #include "stewart/stewart_table.h"
-#endif
-#endif
 
 #define FMU_MODEL_IDENTIFIER "StewartPlatform"
 #define FMU_GUID "{5d0f6a3e-9b1c-4c2e-a7f4-3e8b2c7d1a04}"
