@@ -212,7 +212,7 @@ def test_hold_without_derivatives(version):
 def test_changed_geometry_and_payload_parameters(version):
     """Parameters reach the model: lengths follow the closed form L = |p + R b - a| for another
     geometry; a payload adds its weight to the vertical force on the base."""
-    from fmu_support import closed_form_lengths
+    from reference import lengths as closed_form_lengths
     import math
     beta = (5, 25, 125, 145, 245, 265)
     tau = (335, 55, 95, 175, 215, 295)

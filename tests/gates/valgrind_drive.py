@@ -1,33 +1,7 @@
-#!/usr/bin/env bash
-# Runs short fmpy simulations of both FMUs (FMI 2.0 and 3.0; fidelities 0 and 1, and 2 when the
-# build solves it) under valgrind memcheck, plus the unit's edge paths (a non-finite input, a
-# singular pose, an invalid step, FMU state get/set/serialise, reset), and fails on any error whose
-# stack touches StewartPlatform.so: invalid reads or writes, uses of uninitialised values, invalid
-# frees, and definitely lost blocks allocated from it.
-#
-# Python and numpy have their own valgrind noise (the interpreter's arenas, interned objects kept
-# until exit): valgrind runs with --error-exitcode=1 --errors-for-leak-kinds=definite and writes XML,
-# and the verdict counts only the errors with a frame in StewartPlatform.so (PYTHONMALLOC=malloc so
-# that every Python allocation is visible to valgrind too).
-# usage: scripts/valgrind_fmu.sh [BUILD_DIR=build]   (takes about 20 s)
-set -euo pipefail
-cd "$(dirname "$0")/.."
-build=$(realpath "${1:-build}")
-python=.venv/bin/python
-[ -x "$python" ] || { echo "valgrind_fmu: run scripts/build.sh first (no .venv)"; exit 2; }
-for f in "$build"/fmus/2.0/StewartPlatform.fmu "$build"/fmus/3.0/StewartPlatform.fmu; do
-  [ -f "$f" ] || { echo "valgrind_fmu: $f is missing: build first"; exit 2; }
-done
-if ! command -v valgrind >/dev/null; then
-  as_root=""; [ "$(id -u)" -eq 0 ] || as_root="sudo"
-  DEBIAN_FRONTEND=noninteractive $as_root apt-get install -y -qq --no-install-recommends valgrind >/dev/null
-fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+"""The simulations tests/gates/valgrind_fmu.sh runs under valgrind: fmpy's simulate_fmu over a
+combined manoeuvre, then the edge paths through fmpy's slave classes.
 
-cat > "$work/drive.py" <<'EOF'
-"""The simulations run under valgrind: fmpy's simulate_fmu over a combined manoeuvre, then the edge
-paths through fmpy's slave classes."""
+usage: valgrind_drive.py BUILD_DIR (the FMUs are BUILD_DIR/fmus/<version>/StewartPlatform.fmu)"""
 import math
 import sys
 import tempfile
@@ -138,45 +112,3 @@ for version in ("2.0", "3.0"):
               f"L[1] = {r['L[1]'][-1]:.6f} m, F[1] = {r['F[1]'][-1]:.3f} N")
     print(f"valgrind_fmu: FMI {version} edge paths up to t = {edges(path, version):.2f} s")
 print("valgrind_fmu: DRIVER DONE")
-EOF
-
-start=$(date +%s)
-set +e
-PYTHONMALLOC=malloc valgrind --tool=memcheck --error-exitcode=1 --errors-for-leak-kinds=definite \
-  --leak-check=full --show-leak-kinds=definite --track-origins=yes --num-callers=40 \
-  --keep-debuginfo=yes \
-  --xml=yes --xml-file="$work/memcheck.xml" \
-  "$python" "$work/drive.py" "$build" >"$work/out.txt" 2>&1
-rc=$?
-set -e
-grep '^valgrind_fmu:' "$work/out.txt" || true
-if ! grep -q 'DRIVER DONE' "$work/out.txt"; then
-  tail -30 "$work/out.txt"
-  echo "valgrind_fmu: the simulations did not complete (exit $rc)"
-  exit 1
-fi
-
-"$python" - "$work/memcheck.xml" <<'EOF'
-"""Counts the memcheck errors (definite leaks included) with a frame in StewartPlatform.so."""
-import sys
-import xml.etree.ElementTree as ET
-
-root = ET.parse(sys.argv[1]).getroot()
-total, ours = 0, []
-for error in root.iter("error"):
-    total += 1
-    objs = [(f.findtext("obj") or "") + " " + (f.findtext("fn") or "") for f in error.iter("frame")]
-    if any("StewartPlatform.so" in o for o in objs):
-        what = error.findtext("what") or (error.find("xwhat").findtext("text")
-                                         if error.find("xwhat") is not None else "?")
-        ours.append((error.findtext("kind"), what,
-                     [o for o in objs if "StewartPlatform.so" in o][:8]))
-print(f"valgrind_fmu: {total} memcheck errors in the process (Python's own included), "
-      f"{len(ours)} touching StewartPlatform.so")
-for kind, what, frames in ours:
-    print(f"  {kind}: {what}")
-    for f in frames:
-        print(f"      {f}")
-sys.exit(1 if ours else 0)
-EOF
-echo "valgrind_fmu: clean ($(($(date +%s) - start)) s)"

@@ -2,8 +2,8 @@
 """Writes the seed inputs of the C API fuzz target (tests/fuzz/fuzz_api.cpp) into a folder, or
 with --fmu those of the FMU target (tests/fuzz/fuzz_fmu.cpp, layout described below SEEDS).
 
-usage: scripts/fuzz_seeds.py [FOLDER=tests/fuzz/corpus/api]
-       scripts/fuzz_seeds.py --fmu [FOLDER=tests/fuzz/corpus/fmu]
+usage: tests/fuzz/fuzz_seeds.py [FOLDER=tests/fuzz/corpus/api]
+       tests/fuzz/fuzz_seeds.py --fmu [FOLDER=tests/fuzz/corpus/fmu]
 
 Field indices count the doubles of stewart_params in declaration order (cylinder_mass is 32,
 piston_mass 37). Layout the target reads: 1 byte count of parameter edits (mod 8), each edit 1 byte field index +
