@@ -3,7 +3,11 @@
 # (tests/fuzz/fuzz_fmu.cpp) with libFuzzer (clang from Debian) for a bounded time each, with
 # AddressSanitizer and UndefinedBehaviorSanitizer, and merges what they find into
 # tests/fuzz/corpus/api and tests/fuzz/corpus/fmu (which the test suite replays).
+# With `minimize` instead of a target, it fuzzes nothing and shrinks both corpora to the inputs that
+# add edge coverage (libFuzzer -merge=1 into an empty folder, -use_counters=0: the hit-count buckets
+# a campaign also tells apart would keep about ten times as many inputs for the same edges).
 # usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|both=both]
+#        scripts/fuzz.sh 0 minimize
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -47,7 +51,19 @@ run() {
   ./build-fuzz/$target -merge=1 "$corpus" build-fuzz/corpus_$target 2>>build-fuzz/$target.log
   echo "fuzz: $target $(grep -m1 stat::number_of_executed_units build-fuzz/$target.log | awk '{print $2}') executions in ${seconds} s; corpus now $(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
 }
+# minimize TARGET CORPUS: keep only the inputs of CORPUS that add coverage, in place.
+minimize() {
+  local target=$1 corpus=$2 kept=build-fuzz/minimized_$1
+  local before="$(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
+  rm -rf "$kept"; mkdir -p "$kept"
+  ./build-fuzz/$target -merge=1 -use_counters=0 "$kept" "$corpus" 2>build-fuzz/$target-minimize.log || {
+    tail -20 build-fuzz/$target-minimize.log; echo "fuzz: minimising $corpus FAILED"; exit 1; }
+  rm -f "$corpus"/*
+  cp "$kept"/* "$corpus"/
+  echo "fuzz: $corpus minimised from $before to $(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
+}
 case "$targets" in
+  minimize) minimize fuzz_api tests/fuzz/corpus/api; minimize fuzz_fmu tests/fuzz/corpus/fmu ;;
   api) run fuzz_api tests/fuzz/corpus/api ;;
   fmu) run fuzz_fmu tests/fuzz/corpus/fmu ;;
   *) run fuzz_api tests/fuzz/corpus/api; run fuzz_fmu tests/fuzz/corpus/fmu ;;
