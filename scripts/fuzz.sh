@@ -41,14 +41,14 @@ clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include -Ifmu -I"$fmi_headers
   tests/fuzz/fuzz_fmu.cpp build-fuzz/fmu_objs/*.o build-fuzz/csrc/libstewart.a "$kinsol" -o build-fuzz/fuzz_fmu
 
 # run TARGET CORPUS: fuzz for $seconds from the committed corpus, then keep only the inputs that
-# add coverage to it. Prints the number of executions.
+# add edge coverage to it. Prints the number of executions.
 run() {
   local target=$1 corpus=$2
   mkdir -p build-fuzz/corpus_$target "$corpus"
   ./build-fuzz/$target -max_total_time="$seconds" -max_len=4096 -artifact_prefix=build-fuzz/$target- \
     -print_final_stats=1 build-fuzz/corpus_$target "$corpus" 2>build-fuzz/$target.log || {
     tail -50 build-fuzz/$target.log; echo "fuzz: $target FAILED (artifact in build-fuzz/)"; exit 1; }
-  ./build-fuzz/$target -merge=1 "$corpus" build-fuzz/corpus_$target 2>>build-fuzz/$target.log
+  ./build-fuzz/$target -merge=1 -use_counters=0 "$corpus" build-fuzz/corpus_$target 2>>build-fuzz/$target.log
   echo "fuzz: $target $(grep -m1 stat::number_of_executed_units build-fuzz/$target.log | awk '{print $2}') executions in ${seconds} s; corpus now $(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
 }
 # minimize TARGET CORPUS: keep only the inputs of CORPUS that add coverage, in place.
