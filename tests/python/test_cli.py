@@ -87,7 +87,7 @@ def test_massless_heave_forces_in_closed_form(solve, tmp_path):
     t = data[:, 0]
     z = 0.5 + 0.04 * np.sin(5 * t)
     z_ddot = -0.04 * 25 * np.sin(5 * t)
-    mass = 2700 * math.pi * 0.5 ** 2 * 0.05
+    mass = reference.M_PLATFORM
     for k in LEGS:
         L = column(header, data, f"L{k}")
         np.testing.assert_allclose(column(header, data, f"F{k}"), mass * (9.81 + z_ddot) * L / (6 * z),
@@ -193,7 +193,7 @@ def test_parameters_from_the_command_line(solve, tmp_path):
     header, data = read(out_csv)
     forces = np.array([column(header, data, f"F{k}")[0] for k in LEGS])
     n_z = 0.5 / closed_form_lengths(home)          # vertical component of each leg's axis
-    platform_mass = 2700 * math.pi * 0.5 ** 2 * 0.05  # thesis 4.2.8, model.md section 2
+    platform_mass = reference.M_PLATFORM  # the thesis disc, model.md §2
     np.testing.assert_allclose(forces, (platform_mass + 50) * 9.81 / (6 * n_z), rtol=1e-12)
 
 

@@ -227,7 +227,7 @@ def test_changed_geometry_and_payload_parameters(version):
     try:
         assert u.init(fidelity=1, **params, **dict(zip(POSE, pose))) == OK, u.messages_text()
         np.testing.assert_allclose(u.get_reals(L), closed_form_lengths(
-            pose, 0.6, 0.4, beta, tau), rtol=1e-12)
+            pose, 0.6, 0.4, np.radians(beta), np.radians(tau)), rtol=1e-12)
         m = u.get(["platform_mass"])[0] + 50.0
         fz = u.get_reals(["base_force[3]"])[0]
         np.testing.assert_allclose(fz, -m * 9.81, rtol=1e-10)
