@@ -1,0 +1,357 @@
+// The forward-kinematics C API: input checks, the starts (guess, tracking predictor, last pose,
+// home), the Newton solve, the checks of the pose found, and its rates and accelerations through
+// the leg Jacobian.
+#include "platform/forward_kinematics.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "model.hpp"
+#include "platform/forward_branch.hpp"
+#include "platform/rigid_motion.hpp"
+#include "stewart/stewart_forward.h"
+#include "util/message.hpp"
+
+using stewart::set_message;
+
+namespace {
+
+constexpr double kMinTolerance = 2.5e-16;  // as the inverse side's (one rounding of ~1 m)
+constexpr double kPi = 3.14159265358979323846;
+const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+// STEWART_ERR_ARGUMENT naming e.g. "L_dot3" unless all six values are finite (and, for lengths,
+// positive).
+stewart_status check_values(const double *v, const char *name, bool positive, char *msg,
+                            size_t size) {
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        if (!std::isfinite(v[k]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s%d is %g: it must be finite",
+                               name, k + 1, v[k]);
+        // Squares of lengths above 1e150 overflow; no platform is that large.
+        if (positive && !(v[k] > 0 && v[k] < 1e150))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "%s%d = %g m: an actuator length must be > 0 and < 1e150 m", name,
+                               k + 1, v[k]);
+    }
+    return STEWART_OK;
+}
+
+// Angular velocity (world) to (roll, pitch, yaw) rates: the inverse of E = [Rz Ry e_x, Rz e_y,
+// e_z]. False at pitch = +-90 deg, where roll and yaw rates are not defined.
+bool angle_rates(const double q[6], const Eigen::Vector3d &omega, double out[3]) {
+    const double sp = std::sin(q[4]), cp = std::cos(q[4]);
+    const double sy = std::sin(q[5]), cy = std::cos(q[5]);
+    if (!(std::fabs(cp) > 1e-12)) return false;
+    out[0] = (cy * omega.x() + sy * omega.y()) / cp;
+    out[1] = -sy * omega.x() + cy * omega.y();
+    out[2] = omega.z() + sp * out[0];
+    return true;
+}
+
+// Legs and the scaled leg Jacobian at pose (q, q_dot) with zero pose accelerations.
+stewart_status legs_at(const stewart_model &m, const double q[6], const double q_dot[6],
+                       stewart::LegKinematics &legs, char *msg, size_t size) {
+    stewart_pose pose{};
+    std::memcpy(pose.q, q, sizeof pose.q);
+    if (q_dot) std::memcpy(pose.q_dot, q_dot, sizeof pose.q_dot);
+    return stewart::leg_kinematics(m.geometry, stewart::rigid_motion(pose), legs, msg, size);
+}
+
+// J^-1 v with J = (n_k, (R b_k x n_k)/c) per row: (translation, c * rotation) to pose
+// coordinates (x, y, z, angle rates). False at pitch = +-90 deg.
+bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double q[6],
+                           const stewart::Vector6 &v, double out[6]) {
+    const stewart::Vector6 w = J.inverse_transposed.transpose() * v;
+    for (int i = 0; i < 3; ++i) out[i] = w[i];
+    return angle_rates(q, w.tail<3>() / c, out + 3);
+}
+
+void wrap_angles(double q[6]) {
+    for (int i = 3; i < 6; ++i) q[i] = std::remainder(q[i], 2 * kPi);
+}
+
+const char *branch_reason(int branch) {
+    if (branch & STEWART_BRANCH_BELOW_BASE)
+        return "a leg leaves its base Cardan downward (the platform mirrored below the base)";
+    if (branch & STEWART_BRANCH_PLATFORM_CARDAN)
+        return "a leg reaches its platform Cardan from above the platform";
+    if (branch & STEWART_BRANCH_FLIPPED) return "the platform faces down";
+    return "a platform point jumped farther than the stroke since the last pose";
+}
+
+const char *start_name(int start) {
+    static const char *const names[4] = {"home pose", "guess", "tracking predictor", "last pose"};
+    return names[start];
+}
+
+}  // namespace
+
+extern "C" void stewart_forward_options_default(stewart_forward_options *o) {
+    if (!o) return;
+    stewart_options inverse;
+    stewart_options_default(&inverse);  // the same condition thresholds as the inverse side
+    o->tolerance = inverse.tolerance;
+    o->max_iterations = inverse.max_iterations;
+    o->warn_condition = inverse.warn_condition;
+    o->singular_condition = inverse.singular_condition;
+}
+
+extern "C" stewart_status stewart_forward_options_check(const stewart_forward_options *o,
+                                                        char *msg, size_t size) {
+    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
+    if (!(std::isfinite(o->tolerance) && o->tolerance >= kMinTolerance))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "tolerance = %g m must be finite and >= %g (the rounding of lengths "
+                           "of order 1 m)", o->tolerance, kMinTolerance);
+    if (o->max_iterations < 1)
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "max_iterations = %d must be >= 1",
+                           o->max_iterations);
+    if (!(o->warn_condition >= 1 && o->singular_condition >= o->warn_condition &&
+          std::isfinite(o->singular_condition)))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "condition limits warn = %g, singular = %g must satisfy "
+                           "1 <= warn_condition <= singular_condition < inf",
+                           o->warn_condition, o->singular_condition);
+    return stewart::clear_message(msg, size);
+}
+
+extern "C" void stewart_forward_reset(stewart_data *d) {
+    if (d) d->forward.reset();
+}
+
+extern "C" const char *stewart_forward_status_name(stewart_status s) {
+    return s == STEWART_ERR_OTHER_BRANCH ? "other assembly mode" : stewart_status_name(s);
+}
+
+namespace {
+
+// Everything a converged start yields, before it is accepted.
+struct Found {
+    double q[6];
+    int branch = 0;
+    double jump = 0;
+};
+
+// The start pose of attempt `start`.
+void start_pose(const stewart_model &m, const stewart::ForwardState &f, int start, double time,
+                const double *guess, double q[6]) {
+    switch (start) {
+        case STEWART_START_GUESS:
+            std::memcpy(q, guess, 6 * sizeof(double));
+            return;
+        case STEWART_START_PREDICTOR: {
+            const double dt = time - f.time;
+            for (int i = 0; i < 6; ++i) {
+                double rate = f.q_dot[i];
+                if (!f.has_rates) rate = (f.q[i] - f.previous_q[i]) / (f.time - f.previous_time);
+                q[i] = f.q[i] + dt * rate + (f.has_accels ? 0.5 * dt * dt * f.q_ddot[i] : 0.0);
+            }
+            return;
+        }
+        case STEWART_START_LAST:
+            std::memcpy(q, f.q, 6 * sizeof(double));
+            return;
+        default:
+            for (int i = 0; i < 6; ++i) q[i] = 0;
+            q[2] = m.params.home_height;
+    }
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_data *d,
+                                                const stewart_forward_options *o, double time,
+                                                const double lengths[STEWART_LEGS],
+                                                const double rates[STEWART_LEGS],
+                                                const double accels[STEWART_LEGS],
+                                                const double guess[6],
+                                                stewart_forward_result *result) {
+    if (!m || !d || !o || !lengths || !result || d->model != m) {
+        if (d) set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "NULL argument, or a data block of another model");
+        return STEWART_ERR_ARGUMENT;
+    }
+    char *msg = d->message;
+    const size_t size = sizeof d->message;
+    stewart_status s = stewart_forward_options_check(o, msg, size);
+    if (s != STEWART_OK) return s;
+    if (!std::isfinite(time))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT, "time is %g: it must be finite", time);
+    if ((s = check_values(lengths, "L", true, msg, size)) != STEWART_OK) return s;
+    if (rates && (s = check_values(rates, "L_dot", false, msg, size)) != STEWART_OK) return s;
+    if (accels && !rates)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "the accelerations L_ddot need the rates L_dot (NULL given)");
+    if (accels && (s = check_values(accels, "L_ddot", false, msg, size)) != STEWART_OK) return s;
+    if (guess)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(guess[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "guess %s is %g: it must be finite", kPoseNames[i], guess[i]);
+    stewart::ForwardState &f = d->forward;
+    if (!f.newton || !f.newton->ok())
+        return set_message(msg, size, STEWART_ERR_MEMORY,
+                           "the forward solver of this data block could not be allocated");
+    const stewart::PlatformGeometry &g = m->geometry;
+    if ((s = stewart::check_length_pairs(g, lengths, msg, size)) != STEWART_OK) return s;
+
+    // The starts, in order: the guess alone; or, tracking, the predictor then the last pose; or
+    // home.
+    int starts[2], n_starts = 0;
+    if (guess) {
+        starts[n_starts++] = STEWART_START_GUESS;
+    } else if (f.has_pose) {
+        if (time > f.time && (f.has_rates || (f.has_previous && f.time > f.previous_time)))
+            starts[n_starts++] = STEWART_START_PREDICTOR;
+        starts[n_starts++] = STEWART_START_LAST;
+    } else {
+        starts[n_starts++] = STEWART_START_HOME;
+    }
+    const bool tracking = !guess && f.has_pose;
+
+    Found found, other;
+    bool have_found = false, have_other = false;
+    int other_start = 0, found_start = 0, iterations = 0;
+    stewart_status last_error = STEWART_OK;
+    char error[STEWART_MESSAGE_SIZE] = "";
+    double last_iterate[6] = {0};
+    for (int a = 0; a < n_starts && !have_found; ++a) {
+        Found x;
+        start_pose(*m, f, starts[a], time, guess, x.q);
+        stewart::NewtonStats stats;
+        const stewart_status r = f.newton->solve(g, lengths, o->tolerance, o->max_iterations, x.q,
+                                                 stats, error, sizeof error);
+        iterations += stats.iterations;
+        if (r != STEWART_OK) {
+            last_error = r;
+            std::memcpy(last_iterate, x.q, sizeof last_iterate);
+            continue;
+        }
+        x.branch = stewart::assembly_branch(g, x.q);
+        if (tracking) {
+            x.jump = stewart::largest_point_displacement(g, x.q, f.q);
+            if (x.jump > m->params.stroke_max - m->params.stroke_min)
+                x.branch |= STEWART_BRANCH_JUMP;
+        }
+        if (x.branch == 0) {
+            found = x, found_start = starts[a], have_found = true;
+        } else if (!have_other) {
+            other = x, other_start = starts[a], have_other = true;
+        }
+    }
+    if (!have_found && !have_other) {
+        // Newton creeps toward a singular pose: say so, with the condition number there.
+        stewart::LegKinematics legs;
+        if (legs_at(*m, last_iterate, nullptr, legs, nullptr, 0) == STEWART_OK) {
+            stewart::LegJacobian J;
+            stewart::leg_jacobian(g, legs, J);
+            if (!(J.condition <= o->singular_condition))
+                return set_message(msg, size, STEWART_ERR_SINGULAR,
+                                   "these lengths are at (or next to) a singular pose: leg "
+                                   "Jacobian condition number %g > singular_condition %g at the "
+                                   "last Newton iterate (%s)",
+                                   J.condition, o->singular_condition, error);
+        }
+        return set_message(msg, size, last_error, "%s", error);
+    }
+    const bool on_other = !have_found;
+    Found &x = on_other ? other : found;
+    const int start = on_other ? other_start : found_start;
+
+    // The Jacobian at the solution: condition (the inverse side's number), a last Newton
+    // correction, rates and accelerations.
+    stewart::LegKinematics legs;
+    if ((s = legs_at(*m, x.q, nullptr, legs, msg, size)) != STEWART_OK) return s;
+    stewart::LegJacobian J;
+    stewart::leg_jacobian(g, legs, J);
+    if ((s = stewart::check_condition(J.condition, o->singular_condition, msg, size)) != STEWART_OK)
+        return s;
+    const double c = g.characteristic_length;
+    // Kantorovich: Newton's answer is the unique pose near it only if h = beta^2 gamma |F| <= 1/2
+    // (beta = |J^-1|, gamma the Lipschitz constant of J, about 1/platform radius, |F| up to the
+    // tolerance). Above that the lengths, known to the tolerance, do not fix the pose: at the
+    // thesis' yaw = 90 deg Newton stops 1e-7 rad short, at a condition of only 4e6.
+    const double h = J.condition * J.condition * o->tolerance / c;
+    if (h > 0.5)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "these lengths are at (or next to) a singular pose: leg Jacobian "
+                           "condition number %g, so lengths known to the tolerance %g m do not "
+                           "determine the pose (condition^2 tolerance / platform_radius = %g > "
+                           "0.5)", J.condition, o->tolerance, h);
+    stewart::Vector6 residual;
+    for (int k = 0; k < STEWART_LEGS; ++k) residual[k] = legs.length[k] - lengths[k];
+    // One more Newton correction with the exact Jacobian the rates need anyway: the pose then
+    // sits at rounding level even when KINSOL stopped just under the tolerance.
+    double step[6], polished[6], polished_residual[STEWART_LEGS];
+    if (pose_from_twist_solve(J, c, x.q, residual, step)) {
+        for (int i = 0; i < 6; ++i) polished[i] = x.q[i] - step[i];
+        if (stewart::length_residual(g, lengths, polished, polished_residual) &&
+            Eigen::Map<stewart::Vector6>(polished_residual).cwiseAbs().maxCoeff() <=
+                residual.cwiseAbs().maxCoeff()) {
+            std::memcpy(x.q, polished, sizeof polished);
+            residual = Eigen::Map<stewart::Vector6>(polished_residual);
+        }
+    }
+    if (start == STEWART_START_HOME) wrap_angles(x.q);
+
+    stewart_forward_result out{};
+    std::memcpy(out.pose.q, x.q, sizeof x.q);
+    if (rates) {
+        if (!pose_from_twist_solve(J, c, x.q, Eigen::Map<const stewart::Vector6>(rates),
+                                   out.pose.q_dot))
+            return set_message(msg, size, STEWART_ERR_SINGULAR,
+                               "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
+                               "defined there", x.q[4]);
+    }
+    if (accels) {
+        // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
+        // alone: the leg accelerations at zero pose accelerations.
+        stewart::LegKinematics moving;
+        if ((s = legs_at(*m, x.q, out.pose.q_dot, moving, msg, size)) != STEWART_OK) return s;
+        const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
+        pose_from_twist_solve(J, c, x.q, rhs, out.pose.q_ddot);
+    }
+    const double *groups[3] = {out.pose.q, out.pose.q_dot, out.pose.q_ddot};
+    for (const double *v : groups)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(v[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "the pose found overflows (%s is %g): the inputs are out of "
+                                   "range", kPoseNames[i], v[i]);
+    out.iterations = iterations;
+    out.residual = residual.cwiseAbs().maxCoeff();
+    out.condition = J.condition;
+    out.branch = x.branch;
+    out.jump = x.jump;
+    out.start = start;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (lengths[k] < m->params.stroke_min || lengths[k] > m->params.stroke_max)
+            out.warnings |= STEWART_WARN_STROKE;
+    if (J.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
+    if (on_other) {
+        out.warnings |= STEWART_WARN_OTHER_BRANCH;
+        *result = out;
+        return set_message(msg, size, STEWART_ERR_OTHER_BRANCH,
+                           "the pose found from the %s is on another assembly mode: %s (z = %g "
+                           "m); not taken as the answer", start_name(start),
+                           branch_reason(x.branch), x.q[2]);
+    }
+    *result = out;
+    // The new last pose.
+    if (f.has_pose) {
+        f.has_previous = true;
+        f.previous_time = f.time;
+        std::memcpy(f.previous_q, f.q, sizeof f.q);
+    }
+    if (guess) f.has_previous = false;  // a guess starts a new history
+    f.has_pose = true;
+    f.time = time;
+    f.has_rates = rates != nullptr;
+    f.has_accels = accels != nullptr;
+    std::memcpy(f.q, out.pose.q, sizeof f.q);
+    std::memcpy(f.q_dot, out.pose.q_dot, sizeof f.q_dot);
+    std::memcpy(f.q_ddot, out.pose.q_ddot, sizeof f.q_ddot);
+    msg[0] = '\0';
+    return STEWART_OK;
+}

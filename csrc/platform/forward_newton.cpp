@@ -1,0 +1,274 @@
+#include "platform/forward_newton.hpp"
+
+#include <kinsol/kinsol.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/dense_lu.hpp"
+#include "platform/rigid_motion.hpp"
+#include "util/message.hpp"
+
+namespace stewart {
+
+namespace {
+
+constexpr int kN = STEWART_LEGS;  // six lengths, six pose coordinates
+
+// Legs at one pose: what the residual computes and the Jacobian reuses at the same point.
+struct LegCache {
+    double q[6];
+    bool valid = false;
+    Eigen::Matrix3d rotation;
+    Matrix36 arm, axis;  // R b_k and the unit leg axis n_k, world
+};
+
+void evaluate_legs(const PlatformGeometry &g, const double q[6], LegCache &c, double length[kN]) {
+    std::copy(q, q + 6, c.q);
+    c.valid = true;
+    c.rotation = rotation_from_rpy(q[3], q[4], q[5]);
+    const Eigen::Vector3d p(q[0], q[1], q[2]);
+    c.arm.noalias() = c.rotation * g.platform_points;
+    for (int k = 0; k < kN; ++k) {
+        const Eigen::Vector3d d = p + c.arm.col(k) - g.base_points.col(k);
+        length[k] = d.norm();
+        c.axis.col(k) = d / length[k];
+    }
+}
+
+// Row k of dL/dq: (n_k, (R b_k x n_k)^T E), E mapping (roll, pitch, yaw) rates to the angular
+// velocity: its columns are Rz Ry e_x (= R e_x), Rz e_y and e_z.
+void assemble_jacobian(const LegCache &c, double yaw, double jac[kN * 6]) {
+    const Eigen::Vector3d e_roll = c.rotation.col(0);
+    const Eigen::Vector3d e_pitch(-std::sin(yaw), std::cos(yaw), 0.0);
+    for (int k = 0; k < kN; ++k) {
+        const Eigen::Vector3d n = c.axis.col(k);
+        const Eigen::Vector3d m = c.arm.col(k).cross(n);
+        double *row = jac + 6 * k;
+        row[0] = n[0];
+        row[1] = n[1];
+        row[2] = n[2];
+        row[3] = m.dot(e_roll);
+        row[4] = m.dot(e_pitch);
+        row[5] = m[2];
+    }
+}
+
+}  // namespace
+
+bool length_residual(const PlatformGeometry &g, const double target[kN], const double q[6],
+                     double residual[kN]) {
+    LegCache c;
+    double length[kN];
+    evaluate_legs(g, q, c, length);
+    bool finite = true;
+    for (int k = 0; k < kN; ++k) {
+        residual[k] = length[k] - target[k];
+        finite = finite && std::isfinite(residual[k]) && length[k] > g.min_length;
+    }
+    return finite;
+}
+
+struct ForwardNewton::Impl {
+    SUNContext context = nullptr;
+    N_Vector u = nullptr, scale = nullptr, f = nullptr;
+    SUNMatrix matrix = nullptr;
+    SUNLinearSolver linear = nullptr;
+    void *kinsol = nullptr;
+    char kinsol_message[STEWART_MESSAGE_SIZE] = "";
+    // Per solve: the problem.
+    const PlatformGeometry *geometry = nullptr;
+    const double *target = nullptr;
+    // The last residual evaluated, and the legs there.
+    LegCache cache;
+    double last_residual = 0;
+    int worst_leg = 0;
+    // The Jacobian (row-major) and its LU factors.
+    double jac[kN * 6], lu[kN * 6];
+    int pivot[kN];
+};
+
+namespace {
+
+using Impl = ForwardNewton::Impl;
+
+// F(u) into f; records its max-norm and the worst leg. Non-finite: 1, recoverable (KINSOL then
+// steps shorter).
+double evaluate_residual(Impl &im, const double *u, double *f) {
+    double length[kN];
+    evaluate_legs(*im.geometry, u, im.cache, length);
+    double worst = 0;
+    im.worst_leg = 0;
+    for (int k = 0; k < kN; ++k) {
+        f[k] = length[k] - im.target[k];
+        const double a = std::fabs(f[k]);
+        if (!(a <= worst)) worst = a, im.worst_leg = k;  // a NaN sticks
+        if (!(length[k] > im.geometry->min_length)) worst = INFINITY;  // no leg axis
+    }
+    im.last_residual = std::isfinite(worst) ? worst : INFINITY;
+    return im.last_residual;
+}
+
+int residual_fn(N_Vector u, N_Vector f, void *user) {
+    Impl &im = *static_cast<Impl *>(user);
+    return std::isfinite(evaluate_residual(im, N_VGetArrayPointer(u), N_VGetArrayPointer(f))) ? 0
+                                                                                                : 1;
+}
+
+int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector) {
+    Impl &im = *static_cast<Impl *>(user);
+    const double *ud = N_VGetArrayPointer(u);
+    if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q)) {
+        double length[kN];
+        evaluate_legs(*im.geometry, ud, im.cache, length);
+    }
+    assemble_jacobian(im.cache, ud[5], im.jac);
+    for (int i = 0; i < kN * 6; ++i)
+        if (!std::isfinite(im.jac[i])) return 1;
+    return 0;
+}
+
+// The custom SUNMatrix: a tag only; the values live in Impl::jac.
+SUNMatrix_ID matrix_id(SUNMatrix) { return SUNMATRIX_CUSTOM; }
+int matrix_zero(SUNMatrix) { return 0; }  // every value is overwritten by the Jacobian
+void matrix_destroy(SUNMatrix A) { SUNMatFreeEmpty(A); }
+
+// The custom SUNLinearSolver: 6 x 6 LU with partial pivoting (core/dense_lu).
+SUNLinearSolver_Type solver_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
+SUNLinearSolver_ID solver_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
+int solver_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
+int solver_setup(SUNLinearSolver S, SUNMatrix) {
+    Impl &im = *static_cast<Impl *>(S->content);
+    std::copy(im.jac, im.jac + kN * 6, im.lu);
+    return mbs::lu_factor(im.lu, kN, kN, kN, im.pivot) ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
+}
+int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
+    Impl &im = *static_cast<Impl *>(S->content);
+    double t[kN];
+    std::copy(N_VGetArrayPointer(b), N_VGetArrayPointer(b) + kN, t);
+    mbs::lu_forward(im.lu, kN, kN, kN, im.pivot, t);
+    mbs::lu_backward(im.lu, kN, kN, t, nullptr, N_VGetArrayPointer(x));
+    return SUNLS_SUCCESS;
+}
+sunindextype solver_last_flag(SUNLinearSolver) { return 0; }
+int solver_free(SUNLinearSolver S) {
+    S->content = nullptr;
+    SUNLinSolFreeEmpty(S);
+    return 0;
+}
+
+void error_handler(int code, const char *module, const char *function, char *text, void *user) {
+    Impl &im = *static_cast<Impl *>(user);
+    std::snprintf(im.kinsol_message, sizeof im.kinsol_message, "%s %s (%d): %s", module, function,
+                  code, text);
+}
+
+}  // namespace
+
+ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
+    if (!impl_) return;
+    Impl &im = *impl_;
+    if (SUNContext_Create(nullptr, &im.context) != 0) return;
+    im.u = N_VNew_Serial(kN, im.context);
+    im.scale = N_VNew_Serial(kN, im.context);
+    im.f = N_VNew_Serial(kN, im.context);
+    if (!im.u || !im.scale || !im.f) return;
+    N_VConst(1.0, im.scale);
+    im.matrix = SUNMatNewEmpty(im.context);
+    im.linear = SUNLinSolNewEmpty(im.context);
+    if (!im.matrix || !im.linear) return;
+    im.matrix->content = &im;
+    im.matrix->ops->getid = matrix_id;
+    im.matrix->ops->zero = matrix_zero;
+    im.matrix->ops->destroy = matrix_destroy;
+    im.linear->content = &im;
+    im.linear->ops->gettype = solver_type;
+    im.linear->ops->getid = solver_id;
+    im.linear->ops->initialize = solver_initialize;
+    im.linear->ops->setup = solver_setup;
+    im.linear->ops->solve = solver_solve;
+    im.linear->ops->lastflag = solver_last_flag;
+    im.linear->ops->free = solver_free;
+    im.kinsol = KINCreate(im.context);
+    if (!im.kinsol) return;
+    // Exact Newton: a fresh Jacobian every iteration; no step-size stop (the residual decides).
+    ok_ = KINSetErrHandlerFn(im.kinsol, error_handler, &im) == KIN_SUCCESS &&
+          KINInit(im.kinsol, residual_fn, im.u) == KIN_SUCCESS &&
+          KINSetUserData(im.kinsol, &im) == KIN_SUCCESS &&
+          KINSetLinearSolver(im.kinsol, im.linear, im.matrix) == KINLS_SUCCESS &&
+          KINSetJacFn(im.kinsol, jacobian_fn) == KINLS_SUCCESS &&
+          KINSetMaxSetupCalls(im.kinsol, 1) == KIN_SUCCESS &&
+          KINSetScaledStepTol(im.kinsol, 1e-300) == KIN_SUCCESS;
+}
+
+ForwardNewton::~ForwardNewton() {
+    if (!impl_) return;
+    Impl &im = *impl_;
+    if (im.kinsol) KINFree(&im.kinsol);
+    if (im.linear) SUNLinSolFree(im.linear);
+    if (im.matrix) SUNMatDestroy(im.matrix);
+    if (im.u) N_VDestroy(im.u);
+    if (im.scale) N_VDestroy(im.scale);
+    if (im.f) N_VDestroy(im.f);
+    if (im.context) SUNContext_Free(&im.context);
+    delete impl_;
+}
+
+stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double target[kN],
+                                    double tolerance, int max_iterations, double q[6],
+                                    NewtonStats &stats, char *msg, size_t size) {
+    Impl &im = *impl_;
+    im.geometry = &g;
+    im.target = target;
+    im.cache.valid = false;
+    stats = NewtonStats();
+    int flag;
+    if ((flag = KINSetFuncNormTol(im.kinsol, tolerance)) != KIN_SUCCESS ||
+        (flag = KINSetNumMaxIters(im.kinsol, max_iterations)) != KIN_SUCCESS)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "KINSOL rejected tolerance = %g or max_iterations = %d (flag %d)",
+                           tolerance, max_iterations, flag);
+    double *u = N_VGetArrayPointer(im.u);
+    std::copy(q, q + 6, u);
+    // KINSOL's own first test (the start accepted if its residual is <= 0.01 tolerance), made
+    // here so that a measurement that did not change costs no KINSOL set-up.
+    evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+    long iterations = 0;
+    if (im.last_residual <= 0.01 * tolerance) {
+        flag = KIN_INITIAL_GUESS_OK;
+    } else {
+        im.kinsol_message[0] = '\0';
+        flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
+        const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        if (stats_flag != KIN_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
+        // The residual kept is that of the last point evaluated: make it u's.
+        if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
+            evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+    }
+    stats.iterations = static_cast<int>(iterations);
+    stats.residual = im.last_residual;
+    stats.worst_leg = im.worst_leg;
+    stats.flag = flag;
+    bool finite = std::isfinite(im.last_residual);
+    for (int i = 0; i < 6 && finite; ++i) finite = std::isfinite(u[i]);
+    if (finite) std::copy(u, u + 6, q);
+    if (flag >= 0 && finite && im.last_residual <= tolerance) return STEWART_OK;
+    if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the length Jacobian is singular at a Newton iterate (KINSOL flag %d "
+                           "after %ld iterations)", flag, iterations);
+    return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                       "Newton did not converge: leg %d is still %g m off its measured length "
+                       "after %ld iterations (tolerance %g m; KINSOL flag %d%s%s)",
+                       im.worst_leg + 1, im.last_residual, iterations, tolerance, flag,
+                       im.kinsol_message[0] ? ": " : "", im.kinsol_message);
+}
+
+}  // namespace stewart
