@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/dense_lu.hpp"
 #include "platform/rigid_motion.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
@@ -18,11 +19,30 @@ Matrix36 platform_points_world(const PlatformGeometry &g, const double q[6]) {
 
 }  // namespace
 
-int assembly_branch(const PlatformGeometry &g, const double q[6]) {
+int leg_jacobian_sign(const PlatformGeometry &g, const double q[6]) {
+    const Matrix36 points = platform_points_world(g, q);
+    double rows[STEWART_LEGS * 6];  // row k: (n_k, p_k x n_k), p_k the platform point
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Eigen::Vector3d n = (points.col(k) - g.base_points.col(k)).normalized();
+        const Eigen::Vector3d m = points.col(k).cross(n);
+        for (int i = 0; i < 3; ++i) rows[6 * k + i] = n[i], rows[6 * k + 3 + i] = m[i];
+    }
+    int pivot[STEWART_LEGS];
+    if (!mbs::lu_factor(rows, STEWART_LEGS, 6, 6, pivot)) return 0;
+    int sign = 1;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        if (pivot[k] != k) sign = -sign;
+        if (rows[7 * k] < 0) sign = -sign;
+    }
+    return sign;
+}
+
+int assembly_branch(const PlatformGeometry &g, const double q[6], int working_sign) {
     const Eigen::Matrix3d R = rotation_from_rpy(q[3], q[4], q[5]);
     const Eigen::Vector3d normal = R.col(2);
     const Matrix36 points = platform_points_world(g, q);
     int branch = normal.z() > 0 ? 0 : STEWART_BRANCH_FLIPPED;
+    if (leg_jacobian_sign(g, q) != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d leg = points.col(k) - g.base_points.col(k);
         if (!(leg.z() > 0)) branch |= STEWART_BRANCH_BELOW_BASE;

@@ -6,9 +6,13 @@
 
 namespace stewart {
 
+// Sign (+1, -1, or 0 if singular) of the determinant of the leg Jacobian at pose q.
+int leg_jacobian_sign(const PlatformGeometry &g, const double q[6]);
+
 // STEWART_BRANCH_* bits of the pose q (0: the working mode: every leg leaves its base Cardan
-// upward and reaches its platform Cardan from below, the platform faces up).
-int assembly_branch(const PlatformGeometry &g, const double q[6]);
+// upward and reaches its platform Cardan from below, the platform faces up, and the leg
+// Jacobian's determinant has working_sign, its sign at home).
+int assembly_branch(const PlatformGeometry &g, const double q[6], int working_sign);
 
 // Largest distance a platform attachment point moves between poses a and b [m].
 double largest_point_displacement(const PlatformGeometry &g, const double a[6], const double b[6]);

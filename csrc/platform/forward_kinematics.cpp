@@ -67,16 +67,15 @@ bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double
     return angle_rates(q, w.tail<3>() / c, out + 3);
 }
 
-void wrap_angles(double q[6]) {
-    for (int i = 3; i < 6; ++i) q[i] = std::remainder(q[i], 2 * kPi);
-}
-
 const char *branch_reason(int branch) {
     if (branch & STEWART_BRANCH_BELOW_BASE)
         return "a leg leaves its base Cardan downward (the platform mirrored below the base)";
     if (branch & STEWART_BRANCH_PLATFORM_CARDAN)
         return "a leg reaches its platform Cardan from above the platform";
     if (branch & STEWART_BRANCH_FLIPPED) return "the platform faces down";
+    if (branch & STEWART_BRANCH_SINGULARITY)
+        return "the leg Jacobian's determinant has the other sign than at home (a singular pose "
+               "lies in between)";
     return "a platform point jumped farther than the stroke since the last pose";
 }
 
@@ -196,6 +195,15 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
     const stewart::PlatformGeometry &g = m->geometry;
     if ((s = stewart::check_length_pairs(g, lengths, msg, size)) != STEWART_OK) return s;
 
+    if (f.working_sign == 0) {
+        double home[6];
+        start_pose(*m, f, STEWART_START_HOME, time, guess, home);
+        f.working_sign = stewart::leg_jacobian_sign(g, home);
+        if (f.working_sign == 0)
+            return set_message(msg, size, STEWART_ERR_SINGULAR,
+                               "the leg Jacobian is singular at the home pose: the working "
+                               "assembly mode is not defined");
+    }
     // The starts, in order: the guess alone; or, tracking, the predictor then the last pose; or
     // home.
     int starts[2], n_starts = 0;
@@ -218,7 +226,9 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
     double last_iterate[6] = {0};
     for (int a = 0; a < n_starts && !have_found; ++a) {
         Found x;
-        start_pose(*m, f, starts[a], time, guess, x.q);
+        double start_q[6];
+        start_pose(*m, f, starts[a], time, guess, start_q);
+        std::memcpy(x.q, start_q, sizeof start_q);
         stewart::NewtonStats stats;
         const stewart_status r = f.newton->solve(g, lengths, o->tolerance, o->max_iterations, x.q,
                                                  stats, error, sizeof error);
@@ -228,7 +238,10 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
             std::memcpy(last_iterate, x.q, sizeof last_iterate);
             continue;
         }
-        x.branch = stewart::assembly_branch(g, x.q);
+        // Angles within half a turn of the start's: the same rotation, the continuous angles.
+        for (int i = 3; i < 6; ++i)
+            x.q[i] = start_q[i] + std::remainder(x.q[i] - start_q[i], 2 * kPi);
+        x.branch = stewart::assembly_branch(g, x.q, f.working_sign);
         if (tracking) {
             x.jump = stewart::largest_point_displacement(g, x.q, f.q);
             if (x.jump > m->params.stroke_max - m->params.stroke_min)
@@ -293,7 +306,6 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
             residual = Eigen::Map<stewart::Vector6>(polished_residual);
         }
     }
-    if (start == STEWART_START_HOME) wrap_angles(x.q);
 
     stewart_forward_result out{};
     std::memcpy(out.pose.q, x.q, sizeof x.q);

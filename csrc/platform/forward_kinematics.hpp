@@ -18,6 +18,7 @@ struct ForwardState {
     bool has_previous = false;  // the pose before the last (a secant predictor without rates)
     double previous_time = 0;
     double previous_q[6] = {0};
+    int working_sign = 0;  // sign of the leg Jacobian's determinant at home (0: not yet known)
     // Forgets the history.
     void reset() { has_pose = has_rates = has_accels = has_previous = false; }
 };

@@ -6,9 +6,9 @@
  * 6 x 6 Jacobian. A data block remembers its last pose: a stream of measurements is tracked from
  * it (with a Taylor predictor from its last rates), a first measurement starts from the guess
  * given, else from the home pose. A pose on another assembly mode than the working one (platform
- * below the base, a leg beyond the half-space of one of its Cardans, a jump larger than the
- * stroke allows) is never returned as the answer: the solve fails with
- * STEWART_ERR_OTHER_BRANCH and says which.
+ * below the base, a leg beyond the half-space of one of its Cardans, a singular pose between it
+ * and home, a jump larger than the stroke allows) is never returned as the answer: the solve
+ * fails with STEWART_ERR_OTHER_BRANCH and says which.
  */
 #ifndef STEWART_STEWART_FORWARD_H
 #define STEWART_STEWART_FORWARD_H
@@ -31,8 +31,10 @@ enum {
     STEWART_BRANCH_BELOW_BASE = 1,       /* a leg leaves its base Cardan downward (mirror pose) */
     STEWART_BRANCH_PLATFORM_CARDAN = 2,  /* a leg reaches its platform Cardan from above */
     STEWART_BRANCH_FLIPPED = 4,          /* the platform's normal points down */
-    STEWART_BRANCH_JUMP = 8              /* tracking: a platform point moved farther than the
+    STEWART_BRANCH_JUMP = 8,             /* tracking: a platform point moved farther than the
                                             stroke (stroke_max - stroke_min) since the last pose */
+    STEWART_BRANCH_SINGULARITY = 16      /* the leg Jacobian's determinant has the other sign
+                                            than at home: a singular pose lies in between */
 };
 
 /* Which start the solution was reached from. */
