@@ -6,20 +6,26 @@
 
 namespace stewart {
 
-// Sign (+1, -1, or 0 if singular) of the determinant of the leg Jacobian at pose q.
-int leg_jacobian_sign(const PlatformGeometry &g, const double q[6]);
+// The platform attachment points p + R b_k in the world at pose q.
+Matrix36 platform_points_world(const PlatformGeometry &g, const double q[6]);
 
-// STEWART_BRANCH_* bits of the pose q (0: the working mode: every leg leaves its base Cardan
-// upward and reaches its platform Cardan from below, the platform faces up, and the leg
-// Jacobian's determinant has working_sign, its sign at home).
-int assembly_branch(const PlatformGeometry &g, const double q[6], int working_sign);
+// Sign (+1, -1; 0 if singular) of the determinant of a leg Jacobian (LegJacobian::transposed).
+int jacobian_sign(const Matrix6 &transposed);
 
-// Largest distance a platform attachment point moves between poses a and b [m].
-double largest_point_displacement(const PlatformGeometry &g, const double a[6], const double b[6]);
+// STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points and its leg
+// Jacobian (0: the working mode: every leg leaves its base Cardan upward and reaches its
+// platform Cardan from below, the platform faces up, and the Jacobian's determinant has
+// working_sign, its sign at home).
+int assembly_branch(const PlatformGeometry &g, const Eigen::Matrix3d &R, const Matrix36 &points,
+                    const Matrix6 &jacobian_transposed, int working_sign);
 
-// STEWART_ERR_UNREACHABLE (message names the leg) when two lengths differ by more than any pose
-// allows: d_i - d_j = (a_j - a_i) + R (b_i - b_j), so |L_i - L_j| <= |a_i - a_j| + |b_i - b_j|.
-stewart_status check_length_pairs(const PlatformGeometry &g, const double length[STEWART_LEGS],
+// The bound on |L_i - L_j| for the 15 pairs i < j: d_i - d_j = (a_j - a_i) + R (b_i - b_j), so
+// |L_i - L_j| <= |a_i - a_j| + |b_i - b_j| at every pose.
+void length_pair_bounds(const PlatformGeometry &g, double bound[15]);
+
+// STEWART_ERR_UNREACHABLE (message names the leg, or the pair) when two lengths break their
+// bound.
+stewart_status check_length_pairs(const double bound[15], const double length[STEWART_LEGS],
                                   char *msg, size_t size);
 
 }  // namespace stewart

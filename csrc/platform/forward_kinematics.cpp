@@ -8,6 +8,7 @@
 
 #include "model.hpp"
 #include "platform/forward_branch.hpp"
+#include "platform/forward_newton.hpp"
 #include "platform/rigid_motion.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
@@ -125,11 +126,17 @@ extern "C" const char *stewart_forward_status_name(stewart_status s) {
 
 namespace {
 
-// Everything a converged start yields, before it is accepted.
+// A converged start: the pose and what the checks and the outputs need there.
 struct Found {
     double q[6];
+    int start = 0;
     int branch = 0;
     double jump = 0;
+    Eigen::Matrix3d rotation;
+    stewart::LegKinematics legs;  // arm, axis, length at q
+    stewart::LegJacobian jacobian;
+    stewart::Matrix36 points;
+    stewart::Vector6 residual;
 };
 
 // The start pose of attempt `start`.
@@ -155,6 +162,111 @@ void start_pose(const stewart_model &m, const stewart::ForwardState &f, int star
             for (int i = 0; i < 6; ++i) q[i] = 0;
             q[2] = m.params.home_height;
     }
+}
+
+// What depends on the model only, worked out once per data block: the sign of the leg
+// Jacobian's determinant at home and the bounds on length differences.
+stewart_status prepare(const stewart_model &m, stewart::ForwardState &f, char *msg, size_t size) {
+    if (f.working_sign != 0) return STEWART_OK;
+    double home[6];
+    start_pose(m, f, STEWART_START_HOME, 0, nullptr, home);
+    stewart::LegKinematics legs;
+    stewart_status s = legs_at(m, home, nullptr, legs, msg, size);
+    if (s != STEWART_OK) return s;
+    stewart::LegJacobian J;
+    stewart::leg_jacobian(m.geometry, legs, J);
+    f.working_sign = stewart::jacobian_sign(J.transposed);
+    if (f.working_sign == 0)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the leg Jacobian is singular at the home pose: the working assembly "
+                           "mode is not defined");
+    stewart::length_pair_bounds(m.geometry, f.pair_bound);
+    return STEWART_OK;
+}
+
+// The legs, Jacobian and checks at the Newton solution (the legs at its last iterate):
+// STEWART_ERR_SINGULAR if the pose is singular for the inverse side's threshold or the lengths
+// do not determine it, else OK with the branch bits set.
+stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
+                       const stewart_forward_options &o, const stewart::LegsAt &at,
+                       bool tracking, Found &x, char *msg, size_t size) {
+    const stewart::PlatformGeometry &g = m.geometry;
+    x.rotation = at.rotation;
+    x.legs.arm = at.arm;
+    x.legs.axis = at.axis;
+    x.legs.length = at.length;
+    x.residual = at.residual;
+    stewart::leg_jacobian(g, x.legs, x.jacobian);
+    const double condition = x.jacobian.condition;
+    stewart_status s = stewart::check_condition(condition, o.singular_condition, msg, size);
+    if (s != STEWART_OK) return s;
+    // Kantorovich: Newton's answer is the unique pose near it only if h = beta^2 gamma |F| <=
+    // 1/2 (beta = |J^-1|, gamma the Lipschitz constant of J, about 1/platform radius, |F| up to
+    // the tolerance). Above that, lengths known to the tolerance do not fix the pose: at the
+    // thesis' yaw = 90 deg Newton stops 1e-7 rad short, at a condition of only 4e6.
+    const double h = condition * condition * o.tolerance / g.characteristic_length;
+    if (h > 0.5)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "these lengths are at (or next to) a singular pose: leg Jacobian "
+                           "condition number %g, so lengths known to the tolerance %g m do not "
+                           "determine the pose (condition^2 tolerance / platform_radius = %g > "
+                           "0.5)", condition, o.tolerance, h);
+    x.points = at.arm;
+    x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
+    x.branch = stewart::assembly_branch(g, x.rotation, x.points, x.jacobian.transposed,
+                                        f.working_sign);
+    if (tracking) {
+        x.jump = (x.points - f.points).colwise().norm().maxCoeff();
+        if (x.jump > m.params.stroke_max - m.params.stroke_min) x.branch |= STEWART_BRANCH_JUMP;
+    }
+    return STEWART_OK;
+}
+
+// Rates and accelerations of the pose x through its leg Jacobian; false (message) at pitch =
+// +-90 deg or if anything overflows.
+stewart_status derivatives(const stewart_model &m, const Found &x, const double *rates,
+                           const double *accels, stewart_forward_result &out, char *msg,
+                           size_t size) {
+    const double c = m.geometry.characteristic_length;
+    if (rates &&
+        !pose_from_twist_solve(x.jacobian, c, out.pose.q,
+                               Eigen::Map<const stewart::Vector6>(rates), out.pose.q_dot))
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
+                           "defined there", out.pose.q[4]);
+    if (accels) {
+        // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
+        // alone: the leg accelerations at zero pose accelerations.
+        stewart::LegKinematics moving;
+        stewart_status s = legs_at(m, out.pose.q, out.pose.q_dot, moving, msg, size);
+        if (s != STEWART_OK) return s;
+        const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
+        pose_from_twist_solve(x.jacobian, c, out.pose.q, rhs, out.pose.q_ddot);
+    }
+    const double *groups[3] = {out.pose.q, out.pose.q_dot, out.pose.q_ddot};
+    for (const double *v : groups)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(v[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "the pose found overflows (%s is %g): the inputs are out of "
+                                   "range", kPoseNames[i], v[i]);
+    return STEWART_OK;
+}
+
+// The accepted pose becomes the data block's last pose.
+void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_result &out,
+              double time, bool from_guess, bool rates, bool accels) {
+    f.has_previous = f.has_pose && !from_guess;  // a guess starts a new history
+    f.previous_time = f.time;
+    std::memcpy(f.previous_q, f.q, sizeof f.q);
+    f.has_pose = true;
+    f.time = time;
+    f.has_rates = rates;
+    f.has_accels = accels;
+    std::memcpy(f.q, out.pose.q, sizeof f.q);
+    std::memcpy(f.q_dot, out.pose.q_dot, sizeof f.q_dot);
+    std::memcpy(f.q_ddot, out.pose.q_ddot, sizeof f.q_ddot);
+    f.points = x.points;
 }
 
 }  // namespace
@@ -192,18 +304,10 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
     if (!f.newton || !f.newton->ok())
         return set_message(msg, size, STEWART_ERR_MEMORY,
                            "the forward solver of this data block could not be allocated");
-    const stewart::PlatformGeometry &g = m->geometry;
-    if ((s = stewart::check_length_pairs(g, lengths, msg, size)) != STEWART_OK) return s;
+    if ((s = prepare(*m, f, msg, size)) != STEWART_OK) return s;
+    if ((s = stewart::check_length_pairs(f.pair_bound, lengths, msg, size)) != STEWART_OK)
+        return s;
 
-    if (f.working_sign == 0) {
-        double home[6];
-        start_pose(*m, f, STEWART_START_HOME, time, guess, home);
-        f.working_sign = stewart::leg_jacobian_sign(g, home);
-        if (f.working_sign == 0)
-            return set_message(msg, size, STEWART_ERR_SINGULAR,
-                               "the leg Jacobian is singular at the home pose: the working "
-                               "assembly mode is not defined");
-    }
     // The starts, in order: the guess alone; or, tracking, the predictor then the last pose; or
     // home.
     int starts[2], n_starts = 0;
@@ -218,152 +322,64 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
     }
     const bool tracking = !guess && f.has_pose;
 
-    Found found, other;
-    bool have_found = false, have_other = false;
-    int other_start = 0, found_start = 0, iterations = 0;
+    Found found[2];  // per start; the first on the working mode wins, else the first converged
+    int n_found = 0, chosen = -1, iterations = 0;
     stewart_status last_error = STEWART_OK;
-    char error[STEWART_MESSAGE_SIZE] = "";
-    double last_iterate[6] = {0};
-    for (int a = 0; a < n_starts && !have_found; ++a) {
-        Found x;
+    for (int a = 0; a < n_starts && chosen < 0; ++a) {
+        Found &x = found[n_found];
         double start_q[6];
         start_pose(*m, f, starts[a], time, guess, start_q);
         std::memcpy(x.q, start_q, sizeof start_q);
         stewart::NewtonStats stats;
-        const stewart_status r = f.newton->solve(g, lengths, o->tolerance, o->max_iterations, x.q,
-                                                 stats, error, sizeof error);
+        last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, x.q,
+                                     stats, msg, size);
         iterations += stats.iterations;
-        if (r != STEWART_OK) {
-            last_error = r;
-            std::memcpy(last_iterate, x.q, sizeof last_iterate);
-            continue;
-        }
+        if (last_error == STEWART_OK)
+            last_error = examine(*m, f, *o, f.newton->last(), tracking, x, msg, size);
+        else if (f.newton->last().valid &&  // Newton creeping toward a singular pose: say so
+                 examine(*m, f, *o, f.newton->last(), tracking, x, msg, size) ==
+                     STEWART_ERR_SINGULAR)
+            last_error = STEWART_ERR_SINGULAR;
+        if (last_error != STEWART_OK) continue;
         // Angles within half a turn of the start's: the same rotation, the continuous angles.
         for (int i = 3; i < 6; ++i)
             x.q[i] = start_q[i] + std::remainder(x.q[i] - start_q[i], 2 * kPi);
-        x.branch = stewart::assembly_branch(g, x.q, f.working_sign);
-        if (tracking) {
-            x.jump = stewart::largest_point_displacement(g, x.q, f.q);
-            if (x.jump > m->params.stroke_max - m->params.stroke_min)
-                x.branch |= STEWART_BRANCH_JUMP;
-        }
-        if (x.branch == 0) {
-            found = x, found_start = starts[a], have_found = true;
-        } else if (!have_other) {
-            other = x, other_start = starts[a], have_other = true;
-        }
+        x.start = starts[a];
+        if (x.branch == 0) chosen = n_found;
+        ++n_found;
     }
-    if (!have_found && !have_other) {
-        // Newton creeps toward a singular pose: say so, with the condition number there.
-        stewart::LegKinematics legs;
-        if (legs_at(*m, last_iterate, nullptr, legs, nullptr, 0) == STEWART_OK) {
-            stewart::LegJacobian J;
-            stewart::leg_jacobian(g, legs, J);
-            if (!(J.condition <= o->singular_condition))
-                return set_message(msg, size, STEWART_ERR_SINGULAR,
-                                   "these lengths are at (or next to) a singular pose: leg "
-                                   "Jacobian condition number %g > singular_condition %g at the "
-                                   "last Newton iterate (%s)",
-                                   J.condition, o->singular_condition, error);
-        }
-        return set_message(msg, size, last_error, "%s", error);
-    }
-    const bool on_other = !have_found;
-    Found &x = on_other ? other : found;
-    const int start = on_other ? other_start : found_start;
+    if (n_found == 0) return last_error;  // the message is the last attempt's
+    if (chosen < 0) chosen = 0;
+    Found &x = found[chosen];
 
-    // The Jacobian at the solution: condition (the inverse side's number), a last Newton
-    // correction, rates and accelerations.
-    stewart::LegKinematics legs;
-    if ((s = legs_at(*m, x.q, nullptr, legs, msg, size)) != STEWART_OK) return s;
-    stewart::LegJacobian J;
-    stewart::leg_jacobian(g, legs, J);
-    if ((s = stewart::check_condition(J.condition, o->singular_condition, msg, size)) != STEWART_OK)
-        return s;
-    const double c = g.characteristic_length;
-    // Kantorovich: Newton's answer is the unique pose near it only if h = beta^2 gamma |F| <= 1/2
-    // (beta = |J^-1|, gamma the Lipschitz constant of J, about 1/platform radius, |F| up to the
-    // tolerance). Above that the lengths, known to the tolerance, do not fix the pose: at the
-    // thesis' yaw = 90 deg Newton stops 1e-7 rad short, at a condition of only 4e6.
-    const double h = J.condition * J.condition * o->tolerance / c;
-    if (h > 0.5)
-        return set_message(msg, size, STEWART_ERR_SINGULAR,
-                           "these lengths are at (or next to) a singular pose: leg Jacobian "
-                           "condition number %g, so lengths known to the tolerance %g m do not "
-                           "determine the pose (condition^2 tolerance / platform_radius = %g > "
-                           "0.5)", J.condition, o->tolerance, h);
-    stewart::Vector6 residual;
-    for (int k = 0; k < STEWART_LEGS; ++k) residual[k] = legs.length[k] - lengths[k];
     // One more Newton correction with the exact Jacobian the rates need anyway: the pose then
     // sits at rounding level even when KINSOL stopped just under the tolerance.
-    double step[6], polished[6], polished_residual[STEWART_LEGS];
-    if (pose_from_twist_solve(J, c, x.q, residual, step)) {
-        for (int i = 0; i < 6; ++i) polished[i] = x.q[i] - step[i];
-        if (stewart::length_residual(g, lengths, polished, polished_residual) &&
-            Eigen::Map<stewart::Vector6>(polished_residual).cwiseAbs().maxCoeff() <=
-                residual.cwiseAbs().maxCoeff()) {
-            std::memcpy(x.q, polished, sizeof polished);
-            residual = Eigen::Map<stewart::Vector6>(polished_residual);
-        }
-    }
-
     stewart_forward_result out{};
+    double step[6];
     std::memcpy(out.pose.q, x.q, sizeof x.q);
-    if (rates) {
-        if (!pose_from_twist_solve(J, c, x.q, Eigen::Map<const stewart::Vector6>(rates),
-                                   out.pose.q_dot))
-            return set_message(msg, size, STEWART_ERR_SINGULAR,
-                               "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
-                               "defined there", x.q[4]);
-    }
-    if (accels) {
-        // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
-        // alone: the leg accelerations at zero pose accelerations.
-        stewart::LegKinematics moving;
-        if ((s = legs_at(*m, x.q, out.pose.q_dot, moving, msg, size)) != STEWART_OK) return s;
-        const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
-        pose_from_twist_solve(J, c, x.q, rhs, out.pose.q_ddot);
-    }
-    const double *groups[3] = {out.pose.q, out.pose.q_dot, out.pose.q_ddot};
-    for (const double *v : groups)
-        for (int i = 0; i < 6; ++i)
-            if (!std::isfinite(v[i]))
-                return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                                   "the pose found overflows (%s is %g): the inputs are out of "
-                                   "range", kPoseNames[i], v[i]);
+    if (pose_from_twist_solve(x.jacobian, m->geometry.characteristic_length, x.q, x.residual,
+                              step))
+        for (int i = 0; i < 6; ++i) out.pose.q[i] -= step[i];
+    if ((s = derivatives(*m, x, rates, accels, out, msg, size)) != STEWART_OK) return s;
     out.iterations = iterations;
-    out.residual = residual.cwiseAbs().maxCoeff();
-    out.condition = J.condition;
+    out.residual = x.residual.cwiseAbs().maxCoeff();
+    out.condition = x.jacobian.condition;
     out.branch = x.branch;
     out.jump = x.jump;
-    out.start = start;
+    out.start = x.start;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (lengths[k] < m->params.stroke_min || lengths[k] > m->params.stroke_max)
             out.warnings |= STEWART_WARN_STROKE;
-    if (J.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
-    if (on_other) {
-        out.warnings |= STEWART_WARN_OTHER_BRANCH;
-        *result = out;
+    if (out.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
+    *result = out;
+    if (x.branch != 0) {
+        result->warnings |= STEWART_WARN_OTHER_BRANCH;
         return set_message(msg, size, STEWART_ERR_OTHER_BRANCH,
                            "the pose found from the %s is on another assembly mode: %s (z = %g "
-                           "m); not taken as the answer", start_name(start),
+                           "m); not taken as the answer", start_name(x.start),
                            branch_reason(x.branch), x.q[2]);
     }
-    *result = out;
-    // The new last pose.
-    if (f.has_pose) {
-        f.has_previous = true;
-        f.previous_time = f.time;
-        std::memcpy(f.previous_q, f.q, sizeof f.q);
-    }
-    if (guess) f.has_previous = false;  // a guess starts a new history
-    f.has_pose = true;
-    f.time = time;
-    f.has_rates = rates != nullptr;
-    f.has_accels = accels != nullptr;
-    std::memcpy(f.q, out.pose.q, sizeof f.q);
-    std::memcpy(f.q_dot, out.pose.q_dot, sizeof f.q_dot);
-    std::memcpy(f.q_ddot, out.pose.q_ddot, sizeof f.q_ddot);
+    remember(f, x, out, time, guess != nullptr, rates != nullptr, accels != nullptr);
     msg[0] = '\0';
     return STEWART_OK;
 }

@@ -18,7 +18,11 @@ struct ForwardState {
     bool has_previous = false;  // the pose before the last (a secant predictor without rates)
     double previous_time = 0;
     double previous_q[6] = {0};
-    int working_sign = 0;  // sign of the leg Jacobian's determinant at home (0: not yet known)
+    Matrix36 points;       // the last pose's platform points, world (the jump check)
+    // Of the model, worked out at the first solve: the sign of the leg Jacobian's determinant
+    // at home (0: not yet known) and the bounds on |L_i - L_j|.
+    int working_sign = 0;
+    double pair_bound[15] = {0};
     // Forgets the history.
     void reset() { has_pose = has_rates = has_accels = has_previous = false; }
 };

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/dense_lu.hpp"
+#include "platform/forward_lu.hpp"
 #include "platform/rigid_motion.hpp"
 #include "util/message.hpp"
 
@@ -20,15 +20,8 @@ namespace {
 
 constexpr int kN = STEWART_LEGS;  // six lengths, six pose coordinates
 
-// Legs at one pose: what the residual computes and the Jacobian reuses at the same point.
-struct LegCache {
-    double q[6];
-    bool valid = false;
-    Eigen::Matrix3d rotation;
-    Matrix36 arm, axis;  // R b_k and the unit leg axis n_k, world
-};
-
-void evaluate_legs(const PlatformGeometry &g, const double q[6], LegCache &c, double length[kN]) {
+void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[kN],
+                   LegsAt &c) {
     std::copy(q, q + 6, c.q);
     c.valid = true;
     c.rotation = rotation_from_rpy(q[3], q[4], q[5]);
@@ -36,14 +29,15 @@ void evaluate_legs(const PlatformGeometry &g, const double q[6], LegCache &c, do
     c.arm.noalias() = c.rotation * g.platform_points;
     for (int k = 0; k < kN; ++k) {
         const Eigen::Vector3d d = p + c.arm.col(k) - g.base_points.col(k);
-        length[k] = d.norm();
-        c.axis.col(k) = d / length[k];
+        c.length[k] = d.norm();
+        c.axis.col(k) = d / c.length[k];
+        c.residual[k] = c.length[k] - target[k];
     }
 }
 
 // Row k of dL/dq: (n_k, (R b_k x n_k)^T E), E mapping (roll, pitch, yaw) rates to the angular
 // velocity: its columns are Rz Ry e_x (= R e_x), Rz e_y and e_z.
-void assemble_jacobian(const LegCache &c, double yaw, double jac[kN * 6]) {
+void assemble_jacobian(const LegsAt &c, double yaw, double jac[kN * 6]) {
     const Eigen::Vector3d e_roll = c.rotation.col(0);
     const Eigen::Vector3d e_pitch(-std::sin(yaw), std::cos(yaw), 0.0);
     for (int k = 0; k < kN; ++k) {
@@ -61,19 +55,6 @@ void assemble_jacobian(const LegCache &c, double yaw, double jac[kN * 6]) {
 
 }  // namespace
 
-bool length_residual(const PlatformGeometry &g, const double target[kN], const double q[6],
-                     double residual[kN]) {
-    LegCache c;
-    double length[kN];
-    evaluate_legs(g, q, c, length);
-    bool finite = true;
-    for (int k = 0; k < kN; ++k) {
-        residual[k] = length[k] - target[k];
-        finite = finite && std::isfinite(residual[k]) && length[k] > g.min_length;
-    }
-    return finite;
-}
-
 struct ForwardNewton::Impl {
     SUNContext context = nullptr;
     N_Vector u = nullptr, scale = nullptr, f = nullptr;
@@ -85,11 +66,11 @@ struct ForwardNewton::Impl {
     const PlatformGeometry *geometry = nullptr;
     const double *target = nullptr;
     // The last residual evaluated, and the legs there.
-    LegCache cache;
+    LegsAt cache;
     double last_residual = 0;
     int worst_leg = 0;
     // The Jacobian (row-major) and its LU factors.
-    double jac[kN * 6], lu[kN * 6];
+    double jac[kN * 6], lu[kN * 6];  // row-major
     int pivot[kN];
 };
 
@@ -100,15 +81,16 @@ using Impl = ForwardNewton::Impl;
 // F(u) into f; records its max-norm and the worst leg. Non-finite: 1, recoverable (KINSOL then
 // steps shorter).
 double evaluate_residual(Impl &im, const double *u, double *f) {
-    double length[kN];
-    evaluate_legs(*im.geometry, u, im.cache, length);
+    // KINSOL evaluates its start again: the legs there are known already.
+    if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
+        evaluate_legs(*im.geometry, u, im.target, im.cache);
     double worst = 0;
     im.worst_leg = 0;
     for (int k = 0; k < kN; ++k) {
-        f[k] = length[k] - im.target[k];
+        f[k] = im.cache.residual[k];
         const double a = std::fabs(f[k]);
         if (!(a <= worst)) worst = a, im.worst_leg = k;  // a NaN sticks
-        if (!(length[k] > im.geometry->min_length)) worst = INFINITY;  // no leg axis
+        if (!(im.cache.length[k] > im.geometry->min_length)) worst = INFINITY;  // no leg axis
     }
     im.last_residual = std::isfinite(worst) ? worst : INFINITY;
     return im.last_residual;
@@ -123,10 +105,8 @@ int residual_fn(N_Vector u, N_Vector f, void *user) {
 int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector) {
     Impl &im = *static_cast<Impl *>(user);
     const double *ud = N_VGetArrayPointer(u);
-    if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q)) {
-        double length[kN];
-        evaluate_legs(*im.geometry, ud, im.cache, length);
-    }
+    if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q))
+        evaluate_legs(*im.geometry, ud, im.target, im.cache);
     assemble_jacobian(im.cache, ud[5], im.jac);
     for (int i = 0; i < kN * 6; ++i)
         if (!std::isfinite(im.jac[i])) return 1;
@@ -138,21 +118,20 @@ SUNMatrix_ID matrix_id(SUNMatrix) { return SUNMATRIX_CUSTOM; }
 int matrix_zero(SUNMatrix) { return 0; }  // every value is overwritten by the Jacobian
 void matrix_destroy(SUNMatrix A) { SUNMatFreeEmpty(A); }
 
-// The custom SUNLinearSolver: 6 x 6 LU with partial pivoting (core/dense_lu).
+// The custom SUNLinearSolver: 6 x 6 LU with partial pivoting.
 SUNLinearSolver_Type solver_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
 SUNLinearSolver_ID solver_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
 int solver_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
 int solver_setup(SUNLinearSolver S, SUNMatrix) {
     Impl &im = *static_cast<Impl *>(S->content);
     std::copy(im.jac, im.jac + kN * 6, im.lu);
-    return mbs::lu_factor(im.lu, kN, kN, kN, im.pivot) ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
+    return lu6_factor(im.lu, im.pivot) ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
 }
 int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
     Impl &im = *static_cast<Impl *>(S->content);
-    double t[kN];
-    std::copy(N_VGetArrayPointer(b), N_VGetArrayPointer(b) + kN, t);
-    mbs::lu_forward(im.lu, kN, kN, kN, im.pivot, t);
-    mbs::lu_backward(im.lu, kN, kN, t, nullptr, N_VGetArrayPointer(x));
+    double *xd = N_VGetArrayPointer(x);
+    std::copy(N_VGetArrayPointer(b), N_VGetArrayPointer(b) + kN, xd);
+    lu6_solve(im.lu, im.pivot, xd);
     return SUNLS_SUCCESS;
 }
 sunindextype solver_last_flag(SUNLinearSolver) { return 0; }
@@ -205,6 +184,8 @@ ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
           KINSetMaxSetupCalls(im.kinsol, 1) == KIN_SUCCESS &&
           KINSetScaledStepTol(im.kinsol, 1e-300) == KIN_SUCCESS;
 }
+
+const LegsAt &ForwardNewton::last() const { return impl_->cache; }
 
 ForwardNewton::~ForwardNewton() {
     if (!impl_) return;

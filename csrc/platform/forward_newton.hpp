@@ -7,6 +7,16 @@
 
 namespace stewart {
 
+// The legs at one pose: what the residual computes and the Jacobian (and the caller, at the
+// solution) reuse.
+struct LegsAt {
+    bool valid = false;
+    double q[6];
+    Eigen::Matrix3d rotation;
+    Matrix36 arm, axis;  // R b_k and the unit leg axis n_k, world
+    Vector6 length, residual;
+};
+
 struct NewtonStats {
     int iterations = 0;     // KINSOL nonlinear iterations
     double residual = 0;    // max-norm of L(q) - L_measured at the last iterate [m]
@@ -30,16 +40,14 @@ public:
                          double tolerance, int max_iterations, double q[6], NewtonStats &stats,
                          char *msg, size_t size);
 
+    // The legs at the last iterate of the last solve.
+    const LegsAt &last() const;
+
     struct Impl;
 
 private:
     Impl *impl_ = nullptr;
     bool ok_ = false;
 };
-
-// L(q) - target for the pose q; false if some leg length is not finite. Shared by the Newton
-// residual and the checks around it.
-bool length_residual(const PlatformGeometry &g, const double target[STEWART_LEGS],
-                     const double q[6], double residual[STEWART_LEGS]);
 
 }  // namespace stewart
