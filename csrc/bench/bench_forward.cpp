@@ -3,11 +3,16 @@
 // stroke workspace, for the library's solver (KINSOL, analytic Jacobian, predictor) and for a
 // plain hand-written Newton with a finite-difference Jacobian warm-started from the last pose
 // (what most open-source forward kinematics does). Also counts wrong answers (pose off the
-// closed-form truth by more than 1e-9). Prints one table and writes it to argv[1] if given.
+// closed-form truth by more than 1e-9). Prints one table and writes it to argv[1] if given
+// (argv[2]: tracking solves, 1e6 by default).
+// `bench-forward --map MAP.csv` instead writes the cold-start convergence map over three slices
+// of the workspace through home (scripts/forward_convergence.py plots it).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -249,6 +254,59 @@ std::string line(const char *name, const Stats &s) {
     return text;
 }
 
+// One cold start from home per grid point of three slices through home (x-y, roll-pitch,
+// yaw-z): the outcome against the pose the lengths came from.
+int write_map(const stewart_model *m, stewart_data *d, const char *path) {
+    FILE *out = std::fopen(path, "w");
+    if (!out) return 1;
+    std::fprintf(out, "slice,u,v,inside_stroke,condition,truth_branch,status,iterations,branch,error\n");
+    const stewart_params *p = stewart_model_params(m);
+    stewart_options inverse;
+    stewart_options_default(&inverse);
+    stewart_forward_options o;
+    stewart_forward_options_default(&o);
+    struct Slice { const char *name; int u, v; double u0, u1, v0, v1; };
+    const Slice slices[3] = {{"x-y", 0, 1, -0.4, 0.4, -0.4, 0.4},
+                             {"roll-pitch", 3, 4, -0.8, 0.8, -0.8, 0.8},
+                             {"yaw-z", 5, 2, -1.8, 1.8, 0.1, 0.9}};
+    const int n = 81;
+    for (const Slice &sl : slices)
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                stewart_pose pose{};
+                pose.q[2] = p->home_height;
+                pose.q[sl.u] = sl.u0 + (sl.u1 - sl.u0) * i / (n - 1);
+                pose.q[sl.v] = sl.v0 + (sl.v1 - sl.v0) * j / (n - 1);
+                stewart_output legs;
+                const stewart_status inv = stewart_solve(m, d, &inverse, &pose, &legs);
+                bool inside = inv == STEWART_OK;
+                for (int k = 0; k < 6 && inside; ++k)
+                    inside = legs.length[k] >= p->stroke_min && legs.length[k] <= p->stroke_max;
+                stewart_forward_result r{};
+                stewart_status s = STEWART_ERR_SINGULAR;
+                if (inv == STEWART_OK) {
+                    stewart_forward_reset(d);
+                    s = stewart_forward_solve(m, d, &o, 0, legs.length, nullptr, nullptr, nullptr,
+                                              &r);
+                }
+                // The branch of the pose the lengths came from: solved from itself.
+                stewart_forward_result self{};
+                int truth_branch = -1;
+                if (inv == STEWART_OK) {
+                    const stewart_status t = stewart_forward_solve(m, d, &o, 0, legs.length, nullptr,
+                                                                   nullptr, pose.q, &self);
+                    if (t == STEWART_OK || t == STEWART_ERR_OTHER_BRANCH) truth_branch = self.branch;
+                }
+                double error = 0;
+                for (int c = 0; c < 6; ++c) error = std::max(error, std::fabs(r.pose.q[c] - pose.q[c]));
+                std::fprintf(out, "%s,%.6g,%.6g,%d,%.6g,%d,%d,%d,%d,%.3g\n", sl.name, pose.q[sl.u],
+                             pose.q[sl.v], inside ? 1 : 0, inv == STEWART_OK ? legs.condition : 0,
+                             truth_branch, static_cast<int>(s), r.iterations, r.branch,
+                             s == STEWART_OK || s == STEWART_ERR_OTHER_BRANCH ? error : -1.0);
+            }
+    return std::fclose(out) == 0 ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -260,6 +318,12 @@ int main(int argc, char **argv) {
     if (!d) {
         std::fprintf(stderr, "bench-forward: %s\n", msg);
         return 1;
+    }
+    if (argc > 2 && !std::strcmp(argv[1], "--map")) {
+        const int status = write_map(m, d, argv[2]);
+        stewart_data_free(d);
+        stewart_model_free(m);
+        return status;
     }
     Geometry g;
     for (int k = 0; k < 6; ++k) {
