@@ -106,15 +106,16 @@ int baseline_newton(const Geometry &g, const double target[6], double q[6], doub
 }
 
 // ---- the samples ---------------------------------------------------------------------------
-std::vector<Sample> combined_cue(const stewart_model *m, stewart_data *d) {
+// Samples first .. first + count - 1 of the combined cue at 1 kHz (continuous over chunks).
+std::vector<Sample> combined_cue(const stewart_model *m, stewart_data *d, long first, int count) {
     stewart_options o;
     stewart_options_default(&o);
     o.fidelity = STEWART_KINEMATIC;
     const double amp[6] = {0.05, 0.04, 0.03, 0.10, 0.08, 0.15},
                  w[6] = {3.0, 2.0, 4.0, 2.5, 3.5, 1.5}, ph[6] = {0.1, 0.7, 0.3, 1.1, 0.4, 0.9};
     std::vector<Sample> out;
-    for (int i = 0; i <= 12000; ++i) {
-        const double t = 1e-3 * i;
+    for (long i = first; i < first + count; ++i) {
+        const double t = 1e-3 * static_cast<double>(i);
         stewart_pose p{};
         for (int j = 0; j < 6; ++j) {
             p.q[j] = (j == 2 ? 0.5 : 0.0) + amp[j] * std::sin(w[j] * t + ph[j]);
@@ -174,28 +175,31 @@ double micros(Clock::time_point a, Clock::time_point b) {
 }
 
 // ---- the runs ------------------------------------------------------------------------------
-Stats ours_tracking(const stewart_model *m, stewart_data *d, const std::vector<Sample> &cue,
-                    long solves) {
+constexpr int kChunk = 12000;  // samples generated (untimed) at a time
+
+Stats ours_tracking(const stewart_model *m, stewart_data *d, long solves) {
     stewart_forward_options o;
     stewart_forward_options_default(&o);
     Stats st;
     stewart_forward_result r;
-    double t = 0;
     stewart_forward_reset(d);
-    while (static_cast<long>(st.us.size()) < solves)
-        for (size_t i = 0; i < cue.size() && static_cast<long>(st.us.size()) < solves; ++i) {
+    for (long first = 0; first <= solves; first += kChunk) {
+        const std::vector<Sample> cue = combined_cue(m, d, first, kChunk);
+        for (int i = 0; i < kChunk; ++i) {
             const Sample &s = cue[i];
+            const double t = 1e-3 * static_cast<double>(first + i);
             const auto a = Clock::now();
             const stewart_status status =
                 stewart_forward_solve(m, d, &o, t, s.length, s.rate, s.accel, nullptr, &r);
             const auto b = Clock::now();
-            t += 1e-3;
-            if (t < 1.5e-3) continue;  // the very first solve is a cold start
+            if (first + i == 0) continue;  // the very first solve is a cold start
+            if (static_cast<long>(st.us.size()) == solves) break;
             st.us.push_back(micros(a, b));
             st.iterations.push_back(r.iterations);
             if (status != STEWART_OK) ++st.failed;
             else if (wrong(r.pose.q, s.truth)) ++st.wrong;
         }
+    }
     return st;
 }
 
@@ -218,28 +222,23 @@ Stats ours_cold(const stewart_model *m, stewart_data *d, const std::vector<Sampl
     return st;
 }
 
-Stats baseline_run(const Geometry &g, const std::vector<Sample> &samples, bool tracking,
-                   double home_z, long solves) {
-    Stats st;
-    double q[6] = {0, 0, home_z, 0, 0, 0};
-    bool first = true;
-    while (static_cast<long>(st.us.size()) < solves)
-        for (const Sample &s : samples) {
-            if (static_cast<long>(st.us.size()) >= solves) break;
-            if (!tracking || first) std::fill(q, q + 6, 0.0), q[2] = home_z;
-            const auto a = Clock::now();
-            const int it = baseline_newton(g, s.length, q, 1e-12);
-            const auto b = Clock::now();
-            if (tracking && first) {
-                first = false;
-                continue;
-            }
-            st.us.push_back(micros(a, b));
-            st.iterations.push_back(it);
-            if (it < 0) ++st.failed, std::fill(q, q + 6, 0.0), q[2] = home_z;
-            else if (wrong(q, s.truth)) ++st.wrong;
+// The baseline over samples: tracking (warm start from its last pose) or cold (from home).
+void baseline_run(const Geometry &g, const std::vector<Sample> &samples, bool tracking,
+                  double home_z, double q[6], bool &first, Stats &st) {
+    for (const Sample &s : samples) {
+        if (!tracking || first) std::fill(q, q + 6, 0.0), q[2] = home_z;
+        const auto a = Clock::now();
+        const int it = baseline_newton(g, s.length, q, 1e-12);
+        const auto b = Clock::now();
+        if (tracking && first) {
+            first = false;
+            continue;
         }
-    return st;
+        st.us.push_back(micros(a, b));
+        st.iterations.push_back(it);
+        if (it < 0) ++st.failed, std::fill(q, q + 6, 0.0), q[2] = home_z;
+        else if (wrong(q, s.truth)) ++st.wrong;
+    }
 }
 
 std::string line(const char *name, const Stats &s) {
@@ -335,13 +334,16 @@ int main(int argc, char **argv) {
         g.plate[k][2] = 0;
     }
     const long tracking_solves = argc > 2 ? std::atol(argv[2]) : 1000000;
-    const std::vector<Sample> cue = combined_cue(m, d);
     const std::vector<Sample> poses = workspace(m, d, 20000);
 
-    const Stats ot = ours_tracking(m, d, cue, tracking_solves);
+    const Stats ot = ours_tracking(m, d, tracking_solves);
     const Stats oc = ours_cold(m, d, poses);
-    const Stats bt = baseline_run(g, cue, true, params.home_height, 120000);
-    const Stats bc = baseline_run(g, poses, false, params.home_height, 20000);
+    Stats bt, bc;
+    double q[6];
+    bool first = true;
+    for (long start = 0; start < 10 * kChunk; start += kChunk)
+        baseline_run(g, combined_cue(m, d, start, kChunk), true, params.home_height, q, first, bt);
+    baseline_run(g, poses, false, params.home_height, q, first, bc);
 
     std::string report =
         "forward kinematics, thesis platform, tolerance 1e-12 m (max-norm of the length "
