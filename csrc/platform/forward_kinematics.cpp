@@ -203,7 +203,7 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
     // Kantorovich: Newton's answer is the unique pose near it only if h = beta^2 gamma |F| <=
     // 1/2 (beta = |J^-1|, gamma the Lipschitz constant of J, about 1/platform radius, |F| up to
     // the tolerance). Above that, lengths known to the tolerance do not fix the pose: at the
-    // thesis' yaw = 90 deg Newton stops 1e-7 rad short, at a condition of only 4e6.
+    // thesis' yaw = 90 deg Newton stops 5.7e-7 rad short, at a condition of only 4e6.
     const double h = condition * condition * o.tolerance / g.characteristic_length;
     if (h > 0.5)
         return set_message(msg, size, STEWART_ERR_SINGULAR,
