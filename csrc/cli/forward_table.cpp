@@ -1,11 +1,12 @@
 #include "cli/forward_table.hpp"
 
+#include "cli/pose_table.hpp"
+
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 namespace stewart {
@@ -14,17 +15,6 @@ namespace {
 
 const char *const kGroups[3] = {"L", "L_dot", "L_ddot"};
 const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
-
-std::vector<std::string> cells_of(const std::string &line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) {
-        const size_t b = cell.find_first_not_of(" \t\r"), e = cell.find_last_not_of(" \t\r");
-        out.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
-    }
-    return out;
-}
 
 struct Row {
     int line;
@@ -46,7 +36,7 @@ std::string read_table(const std::string &path, Table &table) {
     if (!in) return "cannot open " + path;
     std::string line;
     if (!std::getline(in, line)) return path + " is empty: expected the header t,L1,..,L6";
-    const std::vector<std::string> header = cells_of(line);
+    const std::vector<std::string> header = csv_cells(line);
     int col_t = -1, col[3][6], found[3] = {0, 0, 0};
     for (int g = 0; g < 3; ++g)
         for (int k = 0; k < 6; ++k) col[g][k] = -1;
@@ -71,7 +61,7 @@ std::string read_table(const std::string &path, Table &table) {
     while (std::getline(in, line)) {
         ++line_no;
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        const std::vector<std::string> cells = cells_of(line);
+        const std::vector<std::string> cells = csv_cells(line);
         if (cells.size() != header.size())
             return where(path, line_no) + ": " + std::to_string(cells.size()) + " values for " +
                    std::to_string(header.size()) + " columns";

@@ -17,7 +17,6 @@ using stewart::set_message;
 
 namespace {
 
-constexpr double kMinTolerance = 2.5e-16;  // as the inverse side's (one rounding of ~1 m)
 constexpr double kPi = 3.14159265358979323846;
 const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
@@ -100,20 +99,14 @@ extern "C" void stewart_forward_options_default(stewart_forward_options *o) {
 extern "C" stewart_status stewart_forward_options_check(const stewart_forward_options *o,
                                                         char *msg, size_t size) {
     if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    if (!(std::isfinite(o->tolerance) && o->tolerance >= kMinTolerance))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "tolerance = %g m must be finite and >= %g (the rounding of lengths "
-                           "of order 1 m)", o->tolerance, kMinTolerance);
-    if (o->max_iterations < 1)
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "max_iterations = %d must be >= 1",
-                           o->max_iterations);
-    if (!(o->warn_condition >= 1 && o->singular_condition >= o->warn_condition &&
-          std::isfinite(o->singular_condition)))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "condition limits warn = %g, singular = %g must satisfy "
-                           "1 <= warn_condition <= singular_condition < inf",
-                           o->warn_condition, o->singular_condition);
-    return stewart::clear_message(msg, size);
+    // The same fields, the same limits and messages as the inverse side's options.
+    stewart_options inverse;
+    stewart_options_default(&inverse);
+    inverse.tolerance = o->tolerance;
+    inverse.max_iterations = o->max_iterations;
+    inverse.warn_condition = o->warn_condition;
+    inverse.singular_condition = o->singular_condition;
+    return stewart_options_check(&inverse, msg, size);
 }
 
 extern "C" void stewart_forward_reset(stewart_data *d) {

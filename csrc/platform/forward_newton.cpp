@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/kinsol_custom.hpp"
 #include "platform/forward_lu.hpp"
 #include "platform/rigid_motion.hpp"
 #include "util/message.hpp"
@@ -113,15 +114,7 @@ int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector)
     return 0;
 }
 
-// The custom SUNMatrix: a tag only; the values live in Impl::jac.
-SUNMatrix_ID matrix_id(SUNMatrix) { return SUNMATRIX_CUSTOM; }
-int matrix_zero(SUNMatrix) { return 0; }  // every value is overwritten by the Jacobian
-void matrix_destroy(SUNMatrix A) { SUNMatFreeEmpty(A); }
-
-// The custom SUNLinearSolver: 6 x 6 LU with partial pivoting.
-SUNLinearSolver_Type solver_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-SUNLinearSolver_ID solver_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
-int solver_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
+// The custom linear solver (core/kinsol_custom): 6 x 6 LU with partial pivoting.
 int solver_setup(SUNLinearSolver S, SUNMatrix) {
     Impl &im = *static_cast<Impl *>(S->content);
     std::copy(im.jac, im.jac + kN * 6, im.lu);
@@ -134,19 +127,6 @@ int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype)
     lu6_solve(im.lu, im.pivot, xd);
     return SUNLS_SUCCESS;
 }
-sunindextype solver_last_flag(SUNLinearSolver) { return 0; }
-int solver_free(SUNLinearSolver S) {
-    S->content = nullptr;
-    SUNLinSolFreeEmpty(S);
-    return 0;
-}
-
-void error_handler(int code, const char *module, const char *function, char *text, void *user) {
-    Impl &im = *static_cast<Impl *>(user);
-    std::snprintf(im.kinsol_message, sizeof im.kinsol_message, "%s %s (%d): %s", module, function,
-                  code, text);
-}
-
 }  // namespace
 
 ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
@@ -158,25 +138,13 @@ ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
     im.f = N_VNew_Serial(kN, im.context);
     if (!im.u || !im.scale || !im.f) return;
     N_VConst(1.0, im.scale);
-    im.matrix = SUNMatNewEmpty(im.context);
-    im.linear = SUNLinSolNewEmpty(im.context);
-    if (!im.matrix || !im.linear) return;
-    im.matrix->content = &im;
-    im.matrix->ops->getid = matrix_id;
-    im.matrix->ops->zero = matrix_zero;
-    im.matrix->ops->destroy = matrix_destroy;
-    im.linear->content = &im;
-    im.linear->ops->gettype = solver_type;
-    im.linear->ops->getid = solver_id;
-    im.linear->ops->initialize = solver_initialize;
-    im.linear->ops->setup = solver_setup;
-    im.linear->ops->solve = solver_solve;
-    im.linear->ops->lastflag = solver_last_flag;
-    im.linear->ops->free = solver_free;
+    if (!mbs::make_custom_linear_solver(im.context, &im, solver_setup, solver_solve, im.matrix,
+                                        im.linear))
+        return;
     im.kinsol = KINCreate(im.context);
     if (!im.kinsol) return;
     // Exact Newton: a fresh Jacobian every iteration; no step-size stop (the residual decides).
-    ok_ = KINSetErrHandlerFn(im.kinsol, error_handler, &im) == KIN_SUCCESS &&
+    ok_ = KINSetErrHandlerFn(im.kinsol, mbs::keep_kinsol_message, im.kinsol_message) == KIN_SUCCESS &&
           KINInit(im.kinsol, residual_fn, im.u) == KIN_SUCCESS &&
           KINSetUserData(im.kinsol, &im) == KIN_SUCCESS &&
           KINSetLinearSolver(im.kinsol, im.linear, im.matrix) == KINLS_SUCCESS &&
