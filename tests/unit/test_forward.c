@@ -175,6 +175,27 @@ static void test_mirror_pose_is_another_branch_never_returned_from_home(void) {
     }
 }
 
+/* Tracking: lengths whose pose lies farther from the last pose than the stroke allows in one
+ * sample are reported as a jump, not taken; the history stays, a cold start takes them. */
+static void test_a_jump_larger_than_the_stroke_is_reported(void) {
+    stewart_pose near = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    stewart_pose far = {{0.15, -0.1, 0.45, 0.1, 0, 0.3}, {0}, {0}};
+    const stewart_output near_legs = solve_ok(model, data, STEWART_KINEMATIC, &near);
+    const stewart_output far_legs = solve_ok(model, data, STEWART_KINEMATIC, &far);
+    stewart_forward_reset(data);
+    stewart_forward_result r;
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&near_legs, 0, 0, NULL, &r));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_OTHER_BRANCH, forward(&far_legs, 1e-3, 0, NULL, &r));
+    TEST_ASSERT_EQUAL_INT(STEWART_BRANCH_JUMP, r.branch);
+    TEST_ASSERT_TRUE(r.jump > params.stroke_max - params.stroke_min);
+    check_round_trip(&r, &far, 0); /* the pose found is shown, for inspection */
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&near_legs, 2e-3, 0, NULL, &r));
+    TEST_ASSERT_EQUAL_INT(STEWART_START_LAST, r.start); /* still tracking from `near` */
+    stewart_forward_reset(data);
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&far_legs, 3e-3, 0, NULL, &r));
+    check_round_trip(&r, &far, 0);
+}
+
 /* The thesis geometry is singular at yaw = 90 deg: warning on the way, error there, and the
  * next good measurement tracks again. */
 static void test_singular_pose_fails_and_the_next_measurement_recovers(void) {
@@ -351,6 +372,7 @@ int main(void) {
     RUN_TEST(test_tracking_the_combined_cue);
     RUN_TEST(test_tracking_the_thesis_manoeuvres);
     RUN_TEST(test_mirror_pose_is_another_branch_never_returned_from_home);
+    RUN_TEST(test_a_jump_larger_than_the_stroke_is_reported);
     RUN_TEST(test_singular_pose_fails_and_the_next_measurement_recovers);
     RUN_TEST(test_lengths_no_pose_has_are_an_error_naming_the_leg);
     RUN_TEST(test_lengths_outside_the_stroke_are_solved_with_the_warning);
