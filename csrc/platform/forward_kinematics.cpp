@@ -49,7 +49,7 @@ bool angle_rates(const double q[6], const Eigen::Vector3d &omega, double out[3])
     return true;
 }
 
-// Legs and the scaled leg Jacobian at pose (q, q_dot) with zero pose accelerations.
+// The inverse side's leg kinematics at pose (q, q_dot) with zero pose accelerations.
 stewart_status legs_at(const stewart_model &m, const double q[6], const double q_dot[6],
                        stewart::LegKinematics &legs, char *msg, size_t size) {
     stewart_pose pose{};
@@ -329,7 +329,7 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
         iterations += stats.iterations;
         if (last_error == STEWART_OK)
             last_error = examine(*m, f, *o, f.newton->last(), tracking, x, msg, size);
-        else if (f.newton->last().valid &&  // Newton creeping toward a singular pose: say so
+        else if (std::isfinite(stats.residual) &&  // Newton creeping toward a singular pose
                  examine(*m, f, *o, f.newton->last(), tracking, x, msg, size) ==
                      STEWART_ERR_SINGULAR)
             last_error = STEWART_ERR_SINGULAR;
