@@ -27,10 +27,12 @@ struct Table {
     std::vector<Row> rows;
 };
 
+// "IN.csv line 7", for messages.
 std::string where(const std::string &path, int line) {
     return path + " line " + std::to_string(line);
 }
 
+// Reads and checks the whole table; "" or a message naming the line and the leg.
 std::string read_table(const std::string &path, Table &table) {
     std::ifstream in(path);
     if (!in) return "cannot open " + path;
@@ -87,6 +89,7 @@ std::string read_table(const std::string &path, Table &table) {
     return "";
 }
 
+// The output header: the pose, the derivatives given, the statistics.
 void write_header(FILE *out, const Table &table) {
     std::fprintf(out, "t");
     const char *suffix[3] = {"", "_dot", "_ddot"};
@@ -95,6 +98,7 @@ void write_header(FILE *out, const Table &table) {
     std::fprintf(out, ",iterations,residual,condition\n");
 }
 
+// One output row, every digit kept.
 void write_row(FILE *out, const Table &table, double t, const stewart_forward_result &r) {
     std::fprintf(out, "%.17g", t);
     const double *groups[3] = {r.pose.q, r.pose.q_dot, r.pose.q_ddot};

@@ -67,6 +67,7 @@ bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double
     return angle_rates(q, w.tail<3>() / c, out + 3);
 }
 
+// The first reason in the STEWART_BRANCH_* bits, as a sentence.
 const char *branch_reason(int branch) {
     if (branch & STEWART_BRANCH_BELOW_BASE)
         return "a leg leaves its base Cardan downward (the platform mirrored below the base)";
@@ -79,6 +80,7 @@ const char *branch_reason(int branch) {
     return "a platform point jumped farther than the stroke since the last pose";
 }
 
+// A STEWART_START_* for messages.
 const char *start_name(int start) {
     static const char *const names[4] = {"home pose", "guess", "tracking predictor", "last pose"};
     return names[start];

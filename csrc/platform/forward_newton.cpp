@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "core/kinsol_custom.hpp"
 #include "platform/forward_lu.hpp"
@@ -21,6 +20,7 @@ namespace {
 
 constexpr int kN = STEWART_LEGS;  // six lengths, six pose coordinates
 
+// The legs at pose q and the residual L(q) - target, into c.
 void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[kN],
                    LegsAt &c) {
     std::copy(q, q + 6, c.q);
@@ -70,8 +70,8 @@ struct ForwardNewton::Impl {
     LegsAt cache;
     double last_residual = 0;
     int worst_leg = 0;
-    // The Jacobian (row-major) and its LU factors.
-    double jac[kN * 6], lu[kN * 6];  // row-major
+    // The Jacobian and its LU factors, row-major.
+    double jac[kN * 6], lu[kN * 6];
     int pivot[kN];
 };
 
@@ -79,8 +79,7 @@ namespace {
 
 using Impl = ForwardNewton::Impl;
 
-// F(u) into f; records its max-norm and the worst leg. Non-finite: 1, recoverable (KINSOL then
-// steps shorter).
+// F(u) into f; returns its max-norm (INFINITY if not finite) and records the worst leg.
 double evaluate_residual(Impl &im, const double *u, double *f) {
     // KINSOL evaluates its start again: the legs there are known already.
     if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
@@ -89,20 +88,25 @@ double evaluate_residual(Impl &im, const double *u, double *f) {
     im.worst_leg = 0;
     for (int k = 0; k < kN; ++k) {
         f[k] = im.cache.residual[k];
-        const double a = std::fabs(f[k]);
-        if (!(a <= worst)) worst = a, im.worst_leg = k;  // a NaN sticks
-        if (!(im.cache.length[k] > im.geometry->min_length)) worst = INFINITY;  // no leg axis
+        if (worst == INFINITY) continue;
+        // A leg of (nearly) zero length has no axis: no Jacobian there.
+        if (!std::isfinite(f[k]) || !(im.cache.length[k] > im.geometry->min_length))
+            worst = INFINITY, im.worst_leg = k;
+        else if (std::fabs(f[k]) > worst)
+            worst = std::fabs(f[k]), im.worst_leg = k;
     }
-    im.last_residual = std::isfinite(worst) ? worst : INFINITY;
-    return im.last_residual;
+    im.last_residual = worst;
+    return worst;
 }
 
+// KINSOL's residual callback; 1 (recoverable: KINSOL steps shorter) if not finite.
 int residual_fn(N_Vector u, N_Vector f, void *user) {
     Impl &im = *static_cast<Impl *>(user);
     return std::isfinite(evaluate_residual(im, N_VGetArrayPointer(u), N_VGetArrayPointer(f))) ? 0
                                                                                                 : 1;
 }
 
+// KINSOL's Jacobian callback: the analytic dL/dq at u into Impl::jac.
 int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector) {
     Impl &im = *static_cast<Impl *>(user);
     const double *ud = N_VGetArrayPointer(u);
@@ -115,11 +119,13 @@ int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector)
 }
 
 // The custom linear solver (core/kinsol_custom): 6 x 6 LU with partial pivoting.
+// Factors the Jacobian.
 int solver_setup(SUNLinearSolver S, SUNMatrix) {
     Impl &im = *static_cast<Impl *>(S->content);
     std::copy(im.jac, im.jac + kN * 6, im.lu);
     return lu6_factor(im.lu, im.pivot) ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
 }
+// x = J^-1 b with the factors.
 int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
     Impl &im = *static_cast<Impl *>(S->content);
     double *xd = N_VGetArrayPointer(x);
