@@ -36,28 +36,42 @@ int assembly_branch(const PlatformGeometry &g, const Eigen::Matrix3d &R, const M
     return branch;
 }
 
-void length_pair_bounds(const PlatformGeometry &g, double bound[15]) {
+LengthPairBounds length_pair_bounds(const PlatformGeometry &g) {
+    LengthPairBounds b;
     int p = 0;
     for (int i = 0; i < STEWART_LEGS; ++i)
-        for (int j = i + 1; j < STEWART_LEGS; ++j)
-            bound[p++] = (g.base_points.col(i) - g.base_points.col(j)).norm() +
-                         (g.platform_points.col(i) - g.platform_points.col(j)).norm();
+        for (int j = i + 1; j < STEWART_LEGS; ++j, ++p) {
+            const double base = (g.base_points.col(i) - g.base_points.col(j)).norm();
+            const double platform = (g.platform_points.col(i) - g.platform_points.col(j)).norm();
+            b.difference[p] = base + platform;
+            b.sum[p] = std::fabs(base - platform);
+        }
+    return b;
 }
 
-stewart_status check_length_pairs(const double bound[15], const double length[STEWART_LEGS],
-                                  char *msg, size_t size) {
+stewart_status check_length_pairs(const LengthPairBounds &bounds,
+                                  const double length[STEWART_LEGS], char *msg, size_t size) {
+    // A relative slack of a few roundings: lengths computed from a pose at a bound must pass.
+    const double slack = 1e-12;
     int violations[STEWART_LEGS] = {0};
     int first_i = -1, first_j = -1, p = 0;
     double first_bound = 0;
     for (int i = 0; i < STEWART_LEGS; ++i)
-        for (int j = i + 1; j < STEWART_LEGS; ++j, ++p)
-            // A relative slack of a few roundings: lengths computed from a pose at the bound
-            // itself must pass.
-            if (std::fabs(length[i] - length[j]) > bound[p] * (1 + 1e-12) + 1e-15) {
+        for (int j = i + 1; j < STEWART_LEGS; ++j, ++p) {
+            const double L_i = length[i], L_j = length[j];
+            if (L_i + L_j < bounds.sum[p] * (1 - slack) - 1e-15) {
+                return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                                   "no pose has these lengths: legs %d and %d are too short "
+                                   "together, L%d + L%d = %g m < %g m, the least their attachment "
+                                   "points allow", i + 1, j + 1, i + 1, j + 1, L_i + L_j,
+                                   bounds.sum[p]);
+            }
+            if (std::fabs(L_i - L_j) > bounds.difference[p] * (1 + slack) + 1e-15) {
                 ++violations[i];
                 ++violations[j];
-                if (first_i < 0) first_i = i, first_j = j, first_bound = bound[p];
+                if (first_i < 0) first_i = i, first_j = j, first_bound = bounds.difference[p];
             }
+        }
     if (first_i < 0) return STEWART_OK;
     int blamed = 0;
     for (int k = 1; k < STEWART_LEGS; ++k)

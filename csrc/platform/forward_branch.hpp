@@ -19,13 +19,16 @@ int jacobian_sign(const Matrix6 &transposed);
 int assembly_branch(const PlatformGeometry &g, const Eigen::Matrix3d &R, const Matrix36 &points,
                     const Matrix6 &jacobian_transposed, int working_sign);
 
-// The bound on |L_i - L_j| for the 15 pairs i < j: d_i - d_j = (a_j - a_i) + R (b_i - b_j), so
-// |L_i - L_j| <= |a_i - a_j| + |b_i - b_j| at every pose.
-void length_pair_bounds(const PlatformGeometry &g, double bound[15]);
+// Bounds on the lengths of the 15 pairs i < j that hold at every pose: from
+// d_i - d_j = (a_j - a_i) + R (b_i - b_j), |L_i - L_j| <= |a_i - a_j| + |b_i - b_j| (difference)
+// and L_i + L_j >= | |a_i - a_j| - |b_i - b_j| | (sum).
+struct LengthPairBounds {
+    double difference[15], sum[15];
+};
+LengthPairBounds length_pair_bounds(const PlatformGeometry &g);
 
-// STEWART_ERR_UNREACHABLE (message names the leg, or the pair) when two lengths break their
-// bound.
-stewart_status check_length_pairs(const double bound[15], const double length[STEWART_LEGS],
-                                  char *msg, size_t size);
+// STEWART_ERR_UNREACHABLE (message names the leg, or the pair) when two lengths break a bound.
+stewart_status check_length_pairs(const LengthPairBounds &bounds,
+                                  const double length[STEWART_LEGS], char *msg, size_t size);
 
 }  // namespace stewart

@@ -175,7 +175,7 @@ stewart_status prepare(const stewart_model &m, stewart::ForwardState &f, char *m
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the leg Jacobian is singular at the home pose: the working assembly "
                            "mode is not defined");
-    stewart::length_pair_bounds(m.geometry, f.pair_bound);
+    f.pair_bounds = stewart::length_pair_bounds(m.geometry);
     return STEWART_OK;
 }
 
@@ -300,7 +300,7 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
         return set_message(msg, size, STEWART_ERR_MEMORY,
                            "the forward solver of this data block could not be allocated");
     if ((s = prepare(*m, f, msg, size)) != STEWART_OK) return s;
-    if ((s = stewart::check_length_pairs(f.pair_bound, lengths, msg, size)) != STEWART_OK)
+    if ((s = stewart::check_length_pairs(f.pair_bounds, lengths, msg, size)) != STEWART_OK)
         return s;
 
     // The starts, in order: the guess alone; or, tracking, the predictor then the last pose; or

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "platform/forward_branch.hpp"
 #include "platform/forward_newton.hpp"
 
 namespace stewart {
@@ -20,9 +21,9 @@ struct ForwardState {
     double previous_q[6] = {0};
     Matrix36 points;       // the last pose's platform points, world (the jump check)
     // Of the model, worked out at the first solve: the sign of the leg Jacobian's determinant
-    // at home (0: not yet known) and the bounds on |L_i - L_j|.
+    // at home (0: not yet known) and the bounds on pairs of lengths.
     int working_sign = 0;
-    double pair_bound[15] = {0};
+    LengthPairBounds pair_bounds = {};
     // Forgets the history.
     void reset() { has_pose = has_rates = has_accels = has_previous = false; }
 };

@@ -238,12 +238,21 @@ static void test_lengths_no_pose_has_are_an_error_naming_the_leg(void) {
                                      stewart_data_message(data));
         TEST_ASSERT_EQUAL_MEMORY(&untouched, &r, sizeof r);
     }
+    stewart_forward_result r;
+    /* All six at 0.2 m: legs 1 and 2 join base points 2 r sin 15 deg = 0.259 m apart to platform
+     * points 2 r sin 45 deg = 0.707 m apart, so together they need at least 0.448 m. */
+    stewart_output short_legs = legs;
+    for (int k = 0; k < 6; ++k) short_legs.length[k] = 0.2;
+    stewart_forward_reset(data);
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_UNREACHABLE, forward(&short_legs, 0, 0, NULL, &r));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_data_message(data), "legs 1 and 2"),
+                                 stewart_data_message(data));
     /* All six equal and huge: a pose far up has them, but nothing is returned as NaN. */
     stewart_output far = legs;
     for (int k = 0; k < 6; ++k) far.length[k] = 1e140;
-    stewart_forward_result r;
     stewart_forward_reset(data);
     const stewart_status s = forward(&far, 0, 0, NULL, &r);
+    TEST_ASSERT_TRUE(s == STEWART_OK || s == STEWART_ERR_NOT_CONVERGED);
     if (s == STEWART_OK) TEST_ASSERT_TRUE(isfinite(r.pose.q[2]));
 }
 
