@@ -57,7 +57,8 @@ typedef struct stewart_forward_options {
 typedef struct stewart_forward_result {
     stewart_pose pose;   /* q; q_dot if rates were given, q_ddot if accelerations were (else 0) */
     int iterations;      /* KINSOL Newton iterations, over every start tried */
-    double residual;     /* max |L_k(q) - L_k measured| at the returned pose [m] */
+    double residual;     /* max |L_k(q) - L_k measured| at the last Newton iterate [m]; the pose
+                            returned carries one more correction with the exact Jacobian */
     double condition;    /* leg Jacobian condition number at the pose, as stewart_output's */
     int warnings;        /* STEWART_WARN_STROKE (a measured length outside the stroke),
                             STEWART_WARN_NEAR_SINGULAR, STEWART_WARN_OTHER_BRANCH */
