@@ -65,21 +65,18 @@ def write_rows(path, rows):
 HOME = [repr(math.sqrt(0.5 ** 2 + (2 * 0.5 * math.sin(math.radians(15))) ** 2))] * 6
 
 
-def test_bad_value_names_line_and_leg_and_writes_nothing(solve, tmp_path):
+@pytest.mark.parametrize("rows, line, leg", [
+    # a value that is not a number
+    ([["0"] + HOME, ["0.1"] + HOME, ["0.2"] + HOME[:2] + ["nan"] + HOME[3:]], 4, 3),
+    # lengths no pose has: leg 5 three metres long, the others at home
+    ([["0"] + HOME, ["0.1"] + HOME[:4] + ["3.0"] + HOME[5:]], 3, 5),
+])
+def test_bad_rows_name_line_and_leg_and_write_nothing(solve, tmp_path, rows, line, leg):
     in_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
-    write_rows(in_csv, [["0"] + HOME, ["0.1"] + HOME, ["0.2"] + HOME[:2] + ["nan"] + HOME[3:]])
+    write_rows(in_csv, rows)
     result = solve("--forward", in_csv, out_csv)
     assert result.returncode == 1
-    assert "line 4" in result.stderr and "leg 3" in result.stderr, result.stderr
-    assert not out_csv.exists()
-
-
-def test_lengths_no_pose_has_name_line_and_leg(solve, tmp_path):
-    in_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
-    write_rows(in_csv, [["0"] + HOME, ["0.1"] + HOME[:4] + ["3.0"] + HOME[5:]])
-    result = solve("--forward", in_csv, out_csv)
-    assert result.returncode == 1
-    assert "line 3" in result.stderr and "leg 5" in result.stderr, result.stderr
+    assert f"line {line}" in result.stderr and f"leg {leg}" in result.stderr, result.stderr
     assert not out_csv.exists()
 
 
