@@ -17,8 +17,29 @@ static double uniform(double lo, double hi) {
     return lo + (hi - lo) * (double)(rng_state >> 11) / 9007199254740992.0;
 }
 
-/* A random pose of the stroke workspace (every length in [stroke_min, stroke_max], condition
- * below warn_condition), with random rates and accelerations; its lengths from the closed form. */
+/* Every leg leaves its base point upward and reaches its platform point from below the platform
+ * (the legs' Cardans work in those half-spaces), written out from the pose. */
+static int legs_on_the_joint_sides(const stewart_pose *p) {
+    double R[3][3];
+    pose_rotation(p, R);
+    for (int k = 0; k < 6; ++k) {
+        const double b[2] = {params.platform_radius * cos(params.platform_angle[k]),
+                             params.platform_radius * sin(params.platform_angle[k])};
+        const double a[2] = {params.base_radius * cos(params.base_angle[k]),
+                             params.base_radius * sin(params.base_angle[k])};
+        double leg[3], along_normal = 0;
+        for (int i = 0; i < 3; ++i) {
+            leg[i] = p->q[i] + R[i][0] * b[0] + R[i][1] * b[1] - (i < 2 ? a[i] : 0);
+            along_normal += leg[i] * R[i][2];
+        }
+        if (!(leg[2] > 0 && along_normal > 0)) return 0;
+    }
+    return 1;
+}
+
+/* A random pose of the stroke workspace (every length in [stroke_min, stroke_max], the legs on
+ * their joints' sides, condition below warn_condition), with random rates and accelerations; its
+ * lengths from the closed form. */
 static stewart_pose workspace_pose(stewart_output *legs) {
     for (;;) {
         stewart_pose p = {{0}, {0}, {0}};
@@ -33,7 +54,7 @@ static stewart_pose workspace_pose(stewart_output *legs) {
             const double L = closed_form_length(&params, &p, k);
             inside = inside && L >= params.stroke_min && L <= params.stroke_max;
         }
-        if (!inside) continue;
+        if (!inside || !legs_on_the_joint_sides(&p)) continue;
         *legs = solve_ok(model, data, STEWART_MASSLESS, &p);
         if (legs->condition < 1e3) return p;
     }
@@ -99,6 +120,36 @@ static void test_cold_starts_over_the_workspace_find_the_pose(void) {
         if (r.iterations > worst_iterations) worst_iterations = r.iterations;
     }
     printf("2000 cold starts from home: at most %d iterations\n", worst_iterations);
+}
+
+/* Any geometry the parameters describe: another 6-6 platform (radii, angles, home height),
+ * cold starts from home over its stroke workspace and the mirror pose. */
+static void test_another_geometry_round_trips(void) {
+    static const double beta_deg[6] = {10, 110, 130, 230, 250, 350};
+    static const double tau_deg[6] = {50, 70, 170, 190, 290, 310};
+    params.base_radius = 0.7;
+    params.platform_radius = 0.35;
+    params.home_height = 0.55;
+    for (int k = 0; k < 6; ++k) {
+        params.base_angle[k] = beta_deg[k] * M_PI / 180;
+        params.platform_angle[k] = tau_deg[k] * M_PI / 180;
+    }
+    params.stroke_min = 0.45;
+    params.stroke_max = 0.85;
+    rebuild_platform();
+    for (int i = 0; i < 500; ++i) {
+        stewart_output legs;
+        const stewart_pose truth = workspace_pose(&legs);
+        stewart_forward_reset(data);
+        stewart_forward_result r;
+        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, forward(&legs, 0, 1, NULL, &r),
+                                      stewart_data_message(data));
+        check_round_trip(&r, &truth, 1);
+        double guess[6];
+        for (int j = 0; j < 6; ++j) guess[j] = (j >= 2 && j < 5 ? -1 : 1) * truth.q[j];
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_OTHER_BRANCH, forward(&legs, 0, 0, guess, &r));
+        TEST_ASSERT_TRUE(r.branch & STEWART_BRANCH_BELOW_BASE);
+    }
 }
 
 /* Tracking a manoeuvre at 1 kHz: every sample's pose, rates and accelerations; with the rates
@@ -347,6 +398,7 @@ static void test_forward_pose_agrees_with_the_length_driven_mechanism(void) {
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_cold_starts_over_the_workspace_find_the_pose);
+    RUN_TEST(test_another_geometry_round_trips);
     RUN_TEST(test_tracking_the_combined_cue);
     RUN_TEST(test_tracking_the_thesis_manoeuvres);
     RUN_TEST(test_mirror_pose_is_another_branch_never_returned_from_home);
