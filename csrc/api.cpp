@@ -89,6 +89,7 @@ extern "C" void stewart_data_reset(stewart_data *d) {
     if (!d) return;
     d->message[0] = '\0';
     if (d->full) mbs::reset(d->full->state);
+    d->forward.reset();
 }
 
 extern "C" const char *stewart_data_message(const stewart_data *d) {
@@ -105,6 +106,7 @@ extern "C" const char *stewart_status_name(stewart_status s) {
         case STEWART_ERR_NOT_CONVERGED: return "not converged";
         case STEWART_ERR_UNSUPPORTED: return "unsupported";
         case STEWART_ERR_MEMORY: return "out of memory";
+        case STEWART_ERR_OTHER_BRANCH: return "other assembly mode";
     }
     return "unknown status";
 }

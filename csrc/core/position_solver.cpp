@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "core/assembly.hpp"
+#include "core/kinsol_custom.hpp"
 #include "core/message.hpp"
 
 using mbs::set_message;
@@ -73,14 +74,8 @@ int jacobian(N_Vector u, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vector) 
     return 0;
 }
 
-// The custom SUNMatrix: its content is the Impl; values live in state.values.
-SUNMatrix_ID matrix_id(SUNMatrix) { return SUNMATRIX_CUSTOM; }
-int matrix_zero(SUNMatrix) { return 0; }  // every value is overwritten by the Jacobian
-void matrix_destroy(SUNMatrix A) { SUNMatFreeEmpty(A); }
-
-SUNLinearSolver_Type solver_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-SUNLinearSolver_ID solver_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
-int solver_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
+// The custom linear solver (core/kinsol_custom): our structured factorisation of the values in
+// state.values, which the custom SUNMatrix (content: the Impl) stands for.
 int solver_setup(SUNLinearSolver S, SUNMatrix) {
     State &s = static_cast<Impl *>(S->content)->state;
     if (!s.linear->factor(s.values.data())) return SUNLS_LUFACT_FAIL;
@@ -95,19 +90,6 @@ int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype)
     s.linear->solve(xd);
     return SUNLS_SUCCESS;
 }
-sunindextype solver_last_flag(SUNLinearSolver) { return 0; }
-int solver_free(SUNLinearSolver S) {
-    S->content = nullptr;
-    SUNLinSolFreeEmpty(S);
-    return 0;
-}
-
-void error_handler(int code, const char *module, const char *function, char *text, void *user) {
-    Impl &im = *static_cast<Impl *>(user);
-    std::snprintf(im.kinsol_message, sizeof im.kinsol_message, "%s %s (%d): %s", module, function,
-                  code, text);
-}
-
 }  // namespace
 
 PositionSolver::PositionSolver(State &state, const SolverOptions &options)
@@ -134,22 +116,8 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
         im.matrix = SUNDenseMatrix(n, n, im.context);
         im.linear = im.matrix ? SUNLinSol_Dense(im.u, im.matrix, im.context) : nullptr;
     } else {
-        im.matrix = SUNMatNewEmpty(im.context);
-        im.linear = SUNLinSolNewEmpty(im.context);
-        if (im.matrix && im.linear) {
-            im.matrix->content = &im;
-            im.matrix->ops->getid = matrix_id;
-            im.matrix->ops->zero = matrix_zero;
-            im.matrix->ops->destroy = matrix_destroy;
-            im.linear->content = &im;
-            im.linear->ops->gettype = solver_type;
-            im.linear->ops->getid = solver_id;
-            im.linear->ops->initialize = solver_initialize;
-            im.linear->ops->setup = solver_setup;
-            im.linear->ops->solve = solver_solve;
-            im.linear->ops->lastflag = solver_last_flag;
-            im.linear->ops->free = solver_free;
-        }
+        mbs::make_custom_linear_solver(im.context, &im, solver_setup, solver_solve, im.matrix,
+                                       im.linear);
     }
     if (!im.matrix || !im.linear) {
         set_message(msg, size, MBS_ERR_MEMORY, "could not create the KINSOL linear solver");
@@ -161,7 +129,8 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
         return;
     }
     int flag;
-    if ((flag = KINSetErrHandlerFn(im.kinsol, error_handler, &im)) != KIN_SUCCESS ||
+    if ((flag = KINSetErrHandlerFn(im.kinsol, keep_kinsol_message, im.kinsol_message)) !=
+            KIN_SUCCESS ||
         (flag = KINInit(im.kinsol, residual, im.u)) != KIN_SUCCESS ||
         (flag = KINSetUserData(im.kinsol, &im)) != KIN_SUCCESS ||
         (flag = KINSetLinearSolver(im.kinsol, im.linear, im.matrix)) != KINLS_SUCCESS ||

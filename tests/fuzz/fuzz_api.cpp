@@ -15,6 +15,7 @@
 
 #include "fuzz_reader.hpp"
 #include "stewart/stewart.h"
+#include "stewart/stewart_forward.h"
 
 namespace {
 
@@ -64,6 +65,39 @@ CachedModel *model_for(const stewart_params &params) {
     return &c;
 }
 
+// The forward API on the same model: raw lengths, rates, accelerations, guesses and options
+// (NaN, Inf, huge), tracking or cold. Every call returns a known status; a filled result
+// (STEWART_OK, STEWART_ERR_OTHER_BRANCH) is finite.
+void fuzz_forward(Reader &in, const stewart_model *model, stewart_data *data) {
+    stewart_forward_options options;
+    stewart_forward_options_default(&options);
+    const uint8_t choice = in.byte();
+    if (choice & 1) options.tolerance = in.value();
+    if (choice & 2) options.max_iterations = static_cast<int8_t>(in.byte());
+    double lengths[6], rates[6], accels[6], guess[6], time = 0;
+    for (int call = 0; call < 16 && in.left > 0; ++call) {
+        const uint8_t what = in.byte();
+        for (int k = 0; k < 6; ++k) lengths[k] = (what & 1) ? in.value() : 0.55 + in.value() / 10;
+        for (int k = 0; k < 6 && (what & 2); ++k) rates[k] = in.value();
+        for (int k = 0; k < 6 && (what & 4); ++k) accels[k] = in.value();
+        for (int k = 0; k < 6 && (what & 8); ++k) guess[k] = in.value();
+        if (what & 16) stewart_forward_reset(data);
+        time = (what & 32) ? in.value() : time + 1e-3;
+        stewart_forward_result r;
+        const stewart_status s = stewart_forward_solve(
+            model, data, &options, time, lengths, (what & 2) ? rates : nullptr,
+            (what & 4) ? accels : nullptr, (what & 8) ? guess : nullptr, &r);
+        if (s > STEWART_OK || s < STEWART_ERR_OTHER_BRANCH) std::abort();
+        if (s != STEWART_OK && s != STEWART_ERR_OTHER_BRANCH) continue;
+        const double *groups[3] = {r.pose.q, r.pose.q_dot, r.pose.q_ddot};
+        for (const double *g : groups)
+            for (int i = 0; i < 6; ++i)
+                if (!std::isfinite(g[i])) std::abort();
+        if (!std::isfinite(r.residual) || !std::isfinite(r.condition) || !std::isfinite(r.jump))
+            std::abort();
+    }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
@@ -94,6 +128,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
         if (stewart_solve(c->model, c->data, &options, &pose, &out) == STEWART_OK) require_finite(out);
         stewart_data_copy(c->saved, c->data);
     }
+    Reader again{bytes, size};  // the pose loop takes every byte: read them again
+    fuzz_forward(again, c->model, c->data);
     stewart_data_reset(c->data);
     return 0;
 }

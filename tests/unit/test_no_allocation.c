@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "slider_crank.h"
+#include "stewart/stewart_forward.h"
 #include "stewart/stewart_full.h"
 #include "test_support.h"
 #include "unity.h"
@@ -88,9 +89,45 @@ static void test_slider_crank_steps_do_not_allocate(void) {
     mbs_model_free(m);
 }
 
+/* Forward kinematics: tracking (KINSOL iterations, rates and accelerations) and a cold start. */
+static void test_forward_solves_do_not_allocate(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    stewart_model *model = test_model(&params);
+    stewart_data *data = stewart_data_create(model);
+    stewart_forward_options fo;
+    stewart_forward_options_default(&fo);
+    stewart_output legs[200];
+    for (int i = 0; i < 200; ++i) {
+        const stewart_pose p = combined_pose(1e-3 * i);
+        legs[i] = solve_ok(model, data, STEWART_KINEMATIC, &p);
+    }
+    stewart_forward_result r;
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(model, data, &fo, 0, legs[0].length,
+                                                        legs[0].length_rate, legs[0].length_accel,
+                                                        NULL, &r));
+    const long before = allocations;
+    int iterations = 0;
+    for (int i = 1; i < 200; ++i) {
+        TEST_ASSERT_EQUAL(STEWART_OK,
+                          stewart_forward_solve(model, data, &fo, 1e-3 * i, legs[i].length,
+                                                legs[i].length_rate, legs[i].length_accel, NULL,
+                                                &r));
+        iterations += r.iterations;
+    }
+    stewart_forward_reset(data);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(model, data, &fo, 0, legs[100].length,
+                                                        NULL, NULL, NULL, &r));
+    TEST_ASSERT_TRUE(iterations > 0 && r.iterations > 0); /* KINSOL did iterate */
+    TEST_ASSERT_EQUAL(before, allocations);
+    stewart_data_free(data);
+    stewart_model_free(model);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_full_level_steps_do_not_allocate);
     RUN_TEST(test_slider_crank_steps_do_not_allocate);
+    RUN_TEST(test_forward_solves_do_not_allocate);
     return UNITY_END();
 }

@@ -36,7 +36,9 @@ typedef enum stewart_status {
     STEWART_ERR_UNREACHABLE = -4,   /* the pose puts a platform point on its base point */
     STEWART_ERR_NOT_CONVERGED = -5, /* the position Newton problem did not converge */
     STEWART_ERR_UNSUPPORTED = -6,   /* the requested fidelity level is not available */
-    STEWART_ERR_MEMORY = -7
+    STEWART_ERR_MEMORY = -7,
+    STEWART_ERR_OTHER_BRANCH = -8   /* forward kinematics reached another assembly mode than the
+                                       working one (stewart_forward.h) */
 } stewart_status;
 
 typedef enum stewart_fidelity {
@@ -48,7 +50,8 @@ typedef enum stewart_fidelity {
 /* Bits of stewart_output.warnings: the solve succeeded but the result deserves attention. */
 enum {
     STEWART_WARN_STROKE = 1,        /* some length is outside [stroke_min, stroke_max] */
-    STEWART_WARN_NEAR_SINGULAR = 2  /* condition number above stewart_options.warn_condition */
+    STEWART_WARN_NEAR_SINGULAR = 2, /* condition number above stewart_options.warn_condition */
+    STEWART_WARN_OTHER_BRANCH = 4   /* forward kinematics: the pose is on another assembly mode */
 };
 
 /* Geometry and mass parameters. Inertias are principal moments about the body's own centre of
