@@ -59,9 +59,213 @@ static void test_free_motion_keeps_kinetic_energy_massless(void) {
     free_motion_keeps_kinetic_energy(STEWART_MASSLESS);
 }
 
+
+/* Gravity on, no forces: the platform falls; kinetic plus potential energy stays constant until
+ * the first leg leaves its stroke (the plant's warning). */
+static void test_fall_keeps_total_energy(void) {
+    model = test_model(&params);
+    stewart_plant *plant = test_plant(model, STEWART_FULL, 1e-13, 1e-15);
+    const double rate[6] = {0.01, 0.02, 0.8, 0.1, -0.05, 0.2};  /* thrown upward first */
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, kStartPose, rate));
+    double T0, U0, T, U, worst = 0, t = 0;
+    plant_energy(&params, plant, STEWART_FULL, &T0, &U0);
+    stewart_plant_output out;
+    for (;;) {
+        step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
+        if (out.warnings & STEWART_PLANT_WARN_STROKE) break;
+        t = out.time;
+        plant_energy(&params, plant, STEWART_FULL, &T, &U);
+        if (fabs(T + U - T0 - U0) > worst) worst = fabs(T + U - T0 - U0);
+    }
+    printf("fall: %.3f s until %s; max |E - E0| / T0 = %.3g\n", out.time,
+           stewart_plant_message(plant), worst / T0);
+    TEST_ASSERT_TRUE(t > 0.15);
+    TEST_ASSERT_TRUE(worst <= 1e-9 * T0);
+    stewart_plant_free(plant);
+}
+
+/* A forced motion: the actuators' work int sum F_k L_dot_k dt (Simpson's rule over the
+ * communication points) equals the change of kinetic plus potential energy. */
+static void power_balance(int fidelity) {
+    model = test_model(&params);
+    stewart_plant *plant = test_plant(model, fidelity, 1e-13, 1e-15);
+    const double h = 1e-4;
+    const int steps = 10000;  /* 1 s */
+    double T0, U0, T, U, work = 0, power_prev = 0, f_prev[6];
+    plant_energy(&params, plant, fidelity, &T0, &U0);
+    /* The static forces at home (inverse side) plus sinusoids of 1 %. */
+    stewart_data *data = stewart_data_create(model);
+    stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
+    const stewart_output statics = solve_ok(model, data, fidelity, &home);
+    stewart_data_free(data);
+    for (int i = 0; i <= steps; ++i) {
+        const double t = i * h;
+        double f[6], power = 0;
+        for (int k = 0; k < 6; ++k)
+            f[k] = statics.force[k] * (1.0 + 0.01 * sin((2.0 + k) * t + k));
+        if (i > 0) step_ok(plant, h, f_prev, f, NULL, NULL);
+        stewart_plant_output out;
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
+        TEST_ASSERT_EQUAL(0, out.warnings);
+        for (int k = 0; k < 6; ++k) power += f[k] * out.length_rate[k], f_prev[k] = f[k];
+        /* Simpson over [t - 2h, t] on every second point; power_prev holds the middle one. */
+        static double power_first;
+        if (i == 0) power_first = power;
+        else if (i % 2 == 0) work += h / 3.0 * (power_first + 4.0 * power_prev + power), power_first = power;
+        power_prev = power;
+    }
+    plant_energy(&params, plant, fidelity, &T, &U);
+    const double change = T + U - T0 - U0;
+    printf("power balance, fidelity %d: work %.12g J, energy change %.12g J, difference %.3g\n",
+           fidelity, work, change, work - change);
+    TEST_ASSERT_TRUE(fabs(work) > 1e-3);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-8 * fabs(work), work, change);
+    stewart_plant_free(plant);
+}
+
+static void test_power_balance_full(void) { power_balance(STEWART_FULL); }
+static void test_power_balance_massless(void) { power_balance(STEWART_MASSLESS); }
+
+/* F = the static forces of a pose from the inverse side: the platform stays at rest. */
+static void equilibrium(int fidelity, const double pose_q[6], double seconds, double bound) {
+    model = test_model(&params);
+    stewart_data *data = stewart_data_create(model);
+    stewart_pose pose = {{0}, {0}, {0}};
+    for (int i = 0; i < 6; ++i) pose.q[i] = pose_q[i];
+    const stewart_output inverse = solve_ok(model, data, fidelity, &pose);
+    stewart_plant *plant = test_plant(model, fidelity, 1e-10, 1e-12);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, pose.q, kZero));
+    double worst = 0, worst_t = 0;
+    const int steps = (int)(seconds / 1e-3 + 0.5);
+    for (int i = 1; i <= steps; ++i) {
+        step_ok(plant, 1e-3, inverse.force, inverse.force, NULL, NULL);
+        stewart_plant_output out;
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
+        for (int c = 0; c < 3; ++c)
+            if (fabs(out.pose[c] - pose.q[c]) > worst) worst = fabs(out.pose[c] - pose.q[c]), worst_t = out.time;
+    }
+    printf("equilibrium, fidelity %d: max displacement %.3g m (at t = %g s) over %g s\n", fidelity,
+           worst, worst_t, seconds);
+    TEST_ASSERT_TRUE(worst <= bound);
+    stewart_plant_free(plant);
+    stewart_data_free(data);
+}
+
+static void test_equilibrium_full(void) {
+    const double home[6] = {0, 0, 0.5, 0, 0, 0};
+    equilibrium(STEWART_FULL, home, 2.0, 1e-12);
+}
+
+static void test_equilibrium_massless_tilted(void) {
+    const double tilted[6] = {0.02, -0.01, 0.53, 0.05, -0.04, 0.1};
+    equilibrium(STEWART_MASSLESS, tilted, 2.0, 1e-12);
+}
+
+
+static double dot3(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Column c of a row-major 3x3 rotation. */
+static void column(const double R[9], int c, double out[3]) {
+    for (int i = 0; i < 3; ++i) out[i] = R[3 * i + c];
+}
+
+/* Every leg body on its joints as model.md defines them, from the bodies' poses and the
+ * platform pose output alone: Cardan centres on a_k and on p + R b_k, cross arms perpendicular,
+ * cylinder and piston on one axis; and the bodies' velocities equal to differences of their
+ * positions and rotations over a step. */
+static void test_leg_bodies_on_their_joints(void) {
+    params.gravity[2] = 0;
+    model = test_model(&params);
+    stewart_plant *plant = test_plant(model, STEWART_FULL, 1e-12, 1e-14);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, kStartPose, kStartRate));
+    const double h = 1e-4;
+    double worst_joint = 0, worst_velocity = 0, worst_omega = 0;
+    stewart_plant_body before[STEWART_PLANT_BODIES], after[STEWART_PLANT_BODIES];
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, before));
+    for (int i = 1; i <= 2000; ++i) {
+        const double f[6] = {5 * sin(3.0 * i * h), -4.0, 3.0, 2 * cos(i * h), 0, 1};
+        step_ok(plant, h, f, f, NULL, NULL);
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, after));
+        stewart_plant_output out;
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
+        stewart_pose pose = {{0}, {0}, {0}};
+        for (int c = 0; c < 6; ++c) pose.q[c] = out.pose[c];
+        double R[3][3];
+        pose_rotation(&pose, R);
+        for (int k = 0; k < 6; ++k) {
+            const stewart_plant_body *cyl = &after[1 + k], *pis = &after[7 + k];
+            double zc[3], zp[3], xc[3], xp[3];
+            column(cyl->rotation, 2, zc);
+            column(pis->rotation, 2, zp);
+            column(cyl->rotation, 0, xc);
+            column(pis->rotation, 0, xp);
+            const double a[3] = {params.base_radius * cos(params.base_angle[k]),
+                                 params.base_radius * sin(params.base_angle[k]), 0};
+            const double b[3] = {params.platform_radius * cos(params.platform_angle[k]),
+                                 params.platform_radius * sin(params.platform_angle[k]), 0};
+            const double s_base[3] = {-sin(params.base_angle[k]), cos(params.base_angle[k]), 0};
+            const double s_plate[3] = {-sin(params.platform_angle[k]), cos(params.platform_angle[k]), 0};
+            double s_plate_world[3], gap[3];
+            for (int r = 0; r < 3; ++r) {
+                const double P = pose.q[r] + R[r][0] * b[0] + R[r][1] * b[1];
+                s_plate_world[r] = R[r][0] * s_plate[0] + R[r][1] * s_plate[1];
+                /* Cardan centres */
+                const double e1 = cyl->position[r] - params.cylinder_com * zc[r] - a[r];
+                const double e2 = pis->position[r] + params.piston_com * zp[r] - P;
+                const double e3 = zc[r] - zp[r];
+                gap[r] = pis->position[r] - cyl->position[r];
+                if (fabs(e1) > worst_joint) worst_joint = fabs(e1);
+                if (fabs(e2) > worst_joint) worst_joint = fabs(e2);
+                if (fabs(e3) > worst_joint) worst_joint = fabs(e3);
+            }
+            /* cylindrical: the offset between the bodies lies along the common axis */
+            const double along = dot3(gap, zc);
+            for (int r = 0; r < 3; ++r)
+                if (fabs(gap[r] - along * zc[r]) > worst_joint) worst_joint = fabs(gap[r] - along * zc[r]);
+            if (fabs(dot3(xc, s_base)) > worst_joint) worst_joint = fabs(dot3(xc, s_base));
+            if (fabs(dot3(xp, s_plate_world)) > worst_joint) worst_joint = fabs(dot3(xp, s_plate_world));
+        }
+        for (int b = 0; b < STEWART_PLANT_BODIES; ++b) {
+            /* (r1 - r0) / h against the mean velocity; skew part of R1 R0^T / h against omega */
+            double dR[3][3];
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 3; ++c) {
+                    dR[r][c] = 0;
+                    for (int j = 0; j < 3; ++j)
+                        dR[r][c] += after[b].rotation[3 * r + j] * before[b].rotation[3 * c + j];
+                }
+            const double w[3] = {(dR[2][1] - dR[1][2]) / (2 * h), (dR[0][2] - dR[2][0]) / (2 * h),
+                                 (dR[1][0] - dR[0][1]) / (2 * h)};
+            for (int r = 0; r < 3; ++r) {
+                const double v_mean = 0.5 * (after[b].velocity[r] + before[b].velocity[r]);
+                const double w_mean = 0.5 * (after[b].omega[r] + before[b].omega[r]);
+                const double dv = fabs((after[b].position[r] - before[b].position[r]) / h - v_mean);
+                if (dv > worst_velocity) worst_velocity = dv;
+                if (fabs(w[r] - w_mean) > worst_omega) worst_omega = fabs(w[r] - w_mean);
+            }
+        }
+        for (int b = 0; b < STEWART_PLANT_BODIES; ++b) before[b] = after[b];
+    }
+    printf("leg bodies: joint error %.3g, velocity vs difference %.3g m/s, omega vs difference "
+           "%.3g rad/s\n", worst_joint, worst_velocity, worst_omega);
+    TEST_ASSERT_TRUE(worst_joint <= 1e-12);
+    TEST_ASSERT_TRUE(worst_velocity <= 1e-8);
+    TEST_ASSERT_TRUE(worst_omega <= 1e-8);
+    stewart_plant_free(plant);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_free_motion_keeps_kinetic_energy_full);
     RUN_TEST(test_free_motion_keeps_kinetic_energy_massless);
+    RUN_TEST(test_leg_bodies_on_their_joints);
+    RUN_TEST(test_fall_keeps_total_energy);
+    RUN_TEST(test_power_balance_full);
+    RUN_TEST(test_power_balance_massless);
+    RUN_TEST(test_equilibrium_full);
+    RUN_TEST(test_equilibrium_massless_tilted);
     return UNITY_END();
 }
