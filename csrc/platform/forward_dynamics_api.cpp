@@ -246,19 +246,38 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
     if (s != STEWART_OK) return s;
 
     const fd::PlatformMotion m = fd::motion_of_state(y);
+    // A leg that passes through zero length between two evaluations flips its direction.
+    const fd::PlatformMotion before = fd::motion_of_state(p->y);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const fd::Vec3 &a = p->dynamics.legs.base_points.col(k), &b =
+            p->dynamics.legs.platform_points.col(k);
+        const fd::Vec3 d0 = before.position + before.rotation * b - a,
+                       d1 = m.position + m.rotation * b - a;
+        if (!(d0.dot(d1) > 0))
+            return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                               "the motion takes leg %d through zero length within the step",
+                               k + 1);
+    }
     double angles[3];
     angles_of(m.rotation, p->angles, angles);
     if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
                            "are undefined", angles[1]);
+    double length[6], rate[6];
+    char warning[STEWART_MESSAGE_SIZE] = "";
+    const int warnings = leg_outputs(*p, m, length, rate, warning, sizeof warning);
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(length[k]) || !std::isfinite(rate[k]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "the forces are out of range: leg %d's length or rate overflows "
+                               "after the step", k + 1);
     for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
     p->time += h;
-    msg[0] = '\0';
-    double length[6], rate[6];
-    p->warnings = leg_outputs(*p, m, length, rate, msg, size);
+    p->warnings = warnings;
+    std::memcpy(msg, warning, size);
     return STEWART_OK;
 }
 

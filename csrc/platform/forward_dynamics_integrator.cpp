@@ -58,6 +58,8 @@ PlatformMotion motion_of_state(const double y[kStates]) {
 
 namespace {
 
+constexpr double kMaxAcceleration = 1e100;  // [m/s^2, rad/s^2]
+
 // dy/dt: p_dot = v, e_dot = 1/2 (0, omega) * e (world-frame omega), (v, omega)_dot from the
 // reduced equations. 1 (recoverable: CVODE retries a shorter step) for a degenerate leg.
 int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, void *user) {
@@ -73,7 +75,8 @@ int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, v
         return 1;
     }
     const Vector6 &a = im.evaluation.twist_rate;
-    if (!a.allFinite()) {
+    // Beyond 1e100 CVODE's weighted norms overflow (and silently stop the state): out of range.
+    if (!(a.cwiseAbs().maxCoeff() < kMaxAcceleration)) {
         im.non_finite = true;
         return 1;
     }
@@ -224,8 +227,8 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
                                fault_text(im.fault));
         if (im.non_finite)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                               "the accelerations are not finite near t + %g s (forces or "
-                               "motion out of range)", static_cast<double>(t_reached));
+                               "the accelerations are not finite or above 1e100 near t + %g s "
+                               "(forces or motion out of range)", static_cast<double>(t_reached));
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "CVODE failed at t + %g s with %s: %s", static_cast<double>(t_reached),
                            flag_name(flag), im.cvode_message);
