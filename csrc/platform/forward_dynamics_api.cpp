@@ -15,7 +15,7 @@ namespace fd = stewart::fd;
 
 namespace {
 
-constexpr int kSavedDoubles = 1 + fd::kStates + 3 + STEWART_LEGS + 1;
+constexpr int kSavedDoubles = 1 + fd::kStates + 3 + STEWART_LEGS + 1 + 1;
 constexpr double kMinCosPitch = 1e-9;  // roll and yaw rates are undefined at pitch = +-90 deg
 const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
@@ -31,6 +31,7 @@ struct stewart_plant {
     double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
+    double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
     char message[STEWART_MESSAGE_SIZE] = "";
 };
@@ -91,7 +92,7 @@ stewart_status check_finite(const double *values, const char *name, char *msg, s
 extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
     if (!o) return;
     o->fidelity = STEWART_FULL;
-    o->method = STEWART_PLANT_ADAMS;
+    o->method = STEWART_PLANT_ERK;
     o->relative_tolerance = 1e-10;
     o->absolute_tolerance = 1e-12;
     o->max_internal_steps = 10000;
@@ -103,9 +104,11 @@ extern "C" stewart_status stewart_plant_options_check(const stewart_plant_option
     if (o->fidelity != STEWART_MASSLESS && o->fidelity != STEWART_FULL)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "fidelity = %d must be 1 (massless) or 2 (full)", o->fidelity);
-    if (o->method != STEWART_PLANT_ADAMS && o->method != STEWART_PLANT_BDF)
+    if (o->method != STEWART_PLANT_ADAMS && o->method != STEWART_PLANT_BDF &&
+        o->method != STEWART_PLANT_ERK)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "method = %d must be 0 (Adams) or 1 (BDF)", o->method);
+                           "method = %d must be 0 (Adams), 1 (BDF) or 2 (explicit Runge-Kutta)",
+                           o->method);
     if (!(o->relative_tolerance >= 1e-15 && o->relative_tolerance < 1))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "relative_tolerance = %g must be in [1e-15, 1)", o->relative_tolerance);
@@ -141,6 +144,16 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     const double home[6] = {0, 0, model->params.home_height, 0, 0, 0}, rest[6] = {0};
     if (stewart_plant_set_state(p, 0.0, home, rest) != STEWART_OK) {
         set_message(msg, size, STEWART_ERR_PARAMETER, "home pose: %s", p->message);
+        delete p;
+        return nullptr;
+    }
+    // SUNDIALS allocates some workspaces at the first step: take one here, on a copy, so that
+    // no step of the caller allocates.
+    fd::ForceProfile rest_forces;
+    rest_forces.h = 1e-6;
+    double y[fd::kStates], hint = 0;
+    for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
+    if (p->integrator.advance(y, rest_forces, hint, msg, size) != STEWART_OK) {
         delete p;
         return nullptr;
     }
@@ -191,6 +204,7 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
     for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = pose[3 + i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = 0;
+    p->step_hint = 0;
     double length[6], length_rate[6];
     msg[0] = '\0';
     p->warnings = leg_outputs(*p, fd::motion_of_state(y), length, length_rate, msg, size);
@@ -228,7 +242,8 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
     }
     double y[fd::kStates];
     for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
-    s = p->integrator.advance(y, profile, msg, size);
+    double step_hint = p->step_hint;
+    s = p->integrator.advance(y, profile, step_hint, msg, size);
     const stewart_plant_statistics &last = p->integrator.statistics();
     stewart_plant_statistics &st = p->stats;
     st.steps = last.steps;
@@ -276,6 +291,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
     for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
     p->time += h;
+    p->step_hint = step_hint;
     p->warnings = warnings;
     std::memcpy(msg, warning, size);
     return STEWART_OK;
@@ -355,6 +371,7 @@ extern "C" stewart_status stewart_plant_save(const stewart_plant *p, double *sta
     for (double v : p->angles) *out++ = v;
     for (double v : p->force) *out++ = v;
     *out++ = p->warnings;
+    *out++ = p->step_hint;
     return STEWART_OK;
 }
 
@@ -370,6 +387,7 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const double *sta
     for (double &v : p->angles) v = *in++;
     for (double &v : p->force) v = *in++;
     p->warnings = static_cast<int>(*in++);
+    p->step_hint = *in++;
     p->message[0] = '\0';
     return STEWART_OK;
 }

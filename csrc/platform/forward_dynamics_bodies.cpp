@@ -40,16 +40,6 @@ void frame_rates(const Vec3 &n, const AxisRates &nr, const Vec3 &s, const Vec3 &
     alpha = 0.5 * (x.cross(x_ddot) + y.cross(y_ddot) + n.cross(nr.n_ddot));
 }
 
-// The same with every first rate zero: the part linear in the second rates only.
-Vec3 frame_alpha_linear(const Vec3 &n, const Vec3 &n_ddot, const Vec3 &s, const Vec3 &s_ddot,
-                        const Vec3 &x, double mu) {
-    const Vec3 u_ddot = s_ddot.cross(n) + s.cross(n_ddot);
-    const Vec3 x_ddot = (u_ddot - x.dot(u_ddot) * x) / mu;
-    const Vec3 y = n.cross(x);
-    const Vec3 y_ddot = n_ddot.cross(x) + n.cross(x_ddot);
-    return 0.5 * (x.cross(x_ddot) + y.cross(y_ddot) + n.cross(n_ddot));
-}
-
 Mat3 leg_axes(const Vec3 &x, const Vec3 &n) {
     Mat3 A;
     A.col(0) = x;
@@ -104,17 +94,31 @@ void leg_body_motion(const LegParameters &p, int k, const LegConfiguration &c,
     frame_rates(c.n, nr, s, s_dot, s_ddot, c.piston_x, c.piston_sin, pis.omega, pis.alpha);
 }
 
-void leg_body_acceleration_jacobian(const LegParameters &p, int k, const LegConfiguration &c,
-                                    const PlatformMotion &m, BodyMotion &cyl, BodyMotion &pis) {
-    const Vec3 P_ddot = m.acceleration + m.alpha.cross(c.arm);
-    const Vec3 n_ddot = (P_ddot - c.n.dot(P_ddot) * c.n) * c.inverse_length;
-    cyl.acceleration = p.cylinder_com * n_ddot;
-    // The base arm is fixed: only n moves the cylinder frame.
-    cyl.alpha = frame_alpha_linear(c.n, n_ddot, p.base_arm.col(k), Vec3::Zero(), c.cylinder_x,
-                                   c.cylinder_sin);
-    pis.acceleration = P_ddot - p.piston_com * n_ddot;
-    pis.alpha = frame_alpha_linear(c.n, n_ddot, c.piston_arm, m.alpha.cross(c.piston_arm),
-                                   c.piston_x, c.piston_sin);
+void leg_acceleration_jacobians(const LegParameters &p, int k, const LegConfiguration &c,
+                                Matrix66 &cylinder, Matrix66 &piston) {
+    // P_ddot = v_dot + omega_dot x arm = T nu_dot; n_ddot = N P_ddot, N = (I - n n^T) / L.
+    Eigen::Matrix<double, 3, 6> T;
+    T.leftCols<3>().setIdentity();
+    T.rightCols<3>() << 0, c.arm[2], -c.arm[1], -c.arm[2], 0, c.arm[0], c.arm[1], -c.arm[0], 0;
+    const Mat3 N = (Mat3::Identity() - c.n * c.n.transpose()) * c.inverse_length;
+    const Eigen::Matrix<double, 3, 6> NT = N * T;
+    Mat3 n_cross;
+    n_cross << 0, -c.n[2], c.n[1], c.n[2], 0, -c.n[0], -c.n[1], c.n[0], 0;
+    const Eigen::Matrix<double, 3, 6> turn = n_cross * NT;  // n x n_ddot
+    // A leg body's frame has z = n: omega = n x n_dot + w n with the spin rate
+    // w = (-x.s_dot + (y x s).n_dot) / |s x n| (Cardan arm s), so the part of alpha linear in the
+    // twist rate is n x n_ddot + w_dot n, w_dot = (-x.s_ddot + (y x s).n_ddot) / |s x n|.
+    const Vec3 base_arm = p.base_arm.col(k);
+    const Vec3 g_cyl = c.n.cross(c.cylinder_x).cross(base_arm) / c.cylinder_sin;
+    cylinder.topRows<3>() = p.cylinder_com * NT;
+    cylinder.bottomRows<3>() = turn + c.n * (g_cyl.transpose() * NT);
+    // The platform arm turns with the platform: s_ddot = omega_dot x s, x.s_ddot = omega_dot.(s x x).
+    const Vec3 g_pis = c.n.cross(c.piston_x).cross(c.piston_arm) / c.piston_sin;
+    const Vec3 h_pis = c.piston_arm.cross(c.piston_x) / c.piston_sin;
+    Eigen::Matrix<double, 1, 6> spin = g_pis.transpose() * NT;
+    spin.tail<3>() -= h_pis.transpose();
+    piston.topRows<3>() = T - p.piston_com * NT;
+    piston.bottomRows<3>() = turn + c.n * spin;
 }
 
 }  // namespace fd

@@ -61,11 +61,12 @@ LegFault leg_configuration(const LegParameters &p, int k, const Vec3 &position,
 void leg_body_motion(const LegParameters &p, int k, const LegConfiguration &c,
                      const PlatformMotion &m, BodyMotion &cylinder, BodyMotion &piston);
 
-// Only the part linear in the twist rate, as if the twist were zero: one column of the bodies'
-// Jacobian per unit linear or angular acceleration of the platform. Fills the accelerations only.
-void leg_body_acceleration_jacobian(const LegParameters &p, int k, const LegConfiguration &c,
-                                    const PlatformMotion &m, BodyMotion &cylinder,
-                                    BodyMotion &piston);
+using Matrix66 = Eigen::Matrix<double, 6, 6>;
+
+// The leg bodies' accelerations per unit platform twist rate (v_dot, omega_dot), as if the twist
+// were zero: rows (acceleration of the centre of mass, angular acceleration), 6 columns.
+void leg_acceleration_jacobians(const LegParameters &p, int k, const LegConfiguration &c,
+                                Matrix66 &cylinder, Matrix66 &piston);
 
 }  // namespace fd
 }  // namespace stewart

@@ -7,8 +7,6 @@ namespace fd {
 
 namespace {
 
-using Matrix66 = Eigen::Matrix<double, 6, 6>;
-
 Mat3 skew(const Vec3 &v) {
     Mat3 S;
     S << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
@@ -79,9 +77,6 @@ bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double fo
     PlatformMotion at_rest_rate = m;  // the twist, with zero twist rate: velocity products
     at_rest_rate.acceleration.setZero();
     at_rest_rate.alpha.setZero();
-    PlatformMotion unit = m;          // zero twist, unit twist rate: the Jacobian's columns
-    unit.velocity.setZero();
-    unit.omega.setZero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
         LegConfiguration &leg = e.legs[k];
         const LegFault fault = leg_configuration(d.legs, k, m.position, m.rotation, leg);
@@ -99,15 +94,7 @@ bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double fo
         BodyMotion cyl_bias, pis_bias;
         leg_body_motion(d.legs, k, leg, at_rest_rate, cyl_bias, pis_bias);
         Matrix66 J_cyl, J_pis;
-        BodyMotion cyl_col, pis_col;
-        for (int j = 0; j < 6; ++j) {
-            unit.acceleration.setZero();
-            unit.alpha.setZero();
-            (j < 3 ? unit.acceleration : unit.alpha)[j % 3] = 1.0;
-            leg_body_acceleration_jacobian(d.legs, k, leg, unit, cyl_col, pis_col);
-            J_cyl.col(j) << cyl_col.acceleration, cyl_col.alpha;
-            J_pis.col(j) << pis_col.acceleration, pis_col.alpha;
-        }
+        leg_acceleration_jacobians(d.legs, k, leg, J_cyl, J_pis);
         add_body(d.cylinder_mass, world_inertia(cyl_bias.rotation, d.cylinder_inertia), J_cyl,
                  cyl_bias, d.gravity, M, rhs);
         add_body(d.piston_mass, world_inertia(pis_bias.rotation, d.piston_inertia), J_pis,

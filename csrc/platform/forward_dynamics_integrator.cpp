@@ -1,11 +1,13 @@
 #include "platform/forward_dynamics_integrator.hpp"
 
+#include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -23,6 +25,7 @@ struct IntegratorImpl {
     SUNLinearSolver linear = nullptr;
     SUNNonlinearSolver nonlinear = nullptr;
     void *cvode = nullptr;
+    void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
     int fault_leg = -1;
@@ -91,30 +94,52 @@ int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, v
     return 0;
 }
 
+// Forward-difference dense Jacobian of the right-hand side, into preallocated vectors (CVODE's
+// own difference quotient allocates a vector per evaluation).
+int dense_jacobian(sunrealtype t, N_Vector y, N_Vector f, SUNMatrix J, void *user, N_Vector perturbed,
+                   N_Vector f_perturbed, N_Vector) {
+    const double *yv = N_VGetArrayPointer(y), *fv = N_VGetArrayPointer(f);
+    double *yp = N_VGetArrayPointer(perturbed);
+    const double *fp = N_VGetArrayPointer(f_perturbed);
+    for (int i = 0; i < kStates; ++i) yp[i] = yv[i];
+    const double root_eps = 1.4901161193847656e-08;  // sqrt(2^-52)
+    for (int j = 0; j < kStates; ++j) {
+        const double increment = root_eps * std::max(std::fabs(yv[j]), 1e-3);
+        yp[j] = yv[j] + increment;
+        const int flag = right_hand_side(t, perturbed, f_perturbed, user);
+        yp[j] = yv[j];
+        if (flag != 0) return flag;
+        double *column = SUNDenseMatrix_Column(J, j);
+        for (int i = 0; i < kStates; ++i) column[i] = (fp[i] - fv[i]) / increment;
+    }
+    return 0;
+}
+
 void error_handler(int code, const char *module, const char *function, char *text, void *user) {
     IntegratorImpl &im = *static_cast<IntegratorImpl *>(user);
     std::snprintf(im.cvode_message, sizeof im.cvode_message, "%s %s (%d): %s", module, function,
                   code, text);
 }
 
-// CVODE's flag names (CVodeGetReturnFlagName allocates, which a step must not).
+// CVODE's and ARKODE's flag names (they share the values; CVodeGetReturnFlagName allocates,
+// which a step must not).
 const char *flag_name(int flag) {
     switch (flag) {
-        case CV_TOO_MUCH_WORK: return "CV_TOO_MUCH_WORK (max_internal_steps reached)";
-        case CV_TOO_MUCH_ACC: return "CV_TOO_MUCH_ACC";
-        case CV_ERR_FAILURE: return "CV_ERR_FAILURE (error test failed repeatedly)";
-        case CV_CONV_FAILURE: return "CV_CONV_FAILURE (corrector did not converge)";
-        case CV_LSETUP_FAIL: return "CV_LSETUP_FAIL";
-        case CV_LSOLVE_FAIL: return "CV_LSOLVE_FAIL";
-        case CV_RHSFUNC_FAIL: return "CV_RHSFUNC_FAIL";
-        case CV_FIRST_RHSFUNC_ERR: return "CV_FIRST_RHSFUNC_ERR";
-        case CV_REPTD_RHSFUNC_ERR: return "CV_REPTD_RHSFUNC_ERR";
-        case CV_UNREC_RHSFUNC_ERR: return "CV_UNREC_RHSFUNC_ERR";
-        case CV_MEM_FAIL: return "CV_MEM_FAIL";
-        case CV_ILL_INPUT: return "CV_ILL_INPUT";
-        case CV_NLS_FAIL: return "CV_NLS_FAIL";
+        case CV_TOO_MUCH_WORK: return "TOO_MUCH_WORK (max_internal_steps reached)";
+        case CV_TOO_MUCH_ACC: return "TOO_MUCH_ACC";
+        case CV_ERR_FAILURE: return "ERR_FAILURE (error test failed repeatedly)";
+        case CV_CONV_FAILURE: return "CONV_FAILURE (corrector did not converge)";
+        case CV_LSETUP_FAIL: return "LSETUP_FAIL";
+        case CV_LSOLVE_FAIL: return "LSOLVE_FAIL";
+        case CV_RHSFUNC_FAIL: return "RHSFUNC_FAIL";
+        case CV_FIRST_RHSFUNC_ERR: return "FIRST_RHSFUNC_ERR";
+        case CV_REPTD_RHSFUNC_ERR: return "REPTD_RHSFUNC_ERR";
+        case CV_UNREC_RHSFUNC_ERR: return "UNREC_RHSFUNC_ERR";
+        case CV_MEM_FAIL: return "MEM_FAIL";
+        case CV_ILL_INPUT: return "ILL_INPUT";
+        case CV_NLS_FAIL: return "NLS_FAIL";
     }
-    return "a CVODE error flag";
+    return "an error flag";
 }
 
 const char *fault_text(LegFault f) {
@@ -134,6 +159,7 @@ Integrator::~Integrator() {
     if (!impl_) return;
     IntegratorImpl &im = *impl_;
     if (im.cvode) CVodeFree(&im.cvode);
+    if (im.arkode) ERKStepFree(&im.arkode);
     if (im.nonlinear) SUNNonlinSolFree(im.nonlinear);
     if (im.linear) SUNLinSolFree(im.linear);
     if (im.matrix) SUNMatDestroy(im.matrix);
@@ -154,10 +180,25 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
                false;
     N_VConst(0.0, im.y);
     NV_Ith_S(im.y, 3) = 1.0;
+    int flag;
+    if (o.method == STEWART_PLANT_ERK) {
+        im.arkode = ERKStepCreate(right_hand_side, 0.0, im.y, im.context);
+        if (!im.arkode)
+            return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
+        if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
+            (flag = ERKStepSetUserData(im.arkode, &im)) != ARK_SUCCESS ||
+            (flag = ERKStepSetTableNum(im.arkode, ARKODE_DORMAND_PRINCE_7_4_5)) != ARK_SUCCESS ||
+            (flag = ERKStepSStolerances(im.arkode, o.relative_tolerance,
+                                        o.absolute_tolerance)) != ARK_SUCCESS ||
+            (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_MEMORY, "ARKODE setup failed with %s: %s",
+                               flag_name(flag), im.cvode_message),
+                   false;
+        return true;
+    }
     const bool bdf = o.method == STEWART_PLANT_BDF;
     im.cvode = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, im.context);
     if (!im.cvode) return set_message(msg, size, STEWART_ERR_MEMORY, "CVodeCreate failed"), false;
-    int flag;
     if ((flag = CVodeSetErrHandlerFn(im.cvode, error_handler, &im)) != CV_SUCCESS ||
         (flag = CVodeInit(im.cvode, right_hand_side, 0.0, im.y)) != CV_SUCCESS ||
         (flag = CVodeSetUserData(im.cvode, &im)) != CV_SUCCESS ||
@@ -170,8 +211,9 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     if (bdf) {
         im.matrix = SUNDenseMatrix(kStates, kStates, im.context);
         im.linear = im.matrix ? SUNLinSol_Dense(im.y, im.matrix, im.context) : nullptr;
-        if (!im.linear || (flag = CVodeSetLinearSolver(im.cvode, im.linear, im.matrix)) !=
-                              CVLS_SUCCESS)
+        if (!im.linear ||
+            (flag = CVodeSetLinearSolver(im.cvode, im.linear, im.matrix)) != CVLS_SUCCESS ||
+            (flag = CVodeSetJacFn(im.cvode, dense_jacobian)) != CVLS_SUCCESS)
             return set_message(msg, size, STEWART_ERR_MEMORY,
                                "CVODE dense linear solver setup failed"),
                    false;
@@ -186,8 +228,8 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     return true;
 }
 
-stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces, char *msg,
-                                   size_t size) {
+stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces,
+                                   double &step_hint, char *msg, size_t size) {
     IntegratorImpl &im = *impl_;
     im.forces = &forces;
     im.fault = LegFault::None;
@@ -198,24 +240,48 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     for (int i = 0; i < kStates; ++i) v[i] = y[i];
     int flag;
     sunrealtype t_reached = 0;
-    if ((flag = CVodeReInit(im.cvode, 0.0, im.y)) != CV_SUCCESS ||
-        (flag = CVodeSetStopTime(im.cvode, forces.h)) != CV_SUCCESS)
-        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
-                           flag_name(flag), im.cvode_message);
-    flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_NORMAL);
-
-    long n;
     stats_ = stewart_plant_statistics{};
-    if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats_.steps = n;
-    if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats_.rhs_evaluations = n;
-    if (CVodeGetNumNonlinSolvIters(im.cvode, &n) == CV_SUCCESS) stats_.nonlinear_iterations = n;
-    if (CVodeGetNumErrTestFails(im.cvode, &n) == CV_SUCCESS) stats_.error_test_failures = n;
-    if (im.linear && CVodeGetNumJacEvals(im.cvode, &n) == CVLS_SUCCESS)
-        stats_.jacobian_evaluations = n;
-    int order = 0;
-    sunrealtype h_last = 0;
-    if (CVodeGetLastOrder(im.cvode, &order) == CV_SUCCESS) stats_.last_order = order;
-    if (CVodeGetLastStep(im.cvode, &h_last) == CV_SUCCESS) stats_.last_step_size = h_last;
+    long n;
+    const char *module = im.arkode ? "ARKODE" : "CVODE";
+    if (im.arkode) {
+        // A one-step method restarts for free; the first step tries the size the last step
+        // would have taken next (part of the saved state, so a rollback repeats it exactly).
+        const double first = step_hint > 0 && step_hint < forces.h ? step_hint : forces.h;
+        if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
+            (flag = ERKStepSetStopTime(im.arkode, forces.h)) != ARK_SUCCESS ||
+            (flag = ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
+                               flag_name(flag), im.cvode_message);
+        flag = ERKStepEvolve(im.arkode, forces.h, im.y, &t_reached, ARK_NORMAL);
+        if (ERKStepGetNumSteps(im.arkode, &n) == ARK_SUCCESS) stats_.steps = n;
+        if (ERKStepGetNumErrTestFails(im.arkode, &n) == ARK_SUCCESS) stats_.error_test_failures = n;
+        long explicit_evals = 0, implicit_evals = 0;
+        (void)implicit_evals;
+        if (ERKStepGetNumRhsEvals(im.arkode, &explicit_evals) == ARK_SUCCESS)
+            stats_.rhs_evaluations = explicit_evals;
+        sunrealtype h_last = 0, h_next = 0;
+        if (ERKStepGetLastStep(im.arkode, &h_last) == ARK_SUCCESS) stats_.last_step_size = h_last;
+        if (ERKStepGetCurrentStep(im.arkode, &h_next) == ARK_SUCCESS && flag >= 0)
+            step_hint = h_next;
+        stats_.last_order = 5;
+    } else {
+        if ((flag = CVodeReInit(im.cvode, 0.0, im.y)) != CV_SUCCESS ||
+            (flag = CVodeSetStopTime(im.cvode, forces.h)) != CV_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
+                               flag_name(flag), im.cvode_message);
+        flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_NORMAL);
+        if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats_.steps = n;
+        if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats_.rhs_evaluations = n;
+        if (CVodeGetNumNonlinSolvIters(im.cvode, &n) == CV_SUCCESS)
+            stats_.nonlinear_iterations = n;
+        if (CVodeGetNumErrTestFails(im.cvode, &n) == CV_SUCCESS) stats_.error_test_failures = n;
+        if (im.linear && CVodeGetNumJacEvals(im.cvode, &n) == CVLS_SUCCESS)
+            stats_.jacobian_evaluations = n;
+        int order = 0;
+        sunrealtype h_last = 0;
+        if (CVodeGetLastOrder(im.cvode, &order) == CV_SUCCESS) stats_.last_order = order;
+        if (CVodeGetLastStep(im.cvode, &h_last) == CV_SUCCESS) stats_.last_step_size = h_last;
+    }
 
     if (flag < 0) {
         if (im.fault != LegFault::None)
@@ -230,8 +296,8 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
                                "the accelerations are not finite or above 1e100 near t + %g s "
                                "(forces or motion out of range)", static_cast<double>(t_reached));
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                           "CVODE failed at t + %g s with %s: %s", static_cast<double>(t_reached),
-                           flag_name(flag), im.cvode_message);
+                           "%s failed at t + %g s with %s: %s", module,
+                           static_cast<double>(t_reached), flag_name(flag), im.cvode_message);
     }
     double out[kStates];
     for (int i = 0; i < kStates; ++i) out[i] = v[i];

@@ -1,4 +1,4 @@
-// Forward dynamics, time integration: CVODE on the 13 states (platform origin, unit quaternion,
+// Forward dynamics, time integration: CVODE or ARKODE on the 13 states (platform origin, unit quaternion,
 // velocity, angular velocity, world frame), restarted at every communication step because the
 // inputs change there.
 #pragma once
@@ -39,8 +39,11 @@ public:
     bool init(const DynamicsModel *model, const stewart_plant_options &options, char *msg,
               size_t size);
     // Integrates y over [0, h]. On failure y is unchanged and the message names the cause
-    // (the leg, or CVODE's flag and text). Normalises the quaternion of the result.
-    stewart_status advance(double y[kStates], const ForceProfile &forces, char *msg, size_t size);
+    // (the leg, or the integrator's flag and text). Normalises the quaternion of the result.
+    // step_hint: the first internal step to try (0: the integrator estimates it); on success,
+    // the step the integrator would take next (explicit Runge-Kutta only; CVODE ignores it).
+    stewart_status advance(double y[kStates], const ForceProfile &forces, double &step_hint,
+                           char *msg, size_t size);
     // Counters of the last advance (the totals are the caller's).
     const stewart_plant_statistics &statistics() const { return stats_; }
 

@@ -22,13 +22,14 @@ extern "C" {
 
 typedef enum stewart_plant_method {
     STEWART_PLANT_ADAMS = 0, /* CVODE Adams-Moulton, fixed-point iteration: no Jacobian */
-    STEWART_PLANT_BDF = 1    /* CVODE BDF, Newton with a dense difference-quotient Jacobian */
+    STEWART_PLANT_BDF = 1,   /* CVODE BDF, Newton with a dense difference-quotient Jacobian */
+    STEWART_PLANT_ERK = 2    /* ARKODE explicit Runge-Kutta, Dormand-Prince 5(4) */
 } stewart_plant_method;
 
 /* Integrator settings; stewart_plant_options_default gives the values documented here. */
 typedef struct stewart_plant_options {
     int fidelity;            /* STEWART_MASSLESS or STEWART_FULL; STEWART_FULL */
-    int method;              /* a stewart_plant_method; STEWART_PLANT_ADAMS */
+    int method;              /* a stewart_plant_method; STEWART_PLANT_ERK */
     double relative_tolerance; /* CVODE reltol; 1e-10 */
     double absolute_tolerance; /* CVODE abstol, on every state [m, -, m/s, rad/s]; 1e-12 */
     long max_internal_steps; /* CVODE steps allowed within one communication step; 10000 */
