@@ -22,22 +22,24 @@ AxisRates axis_rates(const LegConfiguration &c, const Vec3 &d_dot, const Vec3 &d
 }
 
 // Angular velocity and acceleration of the frame (x, y = n x x, z = n), x = (s x n)/|s x n|, from
-// the rates of n and s: omega = 1/2 sum a_i x a_i_dot, alpha = 1/2 sum a_i x a_i_ddot for the
-// columns a_i of any orthonormal frame.
+// the rates of n and s. With z = n, omega = n x n_dot + w n, where the spin rate w = x_dot.y
+// = (-x.s_dot + (y x s).n_dot) / |s x n|; alpha = n x n_ddot + w_dot n + w n_dot.
 void frame_rates(const Vec3 &n, const AxisRates &nr, const Vec3 &s, const Vec3 &s_dot,
                  const Vec3 &s_ddot, const Vec3 &x, double mu, Vec3 &omega, Vec3 &alpha) {
     const double inv_mu = 1.0 / mu;
+    const Vec3 y = n.cross(x);
     const Vec3 u_dot = s_dot.cross(n) + s.cross(nr.n_dot);
-    const Vec3 u_ddot = s_ddot.cross(n) + 2.0 * s_dot.cross(nr.n_dot) + s.cross(nr.n_ddot);
     const double mu_dot = x.dot(u_dot);
     const Vec3 x_dot = (u_dot - mu_dot * x) * inv_mu;
-    const double mu_ddot = x.dot(u_ddot) + mu * x_dot.squaredNorm();
-    const Vec3 x_ddot = (u_ddot - mu_ddot * x - 2.0 * mu_dot * x_dot) * inv_mu;
-    const Vec3 y = n.cross(x);
     const Vec3 y_dot = nr.n_dot.cross(x) + n.cross(x_dot);
-    const Vec3 y_ddot = nr.n_ddot.cross(x) + 2.0 * nr.n_dot.cross(x_dot) + n.cross(x_ddot);
-    omega = 0.5 * (x.cross(x_dot) + y.cross(y_dot) + n.cross(nr.n_dot));
-    alpha = 0.5 * (x.cross(x_ddot) + y.cross(y_ddot) + n.cross(nr.n_ddot));
+    const Vec3 y_cross_s = y.cross(s);
+    const double w = (-x.dot(s_dot) + y_cross_s.dot(nr.n_dot)) * inv_mu;
+    const double numerator_dot = -x_dot.dot(s_dot) - x.dot(s_ddot) +
+                                 (y_dot.cross(s) + y.cross(s_dot)).dot(nr.n_dot) +
+                                 y_cross_s.dot(nr.n_ddot);
+    const double w_dot = (numerator_dot - w * mu_dot) * inv_mu;
+    omega = n.cross(nr.n_dot) + w * n;
+    alpha = n.cross(nr.n_ddot) + w_dot * n + w * nr.n_dot;
 }
 
 Mat3 leg_axes(const Vec3 &x, const Vec3 &n) {
@@ -51,13 +53,14 @@ Mat3 leg_axes(const Vec3 &x, const Vec3 &n) {
 }  // namespace
 
 LegFault leg_configuration(const LegParameters &p, int k, const Vec3 &position,
-                           const Mat3 &rotation, LegConfiguration &c) {
+                           const Mat3 &rotation, LegConfiguration &c, bool frames) {
     c.arm.noalias() = rotation * p.platform_points.col(k);
     const Vec3 d = position + c.arm - p.base_points.col(k);
     c.length = d.norm();
     if (!(c.length > p.min_length)) return LegFault::ZeroLength;
     c.inverse_length = 1.0 / c.length;
     c.n = d * c.inverse_length;
+    if (!frames) return LegFault::None;
     c.piston_arm.noalias() = rotation * p.platform_arm.col(k);
     const Vec3 uc = p.base_arm.col(k).cross(c.n), up = c.piston_arm.cross(c.n);
     c.cylinder_sin = uc.norm();
@@ -94,31 +97,21 @@ void leg_body_motion(const LegParameters &p, int k, const LegConfiguration &c,
     frame_rates(c.n, nr, s, s_dot, s_ddot, c.piston_x, c.piston_sin, pis.omega, pis.alpha);
 }
 
-void leg_acceleration_jacobians(const LegParameters &p, int k, const LegConfiguration &c,
-                                Matrix66 &cylinder, Matrix66 &piston) {
-    // P_ddot = v_dot + omega_dot x arm = T nu_dot; n_ddot = N P_ddot, N = (I - n n^T) / L.
-    Eigen::Matrix<double, 3, 6> T;
-    T.leftCols<3>().setIdentity();
-    T.rightCols<3>() << 0, c.arm[2], -c.arm[1], -c.arm[2], 0, c.arm[0], c.arm[1], -c.arm[0], 0;
-    const Mat3 N = (Mat3::Identity() - c.n * c.n.transpose()) * c.inverse_length;
-    const Eigen::Matrix<double, 3, 6> NT = N * T;
+void leg_acceleration_map(const LegParameters &p, int k, const LegConfiguration &c,
+                          LegAccelerationMap &map) {
+    map.N = (Mat3::Identity() - c.n * c.n.transpose()) * c.inverse_length;
     Mat3 n_cross;
     n_cross << 0, -c.n[2], c.n[1], c.n[2], 0, -c.n[0], -c.n[1], c.n[0], 0;
-    const Eigen::Matrix<double, 3, 6> turn = n_cross * NT;  // n x n_ddot
+    const Mat3 turn = n_cross * map.N;  // n x n_ddot per unit P_ddot
     // A leg body's frame has z = n: omega = n x n_dot + w n with the spin rate
     // w = (-x.s_dot + (y x s).n_dot) / |s x n| (Cardan arm s), so the part of alpha linear in the
-    // twist rate is n x n_ddot + w_dot n, w_dot = (-x.s_ddot + (y x s).n_ddot) / |s x n|.
-    const Vec3 base_arm = p.base_arm.col(k);
-    const Vec3 g_cyl = c.n.cross(c.cylinder_x).cross(base_arm) / c.cylinder_sin;
-    cylinder.topRows<3>() = p.cylinder_com * NT;
-    cylinder.bottomRows<3>() = turn + c.n * (g_cyl.transpose() * NT);
-    // The platform arm turns with the platform: s_ddot = omega_dot x s, x.s_ddot = omega_dot.(s x x).
+    // accelerations is n x n_ddot + w_dot n, w_dot = (-x.s_ddot + (y x s).n_ddot) / |s x n|.
+    const Vec3 g_cyl = c.n.cross(c.cylinder_x).cross(p.base_arm.col(k)) / c.cylinder_sin;
+    map.cylinder_alpha = turn + c.n * (map.N * g_cyl).transpose();
+    // The platform arm turns with the platform: s_ddot = alpha x s, x.s_ddot = alpha.(s x x).
     const Vec3 g_pis = c.n.cross(c.piston_x).cross(c.piston_arm) / c.piston_sin;
-    const Vec3 h_pis = c.piston_arm.cross(c.piston_x) / c.piston_sin;
-    Eigen::Matrix<double, 1, 6> spin = g_pis.transpose() * NT;
-    spin.tail<3>() -= h_pis.transpose();
-    piston.topRows<3>() = T - p.piston_com * NT;
-    piston.bottomRows<3>() = turn + c.n * spin;
+    map.piston_alpha = turn + c.n * (map.N * g_pis).transpose();
+    map.piston_spin = c.piston_arm.cross(c.piston_x) / c.piston_sin;
 }
 
 }  // namespace fd

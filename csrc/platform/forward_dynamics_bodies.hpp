@@ -51,9 +51,10 @@ struct LegConfiguration {
     double cylinder_sin, piston_sin;  // |s x n| of each Cardan
 };
 
-// LegFault::None, or why leg k has no defined bodies at this pose.
+// LegFault::None, or why leg k has no defined bodies at this pose. Without frames only the axis
+// and length are filled (massless legs).
 LegFault leg_configuration(const LegParameters &p, int k, const Vec3 &position,
-                           const Mat3 &rotation, LegConfiguration &c);
+                           const Mat3 &rotation, LegConfiguration &c, bool frames = true);
 
 // Both bodies of leg k for the platform motion m (pose in c): poses, velocities, accelerations.
 // Velocities are linear in the twist; accelerations are linear in the twist rate plus the
@@ -61,12 +62,17 @@ LegFault leg_configuration(const LegParameters &p, int k, const Vec3 &position,
 void leg_body_motion(const LegParameters &p, int k, const LegConfiguration &c,
                      const PlatformMotion &m, BodyMotion &cylinder, BodyMotion &piston);
 
-using Matrix66 = Eigen::Matrix<double, 6, 6>;
-
-// The leg bodies' accelerations per unit platform twist rate (v_dot, omega_dot), as if the twist
-// were zero: rows (acceleration of the centre of mass, angular acceleration), 6 columns.
-void leg_acceleration_jacobians(const LegParameters &p, int k, const LegConfiguration &c,
-                                Matrix66 &cylinder, Matrix66 &piston);
+// The leg bodies' accelerations as linear maps of the platform point's acceleration P_ddot and
+// the platform's angular acceleration alpha, as if every velocity were zero:
+//   cylinder: a = cylinder_com N P_ddot,        alpha_c = cylinder_alpha P_ddot
+//   piston:   a = (I - piston_com N) P_ddot,    alpha_p = piston_alpha P_ddot - n (piston_spin.alpha)
+struct LegAccelerationMap {
+    Mat3 N;  // n_ddot per unit P_ddot: (I - n n^T) / L
+    Mat3 cylinder_alpha, piston_alpha;
+    Vec3 piston_spin;
+};
+void leg_acceleration_map(const LegParameters &p, int k, const LegConfiguration &c,
+                          LegAccelerationMap &map);
 
 }  // namespace fd
 }  // namespace stewart

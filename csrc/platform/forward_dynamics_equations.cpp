@@ -7,29 +7,55 @@ namespace fd {
 
 namespace {
 
+using Matrix66 = Eigen::Matrix<double, 6, 6>;
+
 Mat3 skew(const Vec3 &v) {
     Mat3 S;
     S << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
     return S;
 }
 
-// Adds body b's share: J^T diag(m, I) J to the mass matrix, J^T (f - M bias - gyroscopic) to the
-// right-hand side. J rows: acceleration (3) and angular acceleration (3) of the body per unit
-// platform twist rate; bias: the body's accelerations at zero twist rate.
-void add_body(double mass, const Mat3 &inertia_world, const Eigen::Matrix<double, 6, 6> &J,
-              const BodyMotion &bias, const Vec3 &gravity, Matrix66 &M, Vector6 &rhs) {
-    Eigen::Matrix<double, 6, 6> MJ;
-    MJ.topRows<3>() = mass * J.topRows<3>();
-    MJ.bottomRows<3>().noalias() = inertia_world * J.bottomRows<3>();
-    M.noalias() += J.transpose() * MJ;
-    Vector6 f;
-    f.head<3>() = mass * (gravity - bias.acceleration);
-    f.tail<3>() = -(inertia_world * bias.alpha + bias.omega.cross(inertia_world * bias.omega));
-    rhs.noalias() += J.transpose() * f;
-}
-
 Mat3 world_inertia(const Mat3 &A, const Vec3 &principal) {
     return A * principal.asDiagonal() * A.transpose();
+}
+
+// Adds leg k's two bodies. Their accelerations are linear in u = (P_ddot, alpha) (the leg's
+// platform point and the platform's angular acceleration) plus the velocity products in the
+// biases, so their share is first formed in u (3 x 3 blocks) and then mapped to the twist rate
+// by u = S nu_dot, S = [I, K; 0, I], K = -[arm]x.
+void add_leg(const DynamicsModel &d, const LegConfiguration &leg, int k, const BodyMotion &cyl,
+             const BodyMotion &pis, Matrix66 &M, Vector6 &rhs) {
+    LegAccelerationMap map;
+    leg_acceleration_map(d.legs, k, leg, map);
+    const Mat3 I_cyl = world_inertia(cyl.rotation, d.cylinder_inertia);
+    const Mat3 I_pis = world_inertia(pis.rotation, d.piston_inertia);
+    const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
+    const Mat3 piston_linear = Mat3::Identity() - cp * map.N;
+    // u-space mass blocks: A (P_ddot, P_ddot), B (P_ddot, alpha), C (alpha, alpha).
+    Mat3 A = (d.cylinder_mass * cc * cc) * (map.N * map.N) +
+             d.piston_mass * piston_linear.transpose() * piston_linear;
+    A.noalias() += map.cylinder_alpha.transpose() * I_cyl * map.cylinder_alpha;
+    A.noalias() += map.piston_alpha.transpose() * I_pis * map.piston_alpha;
+    const Vec3 I_pis_n = I_pis * leg.n;
+    const Mat3 B = -(map.piston_alpha.transpose() * I_pis_n) * map.piston_spin.transpose();
+    const Mat3 C = leg.n.dot(I_pis_n) * map.piston_spin * map.piston_spin.transpose();
+    // Applied minus inertial forces of each body (force, torque about its centre of mass).
+    const Vec3 f_cyl = d.cylinder_mass * (d.gravity - cyl.acceleration);
+    const Vec3 t_cyl = -(I_cyl * cyl.alpha + cyl.omega.cross(I_cyl * cyl.omega));
+    const Vec3 f_pis = d.piston_mass * (d.gravity - pis.acceleration);
+    const Vec3 t_pis = -(I_pis * pis.alpha + pis.omega.cross(I_pis * pis.omega));
+    const Vec3 f_point = cc * (map.N * f_cyl) + map.cylinder_alpha.transpose() * t_cyl +
+                         piston_linear.transpose() * f_pis + map.piston_alpha.transpose() * t_pis;
+    const Vec3 f_alpha = -leg.n.dot(t_pis) * map.piston_spin;
+
+    const Mat3 K = -skew(leg.arm);
+    const Mat3 AK_B = A * K + B;
+    M.topLeftCorner<3, 3>() += A;
+    M.topRightCorner<3, 3>() += AK_B;
+    M.bottomLeftCorner<3, 3>() += AK_B.transpose();
+    M.bottomRightCorner<3, 3>().noalias() += K.transpose() * AK_B + B.transpose() * K + C;
+    rhs.head<3>() += f_point;
+    rhs.tail<3>() += leg.arm.cross(f_point) + f_alpha;
 }
 
 }  // namespace
@@ -50,6 +76,7 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
     d.platform_mass = model.platform.mass;
     d.platform_com = model.platform.com;
     d.platform_inertia = model.platform.inertia;
+    d.platform_inertia_inverse = model.platform.inertia.inverse();
     d.cylinder_mass = p.cylinder_mass;
     d.piston_mass = p.piston_mass;
     d.cylinder_inertia = Vec3(p.cylinder_inertia);
@@ -63,25 +90,29 @@ bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double fo
     Matrix66 M = Matrix66::Zero();
     Vector6 rhs = Vector6::Zero();
 
-    // The platform (and payload): its centre of mass sits at c from the platform origin.
+    // The platform (and payload), centre of mass at c from the platform origin: with
+    // a_c = v_dot + alpha x c + omega x (omega x c), Newton-Euler about the origin gives
+    // M = [m I, -m [c]x; m [c]x, I_c - m [c]x [c]x] and the velocity-product and gravity terms.
     const Vec3 c = m.rotation * d.platform_com;
     const Mat3 I_platform = m.rotation * d.platform_inertia * m.rotation.transpose();
-    Matrix66 J = Matrix66::Identity();
-    J.topRightCorner<3, 3>() = -skew(c);
-    BodyMotion bias;
-    bias.acceleration = m.omega.cross(m.omega.cross(c));
-    bias.alpha.setZero();
-    bias.omega = m.omega;
-    add_body(d.platform_mass, I_platform, J, bias, d.gravity, M, rhs);
+    const Mat3 c_cross = skew(c);
+    const double mass = d.platform_mass;
+    M.topLeftCorner<3, 3>() = mass * Mat3::Identity();
+    M.topRightCorner<3, 3>() = -mass * c_cross;
+    M.bottomLeftCorner<3, 3>() = mass * c_cross;
+    M.bottomRightCorner<3, 3>() = I_platform - mass * c_cross * c_cross;
+    const Vec3 f_platform = mass * (d.gravity - m.omega.cross(m.omega.cross(c)));
+    rhs.head<3>() = f_platform;
+    rhs.tail<3>() = c.cross(f_platform) - m.omega.cross(I_platform * m.omega);
 
     PlatformMotion at_rest_rate = m;  // the twist, with zero twist rate: velocity products
     at_rest_rate.acceleration.setZero();
     at_rest_rate.alpha.setZero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
         LegConfiguration &leg = e.legs[k];
-        const LegFault fault = leg_configuration(d.legs, k, m.position, m.rotation, leg);
-        // Massless legs have no bodies: only a zero length matters.
-        if (fault != LegFault::None && (d.with_legs || fault == LegFault::ZeroLength)) {
+        const LegFault fault =
+            leg_configuration(d.legs, k, m.position, m.rotation, leg, d.with_legs);
+        if (fault != LegFault::None) {
             e.fault = fault;
             e.fault_leg = k;
             return false;
@@ -93,12 +124,18 @@ bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double fo
 
         BodyMotion cyl_bias, pis_bias;
         leg_body_motion(d.legs, k, leg, at_rest_rate, cyl_bias, pis_bias);
-        Matrix66 J_cyl, J_pis;
-        leg_acceleration_jacobians(d.legs, k, leg, J_cyl, J_pis);
-        add_body(d.cylinder_mass, world_inertia(cyl_bias.rotation, d.cylinder_inertia), J_cyl,
-                 cyl_bias, d.gravity, M, rhs);
-        add_body(d.piston_mass, world_inertia(pis_bias.rotation, d.piston_inertia), J_pis,
-                 pis_bias, d.gravity, M, rhs);
+        add_leg(d, leg, k, cyl_bias, pis_bias, M, rhs);
+    }
+    if (!d.with_legs) {
+        // One rigid body: I_c alpha = T - c x F (moments about the origin), a = F/m - alpha x c.
+        const Vec3 F = rhs.head<3>();
+        const Vec3 alpha = m.rotation * (d.platform_inertia_inverse *
+                                         (m.rotation.transpose() * (rhs.tail<3>() - c.cross(F))));
+        e.twist_rate.head<3>() = F / mass - alpha.cross(c);
+        e.twist_rate.tail<3>() = alpha;
+        e.fault = LegFault::None;
+        e.fault_leg = -1;
+        return true;
     }
     // M is symmetric positive definite (the platform alone has a positive mass and inertia).
     e.twist_rate = M.llt().solve(rhs);

@@ -15,6 +15,7 @@ struct DynamicsModel {
     double platform_mass = 0;
     Vec3 platform_com;        // plate frame
     Mat3 platform_inertia;    // about the centre of mass, plate frame
+    Mat3 platform_inertia_inverse;
     double cylinder_mass = 0, piston_mass = 0;
     Vec3 cylinder_inertia, piston_inertia;  // principal, leg-body axes
     Vec3 gravity;

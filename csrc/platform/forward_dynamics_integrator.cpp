@@ -178,6 +178,10 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
         !(im.y = N_VNew_Serial(kStates, im.context)))
         return set_message(msg, size, STEWART_ERR_MEMORY, "SUNDIALS context or vector failed"),
                false;
+    // Fused vector operations: one loop per linear combination in the Runge-Kutta stages.
+    if (N_VEnableFusedOps_Serial(im.y, SUNTRUE) != 0)
+        return set_message(msg, size, STEWART_ERR_MEMORY, "N_VEnableFusedOps_Serial failed"),
+               false;
     N_VConst(0.0, im.y);
     NV_Ith_S(im.y, 3) = 1.0;
     int flag;
