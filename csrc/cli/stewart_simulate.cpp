@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/param_assignment.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace {
@@ -17,14 +18,17 @@ int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-simulate [--fidelity massless|full] [--param NAME=VALUE ...] "
                  "IN.csv OUT.csv\n"
-                 "  --param: a platform parameter by its FMU name (e.g. payload_mass=50), the start\n"
+                 "  --param: a platform parameter by its FMU name (e.g. payload_mass=50), the "
+                 "start\n"
                  "           state x0 y0 z0 roll0 pitch0 yaw0, x_dot0 .. yaw_dot0 (default: at "
                  "rest at home),\n"
                  "           or an integrator setting: relative_tolerance, absolute_tolerance,\n"
-                 "           max_internal_steps, method (0 Adams, 1 BDF with a dense Jacobian)\n"
+                 "           max_internal_steps, method (0 CVODE Adams, 1 CVODE BDF with a dense\n"
+                 "           Jacobian, 2 ARKODE explicit Runge-Kutta: the default)\n"
                  "  IN.csv:  t,F1..F6 [s, N] (F_k > 0 pushes platform and base apart; linear in "
                  "time between rows)\n"
-                 "  OUT.csv: t,x,y,z,roll,pitch,yaw,x_dot..yaw_dot,L1..L6,L_dot1..L_dot6,warnings,\n"
+                 "  OUT.csv: t,x,y,z,roll,pitch,yaw,x_dot..yaw_dot,L1..L6,L_dot1..L_dot6,"
+                 "warnings,\n"
                  "           steps,rhs_evaluations,nonlinear_iterations,error_test_failures "
                  "(of the step into that row)\n");
     return to == stderr ? 2 : 0;
@@ -38,19 +42,9 @@ struct Settings {
 
 // NAME=VALUE into the settings; false with a message on stderr.
 bool set_param(const char *assignment, Settings &s) {
-    const char *eq = std::strchr(assignment, '=');
-    if (!eq) {
-        std::fprintf(stderr, "stewart-simulate: --param '%s' is not NAME=VALUE\n", assignment);
-        return false;
-    }
-    const std::string name(assignment, eq);
-    char *end = nullptr;
-    const double value = std::strtod(eq + 1, &end);
-    if (end == eq + 1 || *end != '\0') {
-        std::fprintf(stderr, "stewart-simulate: --param %s: '%s' is not a number\n", name.c_str(),
-                     eq + 1);
-        return false;
-    }
+    std::string name;
+    double value;
+    if (!stewart::parse_assignment("stewart-simulate", assignment, name, value)) return false;
     for (int i = 0; i < 6; ++i) {
         if (name == std::string(kPose[i]) + "0") return s.pose[i] = value, true;
         if (name == std::string(kPose[i]) + "_dot0") return s.rate[i] = value, true;
@@ -69,12 +63,7 @@ bool set_param(const char *assignment, Settings &s) {
         else s.options.fidelity = static_cast<int>(value);
         return true;
     }
-    char message[STEWART_MESSAGE_SIZE];
-    if (stewart_params_set(&s.params, name.c_str(), value, message, sizeof message) != STEWART_OK) {
-        std::fprintf(stderr, "stewart-simulate: --param: %s\n", message);
-        return false;
-    }
-    return true;
+    return stewart::set_platform_param("stewart-simulate", name, value, s.params);
 }
 
 std::vector<std::string> split(const std::string &line) {

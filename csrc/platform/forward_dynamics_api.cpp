@@ -116,8 +116,8 @@ extern "C" stewart_status stewart_plant_options_check(const stewart_plant_option
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "absolute_tolerance = %g must be > 0", o->absolute_tolerance);
     if (o->max_internal_steps < 1)
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "max_internal_steps = %ld must be >= 1",
-                           o->max_internal_steps);
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "max_internal_steps = %ld must be >= 1", o->max_internal_steps);
     return clear_message(msg, size);
 }
 

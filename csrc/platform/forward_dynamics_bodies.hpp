@@ -65,7 +65,8 @@ void leg_body_motion(const LegParameters &p, int k, const LegConfiguration &c,
 // The leg bodies' accelerations as linear maps of the platform point's acceleration P_ddot and
 // the platform's angular acceleration alpha, as if every velocity were zero:
 //   cylinder: a = cylinder_com N P_ddot,        alpha_c = cylinder_alpha P_ddot
-//   piston:   a = (I - piston_com N) P_ddot,    alpha_p = piston_alpha P_ddot - n (piston_spin.alpha)
+//   piston:   a = (I - piston_com N) P_ddot,
+//             alpha_p = piston_alpha P_ddot - n (piston_spin . alpha)
 struct LegAccelerationMap {
     Mat3 N;  // n_ddot per unit P_ddot: (I - n n^T) / L
     Mat3 cylinder_alpha, piston_alpha;

@@ -96,8 +96,8 @@ int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, v
 
 // Forward-difference dense Jacobian of the right-hand side, into preallocated vectors (CVODE's
 // own difference quotient allocates a vector per evaluation).
-int dense_jacobian(sunrealtype t, N_Vector y, N_Vector f, SUNMatrix J, void *user, N_Vector perturbed,
-                   N_Vector f_perturbed, N_Vector) {
+int dense_jacobian(sunrealtype t, N_Vector y, N_Vector f, SUNMatrix J, void *user,
+                   N_Vector perturbed, N_Vector f_perturbed, N_Vector) {
     const double *yv = N_VGetArrayPointer(y), *fv = N_VGetArrayPointer(f);
     double *yp = N_VGetArrayPointer(perturbed);
     const double *fp = N_VGetArrayPointer(f_perturbed);

@@ -1,6 +1,6 @@
-// Forward dynamics, time integration: CVODE or ARKODE on the 13 states (platform origin, unit quaternion,
-// velocity, angular velocity, world frame), restarted at every communication step because the
-// inputs change there.
+// Forward dynamics, time integration: CVODE or ARKODE on the 13 states (platform origin, unit
+// quaternion, velocity, angular velocity, world frame), restarted at every communication step
+// because the inputs change there.
 #pragma once
 
 #include "platform/forward_dynamics_equations.hpp"

@@ -1,12 +1,12 @@
 """stewart-simulate from the command line: format, closed-form motions, a round trip through
 stewart-solve, and errors naming the line and column."""
-import csv
 import subprocess
 
 import numpy as np
 import pytest
 
 import scenes
+from test_cli import read
 
 POSE = ["x", "y", "z", "roll", "pitch", "yaw"]
 LEGS = range(1, 7)
@@ -22,13 +22,6 @@ def simulate(build_dir):
         return subprocess.run([str(build_dir / "stewart-simulate"), *map(str, args)],
                               capture_output=True, text=True, timeout=120)
     return run
-
-
-def read(path):
-    with open(path) as f:
-        reader = csv.reader(f)
-        header = next(reader)
-        return header, np.array([[float(v) for v in row] for row in reader])
 
 
 def write_forces(path, t, forces):

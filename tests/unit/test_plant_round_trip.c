@@ -32,6 +32,7 @@ static void round_trip(int fidelity, double seconds, double bound) {
     const double h = 1e-4;
     const int steps = (int)(seconds / h + 0.5);
     double f0[6], r0[6], f1[6], r1[6], worst = 0, worst_rate = 0, worst_t = 0;
+    double worst_wrench = 0, worst_length = 0;
     inverse_forces(fidelity, 0, f0, r0);
     for (int i = 1; i <= steps; ++i) {
         const double t = i * h;
@@ -40,6 +41,23 @@ static void round_trip(int fidelity, double seconds, double bound) {
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f1, &out));
         const stewart_pose cue = combined_pose(t);
+        /* The base wrench, lengths and rates against the inverse side's at the cue. */
+        if (i % 100 == 0) {
+            stewart_pose pose = cue;
+            const stewart_output inverse = solve_ok(model, data, fidelity, &pose);
+            for (int a = 0; a < 3; ++a) {
+                const double df = fabs(out.base_force[a] - inverse.base_force[a]);
+                const double dt = fabs(out.base_torque[a] - inverse.base_torque[a]);
+                if (df > worst_wrench) worst_wrench = df;
+                if (dt > worst_wrench) worst_wrench = dt;
+            }
+            for (int k = 0; k < 6; ++k) {
+                if (fabs(out.length[k] - closed_form_length(&params, &pose, k)) > worst_length)
+                    worst_length = fabs(out.length[k] - closed_form_length(&params, &pose, k));
+                if (fabs(out.length_rate[k] - inverse.length_rate[k]) > worst_length)
+                    worst_length = fabs(out.length_rate[k] - inverse.length_rate[k]);
+            }
+        }
         for (int c = 0; c < 6; ++c) {
             const double e = fabs(out.pose[c] - cue.q[c]);
             if (e > worst) worst = e, worst_t = t;
@@ -51,9 +69,14 @@ static void round_trip(int fidelity, double seconds, double bound) {
     stewart_plant_statistics st;
     stewart_plant_statistics_get(plant, &st);
     printf("round trip, fidelity %d: max pose error %.3g (at t = %.4g s), max rate error %.3g, "
+           "base wrench against the inverse side's %.3g N or N m, lengths and rates %.3g, "
            "over %g s (%ld internal steps, %ld rhs)\n", fidelity, worst, worst_t, worst_rate,
-           seconds, st.total_steps, st.total_rhs_evaluations);
+           worst_wrench, worst_length, seconds, st.total_steps, st.total_rhs_evaluations);
     TEST_ASSERT_TRUE(worst <= bound);
+    TEST_ASSERT_TRUE(worst_rate <= 10 * bound);
+    TEST_ASSERT_TRUE(worst_length <= 10 * bound);
+    /* The full inverse side takes its base wrench from the 14-body model's joint reactions. */
+    TEST_ASSERT_TRUE(worst_wrench <= 1e-6);
     stewart_plant_free(plant);
 }
 

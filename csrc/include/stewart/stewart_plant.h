@@ -46,7 +46,7 @@ typedef struct stewart_plant_statistics {
 
 /* Bits of stewart_plant_output.warnings. */
 enum {
-    STEWART_PLANT_WARN_STROKE = 1 /* some leg outside [stroke_min, stroke_max] (the message names it) */
+    STEWART_PLANT_WARN_STROKE = 1 /* a leg outside [stroke_min, stroke_max]; the message names it */
 };
 
 typedef struct stewart_plant_output {
