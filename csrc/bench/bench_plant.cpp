@@ -63,8 +63,10 @@ bool make_drive(const stewart_model *model, int fidelity, double h, double durat
     return ok;
 }
 
-const char *const kMethodNames[3] = {"CVODE Adams, fixed point", "CVODE BDF, dense Jacobian",
-                                     "ARKODE ERK DP5(4) (ours)"};
+const char *const kMethodNames[4] = {"CVODE Adams, fixed point", "CVODE BDF, dense Jacobian",
+                                     "ARKODE ERK 4(3) (default)", "ARKODE ERK DP5(4)"};
+
+const char *const kShortNames[4] = {"Adams", "BDF", "ERK4", "ERK5"};
 
 struct Result {
     double us_per_step = 0, rhs_per_step = 0, pose_error = 0;
@@ -152,7 +154,8 @@ int main(int argc, char **argv) {
     report += "fidelity  method                       us/step  rhs/step  pose error\n";
     double ours_us[3] = {0}, bdf_us[3] = {0};
     for (int f : {STEWART_MASSLESS, STEWART_FULL}) {
-        for (int method : {STEWART_PLANT_ERK, STEWART_PLANT_ADAMS, STEWART_PLANT_BDF}) {
+        for (int method :
+             {STEWART_PLANT_ERK, STEWART_PLANT_ERK5, STEWART_PLANT_ADAMS, STEWART_PLANT_BDF}) {
             stewart_plant_options o;
             stewart_plant_options_default(&o);
             o.fidelity = f;
@@ -173,7 +176,7 @@ int main(int argc, char **argv) {
     report += "\ntolerance sweep, 1 ms steps:\n";
     report += "fidelity  method  rtol     atol     us/step  rhs/step  pose error\n";
     for (int f : {STEWART_MASSLESS, STEWART_FULL})
-        for (int method : {STEWART_PLANT_ERK, STEWART_PLANT_ADAMS})
+        for (int method : {STEWART_PLANT_ERK, STEWART_PLANT_ERK5, STEWART_PLANT_ADAMS})
             for (double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
                 stewart_plant_options o;
                 stewart_plant_options_default(&o);
@@ -184,14 +187,14 @@ int main(int argc, char **argv) {
                 const Result r = run(model, o, drive[f], passes);
                 ok = ok && r.ok;
                 std::snprintf(line, sizeof line, "%-9s %-7s %-8.0e %-8.0e %7.2f  %8.1f  %10.2e\n",
-                              names[f], method == STEWART_PLANT_ERK ? "ERK" : "Adams", rtol,
+                              names[f], kShortNames[method], rtol,
                               rtol * 1e-2, r.us_per_step, r.rhs_per_step, r.pose_error);
                 report += line;
             }
 
     report += "\ncommunication step sweep, default method and tolerances, full fidelity:\n";
     report += "step [s]  us/step  rhs/step  pose error\n";
-    for (double h : {1e-4, 5e-4, 1e-3, 2e-3, 5e-3}) {
+    for (double h : {1e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2}) {
         Drive d;
         ok = ok && make_drive(model, STEWART_FULL, h, duration, d);
         stewart_plant_options o;

@@ -104,11 +104,10 @@ extern "C" stewart_status stewart_plant_options_check(const stewart_plant_option
     if (o->fidelity != STEWART_MASSLESS && o->fidelity != STEWART_FULL)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "fidelity = %d must be 1 (massless) or 2 (full)", o->fidelity);
-    if (o->method != STEWART_PLANT_ADAMS && o->method != STEWART_PLANT_BDF &&
-        o->method != STEWART_PLANT_ERK)
+    if (o->method < STEWART_PLANT_ADAMS || o->method > STEWART_PLANT_ERK5)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "method = %d must be 0 (Adams), 1 (BDF) or 2 (explicit Runge-Kutta)",
-                           o->method);
+                           "method = %d must be 0 (Adams), 1 (BDF), 2 (explicit Runge-Kutta 4(3)) "
+                           "or 3 (explicit Runge-Kutta 5(4))", o->method);
     if (!(o->relative_tolerance >= 1e-15 && o->relative_tolerance < 1))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "relative_tolerance = %g must be in [1e-15, 1)", o->relative_tolerance);

@@ -25,7 +25,8 @@ struct IntegratorImpl {
     SUNLinearSolver linear = nullptr;
     SUNNonlinearSolver nonlinear = nullptr;
     void *cvode = nullptr;
-    void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK
+    void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK and STEWART_PLANT_ERK5
+    int erk_order = 0;
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
     int fault_leg = -1;
@@ -185,13 +186,17 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     N_VConst(0.0, im.y);
     NV_Ith_S(im.y, 3) = 1.0;
     int flag;
-    if (o.method == STEWART_PLANT_ERK) {
+    if (o.method == STEWART_PLANT_ERK || o.method == STEWART_PLANT_ERK5) {
         im.arkode = ERKStepCreate(right_hand_side, 0.0, im.y, im.context);
+        im.erk_order = o.method == STEWART_PLANT_ERK ? 4 : 5;
         if (!im.arkode)
             return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
         if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
             (flag = ERKStepSetUserData(im.arkode, &im)) != ARK_SUCCESS ||
-            (flag = ERKStepSetTableNum(im.arkode, ARKODE_DORMAND_PRINCE_7_4_5)) != ARK_SUCCESS ||
+            (flag = ERKStepSetTableNum(im.arkode, o.method == STEWART_PLANT_ERK
+                                                          ? ARKODE_ZONNEVELD_5_3_4
+                                                          : ARKODE_DORMAND_PRINCE_7_4_5)) !=
+                ARK_SUCCESS ||
             (flag = ERKStepSStolerances(im.arkode, o.relative_tolerance,
                                         o.absolute_tolerance)) != ARK_SUCCESS ||
             (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS)
@@ -267,7 +272,7 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
         if (ERKStepGetLastStep(im.arkode, &h_last) == ARK_SUCCESS) stats_.last_step_size = h_last;
         if (ERKStepGetCurrentStep(im.arkode, &h_next) == ARK_SUCCESS && flag >= 0)
             step_hint = h_next;
-        stats_.last_order = 5;
+        stats_.last_order = im.erk_order;
     } else {
         if ((flag = CVodeReInit(im.cvode, 0.0, im.y)) != CV_SUCCESS ||
             (flag = CVodeSetStopTime(im.cvode, forces.h)) != CV_SUCCESS)

@@ -49,6 +49,7 @@ static void steps_do_not_allocate(int fidelity, int method) {
 static void test_erk_steps_do_not_allocate(void) {
     steps_do_not_allocate(STEWART_FULL, STEWART_PLANT_ERK);
     steps_do_not_allocate(STEWART_MASSLESS, STEWART_PLANT_ERK);
+    steps_do_not_allocate(STEWART_FULL, STEWART_PLANT_ERK5);
 }
 
 static void test_adams_steps_do_not_allocate(void) {

@@ -23,7 +23,8 @@ extern "C" {
 typedef enum stewart_plant_method {
     STEWART_PLANT_ADAMS = 0, /* CVODE Adams-Moulton, fixed-point iteration: no Jacobian */
     STEWART_PLANT_BDF = 1,   /* CVODE BDF, Newton with a dense difference-quotient Jacobian */
-    STEWART_PLANT_ERK = 2    /* ARKODE explicit Runge-Kutta, Dormand-Prince 5(4) */
+    STEWART_PLANT_ERK = 2,   /* ARKODE explicit Runge-Kutta, Zonneveld 4(3), 5 stages */
+    STEWART_PLANT_ERK5 = 3   /* ARKODE explicit Runge-Kutta, Dormand-Prince 5(4), 7 stages */
 } stewart_plant_method;
 
 /* Integrator settings; stewart_plant_options_default gives the values documented here. */
