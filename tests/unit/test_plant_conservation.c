@@ -298,6 +298,93 @@ static void test_integrators_agree(void) {
     TEST_ASSERT_TRUE(worst <= 1e-9);
 }
 
+
+/* Solves A x = b (6 x 6, partial pivoting); A and b are overwritten. */
+static void solve6(double A[6][6], double b[6]) {
+    for (int c = 0; c < 6; ++c) {
+        int p = c;
+        for (int r = c + 1; r < 6; ++r)
+            if (fabs(A[r][c]) > fabs(A[p][c])) p = r;
+        for (int j = 0; j < 6; ++j) {
+            const double t = A[c][j];
+            A[c][j] = A[p][j], A[p][j] = t;
+        }
+        const double t = b[c];
+        b[c] = b[p], b[p] = t;
+        for (int r = c + 1; r < 6; ++r) {
+            const double f = A[r][c] / A[c][c];
+            for (int j = c; j < 6; ++j) A[r][j] -= f * A[c][j];
+            b[r] -= f * b[c];
+        }
+    }
+    for (int c = 5; c >= 0; --c) {
+        for (int j = c + 1; j < 6; ++j) b[c] -= A[c][j] * b[j];
+        b[c] /= A[c][c];
+    }
+}
+
+/* Why the equilibrium check stops at 2 s: under its static forces the platform is a saddle. The
+ * inverse side alone predicts the fastest divergence: with F(q, q_dot, q_ddot) its forces, the
+ * plant at constant F moves as F_q dq + F_qddot dq_ddot = 0, so dq_ddot = A dq with
+ * A = -F_qddot^-1 F_q (central differences of stewart_solve), whose largest eigenvalue
+ * lambda^2 (power iteration) gives dq(t) = dq(0) cosh(lambda t) along its eigenvector. The
+ * plant, started there, must follow it. */
+static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
+    stewart_params_default(&params);  /* the thesis legs; the massless level */
+    model = test_model(&params);
+    stewart_data *data = stewart_data_create(model);
+    stewart_pose pose = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
+    const stewart_output statics = solve_ok(model, data, STEWART_MASSLESS, &pose);
+    double Fq[6][6], Fa[6][6];
+    const double delta = 1e-6;
+    for (int j = 0; j < 6; ++j) {
+        double *rows[2] = {pose.q, pose.q_ddot};
+        for (int which = 0; which < 2; ++which) {
+            rows[which][j] += delta;
+            const stewart_output plus = solve_ok(model, data, STEWART_MASSLESS, &pose);
+            rows[which][j] -= 2 * delta;
+            const stewart_output minus = solve_ok(model, data, STEWART_MASSLESS, &pose);
+            rows[which][j] += delta;
+            for (int k = 0; k < 6; ++k)
+                (which ? Fa : Fq)[k][j] = (plus.force[k] - minus.force[k]) / (2 * delta);
+        }
+    }
+    stewart_data_free(data);
+    double v[6] = {1, 0.3, -0.2, 0.5, 0.1, -0.4}, lambda2 = 0;
+    for (int it = 0; it < 300; ++it) {
+        double w[6], M[6][6], norm = 0, v_norm = 0;
+        for (int k = 0; k < 6; ++k) {
+            w[k] = 0;
+            for (int j = 0; j < 6; ++j) w[k] -= Fq[k][j] * v[j], M[k][j] = Fa[k][j];
+        }
+        solve6(M, w); /* w = A v */
+        for (int k = 0; k < 6; ++k) norm += w[k] * w[k], v_norm += v[k] * v[k];
+        lambda2 = sqrt(norm / v_norm);
+        for (int k = 0; k < 6; ++k) v[k] = w[k] / sqrt(norm);
+    }
+    const double lambda = sqrt(lambda2);
+    stewart_plant *plant = test_plant(model, STEWART_MASSLESS, 1e-13, 1e-18);
+    const double eps = 1e-9;
+    double start[6];
+    for (int c = 0; c < 6; ++c) start[c] = pose.q[c] + eps * v[c];
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, start, kZero));
+    for (int i = 0; i < 2000; ++i) step_ok(plant, 1e-3, statics.force, statics.force, NULL, NULL);
+    stewart_plant_output out;
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
+    double worst = 0;
+    for (int c = 0; c < 6; ++c) {
+        const double expected = eps * v[c] * cosh(lambda * 2.0);
+        if (fabs(out.pose[c] - pose.q[c] - expected) > worst)
+            worst = fabs(out.pose[c] - pose.q[c] - expected);
+    }
+    printf("saddle: fastest divergence %.4f 1/s predicted by the inverse side; after 2 s the plant "
+           "is off the prediction by %.3g of the %.3g m grown\n", lambda, worst / (eps * cosh(2 * lambda)),
+           eps * cosh(2 * lambda));
+    TEST_ASSERT_TRUE(lambda > 4.0); /* a saddle: 1e-16 grows past 1e-12 within 2 to 3 s */
+    TEST_ASSERT_TRUE(worst <= 1e-3 * eps * cosh(2 * lambda));
+    stewart_plant_free(plant);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_free_motion_keeps_kinetic_energy_full);
@@ -309,5 +396,6 @@ int main(void) {
     RUN_TEST(test_power_balance_massless);
     RUN_TEST(test_equilibrium_full);
     RUN_TEST(test_equilibrium_massless_tilted);
+    RUN_TEST(test_equilibrium_is_a_saddle_at_the_predicted_rate);
     return UNITY_END();
 }
