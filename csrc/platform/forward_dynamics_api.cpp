@@ -325,6 +325,13 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
     }
     char ignored[8];
     o.warnings = leg_outputs(*p, m, o.length, o.length_rate, ignored, 0);
+    // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
+    const double *groups[6] = {o.pose, o.pose_rate, o.length, o.length_rate, o.base_force,
+                               o.base_torque};
+    const int sizes[6] = {6, 6, STEWART_LEGS, STEWART_LEGS, 3, 3};
+    for (int g = 0; g < 6; ++g)
+        for (int i = 0; i < sizes[g]; ++i)
+            if (!std::isfinite(groups[g][i])) return STEWART_ERR_ARGUMENT;
     *out = o;
     return STEWART_OK;
 }
@@ -380,6 +387,19 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const double *sta
         if (!std::isfinite(state[i]))
             return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                                "saved plant state: value %zu is not finite", i);
+    // What a step could have left: a unit quaternion, pitch off +-90 degrees, a defined pose.
+    const double *y = state + 1, *angles = y + fd::kStates;
+    const double warnings = state[kSavedDoubles - 2], hint = state[kSavedDoubles - 1];
+    const double q_norm = std::sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
+    fd::Evaluation e;
+    const double zero[STEWART_LEGS] = {0};
+    if (!(std::fabs(q_norm - 1) < 1e-9) || !(std::fabs(std::cos(angles[1])) > kMinCosPitch) ||
+        !(warnings == 0 || warnings == STEWART_PLANT_WARN_STROKE) || !(hint >= 0) ||
+        !fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
+        return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
+                           "saved plant state is not one a step leaves (quaternion norm %g, pitch "
+                           "%g rad, warnings %g, step hint %g, or a singular pose)", q_norm,
+                           angles[1], warnings, hint);
     const double *in = state;
     p->time = *in++;
     for (double &v : p->y) v = *in++;

@@ -177,8 +177,26 @@ static void test_rollback_and_independent_plants(void) {
     step_ok(other, 2e-3, f, kZero, NULL, NULL);
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(other, NULL, &c));
     TEST_ASSERT_EQUAL_MEMORY(&a, &c, sizeof a);
+    /* Corrupt states are refused and leave the plant as it was. */
+    double now[32];
+    saved(plant, now);
     state[3] = NAN;
     TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_load(plant, state, stewart_plant_state_size()));
+    saved(plant, state);
+    for (int i = 4; i <= 7; ++i) state[i] = 0; /* no quaternion */
+    expect_refused(STEWART_ERR_ARGUMENT, stewart_plant_load(plant, state, stewart_plant_state_size()),
+                   "quaternion norm 0");
+    /* Unrotated at z = 0 and shifted so that platform point 1 sits on base point 1. */
+    saved(plant, state);
+    state[1] = 0.5 - 0.5 * cos(-M_PI / 6), state[2] = -0.5 * sin(-M_PI / 6), state[3] = 0;
+    state[4] = 1, state[5] = state[6] = state[7] = 0;
+    state[14] = state[15] = state[16] = 0;
+    expect_refused(STEWART_ERR_ARGUMENT, stewart_plant_load(plant, state, stewart_plant_state_size()),
+                   "singular pose");
+    expect_state(now);
+    /* Finite forces whose outputs overflow: no output rather than an infinite one. */
+    const double huge[6] = {1e308, 1e308, 1e308, 1e308, 1e308, 1e308};
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_output_get(plant, huge, &a));
     TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_load(plant, state, 3));
     stewart_plant_free(other);
 }
