@@ -101,7 +101,8 @@ stewart_status stewart_plant_step(stewart_plant *plant, double h,
                                   const double force_rate1[STEWART_LEGS]);
 
 /* The outputs at the current state, with the base wrench for the given forces (those acting at
- * the current time; NULL: the force1 of the last step, zero before any step). */
+ * the current time; NULL: the force1 of the last step, zero before any step).
+ * STEWART_ERR_ARGUMENT (output untouched) if a force is not finite or an output would overflow. */
 stewart_status stewart_plant_output_get(const stewart_plant *plant,
                                         const double force[STEWART_LEGS],
                                         stewart_plant_output *output);
@@ -116,9 +117,9 @@ void stewart_plant_statistics_get(const stewart_plant *plant, stewart_plant_stat
 /* The message of the last refused call or the last warning, else "". */
 const char *stewart_plant_message(const stewart_plant *plant);
 
-/* The state (time, platform pose and twist, last forces, warnings) as doubles, to roll back a
- * step or save a run; stewart_plant_load puts it back (STEWART_ERR_ARGUMENT if the size is wrong
- * or a value is not finite). */
+/* The state (time, platform pose and twist, last forces, warnings, first step size) as doubles,
+ * to roll back a step or save a run; stewart_plant_load puts it back (STEWART_ERR_ARGUMENT, plant
+ * unchanged, if the size is wrong or the values are not a state a step leaves). */
 size_t stewart_plant_state_size(void);
 stewart_status stewart_plant_save(const stewart_plant *plant, double *state, size_t count);
 stewart_status stewart_plant_load(stewart_plant *plant, const double *state, size_t count);
