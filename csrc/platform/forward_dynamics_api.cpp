@@ -6,6 +6,7 @@
 
 #include "model.hpp"
 #include "platform/forward_dynamics_integrator.hpp"
+#include "platform/forward_dynamics_reactions.hpp"
 #include "stewart/stewart_plant.h"
 #include "util/message.hpp"
 
@@ -77,6 +78,17 @@ int leg_outputs(const stewart_plant &p, const fd::PlatformMotion &m, double leng
         }
     }
     return warnings;
+}
+
+// The 13 bodies' motion (accelerations included) under the given forces; false at a singular pose.
+bool all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
+                fd::BodyMotion bodies[STEWART_PLANT_BODIES]) {
+    fd::PlatformMotion m = fd::motion_of_state(p.y);
+    if (!fd::twist_rate(p.dynamics, m, force, e)) return false;
+    m.acceleration = e.twist_rate.head<3>();
+    m.alpha = e.twist_rate.tail<3>();
+    fd::body_motions(p.dynamics, m, e, bodies);
+    return true;
 }
 
 stewart_status check_finite(const double *values, const char *name, char *msg, size_t size) {
@@ -302,13 +314,10 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
     if (!force) force = p->force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
-    fd::PlatformMotion m = fd::motion_of_state(p->y);
     fd::Evaluation e;
-    if (!fd::twist_rate(p->dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
-    m.acceleration = e.twist_rate.head<3>();
-    m.alpha = e.twist_rate.tail<3>();
     fd::BodyMotion bodies[STEWART_PLANT_BODIES];
-    fd::body_motions(p->dynamics, m, e, bodies);
+    if (!all_bodies(*p, force, e, bodies)) return STEWART_ERR_SINGULAR;
+    const fd::PlatformMotion m = fd::motion_of_state(p->y);
     fd::Vec3 f, t;
     fd::base_wrench(p->dynamics, bodies, f, t);
 
@@ -336,16 +345,32 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
     return STEWART_OK;
 }
 
+extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, const double *force,
+                                                      stewart_plant_reactions *reactions) {
+    if (!p || !reactions) return STEWART_ERR_ARGUMENT;
+    if (!force) force = p->force;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
+    fd::Evaluation e;
+    fd::BodyMotion bodies[STEWART_PLANT_BODIES];
+    if (!all_bodies(*p, force, e, bodies)) return STEWART_ERR_SINGULAR;
+    stewart_plant_reactions r;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!fd::leg_reactions(p->dynamics, k, e.legs[k], bodies, force[k], r))
+            return STEWART_ERR_SINGULAR;
+    const double *values = &r.base_cardan_force[0][0];
+    for (size_t i = 0; i < sizeof r / sizeof(double); ++i)
+        if (!std::isfinite(values[i])) return STEWART_ERR_ARGUMENT;
+    *reactions = r;
+    return STEWART_OK;
+}
+
 extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
                                                stewart_plant_body bodies[STEWART_PLANT_BODIES]) {
     if (!p || !bodies) return STEWART_ERR_ARGUMENT;
-    fd::PlatformMotion m = fd::motion_of_state(p->y);
     fd::Evaluation e;
-    if (!fd::twist_rate(p->dynamics, m, p->force, e)) return STEWART_ERR_SINGULAR;
-    m.acceleration = e.twist_rate.head<3>();
-    m.alpha = e.twist_rate.tail<3>();
     fd::BodyMotion motion[STEWART_PLANT_BODIES];
-    fd::body_motions(p->dynamics, m, e, motion);
+    if (!all_bodies(*p, p->force, e, motion)) return STEWART_ERR_SINGULAR;
     const int count = p->dynamics.with_legs ? STEWART_PLANT_BODIES : 1;
     std::memset(bodies, 0, sizeof(stewart_plant_body) * STEWART_PLANT_BODIES);
     for (int b = 0; b < count; ++b)

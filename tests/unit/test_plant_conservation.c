@@ -385,12 +385,84 @@ static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
     stewart_plant_free(plant);
 }
 
+
+/* Joint reactions against two balances they do not enter: the base wrench (momentum of all the
+ * moving bodies) must be minus the base Cardans' reactions, and the platform's acceleration
+ * (central differences of its velocity) must follow from the platform Cardans' reactions and
+ * gravity. Heavy legs, a forced motion, both fidelities. */
+static void joint_reactions_balance(int fidelity) {
+    model = test_model(&params);
+    stewart_data *data = stewart_data_create(model);
+    stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
+    const stewart_output statics = solve_ok(model, data, fidelity, &home);
+    stewart_data_free(data);
+    stewart_plant *plant = test_plant(model, fidelity, 1e-12, 1e-14);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, kStartPose, kStartRate));
+    const double h = 1e-3;
+    double f_prev[6], f[6], v_prev[3] = {0}, v_now[3] = {0}, worst_base = 0, worst_platform = 0;
+    stewart_plant_reactions r_now;
+    for (int k = 0; k < 6; ++k) f_prev[k] = statics.force[k];
+    for (int i = 1; i <= 300; ++i) {
+        for (int k = 0; k < 6; ++k) f[k] = statics.force[k] * (1 + 0.05 * sin(20.0 * i * h + k));
+        step_ok(plant, h, f_prev, f, NULL, NULL);
+        stewart_plant_body bodies[STEWART_PLANT_BODIES];
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, bodies));
+        if (i % 50 == 1 && i > 1) {
+            /* at the point of the reactions (the step before this one): the platform's
+             * acceleration from its velocity either side */
+            double residual = 0;
+            for (int a = 0; a < 3; ++a) {
+                const double acc = (bodies[0].velocity[a] - v_prev[a]) / (2 * h);
+                double applied = params.platform_mass * params.gravity[a];
+                for (int k = 0; k < 6; ++k) applied -= r_now.platform_cardan_force[k][a];
+                residual = fmax(residual, fabs(params.platform_mass * acc - applied));
+            }
+            worst_platform = fmax(worst_platform, residual);
+        }
+        if (i % 50 == 0) {
+            stewart_plant_output out;
+            TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
+            TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_reactions_get(plant, f, &r_now));
+            for (int a = 0; a < 3; ++a) {
+                double force = 0, torque = 0;
+                for (int k = 0; k < 6; ++k) {
+                    const double p[3] = {params.base_radius * cos(params.base_angle[k]),
+                                         params.base_radius * sin(params.base_angle[k]), 0};
+                    const double *fb = r_now.base_cardan_force[k];
+                    const double moment[3] = {p[1] * fb[2] - p[2] * fb[1], p[2] * fb[0] - p[0] * fb[2],
+                                              p[0] * fb[1] - p[1] * fb[0]};
+                    force -= fb[a];
+                    torque -= moment[a] + r_now.base_cardan_torque[k][a];
+                }
+                worst_base = fmax(worst_base, fmax(fabs(force - out.base_force[a]),
+                                                   fabs(torque - out.base_torque[a])));
+            }
+            for (int a = 0; a < 3; ++a) v_prev[a] = v_now[a]; /* the step before */
+        }
+        for (int a = 0; a < 3; ++a) v_now[a] = bodies[0].velocity[a];
+        for (int k = 0; k < 6; ++k) f_prev[k] = f[k];
+    }
+    printf("joint reactions, fidelity %d: base wrench %.3g N or N m off the momentum balance, "
+           "platform %.3g N off Newton's law (differences of velocities)\n", fidelity, worst_base,
+           worst_platform);
+    TEST_ASSERT_TRUE(worst_base <= 1e-9);
+    TEST_ASSERT_TRUE(worst_platform <= 1e-3);  /* of about 1040 N of weight */
+    stewart_plant_free(plant);
+}
+
+static void test_joint_reactions_balance_full(void) { joint_reactions_balance(STEWART_FULL); }
+static void test_joint_reactions_balance_massless(void) {
+    joint_reactions_balance(STEWART_MASSLESS);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_free_motion_keeps_kinetic_energy_full);
     RUN_TEST(test_free_motion_keeps_kinetic_energy_massless);
     RUN_TEST(test_leg_bodies_on_their_joints);
     RUN_TEST(test_integrators_agree);
+    RUN_TEST(test_joint_reactions_balance_full);
+    RUN_TEST(test_joint_reactions_balance_massless);
     RUN_TEST(test_fall_keeps_total_energy);
     RUN_TEST(test_power_balance_full);
     RUN_TEST(test_power_balance_massless);

@@ -27,12 +27,14 @@ static void steps_do_not_allocate(int fidelity, int method) {
     for (int k = 0; k < 6; ++k) f0[k] = 175.0;
     stewart_plant_output out;
     stewart_plant_body bodies[STEWART_PLANT_BODIES];
+    stewart_plant_reactions reactions;
     const long before = allocations;
     for (int i = 1; i <= 200; ++i) {
         for (int k = 0; k < 6; ++k) f1[k] = 175.0 + 2.0 * k * (i % 7);
         step_ok(plant, 1e-3, f0, f1, NULL, NULL);
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, bodies));
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_reactions_get(plant, NULL, &reactions));
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_save(plant, state, stewart_plant_state_size()));
         if (i % 10 == 0)
             TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_load(plant, state, stewart_plant_state_size()));

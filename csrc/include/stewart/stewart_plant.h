@@ -70,6 +70,20 @@ typedef struct stewart_plant_body {
     double omega[3];
 } stewart_plant_body;
 
+/* Joint reactions at the current state, world frame, per leg (k = 0..5):
+ *   base Cardan: the force and torque the base puts on the cylinder (torque about the Cardan
+ *     centre: along the axis perpendicular to both cross arms, the only one a Cardan holds);
+ *   platform Cardan: the force and torque the platform puts on the piston, about its centre;
+ *   cylindrical joint: the force and torque the cylinder puts on the piston, the actuator force
+ *     excluded (force and torque perpendicular to the leg axis; torque about the platform Cardan
+ *     centre).
+ * With massless legs the Cardans carry the axial force only and the cylindrical joint nothing. */
+typedef struct stewart_plant_reactions {
+    double base_cardan_force[STEWART_LEGS][3], base_cardan_torque[STEWART_LEGS][3];
+    double platform_cardan_force[STEWART_LEGS][3], platform_cardan_torque[STEWART_LEGS][3];
+    double cylindrical_force[STEWART_LEGS][3], cylindrical_torque[STEWART_LEGS][3];
+} stewart_plant_reactions;
+
 typedef struct stewart_plant stewart_plant;
 
 void stewart_plant_options_default(stewart_plant_options *options);
@@ -106,6 +120,12 @@ stewart_status stewart_plant_step(stewart_plant *plant, double h,
 stewart_status stewart_plant_output_get(const stewart_plant *plant,
                                         const double force[STEWART_LEGS],
                                         stewart_plant_output *output);
+
+/* The joint reactions at the current state under the given forces (NULL: as output_get).
+ * STEWART_ERR_ARGUMENT (reactions untouched) if a force is not finite or a value overflows. */
+stewart_status stewart_plant_reactions_get(const stewart_plant *plant,
+                                           const double force[STEWART_LEGS],
+                                           stewart_plant_reactions *reactions);
 
 /* The 13 moving bodies at the current state: platform, cylinders 1..6, pistons 1..6. */
 stewart_status stewart_plant_bodies(const stewart_plant *plant,
