@@ -80,15 +80,19 @@ int leg_outputs(const stewart_plant &p, const fd::PlatformMotion &m, double leng
     return warnings;
 }
 
-// The 13 bodies' motion (accelerations included) under the given forces; false at a singular pose.
-bool all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
-                fd::BodyMotion bodies[STEWART_PLANT_BODIES]) {
+// The 13 bodies' motion (accelerations included) under the given forces (NULL: the last step's);
+// STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
+stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
+                          fd::BodyMotion bodies[STEWART_PLANT_BODIES]) {
+    if (!force) force = p.force;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
     fd::PlatformMotion m = fd::motion_of_state(p.y);
-    if (!fd::twist_rate(p.dynamics, m, force, e)) return false;
+    if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
     m.acceleration = e.twist_rate.head<3>();
     m.alpha = e.twist_rate.tail<3>();
     fd::body_motions(p.dynamics, m, e, bodies);
-    return true;
+    return STEWART_OK;
 }
 
 stewart_status check_finite(const double *values, const char *name, char *msg, size_t size) {
@@ -311,12 +315,10 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
 extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const double *force,
                                                    stewart_plant_output *out) {
     if (!p || !out) return STEWART_ERR_ARGUMENT;
-    if (!force) force = p->force;
-    for (int k = 0; k < STEWART_LEGS; ++k)
-        if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
     fd::BodyMotion bodies[STEWART_PLANT_BODIES];
-    if (!all_bodies(*p, force, e, bodies)) return STEWART_ERR_SINGULAR;
+    const stewart_status s = all_bodies(*p, force, e, bodies);
+    if (s != STEWART_OK) return s;
     const fd::PlatformMotion m = fd::motion_of_state(p->y);
     fd::Vec3 f, t;
     fd::base_wrench(p->dynamics, bodies, f, t);
@@ -348,12 +350,11 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
 extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, const double *force,
                                                       stewart_plant_reactions *reactions) {
     if (!p || !reactions) return STEWART_ERR_ARGUMENT;
-    if (!force) force = p->force;
-    for (int k = 0; k < STEWART_LEGS; ++k)
-        if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
     fd::BodyMotion bodies[STEWART_PLANT_BODIES];
-    if (!all_bodies(*p, force, e, bodies)) return STEWART_ERR_SINGULAR;
+    const stewart_status s = all_bodies(*p, force, e, bodies);
+    if (s != STEWART_OK) return s;
+    if (!force) force = p->force;
     stewart_plant_reactions r;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!fd::leg_reactions(p->dynamics, k, e.legs[k], bodies, force[k], r))
@@ -370,7 +371,8 @@ extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
     if (!p || !bodies) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
     fd::BodyMotion motion[STEWART_PLANT_BODIES];
-    if (!all_bodies(*p, p->force, e, motion)) return STEWART_ERR_SINGULAR;
+    const stewart_status s = all_bodies(*p, nullptr, e, motion);
+    if (s != STEWART_OK) return s;
     const int count = p->dynamics.with_legs ? STEWART_PLANT_BODIES : 1;
     std::memset(bodies, 0, sizeof(stewart_plant_body) * STEWART_PLANT_BODIES);
     for (int b = 0; b < count; ++b)
