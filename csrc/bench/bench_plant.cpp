@@ -126,6 +126,51 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
     return r;
 }
 
+// A loop a master could close (not the controller FMU): the inverse side's forces along the cue
+// plus PD on the leg lengths the plant reports, held over each step (zero-order hold). Returns
+// the largest position and angle errors over 4 s, or a negative number if the loop diverges.
+void closed_loop(const stewart_model *model, double kp, double kd, double h, double &position,
+                 double &angle) {
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_plant_options po;
+    stewart_plant_options_default(&po);
+    stewart_plant *plant = stewart_plant_create(model, &po, msg, sizeof msg);
+    stewart_data *data = stewart_data_create(model);
+    stewart_options so;
+    stewart_options_default(&so);
+    so.fidelity = STEWART_FULL;
+    const stewart_pose start = combined(0);
+    stewart_plant_set_state(plant, 0, start.q, start.q_dot);
+    stewart_plant_output out;
+    stewart_plant_output_get(plant, nullptr, &out);
+    position = angle = 0;
+    const int n = static_cast<int>(4.0 / h + 0.5);
+    for (int i = 0; i < n; ++i) {
+        stewart_pose cue = combined(i * h);
+        stewart_output inverse;
+        double force[6];
+        if (stewart_solve(model, data, &so, &cue, &inverse) != STEWART_OK) break;
+        for (int k = 0; k < 6; ++k)
+            force[k] = inverse.force[k] + kp * (inverse.length[k] - out.length[k]) +
+                       kd * (inverse.length_rate[k] - out.length_rate[k]);
+        if (stewart_plant_step(plant, h, force, force, nullptr, nullptr) != STEWART_OK ||
+            stewart_plant_output_get(plant, nullptr, &out) != STEWART_OK) {
+            position = angle = -1;
+            break;
+        }
+        cue = combined((i + 1) * h);
+        for (int c = 0; c < 6; ++c)
+            (c < 3 ? position : angle) =
+                std::max(c < 3 ? position : angle, std::fabs(out.pose[c] - cue.q[c]));
+        if (!(position < 0.1)) {  // diverging: the loop is unstable at this step
+            position = angle = -1;
+            break;
+        }
+    }
+    stewart_data_free(data);
+    stewart_plant_free(plant);
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -205,6 +250,24 @@ int main(int argc, char **argv) {
         std::snprintf(line, sizeof line, "%-8.0e  %7.2f  %8.1f  %10.2e\n", h, r.us_per_step,
                       r.rhs_per_step, r.pose_error);
         report += line;
+    }
+    report += "\nclosed loop: inverse-side forces + PD on the leg lengths, held over each step, "
+              "full fidelity, 4 s;\nmax position [m] / angle [rad] error, or unstable:\n";
+    report += "Kp [N/m]  Kd [N s/m]  step 1 ms               2 ms                    5 ms\n";
+    const double gains[3][2] = {{2e5, 2e3}, {1e6, 1e4}, {5e6, 3e4}};
+    for (const auto &g : gains) {
+        std::snprintf(line, sizeof line, "%-9.0e %-11.0e", g[0], g[1]);
+        report += line;
+        for (double h : {1e-3, 2e-3, 5e-3}) {
+            double position, angle;
+            closed_loop(model, g[0], g[1], h, position, angle);
+            if (position < 0)
+                std::snprintf(line, sizeof line, " %-23s", "unstable");
+            else
+                std::snprintf(line, sizeof line, " %.2e / %.2e    ", position, angle);
+            report += line;
+        }
+        report += "\n";
     }
     std::fputs(report.c_str(), stdout);
     if (argc > 1) {
