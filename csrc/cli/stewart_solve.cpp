@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/forward_table.hpp"
+#include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
 #include "stewart/stewart.h"
 
@@ -59,24 +60,10 @@ void write_row(FILE *out, double t, const stewart_output &o) {
 
 // NAME=VALUE into params; false with a message on stderr.
 bool set_param(const char *assignment, stewart_params &params) {
-    const char *eq = std::strchr(assignment, '=');
-    if (!eq) {
-        std::fprintf(stderr, "stewart-solve: --param '%s' is not NAME=VALUE\n", assignment);
-        return false;
-    }
-    const std::string name(assignment, eq);
-    char *end = nullptr;
-    const double value = std::strtod(eq + 1, &end);
-    if (end == eq + 1 || *end != '\0') {
-        std::fprintf(stderr, "stewart-solve: --param %s: '%s' is not a number\n", name.c_str(), eq + 1);
-        return false;
-    }
-    char message[STEWART_MESSAGE_SIZE];
-    if (stewart_params_set(&params, name.c_str(), value, message, sizeof message) != STEWART_OK) {
-        std::fprintf(stderr, "stewart-solve: --param: %s\n", message);
-        return false;
-    }
-    return true;
+    std::string name;
+    double value;
+    return stewart::parse_assignment("stewart-solve", assignment, name, value) &&
+           stewart::set_platform_param("stewart-solve", name, value, params);
 }
 
 }  // namespace

@@ -1,33 +1,14 @@
-/* No allocation inside a step: malloc and friends are interposed here and counted while the
- * full level (and the slider-crank on the core) step along a manoeuvre. */
+/* No allocation inside a step: malloc and friends are interposed (allocation_counter.c) and
+ * counted while the full level (and the slider-crank on the core) step along a manoeuvre. */
 #include <stddef.h>
 #include <string.h>
 
 #include "slider_crank.h"
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_full.h"
+#include "allocation_counter.h"
 #include "test_support.h"
 #include "unity.h"
-
-extern void *__libc_malloc(size_t);
-extern void *__libc_calloc(size_t, size_t);
-extern void *__libc_realloc(void *, size_t);
-extern void *__libc_memalign(size_t, size_t);
-extern void __libc_free(void *);
-
-static volatile long allocations = 0;
-
-void *malloc(size_t n) { ++allocations; return __libc_malloc(n); }
-void *calloc(size_t n, size_t s) { ++allocations; return __libc_calloc(n, s); }
-void *realloc(void *p, size_t n) { ++allocations; return __libc_realloc(p, n); }
-void *memalign(size_t a, size_t n) { ++allocations; return __libc_memalign(a, n); }
-int posix_memalign(void **out, size_t a, size_t n) {
-    ++allocations;
-    *out = __libc_memalign(a, n);
-    return *out ? 0 : 12;
-}
-void *aligned_alloc(size_t a, size_t n) { ++allocations; return __libc_memalign(a, n); }
-void free(void *p) { __libc_free(p); }
 
 void setUp(void) {}
 void tearDown(void) {}
