@@ -126,13 +126,14 @@ const char *first_non_finite(const stewart_output &o) {
     return nullptr;
 }
 
-int stroke_and_condition_warnings(const stewart_params &p, const stewart_options &o,
-                                  const stewart_output &out) {
-    int w = 0;
+// Sets out.stroke_legs (one bit per leg outside the stroke) and out.warnings.
+void stroke_and_condition_warnings(const stewart_params &p, const stewart_options &o,
+                                   stewart_output &out) {
+    out.stroke_legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out.length[k] < p.stroke_min || out.length[k] > p.stroke_max) w |= STEWART_WARN_STROKE;
-    if (out.condition > o.warn_condition) w |= STEWART_WARN_NEAR_SINGULAR;
-    return w;
+        if (out.length[k] < p.stroke_min || out.length[k] > p.stroke_max) out.stroke_legs |= 1 << k;
+    out.warnings = out.stroke_legs ? STEWART_WARN_STROKE : 0;
+    if (out.condition > o.warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
 }
 
 }  // namespace
@@ -199,7 +200,7 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
         const int last_row = !std::strcmp(name, "length") ? 0 : !std::strcmp(name, "length_rate") ? 1 : 2;
         return stewart::input_out_of_range(*pose, last_row > 0 ? 1 : 0, last_row, name, msg, size);
     }
-    out.warnings = stroke_and_condition_warnings(m->params, *o, out);
+    stroke_and_condition_warnings(m->params, *o, out);
     *output = out;
     msg[0] = '\0';
     return STEWART_OK;

@@ -119,6 +119,7 @@ typedef struct stewart_output {
     double base_force[3];   /* force the legs put on the base, world frame [N] */
     double base_torque[3];  /* torque of that wrench about the world origin [N m] */
     int warnings;           /* STEWART_WARN_* bits */
+    int stroke_legs;        /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_output;
 
 typedef struct stewart_model stewart_model;

@@ -208,11 +208,11 @@ static fmu_status discard_finite_differences(fmu_instance *inst, double time,
     return not_solved(&inst->v, FMU_DISCARD);
 }
 
-/* Logs the legs outside their stroke (the library flags only that some leg is). */
+/* Logs the legs the library flags as outside their stroke. */
 static void warn_stroke(const fmu_instance *inst, double time, const stewart_output *out) {
     const stewart_params *p = &inst->res.params;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out->length[k] < p->stroke_min || out->length[k] > p->stroke_max)
+        if (out->stroke_legs & (1 << k))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %g m is outside the stroke [%g, %g] m", time, k + 1,
                     out->length[k], p->stroke_min, p->stroke_max);
