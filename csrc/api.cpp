@@ -9,52 +9,6 @@
 using stewart::clear_message;
 using stewart::set_message;
 
-namespace {
-constexpr double kMinTolerance = 2.5e-16;  // smallest tolerance the full level can meet
-}  // namespace
-
-extern "C" void stewart_options_default(stewart_options *o) {
-    if (!o) return;
-    o->fidelity = STEWART_MASSLESS;
-    o->tolerance = 1e-12;
-    o->max_iterations = 20;
-    o->modified_newton = 0;
-    o->warn_condition = 1e3;
-    o->singular_condition = 1e10;
-}
-
-extern "C" stewart_status stewart_options_check(const stewart_options *o, char *msg, size_t size) {
-    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    if (o->fidelity < STEWART_KINEMATIC || o->fidelity > STEWART_FULL)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "fidelity = %d must be 0 (kinematic), 1 (massless) or 2 (full)",
-                           o->fidelity);
-    if (!(std::isfinite(o->tolerance) && o->tolerance > 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "tolerance = %g must be > 0",
-                           o->tolerance);
-    // The full level's max-norm position residual floors at 2.2e-16 (one rounding of coordinates
-    // of order 1): at or below that no pose ever converges; 2.3e-16 still does, with up to 5
-    // iterations.
-    if (o->tolerance < kMinTolerance)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "tolerance = %g is below what the position residual can reach (about "
-                           "2.2e-16, machine precision on the coordinates): use at least %g",
-                           o->tolerance, kMinTolerance);
-    if (o->max_iterations < 1)
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "max_iterations = %d must be >= 1",
-                           o->max_iterations);
-    if (o->modified_newton != 0 && o->modified_newton != 1)
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "modified_newton = %d must be 0 or 1",
-                           o->modified_newton);
-    if (!(o->warn_condition >= 1 && o->singular_condition >= o->warn_condition &&
-          std::isfinite(o->singular_condition)))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "condition limits warn = %g, singular = %g must satisfy "
-                           "1 <= warn_condition <= singular_condition < inf",
-                           o->warn_condition, o->singular_condition);
-    return clear_message(msg, size);
-}
-
 extern "C" stewart_model *stewart_model_create(const stewart_params *params, char *msg,
                                                size_t size) {
     if (stewart_params_check(params, msg, size) != STEWART_OK) return nullptr;
@@ -100,7 +54,10 @@ extern "C" stewart_data *stewart_data_create(const stewart_model *m) {
 extern "C" void stewart_data_free(stewart_data *d) { delete d; }
 
 extern "C" stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src) {
-    if (!dst || !src || dst->model != src->model) return STEWART_ERR_ARGUMENT;
+    if (!dst || !src) return STEWART_ERR_ARGUMENT;
+    if (dst->model != src->model)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
+                           "the data blocks were made for different models");
     std::memcpy(dst->message, src->message, sizeof dst->message);
     mbs::copy_state(dst->full->state, src->full->state);
     return STEWART_OK;
@@ -117,9 +74,13 @@ extern "C" stewart_status stewart_data_save(const stewart_data *d, void *buffer,
 }
 
 extern "C" stewart_status stewart_data_load(stewart_data *d, const void *buffer, size_t size) {
-    if (!d || !d->full || !buffer ||
-        !mbs::load_state(d->full->state, static_cast<const unsigned char *>(buffer), size))
-        return STEWART_ERR_ARGUMENT;
+    if (!d || !d->full) return STEWART_ERR_ARGUMENT;
+    if (!buffer) return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
+    char why[MBS_MESSAGE_SIZE];
+    if (!mbs::load_state(d->full->state, static_cast<const unsigned char *>(buffer), size, why,
+                         sizeof why))
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "state not loaded (the data block is unchanged): %s", why);
     d->message[0] = '\0';
     return STEWART_OK;
 }
@@ -127,12 +88,8 @@ extern "C" stewart_status stewart_data_load(stewart_data *d, const void *buffer,
 extern "C" void stewart_data_reset(stewart_data *d) {
     if (!d) return;
     d->message[0] = '\0';
-    if (d->full) {
-        mbs::State &s = d->full->state;
-        mbs::reset_history(s);
-        for (size_t b = 0; b < s.mechanism.bodies.size(); ++b)
-            for (int c = 0; c < 7; ++c) s.q[7 * b + c] = s.mechanism.bodies[b].q_reference[c];
-    }
+    if (d->full) mbs::reset(d->full->state);
+    d->forward.reset();
 }
 
 extern "C" const char *stewart_data_message(const stewart_data *d) {
@@ -149,6 +106,7 @@ extern "C" const char *stewart_status_name(stewart_status s) {
         case STEWART_ERR_NOT_CONVERGED: return "not converged";
         case STEWART_ERR_UNSUPPORTED: return "unsupported";
         case STEWART_ERR_MEMORY: return "out of memory";
+        case STEWART_ERR_OTHER_BRANCH: return "other assembly mode";
     }
     return "unknown status";
 }
@@ -168,13 +126,14 @@ const char *first_non_finite(const stewart_output &o) {
     return nullptr;
 }
 
-int stroke_and_condition_warnings(const stewart_params &p, const stewart_options &o,
-                                  const stewart_output &out) {
-    int w = 0;
+// Sets out.stroke_legs (one bit per leg outside the stroke) and out.warnings.
+void stroke_and_condition_warnings(const stewart_params &p, const stewart_options &o,
+                                   stewart_output &out) {
+    out.stroke_legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out.length[k] < p.stroke_min || out.length[k] > p.stroke_max) w |= STEWART_WARN_STROKE;
-    if (out.condition > o.warn_condition) w |= STEWART_WARN_NEAR_SINGULAR;
-    return w;
+        if (out.length[k] < p.stroke_min || out.length[k] > p.stroke_max) out.stroke_legs |= 1 << k;
+    out.warnings = out.stroke_legs ? STEWART_WARN_STROKE : 0;
+    if (out.condition > o.warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
 }
 
 }  // namespace
@@ -188,6 +147,10 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
     }
     char *msg = d->message;
     const size_t size = sizeof d->message;
+    if (d->model != m)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "this data block was made for another model: make one for this model "
+                           "with stewart_data_create");
     stewart_status s = stewart_options_check(o, msg, size);
     if (s != STEWART_OK) return s;
     if ((s = stewart::check_pose(*pose, msg, size)) != STEWART_OK) return s;
@@ -210,6 +173,13 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
                                          o->singular_condition, out, msg, size);
             break;
         case STEWART_FULL: {
+            // Rates and accelerations too large to solve with are the inputs' fault (the closed
+            // levels find them in their outputs).
+            if (legs.length.allFinite() && !(legs.rate.allFinite() && legs.accel.allFinite())) {
+                s = stewart::input_out_of_range(*pose, 1, 2, "leg length rates or accelerations",
+                                                msg, size);
+                break;
+            }
             stewart::LegJacobian jacobian;
             stewart::leg_jacobian(m->geometry, legs, jacobian);
             out.condition = jacobian.condition;
@@ -218,15 +188,19 @@ extern "C" stewart_status stewart_solve(const stewart_model *m, stewart_data *d,
                 break;
             s = stewart::full_solve(m->full_layout, d->full->state, *o, motion, legs, out, msg,
                                     size);
+            if (s == STEWART_ERR_ARGUMENT)  // the core's rates, accelerations or multipliers
+                s = stewart::input_out_of_range(*pose, 1, 2, "full model's rates or forces", msg,
+                                                size);
             break;
         }
     }
     if (s != STEWART_OK) return s;
-    if (const char *name = first_non_finite(out))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                           "the pose inputs are out of range: the %s overflows (x = %g, y = %g, "
-                           "z = %g m)", name, pose->q[0], pose->q[1], pose->q[2]);
-    out.warnings = stroke_and_condition_warnings(m->params, *o, out);
+    if (const char *name = first_non_finite(out)) {
+        // The outputs of the positions, the rates, or of rates and accelerations.
+        const int last_row = !std::strcmp(name, "length") ? 0 : !std::strcmp(name, "length_rate") ? 1 : 2;
+        return stewart::input_out_of_range(*pose, last_row > 0 ? 1 : 0, last_row, name, msg, size);
+    }
+    stroke_and_condition_warnings(m->params, *o, out);
     *output = out;
     msg[0] = '\0';
     return STEWART_OK;

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "platform/closed_form.hpp"
+#include "platform/forward_kinematics.hpp"
 #include "platform/full_model.hpp"
 #include "stewart/stewart.h"
 
@@ -20,4 +21,5 @@ struct stewart_data {
     const stewart_model *model;
     char message[STEWART_MESSAGE_SIZE];
     std::unique_ptr<mbs_data> full;  // state and workspaces of the full level
+    stewart::ForwardState forward;   // forward kinematics: its solver and tracking history
 };

@@ -1,5 +1,6 @@
-// Parameter defaults (the thesis platform in SI, model.md §2) and their validation.
-#include "stewart/stewart.h"
+// The parameter table (stewart/stewart_table.h) expanded: defaults, per-element checks, lookup
+// by name and id, and stewart_params_check's cross-field checks.
+#include "stewart/stewart_table.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,85 +9,50 @@
 #include <cstring>
 
 #include "util/message.hpp"
+#include "util/range.hpp"
+
+using stewart::ExactText;
+using stewart::set_message;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;
+#define STEWART_UNPAREN(...) __VA_ARGS__
 
-// A solid cylinder of mass m, radius r, length l, axis along z: principal moments about its centre.
-void rod_inertia(double m, double r, double l, double inertia[3]) {
-    inertia[0] = m * (3.0 * r * r + l * l) / 12.0;
-    inertia[1] = inertia[0];
-    inertia[2] = m * r * r / 2.0;
-}
+// Each parameter's defaults, as an array of its count doubles.
+#define DEFAULTS(id, name, count, unit, display, min, min_closed, max, max_closed, defaults, text) \
+    constexpr double kDefault_##name[] = {STEWART_UNPAREN defaults};                          \
+    static_assert(sizeof kDefault_##name == (count) * sizeof(double),                          \
+                  #name ": one default per element");                                          \
+    static_assert(sizeof(stewart_params::name) == (count) * sizeof(double),                    \
+                  #name ": the table's count is the field's");
+STEWART_PARAM_TABLE(DEFAULTS)
+#undef DEFAULTS
 
-}  // namespace
+#define INFO(id, name, count, unit, display, min, min_closed, max, max_closed, defaults, text) \
+    {id, #name, count, unit, display, text, min, max, min_closed, max_closed, kDefault_##name},
+const stewart_param_info kParams[] = {STEWART_PARAM_TABLE(INFO)};
+#undef INFO
+constexpr int kParamCount = sizeof kParams / sizeof kParams[0];
 
-extern "C" void stewart_params_default(stewart_params *p) {
-    if (!p) return;
-    *p = stewart_params{};
-    static const double beta_deg[STEWART_LEGS] = {0, 30, 120, 150, 240, 270};
-    static const double tau_deg[STEWART_LEGS] = {330, 60, 90, 180, 210, 300};
-    p->base_radius = 0.5;
-    p->platform_radius = 0.5;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        p->base_angle[k] = beta_deg[k] * kDeg;
-        p->platform_angle[k] = tau_deg[k] * kDeg;
+#define OFFSET(id, name, ...) offsetof(stewart_params, name),
+constexpr size_t kOffsets[] = {STEWART_PARAM_TABLE(OFFSET)};
+#undef OFFSET
+#define COUNT(id, name, count, ...) count,
+constexpr int kCounts[] = {STEWART_PARAM_TABLE(COUNT)};
+#undef COUNT
+
+// The table lists every field of stewart_params once, in declaration order, with nothing between.
+constexpr bool table_matches_struct() {
+    size_t offset = 0;
+    for (int i = 0; i < kParamCount; ++i) {
+        if (kOffsets[i] != offset) return false;
+        offset += kCounts[i] * sizeof(double);
     }
-    p->home_height = 0.5;
-    p->gravity[2] = -9.81;
-
-    // Aluminium (2700 kg/m^3) disc, D = 1 m, 0.05 m thick (thesis 4.2.8): m = rho pi R^2 t.
-    const double rho = 2700.0, plate_r = 0.5, plate_t = 0.05;
-    p->platform_mass = rho * kPi * plate_r * plate_r * plate_t;
-    p->platform_inertia[0] = p->platform_mass * plate_r * plate_r / 4.0;
-    p->platform_inertia[1] = p->platform_inertia[0];
-    p->platform_inertia[2] = p->platform_mass * plate_r * plate_r / 2.0;
-
-    // Each cylinder and piston: aluminium rod, d = 0.015 m, 0.3 m long, centre 0.15 m from its Cardan.
-    const double rod_r = 0.0075, rod_l = 0.3;
-    const double rod_m = rho * kPi * rod_r * rod_r * rod_l;
-    p->cylinder_mass = rod_m;
-    p->piston_mass = rod_m;
-    rod_inertia(rod_m, rod_r, rod_l, p->cylinder_inertia);
-    rod_inertia(rod_m, rod_r, rod_l, p->piston_inertia);
-    p->cylinder_com = rod_l / 2.0;
-    p->piston_com = rod_l / 2.0;
-
-    // Not in the thesis: a stroke that contains its four manoeuvres (0.53 to 0.60 m) with margin.
-    p->stroke_min = 0.40;
-    p->stroke_max = 0.70;
+    return offset == sizeof(stewart_params);
 }
+static_assert(table_matches_struct(), "STEWART_PARAM_TABLE must list stewart_params' fields in order");
 
-namespace {
-
-// Field names of stewart_params, in declaration order, for messages about a non-finite value.
-struct Field { const char *name; size_t offset; int count; };
-#define STEWART_FIELD(f) {#f, offsetof(stewart_params, f), sizeof(stewart_params::f) / sizeof(double)}
-const Field kFields[] = {
-    STEWART_FIELD(base_radius),     STEWART_FIELD(platform_radius),  STEWART_FIELD(base_angle),
-    STEWART_FIELD(platform_angle),  STEWART_FIELD(home_height),      STEWART_FIELD(gravity),
-    STEWART_FIELD(platform_mass),   STEWART_FIELD(platform_com),     STEWART_FIELD(platform_inertia),
-    STEWART_FIELD(payload_mass),    STEWART_FIELD(payload_com),      STEWART_FIELD(payload_inertia),
-    STEWART_FIELD(cylinder_mass),   STEWART_FIELD(cylinder_inertia), STEWART_FIELD(cylinder_com),
-    STEWART_FIELD(piston_mass),     STEWART_FIELD(piston_inertia),   STEWART_FIELD(piston_com),
-    STEWART_FIELD(stroke_min),      STEWART_FIELD(stroke_max)};
-#undef STEWART_FIELD
-
-// "gravity[3]" for the double at byte offset `offset` of stewart_params: array elements counted
-// from 1, as in the FMU's model description, scene files and stewart-solve --param.
-void field_name(size_t offset, char *out, size_t size) {
-    for (const Field &f : kFields)
-        if (offset >= f.offset && offset < f.offset + f.count * sizeof(double)) {
-            if (f.count == 1)
-                std::snprintf(out, size, "%s", f.name);
-            else
-                std::snprintf(out, size, "%s[%zu]", f.name, (offset - f.offset) / sizeof(double) + 1);
-            return;
-        }
-    std::snprintf(out, size, "?");
-}
+const char *const kAxis[3] = {"x", "y", "z"};
 
 // Levenshtein distance of the part of `a` before any '[' to `b` (both short names).
 size_t edit_distance(const char *a, const char *b) {
@@ -106,115 +72,148 @@ size_t edit_distance(const char *a, const char *b) {
     return row[m];
 }
 
-// The field named `name` ("payload_mass", "base_angle[2]"): its double, or nullptr.
-double *field_by_name(stewart_params *p, const char *name) {
-    const char *bracket = std::strchr(name, '[');
-    const size_t base = bracket ? static_cast<size_t>(bracket - name) : std::strlen(name);
-    for (const Field &f : kFields) {
-        if (std::strlen(f.name) != base || std::strncmp(f.name, name, base) != 0) continue;
-        int index = 1;
-        if (f.count > 1) {
-            // "[k]" with k a single digit 1..count (every array has at most 6 elements)
-            if (!bracket || bracket[1] < '1' || bracket[1] > '0' + f.count || bracket[2] != ']' ||
-                bracket[3] != '\0')
-                return nullptr;
-            index = bracket[1] - '0';
-        } else if (bracket) {
-            return nullptr;
-        }
-        return reinterpret_cast<double *>(reinterpret_cast<char *>(p) + f.offset) + (index - 1);
-    }
-    return nullptr;
-}
-
-// Principal moments of a rigid body must be non-negative and satisfy the triangle inequalities.
-bool inertia_ok(const double I[3]) {
-    return I[0] >= 0 && I[1] >= 0 && I[2] >= 0 && I[0] + I[1] >= I[2] && I[1] + I[2] >= I[0] &&
-           I[0] + I[2] >= I[1];
+// Principal moments of a rigid body must satisfy the triangle inequalities (signs are the
+// table's per-element ranges).
+bool triangle_ok(const double I[3]) {
+    return I[0] + I[1] >= I[2] && I[1] + I[2] >= I[0] && I[0] + I[2] >= I[1];
 }
 
 }  // namespace
 
-extern "C" stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t size) {
-    using stewart::clear_message;
-    using stewart::set_message;
-    if (!p) return set_message(msg, size, STEWART_ERR_ARGUMENT, "params is NULL");
+extern "C" {
 
-    // Every field is a double: one sweep catches NaN and Inf wherever they are.
-    const double *all = reinterpret_cast<const double *>(p);
-    static_assert(sizeof(stewart_params) % sizeof(double) == 0, "stewart_params holds doubles only");
-    for (size_t i = 0; i < sizeof(stewart_params) / sizeof(double); ++i)
-        if (!std::isfinite(all[i])) {
-            char name[48];
-            field_name(i * sizeof(double), name, sizeof name);
-            return set_message(msg, size, STEWART_ERR_PARAMETER,
-                               "parameter %s is %g: every parameter must be finite", name, all[i]);
-        }
+int stewart_param_count(void) { return kParamCount; }
 
-    if (!(p->base_radius > 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "base_radius = %g m must be > 0",
-                           p->base_radius);
-    if (!(p->platform_radius > 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "platform_radius = %g m must be > 0",
-                           p->platform_radius);
-    if (!(p->home_height > 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "home_height = %g m must be > 0",
-                           p->home_height);
-    if (!(p->platform_mass > 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "platform_mass = %g kg must be > 0",
-                           p->platform_mass);
-    if (!(p->payload_mass >= 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "payload_mass = %g kg must be >= 0",
-                           p->payload_mass);
-    if (!(p->cylinder_mass >= 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "cylinder_mass = %g kg must be >= 0",
-                           p->cylinder_mass);
-    if (!(p->piston_mass >= 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "piston_mass = %g kg must be >= 0",
-                           p->piston_mass);
-
-    struct Named { const char *name; const double *I; bool positive; };
-    const Named inertias[] = {{"platform_inertia", p->platform_inertia, true},
-                              {"payload_inertia", p->payload_inertia, false},
-                              {"cylinder_inertia", p->cylinder_inertia, false},
-                              {"piston_inertia", p->piston_inertia, false}};
-    for (const Named &n : inertias) {
-        const bool ok = inertia_ok(n.I) && (!n.positive || (n.I[0] > 0 && n.I[1] > 0 && n.I[2] > 0));
-        if (!ok)
-            return set_message(msg, size, STEWART_ERR_PARAMETER,
-                               "%s = (%g, %g, %g) kg m^2 is not a %s inertia (principal moments "
-                               "must be %s and satisfy the triangle inequalities)",
-                               n.name, n.I[0], n.I[1], n.I[2],
-                               n.positive ? "positive definite" : "valid",
-                               n.positive ? "> 0" : ">= 0");
-    }
-
-    if (!(p->stroke_min > 0 && p->stroke_max > p->stroke_min))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "stroke limits [%g, %g] m must satisfy 0 < stroke_min < stroke_max",
-                           p->stroke_min, p->stroke_max);
-    return clear_message(msg, size);
+const stewart_param_info *stewart_param(int i) {
+    return i >= 0 && i < kParamCount ? &kParams[i] : nullptr;
 }
 
-extern "C" stewart_status stewart_params_set(stewart_params *p, const char *name, double value,
-                                             char *msg, size_t size) {
-    using stewart::set_message;
+double *stewart_param_element(stewart_params *p, int i, int e) {
+    if (!p || i < 0 || i >= kParamCount || e < 0 || e >= kParams[i].count) return nullptr;
+    return reinterpret_cast<double *>(reinterpret_cast<char *>(p) + kOffsets[i]) + e;
+}
+
+int stewart_param_find(const char *name, int *element) {
+    if (!name) return -1;
+    const char *bracket = std::strchr(name, '[');
+    const size_t base = bracket ? static_cast<size_t>(bracket - name) : std::strlen(name);
+    for (int i = 0; i < kParamCount; ++i) {
+        const stewart_param_info &p = kParams[i];
+        if (std::strlen(p.name) != base || std::strncmp(p.name, name, base) != 0) continue;
+        int e = 0;
+        if (p.count > 1) {
+            // "[k]" with k a single digit 1..count (no array has more than 9 elements)
+            if (!bracket || bracket[1] < '1' || bracket[1] > '0' + p.count || bracket[2] != ']' ||
+                bracket[3] != '\0')
+                return -1;
+            e = bracket[1] - '1';
+        } else if (bracket) {
+            return -1;
+        }
+        if (element) *element = e;
+        return i;
+    }
+    return -1;
+}
+
+int stewart_param_find_id(int id, int *element) {
+    for (int i = 0; i < kParamCount; ++i)
+        if (id >= kParams[i].id && id < kParams[i].id + kParams[i].count) {
+            if (element) *element = id - kParams[i].id;
+            return i;
+        }
+    return -1;
+}
+
+int stewart_param_element_name(int i, int e, char *text, size_t size) {
+    const stewart_param_info *p = stewart_param(i);
+    if (!p || e < 0 || e >= p->count) return -1;
+    if (p->count == 1) return std::snprintf(text, size, "%s", p->name);
+    return std::snprintf(text, size, "%s[%d]", p->name, e + 1);
+}
+
+int stewart_param_element_description(int i, int e, char *text, size_t size) {
+    const stewart_param_info *p = stewart_param(i);
+    if (!p || e < 0 || e >= p->count) return -1;
+    if (p->count == STEWART_LEGS) return std::snprintf(text, size, "%s of leg %d", p->description, e + 1);
+    if (p->count == 3) return std::snprintf(text, size, "%s %s", p->description, kAxis[e]);
+    return std::snprintf(text, size, "%s", p->description);
+}
+
+stewart_status stewart_param_check_value(int i, int e, double value, char *msg, size_t size) {
+    const stewart_param_info *p = stewart_param(i);
+    if (!p || e < 0 || e >= p->count)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT, "no parameter %d element %d", i, e);
+    if (stewart::in_range(value, p->min, p->min_closed, p->max, p->max_closed))
+        return stewart::clear_message(msg, size);
+    char name[48], range[96];
+    stewart_param_element_name(i, e, name, sizeof name);
+    if (!std::isfinite(value))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "parameter %s is %g: every parameter must be finite", name, value);
+    stewart::describe_range(p->min, p->min_closed, p->max, p->max_closed, range, sizeof range);
+    return set_message(msg, size, STEWART_ERR_PARAMETER, "%s = %s %s must be %s", name,
+                       ExactText(value).c_str(), p->unit, range);
+}
+
+void stewart_params_default(stewart_params *p) {
+    if (!p) return;
+    for (int i = 0; i < kParamCount; ++i)
+        for (int e = 0; e < kParams[i].count; ++e)
+            *stewart_param_element(p, i, e) = kParams[i].defaults[e];
+}
+
+stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t size) {
+    if (!p) return set_message(msg, size, STEWART_ERR_ARGUMENT, "params is NULL");
+    stewart_params &values = const_cast<stewart_params &>(*p);  // read only
+    for (int i = 0; i < kParamCount; ++i)
+        for (int e = 0; e < kParams[i].count; ++e) {
+            const stewart_status s =
+                stewart_param_check_value(i, e, *stewart_param_element(&values, i, e), msg, size);
+            if (s != STEWART_OK) return s;
+        }
+
+    struct Named { const char *name; const double *I; };
+    const Named inertias[] = {{"platform_inertia", p->platform_inertia},
+                              {"payload_inertia", p->payload_inertia},
+                              {"cylinder_inertia", p->cylinder_inertia},
+                              {"piston_inertia", p->piston_inertia}};
+    for (const Named &n : inertias)
+        if (!triangle_ok(n.I))
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "%s = (%s, %s, %s) kg.m2 is not a rigid body's inertia: principal "
+                               "moments must satisfy the triangle inequalities",
+                               n.name, ExactText(n.I[0]).c_str(), ExactText(n.I[1]).c_str(),
+                               ExactText(n.I[2]).c_str());
+
+    if (!(p->stroke_max > p->stroke_min))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "stroke limits [%s, %s] m must satisfy stroke_min < stroke_max",
+                           ExactText(p->stroke_min).c_str(), ExactText(p->stroke_max).c_str());
+    return stewart::clear_message(msg, size);
+}
+
+stewart_status stewart_params_set(stewart_params *p, const char *name, double value, char *msg,
+                                  size_t size) {
     if (!p || !name) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
-    double *field = field_by_name(p, name);
-    if (!field) {
-        const Field *nearest = &kFields[0];
+    int e = 0;
+    const int i = stewart_param_find(name, &e);
+    if (i < 0) {
+        int nearest = 0;
         size_t best = static_cast<size_t>(-1);
-        for (const Field &f : kFields) {
-            const size_t d = edit_distance(name, f.name);
-            if (d < best) best = d, nearest = &f;
+        for (int k = 0; k < kParamCount; ++k) {
+            const size_t d = edit_distance(name, kParams[k].name);
+            if (d < best) best = d, nearest = k;
         }
         char suffix[16];
-        std::snprintf(suffix, sizeof suffix, "[1..%d]", nearest->count);
+        std::snprintf(suffix, sizeof suffix, "[1..%d]", kParams[nearest].count);
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "no parameter is named '%s'; the nearest is %s%s (names as in the FMU's "
                            "model description: arrays take an element counted from 1)",
-                           name, nearest->name, nearest->count > 1 ? suffix : "");
+                           name, kParams[nearest].name, kParams[nearest].count > 1 ? suffix : "");
     }
-    *field = value;
+    *stewart_param_element(p, i, e) = value;
     return stewart::clear_message(msg, size);
 }
+
+}  // extern "C"

@@ -3,7 +3,11 @@
 # (tests/fuzz/fuzz_fmu.cpp) with libFuzzer (clang from Debian) for a bounded time each, with
 # AddressSanitizer and UndefinedBehaviorSanitizer, and merges what they find into
 # tests/fuzz/corpus/api and tests/fuzz/corpus/fmu (which the test suite replays).
+# With `minimize` instead of a target, it fuzzes nothing and shrinks both corpora to the inputs that
+# add edge coverage (libFuzzer -merge=1 into an empty folder, -use_counters=0: the hit-count buckets
+# a campaign also tells apart would keep about ten times as many inputs for the same edges).
 # usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|both=both]
+#        scripts/fuzz.sh 0 minimize
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -18,36 +22,38 @@ if [ -n "${missing:-}" ]; then
   DEBIAN_FRONTEND=noninteractive $as_root apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -g"
+# Both targets are built by CMake (tests/CMakeLists.txt, STEWART_FUZZ): the library and the FMU's
+# objects are compiled once, with the sanitizer flags, exactly as the replay tests use them.
 cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
+  -DSTEWART_FUZZ=ON \
   -DPython3_EXECUTABLE="$PWD/.venv/bin/python" -DUNITY_WHEEL_DIR="$PWD/.cache/wheels" >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target stewart
-# libstewart.a needs KINSOL (Debian's static archive carries it with the serial vector and the
-# dense solver it uses).
-kinsol=$(dpkg -L libsundials-dev | grep '/libsundials_kinsol\.a$' | head -1)
-clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include tests/fuzz/fuzz_api.cpp \
-  build-fuzz/csrc/libstewart.a "$kinsol" -o build-fuzz/fuzz_api
-# The FMU target: the FMU's model code compiled in, FMI headers from fmpy (as fmu/CMakeLists.txt).
-fmi_headers=$(.venv/bin/python -c "import fmpy, os; print(os.path.join(os.path.dirname(fmpy.__file__), 'c-code'))")
-mkdir -p build-fuzz/fmu_objs
-for f in model variables fmi2_functions fmi3_functions; do
-  clang -std=c11 $flags -Icsrc/include -Ifmu -I"$fmi_headers" -c fmu/$f.c -o build-fuzz/fmu_objs/$f.o
-done
-clang++ -std=c++17 $flags -fsanitize=fuzzer -Icsrc/include -Ifmu -I"$fmi_headers" \
-  tests/fuzz/fuzz_fmu.cpp build-fuzz/fmu_objs/*.o build-fuzz/csrc/libstewart.a "$kinsol" -o build-fuzz/fuzz_fmu
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu
 
 # run TARGET CORPUS: fuzz for $seconds from the committed corpus, then keep only the inputs that
-# add coverage to it. Prints the number of executions.
+# add edge coverage to it. Prints the number of executions.
 run() {
   local target=$1 corpus=$2
   mkdir -p build-fuzz/corpus_$target "$corpus"
   ./build-fuzz/$target -max_total_time="$seconds" -max_len=4096 -artifact_prefix=build-fuzz/$target- \
     -print_final_stats=1 build-fuzz/corpus_$target "$corpus" 2>build-fuzz/$target.log || {
     tail -50 build-fuzz/$target.log; echo "fuzz: $target FAILED (artifact in build-fuzz/)"; exit 1; }
-  ./build-fuzz/$target -merge=1 "$corpus" build-fuzz/corpus_$target 2>>build-fuzz/$target.log
+  ./build-fuzz/$target -merge=1 -use_counters=0 "$corpus" build-fuzz/corpus_$target 2>>build-fuzz/$target.log
   echo "fuzz: $target $(grep -m1 stat::number_of_executed_units build-fuzz/$target.log | awk '{print $2}') executions in ${seconds} s; corpus now $(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
 }
+# minimize TARGET CORPUS: keep only the inputs of CORPUS that add coverage, in place.
+minimize() {
+  local target=$1 corpus=$2 kept=build-fuzz/minimized_$1
+  local before="$(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
+  rm -rf "$kept"; mkdir -p "$kept"
+  ./build-fuzz/$target -merge=1 -use_counters=0 "$kept" "$corpus" 2>build-fuzz/$target-minimize.log || {
+    tail -20 build-fuzz/$target-minimize.log; echo "fuzz: minimising $corpus FAILED"; exit 1; }
+  rm -f "$corpus"/*
+  cp "$kept"/* "$corpus"/
+  echo "fuzz: $corpus minimised from $before to $(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
+}
 case "$targets" in
+  minimize) minimize fuzz_api tests/fuzz/corpus/api; minimize fuzz_fmu tests/fuzz/corpus/fmu ;;
   api) run fuzz_api tests/fuzz/corpus/api ;;
   fmu) run fuzz_fmu tests/fuzz/corpus/fmu ;;
   *) run fuzz_api tests/fuzz/corpus/api; run fuzz_fmu tests/fuzz/corpus/fmu ;;

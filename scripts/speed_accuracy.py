@@ -30,7 +30,7 @@ import scenes  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 BUILD = ROOT / "build"
-FMU_SO = BUILD / "fmu/stage2/binaries/linux64/StewartPlatform.so"
+FMU_SO = BUILD / "fmu/StewartPlatform/stage2/binaries/linux64/StewartPlatform.so"
 FMU = BUILD / "fmus/2.0/StewartPlatform.fmu"
 STEPS_MS = (1, 2, 5, 10, 20, 50, 100)
 TOLERANCES = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)

@@ -13,6 +13,7 @@
 #include "model.hpp"
 #include "core/step.hpp"
 #include "platform/full_model.hpp"
+#include "util/message.hpp"
 
 namespace {
 
@@ -74,7 +75,7 @@ Result run(const stewart_model &model, const mbs::SolverOptions &kind, bool clos
                                         sizeof msg);
             } else {
                 stewart::full_set_drivers(model.full_layout, motion, legs, state);
-                s = mbs::solve_step(state, smp.t, kind, true);
+                s = stewart::from_mbs(mbs::solve_step(state, smp.t, kind, true));
                 out.force[0] = -state.lambda[model.full->mechanism.first_row[model.full_layout.driver_joint[0]]];
                 out.iterations = state.stats.iterations;
             }

@@ -46,6 +46,8 @@ struct Quadratic {
 
 }  // namespace
 
+std::vector<std::string> csv_cells(const std::string &line) { return split(line); }
+
 std::vector<double> finite_difference(const std::vector<double> &t, const std::vector<double> &f,
                                       int order) {
     const size_t n = t.size();

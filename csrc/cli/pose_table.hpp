@@ -13,6 +13,9 @@ struct PoseTable {
     std::vector<stewart_pose> poses;
 };
 
+// The cells of one CSV line, blanks around each trimmed.
+std::vector<std::string> csv_cells(const std::string &line);
+
 // Reads IN.csv: header `t,x,y,z,roll,pitch,yaw`, optionally `x_dot..yaw_dot` and/or
 // `x_ddot..yaw_ddot` (any column order). A derivative group that is absent is computed by central
 // finite differences of the samples (one-sided at the ends; variable spacing allowed). Returns ""

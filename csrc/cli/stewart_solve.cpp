@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/forward_table.hpp"
+#include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
 #include "stewart/stewart.h"
 
@@ -20,7 +22,15 @@ int usage(FILE *to) {
                  "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
                  "x_ddot..yaw_ddot\n"
                  "           (missing derivatives come from finite differences of the samples)\n"
-                 "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations\n");
+                 "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations\n"
+                 "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
+                 "[--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
+                 "columns ignored)\n"
+                 "  OUT.csv: t,x,y,z,roll,pitch,yaw, x_dot.. and x_ddot.. when given their "
+                 "inputs, iterations,residual,condition\n"
+                 "  --guess: the first row's start (default: home); each later row tracks the "
+                 "one before\n");
     return to == stderr ? 2 : 0;
 }
 
@@ -50,24 +60,10 @@ void write_row(FILE *out, double t, const stewart_output &o) {
 
 // NAME=VALUE into params; false with a message on stderr.
 bool set_param(const char *assignment, stewart_params &params) {
-    const char *eq = std::strchr(assignment, '=');
-    if (!eq) {
-        std::fprintf(stderr, "stewart-solve: --param '%s' is not NAME=VALUE\n", assignment);
-        return false;
-    }
-    const std::string name(assignment, eq);
-    char *end = nullptr;
-    const double value = std::strtod(eq + 1, &end);
-    if (end == eq + 1 || *end != '\0') {
-        std::fprintf(stderr, "stewart-solve: --param %s: '%s' is not a number\n", name.c_str(), eq + 1);
-        return false;
-    }
-    char message[STEWART_MESSAGE_SIZE];
-    if (stewart_params_set(&params, name.c_str(), value, message, sizeof message) != STEWART_OK) {
-        std::fprintf(stderr, "stewart-solve: --param: %s\n", message);
-        return false;
-    }
-    return true;
+    std::string name;
+    double value;
+    return stewart::parse_assignment("stewart-solve", assignment, name, value) &&
+           stewart::set_platform_param("stewart-solve", name, value, params);
 }
 
 }  // namespace
@@ -78,11 +74,29 @@ int main(int argc, char **argv) {
     stewart_params params;
     stewart_params_default(&params);
     const char *paths[2] = {nullptr, nullptr};
+    bool forward = false;
+    double guess[6];
+    const double *guess_given = nullptr;
     int n_paths = 0;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
         const bool fidelity = !std::strcmp(argv[i], "--fidelity");
         const bool param = !std::strcmp(argv[i], "--param");
+        if (!std::strcmp(argv[i], "--forward")) {
+            forward = true;
+            continue;
+        }
+        if (!std::strcmp(argv[i], "--guess")) {
+            if (i + 1 == argc || std::sscanf(argv[i + 1], "%lf,%lf,%lf,%lf,%lf,%lf", &guess[0],
+                                             &guess[1], &guess[2], &guess[3], &guess[4],
+                                             &guess[5]) != 6) {
+                std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
+                return 2;
+            }
+            guess_given = guess;
+            ++i;
+            continue;
+        }
         if ((fidelity || param || !std::strcmp(argv[i], "--tolerance")) && i + 1 == argc) {
             std::fprintf(stderr, "stewart-solve: %s needs a value (%s)\n", argv[i],
                          fidelity ? "kinematic|massless|full"
@@ -113,6 +127,17 @@ int main(int argc, char **argv) {
         }
     }
     if (n_paths != 2) return usage(stderr);
+    if (forward) {
+        stewart_forward_options forward_options;
+        stewart_forward_options_default(&forward_options);
+        forward_options.tolerance = options.tolerance;
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_forward_options_check(&forward_options, message, sizeof message) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-solve: %s\n", message);
+            return 2;
+        }
+        return stewart::run_forward(paths[0], paths[1], params, forward_options, guess_given);
+    }
 
     char message[STEWART_MESSAGE_SIZE];
     if (stewart_options_check(&options, message, sizeof message) != STEWART_OK) {

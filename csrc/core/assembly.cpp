@@ -23,9 +23,9 @@ void evaluate_with_frames(const Mechanism &m, int k, const double *q, const doub
                           const BodyFrame *frames) {
     const JointDef &j = m.joints[k];
     const JointTypeInfo &info = joint_type(j.type);
-    const double *qi = q + 7 * j.body_i, *qj = j.body_j >= 0 ? q + 7 * j.body_j : nullptr;
-    const double *vi = q_dot ? q_dot + 7 * j.body_i : nullptr;
-    const double *vj = (q_dot && j.body_j >= 0) ? q_dot + 7 * j.body_j : nullptr;
+    const double *qi = body_r(q, j.body_i), *qj = j.body_j >= 0 ? body_r(q, j.body_j) : nullptr;
+    const double *vi = q_dot ? body_r(q_dot, j.body_i) : nullptr;
+    const double *vj = (q_dot && j.body_j >= 0) ? body_r(q_dot, j.body_j) : nullptr;
     BodyFrame fi, fj;
     const BodyFrame *pi = nullptr, *pj = nullptr;
     if (info.bodies == 2) {
@@ -49,7 +49,7 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
     const bool cached = m.bodies.size() <= kFrameCache;
     if (cached)
         for (size_t b = 0; b < m.bodies.size(); ++b)
-            make_frame(q + 7 * b, q_dot ? q_dot + 7 * b : nullptr, cache[b]);
+            make_frame(body_r(q, b), q_dot ? body_r(q_dot, b) : nullptr, cache[b]);
     for (size_t k = 0; k < m.joints.size(); ++k)
         evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k),
                              cached ? cache : nullptr);
@@ -72,7 +72,7 @@ namespace {
 JointOutput jacobian_blocks(const Mechanism &m, size_t k, double *values, double *phi) {
     double *block = values + m.first_value[k];
     const int n = joint_type(m.joints[k].type).equations;
-    double *block_j = m.joints[k].body_j >= 0 ? block + 7 * n : nullptr;
+    double *block_j = m.joints[k].body_j >= 0 ? block + MBS_BODY_COORDINATES * n : nullptr;
     return JointOutput{phi ? phi + m.first_row[k] : nullptr, block, block_j, nullptr, nullptr};
 }
 }  // namespace

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "util/message.hpp"
+#include "core/message.hpp"
 
-using stewart::set_message;
+using mbs::set_message;
 
 namespace mbs {
 
@@ -35,17 +35,17 @@ JointDef two_body(JointType type, int bi, const Vec3 &ui, int bj, const Vec3 &uj
 
 int Builder::check_open() {
     if (m.finalized)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "the model is finalised: no more bodies or joints can be added");
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 int Builder::check_body(int b, const char *what) {
     if (b < 0 || b >= static_cast<int>(m.bodies.size()))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "%s = %d is not a body index (the model has %zu bodies)", what, b,
                            m.bodies.size());
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 int Builder::check_pair(int bi, int bj) {
@@ -53,30 +53,30 @@ int Builder::check_pair(int bi, int bj) {
     if ((s = check_open()) || (s = check_body(bi, "body_i")) || (s = check_body(bj, "body_j")))
         return s;
     if (bi == bj)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "body_i = body_j = %d: a joint needs two different bodies", bi);
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 int Builder::check_free(int b) {
     if (m.bodies[b].fixed || m.bodies[b].pose_driven)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "body %d is already fixed or pose-driven", b);
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 int Builder::check_direction(const Vec3 &v, const char *what, Vec3 &unit) {
     if (!finite(v) || !(v.norm() > 1e-12))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "%s = (%g, %g, %g) must be a finite nonzero direction", what, v[0],
                            v[1], v[2]);
     unit = v.normalized();
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 int Builder::add(JointDef j) {
     if (!finite(j.point_i) || !finite(j.point_j))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "attachment point (%g, %g, %g) / (%g, %g, %g) must be finite",
                            j.point_i[0], j.point_i[1], j.point_i[2], j.point_j[0], j.point_j[1],
                            j.point_j[2]);
@@ -101,22 +101,22 @@ int Builder::body(const char *name, double mass, const Vec3 &I, const double q[7
     int s;
     if ((s = check_open())) return s;
     if (!(std::isfinite(mass) && mass >= 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "mass of body %s = %g must be >= 0",
+        return set_message(msg, size, MBS_ERR_PARAMETER, "mass of body %s = %g must be >= 0",
                            name ? name : "?", mass);
     if (!finite(I) || I.minCoeff() < 0 || I[0] + I[1] < I[2] || I[1] + I[2] < I[0] ||
         I[0] + I[2] < I[1])
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
+        return set_message(msg, size, MBS_ERR_PARAMETER,
                            "inertia of body %s = (%g, %g, %g) must be >= 0 and satisfy the "
                            "triangle inequalities", name ? name : "?", I[0], I[1], I[2]);
     double pn = 0;
     for (int c = 0; c < 7; ++c)
         if (!std::isfinite(q[c]))
-            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+            return set_message(msg, size, MBS_ERR_ARGUMENT,
                                "q_reference[%d] of body %s is %g: it must be finite", c,
                                name ? name : "?", q[c]);
     for (int c = 3; c < 7; ++c) pn += q[c] * q[c];
     if (std::fabs(pn - 1.0) > 1e-9)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "Euler parameters of body %s have norm^2 %g: they must be unit",
                            name ? name : "?", pn);
     Body b;
@@ -201,7 +201,7 @@ int Builder::coordinate_driver(int b, int coordinate, int *slot) {
     int s;
     if ((s = check_open()) || (s = check_body(b, "body"))) return s;
     if (coordinate < 0 || coordinate > 6)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "coordinate = %d must be 0..6 (x, y, z, e0, e1, e2, e3)", coordinate);
     JointDef j;
     j.type = JointType::CoordinateDriver;
@@ -226,7 +226,7 @@ int Builder::distance_driver(int joint, int *slot) {
     if (joint < 0 || joint >= static_cast<int>(m.joints.size()) ||
         (m.joints[joint].type != JointType::Cylindrical &&
          m.joints[joint].type != JointType::Prismatic))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+        return set_message(msg, size, MBS_ERR_ARGUMENT,
                            "joint = %d is not a cylindrical or prismatic joint", joint);
     JointDef j = m.joints[joint];
     j.type = JointType::DistanceDriver;
@@ -238,7 +238,7 @@ int Builder::angle_driver(int joint, int *slot) {
     if ((s = check_open())) return s;
     if (joint < 0 || joint >= static_cast<int>(m.joints.size()) ||
         m.joints[joint].type != JointType::Revolute)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT, "joint = %d is not a revolute joint",
+        return set_message(msg, size, MBS_ERR_ARGUMENT, "joint = %d is not a revolute joint",
                            joint);
     JointDef j = m.joints[joint];
     j.type = JointType::AngleDriver;

@@ -1,5 +1,5 @@
 // Building a mechanism: bodies and joints with their input checked. Every function returns the
-// new index (>= 0) or a negative stewart_status with a message naming the offending value.
+// new index (>= 0) or a negative mbs_status with a message naming the offending value.
 #pragma once
 
 #include "core/mechanism.hpp"

@@ -1,4 +1,4 @@
-// Inverse dynamics with Haug's Euler-parameter equations (model.md §1), body frames at the centre
+// Inverse dynamics with Haug's Euler-parameter equations (docs/model.md), body frames at the centre
 // of mass on principal axes: M q_ddot + Phi_q^T lambda = Q.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Euler-parameter kinematics (model.md §1): p = (e0, e), rotation A(p) = E(p) G(p)^T.
+// Euler-parameter kinematics (docs/model.md): p = (e0, e), rotation A(p) = E(p) G(p)^T.
 // A is written in its homogeneous quadratic form, so its derivative B(p, u) = d(A(p) u)/dp is
 // exact off the unit sphere too (Newton steps leave it) and B is linear in p.
 #pragma once

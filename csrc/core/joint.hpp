@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/euler.hpp"
+#include "mbs/mbs.h"
 
 namespace mbs {
 

@@ -17,7 +17,7 @@ void fixed_body_rows(const Mechanism &m, std::vector<int> &rows, std::vector<int
         if (m.joints[k].type == JointType::FixedBody)
             for (int c = 0; c < 7; ++c) {
                 rows.push_back(m.first_row[k] + c);
-                cols.push_back(7 * m.joints[k].body_i + c);
+                cols.push_back(body_column(m.joints[k].body_i, c));
             }
 }
 
@@ -26,8 +26,7 @@ void fixed_body_rows(const Mechanism &m, std::vector<int> &rows, std::vector<int
 void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::vector<char> &nonzero) {
     std::vector<double> q(m.coordinates), values(m.values());
     std::vector<DriverValue> drive(m.drivers);
-    for (size_t b = 0; b < m.bodies.size(); ++b)
-        for (int c = 0; c < 7; ++c) q[7 * b + c] = m.bodies[b].q_reference[c];
+    place_at_reference(m, q.data());
     reference.assign(m.values(), 0.0);
     assemble_jacobian(m, q.data(), drive.data(), reference.data());
     nonzero.assign(m.values(), 0);
@@ -60,8 +59,8 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
     std::vector<int> border_index(nbodies, -1), group_of(nbodies, -1);
     for (int b = 0; b < nbodies; ++b)
         if (!m.bodies[b].fixed && neighbours[b].size() >= 3) {
-            border_index[b] = static_cast<int>(p.border_cols.size()) / 7;
-            for (int c = 0; c < 7; ++c) p.border_cols.push_back(7 * b + c);
+            border_index[b] = static_cast<int>(p.border_cols.size()) / MBS_BODY_COORDINATES;
+            for (int c = 0; c < MBS_BODY_COORDINATES; ++c) p.border_cols.push_back(body_column(b, c));
         }
     p.border = static_cast<int>(p.border_cols.size());
     if (p.border == 0) return nullptr;
@@ -76,7 +75,7 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
         while (!stack.empty()) {
             const int u = stack.back();
             stack.pop_back();
-            for (int c = 0; c < 7; ++c) p.groups[g].cols.push_back(7 * u + c);
+            for (int c = 0; c < MBS_BODY_COORDINATES; ++c) p.groups[g].cols.push_back(body_column(u, c));
             for (int v : neighbours[u])
                 if (border_index[v] < 0 && group_of[v] < 0) {
                     group_of[v] = g;

@@ -3,11 +3,11 @@
 
 #include "core/builder.hpp"
 #include "core/state.hpp"
-#include "stewart/mbs.h"
+#include "mbs/mbs.h"
 
 struct mbs_model {
     mbs::Mechanism mechanism;
-    char message[STEWART_MESSAGE_SIZE] = "";
+    char message[MBS_MESSAGE_SIZE] = "";
     mbs::Builder builder() { return mbs::Builder{mechanism, message, sizeof message}; }
 };
 

@@ -1,9 +1,17 @@
 #include "core/mechanism.hpp"
 
+#include <algorithm>
+
 #include "core/linear_solver.hpp"
-#include "util/message.hpp"
+#include "core/message.hpp"
 
 namespace mbs {
+
+void place_at_reference(const Mechanism &m, double *q) {
+    for (size_t b = 0; b < m.bodies.size(); ++b)
+        std::copy(m.bodies[b].q_reference, m.bodies[b].q_reference + MBS_BODY_COORDINATES,
+                  body_r(q, b));
+}
 
 bool finalize(Mechanism &m, char *msg, size_t size) {
     if (m.finalized) return true;
@@ -14,7 +22,7 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
             n.body_i = static_cast<int>(b);
             m.joints.push_back(n);
         }
-    m.coordinates = 7 * static_cast<int>(m.bodies.size());
+    m.coordinates = MBS_BODY_R(static_cast<int>(m.bodies.size()));
     m.equations = 0;
     m.drivers = 0;
     m.first_row.clear();
@@ -30,16 +38,16 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
         const int bodies[2] = {j.body_i, j.body_j};
         for (int side = 0; side < info.bodies; ++side)
             for (int r = 0; r < info.equations; ++r)
-                for (int c = 0; c < 7; ++c) {
+                for (int c = 0; c < MBS_BODY_COORDINATES; ++c) {
                     m.pattern_row.push_back(m.equations + r);
-                    m.pattern_col.push_back(7 * bodies[side] + c);
+                    m.pattern_col.push_back(body_column(bodies[side], c));
                 }
         m.equations += info.equations;
         for (int d = 0; d < info.drivers; ++d) m.driver_joint.push_back(static_cast<int>(k));
         m.drivers += info.drivers;
     }
     if (m.equations != m.coordinates) {
-        stewart::set_message(msg, size, STEWART_ERR_PARAMETER,
+        mbs::set_message(msg, size, MBS_ERR_PARAMETER,
                              "the mechanism has %d constraint equations for %d coordinates: it "
                              "must have exactly as many (add or remove drivers)",
                              m.equations, m.coordinates);

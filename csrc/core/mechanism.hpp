@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/joint.hpp"
+#include "mbs/mbs.h"
 
 namespace mbs {
 
@@ -38,6 +39,15 @@ struct Mechanism {
 
     int values() const { return static_cast<int>(pattern_row.size()); }
 };
+
+// Body b's position r and Euler parameters p inside a coordinate vector (q, q_dot, q_ddot).
+template <class T> inline T *body_r(T *q, size_t b) { return q + MBS_BODY_R(b); }
+template <class T> inline T *body_p(T *q, size_t b) { return q + MBS_BODY_P(b); }
+// Coordinate c (0..6: r then p) of body b: its column in the Jacobian.
+inline int body_column(int b, int c) { return MBS_BODY_R(b) + c; }
+
+// Every body at its reference configuration in q (coordinates long): the one reset of positions.
+void place_at_reference(const Mechanism &m, double *q);
 
 // Adds the normalisations, lays out rows and the Jacobian pattern, plans the linear solver.
 // False (message says why) if the equations do not match the coordinates.

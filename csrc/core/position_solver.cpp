@@ -12,9 +12,10 @@
 #include <cmath>
 
 #include "core/assembly.hpp"
-#include "util/message.hpp"
+#include "core/kinsol_custom.hpp"
+#include "core/message.hpp"
 
-using stewart::set_message;
+using mbs::set_message;
 
 namespace mbs {
 
@@ -27,7 +28,7 @@ struct PositionSolver::Impl {
     SUNMatrix matrix = nullptr;
     SUNLinearSolver linear = nullptr;
     void *kinsol = nullptr;
-    char kinsol_message[STEWART_MESSAGE_SIZE] = "";
+    char kinsol_message[MBS_MESSAGE_SIZE] = "";
     double last_residual = 0;  // max-norm of the last residual evaluated (INFINITY if not finite)
     bool values_at_guess = false;  // state.values hold Phi_q at state.q (the initial guess)
     explicit Impl(State &s) : state(s) {}
@@ -73,14 +74,8 @@ int jacobian(N_Vector u, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vector) 
     return 0;
 }
 
-// The custom SUNMatrix: its content is the Impl; values live in state.values.
-SUNMatrix_ID matrix_id(SUNMatrix) { return SUNMATRIX_CUSTOM; }
-int matrix_zero(SUNMatrix) { return 0; }  // every value is overwritten by the Jacobian
-void matrix_destroy(SUNMatrix A) { SUNMatFreeEmpty(A); }
-
-SUNLinearSolver_Type solver_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
-SUNLinearSolver_ID solver_id(SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; }
-int solver_initialize(SUNLinearSolver) { return SUNLS_SUCCESS; }
+// The custom linear solver (core/kinsol_custom): our structured factorisation of the values in
+// state.values, which the custom SUNMatrix (content: the Impl) stands for.
 int solver_setup(SUNLinearSolver S, SUNMatrix) {
     State &s = static_cast<Impl *>(S->content)->state;
     if (!s.linear->factor(s.values.data())) return SUNLS_LUFACT_FAIL;
@@ -95,19 +90,6 @@ int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype)
     s.linear->solve(xd);
     return SUNLS_SUCCESS;
 }
-sunindextype solver_last_flag(SUNLinearSolver) { return 0; }
-int solver_free(SUNLinearSolver S) {
-    S->content = nullptr;
-    SUNLinSolFreeEmpty(S);
-    return 0;
-}
-
-void error_handler(int code, const char *module, const char *function, char *text, void *user) {
-    Impl &im = *static_cast<Impl *>(user);
-    std::snprintf(im.kinsol_message, sizeof im.kinsol_message, "%s %s (%d): %s", module, function,
-                  code, text);
-}
-
 }  // namespace
 
 PositionSolver::PositionSolver(State &state, const SolverOptions &options)
@@ -119,14 +101,14 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
     char *msg = state.message;
     const size_t size = sizeof state.message;
     if (SUNContext_Create(nullptr, &im.context) != 0) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "SUNContext_Create failed");
+        set_message(msg, size, MBS_ERR_MEMORY, "SUNContext_Create failed");
         return;
     }
     im.u = N_VNew_Serial(n, im.context);
     im.scale = N_VNew_Serial(n, im.context);
     im.work = N_VNew_Serial(n, im.context);
     if (!im.u || !im.scale || !im.work) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "N_VNew_Serial(%ld) failed", (long)n);
+        set_message(msg, size, MBS_ERR_MEMORY, "N_VNew_Serial(%ld) failed", (long)n);
         return;
     }
     N_VConst(1.0, im.scale);
@@ -134,40 +116,27 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
         im.matrix = SUNDenseMatrix(n, n, im.context);
         im.linear = im.matrix ? SUNLinSol_Dense(im.u, im.matrix, im.context) : nullptr;
     } else {
-        im.matrix = SUNMatNewEmpty(im.context);
-        im.linear = SUNLinSolNewEmpty(im.context);
-        if (im.matrix && im.linear) {
-            im.matrix->content = &im;
-            im.matrix->ops->getid = matrix_id;
-            im.matrix->ops->zero = matrix_zero;
-            im.matrix->ops->destroy = matrix_destroy;
-            im.linear->content = &im;
-            im.linear->ops->gettype = solver_type;
-            im.linear->ops->getid = solver_id;
-            im.linear->ops->initialize = solver_initialize;
-            im.linear->ops->setup = solver_setup;
-            im.linear->ops->solve = solver_solve;
-            im.linear->ops->lastflag = solver_last_flag;
-            im.linear->ops->free = solver_free;
-        }
+        mbs::make_custom_linear_solver(im.context, &im, solver_setup, solver_solve, im.matrix,
+                                       im.linear);
     }
     if (!im.matrix || !im.linear) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "could not create the KINSOL linear solver");
+        set_message(msg, size, MBS_ERR_MEMORY, "could not create the KINSOL linear solver");
         return;
     }
     im.kinsol = KINCreate(im.context);
     if (!im.kinsol) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "KINCreate failed");
+        set_message(msg, size, MBS_ERR_MEMORY, "KINCreate failed");
         return;
     }
     int flag;
-    if ((flag = KINSetErrHandlerFn(im.kinsol, error_handler, &im)) != KIN_SUCCESS ||
+    if ((flag = KINSetErrHandlerFn(im.kinsol, keep_kinsol_message, im.kinsol_message)) !=
+            KIN_SUCCESS ||
         (flag = KINInit(im.kinsol, residual, im.u)) != KIN_SUCCESS ||
         (flag = KINSetUserData(im.kinsol, &im)) != KIN_SUCCESS ||
         (flag = KINSetLinearSolver(im.kinsol, im.linear, im.matrix)) != KINLS_SUCCESS ||
         (flag = KINSetJacFn(im.kinsol, jacobian)) != KINLS_SUCCESS ||
         (flag = KINSetScaledStepTol(im.kinsol, 1e-300)) != KIN_SUCCESS) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "KINSOL setup failed with flag %d: %s", flag,
+        set_message(msg, size, MBS_ERR_MEMORY, "KINSOL setup failed with flag %d: %s", flag,
                     im.kinsol_message);
         return;
     }
@@ -186,7 +155,7 @@ PositionSolver::~PositionSolver() {
     delete impl_;
 }
 
-stewart_status PositionSolver::solve(const SolverOptions &o) {
+mbs_status PositionSolver::solve(const SolverOptions &o) {
     Impl &im = *impl_;
     State &s = im.state;
     char *msg = s.message;
@@ -196,7 +165,7 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     if ((flag = KINSetFuncNormTol(im.kinsol, o.tolerance)) != KIN_SUCCESS ||
         (flag = KINSetNumMaxIters(im.kinsol, o.max_iterations)) != KIN_SUCCESS ||
         (flag = KINSetMaxSetupCalls(im.kinsol, o.modified_newton ? 10 : 1)) != KIN_SUCCESS)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
+        return set_message(msg, size, MBS_ERR_PARAMETER,
                            "KINSOL rejected the options (flag %d): tolerance = %g, "
                            "max_iterations = %d: %s",
                            flag, o.tolerance, o.max_iterations, im.kinsol_message);
@@ -218,7 +187,7 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
         flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
         const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
         if (stats_flag != KIN_SUCCESS)
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+            return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                                "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // With no line search every evaluated iterate is accepted: the last residual is the
         // final one's. A failure may have stopped elsewhere, so recompute then.
@@ -230,7 +199,7 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     s.stats.residual = im.last_residual;
     bool finite = std::isfinite(im.last_residual);
     if (iterations == 0 && !finite)
-        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+        return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                            "the residual at the initial guess is not finite");
     // No iteration is no licence: KINSOL may also stop before its first one with an error (its
     // set-up failing), leaving the guess and its residual above the tolerance. The guess stands
@@ -238,23 +207,23 @@ stewart_status PositionSolver::solve(const SolverOptions &o) {
     for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
     if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
-            return set_message(msg, size, STEWART_ERR_SINGULAR,
+            return set_message(msg, size, MBS_ERR_SINGULAR,
                                "the constraint Jacobian is singular during the position solve "
                                "(KINSOL flag %d after %ld iterations)", flag, iterations);
         if (im.last_residual <= o.tolerance)  // small enough, but KINSOL reported a failure
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+            return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                                "position solve failed: KINSOL flag %d after %ld iterations "
                                "(residual %g, tolerance %g)%s%s",
                                flag, iterations, s.stats.residual, o.tolerance,
                                im.kinsol_message[0] ? ": " : "", im.kinsol_message);
-        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+        return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                            "position problem not converged: residual %g > tolerance %g after "
                            "%ld iterations (KINSOL flag %d%s%s)",
                            s.stats.residual, o.tolerance, iterations, flag,
                            im.kinsol_message[0] ? ": " : "", im.kinsol_message);
     }
     if (iterations > 0) std::copy(u, u + n, s.q.begin());  // else q is the accepted guess
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 }  // namespace mbs

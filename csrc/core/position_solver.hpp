@@ -18,7 +18,7 @@ public:
 
     // Solves from state.q (the initial guess) at the driver values in state.drive; q is
     // overwritten with the solution. Fills state.stats.
-    stewart_status solve(const SolverOptions &options);
+    mbs_status solve(const SolverOptions &options);
 
     struct Impl;
 

@@ -6,15 +6,15 @@
 #include <vector>
 
 #include "core/linear_solver.hpp"
-#include "stewart/stewart.h"
+#include "mbs/mbs.h"
 
 namespace mbs {
 
 class PositionSolver;
 
 struct SolverOptions {
-    double tolerance = 1e-12;       // max-norm of the residual
-    int max_iterations = 20;
+    double tolerance = MBS_DEFAULT_TOLERANCE;  // max-norm of the residual
+    int max_iterations = MBS_DEFAULT_MAX_ITERATIONS;
     bool modified_newton = false;   // keep the Jacobian across Newton iterations
     LinearSolverKind linear = LinearSolverKind::Automatic;
     bool kinsol_dense = false;      // KINSOL's own dense matrix and solver (a baseline)
@@ -39,10 +39,13 @@ struct State {
     double time = 0;
     bool has_history = false;       // q, q_dot, q_ddot hold the solution at `time`
     SolveStats stats;
-    char message[STEWART_MESSAGE_SIZE] = "";
+    char message[MBS_MESSAGE_SIZE] = "";
 
     // Workspaces.
-    std::vector<double> values, rhs, force;
+    std::vector<double> values;
+    // A state being loaded (load_state), checked here before it replaces the current one.
+    std::vector<double> load_q, load_phi;
+    std::vector<DriverValue> load_drive;
     std::unique_ptr<LinearSolver> linear;
     bool factor_current = false;    // linear holds the factorisation at q
     bool values_current = false;    // values hold Phi_q at q
@@ -55,9 +58,15 @@ void copy_state(State &dst, const State &src);
 // The state copy_state copies, as bytes: a tag, the sizes, then the values (same machine).
 size_t saved_state_size(const State &s);
 void save_state(const State &s, unsigned char *out);
-// False (s unchanged) unless the bytes are a saved state of a mechanism of s's shape.
-bool load_state(State &s, const unsigned char *in, size_t size);
+// False (s unchanged, msg says why) unless the bytes are a saved state of a mechanism of s's
+// shape that fits s's mechanism: every value finite, fixed bodies at their placement, Euler
+// parameters of the other bodies unit (|p.p - 1| <= kLoadNormalization), and, for a solved state,
+// the constraint residual no larger than the state records (twice, plus a few roundings).
+bool load_state(State &s, const unsigned char *in, size_t size, char *msg, size_t msg_size);
+constexpr double kLoadNormalization = 1e-6;
 // Forgets the history: the next position solve starts from q as it is.
 void reset_history(State &s);
+// Forgets the history and puts every body back at its reference configuration: as new.
+void reset(State &s);
 
 }  // namespace mbs

@@ -5,24 +5,24 @@
 #include "core/assembly.hpp"
 #include "core/dynamics.hpp"
 #include "core/position_solver.hpp"
-#include "util/message.hpp"
+#include "core/message.hpp"
 
-using stewart::set_message;
+using mbs::set_message;
 
 namespace mbs {
 
 namespace {
 
-stewart_status ensure_factor(State &s) {
-    if (s.factor_current) return STEWART_OK;
+mbs_status ensure_factor(State &s) {
+    if (s.factor_current) return MBS_OK;
     if (!s.values_current)
         assemble_jacobian(s.mechanism, s.q.data(), s.drive.data(), s.values.data());
     s.values_current = true;
     if (!s.linear->factor(s.values.data()))
-        return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
+        return set_message(s.message, sizeof s.message, MBS_ERR_SINGULAR,
                            "the constraint Jacobian Phi_q is singular at this configuration");
     s.factor_current = true;
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 // Largest magnitude of a right-hand side; infinite if any entry is not finite.
@@ -37,7 +37,7 @@ double largest_magnitude(const std::vector<double> &v) {
 // Only then is the right-hand side assembled again (into v, whose values are lost anyway) to
 // tell which: the common, finite case costs one sweep.
 template <class AssembleRhs>
-stewart_status check_finite(State &s, std::vector<double> &v, const char *what,
+mbs_status check_finite(State &s, std::vector<double> &v, const char *what,
                             AssembleRhs assemble_rhs) {
     const double kOutOfRange = 1e150;  // within 1e4 of where squares overflow (1.3e154)
     for (size_t i = 0; i < v.size(); ++i) {
@@ -46,22 +46,22 @@ stewart_status check_finite(State &s, std::vector<double> &v, const char *what,
         assemble_rhs();
         const double rhs_max = largest_magnitude(v);
         if (!(rhs_max <= kOutOfRange))
-            return set_message(s.message, sizeof s.message, STEWART_ERR_ARGUMENT,
+            return set_message(s.message, sizeof s.message, MBS_ERR_ARGUMENT,
                                "%s[%zu] is %g: its right-hand side reaches %g: the inputs (driver "
                                "values, rates, accelerations or forces) are out of range",
                                what, i, bad, rhs_max);
-        return set_message(s.message, sizeof s.message, STEWART_ERR_SINGULAR,
+        return set_message(s.message, sizeof s.message, MBS_ERR_SINGULAR,
                            "%s[%zu] is %g: the constraint Jacobian is (nearly) singular", what, i,
                            bad);
     }
-    return STEWART_OK;
+    return MBS_OK;
 }
 
 }  // namespace
 
-stewart_status solve_position(State &s, double t, const SolverOptions &o, bool use_predictor) {
+mbs_status solve_position(State &s, double t, const SolverOptions &o, bool use_predictor) {
     if (!s.ok())
-        return set_message(s.message, sizeof s.message, STEWART_ERR_MEMORY, "solver not created");
+        return set_message(s.message, sizeof s.message, MBS_ERR_MEMORY, "solver not created");
     if (use_predictor && s.has_history) {
         const double h = t - s.time;
         for (size_t i = 0; i < s.q.size(); ++i)
@@ -73,9 +73,9 @@ stewart_status solve_position(State &s, double t, const SolverOptions &o, bool u
     return s.newton->solve(o);
 }
 
-stewart_status solve_velocity(State &s) {
-    stewart_status st = ensure_factor(s);
-    if (st != STEWART_OK) return st;
+mbs_status solve_velocity(State &s) {
+    mbs_status st = ensure_factor(s);
+    if (st != MBS_OK) return st;
     auto rhs = [&s] { assemble_phi_t(s.mechanism, s.q.data(), s.drive.data(), s.q_dot.data()); };
     rhs();
     for (double &v : s.q_dot) v = -v;
@@ -83,9 +83,9 @@ stewart_status solve_velocity(State &s) {
     return check_finite(s, s.q_dot, "q_dot", rhs);
 }
 
-stewart_status solve_acceleration(State &s) {
-    stewart_status st = ensure_factor(s);
-    if (st != STEWART_OK) return st;
+mbs_status solve_acceleration(State &s) {
+    mbs_status st = ensure_factor(s);
+    if (st != MBS_OK) return st;
     auto rhs = [&s] {
         assemble_gamma(s.mechanism, s.q.data(), s.q_dot.data(), s.drive.data(), s.q_ddot.data());
     };
@@ -94,9 +94,9 @@ stewart_status solve_acceleration(State &s) {
     return check_finite(s, s.q_ddot, "q_ddot", rhs);
 }
 
-stewart_status solve_multipliers(State &s) {
-    stewart_status st = ensure_factor(s);
-    if (st != STEWART_OK) return st;
+mbs_status solve_multipliers(State &s) {
+    mbs_status st = ensure_factor(s);
+    if (st != MBS_OK) return st;
     auto rhs = [&s] {
         applied_minus_inertial(s.mechanism, s.q.data(), s.q_dot.data(), s.q_ddot.data(),
                                s.lambda.data());
@@ -106,13 +106,13 @@ stewart_status solve_multipliers(State &s) {
     return check_finite(s, s.lambda, "lambda", rhs);
 }
 
-stewart_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor) {
+mbs_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor) {
     s.message[0] = '\0';
-    stewart_status st = solve_position(s, t, o, use_predictor);
-    if (st == STEWART_OK) st = solve_velocity(s);
-    if (st == STEWART_OK) st = solve_acceleration(s);
-    if (st == STEWART_OK) st = solve_multipliers(s);
-    s.has_history = (st == STEWART_OK);
+    mbs_status st = solve_position(s, t, o, use_predictor);
+    if (st == MBS_OK) st = solve_velocity(s);
+    if (st == MBS_OK) st = solve_acceleration(s);
+    if (st == MBS_OK) st = solve_multipliers(s);
+    s.has_history = (st == MBS_OK);
     return st;
 }
 

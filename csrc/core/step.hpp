@@ -8,14 +8,14 @@ namespace mbs {
 
 // Newton from state.q; with use_predictor and a known previous step, first moves q by
 // h q_dot + h^2/2 q_ddot (h = t - previous time).
-stewart_status solve_position(State &s, double t, const SolverOptions &o, bool use_predictor);
+mbs_status solve_position(State &s, double t, const SolverOptions &o, bool use_predictor);
 // Phi_q q_dot = -Phi_t.
-stewart_status solve_velocity(State &s);
+mbs_status solve_velocity(State &s);
 // Phi_q q_ddot = gamma.
-stewart_status solve_acceleration(State &s);
+mbs_status solve_acceleration(State &s);
 // Phi_q^T lambda = Q - M q_ddot.
-stewart_status solve_multipliers(State &s);
+mbs_status solve_multipliers(State &s);
 // All four; marks the state as history for the next predictor.
-stewart_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor);
+mbs_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor);
 
 }  // namespace mbs

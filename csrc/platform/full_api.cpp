@@ -10,6 +10,10 @@ extern "C" const mbs_model *stewart_model_mechanism(const stewart_model *m) {
     return m ? m->full.get() : nullptr;
 }
 
+extern "C" double stewart_model_length_unit(const stewart_model *m) {
+    return m ? m->full_layout.length_unit : 0.0;
+}
+
 extern "C" const mbs_data *stewart_data_mechanism(const stewart_data *d) {
     return d ? d->full.get() : nullptr;
 }

@@ -1,10 +1,13 @@
 #include "platform/full_model.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/dynamics.hpp"
 #include "core/step.hpp"
+#include "stewart/stewart_table.h"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -38,10 +41,10 @@ void store_pose(double q[7], const Vec3 &r, const Vec4 &p) {
 }
 
 void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) {
-    double *q = s.q.data() + 7 * body;
+    double *q = mbs::body_r(s.q.data(), body);
     const Vec4 p = mbs::euler_parameters(A);
     // Stay on the side of the previous solution.
-    store_pose(q, r, s.has_history ? same_side(p, q + 3) : p);
+    store_pose(q, r, s.has_history ? same_side(p, mbs::body_p(s.q.data(), body)) : p);
 }
 
 struct Placement {
@@ -65,10 +68,32 @@ Placement place(const FullLayout &l, const Vec3 &position, const Eigen::Matrix3d
     return pl;
 }
 
+// The parameters with lengths in units of L0 (a power of two: exact), by the table's units.
+stewart_params in_length_unit(const stewart_params &si, double L0) {
+    stewart_params p = si;
+    for (int i = 0; i < stewart_param_count(); ++i) {
+        const char *unit = stewart_param(i)->unit;
+        const double factor = !std::strcmp(unit, "m") || !std::strcmp(unit, "m/s2") ? 1.0 / L0
+                              : !std::strcmp(unit, "kg.m2")                          ? 1.0 / (L0 * L0)
+                                                                                     : 1.0;
+        for (int e = 0; e < stewart_param(i)->count; ++e) *stewart_param_element(&p, i, e) *= factor;
+    }
+    return p;
+}
+
 }  // namespace
 
-std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDrive drive,
+double length_unit(const stewart_params &p) {
+    const double size = std::max({p.base_radius, p.platform_radius, p.home_height});
+    int exponent = 0;
+    const double mantissa = std::frexp(2.0 * size, &exponent);  // 2 size = mantissa 2^exponent
+    return std::ldexp(1.0, mantissa == 0.5 ? exponent - 1 : exponent);
+}
+
+std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDrive drive,
                                                FullLayout &l, char *msg, size_t size) {
+    l.length_unit = length_unit(si);
+    const stewart_params p = in_length_unit(si, l.length_unit);
     std::unique_ptr<mbs_model> model(new (std::nothrow) mbs_model);
     if (!model) {
         set_message(msg, size, STEWART_ERR_MEMORY, "out of memory building the full model");
@@ -166,7 +191,7 @@ void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinem
     const Vec3 v = mo.velocity + mo.omega.cross(c);
     const Vec3 a = mo.acceleration + mo.alpha.cross(c) + mo.omega.cross(mo.omega.cross(c));
     const Vec4 p = same_side(mbs::euler_parameters(mo.rotation * l.axes),
-                             s.q.data() + 7 * l.platform + 3);
+                             mbs::body_p(s.q.data(), l.platform));
     const mbs::Mat34 E = mbs::E_matrix(p.data());
     const Vec4 p_dot = 0.5 * E.transpose() * mo.omega;
     const Vec4 p_ddot = 0.5 * E.transpose() * mo.alpha - p_dot.squaredNorm() * p;
@@ -176,23 +201,32 @@ void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinem
 }
 
 stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_options &o,
-                          const RigidMotion &motion, const LegKinematics &legs,
+                          const RigidMotion &si_motion, const LegKinematics &si_legs,
                           stewart_output &out, char *msg, size_t size) {
     const mbs::Mechanism &m = s.mechanism;
+    const double L0 = l.length_unit, per_L0 = 1.0 / L0;  // powers of two: exact
+    RigidMotion motion = si_motion;
+    motion.position *= per_L0, motion.velocity *= per_L0, motion.acceleration *= per_L0;
+    LegKinematics legs;
+    legs.length = si_legs.length * per_L0, legs.rate = si_legs.rate * per_L0;
+    legs.accel = si_legs.accel * per_L0;
     full_initial_guess(l, motion, s);
     full_set_drivers(l, motion, legs, s);
     mbs::SolverOptions so = s.newton_options;
     so.tolerance = o.tolerance;
     so.max_iterations = o.max_iterations;
     so.modified_newton = o.modified_newton != 0;
-    const stewart_status st = mbs::solve_step(s, 0.0, so, false);
-    if (st != STEWART_OK) return set_message(msg, size, st, "full model: %s", s.message);
+    const mbs_status st = mbs::solve_step(s, 0.0, so, false);
+    if (st != MBS_OK) return set_message(msg, size, from_mbs(st), "full model: %s", s.message);
 
     // Leg lengths and their rates from the solved bodies: the two Cardan centres.
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double *qc = s.q.data() + 7 * l.cylinder[k], *qp = s.q.data() + 7 * l.piston[k];
-        const double *vc = s.q_dot.data() + 7 * l.cylinder[k], *vp = s.q_dot.data() + 7 * l.piston[k];
-        const double *ac = s.q_ddot.data() + 7 * l.cylinder[k], *ap = s.q_ddot.data() + 7 * l.piston[k];
+        using mbs::body_r;
+        const double *qc = body_r(s.q.data(), l.cylinder[k]), *qp = body_r(s.q.data(), l.piston[k]);
+        const double *vc = body_r(s.q_dot.data(), l.cylinder[k]);
+        const double *vp = body_r(s.q_dot.data(), l.piston[k]);
+        const double *ac = body_r(s.q_ddot.data(), l.cylinder[k]);
+        const double *ap = body_r(s.q_ddot.data(), l.piston[k]);
         const Vec3 uc(0, 0, -l.cylinder_com), up(0, 0, l.piston_com);
         auto point = [](const double *q, const Vec3 &u) {
             return Vec3(Eigen::Map<const Vec3>(q) + mbs::rotate(q + 3, u));
@@ -209,29 +243,31 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
         const Vec3 d_dot = rate(qp, vp, up) - rate(qc, vc, uc);
         const Vec3 d_ddot = accel(qp, vp, ap, up) - accel(qc, vc, ac, uc);
         const double L = d.norm(), L_dot = d.dot(d_dot) / L;
-        out.length[k] = L;
-        out.length_rate[k] = L_dot;
-        out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L;
+        out.length[k] = L * L0;
+        out.length_rate[k] = L_dot * L0;
+        out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L * L0;
         out.force[k] = 0;
     }
     if (l.drive == FullDrive::ActuatorLengths)
         for (int k = 0; k < STEWART_LEGS; ++k)
-            out.force[k] = -s.lambda[m.first_row[l.driver_joint[k]]];
+            out.force[k] = -s.lambda[m.first_row[l.driver_joint[k]]] * L0;
     else
-        thesis_forces(l, s, out.force);
+        thesis_forces(l, s, out.force);  // in units of L0 N, scaled below
 
     // The wrench of the base Cardans on the base, about the world origin.
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    const Vec3 r_base(s.q.data() + 7 * l.base);
+    const Vec3 r_base(mbs::body_r(s.q.data(), l.base));
     for (int k = 0; k < STEWART_LEGS; ++k) {
         Vec3 fk, nk;
         mbs::joint_reaction(m, s, l.base_cardan[k], 0, fk, nk);
         f += fk;
         t += nk + r_base.cross(fk);
     }
-    for (int i = 0; i < 3; ++i) out.base_force[i] = f[i], out.base_torque[i] = t[i];
+    if (l.drive == FullDrive::PlatformPose)
+        for (int k = 0; k < STEWART_LEGS; ++k) out.force[k] *= L0;
+    for (int i = 0; i < 3; ++i) out.base_force[i] = f[i] * L0, out.base_torque[i] = t[i] * L0 * L0;
     out.iterations = s.stats.iterations;
-    out.residual = s.stats.residual;
+    out.residual = s.stats.residual * L0;
     return STEWART_OK;
 }
 
@@ -239,7 +275,7 @@ void thesis_forces(const FullLayout &l, const mbs::State &s, double force[STEWAR
     const mbs::Mechanism &m = s.mechanism;
     // The pose drivers' reaction on the platform: force, and torque about its origin.
     const double *lambda = s.lambda.data() + m.first_row[l.pose_joint];
-    const double *q = s.q.data() + 7 * l.platform;
+    const double *q = mbs::body_r(s.q.data(), l.platform);
     Matrix6 Jt;
     Vector6 wrench;
     wrench.head<3>() = -Vec3(lambda);

@@ -1,4 +1,4 @@
-// The thesis' 14-body Stewart platform (model.md §2) built on the multibody core: a builder that
+// The thesis' 14-body Stewart platform (docs/model.md) built on the multibody core: a builder that
 // turns the parameters into bodies and joints, the closed-form initial guess, and the solve that
 // fills stewart_output at the full fidelity level.
 #pragma once
@@ -28,21 +28,31 @@ struct FullLayout {
     double cylinder_com = 0, piston_com = 0;
     Matrix36 base_arm;      // Cardan cross arm on the base, world (tangential)
     Matrix36 platform_arm;  // Cardan cross arm on the platform, plate frame (tangential)
-    PlatformGeometry geometry;
+    PlatformGeometry geometry;       // in the length unit
+    // The mechanism's lengths are in units of length_unit m: the power of two L0 with
+    // max(base_radius, platform_radius, home_height) / L0 in (0.25, 0.5] (1 for the thesis
+    // platform). Scaling by a power of two is exact, and the Newton residual then floors at the
+    // same few roundings at any size, so one tolerance serves every size (masses are kept:
+    // forces are in units of L0 N, torques L0^2 N m, inertias L0^2 kg m^2).
+    double length_unit = 1;
 };
 
-// Builds and finalises the mechanism; null (message says why) on failure.
+// The length unit L0 of a platform with these parameters (see FullLayout::length_unit).
+double length_unit(const stewart_params &p);
+
+// Builds and finalises the mechanism (in the length unit); null (message says why) on failure.
 std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDrive drive,
                                                FullLayout &layout, char *msg, size_t size);
 
-// Every body placed in closed form for the platform motion (Euler-parameter signs kept
+// Every body placed in closed form for the platform motion (motion in the length unit) (Euler-parameter signs kept
 // continuous with the previous solution, if any), and the drivers set for that motion.
 void full_initial_guess(const FullLayout &l, const RigidMotion &motion, mbs::State &s);
 void full_set_drivers(const FullLayout &l, const RigidMotion &motion, const LegKinematics &legs,
                       mbs::State &s);
 
 // Position, velocity, acceleration, multipliers; fills lengths, rates, accelerations, forces,
-// iterations, residual and the base wrench (condition and warnings are the caller's).
+// iterations, residual and the base wrench (condition and warnings are the caller's). Motion,
+// legs and outputs in SI; o.tolerance applies in the length unit.
 stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_options &o,
                           const RigidMotion &motion, const LegKinematics &legs,
                           stewart_output &out, char *msg, size_t size);

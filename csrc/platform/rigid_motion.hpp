@@ -1,5 +1,5 @@
 // Motion of the platform frame from the pose (x, y, z, roll, pitch, yaw) and its time derivatives,
-// with R = Rz(yaw) Ry(pitch) Rx(roll) (model.md §3).
+// with R = Rz(yaw) Ry(pitch) Rx(roll) (docs/model.md).
 #pragma once
 
 #include <Eigen/Dense>
@@ -17,6 +17,12 @@ struct RigidMotion {
 // STEWART_ERR_ARGUMENT (message names the component, e.g. "roll_dot", and its value) unless
 // every pose component and derivative is finite.
 stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size);
+
+// STEWART_ERR_ARGUMENT naming the pose input of largest magnitude in rows first_row..last_row
+// (0 pose, 1 rates, 2 accelerations; the position if every derivative there is 0) and its value:
+// the input that made `what` overflow.
+stewart_status input_out_of_range(const stewart_pose &pose, int first_row, int last_row,
+                                  const char *what, char *msg, size_t size);
 
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw);
 

@@ -1,32 +1,32 @@
-// Status-plus-message helper: every error leaves a sentence naming the variable and its value.
+// Status-plus-message helper of the platform library: the core's (core/message.hpp) with
+// stewart_status, and the mapping of the core's statuses onto the platform's.
 #pragma once
 
-#include <cstdarg>
-#include <cstddef>
-#include <cstdio>
-
+#include "core/message.hpp"
+#include "mbs/mbs.h"
 #include "stewart/stewart.h"
 
 namespace stewart {
 
-// Formats into msg (if any room) and returns status, so callers can `return set_message(...)`.
-inline stewart_status set_message(char *msg, size_t size, stewart_status status, const char *fmt,
-                                  ...) __attribute__((format(printf, 4, 5)));
-
-inline stewart_status set_message(char *msg, size_t size, stewart_status status, const char *fmt,
-                                  ...) {
-    if (msg && size > 0) {
-        va_list args;
-        va_start(args, fmt);
-        std::vsnprintf(msg, size, fmt, args);
-        va_end(args);
-    }
-    return status;
-}
+using mbs::set_message;
 
 inline stewart_status clear_message(char *msg, size_t size) {
-    if (msg && size > 0) msg[0] = '\0';
-    return STEWART_OK;
+    return mbs::clear_message(msg, size, STEWART_OK);
 }
+
+// The platform's status of the same meaning as a core status.
+inline stewart_status from_mbs(mbs_status s) {
+    switch (s) {
+        case MBS_OK: return STEWART_OK;
+        case MBS_ERR_ARGUMENT: return STEWART_ERR_ARGUMENT;
+        case MBS_ERR_PARAMETER: return STEWART_ERR_PARAMETER;
+        case MBS_ERR_SINGULAR: return STEWART_ERR_SINGULAR;
+        case MBS_ERR_NOT_CONVERGED: return STEWART_ERR_NOT_CONVERGED;
+        case MBS_ERR_MEMORY: return STEWART_ERR_MEMORY;
+    }
+    return STEWART_ERR_ARGUMENT;
+}
+
+static_assert(MBS_MESSAGE_SIZE <= STEWART_MESSAGE_SIZE, "a core message fits a platform message");
 
 }  // namespace stewart

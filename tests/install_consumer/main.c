@@ -1,7 +1,8 @@
-/* Solves the home pose at every fidelity level through the installed headers and library. */
+/* Solves the home pose at every fidelity level through the installed headers and libraries, and
+ * builds a pendulum on the installed core. */
 #include <stdio.h>
 
-#include "stewart/slider_crank.h"
+#include "mbs/mbs.h"
 #include "stewart/stewart.h"
 #include "stewart/stewart_full.h"
 
@@ -30,12 +31,17 @@ int main(void) {
         force[f] = out.force[0];
         printf("fidelity %d: L1 = %.6f m, F1 = %.4f N\n", f, out.length[0], out.force[0]);
     }
-    slider_crank_params sc;
-    slider_crank_layout layout;
-    slider_crank_params_default(&sc);
-    mbs_model *crank = slider_crank_create(&sc, &layout, msg, sizeof msg);
-    if (!crank) {
-        fprintf(stderr, "slider-crank: %s\n", msg);
+    /* the core alone: a pendulum (a body on a revolute joint to a fixed ground) */
+    mbs_model *crank = mbs_model_create();
+    const double none[3] = {0, 0, 0}, rod[3] = {0, 1.0 / 12, 1.0 / 12};
+    const double ground_q[7] = {0, 0, 0, 1, 0, 0, 0}, bar_q[7] = {0.5, 0, 0, 1, 0, 0, 0};
+    const double origin[3] = {0, 0, 0}, end[3] = {-0.5, 0, 0}, ez[3] = {0, 0, 1};
+    const int ground = mbs_add_body(crank, "ground", 0, none, ground_q);
+    const int bar = mbs_add_body(crank, "bar", 1, rod, bar_q);
+    const int pivot = mbs_add_revolute(crank, ground, origin, ez, bar, end, ez);
+    if (mbs_fix_body(crank, ground) != MBS_OK || mbs_add_angle_driver(crank, pivot, NULL) < 0 ||
+        mbs_model_finalize(crank, msg, sizeof msg) != MBS_OK) {
+        fprintf(stderr, "pendulum: %s %s\n", msg, mbs_model_message(crank));
         return 1;
     }
     mbs_model_free(crank);

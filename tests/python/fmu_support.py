@@ -307,24 +307,3 @@ def backward_fd(ts, qs):
         qdd[j] = 2 * (q0 / ((t0 - t1) * (t0 - t2)) + q1 / ((t1 - t0) * (t1 - t2)) +
                       q2 / ((t2 - t0) * (t2 - t1)))
     return qd, qdd
-
-
-def rotation(roll, pitch, yaw):
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
-                              math.cos(yaw), math.sin(yaw))
-    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    return rz @ ry @ rx
-
-
-def closed_form_lengths(pose, rb=0.5, rt=0.5, beta_deg=(0, 30, 120, 150, 240, 270),
-                        tau_deg=(330, 60, 90, 180, 210, 300)):
-    """L_k = |p + R b_k - a_k| (model.md section 3)."""
-    p = np.array(pose[:3]); R = rotation(*pose[3:])
-    out = []
-    for b, t in zip(beta_deg, tau_deg):
-        a = rb * np.array([math.cos(math.radians(b)), math.sin(math.radians(b)), 0.0])
-        bk = rt * np.array([math.cos(math.radians(t)), math.sin(math.radians(t)), 0.0])
-        out.append(np.linalg.norm(p + R @ bk - a))
-    return np.array(out)

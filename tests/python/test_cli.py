@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 
+import reference
 import scenes
 
 LEGS = range(1, 7)
@@ -86,7 +87,7 @@ def test_massless_heave_forces_in_closed_form(solve, tmp_path):
     t = data[:, 0]
     z = 0.5 + 0.04 * np.sin(5 * t)
     z_ddot = -0.04 * 25 * np.sin(5 * t)
-    mass = 2700 * math.pi * 0.5 ** 2 * 0.05
+    mass = reference.M_PLATFORM
     for k in LEGS:
         L = column(header, data, f"L{k}")
         np.testing.assert_allclose(column(header, data, f"F{k}"), mass * (9.81 + z_ddot) * L / (6 * z),
@@ -171,7 +172,7 @@ def test_parameters_from_the_command_line(solve, tmp_path):
     """--param NAME=VALUE (the FMU's names): another geometry gives the closed-form lengths
     |p + R b - a| computed here, and a payload at rest is carried by the six legs:
     sum_k F_k n_kz = (platform + payload mass) g, all six equal by symmetry."""
-    from fmu_support import closed_form_lengths
+    from reference import lengths as closed_form_lengths
     pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
     pose = [0.01, -0.02, 0.55, 0.05, -0.03, 0.1]
     pose_csv.write_text("t,x,y,z,roll,pitch,yaw\n0," + ",".join(map(str, pose)) + "\n")
@@ -183,7 +184,7 @@ def test_parameters_from_the_command_line(solve, tmp_path):
     assert result.returncode == 0, result.stderr
     header, data = read(out_csv)
     got = np.array([column(header, data, f"L{k}")[0] for k in LEGS])
-    np.testing.assert_allclose(got, closed_form_lengths(pose, 0.6, 0.4, beta), rtol=1e-13)
+    np.testing.assert_allclose(got, closed_form_lengths(pose, 0.6, 0.4, np.radians(beta)), rtol=1e-13)
 
     home = [0.0, 0.0, 0.5, 0.0, 0.0, 0.0]
     pose_csv.write_text("t,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,0\n")
@@ -192,7 +193,7 @@ def test_parameters_from_the_command_line(solve, tmp_path):
     header, data = read(out_csv)
     forces = np.array([column(header, data, f"F{k}")[0] for k in LEGS])
     n_z = 0.5 / closed_form_lengths(home)          # vertical component of each leg's axis
-    platform_mass = 2700 * math.pi * 0.5 ** 2 * 0.05  # thesis 4.2.8, model.md section 2
+    platform_mass = reference.M_PLATFORM  # the thesis disc, model.md §2
     np.testing.assert_allclose(forces, (platform_mass + 50) * 9.81 / (6 * n_z), rtol=1e-12)
 
 
@@ -212,24 +213,6 @@ def test_bad_parameters_on_the_command_line(solve, tmp_path, assignment, words, 
     assert not out_csv.exists()
 
 
-def leg_jacobian(q, beta, tau, radius=0.5):
-    """J with rows (n_k, (R b_k) x n_k / radius), from the pose alone, built with numpy."""
-    x, y, z, roll, pitch, yaw = q
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
-                              math.cos(yaw), math.sin(yaw))
-    Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    R = Rz @ Ry @ Rx
-    rows = []
-    for b_angle, a_angle in zip(tau, beta):
-        arm = R @ (radius * np.array([math.cos(b_angle), math.sin(b_angle), 0]))
-        d = np.array([x, y, z]) + arm - radius * np.array([math.cos(a_angle), math.sin(a_angle), 0])
-        n = d / np.linalg.norm(d)
-        rows.append(np.concatenate([n, np.cross(arm, n) / radius]))
-    return np.array(rows)
-
-
 def test_condition_is_the_one_norm_condition_of_the_leg_jacobian(solve, tmp_path):
     pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
     rng = np.random.default_rng(7)
@@ -242,9 +225,8 @@ def test_condition_is_the_one_norm_condition_of_the_leg_jacobian(solve, tmp_path
     result = solve(pose_csv, out_csv)
     assert result.returncode == 0, result.stderr
     header, data = read(out_csv)
-    beta = np.radians([0, 30, 120, 150, 240, 270])
-    tau = np.radians([330, 60, 90, 180, 210, 300])
-    expected = [np.linalg.cond(leg_jacobian(q, beta, tau), 1) for q in poses]
+    # J with rows (n_k, (R b_k) x n_k / radius), from the pose alone (tests/python/reference.py)
+    expected = [np.linalg.cond(reference.leg_jacobian(q), 1) for q in poses]
     np.testing.assert_allclose(column(header, data, "condition"), expected, rtol=1e-9)
 
 

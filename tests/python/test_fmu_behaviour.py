@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, L, POSE, POSE_DOT, POSE_DDOT, OK, WARNING,
-                         DISCARD, ERROR, Unit, closed_form_lengths, model_description,
+                         DISCARD, ERROR, Unit, model_description,
                          require_fidelity, reference_matrix, stewart_solve, thesis_manoeuvre)
+from reference import lengths as closed_form_lengths
 
 
 def _drive(u, t0, poses, h=0.1):

@@ -15,7 +15,7 @@ from fmpy.validation import validate_fmu
 
 def test_committed_model_description_is_the_generated_fmi2_one():
     committed = (REPO / "modelDescription.xml").read_bytes()
-    generated = (BUILD / "fmu" / "modelDescription2.xml").read_bytes()
+    generated = (BUILD / "fmu" / "StewartPlatform" / "modelDescription2.xml").read_bytes()
     with zipfile.ZipFile(fmu_path("2.0")) as z:
         packed = z.read("modelDescription.xml")
     assert generated == packed
@@ -130,7 +130,7 @@ def test_value_references_agree_with_the_c_tables(version):
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_binary_is_self_contained(version):
-    so = BUILD / "fmu" / f"fmi{version[0]}" / "StewartPlatform.so"
+    so = BUILD / "fmu" / "StewartPlatform" / f"fmi{version[0]}" / "StewartPlatform.so"
     d = subprocess.run(["readelf", "-d", "-W", str(so)], capture_output=True, text=True, check=True)
     needed = {line.split("[")[1].split("]")[0] for line in d.stdout.splitlines() if "(NEEDED)" in line}
     assert needed <= {"libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1"}, needed

@@ -3,8 +3,8 @@ at a Cardan lock, at and beyond the stroke limits, unreachable poses, communicat
 to 10 s, variable, zero, negative and non-advancing steps, parameters at the extremes, Newton at its
 limits, and a long run.
 
-References are independent of the unit: numpy closed forms written here (static equilibrium of the
-massless-leg platform, the leg Jacobian and its condition number, leg lengths) and stewart-solve
+References are independent of the unit: the numpy closed forms of reference.py (static equilibrium
+of the massless-leg platform, the leg Jacobian and its condition number, leg lengths) and stewart-solve
 (the library's command-line tool) for moving poses. Fidelity-2 variants skip while the build does not
 solve the full model (detected at run time).
 """
@@ -17,56 +17,17 @@ import numpy as np
 import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, L, L_DOT, L_DDOT, F, POSE, POSE_DOT, POSE_DDOT,
-                         OK, WARNING, DISCARD, ERROR, Unit, backward_fd, closed_form_lengths,
-                         reference_matrix, require_fidelity, rotation,
-                         stewart_solve)
+                         OK, WARNING, DISCARD, ERROR, Unit, backward_fd, reference_matrix,
+                         require_fidelity, stewart_solve)
+from reference import (BETA, G, M_PLATFORM, TAU, condition, geometry, leg_axes, rotation,
+                       static_forces)
+from reference import lengths as closed_form_lengths
 
-G = 9.81
-RHO = 2700.0
-M_PLATFORM = RHO * math.pi * 0.5 ** 2 * 0.05  # thesis disc, model.md section 2
-BETA = np.radians([0, 30, 120, 150, 240, 270])
-TAU = np.radians([330, 60, 90, 180, 210, 300])
 WARN_DEFAULT, SINGULAR_DEFAULT = 1e3, 1e10
 WIDE_STROKE = dict(stroke_min=0.01, stroke_max=10.0)
 
 
-# ---------------------------------------------------------------- independent references
-
-def geometry(rb=0.5, rt=0.5):
-    a = rb * np.column_stack([np.cos(BETA), np.sin(BETA), np.zeros(6)])
-    b = rt * np.column_stack([np.cos(TAU), np.sin(TAU), np.zeros(6)])
-    return a, b
-
-
-def leg_axes(pose, rb=0.5, rt=0.5):
-    """Unit leg axes n_k (base to platform) and platform arms R b_k, world frame."""
-    a, b = geometry(rb, rt)
-    R = rotation(*pose[3:])
-    arms = b @ R.T
-    d = np.asarray(pose[:3]) + arms - a
-    return d / np.linalg.norm(d, axis=1)[:, None], arms
-
-
-def jacobian_t(pose, rb=0.5, rt=0.5):
-    """J^T: column k is (n_k, (R b_k x n_k) / r_t), the moment rows scaled by the platform radius."""
-    n, arms = leg_axes(pose, rb, rt)
-    return np.vstack([n.T, np.cross(arms, n).T / rt])
-
-
-def condition(pose, rb=0.5, rt=0.5):
-    """1-norm condition number of the leg Jacobian: cond_1(J) = cond_inf(J^T)."""
-    return np.linalg.cond(jacobian_t(pose, rb, rt), np.inf)
-
-
-def static_forces(pose, mass=M_PLATFORM, com=(0.0, 0.0, 0.0), rb=0.5, rt=0.5):
-    """Massless legs, platform at rest: sum F_k n_k + m g = 0 and
-    sum (R b_k) x F_k n_k + (R c) x m g = 0 (moments about the platform origin)."""
-    n, arms = leg_axes(pose, rb, rt)
-    weight = np.array([0.0, 0.0, -mass * G])
-    c = rotation(*pose[3:]) @ np.asarray(com, dtype=float)
-    A = np.vstack([n.T, np.cross(arms, n).T])
-    return np.linalg.solve(A, -np.concatenate([weight, np.cross(c, weight)]))
-
+# ---------------------------------------------------------------- poses and manoeuvres
 
 def yawed(yaw, z=0.5):
     return [0.0, 0.0, z, 0.0, 0.0, yaw]

@@ -212,7 +212,7 @@ def test_hold_without_derivatives(version):
 def test_changed_geometry_and_payload_parameters(version):
     """Parameters reach the model: lengths follow the closed form L = |p + R b - a| for another
     geometry; a payload adds its weight to the vertical force on the base."""
-    from fmu_support import closed_form_lengths
+    from reference import lengths as closed_form_lengths
     import math
     beta = (5, 25, 125, 145, 245, 265)
     tau = (335, 55, 95, 175, 215, 295)
@@ -227,7 +227,7 @@ def test_changed_geometry_and_payload_parameters(version):
     try:
         assert u.init(fidelity=1, **params, **dict(zip(POSE, pose))) == OK, u.messages_text()
         np.testing.assert_allclose(u.get_reals(L), closed_form_lengths(
-            pose, 0.6, 0.4, beta, tau), rtol=1e-12)
+            pose, 0.6, 0.4, np.radians(beta), np.radians(tau)), rtol=1e-12)
         m = u.get(["platform_mass"])[0] + 50.0
         fz = u.get_reals(["base_force[3]"])[0]
         np.testing.assert_allclose(fz, -m * 9.81, rtol=1e-10)

@@ -2,6 +2,8 @@
  * untouched, and the data block stays usable. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "platform_fixture.h"
@@ -123,7 +125,7 @@ static void test_invalid_options_and_null_arguments(void) {
  * is accepted and met along the combined manoeuvre (lengths still the closed form). */
 static void test_tolerance_below_machine_precision(void) {
     const double refused[3] = {1e-16, 1e-17, DBL_EPSILON};
-    const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17", "tolerance = 2.22045e-16"};
+    const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17", "tolerance = 2.220446049250313e-16"};
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
     stewart_output out;
     for (int i = 0; i < 3; ++i) {
@@ -148,6 +150,46 @@ static void test_tolerance_below_machine_precision(void) {
     }
 }
 
+/* A value as messages print it: the fewest digits (at most 17) that read back as the same double. */
+static void exact_text(double value, char *text, size_t size) {
+    for (int digits = 6; digits <= 17; ++digits) {
+        snprintf(text, size, "%.*g", digits, value);
+        if (strtod(text, NULL) == value) return;
+    }
+}
+
+/* Issue 15 item 9: a pose rate or acceleration too large to solve with is named as the input it
+ * is (x_dot .. yaw_ddot) with its value, at every level, never as an internal coordinate. */
+static void test_overflowing_rates_name_the_input(void) {
+    const char *names[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+    const double values[3] = {DBL_MAX, -DBL_MAX, 1e200};
+    char expected[64], value[32];
+    for (int f = STEWART_KINEMATIC; f <= STEWART_FULL; ++f)
+        for (int row = 1; row <= 2; ++row)
+            for (int i = 0; i < 6; ++i)
+                for (int v = 0; v < 3; ++v) {
+                    stewart_pose pose = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+                    (row == 1 ? pose.q_dot : pose.q_ddot)[i] = values[v];
+                    exact_text(values[v], value, sizeof value);
+                    snprintf(expected, sizeof expected, "%s%s = %s", names[i],
+                             row == 1 ? "_dot" : "_ddot", value);
+                    stewart_options o = test_options((stewart_fidelity)f);
+                    stewart_output out;
+                    const stewart_status s = stewart_solve(model, data, &o, &pose, &out);
+                    if (s == STEWART_OK) { /* solvable: the outputs are finite */
+                        for (int k = 0; k < 6; ++k) TEST_ASSERT_TRUE(isfinite(out.force[k]) && isfinite(out.length_accel[k]));
+                        continue;
+                    }
+                    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_ARGUMENT, s, stewart_data_message(data));
+                    assert_contains(stewart_data_message(data), expected);
+                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_data_message(data), "q_d"), stewart_data_message(data));
+                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_data_message(data), "lambda"), stewart_data_message(data));
+                }
+    /* x_dot = DBL_MAX, the probe's case, is refused at the full level */
+    stewart_pose pose = {{0, 0, 0.5, 0, 0, 0}, {DBL_MAX, 0, 0, 0, 0, 0}, {0}};
+    assert_rejected(&pose, STEWART_FULL, STEWART_ERR_ARGUMENT, "x_dot = 1.7976931348623157e+308");
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_nan_and_inf_pose_components_are_named);
@@ -157,5 +199,6 @@ int main(void) {
     RUN_TEST(test_invalid_parameters_are_named);
     RUN_TEST(test_invalid_options_and_null_arguments);
     RUN_TEST(test_tolerance_below_machine_precision);
+    RUN_TEST(test_overflowing_rates_name_the_input);
     return UNITY_END();
 }

@@ -1,7 +1,12 @@
 /* A data block saved to bytes and loaded into another one holds the same state and continues
- * exactly as the original; bytes that are not a state are refused and change nothing. */
+ * exactly as the original; bytes that are not a state, or a state that does not fit the model
+ * (issue 15 item 2), are refused and change nothing; a data block is used only with its model
+ * (item 3). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "stewart/stewart_full.h"
 
 #include "platform_fixture.h"
 #include "test_support.h"
@@ -63,9 +68,87 @@ static void test_bytes_that_are_not_a_state_are_refused(void) {
     free(bytes);
 }
 
+/* Where the saved bytes hold the coordinates q (found by content, not by layout): right after
+ * the save, while the data block still holds them. */
+static size_t q_at;
+static size_t q_offset(const unsigned char *bytes, size_t size) {
+    const mbs_data *mech = stewart_data_mechanism(data);
+    const size_t n = (size_t)mbs_coordinate_count(stewart_model_mechanism(model)) * sizeof(double);
+    for (size_t at = 0; at + n <= size; at += 4)
+        if (memcmp(bytes + at, mbs_q(mech), n) == 0) return at;
+    TEST_FAIL_MESSAGE("q not found in the saved state");
+    return 0;
+}
+
+/* Changes the double at q[coordinate] in a saved state; the load must refuse it with a message
+ * and leave the data block as it was (it then solves on exactly as a copy taken before). */
+static void expect_refused(const unsigned char *saved, size_t size, int coordinate, double value,
+                           const char *mention) {
+    unsigned char *bytes = malloc(size);
+    memcpy(bytes, saved, size);
+    memcpy(bytes + q_at + coordinate * sizeof(double), &value, sizeof value);
+    stewart_data *reference = stewart_data_create(model);
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_copy(reference, data));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_load(data, bytes, size));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_data_message(data), mention), stewart_data_message(data));
+    stewart_output a, b;
+    run(data, 0.06, 20, &a);
+    run(reference, 0.06, 20, &b);
+    TEST_ASSERT_EQUAL_MEMORY(&b, &a, sizeof a);
+    stewart_data_free(reference);
+    free(bytes);
+}
+
+static void test_states_that_do_not_fit_the_model_are_refused(void) {
+    stewart_output out;
+    run(data, 0.0, 50, &out);
+    const size_t size = stewart_data_state_size(data);
+    unsigned char *bytes = malloc(size);
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_save(data, bytes, size));
+    q_at = q_offset(bytes, size);
+    /* the probe's corruptions: a base (fixed body 0) Euler parameter */
+    const double base_values[4] = {0.0, -1.0, 1e3, 1e300};
+    for (int i = 0; i < 4; ++i)
+        for (int c = 3; c < 7; ++c)
+            if (base_values[i] != (c == 3 ? 1.0 : 0.0))
+                expect_refused(bytes, size, c, base_values[i], "fixed");
+    expect_refused(bytes, size, 0, 1e-3, "fixed"); /* the base moved */
+    /* the platform's (body 13) Euler parameters off the unit sphere */
+    expect_refused(bytes, size, MBS_BODY_P(13), 0.0, "Euler parameters");
+    expect_refused(bytes, size, MBS_BODY_P(13) + 2, 1e3, "Euler parameters");
+    /* a solved state whose bodies no longer meet at their joints */
+    double z;
+    memcpy(&z, bytes + q_at + (MBS_BODY_R(13) + 2) * sizeof z, sizeof z);
+    expect_refused(bytes, size, MBS_BODY_R(13) + 2, z + 1e-6, "residual");
+    /* the state as saved still loads */
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_data_load(data, bytes, size), stewart_data_message(data));
+    free(bytes);
+}
+
+/* Data made for one model, given with another (same shape, base_radius 0.6): refused, by name. */
+static void test_data_of_another_model_is_refused(void) {
+    stewart_params other_params = params;
+    other_params.base_radius = 0.6;
+    stewart_model *other = test_model(&other_params);
+    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    for (int f = STEWART_KINEMATIC; f <= STEWART_FULL; ++f) {
+        stewart_options o = test_options((stewart_fidelity)f);
+        stewart_output out;
+        memset(&out, 0x5a, sizeof out);
+        const stewart_output sentinel = out;
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(other, data, &o, &home, &out));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_data_message(data), "another model"), stewart_data_message(data));
+        TEST_ASSERT_EQUAL_MEMORY(&sentinel, &out, sizeof out);
+        solve_ok(model, data, (stewart_fidelity)f, &home); /* with its own model it goes on */
+    }
+    stewart_model_free(other);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_saved_state_resumes_bit_for_bit);
     RUN_TEST(test_bytes_that_are_not_a_state_are_refused);
+    RUN_TEST(test_states_that_do_not_fit_the_model_are_refused);
+    RUN_TEST(test_data_of_another_model_is_refused);
     return UNITY_END();
 }

@@ -101,8 +101,33 @@ static void test_stroke_limits_flag_without_failing(void) {
     }
 }
 
+/* The per-leg stroke bits name exactly the legs whose closed-form length is outside the stroke:
+ * an x offset lengthens some legs and shortens others. */
+static void test_stroke_bits_name_the_legs(void) {
+    for (int f = STEWART_KINEMATIC; f <= STEWART_FULL; ++f) {
+        stewart_pose p = {{0.12, -0.05, 0.50, 0.05, 0, 0.1}, {0}, {0}};
+        stewart_params narrow = params;
+        narrow.stroke_min = 0.55;
+        narrow.stroke_max = 0.62;
+        stewart_model *m = test_model(&narrow);
+        stewart_data *d = stewart_data_create(m);
+        stewart_output out = solve_ok(m, d, (stewart_fidelity)f, &p);
+        int expected = 0;
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            const double L = closed_form_length(&narrow, &p, k);
+            if (L < narrow.stroke_min || L > narrow.stroke_max) expected |= 1 << k;
+        }
+        TEST_ASSERT_TRUE(expected != 0 && expected != 0x3f); /* the pose splits the legs */
+        TEST_ASSERT_EQUAL_HEX(expected, out.stroke_legs);
+        TEST_ASSERT_EQUAL_INT(STEWART_WARN_STROKE, out.warnings & STEWART_WARN_STROKE);
+        stewart_data_free(d);
+        stewart_model_free(m);
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
+    RUN_TEST(test_stroke_bits_name_the_legs);
     RUN_TEST(test_yaw_singularity_sweep);
     RUN_TEST(test_scaled_platform_is_similar);
     RUN_TEST(test_payload_far_outside);

@@ -73,7 +73,8 @@ static void test_weightless_legs_with_offset_payload(void) {
 static double energy(const double *q, const double *v) {
     double e = 0;
     for (int b = 1; b <= 13; ++b) {
-        const double *r = q + 7 * b, *p = q + 7 * b + 3, *rd = v + 7 * b, *pd = v + 7 * b + 3;
+        const double *r = q + MBS_BODY_R(b), *p = q + MBS_BODY_P(b), *rd = v + MBS_BODY_R(b),
+                     *pd = v + MBS_BODY_P(b);
         double m;
         const double *J;
         if (b <= 6) m = params.cylinder_mass, J = params.cylinder_inertia;
@@ -259,7 +260,7 @@ static void test_normalisation_long_run(void) {
         solve_ok(model, data, STEWART_FULL, &pose);
         const double *q = mbs_q(stewart_data_mechanism(data));
         for (int b = 0; b < 14; ++b) {
-            const double *p = q + 7 * b + 3;
+            const double *p = q + MBS_BODY_P(b);
             const double e = fabs(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1);
             if (e > worst) worst = e;
         }
@@ -369,12 +370,12 @@ static void test_newton_from_home(void) {
             mbs_options_default(&o);
             o.modified_newton = modified;
             o.max_iterations = 50;
-            TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, 0, &o), mbs_data_message(d));
+            TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_step(d, 0, &o), mbs_data_message(d));
             TEST_ASSERT_TRUE(mbs_iterations(d) >= 3);
             TEST_ASSERT_TRUE(mbs_residual(d) <= 1e-12);
             const double *q = mbs_q(d);
             /* The platform (body 13, centre of mass at the plate centre here) reaches the pose. */
-            for (int i = 0; i < 3; ++i) TEST_ASSERT_DOUBLE_WITHIN(1e-10, target.q[i], q[7 * 13 + i]);
+            for (int i = 0; i < 3; ++i) TEST_ASSERT_DOUBLE_WITHIN(1e-10, target.q[i], q[MBS_BODY_R(13) + i]);
             if (kind == 0 && modified == 0)
                 memcpy(lambda0, mbs_lambda(d), sizeof lambda0);
             else
@@ -397,15 +398,15 @@ static void test_newton_capped_is_not_converged(void) {
         mbs_options o;
         mbs_options_default(&o);
         o.max_iterations = cap;
-        const stewart_status s = mbs_step(d, 0, &o);
+        const mbs_status s = mbs_step(d, 0, &o);
         const double r = mbs_residual(d);
         TEST_ASSERT_EQUAL_INT(cap, mbs_iterations(d));
         if (cap < 4) {
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_NOT_CONVERGED, s, mbs_data_message(d));
+            TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_ERR_NOT_CONVERGED, s, mbs_data_message(d));
             TEST_ASSERT_TRUE(r > o.tolerance);
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(mbs_data_message(d), "not converged"), mbs_data_message(d));
         } else {
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, s, mbs_data_message(d));
+            TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, s, mbs_data_message(d));
             TEST_ASSERT_TRUE(r <= o.tolerance);
         }
         TEST_ASSERT_TRUE(r < 0.1 && r <= previous * previous);

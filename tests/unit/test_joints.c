@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "stewart/mbs.h"
+#include "mbs/mbs.h"
 #include "unity.h"
 
 #define N 14 /* two free bodies */
@@ -21,8 +21,8 @@ static void random_vector(double *v, int n, double scale) {
 
 static void random_configuration(double *q) {
     for (int b = 0; b < 2; ++b) {
-        random_vector(q + 7 * b, 3, 1.0);
-        double *p = q + 7 * b + 3, n = 0;
+        random_vector(q + MBS_BODY_R(b), 3, 1.0);
+        double *p = q + MBS_BODY_P(b), n = 0;
         random_vector(p, 4, 1.0);
         for (int i = 0; i < 4; ++i) n += p[i] * p[i];
         for (int i = 0; i < 4; ++i) p[i] /= sqrt(n);
@@ -58,7 +58,7 @@ static mbs_model *build(enum kind k, int *drivers) {
             n = mbs_add_angle_driver(m, joint, &slot) >= 0 ? 6 : -1;
             break;
         case POSE: n = mbs_add_pose_driver(m, bj, &slot) >= 0 ? 6 : -1; break; /* 7 - its normalisation */
-        case FIXED: n = mbs_fix_body(m, bi) == STEWART_OK ? 6 : -1; break;     /* 7 - its normalisation */
+        case FIXED: n = mbs_fix_body(m, bi) == MBS_OK ? 6 : -1; break;     /* 7 - its normalisation */
     }
     TEST_ASSERT_TRUE_MESSAGE(n > 0, mbs_model_message(m));
     *drivers = (slot >= 0) ? (k == POSE ? 7 : 1) : 0;
@@ -68,8 +68,8 @@ static mbs_model *build(enum kind k, int *drivers) {
         TEST_ASSERT_TRUE(mbs_add_coordinate_driver(m, (c < 7 && k != FIXED) ? bi : bj, c % 7, &s) >= 0);
         ++*drivers;
     }
-    char msg[STEWART_MESSAGE_SIZE];
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_model_finalize(m, msg, sizeof msg), msg);
+    char msg[MBS_MESSAGE_SIZE];
+    TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_model_finalize(m, msg, sizeof msg), msg);
     TEST_ASSERT_EQUAL(N, mbs_equation_count(m));
     return m;
 }
@@ -152,10 +152,10 @@ static void test_non_square_refused(void) {
     mbs_model *m = mbs_model_create();
     double I[3] = {1, 1, 1}, q[7] = {0, 0, 0, 1, 0, 0, 0};
     mbs_add_body(m, "free", 1.0, I, q);
-    char msg[STEWART_MESSAGE_SIZE];
-    TEST_ASSERT_EQUAL(STEWART_ERR_PARAMETER, mbs_model_finalize(m, msg, sizeof msg));
+    char msg[MBS_MESSAGE_SIZE];
+    TEST_ASSERT_EQUAL(MBS_ERR_PARAMETER, mbs_model_finalize(m, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL(strstr(msg, "1 constraint equations for 7 coordinates"));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_spherical(m, 0, q, 3, q));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_add_spherical(m, 0, q, 3, q));
     mbs_model_free(m);
 }
 
@@ -163,30 +163,30 @@ static void test_non_square_refused(void) {
 static void test_bad_input_named(void) {
     mbs_model *m = mbs_model_create();
     double I[3] = {1, 1, 1}, q[7] = {0, 0, 0, 1, 0, 0, 0}, zero[3] = {0, 0, 0};
-    TEST_ASSERT_EQUAL(STEWART_ERR_PARAMETER, mbs_add_body(m, "bad", -2.0, I, q));
+    TEST_ASSERT_EQUAL(MBS_ERR_PARAMETER, mbs_add_body(m, "bad", -2.0, I, q));
     TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "mass of body bad = -2"));
     double q_bad[7] = {0, 0, 0, 2, 0, 0, 0};
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_body(m, "p", 1.0, I, q_bad));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_add_body(m, "p", 1.0, I, q_bad));
     TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "norm^2 4"));
     const int a = mbs_add_body(m, "a", 1.0, I, q), b = mbs_add_body(m, "b", 1.0, I, q);
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_cardan(m, a, zero, zero, b, zero, zero));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_add_cardan(m, a, zero, zero, b, zero, zero));
     TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "s_i = (0, 0, 0)"));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_coordinate_driver(m, a, 9, NULL));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_add_coordinate_driver(m, a, 9, NULL));
     TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "coordinate = 9"));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_add_distance_driver(m, 42, NULL));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_add_distance_driver(m, 42, NULL));
     TEST_ASSERT_NOT_NULL(strstr(mbs_model_message(m), "joint = 42"));
     mbs_fix_body(m, a);
     mbs_add_weld(m, a, zero, b, zero);
-    char msg[STEWART_MESSAGE_SIZE];
-    TEST_ASSERT_EQUAL(STEWART_OK, mbs_model_finalize(m, msg, sizeof msg));
+    char msg[MBS_MESSAGE_SIZE];
+    TEST_ASSERT_EQUAL(MBS_OK, mbs_model_finalize(m, msg, sizeof msg));
     mbs_data *d = mbs_data_create(m, MBS_LINEAR_AUTOMATIC);
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_set_driver(d, 0, 1, 0, 0));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_set_driver(d, 0, 1, 0, 0));
     TEST_ASSERT_NOT_NULL(strstr(mbs_data_message(d), "driver = 0"));
     mbs_options o;
     mbs_options_default(&o);
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, mbs_step(d, NAN, &o));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_step(d, NAN, &o));
     TEST_ASSERT_NOT_NULL(strstr(mbs_data_message(d), "t = nan"));
-    TEST_ASSERT_EQUAL(STEWART_OK, mbs_step(d, 0, &o)); /* the weld holds b on a */
+    TEST_ASSERT_EQUAL(MBS_OK, mbs_step(d, 0, &o)); /* the weld holds b on a */
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, 1.0, mbs_q(d)[7 + 3]);
     mbs_data_free(d);
     mbs_model_free(m);

@@ -23,7 +23,7 @@ static void test_no_drift_over_a_long_run(void) {
         if (i % 1000 != 0 && i != steps - 1) continue; /* sample the checks: the run is long */
         const double *q = mbs_q(stewart_data_mechanism(data));
         for (int b = 0; b < 14; ++b) {
-            const double *e = q + 7 * b + 3;
+            const double *e = q + MBS_BODY_P(b);
             const double err = fabs(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] - 1);
             worst_norm = fmax(worst_norm, err);
             if (i >= steps / 2) worst_late_norm = fmax(worst_late_norm, err);
@@ -56,13 +56,14 @@ static void test_forward_kinematics_by_newton_over_a_long_run(void) {
         const stewart_output legs = solve_ok(model, data, STEWART_KINEMATIC, &pose);
         for (int k = 0; k < 6; ++k)
             mbs_set_driver(mech, k, legs.length[k], legs.length_rate[k], legs.length_accel[k]);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, mbs_step(mech, t, &o), mbs_data_message(mech));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, mbs_step(mech, t, &o), mbs_data_message(mech));
         if (i > 0 && mbs_iterations(mech) > worst_iterations) worst_iterations = mbs_iterations(mech);
         if (i % 1000 != 0 && i != steps - 1) continue;
         solve_ok(model, data, STEWART_FULL, &pose);
         const double *q = mbs_q(mech), *ref = mbs_q(stewart_data_mechanism(data));
         for (int b = 1; b < 14; ++b) {
-            const double *r = q + 7 * b, *r_ref = ref + 7 * b, *e = r + 3, *e_ref = r_ref + 3;
+            const double *r = q + MBS_BODY_R(b), *r_ref = ref + MBS_BODY_R(b);
+            const double *e = q + MBS_BODY_P(b), *e_ref = ref + MBS_BODY_P(b);
             for (int c = 0; c < 3; ++c) worst_position = fmax(worst_position, fabs(r[c] - r_ref[c]));
             const double dot = e[0] * e_ref[0] + e[1] * e_ref[1] + e[2] * e_ref[2] + e[3] * e_ref[3];
             const double sign = dot < 0 ? -1.0 : 1.0; /* p and -p: the same rotation */

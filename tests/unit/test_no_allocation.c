@@ -1,32 +1,14 @@
-/* No allocation inside a step: malloc and friends are interposed here and counted while the
- * full level (and the slider-crank on the core) step along a manoeuvre. */
+/* No allocation inside a step: malloc and friends are interposed (allocation_counter.c) and
+ * counted while the full level (and the slider-crank on the core) step along a manoeuvre. */
 #include <stddef.h>
 #include <string.h>
 
-#include "stewart/slider_crank.h"
+#include "slider_crank.h"
+#include "stewart/stewart_forward.h"
 #include "stewart/stewart_full.h"
+#include "allocation_counter.h"
 #include "test_support.h"
 #include "unity.h"
-
-extern void *__libc_malloc(size_t);
-extern void *__libc_calloc(size_t, size_t);
-extern void *__libc_realloc(void *, size_t);
-extern void *__libc_memalign(size_t, size_t);
-extern void __libc_free(void *);
-
-static volatile long allocations = 0;
-
-void *malloc(size_t n) { ++allocations; return __libc_malloc(n); }
-void *calloc(size_t n, size_t s) { ++allocations; return __libc_calloc(n, s); }
-void *realloc(void *p, size_t n) { ++allocations; return __libc_realloc(p, n); }
-void *memalign(size_t a, size_t n) { ++allocations; return __libc_memalign(a, n); }
-int posix_memalign(void **out, size_t a, size_t n) {
-    ++allocations;
-    *out = __libc_memalign(a, n);
-    return *out ? 0 : 12;
-}
-void *aligned_alloc(size_t a, size_t n) { ++allocations; return __libc_memalign(a, n); }
-void free(void *p) { __libc_free(p); }
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -58,7 +40,7 @@ static void test_full_level_steps_do_not_allocate(void) {
     mbs_options_default(&mo);
     const long before_newton = allocations;
     for (int k = 0; k < 6; ++k) mbs_set_driver(d, k, 0.58 + 0.004 * k, 0, 0);
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, mbs_step(d, 0, &mo), mbs_data_message(d));
+    TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_step(d, 0, &mo), mbs_data_message(d));
     TEST_ASSERT_TRUE(mbs_iterations(d) > 0);
     TEST_ASSERT_EQUAL(before_newton, allocations);
     mbs_data_free(d);
@@ -81,16 +63,52 @@ static void test_slider_crank_steps_do_not_allocate(void) {
     for (int i = 0; i < 600; ++i) {
         const double t = 0.02 * i, w = M_PI / 3;
         mbs_set_driver(d, l.crank_driver, w * t, w, 0);
-        TEST_ASSERT_EQUAL(STEWART_OK, mbs_step(d, t, &o));
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_step(d, t, &o));
     }
     TEST_ASSERT_EQUAL(before, allocations);
     mbs_data_free(d);
     mbs_model_free(m);
 }
 
+/* Forward kinematics: tracking (KINSOL iterations, rates and accelerations) and a cold start. */
+static void test_forward_solves_do_not_allocate(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    stewart_model *model = test_model(&params);
+    stewart_data *data = stewart_data_create(model);
+    stewart_forward_options fo;
+    stewart_forward_options_default(&fo);
+    stewart_output legs[200];
+    for (int i = 0; i < 200; ++i) {
+        const stewart_pose p = combined_pose(1e-3 * i);
+        legs[i] = solve_ok(model, data, STEWART_KINEMATIC, &p);
+    }
+    stewart_forward_result r;
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(model, data, &fo, 0, legs[0].length,
+                                                        legs[0].length_rate, legs[0].length_accel,
+                                                        NULL, &r));
+    const long before = allocations;
+    int iterations = 0;
+    for (int i = 1; i < 200; ++i) {
+        TEST_ASSERT_EQUAL(STEWART_OK,
+                          stewart_forward_solve(model, data, &fo, 1e-3 * i, legs[i].length,
+                                                legs[i].length_rate, legs[i].length_accel, NULL,
+                                                &r));
+        iterations += r.iterations;
+    }
+    stewart_forward_reset(data);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(model, data, &fo, 0, legs[100].length,
+                                                        NULL, NULL, NULL, &r));
+    TEST_ASSERT_TRUE(iterations > 0 && r.iterations > 0); /* KINSOL did iterate */
+    TEST_ASSERT_EQUAL(before, allocations);
+    stewart_data_free(data);
+    stewart_model_free(model);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_full_level_steps_do_not_allocate);
     RUN_TEST(test_slider_crank_steps_do_not_allocate);
+    RUN_TEST(test_forward_solves_do_not_allocate);
     return UNITY_END();
 }

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_table.h"
 #include "unity.h"
 
 void setUp(void) {}
@@ -28,6 +29,28 @@ static void test_every_fmu_parameter_name_sets_its_field(void) {
 #include "variables.def"
     /* every double of stewart_params has an FMU name */
     TEST_ASSERT_EQUAL_INT(sizeof(stewart_params) / sizeof(double), names);
+}
+
+/* The library's table ids are the FMU's value references: each FMU parameter's vr finds its name,
+ * and each FMU option of the library has the table's id. */
+static void test_table_ids_are_the_fmu_value_references(void) {
+    char element_name[48];
+    int e = -1;
+#define FMU_PARAM(vr, fmu_id, fmu_name, field, fmu_unit, display, desc)                                       \
+    {                                                                                           \
+        const int i = stewart_param_find_id(vr, &e);                                            \
+        TEST_ASSERT_TRUE_MESSAGE(i >= 0, fmu_name);                                                 \
+        stewart_param_element_name(i, e, element_name, sizeof element_name);                   \
+        TEST_ASSERT_EQUAL_STRING(fmu_name, element_name);                                           \
+        TEST_ASSERT_EQUAL_STRING(fmu_unit, stewart_param(i)->unit);                                 \
+        TEST_ASSERT_EQUAL_STRING(display, stewart_param(i)->display_unit);                      \
+    }
+#define FMU_OPTION_INT(vr, fmu_id, fmu_name, start, min, max, desc)                                       \
+    if (stewart_option_find(fmu_name) >= 0)                                                         \
+        TEST_ASSERT_EQUAL_INT_MESSAGE(vr, stewart_option(stewart_option_find(fmu_name))->id, fmu_name);
+#define FMU_OPTION_REAL(vr, fmu_id, fmu_name, field, unit, desc)                                          \
+    TEST_ASSERT_EQUAL_INT_MESSAGE(vr, stewart_option(stewart_option_find(fmu_name))->id, fmu_name);
+#include "variables.def"
 }
 
 static void test_names_that_are_not_parameters(void) {
@@ -66,6 +89,7 @@ static void test_an_invalid_value_is_named_at_model_creation(void) {
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_every_fmu_parameter_name_sets_its_field);
+    RUN_TEST(test_table_ids_are_the_fmu_value_references);
     RUN_TEST(test_names_that_are_not_parameters);
     RUN_TEST(test_an_invalid_value_is_named_at_model_creation);
     return UNITY_END();

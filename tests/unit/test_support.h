@@ -19,7 +19,7 @@ stewart_pose combined_pose(double t);
  * 3/4/5 (roll/pitch/yaw) of amplitude pi/18 with z held at 0.5 m. */
 stewart_pose thesis_pose(int component, double t);
 
-/* R = Rz(yaw) Ry(pitch) Rx(roll) of the pose, written out (model.md §3). */
+/* R = Rz(yaw) Ry(pitch) Rx(roll) of the pose, written out (docs/model.md). */
 void pose_rotation(const stewart_pose *pose, double R[3][3]);
 /* Leg k's length |p + R b_k - a_k| from the pose and the attachment points of params, written out
  * here: the reference the library's lengths are checked against. */

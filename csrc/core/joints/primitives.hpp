@@ -39,8 +39,9 @@ struct RowWriter {
     void gamma(int row, double value) const { if (out.gamma) out.gamma[row] = value; }
     void phi_t(int row, double value) const { if (out.phi_t) out.phi_t[row] = value; }
     bool want_jac() const { return out.jac_i != nullptr; }
-    double *jac_i(int row) const { return out.jac_i + 7 * row; }
-    double *jac_j(int row) const { return out.jac_j + 7 * row; }
+    // Row `row` of a body's Jacobian block (rows of its 7 coordinates).
+    double *jac_i(int row) const { return out.jac_i + MBS_BODY_COORDINATES * row; }
+    double *jac_j(int row) const { return out.jac_j + MBS_BODY_COORDINATES * row; }
 };
 
 inline void put(double *row7, const Vec3 &r, const Eigen::Matrix<double, 1, 4> &p) {

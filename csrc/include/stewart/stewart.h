@@ -1,7 +1,7 @@
 /*
  * Stewart platform inverse kinematics and inverse dynamics: the C API.
  *
- * Conventions (../shared/design/model.md §3): SI units; world frame at the base centre, z up;
+ * Conventions (docs/model.md): SI units; world frame at the base centre, z up;
  * pose (x, y, z, roll, pitch, yaw) with R = Rz(yaw) Ry(pitch) Rx(roll); leg k joins base angle
  * beta_k to platform angle tau_k; actuator length L_k = |p + R b_k - a_k|; actuator force F_k > 0
  * pushes the platform away from the base.
@@ -11,6 +11,10 @@
  * and every workspace a solve needs), then call stewart_solve once per pose. Nothing here keeps
  * global state; models and data blocks are independent of each other (a model may be shared by
  * several data blocks, read-only).
+ *
+ * Every parameter and option, with its id, unit, range, default and description, is listed once
+ * in stewart/stewart_table.h, which also lets a caller iterate them. The full level is built on
+ * the multibody core (mbs/mbs.h; stewart/stewart_full.h shows its mechanism).
  */
 #ifndef STEWART_STEWART_H
 #define STEWART_STEWART_H
@@ -32,7 +36,9 @@ typedef enum stewart_status {
     STEWART_ERR_UNREACHABLE = -4,   /* the pose puts a platform point on its base point */
     STEWART_ERR_NOT_CONVERGED = -5, /* the position Newton problem did not converge */
     STEWART_ERR_UNSUPPORTED = -6,   /* the requested fidelity level is not available */
-    STEWART_ERR_MEMORY = -7
+    STEWART_ERR_MEMORY = -7,
+    STEWART_ERR_OTHER_BRANCH = -8   /* forward kinematics reached another assembly mode than the
+                                       working one (stewart_forward.h) */
 } stewart_status;
 
 typedef enum stewart_fidelity {
@@ -44,7 +50,8 @@ typedef enum stewart_fidelity {
 /* Bits of stewart_output.warnings: the solve succeeded but the result deserves attention. */
 enum {
     STEWART_WARN_STROKE = 1,        /* some length is outside [stroke_min, stroke_max] */
-    STEWART_WARN_NEAR_SINGULAR = 2  /* condition number above stewart_options.warn_condition */
+    STEWART_WARN_NEAR_SINGULAR = 2, /* condition number above stewart_options.warn_condition */
+    STEWART_WARN_OTHER_BRANCH = 4   /* forward kinematics: the pose is on another assembly mode */
 };
 
 /* Geometry and mass parameters. Inertias are principal moments about the body's own centre of
@@ -79,9 +86,12 @@ typedef struct stewart_params {
 /* Solver settings; stewart_options_default gives the values documented here. */
 typedef struct stewart_options {
     int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
-    double tolerance;            /* Newton residual tolerance, max-norm (full level); 1e-12;
-                                    >= 2.5e-16 (the residual floors at 2.2e-16
-                                    for coordinates of order 1 m; larger platforms need more) */
+    double tolerance;            /* Newton residual tolerance (full level), max-norm, relative to
+                                    the platform's size: lengths are measured in units of L0, the
+                                    power of two with max(base_radius, platform_radius,
+                                    home_height) / L0 in (0.25, 0.5] (1 m for the thesis
+                                    platform; stewart_model_length_unit). 1e-12; >= 2.5e-16 (the
+                                    residual floors at about 2.2e-16 L0) */
     int max_iterations;          /* Newton iteration cap (full level); 20 */
     int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
     double warn_condition;       /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
@@ -104,16 +114,18 @@ typedef struct stewart_output {
     double condition;       /* 1-norm condition number of the leg Jacobian, its angular columns
                                scaled by the platform radius (dimensionless); 0 if kinematic */
     int iterations;         /* Newton iterations of the position problem; 0 below full level */
-    double residual;        /* max-norm of the constraint residual after the solve [m] */
+    double residual;        /* max-norm of the constraint residual after the solve [m]
+                               (tolerance x L0 at most) */
     double base_force[3];   /* force the legs put on the base, world frame [N] */
     double base_torque[3];  /* torque of that wrench about the world origin [N m] */
     int warnings;           /* STEWART_WARN_* bits */
+    int stroke_legs;        /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_output;
 
 typedef struct stewart_model stewart_model;
 typedef struct stewart_data stewart_data;
 
-/* The thesis platform in SI (model.md §2). */
+/* The thesis platform in SI (docs/model.md): the defaults of stewart/stewart_table.h. */
 void stewart_params_default(stewart_params *params);
 /* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the parameter and its value. */
 stewart_status stewart_params_check(const stewart_params *params, char *message, size_t size);
@@ -134,13 +146,17 @@ const stewart_params *stewart_model_params(const stewart_model *model);
 
 stewart_data *stewart_data_create(const stewart_model *model);
 void stewart_data_free(stewart_data *data);
-/* Copies the whole state of src into dst (both made from the same model): a rollback point. */
+/* Copies the whole state of src into dst (both made from the same model, else
+ * STEWART_ERR_ARGUMENT): a rollback point. */
 stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src);
 /* The state of a data block (what stewart_data_copy copies) as bytes, to save a run and resume
  * it in another process (FMU state serialisation). The size depends on the model only. */
 size_t stewart_data_state_size(const stewart_data *data);
 stewart_status stewart_data_save(const stewart_data *data, void *buffer, size_t size);
-/* STEWART_ERR_ARGUMENT (data unchanged) if the bytes are not a saved state of this model's shape. */
+/* STEWART_ERR_ARGUMENT (data unchanged, stewart_data_message says why) unless the bytes are a
+ * saved state that fits this model: of its shape, every value finite, the fixed base at its
+ * placement, every other body's Euler parameters unit (to 1e-6), and for a state saved after a
+ * successful solve, the constraint residual no larger than the state records. */
 stewart_status stewart_data_load(stewart_data *data, const void *buffer, size_t size);
 /* Forgets the history (warm start) as if the data block were new. */
 void stewart_data_reset(stewart_data *data);
@@ -148,7 +164,9 @@ void stewart_data_reset(stewart_data *data);
 const char *stewart_data_message(const stewart_data *data);
 
 /* Actuator lengths, rates, accelerations and forces for one pose. On error the output is left
- * unchanged and stewart_data_message names the offending value. Never writes NaN. */
+ * unchanged and stewart_data_message names the offending value (a pose input too large to solve
+ * with is named, e.g. "x_dot", with its value). Never writes NaN. data must have been made for
+ * model (else STEWART_ERR_ARGUMENT). */
 stewart_status stewart_solve(const stewart_model *model, stewart_data *data,
                              const stewart_options *options, const stewart_pose *pose,
                              stewart_output *output);

@@ -5,11 +5,17 @@
  * 0 fixes the base; then per leg base Cardan, platform Cardan, cylindrical; then 6
  * actuator-length drivers (driver slot k-1 is leg k; multiplier = -F_k); then the 13
  * normalisations. mbs_joint_first_row gives each joint's rows in mbs_lambda.
+ *
+ * The mechanism's lengths are in units of stewart_model_length_unit(model) m, L0: the power of
+ * two with max(base_radius, platform_radius, home_height) / L0 in (0.25, 0.5], 1 for the thesis
+ * platform (so that the Newton tolerance means the same at every size). Masses are kept: in the
+ * mechanism, forces are in units of L0 N, torques L0^2 N m, inertias L0^2 kg m^2, gravity
+ * 1/L0 m/s^2.
  */
 #ifndef STEWART_STEWART_FULL_H
 #define STEWART_STEWART_FULL_H
 
-#include "stewart/mbs.h"
+#include "mbs/mbs.h"
 #include "stewart/stewart.h"
 
 #ifdef __cplusplus
@@ -17,6 +23,8 @@ extern "C" {
 #endif
 
 const mbs_model *stewart_model_mechanism(const stewart_model *model);
+/* L0 [m], the mechanism's length unit (above); 0 if model is NULL. */
+double stewart_model_length_unit(const stewart_model *model);
 /* The state after the last full-level solve. */
 const mbs_data *stewart_data_mechanism(const stewart_data *data);
 

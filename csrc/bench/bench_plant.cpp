@@ -1,0 +1,282 @@
+// CPU microseconds per communication step of the plant (forward dynamics) along the combined cue
+// (scenes/combined.json's formula), driven by the inverse side's forces and their rates, for
+// both fidelities: the default integrator (ARKODE explicit Runge-Kutta) against the same plant
+// on CVODE Adams and on CVODE BDF with a dense Jacobian, plus a tolerance and step-size sweep
+// with the pose error against the cue. Prints the medians of 7 passes and writes them to argv[1].
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "stewart/stewart_plant.h"
+
+namespace {
+
+// The combined cue (scenes/combined.json): every pose component a sinusoid.
+stewart_pose combined(double t) {
+    static const double mean[6] = {0, 0, 0.5, 0, 0, 0};
+    static const double amp[6] = {0.05, 0.04, 0.03, 0.10, 0.08, 0.15};
+    static const double w[6] = {3.0, 2.0, 4.0, 2.5, 3.5, 1.5};
+    static const double phase[6] = {0.1, 0.7, 0.3, 1.1, 0.4, 0.9};
+    stewart_pose p{};
+    for (int i = 0; i < 6; ++i) {
+        p.q[i] = mean[i] + amp[i] * std::sin(w[i] * t + phase[i]);
+        p.q_dot[i] = amp[i] * w[i] * std::cos(w[i] * t + phase[i]);
+        p.q_ddot[i] = -amp[i] * w[i] * w[i] * std::sin(w[i] * t + phase[i]);
+    }
+    return p;
+}
+
+struct Drive {
+    double h;
+    std::vector<double> force, rate;  // 6 per sample
+};
+
+// Inverse-side forces at every communication point and their rates (central differences).
+bool make_drive(const stewart_model *model, int fidelity, double h, double duration, Drive &d) {
+    stewart_data *data = stewart_data_create(model);
+    stewart_options o;
+    stewart_options_default(&o);
+    o.fidelity = fidelity;
+    const int n = static_cast<int>(duration / h + 0.5);
+    d.h = h;
+    d.force.assign(6 * (n + 1), 0);
+    d.rate.assign(6 * (n + 1), 0);
+    const double delta = 1e-4;
+    bool ok = data != nullptr;
+    for (int i = 0; i <= n && ok; ++i) {
+        stewart_output now, ahead, behind;
+        stewart_pose p = combined(i * h);
+        ok = stewart_solve(model, data, &o, &p, &now) == STEWART_OK;
+        p = combined(i * h + delta);
+        ok = ok && stewart_solve(model, data, &o, &p, &ahead) == STEWART_OK;
+        p = combined(i * h - delta);
+        ok = ok && stewart_solve(model, data, &o, &p, &behind) == STEWART_OK;
+        for (int k = 0; k < 6; ++k) {
+            d.force[6 * i + k] = now.force[k];
+            d.rate[6 * i + k] = (ahead.force[k] - behind.force[k]) / (2 * delta);
+        }
+    }
+    stewart_data_free(data);
+    return ok;
+}
+
+const char *const kMethodNames[4] = {"CVODE Adams, fixed point", "CVODE BDF, dense Jacobian",
+                                     "ARKODE ERK 4(3) (default)", "ARKODE ERK DP5(4)"};
+
+const char *const kShortNames[4] = {"Adams", "BDF", "ERK4", "ERK5"};
+
+struct Result {
+    double us_per_step = 0, rhs_per_step = 0, pose_error = 0;
+    bool ok = true;
+};
+
+double cpu_seconds() {
+    timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+Result run(const stewart_model *model, const stewart_plant_options &o, const Drive &d,
+           int passes) {
+    Result r;
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_plant *plant = stewart_plant_create(model, &o, msg, sizeof msg);
+    if (!plant) {
+        std::fprintf(stderr, "bench-plant: %s\n", msg);
+        r.ok = false;
+        return r;
+    }
+    const int steps = static_cast<int>(d.force.size() / 6) - 1;
+    std::vector<double> per_step;
+    const stewart_pose start = combined(0);
+    for (int pass = 0; pass < passes && r.ok; ++pass) {
+        stewart_plant_set_state(plant, 0, start.q, start.q_dot);
+        stewart_plant_statistics before;
+        stewart_plant_statistics_get(plant, &before);
+        const double t0 = cpu_seconds();
+        for (int i = 0; i < steps; ++i)
+            if (stewart_plant_step(plant, d.h, &d.force[6 * i], &d.force[6 * i + 6], &d.rate[6 * i],
+                                   &d.rate[6 * i + 6]) != STEWART_OK) {
+                std::fprintf(stderr, "bench-plant: step %d: %s\n", i, stewart_plant_message(plant));
+                r.ok = false;
+                break;
+            }
+        per_step.push_back((cpu_seconds() - t0) / steps * 1e6);
+        stewart_plant_statistics after;
+        stewart_plant_statistics_get(plant, &after);
+        r.rhs_per_step = double(after.total_rhs_evaluations - before.total_rhs_evaluations) / steps;
+    }
+    // The pose error against the cue, on one more pass.
+    stewart_plant_set_state(plant, 0, start.q, start.q_dot);
+    for (int i = 0; i < steps && r.ok; ++i) {
+        stewart_plant_step(plant, d.h, &d.force[6 * i], &d.force[6 * i + 6], &d.rate[6 * i],
+                           &d.rate[6 * i + 6]);
+        stewart_plant_output out;
+        stewart_plant_output_get(plant, nullptr, &out);
+        const stewart_pose cue = combined((i + 1) * d.h);
+        for (int c = 0; c < 6; ++c)
+            r.pose_error = std::max(r.pose_error, std::fabs(out.pose[c] - cue.q[c]));
+    }
+    stewart_plant_free(plant);
+    std::sort(per_step.begin(), per_step.end());
+    if (!per_step.empty()) r.us_per_step = per_step[per_step.size() / 2];
+    return r;
+}
+
+// A loop a master could close (not the controller FMU): the inverse side's forces along the cue
+// plus PD on the leg lengths the plant reports, held over each step (zero-order hold). Returns
+// the largest position and angle errors over 4 s, or a negative number if the loop diverges.
+void closed_loop(const stewart_model *model, double kp, double kd, double h, double &position,
+                 double &angle) {
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_plant_options po;
+    stewart_plant_options_default(&po);
+    stewart_plant *plant = stewart_plant_create(model, &po, msg, sizeof msg);
+    stewart_data *data = stewart_data_create(model);
+    stewart_options so;
+    stewart_options_default(&so);
+    so.fidelity = STEWART_FULL;
+    const stewart_pose start = combined(0);
+    stewart_plant_set_state(plant, 0, start.q, start.q_dot);
+    stewart_plant_output out;
+    stewart_plant_output_get(plant, nullptr, &out);
+    position = angle = 0;
+    const int n = static_cast<int>(4.0 / h + 0.5);
+    for (int i = 0; i < n; ++i) {
+        stewart_pose cue = combined(i * h);
+        stewart_output inverse;
+        double force[6];
+        if (stewart_solve(model, data, &so, &cue, &inverse) != STEWART_OK) break;
+        for (int k = 0; k < 6; ++k)
+            force[k] = inverse.force[k] + kp * (inverse.length[k] - out.length[k]) +
+                       kd * (inverse.length_rate[k] - out.length_rate[k]);
+        if (stewart_plant_step(plant, h, force, force, nullptr, nullptr) != STEWART_OK ||
+            stewart_plant_output_get(plant, nullptr, &out) != STEWART_OK) {
+            position = angle = -1;
+            break;
+        }
+        cue = combined((i + 1) * h);
+        for (int c = 0; c < 6; ++c)
+            (c < 3 ? position : angle) =
+                std::max(c < 3 ? position : angle, std::fabs(out.pose[c] - cue.q[c]));
+        if (!(position < 0.1)) {  // diverging: the loop is unstable at this step
+            position = angle = -1;
+            break;
+        }
+    }
+    stewart_data_free(data);
+    stewart_plant_free(plant);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    stewart_params params;
+    stewart_params_default(&params);
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
+    if (!model) {
+        std::fprintf(stderr, "bench-plant: %s\n", msg);
+        return 1;
+    }
+    const double duration = 2.0;
+    const int passes = 7;
+    std::string report =
+        "plant (forward dynamics) along the combined cue, 2 s, inverse-side forces with their "
+        "rates (cubic Hermite);\nmedian CPU us per communication step over 7 passes; pose error = "
+        "max |pose - cue| [m, rad]\n";
+    char line[256];
+    const char *names[3] = {"", "massless", "full"};
+    bool ok = true;
+    Drive drive[3];
+    for (int f : {STEWART_MASSLESS, STEWART_FULL})
+        ok = ok && make_drive(model, f, 1e-3, duration, drive[f]);
+
+    report += "\n1 ms steps, default tolerances (rtol 1e-10, atol 1e-12):\n";
+    report += "fidelity  method                       us/step  rhs/step  pose error\n";
+    double ours_us[3] = {0}, bdf_us[3] = {0};
+    for (int f : {STEWART_MASSLESS, STEWART_FULL}) {
+        for (int method :
+             {STEWART_PLANT_ERK, STEWART_PLANT_ERK5, STEWART_PLANT_ADAMS, STEWART_PLANT_BDF}) {
+            stewart_plant_options o;
+            stewart_plant_options_default(&o);
+            o.fidelity = f;
+            o.method = method;
+            const Result r = run(model, o, drive[f], passes);
+            ok = ok && r.ok;
+            if (method == STEWART_PLANT_ERK) ours_us[f] = r.us_per_step;
+            if (method == STEWART_PLANT_BDF) bdf_us[f] = r.us_per_step;
+            std::snprintf(line, sizeof line, "%-9s %-28s %7.2f  %8.1f  %10.2e\n", names[f],
+                          kMethodNames[method], r.us_per_step, r.rhs_per_step, r.pose_error);
+            report += line;
+        }
+        std::snprintf(line, sizeof line, "%-9s dense / ours = %.2f\n", names[f],
+                      bdf_us[f] / ours_us[f]);
+        report += line;
+    }
+
+    report += "\ntolerance sweep, 1 ms steps:\n";
+    report += "fidelity  method  rtol     atol     us/step  rhs/step  pose error\n";
+    for (int f : {STEWART_MASSLESS, STEWART_FULL})
+        for (int method : {STEWART_PLANT_ERK, STEWART_PLANT_ERK5, STEWART_PLANT_ADAMS})
+            for (double rtol : {1e-6, 1e-8, 1e-10, 1e-12}) {
+                stewart_plant_options o;
+                stewart_plant_options_default(&o);
+                o.method = method;
+                o.fidelity = f;
+                o.relative_tolerance = rtol;
+                o.absolute_tolerance = rtol * 1e-2;
+                const Result r = run(model, o, drive[f], passes);
+                ok = ok && r.ok;
+                std::snprintf(line, sizeof line, "%-9s %-7s %-8.0e %-8.0e %7.2f  %8.1f  %10.2e\n",
+                              names[f], kShortNames[method], rtol,
+                              rtol * 1e-2, r.us_per_step, r.rhs_per_step, r.pose_error);
+                report += line;
+            }
+
+    report += "\ncommunication step sweep, default method and tolerances, full fidelity:\n";
+    report += "step [s]  us/step  rhs/step  pose error\n";
+    for (double h : {1e-4, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2}) {
+        Drive d;
+        ok = ok && make_drive(model, STEWART_FULL, h, duration, d);
+        stewart_plant_options o;
+        stewart_plant_options_default(&o);
+        o.method = STEWART_PLANT_ERK;
+        const Result r = run(model, o, d, 3);
+        ok = ok && r.ok;
+        std::snprintf(line, sizeof line, "%-8.0e  %7.2f  %8.1f  %10.2e\n", h, r.us_per_step,
+                      r.rhs_per_step, r.pose_error);
+        report += line;
+    }
+    report += "\nclosed loop: inverse-side forces + PD on the leg lengths, held over each step, "
+              "full fidelity, 4 s;\nmax position [m] / angle [rad] error, or unstable:\n";
+    report += "Kp [N/m]  Kd [N s/m]  step 1 ms               2 ms                    5 ms\n";
+    const double gains[3][2] = {{2e5, 2e3}, {1e6, 1e4}, {5e6, 3e4}};
+    for (const auto &g : gains) {
+        std::snprintf(line, sizeof line, "%-9.0e %-11.0e", g[0], g[1]);
+        report += line;
+        for (double h : {1e-3, 2e-3, 5e-3}) {
+            double position, angle;
+            closed_loop(model, g[0], g[1], h, position, angle);
+            if (position < 0)
+                std::snprintf(line, sizeof line, " %-23s", "unstable");
+            else
+                std::snprintf(line, sizeof line, " %.2e / %.2e    ", position, angle);
+            report += line;
+        }
+        report += "\n";
+    }
+    std::fputs(report.c_str(), stdout);
+    if (argc > 1) {
+        FILE *out = std::fopen(argv[1], "w");
+        if (!out || std::fputs(report.c_str(), out) < 0 || std::fclose(out) != 0) {
+            std::fprintf(stderr, "bench-plant: cannot write %s\n", argv[1]);
+            return 1;
+        }
+    }
+    stewart_model_free(model);
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,19 @@
+// --param NAME=VALUE, shared by the command-line tools.
+#pragma once
+
+#include <string>
+
+#include "stewart/stewart.h"
+
+namespace stewart {
+
+// Splits NAME=VALUE (VALUE a whole number in strtod's syntax); false with a message on stderr,
+// prefixed by the program's name.
+bool parse_assignment(const char *program, const char *assignment, std::string &name,
+                      double &value);
+
+// A platform parameter by its name (stewart_params_set); false with a message on stderr.
+bool set_platform_param(const char *program, const std::string &name, double value,
+                        stewart_params &params);
+
+}  // namespace stewart

@@ -1,0 +1,278 @@
+// stewart-simulate: actuator forces CSV in, the platform's motion out (forward dynamics).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cli/param_assignment.hpp"
+#include "stewart/stewart_plant.h"
+
+namespace {
+
+const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+int usage(FILE *to) {
+    std::fprintf(to,
+                 "usage: stewart-simulate [--fidelity massless|full] [--param NAME=VALUE ...] "
+                 "IN.csv OUT.csv\n"
+                 "  --param: a platform parameter by its FMU name (e.g. payload_mass=50), the "
+                 "start\n"
+                 "           state x0 y0 z0 roll0 pitch0 yaw0, x_dot0 .. yaw_dot0 (default: at "
+                 "rest at home),\n"
+                 "           or an integrator setting: relative_tolerance, absolute_tolerance,\n"
+                 "           max_internal_steps, method (0 CVODE Adams, 1 CVODE BDF with a dense\n"
+                 "           Jacobian, 2 ARKODE explicit Runge-Kutta 4(3): the default, 3 ARKODE\n"
+                 "           explicit Runge-Kutta 5(4))\n"
+                 "  IN.csv:  t,F1..F6 [s, N] (F_k > 0 pushes platform and base apart; linear in "
+                 "time between rows)\n"
+                 "  OUT.csv: t,x,y,z,roll,pitch,yaw,x_dot..yaw_dot,L1..L6,L_dot1..L_dot6,"
+                 "warnings,\n"
+                 "           steps,rhs_evaluations,nonlinear_iterations,error_test_failures "
+                 "(of the step into that row)\n");
+    return to == stderr ? 2 : 0;
+}
+
+struct Settings {
+    stewart_params params;
+    stewart_plant_options options;
+    double pose[6], rate[6];
+};
+
+// NAME=VALUE into the settings; false with a message on stderr.
+bool set_param(const char *assignment, Settings &s) {
+    std::string name;
+    double value;
+    if (!stewart::parse_assignment("stewart-simulate", assignment, name, value)) return false;
+    for (int i = 0; i < 6; ++i) {
+        if (name == std::string(kPose[i]) + "0") return s.pose[i] = value, true;
+        if (name == std::string(kPose[i]) + "_dot0") return s.rate[i] = value, true;
+    }
+    if (name == "relative_tolerance") return s.options.relative_tolerance = value, true;
+    if (name == "absolute_tolerance") return s.options.absolute_tolerance = value, true;
+    const bool integer = value == std::floor(value) && std::fabs(value) < 1e15;
+    if (name == "max_internal_steps" || name == "method" || name == "fidelity") {
+        if (!integer) {
+            std::fprintf(stderr, "stewart-simulate: --param %s = %g must be an integer\n",
+                         name.c_str(), value);
+            return false;
+        }
+        if (name == "max_internal_steps") s.options.max_internal_steps = static_cast<long>(value);
+        else if (name == "method") s.options.method = static_cast<int>(value);
+        else s.options.fidelity = static_cast<int>(value);
+        return true;
+    }
+    return stewart::set_platform_param("stewart-simulate", name, value, s.params);
+}
+
+std::vector<std::string> split(const std::string &line) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    for (;;) {
+        const size_t comma = line.find(',', start);
+        std::string cell = line.substr(start, comma == std::string::npos ? std::string::npos
+                                                                         : comma - start);
+        const size_t b = cell.find_first_not_of(" \t\r"), e = cell.find_last_not_of(" \t\r");
+        out.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+        if (comma == std::string::npos) return out;
+        start = comma + 1;
+    }
+}
+
+std::string number_text(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return text;
+}
+
+struct ForceTable {
+    std::vector<double> t;
+    std::vector<double> force;  // 6 per row
+};
+
+// Reads t,F1..F6 (any column order, no other columns); "" or a message naming line and column.
+std::string read_forces(const char *path, ForceTable &table) {
+    std::ifstream in(path);
+    if (!in) return std::string("cannot open ") + path;
+    std::string line;
+    if (!std::getline(in, line))
+        return std::string(path) + " is empty: expected the header t,F1,F2,F3,F4,F5,F6";
+    const std::vector<std::string> header = split(line);
+    int column_of[7];  // t, F1..F6 -> column index
+    const char *names[7] = {"t", "F1", "F2", "F3", "F4", "F5", "F6"};
+    for (int c = 0; c < 7; ++c) {
+        column_of[c] = -1;
+        for (size_t i = 0; i < header.size(); ++i)
+            if (header[i] == names[c]) column_of[c] = static_cast<int>(i);
+        if (column_of[c] < 0)
+            return std::string(path) + " line 1: column '" + names[c] +
+                   "' is missing (expected t,F1,F2,F3,F4,F5,F6)";
+    }
+    if (header.size() != 7)
+        return std::string(path) + " line 1: " + std::to_string(header.size()) +
+               " columns; expected exactly t,F1,F2,F3,F4,F5,F6";
+    int number = 1;
+    while (std::getline(in, line)) {
+        ++number;
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const std::vector<std::string> cells = split(line);
+        const std::string where = std::string(path) + " line " + std::to_string(number);
+        if (cells.size() != 7)
+            return where + ": " + std::to_string(cells.size()) + " values, expected 7";
+        double row[7];
+        for (int c = 0; c < 7; ++c) {
+            const std::string &cell = cells[column_of[c]];
+            char *end = nullptr;
+            row[c] = std::strtod(cell.c_str(), &end);
+            if (cell.empty() || *end != '\0' || !std::isfinite(row[c]))
+                return where + ", column " + std::to_string(column_of[c] + 1) + " (" + names[c] +
+                       "): '" + cell + "' is not a finite number";
+        }
+        if (!table.t.empty() && !(row[0] > table.t.back()))
+            return where + ", column " + std::to_string(column_of[0] + 1) + " (t): t = " +
+                   number_text(row[0]) + " does not increase";
+        table.t.push_back(row[0]);
+        for (int k = 1; k <= 6; ++k) table.force.push_back(row[k]);
+    }
+    if (table.t.empty()) return std::string(path) + ": no data rows";
+    return "";
+}
+
+struct Row {
+    stewart_plant_output out;
+    stewart_plant_statistics stats;
+};
+
+void write_header(FILE *f) {
+    std::fprintf(f, "t");
+    for (const char *p : kPose) std::fprintf(f, ",%s", p);
+    for (const char *p : kPose) std::fprintf(f, ",%s_dot", p);
+    for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L%d", k);
+    for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L_dot%d", k);
+    std::fprintf(f, ",warnings,steps,rhs_evaluations,nonlinear_iterations,error_test_failures\n");
+}
+
+void write_row(FILE *f, const Row &r) {
+    const stewart_plant_output &o = r.out;
+    std::fprintf(f, "%.17g", o.time);
+    for (double v : o.pose) std::fprintf(f, ",%.17g", v);
+    for (double v : o.pose_rate) std::fprintf(f, ",%.17g", v);
+    for (double v : o.length) std::fprintf(f, ",%.17g", v);
+    for (double v : o.length_rate) std::fprintf(f, ",%.17g", v);
+    std::fprintf(f, ",%d,%ld,%ld,%ld,%ld\n", o.warnings, r.stats.steps, r.stats.rhs_evaluations,
+                 r.stats.nonlinear_iterations, r.stats.error_test_failures);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Settings s;
+    stewart_params_default(&s.params);
+    stewart_plant_options_default(&s.options);
+    for (int i = 0; i < 6; ++i) s.pose[i] = s.rate[i] = 0;
+    bool pose_z_given = false;
+    const char *paths[2] = {nullptr, nullptr};
+    int n_paths = 0;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
+        const bool fidelity = !std::strcmp(argv[i], "--fidelity");
+        const bool param = !std::strcmp(argv[i], "--param");
+        if ((fidelity || param) && i + 1 == argc) {
+            std::fprintf(stderr, "stewart-simulate: %s needs a value (%s)\n", argv[i],
+                         fidelity ? "massless|full" : "NAME=VALUE");
+            return usage(stderr);
+        }
+        if (param) {
+            if (!set_param(argv[++i], s)) return 2;
+            if (!std::strncmp(argv[i], "z0=", 3)) pose_z_given = true;
+        } else if (fidelity) {
+            ++i;
+            if (!std::strcmp(argv[i], "massless")) s.options.fidelity = STEWART_MASSLESS;
+            else if (!std::strcmp(argv[i], "full")) s.options.fidelity = STEWART_FULL;
+            else {
+                std::fprintf(stderr, "stewart-simulate: unknown fidelity '%s'\n", argv[i]);
+                return usage(stderr);
+            }
+        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            std::fprintf(stderr, "stewart-simulate: unknown option '%s'\n", argv[i]);
+            return usage(stderr);
+        } else if (n_paths < 2) {
+            paths[n_paths++] = argv[i];
+        } else {
+            return usage(stderr);
+        }
+    }
+    if (n_paths != 2) return usage(stderr);
+    if (!pose_z_given) s.pose[2] = s.params.home_height;  // at home unless told otherwise
+
+    char message[STEWART_MESSAGE_SIZE];
+    if (stewart_plant_options_check(&s.options, message, sizeof message) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-simulate: %s\n", message);
+        return 2;
+    }
+    ForceTable table;
+    const std::string read_error = read_forces(paths[0], table);
+    if (!read_error.empty()) {
+        std::fprintf(stderr, "stewart-simulate: %s\n", read_error.c_str());
+        return 1;
+    }
+    stewart_model *model = stewart_model_create(&s.params, message, sizeof message);
+    stewart_plant *plant = model ? stewart_plant_create(model, &s.options, message, sizeof message)
+                                 : nullptr;
+    if (!plant) {
+        std::fprintf(stderr, "stewart-simulate: cannot build the plant: %s\n", message);
+        stewart_model_free(model);
+        return 1;
+    }
+    int status = 0;
+    std::vector<Row> rows(table.t.size());
+    if (stewart_plant_set_state(plant, table.t[0], s.pose, s.rate) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-simulate: start state: %s\n", stewart_plant_message(plant));
+        status = 1;
+    }
+    // Simulate everything before writing, so a failed run leaves no partial OUT.csv behind.
+    int last_warnings = 0;
+    for (size_t j = 0; j < table.t.size() && status == 0; ++j) {
+        const double *force = &table.force[6 * j];
+        if (j > 0) {
+            const stewart_status st = stewart_plant_step(plant, table.t[j] - table.t[j - 1],
+                                                         &table.force[6 * (j - 1)], force,
+                                                         nullptr, nullptr);
+            if (st != STEWART_OK) {
+                std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): %s: %s\n", j + 1,
+                             table.t[j], stewart_status_name(st), stewart_plant_message(plant));
+                status = 1;
+                break;
+            }
+            stewart_plant_statistics_get(plant, &rows[j].stats);
+        }
+        if (stewart_plant_output_get(plant, force, &rows[j].out) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): no outputs at this pose\n",
+                         j + 1, table.t[j]);
+            status = 1;
+            break;
+        }
+        if (rows[j].out.warnings && !last_warnings)
+            std::fprintf(stderr, "stewart-simulate: warning at row %zu (t = %g): %s\n", j + 1,
+                         table.t[j], stewart_plant_message(plant));
+        last_warnings = rows[j].out.warnings;
+    }
+    stewart_plant_free(plant);
+    stewart_model_free(model);
+    if (status != 0) return status;
+
+    FILE *out = std::fopen(paths[1], "w");
+    if (!out) {
+        std::fprintf(stderr, "stewart-simulate: cannot write %s\n", paths[1]);
+        return 1;
+    }
+    write_header(out);
+    for (const Row &r : rows) write_row(out, r);
+    if (std::fclose(out) != 0) {
+        std::fprintf(stderr, "stewart-simulate: error writing %s\n", paths[1]);
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,151 @@
+/*
+ * Stewart platform forward dynamics (the plant): apply the six actuator forces, integrate the
+ * motion. Same conventions as stewart.h (SI, pose (x, y, z, roll, pitch, yaw) with
+ * R = Rz(yaw) Ry(pitch) Rx(roll), leg order, F_k > 0 pushes platform and base apart).
+ *
+ * The independent coordinates are the platform pose (a quaternion inside) and its twist; every
+ * leg body follows in closed form, so the joints hold exactly (docs/forward-dynamics.md).
+ * Usage: build a stewart_model (stewart.h), create one stewart_plant per run, optionally set the
+ * start state, then call stewart_plant_step once per communication step with the forces at both
+ * ends of the step. No global state; no heap allocation in a step.
+ */
+#ifndef STEWART_STEWART_PLANT_H
+#define STEWART_STEWART_PLANT_H
+
+#include "stewart/stewart.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define STEWART_PLANT_BODIES 13 /* platform (with payload), 6 cylinders, 6 pistons */
+
+typedef enum stewart_plant_method {
+    STEWART_PLANT_ADAMS = 0, /* CVODE Adams-Moulton, fixed-point iteration: no Jacobian */
+    STEWART_PLANT_BDF = 1,   /* CVODE BDF, Newton with a dense difference-quotient Jacobian */
+    STEWART_PLANT_ERK = 2,   /* ARKODE explicit Runge-Kutta, Zonneveld 4(3), 5 stages */
+    STEWART_PLANT_ERK5 = 3   /* ARKODE explicit Runge-Kutta, Dormand-Prince 5(4), 7 stages */
+} stewart_plant_method;
+
+/* Integrator settings; stewart_plant_options_default gives the values documented here. */
+typedef struct stewart_plant_options {
+    int fidelity;            /* STEWART_MASSLESS or STEWART_FULL; STEWART_FULL */
+    int method;              /* a stewart_plant_method; STEWART_PLANT_ERK */
+    double relative_tolerance; /* CVODE reltol; 1e-10 */
+    double absolute_tolerance; /* CVODE abstol, on every state [m, -, m/s, rad/s]; 1e-12 */
+    long max_internal_steps; /* CVODE steps allowed within one communication step; 10000 */
+} stewart_plant_options;
+
+/* Integrator counters: of the last step, and summed since the plant was created or reset. */
+typedef struct stewart_plant_statistics {
+    long steps, rhs_evaluations, nonlinear_iterations, error_test_failures, jacobian_evaluations;
+    long total_steps, total_rhs_evaluations, total_nonlinear_iterations,
+        total_error_test_failures, total_jacobian_evaluations;
+    int last_order;          /* method order of the last internal step */
+    double last_step_size;   /* [s] */
+} stewart_plant_statistics;
+
+/* Bits of stewart_plant_output.warnings. */
+enum {
+    STEWART_PLANT_WARN_STROKE = 1 /* a leg outside [stroke_min, stroke_max]; the message names it */
+};
+
+typedef struct stewart_plant_output {
+    double time;                       /* [s] */
+    double pose[6];                    /* x, y, z [m], roll, pitch, yaw [rad] */
+    double pose_rate[6];               /* d/dt of the six pose components */
+    double length[STEWART_LEGS];       /* L_k [m] */
+    double length_rate[STEWART_LEGS];  /* dL_k/dt [m/s] */
+    double base_force[3];   /* force the moving bodies put on the base, world frame [N] */
+    double base_torque[3];  /* its torque about the world origin [N m] */
+    int warnings;           /* STEWART_PLANT_WARN_* bits */
+} stewart_plant_output;
+
+/* One moving body at the current state, world frame: its centre of mass, orientation (columns =
+ * body axes, row-major 3x3), velocity of the centre of mass and angular velocity. */
+typedef struct stewart_plant_body {
+    double position[3];
+    double rotation[9];
+    double velocity[3];
+    double omega[3];
+} stewart_plant_body;
+
+/* Joint reactions at the current state, world frame, per leg (k = 0..5):
+ *   base Cardan: the force and torque the base puts on the cylinder (torque about the Cardan
+ *     centre: along the axis perpendicular to both cross arms, the only one a Cardan holds);
+ *   platform Cardan: the force and torque the platform puts on the piston, about its centre;
+ *   cylindrical joint: the force and torque the cylinder puts on the piston, the actuator force
+ *     excluded (force and torque perpendicular to the leg axis; torque about the platform Cardan
+ *     centre).
+ * With massless legs the Cardans carry the axial force only and the cylindrical joint nothing. */
+typedef struct stewart_plant_reactions {
+    double base_cardan_force[STEWART_LEGS][3], base_cardan_torque[STEWART_LEGS][3];
+    double platform_cardan_force[STEWART_LEGS][3], platform_cardan_torque[STEWART_LEGS][3];
+    double cylindrical_force[STEWART_LEGS][3], cylindrical_torque[STEWART_LEGS][3];
+} stewart_plant_reactions;
+
+typedef struct stewart_plant stewart_plant;
+
+void stewart_plant_options_default(stewart_plant_options *options);
+/* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the option and its value. */
+stewart_status stewart_plant_options_check(const stewart_plant_options *options, char *message,
+                                           size_t size);
+
+/* A plant on a model (the model must outlive it), at rest at the model's home pose at time 0.
+ * NULL if the options are invalid or memory is short (message says why). */
+stewart_plant *stewart_plant_create(const stewart_model *model,
+                                    const stewart_plant_options *options, char *message,
+                                    size_t size);
+void stewart_plant_free(stewart_plant *plant);
+
+/* Sets time, pose and pose rates (d/dt of x .. yaw). STEWART_ERR_ARGUMENT for a non-finite value
+ * or pitch at +-90 degrees; STEWART_ERR_UNREACHABLE for a pose with a zero-length leg or a locked
+ * Cardan. On error the plant keeps its previous state. Resets the warning state. */
+stewart_status stewart_plant_set_state(stewart_plant *plant, double time, const double pose[6],
+                                       const double pose_rate[6]);
+
+/* Integrates from the current time t to t + h with the forces varying between force0 (at t) and
+ * force1 (at t + h): cubic Hermite if both derivative arrays are given, linear if both are NULL.
+ * On error (non-finite input, h <= 0, a zero-length leg or locked Cardan reached, integrator
+ * failure) the step is refused, the state stays at t and stewart_plant_message says why. */
+stewart_status stewart_plant_step(stewart_plant *plant, double h,
+                                  const double force0[STEWART_LEGS],
+                                  const double force1[STEWART_LEGS],
+                                  const double force_rate0[STEWART_LEGS],
+                                  const double force_rate1[STEWART_LEGS]);
+
+/* The outputs at the current state, with the base wrench for the given forces (those acting at
+ * the current time; NULL: the force1 of the last step, zero before any step).
+ * STEWART_ERR_ARGUMENT (output untouched) if a force is not finite or an output would overflow. */
+stewart_status stewart_plant_output_get(const stewart_plant *plant,
+                                        const double force[STEWART_LEGS],
+                                        stewart_plant_output *output);
+
+/* The joint reactions at the current state under the given forces (NULL: as output_get).
+ * STEWART_ERR_ARGUMENT (reactions untouched) if a force is not finite or a value overflows. */
+stewart_status stewart_plant_reactions_get(const stewart_plant *plant,
+                                           const double force[STEWART_LEGS],
+                                           stewart_plant_reactions *reactions);
+
+/* The 13 moving bodies at the current state: platform, cylinders 1..6, pistons 1..6. */
+stewart_status stewart_plant_bodies(const stewart_plant *plant,
+                                    stewart_plant_body bodies[STEWART_PLANT_BODIES]);
+
+/* The integrator's counters. */
+void stewart_plant_statistics_get(const stewart_plant *plant, stewart_plant_statistics *stats);
+
+/* The message of the last refused call or the last warning, else "". */
+const char *stewart_plant_message(const stewart_plant *plant);
+
+/* The state (time, platform pose and twist, last forces, warnings, first step size) as doubles,
+ * to roll back a step or save a run; stewart_plant_load puts it back (STEWART_ERR_ARGUMENT, plant
+ * unchanged, if the size is wrong or the values are not a state a step leaves). */
+size_t stewart_plant_state_size(void);
+stewart_status stewart_plant_save(const stewart_plant *plant, double *state, size_t count);
+stewart_status stewart_plant_load(stewart_plant *plant, const double *state, size_t count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* STEWART_STEWART_PLANT_H */

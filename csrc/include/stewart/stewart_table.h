@@ -1,0 +1,179 @@
+/*
+ * The parameter and option tables: one entry per field of stewart_params and stewart_options,
+ * with its stable id, name, element count, unit, valid range, default and description. The
+ * library's defaults, checks and setters are expanded from these lists, and the upper layers
+ * (FMU variables and model descriptions, the CLI's --param, fuzz seeds, Python) iterate them
+ * through the functions below instead of writing a parameter down again.
+ *
+ * X-macros (in the spirit of MuJoCo's mjxmacro.h): STEWART_PARAM_TABLE(X) calls
+ *   X(id, name, count, unit, display_unit, min, min_closed, max, max_closed, defaults, description)
+ * once per stewart_params field, in declaration order:
+ *   id           stable integer id of element 0 (= the FMU value reference); element e is id + e
+ *   name         the field's name (a C identifier; element e is named "name[e+1]" if count > 1)
+ *   count        number of doubles: 1, 3 (x, y, z) or 6 (legs 1..6)
+ *   unit         SI unit string ("m", "rad", "kg", "kg.m2", "m/s2"); display_unit "deg" or ""
+ *   min, max     valid range of each element; min_closed/max_closed 1 if the end is included.
+ *                Ends at -DBL_MAX/DBL_MAX (closed) mean "finite": no value may be NaN or Inf.
+ *   defaults     a parenthesised list of count doubles (the thesis platform, SI)
+ *   description  one sentence; an element's adds " of leg k" (count 6) or " x"/" y"/" z" (count 3)
+ * Range checks across fields (inertia triangle inequalities, stroke_min < stroke_max) are code,
+ * in stewart_params_check.
+ *
+ * STEWART_OPTION_TABLE(X) calls
+ *   X(id, name, type, unit, min, min_closed, max, max_closed, default, description)
+ * once per stewart_options field, in declaration order; type is int or double.
+ */
+#ifndef STEWART_STEWART_TABLE_H
+#define STEWART_STEWART_TABLE_H
+
+#include <float.h>
+#include <stddef.h>
+
+#include "mbs/mbs.h"
+#include "stewart/stewart.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The thesis platform's values, from its formulas (thesis 4.2.8): an aluminium (2700 kg/m^3)
+ * disc of radius 0.5 m and 0.05 m thickness, and leg bodies that are aluminium rods of
+ * diameter 0.015 m and length 0.3 m, each with its centre 0.15 m from its Cardan centre. */
+#define STEWART_PI 3.14159265358979323846
+#define STEWART_DEG(d) ((d) * (STEWART_PI / 180.0))
+#define STEWART_THESIS_PLATE_MASS (2700.0 * STEWART_PI * 0.5 * 0.5 * 0.05)
+#define STEWART_THESIS_ROD_MASS (2700.0 * STEWART_PI * 0.0075 * 0.0075 * 0.3)
+/* A solid rod of mass m, radius 0.0075 m, length 0.3 m, axis z: principal moments about its
+ * centre. */
+#define STEWART_THESIS_ROD_INERTIA                                                         \
+    (STEWART_THESIS_ROD_MASS * (3.0 * 0.0075 * 0.0075 + 0.3 * 0.3) / 12.0,                 \
+     STEWART_THESIS_ROD_MASS * (3.0 * 0.0075 * 0.0075 + 0.3 * 0.3) / 12.0,                 \
+     STEWART_THESIS_ROD_MASS * 0.0075 * 0.0075 / 2.0)
+
+#define STEWART_PARAM_TABLE(X)                                                                   \
+    X(210, base_radius, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.5),                                   \
+      "Radius of the circle of base Cardan centres")                                             \
+    X(211, platform_radius, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.5),                               \
+      "Radius of the circle of platform Cardan centres")                                         \
+    X(212, base_angle, 6, "rad", "deg", -DBL_MAX, 1, DBL_MAX, 1,                                 \
+      (STEWART_DEG(0.0), STEWART_DEG(30.0), STEWART_DEG(120.0), STEWART_DEG(150.0),              \
+       STEWART_DEG(240.0), STEWART_DEG(270.0)),                                                  \
+      "Angle of the base Cardan centre")                                                         \
+    X(218, platform_angle, 6, "rad", "deg", -DBL_MAX, 1, DBL_MAX, 1,                             \
+      (STEWART_DEG(330.0), STEWART_DEG(60.0), STEWART_DEG(90.0), STEWART_DEG(180.0),             \
+       STEWART_DEG(210.0), STEWART_DEG(300.0)),                                                  \
+      "Angle (platform frame) of the platform Cardan centre")                                   \
+    X(224, home_height, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.5), "z of the home pose")             \
+    X(225, gravity, 3, "m/s2", "", -DBL_MAX, 1, DBL_MAX, 1, (0.0, 0.0, -9.81), "Gravity, world") \
+    X(230, platform_mass, 1, "kg", "", 0.0, 0, DBL_MAX, 1, (STEWART_THESIS_PLATE_MASS),          \
+      "Mass of the moving platform")                                                             \
+    X(231, platform_com, 3, "m", "", -DBL_MAX, 1, DBL_MAX, 1, (0.0, 0.0, 0.0),                   \
+      "Platform centre of mass, platform frame")                                                 \
+    X(234, platform_inertia, 3, "kg.m2", "", 0.0, 0, DBL_MAX, 1,                                 \
+      (STEWART_THESIS_PLATE_MASS * 0.5 * 0.5 / 4.0, STEWART_THESIS_PLATE_MASS * 0.5 * 0.5 / 4.0, \
+       STEWART_THESIS_PLATE_MASS * 0.5 * 0.5 / 2.0),                                             \
+      "Platform principal moment about its centre of mass, platform axis")                       \
+    X(240, payload_mass, 1, "kg", "", 0.0, 1, DBL_MAX, 1, (0.0),                                 \
+      "Payload mass carried by the platform (0 for none)")                                       \
+    X(241, payload_com, 3, "m", "", -DBL_MAX, 1, DBL_MAX, 1, (0.0, 0.0, 0.0),                    \
+      "Payload centre of mass, platform frame")                                                  \
+    X(244, payload_inertia, 3, "kg.m2", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0),                 \
+      "Payload principal moment about its centre of mass, platform axis")                        \
+    X(250, cylinder_mass, 1, "kg", "", 0.0, 1, DBL_MAX, 1, (STEWART_THESIS_ROD_MASS),            \
+      "Mass of each cylinder (lower leg body, on the base Cardan)")                              \
+    X(251, cylinder_inertia, 3, "kg.m2", "", 0.0, 1, DBL_MAX, 1, STEWART_THESIS_ROD_INERTIA,     \
+      "Cylinder principal moment about its centre of mass (x along the Cardan cross arm, z "     \
+      "along the leg), axis")                                                                    \
+    X(254, cylinder_com, 1, "m", "", -DBL_MAX, 1, DBL_MAX, 1, (0.3 / 2.0),                       \
+      "Cylinder centre of mass from the base Cardan centre along the leg")                       \
+    X(255, piston_mass, 1, "kg", "", 0.0, 1, DBL_MAX, 1, (STEWART_THESIS_ROD_MASS),              \
+      "Mass of each piston (upper leg body, on the platform Cardan)")                            \
+    X(256, piston_inertia, 3, "kg.m2", "", 0.0, 1, DBL_MAX, 1, STEWART_THESIS_ROD_INERTIA,       \
+      "Piston principal moment about its centre of mass (x along the Cardan cross arm, z "       \
+      "along the leg), axis")                                                                    \
+    X(259, piston_com, 1, "m", "", -DBL_MAX, 1, DBL_MAX, 1, (0.3 / 2.0),                         \
+      "Piston centre of mass from the platform Cardan centre toward the base")                   \
+    X(228, stroke_min, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.40),                                   \
+      "Shortest allowed actuator length (a warning below)")                                      \
+    X(229, stroke_max, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.70),                                   \
+      "Longest allowed actuator length (a warning above)")
+
+#define STEWART_OPTION_TABLE(X)                                                                  \
+    X(200, fidelity, int, "", 0, 1, 2, 1, STEWART_MASSLESS,                                      \
+      "0 kinematic, 1 massless legs, 2 full 14-body model")                                      \
+    X(202, tolerance, double, "1", 2.5e-16, 1, DBL_MAX, 1, MBS_DEFAULT_TOLERANCE,               \
+      "Newton residual tolerance (fidelity 2), max-norm, relative to the platform's size "        \
+      "max(1 m, base_radius, platform_radius, home_height, |pose position|)")                    \
+    X(203, max_iterations, int, "", 1, 1, 2147483647, 1, MBS_DEFAULT_MAX_ITERATIONS,             \
+      "Newton iteration cap (fidelity 2)")                                                       \
+    X(204, modified_newton, int, "", 0, 1, 1, 1, 0,                                              \
+      "0 exact Newton, 1 Jacobian kept over a step (fidelity 2)")                                \
+    X(205, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
+      "Condition number above which the near-singular warning is set")                           \
+    X(206, singular_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e10,                            \
+      "Condition number above which the pose is not solved (singular)")
+
+/* One parameter of the table, for iteration. */
+typedef struct stewart_param_info {
+    int id;                     /* stable id of element 0; element e has id + e */
+    const char *name;           /* field name, e.g. "base_angle" */
+    int count;                  /* elements: 1, 3 (x, y, z) or 6 (legs 1..6) */
+    const char *unit;           /* SI unit */
+    const char *display_unit;   /* "deg" for angles, else "" */
+    const char *description;    /* of the whole parameter (see stewart_param_element_text) */
+    double min, max;            /* valid range of each element */
+    int min_closed, max_closed; /* 1: the end is part of the range */
+    const double *defaults;     /* count values: the thesis platform */
+} stewart_param_info;
+
+/* Number of parameters (fields of stewart_params). */
+int stewart_param_count(void);
+/* Parameter i (0 <= i < stewart_param_count(), declaration order), or NULL. */
+const stewart_param_info *stewart_param(int i);
+/* Address of element e of parameter i in params, or NULL if i, e or params are out of range.
+ * Cast a const stewart_params * to read only. */
+double *stewart_param_element(stewart_params *params, int i, int e);
+/* The parameter holding the element named `name` ("payload_mass", "base_angle[2]": arrays
+ * counted from 1), with that element in *element; -1 if no element has that name. */
+int stewart_param_find(const char *name, int *element);
+/* The parameter whose elements include the stable id `id`, with the element in *element; -1. */
+int stewart_param_find_id(int id, int *element);
+/* Element e's name ("base_angle[2]") or description ("... of leg 2") into text; the length it
+ * needs (as snprintf), or -1 if i or e are out of range. */
+int stewart_param_element_name(int i, int e, char *text, size_t size);
+int stewart_param_element_description(int i, int e, char *text, size_t size);
+/* STEWART_OK if value is in element e of parameter i's range, else STEWART_ERR_PARAMETER and a
+ * message naming the element and the value with all its digits (cross-field checks are
+ * stewart_params_check's). */
+stewart_status stewart_param_check_value(int i, int e, double value, char *message, size_t size);
+
+/* One option of the table. */
+typedef struct stewart_option_info {
+    int id;                     /* stable id (= FMU value reference) */
+    const char *name;           /* field name of stewart_options */
+    int is_integer;             /* 1: an int field, 0: a double */
+    const char *unit;           /* "1" for dimensionless reals, "" for integers */
+    const char *description;
+    double min, max;            /* valid range */
+    int min_closed, max_closed;
+    double default_value;       /* stewart_options_default's */
+} stewart_option_info;
+
+/* Number of options (fields of stewart_options). */
+int stewart_option_count(void);
+/* Option i (declaration order), or NULL. */
+const stewart_option_info *stewart_option(int i);
+/* Option i's value in options (ints converted exactly); 0 if out of range. */
+double stewart_option_get(const stewart_options *options, int i);
+/* Sets option i; STEWART_ERR_PARAMETER (options unchanged) if the value is outside its range or,
+ * for an integer option, not a whole number. */
+stewart_status stewart_option_set(stewart_options *options, int i, double value, char *message,
+                                  size_t size);
+/* The option named `name`, or -1. */
+int stewart_option_find(const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* STEWART_STEWART_TABLE_H */

@@ -1,0 +1,93 @@
+#include "platform/forward_branch.hpp"
+
+#include <cmath>
+
+#include "platform/forward_lu.hpp"
+#include "platform/rigid_motion.hpp"
+#include "stewart/stewart_forward.h"
+#include "util/message.hpp"
+
+namespace stewart {
+
+Matrix36 platform_points_world(const PlatformGeometry &g, const double q[6]) {
+    Matrix36 points = rotation_from_rpy(q[3], q[4], q[5]) * g.platform_points;
+    points.colwise() += Eigen::Vector3d(q[0], q[1], q[2]);
+    return points;
+}
+
+int jacobian_sign(const Matrix6 &transposed) {
+    double a[36];
+    Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> rows(a);
+    rows = transposed;
+    int pivot[6];
+    return lu6_factor(a, pivot) ? lu6_determinant_sign(a, pivot) : 0;  // det J^T = det J
+}
+
+int assembly_branch(const PlatformGeometry &g, const Eigen::Matrix3d &R, const Matrix36 &points,
+                    const Matrix6 &jacobian_transposed, int working_sign) {
+    const Eigen::Vector3d normal = R.col(2);
+    int branch = normal.z() > 0 ? 0 : STEWART_BRANCH_FLIPPED;
+    if (jacobian_sign(jacobian_transposed) != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Eigen::Vector3d leg = points.col(k) - g.base_points.col(k);
+        if (!(leg.z() > 0)) branch |= STEWART_BRANCH_BELOW_BASE;
+        if (!(leg.dot(normal) > 0)) branch |= STEWART_BRANCH_PLATFORM_CARDAN;
+    }
+    return branch;
+}
+
+LengthPairBounds length_pair_bounds(const PlatformGeometry &g) {
+    LengthPairBounds b;
+    int p = 0;
+    for (int i = 0; i < STEWART_LEGS; ++i)
+        for (int j = i + 1; j < STEWART_LEGS; ++j, ++p) {
+            const double base = (g.base_points.col(i) - g.base_points.col(j)).norm();
+            const double platform = (g.platform_points.col(i) - g.platform_points.col(j)).norm();
+            b.difference[p] = base + platform;
+            b.sum[p] = std::fabs(base - platform);
+        }
+    return b;
+}
+
+stewart_status check_length_pairs(const LengthPairBounds &bounds,
+                                  const double length[STEWART_LEGS], char *msg, size_t size) {
+    // A relative slack of a few roundings: lengths computed from a pose at a bound must pass.
+    const double slack = 1e-12;
+    int violations[STEWART_LEGS] = {0};
+    int first_i = -1, first_j = -1, p = 0;
+    double first_bound = 0;
+    for (int i = 0; i < STEWART_LEGS; ++i)
+        for (int j = i + 1; j < STEWART_LEGS; ++j, ++p) {
+            const double L_i = length[i], L_j = length[j];
+            if (L_i + L_j < bounds.sum[p] * (1 - slack) - 1e-15) {
+                return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                                   "no pose has these lengths: legs %d and %d are too short "
+                                   "together, L%d + L%d = %g m < %g m, the least their attachment "
+                                   "points allow", i + 1, j + 1, i + 1, j + 1, L_i + L_j,
+                                   bounds.sum[p]);
+            }
+            if (std::fabs(L_i - L_j) > bounds.difference[p] * (1 + slack) + 1e-15) {
+                ++violations[i];
+                ++violations[j];
+                if (first_i < 0) first_i = i, first_j = j, first_bound = bounds.difference[p];
+            }
+        }
+    if (first_i < 0) return STEWART_OK;
+    int blamed = 0;
+    for (int k = 1; k < STEWART_LEGS; ++k)
+        if (violations[k] > violations[blamed]) blamed = k;
+    if (violations[blamed] >= 2)  // out of line with several legs: that leg is the odd one
+        return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                           "no pose has these lengths: leg %d (L%d = %g m) differs from %d other "
+                           "legs by more than the geometry allows (e.g. |L%d - L%d| = %g m > %g m)",
+                           blamed + 1, blamed + 1, length[blamed], violations[blamed], first_i + 1,
+                           first_j + 1, std::fabs(length[first_i] - length[first_j]),
+                           first_bound);
+    return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                       "no pose has these lengths: legs %d and %d differ by |L%d - L%d| = %g m, "
+                       "more than the %g m their attachment points allow",
+                       first_i + 1, first_j + 1, first_i + 1, first_j + 1,
+                       std::fabs(length[first_i] - length[first_j]), first_bound);
+}
+
+}  // namespace stewart

@@ -1,0 +1,439 @@
+// The plant's C API (stewart_plant.h): state in roll-pitch-yaw outside, quaternion and twist
+// inside; input checks; stroke warnings; statistics.
+#include <cmath>
+#include <cstring>
+#include <new>
+
+#include "model.hpp"
+#include "platform/forward_dynamics_integrator.hpp"
+#include "platform/forward_dynamics_reactions.hpp"
+#include "stewart/stewart_plant.h"
+#include "util/message.hpp"
+
+using stewart::clear_message;
+using stewart::set_message;
+namespace fd = stewart::fd;
+
+namespace {
+
+constexpr int kSavedDoubles = 1 + fd::kStates + 3 + STEWART_LEGS + 1 + 1;
+constexpr double kMinCosPitch = 1e-9;  // roll and yaw rates are undefined at pitch = +-90 deg
+const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+}  // namespace
+
+struct stewart_plant {
+    const stewart_model *model = nullptr;
+    stewart_plant_options options{};
+    fd::DynamicsModel dynamics;
+    fd::Integrator integrator;
+    double time = 0;
+    double y[fd::kStates] = {0};
+    double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
+    double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
+    int warnings = 0;
+    double step_hint = 0;  // first internal step of the next communication step (0: estimate)
+    stewart_plant_statistics stats{};
+    char message[STEWART_MESSAGE_SIZE] = "";
+};
+
+namespace {
+
+// omega = E(pitch, yaw) * (roll, pitch, yaw)_dot, as in rigid_motion.cpp.
+fd::Mat3 rate_matrix(double pitch, double yaw) {
+    const double cp = std::cos(pitch), sp = std::sin(pitch), cy = std::cos(yaw),
+                 sy = std::sin(yaw);
+    fd::Mat3 E;
+    E << cy * cp, -sy, 0, sy * cp, cy, 0, -sp, 0, 1;
+    return E;
+}
+
+// The roll-pitch-yaw angles of R, roll and yaw taken on the branch nearest to previous.
+void angles_of(const fd::Mat3 &R, const double previous[3], double angles[3]) {
+    const double sp = -R(2, 0);
+    angles[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
+    angles[0] = std::atan2(R(2, 1), R(2, 2));
+    angles[2] = std::atan2(R(1, 0), R(0, 0));
+    for (int i : {0, 2}) {
+        const double turns = std::round((previous[i] - angles[i]) / (2 * M_PI));
+        angles[i] += 2 * M_PI * turns;
+    }
+}
+
+// Lengths, their rates, the stroke check; the message names the first leg out of its stroke.
+int leg_outputs(const stewart_plant &p, const fd::PlatformMotion &m, double length[6],
+                double rate[6], char *msg, size_t size) {
+    const stewart_params &par = p.model->params;
+    int warnings = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const fd::Vec3 arm = m.rotation * p.dynamics.legs.platform_points.col(k);
+        const fd::Vec3 d = m.position + arm - p.dynamics.legs.base_points.col(k);
+        length[k] = d.norm();
+        rate[k] = d.dot(m.velocity + m.omega.cross(arm)) / length[k];
+        if ((length[k] < par.stroke_min || length[k] > par.stroke_max) && !warnings) {
+            warnings |= STEWART_PLANT_WARN_STROKE;
+            set_message(msg, size, STEWART_OK,
+                        "leg %d has left its stroke: length %.9g m outside [%g, %g] m (end stops "
+                        "are not modelled)", k + 1, length[k], par.stroke_min, par.stroke_max);
+        }
+    }
+    return warnings;
+}
+
+// The 13 bodies' motion (accelerations included) under the given forces (NULL: the last step's);
+// STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
+stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
+                          fd::BodyMotion bodies[STEWART_PLANT_BODIES]) {
+    if (!force) force = p.force;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
+    fd::PlatformMotion m = fd::motion_of_state(p.y);
+    if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
+    m.acceleration = e.twist_rate.head<3>();
+    m.alpha = e.twist_rate.tail<3>();
+    fd::body_motions(p.dynamics, m, e, bodies);
+    return STEWART_OK;
+}
+
+stewart_status check_finite(const double *values, const char *name, char *msg, size_t size) {
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(values[k]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s[%d] = %g must be finite",
+                               name, k + 1, values[k]);
+    return STEWART_OK;
+}
+
+}  // namespace
+
+extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
+    if (!o) return;
+    o->fidelity = STEWART_FULL;
+    o->method = STEWART_PLANT_ERK;
+    o->relative_tolerance = 1e-10;
+    o->absolute_tolerance = 1e-12;
+    o->max_internal_steps = 10000;
+}
+
+extern "C" stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
+                                                      size_t size) {
+    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
+    if (o->fidelity != STEWART_MASSLESS && o->fidelity != STEWART_FULL)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fidelity = %d must be 1 (massless) or 2 (full)", o->fidelity);
+    if (o->method < STEWART_PLANT_ADAMS || o->method > STEWART_PLANT_ERK5)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "method = %d must be 0 (Adams), 1 (BDF), 2 (explicit Runge-Kutta 4(3)) "
+                           "or 3 (explicit Runge-Kutta 5(4))", o->method);
+    if (!(o->relative_tolerance >= 1e-15 && o->relative_tolerance < 1))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "relative_tolerance = %g must be in [1e-15, 1)", o->relative_tolerance);
+    if (!(o->absolute_tolerance > 0 && std::isfinite(o->absolute_tolerance)))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "absolute_tolerance = %g must be > 0", o->absolute_tolerance);
+    if (o->max_internal_steps < 1)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "max_internal_steps = %ld must be >= 1", o->max_internal_steps);
+    return clear_message(msg, size);
+}
+
+extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
+                                               const stewart_plant_options *options, char *msg,
+                                               size_t size) {
+    if (!model) {
+        set_message(msg, size, STEWART_ERR_ARGUMENT, "model is NULL");
+        return nullptr;
+    }
+    if (stewart_plant_options_check(options, msg, size) != STEWART_OK) return nullptr;
+    stewart_plant *p = new (std::nothrow) stewart_plant;
+    if (!p) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the plant");
+        return nullptr;
+    }
+    p->model = model;
+    p->options = *options;
+    p->dynamics = fd::dynamics_model(*model, options->fidelity);
+    if (!p->integrator.init(&p->dynamics, *options, msg, size)) {
+        delete p;
+        return nullptr;
+    }
+    const double home[6] = {0, 0, model->params.home_height, 0, 0, 0}, rest[6] = {0};
+    if (stewart_plant_set_state(p, 0.0, home, rest) != STEWART_OK) {
+        set_message(msg, size, STEWART_ERR_PARAMETER, "home pose: %s", p->message);
+        delete p;
+        return nullptr;
+    }
+    // SUNDIALS allocates some workspaces at the first step: take one here, on a copy, so that
+    // no step of the caller allocates.
+    fd::ForceProfile rest_forces;
+    rest_forces.h = 1e-6;
+    double y[fd::kStates], hint = 0;
+    for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
+    if (p->integrator.advance(y, rest_forces, hint, msg, size) != STEWART_OK) {
+        delete p;
+        return nullptr;
+    }
+    clear_message(msg, size);
+    return p;
+}
+
+extern "C" void stewart_plant_free(stewart_plant *p) { delete p; }
+
+extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
+                                                  const double pose[6], const double rate[6]) {
+    if (!p) return STEWART_ERR_ARGUMENT;
+    char *msg = p->message;
+    const size_t size = sizeof p->message;
+    if (!pose || !rate) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or rates");
+    if (!std::isfinite(time))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT, "time = %g must be finite", time);
+    for (int i = 0; i < 6; ++i) {
+        if (!std::isfinite(pose[i]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s0 = %g must be finite",
+                               kPoseNames[i], pose[i]);
+        if (!std::isfinite(rate[i]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s_dot0 = %g must be finite",
+                               kPoseNames[i], rate[i]);
+    }
+    if (!(std::fabs(std::cos(pose[4])) > kMinCosPitch))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "pitch0 = %g is at +-90 degrees, where roll and yaw are undefined",
+                           pose[4]);
+    const fd::Mat3 R = stewart::rotation_from_rpy(pose[3], pose[4], pose[5]);
+    const fd::Vec3 omega = rate_matrix(pose[4], pose[5]) * fd::Vec3(rate[3], rate[4], rate[5]);
+    double y[fd::kStates];
+    const Eigen::Quaterniond q(R);
+    const double yq[7] = {pose[0], pose[1], pose[2], q.w(), q.x(), q.y(), q.z()};
+    for (int i = 0; i < 7; ++i) y[i] = yq[i];
+    for (int i = 0; i < 3; ++i) y[7 + i] = rate[i], y[10 + i] = omega[i];
+    // The pose must give every leg a direction (and, full level, unlocked Cardans).
+    fd::Evaluation e;
+    const double zero[STEWART_LEGS] = {0};
+    if (!fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
+        return set_message(msg, size,
+                           e.fault == fd::LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
+                                                               : STEWART_ERR_SINGULAR,
+                           "the start pose is singular: leg %d %s", e.fault_leg + 1,
+                           e.fault == fd::LegFault::ZeroLength ? "has zero length"
+                                                               : "lies along a Cardan arm");
+    p->time = time;
+    for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
+    for (int i = 0; i < 3; ++i) p->angles[i] = pose[3 + i];
+    for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = 0;
+    p->step_hint = 0;
+    double length[6], length_rate[6];
+    msg[0] = '\0';
+    p->warnings = leg_outputs(*p, fd::motion_of_state(y), length, length_rate, msg, size);
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const double f0[6],
+                                             const double f1[6], const double r0[6],
+                                             const double r1[6]) {
+    if (!p) return STEWART_ERR_ARGUMENT;
+    char *msg = p->message;
+    const size_t size = sizeof p->message;
+    if (!f0 || !f1 || (!r0) != (!r1))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "NULL forces, or only one of the two force-rate arrays");
+    if (!(h > 0 && std::isfinite(h)))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "communication step h = %g s must be > 0 and finite", h);
+    stewart_status s;
+    if ((s = check_finite(f0, "F (start of step)", msg, size)) != STEWART_OK ||
+        (s = check_finite(f1, "F (end of step)", msg, size)) != STEWART_OK)
+        return s;
+    if (r0 && ((s = check_finite(r0, "dF/dt (start of step)", msg, size)) != STEWART_OK ||
+               (s = check_finite(r1, "dF/dt (end of step)", msg, size)) != STEWART_OK))
+        return s;
+
+    fd::ForceProfile profile;
+    profile.h = h;
+    profile.hermite = r0 != nullptr;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        profile.start[k] = f0[k];
+        profile.end[k] = f1[k];
+        profile.start_rate[k] = r0 ? r0[k] : 0;
+        profile.end_rate[k] = r1 ? r1[k] : 0;
+    }
+    double y[fd::kStates];
+    for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
+    double step_hint = p->step_hint;
+    s = p->integrator.advance(y, profile, step_hint, msg, size);
+    const stewart_plant_statistics &last = p->integrator.statistics();
+    stewart_plant_statistics &st = p->stats;
+    st.steps = last.steps;
+    st.rhs_evaluations = last.rhs_evaluations;
+    st.nonlinear_iterations = last.nonlinear_iterations;
+    st.error_test_failures = last.error_test_failures;
+    st.jacobian_evaluations = last.jacobian_evaluations;
+    st.last_order = last.last_order;
+    st.last_step_size = last.last_step_size;
+    st.total_steps += last.steps;
+    st.total_rhs_evaluations += last.rhs_evaluations;
+    st.total_nonlinear_iterations += last.nonlinear_iterations;
+    st.total_error_test_failures += last.error_test_failures;
+    st.total_jacobian_evaluations += last.jacobian_evaluations;
+    if (s != STEWART_OK) return s;
+
+    const fd::PlatformMotion m = fd::motion_of_state(y);
+    // A leg that passes through zero length between two evaluations flips its direction.
+    const fd::PlatformMotion before = fd::motion_of_state(p->y);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const fd::Vec3 &a = p->dynamics.legs.base_points.col(k), &b =
+            p->dynamics.legs.platform_points.col(k);
+        const fd::Vec3 d0 = before.position + before.rotation * b - a,
+                       d1 = m.position + m.rotation * b - a;
+        if (!(d0.dot(d1) > 0))
+            return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                               "the motion takes leg %d through zero length within the step",
+                               k + 1);
+    }
+    double angles[3];
+    angles_of(m.rotation, p->angles, angles);
+    if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
+                           "are undefined", angles[1]);
+    double length[6], rate[6];
+    char warning[STEWART_MESSAGE_SIZE] = "";
+    const int warnings = leg_outputs(*p, m, length, rate, warning, sizeof warning);
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(length[k]) || !std::isfinite(rate[k]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "the forces are out of range: leg %d's length or rate overflows "
+                               "after the step", k + 1);
+    for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
+    for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
+    for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
+    p->time += h;
+    p->step_hint = step_hint;
+    p->warnings = warnings;
+    std::memcpy(msg, warning, size);
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const double *force,
+                                                   stewart_plant_output *out) {
+    if (!p || !out) return STEWART_ERR_ARGUMENT;
+    fd::Evaluation e;
+    fd::BodyMotion bodies[STEWART_PLANT_BODIES];
+    const stewart_status s = all_bodies(*p, force, e, bodies);
+    if (s != STEWART_OK) return s;
+    const fd::PlatformMotion m = fd::motion_of_state(p->y);
+    fd::Vec3 f, t;
+    fd::base_wrench(p->dynamics, bodies, f, t);
+
+    stewart_plant_output o{};
+    o.time = p->time;
+    const fd::Vec3 angle_rates = rate_matrix(p->angles[1], p->angles[2]).inverse() * m.omega;
+    for (int i = 0; i < 3; ++i) {
+        o.pose[i] = p->y[i];
+        o.pose[3 + i] = p->angles[i];
+        o.pose_rate[i] = p->y[7 + i];
+        o.pose_rate[3 + i] = angle_rates[i];
+        o.base_force[i] = f[i];
+        o.base_torque[i] = t[i];
+    }
+    char ignored[8];
+    o.warnings = leg_outputs(*p, m, o.length, o.length_rate, ignored, 0);
+    // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
+    const double *groups[6] = {o.pose, o.pose_rate, o.length, o.length_rate, o.base_force,
+                               o.base_torque};
+    const int sizes[6] = {6, 6, STEWART_LEGS, STEWART_LEGS, 3, 3};
+    for (int g = 0; g < 6; ++g)
+        for (int i = 0; i < sizes[g]; ++i)
+            if (!std::isfinite(groups[g][i])) return STEWART_ERR_ARGUMENT;
+    *out = o;
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, const double *force,
+                                                      stewart_plant_reactions *reactions) {
+    if (!p || !reactions) return STEWART_ERR_ARGUMENT;
+    fd::Evaluation e;
+    fd::BodyMotion bodies[STEWART_PLANT_BODIES];
+    const stewart_status s = all_bodies(*p, force, e, bodies);
+    if (s != STEWART_OK) return s;
+    if (!force) force = p->force;
+    stewart_plant_reactions r;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!fd::leg_reactions(p->dynamics, k, e.legs[k], bodies, force[k], r))
+            return STEWART_ERR_SINGULAR;
+    const double *values = &r.base_cardan_force[0][0];
+    for (size_t i = 0; i < sizeof r / sizeof(double); ++i)
+        if (!std::isfinite(values[i])) return STEWART_ERR_ARGUMENT;
+    *reactions = r;
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
+                                               stewart_plant_body bodies[STEWART_PLANT_BODIES]) {
+    if (!p || !bodies) return STEWART_ERR_ARGUMENT;
+    fd::Evaluation e;
+    fd::BodyMotion motion[STEWART_PLANT_BODIES];
+    const stewart_status s = all_bodies(*p, nullptr, e, motion);
+    if (s != STEWART_OK) return s;
+    const int count = p->dynamics.with_legs ? STEWART_PLANT_BODIES : 1;
+    std::memset(bodies, 0, sizeof(stewart_plant_body) * STEWART_PLANT_BODIES);
+    for (int b = 0; b < count; ++b)
+        for (int i = 0; i < 3; ++i) {
+            bodies[b].position[i] = motion[b].position[i];
+            bodies[b].velocity[i] = motion[b].velocity[i];
+            bodies[b].omega[i] = motion[b].omega[i];
+            for (int j = 0; j < 3; ++j) bodies[b].rotation[3 * i + j] = motion[b].rotation(i, j);
+        }
+    return STEWART_OK;
+}
+
+extern "C" void stewart_plant_statistics_get(const stewart_plant *p,
+                                             stewart_plant_statistics *stats) {
+    if (p && stats) *stats = p->stats;
+}
+
+extern "C" const char *stewart_plant_message(const stewart_plant *p) {
+    return p ? p->message : "plant is NULL";
+}
+
+extern "C" size_t stewart_plant_state_size(void) { return kSavedDoubles; }
+
+extern "C" stewart_status stewart_plant_save(const stewart_plant *p, double *state, size_t count) {
+    if (!p || !state || count != kSavedDoubles) return STEWART_ERR_ARGUMENT;
+    double *out = state;
+    *out++ = p->time;
+    for (double v : p->y) *out++ = v;
+    for (double v : p->angles) *out++ = v;
+    for (double v : p->force) *out++ = v;
+    *out++ = p->warnings;
+    *out++ = p->step_hint;
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_plant_load(stewart_plant *p, const double *state, size_t count) {
+    if (!p || !state || count != kSavedDoubles) return STEWART_ERR_ARGUMENT;
+    for (size_t i = 0; i < count; ++i)
+        if (!std::isfinite(state[i]))
+            return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
+                               "saved plant state: value %zu is not finite", i);
+    // What a step could have left: a unit quaternion, pitch off +-90 degrees, a defined pose.
+    const double *y = state + 1, *angles = y + fd::kStates;
+    const double warnings = state[kSavedDoubles - 2], hint = state[kSavedDoubles - 1];
+    const double q_norm = std::sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
+    fd::Evaluation e;
+    const double zero[STEWART_LEGS] = {0};
+    if (!(std::fabs(q_norm - 1) < 1e-9) || !(std::fabs(std::cos(angles[1])) > kMinCosPitch) ||
+        !(warnings == 0 || warnings == STEWART_PLANT_WARN_STROKE) || !(hint >= 0) ||
+        !fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
+        return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
+                           "saved plant state is not one a step leaves (quaternion norm %g, pitch "
+                           "%g rad, warnings %g, step hint %g, or a singular pose)", q_norm,
+                           angles[1], warnings, hint);
+    const double *in = state;
+    p->time = *in++;
+    for (double &v : p->y) v = *in++;
+    for (double &v : p->angles) v = *in++;
+    for (double &v : p->force) v = *in++;
+    p->warnings = static_cast<int>(*in++);
+    p->step_hint = *in++;
+    p->message[0] = '\0';
+    return STEWART_OK;
+}

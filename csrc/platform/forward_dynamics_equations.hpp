@@ -1,0 +1,50 @@
+// Forward dynamics, kinetic part: the reduced equations in the platform twist nu = (v, omega),
+// (sum J_b^T M_b J_b) nu_dot = sum J_b^T (f_b - M_b J_b_dot nu) + J_legs^T F, and the base wrench.
+#pragma once
+
+#include "platform/forward_dynamics_bodies.hpp"
+
+namespace stewart {
+namespace fd {
+
+// The bodies' masses and inertias and what the leg bodies need; with_legs false drops the leg
+// bodies (massless legs: the platform driven by the axial forces alone).
+struct DynamicsModel {
+    LegParameters legs;
+    bool with_legs = true;
+    double platform_mass = 0;
+    Vec3 platform_com;        // plate frame
+    Mat3 platform_inertia;    // about the centre of mass, plate frame
+    Mat3 platform_inertia_inverse;
+    double cylinder_mass = 0, piston_mass = 0;
+    Vec3 cylinder_inertia, piston_inertia;  // principal, leg-body axes
+    Vec3 gravity;
+};
+
+// DynamicsModel from a built stewart_model; fidelity STEWART_MASSLESS or STEWART_FULL.
+DynamicsModel dynamics_model(const stewart_model &model, int fidelity);
+
+// Results and workspace of one evaluation.
+struct Evaluation {
+    LegConfiguration legs[STEWART_LEGS];
+    LegFault fault = LegFault::None;
+    int fault_leg = -1;          // 0-based
+    Vector6 twist_rate;          // (v_dot, omega_dot) at the platform origin, world
+};
+
+// The platform's twist rate for the state in m (pose and twist; its accelerations are ignored)
+// under the leg forces. False (fault set) if a leg has no direction or a Cardan is locked.
+bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double force[STEWART_LEGS],
+                Evaluation &e);
+
+// The 13 moving bodies (platform, cylinders, pistons) for m including its accelerations; the leg
+// bodies are left untouched for the massless model. e must hold the configuration of m.
+void body_motions(const DynamicsModel &d, const PlatformMotion &m, const Evaluation &e,
+                  BodyMotion bodies[13]);
+
+// The wrench the moving bodies put on the base (about the world origin): minus the rate of
+// their momentum and angular momentum less gravity (the actuator forces are internal).
+void base_wrench(const DynamicsModel &d, const BodyMotion bodies[13], Vec3 &force, Vec3 &torque);
+
+}  // namespace fd
+}  // namespace stewart

@@ -1,0 +1,325 @@
+#include "platform/forward_dynamics_integrator.hpp"
+
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "util/message.hpp"
+
+namespace stewart {
+namespace fd {
+
+struct IntegratorImpl {
+    const DynamicsModel *model = nullptr;
+    const ForceProfile *forces = nullptr;
+    SUNContext context = nullptr;
+    N_Vector y = nullptr;
+    SUNMatrix matrix = nullptr;
+    SUNLinearSolver linear = nullptr;
+    SUNNonlinearSolver nonlinear = nullptr;
+    void *cvode = nullptr;
+    void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK and STEWART_PLANT_ERK5
+    int erk_order = 0;
+    Evaluation evaluation;
+    LegFault fault = LegFault::None;  // the last right-hand side refused, and why
+    int fault_leg = -1;
+    bool non_finite = false;
+    char cvode_message[160] = "";
+};
+
+void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
+    const double s = tau / h;
+    if (!hermite) {
+        for (int k = 0; k < STEWART_LEGS; ++k) force[k] = start[k] + s * (end[k] - start[k]);
+        return;
+    }
+    const double s2 = s * s, s3 = s2 * s;
+    const double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2,
+                 h11 = s3 - s2;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        force[k] = h00 * start[k] + h01 * end[k] + h * (h10 * start_rate[k] + h11 * end_rate[k]);
+}
+
+PlatformMotion motion_of_state(const double y[kStates]) {
+    PlatformMotion m;
+    m.position = Vec3(y[0], y[1], y[2]);
+    Eigen::Quaterniond q(y[3], y[4], y[5], y[6]);
+    q.normalize();
+    m.rotation = q.toRotationMatrix();
+    m.velocity = Vec3(y[7], y[8], y[9]);
+    m.omega = Vec3(y[10], y[11], y[12]);
+    m.acceleration.setZero();
+    m.alpha.setZero();
+    return m;
+}
+
+namespace {
+
+constexpr double kMaxAcceleration = 1e100;  // [m/s^2, rad/s^2]
+
+// dy/dt: p_dot = v, e_dot = 1/2 (0, omega) * e (world-frame omega), (v, omega)_dot from the
+// reduced equations. 1 (recoverable: CVODE retries a shorter step) for a degenerate leg.
+int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, void *user) {
+    IntegratorImpl &im = *static_cast<IntegratorImpl *>(user);
+    const double *y = N_VGetArrayPointer(y_vector);
+    double *y_dot = N_VGetArrayPointer(y_dot_vector);
+    const PlatformMotion m = motion_of_state(y);
+    double force[STEWART_LEGS];
+    im.forces->at(tau, force);
+    if (!twist_rate(*im.model, m, force, im.evaluation)) {
+        im.fault = im.evaluation.fault;
+        im.fault_leg = im.evaluation.fault_leg;
+        return 1;
+    }
+    const Vector6 &a = im.evaluation.twist_rate;
+    // Beyond 1e100 CVODE's weighted norms overflow (and silently stop the state): out of range.
+    if (!(a.cwiseAbs().maxCoeff() < kMaxAcceleration)) {
+        im.non_finite = true;
+        return 1;
+    }
+    const double w = y[3], x = y[4], yy = y[5], z = y[6];
+    const double ox = y[10], oy = y[11], oz = y[12];
+    for (int i = 0; i < 3; ++i) y_dot[i] = y[7 + i];
+    y_dot[3] = -0.5 * (ox * x + oy * yy + oz * z);
+    y_dot[4] = 0.5 * (w * ox + oy * z - oz * yy);
+    y_dot[5] = 0.5 * (w * oy + oz * x - ox * z);
+    y_dot[6] = 0.5 * (w * oz + ox * yy - oy * x);
+    for (int i = 0; i < 6; ++i) y_dot[7 + i] = a[i];
+    return 0;
+}
+
+// Forward-difference dense Jacobian of the right-hand side, into preallocated vectors (CVODE's
+// own difference quotient allocates a vector per evaluation).
+int dense_jacobian(sunrealtype t, N_Vector y, N_Vector f, SUNMatrix J, void *user,
+                   N_Vector perturbed, N_Vector f_perturbed, N_Vector) {
+    const double *yv = N_VGetArrayPointer(y), *fv = N_VGetArrayPointer(f);
+    double *yp = N_VGetArrayPointer(perturbed);
+    const double *fp = N_VGetArrayPointer(f_perturbed);
+    for (int i = 0; i < kStates; ++i) yp[i] = yv[i];
+    const double root_eps = 1.4901161193847656e-08;  // sqrt(2^-52)
+    for (int j = 0; j < kStates; ++j) {
+        const double increment = root_eps * std::max(std::fabs(yv[j]), 1e-3);
+        yp[j] = yv[j] + increment;
+        const int flag = right_hand_side(t, perturbed, f_perturbed, user);
+        yp[j] = yv[j];
+        if (flag != 0) return flag;
+        double *column = SUNDenseMatrix_Column(J, j);
+        for (int i = 0; i < kStates; ++i) column[i] = (fp[i] - fv[i]) / increment;
+    }
+    return 0;
+}
+
+void error_handler(int code, const char *module, const char *function, char *text, void *user) {
+    IntegratorImpl &im = *static_cast<IntegratorImpl *>(user);
+    std::snprintf(im.cvode_message, sizeof im.cvode_message, "%s %s (%d): %s", module, function,
+                  code, text);
+}
+
+// CVODE's and ARKODE's flag names (they share the values; CVodeGetReturnFlagName allocates,
+// which a step must not).
+const char *flag_name(int flag) {
+    switch (flag) {
+        case CV_TOO_MUCH_WORK: return "TOO_MUCH_WORK (max_internal_steps reached)";
+        case CV_TOO_MUCH_ACC: return "TOO_MUCH_ACC";
+        case CV_ERR_FAILURE: return "ERR_FAILURE (error test failed repeatedly)";
+        case CV_CONV_FAILURE: return "CONV_FAILURE (corrector did not converge)";
+        case CV_LSETUP_FAIL: return "LSETUP_FAIL";
+        case CV_LSOLVE_FAIL: return "LSOLVE_FAIL";
+        case CV_RHSFUNC_FAIL: return "RHSFUNC_FAIL";
+        case CV_FIRST_RHSFUNC_ERR: return "FIRST_RHSFUNC_ERR";
+        case CV_REPTD_RHSFUNC_ERR: return "REPTD_RHSFUNC_ERR";
+        case CV_UNREC_RHSFUNC_ERR: return "UNREC_RHSFUNC_ERR";
+        case CV_MEM_FAIL: return "MEM_FAIL";
+        case CV_ILL_INPUT: return "ILL_INPUT";
+        case CV_NLS_FAIL: return "NLS_FAIL";
+    }
+    return "an error flag";
+}
+
+const char *fault_text(LegFault f) {
+    switch (f) {
+        case LegFault::ZeroLength: return "reaches zero length";
+        case LegFault::LockedBaseCardan: return "lies along its base Cardan's arm (locked Cardan)";
+        case LegFault::LockedPlatformCardan:
+            return "lies along its platform Cardan's arm (locked Cardan)";
+        case LegFault::None: break;
+    }
+    return "";
+}
+
+}  // namespace
+
+Integrator::~Integrator() {
+    if (!impl_) return;
+    IntegratorImpl &im = *impl_;
+    if (im.cvode) CVodeFree(&im.cvode);
+    if (im.arkode) ERKStepFree(&im.arkode);
+    if (im.nonlinear) SUNNonlinSolFree(im.nonlinear);
+    if (im.linear) SUNLinSolFree(im.linear);
+    if (im.matrix) SUNMatDestroy(im.matrix);
+    if (im.y) N_VDestroy(im.y);
+    if (im.context) SUNContext_Free(&im.context);
+    delete impl_;
+}
+
+bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o, char *msg,
+                      size_t size) {
+    impl_ = new (std::nothrow) IntegratorImpl;
+    if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
+    IntegratorImpl &im = *impl_;
+    im.model = model;
+    if (SUNContext_Create(nullptr, &im.context) != 0 ||
+        !(im.y = N_VNew_Serial(kStates, im.context)))
+        return set_message(msg, size, STEWART_ERR_MEMORY, "SUNDIALS context or vector failed"),
+               false;
+    // Fused vector operations: one loop per linear combination in the Runge-Kutta stages.
+    if (N_VEnableFusedOps_Serial(im.y, SUNTRUE) != 0)
+        return set_message(msg, size, STEWART_ERR_MEMORY, "N_VEnableFusedOps_Serial failed"),
+               false;
+    N_VConst(0.0, im.y);
+    NV_Ith_S(im.y, 3) = 1.0;
+    int flag;
+    if (o.method == STEWART_PLANT_ERK || o.method == STEWART_PLANT_ERK5) {
+        im.arkode = ERKStepCreate(right_hand_side, 0.0, im.y, im.context);
+        im.erk_order = o.method == STEWART_PLANT_ERK ? 4 : 5;
+        if (!im.arkode)
+            return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
+        if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
+            (flag = ERKStepSetUserData(im.arkode, &im)) != ARK_SUCCESS ||
+            (flag = ERKStepSetTableNum(im.arkode, o.method == STEWART_PLANT_ERK
+                                                          ? ARKODE_ZONNEVELD_5_3_4
+                                                          : ARKODE_DORMAND_PRINCE_7_4_5)) !=
+                ARK_SUCCESS ||
+            (flag = ERKStepSStolerances(im.arkode, o.relative_tolerance,
+                                        o.absolute_tolerance)) != ARK_SUCCESS ||
+            (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_MEMORY, "ARKODE setup failed with %s: %s",
+                               flag_name(flag), im.cvode_message),
+                   false;
+        return true;
+    }
+    const bool bdf = o.method == STEWART_PLANT_BDF;
+    im.cvode = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, im.context);
+    if (!im.cvode) return set_message(msg, size, STEWART_ERR_MEMORY, "CVodeCreate failed"), false;
+    if ((flag = CVodeSetErrHandlerFn(im.cvode, error_handler, &im)) != CV_SUCCESS ||
+        (flag = CVodeInit(im.cvode, right_hand_side, 0.0, im.y)) != CV_SUCCESS ||
+        (flag = CVodeSetUserData(im.cvode, &im)) != CV_SUCCESS ||
+        (flag = CVodeSStolerances(im.cvode, o.relative_tolerance, o.absolute_tolerance)) !=
+            CV_SUCCESS ||
+        (flag = CVodeSetMaxNumSteps(im.cvode, o.max_internal_steps)) != CV_SUCCESS)
+        return set_message(msg, size, STEWART_ERR_MEMORY, "CVODE setup failed with %s: %s",
+                           flag_name(flag), im.cvode_message),
+               false;
+    if (bdf) {
+        im.matrix = SUNDenseMatrix(kStates, kStates, im.context);
+        im.linear = im.matrix ? SUNLinSol_Dense(im.y, im.matrix, im.context) : nullptr;
+        if (!im.linear ||
+            (flag = CVodeSetLinearSolver(im.cvode, im.linear, im.matrix)) != CVLS_SUCCESS ||
+            (flag = CVodeSetJacFn(im.cvode, dense_jacobian)) != CVLS_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_MEMORY,
+                               "CVODE dense linear solver setup failed"),
+                   false;
+    } else {
+        im.nonlinear = SUNNonlinSol_FixedPoint(im.y, 0, im.context);
+        if (!im.nonlinear ||
+            (flag = CVodeSetNonlinearSolver(im.cvode, im.nonlinear)) != CV_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_MEMORY,
+                               "CVODE fixed-point solver setup failed"),
+                   false;
+    }
+    return true;
+}
+
+stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces,
+                                   double &step_hint, char *msg, size_t size) {
+    IntegratorImpl &im = *impl_;
+    im.forces = &forces;
+    im.fault = LegFault::None;
+    im.fault_leg = -1;
+    im.non_finite = false;
+    im.cvode_message[0] = '\0';
+    double *v = N_VGetArrayPointer(im.y);
+    for (int i = 0; i < kStates; ++i) v[i] = y[i];
+    int flag;
+    sunrealtype t_reached = 0;
+    stats_ = stewart_plant_statistics{};
+    long n;
+    const char *module = im.arkode ? "ARKODE" : "CVODE";
+    if (im.arkode) {
+        // A one-step method restarts for free; the first step tries the size the last step
+        // would have taken next (part of the saved state, so a rollback repeats it exactly).
+        const double first = step_hint > 0 && step_hint < forces.h ? step_hint : forces.h;
+        if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
+            (flag = ERKStepSetStopTime(im.arkode, forces.h)) != ARK_SUCCESS ||
+            (flag = ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
+                               flag_name(flag), im.cvode_message);
+        flag = ERKStepEvolve(im.arkode, forces.h, im.y, &t_reached, ARK_NORMAL);
+        if (ERKStepGetNumSteps(im.arkode, &n) == ARK_SUCCESS) stats_.steps = n;
+        if (ERKStepGetNumErrTestFails(im.arkode, &n) == ARK_SUCCESS) stats_.error_test_failures = n;
+        long explicit_evals = 0, implicit_evals = 0;
+        (void)implicit_evals;
+        if (ERKStepGetNumRhsEvals(im.arkode, &explicit_evals) == ARK_SUCCESS)
+            stats_.rhs_evaluations = explicit_evals;
+        sunrealtype h_last = 0, h_next = 0;
+        if (ERKStepGetLastStep(im.arkode, &h_last) == ARK_SUCCESS) stats_.last_step_size = h_last;
+        if (ERKStepGetCurrentStep(im.arkode, &h_next) == ARK_SUCCESS && flag >= 0)
+            step_hint = h_next;
+        stats_.last_order = im.erk_order;
+    } else {
+        if ((flag = CVodeReInit(im.cvode, 0.0, im.y)) != CV_SUCCESS ||
+            (flag = CVodeSetStopTime(im.cvode, forces.h)) != CV_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
+                               flag_name(flag), im.cvode_message);
+        flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_NORMAL);
+        if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats_.steps = n;
+        if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats_.rhs_evaluations = n;
+        if (CVodeGetNumNonlinSolvIters(im.cvode, &n) == CV_SUCCESS)
+            stats_.nonlinear_iterations = n;
+        if (CVodeGetNumErrTestFails(im.cvode, &n) == CV_SUCCESS) stats_.error_test_failures = n;
+        if (im.linear && CVodeGetNumJacEvals(im.cvode, &n) == CVLS_SUCCESS)
+            stats_.jacobian_evaluations = n;
+        int order = 0;
+        sunrealtype h_last = 0;
+        if (CVodeGetLastOrder(im.cvode, &order) == CV_SUCCESS) stats_.last_order = order;
+        if (CVodeGetLastStep(im.cvode, &h_last) == CV_SUCCESS) stats_.last_step_size = h_last;
+    }
+
+    if (flag < 0) {
+        if (im.fault != LegFault::None)
+            return set_message(msg, size,
+                               im.fault == LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
+                                                                : STEWART_ERR_SINGULAR,
+                               "the motion reaches a singular pose near t + %g s: leg %d %s",
+                               static_cast<double>(t_reached), im.fault_leg + 1,
+                               fault_text(im.fault));
+        if (im.non_finite)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "the accelerations are not finite or above 1e100 near t + %g s "
+                               "(forces or motion out of range)", static_cast<double>(t_reached));
+        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                           "%s failed at t + %g s with %s: %s", module,
+                           static_cast<double>(t_reached), flag_name(flag), im.cvode_message);
+    }
+    double out[kStates];
+    for (int i = 0; i < kStates; ++i) out[i] = v[i];
+    const double norm = std::sqrt(out[3] * out[3] + out[4] * out[4] + out[5] * out[5] +
+                                  out[6] * out[6]);
+    for (int i = 3; i < 7; ++i) out[i] /= norm;
+    for (int i = 0; i < kStates; ++i)
+        if (!std::isfinite(out[i]))
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "the state is not finite after the step (state %d)", i);
+    for (int i = 0; i < kStates; ++i) y[i] = out[i];
+    return STEWART_OK;
+}
+
+}  // namespace fd
+}  // namespace stewart

@@ -1,0 +1,56 @@
+// Forward dynamics, time integration: CVODE or ARKODE on the 13 states (platform origin, unit
+// quaternion, velocity, angular velocity, world frame), restarted at every communication step
+// because the inputs change there.
+#pragma once
+
+#include "platform/forward_dynamics_equations.hpp"
+#include "stewart/stewart_plant.h"
+
+namespace stewart {
+namespace fd {
+
+constexpr int kStates = 13;
+
+// The six forces over one communication step [0, h]: linear between the end values, or cubic
+// Hermite when the end rates are known.
+struct ForceProfile {
+    double h = 1;
+    double start[STEWART_LEGS] = {0}, end[STEWART_LEGS] = {0};
+    double start_rate[STEWART_LEGS] = {0}, end_rate[STEWART_LEGS] = {0};
+    bool hermite = false;
+    // The forces at tau in [0, h].
+    void at(double tau, double force[STEWART_LEGS]) const;
+};
+
+// The platform motion (pose and twist; zero accelerations) of a state vector; the quaternion is
+// normalised on the way.
+PlatformMotion motion_of_state(const double y[kStates]);
+
+struct IntegratorImpl;
+
+// One CVODE instance and its workspaces, made once; advance() allocates nothing.
+class Integrator {
+public:
+    Integrator() = default;
+    Integrator(const Integrator &) = delete;
+    Integrator &operator=(const Integrator &) = delete;
+    ~Integrator();
+    // False (message says why) if SUNDIALS cannot be set up.
+    bool init(const DynamicsModel *model, const stewart_plant_options &options, char *msg,
+              size_t size);
+    // Integrates y over [0, h]. On failure y is unchanged and the message names the cause
+    // (the leg, or the integrator's flag and text). Normalises the quaternion of the result.
+    // step_hint: the first internal step to try (0: the integrator estimates it); on success,
+    // the step the integrator would take next (explicit Runge-Kutta only; CVODE ignores it).
+    stewart_status advance(double y[kStates], const ForceProfile &forces, double &step_hint,
+                           char *msg, size_t size);
+    // Counters of the last advance (the totals are the caller's).
+    const stewart_plant_statistics &statistics() const { return stats_; }
+
+private:
+    IntegratorImpl *impl_ = nullptr;
+    stewart_plant_statistics stats_{};
+};
+
+}  // namespace fd
+}  // namespace stewart

@@ -1,0 +1,376 @@
+// The forward-kinematics C API: input checks, the starts (guess, tracking predictor, last pose,
+// home), the Newton solve, the checks of the pose found, and its rates and accelerations through
+// the leg Jacobian.
+#include "platform/forward_kinematics.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "model.hpp"
+#include "platform/forward_branch.hpp"
+#include "platform/forward_newton.hpp"
+#include "platform/rigid_motion.hpp"
+#include "stewart/stewart_forward.h"
+#include "util/message.hpp"
+
+using stewart::set_message;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+// STEWART_ERR_ARGUMENT naming e.g. "L_dot3" unless all six values are finite (and, for lengths,
+// positive).
+stewart_status check_values(const double *v, const char *name, bool positive, char *msg,
+                            size_t size) {
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        if (!std::isfinite(v[k]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s%d is %g: it must be finite",
+                               name, k + 1, v[k]);
+        // Squares of lengths above 1e150 overflow; no platform is that large.
+        if (positive && !(v[k] > 0 && v[k] < 1e150))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "%s%d = %g m: an actuator length must be > 0 and < 1e150 m", name,
+                               k + 1, v[k]);
+    }
+    return STEWART_OK;
+}
+
+// Angular velocity (world) to (roll, pitch, yaw) rates: the inverse of E = [Rz Ry e_x, Rz e_y,
+// e_z]. False at pitch = +-90 deg, where roll and yaw rates are not defined.
+bool angle_rates(const double q[6], const Eigen::Vector3d &omega, double out[3]) {
+    const double sp = std::sin(q[4]), cp = std::cos(q[4]);
+    const double sy = std::sin(q[5]), cy = std::cos(q[5]);
+    if (!(std::fabs(cp) > 1e-12)) return false;
+    out[0] = (cy * omega.x() + sy * omega.y()) / cp;
+    out[1] = -sy * omega.x() + cy * omega.y();
+    out[2] = omega.z() + sp * out[0];
+    return true;
+}
+
+// The inverse side's leg kinematics at pose (q, q_dot) with zero pose accelerations.
+stewart_status legs_at(const stewart_model &m, const double q[6], const double q_dot[6],
+                       stewart::LegKinematics &legs, char *msg, size_t size) {
+    stewart_pose pose{};
+    std::memcpy(pose.q, q, sizeof pose.q);
+    if (q_dot) std::memcpy(pose.q_dot, q_dot, sizeof pose.q_dot);
+    return stewart::leg_kinematics(m.geometry, stewart::rigid_motion(pose), legs, msg, size);
+}
+
+// J^-1 v with J = (n_k, (R b_k x n_k)/c) per row: (translation, c * rotation) to pose
+// coordinates (x, y, z, angle rates). False at pitch = +-90 deg.
+bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double q[6],
+                           const stewart::Vector6 &v, double out[6]) {
+    const stewart::Vector6 w = J.inverse_transposed.transpose() * v;
+    for (int i = 0; i < 3; ++i) out[i] = w[i];
+    return angle_rates(q, w.tail<3>() / c, out + 3);
+}
+
+// The first reason in the STEWART_BRANCH_* bits, as a sentence.
+const char *branch_reason(int branch) {
+    if (branch & STEWART_BRANCH_BELOW_BASE)
+        return "a leg leaves its base Cardan downward (the platform mirrored below the base)";
+    if (branch & STEWART_BRANCH_PLATFORM_CARDAN)
+        return "a leg reaches its platform Cardan from above the platform";
+    if (branch & STEWART_BRANCH_FLIPPED) return "the platform faces down";
+    if (branch & STEWART_BRANCH_SINGULARITY)
+        return "the leg Jacobian's determinant has the other sign than at home (a singular pose "
+               "lies in between)";
+    return "a platform point jumped farther than the stroke since the last pose";
+}
+
+// A STEWART_START_* for messages.
+const char *start_name(int start) {
+    static const char *const names[4] = {"home pose", "guess", "tracking predictor", "last pose"};
+    return names[start];
+}
+
+}  // namespace
+
+extern "C" void stewart_forward_options_default(stewart_forward_options *o) {
+    if (!o) return;
+    stewart_options inverse;
+    stewart_options_default(&inverse);  // the same condition thresholds as the inverse side
+    o->tolerance = inverse.tolerance;
+    o->max_iterations = inverse.max_iterations;
+    o->warn_condition = inverse.warn_condition;
+    o->singular_condition = inverse.singular_condition;
+}
+
+extern "C" stewart_status stewart_forward_options_check(const stewart_forward_options *o,
+                                                        char *msg, size_t size) {
+    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
+    // The same fields, the same limits and messages as the inverse side's options.
+    stewart_options inverse;
+    stewart_options_default(&inverse);
+    inverse.tolerance = o->tolerance;
+    inverse.max_iterations = o->max_iterations;
+    inverse.warn_condition = o->warn_condition;
+    inverse.singular_condition = o->singular_condition;
+    return stewart_options_check(&inverse, msg, size);
+}
+
+extern "C" void stewart_forward_reset(stewart_data *d) {
+    if (d) d->forward.reset();
+}
+
+namespace {
+
+// A converged start: the pose and what the checks and the outputs need there.
+struct Found {
+    double q[6];
+    int start = 0;
+    int branch = 0;
+    double jump = 0;
+    Eigen::Matrix3d rotation;
+    stewart::LegKinematics legs;  // arm, axis, length at q
+    stewart::LegJacobian jacobian;
+    stewart::Matrix36 points;
+    stewart::Vector6 residual;
+};
+
+// The start pose of attempt `start`.
+void start_pose(const stewart_model &m, const stewart::ForwardState &f, int start, double time,
+                const double *guess, double q[6]) {
+    switch (start) {
+        case STEWART_START_GUESS:
+            std::memcpy(q, guess, 6 * sizeof(double));
+            return;
+        case STEWART_START_PREDICTOR: {
+            const double dt = time - f.time;
+            for (int i = 0; i < 6; ++i) {
+                double rate = f.q_dot[i];
+                if (!f.has_rates) rate = (f.q[i] - f.previous_q[i]) / (f.time - f.previous_time);
+                q[i] = f.q[i] + dt * rate + (f.has_accels ? 0.5 * dt * dt * f.q_ddot[i] : 0.0);
+            }
+            return;
+        }
+        case STEWART_START_LAST:
+            std::memcpy(q, f.q, 6 * sizeof(double));
+            return;
+        default:
+            for (int i = 0; i < 6; ++i) q[i] = 0;
+            q[2] = m.params.home_height;
+    }
+}
+
+// What depends on the model only, worked out once per data block: the sign of the leg
+// Jacobian's determinant at home and the bounds on length differences.
+stewart_status prepare(const stewart_model &m, stewart::ForwardState &f, char *msg, size_t size) {
+    if (f.working_sign != 0) return STEWART_OK;
+    double home[6];
+    start_pose(m, f, STEWART_START_HOME, 0, nullptr, home);
+    stewart::LegKinematics legs;
+    stewart_status s = legs_at(m, home, nullptr, legs, msg, size);
+    if (s != STEWART_OK) return s;
+    stewart::LegJacobian J;
+    stewart::leg_jacobian(m.geometry, legs, J);
+    f.working_sign = stewart::jacobian_sign(J.transposed);
+    if (f.working_sign == 0)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the leg Jacobian is singular at the home pose: the working assembly "
+                           "mode is not defined");
+    f.pair_bounds = stewart::length_pair_bounds(m.geometry);
+    return STEWART_OK;
+}
+
+// The legs, Jacobian and checks at the Newton solution (the legs at its last iterate):
+// STEWART_ERR_SINGULAR if the pose is singular for the inverse side's threshold or the lengths
+// do not determine it, else OK with the branch bits set.
+stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
+                       const stewart_forward_options &o, const stewart::LegsAt &at,
+                       bool tracking, Found &x, char *msg, size_t size) {
+    const stewart::PlatformGeometry &g = m.geometry;
+    x.rotation = at.rotation;
+    x.legs.arm = at.arm;
+    x.legs.axis = at.axis;
+    x.legs.length = at.length;
+    x.residual = at.residual;
+    stewart::leg_jacobian(g, x.legs, x.jacobian);
+    const double condition = x.jacobian.condition;
+    stewart_status s = stewart::check_condition(condition, o.singular_condition, msg, size);
+    if (s != STEWART_OK) return s;
+    // Kantorovich: Newton's answer is the unique pose near it only if h = beta^2 gamma |F| <=
+    // 1/2 (beta = |J^-1|, gamma the Lipschitz constant of J, about 1/platform radius, |F| up to
+    // the tolerance). Above that, lengths known to the tolerance do not fix the pose: at the
+    // thesis' yaw = 90 deg Newton stops 5.7e-7 rad short, at a condition of only 4e6.
+    const double h = condition * condition * o.tolerance / g.characteristic_length;
+    if (h > 0.5)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "these lengths are at (or next to) a singular pose: leg Jacobian "
+                           "condition number %g, so lengths known to the tolerance %g m do not "
+                           "determine the pose (condition^2 tolerance / platform_radius = %g > "
+                           "0.5)", condition, o.tolerance, h);
+    x.points = at.arm;
+    x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
+    x.branch = stewart::assembly_branch(g, x.rotation, x.points, x.jacobian.transposed,
+                                        f.working_sign);
+    if (tracking) {
+        x.jump = (x.points - f.points).colwise().norm().maxCoeff();
+        if (x.jump > m.params.stroke_max - m.params.stroke_min) x.branch |= STEWART_BRANCH_JUMP;
+    }
+    return STEWART_OK;
+}
+
+// Rates and accelerations of the pose x through its leg Jacobian; false (message) at pitch =
+// +-90 deg or if anything overflows.
+stewart_status derivatives(const stewart_model &m, const Found &x, const double *rates,
+                           const double *accels, stewart_forward_result &out, char *msg,
+                           size_t size) {
+    const double c = m.geometry.characteristic_length;
+    if (rates &&
+        !pose_from_twist_solve(x.jacobian, c, out.pose.q,
+                               Eigen::Map<const stewart::Vector6>(rates), out.pose.q_dot))
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
+                           "defined there", out.pose.q[4]);
+    if (accels) {
+        // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
+        // alone: the leg accelerations at zero pose accelerations.
+        stewart::LegKinematics moving;
+        stewart_status s = legs_at(m, out.pose.q, out.pose.q_dot, moving, msg, size);
+        if (s != STEWART_OK) return s;
+        const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
+        pose_from_twist_solve(x.jacobian, c, out.pose.q, rhs, out.pose.q_ddot);
+    }
+    const double *groups[3] = {out.pose.q, out.pose.q_dot, out.pose.q_ddot};
+    for (const double *v : groups)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(v[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "the pose found overflows (%s is %g): the inputs are out of "
+                                   "range", kPoseNames[i], v[i]);
+    return STEWART_OK;
+}
+
+// The accepted pose becomes the data block's last pose.
+void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_result &out,
+              double time, bool from_guess, bool rates, bool accels) {
+    f.has_previous = f.has_pose && !from_guess;  // a guess starts a new history
+    f.previous_time = f.time;
+    std::memcpy(f.previous_q, f.q, sizeof f.q);
+    f.has_pose = true;
+    f.time = time;
+    f.has_rates = rates;
+    f.has_accels = accels;
+    std::memcpy(f.q, out.pose.q, sizeof f.q);
+    std::memcpy(f.q_dot, out.pose.q_dot, sizeof f.q_dot);
+    std::memcpy(f.q_ddot, out.pose.q_ddot, sizeof f.q_ddot);
+    f.points = x.points;
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_data *d,
+                                                const stewart_forward_options *o, double time,
+                                                const double lengths[STEWART_LEGS],
+                                                const double rates[STEWART_LEGS],
+                                                const double accels[STEWART_LEGS],
+                                                const double guess[6],
+                                                stewart_forward_result *result) {
+    if (!m || !d || !o || !lengths || !result || d->model != m) {
+        if (d) set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "NULL argument, or a data block of another model");
+        return STEWART_ERR_ARGUMENT;
+    }
+    char *msg = d->message;
+    const size_t size = sizeof d->message;
+    stewart_status s = stewart_forward_options_check(o, msg, size);
+    if (s != STEWART_OK) return s;
+    if (!std::isfinite(time))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT, "time is %g: it must be finite", time);
+    if ((s = check_values(lengths, "L", true, msg, size)) != STEWART_OK) return s;
+    if (rates && (s = check_values(rates, "L_dot", false, msg, size)) != STEWART_OK) return s;
+    if (accels && !rates)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "the accelerations L_ddot need the rates L_dot (NULL given)");
+    if (accels && (s = check_values(accels, "L_ddot", false, msg, size)) != STEWART_OK) return s;
+    if (guess)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(guess[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "guess %s is %g: it must be finite", kPoseNames[i], guess[i]);
+    stewart::ForwardState &f = d->forward;
+    if (!f.newton || !f.newton->ok())
+        return set_message(msg, size, STEWART_ERR_MEMORY,
+                           "the forward solver of this data block could not be allocated");
+    if ((s = prepare(*m, f, msg, size)) != STEWART_OK) return s;
+    if ((s = stewart::check_length_pairs(f.pair_bounds, lengths, msg, size)) != STEWART_OK)
+        return s;
+
+    // The starts, in order: the guess alone; or, tracking, the predictor then the last pose; or
+    // home.
+    int starts[2], n_starts = 0;
+    if (guess) {
+        starts[n_starts++] = STEWART_START_GUESS;
+    } else if (f.has_pose) {
+        if (time > f.time && (f.has_rates || (f.has_previous && f.time > f.previous_time)))
+            starts[n_starts++] = STEWART_START_PREDICTOR;
+        starts[n_starts++] = STEWART_START_LAST;
+    } else {
+        starts[n_starts++] = STEWART_START_HOME;
+    }
+    const bool tracking = !guess && f.has_pose;
+
+    Found found[2];  // per start; the first on the working mode wins, else the first converged
+    int n_found = 0, chosen = -1, iterations = 0;
+    stewart_status last_error = STEWART_OK;
+    for (int a = 0; a < n_starts && chosen < 0; ++a) {
+        Found &x = found[n_found];
+        double start_q[6];
+        start_pose(*m, f, starts[a], time, guess, start_q);
+        std::memcpy(x.q, start_q, sizeof start_q);
+        stewart::NewtonStats stats;
+        last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, x.q,
+                                     stats, msg, size);
+        iterations += stats.iterations;
+        if (last_error == STEWART_OK)
+            last_error = examine(*m, f, *o, f.newton->last(), tracking, x, msg, size);
+        else if (std::isfinite(stats.residual) &&  // Newton creeping toward a singular pose
+                 examine(*m, f, *o, f.newton->last(), tracking, x, msg, size) ==
+                     STEWART_ERR_SINGULAR)
+            last_error = STEWART_ERR_SINGULAR;
+        if (last_error != STEWART_OK) continue;
+        // Angles within half a turn of the start's: the same rotation, the continuous angles.
+        for (int i = 3; i < 6; ++i)
+            x.q[i] = start_q[i] + std::remainder(x.q[i] - start_q[i], 2 * kPi);
+        x.start = starts[a];
+        if (x.branch == 0) chosen = n_found;
+        ++n_found;
+    }
+    if (n_found == 0) return last_error;  // the message is the last attempt's
+    if (chosen < 0) chosen = 0;
+    Found &x = found[chosen];
+
+    // One more Newton correction with the exact Jacobian the rates need anyway: the pose then
+    // sits at rounding level even when KINSOL stopped just under the tolerance.
+    stewart_forward_result out{};
+    double step[6];
+    std::memcpy(out.pose.q, x.q, sizeof x.q);
+    if (pose_from_twist_solve(x.jacobian, m->geometry.characteristic_length, x.q, x.residual,
+                              step))
+        for (int i = 0; i < 6; ++i) out.pose.q[i] -= step[i];
+    if ((s = derivatives(*m, x, rates, accels, out, msg, size)) != STEWART_OK) return s;
+    out.iterations = iterations;
+    out.residual = x.residual.cwiseAbs().maxCoeff();
+    out.condition = x.jacobian.condition;
+    out.branch = x.branch;
+    out.jump = x.jump;
+    out.start = x.start;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (lengths[k] < m->params.stroke_min || lengths[k] > m->params.stroke_max)
+            out.warnings |= STEWART_WARN_STROKE;
+    if (out.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
+    *result = out;
+    if (x.branch != 0) {
+        result->warnings |= STEWART_WARN_OTHER_BRANCH;
+        return set_message(msg, size, STEWART_ERR_OTHER_BRANCH,
+                           "the pose found from the %s is on another assembly mode: %s (z = %g "
+                           "m); not taken as the answer", start_name(x.start),
+                           branch_reason(x.branch), x.q[2]);
+    }
+    remember(f, x, out, time, guess != nullptr, rates != nullptr, accels != nullptr);
+    msg[0] = '\0';
+    return STEWART_OK;
+}

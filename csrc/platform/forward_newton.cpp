@@ -1,0 +1,229 @@
+#include "platform/forward_newton.hpp"
+
+#include <kinsol/kinsol.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/kinsol_custom.hpp"
+#include "platform/forward_lu.hpp"
+#include "platform/rigid_motion.hpp"
+#include "util/message.hpp"
+
+namespace stewart {
+
+namespace {
+
+constexpr int kN = STEWART_LEGS;  // six lengths, six pose coordinates
+
+// The legs at pose q and the residual L(q) - target, into c.
+void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[kN],
+                   LegsAt &c) {
+    std::copy(q, q + 6, c.q);
+    c.valid = true;
+    c.rotation = rotation_from_rpy(q[3], q[4], q[5]);
+    const Eigen::Vector3d p(q[0], q[1], q[2]);
+    c.arm.noalias() = c.rotation * g.platform_points;
+    for (int k = 0; k < kN; ++k) {
+        const Eigen::Vector3d d = p + c.arm.col(k) - g.base_points.col(k);
+        c.length[k] = d.norm();
+        c.axis.col(k) = d / c.length[k];
+        c.residual[k] = c.length[k] - target[k];
+    }
+}
+
+// Row k of dL/dq: (n_k, (R b_k x n_k)^T E), E mapping (roll, pitch, yaw) rates to the angular
+// velocity: its columns are Rz Ry e_x (= R e_x), Rz e_y and e_z.
+void assemble_jacobian(const LegsAt &c, double yaw, double jac[kN * 6]) {
+    const Eigen::Vector3d e_roll = c.rotation.col(0);
+    const Eigen::Vector3d e_pitch(-std::sin(yaw), std::cos(yaw), 0.0);
+    for (int k = 0; k < kN; ++k) {
+        const Eigen::Vector3d n = c.axis.col(k);
+        const Eigen::Vector3d m = c.arm.col(k).cross(n);
+        double *row = jac + 6 * k;
+        row[0] = n[0];
+        row[1] = n[1];
+        row[2] = n[2];
+        row[3] = m.dot(e_roll);
+        row[4] = m.dot(e_pitch);
+        row[5] = m[2];
+    }
+}
+
+}  // namespace
+
+struct ForwardNewton::Impl {
+    SUNContext context = nullptr;
+    N_Vector u = nullptr, scale = nullptr, f = nullptr;
+    SUNMatrix matrix = nullptr;
+    SUNLinearSolver linear = nullptr;
+    void *kinsol = nullptr;
+    char kinsol_message[STEWART_MESSAGE_SIZE] = "";
+    // Per solve: the problem.
+    const PlatformGeometry *geometry = nullptr;
+    const double *target = nullptr;
+    // The last residual evaluated, and the legs there.
+    LegsAt cache;
+    double last_residual = 0;
+    int worst_leg = 0;
+    // The Jacobian and its LU factors, row-major.
+    double jac[kN * 6], lu[kN * 6];
+    int pivot[kN];
+};
+
+namespace {
+
+using Impl = ForwardNewton::Impl;
+
+// F(u) into f; returns its max-norm (INFINITY if not finite) and records the worst leg.
+double evaluate_residual(Impl &im, const double *u, double *f) {
+    // KINSOL evaluates its start again: the legs there are known already.
+    if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
+        evaluate_legs(*im.geometry, u, im.target, im.cache);
+    double worst = 0;
+    im.worst_leg = 0;
+    for (int k = 0; k < kN; ++k) {
+        f[k] = im.cache.residual[k];
+        if (worst == INFINITY) continue;
+        // A leg of (nearly) zero length has no axis: no Jacobian there.
+        if (!std::isfinite(f[k]) || !(im.cache.length[k] > im.geometry->min_length))
+            worst = INFINITY, im.worst_leg = k;
+        else if (std::fabs(f[k]) > worst)
+            worst = std::fabs(f[k]), im.worst_leg = k;
+    }
+    im.last_residual = worst;
+    return worst;
+}
+
+// KINSOL's residual callback; 1 (recoverable: KINSOL steps shorter) if not finite.
+int residual_fn(N_Vector u, N_Vector f, void *user) {
+    Impl &im = *static_cast<Impl *>(user);
+    return std::isfinite(evaluate_residual(im, N_VGetArrayPointer(u), N_VGetArrayPointer(f))) ? 0
+                                                                                                : 1;
+}
+
+// KINSOL's Jacobian callback: the analytic dL/dq at u into Impl::jac.
+int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector) {
+    Impl &im = *static_cast<Impl *>(user);
+    const double *ud = N_VGetArrayPointer(u);
+    if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q))
+        evaluate_legs(*im.geometry, ud, im.target, im.cache);
+    assemble_jacobian(im.cache, ud[5], im.jac);
+    for (int i = 0; i < kN * 6; ++i)
+        if (!std::isfinite(im.jac[i])) return 1;
+    return 0;
+}
+
+// The custom linear solver (core/kinsol_custom): 6 x 6 LU with partial pivoting.
+// Factors the Jacobian.
+int solver_setup(SUNLinearSolver S, SUNMatrix) {
+    Impl &im = *static_cast<Impl *>(S->content);
+    std::copy(im.jac, im.jac + kN * 6, im.lu);
+    return lu6_factor(im.lu, im.pivot) ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
+}
+// x = J^-1 b with the factors.
+int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
+    Impl &im = *static_cast<Impl *>(S->content);
+    double *xd = N_VGetArrayPointer(x);
+    std::copy(N_VGetArrayPointer(b), N_VGetArrayPointer(b) + kN, xd);
+    lu6_solve(im.lu, im.pivot, xd);
+    return SUNLS_SUCCESS;
+}
+}  // namespace
+
+ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
+    if (!impl_) return;
+    Impl &im = *impl_;
+    if (SUNContext_Create(nullptr, &im.context) != 0) return;
+    im.u = N_VNew_Serial(kN, im.context);
+    im.scale = N_VNew_Serial(kN, im.context);
+    im.f = N_VNew_Serial(kN, im.context);
+    if (!im.u || !im.scale || !im.f) return;
+    N_VConst(1.0, im.scale);
+    if (!mbs::make_custom_linear_solver(im.context, &im, solver_setup, solver_solve, im.matrix,
+                                        im.linear))
+        return;
+    im.kinsol = KINCreate(im.context);
+    if (!im.kinsol) return;
+    // Exact Newton: a fresh Jacobian every iteration; no step-size stop (the residual decides).
+    ok_ = KINSetErrHandlerFn(im.kinsol, mbs::keep_kinsol_message, im.kinsol_message) == KIN_SUCCESS &&
+          KINInit(im.kinsol, residual_fn, im.u) == KIN_SUCCESS &&
+          KINSetUserData(im.kinsol, &im) == KIN_SUCCESS &&
+          KINSetLinearSolver(im.kinsol, im.linear, im.matrix) == KINLS_SUCCESS &&
+          KINSetJacFn(im.kinsol, jacobian_fn) == KINLS_SUCCESS &&
+          KINSetMaxSetupCalls(im.kinsol, 1) == KIN_SUCCESS &&
+          KINSetScaledStepTol(im.kinsol, 1e-300) == KIN_SUCCESS;
+}
+
+const LegsAt &ForwardNewton::last() const { return impl_->cache; }
+
+ForwardNewton::~ForwardNewton() {
+    if (!impl_) return;
+    Impl &im = *impl_;
+    if (im.kinsol) KINFree(&im.kinsol);
+    if (im.linear) SUNLinSolFree(im.linear);
+    if (im.matrix) SUNMatDestroy(im.matrix);
+    if (im.u) N_VDestroy(im.u);
+    if (im.scale) N_VDestroy(im.scale);
+    if (im.f) N_VDestroy(im.f);
+    if (im.context) SUNContext_Free(&im.context);
+    delete impl_;
+}
+
+stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double target[kN],
+                                    double tolerance, int max_iterations, double q[6],
+                                    NewtonStats &stats, char *msg, size_t size) {
+    Impl &im = *impl_;
+    im.geometry = &g;
+    im.target = target;
+    im.cache.valid = false;
+    stats = NewtonStats();
+    int flag;
+    if ((flag = KINSetFuncNormTol(im.kinsol, tolerance)) != KIN_SUCCESS ||
+        (flag = KINSetNumMaxIters(im.kinsol, max_iterations)) != KIN_SUCCESS)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "KINSOL rejected tolerance = %g or max_iterations = %d (flag %d)",
+                           tolerance, max_iterations, flag);
+    double *u = N_VGetArrayPointer(im.u);
+    std::copy(q, q + 6, u);
+    // KINSOL's own first test (the start accepted if its residual is <= 0.01 tolerance), made
+    // here so that a measurement that did not change costs no KINSOL set-up.
+    evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+    long iterations = 0;
+    if (im.last_residual <= 0.01 * tolerance) {
+        flag = KIN_INITIAL_GUESS_OK;
+    } else {
+        im.kinsol_message[0] = '\0';
+        flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
+        const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        if (stats_flag != KIN_SUCCESS)
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
+        // The residual kept is that of the last point evaluated: make it u's.
+        if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
+            evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+    }
+    stats.iterations = static_cast<int>(iterations);
+    stats.residual = im.last_residual;
+    stats.worst_leg = im.worst_leg;
+    stats.flag = flag;
+    bool finite = std::isfinite(im.last_residual);
+    for (int i = 0; i < 6 && finite; ++i) finite = std::isfinite(u[i]);
+    if (finite) std::copy(u, u + 6, q);
+    if (flag >= 0 && finite && im.last_residual <= tolerance) return STEWART_OK;
+    if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the length Jacobian is singular at a Newton iterate (KINSOL flag %d "
+                           "after %ld iterations)", flag, iterations);
+    return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                       "Newton did not converge: leg %d is still %g m off its measured length "
+                       "after %ld iterations (tolerance %g m; KINSOL flag %d%s%s)",
+                       im.worst_leg + 1, im.last_residual, iterations, tolerance, flag,
+                       im.kinsol_message[0] ? ": " : "", im.kinsol_message);
+}
+
+}  // namespace stewart

@@ -1,0 +1,47 @@
+/*
+ * The inverse-dynamics model's identity and sizes, read by the runtime (fmu/runtime) when it is
+ * compiled for this model: identifier, GUID, the bound on value references, the texts of the
+ * model description, and the model's own parts of an instance (plain values that an FMU state
+ * copies bit for bit, and the solver resources that it saves through model_save).
+ */
+#ifndef STEWART_FMU_CONFIG_H
+#define STEWART_FMU_CONFIG_H
+
+#include "stewart/stewart.h"
+/* The library's parameter and option tables: variables.def expands them (no parameter is
+ * listed twice). */
+#include "stewart/stewart_table.h"
+
+#define FMU_MODEL_IDENTIFIER "StewartPlatform"
+#define FMU_GUID "{5d0f6a3e-9b1c-4c2e-a7f4-3e8b2c7d1a04}"
+/* Every value reference is below this bound (checked at compile time in variables.c). */
+#define FMU_NVR 301
+
+#define FMU_MODEL_DESCRIPTION_TEXT                                                              \
+    "Stewart platform inverse kinematics and inverse dynamics: actuator lengths, rates, "       \
+    "accelerations and forces for a prescribed platform pose"
+#define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.1\""
+/* FMI 2 canInterpolateInputs: the model takes input derivatives (model_set_input_derivatives). */
+#define FMU_CAN_INTERPOLATE_INPUTS 1
+
+/* The model's plain values: part of every FMU state, copied and serialised as bytes. */
+typedef struct model_values {
+    int n_history;             /* poses committed at earlier communication points (0..2) */
+    double history_t[2];       /* [0] older, [1] newer */
+    double history_q[2][6];
+    int input_derivatives;     /* fmi2SetRealInputDerivatives called since the last step */
+    int solve_status;          /* fmu_status of the solve the outputs come from */
+    int advance_discarded;     /* the outputs stand after a Taylor advance that was discarded */
+} model_values;
+
+/* The model's resources: built at the end of initialisation, never part of a state's plain
+ * bytes (the solver data block travels through model_save / model_load). */
+typedef struct model_resources {
+    stewart_model *model;      /* built from the parameters when initialisation ends */
+    stewart_data *data;
+    stewart_params params;     /* the parameters `model` was built from */
+    stewart_options options;
+    char message[2 * STEWART_MESSAGE_SIZE];
+} model_resources;
+
+#endif

@@ -1,0 +1,355 @@
+/*
+ * The inverse-dynamics model on the FMU runtime: the pose inputs (and their derivatives, given or
+ * by finite differences) go to stewart_solve; its output fills the output variables. The step
+ * rules: hold the inputs over a step, or advance them along their Taylor expansion (derivatives =
+ * 1 or FMI 2 input derivatives). Library statuses map onto FMU statuses and the status output.
+ */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "logging.h"
+#include "model.h"
+
+/* ---------------------------------------------------------------- values <-> library */
+
+void model_start_values(fmu_values *v) {
+    stewart_params p;
+    stewart_options o;
+    stewart_params_default(&p);
+    stewart_options_default(&o);
+#define FMU_INPUT(vr, id, name, start, unit, row, col, desc) v->real[vr] = start;
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
+#define FMU_OUTPUT_INT(vr, id, name, desc) v->integer[vr] = 0;
+#define FMU_OPTION_INT(vr, id, name, start, min, max, desc) v->integer[vr] = start;
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) v->real[vr] = o.field;
+#define FMU_PARAM(vr, id, name, field, unit, display, desc) v->real[vr] = p.field;
+#define FMU_INDEPENDENT(vr, id, name, unit, desc) v->real[vr] = 0.0;
+#include "variables.def"
+#ifdef STEWART_PARAM_TABLE
+    v->integer[VR_fidelity] = STEWART_FULL; /* the FMU's default; the library's is massless */
+#endif
+    v->integer[VR_status] = 3; /* nothing solved yet */
+    memset(&v->model, 0, sizeof v->model);
+}
+
+void inverse_params_from_values(const fmu_values *v, stewart_params *p) {
+    stewart_params_default(p);
+#define FMU_PARAM(vr, id, name, field, unit, display, desc) p->field = v->real[vr];
+#include "variables.def"
+}
+
+void inverse_options_from_values(const fmu_values *v, stewart_options *o) {
+    stewart_options_default(o);
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) o->field = v->real[vr];
+#include "variables.def"
+    o->fidelity = (stewart_fidelity)v->integer[VR_fidelity];
+    o->max_iterations = v->integer[VR_max_iterations];
+    o->modified_newton = v->integer[VR_modified_newton];
+}
+
+static void outputs_to_values(fmu_values *v, const stewart_output *out) {
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out->field;
+#include "variables.def"
+    v->integer[VR_newton_iterations] = out->iterations;
+}
+
+/* ---------------------------------------------------------------- parameters */
+
+fmu_status model_apply_parameters(fmu_instance *inst) {
+    const fmu_values *v = &inst->v;
+    model_resources *r = &inst->res;
+    if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "invalid parameter derivatives = %d: it must be 0 (finite differences) or 1 "
+                "(the *_dot and *_ddot inputs)", (int)v->integer[VR_derivatives]);
+        return FMU_ERROR;
+    }
+    stewart_options o;
+    inverse_options_from_values(v, &o);
+    if (stewart_options_check(&o, r->message, sizeof r->message) != STEWART_OK) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
+        return FMU_ERROR;
+    }
+    stewart_params p;
+    inverse_params_from_values(v, &p);
+    if (!r->model || memcmp(&p, &r->params, sizeof p) != 0) {
+        stewart_model *m = stewart_model_create(&p, r->message, sizeof r->message);
+        if (!m) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
+            return FMU_ERROR;
+        }
+        stewart_data *d = stewart_data_create(m);
+        if (!d) {
+            stewart_model_free(m);
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "out of memory creating the solver data");
+            return FMU_ERROR;
+        }
+        stewart_data_free(r->data);
+        stewart_model_free(r->model);
+        r->model = m;
+        r->data = d;
+        r->params = p;
+        fmu_log(inst, FMU_OK, LOG_EVENTS, "model built from the parameters (fidelity %d, "
+                "derivatives %d)", (int)v->integer[VR_fidelity], (int)v->integer[VR_derivatives]);
+    }
+    r->options = o;
+    return FMU_OK;
+}
+
+void model_reset(fmu_instance *inst) {
+    if (inst->res.data) stewart_data_reset(inst->res.data);
+}
+
+void model_free(fmu_instance *inst) {
+    stewart_data_free(inst->res.data);
+    stewart_model_free(inst->res.model);
+    inst->res.data = NULL;
+    inst->res.model = NULL;
+}
+
+/* ---------------------------------------------------------------- the solve */
+
+static int taylor_mode(const fmu_values *v) {
+    return v->integer[VR_derivatives] == 1 || v->model.input_derivatives;
+}
+
+/* The pose at `time`: inputs, and derivatives from the inputs or by finite differences of the
+ * poses at earlier communication points (quadratic through the last three poses; with only one
+ * earlier pose, the chord through both and zero acceleration; none: at rest). Assuming rest at the
+ * first point instead would give a motion already under way an acceleration 2 v / h: unbounded as
+ * h shrinks. */
+static void current_pose(const fmu_values *v, double time, stewart_pose *pose) {
+    const model_values *m = &v->model;
+    for (int i = 0; i < 6; ++i) pose->q[i] = v->real[VR_x + i];
+    if (taylor_mode(v)) {
+        for (int i = 0; i < 6; ++i) {
+            pose->q_dot[i] = v->real[VR_x_dot + i];
+            pose->q_ddot[i] = v->real[VR_x_ddot + i];
+        }
+        return;
+    }
+    /* Divided differences, so that a coordinate that does not move has zero rate and acceleration
+     * however small the steps (the Lagrange weights overflow below h ~ 1e-154 and gave inf * 0). */
+    if (m->n_history == 0) {
+        for (int i = 0; i < 6; ++i) pose->q_dot[i] = pose->q_ddot[i] = 0.0;
+    } else if (m->n_history == 1) {
+        const double h = time - m->history_t[1];
+        for (int i = 0; i < 6; ++i) {
+            pose->q_dot[i] = (pose->q[i] - m->history_q[1][i]) / h;
+            pose->q_ddot[i] = 0.0;
+        }
+    } else {
+        const double h1 = m->history_t[1] - m->history_t[0], h2 = time - m->history_t[1];
+        for (int i = 0; i < 6; ++i) {
+            const double q0 = m->history_q[0][i], q1 = m->history_q[1][i], q2 = pose->q[i];
+            const double d1 = (q1 - q0) / h1, d2 = (q2 - q1) / h2;
+            const double dd = (d2 - d1) / (h1 + h2); /* q[t0, t1, t2] */
+            pose->q_dot[i] = d2 + h2 * dd;
+            pose->q_ddot[i] = 2.0 * dd;
+        }
+    }
+}
+
+static fmu_status map_solve_error(stewart_status s) {
+    switch (s) {
+        case STEWART_ERR_ARGUMENT:
+        case STEWART_ERR_SINGULAR:
+        case STEWART_ERR_UNREACHABLE:
+        case STEWART_ERR_NOT_CONVERGED:
+            return FMU_DISCARD;
+        default:
+            return FMU_ERROR;
+    }
+}
+
+/* The value reference of the first input that is not finite, or -1. */
+static int first_nonfinite_input(const fmu_values *v) {
+    for (unsigned vr = VR_x; vr <= VR_yaw_ddot; ++vr)
+        if (!isfinite(v->real[vr])) return (int)vr;
+    return -1;
+}
+
+/* Not solved: status 3, the outputs keep their last valid values; the result stands for the
+ * current inputs until they change. */
+static fmu_status not_solved(fmu_values *v, fmu_status s) {
+    v->integer[VR_status] = 3;
+    v->outputs_current = 1;
+    v->model.solve_status = s;
+    return s;
+}
+
+/* A pose coordinate beyond this cannot be told from overflow in a difference quotient (its
+ * square, and any quotient by a step below 1, overflow): the input is the problem, not the step. */
+static const double kHugeCoordinate = 1.3407807929942596e154; /* sqrt(DBL_MAX) */
+
+/* Finite differences that are not finite for coordinate i: names the input when it is absurdly
+ * large, else the steps (too small for this motion). */
+static fmu_status discard_finite_differences(fmu_instance *inst, double time,
+                                             const stewart_pose *pose, int i) {
+    const model_values *m = &inst->v.model;
+    const char *name = fmu_variable_by_vr(VR_x + i)->name;
+    const int rate_bad = !isfinite(pose->q_dot[i]);
+    double largest = fabs(pose->q[i]);
+    for (int j = 2 - m->n_history; j < 2; ++j) largest = fmax(largest, fabs(m->history_q[j][i]));
+    if (largest > kHugeCoordinate)
+        fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                "t = %.17g: input %s = %g is too large: no finite-difference %s of it is finite "
+                "(a pose coordinate must stay below %g). Outputs keep their last valid values",
+                time, name, pose->q[i], rate_bad ? "rate" : "acceleration", kHugeCoordinate);
+    else
+        fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                "t = %.17g: the finite-difference %s of %s (%g, from the poses at the last "
+                "communication points, the last %g s ago) is not finite: the steps are too "
+                "small for this motion; use derivatives = 1 or larger steps. Outputs keep "
+                "their last valid values",
+                time, rate_bad ? "rate" : "acceleration", name,
+                rate_bad ? pose->q_dot[i] : pose->q_ddot[i], time - m->history_t[1]);
+    return not_solved(&inst->v, FMU_DISCARD);
+}
+
+/* Logs the legs the library flags as outside their stroke. */
+static void warn_stroke(const fmu_instance *inst, double time, const stewart_output *out) {
+    const stewart_params *p = &inst->res.params;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (out->stroke_legs & (1 << k))
+            fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                    "t = %.17g: L[%d] = %g m is outside the stroke [%g, %g] m", time, k + 1,
+                    out->length[k], p->stroke_min, p->stroke_max);
+}
+
+/* Solves for the current inputs at `time` unless the outputs already belong to them. OK /
+ * Warning (status 1 or 2) / Discard (status 3, outputs keep their last valid values) / Error
+ * (unsupported fidelity, memory). */
+static fmu_status solve_at(fmu_instance *inst, double time) {
+    fmu_values *v = &inst->v;
+    model_resources *r = &inst->res;
+    if (v->outputs_current) return v->model.solve_status;
+    v->model.advance_discarded = 0;
+    /* Every input must be finite, used or not. */
+    const int bad = first_nonfinite_input(v);
+    if (bad >= 0) {
+        fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                "t = %.17g: input %s = %g is not finite; outputs keep their last valid values",
+                time, fmu_variable_by_vr((unsigned)bad)->name, v->real[bad]);
+        return not_solved(v, FMU_DISCARD);
+    }
+    stewart_pose pose;
+    current_pose(v, time, &pose);
+    if (!taylor_mode(v))
+        for (int i = 0; i < 6; ++i)
+            if (!isfinite(pose.q_dot[i]) || !isfinite(pose.q_ddot[i]))
+                return discard_finite_differences(inst, time, &pose, i);
+    stewart_output out;
+    const stewart_status s = stewart_solve(r->model, r->data, &r->options, &pose, &out);
+    if (s != STEWART_OK) {
+        const fmu_status fs = map_solve_error(s);
+        fmu_log(inst, fs, fs == FMU_DISCARD ? LOG_DISCARD : LOG_ERROR,
+                "t = %.17g: pose (x, y, z, roll, pitch, yaw) = (%g, %g, %g, %g, %g, %g) not solved "
+                "(%s): %s; outputs keep their last valid values",
+                time, pose.q[0], pose.q[1], pose.q[2], pose.q[3], pose.q[4], pose.q[5],
+                stewart_status_name(s), stewart_data_message(r->data));
+        return not_solved(v, fs);
+    }
+    outputs_to_values(v, &out);
+    v->outputs_current = 1;
+    fmu_status fs = FMU_OK;
+    int status = 0;
+    if (out.warnings & STEWART_WARN_STROKE) {
+        status = 1;
+        fs = FMU_WARNING;
+        warn_stroke(inst, time, &out);
+    }
+    if (out.warnings & STEWART_WARN_NEAR_SINGULAR) {
+        status = 2;
+        fs = FMU_WARNING;
+        fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                "t = %.17g: near singular pose: condition = %g > warn_condition = %g", time,
+                out.condition, r->options.warn_condition);
+    }
+    v->integer[VR_status] = status;
+    v->model.solve_status = fs;
+    return fs;
+}
+
+fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, inst->v.time); }
+
+/* ---------------------------------------------------------------- the step rules */
+
+/* The pose q at communication point t joins the finite-difference history. */
+static void commit_pose(model_values *m, double t, const double q[6]) {
+    m->history_t[0] = m->history_t[1];
+    memcpy(m->history_q[0], m->history_q[1], sizeof m->history_q[0]);
+    m->history_t[1] = t;
+    memcpy(m->history_q[1], q, sizeof m->history_q[1]);
+    if (m->n_history < 2) ++m->n_history;
+}
+
+fmu_status model_do_step(fmu_instance *inst, double t, double h) {
+    fmu_values *v = &inst->v;
+    model_values *m = &v->model;
+    /* A discarded advance left status 3 standing for the master to read; a retry decides anew. */
+    if (m->advance_discarded) v->outputs_current = 0;
+    m->advance_discarded = 0;
+    /* With a Taylor advance the solution at t itself is needed only if the master asked for it,
+     * or if an input is not finite (that is reported against t). */
+    const int advance = taylor_mode(v);
+    fmu_status s = FMU_OK;
+    if (!advance || v->outputs_current || first_nonfinite_input(v) >= 0) {
+        s = solve_at(inst, t);
+        if (s == FMU_DISCARD || s == FMU_ERROR) return s;
+    }
+    if (!advance) {
+        /* Hold: the outputs stay those of the inputs at t until the master sets new inputs. */
+        commit_pose(m, t, &v->real[VR_x]);
+        return s;
+    }
+    /* Advance the pose to t + h along its Taylor expansion; undo it on failure (a failed solve
+     * leaves the outputs at their last valid values and sets status = 3). */
+    double at_t[12];
+    memcpy(at_t, &v->real[VR_x], sizeof at_t);
+    for (int i = 0; i < 6; ++i) {
+        const double q = v->real[VR_x + i], qd = v->real[VR_x_dot + i],
+                     qdd = v->real[VR_x_ddot + i];
+        v->real[VR_x + i] = q + h * (qd + 0.5 * h * qdd);
+        v->real[VR_x_dot + i] = qd + h * qdd;
+    }
+    v->outputs_current = 0;
+    const fmu_status s2 = solve_at(inst, t + h);
+    if (s2 == FMU_DISCARD || s2 == FMU_ERROR) {
+        memcpy(&v->real[VR_x], at_t, sizeof at_t);
+        m->advance_discarded = 1; /* status 3 and the kept outputs stand until a step or a set */
+        return s2;
+    }
+    /* the derivatives given through fmi2SetRealInputDerivatives served this step only; the
+     * outputs just computed used them, so they stay valid */
+    m->input_derivatives = 0;
+    commit_pose(m, t, at_t);
+    return s2;
+}
+
+fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
+                                       const int order[], const double value[]) {
+    fmu_values *v = &inst->v;
+    for (size_t i = 0; i < n; ++i) {
+        const int pose = vr[i] <= VR_yaw, rate = vr[i] >= VR_x_dot && vr[i] <= VR_yaw_dot;
+        if (!((pose && (order[i] == 1 || order[i] == 2)) || (rate && order[i] == 1))) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                    "SetRealInputDerivatives: derivative of order %d of value reference %u is "
+                    "not supported (orders 1 and 2 of the pose inputs, order 1 of *_dot)",
+                    order[i], vr[i]);
+            return FMU_ERROR;
+        }
+    }
+    /* With derivatives = 0 the *_dot and *_ddot slots hold only what this call and the others
+     * before the same step give: an order the master does not give is zero for the step, never
+     * a value left from an earlier step. */
+    if (n > 0 && !v->model.input_derivatives && v->integer[VR_derivatives] == 0)
+        for (unsigned vr_slot = VR_x_dot; vr_slot <= VR_yaw_ddot; ++vr_slot) v->real[vr_slot] = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const unsigned base = vr[i] <= VR_yaw ? vr[i] : vr[i] - VR_x_dot;
+        v->real[(order[i] == 1 && vr[i] <= VR_yaw ? VR_x_dot : VR_x_ddot) + base] = value[i];
+    }
+    if (n > 0) v->model.input_derivatives = 1;
+    return FMU_OK;
+}

@@ -1,0 +1,250 @@
+/*
+ * Writes a model's modelDescription.xml for FMI 2.0 or 3.0 from its variable table (variables.h,
+ * generated from the model's variables.def) and its config.h. Start values are what the model's
+ * model_start_values writes (for the inverse model: the C library's defaults), printed with 17
+ * significant digits. Compiled once per model, linked with that model's objects.
+ *
+ * usage: gen_model_description 2|3 OUT.xml
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "instance.h"
+#include "model_interface.h"
+#include "variables.h"
+
+static FILE *out;
+static int version;
+
+static void attr(const char *name, const char *value) {
+    if (!value || !*value) return;
+    fprintf(out, " %s=\"", name);
+    for (const char *c = value; *c; ++c) switch (*c) {
+            case '<': fputs("&lt;", out); break;
+            case '>': fputs("&gt;", out); break;
+            case '&': fputs("&amp;", out); break;
+            case '"': fputs("&quot;", out); break;
+            default: fputc(*c, out);
+        }
+    fputc('"', out);
+}
+
+static void attr_double(const char *name, double v) {
+    char b[40];
+    snprintf(b, sizeof b, "%.17g", v);
+    attr(name, b);
+}
+
+static void attr_int(const char *name, long v) {
+    char b[24];
+    snprintf(b, sizeof b, "%ld", v);
+    attr(name, b);
+}
+
+/* The attributes every variable has, in both versions. */
+static void common_attributes(unsigned vr, const char *name, const char *causality,
+                              const char *variability, const char *initial,
+                              const char *description) {
+    attr("name", name);
+    attr_int("valueReference", vr);
+    attr("description", description);
+    attr("causality", causality);
+    attr("variability", variability);
+    attr("initial", initial);
+}
+
+/* The attributes of the value: unit, range, start. start_kind: 0 none, 1 real, 2 integer. */
+static void value_attributes(const char *unit, const char *display_unit, int has_range, long min,
+                             long max, int start_kind, double start) {
+    attr("unit", unit);
+    attr("displayUnit", display_unit);
+    if (has_range) {
+        attr_int("min", min);
+        attr_int("max", max);
+    }
+    if (start_kind == 1) attr_double("start", start);
+    if (start_kind == 2) attr_int("start", (long)start);
+}
+
+/* One variable: FMI 2 nests the value's element in ScalarVariable, FMI 3 names the type. */
+static void variable(unsigned vr, const char *name, int is_real, const char *causality,
+                     const char *variability, const char *initial, int start_kind, double start,
+                     const char *unit, const char *display_unit, int has_range, long min, long max,
+                     const char *description) {
+    if (unit && !strcmp(unit, "1")) unit = NULL;
+    if (version == 2) {
+        fputs("    <ScalarVariable", out);
+        common_attributes(vr, name, causality, variability, initial, description);
+        fputs(">\n      <", out);
+        fputs(is_real ? "Real" : "Integer", out);
+        value_attributes(unit, display_unit, has_range, min, max, start_kind, start);
+        fputs("/>\n    </ScalarVariable>\n", out);
+    } else {
+        fputs("    <", out);
+        fputs(is_real ? "Float64" : "Int32", out);
+        common_attributes(vr, name, causality, variability, initial, description);
+        value_attributes(unit, display_unit, has_range, min, max, start_kind, start);
+        fputs("/>\n", out);
+    }
+}
+
+static const struct { const char *name; const char *base; } kUnits[] = {
+    {"kg", "kg=\"1\""},
+    {"kg.m2", "kg=\"1\" m=\"2\""},
+    {"m", "m=\"1\""},
+    {"m/s", "m=\"1\" s=\"-1\""},
+    {"m/s2", "m=\"1\" s=\"-2\""},
+    {"N", "kg=\"1\" m=\"1\" s=\"-2\""},
+    {"N.m", "kg=\"1\" m=\"2\" s=\"-2\""},
+    {"rad", "rad=\"1\""},
+    {"rad/s", "rad=\"1\" s=\"-1\""},
+    {"rad/s2", "rad=\"1\" s=\"-2\""},
+    {"s", "s=\"1\""},
+};
+enum { N_UNITS = sizeof kUnits / sizeof kUnits[0] };
+
+/* Index of a unit in kUnits, or -1. */
+static int unit_index(const char *unit) {
+    for (int u = 0; u < N_UNITS; ++u)
+        if (!strcmp(kUnits[u].name, unit)) return u;
+    return -1;
+}
+
+/* One variable of the table, with its start value from the model's start values. FMI 3 requires
+ * the independent variable; FMI 2 does not, and FMI Library (libcosim) rejects an FMI 2
+ * independent variable without a start value, so FMI 2 leaves it out. */
+static void table_variable(const fmu_variable *var, const fmu_values *start) {
+    const int is_real = var->type == FMU_REAL;
+    const double start_value = is_real ? start->real[var->vr] : start->integer[var->vr];
+    switch (var->causality) {
+        case FMU_INPUT_VAR:
+            /* angles are entered in degrees by people, in radians by programs */
+            variable(var->vr, var->name, is_real, "input", "continuous", NULL, is_real ? 1 : 2,
+                     start_value, var->unit, strcmp(var->unit, "rad") ? var->display_unit : "deg",
+                     var->has_range, var->min, var->max, var->description);
+            break;
+        case FMU_OUTPUT_VAR:
+            variable(var->vr, var->name, is_real, "output", is_real ? "continuous" : "discrete",
+                     "calculated", 0, 0, var->unit, var->display_unit, var->has_range, var->min,
+                     var->max, var->description);
+            break;
+        case FMU_PARAMETER_VAR:
+            variable(var->vr, var->name, is_real, "parameter", "fixed", "exact", is_real ? 1 : 2,
+                     start_value, var->unit, var->display_unit, var->has_range, var->min, var->max,
+                     var->description);
+            break;
+        case FMU_INDEPENDENT_VAR:
+            if (version == 3)
+                variable(var->vr, var->name, is_real, "independent", "continuous", NULL, 0, 0,
+                         var->unit, NULL, 0, 0, 0, var->description);
+            break;
+    }
+}
+
+int main(int argc, char **argv) {
+    if (argc != 3 || (strcmp(argv[1], "2") && strcmp(argv[1], "3"))) {
+        fprintf(stderr, "usage: gen_model_description 2|3 OUT.xml\n");
+        return 2;
+    }
+    version = atoi(argv[1]);
+    /* every unit the variables use must be known (and only those are listed) */
+    int used[N_UNITS] = {0};
+    for (size_t i = 0; i < fmu_n_variables; ++i) {
+        const char *unit = fmu_variables[i].unit;
+        if (!*unit || !strcmp(unit, "1")) continue;
+        const int u = unit_index(unit);
+        if (u < 0) {
+            fprintf(stderr, "gen_model_description: %s has unit '%s', which is not in kUnits\n",
+                    fmu_variables[i].name, unit);
+            return 1;
+        }
+        used[u] = 1;
+    }
+    out = fopen(argv[2], "w");
+    if (!out) {
+        fprintf(stderr, "gen_model_description: cannot write %s\n", argv[2]);
+        return 1;
+    }
+    static fmu_values start; /* large: not on the stack */
+    model_start_values(&start);
+
+    fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", out);
+    fputs("<!-- Generated by fmu/runtime/gen_model_description.c from " FMU_VARIABLES_SOURCE
+          ": do not edit. -->\n", out);
+    fputs("<fmiModelDescription", out);
+    attr("fmiVersion", version == 2 ? "2.0" : "3.0");
+    attr("modelName", FMU_MODEL_IDENTIFIER);
+    attr(version == 2 ? "guid" : "instantiationToken", FMU_GUID);
+    attr("description", FMU_MODEL_DESCRIPTION_TEXT);
+    attr("generationTool", FMU_MODEL_IDENTIFIER " gen_model_description");
+    attr("variableNamingConvention", "structured");
+    if (version == 2) attr("numberOfEventIndicators", "0");
+    fputs(">\n", out);
+
+    fputs("  <CoSimulation", out);
+    attr("modelIdentifier", FMU_MODEL_IDENTIFIER);
+    attr("canHandleVariableCommunicationStepSize", "true");
+    if (version == 2) {
+        attr("canInterpolateInputs", FMU_CAN_INTERPOLATE_INPUTS ? "true" : "false");
+        attr("maxOutputDerivativeOrder", "0");
+        attr("canGetAndSetFMUstate", "true");
+        attr("canSerializeFMUstate", "true");
+        attr("canNotUseMemoryManagementFunctions", "true");
+    } else {
+        attr("canGetAndSetFMUState", "true");
+        attr("canSerializeFMUState", "true");
+        attr("hasEventMode", "false");
+    }
+    fputs("/>\n", out);
+
+    fputs("  <UnitDefinitions>\n", out);
+    for (int u = 0; u < N_UNITS; ++u) {
+        if (!used[u]) continue;
+        fprintf(out, "    <Unit name=\"%s\">\n      <BaseUnit %s/>\n", kUnits[u].name,
+                kUnits[u].base);
+        if (!strcmp(kUnits[u].name, "rad"))
+            fputs("      <DisplayUnit name=\"deg\" factor=\"57.295779513082323\"/>\n", out);
+        fputs("    </Unit>\n", out);
+    }
+    fputs("  </UnitDefinitions>\n", out);
+
+    fputs("  <LogCategories>\n", out);
+    for (int c = 0; c < FMU_N_LOG_CATEGORIES; ++c) {
+        fputs("    <Category", out);
+        attr("name", fmu_log_category_names[c]);
+        attr("description", fmu_log_category_descriptions[c]);
+        fputs("/>\n", out);
+    }
+    fputs("  </LogCategories>\n", out);
+    fputs("  <DefaultExperiment " FMU_DEFAULT_EXPERIMENT "/>\n", out);
+
+    fputs("  <ModelVariables>\n", out);
+    for (size_t i = 0; i < fmu_n_variables; ++i) table_variable(&fmu_variables[i], &start);
+    fputs("  </ModelVariables>\n", out);
+
+    /* Outputs, by index (FMI 2, 1-based position in ModelVariables) or value reference (FMI 3). */
+    fputs("  <ModelStructure>\n", out);
+    for (int pass = 0; pass < 2; ++pass) {
+        if (version == 2) fputs(pass == 0 ? "    <Outputs>\n" : "    <InitialUnknowns>\n", out);
+        size_t index = 0; /* 1-based position in the FMI 2 ModelVariables */
+        for (size_t i = 0; i < fmu_n_variables; ++i) {
+            if (version == 2 && fmu_variables[i].causality == FMU_INDEPENDENT_VAR) continue;
+            ++index;
+            if (fmu_variables[i].causality != FMU_OUTPUT_VAR) continue;
+            if (version == 2)
+                fprintf(out, "      <Unknown index=\"%zu\"/>\n", index);
+            else
+                fprintf(out, "    <%s valueReference=\"%u\"/>\n",
+                        pass == 0 ? "Output" : "InitialUnknown", fmu_variables[i].vr);
+        }
+        if (version == 2) fputs(pass == 0 ? "    </Outputs>\n" : "    </InitialUnknowns>\n", out);
+    }
+    fputs("  </ModelStructure>\n", out);
+    fputs("</fmiModelDescription>\n", out);
+    if (fclose(out) != 0) {
+        fprintf(stderr, "gen_model_description: error writing %s\n", argv[2]);
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,182 @@
+/* The instance life cycle and the step's time bookkeeping, shared by every model. */
+#include "instance.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "call_table.h"
+#include "logging.h"
+#include "model_interface.h"
+
+/* Start values of the variables and the model, and the runtime's own. */
+static void start_values(fmu_values *v) {
+    memset(v, 0, sizeof *v);
+    model_start_values(v);
+    v->mode = MODE_INSTANTIATED;
+}
+
+fmu_instance *fmu_instantiate(const char *name, fmu_version version, fmu_log_fn log_fn,
+                              const void *callbacks, void *environment, int logging_on) {
+    fmu_instance *inst = (fmu_instance *)calloc(1, sizeof *inst);
+    if (!inst) return NULL;
+    const char *n = name ? name : "";
+    inst->name = (char *)malloc(strlen(n) + 1);
+    if (!inst->name) {
+        free(inst);
+        return NULL;
+    }
+    strcpy(inst->name, n);
+    inst->version = version;
+    inst->log_fn = log_fn;
+    inst->callbacks = callbacks;
+    inst->environment = environment;
+    fmu_logging_init(inst, logging_on);
+    start_values(&inst->v);
+    return inst;
+}
+
+void fmu_free(fmu_instance *inst) {
+    if (!inst) return;
+    model_free(inst);
+    free(inst->name);
+    free(inst);
+}
+
+fmu_status fmu_fail(fmu_instance *inst) {
+    inst->v.mode = MODE_ERROR;
+    return FMU_ERROR;
+}
+
+static void set_time(fmu_values *v, double t) {
+    v->time = t;
+    v->real[fmu_time_vr] = t;
+}
+
+fmu_status fmu_setup_experiment(fmu_instance *inst, double start_time) {
+    if (fmu_check_call(inst, CALL_SETUP_EXPERIMENT, "SetupExperiment") != FMU_OK) return FMU_ERROR;
+    set_time(&inst->v, start_time);
+    return FMU_OK;
+}
+
+fmu_status fmu_enter_initialization(fmu_instance *inst, int has_start, double start_time) {
+    if (fmu_check_call(inst, CALL_ENTER_INITIALIZATION, "EnterInitializationMode") != FMU_OK)
+        return FMU_ERROR;
+    if (!has_start) start_time = inst->v.time;
+    if (!isfinite(start_time)) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "startTime = %g must be finite", start_time);
+        return FMU_ERROR;
+    }
+    set_time(&inst->v, start_time);
+    inst->v.last_successful_time = start_time;
+    inst->v.outputs_current = 0;
+    inst->v.mode = MODE_INITIALIZATION;
+    return FMU_OK;
+}
+
+fmu_status fmu_exit_initialization(fmu_instance *inst) {
+    if (fmu_check_call(inst, CALL_EXIT_INITIALIZATION, "ExitInitializationMode") != FMU_OK)
+        return FMU_ERROR;
+    if (model_apply_parameters(inst) != FMU_OK) return fmu_fail(inst);
+    inst->v.outputs_current = 0;
+    fmu_status s = model_refresh_outputs(inst);
+    if (s == FMU_ERROR) return fmu_fail(inst);
+    if (s == FMU_DISCARD) s = FMU_WARNING; /* the status output tells the master it is bad */
+    inst->v.mode = MODE_STEP;
+    fmu_log(inst, FMU_OK, LOG_EVENTS, "initialised at t = %.17g", inst->v.time);
+    return s;
+}
+
+fmu_status fmu_terminate(fmu_instance *inst) {
+    if (fmu_check_call(inst, CALL_TERMINATE, "Terminate") != FMU_OK) return FMU_ERROR;
+    inst->v.mode = MODE_TERMINATED;
+    return FMU_OK;
+}
+
+fmu_status fmu_reset(fmu_instance *inst) {
+    if (fmu_check_call(inst, CALL_RESET, "Reset") != FMU_OK) return FMU_ERROR;
+    start_values(&inst->v);
+    model_reset(inst);
+    fmu_log(inst, FMU_OK, LOG_EVENTS, "reset to the start values");
+    return FMU_OK;
+}
+
+/* Why (t, h) is not a step from the unit's time, or NULL. Error rather than Discard: Discard asks
+ * the master to retry with a smaller step, which cannot help. */
+static fmu_status check_step(fmu_instance *inst, double t, double h) {
+    const fmu_values *v = &inst->v;
+    if (!(isfinite(t) && isfinite(h) && h > 0)) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: currentCommunicationPoint = %g and communicationStepSize = %g must be "
+                "finite and the step > 0", t, h);
+        return FMU_ERROR;
+    }
+    if (!(t + h > t && isfinite(t + h))) {
+        /* h below the resolution of t (t + h == t) would not advance time; t + h overflowing
+         * would make it infinite. Neither is a step. */
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: communicationStepSize = %g does not advance currentCommunicationPoint = "
+                "%.17g (t + h = %.17g): the step is below the resolution of t or overflows", h, t,
+                t + h);
+        return FMU_ERROR;
+    }
+    if (v->has_stepped && !(t > v->last_step_point)) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: currentCommunicationPoint = %.17g is not after the last accepted "
+                "communication point %.17g", t, v->last_step_point);
+        return FMU_ERROR;
+    }
+    /* A master may pass t a few roundings off the unit's own time (start + n h against the sum
+     * of its steps), never earlier by more: that would take the inputs of time v->time for an
+     * earlier one. */
+    const double last_step = v->has_stepped ? v->time - v->last_step_point : 0.0;
+    if (t < v->time - (1e-9 * last_step + 8.0 * DBL_EPSILON * fabs(v->time))) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DoStep: currentCommunicationPoint = %.17g is before the unit's time %.17g (the "
+                "end of the last step); to go back, restore an FMU state", t, v->time);
+        return FMU_ERROR;
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+    if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) {
+        if (inst && last_successful_time) *last_successful_time = inst->v.last_successful_time;
+        return FMU_ERROR;
+    }
+    fmu_values *v = &inst->v;
+    fmu_status s = check_step(inst, t, h);
+    if (s == FMU_OK) {
+        if (t != v->time) { /* a rounding off the unit's time, or later (after a Discard) */
+            set_time(v, t);
+            v->outputs_current = 0;
+        }
+        s = model_do_step(inst, t, h);
+        if (s == FMU_OK || s == FMU_WARNING) {
+            set_time(v, t + h);
+            v->last_step_point = t;
+            v->has_stepped = 1;
+            v->last_successful_time = t + h;
+        } else {
+            set_time(v, t);
+            v->last_successful_time = t;
+        }
+        v->last_step_status = s;
+    }
+    if (last_successful_time) *last_successful_time = v->last_successful_time;
+    return s;
+}
+
+fmu_status fmu_get_step_status(fmu_instance *inst, int *status) {
+    if (fmu_check_call(inst, CALL_GET_STATUS, "GetStatus") != FMU_OK || !status) return FMU_ERROR;
+    *status = inst->v.last_step_status;
+    return FMU_OK;
+}
+
+fmu_status fmu_get_last_successful_time(fmu_instance *inst, double *time) {
+    if (fmu_check_call(inst, CALL_GET_STATUS, "GetRealStatus") != FMU_OK || !time)
+        return FMU_ERROR;
+    *time = inst->v.last_successful_time;
+    return FMU_OK;
+}

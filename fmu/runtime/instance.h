@@ -1,0 +1,96 @@
+/*
+ * One FMU instance, shared by every model: its plain values (what an FMU state copies), the
+ * model's resources, the logger, and the life cycle (instantiate, set-up, initialisation, step,
+ * terminate, reset, free). The FMI 2 and FMI 3 layers translate calls onto these functions and
+ * never touch the fields; the model (models/<name>/model.c) reads and writes the values.
+ * No global mutable state: everything lives in the instance.
+ */
+#ifndef STEWART_FMU_INSTANCE_H
+#define STEWART_FMU_INSTANCE_H
+
+#include <stdint.h>
+
+#include "config.h"
+#include "variables.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Same numbering as fmi2Status and fmi3Status. */
+typedef enum { FMU_OK = 0, FMU_WARNING = 1, FMU_DISCARD = 2, FMU_ERROR = 3, FMU_FATAL = 4 } fmu_status;
+
+/* Mode of an instance (bit flags, so a call can list the modes it is allowed in). */
+typedef enum {
+    MODE_INSTANTIATED = 1 << 0,
+    MODE_INITIALIZATION = 1 << 1,
+    MODE_STEP = 1 << 2,
+    MODE_TERMINATED = 1 << 3,
+    MODE_ERROR = 1 << 4
+} fmu_mode;
+
+typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
+
+/* Everything an FMU state holds besides the model's saved resources: plain data, memcpy-able.
+ * Serialised as is; the last two members stay last_successful_time and mode (tests corrupt
+ * them by offset). */
+typedef struct fmu_values {
+    double real[FMU_NVR];      /* Real variables by value reference */
+    int32_t integer[FMU_NVR];  /* Integer variables by value reference */
+    model_values model;        /* the model's own plain values (config.h) */
+    double time;               /* communication point the current inputs belong to */
+    double last_step_point;    /* communication point of the last accepted step */
+    int has_stepped;           /* a step has been accepted since initialisation */
+    int outputs_current;       /* the outputs belong to the current inputs and time */
+    int last_step_status;      /* what the last doStep returned (fmi2GetStatus) */
+    double last_successful_time;
+    int mode;                  /* fmu_mode */
+} fmu_values;
+
+typedef struct fmu_instance fmu_instance;
+/* Hands a message to the master's logger (the per-version layer knows how): the callbacks and
+ * environment given at instantiation, the instance name. */
+typedef void (*fmu_log_fn)(const void *callbacks, void *environment, const char *instance_name,
+                           fmu_status status, const char *category, const char *message);
+
+struct fmu_instance {
+    fmu_values v;
+    model_resources res;       /* the model's resources (config.h), freed by model_free */
+    fmu_version version;
+    char *name;
+    fmu_log_fn log_fn;
+    const void *callbacks;     /* fmi2CallbackFunctions* (FMI 2) or the log callback (FMI 3) */
+    void *environment;
+    int logging_on;
+    int category_on[FMU_N_LOG_CATEGORIES];
+};
+
+/* A new instance at its start values, or NULL (out of memory). */
+fmu_instance *fmu_instantiate(const char *name, fmu_version version, fmu_log_fn log_fn,
+                              const void *callbacks, void *environment, int logging_on);
+/* Frees the instance and the model's resources (NULL is ignored). */
+void fmu_free(fmu_instance *inst);
+
+/* FMI 2 fmi2SetupExperiment: records the start time (checked at initialisation). */
+fmu_status fmu_setup_experiment(fmu_instance *inst, double start_time);
+/* Enters initialisation at start_time, or at the set-up's start time if has_start is 0. */
+fmu_status fmu_enter_initialization(fmu_instance *inst, int has_start, double start_time);
+/* Applies the parameters and solves for the initial inputs (Discard there becomes Warning). */
+fmu_status fmu_exit_initialization(fmu_instance *inst);
+/* Checks the step (t, h) against the unit's time, then runs the model's step rules. */
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time);
+fmu_status fmu_terminate(fmu_instance *inst);
+/* Back to the start values (the model keeps its built resources for reuse). */
+fmu_status fmu_reset(fmu_instance *inst);
+/* fmi2GetStatus(fmi2DoStepStatus): what the last doStep returned. */
+fmu_status fmu_get_step_status(fmu_instance *inst, int *status);
+/* fmi2GetRealStatus(fmi2LastSuccessfulTime). */
+fmu_status fmu_get_last_successful_time(fmu_instance *inst, double *time);
+/* Puts the instance into the Error mode and returns FMU_ERROR (the model calls it too). */
+fmu_status fmu_fail(fmu_instance *inst);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

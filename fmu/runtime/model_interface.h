@@ -1,0 +1,63 @@
+/*
+ * What every model defines (models/<name>/model.c and its helpers), and nothing more: the runtime
+ * reaches a model only through these functions, its config.h (identity, sizes, model_values,
+ * model_resources) and its variables.def (variables and log categories). The runtime has checked
+ * the call order and the arguments' shape before it calls any of them; the model reads and writes
+ * the instance's values (inst->v.real / .integer by value reference, inst->v.model) and its
+ * resources (inst->res), and logs through fmu_log.
+ */
+#ifndef STEWART_FMU_MODEL_INTERFACE_H
+#define STEWART_FMU_MODEL_INTERFACE_H
+
+#include <stddef.h>
+
+#include "instance.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The start value of every variable and the model's plain values at instantiation and reset
+ * (also what the model-description generator prints as start). Writes nothing else. */
+void model_start_values(fmu_values *v);
+/* After a reset to the start values: forget what the resources remember of earlier solves
+ * (warm starts); the resources themselves may be kept for reuse. */
+void model_reset(fmu_instance *inst);
+/* End of initialisation (and when a state after initialisation is restored): check the
+ * parameters, build the resources for them (reuse them if the parameters did not change).
+ * FMU_ERROR with a message naming the parameter and its value if refused. */
+fmu_status model_apply_parameters(fmu_instance *inst);
+/* Make the outputs those of the current inputs at inst->v.time unless they already are
+ * (inst->v.outputs_current, cleared by the runtime when a variable is set). Returns what that
+ * solve gave: OK, Warning, Discard (outputs keep their last valid values) or Error. Never
+ * allocates. */
+fmu_status model_refresh_outputs(fmu_instance *inst);
+/* The step rules over [t, t + h] (the runtime has checked t and h and set inst->v.time = t).
+ * OK or Warning: the step is accepted and the runtime moves time to t + h; the outputs are those
+ * the master reads at t + h. Discard or Error: nothing the master sees changes except status
+ * outputs; the runtime keeps time at t. Never allocates. */
+fmu_status model_do_step(fmu_instance *inst, double t, double h);
+/* FMI 2 input derivatives (order[i] of variable vr[i]); FMU_ERROR with a message if the model
+ * does not take that derivative. */
+fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
+                                       const int order[], const double value[]);
+/* Bytes of the model's resources' state (what model_save writes), 0 if there is none yet. */
+size_t model_state_size(const fmu_instance *inst);
+/* Writes that state into out (size bytes, at least model_state_size). */
+fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size);
+/* The instance's values have just become a state's (inst->v); make the resources match them
+ * and load the saved bytes (size 0: the state had none; start afresh). FMU_ERROR with a message
+ * if the bytes are refused. */
+fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size);
+/* Why deserialised values and resource bytes cannot be a state of this model, or NULL if they
+ * can (then model_load accepts them). May build temporary resources; changes nothing of inst. */
+const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
+                              size_t size, char *why, size_t why_size);
+/* Frees the resources (at fmu_free). */
+void model_free(fmu_instance *inst);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

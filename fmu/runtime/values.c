@@ -1,0 +1,111 @@
+/* Get and set through the variable table (variables.h); outputs come from the model. */
+#include "values.h"
+
+#include "call_table.h"
+#include "logging.h"
+#include "model_interface.h"
+
+static fmu_status bad_vr(fmu_instance *inst, const char *what, unsigned vr) {
+    fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: value reference %u is not a variable of that type",
+            what, vr);
+    return FMU_ERROR;
+}
+
+static fmu_status null_arrays(fmu_instance *inst, const char *what) {
+    fmu_log(inst, FMU_ERROR, LOG_ERROR,
+            "%s: the array of value references or of values is NULL for a nonzero count", what);
+    return FMU_ERROR;
+}
+
+/* Outputs asked for: the model makes them those of the current inputs. Discard and Warning are
+ * reported by the status outputs; the values returned are well defined. */
+static fmu_status refresh_outputs(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    if (v->outputs_current || !(v->mode & (MODE_INITIALIZATION | MODE_STEP))) return FMU_OK;
+    if (v->mode == MODE_INITIALIZATION && model_apply_parameters(inst) != FMU_OK)
+        return fmu_fail(inst);
+    if (model_refresh_outputs(inst) == FMU_ERROR) return fmu_fail(inst);
+    return FMU_OK;
+}
+
+/* The descriptor of vr if it is a variable of `type`, else NULL after an Error message. */
+static const fmu_variable *typed(fmu_instance *inst, const char *what, unsigned vr, fmu_type type) {
+    const fmu_variable *var = fmu_variable_by_vr(vr);
+    if (!var || var->type != type) {
+        bad_vr(inst, what, vr);
+        return NULL;
+    }
+    return var;
+}
+
+fmu_status fmu_get_real(fmu_instance *inst, const unsigned vr[], size_t n, double value[]) {
+    if (fmu_check_call(inst, CALL_GET, "GetReal") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, "GetReal");
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_variable *var = typed(inst, "GetReal", vr[i], FMU_REAL);
+        if (!var) return FMU_ERROR;
+        if (var->causality == FMU_OUTPUT_VAR && refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        value[i] = inst->v.real[vr[i]];
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_get_integer(fmu_instance *inst, const unsigned vr[], size_t n, int32_t value[]) {
+    if (fmu_check_call(inst, CALL_GET, "GetInteger") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, "GetInteger");
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_variable *var = typed(inst, "GetInteger", vr[i], FMU_INTEGER);
+        if (!var) return FMU_ERROR;
+        if (var->causality == FMU_OUTPUT_VAR && refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        value[i] = inst->v.integer[vr[i]];
+    }
+    return FMU_OK;
+}
+
+/* Inputs may be set in any mode before Terminate; parameters (fixed) only before the end of
+ * initialisation; outputs and time never. All are checked before any is written. */
+static fmu_status check_settable(fmu_instance *inst, const char *what, const unsigned vr[],
+                                 size_t n, fmu_type type) {
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_variable *var = typed(inst, what, vr[i], type);
+        if (!var) return FMU_ERROR;
+        if (var->causality == FMU_INPUT_VAR) continue;
+        if (var->causality == FMU_PARAMETER_VAR &&
+            (inst->v.mode & (MODE_INSTANTIATED | MODE_INITIALIZATION)))
+            continue;
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: variable %s cannot be set in %s", what,
+                var->name, fmu_mode_name(inst->v.mode));
+        return FMU_ERROR;
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_set_real(fmu_instance *inst, const unsigned vr[], size_t n, const double value[]) {
+    if (fmu_check_call(inst, CALL_SET, "SetReal") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, "SetReal");
+    if (check_settable(inst, "SetReal", vr, n, FMU_REAL) != FMU_OK) return FMU_ERROR;
+    for (size_t i = 0; i < n; ++i) inst->v.real[vr[i]] = value[i];
+    if (n > 0) inst->v.outputs_current = 0;
+    return FMU_OK;
+}
+
+fmu_status fmu_set_integer(fmu_instance *inst, const unsigned vr[], size_t n,
+                           const int32_t value[]) {
+    if (fmu_check_call(inst, CALL_SET, "SetInteger") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, "SetInteger");
+    if (check_settable(inst, "SetInteger", vr, n, FMU_INTEGER) != FMU_OK) return FMU_ERROR;
+    for (size_t i = 0; i < n; ++i) inst->v.integer[vr[i]] = value[i];
+    if (n > 0) inst->v.outputs_current = 0;
+    return FMU_OK;
+}
+
+fmu_status fmu_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
+                                     const int order[], const double value[]) {
+    if (fmu_check_call(inst, CALL_SET_INPUT_DERIVATIVES, "SetRealInputDerivatives") != FMU_OK)
+        return FMU_ERROR;
+    if (n > 0 && (!vr || !order || !value))
+        return null_arrays(inst, "SetRealInputDerivatives");
+    const fmu_status s = model_set_input_derivatives(inst, vr, n, order, value);
+    if (s == FMU_OK && n > 0) inst->v.outputs_current = 0;
+    return s;
+}

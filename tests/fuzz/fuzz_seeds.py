@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""Writes the seed inputs of the C API fuzz target (tests/fuzz/fuzz_api.cpp) into a folder, or
+with --fmu those of the FMU target (tests/fuzz/fuzz_fmu.cpp, layout described below SEEDS).
+
+usage: tests/fuzz/fuzz_seeds.py [FOLDER=tests/fuzz/corpus/api]
+       tests/fuzz/fuzz_seeds.py --fmu [FOLDER=tests/fuzz/corpus/fmu]
+
+Field indices count the doubles of stewart_params in declaration order (cylinder_mass is 32,
+piston_mass 37). Layout the target reads: 1 byte count of parameter edits (mod 8), each edit 1 byte field index +
+a float64; 1 byte choice (fidelity = choice % 4, bit 2 modified Newton, bit 7: a float64 tolerance
+follows); then poses of 18 float64 (q, q_dot, q_ddot).
+"""
+import math
+import pathlib
+import struct
+import sys
+
+
+def pose(q, qd=(0,) * 6, qdd=(0,) * 6):
+    return struct.pack("<18d", *q, *qd, *qdd)
+
+
+def seed(edits=(), fidelity=1, tolerance=None, poses=()):
+    out = bytes([len(edits)])
+    for field, value in edits:
+        out += bytes([field]) + struct.pack("<d", value)
+    out += bytes([fidelity | (0x80 if tolerance is not None else 0)])
+    if tolerance is not None:
+        out += struct.pack("<d", tolerance)
+    return out + b"".join(poses)
+
+
+HOME = (0, 0, 0.5, 0, 0, 0)
+SEEDS = {
+    "kinematic_home": seed(fidelity=0, poses=[pose(HOME)]),
+    "massless_home": seed(fidelity=1, poses=[pose(HOME)]),
+    "full_home": seed(fidelity=2, tolerance=1e-12, poses=[pose(HOME)]),
+    "invalid_fidelity": seed(fidelity=3, poses=[pose(HOME)]),
+    "yaw_sweep": seed(fidelity=1, poses=[pose((0, 0, 0.5, 0, 0, a)) for a in
+                                         (0.5, 1.0, 1.5, math.pi / 2, 1.6)]),
+    "moving": seed(fidelity=2, poses=[pose((0.01, -0.02, 0.52, 0.1, -0.05, 0.2),
+                                           (0.1, 0, 0.2, 0.5, 0.3, -0.2), (1, 2, -3, 4, 5, -6))]),
+    "nan_pose": seed(fidelity=1, poses=[pose((math.nan, 0, 0.5, 0, 0, 0))]),
+    "inf_rate": seed(fidelity=2, poses=[pose(HOME, (0, 0, math.inf, 0, 0, 0))]),
+    "huge_pose": seed(fidelity=1, poses=[pose((1e300, -1e300, 1e308, 1e10, -1e10, 1e20))]),
+    "unreachable": seed(fidelity=2, poses=[pose((0, 0, 0, 0, 0, math.pi / 6))]),
+    "tiny_radius": seed(edits=[(0, 1e-3), (1, 1e-3)], fidelity=2, poses=[pose((0, 0, 0.001, 0, 0, 0))]),
+    "heavy_legs": seed(edits=[(32, 1e3), (37, 1e3)], fidelity=2, poses=[pose(HOME)]),
+    "nan_parameter": seed(edits=[(14, math.nan)], fidelity=1, poses=[pose(HOME)]),
+}
+
+
+# ---- the FMU target: byte 0 flags (bit 0 logging on, bit 1 initialise at once with fidelity =
+# bits 2-3 and derivatives = bit 4; bit 5 FMI 3 instead of FMI 2), then operations,
+# each an opcode byte (tests/fuzz/fuzz_fmu.cpp: 0 SetReal any, 1 SetReal pose input (vr 0..17),
+# 2 SetInteger, 3 DoStep, 4 read outputs, 5 SetRealInputDerivatives, 6 GetFMUstate, 7 SetFMUstate,
+# 8 serialise round trip, 9 Reset, 10 Terminate, 11 initialise, 12 SetDebugLogging, 13 read all)
+# and its arguments. A value is a selector byte; 255 is followed by a raw float64.
+VR = {"x": 0, "y": 1, "z": 2, "roll": 3, "pitch": 4, "yaw": 5, "x_dot": 6, "z_ddot": 14,
+      "yaw_dot": 11}
+
+
+def val(x):
+    return bytes([255]) + struct.pack("<d", x)
+
+
+def set_pose(name, x):
+    return bytes([1, VR[name]]) + val(x)
+
+
+def step(h, t=None):
+    """DoStep of h from the target's own time, or from t."""
+    return bytes([3, 0 if t is None else 1]) + val(h) + (b"" if t is None else val(t))
+
+
+def set_int(index, value):
+    """SetInteger of the index-th Integer variable (table order: newton_iterations, status,
+    fidelity, derivatives, max_iterations, modified_newton) to value 0..3."""
+    return bytes([2, index, value])
+
+
+READ = bytes([4])
+FIDELITY, DERIVATIVES = 2, 3
+
+
+def fmu_seed(*ops, logging=True, init=True, fidelity=1, derivatives=0, fmi3=False):
+    flags = ((1 if logging else 0) | (2 if init else 0) | (fidelity << 2) | (derivatives << 4) |
+             (32 if fmi3 else 0))
+    return bytes([flags]) + b"".join(ops)
+
+
+FMU_SEEDS = {
+    "home_steps": fmu_seed(READ, step(0.1), READ, step(0.1), READ),
+    "yaw_sweep": fmu_seed(*[set_pose("yaw", a) + step(0.01) + READ
+                            for a in (0.5, 1.5, 1.5707, math.pi / 2, 0.2)]),
+    "kinematic": fmu_seed(set_pose("z", 0.55), step(1e-9), READ, fidelity=0),
+    "full": fmu_seed(set_pose("z", 0.55), step(0.1), READ, fidelity=2),
+    "invalid_fidelity": fmu_seed(step(0.1), READ, fidelity=3),
+    "set_fidelity_late": fmu_seed(set_int(FIDELITY, 0), bytes([11]) + val(0.0), step(0.1), READ,
+                                  init=False),
+    "taylor": fmu_seed(set_pose("x_dot", 0.1), set_pose("z_ddot", -1.0), step(10.0), READ,
+                       step(1e-9), READ, derivatives=1),
+    "nan_then_good": fmu_seed(set_pose("x", math.nan), step(0.1), READ, set_pose("x", 0.0),
+                              step(0.1), READ),
+    "bad_steps": fmu_seed(step(0.0), step(-1.0), step(math.inf), step(1e-300, 1e10),
+                          step(1e308, 1e308), step(0.1), READ),
+    "unreachable": fmu_seed(set_pose("z", 0.0), set_pose("yaw", math.pi / 6), step(0.1), READ,
+                            set_pose("z", 0.5), step(0.1), READ),
+    "stroke": fmu_seed(set_pose("z", 0.75), step(0.1), READ, set_pose("z", 0.3), step(0.1), READ),
+    "state_roundtrip": fmu_seed(step(0.1), bytes([6]), set_pose("roll", 0.1), step(0.1), READ,
+                                bytes([7]), READ, bytes([8, 0]), bytes([8, 1, 3, 0x55]), READ),
+    "input_derivatives": fmu_seed(bytes([5, 2, 1]) + val(1.0), bytes([5, 2, 2]) + val(-3.0),
+                                  step(0.5), READ, bytes([5, 7, 2]) + val(1.0), step(0.1), READ),
+    "huge_pose": fmu_seed(set_pose("x", 1e300), set_pose("yaw_dot", 1e308), step(0.1), READ),
+    "reset_terminate": fmu_seed(step(0.1), bytes([10]), step(0.1), READ, bytes([9]),
+                                bytes([11]) + val(5.0), step(0.1), READ),
+    # Real table index 53 is base_radius, 54 platform_radius (inputs, outputs, options first)
+    "bad_parameter": fmu_seed(set_int(FIDELITY, 1), bytes([0, 53]) + val(math.nan),
+                              bytes([11]) + val(0.0), READ, bytes([13]), init=False),
+    "tiny_platform": fmu_seed(set_int(FIDELITY, 1), bytes([0, 53]) + val(1e-3),
+                              bytes([0, 54]) + val(1e-3), bytes([11]) + val(0.0),
+                              set_pose("z", 1e-3), step(0.1), READ, init=False),
+    "logging": fmu_seed(bytes([12, 0]), bytes([12, 3]), bytes([12, 9]), set_pose("x", math.inf),
+                        step(0.1), READ),
+}
+# the same sequences through the FMI 3 layer
+FMU_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
+                  for name, seed in list(FMU_SEEDS.items())})
+
+
+def main(argv):
+    fmu = "--fmu" in argv
+    args = [a for a in argv if a != "--fmu"]
+    path = pathlib.Path(args[0] if args else ("tests/fuzz/corpus/fmu" if fmu else "tests/fuzz/corpus/api"))
+    path.mkdir(parents=True, exist_ok=True)
+    for name, data in (FMU_SEEDS if fmu else SEEDS).items():
+        (path / name).write_bytes(data)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

@@ -1,0 +1,114 @@
+"""The simulations tests/gates/valgrind_fmu.sh runs under valgrind: fmpy's simulate_fmu over a
+combined manoeuvre, then the edge paths through fmpy's slave classes.
+
+usage: valgrind_drive.py BUILD_DIR (the FMUs are BUILD_DIR/fmus/<version>/StewartPlatform.fmu)"""
+import math
+import sys
+import tempfile
+
+import numpy as np
+import fmpy
+from fmpy import simulate_fmu
+from fmpy.fmi2 import FMU2Slave
+from fmpy.fmi3 import FMU3Slave
+
+build = sys.argv[1]
+
+
+def manoeuvre():
+    t = np.linspace(0.0, 0.5, 51)
+    return np.array([(ti, 0.5 + 0.04 * math.sin(5 * ti), 0.17 * math.sin(5 * ti),
+                      0.1 * math.sin(3 * ti), 0.17 * math.cos(5 * ti)) for ti in t],
+                    dtype=[("time", float), ("z", float), ("roll", float), ("pitch", float),
+                           ("yaw", float)])
+
+
+def edges(path, version):
+    md = fmpy.read_model_description(path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    d = tempfile.mkdtemp()
+    fmpy.extract(path, d)
+    cls = FMU2Slave if version == "2.0" else FMU3Slave
+    fmu = cls(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+              instanceName="vg")
+    fmu.instantiate(loggingOn=True)
+    set_real = fmu.setReal if version == "2.0" else fmu.setFloat64
+    get_real = fmu.getReal if version == "2.0" else fmu.getFloat64
+    set_int = fmu.setInteger if version == "2.0" else fmu.setInt32
+    set_int([vr["fidelity"]], [1])
+    if version == "2.0":
+        fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    dll, c = fmu.dll, fmu.component
+    do_step = (lambda t, h: dll.fmi2DoStep(c, t, h, 1)) if version == "2.0" else None
+    if do_step is None:
+        from ctypes import byref
+        from fmpy.fmi3 import fmi3Boolean, fmi3Float64
+        flags = [fmi3Boolean() for _ in range(3)]
+        last = fmi3Float64()
+        do_step = lambda t, h: dll.fmi3DoStep(c, t, h, fmi3Boolean(True), byref(flags[0]),
+                                              byref(flags[1]), byref(flags[2]), byref(last))
+    outputs = [v.valueReference for v in md.modelVariables if v.causality == "output"
+               and v.type in ("Real", "Float64")]
+    t = 0.0
+    for j, (name, value) in enumerate([("yaw", 0.2), ("x", math.nan), ("x", 0.0),
+                                       ("yaw", math.pi / 2), ("yaw", 0.1), ("z", 0.9),
+                                       ("z", 0.5)]):
+        set_real([vr[name]], [value])
+        s = do_step(t, 0.01)
+        values = get_real(outputs)
+        assert all(math.isfinite(v) for v in values), (name, value)
+        if s in (0, 1):
+            t += 0.01
+    assert do_step(t, 0.0) == 3 and do_step(t, -1.0) == 3
+    state = fmu.getFMUstate() if version == "2.0" else fmu.getFMUState()
+    blob = (fmu.serializeFMUstate if version == "2.0" else fmu.serializeFMUState)(state)
+    other = (fmu.deSerializeFMUstate if version == "2.0" else fmu.deserializeFMUState)(blob)
+    (fmu.setFMUstate if version == "2.0" else fmu.setFMUState)(other)
+    (fmu.freeFMUstate if version == "2.0" else fmu.freeFMUState)(other)
+    (fmu.freeFMUstate if version == "2.0" else fmu.freeFMUState)(state)
+    fmu.terminate()
+    fmu.reset()
+    fmu.freeInstance()
+    return t
+
+
+def fidelity_available(path, version, fidelity):
+    """Exit initialisation at that fidelity succeeds (the instance is freed either way: fmpy's
+    simulate_fmu does not free an instance whose initialisation failed)."""
+    md = fmpy.read_model_description(path)
+    d = tempfile.mkdtemp()
+    fmpy.extract(path, d)
+    cls = FMU2Slave if version == "2.0" else FMU3Slave
+    fmu = cls(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+              instanceName="probe")
+    fmu.instantiate()
+    try:
+        vr = {v.name: v.valueReference for v in md.modelVariables}
+        (fmu.setInteger if version == "2.0" else fmu.setInt32)([vr["fidelity"]], [fidelity])
+        if version == "2.0":
+            fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+        return True
+    except Exception:
+        return False
+    finally:
+        fmu.freeInstance()
+
+
+for version in ("2.0", "3.0"):
+    path = f"{build}/fmus/{version}/StewartPlatform.fmu"
+    for fidelity in (0, 1, 2):
+        if not fidelity_available(path, version, fidelity):
+            assert fidelity == 2, f"fidelity {fidelity} must be available"
+            print(f"valgrind_fmu: FMI {version} fidelity 2 not available in this build: skipped")
+            continue
+        r = simulate_fmu(path, fmi_type="CoSimulation", stop_time=0.5, output_interval=0.01,
+                         step_size=0.01, input=manoeuvre(), start_values={"fidelity": fidelity},
+                         output=["L[1]", "F[1]", "status"])
+        print(f"valgrind_fmu: FMI {version} fidelity {fidelity}: {len(r)} points, "
+              f"L[1] = {r['L[1]'][-1]:.6f} m, F[1] = {r['F[1]'][-1]:.3f} N")
+    print(f"valgrind_fmu: FMI {version} edge paths up to t = {edges(path, version):.2f} s")
+print("valgrind_fmu: DRIVER DONE")

@@ -1,0 +1,68 @@
+#include "test_plant_support.h"
+
+#include <stdio.h>
+
+#include "unity.h"
+
+stewart_plant *test_plant(const stewart_model *model, int fidelity, double rtol, double atol) {
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    o.fidelity = fidelity;
+    o.relative_tolerance = rtol;
+    o.absolute_tolerance = atol;
+    o.max_internal_steps = 100000;
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_plant *p = stewart_plant_create(model, &o, msg, sizeof msg);
+    if (!p) TEST_FAIL_MESSAGE(msg);
+    return p;
+}
+
+/* 1/2 m v.v + 1/2 w.(A I A^T) w, and -m g.r, for one body with principal inertia I. */
+static void body_energy(const stewart_plant_body *b, double mass, const double inertia[3],
+                        const double gravity[3], double *kinetic, double *potential) {
+    double w_body[3];  /* omega in the body axes: A^T w */
+    for (int j = 0; j < 3; ++j)
+        w_body[j] = b->rotation[0 * 3 + j] * b->omega[0] + b->rotation[1 * 3 + j] * b->omega[1] +
+                    b->rotation[2 * 3 + j] * b->omega[2];
+    double t = 0, u = 0;
+    for (int i = 0; i < 3; ++i) {
+        t += 0.5 * mass * b->velocity[i] * b->velocity[i] + 0.5 * inertia[i] * w_body[i] * w_body[i];
+        u -= mass * gravity[i] * b->position[i];
+    }
+    *kinetic += t;
+    *potential += u;
+}
+
+void plant_energy(const stewart_params *p, const stewart_plant *plant, int fidelity,
+                  double *kinetic, double *potential) {
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, p->payload_mass);
+    stewart_plant_body bodies[STEWART_PLANT_BODIES];
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, bodies));
+    *kinetic = *potential = 0;
+    body_energy(&bodies[0], p->platform_mass, p->platform_inertia, p->gravity, kinetic, potential);
+    if (fidelity != STEWART_FULL) return;
+    for (int k = 0; k < 6; ++k) {
+        body_energy(&bodies[1 + k], p->cylinder_mass, p->cylinder_inertia, p->gravity, kinetic,
+                    potential);
+        body_energy(&bodies[7 + k], p->piston_mass, p->piston_inertia, p->gravity, kinetic,
+                    potential);
+    }
+}
+
+void step_ok(stewart_plant *plant, double h, const double f0[6], const double f1[6],
+             const double r0[6], const double r1[6]) {
+    const stewart_status s = stewart_plant_step(plant, h, f0, f1, r0, r1);
+    if (s != STEWART_OK) {
+        char text[STEWART_MESSAGE_SIZE + 64];
+        snprintf(text, sizeof text, "%s: %s", stewart_status_name(s), stewart_plant_message(plant));
+        TEST_FAIL_MESSAGE(text);
+    }
+}
+
+void heavy_legs(stewart_params *p) {
+    const double m = 10.0, r = 0.05, l = 0.3;
+    p->cylinder_mass = p->piston_mass = m;
+    p->cylinder_inertia[0] = p->cylinder_inertia[1] = m * (3 * r * r + l * l) / 12.0;
+    p->cylinder_inertia[2] = m * r * r / 2.0;
+    for (int i = 0; i < 3; ++i) p->piston_inertia[i] = p->cylinder_inertia[i];
+}

@@ -1,0 +1,24 @@
+/* Shared helpers of the plant (forward dynamics) tests: plants, and the energy of the moving
+ * bodies computed here from the parameters and the bodies' motion (not by the library). */
+#ifndef STEWART_TEST_PLANT_SUPPORT_H
+#define STEWART_TEST_PLANT_SUPPORT_H
+
+#include "stewart/stewart_plant.h"
+
+/* A plant at the given fidelity and tolerances; fails the test if it cannot be made. */
+stewart_plant *test_plant(const stewart_model *model, int fidelity, double rtol, double atol);
+
+/* Kinetic and potential energy of the moving bodies (13 at full fidelity, the platform alone
+ * when massless), from params' masses and inertias (payload_mass must be 0). */
+void plant_energy(const stewart_params *params, const stewart_plant *plant, int fidelity,
+                  double *kinetic, double *potential);
+
+/* Steps and fails the test with the plant's message unless the status is STEWART_OK. */
+void step_ok(stewart_plant *plant, double h, const double f0[6], const double f1[6],
+             const double r0[6], const double r1[6]);
+
+/* The thesis platform with heavy legs (10 kg rods of 0.05 m radius), so that leg inertia
+ * matters in a check. */
+void heavy_legs(stewart_params *params);
+
+#endif
