@@ -13,6 +13,7 @@ from importlib.metadata import PackageNotFoundError, version as _version
 
 from .errors import ParameterError
 from .fmus import FMI_VERSIONS, fmu_path, fmu_paths
+from .params import parameters
 from .platform import Fidelity, Platform, Solution
 
 try:
@@ -21,4 +22,4 @@ except PackageNotFoundError:  # imported from a source tree, not installed
     __version__ = "unknown"
 
 __all__ = ["Platform", "Solution", "Fidelity", "ParameterError", "fmu_path", "fmu_paths",
-           "FMI_VERSIONS", "__version__"]
+           "FMI_VERSIONS", "parameters", "__version__"]

@@ -19,6 +19,7 @@
 extern "C" {
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
+#include "stewart/stewart_table.h"
 }
 
 namespace nb = nanobind;
@@ -117,20 +118,17 @@ private:
         return a->data();
     }
 
-    // Options by name over stewart_options_default, checked by the library.
+    // Options by name (the library's option table) over stewart_options_default, each value
+    // and then the whole set checked by the library.
     static stewart_options make_options(const std::vector<std::pair<std::string, double>> &values) {
         stewart_options o;
         stewart_options_default(&o);
-        for (const auto &[name, v] : values) {
-            if (name == "fidelity") o.fidelity = static_cast<int>(v);
-            else if (name == "tolerance") o.tolerance = v;
-            else if (name == "max_iterations") o.max_iterations = static_cast<int>(v);
-            else if (name == "modified_newton") o.modified_newton = static_cast<int>(v);
-            else if (name == "warn_condition") o.warn_condition = v;
-            else if (name == "singular_condition") o.singular_condition = v;
-            else fail(("unknown solver option '" + name + "'").c_str());
-        }
         char message[STEWART_MESSAGE_SIZE];
+        for (const auto &[name, v] : values) {
+            const int i = stewart_option_find(name.c_str());
+            if (i < 0) fail(("unknown solver option '" + name + "'").c_str());
+            if (stewart_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
+        }
         if (stewart_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
         return o;
     }
@@ -163,12 +161,22 @@ NB_MODULE(_core, m) {
         return std::make_pair(known, std::string(known ? "" : message));
     });
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
-    m.def("default_options", []() {
-        stewart_options o;
-        stewart_options_default(&o);
-        return std::vector<std::pair<std::string, double>>{
-            {"fidelity", o.fidelity},           {"tolerance", o.tolerance},
-            {"max_iterations", o.max_iterations}, {"modified_newton", o.modified_newton},
-            {"warn_condition", o.warn_condition}, {"singular_condition", o.singular_condition}};
+    // The library's parameter table: one dict per parameter (name, count, unit, description,
+    // defaults, min, max).
+    m.def("parameter_table", []() {
+        nb::list table;
+        for (int i = 0; i < stewart_param_count(); ++i) {
+            const stewart_param_info *p = stewart_param(i);
+            nb::dict entry;
+            entry["name"] = p->name;
+            entry["count"] = p->count;
+            entry["unit"] = p->unit;
+            entry["description"] = p->description;
+            entry["defaults"] = std::vector<double>(p->defaults, p->defaults + p->count);
+            entry["min"] = p->min;
+            entry["max"] = p->max;
+            table.append(entry);
+        }
+        return table;
     });
 }

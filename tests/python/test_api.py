@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 import fmu_support
+import reference
 from fmu_support import (MANOEUVRES, THESIS_T, L, L_DDOT, L_DOT, F, POSE, POSE_DDOT, POSE_DOT, OK,
-                         WARNING, closed_form_lengths, reference_matrix, stewart_solve,
-                         thesis_manoeuvre)
+                         WARNING, reference_matrix, stewart_solve, thesis_manoeuvre)
 
 stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
 
@@ -115,7 +115,7 @@ def test_lengths_against_numpy_closed_form_with_changed_geometry():
     platform = stewart.Platform(base_radius=0.6, platform_radius=0.45,
                                 base_angle=np.radians(beta))
     sol = platform.solve(q, fidelity="kinematic")
-    ref = np.array([closed_form_lengths(p, rb=0.6, rt=0.45, beta_deg=beta) for p in q])
+    ref = np.array([reference.lengths(p, rb=0.6, rt=0.45, beta=np.radians(beta)) for p in q])
     np.testing.assert_allclose(sol.length, ref, rtol=0, atol=1e-14)
     assert np.all(sol.force == 0)
 
@@ -157,8 +157,9 @@ def test_bad_rows_get_their_status_and_the_others_are_solved():
     ({"paylod_mass": 5.0}, ["paylod_mass", "payload_mass"]),
     ({"stroke_min": 0.8, "stroke_max": 0.7}, ["stroke", "0.8"]),
     ({"base_angle": [0.0, 1.0]}, ["base_angle", "2 values"]),
-    ({"base_angle": np.zeros(7)}, ["base_angle[7]"]),
+    ({"base_angle": np.zeros(7)}, ["base_angle", "7 values", "needs 6"]),
     ({"gravity": [[0, 0, -9.81]]}, ["gravity"]),
+    ({"payload_mass": [1.0, 2.0]}, ["payload_mass", "one number"]),
 ])
 def test_bad_parameters_raise_naming_parameter_and_value(params, words):
     with pytest.raises(stewart.ParameterError) as e:
@@ -204,3 +205,19 @@ def test_solving_into_a_reused_solution_gives_the_same_numbers():
     np.testing.assert_array_equal(_matrix(reused), _matrix(fresh))
     with pytest.raises(ValueError, match="out has 121 rows but poses has 2"):
         p.solve(q[:2], out=reused)
+
+
+def test_the_parameter_table_round_trips_through_platform():
+    """Every parameter of the library's table, set to its default by name, gives the default
+    platform's numbers bit for bit; one element set by its own name equals the array form."""
+    table = stewart.parameters()
+    assert {"payload_mass", "base_angle", "stroke_max"} <= {p["name"] for p in table}
+    defaults = {p["name"]: p["defaults"][0] if p["count"] == 1 else p["defaults"] for p in table}
+    q, qd, qdd = thesis_manoeuvre("roll", THESIS_T)
+    ref = _matrix(stewart.Platform().solve(q, qd, qdd, fidelity="full"))
+    np.testing.assert_array_equal(_matrix(stewart.Platform(**defaults).solve(q, qd, qdd, fidelity="full")), ref)
+    angles = list(defaults["base_angle"])
+    angles[1] += 0.01
+    by_array = stewart.Platform(base_angle=angles).solve(q, fidelity="kinematic")
+    by_element = stewart.Platform(**{"base_angle[2]": angles[1]}).solve(q, fidelity="kinematic")
+    np.testing.assert_array_equal(by_array.length, by_element.length)

@@ -12,7 +12,8 @@ import sys
 import numpy as np
 import pytest
 
-from fmu_support import POSE, POSE_DDOT, POSE_DOT, rotation, stewart_solve_path
+import reference
+from fmu_support import POSE, POSE_DDOT, POSE_DOT, stewart_solve_path
 
 stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
 pq = pytest.importorskip("pyarrow.parquet")
@@ -145,22 +146,12 @@ def workspace_run(tmp_path_factory):
     return out
 
 
-def _numpy_lengths(q, rb=0.5, rt=0.5):
-    beta = np.radians([0, 30, 120, 150, 240, 270])
-    tau = np.radians([330, 60, 90, 180, 210, 300])
-    a = rb * np.column_stack([np.cos(beta), np.sin(beta), np.zeros(6)])
-    b = rt * np.column_stack([np.cos(tau), np.sin(tau), np.zeros(6)])
-    R = np.array([rotation(*p[3:]) for p in q])
-    legs = q[:, None, :3] + np.einsum("nij,kj->nki", R, b) - a[None]
-    return np.linalg.norm(legs, axis=2)
-
-
 @pytest.mark.parametrize("name", ["xy", "rp"])
 def test_workspace_reachable_exactly_within_the_length_limits(workspace_run, name):
     t = _table(workspace_run, f"workspace_{name}.parquet")
     s = next(x for x in WORKSPACE["slices"] if x["name"] == name)
     q = np.column_stack([t[c] for c in POSE])
-    L = _numpy_lengths(q)
+    L = np.array([reference.lengths(p) for p in q])
     inside = np.all((L >= STROKE[0]) & (L <= STROKE[1]), axis=1)
     differ = inside != t["reachable"]
     # A disagreement is only allowed on a length within rounding of a limit.
