@@ -35,3 +35,13 @@ if ! ls .cache/wheels/vyperling-0.0.4-*.whl >/dev/null 2>&1; then
   .venv/bin/pip download -q --disable-pip-version-check --no-deps --only-binary=:all: \
     -d .cache/wheels vyperling==0.0.4
 fi
+
+# The Python package `stewart` (pyproject.toml: the library through nanobind, the FMUs inside),
+# built from this tree with the venv's build tools; reinstalled only when a source file is newer
+# than the last install.
+stamp=.venv/installed-stewart
+if [ ! -f "$stamp" ] || [ -n "$(find pyproject.toml CMakeLists.txt csrc fmu python -newer "$stamp" -type f -print -quit)" ]; then
+  echo "setup: installing the Python package stewart (pip install .)"
+  .venv/bin/pip install -q --disable-pip-version-check --no-build-isolation --no-deps .
+  touch "$stamp"
+fi

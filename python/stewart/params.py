@@ -1,0 +1,59 @@
+"""Platform parameters by name: the one place where Python names become library assignments.
+
+The names are the FMU's (and `stewart-solve --param`'s), from the library's parameter table
+(stewart_table.h): scalars by name (``payload_mass``), arrays as sequences (``base_angle=[...]``)
+that become ``base_angle[1]`` .. ``base_angle[6]`` (elements counted from 1). The library sets
+each element (`stewart_params_set`, which names the nearest parameter on a typo) and checks every
+value when the model is built; Python keeps no copy of the parameter list.
+"""
+from __future__ import annotations
+
+import functools
+from collections.abc import Mapping, Sequence
+from typing import Any, Union
+
+import numpy as np
+
+from . import _core
+from .errors import ParameterError
+
+ParameterValue = Union[float, Sequence[float], np.ndarray]
+
+
+@functools.lru_cache(maxsize=1)
+def _table() -> tuple[dict[str, Any], ...]:
+    return tuple(_core.parameter_table())
+
+
+def parameters() -> list[dict[str, Any]]:
+    """The library's parameter table, one dict per parameter in declaration order: name, count
+    (1, 3 for x y z, 6 for legs 1..6), unit (SI), description, defaults (the thesis platform),
+    min and max (the valid range of each element)."""
+    return [dict(p) for p in _table()]
+
+
+def parameter_assignments(params: Mapping[str, ParameterValue]) -> list[tuple[str, float]]:
+    """(library name, value) pairs for a mapping of parameter names to scalars or sequences.
+
+    Raises ParameterError for a name the library does not know (with its nearest name) and for a
+    value with the wrong number of elements."""
+    counts = {p["name"]: p["count"] for p in _table()}
+    assignments: list[tuple[str, float]] = []
+    for name, value in params.items():
+        values = np.asarray(value, dtype=float)
+        count = counts.get(name)
+        if count is None:  # an unknown name, or one element ("base_angle[2]") by its own name
+            known, message = _core.parameter_known(name)
+            if not known:
+                raise ParameterError(message)
+            count = 1
+        if count == 1:
+            if values.ndim != 0:
+                raise ParameterError(f"{name} = {value!r} must be one number")
+            assignments.append((name, float(values)))
+            continue
+        if values.shape != (count,):
+            raise ParameterError(f"{name} has {values.size} values ({value!r}): it needs {count}, "
+                                 f"one per element {name}[1]..{name}[{count}]")
+        assignments.extend((f"{name}[{k}]", float(v)) for k, v in enumerate(values, start=1))
+    return assignments

@@ -1,0 +1,216 @@
+"""Running a sweep: chunks on a Dask cluster (a LocalCluster, or a running scheduler), each
+chunk's Parquet file written as it arrives, then the merged results and plots.
+
+OUT_DIR layout: spec.json (the resolved spec), version.json, chunks/*.parquet (one per chunk;
+a rerun computes only the missing ones), envelope.parquet or workspace_<slice>.parquet, *.png,
+run.json (timings and which worker computed each chunk: not results). Workers that see OUT_DIR
+write their chunk files themselves; others send their tables to this process, which writes them."""
+from __future__ import annotations
+
+import importlib
+import json
+import os
+import pathlib
+import platform as host
+import sys
+import time
+import uuid
+from typing import Callable, Optional
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from .spec import Chunk, SpecError, chunks, load, slice_size
+from .work import envelope_chunk, workspace_chunk
+
+
+def compute_chunk(spec: dict, chunk: Chunk, out_dir: str) -> tuple[Optional[pa.Table], dict]:
+    """One chunk's statistics (seconds, poses, cases, worker address) and its table. A worker
+    that sees OUT_DIR (same machine, or a shared file system) writes the chunk file itself and
+    returns no table, which saves sending the results through the scheduler's connection."""
+    work = envelope_chunk if spec["kind"] == "envelope" else workspace_chunk
+    cpu = time.process_time()
+    table, stats = work(spec, chunk)
+    try:
+        from distributed import get_worker
+        stats["worker"] = get_worker().address
+    except (ImportError, ValueError):
+        stats["worker"] = "local"
+    out = pathlib.Path(out_dir)
+    if (out / "chunks").is_dir() and (out / "spec.json").is_file() and \
+            json.loads((out / "spec.json").read_text()) == spec:
+        started = time.perf_counter()
+        write_chunk(table, out, chunk)
+        stats["write_seconds"] = time.perf_counter() - started
+        table = None
+    # CPU time of this (single-threaded) worker process: on a shared machine it tells how much
+    # of a core the chunk really got.
+    stats["cpu_seconds"] = time.process_time() - cpu
+    return table, stats
+
+
+def write_chunk(table: pa.Table, out: pathlib.Path, chunk: Chunk) -> None:
+    """Writes the chunk's file under a unique temporary name, then renames it into place, so a
+    chunk file exists only when complete (an interrupted run leaves it missing)."""
+    path = out / "chunks" / chunk.file_name
+    tmp = path.with_name(f".{chunk.file_name}.{uuid.uuid4().hex}.tmp")
+    write_parquet(table, tmp)
+    os.replace(tmp, path)
+
+
+def write_parquet(table: pa.Table, path: pathlib.Path) -> None:
+    """Parquet with dictionaries for the text columns only (on float columns they cost as much
+    time as a massless solve and save nothing) and lz4 compression."""
+    text = [f.name for f in table.schema if pa.types.is_string(f.type) or pa.types.is_dictionary(f.type)]
+    pq.write_table(table, path, compression="lz4", use_dictionary=text)
+
+
+def versions() -> dict:
+    """The product's version and those of the pieces that computed the results."""
+    import dask
+    import distributed
+    from .. import __version__
+    return {"stewart": __version__, "numpy": np.__version__, "pyarrow": pa.__version__,
+            "dask": dask.__version__, "distributed": distributed.__version__,
+            "python": sys.version.split()[0], "machine": host.machine()}
+
+
+def prepare(spec_path, out_dir, scene_dir) -> tuple[dict, pathlib.Path]:
+    """Loads and checks the spec (SpecError before anything is written), then creates OUT_DIR
+    with spec.json and version.json; refuses an OUT_DIR that holds another spec's results."""
+    spec = load(spec_path, scene_dir)
+    out = pathlib.Path(out_dir)
+    (out / "chunks").mkdir(parents=True, exist_ok=True)
+    spec_file = out / "spec.json"
+    text = json.dumps(spec, indent=1, sort_keys=True)
+    if spec_file.exists() and spec_file.read_text() != text:
+        raise SpecError(f"{out} holds the results of a different spec ({spec_file}): "
+                        "use another OUT_DIR or delete it")
+    spec_file.write_text(text)
+    (out / "version.json").write_text(json.dumps(versions(), indent=1, sort_keys=True))
+    return spec, out
+
+
+def missing_chunks(spec: dict, out: pathlib.Path) -> list[Chunk]:
+    """The chunks without a finished file (files are renamed into place only when complete)."""
+    return [c for c in chunks(spec) if not (out / "chunks" / c.file_name).exists()]
+
+
+def run(spec_path, out_dir, scene_dir, workers: Optional[int] = None,
+        scheduler: Optional[str] = None, progress: bool = True,
+        log: Callable[[str], None] = print) -> dict:
+    """Runs (or finishes) the sweep of spec_path into out_dir; returns the run summary, also in
+    run.json. A chunk that raises is reported and left missing (a rerun retries it)."""
+    spec, out = prepare(spec_path, out_dir, scene_dir)
+    todo = missing_chunks(spec, out)
+    total = len(chunks(spec))
+    log(f"sweep: {total} chunks, {total - len(todo)} already done, {len(todo)} to compute")
+    summary = {"chunks": total, "computed": [], "failed_chunks": [], "wall_seconds": 0.0}
+    if todo:
+        started = time.perf_counter()
+        with _client(workers, scheduler) as client:
+            summary["workers"] = len(client.scheduler_info()["workers"])
+            # Workers import the solver and pyarrow now, as part of the start-up, not in the
+            # first chunk each computes.
+            client.run(importlib.import_module, "stewart.sweeps.work")
+            summary["startup_seconds"] = time.perf_counter() - started
+            started = time.perf_counter()
+            _compute_all(client, spec, todo, out, summary, progress, log)
+            summary["wall_seconds"] = time.perf_counter() - started
+    merge(spec, out)
+    from .plots import plot
+    plot(spec, out)
+    (out / "run.json").write_text(json.dumps(summary, indent=1))
+    if summary["failed_chunks"]:
+        raise RuntimeError(f"{len(summary['failed_chunks'])} chunks raised (see run.json); "
+                           "run again to retry them")
+    return summary
+
+
+class _client:
+    """A distributed Client on a running scheduler, or on a LocalCluster it starts and stops."""
+
+    def __init__(self, workers: Optional[int], scheduler: Optional[str]):
+        self.workers, self.scheduler = workers, scheduler
+        self.cluster = None
+
+    def __enter__(self):
+        from distributed import Client, LocalCluster
+        if self.scheduler:
+            self.client = Client(self.scheduler, timeout="30s")
+        else:
+            self.cluster = LocalCluster(n_workers=self.workers or os.cpu_count() or 1,
+                                        threads_per_worker=1, processes=True,
+                                        host="127.0.0.1", dashboard_address=":0")
+            self.client = Client(self.cluster)
+        return self.client
+
+    def __exit__(self, *exc):
+        self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()
+
+
+def _compute_all(client, spec, todo, out, summary, progress, log):
+    from distributed import as_completed
+    from tqdm import tqdm
+    spec_future = client.scatter(spec, broadcast=True)
+    futures = {client.submit(compute_chunk, spec_future, c, str(out.resolve()), pure=False): c
+               for c in todo}
+    unit = "case" if spec["kind"] == "envelope" else "pose"
+    sizes = {c: c.stop - c.start for c in todo}
+    with tqdm(total=sum(sizes.values()), unit=unit, disable=not progress, smoothing=0.1) as bar:
+        for future in as_completed(futures):
+            chunk = futures[future]
+            try:
+                table, stats = future.result()
+            except Exception as e:  # a bug, not a failing case: those are rows with a status
+                log(f"sweep: chunk {chunk.file_name} raised {type(e).__name__}: {e}")
+                summary["failed_chunks"].append({"chunk": chunk.file_name, "error": str(e)})
+                continue
+            if table is not None:  # the worker could not write it
+                write_chunk(table, out, chunk)
+            summary["computed"].append({"chunk": chunk.file_name, **stats})
+            bar.update(sizes[chunk])
+
+
+def merge(spec: dict, out: pathlib.Path) -> list[pathlib.Path]:
+    """The chunk files of each part, in chunk order, as one Parquet file per part (workspace
+    slices get a `boundary` column). Parts with missing chunks are left unmerged."""
+    parts: dict[str, list[Chunk]] = {}
+    for c in chunks(spec):
+        parts.setdefault(c.part, []).append(c)
+    written = []
+    for part, cs in parts.items():
+        files = [out / "chunks" / c.file_name for c in cs]
+        if not all(f.exists() for f in files):
+            continue
+        table = pa.concat_tables(pq.read_table(f) for f in files)
+        if spec["kind"] == "envelope":
+            path = out / "envelope.parquet"
+        else:
+            s = next(x for x in spec["slices"] if x["name"] == part)
+            assert table.num_rows == slice_size(s)
+            table = table.append_column("boundary", pa.array(boundary(s, table["reachable"].to_numpy())))
+            path = out / f"workspace_{part}.parquet"
+        write_parquet(table, path)
+        written.append(path)
+    return written
+
+
+def boundary(s: dict, reachable: np.ndarray) -> np.ndarray:
+    """Reachable grid points with an unreachable grid neighbour along some axis: the boundary of
+    the reachable workspace in the slice (the grid's own edge is not marked)."""
+    grid = reachable.reshape([len(v) for v in s["axes"].values()])
+    edge = np.zeros_like(grid)
+    for axis in range(grid.ndim):
+        ahead = np.zeros_like(grid)
+        behind = np.zeros_like(grid)
+        sl = [slice(None)] * grid.ndim
+        sl_next = [slice(None)] * grid.ndim
+        sl[axis], sl_next[axis] = slice(0, -1), slice(1, None)
+        ahead[tuple(sl)] = ~grid[tuple(sl_next)]
+        behind[tuple(sl_next)] = ~grid[tuple(sl)]
+        edge |= ahead | behind
+    return (grid & edge).reshape(-1)

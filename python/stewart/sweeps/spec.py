@@ -1,0 +1,315 @@
+"""Sweep specs: parsing, validation before any work, and the split into chunks.
+
+A spec is JSON (docs/sweeps.md has the full format). Two kinds:
+
+* ``"kind": "envelope"``: cases = payload_mass x payload_com x manoeuvre (scene x amplitude scale
+  x frequency scale) x fidelity; each case is one trajectory; per case the peaks (work.py).
+* ``"kind": "workspace"``: slices of the pose space, each one or two pose components on a grid
+  with the others fixed; per pose reachability, condition and static forces.
+
+Every field is checked here, before anything is sent to a worker: a bad one raises SpecError
+naming the field (``manoeuvres[1].amplitude``) and the value.
+"""
+from __future__ import annotations
+
+import json
+import math
+import pathlib
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..platform import Fidelity, Platform
+
+POSE = ("x", "y", "z", "roll", "pitch", "yaw")
+SOLVER_OPTIONS = ("tolerance", "max_iterations", "modified_newton", "warn_condition",
+                  "singular_condition")
+_COMMON = {"kind", "platform", "options", "fidelity", "title"}
+_FIELDS = {
+    "envelope": _COMMON | {"payload_mass", "payload_com", "manoeuvres", "duration", "step",
+                           "cases_per_chunk"},
+    "workspace": _COMMON | {"slices", "poses_per_chunk"},
+}
+
+
+class SpecError(ValueError):
+    """A sweep spec that cannot run: the message names the field and its value."""
+
+
+@dataclass(frozen=True)
+class Chunk:
+    """One unit of work: rows [start, stop) of a part (the cases, or one workspace slice)."""
+    part: str
+    index: int
+    start: int
+    stop: int
+
+    @property
+    def file_name(self) -> str:
+        return f"{self.part}-{self.index:05d}.parquet"
+
+
+def load(path: str | pathlib.Path, scene_dir: str | pathlib.Path) -> dict:
+    """The spec in JSON file `path`, checked and resolved (see resolve)."""
+    try:
+        raw = json.loads(pathlib.Path(path).read_text())
+    except (OSError, json.JSONDecodeError) as e:
+        raise SpecError(f"{path}: {e}") from None
+    return resolve(raw, scene_dir)
+
+
+def resolve(raw: Any, scene_dir: str | pathlib.Path) -> dict:
+    """A checked, self-contained spec: ranges expanded to lists, scenes read from scene_dir and
+    embedded, so that workers need no files. Raises SpecError naming the first bad field."""
+    if not isinstance(raw, dict):
+        raise SpecError("the spec must be a JSON object")
+    kind = raw.get("kind")
+    if kind not in _FIELDS:
+        raise SpecError(f"kind = {kind!r} must be 'envelope' or 'workspace'")
+    unknown = sorted(set(raw) - _FIELDS[kind])
+    if unknown:
+        raise SpecError(f"unknown field {unknown[0]!r} for kind {kind!r} "
+                        f"(known: {', '.join(sorted(_FIELDS[kind]))})")
+    spec = {"kind": kind, "title": str(raw.get("title", "")),
+            "platform": _mapping(raw, "platform"), "options": _options(raw)}
+    base = _platform(spec["platform"], {}, "platform")
+    fidelity = raw.get("fidelity", ["massless"] if kind == "envelope" else "massless")
+    if kind == "envelope":
+        spec["fidelity"] = [_fidelity(f, f"fidelity[{i}]") for i, f in
+                            enumerate(_list(fidelity, "fidelity"))]
+        _check_options(base, spec["options"], spec["fidelity"])
+        spec.update(_envelope(raw, spec, base, pathlib.Path(scene_dir)))
+    else:
+        spec["fidelity"] = _fidelity(fidelity, "fidelity")
+        _check_options(base, spec["options"], [spec["fidelity"]])
+        spec["slices"] = [_slice(s, f"slices[{i}]") for i, s in
+                          enumerate(_list(raw.get("slices"), "slices"))]
+        names = [s["name"] for s in spec["slices"]]
+        if len(set(names)) != len(names):
+            raise SpecError(f"slices: names {names} must differ")
+        spec["poses_per_chunk"] = _positive_int(raw.get("poses_per_chunk", 65536), "poses_per_chunk")
+    return spec
+
+
+def chunks(spec: dict) -> list[Chunk]:
+    """The chunks of a resolved spec, in a fixed order that depends on the spec only (never on
+    the number of workers), so that every run splits the work alike."""
+    if spec["kind"] == "envelope":
+        parts = [("cases", case_count(spec), spec["cases_per_chunk"])]
+    else:
+        parts = [(s["name"], slice_size(s), spec["poses_per_chunk"]) for s in spec["slices"]]
+    out = []
+    for part, n, size in parts:
+        for i, start in enumerate(range(0, n, size)):
+            out.append(Chunk(part, i, start, min(start + size, n)))
+    return out
+
+
+def case_count(spec: dict) -> int:
+    """Number of envelope cases."""
+    variants = sum(len(m["amplitude"]) * len(m["frequency"]) for m in spec["manoeuvres"])
+    return len(spec["payload_mass"]) * len(spec["payload_com"]) * variants * len(spec["fidelity"])
+
+
+def slice_size(s: dict) -> int:
+    """Number of poses of a workspace slice."""
+    return math.prod(len(v) for v in s["axes"].values())
+
+
+# ---------------------------------------------------------------- envelope fields
+
+def _envelope(raw: dict, spec: dict, base: Platform, scene_dir: pathlib.Path) -> dict:
+    out: dict[str, Any] = {}
+    for key in ("payload_mass", "payload_com"):
+        if key in spec["platform"]:
+            raise SpecError(f"platform.{key}: the envelope sweeps it; give it as the top-level {key}")
+    out["payload_mass"] = _values(raw.get("payload_mass", [0.0]), "payload_mass")
+    coms = _list(raw.get("payload_com", [[0.0, 0.0, 0.0]]), "payload_com")
+    out["payload_com"] = []
+    for i, c in enumerate(coms):
+        c = np.asarray(c, dtype=float) if _is_numbers(c) else None
+        if c is None or c.shape != (3,) or not np.all(np.isfinite(c)):
+            raise SpecError(f"payload_com[{i}] = {coms[i]!r} must be 3 finite numbers [m]")
+        out["payload_com"].append(c.tolist())
+    for i, m in enumerate(out["payload_mass"]):
+        for j, c in enumerate(out["payload_com"]):
+            _platform(spec["platform"], {"payload_mass": m, "payload_com": c},
+                      f"payload_mass[{i}] = {m} with payload_com[{j}] = {c}")
+    out["duration"] = _optional_positive(raw, "duration")
+    out["step"] = _optional_positive(raw, "step")
+    out["manoeuvres"] = [_manoeuvre(m, f"manoeuvres[{i}]", scene_dir) for i, m in
+                         enumerate(_list(raw.get("manoeuvres"), "manoeuvres"))]
+    out["cases_per_chunk"] = _positive_int(raw.get("cases_per_chunk", 8), "cases_per_chunk")
+    for i, m in enumerate(out["manoeuvres"]):
+        _check_reachable(base, m, out, f"manoeuvres[{i}]")
+    return out
+
+
+def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
+    if not isinstance(m, dict) or "scene" not in m:
+        raise SpecError(f"{field} = {m!r} must be an object with a 'scene' (a name in scenes/ "
+                        "or an inline scene object)")
+    unknown = sorted(set(m) - {"scene", "amplitude", "frequency"})
+    if unknown:
+        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: scene, amplitude, frequency)")
+    scene = m["scene"]
+    if isinstance(scene, str):
+        path = scene_dir / f"{scene}.json"
+        if not path.is_file():
+            raise SpecError(f"{field}.scene = {scene!r}: there is no {path}")
+        name, scene = scene, json.loads(path.read_text())
+    elif isinstance(scene, dict):
+        name = str(scene.get("name", f"inline{field}"))
+    else:
+        raise SpecError(f"{field}.scene = {scene!r} must be a scene name or a scene object")
+    pose = scene.get("pose")
+    if not isinstance(pose, dict) or set(pose) - set(POSE):
+        raise SpecError(f"{field}.scene: pose = {pose!r} must map components of {POSE} to sinusoids")
+    for comp, s in pose.items():
+        if not isinstance(s, dict):
+            raise SpecError(f"{field}.scene.pose.{comp} = {s!r} must be an object (mean, "
+                            "amplitude, omega, phase)")
+        for key in ("mean", "amplitude", "omega", "phase"):
+            if not isinstance(s.get(key, 0.0), (int, float)) or not math.isfinite(s.get(key, 0.0)):
+                raise SpecError(f"{field}.scene.pose.{comp}.{key} = {s.get(key)!r} must be a finite number")
+    for key in ("duration", "step"):
+        if not (isinstance(scene.get(key), (int, float)) and scene[key] > 0):
+            raise SpecError(f"{field}.scene.{key} = {scene.get(key)!r} must be a number > 0")
+    return {"name": name, "scene": {"pose": pose, "duration": float(scene["duration"]),
+                                    "step": float(scene["step"])},
+            "amplitude": _values(m.get("amplitude", [1.0]), f"{field}.amplitude"),
+            "frequency": _values(m.get("frequency", [1.0]), f"{field}.frequency")}
+
+
+def _check_reachable(base: Platform, m: dict, spec: dict, field: str) -> None:
+    """Every variant of the manoeuvre stays within the stroke (lengths do not depend on the
+    payload, so the kinematic level on the base platform decides)."""
+    from .work import manoeuvre_poses  # the same poses the workers will solve
+    for a in m["amplitude"]:
+        for f in m["frequency"]:
+            t, q, qd, qdd = manoeuvre_poses(m, a, f, spec["duration"], spec["step"])
+            sol = base.solve(q, qd, qdd, fidelity="kinematic", max_messages=1)
+            bad = np.flatnonzero(~sol.ok | (sol.warnings & 1).astype(bool))
+            if bad.size:
+                j = int(bad[0])
+                why = sol.messages.get(j) or ("a leg length leaves the stroke: L = "
+                                              f"{np.array2string(sol.length[j], precision=4)} m")
+                raise SpecError(f"{field} ({m['name']}, amplitude x{a}, frequency x{f}) is "
+                                f"unreachable at t = {t[j]:g} s: {why}")
+
+
+# ---------------------------------------------------------------- workspace fields
+
+def _slice(s: Any, field: str) -> dict:
+    if not isinstance(s, dict):
+        raise SpecError(f"{field} = {s!r} must be an object with name, fixed and axes")
+    unknown = sorted(set(s) - {"name", "fixed", "axes"})
+    if unknown:
+        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: name, fixed, axes)")
+    name = s.get("name")
+    if not isinstance(name, str) or not name.replace("_", "").replace("-", "").replace(".", "").isalnum():
+        raise SpecError(f"{field}.name = {name!r} must be a word (letters, digits, _ - .)")
+    fixed = _mapping(s, "fixed", f"{field}.fixed")
+    axes = _mapping(s, "axes", f"{field}.axes")
+    if not 1 <= len(axes) <= 2:
+        raise SpecError(f"{field}.axes has {len(axes)} components: give 1 or 2")
+    for comp in (*fixed, *axes):
+        if comp not in POSE:
+            raise SpecError(f"{field}: {comp!r} is not a pose component {POSE}")
+    both = set(fixed) & set(axes)
+    if both:
+        raise SpecError(f"{field}: {sorted(both)[0]!r} is both fixed and an axis")
+    if "z" not in fixed and "z" not in axes:
+        raise SpecError(f"{field}: z is neither fixed nor an axis (the base plane is singular)")
+    out_fixed = {}
+    for comp, v in fixed.items():
+        if not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise SpecError(f"{field}.fixed.{comp} = {v!r} must be a finite number")
+        out_fixed[comp] = float(v)
+    return {"name": name, "fixed": out_fixed,
+            "axes": {comp: _values(v, f"{field}.axes.{comp}") for comp, v in axes.items()}}
+
+
+# ---------------------------------------------------------------- shared helpers
+
+def _values(v: Any, field: str) -> list[float]:
+    """A list of finite numbers from a list, a number, or {"start", "stop", "num"}."""
+    if isinstance(v, dict):
+        unknown = sorted(set(v) - {"start", "stop", "num"})
+        if unknown or not {"start", "stop", "num"} <= set(v):
+            raise SpecError(f"{field} = {v!r}: a range needs exactly start, stop, num")
+        num = v["num"]
+        if not isinstance(num, int) or num < 1:
+            raise SpecError(f"{field}.num = {num!r}: the range is empty (num must be an integer >= 1)")
+        if not all(isinstance(v[k], (int, float)) and math.isfinite(v[k]) for k in ("start", "stop")):
+            raise SpecError(f"{field} = {v!r}: start and stop must be finite numbers")
+        return np.linspace(v["start"], v["stop"], num).tolist()
+    values = _list(v, field)
+    if not _is_numbers(values) or not all(math.isfinite(x) for x in values):
+        raise SpecError(f"{field} = {v!r} must be finite numbers")
+    return [float(x) for x in values]
+
+
+def _list(v: Any, field: str) -> list:
+    if v is None:
+        raise SpecError(f"{field} is missing")
+    values = v if isinstance(v, list) else [v]
+    if not values:
+        raise SpecError(f"{field} is empty: give at least one value")
+    return values
+
+
+def _is_numbers(v: Any) -> bool:
+    return isinstance(v, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)
+
+
+def _mapping(raw: dict, key: str, field: str | None = None) -> dict:
+    v = raw.get(key, {})
+    if not isinstance(v, dict):
+        raise SpecError(f"{field or key} = {v!r} must be an object")
+    return dict(v)
+
+
+def _positive_int(v: Any, field: str) -> int:
+    if not isinstance(v, int) or isinstance(v, bool) or v < 1:
+        raise SpecError(f"{field} = {v!r} must be an integer >= 1")
+    return v
+
+
+def _optional_positive(raw: dict, key: str) -> float | None:
+    v = raw.get(key)
+    if v is not None and not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+        raise SpecError(f"{key} = {v!r} must be a number > 0")
+    return None if v is None else float(v)
+
+
+def _fidelity(v: Any, field: str) -> str:
+    try:
+        return Fidelity.of(v).name.lower()
+    except ParameterError as e:
+        raise SpecError(f"{field}: {e}") from None
+
+
+def _options(raw: dict) -> dict:
+    options = _mapping(raw, "options")
+    for k in options:
+        if k not in SOLVER_OPTIONS:
+            raise SpecError(f"options: unknown option {k!r} (known: {', '.join(SOLVER_OPTIONS)})")
+    return options
+
+
+def _check_options(base: Platform, options: dict, levels: list[str]) -> None:
+    for level in levels:
+        try:
+            base.solve(np.zeros((0, 6)), fidelity=level, **options)
+        except (ParameterError, TypeError, ValueError) as e:
+            raise SpecError(f"options: {e}") from None
+
+
+def _platform(params: dict, extra: dict, field: str) -> Platform:
+    try:
+        return Platform(**params, **extra)
+    except ParameterError as e:
+        raise SpecError(f"{field}: {e}") from None

@@ -1,0 +1,138 @@
+"""The work of one chunk, run on a Dask worker (or in-process): poses in, a pyarrow Table out.
+
+Each chunk starts from fresh data blocks and depends only on the spec and its own row range, so
+a result is the same bit for bit whichever worker computes it and however many there are."""
+from __future__ import annotations
+
+import itertools
+import time
+
+import numpy as np
+import pyarrow as pa
+
+from ..platform import Platform, Solution
+from .spec import POSE, Chunk
+
+LEGS = range(1, 7)
+
+
+def manoeuvre_poses(m: dict, amplitude: float, frequency: float, duration: float | None,
+                    step: float | None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Times and exact pose, rate and acceleration (each (n, 6)) of a scene's sinusoids with every
+    amplitude scaled by `amplitude` and every omega by `frequency`, on the scene's time grid
+    (or duration/step when given)."""
+    scene = m["scene"]
+    dt = step or scene["step"]
+    t = np.arange(int(round((duration or scene["duration"]) / dt)) + 1) * dt
+    q, qd, qdd = (np.zeros((t.size, 6)) for _ in range(3))
+    for i, name in enumerate(POSE):
+        s = scene["pose"].get(name, {})
+        a, w = amplitude * s.get("amplitude", 0.0), frequency * s.get("omega", 0.0)
+        phase = w * t + s.get("phase", 0.0)
+        q[:, i] = s.get("mean", 0.0) + a * np.sin(phase)
+        qd[:, i] = a * w * np.cos(phase)
+        qdd[:, i] = -a * w * w * np.sin(phase)
+    return t, q, qd, qdd
+
+
+def envelope_cases(spec: dict):
+    """Every case as (payload_mass, payload_com, manoeuvre index, amplitude, frequency, fidelity),
+    in the fixed order the chunks cut."""
+    variants = [(i, a, f) for i, m in enumerate(spec["manoeuvres"])
+                for a in m["amplitude"] for f in m["frequency"]]
+    for mass, com, (i, a, f), level in itertools.product(
+            spec["payload_mass"], spec["payload_com"], variants, spec["fidelity"]):
+        yield mass, com, i, a, f, level
+
+
+ENVELOPE_METRICS = ([f"peak_force_{k}" for k in LEGS] +
+                    ["peak_length_rate", "peak_length_accel", "length_min", "length_max",
+                     "stroke_used", "max_condition", "min_inverse_condition", "peak_power"])
+
+
+def envelope_metrics(sol: Solution) -> list[float | None]:
+    """Per case: peak |F_k| per leg [N], peak |dL/dt| [m/s] and |d2L/dt2| [m/s^2] over legs,
+    shortest and longest length [m], stroke used (the largest length excursion of one leg [m]),
+    largest condition number and its reciprocal (the smallest distance to a singularity, 0 at
+    one; null at the kinematic level, which computes no condition), peak |sum_k F_k dL_k/dt| [W]."""
+    cond = float(sol.condition.max())
+    excursion = (sol.length.max(axis=0) - sol.length.min(axis=0)).max()
+    return ([float(v) for v in np.abs(sol.force).max(axis=0)] +
+            [float(np.abs(sol.length_rate).max()), float(np.abs(sol.length_accel).max()),
+             float(sol.length.min()), float(sol.length.max()), float(excursion),
+             cond if cond > 0 else None, 1.0 / cond if cond > 0 else None,
+             float(np.abs(sol.power).max())])
+
+
+def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
+    """Cases [chunk.start, chunk.stop): one row each, failures with status and message."""
+    started = time.perf_counter()
+    cases = itertools.islice(envelope_cases(spec), chunk.start, chunk.stop)
+    platforms: dict[tuple, Platform] = {}
+    columns: dict[str, list] = {k: [] for k in (
+        "case", "fidelity", "payload_mass", "payload_com_x", "payload_com_y", "payload_com_z",
+        "manoeuvre", "amplitude", "frequency", "poses", *ENVELOPE_METRICS, "status", "message")}
+    poses = 0
+    for case, (mass, com, i, a, f, level) in enumerate(cases, start=chunk.start):
+        key = (mass, tuple(com))
+        if key not in platforms:
+            platforms[key] = Platform(**spec["platform"], payload_mass=mass, payload_com=com)
+        m = spec["manoeuvres"][i]
+        t, q, qd, qdd = manoeuvre_poses(m, a, f, spec["duration"], spec["step"])
+        sol = platforms[key].solve(q, qd, qdd, fidelity=level, max_messages=1, **spec["options"])
+        poses += len(t)
+        failed = np.flatnonzero(~sol.ok)
+        if failed.size:
+            j = int(failed[0])
+            metrics = [None] * len(ENVELOPE_METRICS)
+            status = int(sol.status[j])
+            message = f"row {j + 1} (t = {t[j]:g} s): {sol.status_name(j)}: {sol.messages[j]}"
+        else:
+            metrics, status, message = envelope_metrics(sol), 0, ""
+        row = [case, level, mass, *com, m["name"], a, f, len(t), *metrics, status, message]
+        for name, value in zip(columns, row):
+            columns[name].append(value)
+    stats = {"seconds": time.perf_counter() - started, "poses": poses, "cases": chunk.stop - chunk.start}
+    return pa.table(columns), stats
+
+
+def slice_poses(s: dict, start: int, stop: int) -> tuple[np.ndarray, np.ndarray]:
+    """Grid indices (rows, one column per axis) and poses (rows, 6) of slice rows [start, stop):
+    row-major over the axes in their spec order."""
+    axes = list(s["axes"].items())
+    shape = [len(v) for _, v in axes]
+    index = np.column_stack(np.unravel_index(np.arange(start, stop), shape))
+    q = np.zeros((stop - start, 6))
+    for comp, v in s["fixed"].items():
+        q[:, POSE.index(comp)] = v
+    for col, (comp, values) in enumerate(axes):
+        q[:, POSE.index(comp)] = np.asarray(values)[index[:, col]]
+    return index, q
+
+
+def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
+    """Poses [chunk.start, chunk.stop) of one slice at rest: status, reachability within the
+    stroke, condition, lengths and static forces for the spec's platform and payload."""
+    started = time.perf_counter()
+    s = next(x for x in spec["slices"] if x["name"] == chunk.part)
+    index, q = slice_poses(s, chunk.start, chunk.stop)
+    sol = Platform(**spec["platform"]).solve(q, fidelity=spec["fidelity"],
+                                             max_messages=len(q), **spec["options"])
+    reachable = sol.ok & ((sol.warnings & 1) == 0)
+    columns = {"slice": pa.array([s["name"]] * len(q)).dictionary_encode(),
+               "row": np.arange(chunk.start, chunk.stop)}
+    for col, comp in enumerate(s["axes"]):
+        columns[f"i_{comp}"] = index[:, col]
+    for i, comp in enumerate(POSE):
+        columns[comp] = q[:, i]
+    columns["status"] = sol.status
+    columns["reachable"] = reachable
+    columns["condition"] = sol.condition
+    for k in LEGS:
+        columns[f"L{k}"] = sol.length[:, k - 1]
+    for k in LEGS:
+        columns[f"F{k}"] = sol.force[:, k - 1]
+    messages = [sol.messages.get(j, "") for j in range(len(q))]
+    columns["message"] = pa.array(messages).dictionary_encode()
+    stats = {"seconds": time.perf_counter() - started, "poses": len(q), "cases": 0}
+    return pa.table(columns), stats

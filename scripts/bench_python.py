@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""Benchmark (not a test) of the Python package and the Dask sweeps; prints and writes FILE.
+
+usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
+
+1. Batch throughput of stewart.Platform.solve per fidelity on a batch of 12001 poses (the yaw
+   manoeuvre that build/bench-closed-form and build/bench-full time), median of repeated calls,
+   against those C benchmarks run in the same invocation.
+2. Sweeps of >= 1e6 poses through scripts/sweep.py's engine on a LocalCluster of 1 and 2
+   workers: an envelope at the full level and a workspace slice at the massless level; wall time
+   from the first submission to the last result (cluster start-up apart), the workers' own time
+   (solving, building the table, writing its Parquet file), Dask's overhead
+   (1 - workers' time / (wall x workers)), the speed-up, and the workers' CPU time over the wall
+   time (how many cores they really had: on a shared machine, fewer than the workers).
+"""
+import argparse
+import json
+import os
+import pathlib
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+import stewart
+from stewart.sweeps import run
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def yaw_batch(n):
+    t = np.linspace(0.0, 12.0, n)
+    a, w = np.pi / 18, 5.0
+    q, qd, qdd = (np.zeros((n, 6)) for _ in range(3))
+    q[:, 2] = 0.5
+    q[:, 5], qd[:, 5], qdd[:, 5] = a * np.sin(w * t), a * w * np.cos(w * t), -a * w * w * np.sin(w * t)
+    return q, qd, qdd
+
+
+def python_ns_per_pose(level, n, repeats):
+    """Median ns per pose of solve() with fresh result arrays, and writing into one reused
+    Solution (out=), calls of both kinds interleaved."""
+    platform = stewart.Platform()
+    q, qd, qdd = yaw_batch(n)
+    reused = platform.solve(q, qd, qdd, fidelity=level)
+    fresh_times, reused_times = [], []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        sol = platform.solve(q, qd, qdd, fidelity=level)
+        fresh_times.append(time.perf_counter() - start)
+        start = time.perf_counter()
+        platform.solve(q, qd, qdd, fidelity=level, out=reused)
+        reused_times.append(time.perf_counter() - start)
+        assert sol.ok.all() and reused.ok.all()
+    return [statistics.median(t) / n * 1e9 for t in (fresh_times, reused_times)]
+
+
+def c_ns_per_pose(build):
+    out = subprocess.run([str(build / "bench-closed-form")], capture_output=True, text=True,
+                         check=True).stdout
+    full = subprocess.run([str(build / "bench-full")], capture_output=True, text=True, check=True).stdout
+    kin = float(re.search(r"kinematic:\s+([\d.]+) ns", out).group(1))
+    mass = float(re.search(r"massless:\s+([\d.]+) ns", out).group(1))
+    # stewart_solve's full level starts from the closed-form guess: the first block of bench-full.
+    full_us = float(re.search(r"closed-form initial guess.*?block LU \(ours\):\s+([\d.]+) us", full, re.S).group(1))
+    return {"kinematic": kin, "massless": mass, "full": full_us * 1e3}
+
+
+def sweep(spec, workers, tmp):
+    path = pathlib.Path(tmp) / f"spec-{spec['kind']}-{workers}.json"
+    path.write_text(json.dumps(spec))
+    start = time.perf_counter()
+    summary = run(path, pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}", ROOT / "scenes",
+                  workers=workers, progress=False, log=lambda m: None)
+    total = time.perf_counter() - start
+    compute = sum(c["seconds"] + c.get("write_seconds", 0.0) for c in summary["computed"])
+    cpu = sum(c["cpu_seconds"] for c in summary["computed"])
+    poses = sum(c["poses"] for c in summary["computed"])
+    cases = sum(c["cases"] for c in summary["computed"])
+    wall = summary["wall_seconds"]
+    out = pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}"
+    size = sum(f.stat().st_size for f in out.glob("*.parquet"))
+    return {"workers": workers, "wall": wall, "total": total, "compute": compute, "poses": poses,
+            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size, "cpu": cpu}
+
+
+ENVELOPE = {"kind": "envelope", "fidelity": ["full"], "payload_mass": {"start": 0, "stop": 100, "num": 21},
+            "payload_com": [[0, 0, 0.1], [0.05, 0.05, 0.15]],
+            "manoeuvres": [{"scene": s, "amplitude": [0.5, 1.0], "frequency": [1.0, 2.0]}
+                           for s in ("heave", "roll", "pitch", "yaw", "combined")],
+            "cases_per_chunk": 10}
+WORKSPACE = {"kind": "workspace", "fidelity": "massless", "platform": {"payload_mass": 50},
+             "slices": [{"name": "xy", "fixed": {"z": 0.55},
+                         "axes": {"x": {"start": -0.4, "stop": 0.4, "num": 1000},
+                                  "y": {"start": -0.4, "stop": 0.4, "num": 1000}}}],
+             "poses_per_chunk": 50000}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("file", nargs="?")
+    parser.add_argument("--build", default=str(ROOT / "build"))
+    parser.add_argument("--skip-sweeps", action="store_true")
+    args = parser.parse_args()
+    lines = [f"stewart {stewart.__version__}, {os.cpu_count()} cores; load average at start "
+             f"{os.getloadavg()[0]:.2f} (the machine may be shared: see docs/sweeps.md)"]
+    c = c_ns_per_pose(pathlib.Path(args.build))
+    lines.append("batch throughput, yaw manoeuvre, 12001 poses per call, median of calls:")
+    lines.append(f"  {'level':10s} {'C ns/pose':>10s} {'python ns/pose':>15s} {'python/C poses/s':>17s}"
+                 f" {'out= ns/pose':>13s} {'out= python/C':>14s}")
+    for level, repeats in (("kinematic", 41), ("massless", 41), ("full", 5)):
+        fresh, reused = python_ns_per_pose(level, 12001, repeats)
+        lines.append(f"  {level:10s} {c[level]:10.1f} {fresh:15.1f} {c[level] / fresh:17.1%}"
+                     f" {reused:13.1f} {c[level] / reused:14.1%}")
+    print("\n".join(lines), flush=True)
+    if not args.skip_sweeps:
+        with tempfile.TemporaryDirectory() as tmp:
+            for spec in (ENVELOPE, WORKSPACE):
+                rows = [sweep(spec, w, tmp) for w in (1, 2)]
+                level = spec["fidelity"][0] if spec["kind"] == "envelope" else spec["fidelity"]
+                lines.append(f"sweep {spec['kind']} ({level}), {rows[0]['poses']} poses, "
+                             f"{rows[0]['cases'] or '-'} cases:")
+                for r in rows:
+                    per_core = r["poses"] / (r["wall"] * r["workers"])
+                    lines.append(
+                        f"  {r['workers']} worker(s): wall {r['wall']:.2f} s (with start-up, merge, plots "
+                        f"{r['total']:.2f} s), workers' own time {r['compute']:.2f} s, Dask overhead "
+                        f"{r['overhead']:.1%}, {r['poses'] / r['wall']:.3g} poses/s "
+                        f"({per_core:.3g} per core); workers' CPU {r['cpu']:.2f} s = "
+                        f"{r['cpu'] / r['wall']:.2f} cores busy on average" +
+                        (f", {r['cases'] / r['wall']:.3g} cases/s" if r["cases"] else ""))
+                lines.append(f"  speed-up 2 vs 1 worker: {rows[0]['wall'] / rows[1]['wall']:.2f}x; "
+                             f"merged Parquet {rows[0]['bytes'] / 1e6:.1f} MB "
+                             f"({rows[0]['bytes'] / (rows[0]['cases'] or rows[0]['poses']):.0f} B per "
+                             f"{'case' if rows[0]['cases'] else 'pose'})")
+                print("\n".join(lines[-4:]), flush=True)
+    if args.file:
+        pathlib.Path(args.file).write_text("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

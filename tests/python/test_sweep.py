@@ -1,0 +1,247 @@
+"""Sweeps (stewart.sweeps, scripts/sweep.py) against independent references: the same results on
+1 and 2 LocalCluster workers and from stewart-solve; the workspace's reachability and boundary
+against the closed-form length limits in numpy; map values at sample points against direct
+calls; bad specs refused before any work; failing cases recorded; a rerun computes only missing
+chunks."""
+import json
+import math
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import reference
+from fmu_support import POSE, POSE_DDOT, POSE_DOT, stewart_solve_path
+
+stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
+pq = pytest.importorskip("pyarrow.parquet")
+pytest.importorskip("distributed")
+from stewart.sweeps import SpecError, chunks, resolve, run  # noqa: E402
+from stewart.sweeps.run import compute_chunk  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SCENES = ROOT / "scenes"
+
+ENVELOPE = {
+    "kind": "envelope", "fidelity": ["massless", "full"],
+    "payload_mass": {"start": 0, "stop": 60, "num": 2}, "payload_com": [[0.0, 0.0, 0.1], [0.05, -0.02, 0.1]],
+    "manoeuvres": [{"scene": "heave", "amplitude": [1.0, 1.5]}, {"scene": "yaw", "frequency": [1.0, 2.0]}],
+    "duration": 1.5, "cases_per_chunk": 3,
+}
+STROKE = (0.43, 0.68)
+WORKSPACE = {
+    "kind": "workspace",
+    "platform": {"payload_mass": 40.0, "stroke_min": STROKE[0], "stroke_max": STROKE[1]},
+    "slices": [
+        {"name": "xy", "fixed": {"z": 0.52, "yaw": 0.05},
+         "axes": {"x": {"start": -0.25, "stop": 0.25, "num": 57}, "y": {"start": -0.2, "stop": 0.2, "num": 43}}},
+        {"name": "rp", "fixed": {"x": 0.02, "z": 0.52},
+         "axes": {"roll": {"start": -0.4, "stop": 0.4, "num": 41}, "pitch": {"start": -0.35, "stop": 0.35, "num": 37}}},
+    ],
+    "poses_per_chunk": 700,
+}
+
+
+def _sweep(tmp_path, spec, name, **kw):
+    path = tmp_path / f"{name}.json"
+    path.write_text(json.dumps(spec))
+    out = tmp_path / name
+    summary = run(path, out, SCENES, progress=False, log=lambda m: None, **kw)
+    return out, summary
+
+
+def _table(out, name):
+    t = pq.read_table(out / name)
+    return {k: t[k].to_numpy(zero_copy_only=False) for k in t.column_names}
+
+
+def _assert_tables_equal(a, b):
+    assert a.keys() == b.keys()
+    for k in a:
+        if a[k].dtype.kind == "f":
+            np.testing.assert_array_equal(a[k], b[k], err_msg=k)
+        else:
+            assert list(a[k]) == list(b[k]), k
+
+
+@pytest.fixture(scope="module")
+def envelope_runs(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("envelope")
+    one, _ = _sweep(tmp, ENVELOPE, "one", workers=1)
+    two, summary = _sweep(tmp, ENVELOPE, "two", workers=2)
+    return one, two, summary
+
+
+def test_envelope_same_bit_for_bit_on_one_and_two_workers(envelope_runs):
+    one, two, summary = envelope_runs
+    a, b = _table(one, "envelope.parquet"), _table(two, "envelope.parquet")
+    assert len(a["case"]) == 2 * 2 * 4 * 2 and np.all(a["status"] == 0)
+    _assert_tables_equal(a, b)
+    assert summary["workers"] == 2
+    for f in ("spec.json", "version.json", "envelope_massless.png", "envelope_full.png"):
+        assert (two / f).stat().st_size > 0
+    assert json.loads((two / "version.json").read_text())["stewart"] == stewart.__version__
+
+
+def _scene_poses(name, amplitude, frequency, duration):
+    """The scene's sinusoids written out here, from the scene file."""
+    scene = json.loads((SCENES / f"{name}.json").read_text())
+    dt = scene["step"]
+    t = np.arange(int(round(duration / dt)) + 1) * dt
+    q, qd, qdd = (np.zeros((t.size, 6)) for _ in range(3))
+    for i, c in enumerate(POSE):
+        s = scene["pose"].get(c, {})
+        a, w, ph = amplitude * s.get("amplitude", 0.0), frequency * s.get("omega", 0.0), s.get("phase", 0.0)
+        q[:, i] = s.get("mean", 0.0) + a * np.sin(w * t + ph)
+        qd[:, i] = a * w * np.cos(w * t + ph)
+        qdd[:, i] = -a * w * w * np.sin(w * t + ph)
+    return t, q, qd, qdd
+
+
+def _cli(t, q, qd, qdd, fidelity, params, tmp_path):
+    inp, out = tmp_path / "in.csv", tmp_path / "out.csv"
+    rows = np.hstack([t[:, None], q, qd, qdd])
+    inp.write_text(",".join(["t", *POSE, *POSE_DOT, *POSE_DDOT]) + "\n" +
+                   "".join(",".join(repr(float(v)) for v in r) + "\n" for r in rows))
+    args = [str(stewart_solve_path()), "--fidelity", fidelity]
+    for k, v in params.items():
+        args += ["--param", f"{k}={float(v)!r}"]
+    r = subprocess.run(args + [str(inp), str(out)], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    return np.loadtxt(out, delimiter=",", skiprows=1)
+
+
+@pytest.mark.parametrize("case", [0, 7, 21, 30])
+def test_envelope_case_equals_stewart_solve(envelope_runs, case, tmp_path):
+    """The case's trajectory through stewart-solve, its peaks computed here: equal bit for bit."""
+    row = {k: v[case] for k, v in _table(envelope_runs[1], "envelope.parquet").items()}
+    com = [row["payload_com_x"], row["payload_com_y"], row["payload_com_z"]]
+    t, q, qd, qdd = _scene_poses(row["manoeuvre"], row["amplitude"], row["frequency"], ENVELOPE["duration"])
+    params = {"payload_mass": row["payload_mass"], **{f"payload_com[{k + 1}]": c for k, c in enumerate(com)}}
+    out = _cli(t, q, qd, qdd, row["fidelity"], params, tmp_path)
+    L, Ld, Ldd, F, cond = out[:, 1:7], out[:, 7:13], out[:, 13:19], out[:, 19:25], out[:, 25]
+    for k in range(6):
+        assert row[f"peak_force_{k + 1}"] == max(abs(v) for v in F[:, k])
+    assert row["peak_length_rate"] == np.abs(Ld).max()
+    assert row["peak_length_accel"] == np.abs(Ldd).max()
+    assert (row["length_min"], row["length_max"]) == (L.min(), L.max())
+    assert row["stroke_used"] == max(L[:, k].max() - L[:, k].min() for k in range(6))
+    assert row["max_condition"] == cond.max() and row["min_inverse_condition"] == 1.0 / cond.max()
+    power = [sum_in_order(F[j], Ld[j]) for j in range(len(t))]
+    assert row["peak_power"] == max(abs(p) for p in power)
+
+
+def sum_in_order(f, ld):
+    p = f[0] * ld[0]
+    for k in range(1, 6):
+        p = p + f[k] * ld[k]
+    return p
+
+
+@pytest.fixture(scope="module")
+def workspace_run(tmp_path_factory):
+    out, _ = _sweep(tmp_path_factory.mktemp("workspace"), WORKSPACE, "ws", workers=2)
+    return out
+
+
+@pytest.mark.parametrize("name", ["xy", "rp"])
+def test_workspace_reachable_exactly_within_the_length_limits(workspace_run, name):
+    t = _table(workspace_run, f"workspace_{name}.parquet")
+    s = next(x for x in WORKSPACE["slices"] if x["name"] == name)
+    q = np.column_stack([t[c] for c in POSE])
+    L = np.array([reference.lengths(p) for p in q])
+    inside = np.all((L >= STROKE[0]) & (L <= STROKE[1]), axis=1)
+    differ = inside != t["reachable"]
+    # A disagreement is only allowed on a length within rounding of a limit.
+    near = np.min(np.abs(L[:, :, None] - np.array(STROKE)), axis=(1, 2)) < 1e-12
+    assert not np.any(differ & ~near)
+    assert 0.1 < inside.mean() < 0.9  # the slice crosses the boundary
+    shape = [s["axes"][k]["num"] for k in s["axes"]]
+    grid = inside.reshape(shape)
+    edge = np.zeros_like(grid)
+    edge[:-1] |= grid[:-1] != grid[1:]
+    edge[1:] |= grid[1:] != grid[:-1]
+    edge[:, :-1] |= grid[:, :-1] != grid[:, 1:]
+    edge[:, 1:] |= grid[:, 1:] != grid[:, :-1]
+    np.testing.assert_array_equal(t["boundary"], (grid & edge).reshape(-1))
+
+
+def test_workspace_values_at_sample_points_equal_direct_calls(workspace_run):
+    rng = np.random.default_rng(3)
+    t = _table(workspace_run, "workspace_xy.parquet")
+    rows = rng.choice(len(t["x"]), 40, replace=False)
+    q = np.column_stack([t[c][rows] for c in POSE])
+    sol = stewart.Platform(**WORKSPACE["platform"]).solve(q, fidelity="massless")
+    np.testing.assert_array_equal(t["status"][rows], sol.status)
+    np.testing.assert_array_equal(t["condition"][rows], sol.condition)
+    for k in range(6):
+        np.testing.assert_array_equal(t[f"F{k + 1}"][rows], sol.force[:, k])
+        np.testing.assert_array_equal(t[f"L{k + 1}"][rows], sol.length[:, k])
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"platform": {"paylod_mass": 3}}, ["platform", "paylod_mass", "payload_mass"]),
+    ({"payload_mass": {"start": 0, "stop": 1, "num": 0}}, ["payload_mass.num", "empty"]),
+    ({"payload_mass": []}, ["payload_mass", "empty"]),
+    ({"payload_mass": [10, -5]}, ["payload_mass[1] = -5", "payload_mass = -5"]),
+    ({"manoeuvres": [{"scene": "heave", "amplitude": [1, 4]}]}, ["manoeuvres[0]", "heave", "amplitude x4", "unreachable"]),
+    ({"manoeuvres": [{"scene": "hevae"}]}, ["manoeuvres[0].scene = 'hevae'"]),
+    ({"fidelity": ["massless", "fast"]}, ["fidelity[1]", "fast"]),
+    ({"options": {"tolerance": -1}}, ["options", "tolerance = -1"]),
+    ({"payloads": [1]}, ["unknown field 'payloads'"]),
+    ({"manoeuvres": [{"scene": {"pose": {"z": 0.5}, "duration": 1, "step": 0.1}}]},
+     ["manoeuvres[0].scene.pose.z = 0.5"]),
+])
+def test_bad_specs_fail_before_any_work_naming_the_field(tmp_path, change, words):
+    spec = {**ENVELOPE, **change}
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(spec))
+    r = subprocess.run([sys.executable, str(ROOT / "scripts/sweep.py"), str(path), str(tmp_path / "out")],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2, r.stderr
+    for w in words:
+        assert w in r.stderr, r.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_workspace_spec_errors_name_the_slice_field():
+    bad = {**WORKSPACE, "slices": [{"name": "a", "fixed": {"z": 0.5}, "axes": {"x": [], "y": [0.0]}}]}
+    with pytest.raises(SpecError, match=r"slices\[0\].axes.x is empty"):
+        resolve(bad, SCENES)
+    bad = {**WORKSPACE, "slices": [{"name": "a", "fixed": {"x": 0.0}, "axes": {"y": [0.0]}}]}
+    with pytest.raises(SpecError, match=r"slices\[0\]: z is neither fixed nor an axis"):
+        resolve(bad, SCENES)
+
+
+def test_failing_cases_are_recorded_and_a_rerun_computes_only_missing_chunks(tmp_path):
+    """A singularity threshold between the two manoeuvres' conditions (heave reaches about 12.0,
+    yaw stays near 11.9 at these amplitudes) fails the heave cases as singular, the others solve."""
+    spec = {**ENVELOPE, "fidelity": ["massless"], "options": {"warn_condition": 1, "singular_condition": 11.95}}
+    out, first = _sweep(tmp_path, spec, "fail", workers=1)
+    t = _table(out, "envelope.parquet")
+    heave = t["manoeuvre"] == "heave"
+    assert np.all(t["status"][heave] == -3) and np.all(t["status"][~heave] == 0)
+    assert all("singular" in m and "condition" in m for m in t["message"][heave])
+    assert all(m is None for m in t["peak_power"][heave]) or np.all(np.isnan(t["peak_power"][heave].astype(float)))
+    assert np.all(t["max_condition"][~heave].astype(float) <= 11.95)
+    # Interrupted: two chunk files lost. The rerun computes those two only, to the same result.
+    chunk_files = sorted((out / "chunks").glob("*.parquet"))
+    for f in chunk_files[1:3]:
+        f.unlink()
+    (out / "envelope.parquet").unlink()
+    _, second = _sweep(tmp_path, spec, "fail", workers=1)
+    assert sorted(c["chunk"] for c in second["computed"]) == [f.name for f in chunk_files[1:3]]
+    _assert_tables_equal(_table(out, "envelope.parquet"), t)
+
+
+def test_a_worker_that_cannot_see_out_dir_sends_its_table(envelope_runs, tmp_path):
+    """Workers on another machine return their chunk's table for the client to write: the same
+    table the workers that saw OUT_DIR wrote."""
+    out = envelope_runs[1]
+    spec = json.loads((out / "spec.json").read_text())
+    chunk = chunks(spec)[2]
+    table, stats = compute_chunk(spec, chunk, str(tmp_path / "not-there"))
+    assert stats["worker"] == "local" and stats["cases"] == chunk.stop - chunk.start
+    assert table.equals(pq.read_table(out / "chunks" / chunk.file_name))
