@@ -107,7 +107,7 @@ void fuzz_forward(Reader &in, const stewart_model *model, stewart_data *data) {
 // input is bounded: at most kPlantCalls calls and kPlantMaxInternalSteps integrator steps per
 // communication step (the options may ask for fewer, never for more).
 constexpr int kPlantCalls = 8;
-constexpr long kPlantMaxInternalSteps = 40;
+constexpr long kPlantMaxInternalSteps = 20;
 
 bool known_status(stewart_status s) { return s <= STEWART_OK && s >= STEWART_ERR_OTHER_BRANCH; }
 
