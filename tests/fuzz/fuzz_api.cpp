@@ -100,7 +100,6 @@ void fuzz_forward(Reader &in, const stewart_model *model, stewart_data *data) {
     }
 }
 
-
 // The plant (forward dynamics) on the same model: random options, start states, forces (NaN, Inf,
 // huge), step sizes (zero, negative, huge), output and reaction queries, and saved states with
 // corrupted values loaded back. Every call returns a known status, a filled output is finite,
@@ -232,6 +231,7 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
     }
     stewart_plant_free(plant);
 }
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
