@@ -198,8 +198,11 @@ static void run_fmu_job(int job, job_result *r) {
     }
     for (int step = 0; step < steps; ++step) {
         const stewart_pose pose = job_pose(job, step + 1);
-        fmi2Real outputs[64];
-        if (fmi2SetReal(c, pose_vr, 18, pose.q) != fmi2OK ||
+        fmi2Real inputs[18], outputs[64];
+        memcpy(inputs, pose.q, sizeof pose.q);
+        memcpy(inputs + 6, pose.q_dot, sizeof pose.q_dot);
+        memcpy(inputs + 12, pose.q_ddot, sizeof pose.q_ddot);
+        if (fmi2SetReal(c, pose_vr, 18, inputs) != fmi2OK ||
             fmi2DoStep(c, step * STEP_SIZE, STEP_SIZE, fmi2True) != fmi2OK ||
             fmi2GetReal(c, output_vr, n_outputs, outputs) != fmi2OK) {
             fail(r, step, "fmu step", "not OK");
