@@ -7,5 +7,6 @@ cd "$(dirname "$0")/.."
 bash scripts/build.sh
 (cd build && ctest --output-on-failure)
 bash tests/gates/sanitize.sh
+bash tests/gates/tsan.sh
 bash tests/gates/valgrind_fmu.sh build
 STEWART_BUILD_DIR="$PWD/build" .venv/bin/python -m pytest tests/python -q

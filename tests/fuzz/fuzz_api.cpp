@@ -9,6 +9,7 @@
 // itself has no global state); each input starts from a reset data block, so that it sees the
 // same thing as in a fresh process.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -16,6 +17,7 @@
 #include "fuzz_reader.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_plant.h"
 
 namespace {
 
@@ -98,6 +100,138 @@ void fuzz_forward(Reader &in, const stewart_model *model, stewart_data *data) {
     }
 }
 
+// The plant (forward dynamics) on the same model: random options, start states, forces (NaN, Inf,
+// huge), step sizes (zero, negative, huge), output and reaction queries, and saved states with
+// corrupted values loaded back. Every call returns a known status, a filled output is finite,
+// and a saved state loaded back unchanged gives the same outputs bit for bit. The work of one
+// input is bounded: at most kPlantCalls calls and kPlantMaxInternalSteps integrator steps per
+// communication step (the options may ask for fewer, never for more).
+constexpr int kPlantCalls = 8;
+constexpr long kPlantMaxInternalSteps = 20;
+// The doubles of a plant output (time to base_torque) and of the 13 bodies.
+constexpr size_t kOutputDoubles = offsetof(stewart_plant_output, warnings) / sizeof(double);
+constexpr size_t kBodyDoubles = sizeof(stewart_plant_body[STEWART_PLANT_BODIES]) / sizeof(double);
+
+bool known_status(stewart_status s) { return s <= STEWART_OK && s >= STEWART_ERR_OTHER_BRANCH; }
+
+void require_finite_values(const double *values, size_t count) {
+    for (size_t i = 0; i < count; ++i)
+        if (!std::isfinite(values[i])) std::abort();
+}
+
+void require_message(const stewart_plant *plant) {
+    if (!std::memchr(stewart_plant_message(plant), '\0', STEWART_MESSAGE_SIZE)) std::abort();
+}
+
+// The outputs at the current state; finite whenever the status is OK.
+stewart_status checked_output(const stewart_plant *plant, const double *force,
+                              stewart_plant_output &out) {
+    const stewart_status s = stewart_plant_output_get(plant, force, &out);
+    if (!known_status(s)) std::abort();
+    if (s == STEWART_OK) require_finite_values(&out.time, kOutputDoubles);
+    return s;
+}
+
+void fuzz_plant(Reader &in, const stewart_model *model) {
+    stewart_plant_options options;
+    stewart_plant_options_default(&options);
+    const uint8_t choice = in.byte();
+    options.fidelity = (choice & 1) ? STEWART_FULL : STEWART_MASSLESS;
+    if (choice & 2) options.fidelity = static_cast<int8_t>(in.byte());  // mostly invalid
+    options.method = (choice >> 2) % 5;                                    // 4 is invalid
+    if (choice & 0x20) options.relative_tolerance = in.value();
+    if (choice & 0x40) options.absolute_tolerance = in.value();
+    options.max_internal_steps =
+        (choice & 0x80) ? static_cast<int8_t>(in.byte()) % kPlantMaxInternalSteps
+                        : kPlantMaxInternalSteps;
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_plant *plant = stewart_plant_create(model, &options, message, sizeof message);
+    if (!plant) {  // refused options (or a singular home pose): a message says why
+        if (!std::memchr(message, '\0', sizeof message) || message[0] == '\0') std::abort();
+        return;
+    }
+    const size_t state_size = stewart_plant_state_size();
+    double saved[64], force[STEWART_LEGS], force1[STEWART_LEGS], rate0[STEWART_LEGS],
+        rate1[STEWART_LEGS];
+    if (state_size > sizeof saved / sizeof saved[0]) std::abort();
+    const double home_height = stewart_model_params(model)->home_height;
+    for (int call = 0; call < kPlantCalls && in.left > 0; ++call) {
+        const uint8_t what = in.byte();
+        stewart_status s = STEWART_OK;
+        stewart_plant_output out;
+        switch (what % 6) {
+        case 0: {  // a start state near home, or raw values
+            double pose[6], rate[6];
+            for (int i = 0; i < 6; ++i) {
+                pose[i] = (what & 8) ? in.value() : (i == 2 ? home_height : 0) + in.value() / 20;
+                rate[i] = (what & 16) ? in.value() : 0;
+            }
+            s = stewart_plant_set_state(plant, (what & 32) ? in.value() : 0, pose, rate);
+            break;
+        }
+        case 1:
+        case 2: {  // a step: raw or moderate forces and step size, linear or Hermite profile
+            for (int k = 0; k < STEWART_LEGS; ++k) {
+                force[k] = (what & 8) ? in.value() : 200 + 100 * in.value();
+                force1[k] = (what & 16) ? in.value() : force[k];
+                rate0[k] = in.value();
+                rate1[k] = in.value();
+            }
+            const double h = (what & 32) ? in.value() : 1e-3;
+            const bool hermite = what & 64;
+            s = stewart_plant_step(plant, h, force, force1, hermite ? rate0 : nullptr,
+                                   hermite ? rate1 : nullptr);
+            if (s == STEWART_OK && checked_output(plant, nullptr, out) != STEWART_OK) std::abort();
+            stewart_plant_statistics stats;
+            stewart_plant_statistics_get(plant, &stats);
+            if (stats.steps < 0 || stats.steps > kPlantMaxInternalSteps) std::abort();
+            break;
+        }
+        case 3: {  // outputs and reactions under other forces, and the bodies
+            for (int k = 0; k < STEWART_LEGS; ++k) force[k] = in.value();
+            const double *f = (what & 8) ? force : nullptr;
+            s = checked_output(plant, f, out);
+            stewart_plant_reactions reactions;
+            const stewart_status r = stewart_plant_reactions_get(plant, f, &reactions);
+            if (!known_status(r)) std::abort();
+            if (r == STEWART_OK)
+                require_finite_values(&reactions.base_cardan_force[0][0],
+                                      sizeof reactions / sizeof(double));
+            stewart_plant_body bodies[STEWART_PLANT_BODIES];
+            const stewart_status b = stewart_plant_bodies(plant, bodies);
+            if (!known_status(b)) std::abort();
+            if (b == STEWART_OK)
+                require_finite_values(bodies[0].position, kBodyDoubles);
+            break;
+        }
+        case 4: {  // save, load back unchanged: the same outputs bit for bit
+            stewart_plant_output before, after;
+            const bool had_output = checked_output(plant, nullptr, before) == STEWART_OK;
+            if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
+            if (stewart_plant_load(plant, saved, state_size) != STEWART_OK) std::abort();
+            const size_t bytes = kOutputDoubles * sizeof(double);
+            if (had_output && (checked_output(plant, nullptr, after) != STEWART_OK ||
+                               std::memcmp(&before.time, &after.time, bytes) != 0))
+                std::abort();
+            break;
+        }
+        case 5: {  // save, corrupt values (or the size), load: refused or a usable state
+            if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
+            const int edits = 1 + (what >> 3) % 4;
+            for (int e = 0; e < edits; ++e) saved[in.byte() % state_size] = in.value();
+            const size_t count = (what & 0x80) ? state_size - 1 + in.byte() % 3 : state_size;
+            s = stewart_plant_load(plant, saved, count);
+            if (s != STEWART_OK && s != STEWART_ERR_ARGUMENT) std::abort();
+            if (s == STEWART_OK) checked_output(plant, nullptr, out);
+            break;
+        }
+        }
+        if (!known_status(s)) std::abort();
+        require_message(plant);
+    }
+    stewart_plant_free(plant);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
@@ -130,6 +264,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     }
     Reader again{bytes, size};  // the pose loop takes every byte: read them again
     fuzz_forward(again, c->model, c->data);
+    Reader plant_bytes{bytes, size};
+    fuzz_plant(plant_bytes, c->model);
     stewart_data_reset(c->data);
     return 0;
 }
