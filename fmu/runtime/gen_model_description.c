@@ -97,6 +97,8 @@ static const struct { const char *name; const char *base; } kUnits[] = {
     {"m/s2", "m=\"1\" s=\"-2\""},
     {"N", "kg=\"1\" m=\"1\" s=\"-2\""},
     {"N.m", "kg=\"1\" m=\"2\" s=\"-2\""},
+    {"N/m", "kg=\"1\" s=\"-2\""},
+    {"N.s/m", "kg=\"1\" s=\"-1\""},
     {"rad", "rad=\"1\""},
     {"rad/s", "rad=\"1\" s=\"-1\""},
     {"rad/s2", "rad=\"1\" s=\"-2\""},
