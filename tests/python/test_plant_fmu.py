@@ -155,7 +155,7 @@ def wobble(t):
 
 # ---------------------------------------------------------------- descriptions
 
-@pytest.mark.parametrize("model", ["StewartPlant", "StewartController"])
+@pytest.mark.parametrize("model", ["StewartPlant", "StewartController", "StewartScene"])
 @pytest.mark.parametrize("version", VERSIONS)
 def test_fmpy_validate_is_clean(model, version):
     assert validate_fmu(fmu_file(model, version)) == []
