@@ -5,6 +5,7 @@
 
 #include "logging.h"
 #include "model_interface.h"
+#include "model_without_resources.h"
 
 void model_start_values(fmu_values *v) {
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
@@ -13,8 +14,6 @@ void model_start_values(fmu_values *v) {
     v->real[VR_z_mean] = 0.5; /* at rest at home */
     memset(&v->model, 0, sizeof v->model);
 }
-
-void model_reset(fmu_instance *inst) { (void)inst; }
 
 fmu_status model_apply_parameters(fmu_instance *inst) {
 #define FMU_OPTION_REAL(vr, id, name, field, unit, desc)                                    \
@@ -50,26 +49,6 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     return FMU_OK;
 }
 
-fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
-                                       const int order[], const double value[]) {
-    (void)vr; (void)order; (void)value;
-    if (n == 0) return FMU_OK;
-    fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetRealInputDerivatives: the scene player has no inputs");
-    return FMU_ERROR;
-}
-
-size_t model_state_size(const fmu_instance *inst) { (void)inst; return 0; }
-
-fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size) {
-    (void)inst; (void)out;
-    return size == 0 ? FMU_OK : FMU_ERROR;
-}
-
-fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
-    (void)inst; (void)in;
-    return size == 0 ? FMU_OK : FMU_ERROR;
-}
-
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
     (void)inst; (void)in; (void)why; (void)why_size;
@@ -81,5 +60,3 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
 #include "variables.def"
     return NULL;
 }
-
-void model_free(fmu_instance *inst) { (void)inst; }
