@@ -416,3 +416,22 @@ def test_statistics_add_up():
         np.testing.assert_array_equal(np.cumsum(rhs), total_rhs)
     finally:
         u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_step_that_skips_time_is_an_error(version):
+    """The plant integrates continuously: a communication point after the end of the last step
+    (which the runtime lets a stateless unit take) is an Error naming it; a restored state goes
+    on."""
+    u = plant(version)
+    try:
+        forces = static_forces()
+        run_steps(u, 0.0, 2, forces=forces)
+        state = u.get_state()
+        assert u.step(0.5, 1e-3) == ERROR
+        assert any("cannot skip time" in m and "0.5" in m for m in u.messages), u.messages
+        u.set_state(state)
+        resumed = run_steps(u, 0.002, 3, forces=forces)
+        assert np.all(resumed[:, len(OUTPUTS)] == 0)  # status ok
+    finally:
+        u.free()

@@ -4,6 +4,7 @@
  * statistics fill the output variables. A refused step is Discard with the plant's reason, the
  * state left at the last good point.
  */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -269,10 +270,32 @@ static void add_totals(plant_totals *t, const stewart_plant_statistics *s) {
     t->jacobian_evaluations += s->jacobian_evaluations;
 }
 
+/* The plant's own time: the end of its last step (or its start). */
+static double plant_time(const stewart_plant *plant) {
+    double state[64];
+    const size_t count = stewart_plant_state_size();
+    if (count > sizeof state / sizeof state[0] || stewart_plant_save(plant, state, count) != STEWART_OK)
+        return NAN;
+    return state[0];
+}
+
+/* The plant integrates continuously: a step must start where the last one ended (the runtime
+ * lets a stateless unit start later). Error: a gap cannot be integrated without its forces. */
+static fmu_status check_continuous(fmu_instance *inst, double t) {
+    const double end = plant_time(inst->res.plant);
+    const double slack = 1e-9 * fabs(t - inst->v.last_step_point) + 8.0 * DBL_EPSILON * fabs(t);
+    if (fabs(t - end) <= slack) return FMU_OK;
+    fmu_log(inst, FMU_ERROR, LOG_ERROR,
+            "DoStep: currentCommunicationPoint = %.17g is not the plant's time %.17g (the end of "
+            "its last step): the plant cannot skip time; restore an FMU state or reset", t, end);
+    return FMU_ERROR;
+}
+
 fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     fmu_values *v = &inst->v;
     model_values *m = &v->model;
     model_resources *r = &inst->res;
+    if (check_continuous(inst, t) != FMU_OK) return FMU_ERROR;
     if (bad_force(inst, t)) return refused(v);
     double f0[STEWART_LEGS], f1[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) {
