@@ -27,6 +27,10 @@
 /* FMI 2 canInterpolateInputs: order-1 derivatives of F make the forces linear over the step. */
 #define FMU_CAN_INTERPOLATE_INPUTS 1
 
+/* The motion (pose, rates, lengths, length rates) is the plant's state: no input reaches it
+ * within a step, so a loop through it is not algebraic (the model description says so). */
+#define FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) ((vr) >= VR_x && (vr) <= VR_L_dot_6)
+
 /* Integrator counters summed over accepted steps (part of the state: a rollback restores them). */
 typedef struct plant_totals {
     int64_t steps, rhs_evaluations, nonlinear_iterations, error_test_failures,
