@@ -16,6 +16,7 @@ usage: closed_loop.py [--scene combined] [--duration 12] [--step 0.001] [--kp 1e
 """
 import argparse
 import pathlib
+import shutil
 import time
 
 import numpy as np
@@ -40,7 +41,8 @@ class Unit:
     def __init__(self, path, name, parameters):
         md = read_model_description(str(path))
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
-        self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(path)),
+        self.directory = extract(str(path))
+        self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=self.directory,
                              modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
         self.fmu.instantiate()
         integers = {v.name for v in md.modelVariables if v.type == "Integer"}
@@ -65,6 +67,7 @@ class Unit:
     def free(self):
         self.fmu.terminate()
         self.fmu.freeInstance()
+        shutil.rmtree(self.directory, ignore_errors=True)
 
 
 def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,

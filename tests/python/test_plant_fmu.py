@@ -3,11 +3,14 @@
 on the same forces, against the inverse FMU (its forces reproduce the pose), free fall in closed
 form, state rollback bit for bit, instances side by side, and the edges (a NaN force, a refused
 step, a leg leaving its stroke)."""
+import atexit
 import csv
 import functools
 import ctypes
 import math
+import shutil
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -39,6 +42,15 @@ def fmu_file(model, version):
     return str(p)
 
 
+@functools.lru_cache(maxsize=None)
+def unzipped(path):
+    """One extraction per FMU, so that instances share one loaded binary (as in a master): state
+    shared between instances would show."""
+    directory = fmpy.extract(path)
+    atexit.register(shutil.rmtree, directory, ignore_errors=True)
+    return directory
+
+
 class Instance:
     """One instance of a model of this project (FMI 2 or 3) through fmpy, variables by name; raw
     calls return their status. Log messages collect in .messages."""
@@ -51,7 +63,7 @@ class Instance:
         self.integers = {v.name for v in md.modelVariables if v.type in ("Integer", "Int32")}
         self.messages = []
         cls = FMU2Slave if self.v2 else FMU3Slave
-        self.fmu = cls(guid=md.guid, unzipDirectory=fmpy.extract(path),
+        self.fmu = cls(guid=md.guid, unzipDirectory=unzipped(path),
                        modelIdentifier=model, instanceName=name)
         if self.v2:
             callbacks = fmi2CallbackFunctions()
@@ -346,6 +358,34 @@ def test_instances_side_by_side(version):
     finally:
         a.free()
         b.free()
+
+
+def test_instances_in_threads():
+    """Instances stepped in two threads at once (ctypes releases the GIL in each call) give what
+    each gives alone."""
+    forces = static_forces() + 20.0
+    units = [plant(name=f"t{i}", payload_mass=20.0 * i) for i in range(2)]
+    alone = []
+    for i in range(2):
+        u = plant(name=f"s{i}", payload_mass=20.0 * i)
+        alone.append(run_steps(u, 0.0, 300, forces=forces))
+        u.free()
+    results = [None, None]
+
+    def work(i):
+        results[i] = run_steps(units[i], 0.0, 300, forces=forces)
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    try:
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        for i in range(2):
+            assert results[i].tobytes() == alone[i].tobytes(), i
+    finally:
+        for u in units:
+            u.free()
 
 
 # ---------------------------------------------------------------- edges
