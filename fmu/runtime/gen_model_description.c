@@ -14,6 +14,14 @@
 #include "model_interface.h"
 #include "variables.h"
 
+/* A model's config.h may name the outputs that no input reaches within a step (outputs of the
+ * state): FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr). They are listed among the Outputs with no
+ * dependencies, so that a master sees that loops through them are not algebraic; every other
+ * output depends on every input (no dependencies attribute). */
+#ifndef FMU_OUTPUT_WITHOUT_FEEDTHROUGH
+#define FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) 0
+#endif
+
 static FILE *out;
 static int version;
 
@@ -97,6 +105,8 @@ static const struct { const char *name; const char *base; } kUnits[] = {
     {"m/s2", "m=\"1\" s=\"-2\""},
     {"N", "kg=\"1\" m=\"1\" s=\"-2\""},
     {"N.m", "kg=\"1\" m=\"2\" s=\"-2\""},
+    {"N/m", "kg=\"1\" s=\"-2\""},
+    {"N.s/m", "kg=\"1\" s=\"-1\""},
     {"rad", "rad=\"1\""},
     {"rad/s", "rad=\"1\" s=\"-1\""},
     {"rad/s2", "rad=\"1\" s=\"-2\""},
@@ -232,11 +242,13 @@ int main(int argc, char **argv) {
             if (version == 2 && fmu_variables[i].causality == FMU_INDEPENDENT_VAR) continue;
             ++index;
             if (fmu_variables[i].causality != FMU_OUTPUT_VAR) continue;
+            const char *no_inputs =
+                pass == 0 && FMU_OUTPUT_WITHOUT_FEEDTHROUGH(fmu_variables[i].vr) ? " dependencies=\"\"" : "";
             if (version == 2)
-                fprintf(out, "      <Unknown index=\"%zu\"/>\n", index);
+                fprintf(out, "      <Unknown index=\"%zu\"%s/>\n", index, no_inputs);
             else
-                fprintf(out, "    <%s valueReference=\"%u\"/>\n",
-                        pass == 0 ? "Output" : "InitialUnknown", fmu_variables[i].vr);
+                fprintf(out, "    <%s valueReference=\"%u\"%s/>\n",
+                        pass == 0 ? "Output" : "InitialUnknown", fmu_variables[i].vr, no_inputs);
         }
         if (version == 2) fputs(pass == 0 ? "    </Outputs>\n" : "    </InitialUnknowns>\n", out);
     }

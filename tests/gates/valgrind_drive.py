@@ -1,7 +1,11 @@
 """The simulations tests/gates/valgrind_fmu.sh runs under valgrind: fmpy's simulate_fmu over a
 combined manoeuvre, then the edge paths through fmpy's slave classes.
 
-usage: valgrind_drive.py BUILD_DIR (the FMUs are BUILD_DIR/fmus/<version>/StewartPlatform.fmu)"""
+The plant (StewartPlant.fmu) runs a short forced motion at both fidelities with its edge paths
+(a NaN force, a refused step, FMU state get/set/serialise).
+
+usage: valgrind_drive.py BUILD_DIR (the FMUs are BUILD_DIR/fmus/<version>/StewartPlatform.fmu and
+StewartPlant.fmu)"""
 import math
 import sys
 import tempfile
@@ -98,7 +102,62 @@ def fidelity_available(path, version, fidelity):
         fmu.freeInstance()
 
 
+def plant(path, version, fidelity):
+    """50 forced steps of 1 ms, a NaN force (Discard), an over-long step with one internal step
+    allowed (Discard), a state round trip; returns the final z."""
+    md = fmpy.read_model_description(path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    cls = FMU2Slave if version == "2.0" else FMU3Slave
+    fmu = cls(guid=md.guid, unzipDirectory=fmpy.extract(path, tempfile.mkdtemp()),
+              modelIdentifier="StewartPlant", instanceName="vg_plant")
+    fmu.instantiate(loggingOn=True)
+    set_real = fmu.setReal if version == "2.0" else fmu.setFloat64
+    get_real = fmu.getReal if version == "2.0" else fmu.getFloat64
+    (fmu.setInteger if version == "2.0" else fmu.setInt32)([vr["fidelity"], vr["max_internal_steps"]],
+                                                           [fidelity, 50])
+    if version == "2.0":
+        fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    forces = [vr[f"F[{k}]"] for k in range(1, 7)]
+    outputs = [v.valueReference for v in md.modelVariables if v.causality == "output"
+               and v.type in ("Real", "Float64")]
+    state = fmu.getFMUstate() if version == "2.0" else fmu.getFMUState()
+    for j in range(50):
+        set_real(forces, [200.0 + 20.0 * math.sin(3 * j * 1e-3 + k) for k in range(6)])
+        if version == "2.0":
+            fmu.setRealInputDerivatives(forces, [1] * 6, [60.0] * 6)
+        fmu.doStep(j * 1e-3, 1e-3)
+        assert all(math.isfinite(v) for v in get_real(outputs))
+    t = 0.05
+    for bad_force, h in ((math.nan, 1e-3), (200.0, 10.0)):
+        set_real(forces, [bad_force] * 6)
+        if version == "2.0":
+            status = fmu.dll.fmi2DoStep(fmu.component, t, h, 1)
+        else:
+            from ctypes import byref
+            from fmpy.fmi3 import fmi3Boolean, fmi3Float64
+            flags, last = [fmi3Boolean() for _ in range(3)], fmi3Float64()
+            status = fmu.dll.fmi3DoStep(fmu.component, t, h, fmi3Boolean(True), byref(flags[0]),
+                                        byref(flags[1]), byref(flags[2]), byref(last))
+        assert status == 2, status
+        assert all(math.isfinite(v) for v in get_real(outputs))
+    blob = (fmu.serializeFMUstate if version == "2.0" else fmu.serializeFMUState)(state)
+    other = (fmu.deSerializeFMUstate if version == "2.0" else fmu.deserializeFMUState)(blob)
+    (fmu.setFMUstate if version == "2.0" else fmu.setFMUState)(other)
+    for s in (other, state):
+        (fmu.freeFMUstate if version == "2.0" else fmu.freeFMUState)(s)
+    z = get_real([vr["z"]])[0]
+    fmu.terminate()
+    fmu.reset()
+    fmu.freeInstance()
+    return z
+
+
 for version in ("2.0", "3.0"):
+    for fidelity in (1, 2):
+        z = plant(f"{build}/fmus/{version}/StewartPlant.fmu", version, fidelity)
+        print(f"valgrind_fmu: plant FMI {version} fidelity {fidelity}: z = {z:.6f} m")
     path = f"{build}/fmus/{version}/StewartPlatform.fmu"
     for fidelity in (0, 1, 2):
         if not fidelity_available(path, version, fidelity):

@@ -2,7 +2,7 @@
 # Runs short fmpy simulations of both FMUs (FMI 2.0 and 3.0; fidelities 0 and 1, and 2 when the
 # build solves it) under valgrind memcheck, plus the unit's edge paths (a non-finite input, a
 # singular pose, an invalid step, FMU state get/set/serialise, reset), and fails on any error whose
-# stack touches StewartPlatform.so: invalid reads or writes, uses of uninitialised values, invalid
+# stack touches StewartPlatform.so (or StewartPlant.so: the plant's forced motion and edges): invalid reads or writes, uses of uninitialised values, invalid
 # frees, and definitely lost blocks allocated from it.
 #
 # Python and numpy have their own valgrind noise (the interpreter's arenas, interned objects kept
@@ -16,7 +16,7 @@ cd "$(dirname "$0")/../.."
 build=$(realpath "${1:-build}")
 python=.venv/bin/python
 [ -x "$python" ] || { echo "valgrind_fmu: run scripts/build.sh first (no .venv)"; exit 2; }
-for f in "$build"/fmus/2.0/StewartPlatform.fmu "$build"/fmus/3.0/StewartPlatform.fmu; do
+for f in "$build"/fmus/{2.0,3.0}/{StewartPlatform,StewartPlant}.fmu; do
   [ -f "$f" ] || { echo "valgrind_fmu: $f is missing: build first"; exit 2; }
 done
 if ! command -v valgrind >/dev/null; then

@@ -1,0 +1,28 @@
+/*
+ * The leg controller's identity and sizes (StewartController.fmu): feed-forward plus PD on the
+ * six actuator lengths, F = F_ff + kp (L_ref - L) + kd (L_dot_ref - L_dot). No state: the
+ * outputs are a direct function of the inputs.
+ */
+#ifndef STEWART_FMU_CONFIG_H
+#define STEWART_FMU_CONFIG_H
+
+#define FMU_MODEL_IDENTIFIER "StewartController"
+#define FMU_GUID "{4a9d2e71-c05b-4f3a-9e18-6b7c2d5f8a13}"
+#define FMU_NVR 301
+#define FMU_MODEL_DESCRIPTION_TEXT                                                             \
+    "Stewart platform leg controller: F = F_ff + kp (L_ref - L) + kd (L_dot_ref - L_dot) per "  \
+    "leg, the reference and feed-forward from the inverse unit, L and L_dot from the plant"
+#define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
+#define FMU_CAN_INTERPOLATE_INPUTS 0
+
+/* Plain values: what the outputs' last evaluation returned. */
+typedef struct model_values {
+    int solve_status;
+} model_values;
+
+/* No resources. */
+typedef struct model_resources {
+    int none;
+} model_resources;
+
+#endif

@@ -1,0 +1,13 @@
+/* The plant model's helpers shared between its files (model.c, model_state.c). */
+#ifndef STEWART_FMU_PLANT_MODEL_H
+#define STEWART_FMU_PLANT_MODEL_H
+
+#include "model_interface.h"
+
+/* The platform's parameters and the plant settings as the instance's values hold them. */
+void plant_params_from_values(const fmu_values *v, stewart_params *p);
+void plant_settings_from_values(const fmu_values *v, plant_settings *s);
+/* Why the values' parameters and settings cannot build a plant (names the variable), or NULL. */
+const char *plant_check_settings(const fmu_values *v, char *why, size_t size);
+
+#endif

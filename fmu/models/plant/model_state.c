@@ -1,0 +1,101 @@
+/*
+ * The plant model's part of an FMU state: its plain values are checked when deserialised, and
+ * the plant's state (stewart_plant_save: time, pose, twist, last forces) travels as bytes;
+ * loading them is the library's decision (stewart_plant_load), and a refusal is an Error with
+ * its reason.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "logging.h"
+#include "model.h"
+
+static int after_initialisation(const fmu_values *v) {
+    return (v->mode & (MODE_STEP | MODE_TERMINATED)) != 0;
+}
+
+size_t model_state_size(const fmu_instance *inst) {
+    return inst->res.plant ? stewart_plant_state_size() * sizeof(double) : 0;
+}
+
+fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size) {
+    if (!inst->res.plant) return size == 0 ? FMU_OK : FMU_ERROR;
+    double state[64];
+    const size_t count = stewart_plant_state_size();
+    if (count > sizeof state / sizeof state[0] || size != count * sizeof(double) ||
+        stewart_plant_save(inst->res.plant, state, count) != STEWART_OK)
+        return FMU_ERROR;
+    memcpy(out, state, size);
+    return FMU_OK;
+}
+
+/* Loads saved plant bytes into a plant (copied to aligned doubles first). */
+static stewart_status load_bytes(stewart_plant *plant, const unsigned char *in, size_t size) {
+    double state[64];
+    const size_t count = stewart_plant_state_size();
+    if (count > sizeof state / sizeof state[0] || size != count * sizeof(double))
+        return STEWART_ERR_ARGUMENT;
+    memcpy(state, in, size);
+    return stewart_plant_load(plant, state, count);
+}
+
+fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
+    /* before the end of initialisation the plant is set afresh there: nothing to load */
+    if (!after_initialisation(&inst->v)) return FMU_OK;
+    /* a plant for the state's parameters (allocation here is fine: this is not a step) */
+    if (model_apply_parameters(inst) != FMU_OK) return FMU_ERROR;
+    if (load_bytes(inst->res.plant, in, size) != STEWART_OK) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetFMUState: the state's plant data is refused: %s",
+                *stewart_plant_message(inst->res.plant) ? stewart_plant_message(inst->res.plant)
+                                                         : "wrong size");
+        return FMU_ERROR;
+    }
+    return FMU_OK;
+}
+
+/* The plant bytes of a state after initialisation, checked by loading them into a plant built
+ * from the state's parameters. */
+static const char *check_plant_data(const fmu_values *v, const unsigned char *in, size_t size,
+                                    char *why, size_t why_size) {
+    stewart_params p;
+    plant_settings s;
+    plant_params_from_values(v, &p);
+    plant_settings_from_values(v, &s);
+    stewart_model *model = stewart_model_create(&p, NULL, 0);
+    stewart_plant *plant = model ? stewart_plant_create(model, &s.options, NULL, 0) : NULL;
+    const char *result = NULL;
+    if (!plant) {
+        result = "out of memory checking the plant data";
+    } else if (load_bytes(plant, in, size) != STEWART_OK) {
+        snprintf(why, why_size, "the plant data is refused: %s",
+                 *stewart_plant_message(plant) ? stewart_plant_message(plant) : "wrong size");
+        result = why;
+    }
+    stewart_plant_free(plant);
+    stewart_model_free(model);
+    return result;
+}
+
+const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
+                              size_t size, char *why, size_t why_size) {
+    (void)inst;
+    const model_values *m = &v->model;
+    if ((m->input_derivatives & ~1) || m->solve_status < FMU_OK || m->solve_status > FMU_ERROR ||
+        (m->legs_outside & ~63))
+        return "a flag is out of range";
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!isfinite(m->force_rate[k])) return "an input derivative is not finite";
+    if (m->totals.steps < 0 || m->totals.rhs_evaluations < 0 ||
+        m->totals.nonlinear_iterations < 0 || m->totals.error_test_failures < 0 ||
+        m->totals.jacobian_evaluations < 0)
+        return "an integrator total is negative";
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) \
+    if (!isfinite(v->real[vr])) return "output " name " is not finite";
+#include "variables.def"
+    if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
+    if (!after_initialisation(v)) return NULL; /* plant data, if any, is not used (model_load) */
+    if (plant_check_settings(v, why, why_size)) return why;
+    if (size == 0) return "no plant data after initialisation";
+    return check_plant_data(v, in, size, why, why_size);
+}
