@@ -41,6 +41,21 @@ using Messages = std::vector<std::pair<size_t, std::string>>;
 // C messages travel as ValueError (bad parameters, options) and the caller re-raises.
 [[noreturn]] void fail(const char *message) { throw nb::value_error(message); }
 
+// Room for the messages of up to max failing rows, and the (row, message) pairs a batch kept.
+struct MessageBuffer {
+    explicit MessageBuffer(size_t max)
+        : rows(max), text(max * STEWART_MESSAGE_SIZE), c{max, 0, rows.data(), text.data()} {}
+    Messages kept() const {
+        Messages out;
+        for (size_t i = 0; i < c.count; ++i)
+            out.emplace_back(rows[i], std::string(text.data() + i * STEWART_MESSAGE_SIZE));
+        return out;
+    }
+    std::vector<size_t> rows;
+    std::vector<char> text;
+    stewart_batch_messages c;
+};
+
 class Model {
 public:
     // Default (thesis) parameters, then each (name, value) through stewart_params_set, then the
@@ -70,7 +85,7 @@ public:
 
     // Solves the rows of q from a fresh data block. Returns (status of the first failing row or
     // 0, its index or n, its message, [(row, message)] of up to max_messages failing rows).
-    std::tuple<int, size_t, std::string, std::vector<std::pair<size_t, std::string>>> solve(
+    std::tuple<int, size_t, std::string, Messages> solve(
         Poses q, std::optional<Poses> q_dot, std::optional<Poses> q_ddot,
         const std::vector<std::pair<std::string, double>> &option_values,
         std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
@@ -89,9 +104,7 @@ public:
             rows_of(force, n),      rows_of(condition, n),   rows_of(residual, n),
             rows_of(base_force, n), rows_of(base_torque, n), rows_of(iterations, n),
             rows_of(warnings, n),   status.data()};
-        std::vector<size_t> rows(max_messages);
-        std::vector<char> text(max_messages * STEWART_MESSAGE_SIZE);
-        stewart_batch_messages messages = {max_messages, 0, rows.data(), text.data()};
+        MessageBuffer messages(max_messages);
         size_t first_failed = n;
         stewart_status first;
         std::string first_message;
@@ -103,15 +116,12 @@ public:
             stewart_data_reset(data_);
             first = stewart_solve_batch(model_, data_, &options, n, q.data(),
                                         q_dot ? q_dot->data() : nullptr,
-                                        q_ddot ? q_ddot->data() : nullptr, &out, &messages,
+                                        q_ddot ? q_ddot->data() : nullptr, &out, &messages.c,
                                         &first_failed);
             first_message = stewart_data_message(data_);
         }
         if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());  // bad options
-        std::vector<std::pair<size_t, std::string>> kept;
-        for (size_t i = 0; i < messages.count; ++i)
-            kept.emplace_back(rows[i], std::string(text.data() + i * STEWART_MESSAGE_SIZE));
-        return {first, first_failed, first_message, kept};
+        return {first, first_failed, first_message, messages.kept()};
     }
 
     // Forward kinematics of the rows of lengths from a cold start (or guess), tracking in order.
@@ -139,9 +149,7 @@ public:
             rows_of(residual, n), rows_of(condition, n),  rows_of(jump, n),
             rows_of(iterations, n), rows_of(warnings, n), rows_of(branch, n),
             rows_of(start, n),    status.data()};
-        std::vector<size_t> rows(max_messages);
-        std::vector<char> text(max_messages * STEWART_MESSAGE_SIZE);
-        stewart_batch_messages messages = {max_messages, 0, rows.data(), text.data()};
+        MessageBuffer messages(max_messages);
         size_t first_failed = n;
         stewart_status first;
         std::string first_message;
@@ -153,15 +161,12 @@ public:
                                           time ? time->data() : nullptr, lengths.data(),
                                           rates ? rates->data() : nullptr,
                                           accels ? accels->data() : nullptr,
-                                          guess ? guess->data() : nullptr, &out, &messages,
+                                          guess ? guess->data() : nullptr, &out, &messages.c,
                                           &first_failed);
             first_message = stewart_data_message(data_);
         }
         if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());  // bad options
-        Messages kept;
-        for (size_t i = 0; i < messages.count; ++i)
-            kept.emplace_back(rows[i], std::string(text.data() + i * STEWART_MESSAGE_SIZE));
-        return {first, first_failed, first_message, kept};
+        return {first, first_failed, first_message, messages.kept()};
     }
 
     // Runs a fresh plant through the communication points t with the forces (linear between

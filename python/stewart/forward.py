@@ -6,18 +6,17 @@ from typing import Optional
 
 import numpy as np
 
-from . import _core
 from .errors import ParameterError
+from .results import RowStatus
 
-# stewart_status values (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
-STATUS_OK = 0
+# The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
 STATUS_OTHER_BRANCH = -8  #: STEWART_ERR_OTHER_BRANCH: the pose found is on another assembly mode
 BRANCH_BITS = {"below_base": 1, "platform_cardan": 2, "flipped": 4, "jump": 8, "singularity": 16}
 START_NAMES = ("home", "guess", "predictor", "last")
 
 
 @dataclass
-class ForwardSolution:
+class ForwardSolution(RowStatus):
     """The result of Platform.forward for N rows of lengths: arrays of N rows.
 
     A row whose status is not 0 failed (see status_name and messages) and holds zeros, but for
@@ -35,17 +34,6 @@ class ForwardSolution:
     status: np.ndarray      #: (N,) stewart_status per row: 0 solved, < 0 failed
     messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
 
-    def __len__(self) -> int:
-        return len(self.status)
-
-    @property
-    def ok(self) -> np.ndarray:
-        """(N,) True where the row solved."""
-        return self.status == STATUS_OK
-
-    def status_name(self, row: int) -> str:
-        """The library's name of row's status ("ok", "other assembly mode", ...)."""
-        return _core.status_name(int(self.status[row]))
 
 
 def empty_forward_solution(n: int) -> ForwardSolution:
@@ -56,34 +44,6 @@ def empty_forward_solution(n: int) -> ForwardSolution:
         pose=np.empty((n, 6)), pose_rate=np.empty((n, 6)), pose_accel=np.empty((n, 6)),
         residual=np.empty(n), condition=np.empty(n), jump=np.empty(n), iterations=ints(),
         warnings=ints(), branch=ints(), start=ints(), status=ints())
-
-
-def vector(name: str, value, size: int) -> np.ndarray:
-    """value as a C-contiguous float64 array of size values, or ValueError naming it."""
-    a = np.ascontiguousarray(value, dtype=np.float64).reshape(-1)
-    if a.shape[0] != size:
-        raise ValueError(f"{name} has {a.shape[0]} values: it must have {size}")
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name} = {a.tolist()} has a value that is not finite")
-    return a
-
-
-def times(name: str, value, n: int, strictly_increasing: bool) -> np.ndarray:
-    """value as (n,) float64 times, finite (and increasing if asked), or ValueError naming the
-    first bad entry and its value."""
-    t = np.ascontiguousarray(value, dtype=np.float64)
-    if t.ndim != 1 or t.shape[0] != n:
-        raise ValueError(f"{name} has shape {t.shape}: it must be ({n},), one time per row")
-    bad = np.flatnonzero(~np.isfinite(t))
-    if bad.size:
-        raise ValueError(f"{name}[{bad[0]}] = {float(t[bad[0]])!r} is not finite")
-    if strictly_increasing and n > 1:
-        bad = np.flatnonzero(np.diff(t) <= 0)
-        if bad.size:
-            j = bad[0] + 1
-            raise ValueError(f"{name}[{j}] = {float(t[j])!r} does not increase "
-                             f"(t[{j - 1}] = {float(t[j - 1])!r})")
-    return t
 
 
 def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],

@@ -1,42 +1,28 @@
 """Forward dynamics on numpy arrays: actuator forces to platform motion (Platform.simulate)."""
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass, field
-from typing import Optional, Union
+from typing import Optional
 
 import numpy as np
 
-from . import _core
+from .choices import Choice
 from .errors import ParameterError
-
-STATUS_OK = 0
-STATUS_NOT_RUN: int = _core.BATCH_NOT_RUN  #: a row after the one that stopped the run
+from .results import STATUS_NOT_RUN, STATUS_OK, RowStatus
 
 
-class Method(enum.IntEnum):
-    """The plant's integrators (stewart_plant_method)."""
+
+class Method(Choice):
+    """The plant's integrators (stewart_plant_method); Method.of takes a member, its number or
+    its name ("adams", "bdf", "erk", "erk5")."""
     ADAMS = 0  #: CVODE Adams-Moulton, fixed-point iteration
     BDF = 1    #: CVODE BDF, Newton with a dense difference-quotient Jacobian
     ERK = 2    #: ARKODE explicit Runge-Kutta 4(3) (the default)
     ERK5 = 3   #: ARKODE explicit Runge-Kutta 5(4), Dormand-Prince
 
-    @classmethod
-    def of(cls, value: Union["Method", int, str]) -> "Method":
-        """A Method from itself, its number or its name ("adams", "bdf", "erk", "erk5")."""
-        if isinstance(value, str):
-            try:
-                return cls[value.upper()]
-            except KeyError:
-                raise ParameterError(f"method = {value!r} must be adams, bdf, erk or erk5") from None
-        try:
-            return cls(int(value))
-        except (ValueError, TypeError):
-            raise ParameterError(f"method = {value!r} must be 0 (adams), 1 (bdf), 2 (erk) or 3 (erk5)") from None
-
 
 @dataclass
-class Simulation:
+class Simulation(RowStatus):
     """The result of Platform.simulate over N communication points: arrays of N rows.
 
     Row 0 is the start state. A step the plant refuses stops the run: that row gets its status,
@@ -57,23 +43,10 @@ class Simulation:
     message: str = ""        #: why the run stopped ("" if every row ran)
     statistics: dict[str, float] = field(default_factory=dict)  #: the integrator's totals
 
-    def __len__(self) -> int:
-        return len(self.status)
-
-    @property
-    def ok(self) -> np.ndarray:
-        """(N,) True where the row ran."""
-        return self.status == STATUS_OK
-
     @property
     def completed(self) -> bool:
         """True if every row ran."""
         return bool(np.all(self.status == STATUS_OK))
-
-    def status_name(self, row: int) -> str:
-        """The library's name of row's status, or "not run"."""
-        s = int(self.status[row])
-        return "not run" if s == STATUS_NOT_RUN else _core.status_name(s)
 
 
 def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.ndarray],

@@ -34,6 +34,15 @@ static void fill_rows(void) {
     }
 }
 
+/* Row j of the manoeuvre as a stewart_pose. */
+static stewart_pose pose_of_row(int j) {
+    stewart_pose p;
+    memcpy(p.q, q[j], sizeof p.q);
+    memcpy(p.q_dot, q_dot[j], sizeof p.q_dot);
+    memcpy(p.q_ddot, q_ddot[j], sizeof p.q_ddot);
+    return p;
+}
+
 static void test_solve_batch_equals_the_loop(void) {
     fill_rows();
     q[5][0] = NAN;   /* a bad row: the rows after it are still solved */
@@ -59,10 +68,7 @@ static void test_solve_batch_equals_the_loop(void) {
 
     stewart_data *loop = stewart_data_create(model);
     for (int j = 0; j < ROWS; ++j) {
-        stewart_pose p;
-        memcpy(p.q, q[j], sizeof p.q);
-        memcpy(p.q_dot, q_dot[j], sizeof p.q_dot);
-        memcpy(p.q_ddot, q_ddot[j], sizeof p.q_ddot);
+        const stewart_pose p = pose_of_row(j);
         stewart_output r;
         memset(&r, 0, sizeof r);
         const stewart_status sj = stewart_solve(model, loop, &o, &p, &r);
@@ -83,10 +89,7 @@ static void leg_motion(double L[ROWS][6], double L_dot[ROWS][6], double L_ddot[R
     stewart_options_default(&o);
     o.fidelity = STEWART_KINEMATIC;
     for (int j = 0; j < ROWS; ++j) {
-        stewart_pose p;
-        memcpy(p.q, q[j], sizeof p.q);
-        memcpy(p.q_dot, q_dot[j], sizeof p.q_dot);
-        memcpy(p.q_ddot, q_ddot[j], sizeof p.q_ddot);
+        const stewart_pose p = pose_of_row(j);
         stewart_output r;
         TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_solve(model, data, &o, &p, &r));
         memcpy(L[j], r.length, sizeof r.length);
