@@ -36,6 +36,7 @@ using Column = nb::ndarray<T, nb::shape<-1>, nb::c_contig, nb::device::cpu>;
 using Poses = Rows<const double, 6>;
 using Times = Column<const double>;
 using Messages = std::vector<std::pair<size_t, std::string>>;
+using BatchResult = std::tuple<int, size_t, std::string, Messages>;
 
 // A Python ValueError subclass defined in stewart/errors.py is raised from Python; here the
 // C messages travel as ValueError (bad parameters, options) and the caller re-raises.
@@ -85,7 +86,7 @@ public:
 
     // Solves the rows of q from a fresh data block. Returns (status of the first failing row or
     // 0, its index or n, its message, [(row, message)] of up to max_messages failing rows).
-    std::tuple<int, size_t, std::string, Messages> solve(
+    BatchResult solve(
         Poses q, std::optional<Poses> q_dot, std::optional<Poses> q_ddot,
         const std::vector<std::pair<std::string, double>> &option_values,
         std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
@@ -104,29 +105,18 @@ public:
             rows_of(force, n),      rows_of(condition, n),   rows_of(residual, n),
             rows_of(base_force, n), rows_of(base_torque, n), rows_of(iterations, n),
             rows_of(warnings, n),   status.data()};
-        MessageBuffer messages(max_messages);
-        size_t first_failed = n;
-        stewart_status first;
-        std::string first_message;
-        {
-            // The GIL goes first and comes back last: a thread waiting for the mutex must not
-            // hold the GIL that the solving thread needs to return.
-            nb::gil_scoped_release release;
-            std::lock_guard<std::mutex> lock(mutex_);
+        return on_data(n, max_messages, [&](stewart_batch_messages *messages, size_t *first_failed) {
             stewart_data_reset(data_);
-            first = stewart_solve_batch(model_, data_, &options, n, q.data(),
-                                        q_dot ? q_dot->data() : nullptr,
-                                        q_ddot ? q_ddot->data() : nullptr, &out, &messages.c,
-                                        &first_failed);
-            first_message = stewart_data_message(data_);
-        }
-        if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());  // bad options
-        return {first, first_failed, first_message, messages.kept()};
+            return stewart_solve_batch(model_, data_, &options, n, q.data(),
+                                       q_dot ? q_dot->data() : nullptr,
+                                       q_ddot ? q_ddot->data() : nullptr, &out, messages,
+                                       first_failed);
+        });
     }
 
     // Forward kinematics of the rows of lengths from a cold start (or guess), tracking in order.
     // Returns as solve.
-    std::tuple<int, size_t, std::string, Messages> forward(
+    BatchResult forward(
         Poses lengths, std::optional<Poses> rates, std::optional<Poses> accels,
         std::optional<Times> time, std::optional<Column<const double>> guess,
         const std::vector<std::pair<std::string, double>> &option_values,
@@ -149,24 +139,15 @@ public:
             rows_of(residual, n), rows_of(condition, n),  rows_of(jump, n),
             rows_of(iterations, n), rows_of(warnings, n), rows_of(branch, n),
             rows_of(start, n),    status.data()};
-        MessageBuffer messages(max_messages);
-        size_t first_failed = n;
-        stewart_status first;
-        std::string first_message;
-        {
-            nb::gil_scoped_release release;  // as in solve: the GIL first, the mutex second
-            std::lock_guard<std::mutex> lock(mutex_);
+        return on_data(n, max_messages, [&](stewart_batch_messages *messages, size_t *first_failed) {
             stewart_forward_reset(data_);
-            first = stewart_forward_batch(model_, data_, &options, n,
-                                          time ? time->data() : nullptr, lengths.data(),
-                                          rates ? rates->data() : nullptr,
-                                          accels ? accels->data() : nullptr,
-                                          guess ? guess->data() : nullptr, &out, &messages.c,
-                                          &first_failed);
-            first_message = stewart_data_message(data_);
-        }
-        if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());  // bad options
-        return {first, first_failed, first_message, messages.kept()};
+            return stewart_forward_batch(model_, data_, &options, n,
+                                         time ? time->data() : nullptr, lengths.data(),
+                                         rates ? rates->data() : nullptr,
+                                         accels ? accels->data() : nullptr,
+                                         guess ? guess->data() : nullptr, &out, messages,
+                                         first_failed);
+        });
     }
 
     // Runs a fresh plant through the communication points t with the forces (linear between
@@ -229,6 +210,27 @@ public:
     }
 
 private:
+    // Runs batch(messages, first_failed) -> status on the data block under the mutex, with the
+    // GIL released: the GIL goes first and comes back last, since a thread waiting for the mutex
+    // must not hold the GIL that the solving thread needs to return. Returns (status of the first
+    // failing row or 0, its index or n, its message, [(row, message)] of up to max_messages
+    // failing rows); bad options (no row failed) raise ValueError.
+    template <typename Batch>
+    BatchResult on_data(size_t n, size_t max_messages, Batch batch) {
+        MessageBuffer messages(max_messages);
+        size_t first_failed = n;
+        stewart_status first;
+        std::string first_message;
+        {
+            nb::gil_scoped_release release;
+            std::lock_guard<std::mutex> lock(mutex_);
+            first = batch(&messages.c, &first_failed);
+            first_message = stewart_data_message(data_);
+        }
+        if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());
+        return {first, first_failed, first_message, messages.kept()};
+    }
+
     // The data of an output array of n rows, or nullptr for an output the caller skips (None).
     template <typename Array>
     static auto rows_of(std::optional<Array> &a, size_t n) -> decltype(a->data()) {
@@ -252,40 +254,51 @@ private:
         return o;
     }
 
-    // Forward options by name over stewart_forward_options_default, checked by the library.
-    static stewart_forward_options make_forward_options(
-        const std::vector<std::pair<std::string, double>> &values) {
-        stewart_forward_options o;
-        stewart_forward_options_default(&o);
-        for (const auto &[name, v] : values) {
-            if (name == "tolerance") o.tolerance = v;
-            else if (name == "max_iterations") o.max_iterations = integer_option(name, v);
-            else if (name == "warn_condition") o.warn_condition = v;
-            else if (name == "singular_condition") o.singular_condition = v;
-            else fail(("unknown forward option '" + name + "'").c_str());
-        }
+    // Options of a struct by name over its defaults: set(o, name, v) stores one (false: no such
+    // name), then the library checks the whole set. Bad names and values raise ValueError.
+    template <typename Options, typename Set>
+    static Options named_options(const std::vector<std::pair<std::string, double>> &values,
+                                 void (*defaults)(Options *),
+                                 stewart_status (*check)(const Options *, char *, size_t),
+                                 const char *kind, Set set) {
+        Options o;
+        defaults(&o);
+        for (const auto &[name, v] : values)
+            if (!set(o, name, v)) fail(("unknown " + std::string(kind) + " option '" + name + "'").c_str());
         char message[STEWART_MESSAGE_SIZE];
-        if (stewart_forward_options_check(&o, message, sizeof message) != STEWART_OK)
-            fail(message);
+        if (check(&o, message, sizeof message) != STEWART_OK) fail(message);
         return o;
     }
 
-    // Plant options by name over stewart_plant_options_default, checked by the library.
+    // stewart_forward_options by name.
+    static stewart_forward_options make_forward_options(
+        const std::vector<std::pair<std::string, double>> &values) {
+        return named_options<stewart_forward_options>(
+            values, stewart_forward_options_default, stewart_forward_options_check, "forward",
+            [](stewart_forward_options &o, const std::string &name, double v) {
+                if (name == "tolerance") o.tolerance = v;
+                else if (name == "max_iterations") o.max_iterations = integer_option(name, v);
+                else if (name == "warn_condition") o.warn_condition = v;
+                else if (name == "singular_condition") o.singular_condition = v;
+                else return false;
+                return true;
+            });
+    }
+
+    // stewart_plant_options by name.
     static stewart_plant_options make_plant_options(
         const std::vector<std::pair<std::string, double>> &values) {
-        stewart_plant_options o;
-        stewart_plant_options_default(&o);
-        for (const auto &[name, v] : values) {
-            if (name == "fidelity") o.fidelity = integer_option(name, v);
-            else if (name == "method") o.method = integer_option(name, v);
-            else if (name == "relative_tolerance") o.relative_tolerance = v;
-            else if (name == "absolute_tolerance") o.absolute_tolerance = v;
-            else if (name == "max_internal_steps") o.max_internal_steps = integer_option(name, v);
-            else fail(("unknown plant option '" + name + "'").c_str());
-        }
-        char message[STEWART_MESSAGE_SIZE];
-        if (stewart_plant_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
-        return o;
+        return named_options<stewart_plant_options>(
+            values, stewart_plant_options_default, stewart_plant_options_check, "plant",
+            [](stewart_plant_options &o, const std::string &name, double v) {
+                if (name == "fidelity") o.fidelity = integer_option(name, v);
+                else if (name == "method") o.method = integer_option(name, v);
+                else if (name == "relative_tolerance") o.relative_tolerance = v;
+                else if (name == "absolute_tolerance") o.absolute_tolerance = v;
+                else if (name == "max_internal_steps") o.max_internal_steps = integer_option(name, v);
+                else return false;
+                return true;
+            });
     }
 
     // v as an int, or ValueError naming the option and the value.
