@@ -112,8 +112,9 @@ typedef struct stewart_simulate_batch_outputs {
 
 /* Runs plant through the communication points time (n, increasing) with the forces force (n x 6
  * [N], linear in time between rows), as stewart-simulate does: the state is set at time[0] to
- * start_pose (6 values, NULL: the model's home pose) and start_rate (6 values, NULL: at rest),
- * then each row j > 0 is one stewart_plant_step from row j-1. Row 0 is the start state. A refused
+ * start_pose and start_rate (6 values each; NULL: the plant's current pose or pose rates, which
+ * for a new plant are home and at rest), then each row j > 0 is one stewart_plant_step from row
+ * j-1. Row 0 is the start state. A refused
  * step (or a bad start state, a time that does not increase, a non-finite force) stops the run:
  * that row gets its status, the rows after it STEWART_BATCH_NOT_RUN, and the plant stays at the
  * last row that ran. Returns STEWART_OK or the status of the row that stopped the run, whose index
