@@ -148,21 +148,29 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_succ
     fmu_values *v = &inst->v;
     fmu_status s = check_step(inst, t, h);
     if (s == FMU_OK) {
+        const double time_before = v->time;
+        const int outputs_current_before = v->outputs_current;
         if (t != v->time) { /* a rounding off the unit's time, or later (after a Discard) */
             set_time(v, t);
             v->outputs_current = 0;
         }
         s = model_do_step(inst, t, h);
+        v->last_step_status = s;
         if (s == FMU_OK || s == FMU_WARNING) {
             set_time(v, t + h);
             v->last_step_point = t;
             v->has_stepped = 1;
             v->last_successful_time = t + h;
-        } else {
+        } else if (s == FMU_DISCARD) {
             set_time(v, t);
             v->last_successful_time = t;
+        } else {
+            /* Error (or Fatal): the model did nothing; time stays where the model is, and the
+             * instance enters the Error mode (out of it: Reset or SetFMUState). */
+            set_time(v, time_before);
+            v->outputs_current = outputs_current_before;
+            fmu_fail(inst);
         }
-        v->last_step_status = s;
     }
     if (last_successful_time) *last_successful_time = v->last_successful_time;
     return s;

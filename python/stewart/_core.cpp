@@ -303,8 +303,9 @@ private:
 
     // v as an int, or ValueError naming the option and the value.
     static int integer_option(const std::string &name, double v) {
-        if (!(v == static_cast<double>(static_cast<long long>(v))) || v > 2147483647.0 ||
-            v < -2147483648.0)
+        // the range first: casting a NaN or a value beyond long long is undefined behaviour
+        if (!(v >= -2147483648.0 && v <= 2147483647.0) ||
+            v != static_cast<double>(static_cast<long long>(v)))
             fail((name + " = " + std::to_string(v) + " must be an integer").c_str());
         return static_cast<int>(v);
     }

@@ -477,10 +477,59 @@ def test_a_step_that_skips_time_is_an_error(version):
         forces = static_forces()
         run_steps(u, 0.0, 2, forces=forces)
         state = u.get_state()
+        before = u.get(POSE)
         assert u.step(0.5, 1e-3) == ERROR
         assert any("cannot skip time" in m and "0.5" in m for m in u.messages), u.messages
+        # the unit's time stays where the plant is, and the instance is in Error: another step
+        # is refused until a state is restored (or a reset)
+        np.testing.assert_array_equal(u.get(POSE), before)
+        if "time" in u.vr:  # FMI 3 lists the independent variable
+            assert u.get(["time"])[0] == pytest.approx(0.002)
+        assert u.step(0.002, 1e-3) == ERROR
         u.set_state(state)
         resumed = run_steps(u, 0.002, 3, forces=forces)
         assert np.all(resumed[:, len(OUTPUTS)] == 0)  # status ok
+    finally:
+        u.free()
+
+
+def test_input_derivatives_set_during_initialisation_serve_the_first_step():
+    """FMI 2 lets a master set input derivatives before the end of initialisation: the first
+    step must use them, exactly as when they are set after it (a second way to the same step),
+    and differ from a step without them."""
+    def first_step(when):
+        u = Instance("StewartPlant", "2.0")
+        try:
+            u.set(**{n: 3000.0 for n in F})
+            u.fmu.setupExperiment(startTime=0.0)
+            u.fmu.enterInitializationMode()
+            if when == "initialisation":
+                u.force_rates([1e6] * 6)
+            u.fmu.exitInitializationMode()
+            if when == "step":
+                u.force_rates([1e6] * 6)
+            assert u.step(0.0, 0.01) == OK
+            return u.get(POSE)
+        finally:
+            u.free()
+    during, after, without = first_step("initialisation"), first_step("step"), first_step("none")
+    np.testing.assert_array_equal(during, after)
+    assert abs(during[2] - without[2]) > 1e-3
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_scene_values_that_overflow_are_discarded(version):
+    """Finite scene parameters can still overflow (omega = 1e308): Discard naming the output, the
+    last finite values kept, and the unit's own state serialises and deserialises."""
+    u = Instance("StewartScene", version)
+    try:
+        u.init(x_amplitude=1.0, x_omega=1e308)
+        start = u.get(["x", "x_dot", "x_ddot"])
+        assert np.all(np.isfinite(start))
+        assert u.step(0.0, 2.0) == DISCARD
+        assert any("x_dot" in m or "x_ddot" in m or "x " in m for m in u.messages), u.messages
+        np.testing.assert_array_equal(u.get(["x", "x_dot", "x_ddot"]), start)
+        state = u.get_state()
+        u.deserialize(u.serialize(state))  # raises if the state were refused
     finally:
         u.free()

@@ -160,7 +160,11 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
                 s.rate0[2], s.rate0[3], s.rate0[4], s.rate0[5], stewart_plant_message(r->plant));
         return FMU_ERROR;
     }
-    memset(&v->model, 0, sizeof v->model);
+    /* A fresh start's bookkeeping; input derivatives the master set before the end of
+     * initialisation (FMI 2 allows it) are kept for the first step. */
+    memset(&v->model.totals, 0, sizeof v->model.totals);
+    v->model.legs_outside = 0;
+    v->model.solve_status = 0;
     v->outputs_current = 0;
     return FMU_OK;
 }
