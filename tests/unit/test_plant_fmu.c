@@ -251,8 +251,8 @@ static void rollback(int v3) {
     unit u, other;
     unit_start(&u, v3, STEWART_FULL, statics);
     unit_start(&other, v3, STEWART_MASSLESS, statics);
-    snapshot first[50], again[50], elsewhere[50];
-    run_steps(&u, statics, 0, 100, first); /* move away from rest */
+    snapshot warm_up[100], first[50], again[50], elsewhere[50];
+    run_steps(&u, statics, 0, 100, warm_up); /* move away from rest */
     void *state = NULL;
     TEST_ASSERT_EQUAL(fmi2OK, v3 ? (int)fmi3GetFMUState(u.c, &state) : (int)fmi2GetFMUstate(u.c, &state));
     run_steps(&u, statics, 100, 50, first);
