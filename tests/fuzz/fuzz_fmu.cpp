@@ -58,33 +58,23 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
         u.enter_init(0.0);
         u.exit_init();
     }
-    void *state = nullptr;
-    std::vector<double> at_state;
+    StateProbe probe;
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 14;
         switch (op) {
-            case 0: {  // SetReal of any Real variable (outputs and time must be refused)
-                const unsigned vr = reals[in.byte() % reals.size()];
-                const double v = in.value();
-                u.set_real(&vr, 1, &v);
+            case 0:  // SetReal of any Real variable (outputs and time must be refused)
+                random_set_real(u, in);
                 break;
-            }
             case 1: {  // SetReal of a pose input (most useful for coverage)
                 const unsigned vr = in.byte() % 18;
                 const double v = in.value();
                 u.set_real(&vr, 1, &v);
                 break;
             }
-            case 2: {  // SetInteger
-                const unsigned vr = integers[in.byte() % integers.size()];
-                int32_t v = 0;
-                const uint8_t sel = in.byte();
-                if (sel < 200) v = sel % 4;
-                else in.take(&v, sizeof v);
-                u.set_int(&vr, 1, &v);
+            case 2:  // SetInteger of any Integer variable
+                random_set_integer(u, in, 4);
                 break;
-            }
             case 3: {  // DoStep from the current time (or from a raw t), any step size
                 const uint8_t how = in.byte();
                 const double h = in.value();
@@ -105,20 +95,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 break;
             }
             case 6:  // FMU state: take one and remember the outputs it holds
-                at_state.clear();
-                if (u.get_state(&state) == 0) check_outputs(u, &at_state);
+                probe.take(u, check_outputs);
                 break;
             case 7:  // ... and roll back to it: the same outputs bit for bit
-                if (state && u.set_state(state) == 0 && !at_state.empty()) {
-                    std::vector<double> now;
-                    check_outputs(u, &now);
-                    if (!now.empty() && std::memcmp(now.data(), at_state.data(),
-                                                    now.size() * sizeof(double)) != 0)
-                        std::abort();
-                }
+                probe.roll_back(u, check_outputs);
                 break;
             case 8:  // serialise and deserialise (possibly corrupted)
-                if (state) corrupted_round_trip(u, state, in, check_outputs);
+                if (probe.state) corrupted_round_trip(u, probe.state, in, check_outputs);
                 break;
             case 9:
                 u.reset();
@@ -147,6 +130,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
         }
     }
     check_outputs(u);
-    if (state) u.free_state(&state);
+    probe.free(u);
     return 0;
 }

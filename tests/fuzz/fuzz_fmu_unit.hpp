@@ -144,9 +144,53 @@ Unit &unit_for(bool fmi3, bool logging) {
     return *u;
 }
 
+// SetReal of any Real variable (a selector byte) to any value.
+void random_set_real(Unit &u, Reader &in) {
+    const unsigned vr = reals[in.byte() % reals.size()];
+    const double v = in.value();
+    u.set_real(&vr, 1, &v);
+}
+
+// SetInteger of any Integer variable: a small value 0 .. small - 1, or a raw int32.
+void random_set_integer(Unit &u, Reader &in, int small) {
+    const unsigned vr = integers[in.byte() % integers.size()];
+    int32_t v = 0;
+    const uint8_t sel = in.byte();
+    if (sel < 200) v = sel % small;
+    else in.take(&v, sizeof v);
+    u.set_int(&vr, 1, &v);
+}
+
+// A target's check of the outputs: aborts on a broken invariant; keeps the Reals if asked.
+using OutputCheck = void (*)(Unit &, std::vector<double> *);
+
+// An FMU state taken during an input and the outputs it held: rolled back, it must give them
+// back bit for bit.
+struct StateProbe {
+    void *state = nullptr;
+    std::vector<double> outputs;
+
+    // Takes the state (or updates the one taken) and remembers the outputs.
+    void take(Unit &u, OutputCheck check) {
+        outputs.clear();
+        if (u.get_state(&state) == 0) check(u, &outputs);
+    }
+    // Rolls back to it: the same outputs bit for bit.
+    void roll_back(Unit &u, OutputCheck check) {
+        if (!state || u.set_state(state) != 0 || outputs.empty()) return;
+        std::vector<double> now;
+        check(u, &now);
+        if (!now.empty() && std::memcmp(now.data(), outputs.data(), now.size() * sizeof(double)) != 0)
+            std::abort();
+    }
+    void free(Unit &u) {
+        if (state) u.free_state(&state);
+    }
+};
+
 // A serialise / deserialise round trip of `state`, corrupted as the input says (a byte, a whole
 // double or int32 field anywhere, one byte short); a state that deserialises is set and checked.
-void corrupted_round_trip(Unit &u, void *state, Reader &in, void (*check)(Unit &, std::vector<double> *)) {
+void corrupted_round_trip(Unit &u, void *state, Reader &in, OutputCheck check) {
     size_t n = 0;
     if (u.state_size(state, &n) != 0 || n < 8) return;
     std::vector<uint8_t> buf(n);
