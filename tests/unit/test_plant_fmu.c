@@ -178,9 +178,10 @@ void tearDown(void) {}
 /* ---------------------------------------------------------------- at rest */
 
 /* Under the inverse side's static forces the platform stays at home. It is a saddle (docs/
- * forward-dynamics.md: fastest mode 5.12 1/s), so a force error dF grows as dF/(m lambda^2)
- * (cosh(lambda t) - 1): over 1 s (cosh = 84) the solver's force residual (~1e-12 relative) and
- * the integrator's error stay below 1e-12 m (measured 3e-14 full, 4e-15 massless). The legs keep their closed-form home lengths,
+ * forward-dynamics.md: fastest mode lambda = 5.12 1/s), so an acceleration error a (forces of
+ * the two sides that disagree, integration error) moves it by a (cosh(lambda t) - 1) / lambda^2,
+ * 3.2 a over 1 s: the bound of 1e-12 m asks both sides to agree to 3e-13 m/s^2, 3e-14 of g
+ * (measured 2.7e-14 m full, 4.4e-15 m massless). The legs keep their closed-form home lengths,
  * and the base carries the weight of the moving bodies. */
 static void at_rest(int v3, int fidelity) {
     double force[6];
