@@ -1,4 +1,5 @@
-// stewart_batch.h: n poses through stewart_solve with one data block, arrays in and out.
+// stewart_batch.h: n rows through stewart_solve, stewart_forward_solve (one data block) or
+// stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
 #include <cstdio>
@@ -44,6 +45,63 @@ void keep_message(stewart_batch_messages *messages, size_t j, const char *text) 
     ++messages->count;
 }
 
+// The bookkeeping of a batch's failing rows: every message (as many as kept), the first status,
+// its row and its message (kept aside while later rows overwrite the data block's message).
+struct FailureLog {
+    stewart_batch_messages *messages;
+    size_t *first_failed;
+    stewart_status first = STEWART_OK;
+    char first_message[STEWART_MESSAGE_SIZE] = "";
+
+    FailureLog(stewart_batch_messages *m, size_t *f, size_t n) : messages(m), first_failed(f) {
+        if (first_failed) *first_failed = n;
+        if (messages) messages->count = 0;
+    }
+    void record(size_t j, stewart_status s, const char *text) {
+        keep_message(messages, j, text);
+        if (first != STEWART_OK) return;
+        first = s;
+        if (first_failed) *first_failed = j;
+        std::snprintf(first_message, sizeof first_message, "%s", text);
+    }
+};
+
+// Writes one forward row's results (zeros for a failed row, but its warnings and branch).
+void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
+                       const stewart_forward_result &r, stewart_status s) {
+    const bool ok = s == STEWART_OK;
+    const stewart_forward_result zero{};
+    const stewart_forward_result &v = ok ? r : zero;
+    copy_out(row(out.pose, j, 6), v.pose.q, 6);
+    copy_out(row(out.pose_rate, j, 6), v.pose.q_dot, 6);
+    copy_out(row(out.pose_accel, j, 6), v.pose.q_ddot, 6);
+    copy_out(row(out.residual, j, 1), &v.residual, 1);
+    copy_out(row(out.condition, j, 1), &v.condition, 1);
+    copy_out(row(out.jump, j, 1), &v.jump, 1);
+    if (out.iterations) out.iterations[j] = v.iterations;
+    if (out.start) out.start[j] = v.start;
+    if (out.warnings) out.warnings[j] = ok || s == STEWART_ERR_OTHER_BRANCH ? r.warnings : 0;
+    if (out.branch) out.branch[j] = ok || s == STEWART_ERR_OTHER_BRANCH ? r.branch : 0;
+    out.status[j] = s;
+}
+
+// Writes one plant row (zeros, status STEWART_BATCH_NOT_RUN, for a row that did not run).
+void write_plant_row(const stewart_simulate_batch_outputs &out, size_t j,
+                     const stewart_plant_output &o, const stewart_plant_statistics &st, int s) {
+    copy_out(row(out.pose, j, 6), o.pose, 6);
+    copy_out(row(out.pose_rate, j, 6), o.pose_rate, 6);
+    copy_out(row(out.length, j, 6), o.length, STEWART_LEGS);
+    copy_out(row(out.length_rate, j, 6), o.length_rate, STEWART_LEGS);
+    copy_out(row(out.base_force, j, 3), o.base_force, 3);
+    copy_out(row(out.base_torque, j, 3), o.base_torque, 3);
+    if (out.warnings) out.warnings[j] = o.warnings;
+    if (out.steps) out.steps[j] = st.steps;
+    if (out.rhs_evaluations) out.rhs_evaluations[j] = st.rhs_evaluations;
+    if (out.nonlinear_iterations) out.nonlinear_iterations[j] = st.nonlinear_iterations;
+    if (out.error_test_failures) out.error_test_failures[j] = st.error_test_failures;
+    out.status[j] = s;
+}
+
 }  // namespace
 
 extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_data *d,
@@ -52,18 +110,15 @@ extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_da
                                               const stewart_batch_outputs *out,
                                               stewart_batch_messages *messages,
                                               size_t *first_failed) {
-    if (first_failed) *first_failed = n;
-    if (messages) messages->count = 0;
+    FailureLog log(messages, first_failed, n);
     if (!m || !d || !o || !out || !out->status || (n > 0 && !q)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
                                     "NULL argument to stewart_solve_batch");
         return STEWART_ERR_ARGUMENT;
     }
-    stewart_status first = stewart_options_check(o, d->message, sizeof d->message);
-    if (first != STEWART_OK) return first;
+    const stewart_status bad_options = stewart_options_check(o, d->message, sizeof d->message);
+    if (bad_options != STEWART_OK) return bad_options;
 
-    // The first failure's message is kept here while later rows overwrite d->message.
-    char first_message[STEWART_MESSAGE_SIZE] = "";
     stewart_pose pose{};
     for (size_t j = 0; j < n; ++j) {
         std::memcpy(pose.q, q + 6 * j, sizeof pose.q);
@@ -73,15 +128,91 @@ extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_da
         const stewart_status s = stewart_solve(m, d, o, &pose, &o_j);
         if (s != STEWART_OK) {
             o_j = stewart_output{};
-            keep_message(messages, j, d->message);
-            if (first == STEWART_OK) {
-                first = s;
-                if (first_failed) *first_failed = j;
-                std::memcpy(first_message, d->message, sizeof first_message);
-            }
+            log.record(j, s, d->message);
         }
         write_row(*out, j, o_j, s);
     }
-    std::memcpy(d->message, first_message, sizeof first_message);
-    return first;
+    std::memcpy(d->message, log.first_message, sizeof log.first_message);
+    return log.first;
+}
+
+extern "C" stewart_status stewart_forward_batch(const stewart_model *m, stewart_data *d,
+                                                const stewart_forward_options *o, size_t n,
+                                                const double *time, const double *lengths,
+                                                const double *rates, const double *accels,
+                                                const double guess[6],
+                                                const stewart_forward_batch_outputs *out,
+                                                stewart_batch_messages *messages,
+                                                size_t *first_failed) {
+    FailureLog log(messages, first_failed, n);
+    if (!m || !d || !o || !out || !out->status || (n > 0 && !lengths) || (accels && !rates)) {
+        if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                                    accels && !rates ? "stewart_forward_batch: accels need rates"
+                                                     : "NULL argument to stewart_forward_batch");
+        return STEWART_ERR_ARGUMENT;
+    }
+    const stewart_status bad_options =
+        stewart_forward_options_check(o, d->message, sizeof d->message);
+    if (bad_options != STEWART_OK) return bad_options;
+
+    for (size_t j = 0; j < n; ++j) {
+        stewart_forward_result r{};
+        const stewart_status s = stewart_forward_solve(
+            m, d, o, time ? time[j] : 0.0, lengths + 6 * j, row(rates, j, 6),
+            row(accels, j, 6), j == 0 ? guess : nullptr, &r);
+        if (s != STEWART_OK) log.record(j, s, d->message);
+        write_forward_row(*out, j, r, s);
+    }
+    std::memcpy(d->message, log.first_message, sizeof log.first_message);
+    return log.first;
+}
+
+extern "C" stewart_status stewart_simulate_batch(stewart_plant *plant, size_t n,
+                                                 const double *time, const double *force,
+                                                 const double start_pose[6],
+                                                 const double start_rate[6],
+                                                 const stewart_simulate_batch_outputs *out,
+                                                 char *message, size_t message_size,
+                                                 size_t *first_failed) {
+    if (first_failed) *first_failed = n;
+    if (message && message_size) message[0] = '\0';
+    if (!plant || !out || !out->status || (n > 0 && (!time || !force))) {
+        if (message)
+            stewart::set_message(message, message_size, STEWART_ERR_ARGUMENT,
+                                 "NULL argument to stewart_simulate_batch");
+        return STEWART_ERR_ARGUMENT;
+    }
+    const stewart_plant_output none{};
+    const stewart_plant_statistics no_steps{};
+    size_t j = 0;
+    stewart_status s = STEWART_OK;
+    if (n > 0) {
+        // The start: the plant's own pose and rates where the caller gives none.
+        stewart_plant_output now;
+        s = stewart_plant_output_get(plant, nullptr, &now);
+        if (s == STEWART_OK)
+            s = stewart_plant_set_state(plant, time[0], start_pose ? start_pose : now.pose,
+                                        start_rate ? start_rate : now.pose_rate);
+    }
+    for (; j < n && s == STEWART_OK; ++j) {
+        stewart_plant_statistics stats = no_steps;
+        if (j > 0) {
+            s = stewart_plant_step(plant, time[j] - time[j - 1], force + 6 * (j - 1),
+                                   force + 6 * j, nullptr, nullptr);
+            if (s != STEWART_OK) break;
+            stewart_plant_statistics_get(plant, &stats);
+        }
+        stewart_plant_output o;
+        s = stewart_plant_output_get(plant, force + 6 * j, &o);
+        if (s != STEWART_OK) break;
+        write_plant_row(*out, j, o, stats, STEWART_OK);
+    }
+    if (s == STEWART_OK) return s;
+    if (first_failed) *first_failed = j;
+    if (message)
+        std::snprintf(message, message_size, "row %zu (t = %.17g): %s", j, time[j],
+                      stewart_plant_message(plant));
+    write_plant_row(*out, j, none, no_steps, s);
+    for (size_t k = j + 1; k < n; ++k) write_plant_row(*out, k, none, no_steps, STEWART_BATCH_NOT_RUN);
+    return s;
 }

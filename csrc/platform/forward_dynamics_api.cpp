@@ -374,14 +374,21 @@ extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
     const stewart_status s = all_bodies(*p, nullptr, e, motion);
     if (s != STEWART_OK) return s;
     const int count = p->dynamics.with_legs ? STEWART_PLANT_BODIES : 1;
-    std::memset(bodies, 0, sizeof(stewart_plant_body) * STEWART_PLANT_BODIES);
+    stewart_plant_body out[STEWART_PLANT_BODIES] = {};
     for (int b = 0; b < count; ++b)
         for (int i = 0; i < 3; ++i) {
-            bodies[b].position[i] = motion[b].position[i];
-            bodies[b].velocity[i] = motion[b].velocity[i];
-            bodies[b].omega[i] = motion[b].omega[i];
-            for (int j = 0; j < 3; ++j) bodies[b].rotation[3 * i + j] = motion[b].rotation(i, j);
+            out[b].position[i] = motion[b].position[i];
+            out[b].velocity[i] = motion[b].velocity[i];
+            out[b].omega[i] = motion[b].omega[i];
+            for (int j = 0; j < 3; ++j) out[b].rotation[3 * i + j] = motion[b].rotation(i, j);
         }
+    // A finite state can still overflow a leg body's rates (platform rates near 1e308, as the
+    // fuzz target found): no bodies then, as output_get and reactions_get do.
+    const double *values = out[0].position;
+    constexpr size_t kDoubles = sizeof(stewart_plant_body) * STEWART_PLANT_BODIES / sizeof(double);
+    for (size_t i = 0; i < kDoubles; ++i)
+        if (!std::isfinite(values[i])) return STEWART_ERR_ARGUMENT;
+    std::memcpy(bodies, out, sizeof out);
     return STEWART_OK;
 }
 

@@ -6,20 +6,22 @@
 >>> sol.length.shape
 (1, 6)
 
-`forward` (lengths to pose) and `simulate` (forces to motion) are not here yet: they come with
-the library's forward kinematics and plant.
+``Platform.forward`` (lengths to poses) and ``Platform.simulate`` (forces to motion) return
+ForwardSolution and Simulation in the same way.
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
 from .errors import ParameterError
 from .fmus import FMI_VERSIONS, fmu_path, fmu_paths
+from .forward import ForwardSolution
 from .params import parameters
 from .platform import Fidelity, Platform, Solution
+from .simulate import Method, Simulation
 
 try:
     __version__ = _version("stewart")
 except PackageNotFoundError:  # imported from a source tree, not installed
     __version__ = "unknown"
 
-__all__ = ["Platform", "Solution", "Fidelity", "ParameterError", "fmu_path", "fmu_paths",
+__all__ = ["Platform", "Solution", "ForwardSolution", "Simulation", "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths",
            "FMI_VERSIONS", "parameters", "__version__"]

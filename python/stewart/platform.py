@@ -1,7 +1,6 @@
 """Platform: one Stewart platform (the library's model) and its batch solve on numpy arrays."""
 from __future__ import annotations
 
-import enum
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Optional, Union
@@ -9,36 +8,25 @@ from typing import Optional, Union
 import numpy as np
 
 from . import _core
+from .arrays import LEG_LAYOUT, POSE_LAYOUT, rows6, times, vector
+from .choices import Choice
 from .errors import ParameterError
+from .forward import ForwardSolution, run_forward
 from .params import ParameterValue, parameter_assignments
+from .results import RowStatus
+from .simulate import Method, Simulation, run_simulate
 
 
-class Fidelity(enum.IntEnum):
-    """The library's fidelity levels (stewart_fidelity)."""
+class Fidelity(Choice):
+    """The library's fidelity levels (stewart_fidelity); Fidelity.of takes a member, its number
+    or its name ("kinematic", "massless", "full")."""
     KINEMATIC = 0  #: lengths, rates, accelerations; forces zero
     MASSLESS = 1   #: plus forces, legs as massless two-force members
     FULL = 2       #: the 14-body constraint-and-multiplier model
 
-    @classmethod
-    def of(cls, value: Union["Fidelity", int, str]) -> "Fidelity":
-        """A Fidelity from itself, its number or its name ("kinematic", "massless", "full")."""
-        if isinstance(value, str):
-            try:
-                return cls[value.upper()]
-            except KeyError:
-                raise ParameterError(f"fidelity = {value!r} must be kinematic, massless or full") from None
-        try:
-            return cls(int(value))
-        except ValueError:
-            raise ParameterError(f"fidelity = {value!r} must be 0 (kinematic), 1 (massless) or 2 (full)") from None
-
-
-# stewart_status values (stewart.h).
-STATUS_OK = 0
-
 
 @dataclass
-class Solution:
+class Solution(RowStatus):
     """The result of Platform.solve for N poses: arrays of N rows (legs in the library's order).
 
     A row whose status is not 0 failed (see status_name and messages) and holds zeros; the other
@@ -56,14 +44,6 @@ class Solution:
     status: np.ndarray        #: (N,) stewart_status per row: 0 solved, < 0 failed
     messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
 
-    def __len__(self) -> int:
-        return len(self.status)
-
-    @property
-    def ok(self) -> np.ndarray:
-        """(N,) True where the row solved."""
-        return self.status == STATUS_OK
-
     @property
     def power(self) -> np.ndarray:
         """(N,) actuator power sum_k F_k dL_k/dt [W], summed over legs in order 1..6."""
@@ -71,22 +51,6 @@ class Solution:
         for k in range(1, 6):
             p = p + self.force[:, k] * self.length_rate[:, k]
         return p
-
-    def status_name(self, row: int) -> str:
-        """The library's name of row's status ("ok", "unreachable pose", ...)."""
-        return _core.status_name(int(self.status[row]))
-
-
-def _rows(name: str, value, n: Optional[int]) -> np.ndarray:
-    """value as a C-contiguous float64 (n, 6) array; a single pose of 6 values is one row."""
-    a = np.ascontiguousarray(value, dtype=np.float64)
-    if a.ndim == 1 and a.shape[0] == 6:
-        a = a.reshape(1, 6)
-    if a.ndim != 2 or a.shape[1] != 6:
-        raise ValueError(f"{name} has shape {a.shape}: it must be (N, 6), (x, y, z, roll, pitch, yaw) per row")
-    if n is not None and a.shape[0] != n:
-        raise ValueError(f"{name} has {a.shape[0]} rows but poses has {n}")
-    return a
 
 
 class Platform:
@@ -139,10 +103,10 @@ class Platform:
         write into (its arrays are reused, which saves allocating and first-touching fresh
         memory in a loop of equal batches); it is returned."""
         level = Fidelity.of(fidelity)
-        q = _rows("poses", poses, None)
+        q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
         n = q.shape[0]
-        q_dot = None if rates is None else _rows("rates", rates, n)
-        q_ddot = None if accels is None else _rows("accels", accels, n)
+        q_dot = None if rates is None else rows6("rates", rates, n, "poses", POSE_LAYOUT)
+        q_ddot = None if accels is None else rows6("accels", accels, n, "poses", POSE_LAYOUT)
         options = [("fidelity", float(level))]
         for name, value in (("tolerance", tolerance), ("max_iterations", max_iterations),
                             ("modified_newton", modified_newton),
@@ -164,6 +128,80 @@ class Platform:
             raise ParameterError(str(e)) from None
         out.messages = dict(kept)
         return out
+
+    def forward(self, lengths, rates=None, accels=None, guess=None, *, t=None,
+                tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
+                warn_condition: Optional[float] = None,
+                singular_condition: Optional[float] = None,
+                max_messages: int = 100) -> ForwardSolution:
+        """Forward kinematics of N rows of actuator lengths in one call into the library.
+
+        lengths, rates, accels: (N, 6) arrays of L_k [m] and their first and second time
+        derivatives (None: not given; the pose rates and accelerations are then zero; accels
+        need rates). t: (N,) increasing times [s] of the rows (None: no time, each row starts
+        from the last solved pose without the rate predictor). The rows are tracked in order
+        from a cold start, exactly as `stewart-solve --forward` tracks a CSV's rows: row 0 from
+        guess (a pose of 6 values) or else the home pose, each later row from the last one
+        solved, advanced by its rates to the row's time. A pose on another assembly mode than
+        the working one is never returned: that row gets status STATUS_OTHER_BRANCH (-8) and
+        its branch bits say why; a row of bad or unreachable lengths gets its status; the other
+        rows are still solved. The first max_messages failing rows get a message. Bad options
+        raise ParameterError; bad array shapes, a non-finite guess or a t that does not
+        increase raise ValueError naming the argument and the value. Options left None keep the
+        library's defaults (stewart_forward_options_default)."""
+        L = rows6("lengths", lengths, None, "lengths", LEG_LAYOUT)
+        n = L.shape[0]
+        L_dot = None if rates is None else rows6("rates", rates, n, "lengths", LEG_LAYOUT)
+        L_ddot = None if accels is None else rows6("accels", accels, n, "lengths", LEG_LAYOUT)
+        if L_ddot is not None and L_dot is None:
+            raise ValueError("accels were given without rates: the pose accelerations need both")
+        q0 = None if guess is None else vector("guess", guess, 6)
+        time = None if t is None else times("t", t, n)
+        if max_messages < 0:
+            raise ValueError(f"max_messages = {max_messages} must be >= 0")
+        options = [(name, float(value)) for name, value in (
+            ("tolerance", tolerance), ("max_iterations", max_iterations),
+            ("warn_condition", warn_condition), ("singular_condition", singular_condition))
+            if value is not None]
+        return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages)
+
+    def simulate(self, t, forces, fidelity: Union[Fidelity, int, str] = Fidelity.FULL,
+                 start=None, start_rate=None, *,
+                 method: Optional[Union[Method, int, str]] = None,
+                 relative_tolerance: Optional[float] = None,
+                 absolute_tolerance: Optional[float] = None,
+                 max_internal_steps: Optional[int] = None) -> Simulation:
+        """Forward dynamics: the platform's motion under the actuator forces, in one call.
+
+        t: (N,) increasing communication points [s]; forces: (N, 6) F_k [N] at those points
+        (F_k > 0 pushes platform and base apart), linear in time between rows. The plant starts
+        at t[0] from start (a pose of 6 values; None: home) with start_rate (the pose rates;
+        None: at rest), and steps from row to row exactly as `stewart-simulate` does on the same
+        forces CSV. fidelity: "massless" (platform and payload alone) or "full" (the 14-body
+        model). A step the plant refuses (a non-finite force, a leg of zero length, a locked
+        Cardan, the integrator failing) stops the run: that row gets its status, the rows after
+        it STATUS_NOT_RUN, and Simulation.message says why (a plant cannot skip a step). Bad
+        options raise ParameterError; bad shapes, a non-finite start or a t that does not
+        increase raise ValueError naming the argument and the value. Options left None keep
+        the library's defaults (stewart_plant_options_default: ERK 4(3), rtol 1e-10, atol
+        1e-12)."""
+        level = Fidelity.of(fidelity)
+        if level == Fidelity.KINEMATIC:
+            raise ParameterError("fidelity = kinematic has no dynamics: simulate needs massless or full")
+        time = times("t", t, None)
+        n = time.shape[0]
+        F = rows6("forces", forces, n, "t", LEG_LAYOUT)
+        q0 = None if start is None else vector("start", start, 6)
+        q0_dot = None if start_rate is None else vector("start_rate", start_rate, 6)
+        options = [("fidelity", float(level))]
+        if method is not None:
+            options.append(("method", float(Method.of(method))))
+        for name, value in (("relative_tolerance", relative_tolerance),
+                            ("absolute_tolerance", absolute_tolerance),
+                            ("max_internal_steps", max_internal_steps)):
+            if value is not None:
+                options.append((name, float(value)))
+        return run_simulate(self._model, time, F, q0, q0_dot, options)
 
 
 def _empty_solution(n: int) -> Solution:

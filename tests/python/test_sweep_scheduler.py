@@ -23,7 +23,7 @@ SPEC = {
     "kind": "envelope", "fidelity": ["full"], "payload_mass": [0.0, 30.0, 60.0],
     "payload_com": [[0.0, 0.0, 0.1]],
     "manoeuvres": [{"scene": "roll", "amplitude": [0.5, 1.0]}, {"scene": "combined", "frequency": [1.0, 1.5]}],
-    "duration": 2.0, "cases_per_chunk": 1,
+    "duration": 4.0, "cases_per_chunk": 1,
 }
 
 
@@ -65,7 +65,11 @@ def cluster(tmp_path):
         assert address.startswith("tcp://127.0.0.1:")
         with distributed.Client(address, timeout="30s") as client:
             client.wait_for_workers(2, timeout=60)
+            # Both workers answer (and have imported the solver) before the sweep starts: on a
+            # loaded machine a worker still starting up would leave every chunk to the other.
+            answered = client.run(exec, "import stewart.sweeps.work", wait=True)
             workers = set(client.scheduler_info()["workers"])
+            assert set(answered) == workers
         yield address, workers
     finally:
         for p in reversed(procs):

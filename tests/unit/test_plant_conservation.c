@@ -163,15 +163,6 @@ static void test_equilibrium_massless_tilted(void) {
 }
 
 
-static double dot3(const double a[3], const double b[3]) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* Column c of a row-major 3x3 rotation. */
-static void column(const double R[9], int c, double out[3]) {
-    for (int i = 0; i < 3; ++i) out[i] = R[3 * i + c];
-}
-
 /* Every leg body on its joints as model.md defines them, from the bodies' poses and the
  * platform pose output alone: Cardan centres on a_k and on p + R b_k, cross arms perpendicular,
  * cylinder and piston on one axis; and the bodies' velocities equal to differences of their
@@ -191,43 +182,8 @@ static void test_leg_bodies_on_their_joints(void) {
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, after));
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
-        stewart_pose pose = {{0}, {0}, {0}};
-        for (int c = 0; c < 6; ++c) pose.q[c] = out.pose[c];
-        double R[3][3];
-        pose_rotation(&pose, R);
-        for (int k = 0; k < 6; ++k) {
-            const stewart_plant_body *cyl = &after[1 + k], *pis = &after[7 + k];
-            double zc[3], zp[3], xc[3], xp[3];
-            column(cyl->rotation, 2, zc);
-            column(pis->rotation, 2, zp);
-            column(cyl->rotation, 0, xc);
-            column(pis->rotation, 0, xp);
-            const double a[3] = {params.base_radius * cos(params.base_angle[k]),
-                                 params.base_radius * sin(params.base_angle[k]), 0};
-            const double b[3] = {params.platform_radius * cos(params.platform_angle[k]),
-                                 params.platform_radius * sin(params.platform_angle[k]), 0};
-            const double s_base[3] = {-sin(params.base_angle[k]), cos(params.base_angle[k]), 0};
-            const double s_plate[3] = {-sin(params.platform_angle[k]), cos(params.platform_angle[k]), 0};
-            double s_plate_world[3], gap[3];
-            for (int r = 0; r < 3; ++r) {
-                const double P = pose.q[r] + R[r][0] * b[0] + R[r][1] * b[1];
-                s_plate_world[r] = R[r][0] * s_plate[0] + R[r][1] * s_plate[1];
-                /* Cardan centres */
-                const double e1 = cyl->position[r] - params.cylinder_com * zc[r] - a[r];
-                const double e2 = pis->position[r] + params.piston_com * zp[r] - P;
-                const double e3 = zc[r] - zp[r];
-                gap[r] = pis->position[r] - cyl->position[r];
-                if (fabs(e1) > worst_joint) worst_joint = fabs(e1);
-                if (fabs(e2) > worst_joint) worst_joint = fabs(e2);
-                if (fabs(e3) > worst_joint) worst_joint = fabs(e3);
-            }
-            /* cylindrical: the offset between the bodies lies along the common axis */
-            const double along = dot3(gap, zc);
-            for (int r = 0; r < 3; ++r)
-                if (fabs(gap[r] - along * zc[r]) > worst_joint) worst_joint = fabs(gap[r] - along * zc[r]);
-            if (fabs(dot3(xc, s_base)) > worst_joint) worst_joint = fabs(dot3(xc, s_base));
-            if (fabs(dot3(xp, s_plate_world)) > worst_joint) worst_joint = fabs(dot3(xp, s_plate_world));
-        }
+        const double e = leg_joint_error(&params, out.pose, after);
+        if (e > worst_joint) worst_joint = e;
         for (int b = 0; b < STEWART_PLANT_BODIES; ++b) {
             /* (r1 - r0) / h against the mean velocity; skew part of R1 R0^T / h against omega */
             double dR[3][3];

@@ -1,7 +1,9 @@
 #include "test_plant_support.h"
 
+#include <math.h>
 #include <stdio.h>
 
+#include "test_support.h"
 #include "unity.h"
 
 stewart_plant *test_plant(const stewart_model *model, int fidelity, double rtol, double atol) {
@@ -65,4 +67,57 @@ void heavy_legs(stewart_params *p) {
     p->cylinder_inertia[0] = p->cylinder_inertia[1] = m * (3 * r * r + l * l) / 12.0;
     p->cylinder_inertia[2] = m * r * r / 2.0;
     for (int i = 0; i < 3; ++i) p->piston_inertia[i] = p->cylinder_inertia[i];
+}
+
+static double dot3(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Column c of a row-major 3x3 rotation. */
+static void column(const double R[9], int c, double out[3]) {
+    for (int i = 0; i < 3; ++i) out[i] = R[3 * i + c];
+}
+
+static void worse(double *worst, double e) {
+    if (fabs(e) > *worst) *worst = fabs(e);
+}
+
+double leg_joint_error(const stewart_params *params, const double pose_q[6],
+                       const stewart_plant_body bodies[STEWART_PLANT_BODIES]) {
+    stewart_pose pose = {{0}, {0}, {0}};
+    for (int c = 0; c < 6; ++c) pose.q[c] = pose_q[c];
+    double R[3][3];
+    pose_rotation(&pose, R);
+    double worst = 0;
+    for (int k = 0; k < 6; ++k) {
+        const stewart_plant_body *cyl = &bodies[1 + k], *pis = &bodies[7 + k];
+        double zc[3], zp[3], xc[3], xp[3];
+        column(cyl->rotation, 2, zc);
+        column(pis->rotation, 2, zp);
+        column(cyl->rotation, 0, xc);
+        column(pis->rotation, 0, xp);
+        const double a[3] = {params->base_radius * cos(params->base_angle[k]),
+                             params->base_radius * sin(params->base_angle[k]), 0};
+        const double b[3] = {params->platform_radius * cos(params->platform_angle[k]),
+                             params->platform_radius * sin(params->platform_angle[k]), 0};
+        const double s_base[3] = {-sin(params->base_angle[k]), cos(params->base_angle[k]), 0};
+        const double s_plate[3] = {-sin(params->platform_angle[k]), cos(params->platform_angle[k]), 0};
+        double s_plate_world[3], gap[3];
+        for (int r = 0; r < 3; ++r) {
+            const double P = pose.q[r] + R[r][0] * b[0] + R[r][1] * b[1];
+            s_plate_world[r] = R[r][0] * s_plate[0] + R[r][1] * s_plate[1];
+            /* Cardan centres, and one common axis */
+            worse(&worst, cyl->position[r] - params->cylinder_com * zc[r] - a[r]);
+            worse(&worst, pis->position[r] + params->piston_com * zp[r] - P);
+            worse(&worst, zc[r] - zp[r]);
+            gap[r] = pis->position[r] - cyl->position[r];
+        }
+        /* cylindrical: the offset between the bodies lies along the common axis */
+        const double along = dot3(gap, zc);
+        for (int r = 0; r < 3; ++r) worse(&worst, gap[r] - along * zc[r]);
+        /* Cardan cross arms perpendicular */
+        worse(&worst, dot3(xc, s_base));
+        worse(&worst, dot3(xp, s_plate_world));
+    }
+    return worst;
 }

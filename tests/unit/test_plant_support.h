@@ -17,6 +17,12 @@ void plant_energy(const stewart_params *params, const stewart_plant *plant, int 
 void step_ok(stewart_plant *plant, double h, const double f0[6], const double f1[6],
              const double r0[6], const double r1[6]);
 
+/* The largest violation of any leg joint as docs/model.md defines them, from the bodies' poses
+ * and the platform pose alone: Cardan centres on a_k and on p + R b_k, cross arms perpendicular,
+ * cylinder and piston on one axis [m, or dimensionless for the axis terms]. */
+double leg_joint_error(const stewart_params *params, const double pose[6],
+                       const stewart_plant_body bodies[STEWART_PLANT_BODIES]);
+
 /* The thesis platform with heavy legs (10 kg rods of 0.05 m radius), so that leg inertia
  * matters in a check. */
 void heavy_legs(stewart_params *params);

@@ -5,7 +5,8 @@
  * calls would (at the full level each pose starts from the previous one's solution), but with
  * the inputs and outputs as row-major arrays, so that a caller holding arrays (numpy) needs no
  * loop per pose. A row that fails gets its status (and, if asked, its message) and zero outputs;
- * the rows after it are still solved.
+ * the rows after it are still solved. The same for forward kinematics (lengths to poses) and, for
+ * the plant, a run over n communication points (forces to motion), which stops at a refused step.
  */
 #ifndef STEWART_STEWART_BATCH_H
 #define STEWART_STEWART_BATCH_H
@@ -13,6 +14,8 @@
 #include <stddef.h>
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_forward.h"
+#include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -53,6 +56,74 @@ stewart_status stewart_solve_batch(const stewart_model *model, stewart_data *dat
                                    const double *q_dot, const double *q_ddot,
                                    const stewart_batch_outputs *outputs,
                                    stewart_batch_messages *messages, size_t *first_failed);
+
+/* The status of a row a batch did not run (stewart_simulate_batch after a refused step): positive,
+ * unlike every stewart_status. */
+#define STEWART_BATCH_NOT_RUN 1
+
+/* Where a forward batch writes its results: arrays of n rows, row-major. Every pointer but status
+ * may be NULL to skip that output. A failed row holds zeros but its warnings and branch bits. */
+typedef struct stewart_forward_batch_outputs {
+    double *pose;        /* n x 6, (x, y, z [m], roll, pitch, yaw [rad]) */
+    double *pose_rate;   /* n x 6, d/dt of the pose (zero unless rates were given) */
+    double *pose_accel;  /* n x 6, d2/dt2 of the pose (zero unless accels were given) */
+    double *residual;    /* n, max |L_k(q) - L_k measured| at the last Newton iterate [m] */
+    double *condition;   /* n, leg Jacobian condition number */
+    double *jump;        /* n, largest platform-point move from the last pose [m] */
+    int *iterations;     /* n, Newton iterations */
+    int *warnings;       /* n, STEWART_WARN_* bits */
+    int *branch;         /* n, STEWART_BRANCH_* bits (why a row is on another assembly mode) */
+    int *start;          /* n, STEWART_START_* the row was reached from */
+    int *status;         /* n, the stewart_status of each row (required) */
+} stewart_forward_batch_outputs;
+
+/* Forward kinematics of rows 0..n-1 of lengths (n x 6), with rates and accels (n x 6 each, NULL
+ * for none; accels need rates) at times time (n, NULL for all zero: no predictor), in order, as n
+ * successive stewart_forward_solve calls on data would: row 0 from guess (6 values) if not NULL,
+ * else from the data block's last pose (stewart_forward_reset first for a cold start), each later
+ * row tracking from the last solved one. A failed row gets its status and, if asked, its message;
+ * the rows after it are still solved. Options are checked once: if they are bad, nothing is
+ * solved. Returns as stewart_solve_batch. */
+stewart_status stewart_forward_batch(const stewart_model *model, stewart_data *data,
+                                     const stewart_forward_options *options, size_t n,
+                                     const double *time, const double *lengths,
+                                     const double *rates, const double *accels,
+                                     const double guess[6],
+                                     const stewart_forward_batch_outputs *outputs,
+                                     stewart_batch_messages *messages, size_t *first_failed);
+
+/* Where a plant batch writes its results: arrays of n rows, row-major. Every pointer but status
+ * may be NULL to skip that output. A row that did not run holds zeros. Statistics are those of the
+ * step into the row (zero for row 0). */
+typedef struct stewart_simulate_batch_outputs {
+    double *pose;          /* n x 6, (x, y, z [m], roll, pitch, yaw [rad]) */
+    double *pose_rate;     /* n x 6, d/dt of the pose */
+    double *length;        /* n x 6, L_k [m] */
+    double *length_rate;   /* n x 6, dL_k/dt [m/s] */
+    double *base_force;    /* n x 3, force on the base, world frame [N] */
+    double *base_torque;   /* n x 3, its torque about the world origin [N m] */
+    int *warnings;         /* n, STEWART_PLANT_WARN_* bits */
+    long *steps;           /* n, internal integrator steps */
+    long *rhs_evaluations; /* n, right-hand side evaluations */
+    long *nonlinear_iterations; /* n, nonlinear solver iterations */
+    long *error_test_failures;  /* n, error test failures */
+    int *status;           /* n, stewart_status, or STEWART_BATCH_NOT_RUN (required) */
+} stewart_simulate_batch_outputs;
+
+/* Runs plant through the communication points time (n, increasing) with the forces force (n x 6
+ * [N], linear in time between rows), as stewart-simulate does: the state is set at time[0] to
+ * start_pose and start_rate (6 values each; NULL: the plant's current pose or pose rates, which
+ * for a new plant are home and at rest), then each row j > 0 is one stewart_plant_step from row
+ * j-1. Row 0 is the start state. A refused
+ * step (or a bad start state, a time that does not increase, a non-finite force) stops the run:
+ * that row gets its status, the rows after it STEWART_BATCH_NOT_RUN, and the plant stays at the
+ * last row that ran. Returns STEWART_OK or the status of the row that stopped the run, whose index
+ * goes to *first_failed (n when every row ran) and whose message to message (if not NULL). */
+stewart_status stewart_simulate_batch(stewart_plant *plant, size_t n, const double *time,
+                                      const double *force, const double start_pose[6],
+                                      const double start_rate[6],
+                                      const stewart_simulate_batch_outputs *outputs,
+                                      char *message, size_t message_size, size_t *first_failed);
 
 #ifdef __cplusplus
 }

@@ -127,7 +127,8 @@ stewart_status stewart_plant_reactions_get(const stewart_plant *plant,
                                            const double force[STEWART_LEGS],
                                            stewart_plant_reactions *reactions);
 
-/* The 13 moving bodies at the current state: platform, cylinders 1..6, pistons 1..6. */
+/* The 13 moving bodies at the current state: platform, cylinders 1..6, pistons 1..6 (massless:
+ * the platform, the rest zero). STEWART_ERR_ARGUMENT (bodies untouched) if a value overflows. */
 stewart_status stewart_plant_bodies(const stewart_plant *plant,
                                     stewart_plant_body bodies[STEWART_PLANT_BODIES]);
 

@@ -4,6 +4,7 @@
 
 #include "logging.h"
 #include "model_interface.h"
+#include "model_without_resources.h"
 
 void model_start_values(fmu_values *v) {
     v->real[VR_u] = 0.0;
@@ -13,8 +14,6 @@ void model_start_values(fmu_values *v) {
     v->integer[VR_steps] = 0;
     memset(&v->model, 0, sizeof v->model);
 }
-
-void model_reset(fmu_instance *inst) { (void)inst; }
 
 fmu_status model_apply_parameters(fmu_instance *inst) {
     fmu_values *v = &inst->v;
@@ -47,29 +46,6 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     return model_refresh_outputs(inst);
 }
 
-fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
-                                       const int order[], const double value[]) {
-    (void)vr; (void)order; (void)value;
-    if (n == 0) return FMU_OK;
-    fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetRealInputDerivatives: this model takes none");
-    return FMU_ERROR;
-}
-
-size_t model_state_size(const fmu_instance *inst) {
-    (void)inst;
-    return 0;
-}
-
-fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size) {
-    (void)inst; (void)out;
-    return size == 0 ? FMU_OK : FMU_ERROR;
-}
-
-fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
-    (void)inst; (void)in;
-    return size == 0 ? FMU_OK : FMU_ERROR;
-}
-
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
     (void)inst; (void)in; (void)why; (void)why_size;
@@ -78,4 +54,3 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     return NULL;
 }
 
-void model_free(fmu_instance *inst) { (void)inst; }

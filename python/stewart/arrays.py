@@ -1,0 +1,50 @@
+"""Argument arrays checked at the boundary: shapes and values, errors naming the argument."""
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+
+POSE_LAYOUT = "(x, y, z, roll, pitch, yaw) per row"
+LEG_LAYOUT = "legs 1..6 per row"
+
+
+def rows6(name: str, value, n: Optional[int], first: str, layout: str) -> np.ndarray:
+    """value as a C-contiguous float64 (n, 6) array (a single row of 6 values is one row), or
+    ValueError naming it; first names the argument that set n."""
+    a = np.ascontiguousarray(value, dtype=np.float64)
+    if a.ndim == 1 and a.shape[0] == 6:
+        a = a.reshape(1, 6)
+    if a.ndim != 2 or a.shape[1] != 6:
+        raise ValueError(f"{name} has shape {a.shape}: it must be (N, 6), {layout}")
+    if n is not None and a.shape[0] != n:
+        raise ValueError(f"{name} has {a.shape[0]} rows but {first} has {n}")
+    return a
+
+
+def vector(name: str, value, size: int) -> np.ndarray:
+    """value as a C-contiguous float64 array of size finite values, or ValueError naming it."""
+    a = np.ascontiguousarray(value, dtype=np.float64).reshape(-1)
+    if a.shape[0] != size:
+        raise ValueError(f"{name} has {a.shape[0]} values: it must have {size}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} = {a.tolist()} has a value that is not finite")
+    return a
+
+
+def times(name: str, value, n: Optional[int]) -> np.ndarray:
+    """value as (n,) float64 times, finite and increasing (n None: any length), or ValueError
+    naming the first bad entry and its value."""
+    t = np.ascontiguousarray(value, dtype=np.float64)
+    if t.ndim != 1 or (n is not None and t.shape[0] != n):
+        rows = "N" if n is None else n
+        raise ValueError(f"{name} has shape {t.shape}: it must be ({rows},), one time per row")
+    bad = np.flatnonzero(~np.isfinite(t))
+    if bad.size:
+        raise ValueError(f"{name}[{bad[0]}] = {float(t[bad[0]])!r} is not finite")
+    bad = np.flatnonzero(np.diff(t) <= 0)
+    if bad.size:
+        j = bad[0] + 1
+        raise ValueError(f"{name}[{j}] = {float(t[j])!r} does not increase "
+                         f"(t[{j - 1}] = {float(t[j - 1])!r})")
+    return t

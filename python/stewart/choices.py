@@ -1,0 +1,28 @@
+"""Enumerations a caller may give by member, number or name, with errors naming the argument."""
+from __future__ import annotations
+
+import enum
+
+from .errors import ParameterError
+
+
+class Choice(enum.IntEnum):
+    """An IntEnum whose `of` accepts a member, its number or its name (any case); subclasses set
+    ARGUMENT, the argument name that errors quote."""
+
+    @classmethod
+    def of(cls, value):
+        """The member for value, or ParameterError naming the argument, the value and the
+        choices."""
+        argument = getattr(cls, "ARGUMENT", cls.__name__.lower())
+        if isinstance(value, str):
+            try:
+                return cls[value.upper()]
+            except KeyError:
+                names = ", ".join(m.name.lower() for m in cls)
+                raise ParameterError(f"{argument} = {value!r} must be one of {names}") from None
+        try:
+            return cls(int(value))
+        except (ValueError, TypeError):
+            numbers = ", ".join(f"{m.value} ({m.name.lower()})" for m in cls)
+            raise ParameterError(f"{argument} = {value!r} must be one of {numbers}") from None

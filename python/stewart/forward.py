@@ -1,0 +1,63 @@
+"""Forward kinematics on numpy arrays: actuator lengths to platform poses (Platform.forward)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from .errors import ParameterError
+from .results import RowStatus
+
+# The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
+STATUS_OTHER_BRANCH = -8  #: STEWART_ERR_OTHER_BRANCH: the pose found is on another assembly mode
+BRANCH_BITS = {"below_base": 1, "platform_cardan": 2, "flipped": 4, "jump": 8, "singularity": 16}
+START_NAMES = ("home", "guess", "predictor", "last")
+
+
+@dataclass
+class ForwardSolution(RowStatus):
+    """The result of Platform.forward for N rows of lengths: arrays of N rows.
+
+    A row whose status is not 0 failed (see status_name and messages) and holds zeros, but for
+    its warnings and branch bits; the rows after it are tracked from the last row that solved."""
+    pose: np.ndarray        #: (N, 6) (x, y, z [m], roll, pitch, yaw [rad])
+    pose_rate: np.ndarray   #: (N, 6) d/dt of the pose (zero unless rates were given)
+    pose_accel: np.ndarray  #: (N, 6) d2/dt2 of the pose (zero unless accels were given)
+    residual: np.ndarray    #: (N,) max |L_k(q) - L_k| at the last Newton iterate [m]
+    condition: np.ndarray   #: (N,) leg Jacobian condition number
+    jump: np.ndarray        #: (N,) largest platform-point move from the last pose [m]
+    iterations: np.ndarray  #: (N,) Newton iterations
+    warnings: np.ndarray    #: (N,) STEWART_WARN_* bits: 1 stroke, 2 near singular, 4 other branch
+    branch: np.ndarray      #: (N,) STEWART_BRANCH_* bits (BRANCH_BITS): why not the working mode
+    start: np.ndarray       #: (N,) where Newton started: 0 home, 1 guess, 2 predictor, 3 last
+    status: np.ndarray      #: (N,) stewart_status per row: 0 solved, < 0 failed
+    messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
+
+
+
+def empty_forward_solution(n: int) -> ForwardSolution:
+    """A ForwardSolution of n rows, uninitialised (the batch writes every row)."""
+    def ints():
+        return np.empty(n, dtype=np.int32)
+    return ForwardSolution(
+        pose=np.empty((n, 6)), pose_rate=np.empty((n, 6)), pose_accel=np.empty((n, 6)),
+        residual=np.empty(n), condition=np.empty(n), jump=np.empty(n), iterations=ints(),
+        warnings=ints(), branch=ints(), start=ints(), status=ints())
+
+
+def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
+                accels: Optional[np.ndarray], t: Optional[np.ndarray], guess: Optional[np.ndarray],
+                options: list, max_messages: int) -> ForwardSolution:
+    """One forward batch into the library; bad options raise ParameterError."""
+    n = lengths.shape[0]
+    out = empty_forward_solution(n)
+    try:
+        _, _, _, kept = model.forward(
+            lengths, rates, accels, t, guess, options, out.pose, out.pose_rate, out.pose_accel,
+            out.residual, out.condition, out.jump, out.iterations, out.warnings, out.branch,
+            out.start, out.status, min(max_messages, n))
+    except ValueError as e:
+        raise ParameterError(str(e)) from None
+    out.messages = dict(kept)
+    return out

@@ -1,0 +1,76 @@
+"""Forward dynamics on numpy arrays: actuator forces to platform motion (Platform.simulate)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from .choices import Choice
+from .errors import ParameterError
+from .results import STATUS_NOT_RUN, STATUS_OK, RowStatus
+
+
+
+class Method(Choice):
+    """The plant's integrators (stewart_plant_method); Method.of takes a member, its number or
+    its name ("adams", "bdf", "erk", "erk5")."""
+    ADAMS = 0  #: CVODE Adams-Moulton, fixed-point iteration
+    BDF = 1    #: CVODE BDF, Newton with a dense difference-quotient Jacobian
+    ERK = 2    #: ARKODE explicit Runge-Kutta 4(3) (the default)
+    ERK5 = 3   #: ARKODE explicit Runge-Kutta 5(4), Dormand-Prince
+
+
+@dataclass
+class Simulation(RowStatus):
+    """The result of Platform.simulate over N communication points: arrays of N rows.
+
+    Row 0 is the start state. A step the plant refuses stops the run: that row gets its status,
+    the rows after it STATUS_NOT_RUN, and all of them hold zeros; message says why."""
+    t: np.ndarray            #: (N,) the communication points [s]
+    pose: np.ndarray         #: (N, 6) (x, y, z [m], roll, pitch, yaw [rad])
+    pose_rate: np.ndarray    #: (N, 6) d/dt of the six pose components
+    length: np.ndarray       #: (N, 6) L_k [m]
+    length_rate: np.ndarray  #: (N, 6) dL_k/dt [m/s]
+    base_force: np.ndarray   #: (N, 3) force the moving bodies put on the base, world frame [N]
+    base_torque: np.ndarray  #: (N, 3) its torque about the world origin [N m]
+    warnings: np.ndarray     #: (N,) bits: 1 a leg outside the stroke
+    steps: np.ndarray        #: (N,) internal integrator steps of the step into the row
+    rhs_evaluations: np.ndarray       #: (N,) of the step into the row
+    nonlinear_iterations: np.ndarray  #: (N,) of the step into the row
+    error_test_failures: np.ndarray   #: (N,) of the step into the row
+    status: np.ndarray       #: (N,) 0 ran, < 0 the stewart_status that stopped the run, 1 not run
+    message: str = ""        #: why the run stopped ("" if every row ran)
+    statistics: dict[str, float] = field(default_factory=dict)  #: the integrator's totals
+
+    @property
+    def completed(self) -> bool:
+        """True if every row ran."""
+        return bool(np.all(self.status == STATUS_OK))
+
+
+def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.ndarray],
+                 start_rate: Optional[np.ndarray], options: list) -> Simulation:
+    """One plant run into the library; bad options raise ParameterError."""
+    n = t.shape[0]
+
+    def rows(width):
+        return np.empty((n, width))
+
+    def counts():
+        return np.empty(n, dtype=np.int64)
+    out = Simulation(t=t.copy(), pose=rows(6), pose_rate=rows(6), length=rows(6),
+                     length_rate=rows(6), base_force=rows(3), base_torque=rows(3),
+                     warnings=np.empty(n, dtype=np.int32), steps=counts(),
+                     rhs_evaluations=counts(), nonlinear_iterations=counts(),
+                     error_test_failures=counts(), status=np.empty(n, dtype=np.int32))
+    try:
+        _, _, message, totals = model.simulate(
+            t, forces, start, start_rate, options, out.pose, out.pose_rate, out.length,
+            out.length_rate, out.base_force, out.base_torque, out.warnings, out.steps,
+            out.rhs_evaluations, out.nonlinear_iterations, out.error_test_failures, out.status)
+    except ValueError as e:
+        raise ParameterError(str(e)) from None
+    out.message = message
+    out.statistics = dict(totals)
+    return out
