@@ -8,7 +8,8 @@
 # With `minimize` instead of a target, it fuzzes nothing and shrinks both corpora to the inputs that
 # add edge coverage (libFuzzer -merge=1 into an empty folder, -use_counters=0: the hit-count buckets
 # a campaign also tells apart would keep about ten times as many inputs for the same edges).
-# usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|both=both]
+# The plant FMU (tests/fuzz/fuzz_plant_fmu.cpp, corpus tests/fuzz/corpus/plant_fmu): target `plant`.
+# usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|plant|all=all three]
 #        scripts/fuzz.sh 0 minimize
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,7 +31,7 @@ cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
   -DSTEWART_FUZZ=ON \
   -DPython3_EXECUTABLE="$PWD/.venv/bin/python" -DUNITY_WHEEL_DIR="$PWD/.cache/wheels" >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu fuzz_plant_fmu
 
 # run TARGET CORPUS: fuzz for $seconds from the committed corpus, then keep only the inputs that
 # add edge coverage to it. Prints the number of executions.
@@ -55,8 +56,11 @@ minimize() {
   echo "fuzz: $corpus minimised from $before to $(ls "$corpus" | wc -l) inputs ($(du -sh "$corpus" | cut -f1))"
 }
 case "$targets" in
-  minimize) minimize fuzz_api tests/fuzz/corpus/api; minimize fuzz_fmu tests/fuzz/corpus/fmu ;;
+  minimize) minimize fuzz_api tests/fuzz/corpus/api; minimize fuzz_fmu tests/fuzz/corpus/fmu
+    minimize fuzz_plant_fmu tests/fuzz/corpus/plant_fmu ;;
   api) run fuzz_api tests/fuzz/corpus/api ;;
   fmu) run fuzz_fmu tests/fuzz/corpus/fmu ;;
-  *) run fuzz_api tests/fuzz/corpus/api; run fuzz_fmu tests/fuzz/corpus/fmu ;;
+  plant) run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu ;;
+  *) run fuzz_api tests/fuzz/corpus/api; run fuzz_fmu tests/fuzz/corpus/fmu
+    run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu ;;
 esac

@@ -9,10 +9,17 @@ subset. Knobs: fidelity level; derivative source (inputs or finite differences);
 step 1…100 ms; Newton tolerance 1e-4…1e-12; exact or modified Newton; and a heavy-leg platform
 (20 kg per leg body) to show where massless legs stop being good enough.
 
+The plant (StewartPlant.fmu, forward dynamics): the inverse unit's forces along the same cue,
+sampled every 0.125 ms, fed to the plant as a master does (forces at t with their FMI 2 input
+derivative, the chord to the next sample at its own step), against a reference run of the plant
+at 0.125 ms steps and tolerance 1e-13; knobs: communication step, integrator method and tolerance,
+fidelity. fmpy drives and times it (median µs per doStep, the median of three runs; fmpy's ctypes
+call is included).
+
 Writes out/speed_accuracy.csv, docs/speed-accuracy-data.md and docs/speed-accuracy.png
 (docs/speed-accuracy.md says what the numbers mean for a user).
 
-usage: speed_accuracy.py [--scene combined] [--duration 6] [--quick]
+usage: speed_accuracy.py [--scene combined] [--duration 6] [--quick] [--plant-only]
 """
 import argparse
 import csv
@@ -25,6 +32,7 @@ import numpy as np
 
 import plots  # noqa: F401  (sets the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
+import closed_loop  # noqa: E402
 import run_scene  # noqa: E402
 import scenes  # noqa: E402
 
@@ -129,13 +137,153 @@ def fmpy_us_per_step(scene, fidelity, derivatives, step, steps=2000):
     return 1e6 * float(np.median(spent))
 
 
+# ---------------------------------------------------------------- the plant
+
+PLANT_FMU = BUILD / "fmus/2.0/StewartPlant.fmu"
+PLANT_DURATION = 1.0  # the plant is a saddle (docs/forward-dynamics.md): errors grow as e^(5.1 t)
+PLANT_SAMPLE = 1.25e-4  # the forces' sampling step; every communication step is a multiple of it
+PLANT_STEPS_MS = (0.25, 0.5, 1, 2, 5, 10)
+PLANT_TOLERANCES = (1e-6, 1e-8, 1e-10, 1e-12)
+METHOD = {0: "CVODE Adams", 1: "CVODE BDF", 2: "ARKODE ERK 4(3)", 3: "ARKODE ERK 5(4)"}
+PLANT_DEFAULTS = {"method": 2, "relative_tolerance": 1e-10}
+
+
+def inverse_forces(scene, fidelity, times):
+    """The inverse unit's forces (derivatives = 1, the cue's exact rates) at `times`."""
+    q, qd, qdd = scenes.pose(scene, times)
+    inverse = closed_loop.Unit(FMU, "inverse", {"fidelity": fidelity, "derivatives": 1})
+    try:
+        forces = []
+        for j in range(times.size):
+            inverse.set(list(scenes.POSE) + list(scenes.DOT) + list(scenes.DDOT), [*q[j], *qd[j], *qdd[j]])
+            forces.append(inverse.get(closed_loop.legs("F")))
+    finally:
+        inverse.free()
+    return np.array(forces)
+
+
+def run_plant(scene, fidelity, forces, every, method, rtol, atol=None):
+    """The plant at communication step every * PLANT_SAMPLE under the sampled forces: (poses at
+    the communication points, median µs per doStep, RHS evaluations per step), or None if a
+    step was refused."""
+    h = every * PLANT_SAMPLE
+    n = (forces.shape[0] - 1) // every
+    q0, qd0, _ = scenes.pose(scene, np.array([0.0]))
+    parameters = {"fidelity": fidelity, "method": method, "relative_tolerance": rtol,
+                  "absolute_tolerance": rtol / 100 if atol is None else atol,
+                  **{f"{p}0": v for p, v in zip(scenes.POSE, q0[0])},
+                  **{f"{p}_dot0": v for p, v in zip(scenes.POSE, qd0[0])}}
+    plant = closed_loop.Unit(PLANT_FMU, "plant", parameters)
+    force_vr = [plant.vr[name] for name in closed_loop.legs("F")]
+    poses, spent = [plant.get(list(scenes.POSE))], []
+    try:
+        for j in range(n):
+            f0, f1 = forces[j * every], forces[(j + 1) * every]
+            plant.set(closed_loop.legs("F"), f0)
+            plant.fmu.setRealInputDerivatives(force_vr, [1] * 6, list((f1 - f0) / h))
+            t0 = time.perf_counter()
+            plant.fmu.doStep(j * h, h)  # fmpy raises on Discard and Error
+            spent.append(time.perf_counter() - t0)
+            poses.append(plant.get(list(scenes.POSE)))
+        rhs = plant.fmu.getInteger([plant.vr["total_rhs_evaluations"]])[0]
+    except Exception:  # fmpy raises on Discard or Error: a refused step
+        return None
+    finally:
+        plant.free()
+    return np.array(poses), 1e6 * float(np.median(spent)), rhs / n
+
+
+def plant_rows(scene):
+    """The plant's table, both fidelities: for the communication step, the pose error against the
+    reference run under the forces as sampled (what a larger step costs a master, input
+    interpolation included); for method and tolerance at 1 ms, against the reference under the
+    same 1 ms signal (the integrator's own error). Returns the rows and notes on the references."""
+    times = np.arange(int(round(PLANT_DURATION / PLANT_SAMPLE)) + 1) * PLANT_SAMPLE
+    cue, _, _ = scenes.pose(scene, times)
+    rows, notes = [], []
+    for fidelity in (1, 2):
+        forces = inverse_forces(scene, fidelity, times)
+        references = {}
+
+        def reference(every):
+            """ERK 5(4) at rtol 1e-13 and PLANT_SAMPLE steps under the signal a master with step
+            every * PLANT_SAMPLE gives (linear between its samples), at its communication points:
+            the small steps keep the reference's integration error far below any run's."""
+            if every not in references:
+                coarse = forces[::every]
+                fine = np.array([np.interp(times, times[::every], coarse[:, k]) for k in range(6)]).T
+                references[every] = run_plant(scene, fidelity, fine, 1, 3, 1e-13, 1e-15)[0][::every]
+            return references[every]
+
+        def record(knob, ms, method, rtol, against):
+            every = int(round(ms * 1e-3 / PLANT_SAMPLE))
+            result = run_plant(scene, fidelity, forces, every, method, rtol)
+            if result is not None:  # timing: the median of three runs' medians, as for the unit
+                again = [run_plant(scene, fidelity, forces, every, method, rtol) for _ in range(2)]
+                result = (result[0], float(np.median([result[1], *(r[1] for r in again)])), result[2])
+            row = {"knob": knob, "fidelity": LEVEL[fidelity], "step_ms": ms, "method": METHOD[method],
+                   "tolerance": rtol, "position_error_m": float("nan"), "angle_error_rad": float("nan"),
+                   "us_per_step_fmpy": float("nan"), "cpu_ms_per_s": float("nan"),
+                   "rhs_per_step": float("nan")}
+            if result is not None:
+                poses, us, rhs = result
+                error = np.abs(poses - (reference(1)[::every] if against == "fine" else reference(every)))
+                row |= {"position_error_m": float(error[:, :3].max()),
+                        "angle_error_rad": float(error[:, 3:].max()), "us_per_step_fmpy": us,
+                        "cpu_ms_per_s": us / ms, "rhs_per_step": rhs}
+            rows.append(row)
+            print(" ".join(f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}"
+                           for k, v in row.items()), flush=True)
+
+        notes.append(f"the {LEVEL[fidelity]} reference follows the cue to "
+                     f"{np.abs(reference(1) - cue).max():.1e} (m and rad, open loop)")
+        print(notes[-1])
+        for ms in PLANT_STEPS_MS:
+            record("step", ms, PLANT_DEFAULTS["method"], PLANT_DEFAULTS["relative_tolerance"], "fine")
+        for method in METHOD:
+            for rtol in PLANT_TOLERANCES:
+                record("method/tolerance", 1, method, rtol, "same step")
+    return rows, notes
+
+
+def plant_report(rows, notes, scene):
+    """The plant's section of docs/speed-accuracy-data.md (replaced in place)."""
+    head = ("| knob | fidelity | step [ms] | method | rtol (atol = rtol/100) | position error [m] "
+            "| angle error [rad] | RHS per step | µs/doStep (fmpy) | CPU ms per simulated s |")
+    lines = [head, "|" + "---|" * (head.count("|") - 1)]
+    for r in rows:
+        lines.append(f"| {r['knob']} | {r['fidelity']} | {r['step_ms']:g} | {r['method']} | "
+                     f"{r['tolerance']:.0e} | {r['position_error_m']:.2e} | {r['angle_error_rad']:.2e} | "
+                     f"{r['rhs_per_step']:.1f} | {r['us_per_step_fmpy']:.2f} | {r['cpu_ms_per_s']:.2f} |")
+    section = (f"{PLANT_MARK}\n\nScene `{scene['name']}`, {PLANT_DURATION:g} s: the inverse unit's "
+               f"forces sampled every {PLANT_SAMPLE * 1e3:g} ms and fed with their chord as FMI 2 "
+               f"input derivative. References: the plant with ARKODE ERK 5(4), rtol 1e-13, "
+               f"atol 1e-15, at {PLANT_SAMPLE * 1e3:g} ms steps, under the forces as sampled for the "
+               f"`step` rows, under the run's own signal (linear between its 1 ms samples) for the "
+               f"`method/tolerance` rows; {'; '.join(notes)}. Failed runs: nan. "
+               f"Written by `scripts/speed_accuracy.py` (what the numbers mean: "
+               f"speed-accuracy.md).\n\n" + "\n".join(lines) + "\n")
+    path = ROOT / "docs" / "speed-accuracy-data.md"
+    text = path.read_text() if path.exists() else ""
+    text = text.split(PLANT_MARK)[0].rstrip("\n")
+    path.write_text((text + "\n\n" if text else "") + section)
+
+
+PLANT_MARK = "## The plant (StewartPlant.fmu)"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="combined")
     parser.add_argument("--duration", type=float, default=6.0)
     parser.add_argument("--quick", action="store_true", help="fewer steps and tolerances")
+    parser.add_argument("--plant-only", action="store_true", help="only the plant's section")
     args = parser.parse_args()
     scene = scenes.load(args.scene)
+    plant, plant_notes = plant_rows(scene)
+    if args.plant_only:
+        plant_report(plant, plant_notes, scene)
+        return
     steps_ms = (1, 10, 100) if args.quick else STEPS_MS
     tolerances = (1e-4, 1e-8, 1e-12) if args.quick else TOLERANCES
 
@@ -182,6 +330,7 @@ def main():
         writer.writeheader()
         writer.writerows(rows)
     write_report(rows, scene, args)
+    plant_report(plant, plant_notes, scene)
 
 
 def pareto_chart(rows, path):

@@ -4,6 +4,7 @@ with --fmu those of the FMU target (tests/fuzz/fuzz_fmu.cpp, layout described be
 
 usage: tests/fuzz/fuzz_seeds.py [FOLDER=tests/fuzz/corpus/api]
        tests/fuzz/fuzz_seeds.py --fmu [FOLDER=tests/fuzz/corpus/fmu]
+       tests/fuzz/fuzz_seeds.py --plant [FOLDER=tests/fuzz/corpus/plant_fmu]
 
 Field indices count the doubles of stewart_params in declaration order (cylinder_mass is 32,
 piston_mass 37). Layout the target reads: 1 byte count of parameter edits (mod 8), each edit 1 byte field index +
@@ -128,12 +129,61 @@ FMU_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
                   for name, seed in list(FMU_SEEDS.items())})
 
 
+# ---- the plant FMU target (tests/fuzz/fuzz_plant_fmu.cpp): byte 0 flags (bit 0 logging on, bit 1
+# initialise at once with fidelity 1 + bit 2 and method = bits 3-4, bit 5 FMI 3), byte 1
+# max_internal_steps - 1 (mod 32), then operations: the FMU target's opcodes, but 1 sets one force
+# F[k] (k = 0..5) to 1000 * value, 5 takes any order of vr 0..7, and 13 sets all six forces to
+# the static ones times 1 + offset/1000 (six int8 offsets).
+def plant_seed(*ops, logging=True, init=True, fidelity=2, method=2, fmi3=False, steps=32):
+    flags = ((1 if logging else 0) | (2 if init else 0) | ((fidelity - 1) << 2) | (method << 3) |
+             (32 if fmi3 else 0))
+    return bytes([flags, steps - 1]) + b"".join(ops)
+
+
+def forces_near_statics(*offsets):
+    return bytes([13]) + struct.pack("<6b", *offsets)
+
+
+def set_force(leg, value_over_1000):
+    return bytes([1, leg]) + val(value_over_1000)
+
+
+STATICS = forces_near_statics(0, 0, 0, 0, 0, 0)
+PLANT_SEEDS = {
+    "at_rest": plant_seed(STATICS, step(1e-3), READ, step(1e-3), READ),
+    "massless_adams": plant_seed(STATICS, step(1e-3), READ, fidelity=1, method=0),
+    "full_bdf": plant_seed(forces_near_statics(5, -5, 3, 0, -2, 1), step(2e-3), READ, method=1),
+    "erk54_wobble": plant_seed(forces_near_statics(50, -50, 30, 0, -20, 10), step(1e-3), READ,
+                               forces_near_statics(-50, 50, -30, 0, 20, -10), step(1e-3), READ,
+                               method=3),
+    "free_fall": plant_seed(step(0.01), READ, step(0.01), READ),
+    "nan_then_good": plant_seed(STATICS, set_force(2, math.nan), step(1e-3), READ, STATICS,
+                                step(1e-3), READ),
+    "huge_force": plant_seed(set_force(0, 1e300), step(1e-3), READ, STATICS, step(1e-3), READ),
+    "too_few_internal_steps": plant_seed(STATICS, step(1.0), READ, step(1e-3), READ, steps=1),
+    "gap_and_bad_steps": plant_seed(STATICS, step(1e-3), step(1e-3, 1.0), step(0.0), step(-1.0),
+                                    step(math.inf), READ),
+    "force_rates": plant_seed(STATICS, bytes([5, 1, 1]) + val(1.0), bytes([5, 7, 1]) + val(1.0),
+                              bytes([5, 0, 2]) + val(1.0), step(1e-3), READ),
+    "state_roundtrip": plant_seed(STATICS, step(1e-3), bytes([6]), forces_near_statics(9, 0, 0, 0, 0, 0),
+                                  step(1e-3), READ, bytes([7]), READ, bytes([8, 0]),
+                                  bytes([8, 1, 3, 0x55]), READ),
+    "reset_terminate": plant_seed(step(1e-3), bytes([10]), step(1e-3), READ, bytes([9]),
+                                  bytes([11]) + val(5.0), step(1e-3), READ),
+    "logging": plant_seed(bytes([12, 0]), bytes([12, 3]), bytes([12, 9]), set_force(0, math.inf),
+                          step(1e-3), READ),
+}
+PLANT_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
+                    for name, seed in list(PLANT_SEEDS.items())})
+
+
 def main(argv):
-    fmu = "--fmu" in argv
-    args = [a for a in argv if a != "--fmu"]
-    path = pathlib.Path(args[0] if args else ("tests/fuzz/corpus/fmu" if fmu else "tests/fuzz/corpus/api"))
+    kind = "plant" if "--plant" in argv else "fmu" if "--fmu" in argv else "api"
+    args = [a for a in argv if a not in ("--fmu", "--plant")]
+    folder = {"api": "api", "fmu": "fmu", "plant": "plant_fmu"}[kind]
+    path = pathlib.Path(args[0] if args else f"tests/fuzz/corpus/{folder}")
     path.mkdir(parents=True, exist_ok=True)
-    for name, data in (FMU_SEEDS if fmu else SEEDS).items():
+    for name, data in {"api": SEEDS, "fmu": FMU_SEEDS, "plant": PLANT_SEEDS}[kind].items():
         (path / name).write_bytes(data)
 
 

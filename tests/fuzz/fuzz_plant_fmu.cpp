@@ -1,0 +1,197 @@
+// libFuzzer target over the plant FMU's set/step/get sequence (fmu/models/plant on fmu/runtime,
+// both FMI layers, linked in statically), driven through the fmi2* or the fmi3* functions (flag
+// bit 5) with random calls and values: forces (NaN, Inf, huge, near the static ones), FMI 2 force
+// derivatives of any order, parameters and integrator options, step sizes and start times, FMU
+// states rolled back and serialised (corrupted), calls out of sequence.
+//
+// Invariants: nothing crashes or trips a sanitizer; every call returns OK, Warning, Discard or
+// Error (fuzz_fmu_unit.hpp); every Real output read back with status OK is finite; status is
+// 0, 1 or 3; an accepted step ends at t + h (lastSuccessfulTime), a discarded one leaves the unit's
+// time where it was and sets status 3; a rolled-back FMU state gives back the same outputs bit for
+// bit; every log message is a NUL-terminated string.
+//
+// Bounded work per input: max_internal_steps is set to 1..32 (byte 1) before every
+// initialisation, and a DoStep is only called while the integrator steps it may take
+// (max_internal_steps, read back: a SetInteger or a deserialised state may have changed it) fit in
+// a budget of kStepBudget internal steps per input.
+//
+// Built with clang -fsanitize=fuzzer by scripts/fuzz.sh; tests/CMakeLists.txt also builds it with
+// the replay main (fuzz_replay.cpp) that runs tests/fuzz/corpus/plant_fmu under ctest
+// (fuzz_plant_fmu_corpus). Input layout (tests/fuzz/fuzz_seeds.py --plant writes seeds): byte 0
+// flags (bit 0: logging on; bit 1: initialise at once with fidelity 1 + bit 2 and method =
+// bits 3-4; bit 5: FMI 3 instead of FMI 2), byte 1 max_internal_steps (1 + byte % 32), then
+// operations: 1 opcode byte and its arguments.
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "fuzz_fmu_unit.hpp"
+#include "stewart/stewart.h"
+
+namespace {
+
+constexpr int kStepBudget = 256;  // integrator steps per input (a few ms under the sanitizers)
+
+// The inverse side's forces at rest at home (default parameters, full fidelity): the plant moves
+// slowly near them, where most of its code runs.
+double static_forces[6];
+
+void compute_static_forces() {
+    static bool done = false;
+    if (done) return;
+    done = true;
+    stewart_params p;
+    stewart_params_default(&p);
+    stewart_model *model = stewart_model_create(&p, nullptr, 0);
+    stewart_data *data = stewart_data_create(model);
+    stewart_options o;
+    stewart_options_default(&o);
+    o.fidelity = STEWART_FULL;
+    const stewart_pose home = {{0, 0, p.home_height, 0, 0, 0}, {0}, {0}};
+    stewart_output out;
+    if (!model || !data || stewart_solve(model, data, &o, &home, &out) != STEWART_OK) std::abort();
+    std::memcpy(static_forces, out.force, sizeof static_forces);
+    stewart_data_free(data);
+    stewart_model_free(model);
+}
+
+void check_outputs(Unit &u, std::vector<double> *keep = nullptr) {
+    std::vector<double> out(real_outputs.size());
+    if (u.get_real(real_outputs.data(), out.size(), out.data()) == 0) {
+        for (double d : out)
+            if (!std::isfinite(d)) std::abort();
+        if (keep) *keep = out;
+    }
+    const unsigned vr_status = VR_status;
+    int32_t status = 0;
+    if (u.get_int(&vr_status, 1, &status) == 0 && status != 0 && status != 1 && status != 3)
+        std::abort();
+}
+
+// The unit's time, or NaN where it cannot be read.
+double unit_time(Unit &u) {
+    const unsigned vr = VR_time;
+    double t = NAN;
+    if (u.get_real(&vr, 1, &t) != 0) return NAN;
+    return t;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
+    tables();
+    compute_static_forces();
+    Reader in{bytes, size};
+    const uint8_t flags = in.byte();
+    const int32_t step_cap = 1 + in.byte() % 32;
+    Unit &u = unit_for((flags & 32) != 0, (flags & 1) != 0);
+    const unsigned cap_vr = VR_max_internal_steps;
+    auto initialise = [&](double t0) {
+        u.set_int(&cap_vr, 1, &step_cap);
+        u.setup(t0);
+        u.enter_init(t0);
+        u.exit_init();
+    };
+    double t = 0;
+    u.set_int(&cap_vr, 1, &step_cap);
+    u.setup(0.0);
+    if (flags & 2) {
+        const unsigned vrs[2] = {VR_fidelity, VR_method};
+        const int32_t values[2] = {1 + ((flags >> 2) & 1), (flags >> 3) & 3};
+        u.set_int(vrs, 2, values);
+        initialise(0.0);
+    }
+    int budget = kStepBudget;
+    StateProbe probe;
+    int ops = 0;
+    while (in.left > 0 && ++ops < 512) {
+        const uint8_t op = in.byte() % 14;
+        switch (op) {
+            case 0:  // SetReal of any Real variable (outputs and time must be refused)
+                random_set_real(u, in);
+                break;
+            case 1: {  // SetReal of one force, any value (scaled: the specials are small)
+                const unsigned vr = VR_F_1 + in.byte() % 6;
+                const double v = 1e3 * in.value();
+                u.set_real(&vr, 1, &v);
+                break;
+            }
+            case 2:  // SetInteger of any Integer variable
+                random_set_integer(u, in, 5);
+                break;
+            case 3: {  // DoStep from the current time (or from a raw t), any step size
+                const uint8_t how = in.byte();
+                const double h = in.value();
+                const double t0 = (how & 1) ? in.value() : t;
+                int32_t cap = 0;
+                if (u.get_int(&cap_vr, 1, &cap) != 0 || cap < 0 || cap > budget) break;
+                budget -= cap;
+                const double before = unit_time(u);
+                double last = 0;
+                const int s = u.do_step(t0, h, &last);
+                if (!std::isfinite(last)) std::abort();
+                if (s == 0 || s == 1) {
+                    if (last != t0 + h) std::abort();  // an accepted step ends at t + h
+                    t = t0 + h;
+                } else if (s == 2) {  // refused: time kept, status 3
+                    const unsigned vr_status = VR_status;
+                    int32_t status = 0;
+                    if (std::isfinite(before) && last != before) std::abort();
+                    if (u.get_int(&vr_status, 1, &status) == 0 && status != 3) std::abort();
+                }
+                break;
+            }
+            case 4:
+                check_outputs(u);
+                break;
+            case 5: {  // SetRealInputDerivatives (FMI 2), any variable and order
+                const unsigned vr = in.byte() % 8;
+                const int order = in.byte() % 3;
+                u.input_derivative(vr, order, 1e3 * in.value());
+                break;
+            }
+            case 6:  // FMU state: take one and remember the outputs it holds
+                probe.take(u, check_outputs);
+                break;
+            case 7:  // ... and roll back to it: the same outputs bit for bit
+                probe.roll_back(u, check_outputs);
+                break;
+            case 8:  // serialise and deserialise (possibly corrupted)
+                if (probe.state) corrupted_round_trip(u, probe.state, in, check_outputs);
+                break;
+            case 9:
+                u.reset();
+                u.set_int(&cap_vr, 1, &step_cap);
+                u.setup(0.0);
+                t = 0;
+                break;
+            case 10:
+                u.terminate();
+                break;
+            case 11:  // initialisation, at a random start time
+                t = in.value();
+                initialise(t);
+                check_outputs(u);
+                break;
+            case 12:
+                random_debug_logging(u, in.byte());
+                break;
+            case 13: {  // all six forces near the static ones: relative offsets of up to 12.7 %
+                const unsigned vrs[6] = {VR_F_1, VR_F_2, VR_F_3, VR_F_4, VR_F_5, VR_F_6};
+                double f[6];
+                for (int k = 0; k < 6; ++k) {
+                    int8_t offset = 0;
+                    in.take(&offset, 1);
+                    f[k] = static_forces[k] * (1 + offset / 1000.0);
+                }
+                u.set_real(vrs, 6, f);
+                break;
+            }
+        }
+    }
+    check_outputs(u);
+    probe.free(u);
+    return 0;
+}
