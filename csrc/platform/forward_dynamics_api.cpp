@@ -200,6 +200,12 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
                            pose[4]);
     const fd::Mat3 R = stewart::rotation_from_rpy(pose[3], pose[4], pose[5]);
     const fd::Vec3 omega = rate_matrix(pose[4], pose[5]) * fd::Vec3(rate[3], rate[4], rate[5]);
+    // Finite angle rates near DBL_MAX can overflow the angular velocity (found by the fuzz
+    // target: such a state could be set, but not saved and loaded back).
+    if (!omega.allFinite())
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "roll_dot0, pitch_dot0, yaw_dot0 = %g, %g, %g rad/s overflow the "
+                           "angular velocity", rate[3], rate[4], rate[5]);
     double y[fd::kStates];
     const Eigen::Quaterniond q(R);
     const double yq[7] = {pose[0], pose[1], pose[2], q.w(), q.x(), q.y(), q.z()};
