@@ -42,7 +42,8 @@ double max_norm(const double *v, int n) {
     double r = 0;
     for (int i = 0; i < n; ++i) {
         const double a = std::fabs(v[i]);
-        if (!(a <= r)) r = a;  // a NaN sticks
+        if (std::isnan(a)) return INFINITY;  // a later finite value must not hide it
+        if (a > r) r = a;
     }
     return std::isfinite(r) ? r : INFINITY;
 }
