@@ -3,9 +3,9 @@
 
 #include <memory>
 
-#include "platform/closed_form.hpp"
-#include "platform/forward_kinematics.hpp"
-#include "platform/full_model.hpp"
+#include "kinematics/closed_form.hpp"
+#include "forward/forward_state.hpp"
+#include "inverse/full_model.hpp"
 #include "stewart/stewart.h"
 
 struct stewart_model {

@@ -12,7 +12,7 @@
 
 #include "model.hpp"
 #include "core/step.hpp"
-#include "platform/full_model.hpp"
+#include "inverse/full_model.hpp"
 #include "util/message.hpp"
 
 namespace {

@@ -2,7 +2,7 @@
 // (sum J_b^T M_b J_b) nu_dot = sum J_b^T (f_b - M_b J_b_dot nu) + J_legs^T F, and the base wrench.
 #pragma once
 
-#include "platform/forward_dynamics_bodies.hpp"
+#include "plant/plant_bodies.hpp"
 
 namespace stewart {
 namespace fd {

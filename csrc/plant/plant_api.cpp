@@ -5,8 +5,8 @@
 #include <new>
 
 #include "model.hpp"
-#include "platform/forward_dynamics_integrator.hpp"
-#include "platform/forward_dynamics_reactions.hpp"
+#include "plant/plant_integrator.hpp"
+#include "plant/plant_reactions.hpp"
 #include "stewart/stewart_plant.h"
 #include "util/message.hpp"
 

@@ -1,4 +1,4 @@
-#include "platform/full_model.hpp"
+#include "inverse/full_model.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_reactions.hpp"
+#include "plant/plant_reactions.hpp"
 
 namespace stewart {
 namespace fd {

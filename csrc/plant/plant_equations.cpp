@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_equations.hpp"
+#include "plant/plant_equations.hpp"
 
 #include "model.hpp"
 

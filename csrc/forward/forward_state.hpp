@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "platform/forward_branch.hpp"
-#include "platform/forward_newton.hpp"
+#include "forward/branch.hpp"
+#include "forward/newton.hpp"
 
 namespace stewart {
 

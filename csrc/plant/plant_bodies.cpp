@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_bodies.hpp"
+#include "plant/plant_bodies.hpp"
 
 namespace stewart {
 namespace fd {

@@ -1,15 +1,15 @@
 // The forward-kinematics C API: input checks, the starts (guess, tracking predictor, last pose,
 // home), the Newton solve, the checks of the pose found, and its rates and accelerations through
 // the leg Jacobian.
-#include "platform/forward_kinematics.hpp"
+#include "forward/forward_state.hpp"
 
 #include <cmath>
 #include <cstring>
 
 #include "model.hpp"
-#include "platform/forward_branch.hpp"
-#include "platform/forward_newton.hpp"
-#include "platform/rigid_motion.hpp"
+#include "forward/branch.hpp"
+#include "forward/newton.hpp"
+#include "kinematics/motion.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
 

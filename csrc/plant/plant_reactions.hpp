@@ -2,7 +2,7 @@
 // Newton-Euler equations of its two bodies with their motion known.
 #pragma once
 
-#include "platform/forward_dynamics_equations.hpp"
+#include "plant/plant_equations.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace stewart {

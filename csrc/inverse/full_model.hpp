@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "core/mbs_handles.hpp"
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 namespace stewart {
 

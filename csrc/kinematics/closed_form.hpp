@@ -3,7 +3,7 @@
 
 #include <Eigen/Dense>
 
-#include "platform/rigid_motion.hpp"
+#include "kinematics/motion.hpp"
 #include "stewart/stewart.h"
 
 namespace stewart {

@@ -1,4 +1,4 @@
-#include "platform/rigid_motion.hpp"
+#include "kinematics/motion.hpp"
 
 #include <cmath>
 

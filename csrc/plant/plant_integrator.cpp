@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_integrator.hpp"
+#include "plant/plant_integrator.hpp"
 
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>

@@ -3,7 +3,7 @@
 // because the inputs change there.
 #pragma once
 
-#include "platform/forward_dynamics_equations.hpp"
+#include "plant/plant_equations.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace stewart {

@@ -1,8 +1,8 @@
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 #include <cmath>
 
-#include "platform/small_inverse.hpp"
+#include "kinematics/small_inverse.hpp"
 #include "util/message.hpp"
 
 namespace stewart {

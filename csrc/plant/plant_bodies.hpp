@@ -4,7 +4,7 @@
 
 #include <Eigen/Dense>
 
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 namespace stewart {
 namespace fd {
