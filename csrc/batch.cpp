@@ -1,5 +1,5 @@
-// stewart_batch.h: n rows through stewart_solve, stewart_forward_solve (one data block) or
-// stewart_plant_step (one plant), arrays in and out.
+// stewart_batch.h: n rows through stewart_inverse_solve, stewart_forward_solve (one solver
+// object) or stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
 #include <cstdio>
@@ -21,11 +21,11 @@ void copy_out(double *to, const double *from, int count) {
 }
 
 // Writes one row's results (zeros for a failed row) and its status.
-void write_row(const stewart_batch_outputs &out, size_t j, const stewart_output &o,
+void write_row(const stewart_inverse_batch_outputs &out, size_t j, const stewart_inverse_output &o,
                stewart_status s) {
-    copy_out(row(out.length, j, 6), o.length, STEWART_LEGS);
-    copy_out(row(out.length_rate, j, 6), o.length_rate, STEWART_LEGS);
-    copy_out(row(out.length_accel, j, 6), o.length_accel, STEWART_LEGS);
+    copy_out(row(out.length, j, 6), o.lengths.length, STEWART_LEGS);
+    copy_out(row(out.length_rate, j, 6), o.lengths.length_rate, STEWART_LEGS);
+    copy_out(row(out.length_accel, j, 6), o.lengths.length_accel, STEWART_LEGS);
     copy_out(row(out.force, j, 6), o.force, STEWART_LEGS);
     copy_out(row(out.condition, j, 1), &o.condition, 1);
     copy_out(row(out.residual, j, 1), &o.residual, 1);
@@ -46,7 +46,7 @@ void keep_message(stewart_batch_messages *messages, size_t j, const char *text) 
 }
 
 // The bookkeeping of a batch's failing rows: every message (as many as kept), the first status,
-// its row and its message (kept aside while later rows overwrite the data block's message).
+// its row and its message (kept aside while later rows overwrite the solver's message).
 struct FailureLog {
     stewart_batch_messages *messages;
     size_t *first_failed;
@@ -68,10 +68,10 @@ struct FailureLog {
 
 // Writes one forward row's results (zeros for a failed row, but its warnings and branch).
 void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
-                       const stewart_forward_result &r, stewart_status s) {
+                       const stewart_forward_output &r, stewart_status s) {
     const bool ok = s == STEWART_OK;
-    const stewart_forward_result zero{};
-    const stewart_forward_result &v = ok ? r : zero;
+    const stewart_forward_output zero{};
+    const stewart_forward_output &v = ok ? r : zero;
     copy_out(row(out.pose, j, 6), v.pose.q, 6);
     copy_out(row(out.pose_rate, j, 6), v.pose.q_dot, 6);
     copy_out(row(out.pose_accel, j, 6), v.pose.q_ddot, 6);
@@ -104,30 +104,27 @@ void write_plant_row(const stewart_simulate_batch_outputs &out, size_t j,
 
 }  // namespace
 
-extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_data *d,
-                                              const stewart_options *o, size_t n, const double *q,
-                                              const double *q_dot, const double *q_ddot,
-                                              const stewart_batch_outputs *out,
-                                              stewart_batch_messages *messages,
-                                              size_t *first_failed) {
+extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,
+                                                const double *q_dot, const double *q_ddot,
+                                                const stewart_inverse_batch_outputs *out,
+                                                stewart_batch_messages *messages,
+                                                size_t *first_failed) {
     FailureLog log(messages, first_failed, n);
-    if (!m || !d || !o || !out || !out->status || (n > 0 && !q)) {
+    if (!d || !out || !out->status || (n > 0 && !q)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
-                                    "NULL argument to stewart_solve_batch");
+                                    "NULL argument to stewart_inverse_batch");
         return STEWART_ERR_ARGUMENT;
     }
-    const stewart_status bad_options = stewart_options_check(o, d->message, sizeof d->message);
-    if (bad_options != STEWART_OK) return bad_options;
-
-    stewart_pose pose{};
+    stewart_inverse_input in{};
+    stewart_pose &pose = in.pose;
     for (size_t j = 0; j < n; ++j) {
         std::memcpy(pose.q, q + 6 * j, sizeof pose.q);
         if (q_dot) std::memcpy(pose.q_dot, q_dot + 6 * j, sizeof pose.q_dot);
         if (q_ddot) std::memcpy(pose.q_ddot, q_ddot + 6 * j, sizeof pose.q_ddot);
-        stewart_output o_j;  // written whole by a successful solve, zeroed on failure
-        const stewart_status s = stewart_solve(m, d, o, &pose, &o_j);
+        stewart_inverse_output o_j;  // written whole by a successful solve, zeroed on failure
+        const stewart_status s = stewart_inverse_solve(d, &in, &o_j);
         if (s != STEWART_OK) {
-            o_j = stewart_output{};
+            o_j = stewart_inverse_output{};
             log.record(j, s, d->message);
         }
         write_row(*out, j, o_j, s);
@@ -136,30 +133,31 @@ extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_da
     return log.first;
 }
 
-extern "C" stewart_status stewart_forward_batch(const stewart_model *m, stewart_data *d,
-                                                const stewart_forward_options *o, size_t n,
-                                                const double *time, const double *lengths,
-                                                const double *rates, const double *accels,
-                                                const double guess[6],
+extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, const double *time,
+                                                const double *lengths, const double *rates,
+                                                const double *accels, const double guess[6],
                                                 const stewart_forward_batch_outputs *out,
                                                 stewart_batch_messages *messages,
                                                 size_t *first_failed) {
     FailureLog log(messages, first_failed, n);
-    if (!m || !d || !o || !out || !out->status || (n > 0 && !lengths) || (accels && !rates)) {
+    if (!d || !out || !out->status || (n > 0 && !lengths) || (accels && !rates)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
                                     accels && !rates ? "stewart_forward_batch: accels need rates"
                                                      : "NULL argument to stewart_forward_batch");
         return STEWART_ERR_ARGUMENT;
     }
-    const stewart_status bad_options =
-        stewart_forward_options_check(o, d->message, sizeof d->message);
-    if (bad_options != STEWART_OK) return bad_options;
-
+    stewart_forward_input in{};
+    in.derivatives = accels ? 2 : rates ? 1 : 0;
+    if (guess) std::memcpy(in.guess, guess, sizeof in.guess);
     for (size_t j = 0; j < n; ++j) {
-        stewart_forward_result r{};
-        const stewart_status s = stewart_forward_solve(
-            m, d, o, time ? time[j] : 0.0, lengths + 6 * j, row(rates, j, 6),
-            row(accels, j, 6), j == 0 ? guess : nullptr, &r);
+        in.time = time ? time[j] : 0.0;
+        std::memcpy(in.lengths.length, lengths + 6 * j, sizeof in.lengths.length);
+        if (rates) std::memcpy(in.lengths.length_rate, rates + 6 * j, sizeof in.lengths.length_rate);
+        if (accels)
+            std::memcpy(in.lengths.length_accel, accels + 6 * j, sizeof in.lengths.length_accel);
+        in.use_guess = j == 0 && guess;
+        stewart_forward_output r{};
+        const stewart_status s = stewart_forward_solve(d, &in, &r);
         if (s != STEWART_OK) log.record(j, s, d->message);
         write_forward_row(*out, j, r, s);
     }

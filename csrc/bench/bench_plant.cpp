@@ -36,10 +36,10 @@ struct Drive {
 
 // Inverse-side forces at every communication point and their rates (central differences).
 bool make_drive(const stewart_model *model, int fidelity, double h, double duration, Drive &d) {
-    stewart_data *data = stewart_data_create(model);
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = fidelity;
+    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
     const int n = static_cast<int>(duration / h + 0.5);
     d.h = h;
     d.force.assign(6 * (n + 1), 0);
@@ -47,19 +47,19 @@ bool make_drive(const stewart_model *model, int fidelity, double h, double durat
     const double delta = 1e-4;
     bool ok = data != nullptr;
     for (int i = 0; i <= n && ok; ++i) {
-        stewart_output now, ahead, behind;
-        stewart_pose p = combined(i * h);
-        ok = stewart_solve(model, data, &o, &p, &now) == STEWART_OK;
-        p = combined(i * h + delta);
-        ok = ok && stewart_solve(model, data, &o, &p, &ahead) == STEWART_OK;
-        p = combined(i * h - delta);
-        ok = ok && stewart_solve(model, data, &o, &p, &behind) == STEWART_OK;
+        stewart_inverse_output now, ahead, behind;
+        stewart_inverse_input p = {combined(i * h)};
+        ok = stewart_inverse_solve(data, &p, &now) == STEWART_OK;
+        p.pose = combined(i * h + delta);
+        ok = ok && stewart_inverse_solve(data, &p, &ahead) == STEWART_OK;
+        p.pose = combined(i * h - delta);
+        ok = ok && stewart_inverse_solve(data, &p, &behind) == STEWART_OK;
         for (int k = 0; k < 6; ++k) {
             d.force[6 * i + k] = now.force[k];
             d.rate[6 * i + k] = (ahead.force[k] - behind.force[k]) / (2 * delta);
         }
     }
-    stewart_data_free(data);
+    stewart_inverse_free(data);
     return ok;
 }
 
@@ -135,10 +135,10 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
     stewart_plant_options po;
     stewart_plant_options_default(&po);
     stewart_plant *plant = stewart_plant_create(model, &po, msg, sizeof msg);
-    stewart_data *data = stewart_data_create(model);
-    stewart_options so;
-    stewart_options_default(&so);
+    stewart_inverse_options so;
+    stewart_inverse_options_default(&so);
     so.fidelity = STEWART_FULL;
+    stewart_inverse *data = stewart_inverse_create(model, &so, nullptr, 0);
     const stewart_pose start = combined(0);
     stewart_plant_set_state(plant, 0, start.q, start.q_dot);
     stewart_plant_output out;
@@ -147,12 +147,13 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
     const int n = static_cast<int>(4.0 / h + 0.5);
     for (int i = 0; i < n; ++i) {
         stewart_pose cue = combined(i * h);
-        stewart_output inverse;
+        const stewart_inverse_input in = {cue};
+        stewart_inverse_output inverse;
         double force[6];
-        if (stewart_solve(model, data, &so, &cue, &inverse) != STEWART_OK) break;
+        if (stewart_inverse_solve(data, &in, &inverse) != STEWART_OK) break;
         for (int k = 0; k < 6; ++k)
-            force[k] = inverse.force[k] + kp * (inverse.length[k] - out.length[k]) +
-                       kd * (inverse.length_rate[k] - out.length_rate[k]);
+            force[k] = inverse.force[k] + kp * (inverse.lengths.length[k] - out.length[k]) +
+                       kd * (inverse.lengths.length_rate[k] - out.length_rate[k]);
         if (stewart_plant_step(plant, h, force, force, nullptr, nullptr) != STEWART_OK ||
             stewart_plant_output_get(plant, nullptr, &out) != STEWART_OK) {
             position = angle = -1;
@@ -167,7 +168,7 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
             break;
         }
     }
-    stewart_data_free(data);
+    stewart_inverse_free(data);
     stewart_plant_free(plant);
 }
 

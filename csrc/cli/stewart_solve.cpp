@@ -50,9 +50,10 @@ void write_header(FILE *out) {
     std::fprintf(out, ",condition,iterations\n");
 }
 
-void write_row(FILE *out, double t, const stewart_output &o) {
+void write_row(FILE *out, double t, const stewart_inverse_output &o) {
     std::fprintf(out, "%.17g", t);
-    const double *groups[4] = {o.length, o.length_rate, o.length_accel, o.force};
+    const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
+                               o.force};
     for (const double *g : groups)
         for (int k = 0; k < STEWART_LEGS; ++k) std::fprintf(out, ",%.17g", g[k]);
     std::fprintf(out, ",%.17g,%d\n", o.condition, o.iterations);
@@ -69,8 +70,8 @@ bool set_param(const char *assignment, stewart_params &params) {
 }  // namespace
 
 int main(int argc, char **argv) {
-    stewart_options options;
-    stewart_options_default(&options);
+    stewart_inverse_options options;
+    stewart_inverse_options_default(&options);
     stewart_params params;
     stewart_params_default(&params);
     const char *paths[2] = {nullptr, nullptr};
@@ -140,7 +141,7 @@ int main(int argc, char **argv) {
     }
 
     char message[STEWART_MESSAGE_SIZE];
-    if (stewart_options_check(&options, message, sizeof message) != STEWART_OK) {
+    if (stewart_inverse_options_check(&options, message, sizeof message) != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: %s\n", message);
         return 2;
     }
@@ -152,27 +153,28 @@ int main(int argc, char **argv) {
     }
 
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
-    stewart_data *data = model ? stewart_data_create(model) : nullptr;
-    if (!data) {
+    stewart_inverse *inverse =
+        model ? stewart_inverse_create(model, &options, message, sizeof message) : nullptr;
+    if (!inverse) {
         std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
         stewart_model_free(model);
         return 1;
     }
 
     // Solve everything before writing, so a failed run leaves no partial OUT.csv behind.
-    std::vector<stewart_output> outputs(table.t.size());
+    std::vector<stewart_inverse_output> outputs(table.t.size());
     int status = 0;
     for (size_t j = 0; j < table.t.size(); ++j) {
-        const stewart_status s =
-            stewart_solve(model, data, &options, &table.poses[j], &outputs[j]);
+        const stewart_inverse_input in = {table.poses[j]};
+        const stewart_status s = stewart_inverse_solve(inverse, &in, &outputs[j]);
         if (s != STEWART_OK) {
             std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s: %s\n", j + 1, table.t[j],
-                         stewart_status_name(s), stewart_data_message(data));
+                         stewart_status_name(s), stewart_inverse_message(inverse));
             status = 1;
             break;
         }
     }
-    stewart_data_free(data);
+    stewart_inverse_free(inverse);
     stewart_model_free(model);
     if (status != 0) return status;
 

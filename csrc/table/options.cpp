@@ -22,18 +22,18 @@ const stewart_option_info kOptions[] = {STEWART_OPTION_TABLE(INFO)};
 #undef INFO
 constexpr int kOptionCount = sizeof kOptions / sizeof kOptions[0];
 
-// The table lists every field of stewart_options, in order, with its type: a struct laid out
+// The table lists every field of stewart_inverse_options, in order, with its type: a struct laid out
 // from the table is the same struct.
 struct Mirror {
 #define FIELD(id, name, type, ...) type name;
     STEWART_OPTION_TABLE(FIELD)
 #undef FIELD
 };
-static_assert(sizeof(Mirror) == sizeof(stewart_options), "STEWART_OPTION_TABLE lists every field");
+static_assert(sizeof(Mirror) == sizeof(stewart_inverse_options), "STEWART_OPTION_TABLE lists every field");
 #define SAME(id, name, type, ...)                                                                \
-    static_assert(offsetof(Mirror, name) == offsetof(stewart_options, name) &&                   \
-                      std::is_same<decltype(stewart_options::name), type>::value,                \
-                  #name ": place and type as in stewart_options");
+    static_assert(offsetof(Mirror, name) == offsetof(stewart_inverse_options, name) &&                   \
+                      std::is_same<decltype(stewart_inverse_options::name), type>::value,                \
+                  #name ": place and type as in stewart_inverse_options");
 STEWART_OPTION_TABLE(SAME)
 #undef SAME
 
@@ -71,7 +71,7 @@ int stewart_option_find(const char *name) {
     return -1;
 }
 
-double stewart_option_get(const stewart_options *o, int i) {
+double stewart_option_get(const stewart_inverse_options *o, int i) {
     if (!o) return 0;
     int k = 0;
 #define GET(id, name, ...)                                                                       \
@@ -81,7 +81,7 @@ double stewart_option_get(const stewart_options *o, int i) {
     return 0;
 }
 
-stewart_status stewart_option_set(stewart_options *o, int i, double value, char *msg,
+stewart_status stewart_option_set(stewart_inverse_options *o, int i, double value, char *msg,
                                   size_t size) {
     const stewart_option_info *info = stewart_option(i);
     if (!o || !info) return set_message(msg, size, STEWART_ERR_ARGUMENT, "no option %d", i);
@@ -102,7 +102,7 @@ stewart_status stewart_option_set(stewart_options *o, int i, double value, char 
     return stewart::clear_message(msg, size);
 }
 
-void stewart_options_default(stewart_options *o) {
+void stewart_inverse_options_default(stewart_inverse_options *o) {
     if (!o) return;
 #define DEFAULT(id, name, type, unit, min, min_closed, max, max_closed, fallback, text)          \
     o->name = fallback;
@@ -110,7 +110,7 @@ void stewart_options_default(stewart_options *o) {
 #undef DEFAULT
 }
 
-stewart_status stewart_options_check(const stewart_options *o, char *msg, size_t size) {
+stewart_status stewart_inverse_options_check(const stewart_inverse_options *o, char *msg, size_t size) {
     if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
     // Every solve checks its options: the ranges are compile-time constants here.
     int i = 0;

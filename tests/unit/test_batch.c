@@ -47,54 +47,56 @@ static void test_solve_batch_equals_the_loop(void) {
     fill_rows();
     q[5][0] = NAN;   /* a bad row: the rows after it are still solved */
     q_dot[9][1] = INFINITY;  /* a bad rate */
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = STEWART_FULL;
     double length[ROWS][6], force[ROWS][6], condition[ROWS];
     int status[ROWS], iterations[ROWS];
-    const stewart_batch_outputs out = {&length[0][0], NULL, NULL, &force[0][0], condition, NULL,
+    const stewart_inverse_batch_outputs out = {&length[0][0], NULL, NULL, &force[0][0], condition, NULL,
                                        NULL, NULL, iterations, NULL, status};
     size_t rows[4], first_failed = 0;
     char text[4 * STEWART_MESSAGE_SIZE];
     stewart_batch_messages messages = {4, 0, rows, text};
-    stewart_data_reset(data);
-    const stewart_status s = stewart_solve_batch(model, data, &o, ROWS, &q[0][0], &q_dot[0][0],
-                                                 &q_ddot[0][0], &out, &messages, &first_failed);
+    stewart_inverse *batch = stewart_inverse_create(model, &o, NULL, 0);
+    TEST_ASSERT_NOT_NULL(batch);
+    const stewart_status s = stewart_inverse_batch(batch, ROWS, &q[0][0], &q_dot[0][0],
+                                                   &q_ddot[0][0], &out, &messages, &first_failed);
+    stewart_inverse_free(batch);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, s);
     TEST_ASSERT_EQUAL_size_t(5, first_failed);
     TEST_ASSERT_EQUAL_size_t(2, messages.count);
     TEST_ASSERT_EQUAL_size_t(5, rows[0]);
     TEST_ASSERT_EQUAL_size_t(9, rows[1]);
 
-    stewart_data *loop = stewart_data_create(model);
+    stewart_inverse *loop = test_inverse(model);
     for (int j = 0; j < ROWS; ++j) {
         const stewart_pose p = pose_of_row(j);
-        stewart_output r;
+        stewart_inverse_output r;
         memset(&r, 0, sizeof r);
-        const stewart_status sj = stewart_solve(model, loop, &o, &p, &r);
+        const stewart_status sj = solve_as(loop, &o, &p, &r);
         TEST_ASSERT_EQUAL_INT(sj, status[j]);
         TEST_ASSERT_EQUAL_INT(j == 5 || j == 9 ? 1 : 0, sj != STEWART_OK);
         if (sj != STEWART_OK) memset(&r, 0, sizeof r);
-        TEST_ASSERT_EQUAL_MEMORY(r.length, length[j], sizeof r.length);
+        TEST_ASSERT_EQUAL_MEMORY(r.lengths.length, length[j], sizeof r.lengths.length);
         TEST_ASSERT_EQUAL_MEMORY(r.force, force[j], sizeof r.force);
         TEST_ASSERT_EQUAL_MEMORY(&r.condition, &condition[j], sizeof r.condition);
         TEST_ASSERT_EQUAL_INT(r.iterations, iterations[j]);
     }
-    stewart_data_free(loop);
+    stewart_inverse_free(loop);
 }
 
 /* The lengths, rates and accelerations of the manoeuvre (the inverse side's closed form). */
 static void leg_motion(double L[ROWS][6], double L_dot[ROWS][6], double L_ddot[ROWS][6]) {
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = STEWART_KINEMATIC;
     for (int j = 0; j < ROWS; ++j) {
         const stewart_pose p = pose_of_row(j);
-        stewart_output r;
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_solve(model, data, &o, &p, &r));
-        memcpy(L[j], r.length, sizeof r.length);
-        memcpy(L_dot[j], r.length_rate, sizeof r.length_rate);
-        memcpy(L_ddot[j], r.length_accel, sizeof r.length_accel);
+        stewart_inverse_output r;
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, solve_as(data, &o, &p, &r));
+        memcpy(L[j], r.lengths.length, sizeof r.lengths.length);
+        memcpy(L_dot[j], r.lengths.length_rate, sizeof r.lengths.length_rate);
+        memcpy(L_ddot[j], r.lengths.length_accel, sizeof r.lengths.length_accel);
     }
 }
 
@@ -112,21 +114,26 @@ static void test_forward_batch_equals_the_loop(void) {
                                                NULL, NULL, iterations, NULL, branch, start,
                                                status};
     size_t first_failed = 0;
-    stewart_forward_reset(data);
+    stewart_forward *batch = stewart_forward_create(model, &o, NULL, 0);
+    TEST_ASSERT_NOT_NULL(batch);
     const stewart_status s =
-        stewart_forward_batch(model, data, &o, ROWS, times, &L[0][0], &L_dot[0][0],
-                              &L_ddot[0][0], NULL, &out, NULL, &first_failed);
+        stewart_forward_batch(batch, ROWS, times, &L[0][0], &L_dot[0][0], &L_ddot[0][0], NULL,
+                              &out, NULL, &first_failed);
+    stewart_forward_free(batch);
     TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK, s);
     TEST_ASSERT_EQUAL_size_t(7, first_failed);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, status[7]);
     TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK, status[12]);
 
-    stewart_data *loop = stewart_data_create(model);
+    stewart_forward *loop = stewart_forward_create(model, &o, NULL, 0);
     for (int j = 0; j < ROWS; ++j) {
-        stewart_forward_result r;
+        stewart_forward_output r;
         memset(&r, 0, sizeof r);
-        const stewart_status sj = stewart_forward_solve(model, loop, &o, times[j], L[j], L_dot[j],
-                                                        L_ddot[j], NULL, &r);
+        stewart_forward_input in = {times[j], {{0}}, 2, 0, {0}};
+        memcpy(in.lengths.length, L[j], sizeof L[j]);
+        memcpy(in.lengths.length_rate, L_dot[j], sizeof L_dot[j]);
+        memcpy(in.lengths.length_accel, L_ddot[j], sizeof L_ddot[j]);
+        const stewart_status sj = stewart_forward_solve(loop, &in, &r);
         TEST_ASSERT_EQUAL_INT(sj, status[j]);
         TEST_ASSERT_EQUAL_INT(j == 7 || j == 12 ? 1 : 0, sj != STEWART_OK);
         if (sj != STEWART_OK) {
@@ -143,7 +150,7 @@ static void test_forward_batch_equals_the_loop(void) {
         /* and the poses are the manoeuvre's (the inverse side's closed form) */
         for (int i = 0; i < 6; ++i) TEST_ASSERT_DOUBLE_WITHIN(1e-12, q[j][i], pose[j][i]);
     }
-    stewart_data_free(loop);
+    stewart_forward_free(loop);
 }
 
 /* Forces linear in time: gravity-like support plus a wobble, so the platform moves. */

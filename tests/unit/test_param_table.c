@@ -136,8 +136,8 @@ static void test_refused_inertia_shows_why(void) {
 }
 
 static void test_options_table(void) {
-    stewart_options o, from_table;
-    stewart_options_default(&o);
+    stewart_inverse_options o, from_table;
+    stewart_inverse_options_default(&o);
     memset(&from_table, 0, sizeof from_table);
     char msg[STEWART_MESSAGE_SIZE];
     for (int i = 0; i < stewart_option_count(); ++i) {
@@ -174,7 +174,7 @@ static void test_options_table(void) {
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_option_set(&o, it, 7, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(7, o.max_iterations);
     o.warn_condition = 1e11;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_options_check(&o, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "warn = 1e+11, singular = 1e+10"), msg);
 }
 

@@ -2,7 +2,7 @@
  * The plant FMU (fmu/models/plant on fmu/runtime) driven through its FMI 2 and FMI 3 functions,
  * linked in statically, so that the ASan+UBSan build (tests/gates/sanitize.sh) and the TSan gate
  * (tests/gates/tsan.sh) run it. References independent of the unit: the inverse side's static
- * forces (stewart_solve) and the platform's weight for the rest state, closed-form leg lengths,
+ * forces (stewart_inverse_solve) and the platform's weight for the rest state, closed-form leg lengths,
  * a second instance that never saw a bad input, sequential runs for the threaded ones.
  *
  * One executable links one model (every model defines the same fmi2* / fmi3* symbols): this one
@@ -154,16 +154,16 @@ static void assert_same_bits(const snapshot *a, const snapshot *b, const char *w
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(a, b, sizeof *a, what);
 }
 
-/* The inverse side's forces for the pose at rest at home (stewart_solve). */
+/* The inverse side's forces for the pose at rest at home (stewart_inverse_solve). */
 static void static_forces(int fidelity, double force[6]) {
     stewart_params params;
     stewart_params_default(&params);
     stewart_model *model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     const stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
-    const stewart_output out = solve_ok(model, data, (stewart_fidelity)fidelity, &home);
+    const stewart_inverse_output out = solve_ok(data, (stewart_fidelity)fidelity, &home);
     memcpy(force, out.force, 6 * sizeof(double));
-    stewart_data_free(data);
+    stewart_inverse_free(data);
     stewart_model_free(model);
 }
 

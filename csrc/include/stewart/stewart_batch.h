@@ -1,8 +1,8 @@
 /*
  * Many poses in one call: the batch entry point behind the Python package and the sweeps.
  *
- * A batch solves n poses in order with one data block, exactly as n successive stewart_solve
- * calls would (at the full level each pose starts from the previous one's solution), but with
+ * A batch solves n poses in order with one inverse solver, exactly as n successive
+ * stewart_inverse_solve calls would (at the full level each pose starts from the previous one's solution), but with
  * the inputs and outputs as row-major arrays, so that a caller holding arrays (numpy) needs no
  * loop per pose. A row that fails gets its status (and, if asked, its message) and zero outputs;
  * the rows after it are still solved. The same for forward kinematics (lengths to poses) and, for
@@ -23,7 +23,7 @@ extern "C" {
 
 /* Where a batch writes its results: arrays of n rows, row-major. Every pointer but status may be
  * NULL to skip that output. */
-typedef struct stewart_batch_outputs {
+typedef struct stewart_inverse_batch_outputs {
     double *length;        /* n x 6, L_k [m] */
     double *length_rate;   /* n x 6, dL_k/dt [m/s] */
     double *length_accel;  /* n x 6, d2L_k/dt2 [m/s^2] */
@@ -35,7 +35,7 @@ typedef struct stewart_batch_outputs {
     int *iterations;       /* n, Newton iterations (full level) */
     int *warnings;         /* n, STEWART_WARN_* bits */
     int *status;           /* n, the stewart_status of each row (required) */
-} stewart_batch_outputs;
+} stewart_inverse_batch_outputs;
 
 /* The messages of the first failing rows, in row order (optional). */
 typedef struct stewart_batch_messages {
@@ -46,16 +46,14 @@ typedef struct stewart_batch_messages {
 } stewart_batch_messages;
 
 /* Solves rows 0..n-1 of q (n x 6), with q_dot and q_ddot (n x 6 each, NULL for zero), in order,
- * continuing from the data block's state (call stewart_data_reset first for a fresh start).
- * Options are checked once: if they are bad, nothing is solved. Returns STEWART_OK if every row
- * solved, else the status of the first failing row, whose message stewart_data_message then gives
- * and whose index goes to *first_failed (if not NULL; n when every row solved). messages may be
- * NULL. */
-stewart_status stewart_solve_batch(const stewart_model *model, stewart_data *data,
-                                   const stewart_options *options, size_t n, const double *q,
-                                   const double *q_dot, const double *q_ddot,
-                                   const stewart_batch_outputs *outputs,
-                                   stewart_batch_messages *messages, size_t *first_failed);
+ * continuing from the solver's state (call stewart_inverse_reset first for a fresh start).
+ * Returns STEWART_OK if every row solved, else the status of the first failing row, whose message
+ * stewart_inverse_message then gives and whose index goes to *first_failed (if not NULL; n when
+ * every row solved). messages may be NULL. */
+stewart_status stewart_inverse_batch(stewart_inverse *inverse, size_t n, const double *q,
+                                     const double *q_dot, const double *q_ddot,
+                                     const stewart_inverse_batch_outputs *outputs,
+                                     stewart_batch_messages *messages, size_t *first_failed);
 
 /* The status of a row a batch did not run (stewart_simulate_batch after a refused step): positive,
  * unlike every stewart_status. */
@@ -79,16 +77,13 @@ typedef struct stewart_forward_batch_outputs {
 
 /* Forward kinematics of rows 0..n-1 of lengths (n x 6), with rates and accels (n x 6 each, NULL
  * for none; accels need rates) at times time (n, NULL for all zero: no predictor), in order, as n
- * successive stewart_forward_solve calls on data would: row 0 from guess (6 values) if not NULL,
- * else from the data block's last pose (stewart_forward_reset first for a cold start), each later
- * row tracking from the last solved one. A failed row gets its status and, if asked, its message;
- * the rows after it are still solved. Options are checked once: if they are bad, nothing is
- * solved. Returns as stewart_solve_batch. */
-stewart_status stewart_forward_batch(const stewart_model *model, stewart_data *data,
-                                     const stewart_forward_options *options, size_t n,
-                                     const double *time, const double *lengths,
-                                     const double *rates, const double *accels,
-                                     const double guess[6],
+ * successive stewart_forward_solve calls would: row 0 from guess (6 values) if not NULL, else
+ * from the solver's last pose (stewart_forward_reset first for a cold start), each later row
+ * tracking from the last solved one. A failed row gets its status and, if asked, its message;
+ * the rows after it are still solved. Returns as stewart_inverse_batch. */
+stewart_status stewart_forward_batch(stewart_forward *forward, size_t n, const double *time,
+                                     const double *lengths, const double *rates,
+                                     const double *accels, const double guess[6],
                                      const stewart_forward_batch_outputs *outputs,
                                      stewart_batch_messages *messages, size_t *first_failed);
 

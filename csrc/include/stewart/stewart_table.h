@@ -1,5 +1,5 @@
 /*
- * The parameter and option tables: one entry per field of stewart_params and stewart_options,
+ * The parameter and option tables: one entry per field of stewart_params and stewart_inverse_options,
  * with its stable id, name, element count, unit, valid range, default and description. The
  * library's defaults, checks and setters are expanded from these lists, and the upper layers
  * (FMU variables and model descriptions, the CLI's --param, fuzz seeds, Python) iterate them
@@ -21,7 +21,7 @@
  *
  * STEWART_OPTION_TABLE(X) calls
  *   X(id, name, type, unit, min, min_closed, max, max_closed, default, description)
- * once per stewart_options field, in declaration order; type is int or double.
+ * once per stewart_inverse_options field, in declaration order; type is int or double.
  */
 #ifndef STEWART_STEWART_TABLE_H
 #define STEWART_STEWART_TABLE_H
@@ -150,24 +150,24 @@ stewart_status stewart_param_check_value(int i, int e, double value, char *messa
 /* One option of the table. */
 typedef struct stewart_option_info {
     int id;                     /* stable id (= FMU value reference) */
-    const char *name;           /* field name of stewart_options */
+    const char *name;           /* field name of stewart_inverse_options */
     int is_integer;             /* 1: an int field, 0: a double */
     const char *unit;           /* "1" for dimensionless reals, "" for integers */
     const char *description;
     double min, max;            /* valid range */
     int min_closed, max_closed;
-    double default_value;       /* stewart_options_default's */
+    double default_value;       /* stewart_inverse_options_default's */
 } stewart_option_info;
 
-/* Number of options (fields of stewart_options). */
+/* Number of options (fields of stewart_inverse_options). */
 int stewart_option_count(void);
 /* Option i (declaration order), or NULL. */
 const stewart_option_info *stewart_option(int i);
 /* Option i's value in options (ints converted exactly); 0 if out of range. */
-double stewart_option_get(const stewart_options *options, int i);
+double stewart_option_get(const stewart_inverse_options *options, int i);
 /* Sets option i; STEWART_ERR_PARAMETER (options unchanged) if the value is outside its range or,
  * for an integer option, not a whole number. */
-stewart_status stewart_option_set(stewart_options *options, int i, double value, char *message,
+stewart_status stewart_option_set(stewart_inverse_options *options, int i, double value, char *message,
                                   size_t size);
 /* The option named `name`, or -1. */
 int stewart_option_find(const char *name);
