@@ -410,6 +410,64 @@ static void test_forward_pose_agrees_with_the_length_driven_mechanism(void) {
     TEST_ASSERT_TRUE(worst_rotation <= 1e-12);
 }
 
+/* Rollback of the tracking history: after saving (bytes) and copying it, three more measurements
+ * are solved; loaded back (or copied back), the same three measurements give bit for bit the same
+ * poses, starts and iterations. Without the rollback they do not (the history moved on), and bytes
+ * that are not a history are refused by name with the solver unchanged. */
+static void test_rollback_restores_the_tracking_history(void) {
+    stewart_inverse_output legs[9];
+    for (int j = 0; j < 9; ++j) {
+        const stewart_pose p = combined_pose(0.01 * j);
+        legs[j] = solve_ok(data, STEWART_KINEMATIC, &p);
+    }
+    stewart_forward_output r;
+    for (int j = 0; j < 6; ++j) TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[j], 0.01 * j, 1, NULL, &r));
+    unsigned char bytes[1024];
+    const size_t size = stewart_forward_state_size(forward_solver);
+    TEST_ASSERT_TRUE(size > 0 && size <= sizeof bytes);
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_save(forward_solver, bytes, size));
+    stewart_forward_options o = default_options();
+    stewart_forward *copy = stewart_forward_create(model, &o, NULL, 0);
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_copy(copy, forward_solver));
+    stewart_forward_output first[3], again[3], from_copy[3];
+    for (int j = 0; j < 3; ++j)
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &first[j]));
+    TEST_ASSERT_EQUAL_INT(STEWART_START_PREDICTOR, first[0].start);
+    /* without a rollback the same measurement is solved from another history */
+    stewart_forward_output moved_on;
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[6], 0.06, 1, NULL, &moved_on));
+    TEST_ASSERT_NOT_EQUAL(0, memcmp(&moved_on, &first[0], sizeof moved_on));
+    /* refused bytes: a wrong version, a flag that is not 0 or 1, a value that is not finite */
+    unsigned char bad[1024];
+    memcpy(bad, bytes, size);
+    bad[4] ^= 1;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "version"));
+    memcpy(bad, bytes, size);
+    bad[3 * sizeof(unsigned)] = 2;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "flag 0 is 2"));
+    memcpy(bad, bytes, size);
+    const double nan = NAN;
+    memcpy(bad + size - sizeof nan, &nan, sizeof nan);
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "finite"));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bytes, size - 1));
+    /* loaded back: the three solves again, bit for bit */
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_load(forward_solver, bytes, size));
+    for (int j = 0; j < 3; ++j)
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &again[j]));
+    TEST_ASSERT_EQUAL_MEMORY(first, again, sizeof first);
+    /* and from the copy */
+    stewart_forward *kept = forward_solver;
+    forward_solver = copy;
+    for (int j = 0; j < 3; ++j)
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &from_copy[j]));
+    forward_solver = kept;
+    TEST_ASSERT_EQUAL_MEMORY(first, from_copy, sizeof first);
+    stewart_forward_free(copy);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_cold_starts_over_the_workspace_find_the_pose);
@@ -423,5 +481,6 @@ int main(void) {
     RUN_TEST(test_lengths_outside_the_stroke_are_solved_with_the_warning);
     RUN_TEST(test_bad_input_is_named_and_the_block_stays_usable);
     RUN_TEST(test_forward_pose_agrees_with_the_length_driven_mechanism);
+    RUN_TEST(test_rollback_restores_the_tracking_history);
     return UNITY_END();
 }
