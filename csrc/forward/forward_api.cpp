@@ -208,7 +208,7 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
     return STEWART_OK;
 }
 
-// The accepted pose becomes the data block's last pose.
+// The accepted pose becomes the solver's last pose.
 void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_output &out,
               double time, bool from_guess, bool rates, bool accels) {
     f.has_previous = f.has_pose && !from_guess;  // a guess starts a new history

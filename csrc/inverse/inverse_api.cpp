@@ -69,7 +69,7 @@ extern "C" stewart_status stewart_inverse_load(stewart_inverse *d, const void *b
     if (!mbs::load_state(d->full->state, static_cast<const unsigned char *>(buffer), size, why,
                          sizeof why))
         return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
-                           "state not loaded (the data block is unchanged): %s", why);
+                           "state not loaded (the inverse solver is unchanged): %s", why);
     d->message[0] = '\0';
     return STEWART_OK;
 }

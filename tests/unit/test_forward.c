@@ -1,5 +1,5 @@
 /* Forward kinematics against the inverse side's closed form (lengths, rates and accelerations
- * from the pose written out in test_support.c and by stewart_solve), the mirror pose (same
+ * from the pose written out in test_support.c and by stewart_inverse_solve), the mirror pose (same
  * lengths, computed here), the 14-body mechanism driven by the lengths, and bad input. */
 #include <math.h>
 #include <stdio.h>

@@ -175,7 +175,7 @@ static double jacobian_det_ratio(const stewart_pose *pose) {
 }
 
 /* Yaw = pi/2 exactly: the leg Jacobian is singular (checked here from the geometry alone), so the
- * thesis' way must refuse the pose as stewart_solve does (it returned forces of 4.7e18 N),
+ * thesis' way must refuse the pose as stewart_inverse_solve does (it returned forces of 4.7e18 N),
  * leaving force untouched; the same platform a little off that yaw still answers. */
 static void test_thesis_forces_refuse_a_singular_pose(void) {
     stewart_pose pose = {{0, 0, 0.5, 0, 0, M_PI / 2}, {0}, {0}};

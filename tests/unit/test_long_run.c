@@ -1,4 +1,4 @@
-/* Long runs of the full level along the combined manoeuvre at 1 ms. First as stewart_solve runs
+/* Long runs of the full level along the combined manoeuvre at 1 ms. First as stewart_inverse_solve runs
  * it: the Euler parameters of every body stay normalised and the leg lengths stay the closed
  * form |p + R b - a| (computed here from the pose). That level places every body afresh from the
  * pose at each step, so this checks that nothing else accumulates. Then driven by the actuator
