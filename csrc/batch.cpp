@@ -20,19 +20,48 @@ void copy_out(double *to, const double *from, int count) {
     if (to) std::memcpy(to, from, sizeof(double) * count);
 }
 
+// Row j of a column of `count` values: an array member, or a scalar one.
+template <typename T, size_t N>
+void put(T *column, size_t j, const T (&value)[N]) {
+    if (column) std::memcpy(column + j * N, value, sizeof value);
+}
+template <typename T>
+void put(T *column, size_t j, const T &value) {
+    if (column) column[j] = value;
+}
+
+// Every column of the output tables is a member of the output struct, of its type and count,
+// and together they are the whole struct: a struct laid out from the table has its size (a field
+// missing from a table is caught here).
+#define MIRROR_COLUMN(name, member, count, type, unit, description) type name[count];
+#define INVERSE_COLUMN(name, member, count, type, unit, description)                             \
+    static_assert(sizeof(stewart_inverse_output::member) == (count) * sizeof(type),              \
+                  #name ": count and type as in stewart_inverse_output");
+#define FORWARD_COLUMN(name, member, count, type, unit, description)                             \
+    static_assert(sizeof(stewart_forward_output::member) == (count) * sizeof(type),              \
+                  #name ": count and type as in stewart_forward_output");
+struct InverseMirror {
+    STEWART_INVERSE_OUTPUT_TABLE(MIRROR_COLUMN)
+};
+struct ForwardMirror {
+    STEWART_FORWARD_OUTPUT_TABLE(MIRROR_COLUMN)
+};
+STEWART_INVERSE_OUTPUT_TABLE(INVERSE_COLUMN)
+STEWART_FORWARD_OUTPUT_TABLE(FORWARD_COLUMN)
+static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_output),
+              "STEWART_INVERSE_OUTPUT_TABLE lists every field of stewart_inverse_output");
+static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_output),
+              "STEWART_FORWARD_OUTPUT_TABLE lists every field of stewart_forward_output");
+#undef INVERSE_COLUMN
+#undef FORWARD_COLUMN
+#undef MIRROR_COLUMN
+
+#define PUT_COLUMN(name, member, count, type, unit, description) put(out.name, j, o.member);
+
 // Writes one row's results (zeros for a failed row) and its status.
 void write_row(const stewart_inverse_batch_outputs &out, size_t j, const stewart_inverse_output &o,
                stewart_status s) {
-    copy_out(row(out.length, j, 6), o.lengths.length, STEWART_LEGS);
-    copy_out(row(out.length_rate, j, 6), o.lengths.length_rate, STEWART_LEGS);
-    copy_out(row(out.length_accel, j, 6), o.lengths.length_accel, STEWART_LEGS);
-    copy_out(row(out.force, j, 6), o.force, STEWART_LEGS);
-    copy_out(row(out.condition, j, 1), &o.condition, 1);
-    copy_out(row(out.residual, j, 1), &o.residual, 1);
-    copy_out(row(out.base_force, j, 3), o.base_force, 3);
-    copy_out(row(out.base_torque, j, 3), o.base_torque, 3);
-    if (out.iterations) out.iterations[j] = o.iterations;
-    if (out.warnings) out.warnings[j] = o.warnings;
+    STEWART_INVERSE_OUTPUT_TABLE(PUT_COLUMN)
     out.status[j] = s;
 }
 
@@ -66,24 +95,23 @@ struct FailureLog {
     }
 };
 
-// Writes one forward row's results (zeros for a failed row, but its warnings and branch).
+// Writes one forward row's results (zeros for a failed row, but a row on another assembly mode
+// keeps its warnings, branch and stroke legs).
 void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
                        const stewart_forward_output &r, stewart_status s) {
-    const bool ok = s == STEWART_OK;
-    const stewart_forward_output zero{};
-    const stewart_forward_output &v = ok ? r : zero;
-    copy_out(row(out.pose, j, 6), v.pose.q, 6);
-    copy_out(row(out.pose_rate, j, 6), v.pose.q_dot, 6);
-    copy_out(row(out.pose_accel, j, 6), v.pose.q_ddot, 6);
-    copy_out(row(out.residual, j, 1), &v.residual, 1);
-    copy_out(row(out.condition, j, 1), &v.condition, 1);
-    copy_out(row(out.jump, j, 1), &v.jump, 1);
-    if (out.iterations) out.iterations[j] = v.iterations;
-    if (out.start) out.start[j] = v.start;
-    if (out.warnings) out.warnings[j] = ok || s == STEWART_ERR_OTHER_BRANCH ? r.warnings : 0;
-    if (out.branch) out.branch[j] = ok || s == STEWART_ERR_OTHER_BRANCH ? r.branch : 0;
+    stewart_forward_output o{};
+    if (s == STEWART_OK) {
+        o = r;
+    } else if (s == STEWART_ERR_OTHER_BRANCH) {
+        o.warnings = r.warnings;
+        o.branch = r.branch;
+        o.stroke_legs = r.stroke_legs;
+    }
+    STEWART_FORWARD_OUTPUT_TABLE(PUT_COLUMN)
     out.status[j] = s;
 }
+
+#undef PUT_COLUMN
 
 // Writes one plant row (zeros, status STEWART_BATCH_NOT_RUN, for a row that did not run).
 void write_plant_row(const stewart_simulate_batch_outputs &out, size_t j,

@@ -95,7 +95,7 @@ public:
             rows_of(length, n),     rows_of(length_rate, n), rows_of(length_accel, n),
             rows_of(force, n),      rows_of(condition, n),   rows_of(residual, n),
             rows_of(base_force, n), rows_of(base_torque, n), rows_of(iterations, n),
-            rows_of(warnings, n),   status.data()};
+            rows_of(warnings, n),   nullptr /* stroke_legs: not asked for */, status.data()};
         char message[STEWART_MESSAGE_SIZE];
         Solver<stewart_inverse> inverse(
             stewart_inverse_create(model_, &options, message, sizeof message),
@@ -134,7 +134,7 @@ public:
             rows_of(pose, n),     rows_of(pose_rate, n),  rows_of(pose_accel, n),
             rows_of(residual, n), rows_of(condition, n),  rows_of(jump, n),
             rows_of(iterations, n), rows_of(warnings, n), rows_of(branch, n),
-            rows_of(start, n),    status.data()};
+            rows_of(start, n),    nullptr /* stroke_legs: not asked for */, status.data()};
         char message[STEWART_MESSAGE_SIZE];
         Solver<stewart_forward> forward(
             stewart_forward_create(model_, &options, message, sizeof message),

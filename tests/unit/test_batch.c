@@ -51,9 +51,10 @@ static void test_solve_batch_equals_the_loop(void) {
     stewart_inverse_options_default(&o);
     o.fidelity = STEWART_FULL;
     double length[ROWS][6], force[ROWS][6], condition[ROWS];
-    int status[ROWS], iterations[ROWS];
-    const stewart_inverse_batch_outputs out = {&length[0][0], NULL, NULL, &force[0][0], condition, NULL,
-                                       NULL, NULL, iterations, NULL, status};
+    int status[ROWS], iterations[ROWS], stroke_legs[ROWS];
+    const stewart_inverse_batch_outputs out = {.length = &length[0][0], .force = &force[0][0],
+                                               .condition = condition, .iterations = iterations,
+                                               .stroke_legs = stroke_legs, .status = status};
     size_t rows[4], first_failed = 0;
     char text[4 * STEWART_MESSAGE_SIZE];
     stewart_batch_messages messages = {4, 0, rows, text};
@@ -81,6 +82,7 @@ static void test_solve_batch_equals_the_loop(void) {
         TEST_ASSERT_EQUAL_MEMORY(r.force, force[j], sizeof r.force);
         TEST_ASSERT_EQUAL_MEMORY(&r.condition, &condition[j], sizeof r.condition);
         TEST_ASSERT_EQUAL_INT(r.iterations, iterations[j]);
+        TEST_ASSERT_EQUAL_INT(r.stroke_legs, stroke_legs[j]);
     }
     stewart_inverse_free(loop);
 }
@@ -110,9 +112,10 @@ static void test_forward_batch_equals_the_loop(void) {
     stewart_forward_options_default(&o);
     double pose[ROWS][6], rate[ROWS][6], accel[ROWS][6], residual[ROWS];
     int status[ROWS], iterations[ROWS], start[ROWS], branch[ROWS];
-    const stewart_forward_batch_outputs out = {&pose[0][0], &rate[0][0], &accel[0][0], residual,
-                                               NULL, NULL, iterations, NULL, branch, start,
-                                               status};
+    const stewart_forward_batch_outputs out = {.pose = &pose[0][0], .pose_rate = &rate[0][0],
+                                               .pose_accel = &accel[0][0], .residual = residual,
+                                               .iterations = iterations, .branch = branch,
+                                               .start = start, .status = status};
     size_t first_failed = 0;
     stewart_forward *batch = stewart_forward_create(model, &o, NULL, 0);
     TEST_ASSERT_NOT_NULL(batch);

@@ -15,26 +15,23 @@
 
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_outputs.h"
 #include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Where a batch writes its results: arrays of n rows, row-major. Every pointer but status may be
- * NULL to skip that output. */
+/* One batch output column: a pointer to n x count values (stewart_outputs.h). */
+#define STEWART_BATCH_COLUMN(name, member, count, type, unit, description) type *name;
+
+/* Where a batch writes its results: arrays of n rows, row-major, one per column of
+ * STEWART_INVERSE_OUTPUT_TABLE (length, length_rate, length_accel, force, condition, residual,
+ * base_force, base_torque, iterations, warnings, stroke_legs), then status. Every pointer but
+ * status may be NULL to skip that output. */
 typedef struct stewart_inverse_batch_outputs {
-    double *length;        /* n x 6, L_k [m] */
-    double *length_rate;   /* n x 6, dL_k/dt [m/s] */
-    double *length_accel;  /* n x 6, d2L_k/dt2 [m/s^2] */
-    double *force;         /* n x 6, F_k [N] */
-    double *condition;     /* n, leg Jacobian condition number */
-    double *residual;      /* n, constraint residual [m] */
-    double *base_force;    /* n x 3, force on the base, world frame [N] */
-    double *base_torque;   /* n x 3, its torque about the world origin [N m] */
-    int *iterations;       /* n, Newton iterations (full level) */
-    int *warnings;         /* n, STEWART_WARN_* bits */
-    int *status;           /* n, the stewart_status of each row (required) */
+    STEWART_INVERSE_OUTPUT_TABLE(STEWART_BATCH_COLUMN)
+    int *status; /* n, the stewart_status of each row (required) */
 } stewart_inverse_batch_outputs;
 
 /* The messages of the first failing rows, in row order (optional). */
@@ -59,20 +56,14 @@ stewart_status stewart_inverse_batch(stewart_inverse *inverse, size_t n, const d
  * unlike every stewart_status. */
 #define STEWART_BATCH_NOT_RUN 1
 
-/* Where a forward batch writes its results: arrays of n rows, row-major. Every pointer but status
- * may be NULL to skip that output. A failed row holds zeros but its warnings and branch bits. */
+/* Where a forward batch writes its results: arrays of n rows, row-major, one per column of
+ * STEWART_FORWARD_OUTPUT_TABLE (pose, pose_rate, pose_accel, residual, condition, jump,
+ * iterations, warnings, branch, start, stroke_legs), then status. Every pointer but status may be
+ * NULL to skip that output. A failed row holds zeros, but a row on another assembly mode keeps
+ * its warnings, branch and stroke_legs. */
 typedef struct stewart_forward_batch_outputs {
-    double *pose;        /* n x 6, (x, y, z [m], roll, pitch, yaw [rad]) */
-    double *pose_rate;   /* n x 6, d/dt of the pose (zero unless rates were given) */
-    double *pose_accel;  /* n x 6, d2/dt2 of the pose (zero unless accels were given) */
-    double *residual;    /* n, max |L_k(q) - L_k measured| at the last Newton iterate [m] */
-    double *condition;   /* n, leg Jacobian condition number */
-    double *jump;        /* n, largest platform-point move from the last pose [m] */
-    int *iterations;     /* n, Newton iterations */
-    int *warnings;       /* n, STEWART_WARN_* bits */
-    int *branch;         /* n, STEWART_BRANCH_* bits (why a row is on another assembly mode) */
-    int *start;          /* n, STEWART_START_* the row was reached from */
-    int *status;         /* n, the stewart_status of each row (required) */
+    STEWART_FORWARD_OUTPUT_TABLE(STEWART_BATCH_COLUMN)
+    int *status; /* n, the stewart_status of each row (required) */
 } stewart_forward_batch_outputs;
 
 /* Forward kinematics of rows 0..n-1 of lengths (n x 6), with rates and accels (n x 6 each, NULL

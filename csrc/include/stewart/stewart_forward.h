@@ -64,16 +64,16 @@ typedef struct stewart_forward_input {
 /* What a forward solve gives. */
 typedef struct stewart_forward_output {
     stewart_pose pose;   /* q; q_dot if rates were given, q_ddot if accelerations were (else 0) */
-    int iterations;      /* KINSOL Newton iterations, over every start tried */
     double residual;     /* max |L_k(q) - L_k measured| at the last Newton iterate [m]; the pose
                             returned carries one more correction with the exact Jacobian */
     double condition;    /* leg Jacobian condition number at the pose, as the inverse output's */
+    double jump;         /* largest platform-point displacement from the last pose [m] (0 if
+                            no history) */
+    int iterations;      /* KINSOL Newton iterations, over every start tried */
     int warnings;        /* STEWART_WARN_STROKE (a measured length outside the stroke),
                             STEWART_WARN_NEAR_SINGULAR, STEWART_WARN_OTHER_BRANCH */
     int stroke_legs;     /* bit k set: measured length k+1 is outside [stroke_min, stroke_max] */
     int branch;          /* STEWART_BRANCH_* bits; 0 on the working assembly mode */
-    double jump;         /* largest platform-point displacement from the last pose [m] (0 if
-                            no history) */
     int start;           /* STEWART_START_* the solution was reached from */
 } stewart_forward_output;
 
