@@ -7,6 +7,7 @@
 
 #include "platform_fixture.h"
 #include "stewart/stewart_full.h"
+#include "thesis_forces.h"
 #include "test_support.h"
 #include "unity.h"
 
