@@ -173,7 +173,7 @@ def test_workspace_values_at_sample_points_equal_direct_calls(workspace_run):
     t = _table(workspace_run, "workspace_xy.parquet")
     rows = rng.choice(len(t["x"]), 40, replace=False)
     q = np.column_stack([t[c][rows] for c in POSE])
-    sol = stewart.Platform(**WORKSPACE["platform"]).solve(q, fidelity="massless")
+    sol = stewart.Platform(**WORKSPACE["platform"]).inverse(q, fidelity="massless")
     np.testing.assert_array_equal(t["status"][rows], sol.status)
     np.testing.assert_array_equal(t["condition"][rows], sol.condition)
     for k in range(6):
