@@ -61,6 +61,9 @@ def check_out(out: InverseSolution, n: int) -> None:
     converted into a temporary copy and the results lost."""
     if not isinstance(out, InverseSolution):
         raise ValueError(f"out is a {type(out).__name__}: it must be an InverseSolution")
+    rows = np.shape(out.status)[0] if np.ndim(out.status) else 0
+    if rows != n:
+        raise ValueError(f"out has {rows} rows but poses has {n}")
     model = empty_inverse_solution(0)
     for f in dataclasses.fields(InverseSolution):
         want = getattr(model, f.name)

@@ -1,4 +1,4 @@
-"""The Python package (stewart.Platform.solve) against independent references: stewart-solve and
+"""The Python package (stewart.Platform.inverse) against independent references: stewart-solve and
 the FMU (fmpy) on the thesis manoeuvres, numpy closed forms for lengths and the weight a platform
 at rest puts on its base; per-row statuses in a batch; parameter errors; the shipped FMUs."""
 import zipfile
@@ -97,13 +97,23 @@ def test_manoeuvre_equals_the_shipped_fmu(shipped_fmus, version, fidelity):
     np.testing.assert_allclose(np.array(rows), _matrix(sol), **tol)
 
 
-def test_fmu_paths_are_fmus_of_their_version():
+def test_fmu_paths_are_the_four_units_for_both_versions():
+    """The package ships every unit the build makes (the inverse unit, the plant, the controller,
+    the scene player), for FMI 2.0 and 3.0, each one the model its name says."""
     import fmpy
-    for version, path in stewart.fmu_paths().items():
-        assert zipfile.is_zipfile(path)
-        assert fmpy.read_model_description(str(path)).fmiVersion == version
+    paths = stewart.fmu_paths()
+    assert set(paths) == {"StewartPlatform", "StewartPlant", "StewartController", "StewartScene"}
+    for model, by_version in paths.items():
+        assert set(by_version) == {"2.0", "3.0"}
+        for version, path in by_version.items():
+            assert zipfile.is_zipfile(path)
+            md = fmpy.read_model_description(str(path))
+            assert (md.fmiVersion, md.modelName) == (version, model)
+            assert stewart.fmu_path(version, model) == path
     with pytest.raises(ValueError, match="1.0"):
         stewart.fmu_path("1.0")
+    with pytest.raises(ValueError, match="StewartPlnt"):
+        stewart.fmu_path("2.0", "StewartPlnt")
 
 
 def test_lengths_against_numpy_closed_form_with_changed_geometry():
