@@ -49,11 +49,11 @@ class Platform:
         return (_rebuild, (self._params,))
 
     def inverse(self, poses, rates=None, accels=None,
-              fidelity: Union[Fidelity, int, str] = Fidelity.MASSLESS, *,
-              tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
-              modified_newton: Optional[bool] = None, warn_condition: Optional[float] = None,
-              singular_condition: Optional[float] = None, max_messages: int = 100,
-              out: Optional[InverseSolution] = None) -> InverseSolution:
+                fidelity: Union[Fidelity, int, str] = Fidelity.MASSLESS, *,
+                tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
+                modified_newton: Optional[bool] = None, warn_condition: Optional[float] = None,
+                singular_condition: Optional[float] = None, max_messages: int = 100,
+                out: Optional[InverseSolution] = None) -> InverseSolution:
         """Inverse kinematics and dynamics of N poses in one call into the library.
 
         poses, rates, accels: (N, 6) arrays of (x, y, z [m], roll, pitch, yaw [rad]) and their

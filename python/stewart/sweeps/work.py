@@ -101,7 +101,7 @@ def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
     s = next(x for x in spec["slices"] if x["name"] == chunk.part)
     index, q = slice_poses(s, chunk.start, chunk.stop)
     sol = Platform(**spec["platform"]).inverse(q, fidelity=spec["fidelity"],
-                                             max_messages=len(q), **spec["options"])
+                                               max_messages=len(q), **spec["options"])
     reachable = sol.ok & ((sol.warnings & 1) == 0)
     columns = {"slice": pa.array([s["name"]] * len(q)).dictionary_encode(),
                "row": np.arange(chunk.start, chunk.stop)}
