@@ -1,5 +1,5 @@
 """Platform.forward: the inverse closed form's lengths read back to the poses (scenes.py computes
-the poses, Platform.solve the lengths), the same numbers as `stewart-solve --forward`, and the
+the poses, Platform.inverse the lengths), the same numbers as `stewart-solve --forward`, and the
 documented per-row statuses (another assembly mode, lengths no pose has, bad arguments)."""
 import math
 
@@ -29,7 +29,7 @@ def manoeuvre(name, duration=2.0, dt=0.01):
 
 
 @pytest.mark.parametrize("name", MANOEUVRES)
-def test_forward_of_solve_gives_back_the_manoeuvre(platform, name):
+def test_forward_of_inverse_gives_back_the_manoeuvre(platform, name):
     t, q, qd, qdd = manoeuvre(name)
     legs = platform.inverse(q, qd, qdd, fidelity="kinematic")
     assert legs.ok.all()
@@ -42,7 +42,7 @@ def test_forward_of_solve_gives_back_the_manoeuvre(platform, name):
     assert (fw.branch == 0).all() and (fw.residual <= 1e-12).all()
 
 
-def test_forward_of_solve_gives_back_random_workspace_poses(platform):
+def test_forward_of_inverse_gives_back_random_workspace_poses(platform):
     rng = np.random.default_rng(7)
     n = 200
     q = np.column_stack([rng.uniform(-0.08, 0.08, n), rng.uniform(-0.08, 0.08, n),
