@@ -5,7 +5,7 @@ usage: sweep.py SPEC.json OUT_DIR [--workers N] [--scheduler ADDRESS] [--no-prog
 
 With no --scheduler it starts a LocalCluster of N worker processes (default: one per core) on
 this machine; with one (tcp://host:8786, as `dask scheduler` prints) it uses that cluster's
-workers. A bad spec fails before any work, naming the field. Run again on the same OUT_DIR, it
+workers. A bad spec or OUT_DIR fails before any work (exit 2), naming the field. Run again on the same OUT_DIR, it
 computes only the chunks that are missing. docs/sweeps.md has the spec format.
 """
 import argparse
@@ -33,7 +33,7 @@ def main() -> int:
                       scheduler=args.scheduler, progress=not args.no_progress,
                       log=lambda m: print(m, file=sys.stderr))
     except SpecError as e:
-        print(f"sweep.py: bad spec: {e}", file=sys.stderr)
+        print(f"sweep.py: {e}", file=sys.stderr)  # names the field, or OUT_DIR
         return 2
     except RuntimeError as e:
         print(f"sweep.py: {e}", file=sys.stderr)

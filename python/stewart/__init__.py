@@ -2,20 +2,23 @@
 
 >>> import numpy as np, stewart
 >>> platform = stewart.Platform(payload_mass=50)
->>> sol = platform.solve(np.array([[0, 0, 0.5, 0, 0, 0]]), fidelity="massless")
+>>> sol = platform.inverse(np.array([[0, 0, 0.5, 0, 0, 0]]), fidelity="massless")
 >>> sol.length.shape
 (1, 6)
 
-``Platform.forward`` (lengths to poses) and ``Platform.simulate`` (forces to motion) return
-ForwardSolution and Simulation in the same way.
+One direction per method and module: ``Platform.inverse`` (poses to lengths and forces,
+inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.simulate``
+(forces to motion, simulate.py) return InverseSolution, ForwardSolution and Simulation.
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
+from .choices import Fidelity
 from .errors import ParameterError
-from .fmus import FMI_VERSIONS, fmu_path, fmu_paths
+from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths
 from .forward import ForwardSolution
+from .inverse import InverseSolution
 from .params import parameters
-from .platform import Fidelity, Platform, Solution
+from .platform import Platform
 from .simulate import Method, Simulation
 
 try:
@@ -23,5 +26,6 @@ try:
 except PackageNotFoundError:  # imported from a source tree, not installed
     __version__ = "unknown"
 
-__all__ = ["Platform", "Solution", "ForwardSolution", "Simulation", "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths",
-           "FMI_VERSIONS", "parameters", "__version__"]
+__all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Fidelity", "Method",
+           "ParameterError", "fmu_path", "fmu_paths", "FMI_VERSIONS", "FMU_NAMES", "parameters",
+           "__version__"]

@@ -12,7 +12,7 @@ LEG_LAYOUT = "legs 1..6 per row"
 def rows6(name: str, value, n: Optional[int], first: str, layout: str) -> np.ndarray:
     """value as a C-contiguous float64 (n, 6) array (a single row of 6 values is one row), or
     ValueError naming it; first names the argument that set n."""
-    a = np.ascontiguousarray(value, dtype=np.float64)
+    a = floats(name, value)
     if a.ndim == 1 and a.shape[0] == 6:
         a = a.reshape(1, 6)
     if a.ndim != 2 or a.shape[1] != 6:
@@ -24,7 +24,7 @@ def rows6(name: str, value, n: Optional[int], first: str, layout: str) -> np.nda
 
 def vector(name: str, value, size: int) -> np.ndarray:
     """value as a C-contiguous float64 array of size finite values, or ValueError naming it."""
-    a = np.ascontiguousarray(value, dtype=np.float64).reshape(-1)
+    a = floats(name, value).reshape(-1)
     if a.shape[0] != size:
         raise ValueError(f"{name} has {a.shape[0]} values: it must have {size}")
     if not np.all(np.isfinite(a)):
@@ -35,7 +35,7 @@ def vector(name: str, value, size: int) -> np.ndarray:
 def times(name: str, value, n: Optional[int]) -> np.ndarray:
     """value as (n,) float64 times, finite and increasing (n None: any length), or ValueError
     naming the first bad entry and its value."""
-    t = np.ascontiguousarray(value, dtype=np.float64)
+    t = floats(name, value)
     if t.ndim != 1 or (n is not None and t.shape[0] != n):
         rows = "N" if n is None else n
         raise ValueError(f"{name} has shape {t.shape}: it must be ({rows},), one time per row")
@@ -48,3 +48,17 @@ def times(name: str, value, n: Optional[int]) -> np.ndarray:
         raise ValueError(f"{name}[{j}] = {float(t[j])!r} does not increase "
                          f"(t[{j - 1}] = {float(t[j - 1])!r})")
     return t
+
+
+def floats(name: str, value) -> np.ndarray:
+    """value as a C-contiguous float64 array, or ValueError naming it when a value is not a
+    number (a string, None, a ragged list)."""
+    try:
+        return np.ascontiguousarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"{name} has a value that is not a number ({e}): {_short(value)}") from None
+
+
+def _short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."

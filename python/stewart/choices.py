@@ -26,3 +26,11 @@ class Choice(enum.IntEnum):
         except (ValueError, TypeError):
             numbers = ", ".join(f"{m.value} ({m.name.lower()})" for m in cls)
             raise ParameterError(f"{argument} = {value!r} must be one of {numbers}") from None
+
+
+class Fidelity(Choice):
+    """The library's fidelity levels (stewart_fidelity); Fidelity.of takes a member, its number
+    or its name ("kinematic", "massless", "full")."""
+    KINEMATIC = 0  #: lengths, rates, accelerations; forces zero
+    MASSLESS = 1   #: plus forces, legs as massless two-force members
+    FULL = 2       #: the 14-body constraint-and-multiplier model

@@ -1,24 +1,30 @@
-"""The FMI co-simulation units built with the library, shipped inside the package."""
+"""The FMI co-simulation units built with the library, shipped inside the package: the inverse
+unit StewartPlatform, the plant StewartPlant, the controller StewartController and the scene
+player StewartScene, each for FMI 2.0 and 3.0."""
 from __future__ import annotations
 
 import pathlib
 
 FMI_VERSIONS = ("2.0", "3.0")
+FMU_NAMES = ("StewartPlatform", "StewartPlant", "StewartController", "StewartScene")
 _HERE = pathlib.Path(__file__).resolve().parent
 
 
-def fmu_path(version: str = "2.0") -> pathlib.Path:
-    """Path of the installed StewartPlatform.fmu for FMI `version` ("2.0" or "3.0"), e.g. for
-    ``fmpy.simulate_fmu(stewart.fmu_path("3.0"), ...)``. Raises FileNotFoundError if this install
-    has no such unit, ValueError for an unknown version."""
+def fmu_path(version: str = "2.0", model: str = "StewartPlatform") -> pathlib.Path:
+    """Path of the installed FMU `model` (one of FMU_NAMES; default the inverse unit) for FMI
+    `version` ("2.0" or "3.0"), e.g. for ``fmpy.simulate_fmu(stewart.fmu_path("3.0"), ...)``.
+    Raises FileNotFoundError if this install has no such unit, ValueError for an unknown version
+    or model."""
     if version not in FMI_VERSIONS:
-        raise ValueError(f"version = {version!r}: the FMU exists for FMI {', '.join(FMI_VERSIONS)}")
-    path = _HERE / "fmus" / version / "StewartPlatform.fmu"
+        raise ValueError(f"version = {version!r}: the FMUs exist for FMI {', '.join(FMI_VERSIONS)}")
+    if model not in FMU_NAMES:
+        raise ValueError(f"model = {model!r}: the package ships {', '.join(FMU_NAMES)}")
+    path = _HERE / "fmus" / version / f"{model}.fmu"
     if not path.is_file():
         raise FileNotFoundError(f"{path} is missing: reinstall the package (pip install .)")
     return path
 
 
-def fmu_paths() -> dict[str, pathlib.Path]:
-    """{FMI version: path} of both installed units."""
-    return {v: fmu_path(v) for v in FMI_VERSIONS}
+def fmu_paths() -> dict[str, dict[str, pathlib.Path]]:
+    """{model: {FMI version: path}} of every installed unit (FMU_NAMES x FMI_VERSIONS)."""
+    return {m: {v: fmu_path(v, m) for v in FMI_VERSIONS} for m in FMU_NAMES}

@@ -40,7 +40,10 @@ def parameter_assignments(params: Mapping[str, ParameterValue]) -> list[tuple[st
     counts = {p["name"]: p["count"] for p in _table()}
     assignments: list[tuple[str, float]] = []
     for name, value in params.items():
-        values = np.asarray(value, dtype=float)
+        try:
+            values = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            raise ParameterError(f"{name} = {value!r} is not a number") from None
         count = counts.get(name)
         if count is None:  # an unknown name, or one element ("base_angle[2]") by its own name
             known, message = _core.parameter_known(name)
@@ -57,3 +60,17 @@ def parameter_assignments(params: Mapping[str, ParameterValue]) -> list[tuple[st
                                  f"one per element {name}[1]..{name}[{count}]")
         assignments.extend((f"{name}[{k}]", float(v)) for k, v in enumerate(values, start=1))
     return assignments
+
+
+def option_values(**options: Any) -> list[tuple[str, float]]:
+    """(name, value) pairs of the options given (None: the library's default), or ParameterError
+    naming an option whose value is not a number."""
+    pairs = []
+    for name, value in options.items():
+        if value is None:
+            continue
+        try:
+            pairs.append((name, float(value)))
+        except (TypeError, ValueError):
+            raise ParameterError(f"{name} = {value!r} is not a number") from None
+    return pairs

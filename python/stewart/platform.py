@@ -1,56 +1,20 @@
-"""Platform: one Stewart platform (the library's model) and its batch solve on numpy arrays."""
+"""Platform: one Stewart platform (the library's model), the façade of the three directions on
+numpy arrays: inverse (inverse.py), forward (forward.py), simulate (simulate.py)."""
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Optional, Union
 
 import numpy as np
 
 from . import _core
 from .arrays import LEG_LAYOUT, POSE_LAYOUT, rows6, times, vector
-from .choices import Choice
+from .choices import Fidelity
 from .errors import ParameterError
 from .forward import ForwardSolution, run_forward
-from .params import ParameterValue, parameter_assignments
-from .results import RowStatus
+from .inverse import InverseSolution, run_inverse
+from .params import ParameterValue, option_values, parameter_assignments
 from .simulate import Method, Simulation, run_simulate
-
-
-class Fidelity(Choice):
-    """The library's fidelity levels (stewart_fidelity); Fidelity.of takes a member, its number
-    or its name ("kinematic", "massless", "full")."""
-    KINEMATIC = 0  #: lengths, rates, accelerations; forces zero
-    MASSLESS = 1   #: plus forces, legs as massless two-force members
-    FULL = 2       #: the 14-body constraint-and-multiplier model
-
-
-@dataclass
-class Solution(RowStatus):
-    """The result of Platform.solve for N poses: arrays of N rows (legs in the library's order).
-
-    A row whose status is not 0 failed (see status_name and messages) and holds zeros; the other
-    rows are solved as if it were not there."""
-    length: np.ndarray        #: (N, 6) actuator lengths L_k [m]
-    length_rate: np.ndarray   #: (N, 6) dL_k/dt [m/s]
-    length_accel: np.ndarray  #: (N, 6) d2L_k/dt2 [m/s^2]
-    force: np.ndarray         #: (N, 6) actuator forces F_k [N], > 0 pushes the platform away
-    condition: np.ndarray     #: (N,) leg Jacobian condition number (0 at the kinematic level)
-    residual: np.ndarray      #: (N,) constraint residual after the solve [m]
-    base_force: np.ndarray    #: (N, 3) force the legs put on the base, world frame [N]
-    base_torque: np.ndarray   #: (N, 3) its torque about the world origin [N m]
-    iterations: np.ndarray    #: (N,) Newton iterations (full level)
-    warnings: np.ndarray      #: (N,) STEWART_WARN_* bits: 1 stroke limit, 2 near singular
-    status: np.ndarray        #: (N,) stewart_status per row: 0 solved, < 0 failed
-    messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
-
-    @property
-    def power(self) -> np.ndarray:
-        """(N,) actuator power sum_k F_k dL_k/dt [W], summed over legs in order 1..6."""
-        p = self.force[:, 0] * self.length_rate[:, 0]
-        for k in range(1, 6):
-            p = p + self.force[:, k] * self.length_rate[:, k]
-        return p
 
 
 class Platform:
@@ -84,12 +48,12 @@ class Platform:
     def __reduce__(self):
         return (_rebuild, (self._params,))
 
-    def solve(self, poses, rates=None, accels=None,
-              fidelity: Union[Fidelity, int, str] = Fidelity.MASSLESS, *,
-              tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
-              modified_newton: Optional[bool] = None, warn_condition: Optional[float] = None,
-              singular_condition: Optional[float] = None, max_messages: int = 100,
-              out: Optional[Solution] = None) -> Solution:
+    def inverse(self, poses, rates=None, accels=None,
+                fidelity: Union[Fidelity, int, str] = Fidelity.MASSLESS, *,
+                tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
+                modified_newton: Optional[bool] = None, warn_condition: Optional[float] = None,
+                singular_condition: Optional[float] = None, max_messages: int = 100,
+                out: Optional[InverseSolution] = None) -> InverseSolution:
         """Inverse kinematics and dynamics of N poses in one call into the library.
 
         poses, rates, accels: (N, 6) arrays of (x, y, z [m], roll, pitch, yaw [rad]) and their
@@ -99,35 +63,24 @@ class Platform:
         numbers bit for bit. A row that fails (non-finite value, unreachable or singular pose,
         no convergence) gets its status and, for the first max_messages failing rows, a message;
         the other rows are still solved. Bad options raise ParameterError. Options left None keep
-        the library's defaults (stewart_options_default). out: a Solution of as many rows to
-        write into (its arrays are reused, which saves allocating and first-touching fresh
-        memory in a loop of equal batches); it is returned."""
+        the library's defaults (stewart_options_default). out: an InverseSolution of as many rows
+        to write into (its arrays are reused, which saves allocating and first-touching fresh
+        memory in a loop of equal batches); it is returned. Its arrays must be the ones a new
+        result has (dtype, shape, C order): any other raises ValueError naming it, since the
+        library would write into a converted copy. Ctrl-C stops a kinematic or massless batch
+        within about a slice of rows (inverse.SLICE_ROWS): KeyboardInterrupt, with the rows
+        solved so far valid in out (its rows_done says how many)."""
         level = Fidelity.of(fidelity)
         q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
         n = q.shape[0]
         q_dot = None if rates is None else rows6("rates", rates, n, "poses", POSE_LAYOUT)
         q_ddot = None if accels is None else rows6("accels", accels, n, "poses", POSE_LAYOUT)
-        options = [("fidelity", float(level))]
-        for name, value in (("tolerance", tolerance), ("max_iterations", max_iterations),
-                            ("modified_newton", modified_newton),
-                            ("warn_condition", warn_condition),
-                            ("singular_condition", singular_condition)):
-            if value is not None:
-                options.append((name, float(value)))
+        options = [("fidelity", float(level))] + option_values(
+            tolerance=tolerance, max_iterations=max_iterations, modified_newton=modified_newton,
+            warn_condition=warn_condition, singular_condition=singular_condition)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
-        if out is not None and len(out) != n:
-            raise ValueError(f"out has {len(out)} rows but poses has {n}")
-        out = out if out is not None else _empty_solution(n)
-        try:
-            _, _, _, kept = self._model.solve(
-                q, q_dot, q_ddot, options, out.length, out.length_rate, out.length_accel,
-                out.force, out.condition, out.residual, out.base_force, out.base_torque,
-                out.iterations, out.warnings, out.status, min(max_messages, n))
-        except ValueError as e:
-            raise ParameterError(str(e)) from None
-        out.messages = dict(kept)
-        return out
+        return run_inverse(self._model, q, q_dot, q_ddot, level, options, max_messages, out)
 
     def forward(self, lengths, rates=None, accels=None, guess=None, *, t=None,
                 tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
@@ -159,10 +112,9 @@ class Platform:
         time = None if t is None else times("t", t, n)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
-        options = [(name, float(value)) for name, value in (
-            ("tolerance", tolerance), ("max_iterations", max_iterations),
-            ("warn_condition", warn_condition), ("singular_condition", singular_condition))
-            if value is not None]
+        options = option_values(tolerance=tolerance, max_iterations=max_iterations,
+                                warn_condition=warn_condition,
+                                singular_condition=singular_condition)
         return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages)
 
     def simulate(self, t, forces, fidelity: Union[Fidelity, int, str] = Fidelity.FULL,
@@ -196,22 +148,10 @@ class Platform:
         options = [("fidelity", float(level))]
         if method is not None:
             options.append(("method", float(Method.of(method))))
-        for name, value in (("relative_tolerance", relative_tolerance),
-                            ("absolute_tolerance", absolute_tolerance),
-                            ("max_internal_steps", max_internal_steps)):
-            if value is not None:
-                options.append((name, float(value)))
+        options += option_values(relative_tolerance=relative_tolerance,
+                                 absolute_tolerance=absolute_tolerance,
+                                 max_internal_steps=max_internal_steps)
         return run_simulate(self._model, time, F, q0, q0_dot, options)
-
-
-def _empty_solution(n: int) -> Solution:
-    """A Solution of n rows, uninitialised (the batch writes every row)."""
-    return Solution(
-        length=np.empty((n, 6)), length_rate=np.empty((n, 6)), length_accel=np.empty((n, 6)),
-        force=np.empty((n, 6)), condition=np.empty(n), residual=np.empty(n),
-        base_force=np.empty((n, 3)), base_torque=np.empty((n, 3)),
-        iterations=np.empty(n, dtype=np.int32), warnings=np.empty(n, dtype=np.int32),
-        status=np.empty(n, dtype=np.int32))
 
 
 def _rebuild(params: dict) -> Platform:

@@ -1,5 +1,5 @@
 """Platform.forward: the inverse closed form's lengths read back to the poses (scenes.py computes
-the poses, Platform.solve the lengths), the same numbers as `stewart-solve --forward`, and the
+the poses, Platform.inverse the lengths), the same numbers as `stewart-solve --forward`, and the
 documented per-row statuses (another assembly mode, lengths no pose has, bad arguments)."""
 import math
 
@@ -29,9 +29,9 @@ def manoeuvre(name, duration=2.0, dt=0.01):
 
 
 @pytest.mark.parametrize("name", MANOEUVRES)
-def test_forward_of_solve_gives_back_the_manoeuvre(platform, name):
+def test_forward_of_inverse_gives_back_the_manoeuvre(platform, name):
     t, q, qd, qdd = manoeuvre(name)
-    legs = platform.solve(q, qd, qdd, fidelity="kinematic")
+    legs = platform.inverse(q, qd, qdd, fidelity="kinematic")
     assert legs.ok.all()
     fw = platform.forward(legs.length, legs.length_rate, legs.length_accel, t=t)
     assert fw.ok.all(), fw.messages
@@ -42,12 +42,12 @@ def test_forward_of_solve_gives_back_the_manoeuvre(platform, name):
     assert (fw.branch == 0).all() and (fw.residual <= 1e-12).all()
 
 
-def test_forward_of_solve_gives_back_random_workspace_poses(platform):
+def test_forward_of_inverse_gives_back_random_workspace_poses(platform):
     rng = np.random.default_rng(7)
     n = 200
     q = np.column_stack([rng.uniform(-0.08, 0.08, n), rng.uniform(-0.08, 0.08, n),
                          rng.uniform(0.42, 0.58, n), rng.uniform(-0.12, 0.12, (n, 3))])
-    legs = platform.solve(q, fidelity="kinematic")
+    legs = platform.inverse(q, fidelity="kinematic")
     # each pose on its own (a cold start from home) ...
     for j in range(0, n, 10):
         fw = platform.forward(legs.length[j])
@@ -65,7 +65,7 @@ def test_forward_of_solve_gives_back_random_workspace_poses(platform):
 
 def test_same_numbers_as_stewart_solve_forward(platform, solve, tmp_path):
     t, q, qd, qdd = manoeuvre("combined", duration=1.0)
-    legs = platform.solve(q, qd, fidelity="kinematic")
+    legs = platform.inverse(q, qd, fidelity="kinematic")
     in_csv, out_csv = tmp_path / "lengths.csv", tmp_path / "poses.csv"
     header = ["t"] + [f"L{k}" for k in range(1, 7)] + [f"L_dot{k}" for k in range(1, 7)]
     rows = np.column_stack([t, legs.length, legs.length_rate])
@@ -103,7 +103,7 @@ def test_another_assembly_mode_is_a_row_status_not_an_answer(platform):
 
 def test_lengths_no_pose_has_and_bad_values_are_row_statuses(platform):
     _, q, _, _ = manoeuvre("combined", duration=0.5)
-    L = platform.solve(q, fidelity="kinematic").length.copy()
+    L = platform.inverse(q, fidelity="kinematic").length.copy()
     L[10, 4] = 3.0       # leg 5 three metres long: no pose has it
     L[20, 2] = np.nan    # not a number
     fw = platform.forward(L)

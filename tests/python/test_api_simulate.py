@@ -39,7 +39,7 @@ def test_free_fall_is_the_closed_form(platform):
 def test_same_numbers_as_stewart_simulate(platform, build_dir, tmp_path, fidelity):
     import subprocess
     t, q, qd, qdd = manoeuvre("combined", duration=0.3, dt=0.005)
-    forces = platform.solve(q, qd, qdd, fidelity=fidelity).force
+    forces = platform.inverse(q, qd, qdd, fidelity=fidelity).force
     write_forces(tmp_path / "in.csv", t, forces)
     start = q[0] + [0.001, 0, 0, 0, 0, 0]
     args = []
@@ -70,7 +70,7 @@ def test_forces_of_the_inverse_side_give_back_the_manoeuvre(platform, fidelity):
     """docs/forward-dynamics.md: forces linear between samples reproduce the cue to 1.4e-7 at
     0.25 ms samples over 1 s (required there: 1e-6)."""
     t, q, qd, qdd = manoeuvre("combined", duration=1.0, dt=2.5e-4)
-    inverse = platform.solve(q, qd, qdd, fidelity=fidelity)
+    inverse = platform.inverse(q, qd, qdd, fidelity=fidelity)
     assert inverse.ok.all()
     sim = platform.simulate(t, inverse.force, fidelity, start=q[0], start_rate=qd[0],
                             relative_tolerance=1e-12, absolute_tolerance=1e-14)

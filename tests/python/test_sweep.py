@@ -173,7 +173,7 @@ def test_workspace_values_at_sample_points_equal_direct_calls(workspace_run):
     t = _table(workspace_run, "workspace_xy.parquet")
     rows = rng.choice(len(t["x"]), 40, replace=False)
     q = np.column_stack([t[c][rows] for c in POSE])
-    sol = stewart.Platform(**WORKSPACE["platform"]).solve(q, fidelity="massless")
+    sol = stewart.Platform(**WORKSPACE["platform"]).inverse(q, fidelity="massless")
     np.testing.assert_array_equal(t["status"][rows], sol.status)
     np.testing.assert_array_equal(t["condition"][rows], sol.condition)
     for k in range(6):
@@ -193,17 +193,80 @@ def test_workspace_values_at_sample_points_equal_direct_calls(workspace_run):
     ({"payloads": [1]}, ["unknown field 'payloads'"]),
     ({"manoeuvres": [{"scene": {"pose": {"z": 0.5}, "duration": 1, "step": 0.1}}]},
      ["manoeuvres[0].scene.pose.z = 0.5"]),
+    ({"duration": math.inf}, ["duration = inf", "> 0"]),
+    ({"step": 1e-300}, ["manoeuvres[0] (heave)", "step 1e-300 s", "memory"]),
+    ({"duration": 1e7, "step": 1e-3}, ["manoeuvres[0] (heave)", "duration 1e+07 s", "1e+10 poses", "memory"]),
+    ({"payload_mass": {"start": 0, "stop": 1, "num": 2e9}}, ["payload_mass.num", "2e+09 values", "memory"]),
+    ({"payload_mass": {"start": 0, "stop": 1, "num": 5.5}}, ["payload_mass.num = 5.5", "whole number"]),
+    ({"payload_mass": {"start": 0, "stop": 1, "num": "5"}}, ["payload_mass.num = '5'", "whole number"]),
+    ({"payload_mass": {"start": 0, "stop": 60, "num": 10**6}, "payload_com": [[0, 0, 0.1]] * 3000},
+     ["the envelope", "2.4e+10 cases", "memory"]),
+    ({"platform": {"stroke_max": "long"}}, ["platform", "stroke_max = 'long'", "not a number"]),
+    ({"manoeuvres": [{"scene": {"pose": {"z": {"mean": 0.5}}, "duration": math.inf, "step": 0.1}}]},
+     ["manoeuvres[0].scene.duration = inf"]),
+    ({"manoeuvres": [{"scene": "slider_crank"}]}, ["manoeuvres[0].scene = 'slider_crank'", "no pose"]),
 ])
 def test_bad_specs_fail_before_any_work_naming_the_field(tmp_path, change, words):
-    spec = {**ENVELOPE, **change}
+    _assert_refused(tmp_path, {**ENVELOPE, **change}, words)
+
+
+def _assert_refused(tmp_path, spec, words, out=None, scenes=SCENES):
+    """sweep.py exits 2 (no traceback) with every word in its message, and writes nothing."""
     path = tmp_path / "bad.json"
-    path.write_text(json.dumps(spec))
-    r = subprocess.run([sys.executable, str(ROOT / "scripts/sweep.py"), str(path), str(tmp_path / "out")],
-                       capture_output=True, text=True, timeout=60)
+    path.write_text(spec if isinstance(spec, str) else json.dumps(spec))
+    out = out or tmp_path / "out"
+    r = subprocess.run([sys.executable, str(ROOT / "scripts/sweep.py"), str(path), str(out),
+                        "--scenes", str(scenes)], capture_output=True, text=True, timeout=120)
     assert r.returncode == 2, r.stderr
+    assert "Traceback" not in r.stderr, r.stderr
     for w in words:
         assert w in r.stderr, r.stderr
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("text, words", [
+    ("{not json", ["manoeuvres[0].scene", "broken.json is not JSON"]),
+    ("[1, 2]", ["manoeuvres[0].scene", "holds a list"]),
+    ('{"pose": {"z": {"mean": 0.5}}, "duration": Infinity, "step": 0.01}', ["duration = inf"]),
+    ('{"pose": {"z": {"mean": 0.5}}, "duration": 1, "step": 0.01}', []),
+])
+def test_bad_scene_files_fail_naming_the_manoeuvre(tmp_path, text, words):
+    scenes = tmp_path / "scenes"
+    scenes.mkdir()
+    (scenes / "broken.json").write_text(text)
+    spec = {**ENVELOPE, "manoeuvres": [{"scene": "broken"}]}
+    if not words:  # a valid scene file: the spec resolves
+        assert resolve(spec, scenes)["manoeuvres"][0]["name"] == "broken"
+        return
+    _assert_refused(tmp_path, spec, words, scenes=scenes)
+
+
+def test_bad_spec_files_fail_naming_the_file(tmp_path):
+    _assert_refused(tmp_path, "{", ["bad.json", "Expecting property name"])
+    _assert_refused(tmp_path, "[]", ["the spec must be a JSON object"])
+
+
+def test_an_out_dir_that_cannot_be_made_fails_naming_it(tmp_path):
+    _assert_refused(tmp_path, ENVELOPE, ["OUT_DIR = /proc/stewart-sweep/out"],
+                    out=pathlib.Path("/proc/stewart-sweep/out"))
+    a_file = tmp_path / "a_file"
+    a_file.write_text("")
+    _assert_refused(tmp_path, ENVELOPE, [f"OUT_DIR = {a_file}"], out=a_file)
+    _assert_refused(tmp_path, ENVELOPE, [f"OUT_DIR = {a_file / 'below'}"], out=a_file / "below")
+
+
+def test_a_workspace_grid_larger_than_memory_is_refused_at_once(tmp_path):
+    """10^6 x 10^6 poses: refused before any work, saying how much memory it needs."""
+    huge = {"start": -0.1, "stop": 0.1, "num": 1000000}
+    spec = {**WORKSPACE, "slices": [{"name": "xy", "fixed": {"z": 0.5}, "axes": {"x": huge, "y": huge}}]}
+    _assert_refused(tmp_path, spec, ["slices[0] (xy: 1000000 x 1000000 grid)", "1e+12 poses", "memory"])
+    _assert_refused(tmp_path, {**WORKSPACE, "poses_per_chunk": 10**13}, ["poses_per_chunk", "memory"])
+
+
+def test_a_whole_number_written_as_a_float_is_a_count():
+    """JSON writers put 5.0 for 5: the same range."""
+    as_float = {**ENVELOPE, "payload_mass": {"start": 0, "stop": 60, "num": 2.0}}
+    assert resolve(as_float, SCENES) == resolve(ENVELOPE, SCENES)
 
 
 def test_workspace_spec_errors_name_the_slice_field():

@@ -81,14 +81,18 @@ def prepare(spec_path, out_dir, scene_dir) -> tuple[dict, pathlib.Path]:
     with spec.json and version.json; refuses an OUT_DIR that holds another spec's results."""
     spec = load(spec_path, scene_dir)
     out = pathlib.Path(out_dir)
-    (out / "chunks").mkdir(parents=True, exist_ok=True)
     spec_file = out / "spec.json"
     text = json.dumps(spec, indent=1, sort_keys=True)
-    if spec_file.exists() and spec_file.read_text() != text:
-        raise SpecError(f"{out} holds the results of a different spec ({spec_file}): "
-                        "use another OUT_DIR or delete it")
-    spec_file.write_text(text)
-    (out / "version.json").write_text(json.dumps(versions(), indent=1, sort_keys=True))
+    try:
+        (out / "chunks").mkdir(parents=True, exist_ok=True)
+        if spec_file.exists() and spec_file.read_text() != text:
+            raise SpecError(f"OUT_DIR = {out} holds the results of a different spec "
+                            f"({spec_file}): use another OUT_DIR or delete it")
+        spec_file.write_text(text)
+        (out / "version.json").write_text(json.dumps(versions(), indent=1, sort_keys=True))
+    except OSError as e:
+        raise SpecError(f"OUT_DIR = {out}: cannot write the results there: "
+                        f"{e.strerror or e} ({e.filename or out})") from None
     return spec, out
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import pathlib
 from dataclasses import dataclass
 from typing import Any
@@ -21,11 +22,19 @@ from typing import Any
 import numpy as np
 
 from ..errors import ParameterError
-from ..platform import Fidelity, Platform
+from .. import scenes
+from ..choices import Fidelity
+from ..platform import Platform
+from ..scenes import POSE
 
-POSE = ("x", "y", "z", "roll", "pitch", "yaw")
 SOLVER_OPTIONS = ("tolerance", "max_iterations", "modified_newton", "warn_condition",
                   "singular_condition")
+# Memory per item, rounded up, for the size checks before any work: a pose being solved (its
+# inputs and InverseSolution, about 420 bytes), a row of a merged result table (about 30
+# columns), a value of a range (a Python float in a list and its numpy source).
+BYTES_PER_POSE = 512
+BYTES_PER_ROW = 512
+BYTES_PER_VALUE = 48
 _COMMON = {"kind", "platform", "options", "fidelity", "title"}
 _FIELDS = {
     "envelope": _COMMON | {"payload_mass", "payload_com", "manoeuvres", "duration", "step",
@@ -35,7 +44,7 @@ _FIELDS = {
 
 
 class SpecError(ValueError):
-    """A sweep spec that cannot run: the message names the field and its value."""
+    """A sweep spec (or OUT_DIR) that cannot run: the message names the field and its value."""
 
 
 @dataclass(frozen=True)
@@ -55,7 +64,7 @@ def load(path: str | pathlib.Path, scene_dir: str | pathlib.Path) -> dict:
     """The spec in JSON file `path`, checked and resolved (see resolve)."""
     try:
         raw = json.loads(pathlib.Path(path).read_text())
-    except (OSError, json.JSONDecodeError) as e:
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
         raise SpecError(f"{path}: {e}") from None
     return resolve(raw, scene_dir)
 
@@ -90,6 +99,11 @@ def resolve(raw: Any, scene_dir: str | pathlib.Path) -> dict:
         if len(set(names)) != len(names):
             raise SpecError(f"slices: names {names} must differ")
         spec["poses_per_chunk"] = _positive_int(raw.get("poses_per_chunk", 65536), "poses_per_chunk")
+        for i, s in enumerate(spec["slices"]):
+            _fits(f"slices[{i}] ({s['name']}: "
+                  f"{' x '.join(str(len(v)) for v in s['axes'].values())} grid)",
+                  slice_size(s), BYTES_PER_ROW, "poses")
+        _fits("poses_per_chunk", spec["poses_per_chunk"], BYTES_PER_POSE, "poses per chunk")
     return spec
 
 
@@ -133,18 +147,30 @@ def _envelope(raw: dict, spec: dict, base: Platform, scene_dir: pathlib.Path) ->
         if c is None or c.shape != (3,) or not np.all(np.isfinite(c)):
             raise SpecError(f"payload_com[{i}] = {coms[i]!r} must be 3 finite numbers [m]")
         out["payload_com"].append(c.tolist())
-    for i, m in enumerate(out["payload_mass"]):
-        for j, c in enumerate(out["payload_com"]):
-            _platform(spec["platform"], {"payload_mass": m, "payload_com": c},
-                      f"payload_mass[{i}] = {m} with payload_com[{j}] = {c}")
     out["duration"] = _optional_positive(raw, "duration")
     out["step"] = _optional_positive(raw, "step")
     out["manoeuvres"] = [_manoeuvre(m, f"manoeuvres[{i}]", scene_dir) for i, m in
                          enumerate(_list(raw.get("manoeuvres"), "manoeuvres"))]
     out["cases_per_chunk"] = _positive_int(raw.get("cases_per_chunk", 8), "cases_per_chunk")
+    _check_envelope_size({**spec, **out})
+    for i, m in enumerate(out["payload_mass"]):
+        for j, c in enumerate(out["payload_com"]):
+            _platform(spec["platform"], {"payload_mass": m, "payload_com": c},
+                      f"payload_mass[{i}] = {m} with payload_com[{j}] = {c}")
     for i, m in enumerate(out["manoeuvres"]):
         _check_reachable(base, m, out, f"manoeuvres[{i}]")
     return out
+
+
+def _check_envelope_size(spec: dict) -> None:
+    """SpecError unless one case's trajectory and the table of all cases fit in memory."""
+    for i, m in enumerate(spec["manoeuvres"]):
+        samples = scenes.samples(m["scene"], spec["step"], spec["duration"]) + 1
+        where = (f"manoeuvres[{i}] ({m['name']}): duration {spec['duration'] or m['scene']['duration']:g} s "
+                 f"at step {spec['step'] or m['scene']['step']:g} s")
+        _fits(where, samples, BYTES_PER_POSE, "poses per case")
+    _fits("the envelope (payload_mass x payload_com x manoeuvres x fidelity)", case_count(spec),
+          BYTES_PER_ROW, "cases")
 
 
 def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
@@ -155,29 +181,21 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
     if unknown:
         raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: scene, amplitude, frequency)")
     scene = m["scene"]
-    if isinstance(scene, str):
-        path = scene_dir / f"{scene}.json"
-        if not path.is_file():
-            raise SpecError(f"{field}.scene = {scene!r}: there is no {path}")
-        name, scene = scene, json.loads(path.read_text())
-    elif isinstance(scene, dict):
-        name = str(scene.get("name", f"inline{field}"))
-    else:
-        raise SpecError(f"{field}.scene = {scene!r} must be a scene name or a scene object")
-    pose = scene.get("pose")
-    if not isinstance(pose, dict) or set(pose) - set(POSE):
-        raise SpecError(f"{field}.scene: pose = {pose!r} must map components of {POSE} to sinusoids")
-    for comp, s in pose.items():
-        if not isinstance(s, dict):
-            raise SpecError(f"{field}.scene.pose.{comp} = {s!r} must be an object (mean, "
-                            "amplitude, omega, phase)")
-        for key in ("mean", "amplitude", "omega", "phase"):
-            if not isinstance(s.get(key, 0.0), (int, float)) or not math.isfinite(s.get(key, 0.0)):
-                raise SpecError(f"{field}.scene.pose.{comp}.{key} = {s.get(key)!r} must be a finite number")
-    for key in ("duration", "step"):
-        if not (isinstance(scene.get(key), (int, float)) and scene[key] > 0):
-            raise SpecError(f"{field}.scene.{key} = {scene.get(key)!r} must be a number > 0")
-    return {"name": name, "scene": {"pose": pose, "duration": float(scene["duration"]),
+    try:
+        if isinstance(scene, str):
+            if not (scene_dir / f"{scene}.json").is_file():
+                raise SpecError(f"{field}.scene = {scene!r}: there is no {scene_dir / scene}.json")
+            name, scene = scene, scenes.load(scene, scene_dir)
+        elif isinstance(scene, dict):
+            name = str(scene.get("name", f"inline{field}"))
+            scenes.check(scene, f"{field}.scene")
+        else:
+            raise SpecError(f"{field}.scene = {scene!r} must be a scene name or a scene object")
+    except scenes.SceneError as e:
+        raise SpecError(f"{field}.scene: {e}" if isinstance(m["scene"], str) else str(e)) from None
+    if "pose" not in scene:
+        raise SpecError(f"{field}.scene = {name!r} has no pose (a mechanism scene cannot be swept)")
+    return {"name": name, "scene": {"pose": scene["pose"], "duration": float(scene["duration"]),
                                     "step": float(scene["step"])},
             "amplitude": _values(m.get("amplitude", [1.0]), f"{field}.amplitude"),
             "frequency": _values(m.get("frequency", [1.0]), f"{field}.frequency")}
@@ -186,11 +204,10 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
 def _check_reachable(base: Platform, m: dict, spec: dict, field: str) -> None:
     """Every variant of the manoeuvre stays within the stroke (lengths do not depend on the
     payload, so the kinematic level on the base platform decides)."""
-    from .work import manoeuvre_poses  # the same poses the workers will solve
     for a in m["amplitude"]:
         for f in m["frequency"]:
-            t, q, qd, qdd = manoeuvre_poses(m, a, f, spec["duration"], spec["step"])
-            sol = base.solve(q, qd, qdd, fidelity="kinematic", max_messages=1)
+            t, q, qd, qdd = scenes.sample(m["scene"], a, f, spec["duration"], spec["step"])
+            sol = base.inverse(q, qd, qdd, fidelity="kinematic", max_messages=1)
             bad = np.flatnonzero(~sol.ok | (sol.warnings & 1).astype(bool))
             if bad.size:
                 j = int(bad[0])
@@ -241,15 +258,35 @@ def _values(v: Any, field: str) -> list[float]:
         if unknown or not {"start", "stop", "num"} <= set(v):
             raise SpecError(f"{field} = {v!r}: a range needs exactly start, stop, num")
         num = v["num"]
-        if not isinstance(num, int) or num < 1:
-            raise SpecError(f"{field}.num = {num!r}: the range is empty (num must be an integer >= 1)")
+        whole = isinstance(num, (int, float)) and not isinstance(num, bool) and \
+            math.isfinite(num) and num == int(num)
+        if not whole:
+            raise SpecError(f"{field}.num = {num!r} must be a whole number >= 1 (how many values)")
+        if num < 1:
+            raise SpecError(f"{field}.num = {num!r}: the range is empty (num must be >= 1)")
         if not all(isinstance(v[k], (int, float)) and math.isfinite(v[k]) for k in ("start", "stop")):
             raise SpecError(f"{field} = {v!r}: start and stop must be finite numbers")
-        return np.linspace(v["start"], v["stop"], num).tolist()
+        _fits(f"{field}.num", num, BYTES_PER_VALUE, "values")
+        return np.linspace(v["start"], v["stop"], int(num)).tolist()
     values = _list(v, field)
     if not _is_numbers(values) or not all(math.isfinite(x) for x in values):
         raise SpecError(f"{field} = {v!r} must be finite numbers")
     return [float(x) for x in values]
+
+
+def memory_bytes() -> int:
+    """The machine's physical memory [bytes]."""
+    return os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+
+
+def _fits(field: str, count: float, bytes_each: int, what: str) -> None:
+    """SpecError naming field unless count items of bytes_each fit in the machine's memory
+    (checked before any work: a sweep that cannot fit would fail after hours, or swap)."""
+    need, have = count * bytes_each, memory_bytes()
+    if not need <= have:  # also refuses an infinite or NaN count
+        raise SpecError(f"{field}: {count:.3g} {what} need about {need / 1e9:.3g} GB "
+                        f"({bytes_each} bytes each), more than this machine's memory "
+                        f"({have / 1e9:.3g} GB)")
 
 
 def _list(v: Any, field: str) -> list:
@@ -303,7 +340,7 @@ def _options(raw: dict) -> dict:
 def _check_options(base: Platform, options: dict, levels: list[str]) -> None:
     for level in levels:
         try:
-            base.solve(np.zeros((0, 6)), fidelity=level, **options)
+            base.inverse(np.zeros((0, 6)), fidelity=level, **options)
         except (ParameterError, TypeError, ValueError) as e:
             raise SpecError(f"options: {e}") from None
 

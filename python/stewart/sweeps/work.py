@@ -10,29 +10,13 @@ import time
 import numpy as np
 import pyarrow as pa
 
-from ..platform import Platform, Solution
-from .spec import POSE, Chunk
+from .. import scenes
+from ..inverse import InverseSolution
+from ..platform import Platform
+from ..scenes import POSE
+from .spec import Chunk
 
 LEGS = range(1, 7)
-
-
-def manoeuvre_poses(m: dict, amplitude: float, frequency: float, duration: float | None,
-                    step: float | None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Times and exact pose, rate and acceleration (each (n, 6)) of a scene's sinusoids with every
-    amplitude scaled by `amplitude` and every omega by `frequency`, on the scene's time grid
-    (or duration/step when given)."""
-    scene = m["scene"]
-    dt = step or scene["step"]
-    t = np.arange(int(round((duration or scene["duration"]) / dt)) + 1) * dt
-    q, qd, qdd = (np.zeros((t.size, 6)) for _ in range(3))
-    for i, name in enumerate(POSE):
-        s = scene["pose"].get(name, {})
-        a, w = amplitude * s.get("amplitude", 0.0), frequency * s.get("omega", 0.0)
-        phase = w * t + s.get("phase", 0.0)
-        q[:, i] = s.get("mean", 0.0) + a * np.sin(phase)
-        qd[:, i] = a * w * np.cos(phase)
-        qdd[:, i] = -a * w * w * np.sin(phase)
-    return t, q, qd, qdd
 
 
 def envelope_cases(spec: dict):
@@ -50,7 +34,7 @@ ENVELOPE_METRICS = ([f"peak_force_{k}" for k in LEGS] +
                      "stroke_used", "max_condition", "min_inverse_condition", "peak_power"])
 
 
-def envelope_metrics(sol: Solution) -> list[float | None]:
+def envelope_metrics(sol: InverseSolution) -> list[float | None]:
     """Per case: peak |F_k| per leg [N], peak |dL/dt| [m/s] and |d2L/dt2| [m/s^2] over legs,
     shortest and longest length [m], stroke used (the largest length excursion of one leg [m]),
     largest condition number and its reciprocal (the smallest distance to a singularity, 0 at
@@ -78,8 +62,8 @@ def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
         if key not in platforms:
             platforms[key] = Platform(**spec["platform"], payload_mass=mass, payload_com=com)
         m = spec["manoeuvres"][i]
-        t, q, qd, qdd = manoeuvre_poses(m, a, f, spec["duration"], spec["step"])
-        sol = platforms[key].solve(q, qd, qdd, fidelity=level, max_messages=1, **spec["options"])
+        t, q, qd, qdd = scenes.sample(m["scene"], a, f, spec["duration"], spec["step"])
+        sol = platforms[key].inverse(q, qd, qdd, fidelity=level, max_messages=1, **spec["options"])
         poses += len(t)
         failed = np.flatnonzero(~sol.ok)
         if failed.size:
@@ -116,8 +100,8 @@ def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
     started = time.perf_counter()
     s = next(x for x in spec["slices"] if x["name"] == chunk.part)
     index, q = slice_poses(s, chunk.start, chunk.stop)
-    sol = Platform(**spec["platform"]).solve(q, fidelity=spec["fidelity"],
-                                             max_messages=len(q), **spec["options"])
+    sol = Platform(**spec["platform"]).inverse(q, fidelity=spec["fidelity"],
+                                               max_messages=len(q), **spec["options"])
     reachable = sol.ok & ((sol.warnings & 1) == 0)
     columns = {"slice": pa.array([s["name"]] * len(q)).dictionary_encode(),
                "row": np.arange(chunk.start, chunk.stop)}

@@ -19,24 +19,26 @@ call is included).
 Writes out/speed_accuracy.csv, docs/speed-accuracy-data.md and docs/speed-accuracy.png
 (docs/speed-accuracy.md says what the numbers mean for a user).
 
-usage: speed_accuracy.py [--scene combined] [--duration 6] [--quick] [--plant-only]
+usage: studies/speed_accuracy.py [--scene combined] [--duration 6] [--quick] [--plant-only]
 """
 import argparse
 import csv
 import pathlib
 import subprocess
+import sys
 import tempfile
 import time
 
 import numpy as np
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "scripts"))  # the user scripts this study drives
 
 import plots  # noqa: F401  (sets the Agg backend)
 import matplotlib.pyplot as plt  # noqa: E402
 import closed_loop  # noqa: E402
 import run_scene  # noqa: E402
 import scenes  # noqa: E402
-
-ROOT = pathlib.Path(__file__).resolve().parents[1]
 BUILD = ROOT / "build"
 FMU_SO = BUILD / "fmu/StewartPlatform/stage2/binaries/linux64/StewartPlatform.so"
 FMU = BUILD / "fmus/2.0/StewartPlatform.fmu"
@@ -261,7 +263,7 @@ def plant_report(rows, notes, scene):
                f"atol 1e-15, at {PLANT_SAMPLE * 1e3:g} ms steps, under the forces as sampled for the "
                f"`step` rows, under the run's own signal (linear between its 1 ms samples) for the "
                f"`method/tolerance` rows; {'; '.join(notes)}. Failed runs: nan. "
-               f"Written by `scripts/speed_accuracy.py` (what the numbers mean: "
+               f"Written by `studies/speed_accuracy.py` (what the numbers mean: "
                f"speed-accuracy.md).\n\n" + "\n".join(lines) + "\n")
     path = ROOT / "docs" / "speed-accuracy-data.md"
     text = path.read_text() if path.exists() else ""
@@ -383,7 +385,7 @@ def write_report(rows, scene, args):
                      f"{fmpy_us} | {r['iterations']:.2f} | {r['length_error_m']:.2e} | {forces} |")
     (docs / "speed-accuracy-data.md").write_text(
         f"# Speed–accuracy measurements\n\nScene `{scene['name']}`, {args.duration:g} s, written by "
-        f"`scripts/speed_accuracy.py` (what the numbers mean: speed-accuracy.md).\n\n"
+        f"`studies/speed_accuracy.py` (what the numbers mean: speed-accuracy.md).\n\n"
         f"![Pareto chart](speed-accuracy.png)\n\n" + "\n".join(lines) + "\n")
 
 

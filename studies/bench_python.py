@@ -3,7 +3,7 @@
 
 usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
 
-1. Batch throughput of stewart.Platform.solve per fidelity on a batch of 12001 poses (the yaw
+1. Batch throughput of stewart.Platform.inverse per fidelity on a batch of 12001 poses (the yaw
    manoeuvre that build/bench-closed-form and build/bench-full time), median of repeated calls,
    against those C benchmarks run in the same invocation.
 2. Sweeps of >= 1e6 poses through scripts/sweep.py's engine on a LocalCluster of 1 and 2
@@ -27,33 +27,30 @@ import time
 import numpy as np
 
 import stewart
+from stewart import scenes
 from stewart.sweeps import run
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 def yaw_batch(n):
-    t = np.linspace(0.0, 12.0, n)
-    a, w = np.pi / 18, 5.0
-    q, qd, qdd = (np.zeros((n, 6)) for _ in range(3))
-    q[:, 2] = 0.5
-    q[:, 5], qd[:, 5], qdd[:, 5] = a * np.sin(w * t), a * w * np.cos(w * t), -a * w * w * np.sin(w * t)
-    return q, qd, qdd
+    """The yaw scene (scenes/yaw.json) at n times over 12 s: pose, rates, accelerations."""
+    return scenes.pose(scenes.load("yaw", ROOT / "scenes"), np.linspace(0.0, 12.0, n))
 
 
 def python_ns_per_pose(level, n, repeats):
-    """Median ns per pose of solve() with fresh result arrays, and writing into one reused
-    Solution (out=), calls of both kinds interleaved."""
+    """Median ns per pose of inverse() with fresh result arrays, and writing into one reused
+    InverseSolution (out=), calls of both kinds interleaved."""
     platform = stewart.Platform()
     q, qd, qdd = yaw_batch(n)
-    reused = platform.solve(q, qd, qdd, fidelity=level)
+    reused = platform.inverse(q, qd, qdd, fidelity=level)
     fresh_times, reused_times = [], []
     for _ in range(repeats):
         start = time.perf_counter()
-        sol = platform.solve(q, qd, qdd, fidelity=level)
+        sol = platform.inverse(q, qd, qdd, fidelity=level)
         fresh_times.append(time.perf_counter() - start)
         start = time.perf_counter()
-        platform.solve(q, qd, qdd, fidelity=level, out=reused)
+        platform.inverse(q, qd, qdd, fidelity=level, out=reused)
         reused_times.append(time.perf_counter() - start)
         assert sol.ok.all() and reused.ok.all()
     return [statistics.median(t) / n * 1e9 for t in (fresh_times, reused_times)]

@@ -1,0 +1,126 @@
+"""Inverse kinematics and dynamics on numpy arrays: poses to actuator lengths and forces
+(Platform.inverse)."""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from .choices import Fidelity
+from .errors import ParameterError
+from .results import RowStatus
+
+#: Rows per call into the library when rows are independent (kinematic and massless levels):
+#: Python handles signals (Ctrl-C) between calls, about every 10 ms of work.
+SLICE_ROWS = 8192
+
+
+@dataclass
+class InverseSolution(RowStatus):
+    """The result of Platform.inverse for N poses: arrays of N rows (legs in the library's order).
+
+    A row whose status is not 0 failed (see status_name and messages) and holds zeros; the other
+    rows are solved as if it were not there."""
+    length: np.ndarray        #: (N, 6) actuator lengths L_k [m]
+    length_rate: np.ndarray   #: (N, 6) dL_k/dt [m/s]
+    length_accel: np.ndarray  #: (N, 6) d2L_k/dt2 [m/s^2]
+    force: np.ndarray         #: (N, 6) actuator forces F_k [N], > 0 pushes the platform away
+    condition: np.ndarray     #: (N,) leg Jacobian condition number (0 at the kinematic level)
+    residual: np.ndarray      #: (N,) constraint residual after the solve [m]
+    base_force: np.ndarray    #: (N, 3) force the legs put on the base, world frame [N]
+    base_torque: np.ndarray   #: (N, 3) its torque about the world origin [N m]
+    iterations: np.ndarray    #: (N,) Newton iterations (full level)
+    warnings: np.ndarray      #: (N,) STEWART_WARN_* bits: 1 stroke limit, 2 near singular
+    status: np.ndarray        #: (N,) stewart_status per row: 0 solved, < 0 failed
+    messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
+
+    @property
+    def power(self) -> np.ndarray:
+        """(N,) actuator power sum_k F_k dL_k/dt [W], summed over legs in order 1..6."""
+        p = self.force[:, 0] * self.length_rate[:, 0]
+        for k in range(1, 6):
+            p = p + self.force[:, k] * self.length_rate[:, k]
+        return p
+
+
+def empty_inverse_solution(n: int) -> InverseSolution:
+    """An InverseSolution of n rows, uninitialised (the batch writes every row)."""
+    return InverseSolution(
+        length=np.empty((n, 6)), length_rate=np.empty((n, 6)), length_accel=np.empty((n, 6)),
+        force=np.empty((n, 6)), condition=np.empty(n), residual=np.empty(n),
+        base_force=np.empty((n, 3)), base_torque=np.empty((n, 3)),
+        iterations=np.empty(n, dtype=np.int32), warnings=np.empty(n, dtype=np.int32),
+        status=np.empty(n, dtype=np.int32))
+
+
+def check_out(out: InverseSolution, n: int) -> None:
+    """ValueError naming the array unless every array of out is one the library writes in place:
+    n rows of the right width and dtype, C-contiguous, aligned, writeable. Anything else would be
+    converted into a temporary copy and the results lost."""
+    if not isinstance(out, InverseSolution):
+        raise ValueError(f"out is a {type(out).__name__}: it must be an InverseSolution")
+    rows = np.shape(out.status)[0] if np.ndim(out.status) else 0
+    if rows != n:
+        raise ValueError(f"out has {rows} rows but poses has {n}")
+    model = empty_inverse_solution(0)
+    for f in dataclasses.fields(InverseSolution):
+        want = getattr(model, f.name)
+        if not isinstance(want, np.ndarray):
+            continue
+        a = getattr(out, f.name)
+        shape = (n, *want.shape[1:])
+        if not isinstance(a, np.ndarray):
+            raise ValueError(f"out.{f.name} is a {type(a).__name__}: it must be a numpy array {shape}")
+        if a.dtype != want.dtype:
+            raise ValueError(f"out.{f.name} has dtype {a.dtype}: it must be {want.dtype} "
+                             "(results are written in place, never converted)")
+        if a.shape != shape:
+            raise ValueError(f"out.{f.name} has shape {a.shape}: it must be {shape}")
+        if not (a.flags.c_contiguous and a.flags.aligned):
+            raise ValueError(f"out.{f.name} is not C-contiguous (Fortran order, strides or a "
+                             "view): results are written in place, give a C-ordered array")
+        if not a.flags.writeable:
+            raise ValueError(f"out.{f.name} is read-only")
+
+
+def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optional[np.ndarray],
+                level: Fidelity, options: list, max_messages: int,
+                out: Optional[InverseSolution]) -> InverseSolution:
+    """The rows of q through the library into out (a new InverseSolution if None). Rows that are
+    independent (kinematic, massless) go in slices of SLICE_ROWS, so that Ctrl-C stops the batch
+    between slices (KeyboardInterrupt; out's rows before the slice under way are valid). At the
+    full level each pose starts from the previous solution, so the rows go in one call (a slice
+    would restart the solver and change the numbers). The KeyboardInterrupt's rows_done says
+    how many rows of out are solved. Bad options raise ParameterError."""
+    n = q.shape[0]
+    if out is None:
+        out = empty_inverse_solution(n)
+    else:
+        check_out(out, n)
+    step = max(n if level == Fidelity.FULL else SLICE_ROWS, 1)
+    out.messages = {}
+    done = 0
+    try:
+        for start in range(0, max(n, 1), step):
+            stop = min(start + step, n)
+            rows = slice(start, stop)
+            try:
+                _, _, _, kept = model.solve(
+                    q[rows], None if q_dot is None else q_dot[rows],
+                    None if q_ddot is None else q_ddot[rows], options, out.length[rows],
+                    out.length_rate[rows], out.length_accel[rows], out.force[rows],
+                    out.condition[rows], out.residual[rows], out.base_force[rows],
+                    out.base_torque[rows], out.iterations[rows], out.warnings[rows],
+                    out.status[rows], min(max_messages - len(out.messages), stop - start))
+            except ValueError as e:
+                raise ParameterError(str(e)) from None
+            out.messages.update((start + row, text) for row, text in kept)
+            done = stop
+    except KeyboardInterrupt:
+        stopped = KeyboardInterrupt(f"inverse stopped after {done} of {n} rows: rows "
+                                    f"[0, {done}) of out are solved, the others are not")
+        stopped.rows_done = done
+        raise stopped from None
+    return out
