@@ -180,7 +180,8 @@ extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, co
     for (size_t j = 0; j < n; ++j) {
         in.time = time ? time[j] : 0.0;
         std::memcpy(in.lengths.length, lengths + 6 * j, sizeof in.lengths.length);
-        if (rates) std::memcpy(in.lengths.length_rate, rates + 6 * j, sizeof in.lengths.length_rate);
+        if (rates)
+            std::memcpy(in.lengths.length_rate, rates + 6 * j, sizeof in.lengths.length_rate);
         if (accels)
             std::memcpy(in.lengths.length_accel, accels + 6 * j, sizeof in.lengths.length_accel);
         in.use_guess = j == 0 && guess;

@@ -1,4 +1,5 @@
 #include "cli/forward_table.hpp"
+#include "kinematics/pose_names.hpp"
 
 #include "cli/pose_table.hpp"
 
@@ -15,7 +16,7 @@ namespace stewart {
 namespace {
 
 const char *const kGroups[3] = {"L", "L_dot", "L_ddot"};
-const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+using stewart::kPoseNames;
 
 struct Row {
     int line;
@@ -95,7 +96,8 @@ void write_header(FILE *out, const Table &table) {
     std::fprintf(out, "t");
     const char *suffix[3] = {"", "_dot", "_ddot"};
     for (int g = 0; g < 3; ++g)
-        for (int i = 0; i < 6 && table.has[g]; ++i) std::fprintf(out, ",%s%s", kPose[i], suffix[g]);
+        for (int i = 0; i < 6 && table.has[g]; ++i)
+            std::fprintf(out, ",%s%s", kPoseNames[i], suffix[g]);
     std::fprintf(out, ",iterations,residual,condition\n");
 }
 
@@ -138,7 +140,8 @@ int run_forward(const char *in_path, const char *out_path, const stewart_params 
         in.time = row.t;
         std::memcpy(in.lengths.length, row.values.data(), sizeof in.lengths.length);
         if (table.has[1])
-            std::memcpy(in.lengths.length_rate, row.values.data() + 6, sizeof in.lengths.length_rate);
+            std::memcpy(in.lengths.length_rate, row.values.data() + 6,
+                        sizeof in.lengths.length_rate);
         if (table.has[2])
             std::memcpy(in.lengths.length_accel, row.values.data() + 12,
                         sizeof in.lengths.length_accel);

@@ -7,12 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "cli/arguments.hpp"
+#include "kinematics/pose_names.hpp"
 #include "cli/param_assignment.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace {
 
-const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+using stewart::kPoseNames;
 
 int usage(FILE *to) {
     std::fprintf(to,
@@ -47,8 +49,8 @@ bool set_param(const char *assignment, Settings &s) {
     double value;
     if (!stewart::parse_assignment("stewart-simulate", assignment, name, value)) return false;
     for (int i = 0; i < 6; ++i) {
-        if (name == std::string(kPose[i]) + "0") return s.pose[i] = value, true;
-        if (name == std::string(kPose[i]) + "_dot0") return s.rate[i] = value, true;
+        if (name == std::string(kPoseNames[i]) + "0") return s.pose[i] = value, true;
+        if (name == std::string(kPoseNames[i]) + "_dot0") return s.rate[i] = value, true;
     }
     if (name == "relative_tolerance") return s.options.relative_tolerance = value, true;
     if (name == "absolute_tolerance") return s.options.absolute_tolerance = value, true;
@@ -147,8 +149,8 @@ struct Row {
 
 void write_header(FILE *f) {
     std::fprintf(f, "t");
-    for (const char *p : kPose) std::fprintf(f, ",%s", p);
-    for (const char *p : kPose) std::fprintf(f, ",%s_dot", p);
+    for (const char *p : kPoseNames) std::fprintf(f, ",%s", p);
+    for (const char *p : kPoseNames) std::fprintf(f, ",%s_dot", p);
     for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L%d", k);
     for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L_dot%d", k);
     std::fprintf(f, ",warnings,steps,rhs_evaluations,nonlinear_iterations,error_test_failures\n");
@@ -174,37 +176,24 @@ int main(int argc, char **argv) {
     for (int i = 0; i < 6; ++i) s.pose[i] = s.rate[i] = 0;
     bool pose_z_given = false;
     const char *paths[2] = {nullptr, nullptr};
-    int n_paths = 0;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
-        const bool fidelity = !std::strcmp(argv[i], "--fidelity");
-        const bool param = !std::strcmp(argv[i], "--param");
-        if ((fidelity || param) && i + 1 == argc) {
-            std::fprintf(stderr, "stewart-simulate: %s needs a value (%s)\n", argv[i],
-                         fidelity ? "massless|full" : "NAME=VALUE");
-            return usage(stderr);
-        }
-        if (param) {
-            if (!set_param(argv[++i], s)) return 2;
-            if (!std::strncmp(argv[i], "z0=", 3)) pose_z_given = true;
-        } else if (fidelity) {
-            ++i;
-            if (!std::strcmp(argv[i], "massless")) s.options.fidelity = STEWART_MASSLESS;
-            else if (!std::strcmp(argv[i], "full")) s.options.fidelity = STEWART_FULL;
-            else {
-                std::fprintf(stderr, "stewart-simulate: unknown fidelity '%s'\n", argv[i]);
-                return usage(stderr);
-            }
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            std::fprintf(stderr, "stewart-simulate: unknown option '%s'\n", argv[i]);
-            return usage(stderr);
-        } else if (n_paths < 2) {
-            paths[n_paths++] = argv[i];
-        } else {
-            return usage(stderr);
-        }
-    }
-    if (n_paths != 2) return usage(stderr);
+    const std::vector<stewart::CliOption> cli = {
+        {"--param", "NAME=VALUE",
+         [&](const char *v) {
+             if (!set_param(v, s)) return 2;
+             if (!std::strncmp(v, "z0=", 3)) pose_z_given = true;
+             return 0;
+         }},
+        {"--fidelity", "massless|full",
+         [&](const char *v) {
+             if (!std::strcmp(v, "massless")) return s.options.fidelity = STEWART_MASSLESS, 0;
+             if (!std::strcmp(v, "full")) return s.options.fidelity = STEWART_FULL, 0;
+             std::fprintf(stderr, "stewart-simulate: unknown fidelity '%s'\n", v);
+             return usage(stderr);
+         }},
+    };
+    const int code =
+        stewart::parse_command_line("stewart-simulate", argc, argv, cli, paths, 2, usage);
+    if (code >= 0) return code;
     if (!pose_z_given) s.pose[2] = s.params.home_height;  // at home unless told otherwise
 
     char message[STEWART_MESSAGE_SIZE];

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/arguments.hpp"
 #include "cli/forward_table.hpp"
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
@@ -78,56 +79,35 @@ int main(int argc, char **argv) {
     bool forward = false;
     double guess[6];
     const double *guess_given = nullptr;
-    int n_paths = 0;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
-        const bool fidelity = !std::strcmp(argv[i], "--fidelity");
-        const bool param = !std::strcmp(argv[i], "--param");
-        if (!std::strcmp(argv[i], "--forward")) {
-            forward = true;
-            continue;
-        }
-        if (!std::strcmp(argv[i], "--guess")) {
-            if (i + 1 == argc || std::sscanf(argv[i + 1], "%lf,%lf,%lf,%lf,%lf,%lf", &guess[0],
-                                             &guess[1], &guess[2], &guess[3], &guess[4],
-                                             &guess[5]) != 6) {
-                std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
-                return 2;
-            }
-            guess_given = guess;
-            ++i;
-            continue;
-        }
-        if ((fidelity || param || !std::strcmp(argv[i], "--tolerance")) && i + 1 == argc) {
-            std::fprintf(stderr, "stewart-solve: %s needs a value (%s)\n", argv[i],
-                         fidelity ? "kinematic|massless|full"
-                                  : param ? "NAME=VALUE" : "a positive number");
-            return usage(stderr);
-        }
-        if (param) {
-            if (!set_param(argv[++i], params)) return 2;
-        } else if (fidelity) {
-            if (!parse_fidelity(argv[++i], options.fidelity)) {
-                std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", argv[i]);
-                return usage(stderr);
-            }
-        } else if (!std::strcmp(argv[i], "--tolerance")) {
-            char *end = nullptr;
-            options.tolerance = std::strtod(argv[++i], &end);
-            if (end == argv[i] || *end != '\0') {
-                std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", argv[i]);
-                return 2;
-            }
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            std::fprintf(stderr, "stewart-solve: unknown option '%s'\n", argv[i]);
-            return usage(stderr);
-        } else if (n_paths < 2) {
-            paths[n_paths++] = argv[i];
-        } else {
-            return usage(stderr);
-        }
-    }
-    if (n_paths != 2) return usage(stderr);
+    const std::vector<stewart::CliOption> cli = {
+        {"--forward", nullptr, [&](const char *) { return forward = true, 0; }},
+        {"--guess", "x,y,z,roll,pitch,yaw",
+         [&](const char *v) {
+             if (std::sscanf(v, "%lf,%lf,%lf,%lf,%lf,%lf", &guess[0], &guess[1], &guess[2],
+                             &guess[3], &guess[4], &guess[5]) != 6) {
+                 std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
+                 return 2;
+             }
+             return guess_given = guess, 0;
+         }},
+        {"--param", "NAME=VALUE", [&](const char *v) { return set_param(v, params) ? 0 : 2; }},
+        {"--fidelity", "kinematic|massless|full",
+         [&](const char *v) {
+             if (parse_fidelity(v, options.fidelity)) return 0;
+             std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", v);
+             return usage(stderr);
+         }},
+        {"--tolerance", "a positive number",
+         [&](const char *v) {
+             char *end = nullptr;
+             options.tolerance = std::strtod(v, &end);
+             if (end != v && *end == '\0') return 0;
+             std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", v);
+             return 2;
+         }},
+    };
+    const int code = stewart::parse_command_line("stewart-solve", argc, argv, cli, paths, 2, usage);
+    if (code >= 0) return code;
     if (forward) {
         stewart_forward_options forward_options;
         stewart_forward_options_default(&forward_options);

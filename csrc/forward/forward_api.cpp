@@ -391,7 +391,8 @@ extern "C" stewart_status stewart_forward_save(const stewart_forward *d, void *b
 extern "C" stewart_status stewart_forward_load(stewart_forward *d, const void *buffer,
                                                size_t size) {
     if (!d) return STEWART_ERR_ARGUMENT;
-    if (!buffer) return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
+    if (!buffer)
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
     char why[STEWART_MESSAGE_SIZE];
     // Every field is checked before any is written: a refused history leaves the solver as it was.
     if (!stewart::forward_history_load(d->state, static_cast<const unsigned char *>(buffer), size,
@@ -444,7 +445,8 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
         for (int i = 0; i < 6; ++i)
             if (!std::isfinite(guess[i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                                   "guess %s is %g: it must be finite", stewart::kPoseNames[i], guess[i]);
+                                   "guess %s is %g: it must be finite", stewart::kPoseNames[i],
+                                   guess[i]);
     stewart::ForwardState &f = d->state;
     if ((s = stewart::check_length_pairs(m->forward.pair_bounds, lengths, msg, size)) != STEWART_OK)
         return s;

@@ -64,7 +64,8 @@ extern "C" stewart_status stewart_inverse_save(const stewart_inverse *d, void *b
 extern "C" stewart_status stewart_inverse_load(stewart_inverse *d, const void *buffer,
                                                size_t size) {
     if (!d || !d->full) return STEWART_ERR_ARGUMENT;
-    if (!buffer) return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
+    if (!buffer)
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
     char why[MBS_MESSAGE_SIZE];
     if (!mbs::load_state(d->full->state, static_cast<const unsigned char *>(buffer), size, why,
                          sizeof why))
@@ -113,7 +114,8 @@ void stroke_and_condition_warnings(const stewart_params &p, const stewart_invers
                                    stewart_inverse_output &out) {
     out.stroke_legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out.lengths.length[k] < p.stroke_min || out.lengths.length[k] > p.stroke_max) out.stroke_legs |= 1 << k;
+        if (out.lengths.length[k] < p.stroke_min || out.lengths.length[k] > p.stroke_max)
+            out.stroke_legs |= 1 << k;
     out.warnings = out.stroke_legs ? STEWART_WARN_STROKE : 0;
     if (out.condition > o.warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
 }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include "kinematics/pose_names.hpp"
 #include "stewart/stewart.h"
 
 namespace stewart {
@@ -24,9 +25,6 @@ stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size);
 // the input that made `what` overflow.
 stewart_status input_out_of_range(const stewart_pose &pose, int first_row, int last_row,
                                   const char *what, char *msg, size_t size);
-
-// The pose coordinates' names in order, as messages, CSV headers and variable names spell them.
-extern const char *const kPoseNames[6];
 
 // R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw);

@@ -4,11 +4,12 @@
  *
  * The position problem L(q) = L_measured is solved by KINSOL's Newton iteration with the analytic
  * 6 x 6 Jacobian. A forward solver remembers its last pose (its history, which _copy, _save and
- * _load carry): a stream of measurements is tracked from it (with a Taylor predictor from its last rates), a first measurement starts from the guess
- * given, else from the home pose. A pose on another assembly mode than the working one (platform
- * below the base, a leg beyond the half-space of one of its Cardans, a singular pose between it
- * and home, a jump larger than the stroke allows) is never returned as the answer: the solve
- * fails with STEWART_ERR_OTHER_BRANCH and says which.
+ * _load carry): a stream of measurements is tracked from it (with a Taylor predictor from its
+ * last rates), a first measurement starts from the guess given, else from the home pose. A pose
+ * on another assembly mode than the working one (platform below the base, a leg beyond the
+ * half-space of one of its Cardans, a singular pose between it and home, a jump larger than the
+ * stroke allows) is never returned as the answer: the solve fails with STEWART_ERR_OTHER_BRANCH
+ * and says which.
  */
 #ifndef STEWART_STEWART_FORWARD_H
 #define STEWART_STEWART_FORWARD_H
@@ -47,7 +48,8 @@ typedef struct stewart_forward_options {
     double tolerance;          /* max-norm of L(q) - L_measured at which Newton stops [m]; 1e-12;
                                   >= 2.5e-16 (rounding of lengths of order 1 m) */
     int max_iterations;        /* Newton iteration cap per start; 20 */
-    double warn_condition;     /* as stewart_inverse_options (the same defaults): STEWART_WARN_NEAR_SINGULAR */
+    double warn_condition;     /* as stewart_inverse_options (the same defaults):
+                                  STEWART_WARN_NEAR_SINGULAR */
     double singular_condition; /* above it the solve fails with STEWART_ERR_SINGULAR */
 } stewart_forward_options;
 

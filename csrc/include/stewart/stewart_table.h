@@ -1,5 +1,6 @@
 /*
- * The parameter and option tables: one entry per field of stewart_params and stewart_inverse_options,
+ * The parameter and option tables: one entry per field of stewart_params and
+ * stewart_inverse_options,
  * with its stable id, name, element count, unit, valid range, default and description. The
  * library's defaults, checks and setters are expanded from these lists, and the upper layers
  * (FMU variables and model descriptions, the CLI's --param, fuzz seeds, Python) iterate them
@@ -167,8 +168,8 @@ const stewart_option_info *stewart_option(int i);
 double stewart_option_get(const stewart_inverse_options *options, int i);
 /* Sets option i; STEWART_ERR_PARAMETER (options unchanged) if the value is outside its range or,
  * for an integer option, not a whole number. */
-stewart_status stewart_option_set(stewart_inverse_options *options, int i, double value, char *message,
-                                  size_t size);
+stewart_status stewart_option_set(stewart_inverse_options *options, int i, double value,
+                                  char *message, size_t size);
 /* The option named `name`, or -1. */
 int stewart_option_find(const char *name);
 
