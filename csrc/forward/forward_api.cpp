@@ -75,30 +75,6 @@ const char *start_name(int start) {
 
 }  // namespace
 
-extern "C" void stewart_forward_options_default(stewart_forward_options *o) {
-    if (!o) return;
-    stewart_inverse_options inverse;
-    stewart_inverse_options_default(&inverse);  // the same condition thresholds as the inverse side
-    o->tolerance = inverse.tolerance;
-    o->max_iterations = inverse.max_iterations;
-    o->warn_condition = inverse.warn_condition;
-    o->singular_condition = inverse.singular_condition;
-}
-
-extern "C" stewart_status stewart_forward_options_check(const stewart_forward_options *o,
-                                                        char *msg, size_t size) {
-    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    // The same fields, the same limits and messages as the inverse side's options.
-    stewart_inverse_options inverse;
-    stewart_inverse_options_default(&inverse);
-    inverse.tolerance = o->tolerance;
-    inverse.max_iterations = o->max_iterations;
-    inverse.warn_condition = o->warn_condition;
-    inverse.singular_condition = o->singular_condition;
-    return stewart_inverse_options_check(&inverse, msg, size);
-}
-
-
 namespace {
 
 // A converged start: the pose and what the checks and the outputs need there.

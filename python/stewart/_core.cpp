@@ -255,9 +255,9 @@ private:
         stewart_inverse_options_default(&o);
         char message[STEWART_MESSAGE_SIZE];
         for (const auto &[name, v] : values) {
-            const int i = stewart_option_find(name.c_str());
+            const int i = stewart_inverse_option_find(name.c_str());
             if (i < 0) fail(("unknown solver option '" + name + "'").c_str());
-            if (stewart_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
+            if (stewart_inverse_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
         }
         if (stewart_inverse_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
         return o;
@@ -279,19 +279,20 @@ private:
         return o;
     }
 
-    // stewart_forward_options by name.
+    // stewart_forward_options by name, from the library's table.
     static stewart_forward_options make_forward_options(
         const std::vector<std::pair<std::string, double>> &values) {
-        return named_options<stewart_forward_options>(
-            values, stewart_forward_options_default, stewart_forward_options_check, "forward",
-            [](stewart_forward_options &o, const std::string &name, double v) {
-                if (name == "tolerance") o.tolerance = v;
-                else if (name == "max_iterations") o.max_iterations = integer_option(name, v);
-                else if (name == "warn_condition") o.warn_condition = v;
-                else if (name == "singular_condition") o.singular_condition = v;
-                else return false;
-                return true;
-            });
+        stewart_forward_options o;
+        stewart_forward_options_default(&o);
+        char message[STEWART_MESSAGE_SIZE];
+        for (const auto &[name, v] : values) {
+            const int i = stewart_forward_option_find(name.c_str());
+            if (i < 0) fail(("unknown forward option '" + name + "'").c_str());
+            if (stewart_forward_option_set(&o, i, v, message, sizeof message) != STEWART_OK)
+                fail(message);
+        }
+        if (stewart_forward_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
+        return o;
     }
 
     // stewart_plant_options by name.
