@@ -24,13 +24,13 @@ struct stewart_model {
 struct stewart_inverse {
     const stewart_model *model;
     stewart_inverse_options options;
-    char message[STEWART_MESSAGE_SIZE];
+    mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
     std::unique_ptr<mbs_data> full;  // state and workspaces of the full level
 };
 
 struct stewart_forward {
     const stewart_model *model;
     stewart_forward_options options;
-    char message[STEWART_MESSAGE_SIZE];
+    mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
     stewart::ForwardState state;  // its Newton solver and tracking history
 };

@@ -334,7 +334,9 @@ extern "C" void stewart_forward_reset(stewart_forward *d) {
 }
 
 extern "C" stewart_status stewart_forward_copy(stewart_forward *dst, const stewart_forward *src) {
-    if (!dst || !src) return STEWART_ERR_ARGUMENT;
+    if (!dst) return STEWART_ERR_ARGUMENT;
+    if (!src)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
     if (dst->model != src->model)
         return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
                            "the forward solvers were made for different models");
@@ -359,7 +361,11 @@ extern "C" size_t stewart_forward_state_size(const stewart_forward *d) {
 
 extern "C" stewart_status stewart_forward_save(const stewart_forward *d, void *buffer,
                                                size_t size) {
-    if (!d || !buffer || size < stewart::forward_history_size()) return STEWART_ERR_ARGUMENT;
+    if (!d) return STEWART_ERR_ARGUMENT;
+    if (!buffer || size < stewart::forward_history_size())
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "state not saved: a buffer of %zu bytes%s, the state needs %zu", size,
+                           buffer ? "" : " (NULL)", stewart::forward_history_size());
     stewart::forward_history_save(d->state, static_cast<unsigned char *>(buffer));
     return STEWART_OK;
 }

@@ -40,7 +40,9 @@ extern "C" stewart_inverse *stewart_inverse_create(const stewart_model *m,
 extern "C" void stewart_inverse_free(stewart_inverse *d) { delete d; }
 
 extern "C" stewart_status stewart_inverse_copy(stewart_inverse *dst, const stewart_inverse *src) {
-    if (!dst || !src) return STEWART_ERR_ARGUMENT;
+    if (!dst) return STEWART_ERR_ARGUMENT;
+    if (!src)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
     if (dst->model != src->model)
         return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
                            "the inverse solvers were made for different models");
@@ -55,8 +57,11 @@ extern "C" size_t stewart_inverse_state_size(const stewart_inverse *d) {
 
 extern "C" stewart_status stewart_inverse_save(const stewart_inverse *d, void *buffer,
                                                size_t size) {
-    if (!d || !d->full || !buffer || size < stewart_inverse_state_size(d))
-        return STEWART_ERR_ARGUMENT;
+    if (!d || !d->full) return STEWART_ERR_ARGUMENT;
+    if (!buffer || size < stewart_inverse_state_size(d))
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "state not saved: a buffer of %zu bytes%s, the state needs %zu", size,
+                           buffer ? "" : " (NULL)", stewart_inverse_state_size(d));
     mbs::save_state(d->full->state, static_cast<unsigned char *>(buffer));
     return STEWART_OK;
 }

@@ -49,6 +49,8 @@ static void test_bytes_that_are_not_a_state_are_refused(void) {
     unsigned char *bytes = malloc(size + 8);
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_save(data, bytes, size));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_save(data, bytes, size - 1));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "the state needs"),
+                                 stewart_inverse_message(data));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size - 1));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size + 8));
     unsigned char saved = bytes[0];

@@ -453,6 +453,8 @@ static void test_rollback_restores_the_tracking_history(void) {
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
     TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "finite"));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bytes, size - 1));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_save(forward_solver, bad, size - 1));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "the state needs"));
     /* loaded back: the three solves again, bit for bit */
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_load(forward_solver, bytes, size));
     for (int j = 0; j < 3; ++j)
