@@ -27,6 +27,7 @@ struct IntegratorImpl {
     void *cvode = nullptr;
     void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK and STEWART_PLANT_ERK5
     int erk_order = 0;
+    long max_steps = 0;  // internal steps allowed within one communication step
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
     int fault_leg = -1;
@@ -154,6 +155,45 @@ const char *fault_text(LegFault f) {
     return "";
 }
 
+// Roll, pitch, yaw of a state's rotation on the principal branch (pitch in [-pi/2, pi/2]).
+void principal_angles(const double y[kStates], double a[3]) {
+    const Mat3 R = motion_of_state(y).rotation;
+    const double sp = -R(2, 0);
+    a[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
+    a[0] = std::atan2(R(2, 1), R(2, 2));
+    a[2] = std::atan2(R(1, 0), R(0, 0));
+}
+
+// Whether the motion from angles `before` to `after` (both principal) took pitch through
+// +-90 degrees: the other triple of the same rotation, (roll + pi, +-pi - pitch, yaw + pi), is
+// nearer to `before` than `after` is, so angles kept continuous would have |pitch| > 90 degrees
+// (roll and yaw jump by pi where pitch only touches 90 degrees on the principal branch).
+bool crosses_pitch_limit(const double before[3], const double after[3]) {
+    auto turn = [](double a) { return std::fabs(std::remainder(a, 2 * M_PI)); };
+    const double other_pitch = (after[1] >= 0 ? M_PI : -M_PI) - after[1];
+    const double direct = turn(after[0] - before[0]) + std::fabs(after[1] - before[1]) +
+                          turn(after[2] - before[2]);
+    const double other = turn(after[0] + M_PI - before[0]) + std::fabs(other_pitch - before[1]) +
+                         turn(after[2] + M_PI - before[2]);
+    return other < direct;
+}
+
+// The leg that a failed step was driving toward zero length: the shortest leg at the last
+// internal step if it is below 1 % of its length at the start of the step, else -1.
+int collapsing_leg(const DynamicsModel &model, const double start[kStates],
+                   const double reached[kStates], double &length) {
+    const PlatformMotion a = motion_of_state(start), b = motion_of_state(reached);
+    int leg = -1;
+    double worst = 0.01;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Vec3 &base = model.legs.base_points.col(k), &arm = model.legs.platform_points.col(k);
+        const double before = (a.position + a.rotation * arm - base).norm();
+        const double after = (b.position + b.rotation * arm - base).norm();
+        if (after < worst * before) worst = after / before, leg = k, length = after;
+    }
+    return leg;
+}
+
 }  // namespace
 
 Integrator::~Integrator() {
@@ -175,6 +215,7 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
     IntegratorImpl &im = *impl_;
     im.model = model;
+    im.max_steps = o.max_internal_steps;
     if (SUNContext_Create(nullptr, &im.context) != 0 ||
         !(im.y = N_VNew_Serial(kStates, im.context)))
         return set_message(msg, size, STEWART_ERR_MEMORY, "SUNDIALS context or vector failed"),
@@ -252,6 +293,14 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     stats_ = stewart_plant_statistics{};
     long n;
     const char *module = im.arkode ? "ARKODE" : "CVODE";
+    // One internal step per call: the pitch is watched at every internal step (a crossing of
+    // +-90 degrees is refused even when a communication step ends on the far side), the step
+    // count is bounded here (a solver counts its limit per call), and the end of the step is
+    // checked to be reached.
+    double angles[3], next_angles[3];
+    principal_angles(y, angles);
+    long taken = 0;
+    bool pitch_crossed = false;
     if (im.arkode) {
         // A one-step method restarts for free; the first step tries the size the last step
         // would have taken next (part of the saved state, so a rollback repeats it exactly).
@@ -261,11 +310,15 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             (flag = ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
                                flag_name(flag), im.cvode_message);
-        flag = ERKStepEvolve(im.arkode, forces.h, im.y, &t_reached, ARK_NORMAL);
+        do {
+            flag = ERKStepEvolve(im.arkode, forces.h, im.y, &t_reached, ARK_ONE_STEP);
+            if (flag >= 0) principal_angles(v, next_angles);
+            pitch_crossed = flag >= 0 && crosses_pitch_limit(angles, next_angles);
+            for (int i = 0; i < 3; ++i) angles[i] = next_angles[i];
+        } while (flag == ARK_SUCCESS && !pitch_crossed && ++taken < im.max_steps);
         if (ERKStepGetNumSteps(im.arkode, &n) == ARK_SUCCESS) stats_.steps = n;
         if (ERKStepGetNumErrTestFails(im.arkode, &n) == ARK_SUCCESS) stats_.error_test_failures = n;
-        long explicit_evals = 0, implicit_evals = 0;
-        (void)implicit_evals;
+        long explicit_evals = 0;
         if (ERKStepGetNumRhsEvals(im.arkode, &explicit_evals) == ARK_SUCCESS)
             stats_.rhs_evaluations = explicit_evals;
         sunrealtype h_last = 0, h_next = 0;
@@ -278,7 +331,12 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             (flag = CVodeSetStopTime(im.cvode, forces.h)) != CV_SUCCESS)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
                                flag_name(flag), im.cvode_message);
-        flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_NORMAL);
+        do {
+            flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_ONE_STEP);
+            if (flag >= 0) principal_angles(v, next_angles);
+            pitch_crossed = flag >= 0 && crosses_pitch_limit(angles, next_angles);
+            for (int i = 0; i < 3; ++i) angles[i] = next_angles[i];
+        } while (flag == CV_SUCCESS && !pitch_crossed && ++taken < im.max_steps);
         if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats_.steps = n;
         if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats_.rhs_evaluations = n;
         if (CVodeGetNumNonlinSolvIters(im.cvode, &n) == CV_SUCCESS)
@@ -291,7 +349,22 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
         if (CVodeGetLastOrder(im.cvode, &order) == CV_SUCCESS) stats_.last_order = order;
         if (CVodeGetLastStep(im.cvode, &h_last) == CV_SUCCESS) stats_.last_step_size = h_last;
     }
-
+    if (pitch_crossed)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the motion takes pitch through +-90 degrees near t + %g s (pitch = %g "
+                           "rad there), where roll and yaw are undefined",
+                           static_cast<double>(t_reached), angles[1]);
+    // the step count ran out before the end (a solver's own limit counts within one call)
+    if (flag == CV_SUCCESS) flag = CV_TOO_MUCH_WORK;
+    if (flag < 0 || t_reached != forces.h) {
+        double length = 0;
+        const int leg = collapsing_leg(*im.model, y, v, length);
+        if (leg >= 0)
+            return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                               "unreachable, leg %d: the motion drives it toward zero length "
+                               "(%.3g m near t + %g s)", leg + 1, length,
+                               static_cast<double>(t_reached));
+    }
     if (flag < 0) {
         if (im.fault != LegFault::None)
             return set_message(msg, size,
@@ -308,6 +381,12 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
                            "%s failed at t + %g s with %s: %s", module,
                            static_cast<double>(t_reached), flag_name(flag), im.cvode_message);
     }
+    // a solver's success short of the end would be a step not taken (found with a saved step
+    // hint of 4.9e-324 s)
+    if (t_reached != forces.h)
+        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                           "%s stopped at t + %g s, short of the step's end h = %g s", module,
+                           static_cast<double>(t_reached), forces.h);
     double out[kStates];
     for (int i = 0; i < kStates; ++i) out[i] = v[i];
     const double norm = std::sqrt(out[3] * out[3] + out[4] * out[4] + out[5] * out[5] +
