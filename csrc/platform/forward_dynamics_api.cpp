@@ -386,7 +386,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
     for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
     p->time += h;
-    p->step_hint = step_hint;
+    p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
     std::memcpy(msg, warning, size);
     return STEWART_OK;
