@@ -180,8 +180,8 @@ extern "C" stewart_status stewart_plant_options_check(const stewart_plant_option
     if (!(o->absolute_tolerance >= kMinAbsoluteTolerance && std::isfinite(o->absolute_tolerance)))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "absolute_tolerance = %g must be >= %g and finite (below it the "
-                           "integrators' error weights overflow)", o->absolute_tolerance,
-                           kMinAbsoluteTolerance);
+                           "integrators' error test fails on rounding alone)",
+                           o->absolute_tolerance, kMinAbsoluteTolerance);
     if (o->max_internal_steps < 1)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "max_internal_steps = %ld must be >= 1", o->max_internal_steps);
@@ -315,6 +315,9 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s does not advance time t = %.17g s (h must "
                            "be >= %g s and above the resolution of t)", h, p->time, kMinStepSize);
+    if (!(std::fabs(p->time + h) <= kMaxTime))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "communication step h = %g s takes time beyond %g s", h, kMaxTime);
     stewart_status s;
     if ((s = check_finite(f0, "F (start of step)", msg, size)) != STEWART_OK ||
         (s = check_finite(f1, "F (end of step)", msg, size)) != STEWART_OK)

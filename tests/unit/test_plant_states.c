@@ -98,6 +98,10 @@ static void test_step_that_does_not_advance_time_refused(void) {
     TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_step(plant, 1e-15, kZero, kZero, NULL, NULL));
     expect_message(plant, "h = 1e-15 s does not advance time t = 100");
     step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);
+    /* the plant's clock ends at 1e10 s: no step takes it beyond (a load would refuse the state) */
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 1e10 - 1e-4, home, kZero));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_step(plant, 1e-3, kZero, kZero, NULL, NULL));
+    expect_message(plant, "takes time beyond 1e+10 s");
 }
 
 /* ---------------------------------------------------------------- pitch at +-90 degrees */
