@@ -245,10 +245,40 @@ static void test_bad_force_derivative_cleared_after_discard(void) {
     unit_free(&u);
 }
 
+/* A state whose gravity is 1e300 m/s2 makes no plant: deserialisation refuses it saying why
+ * ("out of memory checking the plant data" before); an absolute tolerance no plant can use is an
+ * Error at initialisation naming it ("invalid parameter: ARKODE failed ..." before). */
+static void test_messages_name_the_cause(void) {
+    for (int v3 = 0; v3 < 2; ++v3) {
+        double force[6], last;
+        static_forces(STEWART_FULL, force);
+        unit u;
+        unit_start(&u, v3, STEWART_FULL, force);
+        TEST_ASSERT_EQUAL(fmi2OK, do_step(&u, 0, STEP, &last));
+        void *state = NULL, *other = NULL;
+        TEST_ASSERT_EQUAL(0, get_state(&u, &state));
+        static unsigned char bytes[1 << 16];
+        const size_t n = serialise(&u, state, bytes, sizeof bytes);
+        const double gravity = -1e300;
+        memcpy(bytes + 16 + VR_gravity_3 * sizeof(double), &gravity, sizeof gravity);
+        TEST_ASSERT_EQUAL(fmi2Error, deserialise(&u, bytes, n, &other));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(u.log.last, "gravity = (0, 0, -1e+300)"), u.log.last);
+        free_state(&u, &state);
+        unit_free(&u);
+        const unsigned vr = VR_absolute_tolerance;
+        const double tiny = 1e-300;
+        TEST_ASSERT_FALSE(unit_open_at(&u, v3, STEWART_FULL, force, 0.0, 1, &vr, &tiny));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(u.log.last, "absolute_tolerance = 1e-300 must be >="),
+                                     u.log.last);
+        unit_free(&u);
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_random_corrupt_states_fmi2);
     RUN_TEST(test_random_corrupt_states_fmi3);
     RUN_TEST(test_bad_force_derivative_cleared_after_discard);
+    RUN_TEST(test_messages_name_the_cause);
     return UNITY_END();
 }
