@@ -23,34 +23,10 @@
 void setUp(void) {}
 void tearDown(void) {}
 
-static uint64_t next_random(uint64_t *s) { /* xorshift64*: fixed seed, the same run every time */
-    *s ^= *s >> 12, *s ^= *s << 25, *s ^= *s >> 27;
-    return *s * 2685821657736338717ULL;
-}
-
-/* A double a corrupted file might hold instead of v. */
-static double mutated(uint64_t *rng, double v) {
-    static const double specials[] = {0.0, -0.0, 1.0, -1.0, 1e15, 1e300, DBL_MAX, 4.9e-324,
-                                      NAN, INFINITY, 100.0, 1e6, 1e-12};
-    const uint64_t r = next_random(rng);
-    switch (r % 4) {
-        case 0: {
-            uint64_t bits;
-            memcpy(&bits, &v, sizeof bits);
-            bits ^= 1ULL << ((r >> 8) % 64);
-            memcpy(&v, &bits, sizeof v);
-            return v;
-        }
-        case 1: return specials[(r >> 8) % (sizeof specials / sizeof specials[0])];
-        case 2: return v * (1 + 1e-6 * (double)((r >> 8) % 1000));
-        default: return v + 2 * M_PI * (double)((int)((r >> 8) % 7) - 3);
-    }
-}
-
 /* Corrupts the bytes at random: a double anywhere (8-byte aligned from the start of the values,
  * or in the plant's data at the end), an int32 (mode, flags, options, statistics), or a byte. */
 static void corrupt(uint64_t *rng, unsigned char *bytes, size_t n, size_t plant_bytes) {
-    const uint64_t r = next_random(rng);
+    const uint64_t r = test_random(rng);
     const size_t values = 16; /* magic and the size of the values */
     switch (r % 4) {
         case 0:
@@ -59,7 +35,7 @@ static void corrupt(uint64_t *rng, unsigned char *bytes, size_t n, size_t plant_
                                          : n - plant_bytes + 8 * ((r >> 8) % (plant_bytes / 8));
             double v;
             memcpy(&v, bytes + at, sizeof v);
-            v = mutated(rng, v);
+            v = corrupted_value(rng, v);
             memcpy(bytes + at, &v, sizeof v);
             return;
         }
@@ -189,7 +165,7 @@ static void random_corrupt_states(int v3) {
     int refused = 0, accepted = 0, failures = 0;
     for (int trial = 0; trial < TRIALS; ++trial) {
         memcpy(bytes, base, n);
-        const int edits = 1 + (int)(next_random(&rng) % 2);
+        const int edits = 1 + (int)(test_random(&rng) % 2);
         for (int e = 0; e < edits; ++e) corrupt(&rng, bytes, n, plant_bytes);
         void *other = NULL;
         u.log.last[0] = '\0';

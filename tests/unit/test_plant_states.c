@@ -198,32 +198,6 @@ static void test_tolerance_no_plant_can_use_refused(void) {
 
 /* ---------------------------------------------------------------- random corrupt states */
 
-static uint64_t next_random(uint64_t *s) { /* xorshift64*: fixed seed, the same run every time */
-    *s ^= *s >> 12, *s ^= *s << 25, *s ^= *s >> 27;
-    return *s * 2685821657736338717ULL;
-}
-
-/* A value a corrupted file or a careless caller might hold instead of v. */
-static double mutated(uint64_t *rng, double v) {
-    static const double specials[] = {0.0, -0.0, 1.0, -1.0, 0.5, 1e15, -1e15, 1e300, DBL_MAX,
-                                      -DBL_MAX, 4.9e-324, DBL_MIN, 1e-300, NAN, INFINITY,
-                                      -INFINITY, 100.0, 3.0, 1e6};
-    const uint64_t r = next_random(rng);
-    switch (r % 6) {
-        case 0: { /* one bit flipped */
-            uint64_t bits;
-            memcpy(&bits, &v, sizeof bits);
-            bits ^= 1ULL << ((r >> 8) % 64);
-            memcpy(&v, &bits, sizeof v);
-            return v;
-        }
-        case 1: return specials[(r >> 8) % (sizeof specials / sizeof specials[0])];
-        case 2: return v * (1 + 1e-6 * (double)((r >> 8) % 1000));
-        case 3: return v + 2 * M_PI * (double)((int)((r >> 8) % 7) - 3);
-        case 4: return -v;
-        default: return ldexp((double)((r >> 8) % 2001) / 1000.0 - 1.0, (int)((r >> 20) % 80) - 40);
-    }
-}
 
 /* A saved state mutated at random (one to three values, 3000 times): either the load refuses it
  * with a message and the plant keeps its state, or the plant steps 5 ms normally from it (every
@@ -245,11 +219,11 @@ static void test_random_corrupt_states(void) {
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_load(plant, base, n));
         double state[MAX_STATE], now[MAX_STATE];
         memcpy(state, base, sizeof state);
-        const int edits = 1 + (int)(next_random(&rng) % 3);
+        const int edits = 1 + (int)(test_random(&rng) % 3);
         size_t index = 0;
         for (int e = 0; e < edits; ++e) {
-            index = next_random(&rng) % n;
-            state[index] = mutated(&rng, state[index]);
+            index = test_random(&rng) % n;
+            state[index] = corrupted_value(&rng, state[index]);
         }
         if (stewart_plant_load(plant, state, n) != STEWART_OK) {
             ++refused;
