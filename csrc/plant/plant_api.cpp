@@ -1,5 +1,6 @@
 // The plant's C API (stewart_plant.h): state in roll-pitch-yaw outside, quaternion and twist
 // inside; input checks; stroke warnings; statistics.
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <new>
@@ -18,6 +19,20 @@ namespace {
 
 constexpr int kSavedDoubles = 1 + fd::kStates + 3 + STEWART_LEGS + 1 + 1;
 constexpr double kMinCosPitch = 1e-9;  // roll and yaw rates are undefined at pitch = +-90 deg
+// The plant's range (docs/forward-dynamics.md section 4): speeds far beyond any platform's, below
+// which a 1 ms step stays within the default max_internal_steps; continuous roll and yaw within
+// +-1e12 rad, where 2 pi still has digits to spare.
+constexpr double kMaxSpeed = 1e3;   // [m/s] of the platform origin, [rad/s] of omega
+constexpr double kMaxTurnAngle = 1e12;  // [rad]
+// The smallest first internal step a step may start with: below it SUNDIALS' products of step
+// sizes underflow (a saved hint of 4.9e-324 s left ARKODE unable to step).
+constexpr double kMinStepSize = 1e-100;  // [s]
+// The smallest absolute tolerance allowed: a plant's first step at rest fails below 3e-26 (full
+// level, ERK 5(4); 1.3e-26 ERK 4(3), 6.7e-28 Adams; 1e-156 massless), found by bisection.
+constexpr double kMinAbsoluteTolerance = 1e-20;
+// The plant's clock: within +-1e10 s (317 years) a step of 1e-5 s still advances time by
+// itself to 1 part in 5.
+constexpr double kMaxTime = 1e10;  // [s]
 const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
 }  // namespace
@@ -103,6 +118,41 @@ stewart_status check_finite(const double *values, const char *name, char *msg, s
     return STEWART_OK;
 }
 
+// Why a state (time and angles aside) is outside the plant's range, or STEWART_OK: the speeds
+// and the continuous roll and yaw; `what` says whose state it is.
+stewart_status check_range(const double y[fd::kStates], const double angles[3], const char *what,
+                           char *msg, size_t size) {
+    const fd::Vec3 velocity(y[7], y[8], y[9]), omega(y[10], y[11], y[12]);
+    if (!(velocity.norm() <= kMaxSpeed))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "%s: the speed |v| = %g m/s is beyond the plant's range (%g m/s)", what,
+                           velocity.norm(), kMaxSpeed);
+    if (!(omega.norm() <= kMaxSpeed))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "%s: the angular speed |omega| = %g rad/s is beyond the plant's range "
+                           "(%g rad/s)", what, omega.norm(), kMaxSpeed);
+    for (int i : {0, 2})
+        if (!(std::fabs(angles[i]) <= kMaxTurnAngle))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "%s: %s = %g rad is beyond +-%g rad", what, kPoseNames[3 + i],
+                               angles[i], kMaxTurnAngle);
+    return STEWART_OK;
+}
+
+// Whether saved roll, pitch, yaw are the angles of the saved quaternion (roll and yaw on any
+// branch): to a few roundings of the angle.
+bool angles_match(const double y[fd::kStates], const double saved[3]) {
+    double principal[3];
+    const double zero[3] = {0, 0, 0};
+    angles_of(fd::motion_of_state(y).rotation, zero, principal);
+    for (int i = 0; i < 3; ++i) {
+        const double off = i == 1 ? saved[i] - principal[i]
+                                  : std::remainder(saved[i] - principal[i], 2 * M_PI);
+        if (!(std::fabs(off) <= 1e-9 + 8 * DBL_EPSILON * std::fabs(saved[i]))) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
@@ -127,9 +177,11 @@ extern "C" stewart_status stewart_plant_options_check(const stewart_plant_option
     if (!(o->relative_tolerance >= 1e-15 && o->relative_tolerance < 1))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "relative_tolerance = %g must be in [1e-15, 1)", o->relative_tolerance);
-    if (!(o->absolute_tolerance > 0 && std::isfinite(o->absolute_tolerance)))
+    if (!(o->absolute_tolerance >= kMinAbsoluteTolerance && std::isfinite(o->absolute_tolerance)))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "absolute_tolerance = %g must be > 0", o->absolute_tolerance);
+                           "absolute_tolerance = %g must be >= %g and finite (below it the "
+                           "integrators' error test fails on rounding alone)",
+                           o->absolute_tolerance, kMinAbsoluteTolerance);
     if (o->max_internal_steps < 1)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "max_internal_steps = %ld must be >= 1", o->max_internal_steps);
@@ -168,7 +220,14 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     rest_forces.h = 1e-6;
     double y[fd::kStates], hint = 0;
     for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
-    if (p->integrator.advance(y, rest_forces, hint, msg, size) != STEWART_OK) {
+    char why[STEWART_MESSAGE_SIZE];
+    if (p->integrator.advance(y, rest_forces, hint, why, sizeof why) != STEWART_OK) {
+        set_message(msg, size, STEWART_ERR_PARAMETER,
+                    "a first step at rest at the home pose fails with these parameters and "
+                    "options (gravity = (%g, %g, %g) m/s2, relative_tolerance = %g, "
+                    "absolute_tolerance = %g): %s", model->params.gravity[0],
+                    model->params.gravity[1], model->params.gravity[2],
+                    options->relative_tolerance, options->absolute_tolerance, why);
         delete p;
         return nullptr;
     }
@@ -184,8 +243,9 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
     char *msg = p->message;
     const size_t size = sizeof p->message;
     if (!pose || !rate) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or rates");
-    if (!std::isfinite(time))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT, "time = %g must be finite", time);
+    if (!(std::fabs(time) <= kMaxTime))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "time = %g s must be finite and within +-%g s", time, kMaxTime);
     for (int i = 0; i < 6; ++i) {
         if (!std::isfinite(pose[i]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s0 = %g must be finite",
@@ -198,6 +258,11 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "pitch0 = %g is at +-90 degrees, where roll and yaw are undefined",
                            pose[4]);
+    // Beyond +-90 degrees the same rotation is (roll + pi, +-pi - pitch, yaw + pi), the triple
+    // the outputs would show: refused rather than silently renamed.
+    if (!(std::fabs(pose[4]) < M_PI / 2))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "pitch0 = %g rad must be within (-pi/2, pi/2)", pose[4]);
     const fd::Mat3 R = stewart::rotation_from_rpy(pose[3], pose[4], pose[5]);
     const fd::Vec3 omega = rate_matrix(pose[4], pose[5]) * fd::Vec3(rate[3], rate[4], rate[5]);
     // Finite angle rates near DBL_MAX can overflow the angular velocity (found by the fuzz
@@ -211,6 +276,8 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
     const double yq[7] = {pose[0], pose[1], pose[2], q.w(), q.x(), q.y(), q.z()};
     for (int i = 0; i < 7; ++i) y[i] = yq[i];
     for (int i = 0; i < 3; ++i) y[7 + i] = rate[i], y[10 + i] = omega[i];
+    stewart_status range;
+    if ((range = check_range(y, pose + 3, "start state", msg, size)) != STEWART_OK) return range;
     // The pose must give every leg a direction (and, full level, unlocked Cardans).
     fd::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
@@ -244,6 +311,13 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
     if (!(h > 0 && std::isfinite(h)))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s must be > 0 and finite", h);
+    if (!(h >= kMinStepSize && p->time + h > p->time))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "communication step h = %g s does not advance time t = %.17g s (h must "
+                           "be >= %g s and above the resolution of t)", h, p->time, kMinStepSize);
+    if (!(std::fabs(p->time + h) <= kMaxTime))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "communication step h = %g s takes time beyond %g s", h, kMaxTime);
     stewart_status s;
     if ((s = check_finite(f0, "F (start of step)", msg, size)) != STEWART_OK ||
         (s = check_finite(f1, "F (end of step)", msg, size)) != STEWART_OK)
@@ -300,6 +374,9 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
                            "are undefined", angles[1]);
+    if ((s = check_range(y, angles, "the forces are out of range: after the step", msg, size)) !=
+        STEWART_OK)
+        return s;
     double length[6], rate[6];
     char warning[STEWART_MESSAGE_SIZE] = "";
     const int warnings = leg_outputs(*p, m, length, rate, warning, sizeof warning);
@@ -312,7 +389,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
     for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
     p->time += h;
-    p->step_hint = step_hint;
+    p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
     std::memcpy(msg, warning, size);
     return STEWART_OK;
@@ -434,12 +511,23 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const double *sta
     fd::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
     if (!(std::fabs(q_norm - 1) < 1e-9) || !(std::fabs(std::cos(angles[1])) > kMinCosPitch) ||
-        !(warnings == 0 || warnings == STEWART_PLANT_WARN_STROKE) || !(hint >= 0) ||
+        !(warnings == 0 || warnings == STEWART_PLANT_WARN_STROKE) ||
+        !(hint == 0 || hint >= kMinStepSize) ||
         !fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "saved plant state is not one a step leaves (quaternion norm %g, pitch "
-                           "%g rad, warnings %g, step hint %g, or a singular pose)", q_norm,
-                           angles[1], warnings, hint);
+                           "%g rad, warnings %g, step hint %g s (0 or >= %g s), or a singular "
+                           "pose)", q_norm, angles[1], warnings, hint, kMinStepSize);
+    if (!(std::fabs(state[0]) <= kMaxTime))
+        return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
+                           "saved plant state: time = %g s is beyond +-%g s", state[0], kMaxTime);
+    if (!angles_match(y, angles))
+        return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
+                           "saved plant state is not one a step leaves: roll, pitch, yaw = %g, %g, "
+                           "%g rad are not the angles of its quaternion", angles[0], angles[1],
+                           angles[2]);
+    if (check_range(y, angles, "saved plant state", p->message, sizeof p->message) != STEWART_OK)
+        return STEWART_ERR_ARGUMENT;
     const double *in = state;
     p->time = *in++;
     for (double &v : p->y) v = *in++;

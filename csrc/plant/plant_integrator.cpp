@@ -27,6 +27,7 @@ struct IntegratorImpl {
     void *cvode = nullptr;
     void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK and STEWART_PLANT_ERK5
     int erk_order = 0;
+    double reference_angles[3] = {0, 0, 0};  // principal roll, pitch, yaw the pitch root follows
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
     int fault_leg = -1;
@@ -63,6 +64,10 @@ PlatformMotion motion_of_state(const double y[kStates]) {
 namespace {
 
 constexpr double kMaxAcceleration = 1e100;  // [m/s^2, rad/s^2]
+// A root of the pitch function is a crossing of +-90 degrees where |cos(pitch)| is below this
+// (the integrators locate roots to about 1e-12 s of the step; at 1e3 rad/s that is 1e-9 rad).
+constexpr double kCrossingCos = 1e-3;
+constexpr int kMaxRoots = 64;  // roots that are no crossing, per communication step
 
 // dy/dt: p_dot = v, e_dot = 1/2 (0, omega) * e (world-frame omega), (v, omega)_dot from the
 // reduced equations. 1 (recoverable: CVODE retries a shorter step) for a degenerate leg.
@@ -92,6 +97,42 @@ int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, v
     y_dot[5] = 0.5 * (w * oy + oz * x - ox * z);
     y_dot[6] = 0.5 * (w * oz + ox * yy - oy * x);
     for (int i = 0; i < 6; ++i) y_dot[7 + i] = a[i];
+    return 0;
+}
+
+// Roll, pitch, yaw of a state's rotation on the principal branch (pitch in [-pi/2, pi/2]).
+void principal_angles(const double y[kStates], double a[3]) {
+    const Mat3 R = motion_of_state(y).rotation;
+    const double sp = -R(2, 0);
+    a[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
+    a[0] = std::atan2(R(2, 1), R(2, 2));
+    a[2] = std::atan2(R(1, 0), R(0, 0));
+}
+
+// Whether the motion from angles `before` to `after` (both principal) took pitch through
+// +-90 degrees: the other triple of the same rotation, (roll + pi, +-pi - pitch, yaw + pi), is
+// nearer to `before` than `after` is, so angles kept continuous would have |pitch| > 90 degrees
+// (roll and yaw jump by pi where pitch only touches 90 degrees on the principal branch).
+bool crosses_pitch_limit(const double before[3], const double after[3]) {
+    auto turn = [](double a) { return std::fabs(std::remainder(a, 2 * M_PI)); };
+    const double other_pitch = (after[1] >= 0 ? M_PI : -M_PI) - after[1];
+    const double direct = turn(after[0] - before[0]) + std::fabs(after[1] - before[1]) +
+                          turn(after[2] - before[2]);
+    const double other = turn(after[0] + M_PI - before[0]) + std::fabs(other_pitch - before[1]) +
+                         turn(after[2] + M_PI - before[2]);
+    return other < direct;
+}
+
+// The root the integrators watch: cos of the pitch kept continuous from the reference angles
+// (the start of the step, or the last root that was no crossing). The principal pitch has
+// cos >= 0; where the other triple of the rotation is the nearer one, the continuous pitch is
+// beyond +-90 degrees and its cos is the negative: a sign change is a crossing.
+int pitch_root(sunrealtype, N_Vector y_vector, sunrealtype *g, void *user) {
+    const IntegratorImpl &im = *static_cast<const IntegratorImpl *>(user);
+    double angles[3];
+    principal_angles(N_VGetArrayPointer(y_vector), angles);
+    const double c = std::cos(angles[1]);
+    g[0] = crosses_pitch_limit(im.reference_angles, angles) ? -c : c;
     return 0;
 }
 
@@ -154,6 +195,22 @@ const char *fault_text(LegFault f) {
     return "";
 }
 
+// The leg that a failed step was driving toward zero length: the shortest leg at the last
+// internal step if it is below 1 % of its length at the start of the step, else -1.
+int collapsing_leg(const DynamicsModel &model, const double start[kStates],
+                   const double reached[kStates], double &length) {
+    const PlatformMotion a = motion_of_state(start), b = motion_of_state(reached);
+    int leg = -1;
+    double worst = 0.01;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Vec3 &base = model.legs.base_points.col(k), &arm = model.legs.platform_points.col(k);
+        const double before = (a.position + a.rotation * arm - base).norm();
+        const double after = (b.position + b.rotation * arm - base).norm();
+        if (after < worst * before) worst = after / before, leg = k, length = after;
+    }
+    return leg;
+}
+
 }  // namespace
 
 Integrator::~Integrator() {
@@ -199,7 +256,9 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
                 ARK_SUCCESS ||
             (flag = ERKStepSStolerances(im.arkode, o.relative_tolerance,
                                         o.absolute_tolerance)) != ARK_SUCCESS ||
-            (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS)
+            (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS ||
+            (flag = ERKStepRootInit(im.arkode, 1, pitch_root)) != ARK_SUCCESS ||
+            (flag = ERKStepSetNoInactiveRootWarn(im.arkode)) != ARK_SUCCESS)
             return set_message(msg, size, STEWART_ERR_MEMORY, "ARKODE setup failed with %s: %s",
                                flag_name(flag), im.cvode_message),
                    false;
@@ -213,7 +272,9 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
         (flag = CVodeSetUserData(im.cvode, &im)) != CV_SUCCESS ||
         (flag = CVodeSStolerances(im.cvode, o.relative_tolerance, o.absolute_tolerance)) !=
             CV_SUCCESS ||
-        (flag = CVodeSetMaxNumSteps(im.cvode, o.max_internal_steps)) != CV_SUCCESS)
+        (flag = CVodeSetMaxNumSteps(im.cvode, o.max_internal_steps)) != CV_SUCCESS ||
+        (flag = CVodeRootInit(im.cvode, 1, pitch_root)) != CV_SUCCESS ||
+        (flag = CVodeSetNoInactiveRootWarn(im.cvode)) != CV_SUCCESS)
         return set_message(msg, size, STEWART_ERR_MEMORY, "CVODE setup failed with %s: %s",
                            flag_name(flag), im.cvode_message),
                false;
@@ -252,6 +313,13 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     stats_ = stewart_plant_statistics{};
     long n;
     const char *module = im.arkode ? "ARKODE" : "CVODE";
+    // The pitch root: a crossing of +-90 degrees anywhere within the step stops the integrator
+    // there (a root where the continuous pitch is not near 90 degrees is a jump of the nearest
+    // triple over a long rotation: the reference moves on and the step goes on).
+    principal_angles(y, im.reference_angles);
+    bool pitch_crossed = false;
+    double angles[3] = {0, 0, 0};
+    int roots = 0;
     if (im.arkode) {
         // A one-step method restarts for free; the first step tries the size the last step
         // would have taken next (part of the saved state, so a rollback repeats it exactly).
@@ -261,11 +329,16 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             (flag = ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
                                flag_name(flag), im.cvode_message);
-        flag = ERKStepEvolve(im.arkode, forces.h, im.y, &t_reached, ARK_NORMAL);
+        do {
+            flag = ERKStepEvolve(im.arkode, forces.h, im.y, &t_reached, ARK_NORMAL);
+            if (flag != ARK_ROOT_RETURN) break;
+            principal_angles(v, angles);
+            pitch_crossed = std::fabs(std::cos(angles[1])) < kCrossingCos;
+            for (int i = 0; i < 3; ++i) im.reference_angles[i] = angles[i];
+        } while (!pitch_crossed && ++roots < kMaxRoots);
         if (ERKStepGetNumSteps(im.arkode, &n) == ARK_SUCCESS) stats_.steps = n;
         if (ERKStepGetNumErrTestFails(im.arkode, &n) == ARK_SUCCESS) stats_.error_test_failures = n;
-        long explicit_evals = 0, implicit_evals = 0;
-        (void)implicit_evals;
+        long explicit_evals = 0;
         if (ERKStepGetNumRhsEvals(im.arkode, &explicit_evals) == ARK_SUCCESS)
             stats_.rhs_evaluations = explicit_evals;
         sunrealtype h_last = 0, h_next = 0;
@@ -278,7 +351,13 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             (flag = CVodeSetStopTime(im.cvode, forces.h)) != CV_SUCCESS)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
                                flag_name(flag), im.cvode_message);
-        flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_NORMAL);
+        do {
+            flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_NORMAL);
+            if (flag != CV_ROOT_RETURN) break;
+            principal_angles(v, angles);
+            pitch_crossed = std::fabs(std::cos(angles[1])) < kCrossingCos;
+            for (int i = 0; i < 3; ++i) im.reference_angles[i] = angles[i];
+        } while (!pitch_crossed && ++roots < kMaxRoots);
         if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats_.steps = n;
         if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats_.rhs_evaluations = n;
         if (CVodeGetNumNonlinSolvIters(im.cvode, &n) == CV_SUCCESS)
@@ -291,7 +370,21 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
         if (CVodeGetLastOrder(im.cvode, &order) == CV_SUCCESS) stats_.last_order = order;
         if (CVodeGetLastStep(im.cvode, &h_last) == CV_SUCCESS) stats_.last_step_size = h_last;
     }
-
+    if (pitch_crossed)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the motion takes pitch through +-90 degrees near t + %g s (pitch = %g "
+                           "rad there), where roll and yaw are undefined",
+                           static_cast<double>(t_reached), angles[1]);
+    if (flag == CV_ROOT_RETURN) flag = CV_TOO_MUCH_WORK;  // kMaxRoots jumps of the triple
+    if (flag < 0 || t_reached != forces.h) {
+        double length = 0;
+        const int leg = collapsing_leg(*im.model, y, v, length);
+        if (leg >= 0)
+            return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                               "unreachable, leg %d: the motion drives it toward zero length "
+                               "(%.3g m near t + %g s)", leg + 1, length,
+                               static_cast<double>(t_reached));
+    }
     if (flag < 0) {
         if (im.fault != LegFault::None)
             return set_message(msg, size,
@@ -308,6 +401,12 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
                            "%s failed at t + %g s with %s: %s", module,
                            static_cast<double>(t_reached), flag_name(flag), im.cvode_message);
     }
+    // a solver's success short of the end would be a step not taken (found with a saved step
+    // hint of 4.9e-324 s)
+    if (t_reached != forces.h)
+        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                           "%s stopped at t + %g s, short of the step's end h = %g s", module,
+                           static_cast<double>(t_reached), forces.h);
     double out[kStates];
     for (int i = 0; i < kStates; ++i) out[i] = v[i];
     const double norm = std::sqrt(out[3] * out[3] + out[4] * out[4] + out[5] * out[5] +

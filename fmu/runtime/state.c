@@ -124,6 +124,9 @@ static const char *corrupt_values(const fmu_values *v) {
     if (v->real[fmu_time_vr] != v->time) return "the time variable is not the unit's time";
     if (v->has_stepped && !(v->last_step_point < v->time))
         return "the last step's communication point is not before the current time";
+    if ((v->mode & (MODE_INSTANTIATED | MODE_INITIALIZATION)) &&
+        (v->has_stepped || v->last_step_point != 0 || v->last_step_status != FMU_OK))
+        return "a unit before the end of initialisation has a step behind it";
     return NULL;
 }
 

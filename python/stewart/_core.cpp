@@ -183,11 +183,13 @@ public:
         size_t first_failed = n;
         stewart_status first;
         stewart_plant_statistics stats{};
+        bool created = true;
         {
             nb::gil_scoped_release release;
             stewart_plant *plant = stewart_plant_create(model_, &options, message, sizeof message);
             if (!plant) {
-                first = STEWART_ERR_MEMORY;  // the options were checked: memory is short
+                created = false;  // the message says why: the model and options, or memory
+                first = STEWART_ERR_PARAMETER;
             } else {
                 first = stewart_simulate_batch(plant, n, time.data(), force.data(),
                                                start_pose ? start_pose->data() : nullptr,
@@ -196,6 +198,11 @@ public:
                 stewart_plant_statistics_get(plant, &stats);
                 stewart_plant_free(plant);
             }
+        }
+        if (!created) {
+            if (std::string(message).find("out of memory") != std::string::npos)
+                throw std::bad_alloc();
+            fail(message);
         }
         if (first == STEWART_ERR_MEMORY && first_failed == n) throw std::bad_alloc();
         const std::vector<std::pair<std::string, double>> totals = {

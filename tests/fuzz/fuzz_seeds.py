@@ -125,6 +125,28 @@ FMU_SEEDS = {
                         step(0.1), READ),
 }
 # the same sequences through the FMI 3 layer
+# issue 23's probe: a serialised state whose mode is changed to terminated (8) or initialisation
+# (2) (fmu_values.mode at byte 16 + 3792 of the inverse unit's state), a subnormal step, and a
+# run from t0 = 100 s with the communication points counted (t0 + n h).
+def corrupt_int32(offset, value):
+    """Op 8 with bit 3: the int32 at `offset` of the serialised state (taken by op 6) := value."""
+    return bytes([8, 8, offset & 255, offset >> 8, value])
+
+
+def corrupt_double(offset, x):
+    """Op 8 with bit 2: the float64 at `offset` of the serialised state (taken by op 6) := x."""
+    return bytes([8, 4, offset & 255, offset >> 8]) + val(x)
+
+
+FMU_SEEDS.update({
+    "probe_mode_terminated": fmu_seed(step(0.1), bytes([6]), corrupt_int32(3808, 8), READ,
+                                      step(0.1), READ),
+    "probe_mode_initialisation": fmu_seed(step(0.1), bytes([6]), corrupt_int32(3808, 2), READ,
+                                          step(0.1), READ),
+    "probe_subnormal_step": fmu_seed(step(4.9e-324), step(4.9e-324, 0.0), step(0.1), READ),
+    "probe_counted_clock_t0_100": fmu_seed(bytes([11]) + val(100.0),
+                                           *[step(0.1, 100.0 + i * 0.1) for i in range(4)], READ),
+})
 FMU_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
                   for name, seed in list(FMU_SEEDS.items())})
 
@@ -173,6 +195,32 @@ PLANT_SEEDS = {
     "logging": plant_seed(bytes([12, 0]), bytes([12, 3]), bytes([12, 9]), set_force(0, math.inf),
                           step(1e-3), READ),
 }
+# issue 23's probe on the plant: its serialised state (16 bytes of header, fmu_values with the
+# mode at 3776, the Reals from 16 (value reference 210 = base_radius at 1696), then at 3792 the
+# plant's 25 doubles: time, pose and quaternion, velocity (3856), angular velocity (3880), roll
+# (3904), forces, warnings, step hint (3984)) with one field corrupted; a subnormal step; a bad
+# force derivative retried with the forces alone; a run from t0 = 100 s on a counted clock.
+PLANT_TAKEN = STATICS + step(1e-3) + bytes([6])
+PLANT_SEEDS.update({
+    "probe_subnormal_hint": plant_seed(PLANT_TAKEN, corrupt_double(3984, 4.9e-324), READ,
+                                       step(1e-3), READ, step(1e-3), READ),
+    "probe_plant_time": plant_seed(PLANT_TAKEN, corrupt_double(3792, 5.0), READ, step(1e-3)),
+    "probe_roll_off_quaternion": plant_seed(PLANT_TAKEN, corrupt_double(3904, 1.8e308), READ,
+                                            step(1e-3), READ),
+    "probe_velocity": plant_seed(PLANT_TAKEN, corrupt_double(3856, 1e15), READ, step(1e-3)),
+    "probe_angular_velocity": plant_seed(PLANT_TAKEN, corrupt_double(3880, 1.7e308), READ,
+                                         step(1e-3)),
+    "probe_mode_terminated": plant_seed(PLANT_TAKEN, corrupt_int32(3776, 8), READ, step(1e-3)),
+    "probe_mode_initialisation": plant_seed(PLANT_TAKEN, corrupt_int32(3776, 2), READ,
+                                            step(1e-3)),
+    "probe_parameter_1e6": plant_seed(PLANT_TAKEN, corrupt_double(1696, 1e6), READ, step(1e-3)),
+    "probe_subnormal_step": plant_seed(STATICS, step(4.9e-324), step(1e-3), READ),
+    "probe_bad_rate_retry": plant_seed(STATICS, bytes([5, 1, 1]) + val(math.nan), step(1e-3),
+                                       STATICS, step(1e-3), READ),
+    "probe_counted_clock_t0_100": plant_seed(bytes([11]) + val(100.0), STATICS,
+                                             *[step(1e-3, 100.0 + i * 1e-3) for i in range(6)],
+                                             READ),
+})
 PLANT_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
                     for name, seed in list(PLANT_SEEDS.items())})
 

@@ -127,3 +127,12 @@ def test_bad_arguments_raise_naming_them(platform, call, error, words):
         call(platform)
     for w in words:
         assert w in str(e.value)
+
+
+def test_a_plant_that_cannot_be_made_raises_value_error_naming_why():
+    """Parameters whose plant cannot take a first step (gravity of 1e300 m/s2: the accelerations
+    pass 1e100) raise ValueError with the library's message, not MemoryError."""
+    platform = stewart.Platform(gravity=[0.0, 0.0, -1e300])
+    t = np.arange(0, 0.0101, 0.01)
+    with pytest.raises(ValueError, match="gravity"):
+        platform.simulate(t, np.zeros((t.size, 6)), fidelity="massless")

@@ -1,7 +1,9 @@
 #include "test_support.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "unity.h"
 
@@ -106,4 +108,30 @@ stewart_inverse_output solve_ok(stewart_inverse *d, stewart_fidelity f, const st
         TEST_FAIL_MESSAGE(text);
     }
     return out;
+}
+
+uint64_t test_random(uint64_t *s) {
+    *s ^= *s >> 12, *s ^= *s << 25, *s ^= *s >> 27;
+    return *s * 2685821657736338717ULL;
+}
+
+double corrupted_value(uint64_t *rng, double v) {
+    static const double specials[] = {0.0, -0.0, 1.0, -1.0, 0.5, 1e15, -1e15, 1e300, DBL_MAX,
+                                      -DBL_MAX, 4.9e-324, DBL_MIN, 1e-300, NAN, INFINITY,
+                                      -INFINITY, 100.0, 3.0, 1e6};
+    const uint64_t r = test_random(rng);
+    switch (r % 6) {
+        case 0: { /* one bit flipped */
+            uint64_t bits;
+            memcpy(&bits, &v, sizeof bits);
+            bits ^= 1ULL << ((r >> 8) % 64);
+            memcpy(&v, &bits, sizeof v);
+            return v;
+        }
+        case 1: return specials[(r >> 8) % (sizeof specials / sizeof specials[0])];
+        case 2: return v * (1 + 1e-6 * (double)((r >> 8) % 1000));
+        case 3: return v + 2 * M_PI * (double)((int)((r >> 8) % 7) - 3);
+        case 4: return -v;
+        default: return ldexp((double)((r >> 8) % 2001) / 1000.0 - 1.0, (int)((r >> 20) % 80) - 40);
+    }
 }

@@ -2,6 +2,8 @@
 #ifndef STEWART_TEST_SUPPORT_H
 #define STEWART_TEST_SUPPORT_H
 
+#include <stdint.h>
+
 #include "stewart/stewart.h"
 
 #ifndef M_PI
@@ -34,5 +36,12 @@ stewart_status solve_as(stewart_inverse *d, const stewart_inverse_options *o,
                         const stewart_pose *pose, stewart_inverse_output *out);
 /* Solves and fails the test with the library's message unless the status is STEWART_OK. */
 stewart_inverse_output solve_ok(stewart_inverse *d, stewart_fidelity f, const stewart_pose *pose);
+
+/* xorshift64*: the next number of a fixed-seed random sequence (the same run every time). */
+uint64_t test_random(uint64_t *state);
+/* A value a corrupted file or a careless caller might hold instead of v: one bit flipped, a
+ * special value (0, 1e15, DBL_MAX, subnormal, NaN, inf, ...), a small relative change, 2 pi added,
+ * the sign changed, or a random magnitude. */
+double corrupted_value(uint64_t *rng, double v);
 
 #endif

@@ -180,10 +180,17 @@ void model_free(fmu_instance *inst) {
 
 /* ---------------------------------------------------------------- outputs */
 
+/* Forgets the FMI 2 input derivatives: a refused set is not kept for a retry that sets the forces
+ * again. */
+static void clear_input_derivatives(model_values *m) {
+    m->input_derivatives = 0;
+    memset(m->force_rate, 0, sizeof m->force_rate);
+}
+
 /* The first input (force, or with FMI 2 derivatives its rate) that is not finite: logs it and
- * returns 1. */
-static int bad_force(const fmu_instance *inst, double t) {
-    const fmu_values *v = &inst->v;
+ * returns 1 (a bad derivative clears them all). */
+static int bad_force(fmu_instance *inst, double t) {
+    fmu_values *v = &inst->v;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const double f = v->real[VR_F_1 + k], rate = v->model.force_rate[k];
         const char *name = fmu_variable_by_vr(VR_F_1 + k)->name;
@@ -196,7 +203,9 @@ static int bad_force(const fmu_instance *inst, double t) {
         if (v->model.input_derivatives && !isfinite(rate)) {
             fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                     "t = %.17g: input derivative d%s/dt = %g is not finite; the state stays at "
-                    "t, outputs keep their last valid values", t, name, rate);
+                    "t, outputs keep their last valid values; the input derivatives are cleared "
+                    "(forces held unless set again)", t, name, rate);
+            clear_input_derivatives(&v->model);
             return 1;
         }
     }
@@ -274,8 +283,7 @@ static void add_totals(plant_totals *t, const stewart_plant_statistics *s) {
     t->jacobian_evaluations += s->jacobian_evaluations;
 }
 
-/* The plant's own time: the end of its last step (or its start). */
-static double plant_time(const stewart_plant *plant) {
+double plant_time(const stewart_plant *plant) {
     double state[64];
     const size_t count = stewart_plant_state_size();
     if (count > sizeof state / sizeof state[0] || stewart_plant_save(plant, state, count) != STEWART_OK)
@@ -283,15 +291,18 @@ static double plant_time(const stewart_plant *plant) {
     return state[0];
 }
 
-/* The plant integrates continuously: a step must start where the last one ended (the runtime
- * lets a stateless unit start later). Error: a gap cannot be integrated without its forces. */
-static fmu_status check_continuous(fmu_instance *inst, double t) {
-    const double end = plant_time(inst->res.plant);
-    const double slack = 1e-9 * fabs(t - inst->v.last_step_point) + 8.0 * DBL_EPSILON * fabs(t);
-    if (fabs(t - end) <= slack) return FMU_OK;
+double clock_rounding(double t) { return 16.0 * DBL_EPSILON * fabs(t); }
+
+/* The plant integrates continuously: a step must start where the last one ended, to the rounding
+ * of the master's clock (the runtime lets a stateless unit start later). Error: a gap cannot be
+ * integrated without its forces. *end gets the plant's time. */
+static fmu_status check_continuous(fmu_instance *inst, double t, double *end) {
+    *end = plant_time(inst->res.plant);
+    if (fabs(t - *end) <= clock_rounding(fmax(fabs(t), fabs(*end)))) return FMU_OK;
     fmu_log(inst, FMU_ERROR, LOG_ERROR,
             "DoStep: currentCommunicationPoint = %.17g is not the plant's time %.17g (the end of "
-            "its last step): the plant cannot skip time; restore an FMU state or reset", t, end);
+            "its last step; they differ by %.3g s, more than the rounding of a clock): the plant "
+            "cannot skip time; restore an FMU state or reset", t, *end, t - *end);
     return FMU_ERROR;
 }
 
@@ -299,7 +310,8 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     fmu_values *v = &inst->v;
     model_values *m = &v->model;
     model_resources *r = &inst->res;
-    if (check_continuous(inst, t) != FMU_OK) return FMU_ERROR;
+    double end;
+    if (check_continuous(inst, t, &end) != FMU_OK) return FMU_ERROR;
     if (bad_force(inst, t)) return refused(v);
     double f0[STEWART_LEGS], f1[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -308,11 +320,15 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
         if (!isfinite(f1[k])) {
             fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                     "t = %.17g: F[%d] extrapolated to t + h = %.17g overflows (F = %g, dF/dt = "
-                    "%g); the state stays at t", t, k + 1, t + h, f0[k], m->force_rate[k]);
+                    "%g); the state stays at t; the input derivatives are cleared (forces held "
+                    "unless set again)", t, k + 1, t + h, f0[k], m->force_rate[k]);
+            clear_input_derivatives(m);
             return refused(v);
         }
     }
-    const stewart_status s = stewart_plant_step(r->plant, h, f0, f1, NULL, NULL);
+    /* The master's clock is the truth: the plant steps from its own time to the master's t + h,
+     * so the rounding of the two clocks never adds up over a run. */
+    const stewart_status s = stewart_plant_step(r->plant, (t + h) - end, f0, f1, NULL, NULL);
     if (s != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g, h = %g: step refused (%s): %s; the state stays at t, outputs keep "
@@ -322,8 +338,7 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     }
     /* accepted: the forces read their values at t + h; derivatives served this step only */
     memcpy(&v->real[VR_F_1], f1, sizeof f1);
-    m->input_derivatives = 0;
-    memset(m->force_rate, 0, sizeof m->force_rate);
+    clear_input_derivatives(m);
     stewart_plant_statistics stats;
     stewart_plant_statistics_get(r->plant, &stats);
     add_totals(&m->totals, &stats);

@@ -54,23 +54,64 @@ fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) 
     return FMU_OK;
 }
 
+/* Why the saved values do not belong to the plant's loaded state, or NULL: the plant's time is
+ * the unit's (to the rounding of a clock), and outputs the plant computed (status 0 or 1) are
+ * the motion of that state with the stroke bits and status it gives. */
+static const char *mismatch(const fmu_values *v, const stewart_plant *plant,
+                            const stewart_params *p, char *why, size_t why_size) {
+    const double t = plant_time(plant);
+    if (!(fabs(t - v->time) <= clock_rounding(fmax(fabs(t), fabs(v->time))))) {
+        snprintf(why, why_size, "the plant's time %.17g is not the unit's time %.17g", t, v->time);
+        return why;
+    }
+    const int32_t status = v->integer[VR_status];
+    const int solve = v->model.solve_status;
+    if ((status == 3) != (solve == FMU_DISCARD) || (status == 1) != (solve == FMU_WARNING))
+        return "status does not match the last refresh's result";
+    if (status == 3) return NULL; /* outputs are older than the state: nothing to compare */
+    const double zero[STEWART_LEGS] = {0};
+    stewart_plant_output out;
+    if (stewart_plant_output_get(plant, zero, &out) != STEWART_OK)
+        return "the plant's outputs overflow at the state's pose";
+    const double *motion[4] = {out.pose, out.pose_rate, out.length, out.length_rate};
+    for (int vr = VR_x; vr <= VR_L_dot_6; ++vr) { /* four groups of six, in that order */
+        const int group = (vr - VR_x) / 6, index = (vr - VR_x) % 6;
+        if (memcmp(&v->real[vr], &motion[group][index], sizeof(double)) != 0) {
+            snprintf(why, why_size, "output %s = %.17g is not the plant's %.17g",
+                     fmu_variable_by_vr((unsigned)vr)->name, v->real[vr], motion[group][index]);
+            return why;
+        }
+    }
+    int outside = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (out.length[k] < p->stroke_min || out.length[k] > p->stroke_max) outside |= 1 << k;
+    if (outside != v->model.legs_outside || (status == 1) != (outside != 0))
+        return "the stroke flags or status do not match the leg lengths";
+    return NULL;
+}
+
 /* The plant bytes of a state after initialisation, checked by loading them into a plant built
- * from the state's parameters. */
+ * from the state's parameters, and against the values they travel with. */
 static const char *check_plant_data(const fmu_values *v, const unsigned char *in, size_t size,
                                     char *why, size_t why_size) {
     stewart_params p;
     plant_settings s;
     plant_params_from_values(v, &p);
     plant_settings_from_values(v, &s);
-    stewart_model *model = stewart_model_create(&p, NULL, 0);
-    stewart_plant *plant = model ? stewart_plant_create(model, &s.options, NULL, 0) : NULL;
+    char message[STEWART_MESSAGE_SIZE] = "";
+    stewart_model *model = stewart_model_create(&p, message, sizeof message);
+    stewart_plant *plant = model ? stewart_plant_create(model, &s.options, message, sizeof message)
+                                 : NULL;
     const char *result = NULL;
     if (!plant) {
-        result = "out of memory checking the plant data";
+        snprintf(why, why_size, "the state's parameters and options make no plant: %s", message);
+        result = why;
     } else if (load_bytes(plant, in, size) != STEWART_OK) {
         snprintf(why, why_size, "the plant data is refused: %s",
                  *stewart_plant_message(plant) ? stewart_plant_message(plant) : "wrong size");
         result = why;
+    } else {
+        result = mismatch(v, plant, &p, why, why_size);
     }
     stewart_plant_free(plant);
     stewart_model_free(model);
@@ -94,6 +135,8 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     if (!isfinite(v->real[vr])) return "output " name " is not finite";
 #include "variables.def"
     if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
+    for (int vr = VR_steps; vr <= VR_last_order; ++vr)
+        if (v->integer[vr] < 0) return "an integrator statistic is negative";
     if (!after_initialisation(v)) return NULL; /* plant data, if any, is not used (model_load) */
     if (plant_check_settings(v, why, why_size)) return why;
     if (size == 0) return "no plant data after initialisation";
