@@ -114,12 +114,12 @@ void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
 #undef PUT_COLUMN
 
 // Writes one plant row (zeros, status STEWART_BATCH_NOT_RUN, for a row that did not run).
-void write_plant_row(const stewart_simulate_batch_outputs &out, size_t j,
+void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
                      const stewart_plant_output &o, const stewart_plant_statistics &st, int s) {
-    copy_out(row(out.pose, j, 6), o.pose, 6);
-    copy_out(row(out.pose_rate, j, 6), o.pose_rate, 6);
-    copy_out(row(out.length, j, 6), o.length, STEWART_LEGS);
-    copy_out(row(out.length_rate, j, 6), o.length_rate, STEWART_LEGS);
+    copy_out(row(out.pose, j, 6), o.pose.q, 6);
+    copy_out(row(out.pose_rate, j, 6), o.pose.q_dot, 6);
+    copy_out(row(out.length, j, 6), o.lengths.length, STEWART_LEGS);
+    copy_out(row(out.length_rate, j, 6), o.lengths.length_rate, STEWART_LEGS);
     copy_out(row(out.base_force, j, 3), o.base_force, 3);
     copy_out(row(out.base_torque, j, 3), o.base_torque, 3);
     if (out.warnings) out.warnings[j] = o.warnings;
@@ -194,51 +194,45 @@ extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, co
     return log.first;
 }
 
-extern "C" stewart_status stewart_simulate_batch(stewart_plant *plant, size_t n,
-                                                 const double *time, const double *force,
-                                                 const double start_pose[6],
-                                                 const double start_rate[6],
-                                                 const stewart_simulate_batch_outputs *out,
-                                                 char *message, size_t message_size,
-                                                 size_t *first_failed) {
-    if (first_failed) *first_failed = n;
-    if (message && message_size) message[0] = '\0';
-    if (!plant || !out || !out->status || (n > 0 && (!time || !force))) {
-        if (message)
-            stewart::set_message(message, message_size, STEWART_ERR_ARGUMENT,
-                                 "NULL argument to stewart_simulate_batch");
+extern "C" stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, const double *time,
+                                              const double *force, const double start_pose[6],
+                                              const double start_rate[6],
+                                              const stewart_plant_batch_outputs *out,
+                                              stewart_batch_messages *messages,
+                                              size_t *first_failed) {
+    FailureLog log(messages, first_failed, n);
+    if (!plant || !out || !out->status || (n > 0 && (!time || !force)))
         return STEWART_ERR_ARGUMENT;
-    }
     const stewart_plant_output none{};
     const stewart_plant_statistics no_steps{};
     size_t j = 0;
     stewart_status s = STEWART_OK;
+    stewart_plant_output o;
     if (n > 0) {
         // The start: the plant's own pose and rates where the caller gives none.
-        stewart_plant_output now;
-        s = stewart_plant_output_get(plant, nullptr, &now);
+        s = stewart_plant_output_get(plant, nullptr, &o);
         if (s == STEWART_OK)
-            s = stewart_plant_set_state(plant, time[0], start_pose ? start_pose : now.pose,
-                                        start_rate ? start_rate : now.pose_rate);
+            s = stewart_plant_set_state(plant, time[0], start_pose ? start_pose : o.pose.q,
+                                        start_rate ? start_rate : o.pose.q_dot);
+        if (s == STEWART_OK) s = stewart_plant_output_get(plant, force, &o);
+        if (s == STEWART_OK) write_plant_row(*out, 0, o, no_steps, STEWART_OK), j = 1;
     }
+    stewart_plant_input in{};
     for (; j < n && s == STEWART_OK; ++j) {
-        stewart_plant_statistics stats = no_steps;
-        if (j > 0) {
-            s = stewart_plant_step(plant, time[j] - time[j - 1], force + 6 * (j - 1),
-                                   force + 6 * j, nullptr, nullptr);
-            if (s != STEWART_OK) break;
-            stewart_plant_statistics_get(plant, &stats);
-        }
-        stewart_plant_output o;
-        s = stewart_plant_output_get(plant, force + 6 * j, &o);
+        in.h = time[j] - time[j - 1];
+        std::memcpy(in.force_start, force + 6 * (j - 1), sizeof in.force_start);
+        std::memcpy(in.force_end, force + 6 * j, sizeof in.force_end);
+        s = stewart_plant_step(plant, &in, &o);
         if (s != STEWART_OK) break;
+        stewart_plant_statistics stats;
+        stewart_plant_statistics_get(plant, &stats);
         write_plant_row(*out, j, o, stats, STEWART_OK);
     }
     if (s == STEWART_OK) return s;
-    if (first_failed) *first_failed = j;
-    if (message)
-        std::snprintf(message, message_size, "row %zu (t = %.17g): %s", j, time[j],
-                      stewart_plant_message(plant));
+    char text[STEWART_MESSAGE_SIZE];
+    std::snprintf(text, sizeof text, "row %zu (t = %.17g): %s", j, time[j],
+                  stewart_plant_message(plant));
+    log.record(j, s, text);
     write_plant_row(*out, j, none, no_steps, s);
     for (size_t k = j + 1; k < n; ++k) write_plant_row(*out, k, none, no_steps, STEWART_BATCH_NOT_RUN);
     return s;

@@ -32,6 +32,7 @@ stewart_pose combined(double t) {
 struct Drive {
     double h;
     std::vector<double> force, rate;  // 6 per sample
+    std::vector<stewart_plant_input> input;  // step i: samples i to i + 1, cubic Hermite
 };
 
 // Inverse-side forces at every communication point and their rates (central differences).
@@ -58,6 +59,18 @@ bool make_drive(const stewart_model *model, int fidelity, double h, double durat
             d.force[6 * i + k] = now.force[k];
             d.rate[6 * i + k] = (ahead.force[k] - behind.force[k]) / (2 * delta);
         }
+    }
+    for (int i = 0; i < n && ok; ++i) {
+        stewart_plant_input in{};
+        in.h = h;
+        in.derivatives = 1;
+        for (int k = 0; k < 6; ++k) {
+            in.force_start[k] = d.force[6 * i + k];
+            in.force_end[k] = d.force[6 * i + 6 + k];
+            in.force_rate_start[k] = d.rate[6 * i + k];
+            in.force_rate_end[k] = d.rate[6 * i + 6 + k];
+        }
+        d.input.push_back(in);
     }
     stewart_inverse_free(data);
     return ok;
@@ -97,9 +110,9 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
         stewart_plant_statistics before;
         stewart_plant_statistics_get(plant, &before);
         const double t0 = cpu_seconds();
+        stewart_plant_output out;
         for (int i = 0; i < steps; ++i)
-            if (stewart_plant_step(plant, d.h, &d.force[6 * i], &d.force[6 * i + 6], &d.rate[6 * i],
-                                   &d.rate[6 * i + 6]) != STEWART_OK) {
+            if (stewart_plant_step(plant, &d.input[i], &out) != STEWART_OK) {
                 std::fprintf(stderr, "bench-plant: step %d: %s\n", i, stewart_plant_message(plant));
                 r.ok = false;
                 break;
@@ -112,13 +125,11 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
     // The pose error against the cue, on one more pass.
     stewart_plant_set_state(plant, 0, start.q, start.q_dot);
     for (int i = 0; i < steps && r.ok; ++i) {
-        stewart_plant_step(plant, d.h, &d.force[6 * i], &d.force[6 * i + 6], &d.rate[6 * i],
-                           &d.rate[6 * i + 6]);
         stewart_plant_output out;
-        stewart_plant_output_get(plant, nullptr, &out);
+        stewart_plant_step(plant, &d.input[i], &out);
         const stewart_pose cue = combined((i + 1) * d.h);
         for (int c = 0; c < 6; ++c)
-            r.pose_error = std::max(r.pose_error, std::fabs(out.pose[c] - cue.q[c]));
+            r.pose_error = std::max(r.pose_error, std::fabs(out.pose.q[c] - cue.q[c]));
     }
     stewart_plant_free(plant);
     std::sort(per_step.begin(), per_step.end());
@@ -152,17 +163,21 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
         double force[6];
         if (stewart_inverse_solve(data, &in, &inverse) != STEWART_OK) break;
         for (int k = 0; k < 6; ++k)
-            force[k] = inverse.force[k] + kp * (inverse.lengths.length[k] - out.length[k]) +
-                       kd * (inverse.lengths.length_rate[k] - out.length_rate[k]);
-        if (stewart_plant_step(plant, h, force, force, nullptr, nullptr) != STEWART_OK ||
-            stewart_plant_output_get(plant, nullptr, &out) != STEWART_OK) {
+            force[k] = inverse.force[k] +
+                       kp * (inverse.lengths.length[k] - out.lengths.length[k]) +
+                       kd * (inverse.lengths.length_rate[k] - out.lengths.length_rate[k]);
+        stewart_plant_input held{};  // zero-order hold
+        held.h = h;
+        std::copy(force, force + 6, held.force_start);
+        std::copy(force, force + 6, held.force_end);
+        if (stewart_plant_step(plant, &held, &out) != STEWART_OK) {
             position = angle = -1;
             break;
         }
         cue = combined((i + 1) * h);
         for (int c = 0; c < 6; ++c)
             (c < 3 ? position : angle) =
-                std::max(c < 3 ? position : angle, std::fabs(out.pose[c] - cue.q[c]));
+                std::max(c < 3 ? position : angle, std::fabs(out.pose.q[c] - cue.q[c]));
         if (!(position < 0.1)) {  // diverging: the loop is unstable at this step
             position = angle = -1;
             break;

@@ -142,6 +142,20 @@ std::string read_forces(const char *path, ForceTable &table) {
     return "";
 }
 
+// The warning for the first leg outside its stroke.
+std::string stroke_warning(const stewart_params &p, const stewart_plant_output &o) {
+    char text[STEWART_MESSAGE_SIZE] = "";
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (o.stroke_legs & (1 << k)) {
+            std::snprintf(text, sizeof text,
+                          "leg %d has left its stroke: length %.9g m outside [%g, %g] m (end "
+                          "stops are not modelled)", k + 1, o.lengths.length[k], p.stroke_min,
+                          p.stroke_max);
+            break;
+        }
+    return text;
+}
+
 struct Row {
     stewart_plant_output out;
     stewart_plant_statistics stats;
@@ -159,10 +173,10 @@ void write_header(FILE *f) {
 void write_row(FILE *f, const Row &r) {
     const stewart_plant_output &o = r.out;
     std::fprintf(f, "%.17g", o.time);
-    for (double v : o.pose) std::fprintf(f, ",%.17g", v);
-    for (double v : o.pose_rate) std::fprintf(f, ",%.17g", v);
-    for (double v : o.length) std::fprintf(f, ",%.17g", v);
-    for (double v : o.length_rate) std::fprintf(f, ",%.17g", v);
+    for (double v : o.pose.q) std::fprintf(f, ",%.17g", v);
+    for (double v : o.pose.q_dot) std::fprintf(f, ",%.17g", v);
+    for (double v : o.lengths.length) std::fprintf(f, ",%.17g", v);
+    for (double v : o.lengths.length_rate) std::fprintf(f, ",%.17g", v);
     std::fprintf(f, ",%d,%ld,%ld,%ld,%ld\n", o.warnings, r.stats.steps, r.stats.rhs_evaluations,
                  r.stats.nonlinear_iterations, r.stats.error_test_failures);
 }
@@ -223,12 +237,14 @@ int main(int argc, char **argv) {
     }
     // Simulate everything before writing, so a failed run leaves no partial OUT.csv behind.
     int last_warnings = 0;
+    stewart_plant_input in{};
     for (size_t j = 0; j < table.t.size() && status == 0; ++j) {
         const double *force = &table.force[6 * j];
         if (j > 0) {
-            const stewart_status st = stewart_plant_step(plant, table.t[j] - table.t[j - 1],
-                                                         &table.force[6 * (j - 1)], force,
-                                                         nullptr, nullptr);
+            in.h = table.t[j] - table.t[j - 1];
+            std::memcpy(in.force_start, &table.force[6 * (j - 1)], sizeof in.force_start);
+            std::memcpy(in.force_end, force, sizeof in.force_end);
+            const stewart_status st = stewart_plant_step(plant, &in, &rows[j].out);
             if (st != STEWART_OK) {
                 std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): %s: %s\n", j + 1,
                              table.t[j], stewart_status_name(st), stewart_plant_message(plant));
@@ -236,8 +252,7 @@ int main(int argc, char **argv) {
                 break;
             }
             stewart_plant_statistics_get(plant, &rows[j].stats);
-        }
-        if (stewart_plant_output_get(plant, force, &rows[j].out) != STEWART_OK) {
+        } else if (stewart_plant_output_get(plant, force, &rows[j].out) != STEWART_OK) {
             std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): no outputs at this pose\n",
                          j + 1, table.t[j]);
             status = 1;
@@ -245,7 +260,7 @@ int main(int argc, char **argv) {
         }
         if (rows[j].out.warnings && !last_warnings)
             std::fprintf(stderr, "stewart-simulate: warning at row %zu (t = %g): %s\n", j + 1,
-                         table.t[j], stewart_plant_message(plant));
+                         table.t[j], stroke_warning(s.params, rows[j].out).c_str());
         last_warnings = rows[j].out.warnings;
     }
     stewart_plant_free(plant);

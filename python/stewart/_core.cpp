@@ -171,7 +171,7 @@ public:
         if (status.shape(0) != n) fail("output arrays must have as many rows as t");
         const stewart_plant_options options = make_plant_options(option_values);
         static_assert(sizeof(int64_t) == sizeof(long), "plant counters are long");
-        const stewart_simulate_batch_outputs out = {
+        const stewart_plant_batch_outputs out = {
             rows_of(pose, n),       rows_of(pose_rate, n),   rows_of(length, n),
             rows_of(length_rate, n), rows_of(base_force, n), rows_of(base_torque, n),
             rows_of(warnings, n),
@@ -191,10 +191,12 @@ public:
                 created = false;  // the message says why: the model and options, or memory
                 first = STEWART_ERR_PARAMETER;
             } else {
-                first = stewart_simulate_batch(plant, n, time.data(), force.data(),
-                                               start_pose ? start_pose->data() : nullptr,
-                                               start_rate ? start_rate->data() : nullptr, &out,
-                                               message, sizeof message, &first_failed);
+                size_t row = 0;
+                stewart_batch_messages messages = {1, 0, &row, message};
+                first = stewart_plant_batch(plant, n, time.data(), force.data(),
+                                            start_pose ? start_pose->data() : nullptr,
+                                            start_rate ? start_rate->data() : nullptr, &out,
+                                            &messages, &first_failed);
                 stewart_plant_statistics_get(plant, &stats);
                 stewart_plant_free(plant);
             }

@@ -163,10 +163,11 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
         if (!std::memchr(message, '\0', sizeof message) || message[0] == '\0') std::abort();
         return;
     }
-    const size_t state_size = stewart_plant_state_size();
-    double saved[64], force[STEWART_LEGS], force1[STEWART_LEGS], rate0[STEWART_LEGS],
-        rate1[STEWART_LEGS];
-    if (state_size > sizeof saved / sizeof saved[0]) std::abort();
+    const size_t state_size = stewart_plant_state_size(plant);
+    unsigned char saved[1024];
+    double force[STEWART_LEGS];
+    stewart_plant_input step{};
+    if (state_size > sizeof saved) std::abort();
     const double home_height = stewart_model_params(model)->home_height;
     for (int call = 0; call < kPlantCalls && in.left > 0; ++call) {
         const uint8_t what = in.byte();
@@ -185,15 +186,15 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
         case 1:
         case 2: {  // a step: raw or moderate forces and step size, linear or Hermite profile
             for (int k = 0; k < STEWART_LEGS; ++k) {
-                force[k] = (what & 8) ? in.value() : 200 + 100 * in.value();
-                force1[k] = (what & 16) ? in.value() : force[k];
-                rate0[k] = in.value();
-                rate1[k] = in.value();
+                step.force_start[k] = (what & 8) ? in.value() : 200 + 100 * in.value();
+                step.force_end[k] = (what & 16) ? in.value() : step.force_start[k];
+                step.force_rate_start[k] = in.value();
+                step.force_rate_end[k] = in.value();
             }
-            const double h = (what & 32) ? in.value() : 1e-3;
-            const bool hermite = what & 64;
-            s = stewart_plant_step(plant, h, force, force1, hermite ? rate0 : nullptr,
-                                   hermite ? rate1 : nullptr);
+            step.h = (what & 32) ? in.value() : 1e-3;
+            step.derivatives = (what & 64) ? 1 : 0;
+            s = stewart_plant_step(plant, &step, &out);
+            if (s == STEWART_OK) require_finite_values(&out.time, kOutputDoubles);
             if (s == STEWART_OK && checked_output(plant, nullptr, out) != STEWART_OK) std::abort();
             stewart_plant_statistics stats;
             stewart_plant_statistics_get(plant, &stats);
@@ -222,6 +223,9 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
             const bool had_output = checked_output(plant, nullptr, before) == STEWART_OK;
             if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
             if (stewart_plant_load(plant, saved, state_size) != STEWART_OK) std::abort();
+            stewart_plant *copy = stewart_plant_create(model, &options, message, sizeof message);
+            if (!copy || stewart_plant_copy(copy, plant) != STEWART_OK) std::abort();
+            stewart_plant_free(copy);
             const size_t bytes = kOutputDoubles * sizeof(double);
             if (had_output && (checked_output(plant, nullptr, after) != STEWART_OK ||
                                std::memcmp(&before.time, &after.time, bytes) != 0))
@@ -231,7 +235,12 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
         case 5: {  // save, corrupt values (or the size), load: refused or a usable state
             if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
             const int edits = 1 + (what >> 3) % 4;
-            for (int e = 0; e < edits; ++e) saved[in.byte() % state_size] = in.value();
+            const size_t doubles = state_size / sizeof(double);  // the header's bytes aside
+            for (int e = 0; e < edits; ++e) {
+                const double value = in.value();
+                std::memcpy(saved + state_size - sizeof(double) * (1 + in.byte() % doubles),
+                            &value, sizeof value);
+            }
             const size_t count = (what & 0x80) ? state_size - 1 + in.byte() % 3 : state_size;
             s = stewart_plant_load(plant, saved, count);
             if (s != STEWART_OK && s != STEWART_ERR_ARGUMENT) std::abort();

@@ -180,28 +180,32 @@ static void simulate_equals_the_loop(int fidelity) {
     double pose[ROWS][6], rate[ROWS][6], length[ROWS][6];
     long steps[ROWS];
     int status[ROWS];
-    const stewart_simulate_batch_outputs out = {&pose[0][0], &rate[0][0], &length[0][0], NULL,
-                                                NULL, NULL, NULL, steps, NULL, NULL, NULL, status};
+    const stewart_plant_batch_outputs out = {.pose = &pose[0][0], .pose_rate = &rate[0][0],
+                                             .length = &length[0][0], .steps = steps,
+                                             .status = status};
     stewart_plant *batch = plant_of(fidelity), *loop = plant_of(fidelity);
     size_t first_failed = 0;
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_simulate_batch(batch, ROWS, times, &F[0][0], start,
-                                                             NULL, &out, NULL, 0, &first_failed));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_batch(batch, ROWS, times, &F[0][0], start,
+                                                          NULL, &out, NULL, &first_failed));
     TEST_ASSERT_EQUAL_size_t(ROWS, first_failed);
     const double at_rest[6] = {0};
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_set_state(loop, times[0], start, at_rest));
     for (int j = 0; j < ROWS; ++j) {
         TEST_ASSERT_EQUAL_INT(STEWART_OK, status[j]);
         stewart_plant_statistics st = {0};
-        if (j > 0) {
-            TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_step(loop, times[j] - times[j - 1],
-                                                                 F[j - 1], F[j], NULL, NULL));
-            stewart_plant_statistics_get(loop, &st);
-        }
         stewart_plant_output o;
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(loop, F[j], &o));
-        TEST_ASSERT_EQUAL_MEMORY(o.pose, pose[j], sizeof o.pose);
-        TEST_ASSERT_EQUAL_MEMORY(o.pose_rate, rate[j], sizeof o.pose_rate);
-        TEST_ASSERT_EQUAL_MEMORY(o.length, length[j], sizeof o.length);
+        if (j > 0) {
+            stewart_plant_input in = {times[j] - times[j - 1], {0}, {0}, 0, {0}, {0}};
+            memcpy(in.force_start, F[j - 1], sizeof in.force_start);
+            memcpy(in.force_end, F[j], sizeof in.force_end);
+            TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_step(loop, &in, &o));
+            stewart_plant_statistics_get(loop, &st);
+        } else {
+            TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(loop, F[j], &o));
+        }
+        TEST_ASSERT_EQUAL_MEMORY(o.pose.q, pose[j], sizeof o.pose.q);
+        TEST_ASSERT_EQUAL_MEMORY(o.pose.q_dot, rate[j], sizeof o.pose.q_dot);
+        TEST_ASSERT_EQUAL_MEMORY(o.lengths.length, length[j], sizeof o.lengths.length);
         TEST_ASSERT_EQUAL_INT(st.steps, steps[j]);
     }
     TEST_ASSERT_EQUAL_DOUBLE(start[0], pose[0][0]);
@@ -222,15 +226,16 @@ static void test_refused_step_stops_the_run(void) {
     F[10][4] = NAN;
     double pose[ROWS][6];
     int status[ROWS];
-    stewart_simulate_batch_outputs out;
+    stewart_plant_batch_outputs out;
     memset(&out, 0, sizeof out);
     out.pose = &pose[0][0];
     out.status = status;
     stewart_plant *plant = plant_of(STEWART_MASSLESS);
     char message[STEWART_MESSAGE_SIZE];
-    size_t first_failed = 0;
-    const stewart_status s = stewart_simulate_batch(plant, ROWS, times, &F[0][0], NULL, NULL,
-                                                    &out, message, sizeof message, &first_failed);
+    size_t rows[1], first_failed = 0;
+    stewart_batch_messages messages = {1, 0, rows, message};
+    const stewart_status s = stewart_plant_batch(plant, ROWS, times, &F[0][0], NULL, NULL, &out,
+                                                 &messages, &first_failed);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, s);
     TEST_ASSERT_EQUAL_size_t(10, first_failed);
     TEST_ASSERT_NOT_NULL(strstr(message, "row 10"));
@@ -242,13 +247,13 @@ static void test_refused_step_stops_the_run(void) {
     stewart_plant_output now;
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(plant, NULL, &now));
     TEST_ASSERT_EQUAL_DOUBLE(times[9], now.time);
-    TEST_ASSERT_EQUAL_MEMORY(pose[9], now.pose, sizeof now.pose);
+    TEST_ASSERT_EQUAL_MEMORY(pose[9], now.pose.q, sizeof now.pose.q);
     /* a time that does not increase is refused at its row */
     times[3] = times[2];
     F[10][4] = 0;
     TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK,
-                              stewart_simulate_batch(plant, ROWS, times, &F[0][0], NULL, NULL,
-                                                     &out, NULL, 0, &first_failed));
+                              stewart_plant_batch(plant, ROWS, times, &F[0][0], NULL, NULL,
+                                                  &out, NULL, &first_failed));
     TEST_ASSERT_EQUAL_size_t(3, first_failed);
     TEST_ASSERT_EQUAL_INT(STEWART_BATCH_NOT_RUN, status[4]);
     stewart_plant_free(plant);

@@ -73,7 +73,7 @@ static void test_fall_keeps_total_energy(void) {
     for (;;) {
         step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
-        if (out.warnings & STEWART_PLANT_WARN_STROKE) break;
+        if (out.warnings & STEWART_WARN_STROKE) break;
         t = out.time;
         plant_energy(&params, plant, STEWART_FULL, &T, &U);
         if (fabs(T + U - T0 - U0) > worst) worst = fabs(T + U - T0 - U0);
@@ -108,7 +108,7 @@ static void power_balance(int fidelity) {
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
         TEST_ASSERT_EQUAL(0, out.warnings);
-        for (int k = 0; k < 6; ++k) power += f[k] * out.length_rate[k], f_prev[k] = f[k];
+        for (int k = 0; k < 6; ++k) power += f[k] * out.lengths.length_rate[k], f_prev[k] = f[k];
         /* Simpson over [t - 2h, t] on every second point; power_prev holds the middle one. */
         static double power_first;
         if (i == 0) power_first = power;
@@ -143,7 +143,7 @@ static void equilibrium(int fidelity, const double pose_q[6], double seconds, do
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         for (int c = 0; c < 3; ++c)
-            if (fabs(out.pose[c] - pose.q[c]) > worst) worst = fabs(out.pose[c] - pose.q[c]), worst_t = out.time;
+            if (fabs(out.pose.q[c] - pose.q[c]) > worst) worst = fabs(out.pose.q[c] - pose.q[c]), worst_t = out.time;
     }
     printf("equilibrium, fidelity %d: max displacement %.3g m (at t = %g s) over %g s\n", fidelity,
            worst, worst_t, seconds);
@@ -182,7 +182,7 @@ static void test_leg_bodies_on_their_joints(void) {
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, after));
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
-        const double e = leg_joint_error(&params, out.pose, after);
+        const double e = leg_joint_error(&params, out.pose.q, after);
         if (e > worst_joint) worst_joint = e;
         for (int b = 0; b < STEWART_PLANT_BODIES; ++b) {
             /* (r1 - r0) / h against the mean velocity; skew part of R1 R0^T / h against omega */
@@ -243,7 +243,7 @@ static void test_integrators_agree(void) {
         }
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
-        for (int c = 0; c < 6; ++c) pose[method][c] = out.pose[c];
+        for (int c = 0; c < 6; ++c) pose[method][c] = out.pose.q[c];
         stewart_plant_free(plant);
     }
     double worst = 0;
@@ -330,8 +330,8 @@ static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
     double worst = 0;
     for (int c = 0; c < 6; ++c) {
         const double expected = eps * v[c] * cosh(lambda * 2.0);
-        if (fabs(out.pose[c] - pose.q[c] - expected) > worst)
-            worst = fabs(out.pose[c] - pose.q[c] - expected);
+        if (fabs(out.pose.q[c] - pose.q[c] - expected) > worst)
+            worst = fabs(out.pose.q[c] - pose.q[c] - expected);
     }
     printf("saddle: fastest divergence %.4f 1/s predicted by the inverse side; after 2 s the plant "
            "is off the prediction by %.3g of the %.3g m grown\n", lambda, worst / (eps * cosh(2 * lambda)),

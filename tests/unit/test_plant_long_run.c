@@ -36,16 +36,16 @@ static void test_leg_joints_hold_over_a_long_closed_loop_run(void) {
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &now));
         double f[6];
         for (int k = 0; k < 6; ++k)
-            f[k] = ff.force[k] + kp * (ff.lengths.length[k] - now.length[k]) +
-                   kd * (ff.lengths.length_rate[k] - now.length_rate[k]);
+            f[k] = ff.force[k] + kp * (ff.lengths.length[k] - now.lengths.length[k]) +
+                   kd * (ff.lengths.length_rate[k] - now.lengths.length_rate[k]);
         step_ok(plant, h, f, f, NULL, NULL);
         if (i % 1000 != 0 && i != steps - 1) continue; /* sample the checks: the run is long */
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, bodies));
-        worst_joint = fmax(worst_joint, leg_joint_error(&params, out.pose, bodies));
+        worst_joint = fmax(worst_joint, leg_joint_error(&params, out.pose.q, bodies));
         const stewart_pose next = combined_pose(h * (double)(i + 1));
-        for (int c = 0; c < 6; ++c) worst_tracking = fmax(worst_tracking, fabs(out.pose[c] - next.q[c]));
+        for (int c = 0; c < 6; ++c) worst_tracking = fmax(worst_tracking, fabs(out.pose.q[c] - next.q[c]));
     }
     printf("%ld closed-loop plant steps of 1 ms: max leg joint error %.3g, max tracking error "
            "%.3g (m, rad)\n", steps, worst_joint, worst_tracking);

@@ -52,17 +52,17 @@ static void round_trip(int fidelity, double seconds, double bound) {
                 if (dt > worst_wrench) worst_wrench = dt;
             }
             for (int k = 0; k < 6; ++k) {
-                if (fabs(out.length[k] - closed_form_length(&params, &pose, k)) > worst_length)
-                    worst_length = fabs(out.length[k] - closed_form_length(&params, &pose, k));
-                if (fabs(out.length_rate[k] - inverse.lengths.length_rate[k]) > worst_length)
-                    worst_length = fabs(out.length_rate[k] - inverse.lengths.length_rate[k]);
+                if (fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k)) > worst_length)
+                    worst_length = fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k));
+                if (fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]) > worst_length)
+                    worst_length = fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]);
             }
         }
         for (int c = 0; c < 6; ++c) {
-            const double e = fabs(out.pose[c] - cue.q[c]);
+            const double e = fabs(out.pose.q[c] - cue.q[c]);
             if (e > worst) worst = e, worst_t = t;
-            if (fabs(out.pose_rate[c] - cue.q_dot[c]) > worst_rate)
-                worst_rate = fabs(out.pose_rate[c] - cue.q_dot[c]);
+            if (fabs(out.pose.q_dot[c] - cue.q_dot[c]) > worst_rate)
+                worst_rate = fabs(out.pose.q_dot[c] - cue.q_dot[c]);
         }
         for (int k = 0; k < 6; ++k) f0[k] = f1[k], r0[k] = r1[k];
     }

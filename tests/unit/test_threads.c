@@ -132,8 +132,11 @@ static void run_library_job(int job, job_result *r) {
             fail(r, step, "feed solve", stewart_inverse_message(feed));
             break;
         }
-        if (step > 0 && stewart_plant_step(plant, STEP_SIZE, force0, feed_out.force, NULL, NULL) !=
-                            STEWART_OK) {
+        stewart_plant_input held = {STEP_SIZE, {0}, {0}, 0, {0}, {0}};
+        memcpy(held.force_start, force0, sizeof held.force_start);
+        memcpy(held.force_end, feed_out.force, sizeof held.force_end);
+        stewart_plant_output stepped;
+        if (step > 0 && stewart_plant_step(plant, &held, &stepped) != STEWART_OK) {
             fail(r, step, "plant_step", stewart_plant_message(plant));
             break;
         }

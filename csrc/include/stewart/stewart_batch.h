@@ -52,7 +52,7 @@ stewart_status stewart_inverse_batch(stewart_inverse *inverse, size_t n, const d
                                      const stewart_inverse_batch_outputs *outputs,
                                      stewart_batch_messages *messages, size_t *first_failed);
 
-/* The status of a row a batch did not run (stewart_simulate_batch after a refused step): positive,
+/* The status of a row a batch did not run (stewart_plant_batch after a refused step): positive,
  * unlike every stewart_status. */
 #define STEWART_BATCH_NOT_RUN 1
 
@@ -81,35 +81,35 @@ stewart_status stewart_forward_batch(stewart_forward *forward, size_t n, const d
 /* Where a plant batch writes its results: arrays of n rows, row-major. Every pointer but status
  * may be NULL to skip that output. A row that did not run holds zeros. Statistics are those of the
  * step into the row (zero for row 0). */
-typedef struct stewart_simulate_batch_outputs {
+typedef struct stewart_plant_batch_outputs {
     double *pose;          /* n x 6, (x, y, z [m], roll, pitch, yaw [rad]) */
     double *pose_rate;     /* n x 6, d/dt of the pose */
     double *length;        /* n x 6, L_k [m] */
     double *length_rate;   /* n x 6, dL_k/dt [m/s] */
     double *base_force;    /* n x 3, force on the base, world frame [N] */
     double *base_torque;   /* n x 3, its torque about the world origin [N m] */
-    int *warnings;         /* n, STEWART_PLANT_WARN_* bits */
+    int *warnings;         /* n, STEWART_WARN_* bits */
     long *steps;           /* n, internal integrator steps */
     long *rhs_evaluations; /* n, right-hand side evaluations */
     long *nonlinear_iterations; /* n, nonlinear solver iterations */
     long *error_test_failures;  /* n, error test failures */
     int *status;           /* n, stewart_status, or STEWART_BATCH_NOT_RUN (required) */
-} stewart_simulate_batch_outputs;
+} stewart_plant_batch_outputs;
 
 /* Runs plant through the communication points time (n, increasing) with the forces force (n x 6
  * [N], linear in time between rows), as stewart-simulate does: the state is set at time[0] to
  * start_pose and start_rate (6 values each; NULL: the plant's current pose or pose rates, which
  * for a new plant are home and at rest), then each row j > 0 is one stewart_plant_step from row
- * j-1. Row 0 is the start state. A refused
- * step (or a bad start state, a time that does not increase, a non-finite force) stops the run:
- * that row gets its status, the rows after it STEWART_BATCH_NOT_RUN, and the plant stays at the
- * last row that ran. Returns STEWART_OK or the status of the row that stopped the run, whose index
- * goes to *first_failed (n when every row ran) and whose message to message (if not NULL). */
-stewart_status stewart_simulate_batch(stewart_plant *plant, size_t n, const double *time,
-                                      const double *force, const double start_pose[6],
-                                      const double start_rate[6],
-                                      const stewart_simulate_batch_outputs *outputs,
-                                      char *message, size_t message_size, size_t *first_failed);
+ * j-1. Row 0 is the start state. A refused step (or a bad start state, a time that does not
+ * increase, a non-finite force) stops the run: that row gets its status, the rows after it
+ * STEWART_BATCH_NOT_RUN, and the plant stays at the last row that ran. Returns STEWART_OK or the
+ * status of the row that stopped the run, whose index goes to *first_failed (n when every row
+ * ran) and whose message ("row j (t = ...): why") to messages (if not NULL). */
+stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, const double *time,
+                                   const double *force, const double start_pose[6],
+                                   const double start_rate[6],
+                                   const stewart_plant_batch_outputs *outputs,
+                                   stewart_batch_messages *messages, size_t *first_failed);
 
 #ifdef __cplusplus
 }
