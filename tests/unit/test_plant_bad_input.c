@@ -207,6 +207,54 @@ static void test_rollback_and_independent_plants(void) {
     stewart_plant_free(other);
 }
 
+/* The grammar's rollback: save bytes and a copy, step, load (or copy back), step again: the same
+ * outputs bit for bit; without the rollback the step starts elsewhere; a plant of another model
+ * is refused by name. */
+static void test_save_copy_step_load_step_again(void) {
+    const double f[6] = {180, 170, 175, 185, 178, 172};
+    for (int i = 0; i < 20; ++i) step_ok(plant, 1e-3, f, f, NULL, NULL);
+    unsigned char bytes[1024];
+    const size_t size = stewart_plant_state_size(plant);
+    TEST_ASSERT_TRUE(size > 0 && size <= sizeof bytes);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_save(plant, bytes, size));
+    stewart_plant *kept = test_plant(model, STEWART_FULL, 1e-10, 1e-12);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_copy(kept, plant));
+    stewart_plant_input in;
+    memset(&in, 0, sizeof in);
+    in.h = 2e-3;
+    memcpy(in.force_start, f, sizeof f);
+    stewart_plant_output first, moved_on, again, from_copy;
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_step(plant, &in, &first));
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_step(plant, &in, &moved_on));
+    TEST_ASSERT_TRUE(memcmp(&first, &moved_on, sizeof first) != 0);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_load(plant, bytes, size));
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_step(plant, &in, &again));
+    TEST_ASSERT_EQUAL_MEMORY(&first, &again, sizeof first);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_step(kept, &in, &from_copy));
+    TEST_ASSERT_EQUAL_MEMORY(&first, &from_copy, sizeof first);
+    /* refused: a short buffer, bytes of another version, a plant of another model */
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_save(plant, bytes, size - 1));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_plant_message(plant), "the state needs"));
+    bytes[4] ^= 1;
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_load(plant, bytes, size));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_plant_message(plant), "version"));
+    stewart_params other_params = params;
+    other_params.base_radius = 0.6;
+    stewart_model *other = test_model(&other_params);
+    stewart_plant *elsewhere = test_plant(other, STEWART_FULL, 1e-10, 1e-12);
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_copy(elsewhere, plant));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_plant_message(elsewhere), "different models"));
+    /* reset: at rest at home at time 0, as made */
+    stewart_plant_reset(plant);
+    stewart_plant_output home;
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &home));
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, home.time);
+    TEST_ASSERT_EQUAL_DOUBLE(params.home_height, home.pose.q[2]);
+    stewart_plant_free(elsewhere);
+    stewart_model_free(other);
+    stewart_plant_free(kept);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_non_finite_inputs_refused);
@@ -216,5 +264,6 @@ int main(void) {
     RUN_TEST(test_options_checked);
     RUN_TEST(test_stroke_warning_names_leg);
     RUN_TEST(test_rollback_and_independent_plants);
+    RUN_TEST(test_save_copy_step_load_step_again);
     return UNITY_END();
 }
