@@ -238,13 +238,16 @@ static fmu_status stroke_status(fmu_instance *inst, const stewart_plant_output *
     return outside ? FMU_WARNING : FMU_OK;
 }
 
-/* Outputs of the plant's current state under the current forces (the base wrench needs them). */
-static fmu_status evaluate(fmu_instance *inst, int after_step) {
+/* Outputs of the plant's current state under the current forces (the base wrench needs them);
+ * after a step, the step's own outputs (under the same forces). */
+static fmu_status evaluate(fmu_instance *inst, const stewart_plant_output *after_step) {
     fmu_values *v = &inst->v;
     model_resources *r = &inst->res;
     if (bad_force(inst, v->time)) return refused(v);
     plant_outputs o;
-    if (stewart_plant_output_get(r->plant, &v->real[VR_F_1], &o.out) != STEWART_OK) {
+    if (after_step) {
+        o.out = *after_step;
+    } else if (stewart_plant_output_get(r->plant, &v->real[VR_F_1], &o.out) != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: the outputs overflow at this state under these forces; outputs keep "
                 "their last valid values", v->time);
@@ -270,7 +273,7 @@ static fmu_status evaluate(fmu_instance *inst, int after_step) {
 
 fmu_status model_refresh_outputs(fmu_instance *inst) {
     if (inst->v.outputs_current) return inst->v.model.solve_status;
-    return evaluate(inst, 0);
+    return evaluate(inst, NULL);
 }
 
 /* ---------------------------------------------------------------- the step */
@@ -342,7 +345,7 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     stewart_plant_statistics_get(r->plant, &stats);
     add_totals(&m->totals, &stats);
     v->time = t + h; /* the outputs belong to t + h (the runtime sets it again) */
-    const fmu_status out = evaluate(inst, 1);
+    const fmu_status out = evaluate(inst, &at_end);
     v->time = t;
     /* an accepted step whose end cannot be evaluated is still accepted: status 3 says so */
     return out == FMU_DISCARD ? FMU_WARNING : out;
