@@ -11,7 +11,7 @@
  * the model and its options, then call it once per input. The three directions share one grammar:
  *   inverse (this header):       stewart_inverse_create, stewart_inverse_solve(inverse, &in, &out)
  *   forward (stewart_forward.h): stewart_forward_create, stewart_forward_solve(forward, &in, &out)
- *   plant   (stewart_plant.h):   the forward dynamics (its own life cycle, being converted)
+ *   plant   (stewart_plant.h):   stewart_plant_create, stewart_plant_step(plant, &in, &out)
  * and each object has _free, _reset (forget the history), _copy (a rollback point), _state_size,
  * _save and _load (bytes, versioned and checked) and _message (the last error; "" after a
  * success). Warnings travel in the outputs (STEWART_WARN_* bits and stroke_legs). Nothing here

@@ -5,9 +5,10 @@
  *
  * The independent coordinates are the platform pose (a quaternion inside) and its twist; every
  * leg body follows in closed form, so the joints hold exactly (docs/forward-dynamics.md).
- * Usage: build a stewart_model (stewart.h), create one stewart_plant per run, optionally set the
- * start state, then call stewart_plant_step once per communication step with the forces at both
- * ends of the step. No global state; no heap allocation in a step.
+ * Usage: build a stewart_model (stewart.h), create one stewart_plant per run (the life cycle of
+ * every direction: create, free, reset, copy, state_size, save/load, message), optionally set the
+ * start state, then call stewart_plant_step(plant, &input, &output) once per communication step
+ * with the forces at both ends of the step. No global state; no heap allocation in a step.
  */
 #ifndef STEWART_STEWART_PLANT_H
 #define STEWART_STEWART_PLANT_H
