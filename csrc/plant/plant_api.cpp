@@ -33,7 +33,7 @@ constexpr double kMinAbsoluteTolerance = 1e-20;
 // The plant's clock: within +-1e10 s (317 years) a step of 1e-5 s still advances time by
 // itself to 1 part in 5.
 constexpr double kMaxTime = 1e10;  // [s]
-const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+using stewart::kPoseNames;
 
 }  // namespace
 
@@ -54,13 +54,10 @@ struct stewart_plant {
 
 namespace {
 
-// omega = E(pitch, yaw) * (roll, pitch, yaw)_dot, as in rigid_motion.cpp.
+// omega = E(pitch, yaw) * (roll, pitch, yaw)_dot (kinematics/motion.hpp).
 fd::Mat3 rate_matrix(double pitch, double yaw) {
-    const double cp = std::cos(pitch), sp = std::sin(pitch), cy = std::cos(yaw),
-                 sy = std::sin(yaw);
-    fd::Mat3 E;
-    E << cy * cp, -sy, 0, sy * cp, cy, 0, -sp, 0, 1;
-    return E;
+    return stewart::angle_rate_matrix(std::cos(pitch), std::sin(pitch), std::cos(yaw),
+                                      std::sin(yaw));
 }
 
 // The roll-pitch-yaw angles of R, roll and yaw taken on the branch nearest to previous.
@@ -76,7 +73,7 @@ void angles_of(const fd::Mat3 &R, const double previous[3], double angles[3]) {
 }
 
 // Lengths, their rates, the stroke check: bit k of the result set when leg k+1 is outside.
-int leg_outputs(const stewart_plant &p, const fd::PlatformMotion &m, double length[6],
+int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[6],
                 double rate[6]) {
     const stewart_params &par = p.model->params;
     int stroke_legs = 0;
@@ -93,11 +90,11 @@ int leg_outputs(const stewart_plant &p, const fd::PlatformMotion &m, double leng
 // The 13 bodies' motion (accelerations included) under the given forces (NULL: the last step's);
 // STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
 stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
-                          fd::BodyMotion bodies[STEWART_PLANT_BODIES]) {
+                          stewart::Motion bodies[STEWART_PLANT_BODIES]) {
     if (!force) force = p.force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
-    fd::PlatformMotion m = fd::motion_of_state(p.y);
+    stewart::Motion m = fd::motion_of_state(p.y);
     if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
     m.acceleration = e.twist_rate.head<3>();
     m.alpha = e.twist_rate.tail<3>();
@@ -405,9 +402,9 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     st.total_jacobian_evaluations += last.jacobian_evaluations;
     if (s != STEWART_OK) return s;
 
-    const fd::PlatformMotion m = fd::motion_of_state(y);
+    const stewart::Motion m = fd::motion_of_state(y);
     // A leg that passes through zero length between two evaluations flips its direction.
-    const fd::PlatformMotion before = fd::motion_of_state(p->y);
+    const stewart::Motion before = fd::motion_of_state(p->y);
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const fd::Vec3 &a = p->dynamics.legs.base_points.col(k), &b =
             p->dynamics.legs.platform_points.col(k);
@@ -454,10 +451,10 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
                                                    stewart_plant_output *out) {
     if (!p || !out) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
-    fd::BodyMotion bodies[STEWART_PLANT_BODIES];
+    stewart::Motion bodies[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, force, e, bodies);
     if (s != STEWART_OK) return s;
-    const fd::PlatformMotion m = fd::motion_of_state(p->y);
+    const stewart::Motion m = fd::motion_of_state(p->y);
     fd::Vec3 f, t;
     fd::base_wrench(p->dynamics, bodies, f, t);
 
@@ -489,7 +486,7 @@ extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, co
                                                       stewart_plant_reactions *reactions) {
     if (!p || !reactions) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
-    fd::BodyMotion bodies[STEWART_PLANT_BODIES];
+    stewart::Motion bodies[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, force, e, bodies);
     if (s != STEWART_OK) return s;
     if (!force) force = p->force;
@@ -508,7 +505,7 @@ extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
                                                stewart_plant_body bodies[STEWART_PLANT_BODIES]) {
     if (!p || !bodies) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
-    fd::BodyMotion motion[STEWART_PLANT_BODIES];
+    stewart::Motion motion[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, nullptr, e, motion);
     if (s != STEWART_OK) return s;
     const int count = p->dynamics.with_legs ? STEWART_PLANT_BODIES : 1;

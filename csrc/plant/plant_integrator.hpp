@@ -24,7 +24,7 @@ struct ForceProfile {
 
 // The platform motion (pose and twist; zero accelerations) of a state vector; the quaternion is
 // normalised on the way.
-PlatformMotion motion_of_state(const double y[kStates]);
+Motion motion_of_state(const double y[kStates]);
 
 struct IntegratorImpl;
 
