@@ -1,5 +1,5 @@
-// stewart_batch.h: n rows through stewart_solve, stewart_forward_solve (one data block) or
-// stewart_plant_step (one plant), arrays in and out.
+// stewart_batch.h: n rows through stewart_inverse_solve, stewart_forward_solve (one solver
+// object) or stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
 #include <cstdio>
@@ -20,19 +20,48 @@ void copy_out(double *to, const double *from, int count) {
     if (to) std::memcpy(to, from, sizeof(double) * count);
 }
 
+// Row j of a column of `count` values: an array member, or a scalar one.
+template <typename T, size_t N>
+void put(T *column, size_t j, const T (&value)[N]) {
+    if (column) std::memcpy(column + j * N, value, sizeof value);
+}
+template <typename T>
+void put(T *column, size_t j, const T &value) {
+    if (column) column[j] = value;
+}
+
+// Every column of the output tables is a member of the output struct, of its type and count,
+// and together they are the whole struct: a struct laid out from the table has its size (a field
+// missing from a table is caught here).
+#define MIRROR_COLUMN(name, member, count, type, unit, description) type name[count];
+#define INVERSE_COLUMN(name, member, count, type, unit, description)                             \
+    static_assert(sizeof(stewart_inverse_output::member) == (count) * sizeof(type),              \
+                  #name ": count and type as in stewart_inverse_output");
+#define FORWARD_COLUMN(name, member, count, type, unit, description)                             \
+    static_assert(sizeof(stewart_forward_output::member) == (count) * sizeof(type),              \
+                  #name ": count and type as in stewart_forward_output");
+struct InverseMirror {
+    STEWART_INVERSE_OUTPUT_TABLE(MIRROR_COLUMN)
+};
+struct ForwardMirror {
+    STEWART_FORWARD_OUTPUT_TABLE(MIRROR_COLUMN)
+};
+STEWART_INVERSE_OUTPUT_TABLE(INVERSE_COLUMN)
+STEWART_FORWARD_OUTPUT_TABLE(FORWARD_COLUMN)
+static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_output),
+              "STEWART_INVERSE_OUTPUT_TABLE lists every field of stewart_inverse_output");
+static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_output),
+              "STEWART_FORWARD_OUTPUT_TABLE lists every field of stewart_forward_output");
+#undef INVERSE_COLUMN
+#undef FORWARD_COLUMN
+#undef MIRROR_COLUMN
+
+#define PUT_COLUMN(name, member, count, type, unit, description) put(out.name, j, o.member);
+
 // Writes one row's results (zeros for a failed row) and its status.
-void write_row(const stewart_batch_outputs &out, size_t j, const stewart_output &o,
+void write_row(const stewart_inverse_batch_outputs &out, size_t j, const stewart_inverse_output &o,
                stewart_status s) {
-    copy_out(row(out.length, j, 6), o.length, STEWART_LEGS);
-    copy_out(row(out.length_rate, j, 6), o.length_rate, STEWART_LEGS);
-    copy_out(row(out.length_accel, j, 6), o.length_accel, STEWART_LEGS);
-    copy_out(row(out.force, j, 6), o.force, STEWART_LEGS);
-    copy_out(row(out.condition, j, 1), &o.condition, 1);
-    copy_out(row(out.residual, j, 1), &o.residual, 1);
-    copy_out(row(out.base_force, j, 3), o.base_force, 3);
-    copy_out(row(out.base_torque, j, 3), o.base_torque, 3);
-    if (out.iterations) out.iterations[j] = o.iterations;
-    if (out.warnings) out.warnings[j] = o.warnings;
+    STEWART_INVERSE_OUTPUT_TABLE(PUT_COLUMN)
     out.status[j] = s;
 }
 
@@ -46,7 +75,7 @@ void keep_message(stewart_batch_messages *messages, size_t j, const char *text) 
 }
 
 // The bookkeeping of a batch's failing rows: every message (as many as kept), the first status,
-// its row and its message (kept aside while later rows overwrite the data block's message).
+// its row and its message (kept aside while later rows overwrite the solver's message).
 struct FailureLog {
     stewart_batch_messages *messages;
     size_t *first_failed;
@@ -66,32 +95,31 @@ struct FailureLog {
     }
 };
 
-// Writes one forward row's results (zeros for a failed row, but its warnings and branch).
+// Writes one forward row's results (zeros for a failed row, but a row on another assembly mode
+// keeps its warnings, branch and stroke legs).
 void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
-                       const stewart_forward_result &r, stewart_status s) {
-    const bool ok = s == STEWART_OK;
-    const stewart_forward_result zero{};
-    const stewart_forward_result &v = ok ? r : zero;
-    copy_out(row(out.pose, j, 6), v.pose.q, 6);
-    copy_out(row(out.pose_rate, j, 6), v.pose.q_dot, 6);
-    copy_out(row(out.pose_accel, j, 6), v.pose.q_ddot, 6);
-    copy_out(row(out.residual, j, 1), &v.residual, 1);
-    copy_out(row(out.condition, j, 1), &v.condition, 1);
-    copy_out(row(out.jump, j, 1), &v.jump, 1);
-    if (out.iterations) out.iterations[j] = v.iterations;
-    if (out.start) out.start[j] = v.start;
-    if (out.warnings) out.warnings[j] = ok || s == STEWART_ERR_OTHER_BRANCH ? r.warnings : 0;
-    if (out.branch) out.branch[j] = ok || s == STEWART_ERR_OTHER_BRANCH ? r.branch : 0;
+                       const stewart_forward_output &r, stewart_status s) {
+    stewart_forward_output o{};
+    if (s == STEWART_OK) {
+        o = r;
+    } else if (s == STEWART_ERR_OTHER_BRANCH) {
+        o.warnings = r.warnings;
+        o.branch = r.branch;
+        o.stroke_legs = r.stroke_legs;
+    }
+    STEWART_FORWARD_OUTPUT_TABLE(PUT_COLUMN)
     out.status[j] = s;
 }
 
+#undef PUT_COLUMN
+
 // Writes one plant row (zeros, status STEWART_BATCH_NOT_RUN, for a row that did not run).
-void write_plant_row(const stewart_simulate_batch_outputs &out, size_t j,
+void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
                      const stewart_plant_output &o, const stewart_plant_statistics &st, int s) {
-    copy_out(row(out.pose, j, 6), o.pose, 6);
-    copy_out(row(out.pose_rate, j, 6), o.pose_rate, 6);
-    copy_out(row(out.length, j, 6), o.length, STEWART_LEGS);
-    copy_out(row(out.length_rate, j, 6), o.length_rate, STEWART_LEGS);
+    copy_out(row(out.pose, j, 6), o.pose.q, 6);
+    copy_out(row(out.pose_rate, j, 6), o.pose.q_dot, 6);
+    copy_out(row(out.length, j, 6), o.lengths.length, STEWART_LEGS);
+    copy_out(row(out.length_rate, j, 6), o.lengths.length_rate, STEWART_LEGS);
     copy_out(row(out.base_force, j, 3), o.base_force, 3);
     copy_out(row(out.base_torque, j, 3), o.base_torque, 3);
     if (out.warnings) out.warnings[j] = o.warnings;
@@ -104,30 +132,27 @@ void write_plant_row(const stewart_simulate_batch_outputs &out, size_t j,
 
 }  // namespace
 
-extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_data *d,
-                                              const stewart_options *o, size_t n, const double *q,
-                                              const double *q_dot, const double *q_ddot,
-                                              const stewart_batch_outputs *out,
-                                              stewart_batch_messages *messages,
-                                              size_t *first_failed) {
+extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,
+                                                const double *q_dot, const double *q_ddot,
+                                                const stewart_inverse_batch_outputs *out,
+                                                stewart_batch_messages *messages,
+                                                size_t *first_failed) {
     FailureLog log(messages, first_failed, n);
-    if (!m || !d || !o || !out || !out->status || (n > 0 && !q)) {
+    if (!d || !out || !out->status || (n > 0 && !q)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
-                                    "NULL argument to stewart_solve_batch");
+                                    "NULL argument to stewart_inverse_batch");
         return STEWART_ERR_ARGUMENT;
     }
-    const stewart_status bad_options = stewart_options_check(o, d->message, sizeof d->message);
-    if (bad_options != STEWART_OK) return bad_options;
-
-    stewart_pose pose{};
+    stewart_inverse_input in{};
+    stewart_pose &pose = in.pose;
     for (size_t j = 0; j < n; ++j) {
         std::memcpy(pose.q, q + 6 * j, sizeof pose.q);
         if (q_dot) std::memcpy(pose.q_dot, q_dot + 6 * j, sizeof pose.q_dot);
         if (q_ddot) std::memcpy(pose.q_ddot, q_ddot + 6 * j, sizeof pose.q_ddot);
-        stewart_output o_j;  // written whole by a successful solve, zeroed on failure
-        const stewart_status s = stewart_solve(m, d, o, &pose, &o_j);
+        stewart_inverse_output o_j;  // written whole by a successful solve, zeroed on failure
+        const stewart_status s = stewart_inverse_solve(d, &in, &o_j);
         if (s != STEWART_OK) {
-            o_j = stewart_output{};
+            o_j = stewart_inverse_output{};
             log.record(j, s, d->message);
         }
         write_row(*out, j, o_j, s);
@@ -136,30 +161,32 @@ extern "C" stewart_status stewart_solve_batch(const stewart_model *m, stewart_da
     return log.first;
 }
 
-extern "C" stewart_status stewart_forward_batch(const stewart_model *m, stewart_data *d,
-                                                const stewart_forward_options *o, size_t n,
-                                                const double *time, const double *lengths,
-                                                const double *rates, const double *accels,
-                                                const double guess[6],
+extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, const double *time,
+                                                const double *lengths, const double *rates,
+                                                const double *accels, const double guess[6],
                                                 const stewart_forward_batch_outputs *out,
                                                 stewart_batch_messages *messages,
                                                 size_t *first_failed) {
     FailureLog log(messages, first_failed, n);
-    if (!m || !d || !o || !out || !out->status || (n > 0 && !lengths) || (accels && !rates)) {
+    if (!d || !out || !out->status || (n > 0 && !lengths) || (accels && !rates)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
                                     accels && !rates ? "stewart_forward_batch: accels need rates"
                                                      : "NULL argument to stewart_forward_batch");
         return STEWART_ERR_ARGUMENT;
     }
-    const stewart_status bad_options =
-        stewart_forward_options_check(o, d->message, sizeof d->message);
-    if (bad_options != STEWART_OK) return bad_options;
-
+    stewart_forward_input in{};
+    in.derivatives = accels ? 2 : rates ? 1 : 0;
+    if (guess) std::memcpy(in.guess, guess, sizeof in.guess);
     for (size_t j = 0; j < n; ++j) {
-        stewart_forward_result r{};
-        const stewart_status s = stewart_forward_solve(
-            m, d, o, time ? time[j] : 0.0, lengths + 6 * j, row(rates, j, 6),
-            row(accels, j, 6), j == 0 ? guess : nullptr, &r);
+        in.time = time ? time[j] : 0.0;
+        std::memcpy(in.lengths.length, lengths + 6 * j, sizeof in.lengths.length);
+        if (rates)
+            std::memcpy(in.lengths.length_rate, rates + 6 * j, sizeof in.lengths.length_rate);
+        if (accels)
+            std::memcpy(in.lengths.length_accel, accels + 6 * j, sizeof in.lengths.length_accel);
+        in.use_guess = j == 0 && guess;
+        stewart_forward_output r{};
+        const stewart_status s = stewart_forward_solve(d, &in, &r);
         if (s != STEWART_OK) log.record(j, s, d->message);
         write_forward_row(*out, j, r, s);
     }
@@ -167,51 +194,45 @@ extern "C" stewart_status stewart_forward_batch(const stewart_model *m, stewart_
     return log.first;
 }
 
-extern "C" stewart_status stewart_simulate_batch(stewart_plant *plant, size_t n,
-                                                 const double *time, const double *force,
-                                                 const double start_pose[6],
-                                                 const double start_rate[6],
-                                                 const stewart_simulate_batch_outputs *out,
-                                                 char *message, size_t message_size,
-                                                 size_t *first_failed) {
-    if (first_failed) *first_failed = n;
-    if (message && message_size) message[0] = '\0';
-    if (!plant || !out || !out->status || (n > 0 && (!time || !force))) {
-        if (message)
-            stewart::set_message(message, message_size, STEWART_ERR_ARGUMENT,
-                                 "NULL argument to stewart_simulate_batch");
+extern "C" stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, const double *time,
+                                              const double *force, const double start_pose[6],
+                                              const double start_rate[6],
+                                              const stewart_plant_batch_outputs *out,
+                                              stewart_batch_messages *messages,
+                                              size_t *first_failed) {
+    FailureLog log(messages, first_failed, n);
+    if (!plant || !out || !out->status || (n > 0 && (!time || !force)))
         return STEWART_ERR_ARGUMENT;
-    }
     const stewart_plant_output none{};
     const stewart_plant_statistics no_steps{};
     size_t j = 0;
     stewart_status s = STEWART_OK;
+    stewart_plant_output o;
     if (n > 0) {
         // The start: the plant's own pose and rates where the caller gives none.
-        stewart_plant_output now;
-        s = stewart_plant_output_get(plant, nullptr, &now);
+        s = stewart_plant_output_get(plant, nullptr, &o);
         if (s == STEWART_OK)
-            s = stewart_plant_set_state(plant, time[0], start_pose ? start_pose : now.pose,
-                                        start_rate ? start_rate : now.pose_rate);
+            s = stewart_plant_set_state(plant, time[0], start_pose ? start_pose : o.pose.q,
+                                        start_rate ? start_rate : o.pose.q_dot);
+        if (s == STEWART_OK) s = stewart_plant_output_get(plant, force, &o);
+        if (s == STEWART_OK) write_plant_row(*out, 0, o, no_steps, STEWART_OK), j = 1;
     }
+    stewart_plant_input in{};
     for (; j < n && s == STEWART_OK; ++j) {
-        stewart_plant_statistics stats = no_steps;
-        if (j > 0) {
-            s = stewart_plant_step(plant, time[j] - time[j - 1], force + 6 * (j - 1),
-                                   force + 6 * j, nullptr, nullptr);
-            if (s != STEWART_OK) break;
-            stewart_plant_statistics_get(plant, &stats);
-        }
-        stewart_plant_output o;
-        s = stewart_plant_output_get(plant, force + 6 * j, &o);
+        in.h = time[j] - time[j - 1];
+        std::memcpy(in.force_start, force + 6 * (j - 1), sizeof in.force_start);
+        std::memcpy(in.force_end, force + 6 * j, sizeof in.force_end);
+        s = stewart_plant_step(plant, &in, &o);
         if (s != STEWART_OK) break;
+        stewart_plant_statistics stats;
+        stewart_plant_statistics_get(plant, &stats);
         write_plant_row(*out, j, o, stats, STEWART_OK);
     }
     if (s == STEWART_OK) return s;
-    if (first_failed) *first_failed = j;
-    if (message)
-        std::snprintf(message, message_size, "row %zu (t = %.17g): %s", j, time[j],
-                      stewart_plant_message(plant));
+    char text[STEWART_MESSAGE_SIZE];
+    std::snprintf(text, sizeof text, "row %zu (t = %.17g): %s", j, time[j],
+                  stewart_plant_message(plant));
+    log.record(j, s, text);
     write_plant_row(*out, j, none, no_steps, s);
     for (size_t k = j + 1; k < n; ++k) write_plant_row(*out, k, none, no_steps, STEWART_BATCH_NOT_RUN);
     return s;

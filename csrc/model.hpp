@@ -1,12 +1,15 @@
-// The immutable model and the mutable data block behind the opaque C handles.
+// The immutable model and the mutable solver objects behind the opaque C handles: seen only by
+// the API files (model.cpp, inverse/inverse_api.cpp, inverse/full_api.cpp, forward/forward_api.cpp,
+// plant/plant_api.cpp, batch.cpp).
 #pragma once
 
 #include <memory>
 
-#include "platform/closed_form.hpp"
-#include "platform/forward_kinematics.hpp"
-#include "platform/full_model.hpp"
+#include "forward/forward_state.hpp"
+#include "inverse/full_model.hpp"
+#include "kinematics/closed_form.hpp"
 #include "stewart/stewart.h"
+#include "stewart/stewart_forward.h"
 
 struct stewart_model {
     stewart_params params;
@@ -15,11 +18,19 @@ struct stewart_model {
     Eigen::Vector3d gravity;
     std::unique_ptr<mbs_model> full;  // the 14-body mechanism (actuator-length drivers)
     stewart::FullLayout full_layout;
+    stewart::ForwardConstants forward;  // what forward kinematics needs from the geometry
 };
 
-struct stewart_data {
+struct stewart_inverse {
     const stewart_model *model;
-    char message[STEWART_MESSAGE_SIZE];
+    stewart_inverse_options options;
+    mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
     std::unique_ptr<mbs_data> full;  // state and workspaces of the full level
-    stewart::ForwardState forward;   // forward kinematics: its solver and tracking history
+};
+
+struct stewart_forward {
+    const stewart_model *model;
+    stewart_forward_options options;
+    mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
+    stewart::ForwardState state;  // its Newton solver and tracking history
 };

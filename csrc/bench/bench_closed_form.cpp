@@ -25,23 +25,28 @@ std::vector<stewart_pose> yaw_manoeuvre(int n) {
     return poses;
 }
 
-double median_ns_per_pose(const stewart_model *m, stewart_data *d, stewart_fidelity f,
+double median_ns_per_pose(const stewart_model *m, stewart_fidelity f,
                           const std::vector<stewart_pose> &poses, double *checksum) {
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = f;
-    stewart_output out;
+    stewart_inverse *d = stewart_inverse_create(m, &o, nullptr, 0);
+    if (!d) return 0;
+    stewart_inverse_output out;
+    stewart_inverse_input in{};
     std::vector<double> batches;
     for (int b = 0; b < 201; ++b) {
         const auto start = std::chrono::steady_clock::now();
         for (const stewart_pose &p : poses) {
-            stewart_solve(m, d, &o, &p, &out);
-            *checksum += out.length[0] + out.force[0];
+            in.pose = p;
+            stewart_inverse_solve(d, &in, &out);
+            *checksum += out.lengths.length[0] + out.force[0];
         }
         const auto stop = std::chrono::steady_clock::now();
         batches.push_back(std::chrono::duration<double, std::nano>(stop - start).count() /
                           poses.size());
     }
+    stewart_inverse_free(d);
     std::nth_element(batches.begin(), batches.begin() + batches.size() / 2, batches.end());
     return batches[batches.size() / 2];
 }
@@ -53,11 +58,10 @@ int main(int argc, char **argv) {
     stewart_params_default(&params);
     char msg[STEWART_MESSAGE_SIZE];
     stewart_model *m = stewart_model_create(&params, msg, sizeof msg);
-    stewart_data *d = stewart_data_create(m);
     const std::vector<stewart_pose> poses = yaw_manoeuvre(1201);
     double checksum = 0;
-    const double kin = median_ns_per_pose(m, d, STEWART_KINEMATIC, poses, &checksum);
-    const double mass = median_ns_per_pose(m, d, STEWART_MASSLESS, poses, &checksum);
+    const double kin = median_ns_per_pose(m, STEWART_KINEMATIC, poses, &checksum);
+    const double mass = median_ns_per_pose(m, STEWART_MASSLESS, poses, &checksum);
     char report[256];
     std::snprintf(report, sizeof report,
                   "closed-form levels, median of 201 batches of 1201 poses (yaw manoeuvre):\n"
@@ -69,7 +73,6 @@ int main(int argc, char **argv) {
         FILE *f = std::fopen(argv[1], "w");
         if (f) { std::fputs(report, f); std::fclose(f); }
     }
-    stewart_data_free(d);
     stewart_model_free(m);
     return 0;
 }

@@ -105,12 +105,30 @@ int baseline_newton(const Geometry &g, const double target[6], double q[6], doub
     return -1;
 }
 
+// The library's solvers of one model: inverse kinematics (kinematic and massless levels, for the
+// samples' lengths) and forward kinematics.
+struct Solvers {
+    stewart_inverse *kinematic = nullptr, *massless = nullptr;
+    stewart_forward *forward = nullptr;
+};
+
+// One forward solve from arrays (rates, accels and guess may be null).
+stewart_status forward_solve(stewart_forward *f, double t, const double *L, const double *rates,
+                             const double *accels, const double *guess, stewart_forward_output *r) {
+    stewart_forward_input in{};
+    in.time = t;
+    std::copy(L, L + 6, in.lengths.length);
+    if (rates) std::copy(rates, rates + 6, in.lengths.length_rate);
+    if (accels) std::copy(accels, accels + 6, in.lengths.length_accel);
+    in.derivatives = accels ? 2 : rates ? 1 : 0;
+    in.use_guess = guess != nullptr;
+    if (guess) std::copy(guess, guess + 6, in.guess);
+    return stewart_forward_solve(f, &in, r);
+}
+
 // ---- the samples ---------------------------------------------------------------------------
 // Samples first .. first + count - 1 of the combined cue at 1 kHz (continuous over chunks).
-std::vector<Sample> combined_cue(const stewart_model *m, stewart_data *d, long first, int count) {
-    stewart_options o;
-    stewart_options_default(&o);
-    o.fidelity = STEWART_KINEMATIC;
+std::vector<Sample> combined_cue(const stewart_model *m, Solvers *d, long first, int count) {
     const double amp[6] = {0.05, 0.04, 0.03, 0.10, 0.08, 0.15},
                  w[6] = {3.0, 2.0, 4.0, 2.5, 3.5, 1.5}, ph[6] = {0.1, 0.7, 0.3, 1.1, 0.4, 0.9};
     std::vector<Sample> out;
@@ -122,22 +140,21 @@ std::vector<Sample> combined_cue(const stewart_model *m, stewart_data *d, long f
             p.q_dot[j] = amp[j] * w[j] * std::cos(w[j] * t + ph[j]);
             p.q_ddot[j] = -amp[j] * w[j] * w[j] * std::sin(w[j] * t + ph[j]);
         }
-        stewart_output legs;
-        stewart_solve(m, d, &o, &p, &legs);
+        stewart_inverse_output legs;
+        const stewart_inverse_input in = {p};
+        stewart_inverse_solve(d->kinematic, &in, &legs);
         Sample s;
         std::copy(p.q, p.q + 6, s.truth);
-        std::copy(legs.length, legs.length + 6, s.length);
-        std::copy(legs.length_rate, legs.length_rate + 6, s.rate);
-        std::copy(legs.length_accel, legs.length_accel + 6, s.accel);
+        std::copy(legs.lengths.length, legs.lengths.length + 6, s.length);
+        std::copy(legs.lengths.length_rate, legs.lengths.length_rate + 6, s.rate);
+        std::copy(legs.lengths.length_accel, legs.lengths.length_accel + 6, s.accel);
         out.push_back(s);
     }
     return out;
 }
 
 // Random poses with every length inside the stroke and condition below 1e3.
-std::vector<Sample> workspace(const stewart_model *m, stewart_data *d, int n) {
-    stewart_options o;
-    stewart_options_default(&o);
+std::vector<Sample> workspace(const stewart_model *m, Solvers *d, int n) {
     const stewart_params *p = stewart_model_params(m);
     unsigned long long state = 2024;
     auto uniform = [&](double lo, double hi) {
@@ -149,15 +166,17 @@ std::vector<Sample> workspace(const stewart_model *m, stewart_data *d, int n) {
     while (static_cast<int>(out.size()) < n) {
         stewart_pose pose{};
         for (int i = 0; i < 6; ++i) pose.q[i] = uniform(-box[i], box[i]) + (i == 2 ? 0.5 : 0);
-        stewart_output legs;
-        if (stewart_solve(m, d, &o, &pose, &legs) != STEWART_OK || legs.condition > 1e3) continue;
+        stewart_inverse_output legs;
+        const stewart_inverse_input in = {pose};
+        if (stewart_inverse_solve(d->massless, &in, &legs) != STEWART_OK || legs.condition > 1e3)
+            continue;
         bool inside = true;
         for (int k = 0; k < 6; ++k)
-            inside = inside && legs.length[k] >= p->stroke_min && legs.length[k] <= p->stroke_max;
+            inside = inside && legs.lengths.length[k] >= p->stroke_min && legs.lengths.length[k] <= p->stroke_max;
         if (!inside) continue;
         Sample s{};
         std::copy(pose.q, pose.q + 6, s.truth);
-        std::copy(legs.length, legs.length + 6, s.length);
+        std::copy(legs.lengths.length, legs.lengths.length + 6, s.length);
         out.push_back(s);
     }
     return out;
@@ -179,12 +198,10 @@ constexpr int kChunk = 12000;  // samples generated (untimed) at a time
 
 // Tracking the cue; with_rates: the lengths' rates and accelerations given (Taylor predictor,
 // pose rates and accelerations out), else the lengths only (chord predictor, pose only).
-Stats ours_tracking(const stewart_model *m, stewart_data *d, long solves, bool with_rates) {
-    stewart_forward_options o;
-    stewart_forward_options_default(&o);
+Stats ours_tracking(const stewart_model *m, Solvers *d, long solves, bool with_rates) {
     Stats st;
-    stewart_forward_result r;
-    stewart_forward_reset(d);
+    stewart_forward_output r;
+    stewart_forward_reset(d->forward);
     for (long first = 0; first <= solves; first += kChunk) {
         const std::vector<Sample> cue = combined_cue(m, d, first, kChunk);
         for (int i = 0; i < kChunk; ++i) {
@@ -192,8 +209,8 @@ Stats ours_tracking(const stewart_model *m, stewart_data *d, long solves, bool w
             const double t = 1e-3 * static_cast<double>(first + i);
             const auto a = Clock::now();
             const stewart_status status =
-                stewart_forward_solve(m, d, &o, t, s.length, with_rates ? s.rate : nullptr,
-                                      with_rates ? s.accel : nullptr, nullptr, &r);
+                forward_solve(d->forward, t, s.length, with_rates ? s.rate : nullptr,
+                              with_rates ? s.accel : nullptr, nullptr, &r);
             const auto b = Clock::now();
             if (first + i == 0) continue;  // the very first solve is a cold start
             if (static_cast<long>(st.us.size()) == solves) break;
@@ -206,16 +223,14 @@ Stats ours_tracking(const stewart_model *m, stewart_data *d, long solves, bool w
     return st;
 }
 
-Stats ours_cold(const stewart_model *m, stewart_data *d, const std::vector<Sample> &poses) {
-    stewart_forward_options o;
-    stewart_forward_options_default(&o);
+Stats ours_cold(const stewart_model *m, Solvers *d, const std::vector<Sample> &poses) {
     Stats st;
-    stewart_forward_result r;
+    stewart_forward_output r;
     for (const Sample &s : poses) {
-        stewart_forward_reset(d);
+        stewart_forward_reset(d->forward);
         const auto a = Clock::now();
         const stewart_status status =
-            stewart_forward_solve(m, d, &o, 0, s.length, nullptr, nullptr, nullptr, &r);
+            forward_solve(d->forward, 0, s.length, nullptr, nullptr, nullptr, &r);
         const auto b = Clock::now();
         st.us.push_back(micros(a, b));
         st.iterations.push_back(r.iterations);
@@ -258,15 +273,11 @@ std::string line(const char *name, const Stats &s) {
 
 // One cold start from home per grid point of three slices through home (x-y, roll-pitch,
 // yaw-z): the outcome against the pose the lengths came from.
-int write_map(const stewart_model *m, stewart_data *d, const char *path) {
+int write_map(const stewart_model *m, Solvers *d, const char *path) {
     FILE *out = std::fopen(path, "w");
     if (!out) return 1;
     std::fprintf(out, "slice,u,v,inside_stroke,condition,truth_branch,status,iterations,branch,error\n");
     const stewart_params *p = stewart_model_params(m);
-    stewart_options inverse;
-    stewart_options_default(&inverse);
-    stewart_forward_options o;
-    stewart_forward_options_default(&o);
     struct Slice { const char *name; int u, v; double u0, u1, v0, v1; };
     const Slice slices[3] = {{"x-y", 0, 1, -0.4, 0.4, -0.4, 0.4},
                              {"roll-pitch", 3, 4, -0.8, 0.8, -0.8, 0.8},
@@ -279,24 +290,25 @@ int write_map(const stewart_model *m, stewart_data *d, const char *path) {
                 pose.q[2] = p->home_height;
                 pose.q[sl.u] = sl.u0 + (sl.u1 - sl.u0) * i / (n - 1);
                 pose.q[sl.v] = sl.v0 + (sl.v1 - sl.v0) * j / (n - 1);
-                stewart_output legs;
-                const stewart_status inv = stewart_solve(m, d, &inverse, &pose, &legs);
+                stewart_inverse_output legs;
+                const stewart_inverse_input in = {pose};
+                const stewart_status inv = stewart_inverse_solve(d->massless, &in, &legs);
                 bool inside = inv == STEWART_OK;
                 for (int k = 0; k < 6 && inside; ++k)
-                    inside = legs.length[k] >= p->stroke_min && legs.length[k] <= p->stroke_max;
-                stewart_forward_result r{};
+                    inside = legs.lengths.length[k] >= p->stroke_min && legs.lengths.length[k] <= p->stroke_max;
+                stewart_forward_output r{};
                 stewart_status s = STEWART_ERR_SINGULAR;
                 if (inv == STEWART_OK) {
-                    stewart_forward_reset(d);
-                    s = stewart_forward_solve(m, d, &o, 0, legs.length, nullptr, nullptr, nullptr,
-                                              &r);
+                    stewart_forward_reset(d->forward);
+                    s = forward_solve(d->forward, 0, legs.lengths.length, nullptr, nullptr,
+                                      nullptr, &r);
                 }
                 // The branch of the pose the lengths came from: solved from itself.
-                stewart_forward_result self{};
+                stewart_forward_output self{};
                 int truth_branch = -1;
                 if (inv == STEWART_OK) {
-                    const stewart_status t = stewart_forward_solve(m, d, &o, 0, legs.length, nullptr,
-                                                                   nullptr, pose.q, &self);
+                    const stewart_status t = forward_solve(d->forward, 0, legs.lengths.length,
+                                                           nullptr, nullptr, pose.q, &self);
                     if (t == STEWART_OK || t == STEWART_ERR_OTHER_BRANCH) truth_branch = self.branch;
                 }
                 double error = 0;
@@ -316,15 +328,33 @@ int main(int argc, char **argv) {
     stewart_params_default(&params);
     char msg[STEWART_MESSAGE_SIZE];
     stewart_model *m = stewart_model_create(&params, msg, sizeof msg);
-    stewart_data *d = m ? stewart_data_create(m) : nullptr;
-    if (!d) {
+    stewart_inverse_options kinematic, massless;
+    stewart_inverse_options_default(&kinematic);
+    stewart_inverse_options_default(&massless);
+    kinematic.fidelity = STEWART_KINEMATIC;
+    stewart_forward_options forward;
+    stewart_forward_options_default(&forward);
+    Solvers solvers;
+    if (m) {
+        solvers.kinematic = stewart_inverse_create(m, &kinematic, msg, sizeof msg);
+        solvers.massless = stewart_inverse_create(m, &massless, msg, sizeof msg);
+        solvers.forward = stewart_forward_create(m, &forward, msg, sizeof msg);
+    }
+    Solvers *d = &solvers;
+    auto free_all = [&]() {
+        stewart_forward_free(solvers.forward);
+        stewart_inverse_free(solvers.massless);
+        stewart_inverse_free(solvers.kinematic);
+        stewart_model_free(m);
+    };
+    if (!solvers.kinematic || !solvers.massless || !solvers.forward) {
         std::fprintf(stderr, "bench-forward: %s\n", msg);
+        free_all();
         return 1;
     }
     if (argc > 2 && !std::strcmp(argv[1], "--map")) {
         const int status = write_map(m, d, argv[2]);
-        stewart_data_free(d);
-        stewart_model_free(m);
+        free_all();
         return status;
     }
     Geometry g;
@@ -374,7 +404,6 @@ int main(int argc, char **argv) {
         FILE *f = std::fopen(argv[1], "w");
         if (f) std::fputs(report.c_str(), f), std::fclose(f);
     }
-    stewart_data_free(d);
-    stewart_model_free(m);
+    free_all();
     return 0;
 }

@@ -12,7 +12,7 @@
 
 #include "model.hpp"
 #include "core/step.hpp"
-#include "platform/full_model.hpp"
+#include "inverse/full_model.hpp"
 #include "util/message.hpp"
 
 namespace {
@@ -54,8 +54,8 @@ Result run(const stewart_model &model, const mbs::SolverOptions &kind, bool clos
         r.ok = false;
         return r;
     }
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = STEWART_FULL;
     std::vector<double> times;
     times.reserve(samples.size() * passes);
@@ -65,11 +65,11 @@ Result run(const stewart_model &model, const mbs::SolverOptions &kind, bool clos
         mbs::reset_history(state);
         for (const Sample &smp : samples) {
             const auto start = std::chrono::steady_clock::now();
-            const stewart::RigidMotion motion = stewart::rigid_motion(smp.pose);
+            const stewart::Motion motion = stewart::motion_of_pose(smp.pose);
             stewart::LegKinematics legs;
             stewart::leg_kinematics(model.geometry, motion, legs, msg, sizeof msg);
             stewart_status s;
-            stewart_output out{};
+            stewart_inverse_output out{};
             if (closed_form || !state.has_history) {
                 s = stewart::full_solve(model.full_layout, state, o, motion, legs, out, msg,
                                         sizeof msg);

@@ -32,14 +32,15 @@ stewart_pose combined(double t) {
 struct Drive {
     double h;
     std::vector<double> force, rate;  // 6 per sample
+    std::vector<stewart_plant_input> input;  // step i: samples i to i + 1, cubic Hermite
 };
 
 // Inverse-side forces at every communication point and their rates (central differences).
 bool make_drive(const stewart_model *model, int fidelity, double h, double duration, Drive &d) {
-    stewart_data *data = stewart_data_create(model);
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = fidelity;
+    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
     const int n = static_cast<int>(duration / h + 0.5);
     d.h = h;
     d.force.assign(6 * (n + 1), 0);
@@ -47,19 +48,31 @@ bool make_drive(const stewart_model *model, int fidelity, double h, double durat
     const double delta = 1e-4;
     bool ok = data != nullptr;
     for (int i = 0; i <= n && ok; ++i) {
-        stewart_output now, ahead, behind;
-        stewart_pose p = combined(i * h);
-        ok = stewart_solve(model, data, &o, &p, &now) == STEWART_OK;
-        p = combined(i * h + delta);
-        ok = ok && stewart_solve(model, data, &o, &p, &ahead) == STEWART_OK;
-        p = combined(i * h - delta);
-        ok = ok && stewart_solve(model, data, &o, &p, &behind) == STEWART_OK;
+        stewart_inverse_output now, ahead, behind;
+        stewart_inverse_input p = {combined(i * h)};
+        ok = stewart_inverse_solve(data, &p, &now) == STEWART_OK;
+        p.pose = combined(i * h + delta);
+        ok = ok && stewart_inverse_solve(data, &p, &ahead) == STEWART_OK;
+        p.pose = combined(i * h - delta);
+        ok = ok && stewart_inverse_solve(data, &p, &behind) == STEWART_OK;
         for (int k = 0; k < 6; ++k) {
             d.force[6 * i + k] = now.force[k];
             d.rate[6 * i + k] = (ahead.force[k] - behind.force[k]) / (2 * delta);
         }
     }
-    stewart_data_free(data);
+    for (int i = 0; i < n && ok; ++i) {
+        stewart_plant_input in{};
+        in.h = h;
+        in.derivatives = 1;
+        for (int k = 0; k < 6; ++k) {
+            in.force_start[k] = d.force[6 * i + k];
+            in.force_end[k] = d.force[6 * i + 6 + k];
+            in.force_rate_start[k] = d.rate[6 * i + k];
+            in.force_rate_end[k] = d.rate[6 * i + 6 + k];
+        }
+        d.input.push_back(in);
+    }
+    stewart_inverse_free(data);
     return ok;
 }
 
@@ -97,9 +110,9 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
         stewart_plant_statistics before;
         stewart_plant_statistics_get(plant, &before);
         const double t0 = cpu_seconds();
+        stewart_plant_output out;
         for (int i = 0; i < steps; ++i)
-            if (stewart_plant_step(plant, d.h, &d.force[6 * i], &d.force[6 * i + 6], &d.rate[6 * i],
-                                   &d.rate[6 * i + 6]) != STEWART_OK) {
+            if (stewart_plant_step(plant, &d.input[i], &out) != STEWART_OK) {
                 std::fprintf(stderr, "bench-plant: step %d: %s\n", i, stewart_plant_message(plant));
                 r.ok = false;
                 break;
@@ -112,13 +125,11 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
     // The pose error against the cue, on one more pass.
     stewart_plant_set_state(plant, 0, start.q, start.q_dot);
     for (int i = 0; i < steps && r.ok; ++i) {
-        stewart_plant_step(plant, d.h, &d.force[6 * i], &d.force[6 * i + 6], &d.rate[6 * i],
-                           &d.rate[6 * i + 6]);
         stewart_plant_output out;
-        stewart_plant_output_get(plant, nullptr, &out);
+        stewart_plant_step(plant, &d.input[i], &out);
         const stewart_pose cue = combined((i + 1) * d.h);
         for (int c = 0; c < 6; ++c)
-            r.pose_error = std::max(r.pose_error, std::fabs(out.pose[c] - cue.q[c]));
+            r.pose_error = std::max(r.pose_error, std::fabs(out.pose.q[c] - cue.q[c]));
     }
     stewart_plant_free(plant);
     std::sort(per_step.begin(), per_step.end());
@@ -135,10 +146,10 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
     stewart_plant_options po;
     stewart_plant_options_default(&po);
     stewart_plant *plant = stewart_plant_create(model, &po, msg, sizeof msg);
-    stewart_data *data = stewart_data_create(model);
-    stewart_options so;
-    stewart_options_default(&so);
+    stewart_inverse_options so;
+    stewart_inverse_options_default(&so);
     so.fidelity = STEWART_FULL;
+    stewart_inverse *data = stewart_inverse_create(model, &so, nullptr, 0);
     const stewart_pose start = combined(0);
     stewart_plant_set_state(plant, 0, start.q, start.q_dot);
     stewart_plant_output out;
@@ -147,27 +158,32 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
     const int n = static_cast<int>(4.0 / h + 0.5);
     for (int i = 0; i < n; ++i) {
         stewart_pose cue = combined(i * h);
-        stewart_output inverse;
+        const stewart_inverse_input in = {cue};
+        stewart_inverse_output inverse;
         double force[6];
-        if (stewart_solve(model, data, &so, &cue, &inverse) != STEWART_OK) break;
+        if (stewart_inverse_solve(data, &in, &inverse) != STEWART_OK) break;
         for (int k = 0; k < 6; ++k)
-            force[k] = inverse.force[k] + kp * (inverse.length[k] - out.length[k]) +
-                       kd * (inverse.length_rate[k] - out.length_rate[k]);
-        if (stewart_plant_step(plant, h, force, force, nullptr, nullptr) != STEWART_OK ||
-            stewart_plant_output_get(plant, nullptr, &out) != STEWART_OK) {
+            force[k] = inverse.force[k] +
+                       kp * (inverse.lengths.length[k] - out.lengths.length[k]) +
+                       kd * (inverse.lengths.length_rate[k] - out.lengths.length_rate[k]);
+        stewart_plant_input held{};  // zero-order hold
+        held.h = h;
+        std::copy(force, force + 6, held.force_start);
+        std::copy(force, force + 6, held.force_end);
+        if (stewart_plant_step(plant, &held, &out) != STEWART_OK) {
             position = angle = -1;
             break;
         }
         cue = combined((i + 1) * h);
         for (int c = 0; c < 6; ++c)
             (c < 3 ? position : angle) =
-                std::max(c < 3 ? position : angle, std::fabs(out.pose[c] - cue.q[c]));
+                std::max(c < 3 ? position : angle, std::fabs(out.pose.q[c] - cue.q[c]));
         if (!(position < 0.1)) {  // diverging: the loop is unstable at this step
             position = angle = -1;
             break;
         }
     }
-    stewart_data_free(data);
+    stewart_inverse_free(data);
     stewart_plant_free(plant);
 }
 

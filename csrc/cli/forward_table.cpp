@@ -1,10 +1,12 @@
 #include "cli/forward_table.hpp"
+#include "kinematics/pose_names.hpp"
 
 #include "cli/pose_table.hpp"
 
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <fstream>
 #include <vector>
@@ -14,7 +16,7 @@ namespace stewart {
 namespace {
 
 const char *const kGroups[3] = {"L", "L_dot", "L_ddot"};
-const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+using stewart::kPoseNames;
 
 struct Row {
     int line;
@@ -94,12 +96,13 @@ void write_header(FILE *out, const Table &table) {
     std::fprintf(out, "t");
     const char *suffix[3] = {"", "_dot", "_ddot"};
     for (int g = 0; g < 3; ++g)
-        for (int i = 0; i < 6 && table.has[g]; ++i) std::fprintf(out, ",%s%s", kPose[i], suffix[g]);
+        for (int i = 0; i < 6 && table.has[g]; ++i)
+            std::fprintf(out, ",%s%s", kPoseNames[i], suffix[g]);
     std::fprintf(out, ",iterations,residual,condition\n");
 }
 
 // One output row, every digit kept.
-void write_row(FILE *out, const Table &table, double t, const stewart_forward_result &r) {
+void write_row(FILE *out, const Table &table, double t, const stewart_forward_output &r) {
     std::fprintf(out, "%.17g", t);
     const double *groups[3] = {r.pose.q, r.pose.q_dot, r.pose.q_ddot};
     for (int g = 0; g < 3; ++g)
@@ -119,33 +122,42 @@ int run_forward(const char *in_path, const char *out_path, const stewart_params 
     }
     char message[STEWART_MESSAGE_SIZE];
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
-    stewart_data *data = model ? stewart_data_create(model) : nullptr;
-    if (!data) {
+    stewart_forward *forward =
+        model ? stewart_forward_create(model, &options, message, sizeof message) : nullptr;
+    if (!forward) {
         std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
         stewart_model_free(model);
         return 1;
     }
     // Solve everything before writing, so a failed run leaves no partial OUT.csv behind.
-    std::vector<stewart_forward_result> results(table.rows.size());
+    std::vector<stewart_forward_output> results(table.rows.size());
     int status = 0, warned[3] = {0, 0, 0};
+    stewart_forward_input in{};
+    in.derivatives = table.has[2] ? 2 : table.has[1] ? 1 : 0;
+    if (guess) std::memcpy(in.guess, guess, sizeof in.guess);
     for (size_t j = 0; j < table.rows.size() && status == 0; ++j) {
         const Row &row = table.rows[j];
-        const stewart_status s = stewart_forward_solve(
-            model, data, &options, row.t, row.values.data(),
-            table.has[1] ? row.values.data() + 6 : nullptr,
-            table.has[2] ? row.values.data() + 12 : nullptr, j == 0 ? guess : nullptr,
-            &results[j]);
+        in.time = row.t;
+        std::memcpy(in.lengths.length, row.values.data(), sizeof in.lengths.length);
+        if (table.has[1])
+            std::memcpy(in.lengths.length_rate, row.values.data() + 6,
+                        sizeof in.lengths.length_rate);
+        if (table.has[2])
+            std::memcpy(in.lengths.length_accel, row.values.data() + 12,
+                        sizeof in.lengths.length_accel);
+        in.use_guess = j == 0 && guess;
+        const stewart_status s = stewart_forward_solve(forward, &in, &results[j]);
         if (s != STEWART_OK) {
             std::fprintf(stderr, "stewart-solve: %s (t = %g): %s: %s\n",
                          where(in_path, row.line).c_str(), row.t, stewart_status_name(s),
-                         stewart_data_message(data));
+                         stewart_forward_message(forward));
             status = 1;
         }
         const int w = results[j].warnings;
         warned[0] += (w & STEWART_WARN_STROKE) != 0;
         warned[1] += (w & STEWART_WARN_NEAR_SINGULAR) != 0;
     }
-    stewart_data_free(data);
+    stewart_forward_free(forward);
     stewart_model_free(model);
     if (status != 0) return status;
     if (warned[0] || warned[1])

@@ -1,4 +1,5 @@
 #include "cli/pose_table.hpp"
+#include "kinematics/pose_names.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -9,7 +10,7 @@ namespace stewart {
 
 namespace {
 
-const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+using stewart::kPoseNames;
 
 std::vector<std::string> split(const std::string &line) {
     std::vector<std::string> out;
@@ -82,7 +83,7 @@ std::string read_pose_table(const std::string &path, PoseTable &table) {
     const char *suffix[3] = {"", "_dot", "_ddot"};
     for (int r = 0; r < 3; ++r)
         for (int i = 0; i < 6; ++i) {
-            col[r][i] = find_column(header, std::string(kPose[i]) + suffix[r]);
+            col[r][i] = find_column(header, std::string(kPoseNames[i]) + suffix[r]);
             if (col[r][i] < 0) have[r] = false; else ++found[r];
         }
     if (col_t < 0 || !have[0])

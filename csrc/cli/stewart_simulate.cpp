@@ -7,12 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "cli/arguments.hpp"
+#include "kinematics/pose_names.hpp"
 #include "cli/param_assignment.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace {
 
-const char *const kPose[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+using stewart::kPoseNames;
 
 int usage(FILE *to) {
     std::fprintf(to,
@@ -47,8 +49,8 @@ bool set_param(const char *assignment, Settings &s) {
     double value;
     if (!stewart::parse_assignment("stewart-simulate", assignment, name, value)) return false;
     for (int i = 0; i < 6; ++i) {
-        if (name == std::string(kPose[i]) + "0") return s.pose[i] = value, true;
-        if (name == std::string(kPose[i]) + "_dot0") return s.rate[i] = value, true;
+        if (name == std::string(kPoseNames[i]) + "0") return s.pose[i] = value, true;
+        if (name == std::string(kPoseNames[i]) + "_dot0") return s.rate[i] = value, true;
     }
     if (name == "relative_tolerance") return s.options.relative_tolerance = value, true;
     if (name == "absolute_tolerance") return s.options.absolute_tolerance = value, true;
@@ -140,6 +142,20 @@ std::string read_forces(const char *path, ForceTable &table) {
     return "";
 }
 
+// The warning for the first leg outside its stroke.
+std::string stroke_warning(const stewart_params &p, const stewart_plant_output &o) {
+    char text[STEWART_MESSAGE_SIZE] = "";
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (o.stroke_legs & (1 << k)) {
+            std::snprintf(text, sizeof text,
+                          "leg %d has left its stroke: length %.9g m outside [%g, %g] m (end "
+                          "stops are not modelled)", k + 1, o.lengths.length[k], p.stroke_min,
+                          p.stroke_max);
+            break;
+        }
+    return text;
+}
+
 struct Row {
     stewart_plant_output out;
     stewart_plant_statistics stats;
@@ -147,8 +163,8 @@ struct Row {
 
 void write_header(FILE *f) {
     std::fprintf(f, "t");
-    for (const char *p : kPose) std::fprintf(f, ",%s", p);
-    for (const char *p : kPose) std::fprintf(f, ",%s_dot", p);
+    for (const char *p : kPoseNames) std::fprintf(f, ",%s", p);
+    for (const char *p : kPoseNames) std::fprintf(f, ",%s_dot", p);
     for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L%d", k);
     for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L_dot%d", k);
     std::fprintf(f, ",warnings,steps,rhs_evaluations,nonlinear_iterations,error_test_failures\n");
@@ -157,10 +173,10 @@ void write_header(FILE *f) {
 void write_row(FILE *f, const Row &r) {
     const stewart_plant_output &o = r.out;
     std::fprintf(f, "%.17g", o.time);
-    for (double v : o.pose) std::fprintf(f, ",%.17g", v);
-    for (double v : o.pose_rate) std::fprintf(f, ",%.17g", v);
-    for (double v : o.length) std::fprintf(f, ",%.17g", v);
-    for (double v : o.length_rate) std::fprintf(f, ",%.17g", v);
+    for (double v : o.pose.q) std::fprintf(f, ",%.17g", v);
+    for (double v : o.pose.q_dot) std::fprintf(f, ",%.17g", v);
+    for (double v : o.lengths.length) std::fprintf(f, ",%.17g", v);
+    for (double v : o.lengths.length_rate) std::fprintf(f, ",%.17g", v);
     std::fprintf(f, ",%d,%ld,%ld,%ld,%ld\n", o.warnings, r.stats.steps, r.stats.rhs_evaluations,
                  r.stats.nonlinear_iterations, r.stats.error_test_failures);
 }
@@ -174,37 +190,24 @@ int main(int argc, char **argv) {
     for (int i = 0; i < 6; ++i) s.pose[i] = s.rate[i] = 0;
     bool pose_z_given = false;
     const char *paths[2] = {nullptr, nullptr};
-    int n_paths = 0;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
-        const bool fidelity = !std::strcmp(argv[i], "--fidelity");
-        const bool param = !std::strcmp(argv[i], "--param");
-        if ((fidelity || param) && i + 1 == argc) {
-            std::fprintf(stderr, "stewart-simulate: %s needs a value (%s)\n", argv[i],
-                         fidelity ? "massless|full" : "NAME=VALUE");
-            return usage(stderr);
-        }
-        if (param) {
-            if (!set_param(argv[++i], s)) return 2;
-            if (!std::strncmp(argv[i], "z0=", 3)) pose_z_given = true;
-        } else if (fidelity) {
-            ++i;
-            if (!std::strcmp(argv[i], "massless")) s.options.fidelity = STEWART_MASSLESS;
-            else if (!std::strcmp(argv[i], "full")) s.options.fidelity = STEWART_FULL;
-            else {
-                std::fprintf(stderr, "stewart-simulate: unknown fidelity '%s'\n", argv[i]);
-                return usage(stderr);
-            }
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            std::fprintf(stderr, "stewart-simulate: unknown option '%s'\n", argv[i]);
-            return usage(stderr);
-        } else if (n_paths < 2) {
-            paths[n_paths++] = argv[i];
-        } else {
-            return usage(stderr);
-        }
-    }
-    if (n_paths != 2) return usage(stderr);
+    const std::vector<stewart::CliOption> cli = {
+        {"--param", "NAME=VALUE",
+         [&](const char *v) {
+             if (!set_param(v, s)) return 2;
+             if (!std::strncmp(v, "z0=", 3)) pose_z_given = true;
+             return 0;
+         }},
+        {"--fidelity", "massless|full",
+         [&](const char *v) {
+             if (!std::strcmp(v, "massless")) return s.options.fidelity = STEWART_MASSLESS, 0;
+             if (!std::strcmp(v, "full")) return s.options.fidelity = STEWART_FULL, 0;
+             std::fprintf(stderr, "stewart-simulate: unknown fidelity '%s'\n", v);
+             return usage(stderr);
+         }},
+    };
+    const int code =
+        stewart::parse_command_line("stewart-simulate", argc, argv, cli, paths, 2, usage);
+    if (code >= 0) return code;
     if (!pose_z_given) s.pose[2] = s.params.home_height;  // at home unless told otherwise
 
     char message[STEWART_MESSAGE_SIZE];
@@ -234,12 +237,14 @@ int main(int argc, char **argv) {
     }
     // Simulate everything before writing, so a failed run leaves no partial OUT.csv behind.
     int last_warnings = 0;
+    stewart_plant_input in{};
     for (size_t j = 0; j < table.t.size() && status == 0; ++j) {
         const double *force = &table.force[6 * j];
         if (j > 0) {
-            const stewart_status st = stewart_plant_step(plant, table.t[j] - table.t[j - 1],
-                                                         &table.force[6 * (j - 1)], force,
-                                                         nullptr, nullptr);
+            in.h = table.t[j] - table.t[j - 1];
+            std::memcpy(in.force_start, &table.force[6 * (j - 1)], sizeof in.force_start);
+            std::memcpy(in.force_end, force, sizeof in.force_end);
+            const stewart_status st = stewart_plant_step(plant, &in, &rows[j].out);
             if (st != STEWART_OK) {
                 std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): %s: %s\n", j + 1,
                              table.t[j], stewart_status_name(st), stewart_plant_message(plant));
@@ -247,8 +252,7 @@ int main(int argc, char **argv) {
                 break;
             }
             stewart_plant_statistics_get(plant, &rows[j].stats);
-        }
-        if (stewart_plant_output_get(plant, force, &rows[j].out) != STEWART_OK) {
+        } else if (stewart_plant_output_get(plant, force, &rows[j].out) != STEWART_OK) {
             std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): no outputs at this pose\n",
                          j + 1, table.t[j]);
             status = 1;
@@ -256,7 +260,7 @@ int main(int argc, char **argv) {
         }
         if (rows[j].out.warnings && !last_warnings)
             std::fprintf(stderr, "stewart-simulate: warning at row %zu (t = %g): %s\n", j + 1,
-                         table.t[j], stewart_plant_message(plant));
+                         table.t[j], stroke_warning(s.params, rows[j].out).c_str());
         last_warnings = rows[j].out.warnings;
     }
     stewart_plant_free(plant);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/arguments.hpp"
 #include "cli/forward_table.hpp"
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
@@ -50,9 +51,10 @@ void write_header(FILE *out) {
     std::fprintf(out, ",condition,iterations\n");
 }
 
-void write_row(FILE *out, double t, const stewart_output &o) {
+void write_row(FILE *out, double t, const stewart_inverse_output &o) {
     std::fprintf(out, "%.17g", t);
-    const double *groups[4] = {o.length, o.length_rate, o.length_accel, o.force};
+    const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
+                               o.force};
     for (const double *g : groups)
         for (int k = 0; k < STEWART_LEGS; ++k) std::fprintf(out, ",%.17g", g[k]);
     std::fprintf(out, ",%.17g,%d\n", o.condition, o.iterations);
@@ -69,64 +71,43 @@ bool set_param(const char *assignment, stewart_params &params) {
 }  // namespace
 
 int main(int argc, char **argv) {
-    stewart_options options;
-    stewart_options_default(&options);
+    stewart_inverse_options options;
+    stewart_inverse_options_default(&options);
     stewart_params params;
     stewart_params_default(&params);
     const char *paths[2] = {nullptr, nullptr};
     bool forward = false;
     double guess[6];
     const double *guess_given = nullptr;
-    int n_paths = 0;
-    for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return usage(stdout);
-        const bool fidelity = !std::strcmp(argv[i], "--fidelity");
-        const bool param = !std::strcmp(argv[i], "--param");
-        if (!std::strcmp(argv[i], "--forward")) {
-            forward = true;
-            continue;
-        }
-        if (!std::strcmp(argv[i], "--guess")) {
-            if (i + 1 == argc || std::sscanf(argv[i + 1], "%lf,%lf,%lf,%lf,%lf,%lf", &guess[0],
-                                             &guess[1], &guess[2], &guess[3], &guess[4],
-                                             &guess[5]) != 6) {
-                std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
-                return 2;
-            }
-            guess_given = guess;
-            ++i;
-            continue;
-        }
-        if ((fidelity || param || !std::strcmp(argv[i], "--tolerance")) && i + 1 == argc) {
-            std::fprintf(stderr, "stewart-solve: %s needs a value (%s)\n", argv[i],
-                         fidelity ? "kinematic|massless|full"
-                                  : param ? "NAME=VALUE" : "a positive number");
-            return usage(stderr);
-        }
-        if (param) {
-            if (!set_param(argv[++i], params)) return 2;
-        } else if (fidelity) {
-            if (!parse_fidelity(argv[++i], options.fidelity)) {
-                std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", argv[i]);
-                return usage(stderr);
-            }
-        } else if (!std::strcmp(argv[i], "--tolerance")) {
-            char *end = nullptr;
-            options.tolerance = std::strtod(argv[++i], &end);
-            if (end == argv[i] || *end != '\0') {
-                std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", argv[i]);
-                return 2;
-            }
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            std::fprintf(stderr, "stewart-solve: unknown option '%s'\n", argv[i]);
-            return usage(stderr);
-        } else if (n_paths < 2) {
-            paths[n_paths++] = argv[i];
-        } else {
-            return usage(stderr);
-        }
-    }
-    if (n_paths != 2) return usage(stderr);
+    const std::vector<stewart::CliOption> cli = {
+        {"--forward", nullptr, [&](const char *) { return forward = true, 0; }},
+        {"--guess", "x,y,z,roll,pitch,yaw",
+         [&](const char *v) {
+             if (std::sscanf(v, "%lf,%lf,%lf,%lf,%lf,%lf", &guess[0], &guess[1], &guess[2],
+                             &guess[3], &guess[4], &guess[5]) != 6) {
+                 std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
+                 return 2;
+             }
+             return guess_given = guess, 0;
+         }},
+        {"--param", "NAME=VALUE", [&](const char *v) { return set_param(v, params) ? 0 : 2; }},
+        {"--fidelity", "kinematic|massless|full",
+         [&](const char *v) {
+             if (parse_fidelity(v, options.fidelity)) return 0;
+             std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", v);
+             return usage(stderr);
+         }},
+        {"--tolerance", "a positive number",
+         [&](const char *v) {
+             char *end = nullptr;
+             options.tolerance = std::strtod(v, &end);
+             if (end != v && *end == '\0') return 0;
+             std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", v);
+             return 2;
+         }},
+    };
+    const int code = stewart::parse_command_line("stewart-solve", argc, argv, cli, paths, 2, usage);
+    if (code >= 0) return code;
     if (forward) {
         stewart_forward_options forward_options;
         stewart_forward_options_default(&forward_options);
@@ -140,7 +121,7 @@ int main(int argc, char **argv) {
     }
 
     char message[STEWART_MESSAGE_SIZE];
-    if (stewart_options_check(&options, message, sizeof message) != STEWART_OK) {
+    if (stewart_inverse_options_check(&options, message, sizeof message) != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: %s\n", message);
         return 2;
     }
@@ -152,27 +133,28 @@ int main(int argc, char **argv) {
     }
 
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
-    stewart_data *data = model ? stewart_data_create(model) : nullptr;
-    if (!data) {
+    stewart_inverse *inverse =
+        model ? stewart_inverse_create(model, &options, message, sizeof message) : nullptr;
+    if (!inverse) {
         std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
         stewart_model_free(model);
         return 1;
     }
 
     // Solve everything before writing, so a failed run leaves no partial OUT.csv behind.
-    std::vector<stewart_output> outputs(table.t.size());
+    std::vector<stewart_inverse_output> outputs(table.t.size());
     int status = 0;
     for (size_t j = 0; j < table.t.size(); ++j) {
-        const stewart_status s =
-            stewart_solve(model, data, &options, &table.poses[j], &outputs[j]);
+        const stewart_inverse_input in = {table.poses[j]};
+        const stewart_status s = stewart_inverse_solve(inverse, &in, &outputs[j]);
         if (s != STEWART_OK) {
             std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s: %s\n", j + 1, table.t[j],
-                         stewart_status_name(s), stewart_data_message(data));
+                         stewart_status_name(s), stewart_inverse_message(inverse));
             status = 1;
             break;
         }
     }
-    stewart_data_free(data);
+    stewart_inverse_free(inverse);
     stewart_model_free(model);
     if (status != 0) return status;
 

@@ -9,7 +9,6 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -71,20 +70,12 @@ public:
                 fail(message);
         model_ = stewart_model_create(&params, message, sizeof message);
         if (!model_) fail(message);
-        data_ = stewart_data_create(model_);
-        if (!data_) {
-            stewart_model_free(model_);
-            throw std::bad_alloc();
-        }
     }
-    ~Model() {
-        stewart_data_free(data_);
-        stewart_model_free(model_);
-    }
+    ~Model() { stewart_model_free(model_); }
     Model(const Model &) = delete;
     Model &operator=(const Model &) = delete;
 
-    // Solves the rows of q from a fresh data block. Returns (status of the first failing row or
+    // Solves the rows of q with a fresh inverse solver. Returns (status of the first failing row or
     // 0, its index or n, its message, [(row, message)] of up to max_messages failing rows).
     BatchResult solve(
         Poses q, std::optional<Poses> q_dot, std::optional<Poses> q_ddot,
@@ -99,18 +90,23 @@ public:
         if ((q_dot && q_dot->shape(0) != n) || (q_ddot && q_ddot->shape(0) != n))
             fail("rates and accels must have as many rows as the poses");
         if (status.shape(0) != n) fail("output arrays must have as many rows as the poses");
-        stewart_options options = make_options(option_values);
-        const stewart_batch_outputs out = {
+        const stewart_inverse_options options = make_options(option_values);
+        const stewart_inverse_batch_outputs out = {
             rows_of(length, n),     rows_of(length_rate, n), rows_of(length_accel, n),
             rows_of(force, n),      rows_of(condition, n),   rows_of(residual, n),
             rows_of(base_force, n), rows_of(base_torque, n), rows_of(iterations, n),
-            rows_of(warnings, n),   status.data()};
-        return on_data(n, max_messages, [&](stewart_batch_messages *messages, size_t *first_failed) {
-            stewart_data_reset(data_);
-            return stewart_solve_batch(model_, data_, &options, n, q.data(),
-                                       q_dot ? q_dot->data() : nullptr,
-                                       q_ddot ? q_ddot->data() : nullptr, &out, messages,
-                                       first_failed);
+            rows_of(warnings, n),   nullptr /* stroke_legs: not asked for */, status.data()};
+        char message[STEWART_MESSAGE_SIZE];
+        Solver<stewart_inverse> inverse(
+            stewart_inverse_create(model_, &options, message, sizeof message),
+            stewart_inverse_free, stewart_inverse_message);
+        if (!inverse.solver) fail(message);  // the options were checked: memory is short
+        return inverse.run(n, max_messages, [&](stewart_batch_messages *messages,
+                                                size_t *first_failed) {
+            return stewart_inverse_batch(inverse.solver, n, q.data(),
+                                         q_dot ? q_dot->data() : nullptr,
+                                         q_ddot ? q_ddot->data() : nullptr, &out, messages,
+                                         first_failed);
         });
     }
 
@@ -138,12 +134,16 @@ public:
             rows_of(pose, n),     rows_of(pose_rate, n),  rows_of(pose_accel, n),
             rows_of(residual, n), rows_of(condition, n),  rows_of(jump, n),
             rows_of(iterations, n), rows_of(warnings, n), rows_of(branch, n),
-            rows_of(start, n),    status.data()};
-        return on_data(n, max_messages, [&](stewart_batch_messages *messages, size_t *first_failed) {
-            stewart_forward_reset(data_);
-            return stewart_forward_batch(model_, data_, &options, n,
-                                         time ? time->data() : nullptr, lengths.data(),
-                                         rates ? rates->data() : nullptr,
+            rows_of(start, n),    nullptr /* stroke_legs: not asked for */, status.data()};
+        char message[STEWART_MESSAGE_SIZE];
+        Solver<stewart_forward> forward(
+            stewart_forward_create(model_, &options, message, sizeof message),
+            stewart_forward_free, stewart_forward_message);
+        if (!forward.solver) fail(message);
+        return forward.run(n, max_messages, [&](stewart_batch_messages *messages,
+                                                size_t *first_failed) {
+            return stewart_forward_batch(forward.solver, n, time ? time->data() : nullptr,
+                                         lengths.data(), rates ? rates->data() : nullptr,
                                          accels ? accels->data() : nullptr,
                                          guess ? guess->data() : nullptr, &out, messages,
                                          first_failed);
@@ -171,7 +171,7 @@ public:
         if (status.shape(0) != n) fail("output arrays must have as many rows as t");
         const stewart_plant_options options = make_plant_options(option_values);
         static_assert(sizeof(int64_t) == sizeof(long), "plant counters are long");
-        const stewart_simulate_batch_outputs out = {
+        const stewart_plant_batch_outputs out = {
             rows_of(pose, n),       rows_of(pose_rate, n),   rows_of(length, n),
             rows_of(length_rate, n), rows_of(base_force, n), rows_of(base_torque, n),
             rows_of(warnings, n),
@@ -191,10 +191,12 @@ public:
                 created = false;  // the message says why: the model and options, or memory
                 first = STEWART_ERR_PARAMETER;
             } else {
-                first = stewart_simulate_batch(plant, n, time.data(), force.data(),
-                                               start_pose ? start_pose->data() : nullptr,
-                                               start_rate ? start_rate->data() : nullptr, &out,
-                                               message, sizeof message, &first_failed);
+                size_t row = 0;
+                stewart_batch_messages messages = {1, 0, &row, message};
+                first = stewart_plant_batch(plant, n, time.data(), force.data(),
+                                            start_pose ? start_pose->data() : nullptr,
+                                            start_rate ? start_rate->data() : nullptr, &out,
+                                            &messages, &first_failed);
                 stewart_plant_statistics_get(plant, &stats);
                 stewart_plant_free(plant);
             }
@@ -217,26 +219,35 @@ public:
     }
 
 private:
-    // Runs batch(messages, first_failed) -> status on the data block under the mutex, with the
-    // GIL released: the GIL goes first and comes back last, since a thread waiting for the mutex
-    // must not hold the GIL that the solving thread needs to return. Returns (status of the first
-    // failing row or 0, its index or n, its message, [(row, message)] of up to max_messages
-    // failing rows); bad options (no row failed) raise ValueError.
-    template <typename Batch>
-    BatchResult on_data(size_t n, size_t max_messages, Batch batch) {
-        MessageBuffer messages(max_messages);
-        size_t first_failed = n;
-        stewart_status first;
-        std::string first_message;
-        {
-            nb::gil_scoped_release release;
-            std::lock_guard<std::mutex> lock(mutex_);
-            first = batch(&messages.c, &first_failed);
-            first_message = stewart_data_message(data_);
+    // A solver object of one call (inverse or forward), freed with it.
+    template <typename T>
+    struct Solver {
+        T *solver;
+        void (*free)(T *);
+        const char *(*message)(const T *);
+        Solver(T *s, void (*f)(T *), const char *(*m)(const T *)) : solver(s), free(f), message(m) {}
+        ~Solver() { free(solver); }
+        Solver(const Solver &) = delete;
+        Solver &operator=(const Solver &) = delete;
+
+        // Runs batch(messages, first_failed) -> status with the GIL released. Returns (status of
+        // the first failing row or 0, its index or n, its message, [(row, message)] of up to
+        // max_messages failing rows); a failure before any row raises ValueError.
+        template <typename Batch>
+        BatchResult run(size_t n, size_t max_messages, Batch batch) {
+            MessageBuffer messages(max_messages);
+            size_t first_failed = n;
+            stewart_status first;
+            std::string first_message;
+            {
+                nb::gil_scoped_release release;
+                first = batch(&messages.c, &first_failed);
+                first_message = message(solver);
+            }
+            if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());
+            return {first, first_failed, first_message, messages.kept()};
         }
-        if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());
-        return {first, first_failed, first_message, messages.kept()};
-    }
+    };
 
     // The data of an output array of n rows, or nullptr for an output the caller skips (None).
     template <typename Array>
@@ -246,18 +257,18 @@ private:
         return a->data();
     }
 
-    // Options by name (the library's option table) over stewart_options_default, each value
+    // Options by name (the library's option table) over stewart_inverse_options_default, each value
     // and then the whole set checked by the library.
-    static stewart_options make_options(const std::vector<std::pair<std::string, double>> &values) {
-        stewart_options o;
-        stewart_options_default(&o);
+    static stewart_inverse_options make_options(const std::vector<std::pair<std::string, double>> &values) {
+        stewart_inverse_options o;
+        stewart_inverse_options_default(&o);
         char message[STEWART_MESSAGE_SIZE];
         for (const auto &[name, v] : values) {
-            const int i = stewart_option_find(name.c_str());
+            const int i = stewart_inverse_option_find(name.c_str());
             if (i < 0) fail(("unknown solver option '" + name + "'").c_str());
-            if (stewart_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
+            if (stewart_inverse_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
         }
-        if (stewart_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
+        if (stewart_inverse_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
         return o;
     }
 
@@ -277,19 +288,20 @@ private:
         return o;
     }
 
-    // stewart_forward_options by name.
+    // stewart_forward_options by name, from the library's table.
     static stewart_forward_options make_forward_options(
         const std::vector<std::pair<std::string, double>> &values) {
-        return named_options<stewart_forward_options>(
-            values, stewart_forward_options_default, stewart_forward_options_check, "forward",
-            [](stewart_forward_options &o, const std::string &name, double v) {
-                if (name == "tolerance") o.tolerance = v;
-                else if (name == "max_iterations") o.max_iterations = integer_option(name, v);
-                else if (name == "warn_condition") o.warn_condition = v;
-                else if (name == "singular_condition") o.singular_condition = v;
-                else return false;
-                return true;
-            });
+        stewart_forward_options o;
+        stewart_forward_options_default(&o);
+        char message[STEWART_MESSAGE_SIZE];
+        for (const auto &[name, v] : values) {
+            const int i = stewart_forward_option_find(name.c_str());
+            if (i < 0) fail(("unknown forward option '" + name + "'").c_str());
+            if (stewart_forward_option_set(&o, i, v, message, sizeof message) != STEWART_OK)
+                fail(message);
+        }
+        if (stewart_forward_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
+        return o;
     }
 
     // stewart_plant_options by name.
@@ -318,8 +330,6 @@ private:
     }
 
     stewart_model *model_ = nullptr;
-    stewart_data *data_ = nullptr;
-    std::mutex mutex_;
 };
 
 }  // namespace

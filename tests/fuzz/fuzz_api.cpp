@@ -6,7 +6,7 @@
 //
 // Building a model (the 14-body mechanism, its block plan) costs far more than a solve, so models
 // are kept across inputs, keyed by their parameters, in a small cache of the harness (the library
-// itself has no global state); each input starts from a reset data block, so that it sees the
+// itself has no global state); each input makes its own solver objects, so that it sees the
 // same thing as in a fresh process.
 #include <cmath>
 #include <cstddef>
@@ -21,8 +21,8 @@
 
 namespace {
 
-void require_finite(const stewart_output &o) {
-    const double *all[] = {o.length, o.length_rate, o.length_accel, o.force};
+void require_finite(const stewart_inverse_output &o) {
+    const double *all[] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel, o.force};
     for (const double *g : all)
         for (int k = 0; k < STEWART_LEGS; ++k)
             if (!std::isfinite(g[k])) std::abort();
@@ -31,11 +31,10 @@ void require_finite(const stewart_output &o) {
         if (!std::isfinite(o.base_force[i]) || !std::isfinite(o.base_torque[i])) std::abort();
 }
 
-// A model with its two data blocks, kept for inputs with the same parameters.
+// A model, kept for inputs with the same parameters.
 struct CachedModel {
     stewart_params params;
     stewart_model *model = nullptr;
-    stewart_data *data = nullptr, *saved = nullptr;
 };
 
 // Bounded: at most kCacheSize models live at once; a new parameter set replaces the oldest entry.
@@ -43,52 +42,64 @@ constexpr int kCacheSize = 8;
 CachedModel cache[kCacheSize];
 int next_victim = 0;
 
-// The cached model for these parameters (built on first use, data reset), or null with the
-// library's message if the parameters are refused.
+// The cached model for these parameters (built on first use), or null if the parameters are
+// refused.
 CachedModel *model_for(const stewart_params &params) {
     for (CachedModel &c : cache)
-        if (c.model && std::memcmp(&c.params, &params, sizeof params) == 0) {
-            stewart_data_reset(c.data);
-            stewart_data_reset(c.saved);
-            return &c;
-        }
+        if (c.model && std::memcmp(&c.params, &params, sizeof params) == 0) return &c;
     char message[STEWART_MESSAGE_SIZE];
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
     if (!model) return nullptr;
     CachedModel &c = cache[next_victim];
     next_victim = (next_victim + 1) % kCacheSize;
-    stewart_data_free(c.saved);
-    stewart_data_free(c.data);
     stewart_model_free(c.model);
     c.params = params;
     c.model = model;
-    c.data = stewart_data_create(model);
-    c.saved = stewart_data_create(model);
     return &c;
 }
 
 // The forward API on the same model: raw lengths, rates, accelerations, guesses and options
-// (NaN, Inf, huge), tracking or cold. Every call returns a known status; a filled result
-// (STEWART_OK, STEWART_ERR_OTHER_BRANCH) is finite.
-void fuzz_forward(Reader &in, const stewart_model *model, stewart_data *data) {
+// (NaN, Inf, huge), tracking or cold, the history copied, saved and loaded. Every call returns a
+// known status; a filled result (STEWART_OK, STEWART_ERR_OTHER_BRANCH) is finite.
+void fuzz_forward(Reader &in, const stewart_model *model) {
     stewart_forward_options options;
     stewart_forward_options_default(&options);
     const uint8_t choice = in.byte();
     if (choice & 1) options.tolerance = in.value();
     if (choice & 2) options.max_iterations = static_cast<int8_t>(in.byte());
-    double lengths[6], rates[6], accels[6], guess[6], time = 0;
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_forward *forward = stewart_forward_create(model, &options, message, sizeof message);
+    stewart_forward *saved = stewart_forward_create(model, &options, message, sizeof message);
+    unsigned char state[1024];
+    if (!forward || !saved || stewart_forward_state_size(forward) > sizeof state) {
+        stewart_forward_free(saved);
+        stewart_forward_free(forward);
+        return;  // refused options (the message says which)
+    }
+    stewart_forward_input input{};
+    double time = 0;
     for (int call = 0; call < 16 && in.left > 0; ++call) {
         const uint8_t what = in.byte();
-        for (int k = 0; k < 6; ++k) lengths[k] = (what & 1) ? in.value() : 0.55 + in.value() / 10;
-        for (int k = 0; k < 6 && (what & 2); ++k) rates[k] = in.value();
-        for (int k = 0; k < 6 && (what & 4); ++k) accels[k] = in.value();
-        for (int k = 0; k < 6 && (what & 8); ++k) guess[k] = in.value();
-        if (what & 16) stewart_forward_reset(data);
+        stewart_lengths &l = input.lengths;
+        for (int k = 0; k < 6; ++k) l.length[k] = (what & 1) ? in.value() : 0.55 + in.value() / 10;
+        for (int k = 0; k < 6 && (what & 2); ++k) l.length_rate[k] = in.value();
+        for (int k = 0; k < 6 && (what & 4); ++k) l.length_accel[k] = in.value();
+        for (int k = 0; k < 6 && (what & 8); ++k) input.guess[k] = in.value();
+        if (what & 16) stewart_forward_reset(forward);
         time = (what & 32) ? in.value() : time + 1e-3;
-        stewart_forward_result r;
-        const stewart_status s = stewart_forward_solve(
-            model, data, &options, time, lengths, (what & 2) ? rates : nullptr,
-            (what & 4) ? accels : nullptr, (what & 8) ? guess : nullptr, &r);
+        input.time = time;
+        input.derivatives = (what & 2) ? ((what & 4) ? 2 : 1) : 0;
+        input.use_guess = (what & 8) != 0;
+        if (what & 64) {  // a rollback: back to the saved history, or to bytes (maybe broken)
+            stewart_forward_save(saved, state, sizeof state);
+            if (what & 128) state[in.byte() % stewart_forward_state_size(saved)] ^= in.byte();
+            if (stewart_forward_load(forward, state, stewart_forward_state_size(saved)) !=
+                STEWART_OK)
+                stewart_forward_copy(forward, saved);
+        }
+        stewart_forward_output r;
+        const stewart_status s = stewart_forward_solve(forward, &input, &r);
+        stewart_forward_copy(saved, forward);
         if (s > STEWART_OK || s < STEWART_ERR_OTHER_BRANCH) std::abort();
         if (s != STEWART_OK && s != STEWART_ERR_OTHER_BRANCH) continue;
         const double *groups[3] = {r.pose.q, r.pose.q_dot, r.pose.q_ddot};
@@ -98,6 +109,8 @@ void fuzz_forward(Reader &in, const stewart_model *model, stewart_data *data) {
         if (!std::isfinite(r.residual) || !std::isfinite(r.condition) || !std::isfinite(r.jump))
             std::abort();
     }
+    stewart_forward_free(saved);
+    stewart_forward_free(forward);
 }
 
 // The plant (forward dynamics) on the same model: random options, start states, forces (NaN, Inf,
@@ -150,10 +163,11 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
         if (!std::memchr(message, '\0', sizeof message) || message[0] == '\0') std::abort();
         return;
     }
-    const size_t state_size = stewart_plant_state_size();
-    double saved[64], force[STEWART_LEGS], force1[STEWART_LEGS], rate0[STEWART_LEGS],
-        rate1[STEWART_LEGS];
-    if (state_size > sizeof saved / sizeof saved[0]) std::abort();
+    const size_t state_size = stewart_plant_state_size(plant);
+    unsigned char saved[1024];
+    double force[STEWART_LEGS];
+    stewart_plant_input step{};
+    if (state_size > sizeof saved) std::abort();
     const double home_height = stewart_model_params(model)->home_height;
     for (int call = 0; call < kPlantCalls && in.left > 0; ++call) {
         const uint8_t what = in.byte();
@@ -172,15 +186,15 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
         case 1:
         case 2: {  // a step: raw or moderate forces and step size, linear or Hermite profile
             for (int k = 0; k < STEWART_LEGS; ++k) {
-                force[k] = (what & 8) ? in.value() : 200 + 100 * in.value();
-                force1[k] = (what & 16) ? in.value() : force[k];
-                rate0[k] = in.value();
-                rate1[k] = in.value();
+                step.force_start[k] = (what & 8) ? in.value() : 200 + 100 * in.value();
+                step.force_end[k] = (what & 16) ? in.value() : step.force_start[k];
+                step.force_rate_start[k] = in.value();
+                step.force_rate_end[k] = in.value();
             }
-            const double h = (what & 32) ? in.value() : 1e-3;
-            const bool hermite = what & 64;
-            s = stewart_plant_step(plant, h, force, force1, hermite ? rate0 : nullptr,
-                                   hermite ? rate1 : nullptr);
+            step.h = (what & 32) ? in.value() : 1e-3;
+            step.derivatives = (what & 64) ? 1 : 0;
+            s = stewart_plant_step(plant, &step, &out);
+            if (s == STEWART_OK) require_finite_values(&out.time, kOutputDoubles);
             if (s == STEWART_OK && checked_output(plant, nullptr, out) != STEWART_OK) std::abort();
             stewart_plant_statistics stats;
             stewart_plant_statistics_get(plant, &stats);
@@ -209,6 +223,9 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
             const bool had_output = checked_output(plant, nullptr, before) == STEWART_OK;
             if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
             if (stewart_plant_load(plant, saved, state_size) != STEWART_OK) std::abort();
+            stewart_plant *copy = stewart_plant_create(model, &options, message, sizeof message);
+            if (!copy || stewart_plant_copy(copy, plant) != STEWART_OK) std::abort();
+            stewart_plant_free(copy);
             const size_t bytes = kOutputDoubles * sizeof(double);
             if (had_output && (checked_output(plant, nullptr, after) != STEWART_OK ||
                                std::memcmp(&before.time, &after.time, bytes) != 0))
@@ -218,7 +235,12 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
         case 5: {  // save, corrupt values (or the size), load: refused or a usable state
             if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
             const int edits = 1 + (what >> 3) % 4;
-            for (int e = 0; e < edits; ++e) saved[in.byte() % state_size] = in.value();
+            const size_t doubles = state_size / sizeof(double);  // the header's bytes aside
+            for (int e = 0; e < edits; ++e) {
+                const double value = in.value();
+                std::memcpy(saved + state_size - sizeof(double) * (1 + in.byte() % doubles),
+                            &value, sizeof value);
+            }
             const size_t count = (what & 0x80) ? state_size - 1 + in.byte() % 3 : state_size;
             s = stewart_plant_load(plant, saved, count);
             if (s != STEWART_OK && s != STEWART_ERR_ARGUMENT) std::abort();
@@ -246,8 +268,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
         if (!in.take(&field, 1) || !in.take(&value, sizeof value)) break;
         reinterpret_cast<double *>(&params)[field % (sizeof params / sizeof(double))] = value;
     }
-    stewart_options options;
-    stewart_options_default(&options);
+    stewart_inverse_options options;
+    stewart_inverse_options_default(&options);
     uint8_t choice = 0;
     in.take(&choice, 1);
     options.fidelity = choice % 4;  // 3 is invalid on purpose
@@ -256,16 +278,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
 
     CachedModel *c = model_for(params);
     if (!c) return 0;
-    stewart_pose pose;
-    stewart_output out;
-    while (in.take(&pose, sizeof pose)) {
-        if (stewart_solve(c->model, c->data, &options, &pose, &out) == STEWART_OK) require_finite(out);
-        stewart_data_copy(c->saved, c->data);
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_inverse *inverse = stewart_inverse_create(c->model, &options, message, sizeof message);
+    stewart_inverse *saved = stewart_inverse_create(c->model, &options, message, sizeof message);
+    stewart_inverse_input pose;
+    stewart_inverse_output out;
+    while (inverse && saved && in.take(&pose.pose, sizeof pose.pose)) {
+        if (stewart_inverse_solve(inverse, &pose, &out) == STEWART_OK) require_finite(out);
+        stewart_inverse_copy(saved, inverse);
     }
+    stewart_inverse_free(saved);
+    stewart_inverse_free(inverse);
     Reader again{bytes, size};  // the pose loop takes every byte: read them again
-    fuzz_forward(again, c->model, c->data);
+    fuzz_forward(again, c->model);
     Reader plant_bytes{bytes, size};
     fuzz_plant(plant_bytes, c->model);
-    stewart_data_reset(c->data);
     return 0;
 }

@@ -45,15 +45,15 @@ void compute_static_forces() {
     stewart_params p;
     stewart_params_default(&p);
     stewart_model *model = stewart_model_create(&p, nullptr, 0);
-    stewart_data *data = stewart_data_create(model);
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = STEWART_FULL;
-    const stewart_pose home = {{0, 0, p.home_height, 0, 0, 0}, {0}, {0}};
-    stewart_output out;
-    if (!model || !data || stewart_solve(model, data, &o, &home, &out) != STEWART_OK) std::abort();
+    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
+    const stewart_inverse_input home = {{{0, 0, p.home_height, 0, 0, 0}, {0}, {0}}};
+    stewart_inverse_output out;
+    if (!model || !data || stewart_inverse_solve(data, &home, &out) != STEWART_OK) std::abort();
     std::memcpy(static_forces, out.force, sizeof static_forces);
-    stewart_data_free(data);
+    stewart_inverse_free(data);
     stewart_model_free(model);
 }
 

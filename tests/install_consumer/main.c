@@ -15,21 +15,26 @@ int main(void) {
         fprintf(stderr, "model: %s\n", msg);
         return 1;
     }
-    stewart_data *data = stewart_data_create(model);
-    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
-    stewart_options options;
-    stewart_options_default(&options);
+    const stewart_inverse_input home = {{{0, 0, 0.5, 0, 0, 0}, {0}, {0}}};
+    stewart_inverse_options options;
+    stewart_inverse_options_default(&options);
     double force[3];
     for (int f = STEWART_KINEMATIC; f <= STEWART_FULL; ++f) {
-        stewart_output out;
         options.fidelity = (stewart_fidelity)f;
-        stewart_status s = stewart_solve(model, data, &options, &home, &out);
-        if (s != STEWART_OK) {
-            fprintf(stderr, "fidelity %d: %s\n", f, stewart_data_message(data));
+        stewart_inverse *inverse = stewart_inverse_create(model, &options, msg, sizeof msg);
+        if (!inverse) {
+            fprintf(stderr, "fidelity %d: %s\n", f, msg);
             return 1;
         }
+        stewart_inverse_output out;
+        stewart_status s = stewart_inverse_solve(inverse, &home, &out);
+        if (s != STEWART_OK) {
+            fprintf(stderr, "fidelity %d: %s\n", f, stewart_inverse_message(inverse));
+            return 1;
+        }
+        stewart_inverse_free(inverse);
         force[f] = out.force[0];
-        printf("fidelity %d: L1 = %.6f m, F1 = %.4f N\n", f, out.length[0], out.force[0]);
+        printf("fidelity %d: L1 = %.6f m, F1 = %.4f N\n", f, out.lengths.length[0], out.force[0]);
     }
     /* the core alone: a pendulum (a body on a revolute joint to a fixed ground) */
     mbs_model *crank = mbs_model_create();
@@ -45,7 +50,6 @@ int main(void) {
         return 1;
     }
     mbs_model_free(crank);
-    stewart_data_free(data);
     stewart_model_free(model);
     /* Legs have mass at the full level: they carry a little more than the massless level. */
     return (force[0] == 0 && force[2] > force[1] && force[1] > 0) ? 0 : 1;

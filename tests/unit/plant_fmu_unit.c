@@ -128,16 +128,16 @@ void assert_same_bits(const snapshot *a, const snapshot *b, const char *what) {
     TEST_ASSERT_EQUAL_MEMORY_MESSAGE(a, b, sizeof *a, what);
 }
 
-/* The inverse side's forces for the pose at rest at home (stewart_solve). */
+/* The inverse side's forces for the pose at rest at home (stewart_inverse_solve). */
 void static_forces(int fidelity, double force[6]) {
     stewart_params params;
     stewart_params_default(&params);
     stewart_model *model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     const stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
-    const stewart_output out = solve_ok(model, data, (stewart_fidelity)fidelity, &home);
+    const stewart_inverse_output out = solve_ok(data, (stewart_fidelity)fidelity, &home);
     memcpy(force, out.force, 6 * sizeof(double));
-    stewart_data_free(data);
+    stewart_inverse_free(data);
     stewart_model_free(model);
 }
 

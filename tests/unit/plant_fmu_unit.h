@@ -59,7 +59,7 @@ int read_outputs(unit *u, snapshot *s);
 snapshot outputs(unit *u);
 /* Asserts that two snapshots are the same bit for bit. */
 void assert_same_bits(const snapshot *a, const snapshot *b, const char *what);
-/* The inverse side's forces for the pose at rest at home (stewart_solve). */
+/* The inverse side's forces for the pose at rest at home (stewart_inverse_solve). */
 void static_forces(int fidelity, double force[6]);
 
 #endif

@@ -23,17 +23,17 @@ static void assert_contains(const char *haystack, const char *needle) {
 /* The output keeps its sentinel after a failed solve, and a good pose right after succeeds. */
 static void assert_rejected(const stewart_pose *pose, stewart_fidelity f, stewart_status expected,
                             const char *mention) {
-    stewart_options o = test_options(f);
-    stewart_output out;
+    stewart_inverse_options o = test_options(f);
+    stewart_inverse_output out;
     memset(&out, 0x5a, sizeof out);
-    stewart_output sentinel = out;
-    TEST_ASSERT_EQUAL_INT(expected, stewart_solve(model, data, &o, pose, &out));
+    stewart_inverse_output sentinel = out;
+    TEST_ASSERT_EQUAL_INT(expected, solve_as(data, &o, pose, &out));
     TEST_ASSERT_EQUAL_MEMORY(&sentinel, &out, sizeof out);
-    assert_contains(stewart_data_message(data), mention);
+    assert_contains(stewart_inverse_message(data), mention);
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
-    stewart_output good = solve_ok(model, data, f, &home);
+    stewart_inverse_output good = solve_ok(data, f, &home);
     TEST_ASSERT_FALSE(isnan(good.force[0]));
-    TEST_ASSERT_EQUAL_STRING("", stewart_data_message(data));
+    TEST_ASSERT_EQUAL_STRING("", stewart_inverse_message(data));
 }
 
 static void test_nan_and_inf_pose_components_are_named(void) {
@@ -69,12 +69,12 @@ static void test_singular_leg_jacobian(void) {
     memcpy(params.platform_angle, params.base_angle, sizeof params.base_angle);
     rebuild_platform();
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
-    stewart_options o = test_options(STEWART_MASSLESS);
-    stewart_output out;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, stewart_solve(model, data, &o, &home, &out));
-    assert_contains(stewart_data_message(data), "singular");
+    stewart_inverse_options o = test_options(STEWART_MASSLESS);
+    stewart_inverse_output out;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, solve_as(data, &o, &home, &out));
+    assert_contains(stewart_inverse_message(data), "singular");
     /* the kinematic level needs no inverse and still answers */
-    solve_ok(model, data, STEWART_KINEMATIC, &home);
+    solve_ok(data, STEWART_KINEMATIC, &home);
 }
 
 static void expect_bad_params(const stewart_params *p, const char *mention) {
@@ -101,23 +101,30 @@ static void test_invalid_parameters_are_named(void) {
 }
 
 static void test_invalid_options_and_null_arguments(void) {
-    stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
-    stewart_output out;
-    stewart_options o = test_options(STEWART_MASSLESS);
+    stewart_inverse_input in = {{{0, 0, 0.5, 0, 0, 0}, {0}, {0}}};
+    stewart_inverse_output out;
+    stewart_inverse_options o = test_options(STEWART_MASSLESS);
     o.fidelity = 7;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_solve(model, data, &o, &home, &out));
-    assert_contains(stewart_data_message(data), "fidelity = 7");
+    TEST_ASSERT_NULL(stewart_inverse_create(model, &o, msg, sizeof msg));
+    assert_contains(msg, "fidelity = 7");
     o = test_options(STEWART_MASSLESS);
     o.tolerance = -1;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_solve(model, data, &o, &home, &out));
-    assert_contains(stewart_data_message(data), "tolerance = -1");
+    TEST_ASSERT_NULL(stewart_inverse_create(model, &o, msg, sizeof msg));
+    assert_contains(msg, "tolerance = -1");
     o = test_options(STEWART_MASSLESS);
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(model, data, &o, NULL, &out));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(NULL, data, &o, &home, &out));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(model, NULL, &o, &home, &out));
-    TEST_ASSERT_NULL(stewart_data_create(NULL));
+    TEST_ASSERT_NULL(stewart_inverse_create(NULL, &o, msg, sizeof msg));
+    assert_contains(msg, "model is NULL");
+    TEST_ASSERT_NULL(stewart_inverse_create(model, NULL, msg, sizeof msg));
+    assert_contains(msg, "options is NULL");
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_solve(data, NULL, &out));
+    assert_contains(stewart_inverse_message(data), "NULL");
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_solve(data, &in, NULL));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_solve(NULL, &in, &out));
+    /* still usable */
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_solve(data, &in, &out));
+    TEST_ASSERT_EQUAL_STRING("", stewart_inverse_message(data));
     stewart_model_free(NULL);
-    stewart_data_free(NULL);
+    stewart_inverse_free(NULL);
 }
 
 /* The full level's position residual (max-norm, m) cannot go below one rounding of coordinates
@@ -127,26 +134,26 @@ static void test_tolerance_below_machine_precision(void) {
     const double refused[3] = {1e-16, 1e-17, DBL_EPSILON};
     const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17", "tolerance = 2.220446049250313e-16"};
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
-    stewart_output out;
+    stewart_inverse_output out;
     for (int i = 0; i < 3; ++i) {
-        stewart_options o = test_options(STEWART_FULL);
+        stewart_inverse_options o = test_options(STEWART_FULL);
         o.tolerance = refused[i];
-        TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_options_check(&o, msg, sizeof msg));
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
         assert_contains(msg, named[i]);
         assert_contains(msg, "use at least 2.5e-16");
-        TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_solve(model, data, &o, &home, &out));
-        assert_contains(stewart_data_message(data), named[i]);
+        TEST_ASSERT_NULL(stewart_inverse_create(model, &o, msg, sizeof msg));
+        assert_contains(msg, named[i]);
     }
-    stewart_options o = test_options(STEWART_FULL);
+    stewart_inverse_options o = test_options(STEWART_FULL);
     o.tolerance = 2.5e-16;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_options_check(&o, msg, sizeof msg), msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_options_check(&o, msg, sizeof msg), msg);
     for (int i = 0; i < 300; ++i) {
         stewart_pose pose = combined_pose(0.01 * i);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_solve(model, data, &o, &pose, &out),
-                                      stewart_data_message(data));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_as(data, &o, &pose, &out),
+                                      stewart_inverse_message(data));
         TEST_ASSERT_TRUE(out.residual <= 2.5e-16);
         for (int k = 0; k < 6; ++k)
-            TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &pose, k), out.length[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &pose, k), out.lengths.length[k]);
     }
 }
 
@@ -173,17 +180,17 @@ static void test_overflowing_rates_name_the_input(void) {
                     exact_text(values[v], value, sizeof value);
                     snprintf(expected, sizeof expected, "%s%s = %s", names[i],
                              row == 1 ? "_dot" : "_ddot", value);
-                    stewart_options o = test_options((stewart_fidelity)f);
-                    stewart_output out;
-                    const stewart_status s = stewart_solve(model, data, &o, &pose, &out);
+                    stewart_inverse_options o = test_options((stewart_fidelity)f);
+                    stewart_inverse_output out;
+                    const stewart_status s = solve_as(data, &o, &pose, &out);
                     if (s == STEWART_OK) { /* solvable: the outputs are finite */
-                        for (int k = 0; k < 6; ++k) TEST_ASSERT_TRUE(isfinite(out.force[k]) && isfinite(out.length_accel[k]));
+                        for (int k = 0; k < 6; ++k) TEST_ASSERT_TRUE(isfinite(out.force[k]) && isfinite(out.lengths.length_accel[k]));
                         continue;
                     }
-                    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_ARGUMENT, s, stewart_data_message(data));
-                    assert_contains(stewart_data_message(data), expected);
-                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_data_message(data), "q_d"), stewart_data_message(data));
-                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_data_message(data), "lambda"), stewart_data_message(data));
+                    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_ARGUMENT, s, stewart_inverse_message(data));
+                    assert_contains(stewart_inverse_message(data), expected);
+                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "q_d"), stewart_inverse_message(data));
+                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "lambda"), stewart_inverse_message(data));
                 }
     /* x_dot = DBL_MAX, the probe's case, is refused at the full level */
     stewart_pose pose = {{0, 0, 0.5, 0, 0, 0}, {DBL_MAX, 0, 0, 0, 0, 0}, {0}};

@@ -47,54 +47,58 @@ static void test_solve_batch_equals_the_loop(void) {
     fill_rows();
     q[5][0] = NAN;   /* a bad row: the rows after it are still solved */
     q_dot[9][1] = INFINITY;  /* a bad rate */
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = STEWART_FULL;
     double length[ROWS][6], force[ROWS][6], condition[ROWS];
-    int status[ROWS], iterations[ROWS];
-    const stewart_batch_outputs out = {&length[0][0], NULL, NULL, &force[0][0], condition, NULL,
-                                       NULL, NULL, iterations, NULL, status};
+    int status[ROWS], iterations[ROWS], stroke_legs[ROWS];
+    const stewart_inverse_batch_outputs out = {.length = &length[0][0], .force = &force[0][0],
+                                               .condition = condition, .iterations = iterations,
+                                               .stroke_legs = stroke_legs, .status = status};
     size_t rows[4], first_failed = 0;
     char text[4 * STEWART_MESSAGE_SIZE];
     stewart_batch_messages messages = {4, 0, rows, text};
-    stewart_data_reset(data);
-    const stewart_status s = stewart_solve_batch(model, data, &o, ROWS, &q[0][0], &q_dot[0][0],
-                                                 &q_ddot[0][0], &out, &messages, &first_failed);
+    stewart_inverse *batch = stewart_inverse_create(model, &o, NULL, 0);
+    TEST_ASSERT_NOT_NULL(batch);
+    const stewart_status s = stewart_inverse_batch(batch, ROWS, &q[0][0], &q_dot[0][0],
+                                                   &q_ddot[0][0], &out, &messages, &first_failed);
+    stewart_inverse_free(batch);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, s);
     TEST_ASSERT_EQUAL_size_t(5, first_failed);
     TEST_ASSERT_EQUAL_size_t(2, messages.count);
     TEST_ASSERT_EQUAL_size_t(5, rows[0]);
     TEST_ASSERT_EQUAL_size_t(9, rows[1]);
 
-    stewart_data *loop = stewart_data_create(model);
+    stewart_inverse *loop = test_inverse(model);
     for (int j = 0; j < ROWS; ++j) {
         const stewart_pose p = pose_of_row(j);
-        stewart_output r;
+        stewart_inverse_output r;
         memset(&r, 0, sizeof r);
-        const stewart_status sj = stewart_solve(model, loop, &o, &p, &r);
+        const stewart_status sj = solve_as(loop, &o, &p, &r);
         TEST_ASSERT_EQUAL_INT(sj, status[j]);
         TEST_ASSERT_EQUAL_INT(j == 5 || j == 9 ? 1 : 0, sj != STEWART_OK);
         if (sj != STEWART_OK) memset(&r, 0, sizeof r);
-        TEST_ASSERT_EQUAL_MEMORY(r.length, length[j], sizeof r.length);
+        TEST_ASSERT_EQUAL_MEMORY(r.lengths.length, length[j], sizeof r.lengths.length);
         TEST_ASSERT_EQUAL_MEMORY(r.force, force[j], sizeof r.force);
         TEST_ASSERT_EQUAL_MEMORY(&r.condition, &condition[j], sizeof r.condition);
         TEST_ASSERT_EQUAL_INT(r.iterations, iterations[j]);
+        TEST_ASSERT_EQUAL_INT(r.stroke_legs, stroke_legs[j]);
     }
-    stewart_data_free(loop);
+    stewart_inverse_free(loop);
 }
 
 /* The lengths, rates and accelerations of the manoeuvre (the inverse side's closed form). */
 static void leg_motion(double L[ROWS][6], double L_dot[ROWS][6], double L_ddot[ROWS][6]) {
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = STEWART_KINEMATIC;
     for (int j = 0; j < ROWS; ++j) {
         const stewart_pose p = pose_of_row(j);
-        stewart_output r;
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_solve(model, data, &o, &p, &r));
-        memcpy(L[j], r.length, sizeof r.length);
-        memcpy(L_dot[j], r.length_rate, sizeof r.length_rate);
-        memcpy(L_ddot[j], r.length_accel, sizeof r.length_accel);
+        stewart_inverse_output r;
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, solve_as(data, &o, &p, &r));
+        memcpy(L[j], r.lengths.length, sizeof r.lengths.length);
+        memcpy(L_dot[j], r.lengths.length_rate, sizeof r.lengths.length_rate);
+        memcpy(L_ddot[j], r.lengths.length_accel, sizeof r.lengths.length_accel);
     }
 }
 
@@ -108,25 +112,31 @@ static void test_forward_batch_equals_the_loop(void) {
     stewart_forward_options_default(&o);
     double pose[ROWS][6], rate[ROWS][6], accel[ROWS][6], residual[ROWS];
     int status[ROWS], iterations[ROWS], start[ROWS], branch[ROWS];
-    const stewart_forward_batch_outputs out = {&pose[0][0], &rate[0][0], &accel[0][0], residual,
-                                               NULL, NULL, iterations, NULL, branch, start,
-                                               status};
+    const stewart_forward_batch_outputs out = {.pose = &pose[0][0], .pose_rate = &rate[0][0],
+                                               .pose_accel = &accel[0][0], .residual = residual,
+                                               .iterations = iterations, .branch = branch,
+                                               .start = start, .status = status};
     size_t first_failed = 0;
-    stewart_forward_reset(data);
+    stewart_forward *batch = stewart_forward_create(model, &o, NULL, 0);
+    TEST_ASSERT_NOT_NULL(batch);
     const stewart_status s =
-        stewart_forward_batch(model, data, &o, ROWS, times, &L[0][0], &L_dot[0][0],
-                              &L_ddot[0][0], NULL, &out, NULL, &first_failed);
+        stewart_forward_batch(batch, ROWS, times, &L[0][0], &L_dot[0][0], &L_ddot[0][0], NULL,
+                              &out, NULL, &first_failed);
+    stewart_forward_free(batch);
     TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK, s);
     TEST_ASSERT_EQUAL_size_t(7, first_failed);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, status[7]);
     TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK, status[12]);
 
-    stewart_data *loop = stewart_data_create(model);
+    stewart_forward *loop = stewart_forward_create(model, &o, NULL, 0);
     for (int j = 0; j < ROWS; ++j) {
-        stewart_forward_result r;
+        stewart_forward_output r;
         memset(&r, 0, sizeof r);
-        const stewart_status sj = stewart_forward_solve(model, loop, &o, times[j], L[j], L_dot[j],
-                                                        L_ddot[j], NULL, &r);
+        stewart_forward_input in = {times[j], {{0}}, 2, 0, {0}};
+        memcpy(in.lengths.length, L[j], sizeof L[j]);
+        memcpy(in.lengths.length_rate, L_dot[j], sizeof L_dot[j]);
+        memcpy(in.lengths.length_accel, L_ddot[j], sizeof L_ddot[j]);
+        const stewart_status sj = stewart_forward_solve(loop, &in, &r);
         TEST_ASSERT_EQUAL_INT(sj, status[j]);
         TEST_ASSERT_EQUAL_INT(j == 7 || j == 12 ? 1 : 0, sj != STEWART_OK);
         if (sj != STEWART_OK) {
@@ -143,7 +153,7 @@ static void test_forward_batch_equals_the_loop(void) {
         /* and the poses are the manoeuvre's (the inverse side's closed form) */
         for (int i = 0; i < 6; ++i) TEST_ASSERT_DOUBLE_WITHIN(1e-12, q[j][i], pose[j][i]);
     }
-    stewart_data_free(loop);
+    stewart_forward_free(loop);
 }
 
 /* Forces linear in time: gravity-like support plus a wobble, so the platform moves. */
@@ -170,28 +180,32 @@ static void simulate_equals_the_loop(int fidelity) {
     double pose[ROWS][6], rate[ROWS][6], length[ROWS][6];
     long steps[ROWS];
     int status[ROWS];
-    const stewart_simulate_batch_outputs out = {&pose[0][0], &rate[0][0], &length[0][0], NULL,
-                                                NULL, NULL, NULL, steps, NULL, NULL, NULL, status};
+    const stewart_plant_batch_outputs out = {.pose = &pose[0][0], .pose_rate = &rate[0][0],
+                                             .length = &length[0][0], .steps = steps,
+                                             .status = status};
     stewart_plant *batch = plant_of(fidelity), *loop = plant_of(fidelity);
     size_t first_failed = 0;
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_simulate_batch(batch, ROWS, times, &F[0][0], start,
-                                                             NULL, &out, NULL, 0, &first_failed));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_batch(batch, ROWS, times, &F[0][0], start,
+                                                          NULL, &out, NULL, &first_failed));
     TEST_ASSERT_EQUAL_size_t(ROWS, first_failed);
     const double at_rest[6] = {0};
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_set_state(loop, times[0], start, at_rest));
     for (int j = 0; j < ROWS; ++j) {
         TEST_ASSERT_EQUAL_INT(STEWART_OK, status[j]);
         stewart_plant_statistics st = {0};
-        if (j > 0) {
-            TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_step(loop, times[j] - times[j - 1],
-                                                                 F[j - 1], F[j], NULL, NULL));
-            stewart_plant_statistics_get(loop, &st);
-        }
         stewart_plant_output o;
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(loop, F[j], &o));
-        TEST_ASSERT_EQUAL_MEMORY(o.pose, pose[j], sizeof o.pose);
-        TEST_ASSERT_EQUAL_MEMORY(o.pose_rate, rate[j], sizeof o.pose_rate);
-        TEST_ASSERT_EQUAL_MEMORY(o.length, length[j], sizeof o.length);
+        if (j > 0) {
+            stewart_plant_input in = {times[j] - times[j - 1], {0}, {0}, 0, {0}, {0}};
+            memcpy(in.force_start, F[j - 1], sizeof in.force_start);
+            memcpy(in.force_end, F[j], sizeof in.force_end);
+            TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_step(loop, &in, &o));
+            stewart_plant_statistics_get(loop, &st);
+        } else {
+            TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(loop, F[j], &o));
+        }
+        TEST_ASSERT_EQUAL_MEMORY(o.pose.q, pose[j], sizeof o.pose.q);
+        TEST_ASSERT_EQUAL_MEMORY(o.pose.q_dot, rate[j], sizeof o.pose.q_dot);
+        TEST_ASSERT_EQUAL_MEMORY(o.lengths.length, length[j], sizeof o.lengths.length);
         TEST_ASSERT_EQUAL_INT(st.steps, steps[j]);
     }
     TEST_ASSERT_EQUAL_DOUBLE(start[0], pose[0][0]);
@@ -212,15 +226,16 @@ static void test_refused_step_stops_the_run(void) {
     F[10][4] = NAN;
     double pose[ROWS][6];
     int status[ROWS];
-    stewart_simulate_batch_outputs out;
+    stewart_plant_batch_outputs out;
     memset(&out, 0, sizeof out);
     out.pose = &pose[0][0];
     out.status = status;
     stewart_plant *plant = plant_of(STEWART_MASSLESS);
     char message[STEWART_MESSAGE_SIZE];
-    size_t first_failed = 0;
-    const stewart_status s = stewart_simulate_batch(plant, ROWS, times, &F[0][0], NULL, NULL,
-                                                    &out, message, sizeof message, &first_failed);
+    size_t rows[1], first_failed = 0;
+    stewart_batch_messages messages = {1, 0, rows, message};
+    const stewart_status s = stewart_plant_batch(plant, ROWS, times, &F[0][0], NULL, NULL, &out,
+                                                 &messages, &first_failed);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, s);
     TEST_ASSERT_EQUAL_size_t(10, first_failed);
     TEST_ASSERT_NOT_NULL(strstr(message, "row 10"));
@@ -232,13 +247,13 @@ static void test_refused_step_stops_the_run(void) {
     stewart_plant_output now;
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(plant, NULL, &now));
     TEST_ASSERT_EQUAL_DOUBLE(times[9], now.time);
-    TEST_ASSERT_EQUAL_MEMORY(pose[9], now.pose, sizeof now.pose);
+    TEST_ASSERT_EQUAL_MEMORY(pose[9], now.pose.q, sizeof now.pose.q);
     /* a time that does not increase is refused at its row */
     times[3] = times[2];
     F[10][4] = 0;
     TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK,
-                              stewart_simulate_batch(plant, ROWS, times, &F[0][0], NULL, NULL,
-                                                     &out, NULL, 0, &first_failed));
+                              stewart_plant_batch(plant, ROWS, times, &F[0][0], NULL, NULL,
+                                                  &out, NULL, &first_failed));
     TEST_ASSERT_EQUAL_size_t(3, first_failed);
     TEST_ASSERT_EQUAL_INT(STEWART_BATCH_NOT_RUN, status[4]);
     stewart_plant_free(plant);

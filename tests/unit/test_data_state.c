@@ -12,59 +12,61 @@
 #include "test_support.h"
 #include "unity.h"
 
-static void run(stewart_data *d, double t0, int n, stewart_output *last) {
+static void run(stewart_inverse *d, double t0, int n, stewart_inverse_output *last) {
     for (int i = 0; i < n; ++i) {
         stewart_pose p = combined_pose(t0 + 1e-3 * i);
-        *last = solve_ok(model, d, STEWART_FULL, &p);
+        *last = solve_ok(d, STEWART_FULL, &p);
     }
 }
 
 static void test_saved_state_resumes_bit_for_bit(void) {
-    stewart_output a, b;
+    stewart_inverse_output a, b;
     run(data, 0.0, 50, &a);
-    const size_t size = stewart_data_state_size(data);
+    const size_t size = stewart_inverse_state_size(data);
     TEST_ASSERT_TRUE(size > 0);
     unsigned char *bytes = malloc(size);
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_save(data, bytes, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_save(data, bytes, size));
 
-    stewart_data *other = stewart_data_create(model);
+    stewart_inverse *other = test_inverse(model);
     run(other, 3.0, 7, &b); /* some other history, to be overwritten */
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_load(other, bytes, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_load(other, bytes, size));
     /* the loaded block holds exactly the saved state (its own history is gone) */
     unsigned char *again = malloc(size);
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_save(other, again, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_save(other, again, size));
     TEST_ASSERT_EQUAL_MEMORY(bytes, again, size);
     free(again);
     run(data, 0.05, 30, &a);
     run(other, 0.05, 30, &b);
     TEST_ASSERT_EQUAL_MEMORY(&a, &b, sizeof a);
-    stewart_data_free(other);
+    stewart_inverse_free(other);
     free(bytes);
 }
 
 static void test_bytes_that_are_not_a_state_are_refused(void) {
-    stewart_output before, after;
+    stewart_inverse_output before, after;
     run(data, 0.0, 5, &before);
-    const size_t size = stewart_data_state_size(data);
+    const size_t size = stewart_inverse_state_size(data);
     unsigned char *bytes = malloc(size + 8);
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_save(data, bytes, size));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_save(data, bytes, size - 1));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_load(data, bytes, size - 1));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_load(data, bytes, size + 8));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_save(data, bytes, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_save(data, bytes, size - 1));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "the state needs"),
+                                 stewart_inverse_message(data));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size - 1));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size + 8));
     unsigned char saved = bytes[0];
     bytes[0] ^= 0xff; /* the tag */
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_load(data, bytes, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size));
     bytes[0] = saved;
     memset(bytes + size - 8, 0xff, 8); /* a NaN among the values */
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_load(data, bytes, size));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_load(data, NULL, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, NULL, size));
     /* refused loads changed nothing: the run goes on as if they had not happened */
-    stewart_data *reference = stewart_data_create(model);
-    stewart_data_copy(reference, data);
+    stewart_inverse *reference = test_inverse(model);
+    stewart_inverse_copy(reference, data);
     run(data, 0.005, 5, &before);
     run(reference, 0.005, 5, &after);
     TEST_ASSERT_EQUAL_MEMORY(&before, &after, sizeof before);
-    stewart_data_free(reference);
+    stewart_inverse_free(reference);
     free(bytes);
 }
 
@@ -72,7 +74,7 @@ static void test_bytes_that_are_not_a_state_are_refused(void) {
  * the save, while the data block still holds them. */
 static size_t q_at;
 static size_t q_offset(const unsigned char *bytes, size_t size) {
-    const mbs_data *mech = stewart_data_mechanism(data);
+    const mbs_data *mech = stewart_inverse_mechanism(data);
     const size_t n = (size_t)mbs_coordinate_count(stewart_model_mechanism(model)) * sizeof(double);
     for (size_t at = 0; at + n <= size; at += 4)
         if (memcmp(bytes + at, mbs_q(mech), n) == 0) return at;
@@ -87,24 +89,24 @@ static void expect_refused(const unsigned char *saved, size_t size, int coordina
     unsigned char *bytes = malloc(size);
     memcpy(bytes, saved, size);
     memcpy(bytes + q_at + coordinate * sizeof(double), &value, sizeof value);
-    stewart_data *reference = stewart_data_create(model);
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_copy(reference, data));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_data_load(data, bytes, size));
-    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_data_message(data), mention), stewart_data_message(data));
-    stewart_output a, b;
+    stewart_inverse *reference = test_inverse(model);
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_copy(reference, data));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_inverse_message(data), mention), stewart_inverse_message(data));
+    stewart_inverse_output a, b;
     run(data, 0.06, 20, &a);
     run(reference, 0.06, 20, &b);
     TEST_ASSERT_EQUAL_MEMORY(&b, &a, sizeof a);
-    stewart_data_free(reference);
+    stewart_inverse_free(reference);
     free(bytes);
 }
 
 static void test_states_that_do_not_fit_the_model_are_refused(void) {
-    stewart_output out;
+    stewart_inverse_output out;
     run(data, 0.0, 50, &out);
-    const size_t size = stewart_data_state_size(data);
+    const size_t size = stewart_inverse_state_size(data);
     unsigned char *bytes = malloc(size);
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_data_save(data, bytes, size));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_save(data, bytes, size));
     q_at = q_offset(bytes, size);
     /* the probe's corruptions: a base (fixed body 0) Euler parameter */
     const double base_values[4] = {0.0, -1.0, 1e3, 1e300};
@@ -121,26 +123,26 @@ static void test_states_that_do_not_fit_the_model_are_refused(void) {
     memcpy(&z, bytes + q_at + (MBS_BODY_R(13) + 2) * sizeof z, sizeof z);
     expect_refused(bytes, size, MBS_BODY_R(13) + 2, z + 1e-6, "residual");
     /* the state as saved still loads */
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_data_load(data, bytes, size), stewart_data_message(data));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_load(data, bytes, size), stewart_inverse_message(data));
     free(bytes);
 }
 
-/* Data made for one model, given with another (same shape, base_radius 0.6): refused, by name. */
+/* A solver's state copied into a solver of another model (same shape, base_radius 0.6): refused,
+ * by name, and both solvers go on. */
 static void test_data_of_another_model_is_refused(void) {
     stewart_params other_params = params;
     other_params.base_radius = 0.6;
     stewart_model *other = test_model(&other_params);
+    stewart_inverse *elsewhere = test_inverse(other);
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_copy(data, elsewhere));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "different models"),
+                                 stewart_inverse_message(data));
     for (int f = STEWART_KINEMATIC; f <= STEWART_FULL; ++f) {
-        stewart_options o = test_options((stewart_fidelity)f);
-        stewart_output out;
-        memset(&out, 0x5a, sizeof out);
-        const stewart_output sentinel = out;
-        TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(other, data, &o, &home, &out));
-        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_data_message(data), "another model"), stewart_data_message(data));
-        TEST_ASSERT_EQUAL_MEMORY(&sentinel, &out, sizeof out);
-        solve_ok(model, data, (stewart_fidelity)f, &home); /* with its own model it goes on */
+        solve_ok(data, (stewart_fidelity)f, &home);
+        solve_ok(elsewhere, (stewart_fidelity)f, &home);
     }
+    stewart_inverse_free(elsewhere);
     stewart_model_free(other);
 }
 

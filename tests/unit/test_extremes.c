@@ -20,7 +20,7 @@ static void test_yaw_singularity_sweep(void) {
     const double distance[4] = {1e-1, 1e-2, 1e-3, 1e-4}; /* rad from 90 deg */
     for (int i = 0; i < 4; ++i) {
         stewart_pose p = yawed(M_PI / 2 - distance[i]);
-        stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &p);
+        stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &p);
         TEST_ASSERT_TRUE(out.condition > previous_condition);
         previous_condition = out.condition;
         double largest = 0;
@@ -33,20 +33,20 @@ static void test_yaw_singularity_sweep(void) {
     TEST_ASSERT_TRUE(previous_condition > 1e4);
 
     stewart_pose singular = yawed(M_PI / 2);
-    stewart_options o = test_options(STEWART_MASSLESS);
-    stewart_output out;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, stewart_solve(model, data, &o, &singular, &out));
+    stewart_inverse_options o = test_options(STEWART_MASSLESS);
+    stewart_inverse_output out;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, solve_as(data, &o, &singular, &out));
     /* and the next pose is solved as if nothing happened */
     stewart_pose home = yawed(0);
-    stewart_output good = solve_ok(model, data, STEWART_MASSLESS, &home);
-    TEST_ASSERT_DOUBLE_WITHIN(1e-9, params.platform_mass * 9.81 * good.length[0] / 3.0, good.force[0]);
+    stewart_inverse_output good = solve_ok(data, STEWART_MASSLESS, &home);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, params.platform_mass * 9.81 * good.lengths.length[0] / 3.0, good.force[0]);
 }
 
 /* Geometry scaled by s with the same mass: lengths scale by s, static forces do not change
  * (F = m g L / (6 h) depends on L / h only). From a 1 mm to a 100 m platform. */
 static void test_scaled_platform_is_similar(void) {
     stewart_pose home = {{0.01, -0.02, 0.5, 0.05, -0.03, 0.2}, {0}, {0}};
-    stewart_output reference = solve_ok(model, data, STEWART_MASSLESS, &home);
+    stewart_inverse_output reference = solve_ok(data, STEWART_MASSLESS, &home);
     const double scales[2] = {2e-3, 200.0};
     for (int i = 0; i < 2; ++i) {
         const double s = scales[i];
@@ -61,9 +61,9 @@ static void test_scaled_platform_is_similar(void) {
         rebuild_platform();
         stewart_pose p = home;
         for (int j = 0; j < 3; ++j) p.q[j] *= s;
-        stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &p);
+        stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &p);
         for (int k = 0; k < 6; ++k) {
-            TEST_ASSERT_DOUBLE_WITHIN(1e-13 * s, s * reference.length[k], out.length[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-13 * s, s * reference.lengths.length[k], out.lengths.length[k]);
             TEST_ASSERT_DOUBLE_WITHIN(1e-9 * fabs(reference.force[k]), reference.force[k], out.force[k]);
         }
         TEST_ASSERT_EQUAL_INT(0, out.warnings);
@@ -77,7 +77,7 @@ static void test_payload_far_outside(void) {
     params.payload_com[0] = 10.0;
     rebuild_platform();
     stewart_pose home = yawed(0);
-    stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &home);
+    stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &home);
     int tension = 0;
     for (int k = 0; k < 6; ++k) tension += out.force[k] < 0;
     TEST_ASSERT_TRUE(tension > 0);
@@ -96,7 +96,7 @@ static void test_stroke_limits_flag_without_failing(void) {
     const int flagged[4] = {0, 1, 0, 1};
     for (int i = 0; i < 4; ++i) {
         stewart_pose p = {{0, 0, z[i], 0, 0, 0}, {0}, {0}};
-        stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &p);
+        stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &p);
         TEST_ASSERT_EQUAL_INT(flagged[i] ? STEWART_WARN_STROKE : 0, out.warnings & STEWART_WARN_STROKE);
     }
 }
@@ -110,8 +110,8 @@ static void test_stroke_bits_name_the_legs(void) {
         narrow.stroke_min = 0.55;
         narrow.stroke_max = 0.62;
         stewart_model *m = test_model(&narrow);
-        stewart_data *d = stewart_data_create(m);
-        stewart_output out = solve_ok(m, d, (stewart_fidelity)f, &p);
+        stewart_inverse *d = test_inverse(m);
+        stewart_inverse_output out = solve_ok(d, (stewart_fidelity)f, &p);
         int expected = 0;
         for (int k = 0; k < STEWART_LEGS; ++k) {
             const double L = closed_form_length(&narrow, &p, k);
@@ -120,7 +120,7 @@ static void test_stroke_bits_name_the_legs(void) {
         TEST_ASSERT_TRUE(expected != 0 && expected != 0x3f); /* the pose splits the legs */
         TEST_ASSERT_EQUAL_HEX(expected, out.stroke_legs);
         TEST_ASSERT_EQUAL_INT(STEWART_WARN_STROKE, out.warnings & STEWART_WARN_STROKE);
-        stewart_data_free(d);
+        stewart_inverse_free(d);
         stewart_model_free(m);
     }
 }

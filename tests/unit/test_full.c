@@ -7,6 +7,7 @@
 
 #include "platform_fixture.h"
 #include "stewart/stewart_full.h"
+#include "thesis_forces.h"
 #include "test_support.h"
 #include "unity.h"
 
@@ -19,9 +20,9 @@ static void test_lengths_match_closed_form(void) {
     for (int w = 0; w < 5; ++w)
         for (int i = 0; i <= 120; ++i) {
             stewart_pose pose = manoeuvre(which[w], 0.1 * i);
-            stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
+            stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
             for (int k = 0; k < 6; ++k)
-                TEST_ASSERT_DOUBLE_WITHIN(1e-11, closed_form_length(&params, &pose, k), out.length[k]);
+                TEST_ASSERT_DOUBLE_WITHIN(1e-11, closed_form_length(&params, &pose, k), out.lengths.length[k]);
             TEST_ASSERT_TRUE(out.residual <= 1e-12);
             TEST_ASSERT_TRUE(out.iterations <= 2);
         }
@@ -35,12 +36,12 @@ static void compare_with_massless(void) {
     for (int w = 2; w <= 6; ++w)
         for (int i = 0; i <= 120; i += 3) {
             stewart_pose pose = manoeuvre(w, 0.1 * i);
-            stewart_output full = solve_ok(model, data, STEWART_FULL, &pose);
-            stewart_output mass = solve_ok(model, data, STEWART_MASSLESS, &pose);
+            stewart_inverse_output full = solve_ok(data, STEWART_FULL, &pose);
+            stewart_inverse_output mass = solve_ok(data, STEWART_MASSLESS, &pose);
             for (int k = 0; k < 6; ++k) {
                 expect_relative(mass.force[k], full.force[k], 1e-9);
-                expect_relative(mass.length_rate[k], full.length_rate[k], 1e-9);
-                expect_relative(mass.length_accel[k], full.length_accel[k], 1e-9);
+                expect_relative(mass.lengths.length_rate[k], full.lengths.length_rate[k], 1e-9);
+                expect_relative(mass.lengths.length_accel[k], full.lengths.length_accel[k], 1e-9);
             }
             for (int i3 = 0; i3 < 3; ++i3) {
                 expect_relative(mass.base_force[i3], full.base_force[i3], 1e-9);
@@ -93,8 +94,8 @@ static double energy(const double *q, const double *v) {
 
 static double energy_at(double t, int which) {
     stewart_pose pose = manoeuvre(which, t);
-    solve_ok(model, data, STEWART_FULL, &pose);
-    const mbs_data *md = stewart_data_mechanism(data);
+    solve_ok(data, STEWART_FULL, &pose);
+    const mbs_data *md = stewart_inverse_mechanism(data);
     return energy(mbs_q(md), mbs_q_dot(md));
 }
 
@@ -105,11 +106,11 @@ static void test_power_balance(void) {
             const double t = 0.1 * i, h = 1e-5;
             const double dE = (energy_at(t + h, w) - energy_at(t - h, w)) / (2 * h);
             stewart_pose pose = manoeuvre(w, t);
-            stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
+            stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
             double power = 0, scale = 0;
             for (int k = 0; k < 6; ++k) {
-                power += out.force[k] * out.length_rate[k];
-                scale += fabs(out.force[k] * out.length_rate[k]);
+                power += out.force[k] * out.lengths.length_rate[k];
+                scale += fabs(out.force[k] * out.lengths.length_rate[k]);
             }
             TEST_ASSERT_DOUBLE_WITHIN(1e-7 * (1 + scale), dE, power);
         }
@@ -124,7 +125,7 @@ static void test_thesis_formulation_agrees(void) {
     for (int w = 2; w <= 6; ++w)
         for (int i = 0; i <= 120; i += 8) {
             stewart_pose pose = manoeuvre(w, 0.1 * i);
-            stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
+            stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
             double thesis[6];
             char msg[STEWART_MESSAGE_SIZE];
             TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, thesis, msg, sizeof msg), msg);
@@ -175,14 +176,14 @@ static double jacobian_det_ratio(const stewart_pose *pose) {
 }
 
 /* Yaw = pi/2 exactly: the leg Jacobian is singular (checked here from the geometry alone), so the
- * thesis' way must refuse the pose as stewart_solve does (it returned forces of 4.7e18 N),
+ * thesis' way must refuse the pose as stewart_inverse_solve does (it returned forces of 4.7e18 N),
  * leaving force untouched; the same platform a little off that yaw still answers. */
 static void test_thesis_forces_refuse_a_singular_pose(void) {
     stewart_pose pose = {{0, 0, 0.5, 0, 0, M_PI / 2}, {0}, {0}};
     TEST_ASSERT_TRUE(jacobian_det_ratio(&pose) < 1e-14);
-    stewart_options o = test_options(STEWART_FULL);
-    stewart_output out;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, stewart_solve(model, data, &o, &pose, &out));
+    stewart_inverse_options o = test_options(STEWART_FULL);
+    stewart_inverse_output out;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_SINGULAR, solve_as(data, &o, &pose, &out));
 
     double force[6];
     for (int k = 0; k < 6; ++k) force[k] = 1000.0 + k;
@@ -192,12 +193,12 @@ static void test_thesis_forces_refuse_a_singular_pose(void) {
     for (int k = 0; k < 6; ++k) TEST_ASSERT_EQUAL_DOUBLE(1000.0 + k, force[k]);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "condition number"), msg);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "singular_condition 1e+10"), msg);
-    TEST_ASSERT_EQUAL_STRING(stewart_data_message(data), msg);
+    TEST_ASSERT_EQUAL_STRING(stewart_inverse_message(data), msg);
 
     /* 0.1 rad away the Jacobian is regular and both ways give the same forces. */
     pose.q[5] = M_PI / 2 - 0.1;
     TEST_ASSERT_TRUE(jacobian_det_ratio(&pose) > 1e-3);
-    out = solve_ok(model, data, STEWART_FULL, &pose);
+    out = solve_ok(data, STEWART_FULL, &pose);
     TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, force, msg, sizeof msg), msg);
     for (int k = 0; k < 6; ++k) expect_relative(out.force[k], force[k], 1e-9);
 }
@@ -228,23 +229,23 @@ static void test_thesis_forces_never_overflow(void) {
  * massless level), not a singular Jacobian: at home Phi_q is far from singular (condition 11). */
 static void test_huge_accelerations_are_out_of_range(void) {
     stewart_pose pose = {{0, 0, 0.5, 0, 0, 0}, {0}, {0, 0, 1e307, 0, 0, 0}};
-    stewart_options o;
-    stewart_options_default(&o);
-    stewart_output out;
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    stewart_inverse_output out;
     for (int fidelity = STEWART_MASSLESS; fidelity <= STEWART_FULL; ++fidelity) {
         o.fidelity = fidelity;
-        TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_solve(model, data, &o, &pose, &out));
-        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_data_message(data), "out of range"),
-                                     stewart_data_message(data));
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, solve_as(data, &o, &pose, &out));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "out of range"),
+                                     stewart_inverse_message(data));
     }
     pose.q_ddot[2] = 1.0; /* and the next ordinary pose is solved */
-    solve_ok(model, data, STEWART_FULL, &pose);
+    solve_ok(data, STEWART_FULL, &pose);
 }
 
 /* Heavier legs carry more than the massless level, and the platform at rest loads them. */
 static void test_massive_legs_at_rest(void) {
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
-    stewart_output full = solve_ok(model, data, STEWART_FULL, &home);
+    stewart_inverse_output full = solve_ok(data, STEWART_FULL, &home);
     const double total = params.platform_mass + 6 * (params.cylinder_mass + params.piston_mass);
     TEST_ASSERT_DOUBLE_WITHIN(1e-9 * total * 9.81, -total * 9.81, full.base_force[2]);
     TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.0, full.base_force[0]);
@@ -257,8 +258,8 @@ static void test_normalisation_long_run(void) {
     double worst = 0;
     for (int i = 0; i < 100000; ++i) {
         stewart_pose pose = thesis_pose(5, 1.2e-4 * i);
-        solve_ok(model, data, STEWART_FULL, &pose);
-        const double *q = mbs_q(stewart_data_mechanism(data));
+        solve_ok(data, STEWART_FULL, &pose);
+        const double *q = mbs_q(stewart_inverse_mechanism(data));
         for (int b = 0; b < 14; ++b) {
             const double *p = q + MBS_BODY_P(b);
             const double e = fabs(p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1);
@@ -270,43 +271,43 @@ static void test_normalisation_long_run(void) {
 
 /* A copy is a rollback point: solving on after restoring it repeats the same outputs. */
 static void test_copy_is_rollback(void) {
-    stewart_data *saved = stewart_data_create(model);
+    stewart_inverse *saved = test_inverse(model);
     stewart_pose a = combined_pose(0.3), b = combined_pose(0.7);
-    solve_ok(model, data, STEWART_FULL, &a);
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(saved, data));
-    stewart_output first = solve_ok(model, data, STEWART_FULL, &b);
+    solve_ok(data, STEWART_FULL, &a);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_copy(saved, data));
+    stewart_inverse_output first = solve_ok(data, STEWART_FULL, &b);
     stewart_pose c = combined_pose(2.0);
-    solve_ok(model, data, STEWART_FULL, &c);
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(data, saved));
-    stewart_output again = solve_ok(model, data, STEWART_FULL, &b);
+    solve_ok(data, STEWART_FULL, &c);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_copy(data, saved));
+    stewart_inverse_output again = solve_ok(data, STEWART_FULL, &b);
     TEST_ASSERT_EQUAL_MEMORY(&first, &again, sizeof first);
-    stewart_data_reset(data);
-    stewart_output fresh = solve_ok(model, data, STEWART_FULL, &b);
+    stewart_inverse_reset(data);
+    stewart_inverse_output fresh = solve_ok(data, STEWART_FULL, &b);
     for (int k = 0; k < 6; ++k) TEST_ASSERT_DOUBLE_WITHIN(1e-9, first.force[k], fresh.force[k]);
-    stewart_data_free(saved);
+    stewart_inverse_free(saved);
 }
 
 /* q_dot and q_ddot of all 98 coordinates against central differences of q(t) along the
  * combined manoeuvre (each neighbour solved on a copy, so Euler-parameter signs stay put). */
 static void test_rates_against_finite_differences(void) {
-    stewart_data *side = stewart_data_create(model);
+    stewart_inverse *side = test_inverse(model);
     double q0[98], qp[98], qm[98], v[98], a[98];
     const double steps[2] = {1e-4, 1e-3}; /* first, second difference (Newton noise ~1e-12) */
     for (int i = 0; i <= 120; i += 11)
         for (int which = 0; which < 2; ++which) {
             const double t = 0.1 * i, h = steps[which];
             stewart_pose pose = combined_pose(t), pp = combined_pose(t + h), pm = combined_pose(t - h);
-            solve_ok(model, data, STEWART_FULL, &pose);
-            const mbs_data *md = stewart_data_mechanism(data);
+            solve_ok(data, STEWART_FULL, &pose);
+            const mbs_data *md = stewart_inverse_mechanism(data);
             memcpy(q0, mbs_q(md), sizeof q0);
             memcpy(v, mbs_q_dot(md), sizeof v);
             memcpy(a, mbs_q_ddot(md), sizeof a);
-            TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(side, data));
-            solve_ok(model, side, STEWART_FULL, &pp);
-            memcpy(qp, mbs_q(stewart_data_mechanism(side)), sizeof qp);
-            TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(side, data));
-            solve_ok(model, side, STEWART_FULL, &pm);
-            memcpy(qm, mbs_q(stewart_data_mechanism(side)), sizeof qm);
+            TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_copy(side, data));
+            solve_ok(side, STEWART_FULL, &pp);
+            memcpy(qp, mbs_q(stewart_inverse_mechanism(side)), sizeof qp);
+            TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_copy(side, data));
+            solve_ok(side, STEWART_FULL, &pm);
+            memcpy(qm, mbs_q(stewart_inverse_mechanism(side)), sizeof qm);
             for (int k = 0; k < 98; ++k) {
                 if (which == 0)
                     TEST_ASSERT_DOUBLE_WITHIN(1e-7, (qp[k] - qm[k]) / (2 * h), v[k]);
@@ -314,7 +315,7 @@ static void test_rates_against_finite_differences(void) {
                     TEST_ASSERT_DOUBLE_WITHIN(1e-5, (qp[k] - 2 * q0[k] + qm[k]) / (h * h), a[k]);
             }
         }
-    stewart_data_free(side);
+    stewart_inverse_free(side);
 }
 
 /* Two models and three data blocks side by side, interleaved: each gives what it gives alone
@@ -324,31 +325,31 @@ static void test_instances_side_by_side(void) {
     heavy.payload_mass = 60;
     heavy.piston_mass = 0.5;
     stewart_model *other = test_model(&heavy);
-    stewart_data *a = stewart_data_create(model), *b = stewart_data_create(other),
-                 *c = stewart_data_create(model);
-    stewart_output alone_a[20], alone_b[20];
+    stewart_inverse *a = test_inverse(model), *b = test_inverse(other),
+                 *c = test_inverse(model);
+    stewart_inverse_output alone_a[20], alone_b[20];
     for (int i = 0; i < 20; ++i) {
         stewart_pose pose = combined_pose(0.05 * i);
-        alone_a[i] = solve_ok(model, data, STEWART_FULL, &pose);
+        alone_a[i] = solve_ok(data, STEWART_FULL, &pose);
     }
-    stewart_data_reset(data);
+    stewart_inverse_reset(data);
     for (int i = 0; i < 20; ++i) {
         stewart_pose pose = combined_pose(0.05 * i);
-        alone_b[i] = solve_ok(other, b, STEWART_FULL, &pose);
+        alone_b[i] = solve_ok(b, STEWART_FULL, &pose);
     }
-    stewart_data_reset(b);
+    stewart_inverse_reset(b);
     for (int i = 0; i < 20; ++i) {
         stewart_pose pose = combined_pose(0.05 * i), away = thesis_pose(3, 0.3 * i);
-        stewart_output oa = solve_ok(model, a, STEWART_FULL, &pose);
-        solve_ok(model, c, STEWART_FULL, &away);
-        stewart_output ob = solve_ok(other, b, STEWART_FULL, &pose);
+        stewart_inverse_output oa = solve_ok(a, STEWART_FULL, &pose);
+        solve_ok(c, STEWART_FULL, &away);
+        stewart_inverse_output ob = solve_ok(b, STEWART_FULL, &pose);
         TEST_ASSERT_EQUAL_MEMORY(&alone_a[i], &oa, sizeof oa);
         TEST_ASSERT_EQUAL_MEMORY(&alone_b[i], &ob, sizeof ob);
         TEST_ASSERT_TRUE(ob.force[0] > oa.force[0]); /* the payload weighs */
     }
-    stewart_data_free(a);
-    stewart_data_free(b);
-    stewart_data_free(c);
+    stewart_inverse_free(a);
+    stewart_inverse_free(b);
+    stewart_inverse_free(c);
     stewart_model_free(other);
 }
 

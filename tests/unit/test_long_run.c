@@ -1,4 +1,4 @@
-/* Long runs of the full level along the combined manoeuvre at 1 ms. First as stewart_solve runs
+/* Long runs of the full level along the combined manoeuvre at 1 ms. First as stewart_inverse_solve runs
  * it: the Euler parameters of every body stay normalised and the leg lengths stay the closed
  * form |p + R b - a| (computed here from the pose). That level places every body afresh from the
  * pose at each step, so this checks that nothing else accumulates. Then driven by the actuator
@@ -19,9 +19,9 @@ static void test_no_drift_over_a_long_run(void) {
     double worst_norm = 0, worst_length = 0, worst_late_norm = 0;
     for (long i = 0; i < steps; ++i) {
         stewart_pose pose = combined_pose(1e-3 * (double)i);
-        stewart_output out = solve_ok(model, data, STEWART_FULL, &pose);
+        stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
         if (i % 1000 != 0 && i != steps - 1) continue; /* sample the checks: the run is long */
-        const double *q = mbs_q(stewart_data_mechanism(data));
+        const double *q = mbs_q(stewart_inverse_mechanism(data));
         for (int b = 0; b < 14; ++b) {
             const double *e = q + MBS_BODY_P(b);
             const double err = fabs(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] - 1);
@@ -29,7 +29,7 @@ static void test_no_drift_over_a_long_run(void) {
             if (i >= steps / 2) worst_late_norm = fmax(worst_late_norm, err);
         }
         for (int k = 0; k < 6; ++k)
-            worst_length = fmax(worst_length, fabs(out.length[k] - closed_form_length(&params, &pose, k)));
+            worst_length = fmax(worst_length, fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k)));
     }
     printf("%ld steps: max | |p|^2 - 1 | = %.3g (second half %.3g), max |L - closed form| = %.3g m\n",
            steps, worst_norm, worst_late_norm, worst_length);
@@ -53,14 +53,14 @@ static void test_forward_kinematics_by_newton_over_a_long_run(void) {
     for (long i = 0; i < steps; ++i) {
         const double t = 1e-3 * (double)i;
         const stewart_pose pose = combined_pose(t);
-        const stewart_output legs = solve_ok(model, data, STEWART_KINEMATIC, &pose);
+        const stewart_inverse_output legs = solve_ok(data, STEWART_KINEMATIC, &pose);
         for (int k = 0; k < 6; ++k)
-            mbs_set_driver(mech, k, legs.length[k], legs.length_rate[k], legs.length_accel[k]);
+            mbs_set_driver(mech, k, legs.lengths.length[k], legs.lengths.length_rate[k], legs.lengths.length_accel[k]);
         TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, mbs_step(mech, t, &o), mbs_data_message(mech));
         if (i > 0 && mbs_iterations(mech) > worst_iterations) worst_iterations = mbs_iterations(mech);
         if (i % 1000 != 0 && i != steps - 1) continue;
-        solve_ok(model, data, STEWART_FULL, &pose);
-        const double *q = mbs_q(mech), *ref = mbs_q(stewart_data_mechanism(data));
+        solve_ok(data, STEWART_FULL, &pose);
+        const double *q = mbs_q(mech), *ref = mbs_q(stewart_inverse_mechanism(data));
         for (int b = 1; b < 14; ++b) {
             const double *r = q + MBS_BODY_R(b), *r_ref = ref + MBS_BODY_R(b);
             const double *e = q + MBS_BODY_P(b), *e_ref = ref + MBS_BODY_P(b);

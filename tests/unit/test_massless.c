@@ -9,11 +9,11 @@
 /* At home, six identical legs share the weight: F = m g L / (6 h), h = 0.5 m. */
 static void test_static_home_shares_weight(void) {
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
-    stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &home);
+    stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &home);
     const double m = params.platform_mass, g = 9.81;
     TEST_ASSERT_DOUBLE_WITHIN(5e-3, 106.03, m); /* the thesis' platform mass */
     for (int k = 0; k < 6; ++k) {
-        TEST_ASSERT_DOUBLE_WITHIN(1e-10, m * g * out.length[k] / (6 * 0.5), out.force[k]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-10, m * g * out.lengths.length[k] / (6 * 0.5), out.force[k]);
         TEST_ASSERT_TRUE(out.force[k] > 0); /* a platform at rest loads its legs in compression */
     }
     TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.0, out.base_force[0]);
@@ -26,11 +26,11 @@ static void test_static_home_shares_weight(void) {
 static void test_heave_closed_form(void) {
     for (int i = 0; i <= 120; ++i) {
         stewart_pose pose = thesis_pose(2, 0.1 * i);
-        stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &pose);
+        stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &pose);
         const double z = pose.q[2];
         const double expected = params.platform_mass * (9.81 + pose.q_ddot[2]) / (6 * z);
         for (int k = 0; k < 6; ++k)
-            TEST_ASSERT_DOUBLE_WITHIN(1e-9 * expected * out.length[k], expected * out.length[k],
+            TEST_ASSERT_DOUBLE_WITHIN(1e-9 * expected * out.lengths.length[k], expected * out.lengths.length[k],
                                       out.force[k]);
     }
 }
@@ -47,7 +47,7 @@ static void test_static_offset_payload_balances(void) {
 
     const double x = 0.03, y = -0.02, z = 0.52, yaw = 0.2; /* no roll or pitch: R = Rz(yaw) */
     stewart_pose pose = {{x, y, z, 0, 0, yaw}, {0}, {0}};
-    stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &pose);
+    stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &pose);
     const double c = cos(yaw), s = sin(yaw), g = 9.81;
     double f[3] = {0, 0, 0}, moment[3] = {0, 0, 0};
     for (int k = 0; k < 6; ++k) {
@@ -109,9 +109,9 @@ static void test_power_balance_combined_manoeuvre(void) {
     for (int i = 0; i < 40; ++i) {
         const double t = 0.2 + 0.211 * i;
         stewart_pose pose = combined_pose(t);
-        stewart_output out = solve_ok(model, data, STEWART_MASSLESS, &pose);
+        stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &pose);
         double power = 0;
-        for (int k = 0; k < 6; ++k) power += out.force[k] * out.length_rate[k];
+        for (int k = 0; k < 6; ++k) power += out.force[k] * out.lengths.length_rate[k];
         const double dE = (platform_energy(t + h, 1e-6) - platform_energy(t - h, 1e-6)) / (2 * h);
         TEST_ASSERT_DOUBLE_WITHIN(1e-4 * (1 + fabs(power)), dE, power);
     }

@@ -17,18 +17,24 @@ static void test_full_level_steps_do_not_allocate(void) {
     stewart_params params;
     stewart_params_default(&params);
     stewart_model *model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
-    stewart_data *saved = stewart_data_create(model);
-    stewart_options o = test_options(STEWART_FULL);
-    stewart_output out;
-    stewart_pose first = combined_pose(0);
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_solve(model, data, &o, &first, &out));
+    stewart_inverse_options o = test_options(STEWART_FULL);
+    stewart_inverse *exact = stewart_inverse_create(model, &o, NULL, 0);
+    o.modified_newton = 1;
+    stewart_inverse *modified = stewart_inverse_create(model, &o, NULL, 0);
+    stewart_inverse *saved = test_inverse(model);
+    TEST_ASSERT_NOT_NULL(exact);
+    TEST_ASSERT_NOT_NULL(modified);
+    stewart_inverse_output out;
+    stewart_inverse_input in = {combined_pose(0)};
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_solve(exact, &in, &out));
     const long before = allocations;
     for (int i = 1; i < 500; ++i) {
-        stewart_pose pose = combined_pose(0.01 * i);
-        o.modified_newton = i % 2;
-        TEST_ASSERT_EQUAL(STEWART_OK, stewart_solve(model, data, &o, &pose, &out));
-        TEST_ASSERT_EQUAL(STEWART_OK, stewart_data_copy(saved, data)); /* the FMU rollback */
+        /* exact and modified Newton in turn, along one history */
+        stewart_inverse *now = i % 2 ? modified : exact;
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_copy(now, i % 2 ? exact : modified));
+        in.pose = combined_pose(0.01 * i);
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_solve(now, &in, &out));
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_inverse_copy(saved, now)); /* the FMU rollback */
     }
     TEST_ASSERT_EQUAL(before, allocations);
     /* A step that needs Newton iterations (KINSOL) allocates nothing either; creating the data
@@ -44,8 +50,9 @@ static void test_full_level_steps_do_not_allocate(void) {
     TEST_ASSERT_TRUE(mbs_iterations(d) > 0);
     TEST_ASSERT_EQUAL(before_newton, allocations);
     mbs_data_free(d);
-    stewart_data_free(saved);
-    stewart_data_free(data);
+    stewart_inverse_free(saved);
+    stewart_inverse_free(modified);
+    stewart_inverse_free(exact);
     stewart_model_free(model);
 }
 
@@ -75,33 +82,44 @@ static void test_forward_solves_do_not_allocate(void) {
     stewart_params params;
     stewart_params_default(&params);
     stewart_model *model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     stewart_forward_options fo;
     stewart_forward_options_default(&fo);
-    stewart_output legs[200];
+    stewart_forward *forward = stewart_forward_create(model, &fo, NULL, 0);
+    stewart_forward *saved = stewart_forward_create(model, &fo, NULL, 0);
+    TEST_ASSERT_NOT_NULL(forward);
+    TEST_ASSERT_NOT_NULL(saved);
+    stewart_inverse_output legs[200];
     for (int i = 0; i < 200; ++i) {
         const stewart_pose p = combined_pose(1e-3 * i);
-        legs[i] = solve_ok(model, data, STEWART_KINEMATIC, &p);
+        legs[i] = solve_ok(data, STEWART_KINEMATIC, &p);
     }
-    stewart_forward_result r;
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(model, data, &fo, 0, legs[0].length,
-                                                        legs[0].length_rate, legs[0].length_accel,
-                                                        NULL, &r));
+    stewart_forward_output r;
+    stewart_forward_input in = {0, legs[0].lengths, 2, 0, {0}};
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(forward, &in, &r));
+    unsigned char state[4096];
+    TEST_ASSERT_TRUE(stewart_forward_state_size(forward) <= sizeof state);
     const long before = allocations;
     int iterations = 0;
     for (int i = 1; i < 200; ++i) {
-        TEST_ASSERT_EQUAL(STEWART_OK,
-                          stewart_forward_solve(model, data, &fo, 1e-3 * i, legs[i].length,
-                                                legs[i].length_rate, legs[i].length_accel, NULL,
-                                                &r));
+        in.time = 1e-3 * i;
+        in.lengths = legs[i].lengths;
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(forward, &in, &r));
         iterations += r.iterations;
+        /* the rollbacks */
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_copy(saved, forward));
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_save(forward, state, sizeof state));
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_load(saved, state, sizeof state));
     }
-    stewart_forward_reset(data);
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(model, data, &fo, 0, legs[100].length,
-                                                        NULL, NULL, NULL, &r));
+    stewart_forward_reset(forward);
+    in.lengths = legs[100].lengths;
+    in.derivatives = 0;
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_forward_solve(forward, &in, &r));
     TEST_ASSERT_TRUE(iterations > 0 && r.iterations > 0); /* KINSOL did iterate */
     TEST_ASSERT_EQUAL(before, allocations);
-    stewart_data_free(data);
+    stewart_forward_free(saved);
+    stewart_forward_free(forward);
+    stewart_inverse_free(data);
     stewart_model_free(model);
 }
 

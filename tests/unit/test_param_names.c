@@ -46,10 +46,10 @@ static void test_table_ids_are_the_fmu_value_references(void) {
         TEST_ASSERT_EQUAL_STRING(display, stewart_param(i)->display_unit);                      \
     }
 #define FMU_OPTION_INT(vr, fmu_id, fmu_name, start, min, max, desc)                                       \
-    if (stewart_option_find(fmu_name) >= 0)                                                         \
-        TEST_ASSERT_EQUAL_INT_MESSAGE(vr, stewart_option(stewart_option_find(fmu_name))->id, fmu_name);
+    if (stewart_inverse_option_find(fmu_name) >= 0)                                                         \
+        TEST_ASSERT_EQUAL_INT_MESSAGE(vr, stewart_inverse_option(stewart_inverse_option_find(fmu_name))->id, fmu_name);
 #define FMU_OPTION_REAL(vr, fmu_id, fmu_name, field, unit, desc)                                          \
-    TEST_ASSERT_EQUAL_INT_MESSAGE(vr, stewart_option(stewart_option_find(fmu_name))->id, fmu_name);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(vr, stewart_inverse_option(stewart_inverse_option_find(fmu_name))->id, fmu_name);
 #include "variables.def"
 }
 

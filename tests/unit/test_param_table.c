@@ -136,15 +136,15 @@ static void test_refused_inertia_shows_why(void) {
 }
 
 static void test_options_table(void) {
-    stewart_options o, from_table;
-    stewart_options_default(&o);
+    stewart_inverse_options o, from_table;
+    stewart_inverse_options_default(&o);
     memset(&from_table, 0, sizeof from_table);
     char msg[STEWART_MESSAGE_SIZE];
-    for (int i = 0; i < stewart_option_count(); ++i) {
-        const stewart_option_info *info = stewart_option(i);
-        TEST_ASSERT_EQUAL_INT(i, stewart_option_find(info->name));
-        TEST_ASSERT_EQUAL_DOUBLE(info->default_value, stewart_option_get(&o, i));
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_option_set(&from_table, i, info->default_value, msg, sizeof msg), msg);
+    for (int i = 0; i < stewart_inverse_option_count(); ++i) {
+        const stewart_option_info *info = stewart_inverse_option(i);
+        TEST_ASSERT_EQUAL_INT(i, stewart_inverse_option_find(info->name));
+        TEST_ASSERT_EQUAL_DOUBLE(info->default_value, stewart_inverse_option_get(&o, i));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_option_set(&from_table, i, info->default_value, msg, sizeof msg), msg);
     }
     /* field by field (the struct has padding) */
     TEST_ASSERT_EQUAL_INT(o.fidelity, from_table.fidelity);
@@ -161,20 +161,20 @@ static void test_options_table(void) {
     TEST_ASSERT_EQUAL_DOUBLE(1e3, o.warn_condition);
     TEST_ASSERT_EQUAL_DOUBLE(1e10, o.singular_condition);
     /* ids are the FMU's value references; 201 (derivatives) is the FMU's own */
-    TEST_ASSERT_EQUAL_INT(200, stewart_option(stewart_option_find("fidelity"))->id);
-    TEST_ASSERT_EQUAL_INT(206, stewart_option(stewart_option_find("singular_condition"))->id);
-    TEST_ASSERT_EQUAL_INT(-1, stewart_option_find("derivatives"));
+    TEST_ASSERT_EQUAL_INT(200, stewart_inverse_option(stewart_inverse_option_find("fidelity"))->id);
+    TEST_ASSERT_EQUAL_INT(206, stewart_inverse_option(stewart_inverse_option_find("singular_condition"))->id);
+    TEST_ASSERT_EQUAL_INT(-1, stewart_inverse_option_find("derivatives"));
     /* integers take whole numbers only, within range; a refusal leaves the options unchanged */
-    const int it = stewart_option_find("max_iterations");
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_option_set(&o, it, 2.5, msg, sizeof msg));
+    const int it = stewart_inverse_option_find("max_iterations");
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_option_set(&o, it, 2.5, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "max_iterations = 2.5"), msg);
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_option_set(&o, it, 0, msg, sizeof msg));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_option_set(&o, it, 3e9, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_option_set(&o, it, 0, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_option_set(&o, it, 3e9, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(20, o.max_iterations);
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_option_set(&o, it, 7, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_option_set(&o, it, 7, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(7, o.max_iterations);
     o.warn_condition = 1e11;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_options_check(&o, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "warn = 1e+11, singular = 1e+10"), msg);
 }
 

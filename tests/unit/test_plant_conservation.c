@@ -73,7 +73,7 @@ static void test_fall_keeps_total_energy(void) {
     for (;;) {
         step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
-        if (out.warnings & STEWART_PLANT_WARN_STROKE) break;
+        if (out.warnings & STEWART_WARN_STROKE) break;
         t = out.time;
         plant_energy(&params, plant, STEWART_FULL, &T, &U);
         if (fabs(T + U - T0 - U0) > worst) worst = fabs(T + U - T0 - U0);
@@ -95,10 +95,10 @@ static void power_balance(int fidelity) {
     double T0, U0, T, U, work = 0, power_prev = 0, f_prev[6];
     plant_energy(&params, plant, fidelity, &T0, &U0);
     /* The static forces at home (inverse side) plus sinusoids of 1 %. */
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
-    const stewart_output statics = solve_ok(model, data, fidelity, &home);
-    stewart_data_free(data);
+    const stewart_inverse_output statics = solve_ok(data, fidelity, &home);
+    stewart_inverse_free(data);
     for (int i = 0; i <= steps; ++i) {
         const double t = i * h;
         double f[6], power = 0;
@@ -108,7 +108,7 @@ static void power_balance(int fidelity) {
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
         TEST_ASSERT_EQUAL(0, out.warnings);
-        for (int k = 0; k < 6; ++k) power += f[k] * out.length_rate[k], f_prev[k] = f[k];
+        for (int k = 0; k < 6; ++k) power += f[k] * out.lengths.length_rate[k], f_prev[k] = f[k];
         /* Simpson over [t - 2h, t] on every second point; power_prev holds the middle one. */
         static double power_first;
         if (i == 0) power_first = power;
@@ -130,10 +130,10 @@ static void test_power_balance_massless(void) { power_balance(STEWART_MASSLESS);
 /* F = the static forces of a pose from the inverse side: the platform stays at rest. */
 static void equilibrium(int fidelity, const double pose_q[6], double seconds, double bound) {
     model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     stewart_pose pose = {{0}, {0}, {0}};
     for (int i = 0; i < 6; ++i) pose.q[i] = pose_q[i];
-    const stewart_output inverse = solve_ok(model, data, fidelity, &pose);
+    const stewart_inverse_output inverse = solve_ok(data, fidelity, &pose);
     stewart_plant *plant = test_plant(model, fidelity, 1e-10, 1e-12);
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, pose.q, kZero));
     double worst = 0, worst_t = 0;
@@ -143,13 +143,13 @@ static void equilibrium(int fidelity, const double pose_q[6], double seconds, do
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         for (int c = 0; c < 3; ++c)
-            if (fabs(out.pose[c] - pose.q[c]) > worst) worst = fabs(out.pose[c] - pose.q[c]), worst_t = out.time;
+            if (fabs(out.pose.q[c] - pose.q[c]) > worst) worst = fabs(out.pose.q[c] - pose.q[c]), worst_t = out.time;
     }
     printf("equilibrium, fidelity %d: max displacement %.3g m (at t = %g s) over %g s\n", fidelity,
            worst, worst_t, seconds);
     TEST_ASSERT_TRUE(worst <= bound);
     stewart_plant_free(plant);
-    stewart_data_free(data);
+    stewart_inverse_free(data);
 }
 
 static void test_equilibrium_full(void) {
@@ -182,7 +182,7 @@ static void test_leg_bodies_on_their_joints(void) {
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, after));
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
-        const double e = leg_joint_error(&params, out.pose, after);
+        const double e = leg_joint_error(&params, out.pose.q, after);
         if (e > worst_joint) worst_joint = e;
         for (int b = 0; b < STEWART_PLANT_BODIES; ++b) {
             /* (r1 - r0) / h against the mean velocity; skew part of R1 R0^T / h against omega */
@@ -218,10 +218,10 @@ static void test_leg_bodies_on_their_joints(void) {
  * a dense Jacobian) agree along a forced motion of the heavy-legged platform. */
 static void test_integrators_agree(void) {
     model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
-    const stewart_output statics = solve_ok(model, data, STEWART_FULL, &home);
-    stewart_data_free(data);
+    const stewart_inverse_output statics = solve_ok(data, STEWART_FULL, &home);
+    stewart_inverse_free(data);
     double pose[4][6];
     for (int method = 0; method < 4; ++method) {
         stewart_plant_options o;
@@ -243,7 +243,7 @@ static void test_integrators_agree(void) {
         }
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
-        for (int c = 0; c < 6; ++c) pose[method][c] = out.pose[c];
+        for (int c = 0; c < 6; ++c) pose[method][c] = out.pose.q[c];
         stewart_plant_free(plant);
     }
     double worst = 0;
@@ -282,30 +282,30 @@ static void solve6(double A[6][6], double b[6]) {
 /* Why the equilibrium check stops at 2 s: under its static forces the platform is a saddle. The
  * inverse side alone predicts the fastest divergence: with F(q, q_dot, q_ddot) its forces, the
  * plant at constant F moves as F_q dq + F_qddot dq_ddot = 0, so dq_ddot = A dq with
- * A = -F_qddot^-1 F_q (central differences of stewart_solve), whose largest eigenvalue
+ * A = -F_qddot^-1 F_q (central differences of stewart_inverse_solve), whose largest eigenvalue
  * lambda^2 (power iteration) gives dq(t) = dq(0) cosh(lambda t) along its eigenvector. The
  * plant, started there, must follow it. */
 static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
     stewart_params_default(&params);  /* the thesis legs; the massless level */
     model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     stewart_pose pose = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
-    const stewart_output statics = solve_ok(model, data, STEWART_MASSLESS, &pose);
+    const stewart_inverse_output statics = solve_ok(data, STEWART_MASSLESS, &pose);
     double Fq[6][6], Fa[6][6];
     const double delta = 1e-6;
     for (int j = 0; j < 6; ++j) {
         double *rows[2] = {pose.q, pose.q_ddot};
         for (int which = 0; which < 2; ++which) {
             rows[which][j] += delta;
-            const stewart_output plus = solve_ok(model, data, STEWART_MASSLESS, &pose);
+            const stewart_inverse_output plus = solve_ok(data, STEWART_MASSLESS, &pose);
             rows[which][j] -= 2 * delta;
-            const stewart_output minus = solve_ok(model, data, STEWART_MASSLESS, &pose);
+            const stewart_inverse_output minus = solve_ok(data, STEWART_MASSLESS, &pose);
             rows[which][j] += delta;
             for (int k = 0; k < 6; ++k)
                 (which ? Fa : Fq)[k][j] = (plus.force[k] - minus.force[k]) / (2 * delta);
         }
     }
-    stewart_data_free(data);
+    stewart_inverse_free(data);
     double v[6] = {1, 0.3, -0.2, 0.5, 0.1, -0.4}, lambda2 = 0;
     for (int it = 0; it < 300; ++it) {
         double w[6], M[6][6], norm = 0, v_norm = 0;
@@ -330,8 +330,8 @@ static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
     double worst = 0;
     for (int c = 0; c < 6; ++c) {
         const double expected = eps * v[c] * cosh(lambda * 2.0);
-        if (fabs(out.pose[c] - pose.q[c] - expected) > worst)
-            worst = fabs(out.pose[c] - pose.q[c] - expected);
+        if (fabs(out.pose.q[c] - pose.q[c] - expected) > worst)
+            worst = fabs(out.pose.q[c] - pose.q[c] - expected);
     }
     printf("saddle: fastest divergence %.4f 1/s predicted by the inverse side; after 2 s the plant "
            "is off the prediction by %.3g of the %.3g m grown\n", lambda, worst / (eps * cosh(2 * lambda)),
@@ -348,10 +348,10 @@ static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
  * gravity. Heavy legs, a forced motion, both fidelities. */
 static void joint_reactions_balance(int fidelity) {
     model = test_model(&params);
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
-    const stewart_output statics = solve_ok(model, data, fidelity, &home);
-    stewart_data_free(data);
+    const stewart_inverse_output statics = solve_ok(data, fidelity, &home);
+    stewart_inverse_free(data);
     stewart_plant *plant = test_plant(model, fidelity, 1e-12, 1e-14);
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, kStartPose, kStartRate));
     const double h = 1e-3;

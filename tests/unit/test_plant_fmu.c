@@ -2,7 +2,7 @@
  * The plant FMU (fmu/models/plant on fmu/runtime) driven through its FMI 2 and FMI 3 functions,
  * linked in statically, so that the ASan+UBSan build (tests/gates/sanitize.sh) and the TSan gate
  * (tests/gates/tsan.sh) run it. References independent of the unit: the inverse side's static
- * forces (stewart_solve) and the platform's weight for the rest state, closed-form leg lengths,
+ * forces (stewart_inverse_solve) and the platform's weight for the rest state, closed-form leg lengths,
  * a second instance that never saw a bad input, sequential runs for the threaded ones.
  *
  * One executable links one model (every model defines the same fmi2* / fmi3* symbols): this one

@@ -14,11 +14,11 @@
 static void inverse_forces(int fidelity, double t, double force[6], double rate[6]) {
     const double delta = 1e-4;
     stewart_pose pose = combined_pose(t);
-    const stewart_output now = solve_ok(model, data, fidelity, &pose);
+    const stewart_inverse_output now = solve_ok(data, fidelity, &pose);
     pose = combined_pose(t + delta);
-    const stewart_output ahead = solve_ok(model, data, fidelity, &pose);
+    const stewart_inverse_output ahead = solve_ok(data, fidelity, &pose);
     pose = combined_pose(t - delta);
-    const stewart_output behind = solve_ok(model, data, fidelity, &pose);
+    const stewart_inverse_output behind = solve_ok(data, fidelity, &pose);
     for (int k = 0; k < 6; ++k) {
         force[k] = now.force[k];
         rate[k] = (ahead.force[k] - behind.force[k]) / (2 * delta);
@@ -44,7 +44,7 @@ static void round_trip(int fidelity, double seconds, double bound) {
         /* The base wrench, lengths and rates against the inverse side's at the cue. */
         if (i % 100 == 0) {
             stewart_pose pose = cue;
-            const stewart_output inverse = solve_ok(model, data, fidelity, &pose);
+            const stewart_inverse_output inverse = solve_ok(data, fidelity, &pose);
             for (int a = 0; a < 3; ++a) {
                 const double df = fabs(out.base_force[a] - inverse.base_force[a]);
                 const double dt = fabs(out.base_torque[a] - inverse.base_torque[a]);
@@ -52,17 +52,17 @@ static void round_trip(int fidelity, double seconds, double bound) {
                 if (dt > worst_wrench) worst_wrench = dt;
             }
             for (int k = 0; k < 6; ++k) {
-                if (fabs(out.length[k] - closed_form_length(&params, &pose, k)) > worst_length)
-                    worst_length = fabs(out.length[k] - closed_form_length(&params, &pose, k));
-                if (fabs(out.length_rate[k] - inverse.length_rate[k]) > worst_length)
-                    worst_length = fabs(out.length_rate[k] - inverse.length_rate[k]);
+                if (fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k)) > worst_length)
+                    worst_length = fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k));
+                if (fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]) > worst_length)
+                    worst_length = fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]);
             }
         }
         for (int c = 0; c < 6; ++c) {
-            const double e = fabs(out.pose[c] - cue.q[c]);
+            const double e = fabs(out.pose.q[c] - cue.q[c]);
             if (e > worst) worst = e, worst_t = t;
-            if (fabs(out.pose_rate[c] - cue.q_dot[c]) > worst_rate)
-                worst_rate = fabs(out.pose_rate[c] - cue.q_dot[c]);
+            if (fabs(out.pose.q_dot[c] - cue.q_dot[c]) > worst_rate)
+                worst_rate = fabs(out.pose.q_dot[c] - cue.q_dot[c]);
         }
         for (int k = 0; k < 6; ++k) f0[k] = f1[k], r0[k] = r1[k];
     }

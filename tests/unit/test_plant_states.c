@@ -33,12 +33,12 @@ void tearDown(void) {
 }
 
 static size_t state_size(void) {
-    TEST_ASSERT_TRUE(stewart_plant_state_size() <= MAX_STATE);
-    return stewart_plant_state_size();
+    TEST_ASSERT_TRUE(plant_state_doubles() <= MAX_STATE);
+    return plant_state_doubles();
 }
 
 static void save(const stewart_plant *p, double *state) {
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_save(p, state, state_size()));
+    plant_save_doubles(p, state);
 }
 
 /* Fails unless the message of the plant holds the fragment. */
@@ -51,11 +51,11 @@ static void expect_message(const stewart_plant *p, const char *fragment) {
 
 /* The inverse side's forces at rest at home (full fidelity). */
 static void static_forces(double force[6]) {
-    stewart_data *data = stewart_data_create(model);
+    stewart_inverse *data = test_inverse(model);
     const stewart_pose home = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
-    const stewart_output out = solve_ok(model, data, STEWART_FULL, &home);
+    const stewart_inverse_output out = solve_ok(data, STEWART_FULL, &home);
     memcpy(force, out.force, sizeof out.force);
-    stewart_data_free(data);
+    stewart_inverse_free(data);
 }
 
 /* ---------------------------------------------------------------- item: the step hint */
@@ -69,38 +69,38 @@ static void test_step_hint_below_any_step_refused(void) {
     save(plant, state);
     memcpy(before, state, sizeof state);
     state[state_size() - 1] = 4.9e-324;
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_load(plant, state, state_size()));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_load_doubles(plant, state, state_size()));
     expect_message(plant, "step hint 4.94066e-324");
     double now[MAX_STATE];
     save(plant, now);
     TEST_ASSERT_EQUAL_MEMORY(before, now, sizeof(double) * state_size());
     step_ok(plant, 1e-3, force, force, NULL, NULL); /* the refusal left the integrator clean */
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_load(plant, before, state_size()));
+    TEST_ASSERT_EQUAL(STEWART_OK, plant_load_doubles(plant, before, state_size()));
     state[state_size() - 1] = 1e-100;
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_plant_load(plant, state, state_size()),
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, plant_load_doubles(plant, state, state_size()),
                               stewart_plant_message(plant));
     for (int i = 0; i < 3; ++i) {
         step_ok(plant, 1e-3, force, force, NULL, NULL);
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, force, &out));
         TEST_ASSERT_EQUAL_DOUBLE(state[0] + (i + 1) * 1e-3, out.time);
-        TEST_ASSERT_TRUE(fabs(out.pose[2] - params.home_height) < 1e-9);
+        TEST_ASSERT_TRUE(fabs(out.pose.q[2] - params.home_height) < 1e-9);
     }
 }
 
 /* A step that does not advance time is refused naming h: subnormal at t = 0, below the
  * resolution of t at t = 100 s. */
 static void test_step_that_does_not_advance_time_refused(void) {
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_step(plant, 4.9e-324, kZero, kZero, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_step_arrays(plant, 4.9e-324, kZero, kZero, NULL, NULL));
     expect_message(plant, "h = 4.94066e-324 s does not advance time");
     const double home[6] = {0, 0, params.home_height, 0, 0, 0};
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 100.0, home, kZero));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_step(plant, 1e-15, kZero, kZero, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_step_arrays(plant, 1e-15, kZero, kZero, NULL, NULL));
     expect_message(plant, "h = 1e-15 s does not advance time t = 100");
     step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);
     /* the plant's clock ends at 1e10 s: no step takes it beyond (a load would refuse the state) */
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 1e10 - 1e-4, home, kZero));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_plant_step(plant, 1e-3, kZero, kZero, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_step_arrays(plant, 1e-3, kZero, kZero, NULL, NULL));
     expect_message(plant, "takes time beyond 1e+10 s");
 }
 
@@ -128,13 +128,13 @@ static void pitch_through_90_degrees(int method) {
     double before[MAX_STATE], after[MAX_STATE];
     for (; step < 200; ++step) {
         save(p, before);
-        s = stewart_plant_step(p, 1e-3, kZero, kZero, NULL, NULL);
+        s = plant_step_arrays(p, 1e-3, kZero, kZero, NULL, NULL);
         if (s != STEWART_OK) break;
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(p, kZero, &out));
-        TEST_ASSERT_TRUE_MESSAGE(fabs(out.pose[3]) < 1e-6 && fabs(out.pose[5]) < 1e-6,
+        TEST_ASSERT_TRUE_MESSAGE(fabs(out.pose.q[3]) < 1e-6 && fabs(out.pose.q[5]) < 1e-6,
                                  "roll and yaw stay 0 before the refusal");
-        TEST_ASSERT_DOUBLE_WITHIN(1e-6, 1.5 + (step + 1) * 1e-3, out.pose[4]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-6, 1.5 + (step + 1) * 1e-3, out.pose.q[4]);
     }
     printf("pitch at 90 degrees, method %d: step %d (t = %g s): %s: %s\n", method, step,
            step * 1e-3, stewart_status_name(s), stewart_plant_message(p));
@@ -165,7 +165,7 @@ static void test_leg_driven_to_zero_length_is_unreachable(void) {
     stewart_status s = STEWART_OK;
     for (int i = 0; i < 100 && s == STEWART_OK; ++i) {
         save(plant, before);
-        s = stewart_plant_step(plant, 1e-3, pull, pull, NULL, NULL);
+        s = plant_step_arrays(plant, 1e-3, pull, pull, NULL, NULL);
     }
     printf("leg driven to zero length: %s: %s\n", stewart_status_name(s), stewart_plant_message(plant));
     TEST_ASSERT_EQUAL(STEWART_ERR_UNREACHABLE, s);
@@ -216,7 +216,7 @@ static void test_random_corrupt_states(void) {
     uint64_t rng = 0x9E3779B97F4A7C15ULL;
     int refused = 0, accepted = 0, failures = 0;
     for (int trial = 0; trial < 3000; ++trial) {
-        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_load(plant, base, n));
+        TEST_ASSERT_EQUAL(STEWART_OK, plant_load_doubles(plant, base, n));
         double state[MAX_STATE], now[MAX_STATE];
         memcpy(state, base, sizeof state);
         const int edits = 1 + (int)(test_random(&rng) % 3);
@@ -225,7 +225,7 @@ static void test_random_corrupt_states(void) {
             index = test_random(&rng) % n;
             state[index] = corrupted_value(&rng, state[index]);
         }
-        if (stewart_plant_load(plant, state, n) != STEWART_OK) {
+        if (plant_load_doubles(plant, state, n) != STEWART_OK) {
             ++refused;
             save(plant, now);
             TEST_ASSERT_TRUE(stewart_plant_message(plant)[0] != '\0');
@@ -236,7 +236,7 @@ static void test_random_corrupt_states(void) {
         const char *why = NULL;
         stewart_plant_output out;
         for (int step = 0; step < 5 && !why; ++step) {
-            if (stewart_plant_step(plant, 1e-3, force, force, NULL, NULL) != STEWART_OK) {
+            if (plant_step_arrays(plant, 1e-3, force, force, NULL, NULL) != STEWART_OK) {
                 why = stewart_plant_message(plant);
                 break;
             }
@@ -248,10 +248,10 @@ static void test_random_corrupt_states(void) {
                 fabs(out.time - (state[0] + (step + 1) * 1e-3)) > 1e-12 * fabs(state[0]) + 1e-15)
                 why = "time does not advance by the steps";
             stewart_pose p = {{0}, {0}, {0}};
-            memcpy(p.q, out.pose, sizeof p.q);
+            memcpy(p.q, out.pose.q, sizeof p.q);
             for (int k = 0; k < 6 && !why; ++k) {
                 const double expected = closed_form_length(&params, &p, k);
-                if (!(fabs(out.length[k] - expected) <= 1e-9 * fmax(1.0, expected)))
+                if (!(fabs(out.lengths.length[k] - expected) <= 1e-9 * fmax(1.0, expected)))
                     why = "a leg length is not the closed form of the output pose";
             }
         }

@@ -1,6 +1,7 @@
 #include "test_plant_support.h"
 
 #include <math.h>
+#include <string.h>
 #include <stdio.h>
 
 #include "test_support.h"
@@ -53,7 +54,7 @@ void plant_energy(const stewart_params *p, const stewart_plant *plant, int fidel
 
 void step_ok(stewart_plant *plant, double h, const double f0[6], const double f1[6],
              const double r0[6], const double r1[6]) {
-    const stewart_status s = stewart_plant_step(plant, h, f0, f1, r0, r1);
+    const stewart_status s = plant_step_arrays(plant, h, f0, f1, r0, r1);
     if (s != STEWART_OK) {
         char text[STEWART_MESSAGE_SIZE + 64];
         snprintf(text, sizeof text, "%s: %s", stewart_status_name(s), stewart_plant_message(plant));
@@ -120,4 +121,43 @@ double leg_joint_error(const stewart_params *params, const double pose_q[6],
         worse(&worst, dot3(xp, s_plate_world));
     }
     return worst;
+}
+
+stewart_status plant_step_arrays(stewart_plant *plant, double h, const double f0[6],
+                                 const double f1[6], const double r0[6], const double r1[6]) {
+    stewart_plant_output out;
+    if (!f0 || !f1) return stewart_plant_step(plant, NULL, &out);
+    stewart_plant_input in;
+    memset(&in, 0, sizeof in);
+    in.h = h;
+    memcpy(in.force_start, f0, sizeof in.force_start);
+    memcpy(in.force_end, f1, sizeof in.force_end);
+    in.derivatives = r0 && r1 ? 1 : (r0 || r1) ? 2 : 0; /* 2: refused, as one rate array alone */
+    if (r0) memcpy(in.force_rate_start, r0, sizeof in.force_rate_start);
+    if (r1) memcpy(in.force_rate_end, r1, sizeof in.force_rate_end);
+    return stewart_plant_step(plant, &in, &out);
+}
+
+/* The header of a saved state: the bytes before its doubles. */
+static size_t header_bytes(const stewart_plant *plant) {
+    return stewart_plant_state_size(plant) - sizeof(double) * plant_state_doubles();
+}
+
+size_t plant_state_doubles(void) { return 25; } /* time, 13 state values, 3 angles, 6 forces, warnings, step hint */
+
+void plant_save_doubles(const stewart_plant *plant, double *state) {
+    unsigned char bytes[1024];
+    const size_t size = stewart_plant_state_size(plant);
+    TEST_ASSERT_TRUE(size <= sizeof bytes);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_save(plant, bytes, size));
+    memcpy(state, bytes + header_bytes(plant), size - header_bytes(plant));
+}
+
+stewart_status plant_load_doubles(stewart_plant *plant, const double *state, size_t count) {
+    unsigned char bytes[1024];
+    const size_t size = stewart_plant_state_size(plant), header = header_bytes(plant);
+    TEST_ASSERT_TRUE(header + count * sizeof(double) <= sizeof bytes);
+    TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_save(plant, bytes, size)); /* its header */
+    memcpy(bytes + header, state, count * sizeof(double));
+    return stewart_plant_load(plant, bytes, header + count * sizeof(double));
 }

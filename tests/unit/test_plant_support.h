@@ -17,6 +17,18 @@ void plant_energy(const stewart_params *params, const stewart_plant *plant, int 
 void step_ok(stewart_plant *plant, double h, const double f0[6], const double f1[6],
              const double r0[6], const double r1[6]);
 
+/* stewart_plant_step with the forces as arrays (rates both NULL: linear; one NULL: refused; f0
+ * or f1 NULL: a NULL input), its output discarded. */
+stewart_status plant_step_arrays(stewart_plant *plant, double h, const double f0[6],
+                                 const double f1[6], const double r0[6], const double r1[6]);
+
+/* The plant's saved state as its doubles (time, y, angles, forces, warnings, step hint): how
+ * many, saved (stewart_plant_save, header dropped) and loaded (the plant's own header, then
+ * count doubles: a count that is not plant_state_doubles() makes a wrong size). */
+size_t plant_state_doubles(void);
+void plant_save_doubles(const stewart_plant *plant, double *state);
+stewart_status plant_load_doubles(stewart_plant *plant, const double *state, size_t count);
+
 /* The largest violation of any leg joint as docs/model.md defines them, from the bodies' poses
  * and the platform pose alone: Cardan centres on a_k and on p + R b_k, cross arms perpendicular,
  * cylinder and piston on one axis [m, or dimensionless for the axis terms]. */

@@ -38,18 +38,18 @@ static stewart_pose pose_at(double s, int tilted) {
 
 static double tolerance = 1e-12;
 
-static stewart_status solve_at(double s, int tilted, stewart_fidelity f, stewart_output *out,
+static stewart_status solve_at(double s, int tilted, stewart_fidelity f, stewart_inverse_output *out,
                                char *message, size_t size) {
     const stewart_params p = scaled(s);
     stewart_model *m = test_model(&p);
-    stewart_data *d = stewart_data_create(m);
+    stewart_inverse *d = test_inverse(m);
     const stewart_pose pose = pose_at(s, tilted);
-    stewart_options o = test_options(f);
+    stewart_inverse_options o = test_options(f);
     o.tolerance = tolerance;
-    const stewart_status status = stewart_solve(m, d, &o, &pose, out);
+    const stewart_status status = solve_as(d, &o, &pose, out);
     snprintf(message, size, "scale %g, %s pose, fidelity %d, tolerance %g: %s", s,
-             tilted ? "tilted" : "home", (int)f, tolerance, stewart_data_message(d));
-    stewart_data_free(d);
+             tilted ? "tilted" : "home", (int)f, tolerance, stewart_inverse_message(d));
+    stewart_inverse_free(d);
     stewart_model_free(m);
     return status;
 }
@@ -60,18 +60,18 @@ static void check_scales(void) {
     const double legs_weight = 6 * (unit.cylinder_mass + unit.piston_mass) * 9.81;
     char msg[2 * STEWART_MESSAGE_SIZE];
     for (int tilted = 0; tilted <= 1; ++tilted) {
-        stewart_output reference;
+        stewart_inverse_output reference;
         TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_at(1, tilted, STEWART_FULL, &reference, msg, sizeof msg), msg);
         double largest = 0;
         for (int k = 0; k < 6; ++k) largest = fmax(largest, fabs(reference.force[k]));
         for (size_t i = 0; i < sizeof scales / sizeof scales[0]; ++i) {
-            stewart_output full, massless;
+            stewart_inverse_output full, massless;
             TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_at(scales[i], tilted, STEWART_FULL, &full, msg, sizeof msg), msg);
             TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_at(scales[i], tilted, STEWART_MASSLESS, &massless, msg, sizeof msg), msg);
             for (int k = 0; k < 6; ++k) {
                 TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-7 * largest, reference.force[k], full.force[k], msg);
                 TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(legs_weight, massless.force[k], full.force[k], msg);
-                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-9 * scales[i], 0.5 * scales[i] * reference.length[k] / 0.5, full.length[k], msg);
+                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-9 * scales[i], 0.5 * scales[i] * reference.lengths.length[k] / 0.5, full.lengths.length[k], msg);
             }
         }
     }

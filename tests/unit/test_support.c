@@ -14,9 +14,9 @@ stewart_model *test_model(const stewart_params *params) {
     return m;
 }
 
-stewart_options test_options(stewart_fidelity fidelity) {
-    stewart_options o;
-    stewart_options_default(&o);
+stewart_inverse_options test_options(stewart_fidelity fidelity) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     o.fidelity = fidelity;
     return o;
 }
@@ -72,14 +72,39 @@ double closed_form_length(const stewart_params *params, const stewart_pose *pose
     return sqrt(d2);
 }
 
-stewart_output solve_ok(const stewart_model *m, stewart_data *d, stewart_fidelity f,
-                        const stewart_pose *pose) {
-    stewart_options o = test_options(f);
-    stewart_output out;
-    const stewart_status s = stewart_solve(m, d, &o, pose, &out);
+stewart_inverse *test_inverse(const stewart_model *m) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_inverse *d = stewart_inverse_create(m, &o, msg, sizeof msg);
+    if (!d) TEST_FAIL_MESSAGE(msg);
+    return d;
+}
+
+stewart_status solve_as(stewart_inverse *d, const stewart_inverse_options *o,
+                        const stewart_pose *pose, stewart_inverse_output *out) {
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_inverse *with_o = stewart_inverse_create(stewart_inverse_model(d), o, msg, sizeof msg);
+    if (!with_o) {
+        TEST_FAIL_MESSAGE(msg);
+        return STEWART_ERR_MEMORY;
+    }
+    stewart_status s = stewart_inverse_copy(with_o, d);
+    stewart_inverse_input in;
+    in.pose = *pose;
+    if (s == STEWART_OK) s = stewart_inverse_solve(with_o, &in, out);
+    stewart_inverse_copy(d, with_o);
+    stewart_inverse_free(with_o);
+    return s;
+}
+
+stewart_inverse_output solve_ok(stewart_inverse *d, stewart_fidelity f, const stewart_pose *pose) {
+    stewart_inverse_options o = test_options(f);
+    stewart_inverse_output out;
+    const stewart_status s = solve_as(d, &o, pose, &out);
     if (s != STEWART_OK) {
         char text[STEWART_MESSAGE_SIZE + 64];
-        snprintf(text, sizeof text, "%s: %s", stewart_status_name(s), stewart_data_message(d));
+        snprintf(text, sizeof text, "%s: %s", stewart_status_name(s), stewart_inverse_message(d));
         TEST_FAIL_MESSAGE(text);
     }
     return out;

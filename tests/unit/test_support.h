@@ -12,7 +12,7 @@
 
 /* Fails the current test (with the library's message) if the model cannot be built. */
 stewart_model *test_model(const stewart_params *params);
-stewart_options test_options(stewart_fidelity fidelity);
+stewart_inverse_options test_options(stewart_fidelity fidelity);
 
 /* A smooth combined manoeuvre: every pose component a sinusoid (amplitudes within the thesis
  * platform's workspace), with exact first and second derivatives. */
@@ -27,9 +27,15 @@ void pose_rotation(const stewart_pose *pose, double R[3][3]);
  * here: the reference the library's lengths are checked against. */
 double closed_form_length(const stewart_params *params, const stewart_pose *pose, int k);
 
+/* An inverse solver for m with the default options; fails the test if it cannot be made. */
+stewart_inverse *test_inverse(const stewart_model *m);
+/* stewart_inverse_solve as with options o from d's state: a solver made with o takes d's state
+ * (stewart_inverse_copy), solves, and gives its state and message back to d. The tests' way to
+ * vary the options along one history. */
+stewart_status solve_as(stewart_inverse *d, const stewart_inverse_options *o,
+                        const stewart_pose *pose, stewart_inverse_output *out);
 /* Solves and fails the test with the library's message unless the status is STEWART_OK. */
-stewart_output solve_ok(const stewart_model *m, stewart_data *d, stewart_fidelity f,
-                        const stewart_pose *pose);
+stewart_inverse_output solve_ok(stewart_inverse *d, stewart_fidelity f, const stewart_pose *pose);
 
 /* xorshift64*: the next number of a fixed-seed random sequence (the same run every time). */
 uint64_t test_random(uint64_t *state);

@@ -1,5 +1,5 @@
 /* Threads: eight jobs on ONE shared stewart_model (the documented sharing: a model is read-only
- * and may serve many data blocks), each with its own data blocks, its own forward-kinematics
+ * and may serve many solver objects), each with its own solver objects, its own forward-kinematics
  * tracking and its own plant, and eight FMU instances (FMI 2, linked in statically). Every job is
  * run sequentially first, then all at once in threads; the two runs must agree bit for bit.
  * Any hidden shared mutable state (a static scratch buffer, a global in the library or in
@@ -68,8 +68,8 @@ static stewart_pose job_pose(int job, int step) {
 }
 
 static void run_library_job(int job, job_result *r) {
-    const stewart_options inverse_options = test_options((stewart_fidelity)(job % 3));
-    const stewart_options feed_options = test_options(STEWART_MASSLESS);
+    const stewart_inverse_options inverse_options = test_options((stewart_fidelity)(job % 3));
+    const stewart_inverse_options feed_options = test_options(STEWART_MASSLESS);
     stewart_forward_options forward_options;
     stewart_forward_options_default(&forward_options);
     stewart_plant_options plant_options;
@@ -79,15 +79,15 @@ static void run_library_job(int job, job_result *r) {
     plant_options.relative_tolerance = 1e-8;
     plant_options.absolute_tolerance = 1e-10;
 
-    stewart_data *inverse = stewart_data_create(shared_model);
-    stewart_data *feed = stewart_data_create(shared_model);
-    stewart_data *forward = stewart_data_create(shared_model);
     char message[STEWART_MESSAGE_SIZE];
+    stewart_inverse *inverse = stewart_inverse_create(shared_model, &inverse_options, NULL, 0);
+    stewart_inverse *feed = stewart_inverse_create(shared_model, &feed_options, NULL, 0);
+    stewart_forward *forward = stewart_forward_create(shared_model, &forward_options, NULL, 0);
     stewart_plant *plant =
         stewart_plant_create(shared_model, &plant_options, message, sizeof message);
     r->inverse = r->forward = r->plant = 14695981039346656037ull;
     if (!inverse || !feed || !forward || !plant) {
-        fail(r, 0, "create", plant ? "data block" : message);
+        fail(r, 0, "create", plant ? "solver object" : message);
         goto done;
     }
     const stewart_pose start = job_pose(job, 0);
@@ -98,12 +98,13 @@ static void run_library_job(int job, job_result *r) {
     double force0[STEWART_LEGS];
     for (int step = 0; step <= steps; ++step) {
         const stewart_pose pose = job_pose(job, step);
-        stewart_output out, feed_out;
-        if (stewart_solve(shared_model, inverse, &inverse_options, &pose, &out) != STEWART_OK) {
-            fail(r, step, "solve", stewart_data_message(inverse));
+        stewart_inverse_output out, feed_out;
+        const stewart_inverse_input in = {pose};
+        if (stewart_inverse_solve(inverse, &in, &out) != STEWART_OK) {
+            fail(r, step, "solve", stewart_inverse_message(inverse));
             break;
         }
-        digest_doubles(&r->inverse, &out.length[0], 4 * STEWART_LEGS);
+        digest_doubles(&r->inverse, &out.lengths.length[0], 4 * STEWART_LEGS);
         digest_doubles(&r->inverse, &out.condition, 1);
         digest_doubles(&r->inverse, &out.residual, 1);
         digest_doubles(&r->inverse, out.base_force, 3);
@@ -111,11 +112,10 @@ static void run_library_job(int job, job_result *r) {
         digest_int(&r->inverse, out.iterations);
         digest_int(&r->inverse, out.warnings);
 
-        stewart_forward_result fk;
-        if (stewart_forward_solve(shared_model, forward, &forward_options, step * STEP_SIZE,
-                                  out.length, out.length_rate, out.length_accel, NULL,
-                                  &fk) != STEWART_OK) {
-            fail(r, step, "forward_solve", stewart_data_message(forward));
+        stewart_forward_input measured = {step * STEP_SIZE, out.lengths, 2, 0, {0}};
+        stewart_forward_output fk;
+        if (stewart_forward_solve(forward, &measured, &fk) != STEWART_OK) {
+            fail(r, step, "forward_solve", stewart_forward_message(forward));
             break;
         }
         digest_doubles(&r->forward, fk.pose.q, 18);
@@ -128,12 +128,15 @@ static void run_library_job(int job, job_result *r) {
             r->forward_pose_error = fmax(r->forward_pose_error, fabs(fk.pose.q[i] - pose.q[i]));
 
         /* The plant is driven open loop by the massless inverse forces of the same manoeuvre. */
-        if (stewart_solve(shared_model, feed, &feed_options, &pose, &feed_out) != STEWART_OK) {
-            fail(r, step, "feed solve", stewart_data_message(feed));
+        if (stewart_inverse_solve(feed, &in, &feed_out) != STEWART_OK) {
+            fail(r, step, "feed solve", stewart_inverse_message(feed));
             break;
         }
-        if (step > 0 && stewart_plant_step(plant, STEP_SIZE, force0, feed_out.force, NULL, NULL) !=
-                            STEWART_OK) {
+        stewart_plant_input held = {STEP_SIZE, {0}, {0}, 0, {0}, {0}};
+        memcpy(held.force_start, force0, sizeof held.force_start);
+        memcpy(held.force_end, feed_out.force, sizeof held.force_end);
+        stewart_plant_output stepped;
+        if (step > 0 && stewart_plant_step(plant, &held, &stepped) != STEWART_OK) {
             fail(r, step, "plant_step", stewart_plant_message(plant));
             break;
         }
@@ -153,9 +156,9 @@ static void run_library_job(int job, job_result *r) {
     r->plant_rhs_evaluations = stats.total_rhs_evaluations;
 done:
     stewart_plant_free(plant);
-    stewart_data_free(forward);
-    stewart_data_free(feed);
-    stewart_data_free(inverse);
+    stewart_forward_free(forward);
+    stewart_inverse_free(feed);
+    stewart_inverse_free(inverse);
 }
 
 /* ---- one FMU job: an FMI 2 instance stepping the same manoeuvre ---- */

@@ -7,10 +7,15 @@
  * pushes the platform away from the base.
  *
  * Usage: fill a stewart_params (stewart_params_default gives the thesis platform), build an
- * immutable stewart_model from it, make one stewart_data per independent run (it holds the state
- * and every workspace a solve needs), then call stewart_solve once per pose. Nothing here keeps
- * global state; models and data blocks are independent of each other (a model may be shared by
- * several data blocks, read-only).
+ * immutable stewart_model from it, make one solver object per direction and independent run from
+ * the model and its options, then call it once per input. The three directions share one grammar:
+ *   inverse (this header):       stewart_inverse_create, stewart_inverse_solve(inverse, &in, &out)
+ *   forward (stewart_forward.h): stewart_forward_create, stewart_forward_solve(forward, &in, &out)
+ *   plant   (stewart_plant.h):   stewart_plant_create, stewart_plant_step(plant, &in, &out)
+ * and each object has _free, _reset (forget the history), _copy (a rollback point), _state_size,
+ * _save and _load (bytes, versioned and checked) and _message (the last error; "" after a
+ * success). Warnings travel in the outputs (STEWART_WARN_* bits and stroke_legs). Nothing here
+ * keeps global state; a model may be shared read-only by any number of objects.
  *
  * Every parameter and option, with its id, unit, range, default and description, is listed once
  * in stewart/stewart_table.h, which also lets a caller iterate them. The full level is built on
@@ -47,10 +52,12 @@ typedef enum stewart_fidelity {
     STEWART_FULL = 2       /* the 14-body constraint-and-multiplier model */
 } stewart_fidelity;
 
-/* Bits of stewart_output.warnings: the solve succeeded but the result deserves attention. */
+/* Bits of the warnings of every direction's output: the call succeeded but the result deserves
+ * attention. */
 enum {
-    STEWART_WARN_STROKE = 1,        /* some length is outside [stroke_min, stroke_max] */
-    STEWART_WARN_NEAR_SINGULAR = 2, /* condition number above stewart_options.warn_condition */
+    STEWART_WARN_STROKE = 1,        /* some length is outside [stroke_min, stroke_max]; stroke_legs
+                                       says which */
+    STEWART_WARN_NEAR_SINGULAR = 2, /* condition number above the options' warn_condition */
     STEWART_WARN_OTHER_BRANCH = 4   /* forward kinematics: the pose is on another assembly mode */
 };
 
@@ -83,8 +90,8 @@ typedef struct stewart_params {
     double stroke_max;                      /* longest allowed actuator length [m] */
 } stewart_params;
 
-/* Solver settings; stewart_options_default gives the values documented here. */
-typedef struct stewart_options {
+/* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */
+typedef struct stewart_inverse_options {
     int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
     double tolerance;            /* Newton residual tolerance (full level), max-norm, relative to
                                     the platform's size: lengths are measured in units of L0, the
@@ -96,7 +103,7 @@ typedef struct stewart_options {
     int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
     double warn_condition;       /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
     double singular_condition;   /* condition above which the solve fails as singular; 1e10 */
-} stewart_options;
+} stewart_inverse_options;
 
 /* Platform pose and its first and second time derivatives, each ordered
  * (x, y, z [m], roll, pitch, yaw [rad]). */
@@ -106,11 +113,22 @@ typedef struct stewart_pose {
     double q_ddot[6];
 } stewart_pose;
 
-typedef struct stewart_output {
+/* Actuator lengths and their first and second time derivatives, leg k at index k-1. */
+typedef struct stewart_lengths {
     double length[STEWART_LEGS];        /* L_k [m] */
     double length_rate[STEWART_LEGS];   /* dL_k/dt [m/s] */
     double length_accel[STEWART_LEGS];  /* d2L_k/dt2 [m/s^2] */
-    double force[STEWART_LEGS];         /* F_k [N], > 0 pushes the platform away; 0 if kinematic */
+} stewart_lengths;
+
+/* What an inverse solve takes: the pose and its derivatives. */
+typedef struct stewart_inverse_input {
+    stewart_pose pose;
+} stewart_inverse_input;
+
+/* What an inverse solve gives. */
+typedef struct stewart_inverse_output {
+    stewart_lengths lengths;    /* actuator lengths, rates and accelerations */
+    double force[STEWART_LEGS]; /* F_k [N], > 0 pushes the platform away; 0 if kinematic */
     double condition;       /* 1-norm condition number of the leg Jacobian, its angular columns
                                scaled by the platform radius (dimensionless); 0 if kinematic */
     int iterations;         /* Newton iterations of the position problem; 0 below full level */
@@ -120,10 +138,10 @@ typedef struct stewart_output {
     double base_torque[3];  /* torque of that wrench about the world origin [N m] */
     int warnings;           /* STEWART_WARN_* bits */
     int stroke_legs;        /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
-} stewart_output;
+} stewart_inverse_output;
 
 typedef struct stewart_model stewart_model;
-typedef struct stewart_data stewart_data;
+typedef struct stewart_inverse stewart_inverse;
 
 /* The thesis platform in SI (docs/model.md): the defaults of stewart/stewart_table.h. */
 void stewart_params_default(stewart_params *params);
@@ -135,42 +153,53 @@ stewart_status stewart_params_check(const stewart_params *params, char *message,
  * gives the nearest name); the value is checked when a model is built (stewart_params_check). */
 stewart_status stewart_params_set(stewart_params *params, const char *name, double value,
                                   char *message, size_t size);
-void stewart_options_default(stewart_options *options);
+void stewart_inverse_options_default(stewart_inverse_options *options);
 /* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the option and its value. */
-stewart_status stewart_options_check(const stewart_options *options, char *message, size_t size);
+stewart_status stewart_inverse_options_check(const stewart_inverse_options *options, char *message,
+                                             size_t size);
 
 /* NULL if the parameters are invalid (message says why) or memory is short. */
 stewart_model *stewart_model_create(const stewart_params *params, char *message, size_t size);
 void stewart_model_free(stewart_model *model);
 const stewart_params *stewart_model_params(const stewart_model *model);
 
-stewart_data *stewart_data_create(const stewart_model *model);
-void stewart_data_free(stewart_data *data);
+/* An inverse solver for model (which must outlive it) with a copy of options: NULL if the options
+ * are invalid (message names the option and its value), an argument is NULL or memory is short
+ * (message says which). It holds the state (the full level's warm start) and every workspace a
+ * solve needs. */
+stewart_inverse *stewart_inverse_create(const stewart_model *model,
+                                        const stewart_inverse_options *options, char *message,
+                                        size_t size);
+/* Frees the solver (NULL is ignored). */
+void stewart_inverse_free(stewart_inverse *inverse);
+/* Forgets the history (warm start) as if the solver were new. */
+void stewart_inverse_reset(stewart_inverse *inverse);
 /* Copies the whole state of src into dst (both made from the same model, else
- * STEWART_ERR_ARGUMENT): a rollback point. */
-stewart_status stewart_data_copy(stewart_data *dst, const stewart_data *src);
-/* The state of a data block (what stewart_data_copy copies) as bytes, to save a run and resume
- * it in another process (FMU state serialisation). The size depends on the model only. */
-size_t stewart_data_state_size(const stewart_data *data);
-stewart_status stewart_data_save(const stewart_data *data, void *buffer, size_t size);
-/* STEWART_ERR_ARGUMENT (data unchanged, stewart_data_message says why) unless the bytes are a
- * saved state that fits this model: of its shape, every value finite, the fixed base at its
+ * STEWART_ERR_ARGUMENT): a rollback point. The options stay dst's. */
+stewart_status stewart_inverse_copy(stewart_inverse *dst, const stewart_inverse *src);
+/* The size of the state as bytes (what stewart_inverse_copy copies), to save a run and resume it
+ * in another process (FMU state serialisation). It depends on the model only. */
+size_t stewart_inverse_state_size(const stewart_inverse *inverse);
+/* Writes the state into buffer (at least stewart_inverse_state_size bytes). */
+stewart_status stewart_inverse_save(const stewart_inverse *inverse, void *buffer, size_t size);
+/* STEWART_ERR_ARGUMENT (solver unchanged, stewart_inverse_message says why) unless the bytes are
+ * a saved state that fits this model: of its shape, every value finite, the fixed base at its
  * placement, every other body's Euler parameters unit (to 1e-6), and for a state saved after a
  * successful solve, the constraint residual no larger than the state records. */
-stewart_status stewart_data_load(stewart_data *data, const void *buffer, size_t size);
-/* Forgets the history (warm start) as if the data block were new. */
-void stewart_data_reset(stewart_data *data);
-/* The message of the last solve that did not return STEWART_OK, else "". */
-const char *stewart_data_message(const stewart_data *data);
+stewart_status stewart_inverse_load(stewart_inverse *inverse, const void *buffer, size_t size);
+/* The message of the last call that did not return STEWART_OK, else "". */
+const char *stewart_inverse_message(const stewart_inverse *inverse);
+/* The model the solver was made for, and its options. */
+const stewart_model *stewart_inverse_model(const stewart_inverse *inverse);
+const stewart_inverse_options *stewart_inverse_options_of(const stewart_inverse *inverse);
 
 /* Actuator lengths, rates, accelerations and forces for one pose. On error the output is left
- * unchanged and stewart_data_message names the offending value (a pose input too large to solve
- * with is named, e.g. "x_dot", with its value). Never writes NaN. data must have been made for
- * model (else STEWART_ERR_ARGUMENT). */
-stewart_status stewart_solve(const stewart_model *model, stewart_data *data,
-                             const stewart_options *options, const stewart_pose *pose,
-                             stewart_output *output);
+ * unchanged and stewart_inverse_message names the offending value (a pose input too large to
+ * solve with is named, e.g. "x_dot", with its value). Never writes NaN. */
+stewart_status stewart_inverse_solve(stewart_inverse *inverse, const stewart_inverse_input *input,
+                                     stewart_inverse_output *output);
 
+/* The name of a status, e.g. "singular". */
 const char *stewart_status_name(stewart_status status);
 
 #ifdef __cplusplus

@@ -1,8 +1,8 @@
 /*
  * Many poses in one call: the batch entry point behind the Python package and the sweeps.
  *
- * A batch solves n poses in order with one data block, exactly as n successive stewart_solve
- * calls would (at the full level each pose starts from the previous one's solution), but with
+ * A batch solves n poses in order with one inverse solver, exactly as n successive
+ * stewart_inverse_solve calls would (at the full level each pose starts from the previous one's solution), but with
  * the inputs and outputs as row-major arrays, so that a caller holding arrays (numpy) needs no
  * loop per pose. A row that fails gets its status (and, if asked, its message) and zero outputs;
  * the rows after it are still solved. The same for forward kinematics (lengths to poses) and, for
@@ -15,27 +15,24 @@
 
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_outputs.h"
 #include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Where a batch writes its results: arrays of n rows, row-major. Every pointer but status may be
- * NULL to skip that output. */
-typedef struct stewart_batch_outputs {
-    double *length;        /* n x 6, L_k [m] */
-    double *length_rate;   /* n x 6, dL_k/dt [m/s] */
-    double *length_accel;  /* n x 6, d2L_k/dt2 [m/s^2] */
-    double *force;         /* n x 6, F_k [N] */
-    double *condition;     /* n, leg Jacobian condition number */
-    double *residual;      /* n, constraint residual [m] */
-    double *base_force;    /* n x 3, force on the base, world frame [N] */
-    double *base_torque;   /* n x 3, its torque about the world origin [N m] */
-    int *iterations;       /* n, Newton iterations (full level) */
-    int *warnings;         /* n, STEWART_WARN_* bits */
-    int *status;           /* n, the stewart_status of each row (required) */
-} stewart_batch_outputs;
+/* One batch output column: a pointer to n x count values (stewart_outputs.h). */
+#define STEWART_BATCH_COLUMN(name, member, count, type, unit, description) type *name;
+
+/* Where a batch writes its results: arrays of n rows, row-major, one per column of
+ * STEWART_INVERSE_OUTPUT_TABLE (length, length_rate, length_accel, force, condition, residual,
+ * base_force, base_torque, iterations, warnings, stroke_legs), then status. Every pointer but
+ * status may be NULL to skip that output. */
+typedef struct stewart_inverse_batch_outputs {
+    STEWART_INVERSE_OUTPUT_TABLE(STEWART_BATCH_COLUMN)
+    int *status; /* n, the stewart_status of each row (required) */
+} stewart_inverse_batch_outputs;
 
 /* The messages of the first failing rows, in row order (optional). */
 typedef struct stewart_batch_messages {
@@ -46,84 +43,73 @@ typedef struct stewart_batch_messages {
 } stewart_batch_messages;
 
 /* Solves rows 0..n-1 of q (n x 6), with q_dot and q_ddot (n x 6 each, NULL for zero), in order,
- * continuing from the data block's state (call stewart_data_reset first for a fresh start).
- * Options are checked once: if they are bad, nothing is solved. Returns STEWART_OK if every row
- * solved, else the status of the first failing row, whose message stewart_data_message then gives
- * and whose index goes to *first_failed (if not NULL; n when every row solved). messages may be
- * NULL. */
-stewart_status stewart_solve_batch(const stewart_model *model, stewart_data *data,
-                                   const stewart_options *options, size_t n, const double *q,
-                                   const double *q_dot, const double *q_ddot,
-                                   const stewart_batch_outputs *outputs,
-                                   stewart_batch_messages *messages, size_t *first_failed);
+ * continuing from the solver's state (call stewart_inverse_reset first for a fresh start).
+ * Returns STEWART_OK if every row solved, else the status of the first failing row, whose message
+ * stewart_inverse_message then gives and whose index goes to *first_failed (if not NULL; n when
+ * every row solved). messages may be NULL. */
+stewart_status stewart_inverse_batch(stewart_inverse *inverse, size_t n, const double *q,
+                                     const double *q_dot, const double *q_ddot,
+                                     const stewart_inverse_batch_outputs *outputs,
+                                     stewart_batch_messages *messages, size_t *first_failed);
 
-/* The status of a row a batch did not run (stewart_simulate_batch after a refused step): positive,
+/* The status of a row a batch did not run (stewart_plant_batch after a refused step): positive,
  * unlike every stewart_status. */
 #define STEWART_BATCH_NOT_RUN 1
 
-/* Where a forward batch writes its results: arrays of n rows, row-major. Every pointer but status
- * may be NULL to skip that output. A failed row holds zeros but its warnings and branch bits. */
+/* Where a forward batch writes its results: arrays of n rows, row-major, one per column of
+ * STEWART_FORWARD_OUTPUT_TABLE (pose, pose_rate, pose_accel, residual, condition, jump,
+ * iterations, warnings, branch, start, stroke_legs), then status. Every pointer but status may be
+ * NULL to skip that output. A failed row holds zeros, but a row on another assembly mode keeps
+ * its warnings, branch and stroke_legs. */
 typedef struct stewart_forward_batch_outputs {
-    double *pose;        /* n x 6, (x, y, z [m], roll, pitch, yaw [rad]) */
-    double *pose_rate;   /* n x 6, d/dt of the pose (zero unless rates were given) */
-    double *pose_accel;  /* n x 6, d2/dt2 of the pose (zero unless accels were given) */
-    double *residual;    /* n, max |L_k(q) - L_k measured| at the last Newton iterate [m] */
-    double *condition;   /* n, leg Jacobian condition number */
-    double *jump;        /* n, largest platform-point move from the last pose [m] */
-    int *iterations;     /* n, Newton iterations */
-    int *warnings;       /* n, STEWART_WARN_* bits */
-    int *branch;         /* n, STEWART_BRANCH_* bits (why a row is on another assembly mode) */
-    int *start;          /* n, STEWART_START_* the row was reached from */
-    int *status;         /* n, the stewart_status of each row (required) */
+    STEWART_FORWARD_OUTPUT_TABLE(STEWART_BATCH_COLUMN)
+    int *status; /* n, the stewart_status of each row (required) */
 } stewart_forward_batch_outputs;
 
 /* Forward kinematics of rows 0..n-1 of lengths (n x 6), with rates and accels (n x 6 each, NULL
  * for none; accels need rates) at times time (n, NULL for all zero: no predictor), in order, as n
- * successive stewart_forward_solve calls on data would: row 0 from guess (6 values) if not NULL,
- * else from the data block's last pose (stewart_forward_reset first for a cold start), each later
- * row tracking from the last solved one. A failed row gets its status and, if asked, its message;
- * the rows after it are still solved. Options are checked once: if they are bad, nothing is
- * solved. Returns as stewart_solve_batch. */
-stewart_status stewart_forward_batch(const stewart_model *model, stewart_data *data,
-                                     const stewart_forward_options *options, size_t n,
-                                     const double *time, const double *lengths,
-                                     const double *rates, const double *accels,
-                                     const double guess[6],
+ * successive stewart_forward_solve calls would: row 0 from guess (6 values) if not NULL, else
+ * from the solver's last pose (stewart_forward_reset first for a cold start), each later row
+ * tracking from the last solved one. A failed row gets its status and, if asked, its message;
+ * the rows after it are still solved. Returns as stewart_inverse_batch. */
+stewart_status stewart_forward_batch(stewart_forward *forward, size_t n, const double *time,
+                                     const double *lengths, const double *rates,
+                                     const double *accels, const double guess[6],
                                      const stewart_forward_batch_outputs *outputs,
                                      stewart_batch_messages *messages, size_t *first_failed);
 
 /* Where a plant batch writes its results: arrays of n rows, row-major. Every pointer but status
  * may be NULL to skip that output. A row that did not run holds zeros. Statistics are those of the
  * step into the row (zero for row 0). */
-typedef struct stewart_simulate_batch_outputs {
+typedef struct stewart_plant_batch_outputs {
     double *pose;          /* n x 6, (x, y, z [m], roll, pitch, yaw [rad]) */
     double *pose_rate;     /* n x 6, d/dt of the pose */
     double *length;        /* n x 6, L_k [m] */
     double *length_rate;   /* n x 6, dL_k/dt [m/s] */
     double *base_force;    /* n x 3, force on the base, world frame [N] */
     double *base_torque;   /* n x 3, its torque about the world origin [N m] */
-    int *warnings;         /* n, STEWART_PLANT_WARN_* bits */
+    int *warnings;         /* n, STEWART_WARN_* bits */
     long *steps;           /* n, internal integrator steps */
     long *rhs_evaluations; /* n, right-hand side evaluations */
     long *nonlinear_iterations; /* n, nonlinear solver iterations */
     long *error_test_failures;  /* n, error test failures */
     int *status;           /* n, stewart_status, or STEWART_BATCH_NOT_RUN (required) */
-} stewart_simulate_batch_outputs;
+} stewart_plant_batch_outputs;
 
 /* Runs plant through the communication points time (n, increasing) with the forces force (n x 6
  * [N], linear in time between rows), as stewart-simulate does: the state is set at time[0] to
  * start_pose and start_rate (6 values each; NULL: the plant's current pose or pose rates, which
  * for a new plant are home and at rest), then each row j > 0 is one stewart_plant_step from row
- * j-1. Row 0 is the start state. A refused
- * step (or a bad start state, a time that does not increase, a non-finite force) stops the run:
- * that row gets its status, the rows after it STEWART_BATCH_NOT_RUN, and the plant stays at the
- * last row that ran. Returns STEWART_OK or the status of the row that stopped the run, whose index
- * goes to *first_failed (n when every row ran) and whose message to message (if not NULL). */
-stewart_status stewart_simulate_batch(stewart_plant *plant, size_t n, const double *time,
-                                      const double *force, const double start_pose[6],
-                                      const double start_rate[6],
-                                      const stewart_simulate_batch_outputs *outputs,
-                                      char *message, size_t message_size, size_t *first_failed);
+ * j-1. Row 0 is the start state. A refused step (or a bad start state, a time that does not
+ * increase, a non-finite force) stops the run: that row gets its status, the rows after it
+ * STEWART_BATCH_NOT_RUN, and the plant stays at the last row that ran. Returns STEWART_OK or the
+ * status of the row that stopped the run, whose index goes to *first_failed (n when every row
+ * ran) and whose message ("row j (t = ...): why") to messages (if not NULL). */
+stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, const double *time,
+                                   const double *force, const double start_pose[6],
+                                   const double start_rate[6],
+                                   const stewart_plant_batch_outputs *outputs,
+                                   stewart_batch_messages *messages, size_t *first_failed);
 
 #ifdef __cplusplus
 }

@@ -3,12 +3,13 @@
  * accelerations) to the platform pose (and its rates and accelerations).
  *
  * The position problem L(q) = L_measured is solved by KINSOL's Newton iteration with the analytic
- * 6 x 6 Jacobian. A data block remembers its last pose: a stream of measurements is tracked from
- * it (with a Taylor predictor from its last rates), a first measurement starts from the guess
- * given, else from the home pose. A pose on another assembly mode than the working one (platform
- * below the base, a leg beyond the half-space of one of its Cardans, a singular pose between it
- * and home, a jump larger than the stroke allows) is never returned as the answer: the solve
- * fails with STEWART_ERR_OTHER_BRANCH and says which.
+ * 6 x 6 Jacobian. A forward solver remembers its last pose (its history, which _copy, _save and
+ * _load carry): a stream of measurements is tracked from it (with a Taylor predictor from its
+ * last rates), a first measurement starts from the guess given, else from the home pose. A pose
+ * on another assembly mode than the working one (platform below the base, a leg beyond the
+ * half-space of one of its Cardans, a singular pose between it and home, a jump larger than the
+ * stroke allows) is never returned as the answer: the solve fails with STEWART_ERR_OTHER_BRANCH
+ * and says which.
  */
 #ifndef STEWART_STEWART_FORWARD_H
 #define STEWART_STEWART_FORWARD_H
@@ -20,10 +21,10 @@ extern "C" {
 #endif
 
 /* A forward solve that converged to another assembly mode than the working one returns
- * STEWART_ERR_OTHER_BRANCH (stewart.h); the result then holds that pose (for inspection), its
+ * STEWART_ERR_OTHER_BRANCH (stewart.h); the output then holds that pose (for inspection), its
  * warnings have STEWART_WARN_OTHER_BRANCH and branch says why. */
 
-/* Bits of stewart_forward_result.branch: why a pose is not on the working assembly mode. */
+/* Bits of stewart_forward_output.branch: why a pose is not on the working assembly mode. */
 enum {
     STEWART_BRANCH_BELOW_BASE = 1,       /* a leg leaves its base Cardan downward (mirror pose) */
     STEWART_BRANCH_PLATFORM_CARDAN = 2,  /* a leg reaches its platform Cardan from above */
@@ -47,47 +48,81 @@ typedef struct stewart_forward_options {
     double tolerance;          /* max-norm of L(q) - L_measured at which Newton stops [m]; 1e-12;
                                   >= 2.5e-16 (rounding of lengths of order 1 m) */
     int max_iterations;        /* Newton iteration cap per start; 20 */
-    double warn_condition;     /* as stewart_options (the same defaults): STEWART_WARN_NEAR_SINGULAR */
+    double warn_condition;     /* as stewart_inverse_options (the same defaults):
+                                  STEWART_WARN_NEAR_SINGULAR */
     double singular_condition; /* above it the solve fails with STEWART_ERR_SINGULAR */
 } stewart_forward_options;
 
-typedef struct stewart_forward_result {
+/* What a forward solve takes. */
+typedef struct stewart_forward_input {
+    double time;              /* [s]: the tracking predictor advances the last pose to it */
+    stewart_lengths lengths;  /* measured lengths; their rates and accelerations as derivatives
+                                 says */
+    int derivatives;          /* 0: lengths only; 1: and length_rate; 2: and length_accel too */
+    int use_guess;            /* 1: start from guess and forget the history; 0: track */
+    double guess[6];          /* start pose (x, y, z, roll, pitch, yaw) if use_guess */
+} stewart_forward_input;
+
+/* What a forward solve gives. */
+typedef struct stewart_forward_output {
     stewart_pose pose;   /* q; q_dot if rates were given, q_ddot if accelerations were (else 0) */
-    int iterations;      /* KINSOL Newton iterations, over every start tried */
     double residual;     /* max |L_k(q) - L_k measured| at the last Newton iterate [m]; the pose
                             returned carries one more correction with the exact Jacobian */
-    double condition;    /* leg Jacobian condition number at the pose, as stewart_output's */
-    int warnings;        /* STEWART_WARN_STROKE (a measured length outside the stroke),
-                            STEWART_WARN_NEAR_SINGULAR, STEWART_WARN_OTHER_BRANCH */
-    int branch;          /* STEWART_BRANCH_* bits; 0 on the working assembly mode */
+    double condition;    /* leg Jacobian condition number at the pose, as the inverse output's */
     double jump;         /* largest platform-point displacement from the last pose [m] (0 if
                             no history) */
+    int iterations;      /* KINSOL Newton iterations, over every start tried */
+    int warnings;        /* STEWART_WARN_STROKE (a measured length outside the stroke),
+                            STEWART_WARN_NEAR_SINGULAR, STEWART_WARN_OTHER_BRANCH */
+    int stroke_legs;     /* bit k set: measured length k+1 is outside [stroke_min, stroke_max] */
+    int branch;          /* STEWART_BRANCH_* bits; 0 on the working assembly mode */
     int start;           /* STEWART_START_* the solution was reached from */
-} stewart_forward_result;
+} stewart_forward_output;
 
+typedef struct stewart_forward stewart_forward;
+
+/* The defaults documented at stewart_forward_options. */
 void stewart_forward_options_default(stewart_forward_options *options);
 /* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the option and its value. */
 stewart_status stewart_forward_options_check(const stewart_forward_options *options,
                                              char *message, size_t size);
 
-/* The pose whose six actuator lengths are `lengths` [m] at time `time` [s]. rates [m/s] and
- * accels [m/s^2] (each 6 values or NULL; accels need rates) give the pose rates and
- * accelerations through the leg Jacobian. guess (6 values or NULL) is the start, and forgets the
- * history; without it the data block's last pose is the start (advanced to `time` by its last
- * rates when `time` is later), or the home pose if there is none.
- * On STEWART_OK the result is filled and the pose becomes the data block's last pose.
- * STEWART_ERR_OTHER_BRANCH: result filled with the other mode's pose, history unchanged.
- * Any other error: result untouched, history unchanged, stewart_data_message says why (naming
- * the leg where one can be blamed). Never writes NaN. */
-stewart_status stewart_forward_solve(const stewart_model *model, stewart_data *data,
-                                     const stewart_forward_options *options, double time,
-                                     const double lengths[STEWART_LEGS],
-                                     const double rates[STEWART_LEGS],
-                                     const double accels[STEWART_LEGS], const double guess[6],
-                                     stewart_forward_result *result);
+/* A forward solver for model (which must outlive it) with a copy of options: NULL if the options
+ * are invalid, an argument is NULL, the model's working assembly mode is undefined or memory is
+ * short (message says why). */
+stewart_forward *stewart_forward_create(const stewart_model *model,
+                                        const stewart_forward_options *options, char *message,
+                                        size_t size);
+/* Frees the solver (NULL is ignored). */
+void stewart_forward_free(stewart_forward *forward);
+/* Forgets the last pose: the next solve starts cold. */
+void stewart_forward_reset(stewart_forward *forward);
+/* Copies the tracking history of src into dst (same model, else STEWART_ERR_ARGUMENT). */
+stewart_status stewart_forward_copy(stewart_forward *dst, const stewart_forward *src);
+/* The size of the saved history in bytes (the same for every forward solver). */
+size_t stewart_forward_state_size(const stewart_forward *forward);
+/* Writes the history into buffer (at least stewart_forward_state_size bytes). */
+stewart_status stewart_forward_save(const stewart_forward *forward, void *buffer, size_t size);
+/* STEWART_ERR_ARGUMENT (solver unchanged, message says why) unless the bytes are a history this
+ * library saved: its version and size, flags 0 or 1, every value finite. */
+stewart_status stewart_forward_load(stewart_forward *forward, const void *buffer, size_t size);
+/* The message of the last call that did not return STEWART_OK, else "". */
+const char *stewart_forward_message(const stewart_forward *forward);
+/* The model the solver was made for, and its options. */
+const stewart_model *stewart_forward_model(const stewart_forward *forward);
+const stewart_forward_options *stewart_forward_options_of(const stewart_forward *forward);
 
-/* Forgets the data block's last pose: the next forward solve starts cold. */
-void stewart_forward_reset(stewart_data *data);
+/* The pose whose six actuator lengths are input->lengths.length [m] at input->time [s]; the
+ * rates and accelerations (input->derivatives) give the pose rates and accelerations through the
+ * leg Jacobian. With use_guess the start is guess, and the history is forgotten; without, the
+ * last pose is the start (advanced to time by its last rates when time is later), or the home
+ * pose if there is none.
+ * On STEWART_OK the output is filled and the pose becomes the last pose.
+ * STEWART_ERR_OTHER_BRANCH: output filled with the other mode's pose, history unchanged.
+ * Any other error: output untouched, history unchanged, stewart_forward_message says why (naming
+ * the leg where one can be blamed). Never writes NaN. */
+stewart_status stewart_forward_solve(stewart_forward *forward, const stewart_forward_input *input,
+                                     stewart_forward_output *output);
 
 #ifdef __cplusplus
 }

@@ -26,16 +26,7 @@ const mbs_model *stewart_model_mechanism(const stewart_model *model);
 /* L0 [m], the mechanism's length unit (above); 0 if model is NULL. */
 double stewart_model_length_unit(const stewart_model *model);
 /* The state after the last full-level solve. */
-const mbs_data *stewart_data_mechanism(const stewart_data *data);
-
-/* Actuator forces the thesis' way, on a second mechanism driven by the 7 platform coordinates:
- * the platform wrench from the pose drivers' multipliers, mapped to leg forces by virtual
- * power as a square 6 x 6 solve. Allocates: for checks, not for a stepping loop. The pose is
- * checked as stewart_solve checks it with the default options (finite inputs, reachable, leg
- * Jacobian condition number <= singular_condition, else STEWART_ERR_SINGULAR), and every force
- * must come out finite; force is written only on STEWART_OK. */
-stewart_status stewart_thesis_forces(const stewart_params *params, const stewart_pose *pose,
-                                     double force[STEWART_LEGS], char *message, size_t size);
+const mbs_data *stewart_inverse_mechanism(const stewart_inverse *inverse);
 
 #ifdef __cplusplus
 }

@@ -5,9 +5,10 @@
  *
  * The independent coordinates are the platform pose (a quaternion inside) and its twist; every
  * leg body follows in closed form, so the joints hold exactly (docs/forward-dynamics.md).
- * Usage: build a stewart_model (stewart.h), create one stewart_plant per run, optionally set the
- * start state, then call stewart_plant_step once per communication step with the forces at both
- * ends of the step. No global state; no heap allocation in a step.
+ * Usage: build a stewart_model (stewart.h), create one stewart_plant per run (the life cycle of
+ * every direction: create, free, reset, copy, state_size, save/load, message), optionally set the
+ * start state, then call stewart_plant_step(plant, &input, &output) once per communication step
+ * with the forces at both ends of the step. No global state; no heap allocation in a step.
  */
 #ifndef STEWART_STEWART_PLANT_H
 #define STEWART_STEWART_PLANT_H
@@ -45,20 +46,27 @@ typedef struct stewart_plant_statistics {
     double last_step_size;   /* [s] */
 } stewart_plant_statistics;
 
-/* Bits of stewart_plant_output.warnings. */
-enum {
-    STEWART_PLANT_WARN_STROKE = 1 /* a leg outside [stroke_min, stroke_max]; the message names it */
-};
+/* What a step takes: its length and the actuator forces over it. */
+typedef struct stewart_plant_input {
+    double h;                                /* communication step [s], > 0 */
+    double force_start[STEWART_LEGS];        /* F_k at the current time t [N] */
+    double force_end[STEWART_LEGS];          /* F_k at t + h [N] */
+    int derivatives;                         /* 0: forces linear over the step; 1: cubic Hermite
+                                                with the rates below */
+    double force_rate_start[STEWART_LEGS];   /* dF_k/dt at t [N/s] (derivatives = 1) */
+    double force_rate_end[STEWART_LEGS];     /* dF_k/dt at t + h [N/s] (derivatives = 1) */
+} stewart_plant_input;
 
+/* What a step gives: the state at its end (or, from stewart_plant_output_get, the current one). */
 typedef struct stewart_plant_output {
-    double time;                       /* [s] */
-    double pose[6];                    /* x, y, z [m], roll, pitch, yaw [rad] */
-    double pose_rate[6];               /* d/dt of the six pose components */
-    double length[STEWART_LEGS];       /* L_k [m] */
-    double length_rate[STEWART_LEGS];  /* dL_k/dt [m/s] */
-    double base_force[3];   /* force the moving bodies put on the base, world frame [N] */
-    double base_torque[3];  /* its torque about the world origin [N m] */
-    int warnings;           /* STEWART_PLANT_WARN_* bits */
+    double time;             /* [s] */
+    stewart_pose pose;       /* q (x, y, z [m], roll, pitch, yaw [rad]) and q_dot; q_ddot is 0 (the
+                                plant does not output accelerations) */
+    stewart_lengths lengths; /* length and length_rate; length_accel is 0 */
+    double base_force[3];    /* force the moving bodies put on the base, world frame [N] */
+    double base_torque[3];   /* its torque about the world origin [N m] */
+    int warnings;            /* STEWART_WARN_STROKE (end stops are not modelled) */
+    int stroke_legs;         /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_plant_output;
 
 /* One moving body at the current state, world frame: its centre of mass, orientation (columns =
@@ -96,26 +104,37 @@ stewart_status stewart_plant_options_check(const stewart_plant_options *options,
 stewart_plant *stewart_plant_create(const stewart_model *model,
                                     const stewart_plant_options *options, char *message,
                                     size_t size);
+/* Frees the plant (NULL is ignored). */
 void stewart_plant_free(stewart_plant *plant);
+/* Back to rest at the home pose at time 0, the counters zero, as if the plant were new. */
+void stewart_plant_reset(stewart_plant *plant);
+/* Copies the state of src into dst (same model, else STEWART_ERR_ARGUMENT): a rollback point. */
+stewart_status stewart_plant_copy(stewart_plant *dst, const stewart_plant *src);
+/* The state (time, platform pose and twist, last forces, warnings, first step size) as bytes, to
+ * roll back a step or save a run: its size, save, and load (versioned; STEWART_ERR_ARGUMENT,
+ * plant unchanged, message naming the cause, unless the bytes are a state a step leaves). */
+size_t stewart_plant_state_size(const stewart_plant *plant);
+stewart_status stewart_plant_save(const stewart_plant *plant, void *buffer, size_t size);
+stewart_status stewart_plant_load(stewart_plant *plant, const void *buffer, size_t size);
+/* The message of the last call that did not return STEWART_OK, else "". */
+const char *stewart_plant_message(const stewart_plant *plant);
 
 /* Sets time, pose and pose rates (d/dt of x .. yaw). STEWART_ERR_ARGUMENT for a non-finite value
  * or pitch at +-90 degrees; STEWART_ERR_UNREACHABLE for a pose with a zero-length leg or a locked
- * Cardan. On error the plant keeps its previous state. Resets the warning state. */
+ * Cardan. On error the plant keeps its previous state. */
 stewart_status stewart_plant_set_state(stewart_plant *plant, double time, const double pose[6],
                                        const double pose_rate[6]);
 
-/* Integrates from the current time t to t + h with the forces varying between force0 (at t) and
- * force1 (at t + h): cubic Hermite if both derivative arrays are given, linear if both are NULL.
- * On error (non-finite input, h <= 0, a zero-length leg or locked Cardan reached, integrator
- * failure) the step is refused, the state stays at t and stewart_plant_message says why. */
-stewart_status stewart_plant_step(stewart_plant *plant, double h,
-                                  const double force0[STEWART_LEGS],
-                                  const double force1[STEWART_LEGS],
-                                  const double force_rate0[STEWART_LEGS],
-                                  const double force_rate1[STEWART_LEGS]);
+/* Integrates from the current time t to t + input->h with the forces of input, and writes the
+ * outputs at the end of the step (the base wrench under force_end). On error (non-finite input,
+ * h <= 0, a zero-length leg or locked Cardan reached, integrator failure, outputs that overflow)
+ * the step is refused, the state stays at t, the output is untouched and stewart_plant_message
+ * says why. Warnings travel in the output. */
+stewart_status stewart_plant_step(stewart_plant *plant, const stewart_plant_input *input,
+                                  stewart_plant_output *output);
 
 /* The outputs at the current state, with the base wrench for the given forces (those acting at
- * the current time; NULL: the force1 of the last step, zero before any step).
+ * the current time; NULL: the force_end of the last step, zero before any step).
  * STEWART_ERR_ARGUMENT (output untouched) if a force is not finite or an output would overflow. */
 stewart_status stewart_plant_output_get(const stewart_plant *plant,
                                         const double force[STEWART_LEGS],
@@ -132,18 +151,11 @@ stewart_status stewart_plant_reactions_get(const stewart_plant *plant,
 stewart_status stewart_plant_bodies(const stewart_plant *plant,
                                     stewart_plant_body bodies[STEWART_PLANT_BODIES]);
 
+/* The plant's time [s] (NaN if plant is NULL). */
+double stewart_plant_time(const stewart_plant *plant);
+
 /* The integrator's counters. */
 void stewart_plant_statistics_get(const stewart_plant *plant, stewart_plant_statistics *stats);
-
-/* The message of the last refused call or the last warning, else "". */
-const char *stewart_plant_message(const stewart_plant *plant);
-
-/* The state (time, platform pose and twist, last forces, warnings, first step size) as doubles,
- * to roll back a step or save a run; stewart_plant_load puts it back (STEWART_ERR_ARGUMENT, plant
- * unchanged, if the size is wrong or the values are not a state a step leaves). */
-size_t stewart_plant_state_size(void);
-stewart_status stewart_plant_save(const stewart_plant *plant, double *state, size_t count);
-stewart_status stewart_plant_load(stewart_plant *plant, const double *state, size_t count);
 
 #ifdef __cplusplus
 }

@@ -1,5 +1,6 @@
 /*
- * The parameter and option tables: one entry per field of stewart_params and stewart_options,
+ * The parameter and option tables: one entry per field of stewart_params and
+ * stewart_inverse_options,
  * with its stable id, name, element count, unit, valid range, default and description. The
  * library's defaults, checks and setters are expanded from these lists, and the upper layers
  * (FMU variables and model descriptions, the CLI's --param, fuzz seeds, Python) iterate them
@@ -19,9 +20,11 @@
  * Range checks across fields (inertia triangle inequalities, stroke_min < stroke_max) are code,
  * in stewart_params_check.
  *
- * STEWART_OPTION_TABLE(X) calls
+ * STEWART_OPTION_TABLE(X) (the inverse solver's) and STEWART_FORWARD_OPTION_TABLE(X) call
  *   X(id, name, type, unit, min, min_closed, max, max_closed, default, description)
- * once per stewart_options field, in declaration order; type is int or double.
+ * once per field of stewart_inverse_options and stewart_forward_options, in declaration order;
+ * type is int or double. An option is one line here and its field in the struct (a static_assert
+ * checks they match); defaults, checks, setters and lookup by name come from the table.
  */
 #ifndef STEWART_STEWART_TABLE_H
 #define STEWART_STEWART_TABLE_H
@@ -31,6 +34,7 @@
 
 #include "mbs/mbs.h"
 #include "stewart/stewart.h"
+#include "stewart/stewart_forward.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -113,6 +117,17 @@ extern "C" {
     X(206, singular_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e10,                            \
       "Condition number above which the pose is not solved (singular)")
 
+/* Forward kinematics' options (ids 400..: no FMU has them). */
+#define STEWART_FORWARD_OPTION_TABLE(X)                                                          \
+    X(400, tolerance, double, "m", 2.5e-16, 1, DBL_MAX, 1, MBS_DEFAULT_TOLERANCE,                \
+      "max-norm of L(q) - L_measured at which Newton stops")                                     \
+    X(401, max_iterations, int, "", 1, 1, 2147483647, 1, MBS_DEFAULT_MAX_ITERATIONS,             \
+      "Newton iteration cap per start")                                                          \
+    X(402, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
+      "Condition number above which the near-singular warning is set")                           \
+    X(403, singular_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e10,                            \
+      "Condition number above which the lengths are not solved (singular)")
+
 /* One parameter of the table, for iteration. */
 typedef struct stewart_param_info {
     int id;                     /* stable id of element 0; element e has id + e */
@@ -150,27 +165,33 @@ stewart_status stewart_param_check_value(int i, int e, double value, char *messa
 /* One option of the table. */
 typedef struct stewart_option_info {
     int id;                     /* stable id (= FMU value reference) */
-    const char *name;           /* field name of stewart_options */
+    const char *name;           /* field name in its options struct */
     int is_integer;             /* 1: an int field, 0: a double */
     const char *unit;           /* "1" for dimensionless reals, "" for integers */
     const char *description;
     double min, max;            /* valid range */
     int min_closed, max_closed;
-    double default_value;       /* stewart_options_default's */
+    double default_value;       /* the default (stewart_*_options_default's) */
 } stewart_option_info;
 
-/* Number of options (fields of stewart_options). */
-int stewart_option_count(void);
-/* Option i (declaration order), or NULL. */
-const stewart_option_info *stewart_option(int i);
-/* Option i's value in options (ints converted exactly); 0 if out of range. */
-double stewart_option_get(const stewart_options *options, int i);
-/* Sets option i; STEWART_ERR_PARAMETER (options unchanged) if the value is outside its range or,
- * for an integer option, not a whole number. */
-stewart_status stewart_option_set(stewart_options *options, int i, double value, char *message,
-                                  size_t size);
-/* The option named `name`, or -1. */
-int stewart_option_find(const char *name);
+/* The options of the inverse solver (STEWART_OPTION_TABLE) and of forward kinematics
+ * (STEWART_FORWARD_OPTION_TABLE), the same calls for each: how many; option i (declaration
+ * order) or NULL; option i's value in options (ints converted exactly; 0 if out of range); set
+ * option i (STEWART_ERR_PARAMETER, options unchanged, if the value is outside its range or, for
+ * an integer option, not a whole number); the option named `name`, or -1. */
+int stewart_inverse_option_count(void);
+const stewart_option_info *stewart_inverse_option(int i);
+double stewart_inverse_option_get(const stewart_inverse_options *options, int i);
+stewart_status stewart_inverse_option_set(stewart_inverse_options *options, int i, double value,
+                                          char *message, size_t size);
+int stewart_inverse_option_find(const char *name);
+
+int stewart_forward_option_count(void);
+const stewart_option_info *stewart_forward_option(int i);
+double stewart_forward_option_get(const stewart_forward_options *options, int i);
+stewart_status stewart_forward_option_set(stewart_forward_options *options, int i, double value,
+                                          char *message, size_t size);
+int stewart_forward_option_find(const char *name);
 
 #ifdef __cplusplus
 }

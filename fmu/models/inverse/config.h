@@ -38,9 +38,9 @@ typedef struct model_values {
  * bytes (the solver data block travels through model_save / model_load). */
 typedef struct model_resources {
     stewart_model *model;      /* built from the parameters when initialisation ends */
-    stewart_data *data;
+    stewart_inverse *inverse;  /* made with `options` for `model` */
     stewart_params params;     /* the parameters `model` was built from */
-    stewart_options options;
+    stewart_inverse_options options;
     char message[2 * STEWART_MESSAGE_SIZE];
 } model_resources;
 

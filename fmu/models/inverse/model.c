@@ -1,6 +1,6 @@
 /*
  * The inverse-dynamics model on the FMU runtime: the pose inputs (and their derivatives, given or
- * by finite differences) go to stewart_solve; its output fills the output variables. The step
+ * by finite differences) go to stewart_inverse_solve; its output fills the output variables. The step
  * rules: hold the inputs over a step, or advance them along their Taylor expansion (derivatives =
  * 1 or FMI 2 input derivatives). Library statuses map onto FMU statuses and the status output.
  */
@@ -15,9 +15,9 @@
 
 void model_start_values(fmu_values *v) {
     stewart_params p;
-    stewart_options o;
+    stewart_inverse_options o;
     stewart_params_default(&p);
-    stewart_options_default(&o);
+    stewart_inverse_options_default(&o);
 #define FMU_INPUT(vr, id, name, start, unit, row, col, desc) v->real[vr] = start;
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
 #define FMU_OUTPUT_INT(vr, id, name, desc) v->integer[vr] = 0;
@@ -39,8 +39,8 @@ void inverse_params_from_values(const fmu_values *v, stewart_params *p) {
 #include "variables.def"
 }
 
-void inverse_options_from_values(const fmu_values *v, stewart_options *o) {
-    stewart_options_default(o);
+void inverse_options_from_values(const fmu_values *v, stewart_inverse_options *o) {
+    stewart_inverse_options_default(o);
 #define FMU_OPTION_REAL(vr, id, name, field, unit, desc) o->field = v->real[vr];
 #include "variables.def"
     o->fidelity = (stewart_fidelity)v->integer[VR_fidelity];
@@ -48,7 +48,15 @@ void inverse_options_from_values(const fmu_values *v, stewart_options *o) {
     o->modified_newton = v->integer[VR_modified_newton];
 }
 
-static void outputs_to_values(fmu_values *v, const stewart_output *out) {
+/* Field by field (a struct's padding bytes are not values). */
+static int same_options(const stewart_inverse_options *a, const stewart_inverse_options *b) {
+    return b && a->fidelity == b->fidelity && a->tolerance == b->tolerance &&
+           a->max_iterations == b->max_iterations && a->modified_newton == b->modified_newton &&
+           a->warn_condition == b->warn_condition &&
+           a->singular_condition == b->singular_condition;
+}
+
+static void outputs_to_values(fmu_values *v, const stewart_inverse_output *out) {
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out->field;
 #include "variables.def"
     v->integer[VR_newton_iterations] = out->iterations;
@@ -65,46 +73,52 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
                 "(the *_dot and *_ddot inputs)", (int)v->integer[VR_derivatives]);
         return FMU_ERROR;
     }
-    stewart_options o;
+    stewart_inverse_options o;
     inverse_options_from_values(v, &o);
-    if (stewart_options_check(&o, r->message, sizeof r->message) != STEWART_OK) {
+    if (stewart_inverse_options_check(&o, r->message, sizeof r->message) != STEWART_OK) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
         return FMU_ERROR;
     }
     stewart_params p;
     inverse_params_from_values(v, &p);
-    if (!r->model || memcmp(&p, &r->params, sizeof p) != 0) {
-        stewart_model *m = stewart_model_create(&p, r->message, sizeof r->message);
+    const int new_model = !r->model || memcmp(&p, &r->params, sizeof p) != 0;
+    if (new_model || !same_options(&o, stewart_inverse_options_of(r->inverse))) {
+        stewart_model *m = new_model ? stewart_model_create(&p, r->message, sizeof r->message)
+                                     : r->model;
         if (!m) {
             fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
             return FMU_ERROR;
         }
-        stewart_data *d = stewart_data_create(m);
+        stewart_inverse *d = stewart_inverse_create(m, &o, r->message, sizeof r->message);
         if (!d) {
-            stewart_model_free(m);
-            fmu_log(inst, FMU_ERROR, LOG_ERROR, "out of memory creating the solver data");
+            if (new_model) stewart_model_free(m);
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "creating the inverse solver: %s", r->message);
             return FMU_ERROR;
         }
-        stewart_data_free(r->data);
-        stewart_model_free(r->model);
-        r->model = m;
-        r->data = d;
-        r->params = p;
-        fmu_log(inst, FMU_OK, LOG_EVENTS, "model built from the parameters (fidelity %d, "
-                "derivatives %d)", (int)v->integer[VR_fidelity], (int)v->integer[VR_derivatives]);
+        if (!new_model) stewart_inverse_copy(d, r->inverse); /* the warm start goes on */
+        stewart_inverse_free(r->inverse);
+        r->inverse = d;
+        if (new_model) {
+            stewart_model_free(r->model);
+            r->model = m;
+            r->params = p;
+            fmu_log(inst, FMU_OK, LOG_EVENTS, "model built from the parameters (fidelity %d, "
+                    "derivatives %d)", (int)v->integer[VR_fidelity],
+                    (int)v->integer[VR_derivatives]);
+        }
     }
     r->options = o;
     return FMU_OK;
 }
 
 void model_reset(fmu_instance *inst) {
-    if (inst->res.data) stewart_data_reset(inst->res.data);
+    if (inst->res.inverse) stewart_inverse_reset(inst->res.inverse);
 }
 
 void model_free(fmu_instance *inst) {
-    stewart_data_free(inst->res.data);
+    stewart_inverse_free(inst->res.inverse);
     stewart_model_free(inst->res.model);
-    inst->res.data = NULL;
+    inst->res.inverse = NULL;
     inst->res.model = NULL;
 }
 
@@ -209,13 +223,13 @@ static fmu_status discard_finite_differences(fmu_instance *inst, double time,
 }
 
 /* Logs the legs the library flags as outside their stroke. */
-static void warn_stroke(const fmu_instance *inst, double time, const stewart_output *out) {
+static void warn_stroke(const fmu_instance *inst, double time, const stewart_inverse_output *out) {
     const stewart_params *p = &inst->res.params;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (out->stroke_legs & (1 << k))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %g m is outside the stroke [%g, %g] m", time, k + 1,
-                    out->length[k], p->stroke_min, p->stroke_max);
+                    out->lengths.length[k], p->stroke_min, p->stroke_max);
 }
 
 /* Solves for the current inputs at `time` unless the outputs already belong to them. OK /
@@ -240,15 +254,16 @@ static fmu_status solve_at(fmu_instance *inst, double time) {
         for (int i = 0; i < 6; ++i)
             if (!isfinite(pose.q_dot[i]) || !isfinite(pose.q_ddot[i]))
                 return discard_finite_differences(inst, time, &pose, i);
-    stewart_output out;
-    const stewart_status s = stewart_solve(r->model, r->data, &r->options, &pose, &out);
+    const stewart_inverse_input in = {pose};
+    stewart_inverse_output out;
+    const stewart_status s = stewart_inverse_solve(r->inverse, &in, &out);
     if (s != STEWART_OK) {
         const fmu_status fs = map_solve_error(s);
         fmu_log(inst, fs, fs == FMU_DISCARD ? LOG_DISCARD : LOG_ERROR,
                 "t = %.17g: pose (x, y, z, roll, pitch, yaw) = (%g, %g, %g, %g, %g, %g) not solved "
                 "(%s): %s; outputs keep their last valid values",
                 time, pose.q[0], pose.q[1], pose.q[2], pose.q[3], pose.q[4], pose.q[5],
-                stewart_status_name(s), stewart_data_message(r->data));
+                stewart_status_name(s), stewart_inverse_message(r->inverse));
         return not_solved(v, fs);
     }
     outputs_to_values(v, &out);

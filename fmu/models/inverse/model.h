@@ -6,6 +6,6 @@
 
 /* The library's parameters and options as the instance's values hold them. */
 void inverse_params_from_values(const fmu_values *v, stewart_params *p);
-void inverse_options_from_values(const fmu_values *v, stewart_options *o);
+void inverse_options_from_values(const fmu_values *v, stewart_inverse_options *o);
 
 #endif

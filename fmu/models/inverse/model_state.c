@@ -1,7 +1,7 @@
 /*
  * The inverse model's part of an FMU state: its plain values are checked when deserialised, and
- * the solver's data block travels as the bytes of stewart_data_save; loading them is the
- * library's decision (stewart_data_load), and a block it refuses is refused with a message.
+ * the solver's data block travels as the bytes of stewart_inverse_save; loading them is the
+ * library's decision (stewart_inverse_load), and a block it refuses is refused with a message.
  */
 #include <math.h>
 #include <stdio.h>
@@ -15,18 +15,18 @@ static int after_initialisation(const fmu_values *v) {
 }
 
 size_t model_state_size(const fmu_instance *inst) {
-    return inst->res.data ? stewart_data_state_size(inst->res.data) : 0;
+    return inst->res.inverse ? stewart_inverse_state_size(inst->res.inverse) : 0;
 }
 
 fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size) {
-    if (!inst->res.data) return size == 0 ? FMU_OK : FMU_ERROR;
-    return stewart_data_save(inst->res.data, out, size) == STEWART_OK ? FMU_OK : FMU_ERROR;
+    if (!inst->res.inverse) return size == 0 ? FMU_OK : FMU_ERROR;
+    return stewart_inverse_save(inst->res.inverse, out, size) == STEWART_OK ? FMU_OK : FMU_ERROR;
 }
 
 /* The library's reason for refusing a data block, or a generic one. */
-static const char *refusal(const stewart_data *d) {
-    const char *m = stewart_data_message(d);
-    return m && *m ? m : "not a saved state of this model (stewart_data_load refused it)";
+static const char *refusal(const stewart_inverse *d) {
+    const char *m = stewart_inverse_message(d);
+    return m && *m ? m : "not a saved state of this model (stewart_inverse_load refused it)";
 }
 
 fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
@@ -35,22 +35,22 @@ fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) 
     /* the state was taken after initialisation: make sure a model for its parameters exists
      * (allocation here is fine: this is not a step) */
     if (after_init && model_apply_parameters(inst) != FMU_OK) return FMU_ERROR;
-    if (!r->data) return FMU_OK;
+    if (!r->inverse) return FMU_OK;
     stewart_params p;
     inverse_params_from_values(&inst->v, &p);
     /* Before the end of initialisation the bytes are a warm start of whatever model the instance
      * had then: used only if they belong to the model built now. */
     if (size == 0 || (!after_init && memcmp(&p, &r->params, sizeof p) != 0)) {
-        stewart_data_reset(r->data);
+        stewart_inverse_reset(r->inverse);
         return FMU_OK;
     }
-    if (stewart_data_load(r->data, in, size) != STEWART_OK) {
+    if (stewart_inverse_load(r->inverse, in, size) != STEWART_OK) {
         if (!after_init) {
-            stewart_data_reset(r->data);
+            stewart_inverse_reset(r->inverse);
             return FMU_OK;
         }
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetFMUState: the state's solver data is refused: %s",
-                refusal(r->data));
+                refusal(r->inverse));
         return FMU_ERROR;
     }
     return FMU_OK;
@@ -67,15 +67,17 @@ static const char *check_solver_data(fmu_instance *inst, const fmu_values *v,
     const stewart_model *model = inst->res.model;
     if (!model || memcmp(&p, &inst->res.params, sizeof p) != 0)
         model = own = stewart_model_create(&p, NULL, 0);
-    stewart_data *d = model ? stewart_data_create(model) : NULL;
+    stewart_inverse_options o;
+    inverse_options_from_values(v, &o);
+    stewart_inverse *d = model ? stewart_inverse_create(model, &o, NULL, 0) : NULL;
     const char *result = NULL;
     if (!d) {
         result = "out of memory checking the solver data";
-    } else if (stewart_data_load(d, in, size) != STEWART_OK) {
+    } else if (stewart_inverse_load(d, in, size) != STEWART_OK) {
         snprintf(why, why_size, "the solver data is refused: %s", refusal(d));
         result = why;
     }
-    stewart_data_free(d);
+    stewart_inverse_free(d);
     stewart_model_free(own);
     return result;
 }
@@ -102,9 +104,9 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     /* parameters and options: exactly what initialisation accepted (model_apply_parameters) */
     if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1)
         return "option derivatives is out of range";
-    stewart_options o;
+    stewart_inverse_options o;
     inverse_options_from_values(v, &o);
-    if (stewart_options_check(&o, NULL, 0) != STEWART_OK) return "an option is out of range";
+    if (stewart_inverse_options_check(&o, NULL, 0) != STEWART_OK) return "an option is out of range";
     stewart_params p;
     inverse_params_from_values(v, &p);
     if (stewart_params_check(&p, NULL, 0) != STEWART_OK) return "a parameter is invalid";

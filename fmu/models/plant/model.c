@@ -226,25 +226,28 @@ static fmu_status stroke_status(fmu_instance *inst, const stewart_plant_output *
     const stewart_params *p = &inst->res.params;
     int outside = 0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        if (!(out->length[k] < p->stroke_min || out->length[k] > p->stroke_max)) continue;
+        if (!(out->stroke_legs & (1 << k))) continue;
         outside |= 1 << k;
         if (!(inst->v.model.legs_outside & (1 << k)))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %.9g m left the stroke [%g, %g] m (end stops are not "
-                    "modelled)", inst->v.time, k + 1, out->length[k], p->stroke_min,
+                    "modelled)", inst->v.time, k + 1, out->lengths.length[k], p->stroke_min,
                     p->stroke_max);
     }
     inst->v.model.legs_outside = outside;
     return outside ? FMU_WARNING : FMU_OK;
 }
 
-/* Outputs of the plant's current state under the current forces (the base wrench needs them). */
-static fmu_status evaluate(fmu_instance *inst, int after_step) {
+/* Outputs of the plant's current state under the current forces (the base wrench needs them);
+ * after a step, the step's own outputs (under the same forces). */
+static fmu_status evaluate(fmu_instance *inst, const stewart_plant_output *after_step) {
     fmu_values *v = &inst->v;
     model_resources *r = &inst->res;
     if (bad_force(inst, v->time)) return refused(v);
     plant_outputs o;
-    if (stewart_plant_output_get(r->plant, &v->real[VR_F_1], &o.out) != STEWART_OK) {
+    if (after_step) {
+        o.out = *after_step;
+    } else if (stewart_plant_output_get(r->plant, &v->real[VR_F_1], &o.out) != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: the outputs overflow at this state under these forces; outputs keep "
                 "their last valid values", v->time);
@@ -270,7 +273,7 @@ static fmu_status evaluate(fmu_instance *inst, int after_step) {
 
 fmu_status model_refresh_outputs(fmu_instance *inst) {
     if (inst->v.outputs_current) return inst->v.model.solve_status;
-    return evaluate(inst, 0);
+    return evaluate(inst, NULL);
 }
 
 /* ---------------------------------------------------------------- the step */
@@ -283,13 +286,7 @@ static void add_totals(plant_totals *t, const stewart_plant_statistics *s) {
     t->jacobian_evaluations += s->jacobian_evaluations;
 }
 
-double plant_time(const stewart_plant *plant) {
-    double state[64];
-    const size_t count = stewart_plant_state_size();
-    if (count > sizeof state / sizeof state[0] || stewart_plant_save(plant, state, count) != STEWART_OK)
-        return NAN;
-    return state[0];
-}
+double plant_time(const stewart_plant *plant) { return stewart_plant_time(plant); }
 
 double clock_rounding(double t) { return 16.0 * DBL_EPSILON * fabs(t); }
 
@@ -328,7 +325,12 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     }
     /* The master's clock is the truth: the plant steps from its own time to the master's t + h,
      * so the rounding of the two clocks never adds up over a run. */
-    const stewart_status s = stewart_plant_step(r->plant, (t + h) - end, f0, f1, NULL, NULL);
+    stewart_plant_input in = {0};
+    in.h = (t + h) - end;
+    memcpy(in.force_start, f0, sizeof f0);
+    memcpy(in.force_end, f1, sizeof f1);
+    stewart_plant_output at_end;
+    const stewart_status s = stewart_plant_step(r->plant, &in, &at_end);
     if (s != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g, h = %g: step refused (%s): %s; the state stays at t, outputs keep "
@@ -343,7 +345,7 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     stewart_plant_statistics_get(r->plant, &stats);
     add_totals(&m->totals, &stats);
     v->time = t + h; /* the outputs belong to t + h (the runtime sets it again) */
-    const fmu_status out = evaluate(inst, 1);
+    const fmu_status out = evaluate(inst, &at_end);
     v->time = t;
     /* an accepted step whose end cannot be evaluated is still accepted: status 3 says so */
     return out == FMU_DISCARD ? FMU_WARNING : out;

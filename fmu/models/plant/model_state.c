@@ -16,28 +16,20 @@ static int after_initialisation(const fmu_values *v) {
 }
 
 size_t model_state_size(const fmu_instance *inst) {
-    return inst->res.plant ? stewart_plant_state_size() * sizeof(double) : 0;
+    return inst->res.plant ? stewart_plant_state_size(inst->res.plant) : 0;
 }
 
 fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size) {
     if (!inst->res.plant) return size == 0 ? FMU_OK : FMU_ERROR;
-    double state[64];
-    const size_t count = stewart_plant_state_size();
-    if (count > sizeof state / sizeof state[0] || size != count * sizeof(double) ||
-        stewart_plant_save(inst->res.plant, state, count) != STEWART_OK)
+    if (size != stewart_plant_state_size(inst->res.plant) ||
+        stewart_plant_save(inst->res.plant, out, size) != STEWART_OK)
         return FMU_ERROR;
-    memcpy(out, state, size);
     return FMU_OK;
 }
 
-/* Loads saved plant bytes into a plant (copied to aligned doubles first). */
+/* Loads saved plant bytes into a plant (the library checks them). */
 static stewart_status load_bytes(stewart_plant *plant, const unsigned char *in, size_t size) {
-    double state[64];
-    const size_t count = stewart_plant_state_size();
-    if (count > sizeof state / sizeof state[0] || size != count * sizeof(double))
-        return STEWART_ERR_ARGUMENT;
-    memcpy(state, in, size);
-    return stewart_plant_load(plant, state, count);
+    return stewart_plant_load(plant, in, size);
 }
 
 fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
@@ -73,7 +65,8 @@ static const char *mismatch(const fmu_values *v, const stewart_plant *plant,
     stewart_plant_output out;
     if (stewart_plant_output_get(plant, zero, &out) != STEWART_OK)
         return "the plant's outputs overflow at the state's pose";
-    const double *motion[4] = {out.pose, out.pose_rate, out.length, out.length_rate};
+    const double *motion[4] = {out.pose.q, out.pose.q_dot, out.lengths.length,
+                               out.lengths.length_rate};
     for (int vr = VR_x; vr <= VR_L_dot_6; ++vr) { /* four groups of six, in that order */
         const int group = (vr - VR_x) / 6, index = (vr - VR_x) % 6;
         if (memcmp(&v->real[vr], &motion[group][index], sizeof(double)) != 0) {
@@ -84,7 +77,8 @@ static const char *mismatch(const fmu_values *v, const stewart_plant *plant,
     }
     int outside = 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out.length[k] < p->stroke_min || out.length[k] > p->stroke_max) outside |= 1 << k;
+        if (out.lengths.length[k] < p->stroke_min || out.lengths.length[k] > p->stroke_max)
+            outside |= 1 << k;
     if (outside != v->model.legs_outside || (status == 1) != (outside != 0))
         return "the stroke flags or status do not match the leg lengths";
     return NULL;

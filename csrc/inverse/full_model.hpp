@@ -1,12 +1,12 @@
 // The thesis' 14-body Stewart platform (docs/model.md) built on the multibody core: a builder that
 // turns the parameters into bodies and joints, the closed-form initial guess, and the solve that
-// fills stewart_output at the full fidelity level.
+// fills stewart_inverse_output at the full fidelity level.
 #pragma once
 
 #include <memory>
 
 #include "core/mbs_handles.hpp"
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 namespace stewart {
 
@@ -46,16 +46,16 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDriv
 
 // Every body placed in closed form for the platform motion (motion in the length unit) (Euler-parameter signs kept
 // continuous with the previous solution, if any), and the drivers set for that motion.
-void full_initial_guess(const FullLayout &l, const RigidMotion &motion, mbs::State &s);
-void full_set_drivers(const FullLayout &l, const RigidMotion &motion, const LegKinematics &legs,
+void full_initial_guess(const FullLayout &l, const Motion &motion, mbs::State &s);
+void full_set_drivers(const FullLayout &l, const Motion &motion, const LegKinematics &legs,
                       mbs::State &s);
 
 // Position, velocity, acceleration, multipliers; fills lengths, rates, accelerations, forces,
 // iterations, residual and the base wrench (condition and warnings are the caller's). Motion,
 // legs and outputs in SI; o.tolerance applies in the length unit.
-stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_options &o,
-                          const RigidMotion &motion, const LegKinematics &legs,
-                          stewart_output &out, char *msg, size_t size);
+stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_inverse_options &o,
+                          const Motion &motion, const LegKinematics &legs,
+                          stewart_inverse_output &out, char *msg, size_t size);
 
 // The thesis' way, on a PlatformPose model: the platform wrench from the 7 pose-driver
 // multipliers, mapped to leg forces by virtual power (J^T F = wrench, 6 x 6).

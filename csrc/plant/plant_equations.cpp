@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_equations.hpp"
+#include "plant/plant_equations.hpp"
 
 #include "model.hpp"
 
@@ -23,8 +23,8 @@ Mat3 world_inertia(const Mat3 &A, const Vec3 &principal) {
 // platform point and the platform's angular acceleration) plus the velocity products in the
 // biases, so their share is first formed in u (3 x 3 blocks) and then mapped to the twist rate
 // by u = S nu_dot, S = [I, K; 0, I], K = -[arm]x.
-void add_leg(const DynamicsModel &d, const LegConfiguration &leg, int k, const BodyMotion &cyl,
-             const BodyMotion &pis, Matrix66 &M, Vector6 &rhs) {
+void add_leg(const DynamicsModel &d, const LegConfiguration &leg, int k, const Motion &cyl,
+             const Motion &pis, Matrix66 &M, Vector6 &rhs) {
     LegAccelerationMap map;
     leg_acceleration_map(d.legs, k, leg, map);
     const Mat3 I_cyl = world_inertia(cyl.rotation, d.cylinder_inertia);
@@ -85,7 +85,7 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
     return d;
 }
 
-bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double force[STEWART_LEGS],
+bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e) {
     Matrix66 M = Matrix66::Zero();
     Vector6 rhs = Vector6::Zero();
@@ -105,7 +105,7 @@ bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double fo
     rhs.head<3>() = f_platform;
     rhs.tail<3>() = c.cross(f_platform) - m.omega.cross(I_platform * m.omega);
 
-    PlatformMotion at_rest_rate = m;  // the twist, with zero twist rate: velocity products
+    Motion at_rest_rate = m;  // the twist, with zero twist rate: velocity products
     at_rest_rate.acceleration.setZero();
     at_rest_rate.alpha.setZero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -122,7 +122,7 @@ bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double fo
         rhs.tail<3>() += force[k] * leg.arm.cross(leg.n);
         if (!d.with_legs) continue;
 
-        BodyMotion cyl_bias, pis_bias;
+        Motion cyl_bias, pis_bias;
         leg_body_motion(d.legs, k, leg, at_rest_rate, cyl_bias, pis_bias);
         add_leg(d, leg, k, cyl_bias, pis_bias, M, rhs);
     }
@@ -144,9 +144,9 @@ bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double fo
     return true;
 }
 
-void body_motions(const DynamicsModel &d, const PlatformMotion &m, const Evaluation &e,
-                  BodyMotion bodies[13]) {
-    BodyMotion &platform = bodies[0];
+void body_motions(const DynamicsModel &d, const Motion &m, const Evaluation &e,
+                  Motion bodies[13]) {
+    Motion &platform = bodies[0];
     const Vec3 c = m.rotation * d.platform_com;
     platform.position = m.position + c;
     platform.rotation = m.rotation;
@@ -159,12 +159,12 @@ void body_motions(const DynamicsModel &d, const PlatformMotion &m, const Evaluat
         leg_body_motion(d.legs, k, e.legs[k], m, bodies[1 + k], bodies[7 + k]);
 }
 
-void base_wrench(const DynamicsModel &d, const BodyMotion bodies[13], Vec3 &force, Vec3 &torque) {
+void base_wrench(const DynamicsModel &d, const Motion bodies[13], Vec3 &force, Vec3 &torque) {
     force.setZero();
     torque.setZero();
     const int count = d.with_legs ? 13 : 1;
     for (int b = 0; b < count; ++b) {
-        const BodyMotion &body = bodies[b];
+        const Motion &body = bodies[b];
         double mass;
         Mat3 I;
         if (b == 0) {

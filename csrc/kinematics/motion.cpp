@@ -1,4 +1,4 @@
-#include "platform/rigid_motion.hpp"
+#include "kinematics/motion.hpp"
 
 #include <cmath>
 
@@ -17,9 +17,20 @@ Eigen::Matrix3d rotation_from_trig(double cr, double sr, double cp, double sp, d
     return R;
 }
 
+}  // namespace
+
 const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
-}  // namespace
+bool angle_rates_of(const double q[6], const Eigen::Vector3d &omega, double out[3],
+                    double min_cos_pitch) {
+    const double sp = std::sin(q[4]), cp = std::cos(q[4]);
+    const double sy = std::sin(q[5]), cy = std::cos(q[5]);
+    if (!(std::fabs(cp) > min_cos_pitch)) return false;
+    out[0] = (cy * omega.x() + sy * omega.y()) / cp;
+    out[1] = -sy * omega.x() + cy * omega.y();
+    out[2] = omega.z() + sp * out[0];
+    return true;
+}
 
 stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size) {
     const double *rows[3] = {pose.q, pose.q_dot, pose.q_ddot};
@@ -53,8 +64,8 @@ Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
                               std::cos(yaw), std::sin(yaw));
 }
 
-RigidMotion rigid_motion(const stewart_pose &pose) {
-    RigidMotion m;
+Motion motion_of_pose(const stewart_pose &pose) {
+    Motion m;
     m.position = Eigen::Vector3d(pose.q[0], pose.q[1], pose.q[2]);
     m.velocity = Eigen::Vector3d(pose.q_dot[0], pose.q_dot[1], pose.q_dot[2]);
     m.acceleration = Eigen::Vector3d(pose.q_ddot[0], pose.q_ddot[1], pose.q_ddot[2]);
@@ -64,10 +75,7 @@ RigidMotion rigid_motion(const stewart_pose &pose) {
     m.rotation = rotation_from_trig(cr, sr, cp, sp, cy, sy);
 
     // omega = roll_dot Rz Ry ex + pitch_dot Rz ey + yaw_dot ez.
-    Eigen::Matrix3d E;
-    E << cy * cp, -sy, 0,
-         sy * cp,  cy, 0,
-         -sp,      0,  1;
+    const Eigen::Matrix3d E = angle_rate_matrix(cp, sp, cy, sy);
     const Eigen::Vector3d rate(pose.q_dot[3], pose.q_dot[4], pose.q_dot[5]);
     const Eigen::Vector3d accel(pose.q_ddot[3], pose.q_ddot[4], pose.q_ddot[5]);
     const double pd = rate[1], yd = rate[2];

@@ -1,4 +1,4 @@
-#include "platform/forward_newton.hpp"
+#include "forward/newton.hpp"
 
 #include <kinsol/kinsol.h>
 #include <nvector/nvector_serial.h>
@@ -10,8 +10,8 @@
 #include <cmath>
 
 #include "core/kinsol_custom.hpp"
-#include "platform/forward_lu.hpp"
-#include "platform/rigid_motion.hpp"
+#include "kinematics/lu6.hpp"
+#include "kinematics/motion.hpp"
 #include "util/message.hpp"
 
 namespace stewart {

@@ -2,7 +2,7 @@
 // Newton-Euler equations of its two bodies with their motion known.
 #pragma once
 
-#include "platform/forward_dynamics_equations.hpp"
+#include "plant/plant_equations.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace stewart {
@@ -11,7 +11,7 @@ namespace fd {
 // The reactions of leg k (conventions in stewart_plant.h). Bodies: the 13 of body_motions, with
 // accelerations; force: the actuator force of the leg. False if the 12 x 12 system is singular.
 bool leg_reactions(const DynamicsModel &d, int k, const LegConfiguration &leg,
-                   const BodyMotion bodies[13], double force, stewart_plant_reactions &out);
+                   const Motion bodies[13], double force, stewart_plant_reactions &out);
 
 }  // namespace fd
 }  // namespace stewart

@@ -1,22 +1,12 @@
-// stewart_full.h: the full level's mechanism and the thesis' force formulation.
-#include "stewart/stewart_full.h"
+// The thesis' force formulation (thesis_forces.h): a test oracle, not part of the library's API.
+#include "thesis_forces.h"
 
 #include <cmath>
+#include <memory>
 
-#include "model.hpp"
+#include "inverse/full_model.hpp"
+#include "kinematics/closed_form.hpp"
 #include "util/message.hpp"
-
-extern "C" const mbs_model *stewart_model_mechanism(const stewart_model *m) {
-    return m ? m->full.get() : nullptr;
-}
-
-extern "C" double stewart_model_length_unit(const stewart_model *m) {
-    return m ? m->full_layout.length_unit : 0.0;
-}
-
-extern "C" const mbs_data *stewart_data_mechanism(const stewart_data *d) {
-    return d ? d->full.get() : nullptr;
-}
 
 extern "C" stewart_status stewart_thesis_forces(const stewart_params *p, const stewart_pose *pose,
                                                 double force[STEWART_LEGS], char *msg,
@@ -26,12 +16,12 @@ extern "C" stewart_status stewart_thesis_forces(const stewart_params *p, const s
     stewart_status s = stewart_params_check(p, msg, size);
     if (s != STEWART_OK) return s;
     if ((s = check_pose(*pose, msg, size)) != STEWART_OK) return s;
-    // The pose checks of stewart_solve (default options) before anything is built: at a
+    // The pose checks of stewart_inverse_solve (default options) before anything is built: at a
     // singular leg Jacobian the 6 x 6 solve below would return forces of any size.
-    stewart_options o;
-    stewart_options_default(&o);
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
     const PlatformGeometry geometry = platform_geometry(*p);
-    const RigidMotion motion = rigid_motion(*pose);
+    const Motion motion = motion_of_pose(*pose);
     LegKinematics legs;
     if ((s = leg_kinematics(geometry, motion, legs, msg, size)) != STEWART_OK) return s;
     LegJacobian jacobian;
@@ -44,7 +34,7 @@ extern "C" stewart_status stewart_thesis_forces(const stewart_params *p, const s
     if (!model) return STEWART_ERR_PARAMETER;
     mbs_data data(model.get(), mbs::SolverOptions());
     if (!data.state.ok()) return set_message(msg, size, STEWART_ERR_MEMORY, "%s", data.state.message);
-    stewart_output out{};
+    stewart_inverse_output out{};
     if ((s = full_solve(layout, data.state, o, motion, legs, out, msg, size)) != STEWART_OK) return s;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(out.force[k]))

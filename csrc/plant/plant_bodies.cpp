@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_bodies.hpp"
+#include "plant/plant_bodies.hpp"
 
 namespace stewart {
 namespace fd {
@@ -73,7 +73,7 @@ LegFault leg_configuration(const LegParameters &p, int k, const Vec3 &position,
 }
 
 void leg_body_motion(const LegParameters &p, int k, const LegConfiguration &c,
-                     const PlatformMotion &m, BodyMotion &cyl, BodyMotion &pis) {
+                     const Motion &m, Motion &cyl, Motion &pis) {
     const Vec3 P = m.position + c.arm;
     const Vec3 P_dot = m.velocity + m.omega.cross(c.arm);
     const Vec3 P_ddot = m.acceleration + m.alpha.cross(c.arm) + m.omega.cross(m.omega.cross(c.arm));

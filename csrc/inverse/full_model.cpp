@@ -1,4 +1,4 @@
-#include "platform/full_model.hpp"
+#include "inverse/full_model.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -168,7 +168,7 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
     return model;
 }
 
-void full_initial_guess(const FullLayout &l, const RigidMotion &motion, mbs::State &s) {
+void full_initial_guess(const FullLayout &l, const Motion &motion, mbs::State &s) {
     const Placement pl = place(l, motion.position, motion.rotation);
     for (int k = 0; k < STEWART_LEGS; ++k) {
         put_body(s, l.cylinder[k], pl.r_cylinder[k], pl.A_cylinder[k]);
@@ -177,7 +177,7 @@ void full_initial_guess(const FullLayout &l, const RigidMotion &motion, mbs::Sta
     put_body(s, l.platform, pl.r_platform, pl.A_platform);
 }
 
-void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinematics &legs,
+void full_set_drivers(const FullLayout &l, const Motion &mo, const LegKinematics &legs,
                       mbs::State &s) {
     const mbs::Mechanism &m = s.mechanism;
     if (l.drive == FullDrive::ActuatorLengths) {
@@ -200,12 +200,12 @@ void full_set_drivers(const FullLayout &l, const RigidMotion &mo, const LegKinem
     for (int i = 0; i < 4; ++i) d[3 + i] = mbs::DriverValue{p[i], p_dot[i], p_ddot[i]};
 }
 
-stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_options &o,
-                          const RigidMotion &si_motion, const LegKinematics &si_legs,
-                          stewart_output &out, char *msg, size_t size) {
+stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_inverse_options &o,
+                          const Motion &si_motion, const LegKinematics &si_legs,
+                          stewart_inverse_output &out, char *msg, size_t size) {
     const mbs::Mechanism &m = s.mechanism;
     const double L0 = l.length_unit, per_L0 = 1.0 / L0;  // powers of two: exact
-    RigidMotion motion = si_motion;
+    Motion motion = si_motion;
     motion.position *= per_L0, motion.velocity *= per_L0, motion.acceleration *= per_L0;
     LegKinematics legs;
     legs.length = si_legs.length * per_L0, legs.rate = si_legs.rate * per_L0;
@@ -243,9 +243,9 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_opti
         const Vec3 d_dot = rate(qp, vp, up) - rate(qc, vc, uc);
         const Vec3 d_ddot = accel(qp, vp, ap, up) - accel(qc, vc, ac, uc);
         const double L = d.norm(), L_dot = d.dot(d_dot) / L;
-        out.length[k] = L * L0;
-        out.length_rate[k] = L_dot * L0;
-        out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L * L0;
+        out.lengths.length[k] = L * L0;
+        out.lengths.length_rate[k] = L_dot * L0;
+        out.lengths.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L * L0;
         out.force[k] = 0;
     }
     if (l.drive == FullDrive::ActuatorLengths)

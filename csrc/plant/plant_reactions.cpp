@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_reactions.hpp"
+#include "plant/plant_reactions.hpp"
 
 namespace stewart {
 namespace fd {
@@ -22,7 +22,7 @@ Mat3 world_inertia(const Mat3 &A, const Vec3 &principal) {
 }  // namespace
 
 bool leg_reactions(const DynamicsModel &d, int k, const LegConfiguration &leg,
-                   const BodyMotion bodies[13], double force, stewart_plant_reactions &out) {
+                   const Motion bodies[13], double force, stewart_plant_reactions &out) {
     const Vec3 &n = leg.n;
     if (!d.with_legs) {  // two-force members: the axial force only
         store(force * n, out.base_cardan_force[k]);
@@ -32,7 +32,7 @@ bool leg_reactions(const DynamicsModel &d, int k, const LegConfiguration &leg,
             v[0] = v[1] = v[2] = 0;
         return true;
     }
-    const BodyMotion &cyl = bodies[1 + k], &pis = bodies[7 + k];
+    const Motion &cyl = bodies[1 + k], &pis = bodies[7 + k];
     const Vec3 a = d.legs.base_points.col(k);
     const Vec3 P = bodies[0].position - bodies[0].rotation * d.platform_com + leg.arm;
     const Vec3 t1 = leg.cylinder_x, t2 = n.cross(t1);  // span the plane across the leg

@@ -1,9 +1,9 @@
-#include "platform/forward_branch.hpp"
+#include "forward/branch.hpp"
 
 #include <cmath>
 
-#include "platform/forward_lu.hpp"
-#include "platform/rigid_motion.hpp"
+#include "kinematics/lu6.hpp"
+#include "kinematics/motion.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
 

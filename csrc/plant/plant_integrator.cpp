@@ -1,4 +1,4 @@
-#include "platform/forward_dynamics_integrator.hpp"
+#include "plant/plant_integrator.hpp"
 
 #include <arkode/arkode_erkstep.h>
 #include <cvode/cvode.h>
@@ -48,8 +48,8 @@ void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
         force[k] = h00 * start[k] + h01 * end[k] + h * (h10 * start_rate[k] + h11 * end_rate[k]);
 }
 
-PlatformMotion motion_of_state(const double y[kStates]) {
-    PlatformMotion m;
+Motion motion_of_state(const double y[kStates]) {
+    Motion m;
     m.position = Vec3(y[0], y[1], y[2]);
     Eigen::Quaterniond q(y[3], y[4], y[5], y[6]);
     q.normalize();
@@ -75,7 +75,7 @@ int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, v
     IntegratorImpl &im = *static_cast<IntegratorImpl *>(user);
     const double *y = N_VGetArrayPointer(y_vector);
     double *y_dot = N_VGetArrayPointer(y_dot_vector);
-    const PlatformMotion m = motion_of_state(y);
+    const Motion m = motion_of_state(y);
     double force[STEWART_LEGS];
     im.forces->at(tau, force);
     if (!twist_rate(*im.model, m, force, im.evaluation)) {
@@ -199,7 +199,7 @@ const char *fault_text(LegFault f) {
 // internal step if it is below 1 % of its length at the start of the step, else -1.
 int collapsing_leg(const DynamicsModel &model, const double start[kStates],
                    const double reached[kStates], double &length) {
-    const PlatformMotion a = motion_of_state(start), b = motion_of_state(reached);
+    const Motion a = motion_of_state(start), b = motion_of_state(reached);
     int leg = -1;
     double worst = 0.01;
     for (int k = 0; k < STEWART_LEGS; ++k) {

@@ -4,7 +4,7 @@
 
 #include <Eigen/Dense>
 
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 namespace stewart {
 namespace fd {
@@ -12,19 +12,8 @@ namespace fd {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-// The platform frame's motion, world frame: origin, rotation, twist at the origin and its rate.
-struct PlatformMotion {
-    Vec3 position;
-    Mat3 rotation;
-    Vec3 velocity, omega, acceleration, alpha;
-};
-
-// A rigid body's motion, world frame: centre of mass, axes (columns), and their rates.
-struct BodyMotion {
-    Vec3 position;
-    Mat3 rotation;
-    Vec3 velocity, omega, acceleration, alpha;
-};
+// The platform frame's motion and each body's (centre of mass, axes as columns, and their rates):
+// stewart::Motion (kinematics/motion.hpp), world frame.
 
 // What the leg bodies need from the model (full_model.cpp places them the same way).
 struct LegParameters {
@@ -60,7 +49,7 @@ LegFault leg_configuration(const LegParameters &p, int k, const Vec3 &position,
 // Velocities are linear in the twist; accelerations are linear in the twist rate plus the
 // velocity-product terms (zero twist rate gives those alone, zero twist gives the Jacobian).
 void leg_body_motion(const LegParameters &p, int k, const LegConfiguration &c,
-                     const PlatformMotion &m, BodyMotion &cylinder, BodyMotion &piston);
+                     const Motion &m, Motion &cylinder, Motion &piston);
 
 // The leg bodies' accelerations as linear maps of the platform point's acceleration P_ddot and
 // the platform's angular acceleration alpha, as if every velocity were zero:

@@ -1,8 +1,8 @@
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 #include <cmath>
 
-#include "platform/small_inverse.hpp"
+#include "kinematics/small_inverse.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -41,7 +41,7 @@ LumpedBody lumped_platform(const stewart_params &p) {
     return b;
 }
 
-stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, LegKinematics &out,
+stewart_status leg_kinematics(const PlatformGeometry &g, const Motion &m, LegKinematics &out,
                               char *msg, size_t size) {
     out.arm.noalias() = m.rotation * g.platform_points;
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -91,7 +91,7 @@ stewart_status check_condition(double condition, double singular_condition, char
 }
 
 void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
-                            const double force[STEWART_LEGS], stewart_output &out) {
+                            const double force[STEWART_LEGS], stewart_inverse_output &out) {
     Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d on_base = -force[k] * legs.axis.col(k);
@@ -105,9 +105,9 @@ void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs
 }
 
 stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body,
-                               const Eigen::Vector3d &gravity, const RigidMotion &m,
+                               const Eigen::Vector3d &gravity, const Motion &m,
                                const LegKinematics &legs, double singular_condition,
-                               stewart_output &out, char *msg, size_t size) {
+                               stewart_inverse_output &out, char *msg, size_t size) {
     // Newton-Euler for the lumped body; moments taken about the platform origin.
     const Eigen::Vector3d c = m.rotation * body.com;
     const Eigen::Vector3d a_c =

@@ -3,7 +3,7 @@
 // because the inputs change there.
 #pragma once
 
-#include "platform/forward_dynamics_equations.hpp"
+#include "plant/plant_equations.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace stewart {
@@ -24,7 +24,7 @@ struct ForceProfile {
 
 // The platform motion (pose and twist; zero accelerations) of a state vector; the quaternion is
 // normalised on the way.
-PlatformMotion motion_of_state(const double y[kStates]);
+Motion motion_of_state(const double y[kStates]);
 
 struct IntegratorImpl;
 

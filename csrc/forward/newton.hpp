@@ -3,7 +3,7 @@
 // (LU with partial pivoting; no finite differences).
 #pragma once
 
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 namespace stewart {
 

@@ -2,7 +2,7 @@
 // forward Newton solve.
 #pragma once
 
-#include "platform/closed_form.hpp"
+#include "kinematics/closed_form.hpp"
 
 namespace stewart {
 

@@ -2,7 +2,7 @@
 // (sum J_b^T M_b J_b) nu_dot = sum J_b^T (f_b - M_b J_b_dot nu) + J_legs^T F, and the base wrench.
 #pragma once
 
-#include "platform/forward_dynamics_bodies.hpp"
+#include "plant/plant_bodies.hpp"
 
 namespace stewart {
 namespace fd {
@@ -34,17 +34,17 @@ struct Evaluation {
 
 // The platform's twist rate for the state in m (pose and twist; its accelerations are ignored)
 // under the leg forces. False (fault set) if a leg has no direction or a Cardan is locked.
-bool twist_rate(const DynamicsModel &d, const PlatformMotion &m, const double force[STEWART_LEGS],
+bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e);
 
 // The 13 moving bodies (platform, cylinders, pistons) for m including its accelerations; the leg
 // bodies are left untouched for the massless model. e must hold the configuration of m.
-void body_motions(const DynamicsModel &d, const PlatformMotion &m, const Evaluation &e,
-                  BodyMotion bodies[13]);
+void body_motions(const DynamicsModel &d, const Motion &m, const Evaluation &e,
+                  Motion bodies[13]);
 
 // The wrench the moving bodies put on the base (about the world origin): minus the rate of
 // their momentum and angular momentum less gravity (the actuator forces are internal).
-void base_wrench(const DynamicsModel &d, const BodyMotion bodies[13], Vec3 &force, Vec3 &torque);
+void base_wrench(const DynamicsModel &d, const Motion bodies[13], Vec3 &force, Vec3 &torque);
 
 }  // namespace fd
 }  // namespace stewart

@@ -4,11 +4,13 @@
 
 #include <Eigen/Dense>
 
+#include "kinematics/pose_names.hpp"
 #include "stewart/stewart.h"
 
 namespace stewart {
 
-struct RigidMotion {
+// The motion of a rigid body or frame: the platform's, each leg body's (the plant), one struct.
+struct Motion {
     Eigen::Vector3d position, velocity, acceleration;  // of the platform frame origin, world
     Eigen::Matrix3d rotation;                          // platform to world
     Eigen::Vector3d omega, alpha;                      // angular velocity and acceleration, world
@@ -24,9 +26,27 @@ stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size);
 stewart_status input_out_of_range(const stewart_pose &pose, int first_row, int last_row,
                                   const char *what, char *msg, size_t size);
 
+// R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw);
 
-// omega = E(pitch, yaw) * (roll_dot, pitch_dot, yaw_dot); alpha = E * angles_ddot + E_dot * angles_dot.
-RigidMotion rigid_motion(const stewart_pose &pose);
+// E with omega = E (roll, pitch, yaw)_dot, from cos and sin of pitch and yaw:
+// E = [Rz Ry e_x, Rz e_y, e_z].
+inline Eigen::Matrix3d angle_rate_matrix(double cp, double sp, double cy, double sy) {
+    Eigen::Matrix3d E;
+    E << cy * cp, -sy, 0,
+         sy * cp,  cy, 0,
+         -sp,      0,  1;
+    return E;
+}
+
+// The inverse: (roll, pitch, yaw) rates from the angular velocity omega (world) at pose angles
+// pitch q[4] and yaw q[5]. False at pitch = +-90 deg (|cos pitch| <= min_cos_pitch), where roll
+// and yaw rates are not defined.
+bool angle_rates_of(const double q[6], const Eigen::Vector3d &omega, double out[3],
+                    double min_cos_pitch = 1e-12);
+
+// The motion of the platform frame at pose; omega = E (roll_dot, pitch_dot, yaw_dot),
+// alpha = E angles_ddot + E_dot angles_dot.
+Motion motion_of_pose(const stewart_pose &pose);
 
 }  // namespace stewart

@@ -1,15 +1,15 @@
 // The forward-kinematics C API: input checks, the starts (guess, tracking predictor, last pose,
 // home), the Newton solve, the checks of the pose found, and its rates and accelerations through
 // the leg Jacobian.
-#include "platform/forward_kinematics.hpp"
+#include "forward/forward_state.hpp"
 
 #include <cmath>
 #include <cstring>
 
 #include "model.hpp"
-#include "platform/forward_branch.hpp"
-#include "platform/forward_newton.hpp"
-#include "platform/rigid_motion.hpp"
+#include "forward/branch.hpp"
+#include "forward/newton.hpp"
+#include "kinematics/motion.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
 
@@ -18,7 +18,6 @@ using stewart::set_message;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
 // STEWART_ERR_ARGUMENT naming e.g. "L_dot3" unless all six values are finite (and, for lengths,
 // positive).
@@ -37,25 +36,13 @@ stewart_status check_values(const double *v, const char *name, bool positive, ch
     return STEWART_OK;
 }
 
-// Angular velocity (world) to (roll, pitch, yaw) rates: the inverse of E = [Rz Ry e_x, Rz e_y,
-// e_z]. False at pitch = +-90 deg, where roll and yaw rates are not defined.
-bool angle_rates(const double q[6], const Eigen::Vector3d &omega, double out[3]) {
-    const double sp = std::sin(q[4]), cp = std::cos(q[4]);
-    const double sy = std::sin(q[5]), cy = std::cos(q[5]);
-    if (!(std::fabs(cp) > 1e-12)) return false;
-    out[0] = (cy * omega.x() + sy * omega.y()) / cp;
-    out[1] = -sy * omega.x() + cy * omega.y();
-    out[2] = omega.z() + sp * out[0];
-    return true;
-}
-
 // The inverse side's leg kinematics at pose (q, q_dot) with zero pose accelerations.
 stewart_status legs_at(const stewart_model &m, const double q[6], const double q_dot[6],
                        stewart::LegKinematics &legs, char *msg, size_t size) {
     stewart_pose pose{};
     std::memcpy(pose.q, q, sizeof pose.q);
     if (q_dot) std::memcpy(pose.q_dot, q_dot, sizeof pose.q_dot);
-    return stewart::leg_kinematics(m.geometry, stewart::rigid_motion(pose), legs, msg, size);
+    return stewart::leg_kinematics(m.geometry, stewart::motion_of_pose(pose), legs, msg, size);
 }
 
 // J^-1 v with J = (n_k, (R b_k x n_k)/c) per row: (translation, c * rotation) to pose
@@ -64,7 +51,7 @@ bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double
                            const stewart::Vector6 &v, double out[6]) {
     const stewart::Vector6 w = J.inverse_transposed.transpose() * v;
     for (int i = 0; i < 3; ++i) out[i] = w[i];
-    return angle_rates(q, w.tail<3>() / c, out + 3);
+    return stewart::angle_rates_of(q, w.tail<3>() / c, out + 3);
 }
 
 // The first reason in the STEWART_BRANCH_* bits, as a sentence.
@@ -87,33 +74,6 @@ const char *start_name(int start) {
 }
 
 }  // namespace
-
-extern "C" void stewart_forward_options_default(stewart_forward_options *o) {
-    if (!o) return;
-    stewart_options inverse;
-    stewart_options_default(&inverse);  // the same condition thresholds as the inverse side
-    o->tolerance = inverse.tolerance;
-    o->max_iterations = inverse.max_iterations;
-    o->warn_condition = inverse.warn_condition;
-    o->singular_condition = inverse.singular_condition;
-}
-
-extern "C" stewart_status stewart_forward_options_check(const stewart_forward_options *o,
-                                                        char *msg, size_t size) {
-    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    // The same fields, the same limits and messages as the inverse side's options.
-    stewart_options inverse;
-    stewart_options_default(&inverse);
-    inverse.tolerance = o->tolerance;
-    inverse.max_iterations = o->max_iterations;
-    inverse.warn_condition = o->warn_condition;
-    inverse.singular_condition = o->singular_condition;
-    return stewart_options_check(&inverse, msg, size);
-}
-
-extern "C" void stewart_forward_reset(stewart_data *d) {
-    if (d) d->forward.reset();
-}
 
 namespace {
 
@@ -155,26 +115,6 @@ void start_pose(const stewart_model &m, const stewart::ForwardState &f, int star
     }
 }
 
-// What depends on the model only, worked out once per data block: the sign of the leg
-// Jacobian's determinant at home and the bounds on length differences.
-stewart_status prepare(const stewart_model &m, stewart::ForwardState &f, char *msg, size_t size) {
-    if (f.working_sign != 0) return STEWART_OK;
-    double home[6];
-    start_pose(m, f, STEWART_START_HOME, 0, nullptr, home);
-    stewart::LegKinematics legs;
-    stewart_status s = legs_at(m, home, nullptr, legs, msg, size);
-    if (s != STEWART_OK) return s;
-    stewart::LegJacobian J;
-    stewart::leg_jacobian(m.geometry, legs, J);
-    f.working_sign = stewart::jacobian_sign(J.transposed);
-    if (f.working_sign == 0)
-        return set_message(msg, size, STEWART_ERR_SINGULAR,
-                           "the leg Jacobian is singular at the home pose: the working assembly "
-                           "mode is not defined");
-    f.pair_bounds = stewart::length_pair_bounds(m.geometry);
-    return STEWART_OK;
-}
-
 // The legs, Jacobian and checks at the Newton solution (the legs at its last iterate):
 // STEWART_ERR_SINGULAR if the pose is singular for the inverse side's threshold or the lengths
 // do not determine it, else OK with the branch bits set.
@@ -205,7 +145,7 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
     x.points = at.arm;
     x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
     x.branch = stewart::assembly_branch(g, x.rotation, x.points, x.jacobian.transposed,
-                                        f.working_sign);
+                                        m.forward.working_sign);
     if (tracking) {
         x.jump = (x.points - f.points).colwise().norm().maxCoeff();
         if (x.jump > m.params.stroke_max - m.params.stroke_min) x.branch |= STEWART_BRANCH_JUMP;
@@ -216,7 +156,7 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
 // Rates and accelerations of the pose x through its leg Jacobian; false (message) at pitch =
 // +-90 deg or if anything overflows.
 stewart_status derivatives(const stewart_model &m, const Found &x, const double *rates,
-                           const double *accels, stewart_forward_result &out, char *msg,
+                           const double *accels, stewart_forward_output &out, char *msg,
                            size_t size) {
     const double c = m.geometry.characteristic_length;
     if (rates &&
@@ -240,12 +180,12 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
             if (!std::isfinite(v[i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                    "the pose found overflows (%s is %g): the inputs are out of "
-                                   "range", kPoseNames[i], v[i]);
+                                   "range", stewart::kPoseNames[i], v[i]);
     return STEWART_OK;
 }
 
-// The accepted pose becomes the data block's last pose.
-void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_result &out,
+// The accepted pose becomes the solver's last pose.
+void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_output &out,
               double time, bool from_guess, bool rates, bool accels) {
     f.has_previous = f.has_pose && !from_guess;  // a guess starts a new history
     f.previous_time = f.time;
@@ -262,41 +202,235 @@ void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_re
 
 }  // namespace
 
-extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_data *d,
-                                                const stewart_forward_options *o, double time,
-                                                const double lengths[STEWART_LEGS],
-                                                const double rates[STEWART_LEGS],
-                                                const double accels[STEWART_LEGS],
-                                                const double guess[6],
-                                                stewart_forward_result *result) {
-    if (!m || !d || !o || !lengths || !result || d->model != m) {
-        if (d) set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
-                           "NULL argument, or a data block of another model");
+
+namespace stewart {
+
+stewart_status forward_constants(const PlatformGeometry &g, double home_height,
+                                 ForwardConstants &f, char *msg, size_t size) {
+    stewart_pose home{};
+    home.q[2] = home_height;
+    LegKinematics legs;
+    stewart_status s = leg_kinematics(g, motion_of_pose(home), legs, msg, size);
+    if (s != STEWART_OK) return s;
+    LegJacobian J;
+    leg_jacobian(g, legs, J);
+    f.working_sign = jacobian_sign(J.transposed);
+    if (f.working_sign == 0)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the leg Jacobian is singular at the home pose: the working assembly "
+                           "mode is not defined");
+    f.pair_bounds = length_pair_bounds(g);
+    return STEWART_OK;
+}
+
+// The saved history: a header (magic, version, size) then the fields in a fixed order.
+namespace {
+
+constexpr unsigned kHistoryMagic = 0x53544657u;  // "STFW"
+constexpr unsigned kHistoryVersion = 1;
+constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18;  // times, q, q_dot, q_ddot, previous_q, points
+constexpr size_t kHistoryFlags = 4;
+constexpr size_t kHistoryHeader = 3 * sizeof(unsigned);
+
+}  // namespace
+
+size_t forward_history_size() {
+    return kHistoryHeader + kHistoryFlags + kHistoryDoubles * sizeof(double);
+}
+
+void forward_history_save(const ForwardState &f, unsigned char *buffer) {
+    const unsigned header[3] = {kHistoryMagic, kHistoryVersion,
+                                static_cast<unsigned>(forward_history_size())};
+    std::memcpy(buffer, header, sizeof header);
+    unsigned char *flags = buffer + kHistoryHeader;
+    flags[0] = f.has_pose, flags[1] = f.has_rates, flags[2] = f.has_accels,
+    flags[3] = f.has_previous;
+    double v[kHistoryDoubles];
+    double *p = v;
+    *p++ = f.time;
+    *p++ = f.previous_time;
+    for (const double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
+        for (int i = 0; i < 6; ++i) *p++ = a[i];
+    for (int i = 0; i < 18; ++i) *p++ = f.points.data()[i];
+    std::memcpy(flags + kHistoryFlags, v, sizeof v);
+}
+
+bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t size, char *msg,
+                          size_t msg_size) {
+    unsigned header[3];
+    if (size < kHistoryHeader) {
+        set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
+                    "%zu bytes: a saved forward history has %zu", size, forward_history_size());
+        return false;
+    }
+    std::memcpy(header, buffer, sizeof header);
+    if (header[0] != kHistoryMagic || header[1] != kHistoryVersion ||
+        header[2] != forward_history_size() || size < forward_history_size()) {
+        set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
+                    "not a forward history of this version (magic %#x, version %u, %u of %zu "
+                    "bytes; expected %#x, %u, %zu)", header[0], header[1], header[2], size,
+                    kHistoryMagic, kHistoryVersion, forward_history_size());
+        return false;
+    }
+    const unsigned char *flags = buffer + kHistoryHeader;
+    for (size_t i = 0; i < kHistoryFlags; ++i)
+        if (flags[i] > 1) {
+            set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
+                        "forward history flag %zu is %d: it must be 0 or 1", i, flags[i]);
+            return false;
+        }
+    double v[kHistoryDoubles];
+    std::memcpy(v, flags + kHistoryFlags, sizeof v);
+    for (size_t i = 0; i < kHistoryDoubles; ++i)
+        if (!std::isfinite(v[i])) {
+            set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
+                        "forward history value %zu is %g: it must be finite", i, v[i]);
+            return false;
+        }
+    f.has_pose = flags[0], f.has_rates = flags[1], f.has_accels = flags[2],
+    f.has_previous = flags[3];
+    const double *p = v;
+    f.time = *p++;
+    f.previous_time = *p++;
+    for (double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
+        for (int i = 0; i < 6; ++i) a[i] = *p++;
+    for (int i = 0; i < 18; ++i) f.points.data()[i] = *p++;
+    return true;
+}
+
+}  // namespace stewart
+
+extern "C" stewart_forward *stewart_forward_create(const stewart_model *m,
+                                                   const stewart_forward_options *o, char *msg,
+                                                   size_t size) {
+    if (!m || !o) {
+        set_message(msg, size, STEWART_ERR_ARGUMENT, !m ? "model is NULL" : "options is NULL");
+        return nullptr;
+    }
+    if (stewart_forward_options_check(o, msg, size) != STEWART_OK) return nullptr;
+    if (m->forward.working_sign == 0) {  // the model's constants say why
+        stewart::ForwardConstants again;
+        stewart::forward_constants(m->geometry, m->params.home_height, again, msg, size);
+        return nullptr;
+    }
+    stewart_forward *d = new (std::nothrow) stewart_forward;
+    if (!d || !d->state.newton || !d->state.newton->ok()) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the forward solver");
+        delete d;
+        return nullptr;
+    }
+    d->model = m;
+    d->options = *o;
+    d->message[0] = '\0';
+    return d;
+}
+
+extern "C" void stewart_forward_free(stewart_forward *d) { delete d; }
+
+extern "C" void stewart_forward_reset(stewart_forward *d) {
+    if (!d) return;
+    d->message[0] = '\0';
+    d->state.reset();
+}
+
+extern "C" stewart_status stewart_forward_copy(stewart_forward *dst, const stewart_forward *src) {
+    if (!dst) return STEWART_ERR_ARGUMENT;
+    if (!src)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
+    if (dst->model != src->model)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
+                           "the forward solvers were made for different models");
+    std::memcpy(dst->message, src->message, sizeof dst->message);
+    // The history; the Newton solver's workspace is rebuilt by every solve.
+    stewart::ForwardState &d = dst->state;
+    const stewart::ForwardState &s = src->state;
+    d.has_pose = s.has_pose, d.has_rates = s.has_rates, d.has_accels = s.has_accels;
+    d.has_previous = s.has_previous;
+    d.time = s.time, d.previous_time = s.previous_time;
+    std::memcpy(d.q, s.q, sizeof d.q);
+    std::memcpy(d.q_dot, s.q_dot, sizeof d.q_dot);
+    std::memcpy(d.q_ddot, s.q_ddot, sizeof d.q_ddot);
+    std::memcpy(d.previous_q, s.previous_q, sizeof d.previous_q);
+    d.points = s.points;
+    return STEWART_OK;
+}
+
+extern "C" size_t stewart_forward_state_size(const stewart_forward *d) {
+    return d ? stewart::forward_history_size() : 0;
+}
+
+extern "C" stewart_status stewart_forward_save(const stewart_forward *d, void *buffer,
+                                               size_t size) {
+    if (!d) return STEWART_ERR_ARGUMENT;
+    if (!buffer || size < stewart::forward_history_size())
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "state not saved: a buffer of %zu bytes%s, the state needs %zu", size,
+                           buffer ? "" : " (NULL)", stewart::forward_history_size());
+    stewart::forward_history_save(d->state, static_cast<unsigned char *>(buffer));
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_forward_load(stewart_forward *d, const void *buffer,
+                                               size_t size) {
+    if (!d) return STEWART_ERR_ARGUMENT;
+    if (!buffer)
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
+    char why[STEWART_MESSAGE_SIZE];
+    // Every field is checked before any is written: a refused history leaves the solver as it was.
+    if (!stewart::forward_history_load(d->state, static_cast<const unsigned char *>(buffer), size,
+                                       why, sizeof why))
+        return set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                           "state not loaded (the forward solver is unchanged): %s", why);
+    d->message[0] = '\0';
+    return STEWART_OK;
+}
+
+extern "C" const char *stewart_forward_message(const stewart_forward *d) {
+    return d ? d->message : "forward is NULL";
+}
+
+extern "C" const stewart_model *stewart_forward_model(const stewart_forward *d) {
+    return d ? d->model : nullptr;
+}
+
+extern "C" const stewart_forward_options *stewart_forward_options_of(const stewart_forward *d) {
+    return d ? &d->options : nullptr;
+}
+
+extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
+                                                const stewart_forward_input *input,
+                                                stewart_forward_output *result) {
+    if (!d || !input || !result) {
+        if (d) set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "NULL argument");
         return STEWART_ERR_ARGUMENT;
     }
+    const stewart_model *m = d->model;
+    const stewart_forward_options *o = &d->options;
     char *msg = d->message;
     const size_t size = sizeof d->message;
-    stewart_status s = stewart_forward_options_check(o, msg, size);
-    if (s != STEWART_OK) return s;
+    if (input->derivatives < 0 || input->derivatives > 2)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "derivatives is %d: it must be 0 (lengths), 1 (and rates) or 2 (and "
+                           "accelerations)", input->derivatives);
+    const double time = input->time;
+    const double *lengths = input->lengths.length;
+    const double *rates = input->derivatives >= 1 ? input->lengths.length_rate : nullptr;
+    const double *accels = input->derivatives >= 2 ? input->lengths.length_accel : nullptr;
+    const double *guess = input->use_guess ? input->guess : nullptr;
+    stewart_status s;
     if (!std::isfinite(time))
         return set_message(msg, size, STEWART_ERR_ARGUMENT, "time is %g: it must be finite", time);
     if ((s = check_values(lengths, "L", true, msg, size)) != STEWART_OK) return s;
     if (rates && (s = check_values(rates, "L_dot", false, msg, size)) != STEWART_OK) return s;
-    if (accels && !rates)
-        return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                           "the accelerations L_ddot need the rates L_dot (NULL given)");
     if (accels && (s = check_values(accels, "L_ddot", false, msg, size)) != STEWART_OK) return s;
     if (guess)
         for (int i = 0; i < 6; ++i)
             if (!std::isfinite(guess[i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                                   "guess %s is %g: it must be finite", kPoseNames[i], guess[i]);
-    stewart::ForwardState &f = d->forward;
-    if (!f.newton || !f.newton->ok())
-        return set_message(msg, size, STEWART_ERR_MEMORY,
-                           "the forward solver of this data block could not be allocated");
-    if ((s = prepare(*m, f, msg, size)) != STEWART_OK) return s;
-    if ((s = stewart::check_length_pairs(f.pair_bounds, lengths, msg, size)) != STEWART_OK)
+                                   "guess %s is %g: it must be finite", stewart::kPoseNames[i],
+                                   guess[i]);
+    stewart::ForwardState &f = d->state;
+    if ((s = stewart::check_length_pairs(m->forward.pair_bounds, lengths, msg, size)) != STEWART_OK)
         return s;
 
     // The starts, in order: the guess alone; or, tracking, the predictor then the last pose; or
@@ -345,7 +479,7 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
 
     // One more Newton correction with the exact Jacobian the rates need anyway: the pose then
     // sits at rounding level even when KINSOL stopped just under the tolerance.
-    stewart_forward_result out{};
+    stewart_forward_output out{};
     double step[6];
     std::memcpy(out.pose.q, x.q, sizeof x.q);
     if (pose_from_twist_solve(x.jacobian, m->geometry.characteristic_length, x.q, x.residual,
@@ -360,7 +494,8 @@ extern "C" stewart_status stewart_forward_solve(const stewart_model *m, stewart_
     out.start = x.start;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (lengths[k] < m->params.stroke_min || lengths[k] > m->params.stroke_max)
-            out.warnings |= STEWART_WARN_STROKE;
+            out.stroke_legs |= 1 << k;
+    if (out.stroke_legs) out.warnings |= STEWART_WARN_STROKE;
     if (out.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
     *result = out;
     if (x.branch != 0) {

@@ -3,7 +3,7 @@
 
 #include <Eigen/Dense>
 
-#include "platform/rigid_motion.hpp"
+#include "kinematics/motion.hpp"
 #include "stewart/stewart.h"
 
 namespace stewart {
@@ -37,7 +37,7 @@ struct LegKinematics {
 };
 
 // Fails with STEWART_ERR_UNREACHABLE (message names the leg) when a leg has zero length.
-stewart_status leg_kinematics(const PlatformGeometry &g, const RigidMotion &m, LegKinematics &out,
+stewart_status leg_kinematics(const PlatformGeometry &g, const Motion &m, LegKinematics &out,
                               char *msg, size_t size);
 
 // The leg Jacobian J maps the platform twist (v, omega) at its origin to the leg rates L_dot.
@@ -59,12 +59,12 @@ stewart_status check_condition(double condition, double singular_condition, char
 // force, condition and the base wrench. STEWART_ERR_SINGULAR if the condition number is above
 // singular_condition (or not finite).
 stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body,
-                               const Eigen::Vector3d &gravity, const RigidMotion &m,
+                               const Eigen::Vector3d &gravity, const Motion &m,
                                const LegKinematics &legs, double singular_condition,
-                               stewart_output &out, char *msg, size_t size);
+                               stewart_inverse_output &out, char *msg, size_t size);
 
 // The wrench the legs put on the base, from the forces along the leg axes (massless legs).
 void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
-                            const double force[STEWART_LEGS], stewart_output &out);
+                            const double force[STEWART_LEGS], stewart_inverse_output &out);
 
 }  // namespace stewart

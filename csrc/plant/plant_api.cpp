@@ -6,8 +6,8 @@
 #include <new>
 
 #include "model.hpp"
-#include "platform/forward_dynamics_integrator.hpp"
-#include "platform/forward_dynamics_reactions.hpp"
+#include "plant/plant_integrator.hpp"
+#include "plant/plant_reactions.hpp"
 #include "stewart/stewart_plant.h"
 #include "util/message.hpp"
 
@@ -33,7 +33,7 @@ constexpr double kMinAbsoluteTolerance = 1e-20;
 // The plant's clock: within +-1e10 s (317 years) a step of 1e-5 s still advances time by
 // itself to 1 part in 5.
 constexpr double kMaxTime = 1e10;  // [s]
-const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+using stewart::kPoseNames;
 
 }  // namespace
 
@@ -49,18 +49,15 @@ struct stewart_plant {
     int warnings = 0;
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
-    char message[STEWART_MESSAGE_SIZE] = "";
+    mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
 };
 
 namespace {
 
-// omega = E(pitch, yaw) * (roll, pitch, yaw)_dot, as in rigid_motion.cpp.
+// omega = E(pitch, yaw) * (roll, pitch, yaw)_dot (kinematics/motion.hpp).
 fd::Mat3 rate_matrix(double pitch, double yaw) {
-    const double cp = std::cos(pitch), sp = std::sin(pitch), cy = std::cos(yaw),
-                 sy = std::sin(yaw);
-    fd::Mat3 E;
-    E << cy * cp, -sy, 0, sy * cp, cy, 0, -sp, 0, 1;
-    return E;
+    return stewart::angle_rate_matrix(std::cos(pitch), std::sin(pitch), std::cos(yaw),
+                                      std::sin(yaw));
 }
 
 // The roll-pitch-yaw angles of R, roll and yaw taken on the branch nearest to previous.
@@ -75,34 +72,29 @@ void angles_of(const fd::Mat3 &R, const double previous[3], double angles[3]) {
     }
 }
 
-// Lengths, their rates, the stroke check; the message names the first leg out of its stroke.
-int leg_outputs(const stewart_plant &p, const fd::PlatformMotion &m, double length[6],
-                double rate[6], char *msg, size_t size) {
+// Lengths, their rates, the stroke check: bit k of the result set when leg k+1 is outside.
+int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[6],
+                double rate[6]) {
     const stewart_params &par = p.model->params;
-    int warnings = 0;
+    int stroke_legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const fd::Vec3 arm = m.rotation * p.dynamics.legs.platform_points.col(k);
         const fd::Vec3 d = m.position + arm - p.dynamics.legs.base_points.col(k);
         length[k] = d.norm();
         rate[k] = d.dot(m.velocity + m.omega.cross(arm)) / length[k];
-        if ((length[k] < par.stroke_min || length[k] > par.stroke_max) && !warnings) {
-            warnings |= STEWART_PLANT_WARN_STROKE;
-            set_message(msg, size, STEWART_OK,
-                        "leg %d has left its stroke: length %.9g m outside [%g, %g] m (end stops "
-                        "are not modelled)", k + 1, length[k], par.stroke_min, par.stroke_max);
-        }
+        if (length[k] < par.stroke_min || length[k] > par.stroke_max) stroke_legs |= 1 << k;
     }
-    return warnings;
+    return stroke_legs;
 }
 
 // The 13 bodies' motion (accelerations included) under the given forces (NULL: the last step's);
 // STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
 stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
-                          fd::BodyMotion bodies[STEWART_PLANT_BODIES]) {
+                          stewart::Motion bodies[STEWART_PLANT_BODIES]) {
     if (!force) force = p.force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
-    fd::PlatformMotion m = fd::motion_of_state(p.y);
+    stewart::Motion m = fd::motion_of_state(p.y);
     if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
     m.acceleration = e.twist_rate.head<3>();
     m.alpha = e.twist_rate.tail<3>();
@@ -151,6 +143,36 @@ bool angles_match(const double y[fd::kStates], const double saved[3]) {
         if (!(std::fabs(off) <= 1e-9 + 8 * DBL_EPSILON * std::fabs(saved[i]))) return false;
     }
     return true;
+}
+
+// A plant's state without its integrator and counters: what a rollback puts back.
+struct PlantState {
+    double time;
+    double y[fd::kStates];
+    double angles[3];
+    double force[STEWART_LEGS];
+    int warnings;
+    double step_hint;
+};
+
+PlantState state_of(const stewart_plant &p) {
+    PlantState s;
+    s.time = p.time;
+    std::memcpy(s.y, p.y, sizeof s.y);
+    std::memcpy(s.angles, p.angles, sizeof s.angles);
+    std::memcpy(s.force, p.force, sizeof s.force);
+    s.warnings = p.warnings;
+    s.step_hint = p.step_hint;
+    return s;
+}
+
+void restore_state(stewart_plant &p, const PlantState &s) {
+    p.time = s.time;
+    std::memcpy(p.y, s.y, sizeof p.y);
+    std::memcpy(p.angles, s.angles, sizeof p.angles);
+    std::memcpy(p.force, s.force, sizeof p.force);
+    p.warnings = s.warnings;
+    p.step_hint = s.step_hint;
 }
 
 }  // namespace
@@ -237,6 +259,26 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
 
 extern "C" void stewart_plant_free(stewart_plant *p) { delete p; }
 
+extern "C" void stewart_plant_reset(stewart_plant *p) {
+    if (!p) return;
+    const double home[6] = {0, 0, p->model->params.home_height, 0, 0, 0}, rest[6] = {0};
+    stewart_plant_set_state(p, 0.0, home, rest);  // accepted when the plant was made
+    p->stats = stewart_plant_statistics{};
+    p->message[0] = '\0';
+}
+
+extern "C" stewart_status stewart_plant_copy(stewart_plant *dst, const stewart_plant *src) {
+    if (!dst) return STEWART_ERR_ARGUMENT;
+    if (!src)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
+    if (dst->model != src->model)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
+                           "the plants were made for different models");
+    restore_state(*dst, state_of(*src));
+    std::memcpy(dst->message, src->message, sizeof dst->message);
+    return STEWART_OK;
+}
+
 extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
                                                   const double pose[6], const double rate[6]) {
     if (!p) return STEWART_ERR_ARGUMENT;
@@ -295,19 +337,24 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
     p->step_hint = 0;
     double length[6], length_rate[6];
     msg[0] = '\0';
-    p->warnings = leg_outputs(*p, fd::motion_of_state(y), length, length_rate, msg, size);
+    p->warnings =
+        leg_outputs(*p, fd::motion_of_state(y), length, length_rate) ? STEWART_WARN_STROKE : 0;
     return STEWART_OK;
 }
 
-extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const double f0[6],
-                                             const double f1[6], const double r0[6],
-                                             const double r1[6]) {
+extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
+                                             stewart_plant_output *output) {
     if (!p) return STEWART_ERR_ARGUMENT;
     char *msg = p->message;
     const size_t size = sizeof p->message;
-    if (!f0 || !f1 || (!r0) != (!r1))
+    if (!input || !output) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
+    if (input->derivatives != 0 && input->derivatives != 1)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                           "NULL forces, or only one of the two force-rate arrays");
+                           "derivatives is %d: it must be 0 (forces linear over the step) or 1 "
+                           "(cubic Hermite with the force rates)", input->derivatives);
+    const double h = input->h, *f0 = input->force_start, *f1 = input->force_end;
+    const double *r0 = input->derivatives ? input->force_rate_start : nullptr;
+    const double *r1 = input->derivatives ? input->force_rate_end : nullptr;
     if (!(h > 0 && std::isfinite(h)))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s must be > 0 and finite", h);
@@ -355,9 +402,9 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
     st.total_jacobian_evaluations += last.jacobian_evaluations;
     if (s != STEWART_OK) return s;
 
-    const fd::PlatformMotion m = fd::motion_of_state(y);
+    const stewart::Motion m = fd::motion_of_state(y);
     // A leg that passes through zero length between two evaluations flips its direction.
-    const fd::PlatformMotion before = fd::motion_of_state(p->y);
+    const stewart::Motion before = fd::motion_of_state(p->y);
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const fd::Vec3 &a = p->dynamics.legs.base_points.col(k), &b =
             p->dynamics.legs.platform_points.col(k);
@@ -378,20 +425,25 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, double h, const d
         STEWART_OK)
         return s;
     double length[6], rate[6];
-    char warning[STEWART_MESSAGE_SIZE] = "";
-    const int warnings = leg_outputs(*p, m, length, rate, warning, sizeof warning);
+    const int warnings = leg_outputs(*p, m, length, rate) ? STEWART_WARN_STROKE : 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(length[k]) || !std::isfinite(rate[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "the forces are out of range: leg %d's length or rate overflows "
                                "after the step", k + 1);
+    const PlantState before_step = state_of(*p);  // the outputs may overflow: then back to it
     for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
     p->time += h;
     p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
-    std::memcpy(msg, warning, size);
+    if (stewart_plant_output_get(p, f1, output) != STEWART_OK) {
+        restore_state(*p, before_step);
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "the forces are out of range: the outputs overflow after the step");
+    }
+    msg[0] = '\0';
     return STEWART_OK;
 }
 
@@ -399,10 +451,10 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
                                                    stewart_plant_output *out) {
     if (!p || !out) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
-    fd::BodyMotion bodies[STEWART_PLANT_BODIES];
+    stewart::Motion bodies[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, force, e, bodies);
     if (s != STEWART_OK) return s;
-    const fd::PlatformMotion m = fd::motion_of_state(p->y);
+    const stewart::Motion m = fd::motion_of_state(p->y);
     fd::Vec3 f, t;
     fd::base_wrench(p->dynamics, bodies, f, t);
 
@@ -410,18 +462,18 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
     o.time = p->time;
     const fd::Vec3 angle_rates = rate_matrix(p->angles[1], p->angles[2]).inverse() * m.omega;
     for (int i = 0; i < 3; ++i) {
-        o.pose[i] = p->y[i];
-        o.pose[3 + i] = p->angles[i];
-        o.pose_rate[i] = p->y[7 + i];
-        o.pose_rate[3 + i] = angle_rates[i];
+        o.pose.q[i] = p->y[i];
+        o.pose.q[3 + i] = p->angles[i];
+        o.pose.q_dot[i] = p->y[7 + i];
+        o.pose.q_dot[3 + i] = angle_rates[i];
         o.base_force[i] = f[i];
         o.base_torque[i] = t[i];
     }
-    char ignored[8];
-    o.warnings = leg_outputs(*p, m, o.length, o.length_rate, ignored, 0);
+    o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
+    o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
     // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
-    const double *groups[6] = {o.pose, o.pose_rate, o.length, o.length_rate, o.base_force,
-                               o.base_torque};
+    const double *groups[6] = {o.pose.q, o.pose.q_dot, o.lengths.length, o.lengths.length_rate,
+                               o.base_force, o.base_torque};
     const int sizes[6] = {6, 6, STEWART_LEGS, STEWART_LEGS, 3, 3};
     for (int g = 0; g < 6; ++g)
         for (int i = 0; i < sizes[g]; ++i)
@@ -434,7 +486,7 @@ extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, co
                                                       stewart_plant_reactions *reactions) {
     if (!p || !reactions) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
-    fd::BodyMotion bodies[STEWART_PLANT_BODIES];
+    stewart::Motion bodies[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, force, e, bodies);
     if (s != STEWART_OK) return s;
     if (!force) force = p->force;
@@ -453,7 +505,7 @@ extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
                                                stewart_plant_body bodies[STEWART_PLANT_BODIES]) {
     if (!p || !bodies) return STEWART_ERR_ARGUMENT;
     fd::Evaluation e;
-    fd::BodyMotion motion[STEWART_PLANT_BODIES];
+    stewart::Motion motion[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, nullptr, e, motion);
     if (s != STEWART_OK) return s;
     const int count = p->dynamics.with_legs ? STEWART_PLANT_BODIES : 1;
@@ -475,6 +527,8 @@ extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
     return STEWART_OK;
 }
 
+extern "C" double stewart_plant_time(const stewart_plant *p) { return p ? p->time : NAN; }
+
 extern "C" void stewart_plant_statistics_get(const stewart_plant *p,
                                              stewart_plant_statistics *stats) {
     if (p && stats) *stats = p->stats;
@@ -484,22 +538,57 @@ extern "C" const char *stewart_plant_message(const stewart_plant *p) {
     return p ? p->message : "plant is NULL";
 }
 
-extern "C" size_t stewart_plant_state_size(void) { return kSavedDoubles; }
+namespace {
 
-extern "C" stewart_status stewart_plant_save(const stewart_plant *p, double *state, size_t count) {
-    if (!p || !state || count != kSavedDoubles) return STEWART_ERR_ARGUMENT;
-    double *out = state;
-    *out++ = p->time;
-    for (double v : p->y) *out++ = v;
-    for (double v : p->angles) *out++ = v;
-    for (double v : p->force) *out++ = v;
-    *out++ = p->warnings;
-    *out++ = p->step_hint;
+// The saved state: a header (magic, version, size in bytes) then kSavedDoubles doubles.
+constexpr unsigned kStateMagic = 0x53545044u;  // "STPD"
+constexpr unsigned kStateVersion = 1;
+constexpr size_t kStateHeader = 3 * sizeof(unsigned);
+constexpr size_t kStateBytes = kStateHeader + kSavedDoubles * sizeof(double);
+
+void save_doubles(const stewart_plant &p, double *out) {
+    *out++ = p.time;
+    for (double v : p.y) *out++ = v;
+    for (double v : p.angles) *out++ = v;
+    for (double v : p.force) *out++ = v;
+    *out++ = p.warnings;
+    *out++ = p.step_hint;
+}
+
+}  // namespace
+
+extern "C" size_t stewart_plant_state_size(const stewart_plant *p) { return p ? kStateBytes : 0; }
+
+extern "C" stewart_status stewart_plant_save(const stewart_plant *p, void *buffer, size_t size) {
+    if (!p) return STEWART_ERR_ARGUMENT;
+    if (!buffer || size < kStateBytes)
+        return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
+                           "state not saved: a buffer of %zu bytes%s, the state needs %zu", size,
+                           buffer ? "" : " (NULL)", kStateBytes);
+    const unsigned header[3] = {kStateMagic, kStateVersion, static_cast<unsigned>(kStateBytes)};
+    double state[kSavedDoubles];
+    save_doubles(*p, state);
+    unsigned char *out = static_cast<unsigned char *>(buffer);
+    std::memcpy(out, header, sizeof header);
+    std::memcpy(out + kStateHeader, state, sizeof state);
     return STEWART_OK;
 }
 
-extern "C" stewart_status stewart_plant_load(stewart_plant *p, const double *state, size_t count) {
-    if (!p || !state || count != kSavedDoubles) return STEWART_ERR_ARGUMENT;
+extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffer, size_t size) {
+    if (!p) return STEWART_ERR_ARGUMENT;
+    if (!buffer)
+        return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
+    unsigned header[3] = {0, 0, 0};
+    if (size >= kStateHeader) std::memcpy(header, buffer, sizeof header);
+    if (size != kStateBytes || header[0] != kStateMagic || header[1] != kStateVersion ||
+        header[2] != kStateBytes)
+        return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
+                           "not a saved plant state of this version (%zu bytes, magic %#x, "
+                           "version %u; expected %zu bytes, %#x, %u)", size, header[0], header[1],
+                           kStateBytes, kStateMagic, kStateVersion);
+    double state[kSavedDoubles];
+    std::memcpy(state, static_cast<const unsigned char *>(buffer) + kStateHeader, sizeof state);
+    const size_t count = kSavedDoubles;
     for (size_t i = 0; i < count; ++i)
         if (!std::isfinite(state[i]))
             return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
@@ -511,7 +600,7 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const double *sta
     fd::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
     if (!(std::fabs(q_norm - 1) < 1e-9) || !(std::fabs(std::cos(angles[1])) > kMinCosPitch) ||
-        !(warnings == 0 || warnings == STEWART_PLANT_WARN_STROKE) ||
+        !(warnings == 0 || warnings == STEWART_WARN_STROKE) ||
         !(hint == 0 || hint >= kMinStepSize) ||
         !fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,

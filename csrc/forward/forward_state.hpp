@@ -1,0 +1,45 @@
+// Forward kinematics' state: the Newton solver (allocated with the solver object) and the tracking
+// history (the last pose, its rates, the pose before it); and the constants of the model it needs.
+#pragma once
+
+#include <memory>
+
+#include "forward/branch.hpp"
+#include "forward/newton.hpp"
+
+namespace stewart {
+
+struct ForwardState {
+    ForwardState() : newton(new (std::nothrow) ForwardNewton) {}
+    std::unique_ptr<ForwardNewton> newton;  // null or !ok(): forward solves fail as out of memory
+    bool has_pose = false;                  // a last pose to track from
+    bool has_rates = false, has_accels = false;
+    double time = 0;
+    double q[6] = {0}, q_dot[6] = {0}, q_ddot[6] = {0};
+    bool has_previous = false;  // the pose before the last (a secant predictor without rates)
+    double previous_time = 0;
+    double previous_q[6] = {0};
+    Matrix36 points = Matrix36::Zero();  // the last pose's platform points, world (the jump check)
+    // Forgets the history.
+    void reset() { has_pose = has_rates = has_accels = has_previous = false; }
+};
+
+// Of the model, worked out when it is made: the sign of the leg Jacobian's determinant at home
+// (0: singular there, no working assembly mode) and the bounds on pairs of lengths.
+struct ForwardConstants {
+    int working_sign = 0;
+    LengthPairBounds pair_bounds = {};
+};
+
+// The constants of geometry with home height home_height; STEWART_ERR_SINGULAR (message) if the
+// leg Jacobian is singular at home.
+stewart_status forward_constants(const PlatformGeometry &geometry, double home_height,
+                                 ForwardConstants &out, char *msg, size_t size);
+
+// The history as bytes: its size, and save/load (load checks every field; false + message).
+size_t forward_history_size();
+void forward_history_save(const ForwardState &f, unsigned char *buffer);
+bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t size, char *msg,
+                          size_t msg_size);
+
+}  // namespace stewart

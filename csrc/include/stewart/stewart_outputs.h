@@ -1,0 +1,47 @@
+/*
+ * The output tables: one entry per column of a direction's output, in the order of its batch
+ * output struct. Adding an output is its field in the output struct (stewart.h,
+ * stewart_forward.h) and one line here: the batch output struct, the batch's row writer and the
+ * check that the table covers the struct are expanded from these lists.
+ *
+ * STEWART_INVERSE_OUTPUT_TABLE(X) and STEWART_FORWARD_OUTPUT_TABLE(X) call
+ *   X(name, member, count, type, unit, description)
+ * once per column:
+ *   name         the column's name (the batch output field, the Python result's array)
+ *   member       its place in the output struct (stewart_inverse_output, stewart_forward_output)
+ *   count        values per row: 1, 3 (x, y, z), 6 (legs 1..6 or x, y, z, roll, pitch, yaw)
+ *   type         double or int
+ *   unit         SI unit ("1" dimensionless, "" for integers and bit sets)
+ *   description  one sentence
+ */
+#ifndef STEWART_STEWART_OUTPUTS_H
+#define STEWART_STEWART_OUTPUTS_H
+
+#define STEWART_INVERSE_OUTPUT_TABLE(X)                                                          \
+    X(length, lengths.length, 6, double, "m", "Actuator length L_k")                             \
+    X(length_rate, lengths.length_rate, 6, double, "m/s", "dL_k/dt")                             \
+    X(length_accel, lengths.length_accel, 6, double, "m/s2", "d2L_k/dt2")                        \
+    X(force, force, 6, double, "N", "Actuator force F_k, > 0 pushes the platform away")          \
+    X(condition, condition, 1, double, "1", "Leg Jacobian condition number")                     \
+    X(residual, residual, 1, double, "m", "Constraint residual after the solve (full level)")     \
+    X(base_force, base_force, 3, double, "N", "Force the legs put on the base, world frame")     \
+    X(base_torque, base_torque, 3, double, "N.m", "Its torque about the world origin")           \
+    X(iterations, iterations, 1, int, "", "Newton iterations of the position problem")           \
+    X(warnings, warnings, 1, int, "", "STEWART_WARN_* bits")                                     \
+    X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: leg k+1 is outside the stroke")
+
+#define STEWART_FORWARD_OUTPUT_TABLE(X)                                                          \
+    X(pose, pose.q, 6, double, "m, rad", "Pose (x, y, z, roll, pitch, yaw)")                     \
+    X(pose_rate, pose.q_dot, 6, double, "m/s, rad/s", "d/dt of the pose (0 unless rates given)") \
+    X(pose_accel, pose.q_ddot, 6, double, "m/s2, rad/s2",                                        \
+      "d2/dt2 of the pose (0 unless accelerations given)")                                       \
+    X(residual, residual, 1, double, "m", "max |L_k(q) - L_k measured| at the last iterate")     \
+    X(condition, condition, 1, double, "1", "Leg Jacobian condition number")                     \
+    X(jump, jump, 1, double, "m", "Largest platform-point move from the last pose")              \
+    X(iterations, iterations, 1, int, "", "Newton iterations over every start tried")            \
+    X(warnings, warnings, 1, int, "", "STEWART_WARN_* bits")                                     \
+    X(branch, branch, 1, int, "", "STEWART_BRANCH_* bits (why a pose is on another mode)")       \
+    X(start, start, 1, int, "", "STEWART_START_* the pose was reached from")                     \
+    X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: measured length k+1 is outside the stroke")
+
+#endif /* STEWART_STEWART_OUTPUTS_H */

@@ -1,0 +1,205 @@
+// The option tables (stewart/stewart_table.h) expanded: defaults, range checks, lookup and access,
+// one implementation for every direction's options.
+#include "stewart/stewart_table.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <type_traits>
+
+#include "util/message.hpp"
+#include "util/range.hpp"
+
+using stewart::ExactText;
+using stewart::set_message;
+
+namespace {
+
+template <class T> constexpr int is_integer_type() { return std::is_same<T, int>::value ? 1 : 0; }
+
+// Where an option of a table lives in its struct.
+struct Field {
+    size_t offset;
+    int is_integer;
+};
+
+// A table expanded: the options' descriptions and places.
+struct Table {
+    const stewart_option_info *info;
+    const Field *field;
+    int count;
+};
+
+#define INFO(id, name, type, unit, min, min_closed, max, max_closed, fallback, text)             \
+    {id, #name, is_integer_type<type>(), unit, text, min, max, min_closed, max_closed, fallback},
+#define INVERSE_FIELD(id, name, type, ...) {offsetof(stewart_inverse_options, name), is_integer_type<type>()},
+#define FORWARD_FIELD(id, name, type, ...) {offsetof(stewart_forward_options, name), is_integer_type<type>()},
+const stewart_option_info kInverseInfo[] = {STEWART_OPTION_TABLE(INFO)};
+const Field kInverseFields[] = {STEWART_OPTION_TABLE(INVERSE_FIELD)};
+const stewart_option_info kForwardInfo[] = {STEWART_FORWARD_OPTION_TABLE(INFO)};
+const Field kForwardFields[] = {STEWART_FORWARD_OPTION_TABLE(FORWARD_FIELD)};
+#undef INFO
+#undef INVERSE_FIELD
+#undef FORWARD_FIELD
+const Table kInverse = {kInverseInfo, kInverseFields,
+                        static_cast<int>(sizeof kInverseInfo / sizeof kInverseInfo[0])};
+const Table kForward = {kForwardInfo, kForwardFields,
+                        static_cast<int>(sizeof kForwardInfo / sizeof kForwardInfo[0])};
+
+// Each table lists every field of its struct, in order, with its type: a struct laid out from the
+// table is the same struct.
+#define FIELD(id, name, type, ...) type name;
+struct InverseMirror {
+    STEWART_OPTION_TABLE(FIELD)
+};
+struct ForwardMirror {
+    STEWART_FORWARD_OPTION_TABLE(FIELD)
+};
+#undef FIELD
+static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_options),
+              "STEWART_OPTION_TABLE lists every field");
+static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_options),
+              "STEWART_FORWARD_OPTION_TABLE lists every field");
+#define SAME(Options, Mirror, name, type)                                                        \
+    static_assert(offsetof(Mirror, name) == offsetof(Options, name) &&                           \
+                      std::is_same<decltype(Options::name), type>::value,                        \
+                  #name ": place and type as in " #Options);
+#define SAME_INVERSE(id, name, type, ...) SAME(stewart_inverse_options, InverseMirror, name, type)
+#define SAME_FORWARD(id, name, type, ...) SAME(stewart_forward_options, ForwardMirror, name, type)
+STEWART_OPTION_TABLE(SAME_INVERSE)
+STEWART_FORWARD_OPTION_TABLE(SAME_FORWARD)
+#undef SAME_INVERSE
+#undef SAME_FORWARD
+#undef SAME
+
+const stewart_option_info *option(const Table &t, int i) {
+    return i >= 0 && i < t.count ? &t.info[i] : nullptr;
+}
+
+int find(const Table &t, const char *name) {
+    for (int i = 0; name && i < t.count; ++i)
+        if (!std::strcmp(t.info[i].name, name)) return i;
+    return -1;
+}
+
+double get(const Table &t, const void *o, int i) {
+    const char *at = static_cast<const char *>(o) + t.field[i].offset;
+    if (t.field[i].is_integer) {
+        int v;
+        std::memcpy(&v, at, sizeof v);
+        return v;
+    }
+    double v;
+    std::memcpy(&v, at, sizeof v);
+    return v;
+}
+
+void put(const Table &t, void *o, int i, double value) {
+    char *at = static_cast<char *>(o) + t.field[i].offset;
+    if (t.field[i].is_integer) {
+        const int v = static_cast<int>(value);
+        std::memcpy(at, &v, sizeof v);
+    } else {
+        std::memcpy(at, &value, sizeof value);
+    }
+}
+
+// The message for option i's value outside its range. The tolerance's lower end is where the
+// residual floors: its refusal says so.
+stewart_status refuse(const Table &t, int i, double value, char *msg, size_t size) {
+    const stewart_option_info &info = t.info[i];
+    if (!std::strcmp(info.name, "tolerance") && value > 0 && value < info.min)
+        // The full level's max-norm position residual floors at 2.2e-16 (one rounding of
+        // coordinates of order 1, in the platform's length unit): at or below that no pose ever
+        // converges; 2.3e-16 still does, with up to 5 iterations.
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "tolerance = %s is below what the position residual can reach (about "
+                           "2.2e-16, machine precision on the coordinates): use at least %s",
+                           ExactText(value).c_str(), ExactText(info.min).c_str());
+    char range[96];
+    stewart::describe_range(info.min, info.min_closed, info.max, info.max_closed, range, sizeof range);
+    return set_message(msg, size, STEWART_ERR_PARAMETER, "%s = %s must be %s (%s)", info.name,
+                       ExactText(value).c_str(), range, info.description);
+}
+
+stewart_status set(const Table &t, void *o, int i, double value, char *msg, size_t size) {
+    const stewart_option_info *info = option(t, i);
+    if (!o || !info) return set_message(msg, size, STEWART_ERR_ARGUMENT, "no option %d", i);
+    if (!stewart::in_range(value, info->min, info->min_closed, info->max, info->max_closed) ||
+        (info->is_integer && value != std::floor(value))) {
+        char range[96];
+        stewart::describe_range(info->min, info->min_closed, info->max, info->max_closed, range,
+                                sizeof range);
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "%s = %s must be %s%s", info->name,
+                           ExactText(value).c_str(), info->is_integer ? "a whole number " : "",
+                           range);
+    }
+    put(t, o, i, value);
+    return stewart::clear_message(msg, size);
+}
+
+void defaults(const Table &t, void *o) {
+    for (int i = 0; i < t.count; ++i) put(t, o, i, t.info[i].default_value);
+}
+
+// Every option in its range, and warn_condition <= singular_condition.
+stewart_status check(const Table &t, const void *o, double warn_condition,
+                     double singular_condition, char *msg, size_t size) {
+    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
+    for (int i = 0; i < t.count; ++i) {
+        const stewart_option_info &info = t.info[i];
+        const double v = get(t, o, i);
+        if (!stewart::in_range(v, info.min, info.min_closed, info.max, info.max_closed))
+            return refuse(t, i, v, msg, size);
+    }
+    if (!(singular_condition >= warn_condition))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "condition limits warn = %s, singular = %s must satisfy "
+                           "warn_condition <= singular_condition",
+                           ExactText(warn_condition).c_str(), ExactText(singular_condition).c_str());
+    return stewart::clear_message(msg, size);
+}
+
+}  // namespace
+
+extern "C" {
+
+int stewart_inverse_option_count(void) { return kInverse.count; }
+const stewart_option_info *stewart_inverse_option(int i) { return option(kInverse, i); }
+int stewart_inverse_option_find(const char *name) { return find(kInverse, name); }
+double stewart_inverse_option_get(const stewart_inverse_options *o, int i) {
+    return o && option(kInverse, i) ? get(kInverse, o, i) : 0;
+}
+stewart_status stewart_inverse_option_set(stewart_inverse_options *o, int i, double value,
+                                          char *msg, size_t size) {
+    return set(kInverse, o, i, value, msg, size);
+}
+void stewart_inverse_options_default(stewart_inverse_options *o) {
+    if (o) defaults(kInverse, o);
+}
+stewart_status stewart_inverse_options_check(const stewart_inverse_options *o, char *msg,
+                                             size_t size) {
+    return check(kInverse, o, o ? o->warn_condition : 0, o ? o->singular_condition : 0, msg,
+                 size);
+}
+
+int stewart_forward_option_count(void) { return kForward.count; }
+const stewart_option_info *stewart_forward_option(int i) { return option(kForward, i); }
+int stewart_forward_option_find(const char *name) { return find(kForward, name); }
+double stewart_forward_option_get(const stewart_forward_options *o, int i) {
+    return o && option(kForward, i) ? get(kForward, o, i) : 0;
+}
+stewart_status stewart_forward_option_set(stewart_forward_options *o, int i, double value,
+                                          char *msg, size_t size) {
+    return set(kForward, o, i, value, msg, size);
+}
+void stewart_forward_options_default(stewart_forward_options *o) {
+    if (o) defaults(kForward, o);
+}
+stewart_status stewart_forward_options_check(const stewart_forward_options *o, char *msg,
+                                             size_t size) {
+    return check(kForward, o, o ? o->warn_condition : 0, o ? o->singular_condition : 0, msg,
+                 size);
+}
+
+}  // extern "C"
