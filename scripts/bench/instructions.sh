@@ -75,7 +75,7 @@ median_ns() {  # build_dir row
       "$b/fmu_bench" "$b/fmu/StewartPlatform/fmi2/StewartPlatform.so" --fidelity "$fidelity" \
         --step 0.001 --duration "$(echo "$median_calls / 1000" | bc -l)" \
         --pose "0,0.05,3,0.1,0,0.04,2,0.7,0.5,0.03,4,0.3,0,0.10,2.5,1.1,0,0.08,3.5,0.4,0,0.15,1.5,0.9" \
-        | sed -n 's/.*median \([0-9.]*\) us.*/\1/p' | awk '{printf "%.1f", $1 * 1000}' ;;
+        | sed -n 's/.*doStep_us_median=\([0-9.]*\).*/\1/p' | awk '{printf "%.1f", $1 * 1000}' ;;
     *) "$b/bench-calls" "$row" "$median_calls" | sed -n 's/.*median \([0-9.]*\) ns.*/\1/p' ;;
   esac
 }
