@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-debian_packages=(cmake make g++ binutils valgrind libsundials-dev libeigen3-dev python3 python3-venv python3-dev)
+debian_packages=(cmake make g++ binutils valgrind libsundials-dev libeigen3-dev libsuitesparse-dev python3 python3-venv
+                 python3-dev)
 missing=()
 for p in "${debian_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <vector>
 
+#include "bench/combined_cue.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_plant.h"
@@ -21,21 +22,6 @@
 namespace {
 
 constexpr double kStep = 1e-3;  // 1 kHz
-
-// The combined cue: every pose component a sinusoid.
-stewart_pose combined(double t) {
-    static const double mean[6] = {0, 0, 0.5, 0, 0, 0};
-    static const double amp[6] = {0.05, 0.04, 0.03, 0.10, 0.08, 0.15};
-    static const double w[6] = {3.0, 2.0, 4.0, 2.5, 3.5, 1.5};
-    static const double phase[6] = {0.1, 0.7, 0.3, 1.1, 0.4, 0.9};
-    stewart_pose p{};
-    for (int i = 0; i < 6; ++i) {
-        p.q[i] = mean[i] + amp[i] * std::sin(w[i] * t + phase[i]);
-        p.q_dot[i] = amp[i] * w[i] * std::cos(w[i] * t + phase[i]);
-        p.q_ddot[i] = -amp[i] * w[i] * w[i] * std::sin(w[i] * t + phase[i]);
-    }
-    return p;
-}
 
 using Clock = std::chrono::steady_clock;
 
@@ -59,7 +45,7 @@ bool inverse_along_cue(const stewart_model *m, int fidelity, int calls,
     out.resize(calls + 1);
     bool ok = d != nullptr;
     for (int i = 0; i <= calls && ok; ++i) {
-        const stewart_pose p = combined(i * kStep);
+        const stewart_pose p = combined_cue(i * kStep);
         ok = stewart_solve(m, d, &o, &p, &out[i]) == STEWART_OK;
     }
     if (force_rate && ok) {
@@ -81,7 +67,7 @@ double run_inverse(const stewart_model *m, int fidelity, int calls) {
     stewart_options_default(&o);
     o.fidelity = static_cast<stewart_fidelity>(fidelity);
     std::vector<stewart_pose> poses(calls);
-    for (int i = 0; i < calls; ++i) poses[i] = combined(i * kStep);
+    for (int i = 0; i < calls; ++i) poses[i] = combined_cue(i * kStep);
     std::vector<double> ns(calls);
     stewart_output out;
     for (int i = 0; i < calls; ++i) {
@@ -103,7 +89,7 @@ double run_forward(const stewart_model *m, int calls) {
     io.fidelity = STEWART_KINEMATIC;
     legs.resize(calls);
     for (int i = 0; i < calls; ++i) {
-        const stewart_pose p = combined(i * kStep);
+        const stewart_pose p = combined_cue(i * kStep);
         if (stewart_solve(m, inverse, &io, &p, &legs[i]) != STEWART_OK) return -1;
     }
     stewart_forward_options o;
@@ -133,7 +119,7 @@ double run_plant(const stewart_model *m, int fidelity, int calls) {
     char msg[STEWART_MESSAGE_SIZE];
     stewart_plant *plant = stewart_plant_create(m, &o, msg, sizeof msg);
     if (!plant) return -1;
-    const stewart_pose start = combined(0);
+    const stewart_pose start = combined_cue(0);
     stewart_plant_set_state(plant, 0, start.q, start.q_dot);
     std::vector<double> ns(calls);
     for (int i = 0; i < calls; ++i) {

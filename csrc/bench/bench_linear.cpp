@@ -25,6 +25,7 @@
 #include <cstring>
 #include <vector>
 
+#include "bench/combined_cue.hpp"
 #include "core/assembly.hpp"
 #include "core/dynamics.hpp"
 #include "core/linear_solver.hpp"
@@ -39,20 +40,6 @@ namespace {
 struct Sample {
     std::vector<double> values, g;
 };
-
-stewart_pose combined(double t) {
-    static const double mean[6] = {0, 0, 0.5, 0, 0, 0};
-    static const double amp[6] = {0.05, 0.04, 0.03, 0.10, 0.08, 0.15};
-    static const double w[6] = {3.0, 2.0, 4.0, 2.5, 3.5, 1.5};
-    static const double phase[6] = {0.1, 0.7, 0.3, 1.1, 0.4, 0.9};
-    stewart_pose p{};
-    for (int i = 0; i < 6; ++i) {
-        p.q[i] = mean[i] + amp[i] * std::sin(w[i] * t + phase[i]);
-        p.q_dot[i] = amp[i] * w[i] * std::cos(w[i] * t + phase[i]);
-        p.q_ddot[i] = -amp[i] * w[i] * w[i] * std::sin(w[i] * t + phase[i]);
-    }
-    return p;
-}
 
 // Every variant: set up once on the mechanism, then factor + transposed solve per sample.
 struct Variants {
@@ -221,7 +208,7 @@ int main(int argc, char **argv) {
         stewart_options_default(&o);
         o.fidelity = STEWART_FULL;
         for (size_t i = 0; i < samples.size(); ++i) {
-            const stewart::RigidMotion motion = stewart::rigid_motion(combined(1e-3 * i));
+            const stewart::RigidMotion motion = stewart::rigid_motion(combined_cue(1e-3 * i));
             stewart::LegKinematics legs;
             stewart::leg_kinematics(model->geometry, motion, legs, msg, sizeof msg);
             stewart_output out{};

@@ -40,8 +40,8 @@ void store_pose(double q[7], const Vec3 &r, const Vec4 &p) {
     for (int c = 0; c < 4; ++c) q[3 + c] = p[c];
 }
 
-// A body's pose, and (when given) its velocity and acceleration from the world angular ones:
-// p_dot = E^T w / 2, p_ddot = E^T alpha / 2 - |p_dot|^2 p.
+// A body's position, rotation, velocity, acceleration and world angular velocity and
+// acceleration, as the closed form gives them (put_body_motion turns them into coordinates).
 struct BodyMotion {
     Vec3 r, v, a;
     Eigen::Matrix3d A;
@@ -55,6 +55,7 @@ void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) 
     store_pose(q, r, s.has_history ? same_side(p, mbs::body_p(s.q.data(), body)) : p);
 }
 
+// q, q_dot, q_ddot of a body: p_dot = E^T w / 2, p_ddot = E^T alpha / 2 - |p_dot|^2 p.
 void put_body_motion(mbs::State &s, int body, const BodyMotion &b) {
     put_body(s, body, b.r, b.A);
     const double *p = mbs::body_p(s.q.data(), body);
@@ -203,15 +204,6 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
     }
     if (!mbs::finalize(m, msg, size)) return nullptr;
     return model;
-}
-
-void full_initial_guess(const FullLayout &l, const RigidMotion &motion, mbs::State &s) {
-    const Placement pl = place(l, motion.position, motion.rotation);
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        put_body(s, l.cylinder[k], pl.r_cylinder[k], pl.A_cylinder[k]);
-        put_body(s, l.piston[k], pl.r_piston[k], pl.A_piston[k]);
-    }
-    put_body(s, l.platform, pl.r_platform, pl.A_platform);
 }
 
 void full_motion(const FullLayout &l, const RigidMotion &mo, mbs::State &s) {

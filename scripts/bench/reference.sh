@@ -23,7 +23,7 @@ nice -n 10 cmake --build "$ref/build" -j2 --target "${targets[@]}" >&2
 if grep -q bench-calls "$ref/csrc/CMakeLists.txt"; then
   nice -n 10 cmake --build "$ref/build" -j2 --target bench-calls >&2
 else
-  nice -n 10 g++ -O2 -std=c++17 -I"$ref/csrc/include" -I"$ref/csrc/core/include" \
+  nice -n 10 g++ -O2 -std=c++17 -I"$repo/csrc" -I"$ref/csrc/include" -I"$ref/csrc/core/include" \
     "$repo/csrc/bench/bench_calls.cpp" -o "$ref/build/bench-calls" \
     "$ref/build/csrc/libstewart.a" "$ref/build/csrc/core/libmbs.a" \
     -l:libsundials_arkode.a -l:libsundials_cvode.a -l:libsundials_kinsol.a \
