@@ -3,7 +3,8 @@
 # (instructions.sh, compare_outputs.sh): a detached `git worktree` of COMMIT in
 # .cache/reference-COMMIT, configured like scripts/build.sh (Release, this tree's .venv and Unity
 # wheel), with only the targets those scripts run. Prints the reference tree's path.
-# usage: scripts/bench/reference.sh [COMMIT]   (default 171f04e: main before issue 22)
+# usage: [HARNESS_COMMIT=C] scripts/bench/reference.sh [COMMIT]   (default 171f04e: main before
+# issue 22)
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 commit="${1:-171f04e}"
@@ -18,13 +19,20 @@ if [ ! -f "$ref/build/CMakeCache.txt" ]; then
     -DPython3_EXECUTABLE="$repo/.venv/bin/python" -DUNITY_WHEEL_DIR="$repo/.cache/wheels" >&2
 fi
 nice -n 10 cmake --build "$ref/build" -j2 --target "${targets[@]}" >&2
-# The call harness: the reference's own if it has one, else this tree's compiled against the
-# reference's headers and libraries (same public API as long as the two trees share it).
+# The call harness: the reference's own if it has one, else this repository's from commit
+# HARNESS_COMMIT (default HEAD) compiled against the reference's headers and libraries. Once the
+# public API is renamed, set HARNESS_COMMIT to a commit from before the rename (whose harness
+# speaks the reference's API).
 if grep -q bench-calls "$ref/csrc/CMakeLists.txt"; then
   nice -n 10 cmake --build "$ref/build" -j2 --target bench-calls >&2
 else
-  nice -n 10 g++ -O2 -std=c++17 -I"$repo/csrc" -I"$ref/csrc/include" -I"$ref/csrc/core/include" \
-    "$repo/csrc/bench/bench_calls.cpp" -o "$ref/build/bench-calls" \
+  harness="$ref/build/harness"
+  mkdir -p "$harness/bench"
+  for f in bench_calls.cpp combined_cue.hpp; do
+    git -C "$repo" show "${HARNESS_COMMIT:-HEAD}:csrc/bench/$f" > "$harness/bench/$f"
+  done
+  nice -n 10 g++ -O2 -std=c++17 -I"$harness" -I"$ref/csrc/include" -I"$ref/csrc/core/include" \
+    "$harness/bench/bench_calls.cpp" -o "$ref/build/bench-calls" \
     "$ref/build/csrc/libstewart.a" "$ref/build/csrc/core/libmbs.a" \
     -l:libsundials_arkode.a -l:libsundials_cvode.a -l:libsundials_kinsol.a \
     -l:libsundials_nvecserial.a -l:libsundials_sunlinsoldense.a -l:libsundials_sunmatrixdense.a \
