@@ -43,110 +43,140 @@ void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::ve
 
 }  // namespace
 
-std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
-    auto plan = std::make_shared<BlockPlan>();
-    BlockPlan &p = *plan;
-    const int nbodies = static_cast<int>(m.bodies.size());
-    fixed_body_rows(m, p.fixed_rows, p.fixed_cols);
+namespace {
 
-    // Hubs: free bodies joined to three or more other free bodies.
-    std::vector<std::set<int>> neighbours(nbodies);
+// What the planning stages share: the plan being built and the maps from bodies and rows to it.
+struct Planning {
+    const Mechanism &m;
+    BlockPlan &p;
+    std::vector<std::set<int>> neighbours;  // per body: the free bodies joined to it
+    std::vector<int> border_index;          // per body: its index among the hubs, else -1
+    std::vector<int> group_of;              // per body: its group, else -1
+    std::vector<int> row_group;             // per row: its group, -1 border row, -2 fixed body
+    int leftover = 0;                       // rows of the groups beyond their unknowns
+};
+
+// Stage 1, the border: free bodies joined to three or more other free bodies (hubs). False if
+// there is none (no bordered structure).
+bool find_border(Planning &pl) {
+    const Mechanism &m = pl.m;
+    const int nbodies = static_cast<int>(m.bodies.size());
+    pl.neighbours.assign(nbodies, {});
     for (const JointDef &j : m.joints)
         if (j.body_j >= 0 && !m.bodies[j.body_i].fixed && !m.bodies[j.body_j].fixed) {
-            neighbours[j.body_i].insert(j.body_j);
-            neighbours[j.body_j].insert(j.body_i);
+            pl.neighbours[j.body_i].insert(j.body_j);
+            pl.neighbours[j.body_j].insert(j.body_i);
         }
-    std::vector<int> border_index(nbodies, -1), group_of(nbodies, -1);
+    pl.border_index.assign(nbodies, -1);
     for (int b = 0; b < nbodies; ++b)
-        if (!m.bodies[b].fixed && neighbours[b].size() >= 3) {
-            border_index[b] = static_cast<int>(p.border_cols.size()) / MBS_BODY_COORDINATES;
-            for (int c = 0; c < MBS_BODY_COORDINATES; ++c) p.border_cols.push_back(body_column(b, c));
+        if (!m.bodies[b].fixed && pl.neighbours[b].size() >= 3) {
+            pl.border_index[b] = static_cast<int>(pl.p.border_cols.size()) / MBS_BODY_COORDINATES;
+            for (int c = 0; c < MBS_BODY_COORDINATES; ++c)
+                pl.p.border_cols.push_back(body_column(b, c));
         }
-    p.border = static_cast<int>(p.border_cols.size());
-    if (p.border == 0) return nullptr;
+    pl.p.border = static_cast<int>(pl.p.border_cols.size());
+    return pl.p.border > 0;
+}
 
-    // Groups: connected components of the other free bodies.
+// Stage 2, the groups: connected components of the free bodies off the border.
+void find_groups(Planning &pl) {
+    const Mechanism &m = pl.m;
+    BlockPlan &p = pl.p;
+    const int nbodies = static_cast<int>(m.bodies.size());
+    pl.group_of.assign(nbodies, -1);
     for (int b = 0; b < nbodies; ++b) {
-        if (m.bodies[b].fixed || border_index[b] >= 0 || group_of[b] >= 0) continue;
+        if (m.bodies[b].fixed || pl.border_index[b] >= 0 || pl.group_of[b] >= 0) continue;
         const int g = static_cast<int>(p.groups.size());
         p.groups.emplace_back();
         std::vector<int> stack{b};
-        group_of[b] = g;
+        pl.group_of[b] = g;
         while (!stack.empty()) {
             const int u = stack.back();
             stack.pop_back();
             for (int c = 0; c < MBS_BODY_COORDINATES; ++c) p.groups[g].cols.push_back(body_column(u, c));
-            for (int v : neighbours[u])
-                if (border_index[v] < 0 && group_of[v] < 0) {
-                    group_of[v] = g;
+            for (int v : pl.neighbours[u])
+                if (pl.border_index[v] < 0 && pl.group_of[v] < 0) {
+                    pl.group_of[v] = g;
                     stack.push_back(v);
                 }
         }
     }
+}
 
-    // Each equation goes to the group whose bodies it touches, else to the border.
-    std::vector<int> row_group(m.equations, -2);  // -2 fixed-body row, -1 border row
+// Stage 3, the rows: each equation goes to the group whose bodies it touches, else to the border.
+// False unless every group has at least as many rows as unknowns and its extra rows together
+// with the border rows make a square border system.
+bool assign_rows(Planning &pl) {
+    const Mechanism &m = pl.m;
+    BlockPlan &p = pl.p;
+    pl.row_group.assign(m.equations, -2);
     for (size_t k = 0; k < m.joints.size(); ++k) {
         const JointDef &j = m.joints[k];
         if (j.type == JointType::FixedBody) continue;
         int g = -1;
         for (int b : {j.body_i, j.body_j})
-            if (b >= 0 && group_of[b] >= 0) g = group_of[b];
+            if (b >= 0 && pl.group_of[b] >= 0) g = pl.group_of[b];
         const int n = joint_type(j.type).equations;
         for (int r = 0; r < n; ++r) {
             const int row = m.first_row[k] + r;
-            row_group[row] = g;
+            pl.row_group[row] = g;
             if (g >= 0)
                 p.groups[g].rows.push_back(row);
             else
                 p.border_rows.push_back(row);
         }
     }
-    int leftover = 0;
+    pl.leftover = 0;
     for (BlockGroup &g : p.groups) {
-        if (g.rows.size() < g.cols.size()) return nullptr;
-        g.first_leftover = leftover;
-        leftover += static_cast<int>(g.rows.size() - g.cols.size());
+        if (g.rows.size() < g.cols.size()) return false;
+        g.first_leftover = pl.leftover;
+        pl.leftover += static_cast<int>(g.rows.size() - g.cols.size());
     }
-    if (leftover + static_cast<int>(p.border_rows.size()) != p.border) return nullptr;
+    return pl.leftover + static_cast<int>(p.border_rows.size()) == p.border;
+}
 
-    // Pivot order and elimination program of each group, from sample values.
+// Stage 4, the pivot order and elimination program of each group, from sample values.
+void choose_group_orders(Planning &pl) {
+    const Mechanism &m = pl.m;
+    BlockPlan &p = pl.p;
     std::vector<double> reference;
-    std::vector<char> structural;
-    sample_jacobian(m, reference, structural);
-    p.structural = structural;
-    {
-        std::vector<int> row_local(m.equations, -1), col_local(m.coordinates, -1);
-        for (int c = 0; c < p.border; ++c) col_local[p.border_cols[c]] = c;  // + n below
-        for (BlockGroup &g : p.groups) {
-            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            const int width = ng + p.border;
-            std::vector<double> a(mg * width, 0.0);
-            std::vector<char> nz(mg * width, 0);
-            for (int r = 0; r < mg; ++r) row_local[g.rows[r]] = r;
-            std::vector<int> group_col(m.coordinates, -1);
-            for (int c = 0; c < ng; ++c) group_col[g.cols[c]] = c;
-            for (int t = 0; t < m.values(); ++t) {
-                const int row = m.pattern_row[t], col = m.pattern_col[t];
-                if (row_group[row] != &g - p.groups.data()) continue;
-                const int c = group_col[col] >= 0 ? group_col[col]
-                              : col_local[col] >= 0 ? ng + col_local[col] : -1;
-                if (c < 0) continue;  // a fixed body's column
-                a[row_local[row] * width + c] = reference[t];
-                nz[row_local[row] * width + c] = structural[t];
-            }
-            const std::vector<int> order = choose_pivot_order(a, nz, mg, ng, width, g.program);
-            g.has_program = !order.empty();
-            g.structure = nz;
-            if (g.has_program) {
-                std::vector<int> rows(mg);
-                for (int r = 0; r < mg; ++r) rows[r] = g.rows[order[r]];
-                g.rows = rows;
-            }
+    sample_jacobian(m, reference, p.structural);
+    std::vector<int> row_local(m.equations, -1), col_local(m.coordinates, -1);
+    for (int c = 0; c < p.border; ++c) col_local[p.border_cols[c]] = c;  // + n below
+    for (BlockGroup &g : p.groups) {
+        const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+        const int width = ng + p.border;
+        std::vector<double> a(mg * width, 0.0);
+        std::vector<char> nz(mg * width, 0);
+        for (int r = 0; r < mg; ++r) row_local[g.rows[r]] = r;
+        std::vector<int> group_col(m.coordinates, -1);
+        for (int c = 0; c < ng; ++c) group_col[g.cols[c]] = c;
+        for (int t = 0; t < m.values(); ++t) {
+            const int row = m.pattern_row[t], col = m.pattern_col[t];
+            if (pl.row_group[row] != &g - p.groups.data()) continue;
+            const int c = group_col[col] >= 0 ? group_col[col]
+                          : col_local[col] >= 0 ? ng + col_local[col] : -1;
+            if (c < 0) continue;  // a fixed body's column
+            a[row_local[row] * width + c] = reference[t];
+            nz[row_local[row] * width + c] = p.structural[t];
+        }
+        const std::vector<int> order = choose_pivot_order(a, nz, mg, ng, width, g.program);
+        g.has_program = !order.empty();
+        g.structure = nz;
+        if (g.has_program) {
+            std::vector<int> rows(mg);
+            for (int r = 0; r < mg; ++r) rows[r] = g.rows[order[r]];
+            g.rows = rows;
         }
     }
+}
 
-    // Workspace layout and where each Jacobian value lands.
+// Stage 5, the workspace: each group's block, then the border system, and where each Jacobian
+// value lands (value_dest; fixed columns become coupling entries). False if a value falls
+// outside the blocks.
+bool lay_out_workspace(Planning &pl) {
+    const Mechanism &m = pl.m;
+    BlockPlan &p = pl.p;
     for (BlockGroup &g : p.groups) {
         g.offset = p.workspace;
         g.pivot_offset = p.pivots;
@@ -162,12 +192,12 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
         for (size_t c = 0; c < g.cols.size(); ++c) local_col[g.cols[c]] = static_cast<int>(c);
     }
     for (size_t r = 0; r < p.border_rows.size(); ++r)
-        local_row[p.border_rows[r]] = leftover + static_cast<int>(r);
+        local_row[p.border_rows[r]] = pl.leftover + static_cast<int>(r);
     for (int c = 0; c < p.border; ++c) border_col[p.border_cols[c]] = c;
     for (int c : p.fixed_cols) fixed_col[c] = 1;
     for (int t = 0; t < m.values(); ++t) {
         const int row = m.pattern_row[t], col = m.pattern_col[t];
-        const int g = row_group[row];
+        const int g = pl.row_group[row];
         int dest = -1;
         if (g == -2) {
             dest = -1;  // identity rows of fixed bodies are known
@@ -178,18 +208,23 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
         } else if (g >= 0) {
             const BlockGroup &grp = p.groups[g];
             const int n = static_cast<int>(grp.cols.size());
-            const int c = (group_of[col / 7] == g) ? local_col[col] : n + border_col[col];
-            if (c < 0) return nullptr;
+            const int c = (pl.group_of[col / 7] == g) ? local_col[col] : n + border_col[col];
+            if (c < 0) return false;
             dest = grp.offset + local_row[row] * (n + p.border) + c;
             p.groups[g].value_index.push_back(t);
             p.groups[g].value_dest.push_back(dest);
         } else {
-            if (border_col[col] < 0) return nullptr;
+            if (border_col[col] < 0) return false;
             dest = p.border_offset + local_row[row] * p.border + border_col[col];
         }
         p.value_dest.push_back(dest);
     }
-    // Fill positions: zeroed before each refactorisation (nothing else is ever written there).
+    return true;
+}
+
+// Stage 6, the fill: positions a group's program writes but no value lands on, zeroed before
+// each refactorisation (nothing else is ever written there).
+void find_fill(BlockPlan &p) {
     for (BlockGroup &g : p.groups) {
         if (!g.has_program) continue;
         const int width = static_cast<int>(g.cols.size()) + p.border;
@@ -199,6 +234,20 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
         for (size_t i = 0; i < scattered.size(); ++i)
             if (g.structure[i] && !scattered[i]) g.fill.push_back(g.offset + static_cast<int>(i));
     }
+}
+
+}  // namespace
+
+std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
+    auto plan = std::make_shared<BlockPlan>();
+    Planning pl{m, *plan, {}, {}, {}, {}, 0};
+    fixed_body_rows(m, plan->fixed_rows, plan->fixed_cols);
+    if (!find_border(pl)) return nullptr;
+    find_groups(pl);
+    if (!assign_rows(pl)) return nullptr;
+    choose_group_orders(pl);
+    if (!lay_out_workspace(pl)) return nullptr;
+    find_fill(*plan);
     return plan;
 }
 

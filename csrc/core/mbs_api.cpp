@@ -131,19 +131,11 @@ mbs_status mbs_model_finalize(mbs_model *m, char *message, size_t size) {
 
 int mbs_coordinate_count(const mbs_model *m) { return m ? m->mechanism.coordinates : 0; }
 int mbs_equation_count(const mbs_model *m) { return m ? m->mechanism.equations : 0; }
-int mbs_body_count(const mbs_model *m) {
-    return m ? static_cast<int>(m->mechanism.bodies.size()) : 0;
-}
 int mbs_joint_first_row(const mbs_model *m, int joint) {
     if (!m || !m->mechanism.finalized || joint < 0 ||
         joint >= static_cast<int>(m->mechanism.joints.size()))
         return MBS_ERR_ARGUMENT;
     return m->mechanism.first_row[joint];
-}
-int mbs_joint_equations(const mbs_model *m, int joint) {
-    if (!m || joint < 0 || joint >= static_cast<int>(m->mechanism.joints.size()))
-        return MBS_ERR_ARGUMENT;
-    return mbs::joint_type(m->mechanism.joints[joint].type).equations;
 }
 
 mbs_data *mbs_data_create(const mbs_model *m, mbs_linear_solver kind) {
@@ -166,10 +158,6 @@ mbs_status mbs_data_copy(mbs_data *dst, const mbs_data *src) {
     return MBS_OK;
 }
 
-void mbs_data_reset(mbs_data *d) {
-    if (d) mbs::reset_history(d->state);
-}
-
 const char *mbs_data_message(const mbs_data *d) { return d ? d->state.message : "data is NULL"; }
 
 mbs_status mbs_set_driver(mbs_data *d, int driver, double value, double rate, double accel) {
@@ -184,19 +172,6 @@ mbs_status mbs_set_driver(mbs_data *d, int driver, double value, double rate, do
                            "driver %d value, rate, accel = %g, %g, %g must be finite", driver,
                            value, rate, accel);
     s.drive[driver] = mbs::DriverValue{value, rate, accel};
-    return MBS_OK;
-}
-
-mbs_status mbs_set_coordinates(mbs_data *d, const double *q) {
-    if (!d || !q) return MBS_ERR_ARGUMENT;
-    mbs::State &s = d->state;
-    for (size_t i = 0; i < s.q.size(); ++i)
-        if (!std::isfinite(q[i]))
-            return set_message(s.message, sizeof s.message, MBS_ERR_ARGUMENT,
-                               "q[%zu] = %g must be finite", i, q[i]);
-    std::copy(q, q + s.q.size(), s.q.begin());
-    s.has_history = false;
-    s.factor_current = false;
     return MBS_OK;
 }
 

@@ -14,6 +14,7 @@
 #include "core/assembly.hpp"
 #include "core/kinsol_custom.hpp"
 #include "core/message.hpp"
+#include "core/sundials_holder.hpp"
 
 using mbs::set_message;
 
@@ -22,12 +23,12 @@ namespace mbs {
 struct PositionSolver::Impl {
     State &state;
     bool dense = false;
-    SUNContext context = nullptr;
-    N_Vector u = nullptr, scale = nullptr, work = nullptr;
-    N_Vector scale_work() { return work; }
-    SUNMatrix matrix = nullptr;
-    SUNLinearSolver linear = nullptr;
-    void *kinsol = nullptr;
+    // Freed in reverse order: KINSOL first, the context last.
+    sundials::Context context;
+    sundials::Vector u, scale, work;
+    sundials::Matrix matrix;
+    sundials::LinearSolver linear;
+    sundials::Memory<KINFree> kinsol;
     char kinsol_message[MBS_MESSAGE_SIZE] = "";
     double last_residual = 0;  // max-norm of the last residual evaluated (INFINITY if not finite)
     bool values_at_guess = false;  // state.values hold Phi_q at state.q (the initial guess)
@@ -101,42 +102,48 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
     im.dense = options.kinsol_dense;
     char *msg = state.message;
     const size_t size = sizeof state.message;
-    if (SUNContext_Create(nullptr, &im.context) != 0) {
+    im.context = sundials::make_context();
+    if (!im.context) {
         set_message(msg, size, MBS_ERR_MEMORY, "SUNContext_Create failed");
         return;
     }
-    im.u = N_VNew_Serial(n, im.context);
-    im.scale = N_VNew_Serial(n, im.context);
-    im.work = N_VNew_Serial(n, im.context);
+    SUNContext context = im.context.get();
+    im.u.reset(N_VNew_Serial(n, context));
+    im.scale.reset(N_VNew_Serial(n, context));
+    im.work.reset(N_VNew_Serial(n, context));
     if (!im.u || !im.scale || !im.work) {
         set_message(msg, size, MBS_ERR_MEMORY, "N_VNew_Serial(%ld) failed", (long)n);
         return;
     }
-    N_VConst(1.0, im.scale);
+    N_VConst(1.0, im.scale.get());
     if (im.dense) {
-        im.matrix = SUNDenseMatrix(n, n, im.context);
-        im.linear = im.matrix ? SUNLinSol_Dense(im.u, im.matrix, im.context) : nullptr;
+        im.matrix.reset(SUNDenseMatrix(n, n, context));
+        if (im.matrix) im.linear.reset(SUNLinSol_Dense(im.u.get(), im.matrix.get(), context));
     } else {
-        mbs::make_custom_linear_solver(im.context, &im, solver_setup, solver_solve, im.matrix,
-                                       im.linear);
+        SUNMatrix matrix = nullptr;
+        SUNLinearSolver linear = nullptr;
+        mbs::make_custom_linear_solver(context, &im, solver_setup, solver_solve, matrix, linear);
+        im.matrix.reset(matrix);
+        im.linear.reset(linear);
     }
     if (!im.matrix || !im.linear) {
         set_message(msg, size, MBS_ERR_MEMORY, "could not create the KINSOL linear solver");
         return;
     }
-    im.kinsol = KINCreate(im.context);
+    im.kinsol.reset(KINCreate(context));
     if (!im.kinsol) {
         set_message(msg, size, MBS_ERR_MEMORY, "KINCreate failed");
         return;
     }
+    void *kinsol = im.kinsol.get();
     int flag;
-    if ((flag = KINSetErrHandlerFn(im.kinsol, keep_kinsol_message, im.kinsol_message)) !=
+    if ((flag = KINSetErrHandlerFn(kinsol, keep_kinsol_message, im.kinsol_message)) !=
             KIN_SUCCESS ||
-        (flag = KINInit(im.kinsol, residual, im.u)) != KIN_SUCCESS ||
-        (flag = KINSetUserData(im.kinsol, &im)) != KIN_SUCCESS ||
-        (flag = KINSetLinearSolver(im.kinsol, im.linear, im.matrix)) != KINLS_SUCCESS ||
-        (flag = KINSetJacFn(im.kinsol, jacobian)) != KINLS_SUCCESS ||
-        (flag = KINSetScaledStepTol(im.kinsol, 1e-300)) != KIN_SUCCESS) {
+        (flag = KINInit(kinsol, residual, im.u.get())) != KIN_SUCCESS ||
+        (flag = KINSetUserData(kinsol, &im)) != KIN_SUCCESS ||
+        (flag = KINSetLinearSolver(kinsol, im.linear.get(), im.matrix.get())) != KINLS_SUCCESS ||
+        (flag = KINSetJacFn(kinsol, jacobian)) != KINLS_SUCCESS ||
+        (flag = KINSetScaledStepTol(kinsol, 1e-300)) != KIN_SUCCESS) {
         set_message(msg, size, MBS_ERR_MEMORY, "KINSOL setup failed with flag %d: %s", flag,
                     im.kinsol_message);
         return;
@@ -144,17 +151,7 @@ PositionSolver::PositionSolver(State &state, const SolverOptions &options)
     ok_ = true;
 }
 
-PositionSolver::~PositionSolver() {
-    Impl &im = *impl_;
-    if (im.kinsol) KINFree(&im.kinsol);
-    if (im.linear) SUNLinSolFree(im.linear);
-    if (im.matrix) SUNMatDestroy(im.matrix);
-    if (im.u) N_VDestroy(im.u);
-    if (im.scale) N_VDestroy(im.scale);
-    if (im.work) N_VDestroy(im.work);
-    if (im.context) SUNContext_Free(&im.context);
-    delete impl_;
-}
+PositionSolver::~PositionSolver() { delete impl_; }
 
 mbs_status PositionSolver::solve(const SolverOptions &o) {
     Impl &im = *impl_;
@@ -163,36 +160,37 @@ mbs_status PositionSolver::solve(const SolverOptions &o) {
     const size_t size = sizeof s.message;
     const int n = s.mechanism.equations;
     int flag;
-    if ((flag = KINSetFuncNormTol(im.kinsol, o.tolerance)) != KIN_SUCCESS ||
-        (flag = KINSetNumMaxIters(im.kinsol, o.max_iterations)) != KIN_SUCCESS ||
-        (flag = KINSetMaxSetupCalls(im.kinsol, o.modified_newton ? 10 : 1)) != KIN_SUCCESS)
+    void *kinsol = im.kinsol.get();
+    if ((flag = KINSetFuncNormTol(kinsol, o.tolerance)) != KIN_SUCCESS ||
+        (flag = KINSetNumMaxIters(kinsol, o.max_iterations)) != KIN_SUCCESS ||
+        (flag = KINSetMaxSetupCalls(kinsol, o.modified_newton ? 10 : 1)) != KIN_SUCCESS)
         return set_message(msg, size, MBS_ERR_PARAMETER,
                            "KINSOL rejected the options (flag %d): tolerance = %g, "
                            "max_iterations = %d: %s",
                            flag, o.tolerance, o.max_iterations, im.kinsol_message);
-    double *u = N_VGetArrayPointer(im.u);
+    double *u = N_VGetArrayPointer(im.u.get());
     std::copy(s.q.begin(), s.q.end(), u);
     // KINSOL's own first test (initial guess accepted if ||F|| <= 0.01 tolerance), done here so
     // a step that needs no iteration does not pay for KINSOL's set-up.
     // The Jacobian comes along (it shares most of the work): if the guess is accepted it is the
     // one velocities, accelerations and multipliers need.
-    assemble_residual_and_jacobian(s.mechanism, u, s.drive.data(), N_VGetArrayPointer(im.work),
-                                   s.values.data());
-    im.last_residual = max_norm(N_VGetArrayPointer(im.work), n);
+    assemble_residual_and_jacobian(s.mechanism, u, s.drive.data(),
+                                   N_VGetArrayPointer(im.work.get()), s.values.data());
+    im.last_residual = max_norm(N_VGetArrayPointer(im.work.get()), n);
     s.values_current = true;
     long iterations = 0;
     if (!(im.last_residual <= 0.01 * o.tolerance)) {
         im.kinsol_message[0] = '\0';
         s.values_current = false;
         im.values_at_guess = true;
-        flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
-        const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        flag = KINSol(kinsol, im.u.get(), KIN_NONE, im.scale.get(), im.scale.get());
+        const int stats_flag = KINGetNumNonlinSolvIters(kinsol, &iterations);
         if (stats_flag != KIN_SUCCESS)
             return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                                "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // With no line search every evaluated iterate is accepted: the last residual is the
         // final one's. A failure may have stopped elsewhere, so recompute then.
-        if (flag < 0) residual(im.u, im.scale_work(), &im);
+        if (flag < 0) residual(im.u.get(), im.work.get(), &im);
     } else {
         flag = KIN_INITIAL_GUESS_OK;
     }

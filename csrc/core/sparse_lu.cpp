@@ -1,5 +1,6 @@
 #include "core/sparse_lu.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <utility>
@@ -61,6 +62,9 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
         int s = p.right_start[k];
         while (s < p.right_start[k + 1] && p.right[s] < n) ++s;
         p.right_carried.push_back(s);
+        const bool any = p.right_start[k] < p.right_start[k + 1];
+        p.span_begin.push_back(any ? p.right[p.right_start[k]] : k + 1);
+        p.span_end.push_back(any ? p.right[p.right_start[k + 1] - 1] + 1 : k + 1);
     }
     std::vector<int> position(m);
     for (int r = 0; r < m; ++r) position[order[r]] = r;
@@ -70,25 +74,25 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
 
 bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
     const int w = p.width;
-    const int *below = p.below.data(), *right = p.right.data();
+    const int *below = p.below.data();
     // |pivot| >= threshold * |a(i, k)| for every i below is |l_i| <= 1 / threshold: checked on
     // the multipliers as they are made (a failed block is re-scattered by the caller).
     const double limit = 1.0 / kRuntimeThreshold;
     for (int k = 0; k < p.n; ++k) {
-        const double *row_k = a + k * w;
+        const double *__restrict row_k = a + k * w;
         const double pivot = row_k[k];
         if (pivot == 0.0) return false;
         const double inv = 1.0 / pivot;
         inv_diag[k] = inv;
-        const int r0 = p.right_start[k], r1 = p.right_start[k + 1];
+        const int c0 = p.span_begin[k], c1 = p.span_end[k];
         double largest = 0;
         for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
-            double *row_i = a + below[t] * w;
+            double *__restrict row_i = a + below[t] * w;
             const double l = row_i[k] * inv;
             row_i[k] = l;
             const double size = std::fabs(l);
             if (size > largest) largest = size;
-            for (int s = r0; s < r1; ++s) row_i[right[s]] -= l * row_k[right[s]];
+            for (int c = c0; c < c1; ++c) row_i[c] -= l * row_k[c];
         }
         if (!(largest <= limit)) return false;
     }
@@ -106,14 +110,14 @@ void lu_forward_static(const double *a, const EliminationProgram &p, double *t) 
 
 void lu_backward_static(const double *a, const EliminationProgram &p, const double *inv_diag,
                         const double *t, const double *y, double *x) {
-    for (int k = p.n - 1; k >= 0; --k) {
+    const int n = p.n;
+    for (int k = n - 1; k >= 0; --k) {
         const double *row = a + k * p.width;
         double sum = t[k];
-        const int split = p.right_carried[k];
-        for (int s = p.right_start[k]; s < split; ++s) sum -= row[p.right[s]] * x[p.right[s]];
+        const int c0 = p.span_begin[k], c1 = p.span_end[k];
+        for (int c = c0; c < std::min(c1, n); ++c) sum -= row[c] * x[c];
         if (y)
-            for (int s = split; s < p.right_start[k + 1]; ++s)
-                sum -= row[p.right[s]] * y[p.right[s] - p.n];
+            for (int c = std::max(c0, n); c < c1; ++c) sum -= row[c] * y[c - n];
         x[k] = sum * inv_diag[k];
     }
 }
@@ -121,14 +125,16 @@ void lu_backward_static(const double *a, const EliminationProgram &p, const doub
 void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
                                   const double *inv_diag, const double *g, double *mu,
                                   double *carried) {
-    for (int k = 0; k < p.n; ++k) mu[k] = g[k];
-    for (int k = 0; k < p.n; ++k) {
-        const double *row = a + k * p.width;
+    const int n = p.n;
+    for (int k = 0; k < n; ++k) mu[k] = g[k];
+    for (int k = 0; k < n; ++k) {
+        const double *__restrict row = a + k * p.width;
         const double mk = (mu[k] *= inv_diag[k]);
-        const int split = p.right_carried[k];
-        for (int s = p.right_start[k]; s < split; ++s) mu[p.right[s]] -= row[p.right[s]] * mk;
-        for (int s = split; s < p.right_start[k + 1]; ++s)
-            carried[p.right[s] - p.n] -= row[p.right[s]] * mk;
+        const int c0 = p.span_begin[k], c1 = p.span_end[k];
+        double *__restrict mu_right = mu;
+        for (int c = c0; c < std::min(c1, n); ++c) mu_right[c] -= row[c] * mk;
+        double *__restrict carried_right = carried - n;
+        for (int c = std::max(c0, n); c < c1; ++c) carried_right[c] -= row[c] * mk;
     }
 }
 

@@ -14,6 +14,11 @@ struct EliminationProgram {
     std::vector<int> below_start, below;  // per pivot k: rows i > k with a structural a(i, k)
     std::vector<int> right_start, right;  // per pivot k: columns c > k with a structural a(k, c)
     std::vector<int> right_carried;       // per pivot k: where its carried columns (c >= n) start
+    // Per pivot k: the columns from its first to its last structural one right of the pivot,
+    // [span_begin, span_end) (empty if none). Row k holds zeros between its structural entries
+    // (nothing is ever written there), so a dense update over the span does what the list does,
+    // with no index loads and in vector registers.
+    std::vector<int> span_begin, span_end;
 };
 
 // Chooses the pivot order on the m x width row-major sample `a` (overwritten) with structure

@@ -116,4 +116,16 @@ mbs_status solve_step(State &s, double t, const SolverOptions &o, bool use_predi
     return st;
 }
 
+mbs_status solve_step_known_motion(State &s, double t, const SolverOptions &o) {
+    s.message[0] = '\0';
+    mbs_status st = solve_position(s, t, o, false);
+    if (st == MBS_OK && s.stats.iterations > 0) {  // q moved: the given motion is not at it
+        st = solve_velocity(s);
+        if (st == MBS_OK) st = solve_acceleration(s);
+    }
+    if (st == MBS_OK) st = solve_multipliers(s);
+    s.has_history = (st == MBS_OK);
+    return st;
+}
+
 }  // namespace mbs

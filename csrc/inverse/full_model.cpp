@@ -47,6 +47,36 @@ void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) 
     store_pose(q, r, s.has_history ? same_side(p, mbs::body_p(s.q.data(), body)) : p);
 }
 
+// q, q_dot, q_ddot of a body: p_dot = E^T w / 2, p_ddot = E^T alpha / 2 - |p_dot|^2 p.
+void put_body_motion(mbs::State &s, int body, const Motion &b) {
+    put_body(s, body, b.position, b.rotation);
+    const double *p = mbs::body_p(s.q.data(), body);
+    const mbs::Mat34 E = mbs::E_matrix(p);
+    const Vec4 p_dot = 0.5 * E.transpose() * b.omega;
+    const Vec4 p_ddot = 0.5 * E.transpose() * b.alpha - p_dot.squaredNorm() * Vec4(p);
+    store_pose(mbs::body_r(s.q_dot.data(), body), b.velocity, p_dot);
+    store_pose(mbs::body_r(s.q_ddot.data(), body), b.acceleration, p_ddot);
+}
+
+// A leg body's angular velocity and acceleration. Its z axis is the leg axis n (with rates), its
+// Cardan partner (angular velocity w_o, acceleration alpha_o) carries the cross arm s (world);
+// the body's x axis is the other arm, s x n normalised. The relative rotation is about the two
+// arms, w = w_o + a s + b x, and n_dot = w x n fixes a and b; n_ddot = alpha x n + w x n_dot
+// fixes their rates the same way.
+void leg_body_rates(const Vec3 &n, const Vec3 &n_dot, const Vec3 &n_ddot, const Vec3 &s,
+                    const Vec3 &w_o, const Vec3 &alpha_o, Motion &b) {
+    const Vec3 c = s.cross(n);
+    const double c_norm = c.norm();
+    const Vec3 x = c / c_norm, y = n.cross(x);
+    // (a s + b x) x n = a |c| x - b y.
+    const Vec3 relative = n_dot - w_o.cross(n);
+    const double a = relative.dot(x) / c_norm, bb = -relative.dot(y);
+    b.omega = w_o + a * s + bb * x;
+    const Vec3 known = alpha_o + a * w_o.cross(s) + bb * b.omega.cross(x);
+    const Vec3 rest = n_ddot - b.omega.cross(n_dot) - known.cross(n);
+    b.alpha = known + (rest.dot(x) / c_norm) * s - rest.dot(y) * x;
+}
+
 struct Placement {
     Vec3 r_cylinder[STEWART_LEGS], r_piston[STEWART_LEGS], r_platform;
     Eigen::Matrix3d A_cylinder[STEWART_LEGS], A_piston[STEWART_LEGS], A_platform;
@@ -168,13 +198,50 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
     return model;
 }
 
-void full_initial_guess(const FullLayout &l, const Motion &motion, mbs::State &s) {
-    const Placement pl = place(l, motion.position, motion.rotation);
+void full_motion(const FullLayout &l, const Motion &mo, mbs::State &s) {
+    const Vec3 zero = Vec3::Zero();
+    const Eigen::Matrix3d &R = mo.rotation;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        put_body(s, l.cylinder[k], pl.r_cylinder[k], pl.A_cylinder[k]);
-        put_body(s, l.piston[k], pl.r_piston[k], pl.A_piston[k]);
+        // The leg: d = P - a, its length, axis n and their rates.
+        const Vec3 arm = R * l.geometry.platform_points.col(k);
+        const Vec3 P = mo.position + arm;
+        const Vec3 P_dot = mo.velocity + mo.omega.cross(arm);
+        const Vec3 P_ddot =
+            mo.acceleration + mo.alpha.cross(arm) + mo.omega.cross(mo.omega.cross(arm));
+        const Vec3 d = P - l.geometry.base_points.col(k);
+        const double L = d.norm();
+        const Vec3 n = d / L;
+        const double L_dot = n.dot(P_dot);
+        const Vec3 n_dot = (P_dot - L_dot * n) / L;
+        const double L_ddot = (P_dot.squaredNorm() + d.dot(P_ddot) - L_dot * L_dot) / L;
+        const Vec3 n_ddot = (P_ddot - L_ddot * n - 2.0 * L_dot * n_dot) / L;
+
+        Motion cylinder;
+        cylinder.position = l.geometry.base_points.col(k) + l.cylinder_com * n;
+        cylinder.velocity = l.cylinder_com * n_dot;
+        cylinder.acceleration = l.cylinder_com * n_ddot;
+        cylinder.rotation = leg_frame(n, l.base_arm.col(k));
+        leg_body_rates(n, n_dot, n_ddot, l.base_arm.col(k), zero, zero, cylinder);
+        put_body_motion(s, l.cylinder[k], cylinder);
+
+        Motion piston;
+        const Vec3 plate_arm = R * l.platform_arm.col(k);
+        piston.position = P - l.piston_com * n;
+        piston.velocity = P_dot - l.piston_com * n_dot;
+        piston.acceleration = P_ddot - l.piston_com * n_ddot;
+        piston.rotation = leg_frame(n, plate_arm);
+        leg_body_rates(n, n_dot, n_ddot, plate_arm, mo.omega, mo.alpha, piston);
+        put_body_motion(s, l.piston[k], piston);
     }
-    put_body(s, l.platform, pl.r_platform, pl.A_platform);
+    Motion platform;
+    const Vec3 c = R * l.com;
+    platform.position = mo.position + c;
+    platform.velocity = mo.velocity + mo.omega.cross(c);
+    platform.acceleration = mo.acceleration + mo.alpha.cross(c) + mo.omega.cross(mo.omega.cross(c));
+    platform.rotation = R * l.axes;
+    platform.omega = mo.omega;
+    platform.alpha = mo.alpha;
+    put_body_motion(s, l.platform, platform);
 }
 
 void full_set_drivers(const FullLayout &l, const Motion &mo, const LegKinematics &legs,
@@ -210,13 +277,13 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_inve
     LegKinematics legs;
     legs.length = si_legs.length * per_L0, legs.rate = si_legs.rate * per_L0;
     legs.accel = si_legs.accel * per_L0;
-    full_initial_guess(l, motion, s);
+    full_motion(l, motion, s);
     full_set_drivers(l, motion, legs, s);
     mbs::SolverOptions so = s.newton_options;
     so.tolerance = o.tolerance;
     so.max_iterations = o.max_iterations;
     so.modified_newton = o.modified_newton != 0;
-    const mbs_status st = mbs::solve_step(s, 0.0, so, false);
+    const mbs_status st = mbs::solve_step_known_motion(s, 0.0, so);
     if (st != MBS_OK) return set_message(msg, size, from_mbs(st), "full model: %s", s.message);
 
     // Leg lengths and their rates from the solved bodies: the two Cardan centres.

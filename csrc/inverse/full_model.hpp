@@ -44,9 +44,10 @@ double length_unit(const stewart_params &p);
 std::unique_ptr<mbs_model> build_full_platform(const stewart_params &p, FullDrive drive,
                                                FullLayout &layout, char *msg, size_t size);
 
-// Every body placed in closed form for the platform motion (motion in the length unit) (Euler-parameter signs kept
-// continuous with the previous solution, if any), and the drivers set for that motion.
-void full_initial_guess(const FullLayout &l, const Motion &motion, mbs::State &s);
+// Every body placed in closed form for the platform motion (in the length unit), with its
+// velocity and acceleration (q, q_dot, q_ddot: what solve_step_known_motion takes; Euler-parameter
+// signs kept continuous with the previous solution, if any); and the drivers set for that motion.
+void full_motion(const FullLayout &l, const Motion &motion, mbs::State &s);
 void full_set_drivers(const FullLayout &l, const Motion &motion, const LegKinematics &legs,
                       mbs::State &s);
 

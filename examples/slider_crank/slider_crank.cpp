@@ -47,13 +47,13 @@ extern "C" mbs_model *slider_crank_create(const slider_crank_params *p, slider_c
     const double origin[3] = {0, 0, 0}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0}, ez[3] = {0, 0, 1};
     const double crank_root[3] = {-r / 2, 0, 0}, crank_pin[3] = {r / 2, 0, 0};
     const double rod_start[3] = {-L / 2, 0, 0}, rod_end[3] = {L / 2, 0, 0};
-    const int crank_pivot = mbs_add_revolute(m, l->ground, origin, ez, l->crank, crank_root, ez);
+    l->crank_bearing = mbs_add_revolute(m, l->ground, origin, ez, l->crank, crank_root, ez);
     const int ok =
-        mbs_fix_body(m, l->ground) == MBS_OK && crank_pivot >= 0 &&
+        mbs_fix_body(m, l->ground) == MBS_OK && l->crank_bearing >= 0 &&
         mbs_add_spherical(m, l->crank, crank_pin, l->rod, rod_start) >= 0 &&
-        mbs_add_cardan(m, l->rod, rod_end, ey, l->slider, origin, ez) >= 0 &&
-        mbs_add_prismatic(m, l->ground, origin, ex, l->slider, origin, ex) >= 0 &&
-        (l->crank_driver_joint = mbs_add_angle_driver(m, crank_pivot, &l->crank_driver)) >= 0;
+        (l->rod_slider_cardan = mbs_add_cardan(m, l->rod, rod_end, ey, l->slider, origin, ez)) >= 0 &&
+        (l->slider_guide = mbs_add_prismatic(m, l->ground, origin, ex, l->slider, origin, ex)) >= 0 &&
+        (l->crank_driver_joint = mbs_add_angle_driver(m, l->crank_bearing, &l->crank_driver)) >= 0;
     if (!ok) {
         if (msg && size) std::snprintf(msg, size, "slider-crank: %s", mbs_model_message(m));
         mbs_model_free(m);

@@ -71,7 +71,8 @@ int main(int argc, char **argv) {
     const long samples = std::lround(duration / dt);
     const int slider = MBS_BODY_R(layout.slider);
     const int torque_row = mbs_joint_first_row(model, layout.crank_driver_joint);
-    std::fprintf(out, "t,crank_angle,slider_x,slider_v,slider_a,crank_torque,iterations,residual\n");
+    std::fprintf(out, "t,crank_angle,slider_x,slider_v,slider_a,crank_torque,iterations,residual,"
+                      "energy,bearing_force_x,bearing_force_y\n");
     int status = 0;
     for (long j = 0; j <= samples; ++j) {
         const double t = j * dt;
@@ -81,9 +82,15 @@ int main(int argc, char **argv) {
             status = 1;
             break;
         }
-        std::fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.3g\n", t, omega * t,
-                     mbs_q(data)[slider], mbs_q_dot(data)[slider], mbs_q_ddot(data)[slider],
-                     mbs_lambda(data)[torque_row], mbs_iterations(data), mbs_residual(data));
+        // What the crank bearing puts on the ground (the frame's shaking force), and the energy
+        // (its rate is the drive's power, crank_torque * omega).
+        double bearing[3], bearing_torque[3];
+        mbs_joint_reaction(data, layout.crank_bearing, 0, bearing, bearing_torque);
+        std::fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.3g,%.17g,%.17g,%.17g\n", t,
+                     omega * t, mbs_q(data)[slider], mbs_q_dot(data)[slider],
+                     mbs_q_ddot(data)[slider], mbs_lambda(data)[torque_row], mbs_iterations(data),
+                     mbs_residual(data), mbs_energy(data, mbs_q(data), mbs_q_dot(data)),
+                     bearing[0], bearing[1]);
     }
     std::fclose(out);
     mbs_data_free(data);

@@ -117,6 +117,41 @@ static double energy(const double *q, const double *v) {
     return e;
 }
 
+/* mbs_energy (the core's general form) against the planar one written out above. */
+static void test_core_energy_equals_planar_energy(void) {
+    for (int i = 0; i <= 1200; i += 17) {
+        step(data, 0.01 * i);
+        const double e = energy(mbs_q(data), mbs_q_dot(data));
+        TEST_ASSERT_DOUBLE_WITHIN(1e-12 * (1 + fabs(e)), e,
+                                  mbs_energy(data, mbs_q(data), mbs_q_dot(data)));
+    }
+}
+
+/* Joint reactions against Newton's laws: the slider (no rotary inertia) moves as the Cardan and
+ * the guide push it, m (a - g) = F_cardan + F_guide, with no net torque; the crank bearing pushes
+ * the ground and the crank equally and oppositely. */
+static void test_joint_reactions_obey_newton(void) {
+    const double slider_mass = 3.0, g = 9.81;
+    for (int i = 0; i <= 1200; i += 19) {
+        step(data, 0.01 * i);
+        double fc[3], nc[3], fg[3], ng[3], f0[3], n0[3], f1[3], n1[3];
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_joint_reaction(data, layout.rod_slider_cardan, 1, fc, nc));
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_joint_reaction(data, layout.slider_guide, 1, fg, ng));
+        const double *a = mbs_q_ddot(data) + MBS_BODY_R(layout.slider);
+        const double weight[3] = {0, -slider_mass * g, 0};
+        for (int c = 0; c < 3; ++c) {
+            TEST_ASSERT_DOUBLE_WITHIN(1e-9, slider_mass * a[c] - weight[c], fc[c] + fg[c]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.0, nc[c] + ng[c]);
+        }
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_joint_reaction(data, layout.crank_bearing, 0, f0, n0));
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_joint_reaction(data, layout.crank_bearing, 1, f1, n1));
+        for (int c = 0; c < 3; ++c) TEST_ASSERT_DOUBLE_WITHIN(1e-9, 0.0, f0[c] + f1[c]);
+    }
+    double f[3], n[3];
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_joint_reaction(data, 99, 0, f, n));
+    TEST_ASSERT_EQUAL(MBS_ERR_ARGUMENT, mbs_joint_reaction(data, layout.slider_guide, 2, f, n));
+}
+
 static void test_crank_torque_energy_balance(void) {
     mbs_data *side = mbs_data_create(model, MBS_LINEAR_AUTOMATIC);
     const int row = mbs_joint_first_row(model, layout.crank_driver_joint);
@@ -160,6 +195,8 @@ int main(void) {
     RUN_TEST(test_slider_closed_form);
     RUN_TEST(test_rates_against_finite_differences);
     RUN_TEST(test_crank_torque_energy_balance);
+    RUN_TEST(test_core_energy_equals_planar_energy);
+    RUN_TEST(test_joint_reactions_obey_newton);
     RUN_TEST(test_modified_newton);
     return UNITY_END();
 }

@@ -318,6 +318,34 @@ static void test_rates_against_finite_differences(void) {
     stewart_inverse_free(side);
 }
 
+/* The velocities and accelerations of every body that the full level gives the core in closed
+ * form (the core then skips its velocity and acceleration solves) against the core's own solves
+ * of Phi_q q_dot = -Phi_t and Phi_q q_ddot = gamma: a copy of the solved state (same coordinates,
+ * same drivers) stepped again by mbs_step. */
+static void test_closed_form_motion_equals_solved(void) {
+    mbs_data *mech = mbs_data_create(stewart_model_mechanism(model), MBS_LINEAR_AUTOMATIC);
+    TEST_ASSERT_NOT_NULL(mech);
+    mbs_options mo;
+    mbs_options_default(&mo);
+    mo.use_predictor = 0;
+    const int n = mbs_coordinate_count(stewart_model_mechanism(model));
+    for (int i = 0; i <= 120; i += 7) {
+        stewart_pose pose = combined_pose(0.1 * i);
+        const stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
+        const mbs_data *md = stewart_inverse_mechanism(data);
+        TEST_ASSERT_EQUAL_INT(0, out.iterations);
+        TEST_ASSERT_EQUAL_INT(MBS_OK, mbs_data_copy(mech, md));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, mbs_step(mech, 0.1 * i, &mo), mbs_data_message(mech));
+        TEST_ASSERT_EQUAL_INT(0, mbs_iterations(mech));
+        for (int c = 0; c < n; ++c) {
+            const double v = mbs_q_dot(mech)[c], a = mbs_q_ddot(mech)[c];
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12 * (1 + fabs(v)), v, mbs_q_dot(md)[c]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-11 * (1 + fabs(a)), a, mbs_q_ddot(md)[c]);
+        }
+    }
+    mbs_data_free(mech);
+}
+
 /* Two models and three data blocks side by side, interleaved: each gives what it gives alone
  * (no shared state). */
 static void test_instances_side_by_side(void) {
@@ -429,6 +457,7 @@ int main(void) {
     RUN_TEST(test_massive_legs_at_rest);
     RUN_TEST(test_copy_is_rollback);
     RUN_TEST(test_rates_against_finite_differences);
+    RUN_TEST(test_closed_form_motion_equals_solved);
     RUN_TEST(test_instances_side_by_side);
     RUN_TEST(test_newton_from_home);
     RUN_TEST(test_newton_capped_is_not_converged);

@@ -114,23 +114,17 @@ int mbs_add_angle_driver(mbs_model *m, int joint, int *driver);
 mbs_status mbs_model_finalize(mbs_model *m, char *message, size_t size);
 int mbs_coordinate_count(const mbs_model *m);
 int mbs_equation_count(const mbs_model *m);
-int mbs_body_count(const mbs_model *m);
-/* First equation row of a joint, and its number of equations. */
+/* First equation row of a joint (its multipliers start there in mbs_lambda). */
 int mbs_joint_first_row(const mbs_model *m, int joint);
-int mbs_joint_equations(const mbs_model *m, int joint);
 
 /* NULL if the model is not finalised or memory is short. */
 mbs_data *mbs_data_create(const mbs_model *m, mbs_linear_solver solver);
 void mbs_data_free(mbs_data *d);
 /* Copies the state of src into dst (both of the same model, else MBS_ERR_ARGUMENT). */
 mbs_status mbs_data_copy(mbs_data *dst, const mbs_data *src);
-/* Forgets the history (the predictor's previous step); q stays as the next initial guess. */
-void mbs_data_reset(mbs_data *d);
 const char *mbs_data_message(const mbs_data *d);
 
 mbs_status mbs_set_driver(mbs_data *d, int driver, double value, double rate, double accel);
-/* The initial guess of the next position solve (q of every body). */
-mbs_status mbs_set_coordinates(mbs_data *d, const double *q);
 /* Position, velocity, acceleration and multipliers at time t. */
 mbs_status mbs_step(mbs_data *d, double t, const mbs_options *options);
 
