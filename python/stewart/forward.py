@@ -9,7 +9,7 @@ import numpy as np
 from . import _core
 from .errors import ParameterError
 from .results import RowStatus
-from .slices import run_in_slices
+from .slices import keeping_messages, run_in_slices
 
 # The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
 STATUS_OTHER_BRANCH = -8  #: STEWART_ERR_OTHER_BRANCH: the pose found is on another assembly mode
@@ -67,10 +67,6 @@ def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
             out.branch, out.start, out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
-
-    def run_rows(first: int, stop: int) -> bool:
-        _, _, _, kept = run.rows(first, stop, min(max_messages - len(out.messages), stop - first))
-        out.messages.update(kept)
-        return True
-    run_in_slices("forward", n, SLICE_ROWS, run_rows, out)
+    run_in_slices("forward", n, SLICE_ROWS,
+                  keeping_messages(run, out.messages, max_messages), out)
     return out

@@ -12,7 +12,7 @@ from . import _core
 from .choices import Fidelity
 from .errors import ParameterError
 from .results import RowStatus
-from .slices import run_in_slices
+from .slices import keeping_messages, run_in_slices
 
 #: Rows per call into the library when rows are independent (kinematic and massless levels) and
 #: at the full level (slower rows): Python handles signals (Ctrl-C) between calls, about every
@@ -109,11 +109,6 @@ def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optio
             out.iterations, out.warnings, out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
-
-    def run_rows(first: int, stop: int) -> bool:
-        _, _, _, kept = run.rows(first, stop, min(max_messages - len(out.messages), stop - first))
-        out.messages.update(kept)
-        return True
     run_in_slices("inverse", n, FULL_SLICE_ROWS if level == Fidelity.FULL else SLICE_ROWS,
-                  run_rows, out)
+                  keeping_messages(run, out.messages, max_messages), out)
     return out
