@@ -163,8 +163,8 @@ auto rows_of(std::optional<Array> &a, size_t n) -> decltype(a->data()) {
     return a->data();
 }
 
-// Outputs of a batch (a struct of per-column pointers, Table its X-macro column table) moved on
-// to row `first`: what a batch over rows first.. of the arrays writes into.
+// A batch's outputs (one pointer per column of its X-macro table, at row 0) moved on to row
+// `first`: where a batch over rows first.. of the arrays writes.
 #define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description)                        \
     if (o.name) o.name += first * (count);
 stewart_inverse_batch_outputs from_row(stewart_inverse_batch_outputs o, size_t first) {
@@ -179,13 +179,16 @@ stewart_forward_batch_outputs from_row(stewart_forward_batch_outputs o, size_t f
 }
 #undef STEWART_SHIFT_COLUMN
 
-// A solver object (inverse or forward) with its free and message functions, freed with it.
+// A solver object (inverse, forward or plant) with its free and message functions, freed with it.
 template <typename T>
 struct Owned {
     T *solver;
     void (*free)(T *);
     const char *(*message)(const T *);
+    Owned(void (*f)(T *), const char *(*m)(const T *)) : solver(nullptr), free(f), message(m) {}
     ~Owned() { free(solver); }
+    Owned(const Owned &) = delete;
+    Owned &operator=(const Owned &) = delete;
 };
 
 // Runs batch(messages, first_failed) -> status over rows [first, stop) of solver with the GIL
@@ -266,7 +269,7 @@ private:
                std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>
         arrays_;
     stewart_inverse_batch_outputs out_{};
-    Owned<stewart_inverse> inverse_{nullptr, stewart_inverse_free, stewart_inverse_message};
+    Owned<stewart_inverse> inverse_{stewart_inverse_free, stewart_inverse_message};
 };
 
 // One Platform.forward call: its arrays and one forward solver, made once (a cold start, or
@@ -334,7 +337,7 @@ private:
                std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>
         arrays_;
     stewart_forward_batch_outputs out_{};
-    Owned<stewart_forward> forward_{nullptr, stewart_forward_free, stewart_forward_message};
+    Owned<stewart_forward> forward_{stewart_forward_free, stewart_forward_message};
 };
 
 // One Platform.simulate call: its arrays and one plant, made once. rows(a, b) runs the
@@ -430,7 +433,7 @@ private:
                std::optional<Column<int64_t>>, Column<int>>
         arrays_;
     stewart_plant_batch_outputs out_{};
-    Owned<stewart_plant> plant_{nullptr, stewart_plant_free, stewart_plant_message};
+    Owned<stewart_plant> plant_{stewart_plant_free, stewart_plant_message};
 };
 
 }  // namespace
