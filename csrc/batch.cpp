@@ -200,15 +200,28 @@ extern "C" stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, co
                                               const stewart_plant_batch_outputs *out,
                                               stewart_batch_messages *messages,
                                               size_t *first_failed) {
-    FailureLog log(messages, first_failed, n);
-    if (!plant || !out || !out->status || (n > 0 && (!time || !force)))
+    return stewart_plant_batch_rows(plant, n, 0, n, time, force, start_pose, start_rate, out,
+                                    messages, first_failed);
+}
+
+extern "C" stewart_status stewart_plant_batch_rows(stewart_plant *plant, size_t n, size_t first,
+                                                   size_t stop, const double *time,
+                                                   const double *force,
+                                                   const double start_pose[6],
+                                                   const double start_rate[6],
+                                                   const stewart_plant_batch_outputs *out,
+                                                   stewart_batch_messages *messages,
+                                                   size_t *first_failed) {
+    FailureLog log(messages, first_failed, stop);
+    if (!plant || !out || !out->status || (n > 0 && (!time || !force)) || first > stop ||
+        stop > n)
         return STEWART_ERR_ARGUMENT;
     const stewart_plant_output none{};
     const stewart_plant_statistics no_steps{};
-    size_t j = 0;
+    size_t j = first;
     stewart_status s = STEWART_OK;
     stewart_plant_output o;
-    if (n > 0) {
+    if (first == 0 && stop > 0) {
         // The start: the plant's own pose and rates where the caller gives none.
         s = stewart_plant_output_get(plant, nullptr, &o);
         if (s == STEWART_OK)
@@ -218,7 +231,7 @@ extern "C" stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, co
         if (s == STEWART_OK) write_plant_row(*out, 0, o, no_steps, STEWART_OK), j = 1;
     }
     stewart_plant_input in{};
-    for (; j < n && s == STEWART_OK; ++j) {
+    for (; j < stop && s == STEWART_OK; ++j) {
         in.h = time[j] - time[j - 1];
         std::memcpy(in.force_start, force + 6 * (j - 1), sizeof in.force_start);
         std::memcpy(in.force_end, force + 6 * j, sizeof in.force_end);

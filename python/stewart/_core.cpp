@@ -1,6 +1,7 @@
 // stewart._core: the nanobind extension over the C API (stewart.h, stewart_batch.h). It holds a
-// model and one data block (inverse and forward kinematics; each simulate makes its own plant);
-// Python (stewart/platform.py) shapes arrays and results.
+// model, and per Platform.inverse, forward or simulate call one run object (the call's arrays and
+// solver or plant) whose rows(a, b) runs a slice; Python (stewart/platform.py) shapes arrays and
+// results and takes Ctrl-C between slices.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/optional.h>
@@ -56,6 +57,78 @@ struct MessageBuffer {
     stewart_batch_messages c;
 };
 
+// v as an int, or ValueError naming the option and the value.
+int integer_option(const std::string &name, double v) {
+    // the range first: casting a NaN or a value beyond long long is undefined behaviour
+    if (!(v >= -2147483648.0 && v <= 2147483647.0) ||
+        v != static_cast<double>(static_cast<long long>(v)))
+        fail((name + " = " + std::to_string(v) + " must be an integer").c_str());
+    return static_cast<int>(v);
+}
+
+// Options by name (the library's option table) over stewart_inverse_options_default, each value
+// and then the whole set checked by the library.
+stewart_inverse_options make_options(const std::vector<std::pair<std::string, double>> &values) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    char message[STEWART_MESSAGE_SIZE];
+    for (const auto &[name, v] : values) {
+        const int i = stewart_inverse_option_find(name.c_str());
+        if (i < 0) fail(("unknown solver option '" + name + "'").c_str());
+        if (stewart_inverse_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
+    }
+    if (stewart_inverse_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
+    return o;
+}
+
+// Options of a struct by name over its defaults: set(o, name, v) stores one (false: no such
+// name), then the library checks the whole set. Bad names and values raise ValueError.
+template <typename Options, typename Set>
+Options named_options(const std::vector<std::pair<std::string, double>> &values,
+                      void (*defaults)(Options *),
+                      stewart_status (*check)(const Options *, char *, size_t), const char *kind,
+                      Set set) {
+    Options o;
+    defaults(&o);
+    for (const auto &[name, v] : values)
+        if (!set(o, name, v)) fail(("unknown " + std::string(kind) + " option '" + name + "'").c_str());
+    char message[STEWART_MESSAGE_SIZE];
+    if (check(&o, message, sizeof message) != STEWART_OK) fail(message);
+    return o;
+}
+
+// stewart_forward_options by name, from the library's table.
+stewart_forward_options make_forward_options(
+    const std::vector<std::pair<std::string, double>> &values) {
+    stewart_forward_options o;
+    stewart_forward_options_default(&o);
+    char message[STEWART_MESSAGE_SIZE];
+    for (const auto &[name, v] : values) {
+        const int i = stewart_forward_option_find(name.c_str());
+        if (i < 0) fail(("unknown forward option '" + name + "'").c_str());
+        if (stewart_forward_option_set(&o, i, v, message, sizeof message) != STEWART_OK)
+            fail(message);
+    }
+    if (stewart_forward_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
+    return o;
+}
+
+// stewart_plant_options by name.
+stewart_plant_options make_plant_options(
+    const std::vector<std::pair<std::string, double>> &values) {
+    return named_options<stewart_plant_options>(
+        values, stewart_plant_options_default, stewart_plant_options_check, "plant",
+        [](stewart_plant_options &o, const std::string &name, double v) {
+            if (name == "fidelity") o.fidelity = integer_option(name, v);
+            else if (name == "method") o.method = integer_option(name, v);
+            else if (name == "relative_tolerance") o.relative_tolerance = v;
+            else if (name == "absolute_tolerance") o.absolute_tolerance = v;
+            else if (name == "max_internal_steps") o.max_internal_steps = integer_option(name, v);
+            else return false;
+            return true;
+        });
+}
+
 class Model {
 public:
     // Default (thesis) parameters, then each (name, value) through stewart_params_set, then the
@@ -75,290 +148,355 @@ public:
     Model(const Model &) = delete;
     Model &operator=(const Model &) = delete;
 
-    // Solves the rows of q with a fresh inverse solver. Returns (status of the first failing row or
-    // 0, its index or n, its message, [(row, message)] of up to max_messages failing rows).
-    BatchResult solve(
-        Poses q, std::optional<Poses> q_dot, std::optional<Poses> q_ddot,
-        const std::vector<std::pair<std::string, double>> &option_values,
-        std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
-        std::optional<Rows<double, 6>> length_accel, std::optional<Rows<double, 6>> force,
-        std::optional<Column<double>> condition, std::optional<Column<double>> residual,
-        std::optional<Rows<double, 3>> base_force, std::optional<Rows<double, 3>> base_torque,
-        std::optional<Column<int>> iterations, std::optional<Column<int>> warnings,
-        Column<int> status, size_t max_messages) {
-        const size_t n = q.shape(0);
-        if ((q_dot && q_dot->shape(0) != n) || (q_ddot && q_ddot->shape(0) != n))
+    // The library's model (the Python Run objects keep this Model alive while they use it).
+    const stewart_model *get() const { return model_; }
+
+private:
+    stewart_model *model_ = nullptr;
+};
+
+// The data of an output array of n rows, or nullptr for an output the caller skips (None).
+template <typename Array>
+auto rows_of(std::optional<Array> &a, size_t n) -> decltype(a->data()) {
+    if (!a) return nullptr;
+    if (a->shape(0) != n) fail("output arrays must have as many rows as the inputs");
+    return a->data();
+}
+
+// A batch's outputs (one pointer per column of its X-macro table, at row 0) moved on to row
+// `first`: where a batch over rows first.. of the arrays writes.
+#define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description)                        \
+    if (o.name) o.name += first * (count);
+stewart_inverse_batch_outputs from_row(stewart_inverse_batch_outputs o, size_t first) {
+    STEWART_INVERSE_OUTPUT_TABLE(STEWART_SHIFT_COLUMN)
+    o.status += first;
+    return o;
+}
+stewart_forward_batch_outputs from_row(stewart_forward_batch_outputs o, size_t first) {
+    STEWART_FORWARD_OUTPUT_TABLE(STEWART_SHIFT_COLUMN)
+    o.status += first;
+    return o;
+}
+#undef STEWART_SHIFT_COLUMN
+
+// A solver object (inverse, forward or plant) with its free and message functions, freed with it.
+template <typename T>
+struct Owned {
+    T *solver;
+    void (*free)(T *);
+    const char *(*message)(const T *);
+    Owned(void (*f)(T *), const char *(*m)(const T *)) : solver(nullptr), free(f), message(m) {}
+    ~Owned() { free(solver); }
+    Owned(const Owned &) = delete;
+    Owned &operator=(const Owned &) = delete;
+};
+
+// Runs batch(messages, first_failed) -> status over rows [first, stop) of solver with the GIL
+// released (the batch numbers rows from first = 0). Returns (status of the first failing row or
+// 0, its index or stop, its message, [(row, message)] of up to max_messages failing rows), rows
+// numbered in the whole call; a failure before any row raises ValueError.
+template <typename T, typename Batch>
+BatchResult run_rows(const Owned<T> &owned, size_t first, size_t stop, size_t max_messages,
+                     Batch batch) {
+    if (first > stop) fail("rows: first must not be after stop");
+    MessageBuffer messages(max_messages);
+    size_t first_failed = stop - first;
+    stewart_status status;
+    std::string first_message;
+    {
+        nb::gil_scoped_release release;
+        status = batch(&messages.c, &first_failed);
+        first_message = owned.message(owned.solver);
+    }
+    if (status != STEWART_OK && first_failed == stop - first) fail(first_message.c_str());
+    Messages kept = messages.kept();
+    for (auto &m : kept) m.first += first;
+    return {status, first + first_failed, first_message, kept};
+}
+
+// One Platform.inverse call: its arrays and one inverse solver, made once. rows(a, b) solves rows
+// [a, b) continuing from the rows before (the full level's warm start), so that slices give the
+// numbers of one batch and Python can take Ctrl-C between them.
+class InverseRun {
+public:
+    InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot,
+               std::optional<Poses> q_ddot,
+               const std::vector<std::pair<std::string, double>> &option_values,
+               std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
+               std::optional<Rows<double, 6>> length_accel, std::optional<Rows<double, 6>> force,
+               std::optional<Column<double>> condition, std::optional<Column<double>> residual,
+               std::optional<Rows<double, 3>> base_force,
+               std::optional<Rows<double, 3>> base_torque, std::optional<Column<int>> iterations,
+               std::optional<Column<int>> warnings, Column<int> status)
+        : n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot),
+          arrays_{length, length_rate, length_accel, force, condition, residual, base_force,
+                  base_torque, iterations, warnings, status} {
+        if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
-        if (status.shape(0) != n) fail("output arrays must have as many rows as the poses");
+        if (status.shape(0) != n_) fail("output arrays must have as many rows as the poses");
         const stewart_inverse_options options = make_options(option_values);
-        const stewart_inverse_batch_outputs out = {
-            rows_of(length, n),     rows_of(length_rate, n), rows_of(length_accel, n),
-            rows_of(force, n),      rows_of(condition, n),   rows_of(residual, n),
-            rows_of(base_force, n), rows_of(base_torque, n), rows_of(iterations, n),
-            rows_of(warnings, n),   nullptr /* stroke_legs: not asked for */, status.data()};
+        out_ = {rows_of(length, n_),     rows_of(length_rate, n_), rows_of(length_accel, n_),
+                rows_of(force, n_),      rows_of(condition, n_),   rows_of(residual, n_),
+                rows_of(base_force, n_), rows_of(base_torque, n_), rows_of(iterations, n_),
+                rows_of(warnings, n_),   nullptr /* stroke_legs: not asked for */, status.data()};
         char message[STEWART_MESSAGE_SIZE];
-        Solver<stewart_inverse> inverse(
-            stewart_inverse_create(model_, &options, message, sizeof message),
-            stewart_inverse_free, stewart_inverse_message);
-        if (!inverse.solver) fail(message);  // the options were checked: memory is short
-        return inverse.run(n, max_messages, [&](stewart_batch_messages *messages,
-                                                size_t *first_failed) {
-            return stewart_inverse_batch(inverse.solver, n, q.data(),
-                                         q_dot ? q_dot->data() : nullptr,
-                                         q_ddot ? q_ddot->data() : nullptr, &out, messages,
-                                         first_failed);
+        inverse_.solver = stewart_inverse_create(model.get(), &options, message, sizeof message);
+        if (!inverse_.solver) fail(message);  // the options were checked: memory is short
+    }
+
+    // Solves rows [first, stop). Returns as run_rows.
+    BatchResult rows(size_t first, size_t stop, size_t max_messages) {
+        if (stop > n_) fail("rows: stop is beyond the last row");
+        const stewart_inverse_batch_outputs out = from_row(out_, first);
+        return run_rows(inverse_, first, stop, max_messages,
+                        [&](stewart_batch_messages *messages, size_t *first_failed) {
+            return stewart_inverse_batch(inverse_.solver, stop - first, q_.data() + 6 * first,
+                                         q_dot_ ? q_dot_->data() + 6 * first : nullptr,
+                                         q_ddot_ ? q_ddot_->data() + 6 * first : nullptr, &out,
+                                         messages, first_failed);
         });
     }
 
-    // Forward kinematics of the rows of lengths from a cold start (or guess), tracking in order.
-    // Returns as solve.
-    BatchResult forward(
-        Poses lengths, std::optional<Poses> rates, std::optional<Poses> accels,
-        std::optional<Times> time, std::optional<Column<const double>> guess,
-        const std::vector<std::pair<std::string, double>> &option_values,
-        std::optional<Rows<double, 6>> pose, std::optional<Rows<double, 6>> pose_rate,
-        std::optional<Rows<double, 6>> pose_accel, std::optional<Column<double>> residual,
-        std::optional<Column<double>> condition, std::optional<Column<double>> jump,
-        std::optional<Column<int>> iterations, std::optional<Column<int>> warnings,
-        std::optional<Column<int>> branch, std::optional<Column<int>> start, Column<int> status,
-        size_t max_messages) {
-        const size_t n = lengths.shape(0);
-        if ((rates && rates->shape(0) != n) || (accels && accels->shape(0) != n) ||
-            (time && time->shape(0) != n))
+private:
+    size_t n_;
+    Poses q_;
+    std::optional<Poses> q_dot_, q_ddot_;
+    // The output arrays, held so that they outlive the pointers in out_.
+    std::tuple<std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+               std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+               std::optional<Column<double>>, std::optional<Column<double>>,
+               std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
+               std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>
+        arrays_;
+    stewart_inverse_batch_outputs out_{};
+    Owned<stewart_inverse> inverse_{stewart_inverse_free, stewart_inverse_message};
+};
+
+// One Platform.forward call: its arrays and one forward solver, made once (a cold start, or
+// row 0 from guess). rows(a, b) tracks rows [a, b) on from the rows before, as one batch would.
+class ForwardRun {
+public:
+    ForwardRun(const Model &model, Poses lengths, std::optional<Poses> rates,
+               std::optional<Poses> accels, std::optional<Times> time,
+               std::optional<Column<const double>> guess,
+               const std::vector<std::pair<std::string, double>> &option_values,
+               std::optional<Rows<double, 6>> pose, std::optional<Rows<double, 6>> pose_rate,
+               std::optional<Rows<double, 6>> pose_accel, std::optional<Column<double>> residual,
+               std::optional<Column<double>> condition, std::optional<Column<double>> jump,
+               std::optional<Column<int>> iterations, std::optional<Column<int>> warnings,
+               std::optional<Column<int>> branch, std::optional<Column<int>> start,
+               Column<int> status)
+        : n_(lengths.shape(0)), lengths_(lengths), rates_(rates), accels_(accels), time_(time),
+          guess_(guess),
+          arrays_{pose, pose_rate, pose_accel, residual, condition, jump, iterations, warnings,
+                  branch, start, status} {
+        if ((rates && rates->shape(0) != n_) || (accels && accels->shape(0) != n_) ||
+            (time && time->shape(0) != n_))
             fail("t, rates and accels must have as many rows as the lengths");
         if (accels && !rates) fail("accels need rates");
         if (guess && guess->shape(0) != 6) fail("guess must have 6 values");
-        if (status.shape(0) != n) fail("output arrays must have as many rows as the lengths");
+        if (status.shape(0) != n_) fail("output arrays must have as many rows as the lengths");
         const stewart_forward_options options = make_forward_options(option_values);
-        const stewart_forward_batch_outputs out = {
-            rows_of(pose, n),     rows_of(pose_rate, n),  rows_of(pose_accel, n),
-            rows_of(residual, n), rows_of(condition, n),  rows_of(jump, n),
-            rows_of(iterations, n), rows_of(warnings, n), rows_of(branch, n),
-            rows_of(start, n),    nullptr /* stroke_legs: not asked for */, status.data()};
+        out_ = {rows_of(pose, n_),       rows_of(pose_rate, n_), rows_of(pose_accel, n_),
+                rows_of(residual, n_),   rows_of(condition, n_), rows_of(jump, n_),
+                rows_of(iterations, n_), rows_of(warnings, n_),  rows_of(branch, n_),
+                rows_of(start, n_),      nullptr /* stroke_legs: not asked for */,
+                status.data()};
         char message[STEWART_MESSAGE_SIZE];
-        Solver<stewart_forward> forward(
-            stewart_forward_create(model_, &options, message, sizeof message),
-            stewart_forward_free, stewart_forward_message);
-        if (!forward.solver) fail(message);
-        return forward.run(n, max_messages, [&](stewart_batch_messages *messages,
-                                                size_t *first_failed) {
-            return stewart_forward_batch(forward.solver, n, time ? time->data() : nullptr,
-                                         lengths.data(), rates ? rates->data() : nullptr,
-                                         accels ? accels->data() : nullptr,
-                                         guess ? guess->data() : nullptr, &out, messages,
-                                         first_failed);
+        forward_.solver = stewart_forward_create(model.get(), &options, message, sizeof message);
+        if (!forward_.solver) fail(message);
+    }
+
+    // Solves rows [first, stop) (the guess only for row 0). Returns as run_rows.
+    BatchResult rows(size_t first, size_t stop, size_t max_messages) {
+        if (stop > n_) fail("rows: stop is beyond the last row");
+        const stewart_forward_batch_outputs out = from_row(out_, first);
+        const double *guess = guess_ && first == 0 ? guess_->data() : nullptr;
+        return run_rows(forward_, first, stop, max_messages,
+                        [&](stewart_batch_messages *messages, size_t *first_failed) {
+            return stewart_forward_batch(forward_.solver, stop - first,
+                                         time_ ? time_->data() + first : nullptr,
+                                         lengths_.data() + 6 * first,
+                                         rates_ ? rates_->data() + 6 * first : nullptr,
+                                         accels_ ? accels_->data() + 6 * first : nullptr, guess,
+                                         &out, messages, first_failed);
         });
     }
 
-    // Runs a fresh plant through the communication points t with the forces (linear between
-    // rows) from the start state (None: at rest at home). Returns (status of the row that stopped
-    // the run or 0, its index or n, its message, the integrator's totals by name).
-    std::tuple<int, size_t, std::string, std::vector<std::pair<std::string, double>>> simulate(
-        Times time, Poses force, std::optional<Column<const double>> start_pose,
-        std::optional<Column<const double>> start_rate,
-        const std::vector<std::pair<std::string, double>> &option_values,
-        std::optional<Rows<double, 6>> pose, std::optional<Rows<double, 6>> pose_rate,
-        std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
-        std::optional<Rows<double, 3>> base_force, std::optional<Rows<double, 3>> base_torque,
-        std::optional<Column<int>> warnings, std::optional<Column<int64_t>> steps,
-        std::optional<Column<int64_t>> rhs_evaluations,
-        std::optional<Column<int64_t>> nonlinear_iterations,
-        std::optional<Column<int64_t>> error_test_failures, Column<int> status) {
-        const size_t n = time.shape(0);
-        if (force.shape(0) != n) fail("forces must have as many rows as t");
+private:
+    size_t n_;
+    Poses lengths_;
+    std::optional<Poses> rates_, accels_;
+    std::optional<Times> time_;
+    std::optional<Column<const double>> guess_;
+    // The output arrays, held so that they outlive the pointers in out_.
+    std::tuple<std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+               std::optional<Rows<double, 6>>, std::optional<Column<double>>,
+               std::optional<Column<double>>, std::optional<Column<double>>,
+               std::optional<Column<int>>, std::optional<Column<int>>,
+               std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>
+        arrays_;
+    stewart_forward_batch_outputs out_{};
+    Owned<stewart_forward> forward_{stewart_forward_free, stewart_forward_message};
+};
+
+// One Platform.simulate call: its arrays and one plant, made once. rows(a, b) runs the
+// communication points [a, b) on from where the rows before left the plant (row 0 is the start
+// state), so that slices give the numbers of one run.
+class PlantRun {
+public:
+    PlantRun(const Model &model, Times time, Poses force,
+             std::optional<Column<const double>> start_pose,
+             std::optional<Column<const double>> start_rate,
+             const std::vector<std::pair<std::string, double>> &option_values,
+             std::optional<Rows<double, 6>> pose, std::optional<Rows<double, 6>> pose_rate,
+             std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
+             std::optional<Rows<double, 3>> base_force, std::optional<Rows<double, 3>> base_torque,
+             std::optional<Column<int>> warnings, std::optional<Column<int64_t>> steps,
+             std::optional<Column<int64_t>> rhs_evaluations,
+             std::optional<Column<int64_t>> nonlinear_iterations,
+             std::optional<Column<int64_t>> error_test_failures, Column<int> status)
+        : n_(time.shape(0)), time_(time), force_(force), start_pose_(start_pose),
+          start_rate_(start_rate),
+          arrays_{pose, pose_rate, length, length_rate, base_force, base_torque, warnings, steps,
+                  rhs_evaluations, nonlinear_iterations, error_test_failures, status} {
+        if (force.shape(0) != n_) fail("forces must have as many rows as t");
         if ((start_pose && start_pose->shape(0) != 6) || (start_rate && start_rate->shape(0) != 6))
             fail("start and start_rate must have 6 values");
-        if (status.shape(0) != n) fail("output arrays must have as many rows as t");
+        if (status.shape(0) != n_) fail("output arrays must have as many rows as t");
         const stewart_plant_options options = make_plant_options(option_values);
         static_assert(sizeof(int64_t) == sizeof(long), "plant counters are long");
-        const stewart_plant_batch_outputs out = {
-            rows_of(pose, n),       rows_of(pose_rate, n),   rows_of(length, n),
-            rows_of(length_rate, n), rows_of(base_force, n), rows_of(base_torque, n),
-            rows_of(warnings, n),
-            reinterpret_cast<long *>(rows_of(steps, n)),
-            reinterpret_cast<long *>(rows_of(rhs_evaluations, n)),
-            reinterpret_cast<long *>(rows_of(nonlinear_iterations, n)),
-            reinterpret_cast<long *>(rows_of(error_test_failures, n)), status.data()};
+        out_ = {rows_of(pose, n_),        rows_of(pose_rate, n_),  rows_of(length, n_),
+                rows_of(length_rate, n_), rows_of(base_force, n_), rows_of(base_torque, n_),
+                rows_of(warnings, n_),
+                reinterpret_cast<long *>(rows_of(steps, n_)),
+                reinterpret_cast<long *>(rows_of(rhs_evaluations, n_)),
+                reinterpret_cast<long *>(rows_of(nonlinear_iterations, n_)),
+                reinterpret_cast<long *>(rows_of(error_test_failures, n_)), status.data()};
         char message[STEWART_MESSAGE_SIZE] = "";
-        size_t first_failed = n;
-        stewart_status first;
-        stewart_plant_statistics stats{};
-        bool created = true;
         {
             nb::gil_scoped_release release;
-            stewart_plant *plant = stewart_plant_create(model_, &options, message, sizeof message);
-            if (!plant) {
-                created = false;  // the message says why: the model and options, or memory
-                first = STEWART_ERR_PARAMETER;
-            } else {
-                size_t row = 0;
-                stewart_batch_messages messages = {1, 0, &row, message};
-                first = stewart_plant_batch(plant, n, time.data(), force.data(),
-                                            start_pose ? start_pose->data() : nullptr,
-                                            start_rate ? start_rate->data() : nullptr, &out,
-                                            &messages, &first_failed);
-                stewart_plant_statistics_get(plant, &stats);
-                stewart_plant_free(plant);
-            }
+            plant_.solver = stewart_plant_create(model.get(), &options, message, sizeof message);
         }
-        if (!created) {
+        if (!plant_.solver) {  // the message says why: the model and options, or memory
             if (std::string(message).find("out of memory") != std::string::npos)
                 throw std::bad_alloc();
             fail(message);
         }
-        if (first == STEWART_ERR_MEMORY && first_failed == n) throw std::bad_alloc();
-        const std::vector<std::pair<std::string, double>> totals = {
-            {"steps", double(stats.total_steps)},
-            {"rhs_evaluations", double(stats.total_rhs_evaluations)},
-            {"nonlinear_iterations", double(stats.total_nonlinear_iterations)},
-            {"error_test_failures", double(stats.total_error_test_failures)},
-            {"jacobian_evaluations", double(stats.total_jacobian_evaluations)},
-            {"last_order", double(stats.last_order)},
-            {"last_step_size", stats.last_step_size}};
-        return {first, first_failed, std::string(message), totals};
+    }
+
+    // Runs rows [first, stop). Returns (status of the row that stopped the run or 0, its index
+    // or stop, its message); a refused step marks every later row of the run not run.
+    std::tuple<int, size_t, std::string> rows(size_t first, size_t stop) {
+        if (first > stop || stop > n_) fail("rows: need first <= stop <= the number of rows");
+        char message[STEWART_MESSAGE_SIZE] = "";
+        size_t first_failed = stop;
+        stewart_status status;
+        {
+            nb::gil_scoped_release release;
+            size_t row = 0;
+            stewart_batch_messages messages = {1, 0, &row, message};
+            status = stewart_plant_batch_rows(plant_.solver, n_, first, stop, time_.data(),
+                                              force_.data(),
+                                              start_pose_ ? start_pose_->data() : nullptr,
+                                              start_rate_ ? start_rate_->data() : nullptr, &out_,
+                                              &messages, &first_failed);
+        }
+        if (status == STEWART_ERR_MEMORY && first_failed == stop) throw std::bad_alloc();
+        return {status, first_failed, std::string(message)};
+    }
+
+    // The integrator's totals by name, over the rows run so far.
+    std::vector<std::pair<std::string, double>> statistics() const {
+        stewart_plant_statistics stats{};
+        stewart_plant_statistics_get(plant_.solver, &stats);
+        return {{"steps", double(stats.total_steps)},
+                {"rhs_evaluations", double(stats.total_rhs_evaluations)},
+                {"nonlinear_iterations", double(stats.total_nonlinear_iterations)},
+                {"error_test_failures", double(stats.total_error_test_failures)},
+                {"jacobian_evaluations", double(stats.total_jacobian_evaluations)},
+                {"last_order", double(stats.last_order)},
+                {"last_step_size", stats.last_step_size}};
     }
 
 private:
-    // A solver object of one call (inverse or forward), freed with it.
-    template <typename T>
-    struct Solver {
-        T *solver;
-        void (*free)(T *);
-        const char *(*message)(const T *);
-        Solver(T *s, void (*f)(T *), const char *(*m)(const T *)) : solver(s), free(f), message(m) {}
-        ~Solver() { free(solver); }
-        Solver(const Solver &) = delete;
-        Solver &operator=(const Solver &) = delete;
-
-        // Runs batch(messages, first_failed) -> status with the GIL released. Returns (status of
-        // the first failing row or 0, its index or n, its message, [(row, message)] of up to
-        // max_messages failing rows); a failure before any row raises ValueError.
-        template <typename Batch>
-        BatchResult run(size_t n, size_t max_messages, Batch batch) {
-            MessageBuffer messages(max_messages);
-            size_t first_failed = n;
-            stewart_status first;
-            std::string first_message;
-            {
-                nb::gil_scoped_release release;
-                first = batch(&messages.c, &first_failed);
-                first_message = message(solver);
-            }
-            if (first != STEWART_OK && first_failed == n) fail(first_message.c_str());
-            return {first, first_failed, first_message, messages.kept()};
-        }
-    };
-
-    // The data of an output array of n rows, or nullptr for an output the caller skips (None).
-    template <typename Array>
-    static auto rows_of(std::optional<Array> &a, size_t n) -> decltype(a->data()) {
-        if (!a) return nullptr;
-        if (a->shape(0) != n) fail("output arrays must have as many rows as the poses");
-        return a->data();
-    }
-
-    // Options by name (the library's option table) over stewart_inverse_options_default, each value
-    // and then the whole set checked by the library.
-    static stewart_inverse_options make_options(const std::vector<std::pair<std::string, double>> &values) {
-        stewart_inverse_options o;
-        stewart_inverse_options_default(&o);
-        char message[STEWART_MESSAGE_SIZE];
-        for (const auto &[name, v] : values) {
-            const int i = stewart_inverse_option_find(name.c_str());
-            if (i < 0) fail(("unknown solver option '" + name + "'").c_str());
-            if (stewart_inverse_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
-        }
-        if (stewart_inverse_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
-        return o;
-    }
-
-    // Options of a struct by name over its defaults: set(o, name, v) stores one (false: no such
-    // name), then the library checks the whole set. Bad names and values raise ValueError.
-    template <typename Options, typename Set>
-    static Options named_options(const std::vector<std::pair<std::string, double>> &values,
-                                 void (*defaults)(Options *),
-                                 stewart_status (*check)(const Options *, char *, size_t),
-                                 const char *kind, Set set) {
-        Options o;
-        defaults(&o);
-        for (const auto &[name, v] : values)
-            if (!set(o, name, v)) fail(("unknown " + std::string(kind) + " option '" + name + "'").c_str());
-        char message[STEWART_MESSAGE_SIZE];
-        if (check(&o, message, sizeof message) != STEWART_OK) fail(message);
-        return o;
-    }
-
-    // stewart_forward_options by name, from the library's table.
-    static stewart_forward_options make_forward_options(
-        const std::vector<std::pair<std::string, double>> &values) {
-        stewart_forward_options o;
-        stewart_forward_options_default(&o);
-        char message[STEWART_MESSAGE_SIZE];
-        for (const auto &[name, v] : values) {
-            const int i = stewart_forward_option_find(name.c_str());
-            if (i < 0) fail(("unknown forward option '" + name + "'").c_str());
-            if (stewart_forward_option_set(&o, i, v, message, sizeof message) != STEWART_OK)
-                fail(message);
-        }
-        if (stewart_forward_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
-        return o;
-    }
-
-    // stewart_plant_options by name.
-    static stewart_plant_options make_plant_options(
-        const std::vector<std::pair<std::string, double>> &values) {
-        return named_options<stewart_plant_options>(
-            values, stewart_plant_options_default, stewart_plant_options_check, "plant",
-            [](stewart_plant_options &o, const std::string &name, double v) {
-                if (name == "fidelity") o.fidelity = integer_option(name, v);
-                else if (name == "method") o.method = integer_option(name, v);
-                else if (name == "relative_tolerance") o.relative_tolerance = v;
-                else if (name == "absolute_tolerance") o.absolute_tolerance = v;
-                else if (name == "max_internal_steps") o.max_internal_steps = integer_option(name, v);
-                else return false;
-                return true;
-            });
-    }
-
-    // v as an int, or ValueError naming the option and the value.
-    static int integer_option(const std::string &name, double v) {
-        // the range first: casting a NaN or a value beyond long long is undefined behaviour
-        if (!(v >= -2147483648.0 && v <= 2147483647.0) ||
-            v != static_cast<double>(static_cast<long long>(v)))
-            fail((name + " = " + std::to_string(v) + " must be an integer").c_str());
-        return static_cast<int>(v);
-    }
-
-    stewart_model *model_ = nullptr;
+    size_t n_;
+    Times time_;
+    Poses force_;
+    std::optional<Column<const double>> start_pose_, start_rate_;
+    // The output arrays, held so that they outlive the pointers in out_.
+    std::tuple<std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+               std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+               std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
+               std::optional<Column<int>>, std::optional<Column<int64_t>>,
+               std::optional<Column<int64_t>>, std::optional<Column<int64_t>>,
+               std::optional<Column<int64_t>>, Column<int>>
+        arrays_;
+    stewart_plant_batch_outputs out_{};
+    Owned<stewart_plant> plant_{stewart_plant_free, stewart_plant_message};
 };
 
 }  // namespace
 
 NB_MODULE(_core, m) {
     m.doc() = "The C library of the Stewart platform solver (use the stewart package instead).";
-    auto cls = nb::class_<Model>(m, "Model");
-    cls        .def(nb::init<const std::vector<std::pair<std::string, double>> &>(), nb::arg("assignments"))
-        .def("solve", &Model::solve, nb::arg("q"), nb::arg("q_dot").none(), nb::arg("q_ddot").none(),
-             nb::arg("options"), nb::arg("length").none(), nb::arg("length_rate").none(),
-             nb::arg("length_accel").none(), nb::arg("force").none(), nb::arg("condition").none(),
-             nb::arg("residual").none(), nb::arg("base_force").none(),
-             nb::arg("base_torque").none(), nb::arg("iterations").none(),
-             nb::arg("warnings").none(), nb::arg("status"),
+    nb::class_<Model>(m, "Model")
+        .def(nb::init<const std::vector<std::pair<std::string, double>> &>(),
+             nb::arg("assignments"));
+    // The run objects keep their Model alive (keep_alive<1, 2>) and hold their arrays.
+    nb::class_<InverseRun>(m, "InverseRun")
+        .def(nb::init<const Model &, Poses, std::optional<Poses>, std::optional<Poses>,
+                      const std::vector<std::pair<std::string, double>> &,
+                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+                      std::optional<Column<double>>, std::optional<Column<double>>,
+                      std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
+                      std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>(),
+             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
+             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("length").none(),
+             nb::arg("length_rate").none(), nb::arg("length_accel").none(),
+             nb::arg("force").none(), nb::arg("condition").none(), nb::arg("residual").none(),
+             nb::arg("base_force").none(), nb::arg("base_torque").none(),
+             nb::arg("iterations").none(), nb::arg("warnings").none(), nb::arg("status"))
+        .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"));
-    cls.def("forward", &Model::forward, nb::arg("lengths"), nb::arg("rates").none(),
-            nb::arg("accels").none(), nb::arg("time").none(), nb::arg("guess").none(),
-            nb::arg("options"), nb::arg("pose").none(), nb::arg("pose_rate").none(),
-            nb::arg("pose_accel").none(), nb::arg("residual").none(),
-            nb::arg("condition").none(), nb::arg("jump").none(), nb::arg("iterations").none(),
-            nb::arg("warnings").none(), nb::arg("branch").none(), nb::arg("start").none(),
-            nb::arg("status"), nb::arg("max_messages"));
-    cls.def("simulate", &Model::simulate, nb::arg("time"), nb::arg("force"),
-            nb::arg("start_pose").none(), nb::arg("start_rate").none(), nb::arg("options"),
-            nb::arg("pose").none(), nb::arg("pose_rate").none(), nb::arg("length").none(),
-            nb::arg("length_rate").none(), nb::arg("base_force").none(),
-            nb::arg("base_torque").none(), nb::arg("warnings").none(), nb::arg("steps").none(),
-            nb::arg("rhs_evaluations").none(), nb::arg("nonlinear_iterations").none(),
-            nb::arg("error_test_failures").none(), nb::arg("status"));
+    nb::class_<ForwardRun>(m, "ForwardRun")
+        .def(nb::init<const Model &, Poses, std::optional<Poses>, std::optional<Poses>,
+                      std::optional<Times>, std::optional<Column<const double>>,
+                      const std::vector<std::pair<std::string, double>> &,
+                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+                      std::optional<Rows<double, 6>>, std::optional<Column<double>>,
+                      std::optional<Column<double>>, std::optional<Column<double>>,
+                      std::optional<Column<int>>, std::optional<Column<int>>,
+                      std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>(),
+             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
+             nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
+             nb::arg("guess").none(), nb::arg("options"), nb::arg("pose").none(),
+             nb::arg("pose_rate").none(), nb::arg("pose_accel").none(),
+             nb::arg("residual").none(), nb::arg("condition").none(), nb::arg("jump").none(),
+             nb::arg("iterations").none(), nb::arg("warnings").none(), nb::arg("branch").none(),
+             nb::arg("start").none(), nb::arg("status"))
+        .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"),
+             nb::arg("max_messages"));
+    nb::class_<PlantRun>(m, "PlantRun")
+        .def(nb::init<const Model &, Times, Poses, std::optional<Column<const double>>,
+                      std::optional<Column<const double>>,
+                      const std::vector<std::pair<std::string, double>> &,
+                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
+                      std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
+                      std::optional<Column<int>>, std::optional<Column<int64_t>>,
+                      std::optional<Column<int64_t>>, std::optional<Column<int64_t>>,
+                      std::optional<Column<int64_t>>, Column<int>>(),
+             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("time"), nb::arg("force"),
+             nb::arg("start_pose").none(), nb::arg("start_rate").none(), nb::arg("options"),
+             nb::arg("pose").none(), nb::arg("pose_rate").none(), nb::arg("length").none(),
+             nb::arg("length_rate").none(), nb::arg("base_force").none(),
+             nb::arg("base_torque").none(), nb::arg("warnings").none(), nb::arg("steps").none(),
+             nb::arg("rhs_evaluations").none(), nb::arg("nonlinear_iterations").none(),
+             nb::arg("error_test_failures").none(), nb::arg("status"))
+        .def("rows", &PlantRun::rows, nb::arg("first"), nb::arg("stop"))
+        .def("statistics", &PlantRun::statistics);
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {

@@ -6,13 +6,18 @@ from typing import Optional
 
 import numpy as np
 
+from . import _core
 from .errors import ParameterError
 from .results import RowStatus
+from .slices import keeping_messages, run_in_slices
 
 # The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
 STATUS_OTHER_BRANCH = -8  #: STEWART_ERR_OTHER_BRANCH: the pose found is on another assembly mode
 BRANCH_BITS = {"below_base": 1, "platform_cardan": 2, "flipped": 4, "jump": 8, "singularity": 16}
 START_NAMES = ("home", "guess", "predictor", "last")
+#: Rows per call into the library: Python handles signals (Ctrl-C) between calls, about every
+#: 10 ms of work. One solver tracks through every slice, so slices do not change the numbers.
+SLICE_ROWS = 2048
 
 
 @dataclass
@@ -49,15 +54,19 @@ def empty_forward_solution(n: int) -> ForwardSolution:
 def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
                 accels: Optional[np.ndarray], t: Optional[np.ndarray], guess: Optional[np.ndarray],
                 options: list, max_messages: int) -> ForwardSolution:
-    """One forward batch into the library; bad options raise ParameterError."""
+    """The rows of lengths through the library, tracked in order by one solver in slices of
+    SLICE_ROWS, so that Ctrl-C stops the batch between slices (slices.run_in_slices: a
+    KeyboardInterrupt with rows_done and the partial result). Bad options raise
+    ParameterError."""
     n = lengths.shape[0]
     out = empty_forward_solution(n)
     try:
-        _, _, _, kept = model.forward(
-            lengths, rates, accels, t, guess, options, out.pose, out.pose_rate, out.pose_accel,
-            out.residual, out.condition, out.jump, out.iterations, out.warnings, out.branch,
-            out.start, out.status, min(max_messages, n))
+        run = _core.ForwardRun(
+            model, lengths, rates, accels, t, guess, options, out.pose, out.pose_rate,
+            out.pose_accel, out.residual, out.condition, out.jump, out.iterations, out.warnings,
+            out.branch, out.start, out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
-    out.messages = dict(kept)
+    run_in_slices("forward", n, SLICE_ROWS,
+                  keeping_messages(run, out.messages, max_messages), out)
     return out

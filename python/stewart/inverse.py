@@ -8,13 +8,17 @@ from typing import Optional
 
 import numpy as np
 
+from . import _core
 from .choices import Fidelity
 from .errors import ParameterError
 from .results import RowStatus
+from .slices import keeping_messages, run_in_slices
 
-#: Rows per call into the library when rows are independent (kinematic and massless levels):
-#: Python handles signals (Ctrl-C) between calls, about every 10 ms of work.
+#: Rows per call into the library when rows are independent (kinematic and massless levels) and
+#: at the full level (slower rows): Python handles signals (Ctrl-C) between calls, about every
+#: 10 ms of work. One solver object runs every slice of a call, so slices do not change the numbers.
 SLICE_ROWS = 8192
+FULL_SLICE_ROWS = 512
 
 
 @dataclass
@@ -88,39 +92,23 @@ def check_out(out: InverseSolution, n: int) -> None:
 def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optional[np.ndarray],
                 level: Fidelity, options: list, max_messages: int,
                 out: Optional[InverseSolution]) -> InverseSolution:
-    """The rows of q through the library into out (a new InverseSolution if None). Rows that are
-    independent (kinematic, massless) go in slices of SLICE_ROWS, so that Ctrl-C stops the batch
-    between slices (KeyboardInterrupt; out's rows before the slice under way are valid). At the
-    full level each pose starts from the previous solution, so the rows go in one call (a slice
-    would restart the solver and change the numbers). The KeyboardInterrupt's rows_done says
-    how many rows of out are solved. Bad options raise ParameterError."""
+    """The rows of q through the library into out (a new InverseSolution if None), in slices of
+    SLICE_ROWS (FULL_SLICE_ROWS at the full level) on one solver, so that Ctrl-C stops the batch
+    between slices: KeyboardInterrupt, whose rows_done says how many rows of out are solved
+    (slices.run_in_slices). Bad options raise ParameterError."""
     n = q.shape[0]
     if out is None:
         out = empty_inverse_solution(n)
     else:
         check_out(out, n)
-    step = max(n if level == Fidelity.FULL else SLICE_ROWS, 1)
     out.messages = {}
-    done = 0
     try:
-        for start in range(0, max(n, 1), step):
-            stop = min(start + step, n)
-            rows = slice(start, stop)
-            try:
-                _, _, _, kept = model.solve(
-                    q[rows], None if q_dot is None else q_dot[rows],
-                    None if q_ddot is None else q_ddot[rows], options, out.length[rows],
-                    out.length_rate[rows], out.length_accel[rows], out.force[rows],
-                    out.condition[rows], out.residual[rows], out.base_force[rows],
-                    out.base_torque[rows], out.iterations[rows], out.warnings[rows],
-                    out.status[rows], min(max_messages - len(out.messages), stop - start))
-            except ValueError as e:
-                raise ParameterError(str(e)) from None
-            out.messages.update((start + row, text) for row, text in kept)
-            done = stop
-    except KeyboardInterrupt:
-        stopped = KeyboardInterrupt(f"inverse stopped after {done} of {n} rows: rows "
-                                    f"[0, {done}) of out are solved, the others are not")
-        stopped.rows_done = done
-        raise stopped from None
+        run = _core.InverseRun(
+            model, q, q_dot, q_ddot, options, out.length, out.length_rate, out.length_accel,
+            out.force, out.condition, out.residual, out.base_force, out.base_torque,
+            out.iterations, out.warnings, out.status)
+    except ValueError as e:
+        raise ParameterError(str(e)) from None
+    run_in_slices("inverse", n, FULL_SLICE_ROWS if level == Fidelity.FULL else SLICE_ROWS,
+                  keeping_messages(run, out.messages, max_messages), out)
     return out

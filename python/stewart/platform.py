@@ -54,7 +54,7 @@ class Platform:
                 modified_newton: Optional[bool] = None, warn_condition: Optional[float] = None,
                 singular_condition: Optional[float] = None, max_messages: int = 100,
                 out: Optional[InverseSolution] = None) -> InverseSolution:
-        """Inverse kinematics and dynamics of N poses in one call into the library.
+        """Inverse kinematics and dynamics of N poses in one batch through the library.
 
         poses, rates, accels: (N, 6) arrays of (x, y, z [m], roll, pitch, yaw [rad]) and their
         first and second time derivatives (None: zero, i.e. the platform at rest). The rows are
@@ -67,9 +67,9 @@ class Platform:
         to write into (its arrays are reused, which saves allocating and first-touching fresh
         memory in a loop of equal batches); it is returned. Its arrays must be the ones a new
         result has (dtype, shape, C order): any other raises ValueError naming it, since the
-        library would write into a converted copy. Ctrl-C stops a kinematic or massless batch
-        within about a slice of rows (inverse.SLICE_ROWS): KeyboardInterrupt, with the rows
-        solved so far valid in out (its rows_done says how many)."""
+        library would write into a converted copy. Ctrl-C stops the batch within about a slice
+        of rows (inverse.SLICE_ROWS, FULL_SLICE_ROWS at the full level): KeyboardInterrupt,
+        with the rows solved so far valid in out (its rows_done says how many)."""
         level = Fidelity.of(fidelity)
         q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
         n = q.shape[0]
@@ -87,7 +87,7 @@ class Platform:
                 warn_condition: Optional[float] = None,
                 singular_condition: Optional[float] = None,
                 max_messages: int = 100) -> ForwardSolution:
-        """Forward kinematics of N rows of actuator lengths in one call into the library.
+        """Forward kinematics of N rows of actuator lengths in one batch through the library.
 
         lengths, rates, accels: (N, 6) arrays of L_k [m] and their first and second time
         derivatives (None: not given; the pose rates and accelerations are then zero; accels
@@ -101,7 +101,9 @@ class Platform:
         rows are still solved. The first max_messages failing rows get a message. Bad options
         raise ParameterError; bad array shapes, a non-finite guess or a t that does not
         increase raise ValueError naming the argument and the value. Options left None keep the
-        library's defaults (stewart_forward_options_default)."""
+        library's defaults (stewart_forward_options_default). Ctrl-C stops the batch within
+        about a slice of rows (forward.SLICE_ROWS; the solver tracks on across slices):
+        KeyboardInterrupt, whose result holds its first rows_done rows solved."""
         L = rows6("lengths", lengths, None, "lengths", LEG_LAYOUT)
         n = L.shape[0]
         L_dot = None if rates is None else rows6("rates", rates, n, "lengths", LEG_LAYOUT)
@@ -123,7 +125,7 @@ class Platform:
                  relative_tolerance: Optional[float] = None,
                  absolute_tolerance: Optional[float] = None,
                  max_internal_steps: Optional[int] = None) -> Simulation:
-        """Forward dynamics: the platform's motion under the actuator forces, in one call.
+        """Forward dynamics: the platform's motion under the actuator forces, in one batch.
 
         t: (N,) increasing communication points [s]; forces: (N, 6) F_k [N] at those points
         (F_k > 0 pushes platform and base apart), linear in time between rows. The plant starts
@@ -136,7 +138,9 @@ class Platform:
         options raise ParameterError; bad shapes, a non-finite start or a t that does not
         increase raise ValueError naming the argument and the value. Options left None keep
         the library's defaults (stewart_plant_options_default: ERK 4(3), rtol 1e-10, atol
-        1e-12)."""
+        1e-12). Ctrl-C stops the run within about a slice of communication points
+        (simulate.SLICE_ROWS; the plant goes on across slices): KeyboardInterrupt, whose result
+        holds its first rows_done rows run."""
         level = Fidelity.of(fidelity)
         if level == Fidelity.KINEMATIC:
             raise ParameterError("fidelity = kinematic has no dynamics: simulate needs massless or full")

@@ -6,10 +6,15 @@ from typing import Optional
 
 import numpy as np
 
+from . import _core
 from .choices import Choice
 from .errors import ParameterError
 from .results import STATUS_NOT_RUN, STATUS_OK, RowStatus
+from .slices import run_in_slices
 
+#: Communication points per call into the library: Python handles signals (Ctrl-C) between
+#: calls. One plant runs every slice, so slices do not change the numbers.
+SLICE_ROWS = 256
 
 
 class Method(Choice):
@@ -49,9 +54,8 @@ class Simulation(RowStatus):
         return bool(np.all(self.status == STATUS_OK))
 
 
-def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.ndarray],
-                 start_rate: Optional[np.ndarray], options: list) -> Simulation:
-    """One plant run into the library; bad options raise ParameterError."""
+def empty_simulation(t: np.ndarray) -> Simulation:
+    """A Simulation over the communication points t, uninitialised (the run writes every row)."""
     n = t.shape[0]
 
     def rows(width):
@@ -59,18 +63,33 @@ def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.nd
 
     def counts():
         return np.empty(n, dtype=np.int64)
-    out = Simulation(t=t.copy(), pose=rows(6), pose_rate=rows(6), length=rows(6),
-                     length_rate=rows(6), base_force=rows(3), base_torque=rows(3),
-                     warnings=np.empty(n, dtype=np.int32), steps=counts(),
-                     rhs_evaluations=counts(), nonlinear_iterations=counts(),
-                     error_test_failures=counts(), status=np.empty(n, dtype=np.int32))
+    return Simulation(t=t.copy(), pose=rows(6), pose_rate=rows(6), length=rows(6),
+                      length_rate=rows(6), base_force=rows(3), base_torque=rows(3),
+                      warnings=np.empty(n, dtype=np.int32), steps=counts(),
+                      rhs_evaluations=counts(), nonlinear_iterations=counts(),
+                      error_test_failures=counts(), status=np.empty(n, dtype=np.int32))
+
+
+def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.ndarray],
+                 start_rate: Optional[np.ndarray], options: list) -> Simulation:
+    """One plant run through the library in slices of SLICE_ROWS communication points, the plant
+    going on from slice to slice, so that Ctrl-C stops the run between slices
+    (slices.run_in_slices: a KeyboardInterrupt with rows_done and the partial result). Bad
+    options raise ParameterError."""
+    n = t.shape[0]
+    out = empty_simulation(t)
     try:
-        _, _, message, totals = model.simulate(
-            t, forces, start, start_rate, options, out.pose, out.pose_rate, out.length,
+        run = _core.PlantRun(
+            model, t, forces, start, start_rate, options, out.pose, out.pose_rate, out.length,
             out.length_rate, out.base_force, out.base_torque, out.warnings, out.steps,
             out.rhs_evaluations, out.nonlinear_iterations, out.error_test_failures, out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
-    out.message = message
-    out.statistics = dict(totals)
+
+    def run_rows(first: int, stop: int) -> bool:
+        status, _, message = run.rows(first, stop)
+        out.message = message
+        out.statistics = dict(run.statistics())
+        return status == STATUS_OK
+    run_in_slices("simulate", n, SLICE_ROWS, run_rows, out)
     return out

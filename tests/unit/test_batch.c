@@ -259,6 +259,46 @@ static void test_refused_step_stops_the_run(void) {
     stewart_plant_free(plant);
 }
 
+/* stewart_plant_batch_rows in slices of 5 rows equals one stewart_plant_batch bit for bit, and a
+ * step refused in a later slice stops the run there, numbered in the whole arrays. */
+static void test_plant_batch_in_slices_equals_one_batch(void) {
+    fill_rows();
+    double F[ROWS][6];
+    forces(F);
+    const double start[6] = {0.01, 0, params.home_height, 0, 0.02, 0};
+    double pose[2][ROWS][6], rate[2][ROWS][6];
+    long steps[2][ROWS];
+    int status[2][ROWS];
+    stewart_plant_batch_outputs out[2];
+    for (int i = 0; i < 2; ++i)
+        out[i] = (stewart_plant_batch_outputs){.pose = &pose[i][0][0], .pose_rate = &rate[i][0][0],
+                                               .steps = steps[i], .status = status[i]};
+    for (int refused = 0; refused < 2; ++refused) {
+        F[17][2] = refused ? INFINITY : F[17][3];
+        stewart_plant *whole = plant_of(STEWART_FULL), *sliced = plant_of(STEWART_FULL);
+        size_t first_failed = 0;
+        const stewart_status s = stewart_plant_batch(whole, ROWS, times, &F[0][0], start, NULL,
+                                                     &out[0], NULL, &first_failed);
+        TEST_ASSERT_EQUAL_size_t(refused ? 17 : ROWS, first_failed);
+        memset(status[1], 0x7f, sizeof status[1]);
+        stewart_status t = STEWART_OK;
+        size_t first = 0, failed_in_slice = 0;
+        for (; first < ROWS && t == STEWART_OK; first += 5) {
+            const size_t stop = first + 5 < ROWS ? first + 5 : ROWS;
+            t = stewart_plant_batch_rows(sliced, ROWS, first, stop, times, &F[0][0], start, NULL,
+                                         &out[1], NULL, &failed_in_slice);
+            TEST_ASSERT_EQUAL_size_t(t == STEWART_OK ? stop : 17, failed_in_slice);
+        }
+        TEST_ASSERT_EQUAL_INT(s, t);
+        TEST_ASSERT_EQUAL_MEMORY(status[0], status[1], sizeof status[0]);
+        TEST_ASSERT_EQUAL_MEMORY(pose[0], pose[1], sizeof pose[0]);
+        TEST_ASSERT_EQUAL_MEMORY(rate[0], rate[1], sizeof rate[0]);
+        TEST_ASSERT_EQUAL_MEMORY(steps[0], steps[1], sizeof steps[0]);
+        stewart_plant_free(whole);
+        stewart_plant_free(sliced);
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_solve_batch_equals_the_loop);
@@ -266,5 +306,6 @@ int main(void) {
     RUN_TEST(test_simulate_batch_equals_the_loop_massless);
     RUN_TEST(test_simulate_batch_equals_the_loop_full);
     RUN_TEST(test_refused_step_stops_the_run);
+    RUN_TEST(test_plant_batch_in_slices_equals_one_batch);
     return UNITY_END();
 }

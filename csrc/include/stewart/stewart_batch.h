@@ -111,6 +111,19 @@ stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, const double 
                                    const stewart_plant_batch_outputs *outputs,
                                    stewart_batch_messages *messages, size_t *first_failed);
 
+/* stewart_plant_batch in slices, with the numbers of one call (a caller that checks for
+ * interrupts between slices): runs rows first..stop-1 of the same n-row arrays. first = 0 starts
+ * the run as stewart_plant_batch does; first > 0 continues it, each row one stewart_plant_step
+ * from the row before, where the slice before left the plant (start_pose and start_rate are then
+ * unused). Rows outside [first, stop) are not written, but for a refused step: that row gets
+ * its status and every row after it up to n-1 STEWART_BATCH_NOT_RUN. Returns, and numbers rows
+ * in *first_failed and messages, as stewart_plant_batch (stop when every row of the slice ran). */
+stewart_status stewart_plant_batch_rows(stewart_plant *plant, size_t n, size_t first, size_t stop,
+                                        const double *time, const double *force,
+                                        const double start_pose[6], const double start_rate[6],
+                                        const stewart_plant_batch_outputs *outputs,
+                                        stewart_batch_messages *messages, size_t *first_failed);
+
 #ifdef __cplusplus
 }
 #endif
