@@ -49,6 +49,20 @@ fmu_status fmu_fail(fmu_instance *inst) {
     return FMU_ERROR;
 }
 
+fmu_status fmu_set_debug_logging(fmu_instance *inst, int on, size_t n, const char *const cats[]) {
+    if (fmu_check_call(inst, CALL_SET_DEBUG_LOGGING, "SetDebugLogging") != FMU_OK) return FMU_ERROR;
+    return fmu_logging_set(inst, on, n, cats);
+}
+
+int fmu_after_initialization(const fmu_values *v) {
+    return (v->mode & (MODE_STEP | MODE_TERMINATED)) != 0;
+}
+
+fmu_status fmu_apply_initial_parameters(fmu_instance *inst) {
+    if (model_apply_parameters(inst) != FMU_OK) return FMU_ERROR;
+    return model_start(inst);
+}
+
 static void set_time(fmu_values *v, double t) {
     v->time = t;
     v->real[fmu_time_vr] = t;
@@ -78,7 +92,7 @@ fmu_status fmu_enter_initialization(fmu_instance *inst, int has_start, double st
 fmu_status fmu_exit_initialization(fmu_instance *inst) {
     if (fmu_check_call(inst, CALL_EXIT_INITIALIZATION, "ExitInitializationMode") != FMU_OK)
         return FMU_ERROR;
-    if (model_apply_parameters(inst) != FMU_OK) return fmu_fail(inst);
+    if (fmu_apply_initial_parameters(inst) != FMU_OK) return fmu_fail(inst);
     inst->v.outputs_current = 0;
     fmu_status s = model_refresh_outputs(inst);
     if (s == FMU_ERROR) return fmu_fail(inst);

@@ -8,6 +8,7 @@
 #ifndef STEWART_FMU_INSTANCE_H
 #define STEWART_FMU_INSTANCE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "config.h"
@@ -71,6 +72,8 @@ fmu_instance *fmu_instantiate(const char *name, fmu_version version, fmu_log_fn 
 /* Frees the instance and the model's resources (NULL is ignored). */
 void fmu_free(fmu_instance *inst);
 
+/* SetDebugLogging: enables (on) or disables the n named categories, or all of them if n is 0. */
+fmu_status fmu_set_debug_logging(fmu_instance *inst, int on, size_t n, const char *const cats[]);
 /* FMI 2 fmi2SetupExperiment: records the start time (checked at initialisation). */
 fmu_status fmu_setup_experiment(fmu_instance *inst, double start_time);
 /* Enters initialisation at start_time, or at the set-up's start time if has_start is 0. */
@@ -86,6 +89,12 @@ fmu_status fmu_reset(fmu_instance *inst);
 fmu_status fmu_get_step_status(fmu_instance *inst, int *status);
 /* fmi2GetRealStatus(fmi2LastSuccessfulTime). */
 fmu_status fmu_get_last_successful_time(fmu_instance *inst, double *time);
+/* Whether values are those of a unit past its initialisation (step mode or terminated): its
+ * resources are built for its parameters. */
+int fmu_after_initialization(const fmu_values *v);
+/* Initialisation mode, when the outputs are first needed and at its end: the model's parameters
+ * applied (model_apply_parameters), then its start state set (model_start). */
+fmu_status fmu_apply_initial_parameters(fmu_instance *inst);
 /* Puts the instance into the Error mode and returns FMU_ERROR (the model calls it too). */
 fmu_status fmu_fail(fmu_instance *inst);
 

@@ -5,8 +5,6 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "call_table.h"
-
 void fmu_log(const fmu_instance *inst, fmu_status status, int category, const char *fmt, ...) {
     if (!inst || !inst->log_fn || !inst->logging_on || category < 0 ||
         category >= FMU_N_LOG_CATEGORIES || !inst->category_on[category])
@@ -28,8 +26,7 @@ void fmu_logging_init(fmu_instance *inst, int on) {
     for (int c = 0; c < FMU_N_LOG_CATEGORIES; ++c) inst->category_on[c] = inst->logging_on;
 }
 
-fmu_status fmu_set_debug_logging(fmu_instance *inst, int on, size_t n, const char *const cats[]) {
-    if (fmu_check_call(inst, CALL_SET_DEBUG_LOGGING, "SetDebugLogging") != FMU_OK) return FMU_ERROR;
+fmu_status fmu_logging_set(fmu_instance *inst, int on, size_t n, const char *const cats[]) {
     inst->logging_on = 1; /* so the error below can be reported if categories are on */
     if (n == 0) {
         for (int c = 0; c < FMU_N_LOG_CATEGORIES; ++c) inst->category_on[c] = on;

@@ -23,10 +23,15 @@ void model_start_values(fmu_values *v);
 /* After a reset to the start values: forget what the resources remember of earlier solves
  * (warm starts); the resources themselves may be kept for reuse. */
 void model_reset(fmu_instance *inst);
-/* End of initialisation (and when a state after initialisation is restored): check the
- * parameters, build the resources for them (reuse them if the parameters did not change).
- * FMU_ERROR with a message naming the parameter and its value if refused. */
+/* Initialisation mode (when the outputs are first needed and at its end) and when a state after
+ * initialisation is restored (before model_load): check the parameters, build the resources for
+ * them (reuse them if the parameters did not change). FMU_ERROR with a message naming the
+ * parameter and its value if refused. */
 fmu_status model_apply_parameters(fmu_instance *inst);
+/* Initialisation mode only, right after model_apply_parameters (never when a state is
+ * restored: it brings its own): set what a fresh start begins from. FMU_ERROR with a message
+ * naming the parameter and its value if refused. */
+fmu_status model_start(fmu_instance *inst);
 /* Make the outputs those of the current inputs at inst->v.time unless they already are
  * (inst->v.outputs_current, cleared by the runtime when a variable is set). Returns what that
  * solve gave: OK, Warning, Discard (outputs keep their last valid values) or Error. Never
@@ -45,9 +50,10 @@ fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], 
 size_t model_state_size(const fmu_instance *inst);
 /* Writes that state into out (size bytes, at least model_state_size). */
 fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size);
-/* The instance's values have just become a state's (inst->v); make the resources match them
- * and load the saved bytes (size 0: the state had none; start afresh). FMU_ERROR with a message
- * if the bytes are refused. */
+/* The instance's values have just become a state's (inst->v; after initialisation the runtime
+ * has applied its parameters first); make the resources match them and load the saved bytes
+ * (size 0: the state had none; start afresh). FMU_ERROR with a message if the bytes are
+ * refused. */
 fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size);
 /* Why deserialised values and resource bytes cannot be a state of this model, or NULL if they
  * can (then model_load accepts them). May build temporary resources; changes nothing of inst. */

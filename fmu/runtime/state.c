@@ -58,7 +58,10 @@ fmu_status fmu_set_state(fmu_instance *inst, const fmu_snapshot *s) {
     }
     const fmu_values before = inst->v;
     inst->v = s->v;
-    if (model_load(inst, s->bytes, s->size) != FMU_OK) {
+    /* after initialisation the resources for the state's parameters come first (allocation is
+     * fine here: this is not a step), then the model loads its bytes into them */
+    if ((fmu_after_initialization(&inst->v) && model_apply_parameters(inst) != FMU_OK) ||
+        model_load(inst, s->bytes, s->size) != FMU_OK) {
         /* the model said why; its resources may already be those of the state's parameters,
          * so the instance cannot go on from its old values: Error (Reset or another state) */
         inst->v = before;

@@ -22,7 +22,7 @@ static fmu_status null_arrays(fmu_instance *inst, const char *what) {
 static fmu_status refresh_outputs(fmu_instance *inst) {
     fmu_values *v = &inst->v;
     if (v->outputs_current || !(v->mode & (MODE_INITIALIZATION | MODE_STEP))) return FMU_OK;
-    if (v->mode == MODE_INITIALIZATION && model_apply_parameters(inst) != FMU_OK)
+    if (v->mode == MODE_INITIALIZATION && fmu_apply_initial_parameters(inst) != FMU_OK)
         return fmu_fail(inst);
     if (model_refresh_outputs(inst) == FMU_ERROR) return fmu_fail(inst);
     return FMU_OK;

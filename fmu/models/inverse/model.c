@@ -111,6 +111,12 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     return FMU_OK;
 }
 
+/* The inverse solver starts from what model_apply_parameters built: nothing more to set. */
+fmu_status model_start(fmu_instance *inst) {
+    (void)inst;
+    return FMU_OK;
+}
+
 void model_reset(fmu_instance *inst) {
     if (inst->res.inverse) stewart_inverse_reset(inst->res.inverse);
 }

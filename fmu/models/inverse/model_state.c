@@ -10,10 +10,6 @@
 #include "logging.h"
 #include "model.h"
 
-static int after_initialisation(const fmu_values *v) {
-    return (v->mode & (MODE_STEP | MODE_TERMINATED)) != 0;
-}
-
 size_t model_state_size(const fmu_instance *inst) {
     return inst->res.inverse ? stewart_inverse_state_size(inst->res.inverse) : 0;
 }
@@ -31,10 +27,7 @@ static const char *refusal(const stewart_inverse *d) {
 
 fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
     model_resources *r = &inst->res;
-    const int after_init = after_initialisation(&inst->v);
-    /* the state was taken after initialisation: make sure a model for its parameters exists
-     * (allocation here is fine: this is not a step) */
-    if (after_init && model_apply_parameters(inst) != FMU_OK) return FMU_ERROR;
+    const int after_init = fmu_after_initialization(&inst->v);
     if (!r->inverse) return FMU_OK;
     stewart_params p;
     inverse_params_from_values(&inst->v, &p);
@@ -100,7 +93,7 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
 #include "variables.def"
     if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
     if (v->integer[VR_newton_iterations] < 0) return "newton_iterations is negative";
-    if (!after_initialisation(v)) return NULL;
+    if (!fmu_after_initialization(v)) return NULL;
     /* parameters and options: exactly what initialisation accepted (model_apply_parameters) */
     if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1)
         return "option derivatives is out of range";

@@ -149,9 +149,15 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     plant_settings s;
     plant_params_from_values(v, &p);
     plant_settings_from_values(v, &s);
-    if (build_plant(inst, &p, &s.options) != FMU_OK) return FMU_ERROR;
-    if (v->mode != MODE_INITIALIZATION) return FMU_OK; /* a restored state brings its own */
-    /* initialisation: the start state */
+    return build_plant(inst, &p, &s.options);
+}
+
+/* Initialisation: the start state x0..yaw_dot0 and a fresh start's bookkeeping. */
+fmu_status model_start(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    model_resources *r = &inst->res;
+    plant_settings s;
+    plant_settings_from_values(v, &s);
     if (stewart_plant_set_state(r->plant, v->time, s.pose0, s.rate0) != STEWART_OK) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "invalid parameter: start state x0..yaw0 = (%g, %g, %g, %g, %g, %g), "

@@ -11,10 +11,6 @@
 #include "logging.h"
 #include "model.h"
 
-static int after_initialisation(const fmu_values *v) {
-    return (v->mode & (MODE_STEP | MODE_TERMINATED)) != 0;
-}
-
 size_t model_state_size(const fmu_instance *inst) {
     return inst->res.plant ? stewart_plant_state_size(inst->res.plant) : 0;
 }
@@ -34,9 +30,8 @@ static stewart_status load_bytes(stewart_plant *plant, const unsigned char *in, 
 
 fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
     /* before the end of initialisation the plant is set afresh there: nothing to load */
-    if (!after_initialisation(&inst->v)) return FMU_OK;
-    /* a plant for the state's parameters (allocation here is fine: this is not a step) */
-    if (model_apply_parameters(inst) != FMU_OK) return FMU_ERROR;
+    if (!fmu_after_initialization(&inst->v)) return FMU_OK;
+    /* the runtime has built a plant for the state's parameters */
     if (load_bytes(inst->res.plant, in, size) != STEWART_OK) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetFMUState: the state's plant data is refused: %s",
                 *stewart_plant_message(inst->res.plant) ? stewart_plant_message(inst->res.plant)
@@ -131,7 +126,7 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
     for (int vr = VR_steps; vr <= VR_last_order; ++vr)
         if (v->integer[vr] < 0) return "an integrator statistic is negative";
-    if (!after_initialisation(v)) return NULL; /* plant data, if any, is not used (model_load) */
+    if (!fmu_after_initialization(v)) return NULL; /* plant data, if any, is not used (model_load) */
     if (plant_check_settings(v, why, why_size)) return why;
     if (size == 0) return "no plant data after initialisation";
     return check_plant_data(v, in, size, why, why_size);
