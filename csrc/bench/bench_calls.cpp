@@ -1,7 +1,7 @@
 // One row of issue 22's cost table per run, through the public API only, along the combined cue
 // (scenes/combined.json's formula): `bench-calls ROW CALLS` makes CALLS calls of the row's API
 // function and prints the median nanoseconds per call. The calls are the only uses of that
-// function in the run, so a profiler toggled on it (scripts/bench/instructions.sh: callgrind
+// function in the run, so a profiler toggled on it (studies/bench/instructions.sh: callgrind
 // --toggle-collect) counts exactly CALLS calls. Rows:
 //   inverse-kinematic, inverse-massless, inverse-full   stewart_inverse_solve at each fidelity
 //   forward-tracking                                    stewart_forward_solve at 1 kHz, with rates

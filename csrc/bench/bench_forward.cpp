@@ -6,7 +6,7 @@
 // closed-form truth by more than 1e-9). Prints one table and writes it to argv[1] if given
 // (argv[2]: tracking solves, 1e6 by default).
 // `bench-forward --map MAP.csv` instead writes the cold-start convergence map over three slices
-// of the workspace through home (scripts/forward_convergence.py plots it).
+// of the workspace through home (studies/forward_convergence.py plots it).
 #include <algorithm>
 #include <chrono>
 #include <cmath>

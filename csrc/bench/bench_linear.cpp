@@ -2,7 +2,7 @@
 // the constraint Jacobian Phi_q of the 14-body platform (98 x 98) at poses along the combined cue,
 // factorised and solved once transposed for the multipliers (Phi_q^T lambda = Q - M q_ddot),
 // which is what a full step asks of it. Variants (each an extern "C" function, so that
-// scripts/bench/linear_solvers.sh can count its instructions with callgrind --toggle-collect):
+// studies/bench/linear_solvers.sh can count its instructions with callgrind --toggle-collect):
 //   linear_block        ours: the bordered-block LU (refactorisation on a fixed pivot order)
 //   linear_dense        ours: dense LU with partial pivoting
 //   linear_klu          SUNDIALS' KLU linear solver (SuiteSparse; refactorisation after the first)

@@ -3,7 +3,7 @@
  * co-simulation master does (set the pose at t, doStep(t, h), read the outputs, which belong to
  * t + h), and prints the median microseconds per doStep and the mean Newton iterations. With
  * --out it also writes t + h and every leg output after each step, for accuracy studies
- * (scripts/speed_accuracy.py).
+ * (studies/speed_accuracy.py).
  *
  * usage: fmu_bench FMI2.so [--fidelity F] [--derivatives D] [--step H] [--duration T]
  *                  [--tolerance TOL] [--modified-newton M] [--max-iterations N]

@@ -3,9 +3,9 @@
 # counted INSIDE the API call (valgrind callgrind, --toggle-collect on the function below: the
 # harness build/bench-calls makes exactly N calls of it) and the median time per call (the same
 # harness run natively, and the medians printed by the existing bench programs), for a reference
-# build of an older commit (scripts/bench/reference.sh) and for this tree's build/ side by side.
+# build of an older commit (studies/bench/reference.sh) and for this tree's build/ side by side.
 # Writes the table and the bench programs' own reports to OUT.
-# usage: scripts/bench/instructions.sh [--commit C (171f04e)] [--out OUT (build/instructions.txt)]
+# usage: studies/bench/instructions.sh [--commit C (171f04e)] [--out OUT (build/instructions.txt)]
 #                                      [--calls N (2000)] [--median-calls N (20000)] [--no-benches]
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -39,7 +39,7 @@ while (($#)); do
   esac
 done
 
-ref="$(bash "$repo/scripts/bench/reference.sh" "$commit")"
+ref="$(bash "$repo/studies/bench/reference.sh" "$commit")"
 nice -n 10 cmake --build "$repo/build" -j2 --target bench-calls bench-closed-form bench-full \
   bench-forward bench-plant fmu_bench StewartPlatform_fmu2 >&2
 work="$(mktemp -d)"

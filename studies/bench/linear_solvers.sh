@@ -2,7 +2,7 @@
 # The core's linear solvers against SUNDIALS' KLU and Eigen on the full step's systems
 # (csrc/bench/bench_linear.cpp): median times from one native run, then instructions per
 # factorisation + transposed solve, callgrind counted inside each variant's function.
-# usage: scripts/bench/linear_solvers.sh [OUT (build/linear-solvers.txt)] [CALLS (400)]
+# usage: studies/bench/linear_solvers.sh [OUT (build/linear-solvers.txt)] [CALLS (400)]
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 out="${1:-$repo/build/linear-solvers.txt}"; calls="${2:-400}"

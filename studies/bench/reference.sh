@@ -3,7 +3,7 @@
 # (instructions.sh, compare_outputs.sh): a detached `git worktree` of COMMIT in
 # .cache/reference-COMMIT, configured like scripts/build.sh (Release, this tree's .venv and Unity
 # wheel), with only the targets those scripts run. Prints the reference tree's path.
-# usage: [HARNESS_COMMIT=C] scripts/bench/reference.sh [COMMIT]   (default 171f04e: main before
+# usage: [HARNESS_COMMIT=C] studies/bench/reference.sh [COMMIT]   (default 171f04e: main before
 # issue 22)
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"

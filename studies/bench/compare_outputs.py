@@ -13,7 +13,7 @@ status 1) when one exceeds the bound (--bound, default 1e-9 relative; say 0 to a
 bits).
 
 usage: compare_outputs.py REFERENCE_BUILD CURRENT_BUILD [--bound B] [--keep DIR]
-(scripts/bench/compare_outputs.sh builds the reference of a commit and calls this.)
+(studies/bench/compare_outputs.sh builds the reference of a commit and calls this.)
 """
 import argparse
 import json
