@@ -10,24 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "bench/combined_cue.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace {
-
-// The combined cue (scenes/combined.json): every pose component a sinusoid.
-stewart_pose combined(double t) {
-    static const double mean[6] = {0, 0, 0.5, 0, 0, 0};
-    static const double amp[6] = {0.05, 0.04, 0.03, 0.10, 0.08, 0.15};
-    static const double w[6] = {3.0, 2.0, 4.0, 2.5, 3.5, 1.5};
-    static const double phase[6] = {0.1, 0.7, 0.3, 1.1, 0.4, 0.9};
-    stewart_pose p{};
-    for (int i = 0; i < 6; ++i) {
-        p.q[i] = mean[i] + amp[i] * std::sin(w[i] * t + phase[i]);
-        p.q_dot[i] = amp[i] * w[i] * std::cos(w[i] * t + phase[i]);
-        p.q_ddot[i] = -amp[i] * w[i] * w[i] * std::sin(w[i] * t + phase[i]);
-    }
-    return p;
-}
 
 struct Drive {
     double h;
@@ -49,11 +35,11 @@ bool make_drive(const stewart_model *model, int fidelity, double h, double durat
     bool ok = data != nullptr;
     for (int i = 0; i <= n && ok; ++i) {
         stewart_inverse_output now, ahead, behind;
-        stewart_inverse_input p = {combined(i * h)};
+        stewart_inverse_input p = {combined_cue(i * h)};
         ok = stewart_inverse_solve(data, &p, &now) == STEWART_OK;
-        p.pose = combined(i * h + delta);
+        p.pose = combined_cue(i * h + delta);
         ok = ok && stewart_inverse_solve(data, &p, &ahead) == STEWART_OK;
-        p.pose = combined(i * h - delta);
+        p.pose = combined_cue(i * h - delta);
         ok = ok && stewart_inverse_solve(data, &p, &behind) == STEWART_OK;
         for (int k = 0; k < 6; ++k) {
             d.force[6 * i + k] = now.force[k];
@@ -104,7 +90,7 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
     }
     const int steps = static_cast<int>(d.force.size() / 6) - 1;
     std::vector<double> per_step;
-    const stewart_pose start = combined(0);
+    const stewart_pose start = combined_cue(0);
     for (int pass = 0; pass < passes && r.ok; ++pass) {
         stewart_plant_set_state(plant, 0, start.q, start.q_dot);
         stewart_plant_statistics before;
@@ -127,7 +113,7 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
     for (int i = 0; i < steps && r.ok; ++i) {
         stewart_plant_output out;
         stewart_plant_step(plant, &d.input[i], &out);
-        const stewart_pose cue = combined((i + 1) * d.h);
+        const stewart_pose cue = combined_cue((i + 1) * d.h);
         for (int c = 0; c < 6; ++c)
             r.pose_error = std::max(r.pose_error, std::fabs(out.pose.q[c] - cue.q[c]));
     }
@@ -150,14 +136,14 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
     stewart_inverse_options_default(&so);
     so.fidelity = STEWART_FULL;
     stewart_inverse *data = stewart_inverse_create(model, &so, nullptr, 0);
-    const stewart_pose start = combined(0);
+    const stewart_pose start = combined_cue(0);
     stewart_plant_set_state(plant, 0, start.q, start.q_dot);
     stewart_plant_output out;
     stewart_plant_output_get(plant, nullptr, &out);
     position = angle = 0;
     const int n = static_cast<int>(4.0 / h + 0.5);
     for (int i = 0; i < n; ++i) {
-        stewart_pose cue = combined(i * h);
+        stewart_pose cue = combined_cue(i * h);
         const stewart_inverse_input in = {cue};
         stewart_inverse_output inverse;
         double force[6];
@@ -174,7 +160,7 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
             position = angle = -1;
             break;
         }
-        cue = combined((i + 1) * h);
+        cue = combined_cue((i + 1) * h);
         for (int c = 0; c < 6; ++c)
             (c < 3 ? position : angle) =
                 std::max(c < 3 ? position : angle, std::fabs(out.pose.q[c] - cue.q[c]));

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "platform_fixture.h"
+#include "stewart/stewart_forward.h"
 #include "test_support.h"
 #include "unity.h"
 
@@ -157,6 +158,22 @@ static void test_tolerance_below_machine_precision(void) {
     }
 }
 
+/* The Newton iteration cap is bounded (fuzz_fmu found inputs that set it near INT_MAX and then
+ * ran one failing solve for 12 s): 1001 is refused by name for both solvers, 1000 accepted. */
+static void test_iteration_cap_is_bounded(void) {
+    stewart_inverse_options o = test_options(STEWART_FULL);
+    o.max_iterations = 1001;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
+    assert_contains(msg, "max_iterations = 1001");
+    o.max_iterations = 1000;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_options_check(&o, msg, sizeof msg), msg);
+    stewart_forward_options f;
+    stewart_forward_options_default(&f);
+    f.max_iterations = 2147483647;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_forward_options_check(&f, msg, sizeof msg));
+    assert_contains(msg, "max_iterations = 2147483647");
+}
+
 /* A value as messages print it: the fewest digits (at most 17) that read back as the same double. */
 static void exact_text(double value, char *text, size_t size) {
     for (int digits = 6; digits <= 17; ++digits) {
@@ -206,6 +223,7 @@ int main(void) {
     RUN_TEST(test_invalid_parameters_are_named);
     RUN_TEST(test_invalid_options_and_null_arguments);
     RUN_TEST(test_tolerance_below_machine_precision);
+    RUN_TEST(test_iteration_cap_is_bounded);
     RUN_TEST(test_overflowing_rates_name_the_input);
     return UNITY_END();
 }

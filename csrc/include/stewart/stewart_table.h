@@ -108,8 +108,8 @@ extern "C" {
     X(202, tolerance, double, "1", 2.5e-16, 1, DBL_MAX, 1, MBS_DEFAULT_TOLERANCE,               \
       "Newton residual tolerance (fidelity 2), max-norm, relative to the platform's size "        \
       "max(1 m, base_radius, platform_radius, home_height, |pose position|)")                    \
-    X(203, max_iterations, int, "", 1, 1, 2147483647, 1, MBS_DEFAULT_MAX_ITERATIONS,             \
-      "Newton iteration cap (fidelity 2)")                                                       \
+    X(203, max_iterations, int, "", 1, 1, 1000, 1, MBS_DEFAULT_MAX_ITERATIONS,                   \
+      "Newton iteration cap (fidelity 2); at most 1000, which bounds a failing solve's time")  \
     X(204, modified_newton, int, "", 0, 1, 1, 1, 0,                                              \
       "0 exact Newton, 1 Jacobian kept over a step (fidelity 2)")                                \
     X(205, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
@@ -121,7 +121,7 @@ extern "C" {
 #define STEWART_FORWARD_OPTION_TABLE(X)                                                          \
     X(400, tolerance, double, "m", 2.5e-16, 1, DBL_MAX, 1, MBS_DEFAULT_TOLERANCE,                \
       "max-norm of L(q) - L_measured at which Newton stops")                                     \
-    X(401, max_iterations, int, "", 1, 1, 2147483647, 1, MBS_DEFAULT_MAX_ITERATIONS,             \
+    X(401, max_iterations, int, "", 1, 1, 1000, 1, MBS_DEFAULT_MAX_ITERATIONS,                   \
       "Newton iteration cap per start")                                                          \
     X(402, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
       "Condition number above which the near-singular warning is set")                           \
