@@ -102,11 +102,13 @@ int stewart_param_find(const char *name, int *element) {
         if (std::strlen(p.name) != base || std::strncmp(p.name, name, base) != 0) continue;
         int e = 0;
         if (p.count > 1) {
-            // "[k]" with k a single digit 1..count (no array has more than 9 elements)
-            if (!bracket || bracket[1] < '1' || bracket[1] > '0' + p.count || bracket[2] != ']' ||
-                bracket[3] != '\0')
-                return -1;
-            e = bracket[1] - '1';
+            // "[k]" with k 1..count, one or two digits, no leading zero
+            if (!bracket || bracket[1] < '1' || bracket[1] > '9') return -1;
+            const char *end = bracket + 2;
+            int k = bracket[1] - '0';
+            if (*end >= '0' && *end <= '9') k = 10 * k + (*end++ - '0');
+            if (k > p.count || end[0] != ']' || end[1] != '\0') return -1;
+            e = k - 1;
         } else if (bracket) {
             return -1;
         }
@@ -137,6 +139,8 @@ int stewart_param_element_description(int i, int e, char *text, size_t size) {
     if (!p || e < 0 || e >= p->count) return -1;
     if (p->count == STEWART_LEGS) return std::snprintf(text, size, "%s of leg %d", p->description, e + 1);
     if (p->count == 3) return std::snprintf(text, size, "%s %s", p->description, kAxis[e]);
+    if (p->count == 3 * STEWART_LEGS)  // x1, y1, z1, ..., z6
+        return std::snprintf(text, size, "%s of leg %d %s", p->description, e / 3 + 1, kAxis[e % 3]);
     return std::snprintf(text, size, "%s", p->description);
 }
 

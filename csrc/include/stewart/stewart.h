@@ -88,6 +88,15 @@ typedef struct stewart_params {
 
     double stroke_min;                      /* shortest allowed actuator length [m] */
     double stroke_max;                      /* longest allowed actuator length [m] */
+
+    /* Limits a controller checks (stewart/stewart_limits.h, docs/limits.md). */
+    double base_joint_limit;                /* largest angle of a leg from its base joint's
+                                               neutral axis [rad] */
+    double platform_joint_limit;            /* the same at the platform joint [rad] */
+    double base_joint_neutral[3 * STEWART_LEGS];     /* x1, y1, z1, ..., z6: base frame; zero:
+                                                        the leg's direction at home */
+    double platform_joint_neutral[3 * STEWART_LEGS]; /* the same, platform frame */
+    double leg_diameter;                    /* legs whose axes come closer interfere [m] */
 } stewart_params;
 
 /* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */

@@ -100,7 +100,21 @@ extern "C" {
     X(228, stroke_min, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.40),                                   \
       "Shortest allowed actuator length (a warning below)")                                      \
     X(229, stroke_max, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.70),                                   \
-      "Longest allowed actuator length (a warning above)")
+      "Longest allowed actuator length (a warning above)")                                     \
+    X(700, base_joint_limit, 1, "rad", "deg", 0.0, 0, STEWART_PI, 1, (STEWART_DEG(90.0)),       \
+      "Largest angle between a leg and its base joint's neutral axis (docs/limits.md)")         \
+    X(701, platform_joint_limit, 1, "rad", "deg", 0.0, 0, STEWART_PI, 1, (STEWART_DEG(90.0)),   \
+      "Largest angle between a leg and its platform joint's neutral axis (docs/limits.md)")     \
+    X(702, base_joint_neutral, 18, "1", "", -DBL_MAX, 1, DBL_MAX, 1,                            \
+      (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),                                   \
+      "Neutral axis of the base joint, base frame, base toward platform (zero: the leg at "     \
+      "home)")                                                                                   \
+    X(720, platform_joint_neutral, 18, "1", "", -DBL_MAX, 1, DBL_MAX, 1,                        \
+      (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),                                   \
+      "Neutral axis of the platform joint, platform frame, base toward platform (zero: the "    \
+      "leg at home)")                                                                            \
+    X(738, leg_diameter, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.015),                               \
+      "Diameter of a leg: two legs' axes closer than it interfere (0: no check)")
 
 #define STEWART_OPTION_TABLE(X)                                                                  \
     X(200, fidelity, int, "", 0, 1, 2, 1, STEWART_MASSLESS,                                      \
