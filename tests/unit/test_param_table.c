@@ -36,6 +36,10 @@ static void thesis_platform(stewart_params *p) {
     p->cylinder_com = p->piston_com = l / 2.0;
     p->stroke_min = 0.40;
     p->stroke_max = 0.70;
+    /* The limits (docs/limits.md), not the thesis': joints up to 90 degrees from the leg's home
+     * direction (the zero neutral axes), legs as thick as the rods. */
+    p->base_joint_limit = p->platform_joint_limit = 90.0 * deg;
+    p->leg_diameter = 2.0 * r;
 }
 
 static void test_defaults_are_the_thesis_platform_bit_for_bit(void) {
@@ -60,7 +64,8 @@ static void test_iteration_covers_every_field_once(void) {
     const double *next = (const double *)&p;
     for (int i = 0; i < stewart_param_count(); ++i) {
         const stewart_param_info *info = stewart_param(i);
-        TEST_ASSERT_TRUE(info->count == 1 || info->count == 3 || info->count == 6);
+        TEST_ASSERT_TRUE(info->count == 1 || info->count == 3 || info->count == 6 ||
+                         info->count == 18);
         TEST_ASSERT_TRUE(strcmp(info->display_unit, "") == 0 ||
                          (strcmp(info->display_unit, "deg") == 0 && !strcmp(info->unit, "rad")));
         for (int e = 0; e < info->count; ++e) {

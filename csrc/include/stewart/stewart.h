@@ -58,7 +58,10 @@ enum {
     STEWART_WARN_STROKE = 1,        /* some length is outside [stroke_min, stroke_max]; stroke_legs
                                        says which */
     STEWART_WARN_NEAR_SINGULAR = 2, /* condition number above the options' warn_condition */
-    STEWART_WARN_OTHER_BRANCH = 4   /* forward kinematics: the pose is on another assembly mode */
+    STEWART_WARN_OTHER_BRANCH = 4,  /* forward kinematics: the pose is on another assembly mode */
+    STEWART_WARN_JOINT_LIMIT = 8,   /* the plant: a leg beyond base_joint_limit or
+                                       platform_joint_limit (stewart/stewart_limits.h) */
+    STEWART_WARN_INTERFERENCE = 16  /* the plant: two legs closer than leg_diameter */
 };
 
 /* Geometry and mass parameters. Inertias are principal moments about the body's own centre of
