@@ -9,8 +9,10 @@ namespace {
 
 constexpr double kSmallestStep = 1e-5;        // [m or rad]: a thinner excursion may be missed
 constexpr double kConditionStep = 0.05;       // largest step for the condition [rad, or x the
-                                              // characteristic length for a translation]
-constexpr int kMaxMarch = 400, kMaxRefine = 80;
+                                              // platform's size for a translation]
+// Bounds on the evaluations of one side: a march that has not met a limit by then ends there
+// (reported as the search's end, STEWART_LIMIT_NONE).
+constexpr int kMaxMarch = 2000, kMaxRefine = 80;
 
 bool within(const stewart_limits_output &o) { return o.failed == 0; }
 
@@ -159,6 +161,8 @@ void axis_ranges(const LimitConstants &c, const double q[6], stewart_axis_ranges
     // the shortest stroke_max, some leg is surely too long.
     const double reach =
         2.0 * *std::min_element(c.stroke_max, c.stroke_max + STEWART_LEGS) + 2.0 * kSmallestStep;
+    // The platform's size: its radius, or its shortest leg if that is longer.
+    const double size = std::max(c.geometry.characteristic_length, c.shortest_stroke_min);
     for (int axis = 0; axis < 6; ++axis)
         for (int side = 0; side < 2; ++side) {
             const double sign = side == 0 ? -1.0 : 1.0;
@@ -168,7 +172,7 @@ void axis_ranges(const LimitConstants &c, const double q[6], stewart_axis_ranges
                 const bool rotation = axis >= 3;
                 Search s{c, {}, axis, sign, rotation ? M_PI : reach,
                          rotation ? std::max(c.longest_arm, 1e-12) : 1.0,
-                         kConditionStep * (rotation ? 1.0 : c.geometry.characteristic_length)};
+                         kConditionStep * (rotation ? 1.0 : size)};
                 std::copy(q, q + 6, s.q);
                 t = s.run(here, here_inverse_norm, beyond);
             }
