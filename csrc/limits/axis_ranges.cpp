@@ -67,7 +67,6 @@ struct Search {
         safe[1] = now.margin[1] / joint_rate;
         safe[2] = now.margin[2] / (joint_rate + (rotation ? 1.0 : 0.0));
         safe[3] = now.margin[3] / (2.0 * speed);
-        safe[4] = condition_cap;
         double predicted[STEWART_LIMIT_CLASSES];
         for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i) {
             const double slope = last_step > 0.0 ? (before.margin[i] - now.margin[i]) / last_step : 0.0;
@@ -75,9 +74,11 @@ struct Search {
         }
         safe[4] = std::min(condition_cap, 0.5 * predicted[4]);
         const int closest = static_cast<int>(std::min_element(safe, safe + STEWART_LIMIT_CLASSES) - safe);
+        // The condition's cap holds unless its own root is predicted within it.
+        const bool overshoot = closest != STEWART_LIMIT_CONDITION - 1 || predicted[closest] <= condition_cap;
         double h = HUGE_VAL;
         for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i)
-            h = std::min(h, i == closest ? std::max(safe[i], 1.25 * predicted[i]) : safe[i]);
+            h = std::min(h, i == closest && overshoot ? std::max(safe[i], 1.25 * predicted[i]) : safe[i]);
         return std::max(h, kSmallestStep);
     }
 
