@@ -3,9 +3,9 @@
 The names are the FMU's (and `stewart-solve --param`'s), from the library's parameter table
 (stewart_table.h): scalars by name (``payload_mass``), arrays as sequences (``base_angle=[...]``)
 that become ``base_angle[1]`` .. ``base_angle[6]`` (elements counted from 1); a per-leg
-parameter that was a scalar (``stroke_min``) also takes one number, which fills every leg. The library sets
-each element (`stewart_params_set`, which names the nearest parameter on a typo) and checks every
-value when the model is built; Python keeps no copy of the parameter list.
+parameter that was a scalar (``stroke_min``) also takes one number, which fills every leg.
+The library sets each element (`stewart_params_set`, which names the nearest parameter on a
+typo) and checks every value when the model is built; Python keeps no copy of the parameter list.
 """
 from __future__ import annotations
 
