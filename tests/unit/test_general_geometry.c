@@ -500,6 +500,41 @@ static void test_thesis_as_coordinates(void) {
     stewart_model_free(mc), stewart_model_free(mj);
 }
 
+/* A hanging platform (its joints 0.5 m below the base's at home: every leg falls) is on its
+ * working assembly mode at home; its mirror image above the base, the same lengths, is not: the
+ * legs leave both Cardans on the other side than at home. */
+static void test_a_hanging_platform_has_its_own_working_mode(void) {
+    stewart_params p;
+    stewart_params_default(&p);
+    p.geometry = 1;
+    for (int k = 0; k < 6; ++k) p.platform_joint[3 * k + 2] = -1.0;
+    stewart_model *m = test_model(&p);
+    stewart_inverse *d = test_inverse(m);
+    stewart_forward_options fo;
+    stewart_forward_options_default(&fo);
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_forward *f = stewart_forward_create(m, &fo, msg, sizeof msg);
+    if (!f) TEST_FAIL_MESSAGE(msg);
+    const stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
+    const stewart_inverse_output legs = solve_at(d, STEWART_KINEMATIC, 1e-12, &home);
+    stewart_forward_input in;
+    memset(&in, 0, sizeof in);
+    in.lengths = legs.lengths;
+    stewart_forward_output out;
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_solve(f, &in, &out));
+    TEST_ASSERT_EQUAL_INT(0, out.branch);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-12, 0.5, out.pose.q[2]);
+    in.use_guess = 1;
+    in.guess[2] = 1.5; /* the platform points mirrored to z = +0.5 */
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_OTHER_BRANCH, stewart_forward_solve(f, &in, &out));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-12, 1.5, out.pose.q[2]);
+    TEST_ASSERT_EQUAL_INT(STEWART_BRANCH_BELOW_BASE | STEWART_BRANCH_PLATFORM_CARDAN,
+                          out.branch & (STEWART_BRANCH_BELOW_BASE | STEWART_BRANCH_PLATFORM_CARDAN));
+    stewart_forward_free(f);
+    stewart_inverse_free(d);
+    stewart_model_free(m);
+}
+
 /* Every check of a general geometry refuses by the field's name. */
 static void expect_refused(const stewart_params *p, const char *words) {
     char msg[STEWART_MESSAGE_SIZE];
@@ -569,6 +604,7 @@ int main(void) {
     RUN_TEST(test_bad_geometries_are_refused_by_name);
     RUN_TEST(test_bare_stroke_names_fill_every_leg);
     RUN_TEST(test_thesis_as_coordinates);
+    RUN_TEST(test_a_hanging_platform_has_its_own_working_mode);
     RUN_TEST(test_forces_by_virtual_work_and_massless_limit);
     RUN_TEST(test_plant_round_trip);
     RUN_TEST(test_lengths_and_forward_round_trip);
