@@ -9,9 +9,9 @@ namespace stewart {
 
 namespace {
 
-// One stroke end per leg. Today one stroke for all legs; per-leg strokes are this line.
-double stroke_min_of(const stewart_params &p, int /*leg*/) { return p.stroke_min; }
-double stroke_max_of(const stewart_params &p, int /*leg*/) { return p.stroke_max; }
+// One stroke end per leg.
+double stroke_min_of(const stewart_params &p, int leg) { return p.stroke_min[leg]; }
+double stroke_max_of(const stewart_params &p, int leg) { return p.stroke_max[leg]; }
 
 // Column k of an x1, y1, z1, ..., z6 array, made unit; the fallback if it is zero.
 Eigen::Vector3d unit_or(const double *xyz, int k, const Eigen::Vector3d &fallback) {
