@@ -463,7 +463,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
         STEWART_OK)
         return s;
     stewart_pose shown;
-    if (!shown_pose(*p, y, angles, shown))
+    if (!p->model->frames.identity && !shown_pose(*p, y, angles, shown))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
