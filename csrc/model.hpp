@@ -21,6 +21,7 @@ struct stewart_model {
     stewart::FullLayout full_layout;
     stewart::ForwardConstants forward;  // what forward kinematics needs from the geometry
     stewart::Frames frames;  // tool and user frames: the poses given and returned are the tool's
+    bool length_offsets;     // some length_offset is not 0: lengths given and returned differ
 };
 
 struct stewart_inverse {

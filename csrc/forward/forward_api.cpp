@@ -57,16 +57,16 @@ bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double
 
 // The Cardan-to-Cardan lengths of the sensors' readings: reading + length_offset, each finite,
 // > 0 and < 1e150 m (else STEWART_ERR_ARGUMENT naming the leg).
-stewart_status cardan_lengths(const stewart_params &p, const double reading[6], double length[6],
+stewart_status cardan_lengths(const stewart_model &m, const double reading[6], double length[6],
                               char *msg, size_t size) {
-    bool offsets = false;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        length[k] = reading[k] + p.length_offset[k];
-        offsets = offsets || p.length_offset[k] != 0;
+    const stewart_params &p = m.params;
+    if (!m.length_offsets) {
+        std::memcpy(length, reading, STEWART_LEGS * sizeof(double));
+        return check_values(reading, "L", true, msg, size);
     }
-    if (!offsets) return check_values(reading, "L", true, msg, size);
     stewart_status s = check_values(reading, "L", false, msg, size);
     if (s != STEWART_OK) return s;
+    for (int k = 0; k < STEWART_LEGS; ++k) length[k] = reading[k] + p.length_offset[k];
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!(length[k] > 0 && length[k] < 1e150))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -470,7 +470,7 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
         return set_message(msg, size, STEWART_ERR_ARGUMENT, "time is %g: it must be finite", time);
     // The lengths given are the sensors' readings; the Cardan-to-Cardan ones add the offsets.
     double lengths[STEWART_LEGS];
-    if ((s = cardan_lengths(m->params, input->lengths.length, lengths, msg, size)) != STEWART_OK)
+    if ((s = cardan_lengths(*m, input->lengths.length, lengths, msg, size)) != STEWART_OK)
         return s;
     if (rates && (s = check_values(rates, "L_dot", false, msg, size)) != STEWART_OK) return s;
     if (accels && (s = check_values(accels, "L_ddot", false, msg, size)) != STEWART_OK) return s;

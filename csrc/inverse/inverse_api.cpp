@@ -194,8 +194,8 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
         return stewart::input_out_of_range(*pose, last_row > 0 ? 1 : 0, last_row, name, msg, size);
     }
     stroke_and_condition_warnings(m->params, *o, out);  // on the Cardan-to-Cardan lengths
-    for (int k = 0; k < STEWART_LEGS; ++k)  // the sensors read length - offset
-        out.lengths.length[k] -= m->params.length_offset[k];
+    if (m->length_offsets)  // the sensors read length - offset
+        for (int k = 0; k < STEWART_LEGS; ++k) out.lengths.length[k] -= m->params.length_offset[k];
     *output = out;
     msg[0] = '\0';
     return STEWART_OK;

@@ -158,11 +158,11 @@ PlantState state_of(const stewart_plant &p) {
 // (stewart_plant_set_state's statuses and messages).
 stewart_status start_at(stewart_plant &p, double time, const double pose[6], const double rate[6]);
 
-// The pose and rates the outputs show at state y with continuous angles: the tool's in the user
-// frame (the platform's when the frames are identity). False at the tool's pitch +-90 deg.
-bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const double angles[3],
-                stewart_pose &pose) {
-    const stewart::Motion m = fd::motion_of_state(y);
+// The pose and rates the outputs show at state y (motion m) with continuous angles: the tool's in
+// the user frame (the platform's when the frames are identity). False at the tool's pitch +-90
+// deg.
+bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const stewart::Motion &m,
+                const double angles[3], stewart_pose &pose) {
     const fd::Vec3 angle_rates = rate_matrix(angles[1], angles[2]).inverse() * m.omega;
     stewart_pose platform{};
     for (int i = 0; i < 3; ++i) {
@@ -463,7 +463,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
         STEWART_OK)
         return s;
     stewart_pose shown;
-    if (!p->model->frames.identity && !shown_pose(*p, y, angles, shown))
+    if (!p->model->frames.identity && !shown_pose(*p, y, m, angles, shown))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
@@ -503,15 +503,16 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
 
     stewart_plant_output o{};
     o.time = p->time;
-    if (!shown_pose(*p, p->y, p->angles, o.pose)) return STEWART_ERR_SINGULAR;
+    if (!shown_pose(*p, p->y, m, p->angles, o.pose)) return STEWART_ERR_SINGULAR;
     for (int i = 0; i < 3; ++i) {
         o.base_force[i] = f[i];
         o.base_torque[i] = t[i];
     }
     o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
-    for (int k = 0; k < STEWART_LEGS; ++k)  // the sensors read Cardan-to-Cardan length - offset
-        o.lengths.length[k] -= p->model->params.length_offset[k];
+    if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            o.lengths.length[k] -= p->model->params.length_offset[k];
     // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
     const double *groups[6] = {o.pose.q, o.pose.q_dot, o.lengths.length, o.lengths.length_rate,
                                o.base_force, o.base_torque};
