@@ -66,6 +66,7 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
                                double warn_condition) {
     LimitConstants c;
     c.geometry = geometry;
+    c.frames = frames_of(p);
     const Eigen::Vector3d home(0.0, 0.0, p.home_height);
     c.shortest_stroke_min = HUGE_VAL;
     c.longest_arm = 0.0;
@@ -80,7 +81,8 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
         c.base_joint_limit[k] = p.base_joint_limit;
         c.platform_joint_limit[k] = p.platform_joint_limit;
         c.shortest_stroke_min = std::min(c.shortest_stroke_min, c.stroke_min[k]);
-        c.longest_arm = std::max(c.longest_arm, geometry.platform_points.col(k).norm());
+        c.longest_arm = std::max(
+            c.longest_arm, (geometry.platform_points.col(k) - c.frames.tool_origin).norm());
     }
     c.uniform_base_limit = std::equal(c.base_joint_limit + 1, c.base_joint_limit + STEWART_LEGS,
                                       c.base_joint_limit);
@@ -125,6 +127,14 @@ double segment_distance_squared(const Eigen::Vector3d &p0, const Eigen::Vector3d
 
 void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                   bool with_condition, double *inverse_norm) {
+    if (c.frames.identity) return check_platform_limits(c, q, out, with_condition, inverse_norm);
+    double platform[6];
+    platform_pose(c.frames, q, nullptr, platform, nullptr);  // cannot fail without rates
+    check_platform_limits(c, platform, out, with_condition, inverse_norm);
+}
+
+void check_platform_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
+                           bool with_condition, double *inverse_norm) {
     const PlatformGeometry &g = c.geometry;
     const Eigen::Matrix3d R = rotation_from_rpy(q[3], q[4], q[5]);
     const Eigen::Vector3d position(q[0], q[1], q[2]);
