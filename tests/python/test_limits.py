@@ -191,6 +191,23 @@ def test_non_finite_pose_and_bad_option_are_refused_by_name():
         stewart.Platform().limits([0, 0, 0.5, 0, 0, 0], warn_condition=0.5)
 
 
+def test_poses_are_the_tool_frames_in_the_user_frame():
+    """With a tool 0.1 m above the platform and turned, and a user frame shifted and turned about
+    z, a tool pose checks as the platform pose worked out here by hand."""
+    frames = dict(tool_frame=[0.0, 0.02, 0.1, 0.0, 0.0, 0.3], user_frame=[0.05, 0.0, 0.01, 0.0, 0.0, 0.2])
+    q_tool = np.array([0.01, -0.02, 0.42, 0.05, 0.04, 0.1])
+    Ru, Rt = rotation(0, 0, 0.2), rotation(0, 0, 0.3)
+    R_tool_base = Ru @ rotation(*q_tool[3:])            # tool axes in the base frame
+    R_platform = R_tool_base @ Rt.T
+    position = np.array([0.05, 0.0, 0.01]) + Ru @ q_tool[:3] - R_platform @ np.array([0.0, 0.02, 0.1])
+    pitch = -np.arcsin(R_platform[2, 0])
+    roll, yaw = np.arctan2(R_platform[2, 1], R_platform[2, 2]), np.arctan2(R_platform[1, 0], R_platform[0, 0])
+    q_platform = np.concatenate([position, [roll, pitch, yaw]])
+    with_frames = stewart.Platform(**frames).limits(q_tool)
+    without = stewart.Platform().limits(q_platform)
+    np.testing.assert_allclose(with_frames.margin, without.margin, atol=1e-12)
+
+
 def test_pose_beyond_a_limit_has_empty_ranges():
     q = np.array([0.0, 0.0, 0.8, 0.1, 0.0, 0.0])
     r = stewart.Platform().axis_ranges(q, details=True)
@@ -227,6 +244,13 @@ def march_and_bisect(plat, q, axis, sign, extent, warn_condition, step):
     return q[axis] + sign * lo, int(plat.limits(pose, warn_condition=warn_condition).first[0])
 
 
+def tool_home(height, frames):
+    """The tool's pose in the user frame at the platform's home (frames turned about z only)."""
+    tool, user = np.asarray(frames["tool_frame"]), np.asarray(frames["user_frame"])
+    position = rotation(0, 0, user[5]).T @ (np.array([0, 0, height]) + tool[:3] - user[:3])
+    return np.concatenate([position, [0.0, 0.0, tool[5] - user[5]]])
+
+
 def random_platform(rng, paired):
     """Random radii, angles, height and limits tight enough that every class shows up; paired:
     joints in close pairs as commercial hexapods have them (legs that can touch), else anywhere."""
@@ -251,16 +275,23 @@ def random_platform(rng, paired):
     return p
 
 
-@pytest.mark.parametrize("seed", range(8))
+@pytest.mark.parametrize("seed", range(10))
 def test_axis_ranges_match_a_march_and_bisection_on_the_check(seed):
     rng = np.random.default_rng(seed)
-    while True:  # a geometry whose home is well within its limits
+    for _ in range(200):  # a geometry whose home is well within its limits
         p = random_platform(rng, paired=seed < 4)
-        plat = stewart.Platform(**p)
         home = np.array([0, 0, p["home_height"], 0, 0, 0])
+        frames = {}
+        if seed >= 8:  # the axes are a tool frame's (0.1 m off the platform origin) in a user frame
+            frames = dict(tool_frame=[0.03, 0.0, 0.1, 0.0, 0.0, 0.4],
+                          user_frame=[0.0, 0.02, 0.0, 0.0, 0.0, 0.5])
+            home = tool_home(home[2], frames)
+        plat = stewart.Platform(**p, **frames)
         at_home = plat.limits(home)
         if at_home.within[0] and at_home.margin[0, :4].min() > 0.002:
             break
+    else:
+        pytest.fail("no random geometry within its limits at home")
     # a tight condition limit on every other geometry: 1.5 times home's condition
     warn = 1.5 * at_home.condition[0] if seed % 2 else None
     poses = []
