@@ -531,6 +531,12 @@ NB_MODULE(_core, m) {
     m.def("geometry_jacobian", &geometry_jacobian_rows, nb::arg("model"), nb::arg("poses"),
           nb::arg("length"), nb::arg("reading"), nb::arg("base_joint"), nb::arg("platform_joint"),
           nb::arg("tool_frame"), nb::arg("user_frame"), nb::arg("pose"));
+    // The joint centres the model uses: (base_joint, platform_joint), 18 values each.
+    m.def("model_joints", [](const Model &model) {
+        std::vector<double> base(18), platform(18);
+        stewart_model_joints(model.get(), base.data(), platform.data());
+        return std::make_pair(base, platform);
+    });
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {
