@@ -16,9 +16,12 @@ stewart::CalibrationGeometry calibration_geometry(const stewart_model &m) {
     stewart::CalibrationGeometry g;
     g.base_points = m.geometry.base_points;
     g.platform_points = m.geometry.platform_points;
-    g.length_offset.setZero();
-    g.tool_frame.setZero();
-    g.user_frame.setZero();
+    const stewart_params &p = m.params;
+    for (int i = 0; i < 6; ++i) {
+        g.length_offset[i] = p.length_offset[i];
+        g.tool_frame[i] = p.tool_frame[i];
+        g.user_frame[i] = p.user_frame[i];
+    }
     g.min_length = m.geometry.min_length;
     return g;
 }
@@ -56,4 +59,15 @@ extern "C" stewart_status stewart_geometry_jacobian(const stewart_model *model,
         }
     }
     return stewart::clear_message(msg, size);
+}
+
+extern "C" stewart_status stewart_model_joints(const stewart_model *model, double base_joint[18],
+                                               double platform_joint[18]) {
+    if (!model || !base_joint || !platform_joint) return STEWART_ERR_ARGUMENT;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        for (int i = 0; i < 3; ++i) {
+            base_joint[3 * k + i] = model->geometry.base_points(i, k);
+            platform_joint[3 * k + i] = model->geometry.platform_points(i, k);
+        }
+    return STEWART_OK;
 }

@@ -40,6 +40,12 @@ stewart_status stewart_geometry_jacobian(const stewart_model *model, const doubl
                                          stewart_geometry_jacobian_output *out, char *message,
                                          size_t size);
 
+/* The joint centres the model uses, whichever parameters gave them (the circles of geometry 0 or
+ * the coordinates of geometry 1): base_joint in the base frame, platform_joint in the platform
+ * frame, x1, y1, z1, ..., z6 [m]. STEWART_ERR_ARGUMENT if an argument is NULL. */
+stewart_status stewart_model_joints(const stewart_model *model, double base_joint[18],
+                                    double platform_joint[18]);
+
 #ifdef __cplusplus
 }
 #endif
