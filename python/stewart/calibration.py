@@ -19,9 +19,9 @@ from typing import Optional
 import numpy as np
 
 from .arrays import POSE_LAYOUT, LEG_LAYOUT, rows6
-from .calibration_model import (JOINT_GROUPS, Layout, Noise, frame_groups, gauge_constraints,
-                                nominal_geometry, platform_with, readings_and_jacobian,
-                                stacked_jacobian, whitening)
+from .calibration_model import (JOINT_GROUPS, Layout, Noise, frame_groups, nominal_geometry,
+                                platform_with, readings_and_jacobian, scaled_basis,
+                                stacked_jacobian, weighted_rows)
 from .platform import Platform
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
@@ -139,14 +139,9 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
     geometry0 = nominal_geometry(nominal)
     theta0 = np.concatenate([geometry0[g] for g in layout.groups])
 
-    predicted0, derivatives0 = readings_and_jacobian(nominal, q)
-    W = whitening(derivatives0["pose"], q, noise)
-    J0 = _whitened(W, stacked_jacobian(layout, derivatives0))
-    norms = np.linalg.norm(J0, axis=0)
-    scale = np.where(norms > 0, 1.0 / np.where(norms > 0, norms, 1.0), 1.0)
-    constraints = gauge_constraints(layout, geometry0)
-    basis = _null_space(constraints * scale) if constraints is not None else np.eye(layout.size)
-    to_theta = scale[:, None] * basis  # theta = theta0 + to_theta z
+    predicted0, W, J0 = weighted_rows(nominal, q, layout, noise)
+    J0 = J0.reshape(-1, layout.size)
+    to_theta = scaled_basis(layout, geometry0, J0)  # theta = theta0 + to_theta z
 
     _refuse_unobservable(J0 @ to_theta, to_theta, layout.names, max_std)
 
@@ -159,7 +154,7 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
             theta = theta0 + to_theta @ z
             platform = platform_with(nominal, _geometry(layout, theta, geometry0))
             predicted, derivatives = readings_and_jacobian(platform, q)
-            cache[key] = (predicted, _whitened(W, stacked_jacobian(layout, derivatives)))
+            cache[key] = (predicted, (W @ stacked_jacobian(layout, derivatives)).reshape(-1, layout.size))
         return cache[key]
 
     def residual(z):
@@ -196,6 +191,22 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
         seconds=time.perf_counter() - started, parameters=geometry)
 
 
+def observability(nominal: Platform, poses, *, frames: Optional[str] = None,
+                  position_noise: float = 10e-6, angle_noise: float = 20e-6,
+                  reading_noise: float = 1e-6) -> float:
+    """The condition number of the weighted identification Jacobian with unit columns (the gauge
+    removed) that calibrate would have at poses with the nominal geometry: about 1 is ideal,
+    infinite means some combination of unknowns cannot be identified."""
+    q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
+    _check_finite("poses", q)
+    noise = Noise(position_noise, angle_noise, reading_noise)
+    noise.check()
+    layout = Layout(JOINT_GROUPS + frame_groups(frames))
+    _, _, J = weighted_rows(nominal, q, layout, noise)
+    J = J.reshape(-1, layout.size)
+    return _condition(J @ scaled_basis(layout, nominal_geometry(nominal), J))
+
+
 def forward_poses(platform: Platform, readings, guess, tolerance: float = 1e-13,
                   max_iterations: int = 30) -> np.ndarray:
     """The poses (tool frame in the user frame) at which platform's sensors read `readings`
@@ -222,21 +233,10 @@ def _check_finite(name: str, a: np.ndarray) -> None:
         raise ValueError(f"{name}[{row}, {col}] = {a[row, col]!r} is not finite")
 
 
-def _whitened(W: np.ndarray, J: np.ndarray) -> np.ndarray:
-    return (W @ J).reshape(-1, J.shape[2])
-
-
 def _geometry(layout: Layout, theta: np.ndarray, geometry0: dict) -> dict[str, np.ndarray]:
     geometry = {g: v.copy() for g, v in geometry0.items()}
     geometry.update({g: v.copy() for g, v in layout.split(theta).items()})
     return geometry
-
-
-def _null_space(C: np.ndarray) -> np.ndarray:
-    """An orthonormal basis of {x: C x = 0}."""
-    _, sv, Vt = np.linalg.svd(C)
-    rank = int(np.sum(sv > sv[0] * 1e-12))
-    return Vt[rank:].T
 
 
 def _condition(A: np.ndarray) -> float:

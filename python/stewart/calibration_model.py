@@ -194,3 +194,25 @@ def gauge_constraints(layout: Layout, nominal: dict[str, np.ndarray]) -> Optiona
             row[slices[joints]] = np.cross(e, points).reshape(-1)
             rows.append(row)
     return np.array(rows) if rows else None
+
+
+def weighted_rows(platform: Platform, poses: np.ndarray, layout: Layout, noise: Noise):
+    """The readings platform predicts at poses (N, 6), the whitening W (N, 6, 6) of their
+    residuals, and the weighted identification Jacobian W d reading / d unknowns (N, 6, p)."""
+    predicted, derivatives = readings_and_jacobian(platform, poses)
+    W = whitening(derivatives["pose"], poses, noise)
+    return predicted, W, W @ stacked_jacobian(layout, derivatives)
+
+
+def scaled_basis(layout: Layout, geometry: dict[str, np.ndarray], rows: np.ndarray) -> np.ndarray:
+    """T (p, r) with unknowns = nominal + T z: each unknown scaled to a unit column of the
+    weighted Jacobian rows (m, p) (the scale of the reported condition number; an unknown no
+    reading depends on keeps scale 1), restricted to the gauge (C T = 0, gauge_constraints)."""
+    norms = np.linalg.norm(rows, axis=0)
+    scale = 1.0 / np.where(norms > 0, norms, 1.0)
+    constraints = gauge_constraints(layout, geometry)
+    if constraints is None:
+        return np.diag(scale)
+    _, sv, Vt = np.linalg.svd(constraints * scale)
+    rank = int(np.sum(sv > sv[0] * 1e-12))
+    return scale[:, None] * Vt[rank:].T
