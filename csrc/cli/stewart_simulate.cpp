@@ -149,8 +149,8 @@ std::string stroke_warning(const stewart_params &p, const stewart_plant_output &
         if (o.stroke_legs & (1 << k)) {
             std::snprintf(text, sizeof text,
                           "leg %d has left its stroke: length %.9g m outside [%g, %g] m (end "
-                          "stops are not modelled)", k + 1, o.lengths.length[k], p.stroke_min,
-                          p.stroke_max);
+                          "stops are not modelled)", k + 1, o.lengths.length[k], p.stroke_min[k],
+                          p.stroke_max[k]);
             break;
         }
     return text;

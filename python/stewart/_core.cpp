@@ -549,7 +549,7 @@ NB_MODULE(_core, m) {
     });
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
     // The library's parameter table: one dict per parameter (name, count, unit, description,
-    // defaults, min, max).
+    // defaults, min, max, scalar_fills: one value by the bare name sets every leg).
     m.def("parameter_table", []() {
         nb::list table;
         for (int i = 0; i < stewart_param_count(); ++i) {
@@ -562,6 +562,7 @@ NB_MODULE(_core, m) {
             entry["defaults"] = std::vector<double>(p->defaults, p->defaults + p->count);
             entry["min"] = p->min;
             entry["max"] = p->max;
+            entry["scalar_fills"] = stewart_param_fills_from_scalar(i) != 0;
             table.append(entry);
         }
         return table;
