@@ -230,7 +230,7 @@ def _check_finite(name: str, a: np.ndarray) -> None:
     bad = np.argwhere(~np.isfinite(a))
     if bad.size:
         row, col = bad[0]
-        raise ValueError(f"{name}[{row}, {col}] = {a[row, col]!r} is not finite")
+        raise ValueError(f"{name}[{row}, {col}] = {float(a[row, col])!r} is not finite")
 
 
 def _geometry(layout: Layout, theta: np.ndarray, geometry0: dict) -> dict[str, np.ndarray]:
