@@ -249,7 +249,8 @@ def _refuse_unobservable(A: np.ndarray, to_theta: np.ndarray, names: list[str],
     """UnobservableError when a combination of unknowns (a right singular vector of the
     weighted, scaled Jacobian A) would have a standard deviation above max_std [m or rad]: it
     names the unknowns carrying those combinations (projection above 0.1)."""
-    _, sv, Vt = np.linalg.svd(A, full_matrices=True)
+    # Every right singular vector; the full U only when A is wide (then V needs it too).
+    _, sv, Vt = np.linalg.svd(A, full_matrices=A.shape[0] < A.shape[1])
     sv = np.concatenate([sv, np.zeros(Vt.shape[0] - sv.size)])
     directions = to_theta @ Vt.T  # physical change per unit of each combination
     size = np.linalg.norm(directions, axis=0)

@@ -46,7 +46,7 @@ def calibration_poses(platform: Platform, n: int, *, frames: Optional[str] = Non
     noise = Noise(position_noise, angle_noise, reading_noise)
     noise.check()
     rng = np.random.default_rng(seed)
-    pool = _candidates(platform, candidates, rng, position_range, angle_range)
+    pool = random_poses_inside_limits(platform, candidates, rng, position_range, angle_range)
     if pool.shape[0] < n:
         raise ValueError(f"only {pool.shape[0]} random poses are inside the limits, fewer than "
                          f"n = {n}: give a smaller position_range or angle_range")
@@ -68,7 +68,11 @@ def _home(platform: Platform) -> np.ndarray:
     return home
 
 
-def _candidates(platform: Platform, count: int, rng, position_range, angle_range) -> np.ndarray:
+def random_poses_inside_limits(platform: Platform, count: int, rng,
+                               position_range: Optional[float] = None,
+                               angle_range: Optional[float] = None) -> np.ndarray:
+    """Up to count random poses (tool frame in the user frame) around home inside the limits
+    (calibration_poses says which box and which limits); rng: a numpy Generator."""
     strokes = parameter_value(platform, "stroke_max") - parameter_value(platform, "stroke_min")
     if position_range is None:
         position_range = 2.0 / 3.0 * float(np.min(strokes))
