@@ -89,8 +89,7 @@ def run(nominal, design, held_out, rng, frames, noise_scale=1.0):
 
 def held_out_poses(nominal, count, seed):
     """Random poses inside the strokes (the candidates calibration_poses draws from)."""
-    from stewart.calibration_poses import _candidates
-    return random_poses_inside_limits(nominal, count, np.random.default_rng(seed), None, None)
+    return random_poses_inside_limits(nominal, count, np.random.default_rng(seed))
 
 
 def main():
