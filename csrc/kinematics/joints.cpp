@@ -22,6 +22,10 @@ constexpr double kMinArmSine = 1e-3;
 // Two joints of one side closer than this (relative to the side's size) are one point.
 constexpr double kCoincident = 1e-9;
 
+bool coincide(const Matrix36 &points, int i, int j, double side_size) {
+    return (points.col(i) - points.col(j)).norm() <= kCoincident * side_size;
+}
+
 bool is_joints(const stewart_params &p) { return p.geometry == 1.0; }
 
 Vec3 triple(const double *values, int k) { return Vec3(values[3 * k], values[3 * k + 1], values[3 * k + 2]); }
@@ -76,14 +80,6 @@ stewart_status check_side(const stewart_params &p, const JointGeometry &g, bool 
     const double *axis = base ? p.base_cardan_axis : p.platform_cardan_axis;
     const double side_size = base ? g.base_size : g.platform_size;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        for (int j = 0; j < k; ++j)
-            if ((points.col(k) - points.col(j)).norm() <= kCoincident * side_size)
-                return set_message(msg, size, STEWART_ERR_PARAMETER,
-                                   "%s and %s put the %s joints of legs %d and %d at one point %s "
-                                   "m: each leg needs its own joint",
-                                   joint_field(joints, side, j).c_str(),
-                                   joint_field(joints, side, k).c_str(), side, j + 1, k + 1,
-                                   vector_text(points.col(k)).c_str());
         const Vec3 given = triple(axis, k);
         const double norm = given.norm();
         char field[40];
@@ -140,6 +136,22 @@ stewart_status check_joint_geometry(const stewart_params &p, char *msg, size_t s
                            "base_angle, platform_radius, platform_angle) or 1 (base_joint and "
                            "platform_joint as given)", ExactText(p.geometry).c_str());
     const JointGeometry g = joint_geometry(p);
+    // Two legs may share a joint on one side (genhexkins' default base, 6-3 platforms), not on
+    // both: the same leg twice leaves the platform free (the leg Jacobian is singular everywhere).
+    const bool joints = is_joints(p);
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        for (int j = 0; j < k; ++j)
+            if (coincide(g.base_points, j, k, g.base_size) &&
+                coincide(g.platform_points, j, k, g.platform_size))
+                return set_message(msg, size, STEWART_ERR_PARAMETER,
+                                   "legs %d and %d are one leg: %s and %s at %s m, %s and %s at "
+                                   "%s m; the platform is then free at every pose", j + 1, k + 1,
+                                   joint_field(joints, "base", j).c_str(),
+                                   joint_field(joints, "base", k).c_str(),
+                                   vector_text(g.base_points.col(k)).c_str(),
+                                   joint_field(joints, "platform", j).c_str(),
+                                   joint_field(joints, "platform", k).c_str(),
+                                   vector_text(g.platform_points.col(k)).c_str());
     stewart_status s = check_side(p, g, true, msg, size);
     if (s == STEWART_OK) s = check_side(p, g, false, msg, size);
     return s;
