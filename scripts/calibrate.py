@@ -80,7 +80,8 @@ def main(argv=None) -> int:
               + (f"outliers (measurement file): {outliers}\n" if outliers else "")
               + result.report())
     files = {args.out: platform_file_text(result.platform).encode(),
-             prefix + ".txt": report.encode(), prefix + ".png": residual_plot(result, measured.lines)}
+             prefix + ".txt": report.encode(),
+             prefix + ".png": residual_plot(result, measured.lines)}
     for path, content in files.items():
         with open(path, "wb") as f:
             f.write(content)

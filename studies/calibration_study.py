@@ -52,7 +52,7 @@ def tracker(poses, rng, position_noise, angle_noise):
 
 
 def _rotation(a):
-    cr, sr, cp, sp, cy, sy = np.cos(a[0]), np.sin(a[0]), np.cos(a[1]), np.sin(a[1]), np.cos(a[2]), np.sin(a[2])
+    (cr, cp, cy), (sr, sp, sy) = np.cos(a), np.sin(a)
     return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
                      [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
                      [-sp, cp * sr, cp * cr]])

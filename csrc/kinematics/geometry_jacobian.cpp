@@ -55,11 +55,11 @@ stewart_status geometry_jacobian(const CalibrationGeometry &g, const double pose
         // A small rotation w (parent frame) of a frame moves a point r of it by w x r, so
         // dL = n . (w x r) = w . (r x n), with w = E d(angles).
         out.tool_frame.block<1, 3>(k, 0) = -n_platform.transpose();
-        out.tool_frame.block<1, 3>(k, 3) = (tool.rate.transpose() * n_platform.cross(from_tool)).transpose();
+        out.tool_frame.block<1, 3>(k, 3) = n_platform.cross(from_tool).transpose() * tool.rate;
         out.user_frame.block<1, 3>(k, 0) = n.transpose();
-        out.user_frame.block<1, 3>(k, 3) = (user.rate.transpose() * from_user.cross(n)).transpose();
+        out.user_frame.block<1, 3>(k, 3) = from_user.cross(n).transpose() * user.rate;
         out.pose.block<1, 3>(k, 0) = n_user.transpose();
-        out.pose.block<1, 3>(k, 3) = (measured.rate.transpose() * arm.cross(n_user)).transpose();
+        out.pose.block<1, 3>(k, 3) = arm.cross(n_user).transpose() * measured.rate;
     }
     return STEWART_OK;
 }

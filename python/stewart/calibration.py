@@ -118,10 +118,11 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
     (least squares) or a robust loss of scipy's least_squares ("soft_l1", "huber", "cauchy",
     "arctan", on residuals in units of their noise, scale 3) that down-weights a bad pose. A pose
     whose weighted residual exceeds outlier_threshold robust standard deviations is named in
-    `outliers`. Raises UnobservableError naming the parameters when some combination of unknowns
-    would have a standard deviation above max_std (m or rad) from these poses (e.g. every pose
-    at one orientation), ReadingError when the model has no reading at a pose, and ValueError
-    naming a bad argument."""
+    `outliers`; with a robust loss the standard deviations are those of the unweighted linear
+    model (approximate). Raises UnobservableError naming the parameters when some combination
+    of unknowns would have a standard deviation above max_std (m or rad) from these poses (e.g.
+    every pose at one orientation), ReadingError when the model has no reading at a pose, and
+    ValueError naming a bad argument or when the fit does not converge in max_evaluations."""
     started = time.perf_counter()
     q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
     s = rows6("readings", readings, q.shape[0], "poses", LEG_LAYOUT)
@@ -132,6 +133,8 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
     for name, value in (("outlier_threshold", outlier_threshold), ("max_std", max_std)):
         if not (np.isfinite(value) and value > 0):
             raise ValueError(f"{name} = {value!r} must be finite and > 0")
+    if not isinstance(max_evaluations, (int, np.integer)) or max_evaluations < 1:
+        raise ValueError(f"max_evaluations = {max_evaluations!r} must be an integer >= 1")
     noise = Noise(position_noise, angle_noise, reading_noise)
     noise.check()
     frame_names = frame_groups(frames)
@@ -154,7 +157,8 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
             theta = theta0 + to_theta @ z
             platform = platform_with(nominal, _geometry(layout, theta, geometry0))
             predicted, derivatives = readings_and_jacobian(platform, q)
-            cache[key] = (predicted, (W @ stacked_jacobian(layout, derivatives)).reshape(-1, layout.size))
+            rows = W @ stacked_jacobian(layout, derivatives)
+            cache[key] = (predicted, rows.reshape(-1, layout.size))
         return cache[key]
 
     def residual(z):
@@ -170,6 +174,10 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
     fit = least_squares(residual, np.zeros(to_theta.shape[1]), jac=jacobian, method=method,
                         loss=loss, f_scale=3.0, x_scale=1.0, xtol=1e-12, ftol=1e-12,
                         gtol=1e-12, max_nfev=max_evaluations)
+    if fit.status <= 0:
+        raise ValueError(f"the identification did not converge in {max_evaluations} evaluations "
+                         f"of the readings (scipy: {fit.message}): check the nominal platform "
+                         f"and the measurements, or allow more (max_evaluations)")
     theta = theta0 + to_theta @ fit.x
     predicted, Jw = evaluate(fit.x)
     r = residual(fit.x)

@@ -28,19 +28,18 @@ def calibration_poses(platform: Platform, n: int, *, frames: Optional[str] = Non
     """n poses (n, 6) of the tool frame in the user frame at which to measure platform for
     stewart.calibrate (with the same frames), D-optimal among `candidates` random poses.
 
-    Candidates are drawn uniformly around home: x, y, z within +-position_range [m] (default:
-    2/3 of the smallest stroke range), roll, pitch, yaw within +-angle_range [rad] (default: 2.5
-    position_range over the largest platform joint radius, at most 0.5), and kept only where the library
-    solves them (massless level) with no warning: every leg inside [stroke_min, stroke_max] and
-    the leg Jacobian's condition number below warn_condition. The joint-angle and leg
+    Candidates are drawn uniformly around home: x, y, z within +-position_range [m] (default: 2/3 of
+    the smallest stroke range), roll, pitch, yaw within +-angle_range [rad] (default: 2.5
+    position_range over the largest platform joint radius, at most 0.5), and kept only where the
+    library solves them (massless level) with no warning: every leg inside [stroke_min, stroke_max]
+    and the leg Jacobian's condition number below warn_condition. The joint-angle and leg
     interference limits of issue 19 are not checked here (they are not in the library yet).
     seed makes the draw repeatable. ValueError if n is too small to identify the unknowns (each
     pose gives 6 readings) or if too few candidates are inside the limits."""
     layout = Layout(JOINT_GROUPS + frame_groups(frames))
     if not isinstance(n, (int, np.integer)) or 6 * n < layout.size:
-        raise ValueError(f"n = {n!r} poses give {6 * n if isinstance(n, (int, np.integer)) else '?'}"
-                         f" readings: identifying {layout.size} unknowns needs at least "
-                         f"{-(-layout.size // 6)} poses")
+        raise ValueError(f"n = {n!r}: identifying {layout.size} unknowns needs an integer of at "
+                         f"least {-(-layout.size // 6)} poses (6 readings each)")
     if candidates < n:
         raise ValueError(f"candidates = {candidates} must be at least n = {n}")
     noise = Noise(position_noise, angle_noise, reading_noise)

@@ -62,7 +62,8 @@ def test_readings_and_derivatives_match_the_closed_form(seed):
                 got = np.zeros_like(fd)
                 got[:, k] = derivatives[group][:, k, i]
                 assert np.all(np.delete(fd, k, axis=1) == 0)  # other legs do not move
-                np.testing.assert_allclose(got, expected, rtol=0, atol=1e-8, err_msg=f"{group} {k} {i}")
+                np.testing.assert_allclose(got, expected, rtol=0, atol=1e-8,
+                                           err_msg=f"{group} {k} {i}")
     for group in ("tool_frame", "user_frame"):
         for j in range(6):
             np.testing.assert_allclose(derivatives[group][:, :, j],
@@ -95,3 +96,20 @@ def test_a_pose_with_a_leg_of_zero_length_is_named():
     bad = np.array([[0, 0, 0.5, 0, 0, 0], [*(a - b), 0, 0, 0]])  # leg 3's joints coincide
     with pytest.raises(ReadingError, match=r"pose row 1: leg 3 has length 0"):
         readings_and_jacobian(platform_of(machine), bad)
+
+
+def test_readings_are_what_the_inverse_and_forward_directions_take():
+    """The calibration model and the product agree: the inverse direction's lengths (tool frame
+    in the user frame in, sensor readings out) are the readings, and forward kinematics of the
+    readings gives the pose back: a calibrated platform file means the same to both."""
+    rng = np.random.default_rng(12)
+    machine = random_machine(rng)
+    platform = platform_of(machine)
+    poses = user_poses(machine, rng, 6)
+    reading, _ = readings_and_jacobian(platform, poses)
+    np.testing.assert_allclose(platform.inverse(poses, fidelity="kinematic").length, reading,
+                               rtol=0, atol=1e-13)
+    for pose, row in zip(poses, reading):
+        found = platform.forward(row[None, :], guess=pose)
+        assert found.status[0] == 0, found.messages
+        np.testing.assert_allclose(found.pose[0], pose, rtol=0, atol=1e-11)
