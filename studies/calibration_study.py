@@ -134,11 +134,11 @@ def main():
     print(f"  {'poses':>6} {'condition':>10} {'position after [um]':>20} {'rotation after [urad]':>22} "
           f"{'reduction %':>12} {'time [s]':>9}")
     for n in (8, 10, 15, 20, 30, 50, 80):
-        poses = stewart.calibration_poses(nominal, n, frames=args.frames)
         try:
+            poses = stewart.calibration_poses(nominal, n, frames=args.frames)
             r = np.median([run(nominal, poses, held_out, rng, args.frames)
                            for _ in range(max(3, args.machines // 2))], axis=0)
-        except stewart.UnobservableError as e:
+        except ValueError as e:  # too few poses, or stewart.UnobservableError
             print(f"  {n:>6} unobservable: {str(e)[:60]}...")
             continue
         print(f"  {n:>6} {r[2]:>10.1f} {r[4] * 1e6:>20.3f} {r[5] * 1e6:>22.3f} {r[0] * 100:>12.3f} "

@@ -170,7 +170,7 @@ def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = Non
 
     from scipy.optimize import least_squares  # only calibration needs scipy
 
-    method = "lm" if loss == "linear" and 6 * q.shape[0] >= layout.size else "trf"
+    method = "lm" if loss == "linear" and 6 * q.shape[0] >= to_theta.shape[1] else "trf"
     fit = least_squares(residual, np.zeros(to_theta.shape[1]), jac=jacobian, method=method,
                         loss=loss, f_scale=3.0, x_scale=1.0, xtol=1e-12, ftol=1e-12,
                         gtol=1e-12, max_nfev=max_evaluations)

@@ -37,9 +37,10 @@ def calibration_poses(platform: Platform, n: int, *, frames: Optional[str] = Non
     seed makes the draw repeatable. ValueError if n is too small to identify the unknowns (each
     pose gives 6 readings) or if too few candidates are inside the limits."""
     layout = Layout(JOINT_GROUPS + frame_groups(frames))
-    if not isinstance(n, (int, np.integer)) or 6 * n < layout.size:
-        raise ValueError(f"n = {n!r}: identifying {layout.size} unknowns needs an integer of at "
-                         f"least {-(-layout.size // 6)} poses (6 readings each)")
+    free = layout.size - 6 * len(frame_groups(frames))  # each identified frame's gauge: 6
+    if not isinstance(n, (int, np.integer)) or 6 * n < free:
+        raise ValueError(f"n = {n!r}: identifying {free} independent unknowns needs an integer "
+                         f"of at least {-(-free // 6)} poses (6 readings each)")
     if candidates < n:
         raise ValueError(f"candidates = {candidates} must be at least n = {n}")
     noise = Noise(position_noise, angle_noise, reading_noise)
