@@ -10,7 +10,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ParameterError
 from .platform import Platform
 
 MEASUREMENT_COLUMNS = ("x", "y", "z", "roll", "pitch", "yaw", "L1", "L2", "L3", "L4", "L5", "L6")
@@ -82,26 +81,12 @@ def read_measurements(path: str) -> Measurements:
 
 
 def read_platform(path: str) -> Platform:
-    """The platform file at path (Platform.from_file when the package has it). FileError naming
-    the line and column of a JSON error, or the field the library refuses."""
-    if hasattr(Platform, "from_file"):
-        try:
-            return Platform.from_file(path)
-        except (OSError, ValueError) as e:
-            raise FileError(f"{path}: {e}") from None
+    """The platform file at path (Platform.from_file), or FileError with the library's message
+    (the file, the line and the field)."""
     try:
-        with open(path) as f:
-            data = json.load(f)
-    except OSError as e:
-        raise FileError(f"{path}: cannot be read ({e})") from None
-    except json.JSONDecodeError as e:
-        raise FileError(f"{path} line {e.lineno} column {e.colno}: {e.msg}") from None
-    if not isinstance(data, dict):
-        raise FileError(f"{path}: a platform file is a JSON object of parameter names")
-    try:
-        return Platform(**data)
-    except (ParameterError, TypeError) as e:
-        raise FileError(f"{path}: {e}") from None
+        return Platform.from_file(path)
+    except (OSError, ValueError) as e:  # ParameterError is a ValueError
+        raise FileError(f"{path}: {e}" if str(path) not in str(e) else str(e)) from None
 
 
 def platform_file_text(platform: Platform) -> str:

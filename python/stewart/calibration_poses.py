@@ -33,7 +33,7 @@ def calibration_poses(platform: Platform, n: int, *, frames: Optional[str] = Non
     position_range over the largest platform joint radius, at most 0.5), and kept only where the
     library solves them (massless level) with no warning: every leg inside [stroke_min, stroke_max]
     and the leg Jacobian's condition number below warn_condition. The joint-angle and leg
-    interference limits of issue 19 are not checked here (they are not in the library yet).
+    interference limits of issue 19 are not checked here (not yet callable from Python).
     seed makes the draw repeatable. ValueError if n is too small to identify the unknowns (each
     pose gives 6 readings) or if too few candidates are inside the limits."""
     layout = Layout(JOINT_GROUPS + frame_groups(frames))
