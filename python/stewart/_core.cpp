@@ -10,6 +10,7 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,7 @@
 extern "C" {
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
+#include "stewart/stewart_calibration.h"
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_limits.h"
 #include "stewart/stewart_plant.h"
@@ -524,6 +526,34 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
     }
     if (bad < n)
         fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
+
+// stewart_geometry_jacobian over the rows of poses, into the caller's arrays (rows of 6, 18 and
+// 36: leg-major blocks of stewart_geometry_jacobian_output). Returns (-1, "") or the first failing
+// row and its message; the rows before it are written.
+std::pair<long, std::string> geometry_jacobian_rows(
+    const Model &model, Poses poses, Rows<double, 6> length, Rows<double, 6> reading,
+    Rows<double, 18> base_joint, Rows<double, 18> platform_joint, Rows<double, 36> tool_frame,
+    Rows<double, 36> user_frame, Rows<double, 36> pose) {
+    const size_t n = poses.shape(0);
+    for (size_t rows : {length.shape(0), reading.shape(0), base_joint.shape(0),
+                        platform_joint.shape(0), tool_frame.shape(0), user_frame.shape(0),
+                        pose.shape(0)})
+        if (rows != n) fail("output arrays must have as many rows as the poses");
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_geometry_jacobian_output out;
+    for (size_t i = 0; i < n; ++i) {
+        if (stewart_geometry_jacobian(model.get(), poses.data() + 6 * i, &out, message,
+                                      sizeof message) != STEWART_OK)
+            return {static_cast<long>(i), message};
+        std::copy_n(out.length, 6, length.data() + 6 * i);
+        std::copy_n(out.reading, 6, reading.data() + 6 * i);
+        std::copy_n(&out.base_joint[0][0], 18, base_joint.data() + 18 * i);
+        std::copy_n(&out.platform_joint[0][0], 18, platform_joint.data() + 18 * i);
+        std::copy_n(&out.tool_frame[0][0], 36, tool_frame.data() + 36 * i);
+        std::copy_n(&out.user_frame[0][0], 36, user_frame.data() + 36 * i);
+        std::copy_n(&out.pose[0][0], 36, pose.data() + 36 * i);
+    }
+    return {-1, ""};
 }
 
 }  // namespace
@@ -595,6 +625,16 @@ NB_MODULE(_core, m) {
           nb::arg("other_leg"));
     m.def("limit_class_name", [](int c) { return std::string(stewart_limit_class_name(c)); });
     m.attr("LIMIT_CLASSES") = STEWART_LIMIT_CLASSES;
+
+    m.def("geometry_jacobian", &geometry_jacobian_rows, nb::arg("model"), nb::arg("poses"),
+          nb::arg("length"), nb::arg("reading"), nb::arg("base_joint"), nb::arg("platform_joint"),
+          nb::arg("tool_frame"), nb::arg("user_frame"), nb::arg("pose"));
+    // The joint centres the model uses: (base_joint, platform_joint), 18 values each.
+    m.def("model_joints", [](const Model &model) {
+        std::vector<double> base(18), platform(18);
+        stewart_model_joints(model.get(), base.data(), platform.data());
+        return std::make_pair(base, platform);
+    });
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
     // A platform file's text read by the library (stewart_params_read_json): [(name, values)]
     // of the parameters it gives, each with all its elements; ValueError with the library's
