@@ -526,6 +526,7 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
     }
     if (bad < n)
         fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
+}
 
 // stewart_geometry_jacobian over the rows of poses, into the caller's arrays (rows of 6, 18 and
 // 36: leg-major blocks of stewart_geometry_jacobian_output). Returns (-1, "") or the first failing
