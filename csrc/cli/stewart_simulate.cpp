@@ -34,7 +34,8 @@ int usage(FILE *to) {
                  "  IN.csv:  t,F1..F6 [s, N] (F_k > 0 pushes platform and base apart; linear in "
                  "time between rows)\n"
                  "  OUT.csv: t,x,y,z,roll,pitch,yaw,x_dot..yaw_dot,L1..L6,L_dot1..L_dot6,"
-                 "warnings,\n"
+                 "warnings (bits: 1\n"
+                 "           stroke, 8 joint angle, 16 leg interference),\n"
                  "           steps,rhs_evaluations,nonlinear_iterations,error_test_failures "
                  "(of the step into that row)\n");
     return to == stderr ? 2 : 0;
@@ -265,9 +266,18 @@ int main(int argc, char **argv) {
             status = 1;
             break;
         }
-        if (rows[j].out.warnings && !last_warnings)
-            std::fprintf(stderr, "stewart-simulate: warning at row %zu (t = %g): %s\n", j + 1,
-                         table.t[j], stroke_warning(s.params, rows[j].out).c_str());
+        // Each warning when it starts: strokes, joint angles, interference (docs/limits.md).
+        const int started = rows[j].out.warnings & ~last_warnings;
+        const std::string why[] = {stroke_warning(s.params, rows[j].out),
+                                   "a joint is beyond its angle limit (base_joint_limit, "
+                                   "platform_joint_limit; joint stops are not modelled)",
+                                   "two legs are closer than leg_diameter (contacts are not "
+                                   "modelled)"};
+        const int bits[] = {STEWART_WARN_STROKE, STEWART_WARN_JOINT_LIMIT, STEWART_WARN_INTERFERENCE};
+        for (int w = 0; w < 3; ++w)
+            if (started & bits[w])
+                std::fprintf(stderr, "stewart-simulate: warning at row %zu (t = %g): %s\n", j + 1,
+                             table.t[j], why[w].c_str());
         last_warnings = rows[j].out.warnings;
     }
     stewart_plant_free(plant);

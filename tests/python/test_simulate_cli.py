@@ -136,4 +136,5 @@ def test_stroke_warning_on_stderr(simulate, tmp_path):
     assert r.returncode == 0, r.stderr
     assert "warning" in r.stderr and "stroke" in r.stderr and "leg " in r.stderr
     header, data = read(tmp_path / "out.csv")
-    assert data[-1, header.index("warnings")] == 1
+    # the stroke bit; the collapsed platform's legs also pass their joints' 90 degrees (8)
+    assert int(data[-1, header.index("warnings")]) & 1 == 1
