@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Worst-case latency (issue 21): runs build/latency (studies/bench/latency.c) over 10^6 calls of
+# each workload and writes its table, with the machine and its load, to
+# studies/bench/latency-results.md (docs/latency.md quotes it). The machine is shared: the load
+# average before and after each row is part of the row; run it on a quiet machine for numbers
+# that show the code rather than the neighbours.
+# usage: studies/bench/latency.sh [BUILD_DIR=build] [CALLS=1000000]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+build=$(realpath "${1:-build}")
+calls=${2:-1000000}
+[ -x "$build/latency" ] || { echo "latency.sh: $build/latency is missing: build first"; exit 2; }
+out=studies/bench/latency-results.md
+table=$(mktemp)
+trap 'rm -f "$table"' EXIT
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
+"$build/latency" "$build/fmu" "$table" "$calls" >/dev/null
+load_after=$(cut -d' ' -f1-3 /proc/loadavg)
+{
+  echo "# Latency of one call (studies/bench/latency.sh)"
+  echo
+  echo "Written by studies/bench/latency.sh on $(date -u '+%Y-%m-%d %H:%M UTC'), commit" \
+       "$(git rev-parse --short HEAD 2>/dev/null || echo '?')."
+  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'),"
+  echo "Linux $(uname -r); build type $(grep -m1 CMAKE_BUILD_TYPE: "$build/CMakeCache.txt" | cut -d= -f2)."
+  echo "Load average (1, 5, 15 min) before the run: $load_before; after: $load_after."
+  echo
+  cat "$table"
+} >"$out"
+cat "$out"
