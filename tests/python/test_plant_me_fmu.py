@@ -141,6 +141,47 @@ def test_states_derivatives_and_the_co_simulation_plants_names(version):
         assert v[n].causality == "output"
 
 
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fmi_cross_check_rules(version):
+    """What the FMI cross-check rules ask of an FMU: the archive's layout (description at the root,
+    the binary where the platform's name says), a self-contained binary that exports only the FMI
+    functions, both Model Exchange function sets present, and a run of the default experiment with
+    the default start values (and with massless legs the free fall in closed form)."""
+    import subprocess as sp
+    import zipfile
+    platform = "linux64" if version == "2.0" else "x86_64-linux"
+    path = fmu_file("StewartPlantME", version)
+    with zipfile.ZipFile(path) as z:
+        assert set(z.namelist()) >= {"modelDescription.xml",
+                                     f"binaries/{platform}/StewartPlantME.so"}
+    so = BUILD / "fmu" / "StewartPlantME" / f"fmi{version[0]}" / "StewartPlantME.so"
+    d = sp.run(["readelf", "-d", "-W", str(so)], capture_output=True, text=True, check=True)
+    needed = {line.split("[")[1].split("]")[0] for line in d.stdout.splitlines()
+              if "(NEEDED)" in line}
+    assert needed <= {"libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1"}, needed
+    syms = sp.run(["readelf", "--dyn-syms", "-W", str(so)], capture_output=True, text=True,
+                  check=True).stdout.splitlines()
+    exported = {f[7].split("@")[0] for f in map(str.split, syms)
+                if len(f) >= 8 and f[0].endswith(":") and f[4] in ("GLOBAL", "WEAK")
+                and f[6] != "UND"}
+    prefix = f"fmi{version[0]}"
+    assert exported and all(n.startswith(prefix) for n in exported)
+    me_calls = ["SetTime", "SetContinuousStates", "GetContinuousStates", "EnterEventMode",
+                "EnterContinuousTimeMode", "CompletedIntegratorStep", "GetEventIndicators",
+                "GetNominalsOfContinuousStates", "InstantiateModelExchange" if version == "3.0"
+                else "Instantiate", "GetDerivatives" if version == "2.0"
+                else "GetContinuousStateDerivatives"]
+    assert {prefix + c for c in me_calls} <= exported
+    md = fmpy.read_model_description(path)
+    assert md.defaultExperiment.stopTime == "1"
+    result = fmpy.simulate_fmu(path)  # Model Exchange, fmpy's default solver and settings
+    assert result["time"][-1] == pytest.approx(1.0)
+    assert all(np.isfinite(result[n]).all() for n in result.dtype.names)
+    # with massless legs and no forces the platform alone falls freely: z = 0.5 - g t^2 / 2
+    result = fmpy.simulate_fmu(path, start_values={"fidelity": 1}, relative_tolerance=1e-10)
+    assert np.abs(result["z"] - (0.5 - 9.81 / 2 * result["time"] ** 2)).max() < 1e-8
+
+
 # ---------------------------------------------------------------- against the co-simulation plant
 
 def co_simulation(version, fidelity, forces, t_end, h=1e-3):
