@@ -84,6 +84,16 @@ bool static_forces(const stewart_model *model, int fidelity, double force[6], ch
     return ok;
 }
 
+// The thesis platform's static forces at home at the full level (for the FMU workloads).
+bool home_static_forces(double force[6], char *msg, size_t size) {
+    stewart_params p;
+    stewart_params_default(&p);
+    stewart_model *model = stewart_model_create(&p, msg, size);
+    const bool ok = model && static_forces(model, STEWART_FULL, force, msg, size);
+    stewart_model_free(model);
+    return ok;
+}
+
 struct InverseFull : Library {
     stewart_inverse *inv = nullptr;
     stewart_inverse_input in{};
@@ -256,12 +266,8 @@ struct FmuPlant : Fmu {
     double force[6] = {0};
     fmi2FMUstate start = nullptr;
     bool build(const char *dir, char *msg, size_t size) {
-        stewart_params p;
-        stewart_params_default(&p);
-        stewart_model *model = stewart_model_create(&p, msg, size);
-        const bool ok = model && static_forces(model, STEWART_FULL, force, msg, size);
-        stewart_model_free(model);
-        if (!ok || !Fmu::build(dir, "StewartPlant", fmi2CoSimulation, nullptr, nullptr, 0, msg,
+        if (!home_static_forces(force, msg, size) ||
+            !Fmu::build(dir, "StewartPlant", fmi2CoSimulation, nullptr, nullptr, 0, msg,
                                size))
             return false;
         return symbol<fmi2GetFMUstateTYPE>("fmi2GetFMUstate")(c, &start) == fmi2OK;
@@ -314,12 +320,8 @@ struct FmuPlantME : Fmu {
     fmi2SetContinuousStatesTYPE *set_states = nullptr;
     fmi2GetDerivativesTYPE *derivatives = nullptr;
     bool build(const char *dir, char *msg, size_t size) {
-        stewart_params p;
-        stewart_params_default(&p);
-        stewart_model *model = stewart_model_create(&p, msg, size);
-        const bool ok = model && static_forces(model, STEWART_FULL, force, msg, size);
-        stewart_model_free(model);
-        if (!ok || !Fmu::build(dir, "StewartPlantME", fmi2ModelExchange, nullptr, nullptr, 0,
+        if (!home_static_forces(force, msg, size) ||
+            !Fmu::build(dir, "StewartPlantME", fmi2ModelExchange, nullptr, nullptr, 0,
                                msg, size))
             return false;
         fmi2EventInfo info{};

@@ -11,8 +11,7 @@ import numpy as np
 import pytest
 
 import fmpy
-from fmpy.fmi2 import (FMU2Model, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
-                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE, fmi2EventInfo)
+from fmpy.fmi2 import FMU2Model
 from fmpy.fmi3 import FMU3Model
 from fmpy.validation import validate_fmu
 
@@ -26,51 +25,24 @@ COMPARED = POSE + POSE_DOT + L + L_DOT
 START = {"x_dot0": 0.05, "y_dot0": -0.03, "roll_dot0": 0.2, "pitch_dot0": -0.1, "yaw_dot0": 0.3}
 
 
-class MEInstance:
-    """One Model Exchange instance through fmpy's raw calls (FMI 2 or 3), variables by name; raw
-    calls return their status. Log messages collect in .messages."""
+class MEInstance(Instance):
+    """One Model Exchange instance through fmpy (FMI 2 or 3), variables by name (Instance's get
+    and set); raw calls return their status. Log messages collect in .messages."""
 
     def __init__(self, version="2.0", name="me"):
-        path = fmu_file("StewartPlantME", version)
-        md = fmpy.read_model_description(path)
-        self.v2 = version == "2.0"
-        self.vr = {v.name: v.valueReference for v in md.modelVariables}
-        self.messages = []
-        cls = FMU2Model if self.v2 else FMU3Model
-        self.fmu = cls(guid=md.guid, unzipDirectory=unzipped(path),
-                       modelIdentifier="StewartPlantME", instanceName=name)
-        if self.v2:
-            callbacks = fmi2CallbackFunctions()
-            callbacks.logger = fmi2CallbackLoggerTYPE(
-                lambda env, inst, status, category, message: self.messages.append(message.decode()))
-            callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(fmpy.fmi2.calloc)
-            callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(fmpy.fmi2.free)
-            self._callbacks = callbacks
-            self.fmu.instantiate(callbacks=callbacks, loggingOn=True)
-        else:
-            self._log = lambda env, status, category, message: self.messages.append(
-                message.decode())
-            self.fmu.instantiate(loggingOn=True, logMessage=self._log)
+        super().__init__("StewartPlantME", version, name, classes=(FMU2Model, FMU3Model))
         self.dll, self.c = self.fmu.dll, self.fmu.component
         self.prefix = "fmi2" if self.v2 else "fmi3"
 
     def init(self, **parameters):
-        for name, value in parameters.items():
-            if name == "fidelity":
-                (self.fmu.setInteger if self.v2 else self.fmu.setInt32)([self.vr[name]],
-                                                                        [int(value)])
-            else:
-                self.set(**{name: value})
+        """Parameters set, in initialisation mode (Instance.init also leaves it)."""
+        self.set(**parameters)
         if self.v2:
             self.fmu.setupExperiment(startTime=0.0)
-        self.raw_enter_initialization()
-        return self
-
-    def raw_enter_initialization(self):
-        if self.v2:
             self.fmu.enterInitializationMode()
         else:
             self.fmu.enterInitializationMode(startTime=0.0)
+        return self
 
     def continuous(self):
         """Exit initialisation, pass event mode, enter continuous-time mode."""
@@ -81,14 +53,6 @@ class MEInstance:
             self.fmu.updateDiscreteStates()
         self.fmu.enterContinuousTimeMode()
         return self
-
-    def set(self, **values):
-        (self.fmu.setReal if self.v2 else self.fmu.setFloat64)(
-            [self.vr[n] for n in values], [float(v) for v in values.values()])
-
-    def get(self, names):
-        return np.array((self.fmu.getReal if self.v2 else self.fmu.getFloat64)(
-            [self.vr[n] for n in names]))
 
     def raw(self, function, *args):
         return getattr(self.dll, self.prefix + function)(self.c, *args)
@@ -105,8 +69,6 @@ class MEInstance:
                      dx.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), ctypes.c_size_t(12))
         return s, dx
 
-    def free(self):
-        self.fmu.freeInstance()
 
 
 # ---------------------------------------------------------------- descriptions
