@@ -25,6 +25,11 @@ const char *fault_text(fd::LegFault f) {
     return "is undefined";
 }
 
+// Element k of a stroke limit: a scalar for every leg, or an array per leg (issue 19's per-leg
+// strokes); either reads here.
+inline double per_leg(double limit, int) { return limit; }
+inline double per_leg(const double *limit, int k) { return limit[k]; }
+
 // Length, rate and acceleration of every leg for the platform motion m (accelerations included);
 // bit k of the result set when leg k+1 is outside [stroke_min, stroke_max].
 int leg_motion(const stewart_plant &p, const stewart::Motion &m, stewart_lengths &out) {
@@ -41,7 +46,8 @@ int leg_motion(const stewart_plant &p, const stewart::Motion &m, stewart_lengths
         out.length_rate[k] = rate;
         // d/dt (d . d_dot / L) = (|d_dot|^2 + d . d_ddot - L_dot^2) / L
         out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - rate * rate) / length;
-        if (length < par.stroke_min || length > par.stroke_max) stroke_legs |= 1 << k;
+        if (length < per_leg(par.stroke_min, k) || length > per_leg(par.stroke_max, k))
+            stroke_legs |= 1 << k;
     }
     return stroke_legs;
 }
