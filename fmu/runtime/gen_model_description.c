@@ -250,15 +250,15 @@ int main(int argc, char **argv) {
     if (version == 2) attr("numberOfEventIndicators", "0");
     fputs(">\n", out);
 
-    if (FMU_MODEL_EXCHANGE) {
-        fputs("  <ModelExchange", out);
-        attr("modelIdentifier", FMU_MODEL_IDENTIFIER);
-        attr(version == 2 ? "completedIntegratorStepNotNeeded" : "needsCompletedIntegratorStep",
-             version == 2 ? "true" : "false");
-        attr(version == 2 ? "canGetAndSetFMUstate" : "canGetAndSetFMUState", "true");
-        attr(version == 2 ? "canSerializeFMUstate" : "canSerializeFMUState", "true");
-        if (version == 2) attr("canNotUseMemoryManagementFunctions", "true");
-    } else {
+#if FMU_MODEL_EXCHANGE
+    fputs("  <ModelExchange", out);
+    attr("modelIdentifier", FMU_MODEL_IDENTIFIER);
+    attr(version == 2 ? "completedIntegratorStepNotNeeded" : "needsCompletedIntegratorStep",
+         version == 2 ? "true" : "false");
+    attr(version == 2 ? "canGetAndSetFMUstate" : "canGetAndSetFMUState", "true");
+    attr(version == 2 ? "canSerializeFMUstate" : "canSerializeFMUState", "true");
+    if (version == 2) attr("canNotUseMemoryManagementFunctions", "true");
+#else
     fputs("  <CoSimulation", out);
     attr("modelIdentifier", FMU_MODEL_IDENTIFIER);
     attr("canHandleVariableCommunicationStepSize", "true");
@@ -273,7 +273,7 @@ int main(int argc, char **argv) {
         attr("canSerializeFMUState", "true");
         attr("hasEventMode", "false");
     }
-    }
+#endif
     fputs("/>\n", out);
 
     fputs("  <UnitDefinitions>\n", out);
@@ -301,9 +301,9 @@ int main(int argc, char **argv) {
     for (size_t i = 0; i < fmu_n_variables; ++i) table_variable(&fmu_variables[i], &start);
     fputs("  </ModelVariables>\n", out);
 
-    /* Outputs, by index (FMI 2, 1-based position in ModelVariables) or value reference (FMI 3). */
     /* Outputs, the state derivatives (Model Exchange), then the initial unknowns (the outputs,
-     * which include the derivatives). */
+     * which include the derivatives); by index (FMI 2, 1-based position in ModelVariables) or
+     * value reference (FMI 3). */
     fputs("  <ModelStructure>\n", out);
     static const char *const kFmi2Lists[3] = {"Outputs", "Derivatives", "InitialUnknowns"};
     static const char *const kFmi3Elements[3] = {"Output", "ContinuousStateDerivative",
