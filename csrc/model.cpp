@@ -20,6 +20,9 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
     m->geometry = stewart::platform_geometry(*params);
     m->platform = stewart::lumped_platform(*params);
     m->gravity = Eigen::Vector3d(params->gravity);
+    m->frames = stewart::frames_of(*params);
+    m->length_offsets = false;
+    for (double offset : params->length_offset) m->length_offsets = m->length_offsets || offset != 0;
     m->full = stewart::build_full_platform(*params, stewart::FullDrive::ActuatorLengths,
                                            m->full_layout, msg, size);
     if (!m->full) {
@@ -28,7 +31,7 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
     }
     // A model singular at home has no forward kinematics (stewart_forward_create says so); the
     // other directions still work.
-    stewart::forward_constants(m->geometry, params->home_height, m->forward, msg, size);
+    stewart::forward_constants(m->geometry, *params, m->forward, msg, size);
     clear_message(msg, size);
     return m;
 }

@@ -32,6 +32,17 @@ bool angle_rates_of(const double q[6], const Eigen::Vector3d &omega, double out[
     return true;
 }
 
+void angles_of_rotation(const Eigen::Matrix3d &R, const double near[3], double angles[3]) {
+    const double sp = -R(2, 0);
+    angles[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
+    angles[0] = std::atan2(R(2, 1), R(2, 2));
+    angles[2] = std::atan2(R(1, 0), R(0, 0));
+    for (int i : {0, 2}) {
+        const double turns = std::round((near[i] - angles[i]) / (2 * M_PI));
+        angles[i] += 2 * M_PI * turns;
+    }
+}
+
 stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size) {
     const double *rows[3] = {pose.q, pose.q_dot, pose.q_ddot};
     const char *suffix[3] = {"", "_dot", "_ddot"};
@@ -78,11 +89,7 @@ Motion motion_of_pose(const stewart_pose &pose) {
     const Eigen::Matrix3d E = angle_rate_matrix(cp, sp, cy, sy);
     const Eigen::Vector3d rate(pose.q_dot[3], pose.q_dot[4], pose.q_dot[5]);
     const Eigen::Vector3d accel(pose.q_ddot[3], pose.q_ddot[4], pose.q_ddot[5]);
-    const double pd = rate[1], yd = rate[2];
-    Eigen::Matrix3d E_dot;
-    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, 0,
-              cy * yd * cp - sy * sp * pd, -sy * yd, 0,
-             -cp * pd,                      0,       0;
+    const Eigen::Matrix3d E_dot = angle_rate_matrix_dot(cp, sp, cy, sy, rate[1], rate[2]);
     m.omega = E * rate;
     m.alpha = E * accel + E_dot * rate;
     return m;

@@ -39,6 +39,22 @@ inline Eigen::Matrix3d angle_rate_matrix(double cp, double sp, double cy, double
     return E;
 }
 
+// dE/dt at pitch and yaw (cos and sin) moving at pitch_rate and yaw_rate: alpha = E angles_ddot +
+// E_dot angles_dot.
+inline Eigen::Matrix3d angle_rate_matrix_dot(double cp, double sp, double cy, double sy,
+                                             double pitch_rate, double yaw_rate) {
+    const double pd = pitch_rate, yd = yaw_rate;
+    Eigen::Matrix3d E_dot;
+    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, 0,
+              cy * yd * cp - sy * sp * pd, -sy * yd, 0,
+             -cp * pd,                      0,       0;
+    return E_dot;
+}
+
+// The roll, pitch, yaw of R: pitch in [-pi/2, pi/2], roll and yaw on the branch (2 pi apart)
+// nearest to near[0] and near[2].
+void angles_of_rotation(const Eigen::Matrix3d &R, const double near[3], double angles[3]);
+
 // The inverse: (roll, pitch, yaw) rates from the angular velocity omega (world) at pose angles
 // pitch q[4] and yaw q[5]. False at pitch = +-90 deg (|cos pitch| <= min_cos_pitch), where roll
 // and yaw rates are not defined.

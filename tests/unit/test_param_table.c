@@ -22,6 +22,14 @@ static void thesis_platform(stewart_params *p) {
     p->platform_radius = 0.5;
     for (int k = 0; k < 6; ++k) p->base_angle[k] = beta[k] * deg, p->platform_angle[k] = tau[k] * deg;
     p->home_height = 0.5;
+    /* geometry 0 (circles); the joints' defaults are the same joints as coordinates, the arms
+     * zero (tangential) */
+    for (int k = 0; k < 6; ++k) {
+        p->base_joint[3 * k] = 0.5 * cos(p->base_angle[k]);
+        p->base_joint[3 * k + 1] = 0.5 * sin(p->base_angle[k]);
+        p->platform_joint[3 * k] = 0.5 * cos(p->platform_angle[k]);
+        p->platform_joint[3 * k + 1] = 0.5 * sin(p->platform_angle[k]);
+    }
     p->gravity[2] = -9.81;
     const double R = 0.5, t = 0.05, m_plate = rho * pi * R * R * t;
     p->platform_mass = m_plate;
@@ -34,8 +42,7 @@ static void thesis_platform(stewart_params *p) {
     p->piston_inertia[0] = p->piston_inertia[1] = I_across;
     p->cylinder_inertia[2] = p->piston_inertia[2] = I_axis;
     p->cylinder_com = p->piston_com = l / 2.0;
-    p->stroke_min = 0.40;
-    p->stroke_max = 0.70;
+    for (int k = 0; k < 6; ++k) p->stroke_min[k] = 0.40, p->stroke_max[k] = 0.70;
 }
 
 static void test_defaults_are_the_thesis_platform_bit_for_bit(void) {
@@ -60,10 +67,13 @@ static void test_iteration_covers_every_field_once(void) {
     const double *next = (const double *)&p;
     for (int i = 0; i < stewart_param_count(); ++i) {
         const stewart_param_info *info = stewart_param(i);
-        TEST_ASSERT_TRUE(info->count == 1 || info->count == 3 || info->count == 6);
-        TEST_ASSERT_TRUE(strcmp(info->display_unit, "") == 0 ||
-                         (strcmp(info->display_unit, "deg") == 0 && !strcmp(info->unit, "rad")));
+        TEST_ASSERT_TRUE(info->count == 1 || info->count == 3 || info->count == 6 ||
+                         info->count == 18);
         for (int e = 0; e < info->count; ++e) {
+            const char *unit = stewart_param_element_unit(i, e);
+            const char *display = stewart_param_element_display_unit(i, e);
+            TEST_ASSERT_TRUE(strcmp(display, "") == 0 ||
+                             (strcmp(display, "deg") == 0 && !strcmp(unit, "rad")));
             TEST_ASSERT_EQUAL_PTR(next++, stewart_param_element(&p, i, e));
             char name[48];
             TEST_ASSERT_TRUE(stewart_param_element_name(i, e, name, sizeof name) > 0);
@@ -95,6 +105,17 @@ static void test_element_names_and_descriptions(void) {
     TEST_ASSERT_EQUAL_INT(-1, stewart_param_element_name(angle, 6, text, sizeof text));
     TEST_ASSERT_EQUAL_STRING("deg", stewart_param(angle)->display_unit);
     TEST_ASSERT_EQUAL_INT(212, stewart_param(angle)->id);
+    /* a pose's elements: x, y, z in m, roll, pitch, yaw in rad shown in deg */
+    const int tool = stewart_param_find("tool_frame[5]", &e);
+    TEST_ASSERT_EQUAL_INT(4, e);
+    stewart_param_element_description(tool, 4, text, sizeof text);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(text, "tool frame"), text);
+    TEST_ASSERT_EQUAL_STRING(" pitch", text + strlen(text) - 6);
+    TEST_ASSERT_EQUAL_STRING("m", stewart_param_element_unit(tool, 2));
+    TEST_ASSERT_EQUAL_STRING("", stewart_param_element_display_unit(tool, 2));
+    TEST_ASSERT_EQUAL_STRING("rad", stewart_param_element_unit(tool, 3));
+    TEST_ASSERT_EQUAL_STRING("deg", stewart_param_element_display_unit(tool, 3));
+    TEST_ASSERT_NULL(stewart_param_element_unit(tool, 6));
 }
 
 /* Each element is refused just outside its range and accepted just inside, by name. */
