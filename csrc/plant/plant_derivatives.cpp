@@ -1,9 +1,12 @@
 // stewart_plant_derivatives: the plant's equations of motion as a right-hand side in the pose
-// coordinates (x, y, z, roll, pitch, yaw and their rates), for masters that integrate the state
-// themselves (the Model Exchange FMU). The twist rate comes from the same equations the plant's
-// integrator uses (plant_equations.cpp); only the change of coordinates is here.
+// coordinates (x, y, z, roll, pitch, yaw and their rates: the tool's in the user frame, as every
+// pose the plant takes and gives), for masters that integrate the state themselves (the Model
+// Exchange FMU). The twist rate comes from the same equations the plant's integrator uses
+// (plant_equations.cpp); only the changes of coordinates are here.
 #include <cmath>
+#include <cstring>
 
+#include "kinematics/frames.hpp"
 #include "kinematics/motion.hpp"
 #include "kinematics/pose_names.hpp"
 #include "plant/plant_object.hpp"
@@ -25,11 +28,6 @@ const char *fault_text(fd::LegFault f) {
     return "is undefined";
 }
 
-// Element k of a stroke limit: a scalar for every leg, or an array per leg (issue 19's per-leg
-// strokes); either reads here.
-inline double per_leg(double limit, int) { return limit; }
-inline double per_leg(const double *limit, int k) { return limit[k]; }
-
 // Length, rate and acceleration of every leg for the platform motion m (accelerations included);
 // bit k of the result set when leg k+1 is outside [stroke_min, stroke_max].
 int leg_motion(const stewart_plant &p, const stewart::Motion &m, stewart_lengths &out) {
@@ -46,8 +44,7 @@ int leg_motion(const stewart_plant &p, const stewart::Motion &m, stewart_lengths
         out.length_rate[k] = rate;
         // d/dt (d . d_dot / L) = (|d_dot|^2 + d . d_ddot - L_dot^2) / L
         out.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - rate * rate) / length;
-        if (length < per_leg(par.stroke_min, k) || length > per_leg(par.stroke_max, k))
-            stroke_legs |= 1 << k;
+        if (length < par.stroke_min[k] || length > par.stroke_max[k]) stroke_legs |= 1 << k;
     }
     return stroke_legs;
 }
@@ -82,15 +79,31 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
     if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
     stewart_status s = check_input(*in, msg, size);
     if (s != STEWART_OK) return s;
-    const double pitch = in->pose.q[4];
-    if (!(std::fabs(std::cos(pitch)) > fd::kMinCosPitch))
+    if (!(std::fabs(std::cos(in->pose.q[4])) > fd::kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "pitch = %.17g rad is at +-90 degrees, where roll and yaw rates are "
-                           "undefined", pitch);
-
-    // The motion with zero angle accelerations: its alpha is E_dot * angle rates alone.
-    stewart_pose pose = in->pose;
+                           "undefined", in->pose.q[4]);
+    // The platform's pose in the base frame (the tool's in the user frame is given), with zero
+    // angle accelerations: the motion's alpha is then E_dot * angle rates alone.
+    const stewart::Frames &frames = p->model->frames;
+    stewart_pose pose{};
+    if (frames.identity) {
+        pose = in->pose;
+    } else if (!stewart::platform_pose(frames, in->pose.q, in->pose.q_dot, pose.q, pose.q_dot,
+                                       fd::kMinCosPitch)) {
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "this tool pose puts the platform's pitch at +-90 degrees (tool_frame, "
+                           "user_frame), where its roll and yaw rates are undefined");
+    }
+    for (int i = 0; i < 6; ++i)
+        if (!std::isfinite(pose.q[i]) || !std::isfinite(pose.q_dot[i]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "%s = %g, %s_dot = %g are out of range: the platform's pose or "
+                               "rates they give (tool and user frames) overflow",
+                               stewart::kPoseNames[i], in->pose.q[i], stewart::kPoseNames[i],
+                               in->pose.q_dot[i]);
     for (double &a : pose.q_ddot) a = 0;
+    const double pitch = pose.q[4];
     stewart::Motion m = stewart::motion_of_pose(pose);
     if (!m.omega.allFinite())
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -123,14 +136,25 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
 
     stewart_plant_output o{};
     o.time = in->time;
-    o.pose = pose;
     for (int i = 0; i < 3; ++i) {
-        o.pose.q_ddot[i] = m.acceleration[i];
-        o.pose.q_ddot[3 + i] = angle_accel[i];
+        pose.q_ddot[i] = m.acceleration[i];
+        pose.q_ddot[3 + i] = angle_accel[i];
         o.base_force[i] = force[i];
         o.base_torque[i] = torque[i];
     }
+    // The state given is the state returned (no other branch of roll and yaw); its accelerations
+    // are the tool's in the user frame.
+    o.pose = in->pose;
+    stewart_pose tool = pose;
+    if (!frames.identity && !stewart::tool_pose(frames, pose, 2, tool, fd::kMinCosPitch))
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "pitch = %.17g rad is at +-90 degrees, where roll and yaw rates are "
+                           "undefined", in->pose.q[4]);
+    std::memcpy(o.pose.q_ddot, tool.q_ddot, sizeof o.pose.q_ddot);
     o.stroke_legs = leg_motion(*p, m, o.lengths);
+    if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            o.lengths.length[k] -= p->model->params.length_offset[k];
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
     const double *values[6] = {o.pose.q_ddot, o.lengths.length, o.lengths.length_rate,
                                o.lengths.length_accel, o.base_force, o.base_torque};

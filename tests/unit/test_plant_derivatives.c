@@ -16,6 +16,7 @@ void setUp(void) {}
 void tearDown(void) {}
 
 static stewart_model *model;
+static stewart_model *framed; /* tool and user frames and length offsets */
 
 /* |a - b| over n values, relative to max(1, |b|). */
 static double error(const double *a, const double *b, int n) {
@@ -27,7 +28,7 @@ static double error(const double *a, const double *b, int n) {
     return e / scale;
 }
 
-static void inverse_round_trip(int fidelity, double tolerance) {
+static void inverse_round_trip(const stewart_model *model, int fidelity, double tolerance) {
     stewart_inverse_options io = test_options(fidelity);
     char msg[STEWART_MESSAGE_SIZE];
     stewart_inverse *inv = stewart_inverse_create(model, &io, msg, sizeof msg);
@@ -64,8 +65,12 @@ static void inverse_round_trip(int fidelity, double tolerance) {
 
 static void test_the_inverse_sides_forces_give_back_the_accelerations(void) {
     /* measured 2e-14 and 1e-13: two formulations of the same equations, to rounding */
-    inverse_round_trip(STEWART_MASSLESS, 1e-11);
-    inverse_round_trip(STEWART_FULL, 1e-10);
+    inverse_round_trip(model, STEWART_MASSLESS, 1e-11);
+    inverse_round_trip(model, STEWART_FULL, 1e-10);
+    /* the tool's pose in the user frame, lengths read with offsets: the same, through both
+     * sides' frame transforms */
+    inverse_round_trip(framed, STEWART_MASSLESS, 1e-10);
+    inverse_round_trip(framed, STEWART_FULL, 1e-9);
 }
 
 static void test_free_fall_without_forces_or_leg_mass(void) {
@@ -127,11 +132,20 @@ int main(void) {
     stewart_params params;
     stewart_params_default(&params);
     model = test_model(&params);
+    const double tool[6] = {0.01, -0.02, 0.05, 0.1, -0.05, 0.2};
+    const double user[6] = {0.02, 0.01, -0.03, 0.05, 0.04, -0.3};
+    for (int i = 0; i < 6; ++i) {
+        params.tool_frame[i] = tool[i];
+        params.user_frame[i] = user[i];
+        params.length_offset[i] = 0.01 * (i + 1);
+    }
+    framed = test_model(&params);
     UNITY_BEGIN();
     RUN_TEST(test_the_inverse_sides_forces_give_back_the_accelerations);
     RUN_TEST(test_free_fall_without_forces_or_leg_mass);
     RUN_TEST(test_refusals_name_the_value_and_leave_the_plant_alone);
     const int failures = UNITY_END();
+    stewart_model_free(framed);
     stewart_model_free(model);
     return failures;
 }
