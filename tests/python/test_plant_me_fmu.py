@@ -146,10 +146,16 @@ def test_fmi_cross_check_rules(version):
 
 # ---------------------------------------------------------------- against the co-simulation plant
 
-def co_simulation(version, fidelity, forces, t_end, h=1e-3):
+# tool and user frames and length offsets: the poses are the tool's in the user frame
+FRAMES = dict({f"tool_frame[{i + 1}]": v for i, v in enumerate([0.01, -0.02, 0.05, 0.1, -0.05, 0.2])},
+              **{f"user_frame[{i + 1}]": v for i, v in enumerate([0.02, 0.01, -0.03, 0.05, 0.04, -0.3])},
+              **{f"length_offset[{k}]": 0.01 * k for k in range(1, 7)})
+
+
+def co_simulation(version, fidelity, forces, t_end, h=1e-3, extra=None):
     """The co-simulation plant over [0, t_end] in steps of h, forces(t) held over each step: the
-    rows (t, outputs COMPARED)."""
-    u = Instance("StewartPlant", version, "cs").init(fidelity=fidelity, **START)
+    rows (t, outputs COMPARED). extra: more parameters."""
+    u = Instance("StewartPlant", version, "cs").init(fidelity=fidelity, **START, **(extra or {}))
     rows = [np.concatenate([[0.0], u.get(COMPARED)])]
     n = int(round(t_end / h))
     try:
@@ -163,12 +169,13 @@ def co_simulation(version, fidelity, forces, t_end, h=1e-3):
     return np.array(rows)
 
 
-def model_exchange(version, fidelity, force_table, t_end, interval=1e-3):
+def model_exchange(version, fidelity, force_table, t_end, interval=1e-3, extra=None):
     """fmpy's CVODE on the ME plant (relative tolerance 1e-10): the rows (t, COMPARED)."""
     result = fmpy.simulate_fmu(
         fmu_file("StewartPlantME", version), fmi_type="ModelExchange", solver="CVode",
         relative_tolerance=1e-10, stop_time=t_end, output_interval=interval,
-        start_values=dict(START, fidelity=fidelity), input=force_table, output=COMPARED)
+        start_values=dict(START, fidelity=fidelity, **(extra or {})), input=force_table,
+        output=COMPARED)
     rows = np.column_stack([result["time"]] + [result[n] for n in COMPARED])
     # fmpy records a row before and after an event at the same time: keep the one after
     keep = np.append(np.diff(rows[:, 0]) > 0, True)
@@ -191,12 +198,13 @@ PUSH = force_step(0.15, [230, 180, 210, 190, 220, 170], [170, 220, 190, 210, 180
 
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("fidelity", [1, 2])
-@pytest.mark.parametrize("case", ["free", "forced"])
+@pytest.mark.parametrize("case", ["free", "forced", "forced, frames"])
 def test_cvode_equals_the_co_simulation_plant(version, fidelity, case):
     forces, table = FREE if case == "free" else PUSH
+    extra = FRAMES if "frames" in case else None
     t_end = 0.3
-    cs = co_simulation(version, fidelity, forces, t_end)
-    me = model_exchange(version, fidelity, table, t_end)
+    cs = co_simulation(version, fidelity, forces, t_end, extra=extra)
+    me = model_exchange(version, fidelity, table, t_end, extra=extra)
     assert me.shape == cs.shape
     assert np.abs(me[:, 0] - cs[:, 0]).max() < 1e-12
     moved = np.abs(cs[-1, 1:13] - cs[0, 1:13]).max()
