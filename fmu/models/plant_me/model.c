@@ -151,37 +151,11 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     return FMU_ERROR;
 }
 
-fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
-                                       const int order[], const double value[]) {
-    (void)vr; (void)order; (void)value;
-    if (n == 0) return FMU_OK;
-    fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetRealInputDerivatives: " FMU_MODEL_IDENTIFIER
-            " takes no input derivatives (Model Exchange)");
-    return FMU_ERROR;
-}
-
 /* ---------------------------------------------------------------- FMU state */
 
-/* The instance's values are the whole state (the plant object holds none of it). */
-size_t model_state_size(const fmu_instance *inst) {
-    (void)inst;
-    return 0;
-}
-
-fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size) {
-    (void)inst; (void)out;
-    return size == 0 ? FMU_OK : FMU_ERROR;
-}
-
-fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
-    (void)in;
-    if (size != 0) {
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetFMUState: the state has %zu bytes of model data, "
-                "this model has none", size);
-        return FMU_ERROR;
-    }
-    return FMU_OK;
-}
+/* The instance's values are the whole state (the plant object holds none of it); no input
+ * derivatives (Model Exchange has none). */
+#include "model_without_saved_state.h"
 
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
