@@ -144,14 +144,15 @@ stewart_status stewart_plant_output_get(const stewart_plant *plant,
  * and the forces acting on it. */
 typedef struct stewart_plant_derivative_input {
     double time;                 /* [s], copied to the output (the equations do not depend on it) */
-    stewart_pose pose;           /* q and q_dot: the state; q_ddot is ignored */
+    stewart_pose pose;           /* q and q_dot: the state (the tool's pose in the user frame, as
+                                    every pose the plant takes); q_ddot is ignored */
     double force[STEWART_LEGS];  /* F_k [N] */
 } stewart_plant_derivative_input;
 
 /* The right-hand side of the equations of motion at the input's state, for a master that
  * integrates them itself (FMI Model Exchange): output->pose holds q, q_dot and the pose
- * accelerations q_ddot; lengths hold length, length_rate and length_accel; base wrench, stroke
- * warnings as stewart_plant_output_get. On error the output is untouched and
+ * accelerations q_ddot; lengths hold length, length_rate and length_accel (lengths as the sensors
+ * read them: less length_offset); base wrench, stroke warnings as stewart_plant_output_get. On error the output is untouched and
  * stewart_plant_message names the value: STEWART_ERR_ARGUMENT (a non-finite state or force, an
  * output that overflows), STEWART_ERR_SINGULAR (pitch at +-90 degrees, a locked Cardan),
  * STEWART_ERR_UNREACHABLE (a zero-length leg). Never allocates. */
