@@ -56,6 +56,18 @@ bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double
     return stewart::angle_rates_of(q, w.tail<3>() / c, out + 3);
 }
 
+// STEWART_ERR_ARGUMENT naming the first value of a pose found (`what`) that overflowed.
+stewart_status check_found(const stewart_pose &pose, const char *what, char *msg, size_t size) {
+    const double *groups[3] = {pose.q, pose.q_dot, pose.q_ddot};
+    for (const double *v : groups)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(v[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "the %s found overflows (%s is %g): the inputs are out of "
+                                   "range", what, stewart::kPoseNames[i], v[i]);
+    return STEWART_OK;
+}
+
 // The Cardan-to-Cardan lengths of the sensors' readings: reading + length_offset, each finite,
 // > 0 and < 1e150 m (else STEWART_ERR_ARGUMENT naming the leg).
 stewart_status cardan_lengths(const stewart_model &m, const double reading[6], double length[6],
@@ -93,13 +105,8 @@ stewart_status shown_pose(const stewart_model &m, const stewart_forward_output &
                            "the tool frame's pitch in the user frame = %g rad is at +-90 deg: its "
                            "roll and yaw rates are not defined there", tool.pose.q[4]);
     }
-    const double *groups[3] = {tool.pose.q, tool.pose.q_dot, tool.pose.q_ddot};
-    for (const double *v : groups)
-        for (int i = 0; i < 6; ++i)
-            if (!std::isfinite(v[i]))
-                return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                                   "the tool's pose found overflows (%s is %g): the inputs are "
-                                   "out of range", stewart::kPoseNames[i], v[i]);
+    const stewart_status s = check_found(tool.pose, "tool's pose", msg, size);
+    if (s != STEWART_OK) return s;
     shown = tool;
     return STEWART_OK;
 }
@@ -224,14 +231,7 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
         const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
         pose_from_twist_solve(x.jacobian, c, out.pose.q, rhs, out.pose.q_ddot);
     }
-    const double *groups[3] = {out.pose.q, out.pose.q_dot, out.pose.q_ddot};
-    for (const double *v : groups)
-        for (int i = 0; i < 6; ++i)
-            if (!std::isfinite(v[i]))
-                return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                                   "the pose found overflows (%s is %g): the inputs are out of "
-                                   "range", stewart::kPoseNames[i], v[i]);
-    return STEWART_OK;
+    return check_found(out.pose, "pose", msg, size);
 }
 
 // The accepted pose becomes the solver's last pose.

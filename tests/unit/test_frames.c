@@ -150,6 +150,20 @@ static stewart_forward *forward_of(const stewart_model *m) {
     return f;
 }
 
+/* Forward kinematics of lengths at time t (tracking), with `derivatives`; fails the test with
+ * the solver's message unless it solves. */
+static stewart_forward_output track(stewart_forward *f, double t, const stewart_lengths *lengths,
+                                    int derivatives) {
+    stewart_forward_input in = {0};
+    in.time = t;
+    in.lengths = *lengths;
+    in.derivatives = derivatives;
+    stewart_forward_output out;
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_forward_solve(f, &in, &out),
+                              stewart_forward_message(f));
+    return out;
+}
+
 static void assert_close(double expected, double actual, double bound, const char *what) {
     char text[160];
     snprintf(text, sizeof text, "%s: expected %.17g, got %.17g (bound %g)", what, expected, actual,
@@ -201,13 +215,7 @@ static void test_forward_returns_the_tool_pose(void) {
         const double t = 0.025 * i;
         const stewart_pose platform = combined_pose(t);
         const stewart_inverse_output legs = inverse_ok(plain_model, STEWART_KINEMATIC, &platform);
-        stewart_forward_input in = {0};
-        in.time = t;
-        in.lengths = legs.lengths;
-        in.derivatives = 2;
-        stewart_forward_output out;
-        TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_forward_solve(f, &in, &out),
-                                  stewart_forward_message(f));
+        const stewart_forward_output out = track(f, t, &legs.lengths, 2);
         const stewart_pose tool = tool_trajectory(kTool, kUser, t);
         for (int c = 0; c < 6; ++c) {
             assert_close(tool.q[c], out.pose.q[c], 1e-11, "pose");
@@ -244,13 +252,7 @@ static void test_round_trip_inverse_forward(void) {
         const double t = 0.05 * i;
         const stewart_pose tool = tool_trajectory(kTool, kUser, t);
         const stewart_inverse_output legs = inverse_ok(framed_model, STEWART_KINEMATIC, &tool);
-        stewart_forward_input in = {0};
-        in.time = t;
-        in.lengths = legs.lengths;
-        in.derivatives = 2;
-        stewart_forward_output out;
-        TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_forward_solve(f, &in, &out),
-                                  stewart_forward_message(f));
+        const stewart_forward_output out = track(f, t, &legs.lengths, 2);
         for (int c = 0; c < 6; ++c) {
             assert_close(tool.q[c], out.pose.q[c], 1e-11, "pose");
             assert_close(tool.q_dot[c], out.pose.q_dot[c], 1e-11, "pose rate");
@@ -274,12 +276,7 @@ static void test_tool_yaw_is_continuous_across_pi(void) {
         const double t = 0.05 * i;
         const stewart_pose platform = combined_pose(t);
         const stewart_inverse_output legs = inverse_ok(plain_model, STEWART_KINEMATIC, &platform);
-        stewart_forward_input in = {0};
-        in.time = t;
-        in.lengths = legs.lengths;
-        stewart_forward_output out;
-        TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_forward_solve(f, &in, &out),
-                                  stewart_forward_message(f));
+        const stewart_forward_output out = track(f, t, &legs.lengths, 0);
         double by_hand[6];
         tool_pose_by_hand(tool, user, platform.q, by_hand);
         /* the same rotation: the angles agree modulo 2 pi */
@@ -290,6 +287,32 @@ static void test_tool_yaw_is_continuous_across_pi(void) {
     }
     TEST_ASSERT_TRUE(largest > M_PI);  /* it did cross pi */
     stewart_forward_free(f);
+    stewart_model_free(m);
+}
+
+/* Frames that do not turn (offsets alone) leave the angles, their rates and accelerations as
+ * the platform's, bit for bit; identity frames leave every output bit for bit (the defaults:
+ * tests/gates/same_outputs.sh compares them with the build before the frames). */
+static void test_offsets_alone_keep_the_angles_bit_for_bit(void) {
+    const double tool[6] = {0.01, 0.02, 0.08, 0, 0, 0}, user[6] = {-0.03, 0.01, 0.02, 0, 0, 0};
+    stewart_params p = plain;
+    set_frames(&p, tool, user);
+    stewart_model *m = test_model(&p);
+    stewart_forward *a = forward_of(plain_model), *b = forward_of(m);
+    for (int i = 0; i <= 10; ++i) {
+        const stewart_pose platform = combined_pose(0.1 * i);
+        const stewart_inverse_output legs = inverse_ok(plain_model, STEWART_KINEMATIC, &platform);
+        const stewart_forward_output out_a = track(a, 0.1 * i, &legs.lengths, 2);
+        const stewart_forward_output out_b = track(b, 0.1 * i, &legs.lengths, 2);
+        TEST_ASSERT_EQUAL_MEMORY(out_a.pose.q + 3, out_b.pose.q + 3, 3 * sizeof(double));
+        TEST_ASSERT_EQUAL_MEMORY(out_a.pose.q_dot + 3, out_b.pose.q_dot + 3, 3 * sizeof(double));
+        TEST_ASSERT_EQUAL_MEMORY(out_a.pose.q_ddot + 3, out_b.pose.q_ddot + 3, 3 * sizeof(double));
+        double by_hand[6];
+        tool_pose_by_hand(tool, user, platform.q, by_hand);
+        for (int c = 0; c < 3; ++c) assert_close(by_hand[c], out_b.pose.q[c], 1e-11, "position");
+    }
+    stewart_forward_free(a);
+    stewart_forward_free(b);
     stewart_model_free(m);
 }
 
@@ -484,13 +507,7 @@ static void test_length_offset_readings(void) {
         /* leg 3 reads about 0.2 m, below stroke_min = 0.4 m, but its joints are 0.5 m apart */
         TEST_ASSERT_EQUAL_INT(plain_out.stroke_legs, out.stroke_legs);
         /* forward kinematics takes the readings */
-        stewart_forward_input in = {0};
-        in.time = 0.1 * i;
-        in.lengths = out.lengths;
-        in.derivatives = 2;
-        stewart_forward_output back;
-        TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_forward_solve(f, &in, &back),
-                                  stewart_forward_message(f));
+        const stewart_forward_output back = track(f, 0.1 * i, &out.lengths, 2);
         for (int c = 0; c < 6; ++c) assert_close(pose.q[c], back.pose.q[c], 1e-11, "pose");
         TEST_ASSERT_EQUAL_INT(plain_out.stroke_legs, back.stroke_legs);
     }
@@ -534,6 +551,7 @@ int main(void) {
     RUN_TEST(test_forward_guess_is_the_tool_pose);
     RUN_TEST(test_round_trip_inverse_forward);
     RUN_TEST(test_tool_yaw_is_continuous_across_pi);
+    RUN_TEST(test_offsets_alone_keep_the_angles_bit_for_bit);
     RUN_TEST(test_plant_outputs_the_tool_pose);
     RUN_TEST(test_plant_start_state_is_the_tool_pose);
     RUN_TEST(test_tool_pitch_at_90_degrees);

@@ -97,6 +97,7 @@ typedef struct stewart_params {
 
     double stroke_min[STEWART_LEGS];        /* shortest allowed actuator length per leg [m] */
     double stroke_max[STEWART_LEGS];        /* longest allowed actuator length per leg [m] */
+
     double tool_frame[6];   /* pose (x, y, z [m], roll, pitch, yaw [rad]) of the tool frame in the
                                platform frame; poses given and returned are the tool frame's */
     double user_frame[6];   /* pose of the user frame in the base frame; poses given and returned
@@ -110,8 +111,9 @@ typedef struct stewart_inverse_options {
     int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
     double tolerance;            /* Newton residual tolerance (full level), max-norm, relative to
                                     the platform's size: lengths are measured in units of L0, the
-                                    power of two with max(base_radius, platform_radius,
-                                    home_height) / L0 in (0.25, 0.5] (1 m for the thesis
+                                    power of two with max(base size, platform size,
+                                    home_height) / L0 in (0.25, 0.5] (the sizes: the radii, or
+                                    the farthest joints, docs/geometry.md; 1 m for the thesis
                                     platform; stewart_model_length_unit). 1e-12; >= 2.5e-16 (the
                                     residual floors at about 2.2e-16 L0) */
     int max_iterations;          /* Newton iteration cap (full level); 20 */

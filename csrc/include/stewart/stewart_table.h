@@ -157,7 +157,7 @@ extern "C" {
       "0 kinematic, 1 massless legs, 2 full 14-body model")                                      \
     X(202, tolerance, double, "1", 2.5e-16, 1, DBL_MAX, 1, MBS_DEFAULT_TOLERANCE,               \
       "Newton residual tolerance (fidelity 2), max-norm, relative to the platform's size "        \
-      "max(1 m, base_radius, platform_radius, home_height, |pose position|)")                    \
+      "max(1 m, the joints' radii, home_height, |pose position|)")                               \
     X(203, max_iterations, int, "", 1, 1, 1000, 1, MBS_DEFAULT_MAX_ITERATIONS,                   \
       "Newton iteration cap (fidelity 2); at most 1000, which bounds a failing solve's time")  \
     X(204, modified_newton, int, "", 0, 1, 1, 1, 0,                                              \
@@ -182,7 +182,7 @@ extern "C" {
 typedef struct stewart_param_info {
     int id;                     /* stable id of element 0; element e has id + e */
     const char *name;           /* field name, e.g. "base_angle" */
-    int count;                  /* elements: 1, 3 (x, y, z) or 6 (legs 1..6, or a pose) */
+    int count;                  /* elements: 1, 3 (x, y, z), 6 (legs 1..6, or a pose), 18 */
     const char *unit;           /* SI unit (a pose's: STEWART_POSE_UNIT) */
     const char *display_unit;   /* "deg" for angles (and a pose's angles), else "" */
     const char *description;    /* of the whole parameter (see stewart_param_element_text) */
