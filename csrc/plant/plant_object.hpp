@@ -2,6 +2,7 @@
 // step; plant_derivatives.cpp: the state's time derivatives). Not part of the public API.
 #pragma once
 
+#include "limits/limit_check.hpp"
 #include "model.hpp"
 #include "plant/plant_integrator.hpp"
 #include "stewart/stewart_plant.h"
@@ -22,6 +23,7 @@ struct stewart_plant {
     double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
+    stewart::LimitConstants limits;  // joint angles and interference, warned as strokes are
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too

@@ -32,9 +32,8 @@ def calibration_poses(platform: Platform, n: int, *, frames: Optional[str] = Non
     the smallest stroke range), roll, pitch, yaw within +-angle_range [rad] (default: 2.5
     position_range over the largest platform joint radius, at most 0.5), and kept only where the
     library solves them (massless level) with no warning: every leg inside [stroke_min, stroke_max]
-    and the leg Jacobian's condition number below warn_condition, and, where the package has
-    Platform.limits (issue 19's check), within every limit it checks: joint angles and leg
-    interference too.
+    and the leg Jacobian's condition number below warn_condition, and within every limit of
+    Platform.limits (joint angles and leg interference too).
     seed makes the draw repeatable. ValueError if n is too small to identify the unknowns (each
     pose gives 6 readings) or if too few candidates are inside the limits."""
     layout = Layout(JOINT_GROUPS + frame_groups(frames))
@@ -91,9 +90,8 @@ def random_poses_inside_limits(platform: Platform, count: int, rng,
         q = home + rng.uniform(-1, 1, (4 * count, 6)) * np.repeat(
             [position_range, angle_range], 3)
         solved = platform.inverse(q, fidelity="massless")
-        inside = (solved.status == 0) & (solved.warnings == 0)
-        if hasattr(platform, "limits"):  # issue 19's check: joint angles and interference too
-            inside &= platform.limits(q).within
+        # Solvable with no warning, and within every limit (joint angles, interference too).
+        inside = (solved.status == 0) & (solved.warnings == 0) & platform.limits(q).within
         kept.append(q[inside])
         if sum(len(k) for k in kept) >= count:
             break

@@ -8,6 +8,7 @@
 #define STEWART_FMU_CONFIG_H
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_limits.h"
 /* The library's parameter and option tables: variables.def expands them (no parameter is
  * listed twice). */
 #include "stewart/stewart_table.h"
@@ -39,6 +40,7 @@ typedef struct model_values {
 typedef struct model_resources {
     stewart_model *model;      /* built from the parameters when initialisation ends */
     stewart_inverse *inverse;  /* made with `options` for `model` */
+    stewart_limits *limits;    /* the limit check and axis ranges for `model` (limit_outputs) */
     stewart_params params;     /* the parameters `model` was built from */
     stewart_inverse_options options;
     char message[2 * STEWART_MESSAGE_SIZE];
