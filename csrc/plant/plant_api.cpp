@@ -8,6 +8,7 @@
 #include "limits/limit_check.hpp"
 #include "model.hpp"
 #include "plant/plant_integrator.hpp"
+#include "plant/plant_object.hpp"
 #include "plant/plant_reactions.hpp"
 #include "stewart/stewart_plant.h"
 #include "util/message.hpp"
@@ -19,7 +20,7 @@ namespace fd = stewart::fd;
 namespace {
 
 constexpr int kSavedDoubles = 1 + fd::kStates + 3 + STEWART_LEGS + 1 + 1;
-constexpr double kMinCosPitch = 1e-9;  // roll and yaw rates are undefined at pitch = +-90 deg
+using fd::kMinCosPitch;
 // The plant's range (docs/forward-dynamics.md section 4): speeds far beyond any platform's, below
 // which a 1 ms step stays within the default max_internal_steps; continuous roll and yaw within
 // +-1e12 rad, where 2 pi still has digits to spare.
@@ -38,21 +39,7 @@ using stewart::kPoseNames;
 
 }  // namespace
 
-struct stewart_plant {
-    const stewart_model *model = nullptr;
-    stewart_plant_options options{};
-    fd::DynamicsModel dynamics;
-    fd::Integrator integrator;
-    double time = 0;
-    double y[fd::kStates] = {0};
-    double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
-    double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
-    int warnings = 0;
-    stewart::LimitConstants limits;  // joint angles and interference, warned as strokes are
-    double step_hint = 0;  // first internal step of the next communication step (0: estimate)
-    stewart_plant_statistics stats{};
-    mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
-};
+// struct stewart_plant: plant/plant_object.hpp (the derivative call shares it).
 
 namespace {
 

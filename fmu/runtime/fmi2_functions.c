@@ -1,4 +1,4 @@
-/* FMI 2.0 co-simulation layer: each fmi2* function translates its arguments onto one runtime
+/* FMI 2.0 layer (co-simulation here, Model Exchange in fmi2_me_functions.c): each fmi2* function translates its arguments onto one runtime
  * call (which checks the call order); it never touches the instance's fields. */
 #include <string.h>
 
@@ -39,7 +39,9 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     (void)resourceLocation; /* the unit needs no resources */
     (void)visible;
     const char *problem = NULL;
-    if (fmuType != fmi2CoSimulation) problem = "this FMU supports co-simulation only";
+    if (fmuType != (FMU_MODEL_EXCHANGE ? fmi2ModelExchange : fmi2CoSimulation))
+        problem = FMU_MODEL_EXCHANGE ? "this FMU supports model exchange only"
+                                     : "this FMU supports co-simulation only";
     else if (!guid || strcmp(guid, FMU_GUID) != 0) problem = "the GUID does not match " FMU_GUID;
     if (problem) {
         if (functions && functions->logger)
@@ -126,45 +128,7 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
     return unsupported(c, "fmi2GetDirectionalDerivative");
 }
 
-/* ---- model exchange: not provided ---- */
-fmi2Status fmi2EnterEventMode(fmi2Component c) { return unsupported(c, "fmi2EnterEventMode"); }
-fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
-    (void)info;
-    return unsupported(c, "fmi2NewDiscreteStates");
-}
-fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) {
-    return unsupported(c, "fmi2EnterContinuousTimeMode");
-}
-fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStatePriorToCurrentPoint,
-                                       fmi2Boolean *enterEventMode,
-                                       fmi2Boolean *terminateSimulation) {
-    (void)noSetFMUStatePriorToCurrentPoint; (void)enterEventMode; (void)terminateSimulation;
-    return unsupported(c, "fmi2CompletedIntegratorStep");
-}
-fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time) {
-    (void)time;
-    return unsupported(c, "fmi2SetTime");
-}
-fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx) {
-    (void)x; (void)nx;
-    return unsupported(c, "fmi2SetContinuousStates");
-}
-fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx) {
-    (void)derivatives; (void)nx;
-    return unsupported(c, "fmi2GetDerivatives");
-}
-fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real eventIndicators[], size_t ni) {
-    (void)eventIndicators; (void)ni;
-    return unsupported(c, "fmi2GetEventIndicators");
-}
-fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx) {
-    (void)x; (void)nx;
-    return unsupported(c, "fmi2GetContinuousStates");
-}
-fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real x_nominal[], size_t nx) {
-    (void)x_nominal; (void)nx;
-    return unsupported(c, "fmi2GetNominalsOfContinuousStates");
-}
+/* ---- model exchange: fmi2_me_functions.c ---- */
 
 /* ---- co-simulation ---- */
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,

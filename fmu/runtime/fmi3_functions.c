@@ -1,4 +1,4 @@
-/* FMI 3.0 co-simulation layer: each fmi3* function translates its arguments onto one runtime
+/* FMI 3.0 layer (co-simulation here, Model Exchange in fmi3_me_functions.c): each fmi3* function translates its arguments onto one runtime
  * call (which checks the call order); it never touches the instance's fields. */
 #include <string.h>
 
@@ -31,17 +31,34 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, siz
     CALL(fmu_set_debug_logging(INST, loggingOn, nCategories, categories));
 }
 
+/* A new instance if the token matches and the interface is the unit's, else NULL after telling
+ * the logger why. */
+static fmi3Instance instantiate(fmi3String instanceName, fmi3String instantiationToken,
+                                int model_exchange, fmi3Boolean loggingOn,
+                                fmi3InstanceEnvironment instanceEnvironment,
+                                fmi3LogMessageCallback logMessage, const char *problem) {
+    if (!problem && model_exchange != FMU_MODEL_EXCHANGE)
+        problem = FMU_MODEL_EXCHANGE ? "this FMU supports model exchange only"
+                                     : "this FMU supports co-simulation only";
+    if (!problem && (!instantiationToken || strcmp(instantiationToken, FMU_GUID) != 0))
+        problem = "the instantiationToken does not match " FMU_GUID;
+    if (problem) {
+        if (logMessage) logMessage(instanceEnvironment, fmi3Error, "logStatusError", problem);
+        return NULL;
+    }
+    return fmu_instantiate(instanceName, FMU_VERSION_3, log_fmi3,
+                           (const void *)(uintptr_t)logMessage, instanceEnvironment, loggingOn);
+}
+
 fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName, fmi3String instantiationToken,
                                           fmi3String resourcePath, fmi3Boolean visible,
                                           fmi3Boolean loggingOn,
                                           fmi3InstanceEnvironment instanceEnvironment,
                                           fmi3LogMessageCallback logMessage) {
-    (void)instantiationToken; (void)resourcePath; (void)visible; (void)loggingOn;
-    if (logMessage)
-        logMessage(instanceEnvironment, fmi3Error, "logStatusError",
-                   "this FMU supports co-simulation only");
-    (void)instanceName;
-    return NULL;
+    (void)resourcePath; /* the unit needs no resources */
+    (void)visible;
+    return instantiate(instanceName, instantiationToken, 1, loggingOn, instanceEnvironment,
+                       logMessage, NULL);
 }
 
 fmi3Instance fmi3InstantiateCoSimulation(
@@ -54,17 +71,10 @@ fmi3Instance fmi3InstantiateCoSimulation(
     (void)visible; (void)earlyReturnAllowed;
     (void)requiredIntermediateVariables; (void)nRequiredIntermediateVariables;
     (void)intermediateUpdate;
-    const char *problem = NULL;
-    if (!instantiationToken || strcmp(instantiationToken, FMU_GUID) != 0)
-        problem = "the instantiationToken does not match " FMU_GUID;
-    else if (eventModeUsed)
-        problem = "this FMU has no event mode (hasEventMode = false)";
-    if (problem) {
-        if (logMessage) logMessage(instanceEnvironment, fmi3Error, "logStatusError", problem);
-        return NULL;
-    }
-    return fmu_instantiate(instanceName, FMU_VERSION_3, log_fmi3,
-                           (const void *)(uintptr_t)logMessage, instanceEnvironment, loggingOn);
+    return instantiate(instanceName, instantiationToken, 0, loggingOn, instanceEnvironment,
+                       logMessage,
+                       eventModeUsed && !FMU_MODEL_EXCHANGE
+                           ? "this FMU has no event mode (hasEventMode = false)" : NULL);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(
@@ -93,9 +103,6 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance) {
     CALL(fmu_exit_initialization(INST));
 }
 
-fmi3Status fmi3EnterEventMode(fmi3Instance instance) {
-    return unsupported(instance, "fmi3EnterEventMode");
-}
 fmi3Status fmi3Terminate(fmi3Instance instance) { CALL(fmu_terminate(INST)); }
 fmi3Status fmi3Reset(fmi3Instance instance) { CALL(fmu_reset(INST)); }
 
@@ -280,60 +287,7 @@ fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference 
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance) {
     return unsupported(instance, "fmi3EvaluateDiscreteStates");
 }
-fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discreteStatesNeedUpdate,
-                                    fmi3Boolean *terminateSimulation,
-                                    fmi3Boolean *nominalsOfContinuousStatesChanged,
-                                    fmi3Boolean *valuesOfContinuousStatesChanged,
-                                    fmi3Boolean *nextEventTimeDefined, fmi3Float64 *nextEventTime) {
-    (void)discreteStatesNeedUpdate; (void)terminateSimulation;
-    (void)nominalsOfContinuousStatesChanged; (void)valuesOfContinuousStatesChanged;
-    (void)nextEventTimeDefined; (void)nextEventTime;
-    return unsupported(instance, "fmi3UpdateDiscreteStates");
-}
-fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance instance) {
-    return unsupported(instance, "fmi3EnterContinuousTimeMode");
-}
-fmi3Status fmi3CompletedIntegratorStep(fmi3Instance instance,
-                                       fmi3Boolean noSetFMUStatePriorToCurrentPoint,
-                                       fmi3Boolean *enterEventMode,
-                                       fmi3Boolean *terminateSimulation) {
-    (void)noSetFMUStatePriorToCurrentPoint; (void)enterEventMode; (void)terminateSimulation;
-    return unsupported(instance, "fmi3CompletedIntegratorStep");
-}
-fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time) {
-    (void)time;
-    return unsupported(instance, "fmi3SetTime");
-}
-fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 x[], size_t n) {
-    (void)x; (void)n;
-    return unsupported(instance, "fmi3SetContinuousStates");
-}
-fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 d[], size_t n) {
-    (void)d; (void)n;
-    return unsupported(instance, "fmi3GetContinuousStateDerivatives");
-}
-fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 e[], size_t n) {
-    (void)e; (void)n;
-    return unsupported(instance, "fmi3GetEventIndicators");
-}
-fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 x[], size_t n) {
-    (void)x; (void)n;
-    return unsupported(instance, "fmi3GetContinuousStates");
-}
-fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 x[], size_t n) {
-    (void)x; (void)n;
-    return unsupported(instance, "fmi3GetNominalsOfContinuousStates");
-}
-fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *n) {
-    if (!instance || !n) return fmi3Error;
-    *n = 0;
-    return fmi3OK;
-}
-fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *n) {
-    if (!instance || !n) return fmi3Error;
-    *n = 0;
-    return fmi3OK;
-}
+/* Model Exchange (and event mode): fmi3_me_functions.c */
 
 fmi3Status fmi3EnterStepMode(fmi3Instance instance) {
     return unsupported(instance, "fmi3EnterStepMode (no event mode)");

@@ -14,6 +14,13 @@
 #include "model_interface.h"
 #include "variables.h"
 
+/* A Model Exchange unit's states and their derivatives (runtime/model_exchange.h). */
+#ifndef FMU_N_STATES
+#define FMU_N_STATES 0
+#define FMU_STATE_VR(i) 0u
+#define FMU_DERIVATIVE_VR(i) 0u
+#endif
+
 /* A model's config.h may name the outputs that no input reaches within a step (outputs of the
  * state): FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr). They are listed among the Outputs with no
  * dependencies, so that a master sees that loops through them are not algebraic; every other
@@ -24,6 +31,55 @@
 
 static FILE *out;
 static int version;
+
+/* The FMI 2 index of a variable (1-based position in ModelVariables, where FMI 2 leaves out the
+ * independent variable), or 0. */
+static size_t fmi2_index(unsigned vr) {
+    size_t index = 0;
+    for (size_t i = 0; i < fmu_n_variables; ++i) {
+        if (fmu_variables[i].causality == FMU_INDEPENDENT_VAR) continue;
+        ++index;
+        if (fmu_variables[i].vr == vr) return index;
+    }
+    return 0;
+}
+
+/* How a variable is referred to in this version: FMI 2 index, FMI 3 value reference. */
+static size_t reference(unsigned vr) { return version == 2 ? fmi2_index(vr) : vr; }
+
+/* The state whose derivative vr is, or -1. */
+static int state_of_derivative(unsigned vr) {
+    for (int i = 0; i < FMU_N_STATES; ++i)
+        if (FMU_DERIVATIVE_VR(i) == vr) return i;
+    return -1;
+}
+
+/* The state vr is, or -1. */
+static int state_index(unsigned vr) {
+    for (int i = 0; i < FMU_N_STATES; ++i)
+        if (FMU_STATE_VR(i) == vr) return i;
+    return -1;
+}
+
+/* The dependencies attribute of an output or derivative, or "" (none written: it may depend on
+ * every known). Co-simulation: an output of the state depends on no input (dependencies="").
+ * Model Exchange: an output that is a state depends on itself, another output of the state on
+ * the states; a derivative that is a state (x' = x_dot) on that state. */
+static const char *dependencies(unsigned vr, int is_derivative, char *buf, size_t size) {
+    if (!FMU_MODEL_EXCHANGE)
+        return FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) ? " dependencies=\"\"" : "";
+    if (state_index(vr) >= 0) {
+        snprintf(buf, size, " dependencies=\"%zu\"", reference(vr));
+        return buf;
+    }
+    if (is_derivative || !FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr)) return "";
+    size_t used = (size_t)snprintf(buf, size, " dependencies=\"");
+    for (int i = 0; i < FMU_N_STATES && used < size; ++i)
+        used += (size_t)snprintf(buf + used, size - used, i ? " %zu" : "%zu",
+                                 reference(FMU_STATE_VR(i)));
+    if (used < size) snprintf(buf + used, size - used, "\"");
+    return buf;
+}
 
 static void attr(const char *name, const char *value) {
     if (!value || !*value) return;
@@ -64,7 +120,9 @@ static void common_attributes(unsigned vr, const char *name, const char *causali
 
 /* The attributes of the value: unit, range, start. start_kind: 0 none, 1 real, 2 integer. */
 static void value_attributes(const char *unit, const char *display_unit, int has_range, long min,
-                             long max, int start_kind, double start) {
+                             long max, int start_kind, double start, unsigned vr) {
+    const int state = state_of_derivative(vr);
+    if (state >= 0) attr_int("derivative", (long)reference(FMU_STATE_VR(state)));
     attr("unit", unit);
     attr("displayUnit", display_unit);
     if (has_range) {
@@ -86,13 +144,13 @@ static void variable(unsigned vr, const char *name, int is_real, const char *cau
         common_attributes(vr, name, causality, variability, initial, description);
         fputs(">\n      <", out);
         fputs(is_real ? "Real" : "Integer", out);
-        value_attributes(unit, display_unit, has_range, min, max, start_kind, start);
+        value_attributes(unit, display_unit, has_range, min, max, start_kind, start, vr);
         fputs("/>\n    </ScalarVariable>\n", out);
     } else {
         fputs("    <", out);
         fputs(is_real ? "Float64" : "Int32", out);
         common_attributes(vr, name, causality, variability, initial, description);
-        value_attributes(unit, display_unit, has_range, min, max, start_kind, start);
+        value_attributes(unit, display_unit, has_range, min, max, start_kind, start, vr);
         fputs("/>\n", out);
     }
 }
@@ -192,6 +250,15 @@ int main(int argc, char **argv) {
     if (version == 2) attr("numberOfEventIndicators", "0");
     fputs(">\n", out);
 
+#if FMU_MODEL_EXCHANGE
+    fputs("  <ModelExchange", out);
+    attr("modelIdentifier", FMU_MODEL_IDENTIFIER);
+    attr(version == 2 ? "completedIntegratorStepNotNeeded" : "needsCompletedIntegratorStep",
+         version == 2 ? "true" : "false");
+    attr(version == 2 ? "canGetAndSetFMUstate" : "canGetAndSetFMUState", "true");
+    attr(version == 2 ? "canSerializeFMUstate" : "canSerializeFMUState", "true");
+    if (version == 2) attr("canNotUseMemoryManagementFunctions", "true");
+#else
     fputs("  <CoSimulation", out);
     attr("modelIdentifier", FMU_MODEL_IDENTIFIER);
     attr("canHandleVariableCommunicationStepSize", "true");
@@ -206,6 +273,7 @@ int main(int argc, char **argv) {
         attr("canSerializeFMUState", "true");
         attr("hasEventMode", "false");
     }
+#endif
     fputs("/>\n", out);
 
     fputs("  <UnitDefinitions>\n", out);
@@ -233,24 +301,28 @@ int main(int argc, char **argv) {
     for (size_t i = 0; i < fmu_n_variables; ++i) table_variable(&fmu_variables[i], &start);
     fputs("  </ModelVariables>\n", out);
 
-    /* Outputs, by index (FMI 2, 1-based position in ModelVariables) or value reference (FMI 3). */
+    /* Outputs, the state derivatives (Model Exchange), then the initial unknowns (the outputs,
+     * which include the derivatives); by index (FMI 2, 1-based position in ModelVariables) or
+     * value reference (FMI 3). */
     fputs("  <ModelStructure>\n", out);
-    for (int pass = 0; pass < 2; ++pass) {
-        if (version == 2) fputs(pass == 0 ? "    <Outputs>\n" : "    <InitialUnknowns>\n", out);
-        size_t index = 0; /* 1-based position in the FMI 2 ModelVariables */
+    static const char *const kFmi2Lists[3] = {"Outputs", "Derivatives", "InitialUnknowns"};
+    static const char *const kFmi3Elements[3] = {"Output", "ContinuousStateDerivative",
+                                                 "InitialUnknown"};
+    for (int pass = 0; pass < 3; ++pass) {
+        if (pass == 1 && !FMU_N_STATES) continue;
+        if (version == 2) fprintf(out, "    <%s>\n", kFmi2Lists[pass]);
         for (size_t i = 0; i < fmu_n_variables; ++i) {
-            if (version == 2 && fmu_variables[i].causality == FMU_INDEPENDENT_VAR) continue;
-            ++index;
+            const unsigned vr = fmu_variables[i].vr;
             if (fmu_variables[i].causality != FMU_OUTPUT_VAR) continue;
-            const char *no_inputs =
-                pass == 0 && FMU_OUTPUT_WITHOUT_FEEDTHROUGH(fmu_variables[i].vr) ? " dependencies=\"\"" : "";
+            if (pass == 1 && state_of_derivative(vr) < 0) continue;
+            char buf[512];
+            const char *deps = pass == 2 ? "" : dependencies(vr, pass == 1, buf, sizeof buf);
             if (version == 2)
-                fprintf(out, "      <Unknown index=\"%zu\"%s/>\n", index, no_inputs);
+                fprintf(out, "      <Unknown index=\"%zu\"%s/>\n", fmi2_index(vr), deps);
             else
-                fprintf(out, "    <%s valueReference=\"%u\"%s/>\n",
-                        pass == 0 ? "Output" : "InitialUnknown", fmu_variables[i].vr, no_inputs);
+                fprintf(out, "    <%s valueReference=\"%u\"%s/>\n", kFmi3Elements[pass], vr, deps);
         }
-        if (version == 2) fputs(pass == 0 ? "    </Outputs>\n" : "    </InitialUnknowns>\n", out);
+        if (version == 2) fprintf(out, "    </%s>\n", kFmi2Lists[pass]);
     }
     fputs("  </ModelStructure>\n", out);
     fputs("</fmiModelDescription>\n", out);

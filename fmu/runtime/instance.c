@@ -55,7 +55,7 @@ fmu_status fmu_set_debug_logging(fmu_instance *inst, int on, size_t n, const cha
 }
 
 int fmu_after_initialization(const fmu_values *v) {
-    return (v->mode & (MODE_STEP | MODE_TERMINATED)) != 0;
+    return (v->mode & (MODES_RUNNING | MODE_TERMINATED)) != 0;
 }
 
 fmu_status fmu_apply_initial_parameters(fmu_instance *inst) {
@@ -97,7 +97,7 @@ fmu_status fmu_exit_initialization(fmu_instance *inst) {
     fmu_status s = model_refresh_outputs(inst);
     if (s == FMU_ERROR) return fmu_fail(inst);
     if (s == FMU_DISCARD) s = FMU_WARNING; /* the status output tells the master it is bad */
-    inst->v.mode = MODE_STEP;
+    inst->v.mode = MODE_AFTER_INITIALIZATION;
     fmu_log(inst, FMU_OK, LOG_EVENTS, "initialised at t = %.17g", inst->v.time);
     return s;
 }

@@ -27,8 +27,19 @@ typedef enum {
     MODE_INITIALIZATION = 1 << 1,
     MODE_STEP = 1 << 2,
     MODE_TERMINATED = 1 << 3,
-    MODE_ERROR = 1 << 4
+    MODE_ERROR = 1 << 4,
+    MODE_EVENT = 1 << 5,          /* Model Exchange (runtime/model_exchange.h) */
+    MODE_CONTINUOUS_TIME = 1 << 6 /* Model Exchange */
 } fmu_mode;
+
+/* A model's config.h defines FMU_MODEL_EXCHANGE 1 to make a Model Exchange unit (and only that):
+ * initialisation ends in event mode, and runtime/model_exchange.c serves its states. */
+#ifndef FMU_MODEL_EXCHANGE
+#define FMU_MODEL_EXCHANGE 0
+#endif
+/* Where an instance goes at the end of initialisation, and the modes after it. */
+#define MODE_AFTER_INITIALIZATION (FMU_MODEL_EXCHANGE ? MODE_EVENT : MODE_STEP)
+#define MODES_RUNNING (MODE_STEP | MODE_EVENT | MODE_CONTINUOUS_TIME)
 
 typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
 

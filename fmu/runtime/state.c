@@ -115,9 +115,13 @@ fmu_status fmu_serialize_state(fmu_instance *inst, const fmu_snapshot *s, unsign
 
 /* Why the runtime's part of deserialised values cannot be a state, or NULL if it can. */
 static const char *corrupt_values(const fmu_values *v) {
-    const int modes = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED;
+    const int modes = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_AFTER_INITIALIZATION |
+                      (FMU_MODEL_EXCHANGE ? MODE_CONTINUOUS_TIME : 0) | MODE_TERMINATED;
     if (!(v->mode & modes) || (v->mode & ~modes) || (v->mode & (v->mode - 1)))
-        return "mode is not one of instantiated, initialization, step, terminated";
+        return FMU_MODEL_EXCHANGE
+                   ? "mode is not one of instantiated, initialization, event, continuous time, "
+                     "terminated"
+                   : "mode is not one of instantiated, initialization, step, terminated";
     if ((v->outputs_current & ~1) || (v->has_stepped & ~1) || v->last_step_status < FMU_OK ||
         v->last_step_status > FMU_ERROR)
         return "a flag is out of range";

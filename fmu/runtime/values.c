@@ -19,9 +19,9 @@ static fmu_status null_arrays(fmu_instance *inst, const char *what) {
 
 /* Outputs asked for: the model makes them those of the current inputs. Discard and Warning are
  * reported by the status outputs; the values returned are well defined. */
-static fmu_status refresh_outputs(fmu_instance *inst) {
+fmu_status fmu_refresh_outputs(fmu_instance *inst) {
     fmu_values *v = &inst->v;
-    if (v->outputs_current || !(v->mode & (MODE_INITIALIZATION | MODE_STEP))) return FMU_OK;
+    if (v->outputs_current || !(v->mode & (MODE_INITIALIZATION | MODES_RUNNING))) return FMU_OK;
     if (v->mode == MODE_INITIALIZATION && fmu_apply_initial_parameters(inst) != FMU_OK)
         return fmu_fail(inst);
     if (model_refresh_outputs(inst) == FMU_ERROR) return fmu_fail(inst);
@@ -44,7 +44,7 @@ fmu_status fmu_get_real(fmu_instance *inst, const unsigned vr[], size_t n, doubl
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = typed(inst, "GetReal", vr[i], FMU_REAL);
         if (!var) return FMU_ERROR;
-        if (var->causality == FMU_OUTPUT_VAR && refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        if (var->causality == FMU_OUTPUT_VAR && fmu_refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
         value[i] = inst->v.real[vr[i]];
     }
     return FMU_OK;
@@ -56,7 +56,7 @@ fmu_status fmu_get_integer(fmu_instance *inst, const unsigned vr[], size_t n, in
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = typed(inst, "GetInteger", vr[i], FMU_INTEGER);
         if (!var) return FMU_ERROR;
-        if (var->causality == FMU_OUTPUT_VAR && refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        if (var->causality == FMU_OUTPUT_VAR && fmu_refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
         value[i] = inst->v.integer[vr[i]];
     }
     return FMU_OK;

@@ -11,6 +11,11 @@
 extern "C" {
 #endif
 
+/* Outputs asked for (in initialisation, step, event or continuous-time mode): unless current,
+ * initialisation applies the parameters first, then the model makes them those of the current
+ * inputs (and states). Discard and Warning are reported by the status outputs (OK here); Error
+ * puts the instance in Error. */
+fmu_status fmu_refresh_outputs(fmu_instance *inst);
 /* Reals (inputs, outputs, parameters, time) by value reference; outputs are refreshed first. */
 fmu_status fmu_get_real(fmu_instance *inst, const unsigned vr[], size_t n, double value[]);
 /* Integers by value reference; outputs are refreshed first. */

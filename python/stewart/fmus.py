@@ -1,12 +1,13 @@
-"""The FMI co-simulation units built with the library, shipped inside the package: the inverse
-unit StewartPlatform, the plant StewartPlant, the controller StewartController and the scene
-player StewartScene, each for FMI 2.0 and 3.0."""
+"""The FMI units built with the library, shipped inside the package: the co-simulation units
+StewartPlatform (inverse), StewartPlant (the plant), StewartController and StewartScene (the scene
+player), and the plant as Model Exchange, StewartPlantME; each for FMI 2.0 and 3.0."""
 from __future__ import annotations
 
 import pathlib
 
 FMI_VERSIONS = ("2.0", "3.0")
-FMU_NAMES = ("StewartPlatform", "StewartPlant", "StewartController", "StewartScene")
+FMU_NAMES = ("StewartPlatform", "StewartPlant", "StewartPlantME", "StewartController",
+             "StewartScene")
 _HERE = pathlib.Path(__file__).resolve().parent
 
 

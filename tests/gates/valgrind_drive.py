@@ -2,19 +2,22 @@
 combined manoeuvre, then the edge paths through fmpy's slave classes.
 
 The plant (StewartPlant.fmu) runs a short forced motion at both fidelities with its edge paths
-(a NaN force, a refused step, FMU state get/set/serialise).
+(a NaN force, a refused step, FMU state get/set/serialise). The Model Exchange plant
+(StewartPlantME.fmu) runs under fmpy's CVODE with forces, then its refused derivatives (pitch at
+90 degrees, a NaN force) and an FMU state round trip.
 
 usage: valgrind_drive.py BUILD_DIR (the FMUs are BUILD_DIR/fmus/<version>/StewartPlatform.fmu and
 StewartPlant.fmu)"""
 import math
 import sys
 import tempfile
+from ctypes import POINTER, c_double
 
 import numpy as np
 import fmpy
 from fmpy import simulate_fmu
-from fmpy.fmi2 import FMU2Slave
-from fmpy.fmi3 import FMU3Slave
+from fmpy.fmi2 import FMU2Model, FMU2Slave
+from fmpy.fmi3 import FMU3Model, FMU3Slave
 
 build = sys.argv[1]
 
@@ -154,8 +157,53 @@ def plant(path, version, fidelity):
     return z
 
 
+def plant_me(path, version, fidelity):
+    """0.05 s of CVODE under uneven forces, then the derivative call's refusals and a state round
+    trip; returns the final z."""
+    forces = np.array([(0.0,) + (220.0, 180.0, 210.0, 190.0, 200.0, 170.0)] * 2,
+                      dtype=[("time", float)] + [(f"F[{k}]", float) for k in range(1, 7)])
+    forces["time"][1] = 1.0
+    r = simulate_fmu(path, fmi_type="ModelExchange", solver="CVode", stop_time=0.05,
+                     output_interval=0.01, input=forces, start_values={"fidelity": fidelity},
+                     output=["z", "L[1]"])
+    md = fmpy.read_model_description(path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    v2 = version == "2.0"
+    fmu = (FMU2Model if v2 else FMU3Model)(guid=md.guid, instanceName="vg_me",
+                                          unzipDirectory=fmpy.extract(path, tempfile.mkdtemp()),
+                                          modelIdentifier="StewartPlantME")
+    fmu.instantiate(loggingOn=True)
+    if v2:
+        fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    fmu.newDiscreteStates() if v2 else fmu.updateDiscreteStates()
+    fmu.enterContinuousTimeMode()
+    state = fmu.getFMUstate() if v2 else fmu.getFMUState()
+    for pitch, force in ((math.pi / 2, 0.0), (0.0, math.nan)):
+        x = np.array([0, 0, 0.5, 0, pitch, 0] + [0] * 6, dtype=float)
+        fmu.setContinuousStates(x.ctypes.data_as(POINTER(c_double)), len(x))
+        (fmu.setReal if v2 else fmu.setFloat64)([vr["F[1]"]], [force])
+        try:
+            dx = (c_double * 12)()
+            (fmu.getDerivatives if v2 else fmu.getContinuousStateDerivatives)(dx, 12)
+            raise AssertionError("derivatives at a refused state")
+        except fmpy.fmi1.FMICallException as e:
+            assert e.status == 2, e.status
+    blob = (fmu.serializeFMUstate if v2 else fmu.serializeFMUState)(state)
+    other = (fmu.deSerializeFMUstate if v2 else fmu.deserializeFMUState)(blob)
+    (fmu.setFMUstate if v2 else fmu.setFMUState)(other)
+    for s in (other, state):
+        (fmu.freeFMUstate if v2 else fmu.freeFMUState)(s)
+    fmu.terminate()
+    fmu.freeInstance()
+    return r["z"][-1]
+
+
 for version in ("2.0", "3.0"):
     for fidelity in (1, 2):
+        z = plant_me(f"{build}/fmus/{version}/StewartPlantME.fmu", version, fidelity)
+        print(f"valgrind_fmu: Model Exchange plant FMI {version} fidelity {fidelity}: z = {z:.6f} m")
         z = plant(f"{build}/fmus/{version}/StewartPlant.fmu", version, fidelity)
         print(f"valgrind_fmu: plant FMI {version} fidelity {fidelity}: z = {z:.6f} m")
     path = f"{build}/fmus/{version}/StewartPlatform.fmu"

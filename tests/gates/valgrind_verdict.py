@@ -1,10 +1,10 @@
-"""Counts the memcheck errors (definite leaks included) with a frame in StewartPlatform.so or
-StewartPlant.so, from
+"""Counts the memcheck errors (definite leaks included) with a frame in StewartPlatform.so,
+StewartPlant.so or StewartPlantME.so, from
 valgrind's XML report; exits 1 if there is any. usage: valgrind_verdict.py MEMCHECK.xml"""
 import sys
 import xml.etree.ElementTree as ET
 
-OURS = ("StewartPlatform.so", "StewartPlant.so")
+OURS = ("StewartPlatform.so", "StewartPlant.so", "StewartPlantME.so")
 root = ET.parse(sys.argv[1]).getroot()
 total, ours = 0, []
 for error in root.iter("error"):
@@ -16,7 +16,7 @@ for error in root.iter("error"):
         ours.append((error.findtext("kind"), what,
                      [o for o in objs if any(n in o for n in OURS)][:8]))
 print(f"valgrind_fmu: {total} memcheck errors in the process (Python's own included), "
-      f"{len(ours)} touching StewartPlatform.so or StewartPlant.so")
+      f"{len(ours)} touching StewartPlatform.so, StewartPlant.so or StewartPlantME.so")
 for kind, what, frames in ours:
     print(f"  {kind}: {what}")
     for f in frames:

@@ -56,14 +56,15 @@ class Instance:
     """One instance of a model of this project (FMI 2 or 3) through fmpy, variables by name; raw
     calls return their status. Log messages collect in .messages."""
 
-    def __init__(self, model, version="2.0", name="i"):
+    def __init__(self, model, version="2.0", name="i", classes=(FMU2Slave, FMU3Slave)):
+        """classes: fmpy's FMI 2 and FMI 3 classes (Model Exchange: FMU2Model, FMU3Model)."""
         path = fmu_file(model, version)
         md = fmpy.read_model_description(path)
         self.v2 = version == "2.0"
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.integers = {v.name for v in md.modelVariables if v.type in ("Integer", "Int32")}
         self.messages = []
-        cls = FMU2Slave if self.v2 else FMU3Slave
+        cls = classes[0] if self.v2 else classes[1]
         self.fmu = cls(guid=md.guid, unzipDirectory=unzipped(path),
                        modelIdentifier=model, instanceName=name)
         if self.v2:

@@ -141,6 +141,26 @@ stewart_status stewart_plant_output_get(const stewart_plant *plant,
                                         const double force[STEWART_LEGS],
                                         stewart_plant_output *output);
 
+/* What the derivative call takes: a state of its own (the plant's is neither used nor changed)
+ * and the forces acting on it. */
+typedef struct stewart_plant_derivative_input {
+    double time;                 /* [s], copied to the output (the equations do not depend on it) */
+    stewart_pose pose;           /* q and q_dot: the state (the tool's pose in the user frame, as
+                                    every pose the plant takes); q_ddot is ignored */
+    double force[STEWART_LEGS];  /* F_k [N] */
+} stewart_plant_derivative_input;
+
+/* The right-hand side of the equations of motion at the input's state, for a master that
+ * integrates them itself (FMI Model Exchange): output->pose holds q, q_dot and the pose
+ * accelerations q_ddot; lengths hold length, length_rate and length_accel (lengths as the sensors
+ * read them: less length_offset); base wrench, stroke warnings as stewart_plant_output_get. On error the output is untouched and
+ * stewart_plant_message names the value: STEWART_ERR_ARGUMENT (a non-finite state or force, an
+ * output that overflows), STEWART_ERR_SINGULAR (pitch at +-90 degrees, a locked Cardan),
+ * STEWART_ERR_UNREACHABLE (a zero-length leg). Never allocates. */
+stewart_status stewart_plant_derivatives(stewart_plant *plant,
+                                         const stewart_plant_derivative_input *input,
+                                         stewart_plant_output *output);
+
 /* The joint reactions at the current state under the given forces (NULL: as output_get).
  * STEWART_ERR_ARGUMENT (reactions untouched) if a force is not finite or a value overflows. */
 stewart_status stewart_plant_reactions_get(const stewart_plant *plant,

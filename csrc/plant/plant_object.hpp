@@ -1,0 +1,30 @@
+// The plant object's fields, shared by the files of its C API (plant_api.cpp: life cycle and
+// step; plant_derivatives.cpp: the state's time derivatives). Not part of the public API.
+#pragma once
+
+#include "limits/limit_check.hpp"
+#include "model.hpp"
+#include "plant/plant_integrator.hpp"
+#include "stewart/stewart_plant.h"
+
+namespace stewart {
+namespace fd {
+constexpr double kMinCosPitch = 1e-9;  // roll and yaw rates are undefined at pitch = +-90 deg
+}  // namespace fd
+}  // namespace stewart
+
+struct stewart_plant {
+    const stewart_model *model = nullptr;
+    stewart_plant_options options{};
+    stewart::fd::DynamicsModel dynamics;
+    stewart::fd::Integrator integrator;
+    double time = 0;
+    double y[stewart::fd::kStates] = {0};
+    double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
+    double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
+    int warnings = 0;
+    stewart::LimitConstants limits;  // joint angles and interference, warned as strokes are
+    double step_hint = 0;  // first internal step of the next communication step (0: estimate)
+    stewart_plant_statistics stats{};
+    mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
+};

@@ -1,0 +1,53 @@
+/*
+ * The Model Exchange plant's identity and sizes (StewartPlantME.fmu: the plant's equations of
+ * motion for a master that integrates them itself; fmu/models/plant is the co-simulation unit
+ * that integrates them inside), read by the runtime (fmu/runtime) when it is compiled for this
+ * model, and the model's own parts of an instance.
+ */
+#ifndef STEWART_FMU_CONFIG_H
+#define STEWART_FMU_CONFIG_H
+
+#include "stewart/stewart.h"
+#include "stewart/stewart_plant.h"
+/* The library's parameter table: variables.def expands it (the plant's names and value
+ * references for the geometry and masses). */
+#include "stewart/stewart_table.h"
+
+#define FMU_MODEL_IDENTIFIER "StewartPlantME"
+#define FMU_GUID "{1082c231-0cb7-4444-8668-eaa9aa9d2c96}"
+/* Every value reference is below this bound (checked at compile time in variables.c): the
+ * plant's. */
+#define FMU_NVR 618
+
+#define FMU_MODEL_DESCRIPTION_TEXT                                                              \
+    "Stewart platform forward dynamics as Model Exchange: the six actuator forces in; the pose " \
+    "and its rates are the continuous states, their derivatives the pose rates and "            \
+    "accelerations; leg lengths and rates and the base wrench out"
+#define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" tolerance=\"1e-10\""
+#define FMU_CAN_INTERPOLATE_INPUTS 0
+
+/* Model Exchange (runtime/model_exchange.h): the states are x .. yaw, x_dot .. yaw_dot (value
+ * references 100..111); their derivatives x_dot .. yaw_dot and x_ddot .. yaw_ddot. */
+#define FMU_MODEL_EXCHANGE 1
+#define FMU_N_STATES 12
+#define FMU_STATE_VR(i) ((unsigned)(VR_x + (i)))
+#define FMU_DERIVATIVE_VR(i) ((unsigned)((i) < 6 ? VR_x_dot + (i) : VR_x_ddot + (i) - 6))
+/* The motion (pose, rates, lengths, length rates) depends on the states alone. */
+#define FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) ((vr) >= VR_x && (vr) <= VR_L_dot_6)
+
+/* The model's plain values: part of every FMU state, copied and serialised as bytes. */
+typedef struct model_values {
+    int solve_status; /* fmu_status of the outputs' last refresh */
+} model_values;
+
+/* The model's resources: built at the end of initialisation from the parameters. The plant
+ * object only evaluates the equations (stewart_plant_derivatives); its own state is unused. */
+typedef struct model_resources {
+    stewart_model *model;  /* built from `params` */
+    stewart_plant *plant;  /* on `model`, with `fidelity` */
+    stewart_params params;
+    int fidelity;
+    char message[2 * STEWART_MESSAGE_SIZE];
+} model_resources;
+
+#endif

@@ -1,0 +1,176 @@
+/*
+ * The Model Exchange plant on the FMU runtime: the states (x .. yaw_dot) and forces the master set
+ * go to stewart_plant_derivatives; its pose rates and accelerations are the derivatives, its
+ * lengths, rates and base wrench the other outputs. A state where the equations are undefined
+ * (pitch at +-90 degrees, a zero-length leg, a locked Cardan) or a non-finite force is Discard at
+ * the derivative call, naming the value. The master integrates; no step here.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "logging.h"
+#include "model_interface.h"
+
+/* The start state's parameters (variables.def's FMU_OPTION_REAL fields). */
+typedef struct plant_me_start {
+    double pose0[6], rate0[6];
+} plant_me_start;
+
+void model_start_values(fmu_values *v) {
+    stewart_params p;
+    stewart_params_default(&p);
+    plant_me_start s = {{0, 0, p.home_height, 0, 0, 0}, {0}};
+#define FMU_INPUT(vr, id, name, start, unit, row, col, desc) v->real[vr] = start;
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
+#define FMU_OUTPUT_INT(vr, id, name, desc) v->integer[vr] = 0;
+#define FMU_OPTION_INT(vr, id, name, start, min, max, desc) v->integer[vr] = start;
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) v->real[vr] = s.field;
+#define FMU_PARAM(vr, id, name, field, unit, display, desc) v->real[vr] = p.field;
+#define FMU_INDEPENDENT(vr, id, name, unit, desc) v->real[vr] = 0.0;
+#include "variables.def"
+    v->integer[VR_status] = 3; /* nothing evaluated yet */
+    memset(&v->model, 0, sizeof v->model);
+}
+
+static void params_from_values(const fmu_values *v, stewart_params *p) {
+    stewart_params_default(p);
+#define FMU_PARAM(vr, id, name, field, unit, display, desc) p->field = v->real[vr];
+#include "variables.def"
+}
+
+static void start_from_values(const fmu_values *v, plant_me_start *s) {
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) s->field = v->real[vr];
+#include "variables.def"
+}
+
+/* ---------------------------------------------------------------- parameters */
+
+fmu_status model_apply_parameters(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    model_resources *r = &inst->res;
+    const int fidelity = v->integer[VR_fidelity];
+    if (fidelity != STEWART_MASSLESS && fidelity != STEWART_FULL) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "invalid parameter: fidelity = %d must be 1 (massless) or 2 (full)", fidelity);
+        return FMU_ERROR;
+    }
+    stewart_params p;
+    params_from_values(v, &p);
+    const int new_model = !r->model || memcmp(&p, &r->params, sizeof p) != 0;
+    if (!new_model && r->plant && fidelity == r->fidelity) return FMU_OK;
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    o.fidelity = fidelity;
+    stewart_model *m = new_model ? stewart_model_create(&p, r->message, sizeof r->message)
+                                 : r->model;
+    stewart_plant *plant = m ? stewart_plant_create(m, &o, r->message, sizeof r->message) : NULL;
+    if (!plant) {
+        if (new_model) stewart_model_free(m);
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
+        return FMU_ERROR;
+    }
+    stewart_plant_free(r->plant);
+    if (new_model) {
+        stewart_model_free(r->model);
+        r->model = m;
+        r->params = p;
+    }
+    r->plant = plant;
+    r->fidelity = fidelity;
+    fmu_log(inst, FMU_OK, LOG_EVENTS, "plant built (fidelity %d)", fidelity);
+    return FMU_OK;
+}
+
+/* Initialisation: the states from the start parameters, checked as the co-simulation plant
+ * checks them (stewart_plant_set_state: finite, pitch off +-90 degrees, every leg defined). */
+fmu_status model_start(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    plant_me_start s;
+    start_from_values(v, &s);
+    if (stewart_plant_set_state(inst->res.plant, 0.0, s.pose0, s.rate0) != STEWART_OK) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "invalid parameter: start state x0..yaw0 = (%g, %g, %g, %g, %g, %g), "
+                "x_dot0..yaw_dot0 = (%g, %g, %g, %g, %g, %g): %s", s.pose0[0], s.pose0[1],
+                s.pose0[2], s.pose0[3], s.pose0[4], s.pose0[5], s.rate0[0], s.rate0[1],
+                s.rate0[2], s.rate0[3], s.rate0[4], s.rate0[5],
+                stewart_plant_message(inst->res.plant));
+        return FMU_ERROR;
+    }
+    for (int i = 0; i < 6; ++i) {
+        v->real[VR_x + i] = s.pose0[i];
+        v->real[VR_x_dot + i] = s.rate0[i];
+    }
+    v->outputs_current = 0;
+    return FMU_OK;
+}
+
+void model_reset(fmu_instance *inst) { (void)inst; /* the states are set at initialisation */ }
+
+void model_free(fmu_instance *inst) {
+    stewart_plant_free(inst->res.plant);
+    stewart_model_free(inst->res.model);
+    inst->res.plant = NULL;
+    inst->res.model = NULL;
+}
+
+/* ---------------------------------------------------------------- the right-hand side */
+
+fmu_status model_refresh_outputs(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    if (v->outputs_current) return v->model.solve_status;
+    stewart_plant_derivative_input in;
+    in.time = v->time;
+    for (int i = 0; i < 6; ++i) {
+        in.pose.q[i] = v->real[VR_x + i];
+        in.pose.q_dot[i] = v->real[VR_x_dot + i];
+        in.pose.q_ddot[i] = 0.0;
+        in.force[i] = v->real[VR_F_1 + i];
+    }
+    stewart_plant_output out;
+    const stewart_status s = stewart_plant_derivatives(inst->res.plant, &in, &out);
+    v->outputs_current = 1;
+    if (s != STEWART_OK) {
+        fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                "t = %.17g: no derivatives at this state (%s): %s; outputs keep their last valid "
+                "values", v->time, stewart_status_name(s), stewart_plant_message(inst->res.plant));
+        v->integer[VR_status] = 3;
+        v->model.solve_status = FMU_DISCARD;
+        return FMU_DISCARD;
+    }
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out.field;
+#include "variables.def"
+    v->integer[VR_status] = out.stroke_legs ? 1 : 0;
+    v->model.solve_status = FMU_OK;
+    return FMU_OK;
+}
+
+fmu_status model_do_step(fmu_instance *inst, double t, double h) {
+    (void)t; (void)h;
+    fmu_log(inst, FMU_ERROR, LOG_ERROR, "DoStep: " FMU_MODEL_IDENTIFIER " is Model Exchange only");
+    return FMU_ERROR;
+}
+
+/* ---------------------------------------------------------------- FMU state */
+
+/* The instance's values are the whole state (the plant object holds none of it); no input
+ * derivatives (Model Exchange has none). */
+#include "model_without_saved_state.h"
+
+const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
+                              size_t size, char *why, size_t why_size) {
+    (void)inst; (void)in;
+    if (size != 0) return "the state has model data, this model has none";
+    const int solve = v->model.solve_status;
+    if (solve != FMU_OK && solve != FMU_DISCARD) return "a flag is out of range";
+#define FMU_OUTPUT(vr, id, name, unit, field, desc) \
+    if (!isfinite(v->real[vr])) return "output " name " is not finite";
+#include "variables.def"
+    const int32_t status = v->integer[VR_status];
+    if (status < 0 || status > 3 || status == 2) return "status is not 0, 1 or 3";
+    if (v->integer[VR_fidelity] != STEWART_MASSLESS && v->integer[VR_fidelity] != STEWART_FULL) {
+        snprintf(why, why_size, "fidelity = %d must be 1 or 2", (int)v->integer[VR_fidelity]);
+        return why;
+    }
+    return NULL;
+}

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Worst-case latency (issue 21): runs build/latency (studies/bench/latency.c) over 10^6 calls of
+# each workload and writes its table, with the machine and its load, to
+# studies/bench/latency-results.md (docs/latency.md quotes it). Twice: at the ordinary priority,
+# where on a shared machine the tail is the scheduler's (other processes' time slices), and, if
+# this user may (CAP_SYS_NICE), under SCHED_FIFO (`chrt -f 10`), where only interrupts and the
+# hypervisor preempt. The load average before and after each row is part of the row.
+# usage: studies/bench/latency.sh [BUILD_DIR=build] [CALLS=1000000]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+build=$(realpath "${1:-build}")
+calls=${2:-1000000}
+[ -x "$build/latency" ] || { echo "latency.sh: $build/latency is missing: build first"; exit 2; }
+out=studies/bench/latency-results.md
+table=$(mktemp)
+trap 'rm -f "$table"' EXIT
+
+# One run: a heading, the load around it, the table.
+run() {
+  local title=$1
+  shift
+  local before after
+  before=$(cut -d' ' -f1-3 /proc/loadavg)
+  "$@" "$build/latency" "$build/fmu" "$table" "$calls" >/dev/null
+  after=$(cut -d' ' -f1-3 /proc/loadavg)
+  echo "## $title"
+  echo
+  echo "Load average (1, 5, 15 min) before: $before; after: $after."
+  echo
+  cat "$table"
+  echo
+}
+
+{
+  echo "# Latency of one call (studies/bench/latency.sh)"
+  echo
+  echo "Written by studies/bench/latency.sh on $(date -u '+%Y-%m-%d %H:%M UTC'), commit" \
+       "$(git rev-parse --short HEAD 2>/dev/null || echo '?')."
+  echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'),"
+  echo "Linux $(uname -r); build type $(grep -m1 CMAKE_BUILD_TYPE: "$build/CMakeCache.txt" | cut -d= -f2)."
+  echo
+  run "Ordinary priority (SCHED_OTHER)"
+  if chrt -f 10 true 2>/dev/null; then
+    run "SCHED_FIFO priority 10 (chrt -f 10)" chrt -f 10
+  else
+    echo "(SCHED_FIFO not permitted for this user: no real-time run.)"
+  fi
+} >"$out"
+cat "$out"
