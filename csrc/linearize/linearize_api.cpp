@@ -2,6 +2,7 @@
 // plant_derivatives.* laid out as A, B, C, D, and the inverse side's Jacobian by the implicit
 // function theorem on the plant's equations.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -235,6 +236,10 @@ extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
     }
     o.stroke_legs = stroke_legs_of(l->model->params, length);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    static_assert(offsetof(stewart_linearize_output, D) + sizeof o.D ==
+                      offsetof(stewart_linearize_output, state_rate) + sizeof o.state_rate +
+                          sizeof o.output + sizeof o.A + sizeof o.B + sizeof o.C + sizeof o.D,
+                  "the checked values are contiguous");
     if ((s = check_overflow(&o.state_rate[0], sizeof o.state_rate + sizeof o.output + sizeof o.A +
                                                   sizeof o.B + sizeof o.C + sizeof o.D,
                             msg, size)) != STEWART_OK)
@@ -302,8 +307,24 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
         for (int j = 0; j < 12; ++j) o.jacobian[18 + k][j] = force_wrt_state(k, j);
         for (int j = 0; j < 6; ++j) o.jacobian[18 + k][12 + j] = force_wrt_accel(k, j);
     }
+    Dual base_force[3], base_torque[3];
+    if (!lin::pose_base_wrench(l->dynamics, pose->q, pose->q_dot, pose->q_ddot, base_force,
+                               base_torque, why))
+        return failure(why, pose->q[4], msg, size);
+    for (int i = 0; i < 3; ++i) {
+        o.base_force[i] = base_force[i].value();
+        o.base_torque[i] = base_torque[i].value();
+        for (int j = 0; j < STEWART_LINEARIZE_INVERSE_COLUMNS; ++j) {
+            o.jacobian[24 + i][j] = base_force[i].derivatives()[j];
+            o.jacobian[27 + i][j] = base_torque[i].derivatives()[j];
+        }
+    }
+    static_assert(offsetof(stewart_linearize_inverse_output, jacobian) ==
+                      offsetof(stewart_linearize_inverse_output, lengths) +
+                          sizeof(stewart_lengths) + 12 * sizeof(double),
+                  "the checked values are contiguous");
     if ((s = check_overflow(&o.lengths.length[0], sizeof o.lengths + sizeof o.force +
-                                                       sizeof o.jacobian,
+                                                       6 * sizeof(double) + sizeof o.jacobian,
                             msg, size)) != STEWART_OK)
         return s;
     o.stroke_legs = stroke_legs_of(l->model->params, o.lengths.length);

@@ -73,5 +73,30 @@ bool leg_lengths(const fd::LegParameters &p, const double q[6], const double q_d
     return true;
 }
 
+bool pose_base_wrench(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
+                      const double q_ddot[6], Dual force[3], Dual torque[3], Failure &why) {
+    Dual qs[6], rates[6], accels[6];
+    seed(q, 0, qs);
+    seed(q_dot, 6, rates);
+    seed(q_ddot, 12, accels);
+    const MotionT<Dual> m = motion_of_pose<Dual>(qs, rates, accels);
+    fd::EvaluationT<Dual> e;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const fd::LegFault fault =
+            fd::leg_configuration(d.legs, k, m.position, m.rotation, e.legs[k], d.with_legs);
+        if (fault != fd::LegFault::None) {
+            why.fault = fault;
+            why.leg = k;
+            return false;
+        }
+    }
+    MotionT<Dual> bodies[13];
+    fd::body_motions(d, m, e, bodies);
+    fd::Vec3T<Dual> f, t;
+    fd::base_wrench(d, bodies, f, t);
+    for (int i = 0; i < 3; ++i) force[i] = f[i], torque[i] = t[i];
+    return true;
+}
+
 }  // namespace lin
 }  // namespace stewart

@@ -33,5 +33,11 @@ bool leg_lengths(const fd::LegParameters &p, const double q[6], const double q_d
                  const double q_ddot[6], Dual length[STEWART_LEGS], Dual rate[STEWART_LEGS],
                  Dual accel[STEWART_LEGS], Failure &why);
 
+// The wrench the moving bodies put on the base (plant/plant_equations.hpp: base_wrench) when
+// the platform moves with the pose (q, q_dot, q_ddot), with its derivatives along the directions
+// of leg_lengths.
+bool pose_base_wrench(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
+                      const double q_ddot[6], Dual force[3], Dual torque[3], Failure &why);
+
 }  // namespace lin
 }  // namespace stewart

@@ -156,16 +156,11 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
     return true;
 }
 
-// The plant's scalar and linearisation's.
-template bool twist_rate<double>(const DynamicsModel &, const MotionT<double> &, const double *,
-                                 EvaluationT<double> &);
-template bool twist_rate<Dual>(const DynamicsModel &, const MotionT<Dual> &, const Dual *,
-                               EvaluationT<Dual> &);
-
-void body_motions(const DynamicsModel &d, const Motion &m, const Evaluation &e,
-                  Motion bodies[13]) {
-    Motion &platform = bodies[0];
-    const Vec3 c = m.rotation * d.platform_com;
+template <class S>
+void body_motions(const DynamicsModel &d, const MotionT<S> &m, const EvaluationT<S> &e,
+                  MotionT<S> bodies[13]) {
+    MotionT<S> &platform = bodies[0];
+    const Vec3T<S> c = m.rotation * d.platform_com.template cast<S>();
     platform.position = m.position + c;
     platform.rotation = m.rotation;
     platform.velocity = m.velocity + m.omega.cross(c);
@@ -177,27 +172,41 @@ void body_motions(const DynamicsModel &d, const Motion &m, const Evaluation &e,
         leg_body_motion(d.legs, k, e.legs[k], m, bodies[1 + k], bodies[7 + k]);
 }
 
-void base_wrench(const DynamicsModel &d, const Motion bodies[13], Vec3 &force, Vec3 &torque) {
+template <class S>
+void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &force,
+                 Vec3T<S> &torque) {
     force.setZero();
     torque.setZero();
     const int count = d.with_legs ? 13 : 1;
     for (int b = 0; b < count; ++b) {
-        const Motion &body = bodies[b];
+        const MotionT<S> &body = bodies[b];
         double mass;
-        Mat3 I;
+        Mat3T<S> I;
         if (b == 0) {
             mass = d.platform_mass;
-            I = body.rotation * d.platform_inertia * body.rotation.transpose();
+            I = body.rotation * d.platform_inertia.template cast<S>() * body.rotation.transpose();
         } else {
             mass = b <= 6 ? d.cylinder_mass : d.piston_mass;
             I = world_inertia(body.rotation, b <= 6 ? d.cylinder_inertia : d.piston_inertia);
         }
         // What the base must supply to this body beyond gravity, with the sign reversed.
-        const Vec3 f = mass * (body.acceleration - d.gravity);
+        const Vec3T<S> f = mass * (body.acceleration - d.gravity.template cast<S>());
         force -= f;
         torque -= body.position.cross(f) + I * body.alpha + body.omega.cross(I * body.omega);
     }
 }
+
+// The plant's scalar and linearisation's.
+#define STEWART_PLANT_EQUATIONS_INSTANTIATE(S)                                                    \
+    template bool twist_rate<S>(const DynamicsModel &, const MotionT<S> &, const S *,             \
+                                EvaluationT<S> &);                                                \
+    template void body_motions<S>(const DynamicsModel &, const MotionT<S> &,                      \
+                                  const EvaluationT<S> &, MotionT<S>[13]);                        \
+    template void base_wrench<S>(const DynamicsModel &, const MotionT<S>[13], Vec3T<S> &,         \
+                                 Vec3T<S> &);
+STEWART_PLANT_EQUATIONS_INSTANTIATE(double)
+STEWART_PLANT_EQUATIONS_INSTANTIATE(Dual)
+#undef STEWART_PLANT_EQUATIONS_INSTANTIATE
 
 }  // namespace fd
 }  // namespace stewart

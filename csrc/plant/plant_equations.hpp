@@ -43,12 +43,15 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
 
 // The 13 moving bodies (platform, cylinders, pistons) for m including its accelerations; the leg
 // bodies are left untouched for the massless model. e must hold the configuration of m.
-void body_motions(const DynamicsModel &d, const Motion &m, const Evaluation &e,
-                  Motion bodies[13]);
+template <class S>
+void body_motions(const DynamicsModel &d, const MotionT<S> &m, const EvaluationT<S> &e,
+                  MotionT<S> bodies[13]);
 
 // The wrench the moving bodies put on the base (about the world origin): minus the rate of
 // their momentum and angular momentum less gravity (the actuator forces are internal).
-void base_wrench(const DynamicsModel &d, const Motion bodies[13], Vec3 &force, Vec3 &torque);
+template <class S>
+void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &force,
+                 Vec3T<S> &torque);
 
 }  // namespace fd
 }  // namespace stewart

@@ -10,6 +10,7 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,7 @@ extern "C" {
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_table.h"
 }
@@ -436,6 +438,60 @@ private:
     Owned<stewart_plant> plant_{stewart_plant_free, stewart_plant_message};
 };
 
+// A linearisation of model at fidelity, or ValueError with the library's message.
+struct Linearization {
+    Linearization(const Model &model, int fidelity) {
+        stewart_linearize_options o;
+        stewart_linearize_options_default(&o);
+        o.fidelity = fidelity;
+        char message[STEWART_MESSAGE_SIZE];
+        owned.solver = stewart_linearize_create(model.get(), &o, message, sizeof message);
+        if (!owned.solver) fail(message);
+    }
+    Owned<stewart_linearize> owned{stewart_linearize_free, stewart_linearize_message};
+};
+
+std::vector<double> flat(const double *first, size_t n) { return std::vector<double>(first, first + n); }
+
+// Platform.linearize's call: (status, message, state_rate, output, A, B, C, D, warnings), the
+// matrices flat and row-major.
+nb::tuple linearize_plant(const Model &model, int fidelity, const std::vector<double> &q,
+                          const std::vector<double> &q_dot, const std::vector<double> &force) {
+    if (q.size() != 6 || q_dot.size() != 6 || force.size() != 6)
+        fail("linearize: pose, pose_rate and forces need 6 values each");
+    Linearization l(model, fidelity);
+    stewart_linearize_input in{};
+    std::copy(q.begin(), q.end(), in.pose.q);
+    std::copy(q_dot.begin(), q_dot.end(), in.pose.q_dot);
+    std::copy(force.begin(), force.end(), in.force);
+    stewart_linearize_output out{};
+    const stewart_status s = stewart_linearize_plant(l.owned.solver, &in, &out);
+    return nb::make_tuple(static_cast<int>(s), std::string(stewart_linearize_message(l.owned.solver)),
+                          flat(out.state_rate, 12), flat(out.output, 24), flat(&out.A[0][0], 144),
+                          flat(&out.B[0][0], 72), flat(&out.C[0][0], 288), flat(&out.D[0][0], 144),
+                          out.warnings);
+}
+
+// Platform.linearize_inverse's call: (status, message, L, L_dot, L_ddot, force, base_force,
+// base_torque, jacobian (30 x 18 flat), warnings).
+nb::tuple linearize_inverse(const Model &model, int fidelity, const std::vector<double> &q,
+                            const std::vector<double> &q_dot, const std::vector<double> &q_ddot) {
+    if (q.size() != 6 || q_dot.size() != 6 || q_ddot.size() != 6)
+        fail("linearize_inverse: pose, pose_rate and pose_accel need 6 values each");
+    Linearization l(model, fidelity);
+    stewart_pose pose{};
+    std::copy(q.begin(), q.end(), pose.q);
+    std::copy(q_dot.begin(), q_dot.end(), pose.q_dot);
+    std::copy(q_ddot.begin(), q_ddot.end(), pose.q_ddot);
+    stewart_linearize_inverse_output out{};
+    const stewart_status s = stewart_linearize_inverse(l.owned.solver, &pose, &out);
+    return nb::make_tuple(static_cast<int>(s), std::string(stewart_linearize_message(l.owned.solver)),
+                          flat(out.lengths.length, 6), flat(out.lengths.length_rate, 6),
+                          flat(out.lengths.length_accel, 6), flat(out.force, 6),
+                          flat(out.base_force, 3), flat(out.base_torque, 3),
+                          flat(&out.jacobian[0][0], 30 * 18), out.warnings);
+}
+
 }  // namespace
 
 NB_MODULE(_core, m) {
@@ -497,6 +553,10 @@ NB_MODULE(_core, m) {
              nb::arg("error_test_failures").none(), nb::arg("status"))
         .def("rows", &PlantRun::rows, nb::arg("first"), nb::arg("stop"))
         .def("statistics", &PlantRun::statistics);
+    m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"),
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("force"));
+    m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"));
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {

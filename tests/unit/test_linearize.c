@@ -87,14 +87,21 @@ static stewart_linearize_output plant_ok(stewart_linearize *l, const stewart_lin
     return out;
 }
 
-/* Largest |a - b| over a block, relative to the block's largest |b| (exact zero blocks absolute,
- * against 1). */
+/* A block of a Jacobian (one group of rows by one group of columns of one unit each): the
+ * largest |exact - difference| and the largest |exact|. */
 typedef struct { double error, scale; } block_error;
 static void block_add(block_error *e, double exact, double difference) {
     if (fabs(exact - difference) > e->error) e->error = fabs(exact - difference);
     if (fabs(exact) > e->scale) e->scale = fabs(exact);
 }
-static double block_relative(block_error e) { return e.error / (e.scale > 0 ? e.scale : 1); }
+/* The block's error relative to its scale, where the rounding of the central difference
+ * (16 eps |f| / h for values of magnitude |f|) is not counted: a block that is zero (or nearly)
+ * is checked against that rounding alone. */
+static double block_relative(block_error e, double value_scale, double h) {
+    const double rounding = 16 * 2.220446049250313e-16 * value_scale / h;
+    const double beyond = e.error > rounding ? e.error - rounding : 0;
+    return beyond / (e.scale > 0 ? e.scale : 1);
+}
 
 /* The forces of the inverse solver at the plant's fidelity (inverse fidelity numbers match). */
 static void inverse_forces(int fidelity, const stewart_pose *pose, double force[6]) {
@@ -109,6 +116,9 @@ static double check_plant_point(stewart_linearize *l, const stewart_linearize_in
     /* blocks: A (q_ddot wrt q, wrt q_dot), B (q_ddot wrt F), C (L wrt q, L_dot wrt q, wrt q_dot),
      * D (outputs wrt F); A and C's constant rows are checked entry by entry too. */
     block_error blocks[8] = {{0, 0}};
+    double rate_scale = 0, output_scale = 0;
+    for (int i = 0; i < 12; ++i) rate_scale = fmax(rate_scale, fabs(exact.state_rate[i]));
+    for (int i = 0; i < 24; ++i) output_scale = fmax(output_scale, fabs(exact.output[i]));
     for (int j = 0; j < 18; ++j) {
         stewart_linearize_input plus = *in, minus = *in;
         double h;
@@ -130,9 +140,13 @@ static double check_plant_point(stewart_linearize *l, const stewart_linearize_in
             block_add(&blocks[b_index], analytic, difference);
         }
     }
+    /* blocks 0-2 of the state rate, by column unit (q, q_dot, F); 3-5 of the outputs */
+    const double h_of[6] = {kStepState, kStepState, kStepForce, kStepState, kStepState, kStepState};
     double worst = 0;
-    for (int b = 0; b < 7; ++b)
-        if (block_relative(blocks[b]) > worst) worst = block_relative(blocks[b]);
+    for (int b = 0; b < 6; ++b) {
+        const double r = block_relative(blocks[b], b < 3 ? rate_scale : output_scale, h_of[b]);
+        if (r > worst) worst = r;
+    }
     /* The identity and zero rows are exact: their differences are 0 or 1 to rounding. */
     TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, blocks[7].error);
     TEST_ASSERT_EQUAL_DOUBLE(0.0, blocks[6].scale); /* D = 0 */
@@ -190,8 +204,9 @@ static void rate_matches_inverse(int fidelity) {
 static void test_rate_matches_inverse_massless(void) { rate_matches_inverse(STEWART_MASSLESS); }
 static void test_rate_matches_inverse_full(void) { rate_matches_inverse(STEWART_FULL); }
 
-/* The inverse side's Jacobian against central differences of the inverse solver's lengths and
- * forces (the 14-body model at full fidelity), and its value against that solver. */
+/* The inverse side's Jacobian against central differences of the inverse solver's lengths,
+ * forces and base wrench (the 14-body model at full fidelity), and its values against that
+ * solver's. */
 static void inverse_against_differences(int fidelity, int edge) {
     stewart_linearize *l = make(fidelity);
     uint64_t rng = 777 + (uint64_t)(fidelity * 3 + edge);
@@ -213,8 +228,14 @@ static void inverse_against_differences(int fidelity, int edge) {
             TEST_ASSERT_DOUBLE_WITHIN(1e-11, reference.lengths.length_accel[k], exact.lengths.length_accel[k]);
         }
         worst_value /= force_scale;
-        /* blocks by (row group L, L_dot, L_ddot, F) x (column group q, q_dot, q_ddot) */
-        block_error blocks[4][3] = {{{0, 0}}};
+        for (int i = 0; i < 3; ++i) {
+            const double e = fmax(fabs(exact.base_force[i] - reference.base_force[i]),
+                                  fabs(exact.base_torque[i] - reference.base_torque[i]));
+            if (e / force_scale > worst_value) worst_value = e / force_scale;
+        }
+        /* blocks by (row group L, L_dot, L_ddot, F, base force, base torque) x (column group
+         * q, q_dot, q_ddot) */
+        block_error blocks[6][3] = {{{0, 0}}};
         for (int j = 0; j < 18; ++j) {
             stewart_pose plus = pose, minus = pose;
             double *a = j < 6 ? plus.q : j < 12 ? plus.q_dot : plus.q_ddot;
@@ -233,19 +254,33 @@ static void inverse_against_differences(int fidelity, int edge) {
                 for (int r = 0; r < 4; ++r)
                     block_add(&blocks[r][j / 6], exact.jacobian[6 * r + k][j], d[r]);
             }
+            for (int i = 0; i < 3; ++i) {
+                block_add(&blocks[4][j / 6], exact.jacobian[24 + i][j],
+                          (up.base_force[i] - down.base_force[i]) / (2 * h));
+                block_add(&blocks[5][j / 6], exact.jacobian[27 + i][j],
+                          (up.base_torque[i] - down.base_torque[i]) / (2 * h));
+            }
         }
-        for (int r = 0; r < 4; ++r)
+        double value_scale[6] = {0};
+        for (int k = 0; k < 6; ++k) {
+            value_scale[0] = fmax(value_scale[0], fabs(exact.lengths.length[k]));
+            value_scale[1] = fmax(value_scale[1], fabs(exact.lengths.length_rate[k]));
+            value_scale[2] = fmax(value_scale[2], fabs(exact.lengths.length_accel[k]));
+            value_scale[3] = fmax(value_scale[3], fabs(exact.force[k]));
+        }
+        for (int i = 0; i < 3; ++i) {
+            value_scale[4] = fmax(value_scale[4], fabs(exact.base_force[i]));
+            value_scale[5] = fmax(value_scale[5], fabs(exact.base_torque[i]));
+        }
+        for (int r = 0; r < 6; ++r)
             for (int c = 0; c < 3; ++c) {
-                /* Blocks that are exactly zero (L wrt rates, L_dot wrt q_ddot) stay so. */
-                if (blocks[r][c].scale == 0) {
-                    TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, blocks[r][c].error);
-                    continue;
-                }
-                if (block_relative(blocks[r][c]) > worst) worst = block_relative(blocks[r][c]);
+                const double e =
+                    block_relative(blocks[r][c], value_scale[r], c < 2 ? kStepState : kStepAccel);
+                if (e > worst) worst = e;
             }
     }
     printf("inverse fidelity %d%s: Jacobian against central differences of the inverse solver, "
-           "worst block error %.2e; forces against the solver's %.2e\n",
+           "worst block error %.2e; forces and base wrench against the solver's %.2e\n",
            fidelity, edge ? " near the stroke limits" : "", worst, worst_value);
     TEST_ASSERT_LESS_THAN_DOUBLE(kRelative, worst);
     TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, worst_value);

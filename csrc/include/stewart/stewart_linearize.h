@@ -30,7 +30,7 @@ extern "C" {
 #define STEWART_LINEARIZE_STATES 12   /* x = (q, q_dot) */
 #define STEWART_LINEARIZE_INPUTS 6    /* u = (F_1 .. F_6) */
 #define STEWART_LINEARIZE_OUTPUTS 24  /* y = (q, q_dot, L, L_dot) */
-#define STEWART_LINEARIZE_INVERSE_ROWS 24     /* (L, L_dot, L_ddot, F) */
+#define STEWART_LINEARIZE_INVERSE_ROWS 30     /* (L, L_dot, L_ddot, F, base_force, base_torque) */
 #define STEWART_LINEARIZE_INVERSE_COLUMNS 18  /* (q, q_dot, q_ddot) */
 
 typedef struct stewart_linearize stewart_linearize;
@@ -58,12 +58,14 @@ typedef struct stewart_linearize_output {
     int stroke_legs;  /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_linearize_output;
 
-/* The inverse side at a pose (q, q_dot, q_ddot): the lengths and the forces of the fidelity
- * (massless legs, or the full model's legs with mass) and their Jacobian. */
+/* The inverse side at a pose (q, q_dot, q_ddot): the lengths, the forces of the fidelity
+ * (massless legs, or the full model's legs with mass), the base wrench, and their Jacobian. */
 typedef struct stewart_linearize_inverse_output {
     stewart_lengths lengths;      /* L, L_dot, L_ddot */
     double force[STEWART_LEGS];   /* F [N] */
-    /* d(L, L_dot, L_ddot, F) / d(q, q_dot, q_ddot), row-major */
+    double base_force[3];         /* force the moving bodies put on the base, world [N] */
+    double base_torque[3];        /* its torque about the world origin [N m] */
+    /* d(L, L_dot, L_ddot, F, base_force, base_torque) / d(q, q_dot, q_ddot), row-major */
     double jacobian[STEWART_LINEARIZE_INVERSE_ROWS][STEWART_LINEARIZE_INVERSE_COLUMNS];
     int warnings;     /* STEWART_WARN_STROKE */
     int stroke_legs;  /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
