@@ -133,6 +133,11 @@ extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *mode
     return l;
 }
 
+extern "C" const stewart_linearize_options *stewart_linearize_options_of(
+    const stewart_linearize *l) {
+    return l ? &l->options : nullptr;
+}
+
 extern "C" void stewart_linearize_free(stewart_linearize *l) { delete l; }
 
 extern "C" void stewart_linearize_reset(stewart_linearize *l) {

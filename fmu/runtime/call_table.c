@@ -22,6 +22,8 @@ static const int kAllowed[CALL_COUNT] = {
     [CALL_SET_FMU_STATE] = ANY_MODE,
     [CALL_FREE_FMU_STATE] = ANY_MODE,
     [CALL_SERIALIZE] = ANY_MODE,
+    /* as the outputs: once initialisation has begun (FMI 2 §4.2.4, FMI 3 §4.2.2) */
+    [CALL_GET_DIRECTIONAL_DERIVATIVE] = MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED,
 };
 
 const char *fmu_mode_name(int mode) {

@@ -84,6 +84,9 @@ stewart_linearize *stewart_linearize_create(const stewart_model *model,
                                             const stewart_linearize_options *options, char *msg,
                                             size_t size);
 
+/* The options l was made with (NULL for NULL). */
+const stewart_linearize_options *stewart_linearize_options_of(const stewart_linearize *l);
+
 /* Frees l (NULL is fine). */
 void stewart_linearize_free(stewart_linearize *l);
 
