@@ -34,7 +34,7 @@ AxisRates<S> axis_rates(const LegConfigurationT<S> &c, const Vec3T<S> &d_dot,
 // = (-x.s_dot + (y x s).n_dot) / |s x n|; alpha = n x n_ddot + w_dot n + w n_dot.
 template <class S>
 void frame_rates(const Vec3T<S> &n, const AxisRates<S> &nr, const Vec3T<S> &s,
-                 const Vec3T<S> &s_dot, const Vec3T<S> &s_ddot, const Vec3T<S> &x, const S &mu,
+                 const Vec3T<S> &s_dot, const Vec3T<S> &s_ddot, const Vec3T<S> &x, S mu,
                  Vec3T<S> &omega, Vec3T<S> &alpha) {
     const S inv_mu = 1.0 / mu;
     const Vec3T<S> y = n.cross(x);
