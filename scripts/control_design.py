@@ -7,9 +7,12 @@ around the nonlinear plant FMU in fmpy on a scene, beside today's PD controller 
 
 The LQR loop: the inverse unit's forces F_ff (feed-forward, as for PD) plus
     F = F_ff - K (x - x_ref),   x = (pose, pose rates) of the plant, x_ref = the scene's,
-with K = R^-1 B^T P from the continuous Riccati equation of (A, B, Q, R) at home,
+with K the discrete LQR gain of the plant sampled at the communication step h (forces held over
+a step: Ad = exp(A h), Bd = int_0^h exp(A s) ds B, from the exponential of [[A, B], [0, 0]] h),
+K = (R + Bd^T P Bd)^-1 Bd^T P Ad with P from the discrete Riccati equation, at home;
 Q = diag(1/position_tol^2 (x3), 1/angle_tol^2 (x3), 1/speed_tol^2 (x3), 1/rate_tol^2 (x3)),
-R = I / force_tol^2 (Bryson's rule).
+R = I / force_tol^2 (Bryson's rule). A continuous design ignores the sampling: its fastest poles
+(-1e5 1/s at these weights) are far beyond 1/h, and the sampled loop diverges.
 
 usage: control_design.py [--scene combined] [--duration 4] [--step 0.001] [--fmus build/fmus/2.0]
 """
@@ -36,12 +39,23 @@ def open_loop(platform, fidelity):
     return np.linalg.eigvals(platform.linearize(HOME, fidelity=fidelity).A)
 
 
-def lqr(A, B):
+def sampled(A, B, h):
+    """(Ad, Bd): the plant over one step h with the forces held."""
+    n, m = B.shape
+    M = np.zeros((n + m, n + m))
+    M[:n, :n], M[:n, n:] = A * h, B * h
+    E = scipy.linalg.expm(M)
+    return E[:n, :n], E[:n, n:]
+
+
+def lqr(A, B, h):
+    """The discrete LQR gain K (u = -K x) of (A, B) sampled at h, and Ad, Bd."""
     Q = np.diag([1 / POSITION_TOL**2] * 3 + [1 / ANGLE_TOL**2] * 3 + [1 / SPEED_TOL**2] * 3 +
                 [1 / RATE_TOL**2] * 3)
     R = np.eye(6) / FORCE_TOL**2
-    P = scipy.linalg.solve_continuous_are(A, B, Q, R)
-    return np.linalg.solve(R, B.T @ P)
+    Ad, Bd = sampled(A, B, h)
+    P = scipy.linalg.solve_discrete_are(Ad, Bd, Q, R)
+    return np.linalg.solve(R + Bd.T @ P @ Bd, Bd.T @ P @ Ad), Ad, Bd
 
 
 def run_lqr(K, scene, duration, h, fmus, fidelity=2):
@@ -92,11 +106,19 @@ def main():
         print(f"open loop, {fidelity}: eigenvalues of A at home under the static forces [1/s]:")
         print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in ev))
     lin = platform.linearize(HOME, fidelity="full")
-    K = lqr(lin.A, lin.B)
-    closed = np.linalg.eigvals(lin.A - lin.B @ K)
-    print("LQR on the full model: closed-loop eigenvalues [1/s], slowest first:")
+    K, Ad, Bd = lqr(lin.A, lin.B, args.step)
+    closed = np.log(np.linalg.eigvals(Ad - Bd @ K).astype(complex)) / args.step
+    print(f"LQR on the full model sampled at {args.step:g} s: closed-loop eigenvalues as rates "
+          "log(z)/h [1/s], slowest first:")
     closed = closed[np.argsort(-closed.real)]
     print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in closed))
+    # today's PD on the legs as a state feedback of the same linear model: F = -kp dL - kd dL_dot,
+    # dL = C_L dx, dL_dot = C_Ldot dx (rows 12-17 and 18-23 of C)
+    K_pd = 1e6 * lin.C[12:18] + 1e4 * lin.C[18:24]
+    pd = np.log(np.linalg.eigvals(Ad - Bd @ K_pd).astype(complex)) / args.step
+    pd = pd[np.argsort(-pd.real)]
+    print("PD (kp 1e6 N/m, kd 1e4 N s/m) on the same sampled model: closed-loop rates [1/s]:")
+    print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in pd))
     scene = scenes.load(args.scene)
     lqr_run = run_lqr(K, scene, args.duration, args.step, args.fmus)
     pd_run, _ = closed_loop.run(scene, args.duration, args.step, fmus=args.fmus)
