@@ -10,6 +10,7 @@
 #define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 0
 #endif
 
+#if FMU_PROVIDES_DIRECTIONAL_DERIVATIVE
 /* FMU_OK if every vr[i] is a Real variable of the causality, else Error naming it. */
 static fmu_status check_all(fmu_instance *inst, const char *function, const unsigned vr[],
                             size_t n, fmu_causality causality, const char *what) {
@@ -23,6 +24,7 @@ static fmu_status check_all(fmu_instance *inst, const char *function, const unsi
     }
     return FMU_OK;
 }
+#endif
 
 fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unknown[],
                                           size_t n_unknown, const unsigned known[],

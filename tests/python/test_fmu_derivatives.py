@@ -1,9 +1,11 @@
-"""Directional derivatives of the inverse unit (StewartPlatform) through fmpy, against references
-independent of the code: the leg Jacobian written out here (dL/dq, and dL_dot/dq_dot, the same
+"""Directional derivatives of the inverse unit (StewartPlatform) and the controller unit through
+fmpy, against references independent of the code: the leg Jacobian written out here (dL/dq, and dL_dot/dq_dot, the same
 matrix), central finite differences of the unit's own outputs (every differentiable output,
 every input, fidelity 0, 1, 2, rate inputs and finite-difference rates, FMI 2 and 3), and the
-model structure's dependencies against what a change of each input does to each output. Units
-without derivatives keep answering Error; fmpy validate accepts the descriptions."""
+model structure's dependencies against what a change of each input does to each output; the
+controller's against its gains. Units without derivatives (the plant: no output depends on an
+input within a step; the scene: no inputs) keep answering Error; fmpy validate accepts the
+descriptions."""
 import math
 import zipfile
 from xml.etree import ElementTree
@@ -251,7 +253,57 @@ def test_refused_requests(version):
 
 
 @pytest.mark.parametrize("version", VERSIONS)
-@pytest.mark.parametrize("unit", ["StewartPlant", "StewartController"])
+def test_controller_derivatives_are_its_gains(version):
+    """The PD controller unit: F_k = F_ff,k + kp (L_ref,k - L_k) + kd (L_dot_ref,k - L_dot_k),
+    its directional derivatives against central differences of its outputs (exact: it is
+    linear), its dependencies leg by leg, fmpy validate."""
+    path = fmu_path(version).parent / "StewartController.fmu"
+    assert declared_attribute(path, version) == "true"
+    assert validate_fmu(str(path)) == []
+    md = fmpy.read_model_description(str(path))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    inputs = [v.name for v in md.modelVariables if v.causality == "input"]
+    forces = [f"F[{k}]" for k in range(1, 7)]
+    fmu = fmpy.instantiate_fmu(fmpy.extract(str(path)), md, fmi_type="CoSimulation")
+    kp, kd = 2.5e5, 3e3
+    rng = np.random.default_rng(6)
+    point = dict(zip(inputs, rng.uniform(0.4, 0.6, len(inputs))))
+    if version == "2.0":
+        fmu.setReal([vr["kp"], vr["kd"]], [kp, kd])
+        fmu.setupExperiment(startTime=0)
+        fmu.enterInitializationMode()
+        fmu.exitInitializationMode()
+        set_reals, get_reals = fmu.setReal, fmu.getReal
+    else:
+        fmu.setFloat64([vr["kp"], vr["kd"]], [kp, kd])
+        fmu.enterInitializationMode(startTime=0)
+        fmu.exitInitializationMode()
+        set_reals, get_reals = fmu.setFloat64, fmu.getFloat64
+    set_reals([vr[n] for n in inputs], list(point.values()))
+    out_vrs, in_vrs = [vr[n] for n in forces], [vr[n] for n in inputs]
+    J = np.array([fmu.getDirectionalDerivative(out_vrs, in_vrs, list(np.eye(len(inputs))[j]))
+                  for j in range(len(inputs))]).T
+    differences = np.zeros_like(J)
+    for j, name in enumerate(inputs):
+        set_reals([vr[name]], [point[name] + 1e-3])
+        up = np.array(get_reals(out_vrs))
+        set_reals([vr[name]], [point[name] - 1e-3])
+        down = np.array(get_reals(out_vrs))
+        set_reals([vr[name]], [point[name]])
+        differences[:, j] = (up - down) / 2e-3
+    assert np.allclose(J, differences, rtol=1e-7, atol=1e-7 * kp)
+    assert sorted(np.unique(np.abs(J))) == [0.0, 1.0, kd, kp]
+    for o in md.outputs:
+        if o.variable.name in forces:
+            k = forces.index(o.variable.name)
+            assert {d.name for d in o.dependencies} == {
+                n for j, n in enumerate(inputs) if J[k, j] != 0}
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("unit", ["StewartPlant", "StewartScene"])
 def test_units_without_derivatives_say_so(version, unit):
     path = fmu_path(version).parent / f"{unit}.fmu"
     assert declared_attribute(path, version) == "false"
@@ -259,7 +311,8 @@ def test_units_without_derivatives_say_so(version, unit):
     md = fmpy.read_model_description(str(path))
     fmu = fmpy.instantiate_fmu(fmpy.extract(str(path)), md, fmi_type="CoSimulation")
     output = next(v for v in md.modelVariables if v.causality == "output")
-    inputs = [v for v in md.modelVariables if v.causality == "input"] or [output]
+    inputs = [v for v in md.modelVariables if v.causality == "input"] or [output]  # the scene
+    # has no inputs: any known is refused, first as not supported
     with pytest.raises(Exception, match="status 3"):  # Error: not supported
         fmu.getDirectionalDerivative([output.valueReference], [inputs[0].valueReference], [1.0])
     fmu.freeInstance()
