@@ -11,8 +11,9 @@ namespace fd {
 
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
-// The same with any scalar: every function below is a template on it, instantiated for double
-// (the plant) and for stewart::Dual (linearisation, csrc/linearize/) in plant_bodies.cpp.
+// The same with any scalar: every function below is a template on it (plant_bodies_impl.hpp),
+// instantiated for double (the plant, plant_bodies.cpp) and for stewart::Dual (linearisation,
+// linearize/plant_dual.cpp).
 template <class S>
 using Vec3T = Eigen::Matrix<S, 3, 1>;
 template <class S>

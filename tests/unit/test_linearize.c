@@ -5,11 +5,12 @@
  *   nonlinear functions (the plant's state rate and outputs; the inverse solver's lengths and
  *   forces), at random operating points of both fidelities and near the workspace edge;
  * - dL/dq and dL_dot/dq_dot against the leg Jacobian written out here;
- * - the life cycle: save, load, copy, bad input. */
+ * - the life cycle: save, load, copy, bad input; no allocation in a call. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "allocation_counter.h"
 #include "platform_fixture.h"
 #include "stewart/stewart_linearize.h"
 #include "test_support.h"
@@ -403,6 +404,24 @@ static void test_life_cycle_and_bad_input(void) {
     stewart_linearize_free(NULL);
 }
 
+/* No heap allocation in either call (allocation_counter.c interposes malloc and friends). */
+static void test_no_allocation(void) {
+    stewart_linearize *l = make(STEWART_FULL);
+    uint64_t rng = 31;
+    stewart_linearize_input in;
+    in.pose = random_pose(&rng);
+    inverse_forces(STEWART_FULL, &in.pose, in.force);
+    stewart_linearize_output out;
+    stewart_linearize_inverse_output inverse;
+    const long before = allocations;
+    for (int n = 0; n < 10; ++n) {
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_linearize_plant(l, &in, &out));
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_linearize_inverse(l, &in.pose, &inverse));
+    }
+    TEST_ASSERT_EQUAL(0, allocations - before);
+    stewart_linearize_free(l);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_rate_matches_inverse_massless);
@@ -416,5 +435,6 @@ int main(void) {
     RUN_TEST(test_inverse_full_near_edge);
     RUN_TEST(test_leg_jacobian_written_out);
     RUN_TEST(test_life_cycle_and_bad_input);
+    RUN_TEST(test_no_allocation);
     return UNITY_END();
 }
