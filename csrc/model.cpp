@@ -28,7 +28,7 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
     }
     // A model singular at home has no forward kinematics (stewart_forward_create says so); the
     // other directions still work.
-    stewart::forward_constants(m->geometry, params->home_height, m->forward, msg, size);
+    stewart::forward_constants(m->geometry, *params, m->forward, msg, size);
     clear_message(msg, size);
     return m;
 }

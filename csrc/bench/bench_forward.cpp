@@ -172,7 +172,8 @@ std::vector<Sample> workspace(const stewart_model *m, Solvers *d, int n) {
             continue;
         bool inside = true;
         for (int k = 0; k < 6; ++k)
-            inside = inside && legs.lengths.length[k] >= p->stroke_min && legs.lengths.length[k] <= p->stroke_max;
+            inside = inside && legs.lengths.length[k] >= p->stroke_min[k] &&
+                     legs.lengths.length[k] <= p->stroke_max[k];
         if (!inside) continue;
         Sample s{};
         std::copy(pose.q, pose.q + 6, s.truth);
@@ -295,7 +296,8 @@ int write_map(const stewart_model *m, Solvers *d, const char *path) {
                 const stewart_status inv = stewart_inverse_solve(d->massless, &in, &legs);
                 bool inside = inv == STEWART_OK;
                 for (int k = 0; k < 6 && inside; ++k)
-                    inside = legs.lengths.length[k] >= p->stroke_min && legs.lengths.length[k] <= p->stroke_max;
+                    inside = legs.lengths.length[k] >= p->stroke_min[k] &&
+                             legs.lengths.length[k] <= p->stroke_max[k];
                 stewart_forward_output r{};
                 stewart_status s = STEWART_ERR_SINGULAR;
                 if (inv == STEWART_OK) {

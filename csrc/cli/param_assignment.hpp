@@ -16,4 +16,8 @@ bool parse_assignment(const char *program, const char *assignment, std::string &
 bool set_platform_param(const char *program, const std::string &name, double value,
                         stewart_params &params);
 
+// --platform FILE.json: every parameter the platform file gives (stewart_platform_file.h), or
+// none; false with a message on stderr naming the file, its line and the field.
+bool read_platform_file(const char *program, const char *path, stewart_params &params);
+
 }  // namespace stewart

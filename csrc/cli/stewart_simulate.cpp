@@ -18,8 +18,11 @@ using stewart::kPoseNames;
 
 int usage(FILE *to) {
     std::fprintf(to,
-                 "usage: stewart-simulate [--fidelity massless|full] [--param NAME=VALUE ...] "
-                 "IN.csv OUT.csv\n"
+                 "usage: stewart-simulate [--fidelity massless|full] [--platform FILE.json] "
+                 "[--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "  --platform: a platform file (docs/geometry.md: parameter names to values); "
+                 "files and\n"
+                 "           --param apply in the order given\n"
                  "  --param: a platform parameter by its FMU name (e.g. payload_mass=50), the "
                  "start\n"
                  "           state x0 y0 z0 roll0 pitch0 yaw0, x_dot0 .. yaw_dot0 (default: at "
@@ -149,8 +152,8 @@ std::string stroke_warning(const stewart_params &p, const stewart_plant_output &
         if (o.stroke_legs & (1 << k)) {
             std::snprintf(text, sizeof text,
                           "leg %d has left its stroke: length %.9g m outside [%g, %g] m (end "
-                          "stops are not modelled)", k + 1, o.lengths.length[k], p.stroke_min,
-                          p.stroke_max);
+                          "stops are not modelled)", k + 1, o.lengths.length[k], p.stroke_min[k],
+                          p.stroke_max[k]);
             break;
         }
     return text;
@@ -196,6 +199,10 @@ int main(int argc, char **argv) {
              if (!set_param(v, s)) return 2;
              if (!std::strncmp(v, "z0=", 3)) pose_z_given = true;
              return 0;
+         }},
+        {"--platform", "FILE.json",
+         [&](const char *v) {
+             return stewart::read_platform_file("stewart-simulate", v, s.params) ? 0 : 2;
          }},
         {"--fidelity", "massless|full",
          [&](const char *v) {

@@ -16,16 +16,19 @@ namespace {
 int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
-                 "[--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "[--platform FILE.json] [--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "  --platform: a platform file (docs/geometry.md: parameter names to values)\n"
                  "  --param: any platform parameter by its FMU name, SI units (e.g. "
                  "payload_mass=50,\n"
-                 "           base_angle[2]=0.5236); the others are the thesis platform's\n"
+                 "           base_angle[2]=0.5236); the others are the thesis platform's; files "
+                 "and --param\n"
+                 "           apply in the order given\n"
                  "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
                  "x_ddot..yaw_ddot\n"
                  "           (missing derivatives come from finite differences of the samples)\n"
                  "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations\n"
                  "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
-                 "[--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "[--platform FILE.json] [--param NAME=VALUE ...] IN.csv OUT.csv\n"
                  "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
                  "columns ignored)\n"
                  "  OUT.csv: t,x,y,z,roll,pitch,yaw, x_dot.. and x_ddot.. when given their "
@@ -91,6 +94,10 @@ int main(int argc, char **argv) {
              return guess_given = guess, 0;
          }},
         {"--param", "NAME=VALUE", [&](const char *v) { return set_param(v, params) ? 0 : 2; }},
+        {"--platform", "FILE.json",
+         [&](const char *v) {
+             return stewart::read_platform_file("stewart-solve", v, params) ? 0 : 2;
+         }},
         {"--fidelity", "kinematic|massless|full",
          [&](const char *v) {
              if (parse_fidelity(v, options.fidelity)) return 0;

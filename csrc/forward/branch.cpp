@@ -23,15 +23,31 @@ int jacobian_sign(const Matrix6 &transposed) {
     return lu6_factor(a, pivot) ? lu6_determinant_sign(a, pivot) : 0;  // det J^T = det J
 }
 
-int assembly_branch(const PlatformGeometry &g, const Eigen::Matrix3d &R, const Matrix36 &points,
-                    const Matrix6 &jacobian_transposed, int working_sign) {
-    const Eigen::Vector3d normal = R.col(2);
-    int branch = normal.z() > 0 ? 0 : STEWART_BRANCH_FLIPPED;
+BranchSides branch_sides(const PlatformGeometry &g, double home_height) {
+    // Below this sine of its angle to the horizontal a leg at home is horizontal.
+    constexpr double kHorizontal = 1e-3;
+    BranchSides sides;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Eigen::Vector3d leg = (Eigen::Vector3d(0, 0, home_height) + g.platform_points.col(k) -
+                                     g.base_points.col(k)).normalized();
+        const Eigen::Vector3d side = leg.z() > kHorizontal    ? Eigen::Vector3d::UnitZ()
+                                     : leg.z() < -kHorizontal ? Eigen::Vector3d(-Eigen::Vector3d::UnitZ())
+                                                              : leg;
+        sides.base.col(k) = side;
+        sides.platform.col(k) = side;  // the platform frame is the world's at home
+    }
+    return sides;
+}
+
+int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
+                    const Matrix36 &points, const Matrix6 &jacobian_transposed, int working_sign) {
+    int branch = R(2, 2) > 0 ? 0 : STEWART_BRANCH_FLIPPED;  // the platform's normal points up
     if (jacobian_sign(jacobian_transposed) != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
+    const Matrix36 platform_sides = R * sides.platform;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d leg = points.col(k) - g.base_points.col(k);
-        if (!(leg.z() > 0)) branch |= STEWART_BRANCH_BELOW_BASE;
-        if (!(leg.dot(normal) > 0)) branch |= STEWART_BRANCH_PLATFORM_CARDAN;
+        if (!(leg.dot(sides.base.col(k)) > 0)) branch |= STEWART_BRANCH_BELOW_BASE;
+        if (!(leg.dot(platform_sides.col(k)) > 0)) branch |= STEWART_BRANCH_PLATFORM_CARDAN;
     }
     return branch;
 }

@@ -12,12 +12,22 @@ Matrix36 platform_points_world(const PlatformGeometry &g, const double q[6]);
 // Sign (+1, -1; 0 if singular) of the determinant of a leg Jacobian (LegJacobian::transposed).
 int jacobian_sign(const Matrix6 &transposed);
 
+// The side of each Cardan a leg stays on in the working mode, from the home pose: the base's z
+// axis if the leg rises at home (the thesis platform: every leg), -z if it falls (a hanging
+// platform), its home direction if it is (nearly) horizontal; the platform's the same in the
+// platform frame. Joints at any height: no plane of joints is assumed.
+struct BranchSides {
+    Matrix36 base;      // world
+    Matrix36 platform;  // platform frame
+};
+BranchSides branch_sides(const PlatformGeometry &g, double home_height);
+
 // STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points and its leg
-// Jacobian (0: the working mode: every leg leaves its base Cardan upward and reaches its
-// platform Cardan from below, the platform faces up, and the Jacobian's determinant has
+// Jacobian (0: the working mode: every leg leaves its base Cardan and reaches its platform
+// Cardan on the sides it has at home, the platform faces up, and the Jacobian's determinant has
 // working_sign, its sign at home).
-int assembly_branch(const PlatformGeometry &g, const Eigen::Matrix3d &R, const Matrix36 &points,
-                    const Matrix6 &jacobian_transposed, int working_sign);
+int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
+                    const Matrix36 &points, const Matrix6 &jacobian_transposed, int working_sign);
 
 // Bounds on the lengths of the 15 pairs i < j that hold at every pose: from
 // d_i - d_j = (a_j - a_i) + R (b_i - b_j), |L_i - L_j| <= |a_i - a_j| + |b_i - b_j| (difference)

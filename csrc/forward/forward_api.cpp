@@ -3,6 +3,7 @@
 // the leg Jacobian.
 #include "forward/forward_state.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -144,11 +145,11 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "0.5)", condition, o.tolerance, h);
     x.points = at.arm;
     x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
-    x.branch = stewart::assembly_branch(g, x.rotation, x.points, x.jacobian.transposed,
-                                        m.forward.working_sign);
+    x.branch = stewart::assembly_branch(g, m.forward.sides, x.rotation, x.points,
+                                        x.jacobian.transposed, m.forward.working_sign);
     if (tracking) {
         x.jump = (x.points - f.points).colwise().norm().maxCoeff();
-        if (x.jump > m.params.stroke_max - m.params.stroke_min) x.branch |= STEWART_BRANCH_JUMP;
+        if (x.jump > m.forward.shortest_stroke_range) x.branch |= STEWART_BRANCH_JUMP;
     }
     return STEWART_OK;
 }
@@ -205,10 +206,14 @@ void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_ou
 
 namespace stewart {
 
-stewart_status forward_constants(const PlatformGeometry &g, double home_height,
+stewart_status forward_constants(const PlatformGeometry &g, const stewart_params &p,
                                  ForwardConstants &f, char *msg, size_t size) {
+    f.shortest_stroke_range = p.stroke_max[0] - p.stroke_min[0];
+    for (int k = 1; k < STEWART_LEGS; ++k)
+        f.shortest_stroke_range = std::min(f.shortest_stroke_range, p.stroke_max[k] - p.stroke_min[k]);
+    f.sides = branch_sides(g, p.home_height);
     stewart_pose home{};
-    home.q[2] = home_height;
+    home.q[2] = p.home_height;
     LegKinematics legs;
     stewart_status s = leg_kinematics(g, motion_of_pose(home), legs, msg, size);
     if (s != STEWART_OK) return s;
@@ -310,7 +315,7 @@ extern "C" stewart_forward *stewart_forward_create(const stewart_model *m,
     if (stewart_forward_options_check(o, msg, size) != STEWART_OK) return nullptr;
     if (m->forward.working_sign == 0) {  // the model's constants say why
         stewart::ForwardConstants again;
-        stewart::forward_constants(m->geometry, m->params.home_height, again, msg, size);
+        stewart::forward_constants(m->geometry, m->params, again, msg, size);
         return nullptr;
     }
     stewart_forward *d = new (std::nothrow) stewart_forward;
@@ -493,7 +498,7 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
     out.jump = x.jump;
     out.start = x.start;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (lengths[k] < m->params.stroke_min || lengths[k] > m->params.stroke_max)
+        if (lengths[k] < m->params.stroke_min[k] || lengths[k] > m->params.stroke_max[k])
             out.stroke_legs |= 1 << k;
     if (out.stroke_legs) out.warnings |= STEWART_WARN_STROKE;
     if (out.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;

@@ -17,8 +17,6 @@ namespace {
 using mbs::Vec3;
 using mbs::Vec4;
 
-Vec3 tangential(double angle) { return Vec3(-std::sin(angle), std::cos(angle), 0.0); }
-
 // The leg body frame: z along the leg, x the Cardan arm perpendicular to the plate's arm s.
 Eigen::Matrix3d leg_frame(const Vec3 &n, const Vec3 &s) {
     Eigen::Matrix3d A;
@@ -114,7 +112,8 @@ stewart_params in_length_unit(const stewart_params &si, double L0) {
 }  // namespace
 
 double length_unit(const stewart_params &p) {
-    const double size = std::max({p.base_radius, p.platform_radius, p.home_height});
+    const JointGeometry joints = joint_geometry(p);
+    const double size = std::max({joints.base_size, joints.platform_size, p.home_height});
     int exponent = 0;
     const double mantissa = std::frexp(2.0 * size, &exponent);  // 2 size = mantissa 2^exponent
     return std::ldexp(1.0, mantissa == 0.5 ? exponent - 1 : exponent);
@@ -133,10 +132,9 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
     l.geometry = platform_geometry(p);
     l.cylinder_com = p.cylinder_com;
     l.piston_com = p.piston_com;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        l.base_arm.col(k) = tangential(p.base_angle[k]);
-        l.platform_arm.col(k) = tangential(p.platform_angle[k]);
-    }
+    const JointGeometry joints = joint_geometry(p);
+    l.base_arm = joints.base_arms;
+    l.platform_arm = joints.platform_arms;
 
     // Platform and payload as one body, on its own principal axes at its centre of mass.
     const LumpedBody lumped = lumped_platform(p);
@@ -180,10 +178,10 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Vec3 base_point = l.geometry.base_points.col(k);
         const Vec3 plate_point = l.axes.transpose() * (l.geometry.platform_points.col(k) - l.com);
-        const Vec3 plate_arm = l.axes.transpose() * tangential(p.platform_angle[k]);
+        const Vec3 plate_arm = l.axes.transpose() * l.platform_arm.col(k);
         const Vec3 cyl_end(0, 0, -p.cylinder_com), pis_end(0, 0, p.piston_com);
-        l.base_cardan[k] = b.cardan(l.base, base_point, tangential(p.base_angle[k]),
-                                    l.cylinder[k], cyl_end, ex);
+        l.base_cardan[k] = b.cardan(l.base, base_point, l.base_arm.col(k), l.cylinder[k], cyl_end,
+                                    ex);
         if (b.cardan(l.platform, plate_point, plate_arm, l.piston[k], pis_end, ex) < 0) return nullptr;
         l.cylindrical[k] = b.cylindrical(l.cylinder[k], cyl_end, ez, l.piston[k], pis_end, ez);
         if (l.base_cardan[k] < 0 || l.cylindrical[k] < 0) return nullptr;

@@ -119,7 +119,7 @@ void stroke_and_condition_warnings(const stewart_params &p, const stewart_invers
                                    stewart_inverse_output &out) {
     out.stroke_legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out.lengths.length[k] < p.stroke_min || out.lengths.length[k] > p.stroke_max)
+        if (out.lengths.length[k] < p.stroke_min[k] || out.lengths.length[k] > p.stroke_max[k])
             out.stroke_legs |= 1 << k;
     out.warnings = out.stroke_legs ? STEWART_WARN_STROKE : 0;
     if (out.condition > o.warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;

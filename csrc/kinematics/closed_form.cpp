@@ -2,21 +2,19 @@
 
 #include <cmath>
 
+#include "kinematics/joints.hpp"
 #include "kinematics/small_inverse.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
 
 PlatformGeometry platform_geometry(const stewart_params &p) {
+    const JointGeometry joints = joint_geometry(p);
     PlatformGeometry g;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        g.base_points.col(k) << p.base_radius * std::cos(p.base_angle[k]),
-            p.base_radius * std::sin(p.base_angle[k]), 0.0;
-        g.platform_points.col(k) << p.platform_radius * std::cos(p.platform_angle[k]),
-            p.platform_radius * std::sin(p.platform_angle[k]), 0.0;
-    }
-    g.min_length = 1e-12 * (p.base_radius + p.platform_radius);
-    g.characteristic_length = p.platform_radius;
+    g.base_points = joints.base_points;
+    g.platform_points = joints.platform_points;
+    g.min_length = 1e-12 * (joints.base_size + joints.platform_size);
+    g.characteristic_length = joints.platform_size;
     return g;
 }
 

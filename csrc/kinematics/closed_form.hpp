@@ -3,21 +3,24 @@
 
 #include <Eigen/Dense>
 
+#include "kinematics/joints.hpp"
 #include "kinematics/motion.hpp"
 #include "stewart/stewart.h"
 
 namespace stewart {
 
-using Matrix36 = Eigen::Matrix<double, 3, STEWART_LEGS>;
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
-// Attachment points from the parameters: a_k in the world, b_k in the platform frame.
+// Attachment points from the parameters (kinematics/joints.hpp: circles or the 36 coordinates):
+// a_k in the world, b_k in the platform frame.
 struct PlatformGeometry {
     Matrix36 base_points;
     Matrix36 platform_points;
     double min_length;  // below it a leg has no direction: the pose is unreachable [m]
-    double characteristic_length;  // platform radius: scales the angular part of the Jacobian
+    // The platform's size (its radius, or its farthest joint from the platform origin): scales
+    // the angular part of the Jacobian.
+    double characteristic_length;
 };
 PlatformGeometry platform_geometry(const stewart_params &p);
 

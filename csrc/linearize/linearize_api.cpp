@@ -80,7 +80,7 @@ stewart_status failure(const lin::Failure &why, double pitch, char *msg, size_t 
 int stroke_legs_of(const stewart_params &p, const double length[STEWART_LEGS]) {
     int legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (length[k] < p.stroke_min || length[k] > p.stroke_max) legs |= 1 << k;
+        if (length[k] < p.stroke_min[k] || length[k] > p.stroke_max[k]) legs |= 1 << k;
     return legs;
 }
 

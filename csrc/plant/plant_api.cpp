@@ -82,7 +82,7 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
         const fd::Vec3 d = m.position + arm - p.dynamics.legs.base_points.col(k);
         length[k] = d.norm();
         rate[k] = d.dot(m.velocity + m.omega.cross(arm)) / length[k];
-        if (length[k] < par.stroke_min || length[k] > par.stroke_max) stroke_legs |= 1 << k;
+        if (length[k] < par.stroke_min[k] || length[k] > par.stroke_max[k]) stroke_legs |= 1 << k;
     }
     return stroke_legs;
 }

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "kinematics/joints.hpp"
 #include "util/message.hpp"
 #include "util/range.hpp"
 
@@ -53,6 +54,20 @@ constexpr bool table_matches_struct() {
 static_assert(table_matches_struct(), "STEWART_PARAM_TABLE must list stewart_params' fields in order");
 
 const char *const kAxis[3] = {"x", "y", "z"};
+
+// Per-leg parameters that a single value (the bare name, e.g. "stroke_min") fills for all six
+// legs: they were scalars before issue 19, and their old spelling keeps working.
+const char *const kScalarFills[] = {"stroke_min", "stroke_max"};
+
+// The element index of "[k]" (k = 1..count, no leading zero, then the end), or -1.
+int element_index(const char *bracket, int count) {
+    if (bracket[0] != '[' || bracket[1] < '1' || bracket[1] > '9') return -1;
+    int k = 0;
+    const char *c = bracket + 1;
+    for (; *c >= '0' && *c <= '9' && k <= count; ++c) k = 10 * k + (*c - '0');
+    if (c[0] != ']' || c[1] != '\0' || k > count) return -1;
+    return k - 1;
+}
 
 // Levenshtein distance of the part of `a` before any '[' to `b` (both short names).
 size_t edit_distance(const char *a, const char *b) {
@@ -102,11 +117,7 @@ int stewart_param_find(const char *name, int *element) {
         if (std::strlen(p.name) != base || std::strncmp(p.name, name, base) != 0) continue;
         int e = 0;
         if (p.count > 1) {
-            // "[k]" with k a single digit 1..count (no array has more than 9 elements)
-            if (!bracket || bracket[1] < '1' || bracket[1] > '0' + p.count || bracket[2] != ']' ||
-                bracket[3] != '\0')
-                return -1;
-            e = bracket[1] - '1';
+            if (!bracket || (e = element_index(bracket, p.count)) < 0) return -1;
         } else if (bracket) {
             return -1;
         }
@@ -137,6 +148,8 @@ int stewart_param_element_description(int i, int e, char *text, size_t size) {
     if (!p || e < 0 || e >= p->count) return -1;
     if (p->count == STEWART_LEGS) return std::snprintf(text, size, "%s of leg %d", p->description, e + 1);
     if (p->count == 3) return std::snprintf(text, size, "%s %s", p->description, kAxis[e]);
+    if (p->count == 3 * STEWART_LEGS)
+        return std::snprintf(text, size, "%s %s of leg %d", p->description, kAxis[e % 3], e / 3 + 1);
     return std::snprintf(text, size, "%s", p->description);
 }
 
@@ -186,10 +199,14 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
                                n.name, ExactText(n.I[0]).c_str(), ExactText(n.I[1]).c_str(),
                                ExactText(n.I[2]).c_str());
 
-    if (!(p->stroke_max > p->stroke_min))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "stroke limits [%s, %s] m must satisfy stroke_min < stroke_max",
-                           ExactText(p->stroke_min).c_str(), ExactText(p->stroke_max).c_str());
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!(p->stroke_max[k] > p->stroke_min[k]))
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "stroke limits of leg %d [%s, %s] m must satisfy stroke_min[%d] < "
+                               "stroke_max[%d]", k + 1, ExactText(p->stroke_min[k]).c_str(),
+                               ExactText(p->stroke_max[k]).c_str(), k + 1, k + 1);
+    const stewart_status s = stewart::check_joint_geometry(*p, msg, size);
+    if (s != STEWART_OK) return s;
     return stewart::clear_message(msg, size);
 }
 
@@ -198,6 +215,12 @@ stewart_status stewart_params_set(stewart_params *p, const char *name, double va
     if (!p || !name) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
     int e = 0;
     const int i = stewart_param_find(name, &e);
+    if (i < 0)
+        for (int k = 0; k < kParamCount; ++k)
+            if (!std::strcmp(name, kParams[k].name) && stewart_param_fills_from_scalar(k)) {
+                for (int leg = 0; leg < kParams[k].count; ++leg) *stewart_param_element(p, k, leg) = value;
+                return stewart::clear_message(msg, size);
+            }
     if (i < 0) {
         int nearest = 0;
         size_t best = static_cast<size_t>(-1);
@@ -214,6 +237,14 @@ stewart_status stewart_params_set(stewart_params *p, const char *name, double va
     }
     *stewart_param_element(p, i, e) = value;
     return stewart::clear_message(msg, size);
+}
+
+int stewart_param_fills_from_scalar(int i) {
+    const stewart_param_info *info = stewart_param(i);
+    if (!info) return 0;
+    for (const char *name : kScalarFills)
+        if (!std::strcmp(info->name, name)) return 1;
+    return 0;
 }
 
 }  // extern "C"

@@ -4,7 +4,8 @@
  * element e of parameter `name` with id `id` becomes value reference id + e, variable
  * "name[e+1]" (or "name" if it has one element), C identifier name_<e+1>, struct field
  * name[e] (or name), and the table's description with the element's suffix (" x", " y", " z";
- * " of leg k"), exactly as the library names its elements. Used by a model's variables.def:
+ * " of leg k"; " x of leg k"), exactly as the library names its elements. Used by a model's
+ * variables.def:
  *
  *     STEWART_PARAM_TABLE(FMU_PARAM_FROM_TABLE)
  *     STEWART_OPTION_TABLE(FMU_OPTION_FROM_TABLE)
@@ -12,7 +13,7 @@
  * which calls FMU_PARAM(vr, id, "name", field, "unit", "displayUnit", "description") per element
  * and FMU_OPTION_INT(vr, id, "name", start, min, max, "description") or
  * FMU_OPTION_REAL(vr, id, "name", field, "unit", "description") per option. Element counts are
- * 1, 3 and 6 (the table's).
+ * 1, 3, 6 and 18 (the table's).
  */
 #ifndef STEWART_FMU_ELEMENTS_H
 #define STEWART_FMU_ELEMENTS_H
@@ -36,6 +37,27 @@
     FMU_ELEMENT_(id, 3, 4, name, unit, display, description " of leg 4")   \
     FMU_ELEMENT_(id, 4, 5, name, unit, display, description " of leg 5")   \
     FMU_ELEMENT_(id, 5, 6, name, unit, display, description " of leg 6")
+
+/* x, y, z of legs 1..6 (joint coordinates and Cardan axes). */
+#define FMU_ELEMENTS_18(id, name, unit, display, description) \
+    FMU_ELEMENT_(id, 0, 1, name, unit, display, description " x of leg 1") \
+    FMU_ELEMENT_(id, 1, 2, name, unit, display, description " y of leg 1") \
+    FMU_ELEMENT_(id, 2, 3, name, unit, display, description " z of leg 1") \
+    FMU_ELEMENT_(id, 3, 4, name, unit, display, description " x of leg 2") \
+    FMU_ELEMENT_(id, 4, 5, name, unit, display, description " y of leg 2") \
+    FMU_ELEMENT_(id, 5, 6, name, unit, display, description " z of leg 2") \
+    FMU_ELEMENT_(id, 6, 7, name, unit, display, description " x of leg 3") \
+    FMU_ELEMENT_(id, 7, 8, name, unit, display, description " y of leg 3") \
+    FMU_ELEMENT_(id, 8, 9, name, unit, display, description " z of leg 3") \
+    FMU_ELEMENT_(id, 9, 10, name, unit, display, description " x of leg 4") \
+    FMU_ELEMENT_(id, 10, 11, name, unit, display, description " y of leg 4") \
+    FMU_ELEMENT_(id, 11, 12, name, unit, display, description " z of leg 4") \
+    FMU_ELEMENT_(id, 12, 13, name, unit, display, description " x of leg 5") \
+    FMU_ELEMENT_(id, 13, 14, name, unit, display, description " y of leg 5") \
+    FMU_ELEMENT_(id, 14, 15, name, unit, display, description " z of leg 5") \
+    FMU_ELEMENT_(id, 15, 16, name, unit, display, description " x of leg 6") \
+    FMU_ELEMENT_(id, 16, 17, name, unit, display, description " y of leg 6") \
+    FMU_ELEMENT_(id, 17, 18, name, unit, display, description " z of leg 6")
 
 /* Options: int ones are Integer parameters with the table's range, double ones Real. */
 #define FMU_OPTION_FROM_TABLE(id, name, type, unit, min, min_closed, max, max_closed, start,     \

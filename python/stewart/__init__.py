@@ -17,7 +17,7 @@ from .errors import ParameterError
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths
 from .forward import ForwardSolution
 from .inverse import InverseSolution
-from .params import parameters
+from .params import parameters, platform_files
 from .platform import Platform
 from .simulate import Method, Simulation
 
@@ -28,4 +28,4 @@ except PackageNotFoundError:  # imported from a source tree, not installed
 
 __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Fidelity", "Method",
            "ParameterError", "fmu_path", "fmu_paths", "FMI_VERSIONS", "FMU_NAMES", "parameters",
-           "__version__"]
+           "platform_files", "__version__"]

@@ -24,6 +24,7 @@ extern "C" {
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
+#include "stewart/stewart_platform_file.h"
 #include "stewart/stewart_table.h"
 }
 
@@ -558,6 +559,27 @@ NB_MODULE(_core, m) {
     m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
           nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"));
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
+    // A platform file's text read by the library (stewart_params_read_json): [(name, values)]
+    // of the parameters it gives, each with all its elements; ValueError with the library's
+    // message (line, column, field and value) if any field is bad.
+    m.def("read_platform_json", [](const std::string &text) {
+        stewart_params params;
+        stewart_params_default(&params);
+        std::vector<unsigned char> given(static_cast<size_t>(stewart_param_count()));
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_params_read_json(&params, text.data(), text.size(), given.data(), message,
+                                     sizeof message) != STEWART_OK)
+            throw std::invalid_argument(message);
+        std::vector<std::pair<std::string, std::vector<double>>> fields;
+        for (int i = 0; i < stewart_param_count(); ++i)
+            if (given[static_cast<size_t>(i)]) {
+                std::vector<double> values;
+                for (int e = 0; e < stewart_param(i)->count; ++e)
+                    values.push_back(*stewart_param_element(&params, i, e));
+                fields.emplace_back(stewart_param(i)->name, values);
+            }
+        return fields;
+    });
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {
         stewart_params scratch;
@@ -569,7 +591,7 @@ NB_MODULE(_core, m) {
     });
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
     // The library's parameter table: one dict per parameter (name, count, unit, description,
-    // defaults, min, max).
+    // defaults, min, max, scalar_fills: one value by the bare name sets every leg).
     m.def("parameter_table", []() {
         nb::list table;
         for (int i = 0; i < stewart_param_count(); ++i) {
@@ -582,6 +604,7 @@ NB_MODULE(_core, m) {
             entry["defaults"] = std::vector<double>(p->defaults, p->defaults + p->count);
             entry["min"] = p->min;
             entry["max"] = p->max;
+            entry["scalar_fills"] = stewart_param_fills_from_scalar(i) != 0;
             table.append(entry);
         }
         return table;

@@ -2,13 +2,16 @@
 
 The names are the FMU's (and `stewart-solve --param`'s), from the library's parameter table
 (stewart_table.h): scalars by name (``payload_mass``), arrays as sequences (``base_angle=[...]``)
-that become ``base_angle[1]`` .. ``base_angle[6]`` (elements counted from 1). The library sets
-each element (`stewart_params_set`, which names the nearest parameter on a typo) and checks every
-value when the model is built; Python keeps no copy of the parameter list.
+that become ``base_angle[1]`` .. ``base_angle[6]`` (elements counted from 1); a per-leg
+parameter that was a scalar (``stroke_min``) also takes one number, which fills every leg.
+The library sets each element (`stewart_params_set`, which names the nearest parameter on a
+typo) and checks every value when the model is built; Python keeps no copy of the parameter list.
 """
 from __future__ import annotations
 
 import functools
+import os
+import pathlib
 from collections.abc import Mapping, Sequence
 from typing import Any, Union
 
@@ -27,8 +30,9 @@ def _table() -> tuple[dict[str, Any], ...]:
 
 def parameters() -> list[dict[str, Any]]:
     """The library's parameter table, one dict per parameter in declaration order: name, count
-    (1, 3 for x y z, 6 for legs 1..6), unit (SI), description, defaults (the thesis platform),
-    min and max (the valid range of each element)."""
+    (1, 3 for x y z, 6 for legs 1..6, 18 for x y z of legs 1..6), unit (SI), description,
+    defaults (the thesis platform), min and max (the valid range of each element), scalar_fills
+    (one number given for it fills every leg)."""
     return [dict(p) for p in _table()]
 
 
@@ -38,6 +42,7 @@ def parameter_assignments(params: Mapping[str, ParameterValue]) -> list[tuple[st
     Raises ParameterError for a name the library does not know (with its nearest name) and for a
     value with the wrong number of elements."""
     counts = {p["name"]: p["count"] for p in _table()}
+    fills = {p["name"] for p in _table() if p["scalar_fills"]}
     assignments: list[tuple[str, float]] = []
     for name, value in params.items():
         try:
@@ -50,6 +55,9 @@ def parameter_assignments(params: Mapping[str, ParameterValue]) -> list[tuple[st
             if not known:
                 raise ParameterError(message)
             count = 1
+        if name in fills and values.ndim == 0:
+            assignments.append((name, float(values)))  # the library fills every leg
+            continue
         if count == 1:
             if values.ndim != 0:
                 raise ParameterError(f"{name} = {value!r} must be one number")
@@ -74,3 +82,25 @@ def option_values(**options: Any) -> list[tuple[str, float]]:
         except (TypeError, ValueError):
             raise ParameterError(f"{name} = {value!r} is not a number") from None
     return pairs
+
+
+def read_platform_file(path: Union[str, "os.PathLike[str]"]) -> dict[str, ParameterValue]:
+    """The parameters a platform file gives (docs/geometry.md), read and checked by the library
+    (the reader of ``--platform``): scalars as floats, arrays as lists. ParameterError names the
+    file, the line and column, and the field."""
+    try:
+        text = pathlib.Path(path).read_bytes().decode("utf-8")
+    except (OSError, UnicodeDecodeError) as e:
+        raise ParameterError(f"{path}: {e}") from None
+    try:
+        fields = _core.read_platform_json(text)
+    except ValueError as e:
+        raise ParameterError(f"{path}: {e}") from None
+    return {name: values[0] if len(values) == 1 else list(values) for name, values in fields}
+
+
+def platform_files() -> dict[str, pathlib.Path]:
+    """The platform files shipped with the package, by name: "thesis", "paired_hexapod",
+    "genhexkins", "non_planar" (platforms/README.md says where each comes from)."""
+    folder = pathlib.Path(__file__).resolve().parent / "platforms"
+    return {p.stem: p for p in sorted(folder.glob("*.json"))}

@@ -2,6 +2,7 @@
 numpy arrays: inverse (inverse.py), forward (forward.py), simulate (simulate.py)."""
 from __future__ import annotations
 
+import os
 from collections.abc import Mapping
 from typing import Optional, Union
 
@@ -14,7 +15,7 @@ from .errors import ParameterError
 from .forward import ForwardSolution, run_forward
 from .inverse import InverseSolution, run_inverse
 from .linearize import InverseJacobian, Linearization, run_linearize, run_linearize_inverse
-from .params import ParameterValue, option_values, parameter_assignments
+from .params import ParameterValue, option_values, parameter_assignments, read_platform_file
 from .simulate import Method, Simulation, run_simulate
 
 
@@ -36,6 +37,15 @@ class Platform:
             raise
         except ValueError as e:
             raise ParameterError(str(e)) from None
+
+    @classmethod
+    def from_file(cls, path: Union[str, "os.PathLike[str]"], **params: ParameterValue) -> "Platform":
+        """The platform of a platform file (docs/geometry.md: a JSON object of parameter names to
+        numbers or lists, e.g. one of ``stewart.platform_files()``), with ``params`` changed on
+        top of it. The library reads the file and checks every field against the parameter
+        table: ParameterError names the file, the line and the field, and nothing is built from
+        a file with any bad field."""
+        return cls(**read_platform_file(path), **params)
 
     @property
     def params(self) -> Mapping[str, ParameterValue]:

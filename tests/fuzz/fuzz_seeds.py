@@ -6,8 +6,8 @@ usage: tests/fuzz/fuzz_seeds.py [FOLDER=tests/fuzz/corpus/api]
        tests/fuzz/fuzz_seeds.py --fmu [FOLDER=tests/fuzz/corpus/fmu]
        tests/fuzz/fuzz_seeds.py --plant [FOLDER=tests/fuzz/corpus/plant_fmu]
 
-Field indices count the doubles of stewart_params in declaration order (cylinder_mass is 32,
-piston_mass 37). Layout the target reads: 1 byte count of parameter edits (mod 8), each edit 1 byte field index +
+Field indices count the doubles of stewart_params in declaration order (cylinder_mass is 105,
+piston_mass 110: after the general geometry's 73 doubles of issue 19). Layout the target reads: 1 byte count of parameter edits (mod 8), each edit 1 byte field index +
 a float64; 1 byte choice (fidelity = choice % 4, bit 2 modified Newton, bit 7: a float64 tolerance
 follows); then poses of 18 float64 (q, q_dot, q_ddot).
 """
@@ -46,7 +46,7 @@ SEEDS = {
     "huge_pose": seed(fidelity=1, poses=[pose((1e300, -1e300, 1e308, 1e10, -1e10, 1e20))]),
     "unreachable": seed(fidelity=2, poses=[pose((0, 0, 0, 0, 0, math.pi / 6))]),
     "tiny_radius": seed(edits=[(0, 1e-3), (1, 1e-3)], fidelity=2, poses=[pose((0, 0, 0.001, 0, 0, 0))]),
-    "heavy_legs": seed(edits=[(32, 1e3), (37, 1e3)], fidelity=2, poses=[pose(HOME)]),
+    "heavy_legs": seed(edits=[(105, 1e3), (110, 1e3)], fidelity=2, poses=[pose(HOME)]),
     "nan_parameter": seed(edits=[(14, math.nan)], fidelity=1, poses=[pose(HOME)]),
 }
 
@@ -126,7 +126,8 @@ FMU_SEEDS = {
 }
 # the same sequences through the FMI 3 layer
 # issue 23's probe: a serialised state whose mode is changed to terminated (8) or initialisation
-# (2) (fmu_values.mode at byte 16 + 3792 of the inverse unit's state), a subnormal step, and a
+# (2) (fmu_values.mode at byte 16 + 7200 of the inverse unit's state; 16 + 3792 before issue 19
+# raised FMU_NVR from 301 to 585: 12 bytes per value reference), a subnormal step, and a
 # run from t0 = 100 s with the communication points counted (t0 + n h).
 def corrupt_int32(offset, value):
     """Op 8 with bit 3: the int32 at `offset` of the serialised state (taken by op 6) := value."""
@@ -139,9 +140,9 @@ def corrupt_double(offset, x):
 
 
 FMU_SEEDS.update({
-    "probe_mode_terminated": fmu_seed(step(0.1), bytes([6]), corrupt_int32(3808, 8), READ,
+    "probe_mode_terminated": fmu_seed(step(0.1), bytes([6]), corrupt_int32(7216, 8), READ,
                                       step(0.1), READ),
-    "probe_mode_initialisation": fmu_seed(step(0.1), bytes([6]), corrupt_int32(3808, 2), READ,
+    "probe_mode_initialisation": fmu_seed(step(0.1), bytes([6]), corrupt_int32(7216, 2), READ,
                                           step(0.1), READ),
     "probe_subnormal_step": fmu_seed(step(4.9e-324), step(4.9e-324, 0.0), step(0.1), READ),
     "probe_counted_clock_t0_100": fmu_seed(bytes([11]) + val(100.0),
@@ -196,22 +197,23 @@ PLANT_SEEDS = {
                           step(1e-3), READ),
 }
 # issue 23's probe on the plant: its serialised state (16 bytes of header, fmu_values with the
-# mode at 3776, the Reals from 16 (value reference 210 = base_radius at 1696), then at 3792 the
-# plant's 25 doubles: time, pose and quaternion, velocity (3856), angular velocity (3880), roll
-# (3904), forces, warnings, step hint (3984)) with one field corrupted; a subnormal step; a bad
+# mode at 7184, the Reals from 16 (value reference 210 = base_radius at 1696), then at 7200 the
+# plant's 25 doubles: time, pose and quaternion, velocity (7264), angular velocity (7288), roll
+# (7312), forces, warnings, step hint (7392)) with one field corrupted (offsets 3408 bytes later
+# than before issue 19's FMU_NVR 585); a subnormal step; a bad
 # force derivative retried with the forces alone; a run from t0 = 100 s on a counted clock.
 PLANT_TAKEN = STATICS + step(1e-3) + bytes([6])
 PLANT_SEEDS.update({
-    "probe_subnormal_hint": plant_seed(PLANT_TAKEN, corrupt_double(3984, 4.9e-324), READ,
+    "probe_subnormal_hint": plant_seed(PLANT_TAKEN, corrupt_double(7392, 4.9e-324), READ,
                                        step(1e-3), READ, step(1e-3), READ),
-    "probe_plant_time": plant_seed(PLANT_TAKEN, corrupt_double(3792, 5.0), READ, step(1e-3)),
-    "probe_roll_off_quaternion": plant_seed(PLANT_TAKEN, corrupt_double(3904, 1.8e308), READ,
+    "probe_plant_time": plant_seed(PLANT_TAKEN, corrupt_double(7200, 5.0), READ, step(1e-3)),
+    "probe_roll_off_quaternion": plant_seed(PLANT_TAKEN, corrupt_double(7312, 1.8e308), READ,
                                             step(1e-3), READ),
-    "probe_velocity": plant_seed(PLANT_TAKEN, corrupt_double(3856, 1e15), READ, step(1e-3)),
-    "probe_angular_velocity": plant_seed(PLANT_TAKEN, corrupt_double(3880, 1.7e308), READ,
+    "probe_velocity": plant_seed(PLANT_TAKEN, corrupt_double(7264, 1e15), READ, step(1e-3)),
+    "probe_angular_velocity": plant_seed(PLANT_TAKEN, corrupt_double(7288, 1.7e308), READ,
                                          step(1e-3)),
-    "probe_mode_terminated": plant_seed(PLANT_TAKEN, corrupt_int32(3776, 8), READ, step(1e-3)),
-    "probe_mode_initialisation": plant_seed(PLANT_TAKEN, corrupt_int32(3776, 2), READ,
+    "probe_mode_terminated": plant_seed(PLANT_TAKEN, corrupt_int32(7184, 8), READ, step(1e-3)),
+    "probe_mode_initialisation": plant_seed(PLANT_TAKEN, corrupt_int32(7184, 2), READ,
                                             step(1e-3)),
     "probe_parameter_1e6": plant_seed(PLANT_TAKEN, corrupt_double(1696, 1e6), READ, step(1e-3)),
     "probe_subnormal_step": plant_seed(STATICS, step(4.9e-324), step(1e-3), READ),

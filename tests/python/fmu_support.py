@@ -43,6 +43,12 @@ INT_OUTPUTS = ("newton_iterations", "status")
 OK, WARNING, DISCARD, ERROR, FATAL = range(5)
 
 
+def every_leg(**values):
+    """FMU variables setting a per-leg parameter to one value on all six legs: every_leg(
+    stroke_min=0.4) gives stroke_min[1]..stroke_min[6] (the FMU has no scalar of that name)."""
+    return {f"{name}[{k}]": value for name, value in values.items() for k in range(1, 7)}
+
+
 def fmu_path(version):
     p = BUILD / "fmus" / version / "StewartPlatform.fmu"
     if not p.exists():

@@ -303,7 +303,7 @@ def test_taylor_advance_into_an_unreachable_pose_is_discarded(version):
 @pytest.mark.parametrize("name,value,words", [
     ("base_radius", -0.1, "base_radius"),
     ("platform_mass", math.nan, "platform_mass"),
-    ("stroke_max", 0.3, "stroke"),
+    ("stroke_max[1]", 0.3, "stroke"),
     ("tolerance", 0.0, "tolerance"),
     ("derivatives", 3, "derivatives"),
     ("fidelity", 7, "fidelity"),

@@ -81,10 +81,13 @@ def test_interface_of_issue_4():
         assert v[n].unit == u, n
     # every geometry, mass and payload parameter of the library, angles in rad shown in deg
     for n in ("base_radius", "platform_radius", "home_height", "platform_mass", "payload_mass",
-              "cylinder_mass", "piston_mass", "cylinder_com", "piston_com", "stroke_min",
-              "stroke_max"):
+              "cylinder_mass", "piston_mass", "cylinder_com", "piston_com"):
         assert v[n].causality == "parameter" and v[n].unit, n
+    assert v["geometry"].causality == "parameter"
     for g, count in (("base_angle", 6), ("platform_angle", 6), ("gravity", 3),
+                     ("stroke_min", 6), ("stroke_max", 6), ("base_joint", 18),
+                     ("platform_joint", 18), ("base_cardan_axis", 18),
+                     ("platform_cardan_axis", 18),
                      ("platform_com", 3), ("platform_inertia", 3), ("payload_com", 3),
                      ("payload_inertia", 3), ("cylinder_inertia", 3), ("piston_inertia", 3)):
         for k in range(1, count + 1):

@@ -18,13 +18,13 @@ import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, L, L_DOT, L_DDOT, F, POSE, POSE_DOT, POSE_DDOT,
                          OK, WARNING, DISCARD, ERROR, Unit, backward_fd, reference_matrix,
-                         require_fidelity, stewart_solve)
+                         require_fidelity, stewart_solve, every_leg)
 from reference import (BETA, G, M_PLATFORM, TAU, condition, geometry, leg_axes, rotation,
                        static_forces)
 from reference import lengths as closed_form_lengths
 
 WARN_DEFAULT, SINGULAR_DEFAULT = 1e3, 1e10
-WIDE_STROKE = dict(stroke_min=0.01, stroke_max=10.0)
+WIDE_STROKE = every_leg(stroke_min=0.01, stroke_max=10.0)
 
 
 # ---------------------------------------------------------------- poses and manoeuvres
@@ -218,7 +218,7 @@ def test_stroke_edges(version, limit):
     """Just inside a stroke limit: OK, status 0. Just outside: Warning, status 1, a message naming
     the leg and its length, and values still right. The next valid pose: OK, status 0."""
     stroke = {"stroke_min": 0.52, "stroke_max": 0.58}
-    u = new_unit(version, fidelity=1, derivatives=1, **stroke)
+    u = new_unit(version, fidelity=1, derivatives=1, **every_leg(**stroke))
     try:
         edge = stroke[limit]
         sign = 1 if limit == "stroke_max" else -1
@@ -476,7 +476,7 @@ def test_steps_at_a_large_start_time(version):
 
 def scaled_params(s):
     return dict(base_radius=0.5 * s, platform_radius=0.5 * s, home_height=0.5 * s,
-                stroke_min=0.4 * s, stroke_max=0.7 * s,
+                **every_leg(stroke_min=0.4 * s, stroke_max=0.7 * s),
                 **{f"platform_inertia[{i}]": v * s * s for i, v in
                    zip((1, 2, 3), (M_PLATFORM / 16, M_PLATFORM / 16, M_PLATFORM / 8))})
 
@@ -574,8 +574,8 @@ def test_payload_far_outside(version, com):
     ("gravity[3]", math.nan, "gravity[3]"),
     ("payload_com[1]", -math.inf, "payload_com[1]"),
     ("platform_inertia[3]", 100.0, "platform_inertia"),  # violates the triangle inequality
-    ("stroke_min", 0.0, "stroke"),
-    ("stroke_max", 0.4, "stroke"),  # equal to stroke_min
+    ("stroke_min[1]", 0.0, "stroke"),
+    ("stroke_max[2]", 0.4, "stroke"),  # equal to stroke_min[2]
     ("warn_condition", 0.5, "warn"),
     ("singular_condition", 10.0, "singular"),  # below warn_condition
     ("tolerance", math.nan, "tolerance"),

@@ -97,7 +97,7 @@ static void test_invalid_parameters_are_named(void) {
     /* principal moments that break the triangle inequality are no rigid body's */
     stewart_params_default(&p); p.payload_inertia[0] = 1; p.payload_inertia[1] = 1;
     p.payload_inertia[2] = 3;                                expect_bad_params(&p, "payload_inertia");
-    stewart_params_default(&p); p.stroke_max = p.stroke_min; expect_bad_params(&p, "stroke");
+    stewart_params_default(&p); p.stroke_max[3] = p.stroke_min[3]; expect_bad_params(&p, "stroke_max[4]");
     TEST_ASSERT_NULL(stewart_model_create(NULL, msg, sizeof msg));
 }
 

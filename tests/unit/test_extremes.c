@@ -54,8 +54,7 @@ static void test_scaled_platform_is_similar(void) {
         params.base_radius *= s;
         params.platform_radius *= s;
         params.home_height *= s;
-        params.stroke_min *= s;
-        params.stroke_max *= s;
+        for (int k = 0; k < 6; ++k) params.stroke_min[k] *= s, params.stroke_max[k] *= s;
         /* the inertia of the disc scales as s^2 (it plays no part at rest) */
         for (int j = 0; j < 3; ++j) params.platform_inertia[j] *= s * s;
         rebuild_platform();
@@ -90,8 +89,8 @@ static void test_payload_far_outside(void) {
 /* Just inside and just outside the stroke limits: same solve, the warning bit alone differs. */
 static void test_stroke_limits_flag_without_failing(void) {
     const double chord2 = pow(sin(15 * M_PI / 180), 2);
-    const double z_at_max = sqrt(params.stroke_max * params.stroke_max - chord2);
-    const double z_at_min = sqrt(params.stroke_min * params.stroke_min - chord2);
+    const double z_at_max = sqrt(params.stroke_max[0] * params.stroke_max[0] - chord2);
+    const double z_at_min = sqrt(params.stroke_min[0] * params.stroke_min[0] - chord2);
     const double z[4] = {z_at_max - 1e-9, z_at_max + 1e-9, z_at_min + 1e-9, z_at_min - 1e-9};
     const int flagged[4] = {0, 1, 0, 1};
     for (int i = 0; i < 4; ++i) {
@@ -107,15 +106,14 @@ static void test_stroke_bits_name_the_legs(void) {
     for (int f = STEWART_KINEMATIC; f <= STEWART_FULL; ++f) {
         stewart_pose p = {{0.12, -0.05, 0.50, 0.05, 0, 0.1}, {0}, {0}};
         stewart_params narrow = params;
-        narrow.stroke_min = 0.55;
-        narrow.stroke_max = 0.62;
+        for (int k = 0; k < 6; ++k) narrow.stroke_min[k] = 0.55, narrow.stroke_max[k] = 0.62;
         stewart_model *m = test_model(&narrow);
         stewart_inverse *d = test_inverse(m);
         stewart_inverse_output out = solve_ok(d, (stewart_fidelity)f, &p);
         int expected = 0;
         for (int k = 0; k < STEWART_LEGS; ++k) {
             const double L = closed_form_length(&narrow, &p, k);
-            if (L < narrow.stroke_min || L > narrow.stroke_max) expected |= 1 << k;
+            if (L < narrow.stroke_min[k] || L > narrow.stroke_max[k]) expected |= 1 << k;
         }
         TEST_ASSERT_TRUE(expected != 0 && expected != 0x3f); /* the pose splits the legs */
         TEST_ASSERT_EQUAL_HEX(expected, out.stroke_legs);

@@ -52,7 +52,7 @@ static stewart_pose workspace_pose(stewart_inverse_output *legs) {
         int inside = 1;
         for (int k = 0; k < 6; ++k) {
             const double L = closed_form_length(&params, &p, k);
-            inside = inside && L >= params.stroke_min && L <= params.stroke_max;
+            inside = inside && L >= params.stroke_min[k] && L <= params.stroke_max[k];
         }
         if (!inside || !legs_on_the_joint_sides(&p)) continue;
         *legs = solve_ok(data, STEWART_MASSLESS, &p);
@@ -149,8 +149,7 @@ static void test_another_geometry_round_trips(void) {
         params.base_angle[k] = beta_deg[k] * M_PI / 180;
         params.platform_angle[k] = tau_deg[k] * M_PI / 180;
     }
-    params.stroke_min = 0.45;
-    params.stroke_max = 0.85;
+    for (int k = 0; k < 6; ++k) params.stroke_min[k] = 0.45, params.stroke_max[k] = 0.85;
     rebuild_platform();
     for (int i = 0; i < 500; ++i) {
         stewart_inverse_output legs;
@@ -242,7 +241,7 @@ static void test_a_jump_larger_than_the_stroke_is_reported(void) {
     TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&near_legs, 0, 0, NULL, &r));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_OTHER_BRANCH, forward(&far_legs, 1e-3, 0, NULL, &r));
     TEST_ASSERT_EQUAL_INT(STEWART_BRANCH_JUMP, r.branch);
-    TEST_ASSERT_TRUE(r.jump > params.stroke_max - params.stroke_min);
+    TEST_ASSERT_TRUE(r.jump > params.stroke_max[0] - params.stroke_min[0]);
     check_round_trip(&r, &far, 0); /* the pose found is shown, for inspection */
     TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&near_legs, 2e-3, 0, NULL, &r));
     TEST_ASSERT_EQUAL_INT(STEWART_START_LAST, r.start); /* still tracking from `near` */
@@ -325,7 +324,7 @@ static void test_lengths_no_pose_has_are_an_error_naming_the_leg(void) {
 static void test_lengths_outside_the_stroke_are_solved_with_the_warning(void) {
     stewart_pose high = {{0.02, -0.01, 0.8, 0.05, 0, 0.1}, {0}, {0}};
     const stewart_inverse_output legs = solve_ok(data, STEWART_KINEMATIC, &high);
-    TEST_ASSERT_TRUE(legs.lengths.length[0] > params.stroke_max);
+    TEST_ASSERT_TRUE(legs.lengths.length[0] > params.stroke_max[0]);
     stewart_forward_output r;
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, forward(&legs, 0, 0, NULL, &r),
                                   stewart_forward_message(forward_solver));

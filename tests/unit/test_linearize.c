@@ -54,7 +54,7 @@ static stewart_pose random_pose(uint64_t *rng) {
 static int within_stroke(const stewart_pose *p) {
     for (int k = 0; k < 6; ++k) {
         const double L = closed_form_length(&params, p, k);
-        if (L < params.stroke_min || L > params.stroke_max) return 0;
+        if (L < params.stroke_min[k] || L > params.stroke_max[k]) return 0;
     }
     return 1;
 }

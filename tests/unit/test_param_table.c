@@ -22,6 +22,14 @@ static void thesis_platform(stewart_params *p) {
     p->platform_radius = 0.5;
     for (int k = 0; k < 6; ++k) p->base_angle[k] = beta[k] * deg, p->platform_angle[k] = tau[k] * deg;
     p->home_height = 0.5;
+    /* geometry 0 (circles); the joints' defaults are the same joints as coordinates, the arms
+     * zero (tangential) */
+    for (int k = 0; k < 6; ++k) {
+        p->base_joint[3 * k] = 0.5 * cos(p->base_angle[k]);
+        p->base_joint[3 * k + 1] = 0.5 * sin(p->base_angle[k]);
+        p->platform_joint[3 * k] = 0.5 * cos(p->platform_angle[k]);
+        p->platform_joint[3 * k + 1] = 0.5 * sin(p->platform_angle[k]);
+    }
     p->gravity[2] = -9.81;
     const double R = 0.5, t = 0.05, m_plate = rho * pi * R * R * t;
     p->platform_mass = m_plate;
@@ -34,8 +42,7 @@ static void thesis_platform(stewart_params *p) {
     p->piston_inertia[0] = p->piston_inertia[1] = I_across;
     p->cylinder_inertia[2] = p->piston_inertia[2] = I_axis;
     p->cylinder_com = p->piston_com = l / 2.0;
-    p->stroke_min = 0.40;
-    p->stroke_max = 0.70;
+    for (int k = 0; k < 6; ++k) p->stroke_min[k] = 0.40, p->stroke_max[k] = 0.70;
 }
 
 static void test_defaults_are_the_thesis_platform_bit_for_bit(void) {
@@ -60,7 +67,8 @@ static void test_iteration_covers_every_field_once(void) {
     const double *next = (const double *)&p;
     for (int i = 0; i < stewart_param_count(); ++i) {
         const stewart_param_info *info = stewart_param(i);
-        TEST_ASSERT_TRUE(info->count == 1 || info->count == 3 || info->count == 6);
+        TEST_ASSERT_TRUE(info->count == 1 || info->count == 3 || info->count == 6 ||
+                         info->count == 18);
         TEST_ASSERT_TRUE(strcmp(info->display_unit, "") == 0 ||
                          (strcmp(info->display_unit, "deg") == 0 && !strcmp(info->unit, "rad")));
         for (int e = 0; e < info->count; ++e) {

@@ -157,8 +157,8 @@ static void test_stroke_warning_names_leg(void) {
      * is for errors only */
     TEST_ASSERT_NOT_EQUAL(0, out.stroke_legs);
     for (int k = 0; k < 6; ++k)
-        TEST_ASSERT_EQUAL(out.lengths.length[k] < params.stroke_min ||
-                              out.lengths.length[k] > params.stroke_max,
+        TEST_ASSERT_EQUAL(out.lengths.length[k] < params.stroke_min[k] ||
+                              out.lengths.length[k] > params.stroke_max[k],
                           (out.stroke_legs >> k) & 1);
     TEST_ASSERT_EQUAL_STRING("", stewart_plant_message(plant));
 }

@@ -60,10 +60,12 @@ void pose_rotation(const stewart_pose *pose, double R[3][3]) {
 double closed_form_length(const stewart_params *params, const stewart_pose *pose, int k) {
     double R[3][3];
     pose_rotation(pose, R);
-    const double b[3] = {params->platform_radius * cos(params->platform_angle[k]),
-                         params->platform_radius * sin(params->platform_angle[k]), 0};
-    const double a[3] = {params->base_radius * cos(params->base_angle[k]),
-                         params->base_radius * sin(params->base_angle[k]), 0};
+    double a[3] = {params->base_radius * cos(params->base_angle[k]),
+                   params->base_radius * sin(params->base_angle[k]), 0};
+    double b[3] = {params->platform_radius * cos(params->platform_angle[k]),
+                   params->platform_radius * sin(params->platform_angle[k]), 0};
+    if (params->geometry == 1) /* the joints as given (docs/geometry.md) */
+        for (int i = 0; i < 3; ++i) a[i] = params->base_joint[3 * k + i], b[i] = params->platform_joint[3 * k + i];
     double d2 = 0;
     for (int i = 0; i < 3; ++i) {
         const double d = pose->q[i] + R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2] - a[i];

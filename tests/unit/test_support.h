@@ -23,8 +23,9 @@ stewart_pose thesis_pose(int component, double t);
 
 /* R = Rz(yaw) Ry(pitch) Rx(roll) of the pose, written out (docs/model.md). */
 void pose_rotation(const stewart_pose *pose, double R[3][3]);
-/* Leg k's length |p + R b_k - a_k| from the pose and the attachment points of params, written out
- * here: the reference the library's lengths are checked against. */
+/* Leg k's length |p + R b_k - a_k| from the pose and the attachment points of params (the circles,
+ * or the joints when geometry is 1), written out here: the reference the library's lengths are
+ * checked against. */
 double closed_form_length(const stewart_params *params, const stewart_pose *pose, int k);
 
 /* An inverse solver for m with the default options; fails the test if it cannot be made. */

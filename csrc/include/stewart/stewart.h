@@ -2,8 +2,9 @@
  * Stewart platform inverse kinematics and inverse dynamics: the C API.
  *
  * Conventions (docs/model.md): SI units; world frame at the base centre, z up;
- * pose (x, y, z, roll, pitch, yaw) with R = Rz(yaw) Ry(pitch) Rx(roll); leg k joins base angle
- * beta_k to platform angle tau_k; actuator length L_k = |p + R b_k - a_k|; actuator force F_k > 0
+ * pose (x, y, z, roll, pitch, yaw) with R = Rz(yaw) Ry(pitch) Rx(roll); leg k joins base joint
+ * a_k to platform joint b_k (docs/geometry.md: on two circles, or any 36 coordinates); actuator
+ * length L_k = |p + R b_k - a_k|; actuator force F_k > 0
  * pushes the platform away from the base.
  *
  * Usage: fill a stewart_params (stewart_params_default gives the thesis platform), build an
@@ -70,6 +71,14 @@ typedef struct stewart_params {
     double base_angle[STEWART_LEGS];        /* beta_k [rad] */
     double platform_angle[STEWART_LEGS];    /* tau_k [rad], in the platform frame */
     double home_height;                     /* z of the home pose [m] */
+    /* Which joints the model uses: 0 the circles above (the default), 1 the coordinates below. */
+    double geometry;
+    double base_joint[3 * STEWART_LEGS];     /* a_k = (x, y, z) of leg k at 3(k-1) [m], base frame */
+    double platform_joint[3 * STEWART_LEGS]; /* b_k [m], platform frame */
+    /* The fixed arm of each Cardan (base frame / platform frame), a unit vector; the zero vector
+     * (the default) is the horizontal tangent at the joint's azimuth, the thesis' choice. */
+    double base_cardan_axis[3 * STEWART_LEGS];
+    double platform_cardan_axis[3 * STEWART_LEGS];
     double gravity[3];                      /* [m/s^2], world frame */
 
     double platform_mass;                   /* [kg] */
@@ -86,8 +95,8 @@ typedef struct stewart_params {
     double piston_inertia[3];               /* [kg m^2] */
     double piston_com;                      /* from the platform Cardan centre toward the base [m] */
 
-    double stroke_min;                      /* shortest allowed actuator length [m] */
-    double stroke_max;                      /* longest allowed actuator length [m] */
+    double stroke_min[STEWART_LEGS];        /* shortest allowed actuator length per leg [m] */
+    double stroke_max[STEWART_LEGS];        /* longest allowed actuator length per leg [m] */
 } stewart_params;
 
 /* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */
@@ -95,8 +104,9 @@ typedef struct stewart_inverse_options {
     int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
     double tolerance;            /* Newton residual tolerance (full level), max-norm, relative to
                                     the platform's size: lengths are measured in units of L0, the
-                                    power of two with max(base_radius, platform_radius,
-                                    home_height) / L0 in (0.25, 0.5] (1 m for the thesis
+                                    power of two with max(base size, platform size,
+                                    home_height) / L0 in (0.25, 0.5] (the sizes: the radii, or
+                                    the farthest joints, docs/geometry.md; 1 m for the thesis
                                     platform; stewart_model_length_unit). 1e-12; >= 2.5e-16 (the
                                     residual floors at about 2.2e-16 L0) */
     int max_iterations;          /* Newton iteration cap (full level); 20 */
@@ -149,8 +159,10 @@ void stewart_params_default(stewart_params *params);
 stewart_status stewart_params_check(const stewart_params *params, char *message, size_t size);
 /* Sets one parameter by its name: the field's name, with the element counted from 1 for arrays
  * ("payload_mass", "base_angle[1]" .. "base_angle[6]", "gravity[3]"), as the FMU's model
- * description and scene files name them. STEWART_ERR_ARGUMENT for an unknown name (the message
- * gives the nearest name); the value is checked when a model is built (stewart_params_check). */
+ * description and scene files name them; a per-leg parameter that was a scalar ("stroke_min")
+ * may also be given by its bare name, which sets all six legs. STEWART_ERR_ARGUMENT for an
+ * unknown name (the message gives the nearest name); the value is checked when a model is built
+ * (stewart_params_check). */
 stewart_status stewart_params_set(stewart_params *params, const char *name, double value,
                                   char *message, size_t size);
 void stewart_inverse_options_default(stewart_inverse_options *options);

@@ -26,11 +26,14 @@ extern "C" {
 
 /* Bits of stewart_forward_output.branch: why a pose is not on the working assembly mode. */
 enum {
-    STEWART_BRANCH_BELOW_BASE = 1,       /* a leg leaves its base Cardan downward (mirror pose) */
-    STEWART_BRANCH_PLATFORM_CARDAN = 2,  /* a leg reaches its platform Cardan from above */
+    STEWART_BRANCH_BELOW_BASE = 1,       /* a leg leaves its base Cardan on the other side than at
+                                            home: downward for a leg rising at home (mirror pose) */
+    STEWART_BRANCH_PLATFORM_CARDAN = 2,  /* a leg reaches its platform Cardan from the other side
+                                            than at home (from above, for a rising leg) */
     STEWART_BRANCH_FLIPPED = 4,          /* the platform's normal points down */
     STEWART_BRANCH_JUMP = 8,             /* tracking: a platform point moved farther than the
-                                            stroke (stroke_max - stroke_min) since the last pose */
+                                            shortest stroke range (stroke_max[k] - stroke_min[k])
+                                            since the last pose */
     STEWART_BRANCH_SINGULARITY = 16      /* the leg Jacobian's determinant has the other sign
                                             than at home: a singular pose lies in between */
 };

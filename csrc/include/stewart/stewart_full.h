@@ -7,7 +7,8 @@
  * normalisations. mbs_joint_first_row gives each joint's rows in mbs_lambda.
  *
  * The mechanism's lengths are in units of stewart_model_length_unit(model) m, L0: the power of
- * two with max(base_radius, platform_radius, home_height) / L0 in (0.25, 0.5], 1 for the thesis
+ * two with max(base size, platform size, home_height) / L0 in (0.25, 0.5] (the radii, or the
+ * farthest joints from each frame's origin: docs/geometry.md), 1 for the thesis
  * platform (so that the Newton tolerance means the same at every size). Masses are kept: in the
  * mechanism, forces are in units of L0 N, torques L0^2 N m, inertias L0^2 kg m^2, gravity
  * 1/L0 m/s^2.

@@ -11,7 +11,7 @@
  * once per stewart_params field, in declaration order:
  *   id           stable integer id of element 0 (= the FMU value reference); element e is id + e
  *   name         the field's name (a C identifier; element e is named "name[e+1]" if count > 1)
- *   count        number of doubles: 1, 3 (x, y, z) or 6 (legs 1..6)
+ *   count        number of doubles: 1, 3 (x, y, z), 6 (legs 1..6) or 18 (x, y, z of legs 1..6)
  *   unit         SI unit string ("m", "rad", "kg", "kg.m2", "m/s2"); display_unit "deg" or ""
  *   min, max     valid range of each element; min_closed/max_closed 1 if the end is included.
  *                Ends at -DBL_MAX/DBL_MAX (closed) mean "finite": no value may be NaN or Inf.
@@ -54,6 +54,25 @@ extern "C" {
      STEWART_THESIS_ROD_MASS * (3.0 * 0.0075 * 0.0075 + 0.3 * 0.3) / 12.0,                 \
      STEWART_THESIS_ROD_MASS * 0.0075 * 0.0075 / 2.0)
 
+/* The thesis platform's joints as coordinates (x1, y1, z1, ..., z6): r (cos angle, sin angle, 0)
+ * of the default radii and angles, each the double that expression gives, so that geometry 1
+ * with these joints places every joint exactly where geometry 0 does. */
+#define STEWART_THESIS_BASE_JOINTS                                                         \
+    (0.5, 0.0, 0.0,  \
+     0.43301270189221935, 0.24999999999999997, 0.0,  \
+     -0.24999999999999989, 0.43301270189221935, 0.0,  \
+     -0.43301270189221935, 0.24999999999999997, 0.0,  \
+     -0.25000000000000022, -0.43301270189221919, 0.0,  \
+     -9.1848509936051484e-17, -0.5, 0.0)
+#define STEWART_THESIS_PLATFORM_JOINTS                                                     \
+    (0.43301270189221919, -0.25000000000000022, 0.0,  \
+     0.25000000000000006, 0.4330127018922193, 0.0,  \
+     3.061616997868383e-17, 0.5, 0.0,  \
+     -0.5, 6.123233995736766e-17, 0.0,  \
+     -0.4330127018922193, -0.25000000000000006, 0.0,  \
+     0.25000000000000006, -0.4330127018922193, 0.0)
+#define STEWART_ZERO_18 (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
 #define STEWART_PARAM_TABLE(X)                                                                   \
     X(210, base_radius, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.5),                                   \
       "Radius of the circle of base Cardan centres")                                             \
@@ -68,6 +87,19 @@ extern "C" {
        STEWART_DEG(210.0), STEWART_DEG(300.0)),                                                  \
       "Angle (platform frame) of the platform Cardan centre")                                   \
     X(224, home_height, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.5), "z of the home pose")             \
+    X(500, geometry, 1, "", "", 0.0, 1, 1.0, 1, (0.0),                                           \
+      "Which joints: 0 the circles (base_radius, platform_radius, base_angle, platform_angle), "  \
+      "1 base_joint and platform_joint as given")                                                \
+    X(501, base_joint, 18, "m", "", -DBL_MAX, 1, DBL_MAX, 1, STEWART_THESIS_BASE_JOINTS,          \
+      "Base Cardan centre (geometry 1), base frame")                                             \
+    X(519, platform_joint, 18, "m", "", -DBL_MAX, 1, DBL_MAX, 1, STEWART_THESIS_PLATFORM_JOINTS,  \
+      "Platform Cardan centre (geometry 1), platform frame")                                     \
+    X(537, base_cardan_axis, 18, "1", "", -1.0, 1, 1.0, 1, STEWART_ZERO_18,                      \
+      "Fixed arm of the base Cardan, base frame: a unit vector, or zero for the tangent to the "  \
+      "joint's azimuth")                                                                         \
+    X(555, platform_cardan_axis, 18, "1", "", -1.0, 1, 1.0, 1, STEWART_ZERO_18,                  \
+      "Fixed arm of the platform Cardan, platform frame: a unit vector, or zero for the tangent " \
+      "to the joint's azimuth")                                                                  \
     X(225, gravity, 3, "m/s2", "", -DBL_MAX, 1, DBL_MAX, 1, (0.0, 0.0, -9.81), "Gravity, world") \
     X(230, platform_mass, 1, "kg", "", 0.0, 0, DBL_MAX, 1, (STEWART_THESIS_PLATE_MASS),          \
       "Mass of the moving platform")                                                             \
@@ -97,9 +129,9 @@ extern "C" {
       "along the leg), axis")                                                                    \
     X(259, piston_com, 1, "m", "", -DBL_MAX, 1, DBL_MAX, 1, (0.3 / 2.0),                         \
       "Piston centre of mass from the platform Cardan centre toward the base")                   \
-    X(228, stroke_min, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.40),                                   \
+    X(573, stroke_min, 6, "m", "", 0.0, 0, DBL_MAX, 1, (0.40, 0.40, 0.40, 0.40, 0.40, 0.40),     \
       "Shortest allowed actuator length (a warning below)")                                      \
-    X(229, stroke_max, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.70),                                   \
+    X(579, stroke_max, 6, "m", "", 0.0, 0, DBL_MAX, 1, (0.70, 0.70, 0.70, 0.70, 0.70, 0.70),     \
       "Longest allowed actuator length (a warning above)")
 
 #define STEWART_OPTION_TABLE(X)                                                                  \
@@ -107,7 +139,7 @@ extern "C" {
       "0 kinematic, 1 massless legs, 2 full 14-body model")                                      \
     X(202, tolerance, double, "1", 2.5e-16, 1, DBL_MAX, 1, MBS_DEFAULT_TOLERANCE,               \
       "Newton residual tolerance (fidelity 2), max-norm, relative to the platform's size "        \
-      "max(1 m, base_radius, platform_radius, home_height, |pose position|)")                    \
+      "max(1 m, the joints' radii, home_height, |pose position|)")                               \
     X(203, max_iterations, int, "", 1, 1, 1000, 1, MBS_DEFAULT_MAX_ITERATIONS,                   \
       "Newton iteration cap (fidelity 2); at most 1000, which bounds a failing solve's time")  \
     X(204, modified_newton, int, "", 0, 1, 1, 1, 0,                                              \
@@ -157,6 +189,9 @@ int stewart_param_find_id(int id, int *element);
  * needs (as snprintf), or -1 if i or e are out of range. */
 int stewart_param_element_name(int i, int e, char *text, size_t size);
 int stewart_param_element_description(int i, int e, char *text, size_t size);
+/* 1 if parameter i is per leg and a single value given by its bare name ("stroke_min") fills all
+ * six legs (stewart_params_set, --param, Python keywords, platform files); else 0. */
+int stewart_param_fills_from_scalar(int i);
 /* STEWART_OK if value is in element e of parameter i's range, else STEWART_ERR_PARAMETER and a
  * message naming the element and the value with all its digits (cross-field checks are
  * stewart_params_check's). */

@@ -245,7 +245,7 @@ static void warn_stroke(const fmu_instance *inst, double time, const stewart_inv
         if (out->stroke_legs & (1 << k))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %g m is outside the stroke [%g, %g] m", time, k + 1,
-                    out->lengths.length[k], p->stroke_min, p->stroke_max);
+                    out->lengths.length[k], p->stroke_min[k], p->stroke_max[k]);
 }
 
 /* Solves for the current inputs at `time` unless the outputs already belong to them. OK /

@@ -237,8 +237,8 @@ static fmu_status stroke_status(fmu_instance *inst, const stewart_plant_output *
         if (!(inst->v.model.legs_outside & (1 << k)))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %.9g m left the stroke [%g, %g] m (end stops are not "
-                    "modelled)", inst->v.time, k + 1, out->lengths.length[k], p->stroke_min,
-                    p->stroke_max);
+                    "modelled)", inst->v.time, k + 1, out->lengths.length[k], p->stroke_min[k],
+                    p->stroke_max[k]);
     }
     inst->v.model.legs_outside = outside;
     return outside ? FMU_WARNING : FMU_OK;

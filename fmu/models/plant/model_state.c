@@ -72,7 +72,7 @@ static const char *mismatch(const fmu_values *v, const stewart_plant *plant,
     }
     int outside = 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out.lengths.length[k] < p->stroke_min || out.lengths.length[k] > p->stroke_max)
+        if (out.lengths.length[k] < p->stroke_min[k] || out.lengths.length[k] > p->stroke_max[k])
             outside |= 1 << k;
     if (outside != v->model.legs_outside || (status == 1) != (outside != 0))
         return "the stroke flags or status do not match the leg lengths";

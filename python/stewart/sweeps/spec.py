@@ -24,6 +24,7 @@ import numpy as np
 from ..errors import ParameterError
 from .. import scenes
 from ..choices import Fidelity
+from ..params import read_platform_file
 from ..platform import Platform
 from ..scenes import POSE
 
@@ -35,7 +36,7 @@ SOLVER_OPTIONS = ("tolerance", "max_iterations", "modified_newton", "warn_condit
 BYTES_PER_POSE = 512
 BYTES_PER_ROW = 512
 BYTES_PER_VALUE = 48
-_COMMON = {"kind", "platform", "options", "fidelity", "title"}
+_COMMON = {"kind", "platform_file", "platform", "options", "fidelity", "title"}
 _FIELDS = {
     "envelope": _COMMON | {"payload_mass", "payload_com", "manoeuvres", "duration", "step",
                            "cases_per_chunk"},
@@ -61,17 +62,20 @@ class Chunk:
 
 
 def load(path: str | pathlib.Path, scene_dir: str | pathlib.Path) -> dict:
-    """The spec in JSON file `path`, checked and resolved (see resolve)."""
+    """The spec in JSON file `path`, checked and resolved (see resolve); a relative
+    platform_file is found beside the spec."""
     try:
         raw = json.loads(pathlib.Path(path).read_text())
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
         raise SpecError(f"{path}: {e}") from None
-    return resolve(raw, scene_dir)
+    return resolve(raw, scene_dir, pathlib.Path(path).parent)
 
 
-def resolve(raw: Any, scene_dir: str | pathlib.Path) -> dict:
+def resolve(raw: Any, scene_dir: str | pathlib.Path,
+            spec_dir: str | pathlib.Path = ".") -> dict:
     """A checked, self-contained spec: ranges expanded to lists, scenes read from scene_dir and
-    embedded, so that workers need no files. Raises SpecError naming the first bad field."""
+    the platform file (relative to spec_dir) read and embedded, so that workers need no files.
+    Raises SpecError naming the first bad field."""
     if not isinstance(raw, dict):
         raise SpecError("the spec must be a JSON object")
     kind = raw.get("kind")
@@ -82,7 +86,8 @@ def resolve(raw: Any, scene_dir: str | pathlib.Path) -> dict:
         raise SpecError(f"unknown field {unknown[0]!r} for kind {kind!r} "
                         f"(known: {', '.join(sorted(_FIELDS[kind]))})")
     spec = {"kind": kind, "title": str(raw.get("title", "")),
-            "platform": _mapping(raw, "platform"), "options": _options(raw)}
+            "platform": {**_platform_file(raw, pathlib.Path(spec_dir)), **_mapping(raw, "platform")},
+            "options": _options(raw)}
     base = _platform(spec["platform"], {}, "platform")
     fidelity = raw.get("fidelity", ["massless"] if kind == "envelope" else "massless")
     if kind == "envelope":
@@ -343,6 +348,19 @@ def _check_options(base: Platform, options: dict, levels: list[str]) -> None:
             base.inverse(np.zeros((0, 6)), fidelity=level, **options)
         except (ParameterError, TypeError, ValueError) as e:
             raise SpecError(f"options: {e}") from None
+
+
+def _platform_file(raw: dict, spec_dir: pathlib.Path) -> dict:
+    """The parameters of the spec's platform_file (none without one); `platform` changes them."""
+    if "platform_file" not in raw:
+        return {}
+    name = raw["platform_file"]
+    if not isinstance(name, str) or not name:
+        raise SpecError(f"platform_file = {name!r} must be the path of a platform file")
+    try:
+        return read_platform_file(spec_dir / name)
+    except ParameterError as e:
+        raise SpecError(f"platform_file: {e}") from None
 
 
 def _platform(params: dict, extra: dict, field: str) -> Platform:
