@@ -20,6 +20,9 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
     m->geometry = stewart::platform_geometry(*params);
     m->platform = stewart::lumped_platform(*params);
     m->gravity = Eigen::Vector3d(params->gravity);
+    m->frames = stewart::frames_of(*params);
+    m->length_offsets = false;
+    for (double offset : params->length_offset) m->length_offsets = m->length_offsets || offset != 0;
     m->full = stewart::build_full_platform(*params, stewart::FullDrive::ActuatorLengths,
                                            m->full_layout, msg, size);
     if (!m->full) {

@@ -8,6 +8,7 @@
 #include "forward/forward_state.hpp"
 #include "inverse/full_model.hpp"
 #include "kinematics/closed_form.hpp"
+#include "kinematics/frames.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
 
@@ -19,6 +20,8 @@ struct stewart_model {
     std::unique_ptr<mbs_model> full;  // the 14-body mechanism (actuator-length drivers)
     stewart::FullLayout full_layout;
     stewart::ForwardConstants forward;  // what forward kinematics needs from the geometry
+    stewart::Frames frames;  // tool and user frames: the poses given and returned are the tool's
+    bool length_offsets;     // some length_offset is not 0: lengths given and returned differ
 };
 
 struct stewart_inverse {

@@ -2,7 +2,9 @@
 // (scenes/combined.json's formula): `bench-calls ROW CALLS` makes CALLS calls of the row's API
 // function and prints the median nanoseconds per call. The calls are the only uses of that
 // function in the run, so a profiler toggled on it (studies/bench/instructions.sh: callgrind
-// --toggle-collect) counts exactly CALLS calls. Rows:
+// --toggle-collect) counts exactly CALLS calls. `bench-calls ROW CALLS NAME=VALUE ...` changes
+// parameters of the thesis platform first (e.g. tool_frame[3]=0.1: the cue is then the tool's).
+// Rows:
 //   inverse-kinematic, inverse-massless, inverse-full   stewart_inverse_solve at each fidelity
 //   forward-tracking                                    stewart_forward_solve at 1 kHz, with rates
 //   plant-massless, plant-full                          stewart_plant_step, 1 ms, Hermite forces
@@ -148,7 +150,7 @@ double run_plant(const stewart_model *m, int fidelity, int calls) {
 
 int main(int argc, char **argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: bench-calls ROW CALLS (rows: see the source)\n");
+        std::fprintf(stderr, "usage: bench-calls ROW CALLS [NAME=VALUE ...] (rows: see the source)\n");
         return 2;
     }
     const char *row = argv[1];
@@ -160,6 +162,21 @@ int main(int argc, char **argv) {
     stewart_params params;
     stewart_params_default(&params);
     char msg[STEWART_MESSAGE_SIZE];
+    for (int a = 3; a < argc; ++a) {
+        char name[64];
+        const char *equals = std::strchr(argv[a], '=');
+        const size_t length = equals ? static_cast<size_t>(equals - argv[a]) : 0;
+        if (!equals || length >= sizeof name) {
+            std::fprintf(stderr, "bench-calls: %s is not NAME=VALUE\n", argv[a]);
+            return 2;
+        }
+        std::memcpy(name, argv[a], length);
+        name[length] = '\0';
+        if (stewart_params_set(&params, name, std::atof(equals + 1), msg, sizeof msg) != STEWART_OK) {
+            std::fprintf(stderr, "bench-calls: %s\n", msg);
+            return 2;
+        }
+    }
     stewart_model *m = stewart_model_create(&params, msg, sizeof msg);
     if (!m) {
         std::fprintf(stderr, "bench-calls: %s\n", msg);

@@ -10,6 +10,7 @@
 #include "model.hpp"
 #include "forward/branch.hpp"
 #include "forward/newton.hpp"
+#include "kinematics/frames.hpp"
 #include "kinematics/motion.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
@@ -53,6 +54,61 @@ bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double
     const stewart::Vector6 w = J.inverse_transposed.transpose() * v;
     for (int i = 0; i < 3; ++i) out[i] = w[i];
     return stewart::angle_rates_of(q, w.tail<3>() / c, out + 3);
+}
+
+// STEWART_ERR_ARGUMENT naming the first value of a pose found (`what`) that overflowed.
+stewart_status check_found(const stewart_pose &pose, const char *what, char *msg, size_t size) {
+    const double *groups[3] = {pose.q, pose.q_dot, pose.q_ddot};
+    for (const double *v : groups)
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(v[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "the %s found overflows (%s is %g): the inputs are out of "
+                                   "range", what, stewart::kPoseNames[i], v[i]);
+    return STEWART_OK;
+}
+
+// The Cardan-to-Cardan lengths of the sensors' readings: reading + length_offset, each finite,
+// > 0 and < 1e150 m (else STEWART_ERR_ARGUMENT naming the leg).
+stewart_status cardan_lengths(const stewart_model &m, const double reading[6], double length[6],
+                              char *msg, size_t size) {
+    const stewart_params &p = m.params;
+    if (!m.length_offsets) {
+        std::memcpy(length, reading, STEWART_LEGS * sizeof(double));
+        return check_values(reading, "L", true, msg, size);
+    }
+    stewart_status s = check_values(reading, "L", false, msg, size);
+    if (s != STEWART_OK) return s;
+    for (int k = 0; k < STEWART_LEGS; ++k) length[k] = reading[k] + p.length_offset[k];
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!(length[k] > 0 && length[k] < 1e150))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "L%d + length_offset[%d] = %g + %g m: a Cardan-to-Cardan length "
+                               "must be > 0 and < 1e150 m", k + 1, k + 1, reading[k],
+                               p.length_offset[k]);
+    return STEWART_OK;
+}
+
+// The output as the caller sees it: out with its pose the tool's in the user frame (rates and
+// accelerations to `derivatives`). STEWART_ERR_SINGULAR at the tool's pitch +-90 deg with
+// rates, STEWART_ERR_ARGUMENT if the pose overflows; shown untouched then.
+stewart_status shown_pose(const stewart_model &m, const stewart_forward_output &out,
+                          int derivatives, stewart_forward_output &shown, char *msg, size_t size) {
+    if (m.frames.identity) {
+        shown = out;
+        return STEWART_OK;
+    }
+    stewart_forward_output tool = out;
+    if (!stewart::tool_pose(m.frames, out.pose, derivatives, tool.pose)) {
+        stewart::tool_pose(m.frames, out.pose, 0, tool.pose);
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the tool frame's pitch in the user frame = %g rad is at +-90 deg: its "
+                           "roll and yaw rates are not defined there", tool.pose.q[4]);
+    }
+    const stewart_status s = check_found(tool.pose, "tool's pose", msg, size);
+    if (s != STEWART_OK) return s;
+    shown = tool;
+    return STEWART_OK;
 }
 
 // The first reason in the STEWART_BRANCH_* bits, as a sentence.
@@ -175,14 +231,7 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
         const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
         pose_from_twist_solve(x.jacobian, c, out.pose.q, rhs, out.pose.q_ddot);
     }
-    const double *groups[3] = {out.pose.q, out.pose.q_dot, out.pose.q_ddot};
-    for (const double *v : groups)
-        for (int i = 0; i < 6; ++i)
-            if (!std::isfinite(v[i]))
-                return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                                   "the pose found overflows (%s is %g): the inputs are out of "
-                                   "range", stewart::kPoseNames[i], v[i]);
-    return STEWART_OK;
+    return check_found(out.pose, "pose", msg, size);
 }
 
 // The accepted pose becomes the solver's last pose.
@@ -418,14 +467,16 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
                            "derivatives is %d: it must be 0 (lengths), 1 (and rates) or 2 (and "
                            "accelerations)", input->derivatives);
     const double time = input->time;
-    const double *lengths = input->lengths.length;
     const double *rates = input->derivatives >= 1 ? input->lengths.length_rate : nullptr;
     const double *accels = input->derivatives >= 2 ? input->lengths.length_accel : nullptr;
     const double *guess = input->use_guess ? input->guess : nullptr;
     stewart_status s;
     if (!std::isfinite(time))
         return set_message(msg, size, STEWART_ERR_ARGUMENT, "time is %g: it must be finite", time);
-    if ((s = check_values(lengths, "L", true, msg, size)) != STEWART_OK) return s;
+    // The lengths given are the sensors' readings; the Cardan-to-Cardan ones add the offsets.
+    double lengths[STEWART_LEGS];
+    if ((s = cardan_lengths(*m, input->lengths.length, lengths, msg, size)) != STEWART_OK)
+        return s;
     if (rates && (s = check_values(rates, "L_dot", false, msg, size)) != STEWART_OK) return s;
     if (accels && (s = check_values(accels, "L_ddot", false, msg, size)) != STEWART_OK) return s;
     if (guess)
@@ -434,6 +485,17 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                    "guess %s is %g: it must be finite", stewart::kPoseNames[i],
                                    guess[i]);
+    double platform_guess[6];  // the guess is the tool's pose in the user frame
+    if (guess && !m->frames.identity) {
+        stewart::platform_pose(m->frames, guess, nullptr, platform_guess, nullptr);
+        for (int i = 0; i < 6; ++i)
+            if (!std::isfinite(platform_guess[i]))
+                return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                   "guess %s = %g is out of range: the platform's pose it gives "
+                                   "(tool and user frames) overflows", stewart::kPoseNames[i],
+                                   guess[i]);
+        guess = platform_guess;
+    }
     stewart::ForwardState &f = d->state;
     if ((s = stewart::check_length_pairs(m->forward.pair_bounds, lengths, msg, size)) != STEWART_OK)
         return s;
@@ -502,7 +564,8 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
             out.stroke_legs |= 1 << k;
     if (out.stroke_legs) out.warnings |= STEWART_WARN_STROKE;
     if (out.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
-    *result = out;
+    if ((s = shown_pose(*m, out, accels ? 2 : rates ? 1 : 0, *result, msg, size)) != STEWART_OK)
+        return s;
     if (x.branch != 0) {
         result->warnings |= STEWART_WARN_OTHER_BRANCH;
         return set_message(msg, size, STEWART_ERR_OTHER_BRANCH,

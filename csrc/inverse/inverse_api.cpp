@@ -142,7 +142,13 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     stewart_status s;
     if ((s = stewart::check_pose(*pose, msg, size)) != STEWART_OK) return s;
 
-    const stewart::Motion motion = stewart::motion_of_pose(*pose);
+    // The pose given is the tool's in the user frame: the platform's in the base frame moves so.
+    const stewart::Motion motion =
+        m->frames.identity ? stewart::motion_of_pose(*pose)
+                           : stewart::platform_motion(m->frames, stewart::motion_of_pose(*pose));
+    if (!m->frames.identity && !stewart::motion_finite(motion))
+        return stewart::input_out_of_range(*pose, 0, 2, "platform's motion (tool and user frames)",
+                                           msg, size);
     stewart::LegKinematics legs;
     if ((s = stewart::leg_kinematics(m->geometry, motion, legs, msg, size)) != STEWART_OK) return s;
 
@@ -187,7 +193,9 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
         const int last_row = !std::strcmp(name, "length") ? 0 : !std::strcmp(name, "length_rate") ? 1 : 2;
         return stewart::input_out_of_range(*pose, last_row > 0 ? 1 : 0, last_row, name, msg, size);
     }
-    stroke_and_condition_warnings(m->params, *o, out);
+    stroke_and_condition_warnings(m->params, *o, out);  // on the Cardan-to-Cardan lengths
+    if (m->length_offsets)  // the sensors read length - offset
+        for (int k = 0; k < STEWART_LEGS; ++k) out.lengths.length[k] -= m->params.length_offset[k];
     *output = out;
     msg[0] = '\0';
     return STEWART_OK;

@@ -56,6 +56,23 @@ Eigen::Matrix<S, 3, 3> angle_rate_matrix(const S &cp, const S &sp, const S &cy, 
     return E;
 }
 
+// dE/dt at pitch and yaw (cos and sin) moving at pitch_rate and yaw_rate: alpha = E angles_ddot +
+// E_dot angles_dot.
+template <class S>
+Eigen::Matrix<S, 3, 3> angle_rate_matrix_dot(const S &cp, const S &sp, const S &cy, const S &sy,
+                                             const S &pitch_rate, const S &yaw_rate) {
+    const S pd = pitch_rate, yd = yaw_rate;
+    Eigen::Matrix<S, 3, 3> E_dot;
+    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, S(0),
+              cy * yd * cp - sy * sp * pd, -sy * yd, S(0),
+             -cp * pd,                      S(0),    S(0);
+    return E_dot;
+}
+
+// The roll, pitch, yaw of R: pitch in [-pi/2, pi/2], roll and yaw on the branch (2 pi apart)
+// nearest to near[0] and near[2].
+void angles_of_rotation(const Eigen::Matrix3d &R, const double near[3], double angles[3]);
+
 // The inverse: (roll, pitch, yaw) rates from the angular velocity omega (world) at pose angles
 // pitch q[4] and yaw q[5]. False at pitch = +-90 deg (|cos pitch| <= min_cos_pitch), where roll
 // and yaw rates are not defined.
@@ -98,11 +115,7 @@ MotionT<S> motion_of_pose(const S q[6], const S q_dot[6], const S q_ddot[6]) {
     const Eigen::Matrix<S, 3, 3> E = angle_rate_matrix(cp, sp, cy, sy);
     const Vec rate(q_dot[3], q_dot[4], q_dot[5]);
     const Vec accel(q_ddot[3], q_ddot[4], q_ddot[5]);
-    const S pd = rate[1], yd = rate[2];
-    Eigen::Matrix<S, 3, 3> E_dot;
-    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, S(0),
-              cy * yd * cp - sy * sp * pd, -sy * yd, S(0),
-             -cp * pd,                      S(0),    S(0);
+    const Eigen::Matrix<S, 3, 3> E_dot = angle_rate_matrix_dot(cp, sp, cy, sy, rate[1], rate[2]);
     m.omega = E * rate;
     m.alpha = E * accel + E_dot * rate;
     return m;

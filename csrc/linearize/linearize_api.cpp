@@ -84,6 +84,21 @@ int stroke_legs_of(const stewart_params &p, const double length[STEWART_LEGS]) {
     return legs;
 }
 
+// STEWART_ERR_UNSUPPORTED unless the model's tool and user frames are identity: the
+// linearisation works in the platform frame (its origin, in base coordinates).
+stewart_status check_frames(const stewart_model &model, char *msg, size_t size) {
+    if (model.frames.identity) return STEWART_OK;
+    return set_message(msg, size, STEWART_ERR_UNSUPPORTED,
+                       "the linearisation works in the platform frame: tool_frame and user_frame "
+                       "must be identity (not yet transformed)");
+}
+
+// The sensors read the Cardan-to-Cardan length less length_offset (a constant: no derivative).
+void subtract_offsets(const stewart_model &model, double length[STEWART_LEGS]) {
+    if (model.length_offsets)
+        for (int k = 0; k < STEWART_LEGS; ++k) length[k] -= model.params.length_offset[k];
+}
+
 // The pose checks both calls share: pose finite (rows 0 to last_row), pitch off +-90 degrees.
 stewart_status check_pose_rows(const stewart_pose &pose, int last_row, char *msg, size_t size) {
     const double *rows[3] = {pose.q, pose.q_dot, pose.q_ddot};
@@ -207,6 +222,7 @@ extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
     const size_t size = sizeof l->message;
     if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL input or output");
     stewart_status s;
+    if ((s = check_frames(*l->model, msg, size)) != STEWART_OK) return s;
     if ((s = check_pose_rows(in->pose, 1, msg, size)) != STEWART_OK) return s;
     if ((s = check_finite(in->force, STEWART_LEGS, "force", 1, msg, size)) != STEWART_OK) return s;
     lin::PlantPoint p;
@@ -241,6 +257,7 @@ extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
     }
     o.stroke_legs = stroke_legs_of(l->model->params, length);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    subtract_offsets(*l->model, o.output + 12);
     static_assert(offsetof(stewart_linearize_output, D) + sizeof o.D ==
                       offsetof(stewart_linearize_output, state_rate) + sizeof o.state_rate +
                           sizeof o.output + sizeof o.A + sizeof o.B + sizeof o.C + sizeof o.D,
@@ -260,6 +277,7 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     const size_t size = sizeof l->message;
     if (!pose || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or output");
     stewart_status s;
+    if ((s = check_frames(*l->model, msg, size)) != STEWART_OK) return s;
     if ((s = check_pose_rows(*pose, 2, msg, size)) != STEWART_OK) return s;
 
     stewart_linearize_inverse_output o;
@@ -334,6 +352,7 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
         return s;
     o.stroke_legs = stroke_legs_of(l->model->params, o.lengths.length);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    subtract_offsets(*l->model, o.lengths.length);
     *out = o;
     return clear_message(msg, size);
 }

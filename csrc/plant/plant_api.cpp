@@ -60,18 +60,6 @@ fd::Mat3 rate_matrix(double pitch, double yaw) {
                                       std::sin(yaw));
 }
 
-// The roll-pitch-yaw angles of R, roll and yaw taken on the branch nearest to previous.
-void angles_of(const fd::Mat3 &R, const double previous[3], double angles[3]) {
-    const double sp = -R(2, 0);
-    angles[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
-    angles[0] = std::atan2(R(2, 1), R(2, 2));
-    angles[2] = std::atan2(R(1, 0), R(0, 0));
-    for (int i : {0, 2}) {
-        const double turns = std::round((previous[i] - angles[i]) / (2 * M_PI));
-        angles[i] += 2 * M_PI * turns;
-    }
-}
-
 // Lengths, their rates, the stroke check: bit k of the result set when leg k+1 is outside.
 int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[6],
                 double rate[6]) {
@@ -136,7 +124,7 @@ stewart_status check_range(const double y[fd::kStates], const double angles[3], 
 bool angles_match(const double y[fd::kStates], const double saved[3]) {
     double principal[3];
     const double zero[3] = {0, 0, 0};
-    angles_of(fd::motion_of_state(y).rotation, zero, principal);
+    stewart::angles_of_rotation(fd::motion_of_state(y).rotation, zero, principal);
     for (int i = 0; i < 3; ++i) {
         const double off = i == 1 ? saved[i] - principal[i]
                                   : std::remainder(saved[i] - principal[i], 2 * M_PI);
@@ -164,6 +152,30 @@ PlantState state_of(const stewart_plant &p) {
     s.warnings = p.warnings;
     s.step_hint = p.step_hint;
     return s;
+}
+
+// Sets time, the platform's pose (angles within (-pi/2, pi/2) of pitch) and its rates, checked
+// (stewart_plant_set_state's statuses and messages).
+stewart_status start_at(stewart_plant &p, double time, const double pose[6], const double rate[6]);
+
+// The pose and rates the outputs show at state y (motion m) with continuous angles: the tool's in
+// the user frame (the platform's when the frames are identity). False at the tool's pitch +-90
+// deg.
+bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const stewart::Motion &m,
+                const double angles[3], stewart_pose &pose) {
+    const fd::Vec3 angle_rates = rate_matrix(angles[1], angles[2]).inverse() * m.omega;
+    stewart_pose platform{};
+    for (int i = 0; i < 3; ++i) {
+        platform.q[i] = y[i];
+        platform.q[3 + i] = angles[i];
+        platform.q_dot[i] = y[7 + i];
+        platform.q_dot[3 + i] = angle_rates[i];
+    }
+    if (p.model->frames.identity) {
+        pose = platform;
+        return true;
+    }
+    return stewart::tool_pose(p.model->frames, platform, 1, pose, kMinCosPitch);
 }
 
 void restore_state(stewart_plant &p, const PlantState &s) {
@@ -231,7 +243,7 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
         return nullptr;
     }
     const double home[6] = {0, 0, model->params.home_height, 0, 0, 0}, rest[6] = {0};
-    if (stewart_plant_set_state(p, 0.0, home, rest) != STEWART_OK) {
+    if (start_at(*p, 0.0, home, rest) != STEWART_OK) {
         set_message(msg, size, STEWART_ERR_PARAMETER, "home pose: %s", p->message);
         delete p;
         return nullptr;
@@ -262,7 +274,7 @@ extern "C" void stewart_plant_free(stewart_plant *p) { delete p; }
 extern "C" void stewart_plant_reset(stewart_plant *p) {
     if (!p) return;
     const double home[6] = {0, 0, p->model->params.home_height, 0, 0, 0}, rest[6] = {0};
-    stewart_plant_set_state(p, 0.0, home, rest);  // accepted when the plant was made
+    start_at(*p, 0.0, home, rest);  // accepted when the plant was made
     p->stats = stewart_plant_statistics{};
     p->message[0] = '\0';
 }
@@ -305,6 +317,30 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
     if (!(std::fabs(pose[4]) < M_PI / 2))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "pitch0 = %g rad must be within (-pi/2, pi/2)", pose[4]);
+    const stewart::Frames &frames = p->model->frames;
+    if (frames.identity) return start_at(*p, time, pose, rate);
+    // The pose given is the tool's in the user frame; the plant integrates the platform's.
+    double platform_q[6], platform_rate[6];
+    if (!stewart::platform_pose(frames, pose, rate, platform_q, platform_rate, kMinCosPitch))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "this tool pose puts the platform's pitch at +-90 degrees (tool_frame, "
+                           "user_frame), where its roll and yaw are undefined");
+    for (int i = 0; i < 6; ++i)
+        if (!std::isfinite(platform_q[i]) || !std::isfinite(platform_rate[i]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "%s0 = %g, %s_dot0 = %g are out of range: the platform's pose or "
+                               "rates they give (tool and user frames) overflow", kPoseNames[i],
+                               pose[i], kPoseNames[i], rate[i]);
+    return start_at(*p, time, platform_q, platform_rate);
+}
+
+namespace {
+
+stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
+                        const double rate[6]) {
+    stewart_plant *p = &plant;
+    char *msg = p->message;
+    const size_t size = sizeof p->message;
     const fd::Mat3 R = stewart::rotation_from_rpy(pose[3], pose[4], pose[5]);
     const fd::Vec3 omega = rate_matrix(pose[4], pose[5]) * fd::Vec3(rate[3], rate[4], rate[5]);
     // Finite angle rates near DBL_MAX can overflow the angular velocity (found by the fuzz
@@ -341,6 +377,8 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
         leg_outputs(*p, fd::motion_of_state(y), length, length_rate) ? STEWART_WARN_STROKE : 0;
     return STEWART_OK;
 }
+
+}  // namespace
 
 extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
                                              stewart_plant_output *output) {
@@ -416,7 +454,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                                k + 1);
     }
     double angles[3];
-    angles_of(m.rotation, p->angles, angles);
+    stewart::angles_of_rotation(m.rotation, p->angles, angles);
     if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
@@ -424,6 +462,11 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     if ((s = check_range(y, angles, "the forces are out of range: after the step", msg, size)) !=
         STEWART_OK)
         return s;
+    stewart_pose shown;
+    if (!p->model->frames.identity && !shown_pose(*p, y, m, angles, shown))
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the motion reaches the tool frame's pitch +-90 degrees in the user "
+                           "frame, where its roll and yaw are undefined");
     double length[6], rate[6];
     const int warnings = leg_outputs(*p, m, length, rate) ? STEWART_WARN_STROKE : 0;
     for (int k = 0; k < STEWART_LEGS; ++k)
@@ -460,17 +503,16 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
 
     stewart_plant_output o{};
     o.time = p->time;
-    const fd::Vec3 angle_rates = rate_matrix(p->angles[1], p->angles[2]).inverse() * m.omega;
+    if (!shown_pose(*p, p->y, m, p->angles, o.pose)) return STEWART_ERR_SINGULAR;
     for (int i = 0; i < 3; ++i) {
-        o.pose.q[i] = p->y[i];
-        o.pose.q[3 + i] = p->angles[i];
-        o.pose.q_dot[i] = p->y[7 + i];
-        o.pose.q_dot[3 + i] = angle_rates[i];
         o.base_force[i] = f[i];
         o.base_torque[i] = t[i];
     }
     o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            o.lengths.length[k] -= p->model->params.length_offset[k];
     // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
     const double *groups[6] = {o.pose.q, o.pose.q_dot, o.lengths.length, o.lengths.length_rate,
                                o.base_force, o.base_torque};

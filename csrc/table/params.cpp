@@ -29,6 +29,17 @@ namespace {
 STEWART_PARAM_TABLE(DEFAULTS)
 #undef DEFAULTS
 
+constexpr bool same_text(const char *a, const char *b) {
+    return *a == *b && (*a == '\0' || same_text(a + 1, b + 1));
+}
+// A pose is marked twice, by its count's name (for the FMU's preprocessor) and its unit (at run
+// time): the two agree.
+#define POSE_MARKS(id, name, count, unit, ...)                                                  \
+    static_assert(same_text(#count, "STEWART_POSE_ELEMENTS") == same_text(unit, STEWART_POSE_UNIT), \
+                  #name ": a pose has count STEWART_POSE_ELEMENTS and unit STEWART_POSE_UNIT");
+STEWART_PARAM_TABLE(POSE_MARKS)
+#undef POSE_MARKS
+
 #define INFO(id, name, count, unit, display, min, min_closed, max, max_closed, defaults, text) \
     {id, #name, count, unit, display, text, min, max, min_closed, max_closed, kDefault_##name},
 const stewart_param_info kParams[] = {STEWART_PARAM_TABLE(INFO)};
@@ -54,6 +65,9 @@ constexpr bool table_matches_struct() {
 static_assert(table_matches_struct(), "STEWART_PARAM_TABLE must list stewart_params' fields in order");
 
 const char *const kAxis[3] = {"x", "y", "z"};
+const char *const kPoseAxis[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+bool is_pose(const stewart_param_info &p) { return !std::strcmp(p.unit, STEWART_POSE_UNIT); }
 
 // Per-leg parameters that a single value (the bare name, e.g. "stroke_min") fills for all six
 // legs: they were scalars before issue 19, and their old spelling keeps working.
@@ -146,11 +160,24 @@ int stewart_param_element_name(int i, int e, char *text, size_t size) {
 int stewart_param_element_description(int i, int e, char *text, size_t size) {
     const stewart_param_info *p = stewart_param(i);
     if (!p || e < 0 || e >= p->count) return -1;
+    if (is_pose(*p)) return std::snprintf(text, size, "%s %s", p->description, kPoseAxis[e]);
     if (p->count == STEWART_LEGS) return std::snprintf(text, size, "%s of leg %d", p->description, e + 1);
     if (p->count == 3) return std::snprintf(text, size, "%s %s", p->description, kAxis[e]);
     if (p->count == 3 * STEWART_LEGS)
         return std::snprintf(text, size, "%s %s of leg %d", p->description, kAxis[e % 3], e / 3 + 1);
     return std::snprintf(text, size, "%s", p->description);
+}
+
+const char *stewart_param_element_unit(int i, int e) {
+    const stewart_param_info *p = stewart_param(i);
+    if (!p || e < 0 || e >= p->count) return nullptr;
+    return is_pose(*p) ? (e < 3 ? "m" : "rad") : p->unit;
+}
+
+const char *stewart_param_element_display_unit(int i, int e) {
+    const stewart_param_info *p = stewart_param(i);
+    if (!p || e < 0 || e >= p->count) return nullptr;
+    return is_pose(*p) ? (e < 3 ? "" : "deg") : p->display_unit;
 }
 
 stewart_status stewart_param_check_value(int i, int e, double value, char *msg, size_t size) {
@@ -166,7 +193,7 @@ stewart_status stewart_param_check_value(int i, int e, double value, char *msg, 
                            "parameter %s is %g: every parameter must be finite", name, value);
     stewart::describe_range(p->min, p->min_closed, p->max, p->max_closed, range, sizeof range);
     return set_message(msg, size, STEWART_ERR_PARAMETER, "%s = %s %s must be %s", name,
-                       ExactText(value).c_str(), p->unit, range);
+                       ExactText(value).c_str(), stewart_param_element_unit(i, e), range);
 }
 
 void stewart_params_default(stewart_params *p) {

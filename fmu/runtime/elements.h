@@ -13,7 +13,7 @@
  * which calls FMU_PARAM(vr, id, "name", field, "unit", "displayUnit", "description") per element
  * and FMU_OPTION_INT(vr, id, "name", start, min, max, "description") or
  * FMU_OPTION_REAL(vr, id, "name", field, "unit", "description") per option. Element counts are
- * 1, 3, 6 and 18 (the table's).
+ * 1, 3, 6, 18 and STEWART_POSE_ELEMENTS (the table's).
  */
 #ifndef STEWART_FMU_ELEMENTS_H
 #define STEWART_FMU_ELEMENTS_H
@@ -38,6 +38,17 @@
     FMU_ELEMENT_(id, 4, 5, name, unit, display, description " of leg 5")   \
     FMU_ELEMENT_(id, 5, 6, name, unit, display, description " of leg 6")
 
+/* A pose (count STEWART_POSE_ELEMENTS in the table): x, y, z in m,
+ * roll, pitch, yaw in rad shown in deg. */
+#define FMU_POSE_ELEMENT_(id, e, k, name, axis, unit, display, description) \
+    FMU_PARAM((id) + e, name##_##k, #name "[" #k "]", name[e], unit, display, description " " axis)
+#define FMU_ELEMENTS_STEWART_POSE_ELEMENTS(id, name, unit, display, description) \
+    FMU_POSE_ELEMENT_(id, 0, 1, name, "x", "m", "", description)                   \
+    FMU_POSE_ELEMENT_(id, 1, 2, name, "y", "m", "", description)                   \
+    FMU_POSE_ELEMENT_(id, 2, 3, name, "z", "m", "", description)                   \
+    FMU_POSE_ELEMENT_(id, 3, 4, name, "roll", "rad", "deg", description)           \
+    FMU_POSE_ELEMENT_(id, 4, 5, name, "pitch", "rad", "deg", description)          \
+    FMU_POSE_ELEMENT_(id, 5, 6, name, "yaw", "rad", "deg", description)
 /* x, y, z of legs 1..6 (joint coordinates and Cardan axes). */
 #define FMU_ELEMENTS_18(id, name, unit, display, description) \
     FMU_ELEMENT_(id, 0, 1, name, unit, display, description " x of leg 1") \

@@ -42,8 +42,8 @@ static void test_table_ids_are_the_fmu_value_references(void) {
         TEST_ASSERT_TRUE_MESSAGE(i >= 0, fmu_name);                                                 \
         stewart_param_element_name(i, e, element_name, sizeof element_name);                   \
         TEST_ASSERT_EQUAL_STRING(fmu_name, element_name);                                           \
-        TEST_ASSERT_EQUAL_STRING(fmu_unit, stewart_param(i)->unit);                                 \
-        TEST_ASSERT_EQUAL_STRING(display, stewart_param(i)->display_unit);                      \
+        TEST_ASSERT_EQUAL_STRING(fmu_unit, stewart_param_element_unit(i, e));                       \
+        TEST_ASSERT_EQUAL_STRING(display, stewart_param_element_display_unit(i, e));            \
     }
 #define FMU_OPTION_INT(vr, fmu_id, fmu_name, start, min, max, desc)                                       \
     if (stewart_inverse_option_find(fmu_name) >= 0)                                                         \

@@ -69,9 +69,11 @@ static void test_iteration_covers_every_field_once(void) {
         const stewart_param_info *info = stewart_param(i);
         TEST_ASSERT_TRUE(info->count == 1 || info->count == 3 || info->count == 6 ||
                          info->count == 18);
-        TEST_ASSERT_TRUE(strcmp(info->display_unit, "") == 0 ||
-                         (strcmp(info->display_unit, "deg") == 0 && !strcmp(info->unit, "rad")));
         for (int e = 0; e < info->count; ++e) {
+            const char *unit = stewart_param_element_unit(i, e);
+            const char *display = stewart_param_element_display_unit(i, e);
+            TEST_ASSERT_TRUE(strcmp(display, "") == 0 ||
+                             (strcmp(display, "deg") == 0 && !strcmp(unit, "rad")));
             TEST_ASSERT_EQUAL_PTR(next++, stewart_param_element(&p, i, e));
             char name[48];
             TEST_ASSERT_TRUE(stewart_param_element_name(i, e, name, sizeof name) > 0);
@@ -103,6 +105,17 @@ static void test_element_names_and_descriptions(void) {
     TEST_ASSERT_EQUAL_INT(-1, stewart_param_element_name(angle, 6, text, sizeof text));
     TEST_ASSERT_EQUAL_STRING("deg", stewart_param(angle)->display_unit);
     TEST_ASSERT_EQUAL_INT(212, stewart_param(angle)->id);
+    /* a pose's elements: x, y, z in m, roll, pitch, yaw in rad shown in deg */
+    const int tool = stewart_param_find("tool_frame[5]", &e);
+    TEST_ASSERT_EQUAL_INT(4, e);
+    stewart_param_element_description(tool, 4, text, sizeof text);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(text, "tool frame"), text);
+    TEST_ASSERT_EQUAL_STRING(" pitch", text + strlen(text) - 6);
+    TEST_ASSERT_EQUAL_STRING("m", stewart_param_element_unit(tool, 2));
+    TEST_ASSERT_EQUAL_STRING("", stewart_param_element_display_unit(tool, 2));
+    TEST_ASSERT_EQUAL_STRING("rad", stewart_param_element_unit(tool, 3));
+    TEST_ASSERT_EQUAL_STRING("deg", stewart_param_element_display_unit(tool, 3));
+    TEST_ASSERT_NULL(stewart_param_element_unit(tool, 6));
 }
 
 /* Each element is refused just outside its range and accepted just inside, by name. */

@@ -97,6 +97,13 @@ typedef struct stewart_params {
 
     double stroke_min[STEWART_LEGS];        /* shortest allowed actuator length per leg [m] */
     double stroke_max[STEWART_LEGS];        /* longest allowed actuator length per leg [m] */
+
+    double tool_frame[6];   /* pose (x, y, z [m], roll, pitch, yaw [rad]) of the tool frame in the
+                               platform frame; poses given and returned are the tool frame's */
+    double user_frame[6];   /* pose of the user frame in the base frame; poses given and returned
+                               are in it (docs/api.md, "Tool and user frames") */
+    double length_offset[STEWART_LEGS]; /* Cardan-to-Cardan length = sensor reading + offset [m];
+                               lengths given and returned are readings */
 } stewart_params;
 
 /* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */

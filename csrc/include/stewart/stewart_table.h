@@ -11,12 +11,16 @@
  * once per stewart_params field, in declaration order:
  *   id           stable integer id of element 0 (= the FMU value reference); element e is id + e
  *   name         the field's name (a C identifier; element e is named "name[e+1]" if count > 1)
- *   count        number of doubles: 1, 3 (x, y, z), 6 (legs 1..6) or 18 (x, y, z of legs 1..6)
+ *   count        number of doubles: 1, 3 (x, y, z), 6 (legs 1..6), 18 (x, y, z of legs
+ *                1..6) or STEWART_POSE_ELEMENTS (6: a pose x, y, z [m], roll, pitch, yaw
+ *                [rad], with unit STEWART_POSE_UNIT and display unit "deg" of its angles;
+ *                stewart_param_element_unit names each one's)
  *   unit         SI unit string ("m", "rad", "kg", "kg.m2", "m/s2"); display_unit "deg" or ""
  *   min, max     valid range of each element; min_closed/max_closed 1 if the end is included.
  *                Ends at -DBL_MAX/DBL_MAX (closed) mean "finite": no value may be NaN or Inf.
  *   defaults     a parenthesised list of count doubles (the thesis platform, SI)
  *   description  one sentence; an element's adds " of leg k" (count 6) or " x"/" y"/" z" (count 3)
+ *                or " x" .. " yaw" (a pose)
  * Range checks across fields (inertia triangle inequalities, stroke_min < stroke_max) are code,
  * in stewart_params_check.
  *
@@ -53,6 +57,12 @@ extern "C" {
     (STEWART_THESIS_ROD_MASS * (3.0 * 0.0075 * 0.0075 + 0.3 * 0.3) / 12.0,                 \
      STEWART_THESIS_ROD_MASS * (3.0 * 0.0075 * 0.0075 + 0.3 * 0.3) / 12.0,                 \
      STEWART_THESIS_ROD_MASS * 0.0075 * 0.0075 / 2.0)
+
+/* A pose parameter (tool_frame, user_frame): its count, written in the table as this name so
+ * that the FMU's element expansion (fmu/runtime/elements.h) tells it from six legs, and its unit
+ * string (x, y, z in m; roll, pitch, yaw in rad). */
+#define STEWART_POSE_ELEMENTS 6
+#define STEWART_POSE_UNIT "m, rad"
 
 /* The thesis platform's joints as coordinates (x1, y1, z1, ..., z6): r (cos angle, sin angle, 0)
  * of the default radii and angles, each the double that expression gives, so that geometry 1
@@ -132,7 +142,15 @@ extern "C" {
     X(573, stroke_min, 6, "m", "", 0.0, 0, DBL_MAX, 1, (0.40, 0.40, 0.40, 0.40, 0.40, 0.40),     \
       "Shortest allowed actuator length (a warning below)")                                      \
     X(579, stroke_max, 6, "m", "", 0.0, 0, DBL_MAX, 1, (0.70, 0.70, 0.70, 0.70, 0.70, 0.70),     \
-      "Longest allowed actuator length (a warning above)")
+      "Longest allowed actuator length (a warning above)")                                       \
+    X(600, tool_frame, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -1e3, 1, 1e3, 1,         \
+      (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),                                                            \
+      "Pose of the tool frame (the pose given and returned) in the platform frame:")             \
+    X(606, user_frame, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -1e3, 1, 1e3, 1,         \
+      (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),                                                            \
+      "Pose of the user frame (poses are given and returned in it) in the base frame:")          \
+    X(612, length_offset, 6, "m", "", -1e3, 1, 1e3, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),           \
+      "Length sensor offset: Cardan-to-Cardan length minus the reading given and returned")
 
 #define STEWART_OPTION_TABLE(X)                                                                  \
     X(200, fidelity, int, "", 0, 1, 2, 1, STEWART_MASSLESS,                                      \
@@ -164,9 +182,9 @@ extern "C" {
 typedef struct stewart_param_info {
     int id;                     /* stable id of element 0; element e has id + e */
     const char *name;           /* field name, e.g. "base_angle" */
-    int count;                  /* elements: 1, 3 (x, y, z) or 6 (legs 1..6) */
-    const char *unit;           /* SI unit */
-    const char *display_unit;   /* "deg" for angles, else "" */
+    int count;                  /* elements: 1, 3 (x, y, z), 6 (legs 1..6, or a pose), 18 */
+    const char *unit;           /* SI unit (a pose's: STEWART_POSE_UNIT) */
+    const char *display_unit;   /* "deg" for angles (and a pose's angles), else "" */
     const char *description;    /* of the whole parameter (see stewart_param_element_text) */
     double min, max;            /* valid range of each element */
     int min_closed, max_closed; /* 1: the end is part of the range */
@@ -189,6 +207,10 @@ int stewart_param_find_id(int id, int *element);
  * needs (as snprintf), or -1 if i or e are out of range. */
 int stewart_param_element_name(int i, int e, char *text, size_t size);
 int stewart_param_element_description(int i, int e, char *text, size_t size);
+/* Element e's SI unit and display unit ("deg" or ""): the parameter's, or for a pose "m" and ""
+ * (x, y, z), "rad" and "deg" (roll, pitch, yaw); NULL if i or e are out of range. */
+const char *stewart_param_element_unit(int i, int e);
+const char *stewart_param_element_display_unit(int i, int e);
 /* 1 if parameter i is per leg and a single value given by its bare name ("stroke_min") fills all
  * six legs (stewart_params_set, --param, Python keywords, platform files); else 0. */
 int stewart_param_fills_from_scalar(int i);

@@ -67,7 +67,13 @@ fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unkno
     stewart_pose pose;
     inverse_current_pose(v, v->time, &pose);
     stewart_linearize_inverse_output out;
-    if (stewart_linearize_inverse(r->linearize, &pose, &out) != STEWART_OK) {
+    const stewart_status s = stewart_linearize_inverse(r->linearize, &pose, &out);
+    if (s == STEWART_ERR_UNSUPPORTED) { /* tool or user frames: not with these parameters */
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetDirectionalDerivative: %s",
+                stewart_linearize_message(r->linearize));
+        return FMU_ERROR;
+    }
+    if (s != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: GetDirectionalDerivative: no derivatives at this pose: %s", v->time,
                 stewart_linearize_message(r->linearize));
