@@ -10,13 +10,15 @@
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
 #include "stewart/stewart.h"
+#include "stewart/stewart_limits.h"
 
 namespace {
 
 int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
-                 "[--platform FILE.json] [--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "[--platform FILE.json] [--param NAME=VALUE ...] [--limits] [--ranges] IN.csv "
+                 "OUT.csv\n"
                  "  --platform: a platform file (docs/geometry.md: parameter names to values)\n"
                  "  --param: any platform parameter by its FMU name, SI units (e.g. "
                  "payload_mass=50,\n"
@@ -27,6 +29,10 @@ int usage(FILE *to) {
                  "x_ddot..yaw_ddot\n"
                  "           (missing derivatives come from finite differences of the samples)\n"
                  "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations\n"
+                 "  --limits: and limit_class (the first failing: none, stroke, base_joint,\n"
+                 "           platform_joint, interference, condition) and the margin to each [m, rad,\n"
+                 "           rad, m, 1] (docs/limits.md); --ranges: and each axis' range, the others\n"
+                 "           held: x_min,x_max, ..., yaw_max\n"
                  "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
                  "[--platform FILE.json] [--param NAME=VALUE ...] IN.csv OUT.csv\n"
                  "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
@@ -46,21 +52,46 @@ bool parse_fidelity(const char *s, int &f) {
     return true;
 }
 
-void write_header(FILE *out) {
+const char *const kAxes[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
+
+// What a row reports beyond the solve (--limits, --ranges).
+struct LimitRow {
+    stewart_limits_output check;
+    stewart_axis_ranges ranges;
+};
+
+void write_header(FILE *out, bool limits, bool ranges) {
     std::fprintf(out, "t");
     const char *groups[4] = {"L", "L_dot", "L_ddot", "F"};
     for (const char *g : groups)
         for (int k = 1; k <= STEWART_LEGS; ++k) std::fprintf(out, ",%s%d", g, k);
-    std::fprintf(out, ",condition,iterations\n");
+    std::fprintf(out, ",condition,iterations");
+    if (limits) {
+        std::fprintf(out, ",limit_class");
+        for (int c = 1; c <= STEWART_LIMIT_CLASSES; ++c)
+            std::fprintf(out, ",margin_%s", stewart_limit_class_name(c));
+    }
+    if (ranges)
+        for (const char *axis : kAxes) std::fprintf(out, ",%s_min,%s_max", axis, axis);
+    std::fprintf(out, "\n");
 }
 
-void write_row(FILE *out, double t, const stewart_inverse_output &o) {
+void write_row(FILE *out, double t, const stewart_inverse_output &o, const LimitRow *limits,
+               const LimitRow *ranges) {
     std::fprintf(out, "%.17g", t);
     const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
                                o.force};
     for (const double *g : groups)
         for (int k = 0; k < STEWART_LEGS; ++k) std::fprintf(out, ",%.17g", g[k]);
-    std::fprintf(out, ",%.17g,%d\n", o.condition, o.iterations);
+    std::fprintf(out, ",%.17g,%d", o.condition, o.iterations);
+    if (limits) {
+        std::fprintf(out, ",%s", stewart_limit_class_name(limits->check.first));
+        for (double m : limits->check.margin) std::fprintf(out, ",%.17g", m);
+    }
+    if (ranges)
+        for (int a = 0; a < 6; ++a)
+            std::fprintf(out, ",%.17g,%.17g", ranges->ranges.min[a], ranges->ranges.max[a]);
+    std::fprintf(out, "\n");
 }
 
 // NAME=VALUE into params; false with a message on stderr.
@@ -82,6 +113,7 @@ int main(int argc, char **argv) {
     bool forward = false;
     double guess[6];
     const double *guess_given = nullptr;
+    bool limits = false, ranges = false;
     const std::vector<stewart::CliOption> cli = {
         {"--forward", nullptr, [&](const char *) { return forward = true, 0; }},
         {"--guess", "x,y,z,roll,pitch,yaw",
@@ -98,6 +130,8 @@ int main(int argc, char **argv) {
          [&](const char *v) {
              return stewart::read_platform_file("stewart-solve", v, params) ? 0 : 2;
          }},
+        {"--limits", nullptr, [&](const char *) { return limits = true, 0; }},
+        {"--ranges", nullptr, [&](const char *) { return ranges = true, 0; }},
         {"--fidelity", "kinematic|massless|full",
          [&](const char *v) {
              if (parse_fidelity(v, options.fidelity)) return 0;
@@ -142,14 +176,21 @@ int main(int argc, char **argv) {
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
     stewart_inverse *inverse =
         model ? stewart_inverse_create(model, &options, message, sizeof message) : nullptr;
-    if (!inverse) {
+    stewart_limits_options limit_options;
+    stewart_limits_options_default(&limit_options);
+    limit_options.warn_condition = options.warn_condition;
+    stewart_limits *checker =
+        inverse ? stewart_limits_create(model, &limit_options, message, sizeof message) : nullptr;
+    if (!checker) {
         std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
+        stewart_inverse_free(inverse);
         stewart_model_free(model);
         return 1;
     }
 
     // Solve everything before writing, so a failed run leaves no partial OUT.csv behind.
     std::vector<stewart_inverse_output> outputs(table.t.size());
+    std::vector<LimitRow> limit_rows(limits || ranges ? table.t.size() : 0);
     int status = 0;
     for (size_t j = 0; j < table.t.size(); ++j) {
         const stewart_inverse_input in = {table.poses[j]};
@@ -160,7 +201,13 @@ int main(int argc, char **argv) {
             status = 1;
             break;
         }
+        stewart_limits_input pose;
+        std::memcpy(pose.q, table.poses[j].q, sizeof pose.q);
+        // The pose solved, so it is finite: neither call can fail.
+        if (limits) stewart_limits_check(checker, &pose, &limit_rows[j].check);
+        if (ranges) stewart_limits_ranges(checker, &pose, &limit_rows[j].ranges);
     }
+    stewart_limits_free(checker);
     stewart_inverse_free(inverse);
     stewart_model_free(model);
     if (status != 0) return status;
@@ -170,8 +217,10 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "stewart-solve: cannot write %s\n", paths[1]);
         return 1;
     }
-    write_header(out);
-    for (size_t j = 0; j < table.t.size(); ++j) write_row(out, table.t[j], outputs[j]);
+    write_header(out, limits, ranges);
+    for (size_t j = 0; j < table.t.size(); ++j)
+        write_row(out, table.t[j], outputs[j], limits ? &limit_rows[j] : nullptr,
+                  ranges ? &limit_rows[j] : nullptr);
     if (std::fclose(out) != 0) {
         std::fprintf(stderr, "stewart-solve: error writing %s\n", paths[1]);
         return 1;

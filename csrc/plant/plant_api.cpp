@@ -5,6 +5,7 @@
 #include <cstring>
 #include <new>
 
+#include "limits/limit_check.hpp"
 #include "model.hpp"
 #include "plant/plant_integrator.hpp"
 #include "plant/plant_reactions.hpp"
@@ -47,12 +48,16 @@ struct stewart_plant {
     double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
+    stewart::LimitConstants limits;  // joint angles and interference, warned as strokes are
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
 };
 
 namespace {
+
+// The warnings a plant sets.
+constexpr int kPlantWarnings = STEWART_WARN_STROKE | STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE;
 
 // omega = E(pitch, yaw) * (roll, pitch, yaw)_dot (kinematics/motion.hpp).
 fd::Mat3 rate_matrix(double pitch, double yaw) {
@@ -73,6 +78,17 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
         if (length[k] < par.stroke_min[k] || length[k] > par.stroke_max[k]) stroke_legs |= 1 << k;
     }
     return stroke_legs;
+}
+
+// STEWART_WARN_JOINT_LIMIT and STEWART_WARN_INTERFERENCE as they hold at the pose of the
+// platform origin position and roll-pitch-yaw angles.
+int limit_warnings(const stewart_plant &p, const double position[3], const double angles[3]) {
+    const double q[6] = {position[0], position[1], position[2], angles[0], angles[1], angles[2]};
+    stewart_limits_output o;
+    stewart::check_platform_limits(p.limits, q, o, false);
+    const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
+    return (o.failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
+           (o.failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
 }
 
 // The 13 bodies' motion (accelerations included) under the given forces (NULL: the last step's);
@@ -237,6 +253,7 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     }
     p->model = model;
     p->options = *options;
+    p->limits = stewart::limit_constants(model->params, model->geometry, HUGE_VAL);
     p->dynamics = fd::dynamics_model(*model, options->fidelity);
     if (!p->integrator.init(&p->dynamics, *options, msg, size)) {
         delete p;
@@ -374,7 +391,8 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     double length[6], length_rate[6];
     msg[0] = '\0';
     p->warnings =
-        leg_outputs(*p, fd::motion_of_state(y), length, length_rate) ? STEWART_WARN_STROKE : 0;
+        (leg_outputs(*p, fd::motion_of_state(y), length, length_rate) ? STEWART_WARN_STROKE : 0) |
+        limit_warnings(*p, y, p->angles);
     return STEWART_OK;
 }
 
@@ -468,7 +486,8 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
     double length[6], rate[6];
-    const int warnings = leg_outputs(*p, m, length, rate) ? STEWART_WARN_STROKE : 0;
+    const int warnings = (leg_outputs(*p, m, length, rate) ? STEWART_WARN_STROKE : 0) |
+                         limit_warnings(*p, y, angles);
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(length[k]) || !std::isfinite(rate[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -509,7 +528,7 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
         o.base_torque[i] = t[i];
     }
     o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
-    o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    o.warnings = (o.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_warnings(*p, p->y, p->angles);
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
@@ -642,7 +661,8 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     fd::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
     if (!(std::fabs(q_norm - 1) < 1e-9) || !(std::fabs(std::cos(angles[1])) > kMinCosPitch) ||
-        !(warnings == 0 || warnings == STEWART_WARN_STROKE) ||
+        !(warnings >= 0 && warnings <= kPlantWarnings &&
+          (static_cast<int>(warnings) & ~kPlantWarnings) == 0 && warnings == std::floor(warnings)) ||
         !(hint == 0 || hint >= kMinStepSize) ||
         !fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,

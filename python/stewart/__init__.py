@@ -9,9 +9,13 @@
 One direction per method and module: ``Platform.inverse`` (poses to lengths and forces,
 inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.simulate``
 (forces to motion, simulate.py) return InverseSolution, ForwardSolution and Simulation.
+``stewart.calibrate`` identifies a built machine's geometry from measured poses and
+``stewart.calibration_poses`` says where to measure (calibration.py, docs/calibration.md).
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
+from .calibration import Calibration, UnobservableError, calibrate, observability
+from .calibration_poses import calibration_poses
 from .choices import Fidelity
 from .errors import ParameterError
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths
@@ -28,4 +32,5 @@ except PackageNotFoundError:  # imported from a source tree, not installed
 
 __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Fidelity", "Method",
            "ParameterError", "fmu_path", "fmu_paths", "FMI_VERSIONS", "FMU_NAMES", "parameters",
+           "calibrate", "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "__version__"]

@@ -21,8 +21,10 @@
 extern "C" {
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
+#include "stewart/stewart_calibration.h"
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_linearize.h"
+#include "stewart/stewart_limits.h"
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_platform_file.h"
 #include "stewart/stewart_table.h"
@@ -491,6 +493,121 @@ nb::tuple linearize_inverse(const Model &model, int fidelity, const std::vector<
                           flat(out.lengths.length_accel, 6), flat(out.force, 6),
                           flat(out.base_force, 3), flat(out.base_torque, 3),
                           flat(&out.jacobian[0][0], 30 * 18), out.warnings);
+// stewart_geometry_jacobian over the rows of poses, into the caller's arrays (rows of 6, 18 and
+// 36: leg-major blocks of stewart_geometry_jacobian_output). Returns (-1, "") or the first failing
+// row and its message; the rows before it are written.
+std::pair<long, std::string> geometry_jacobian_rows(
+    const Model &model, Poses poses, Rows<double, 6> length, Rows<double, 6> reading,
+    Rows<double, 18> base_joint, Rows<double, 18> platform_joint, Rows<double, 36> tool_frame,
+    Rows<double, 36> user_frame, Rows<double, 36> pose) {
+    const size_t n = poses.shape(0);
+    for (size_t rows : {length.shape(0), reading.shape(0), base_joint.shape(0),
+                        platform_joint.shape(0), tool_frame.shape(0), user_frame.shape(0),
+                        pose.shape(0)})
+        if (rows != n) fail("output arrays must have as many rows as the poses");
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_geometry_jacobian_output out;
+    for (size_t i = 0; i < n; ++i) {
+        if (stewart_geometry_jacobian(model.get(), poses.data() + 6 * i, &out, message,
+                                      sizeof message) != STEWART_OK)
+            return {static_cast<long>(i), message};
+        std::copy_n(out.length, 6, length.data() + 6 * i);
+        std::copy_n(out.reading, 6, reading.data() + 6 * i);
+        std::copy_n(&out.base_joint[0][0], 18, base_joint.data() + 18 * i);
+        std::copy_n(&out.platform_joint[0][0], 18, platform_joint.data() + 18 * i);
+        std::copy_n(&out.tool_frame[0][0], 36, tool_frame.data() + 36 * i);
+        std::copy_n(&out.user_frame[0][0], 36, user_frame.data() + 36 * i);
+        std::copy_n(&out.pose[0][0], 36, pose.data() + 36 * i);
+    }
+    return {-1, ""};
+}
+
+// A limits object for model with condition limit warn_condition (none: the default), freed
+// with it.
+struct LimitsObject {
+    LimitsObject(const Model &model, std::optional<double> warn_condition) {
+        stewart_limits_options o;
+        stewart_limits_options_default(&o);
+        if (warn_condition) o.warn_condition = *warn_condition;
+        char message[STEWART_MESSAGE_SIZE];
+        limits = stewart_limits_create(model.get(), &o, message, sizeof message);
+        if (!limits) fail(message);
+    }
+    ~LimitsObject() { stewart_limits_free(limits); }
+    LimitsObject(const LimitsObject &) = delete;
+    LimitsObject &operator=(const LimitsObject &) = delete;
+    stewart_limits *limits;
+};
+
+// The check of every row of q into the arrays (rows as q's); a non-finite row raises ValueError
+// naming the row and the component.
+void limits_check(const Model &model, Poses q, std::optional<double> warn_condition, Column<int> first,
+                  Column<int> failed, Rows<double, STEWART_LIMIT_CLASSES> margin,
+                  Rows<int, STEWART_LIMIT_CLASSES> leg, Rows<int, STEWART_LIMIT_CLASSES> other_leg,
+                  Column<double> condition) {
+    const size_t n = q.shape(0);
+    if (first.shape(0) != n || failed.shape(0) != n || margin.shape(0) != n ||
+        leg.shape(0) != n || other_leg.shape(0) != n || condition.shape(0) != n)
+        fail("output arrays must have as many rows as the poses");
+    LimitsObject object(model, warn_condition);
+    size_t bad = n;
+    {
+        nb::gil_scoped_release release;
+        for (size_t r = 0; r < n && bad == n; ++r) {
+            stewart_limits_input in;
+            for (int i = 0; i < 6; ++i) in.q[i] = q(r, i);
+            stewart_limits_output out;
+            if (stewart_limits_check(object.limits, &in, &out) != STEWART_OK) {
+                bad = r;
+                break;
+            }
+            first(r) = out.first;
+            failed(r) = out.failed;
+            condition(r) = out.condition;
+            for (int c = 0; c < STEWART_LIMIT_CLASSES; ++c) {
+                margin(r, c) = out.margin[c];
+                leg(r, c) = out.leg[c];
+                other_leg(r, c) = out.other_leg[c];
+            }
+        }
+    }
+    if (bad < n)
+        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
+}
+
+// The axis ranges of every row of q: ends (min of the six axes, then max), the class at each
+// end and its leg and other leg, in the same order.
+void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condition, Rows<double, 12> ends,
+                   Rows<int, 12> limit, Rows<int, 12> leg, Rows<int, 12> other_leg) {
+    const size_t n = q.shape(0);
+    if (ends.shape(0) != n || limit.shape(0) != n || leg.shape(0) != n || other_leg.shape(0) != n)
+        fail("output arrays must have as many rows as the poses");
+    LimitsObject object(model, warn_condition);
+    size_t bad = n;
+    {
+        nb::gil_scoped_release release;
+        for (size_t r = 0; r < n; ++r) {
+            stewart_limits_input in;
+            for (int i = 0; i < 6; ++i) in.q[i] = q(r, i);
+            stewart_axis_ranges out;
+            if (stewart_limits_ranges(object.limits, &in, &out) != STEWART_OK) {
+                bad = r;
+                break;
+            }
+            for (int a = 0; a < 6; ++a) {
+                ends(r, a) = out.min[a];
+                ends(r, 6 + a) = out.max[a];
+                limit(r, a) = out.min_limit[a];
+                limit(r, 6 + a) = out.max_limit[a];
+                leg(r, a) = out.min_leg[a];
+                leg(r, 6 + a) = out.max_leg[a];
+                other_leg(r, a) = out.min_other_leg[a];
+                other_leg(r, 6 + a) = out.max_other_leg[a];
+            }
+        }
+    }
+    if (bad < n)
+        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
 }
 
 }  // namespace
@@ -558,6 +675,23 @@ NB_MODULE(_core, m) {
           nb::arg("q"), nb::arg("q_dot"), nb::arg("force"));
     m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
           nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"));
+    m.def("geometry_jacobian", &geometry_jacobian_rows, nb::arg("model"), nb::arg("poses"),
+          nb::arg("length"), nb::arg("reading"), nb::arg("base_joint"), nb::arg("platform_joint"),
+          nb::arg("tool_frame"), nb::arg("user_frame"), nb::arg("pose"));
+    // The joint centres the model uses: (base_joint, platform_joint), 18 values each.
+    m.def("model_joints", [](const Model &model) {
+        std::vector<double> base(18), platform(18);
+        stewart_model_joints(model.get(), base.data(), platform.data());
+        return std::make_pair(base, platform);
+    });
+    m.def("limits_check", &limits_check, nb::arg("model"), nb::arg("q"),
+          nb::arg("warn_condition").none(), nb::arg("first"), nb::arg("failed"), nb::arg("margin"),
+          nb::arg("leg"), nb::arg("other_leg"), nb::arg("condition"));
+    m.def("limits_ranges", &limits_ranges, nb::arg("model"), nb::arg("q"),
+          nb::arg("warn_condition").none(), nb::arg("ends"), nb::arg("limit"), nb::arg("leg"),
+          nb::arg("other_leg"));
+    m.def("limit_class_name", [](int c) { return std::string(stewart_limit_class_name(c)); });
+    m.attr("LIMIT_CLASSES") = STEWART_LIMIT_CLASSES;
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
     // A platform file's text read by the library (stewart_params_read_json): [(name, values)]
     // of the parameters it gives, each with all its elements; ValueError with the library's

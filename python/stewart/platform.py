@@ -15,6 +15,9 @@ from .errors import ParameterError
 from .forward import ForwardSolution, run_forward
 from .inverse import InverseSolution, run_inverse
 from .linearize import InverseJacobian, Linearization, run_linearize, run_linearize_inverse
+from .limits import AxisRanges, LimitCheck
+from .limits import check as check_limits
+from .limits import ranges as limit_ranges
 from .params import ParameterValue, option_values, parameter_assignments, read_platform_file
 from .simulate import Method, Simulation, run_simulate
 
@@ -130,6 +133,27 @@ class Platform:
                                 singular_condition=singular_condition)
         return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages)
 
+    def limits(self, poses, *, warn_condition: Optional[float] = None) -> LimitCheck:
+        """The limits a controller checks, for N poses ((N, 6) or one row of 6): per pose the
+        first failing class (stroke, base joint angle, platform joint angle, leg interference,
+        condition number above warn_condition; None: the inverse option's default, 1e3) and the
+        margin to every class [m, rad, rad, m, 1] with the leg where it is (docs/limits.md). A
+        non-finite pose raises ValueError naming its row and component."""
+        q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
+        return check_limits(self._model, q, _warn_condition(warn_condition))
+
+    def axis_ranges(self, poses, *, warn_condition: Optional[float] = None,
+                    details: bool = False) -> Union[np.ndarray, AxisRanges]:
+        """For N poses ((N, 6) or one row of 6), the interval each axis (x, y, z [m], roll,
+        pitch, yaw [rad]) can move over with the other five held, within every limit of
+        Platform.limits, to 1e-6 inside the first limit met: an (N, 6, 2) array of [min, max]
+        in the pose's own units. A pose beyond a limit gets [q_i, q_i]. details=True returns an
+        AxisRanges with the class, leg and other leg met at each end as well. Errors as
+        Platform.limits."""
+        q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
+        result = limit_ranges(self._model, q, _warn_condition(warn_condition))
+        return result if details else result.ends
+
     def simulate(self, t, forces, fidelity: Union[Fidelity, int, str] = Fidelity.FULL,
                  start=None, start_rate=None, *,
                  method: Optional[Union[Method, int, str]] = None,
@@ -185,6 +209,17 @@ class Platform:
         forces of the fidelity and the base wrench, with their derivatives with respect to
         (q, q_dot, q_ddot) (InverseJacobian.jacobian, 30 x 18)."""
         return run_linearize_inverse(self._model, pose, pose_rate, pose_accel, fidelity)
+
+
+def _warn_condition(value: Optional[float]) -> Optional[float]:
+    """The condition limit of the limit check (None: the library's default), or
+    ParameterError if it is not a number."""
+    pairs = option_values(warn_condition=value)
+    if not pairs:
+        return None
+    if not 1.0 <= pairs[0][1] < float("inf"):
+        raise ParameterError(f"warn_condition = {value!r} must be finite and >= 1")
+    return pairs[0][1]
 
 
 def _rebuild(params: dict) -> Platform:

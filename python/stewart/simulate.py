@@ -39,7 +39,8 @@ class Simulation(RowStatus):
     length_rate: np.ndarray  #: (N, 6) dL_k/dt [m/s]
     base_force: np.ndarray   #: (N, 3) force the moving bodies put on the base, world frame [N]
     base_torque: np.ndarray  #: (N, 3) its torque about the world origin [N m]
-    warnings: np.ndarray     #: (N,) bits: 1 a leg outside the stroke
+    warnings: np.ndarray     #: (N,) bits: 1 a leg outside the stroke, 8 a joint beyond its
+    #: angle limit, 16 two legs closer than leg_diameter (docs/limits.md)
     steps: np.ndarray        #: (N,) internal integrator steps of the step into the row
     rhs_evaluations: np.ndarray       #: (N,) of the step into the row
     nonlinear_iterations: np.ndarray  #: (N,) of the step into the row

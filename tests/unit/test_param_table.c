@@ -43,6 +43,10 @@ static void thesis_platform(stewart_params *p) {
     p->cylinder_inertia[2] = p->piston_inertia[2] = I_axis;
     p->cylinder_com = p->piston_com = l / 2.0;
     for (int k = 0; k < 6; ++k) p->stroke_min[k] = 0.40, p->stroke_max[k] = 0.70;
+    /* The limits (docs/limits.md), not the thesis': joints up to 90 degrees from the leg's home
+     * direction (the zero neutral axes), legs as thick as the rods. */
+    p->base_joint_limit = p->platform_joint_limit = 90.0 * deg;
+    p->leg_diameter = 2.0 * r;
 }
 
 static void test_defaults_are_the_thesis_platform_bit_for_bit(void) {

@@ -59,7 +59,10 @@ enum {
     STEWART_WARN_STROKE = 1,        /* some length is outside [stroke_min, stroke_max]; stroke_legs
                                        says which */
     STEWART_WARN_NEAR_SINGULAR = 2, /* condition number above the options' warn_condition */
-    STEWART_WARN_OTHER_BRANCH = 4   /* forward kinematics: the pose is on another assembly mode */
+    STEWART_WARN_OTHER_BRANCH = 4,  /* forward kinematics: the pose is on another assembly mode */
+    STEWART_WARN_JOINT_LIMIT = 8,   /* the plant: a leg beyond base_joint_limit or
+                                       platform_joint_limit (stewart/stewart_limits.h) */
+    STEWART_WARN_INTERFERENCE = 16  /* the plant: two legs closer than leg_diameter */
 };
 
 /* Geometry and mass parameters. Inertias are principal moments about the body's own centre of
@@ -104,6 +107,15 @@ typedef struct stewart_params {
                                are in it (docs/api.md, "Tool and user frames") */
     double length_offset[STEWART_LEGS]; /* Cardan-to-Cardan length = sensor reading + offset [m];
                                lengths given and returned are readings */
+
+    /* Limits a controller checks (stewart/stewart_limits.h, docs/limits.md). */
+    double base_joint_limit;                /* largest angle of a leg from its base joint's
+                                               neutral axis [rad] */
+    double platform_joint_limit;            /* the same at the platform joint [rad] */
+    double base_joint_neutral[3 * STEWART_LEGS];     /* x1, y1, z1, ..., z6: base frame; zero:
+                                                        the leg's direction at home */
+    double platform_joint_neutral[3 * STEWART_LEGS]; /* the same, platform frame */
+    double leg_diameter;                    /* legs whose axes come closer interfere [m] */
 } stewart_params;
 
 /* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */

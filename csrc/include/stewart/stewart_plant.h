@@ -65,7 +65,8 @@ typedef struct stewart_plant_output {
     stewart_lengths lengths; /* length and length_rate; length_accel is 0 */
     double base_force[3];    /* force the moving bodies put on the base, world frame [N] */
     double base_torque[3];   /* its torque about the world origin [N m] */
-    int warnings;            /* STEWART_WARN_STROKE (end stops are not modelled) */
+    int warnings;            /* STEWART_WARN_STROKE, _JOINT_LIMIT, _INTERFERENCE (end stops and
+                                contacts are not modelled: warnings only) */
     int stroke_legs;         /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_plant_output;
 

@@ -150,7 +150,21 @@ extern "C" {
       (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),                                                            \
       "Pose of the user frame (poses are given and returned in it) in the base frame:")          \
     X(612, length_offset, 6, "m", "", -1e3, 1, 1e3, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),           \
-      "Length sensor offset: Cardan-to-Cardan length minus the reading given and returned")
+      "Length sensor offset: Cardan-to-Cardan length minus the reading given and returned")      \
+    X(440, base_joint_limit, 1, "rad", "deg", 0.0, 0, STEWART_PI, 1, (STEWART_DEG(90.0)),       \
+      "Largest angle between a leg and its base joint's neutral axis (docs/limits.md)")         \
+    X(441, platform_joint_limit, 1, "rad", "deg", 0.0, 0, STEWART_PI, 1, (STEWART_DEG(90.0)),   \
+      "Largest angle between a leg and its platform joint's neutral axis (docs/limits.md)")     \
+    X(442, base_joint_neutral, 18, "1", "", -DBL_MAX, 1, DBL_MAX, 1,                            \
+      (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),                                   \
+      "Neutral axis of the base joint, base frame, base toward platform (zero: the leg at "     \
+      "home)")                                                                                   \
+    X(460, platform_joint_neutral, 18, "1", "", -DBL_MAX, 1, DBL_MAX, 1,                        \
+      (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),                                   \
+      "Neutral axis of the platform joint, platform frame, base toward platform (zero: the "    \
+      "leg at home)")                                                                            \
+    X(478, leg_diameter, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.015),                               \
+      "Diameter of a leg: two legs' axes closer than it interfere (0: no check)")
 
 #define STEWART_OPTION_TABLE(X)                                                                  \
     X(200, fidelity, int, "", 0, 1, 2, 1, STEWART_MASSLESS,                                      \

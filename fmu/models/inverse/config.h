@@ -9,6 +9,7 @@
 
 #include "stewart/stewart.h"
 #include "stewart/stewart_linearize.h"
+#include "stewart/stewart_limits.h"
 /* The library's parameter and option tables: variables.def expands them (no parameter is
  * listed twice). */
 #include "stewart/stewart_table.h"
@@ -37,6 +38,7 @@
      : (out) >= VR_L_dot_1 && (out) <= VR_L_dot_6       ? (in) <= VR_yaw_dot                      \
      : (out) == VR_condition || (out) == VR_residual || (out) == VR_newton_iterations             \
          ? (in) <= VR_yaw                                                                         \
+     : (out) >= VR_limit_class ? (in) <= VR_yaw /* the limits: the pose's */                      \
          : 1)
 
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
@@ -54,6 +56,7 @@ typedef struct model_values {
 typedef struct model_resources {
     stewart_model *model;      /* built from the parameters when initialisation ends */
     stewart_inverse *inverse;  /* made with `options` for `model` */
+    stewart_limits *limits;    /* the limit check and axis ranges for `model` (limit_outputs) */
     stewart_params params;     /* the parameters `model` was built from */
     stewart_inverse_options options;
     stewart_linearize *linearize; /* for directional derivatives: made for `model` when first

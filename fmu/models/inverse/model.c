@@ -56,8 +56,15 @@ static int same_options(const stewart_inverse_options *a, const stewart_inverse_
            a->singular_condition == b->singular_condition;
 }
 
+/* What the limit outputs are bound to (FMU_LIMIT_OUTPUT's fields). */
+typedef struct inverse_limit_values {
+    stewart_limits_output check;
+    stewart_axis_ranges ranges;
+} inverse_limit_values;
+
 static void outputs_to_values(fmu_values *v, const stewart_inverse_output *out) {
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out->field;
+#define FMU_LIMIT_OUTPUT(...)
 #include "variables.def"
     v->integer[VR_newton_iterations] = out->iterations;
 }
@@ -67,6 +74,12 @@ static void outputs_to_values(fmu_values *v, const stewart_inverse_output *out) 
 fmu_status model_apply_parameters(fmu_instance *inst) {
     const fmu_values *v = &inst->v;
     model_resources *r = &inst->res;
+    if (v->integer[VR_limit_outputs] < 0 || v->integer[VR_limit_outputs] > 2) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "invalid parameter limit_outputs = %d: it must be 0 (none), 1 (the limit check) "
+                "or 2 (and the axis ranges)", (int)v->integer[VR_limit_outputs]);
+        return FMU_ERROR;
+    }
     if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "invalid parameter derivatives = %d: it must be 0 (finite differences) or 1 "
@@ -109,6 +122,19 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
                     (int)v->integer[VR_derivatives]);
         }
     }
+    /* The limits follow the model and the condition limit (cheap to make: no workspace). */
+    if (new_model || !r->limits || r->options.warn_condition != o.warn_condition) {
+        stewart_limits_options lo;
+        stewart_limits_options_default(&lo);
+        lo.warn_condition = o.warn_condition;
+        stewart_limits *l = stewart_limits_create(r->model, &lo, r->message, sizeof r->message);
+        if (!l) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "creating the limit check: %s", r->message);
+            return FMU_ERROR;
+        }
+        stewart_limits_free(r->limits);
+        r->limits = l;
+    }
     r->options = o;
     return FMU_OK;
 }
@@ -126,8 +152,10 @@ void model_reset(fmu_instance *inst) {
 void model_free(fmu_instance *inst) {
     stewart_linearize_free(inst->res.linearize);
     inst->res.linearize = NULL;
+    stewart_limits_free(inst->res.limits);
     stewart_inverse_free(inst->res.inverse);
     stewart_model_free(inst->res.model);
+    inst->res.limits = NULL;
     inst->res.inverse = NULL;
     inst->res.model = NULL;
 }
@@ -248,6 +276,41 @@ static void warn_stroke(const fmu_instance *inst, double time, const stewart_inv
                     out->lengths.length[k], p->stroke_min[k], p->stroke_max[k]);
 }
 
+/* The limit outputs for pose q (limit_outputs 1: the check; 2: and the axis ranges) and a
+ * Warning, logged, when a joint angle or two legs are beyond their limits (strokes and the
+ * condition have warnings of their own). */
+static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[6]) {
+    fmu_values *v = &inst->v;
+    const int level = v->integer[VR_limit_outputs];
+    if (level == 0) return FMU_OK;
+    stewart_limits_input in;
+    memcpy(in.q, q, sizeof in.q);
+    inverse_limit_values values;
+    memset(&values, 0, sizeof values);
+    stewart_limits_check(inst->res.limits, &in, &values.check);
+    if (level == 2) stewart_limits_ranges(inst->res.limits, &in, &values.ranges);
+    v->integer[VR_limit_class] = values.check.first;
+#define FMU_LIMIT_OUTPUT(vr, id, name, unit, field, desc) \
+    if (level == 2 || vr < VR_range_min_1) v->real[vr] = values.field;
+#include "variables.def"
+    fmu_status fs = FMU_OK;
+    for (int c = STEWART_LIMIT_BASE_JOINT; c <= STEWART_LIMIT_INTERFERENCE; ++c)
+        if (values.check.failed & (1 << (c - 1))) {
+            fs = FMU_WARNING;
+            const int i = c - 1;
+            if (c == STEWART_LIMIT_INTERFERENCE)
+                fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                        "t = %.17g: legs %d and %d interfere: %g m closer than leg_diameter",
+                        time, values.check.leg[i], values.check.other_leg[i], -values.check.margin[i]);
+            else
+                fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                        "t = %.17g: the %s of leg %d is %g rad beyond its limit", time,
+                        c == STEWART_LIMIT_BASE_JOINT ? "base joint" : "platform joint",
+                        values.check.leg[i], -values.check.margin[i]);
+        }
+    return fs;
+}
+
 /* Solves for the current inputs at `time` unless the outputs already belong to them. OK /
  * Warning (status 1 or 2) / Discard (status 3, outputs keep their last valid values) / Error
  * (unsupported fidelity, memory). */
@@ -298,6 +361,7 @@ static fmu_status solve_at(fmu_instance *inst, double time) {
                 "t = %.17g: near singular pose: condition = %g > warn_condition = %g", time,
                 out.condition, r->options.warn_condition);
     }
+    if (limit_outputs(inst, time, pose.q) == FMU_WARNING) fs = FMU_WARNING;
     v->integer[VR_status] = status;
     v->model.solve_status = fs;
     return fs;

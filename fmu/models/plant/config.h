@@ -43,6 +43,7 @@ typedef struct model_values {
     int input_derivatives;           /* fmi2SetRealInputDerivatives called since the last step */
     int solve_status;                /* fmu_status of the outputs' last refresh */
     int legs_outside;                /* bit k: leg k+1 was outside its stroke at the last step */
+    int limit_warnings;              /* STEWART_WARN_JOINT_LIMIT, _INTERFERENCE at the last step */
     plant_totals totals;
 } model_values;
 

@@ -170,6 +170,7 @@ fmu_status model_start(fmu_instance *inst) {
      * initialisation (FMI 2 allows it) are kept for the first step. */
     memset(&v->model.totals, 0, sizeof v->model.totals);
     v->model.legs_outside = 0;
+    v->model.limit_warnings = 0;
     v->model.solve_status = 0;
     v->outputs_current = 0;
     return FMU_OK;
@@ -244,6 +245,24 @@ static fmu_status stroke_status(fmu_instance *inst, const stewart_plant_output *
     return outside ? FMU_WARNING : FMU_OK;
 }
 
+/* Logs a joint beyond its angle limit or two legs interfering when it starts (the plant's
+ * warning bits); Warning while either lasts. */
+static fmu_status limit_status(fmu_instance *inst, const stewart_plant_output *out) {
+    static const struct {
+        int bit;
+        const char *what;
+    } kinds[] = {{STEWART_WARN_JOINT_LIMIT, "a joint is beyond its angle limit "
+                                            "(base_joint_limit, platform_joint_limit)"},
+                 {STEWART_WARN_INTERFERENCE, "two legs are closer than leg_diameter"}};
+    const int now = out->warnings & (STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE);
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
+        if ((now & kinds[i].bit) && !(inst->v.model.limit_warnings & kinds[i].bit))
+            fmu_log(inst, FMU_WARNING, LOG_WARNING, "t = %.17g: %s (contacts are not modelled)",
+                    inst->v.time, kinds[i].what);
+    inst->v.model.limit_warnings = now;
+    return now ? FMU_WARNING : FMU_OK;
+}
+
 /* Outputs of the plant's current state under the current forces (the base wrench needs them);
  * after a step, the step's own outputs (under the same forces). */
 static fmu_status evaluate(fmu_instance *inst, const stewart_plant_output *after_step) {
@@ -270,8 +289,9 @@ static fmu_status evaluate(fmu_instance *inst, const stewart_plant_output *after
         o.stats.last_step_size = v->real[VR_last_step_size];
     }
     outputs_to_values(v, &o);
-    const fmu_status s = stroke_status(inst, &o.out);
+    fmu_status s = stroke_status(inst, &o.out);
     v->integer[VR_status] = s == FMU_WARNING ? 1 : 0;
+    if (limit_status(inst, &o.out) == FMU_WARNING) s = FMU_WARNING;
     v->outputs_current = 1;
     v->model.solve_status = s;
     return s;

@@ -76,6 +76,8 @@ static const char *mismatch(const fmu_values *v, const stewart_plant *plant,
             outside |= 1 << k;
     if (outside != v->model.legs_outside || (status == 1) != (outside != 0))
         return "the stroke flags or status do not match the leg lengths";
+    if (v->model.limit_warnings != (out.warnings & (STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE)))
+        return "the joint-limit and interference flags do not match the pose";
     return NULL;
 }
 
@@ -112,7 +114,8 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     (void)inst;
     const model_values *m = &v->model;
     if ((m->input_derivatives & ~1) || m->solve_status < FMU_OK || m->solve_status > FMU_ERROR ||
-        (m->legs_outside & ~63))
+        (m->legs_outside & ~63) ||
+        (m->limit_warnings & ~(STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE)))
         return "a flag is out of range";
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!isfinite(m->force_rate[k])) return "an input derivative is not finite";

@@ -3,6 +3,7 @@ chunk's Parquet file written as it arrives, then the merged results and plots.
 
 OUT_DIR layout: spec.json (the resolved spec), version.json, chunks/*.parquet (one per chunk;
 a rerun computes only the missing ones), envelope.parquet or workspace_<slice>.parquet, *.png,
+volume.json (a workspace spec's "volume": the constant-orientation workspace volume [m^3]),
 run.json (timings and which worker computed each chunk: not results). Workers that see OUT_DIR
 write their chunk files themselves; others send their tables to this process, which writes them."""
 from __future__ import annotations
@@ -123,6 +124,8 @@ def run(spec_path, out_dir, scene_dir, workers: Optional[int] = None,
             _compute_all(client, spec, todo, out, summary, progress, log)
             summary["wall_seconds"] = time.perf_counter() - started
     merge(spec, out)
+    if "volume" in spec:
+        write_volume(spec, out)
     from .plots import plot
     plot(spec, out)
     (out / "run.json").write_text(json.dumps(summary, indent=1))
@@ -201,6 +204,20 @@ def merge(spec: dict, out: pathlib.Path) -> list[pathlib.Path]:
         write_parquet(table, path)
         written.append(path)
     return written
+
+
+def write_volume(spec: dict, out: pathlib.Path) -> None:
+    """volume.json: the spec's platform's workspace volume at the spec's orientation, within
+    every limit (the options' warn_condition for the condition), in this process."""
+    from ..platform import Platform
+    from .volume import workspace_volume
+    v = spec["volume"]
+    started = time.perf_counter()
+    volume = workspace_volume(Platform(**spec["platform"]), v["orientation"], v["cells"],
+                              warn_condition=spec["options"].get("warn_condition"))
+    (out / "volume.json").write_text(json.dumps(
+        {"volume_m3": volume, "orientation": v["orientation"], "cells": v["cells"],
+         "seconds": time.perf_counter() - started}, indent=1))
 
 
 def boundary(s: dict, reachable: np.ndarray) -> np.ndarray:

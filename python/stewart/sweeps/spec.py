@@ -5,7 +5,8 @@ A spec is JSON (docs/sweeps.md has the full format). Two kinds:
 * ``"kind": "envelope"``: cases = payload_mass x payload_com x manoeuvre (scene x amplitude scale
   x frequency scale) x fidelity; each case is one trajectory; per case the peaks (work.py).
 * ``"kind": "workspace"``: slices of the pose space, each one or two pose components on a grid
-  with the others fixed; per pose reachability, condition and static forces.
+  with the others fixed; per pose reachability within every limit, the limit margins, condition
+  and static forces; optionally (``"volume"``) the constant-orientation workspace volume.
 
 Every field is checked here, before anything is sent to a worker: a bad one raises SpecError
 naming the field (``manoeuvres[1].amplitude``) and the value.
@@ -40,7 +41,7 @@ _COMMON = {"kind", "platform_file", "platform", "options", "fidelity", "title"}
 _FIELDS = {
     "envelope": _COMMON | {"payload_mass", "payload_com", "manoeuvres", "duration", "step",
                            "cases_per_chunk"},
-    "workspace": _COMMON | {"slices", "poses_per_chunk"},
+    "workspace": _COMMON | {"slices", "poses_per_chunk", "volume"},
 }
 
 
@@ -109,6 +110,8 @@ def resolve(raw: Any, scene_dir: str | pathlib.Path,
                   f"{' x '.join(str(len(v)) for v in s['axes'].values())} grid)",
                   slice_size(s), BYTES_PER_ROW, "poses")
         _fits("poses_per_chunk", spec["poses_per_chunk"], BYTES_PER_POSE, "poses per chunk")
+        if "volume" in raw:
+            spec["volume"] = _volume(raw["volume"], "volume")
     return spec
 
 
@@ -252,6 +255,24 @@ def _slice(s: Any, field: str) -> dict:
         out_fixed[comp] = float(v)
     return {"name": name, "fixed": out_fixed,
             "axes": {comp: _values(v, f"{field}.axes.{comp}") for comp, v in axes.items()}}
+
+
+def _volume(v: Any, field: str) -> dict:
+    """{"orientation": [roll, pitch, yaw] (default 0, 0, 0), "cells": columns per side (48)}."""
+    if not isinstance(v, dict):
+        raise SpecError(f"{field} = {v!r} must be an object with orientation and cells")
+    unknown = sorted(set(v) - {"orientation", "cells"})
+    if unknown:
+        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: orientation, cells)")
+    orientation = v.get("orientation", [0.0, 0.0, 0.0])
+    if not (_is_numbers(orientation) and len(orientation) == 3 and
+            all(math.isfinite(x) for x in orientation)):
+        raise SpecError(f"{field}.orientation = {orientation!r} must be 3 finite numbers "
+                        "(roll, pitch, yaw [rad])")
+    cells = v.get("cells", 48)
+    if not isinstance(cells, int) or isinstance(cells, bool) or not 2 <= cells <= 1024:
+        raise SpecError(f"{field}.cells = {cells!r} must be an integer in [2, 1024]")
+    return {"orientation": [float(x) for x in orientation], "cells": cells}
 
 
 # ---------------------------------------------------------------- shared helpers

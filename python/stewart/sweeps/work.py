@@ -12,6 +12,7 @@ import pyarrow as pa
 
 from .. import scenes
 from ..inverse import InverseSolution
+from ..limits import LIMIT_CLASSES
 from ..platform import Platform
 from ..scenes import POSE
 from .spec import Chunk
@@ -95,14 +96,17 @@ def slice_poses(s: dict, start: int, stop: int) -> tuple[np.ndarray, np.ndarray]
 
 
 def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
-    """Poses [chunk.start, chunk.stop) of one slice at rest: status, reachability within the
-    stroke, condition, lengths and static forces for the spec's platform and payload."""
+    """Poses [chunk.start, chunk.stop) of one slice at rest: status, reachability within every
+    limit (Platform.limits: stroke, joint angles, leg interference, the condition number against
+    the options' warn_condition), the first failing limit class and the margin to each,
+    condition, lengths and static forces for the spec's platform and payload."""
     started = time.perf_counter()
     s = next(x for x in spec["slices"] if x["name"] == chunk.part)
     index, q = slice_poses(s, chunk.start, chunk.stop)
-    sol = Platform(**spec["platform"]).inverse(q, fidelity=spec["fidelity"],
-                                               max_messages=len(q), **spec["options"])
-    reachable = sol.ok & ((sol.warnings & 1) == 0)
+    platform = Platform(**spec["platform"])
+    sol = platform.inverse(q, fidelity=spec["fidelity"], max_messages=len(q), **spec["options"])
+    check = platform.limits(q, warn_condition=spec["options"].get("warn_condition"))
+    reachable = sol.ok & check.within
     columns = {"slice": pa.array([s["name"]] * len(q)).dictionary_encode(),
                "row": np.arange(chunk.start, chunk.stop)}
     for col, comp in enumerate(s["axes"]):
@@ -111,6 +115,9 @@ def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
         columns[comp] = q[:, i]
     columns["status"] = sol.status
     columns["reachable"] = reachable
+    columns["limit_class"] = check.first.astype(np.int8)
+    for c, name in enumerate(LIMIT_CLASSES):
+        columns[f"margin_{name}"] = check.margin[:, c]
     columns["condition"] = sol.condition
     for k in LEGS:
         columns[f"L{k}"] = sol.length[:, k - 1]

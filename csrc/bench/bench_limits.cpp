@@ -1,0 +1,127 @@
+// Limit check and axis ranges speed (issue 19's goals: <= 2 us and <= 100 us per pose): median,
+// p99 and max microseconds per call over random poses of the thesis platform's workspace (all
+// within every limit), and how often each class ends an axis range; for the thesis defaults and
+// for a vendor-like set of limits (joints 0.45 rad, legs 0.2 m thick, condition 60). Per pose the
+// fastest of 5 timings (see time_each).
+// usage: bench-limits [POSES (2000)] [--vendor] [--check-only | --ranges-only]: the --*-only
+// forms make exactly POSES calls of one function for one set of limits (thesis, or --vendor)
+// (studies/bench/limits.sh counts instructions inside it).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "stewart/stewart_limits.h"
+
+namespace {
+
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return 0;
+    const size_t i = std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5));
+    std::nth_element(v.begin(), v.begin() + i, v.end());
+    return v[i];
+}
+
+// Random poses around home, kept if within every limit.
+std::vector<stewart_limits_input> workspace_poses(stewart_limits *limits, int n) {
+    std::mt19937_64 rng(19);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<stewart_limits_input> poses;
+    while (static_cast<int>(poses.size()) < n) {
+        stewart_limits_input in = {{0.08 * u(rng), 0.08 * u(rng), 0.5 + 0.08 * u(rng),
+                                    0.15 * u(rng), 0.15 * u(rng), 0.2 * u(rng)}};
+        stewart_limits_output out;
+        if (stewart_limits_check(limits, &in, &out) == STEWART_OK && out.failed == 0)
+            poses.push_back(in);
+    }
+    return poses;
+}
+
+// Per pose, the fastest of `rounds` timings of `repeats` calls each, per call: the pose's own
+// cost (a call preempted on this shared machine otherwise shows as milliseconds).
+template <class Call>
+std::vector<double> time_each(const std::vector<stewart_limits_input> &poses, int repeats,
+                              int rounds, Call call) {
+    std::vector<double> us;
+    for (const stewart_limits_input &in : poses) {
+        double best = HUGE_VAL;
+        for (int round = 0; round < rounds; ++round) {
+            const auto start = std::chrono::steady_clock::now();
+            for (int r = 0; r < repeats; ++r) call(in);
+            const auto stop = std::chrono::steady_clock::now();
+            best = std::min(best, std::chrono::duration<double, std::micro>(stop - start).count() / repeats);
+        }
+        us.push_back(best);
+    }
+    return us;
+}
+
+void report(const char *what, const std::vector<double> &us) {
+    std::printf("%-12s median %8.3f us  p99 %8.3f us  max %8.3f us  (%zu poses)\n", what,
+                percentile(us, 0.5), percentile(us, 0.99), percentile(us, 1.0), us.size());
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    int n = 2000;
+    bool check = true, ranges = true, vendor = false;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--check-only")) ranges = false;
+        else if (!std::strcmp(argv[i], "--ranges-only")) check = false;
+        else if (!std::strcmp(argv[i], "--vendor")) vendor = true;
+        else n = std::max(1, std::atoi(argv[i]));
+    }
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_params params;
+    stewart_params_default(&params);
+    stewart_limits_options options;
+    stewart_limits_options_default(&options);
+    if (vendor) {
+        params.base_joint_limit = params.platform_joint_limit = 0.45;
+        params.leg_diameter = 0.2;
+        options.warn_condition = 60.0;
+    }
+    std::printf("%s limits\n", vendor ? "vendor-like" : "thesis (default)");
+    stewart_model *model = stewart_model_create(&params, message, sizeof message);
+    stewart_limits *limits = model ? stewart_limits_create(model, &options, message, sizeof message)
+                                   : nullptr;
+    if (!limits) {
+        std::fprintf(stderr, "bench-limits: %s\n", message);
+        return 1;
+    }
+    const std::vector<stewart_limits_input> poses = workspace_poses(limits, n);
+    stewart_limits_output out;
+    stewart_axis_ranges r;
+    if (check != ranges) {  // exactly n calls of one function, for callgrind
+        for (const stewart_limits_input &in : poses)
+            check ? (void)stewart_limits_check(limits, &in, &out)
+                  : (void)stewart_limits_ranges(limits, &in, &r);
+    } else {
+        report("check", time_each(poses, 20, 5, [&](const stewart_limits_input &in) {
+                   stewart_limits_check(limits, &in, &out);
+               }));
+        report("ranges", time_each(poses, 1, 5, [&](const stewart_limits_input &in) {
+                   stewart_limits_ranges(limits, &in, &r);
+               }));
+        long ends[STEWART_LIMIT_CLASSES + 1] = {0};
+        for (const stewart_limits_input &in : poses) {
+            stewart_limits_ranges(limits, &in, &r);
+            for (int a = 0; a < 6; ++a) {
+                ++ends[r.min_limit[a]];
+                ++ends[r.max_limit[a]];
+            }
+        }
+        std::printf("range ends by class:");
+        for (int c = 0; c <= STEWART_LIMIT_CLASSES; ++c)
+            std::printf(" %s %ld", stewart_limit_class_name(c), ends[c]);
+        std::printf("\n");
+    }
+    stewart_limits_free(limits);
+    stewart_model_free(model);
+    return 0;
+}

@@ -1,0 +1,49 @@
+// The limits a controller checks at a pose (stewart/stewart_limits.h): stroke, joint angles, leg
+// interference, condition number; each class's smallest margin and where it is.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "kinematics/closed_form.hpp"
+#include "kinematics/frames.hpp"
+#include "stewart/stewart_limits.h"
+
+namespace stewart {
+
+// Everything the check needs from the parameters, per leg so that any geometry fits.
+struct LimitConstants {
+    PlatformGeometry geometry;       // joint centres, characteristic length (the Jacobian's)
+    Frames frames;                   // poses checked are the tool frame's in the user frame
+    Matrix36 base_neutral;           // unit neutral axes, base frame
+    Matrix36 platform_neutral;       // unit neutral axes, platform frame
+    double stroke_min[STEWART_LEGS], stroke_max[STEWART_LEGS];
+    double base_joint_limit[STEWART_LEGS], platform_joint_limit[STEWART_LEGS];
+    bool uniform_base_limit, uniform_platform_limit;  // one joint limit for all legs
+    double leg_diameter;
+    double warn_condition;
+    double shortest_stroke_min;      // min_k stroke_min[k]: the shortest leg within the stroke
+    double longest_arm;              // max_k |b_k - tool origin|: the fastest platform joint per
+                                     // rad of a tool angle [m]
+};
+
+// The constants of the parameters' limits with condition limit warn_condition. A zero neutral
+// axis becomes the leg's direction at home (0, 0, home_height, 0, 0, 0).
+LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &geometry,
+                               double warn_condition);
+
+// The margins of every class at the platform's pose q (base frame; finite), as
+// stewart_limits_output; never NaN. Without the condition (with_condition false: its margin
+// +inf, condition 0) for searches that know it is within its limit; else ||J^-T||_inf into
+// *inverse_norm if given (+inf if singular).
+void check_platform_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
+                           bool with_condition = true, double *inverse_norm = nullptr);
+// The same at the tool frame's pose q in the user frame (the API's poses).
+void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
+                  bool with_condition = true, double *inverse_norm = nullptr);
+
+// The squared shortest distance between segments [p0, p1] and [q0, q1] (any, also degenerate
+// or parallel), and the legs' check on it.
+double segment_distance_squared(const Eigen::Vector3d &p0, const Eigen::Vector3d &p1,
+                                const Eigen::Vector3d &q0, const Eigen::Vector3d &q1);
+
+}  // namespace stewart

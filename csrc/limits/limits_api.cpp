@@ -1,0 +1,111 @@
+// The limits object's C API (stewart/stewart_limits.h): life cycle, the check, the axis ranges.
+#include <cmath>
+#include <new>
+
+#include "limits/axis_ranges.hpp"
+#include "kinematics/pose_names.hpp"
+#include "limits/limit_check.hpp"
+#include "model.hpp"
+#include "stewart/stewart_limits.h"
+#include "util/message.hpp"
+
+using stewart::clear_message;
+using stewart::set_message;
+
+struct stewart_limits {
+    const stewart_model *model;
+    stewart_limits_options options;
+    char message[STEWART_MESSAGE_SIZE];
+    stewart::LimitConstants constants;
+};
+
+namespace {
+
+// STEWART_ERR_ARGUMENT naming a NULL argument or the first non-finite pose component.
+stewart_status check_call(stewart_limits *limits, const stewart_limits_input *input,
+                          const void *output) {
+    if (!input || !output)
+        return set_message(limits->message, sizeof limits->message, STEWART_ERR_ARGUMENT,
+                           "%s is NULL", input ? "output" : "input");
+    for (int i = 0; i < 6; ++i)
+        if (!std::isfinite(input->q[i]))
+            return set_message(limits->message, sizeof limits->message, STEWART_ERR_ARGUMENT,
+                               "pose %s is %g: every pose component must be finite",
+                               stewart::kPoseNames[i], input->q[i]);
+    return clear_message(limits->message, sizeof limits->message);
+}
+
+}  // namespace
+
+extern "C" {
+
+void stewart_limits_options_default(stewart_limits_options *options) {
+    if (!options) return;
+    stewart_inverse_options inverse;
+    stewart_inverse_options_default(&inverse);
+    options->warn_condition = inverse.warn_condition;
+}
+
+stewart_limits *stewart_limits_create(const stewart_model *model,
+                                      const stewart_limits_options *options, char *msg,
+                                      size_t size) {
+    if (!model || !options) {
+        set_message(msg, size, STEWART_ERR_ARGUMENT, "%s is NULL", model ? "options" : "model");
+        return nullptr;
+    }
+    if (!(options->warn_condition >= 1.0) || !std::isfinite(options->warn_condition)) {
+        set_message(msg, size, STEWART_ERR_PARAMETER,
+                    "option warn_condition = %g must be finite and >= 1", options->warn_condition);
+        return nullptr;
+    }
+    stewart_limits *limits = new (std::nothrow) stewart_limits;
+    if (!limits) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the limits object");
+        return nullptr;
+    }
+    limits->model = model;
+    limits->options = *options;
+    limits->message[0] = '\0';
+    limits->constants =
+        stewart::limit_constants(model->params, model->geometry, options->warn_condition);
+    clear_message(msg, size);
+    return limits;
+}
+
+void stewart_limits_free(stewart_limits *limits) { delete limits; }
+
+const char *stewart_limits_message(const stewart_limits *limits) {
+    return limits ? limits->message : "limits is NULL";
+}
+
+stewart_status stewart_limits_check(stewart_limits *limits, const stewart_limits_input *input,
+                                    stewart_limits_output *output) {
+    if (!limits) return STEWART_ERR_ARGUMENT;
+    const stewart_status s = check_call(limits, input, output);
+    if (s != STEWART_OK) return s;
+    stewart::check_limits(limits->constants, input->q, *output);
+    return STEWART_OK;
+}
+
+stewart_status stewart_limits_ranges(stewart_limits *limits, const stewart_limits_input *input,
+                                     stewart_axis_ranges *output) {
+    if (!limits) return STEWART_ERR_ARGUMENT;
+    const stewart_status s = check_call(limits, input, output);
+    if (s != STEWART_OK) return s;
+    stewart::axis_ranges(limits->constants, input->q, *output);
+    return STEWART_OK;
+}
+
+const char *stewart_limit_class_name(int limit_class) {
+    switch (limit_class) {
+        case STEWART_LIMIT_NONE: return "none";
+        case STEWART_LIMIT_STROKE: return "stroke";
+        case STEWART_LIMIT_BASE_JOINT: return "base_joint";
+        case STEWART_LIMIT_PLATFORM_JOINT: return "platform_joint";
+        case STEWART_LIMIT_INTERFERENCE: return "interference";
+        case STEWART_LIMIT_CONDITION: return "condition";
+    }
+    return "unknown";
+}
+
+}  // extern "C"

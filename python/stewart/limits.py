@@ -1,0 +1,78 @@
+"""Limits a controller checks (stroke, joint angles, leg interference, condition) and the axis
+ranges they leave, on numpy arrays through the library (stewart/stewart_limits.h,
+docs/limits.md). Platform.limits and Platform.axis_ranges call these."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from . import _core
+
+#: The limit classes in check order; index + 1 is the library's class number (0: none).
+LIMIT_CLASSES = ("stroke", "base_joint", "platform_joint", "interference", "condition")
+#: The unit of each class's margin.
+MARGIN_UNITS = ("m", "rad", "rad", "m", "1")
+
+
+def class_name(number: int) -> str:
+    """The name of a class number: "none", "stroke", ..., "condition"."""
+    return _core.limit_class_name(int(number))
+
+
+@dataclass
+class LimitCheck:
+    """The check of N poses. first: (N,) the first failing class (0 none, 1 stroke, 2 base
+    joint, 3 platform joint, 4 interference, 5 condition); failed: (N,) bit c - 1 set for every
+    failing class c; margin: (N, 5) each class's smallest margin (> 0 within; m, rad, rad, m,
+    and 1/condition - 1/warn_condition); leg, other_leg: (N, 5) where it is (legs 1..6; the
+    other leg of an interfering pair, else 0); condition: (N,) the leg Jacobian's."""
+    first: np.ndarray
+    failed: np.ndarray
+    margin: np.ndarray
+    leg: np.ndarray
+    other_leg: np.ndarray
+    condition: np.ndarray
+
+    @property
+    def within(self) -> np.ndarray:
+        """(N,) True where the pose is within every limit."""
+        return self.failed == 0
+
+
+def check(model, q: np.ndarray, warn_condition: Optional[float]) -> LimitCheck:
+    """The check of every row of q (an (N, 6) C-contiguous float64 array); warn_condition None:
+    the library's default."""
+    n = q.shape[0]
+    k = _core.LIMIT_CLASSES
+    result = LimitCheck(np.zeros(n, np.int32), np.zeros(n, np.int32), np.zeros((n, k)),
+                        np.zeros((n, k), np.int32), np.zeros((n, k), np.int32), np.zeros(n))
+    _core.limits_check(model, q, warn_condition, result.first, result.failed,
+                       result.margin, result.leg, result.other_leg, result.condition)
+    return result
+
+
+@dataclass
+class AxisRanges:
+    """The axis ranges of N poses: ends (N, 6, 2) [min, max] of each axis (x, y, z [m], roll,
+    pitch, yaw [rad]) with the other five held; limit, leg, other_leg (N, 6, 2): the class met
+    at each end (0: the search's end, pi away for an angle), its leg and the interfering pair's
+    other leg."""
+    ends: np.ndarray
+    limit: np.ndarray
+    leg: np.ndarray
+    other_leg: np.ndarray
+
+
+def ranges(model, q: np.ndarray, warn_condition: Optional[float]) -> AxisRanges:
+    """The axis ranges of every row of q (an (N, 6) C-contiguous float64 array)."""
+    n = q.shape[0]
+    ends = np.zeros((n, 12))
+    limit, leg, other = (np.zeros((n, 12), np.int32) for _ in range(3))
+    _core.limits_ranges(model, q, warn_condition, ends, limit, leg, other)
+
+    def pairs(a: np.ndarray) -> np.ndarray:  # (N, 12) min.., max.. -> (N, 6, 2)
+        return np.ascontiguousarray(np.stack([a[:, :6], a[:, 6:]], axis=2))
+
+    return AxisRanges(pairs(ends), pairs(limit), pairs(leg), pairs(other))

@@ -1,0 +1,88 @@
+"""The calibration tests' own model of a machine, written here from docs/model.md and the issue
+(independent of the library): closed-form sensor readings at a pose of the tool frame in the user
+frame, a tracker's noisy measurement of that pose, and forward kinematics by Newton's method with
+finite-difference derivatives."""
+import numpy as np
+
+THESIS_BASE_ANGLES = np.radians([0, 30, 120, 150, 240, 270])
+THESIS_PLATFORM_ANGLES = np.radians([330, 60, 90, 180, 210, 300])
+
+
+def rotation(roll, pitch, yaw):
+    """R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr, cp, sp, cy, sy = (np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch),
+                              np.cos(yaw), np.sin(yaw))
+    Rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    Ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    Rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    return Rz @ Ry @ Rx
+
+
+def angles(R):
+    """(roll, pitch, yaw) of R = Rz Ry Rx (|pitch| < 90 deg)."""
+    return np.array([np.arctan2(R[2, 1], R[2, 2]), -np.arcsin(R[2, 0]),
+                     np.arctan2(R[1, 0], R[0, 0])])
+
+
+def thesis_joints():
+    """The thesis platform's joints (radius 0.5 m, z 0), (6, 3) each."""
+    def circle(a):
+        return np.stack([0.5 * np.cos(a), 0.5 * np.sin(a), np.zeros(6)], axis=1)
+    return circle(THESIS_BASE_ANGLES), circle(THESIS_PLATFORM_ANGLES)
+
+
+def readings(machine, poses):
+    """Sensor readings (N, 6) of machine (dict: base_joint, platform_joint (6, 3), length_offset
+    (6,), tool_frame, user_frame (6,)) at poses (N, 6) of the tool frame in the user frame."""
+    a, b = machine["base_joint"], machine["platform_joint"]
+    t, u = machine["tool_frame"], machine["user_frame"]
+    Rt, Ru = rotation(*t[3:]), rotation(*u[3:])
+    out = np.empty((len(poses), 6))
+    for i, q in enumerate(poses):
+        Rq = rotation(*q[3:])
+        R = Ru @ Rq @ Rt.T                                   # platform in base
+        p = u[:3] + Ru @ (q[:3] - Rq @ Rt.T @ t[:3])         # platform origin in base
+        out[i] = np.linalg.norm(p + b @ R.T - a, axis=1) - machine["length_offset"]
+    return out
+
+
+def measured(poses, rng, position_noise=10e-6, angle_noise=20e-6):
+    """A tracker's measurement of poses: each position off by N(0, position_noise) per axis, each
+    orientation by a small rotation of N(0, angle_noise) per axis (user frame)."""
+    out = np.array(poses, dtype=float)
+    for row in out:
+        row[:3] += rng.normal(0, position_noise, 3)
+        w = rng.normal(0, angle_noise, 3)
+        W = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+        small = np.eye(3) + W + W @ W / 2  # exp(W) to second order: 1e-15 at 20 urad
+        row[3:] = angles(small @ rotation(*row[3:]))
+    return out
+
+
+def forward(machine, reading_rows, guess, iterations=20):
+    """Poses at which machine reads reading_rows, Newton from guess, derivatives by central
+    differences of readings()."""
+    q = np.array(guess, dtype=float)
+    for i in range(len(q)):
+        for _ in range(iterations):
+            f = readings(machine, q[i:i + 1])[0] - reading_rows[i]
+            if np.max(np.abs(f)) < 1e-14:
+                break
+            J = np.empty((6, 6))
+            for j in range(6):
+                h = np.zeros(6)
+                h[j] = 1e-7
+                J[:, j] = (readings(machine, [q[i] + h])[0]
+                           - readings(machine, [q[i] - h])[0]) / 2e-7
+            q[i] -= np.linalg.solve(J, f)
+    return q
+
+
+def random_poses(rng, n, home_height=0.5, position=0.08, angle=np.radians(15)):
+    """n poses around home: x, y, z within +-position of (0, 0, home_height), angles within
+    +-angle (inside the thesis platform's strokes for the defaults)."""
+    q = np.empty((n, 6))
+    q[:, :3] = rng.uniform(-position, position, (n, 3))
+    q[:, 2] += home_height
+    q[:, 3:] = rng.uniform(-angle, angle, (n, 3))
+    return q

@@ -1,0 +1,190 @@
+"""stewart.calibrate on synthetic machines: a true geometry = the thesis platform + random joint
+errors (0.1-1 mm) and length offsets (0.1-2 mm), measured in this file with its own closed form
+(calibration_truth.py) and a tracker's noise (10 um, 20 urad; 1 um on the readings). Checked: the
+identified parameters against the truth within their reported standard deviations (coverage over
+many seeds), the pose error on held-out poses, an unobservable set, an outlier, the frames."""
+import numpy as np
+import pytest
+
+import stewart
+from stewart.calibration import forward_poses
+
+import calibration_truth as truth
+
+JOINT_ERROR = (1e-4, 1e-3)
+OFFSET_ERROR = (1e-4, 2e-3)
+
+
+def signed(rng, low_high, size):
+    return rng.uniform(*low_high, size) * rng.choice([-1.0, 1.0], size)
+
+
+def nominal_machine():
+    a, b = truth.thesis_joints()
+    return {"base_joint": a, "platform_joint": b, "length_offset": np.zeros(6),
+            "tool_frame": np.zeros(6), "user_frame": np.zeros(6)}
+
+
+def true_machine(rng, frame_error=0.0):
+    m = nominal_machine()
+    m["base_joint"] = m["base_joint"] + signed(rng, JOINT_ERROR, (6, 3))
+    m["platform_joint"] = m["platform_joint"] + signed(rng, JOINT_ERROR, (6, 3))
+    m["length_offset"] = signed(rng, OFFSET_ERROR, 6)
+    m["tool_frame"] = rng.normal(0, frame_error, 6)
+    m["user_frame"] = rng.normal(0, frame_error, 6)
+    return m
+
+
+def measure(machine, poses, rng):
+    """What the tracker and the sensors report at the true poses."""
+    readings = truth.readings(machine, poses) + rng.normal(0, 1e-6, (len(poses), 6))
+    return truth.measured(poses, rng), readings
+
+
+def identified_machine(result):
+    p = result.parameters
+    return {"base_joint": p["base_joint"].reshape(6, 3),
+            "platform_joint": p["platform_joint"].reshape(6, 3),
+            "length_offset": p["length_offset"], "tool_frame": p["tool_frame"],
+            "user_frame": p["user_frame"]}
+
+
+def pose_errors(machine, true_machine_, poses):
+    """Position [m] and rotation [rad] errors of the poses machine computes from the readings
+    the true machine gives at poses (forward kinematics of this file)."""
+    found = truth.forward(machine, truth.readings(true_machine_, poses), poses)
+    position = np.linalg.norm(found[:, :3] - poses[:, :3], axis=1)
+    rotation = np.array([np.arccos(np.clip((np.trace(truth.rotation(*f[3:]).T
+                                                     @ truth.rotation(*q[3:])) - 1) / 2, -1, 1))
+                         for f, q in zip(found, poses)])
+    return position, rotation
+
+
+@pytest.fixture(scope="module")
+def nominal():
+    return stewart.Platform()
+
+
+@pytest.fixture(scope="module")
+def design(nominal):
+    return stewart.calibration_poses(nominal, 30)
+
+
+def test_calibration_poses_are_inside_the_strokes_and_identify_everything(nominal, design):
+    assert design.shape == (30, 6)
+    lengths = truth.readings(nominal_machine(), design)
+    assert np.all((lengths > 0.4) & (lengths < 0.7))
+    assert stewart.observability(nominal, design) < 200  # the study measures it: about 86
+    random = truth.random_poses(np.random.default_rng(0), 30)
+    assert stewart.observability(nominal, design) < stewart.observability(nominal, random)
+
+
+def test_identified_parameters_match_the_truth_within_their_standard_deviations(nominal, design):
+    z = []
+    for seed in range(12):
+        rng = np.random.default_rng(100 + seed)
+        machine = true_machine(rng)
+        result = stewart.calibrate(nominal, *measure(machine, design, rng))
+        expected = np.concatenate([machine["base_joint"].ravel(),
+                                   machine["platform_joint"].ravel(), machine["length_offset"]])
+        assert result.names[0] == "base_joint[1]" and result.names[-1] == "length_offset[6]"
+        assert np.all(result.std > 0) and np.all(result.std < 1e-4)
+        z.append((result.values - expected) / result.std)
+    z = np.abs(np.concatenate(z))  # 504 normalised errors: about N(0, 1) if the std are right
+    assert 0.58 < np.mean(z < 1) < 0.78, np.mean(z < 1)
+    assert 0.91 < np.mean(z < 2) < 0.99, np.mean(z < 2)
+    assert np.mean(z < 3) > 0.985
+
+
+def test_held_out_pose_error_falls_by_99_percent(nominal, design):
+    rng = np.random.default_rng(7)
+    machine = true_machine(rng)
+    result = stewart.calibrate(nominal, *measure(machine, design, rng))
+    assert result.rms("after") < 0.05 * result.rms("before")
+    assert result.condition < 200 and 0.5 < result.variance_factor < 2
+    held_out = truth.random_poses(rng, 15)
+    before = pose_errors(nominal_machine(), machine, held_out)
+    after = pose_errors(identified_machine(result), machine, held_out)
+    for b, a in zip(before, after):
+        assert np.sqrt(np.mean(a ** 2)) < 0.01 * np.sqrt(np.mean(b ** 2))
+    # The package's forward kinematics on the calibrated Platform agrees with this file's.
+    found = forward_poses(result.platform, truth.readings(machine, held_out), held_out)
+    expected = truth.forward(identified_machine(result), truth.readings(machine, held_out),
+                             held_out)
+    np.testing.assert_allclose(found, expected, rtol=0, atol=1e-11)
+
+
+def test_one_orientation_is_reported_unobservable_naming_the_joints(nominal):
+    rng = np.random.default_rng(3)
+    machine = true_machine(rng)
+    poses = truth.random_poses(rng, 30)
+    poses[:, 3:] = [0.1, -0.05, 0.2]  # every pose at one orientation
+    with pytest.raises(stewart.UnobservableError) as error:
+        stewart.calibrate(nominal, *measure(machine, poses, rng))
+    names = set(error.value.unobservable)
+    # Leg k's base and platform joints move together unseen (only a_k - R b_k is measured): 18
+    # free combinations carried by all 36 joint coordinates. (An offset may be named too: from
+    # positions alone it is a sphere's radius, weakly determined by a small patch of sphere.)
+    joints = {f"{g}[{i}]" for g in ("base_joint", "platform_joint") for i in range(1, 19)}
+    assert joints <= names
+    assert names - joints <= {f"length_offset[{i}]" for i in range(1, 7)}
+    assert "base_joint[1..18]" in str(error.value) and "platform_joint[1..18]" in str(error.value)
+    free = int(str(error.value).split(": ")[1].split(" ")[0])
+    assert 18 <= free <= 24
+
+
+def test_too_few_poses_are_reported_unobservable(nominal, design):
+    rng = np.random.default_rng(4)
+    with pytest.raises(stewart.UnobservableError):
+        stewart.calibrate(nominal, *measure(true_machine(rng), design[:6], rng))
+
+
+def test_an_outlier_is_named_and_a_robust_loss_resists_it(nominal, design):
+    rng = np.random.default_rng(11)
+    machine = true_machine(rng)
+    poses, readings = measure(machine, design, rng)
+    readings[17, 2] += 0.5e-3  # one bad reading
+    assert stewart.calibrate(nominal, poses, readings).outliers == [17]
+    robust = stewart.calibrate(nominal, poses, readings, loss="soft_l1")
+    assert 17 in robust.outliers
+    held_out = truth.random_poses(rng, 10)
+    position, _ = pose_errors(identified_machine(robust), machine, held_out)
+    assert np.max(position) < 50e-6
+
+
+def test_frames_are_identified_in_the_stated_gauge(nominal, design):
+    rng = np.random.default_rng(5)
+    machine = true_machine(rng, frame_error=2e-3)
+    poses = stewart.calibration_poses(nominal, 30, frames="both")
+    result = stewart.calibrate(nominal, *measure(machine, poses, rng), frames="both")
+    assert result.names[-12:] == [f"{f}[{i}]" for f in ("tool_frame", "user_frame")
+                                  for i in range(1, 7)]
+    # The gauge: the joints' net translation and rotation from nominal are zero.
+    for group, nominal_points in zip(("base_joint", "platform_joint"), truth.thesis_joints()):
+        shift = result.parameters[group].reshape(6, 3) - nominal_points
+        np.testing.assert_allclose(shift.sum(axis=0), 0, atol=1e-12)
+        np.testing.assert_allclose(np.cross(nominal_points, shift).sum(axis=0), 0, atol=1e-12)
+    held_out = truth.random_poses(rng, 10)
+    before = pose_errors(nominal_machine(), machine, held_out)
+    after = pose_errors(identified_machine(result), machine, held_out)
+    for b, a in zip(before, after):
+        assert np.sqrt(np.mean(a ** 2)) < 0.01 * np.sqrt(np.mean(b ** 2))
+
+
+@pytest.mark.parametrize("argument, value, message", [
+    ("loss", "square", "loss = 'square' must be one of"),
+    ("frames", "platform", "frames = 'platform' must be"),
+    ("position_noise", -1.0, "position_noise = -1.0 must be"),
+    ("max_std", 0.0, "max_std = 0.0 must be"),
+])
+def test_bad_arguments_are_named(nominal, design, argument, value, message):
+    readings = truth.readings(nominal_machine(), design)
+    with pytest.raises(ValueError, match=message):
+        stewart.calibrate(nominal, design, readings, **{argument: value})
+
+
+def test_non_finite_measurements_are_named(nominal, design):
+    readings = truth.readings(nominal_machine(), design)
+    readings[4, 3] = np.nan
+    with pytest.raises(ValueError, match=r"readings\[4, 3\] = nan is not finite"):
+        stewart.calibrate(nominal, design, readings)

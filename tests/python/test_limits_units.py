@@ -1,0 +1,96 @@
+"""The limits where the units report them: the inverse FMU's limit outputs (limit_outputs = 1,
+2) against Platform.limits and Platform.axis_ranges (themselves checked against numpy in
+test_limits.py), zero and silent when off; stewart-solve --limits --ranges the same numbers;
+the plant's joint-limit and interference warning bits against the check of its output pose."""
+import csv
+
+import numpy as np
+import pytest
+
+from fmu_support import OK, WARNING, VERSIONS, Unit
+
+stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
+
+MARGINS = tuple(f"limit_margin[{c}]" for c in range(1, 6))
+RANGE_MIN = tuple(f"range_min[{a}]" for a in range(1, 7))
+RANGE_MAX = tuple(f"range_max[{a}]" for a in range(1, 7))
+POSE = ("x", "y", "z", "roll", "pitch", "yaw")
+# A pose within the default limits, and one whose base joints lean beyond 0.2 rad.
+WITHIN = np.array([0.02, -0.01, 0.52, 0.03, -0.02, 0.05])
+LEANING = np.array([0.12, 0.0, 0.45, 0.0, 0.0, 0.0])
+
+
+def solve_once(version, pose, **params):
+    u = Unit(version)
+    try:
+        assert u.init(**params) == OK
+        u.set(**dict(zip(POSE, pose)))
+        status = u.do_step(0.0, 0.1)
+        reals = u.get_reals(MARGINS + RANGE_MIN + RANGE_MAX)
+        (limit_class,) = u.get(("limit_class",))
+        return status, limit_class, reals, u.messages_text()
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fmu_limit_outputs_are_the_library_check_and_ranges(version):
+    status, limit_class, reals, _ = solve_once(version, WITHIN, limit_outputs=2, fidelity=1)
+    assert status == OK and limit_class == 0
+    check = stewart.Platform().limits(WITHIN)
+    ranges = stewart.Platform().axis_ranges(WITHIN)[0]
+    np.testing.assert_array_equal(reals[:5], check.margin[0])
+    np.testing.assert_array_equal(reals[5:11], ranges[:, 0])
+    np.testing.assert_array_equal(reals[11:], ranges[:, 1])
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fmu_limit_outputs_off_by_default_and_ranges_only_at_level_2(version):
+    status, limit_class, reals, log = solve_once(version, LEANING, base_joint_limit=0.2, fidelity=1)
+    assert status == OK and limit_class == 0 and not reals.any() and "joint" not in log
+    status, limit_class, reals, log = solve_once(version, LEANING, base_joint_limit=0.2,
+                                                 limit_outputs=1, fidelity=1)
+    assert status == WARNING and limit_class == 2  # the base joint
+    assert reals[1] == pytest.approx(stewart.Platform(base_joint_limit=0.2).limits(LEANING).margin[0, 1])
+    assert not reals[5:].any()
+    assert "base joint of leg" in log
+
+
+def test_cli_limits_and_ranges_columns(solve, tmp_path):
+    poses = np.array([WITHIN, LEANING])
+    src = tmp_path / "in.csv"
+    src.write_text("t,x,y,z,roll,pitch,yaw\n" +
+                   "".join(f"{i * 0.1},{','.join(repr(float(v)) for v in p)}\n" for i, p in enumerate(poses)))
+    out = tmp_path / "out.csv"
+    r = solve("--limits", "--ranges", "--param", "base_joint_limit=0.2", src, out)
+    assert r.returncode == 0, r.stderr
+    rows = list(csv.DictReader(out.open()))
+    plat = stewart.Platform(base_joint_limit=0.2)
+    check, ranges = plat.limits(poses), plat.axis_ranges(poses)
+    names = ("stroke", "base_joint", "platform_joint", "interference", "condition")
+    for j, row in enumerate(rows):
+        assert row["limit_class"] == stewart.limits.class_name(check.first[j])
+        np.testing.assert_array_equal([float(row[f"margin_{n}"]) for n in names], check.margin[j])
+        np.testing.assert_array_equal([float(row[f"{a}_min"]) for a in POSE], ranges[j, :, 0])
+        np.testing.assert_array_equal([float(row[f"{a}_max"]) for a in POSE], ranges[j, :, 1])
+    assert [row["limit_class"] for row in rows] == ["none", "base_joint"]
+
+
+def test_plant_warns_of_joint_limits_and_interference_as_of_strokes():
+    """The platform falls freely from home turned by 0.8 rad of yaw (no forces): its legs lean
+    further and neighbours come together; the warning bits follow the check of each output
+    pose, and both switch on during the fall."""
+    params = dict(base_joint_limit=0.8, platform_joint_limit=0.8, leg_diameter=0.245,
+                  stroke_min=0.05, stroke_max=3.0)
+    plat = stewart.Platform(**params)
+    t = np.linspace(0.0, 0.35, 36)
+    sim = plat.simulate(t, np.zeros((len(t), 6)), fidelity="massless",
+                        start=[0.0, 0.0, 0.5, 0.0, 0.0, 0.8])
+    assert sim.completed, sim.message
+    check = plat.limits(sim.pose)
+    joint_bits = (check.failed & 0b0110) != 0
+    interference = (check.failed & 0b1000) != 0
+    np.testing.assert_array_equal((sim.warnings & 8) != 0, joint_bits)
+    np.testing.assert_array_equal((sim.warnings & 16) != 0, interference)
+    for bits in (joint_bits, interference):
+        assert not bits[0] and bits[-1]
