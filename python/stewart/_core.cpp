@@ -493,6 +493,8 @@ nb::tuple linearize_inverse(const Model &model, int fidelity, const std::vector<
                           flat(out.lengths.length_accel, 6), flat(out.force, 6),
                           flat(out.base_force, 3), flat(out.base_torque, 3),
                           flat(&out.jacobian[0][0], 30 * 18), out.warnings);
+}
+
 // stewart_geometry_jacobian over the rows of poses, into the caller's arrays (rows of 6, 18 and
 // 36: leg-major blocks of stewart_geometry_jacobian_output). Returns (-1, "") or the first failing
 // row and its message; the rows before it are written.
