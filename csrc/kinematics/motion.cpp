@@ -7,30 +7,7 @@
 
 namespace stewart {
 
-namespace {
-
-Eigen::Matrix3d rotation_from_trig(double cr, double sr, double cp, double sp, double cy, double sy) {
-    Eigen::Matrix3d R;
-    R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
-         sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
-         -sp,     cp * sr,                cp * cr;
-    return R;
-}
-
-}  // namespace
-
 const char *const kPoseNames[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
-
-bool angle_rates_of(const double q[6], const Eigen::Vector3d &omega, double out[3],
-                    double min_cos_pitch) {
-    const double sp = std::sin(q[4]), cp = std::cos(q[4]);
-    const double sy = std::sin(q[5]), cy = std::cos(q[5]);
-    if (!(std::fabs(cp) > min_cos_pitch)) return false;
-    out[0] = (cy * omega.x() + sy * omega.y()) / cp;
-    out[1] = -sy * omega.x() + cy * omega.y();
-    out[2] = omega.z() + sp * out[0];
-    return true;
-}
 
 void angles_of_rotation(const Eigen::Matrix3d &R, const double near[3], double angles[3]) {
     const double sp = -R(2, 0);
@@ -73,26 +50,6 @@ stewart_status input_out_of_range(const stewart_pose &pose, int first_row, int l
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw) {
     return rotation_from_trig(std::cos(roll), std::sin(roll), std::cos(pitch), std::sin(pitch),
                               std::cos(yaw), std::sin(yaw));
-}
-
-Motion motion_of_pose(const stewart_pose &pose) {
-    Motion m;
-    m.position = Eigen::Vector3d(pose.q[0], pose.q[1], pose.q[2]);
-    m.velocity = Eigen::Vector3d(pose.q_dot[0], pose.q_dot[1], pose.q_dot[2]);
-    m.acceleration = Eigen::Vector3d(pose.q_ddot[0], pose.q_ddot[1], pose.q_ddot[2]);
-    const double cr = std::cos(pose.q[3]), sr = std::sin(pose.q[3]);
-    const double cp = std::cos(pose.q[4]), sp = std::sin(pose.q[4]);
-    const double cy = std::cos(pose.q[5]), sy = std::sin(pose.q[5]);
-    m.rotation = rotation_from_trig(cr, sr, cp, sp, cy, sy);
-
-    // omega = roll_dot Rz Ry ex + pitch_dot Rz ey + yaw_dot ez.
-    const Eigen::Matrix3d E = angle_rate_matrix(cp, sp, cy, sy);
-    const Eigen::Vector3d rate(pose.q_dot[3], pose.q_dot[4], pose.q_dot[5]);
-    const Eigen::Vector3d accel(pose.q_ddot[3], pose.q_ddot[4], pose.q_ddot[5]);
-    const Eigen::Matrix3d E_dot = angle_rate_matrix_dot(cp, sp, cy, sy, rate[1], rate[2]);
-    m.omega = E * rate;
-    m.alpha = E * accel + E_dot * rate;
-    return m;
 }
 
 }  // namespace stewart

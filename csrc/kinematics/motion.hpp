@@ -2,6 +2,8 @@
 // with R = Rz(yaw) Ry(pitch) Rx(roll) (docs/model.md).
 #pragma once
 
+#include <cmath>
+
 #include <Eigen/Dense>
 
 #include "kinematics/pose_names.hpp"
@@ -10,11 +12,14 @@
 namespace stewart {
 
 // The motion of a rigid body or frame: the platform's, each leg body's (the plant), one struct.
-struct Motion {
-    Eigen::Vector3d position, velocity, acceleration;  // of the platform frame origin, world
-    Eigen::Matrix3d rotation;                          // platform to world
-    Eigen::Vector3d omega, alpha;                      // angular velocity and acceleration, world
+// Templated on the scalar so that linearisation can carry derivatives through the same code.
+template <class S>
+struct MotionT {
+    Eigen::Matrix<S, 3, 1> position, velocity, acceleration;  // of the frame origin, world
+    Eigen::Matrix<S, 3, 3> rotation;                          // platform to world
+    Eigen::Matrix<S, 3, 1> omega, alpha;  // angular velocity and acceleration, world
 };
+using Motion = MotionT<double>;
 
 // STEWART_ERR_ARGUMENT (message names the component, e.g. "roll_dot", and its value) unless
 // every pose component and derivative is finite.
@@ -29,25 +34,38 @@ stewart_status input_out_of_range(const stewart_pose &pose, int first_row, int l
 // R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Matrix3d rotation_from_rpy(double roll, double pitch, double yaw);
 
+// R = Rz(yaw) Ry(pitch) Rx(roll) from the cosines and sines of the three angles.
+template <class S>
+Eigen::Matrix<S, 3, 3> rotation_from_trig(const S &cr, const S &sr, const S &cp, const S &sp,
+                                          const S &cy, const S &sy) {
+    Eigen::Matrix<S, 3, 3> R;
+    R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
+         sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+         -sp,     cp * sr,                cp * cr;
+    return R;
+}
+
 // E with omega = E (roll, pitch, yaw)_dot, from cos and sin of pitch and yaw:
 // E = [Rz Ry e_x, Rz e_y, e_z].
-inline Eigen::Matrix3d angle_rate_matrix(double cp, double sp, double cy, double sy) {
-    Eigen::Matrix3d E;
-    E << cy * cp, -sy, 0,
-         sy * cp,  cy, 0,
-         -sp,      0,  1;
+template <class S>
+Eigen::Matrix<S, 3, 3> angle_rate_matrix(const S &cp, const S &sp, const S &cy, const S &sy) {
+    Eigen::Matrix<S, 3, 3> E;
+    E << cy * cp, -sy, S(0),
+         sy * cp,  cy, S(0),
+         -sp,      S(0), S(1);
     return E;
 }
 
 // dE/dt at pitch and yaw (cos and sin) moving at pitch_rate and yaw_rate: alpha = E angles_ddot +
 // E_dot angles_dot.
-inline Eigen::Matrix3d angle_rate_matrix_dot(double cp, double sp, double cy, double sy,
-                                             double pitch_rate, double yaw_rate) {
-    const double pd = pitch_rate, yd = yaw_rate;
-    Eigen::Matrix3d E_dot;
-    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, 0,
-              cy * yd * cp - sy * sp * pd, -sy * yd, 0,
-             -cp * pd,                      0,       0;
+template <class S>
+Eigen::Matrix<S, 3, 3> angle_rate_matrix_dot(const S &cp, const S &sp, const S &cy, const S &sy,
+                                             const S &pitch_rate, const S &yaw_rate) {
+    const S pd = pitch_rate, yd = yaw_rate;
+    Eigen::Matrix<S, 3, 3> E_dot;
+    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, S(0),
+              cy * yd * cp - sy * sp * pd, -sy * yd, S(0),
+             -cp * pd,                      S(0),    S(0);
     return E_dot;
 }
 
@@ -58,11 +76,54 @@ void angles_of_rotation(const Eigen::Matrix3d &R, const double near[3], double a
 // The inverse: (roll, pitch, yaw) rates from the angular velocity omega (world) at pose angles
 // pitch q[4] and yaw q[5]. False at pitch = +-90 deg (|cos pitch| <= min_cos_pitch), where roll
 // and yaw rates are not defined.
-bool angle_rates_of(const double q[6], const Eigen::Vector3d &omega, double out[3],
-                    double min_cos_pitch = 1e-12);
+template <class S>
+bool angle_rates_of(const S q[6], const Eigen::Matrix<S, 3, 1> &omega, S out[3],
+                    double min_cos_pitch = 1e-12) {
+    using std::cos;
+    using std::abs;
+    using std::sin;
+    const S sp = sin(q[4]), cp = cos(q[4]);
+    const S sy = sin(q[5]), cy = cos(q[5]);
+    if (!(abs(cp) > min_cos_pitch)) return false;
+    out[0] = (cy * omega.x() + sy * omega.y()) / cp;
+    out[1] = -sy * omega.x() + cy * omega.y();
+    out[2] = omega.z() + sp * out[0];
+    return true;
+}
+inline bool angle_rates_of(const double q[6], const Eigen::Vector3d &omega, double out[3],
+                           double min_cos_pitch = 1e-12) {
+    return angle_rates_of<double>(q, omega, out, min_cos_pitch);
+}
 
-// The motion of the platform frame at pose; omega = E (roll_dot, pitch_dot, yaw_dot),
-// alpha = E angles_ddot + E_dot angles_dot.
-Motion motion_of_pose(const stewart_pose &pose);
+// The motion of the platform frame at the pose q with rates q_dot and accelerations q_ddot;
+// omega = E (roll_dot, pitch_dot, yaw_dot), alpha = E angles_ddot + E_dot angles_dot.
+template <class S>
+MotionT<S> motion_of_pose(const S q[6], const S q_dot[6], const S q_ddot[6]) {
+    using std::cos;
+    using std::sin;
+    using Vec = Eigen::Matrix<S, 3, 1>;
+    MotionT<S> m;
+    m.position = Vec(q[0], q[1], q[2]);
+    m.velocity = Vec(q_dot[0], q_dot[1], q_dot[2]);
+    m.acceleration = Vec(q_ddot[0], q_ddot[1], q_ddot[2]);
+    const S cr = cos(q[3]), sr = sin(q[3]);
+    const S cp = cos(q[4]), sp = sin(q[4]);
+    const S cy = cos(q[5]), sy = sin(q[5]);
+    m.rotation = rotation_from_trig(cr, sr, cp, sp, cy, sy);
+
+    // omega = roll_dot Rz Ry ex + pitch_dot Rz ey + yaw_dot ez.
+    const Eigen::Matrix<S, 3, 3> E = angle_rate_matrix(cp, sp, cy, sy);
+    const Vec rate(q_dot[3], q_dot[4], q_dot[5]);
+    const Vec accel(q_ddot[3], q_ddot[4], q_ddot[5]);
+    const Eigen::Matrix<S, 3, 3> E_dot = angle_rate_matrix_dot(cp, sp, cy, sy, rate[1], rate[2]);
+    m.omega = E * rate;
+    m.alpha = E * accel + E_dot * rate;
+    return m;
+}
+
+// The motion of the platform frame at pose (its q, q_dot, q_ddot).
+inline Motion motion_of_pose(const stewart_pose &pose) {
+    return motion_of_pose<double>(pose.q, pose.q_dot, pose.q_ddot);
+}
 
 }  // namespace stewart

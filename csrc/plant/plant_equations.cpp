@@ -1,64 +1,12 @@
-#include "plant/plant_equations.hpp"
+// The reduced equations for the plant's scalar, double (plant_equations_impl.hpp has the
+// template definitions; linearize/plant_dual.cpp instantiates them for the dual scalar), and the
+// model they read.
+#include "plant/plant_equations_impl.hpp"
 
 #include "model.hpp"
 
 namespace stewart {
 namespace fd {
-
-namespace {
-
-using Matrix66 = Eigen::Matrix<double, 6, 6>;
-
-Mat3 skew(const Vec3 &v) {
-    Mat3 S;
-    S << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
-    return S;
-}
-
-Mat3 world_inertia(const Mat3 &A, const Vec3 &principal) {
-    return A * principal.asDiagonal() * A.transpose();
-}
-
-// Adds leg k's two bodies. Their accelerations are linear in u = (P_ddot, alpha) (the leg's
-// platform point and the platform's angular acceleration) plus the velocity products in the
-// biases, so their share is first formed in u (3 x 3 blocks) and then mapped to the twist rate
-// by u = S nu_dot, S = [I, K; 0, I], K = -[arm]x.
-void add_leg(const DynamicsModel &d, const LegConfiguration &leg, int k, const Motion &cyl,
-             const Motion &pis, Matrix66 &M, Vector6 &rhs) {
-    LegAccelerationMap map;
-    leg_acceleration_map(d.legs, k, leg, map);
-    const Mat3 I_cyl = world_inertia(cyl.rotation, d.cylinder_inertia);
-    const Mat3 I_pis = world_inertia(pis.rotation, d.piston_inertia);
-    const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
-    const Mat3 piston_linear = Mat3::Identity() - cp * map.N;
-    // u-space mass blocks: A (P_ddot, P_ddot), B (P_ddot, alpha), C (alpha, alpha).
-    Mat3 A = (d.cylinder_mass * cc * cc) * (map.N * map.N) +
-             d.piston_mass * piston_linear.transpose() * piston_linear;
-    A.noalias() += map.cylinder_alpha.transpose() * I_cyl * map.cylinder_alpha;
-    A.noalias() += map.piston_alpha.transpose() * I_pis * map.piston_alpha;
-    const Vec3 I_pis_n = I_pis * leg.n;
-    const Mat3 B = -(map.piston_alpha.transpose() * I_pis_n) * map.piston_spin.transpose();
-    const Mat3 C = leg.n.dot(I_pis_n) * map.piston_spin * map.piston_spin.transpose();
-    // Applied minus inertial forces of each body (force, torque about its centre of mass).
-    const Vec3 f_cyl = d.cylinder_mass * (d.gravity - cyl.acceleration);
-    const Vec3 t_cyl = -(I_cyl * cyl.alpha + cyl.omega.cross(I_cyl * cyl.omega));
-    const Vec3 f_pis = d.piston_mass * (d.gravity - pis.acceleration);
-    const Vec3 t_pis = -(I_pis * pis.alpha + pis.omega.cross(I_pis * pis.omega));
-    const Vec3 f_point = cc * (map.N * f_cyl) + map.cylinder_alpha.transpose() * t_cyl +
-                         piston_linear.transpose() * f_pis + map.piston_alpha.transpose() * t_pis;
-    const Vec3 f_alpha = -leg.n.dot(t_pis) * map.piston_spin;
-
-    const Mat3 K = -skew(leg.arm);
-    const Mat3 AK_B = A * K + B;
-    M.topLeftCorner<3, 3>() += A;
-    M.topRightCorner<3, 3>() += AK_B;
-    M.bottomLeftCorner<3, 3>() += AK_B.transpose();
-    M.bottomRightCorner<3, 3>().noalias() += K.transpose() * AK_B + B.transpose() * K + C;
-    rhs.head<3>() += f_point;
-    rhs.tail<3>() += leg.arm.cross(f_point) + f_alpha;
-}
-
-}  // namespace
 
 DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
     DynamicsModel d;
@@ -85,101 +33,7 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
     return d;
 }
 
-bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
-                Evaluation &e) {
-    Matrix66 M = Matrix66::Zero();
-    Vector6 rhs = Vector6::Zero();
-
-    // The platform (and payload), centre of mass at c from the platform origin: with
-    // a_c = v_dot + alpha x c + omega x (omega x c), Newton-Euler about the origin gives
-    // M = [m I, -m [c]x; m [c]x, I_c - m [c]x [c]x] and the velocity-product and gravity terms.
-    const Vec3 c = m.rotation * d.platform_com;
-    const Mat3 I_platform = m.rotation * d.platform_inertia * m.rotation.transpose();
-    const Mat3 c_cross = skew(c);
-    const double mass = d.platform_mass;
-    M.topLeftCorner<3, 3>() = mass * Mat3::Identity();
-    M.topRightCorner<3, 3>() = -mass * c_cross;
-    M.bottomLeftCorner<3, 3>() = mass * c_cross;
-    M.bottomRightCorner<3, 3>() = I_platform - mass * c_cross * c_cross;
-    const Vec3 f_platform = mass * (d.gravity - m.omega.cross(m.omega.cross(c)));
-    rhs.head<3>() = f_platform;
-    rhs.tail<3>() = c.cross(f_platform) - m.omega.cross(I_platform * m.omega);
-
-    Motion at_rest_rate = m;  // the twist, with zero twist rate: velocity products
-    at_rest_rate.acceleration.setZero();
-    at_rest_rate.alpha.setZero();
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        LegConfiguration &leg = e.legs[k];
-        const LegFault fault =
-            leg_configuration(d.legs, k, m.position, m.rotation, leg, d.with_legs);
-        if (fault != LegFault::None) {
-            e.fault = fault;
-            e.fault_leg = k;
-            return false;
-        }
-        // F_k along the leg: power F_k L_dot_k, L_dot_k = n . (v + omega x arm).
-        rhs.head<3>() += force[k] * leg.n;
-        rhs.tail<3>() += force[k] * leg.arm.cross(leg.n);
-        if (!d.with_legs) continue;
-
-        Motion cyl_bias, pis_bias;
-        leg_body_motion(d.legs, k, leg, at_rest_rate, cyl_bias, pis_bias);
-        add_leg(d, leg, k, cyl_bias, pis_bias, M, rhs);
-    }
-    if (!d.with_legs) {
-        // One rigid body: I_c alpha = T - c x F (moments about the origin), a = F/m - alpha x c.
-        const Vec3 F = rhs.head<3>();
-        const Vec3 alpha = m.rotation * (d.platform_inertia_inverse *
-                                         (m.rotation.transpose() * (rhs.tail<3>() - c.cross(F))));
-        e.twist_rate.head<3>() = F / mass - alpha.cross(c);
-        e.twist_rate.tail<3>() = alpha;
-        e.fault = LegFault::None;
-        e.fault_leg = -1;
-        return true;
-    }
-    // M is symmetric positive definite (the platform alone has a positive mass and inertia).
-    e.twist_rate = M.llt().solve(rhs);
-    e.fault = LegFault::None;
-    e.fault_leg = -1;
-    return true;
-}
-
-void body_motions(const DynamicsModel &d, const Motion &m, const Evaluation &e,
-                  Motion bodies[13]) {
-    Motion &platform = bodies[0];
-    const Vec3 c = m.rotation * d.platform_com;
-    platform.position = m.position + c;
-    platform.rotation = m.rotation;
-    platform.velocity = m.velocity + m.omega.cross(c);
-    platform.omega = m.omega;
-    platform.acceleration = m.acceleration + m.alpha.cross(c) + m.omega.cross(m.omega.cross(c));
-    platform.alpha = m.alpha;
-    if (!d.with_legs) return;
-    for (int k = 0; k < STEWART_LEGS; ++k)
-        leg_body_motion(d.legs, k, e.legs[k], m, bodies[1 + k], bodies[7 + k]);
-}
-
-void base_wrench(const DynamicsModel &d, const Motion bodies[13], Vec3 &force, Vec3 &torque) {
-    force.setZero();
-    torque.setZero();
-    const int count = d.with_legs ? 13 : 1;
-    for (int b = 0; b < count; ++b) {
-        const Motion &body = bodies[b];
-        double mass;
-        Mat3 I;
-        if (b == 0) {
-            mass = d.platform_mass;
-            I = body.rotation * d.platform_inertia * body.rotation.transpose();
-        } else {
-            mass = b <= 6 ? d.cylinder_mass : d.piston_mass;
-            I = world_inertia(body.rotation, b <= 6 ? d.cylinder_inertia : d.piston_inertia);
-        }
-        // What the base must supply to this body beyond gravity, with the sign reversed.
-        const Vec3 f = mass * (body.acceleration - d.gravity);
-        force -= f;
-        torque -= body.position.cross(f) + I * body.alpha + body.omega.cross(I * body.omega);
-    }
-}
+STEWART_PLANT_EQUATIONS_INSTANTIATE(double)
 
 }  // namespace fd
 }  // namespace stewart

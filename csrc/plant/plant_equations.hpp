@@ -24,27 +24,34 @@ struct DynamicsModel {
 // DynamicsModel from a built stewart_model; fidelity STEWART_MASSLESS or STEWART_FULL.
 DynamicsModel dynamics_model(const stewart_model &model, int fidelity);
 
-// Results and workspace of one evaluation.
-struct Evaluation {
-    LegConfiguration legs[STEWART_LEGS];
+// Results and workspace of one evaluation (any scalar, as plant_bodies.hpp).
+template <class S>
+struct EvaluationT {
+    LegConfigurationT<S> legs[STEWART_LEGS];
     LegFault fault = LegFault::None;
-    int fault_leg = -1;          // 0-based
-    Vector6 twist_rate;          // (v_dot, omega_dot) at the platform origin, world
+    int fault_leg = -1;                  // 0-based
+    Eigen::Matrix<S, 6, 1> twist_rate;  // (v_dot, omega_dot) at the platform origin, world
 };
+using Evaluation = EvaluationT<double>;
 
 // The platform's twist rate for the state in m (pose and twist; its accelerations are ignored)
 // under the leg forces. False (fault set) if a leg has no direction or a Cardan is locked.
-bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
-                Evaluation &e);
+// Instantiated for double (the plant) and stewart::Dual (linearisation).
+template <class S>
+bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWART_LEGS],
+                EvaluationT<S> &e);
 
 // The 13 moving bodies (platform, cylinders, pistons) for m including its accelerations; the leg
 // bodies are left untouched for the massless model. e must hold the configuration of m.
-void body_motions(const DynamicsModel &d, const Motion &m, const Evaluation &e,
-                  Motion bodies[13]);
+template <class S>
+void body_motions(const DynamicsModel &d, const MotionT<S> &m, const EvaluationT<S> &e,
+                  MotionT<S> bodies[13]);
 
 // The wrench the moving bodies put on the base (about the world origin): minus the rate of
 // their momentum and angular momentum less gravity (the actuator forces are internal).
-void base_wrench(const DynamicsModel &d, const Motion bodies[13], Vec3 &force, Vec3 &torque);
+template <class S>
+void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &force,
+                 Vec3T<S> &torque);
 
 }  // namespace fd
 }  // namespace stewart

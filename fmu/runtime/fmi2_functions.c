@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "fmi2Functions.h"
+#include "derivatives.h"
 #include "instance.h"
 #include "logging.h"
 #include "state.h"
@@ -124,8 +125,8 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
                                         size_t nUnknown, const fmi2ValueReference vKnown[],
                                         size_t nKnown, const fmi2Real dvKnown[],
                                         fmi2Real dvUnknown[]) {
-    (void)vUnknown; (void)nUnknown; (void)vKnown; (void)nKnown; (void)dvKnown; (void)dvUnknown;
-    return unsupported(c, "fmi2GetDirectionalDerivative");
+    CALL(fmu_get_directional_derivative(INST, vUnknown, nUnknown, vKnown, nKnown, dvKnown,
+                                        dvUnknown, "fmi2GetDirectionalDerivative"));
 }
 
 /* ---- model exchange: fmi2_me_functions.c ---- */

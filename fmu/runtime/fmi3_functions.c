@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "fmi3Functions.h"
+#include "derivatives.h"
 #include "instance.h"
 #include "logging.h"
 #include "state.h"
@@ -224,9 +225,15 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueRe
                                         size_t nUnknowns, const fmi3ValueReference knowns[],
                                         size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                         fmi3Float64 sensitivity[], size_t nSensitivity) {
-    (void)unknowns; (void)nUnknowns; (void)knowns; (void)nKnowns; (void)seed; (void)nSeed;
-    (void)sensitivity; (void)nSensitivity;
-    return unsupported(instance, "fmi3GetDirectionalDerivative");
+    /* FMI 3: one seed per known and one sensitivity per unknown (no array variables here) */
+    if (instance && (nSeed != nKnowns || nSensitivity != nUnknowns)) {
+        fmu_log(INST, FMU_ERROR, LOG_ERROR,
+                "fmi3GetDirectionalDerivative: nSeed = %zu must equal nKnowns = %zu and "
+                "nSensitivity = %zu nUnknowns = %zu", nSeed, nKnowns, nSensitivity, nUnknowns);
+        return fmi3Error;
+    }
+    CALL(fmu_get_directional_derivative(INST, unknowns, nUnknowns, knowns, nKnowns, seed,
+                                        sensitivity, "fmi3GetDirectionalDerivative"));
 }
 fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[],
                                     size_t nUnknowns, const fmi3ValueReference knowns[],

@@ -25,6 +25,13 @@
  * state): FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr). They are listed among the Outputs with no
  * dependencies, so that a master sees that loops through them are not algebraic; every other
  * output depends on every input (no dependencies attribute). */
+/* A model's config.h sets FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1 if it defines
+ * model_directional_derivative (model_interface.h), and may say which inputs each output depends
+ * on: FMU_OUTPUT_DEPENDS_ON(output_vr, input_vr), listed as the output's dependencies. */
+#ifndef FMU_PROVIDES_DIRECTIONAL_DERIVATIVE
+#define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 0
+#endif
+
 #ifndef FMU_OUTPUT_WITHOUT_FEEDTHROUGH
 #define FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) 0
 #endif
@@ -80,6 +87,27 @@ static const char *dependencies(unsigned vr, int is_derivative, char *buf, size_
     if (used < size) snprintf(buf + used, size - used, "\"");
     return buf;
 }
+
+#ifdef FMU_OUTPUT_DEPENDS_ON
+/* dependencies="..." of an output: the inputs FMU_OUTPUT_DEPENDS_ON names, by index (FMI 2,
+ * 1-based position in ModelVariables) or value reference (FMI 3). */
+static void output_dependencies(unsigned output_vr) {
+    fputs(" dependencies=\"", out);
+    size_t index = 0;
+    int first = 1;
+    for (size_t i = 0; i < fmu_n_variables; ++i) {
+        if (version == 2 && fmu_variables[i].causality == FMU_INDEPENDENT_VAR) continue;
+        ++index;
+        if (fmu_variables[i].causality != FMU_INPUT_VAR) continue;
+        const unsigned in = fmu_variables[i].vr;
+        if (!(FMU_OUTPUT_DEPENDS_ON(output_vr, in))) continue;
+        if (version == 2) fprintf(out, first ? "%zu" : " %zu", index);
+        else fprintf(out, first ? "%u" : " %u", in);
+        first = 0;
+    }
+    fputc('"', out);
+}
+#endif
 
 static void attr(const char *name, const char *value) {
     if (!value || !*value) return;
@@ -268,9 +296,11 @@ int main(int argc, char **argv) {
         attr("canGetAndSetFMUstate", "true");
         attr("canSerializeFMUstate", "true");
         attr("canNotUseMemoryManagementFunctions", "true");
+        if (FMU_PROVIDES_DIRECTIONAL_DERIVATIVE) attr("providesDirectionalDerivative", "true");
     } else {
         attr("canGetAndSetFMUState", "true");
         attr("canSerializeFMUState", "true");
+        if (FMU_PROVIDES_DIRECTIONAL_DERIVATIVE) attr("providesDirectionalDerivatives", "true");
         attr("hasEventMode", "false");
     }
 #endif
@@ -318,9 +348,13 @@ int main(int argc, char **argv) {
             char buf[512];
             const char *deps = pass == 2 ? "" : dependencies(vr, pass == 1, buf, sizeof buf);
             if (version == 2)
-                fprintf(out, "      <Unknown index=\"%zu\"%s/>\n", fmi2_index(vr), deps);
+                fprintf(out, "      <Unknown index=\"%zu\"%s", fmi2_index(vr), deps);
             else
-                fprintf(out, "    <%s valueReference=\"%u\"%s/>\n", kFmi3Elements[pass], vr, deps);
+                fprintf(out, "    <%s valueReference=\"%u\"%s", kFmi3Elements[pass], vr, deps);
+#ifdef FMU_OUTPUT_DEPENDS_ON
+            if (pass == 0) output_dependencies(vr);
+#endif
+            fputs("/>\n", out);
         }
         if (version == 2) fprintf(out, "    </%s>\n", kFmi2Lists[pass]);
     }

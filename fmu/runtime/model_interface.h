@@ -61,6 +61,16 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
                               size_t size, char *why, size_t why_size);
 /* Frees the resources (at fmu_free). */
 void model_free(fmu_instance *inst);
+/* Only in a model whose config.h defines FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1 (the others need
+ * not define it: the runtime then answers that the call is not supported). The partial
+ * derivatives of the outputs at the current inputs (those the outputs are, or would be, solved
+ * at) times the seed: sensitivity[i] = sum_j d unknown[i] / d known[j] * seed[j]. The runtime has
+ * checked the call order, that every unknown is a Real output and every known a Real input.
+ * FMU_ERROR with a message naming the output if it has no derivative; FMU_DISCARD if the inputs
+ * have none (the solve fails there). Never allocates once the model's resources exist. */
+fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unknown[],
+                                        size_t n_unknown, const unsigned known[], size_t n_known,
+                                        const double seed[], double sensitivity[]);
 
 #ifdef __cplusplus
 }

@@ -23,6 +23,7 @@ extern "C" {
 #include "stewart/stewart_batch.h"
 #include "stewart/stewart_calibration.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_linearize.h"
 #include "stewart/stewart_limits.h"
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_platform_file.h"
@@ -440,6 +441,89 @@ private:
     Owned<stewart_plant> plant_{stewart_plant_free, stewart_plant_message};
 };
 
+// A linearisation of model at fidelity, or ValueError with the library's message.
+struct Linearization {
+    Linearization(const Model &model, int fidelity) {
+        stewart_linearize_options o;
+        stewart_linearize_options_default(&o);
+        o.fidelity = fidelity;
+        char message[STEWART_MESSAGE_SIZE];
+        owned.solver = stewart_linearize_create(model.get(), &o, message, sizeof message);
+        if (!owned.solver) fail(message);
+    }
+    Owned<stewart_linearize> owned{stewart_linearize_free, stewart_linearize_message};
+};
+
+std::vector<double> flat(const double *first, size_t n) { return std::vector<double>(first, first + n); }
+
+// Platform.linearize's call: (status, message, state_rate, output, A, B, C, D, warnings), the
+// matrices flat and row-major.
+nb::tuple linearize_plant(const Model &model, int fidelity, const std::vector<double> &q,
+                          const std::vector<double> &q_dot, const std::vector<double> &force) {
+    if (q.size() != 6 || q_dot.size() != 6 || force.size() != 6)
+        fail("linearize: pose, pose_rate and forces need 6 values each");
+    Linearization l(model, fidelity);
+    stewart_linearize_input in{};
+    std::copy(q.begin(), q.end(), in.pose.q);
+    std::copy(q_dot.begin(), q_dot.end(), in.pose.q_dot);
+    std::copy(force.begin(), force.end(), in.force);
+    stewart_linearize_output out{};
+    const stewart_status s = stewart_linearize_plant(l.owned.solver, &in, &out);
+    return nb::make_tuple(static_cast<int>(s), std::string(stewart_linearize_message(l.owned.solver)),
+                          flat(out.state_rate, 12), flat(out.output, 24), flat(&out.A[0][0], 144),
+                          flat(&out.B[0][0], 72), flat(&out.C[0][0], 288), flat(&out.D[0][0], 144),
+                          out.warnings);
+}
+
+// Platform.linearize_inverse's call: (status, message, L, L_dot, L_ddot, force, base_force,
+// base_torque, jacobian (30 x 18 flat), warnings).
+nb::tuple linearize_inverse(const Model &model, int fidelity, const std::vector<double> &q,
+                            const std::vector<double> &q_dot, const std::vector<double> &q_ddot) {
+    if (q.size() != 6 || q_dot.size() != 6 || q_ddot.size() != 6)
+        fail("linearize_inverse: pose, pose_rate and pose_accel need 6 values each");
+    Linearization l(model, fidelity);
+    stewart_pose pose{};
+    std::copy(q.begin(), q.end(), pose.q);
+    std::copy(q_dot.begin(), q_dot.end(), pose.q_dot);
+    std::copy(q_ddot.begin(), q_ddot.end(), pose.q_ddot);
+    stewart_linearize_inverse_output out{};
+    const stewart_status s = stewart_linearize_inverse(l.owned.solver, &pose, &out);
+    return nb::make_tuple(static_cast<int>(s), std::string(stewart_linearize_message(l.owned.solver)),
+                          flat(out.lengths.length, 6), flat(out.lengths.length_rate, 6),
+                          flat(out.lengths.length_accel, 6), flat(out.force, 6),
+                          flat(out.base_force, 3), flat(out.base_torque, 3),
+                          flat(&out.jacobian[0][0], 30 * 18), out.warnings);
+}
+
+// stewart_geometry_jacobian over the rows of poses, into the caller's arrays (rows of 6, 18 and
+// 36: leg-major blocks of stewart_geometry_jacobian_output). Returns (-1, "") or the first failing
+// row and its message; the rows before it are written.
+std::pair<long, std::string> geometry_jacobian_rows(
+    const Model &model, Poses poses, Rows<double, 6> length, Rows<double, 6> reading,
+    Rows<double, 18> base_joint, Rows<double, 18> platform_joint, Rows<double, 36> tool_frame,
+    Rows<double, 36> user_frame, Rows<double, 36> pose) {
+    const size_t n = poses.shape(0);
+    for (size_t rows : {length.shape(0), reading.shape(0), base_joint.shape(0),
+                        platform_joint.shape(0), tool_frame.shape(0), user_frame.shape(0),
+                        pose.shape(0)})
+        if (rows != n) fail("output arrays must have as many rows as the poses");
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_geometry_jacobian_output out;
+    for (size_t i = 0; i < n; ++i) {
+        if (stewart_geometry_jacobian(model.get(), poses.data() + 6 * i, &out, message,
+                                      sizeof message) != STEWART_OK)
+            return {static_cast<long>(i), message};
+        std::copy_n(out.length, 6, length.data() + 6 * i);
+        std::copy_n(out.reading, 6, reading.data() + 6 * i);
+        std::copy_n(&out.base_joint[0][0], 18, base_joint.data() + 18 * i);
+        std::copy_n(&out.platform_joint[0][0], 18, platform_joint.data() + 18 * i);
+        std::copy_n(&out.tool_frame[0][0], 36, tool_frame.data() + 36 * i);
+        std::copy_n(&out.user_frame[0][0], 36, user_frame.data() + 36 * i);
+        std::copy_n(&out.pose[0][0], 36, pose.data() + 36 * i);
+    }
+    return {-1, ""};
+}
+
 // A limits object for model with condition limit warn_condition (none: the default), freed
 // with it.
 struct LimitsObject {
@@ -528,35 +612,6 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
         fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
 }
 
-// stewart_geometry_jacobian over the rows of poses, into the caller's arrays (rows of 6, 18 and
-// 36: leg-major blocks of stewart_geometry_jacobian_output). Returns (-1, "") or the first failing
-// row and its message; the rows before it are written.
-std::pair<long, std::string> geometry_jacobian_rows(
-    const Model &model, Poses poses, Rows<double, 6> length, Rows<double, 6> reading,
-    Rows<double, 18> base_joint, Rows<double, 18> platform_joint, Rows<double, 36> tool_frame,
-    Rows<double, 36> user_frame, Rows<double, 36> pose) {
-    const size_t n = poses.shape(0);
-    for (size_t rows : {length.shape(0), reading.shape(0), base_joint.shape(0),
-                        platform_joint.shape(0), tool_frame.shape(0), user_frame.shape(0),
-                        pose.shape(0)})
-        if (rows != n) fail("output arrays must have as many rows as the poses");
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_geometry_jacobian_output out;
-    for (size_t i = 0; i < n; ++i) {
-        if (stewart_geometry_jacobian(model.get(), poses.data() + 6 * i, &out, message,
-                                      sizeof message) != STEWART_OK)
-            return {static_cast<long>(i), message};
-        std::copy_n(out.length, 6, length.data() + 6 * i);
-        std::copy_n(out.reading, 6, reading.data() + 6 * i);
-        std::copy_n(&out.base_joint[0][0], 18, base_joint.data() + 18 * i);
-        std::copy_n(&out.platform_joint[0][0], 18, platform_joint.data() + 18 * i);
-        std::copy_n(&out.tool_frame[0][0], 36, tool_frame.data() + 36 * i);
-        std::copy_n(&out.user_frame[0][0], 36, user_frame.data() + 36 * i);
-        std::copy_n(&out.pose[0][0], 36, pose.data() + 36 * i);
-    }
-    return {-1, ""};
-}
-
 }  // namespace
 
 NB_MODULE(_core, m) {
@@ -618,15 +673,10 @@ NB_MODULE(_core, m) {
              nb::arg("error_test_failures").none(), nb::arg("status"))
         .def("rows", &PlantRun::rows, nb::arg("first"), nb::arg("stop"))
         .def("statistics", &PlantRun::statistics);
-    m.def("limits_check", &limits_check, nb::arg("model"), nb::arg("q"),
-          nb::arg("warn_condition").none(), nb::arg("first"), nb::arg("failed"), nb::arg("margin"),
-          nb::arg("leg"), nb::arg("other_leg"), nb::arg("condition"));
-    m.def("limits_ranges", &limits_ranges, nb::arg("model"), nb::arg("q"),
-          nb::arg("warn_condition").none(), nb::arg("ends"), nb::arg("limit"), nb::arg("leg"),
-          nb::arg("other_leg"));
-    m.def("limit_class_name", [](int c) { return std::string(stewart_limit_class_name(c)); });
-    m.attr("LIMIT_CLASSES") = STEWART_LIMIT_CLASSES;
-
+    m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"),
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("force"));
+    m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"));
     m.def("geometry_jacobian", &geometry_jacobian_rows, nb::arg("model"), nb::arg("poses"),
           nb::arg("length"), nb::arg("reading"), nb::arg("base_joint"), nb::arg("platform_joint"),
           nb::arg("tool_frame"), nb::arg("user_frame"), nb::arg("pose"));
@@ -636,6 +686,14 @@ NB_MODULE(_core, m) {
         stewart_model_joints(model.get(), base.data(), platform.data());
         return std::make_pair(base, platform);
     });
+    m.def("limits_check", &limits_check, nb::arg("model"), nb::arg("q"),
+          nb::arg("warn_condition").none(), nb::arg("first"), nb::arg("failed"), nb::arg("margin"),
+          nb::arg("leg"), nb::arg("other_leg"), nb::arg("condition"));
+    m.def("limits_ranges", &limits_ranges, nb::arg("model"), nb::arg("q"),
+          nb::arg("warn_condition").none(), nb::arg("ends"), nb::arg("limit"), nb::arg("leg"),
+          nb::arg("other_leg"));
+    m.def("limit_class_name", [](int c) { return std::string(stewart_limit_class_name(c)); });
+    m.attr("LIMIT_CLASSES") = STEWART_LIMIT_CLASSES;
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
     // A platform file's text read by the library (stewart_params_read_json): [(name, values)]
     // of the parameters it gives, each with all its elements; ValueError with the library's

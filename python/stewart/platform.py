@@ -14,6 +14,7 @@ from .choices import Fidelity
 from .errors import ParameterError
 from .forward import ForwardSolution, run_forward
 from .inverse import InverseSolution, run_inverse
+from .linearize import InverseJacobian, Linearization, run_linearize, run_linearize_inverse
 from .limits import AxisRanges, LimitCheck
 from .limits import check as check_limits
 from .limits import ranges as limit_ranges
@@ -190,6 +191,24 @@ class Platform:
                                  absolute_tolerance=absolute_tolerance,
                                  max_internal_steps=max_internal_steps)
         return run_simulate(self._model, time, F, q0, q0_dot, options)
+
+    def linearize(self, pose, pose_rate=None, forces=None,
+                  fidelity: Union[Fidelity, int, str] = Fidelity.FULL) -> Linearization:
+        """The plant linearised at one operating point: A, B, C, D in the minimal coordinates
+        x = (pose, pose rates), u = forces, y = (pose, pose rates, lengths, length rates), exact
+        (automatic differentiation through the library's equations of motion, not finite
+        differences). pose, pose_rate (None: at rest), forces (None: those that hold the pose at
+        these rates without acceleration): 6 values each. fidelity "massless" or "full". A pose
+        the plant cannot take (a zero-length leg, a locked Cardan, pitch at +-90 degrees) raises
+        ValueError with the library's message."""
+        return run_linearize(self._model, pose, pose_rate, forces, fidelity)
+
+    def linearize_inverse(self, pose, pose_rate=None, pose_accel=None,
+                          fidelity: Union[Fidelity, int, str] = Fidelity.FULL) -> InverseJacobian:
+        """The inverse side's Jacobian at one pose: lengths, their rates and accelerations, the
+        forces of the fidelity and the base wrench, with their derivatives with respect to
+        (q, q_dot, q_ddot) (InverseJacobian.jacobian, 30 x 18)."""
+        return run_linearize_inverse(self._model, pose, pose_rate, pose_accel, fidelity)
 
 
 def _warn_condition(value: Optional[float]) -> Optional[float]:

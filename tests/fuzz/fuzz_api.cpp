@@ -17,6 +17,7 @@
 #include "fuzz_reader.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
 
 namespace {
@@ -254,6 +255,45 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
     stewart_plant_free(plant);
 }
 
+// Linearisation on the same model: raw or moderate poses, rates, accelerations and forces (NaN,
+// Inf, huge); a known status, a filled result finite, a message always terminated.
+void fuzz_linearize(Reader &in, const stewart_model *model) {
+    stewart_linearize_options options;
+    stewart_linearize_options_default(&options);
+    options.fidelity = in.byte() % 4;  // 0 and 3 are refused
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_linearize *l = stewart_linearize_create(model, &options, message, sizeof message);
+    if (!l) return;
+    for (int call = 0; call < 8 && in.left > 0; ++call) {
+        const uint8_t what = in.byte();
+        stewart_linearize_input input{};
+        const double home[6] = {0, 0, 0.5, 0, 0, 0};
+        for (int i = 0; i < 6; ++i) {
+            input.pose.q[i] = (what & 1) ? in.value() : home[i] + in.value() / 100;
+            input.pose.q_dot[i] = (what & 2) ? in.value() : 0;
+            input.pose.q_ddot[i] = (what & 4) ? in.value() : 0;
+            input.force[i] = (what & 8) ? in.value() : 300;
+        }
+        stewart_status s;
+        if (what & 16) {
+            stewart_linearize_inverse_output out;
+            s = stewart_linearize_inverse(l, &input.pose, &out);
+            if (s == STEWART_OK)
+                for (size_t i = 0; i < sizeof out.jacobian / sizeof(double); ++i)
+                    if (!std::isfinite((&out.jacobian[0][0])[i])) std::abort();
+        } else {
+            stewart_linearize_output out;
+            s = stewart_linearize_plant(l, &input, &out);
+            if (s == STEWART_OK)
+                for (size_t i = 0; i < sizeof out.A / sizeof(double); ++i)
+                    if (!std::isfinite((&out.A[0][0])[i])) std::abort();
+        }
+        if (s > STEWART_OK || s < STEWART_ERR_OTHER_BRANCH) std::abort();
+        if (!std::memchr(stewart_linearize_message(l), '\0', STEWART_MESSAGE_SIZE)) std::abort();
+    }
+    stewart_linearize_free(l);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
@@ -293,5 +333,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     fuzz_forward(again, c->model);
     Reader plant_bytes{bytes, size};
     fuzz_plant(plant_bytes, c->model);
+    Reader linearize_bytes{bytes, size};
+    fuzz_linearize(linearize_bytes, c->model);
     return 0;
 }

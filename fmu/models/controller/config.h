@@ -15,6 +15,13 @@
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
 #define FMU_CAN_INTERPOLATE_INPUTS 0
 
+/* Directional derivatives: the gains (derivatives.c). */
+#define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1
+/* The model structure: F[k] depends on leg k's five inputs only (the inputs come in blocks of
+ * six, one per leg); status checks every input. */
+#define FMU_OUTPUT_DEPENDS_ON(out, in)                                                            \
+    ((out) >= VR_F_1 && (out) <= VR_F_6 ? ((in) - VR_L_ref_1) % 6 == (out) - VR_F_1 : 1)
+
 /* Plain values: what the outputs' last evaluation returned. */
 typedef struct model_values {
     int solve_status;

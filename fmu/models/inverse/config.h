@@ -8,6 +8,7 @@
 #define STEWART_FMU_CONFIG_H
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_linearize.h"
 #include "stewart/stewart_limits.h"
 /* The library's parameter and option tables: variables.def expands them (no parameter is
  * listed twice). */
@@ -24,6 +25,21 @@
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.1\""
 /* FMI 2 canInterpolateInputs: the model takes input derivatives (model_set_input_derivatives). */
 #define FMU_CAN_INTERPOLATE_INPUTS 1
+
+/* Directional derivatives of the outputs with respect to the inputs (derivatives.c). */
+#define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1
+/* The model structure: which inputs each output depends on (over every value of the parameters
+ * derivatives and fidelity). Lengths on the pose, their rates on the pose and its rates (the
+ * rates are inputs, or finite differences of the pose), the condition number, the Newton
+ * iterations and the residual on the pose; the rest (accelerations, forces, base wrench, and
+ * status, which checks that every input is finite) on every input. */
+#define FMU_OUTPUT_DEPENDS_ON(out, in)                                                            \
+    ((out) >= VR_L_1 && (out) <= VR_L_6                 ? (in) <= VR_yaw                          \
+     : (out) >= VR_L_dot_1 && (out) <= VR_L_dot_6       ? (in) <= VR_yaw_dot                      \
+     : (out) == VR_condition || (out) == VR_residual || (out) == VR_newton_iterations             \
+         ? (in) <= VR_yaw                                                                         \
+     : (out) >= VR_limit_class ? (in) <= VR_yaw /* the limits: the pose's */                      \
+         : 1)
 
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
 typedef struct model_values {
@@ -43,6 +59,8 @@ typedef struct model_resources {
     stewart_limits *limits;    /* the limit check and axis ranges for `model` (limit_outputs) */
     stewart_params params;     /* the parameters `model` was built from */
     stewart_inverse_options options;
+    stewart_linearize *linearize; /* for directional derivatives: made for `model` when first
+                                     asked, with the fidelity of its forces */
     char message[2 * STEWART_MESSAGE_SIZE];
 } model_resources;
 

@@ -112,6 +112,8 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
         stewart_inverse_free(r->inverse);
         r->inverse = d;
         if (new_model) {
+            stewart_linearize_free(r->linearize); /* made for the old model */
+            r->linearize = NULL;
             stewart_model_free(r->model);
             r->model = m;
             r->params = p;
@@ -148,6 +150,8 @@ void model_reset(fmu_instance *inst) {
 }
 
 void model_free(fmu_instance *inst) {
+    stewart_linearize_free(inst->res.linearize);
+    inst->res.linearize = NULL;
     stewart_limits_free(inst->res.limits);
     stewart_inverse_free(inst->res.inverse);
     stewart_model_free(inst->res.model);
@@ -198,6 +202,12 @@ static void current_pose(const fmu_values *v, double time, stewart_pose *pose) {
         }
     }
 }
+
+void inverse_current_pose(const fmu_values *v, double time, stewart_pose *pose) {
+    current_pose(v, time, pose);
+}
+
+int inverse_uses_rate_inputs(const fmu_values *v) { return taylor_mode(v); }
 
 static fmu_status map_solve_error(stewart_status s) {
     switch (s) {

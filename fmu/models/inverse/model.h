@@ -8,4 +8,11 @@
 void inverse_params_from_values(const fmu_values *v, stewart_params *p);
 void inverse_options_from_values(const fmu_values *v, stewart_inverse_options *o);
 
+/* The pose (and its rates and accelerations) the outputs are solved at for the inputs at time:
+ * the rate inputs, or finite differences of the pose over the last communication points. */
+void inverse_current_pose(const fmu_values *v, double time, stewart_pose *pose);
+/* 1 if the rates come from the *_dot and *_ddot inputs (derivatives = 1 or FMI 2 input
+ * derivatives), 0 if from finite differences of the pose. */
+int inverse_uses_rate_inputs(const fmu_values *v);
+
 #endif

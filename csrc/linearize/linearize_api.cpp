@@ -1,0 +1,358 @@
+// The linearisation's C API (stewart_linearize.h): input checks, the dual evaluations of
+// plant_derivatives.* laid out as A, B, C, D, and the inverse side's Jacobian by the implicit
+// function theorem on the plant's equations.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <new>
+
+#include <Eigen/LU>
+
+#include "linearize/plant_derivatives.hpp"
+#include "model.hpp"
+#include "stewart/stewart_linearize.h"
+#include "util/message.hpp"
+
+using stewart::clear_message;
+using stewart::Dual;
+using stewart::set_message;
+namespace fd = stewart::fd;
+namespace lin = stewart::lin;
+
+struct stewart_linearize {
+    const stewart_model *model = nullptr;
+    stewart_linearize_options options{};
+    fd::DynamicsModel dynamics;
+    char message[STEWART_MESSAGE_SIZE] = "";
+};
+
+namespace {
+
+constexpr int kStates = STEWART_LINEARIZE_STATES;
+constexpr uint32_t kMagic = 0x4c494e31u;  // "LIN1"
+constexpr uint32_t kVersion = 1;
+// Below it the forces do not hold the pose: the map from forces to pose accelerations is
+// singular (reciprocal condition number, 1-norm).
+constexpr double kMinForceMapConditionInverse = 1e-13;
+
+struct SavedState {
+    uint32_t magic, version;
+    int32_t fidelity;
+};
+
+// STEWART_ERR_ARGUMENT naming the first of n values that is not finite (name[index] = value).
+stewart_status check_finite(const double *values, int n, const char *name, int first_index,
+                            char *msg, size_t size) {
+    for (int i = 0; i < n; ++i)
+        if (!std::isfinite(values[i]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s[%d] = %g must be finite",
+                               name, first_index + i, values[i]);
+    return STEWART_OK;
+}
+
+// STEWART_ERR_ARGUMENT if one of the doubles in the bytes [values, values + bytes) is not finite:
+// inputs beyond the plant's range overflow its equations.
+stewart_status check_overflow(const double *values, size_t bytes, char *msg, size_t size) {
+    for (size_t i = 0; i < bytes / sizeof(double); ++i)
+        if (!std::isfinite(values[i]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "the linearisation overflows at this operating point (its value "
+                               "%zu is %g): the inputs are beyond the plant's range", i,
+                               values[i]);
+    return STEWART_OK;
+}
+
+// The message and status of a failed evaluation.
+stewart_status failure(const lin::Failure &why, double pitch, char *msg, size_t size) {
+    if (why.pitch)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "pitch = %g rad is at +-90 degrees, where roll and yaw rates are "
+                           "undefined", pitch);
+    if (why.fault == fd::LegFault::ZeroLength)
+        return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                           "leg %d has zero length at this pose", why.leg + 1);
+    return set_message(msg, size, STEWART_ERR_SINGULAR, "the %s Cardan of leg %d is locked",
+                       why.fault == fd::LegFault::LockedBaseCardan ? "base" : "platform",
+                       why.leg + 1);
+}
+
+int stroke_legs_of(const stewart_params &p, const double length[STEWART_LEGS]) {
+    int legs = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (length[k] < p.stroke_min[k] || length[k] > p.stroke_max[k]) legs |= 1 << k;
+    return legs;
+}
+
+// STEWART_ERR_UNSUPPORTED unless the model's tool and user frames are identity: the
+// linearisation works in the platform frame (its origin, in base coordinates).
+stewart_status check_frames(const stewart_model &model, char *msg, size_t size) {
+    if (model.frames.identity) return STEWART_OK;
+    return set_message(msg, size, STEWART_ERR_UNSUPPORTED,
+                       "the linearisation works in the platform frame: tool_frame and user_frame "
+                       "must be identity (not yet transformed)");
+}
+
+// The sensors read the Cardan-to-Cardan length less length_offset (a constant: no derivative).
+void subtract_offsets(const stewart_model &model, double length[STEWART_LEGS]) {
+    if (model.length_offsets)
+        for (int k = 0; k < STEWART_LEGS; ++k) length[k] -= model.params.length_offset[k];
+}
+
+// The pose checks both calls share: pose finite (rows 0 to last_row), pitch off +-90 degrees.
+stewart_status check_pose_rows(const stewart_pose &pose, int last_row, char *msg, size_t size) {
+    const double *rows[3] = {pose.q, pose.q_dot, pose.q_ddot};
+    const char *names[3] = {"q", "q_dot", "q_ddot"};
+    for (int r = 0; r <= last_row; ++r) {
+        const stewart_status s = check_finite(rows[r], 6, names[r], 0, msg, size);
+        if (s != STEWART_OK) return s;
+    }
+    if (!(std::fabs(std::cos(pose.q[4])) > lin::kMinCosPitch))
+        return failure(lin::Failure{fd::LegFault::None, -1, true}, pose.q[4], msg, size);
+    return STEWART_OK;
+}
+
+}  // namespace
+
+extern "C" void stewart_linearize_options_default(stewart_linearize_options *o) {
+    if (o) o->fidelity = STEWART_FULL;
+}
+
+extern "C" stewart_status stewart_linearize_options_check(const stewart_linearize_options *o,
+                                                          char *msg, size_t size) {
+    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
+    if (o->fidelity != STEWART_MASSLESS && o->fidelity != STEWART_FULL)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fidelity = %d must be %d (massless legs) or %d (full)", o->fidelity,
+                           STEWART_MASSLESS, STEWART_FULL);
+    return clear_message(msg, size);
+}
+
+extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *model,
+                                                       const stewart_linearize_options *options,
+                                                       char *msg, size_t size) {
+    if (!model) {
+        set_message(msg, size, STEWART_ERR_ARGUMENT, "model is NULL");
+        return nullptr;
+    }
+    if (stewart_linearize_options_check(options, msg, size) != STEWART_OK) return nullptr;
+    stewart_linearize *l = new (std::nothrow) stewart_linearize;
+    if (!l) {
+        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the linearisation");
+        return nullptr;
+    }
+    l->model = model;
+    l->options = *options;
+    l->dynamics = fd::dynamics_model(*model, options->fidelity);
+    clear_message(msg, size);
+    return l;
+}
+
+extern "C" const stewart_linearize_options *stewart_linearize_options_of(
+    const stewart_linearize *l) {
+    return l ? &l->options : nullptr;
+}
+
+extern "C" void stewart_linearize_free(stewart_linearize *l) { delete l; }
+
+extern "C" void stewart_linearize_reset(stewart_linearize *l) {
+    if (l) l->message[0] = '\0';
+}
+
+extern "C" stewart_status stewart_linearize_copy(stewart_linearize *dst,
+                                                 const stewart_linearize *src) {
+    if (!dst) return STEWART_ERR_ARGUMENT;
+    if (!src)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
+    if (dst->model != src->model)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
+                           "the linearisations were made for different models");
+    dst->options = src->options;
+    dst->dynamics = src->dynamics;
+    std::memcpy(dst->message, src->message, sizeof dst->message);
+    return STEWART_OK;
+}
+
+extern "C" size_t stewart_linearize_state_size(const stewart_linearize *l) {
+    return l ? sizeof(SavedState) : 0;
+}
+
+extern "C" stewart_status stewart_linearize_save(const stewart_linearize *l, void *buffer,
+                                                 size_t size) {
+    if (!l) return STEWART_ERR_ARGUMENT;
+    if (!buffer || size < sizeof(SavedState))
+        return STEWART_ERR_ARGUMENT;
+    const SavedState s{kMagic, kVersion, l->options.fidelity};
+    std::memcpy(buffer, &s, sizeof s);
+    return STEWART_OK;
+}
+
+extern "C" stewart_status stewart_linearize_load(stewart_linearize *l, const void *buffer,
+                                                 size_t size) {
+    if (!l) return STEWART_ERR_ARGUMENT;
+    char *msg = l->message;
+    if (!buffer || size != sizeof(SavedState))
+        return set_message(msg, sizeof l->message, STEWART_ERR_ARGUMENT,
+                           "state: %zu bytes, a linearisation's state has %zu", buffer ? size : 0,
+                           sizeof(SavedState));
+    SavedState s;
+    std::memcpy(&s, buffer, sizeof s);
+    if (s.magic != kMagic || s.version != kVersion)
+        return set_message(msg, sizeof l->message, STEWART_ERR_ARGUMENT,
+                           "state: not a linearisation's state of this version (magic %#x, "
+                           "version %u)", s.magic, s.version);
+    stewart_linearize_options o{s.fidelity};
+    char why[STEWART_MESSAGE_SIZE];
+    if (stewart_linearize_options_check(&o, why, sizeof why) != STEWART_OK)
+        return set_message(msg, sizeof l->message, STEWART_ERR_ARGUMENT, "state: %s", why);
+    l->options = o;
+    l->dynamics = fd::dynamics_model(*l->model, o.fidelity);
+    return clear_message(msg, sizeof l->message);
+}
+
+extern "C" const char *stewart_linearize_message(const stewart_linearize *l) {
+    return l ? l->message : "linearisation is NULL";
+}
+
+extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
+                                                  const stewart_linearize_input *in,
+                                                  stewart_linearize_output *out) {
+    if (!l) return STEWART_ERR_ARGUMENT;
+    char *msg = l->message;
+    const size_t size = sizeof l->message;
+    if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL input or output");
+    stewart_status s;
+    if ((s = check_frames(*l->model, msg, size)) != STEWART_OK) return s;
+    if ((s = check_pose_rows(in->pose, 1, msg, size)) != STEWART_OK) return s;
+    if ((s = check_finite(in->force, STEWART_LEGS, "force", 1, msg, size)) != STEWART_OK) return s;
+    lin::PlantPoint p;
+    lin::Failure why;
+    if (!lin::plant_point(l->dynamics, in->pose.q, in->pose.q_dot, in->force, p, why))
+        return failure(why, in->pose.q[4], msg, size);
+
+    stewart_linearize_output o;
+    std::memset(&o, 0, sizeof o);
+    for (int i = 0; i < 6; ++i) {
+        o.state_rate[i] = in->pose.q_dot[i];
+        o.state_rate[6 + i] = p.q_ddot[i].value();
+        o.A[i][6 + i] = 1;  // d q_dot / d q_dot
+        for (int j = 0; j < kStates; ++j) o.A[6 + i][j] = p.q_ddot[i].derivatives()[j];
+        for (int j = 0; j < STEWART_LEGS; ++j) o.B[6 + i][j] = p.q_ddot[i].derivatives()[12 + j];
+        // y = (q, q_dot, L, L_dot).
+        o.output[i] = in->pose.q[i];
+        o.output[6 + i] = in->pose.q_dot[i];
+        o.C[i][i] = 1;
+        o.C[6 + i][6 + i] = 1;
+    }
+    double length[STEWART_LEGS];
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Dual *rows[2] = {&p.length[k], &p.length_rate[k]};
+        for (int r = 0; r < 2; ++r) {
+            const int row = 12 + 6 * r + k;
+            o.output[row] = rows[r]->value();
+            for (int j = 0; j < kStates; ++j) o.C[row][j] = rows[r]->derivatives()[j];
+            for (int j = 0; j < STEWART_LEGS; ++j) o.D[row][j] = rows[r]->derivatives()[12 + j];
+        }
+        length[k] = p.length[k].value();
+    }
+    o.stroke_legs = stroke_legs_of(l->model->params, length);
+    o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    subtract_offsets(*l->model, o.output + 12);
+    static_assert(offsetof(stewart_linearize_output, D) + sizeof o.D ==
+                      offsetof(stewart_linearize_output, state_rate) + sizeof o.state_rate +
+                          sizeof o.output + sizeof o.A + sizeof o.B + sizeof o.C + sizeof o.D,
+                  "the checked values are contiguous");
+    if ((s = check_overflow(&o.state_rate[0], sizeof o.state_rate + sizeof o.output + sizeof o.A +
+                                                  sizeof o.B + sizeof o.C + sizeof o.D,
+                            msg, size)) != STEWART_OK)
+        return s;
+    *out = o;
+    return clear_message(msg, size);
+}
+
+extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const stewart_pose *pose,
+                                                    stewart_linearize_inverse_output *out) {
+    if (!l) return STEWART_ERR_ARGUMENT;
+    char *msg = l->message;
+    const size_t size = sizeof l->message;
+    if (!pose || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or output");
+    stewart_status s;
+    if ((s = check_frames(*l->model, msg, size)) != STEWART_OK) return s;
+    if ((s = check_pose_rows(*pose, 2, msg, size)) != STEWART_OK) return s;
+
+    stewart_linearize_inverse_output o;
+    std::memset(&o, 0, sizeof o);
+    lin::Failure why;
+    Dual L[STEWART_LEGS], L_dot[STEWART_LEGS], L_ddot[STEWART_LEGS];
+    if (!lin::leg_lengths(l->dynamics.legs, pose->q, pose->q_dot, pose->q_ddot, L, L_dot, L_ddot,
+                          why))
+        return failure(why, pose->q[4], msg, size);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        o.lengths.length[k] = L[k].value();
+        o.lengths.length_rate[k] = L_dot[k].value();
+        o.lengths.length_accel[k] = L_ddot[k].value();
+        const Dual *rows[3] = {&L[k], &L_dot[k], &L_ddot[k]};
+        for (int r = 0; r < 3; ++r)
+            for (int j = 0; j < STEWART_LINEARIZE_INVERSE_COLUMNS; ++j)
+                o.jacobian[6 * r + k][j] = rows[r]->derivatives()[j];
+    }
+
+    // The plant's q_ddot = a(q, q_dot) + G(q) F (affine in F): F = G^-1 (q_ddot - a), and by the
+    // implicit function theorem dF/dz = -G^-1 d q_ddot/dz at that F (z = q, q_dot), G^-1 for q_ddot.
+    const double no_force[STEWART_LEGS] = {0};
+    lin::PlantPoint at_rest, at_force;
+    if (!lin::plant_point(l->dynamics, pose->q, pose->q_dot, no_force, at_rest, why))
+        return failure(why, pose->q[4], msg, size);
+    Eigen::Matrix<double, 6, 6> G;
+    Eigen::Matrix<double, 6, 1> missing;
+    for (int i = 0; i < 6; ++i) {
+        G.row(i) = at_rest.q_ddot[i].derivatives().tail<6>().transpose();
+        missing[i] = pose->q_ddot[i] - at_rest.q_ddot[i].value();
+    }
+    const Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> lu(G);
+    const double rcond = lu.rcond();
+    if (!(rcond > kMinForceMapConditionInverse))
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the legs cannot hold this pose: the map from forces to pose "
+                           "accelerations is singular (reciprocal condition %g)", rcond);
+    const Eigen::Matrix<double, 6, 1> force = lu.solve(missing);
+    double force_values[STEWART_LEGS];
+    for (int k = 0; k < STEWART_LEGS; ++k) force_values[k] = force[k];
+    if (!lin::plant_point(l->dynamics, pose->q, pose->q_dot, force_values, at_force, why))
+        return failure(why, pose->q[4], msg, size);
+    Eigen::Matrix<double, 6, 12> accel_wrt_state;
+    for (int i = 0; i < 6; ++i)
+        accel_wrt_state.row(i) = at_force.q_ddot[i].derivatives().head<12>().transpose();
+    const Eigen::Matrix<double, 6, 12> force_wrt_state = -lu.solve(accel_wrt_state);
+    const Eigen::Matrix<double, 6, 6> force_wrt_accel = lu.inverse();
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        o.force[k] = force[k];
+        for (int j = 0; j < 12; ++j) o.jacobian[18 + k][j] = force_wrt_state(k, j);
+        for (int j = 0; j < 6; ++j) o.jacobian[18 + k][12 + j] = force_wrt_accel(k, j);
+    }
+    Dual base_force[3], base_torque[3];
+    if (!lin::pose_base_wrench(l->dynamics, pose->q, pose->q_dot, pose->q_ddot, base_force,
+                               base_torque, why))
+        return failure(why, pose->q[4], msg, size);
+    for (int i = 0; i < 3; ++i) {
+        o.base_force[i] = base_force[i].value();
+        o.base_torque[i] = base_torque[i].value();
+        for (int j = 0; j < STEWART_LINEARIZE_INVERSE_COLUMNS; ++j) {
+            o.jacobian[24 + i][j] = base_force[i].derivatives()[j];
+            o.jacobian[27 + i][j] = base_torque[i].derivatives()[j];
+        }
+    }
+    static_assert(offsetof(stewart_linearize_inverse_output, jacobian) ==
+                      offsetof(stewart_linearize_inverse_output, lengths) +
+                          sizeof(stewart_lengths) + 12 * sizeof(double),
+                  "the checked values are contiguous");
+    if ((s = check_overflow(&o.lengths.length[0], sizeof o.lengths + sizeof o.force +
+                                                       6 * sizeof(double) + sizeof o.jacobian,
+                            msg, size)) != STEWART_OK)
+        return s;
+    o.stroke_legs = stroke_legs_of(l->model->params, o.lengths.length);
+    o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    subtract_offsets(*l->model, o.lengths.length);
+    *out = o;
+    return clear_message(msg, size);
+}

@@ -1,0 +1,187 @@
+// The definitions of plant_equations.hpp's templates, for the files that instantiate them:
+// plant_equations.cpp (double, the plant) and linearize/plant_dual.cpp (the dual scalar), each
+// in its own translation unit so that the plant's double code is compiled as it was alone.
+#pragma once
+
+#include "plant/plant_equations.hpp"
+
+namespace stewart {
+namespace fd {
+
+namespace {
+
+template <class S>
+using Matrix66T = Eigen::Matrix<S, 6, 6>;
+template <class S>
+using Vector6T = Eigen::Matrix<S, 6, 1>;
+
+template <class S>
+Mat3T<S> skew(const Vec3T<S> &v) {
+    Mat3T<S> m;
+    m << S(0), -v[2], v[1], v[2], S(0), -v[0], -v[1], v[0], S(0);
+    return m;
+}
+
+template <class S>
+Mat3T<S> world_inertia(const Mat3T<S> &A, const Vec3 &principal) {
+    return A * principal.template cast<S>().asDiagonal() * A.transpose();
+}
+
+// Adds leg k's two bodies. Their accelerations are linear in u = (P_ddot, alpha) (the leg's
+// platform point and the platform's angular acceleration) plus the velocity products in the
+// biases, so their share is first formed in u (3 x 3 blocks) and then mapped to the twist rate
+// by u = S nu_dot, S = [I, K; 0, I], K = -[arm]x.
+template <class S>
+void add_leg(const DynamicsModel &d, const LegConfigurationT<S> &leg, int k,
+             const MotionT<S> &cyl, const MotionT<S> &pis, Matrix66T<S> &M, Vector6T<S> &rhs) {
+    LegAccelerationMapT<S> map;
+    leg_acceleration_map(d.legs, k, leg, map);
+    const Mat3T<S> I_cyl = world_inertia(cyl.rotation, d.cylinder_inertia);
+    const Mat3T<S> I_pis = world_inertia(pis.rotation, d.piston_inertia);
+    const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
+    const Mat3T<S> piston_linear = Mat3T<S>::Identity() - cp * map.N;
+    // u-space mass blocks: A (P_ddot, P_ddot), B (P_ddot, alpha), C (alpha, alpha).
+    Mat3T<S> A = (d.cylinder_mass * cc * cc) * (map.N * map.N) +
+             d.piston_mass * piston_linear.transpose() * piston_linear;
+    A.noalias() += map.cylinder_alpha.transpose() * I_cyl * map.cylinder_alpha;
+    A.noalias() += map.piston_alpha.transpose() * I_pis * map.piston_alpha;
+    const Vec3T<S> I_pis_n = I_pis * leg.n;
+    const Mat3T<S> B = -(map.piston_alpha.transpose() * I_pis_n) * map.piston_spin.transpose();
+    const Mat3T<S> C = leg.n.dot(I_pis_n) * map.piston_spin * map.piston_spin.transpose();
+    // Applied minus inertial forces of each body (force, torque about its centre of mass).
+    const Vec3T<S> f_cyl = d.cylinder_mass * (d.gravity.template cast<S>() - cyl.acceleration);
+    const Vec3T<S> t_cyl = -(I_cyl * cyl.alpha + cyl.omega.cross(I_cyl * cyl.omega));
+    const Vec3T<S> f_pis = d.piston_mass * (d.gravity.template cast<S>() - pis.acceleration);
+    const Vec3T<S> t_pis = -(I_pis * pis.alpha + pis.omega.cross(I_pis * pis.omega));
+    const Vec3T<S> f_point = cc * (map.N * f_cyl) + map.cylinder_alpha.transpose() * t_cyl +
+                             piston_linear.transpose() * f_pis +
+                             map.piston_alpha.transpose() * t_pis;
+    const Vec3T<S> f_alpha = -leg.n.dot(t_pis) * map.piston_spin;
+
+    const Mat3T<S> K = -skew(leg.arm);
+    const Mat3T<S> AK_B = A * K + B;
+    M.template topLeftCorner<3, 3>() += A;
+    M.template topRightCorner<3, 3>() += AK_B;
+    M.template bottomLeftCorner<3, 3>() += AK_B.transpose();
+    M.template bottomRightCorner<3, 3>().noalias() += K.transpose() * AK_B + B.transpose() * K + C;
+    rhs.template head<3>() += f_point;
+    rhs.template tail<3>() += leg.arm.cross(f_point) + f_alpha;
+}
+
+}  // namespace
+
+template <class S>
+bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWART_LEGS],
+                EvaluationT<S> &e) {
+    Matrix66T<S> M = Matrix66T<S>::Zero();
+    Vector6T<S> rhs = Vector6T<S>::Zero();
+
+    // The platform (and payload), centre of mass at c from the platform origin: with
+    // a_c = v_dot + alpha x c + omega x (omega x c), Newton-Euler about the origin gives
+    // M = [m I, -m [c]x; m [c]x, I_c - m [c]x [c]x] and the velocity-product and gravity terms.
+    const Vec3T<S> c = m.rotation * d.platform_com.template cast<S>();
+    const Mat3T<S> I_platform =
+        m.rotation * d.platform_inertia.template cast<S>() * m.rotation.transpose();
+    const Mat3T<S> c_cross = skew(c);
+    const double mass = d.platform_mass;
+    M.template topLeftCorner<3, 3>() = mass * Mat3T<S>::Identity();
+    M.template topRightCorner<3, 3>() = -mass * c_cross;
+    M.template bottomLeftCorner<3, 3>() = mass * c_cross;
+    M.template bottomRightCorner<3, 3>() = I_platform - mass * c_cross * c_cross;
+    const Vec3T<S> f_platform =
+        mass * (d.gravity.template cast<S>() - m.omega.cross(m.omega.cross(c)));
+    rhs.template head<3>() = f_platform;
+    rhs.template tail<3>() = c.cross(f_platform) - m.omega.cross(I_platform * m.omega);
+
+    MotionT<S> at_rest_rate = m;  // the twist, with zero twist rate: velocity products
+    at_rest_rate.acceleration.setZero();
+    at_rest_rate.alpha.setZero();
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        LegConfigurationT<S> &leg = e.legs[k];
+        const LegFault fault =
+            leg_configuration(d.legs, k, m.position, m.rotation, leg, d.with_legs);
+        if (fault != LegFault::None) {
+            e.fault = fault;
+            e.fault_leg = k;
+            return false;
+        }
+        // F_k along the leg: power F_k L_dot_k, L_dot_k = n . (v + omega x arm).
+        rhs.template head<3>() += force[k] * leg.n;
+        rhs.template tail<3>() += force[k] * leg.arm.cross(leg.n);
+        if (!d.with_legs) continue;
+
+        MotionT<S> cyl_bias, pis_bias;
+        leg_body_motion(d.legs, k, leg, at_rest_rate, cyl_bias, pis_bias);
+        add_leg(d, leg, k, cyl_bias, pis_bias, M, rhs);
+    }
+    if (!d.with_legs) {
+        // One rigid body: I_c alpha = T - c x F (moments about the origin), a = F/m - alpha x c.
+        const Vec3T<S> F = rhs.template head<3>();
+        const Vec3T<S> alpha =
+            m.rotation * (d.platform_inertia_inverse.template cast<S>() *
+                          (m.rotation.transpose() * (rhs.template tail<3>() - c.cross(F))));
+        e.twist_rate.template head<3>() = F / mass - alpha.cross(c);
+        e.twist_rate.template tail<3>() = alpha;
+        e.fault = LegFault::None;
+        e.fault_leg = -1;
+        return true;
+    }
+    // M is symmetric positive definite (the platform alone has a positive mass and inertia).
+    e.twist_rate = M.llt().solve(rhs);
+    e.fault = LegFault::None;
+    e.fault_leg = -1;
+    return true;
+}
+
+template <class S>
+void body_motions(const DynamicsModel &d, const MotionT<S> &m, const EvaluationT<S> &e,
+                  MotionT<S> bodies[13]) {
+    MotionT<S> &platform = bodies[0];
+    const Vec3T<S> c = m.rotation * d.platform_com.template cast<S>();
+    platform.position = m.position + c;
+    platform.rotation = m.rotation;
+    platform.velocity = m.velocity + m.omega.cross(c);
+    platform.omega = m.omega;
+    platform.acceleration = m.acceleration + m.alpha.cross(c) + m.omega.cross(m.omega.cross(c));
+    platform.alpha = m.alpha;
+    if (!d.with_legs) return;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        leg_body_motion(d.legs, k, e.legs[k], m, bodies[1 + k], bodies[7 + k]);
+}
+
+template <class S>
+void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &force,
+                 Vec3T<S> &torque) {
+    force.setZero();
+    torque.setZero();
+    const int count = d.with_legs ? 13 : 1;
+    for (int b = 0; b < count; ++b) {
+        const MotionT<S> &body = bodies[b];
+        double mass;
+        Mat3T<S> I;
+        if (b == 0) {
+            mass = d.platform_mass;
+            I = body.rotation * d.platform_inertia.template cast<S>() * body.rotation.transpose();
+        } else {
+            mass = b <= 6 ? d.cylinder_mass : d.piston_mass;
+            I = world_inertia(body.rotation, b <= 6 ? d.cylinder_inertia : d.piston_inertia);
+        }
+        // What the base must supply to this body beyond gravity, with the sign reversed.
+        const Vec3T<S> f = mass * (body.acceleration - d.gravity.template cast<S>());
+        force -= f;
+        torque -= body.position.cross(f) + I * body.alpha + body.omega.cross(I * body.omega);
+    }
+}
+
+
+// Explicit instantiation for the scalar S (inside namespace stewart::fd).
+#define STEWART_PLANT_EQUATIONS_INSTANTIATE(S)                                                    \
+    template bool twist_rate<S>(const DynamicsModel &, const MotionT<S> &, const S *,             \
+                                EvaluationT<S> &);                                                \
+    template void body_motions<S>(const DynamicsModel &, const MotionT<S> &,                      \
+                                  const EvaluationT<S> &, MotionT<S>[13]);                        \
+    template void base_wrench<S>(const DynamicsModel &, const MotionT<S>[13], Vec3T<S> &,         \
+                                 Vec3T<S> &);
+
+}  // namespace fd
+}  // namespace stewart

@@ -1,0 +1,55 @@
+/* Directional derivatives through the model's hook (derivatives.h). */
+#include "derivatives.h"
+
+#include "call_table.h"
+#include "logging.h"
+#include "model_interface.h"
+#include "variables.h"
+
+#ifndef FMU_PROVIDES_DIRECTIONAL_DERIVATIVE
+#define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 0
+#endif
+
+#if FMU_PROVIDES_DIRECTIONAL_DERIVATIVE
+/* FMU_OK if every vr[i] is a Real variable of the causality, else Error naming it. */
+static fmu_status check_all(fmu_instance *inst, const char *function, const unsigned vr[],
+                            size_t n, fmu_causality causality, const char *what) {
+    for (size_t i = 0; i < n; ++i) {
+        const fmu_variable *var = fmu_variable_by_vr(vr[i]);
+        if (!var || var->type != FMU_REAL || var->causality != causality) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: value reference %u (%s) is not a Real %s",
+                    function, vr[i], var ? var->name : "no variable", what);
+            return FMU_ERROR;
+        }
+    }
+    return FMU_OK;
+}
+#endif
+
+fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unknown[],
+                                          size_t n_unknown, const unsigned known[],
+                                          size_t n_known, const double seed[],
+                                          double sensitivity[], const char *function) {
+#if FMU_PROVIDES_DIRECTIONAL_DERIVATIVE
+    if (fmu_check_call(inst, CALL_GET_DIRECTIONAL_DERIVATIVE, function) != FMU_OK)
+        return FMU_ERROR;
+    if ((n_unknown > 0 && (!unknown || !sensitivity)) || (n_known > 0 && (!known || !seed))) {
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "%s: an array of value references, seeds or sensitivities is NULL for a nonzero "
+                "count", function);
+        return FMU_ERROR;
+    }
+    if (check_all(inst, function, unknown, n_unknown, FMU_OUTPUT_VAR, "output") != FMU_OK ||
+        check_all(inst, function, known, n_known, FMU_INPUT_VAR, "input") != FMU_OK)
+        return FMU_ERROR;
+    /* In initialisation mode the outputs (and what they are made from) may not exist yet. */
+    if (inst->v.mode == MODE_INITIALIZATION && fmu_apply_initial_parameters(inst) != FMU_OK)
+        return fmu_fail(inst);
+    return model_directional_derivative(inst, unknown, n_unknown, known, n_known, seed,
+                                        sensitivity);
+#else
+    (void)unknown; (void)n_unknown; (void)known; (void)n_known; (void)seed; (void)sensitivity;
+    if (inst) fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s is not supported by this FMU", function);
+    return FMU_ERROR;
+#endif
+}

@@ -1,0 +1,134 @@
+#!/usr/bin/env python3
+"""Control design on the linearised plant (docs/control.md): the open-loop eigenvalues at the
+home pose under its static forces (Platform.linearize, both fidelities), an LQR state feedback on
+the six leg forces designed on the full model's (A, B) with scipy, and that controller closed
+around the nonlinear plant FMU in fmpy on a scene, beside today's PD controller unit
+(scripts/closed_loop.py) on the same scene.
+
+The LQR loop: the inverse unit's forces F_ff (feed-forward, as for PD) plus
+    F = F_ff - K (x - x_ref),   x = (pose, pose rates) of the plant, x_ref = the scene's,
+with K the discrete LQR gain of the plant sampled at the communication step h (forces held over
+a step: Ad = exp(A h), Bd = int_0^h exp(A s) ds B, from the exponential of [[A, B], [0, 0]] h),
+K = (R + Bd^T P Bd)^-1 Bd^T P Ad with P from the discrete Riccati equation, at home;
+Q = diag(1/position_tol^2 (x3), 1/angle_tol^2 (x3), 1/speed_tol^2 (x3), 1/rate_tol^2 (x3)),
+R = I / force_tol^2 (Bryson's rule). A continuous design ignores the sampling: its fastest poles
+(-1e5 1/s at these weights) are far beyond 1/h, and the sampled loop diverges.
+
+usage: control_design.py [--scene combined] [--duration 4] [--step 0.001] [--fmus build/fmus/2.0]
+"""
+import argparse
+import pathlib
+
+import numpy as np
+import scipy.linalg
+
+import closed_loop
+import scenes
+import stewart
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+HOME = np.array([0, 0, 0.5, 0, 0, 0.0])
+# Bryson's rule: the deviations that cost as much as each other.
+POSITION_TOL, ANGLE_TOL = 1e-5, 1e-5   # [m], [rad]
+SPEED_TOL, RATE_TOL = 1e-3, 1e-3       # [m/s], [rad/s]
+FORCE_TOL = 1e3                        # [N]
+
+
+def open_loop(platform, fidelity):
+    """Eigenvalues of A at home, at rest, under the static forces."""
+    return np.linalg.eigvals(platform.linearize(HOME, fidelity=fidelity).A)
+
+
+def sampled(A, B, h):
+    """(Ad, Bd): the plant over one step h with the forces held."""
+    n, m = B.shape
+    M = np.zeros((n + m, n + m))
+    M[:n, :n], M[:n, n:] = A * h, B * h
+    E = scipy.linalg.expm(M)
+    return E[:n, :n], E[:n, n:]
+
+
+def lqr(A, B, h):
+    """The discrete LQR gain K (u = -K x) of (A, B) sampled at h, and Ad, Bd."""
+    Q = np.diag([1 / POSITION_TOL**2] * 3 + [1 / ANGLE_TOL**2] * 3 + [1 / SPEED_TOL**2] * 3 +
+                [1 / RATE_TOL**2] * 3)
+    R = np.eye(6) / FORCE_TOL**2
+    Ad, Bd = sampled(A, B, h)
+    P = scipy.linalg.solve_discrete_are(Ad, Bd, Q, R)
+    return np.linalg.solve(R + Bd.T @ P @ Bd, Bd.T @ P @ Ad), Ad, Bd
+
+
+def run_lqr(K, scene, duration, h, fmus, fidelity=2):
+    """The LQR loop around the plant FMU; the same shape of result as closed_loop.run."""
+    n = int(round(duration / h))
+    t = np.arange(n + 1) * h
+    cue, cue_dot, cue_ddot = scenes.pose(scene, t)
+    start = {f"{p}0": v for p, v in zip(closed_loop.POSE, cue[0])}
+    start.update({f"{p}_dot0": v for p, v in zip(closed_loop.POSE, cue_dot[0])})
+    fmus = pathlib.Path(fmus)
+    inverse = closed_loop.Unit(fmus / "StewartPlatform.fmu", "inverse",
+                               {"fidelity": fidelity, "derivatives": 1})
+    plant = closed_loop.Unit(fmus / "StewartPlant.fmu", "plant", {"fidelity": fidelity, **start})
+    rates = [f"{p}_dot" for p in closed_loop.POSE]
+    pose, force = np.zeros((n + 1, 6)), np.zeros((n + 1, 6))
+    try:
+        for j in range(n + 1):
+            inverse.set(closed_loop.POSE + list(scenes.DOT) + list(scenes.DDOT),
+                        [*cue[j], *cue_dot[j], *cue_ddot[j]])
+            feed_forward = inverse.get(closed_loop.legs("F"))
+            x = plant.get(closed_loop.POSE + rates)
+            error = x - np.concatenate([cue[j], cue_dot[j]])
+            force[j] = feed_forward - K @ error
+            pose[j] = x[:6]
+            if j == n:
+                break
+            plant.set(closed_loop.legs("F"), force[j])
+            for unit in (inverse, plant):
+                unit.step(t[j], h)
+    finally:
+        inverse.free()
+        plant.free()
+    return {"t": t, "cue": cue, "pose": pose, "force": force}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--scene", default="combined")
+    parser.add_argument("--duration", type=float, default=4.0, help="[s]")
+    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
+    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
+    args = parser.parse_args()
+    platform = stewart.Platform()
+    np.set_printoptions(precision=3, linewidth=110)
+    for fidelity in ("massless", "full"):
+        ev = open_loop(platform, fidelity)
+        ev = ev[np.argsort(-ev.real)]
+        print(f"open loop, {fidelity}: eigenvalues of A at home under the static forces [1/s]:")
+        print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in ev))
+    lin = platform.linearize(HOME, fidelity="full")
+    K, Ad, Bd = lqr(lin.A, lin.B, args.step)
+    closed = np.log(np.linalg.eigvals(Ad - Bd @ K).astype(complex)) / args.step
+    print(f"LQR on the full model sampled at {args.step:g} s: closed-loop eigenvalues as rates "
+          "log(z)/h [1/s], slowest first:")
+    closed = closed[np.argsort(-closed.real)]
+    print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in closed))
+    # today's PD on the legs as a state feedback of the same linear model: F = -kp dL - kd dL_dot,
+    # dL = C_L dx, dL_dot = C_Ldot dx (rows 12-17 and 18-23 of C)
+    K_pd = 1e6 * lin.C[12:18] + 1e4 * lin.C[18:24]
+    pd = np.log(np.linalg.eigvals(Ad - Bd @ K_pd).astype(complex)) / args.step
+    pd = pd[np.argsort(-pd.real)]
+    print("PD (kp 1e6 N/m, kd 1e4 N s/m) on the same sampled model: closed-loop rates [1/s]:")
+    print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in pd))
+    scene = scenes.load(args.scene)
+    lqr_run = run_lqr(K, scene, args.duration, args.step, args.fmus)
+    pd_run, _ = closed_loop.run(scene, args.duration, args.step, fmus=args.fmus)
+    for name, run in (("PD (controller unit, kp 1e6 N/m, kd 1e4 N s/m)", pd_run),
+                      ("LQR (state feedback on the linear model)", lqr_run)):
+        position, angle = closed_loop.tracking_error(run)
+        peak = np.abs(run["force"]).max()
+        print(f"{name}: {scene['name']} over {args.duration:g} s at h = {args.step:g} s: "
+              f"tracking error max {position:.3e} m, {angle:.3e} rad; peak force {peak:.4g} N")
+
+
+if __name__ == "__main__":
+    main()
