@@ -46,11 +46,7 @@ stewart_status leg_kinematics(const PlatformGeometry &g, const Motion &m, LegKin
         const Eigen::Vector3d r = out.arm.col(k);
         const Eigen::Vector3d d = m.position + r - g.base_points.col(k);
         const double L = d.norm();
-        // A leg of (nearly) zero length has no direction: no force or rate can be defined.
-        if (!(L > g.min_length))
-            return set_message(msg, size, STEWART_ERR_UNREACHABLE,
-                               "leg %d has length %g m at this pose: its platform point lies on its "
-                               "base point", k + 1, L);
+        if (!(L > g.min_length)) return check_leg_length(k, L, g.min_length, msg, size);
         const double inv_L = 1.0 / L;  // one division per leg, in the hot path
         const Eigen::Vector3d n = d * inv_L;
         const Eigen::Vector3d v = m.velocity + m.omega.cross(r);
@@ -78,6 +74,14 @@ void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacob
                         ? out.transposed.cwiseAbs().rowwise().sum().maxCoeff() *
                               out.inverse_transposed.cwiseAbs().rowwise().sum().maxCoeff()
                         : HUGE_VAL;
+}
+
+stewart_status check_leg_length(int leg, double length, double min_length, char *msg,
+                                size_t size) {
+    if (length > min_length) return STEWART_OK;
+    return set_message(msg, size, STEWART_ERR_UNREACHABLE,
+                       "leg %d has length %g m at this pose: its platform point lies on its base "
+                       "point", leg + 1, length);
 }
 
 stewart_status check_condition(double condition, double singular_condition, char *msg,

@@ -43,6 +43,11 @@ struct LegKinematics {
 stewart_status leg_kinematics(const PlatformGeometry &g, const Motion &m, LegKinematics &out,
                               char *msg, size_t size);
 
+// STEWART_ERR_UNREACHABLE (message names the leg and its length) unless length > min_length: a
+// leg of (nearly) zero length has no direction, so no force or rate can be defined.
+stewart_status check_leg_length(int leg, double length, double min_length, char *msg,
+                                size_t size);
+
 // The leg Jacobian J maps the platform twist (v, omega) at its origin to the leg rates L_dot.
 // Its angular columns are divided by the characteristic length (the platform radius), so that
 // the condition number is dimensionless and the same for a platform of any size.

@@ -40,10 +40,7 @@ stewart_status geometry_jacobian(const CalibrationGeometry &g, const double pose
         const Eigen::Vector3d from_user = user.rotation * in_user;  // user origin to joint, base
         const Eigen::Vector3d d = user.origin + from_user - g.base_points.col(k);
         const double L = d.norm();
-        if (!(L > g.min_length))
-            return set_message(msg, size, STEWART_ERR_UNREACHABLE,
-                               "leg %d has length %g m at this pose: its platform joint lies on "
-                               "its base joint", k + 1, L);
+        if (!(L > g.min_length)) return check_leg_length(k, L, g.min_length, msg, size);
         const Eigen::Vector3d n = d / L;                                  // base frame
         const Eigen::Vector3d n_platform = platform_to_base.transpose() * n;
         const Eigen::Vector3d n_user = user.rotation.transpose() * n;
