@@ -17,6 +17,11 @@ constexpr double kInsideRoot = 1e-7;
 // (reported as the search's end, STEWART_LIMIT_NONE); the bisection only runs where a step
 // proven safe met a limit after all (rounding at a margin of zero).
 constexpr int kMaxSteps = 4000, kMaxBisection = 60;
+// The condition's proof is loose near a singularity (by about 100 there: docs/limits.md 7.2):
+// after this many steps limited by it on one side, its steps are at least kConditionGrid [m or
+// rad] (an excursion above warn_condition narrower than that may be missed from there on).
+constexpr int kProvenConditionSteps = 32;
+constexpr double kConditionGrid = 5e-3;
 
 bool within(const stewart_limits_output &o) { return o.failed == 0; }
 
@@ -103,6 +108,7 @@ struct Side {
         double condition_until = condition_radius(c, here.legs, rates, here_jacobian, motion);
         PairBounds pairs;
         pair_bounds(here.legs, rates, motion, here_pairs, pairs);
+        int condition_steps = 0;
         for (int n = 0; n < kMaxSteps; ++n) {
             // Interference is measured only for pairs that may limit the step.
             const double condition_left = condition_until - t;
@@ -131,8 +137,13 @@ struct Side {
             t = x;
             now = next;
             leg_rates(c, now.legs, motion, rates);
-            if (with_condition)
-                condition_until = t + condition_radius(c, now.legs, rates, jacobian, motion);
+            if (with_condition) {
+                const double radius = condition_radius(c, now.legs, rates, jacobian, motion);
+                condition_steps += !grazing;
+                condition_until = t + (condition_steps > kProvenConditionSteps
+                                           ? std::max(radius, kConditionGrid)
+                                           : radius);
+            }
         }
         beyond = now.check;
         beyond.first = STEWART_LIMIT_NONE;
