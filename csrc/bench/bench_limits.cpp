@@ -5,7 +5,8 @@
 // fastest of 5 timings (see time_each). --near-singular: the hard case of the ranges' proven
 // steps instead, poses 0.01 to 0.04 rad short of the thesis platform's yaw singularity (90 deg)
 // with only the condition limited (warn_condition 1e3; strokes 0.05 to 3 m, no joint or
-// interference limit), where every step is bounded by the distance to the singularity.
+// interference limit), where the condition's proven steps shrink with the distance to the
+// singularity (docs/limits.md 7.2: after 32 of them on a side, steps of 5e-3).
 // usage: bench-limits [POSES (2000)] [--vendor | --near-singular] [--check-only | --ranges-only]
 // [--save FILE]: the --*-only forms make exactly POSES calls of one function for one set of
 // limits (studies/bench/limits.sh counts instructions inside it); --save appends the printed
@@ -129,6 +130,8 @@ int main(int argc, char **argv) {
                                    : nullptr;
     if (!limits) {
         std::fprintf(stderr, "bench-limits: %s\n", message);
+        if (save) std::fclose(save);
+        stewart_model_free(model);
         return 1;
     }
     const std::vector<stewart_limits_input> poses = workspace_poses(limits, n, singular);
