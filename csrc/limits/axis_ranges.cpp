@@ -3,186 +3,206 @@
 #include <algorithm>
 #include <cmath>
 
+#include "limits/axis_motion.hpp"
+#include "limits/range_bounds.hpp"
+
 namespace stewart {
 
 namespace {
 
-constexpr double kSmallestStep = 1e-5;        // [m or rad]: a thinner excursion may be missed
-constexpr double kConditionStep = 0.05;       // largest step for the condition [rad, or x the
-                                              // platform's size for a translation]
+// A stroke end is a closed-form root: the range ends this much inside it, well above the root's
+// rounding (about 1e-8 even where a leg's length barely changes there) [m or rad].
+constexpr double kInsideRoot = 1e-7;
 // Bounds on the evaluations of one side: a march that has not met a limit by then ends there
-// (reported as the search's end, STEWART_LIMIT_NONE).
-constexpr int kMaxMarch = 2000, kMaxRefine = 80;
+// (reported as the search's end, STEWART_LIMIT_NONE); the bisection only runs where a step
+// proven safe met a limit after all (rounding at a margin of zero).
+constexpr int kMaxSteps = 4000, kMaxBisection = 60;
+// The condition's proof is loose near a singularity (by about 100 there: docs/limits.md 7.2):
+// after this many steps limited by it on one side, its steps are at least kConditionGrid [m or
+// rad] (an excursion above warn_condition narrower than that may be missed from there on).
+constexpr int kProvenConditionSteps = 32;
+constexpr double kConditionGrid = 5e-3;
 
 bool within(const stewart_limits_output &o) { return o.failed == 0; }
 
-// The class whose margin a bracket's root is sought on: the first failing one.
-int failing_index(const stewart_limits_output &o) { return o.first - 1; }
+// `first` and `failed` from the margins, as the check sets them.
+void classify(stewart_limits_output &o) {
+    o.first = STEWART_LIMIT_NONE;
+    o.failed = 0;
+    for (int i = STEWART_LIMIT_CLASSES - 1; i >= 0; --i)
+        if (o.margin[i] < 0.0) {
+            o.failed |= 1 << i;
+            o.first = i + 1;
+        }
+}
 
-struct Search {
+// One pose along the search: the check's report and the legs. A class not checked there (known
+// within its limit) has margin +inf.
+struct Point {
+    stewart_limits_output check;
+    LegState legs;
+};
+
+// At tool pose q: the legs; with full_check the check of classes 1 to 4 (a proven step needs
+// none: its classes are within); with_condition the condition number and the Jacobian it came
+// from. Each as check_limits computes it.
+void evaluate(const LimitConstants &c, const double q[6], bool full_check, bool with_condition,
+              Point &p, LegJacobian &jacobian) {
+    double platform[6];
+    if (c.frames.identity) std::copy(q, q + 6, platform);
+    else platform_pose(c.frames, q, nullptr, platform, nullptr);  // cannot fail without rates
+    if (full_check) {
+        check_platform_limits(c, platform, p.check, false);
+    } else {
+        for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i) {
+            p.check.margin[i] = HUGE_VAL;
+            p.check.leg[i] = p.check.other_leg[i] = 0;
+        }
+        p.check.condition = 0.0;
+    }
+    leg_state(c, platform, p.legs);
+    if (with_condition) {
+        double inverse_condition = 0.0;
+        p.check.condition = HUGE_VAL;
+        jacobian.condition = HUGE_VAL;
+        if (p.legs.has_direction) {
+            leg_jacobian(c.geometry, p.legs.kinematics, jacobian);
+            p.check.condition = jacobian.condition;
+            if (std::isfinite(jacobian.condition) && jacobian.condition > 0.0)
+                inverse_condition = 1.0 / jacobian.condition;
+        }
+        p.check.margin[STEWART_LIMIT_CONDITION - 1] = inverse_condition - 1.0 / c.warn_condition;
+    }
+    classify(p.check);
+}
+
+// One side of one axis: a march from the pose in steps that range_bounds proves safe, up to the
+// first stroke end (a closed-form root).
+struct Side {
     const LimitConstants &c;
-    double q[6];
+    const double *q;
+    const RangeConstants &rc;
     int axis;
     double sign;
-    double extent;         // the farthest t searched
-    double speed;          // bound on a platform joint's speed per unit t [m]
-    double condition_cap;  // largest step where the condition leads
+    AxisMotion motion;
 
-    // Where the condition was last computed, its value and ||J^-T||_inf there (cond = ||J^T||
-    // ||J^-T||). A step of d changes each leg's column of J^T by at most d k_col (see at()).
-    double reference_t = 0.0, reference_condition = HUGE_VAL, reference_inverse_norm = HUGE_VAL;
-    double column_rate = HUGE_VAL;
-
-    // The check at t; the condition only where it may have reached its limit since the
-    // reference: with ||dJ^T||_inf <= e = 6 k_col |t - t_ref| and b = ||J^-T|| there,
-    // cond <= (||J^T|| + e) b / (1 - b e), within the limit w while e b (1 + w) < w - cond_ref.
-    void at(double t, stewart_limits_output &o) {
-        double p[6];
-        std::copy(q, q + 6, p);
-        p[axis] += sign * t;
-        const double e = 6.0 * column_rate * std::fabs(t - reference_t);
-        const bool with_condition = !(e * reference_inverse_norm * (1.0 + c.warn_condition) <
-                                      c.warn_condition - reference_condition);
-        double inverse_norm = HUGE_VAL;
-        check_limits(c, p, o, with_condition, &inverse_norm);
-        if (with_condition) {
-            reference_t = t;
-            reference_condition = o.condition;
-            reference_inverse_norm = inverse_norm;
-        }
+    void at(double t, bool full_check, bool with_condition, Point &p, LegJacobian &jacobian) const {
+        double moved[6];
+        std::copy(q, q + 6, moved);
+        moved[axis] += sign * t;
+        evaluate(c, moved, full_check, with_condition, p, jacobian);
     }
 
-    // A step along which no class with a known speed bound can reach its limit: each margin
-    // divided by the fastest its class can change (stroke: a joint's speed; joint angles: that
-    // over the shortest leg within the stroke, plus the platform's own turn for its joints;
-    // interference: both legs' speeds). The closest class may step further, to beyond the
-    // root its secant predicts: overshooting it only brackets the end sooner. The condition
-    // has no bound: its secant and a cap stand in.
-    double step(const stewart_limits_output &now, const stewart_limits_output &before,
-                double last_step) const {
-        const bool rotation = axis >= 3;
-        const double joint_rate = speed / c.shortest_stroke_min;
-        double safe[STEWART_LIMIT_CLASSES];
-        safe[0] = now.margin[0] / speed;
-        safe[1] = now.margin[1] / joint_rate;
-        safe[2] = now.margin[2] / (joint_rate + (rotation ? 1.0 : 0.0));
-        safe[3] = now.margin[3] / (2.0 * speed);
-        double predicted[STEWART_LIMIT_CLASSES];
-        for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i) {
-            const double slope = last_step > 0.0 ? (before.margin[i] - now.margin[i]) / last_step : 0.0;
-            predicted[i] = slope > 0.0 ? now.margin[i] / slope : HUGE_VAL;
-        }
-        safe[4] = std::min(condition_cap, 0.5 * predicted[4]);
-        const int closest = static_cast<int>(std::min_element(safe, safe + STEWART_LIMIT_CLASSES) - safe);
-        // The condition's cap holds unless its own root is predicted within it.
-        const bool overshoot = closest != STEWART_LIMIT_CONDITION - 1 || predicted[closest] <= condition_cap;
-        double h = HUGE_VAL;
-        for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i)
-            h = std::min(h, i == closest && overshoot ? std::max(safe[i], 1.25 * predicted[i]) : safe[i]);
-        return std::max(h, kSmallestStep);
-    }
-
-    // t of the last pose within every limit (from `here`, the check at t = 0), and the first
-    // limit's report beyond it.
-    double run(const stewart_limits_output &here, double here_inverse_norm,
-               stewart_limits_output &beyond) {
-        stewart_limits_output ok = here, before = here;
-        reference_condition = here.condition;
-        reference_inverse_norm = here_inverse_norm;
-        // A leg's unit vector turns at most speed / L (L >= the shortest stroke_min within the
-        // stroke); its moment arm R b_k turns with the platform (rotations).
-        const double turn = speed / c.shortest_stroke_min;
-        column_rate = turn + ((axis >= 3 ? c.longest_arm : 0.0) + c.longest_arm * turn) /
-                                 c.geometry.characteristic_length;
-        double t_ok = 0.0, last_step = 0.0;
-        for (int n = 0; n < kMaxMarch; ++n) {
-            if (t_ok >= extent) break;
-            const double h = std::min(step(ok, before, last_step), extent - t_ok);
-            stewart_limits_output next;
-            at(t_ok + h, next);
-            if (!within(next)) {
-                beyond = next;
-                return refine(t_ok, ok, t_ok + h, beyond);
+    // t of the last pose known within every limit, and the first limit's report beyond it
+    // (STEWART_LIMIT_NONE at the search's end).
+    double run(const Point &here, const LegJacobian &here_jacobian,
+               const double here_pairs[kLegPairs], double extent,
+               stewart_limits_output &beyond) const {
+        int stroke_leg = 0;
+        const double stroke_end = first_stroke_end(c, here.legs, motion, extent, stroke_leg);
+        Point now = here, next;
+        LegJacobian jacobian;
+        double t = 0.0;
+        LegRates rates;
+        leg_rates(c, here.legs, motion, rates);
+        double condition_until = condition_radius(c, here.legs, rates, here_jacobian, motion);
+        PairBounds pairs;
+        pair_bounds(here.legs, rates, motion, here_pairs, pairs);
+        int condition_steps = 0;
+        for (int n = 0; n < kMaxSteps; ++n) {
+            // Interference is measured only for pairs that may limit the step.
+            const double condition_left = condition_until - t;
+            const double others =
+                std::min(joint_radius(c, rc, now.legs, rates, motion), condition_left);
+            const double h = std::min(others, interference_radius(c, now.legs, t,
+                                                                  std::min(others, stroke_end - t),
+                                                                  pairs));
+            if (t + std::max(h, kAxisRangeTolerance) >= stroke_end) {
+                beyond = here.check;
+                beyond.first = stroke_leg ? STEWART_LIMIT_STROKE : STEWART_LIMIT_NONE;
+                beyond.leg[0] = stroke_leg;
+                beyond.other_leg[0] = 0;
+                return stroke_leg ? std::max(0.0, stroke_end - kInsideRoot) : stroke_end;
             }
-            before = ok;
-            ok = next;
-            t_ok += h;
-            last_step = h;
+            // A class within a tolerance of its limit: one tolerance ahead is beyond it (the
+            // end), or the class only grazed its limit (the march goes on from there).
+            const bool grazing = h < 0.5 * kAxisRangeTolerance;
+            const double x = t + (grazing ? kAxisRangeTolerance : h);
+            const bool with_condition = grazing || h >= condition_left;
+            at(x, grazing, with_condition, next, jacobian);
+            if (!within(next.check)) {
+                beyond = next.check;
+                return grazing ? t : bisect(t, x, beyond);
+            }
+            t = x;
+            now = next;
+            leg_rates(c, now.legs, motion, rates);
+            if (with_condition) {
+                const double radius = condition_radius(c, now.legs, rates, jacobian, motion);
+                condition_steps += !grazing;
+                condition_until = t + (condition_steps > kProvenConditionSteps
+                                           ? std::max(radius, kConditionGrid)
+                                           : radius);
+            }
         }
-        beyond = ok;
+        beyond = now.check;
         beyond.first = STEWART_LIMIT_NONE;
-        return std::min(t_ok, extent);
+        return t;
     }
 
-    // Illinois regula falsi on the failing class's margin, bisection when it stalls, until the
-    // bracket [t_ok, t_bad] is narrower than the tolerance.
-    double refine(double t_ok, stewart_limits_output ok, double t_bad, stewart_limits_output &bad) {
-        const double tol = kAxisRangeTolerance;
-        double width_two_before = HUGE_VAL, width_before = HUGE_VAL;
-        double weight_ok = 1.0, weight_bad = 1.0;
-        int last_side = 0;
-        for (int n = 0; n < kMaxRefine && t_bad - t_ok > tol; ++n) {
-            const int i = failing_index(bad);
-            const double m_ok = ok.margin[i] * weight_ok, m_bad = bad.margin[i] * weight_bad;
-            const double width = t_bad - t_ok;
-            const bool stalled = width > 0.5 * width_two_before;
-            double t = stalled || !(m_ok > m_bad) ? t_ok + 0.5 * width
-                                                  : t_ok + width * m_ok / (m_ok - m_bad);
-            t = std::clamp(t, t_ok + 0.25 * tol, t_bad - 0.25 * tol);
-            width_two_before = stalled ? HUGE_VAL : width_before;
-            width_before = width;
-            stewart_limits_output o;
-            at(t, o);
-            if (within(o)) {
+    // Bisection on the full check between t_ok (within) and t_bad (beyond) to the tolerance;
+    // only where rounding beat a proven step.
+    double bisect(double t_ok, double t_bad, stewart_limits_output &bad) const {
+        Point p;
+        LegJacobian jacobian;
+        for (int n = 0; n < kMaxBisection && t_bad - t_ok > kAxisRangeTolerance; ++n) {
+            const double t = 0.5 * (t_ok + t_bad);
+            at(t, true, true, p, jacobian);
+            if (within(p.check)) {
                 t_ok = t;
-                ok = o;
-                weight_ok = 1.0;
-                weight_bad = last_side == 1 ? 0.5 * weight_bad : 1.0;
-                last_side = 1;
             } else {
-                const bool same_class = o.first == bad.first;
                 t_bad = t;
-                bad = o;
-                weight_bad = 1.0;
-                weight_ok = last_side == -1 && same_class ? 0.5 * weight_ok : 1.0;
-                last_side = -1;
+                bad = p.check;
             }
         }
         return t_ok;
     }
 };
 
+// The class, leg and other leg of a report's first failing class (0s for none).
+void end_of(const stewart_limits_output &beyond, int &limit, int &leg, int &other) {
+    const int i = beyond.first - 1;
+    limit = beyond.first;
+    leg = i >= 0 ? beyond.leg[i] : 0;
+    other = i >= 0 ? beyond.other_leg[i] : 0;
+}
+
 }  // namespace
 
 void axis_ranges(const LimitConstants &c, const double q[6], stewart_axis_ranges &out) {
-    stewart_limits_output here;
-    double here_inverse_norm = HUGE_VAL;
-    check_limits(c, q, here, true, &here_inverse_norm);
+    Point here;
+    LegJacobian here_jacobian;
+    evaluate(c, q, true, true, here, here_jacobian);
+    const RangeConstants rc = range_constants(c);
+    double here_pairs[kLegPairs];
+    pair_margins(c, here.legs, here_pairs);
     // Within the stroke L_k <= stroke_max, and |p + t e + R b_k - a_k| >= t - L_k: beyond twice
     // the shortest stroke_max, some leg is surely too long.
-    const double reach =
-        2.0 * *std::min_element(c.stroke_max, c.stroke_max + STEWART_LEGS) + 2.0 * kSmallestStep;
-    // The platform's size: its radius, or its shortest leg if that is longer.
-    const double size = std::max(c.geometry.characteristic_length, c.shortest_stroke_min);
+    const double reach = 2.0 * *std::min_element(c.stroke_max, c.stroke_max + STEWART_LEGS) +
+                         2.0 * kAxisRangeTolerance;
     for (int axis = 0; axis < 6; ++axis)
         for (int side = 0; side < 2; ++side) {
             const double sign = side == 0 ? -1.0 : 1.0;
             double t = 0.0;
-            stewart_limits_output beyond = here;
-            if (within(here)) {
-                const bool rotation = axis >= 3;
-                Search s{c, {}, axis, sign, rotation ? M_PI : reach,
-                         rotation ? std::max(c.longest_arm, 1e-12) : 1.0,
-                         kConditionStep * (rotation ? 1.0 : size)};
-                std::copy(q, q + 6, s.q);
-                t = s.run(here, here_inverse_norm, beyond);
+            stewart_limits_output beyond = here.check;
+            if (within(here.check)) {
+                const Side s{c, q, rc, axis, sign, axis_motion(c.frames, q, axis, sign)};
+                t = s.run(here, here_jacobian, here_pairs, axis >= 3 ? M_PI : reach, beyond);
             }
-            const int i = beyond.first - 1;
-            const double end = q[axis] + sign * t;
-            (side == 0 ? out.min : out.max)[axis] = end;
-            (side == 0 ? out.min_limit : out.max_limit)[axis] = beyond.first;
-            (side == 0 ? out.min_leg : out.max_leg)[axis] = i >= 0 ? beyond.leg[i] : 0;
-            (side == 0 ? out.min_other_leg : out.max_other_leg)[axis] = i >= 0 ? beyond.other_leg[i] : 0;
+            (side == 0 ? out.min : out.max)[axis] = q[axis] + sign * t;
+            end_of(beyond, (side == 0 ? out.min_limit : out.max_limit)[axis],
+                   (side == 0 ? out.min_leg : out.max_leg)[axis],
+                   (side == 0 ? out.min_other_leg : out.max_other_leg)[axis]);
         }
 }
 

@@ -316,3 +316,49 @@ def test_axis_ranges_match_a_march_and_bisection_on_the_check(seed):
                 # within 1e-6 inside the end, never beyond it
                 assert sign * (end - got) >= -1e-9 and sign * (end - got) <= 1.05e-6, (where, got, end)
                 assert r.limit[row, axis, side] == met, where
+
+
+def test_axis_range_meets_a_condition_excursion_narrower_than_a_march_step():
+    """Yaw 0.02 rad short of the thesis platform's singular 90 deg, nothing but the condition
+    limited: the condition number rises above warn_condition = 1e3 only for yaw within about
+    4.5e-3 rad of 90 deg and falls below it beyond, an excursion 9e-3 rad wide that a march of
+    0.05 rad steps (the search before stop 26) steps over. The end against a march of 5e-4 rad
+    with bisection on the check, and the condition at both sides of it against numpy."""
+    plat, p, warn = platform(), params_of(), 1e3
+    for yaw in (np.pi / 2 - 0.02, np.pi / 2 - 0.011):
+        q = np.array([0.0, 0.0, 0.5, 0.0, 0.0, yaw])
+        assert jacobian_condition(p, q) < warn
+        r = plat.axis_ranges(q, warn_condition=warn, details=True)
+        end, met = march_and_bisect(plat, q, 5, 1.0, np.pi, warn, 5e-4)
+        assert met == CONDITION
+        got = r.ends[0, 5, 1]
+        assert -1e-9 <= end - got <= 1.05e-6, (yaw, got, end)
+        assert r.limit[0, 5, 1] == CONDITION
+        inside, outside = q.copy(), q.copy()
+        inside[5], outside[5] = got, got + 2e-6
+        assert jacobian_condition(p, inside) <= warn < jacobian_condition(p, outside)
+
+
+@pytest.mark.parametrize("axis", range(6))
+def test_axis_ranges_meet_narrow_condition_excursions_along_every_axis(axis):
+    """Poses 0.01 to 0.04 rad from the yaw singularity moved along each axis, a condition limit
+    1.5 to 6 times their own: every end within 0.3 against a dense march (1e-4) and bisection
+    on the check (beyond 32 condition-limited steps a side's condition steps are 5e-3: none of
+    these excursions is narrower)."""
+    plat = platform()
+    rng = np.random.default_rng(100 + axis)
+    for _ in range(4):
+        yaw = np.pi / 2 + rng.choice([-1, 1]) * rng.uniform(0.01, 0.04)
+        q = np.array([*rng.uniform(-0.02, 0.02, 2), 0.5 + rng.uniform(-0.02, 0.02),
+                      *rng.uniform(-0.02, 0.02, 2), yaw])
+        warn = float(plat.limits(q, warn_condition=1e300).condition[0]) * rng.uniform(1.5, 6.0)
+        r = plat.axis_ranges(q, warn_condition=warn, details=True)
+        extent = np.pi if axis >= 3 else 2 * 3.0 + 2e-5
+        for side, sign in ((0, -1.0), (1, 1.0)):
+            end, met = march_and_bisect(plat, q, axis, sign, min(extent, 0.3), warn, 1e-4)
+            got = r.ends[0, axis, side]
+            if met == 0:  # nothing within the scanned 0.3: the range reaches beyond it
+                assert sign * (got - q[axis]) >= 0.3 - 1e-9
+                continue
+            assert -1e-9 <= sign * (end - got) <= 1.05e-6, (q, axis, side, got, end, met)
+            assert r.limit[0, axis, side] == met
