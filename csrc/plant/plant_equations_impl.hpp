@@ -27,6 +27,15 @@ Mat3T<S> world_inertia(const Mat3T<S> &A, const Vec3 &principal) {
     return A * principal.template cast<S>().asDiagonal() * A.transpose();
 }
 
+// The applied minus inertial force f and torque t (about the centre of mass) of a body of the mass
+// and world inertia I moving as b, under gravity.
+template <class S>
+void body_wrench(double mass, const Vec3 &gravity, const Mat3T<S> &I, const MotionT<S> &b,
+                 Vec3T<S> &f, Vec3T<S> &t) {
+    f = mass * (gravity.template cast<S>() - b.acceleration);
+    t = -(I * b.alpha + b.omega.cross(I * b.omega));
+}
+
 // The applied minus inertial forces of leg k's two bodies (force, torque about each centre of
 // mass) as generalised forces: f_point on the leg's platform point P_ddot, f_alpha on the
 // platform's angular acceleration (the piston's spin about the leg). piston_linear = I - cp N.
@@ -35,10 +44,9 @@ void leg_forces(const DynamicsModel &d, const LegConfigurationT<S> &leg,
                 const LegAccelerationMapT<S> &map, const Mat3T<S> &piston_linear,
                 const MotionT<S> &cyl, const MotionT<S> &pis, const Mat3T<S> &I_cyl,
                 const Mat3T<S> &I_pis, Vec3T<S> &f_point, Vec3T<S> &f_alpha) {
-    const Vec3T<S> f_cyl = d.cylinder_mass * (d.gravity.template cast<S>() - cyl.acceleration);
-    const Vec3T<S> t_cyl = -(I_cyl * cyl.alpha + cyl.omega.cross(I_cyl * cyl.omega));
-    const Vec3T<S> f_pis = d.piston_mass * (d.gravity.template cast<S>() - pis.acceleration);
-    const Vec3T<S> t_pis = -(I_pis * pis.alpha + pis.omega.cross(I_pis * pis.omega));
+    Vec3T<S> f_cyl, t_cyl, f_pis, t_pis;
+    body_wrench(d.cylinder_mass, d.gravity, I_cyl, cyl, f_cyl, t_cyl);
+    body_wrench(d.piston_mass, d.gravity, I_pis, pis, f_pis, t_pis);
     f_point = d.legs.cylinder_com * (map.N * f_cyl) + map.cylinder_alpha.transpose() * t_cyl +
               piston_linear.transpose() * f_pis + map.piston_alpha.transpose() * t_pis;
     f_alpha = -leg.n.dot(t_pis) * map.piston_spin;
@@ -183,13 +191,12 @@ bool motion_residual(const DynamicsModel &d, const MotionT<S> &m,
         if (!d.with_legs) continue;
         MotionT<S> cyl, pis;
         leg_body_motion(d.legs, k, leg, m, cyl, pis);
-        LegAccelerationMapT<S> map;
-        leg_acceleration_map(d.legs, k, leg, map);
-        const Mat3T<S> piston_linear = Mat3T<S>::Identity() - d.legs.piston_com * map.N;
-        Vec3T<S> f_point, f_alpha;
-        leg_forces(d, leg, map, piston_linear, cyl, pis,
-                   world_inertia(cyl.rotation, d.cylinder_inertia),
-                   world_inertia(pis.rotation, d.piston_inertia), f_point, f_alpha);
+        Vec3T<S> f_cyl, t_cyl, f_pis, t_pis, f_point, f_alpha;
+        body_wrench(d.cylinder_mass, d.gravity, world_inertia(cyl.rotation, d.cylinder_inertia),
+                    cyl, f_cyl, t_cyl);
+        body_wrench(d.piston_mass, d.gravity, world_inertia(pis.rotation, d.piston_inertia), pis,
+                    f_pis, t_pis);
+        leg_point_forces(d.legs, k, leg, f_cyl, t_cyl, f_pis, t_pis, f_point, f_alpha);
         residual.template head<3>() += f_point;
         residual.template tail<3>() += leg.arm.cross(f_point) + f_alpha;
     }
