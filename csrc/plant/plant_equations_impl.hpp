@@ -86,6 +86,25 @@ void add_leg(const DynamicsModel &d, const LegConfigurationT<S> &leg, int k,
     rhs.template tail<3>() += leg.arm.cross(f_point) + f_alpha;
 }
 
+// Leg k's configuration at m's pose into e.legs[k] (false, fault set, if it is undefined), and
+// its force F_k (scalar S or double) added to the generalised forces f: along the leg, power
+// F_k L_dot_k with L_dot_k = n . (v + omega x arm).
+template <class S, class Force>
+[[gnu::always_inline]] inline bool place_leg(const DynamicsModel &d, const MotionT<S> &m, int k,
+                                             const Force &force, EvaluationT<S> &e,
+                                             Vector6T<S> &f) {
+    LegConfigurationT<S> &leg = e.legs[k];
+    const LegFault fault = leg_configuration(d.legs, k, m.position, m.rotation, leg, d.with_legs);
+    if (fault != LegFault::None) {
+        e.fault = fault;
+        e.fault_leg = k;
+        return false;
+    }
+    f.template head<3>() += force * leg.n;
+    f.template tail<3>() += force * leg.arm.cross(leg.n);
+    return true;
+}
+
 // reduced_equations' body, and the platform's centre of mass c from its origin (world), inlined
 // into twist_rate: as a call, and with c computed twice, it cost the plant's step 1.5 % more
 // instructions at the massless fidelity.
@@ -117,19 +136,9 @@ template <class S>
     at_rest_rate.acceleration.setZero();
     at_rest_rate.alpha.setZero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        LegConfigurationT<S> &leg = e.legs[k];
-        const LegFault fault =
-            leg_configuration(d.legs, k, m.position, m.rotation, leg, d.with_legs);
-        if (fault != LegFault::None) {
-            e.fault = fault;
-            e.fault_leg = k;
-            return false;
-        }
-        // F_k along the leg: power F_k L_dot_k, L_dot_k = n . (v + omega x arm).
-        rhs.template head<3>() += force[k] * leg.n;
-        rhs.template tail<3>() += force[k] * leg.arm.cross(leg.n);
+        if (!place_leg(d, m, k, force[k], e, rhs)) return false;
         if (!d.with_legs) continue;
-
+        const LegConfigurationT<S> &leg = e.legs[k];
         MotionT<S> cyl_bias, pis_bias;
         leg_body_motion(d.legs, k, leg, at_rest_rate, cyl_bias, pis_bias);
         add_leg(d, leg, k, cyl_bias, pis_bias, M, rhs);
@@ -189,17 +198,9 @@ bool motion_residual(const DynamicsModel &d, const MotionT<S> &m,
     residual.template tail<3>() =
         c.cross(f_platform) - I_platform * m.alpha - m.omega.cross(I_platform * m.omega);
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        LegConfigurationT<S> &leg = e.legs[k];
-        const LegFault fault =
-            leg_configuration(d.legs, k, m.position, m.rotation, leg, d.with_legs);
-        if (fault != LegFault::None) {
-            e.fault = fault;
-            e.fault_leg = k;
-            return false;
-        }
-        residual.template head<3>() += force[k] * leg.n;
-        residual.template tail<3>() += force[k] * leg.arm.cross(leg.n);
+        if (!place_leg(d, m, k, force[k], e, residual)) return false;
         if (!d.with_legs) continue;
+        const LegConfigurationT<S> &leg = e.legs[k];
         MotionT<S> cyl, pis;
         leg_body_motion(d.legs, k, leg, m, cyl, pis);
         Vec3T<S> f_cyl, t_cyl, f_pis, t_pis, f_point, f_alpha;
