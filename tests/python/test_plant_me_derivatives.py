@@ -4,9 +4,6 @@ GetDerivatives (the state derivatives) and GetReal (the lengths, length rates an
 with respect to every state and force, at random states of both fidelities; the model
 structure's dependencies against what a change of each state and force does to each output and
 derivative; the declaration in the description (fmpy validate); the requests it refuses."""
-import zipfile
-from xml.etree import ElementTree
-
 import numpy as np
 import pytest
 
@@ -14,6 +11,7 @@ import fmpy
 from fmpy.validation import validate_fmu
 
 from fmu_support import VERSIONS
+from test_fmu_derivatives import declared_attribute
 from test_plant_fmu import F, L, L_DOT, WRENCH, fmu_file, static_forces
 from test_plant_me_fmu import OK, POSE_DDOT, STATES, MEInstance
 
@@ -143,17 +141,10 @@ def test_dependencies_are_exact(version):
     me.free()
 
 
-def declared(path, version):
-    with zipfile.ZipFile(path) as z:
-        root = ElementTree.fromstring(z.read("modelDescription.xml"))
-    name = "providesDirectionalDerivative" + ("" if version == "2.0" else "s")
-    return root.find("ModelExchange").get(name, "false")
-
-
 @pytest.mark.parametrize("version", VERSIONS)
 def test_description_declares_derivatives(version):
     path = fmu_file("StewartPlantME", version)
-    assert declared(path, version) == "true"
+    assert declared_attribute(path, version, "ModelExchange") == "true"
     assert validate_fmu(path) == []
 
 
