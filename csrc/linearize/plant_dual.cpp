@@ -1,7 +1,7 @@
 // The plant's equations (plant/plant_bodies_impl.hpp, plant_equations_impl.hpp) instantiated for
-// the dual scalars (and the residual form, which the linearisation alone uses), here rather than beside the double ones: in their translation unit the dual code made the
-// compiler inline less of the plant's double code (14 % more instructions per step at full
-// fidelity).
+// the dual scalars (and the residual form, which the linearisation alone uses), here rather than
+// beside the double ones: in their translation unit the dual code made the compiler inline less
+// of the plant's double code (14 % more instructions per step at full fidelity).
 #include "plant/plant_bodies_impl.hpp"
 #include "plant/plant_equations_impl.hpp"
 #include "util/dual.hpp"

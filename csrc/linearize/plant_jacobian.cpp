@@ -67,7 +67,8 @@ bool plant_jacobian(const fd::DynamicsModel &d, const double q[6], const double 
     const Eigen::Matrix<double, 6, kStateDirections> rate_wrt_state =
         llt.solve(residual_wrt_state);
 
-    // q_ddot: the linear part as it is, the angles' by omega_dot = E angles_ddot + E_dot angles_dot.
+    // q_ddot: the linear part as it is, the angles' from omega_dot = E angles_ddot +
+    // E_dot angles_dot.
     StateDual q_ddot[6];
     for (int i = 0; i < 6; ++i)
         q_ddot[i] = StateDual(twist_rate[i], rate_wrt_state.row(i).transpose());

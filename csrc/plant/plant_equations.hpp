@@ -52,8 +52,7 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
 // alpha): sum J_b^T (f_b - M_b a_b) + J_legs^T F, i.e. rhs - M nu_dot of twist_rate's equations,
 // by Newton-Euler per body without forming M: zero at twist_rate's result, and linear in the
 // twist rate with slope -M (what the linearisation differentiates). False (fault set) as
-// twist_rate. Instantiated for double and the linearisation's dual scalar
-// (linearize/plant_dual.cpp).
+// twist_rate. Instantiated for the linearisation's 12-direction dual (linearize/plant_dual.cpp).
 template <class S>
 bool motion_residual(const DynamicsModel &d, const MotionT<S> &m,
                      const double force[STEWART_LEGS], EvaluationT<S> &e,

@@ -39,7 +39,8 @@ def directional(me, unknowns, knowns, seed):
 
 
 def random_state(rng):
-    pose = rng.uniform([-0.08, -0.08, 0.45, -0.12, -0.12, -0.2], [0.08, 0.08, 0.55, 0.12, 0.12, 0.2])
+    pose = rng.uniform([-0.08, -0.08, 0.45, -0.12, -0.12, -0.2],
+                       [0.08, 0.08, 0.55, 0.12, 0.12, 0.2])
     return np.concatenate([pose, rng.uniform(-0.5, 0.5, 6)])
 
 
