@@ -1,6 +1,6 @@
-// The linearisation's C API (stewart_linearize.h): input checks, the dual evaluations of
-// plant_derivatives.* laid out as A, B, C, D, and the inverse side's Jacobian by the implicit
-// function theorem on the plant's equations.
+// The linearisation's C API (stewart_linearize.h): input checks, plant_jacobian.* laid out as
+// A, B, C, D, and the inverse side's Jacobian (plant_derivatives.*' dual evaluations and the
+// implicit function theorem on the plant's equations).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -9,7 +9,7 @@
 
 #include <Eigen/LU>
 
-#include "linearize/plant_derivatives.hpp"
+#include "linearize/plant_jacobian.hpp"
 #include "model.hpp"
 #include "stewart/stewart_linearize.h"
 #include "util/message.hpp"
@@ -29,7 +29,6 @@ struct stewart_linearize {
 
 namespace {
 
-constexpr int kStates = STEWART_LINEARIZE_STATES;
 constexpr uint32_t kMagic = 0x4c494e31u;  // "LIN1"
 constexpr uint32_t kVersion = 1;
 // Below it the forces do not hold the pose: the map from forces to pose accelerations is
@@ -225,37 +224,32 @@ extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
     if ((s = check_frames(*l->model, msg, size)) != STEWART_OK) return s;
     if ((s = check_pose_rows(in->pose, 1, msg, size)) != STEWART_OK) return s;
     if ((s = check_finite(in->force, STEWART_LEGS, "force", 1, msg, size)) != STEWART_OK) return s;
-    lin::PlantPoint p;
+    lin::PlantJacobian p;
     lin::Failure why;
-    if (!lin::plant_point(l->dynamics, in->pose.q, in->pose.q_dot, in->force, p, why))
+    if (!lin::plant_jacobian(l->dynamics, in->pose.q, in->pose.q_dot, in->force, p, why))
         return failure(why, in->pose.q[4], msg, size);
 
     stewart_linearize_output o;
     std::memset(&o, 0, sizeof o);
     for (int i = 0; i < 6; ++i) {
         o.state_rate[i] = in->pose.q_dot[i];
-        o.state_rate[6 + i] = p.q_ddot[i].value();
+        o.state_rate[6 + i] = p.q_ddot[i];
         o.A[i][6 + i] = 1;  // d q_dot / d q_dot
-        for (int j = 0; j < kStates; ++j) o.A[6 + i][j] = p.q_ddot[i].derivatives()[j];
-        for (int j = 0; j < STEWART_LEGS; ++j) o.B[6 + i][j] = p.q_ddot[i].derivatives()[12 + j];
+        std::memcpy(o.A[6 + i], p.q_ddot_wrt_state[i], sizeof o.A[6 + i]);
+        std::memcpy(o.B[6 + i], p.q_ddot_wrt_force[i], sizeof o.B[6 + i]);
         // y = (q, q_dot, L, L_dot).
         o.output[i] = in->pose.q[i];
         o.output[6 + i] = in->pose.q_dot[i];
         o.C[i][i] = 1;
         o.C[6 + i][6 + i] = 1;
     }
-    double length[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const Dual *rows[2] = {&p.length[k], &p.length_rate[k]};
-        for (int r = 0; r < 2; ++r) {
-            const int row = 12 + 6 * r + k;
-            o.output[row] = rows[r]->value();
-            for (int j = 0; j < kStates; ++j) o.C[row][j] = rows[r]->derivatives()[j];
-            for (int j = 0; j < STEWART_LEGS; ++j) o.D[row][j] = rows[r]->derivatives()[12 + j];
-        }
-        length[k] = p.length[k].value();
-    }
-    o.stroke_legs = stroke_legs_of(l->model->params, length);
+        o.output[12 + k] = p.length[k];
+        o.output[18 + k] = p.length_rate[k];
+        std::memcpy(o.C[12 + k], p.length_wrt_state[k], sizeof o.C[12 + k]);
+        std::memcpy(o.C[18 + k], p.length_rate_wrt_state[k], sizeof o.C[18 + k]);
+    }  // D = 0: the lengths and their rates do not depend on the forces
+    o.stroke_legs = stroke_legs_of(l->model->params, p.length);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
     subtract_offsets(*l->model, o.output + 12);
     static_assert(offsetof(stewart_linearize_output, D) + sizeof o.D ==
@@ -300,14 +294,14 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     // The plant's q_ddot = a(q, q_dot) + G(q) F (affine in F): F = G^-1 (q_ddot - a), and by the
     // implicit function theorem dF/dz = -G^-1 d q_ddot/dz at that F (z = q, q_dot), G^-1 for q_ddot.
     const double no_force[STEWART_LEGS] = {0};
-    lin::PlantPoint at_rest, at_force;
-    if (!lin::plant_point(l->dynamics, pose->q, pose->q_dot, no_force, at_rest, why))
+    lin::PlantJacobian at_rest, at_force;
+    if (!lin::plant_jacobian(l->dynamics, pose->q, pose->q_dot, no_force, at_rest, why))
         return failure(why, pose->q[4], msg, size);
     Eigen::Matrix<double, 6, 6> G;
     Eigen::Matrix<double, 6, 1> missing;
     for (int i = 0; i < 6; ++i) {
-        G.row(i) = at_rest.q_ddot[i].derivatives().tail<6>().transpose();
-        missing[i] = pose->q_ddot[i] - at_rest.q_ddot[i].value();
+        for (int k = 0; k < STEWART_LEGS; ++k) G(i, k) = at_rest.q_ddot_wrt_force[i][k];
+        missing[i] = pose->q_ddot[i] - at_rest.q_ddot[i];
     }
     const Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> lu(G);
     const double rcond = lu.rcond();
@@ -318,11 +312,10 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     const Eigen::Matrix<double, 6, 1> force = lu.solve(missing);
     double force_values[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) force_values[k] = force[k];
-    if (!lin::plant_point(l->dynamics, pose->q, pose->q_dot, force_values, at_force, why))
+    if (!lin::plant_jacobian(l->dynamics, pose->q, pose->q_dot, force_values, at_force, why))
         return failure(why, pose->q[4], msg, size);
-    Eigen::Matrix<double, 6, 12> accel_wrt_state;
-    for (int i = 0; i < 6; ++i)
-        accel_wrt_state.row(i) = at_force.q_ddot[i].derivatives().head<12>().transpose();
+    const Eigen::Map<const Eigen::Matrix<double, 6, 12, Eigen::RowMajor>> accel_wrt_state(
+        &at_force.q_ddot_wrt_state[0][0]);
     const Eigen::Matrix<double, 6, 12> force_wrt_state = -lu.solve(accel_wrt_state);
     const Eigen::Matrix<double, 6, 6> force_wrt_accel = lu.inverse();
     for (int k = 0; k < STEWART_LEGS; ++k) {

@@ -77,5 +77,15 @@ template <class S>
 void leg_acceleration_map(const LegParameters &p, int k, const LegConfigurationT<S> &c,
                           LegAccelerationMapT<S> &map);
 
+// The leg bodies' applied minus inertial wrenches (f_cyl, t_cyl, f_pis, t_pis: forces, torques
+// about their centres of mass) as generalised forces: f_point on the platform point's
+// acceleration P_ddot, f_alpha on the platform's angular acceleration (the piston's spin). The
+// transposes of leg_acceleration_map's maps applied to them, in vector form (no 3 x 3 product:
+// the cheap way for the linearisation's dual scalar).
+template <class S>
+void leg_point_forces(const LegParameters &p, int k, const LegConfigurationT<S> &c,
+                      const Vec3T<S> &f_cyl, const Vec3T<S> &t_cyl, const Vec3T<S> &f_pis,
+                      const Vec3T<S> &t_pis, Vec3T<S> &f_point, Vec3T<S> &f_alpha);
+
 }  // namespace fd
 }  // namespace stewart

@@ -131,6 +131,24 @@ void leg_acceleration_map(const LegParameters &p, int k, const LegConfigurationT
     map.piston_spin = c.piston_arm.cross(c.piston_x) / c.piston_sin;
 }
 
+template <class S>
+void leg_point_forces(const LegParameters &p, int k, const LegConfigurationT<S> &c,
+                      const Vec3T<S> &f_cyl, const Vec3T<S> &t_cyl, const Vec3T<S> &f_pis,
+                      const Vec3T<S> &t_pis, Vec3T<S> &f_point, Vec3T<S> &f_alpha) {
+    // With N v = (v - n (n.v)) / L (symmetric) and a body's alpha map turn + n (N g)^T,
+    // turn = [n]x N: its transpose takes t to N (t x n + (n.t) g). The cylinder's point map is
+    // cylinder_com N, the piston's I - piston_com N.
+    const Vec3T<S> &n = c.n;
+    const Vec3T<S> g_cyl =
+        n.cross(c.cylinder_x).cross(p.base_arm.col(k).template cast<S>()) / c.cylinder_sin;
+    const Vec3T<S> g_pis = n.cross(c.piston_x).cross(c.piston_arm) / c.piston_sin;
+    const S n_t_cyl = n.dot(t_cyl), n_t_pis = n.dot(t_pis);
+    const Vec3T<S> v = p.cylinder_com * f_cyl - p.piston_com * f_pis + (t_cyl + t_pis).cross(n) +
+                       n_t_cyl * g_cyl + n_t_pis * g_pis;
+    f_point = f_pis + (v - n.dot(v) * n) * c.inverse_length;
+    f_alpha = (-n_t_pis / c.piston_sin) * c.piston_arm.cross(c.piston_x);
+}
+
 // Explicit instantiation for the scalar S (inside namespace stewart::fd).
 #define STEWART_PLANT_BODIES_INSTANTIATE(S)                                                       \
     template LegFault leg_configuration<S>(const LegParameters &, int, const Vec3T<S> &,          \

@@ -34,12 +34,29 @@ struct EvaluationT {
 };
 using Evaluation = EvaluationT<double>;
 
+// The reduced equations M nu_dot = rhs for the state in m (pose and twist; its accelerations are
+// ignored) under the leg forces: M the generalised mass matrix (symmetric positive definite), rhs
+// the applied and velocity-product forces. False (fault set) as twist_rate.
+template <class S>
+bool reduced_equations(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWART_LEGS],
+                       EvaluationT<S> &e, Eigen::Matrix<S, 6, 6> &M, Eigen::Matrix<S, 6, 1> &rhs);
+
 // The platform's twist rate for the state in m (pose and twist; its accelerations are ignored)
 // under the leg forces. False (fault set) if a leg has no direction or a Cardan is locked.
 // Instantiated for double (the plant) and stewart::Dual (linearisation).
 template <class S>
 bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWART_LEGS],
                 EvaluationT<S> &e);
+
+// The reduced equations' residual at the motion m with its accelerations (v_dot at the origin,
+// alpha): sum J_b^T (f_b - M_b a_b) + J_legs^T F, i.e. rhs - M nu_dot of twist_rate's equations,
+// by Newton-Euler per body without forming M: zero at twist_rate's result, and linear in the
+// twist rate with slope -M (what the linearisation differentiates). False (fault set) as
+// twist_rate. Instantiated for the linearisation's 12-direction dual (linearize/plant_dual.cpp).
+template <class S>
+bool motion_residual(const DynamicsModel &d, const MotionT<S> &m,
+                     const double force[STEWART_LEGS], EvaluationT<S> &e,
+                     Eigen::Matrix<S, 6, 1> &residual);
 
 // The 13 moving bodies (platform, cylinders, pistons) for m including its accelerations; the leg
 // bodies are left untouched for the massless model. e must hold the configuration of m.

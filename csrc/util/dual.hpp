@@ -15,4 +15,10 @@ constexpr int kDualDirections = 18;
 using DualDerivatives = Eigen::Matrix<double, kDualDirections, 1>;
 using Dual = Eigen::AutoDiffScalar<DualDerivatives>;
 
+// The same along the 12 directions of the plant's state (q, q_dot) alone: the linearisation's
+// fast path, where the forces enter linearly and need no directions (linearize/plant_jacobian.*).
+constexpr int kStateDirections = 12;
+using StateDualDerivatives = Eigen::Matrix<double, kStateDirections, 1>;
+using StateDual = Eigen::AutoDiffScalar<StateDualDerivatives>;
+
 }  // namespace stewart

@@ -33,7 +33,7 @@ static const int kAllowed[CALL_COUNT] = {
     [CALL_GET_CONTINUOUS_STATES] = MODE_INITIALIZATION | MODE_EVENT | MODE_CONTINUOUS_TIME |
                                    MODE_TERMINATED | MODE_ERROR,
     /* as the outputs: once initialisation has begun (FMI 2 §4.2.4, FMI 3 §4.2.2) */
-    [CALL_GET_DIRECTIONAL_DERIVATIVE] = MODE_INITIALIZATION | MODE_STEP | MODE_TERMINATED,
+    [CALL_GET_DIRECTIONAL_DERIVATIVE] = MODE_INITIALIZATION | MODES_RUNNING | MODE_TERMINATED,
 };
 
 const char *fmu_mode_name(int mode) {

@@ -11,11 +11,24 @@
 #endif
 
 #if FMU_PROVIDES_DIRECTIONAL_DERIVATIVE
-/* FMU_OK if every vr[i] is a Real variable of the causality, else Error naming it. */
+#if FMU_MODEL_EXCHANGE
+/* A Model Exchange unit's knowns are its states too (runtime/model_exchange.h). */
+static int is_state(unsigned vr) {
+    for (int i = 0; i < FMU_N_STATES; ++i)
+        if (FMU_STATE_VR(i) == vr) return 1;
+    return 0;
+}
+#else
+static int is_state(unsigned vr) { (void)vr; return 0; }
+#endif
+
+/* FMU_OK if every vr[i] is a Real variable of the causality (or, with states_too, a state), else
+ * Error naming it. */
 static fmu_status check_all(fmu_instance *inst, const char *function, const unsigned vr[],
-                            size_t n, fmu_causality causality, const char *what) {
+                            size_t n, fmu_causality causality, int states_too, const char *what) {
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = fmu_variable_by_vr(vr[i]);
+        if (states_too && var && is_state(vr[i])) continue;
         if (!var || var->type != FMU_REAL || var->causality != causality) {
             fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: value reference %u (%s) is not a Real %s",
                     function, vr[i], var ? var->name : "no variable", what);
@@ -39,8 +52,9 @@ fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unk
                 "count", function);
         return FMU_ERROR;
     }
-    if (check_all(inst, function, unknown, n_unknown, FMU_OUTPUT_VAR, "output") != FMU_OK ||
-        check_all(inst, function, known, n_known, FMU_INPUT_VAR, "input") != FMU_OK)
+    if (check_all(inst, function, unknown, n_unknown, FMU_OUTPUT_VAR, 0, "output") != FMU_OK ||
+        check_all(inst, function, known, n_known, FMU_INPUT_VAR, FMU_MODEL_EXCHANGE,
+                  FMU_MODEL_EXCHANGE ? "input or state" : "input") != FMU_OK)
         return FMU_ERROR;
     /* In initialisation mode the outputs (and what they are made from) may not exist yet. */
     if (inst->v.mode == MODE_INITIALIZATION && fmu_apply_initial_parameters(inst) != FMU_OK)

@@ -13,7 +13,8 @@ extern "C" {
 #endif
 
 /* sensitivity[i] = sum_j d unknown[i] / d known[j] * seed[j] at the current inputs: every unknown
- * a Real output, every known a Real input (else Error naming it). `function` names the caller
+ * a Real output (a Model Exchange unit's state derivatives are outputs), every known a Real input
+ * or a Model Exchange unit's state (else Error naming it). `function` names the caller
  * in messages. */
 fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unknown[],
                                           size_t n_unknown, const unsigned known[],

@@ -68,11 +68,33 @@ static int state_index(unsigned vr) {
     return -1;
 }
 
+#ifdef FMU_ME_DEPENDS_ON
+/* A Model Exchange unit's config.h may say which states and inputs each output and state
+ * derivative depends on: FMU_ME_DEPENDS_ON(unknown_vr, known_vr). The dependencies attribute of
+ * unknown vr, the knowns in the order of ModelVariables. */
+static const char *listed_dependencies(unsigned vr, char *buf, size_t size) {
+    size_t used = (size_t)snprintf(buf, size, " dependencies=\"");
+    int first = 1;
+    for (size_t i = 0; i < fmu_n_variables && used < size; ++i) {
+        const unsigned known = fmu_variables[i].vr;
+        if (fmu_variables[i].causality != FMU_INPUT_VAR && state_index(known) < 0) continue;
+        if (!(FMU_ME_DEPENDS_ON(vr, known))) continue;
+        used += (size_t)snprintf(buf + used, size - used, first ? "%zu" : " %zu", reference(known));
+        first = 0;
+    }
+    if (used < size) snprintf(buf + used, size - used, "\"");
+    return buf;
+}
+#endif
+
 /* The dependencies attribute of an output or derivative, or "" (none written: it may depend on
  * every known). Co-simulation: an output of the state depends on no input (dependencies="").
  * Model Exchange: an output that is a state depends on itself, another output of the state on
  * the states; a derivative that is a state (x' = x_dot) on that state. */
 static const char *dependencies(unsigned vr, int is_derivative, char *buf, size_t size) {
+#ifdef FMU_ME_DEPENDS_ON
+    if (FMU_MODEL_EXCHANGE) return listed_dependencies(vr, buf, size);
+#endif
     if (!FMU_MODEL_EXCHANGE)
         return FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) ? " dependencies=\"\"" : "";
     if (state_index(vr) >= 0) {
@@ -286,6 +308,9 @@ int main(int argc, char **argv) {
     attr(version == 2 ? "canGetAndSetFMUstate" : "canGetAndSetFMUState", "true");
     attr(version == 2 ? "canSerializeFMUstate" : "canSerializeFMUState", "true");
     if (version == 2) attr("canNotUseMemoryManagementFunctions", "true");
+    if (FMU_PROVIDES_DIRECTIONAL_DERIVATIVE)
+        attr(version == 2 ? "providesDirectionalDerivative" : "providesDirectionalDerivatives",
+             "true");
 #else
     fputs("  <CoSimulation", out);
     attr("modelIdentifier", FMU_MODEL_IDENTIFIER);

@@ -65,7 +65,8 @@ void model_free(fmu_instance *inst);
  * not define it: the runtime then answers that the call is not supported). The partial
  * derivatives of the outputs at the current inputs (those the outputs are, or would be, solved
  * at) times the seed: sensitivity[i] = sum_j d unknown[i] / d known[j] * seed[j]. The runtime has
- * checked the call order, that every unknown is a Real output and every known a Real input.
+ * checked the call order, that every unknown is a Real output and every known a Real input (or,
+ * in a Model Exchange unit, a state).
  * FMU_ERROR with a message naming the output if it has no derivative; FMU_DISCARD if the inputs
  * have none (the solve fails there). Never allocates once the model's resources exist. */
 fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unknown[],

@@ -234,13 +234,13 @@ def test_description_declares_derivatives(version):
     assert validate_fmu(str(fmu_path(version))) == []
 
 
-def declared_attribute(path, version):
+def declared_attribute(path, version, interface="CoSimulation"):
     """providesDirectionalDerivative (FMI 2) or providesDirectionalDerivatives (FMI 3) of the
-    CoSimulation element, read from the XML (fmpy 0.3.32 reads the FMI 2 name in FMI 3 too)."""
+    interface's element, read from the XML (fmpy 0.3.32 reads the FMI 2 name in FMI 3 too)."""
     with zipfile.ZipFile(path) as z:
         root = ElementTree.fromstring(z.read("modelDescription.xml"))
     name = "providesDirectionalDerivative" + ("" if version == "2.0" else "s")
-    return root.find("CoSimulation").get(name, "false")
+    return root.find(interface).get(name, "false")
 
 
 @pytest.mark.parametrize("version", VERSIONS)

@@ -8,6 +8,7 @@
 #define STEWART_FMU_CONFIG_H
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
 /* The library's parameter table: variables.def expands it (the plant's names and value
  * references for the geometry and masses). */
@@ -35,6 +36,20 @@
 /* The motion (pose, rates, lengths, length rates) depends on the states alone. */
 #define FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) ((vr) >= VR_x && (vr) <= VR_L_dot_6)
 
+/* Directional derivatives of the state derivatives and outputs with respect to the states and
+ * the forces (derivatives.c). */
+#define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1
+/* The model structure (gen_model_description.c): which states and inputs each output and state
+ * derivative depends on, over every value of the parameters. A state (and x' = x_dot) on itself,
+ * the lengths on the pose, their rates on the pose and its rates; the accelerations, the base
+ * wrench and status (which also tells a refused force) on every state and force. */
+#define FMU_ME_DEPENDS_ON(unknown, known)                                                         \
+    ((unknown) >= VR_x && (unknown) <= VR_yaw_dot   ? (known) == (unknown)                        \
+     : (unknown) >= VR_L_1 && (unknown) <= VR_L_6   ? (known) >= VR_x && (known) <= VR_yaw        \
+     : (unknown) >= VR_L_dot_1 && (unknown) <= VR_L_dot_6                                         \
+         ? (known) >= VR_x && (known) <= VR_yaw_dot                                               \
+         : 1)
+
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
 typedef struct model_values {
     int solve_status; /* fmu_status of the outputs' last refresh */
@@ -45,6 +60,7 @@ typedef struct model_values {
 typedef struct model_resources {
     stewart_model *model;  /* built from `params` */
     stewart_plant *plant;  /* on `model`, with `fidelity` */
+    stewart_linearize *linearize; /* the same: the directional derivatives (derivatives.c) */
     stewart_params params;
     int fidelity;
     char message[2 * STEWART_MESSAGE_SIZE];

@@ -65,18 +65,26 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     stewart_model *m = new_model ? stewart_model_create(&p, r->message, sizeof r->message)
                                  : r->model;
     stewart_plant *plant = m ? stewart_plant_create(m, &o, r->message, sizeof r->message) : NULL;
-    if (!plant) {
+    stewart_linearize_options lo;
+    stewart_linearize_options_default(&lo);
+    lo.fidelity = fidelity;
+    stewart_linearize *linearize =
+        plant ? stewart_linearize_create(m, &lo, r->message, sizeof r->message) : NULL;
+    if (!linearize) {
+        stewart_plant_free(plant);
         if (new_model) stewart_model_free(m);
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
         return FMU_ERROR;
     }
     stewart_plant_free(r->plant);
+    stewart_linearize_free(r->linearize);
     if (new_model) {
         stewart_model_free(r->model);
         r->model = m;
         r->params = p;
     }
     r->plant = plant;
+    r->linearize = linearize;
     r->fidelity = fidelity;
     fmu_log(inst, FMU_OK, LOG_EVENTS, "plant built (fidelity %d)", fidelity);
     return FMU_OK;
@@ -109,8 +117,10 @@ void model_reset(fmu_instance *inst) { (void)inst; /* the states are set at init
 
 void model_free(fmu_instance *inst) {
     stewart_plant_free(inst->res.plant);
+    stewart_linearize_free(inst->res.linearize);
     stewart_model_free(inst->res.model);
     inst->res.plant = NULL;
+    inst->res.linearize = NULL;
     inst->res.model = NULL;
 }
 
