@@ -25,17 +25,6 @@ constexpr double kConditionGrid = 5e-3;
 
 bool within(const stewart_limits_output &o) { return o.failed == 0; }
 
-// `first` and `failed` from the margins, as the check sets them.
-void classify(stewart_limits_output &o) {
-    o.first = STEWART_LIMIT_NONE;
-    o.failed = 0;
-    for (int i = STEWART_LIMIT_CLASSES - 1; i >= 0; --i)
-        if (o.margin[i] < 0.0) {
-            o.failed |= 1 << i;
-            o.first = i + 1;
-        }
-}
-
 // One pose along the search: the check's report and the legs. A class not checked there (known
 // within its limit) has margin +inf.
 struct Point {
@@ -73,7 +62,7 @@ void evaluate(const LimitConstants &c, const double q[6], bool full_check, bool 
         }
         p.check.margin[STEWART_LIMIT_CONDITION - 1] = inverse_condition - 1.0 / c.warn_condition;
     }
-    classify(p.check);
+    classify_margins(p.check);
 }
 
 // One side of one axis: a march from the pose in steps that range_bounds proves safe, up to the

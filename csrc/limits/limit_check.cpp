@@ -199,6 +199,10 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
         }
     }
     out.margin[STEWART_LIMIT_CONDITION - 1] = inverse_condition - 1.0 / c.warn_condition;
+    classify_margins(out);
+}
+
+void classify_margins(stewart_limits_output &out) {
     out.first = STEWART_LIMIT_NONE;
     out.failed = 0;
     for (int i = STEWART_LIMIT_CLASSES - 1; i >= 0; --i)

@@ -41,6 +41,10 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
 void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                   bool with_condition = true, double *inverse_norm = nullptr);
 
+// `first` (the failing class of lowest number, or none) and `failed` (a bit per failing class)
+// from the margins.
+void classify_margins(stewart_limits_output &out);
+
 // The squared shortest distance between segments [p0, p1] and [q0, q1] (any, also degenerate
 // or parallel), and the legs' check on it.
 double segment_distance_squared(const Eigen::Vector3d &p0, const Eigen::Vector3d &p1,
