@@ -1,4 +1,5 @@
-/* Directional derivatives (fmi2GetDirectionalDerivative, fmi3GetDirectionalDerivative): the
+/* Directional derivatives (fmi2GetDirectionalDerivative, fmi3GetDirectionalDerivative) and their
+ * adjoint (fmi3GetAdjointDerivative): the
  * call-order and argument checks, then the model's hook (model_interface.h) if its config.h
  * declares FMU_PROVIDES_DIRECTIONAL_DERIVATIVE; else the call is not supported (Error). */
 #ifndef STEWART_FMU_DERIVATIVES_H
@@ -20,6 +21,14 @@ fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unk
                                           size_t n_unknown, const unsigned known[],
                                           size_t n_known, const double seed[],
                                           double sensitivity[], const char *function);
+
+/* sensitivity[j] = sum_i seed[i] * d unknown[i] / d known[j] (FMI 3's adjoint: one seed per
+ * unknown, one sensitivity per known), from one directional derivative per known; the same
+ * checks and messages as fmu_get_directional_derivative. */
+fmu_status fmu_get_adjoint_derivative(fmu_instance *inst, const unsigned unknown[],
+                                      size_t n_unknown, const unsigned known[], size_t n_known,
+                                      const double seed[], double sensitivity[],
+                                      const char *function);
 
 #ifdef __cplusplus
 }

@@ -239,9 +239,15 @@ fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueRefere
                                     size_t nUnknowns, const fmi3ValueReference knowns[],
                                     size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                     fmi3Float64 sensitivity[], size_t nSensitivity) {
-    (void)unknowns; (void)nUnknowns; (void)knowns; (void)nKnowns; (void)seed; (void)nSeed;
-    (void)sensitivity; (void)nSensitivity;
-    return unsupported(instance, "fmi3GetAdjointDerivative");
+    /* the adjoint: one seed per unknown and one sensitivity per known */
+    if (instance && (nSeed != nUnknowns || nSensitivity != nKnowns)) {
+        fmu_log(INST, FMU_ERROR, LOG_ERROR,
+                "fmi3GetAdjointDerivative: nSeed = %zu must equal nUnknowns = %zu and "
+                "nSensitivity = %zu nKnowns = %zu", nSeed, nUnknowns, nSensitivity, nKnowns);
+        return fmi3Error;
+    }
+    CALL(fmu_get_adjoint_derivative(INST, unknowns, nUnknowns, knowns, nKnowns, seed,
+                                    sensitivity, "fmi3GetAdjointDerivative"));
 }
 
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance instance) {

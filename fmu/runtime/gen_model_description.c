@@ -308,9 +308,11 @@ int main(int argc, char **argv) {
     attr(version == 2 ? "canGetAndSetFMUstate" : "canGetAndSetFMUState", "true");
     attr(version == 2 ? "canSerializeFMUstate" : "canSerializeFMUState", "true");
     if (version == 2) attr("canNotUseMemoryManagementFunctions", "true");
-    if (FMU_PROVIDES_DIRECTIONAL_DERIVATIVE)
+    if (FMU_PROVIDES_DIRECTIONAL_DERIVATIVE) {
         attr(version == 2 ? "providesDirectionalDerivative" : "providesDirectionalDerivatives",
              "true");
+        if (version == 3) attr("providesAdjointDerivatives", "true");
+    }
 #else
     fputs("  <CoSimulation", out);
     attr("modelIdentifier", FMU_MODEL_IDENTIFIER);
@@ -325,7 +327,10 @@ int main(int argc, char **argv) {
     } else {
         attr("canGetAndSetFMUState", "true");
         attr("canSerializeFMUState", "true");
-        if (FMU_PROVIDES_DIRECTIONAL_DERIVATIVE) attr("providesDirectionalDerivatives", "true");
+        if (FMU_PROVIDES_DIRECTIONAL_DERIVATIVE) {
+            attr("providesDirectionalDerivatives", "true");
+            attr("providesAdjointDerivatives", "true");
+        }
         attr("hasEventMode", "false");
     }
 #endif
