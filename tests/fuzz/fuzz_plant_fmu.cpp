@@ -28,34 +28,11 @@
 #include <vector>
 
 #include "fuzz_fmu_unit.hpp"
-#include "stewart/stewart.h"
+#include "fuzz_static_forces.hpp"
 
 namespace {
 
 constexpr int kStepBudget = 256;  // integrator steps per input (a few ms under the sanitizers)
-
-// The inverse side's forces at rest at home (default parameters, full fidelity): the plant moves
-// slowly near them, where most of its code runs.
-double static_forces[6];
-
-void compute_static_forces() {
-    static bool done = false;
-    if (done) return;
-    done = true;
-    stewart_params p;
-    stewart_params_default(&p);
-    stewart_model *model = stewart_model_create(&p, nullptr, 0);
-    stewart_inverse_options o;
-    stewart_inverse_options_default(&o);
-    o.fidelity = STEWART_FULL;
-    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
-    const stewart_inverse_input home = {{{0, 0, p.home_height, 0, 0, 0}, {0}, {0}}};
-    stewart_inverse_output out;
-    if (!model || !data || stewart_inverse_solve(data, &home, &out) != STEWART_OK) std::abort();
-    std::memcpy(static_forces, out.force, sizeof static_forces);
-    stewart_inverse_free(data);
-    stewart_model_free(model);
-}
 
 void check_outputs(Unit &u, std::vector<double> *keep = nullptr) {
     std::vector<double> out(real_outputs.size());
