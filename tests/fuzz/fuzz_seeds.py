@@ -223,6 +223,13 @@ PLANT_SEEDS.update({
     "probe_counted_clock_t0_100": plant_seed(bytes([11]) + val(100.0), STATICS,
                                              *[step(1e-3, 100.0 + i * 1e-3) for i in range(6)],
                                              READ),
+    # found by the 10^6-input campaign: a step refused (Discard) from a counted t0 a rounding off
+    # the unit's time leaves the unit at the master's t0 (lastSuccessfulTime = t0), not at its own
+    # time: the target's invariant, not the unit, was wrong
+    "discard_on_counted_clock": plant_seed(bytes([11]) + val(100.0), STATICS,
+                                           step(1e-3, 100.0), step(1e-3, 100.001),
+                                           step(1.75e79, 100.002), READ, step(1e-3, 100.002),
+                                           READ, init=False),
 })
 PLANT_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
                     for name, seed in list(PLANT_SEEDS.items())})
