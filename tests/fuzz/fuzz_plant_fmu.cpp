@@ -29,24 +29,11 @@
 #include <vector>
 
 #include "fuzz_fmu_unit.hpp"
-#include "fuzz_static_forces.hpp"
+#include "fuzz_plant_unit.hpp"
 
 namespace {
 
 constexpr int kStepBudget = 256;  // integrator steps per input (a few ms under the sanitizers)
-
-void check_outputs(Unit &u, std::vector<double> *keep = nullptr) {
-    std::vector<double> out(real_outputs.size());
-    if (u.get_real(real_outputs.data(), out.size(), out.data()) == 0) {
-        for (double d : out)
-            if (!std::isfinite(d)) std::abort();
-        if (keep) *keep = out;
-    }
-    const unsigned vr_status = VR_status;
-    int32_t status = 0;
-    if (u.get_int(&vr_status, 1, &status) == 0 && status != 0 && status != 1 && status != 3)
-        std::abort();
-}
 
 // The unit's time, or NaN where it cannot be read.
 double unit_time(Unit &u) {
@@ -161,17 +148,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
             case 12:
                 random_debug_logging(u, in.byte());
                 break;
-            case 13: {  // all six forces near the static ones: relative offsets of up to 12.7 %
-                const unsigned vrs[6] = {VR_F_1, VR_F_2, VR_F_3, VR_F_4, VR_F_5, VR_F_6};
-                double f[6];
-                for (int k = 0; k < 6; ++k) {
-                    int8_t offset = 0;
-                    in.take(&offset, 1);
-                    f[k] = static_forces[k] * (1 + offset / 1000.0);
-                }
-                u.set_real(vrs, 6, f);
+            case 13:
+                set_forces_near_statics(u, in);
                 break;
-            }
         }
     }
     check_outputs(u);
