@@ -7,8 +7,9 @@
 // Invariants: nothing crashes or trips a sanitizer; every call returns OK, Warning, Discard or
 // Error (fuzz_fmu_unit.hpp); every Real output read back with status OK is finite; status is
 // 0, 1 or 3; an accepted step ends at t + h (lastSuccessfulTime), a discarded one sets status 3
-// and leaves the unit at the step's start t, which is its time to the rounding of a clock; a rolled-back FMU state gives back the same outputs bit for
-// bit; every log message is a NUL-terminated string.
+// and leaves the unit at the step's start t, which is its time to the rounding of a clock; a
+// rolled-back FMU state gives back the same outputs bit for bit; every log message is a
+// NUL-terminated string.
 //
 // Bounded work per input: max_internal_steps is set to 1..32 (byte 1) before every
 // initialisation, and a DoStep is only called while the integrator steps it may take
@@ -106,9 +107,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                     // The unit follows the master's clock (fmu/runtime/instance.c): t0 may be a
                     // rounding off its time, never more (a gap is an Error, not a Discard).
                     if (last != t0) std::abort();
-                    if (std::isfinite(before) &&
-                        std::fabs(t0 - before) > 32 * DBL_EPSILON * std::fmax(std::fabs(t0), std::fabs(before)))
-                        std::abort();
+                    const double rounding = 32 * DBL_EPSILON * std::fmax(std::fabs(t0), std::fabs(before));
+                    if (std::isfinite(before) && std::fabs(t0 - before) > rounding) std::abort();
                     if (u.get_int(&vr_status, 1, &status) == 0 && status != 3) std::abort();
                 }
                 break;
