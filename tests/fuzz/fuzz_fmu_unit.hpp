@@ -1,7 +1,8 @@
 // What the FMU fuzz targets share (fuzz_fmu.cpp: the inverse model, fuzz_plant_fmu.cpp: the
 // plant, fuzz_plant_me_fmu.cpp: the Model Exchange plant): loggers that touch every byte of a
-// message, the model's variables by kind, and one instance behind either FMI layer whose every call must return a known status. Included by one
-// target per executable: the FMI functions and variables.h are those of the model linked in.
+// message, the model's variables by kind, and one instance behind either FMI layer whose every
+// call must return a known status. Included by one target per executable: the FMI functions and
+// variables.h are those of the model linked in.
 #ifndef STEWART_FUZZ_FMU_UNIT_HPP
 #define STEWART_FUZZ_FMU_UNIT_HPP
 
