@@ -8,8 +8,14 @@
 # With `minimize` instead of a target, it fuzzes nothing and shrinks both corpora to the inputs that
 # add edge coverage (libFuzzer -merge=1 into an empty folder, -use_counters=0: the hit-count buckets
 # a campaign also tells apart would keep about ten times as many inputs for the same edges).
-# The plant FMU (tests/fuzz/fuzz_plant_fmu.cpp, corpus tests/fuzz/corpus/plant_fmu): target `plant`.
-# usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|plant|all=all three]
+# The plant FMU (tests/fuzz/fuzz_plant_fmu.cpp, corpus tests/fuzz/corpus/plant_fmu): target `plant`;
+# the Model Exchange plant (tests/fuzz/fuzz_plant_me_fmu.cpp, corpus tests/fuzz/corpus/plant_me_fmu):
+# target `me`.
+# Environment: FUZZ_RUNS=N stops each target after N inputs (SECONDS stays the cap; docs/limits.md
+# 5.4 has the campaigns' rates); FUZZ_MAX_LEN (default 4096) caps an input's bytes: libFuzzer lets
+# inputs grow, and the per-input work (operations, steps) with them, so the rate falls as a
+# campaign goes on.
+# usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|plant|me|all=all four]
 #        scripts/fuzz.sh 0 minimize
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,14 +37,15 @@ cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
   -DSTEWART_FUZZ=ON \
   -DPython3_EXECUTABLE="$PWD/.venv/bin/python" -DUNITY_WHEEL_DIR="$PWD/.cache/wheels" >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu fuzz_plant_fmu
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu fuzz_plant_fmu fuzz_plant_me_fmu
 
 # run TARGET CORPUS: fuzz for $seconds from the committed corpus, then keep only the inputs that
 # add edge coverage to it. Prints the number of executions.
 run() {
   local target=$1 corpus=$2
   mkdir -p build-fuzz/corpus_$target "$corpus"
-  ./build-fuzz/$target -max_total_time="$seconds" -max_len=4096 -artifact_prefix=build-fuzz/$target- \
+  ./build-fuzz/$target -max_total_time="$seconds" -runs="${FUZZ_RUNS:--1}" \
+    -max_len="${FUZZ_MAX_LEN:-4096}" -artifact_prefix=build-fuzz/$target- \
     -print_final_stats=1 build-fuzz/corpus_$target "$corpus" 2>build-fuzz/$target.log || {
     tail -50 build-fuzz/$target.log; echo "fuzz: $target FAILED (artifact in build-fuzz/)"; exit 1; }
   ./build-fuzz/$target -merge=1 -use_counters=0 "$corpus" build-fuzz/corpus_$target 2>>build-fuzz/$target.log
@@ -57,10 +64,12 @@ minimize() {
 }
 case "$targets" in
   minimize) minimize fuzz_api tests/fuzz/corpus/api; minimize fuzz_fmu tests/fuzz/corpus/fmu
-    minimize fuzz_plant_fmu tests/fuzz/corpus/plant_fmu ;;
+    minimize fuzz_plant_fmu tests/fuzz/corpus/plant_fmu
+    minimize fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu ;;
   api) run fuzz_api tests/fuzz/corpus/api ;;
   fmu) run fuzz_fmu tests/fuzz/corpus/fmu ;;
   plant) run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu ;;
+  me) run fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu ;;
   *) run fuzz_api tests/fuzz/corpus/api; run fuzz_fmu tests/fuzz/corpus/fmu
-    run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu ;;
+    run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu; run fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu ;;
 esac

@@ -70,6 +70,11 @@ static void set_time(fmu_values *v, double t) {
 
 fmu_status fmu_setup_experiment(fmu_instance *inst, double start_time) {
     if (fmu_check_call(inst, CALL_SETUP_EXPERIMENT, "SetupExperiment") != FMU_OK) return FMU_ERROR;
+    if (!isfinite(start_time)) { /* a NaN time would reach FMU states and outputs */
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetupExperiment: startTime = %g must be finite",
+                start_time);
+        return FMU_ERROR;
+    }
     set_time(&inst->v, start_time);
     return FMU_OK;
 }

@@ -1,7 +1,8 @@
 // What the FMU fuzz targets share (fuzz_fmu.cpp: the inverse model, fuzz_plant_fmu.cpp: the
-// plant): loggers that touch every byte of a message, the model's variables by kind, and one
-// instance behind either FMI layer whose every call must return a known status. Included by one
-// target per executable: the FMI functions and variables.h are those of the model linked in.
+// plant, fuzz_plant_me_fmu.cpp: the Model Exchange plant): loggers that touch every byte of a
+// message, the model's variables by kind, and one instance behind either FMI layer whose every
+// call must return a known status. Included by one target per executable: the FMI functions and
+// variables.h are those of the model linked in.
 #ifndef STEWART_FUZZ_FMU_UNIT_HPP
 #define STEWART_FUZZ_FMU_UNIT_HPP
 
@@ -60,11 +61,19 @@ struct Unit {
     fmi2CallbackFunctions cb2;
 
     Unit(bool fmi3, bool logging) : v3(fmi3), c(nullptr), cb2{logger, alloc, std::free, nullptr, nullptr} {
+#if defined(FMU_MODEL_EXCHANGE) && FMU_MODEL_EXCHANGE  // a Model Exchange model (plant_me)
+        if (v3)
+            c = fmi3InstantiateModelExchange("fuzz", FMU_GUID, "", fmi3False, logging, nullptr,
+                                             logger3);
+        else
+            c = fmi2Instantiate("fuzz", fmi2ModelExchange, FMU_GUID, "", &cb2, fmi2False, logging);
+#else
         if (v3)
             c = fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", fmi3False, logging, fmi3False,
                                             fmi3False, nullptr, 0, nullptr, logger3, nullptr);
         else
             c = fmi2Instantiate("fuzz", fmi2CoSimulation, FMU_GUID, "", &cb2, fmi2False, logging);
+#endif
         if (!c) std::abort();
     }
     ~Unit() {

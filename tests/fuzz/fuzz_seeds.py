@@ -5,6 +5,7 @@ with --fmu those of the FMU target (tests/fuzz/fuzz_fmu.cpp, layout described be
 usage: tests/fuzz/fuzz_seeds.py [FOLDER=tests/fuzz/corpus/api]
        tests/fuzz/fuzz_seeds.py --fmu [FOLDER=tests/fuzz/corpus/fmu]
        tests/fuzz/fuzz_seeds.py --plant [FOLDER=tests/fuzz/corpus/plant_fmu]
+       tests/fuzz/fuzz_seeds.py --me [FOLDER=tests/fuzz/corpus/plant_me_fmu]
 
 Field indices count the doubles of stewart_params in declaration order (cylinder_mass is 105,
 piston_mass 110: after the general geometry's 73 doubles of issue 19). Layout the target reads: 1 byte count of parameter edits (mod 8), each edit 1 byte field index +
@@ -222,18 +223,96 @@ PLANT_SEEDS.update({
     "probe_counted_clock_t0_100": plant_seed(bytes([11]) + val(100.0), STATICS,
                                              *[step(1e-3, 100.0 + i * 1e-3) for i in range(6)],
                                              READ),
+    # found by the 10^6-input campaign: a step refused (Discard) from a counted t0 a rounding off
+    # the unit's time leaves the unit at the master's t0 (lastSuccessfulTime = t0), not at its own
+    # time: the target's invariant, not the unit, was wrong
+    "discard_on_counted_clock": plant_seed(bytes([11]) + val(100.0), STATICS,
+                                           step(1e-3, 100.0), step(1e-3, 100.001),
+                                           step(1.75e79, 100.002), READ, step(1e-3, 100.002),
+                                           READ, init=False),
 })
 PLANT_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
                     for name, seed in list(PLANT_SEEDS.items())})
 
 
+# ---- the Model Exchange plant target (tests/fuzz/fuzz_plant_me_fmu.cpp): byte 0 flags (bit 0
+# logging on, bit 1 initialise at once with fidelity 1 + bit 2, bit 4 SetTime relative to the
+# target's time, bit 5 FMI 3), then operations: 0 SetReal any, 1 F[k] := 1000 * value, 2 SetInteger,
+# 3 SetTime(value), 4 read outputs, 5 SetContinuousStates (a `how` byte: bit 0 one state
+# (how >> 1) % 12 := value, else twelve int8 offsets / 1000; bits 6 and 7 both: a count of 11),
+# 6 GetFMUstate, 7 SetFMUstate, 8 serialise round trip, 9 Reset, 10 Terminate, 11 initialise,
+# 12 an event-mode call (selector % 6: enter event mode, update discrete states, enter
+# continuous-time mode, completed integrator step, nominals, event indicators (n = bit 3)),
+# 13 forces near the static ones, 14 explicit Euler (1 + byte % 16 steps of value),
+# 15 GetDerivatives and SetDebugLogging.
+def me_seed(*ops, logging=True, init=True, fidelity=2, relative_time=False, fmi3=False):
+    flags = ((1 if logging else 0) | (2 if init else 0) | ((fidelity - 1) << 2) |
+             (16 if relative_time else 0) | (32 if fmi3 else 0))
+    return bytes([flags]) + b"".join(ops)
+
+
+def event(selector):
+    return bytes([12, selector])
+
+
+def euler(steps, h):
+    return bytes([14, steps - 1]) + val(h)
+
+
+def set_state(index, x):
+    """Op 5: state index (0..11: x .. yaw, x_dot .. yaw_dot) := x, the others kept."""
+    return bytes([5, 1 | index << 1]) + val(x)
+
+
+def nudge_states(*offsets, wrong_count=False):
+    """Op 5: every state += offset / 1000 (twelve int8 offsets)."""
+    return bytes([5, 0xC0 if wrong_count else 0]) + struct.pack("<12b", *offsets)
+
+
+CONTINUOUS = event(2)
+DERIVATIVES = bytes([15, 1])  # and logging on, every category
+ME_SEEDS = {
+    "euler_at_rest": me_seed(STATICS, CONTINUOUS, euler(16, 1e-3), READ, DERIVATIVES),
+    "euler_massless": me_seed(STATICS, CONTINUOUS, euler(8, 1e-3), READ, fidelity=1),
+    "free_fall": me_seed(CONTINUOUS, euler(16, 1e-2), READ, relative_time=True),
+    "wobble": me_seed(forces_near_statics(50, -50, 30, 0, -20, 10), CONTINUOUS,
+                      nudge_states(1, -2, 3, 4, -5, 6, 10, 0, -10, 20, 0, 5), euler(4, 1e-3), READ),
+    "pitch_90": me_seed(STATICS, CONTINUOUS, set_state(4, math.pi / 2), DERIVATIVES, READ,
+                        set_state(4, 0.0), DERIVATIVES, READ),
+    "zero_length_leg": me_seed(STATICS, CONTINUOUS, set_state(2, 0.0), DERIVATIVES, READ),
+    "nan_state": me_seed(CONTINUOUS, set_state(7, math.nan), set_state(0, math.inf),
+                         DERIVATIVES, READ),
+    "wrong_count": me_seed(CONTINUOUS, nudge_states(*[1] * 12, wrong_count=True), DERIVATIVES),
+    "nan_force": me_seed(STATICS, CONTINUOUS, set_force(2, math.nan), DERIVATIVES, READ, STATICS,
+                         DERIVATIVES, READ),
+    "bad_time": me_seed(CONTINUOUS, bytes([3]) + val(math.nan), bytes([3]) + val(math.inf),
+                        bytes([3]) + val(1e308), DERIVATIVES, READ),
+    "event_cycle": me_seed(STATICS, CONTINUOUS, euler(2, 1e-3), *[event(k) for k in range(6)],
+                           event(13), CONTINUOUS, euler(2, 1e-3), READ),
+    "state_roundtrip": me_seed(STATICS, CONTINUOUS, euler(2, 1e-3), bytes([6]),
+                               nudge_states(9, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0), euler(2, 1e-3),
+                               READ, bytes([7]), READ, bytes([8, 0]), bytes([8, 1, 3, 0x55]), READ),
+    "reset_terminate": me_seed(CONTINUOUS, euler(2, 1e-3), bytes([10]), DERIVATIVES, READ,
+                               bytes([9]), bytes([11]) + val(5.0), CONTINUOUS, euler(2, 1e-3), READ),
+    "not_initialised": me_seed(DERIVATIVES, nudge_states(*[0] * 12), bytes([3]) + val(1.0),
+                               *[event(k) for k in range(6)], READ, init=False),
+    "huge_step": me_seed(STATICS, CONTINUOUS, euler(3, 1e10), READ, DERIVATIVES),
+    "logging": me_seed(bytes([15, 0]), bytes([15, 3]), bytes([15, 9]), set_force(0, math.inf),
+                       CONTINUOUS, DERIVATIVES, READ),
+}
+ME_SEEDS.update({name + "_fmi3": bytes([seed[0] | 32]) + seed[1:]
+                 for name, seed in list(ME_SEEDS.items())})
+
+
 def main(argv):
-    kind = "plant" if "--plant" in argv else "fmu" if "--fmu" in argv else "api"
-    args = [a for a in argv if a not in ("--fmu", "--plant")]
-    folder = {"api": "api", "fmu": "fmu", "plant": "plant_fmu"}[kind]
+    kinds = {"--fmu": "fmu", "--plant": "plant", "--me": "me"}
+    kind = next((kinds[a] for a in argv if a in kinds), "api")
+    args = [a for a in argv if a not in kinds]
+    folder = {"api": "api", "fmu": "fmu", "plant": "plant_fmu", "me": "plant_me_fmu"}[kind]
     path = pathlib.Path(args[0] if args else f"tests/fuzz/corpus/{folder}")
     path.mkdir(parents=True, exist_ok=True)
-    for name, data in {"api": SEEDS, "fmu": FMU_SEEDS, "plant": PLANT_SEEDS}[kind].items():
+    seeds = {"api": SEEDS, "fmu": FMU_SEEDS, "plant": PLANT_SEEDS, "me": ME_SEEDS}[kind]
+    for name, data in seeds.items():
         (path / name).write_bytes(data)
 
 

@@ -251,11 +251,28 @@ static void test_messages_name_the_cause(void) {
     }
 }
 
+/* A non-finite FMI 2 start time is an Error at SetupExperiment naming it (it was accepted, and an
+ * FMU state taken then gave the time back as NaN with status OK: fuzz_fmu's campaign of issue 23);
+ * the runtime's check, shared by every unit. */
+static void test_non_finite_start_time_refused(void) {
+    double force[6];
+    static_forces(STEWART_FULL, force);
+    unit u;
+    unit_start(&u, 0, STEWART_FULL, force);
+    TEST_ASSERT_EQUAL(fmi2OK, fmi2Reset(u.c));
+    TEST_ASSERT_EQUAL(fmi2Error, fmi2SetupExperiment(u.c, fmi2False, 0, NAN, fmi2False, 0));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(u.log.last, "startTime = nan must be finite"), u.log.last);
+    TEST_ASSERT_EQUAL(fmi2Error, fmi2SetupExperiment(u.c, fmi2False, 0, -INFINITY, fmi2False, 0));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(u.log.last, "startTime = -inf must be finite"), u.log.last);
+    unit_free(&u);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_random_corrupt_states_fmi2);
     RUN_TEST(test_random_corrupt_states_fmi3);
     RUN_TEST(test_bad_force_derivative_cleared_after_discard);
     RUN_TEST(test_messages_name_the_cause);
+    RUN_TEST(test_non_finite_start_time_refused);
     return UNITY_END();
 }
