@@ -1,16 +1,20 @@
 #!/usr/bin/env python3
-"""Every output of a reference build against the current build, file by file.
+"""Every output of a reference build against the current build, file by file: the one check that
+a refactoring changes no number (--bound 0) and that a speed change stays within rounding.
 
 On every scene (scenes/*.json; scripts/scenes.py writes its poses) it runs, in both builds:
-  stewart-solve at the three fidelities, stewart-solve --forward (on the reference's kinematic
-  lengths, rates and accelerations), stewart-simulate at both fidelities (on the reference's
-  full-level forces over the scene's first second), and through fmpy the StewartPlatform FMU (FMI
-  2.0 and 3.0, fidelities 0..2, the scene's pose and derivatives as inputs) and the StewartPlant FMU
-  (FMI 2.0 and 3.0, both fidelities, on the same forces).
+  stewart-solve at the three fidelities, on the scene's poses with their exact derivatives and
+  without them (the CLI then differentiates the samples); stewart-solve --forward on the
+  reference's kinematic lengths, with their rates and accelerations and on the lengths alone;
+  stewart-simulate at both fidelities on the reference's full-level forces over the scene's first
+  second; and through fmpy the StewartPlatform FMU (FMI 2.0 and 3.0, fidelities 0..2, the scene's
+  pose and derivatives as inputs) and the StewartPlant FMU (FMI 2.0 and 3.0, both fidelities, on
+  the same forces).
 Each pair of files is compared column by column: identical bits, or the largest difference
 relative to the column's scale, max(1, max |reference|). It prints that per file and fails (exit
-status 1) when one exceeds the bound (--bound, default 1e-9 relative; say 0 to ask for identical
-bits).
+status 1) when one exceeds the bound (--bound, default 1e-9 relative). --bound 0 asks for
+identical bits, and then also for identical messages from every CLI run (its exit status, stdout
+and stderr): a run both builds refuse alike is the same output.
 
 usage: compare_outputs.py REFERENCE_BUILD CURRENT_BUILD [--bound B] [--keep DIR]
 (studies/bench/compare_outputs.sh builds the reference of a commit and calls this.)
@@ -50,26 +54,42 @@ def scenes():
             yield path.stem
 
 
+def run_cli(command, path, out):
+    """One CLI run writing path; its exit status and messages go to path + '.log' (a refused
+    run writes no file: the log is its output)."""
+    done = subprocess.run([str(c) for c in command], capture_output=True, text=True)
+    log = path.with_name(path.name + ".log")
+    log.write_text(f"exit {done.returncode}\n{done.stdout}{done.stderr}")
+    out[path.name] = path
+    out[log.name] = log
+
+
 def run_clis(build, scene, poses, reference_dir, out_dir):
     """The CLI outputs of one build on one scene; the forward and plant inputs are the
     reference's (reference_dir), so both builds see the same ones."""
     out = {}
-    for fidelity in ("kinematic", "massless", "full"):
-        path = out_dir / f"{scene}-solve-{fidelity}.csv"
-        subprocess.run([build / "stewart-solve", "--fidelity", fidelity, poses, path], check=True)
-        out[path.name] = path
-    lengths = reference_dir / f"{scene}-solve-kinematic.csv"
-    path = out_dir / f"{scene}-forward.csv"
-    subprocess.run([build / "stewart-solve", "--forward", lengths, path], check=True)
-    out[path.name] = path
+    for variant, pose_file in (("", poses), ("-fd", poses.with_name(poses.stem + "-fd.csv"))):
+        for fidelity in ("kinematic", "massless", "full"):
+            path = out_dir / f"{scene}-solve{variant}-{fidelity}.csv"
+            run_cli([build / "stewart-solve", "--fidelity", fidelity, pose_file, path], path, out)
+    for variant in ("", "-lengths"):
+        lengths = reference_dir / f"{scene}-solve-kinematic{variant}.csv"
+        path = out_dir / f"{scene}-forward{variant}.csv"
+        run_cli([build / "stewart-solve", "--forward", lengths, path], path, out)
     forces = reference_dir / f"{scene}-forces.csv"
     for fidelity in ("massless", "full"):
         path = out_dir / f"{scene}-simulate-{fidelity}.csv"
-        # (open loop, a leg may leave its stroke: the warnings on stderr are not the point here)
-        subprocess.run([build / "stewart-simulate", "--fidelity", fidelity, forces, path],
-                       check=True, stderr=subprocess.DEVNULL)
-        out[path.name] = path
+        # (open loop, a leg may leave its stroke: its warnings are part of the log)
+        run_cli([build / "stewart-simulate", "--fidelity", fidelity, forces, path], path, out)
     return out
+
+
+def lengths_only(reference_dir, scene):
+    """t,L1..L6 of the reference's kinematic level: forward kinematics without rates."""
+    header, data = read_csv(reference_dir / f"{scene}-solve-kinematic.csv")
+    columns = [header.index("t")] + [header.index(f"L{k}") for k in range(1, 7)]
+    write_csv(reference_dir / f"{scene}-solve-kinematic-lengths.csv",
+              ["t"] + [f"L{k}" for k in range(1, 7)], data[:, columns])
 
 
 def forces_file(reference_dir, scene):
@@ -118,10 +138,16 @@ def run_fmus(build, scene, poses, reference_dir, out_dir):
     return out
 
 
-def compare(reference, current):
-    """(identical, largest relative difference, its column) of two CSV files."""
+def compare(reference, current, messages):
+    """(identical, largest relative difference, its column) of two output files: CSV files
+    column by column, a run's log only when messages count (else it passes)."""
+    if not reference.exists() or not current.exists():
+        same = reference.exists() == current.exists()  # both refused: their logs say the rest
+        return same, 0.0 if same else np.inf, "" if same else "one build wrote no file"
     if reference.read_bytes() == current.read_bytes():
         return True, 0.0, ""
+    if reference.suffix == ".log":
+        return False, np.inf if messages else 0.0, "exit status or messages"
     h1, a = read_csv(reference)
     h2, b = read_csv(current)
     if h1 != h2 or a.shape != b.shape:
@@ -151,6 +177,8 @@ def main():
             poses = work / f"{scene}-poses.csv"
             subprocess.run([sys.executable, ROOT / "scripts" / "scenes.py", scene, poses],
                            check=True)
+            subprocess.run([sys.executable, ROOT / "scripts" / "scenes.py", scene,
+                            work / f"{scene}-poses-fd.csv", "--no-derivatives"], check=True)
             dirs = {side: work / side for side in ("reference", "current")}
             for d in dirs.values():
                 d.mkdir(parents=True, exist_ok=True)
@@ -162,10 +190,12 @@ def main():
                         subprocess.run([build / "stewart-solve", "--fidelity", fidelity, poses,
                                         dirs[side] / f"{scene}-solve-{fidelity}.csv"], check=True)
                     forces_file(dirs[side], scene)
+                    lengths_only(dirs[side], scene)
                 outputs[side] = run_clis(build, scene, poses, dirs["reference"], dirs[side])
                 outputs[side].update(run_fmus(build, scene, poses, dirs["reference"], dirs[side]))
             for name, reference in outputs["reference"].items():
-                same, difference, column = compare(reference, outputs["current"][name])
+                same, difference, column = compare(reference, outputs["current"][name],
+                                                   args.bound == 0)
                 total += 1
                 identical += same
                 worst = max(worst, difference)
