@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -168,6 +169,57 @@ auto rows_of(std::optional<Array> &a, size_t n) -> decltype(a->data()) {
     return a->data();
 }
 
+// One output column of a direction's table (stewart_outputs.h) as Python sees it: name, values per
+// row, whether it holds int32 (else float64), unit, description. Python makes the result arrays
+// from these, so a column added to the table reaches the result classes without a binding change.
+using ColumnInfo = std::tuple<std::string, int, bool, std::string, std::string>;
+#define STEWART_COLUMN_INFO(name, member, count, type, unit, description)                         \
+    ColumnInfo{#name, count, std::is_same_v<type, int>, unit, description},
+std::vector<ColumnInfo> inverse_columns() {
+    return {STEWART_INVERSE_OUTPUT_TABLE(STEWART_COLUMN_INFO)};
+}
+std::vector<ColumnInfo> forward_columns() {
+    return {STEWART_FORWARD_OUTPUT_TABLE(STEWART_COLUMN_INFO)};
+}
+#undef STEWART_COLUMN_INFO
+
+// The data of outputs[name], an array of n rows of count values of T, C-ordered and never
+// converted (a converted copy would take the results); nullptr when outputs has no such column
+// (the caller skips it). The arrays are kept in held, so that they outlive the pointers.
+template <typename T>
+T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
+                std::vector<nb::object> &held) {
+    if (!outputs.contains(name)) return nullptr;
+    nb::object a = outputs[name];
+    using Array = nb::ndarray<T, nb::c_contig, nb::device::cpu>;
+    Array array;
+    if (!nb::try_cast<Array>(a, array, false))
+        fail((std::string("output ") + name + " must be a C-ordered array of " +
+              (std::is_same_v<T, int> ? "int32" : "float64")).c_str());
+    const bool shaped = count == 1 ? array.ndim() == 1
+                                   : array.ndim() == 2 && array.shape(1) == size_t(count);
+    if (!shaped || array.shape(0) != n)
+        fail((std::string("output ") + name + " must have " + std::to_string(n) + " rows of " +
+              std::to_string(count) + " values").c_str());
+    held.push_back(a);
+    return array.data();
+}
+
+// The batch outputs of a direction's table bound to the arrays of outputs (name -> array).
+#define STEWART_BIND_COLUMN(name, member, count, type, unit, description)                         \
+    o.name = table_column<type>(outputs, #name, n, count, held);
+stewart_inverse_batch_outputs bind_outputs(stewart_inverse_batch_outputs o, const nb::dict &outputs,
+                                           size_t n, std::vector<nb::object> &held) {
+    STEWART_INVERSE_OUTPUT_TABLE(STEWART_BIND_COLUMN)
+    return o;
+}
+stewart_forward_batch_outputs bind_outputs(stewart_forward_batch_outputs o, const nb::dict &outputs,
+                                           size_t n, std::vector<nb::object> &held) {
+    STEWART_FORWARD_OUTPUT_TABLE(STEWART_BIND_COLUMN)
+    return o;
+}
+#undef STEWART_BIND_COLUMN
+
 // A batch's outputs (one pointer per column of its X-macro table, at row 0) moved on to row
 // `first`: where a batch over rows first.. of the arrays writes.
 #define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description)                        \
@@ -227,23 +279,14 @@ public:
     InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot,
                std::optional<Poses> q_ddot,
                const std::vector<std::pair<std::string, double>> &option_values,
-               std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
-               std::optional<Rows<double, 6>> length_accel, std::optional<Rows<double, 6>> force,
-               std::optional<Column<double>> condition, std::optional<Column<double>> residual,
-               std::optional<Rows<double, 3>> base_force,
-               std::optional<Rows<double, 3>> base_torque, std::optional<Column<int>> iterations,
-               std::optional<Column<int>> warnings, Column<int> status)
-        : n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot),
-          arrays_{length, length_rate, length_accel, force, condition, residual, base_force,
-                  base_torque, iterations, warnings, status} {
+               const nb::dict &outputs, Column<int> status)
+        : n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot), status_(status) {
         if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the poses");
         const stewart_inverse_options options = make_options(option_values);
-        out_ = {rows_of(length, n_),     rows_of(length_rate, n_), rows_of(length_accel, n_),
-                rows_of(force, n_),      rows_of(condition, n_),   rows_of(residual, n_),
-                rows_of(base_force, n_), rows_of(base_torque, n_), rows_of(iterations, n_),
-                rows_of(warnings, n_),   nullptr /* stroke_legs: not asked for */, status.data()};
+        out_ = bind_outputs(out_, outputs, n_, held_);
+        out_.status = status.data();
         char message[STEWART_MESSAGE_SIZE];
         inverse_.solver = stewart_inverse_create(model.get(), &options, message, sizeof message);
         if (!inverse_.solver) fail(message);  // the options were checked: memory is short
@@ -267,12 +310,8 @@ private:
     Poses q_;
     std::optional<Poses> q_dot_, q_ddot_;
     // The output arrays, held so that they outlive the pointers in out_.
-    std::tuple<std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-               std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-               std::optional<Column<double>>, std::optional<Column<double>>,
-               std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
-               std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>
-        arrays_;
+    Column<int> status_;
+    std::vector<nb::object> held_;
     stewart_inverse_batch_outputs out_{};
     Owned<stewart_inverse> inverse_{stewart_inverse_free, stewart_inverse_message};
 };
@@ -285,16 +324,9 @@ public:
                std::optional<Poses> accels, std::optional<Times> time,
                std::optional<Column<const double>> guess,
                const std::vector<std::pair<std::string, double>> &option_values,
-               std::optional<Rows<double, 6>> pose, std::optional<Rows<double, 6>> pose_rate,
-               std::optional<Rows<double, 6>> pose_accel, std::optional<Column<double>> residual,
-               std::optional<Column<double>> condition, std::optional<Column<double>> jump,
-               std::optional<Column<int>> iterations, std::optional<Column<int>> warnings,
-               std::optional<Column<int>> branch, std::optional<Column<int>> start,
-               Column<int> status)
+               const nb::dict &outputs, Column<int> status)
         : n_(lengths.shape(0)), lengths_(lengths), rates_(rates), accels_(accels), time_(time),
-          guess_(guess),
-          arrays_{pose, pose_rate, pose_accel, residual, condition, jump, iterations, warnings,
-                  branch, start, status} {
+          guess_(guess), status_(status) {
         if ((rates && rates->shape(0) != n_) || (accels && accels->shape(0) != n_) ||
             (time && time->shape(0) != n_))
             fail("t, rates and accels must have as many rows as the lengths");
@@ -302,11 +334,8 @@ public:
         if (guess && guess->shape(0) != 6) fail("guess must have 6 values");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the lengths");
         const stewart_forward_options options = make_forward_options(option_values);
-        out_ = {rows_of(pose, n_),       rows_of(pose_rate, n_), rows_of(pose_accel, n_),
-                rows_of(residual, n_),   rows_of(condition, n_), rows_of(jump, n_),
-                rows_of(iterations, n_), rows_of(warnings, n_),  rows_of(branch, n_),
-                rows_of(start, n_),      nullptr /* stroke_legs: not asked for */,
-                status.data()};
+        out_ = bind_outputs(out_, outputs, n_, held_);
+        out_.status = status.data();
         char message[STEWART_MESSAGE_SIZE];
         forward_.solver = stewart_forward_create(model.get(), &options, message, sizeof message);
         if (!forward_.solver) fail(message);
@@ -335,12 +364,8 @@ private:
     std::optional<Times> time_;
     std::optional<Column<const double>> guess_;
     // The output arrays, held so that they outlive the pointers in out_.
-    std::tuple<std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-               std::optional<Rows<double, 6>>, std::optional<Column<double>>,
-               std::optional<Column<double>>, std::optional<Column<double>>,
-               std::optional<Column<int>>, std::optional<Column<int>>,
-               std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>
-        arrays_;
+    Column<int> status_;
+    std::vector<nb::object> held_;
     stewart_forward_batch_outputs out_{};
     Owned<stewart_forward> forward_{stewart_forward_free, stewart_forward_message};
 };
@@ -622,36 +647,20 @@ NB_MODULE(_core, m) {
     // The run objects keep their Model alive (keep_alive<1, 2>) and hold their arrays.
     nb::class_<InverseRun>(m, "InverseRun")
         .def(nb::init<const Model &, Poses, std::optional<Poses>, std::optional<Poses>,
-                      const std::vector<std::pair<std::string, double>> &,
-                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-                      std::optional<Column<double>>, std::optional<Column<double>>,
-                      std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
-                      std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>(),
+                      const std::vector<std::pair<std::string, double>> &, const nb::dict &,
+                      Column<int>>(),
              nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
-             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("length").none(),
-             nb::arg("length_rate").none(), nb::arg("length_accel").none(),
-             nb::arg("force").none(), nb::arg("condition").none(), nb::arg("residual").none(),
-             nb::arg("base_force").none(), nb::arg("base_torque").none(),
-             nb::arg("iterations").none(), nb::arg("warnings").none(), nb::arg("status"))
+             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
         .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"));
     nb::class_<ForwardRun>(m, "ForwardRun")
         .def(nb::init<const Model &, Poses, std::optional<Poses>, std::optional<Poses>,
                       std::optional<Times>, std::optional<Column<const double>>,
-                      const std::vector<std::pair<std::string, double>> &,
-                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-                      std::optional<Rows<double, 6>>, std::optional<Column<double>>,
-                      std::optional<Column<double>>, std::optional<Column<double>>,
-                      std::optional<Column<int>>, std::optional<Column<int>>,
-                      std::optional<Column<int>>, std::optional<Column<int>>, Column<int>>(),
+                      const std::vector<std::pair<std::string, double>> &, const nb::dict &,
+                      Column<int>>(),
              nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
              nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
-             nb::arg("guess").none(), nb::arg("options"), nb::arg("pose").none(),
-             nb::arg("pose_rate").none(), nb::arg("pose_accel").none(),
-             nb::arg("residual").none(), nb::arg("condition").none(), nb::arg("jump").none(),
-             nb::arg("iterations").none(), nb::arg("warnings").none(), nb::arg("branch").none(),
-             nb::arg("start").none(), nb::arg("status"))
+             nb::arg("guess").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
         .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"));
     nb::class_<PlantRun>(m, "PlantRun")
@@ -725,6 +734,10 @@ NB_MODULE(_core, m) {
                                               sizeof message) == STEWART_OK;
         return std::make_pair(known, std::string(known ? "" : message));
     });
+    m.def("inverse_columns", &inverse_columns,
+          "(name, values per row, int32?, unit, description) of each inverse output column");
+    m.def("forward_columns", &forward_columns,
+          "(name, values per row, int32?, unit, description) of each forward output column");
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
     // The library's parameter table: one dict per parameter (name, count, unit, description,
     // defaults, min, max, scalar_fills: one value by the bare name sets every leg).

@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _core
 from .errors import ParameterError
-from .results import RowStatus
+from .results import RowStatus, table_arrays, table_outputs
 from .slices import keeping_messages, run_in_slices
 
 # The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
@@ -36,6 +36,7 @@ class ForwardSolution(RowStatus):
     warnings: np.ndarray    #: (N,) STEWART_WARN_* bits: 1 stroke, 2 near singular, 4 other branch
     branch: np.ndarray      #: (N,) STEWART_BRANCH_* bits (BRANCH_BITS): why not the working mode
     start: np.ndarray       #: (N,) where Newton started: 0 home, 1 guess, 2 predictor, 3 last
+    stroke_legs: np.ndarray  #: (N,) bit k set: measured length k+1 is outside its stroke
     status: np.ndarray      #: (N,) stewart_status per row: 0 solved, < 0 failed
     messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
 
@@ -43,12 +44,8 @@ class ForwardSolution(RowStatus):
 
 def empty_forward_solution(n: int) -> ForwardSolution:
     """A ForwardSolution of n rows, uninitialised (the batch writes every row)."""
-    def ints():
-        return np.empty(n, dtype=np.int32)
-    return ForwardSolution(
-        pose=np.empty((n, 6)), pose_rate=np.empty((n, 6)), pose_accel=np.empty((n, 6)),
-        residual=np.empty(n), condition=np.empty(n), jump=np.empty(n), iterations=ints(),
-        warnings=ints(), branch=ints(), start=ints(), status=ints())
+    return ForwardSolution(**table_arrays(_core.forward_columns(), n),
+                           status=np.empty(n, dtype=np.int32))
 
 
 def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
@@ -62,9 +59,8 @@ def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
     out = empty_forward_solution(n)
     try:
         run = _core.ForwardRun(
-            model, lengths, rates, accels, t, guess, options, out.pose, out.pose_rate,
-            out.pose_accel, out.residual, out.condition, out.jump, out.iterations, out.warnings,
-            out.branch, out.start, out.status)
+            model, lengths, rates, accels, t, guess, options,
+            table_outputs(_core.forward_columns(), out), out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("forward", n, SLICE_ROWS,

@@ -11,7 +11,7 @@ import numpy as np
 from . import _core
 from .choices import Fidelity
 from .errors import ParameterError
-from .results import RowStatus
+from .results import RowStatus, table_arrays, table_outputs
 from .slices import keeping_messages, run_in_slices
 
 #: Rows per call into the library when rows are independent (kinematic and massless levels) and
@@ -37,6 +37,7 @@ class InverseSolution(RowStatus):
     base_torque: np.ndarray   #: (N, 3) its torque about the world origin [N m]
     iterations: np.ndarray    #: (N,) Newton iterations (full level)
     warnings: np.ndarray      #: (N,) STEWART_WARN_* bits: 1 stroke limit, 2 near singular
+    stroke_legs: np.ndarray   #: (N,) bit k set: leg k+1 is outside its stroke
     status: np.ndarray        #: (N,) stewart_status per row: 0 solved, < 0 failed
     messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
 
@@ -51,12 +52,8 @@ class InverseSolution(RowStatus):
 
 def empty_inverse_solution(n: int) -> InverseSolution:
     """An InverseSolution of n rows, uninitialised (the batch writes every row)."""
-    return InverseSolution(
-        length=np.empty((n, 6)), length_rate=np.empty((n, 6)), length_accel=np.empty((n, 6)),
-        force=np.empty((n, 6)), condition=np.empty(n), residual=np.empty(n),
-        base_force=np.empty((n, 3)), base_torque=np.empty((n, 3)),
-        iterations=np.empty(n, dtype=np.int32), warnings=np.empty(n, dtype=np.int32),
-        status=np.empty(n, dtype=np.int32))
+    return InverseSolution(**table_arrays(_core.inverse_columns(), n),
+                           status=np.empty(n, dtype=np.int32))
 
 
 def check_out(out: InverseSolution, n: int) -> None:
@@ -104,9 +101,8 @@ def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optio
     out.messages = {}
     try:
         run = _core.InverseRun(
-            model, q, q_dot, q_ddot, options, out.length, out.length_rate, out.length_accel,
-            out.force, out.condition, out.residual, out.base_force, out.base_torque,
-            out.iterations, out.warnings, out.status)
+            model, q, q_dot, q_ddot, options, table_outputs(_core.inverse_columns(), out),
+            out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("inverse", n, FULL_SLICE_ROWS if level == Fidelity.FULL else SLICE_ROWS,

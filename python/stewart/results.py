@@ -1,4 +1,5 @@
-"""What every batch result shares: a status per row."""
+"""What every batch result shares: a status per row, and arrays made from the library's output
+tables (stewart_outputs.h, through _core.inverse_columns and _core.forward_columns)."""
 from __future__ import annotations
 
 import numpy as np
@@ -25,3 +26,15 @@ class RowStatus:
         """The library's name of row's status ("ok", "unreachable pose", ...), or "not run"."""
         s = int(self.status[row])
         return "not run" if s == STATUS_NOT_RUN else _core.status_name(s)
+
+
+def table_arrays(columns, n: int) -> dict:
+    """Uninitialised arrays of n rows, one per output column of a library table: (n, count) or
+    (n,) for a count of 1, int32 or float64 as the table says (the batch writes every row)."""
+    return {name: np.empty((n, count) if count > 1 else n, dtype=np.int32 if is_int else np.float64)
+            for name, count, is_int, _unit, _description in columns}
+
+
+def table_outputs(columns, result) -> dict:
+    """The arrays of result the library writes, by the name of their table column."""
+    return {name: getattr(result, name) for name, *_ in columns}
