@@ -10,16 +10,6 @@
 
 namespace {
 
-// Row j of an n x width array, or nullptr for an output the caller skipped.
-template <typename T>
-T *row(T *array, size_t j, size_t width) {
-    return array ? array + j * width : nullptr;
-}
-
-void copy_out(double *to, const double *from, int count) {
-    if (to) std::memcpy(to, from, sizeof(double) * count);
-}
-
 // Row j of a column of `count` values: an array member, or a scalar one.
 template <typename T, size_t N>
 void put(T *column, size_t j, const T (&value)[N]) {
@@ -40,6 +30,12 @@ void put(T *column, size_t j, const T &value) {
 #define FORWARD_COLUMN(name, member, count, type, unit, description)                             \
     static_assert(sizeof(stewart_forward_output::member) == (count) * sizeof(type),              \
                   #name ": count and type as in stewart_forward_output");
+#define PLANT_COLUMN(name, member, count, type, unit, description)                               \
+    static_assert(sizeof(stewart_plant_output::member) == (count) * sizeof(type),                \
+                  #name ": count and type as in stewart_plant_output");
+#define PLANT_STEP_COLUMN(name, member, count, type, unit, description)                          \
+    static_assert(sizeof(stewart_plant_statistics::member) == (count) * sizeof(type),            \
+                  #name ": count and type as in stewart_plant_statistics");
 struct InverseMirror {
     STEWART_INVERSE_OUTPUT_TABLE(MIRROR_COLUMN)
 };
@@ -48,12 +44,17 @@ struct ForwardMirror {
 };
 STEWART_INVERSE_OUTPUT_TABLE(INVERSE_COLUMN)
 STEWART_FORWARD_OUTPUT_TABLE(FORWARD_COLUMN)
+// (the plant's tables are a choice of its structs' fields: time and accelerations are left out)
+STEWART_PLANT_OUTPUT_TABLE(PLANT_COLUMN)
+STEWART_PLANT_STEP_TABLE(PLANT_STEP_COLUMN)
 static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_output),
               "STEWART_INVERSE_OUTPUT_TABLE lists every field of stewart_inverse_output");
 static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_output),
               "STEWART_FORWARD_OUTPUT_TABLE lists every field of stewart_forward_output");
 #undef INVERSE_COLUMN
 #undef FORWARD_COLUMN
+#undef PLANT_COLUMN
+#undef PLANT_STEP_COLUMN
 #undef MIRROR_COLUMN
 
 #define PUT_COLUMN(name, member, count, type, unit, description) put(out.name, j, o.member);
@@ -111,24 +112,17 @@ void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
     out.status[j] = s;
 }
 
-#undef PUT_COLUMN
-
 // Writes one plant row (zeros, status STEWART_BATCH_NOT_RUN, for a row that did not run).
 void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
-                     const stewart_plant_output &o, const stewart_plant_statistics &st, int s) {
-    copy_out(row(out.pose, j, 6), o.pose.q, 6);
-    copy_out(row(out.pose_rate, j, 6), o.pose.q_dot, 6);
-    copy_out(row(out.length, j, 6), o.lengths.length, STEWART_LEGS);
-    copy_out(row(out.length_rate, j, 6), o.lengths.length_rate, STEWART_LEGS);
-    copy_out(row(out.base_force, j, 3), o.base_force, 3);
-    copy_out(row(out.base_torque, j, 3), o.base_torque, 3);
-    if (out.warnings) out.warnings[j] = o.warnings;
-    if (out.steps) out.steps[j] = st.steps;
-    if (out.rhs_evaluations) out.rhs_evaluations[j] = st.rhs_evaluations;
-    if (out.nonlinear_iterations) out.nonlinear_iterations[j] = st.nonlinear_iterations;
-    if (out.error_test_failures) out.error_test_failures[j] = st.error_test_failures;
+                     const stewart_plant_output &o, const stewart_plant_statistics &step, int s) {
+    STEWART_PLANT_OUTPUT_TABLE(PUT_COLUMN)
+#define PUT_STEP_COLUMN(name, member, count, type, unit, description) put(out.name, j, step.member);
+    STEWART_PLANT_STEP_TABLE(PUT_STEP_COLUMN)
+#undef PUT_STEP_COLUMN
     out.status[j] = s;
 }
+
+#undef PUT_COLUMN
 
 }  // namespace
 

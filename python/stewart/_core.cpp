@@ -169,17 +169,30 @@ auto rows_of(std::optional<Array> &a, size_t n) -> decltype(a->data()) {
     return a->data();
 }
 
+// The numpy dtype of a table column's C type.
+template <typename T>
+constexpr const char *dtype_name() {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, int> ||
+                      (std::is_same_v<T, long> && sizeof(long) == 8),
+                  "a table column is double, int or a 64-bit long");
+    return std::is_same_v<T, double> ? "float64" : std::is_same_v<T, int> ? "int32" : "int64";
+}
+
 // One output column of a direction's table (stewart_outputs.h) as Python sees it: name, values per
-// row, whether it holds int32 (else float64), unit, description. Python makes the result arrays
-// from these, so a column added to the table reaches the result classes without a binding change.
-using ColumnInfo = std::tuple<std::string, int, bool, std::string, std::string>;
+// row, numpy dtype, unit, description. Python makes the result arrays from these, so a column
+// added to a table reaches the result classes without a binding change.
+using ColumnInfo = std::tuple<std::string, int, std::string, std::string, std::string>;
 #define STEWART_COLUMN_INFO(name, member, count, type, unit, description)                         \
-    ColumnInfo{#name, count, std::is_same_v<type, int>, unit, description},
+    ColumnInfo{#name, count, dtype_name<type>(), unit, description},
 std::vector<ColumnInfo> inverse_columns() {
     return {STEWART_INVERSE_OUTPUT_TABLE(STEWART_COLUMN_INFO)};
 }
 std::vector<ColumnInfo> forward_columns() {
     return {STEWART_FORWARD_OUTPUT_TABLE(STEWART_COLUMN_INFO)};
+}
+std::vector<ColumnInfo> plant_columns() {
+    return {STEWART_PLANT_OUTPUT_TABLE(STEWART_COLUMN_INFO)
+                STEWART_PLANT_STEP_TABLE(STEWART_COLUMN_INFO)};
 }
 #undef STEWART_COLUMN_INFO
 
@@ -194,8 +207,8 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
     using Array = nb::ndarray<T, nb::c_contig, nb::device::cpu>;
     Array array;
     if (!nb::try_cast<Array>(a, array, false))
-        fail((std::string("output ") + name + " must be a C-ordered array of " +
-              (std::is_same_v<T, int> ? "int32" : "float64")).c_str());
+        fail((std::string("output ") + name + " must be a C-ordered array of " + dtype_name<T>())
+                 .c_str());
     const bool shaped = count == 1 ? array.ndim() == 1
                                    : array.ndim() == 2 && array.shape(1) == size_t(count);
     if (!shaped || array.shape(0) != n)
@@ -216,6 +229,12 @@ stewart_inverse_batch_outputs bind_outputs(stewart_inverse_batch_outputs o, cons
 stewart_forward_batch_outputs bind_outputs(stewart_forward_batch_outputs o, const nb::dict &outputs,
                                            size_t n, std::vector<nb::object> &held) {
     STEWART_FORWARD_OUTPUT_TABLE(STEWART_BIND_COLUMN)
+    return o;
+}
+stewart_plant_batch_outputs bind_outputs(stewart_plant_batch_outputs o, const nb::dict &outputs,
+                                         size_t n, std::vector<nb::object> &held) {
+    STEWART_PLANT_OUTPUT_TABLE(STEWART_BIND_COLUMN)
+    STEWART_PLANT_STEP_TABLE(STEWART_BIND_COLUMN)
     return o;
 }
 #undef STEWART_BIND_COLUMN
@@ -379,30 +398,16 @@ public:
              std::optional<Column<const double>> start_pose,
              std::optional<Column<const double>> start_rate,
              const std::vector<std::pair<std::string, double>> &option_values,
-             std::optional<Rows<double, 6>> pose, std::optional<Rows<double, 6>> pose_rate,
-             std::optional<Rows<double, 6>> length, std::optional<Rows<double, 6>> length_rate,
-             std::optional<Rows<double, 3>> base_force, std::optional<Rows<double, 3>> base_torque,
-             std::optional<Column<int>> warnings, std::optional<Column<int64_t>> steps,
-             std::optional<Column<int64_t>> rhs_evaluations,
-             std::optional<Column<int64_t>> nonlinear_iterations,
-             std::optional<Column<int64_t>> error_test_failures, Column<int> status)
+             const nb::dict &outputs, Column<int> status)
         : n_(time.shape(0)), time_(time), force_(force), start_pose_(start_pose),
-          start_rate_(start_rate),
-          arrays_{pose, pose_rate, length, length_rate, base_force, base_torque, warnings, steps,
-                  rhs_evaluations, nonlinear_iterations, error_test_failures, status} {
+          start_rate_(start_rate), status_(status) {
         if (force.shape(0) != n_) fail("forces must have as many rows as t");
         if ((start_pose && start_pose->shape(0) != 6) || (start_rate && start_rate->shape(0) != 6))
             fail("start and start_rate must have 6 values");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as t");
         const stewart_plant_options options = make_plant_options(option_values);
-        static_assert(sizeof(int64_t) == sizeof(long), "plant counters are long");
-        out_ = {rows_of(pose, n_),        rows_of(pose_rate, n_),  rows_of(length, n_),
-                rows_of(length_rate, n_), rows_of(base_force, n_), rows_of(base_torque, n_),
-                rows_of(warnings, n_),
-                reinterpret_cast<long *>(rows_of(steps, n_)),
-                reinterpret_cast<long *>(rows_of(rhs_evaluations, n_)),
-                reinterpret_cast<long *>(rows_of(nonlinear_iterations, n_)),
-                reinterpret_cast<long *>(rows_of(error_test_failures, n_)), status.data()};
+        out_ = bind_outputs(out_, outputs, n_, held_);
+        out_.status = status.data();
         char message[STEWART_MESSAGE_SIZE] = "";
         {
             nb::gil_scoped_release release;
@@ -455,13 +460,8 @@ private:
     Poses force_;
     std::optional<Column<const double>> start_pose_, start_rate_;
     // The output arrays, held so that they outlive the pointers in out_.
-    std::tuple<std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-               std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-               std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
-               std::optional<Column<int>>, std::optional<Column<int64_t>>,
-               std::optional<Column<int64_t>>, std::optional<Column<int64_t>>,
-               std::optional<Column<int64_t>>, Column<int>>
-        arrays_;
+    Column<int> status_;
+    std::vector<nb::object> held_;
     stewart_plant_batch_outputs out_{};
     Owned<stewart_plant> plant_{stewart_plant_free, stewart_plant_message};
 };
@@ -666,20 +666,11 @@ NB_MODULE(_core, m) {
     nb::class_<PlantRun>(m, "PlantRun")
         .def(nb::init<const Model &, Times, Poses, std::optional<Column<const double>>,
                       std::optional<Column<const double>>,
-                      const std::vector<std::pair<std::string, double>> &,
-                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-                      std::optional<Rows<double, 6>>, std::optional<Rows<double, 6>>,
-                      std::optional<Rows<double, 3>>, std::optional<Rows<double, 3>>,
-                      std::optional<Column<int>>, std::optional<Column<int64_t>>,
-                      std::optional<Column<int64_t>>, std::optional<Column<int64_t>>,
-                      std::optional<Column<int64_t>>, Column<int>>(),
+                      const std::vector<std::pair<std::string, double>> &, const nb::dict &,
+                      Column<int>>(),
              nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("time"), nb::arg("force"),
              nb::arg("start_pose").none(), nb::arg("start_rate").none(), nb::arg("options"),
-             nb::arg("pose").none(), nb::arg("pose_rate").none(), nb::arg("length").none(),
-             nb::arg("length_rate").none(), nb::arg("base_force").none(),
-             nb::arg("base_torque").none(), nb::arg("warnings").none(), nb::arg("steps").none(),
-             nb::arg("rhs_evaluations").none(), nb::arg("nonlinear_iterations").none(),
-             nb::arg("error_test_failures").none(), nb::arg("status"))
+             nb::arg("outputs"), nb::arg("status"))
         .def("rows", &PlantRun::rows, nb::arg("first"), nb::arg("stop"))
         .def("statistics", &PlantRun::statistics);
     m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"),
@@ -735,9 +726,11 @@ NB_MODULE(_core, m) {
         return std::make_pair(known, std::string(known ? "" : message));
     });
     m.def("inverse_columns", &inverse_columns,
-          "(name, values per row, int32?, unit, description) of each inverse output column");
+          "(name, values per row, dtype, unit, description) of each inverse output column");
     m.def("forward_columns", &forward_columns,
-          "(name, values per row, int32?, unit, description) of each forward output column");
+          "(name, values per row, dtype, unit, description) of each forward output column");
+    m.def("plant_columns", &plant_columns,
+          "(name, values per row, dtype, unit, description) of each plant output column");
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
     // The library's parameter table: one dict per parameter (name, count, unit, description,
     // defaults, min, max, scalar_fills: one value by the bare name sets every leg).

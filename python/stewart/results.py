@@ -1,5 +1,5 @@
 """What every batch result shares: a status per row, and arrays made from the library's output
-tables (stewart_outputs.h, through _core.inverse_columns and _core.forward_columns)."""
+tables (stewart_outputs.h, through _core.inverse_columns, forward_columns, plant_columns)."""
 from __future__ import annotations
 
 import numpy as np
@@ -30,9 +30,9 @@ class RowStatus:
 
 def table_arrays(columns, n: int) -> dict:
     """Uninitialised arrays of n rows, one per output column of a library table: (n, count) or
-    (n,) for a count of 1, int32 or float64 as the table says (the batch writes every row)."""
-    return {name: np.empty((n, count) if count > 1 else n, dtype=np.int32 if is_int else np.float64)
-            for name, count, is_int, _unit, _description in columns}
+    (n,) for a count of 1, of the table's dtype (the batch writes every row)."""
+    return {name: np.empty((n, count) if count > 1 else n, dtype=dtype)
+            for name, count, dtype, _unit, _description in columns}
 
 
 def table_outputs(columns, result) -> dict:

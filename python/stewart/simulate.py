@@ -9,7 +9,7 @@ import numpy as np
 from . import _core
 from .choices import Choice
 from .errors import ParameterError
-from .results import STATUS_NOT_RUN, STATUS_OK, RowStatus
+from .results import STATUS_NOT_RUN, STATUS_OK, RowStatus, table_arrays, table_outputs
 from .slices import run_in_slices
 
 #: Communication points per call into the library: Python handles signals (Ctrl-C) between
@@ -41,6 +41,7 @@ class Simulation(RowStatus):
     base_torque: np.ndarray  #: (N, 3) its torque about the world origin [N m]
     warnings: np.ndarray     #: (N,) bits: 1 a leg outside the stroke, 8 a joint beyond its
     #: angle limit, 16 two legs closer than leg_diameter (docs/limits.md)
+    stroke_legs: np.ndarray  #: (N,) bit k set: leg k+1 is outside its stroke
     steps: np.ndarray        #: (N,) internal integrator steps of the step into the row
     rhs_evaluations: np.ndarray       #: (N,) of the step into the row
     nonlinear_iterations: np.ndarray  #: (N,) of the step into the row
@@ -57,18 +58,8 @@ class Simulation(RowStatus):
 
 def empty_simulation(t: np.ndarray) -> Simulation:
     """A Simulation over the communication points t, uninitialised (the run writes every row)."""
-    n = t.shape[0]
-
-    def rows(width):
-        return np.empty((n, width))
-
-    def counts():
-        return np.empty(n, dtype=np.int64)
-    return Simulation(t=t.copy(), pose=rows(6), pose_rate=rows(6), length=rows(6),
-                      length_rate=rows(6), base_force=rows(3), base_torque=rows(3),
-                      warnings=np.empty(n, dtype=np.int32), steps=counts(),
-                      rhs_evaluations=counts(), nonlinear_iterations=counts(),
-                      error_test_failures=counts(), status=np.empty(n, dtype=np.int32))
+    return Simulation(t=t.copy(), **table_arrays(_core.plant_columns(), t.shape[0]),
+                      status=np.empty(t.shape[0], dtype=np.int32))
 
 
 def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.ndarray],
@@ -81,9 +72,8 @@ def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.nd
     out = empty_simulation(t)
     try:
         run = _core.PlantRun(
-            model, t, forces, start, start_rate, options, out.pose, out.pose_rate, out.length,
-            out.length_rate, out.base_force, out.base_torque, out.warnings, out.steps,
-            out.rhs_evaluations, out.nonlinear_iterations, out.error_test_failures, out.status)
+            model, t, forces, start, start_rate, options,
+            table_outputs(_core.plant_columns(), out), out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
 

@@ -10,24 +10,28 @@ import stewart
 from stewart import _core
 from stewart.forward import ForwardSolution, empty_forward_solution
 from stewart.inverse import InverseSolution, empty_inverse_solution
+from stewart.simulate import Simulation, empty_simulation
 
 DIRECTIONS = {
     "inverse": (InverseSolution, empty_inverse_solution, _core.inverse_columns),
     "forward": (ForwardSolution, empty_forward_solution, _core.forward_columns),
+    "simulate": (Simulation, lambda n: empty_simulation(np.arange(n, dtype=float)),
+                 _core.plant_columns),
 }
+NOT_FROM_TABLES = ("t", "status", "messages", "message", "statistics")
 
 
 @pytest.mark.parametrize("direction", DIRECTIONS)
 def test_every_table_column_is_an_array_of_the_result_in_the_table_order(direction):
     cls, empty, columns = DIRECTIONS[direction]
     table = columns()
-    fields = [f.name for f in dataclasses.fields(cls) if f.name not in ("status", "messages")]
+    fields = [f.name for f in dataclasses.fields(cls) if f.name not in NOT_FROM_TABLES]
     assert fields == [name for name, *_ in table]
     result = empty(7)
-    for name, count, is_int, unit, description in table:
+    for name, count, dtype, unit, description in table:
         a = getattr(result, name)
         assert a.shape == ((7, count) if count > 1 else (7,)), name
-        assert a.dtype == (np.int32 if is_int else np.float64), name
+        assert a.dtype == np.dtype(dtype), name
         assert description, name
 
 
@@ -66,6 +70,19 @@ def test_forward_stroke_legs_name_the_measured_lengths_outside_the_stroke():
     expected = _expected_stroke_bits(lengths)
     assert 0 < np.count_nonzero(expected) < len(expected)
     np.testing.assert_array_equal(sol.stroke_legs, expected)
+
+
+def test_plant_stroke_legs_name_the_legs_outside_the_stroke():
+    """The plant sinks from home under forces below its weight's share: its legs shorten through
+    the lower stroke end."""
+    p = stewart.Platform(stroke_min=STROKE[0], stroke_max=STROKE[1])
+    t = np.linspace(0.0, 0.25, 51)
+    sim = p.simulate(t, np.zeros((len(t), 6)), fidelity="massless")
+    assert sim.completed
+    expected = _expected_stroke_bits(sim.length)
+    assert 0 < np.count_nonzero(expected) < len(expected)
+    np.testing.assert_array_equal(sim.stroke_legs, expected)
+    np.testing.assert_array_equal(sim.warnings & 1, expected != 0)
 
 
 def test_an_output_array_the_library_cannot_write_in_place_is_refused_by_the_binding():

@@ -78,22 +78,16 @@ stewart_status stewart_forward_batch(stewart_forward *forward, size_t n, const d
                                      const stewart_forward_batch_outputs *outputs,
                                      stewart_batch_messages *messages, size_t *first_failed);
 
-/* Where a plant batch writes its results: arrays of n rows, row-major. Every pointer but status
- * may be NULL to skip that output. A row that did not run holds zeros. Statistics are those of the
- * step into the row (zero for row 0). */
+/* Where a plant batch writes its results: arrays of n rows, row-major, one per column of
+ * STEWART_PLANT_OUTPUT_TABLE (pose, pose_rate, length, length_rate, base_force, base_torque,
+ * warnings, stroke_legs) and of STEWART_PLANT_STEP_TABLE (steps, rhs_evaluations,
+ * nonlinear_iterations, error_test_failures: the statistics of the step into the row, zero for
+ * row 0), then status. Every pointer but status may be NULL to skip that output. A row that did
+ * not run holds zeros. */
 typedef struct stewart_plant_batch_outputs {
-    double *pose;          /* n x 6, (x, y, z [m], roll, pitch, yaw [rad]) */
-    double *pose_rate;     /* n x 6, d/dt of the pose */
-    double *length;        /* n x 6, L_k [m] */
-    double *length_rate;   /* n x 6, dL_k/dt [m/s] */
-    double *base_force;    /* n x 3, force on the base, world frame [N] */
-    double *base_torque;   /* n x 3, its torque about the world origin [N m] */
-    int *warnings;         /* n, STEWART_WARN_* bits */
-    long *steps;           /* n, internal integrator steps */
-    long *rhs_evaluations; /* n, right-hand side evaluations */
-    long *nonlinear_iterations; /* n, nonlinear solver iterations */
-    long *error_test_failures;  /* n, error test failures */
-    int *status;           /* n, stewart_status, or STEWART_BATCH_NOT_RUN (required) */
+    STEWART_PLANT_OUTPUT_TABLE(STEWART_BATCH_COLUMN)
+    STEWART_PLANT_STEP_TABLE(STEWART_BATCH_COLUMN)
+    int *status; /* n, stewart_status, or STEWART_BATCH_NOT_RUN (required) */
 } stewart_plant_batch_outputs;
 
 /* Runs plant through the communication points time (n, increasing) with the forces force (n x 6

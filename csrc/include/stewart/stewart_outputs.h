@@ -4,13 +4,15 @@
  * stewart_forward.h) and one line here: the batch output struct, the batch's row writer and the
  * check that the table covers the struct are expanded from these lists.
  *
- * STEWART_INVERSE_OUTPUT_TABLE(X) and STEWART_FORWARD_OUTPUT_TABLE(X) call
+ * STEWART_INVERSE_OUTPUT_TABLE(X), STEWART_FORWARD_OUTPUT_TABLE(X), STEWART_PLANT_OUTPUT_TABLE(X)
+ * and STEWART_PLANT_STEP_TABLE(X) call
  *   X(name, member, count, type, unit, description)
  * once per column:
  *   name         the column's name (the batch output field, the Python result's array)
- *   member       its place in the output struct (stewart_inverse_output, stewart_forward_output)
+ *   member       its place in the output struct (stewart_inverse_output, stewart_forward_output,
+ *                stewart_plant_output; the plant's step table: stewart_plant_statistics)
  *   count        values per row: 1, 3 (x, y, z), 6 (legs 1..6 or x, y, z, roll, pitch, yaw)
- *   type         double or int
+ *   type         double, int or long
  *   unit         SI unit ("1" dimensionless, "" for integers and bit sets)
  *   description  one sentence
  */
@@ -43,5 +45,23 @@
     X(branch, branch, 1, int, "", "STEWART_BRANCH_* bits (why a pose is on another mode)")       \
     X(start, start, 1, int, "", "STEWART_START_* the pose was reached from")                     \
     X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: measured length k+1 is outside the stroke")
+
+/* The plant's columns: those of stewart_plant_output a plant batch row holds (its time is the
+ * row's, and the plant gives no accelerations), then the statistics of the step into the row. */
+#define STEWART_PLANT_OUTPUT_TABLE(X)                                                            \
+    X(pose, pose.q, 6, double, "m, rad", "Pose (x, y, z, roll, pitch, yaw)")                     \
+    X(pose_rate, pose.q_dot, 6, double, "m/s, rad/s", "d/dt of the pose")                        \
+    X(length, lengths.length, 6, double, "m", "Actuator length L_k")                             \
+    X(length_rate, lengths.length_rate, 6, double, "m/s", "dL_k/dt")                             \
+    X(base_force, base_force, 3, double, "N", "Force the moving bodies put on the base, world frame") \
+    X(base_torque, base_torque, 3, double, "N.m", "Its torque about the world origin")           \
+    X(warnings, warnings, 1, int, "", "STEWART_WARN_* bits")                                     \
+    X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: leg k+1 is outside the stroke")
+
+#define STEWART_PLANT_STEP_TABLE(X)                                                              \
+    X(steps, steps, 1, long, "", "Internal integrator steps of the step into the row")           \
+    X(rhs_evaluations, rhs_evaluations, 1, long, "", "Right-hand side evaluations of that step") \
+    X(nonlinear_iterations, nonlinear_iterations, 1, long, "", "Nonlinear iterations of that step") \
+    X(error_test_failures, error_test_failures, 1, long, "", "Error test failures of that step")
 
 #endif /* STEWART_STEWART_OUTPUTS_H */
