@@ -1,0 +1,160 @@
+// Nanoseconds per row of the C batches (stewart_batch.h) along the combined cue at 1 ms, one line
+// per batch: the inverse at its three levels, forward kinematics tracking the kinematic lengths,
+// and the plant at both fidelities driven by the full level's forces. The median over repeated
+// whole batches. studies/bench/batches.py runs this beside the Python API on the same rows.
+// usage: bench-batch [ROWS (6000)]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <vector>
+
+#include "bench/combined_cue.hpp"
+#include "stewart/stewart_batch.h"
+#include "stewart/stewart_forward.h"
+#include "stewart/stewart_plant.h"
+
+namespace {
+
+constexpr double kStep = 1e-3;  // [s] between rows
+
+// The median of `repeats` runs of batch, in ns per row (a failed batch aborts the program: a
+// benchmark of a refusal measures nothing).
+double median_ns_per_row(int repeats, size_t rows, const std::function<stewart_status()> &batch) {
+    std::vector<double> ns;
+    for (int r = 0; r < repeats; ++r) {
+        const auto start = std::chrono::steady_clock::now();
+        const stewart_status s = batch();
+        const auto stop = std::chrono::steady_clock::now();
+        if (s != STEWART_OK) {
+            std::fprintf(stderr, "bench-batch: a batch failed with status %d\n", s);
+            std::exit(1);
+        }
+        ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / rows);
+    }
+    std::nth_element(ns.begin(), ns.begin() + ns.size() / 2, ns.end());
+    return ns[ns.size() / 2];
+}
+
+// Every column of a batch's output tables, n rows each, and the batch outputs pointing at them:
+// the arrays the Python API asks for, so that both sides do the same work.
+#define BENCH_VECTOR(name, member, count, type, unit, description) std::vector<type> name;
+#define BENCH_SIZE(name, member, count, type, unit, description) name.resize(n * (count));
+#define BENCH_POINT(name, member, count, type, unit, description) out.name = name.data();
+struct InverseColumns {
+    STEWART_INVERSE_OUTPUT_TABLE(BENCH_VECTOR)
+    std::vector<int> status;
+    explicit InverseColumns(size_t n) : status(n) { STEWART_INVERSE_OUTPUT_TABLE(BENCH_SIZE) }
+    stewart_inverse_batch_outputs outputs() {
+        stewart_inverse_batch_outputs out{};
+        STEWART_INVERSE_OUTPUT_TABLE(BENCH_POINT)
+        out.status = status.data();
+        return out;
+    }
+};
+struct ForwardColumns {
+    STEWART_FORWARD_OUTPUT_TABLE(BENCH_VECTOR)
+    std::vector<int> status;
+    explicit ForwardColumns(size_t n) : status(n) { STEWART_FORWARD_OUTPUT_TABLE(BENCH_SIZE) }
+    stewart_forward_batch_outputs outputs() {
+        stewart_forward_batch_outputs out{};
+        STEWART_FORWARD_OUTPUT_TABLE(BENCH_POINT)
+        out.status = status.data();
+        return out;
+    }
+};
+struct PlantColumns {
+    STEWART_PLANT_OUTPUT_TABLE(BENCH_VECTOR)
+    STEWART_PLANT_STEP_TABLE(BENCH_VECTOR)
+    std::vector<int> status;
+    explicit PlantColumns(size_t n) : status(n) {
+        STEWART_PLANT_OUTPUT_TABLE(BENCH_SIZE)
+        STEWART_PLANT_STEP_TABLE(BENCH_SIZE)
+    }
+    stewart_plant_batch_outputs outputs() {
+        stewart_plant_batch_outputs out{};
+        STEWART_PLANT_OUTPUT_TABLE(BENCH_POINT)
+        STEWART_PLANT_STEP_TABLE(BENCH_POINT)
+        out.status = status.data();
+        return out;
+    }
+};
+#undef BENCH_VECTOR
+#undef BENCH_SIZE
+#undef BENCH_POINT
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    const size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 6000;
+    if (n < 2) return std::fprintf(stderr, "usage: bench-batch [ROWS >= 2]\n"), 2;
+    stewart_params params;
+    stewart_params_default(&params);
+    stewart_model *model = stewart_model_create(&params, nullptr, 0);
+    if (!model) return 1;
+    std::vector<double> q(6 * n), q_dot(6 * n), q_ddot(6 * n), time(n);
+    for (size_t j = 0; j < n; ++j) {
+        const stewart_pose p = combined_cue(j * kStep);
+        std::copy(p.q, p.q + 6, &q[6 * j]);
+        std::copy(p.q_dot, p.q_dot + 6, &q_dot[6 * j]);
+        std::copy(p.q_ddot, p.q_ddot + 6, &q_ddot[6 * j]);
+        time[j] = j * kStep;
+    }
+    std::printf("# ns per row, median of whole batches of %zu rows (combined cue, 1 ms)\n", n);
+
+    // (the kinematic level's lengths drive forward kinematics, the full level's forces the plant)
+    const char *level_name[] = {"inverse kinematic", "inverse massless", "inverse full"};
+    const int level_repeats[] = {51, 51, 5};
+    std::vector<InverseColumns> levels(3, InverseColumns(n));
+    for (int level = 0; level < 3; ++level) {
+        stewart_inverse_options o;
+        stewart_inverse_options_default(&o);
+        o.fidelity = level;
+        stewart_inverse *inverse = stewart_inverse_create(model, &o, nullptr, 0);
+        if (!inverse) return 1;
+        const stewart_inverse_batch_outputs out = levels[level].outputs();
+        const double ns = median_ns_per_row(level_repeats[level], n, [&] {
+            stewart_inverse_reset(inverse);
+            return stewart_inverse_batch(inverse, n, q.data(), q_dot.data(), q_ddot.data(), &out,
+                                         nullptr, nullptr);
+        });
+        std::printf("%-22s %10.1f\n", level_name[level], ns);
+        stewart_inverse_free(inverse);
+    }
+
+    stewart_forward_options fo;
+    stewart_forward_options_default(&fo);
+    stewart_forward *forward = stewart_forward_create(model, &fo, nullptr, 0);
+    if (!forward) return 1;
+    ForwardColumns tracked(n);
+    const stewart_forward_batch_outputs fout = tracked.outputs();
+    const double forward_ns = median_ns_per_row(21, n, [&] {
+        stewart_forward_reset(forward);
+        return stewart_forward_batch(forward, n, time.data(), levels[0].length.data(), nullptr,
+                                     nullptr, nullptr, &fout, nullptr, nullptr);
+    });
+    std::printf("%-22s %10.1f\n", "forward tracking", forward_ns);
+    stewart_forward_free(forward);
+
+    const char *plant_name[] = {"plant massless", "plant full"};
+    const int plant_repeats[] = {11, 3};
+    PlantColumns simulated(n);
+    const stewart_plant_batch_outputs pout = simulated.outputs();
+    for (int fidelity = 1; fidelity <= 2; ++fidelity) {
+        stewart_plant_options po;
+        stewart_plant_options_default(&po);
+        po.fidelity = fidelity;
+        stewart_plant *plant = stewart_plant_create(model, &po, nullptr, 0);
+        if (!plant) return 1;
+        const double ns = median_ns_per_row(plant_repeats[fidelity - 1], n, [&] {
+            stewart_plant_reset(plant);
+            return stewart_plant_batch(plant, n, time.data(), levels[2].force.data(), q.data(),
+                                       q_dot.data(), &pout, nullptr, nullptr);
+        });
+        std::printf("%-22s %10.1f\n", plant_name[fidelity - 1], ns);
+        stewart_plant_free(plant);
+    }
+    stewart_model_free(model);
+    return 0;
+}
