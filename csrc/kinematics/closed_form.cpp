@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "kinematics/joints.hpp"
-#include "kinematics/small_inverse.hpp"
+#include "kinematics/lu6.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -61,6 +61,27 @@ stewart_status leg_kinematics(const PlatformGeometry &g, const Motion &m, LegKin
     }
     return STEWART_OK;
 }
+
+namespace {
+
+// inv = A^-1 from the one small LU (lu6: partial pivoting, a pivot below 1e-14 of the largest
+// entry refused, so beyond a condition of about 1e14 there is no inverse). False: none.
+bool invert_6x6(const Eigen::Matrix<double, 6, 6> &A, Eigen::Matrix<double, 6, 6> &inv) {
+    double a[36];
+    int pivot[6];
+    for (int r = 0; r < 6; ++r)
+        for (int c = 0; c < 6; ++c) a[6 * r + c] = A(r, c);
+    if (!lu6_factor(a, pivot)) return false;
+    for (int c = 0; c < 6; ++c) {
+        double x[6] = {0, 0, 0, 0, 0, 0};
+        x[c] = 1.0;
+        lu6_solve(a, pivot, x);
+        for (int r = 0; r < 6; ++r) inv(r, c) = x[r];
+    }
+    return true;
+}
+
+}  // namespace
 
 void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacobian &out) {
     const double inv_length = 1.0 / g.characteristic_length;
