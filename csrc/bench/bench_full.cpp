@@ -10,9 +10,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "model.hpp"
+#include "bench/full_platform.hpp"
 #include "core/step.hpp"
-#include "inverse/full_model.hpp"
 #include "util/message.hpp"
 
 namespace {
@@ -45,7 +44,7 @@ struct Result {
     bool ok = true;
 };
 
-Result run(const stewart_model &model, const mbs::SolverOptions &kind, bool closed_form,
+Result run(const FullPlatform &model, const mbs::SolverOptions &kind, bool closed_form,
            const std::vector<Sample> &samples, int passes) {
     mbs::State state(model.full->mechanism, kind);
     Result r;
@@ -103,12 +102,8 @@ Result run(const stewart_model &model, const mbs::SolverOptions &kind, bool clos
 int main(int argc, char **argv) {
     stewart_params params;
     stewart_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
-    if (!model) {
-        std::fprintf(stderr, "%s\n", msg);
-        return 1;
-    }
+    const FullPlatform model(params);
+    if (!model.full) return 1;
     // The thesis sampling (0.1 s) for the closed-form guess; a finer 1 ms step for the predictor.
     const std::vector<Sample> coarse = yaw_manoeuvre(121, 12.0);
     const std::vector<Sample> fine = yaw_manoeuvre(12001, 12.0);
@@ -116,16 +111,15 @@ int main(int argc, char **argv) {
     dense.linear = mbs::LinearSolverKind::Dense;
     dense.kinsol_dense = true;
 
-    const Result a = run(*model, ours, true, coarse, 200);
+    const Result a = run(model, ours, true, coarse, 200);
     // BENCH_OURS_ONLY=1: only our solver, longer (for a profiler).
     if (std::getenv("BENCH_OURS_ONLY")) {
-        run(*model, ours, true, coarse, 2000);
-        stewart_model_free(model);
+        run(model, ours, true, coarse, 2000);
         return 0;
     }
-    const Result b = run(*model, dense, true, coarse, 5);
-    const Result c = run(*model, ours, false, fine, 3);
-    const Result d = run(*model, dense, false, fine, 1);
+    const Result b = run(model, dense, true, coarse, 5);
+    const Result c = run(model, ours, false, fine, 3);
+    const Result d = run(model, dense, false, fine, 1);
     if (!a.ok || !b.ok || !c.ok || !d.ok) return 1;
 
     char report[2048];
@@ -159,6 +153,5 @@ int main(int argc, char **argv) {
         std::fputs(report, f);
         std::fclose(f);
     }
-    stewart_model_free(model);
     return 0;
 }

@@ -31,8 +31,7 @@
 #include "core/linear_solver.hpp"
 #include "core/step.hpp"
 #include "core/sundials_holder.hpp"
-#include "model.hpp"
-#include "inverse/full_model.hpp"
+#include "bench/full_platform.hpp"
 
 namespace {
 
@@ -194,11 +193,9 @@ int main(int argc, char **argv) {
     stewart_params params;
     stewart_params_default(&params);
     char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
-    if (!model) {
-        std::fprintf(stderr, "bench-linear: %s\n", msg);
-        return 1;
-    }
+    const FullPlatform platform(params);
+    if (!platform.full) return 1;
+    const FullPlatform *model = &platform;
     const mbs::Mechanism &m = model->full->mechanism;
     // The systems of 200 full steps along the cue (1 kHz).
     std::vector<Sample> samples(200);
@@ -257,6 +254,5 @@ int main(int argc, char **argv) {
         std::printf("  %-20s %9.0f ns   largest relative residual %.2g\n", named.name,
                     ns[ns.size() / 2], worst);
     }
-    stewart_model_free(model);
     return 0;
 }
