@@ -44,16 +44,11 @@ static void unknown_row(unsigned vr, const stewart_linearize_output *p,
     }
 }
 
-/* The status (logged) of a linearisation that failed with s. */
-static fmu_status failed(fmu_instance *inst, stewart_status s) {
-    const char *why = stewart_linearize_message(inst->res.linearize);
-    if (s == STEWART_ERR_UNSUPPORTED) { /* tool or user frames: not with these parameters */
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetDirectionalDerivative: %s", why);
-        return FMU_ERROR;
-    }
+/* The status (logged) of a linearisation that failed: Discard, the state has no derivatives. */
+static fmu_status failed(fmu_instance *inst) {
     fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
             "t = %.17g: GetDirectionalDerivative: no derivatives at this state: %s",
-            inst->v.time, why);
+            inst->v.time, stewart_linearize_message(inst->res.linearize));
     return FMU_DISCARD;
 }
 
@@ -72,13 +67,13 @@ fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unkno
     }
     stewart_linearize_output p;
     stewart_status s = stewart_linearize_plant(inst->res.linearize, &in, &p);
-    if (s != STEWART_OK) return failed(inst, s);
+    if (s != STEWART_OK) return failed(inst);
     stewart_linearize_inverse_output w;
     if (wrench) {
         stewart_pose pose = in.pose;
         memcpy(pose.q_ddot, p.state_rate + 6, sizeof pose.q_ddot);
         s = stewart_linearize_inverse(inst->res.linearize, &pose, &w);
-        if (s != STEWART_OK) return failed(inst, s);
+        if (s != STEWART_OK) return failed(inst);
     }
     double row[N_COLUMNS];
     for (size_t i = 0; i < n_unknown; ++i) {
