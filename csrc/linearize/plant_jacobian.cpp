@@ -29,12 +29,6 @@ bool pose_accelerations(const Frames &f, const MotionT<S> &p, const S q[6],
     return angle_rates_of<S>(q, tool.alpha - angle_bias, q_ddot + 3, kMinCosPitch);
 }
 
-// The platform's motion (base frame) from the tool's (user frame).
-template <class S>
-MotionT<S> platform_of(const Frames &f, const MotionT<S> &tool) {
-    return f.identity ? tool : platform_motion(f, tool);
-}
-
 }  // namespace
 
 bool plant_rate(const fd::DynamicsModel &d, const Frames &f, const double q[6],
@@ -43,9 +37,9 @@ bool plant_rate(const fd::DynamicsModel &d, const Frames &f, const double q[6],
     // The twist rate nu_dot in plain numbers: M nu_dot = rhs, the plant's own equations. With
     // zero pose accelerations the tool's alpha is E_dot angles_dot.
     const double no_accel[6] = {0};
-    const Motion tool = motion_of_pose<double>(q, q_dot, no_accel);
-    r.angle_bias = tool.alpha;
-    r.platform = platform_of(f, tool);
+    r.platform = motion_of_pose<double>(q, q_dot, no_accel);  // the tool's, then the platform's
+    r.angle_bias = r.platform.alpha;
+    if (!f.identity) r.platform = platform_motion(f, r.platform);
     fd::Evaluation e;
     Matrix6 M;
     Vector6 rhs;
@@ -108,8 +102,9 @@ bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[
     seed(q, 0, qs);
     seed(q_dot, 6, rates);
     for (StateDual &a : zero) a = StateDual(0.0, StateDualDerivatives::Zero());
-    const MotionT<StateDual> tool = motion_of_pose<StateDual>(qs, rates, zero);
-    MotionT<StateDual> md = platform_of(f, tool);
+    MotionT<StateDual> md = motion_of_pose<StateDual>(qs, rates, zero);  // the tool's, then
+    const fd::Vec3T<StateDual> angle_bias = md.alpha;                    // the platform's
+    if (!f.identity) md = platform_motion(f, md);
     for (int i = 0; i < 3; ++i) {
         md.acceleration[i] = StateDual(r.twist_rate[i], StateDualDerivatives::Zero());
         md.alpha[i] = StateDual(r.twist_rate[3 + i], StateDualDerivatives::Zero());
@@ -127,13 +122,13 @@ bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[
         r.mass.solve(residual_wrt_state);
 
     // The twist rate with its derivatives, then q_ddot through the frames and the angles
-    // (tool.alpha = E_dot angles_dot: zero angle accelerations).
+    // (angle_bias = E_dot angles_dot of the tool: zero angle accelerations).
     for (int i = 0; i < 3; ++i) {
         md.acceleration[i] = StateDual(r.twist_rate[i], rate_wrt_state.row(i).transpose());
         md.alpha[i] = StateDual(r.twist_rate[3 + i], rate_wrt_state.row(3 + i).transpose());
     }
     StateDual q_ddot[6];
-    if (!pose_accelerations<StateDual>(f, md, qs, tool.alpha, q_ddot)) {
+    if (!pose_accelerations<StateDual>(f, md, qs, angle_bias, q_ddot)) {
         why.pitch = true;
         return false;
     }

@@ -72,10 +72,12 @@ fmu_status model_accepted_state(fmu_instance *inst);
  * checked the call order, that every unknown is a Real output and every known a Real input (or,
  * in a Model Exchange unit, a state).
  * FMU_ERROR with a message naming the output if it has no derivative; FMU_DISCARD if the inputs
- * have none (the solve fails there). Never allocates once the model's resources exist. */
+ * have none (the solve fails there); messages name `function`, the FMI call being answered
+ * (the directional or the adjoint derivative). Never allocates once the model's resources exist. */
 fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unknown[],
                                         size_t n_unknown, const unsigned known[], size_t n_known,
-                                        const double seed[], double sensitivity[]);
+                                        const double seed[], double sensitivity[],
+                                        const char *function);
 
 #ifdef __cplusplus
 }

@@ -64,6 +64,15 @@ typedef struct model_values {
     int limit_warnings; /* STEWART_WARN_JOINT_LIMIT, _INTERFERENCE at the last accepted state */
 } model_values;
 
+/* The plant linearised at `point` (states x .. yaw_dot, forces; derivatives.c), and the base
+ * wrench's rows by (states, forces) if has_wrench: kept while the point stays. */
+typedef struct plant_me_derivatives {
+    int valid, has_wrench;
+    double point[STEWART_LINEARIZE_STATES + STEWART_LINEARIZE_INPUTS];
+    stewart_linearize_output plant;
+    double wrench[6][STEWART_LINEARIZE_STATES + STEWART_LINEARIZE_INPUTS];
+} plant_me_derivatives;
+
 /* The model's resources: built at the end of initialisation from the parameters. The plant
  * object only evaluates the equations (stewart_plant_derivatives); its own state is unused. */
 typedef struct model_resources {
@@ -71,6 +80,7 @@ typedef struct model_resources {
     stewart_plant *plant;  /* on `model`, with `fidelity` */
     stewart_linearize *linearize; /* the same: the directional derivatives (derivatives.c) */
     stewart_limits *limits; /* on `model`: joint limits and interference at accepted states */
+    plant_me_derivatives derivatives; /* of `linearize`; cleared when it is rebuilt */
     stewart_params params;
     int fidelity;
     char message[2 * STEWART_MESSAGE_SIZE];

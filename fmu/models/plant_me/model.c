@@ -94,6 +94,7 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     r->plant = plant;
     r->linearize = linearize;
     r->limits = limits;
+    r->derivatives.valid = 0;
     r->fidelity = fidelity;
     fmu_log(inst, FMU_OK, LOG_EVENTS, "plant built (fidelity %d)", fidelity);
     return FMU_OK;
