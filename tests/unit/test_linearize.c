@@ -11,17 +11,14 @@
 #include <string.h>
 
 #include "allocation_counter.h"
+#include "linearize_support.h"
 #include "platform_fixture.h"
 #include "stewart/stewart_linearize.h"
 #include "test_support.h"
 #include "unity.h"
 
-/* Central-difference steps: the truncation error h^2 f'''/6 and the rounding error eps |f| / h
- * are both below 1e-9 of the derivatives at these steps (pose and rates of order 1, forces of
- * order 1e3 N, q_ddot affine in the forces). */
-static const double kStepState = 1e-5; /* m, rad, m/s, rad/s */
-static const double kStepForce = 1e-2; /* N */
-static const double kStepAccel = 1e-4; /* m/s2, rad/s2: forces and L_ddot are affine in them */
+static const double kStepState = LINEARIZE_STEP_STATE;
+static const double kStepForce = LINEARIZE_STEP_FORCE;
 static const double kRelative = 1e-7;
 
 static stewart_linearize *make(int fidelity) {
@@ -86,22 +83,6 @@ static stewart_linearize_output plant_ok(stewart_linearize *l, const stewart_lin
     const stewart_status s = stewart_linearize_plant(l, in, &out);
     TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, s, stewart_linearize_message(l));
     return out;
-}
-
-/* A block of a Jacobian (one group of rows by one group of columns of one unit each): the
- * largest |exact - difference| and the largest |exact|. */
-typedef struct { double error, scale; } block_error;
-static void block_add(block_error *e, double exact, double difference) {
-    if (fabs(exact - difference) > e->error) e->error = fabs(exact - difference);
-    if (fabs(exact) > e->scale) e->scale = fabs(exact);
-}
-/* The block's error relative to its scale, where the rounding of the central difference
- * (16 eps |f| / h for values of magnitude |f|) is not counted: a block that is zero (or nearly)
- * is checked against that rounding alone. */
-static double block_relative(block_error e, double value_scale, double h) {
-    const double rounding = 16 * 2.220446049250313e-16 * value_scale / h;
-    const double beyond = e.error > rounding ? e.error - rounding : 0;
-    return beyond / (e.scale > 0 ? e.scale : 1);
 }
 
 /* The forces of the inverse solver at the plant's fidelity (inverse fidelity numbers match). */
@@ -234,51 +215,8 @@ static void inverse_against_differences(int fidelity, int edge) {
                                   fabs(exact.base_torque[i] - reference.base_torque[i]));
             if (e / force_scale > worst_value) worst_value = e / force_scale;
         }
-        /* blocks by (row group L, L_dot, L_ddot, F, base force, base torque) x (column group
-         * q, q_dot, q_ddot) */
-        block_error blocks[6][3] = {{{0, 0}}};
-        for (int j = 0; j < 18; ++j) {
-            stewart_pose plus = pose, minus = pose;
-            double *a = j < 6 ? plus.q : j < 12 ? plus.q_dot : plus.q_ddot;
-            double *b = j < 6 ? minus.q : j < 12 ? minus.q_dot : minus.q_ddot;
-            const double h = j < 12 ? kStepState : kStepAccel;
-            a[j % 6] += h;
-            b[j % 6] -= h;
-            const stewart_inverse_output up = solve_ok(data, fidelity, &plus);
-            const stewart_inverse_output down = solve_ok(data, fidelity, &minus);
-            for (int k = 0; k < 6; ++k) {
-                const double d[4] = {
-                    (up.lengths.length[k] - down.lengths.length[k]) / (2 * h),
-                    (up.lengths.length_rate[k] - down.lengths.length_rate[k]) / (2 * h),
-                    (up.lengths.length_accel[k] - down.lengths.length_accel[k]) / (2 * h),
-                    (up.force[k] - down.force[k]) / (2 * h)};
-                for (int r = 0; r < 4; ++r)
-                    block_add(&blocks[r][j / 6], exact.jacobian[6 * r + k][j], d[r]);
-            }
-            for (int i = 0; i < 3; ++i) {
-                block_add(&blocks[4][j / 6], exact.jacobian[24 + i][j],
-                          (up.base_force[i] - down.base_force[i]) / (2 * h));
-                block_add(&blocks[5][j / 6], exact.jacobian[27 + i][j],
-                          (up.base_torque[i] - down.base_torque[i]) / (2 * h));
-            }
-        }
-        double value_scale[6] = {0};
-        for (int k = 0; k < 6; ++k) {
-            value_scale[0] = fmax(value_scale[0], fabs(exact.lengths.length[k]));
-            value_scale[1] = fmax(value_scale[1], fabs(exact.lengths.length_rate[k]));
-            value_scale[2] = fmax(value_scale[2], fabs(exact.lengths.length_accel[k]));
-            value_scale[3] = fmax(value_scale[3], fabs(exact.force[k]));
-        }
-        for (int i = 0; i < 3; ++i) {
-            value_scale[4] = fmax(value_scale[4], fabs(exact.base_force[i]));
-            value_scale[5] = fmax(value_scale[5], fabs(exact.base_torque[i]));
-        }
-        for (int r = 0; r < 6; ++r)
-            for (int c = 0; c < 3; ++c) {
-                const double e =
-                    block_relative(blocks[r][c], value_scale[r], c < 2 ? kStepState : kStepAccel);
-                if (e > worst) worst = e;
-            }
+        const double e = inverse_jacobian_error(&exact, &pose, fidelity);
+        if (e > worst) worst = e;
     }
     printf("inverse fidelity %d%s: Jacobian against central differences of the inverse solver, "
            "worst block error %.2e; forces and base wrench against the solver's %.2e\n",

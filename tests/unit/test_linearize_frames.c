@@ -11,17 +11,16 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "linearize_support.h"
 #include "platform_fixture.h"
 #include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
 #include "test_support.h"
 #include "unity.h"
 
-/* Central-difference steps as tests/unit/test_linearize.c: truncation and rounding both below
- * 1e-9 of the derivatives. */
-static const double kStepState = 1e-5; /* m, rad, m/s, rad/s */
-static const double kStepForce = 1e-2; /* N */
-static const double kStepAccel = 1e-4; /* m/s2, rad/s2 */
+static const double kStepState = LINEARIZE_STEP_STATE;
+static const double kStepForce = LINEARIZE_STEP_FORCE;
+static const double kStepAccel = LINEARIZE_STEP_ACCEL;
 static const double kRelative = 1e-7;
 
 static const double kTool[6] = {0.02, -0.03, 0.15, 0.1, -0.2, 0.3};
@@ -109,19 +108,6 @@ static void plant_values(stewart_plant *p, const stewart_linearize_input *in, do
     memcpy(v, out.pose.q_ddot, 6 * sizeof v[0]);
     memcpy(v + 6, out.lengths.length, 6 * sizeof v[0]);
     memcpy(v + 12, out.lengths.length_rate, 6 * sizeof v[0]);
-}
-
-/* Largest |exact - difference| over largest |exact| of a block, less the difference's rounding
- * (16 eps |f| / h). */
-typedef struct { double error, scale; } block_error;
-static void block_add(block_error *e, double exact, double difference) {
-    if (fabs(exact - difference) > e->error) e->error = fabs(exact - difference);
-    if (fabs(exact) > e->scale) e->scale = fabs(exact);
-}
-static double block_relative(block_error e, double value_scale, double h) {
-    const double rounding = 16 * 2.220446049250313e-16 * value_scale / h;
-    const double beyond = e.error > rounding ? e.error - rounding : 0;
-    return beyond / (e.scale > 0 ? e.scale : 1);
 }
 
 static void plant_against_differences(int fidelity) {
@@ -225,38 +211,8 @@ static void inverse_against_differences(int fidelity) {
             worst_value = fmax(worst_value, fabs(exact.base_force[i] - reference.base_force[i]) / value_scale[4]);
             worst_value = fmax(worst_value, fabs(exact.base_torque[i] - reference.base_torque[i]) / value_scale[5]);
         }
-        block_error blocks[6][3] = {{{0, 0}}};
-        for (int j = 0; j < 18; ++j) {
-            stewart_pose plus = pose, minus = pose;
-            double *a = j < 6 ? plus.q : j < 12 ? plus.q_dot : plus.q_ddot;
-            double *b = j < 6 ? minus.q : j < 12 ? minus.q_dot : minus.q_ddot;
-            const double h = j < 12 ? kStepState : kStepAccel;
-            a[j % 6] += h;
-            b[j % 6] -= h;
-            const stewart_inverse_output up = solve_ok(data, fidelity, &plus);
-            const stewart_inverse_output down = solve_ok(data, fidelity, &minus);
-            for (int k = 0; k < 6; ++k) {
-                const double d[4] = {
-                    (up.lengths.length[k] - down.lengths.length[k]) / (2 * h),
-                    (up.lengths.length_rate[k] - down.lengths.length_rate[k]) / (2 * h),
-                    (up.lengths.length_accel[k] - down.lengths.length_accel[k]) / (2 * h),
-                    (up.force[k] - down.force[k]) / (2 * h)};
-                for (int r = 0; r < 4; ++r)
-                    block_add(&blocks[r][j / 6], exact.jacobian[6 * r + k][j], d[r]);
-            }
-            for (int i = 0; i < 3; ++i) {
-                block_add(&blocks[4][j / 6], exact.jacobian[24 + i][j],
-                          (up.base_force[i] - down.base_force[i]) / (2 * h));
-                block_add(&blocks[5][j / 6], exact.jacobian[27 + i][j],
-                          (up.base_torque[i] - down.base_torque[i]) / (2 * h));
-            }
-        }
-        for (int r = 0; r < 6; ++r)
-            for (int c = 0; c < 3; ++c) {
-                const double e =
-                    block_relative(blocks[r][c], value_scale[r], c < 2 ? kStepState : kStepAccel);
-                if (e > worst) worst = e;
-            }
+        const double e = inverse_jacobian_error(&exact, &pose, fidelity);
+        if (e > worst) worst = e;
     }
     printf("frames, inverse fidelity %d: Jacobian against central differences of the inverse "
            "solver (steps %g, %g), worst block error %.2e; values against its %.2e\n", fidelity,
