@@ -4,6 +4,17 @@
 
 #include "platform_fixture.h"
 #include "test_support.h"
+#include "unity.h"
+
+stewart_linearize *linearize_make(int fidelity) {
+    stewart_linearize_options o;
+    stewart_linearize_options_default(&o);
+    o.fidelity = fidelity;
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_linearize *l = stewart_linearize_create(model, &o, message, sizeof message);
+    TEST_ASSERT_NOT_NULL_MESSAGE(l, message);
+    return l;
+}
 
 void block_add(block_error *e, double exact, double difference) {
     if (fabs(exact - difference) > e->error) e->error = fabs(exact - difference);

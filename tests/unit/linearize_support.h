@@ -23,6 +23,9 @@ void block_add(block_error *e, double exact, double difference);
  * is checked against that rounding alone. */
 double block_relative(block_error e, double value_scale, double h);
 
+/* A linearisation of the fixture's model at fidelity (fails the test if it cannot be made). */
+stewart_linearize *linearize_make(int fidelity);
+
 /* The worst block error of exact's Jacobian (rows L, L_dot, L_ddot, F, base force, base torque by
  * columns q, q_dot, q_ddot) against central differences of the fixture's inverse solver at
  * fidelity around pose. */

@@ -21,16 +21,6 @@ static const double kStepState = LINEARIZE_STEP_STATE;
 static const double kStepForce = LINEARIZE_STEP_FORCE;
 static const double kRelative = 1e-7;
 
-static stewart_linearize *make(int fidelity) {
-    stewart_linearize_options o;
-    stewart_linearize_options_default(&o);
-    o.fidelity = fidelity;
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_linearize *l = stewart_linearize_create(model, &o, message, sizeof message);
-    TEST_ASSERT_NOT_NULL_MESSAGE(l, message);
-    return l;
-}
-
 static double uniform(uint64_t *rng, double a, double b) {
     return a + (b - a) * (double)(test_random(rng) >> 11) / 9007199254740992.0;
 }
@@ -136,7 +126,7 @@ static double check_plant_point(stewart_linearize *l, const stewart_linearize_in
 }
 
 static void plant_against_differences(int fidelity, int edge) {
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     uint64_t rng = 0x5eed1234u + (uint64_t)(fidelity * 7 + edge);
     double worst = 0;
     for (int n = 0; n < 12; ++n) {
@@ -161,7 +151,7 @@ static void test_plant_full_near_edge(void) { plant_against_differences(STEWART_
 /* The plant's state rate at the inverse forces of a pose is that pose's acceleration (the inverse
  * solver at full fidelity is the 14-body model: another formulation of the same physics). */
 static void rate_matches_inverse(int fidelity) {
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     uint64_t rng = 99 + (uint64_t)fidelity;
     double worst = 0;
     for (int n = 0; n < 20; ++n) {
@@ -190,7 +180,7 @@ static void test_rate_matches_inverse_full(void) { rate_matches_inverse(STEWART_
  * forces and base wrench (the 14-body model at full fidelity), and its values against that
  * solver's. */
 static void inverse_against_differences(int fidelity, int edge) {
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     uint64_t rng = 777 + (uint64_t)(fidelity * 3 + edge);
     double worst = 0, worst_value = 0;
     for (int n = 0; n < 8; ++n) {
@@ -232,7 +222,7 @@ static void test_inverse_full_near_edge(void) { inverse_against_differences(STEW
 /* dL/dq written out: dL_k/dp = n_k, dL_k/d(angles) = ((R b_k) x n_k) . E columns, with
  * E = [Rz Ry e_x, Rz e_y, e_z]; and dL_dot/dq_dot is the same matrix. */
 static void test_leg_jacobian_written_out(void) {
-    stewart_linearize *l = make(STEWART_FULL);
+    stewart_linearize *l = linearize_make(STEWART_FULL);
     uint64_t rng = 4242;
     for (int n = 0; n < 5; ++n) {
         stewart_pose pose = random_pose(&rng);
@@ -279,7 +269,7 @@ static void test_life_cycle_and_bad_input(void) {
     TEST_ASSERT_NOT_NULL(strstr(message, "fidelity = 0"));
     TEST_ASSERT_NULL(stewart_linearize_create(NULL, &o, message, sizeof message));
 
-    stewart_linearize *full = make(STEWART_FULL), *massless = make(STEWART_MASSLESS);
+    stewart_linearize *full = linearize_make(STEWART_FULL), *massless = linearize_make(STEWART_MASSLESS);
     uint64_t rng = 1;
     stewart_linearize_input in;
     in.pose = random_pose(&rng);
@@ -351,7 +341,7 @@ static void test_length_offset(void) {
     inverse_forces(STEWART_FULL, &in.pose, in.force);
     params.length_offset[2] = 0.01;
     rebuild_platform();
-    stewart_linearize *l = make(STEWART_FULL);
+    stewart_linearize *l = linearize_make(STEWART_FULL);
     const stewart_linearize_output out = plant_ok(l, &in);
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &in.pose, 2) - 0.01,
                               out.output[14]);
@@ -361,7 +351,7 @@ static void test_length_offset(void) {
 
 /* No heap allocation in either call (allocation_counter.c interposes malloc and friends). */
 static void test_no_allocation(void) {
-    stewart_linearize *l = make(STEWART_FULL);
+    stewart_linearize *l = linearize_make(STEWART_FULL);
     uint64_t rng = 31;
     stewart_linearize_input in;
     in.pose = random_pose(&rng);

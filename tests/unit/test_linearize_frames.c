@@ -76,16 +76,6 @@ static void with_frames(void) {
     rebuild_platform();
 }
 
-static stewart_linearize *make(int fidelity) {
-    stewart_linearize_options o;
-    stewart_linearize_options_default(&o);
-    o.fidelity = fidelity;
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_linearize *l = stewart_linearize_create(model, &o, message, sizeof message);
-    TEST_ASSERT_NOT_NULL_MESSAGE(l, message);
-    return l;
-}
-
 static stewart_plant *make_plant(int fidelity) {
     stewart_plant_options o;
     stewart_plant_options_default(&o);
@@ -112,7 +102,7 @@ static void plant_values(stewart_plant *p, const stewart_linearize_input *in, do
 
 static void plant_against_differences(int fidelity) {
     with_frames();
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     stewart_plant *plant = make_plant(fidelity);
     uint64_t rng = 0xf4a3e5u + (uint64_t)fidelity;
     double worst = 0, worst_value = 0;
@@ -180,7 +170,7 @@ static void test_plant_full_with_frames(void) { plant_against_differences(STEWAR
  * forces and base wrench (base frame) at tool poses, and its values against that solver's. */
 static void inverse_against_differences(int fidelity) {
     with_frames();
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     uint64_t rng = 0x1f7au + (uint64_t)fidelity;
     double worst = 0, worst_value = 0;
     for (int n = 0; n < 8; ++n) {
