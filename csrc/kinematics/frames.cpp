@@ -68,38 +68,8 @@ Frames frames_of(const stewart_params &p) {
     return f;
 }
 
-Motion platform_motion(const Frames &f, const Motion &tool) {
-    const Eigen::Matrix3d &U = f.user_rotation;
-    Motion m;
-    m.rotation = U * tool.rotation * f.tool_rotation.transpose();
-    m.omega = U * tool.omega;
-    m.alpha = U * tool.alpha;
-    const Eigen::Vector3d arm = m.rotation * f.tool_origin;  // platform origin to tool origin
-    m.position = f.user_origin + U * tool.position - arm;
-    m.velocity = U * tool.velocity - m.omega.cross(arm);
-    m.acceleration = U * tool.acceleration - m.alpha.cross(arm) -
-                     m.omega.cross(m.omega.cross(arm));
-    return m;
-}
-
-namespace {
-
-// The tool's motion in the user frame from the platform's in the base frame.
-Motion tool_motion(const Frames &f, const Motion &platform) {
-    const Eigen::Matrix3d Ut = f.user_rotation.transpose();
-    const Eigen::Vector3d arm = platform.rotation * f.tool_origin;
-    Motion m;
-    m.rotation = Ut * platform.rotation * f.tool_rotation;
-    m.omega = Ut * platform.omega;
-    m.alpha = Ut * platform.alpha;
-    m.position = Ut * (platform.position + arm - f.user_origin);
-    m.velocity = Ut * (platform.velocity + platform.omega.cross(arm));
-    m.acceleration = Ut * (platform.acceleration + platform.alpha.cross(arm) +
-                           platform.omega.cross(platform.omega.cross(arm)));
-    return m;
-}
-
-}  // namespace
+template Motion platform_motion<double>(const Frames &f, const Motion &tool);
+template Motion tool_motion<double>(const Frames &f, const Motion &platform);
 
 bool motion_finite(const Motion &m) {
     return m.position.allFinite() && m.velocity.allFinite() && m.acceleration.allFinite() &&

@@ -26,8 +26,43 @@ struct Frames {
 // The frames of parameters p (tool_frame, user_frame; checked finite by the table).
 Frames frames_of(const stewart_params &p);
 
-// The platform's motion in the base frame from the tool's in the user frame.
-Motion platform_motion(const Frames &f, const Motion &tool);
+// The platform's motion in the base frame from the tool's in the user frame. Templated on the
+// scalar so that the linearisation carries derivatives through it (double instantiated once, in
+// frames.cpp).
+template <class S>
+MotionT<S> platform_motion(const Frames &f, const MotionT<S> &tool) {
+    const Eigen::Matrix<S, 3, 3> U = f.user_rotation.template cast<S>();
+    MotionT<S> m;
+    m.rotation = U * tool.rotation * f.tool_rotation.transpose().template cast<S>();
+    m.omega = U * tool.omega;
+    m.alpha = U * tool.alpha;
+    // platform origin to tool origin
+    const Eigen::Matrix<S, 3, 1> arm = m.rotation * f.tool_origin.template cast<S>();
+    m.position = f.user_origin.template cast<S>() + U * tool.position - arm;
+    m.velocity = U * tool.velocity - m.omega.cross(arm);
+    m.acceleration = U * tool.acceleration - m.alpha.cross(arm) -
+                     m.omega.cross(m.omega.cross(arm));
+    return m;
+}
+extern template Motion platform_motion<double>(const Frames &f, const Motion &tool);
+
+// The tool's motion in the user frame from the platform's in the base frame (the inverse of
+// platform_motion; any scalar, double instantiated in frames.cpp).
+template <class S>
+MotionT<S> tool_motion(const Frames &f, const MotionT<S> &platform) {
+    const Eigen::Matrix<S, 3, 3> Ut = f.user_rotation.transpose().template cast<S>();
+    const Eigen::Matrix<S, 3, 1> arm = platform.rotation * f.tool_origin.template cast<S>();
+    MotionT<S> m;
+    m.rotation = Ut * platform.rotation * f.tool_rotation.template cast<S>();
+    m.omega = Ut * platform.omega;
+    m.alpha = Ut * platform.alpha;
+    m.position = Ut * (platform.position + arm - f.user_origin.template cast<S>());
+    m.velocity = Ut * (platform.velocity + platform.omega.cross(arm));
+    m.acceleration = Ut * (platform.acceleration + platform.alpha.cross(arm) +
+                           platform.omega.cross(platform.omega.cross(arm)));
+    return m;
+}
+extern template Motion tool_motion<double>(const Frames &f, const Motion &platform);
 
 // Every value of m finite (a transformed motion can overflow where the given one did not).
 bool motion_finite(const Motion &m);

@@ -83,15 +83,6 @@ int stroke_legs_of(const stewart_params &p, const double length[STEWART_LEGS]) {
     return legs;
 }
 
-// STEWART_ERR_UNSUPPORTED unless the model's tool and user frames are identity: the
-// linearisation works in the platform frame (its origin, in base coordinates).
-stewart_status check_frames(const stewart_model &model, char *msg, size_t size) {
-    if (model.frames.identity) return STEWART_OK;
-    return set_message(msg, size, STEWART_ERR_UNSUPPORTED,
-                       "the linearisation works in the platform frame: tool_frame and user_frame "
-                       "must be identity (not yet transformed)");
-}
-
 // The sensors read the Cardan-to-Cardan length less length_offset (a constant: no derivative).
 void subtract_offsets(const stewart_model &model, double length[STEWART_LEGS]) {
     if (model.length_offsets)
@@ -109,6 +100,25 @@ stewart_status check_pose_rows(const stewart_pose &pose, int last_row, char *msg
     if (!(std::fabs(std::cos(pose.q[4])) > lin::kMinCosPitch))
         return failure(lin::Failure{fd::LegFault::None, -1, true}, pose.q[4], msg, size);
     return STEWART_OK;
+}
+
+// The base wrench at pose and its Jacobian rows (force, then torque) by (q, q_dot, q_ddot).
+bool base_wrench(const stewart_linearize &l, const stewart_pose &pose, double force[3],
+                 double torque[3], double rows[6][STEWART_LINEARIZE_INVERSE_COLUMNS],
+                 lin::Failure &why) {
+    Dual f[3], t[3];
+    if (!lin::pose_base_wrench(l.dynamics, l.model->frames, pose.q, pose.q_dot, pose.q_ddot, f, t,
+                               why))
+        return false;
+    for (int i = 0; i < 3; ++i) {
+        force[i] = f[i].value();
+        torque[i] = t[i].value();
+        for (int j = 0; j < STEWART_LINEARIZE_INVERSE_COLUMNS; ++j) {
+            rows[i][j] = f[i].derivatives()[j];
+            rows[3 + i][j] = t[i].derivatives()[j];
+        }
+    }
+    return true;
 }
 
 }  // namespace
@@ -221,12 +231,12 @@ extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
     const size_t size = sizeof l->message;
     if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL input or output");
     stewart_status s;
-    if ((s = check_frames(*l->model, msg, size)) != STEWART_OK) return s;
     if ((s = check_pose_rows(in->pose, 1, msg, size)) != STEWART_OK) return s;
     if ((s = check_finite(in->force, STEWART_LEGS, "force", 1, msg, size)) != STEWART_OK) return s;
     lin::PlantJacobian p;
     lin::Failure why;
-    if (!lin::plant_jacobian(l->dynamics, in->pose.q, in->pose.q_dot, in->force, p, why))
+    if (!lin::plant_jacobian(l->dynamics, l->model->frames, in->pose.q, in->pose.q_dot, in->force,
+                             p, why))
         return failure(why, in->pose.q[4], msg, size);
 
     stewart_linearize_output o;
@@ -271,15 +281,15 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     const size_t size = sizeof l->message;
     if (!pose || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or output");
     stewart_status s;
-    if ((s = check_frames(*l->model, msg, size)) != STEWART_OK) return s;
     if ((s = check_pose_rows(*pose, 2, msg, size)) != STEWART_OK) return s;
 
     stewart_linearize_inverse_output o;
     std::memset(&o, 0, sizeof o);
     lin::Failure why;
     Dual L[STEWART_LEGS], L_dot[STEWART_LEGS], L_ddot[STEWART_LEGS];
-    if (!lin::leg_lengths(l->dynamics.legs, pose->q, pose->q_dot, pose->q_ddot, L, L_dot, L_ddot,
-                          why))
+    const stewart::Frames &frames = l->model->frames;
+    if (!lin::leg_lengths(l->dynamics.legs, frames, pose->q, pose->q_dot, pose->q_ddot, L, L_dot,
+                          L_ddot, why))
         return failure(why, pose->q[4], msg, size);
     for (int k = 0; k < STEWART_LEGS; ++k) {
         o.lengths.length[k] = L[k].value();
@@ -293,15 +303,16 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
 
     // The plant's q_ddot = a(q, q_dot) + G(q) F (affine in F): F = G^-1 (q_ddot - a), and by the
     // implicit function theorem dF/dz = -G^-1 d q_ddot/dz at that F (z = q, q_dot), G^-1 for q_ddot.
+    // a and G in plain numbers at no force; the derivatives once, at the forces found.
     const double no_force[STEWART_LEGS] = {0};
-    lin::PlantJacobian at_rest, at_force;
-    if (!lin::plant_jacobian(l->dynamics, pose->q, pose->q_dot, no_force, at_rest, why))
+    lin::PlantRate rate;
+    if (!lin::plant_rate(l->dynamics, frames, pose->q, pose->q_dot, no_force, rate, why))
         return failure(why, pose->q[4], msg, size);
     Eigen::Matrix<double, 6, 6> G;
     Eigen::Matrix<double, 6, 1> missing;
     for (int i = 0; i < 6; ++i) {
-        for (int k = 0; k < STEWART_LEGS; ++k) G(i, k) = at_rest.q_ddot_wrt_force[i][k];
-        missing[i] = pose->q_ddot[i] - at_rest.q_ddot[i];
+        for (int k = 0; k < STEWART_LEGS; ++k) G(i, k) = rate.q_ddot_wrt_force[i][k];
+        missing[i] = pose->q_ddot[i] - rate.q_ddot[i];
     }
     const Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> lu(G);
     const double rcond = lu.rcond();
@@ -312,7 +323,10 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     const Eigen::Matrix<double, 6, 1> force = lu.solve(missing);
     double force_values[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) force_values[k] = force[k];
-    if (!lin::plant_jacobian(l->dynamics, pose->q, pose->q_dot, force_values, at_force, why))
+    lin::plant_rate_add_force(rate, force_values);
+    lin::PlantJacobian at_force;
+    if (!lin::plant_jacobian(l->dynamics, frames, pose->q, pose->q_dot, force_values, rate,
+                             at_force, why))
         return failure(why, pose->q[4], msg, size);
     const Eigen::Map<const Eigen::Matrix<double, 6, 12, Eigen::RowMajor>> accel_wrt_state(
         &at_force.q_ddot_wrt_state[0][0]);
@@ -323,18 +337,8 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
         for (int j = 0; j < 12; ++j) o.jacobian[18 + k][j] = force_wrt_state(k, j);
         for (int j = 0; j < 6; ++j) o.jacobian[18 + k][12 + j] = force_wrt_accel(k, j);
     }
-    Dual base_force[3], base_torque[3];
-    if (!lin::pose_base_wrench(l->dynamics, pose->q, pose->q_dot, pose->q_ddot, base_force,
-                               base_torque, why))
+    if (!base_wrench(*l, *pose, o.base_force, o.base_torque, o.jacobian + 24, why))
         return failure(why, pose->q[4], msg, size);
-    for (int i = 0; i < 3; ++i) {
-        o.base_force[i] = base_force[i].value();
-        o.base_torque[i] = base_torque[i].value();
-        for (int j = 0; j < STEWART_LINEARIZE_INVERSE_COLUMNS; ++j) {
-            o.jacobian[24 + i][j] = base_force[i].derivatives()[j];
-            o.jacobian[27 + i][j] = base_torque[i].derivatives()[j];
-        }
-    }
     static_assert(offsetof(stewart_linearize_inverse_output, jacobian) ==
                       offsetof(stewart_linearize_inverse_output, lengths) +
                           sizeof(stewart_lengths) + 12 * sizeof(double),
@@ -346,6 +350,26 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     o.stroke_legs = stroke_legs_of(l->model->params, o.lengths.length);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
     subtract_offsets(*l->model, o.lengths.length);
+    *out = o;
+    return clear_message(msg, size);
+}
+
+extern "C" stewart_status stewart_linearize_base_wrench(stewart_linearize *l,
+                                                        const stewart_pose *pose,
+                                                        stewart_linearize_wrench_output *out) {
+    if (!l) return STEWART_ERR_ARGUMENT;
+    char *msg = l->message;
+    const size_t size = sizeof l->message;
+    if (!pose || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or output");
+    stewart_status s;
+    if ((s = check_pose_rows(*pose, 2, msg, size)) != STEWART_OK) return s;
+    stewart_linearize_wrench_output o;
+    lin::Failure why;
+    if (!base_wrench(*l, *pose, o.base_force, o.base_torque, o.jacobian, why))
+        return failure(why, pose->q[4], msg, size);
+    static_assert(sizeof o == (6 + 6 * STEWART_LINEARIZE_INVERSE_COLUMNS) * sizeof(double),
+                  "the checked values are contiguous");
+    if ((s = check_overflow(o.base_force, sizeof o, msg, size)) != STEWART_OK) return s;
     *out = o;
     return clear_message(msg, size);
 }

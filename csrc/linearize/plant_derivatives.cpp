@@ -11,6 +11,18 @@ void seed(const double v[6], int first, Dual out[6]) {
         out[i] = Dual(v[i], DualDerivatives::Unit(first + i));
 }
 
+// The platform's motion (base frame) at the tool's pose (user frame) q with rates and
+// accelerations, each the variable of its direction (0-5, 6-11, 12-17).
+MotionT<Dual> seeded_motion(const Frames &f, const double q[6], const double q_dot[6],
+                            const double q_ddot[6]) {
+    Dual qs[6], rates[6], accels[6];
+    seed(q, 0, qs);
+    seed(q_dot, 6, rates);
+    seed(q_ddot, 12, accels);
+    const MotionT<Dual> tool = motion_of_pose<Dual>(qs, rates, accels);
+    return f.identity ? tool : platform_motion(f, tool);
+}
+
 }  // namespace
 
 bool plant_point(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
@@ -44,14 +56,10 @@ bool plant_point(const fd::DynamicsModel &d, const double q[6], const double q_d
     return true;
 }
 
-bool leg_lengths(const fd::LegParameters &p, const double q[6], const double q_dot[6],
-                 const double q_ddot[6], Dual length[STEWART_LEGS], Dual rate[STEWART_LEGS],
-                 Dual accel[STEWART_LEGS], Failure &why) {
-    Dual qs[6], rates[6], accels[6];
-    seed(q, 0, qs);
-    seed(q_dot, 6, rates);
-    seed(q_ddot, 12, accels);
-    const MotionT<Dual> m = motion_of_pose<Dual>(qs, rates, accels);
+bool leg_lengths(const fd::LegParameters &p, const Frames &f, const double q[6],
+                 const double q_dot[6], const double q_ddot[6], Dual length[STEWART_LEGS],
+                 Dual rate[STEWART_LEGS], Dual accel[STEWART_LEGS], Failure &why) {
+    const MotionT<Dual> m = seeded_motion(f, q, q_dot, q_ddot);
     for (int k = 0; k < STEWART_LEGS; ++k) {
         fd::LegConfigurationT<Dual> leg;
         const fd::LegFault fault = fd::leg_configuration(p, k, m.position, m.rotation, leg, false);
@@ -73,13 +81,10 @@ bool leg_lengths(const fd::LegParameters &p, const double q[6], const double q_d
     return true;
 }
 
-bool pose_base_wrench(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
-                      const double q_ddot[6], Dual force[3], Dual torque[3], Failure &why) {
-    Dual qs[6], rates[6], accels[6];
-    seed(q, 0, qs);
-    seed(q_dot, 6, rates);
-    seed(q_ddot, 12, accels);
-    const MotionT<Dual> m = motion_of_pose<Dual>(qs, rates, accels);
+bool pose_base_wrench(const fd::DynamicsModel &d, const Frames &frames, const double q[6],
+                      const double q_dot[6], const double q_ddot[6], Dual force[3], Dual torque[3],
+                      Failure &why) {
+    const MotionT<Dual> m = seeded_motion(frames, q, q_dot, q_ddot);
     fd::EvaluationT<Dual> e;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const fd::LegFault fault =

@@ -2,6 +2,7 @@
 // plant's own equations (plant/plant_equations.*) evaluated in the dual scalar (util/dual.hpp).
 #pragma once
 
+#include "kinematics/frames.hpp"
 #include "plant/plant_equations.hpp"
 #include "util/dual.hpp"
 
@@ -27,16 +28,19 @@ struct PlantPoint {
 bool plant_point(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
                  const double force[STEWART_LEGS], PlantPoint &out, Failure &why);
 
-// The legs' lengths and their first two rates at the pose (q, q_dot, q_ddot), each with its
-// derivatives along directions 0-5 q, 6-11 q_dot, 12-17 q_ddot.
-bool leg_lengths(const fd::LegParameters &p, const double q[6], const double q_dot[6],
+// The legs' lengths and their first two rates at the pose (q, q_dot, q_ddot: the tool's in the
+// user frame, frames f), each with its derivatives along directions 0-5 q, 6-11 q_dot, 12-17
+// q_ddot.
+bool leg_lengths(const fd::LegParameters &p, const Frames &f, const double q[6],
+                 const double q_dot[6],
                  const double q_ddot[6], Dual length[STEWART_LEGS], Dual rate[STEWART_LEGS],
                  Dual accel[STEWART_LEGS], Failure &why);
 
-// The wrench the moving bodies put on the base (plant/plant_equations.hpp: base_wrench) when
-// the platform moves with the pose (q, q_dot, q_ddot), with its derivatives along the directions
-// of leg_lengths.
-bool pose_base_wrench(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
+// The wrench the moving bodies put on the base (plant/plant_equations.hpp: base_wrench; base
+// frame) when the tool moves with the pose (q, q_dot, q_ddot), with its derivatives along the
+// directions of leg_lengths.
+bool pose_base_wrench(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+                      const double q_dot[6],
                       const double q_ddot[6], Dual force[3], Dual torque[3], Failure &why);
 
 }  // namespace lin

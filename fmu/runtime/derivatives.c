@@ -72,7 +72,7 @@ fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unk
                                              n_known, sensitivity, n_unknown, function);
     if (checked != FMU_OK) return checked;
     return model_directional_derivative(inst, unknown, n_unknown, known, n_known, seed,
-                                        sensitivity);
+                                        sensitivity, function);
 #else
     (void)unknown; (void)n_unknown; (void)known; (void)n_known; (void)seed; (void)sensitivity;
     if (inst) fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s is not supported by this FMU", function);
@@ -89,7 +89,8 @@ fmu_status fmu_get_adjoint_derivative(fmu_instance *inst, const unsigned unknown
                                              n_unknown, sensitivity, n_known, function);
     if (checked != FMU_OK) return checked;
     /* Row j of J^T is column j of J: one directional derivative per known, with the unknowns
-     * taken in chunks so that no buffer is allocated. */
+     * taken in chunks so that no buffer is allocated (a model that keeps its linearisation for
+     * the current inputs, as the Model Exchange plant does, makes it once for all of them). */
     enum { CHUNK = 32 };
     double column[CHUNK];
     const double unit_seed = 1.0;
@@ -99,7 +100,7 @@ fmu_status fmu_get_adjoint_derivative(fmu_instance *inst, const unsigned unknown
         for (size_t first = 0; first < n_unknown; first += CHUNK) {
             const size_t m = n_unknown - first < CHUNK ? n_unknown - first : CHUNK;
             const fmu_status s = model_directional_derivative(inst, unknown + first, m, &known[j],
-                                                              1, &unit_seed, column);
+                                                              1, &unit_seed, column, function);
             if (s > FMU_WARNING) return s;
             if (s > worst) worst = s;
             for (size_t i = 0; i < m; ++i) sum += seed[first + i] * column[i];

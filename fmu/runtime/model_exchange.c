@@ -9,6 +9,10 @@
 #include "model_interface.h"
 #include "values.h"
 
+#ifndef FMU_ME_ACCEPTED_STATE
+#define FMU_ME_ACCEPTED_STATE 0
+#endif
+
 #ifndef FMU_N_STATES
 #define FMU_N_STATES 0
 #define FMU_STATE_VR(i) 0u
@@ -66,7 +70,11 @@ fmu_status fmu_completed_integrator_step(fmu_instance *inst, int *enter_event_mo
         return FMU_ERROR;
     if (enter_event_mode) *enter_event_mode = 0;
     if (terminate_simulation) *terminate_simulation = 0;
+#if FMU_ME_ACCEPTED_STATE
+    return model_accepted_state(inst);
+#else
     return FMU_OK;
+#endif
 }
 
 fmu_status fmu_set_time(fmu_instance *inst, double time) {

@@ -61,6 +61,10 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
                               size_t size, char *why, size_t why_size);
 /* Frees the resources (at fmu_free). */
 void model_free(fmu_instance *inst);
+/* Only in a Model Exchange unit whose config.h defines FMU_ME_ACCEPTED_STATE 1: the master has
+ * accepted the current state (CompletedIntegratorStep); report what holds there and only there,
+ * not at the trial states of the derivative calls (warnings). OK or Warning. Never allocates. */
+fmu_status model_accepted_state(fmu_instance *inst);
 /* Only in a model whose config.h defines FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1 (the others need
  * not define it: the runtime then answers that the call is not supported). The partial
  * derivatives of the outputs at the current inputs (those the outputs are, or would be, solved
@@ -68,10 +72,12 @@ void model_free(fmu_instance *inst);
  * checked the call order, that every unknown is a Real output and every known a Real input (or,
  * in a Model Exchange unit, a state).
  * FMU_ERROR with a message naming the output if it has no derivative; FMU_DISCARD if the inputs
- * have none (the solve fails there). Never allocates once the model's resources exist. */
+ * have none (the solve fails there); messages name `function`, the FMI call being answered
+ * (the directional or the adjoint derivative). Never allocates once the model's resources exist. */
 fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unknown[],
                                         size_t n_unknown, const unsigned known[], size_t n_known,
-                                        const double seed[], double sensitivity[]);
+                                        const double seed[], double sensitivity[],
+                                        const char *function);
 
 #ifdef __cplusplus
 }

@@ -198,7 +198,9 @@ class Platform:
         x = (pose, pose rates), u = forces, y = (pose, pose rates, lengths, length rates), exact
         (automatic differentiation through the library's equations of motion, not finite
         differences). pose, pose_rate (None: at rest), forces (None: those that hold the pose at
-        these rates without acceleration): 6 values each. fidelity "massless" or "full". A pose
+        these rates without acceleration): 6 values each. With tool_frame and user_frame the
+        pose, its rates and x are the tool's in the user frame, as every pose of the package.
+        fidelity "massless" or "full". A pose
         the plant cannot take (a zero-length leg, a locked Cardan, pitch at +-90 degrees) raises
         ValueError with the library's message."""
         return run_linearize(self._model, pose, pose_rate, forces, fidelity)

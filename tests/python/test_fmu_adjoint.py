@@ -119,3 +119,51 @@ def test_refused_requests():
     assert np.isfinite(adjoint(u.fmu, u.vr, ["L[1]"], ["x"], [1.0])).all()
     u.fmu.terminate()
     u.fmu.freeInstance()
+
+
+def test_model_exchange_discard_names_the_adjoint():
+    """At a state without derivatives (pitch at 90 degrees) the adjoint is Discard and its message
+    names fmi3GetAdjointDerivative (not the directional derivative it is made of); the instance
+    stays usable."""
+    me = MEInstance(VERSION).init(fidelity=2).continuous()
+    x = random_state(np.random.default_rng(43))
+    at_point(me, x, static_forces(2))
+    bad = x.copy()
+    bad[4] = np.pi / 2
+    assert me.set_states(bad) == 0
+    with pytest.raises(Exception):
+        adjoint(me.fmu, me.vr, ["x_ddot"], ["x", "F[1]"], [1.0])
+    message = me.messages[-1]
+    assert "fmi3GetAdjointDerivative" in message and "GetDirectionalDerivative" not in message, (
+        message)
+    at_point(me, x, static_forces(2))
+    assert np.isfinite(adjoint(me.fmu, me.vr, ["x_ddot"], ["x", "F[1]"], [1.0])).all()
+    me.free()
+
+
+def test_model_exchange_derivatives_follow_the_point():
+    """The unit keeps its linearisation for the states and forces it was made at: asked again at
+    another point it answers for that point (against the differences of its own outputs there),
+    and back at the first it answers bit for bit as before."""
+    me = MEInstance(VERSION).init(fidelity=2).continuous()
+    rng = np.random.default_rng(44)
+    unknowns, knowns = POSE_DDOT + OUTPUTS, STATES + F
+    w = rng.standard_normal(len(unknowns))
+    x1, x2 = random_state(rng), random_state(rng)
+    f1, f2 = static_forces(2), static_forces(2) * 1.05
+    at_point(me, x1, f1)
+    first = adjoint(me.fmu, me.vr, unknowns, knowns, w)
+    at_point(me, x2, f2)
+    second = adjoint(me.fmu, me.vr, unknowns, knowns, w)
+    # the second against central differences in x (pose and rates) at the second point
+    for j in range(len(STATES)):
+        up, down = x2.copy(), x2.copy()
+        up[j] += 1e-5
+        down[j] -= 1e-5
+        y_up, y_down = (np.concatenate(at_point(me, p, f2))[6:] for p in (up, down))
+        difference = w @ (y_up - y_down) / 2e-5
+        assert abs(second[j] - difference) < 1e-6 * (np.abs(second).max() + 1.0), j
+    at_point(me, x1, f1)
+    assert np.array_equal(adjoint(me.fmu, me.vr, unknowns, knowns, w), first)
+    assert not np.array_equal(first, second)
+    me.free()

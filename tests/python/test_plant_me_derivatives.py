@@ -1,7 +1,8 @@
 """Directional derivatives of the Model Exchange plant (StewartPlantME, FMI 2 and 3) against
 references independent of their code: central finite differences of the unit's own
 GetDerivatives (the state derivatives) and GetReal (the lengths, length rates and base wrench)
-with respect to every state and force, at random states of both fidelities; the model
+with respect to every state and force, at random states of both fidelities, with and without
+tool and user frames (the states the tool's pose in the user frame); the model
 structure's dependencies against what a change of each state and force does to each output and
 derivative; the declaration in the description (fmpy validate); the requests it refuses."""
 import numpy as np
@@ -13,7 +14,8 @@ from fmpy.validation import validate_fmu
 from fmu_support import VERSIONS
 from test_fmu_derivatives import declared_attribute
 from test_plant_fmu import F, L, L_DOT, WRENCH, fmu_file, static_forces
-from test_plant_me_fmu import OK, POSE_DDOT, STATES, MEInstance
+from test_frames import tool_pose
+from test_plant_me_fmu import FRAMES, OK, POSE_DDOT, STATES, MEInstance
 
 OUTPUTS = L + L_DOT + WRENCH
 KNOWNS = STATES + F
@@ -38,9 +40,15 @@ def directional(me, unknowns, knowns, seed):
                                                     [me.vr[n] for n in knowns], list(seed)))
 
 
-def random_state(rng):
+def random_state(rng, frames=None):
+    """Pose and rates near home; with frames (parameters as FRAMES) the tool's in the user frame
+    at a random platform pose."""
     pose = rng.uniform([-0.08, -0.08, 0.45, -0.12, -0.12, -0.2],
                        [0.08, 0.08, 0.55, 0.12, 0.12, 0.2])
+    if frames:
+        tool = np.array([frames[f"tool_frame[{i}]"] for i in range(1, 7)])
+        user = np.array([frames[f"user_frame[{i}]"] for i in range(1, 7)])
+        pose = tool_pose(pose, tool, user)
     return np.concatenate([pose, rng.uniform(-0.5, 0.5, 6)])
 
 
@@ -51,15 +59,17 @@ def block_error(exact, differences, values, h):
     return error / (scale if scale > 0 else 1.0)
 
 
+@pytest.mark.parametrize("framed", [False, True])
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("fidelity", [1, 2])
-def test_derivatives_equal_central_differences(version, fidelity):
+def test_derivatives_equal_central_differences(version, fidelity, framed):
     rng = np.random.default_rng(40 + fidelity)
-    me = MEInstance(version).init(fidelity=fidelity).continuous()
+    frames = FRAMES if framed else {}
+    me = MEInstance(version).init(fidelity=fidelity, **frames).continuous()
     unknowns = STATES[6:] + POSE_DDOT + OUTPUTS  # the state derivatives (x' = x_dot ..), outputs
     worst = 0.0
     for _ in range(3):
-        x = random_state(rng)
+        x = random_state(rng, frames)
         forces = static_forces(fidelity) * rng.uniform(0.8, 1.2, 6)
         dx, y = at_point(me, x, forces)
         J = np.array([directional(me, unknowns, KNOWNS, np.eye(18)[j]) for j in range(18)]).T
@@ -88,8 +98,8 @@ def test_derivatives_equal_central_differences(version, fidelity):
         assert np.array_equal(J[:6, :12], np.hstack([np.zeros((6, 6)), np.eye(6)]))
         assert not J[:6, 12:].any() and not J[12:24, 12:].any()
         assert not J[12:18, 6:12].any()  # the lengths on the pose alone
-    print(f"FMI {version} fidelity {fidelity}: ME directional derivatives vs central "
-          f"differences, worst block error {worst:.2e}")
+    print(f"FMI {version} fidelity {fidelity}{' framed' if framed else ''}: ME directional "
+          f"derivatives vs central differences, worst block error {worst:.2e}")
     assert worst < RELATIVE
     me.free()
 
@@ -159,10 +169,4 @@ def test_refused_requests(version):
         assert "GetDirectionalDerivative" in me.messages[-1], me.messages[-1]
     # the instance stays usable
     assert np.isfinite(directional(me, ["x_ddot"], ["x"], [1.0])).all()
-    me.free()
-    # tool and user frames: not with these parameters (linearisation in the platform frame)
-    me = MEInstance(version).init(**{"tool_frame[3]": 0.1}).continuous()
-    with pytest.raises(Exception):
-        directional(me, ["x_ddot"], ["x"], [1.0])
-    assert "tool_frame" in me.messages[-1]
     me.free()

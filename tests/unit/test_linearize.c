@@ -11,28 +11,15 @@
 #include <string.h>
 
 #include "allocation_counter.h"
+#include "linearize_support.h"
 #include "platform_fixture.h"
 #include "stewart/stewart_linearize.h"
 #include "test_support.h"
 #include "unity.h"
 
-/* Central-difference steps: the truncation error h^2 f'''/6 and the rounding error eps |f| / h
- * are both below 1e-9 of the derivatives at these steps (pose and rates of order 1, forces of
- * order 1e3 N, q_ddot affine in the forces). */
-static const double kStepState = 1e-5; /* m, rad, m/s, rad/s */
-static const double kStepForce = 1e-2; /* N */
-static const double kStepAccel = 1e-4; /* m/s2, rad/s2: forces and L_ddot are affine in them */
+static const double kStepState = LINEARIZE_STEP_STATE;
+static const double kStepForce = LINEARIZE_STEP_FORCE;
 static const double kRelative = 1e-7;
-
-static stewart_linearize *make(int fidelity) {
-    stewart_linearize_options o;
-    stewart_linearize_options_default(&o);
-    o.fidelity = fidelity;
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_linearize *l = stewart_linearize_create(model, &o, message, sizeof message);
-    TEST_ASSERT_NOT_NULL_MESSAGE(l, message);
-    return l;
-}
 
 static double uniform(uint64_t *rng, double a, double b) {
     return a + (b - a) * (double)(test_random(rng) >> 11) / 9007199254740992.0;
@@ -88,22 +75,6 @@ static stewart_linearize_output plant_ok(stewart_linearize *l, const stewart_lin
     return out;
 }
 
-/* A block of a Jacobian (one group of rows by one group of columns of one unit each): the
- * largest |exact - difference| and the largest |exact|. */
-typedef struct { double error, scale; } block_error;
-static void block_add(block_error *e, double exact, double difference) {
-    if (fabs(exact - difference) > e->error) e->error = fabs(exact - difference);
-    if (fabs(exact) > e->scale) e->scale = fabs(exact);
-}
-/* The block's error relative to its scale, where the rounding of the central difference
- * (16 eps |f| / h for values of magnitude |f|) is not counted: a block that is zero (or nearly)
- * is checked against that rounding alone. */
-static double block_relative(block_error e, double value_scale, double h) {
-    const double rounding = 16 * 2.220446049250313e-16 * value_scale / h;
-    const double beyond = e.error > rounding ? e.error - rounding : 0;
-    return beyond / (e.scale > 0 ? e.scale : 1);
-}
-
 /* The forces of the inverse solver at the plant's fidelity (inverse fidelity numbers match). */
 static void inverse_forces(int fidelity, const stewart_pose *pose, double force[6]) {
     stewart_pose p = *pose;
@@ -155,7 +126,7 @@ static double check_plant_point(stewart_linearize *l, const stewart_linearize_in
 }
 
 static void plant_against_differences(int fidelity, int edge) {
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     uint64_t rng = 0x5eed1234u + (uint64_t)(fidelity * 7 + edge);
     double worst = 0;
     for (int n = 0; n < 12; ++n) {
@@ -180,7 +151,7 @@ static void test_plant_full_near_edge(void) { plant_against_differences(STEWART_
 /* The plant's state rate at the inverse forces of a pose is that pose's acceleration (the inverse
  * solver at full fidelity is the 14-body model: another formulation of the same physics). */
 static void rate_matches_inverse(int fidelity) {
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     uint64_t rng = 99 + (uint64_t)fidelity;
     double worst = 0;
     for (int n = 0; n < 20; ++n) {
@@ -209,7 +180,7 @@ static void test_rate_matches_inverse_full(void) { rate_matches_inverse(STEWART_
  * forces and base wrench (the 14-body model at full fidelity), and its values against that
  * solver's. */
 static void inverse_against_differences(int fidelity, int edge) {
-    stewart_linearize *l = make(fidelity);
+    stewart_linearize *l = linearize_make(fidelity);
     uint64_t rng = 777 + (uint64_t)(fidelity * 3 + edge);
     double worst = 0, worst_value = 0;
     for (int n = 0; n < 8; ++n) {
@@ -234,51 +205,8 @@ static void inverse_against_differences(int fidelity, int edge) {
                                   fabs(exact.base_torque[i] - reference.base_torque[i]));
             if (e / force_scale > worst_value) worst_value = e / force_scale;
         }
-        /* blocks by (row group L, L_dot, L_ddot, F, base force, base torque) x (column group
-         * q, q_dot, q_ddot) */
-        block_error blocks[6][3] = {{{0, 0}}};
-        for (int j = 0; j < 18; ++j) {
-            stewart_pose plus = pose, minus = pose;
-            double *a = j < 6 ? plus.q : j < 12 ? plus.q_dot : plus.q_ddot;
-            double *b = j < 6 ? minus.q : j < 12 ? minus.q_dot : minus.q_ddot;
-            const double h = j < 12 ? kStepState : kStepAccel;
-            a[j % 6] += h;
-            b[j % 6] -= h;
-            const stewart_inverse_output up = solve_ok(data, fidelity, &plus);
-            const stewart_inverse_output down = solve_ok(data, fidelity, &minus);
-            for (int k = 0; k < 6; ++k) {
-                const double d[4] = {
-                    (up.lengths.length[k] - down.lengths.length[k]) / (2 * h),
-                    (up.lengths.length_rate[k] - down.lengths.length_rate[k]) / (2 * h),
-                    (up.lengths.length_accel[k] - down.lengths.length_accel[k]) / (2 * h),
-                    (up.force[k] - down.force[k]) / (2 * h)};
-                for (int r = 0; r < 4; ++r)
-                    block_add(&blocks[r][j / 6], exact.jacobian[6 * r + k][j], d[r]);
-            }
-            for (int i = 0; i < 3; ++i) {
-                block_add(&blocks[4][j / 6], exact.jacobian[24 + i][j],
-                          (up.base_force[i] - down.base_force[i]) / (2 * h));
-                block_add(&blocks[5][j / 6], exact.jacobian[27 + i][j],
-                          (up.base_torque[i] - down.base_torque[i]) / (2 * h));
-            }
-        }
-        double value_scale[6] = {0};
-        for (int k = 0; k < 6; ++k) {
-            value_scale[0] = fmax(value_scale[0], fabs(exact.lengths.length[k]));
-            value_scale[1] = fmax(value_scale[1], fabs(exact.lengths.length_rate[k]));
-            value_scale[2] = fmax(value_scale[2], fabs(exact.lengths.length_accel[k]));
-            value_scale[3] = fmax(value_scale[3], fabs(exact.force[k]));
-        }
-        for (int i = 0; i < 3; ++i) {
-            value_scale[4] = fmax(value_scale[4], fabs(exact.base_force[i]));
-            value_scale[5] = fmax(value_scale[5], fabs(exact.base_torque[i]));
-        }
-        for (int r = 0; r < 6; ++r)
-            for (int c = 0; c < 3; ++c) {
-                const double e =
-                    block_relative(blocks[r][c], value_scale[r], c < 2 ? kStepState : kStepAccel);
-                if (e > worst) worst = e;
-            }
+        const double e = inverse_jacobian_error(&exact, &pose, fidelity);
+        if (e > worst) worst = e;
     }
     printf("inverse fidelity %d%s: Jacobian against central differences of the inverse solver, "
            "worst block error %.2e; forces and base wrench against the solver's %.2e\n",
@@ -294,7 +222,7 @@ static void test_inverse_full_near_edge(void) { inverse_against_differences(STEW
 /* dL/dq written out: dL_k/dp = n_k, dL_k/d(angles) = ((R b_k) x n_k) . E columns, with
  * E = [Rz Ry e_x, Rz e_y, e_z]; and dL_dot/dq_dot is the same matrix. */
 static void test_leg_jacobian_written_out(void) {
-    stewart_linearize *l = make(STEWART_FULL);
+    stewart_linearize *l = linearize_make(STEWART_FULL);
     uint64_t rng = 4242;
     for (int n = 0; n < 5; ++n) {
         stewart_pose pose = random_pose(&rng);
@@ -341,7 +269,7 @@ static void test_life_cycle_and_bad_input(void) {
     TEST_ASSERT_NOT_NULL(strstr(message, "fidelity = 0"));
     TEST_ASSERT_NULL(stewart_linearize_create(NULL, &o, message, sizeof message));
 
-    stewart_linearize *full = make(STEWART_FULL), *massless = make(STEWART_MASSLESS);
+    stewart_linearize *full = linearize_make(STEWART_FULL), *massless = linearize_make(STEWART_MASSLESS);
     uint64_t rng = 1;
     stewart_linearize_input in;
     in.pose = random_pose(&rng);
@@ -404,34 +332,26 @@ static void test_life_cycle_and_bad_input(void) {
     stewart_linearize_free(NULL);
 }
 
-/* The sensors' length_offset shifts the lengths, not their derivatives; tool and user frames
- * are refused (the linearisation works in the platform frame). */
-static void test_length_offset_and_frames(void) {
+/* The sensors' length_offset shifts the lengths, not their derivatives (tool and user frames:
+ * test_linearize_frames.c). */
+static void test_length_offset(void) {
     uint64_t rng = 77;
     stewart_linearize_input in;
     in.pose = random_pose(&rng);
     inverse_forces(STEWART_FULL, &in.pose, in.force);
     params.length_offset[2] = 0.01;
     rebuild_platform();
-    stewart_linearize *l = make(STEWART_FULL);
+    stewart_linearize *l = linearize_make(STEWART_FULL);
     const stewart_linearize_output out = plant_ok(l, &in);
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &in.pose, 2) - 0.01,
                               out.output[14]);
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &in.pose, 1), out.output[13]);
     stewart_linearize_free(l);
-    params.length_offset[2] = 0;
-    params.tool_frame[2] = 0.05;
-    rebuild_platform();
-    l = make(STEWART_FULL);
-    stewart_linearize_output refused;
-    TEST_ASSERT_EQUAL(STEWART_ERR_UNSUPPORTED, stewart_linearize_plant(l, &in, &refused));
-    TEST_ASSERT_NOT_NULL(strstr(stewart_linearize_message(l), "tool_frame"));
-    stewart_linearize_free(l);
 }
 
 /* No heap allocation in either call (allocation_counter.c interposes malloc and friends). */
 static void test_no_allocation(void) {
-    stewart_linearize *l = make(STEWART_FULL);
+    stewart_linearize *l = linearize_make(STEWART_FULL);
     uint64_t rng = 31;
     stewart_linearize_input in;
     in.pose = random_pose(&rng);
@@ -460,7 +380,7 @@ int main(void) {
     RUN_TEST(test_inverse_full_near_edge);
     RUN_TEST(test_leg_jacobian_written_out);
     RUN_TEST(test_life_cycle_and_bad_input);
-    RUN_TEST(test_length_offset_and_frames);
+    RUN_TEST(test_length_offset);
     RUN_TEST(test_no_allocation);
     return UNITY_END();
 }

@@ -58,7 +58,7 @@ void paths_agree(int fidelity) {
         lin::PlantJacobian fast;
         lin::PlantPoint reference;
         lin::Failure why;
-        TEST_ASSERT_TRUE(lin::plant_jacobian(d, q, q_dot, force, fast, why));
+        TEST_ASSERT_TRUE(lin::plant_jacobian(d, stewart::Frames{}, q, q_dot, force, fast, why));
         TEST_ASSERT_TRUE(lin::plant_point(d, q, q_dot, force, reference, why));
         for (int i = 0; i < 6; ++i) {
             const stewart::Dual &r = reference.q_ddot[i];

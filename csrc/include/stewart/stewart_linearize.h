@@ -7,6 +7,9 @@
  * the input the six leg forces, u = F, and
  *     x_dot = f(x, u) = (q_dot, q_ddot(q, q_dot, F)),   y = g(x) = (q, q_dot, L, L_dot) (24),
  * linearised as dx_dot = A dx + B du, dy = C dx + D du (D = 0: no output depends on the forces).
+ * With tool and user frames (tool_frame, user_frame) q is the tool's pose in the user frame, as
+ * every pose of the library takes and gives; lengths, forces and the base wrench are as the
+ * inverse solver gives them (the base wrench in the base frame).
  * The derivatives are exact: forward-mode automatic differentiation through the plant's own
  * equations of motion (csrc/plant/plant_equations.cpp), not finite differences.
  *
@@ -71,6 +74,16 @@ typedef struct stewart_linearize_inverse_output {
     int stroke_legs;  /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_linearize_inverse_output;
 
+/* The base wrench alone at a pose (q, q_dot, q_ddot) with its Jacobian: rows 24-29 of
+ * stewart_linearize_inverse's, without the forces (one dual evaluation: the Model Exchange plant's
+ * base-wrench derivatives compose it with the plant's A and B). */
+typedef struct stewart_linearize_wrench_output {
+    double base_force[3];   /* force the moving bodies put on the base, world [N] */
+    double base_torque[3];  /* its torque about the world origin [N m] */
+    /* d(base_force, base_torque) / d(q, q_dot, q_ddot), row-major */
+    double jacobian[6][STEWART_LINEARIZE_INVERSE_COLUMNS];
+} stewart_linearize_wrench_output;
+
 /* Fills o with the defaults documented in stewart_linearize_options. */
 void stewart_linearize_options_default(stewart_linearize_options *o);
 
@@ -119,6 +132,10 @@ stewart_status stewart_linearize_plant(stewart_linearize *l, const stewart_linea
  * and STEWART_ERR_SINGULAR where the forces are not defined (the legs cannot hold the pose). */
 stewart_status stewart_linearize_inverse(stewart_linearize *l, const stewart_pose *pose,
                                          stewart_linearize_inverse_output *out);
+
+/* The base wrench and its Jacobian at pose. Errors as stewart_linearize_plant. */
+stewart_status stewart_linearize_base_wrench(stewart_linearize *l, const stewart_pose *pose,
+                                             stewart_linearize_wrench_output *out);
 
 #ifdef __cplusplus
 }

@@ -36,16 +36,16 @@ static void difference_weights(const model_values *m, double time, double *rate,
 
 fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unknown[],
                                         size_t n_unknown, const unsigned known[], size_t n_known,
-                                        const double seed[], double sensitivity[]) {
+                                        const double seed[], double sensitivity[],
+                                        const char *function) {
     fmu_values *v = &inst->v;
     model_resources *r = &inst->res;
     for (size_t i = 0; i < n_unknown; ++i)
         if (jacobian_row(unknown[i]) < 0) {
             fmu_log(inst, FMU_ERROR, LOG_ERROR,
-                    "GetDirectionalDerivative: output %s has no derivative (a condition number "
-                    "or a residual is not differentiable); ask for lengths, rates, "
-                    "accelerations, forces or the base wrench",
-                    fmu_variable_by_vr(unknown[i])->name);
+                    "%s: output %s has no derivative (a condition number or a residual is not "
+                    "differentiable); ask for lengths, rates, accelerations, forces or the base "
+                    "wrench", function, fmu_variable_by_vr(unknown[i])->name);
             return FMU_ERROR;
         }
     /* The forces' model: massless legs below fidelity 2 (fidelity 0 has no forces at all). */
@@ -60,7 +60,7 @@ fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unkno
         o.fidelity = fidelity;
         r->linearize = stewart_linearize_create(r->model, &o, r->message, sizeof r->message);
         if (!r->linearize) {
-            fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetDirectionalDerivative: %s", r->message);
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: %s", function, r->message);
             return FMU_ERROR;
         }
     }
@@ -68,14 +68,9 @@ fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unkno
     inverse_current_pose(v, v->time, &pose);
     stewart_linearize_inverse_output out;
     const stewart_status s = stewart_linearize_inverse(r->linearize, &pose, &out);
-    if (s == STEWART_ERR_UNSUPPORTED) { /* tool or user frames: not with these parameters */
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetDirectionalDerivative: %s",
-                stewart_linearize_message(r->linearize));
-        return FMU_ERROR;
-    }
     if (s != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
-                "t = %.17g: GetDirectionalDerivative: no derivatives at this pose: %s", v->time,
+                "t = %.17g: %s: no derivatives at this pose: %s", v->time, function,
                 stewart_linearize_message(r->linearize));
         return FMU_DISCARD;
     }

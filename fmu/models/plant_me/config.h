@@ -8,6 +8,7 @@
 #define STEWART_FMU_CONFIG_H
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_limits.h"
 #include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
 /* The library's parameter table: variables.def expands it (the plant's names and value
@@ -36,6 +37,11 @@
 /* The motion (pose, rates, lengths, length rates) depends on the states alone. */
 #define FMU_OUTPUT_WITHOUT_FEEDTHROUGH(vr) ((vr) >= VR_x && (vr) <= VR_L_dot_6)
 
+/* At CompletedIntegratorStep (model_accepted_state): a leg outside its stroke, a joint beyond its
+ * angle limit, two legs interfering, logged when each starts and Warning while any lasts, as
+ * the co-simulation plant's steps (not at GetDerivatives: it is called at trial states). */
+#define FMU_ME_ACCEPTED_STATE 1
+
 /* Directional derivatives of the state derivatives and outputs with respect to the states and
  * the forces (derivatives.c). */
 #define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1
@@ -53,7 +59,19 @@
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
 typedef struct model_values {
     int solve_status; /* fmu_status of the outputs' last refresh */
+    int stroke_legs;  /* bit k: leg k+1 outside its stroke at the last refresh */
+    int legs_outside; /* the same at the last accepted state (reported) */
+    int limit_warnings; /* STEWART_WARN_JOINT_LIMIT, _INTERFERENCE at the last accepted state */
 } model_values;
+
+/* The plant linearised at `point` (states x .. yaw_dot, forces; derivatives.c), and the base
+ * wrench's rows by (states, forces) if has_wrench: kept while the point stays. */
+typedef struct plant_me_derivatives {
+    int valid, has_wrench;
+    double point[STEWART_LINEARIZE_STATES + STEWART_LINEARIZE_INPUTS];
+    stewart_linearize_output plant;
+    double wrench[6][STEWART_LINEARIZE_STATES + STEWART_LINEARIZE_INPUTS];
+} plant_me_derivatives;
 
 /* The model's resources: built at the end of initialisation from the parameters. The plant
  * object only evaluates the equations (stewart_plant_derivatives); its own state is unused. */
@@ -61,6 +79,8 @@ typedef struct model_resources {
     stewart_model *model;  /* built from `params` */
     stewart_plant *plant;  /* on `model`, with `fidelity` */
     stewart_linearize *linearize; /* the same: the directional derivatives (derivatives.c) */
+    stewart_limits *limits; /* on `model`: joint limits and interference at accepted states */
+    plant_me_derivatives derivatives; /* of `linearize`; cleared when it is rebuilt */
     stewart_params params;
     int fidelity;
     char message[2 * STEWART_MESSAGE_SIZE];

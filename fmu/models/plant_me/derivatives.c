@@ -1,8 +1,11 @@
 /* The Model Exchange plant's directional derivatives (model_interface.h) at the states and forces
  * set: the library's linearised plant (stewart_linearize_plant: A, B, C) for the state
- * derivatives, lengths and length rates, and for the base wrench the inverse side's Jacobian
- * W = d wrench / d(q, q_dot, q_ddot) (stewart_linearize_inverse) composed with the plant's:
- * d wrench = W_x dx + W_a (A dx + B dF). Knowns: the states x .. yaw_dot and the forces. */
+ * derivatives, lengths and length rates, and for the base wrench its Jacobian
+ * W = d wrench / d(q, q_dot, q_ddot) (stewart_linearize_base_wrench) composed with the plant's:
+ * d wrench = W_x dx + W_a (A dx + B dF). Knowns: the states x .. yaw_dot and the forces.
+ * The linearisation is kept (model_resources.derivatives) for the states and forces it was made
+ * at: the adjoint, one directional derivative per known, and a master that asks column by
+ * column linearise once per point. */
 #include <string.h>
 
 #include "logging.h"
@@ -22,9 +25,9 @@ static int known_column(unsigned vr) {
 static int is_base_wrench(unsigned vr) { return vr >= VR_base_force_1 && vr <= VR_base_torque_3; }
 
 /* The derivatives of a Real output (a state derivative among them) with respect to the 18
- * knowns; w is read for the base wrench only. */
-static void unknown_row(unsigned vr, const stewart_linearize_output *p,
-                       const stewart_linearize_inverse_output *w, double row[N_COLUMNS]) {
+ * knowns; the base wrench's rows are the cache's own. */
+static void unknown_row(unsigned vr, const plant_me_derivatives *c, double row[N_COLUMNS]) {
+    const stewart_linearize_output *p = &c->plant;
     memset(row, 0, N_COLUMNS * sizeof row[0]);
     if (vr >= VR_x && vr <= VR_yaw_dot) { /* a state, and x_dot .. yaw_dot the derivatives too */
         row[vr - VR_x] = 1;
@@ -35,54 +38,79 @@ static void unknown_row(unsigned vr, const stewart_linearize_output *p,
     } else if (vr >= VR_L_1 && vr <= VR_L_dot_6) { /* L, L_dot: outputs 12 .. 23, D = 0 */
         memcpy(row, p->C[12 + vr - VR_L_1], sizeof p->C[0]);
     } else { /* the base wrench, the only other Real output */
-        const double *d = w->jacobian[24 + vr - VR_base_force_1]; /* by (q, q_dot, q_ddot) */
-        for (int j = 0; j < N_STATES; ++j) row[j] = d[j];
-        for (int a = 0; a < 6; ++a) { /* through q_ddot = state_rate[6 + a] */
-            for (int j = 0; j < N_STATES; ++j) row[j] += d[12 + a] * p->A[6 + a][j];
-            for (int k = 0; k < STEWART_LEGS; ++k) row[N_STATES + k] += d[12 + a] * p->B[6 + a][k];
-        }
+        memcpy(row, c->wrench[vr - VR_base_force_1], sizeof c->wrench[0]);
     }
 }
 
-/* The status (logged) of a linearisation that failed with s. */
-static fmu_status failed(fmu_instance *inst, stewart_status s) {
-    const char *why = stewart_linearize_message(inst->res.linearize);
-    if (s == STEWART_ERR_UNSUPPORTED) { /* tool or user frames: not with these parameters */
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetDirectionalDerivative: %s", why);
-        return FMU_ERROR;
-    }
-    fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
-            "t = %.17g: GetDirectionalDerivative: no derivatives at this state: %s",
-            inst->v.time, why);
+/* The status (logged) of a linearisation that failed: Discard, the state has no derivatives. */
+static fmu_status failed(fmu_instance *inst, const char *function) {
+    fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "t = %.17g: %s: no derivatives at this state: %s",
+            inst->v.time, function, stewart_linearize_message(inst->res.linearize));
     return FMU_DISCARD;
+}
+
+/* The base wrench's rows by (x, F) into c, from its Jacobian by (q, q_dot, q_ddot) through
+ * q_ddot = state_rate[6..11]. */
+static stewart_status wrench_rows(stewart_linearize *l, const stewart_linearize_input *in,
+                                  plant_me_derivatives *c) {
+    stewart_pose pose = in->pose;
+    memcpy(pose.q_ddot, c->plant.state_rate + 6, sizeof pose.q_ddot);
+    stewart_linearize_wrench_output w;
+    const stewart_status s = stewart_linearize_base_wrench(l, &pose, &w);
+    if (s != STEWART_OK) return s;
+    for (int r = 0; r < 6; ++r) {
+        const double *d = w.jacobian[r];
+        double *row = c->wrench[r];
+        for (int j = 0; j < N_STATES; ++j) row[j] = d[j];
+        for (int k = 0; k < STEWART_LEGS; ++k) row[N_STATES + k] = 0;
+        for (int a = 0; a < 6; ++a) {
+            for (int j = 0; j < N_STATES; ++j) row[j] += d[12 + a] * c->plant.A[6 + a][j];
+            for (int k = 0; k < STEWART_LEGS; ++k)
+                row[N_STATES + k] += d[12 + a] * c->plant.B[6 + a][k];
+        }
+    }
+    return STEWART_OK;
+}
+
+/* The cache made current for the states and forces set (the base wrench's rows only if wrench):
+ * the linearisation runs only when they changed since it was made. */
+static stewart_status linearised(fmu_instance *inst, int wrench) {
+    const fmu_values *v = &inst->v;
+    plant_me_derivatives *c = &inst->res.derivatives;
+    stewart_linearize_input in;
+    double point[N_COLUMNS];
+    for (int i = 0; i < 6; ++i) {
+        in.pose.q[i] = point[i] = v->real[VR_x + i];
+        in.pose.q_dot[i] = point[6 + i] = v->real[VR_x_dot + i];
+        in.pose.q_ddot[i] = 0;
+        in.force[i] = point[N_STATES + i] = v->real[VR_F_1 + i];
+    }
+    if (!c->valid || memcmp(point, c->point, sizeof point) != 0) {
+        c->valid = 0;
+        const stewart_status s = stewart_linearize_plant(inst->res.linearize, &in, &c->plant);
+        if (s != STEWART_OK) return s;
+        memcpy(c->point, point, sizeof point);
+        c->valid = 1;
+        c->has_wrench = 0;
+    }
+    if (wrench && !c->has_wrench) {
+        const stewart_status s = wrench_rows(inst->res.linearize, &in, c);
+        if (s != STEWART_OK) return s;
+        c->has_wrench = 1;
+    }
+    return STEWART_OK;
 }
 
 fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unknown[],
                                         size_t n_unknown, const unsigned known[], size_t n_known,
-                                        const double seed[], double sensitivity[]) {
-    const fmu_values *v = &inst->v;
+                                        const double seed[], double sensitivity[],
+                                        const char *function) {
     int wrench = 0;
     for (size_t i = 0; i < n_unknown; ++i) wrench |= is_base_wrench(unknown[i]);
-    stewart_linearize_input in;
-    for (int i = 0; i < 6; ++i) {
-        in.pose.q[i] = v->real[VR_x + i];
-        in.pose.q_dot[i] = v->real[VR_x_dot + i];
-        in.pose.q_ddot[i] = 0;
-        in.force[i] = v->real[VR_F_1 + i];
-    }
-    stewart_linearize_output p;
-    stewart_status s = stewart_linearize_plant(inst->res.linearize, &in, &p);
-    if (s != STEWART_OK) return failed(inst, s);
-    stewart_linearize_inverse_output w;
-    if (wrench) {
-        stewart_pose pose = in.pose;
-        memcpy(pose.q_ddot, p.state_rate + 6, sizeof pose.q_ddot);
-        s = stewart_linearize_inverse(inst->res.linearize, &pose, &w);
-        if (s != STEWART_OK) return failed(inst, s);
-    }
+    if (linearised(inst, wrench) != STEWART_OK) return failed(inst, function);
     double row[N_COLUMNS];
     for (size_t i = 0; i < n_unknown; ++i) {
-        unknown_row(unknown[i], &p, &w, row);
+        unknown_row(unknown[i], &inst->res.derivatives, row);
         double sum = 0;
         for (size_t j = 0; j < n_known; ++j) sum += row[known_column(known[j])] * seed[j];
         sensitivity[i] = sum;

@@ -3,7 +3,9 @@
  * go to stewart_plant_derivatives; its pose rates and accelerations are the derivatives, its
  * lengths, rates and base wrench the other outputs. A state where the equations are undefined
  * (pitch at +-90 degrees, a zero-length leg, a locked Cardan) or a non-finite force is Discard at
- * the derivative call, naming the value. The master integrates; no step here.
+ * the derivative call, naming the value. The master integrates; no step here. At an accepted state
+ * (CompletedIntegratorStep) the stroke, joint-limit and interference warnings, as the
+ * co-simulation plant's steps give them.
  */
 #include <math.h>
 #include <stdio.h>
@@ -70,7 +72,12 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     lo.fidelity = fidelity;
     stewart_linearize *linearize =
         plant ? stewart_linearize_create(m, &lo, r->message, sizeof r->message) : NULL;
-    if (!linearize) {
+    stewart_limits_options limit_options;
+    stewart_limits_options_default(&limit_options);
+    stewart_limits *limits =
+        linearize ? stewart_limits_create(m, &limit_options, r->message, sizeof r->message) : NULL;
+    if (!limits) {
+        stewart_linearize_free(linearize);
         stewart_plant_free(plant);
         if (new_model) stewart_model_free(m);
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
@@ -78,6 +85,7 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     }
     stewart_plant_free(r->plant);
     stewart_linearize_free(r->linearize);
+    stewart_limits_free(r->limits);
     if (new_model) {
         stewart_model_free(r->model);
         r->model = m;
@@ -85,6 +93,8 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     }
     r->plant = plant;
     r->linearize = linearize;
+    r->limits = limits;
+    r->derivatives.valid = 0;
     r->fidelity = fidelity;
     fmu_log(inst, FMU_OK, LOG_EVENTS, "plant built (fidelity %d)", fidelity);
     return FMU_OK;
@@ -118,9 +128,11 @@ void model_reset(fmu_instance *inst) { (void)inst; /* the states are set at init
 void model_free(fmu_instance *inst) {
     stewart_plant_free(inst->res.plant);
     stewart_linearize_free(inst->res.linearize);
+    stewart_limits_free(inst->res.limits);
     stewart_model_free(inst->res.model);
     inst->res.plant = NULL;
     inst->res.linearize = NULL;
+    inst->res.limits = NULL;
     inst->res.model = NULL;
 }
 
@@ -151,8 +163,56 @@ fmu_status model_refresh_outputs(fmu_instance *inst) {
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out.field;
 #include "variables.def"
     v->integer[VR_status] = out.stroke_legs ? 1 : 0;
+    v->model.stroke_legs = out.stroke_legs;
     v->model.solve_status = FMU_OK;
     return FMU_OK;
+}
+
+/* The legs that have just left their stroke, logged; bit k of the result for each leg outside. */
+static int report_stroke(fmu_instance *inst) {
+    const fmu_values *v = &inst->v;
+    const stewart_params *p = &inst->res.params;
+    const int outside = v->model.stroke_legs;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if ((outside & (1 << k)) && !(v->model.legs_outside & (1 << k)))
+            fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                    "t = %.17g: L[%d] = %.9g m left the stroke [%g, %g] m (end stops are not "
+                    "modelled)", v->time, k + 1, v->real[VR_L_1 + k], p->stroke_min[k],
+                    p->stroke_max[k]);
+    return outside;
+}
+
+/* A joint beyond its angle limit or two legs interfering at the state's pose (the tool's in the
+ * user frame: the limits object transforms it), logged when it starts; the STEWART_WARN_ bits. */
+static int report_limits(fmu_instance *inst) {
+    static const struct {
+        int bit;
+        const char *what;
+    } kinds[] = {{STEWART_WARN_JOINT_LIMIT, "a joint is beyond its angle limit "
+                                            "(base_joint_limit, platform_joint_limit)"},
+                 {STEWART_WARN_INTERFERENCE, "two legs are closer than leg_diameter"}};
+    const fmu_values *v = &inst->v;
+    stewart_limits_input in;
+    for (int i = 0; i < 6; ++i) in.q[i] = v->real[VR_x + i];
+    stewart_limits_output o;
+    if (stewart_limits_check(inst->res.limits, &in, &o) != STEWART_OK) return 0; /* finite here */
+    const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
+    const int now = (o.failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
+                    (o.failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
+    for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
+        if ((now & kinds[i].bit) && !(v->model.limit_warnings & kinds[i].bit))
+            fmu_log(inst, FMU_WARNING, LOG_WARNING, "t = %.17g: %s (contacts are not modelled)",
+                    v->time, kinds[i].what);
+    return now;
+}
+
+fmu_status model_accepted_state(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    /* A state without derivatives was Discard at GetDerivatives already: nothing to add. */
+    if (model_refresh_outputs(inst) != FMU_OK) return FMU_OK;
+    v->model.legs_outside = report_stroke(inst);
+    v->model.limit_warnings = report_limits(inst);
+    return v->model.legs_outside || v->model.limit_warnings ? FMU_WARNING : FMU_OK;
 }
 
 fmu_status model_do_step(fmu_instance *inst, double t, double h) {
@@ -176,6 +236,10 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) \
     if (!isfinite(v->real[vr])) return "output " name " is not finite";
 #include "variables.def"
+    const model_values *m = &v->model;
+    if ((m->stroke_legs | m->legs_outside) & ~0x3f ||
+        m->limit_warnings & ~(STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE))
+        return "a flag is out of range";
     const int32_t status = v->integer[VR_status];
     if (status < 0 || status > 3 || status == 2) return "status is not 0, 1 or 3";
     if (v->integer[VR_fidelity] != STEWART_MASSLESS && v->integer[VR_fidelity] != STEWART_FULL) {
