@@ -40,9 +40,9 @@ BranchSides branch_sides(const PlatformGeometry &g, double home_height) {
 }
 
 int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
-                    const Matrix36 &points, const Matrix6 &jacobian_transposed, int working_sign) {
+                    const Matrix36 &points, int jacobian_sign, int working_sign) {
     int branch = R(2, 2) > 0 ? 0 : STEWART_BRANCH_FLIPPED;  // the platform's normal points up
-    if (jacobian_sign(jacobian_transposed) != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
+    if (jacobian_sign != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
     const Matrix36 platform_sides = R * sides.platform;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d leg = points.col(k) - g.base_points.col(k);

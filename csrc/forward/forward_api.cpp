@@ -38,22 +38,20 @@ stewart_status check_values(const double *v, const char *name, bool positive, ch
     return STEWART_OK;
 }
 
-// The inverse side's leg kinematics at pose (q, q_dot) with zero pose accelerations.
-stewart_status legs_at(const stewart_model &m, const double q[6], const double q_dot[6],
-                       stewart::LegKinematics &legs, char *msg, size_t size) {
-    stewart_pose pose{};
-    std::memcpy(pose.q, q, sizeof pose.q);
-    if (q_dot) std::memcpy(pose.q_dot, q_dot, sizeof pose.q_dot);
-    return stewart::leg_kinematics(m.geometry, stewart::motion_of_pose(pose), legs, msg, size);
-}
-
-// J^-1 v with J = (n_k, (R b_k x n_k)/c) per row: (translation, c * rotation) to pose
-// coordinates (x, y, z, angle rates). False at pitch = +-90 deg.
-bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double q[6],
-                           const stewart::Vector6 &v, double out[6]) {
-    const stewart::Vector6 w = J.inverse_transposed.transpose() * v;
-    for (int i = 0; i < 3; ++i) out[i] = w[i];
-    return stewart::angle_rates_of(q, w.tail<3>() / c, out + 3);
+// The platform's motion at pose q with rates q_dot and zero pose accelerations
+// (kinematics/motion.hpp motion_of_pose) from the cosines and sines of q's angles, known already.
+stewart::Motion motion_at(const double q[6], const double q_dot[6], double cr, double sr,
+                          const stewart::PitchYawTrig &t) {
+    stewart::Motion m;
+    m.position = Eigen::Vector3d(q[0], q[1], q[2]);
+    m.velocity = Eigen::Vector3d(q_dot[0], q_dot[1], q_dot[2]);
+    m.acceleration.setZero();
+    m.rotation = stewart::rotation_from_trig(cr, sr, t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw);
+    const Eigen::Vector3d rate(q_dot[3], q_dot[4], q_dot[5]);
+    m.omega = stewart::angle_rate_matrix(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw) * rate;
+    m.alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw,
+                                             rate[1], rate[2]) * rate;
+    return m;
 }
 
 // STEWART_ERR_ARGUMENT naming the first value of a pose found (`what`) that overflowed.
@@ -140,9 +138,8 @@ struct Found {
     int start = 0;
     int branch = 0;
     double jump = 0;
-    Eigen::Matrix3d rotation;
-    stewart::LegKinematics legs;  // arm, axis, length at q
-    stewart::LegJacobian jacobian;
+    stewart::LegFactors factors;  // the leg Jacobian at q, factored
+    double condition = 0;         // its 1-norm condition number
     stewart::Matrix36 points;
     stewart::Vector6 residual;
 };
@@ -179,13 +176,14 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                        const stewart_forward_options &o, const stewart::LegsAt &at,
                        bool tracking, Found &x, char *msg, size_t size) {
     const stewart::PlatformGeometry &g = m.geometry;
-    x.rotation = at.rotation;
-    x.legs.arm = at.arm;
-    x.legs.axis = at.axis;
-    x.legs.length = at.length;
     x.residual = at.residual;
-    stewart::leg_jacobian(g, x.legs, x.jacobian);
-    const double condition = x.jacobian.condition;
+    // cond_1(J) = |J|_1 |J^-1|_1 from the one factoring that also serves the step, the rates and
+    // the next solve's chord.
+    double norm1;
+    x.condition = stewart::factor_legs(g, at, x.factors, norm1)
+                      ? norm1 * stewart::inverse_norm1(x.factors)
+                      : HUGE_VAL;
+    const double condition = x.condition;
     stewart_status s = stewart::check_condition(condition, o.singular_condition, msg, size);
     if (s != STEWART_OK) return s;
     // Kantorovich: Newton's answer is the unique pose near it only if h = beta^2 gamma |F| <=
@@ -201,8 +199,9 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "0.5)", condition, o.tolerance, h);
     x.points = at.arm;
     x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
-    x.branch = stewart::assembly_branch(g, m.forward.sides, x.rotation, x.points,
-                                        x.jacobian.transposed, m.forward.working_sign);
+    x.branch = stewart::assembly_branch(g, m.forward.sides, at.rotation, x.points,
+                                        stewart::determinant_sign(x.factors),
+                                        m.forward.working_sign);
     if (tracking) {
         x.jump = (x.points - f.points).colwise().norm().maxCoeff();
         if (x.jump > m.forward.shortest_stroke_range) x.branch |= STEWART_BRANCH_JUMP;
@@ -210,26 +209,31 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
     return STEWART_OK;
 }
 
-// Rates and accelerations of the pose x through its leg Jacobian; false (message) at pitch =
-// +-90 deg or if anything overflows.
+// Rates and accelerations of the pose out (x's, corrected) through x's leg Jacobian; false
+// (message) at pitch = +-90 deg or if anything overflows.
 stewart_status derivatives(const stewart_model &m, const Found &x, const double *rates,
                            const double *accels, stewart_forward_output &out, char *msg,
                            size_t size) {
-    const double c = m.geometry.characteristic_length;
-    if (rates &&
-        !pose_from_twist_solve(x.jacobian, c, out.pose.q,
-                               Eigen::Map<const stewart::Vector6>(rates), out.pose.q_dot))
-        return set_message(msg, size, STEWART_ERR_SINGULAR,
-                           "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
-                           "defined there", out.pose.q[4]);
-    if (accels) {
-        // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
-        // alone: the leg accelerations at zero pose accelerations.
-        stewart::LegKinematics moving;
-        stewart_status s = legs_at(m, out.pose.q, out.pose.q_dot, moving, msg, size);
-        if (s != STEWART_OK) return s;
-        const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
-        pose_from_twist_solve(x.jacobian, c, out.pose.q, rhs, out.pose.q_ddot);
+    const double *q = out.pose.q;
+    if (rates) {  // (accelerations only with rates)
+        const stewart::PitchYawTrig at{std::cos(q[4]), std::sin(q[4]), std::cos(q[5]),
+                                       std::sin(q[5])};
+        if (!stewart::pose_rates_from(x.factors, at, rates, out.pose.q_dot))
+            return set_message(msg, size, STEWART_ERR_SINGULAR,
+                               "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
+                               "defined there", q[4]);
+        if (accels) {
+            // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
+            // alone: the leg accelerations at zero pose accelerations.
+            stewart::LegKinematics moving;
+            stewart_status s = stewart::leg_kinematics(
+                m.geometry, motion_at(q, out.pose.q_dot, std::cos(q[3]), std::sin(q[3]), at),
+                moving, msg, size);
+            if (s != STEWART_OK) return s;
+            double rhs[6];
+            for (int k = 0; k < 6; ++k) rhs[k] = accels[k] - moving.accel[k];
+            stewart::pose_rates_from(x.factors, at, rhs, out.pose.q_ddot);
+        }
     }
     return check_found(out.pose, "pose", msg, size);
 }
@@ -248,6 +252,8 @@ void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_ou
     std::memcpy(f.q_dot, out.pose.q_dot, sizeof f.q_dot);
     std::memcpy(f.q_ddot, out.pose.q_ddot, sizeof f.q_ddot);
     f.points = x.points;
+    f.has_chord = true;
+    f.chord = x.factors;
 }
 
 }  // namespace
@@ -281,9 +287,10 @@ stewart_status forward_constants(const PlatformGeometry &g, const stewart_params
 namespace {
 
 constexpr unsigned kHistoryMagic = 0x53544657u;  // "STFW"
-constexpr unsigned kHistoryVersion = 1;
-constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18;  // times, q, q_dot, q_ddot, previous_q, points
-constexpr size_t kHistoryFlags = 4;
+constexpr unsigned kHistoryVersion = 2;  // 2: the chord's factors
+// times, q, q_dot, q_ddot, previous_q, points; the chord's LU, pitch and yaw trig, scale
+constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18 + 36 + 4 + 1;
+constexpr size_t kHistoryFlags = 5 + 6;  // has_pose .. has_chord; the chord's pivots
 constexpr size_t kHistoryHeader = 3 * sizeof(unsigned);
 
 }  // namespace
@@ -298,7 +305,8 @@ void forward_history_save(const ForwardState &f, unsigned char *buffer) {
     std::memcpy(buffer, header, sizeof header);
     unsigned char *flags = buffer + kHistoryHeader;
     flags[0] = f.has_pose, flags[1] = f.has_rates, flags[2] = f.has_accels,
-    flags[3] = f.has_previous;
+    flags[3] = f.has_previous, flags[4] = f.has_chord;
+    for (int k = 0; k < 6; ++k) flags[5 + k] = static_cast<unsigned char>(f.chord.pivot[k]);
     double v[kHistoryDoubles];
     double *p = v;
     *p++ = f.time;
@@ -306,6 +314,10 @@ void forward_history_save(const ForwardState &f, unsigned char *buffer) {
     for (const double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
         for (int i = 0; i < 6; ++i) *p++ = a[i];
     for (int i = 0; i < 18; ++i) *p++ = f.points.data()[i];
+    for (int i = 0; i < 36; ++i) *p++ = f.chord.lu[i];
+    *p++ = f.chord.trig.cos_pitch, *p++ = f.chord.trig.sin_pitch;
+    *p++ = f.chord.trig.cos_yaw, *p++ = f.chord.trig.sin_yaw;
+    *p++ = f.chord.scale;
     std::memcpy(flags + kHistoryFlags, v, sizeof v);
 }
 
@@ -327,7 +339,7 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
         return false;
     }
     const unsigned char *flags = buffer + kHistoryHeader;
-    for (size_t i = 0; i < kHistoryFlags; ++i)
+    for (size_t i = 0; i < 5; ++i)
         if (flags[i] > 1) {
             set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
                         "forward history flag %zu is %d: it must be 0 or 1", i, flags[i]);
@@ -341,9 +353,23 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
                         "forward history value %zu is %g: it must be finite", i, v[i]);
             return false;
         }
+    LegFactors chord;
+    for (int k = 0; k < 6; ++k) chord.pivot[k] = flags[5 + k];
+    const double *p = v + 2 + 6 * 4 + 18;
+    for (int i = 0; i < 36; ++i) chord.lu[i] = *p++;
+    chord.trig.cos_pitch = *p++, chord.trig.sin_pitch = *p++;
+    chord.trig.cos_yaw = *p++, chord.trig.sin_yaw = *p++;
+    chord.scale = *p++;
+    if (flags[4] && !factors_usable(chord)) {
+        set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
+                    "the forward history's leg Jacobian factors are not usable (a pivot out of "
+                    "range, a zero on U's diagonal or a scale <= 0)");
+        return false;
+    }
     f.has_pose = flags[0], f.has_rates = flags[1], f.has_accels = flags[2],
-    f.has_previous = flags[3];
-    const double *p = v;
+    f.has_previous = flags[3], f.has_chord = flags[4];
+    f.chord = chord;
+    p = v;
     f.time = *p++;
     f.previous_time = *p++;
     for (double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
@@ -406,6 +432,8 @@ extern "C" stewart_status stewart_forward_copy(stewart_forward *dst, const stewa
     std::memcpy(d.q_ddot, s.q_ddot, sizeof d.q_ddot);
     std::memcpy(d.previous_q, s.previous_q, sizeof d.previous_q);
     d.points = s.points;
+    d.has_chord = s.has_chord;
+    d.chord = s.chord;
     return STEWART_OK;
 }
 
@@ -523,8 +551,11 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
         start_pose(*m, f, starts[a], time, guess, start_q);
         std::memcpy(x.q, start_q, sizeof start_q);
         stewart::NewtonStats stats;
-        last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, x.q,
-                                     stats, msg, size);
+        // Tracking, the first step takes the Jacobian factored at the last pose.
+        const stewart::LegFactors *chord =
+            starts[a] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
+        last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, chord,
+                                     x.q, stats, msg, size);
         iterations += stats.iterations;
         if (last_error == STEWART_OK)
             last_error = examine(*m, f, *o, f.newton->last(), tracking, x, msg, size);
@@ -549,13 +580,12 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
     stewart_forward_output out{};
     double step[6];
     std::memcpy(out.pose.q, x.q, sizeof x.q);
-    if (pose_from_twist_solve(x.jacobian, m->geometry.characteristic_length, x.q, x.residual,
-                              step))
+    if (stewart::pose_rates_from(x.factors, x.factors.trig, x.residual.data(), step))
         for (int i = 0; i < 6; ++i) out.pose.q[i] -= step[i];
     if ((s = derivatives(*m, x, rates, accels, out, msg, size)) != STEWART_OK) return s;
     out.iterations = iterations;
     out.residual = x.residual.cwiseAbs().maxCoeff();
-    out.condition = x.jacobian.condition;
+    out.condition = x.condition;
     out.branch = x.branch;
     out.jump = x.jump;
     out.start = x.start;
