@@ -38,20 +38,35 @@ stewart_status check_values(const double *v, const char *name, bool positive, ch
     return STEWART_OK;
 }
 
-// The platform's motion at pose q with rates q_dot and zero pose accelerations
-// (kinematics/motion.hpp motion_of_pose) from the cosines and sines of q's angles, known already.
-stewart::Motion motion_at(const double q[6], const double q_dot[6], double cr, double sr,
-                          const stewart::PitchYawTrig &t) {
-    stewart::Motion m;
-    m.position = Eigen::Vector3d(q[0], q[1], q[2]);
-    m.velocity = Eigen::Vector3d(q_dot[0], q_dot[1], q_dot[2]);
-    m.acceleration.setZero();
-    m.rotation = stewart::rotation_from_trig(cr, sr, t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw);
+// The leg accelerations at pose q moving at rates q_dot with zero pose accelerations
+// (kinematics/closed_form leg_kinematics of motion_of_pose, the same formulas), from the cosines
+// and sines of q's angles, known already; STEWART_ERR_UNREACHABLE if a leg has no length.
+stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, const double q[6],
+                                          const double q_dot[6], double cr, double sr,
+                                          const stewart::PitchYawTrig &t, double accel[6],
+                                          char *msg, size_t size) {
+    const Eigen::Matrix3d R =
+        stewart::rotation_from_trig(cr, sr, t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw);
     const Eigen::Vector3d rate(q_dot[3], q_dot[4], q_dot[5]);
-    m.omega = stewart::angle_rate_matrix(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw) * rate;
-    m.alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw,
-                                             rate[1], rate[2]) * rate;
-    return m;
+    const Eigen::Vector3d omega =
+        stewart::angle_rate_matrix(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw) * rate;
+    const Eigen::Vector3d alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch,
+                                                                 t.cos_yaw, t.sin_yaw, rate[1],
+                                                                 rate[2]) * rate;
+    const Eigen::Vector3d position(q[0], q[1], q[2]), velocity(q_dot[0], q_dot[1], q_dot[2]);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const Eigen::Vector3d r = R * g.platform_points.col(k);
+        const Eigen::Vector3d d = position + r - g.base_points.col(k);
+        const double L = d.norm();
+        if (!(L > g.min_length)) return stewart::check_leg_length(k, L, g.min_length, msg, size);
+        const double inv_L = 1.0 / L;
+        const Eigen::Vector3d n = d * inv_L;
+        const Eigen::Vector3d v = velocity + omega.cross(r);
+        const Eigen::Vector3d a = alpha.cross(r) + omega.cross(omega.cross(r));
+        const double L_dot = n.dot(v);
+        accel[k] = (v.squaredNorm() - L_dot * L_dot) * inv_L + n.dot(a);
+    }
+    return STEWART_OK;
 }
 
 // STEWART_ERR_ARGUMENT naming the first value of a pose found (`what`) that overflowed.
@@ -216,8 +231,9 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
                            size_t size) {
     const double *q = out.pose.q;
     if (rates) {  // (accelerations only with rates)
-        const stewart::PitchYawTrig at{std::cos(q[4]), std::sin(q[4]), std::cos(q[5]),
-                                       std::sin(q[5])};
+        stewart::PitchYawTrig at;
+        ::sincos(q[4], &at.sin_pitch, &at.cos_pitch);
+        ::sincos(q[5], &at.sin_yaw, &at.cos_yaw);
         if (!stewart::pose_rates_from(x.factors, at, rates, out.pose.q_dot))
             return set_message(msg, size, STEWART_ERR_SINGULAR,
                                "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
@@ -225,13 +241,13 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
         if (accels) {
             // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
             // alone: the leg accelerations at zero pose accelerations.
-            stewart::LegKinematics moving;
-            stewart_status s = stewart::leg_kinematics(
-                m.geometry, motion_at(q, out.pose.q_dot, std::cos(q[3]), std::sin(q[3]), at),
-                moving, msg, size);
+            double sin_roll, cos_roll, moving[6];
+            ::sincos(q[3], &sin_roll, &cos_roll);
+            const stewart_status s = velocity_leg_accelerations(
+                m.geometry, q, out.pose.q_dot, cos_roll, sin_roll, at, moving, msg, size);
             if (s != STEWART_OK) return s;
             double rhs[6];
-            for (int k = 0; k < 6; ++k) rhs[k] = accels[k] - moving.accel[k];
+            for (int k = 0; k < 6; ++k) rhs[k] = accels[k] - moving[k];
             stewart::pose_rates_from(x.factors, at, rhs, out.pose.q_ddot);
         }
     }
@@ -565,8 +581,12 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
             last_error = STEWART_ERR_SINGULAR;
         if (last_error != STEWART_OK) continue;
         // Angles within half a turn of the start's: the same rotation, the continuous angles.
-        for (int i = 3; i < 6; ++i)
-            x.q[i] = start_q[i] + std::remainder(x.q[i] - start_q[i], 2 * kPi);
+        // (Inside half a turn the remainder is the difference itself, exactly: no libm call.)
+        for (int i = 3; i < 6; ++i) {
+            const double turned = x.q[i] - start_q[i];
+            x.q[i] = start_q[i] +
+                     (std::fabs(turned) < kPi ? turned : std::remainder(turned, 2 * kPi));
+        }
         x.start = starts[a];
         if (x.branch == 0) chosen = n_found;
         ++n_found;
