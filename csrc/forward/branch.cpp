@@ -43,11 +43,12 @@ int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const E
                     const Matrix36 &points, int jacobian_sign, int working_sign) {
     int branch = R(2, 2) > 0 ? 0 : STEWART_BRANCH_FLIPPED;  // the platform's normal points up
     if (jacobian_sign != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
-    const Matrix36 platform_sides = R * sides.platform;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d leg = points.col(k) - g.base_points.col(k);
         if (!(leg.dot(sides.base.col(k)) > 0)) branch |= STEWART_BRANCH_BELOW_BASE;
-        if (!(leg.dot(platform_sides.col(k)) > 0)) branch |= STEWART_BRANCH_PLATFORM_CARDAN;
+        // (R s) . leg as s . (R^T leg): no 3 x 6 product.
+        if (!(sides.platform.col(k).dot(R.transpose() * leg) > 0))
+            branch |= STEWART_BRANCH_PLATFORM_CARDAN;
     }
     return branch;
 }
