@@ -155,6 +155,7 @@ struct Found {
     double jump = 0;
     stewart::LegFactors factors;  // the leg Jacobian at q, factored
     double condition = 0;         // its 1-norm condition number
+    double angles[3], cos_angles[3], sin_angles[3];  // of the Newton iterate (before the wrap)
     stewart::Matrix36 points;
     stewart::Vector6 residual;
 };
@@ -192,6 +193,9 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                        bool tracking, Found &x, char *msg, size_t size) {
     const stewart::PlatformGeometry &g = m.geometry;
     x.residual = at.residual;
+    for (int i = 0; i < 3; ++i) x.angles[i] = at.q[3 + i];
+    x.cos_angles[0] = at.cos_roll, x.cos_angles[1] = at.cos_pitch, x.cos_angles[2] = at.cos_yaw;
+    x.sin_angles[0] = at.sin_roll, x.sin_angles[1] = at.sin_pitch, x.sin_angles[2] = at.sin_yaw;
     // cond_1(J) = |J|_1 |J^-1|_1 from the one factoring that also serves the step, the rates and
     // the next solve's chord.
     double norm1;
@@ -224,6 +228,20 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
     return STEWART_OK;
 }
 
+// sin and cos of `angle` from those of a nearby angle0: within 1e-9 rad the first-order terms
+// leave an error below 5e-19, far under rounding (so within an ulp or two of libm's); libm
+// farther away (an angle wrapped by turns).
+void sincos_near(double angle, double angle0, double sin0, double cos0, double *sin_out,
+                 double *cos_out) {
+    const double d = angle - angle0;
+    if (std::fabs(d) <= 1e-9) {
+        *sin_out = sin0 + d * cos0;
+        *cos_out = cos0 - d * sin0;
+    } else {
+        ::sincos(angle, sin_out, cos_out);
+    }
+}
+
 // Rates and accelerations of the pose out (x's, corrected) through x's leg Jacobian; false
 // (message) at pitch = +-90 deg or if anything overflows.
 stewart_status derivatives(const stewart_model &m, const Found &x, const double *rates,
@@ -231,9 +249,12 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
                            size_t size) {
     const double *q = out.pose.q;
     if (rates) {  // (accelerations only with rates)
+        // The corrected pose is within rounding of the iterate whose trig is known.
         stewart::PitchYawTrig at;
-        ::sincos(q[4], &at.sin_pitch, &at.cos_pitch);
-        ::sincos(q[5], &at.sin_yaw, &at.cos_yaw);
+        sincos_near(q[4], x.angles[1], x.sin_angles[1], x.cos_angles[1], &at.sin_pitch,
+                    &at.cos_pitch);
+        sincos_near(q[5], x.angles[2], x.sin_angles[2], x.cos_angles[2], &at.sin_yaw,
+                    &at.cos_yaw);
         if (!stewart::pose_rates_from(x.factors, at, rates, out.pose.q_dot))
             return set_message(msg, size, STEWART_ERR_SINGULAR,
                                "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
@@ -242,7 +263,8 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
             // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
             // alone: the leg accelerations at zero pose accelerations.
             double sin_roll, cos_roll, moving[6];
-            ::sincos(q[3], &sin_roll, &cos_roll);
+            sincos_near(q[3], x.angles[0], x.sin_angles[0], x.cos_angles[0], &sin_roll,
+                        &cos_roll);
             const stewart_status s = velocity_leg_accelerations(
                 m.geometry, q, out.pose.q_dot, cos_roll, sin_roll, at, moving, msg, size);
             if (s != STEWART_OK) return s;
