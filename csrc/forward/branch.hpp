@@ -34,6 +34,9 @@ int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const E
 // and L_i + L_j >= | |a_i - a_j| - |b_i - b_j| | (sum).
 struct LengthPairBounds {
     double difference[15], sum[15];
+    // The tests' thresholds, with a relative slack of a few roundings (lengths computed from a
+    // pose at a bound must pass): sum * (1 - 1e-12) - 1e-15 and difference * (1 + 1e-12) + 1e-15.
+    double least_sum[15], largest_difference[15];
 };
 LengthPairBounds length_pair_bounds(const PlatformGeometry &g);
 

@@ -7,6 +7,7 @@
 #include <sundials/sundials_matrix.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 #include "core/kinsol_custom.hpp"
@@ -53,16 +54,20 @@ double evaluate_residual(Impl &im, const double *u, double *f) {
     if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
         evaluate_legs(*im.geometry, u, im.target, im.cache);
     double worst = 0;
-    im.worst_leg = 0;
+    int worst_leg = 0;
+    const double min_length = im.geometry->min_length;
     for (int k = 0; k < kN; ++k) {
         f[k] = im.cache.residual[k];
-        if (worst == INFINITY) continue;
-        // A leg of (nearly) zero length has no axis: no Jacobian there.
-        if (!std::isfinite(f[k]) || !(im.cache.length[k] > im.geometry->min_length))
-            worst = INFINITY, im.worst_leg = k;
-        else if (std::fabs(f[k]) > worst)
-            worst = std::fabs(f[k]), im.worst_leg = k;
+        // A leg of (nearly) zero length has no axis: no Jacobian there. (|NaN| > worst is
+        // false: the first leg not finite or too short is the worst, INFINITY, and stays so.)
+        if (!(std::fabs(f[k]) <= DBL_MAX) || !(im.cache.length[k] > min_length)) {
+            worst = INFINITY, worst_leg = k;
+            break;
+        }
+        if (std::fabs(f[k]) > worst) worst = std::fabs(f[k]), worst_leg = k;
     }
+    for (int k = worst_leg + 1; worst == INFINITY && k < kN; ++k) f[k] = im.cache.residual[k];
+    im.worst_leg = worst_leg;
     im.last_residual = worst;
     return worst;
 }
@@ -70,14 +75,14 @@ double evaluate_residual(Impl &im, const double *u, double *f) {
 // KINSOL's residual callback; 1 (recoverable: KINSOL steps shorter) if not finite.
 int residual_fn(N_Vector u, N_Vector f, void *user) {
     Impl &im = *static_cast<Impl *>(user);
-    return std::isfinite(evaluate_residual(im, N_VGetArrayPointer(u), N_VGetArrayPointer(f))) ? 0
+    return std::isfinite(evaluate_residual(im, NV_DATA_S(u), NV_DATA_S(f))) ? 0
                                                                                                 : 1;
 }
 
 // KINSOL's Jacobian callback: the legs at u (the factoring is the linear solver's set-up).
 int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector) {
     Impl &im = *static_cast<Impl *>(user);
-    const double *ud = N_VGetArrayPointer(u);
+    const double *ud = NV_DATA_S(u);
     if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q))
         evaluate_legs(*im.geometry, ud, im.target, im.cache);
     return 0;
@@ -96,8 +101,8 @@ int solver_setup(SUNLinearSolver S, SUNMatrix) {
 // were the chord's) at pitch +-90 deg.
 int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
     Impl &im = *static_cast<Impl *>(S->content);
-    return pose_rates_from(im.factors, im.factors.trig, N_VGetArrayPointer(b),
-                           N_VGetArrayPointer(x))
+    return pose_rates_from(im.factors, im.factors.trig, NV_DATA_S(b),
+                           NV_DATA_S(x))
                ? SUNLS_SUCCESS
                : SUNLS_PACKAGE_FAIL_REC;
 }
@@ -165,11 +170,11 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
         }
         im.tolerance = tolerance, im.max_iterations = max_iterations;
     }
-    double *u = N_VGetArrayPointer(im.u);
+    double *u = NV_DATA_S(im.u);
     std::copy(q, q + 6, u);
     // KINSOL's own first test (the start accepted if its residual is <= 0.01 tolerance), made
     // here so that a measurement that did not change costs no KINSOL set-up.
-    evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+    evaluate_residual(im, u, NV_DATA_S(im.f));
     long iterations = 0;
     if (im.last_residual <= 0.01 * tolerance) {
         flag = KIN_INITIAL_GUESS_OK;
@@ -191,7 +196,7 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
                                "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // The residual kept is that of the last point evaluated: make it u's.
         if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
-            evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+            evaluate_residual(im, u, NV_DATA_S(im.f));
     }
     stats.iterations = static_cast<int>(iterations);
     stats.residual = im.last_residual;
