@@ -30,46 +30,55 @@ struct FixedOps {
     static void linear_sum(realtype a, N_Vector x, realtype b, N_Vector y, N_Vector z) {
         const double *xd = data(x), *yd = data(y);
         double *zd = data(z);
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) zd[i] = a * xd[i] + b * yd[i];
     }
     static void constant(realtype c, N_Vector z) {
         double *zd = data(z);
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) zd[i] = c;
     }
     static void prod(N_Vector x, N_Vector y, N_Vector z) {
         const double *xd = data(x), *yd = data(y);
         double *zd = data(z);
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) zd[i] = xd[i] * yd[i];
     }
     static void div(N_Vector x, N_Vector y, N_Vector z) {
         const double *xd = data(x), *yd = data(y);
         double *zd = data(z);
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) zd[i] = xd[i] / yd[i];
     }
     static void scale(realtype c, N_Vector x, N_Vector z) {
         const double *xd = data(x);
         double *zd = data(z);
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) zd[i] = c * xd[i];
     }
     static void abs(N_Vector x, N_Vector z) {
         const double *xd = data(x);
         double *zd = data(z);
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) zd[i] = std::fabs(xd[i]);
     }
     static void inv(N_Vector x, N_Vector z) {
         const double *xd = data(x);
         double *zd = data(z);
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) zd[i] = 1.0 / xd[i];
     }
     static realtype dot(N_Vector x, N_Vector y) {
         const double *xd = data(x), *yd = data(y);
         double sum = 0;
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) sum += xd[i] * yd[i];
         return sum;
     }
     static realtype max_norm(N_Vector x) {
         const double *xd = data(x);
         double largest = 0;
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i)
             if (std::fabs(xd[i]) > largest) largest = std::fabs(xd[i]);
         return largest;
@@ -77,12 +86,14 @@ struct FixedOps {
     static realtype weighted_l2_norm(N_Vector x, N_Vector w) {
         const double *xd = data(x), *wd = data(w);
         double sum = 0;
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) sum += (xd[i] * wd[i]) * (xd[i] * wd[i]);
         return std::sqrt(sum);
     }
     static realtype min(N_Vector x) {
         const double *xd = data(x);
         double smallest = xd[0];
+#pragma GCC unroll 6
         for (int i = 1; i < N; ++i)
             if (xd[i] < smallest) smallest = xd[i];
         return smallest;
@@ -90,6 +101,7 @@ struct FixedOps {
     static realtype l1_norm(N_Vector x) {
         const double *xd = data(x);
         double sum = 0;
+#pragma GCC unroll 6
         for (int i = 0; i < N; ++i) sum += std::fabs(xd[i]);
         return sum;
     }

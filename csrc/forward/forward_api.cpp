@@ -57,18 +57,29 @@ stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, co
     const Eigen::Vector3d alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch,
                                                                  t.cos_yaw, t.sin_yaw, rate[1],
                                                                  rate[2]) * rate;
-    const Eigen::Vector3d position(q[0], q[1], q[2]), velocity(q_dot[0], q_dot[1], q_dot[2]);
+    // Written out in scalars (Eigen's packets cost more than the arithmetic on 3-vectors).
+    const double w0 = omega[0], w1 = omega[1], w2 = omega[2];
+    const double e0 = alpha[0], e1 = alpha[1], e2 = alpha[2];
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const Eigen::Vector3d r = R * g.platform_points.col(k);
-        const Eigen::Vector3d d = position + r - g.base_points.col(k);
-        const double L = d.norm();
+        const double b0 = g.platform_points(0, k), b1 = g.platform_points(1, k),
+                     b2 = g.platform_points(2, k);
+        const double r0 = R(0, 0) * b0 + R(0, 1) * b1 + R(0, 2) * b2;
+        const double r1 = R(1, 0) * b0 + R(1, 1) * b1 + R(1, 2) * b2;
+        const double r2 = R(2, 0) * b0 + R(2, 1) * b1 + R(2, 2) * b2;
+        const double d0 = q[0] + r0 - g.base_points(0, k), d1 = q[1] + r1 - g.base_points(1, k),
+                     d2 = q[2] + r2 - g.base_points(2, k);
+        const double L = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
         if (!(L > g.min_length)) return stewart::check_leg_length(k, L, g.min_length, msg, size);
         const double inv_L = 1.0 / L;
-        const Eigen::Vector3d n = d * inv_L;
-        const Eigen::Vector3d v = velocity + omega.cross(r);
-        const Eigen::Vector3d a = alpha.cross(r) + omega.cross(omega.cross(r));
-        const double L_dot = n.dot(v);
-        accel[k] = (v.squaredNorm() - L_dot * L_dot) * inv_L + n.dot(a);
+        const double n0 = d0 * inv_L, n1 = d1 * inv_L, n2 = d2 * inv_L;
+        const double wr0 = w1 * r2 - w2 * r1, wr1 = w2 * r0 - w0 * r2, wr2 = w0 * r1 - w1 * r0;
+        const double v0 = q_dot[0] + wr0, v1 = q_dot[1] + wr1, v2 = q_dot[2] + wr2;
+        const double a0 = (e1 * r2 - e2 * r1) + (w1 * wr2 - w2 * wr1),
+                     a1 = (e2 * r0 - e0 * r2) + (w2 * wr0 - w0 * wr2),
+                     a2 = (e0 * r1 - e1 * r0) + (w0 * wr1 - w1 * wr0);
+        const double L_dot = n0 * v0 + n1 * v1 + n2 * v2;
+        accel[k] = (v0 * v0 + v1 * v1 + v2 * v2 - L_dot * L_dot) * inv_L +
+                   (n0 * a0 + n1 * a1 + n2 * a2);
     }
     return STEWART_OK;
 }
