@@ -611,8 +611,12 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
         // Tracking, the first step takes the Jacobian factored at the last pose.
         const stewart::LegFactors *chord =
             starts[a] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
+        double drift = 0;
+        for (int i = 0; i < 6 && chord; ++i)
+            drift = std::max(drift, std::fabs(start_q[i] - f.q[i]) /
+                                        (i < 3 ? m->geometry.characteristic_length : 1.0));
         last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, chord,
-                                     x.q, stats, msg, size);
+                                     drift, x.q, stats, msg, size);
         iterations += stats.iterations;
         if (last_error == STEWART_OK)
             last_error = examine(*m, f, *o, f.newton->last(), tracking, x, msg, size);

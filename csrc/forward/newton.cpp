@@ -153,7 +153,7 @@ ForwardNewton::~ForwardNewton() {
 
 stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double target[kN],
                                     double tolerance, int max_iterations, const LegFactors *chord,
-                                    double q[6], NewtonStats &stats, char *msg, size_t size) {
+                                    double drift, double q[6], NewtonStats &stats, char *msg, size_t size) {
     Impl &im = *impl_;
     im.geometry = &g;
     im.target = target;
@@ -181,7 +181,7 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
     } else {
         // Chord: the first iteration with the given factors (no set-up), a fresh Jacobian every
         // second iteration after; else exact Newton, a fresh Jacobian every iteration.
-        const bool use_chord = chord != nullptr;
+        const bool use_chord = chord != nullptr && im.last_residual * drift <= tolerance;
         if (use_chord) im.factors = *chord, im.factors_ok = true;
         if (use_chord != im.chord) {
             KINSetNoInitSetup(im.kinsol, use_chord ? SUNTRUE : SUNFALSE);

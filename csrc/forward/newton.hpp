@@ -25,13 +25,15 @@ public:
     bool ok() const { return impl_ != nullptr && ok_; }
 
     // Newton from q (overwritten with the last iterate) toward L(q) = target. chord: factors of
-    // the leg Jacobian near q (the last solution's) for the first iteration, or null (factored
-    // at q). STEWART_OK when the residual max-norm is <= tolerance; STEWART_ERR_NOT_CONVERGED (or
+    // the leg Jacobian at a pose `drift` away from q (max of |translation| / c and |angle|
+    // differences; the last solution's), taken for the first iteration when one chord step is
+    // expected to converge (residual at q times drift <= tolerance: the step's error is about
+    // the residual times the Jacobian's relative change), or null (factored at q). STEWART_OK when the residual max-norm is <= tolerance; STEWART_ERR_NOT_CONVERGED (or
     // STEWART_ERR_SINGULAR when the Jacobian could not be factored) with a message otherwise.
     // Allocates nothing.
     stewart_status solve(const PlatformGeometry &g, const double target[STEWART_LEGS],
                          double tolerance, int max_iterations, const LegFactors *chord,
-                         double q[6], NewtonStats &stats, char *msg, size_t size);
+                         double drift, double q[6], NewtonStats &stats, char *msg, size_t size);
 
     // The legs at the last iterate of the last solve.
     const LegsAt &last() const;
