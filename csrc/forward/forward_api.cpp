@@ -410,7 +410,7 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
                         "forward history value %zu is %g: it must be finite", i, v[i]);
             return false;
         }
-    LegFactors chord;
+    LegFactors chord = {};
     for (int k = 0; k < 6; ++k) chord.pivot[k] = flags[5 + k];
     const double *p = v + 2 + 6 * 4 + 18;
     for (int i = 0; i < 36; ++i) chord.lu[i] = *p++;
