@@ -40,17 +40,22 @@ BranchSides branch_sides(const PlatformGeometry &g, double home_height) {
 }
 
 int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
-                    const Matrix36 &points, const Matrix6 &jacobian_transposed, int working_sign) {
+                    const Matrix36 &points, int jacobian_sign, int working_sign) {
     int branch = R(2, 2) > 0 ? 0 : STEWART_BRANCH_FLIPPED;  // the platform's normal points up
-    if (jacobian_sign(jacobian_transposed) != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
-    const Matrix36 platform_sides = R * sides.platform;
+    if (jacobian_sign != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d leg = points.col(k) - g.base_points.col(k);
         if (!(leg.dot(sides.base.col(k)) > 0)) branch |= STEWART_BRANCH_BELOW_BASE;
-        if (!(leg.dot(platform_sides.col(k)) > 0)) branch |= STEWART_BRANCH_PLATFORM_CARDAN;
+        // (R s) . leg as s . (R^T leg): no 3 x 6 product.
+        if (!(sides.platform.col(k).dot(R.transpose() * leg) > 0))
+            branch |= STEWART_BRANCH_PLATFORM_CARDAN;
     }
     return branch;
 }
+
+namespace {
+constexpr double kPairSlack = 1e-12;  // relative, a few roundings
+}  // namespace
 
 LengthPairBounds length_pair_bounds(const PlatformGeometry &g) {
     LengthPairBounds b;
@@ -61,28 +66,35 @@ LengthPairBounds length_pair_bounds(const PlatformGeometry &g) {
             const double platform = (g.platform_points.col(i) - g.platform_points.col(j)).norm();
             b.difference[p] = base + platform;
             b.sum[p] = std::fabs(base - platform);
+            b.least_sum[p] = b.sum[p] * (1 - kPairSlack) - 1e-15;
+            b.largest_difference[p] = b.difference[p] * (1 + kPairSlack) + 1e-15;
         }
     return b;
 }
 
 stewart_status check_length_pairs(const LengthPairBounds &bounds,
                                   const double length[STEWART_LEGS], char *msg, size_t size) {
-    // A relative slack of a few roundings: lengths computed from a pose at a bound must pass.
-    const double slack = 1e-12;
+    // The common case first: every pair inside its bounds.
+    bool inside = true;
+    for (int i = 0, p = 0; i < STEWART_LEGS; ++i)
+        for (int j = i + 1; j < STEWART_LEGS; ++j, ++p)
+            inside &= !(length[i] + length[j] < bounds.least_sum[p]) &
+                      !(std::fabs(length[i] - length[j]) > bounds.largest_difference[p]);
+    if (inside) return STEWART_OK;
     int violations[STEWART_LEGS] = {0};
     int first_i = -1, first_j = -1, p = 0;
     double first_bound = 0;
     for (int i = 0; i < STEWART_LEGS; ++i)
         for (int j = i + 1; j < STEWART_LEGS; ++j, ++p) {
             const double L_i = length[i], L_j = length[j];
-            if (L_i + L_j < bounds.sum[p] * (1 - slack) - 1e-15) {
+            if (L_i + L_j < bounds.least_sum[p]) {
                 return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                    "no pose has these lengths: legs %d and %d are too short "
                                    "together, L%d + L%d = %g m < %g m, the least their attachment "
                                    "points allow", i + 1, j + 1, i + 1, j + 1, L_i + L_j,
                                    bounds.sum[p]);
             }
-            if (std::fabs(L_i - L_j) > bounds.difference[p] * (1 + slack) + 1e-15) {
+            if (std::fabs(L_i - L_j) > bounds.largest_difference[p]) {
                 ++violations[i];
                 ++violations[j];
                 if (first_i < 0) first_i = i, first_j = j, first_bound = bounds.difference[p];

@@ -22,18 +22,21 @@ struct BranchSides {
 };
 BranchSides branch_sides(const PlatformGeometry &g, double home_height);
 
-// STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points and its leg
-// Jacobian (0: the working mode: every leg leaves its base Cardan and reaches its platform
-// Cardan on the sides it has at home, the platform faces up, and the Jacobian's determinant has
-// working_sign, its sign at home).
+// STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points and the sign of
+// its leg Jacobian's determinant (0: the working mode: every leg leaves its base Cardan and
+// reaches its platform Cardan on the sides it has at home, the platform faces up, and the
+// determinant has working_sign, its sign at home).
 int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
-                    const Matrix36 &points, const Matrix6 &jacobian_transposed, int working_sign);
+                    const Matrix36 &points, int jacobian_sign, int working_sign);
 
 // Bounds on the lengths of the 15 pairs i < j that hold at every pose: from
 // d_i - d_j = (a_j - a_i) + R (b_i - b_j), |L_i - L_j| <= |a_i - a_j| + |b_i - b_j| (difference)
 // and L_i + L_j >= | |a_i - a_j| - |b_i - b_j| | (sum).
 struct LengthPairBounds {
     double difference[15], sum[15];
+    // The tests' thresholds, with a relative slack of a few roundings (lengths computed from a
+    // pose at a bound must pass): sum * (1 - 1e-12) - 1e-15 and difference * (1 + 1e-12) + 1e-15.
+    double least_sum[15], largest_difference[15];
 };
 LengthPairBounds length_pair_bounds(const PlatformGeometry &g);
 

@@ -25,6 +25,10 @@ constexpr double kPi = 3.14159265358979323846;
 // positive).
 stewart_status check_values(const double *v, const char *name, bool positive, char *msg,
                             size_t size) {
+    // The common case in one test: v * 0 is 0 for a finite v, NaN otherwise.
+    double zero = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) zero += v[k] * 0.0;
+    if (zero == 0 && !positive) return STEWART_OK;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         if (!std::isfinite(v[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s%d is %g: it must be finite",
@@ -38,27 +42,55 @@ stewart_status check_values(const double *v, const char *name, bool positive, ch
     return STEWART_OK;
 }
 
-// The inverse side's leg kinematics at pose (q, q_dot) with zero pose accelerations.
-stewart_status legs_at(const stewart_model &m, const double q[6], const double q_dot[6],
-                       stewart::LegKinematics &legs, char *msg, size_t size) {
-    stewart_pose pose{};
-    std::memcpy(pose.q, q, sizeof pose.q);
-    if (q_dot) std::memcpy(pose.q_dot, q_dot, sizeof pose.q_dot);
-    return stewart::leg_kinematics(m.geometry, stewart::motion_of_pose(pose), legs, msg, size);
-}
-
-// J^-1 v with J = (n_k, (R b_k x n_k)/c) per row: (translation, c * rotation) to pose
-// coordinates (x, y, z, angle rates). False at pitch = +-90 deg.
-bool pose_from_twist_solve(const stewart::LegJacobian &J, double c, const double q[6],
-                           const stewart::Vector6 &v, double out[6]) {
-    const stewart::Vector6 w = J.inverse_transposed.transpose() * v;
-    for (int i = 0; i < 3; ++i) out[i] = w[i];
-    return stewart::angle_rates_of(q, w.tail<3>() / c, out + 3);
+// The leg accelerations at pose q moving at rates q_dot with zero pose accelerations
+// (kinematics/closed_form leg_kinematics of motion_of_pose, the same formulas), from the cosines
+// and sines of q's angles, known already; STEWART_ERR_UNREACHABLE if a leg has no length.
+stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, const double q[6],
+                                          const double q_dot[6], double cr, double sr,
+                                          const stewart::PitchYawTrig &t, double accel[6],
+                                          char *msg, size_t size) {
+    const Eigen::Matrix3d R =
+        stewart::rotation_from_trig(cr, sr, t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw);
+    const Eigen::Vector3d rate(q_dot[3], q_dot[4], q_dot[5]);
+    const Eigen::Vector3d omega =
+        stewart::angle_rate_matrix(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw) * rate;
+    const Eigen::Vector3d alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch,
+                                                                 t.cos_yaw, t.sin_yaw, rate[1],
+                                                                 rate[2]) * rate;
+    // Written out in scalars (Eigen's packets cost more than the arithmetic on 3-vectors).
+    const double w0 = omega[0], w1 = omega[1], w2 = omega[2];
+    const double e0 = alpha[0], e1 = alpha[1], e2 = alpha[2];
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const double b0 = g.platform_points(0, k), b1 = g.platform_points(1, k),
+                     b2 = g.platform_points(2, k);
+        const double r0 = R(0, 0) * b0 + R(0, 1) * b1 + R(0, 2) * b2;
+        const double r1 = R(1, 0) * b0 + R(1, 1) * b1 + R(1, 2) * b2;
+        const double r2 = R(2, 0) * b0 + R(2, 1) * b1 + R(2, 2) * b2;
+        const double d0 = q[0] + r0 - g.base_points(0, k), d1 = q[1] + r1 - g.base_points(1, k),
+                     d2 = q[2] + r2 - g.base_points(2, k);
+        const double L = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        if (!(L > g.min_length)) return stewart::check_leg_length(k, L, g.min_length, msg, size);
+        const double inv_L = 1.0 / L;
+        const double n0 = d0 * inv_L, n1 = d1 * inv_L, n2 = d2 * inv_L;
+        const double wr0 = w1 * r2 - w2 * r1, wr1 = w2 * r0 - w0 * r2, wr2 = w0 * r1 - w1 * r0;
+        const double v0 = q_dot[0] + wr0, v1 = q_dot[1] + wr1, v2 = q_dot[2] + wr2;
+        const double a0 = (e1 * r2 - e2 * r1) + (w1 * wr2 - w2 * wr1),
+                     a1 = (e2 * r0 - e0 * r2) + (w2 * wr0 - w0 * wr2),
+                     a2 = (e0 * r1 - e1 * r0) + (w0 * wr1 - w1 * wr0);
+        const double L_dot = n0 * v0 + n1 * v1 + n2 * v2;
+        accel[k] = (v0 * v0 + v1 * v1 + v2 * v2 - L_dot * L_dot) * inv_L +
+                   (n0 * a0 + n1 * a1 + n2 * a2);
+    }
+    return STEWART_OK;
 }
 
 // STEWART_ERR_ARGUMENT naming the first value of a pose found (`what`) that overflowed.
 stewart_status check_found(const stewart_pose &pose, const char *what, char *msg, size_t size) {
     const double *groups[3] = {pose.q, pose.q_dot, pose.q_ddot};
+    double zero = 0;  // (v * 0 is 0 for a finite v, NaN otherwise)
+    for (const double *v : groups)
+        for (int i = 0; i < 6; ++i) zero += v[i] * 0.0;
+    if (zero == 0) return STEWART_OK;
     for (const double *v : groups)
         for (int i = 0; i < 6; ++i)
             if (!std::isfinite(v[i]))
@@ -140,9 +172,9 @@ struct Found {
     int start = 0;
     int branch = 0;
     double jump = 0;
-    Eigen::Matrix3d rotation;
-    stewart::LegKinematics legs;  // arm, axis, length at q
-    stewart::LegJacobian jacobian;
+    stewart::LegFactors factors;  // the leg Jacobian at q, factored
+    double condition = 0;         // its 1-norm condition number
+    double angles[3], cos_angles[3], sin_angles[3];  // of the Newton iterate (before the wrap)
     stewart::Matrix36 points;
     stewart::Vector6 residual;
 };
@@ -179,13 +211,17 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                        const stewart_forward_options &o, const stewart::LegsAt &at,
                        bool tracking, Found &x, char *msg, size_t size) {
     const stewart::PlatformGeometry &g = m.geometry;
-    x.rotation = at.rotation;
-    x.legs.arm = at.arm;
-    x.legs.axis = at.axis;
-    x.legs.length = at.length;
     x.residual = at.residual;
-    stewart::leg_jacobian(g, x.legs, x.jacobian);
-    const double condition = x.jacobian.condition;
+    for (int i = 0; i < 3; ++i) x.angles[i] = at.q[3 + i];
+    x.cos_angles[0] = at.cos_roll, x.cos_angles[1] = at.cos_pitch, x.cos_angles[2] = at.cos_yaw;
+    x.sin_angles[0] = at.sin_roll, x.sin_angles[1] = at.sin_pitch, x.sin_angles[2] = at.sin_yaw;
+    // cond_1(J) = |J|_1 |J^-1|_1 from the one factoring that also serves the step, the rates and
+    // the next solve's chord.
+    double norm1;
+    x.condition = stewart::factor_legs(g, at, x.factors, norm1)
+                      ? norm1 * stewart::inverse_norm1(x.factors)
+                      : HUGE_VAL;
+    const double condition = x.condition;
     stewart_status s = stewart::check_condition(condition, o.singular_condition, msg, size);
     if (s != STEWART_OK) return s;
     // Kantorovich: Newton's answer is the unique pose near it only if h = beta^2 gamma |F| <=
@@ -201,8 +237,9 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "0.5)", condition, o.tolerance, h);
     x.points = at.arm;
     x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
-    x.branch = stewart::assembly_branch(g, m.forward.sides, x.rotation, x.points,
-                                        x.jacobian.transposed, m.forward.working_sign);
+    x.branch = stewart::assembly_branch(g, m.forward.sides, at.rotation, x.points,
+                                        stewart::determinant_sign(x.factors),
+                                        m.forward.working_sign);
     if (tracking) {
         x.jump = (x.points - f.points).colwise().norm().maxCoeff();
         if (x.jump > m.forward.shortest_stroke_range) x.branch |= STEWART_BRANCH_JUMP;
@@ -210,26 +247,50 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
     return STEWART_OK;
 }
 
-// Rates and accelerations of the pose x through its leg Jacobian; false (message) at pitch =
-// +-90 deg or if anything overflows.
+// sin and cos of `angle` from those of a nearby angle0: within 1e-9 rad the first-order terms
+// leave an error below 5e-19, far under rounding (so within an ulp or two of libm's); libm
+// farther away (an angle wrapped by turns).
+void sincos_near(double angle, double angle0, double sin0, double cos0, double *sin_out,
+                 double *cos_out) {
+    const double d = angle - angle0;
+    if (std::fabs(d) <= 1e-9) {
+        *sin_out = sin0 + d * cos0;
+        *cos_out = cos0 - d * sin0;
+    } else {
+        ::sincos(angle, sin_out, cos_out);
+    }
+}
+
+// Rates and accelerations of the pose out (x's, corrected) through x's leg Jacobian; false
+// (message) at pitch = +-90 deg or if anything overflows.
 stewart_status derivatives(const stewart_model &m, const Found &x, const double *rates,
                            const double *accels, stewart_forward_output &out, char *msg,
                            size_t size) {
-    const double c = m.geometry.characteristic_length;
-    if (rates &&
-        !pose_from_twist_solve(x.jacobian, c, out.pose.q,
-                               Eigen::Map<const stewart::Vector6>(rates), out.pose.q_dot))
-        return set_message(msg, size, STEWART_ERR_SINGULAR,
-                           "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
-                           "defined there", out.pose.q[4]);
-    if (accels) {
-        // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
-        // alone: the leg accelerations at zero pose accelerations.
-        stewart::LegKinematics moving;
-        stewart_status s = legs_at(m, out.pose.q, out.pose.q_dot, moving, msg, size);
-        if (s != STEWART_OK) return s;
-        const stewart::Vector6 rhs = Eigen::Map<const stewart::Vector6>(accels) - moving.accel;
-        pose_from_twist_solve(x.jacobian, c, out.pose.q, rhs, out.pose.q_ddot);
+    const double *q = out.pose.q;
+    if (rates) {  // (accelerations only with rates)
+        // The corrected pose is within rounding of the iterate whose trig is known.
+        stewart::PitchYawTrig at;
+        sincos_near(q[4], x.angles[1], x.sin_angles[1], x.cos_angles[1], &at.sin_pitch,
+                    &at.cos_pitch);
+        sincos_near(q[5], x.angles[2], x.sin_angles[2], x.cos_angles[2], &at.sin_yaw,
+                    &at.cos_yaw);
+        if (!stewart::pose_rates_from(x.factors, at, rates, out.pose.q_dot))
+            return set_message(msg, size, STEWART_ERR_SINGULAR,
+                               "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
+                               "defined there", q[4]);
+        if (accels) {
+            // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
+            // alone: the leg accelerations at zero pose accelerations.
+            double sin_roll, cos_roll, moving[6];
+            sincos_near(q[3], x.angles[0], x.sin_angles[0], x.cos_angles[0], &sin_roll,
+                        &cos_roll);
+            const stewart_status s = velocity_leg_accelerations(
+                m.geometry, q, out.pose.q_dot, cos_roll, sin_roll, at, moving, msg, size);
+            if (s != STEWART_OK) return s;
+            double rhs[6];
+            for (int k = 0; k < 6; ++k) rhs[k] = accels[k] - moving[k];
+            stewart::pose_rates_from(x.factors, at, rhs, out.pose.q_ddot);
+        }
     }
     return check_found(out.pose, "pose", msg, size);
 }
@@ -248,6 +309,8 @@ void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_ou
     std::memcpy(f.q_dot, out.pose.q_dot, sizeof f.q_dot);
     std::memcpy(f.q_ddot, out.pose.q_ddot, sizeof f.q_ddot);
     f.points = x.points;
+    f.has_chord = true;
+    f.chord = x.factors;
 }
 
 }  // namespace
@@ -281,9 +344,10 @@ stewart_status forward_constants(const PlatformGeometry &g, const stewart_params
 namespace {
 
 constexpr unsigned kHistoryMagic = 0x53544657u;  // "STFW"
-constexpr unsigned kHistoryVersion = 1;
-constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18;  // times, q, q_dot, q_ddot, previous_q, points
-constexpr size_t kHistoryFlags = 4;
+constexpr unsigned kHistoryVersion = 2;  // 2: the chord's factors
+// times, q, q_dot, q_ddot, previous_q, points; the chord's LU, pitch and yaw trig, scale
+constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18 + 36 + 4 + 1;
+constexpr size_t kHistoryFlags = 5 + 6;  // has_pose .. has_chord; the chord's pivots
 constexpr size_t kHistoryHeader = 3 * sizeof(unsigned);
 
 }  // namespace
@@ -298,7 +362,8 @@ void forward_history_save(const ForwardState &f, unsigned char *buffer) {
     std::memcpy(buffer, header, sizeof header);
     unsigned char *flags = buffer + kHistoryHeader;
     flags[0] = f.has_pose, flags[1] = f.has_rates, flags[2] = f.has_accels,
-    flags[3] = f.has_previous;
+    flags[3] = f.has_previous, flags[4] = f.has_chord;
+    for (int k = 0; k < 6; ++k) flags[5 + k] = static_cast<unsigned char>(f.chord.pivot[k]);
     double v[kHistoryDoubles];
     double *p = v;
     *p++ = f.time;
@@ -306,6 +371,10 @@ void forward_history_save(const ForwardState &f, unsigned char *buffer) {
     for (const double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
         for (int i = 0; i < 6; ++i) *p++ = a[i];
     for (int i = 0; i < 18; ++i) *p++ = f.points.data()[i];
+    for (int i = 0; i < 36; ++i) *p++ = f.chord.lu[i];
+    *p++ = f.chord.trig.cos_pitch, *p++ = f.chord.trig.sin_pitch;
+    *p++ = f.chord.trig.cos_yaw, *p++ = f.chord.trig.sin_yaw;
+    *p++ = f.chord.scale;
     std::memcpy(flags + kHistoryFlags, v, sizeof v);
 }
 
@@ -327,7 +396,7 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
         return false;
     }
     const unsigned char *flags = buffer + kHistoryHeader;
-    for (size_t i = 0; i < kHistoryFlags; ++i)
+    for (size_t i = 0; i < 5; ++i)
         if (flags[i] > 1) {
             set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
                         "forward history flag %zu is %d: it must be 0 or 1", i, flags[i]);
@@ -341,9 +410,23 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
                         "forward history value %zu is %g: it must be finite", i, v[i]);
             return false;
         }
+    LegFactors chord = {};
+    for (int k = 0; k < 6; ++k) chord.pivot[k] = flags[5 + k];
+    const double *p = v + 2 + 6 * 4 + 18;
+    for (int i = 0; i < 36; ++i) chord.lu[i] = *p++;
+    chord.trig.cos_pitch = *p++, chord.trig.sin_pitch = *p++;
+    chord.trig.cos_yaw = *p++, chord.trig.sin_yaw = *p++;
+    chord.scale = *p++;
+    if (flags[4] && !factors_usable(chord)) {
+        set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
+                    "the forward history's leg Jacobian factors are not usable (a pivot out of "
+                    "range, a zero on U's diagonal or a scale <= 0)");
+        return false;
+    }
     f.has_pose = flags[0], f.has_rates = flags[1], f.has_accels = flags[2],
-    f.has_previous = flags[3];
-    const double *p = v;
+    f.has_previous = flags[3], f.has_chord = flags[4];
+    f.chord = chord;
+    p = v;
     f.time = *p++;
     f.previous_time = *p++;
     for (double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
@@ -406,6 +489,8 @@ extern "C" stewart_status stewart_forward_copy(stewart_forward *dst, const stewa
     std::memcpy(d.q_ddot, s.q_ddot, sizeof d.q_ddot);
     std::memcpy(d.previous_q, s.previous_q, sizeof d.previous_q);
     d.points = s.points;
+    d.has_chord = s.has_chord;
+    d.chord = s.chord;
     return STEWART_OK;
 }
 
@@ -523,8 +608,15 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
         start_pose(*m, f, starts[a], time, guess, start_q);
         std::memcpy(x.q, start_q, sizeof start_q);
         stewart::NewtonStats stats;
-        last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, x.q,
-                                     stats, msg, size);
+        // Tracking, the first step takes the Jacobian factored at the last pose.
+        const stewart::LegFactors *chord =
+            starts[a] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
+        double drift = 0;
+        for (int i = 0; i < 6 && chord; ++i)
+            drift = std::max(drift, std::fabs(start_q[i] - f.q[i]) /
+                                        (i < 3 ? m->geometry.characteristic_length : 1.0));
+        last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, chord,
+                                     drift, x.q, stats, msg, size);
         iterations += stats.iterations;
         if (last_error == STEWART_OK)
             last_error = examine(*m, f, *o, f.newton->last(), tracking, x, msg, size);
@@ -534,8 +626,12 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
             last_error = STEWART_ERR_SINGULAR;
         if (last_error != STEWART_OK) continue;
         // Angles within half a turn of the start's: the same rotation, the continuous angles.
-        for (int i = 3; i < 6; ++i)
-            x.q[i] = start_q[i] + std::remainder(x.q[i] - start_q[i], 2 * kPi);
+        // (Inside half a turn the remainder is the difference itself, exactly: no libm call.)
+        for (int i = 3; i < 6; ++i) {
+            const double turned = x.q[i] - start_q[i];
+            x.q[i] = start_q[i] +
+                     (std::fabs(turned) < kPi ? turned : std::remainder(turned, 2 * kPi));
+        }
         x.start = starts[a];
         if (x.branch == 0) chosen = n_found;
         ++n_found;
@@ -549,13 +645,12 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
     stewart_forward_output out{};
     double step[6];
     std::memcpy(out.pose.q, x.q, sizeof x.q);
-    if (pose_from_twist_solve(x.jacobian, m->geometry.characteristic_length, x.q, x.residual,
-                              step))
+    if (stewart::pose_rates_from(x.factors, x.factors.trig, x.residual.data(), step))
         for (int i = 0; i < 6; ++i) out.pose.q[i] -= step[i];
     if ((s = derivatives(*m, x, rates, accels, out, msg, size)) != STEWART_OK) return s;
     out.iterations = iterations;
     out.residual = x.residual.cwiseAbs().maxCoeff();
-    out.condition = x.jacobian.condition;
+    out.condition = x.condition;
     out.branch = x.branch;
     out.jump = x.jump;
     out.start = x.start;

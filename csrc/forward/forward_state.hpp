@@ -1,5 +1,6 @@
 // Forward kinematics' state: the Newton solver (allocated with the solver object) and the tracking
-// history (the last pose, its rates, the pose before it); and the constants of the model it needs.
+// history (the last pose, its rates, the pose before it, the leg Jacobian factored there); and the
+// constants of the model it needs.
 #pragma once
 
 #include <memory>
@@ -20,8 +21,12 @@ struct ForwardState {
     double previous_time = 0;
     double previous_q[6] = {0};
     Matrix36 points = Matrix36::Zero();  // the last pose's platform points, world (the jump check)
+    // The leg Jacobian factored at the last pose (its last Newton iterate): the next tracking
+    // solve's first Newton step (a chord step) needs no Jacobian or factoring of its own.
+    bool has_chord = false;
+    LegFactors chord = {};
     // Forgets the history.
-    void reset() { has_pose = has_rates = has_accels = has_previous = false; }
+    void reset() { has_pose = has_rates = has_accels = has_previous = has_chord = false; }
 };
 
 // Of the model, worked out when it is made: the sign of the leg Jacobian's determinant at home

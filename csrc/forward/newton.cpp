@@ -7,11 +7,10 @@
 #include <sundials/sundials_matrix.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 #include "core/kinsol_custom.hpp"
-#include "kinematics/lu6.hpp"
-#include "kinematics/motion.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -19,40 +18,6 @@ namespace stewart {
 namespace {
 
 constexpr int kN = STEWART_LEGS;  // six lengths, six pose coordinates
-
-// The legs at pose q and the residual L(q) - target, into c.
-void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[kN],
-                   LegsAt &c) {
-    std::copy(q, q + 6, c.q);
-    c.valid = true;
-    c.rotation = rotation_from_rpy(q[3], q[4], q[5]);
-    const Eigen::Vector3d p(q[0], q[1], q[2]);
-    c.arm.noalias() = c.rotation * g.platform_points;
-    for (int k = 0; k < kN; ++k) {
-        const Eigen::Vector3d d = p + c.arm.col(k) - g.base_points.col(k);
-        c.length[k] = d.norm();
-        c.axis.col(k) = d / c.length[k];
-        c.residual[k] = c.length[k] - target[k];
-    }
-}
-
-// Row k of dL/dq: (n_k, (R b_k x n_k)^T E), E mapping (roll, pitch, yaw) rates to the angular
-// velocity: its columns are Rz Ry e_x (= R e_x), Rz e_y and e_z.
-void assemble_jacobian(const LegsAt &c, double yaw, double jac[kN * 6]) {
-    const Eigen::Vector3d e_roll = c.rotation.col(0);
-    const Eigen::Vector3d e_pitch(-std::sin(yaw), std::cos(yaw), 0.0);
-    for (int k = 0; k < kN; ++k) {
-        const Eigen::Vector3d n = c.axis.col(k);
-        const Eigen::Vector3d m = c.arm.col(k).cross(n);
-        double *row = jac + 6 * k;
-        row[0] = n[0];
-        row[1] = n[1];
-        row[2] = n[2];
-        row[3] = m.dot(e_roll);
-        row[4] = m.dot(e_pitch);
-        row[5] = m[2];
-    }
-}
 
 }  // namespace
 
@@ -63,6 +28,10 @@ struct ForwardNewton::Impl {
     SUNLinearSolver linear = nullptr;
     void *kinsol = nullptr;
     char kinsol_message[STEWART_MESSAGE_SIZE] = "";
+    // What KINSOL was last told (set again only when it changes).
+    double tolerance = -1;
+    int max_iterations = -1;
+    bool chord = false;
     // Per solve: the problem.
     const PlatformGeometry *geometry = nullptr;
     const double *target = nullptr;
@@ -70,9 +39,9 @@ struct ForwardNewton::Impl {
     LegsAt cache;
     double last_residual = 0;
     int worst_leg = 0;
-    // The Jacobian and its LU factors, row-major.
-    double jac[kN * 6], lu[kN * 6];
-    int pivot[kN];
+    // The linear solver's factors: the leg Jacobian at the last set-up (or the chord's).
+    LegFactors factors;
+    bool factors_ok = false;
 };
 
 namespace {
@@ -85,16 +54,20 @@ double evaluate_residual(Impl &im, const double *u, double *f) {
     if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
         evaluate_legs(*im.geometry, u, im.target, im.cache);
     double worst = 0;
-    im.worst_leg = 0;
+    int worst_leg = 0;
+    const double min_length = im.geometry->min_length;
     for (int k = 0; k < kN; ++k) {
         f[k] = im.cache.residual[k];
-        if (worst == INFINITY) continue;
-        // A leg of (nearly) zero length has no axis: no Jacobian there.
-        if (!std::isfinite(f[k]) || !(im.cache.length[k] > im.geometry->min_length))
-            worst = INFINITY, im.worst_leg = k;
-        else if (std::fabs(f[k]) > worst)
-            worst = std::fabs(f[k]), im.worst_leg = k;
+        // A leg of (nearly) zero length has no axis: no Jacobian there. (|NaN| > worst is
+        // false: the first leg not finite or too short is the worst, INFINITY, and stays so.)
+        if (!(std::fabs(f[k]) <= DBL_MAX) || !(im.cache.length[k] > min_length)) {
+            worst = INFINITY, worst_leg = k;
+            break;
+        }
+        if (std::fabs(f[k]) > worst) worst = std::fabs(f[k]), worst_leg = k;
     }
+    for (int k = worst_leg + 1; worst == INFINITY && k < kN; ++k) f[k] = im.cache.residual[k];
+    im.worst_leg = worst_leg;
     im.last_residual = worst;
     return worst;
 }
@@ -102,36 +75,36 @@ double evaluate_residual(Impl &im, const double *u, double *f) {
 // KINSOL's residual callback; 1 (recoverable: KINSOL steps shorter) if not finite.
 int residual_fn(N_Vector u, N_Vector f, void *user) {
     Impl &im = *static_cast<Impl *>(user);
-    return std::isfinite(evaluate_residual(im, N_VGetArrayPointer(u), N_VGetArrayPointer(f))) ? 0
+    return std::isfinite(evaluate_residual(im, NV_DATA_S(u), NV_DATA_S(f))) ? 0
                                                                                                 : 1;
 }
 
-// KINSOL's Jacobian callback: the analytic dL/dq at u into Impl::jac.
+// KINSOL's Jacobian callback: the legs at u (the factoring is the linear solver's set-up).
 int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector) {
     Impl &im = *static_cast<Impl *>(user);
-    const double *ud = N_VGetArrayPointer(u);
+    const double *ud = NV_DATA_S(u);
     if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q))
         evaluate_legs(*im.geometry, ud, im.target, im.cache);
-    assemble_jacobian(im.cache, ud[5], im.jac);
-    for (int i = 0; i < kN * 6; ++i)
-        if (!std::isfinite(im.jac[i])) return 1;
     return 0;
 }
 
-// The custom linear solver (core/kinsol_custom): 6 x 6 LU with partial pivoting.
-// Factors the Jacobian.
+// The custom linear solver (core/kinsol_custom): the leg Jacobian at the legs of the set-up's
+// iterate, factored. dL/dq = J diag(I, c E) with E the angle-rate matrix, so a solve with J then
+// E^-1 / c is the Newton step in pose coordinates.
 int solver_setup(SUNLinearSolver S, SUNMatrix) {
     Impl &im = *static_cast<Impl *>(S->content);
-    std::copy(im.jac, im.jac + kN * 6, im.lu);
-    return lu6_factor(im.lu, im.pivot) ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
+    double norm1;
+    im.factors_ok = factor_legs(*im.geometry, im.cache, im.factors, norm1);
+    return im.factors_ok ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
 }
-// x = J^-1 b with the factors.
+// x = (dL/dq)^-1 b with the factors; recoverable failure (KINSOL sets up afresh if the factors
+// were the chord's) at pitch +-90 deg.
 int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
     Impl &im = *static_cast<Impl *>(S->content);
-    double *xd = N_VGetArrayPointer(x);
-    std::copy(N_VGetArrayPointer(b), N_VGetArrayPointer(b) + kN, xd);
-    lu6_solve(im.lu, im.pivot, xd);
-    return SUNLS_SUCCESS;
+    return pose_rates_from(im.factors, im.factors.trig, NV_DATA_S(b),
+                           NV_DATA_S(x))
+               ? SUNLS_SUCCESS
+               : SUNLS_PACKAGE_FAIL_REC;
 }
 }  // namespace
 
@@ -140,22 +113,26 @@ ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
     Impl &im = *impl_;
     if (SUNContext_Create(nullptr, &im.context) != 0) return;
     im.u = N_VNew_Serial(kN, im.context);
-    im.scale = N_VNew_Serial(kN, im.context);
-    im.f = N_VNew_Serial(kN, im.context);
-    if (!im.u || !im.scale || !im.f) return;
+    // The six-entry operations (KINSOL's work vectors are clones of u: they inherit them).
+    if (!im.u || !mbs::use_fixed_length_ops(im.u)) return;
+    im.scale = N_VClone(im.u);
+    im.f = N_VClone(im.u);
+    if (!im.scale || !im.f) return;
     N_VConst(1.0, im.scale);
     if (!mbs::make_custom_linear_solver(im.context, &im, solver_setup, solver_solve, im.matrix,
                                         im.linear))
         return;
     im.kinsol = KINCreate(im.context);
     if (!im.kinsol) return;
-    // Exact Newton: a fresh Jacobian every iteration; no step-size stop (the residual decides).
+    // Once, not per solve: memory, linear solver, callbacks. No step-size stop (the residual
+    // decides).
     ok_ = KINSetErrHandlerFn(im.kinsol, mbs::keep_kinsol_message, im.kinsol_message) == KIN_SUCCESS &&
           KINInit(im.kinsol, residual_fn, im.u) == KIN_SUCCESS &&
           KINSetUserData(im.kinsol, &im) == KIN_SUCCESS &&
           KINSetLinearSolver(im.kinsol, im.linear, im.matrix) == KINLS_SUCCESS &&
           KINSetJacFn(im.kinsol, jacobian_fn) == KINLS_SUCCESS &&
           KINSetMaxSetupCalls(im.kinsol, 1) == KIN_SUCCESS &&
+          KINSetNoInitSetup(im.kinsol, SUNFALSE) == KIN_SUCCESS &&
           KINSetScaledStepTol(im.kinsol, 1e-300) == KIN_SUCCESS;
 }
 
@@ -175,28 +152,42 @@ ForwardNewton::~ForwardNewton() {
 }
 
 stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double target[kN],
-                                    double tolerance, int max_iterations, double q[6],
-                                    NewtonStats &stats, char *msg, size_t size) {
+                                    double tolerance, int max_iterations, const LegFactors *chord,
+                                    double drift, double q[6], NewtonStats &stats, char *msg, size_t size) {
     Impl &im = *impl_;
     im.geometry = &g;
     im.target = target;
     im.cache.valid = false;
     stats = NewtonStats();
-    int flag;
-    if ((flag = KINSetFuncNormTol(im.kinsol, tolerance)) != KIN_SUCCESS ||
-        (flag = KINSetNumMaxIters(im.kinsol, max_iterations)) != KIN_SUCCESS)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "KINSOL rejected tolerance = %g or max_iterations = %d (flag %d)",
-                           tolerance, max_iterations, flag);
-    double *u = N_VGetArrayPointer(im.u);
+    int flag = KIN_SUCCESS;
+    if (tolerance != im.tolerance || max_iterations != im.max_iterations) {
+        if ((flag = KINSetFuncNormTol(im.kinsol, tolerance)) != KIN_SUCCESS ||
+            (flag = KINSetNumMaxIters(im.kinsol, max_iterations)) != KIN_SUCCESS) {
+            im.tolerance = -1;
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "KINSOL rejected tolerance = %g or max_iterations = %d (flag %d)",
+                               tolerance, max_iterations, flag);
+        }
+        im.tolerance = tolerance, im.max_iterations = max_iterations;
+    }
+    double *u = NV_DATA_S(im.u);
     std::copy(q, q + 6, u);
     // KINSOL's own first test (the start accepted if its residual is <= 0.01 tolerance), made
     // here so that a measurement that did not change costs no KINSOL set-up.
-    evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+    evaluate_residual(im, u, NV_DATA_S(im.f));
     long iterations = 0;
     if (im.last_residual <= 0.01 * tolerance) {
         flag = KIN_INITIAL_GUESS_OK;
     } else {
+        // Chord: the first iteration with the given factors (no set-up), a fresh Jacobian every
+        // second iteration after; else exact Newton, a fresh Jacobian every iteration.
+        const bool use_chord = chord != nullptr && im.last_residual * drift <= tolerance;
+        if (use_chord) im.factors = *chord, im.factors_ok = true;
+        if (use_chord != im.chord) {
+            KINSetNoInitSetup(im.kinsol, use_chord ? SUNTRUE : SUNFALSE);
+            KINSetMaxSetupCalls(im.kinsol, use_chord ? 2 : 1);
+            im.chord = use_chord;
+        }
         im.kinsol_message[0] = '\0';
         flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
         const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
@@ -205,7 +196,7 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
                                "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // The residual kept is that of the last point evaluated: make it u's.
         if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
-            evaluate_residual(im, u, N_VGetArrayPointer(im.f));
+            evaluate_residual(im, u, NV_DATA_S(im.f));
     }
     stats.iterations = static_cast<int>(iterations);
     stats.residual = im.last_residual;

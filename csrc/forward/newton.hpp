@@ -1,21 +1,12 @@
 // The forward position problem L(q) = L_measured in the six pose coordinates, solved by KINSOL's
 // Newton iteration with the analytic Jacobian behind a custom 6 x 6 SUNMatrix/SUNLinearSolver
-// (LU with partial pivoting; no finite differences).
+// (the leg Jacobian's LU with partial pivoting; no finite differences). Tracking, the Jacobian
+// factored at the last solution is KINSOL's for the first iteration (a chord step: no set-up).
 #pragma once
 
-#include "kinematics/closed_form.hpp"
+#include "forward/leg_factors.hpp"
 
 namespace stewart {
-
-// The legs at one pose: what the residual computes and the Jacobian (and the caller, at the
-// solution) reuse.
-struct LegsAt {
-    bool valid = false;
-    double q[6];
-    Eigen::Matrix3d rotation;
-    Matrix36 arm, axis;  // R b_k and the unit leg axis n_k, world
-    Vector6 length, residual;
-};
 
 struct NewtonStats {
     int iterations = 0;     // KINSOL nonlinear iterations
@@ -26,19 +17,23 @@ struct NewtonStats {
 
 class ForwardNewton {
 public:
-    // Allocates the KINSOL objects once; check ok().
+    // Allocates the KINSOL objects once and sets them up for every solve; check ok().
     ForwardNewton();
     ~ForwardNewton();
     ForwardNewton(const ForwardNewton &) = delete;
     ForwardNewton &operator=(const ForwardNewton &) = delete;
     bool ok() const { return impl_ != nullptr && ok_; }
 
-    // Newton from q (overwritten with the last iterate) toward L(q) = target. STEWART_OK when the
-    // residual max-norm is <= tolerance; STEWART_ERR_NOT_CONVERGED (or STEWART_ERR_SINGULAR when
-    // the Jacobian could not be factored) with a message otherwise. Allocates nothing.
+    // Newton from q (overwritten with the last iterate) toward L(q) = target. chord: factors of
+    // the leg Jacobian at a pose `drift` away from q (max of |translation| / c and |angle|
+    // differences; the last solution's), taken for the first iteration when one chord step is
+    // expected to converge (residual at q times drift <= tolerance: the step's error is about
+    // the residual times the Jacobian's relative change), or null (factored at q). STEWART_OK when the residual max-norm is <= tolerance; STEWART_ERR_NOT_CONVERGED (or
+    // STEWART_ERR_SINGULAR when the Jacobian could not be factored) with a message otherwise.
+    // Allocates nothing.
     stewart_status solve(const PlatformGeometry &g, const double target[STEWART_LEGS],
-                         double tolerance, int max_iterations, double q[6], NewtonStats &stats,
-                         char *msg, size_t size);
+                         double tolerance, int max_iterations, const LegFactors *chord,
+                         double drift, double q[6], NewtonStats &stats, char *msg, size_t size);
 
     // The legs at the last iterate of the last solve.
     const LegsAt &last() const;

@@ -447,6 +447,10 @@ static void test_rollback_restores_the_tracking_history(void) {
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
     TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "flag 0 is 2"));
     memcpy(bad, bytes, size);
+    bad[3 * sizeof(unsigned) + 5] = 9; /* the leg Jacobian's first pivot, out of range */
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
+    TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "factors"));
+    memcpy(bad, bytes, size);
     const double nan = NAN;
     memcpy(bad + size - sizeof nan, &nan, sizeof nan);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
@@ -469,6 +473,51 @@ static void test_rollback_restores_the_tracking_history(void) {
     stewart_forward_free(copy);
 }
 
+/* Tracking at 1 kHz takes one chord step on the last pose's factored Jacobian: the answer is
+ * exact Newton's. A second solver solves every sample by exact Newton from a guess (the last
+ * pose); poses, rates and accelerations agree, and both are the closed-form truth. */
+static void test_chord_step_gives_exact_newtons_answer(void) {
+    stewart_forward_options o = default_options();
+    stewart_forward *exact = stewart_forward_create(model, &o, NULL, 0);
+    TEST_ASSERT_NOT_NULL(exact);
+    stewart_forward *kept = forward_solver;
+    stewart_forward_reset(forward_solver);
+    double last[6] = {0};
+    double worst[3] = {0, 0, 0};
+    for (int j = 0; j < 300; ++j) {
+        const stewart_pose truth = combined_pose(1e-3 * j);
+        const stewart_inverse_output legs = solve_ok(data, STEWART_KINEMATIC, &truth);
+        stewart_forward_output tracked, newton;
+        forward_solver = kept;
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs, 1e-3 * j, 1, NULL, &tracked));
+        if (j >= 2) {
+            TEST_ASSERT_EQUAL_INT(STEWART_START_PREDICTOR, tracked.start);
+            TEST_ASSERT_EQUAL_INT(1, tracked.iterations);
+        }
+        if (j > 0) {
+            forward_solver = exact;
+            stewart_forward_reset(exact);
+            TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs, 1e-3 * j, 1, last, &newton));
+            const double *a[3] = {tracked.pose.q, tracked.pose.q_dot, tracked.pose.q_ddot};
+            const double *b[3] = {newton.pose.q, newton.pose.q_dot, newton.pose.q_ddot};
+            const double *t[3] = {truth.q, truth.q_dot, truth.q_ddot};
+            for (int g = 0; g < 3; ++g)
+                for (int i = 0; i < 6; ++i) {
+                    worst[g] = fmax(worst[g], fabs(a[g][i] - b[g][i]));
+                    TEST_ASSERT_TRUE(fabs(a[g][i] - t[g][i]) <= (g == 0 ? 1e-12 : 1e-9));
+                }
+        }
+        memcpy(last, tracked.pose.q, sizeof last);
+    }
+    forward_solver = kept;
+    stewart_forward_free(exact);
+    printf("chord vs exact Newton: pose %.3g, rates %.3g, accelerations %.3g\n", worst[0],
+           worst[1], worst[2]);
+    TEST_ASSERT_TRUE(worst[0] <= 1e-14);
+    TEST_ASSERT_TRUE(worst[1] <= 1e-11);
+    TEST_ASSERT_TRUE(worst[2] <= 1e-10);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_cold_starts_over_the_workspace_find_the_pose);
@@ -483,5 +532,6 @@ int main(void) {
     RUN_TEST(test_bad_input_is_named_and_the_block_stays_usable);
     RUN_TEST(test_forward_pose_agrees_with_the_length_driven_mechanism);
     RUN_TEST(test_rollback_restores_the_tracking_history);
+    RUN_TEST(test_chord_step_gives_exact_newtons_answer);
     return UNITY_END();
 }

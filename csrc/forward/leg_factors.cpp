@@ -1,0 +1,186 @@
+#include "forward/leg_factors.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kinematics/motion.hpp"
+
+namespace stewart {
+
+namespace {
+
+// kinematics/lu6.hpp's LU and solve (the same pivots and operations, so the same numbers), with
+// every loop unrolled and the right-hand side in registers: at -O2 its loops cost three times
+// the arithmetic, and a tracking solve makes eight of these solves.
+// P a = L U in place; false if a pivot is below 1e-14 times the largest entry, or not finite.
+// largest: max |a_ij|, known to the caller.
+bool factor6(double a[36], int pivot[6], int order[6], double largest) {
+    const double tiny = 1e-14 * largest;
+#pragma GCC unroll 6
+    for (int i = 0; i < 6; ++i) order[i] = i;
+#pragma GCC unroll 6
+    for (int k = 0; k < 6; ++k) {
+        int p = k;
+#pragma GCC unroll 6
+        for (int i = k + 1; i < 6; ++i)
+            if (std::fabs(a[6 * i + k]) > std::fabs(a[6 * p + k])) p = i;
+        pivot[k] = p;
+        if (!(std::fabs(a[6 * p + k]) > tiny) || !std::isfinite(a[6 * p + k])) return false;
+        if (p != k) {
+#pragma GCC unroll 6
+            for (int c = 0; c < 6; ++c) std::swap(a[6 * k + c], a[6 * p + c]);
+            std::swap(order[k], order[p]);
+        }
+        const double inv = 1.0 / a[7 * k];
+#pragma GCC unroll 6
+        for (int i = k + 1; i < 6; ++i) {
+            const double l = a[6 * i + k] * inv;
+            a[6 * i + k] = l;
+#pragma GCC unroll 6
+            for (int c = k + 1; c < 6; ++c) a[6 * i + c] -= l * a[6 * k + c];
+        }
+    }
+    return true;
+}
+
+// x <- (P^T L U)^-1 b.
+void solve6(const LegFactors &f, const double b[6], double x[6]) {
+    const double *a = f.lu;
+    double y[6];
+#pragma GCC unroll 6
+    for (int i = 0; i < 6; ++i) y[i] = b[f.order[i]];
+#pragma GCC unroll 6
+    for (int k = 0; k < 6; ++k)
+#pragma GCC unroll 6
+        for (int i = k + 1; i < 6; ++i) y[i] -= a[6 * i + k] * y[k];
+#pragma GCC unroll 6
+    for (int k = 5; k >= 0; --k) {
+#pragma GCC unroll 6
+        for (int c = k + 1; c < 6; ++c) y[k] -= a[6 * k + c] * y[c];
+        y[k] /= a[7 * k];
+    }
+#pragma GCC unroll 6
+    for (int i = 0; i < 6; ++i) x[i] = y[i];
+}
+
+}  // namespace
+
+void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[6],
+                   LegsAt &c) {
+    std::copy(q, q + 6, c.q);
+    c.valid = true;
+    // Kept: the step, the rates and the chord of the next solve need them again.
+    ::sincos(q[3], &c.sin_roll, &c.cos_roll);  // (libm's sin and cos, one call)
+    ::sincos(q[4], &c.sin_pitch, &c.cos_pitch);
+    ::sincos(q[5], &c.sin_yaw, &c.cos_yaw);
+    c.rotation = rotation_from_trig(c.cos_roll, c.sin_roll, c.cos_pitch, c.sin_pitch, c.cos_yaw,
+                                    c.sin_yaw);
+    const Eigen::Matrix3d &R = c.rotation;
+    const double r00 = R(0, 0), r01 = R(0, 1), r02 = R(0, 2), r10 = R(1, 0), r11 = R(1, 1),
+                 r12 = R(1, 2), r20 = R(2, 0), r21 = R(2, 1), r22 = R(2, 2);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const double b0 = g.platform_points(0, k), b1 = g.platform_points(1, k),
+                     b2 = g.platform_points(2, k);
+        const double a0 = r00 * b0 + r01 * b1 + r02 * b2, a1 = r10 * b0 + r11 * b1 + r12 * b2,
+                     a2 = r20 * b0 + r21 * b1 + r22 * b2;
+        c.arm(0, k) = a0, c.arm(1, k) = a1, c.arm(2, k) = a2;
+        const double d0 = q[0] + a0 - g.base_points(0, k);
+        const double d1 = q[1] + a1 - g.base_points(1, k);
+        const double d2 = q[2] + a2 - g.base_points(2, k);
+        const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        c.length[k] = length;
+        c.axis(0, k) = d0 / length, c.axis(1, k) = d1 / length, c.axis(2, k) = d2 / length;
+        c.residual[k] = length - target[k];
+    }
+}
+
+bool factor_legs(const PlatformGeometry &g, const LegsAt &at, LegFactors &f, double &norm1) {
+    const double inv_scale = 1.0 / g.characteristic_length;
+    double column_sum[6] = {0, 0, 0, 0, 0, 0};
+    double largest = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const double n0 = at.axis(0, k), n1 = at.axis(1, k), n2 = at.axis(2, k);
+        const double r0 = at.arm(0, k), r1 = at.arm(1, k), r2 = at.arm(2, k);
+        double *row = f.lu + 6 * k;
+        row[0] = n0, row[1] = n1, row[2] = n2;
+        row[3] = (r1 * n2 - r2 * n1) * inv_scale;
+        row[4] = (r2 * n0 - r0 * n2) * inv_scale;
+        row[5] = (r0 * n1 - r1 * n0) * inv_scale;
+#pragma GCC unroll 6
+        for (int i = 0; i < 6; ++i) {
+            column_sum[i] += std::fabs(row[i]);
+            if (std::fabs(row[i]) > largest) largest = std::fabs(row[i]);
+        }
+    }
+    norm1 = *std::max_element(column_sum, column_sum + 6);
+    // A sum of entries of at most 1 in size is finite unless an entry is not.
+    const bool finite = std::isfinite(norm1);
+    f.trig = {at.cos_pitch, at.sin_pitch, at.cos_yaw, at.sin_yaw};
+    f.scale = g.characteristic_length;
+    return finite && factor6(f.lu, f.pivot, f.order, largest);
+}
+
+bool pose_rates_from(const LegFactors &f, const PitchYawTrig &at, const double v[6],
+                     double out[6]) {
+    double w[6];
+    solve6(f, v, w);
+    out[0] = w[0], out[1] = w[1], out[2] = w[2];
+    if (!(std::fabs(at.cos_pitch) > 1e-12)) return false;
+    const double wx = w[3] / f.scale, wy = w[4] / f.scale, wz = w[5] / f.scale;
+    out[3] = (at.cos_yaw * wx + at.sin_yaw * wy) / at.cos_pitch;
+    out[4] = -at.sin_yaw * wx + at.cos_yaw * wy;
+    out[5] = wz + at.sin_pitch * out[3];
+    return true;
+}
+
+double inverse_norm1(const LegFactors &f) {
+    // The columns of J^-1 = U^-1 L^-1 P are those of U^-1 L^-1 reordered, and the largest sum
+    // does not see the order: solve for the unit vectors e_m, whose leading zeros L keeps.
+    const double *a = f.lu;
+    double largest = 0;
+#pragma GCC unroll 6
+    for (int m = 0; m < 6; ++m) {
+        double y[6] = {0, 0, 0, 0, 0, 0};
+        y[m] = 1;
+#pragma GCC unroll 6
+        for (int k = m; k < 6; ++k)
+#pragma GCC unroll 6
+            for (int i = k + 1; i < 6; ++i) y[i] -= a[6 * i + k] * y[k];
+        double sum = 0;
+#pragma GCC unroll 6
+        for (int k = 5; k >= 0; --k) {
+#pragma GCC unroll 6
+            for (int c = k + 1; c < 6; ++c) y[k] -= a[6 * k + c] * y[c];
+            y[k] /= a[7 * k];
+            sum += std::fabs(y[k]);
+        }
+        largest = std::max(largest, sum);
+    }
+    return largest;
+}
+
+int determinant_sign(const LegFactors &f) {
+    int sign = 1;
+    for (int k = 0; k < 6; ++k) {
+        if (f.pivot[k] != k) sign = -sign;
+        if (f.lu[7 * k] < 0) sign = -sign;
+    }
+    return sign;
+}
+
+bool factors_usable(LegFactors &f) {
+    for (int i = 0; i < 36; ++i)
+        if (!std::isfinite(f.lu[i])) return false;
+    for (int i = 0; i < 6; ++i) f.order[i] = i;
+    for (int k = 0; k < 6; ++k) {
+        if (f.pivot[k] < k || f.pivot[k] > 5 || !(f.lu[7 * k] != 0)) return false;
+        std::swap(f.order[k], f.order[f.pivot[k]]);
+    }
+    const double trig[5] = {f.trig.cos_pitch, f.trig.sin_pitch, f.trig.cos_yaw, f.trig.sin_yaw,
+                            f.scale};
+    for (double t : trig)
+        if (!std::isfinite(t)) return false;
+    return f.scale > 0;
+}
+
+}  // namespace stewart
