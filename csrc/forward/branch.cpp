@@ -19,8 +19,9 @@ int jacobian_sign(const Matrix6 &transposed) {
     double a[36];
     Eigen::Map<Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> rows(a);
     rows = transposed;
-    int pivot[6];
-    return lu6_factor(a, pivot) ? lu6_determinant_sign(a, pivot) : 0;  // det J^T = det J
+    int pivot[6], order[6];
+    return lu6_factor(a, pivot, order, lu6_largest(a)) ? lu6_determinant_sign(a, pivot)
+                                                       : 0;  // det J^T = det J
 }
 
 BranchSides branch_sides(const PlatformGeometry &g, double home_height) {

@@ -3,67 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kinematics/lu6.hpp"
 #include "kinematics/motion.hpp"
 
 namespace stewart {
-
-namespace {
-
-// kinematics/lu6.hpp's LU and solve (the same pivots and operations, so the same numbers), with
-// every loop unrolled and the right-hand side in registers: at -O2 its loops cost three times
-// the arithmetic, and a tracking solve makes eight of these solves.
-// P a = L U in place; false if a pivot is below 1e-14 times the largest entry, or not finite.
-// largest: max |a_ij|, known to the caller.
-bool factor6(double a[36], int pivot[6], int order[6], double largest) {
-    const double tiny = 1e-14 * largest;
-#pragma GCC unroll 6
-    for (int i = 0; i < 6; ++i) order[i] = i;
-#pragma GCC unroll 6
-    for (int k = 0; k < 6; ++k) {
-        int p = k;
-#pragma GCC unroll 6
-        for (int i = k + 1; i < 6; ++i)
-            if (std::fabs(a[6 * i + k]) > std::fabs(a[6 * p + k])) p = i;
-        pivot[k] = p;
-        if (!(std::fabs(a[6 * p + k]) > tiny) || !std::isfinite(a[6 * p + k])) return false;
-        if (p != k) {
-#pragma GCC unroll 6
-            for (int c = 0; c < 6; ++c) std::swap(a[6 * k + c], a[6 * p + c]);
-            std::swap(order[k], order[p]);
-        }
-        const double inv = 1.0 / a[7 * k];
-#pragma GCC unroll 6
-        for (int i = k + 1; i < 6; ++i) {
-            const double l = a[6 * i + k] * inv;
-            a[6 * i + k] = l;
-#pragma GCC unroll 6
-            for (int c = k + 1; c < 6; ++c) a[6 * i + c] -= l * a[6 * k + c];
-        }
-    }
-    return true;
-}
-
-// x <- (P^T L U)^-1 b.
-void solve6(const LegFactors &f, const double b[6], double x[6]) {
-    const double *a = f.lu;
-    double y[6];
-#pragma GCC unroll 6
-    for (int i = 0; i < 6; ++i) y[i] = b[f.order[i]];
-#pragma GCC unroll 6
-    for (int k = 0; k < 6; ++k)
-#pragma GCC unroll 6
-        for (int i = k + 1; i < 6; ++i) y[i] -= a[6 * i + k] * y[k];
-#pragma GCC unroll 6
-    for (int k = 5; k >= 0; --k) {
-#pragma GCC unroll 6
-        for (int c = k + 1; c < 6; ++c) y[k] -= a[6 * k + c] * y[c];
-        y[k] /= a[7 * k];
-    }
-#pragma GCC unroll 6
-    for (int i = 0; i < 6; ++i) x[i] = y[i];
-}
-
-}  // namespace
 
 void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[6],
                    LegsAt &c) {
@@ -117,13 +60,13 @@ bool factor_legs(const PlatformGeometry &g, const LegsAt &at, LegFactors &f, dou
     const bool finite = std::isfinite(norm1);
     f.trig = {at.cos_pitch, at.sin_pitch, at.cos_yaw, at.sin_yaw};
     f.scale = g.characteristic_length;
-    return finite && factor6(f.lu, f.pivot, f.order, largest);
+    return finite && lu6_factor(f.lu, f.pivot, f.order, largest);
 }
 
 bool pose_rates_from(const LegFactors &f, const PitchYawTrig &at, const double v[6],
                      double out[6]) {
     double w[6];
-    solve6(f, v, w);
+    lu6_solve(f.lu, f.order, v, w);
     out[0] = w[0], out[1] = w[1], out[2] = w[2];
     if (!(std::fabs(at.cos_pitch) > 1e-12)) return false;
     const double wx = w[3] / f.scale, wy = w[4] / f.scale, wz = w[5] / f.scale;
@@ -159,14 +102,7 @@ double inverse_norm1(const LegFactors &f) {
     return largest;
 }
 
-int determinant_sign(const LegFactors &f) {
-    int sign = 1;
-    for (int k = 0; k < 6; ++k) {
-        if (f.pivot[k] != k) sign = -sign;
-        if (f.lu[7 * k] < 0) sign = -sign;
-    }
-    return sign;
-}
+int determinant_sign(const LegFactors &f) { return lu6_determinant_sign(f.lu, f.pivot); }
 
 bool factors_usable(LegFactors &f) {
     for (int i = 0; i < 36; ++i)

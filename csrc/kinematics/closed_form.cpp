@@ -68,14 +68,14 @@ namespace {
 // entry refused, so beyond a condition of about 1e14 there is no inverse). False: none.
 bool invert_6x6(const Eigen::Matrix<double, 6, 6> &A, Eigen::Matrix<double, 6, 6> &inv) {
     double a[36];
-    int pivot[6];
+    int pivot[6], order[6];
     for (int r = 0; r < 6; ++r)
         for (int c = 0; c < 6; ++c) a[6 * r + c] = A(r, c);
-    if (!lu6_factor(a, pivot)) return false;
+    if (!lu6_factor(a, pivot, order, lu6_largest(a))) return false;
     for (int c = 0; c < 6; ++c) {
         double x[6] = {0, 0, 0, 0, 0, 0};
         x[c] = 1.0;
-        lu6_solve(a, pivot, x);
+        lu6_solve(a, order, x, x);
         for (int r = 0; r < 6; ++r) inv(r, c) = x[r];
     }
     return true;
