@@ -33,6 +33,11 @@ struct latency_step {
     virtual ~latency_step() = default;
     virtual void prepare(long n) { (void)n; }
     virtual int run(long n) = 0;
+    // The integrator's counters of the last call (steps, evaluations, rejections), if any.
+    virtual bool work(long counts[3]) const {
+        (void)counts;
+        return false;
+    }
 };
 
 namespace {
@@ -172,6 +177,14 @@ struct PlantStep : Library {
         }
     }
     int run(long) override { return stewart_plant_step(plant, &in, &out); }
+    bool work(long counts[3]) const override {
+        stewart_plant_statistics st;
+        stewart_plant_statistics_get(plant, &st);
+        counts[0] = st.steps;
+        counts[1] = st.rhs_evaluations;
+        counts[2] = st.error_test_failures;
+        return true;
+    }
     ~PlantStep() override { stewart_plant_free(plant); }
 };
 
@@ -185,6 +198,7 @@ struct PlantDerivatives : PlantStep {
         for (int k = 0; k < 6; ++k) din.force[k] = force[k] + wobble(n, k);
     }
     int run(long) override { return stewart_plant_derivatives(plant, &din, &out); }
+    bool work(long counts[3]) const override { return latency_step::work(counts); }
 };
 
 // ---------------------------------------------------------------- FMUs through FMI 2
@@ -411,5 +425,9 @@ extern "C" latency_step *latency_step_create(int i, const char *dir, char *msg, 
 extern "C" void latency_step_prepare(latency_step *s, long n) { s->prepare(s->first + n); }
 
 extern "C" int latency_step_run(latency_step *s, long n) { return s->run(s->first + n); }
+
+extern "C" int latency_step_work(const latency_step *s, long work[3]) {
+    return s->work(work) ? 1 : 0;
+}
 
 extern "C" void latency_step_free(latency_step *s) { delete s; }
