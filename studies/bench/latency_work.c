@@ -14,28 +14,10 @@
 #include <string.h>
 #include <time.h>
 
+#include "latency_clock.h"
 #include "latency_steps.h"
 
 enum { kMaxRhs = 512, kRewind = 200 };
-
-static double now_ns(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e9 + ts.tv_nsec;
-}
-
-static int by_value(const void *a, const void *b) {
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The p-quantile of n sorted values (as latency.c). */
-static double quantile(const double *sorted, long n, double p) {
-    long k = (long)(p * n + 0.999999) - 1;
-    if (k < 0) k = 0;
-    if (k >= n) k = n - 1;
-    return sorted[k];
-}
 
 /* One workload: its table of calls by right-hand sides per call. 0, or 1 if it failed. */
 static int report(int w, const char *fmu_dir, long n, double *time, double *rhs, long *steps,
