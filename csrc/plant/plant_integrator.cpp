@@ -80,6 +80,7 @@ constexpr int kMaxRoots = 64;  // roots that are no crossing, per communication 
 // reduced equations. 1 (recoverable: CVODE retries a shorter step) for a degenerate leg.
 int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, void *user) {
     IntegratorImpl &im = *static_cast<IntegratorImpl *>(user);
+    im.last_tau = -1;  // im.evaluation is overwritten below, even by an evaluation refused
     const double *y = N_VGetArrayPointer(y_vector);
     double *y_dot = N_VGetArrayPointer(y_dot_vector);
     const Motion m = motion_of_state(y);
