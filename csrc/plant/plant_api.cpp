@@ -202,6 +202,7 @@ extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
     o->relative_tolerance = 1e-10;
     o->absolute_tolerance = 1e-12;
     o->max_internal_steps = 10000;
+    o->fixed_steps = 0;
 }
 
 extern "C" stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
@@ -225,6 +226,14 @@ extern "C" stewart_status stewart_plant_options_check(const stewart_plant_option
     if (o->max_internal_steps < 1)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "max_internal_steps = %ld must be >= 1", o->max_internal_steps);
+    if (!(o->fixed_steps >= 0 && o->fixed_steps <= 1000))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fixed_steps = %d must be 0 (adaptive) or 1..1000 steps per "
+                           "communication step", o->fixed_steps);
+    if (o->fixed_steps > 0 && o->method != STEWART_PLANT_ERK && o->method != STEWART_PLANT_ERK5)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
+                           o->fixed_steps, o->method);
     return clear_message(msg, size);
 }
 

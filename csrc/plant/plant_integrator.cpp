@@ -27,6 +27,7 @@ struct IntegratorImpl {
     void *cvode = nullptr;
     void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK and STEWART_PLANT_ERK5
     int erk_order = 0;
+    int fixed_steps = 0;  // equal steps per communication step, or 0: adaptive
     double reference_angles[3] = {0, 0, 0};  // principal roll, pitch, yaw the pitch root follows
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
@@ -284,6 +285,7 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     if (o.method == STEWART_PLANT_ERK || o.method == STEWART_PLANT_ERK5) {
         im.arkode = ERKStepCreate(right_hand_side, 0.0, im.y, im.context);
         im.erk_order = o.method == STEWART_PLANT_ERK ? 4 : 5;
+        im.fixed_steps = o.fixed_steps;
         if (!im.arkode)
             return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
         if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
@@ -363,10 +365,15 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     if (im.arkode) {
         // A one-step method restarts for free; the first step tries the size the last step
         // would have taken next (part of the saved state, so a rollback repeats it exactly).
-        const double first = step_hint > 0 && step_hint < forces.h ? step_hint : forces.h;
+        // Fixed steps: h / N each, no error test (ARKODE's fixed-step mode; the stop time cuts
+        // the last one to end at h exactly).
+        const double first = im.fixed_steps > 0 ? forces.h / im.fixed_steps
+                             : step_hint > 0 && step_hint < forces.h ? step_hint
+                                                                     : forces.h;
         if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
             (flag = ERKStepSetStopTime(im.arkode, forces.h)) != ARK_SUCCESS ||
-            (flag = ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
+            (flag = im.fixed_steps > 0 ? ERKStepSetFixedStep(im.arkode, first)
+                                       : ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
                                flag_name(flag), im.cvode_message);
         do {

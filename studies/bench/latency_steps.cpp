@@ -151,17 +151,19 @@ struct ForwardTracking : Library {
 // The plant open loop around its static forces, rewound to rest at home every kRewind calls.
 struct PlantStep : Library {
     int fidelity;
+    int fixed_steps = 0;  // stewart_plant_options.fixed_steps (0: adaptive, the default)
     stewart_plant *plant = nullptr;
     double force[6] = {0};
     stewart_plant_input in{};
     stewart_plant_output out{};
-    explicit PlantStep(int f) : fidelity(f) {}
+    explicit PlantStep(int f, int fixed = 0) : fidelity(f), fixed_steps(fixed) {}
     bool build(char *msg, size_t size) {
         if (!Library::build(msg, size) || !static_forces(model, fidelity, force, msg, size))
             return false;
         stewart_plant_options o;
         stewart_plant_options_default(&o);
         o.fidelity = fidelity;
+        o.fixed_steps = fixed_steps;
         plant = stewart_plant_create(model, &o, msg, size);
         in.h = kStep;
         return plant != nullptr;
@@ -374,6 +376,8 @@ const char *const kNames[] = {
     "FMU StewartController doStep",
     "FMU StewartScene doStep",
     "FMU StewartPlantME GetDerivatives",
+    "plant step, full (1 ms), 1 fixed ERK step",
+    "plant step, full (1 ms), 2 fixed ERK steps",
 };
 constexpr int kCount = sizeof kNames / sizeof kNames[0];
 
@@ -405,6 +409,8 @@ extern "C" latency_step *latency_step_create(int i, const char *dir, char *msg, 
         case 9: { auto *w = new FmuController; s = made(w, w->build(dir, msg, size)); break; }
         case 10: { auto *w = new FmuScene; s = made(w, w->build(dir, msg, size)); break; }
         case 11: { auto *w = new FmuPlantME; s = made(w, w->build(dir, msg, size)); break; }
+        case 12: { auto *w = new PlantStep(STEWART_FULL, 1); s = made(w, w->build(msg, size)); break; }
+        case 13: { auto *w = new PlantStep(STEWART_FULL, 2); s = made(w, w->build(msg, size)); break; }
         default: std::snprintf(msg, size, "no workload %d", i);
     }
     // warm up: the first calls touch memory and fill caches (and SUNDIALS' lazy workspaces); the
