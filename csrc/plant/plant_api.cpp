@@ -80,13 +80,16 @@ int limit_warnings(const stewart_plant &p, const double position[3], const doubl
 
 // The 13 bodies' motion (accelerations included) under the given forces (NULL: the last step's);
 // STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
+// known: the equations already evaluated at this state and these forces (or nullptr).
 stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
-                          stewart::Motion bodies[STEWART_PLANT_BODIES]) {
+                          stewart::Motion bodies[STEWART_PLANT_BODIES],
+                          const fd::Evaluation *known = nullptr) {
     if (!force) force = p.force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
     stewart::Motion m = fd::motion_of_state(p.y);
-    if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
+    if (known) e = *known;
+    else if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
     m.acceleration = e.twist_rate.head<3>();
     m.alpha = e.twist_rate.tail<3>();
     fd::body_motions(p.dynamics, m, e, bodies);
@@ -199,6 +202,7 @@ extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
     o->relative_tolerance = 1e-10;
     o->absolute_tolerance = 1e-12;
     o->max_internal_steps = 10000;
+    o->fixed_steps = 0;
 }
 
 extern "C" stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
@@ -222,6 +226,14 @@ extern "C" stewart_status stewart_plant_options_check(const stewart_plant_option
     if (o->max_internal_steps < 1)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "max_internal_steps = %ld must be >= 1", o->max_internal_steps);
+    if (!(o->fixed_steps >= 0 && o->fixed_steps <= 1000))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fixed_steps = %d must be 0 (adaptive) or 1..1000 steps per "
+                           "communication step", o->fixed_steps);
+    if (o->fixed_steps > 0 && o->method != STEWART_PLANT_ERK && o->method != STEWART_PLANT_ERK5)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
+                           o->fixed_steps, o->method);
     return clear_message(msg, size);
 }
 
@@ -385,6 +397,12 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
 
 }  // namespace
 
+namespace {
+// stewart_plant_output_get with what the step already knows (defined below it).
+stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
+                         int limit_bits, stewart_plant_output *out);
+}  // namespace
+
 extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
                                              stewart_plant_output *output) {
     if (!p) return STEWART_ERR_ARGUMENT;
@@ -473,8 +491,8 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
     double length[6], rate[6];
-    const int warnings = (leg_outputs(*p, m, length, rate) ? STEWART_WARN_STROKE : 0) |
-                         limit_warnings(*p, y, angles);
+    const int limit_bits = limit_warnings(*p, y, angles);
+    const int warnings = (leg_outputs(*p, m, length, rate) ? STEWART_WARN_STROKE : 0) | limit_bits;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(length[k]) || !std::isfinite(rate[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -487,7 +505,9 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     p->time += h;
     p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
-    if (stewart_plant_output_get(p, f1, output) != STEWART_OK) {
+    // the outputs from the integrator's own evaluation at the end of the step when it made one
+    // (the state before the quaternion's normalisation: the same equations to rounding)
+    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, output) != STEWART_OK) {
         restore_state(*p, before_step);
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "the forces are out of range: the outputs overflow after the step");
@@ -496,12 +516,16 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     return STEWART_OK;
 }
 
-extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const double *force,
-                                                   stewart_plant_output *out) {
-    if (!p || !out) return STEWART_ERR_ARGUMENT;
+namespace {
+
+// stewart_plant_output_get's body. known: the equations' evaluation at the state and forces (the
+// step's last, or nullptr); limit_bits: the joint-limit and interference warnings of the state
+// (the step's, or -1: found here).
+stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
+                         int limit_bits, stewart_plant_output *out) {
     fd::Evaluation e;
     stewart::Motion bodies[STEWART_PLANT_BODIES];
-    const stewart_status s = all_bodies(*p, force, e, bodies);
+    const stewart_status s = all_bodies(*p, force, e, bodies, known);
     if (s != STEWART_OK) return s;
     const stewart::Motion m = fd::motion_of_state(p->y);
     fd::Vec3 f, t;
@@ -515,7 +539,8 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
         o.base_torque[i] = t[i];
     }
     o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
-    o.warnings = (o.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_warnings(*p, p->y, p->angles);
+    if (limit_bits < 0) limit_bits = limit_warnings(*p, p->y, p->angles);
+    o.warnings = (o.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
@@ -528,6 +553,14 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
             if (!std::isfinite(groups[g][i])) return STEWART_ERR_ARGUMENT;
     *out = o;
     return STEWART_OK;
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const double *force,
+                                                   stewart_plant_output *out) {
+    if (!p || !out) return STEWART_ERR_ARGUMENT;
+    return output_of(p, force, nullptr, -1, out);
 }
 
 extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, const double *force,

@@ -27,16 +27,24 @@ struct IntegratorImpl {
     void *cvode = nullptr;
     void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK and STEWART_PLANT_ERK5
     int erk_order = 0;
+    int fixed_steps = 0;  // equal steps per communication step, or 0: adaptive
     double reference_angles[3] = {0, 0, 0};  // principal roll, pitch, yaw the pitch root follows
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
     int fault_leg = -1;
     bool non_finite = false;
     char cvode_message[160] = "";
+    // the last successful right-hand side's arguments, and whether they were the step's end
+    double last_tau = -1, last_y[kStates] = {0}, last_force[STEWART_LEGS] = {0};
+    bool end_valid = false;
 };
 
 void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
     const double s = tau / h;
+    if (s == 1) {  // the end values exactly (the step's outputs reuse this evaluation)
+        for (int k = 0; k < STEWART_LEGS; ++k) force[k] = end[k];
+        return;
+    }
     if (!hermite) {
         for (int k = 0; k < STEWART_LEGS; ++k) force[k] = start[k] + s * (end[k] - start[k]);
         return;
@@ -73,6 +81,7 @@ constexpr int kMaxRoots = 64;  // roots that are no crossing, per communication 
 // reduced equations. 1 (recoverable: CVODE retries a shorter step) for a degenerate leg.
 int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, void *user) {
     IntegratorImpl &im = *static_cast<IntegratorImpl *>(user);
+    im.last_tau = -1;  // im.evaluation is overwritten below, even by an evaluation refused
     const double *y = N_VGetArrayPointer(y_vector);
     double *y_dot = N_VGetArrayPointer(y_dot_vector);
     const Motion m = motion_of_state(y);
@@ -97,6 +106,35 @@ int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, v
     y_dot[5] = 0.5 * (w * oy + oz * x - ox * z);
     y_dot[6] = 0.5 * (w * oz + ox * yy - oy * x);
     for (int i = 0; i < 6; ++i) y_dot[7 + i] = a[i];
+    im.last_tau = tau;
+    for (int i = 0; i < kStates; ++i) im.last_y[i] = y[i];
+    for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = force[k];
+    return 0;
+}
+
+// N_VLinearCombination for the 13-state vectors: the serial vector's own arithmetic in the same
+// order (so the same bits), in a loop the compiler unrolls for the fixed length; the library's
+// generic loop cost the massless step a fifth of its instructions.
+int linear_combination(int nvec, sunrealtype *c, N_Vector *X, N_Vector z) {
+    if (nvec < 3 || N_VGetLength(z) != kStates) return N_VLinearCombination_Serial(nvec, c, X, z);
+    double *zd = N_VGetArrayPointer(z);
+    if (X[0] == z && c[0] == 1.0) {
+        for (int i = 1; i < nvec; ++i) {
+            const double *xd = N_VGetArrayPointer(X[i]);
+            for (int j = 0; j < kStates; ++j) zd[j] += c[i] * xd[j];
+        }
+        return 0;
+    }
+    if (X[0] == z) {
+        for (int j = 0; j < kStates; ++j) zd[j] *= c[0];
+    } else {
+        const double *x0 = N_VGetArrayPointer(X[0]);
+        for (int j = 0; j < kStates; ++j) zd[j] = c[0] * x0[j];
+    }
+    for (int i = 1; i < nvec; ++i) {
+        const double *xd = N_VGetArrayPointer(X[i]);
+        for (int j = 0; j < kStates; ++j) zd[j] += c[i] * xd[j];
+    }
     return 0;
 }
 
@@ -240,12 +278,14 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     if (N_VEnableFusedOps_Serial(im.y, SUNTRUE) != 0)
         return set_message(msg, size, STEWART_ERR_MEMORY, "N_VEnableFusedOps_Serial failed"),
                false;
+    im.y->ops->nvlinearcombination = linear_combination;  // clones copy the operations
     N_VConst(0.0, im.y);
     NV_Ith_S(im.y, 3) = 1.0;
     int flag;
     if (o.method == STEWART_PLANT_ERK || o.method == STEWART_PLANT_ERK5) {
         im.arkode = ERKStepCreate(right_hand_side, 0.0, im.y, im.context);
         im.erk_order = o.method == STEWART_PLANT_ERK ? 4 : 5;
+        im.fixed_steps = o.fixed_steps;
         if (!im.arkode)
             return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
         if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
@@ -306,6 +346,8 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     im.fault_leg = -1;
     im.non_finite = false;
     im.cvode_message[0] = '\0';
+    im.end_valid = false;
+    im.last_tau = -1;
     double *v = N_VGetArrayPointer(im.y);
     for (int i = 0; i < kStates; ++i) v[i] = y[i];
     int flag;
@@ -323,10 +365,15 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     if (im.arkode) {
         // A one-step method restarts for free; the first step tries the size the last step
         // would have taken next (part of the saved state, so a rollback repeats it exactly).
-        const double first = step_hint > 0 && step_hint < forces.h ? step_hint : forces.h;
+        // Fixed steps: h / N each, no error test (ARKODE's fixed-step mode; the stop time cuts
+        // the last one to end at h exactly).
+        const double first = im.fixed_steps > 0 ? forces.h / im.fixed_steps
+                             : step_hint > 0 && step_hint < forces.h ? step_hint
+                                                                     : forces.h;
         if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
             (flag = ERKStepSetStopTime(im.arkode, forces.h)) != ARK_SUCCESS ||
-            (flag = ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
+            (flag = im.fixed_steps > 0 ? ERKStepSetFixedStep(im.arkode, first)
+                                       : ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
                                flag_name(flag), im.cvode_message);
         do {
@@ -407,6 +454,11 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "%s stopped at t + %g s, short of the step's end h = %g s", module,
                            static_cast<double>(t_reached), forces.h);
+    // Whether the last evaluation was at exactly the state returned, the end time and forces.
+    im.end_valid = im.last_tau == forces.h;
+    for (int i = 0; i < kStates && im.end_valid; ++i) im.end_valid = im.last_y[i] == v[i];
+    for (int k = 0; k < STEWART_LEGS && im.end_valid; ++k)
+        im.end_valid = im.last_force[k] == forces.end[k];
     double out[kStates];
     for (int i = 0; i < kStates; ++i) out[i] = v[i];
     const double norm = std::sqrt(out[3] * out[3] + out[4] * out[4] + out[5] * out[5] +
@@ -418,6 +470,10 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
                                "the state is not finite after the step (state %d)", i);
     for (int i = 0; i < kStates; ++i) y[i] = out[i];
     return STEWART_OK;
+}
+
+const Evaluation *Integrator::end_evaluation() const {
+    return impl_ && impl_->end_valid ? &impl_->evaluation : nullptr;
 }
 
 }  // namespace fd

@@ -44,6 +44,11 @@ public:
     // the step the integrator would take next (explicit Runge-Kutta only; CVODE ignores it).
     stewart_status advance(double y[kStates], const ForceProfile &forces, double &step_hint,
                            char *msg, size_t size);
+    // The right-hand side's last evaluation if it was at the end of the last successful
+    // advance() (tau = h, the end forces, the state the integrator returned before the
+    // quaternion's normalisation), else nullptr: the step's outputs reuse it instead of
+    // evaluating the same equations again (ERK's end-of-step evaluation is exactly that one).
+    const Evaluation *end_evaluation() const;
     // Counters of the last advance (the totals are the caller's).
     const stewart_plant_statistics &statistics() const { return stats_; }
 

@@ -13,26 +13,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "latency_clock.h"
 #include "latency_steps.h"
-
-static double now_ns(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec * 1e9 + ts.tv_nsec;
-}
-
-static int by_value(const void *a, const void *b) {
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The p-quantile of n sorted values: the smallest value with at least p n values at or below. */
-static double quantile(const double *sorted, long n, double p) {
-    long k = (long)(p * n + 0.999999) - 1;
-    if (k < 0) k = 0;
-    if (k >= n) k = n - 1;
-    return sorted[k];
-}
 
 /* The 1-minute load average, or -1. */
 static double load_average(void) {

@@ -33,6 +33,11 @@ struct latency_step {
     virtual ~latency_step() = default;
     virtual void prepare(long n) { (void)n; }
     virtual int run(long n) = 0;
+    // The integrator's counters of the last call (steps, evaluations, rejections), if any.
+    virtual bool work(long counts[3]) const {
+        (void)counts;
+        return false;
+    }
 };
 
 namespace {
@@ -146,17 +151,19 @@ struct ForwardTracking : Library {
 // The plant open loop around its static forces, rewound to rest at home every kRewind calls.
 struct PlantStep : Library {
     int fidelity;
+    int fixed_steps = 0;  // stewart_plant_options.fixed_steps (0: adaptive, the default)
     stewart_plant *plant = nullptr;
     double force[6] = {0};
     stewart_plant_input in{};
     stewart_plant_output out{};
-    explicit PlantStep(int f) : fidelity(f) {}
+    explicit PlantStep(int f, int fixed = 0) : fidelity(f), fixed_steps(fixed) {}
     bool build(char *msg, size_t size) {
         if (!Library::build(msg, size) || !static_forces(model, fidelity, force, msg, size))
             return false;
         stewart_plant_options o;
         stewart_plant_options_default(&o);
         o.fidelity = fidelity;
+        o.fixed_steps = fixed_steps;
         plant = stewart_plant_create(model, &o, msg, size);
         in.h = kStep;
         return plant != nullptr;
@@ -172,6 +179,14 @@ struct PlantStep : Library {
         }
     }
     int run(long) override { return stewart_plant_step(plant, &in, &out); }
+    bool work(long counts[3]) const override {
+        stewart_plant_statistics st;
+        stewart_plant_statistics_get(plant, &st);
+        counts[0] = st.steps;
+        counts[1] = st.rhs_evaluations;
+        counts[2] = st.error_test_failures;
+        return true;
+    }
     ~PlantStep() override { stewart_plant_free(plant); }
 };
 
@@ -185,6 +200,7 @@ struct PlantDerivatives : PlantStep {
         for (int k = 0; k < 6; ++k) din.force[k] = force[k] + wobble(n, k);
     }
     int run(long) override { return stewart_plant_derivatives(plant, &din, &out); }
+    bool work(long counts[3]) const override { return latency_step::work(counts); }
 };
 
 // ---------------------------------------------------------------- FMUs through FMI 2
@@ -360,6 +376,8 @@ const char *const kNames[] = {
     "FMU StewartController doStep",
     "FMU StewartScene doStep",
     "FMU StewartPlantME GetDerivatives",
+    "plant step, full (1 ms), 1 fixed ERK step",
+    "plant step, full (1 ms), 2 fixed ERK steps",
 };
 constexpr int kCount = sizeof kNames / sizeof kNames[0];
 
@@ -391,6 +409,8 @@ extern "C" latency_step *latency_step_create(int i, const char *dir, char *msg, 
         case 9: { auto *w = new FmuController; s = made(w, w->build(dir, msg, size)); break; }
         case 10: { auto *w = new FmuScene; s = made(w, w->build(dir, msg, size)); break; }
         case 11: { auto *w = new FmuPlantME; s = made(w, w->build(dir, msg, size)); break; }
+        case 12: { auto *w = new PlantStep(STEWART_FULL, 1); s = made(w, w->build(msg, size)); break; }
+        case 13: { auto *w = new PlantStep(STEWART_FULL, 2); s = made(w, w->build(msg, size)); break; }
         default: std::snprintf(msg, size, "no workload %d", i);
     }
     // warm up: the first calls touch memory and fill caches (and SUNDIALS' lazy workspaces); the
@@ -411,5 +431,9 @@ extern "C" latency_step *latency_step_create(int i, const char *dir, char *msg, 
 extern "C" void latency_step_prepare(latency_step *s, long n) { s->prepare(s->first + n); }
 
 extern "C" int latency_step_run(latency_step *s, long n) { return s->run(s->first + n); }
+
+extern "C" int latency_step_work(const latency_step *s, long work[3]) {
+    return s->work(work) ? 1 : 0;
+}
 
 extern "C" void latency_step_free(latency_step *s) { delete s; }

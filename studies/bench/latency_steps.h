@@ -28,6 +28,9 @@ void latency_step_prepare(latency_step *s, long n);
 /* The measured call n: 0 if it succeeded, else nonzero. Allocates nothing, takes no lock, makes
  * no system call (what the test checks). */
 int latency_step_run(latency_step *s, long n);
+/* The integrator's work in workload s's last call: internal steps, right-hand-side evaluations,
+ * rejected steps (error test failures) into work[3]; 0 for a workload with no integrator. */
+int latency_step_work(const latency_step *s, long work[3]);
 /* Frees the workload (NULL is ignored). */
 void latency_step_free(latency_step *s);
 

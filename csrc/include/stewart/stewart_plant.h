@@ -35,6 +35,9 @@ typedef struct stewart_plant_options {
     double relative_tolerance; /* CVODE reltol; 1e-10 */
     double absolute_tolerance; /* CVODE abstol, on every state [m, -, m/s, rad/s]; 1e-12 */
     long max_internal_steps; /* CVODE steps allowed within one communication step; 10000 */
+    int fixed_steps;         /* 0: adaptive steps (the tolerances); N in 1..1000: N equal steps of
+                                the explicit Runge-Kutta method per communication step, no error
+                                control (a fixed amount of work: ERK and ERK5 only); 0 */
 } stewart_plant_options;
 
 /* Integrator counters: of the last step, and summed since the plant was created or reset. */
