@@ -130,6 +130,7 @@ stewart_plant_options make_plant_options(
             else if (name == "relative_tolerance") o.relative_tolerance = v;
             else if (name == "absolute_tolerance") o.absolute_tolerance = v;
             else if (name == "max_internal_steps") o.max_internal_steps = integer_option(name, v);
+            else if (name == "fixed_steps") o.fixed_steps = integer_option(name, v);
             else return false;
             return true;
         });

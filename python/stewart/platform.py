@@ -159,7 +159,8 @@ class Platform:
                  method: Optional[Union[Method, int, str]] = None,
                  relative_tolerance: Optional[float] = None,
                  absolute_tolerance: Optional[float] = None,
-                 max_internal_steps: Optional[int] = None) -> Simulation:
+                 max_internal_steps: Optional[int] = None,
+                 fixed_steps: Optional[int] = None) -> Simulation:
         """Forward dynamics: the platform's motion under the actuator forces, in one batch.
 
         t: (N,) increasing communication points [s]; forces: (N, 6) F_k [N] at those points
@@ -173,7 +174,9 @@ class Platform:
         options raise ParameterError; bad shapes, a non-finite start or a t that does not
         increase raise ValueError naming the argument and the value. Options left None keep
         the library's defaults (stewart_plant_options_default: ERK 4(3), rtol 1e-10, atol
-        1e-12). Ctrl-C stops the run within about a slice of communication points
+        1e-12). fixed_steps = N (1..1000, explicit methods only) takes N equal steps per
+        communication step without error control, a fixed amount of work per step (the
+        latency-bound choice; docs/speed-accuracy.md says its accuracy). Ctrl-C stops the run within about a slice of communication points
         (simulate.SLICE_ROWS; the plant goes on across slices): KeyboardInterrupt, whose result
         holds its first rows_done rows run."""
         level = Fidelity.of(fidelity)
@@ -189,7 +192,8 @@ class Platform:
             options.append(("method", float(Method.of(method))))
         options += option_values(relative_tolerance=relative_tolerance,
                                  absolute_tolerance=absolute_tolerance,
-                                 max_internal_steps=max_internal_steps)
+                                 max_internal_steps=max_internal_steps,
+                                 fixed_steps=fixed_steps)
         return run_simulate(self._model, time, F, q0, q0_dot, options)
 
     def linearize(self, pose, pose_rate=None, forces=None,

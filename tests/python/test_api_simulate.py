@@ -136,3 +136,28 @@ def test_a_plant_that_cannot_be_made_raises_value_error_naming_why():
     t = np.arange(0, 0.0101, 0.01)
     with pytest.raises(ValueError, match="gravity"):
         platform.simulate(t, np.zeros((t.size, 6)), fidelity="massless")
+
+
+def test_fixed_steps_bound_the_work_and_follow_the_adaptive_default():
+    """fixed_steps = N: N steps of the 5-stage ERK 4(3) per communication step and one evaluation
+    at its start (the integrator restarts each step), whatever the motion: 5 N + 1 right-hand
+    sides. Under slowly changing forces the pose stays with the error-controlled default."""
+    p = stewart.Platform()
+    t = np.arange(201) * 1e-3
+    home = np.array([0.0, 0.0, 0.55, 0.0, 0.0, 0.0])
+    hover = p.inverse(np.tile(home, (1, 1)), fidelity="full").force[0]
+    forces = hover * (1 + 0.01 * np.sin(5 * t))[:, None]
+    adaptive = p.simulate(t, forces, fidelity="full", start=home)
+    for n in (1, 2):
+        fixed = p.simulate(t, forces, fidelity="full", start=home, fixed_steps=n)
+        assert fixed.completed
+        assert (fixed.rhs_evaluations[1:] == 5 * n + 1).all(), fixed.rhs_evaluations[:5]
+        assert (fixed.steps[1:] == n).all()
+        assert np.abs(fixed.pose - adaptive.pose).max() < 1e-9
+
+
+@pytest.mark.parametrize("bad", [-1, 1001, 2.5])
+def test_fixed_steps_out_of_range_is_refused_naming_it(bad):
+    p = stewart.Platform()
+    with pytest.raises(stewart.ParameterError, match="fixed_steps"):
+        p.simulate(np.arange(3) * 1e-3, np.zeros((3, 6)), fidelity="massless", fixed_steps=bad)
