@@ -56,7 +56,8 @@ fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size)
  * refused. */
 fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size);
 /* Why deserialised values and resource bytes cannot be a state of this model, or NULL if they
- * can (then model_load accepts them). May build temporary resources; changes nothing of inst. */
+ * can (then model_load accepts them). May build temporary resources, or keep some in inst->res
+ * for the next check; changes nothing else of inst. */
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size);
 /* Frees the resources (at fmu_free). */

@@ -205,6 +205,126 @@ static void random_corrupt_states(int v3) {
 static void test_random_corrupt_states_fmi2(void) { random_corrupt_states(0); }
 static void test_random_corrupt_states_fmi3(void) { random_corrupt_states(1); }
 
+/* The state of a unit opened with the platform moving and base_radius = `radius` after 10 steps,
+ * serialised into bytes (its size returned); the unit stays open. */
+static size_t moving_state(unit *u, int v3, double radius, unsigned char *bytes, size_t capacity) {
+    double force[6], last;
+    static_forces(STEWART_FULL, force);
+    for (int k = 0; k < 6; ++k) force[k] *= 1.01;
+    const unsigned vr[3] = {VR_base_radius, VR_x_dot0, VR_roll_dot0};
+    const double value[3] = {radius, 0.01, 0.1};
+    TEST_ASSERT_TRUE_MESSAGE(unit_open_at(u, v3, STEWART_FULL, force, 0.0, 3, vr, value),
+                             u->log.last);
+    for (int i = 0; i < 10; ++i)
+        TEST_ASSERT_EQUAL_MESSAGE(fmi2OK, do_step(u, i * STEP, STEP, &last), u->log.last);
+    void *state = NULL;
+    TEST_ASSERT_EQUAL(0, get_state(u, &state));
+    const size_t n = serialise(u, state, bytes, capacity);
+    free_state(u, &state);
+    return n;
+}
+
+/* Deserialises into a state and frees it: the status; the unit's last message says why. */
+static int deserialise_status(unit *u, const unsigned char *bytes, size_t n) {
+    void *s = NULL;
+    u->log.last[0] = '\0';
+    const int status = deserialise(u, bytes, n, &s);
+    if (s) free_state(u, &s);
+    return status;
+}
+
+/* A state with the unit's own parameters is checked on the unit's model (no model is built), one
+ * with other parameters on a model of its own. Both give the same verdict and reason for every
+ * corruption: the state of `own` (base_radius 0.5 m) corrupted at random is deserialised by `own`
+ * and by `other` (base_radius 0.52 m, so a model is built). A state whose plant moved under
+ * another base radius is accepted (its leg lengths are right for its own geometry, not the
+ * unit's), and refused once its radius is patched to the unit's: the parameters checked are the
+ * state's. */
+static void test_state_check_on_own_model_same_verdict(void) {
+    for (int v3 = 0; v3 < 2; ++v3) {
+        unit own, other;
+        static unsigned char base[1 << 16], bytes[1 << 16], base_other[1 << 16];
+        const size_t n = moving_state(&own, v3, 0.5, base, sizeof base);
+        const size_t n_other = moving_state(&other, v3, 0.52, base_other, sizeof base_other);
+        TEST_ASSERT_EQUAL(n, n_other);
+        const size_t plant_bytes = 3 * sizeof(unsigned) + 25 * sizeof(double);
+        /* unchanged: accepted by both */
+        TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&own, base, n), own.log.last);
+        TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&other, base, n), other.log.last);
+        /* named corruptions on the fast path: an output off by one ulp, a non-unit quaternion */
+        const size_t x_at = 16 + VR_x * sizeof(double);
+        double x;
+        memcpy(bytes, base, n);
+        memcpy(&x, bytes + x_at, sizeof x);
+        x = nextafter(x, INFINITY);
+        memcpy(bytes + x_at, &x, sizeof x);
+        TEST_ASSERT_EQUAL(fmi2Error, deserialise_status(&own, bytes, n));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(own.log.last, "output x = "), own.log.last);
+        memcpy(bytes, base, n);
+        const size_t q0_at = n - plant_bytes + 3 * sizeof(unsigned) + 4 * sizeof(double);
+        const double q0 = 0.5; /* the first quaternion component: the norm is no longer 1 */
+        memcpy(bytes + q0_at, &q0, sizeof q0);
+        TEST_ASSERT_EQUAL(fmi2Error, deserialise_status(&own, bytes, n));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(own.log.last, "quaternion norm"), own.log.last);
+        /* random corruptions: the same verdict and reason on both paths */
+        uint64_t rng = 0x9E3779B97F4A7C15ULL + (uint64_t)v3;
+        int refused = 0, accepted = 0;
+        static char reason[sizeof own.log.last];
+        for (int trial = 0; trial < 300; ++trial) {
+            memcpy(bytes, base, n);
+            corrupt(&rng, bytes, n, plant_bytes);
+            const int fast = deserialise_status(&own, bytes, n);
+            memcpy(reason, own.log.last, sizeof reason);
+            const int full = deserialise_status(&other, bytes, n);
+            TEST_ASSERT_EQUAL_MESSAGE(full, fast, reason);
+            TEST_ASSERT_EQUAL_STRING(other.log.last, reason);
+            if (fast == 0) ++accepted;
+            else ++refused;
+        }
+        TEST_ASSERT_TRUE(refused > 0 && accepted > 0);
+        /* another radius: its own state is accepted, with the unit's radius patched in refused */
+        TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&own, base_other, n), own.log.last);
+        memcpy(bytes, base_other, n);
+        const double radius = 0.5;
+        memcpy(bytes + 16 + VR_base_radius * sizeof(double), &radius, sizeof radius);
+        TEST_ASSERT_EQUAL(fmi2Error, deserialise_status(&own, bytes, n));
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(own.log.last, "is not the plant's"), own.log.last);
+        unit_free(&own);
+        unit_free(&other);
+    }
+}
+
+/* The unit's model replaced (Reset, another base radius, initialised again): states with the new
+ * radius are checked on the new model and accepted, corrupt ones refused, states with the old
+ * radius still accepted (a checking plant kept from the old model would refuse them, and under
+ * ASan be a use after free). */
+static void test_state_check_follows_new_parameters(void) {
+    unit u;
+    static unsigned char before[1 << 16], after[1 << 16];
+    const size_t n = moving_state(&u, 0, 0.5, before, sizeof before);
+    TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&u, before, n), u.log.last);
+    unit_free(&u);
+    unit other;
+    const size_t n_after = moving_state(&other, 0, 0.52, after, sizeof after);
+    TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&other, before, n), other.log.last);
+    TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&other, after, n_after), other.log.last);
+    TEST_ASSERT_EQUAL(fmi2OK, fmi2Reset(other.c));
+    const unsigned vr = VR_base_radius;
+    const double radius = 0.5;
+    TEST_ASSERT_EQUAL(fmi2OK, fmi2SetReal(other.c, &vr, 1, &radius));
+    TEST_ASSERT_EQUAL(fmi2OK, fmi2SetupExperiment(other.c, fmi2False, 0, 0, fmi2False, 0));
+    TEST_ASSERT_EQUAL(fmi2OK, fmi2EnterInitializationMode(other.c));
+    TEST_ASSERT_EQUAL(fmi2OK, fmi2ExitInitializationMode(other.c));
+    TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&other, before, n), other.log.last);
+    TEST_ASSERT_EQUAL_MESSAGE(0, deserialise_status(&other, after, n_after), other.log.last);
+    const size_t x_at = 16 + VR_x * sizeof(double);
+    const double x = 1.0;
+    memcpy(before + x_at, &x, sizeof x);
+    TEST_ASSERT_EQUAL(fmi2Error, deserialise_status(&other, before, n));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(other.log.last, "output x = "), other.log.last);
+    unit_free(&other);
+}
+
 /* After a Discard for a non-finite FMI 2 force derivative, the derivatives are cleared: a retry
  * that sets only the forces again is accepted (the forces held over the step). */
 static void test_bad_force_derivative_cleared_after_discard(void) {
@@ -274,5 +394,7 @@ int main(void) {
     RUN_TEST(test_bad_force_derivative_cleared_after_discard);
     RUN_TEST(test_messages_name_the_cause);
     RUN_TEST(test_non_finite_start_time_refused);
+    RUN_TEST(test_state_check_on_own_model_same_verdict);
+    RUN_TEST(test_state_check_follows_new_parameters);
     return UNITY_END();
 }

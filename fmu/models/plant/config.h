@@ -60,6 +60,10 @@ typedef struct model_resources {
     stewart_plant *plant;           /* on `model`, with `options` */
     stewart_params params;
     stewart_plant_options options;
+    /* on `model`, with `checker_options`: where deserialised states with the instance's
+     * parameters are loaded to be checked (model_state.c), kept so that no check builds a model */
+    stewart_plant *checker;
+    stewart_plant_options checker_options;
     char message[2 * STEWART_MESSAGE_SIZE];
 } model_resources;
 

@@ -127,6 +127,7 @@ static fmu_status build_plant(fmu_instance *inst, const stewart_params *p,
     }
     stewart_plant_free(r->plant);
     if (new_model) {
+        plant_free_checker(r);
         stewart_model_free(r->model);
         r->model = m;
         r->params = *p;
@@ -179,6 +180,7 @@ fmu_status model_start(fmu_instance *inst) {
 void model_reset(fmu_instance *inst) { (void)inst; /* the plant is set afresh at initialisation */ }
 
 void model_free(fmu_instance *inst) {
+    plant_free_checker(&inst->res);
     stewart_plant_free(inst->res.plant);
     stewart_model_free(inst->res.model);
     inst->res.plant = NULL;

@@ -81,18 +81,47 @@ static const char *mismatch(const fmu_values *v, const stewart_plant *plant,
     return NULL;
 }
 
-/* The plant bytes of a state after initialisation, checked by loading them into a plant built
- * from the state's parameters, and against the values they travel with. */
-static const char *check_plant_data(const fmu_values *v, const unsigned char *in, size_t size,
-                                    char *why, size_t why_size) {
+void plant_free_checker(model_resources *r) {
+    stewart_plant_free(r->checker);
+    r->checker = NULL;
+}
+
+/* The instance's checking plant for options o (built on the instance's model on first use or when
+ * the options change), or NULL with the reason in message. */
+static stewart_plant *kept_checker(model_resources *r, const stewart_plant_options *o,
+                                   char *message, size_t size) {
+    if (r->checker && !memcmp(o, &r->checker_options, sizeof *o)) return r->checker;
+    stewart_plant *plant = stewart_plant_create(r->model, o, message, size);
+    if (!plant) return NULL;
+    plant_free_checker(r);
+    r->checker = plant;
+    memcpy(&r->checker_options, o, sizeof *o); /* bytes, padding included, for the memcmp */
+    return plant;
+}
+
+/* The plant bytes of a state after initialisation, checked by loading them into a plant on a
+ * model of the state's parameters, and against the values they travel with. The instance's own
+ * model when the parameters are its own (bitwise: a rollback's), else a temporary one: building a
+ * model is most of a check's cost. The load and the comparisons are the same either way. */
+static const char *check_plant_data(fmu_instance *inst, const fmu_values *v,
+                                    const unsigned char *in, size_t size, char *why,
+                                    size_t why_size) {
     stewart_params p;
     plant_settings s;
     plant_params_from_values(v, &p);
     plant_settings_from_values(v, &s);
     char message[STEWART_MESSAGE_SIZE] = "";
-    stewart_model *model = stewart_model_create(&p, message, sizeof message);
-    stewart_plant *plant = model ? stewart_plant_create(model, &s.options, message, sizeof message)
-                                 : NULL;
+    model_resources *r = &inst->res;
+    stewart_model *own_model = NULL;
+    stewart_plant *own_plant = NULL, *plant = NULL;
+    if (r->model && !memcmp(&p, &r->params, sizeof p)) {
+        plant = kept_checker(r, &s.options, message, sizeof message);
+    } else {
+        own_model = stewart_model_create(&p, message, sizeof message);
+        plant = own_plant = own_model ? stewart_plant_create(own_model, &s.options, message,
+                                                             sizeof message)
+                                      : NULL;
+    }
     const char *result = NULL;
     if (!plant) {
         snprintf(why, why_size, "the state's parameters and options make no plant: %s", message);
@@ -104,14 +133,13 @@ static const char *check_plant_data(const fmu_values *v, const unsigned char *in
     } else {
         result = mismatch(v, plant, &p, why, why_size);
     }
-    stewart_plant_free(plant);
-    stewart_model_free(model);
+    stewart_plant_free(own_plant);
+    stewart_model_free(own_model);
     return result;
 }
 
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
-    (void)inst;
     const model_values *m = &v->model;
     if ((m->input_derivatives & ~1) || m->solve_status < FMU_OK || m->solve_status > FMU_ERROR ||
         (m->legs_outside & ~63) ||
@@ -132,5 +160,5 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     if (!fmu_after_initialization(v)) return NULL; /* plant data, if any, is not used (model_load) */
     if (plant_check_settings(v, why, why_size)) return why;
     if (size == 0) return "no plant data after initialisation";
-    return check_plant_data(v, in, size, why, why_size);
+    return check_plant_data(inst, v, in, size, why, why_size);
 }
