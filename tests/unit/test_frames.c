@@ -292,7 +292,7 @@ static void test_tool_yaw_is_continuous_across_pi(void) {
 
 /* Frames that do not turn (offsets alone) leave the angles, their rates and accelerations as
  * the platform's, bit for bit; identity frames leave every output bit for bit (the defaults:
- * tests/gates/same_outputs.sh compares them with the build before the frames). */
+ * studies/bench/compare_outputs.py --bound 0 compares them with the build before the frames). */
 static void test_offsets_alone_keep_the_angles_bit_for_bit(void) {
     const double tool[6] = {0.01, 0.02, 0.08, 0, 0, 0}, user[6] = {-0.03, 0.01, 0.02, 0, 0, 0};
     stewart_params p = plain;
