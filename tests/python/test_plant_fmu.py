@@ -538,3 +538,32 @@ def test_scene_values_that_overflow_are_discarded(version):
         u.deserialize(u.serialize(state))  # raises if the state were refused
     finally:
         u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fixed_steps_bound_the_work_and_follow_the_adaptive_plant(version):
+    """fixed_steps = N: N steps of the 5-stage ERK 4(3) per communication step and one evaluation
+    at its start, the same work every step (5 N + 1 right-hand sides, N steps); the pose stays
+    with the error-controlled default under the wobbling forces."""
+    adaptive = plant(version, name="adaptive")
+    fixed = plant(version, name="fixed", fixed_steps=2)
+    try:
+        a = run_steps(adaptive, 0.0, 50)
+        f = run_steps(fixed, 0.0, 50)
+        steps, rhs = f[:, len(OUTPUTS) + 1], f[:, len(OUTPUTS) + 2]
+        assert (steps == 2).all() and (rhs == 11).all(), (steps[:3], rhs[:3])
+        np.testing.assert_allclose(f[:, :6], a[:, :6], rtol=0, atol=1e-9)
+    finally:
+        adaptive.free()
+        fixed.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fixed_steps_with_a_cvode_method_are_refused_naming_them(version):
+    u = Instance("StewartPlant", version, "refused")
+    try:
+        with pytest.raises(Exception):
+            u.init(method=0, fixed_steps=1)
+        assert any("fixed_steps" in m for m in u.messages), u.messages
+    finally:
+        u.free()

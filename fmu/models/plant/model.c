@@ -58,6 +58,7 @@ void plant_settings_from_values(const fmu_values *v, plant_settings *s) {
     s->options.fidelity = v->integer[VR_fidelity];
     s->options.method = v->integer[VR_method];
     s->options.max_internal_steps = v->integer[VR_max_internal_steps];
+    s->options.fixed_steps = v->integer[VR_fixed_steps];
 }
 
 const char *plant_check_settings(const fmu_values *v, char *why, size_t size) {
