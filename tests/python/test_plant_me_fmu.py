@@ -90,6 +90,7 @@ def test_states_derivatives_and_the_co_simulation_plants_names(version):
     assert [d.variable.derivative.name for d in me.derivatives] == STATES
     # every input, output and parameter of the co-simulation plant but its integrator's
     integrator = {"method", "relative_tolerance", "absolute_tolerance", "max_internal_steps",
+                  "fixed_steps",
                   "steps", "rhs_evaluations", "nonlinear_iterations", "error_test_failures",
                   "jacobian_evaluations", "last_order", "last_step_size"}
     for x in cs.modelVariables:
