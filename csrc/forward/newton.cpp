@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "core/kinsol_custom.hpp"
+#include "core/sundials_holder.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -22,11 +23,12 @@ constexpr int kN = STEWART_LEGS;  // six lengths, six pose coordinates
 }  // namespace
 
 struct ForwardNewton::Impl {
-    SUNContext context = nullptr;
-    N_Vector u = nullptr, scale = nullptr, f = nullptr;
-    SUNMatrix matrix = nullptr;
-    SUNLinearSolver linear = nullptr;
-    void *kinsol = nullptr;
+    // Freed in reverse order: KINSOL, its linear solver and matrix, the vectors, the context.
+    mbs::sundials::Context context;
+    mbs::sundials::Vector u, scale, f;
+    mbs::sundials::Matrix matrix;
+    mbs::sundials::LinearSolver linear;
+    mbs::sundials::Memory<KINFree> kinsol;
     char kinsol_message[STEWART_MESSAGE_SIZE] = "";
     // What KINSOL was last told (set again only when it changes).
     double tolerance = -1;
@@ -111,45 +113,41 @@ int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype)
 ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
     if (!impl_) return;
     Impl &im = *impl_;
-    if (SUNContext_Create(nullptr, &im.context) != 0) return;
-    im.u = N_VNew_Serial(kN, im.context);
+    im.context = mbs::sundials::make_context();
+    if (!im.context) return;
+    SUNContext context = im.context.get();
+    im.u.reset(N_VNew_Serial(kN, context));
     // The six-entry operations (KINSOL's work vectors are clones of u: they inherit them).
-    if (!im.u || !mbs::use_fixed_length_ops(im.u)) return;
-    im.scale = N_VClone(im.u);
-    im.f = N_VClone(im.u);
+    if (!im.u || !mbs::use_fixed_length_ops(im.u.get())) return;
+    im.scale.reset(N_VClone(im.u.get()));
+    im.f.reset(N_VClone(im.u.get()));
     if (!im.scale || !im.f) return;
-    N_VConst(1.0, im.scale);
-    if (!mbs::make_custom_linear_solver(im.context, &im, solver_setup, solver_solve, im.matrix,
-                                        im.linear))
-        return;
-    im.kinsol = KINCreate(im.context);
-    if (!im.kinsol) return;
+    N_VConst(1.0, im.scale.get());
+    SUNMatrix matrix = nullptr;
+    SUNLinearSolver linear = nullptr;
+    const bool made = mbs::make_custom_linear_solver(context, &im, solver_setup, solver_solve,
+                                                     matrix, linear);
+    im.matrix.reset(matrix);
+    im.linear.reset(linear);
+    if (!made) return;
+    im.kinsol.reset(KINCreate(context));
+    void *kinsol = im.kinsol.get();
+    if (!kinsol) return;
     // Once, not per solve: memory, linear solver, callbacks. No step-size stop (the residual
     // decides).
-    ok_ = KINSetErrHandlerFn(im.kinsol, mbs::keep_kinsol_message, im.kinsol_message) == KIN_SUCCESS &&
-          KINInit(im.kinsol, residual_fn, im.u) == KIN_SUCCESS &&
-          KINSetUserData(im.kinsol, &im) == KIN_SUCCESS &&
-          KINSetLinearSolver(im.kinsol, im.linear, im.matrix) == KINLS_SUCCESS &&
-          KINSetJacFn(im.kinsol, jacobian_fn) == KINLS_SUCCESS &&
-          KINSetMaxSetupCalls(im.kinsol, 1) == KIN_SUCCESS &&
-          KINSetNoInitSetup(im.kinsol, SUNFALSE) == KIN_SUCCESS &&
-          KINSetScaledStepTol(im.kinsol, 1e-300) == KIN_SUCCESS;
+    ok_ = KINSetErrHandlerFn(kinsol, mbs::keep_kinsol_message, im.kinsol_message) == KIN_SUCCESS &&
+          KINInit(kinsol, residual_fn, im.u.get()) == KIN_SUCCESS &&
+          KINSetUserData(kinsol, &im) == KIN_SUCCESS &&
+          KINSetLinearSolver(kinsol, linear, matrix) == KINLS_SUCCESS &&
+          KINSetJacFn(kinsol, jacobian_fn) == KINLS_SUCCESS &&
+          KINSetMaxSetupCalls(kinsol, 1) == KIN_SUCCESS &&
+          KINSetNoInitSetup(kinsol, SUNFALSE) == KIN_SUCCESS &&
+          KINSetScaledStepTol(kinsol, 1e-300) == KIN_SUCCESS;
 }
 
 const LegsAt &ForwardNewton::last() const { return impl_->cache; }
 
-ForwardNewton::~ForwardNewton() {
-    if (!impl_) return;
-    Impl &im = *impl_;
-    if (im.kinsol) KINFree(&im.kinsol);
-    if (im.linear) SUNLinSolFree(im.linear);
-    if (im.matrix) SUNMatDestroy(im.matrix);
-    if (im.u) N_VDestroy(im.u);
-    if (im.scale) N_VDestroy(im.scale);
-    if (im.f) N_VDestroy(im.f);
-    if (im.context) SUNContext_Free(&im.context);
-    delete impl_;
-}
+ForwardNewton::~ForwardNewton() { delete impl_; }
 
 stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double target[kN],
                                     double tolerance, int max_iterations, const LegFactors *chord,
@@ -161,8 +159,8 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
     stats = NewtonStats();
     int flag = KIN_SUCCESS;
     if (tolerance != im.tolerance || max_iterations != im.max_iterations) {
-        if ((flag = KINSetFuncNormTol(im.kinsol, tolerance)) != KIN_SUCCESS ||
-            (flag = KINSetNumMaxIters(im.kinsol, max_iterations)) != KIN_SUCCESS) {
+        if ((flag = KINSetFuncNormTol(im.kinsol.get(), tolerance)) != KIN_SUCCESS ||
+            (flag = KINSetNumMaxIters(im.kinsol.get(), max_iterations)) != KIN_SUCCESS) {
             im.tolerance = -1;
             return set_message(msg, size, STEWART_ERR_PARAMETER,
                                "KINSOL rejected tolerance = %g or max_iterations = %d (flag %d)",
@@ -170,11 +168,12 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
         }
         im.tolerance = tolerance, im.max_iterations = max_iterations;
     }
-    double *u = NV_DATA_S(im.u);
+    void *kinsol = im.kinsol.get();
+    double *u = NV_DATA_S(im.u.get());
     std::copy(q, q + 6, u);
     // KINSOL's own first test (the start accepted if its residual is <= 0.01 tolerance), made
     // here so that a measurement that did not change costs no KINSOL set-up.
-    evaluate_residual(im, u, NV_DATA_S(im.f));
+    evaluate_residual(im, u, NV_DATA_S(im.f.get()));
     long iterations = 0;
     if (im.last_residual <= 0.01 * tolerance) {
         flag = KIN_INITIAL_GUESS_OK;
@@ -184,19 +183,19 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
         const bool use_chord = chord != nullptr && im.last_residual * drift <= tolerance;
         if (use_chord) im.factors = *chord, im.factors_ok = true;
         if (use_chord != im.chord) {
-            KINSetNoInitSetup(im.kinsol, use_chord ? SUNTRUE : SUNFALSE);
-            KINSetMaxSetupCalls(im.kinsol, use_chord ? 2 : 1);
+            KINSetNoInitSetup(kinsol, use_chord ? SUNTRUE : SUNFALSE);
+            KINSetMaxSetupCalls(kinsol, use_chord ? 2 : 1);
             im.chord = use_chord;
         }
         im.kinsol_message[0] = '\0';
-        flag = KINSol(im.kinsol, im.u, KIN_NONE, im.scale, im.scale);
-        const int stats_flag = KINGetNumNonlinSolvIters(im.kinsol, &iterations);
+        flag = KINSol(kinsol, im.u.get(), KIN_NONE, im.scale.get(), im.scale.get());
+        const int stats_flag = KINGetNumNonlinSolvIters(kinsol, &iterations);
         if (stats_flag != KIN_SUCCESS)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                "KINGetNumNonlinSolvIters failed with flag %d", stats_flag);
         // The residual kept is that of the last point evaluated: make it u's.
         if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
-            evaluate_residual(im, u, NV_DATA_S(im.f));
+            evaluate_residual(im, u, NV_DATA_S(im.f.get()));
     }
     stats.iterations = static_cast<int>(iterations);
     stats.residual = im.last_residual;
