@@ -9,13 +9,13 @@
 //   forward-tracking                                    stewart_forward_solve at 1 kHz, with rates
 //   plant-massless, plant-full                          stewart_plant_step, 1 ms, Hermite forces
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
@@ -25,16 +25,9 @@ namespace {
 
 constexpr double kStep = 1e-3;  // 1 kHz
 
-using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-}
-
-double ns_since(Clock::time_point start) {
-    return std::chrono::duration<double, std::nano>(Clock::now() - start).count();
-}
+using bench::Clock;
+using bench::median;
+using bench::ns_since;
 
 // An inverse solver at `fidelity` (NULL if it cannot be made).
 stewart_inverse *inverse_at(const stewart_model *m, int fidelity) {
@@ -177,11 +170,8 @@ int main(int argc, char **argv) {
             return 2;
         }
     }
-    stewart_model *m = stewart_model_create(&params, msg, sizeof msg);
-    if (!m) {
-        std::fprintf(stderr, "bench-calls: %s\n", msg);
-        return 1;
-    }
+    stewart_model *m = bench::make_model("bench-calls", &params);
+    if (!m) return 1;
     double ns = -2;
     if (!std::strcmp(row, "inverse-kinematic")) ns = run_inverse(m, STEWART_KINEMATIC, calls);
     if (!std::strcmp(row, "inverse-massless")) ns = run_inverse(m, STEWART_MASSLESS, calls);

@@ -1,12 +1,10 @@
 // Nanoseconds per pose for the kinematic and massless-leg levels: the median over repeated
 // batches of the thesis yaw manoeuvre, printed and (with an argument) appended to a file.
-#include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
-#include "stewart/stewart.h"
+#include "bench/bench_support.hpp"
 
 namespace {
 
@@ -36,28 +34,23 @@ double median_ns_per_pose(const stewart_model *m, stewart_fidelity f,
     stewart_inverse_input in{};
     std::vector<double> batches;
     for (int b = 0; b < 201; ++b) {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = bench::Clock::now();
         for (const stewart_pose &p : poses) {
             in.pose = p;
             stewart_inverse_solve(d, &in, &out);
             *checksum += out.lengths.length[0] + out.force[0];
         }
-        const auto stop = std::chrono::steady_clock::now();
-        batches.push_back(std::chrono::duration<double, std::nano>(stop - start).count() /
-                          poses.size());
+        batches.push_back(bench::ns_since(start) / poses.size());
     }
     stewart_inverse_free(d);
-    std::nth_element(batches.begin(), batches.begin() + batches.size() / 2, batches.end());
-    return batches[batches.size() / 2];
+    return bench::median(batches);
 }
 
 }  // namespace
 
 int main(int argc, char **argv) {
-    stewart_params params;
-    stewart_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *m = stewart_model_create(&params, msg, sizeof msg);
+    stewart_model *m = bench::make_model("bench-closed-form");
+    if (!m) return 1;
     const std::vector<stewart_pose> poses = yaw_manoeuvre(1201);
     double checksum = 0;
     const double kin = median_ns_per_pose(m, STEWART_KINEMATIC, poses, &checksum);

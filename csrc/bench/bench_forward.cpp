@@ -8,7 +8,6 @@
 // `bench-forward --map MAP.csv` instead writes the cold-start convergence map over three slices
 // of the workspace through home (studies/forward_convergence.py plots it).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,9 +15,13 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "stewart/stewart_forward.h"
 
 namespace {
+
+using bench::Clock;
+using bench::percentile;
 
 struct Sample {
     double truth[6];
@@ -30,13 +33,6 @@ struct Stats {
     std::vector<int> iterations;
     long wrong = 0, failed = 0;
 };
-
-double percentile(std::vector<double> v, double p) {
-    if (v.empty()) return 0;
-    const size_t i = std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5));
-    std::nth_element(v.begin(), v.begin() + i, v.end());
-    return v[i];
-}
 
 // ---- the baseline: a plain Newton with a forward-difference Jacobian, written out ----------
 struct Geometry {
@@ -189,7 +185,6 @@ bool wrong(const double *q, const double *truth) {
     return false;
 }
 
-using Clock = std::chrono::steady_clock;
 double micros(Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::micro>(b - a).count();
 }

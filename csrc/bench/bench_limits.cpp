@@ -12,7 +12,6 @@
 // limits (studies/bench/limits.sh counts instructions inside it); --save appends the printed
 // numbers to FILE.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,16 +19,12 @@
 #include <random>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "stewart/stewart_limits.h"
 
 namespace {
 
-double percentile(std::vector<double> v, double p) {
-    if (v.empty()) return 0;
-    const size_t i = std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5));
-    std::nth_element(v.begin(), v.begin() + i, v.end());
-    return v[i];
-}
+using bench::percentile;
 
 // Random poses around home (or near the yaw singularity), kept if within every limit.
 std::vector<stewart_limits_input> workspace_poses(stewart_limits *limits, int n, bool singular) {
@@ -59,10 +54,9 @@ std::vector<double> time_each(const std::vector<stewart_limits_input> &poses, in
     for (const stewart_limits_input &in : poses) {
         double best = HUGE_VAL;
         for (int round = 0; round < rounds; ++round) {
-            const auto start = std::chrono::steady_clock::now();
+            const auto start = bench::Clock::now();
             for (int r = 0; r < repeats; ++r) call(in);
-            const auto stop = std::chrono::steady_clock::now();
-            best = std::min(best, std::chrono::duration<double, std::micro>(stop - start).count() / repeats);
+            best = std::min(best, 1e-3 * bench::ns_since(start) / repeats);
         }
         us.push_back(best);
     }

@@ -19,12 +19,12 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseLU>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
 #include "core/assembly.hpp"
 #include "core/dynamics.hpp"
@@ -244,15 +244,13 @@ int main(int argc, char **argv) {
         double worst = 0;
         for (int pass = 0; pass < 25; ++pass)
             for (const Sample &s : samples) {
-                const auto start = std::chrono::steady_clock::now();
+                const auto start = bench::Clock::now();
                 const int ok = named.run(&s, lambda.data());
-                ns.push_back(std::chrono::duration<double, std::nano>(
-                                 std::chrono::steady_clock::now() - start).count());
+                ns.push_back(bench::ns_since(start));
                 worst = std::max(worst, ok ? residual(m, s, lambda.data()) : INFINITY);
             }
-        std::nth_element(ns.begin(), ns.begin() + ns.size() / 2, ns.end());
         std::printf("  %-20s %9.0f ns   largest relative residual %.2g\n", named.name,
-                    ns[ns.size() / 2], worst);
+                    bench::median(ns), worst);
     }
     return 0;
 }

@@ -5,26 +5,20 @@
 // API function is then called exactly CALLS times (studies/bench/linearize.sh counts its
 // instructions with callgrind --toggle-collect). Rows: plant-massless, plant-full,
 // inverse-massless, inverse-full.
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
 #include "stewart/stewart_linearize.h"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using bench::median;
 constexpr double kStep = 1e-3;
-
-double median(std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-}
 
 // Median ns of `calls` calls of the row (and -1 if a call fails).
 double run_row(const stewart_model *model, const std::string &row, int calls) {
@@ -53,10 +47,10 @@ double run_row(const stewart_model *model, const std::string &row, int calls) {
     stewart_linearize_inverse_output inverse_out;
     bool ok = true;
     for (int i = 0; i < calls; ++i) {
-        const Clock::time_point start = Clock::now();
+        const bench::Clock::time_point start = bench::Clock::now();
         ok &= (plant ? stewart_linearize_plant(l, &points[i], &plant_out)
                      : stewart_linearize_inverse(l, &points[i].pose, &inverse_out)) == STEWART_OK;
-        ns[i] = std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+        ns[i] = bench::ns_since(start);
     }
     stewart_linearize_free(l);
     stewart_inverse_free(inverse);
@@ -66,14 +60,8 @@ double run_row(const stewart_model *model, const std::string &row, int calls) {
 }  // namespace
 
 int main(int argc, char **argv) {
-    stewart_params params;
-    stewart_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
-    if (!model) {
-        std::fprintf(stderr, "bench-linearize: %s\n", msg);
-        return 1;
-    }
+    stewart_model *model = bench::make_model("bench-linearize");
+    if (!model) return 1;
     std::vector<std::string> rows = {"plant-massless", "plant-full", "inverse-massless",
                                      "inverse-full"};
     int calls = 20000;
