@@ -25,10 +25,17 @@ constexpr double kPi = 3.14159265358979323846;
 // positive).
 stewart_status check_values(const double *v, const char *name, bool positive, char *msg,
                             size_t size) {
-    // The common case in one test: v * 0 is 0 for a finite v, NaN otherwise.
-    double zero = 0;
-    for (int k = 0; k < STEWART_LEGS; ++k) zero += v[k] * 0.0;
-    if (zero == 0 && !positive) return STEWART_OK;
+    // The common case in one test: lengths inside (0, 1e150) (false for NaN); v * 0 is 0 for a
+    // finite v, NaN otherwise.
+    if (positive) {
+        bool inside = true;
+        for (int k = 0; k < STEWART_LEGS; ++k) inside &= (v[k] > 0) & (v[k] < 1e150);
+        if (inside) return STEWART_OK;
+    } else {
+        double zero = 0;
+        for (int k = 0; k < STEWART_LEGS; ++k) zero += v[k] * 0.0;
+        if (zero == 0) return STEWART_OK;
+    }
     for (int k = 0; k < STEWART_LEGS; ++k) {
         if (!std::isfinite(v[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s%d is %g: it must be finite",

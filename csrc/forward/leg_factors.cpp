@@ -78,27 +78,41 @@ bool pose_rates_from(const LegFactors &f, const PitchYawTrig &at, const double v
 
 double inverse_norm1(const LegFactors &f) {
     // The columns of J^-1 = U^-1 L^-1 P are those of U^-1 L^-1 reordered, and the largest sum
-    // does not see the order: solve for the unit vectors e_m, whose leading zeros L keeps.
+    // does not see the order: solve for the six unit vectors at once, X = U^-1 L^-1 I, a row of X
+    // in three two-double vectors (SSE2 on x86-64, NEON on ARM, plain doubles elsewhere). Each
+    // column's arithmetic is that of its own substitution: the zeros above its unit entry stay
+    // exact zeros, so the terms they subtract leave the other entries unchanged (bit for bit).
+    typedef double Pair __attribute__((vector_size(16)));
+    typedef long long Bits __attribute__((vector_size(16)));
+    const Bits magnitude = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};  // |v|: sign bit cleared
     const double *a = f.lu;
-    double largest = 0;
+    Pair x[6][3];
 #pragma GCC unroll 6
-    for (int m = 0; m < 6; ++m) {
-        double y[6] = {0, 0, 0, 0, 0, 0};
-        y[m] = 1;
+    for (int i = 0; i < 6; ++i)
+#pragma GCC unroll 3
+        for (int h = 0; h < 3; ++h) x[i][h] = Pair{2 * h == i ? 1.0 : 0.0, 2 * h + 1 == i ? 1.0 : 0.0};
 #pragma GCC unroll 6
-        for (int k = m; k < 6; ++k)
+    for (int k = 0; k < 6; ++k)
 #pragma GCC unroll 6
-            for (int i = k + 1; i < 6; ++i) y[i] -= a[6 * i + k] * y[k];
-        double sum = 0;
+        for (int i = k + 1; i < 6; ++i)
+#pragma GCC unroll 3
+            for (int h = 0; 2 * h <= k; ++h)  // (above row 2h, pair h holds zeros)
+                x[i][h] -= a[6 * i + k] * x[k][h];
+    Pair sum[3] = {};
 #pragma GCC unroll 6
-        for (int k = 5; k >= 0; --k) {
+    for (int k = 5; k >= 0; --k) {
 #pragma GCC unroll 6
-            for (int c = k + 1; c < 6; ++c) y[k] -= a[6 * k + c] * y[c];
-            y[k] /= a[7 * k];
-            sum += std::fabs(y[k]);
+        for (int c = k + 1; c < 6; ++c)
+#pragma GCC unroll 3
+            for (int h = 0; h < 3; ++h) x[k][h] -= a[6 * k + c] * x[c][h];
+#pragma GCC unroll 3
+        for (int h = 0; h < 3; ++h) {
+            x[k][h] /= a[7 * k];
+            sum[h] += reinterpret_cast<Pair>(reinterpret_cast<Bits>(x[k][h]) & magnitude);
         }
-        largest = std::max(largest, sum);
     }
+    double largest = 0;
+    for (int h = 0; h < 3; ++h) largest = std::max(largest, std::max(sum[h][0], sum[h][1]));
     return largest;
 }
 
