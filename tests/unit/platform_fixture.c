@@ -8,16 +8,22 @@ stewart_model *model;
 stewart_inverse *data;
 stewart_forward *forward_solver;
 
-void setUp(void) {
-    stewart_params_default(&params);
+/* The model of `params`, its inverse solver and its forward solver (NULL for a platform singular
+ * at home: it has no forward kinematics). */
+static char forward_message[STEWART_MESSAGE_SIZE];
+static void make_platform(void) {
     model = test_model(&params);
     data = test_inverse(model);
     TEST_ASSERT_NOT_NULL(data);
     stewart_forward_options fo;
     stewart_forward_options_default(&fo);
-    char msg[STEWART_MESSAGE_SIZE];
-    forward_solver = stewart_forward_create(model, &fo, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(forward_solver, msg);
+    forward_solver = stewart_forward_create(model, &fo, forward_message, sizeof forward_message);
+}
+
+void setUp(void) {
+    stewart_params_default(&params);
+    make_platform();
+    TEST_ASSERT_NOT_NULL_MESSAGE(forward_solver, forward_message);
 }
 
 void tearDown(void) {
@@ -31,12 +37,5 @@ void tearDown(void) {
 
 void rebuild_platform(void) {
     tearDown();
-    model = test_model(&params);
-    data = test_inverse(model);
-    TEST_ASSERT_NOT_NULL(data);
-    stewart_forward_options fo;
-    stewart_forward_options_default(&fo);
-    char msg[STEWART_MESSAGE_SIZE];
-    /* NULL for a platform singular at home (it has no forward kinematics) */
-    forward_solver = stewart_forward_create(model, &fo, msg, sizeof msg);
+    make_platform();
 }
