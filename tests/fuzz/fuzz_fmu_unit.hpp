@@ -6,6 +6,7 @@
 #ifndef STEWART_FUZZ_FMU_UNIT_HPP
 #define STEWART_FUZZ_FMU_UNIT_HPP
 
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -168,6 +169,22 @@ void random_set_integer(Unit &u, Reader &in, int small) {
     if (sel < 200) v = sel % small;
     else in.take(&v, sizeof v);
     u.set_int(&vr, 1, &v);
+}
+
+// Every Real output read back with OK is finite, and `status` read back with OK is one the model
+// reports (bit s of `statuses` set for status s); aborts otherwise. Keeps the Reals if asked.
+void check_real_outputs(Unit &u, unsigned statuses, std::vector<double> *keep) {
+    std::vector<double> out(real_outputs.size());
+    if (u.get_real(real_outputs.data(), out.size(), out.data()) == 0) {
+        for (double d : out)
+            if (!std::isfinite(d)) std::abort();
+        if (keep) *keep = out;
+    }
+    const unsigned vr_status = VR_status;
+    int32_t status = 0;
+    if (u.get_int(&vr_status, 1, &status) == 0 &&
+        (status < 0 || status > 31 || !((statuses >> status) & 1u)))
+        std::abort();
 }
 
 // A target's check of the outputs: aborts on a broken invariant; keeps the Reals if asked.

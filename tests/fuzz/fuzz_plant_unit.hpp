@@ -39,16 +39,7 @@ void compute_static_forces() {
 
 // Every Real output read back with OK is finite; status is 0, 1 or 3. Keeps the Reals if asked.
 void check_outputs(Unit &u, std::vector<double> *keep = nullptr) {
-    std::vector<double> out(real_outputs.size());
-    if (u.get_real(real_outputs.data(), out.size(), out.data()) == 0) {
-        for (double d : out)
-            if (!std::isfinite(d)) std::abort();
-        if (keep) *keep = out;
-    }
-    const unsigned vr_status = VR_status;
-    int32_t status = 0;
-    if (u.get_int(&vr_status, 1, &status) == 0 && status != 0 && status != 1 && status != 3)
-        std::abort();
+    check_real_outputs(u, 1u << 0 | 1u << 1 | 1u << 3, keep);
 }
 
 // All six forces near the static ones: relative offsets of up to 12.7 % (six int8 of the input).
