@@ -125,6 +125,11 @@ fmu_status fmu_reset(fmu_instance *inst) {
  * the master to retry with a smaller step, which cannot help. */
 static fmu_status check_step(fmu_instance *inst, double t, double h) {
     const fmu_values *v = &inst->v;
+    /* The usual step, in a few comparisons: finite, advancing, after the last one, from the
+     * unit's time or later (h > 0 and t + h finite make h finite). */
+    if (h > 0 && isfinite(t) && isfinite(t + h) && t + h > t &&
+        (!v->has_stepped || t > v->last_step_point) && t >= v->time)
+        return FMU_OK;
     if (!(isfinite(t) && isfinite(h) && h > 0)) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: currentCommunicationPoint = %g and communicationStepSize = %g must be "

@@ -54,6 +54,9 @@ typedef struct fmu_values {
     double last_step_point;    /* communication point of the last accepted step */
     int has_stepped;           /* a step has been accepted since initialisation */
     int outputs_current;       /* the outputs belong to the current inputs and time */
+    int inputs_unchecked;      /* 0: every input is finite (the step need not look); set when a
+                                  value that is not finite is set or restored, cleared by the
+                                  model's scan of its inputs */
     int last_step_status;      /* what the last doStep returned (fmi2GetStatus) */
     double last_successful_time;
     int mode;                  /* fmu_mode */
