@@ -361,7 +361,8 @@ static fmu_status solved(fmu_instance *inst, double time, const stewart_pose *po
                 "t = %.17g: near singular pose: condition = %g > warn_condition = %g", time,
                 out->condition, r->options.warn_condition);
     }
-    if (limit_outputs(inst, time, pose->q) == FMU_WARNING) fs = FMU_WARNING;
+    if (v->integer[VR_limit_outputs] && limit_outputs(inst, time, pose->q) == FMU_WARNING)
+        fs = FMU_WARNING;
     v->integer[VR_status] = status;
     v->model.solve_status = fs;
     return fs;
