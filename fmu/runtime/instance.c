@@ -203,18 +203,17 @@ static int usual_step(const fmu_instance *inst, double t, double h) {
            (!v->has_stepped || t > v->last_step_point) && t >= v->time - time_slack(v);
 }
 
+/* The call order and the step (t, h) checked, with their messages: OK or Error. */
+FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, double h) {
+    if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) return FMU_ERROR;
+    return check_step(inst, t, h);
+}
+
 fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
-    fmu_status s;
-    if (inst && usual_step(inst, t, h)) {
-        s = run_step(inst, t, h);
-    } else {
-        if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) {
-            if (inst && last_successful_time) *last_successful_time = inst->v.last_successful_time;
-            return FMU_ERROR;
-        }
-        s = check_step(inst, t, h);
-        if (s == FMU_OK) s = run_step(inst, t, h);
-    }
+    if (!inst) return FMU_ERROR;
+    fmu_status s = usual_step(inst, t, h) ? FMU_OK : check_do_step(inst, t, h);
+    /* an Error here leaves the mode as it was (a refused call, not a failed step) */
+    if (s == FMU_OK) s = run_step(inst, t, h); /* one call: inlined */
     if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
     return s;
 }

@@ -340,13 +340,11 @@ static fmu_status not_solved_by_library(fmu_instance *inst, double time, const s
     return not_solved(&inst->v, fs);
 }
 
-/* The outputs, status and warnings of a solved pose at `time`. */
-static fmu_status solved(fmu_instance *inst, double time, const stewart_pose *pose,
-                         const stewart_inverse_output *out) {
+/* The status output and the warnings of a solved pose at `time` (its outputs written). */
+FMU_RARE_PATH static fmu_status warnings_of(fmu_instance *inst, double time, const stewart_pose *pose,
+                              const stewart_inverse_output *out) {
     fmu_values *v = &inst->v;
     const model_resources *r = &inst->res;
-    outputs_to_values(v, out);
-    v->outputs_current = 1;
     fmu_status fs = FMU_OK;
     int status = 0;
     if (out->warnings & STEWART_WARN_STROKE) {
@@ -366,6 +364,19 @@ static fmu_status solved(fmu_instance *inst, double time, const stewart_pose *po
     v->integer[VR_status] = status;
     v->model.solve_status = fs;
     return fs;
+}
+
+/* The outputs, status and warnings of a solved pose at `time`; short when there is nothing to
+ * warn of or check (the step's usual case, so that the compiler inlines it). */
+static fmu_status solved(fmu_instance *inst, double time, const stewart_pose *pose,
+                         const stewart_inverse_output *out) {
+    fmu_values *v = &inst->v;
+    outputs_to_values(v, out);
+    v->outputs_current = 1;
+    if (out->warnings || v->integer[VR_limit_outputs]) return warnings_of(inst, time, pose, out);
+    v->integer[VR_status] = 0;
+    v->model.solve_status = FMU_OK;
+    return FMU_OK;
 }
 
 /* Solves for the current inputs at `time` unless the outputs already belong to them. OK /
