@@ -170,8 +170,8 @@ static int taylor_mode(const fmu_values *v) {
  * poses at earlier communication points (quadratic through the last three poses; with only one
  * earlier pose, the chord through both and zero acceleration; none: at rest). Assuming rest at the
  * first point instead would give a motion already under way an acceleration 2 v / h: unbounded as
- * h shrinks. */
-static void current_pose(const fmu_values *v, double time, stewart_pose *pose) {
+ * h shrinks. restrict: pose is not part of v, so the compiler takes the coordinates two at a time. */
+static void current_pose(const fmu_values *restrict v, double time, stewart_pose *restrict pose) {
     const model_values *m = &v->model;
     for (int i = 0; i < 6; ++i) pose->q[i] = v->real[VR_x + i];
     if (taylor_mode(v)) {
