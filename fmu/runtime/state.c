@@ -132,8 +132,8 @@ static const char *corrupt_values(const fmu_values *v) {
                    ? "mode is not one of instantiated, initialization, event, continuous time, "
                      "terminated"
                    : "mode is not one of instantiated, initialization, step, terminated";
-    if ((v->outputs_current & ~1) || (v->has_stepped & ~1) || (v->inputs_unchecked & ~1) || v->last_step_status < FMU_OK ||
-        v->last_step_status > FMU_ERROR)
+    if ((v->outputs_current & ~1) || (v->has_stepped & ~1) || (v->inputs_unchecked & ~1) ||
+        v->last_step_status < FMU_OK || v->last_step_status > FMU_ERROR)
         return "a flag is out of range";
     if (!isfinite(v->time) || !isfinite(v->last_successful_time) ||
         !isfinite(v->last_step_point))

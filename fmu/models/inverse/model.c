@@ -170,7 +170,8 @@ static int taylor_mode(const fmu_values *v) {
  * poses at earlier communication points (quadratic through the last three poses; with only one
  * earlier pose, the chord through both and zero acceleration; none: at rest). Assuming rest at the
  * first point instead would give a motion already under way an acceleration 2 v / h: unbounded as
- * h shrinks. restrict: pose is not part of v, so the compiler takes the coordinates two at a time. */
+ * h shrinks. restrict: pose is not part of v, so the compiler takes the coordinates two at a
+ * time. */
 static void current_pose(const fmu_values *restrict v, double time, stewart_pose *restrict pose) {
     const model_values *m = &v->model;
     for (int i = 0; i < 6; ++i) pose->q[i] = v->real[VR_x + i];
@@ -390,13 +391,17 @@ static fmu_status solve_at(fmu_instance *inst, double time) {
     if (v->inputs_unchecked && check_inputs(inst, time) != FMU_OK) return FMU_DISCARD;
     stewart_inverse_input in;
     current_pose(v, time, &in.pose);
-    if (!taylor_mode(v))
-        for (int i = 0; i < 6; ++i)
-            if (!isfinite(in.pose.q_dot[i]) || !isfinite(in.pose.q_ddot[i]))
-                return discard_finite_differences(inst, time, &in.pose, i);
     stewart_inverse_output out;
     const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, &out);
-    if (s != STEWART_OK) return not_solved_by_library(inst, time, &in.pose, s);
+    if (s != STEWART_OK) {
+        /* Finite differences that are not finite: the library refuses them before any work (it
+         * checks its pose first), so they are looked for only now, and named as the FMU's. */
+        if (!taylor_mode(v))
+            for (int i = 0; i < 6; ++i)
+                if (!isfinite(in.pose.q_dot[i]) || !isfinite(in.pose.q_ddot[i]))
+                    return discard_finite_differences(inst, time, &in.pose, i);
+        return not_solved_by_library(inst, time, &in.pose, s);
+    }
     return solved(inst, time, &in.pose, &out);
 }
 
