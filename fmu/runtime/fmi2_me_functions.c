@@ -12,7 +12,7 @@ fmi2Status fmi2EnterEventMode(fmi2Component c) { CALL(fmu_enter_event_mode(INST)
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
     const fmu_status s = fmu_new_discrete_states(INST);
-    if (s == FMU_OK && info) {
+    if ((s == FMU_OK || s == FMU_WARNING) && info) { /* Warning: outputs valid */
         info->newDiscreteStatesNeeded = fmi2False;
         info->terminateSimulation = fmi2False;
         info->nominalsOfContinuousStatesChanged = fmi2False;

@@ -16,7 +16,7 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
                                     fmi3Boolean *valuesOfContinuousStatesChanged,
                                     fmi3Boolean *nextEventTimeDefined, fmi3Float64 *nextEventTime) {
     const fmu_status s = fmu_new_discrete_states(INST);
-    if (s == FMU_OK) {
+    if (s == FMU_OK || s == FMU_WARNING) { /* Warning: outputs valid */
         fmi3Boolean *flags[5] = {discreteStatesNeedUpdate, terminateSimulation,
                                  nominalsOfContinuousStatesChanged,
                                  valuesOfContinuousStatesChanged, nextEventTimeDefined};

@@ -121,6 +121,13 @@ fmu_status fmu_reset(fmu_instance *inst) {
     return FMU_OK;
 }
 
+/* How much earlier than the unit's time a communication point may be: a few roundings of the
+ * master's clock (start + n h against the sum of its steps). */
+static double time_slack(const fmu_values *v) {
+    const double last_step = v->has_stepped ? v->time - v->last_step_point : 0.0;
+    return 1e-9 * last_step + 8.0 * DBL_EPSILON * fabs(v->time);
+}
+
 /* Why (t, h) is not a step from the unit's time, or NULL. Error rather than Discard: Discard asks
  * the master to retry with a smaller step, which cannot help. */
 static fmu_status check_step(fmu_instance *inst, double t, double h) {
@@ -149,8 +156,7 @@ static fmu_status check_step(fmu_instance *inst, double t, double h) {
     /* A master may pass t a few roundings off the unit's own time (start + n h against the sum
      * of its steps), never earlier by more: that would take the inputs of time v->time for an
      * earlier one. */
-    const double last_step = v->has_stepped ? v->time - v->last_step_point : 0.0;
-    if (t < v->time - (1e-9 * last_step + 8.0 * DBL_EPSILON * fabs(v->time))) {
+    if (t < v->time - time_slack(v)) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: currentCommunicationPoint = %.17g is before the unit's time %.17g (the "
                 "end of the last step); to go back, restore an FMU state", t, v->time);
@@ -159,39 +165,56 @@ static fmu_status check_step(fmu_instance *inst, double t, double h) {
     return FMU_OK;
 }
 
-fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
-    if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) {
-        if (inst && last_successful_time) *last_successful_time = inst->v.last_successful_time;
-        return FMU_ERROR;
-    }
+/* The model's step from t to t + h, which check_step accepted, and the time bookkeeping. */
+static fmu_status run_step(fmu_instance *inst, double t, double h) {
     fmu_values *v = &inst->v;
-    fmu_status s = check_step(inst, t, h);
-    if (s == FMU_OK) {
-        const double time_before = v->time;
-        const int outputs_current_before = v->outputs_current;
-        if (t != v->time) { /* a rounding off the unit's time, or later (after a Discard) */
-            set_time(v, t);
-            v->outputs_current = 0;
-        }
-        s = model_do_step(inst, t, h);
-        v->last_step_status = s;
-        if (s == FMU_OK || s == FMU_WARNING) {
-            set_time(v, t + h);
-            v->last_step_point = t;
-            v->has_stepped = 1;
-            v->last_successful_time = t + h;
-        } else if (s == FMU_DISCARD) {
-            set_time(v, t);
-            v->last_successful_time = t;
-        } else {
-            /* Error (or Fatal): the model did nothing; time stays where the model is, and the
-             * instance enters the Error mode (out of it: Reset or SetFMUState). */
-            set_time(v, time_before);
-            v->outputs_current = outputs_current_before;
-            fmu_fail(inst);
-        }
+    const double time_before = v->time;
+    const int outputs_current_before = v->outputs_current;
+    if (t != v->time) { /* a rounding off the unit's time, or later (after a Discard) */
+        set_time(v, t);
+        v->outputs_current = 0;
     }
-    if (last_successful_time) *last_successful_time = v->last_successful_time;
+    const fmu_status s = model_do_step(inst, t, h);
+    v->last_step_status = s;
+    if (s == FMU_OK || s == FMU_WARNING) {
+        set_time(v, t + h);
+        v->last_step_point = t;
+        v->has_stepped = 1;
+        v->last_successful_time = t + h;
+    } else if (s == FMU_DISCARD) {
+        set_time(v, t);
+        v->last_successful_time = t;
+    } else {
+        /* Error (or Fatal): the model did nothing; time stays where the model is, and the
+         * instance enters the Error mode (out of it: Reset or SetFMUState). */
+        set_time(v, time_before);
+        v->outputs_current = outputs_current_before;
+        fmu_fail(inst);
+    }
+    return s;
+}
+
+/* The usual call, told in a few comparisons: step mode, a step that advances t to a finite time
+ * (so t and h are finite), after the last step, from the unit's time within its slack.
+ * fmu_check_call and check_step accept it too. */
+static int usual_step(const fmu_instance *inst, double t, double h) {
+    const fmu_values *v = &inst->v;
+    return v->mode == MODE_STEP && h > 0 && t + h > t && isfinite(t + h) &&
+           (!v->has_stepped || t > v->last_step_point) && t >= v->time - time_slack(v);
+}
+
+/* The call order and the step (t, h) checked, with their messages: OK or Error. */
+FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, double h) {
+    if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) return FMU_ERROR;
+    return check_step(inst, t, h);
+}
+
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+    if (!inst) return FMU_ERROR;
+    fmu_status s = usual_step(inst, t, h) ? FMU_OK : check_do_step(inst, t, h);
+    /* an Error here leaves the mode as it was (a refused call, not a failed step) */
+    if (s == FMU_OK) s = run_step(inst, t, h); /* one call: inlined */
+    if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
     return s;
 }
 

@@ -43,6 +43,14 @@ typedef enum {
 
 typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
 
+/* Marks a function out of line where the compiler allows: a path the usual step does not take,
+ * so that the step's own path stays short (issue 22: doStep within 5 % of the library call). */
+#if defined(__GNUC__)
+#define FMU_RARE_PATH __attribute__((noinline, cold))
+#else
+#define FMU_RARE_PATH
+#endif
+
 /* Everything an FMU state holds besides the model's saved resources: plain data, memcpy-able.
  * Serialised as is; the last two members stay last_successful_time and mode (tests corrupt
  * them by offset). */
@@ -54,6 +62,9 @@ typedef struct fmu_values {
     double last_step_point;    /* communication point of the last accepted step */
     int has_stepped;           /* a step has been accepted since initialisation */
     int outputs_current;       /* the outputs belong to the current inputs and time */
+    int inputs_unchecked;      /* 0: every input is finite (the step need not look); set when a
+                                  value that is not finite is set or restored, cleared by the
+                                  model's scan of its inputs */
     int last_step_status;      /* what the last doStep returned (fmi2GetStatus) */
     double last_successful_time;
     int mode;                  /* fmu_mode */

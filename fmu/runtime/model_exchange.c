@@ -53,8 +53,22 @@ fmu_status fmu_enter_event_mode(fmu_instance *inst) {
     return FMU_OK;
 }
 
+/* What the model reports at an accepted state (OK if it reports nothing). */
+static fmu_status accepted_state(fmu_instance *inst) {
+#if FMU_ME_ACCEPTED_STATE
+    return model_accepted_state(inst);
+#else
+    (void)inst;
+    return FMU_OK;
+#endif
+}
+
 fmu_status fmu_new_discrete_states(fmu_instance *inst) {
-    return check_me_call(inst, CALL_NEW_DISCRETE_STATES, "NewDiscreteStates");
+    if (check_me_call(inst, CALL_NEW_DISCRETE_STATES, "NewDiscreteStates") != FMU_OK)
+        return FMU_ERROR;
+    /* the event update's state is an accepted state: the same Warning as CompletedIntegratorStep
+     * (after initialisation it is the first the master sees) */
+    return accepted_state(inst);
 }
 
 fmu_status fmu_enter_continuous_time_mode(fmu_instance *inst) {
@@ -70,11 +84,7 @@ fmu_status fmu_completed_integrator_step(fmu_instance *inst, int *enter_event_mo
         return FMU_ERROR;
     if (enter_event_mode) *enter_event_mode = 0;
     if (terminate_simulation) *terminate_simulation = 0;
-#if FMU_ME_ACCEPTED_STATE
-    return model_accepted_state(inst);
-#else
-    return FMU_OK;
-#endif
+    return accepted_state(inst);
 }
 
 fmu_status fmu_set_time(fmu_instance *inst, double time) {

@@ -23,7 +23,8 @@ extern "C" {
 size_t fmu_state_count(void);
 /* EnterEventMode (from continuous-time mode). */
 fmu_status fmu_enter_event_mode(fmu_instance *inst);
-/* NewDiscreteStates / UpdateDiscreteStates: nothing discrete changes; no next time event. */
+/* NewDiscreteStates / UpdateDiscreteStates: nothing discrete changes; no next time event. OK,
+ * or Warning (the model's, at an accepted state: outputs valid, the event info to be filled). */
 fmu_status fmu_new_discrete_states(fmu_instance *inst);
 /* EnterContinuousTimeMode (from event mode). */
 fmu_status fmu_enter_continuous_time_mode(fmu_instance *inst);

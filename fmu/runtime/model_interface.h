@@ -63,8 +63,9 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
 /* Frees the resources (at fmu_free). */
 void model_free(fmu_instance *inst);
 /* Only in a Model Exchange unit whose config.h defines FMU_ME_ACCEPTED_STATE 1: the master has
- * accepted the current state (CompletedIntegratorStep); report what holds there and only there,
- * not at the trial states of the derivative calls (warnings). OK or Warning. Never allocates. */
+ * accepted the current state (CompletedIntegratorStep, or the event update NewDiscreteStates /
+ * UpdateDiscreteStates: its state is accepted too); report what holds there and only there, not
+ * at the trial states of the derivative calls (warnings). OK or Warning. Never allocates. */
 fmu_status model_accepted_state(fmu_instance *inst);
 /* Only in a model whose config.h defines FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1 (the others need
  * not define it: the runtime then answers that the call is not supported). The partial

@@ -113,6 +113,16 @@ fmu_status fmu_serialize_state(fmu_instance *inst, const fmu_snapshot *s, unsign
     return FMU_OK;
 }
 
+/* Whether a Real input of v is not finite. */
+static int any_nonfinite_input(const fmu_values *v) {
+    for (size_t j = 0; j < fmu_n_variables; ++j) {
+        const fmu_variable *var = &fmu_variables[j];
+        if (var->causality == FMU_INPUT_VAR && var->type == FMU_REAL && !isfinite(v->real[var->vr]))
+            return 1;
+    }
+    return 0;
+}
+
 /* Why the runtime's part of deserialised values cannot be a state, or NULL if it can. */
 static const char *corrupt_values(const fmu_values *v) {
     const int modes = MODE_INSTANTIATED | MODE_INITIALIZATION | MODE_AFTER_INITIALIZATION |
@@ -122,8 +132,8 @@ static const char *corrupt_values(const fmu_values *v) {
                    ? "mode is not one of instantiated, initialization, event, continuous time, "
                      "terminated"
                    : "mode is not one of instantiated, initialization, step, terminated";
-    if ((v->outputs_current & ~1) || (v->has_stepped & ~1) || v->last_step_status < FMU_OK ||
-        v->last_step_status > FMU_ERROR)
+    if ((v->outputs_current & ~1) || (v->has_stepped & ~1) || (v->inputs_unchecked & ~1) ||
+        v->last_step_status < FMU_OK || v->last_step_status > FMU_ERROR)
         return "a flag is out of range";
     if (!isfinite(v->time) || !isfinite(v->last_successful_time) ||
         !isfinite(v->last_step_point))
@@ -167,6 +177,8 @@ fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, si
         return FMU_ERROR;
     }
     s->v = v;
+    /* the bytes' claim that every input is finite is not taken on trust */
+    if (any_nonfinite_input(&v)) s->v.inputs_unchecked = 1;
     if (data_size) memcpy(s->bytes, in + HEADER, data_size);
     s->size = data_size;
     *state = s;

@@ -1,6 +1,8 @@
 /* Get and set through the variable table (variables.h); outputs come from the model. */
 #include "values.h"
 
+#include <math.h>
+
 #include "call_table.h"
 #include "logging.h"
 #include "model_interface.h"
@@ -84,7 +86,13 @@ fmu_status fmu_set_real(fmu_instance *inst, const unsigned vr[], size_t n, const
     if (fmu_check_call(inst, CALL_SET, "SetReal") != FMU_OK) return FMU_ERROR;
     if (n > 0 && (!vr || !value)) return null_arrays(inst, "SetReal");
     if (check_settable(inst, "SetReal", vr, n, FMU_REAL) != FMU_OK) return FMU_ERROR;
-    for (size_t i = 0; i < n; ++i) inst->v.real[vr[i]] = value[i];
+    int nonfinite = 0;
+    for (size_t i = 0; i < n; ++i) {
+        inst->v.real[vr[i]] = value[i];
+        nonfinite |= !isfinite(value[i]);
+    }
+    /* checked here, where the values pass anyway, so that a step need not look at every input */
+    if (nonfinite) inst->v.inputs_unchecked = 1;
     if (n > 0) inst->v.outputs_current = 0;
     return FMU_OK;
 }

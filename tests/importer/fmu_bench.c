@@ -1,11 +1,12 @@
 /*
- * Runs one configuration of the FMI 2.0 FMU over a sinusoidal scene without Python, the way a
+ * Runs one configuration of the FMI 2.0 (or, with --fmi 3, 3.0) FMU over a sinusoidal scene
+ * without Python, the way a
  * co-simulation master does (set the pose at t, doStep(t, h), read the outputs, which belong to
  * t + h), and prints the median microseconds per doStep and the mean Newton iterations. With
  * --out it also writes t + h and every leg output after each step, for accuracy studies
  * (studies/speed_accuracy.py).
  *
- * usage: fmu_bench FMI2.so [--fidelity F] [--derivatives D] [--step H] [--duration T]
+ * usage: fmu_bench FMU.so [--fmi 2|3] [--fidelity F] [--derivatives D] [--step H] [--duration T]
  *                  [--tolerance TOL] [--modified-newton M] [--max-iterations N]
  *                  [--pose 24 comma-separated numbers: mean,amplitude,omega,phase for x..yaw]
  *                  [--set NAME=VALUE ...] [--out OUT.csv]
@@ -16,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fmi3Functions.h"
 #include "importer_support.h"
 #include "variables.h"
 
@@ -38,12 +40,99 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
     if (status > fmi2Warning) fprintf(stderr, "[%s %d %s] %s\n", name, status, category, message);
 }
 
+static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
+                    fmi3String message) {
+    (void)env;
+    if (status > fmi3Warning) fprintf(stderr, "[%d %s] %s\n", status, category, message);
+}
+
+/* The FMI 3 co-simulation calls the benchmark makes. */
+typedef struct {
+    fmi3InstantiateCoSimulationTYPE *instantiate;
+    fmi3FreeInstanceTYPE *free_instance;
+    fmi3EnterInitializationModeTYPE *enter;
+    fmi3ExitInitializationModeTYPE *exit_init;
+    fmi3SetInt32TYPE *set_int;
+    fmi3SetFloat64TYPE *set_real;
+    fmi3GetFloat64TYPE *get_real;
+    fmi3GetInt32TYPE *get_int;
+    fmi3DoStepTYPE *do_step;
+} fmi3_api;
+
+/* One instance of either version: each call below goes to the version's function (statuses are
+ * numbered alike in both). */
+typedef struct {
+    int v3;
+    fmi2_api f2;
+    fmi3_api f3;
+    void *c;
+} unit;
+
+static int unit_load(unit *u, void *lib, int version) {
+    u->v3 = version == 3;
+    if (!u->v3) {
+        u->f2 = fmi2_api_load(lib);
+        static const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
+        u->c = u->f2.instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, fmi2False, fmi2False);
+        return u->c != NULL;
+    }
+    u->f3.instantiate = (fmi3InstantiateCoSimulationTYPE *)importer_symbol(lib, "fmi3InstantiateCoSimulation");
+    u->f3.free_instance = (fmi3FreeInstanceTYPE *)importer_symbol(lib, "fmi3FreeInstance");
+    u->f3.enter = (fmi3EnterInitializationModeTYPE *)importer_symbol(lib, "fmi3EnterInitializationMode");
+    u->f3.exit_init = (fmi3ExitInitializationModeTYPE *)importer_symbol(lib, "fmi3ExitInitializationMode");
+    u->f3.set_int = (fmi3SetInt32TYPE *)importer_symbol(lib, "fmi3SetInt32");
+    u->f3.set_real = (fmi3SetFloat64TYPE *)importer_symbol(lib, "fmi3SetFloat64");
+    u->f3.get_real = (fmi3GetFloat64TYPE *)importer_symbol(lib, "fmi3GetFloat64");
+    u->f3.get_int = (fmi3GetInt32TYPE *)importer_symbol(lib, "fmi3GetInt32");
+    u->f3.do_step = (fmi3DoStepTYPE *)importer_symbol(lib, "fmi3DoStep");
+    u->c = u->f3.instantiate("bench", FMU_GUID, "", fmi3False, fmi3False, fmi3False, fmi3False,
+                             NULL, 0, NULL, logger3, NULL);
+    return u->c != NULL;
+}
+
+static int set_reals(const unit *u, const unsigned *vr, size_t n, const double *x) {
+    return u->v3 ? u->f3.set_real(u->c, vr, n, x, n) : u->f2.set_real(u->c, vr, n, x);
+}
+
+static int set_ints(const unit *u, const unsigned *vr, size_t n, const int *x) {
+    return u->v3 ? u->f3.set_int(u->c, vr, n, x, n) : u->f2.set_int(u->c, vr, n, x);
+}
+
+static int get_reals(const unit *u, const unsigned *vr, size_t n, double *x) {
+    return u->v3 ? u->f3.get_real(u->c, vr, n, x, n) : u->f2.get_real(u->c, vr, n, x);
+}
+
+static int get_ints(const unit *u, const unsigned *vr, size_t n, int *x) {
+    return u->v3 ? u->f3.get_int(u->c, vr, n, x, n) : u->f2.get_int(u->c, vr, n, x);
+}
+
+/* Initialisation at t = 0 (statuses OK or Warning pass). */
+static int initialise(const unit *u) {
+    if (u->v3)
+        return u->f3.enter(u->c, fmi3False, 0, 0.0, fmi3False, 0) == fmi3OK &&
+               u->f3.exit_init(u->c) <= fmi3Warning;
+    return u->f2.setup(u->c, fmi2False, 0, 0, fmi2False, 0) == fmi2OK &&
+           u->f2.enter(u->c) == fmi2OK && u->f2.exit_init(u->c) <= fmi2Warning;
+}
+
+static int do_step(const unit *u, double t, double h) {
+    if (!u->v3) return u->f2.do_step(u->c, t, h, fmi2True);
+    fmi3Boolean event, terminate, early;
+    fmi3Float64 last;
+    return u->f3.do_step(u->c, t, h, fmi3True, &event, &terminate, &early, &last);
+}
+
+static void unit_free(const unit *u) {
+    if (u->v3) u->f3.free_instance(u->c);
+    else u->f2.free_instance(u->c);
+}
+
 int main(int argc, char **argv) {
     if (argc < 2) {
         fprintf(stderr, "usage: fmu_bench FMI2.so [options] (see the source)\n");
         return 2;
     }
-    int fidelity = 2, derivatives = 1, modified = 0, max_iterations = 20;
+    int fidelity = 2, derivatives = 1, modified = 0, max_iterations = 20, version = 2;
     double h = 1e-3, duration = 12.0, tolerance = 1e-12;
     const char *out_path = NULL;
     const char *sets[64];
@@ -51,7 +140,8 @@ int main(int argc, char **argv) {
     scene sc = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}, {0}};
     for (int i = 2; i + 1 < argc; i += 2) {
         const char *k = argv[i], *v = argv[i + 1];
-        if (!strcmp(k, "--fidelity")) fidelity = atoi(v);
+        if (!strcmp(k, "--fmi")) version = atoi(v);
+        else if (!strcmp(k, "--fidelity")) fidelity = atoi(v);
         else if (!strcmp(k, "--derivatives")) derivatives = atoi(v);
         else if (!strcmp(k, "--step")) h = atof(v);
         else if (!strcmp(k, "--duration")) duration = atof(v);
@@ -75,11 +165,8 @@ int main(int argc, char **argv) {
 
     void *lib = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
     if (!lib) { fprintf(stderr, "fmu_bench: %s\n", dlerror()); return 2; }
-    const fmi2_api f = fmi2_api_load(lib);
-
-    const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
-    fmi2Component c = f.instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, fmi2False, fmi2False);
-    if (!c) return 1;
+    unit u;
+    if (!unit_load(&u, lib, version)) return 1;
     const fmi2ValueReference ivr[4] = {VR_fidelity, VR_derivatives, VR_modified_newton,
                                        VR_max_iterations};
     const fmi2Integer ival[4] = {fidelity, derivatives, modified, max_iterations};
@@ -105,19 +192,18 @@ int main(int argc, char **argv) {
         const fmi2ValueReference vr = var->vr;
         const double value = atof(eq + 1);
         const fmi2Integer int_value = (fmi2Integer)value;
-        if ((var->type == FMU_REAL ? f.set_real(c, &vr, 1, &value) : f.set_int(c, &vr, 1, &int_value)) != fmi2OK) {
+        if ((var->type == FMU_REAL ? set_reals(&u, &vr, 1, &value) : set_ints(&u, &vr, 1, &int_value)) != fmi2OK) {
             fprintf(stderr, "fmu_bench: --set %s refused\n", sets[i]);
             return 2;
         }
     }
     double q[18];
     pose_at(&sc, 0.0, q);
-    int ok = f.set_int(c, ivr, 4, ival) == fmi2OK && f.set_real(c, &tol_vr, 1, &tolerance) == fmi2OK &&
-             f.set_real(c, in_vr, 18, q) == fmi2OK && f.setup(c, fmi2False, 0, 0, fmi2False, 0) == fmi2OK &&
-             f.enter(c) == fmi2OK && f.exit_init(c) <= fmi2Warning;
+    int ok = set_ints(&u, ivr, 4, ival) == fmi2OK && set_reals(&u, &tol_vr, 1, &tolerance) == fmi2OK &&
+             set_reals(&u, in_vr, 18, q) == fmi2OK && initialise(&u);
     if (!ok) {
         fprintf(stderr, "fmu_bench: initialisation failed\n");
-        f.free_instance(c);
+        unit_free(&u);
         return 1;
     }
     FILE *out = out_path ? fopen(out_path, "w") : NULL;
@@ -134,14 +220,14 @@ int main(int argc, char **argv) {
     for (long j = 0; j < steps; ++j) {
         const double t = j * h;
         pose_at(&sc, t, q);
-        f.set_real(c, in_vr, derivatives ? 18 : 6, q);
+        set_reals(&u, in_vr, derivatives ? 18 : 6, q);
         const double t0 = now_us();
-        const fmi2Status s = f.do_step(c, t, h, fmi2True);
+        const int s = do_step(&u, t, h);
         t_step[j] = now_us() - t0;
         failed += s > fmi2Warning;
-        f.get_real(c, out_vr, 24, y);
+        get_reals(&u, out_vr, 24, y);
         fmi2Integer iv[2];
-        f.get_int(c, int_out, 2, iv);
+        get_ints(&u, int_out, 2, iv);
         iterations += iv[0];
         if (out) {
             fprintf(out, "%.17g", (j + 1) * h);
@@ -154,7 +240,7 @@ int main(int argc, char **argv) {
            t_step[steps / 2], t_step[steps * 9 / 10], (double)iterations / steps, steps, failed);
     free(t_step);
     if (out) fclose(out);
-    f.free_instance(c);
+    unit_free(&u);
     dlclose(lib);
     return failed ? 1 : 0;
 }

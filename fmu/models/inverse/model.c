@@ -170,8 +170,9 @@ static int taylor_mode(const fmu_values *v) {
  * poses at earlier communication points (quadratic through the last three poses; with only one
  * earlier pose, the chord through both and zero acceleration; none: at rest). Assuming rest at the
  * first point instead would give a motion already under way an acceleration 2 v / h: unbounded as
- * h shrinks. */
-static void current_pose(const fmu_values *v, double time, stewart_pose *pose) {
+ * h shrinks. restrict: pose is not part of v, so the compiler takes the coordinates two at a
+ * time. */
+static void current_pose(const fmu_values *restrict v, double time, stewart_pose *restrict pose) {
     const model_values *m = &v->model;
     for (int i = 0; i < 6; ++i) pose->q[i] = v->real[VR_x + i];
     if (taylor_mode(v)) {
@@ -235,6 +236,23 @@ static fmu_status not_solved(fmu_values *v, fmu_status s) {
     v->outputs_current = 1;
     v->model.solve_status = s;
     return s;
+}
+
+/* Discard naming the first input that is not finite if there is one (FMU_OK if none). The runtime
+ * flags a value set that is not finite (inputs_unchecked), so the step looks only then; finite
+ * inputs advanced along their Taylor expansion can still overflow, which the library refuses,
+ * and its refusal looks again. */
+static fmu_status check_inputs(fmu_instance *inst, double time) {
+    fmu_values *v = &inst->v;
+    const int bad = first_nonfinite_input(v);
+    if (bad < 0) {
+        v->inputs_unchecked = 0;
+        return FMU_OK;
+    }
+    fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+            "t = %.17g: input %s = %g is not finite; outputs keep their last valid values",
+            time, fmu_variable_by_vr((unsigned)bad)->name, v->real[bad]);
+    return not_solved(v, FMU_DISCARD);
 }
 
 /* A pose coordinate beyond this cannot be told from overflow in a difference quotient (its
@@ -311,60 +329,80 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
     return fs;
 }
 
+/* The library's refusal of the pose at `time`: Discard or Error, logged. */
+static fmu_status not_solved_by_library(fmu_instance *inst, double time, const stewart_pose *pose,
+                                        stewart_status s) {
+    const fmu_status fs = map_solve_error(s);
+    fmu_log(inst, fs, fs == FMU_DISCARD ? LOG_DISCARD : LOG_ERROR,
+            "t = %.17g: pose (x, y, z, roll, pitch, yaw) = (%g, %g, %g, %g, %g, %g) not solved "
+            "(%s): %s; outputs keep their last valid values",
+            time, pose->q[0], pose->q[1], pose->q[2], pose->q[3], pose->q[4], pose->q[5],
+            stewart_status_name(s), stewart_inverse_message(inst->res.inverse));
+    return not_solved(&inst->v, fs);
+}
+
+/* The status output and the warnings of a solved pose at `time` (its outputs written). */
+FMU_RARE_PATH static fmu_status warnings_of(fmu_instance *inst, double time, const stewart_pose *pose,
+                              const stewart_inverse_output *out) {
+    fmu_values *v = &inst->v;
+    const model_resources *r = &inst->res;
+    fmu_status fs = FMU_OK;
+    int status = 0;
+    if (out->warnings & STEWART_WARN_STROKE) {
+        status = 1;
+        fs = FMU_WARNING;
+        warn_stroke(inst, time, out);
+    }
+    if (out->warnings & STEWART_WARN_NEAR_SINGULAR) {
+        status = 2;
+        fs = FMU_WARNING;
+        fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                "t = %.17g: near singular pose: condition = %g > warn_condition = %g", time,
+                out->condition, r->options.warn_condition);
+    }
+    if (v->integer[VR_limit_outputs] && limit_outputs(inst, time, pose->q) == FMU_WARNING)
+        fs = FMU_WARNING;
+    v->integer[VR_status] = status;
+    v->model.solve_status = fs;
+    return fs;
+}
+
+/* The outputs, status and warnings of a solved pose at `time`; short when there is nothing to
+ * warn of or check (the step's usual case, so that the compiler inlines it). */
+static fmu_status solved(fmu_instance *inst, double time, const stewart_pose *pose,
+                         const stewart_inverse_output *out) {
+    fmu_values *v = &inst->v;
+    outputs_to_values(v, out);
+    v->outputs_current = 1;
+    if (out->warnings || v->integer[VR_limit_outputs]) return warnings_of(inst, time, pose, out);
+    v->integer[VR_status] = 0;
+    v->model.solve_status = FMU_OK;
+    return FMU_OK;
+}
+
 /* Solves for the current inputs at `time` unless the outputs already belong to them. OK /
  * Warning (status 1 or 2) / Discard (status 3, outputs keep their last valid values) / Error
  * (unsupported fidelity, memory). */
 static fmu_status solve_at(fmu_instance *inst, double time) {
     fmu_values *v = &inst->v;
-    model_resources *r = &inst->res;
     if (v->outputs_current) return v->model.solve_status;
     v->model.advance_discarded = 0;
     /* Every input must be finite, used or not. */
-    const int bad = first_nonfinite_input(v);
-    if (bad >= 0) {
-        fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
-                "t = %.17g: input %s = %g is not finite; outputs keep their last valid values",
-                time, fmu_variable_by_vr((unsigned)bad)->name, v->real[bad]);
-        return not_solved(v, FMU_DISCARD);
-    }
-    stewart_pose pose;
-    current_pose(v, time, &pose);
-    if (!taylor_mode(v))
-        for (int i = 0; i < 6; ++i)
-            if (!isfinite(pose.q_dot[i]) || !isfinite(pose.q_ddot[i]))
-                return discard_finite_differences(inst, time, &pose, i);
-    const stewart_inverse_input in = {pose};
+    if (v->inputs_unchecked && check_inputs(inst, time) != FMU_OK) return FMU_DISCARD;
+    stewart_inverse_input in;
+    current_pose(v, time, &in.pose);
     stewart_inverse_output out;
-    const stewart_status s = stewart_inverse_solve(r->inverse, &in, &out);
+    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, &out);
     if (s != STEWART_OK) {
-        const fmu_status fs = map_solve_error(s);
-        fmu_log(inst, fs, fs == FMU_DISCARD ? LOG_DISCARD : LOG_ERROR,
-                "t = %.17g: pose (x, y, z, roll, pitch, yaw) = (%g, %g, %g, %g, %g, %g) not solved "
-                "(%s): %s; outputs keep their last valid values",
-                time, pose.q[0], pose.q[1], pose.q[2], pose.q[3], pose.q[4], pose.q[5],
-                stewart_status_name(s), stewart_inverse_message(r->inverse));
-        return not_solved(v, fs);
+        /* Finite differences that are not finite: the library refuses them before any work (it
+         * checks its pose first), so they are looked for only now, and named as the FMU's. */
+        if (!taylor_mode(v))
+            for (int i = 0; i < 6; ++i)
+                if (!isfinite(in.pose.q_dot[i]) || !isfinite(in.pose.q_ddot[i]))
+                    return discard_finite_differences(inst, time, &in.pose, i);
+        return not_solved_by_library(inst, time, &in.pose, s);
     }
-    outputs_to_values(v, &out);
-    v->outputs_current = 1;
-    fmu_status fs = FMU_OK;
-    int status = 0;
-    if (out.warnings & STEWART_WARN_STROKE) {
-        status = 1;
-        fs = FMU_WARNING;
-        warn_stroke(inst, time, &out);
-    }
-    if (out.warnings & STEWART_WARN_NEAR_SINGULAR) {
-        status = 2;
-        fs = FMU_WARNING;
-        fmu_log(inst, FMU_WARNING, LOG_WARNING,
-                "t = %.17g: near singular pose: condition = %g > warn_condition = %g", time,
-                out.condition, r->options.warn_condition);
-    }
-    if (limit_outputs(inst, time, pose.q) == FMU_WARNING) fs = FMU_WARNING;
-    v->integer[VR_status] = status;
-    v->model.solve_status = fs;
-    return fs;
+    return solved(inst, time, &in.pose, &out);
 }
 
 fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, inst->v.time); }
@@ -380,6 +418,38 @@ static void commit_pose(model_values *m, double t, const double q[6]) {
     if (m->n_history < 2) ++m->n_history;
 }
 
+/* The Taylor advance of the inputs at t to t + h: the pose, its rates (the accelerations held). */
+static void advance_pose(const fmu_values *v, double h, stewart_pose *pose) {
+    for (int i = 0; i < 6; ++i) {
+        const double q = v->real[VR_x + i], qd = v->real[VR_x_dot + i],
+                     qdd = v->real[VR_x_ddot + i];
+        pose->q[i] = q + h * (qd + 0.5 * h * qdd);
+        pose->q_dot[i] = qd + h * qdd;
+        pose->q_ddot[i] = qdd;
+    }
+}
+
+/* The advanced pose becomes the inputs (what the outputs of t + h belong to). */
+static void store_advanced_inputs(fmu_values *v, const stewart_pose *pose) {
+    memcpy(&v->real[VR_x], pose->q, sizeof pose->q);
+    memcpy(&v->real[VR_x_dot], pose->q_dot, sizeof pose->q_dot);
+}
+
+/* The library refused the advanced pose at t + h: an input that overflowed is named as the inputs
+ * at t + h (the master reads them), else the library's reason; the inputs go back to those of t
+ * (a failed solve leaves the outputs at their last valid values and sets status = 3). */
+static fmu_status advance_refused(fmu_instance *inst, double time, const stewart_pose *pose,
+                                  stewart_status s) {
+    fmu_values *v = &inst->v;
+    double at_t[12];
+    memcpy(at_t, &v->real[VR_x], sizeof at_t);
+    store_advanced_inputs(v, pose);
+    fmu_status fs = check_inputs(inst, time);
+    if (fs == FMU_OK) fs = not_solved_by_library(inst, time, pose, s);
+    memcpy(&v->real[VR_x], at_t, sizeof at_t);
+    return fs;
+}
+
 fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     fmu_values *v = &inst->v;
     model_values *m = &v->model;
@@ -389,8 +459,13 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     /* With a Taylor advance the solution at t itself is needed only if the master asked for it,
      * or if an input is not finite (that is reported against t). */
     const int advance = taylor_mode(v);
+    int bad_input = 0;
+    if (v->inputs_unchecked) {
+        bad_input = first_nonfinite_input(v) >= 0;
+        if (!bad_input) v->inputs_unchecked = 0;
+    }
     fmu_status s = FMU_OK;
-    if (!advance || v->outputs_current || first_nonfinite_input(v) >= 0) {
+    if (!advance || v->outputs_current || bad_input) {
         s = solve_at(inst, t);
         if (s == FMU_DISCARD || s == FMU_ERROR) return s;
     }
@@ -399,28 +474,25 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
         commit_pose(m, t, &v->real[VR_x]);
         return s;
     }
-    /* Advance the pose to t + h along its Taylor expansion; undo it on failure (a failed solve
-     * leaves the outputs at their last valid values and sets status = 3). */
-    double at_t[12];
-    memcpy(at_t, &v->real[VR_x], sizeof at_t);
-    for (int i = 0; i < 6; ++i) {
-        const double q = v->real[VR_x + i], qd = v->real[VR_x_dot + i],
-                     qdd = v->real[VR_x_ddot + i];
-        v->real[VR_x + i] = q + h * (qd + 0.5 * h * qdd);
-        v->real[VR_x_dot + i] = qd + h * qdd;
-    }
+    /* Advance the pose to t + h along its Taylor expansion and solve there; the inputs become the
+     * advanced ones only if solved (finite inputs: inputs_unchecked stays clear). */
     v->outputs_current = 0;
-    const fmu_status s2 = solve_at(inst, t + h);
-    if (s2 == FMU_DISCARD || s2 == FMU_ERROR) {
-        memcpy(&v->real[VR_x], at_t, sizeof at_t);
+    stewart_inverse_input in;
+    advance_pose(v, h, &in.pose);
+    stewart_inverse_output out;
+    const stewart_status ls = stewart_inverse_solve(inst->res.inverse, &in, &out);
+    if (ls != STEWART_OK) {
+        const fmu_status s2 = advance_refused(inst, t + h, &in.pose, ls);
         m->advance_discarded = 1; /* status 3 and the kept outputs stand until a step or a set */
         return s2;
     }
+    /* the pose at t joins the finite-difference history, which derivatives = 1 never reads */
+    if (v->integer[VR_derivatives] == 0) commit_pose(m, t, &v->real[VR_x]);
+    store_advanced_inputs(v, &in.pose);
     /* the derivatives given through fmi2SetRealInputDerivatives served this step only; the
      * outputs just computed used them, so they stay valid */
     m->input_derivatives = 0;
-    commit_pose(m, t, at_t);
-    return s2;
+    return solved(inst, t + h, &in.pose, &out);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
@@ -444,6 +516,7 @@ fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], 
     for (size_t i = 0; i < n; ++i) {
         const unsigned base = vr[i] <= VR_yaw ? vr[i] : vr[i] - VR_x_dot;
         v->real[(order[i] == 1 && vr[i] <= VR_yaw ? VR_x_dot : VR_x_ddot) + base] = value[i];
+        if (!isfinite(value[i])) v->inputs_unchecked = 1; /* the step looks at the inputs */
     }
     if (n > 0) v->model.input_derivatives = 1;
     return FMU_OK;

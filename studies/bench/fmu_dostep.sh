@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# The FMU doStep against the library call it wraps (issue 22: within 5 %), before and after in one
+# run: for FMI 2 and 3 and each fidelity, the StewartPlatform unit of a reference build
+# (studies/bench/reference.sh) and of this tree's build/ are driven by this tree's harness
+# (build/fmu_bench: set the inputs, doStep, read the outputs, along the combined cue's pose with
+# its derivatives, derivatives = 1) under callgrind, counting inside fmiXDoStep only. Per call it
+# prints the doStep's instructions, those of stewart_inverse_solve inside it (the same calls'
+# library work, so the difference is the FMU's own), the difference and its share of the call.
+# usage: studies/bench/fmu_dostep.sh [--commit C (415ec01)] [--calls N (2000)] [--derivatives D (1)]
+set -euo pipefail
+repo="$(cd "$(dirname "$0")/../.." && pwd)"
+commit=415ec01; calls=2000; derivatives=1
+while (($#)); do
+  case "$1" in
+    --commit) commit="$2"; shift 2 ;;
+    --calls) calls="$2"; shift 2 ;;
+    --derivatives) derivatives="$2"; shift 2 ;;
+    *) echo "fmu_dostep.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+ref="$(bash "$repo/studies/bench/reference.sh" "$commit")"
+nice -n 10 cmake --build "$repo/build" -j2 --target fmu_bench StewartPlatform_fmu2 \
+  StewartPlatform_fmu3 >&2
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+POSE="0,0.05,3,0.1,0,0.04,2,0.7,0.5,0.03,4,0.3,0,0.10,2.5,1.1,0,0.08,3.5,0.4,0,0.15,1.5,0.9"
+
+# "doStep library" instructions per call (inclusive) for build dir, FMI version, fidelity.
+counts() {
+  local b="$1" v="$2" fidelity="$3" file="$work/cg.out"
+  valgrind --tool=callgrind --toggle-collect="fmi${v}DoStep" --callgrind-out-file="$file" \
+    "$repo/build/fmu_bench" "$b/fmu/StewartPlatform/fmi$v/StewartPlatform.so" --fmi "$v" \
+    --fidelity "$fidelity" --derivatives "$derivatives" --step 0.001 \
+    --duration "$(echo "$calls / 1000" | bc -l)" --pose "$POSE" >/dev/null 2>&1
+  callgrind_annotate --inclusive=yes --threshold=100 "$file" 2>/dev/null | tr -d ',' | awk -v n="$calls" '
+    /:fmi[23]DoStep / && !d { d = $1 } /:stewart_inverse_solve / && !l { l = $1 }
+    END { printf "%d %d", d / n, l / n }'
+}
+
+echo "fmiXDoStep of StewartPlatform vs stewart_inverse_solve inside it: reference $commit vs this" \
+     "tree ($(git -C "$repo" log -1 --format=%h)$(git -C "$repo" diff --quiet HEAD || echo ', uncommitted changes'))"
+echo "$(date -u '+%Y-%m-%d %H:%M UTC'); callgrind, instructions per call over $calls calls," \
+     "derivatives = $derivatives"
+printf '%-4s %-10s | %9s %9s %7s %7s | %9s %9s %7s %7s\n' FMI fidelity "ref call" "ref lib" \
+  "ref +" "ref %" "now call" "now lib" "now +" "now %"
+for v in 2 3; do
+  for fidelity in 0 1 2; do
+    name=(kinematic massless full)
+    read -r rd rl <<<"$(counts "$ref/build" "$v" "$fidelity")"
+    read -r nd nl <<<"$(counts "$repo/build" "$v" "$fidelity")"
+    printf '%-4s %-10s | %9d %9d %7d %6.1f%% | %9d %9d %7d %6.1f%%\n' "$v" "${name[$fidelity]}" \
+      "$rd" "$rl" $((rd - rl)) "$(echo "100 * ($rd - $rl) / $rl" | bc -l)" \
+      "$nd" "$nl" $((nd - nl)) "$(echo "100 * ($nd - $nl) / $nl" | bc -l)"
+  done
+done
