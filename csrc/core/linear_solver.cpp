@@ -1,6 +1,7 @@
 #include "core/linear_solver.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <set>
 
@@ -333,7 +334,13 @@ public:
         for (size_t r = 0; r < run_from_.size(); ++r) {
             const double *from = values + run_from_[r];
             double *to = ws_.data() + run_to_[r];
-            for (int i = 0; i < run_length_[r]; ++i) to[i] = from[i];
+            if (run_length_[r] == MBS_BODY_COORDINATES) {  // the common run, unrolled
+                double row[MBS_BODY_COORDINATES];
+                std::memcpy(row, from, sizeof row);
+                std::memcpy(to, row, sizeof row);
+            } else {
+                for (int i = 0; i < run_length_[r]; ++i) to[i] = from[i];
+            }
         }
         for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
         const int nb = p_.border;
