@@ -116,6 +116,14 @@ inline void G_transpose_times(const double *p, const double *y, double out[4]) {
     out[3] = -p[2] * y[0] + p[1] * y[1] + p[0] * y[2];
 }
 
+// E(p)^T y (y: 3 values), written out: p_dot = E^T w / 2 for a world angular velocity w.
+inline void E_transpose_times(const double *p, const double *y, double out[4]) {
+    out[0] = -p[1] * y[0] - p[2] * y[1] - p[3] * y[2];
+    out[1] = p[0] * y[0] + p[3] * y[1] - p[2] * y[2];
+    out[2] = -p[3] * y[0] + p[0] * y[1] + p[1] * y[2];
+    out[3] = p[2] * y[0] - p[1] * y[1] + p[0] * y[2];
+}
+
 // E(p) = [-e, e0 I + skew(e)]: world angular velocity w = 2 E p_dot.
 inline Mat34 E_matrix(const double *p) {
     const Vec3 e(p[1], p[2], p[3]);

@@ -1,6 +1,7 @@
 #include "core/linear_solver.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <set>
 
@@ -299,9 +300,19 @@ public:
         coupling_from_.resize(p_.coupling_row.size());
         for (int t = 0; t < m.values(); ++t) {
             const int d = p_.value_dest[t];
-            // Identically zero values need no scatter: their places are cleared whole or never
-            // written by a program.
-            if (d >= 0 && p_.structural[t]) scatter_from_.push_back(t), scatter_to_.push_back(d);
+            // Values go as runs: a joint's row of one body's 7 values lands on 7 neighbouring
+            // places of its block. Identically zero values (e.g. in an identity) ride along: a
+            // zero lands where the block holds a zero already.
+            if (d >= 0) {
+                const bool extends = !run_from_.empty() &&
+                                     run_from_.back() + run_length_.back() == t &&
+                                     run_to_.back() + run_length_.back() == d;
+                if (extends) {
+                    ++run_length_.back();
+                } else {
+                    run_from_.push_back(t), run_to_.push_back(d), run_length_.push_back(1);
+                }
+            }
             if (d <= -2) coupling_from_[-2 - d] = t;
         }
     }
@@ -320,7 +331,17 @@ public:
             }
         }
         std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
-        for (size_t v = 0; v < scatter_from_.size(); ++v) ws_[scatter_to_[v]] = values[scatter_from_[v]];
+        for (size_t r = 0; r < run_from_.size(); ++r) {
+            const double *from = values + run_from_[r];
+            double *to = ws_.data() + run_to_[r];
+            if (run_length_[r] == MBS_BODY_COORDINATES) {  // the common run, unrolled
+                double row[MBS_BODY_COORDINATES];
+                std::memcpy(row, from, sizeof row);
+                std::memcpy(to, row, sizeof row);
+            } else {
+                for (int i = 0; i < run_length_[r]; ++i) to[i] = from[i];
+            }
+        }
         for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
@@ -445,7 +466,8 @@ private:
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
     std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
-    std::vector<int> scatter_from_, scatter_to_, coupling_from_;  // Jacobian value -> workspace
+    // Jacobian values -> workspace: runs of run_length_ values from run_from_ to run_to_.
+    std::vector<int> run_from_, run_to_, run_length_, coupling_from_;
 };
 
 }  // namespace

@@ -49,9 +49,11 @@ void put_body(mbs::State &s, int body, const Vec3 &r, const Eigen::Matrix3d &A) 
 void put_body_motion(mbs::State &s, int body, const Motion &b) {
     put_body(s, body, b.position, b.rotation);
     const double *p = mbs::body_p(s.q.data(), body);
-    const mbs::Mat34 E = mbs::E_matrix(p);
-    const Vec4 p_dot = 0.5 * E.transpose() * b.omega;
-    const Vec4 p_ddot = 0.5 * E.transpose() * b.alpha - p_dot.squaredNorm() * Vec4(p);
+    Vec4 p_dot, p_ddot;
+    mbs::E_transpose_times(p, b.omega.data(), p_dot.data());
+    mbs::E_transpose_times(p, b.alpha.data(), p_ddot.data());
+    p_dot *= 0.5;  // a power of two: exact
+    p_ddot = 0.5 * p_ddot - p_dot.squaredNorm() * Vec4(p);
     store_pose(mbs::body_r(s.q_dot.data(), body), b.velocity, p_dot);
     store_pose(mbs::body_r(s.q_ddot.data(), body), b.acceleration, p_ddot);
 }
@@ -284,8 +286,17 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_inve
     const mbs_status st = mbs::solve_step_known_motion(s, 0.0, so);
     if (st != MBS_OK) return set_message(msg, size, from_mbs(st), "full model: %s", s.message);
 
-    // Leg lengths and their rates from the solved bodies: the two Cardan centres.
+    // Leg lengths and their rates from the solved bodies: the two Cardan centres. If Newton did
+    // not move q, the bodies are the closed-form placement with the closed-form rates, whose
+    // Cardan centres are the legs' ends: the lengths are the closed form's (to rounding).
     for (int k = 0; k < STEWART_LEGS; ++k) {
+        out.force[k] = 0;
+        if (s.stats.iterations == 0) {
+            out.lengths.length[k] = si_legs.length[k];
+            out.lengths.length_rate[k] = si_legs.rate[k];
+            out.lengths.length_accel[k] = si_legs.accel[k];
+            continue;
+        }
         using mbs::body_r;
         const double *qc = body_r(s.q.data(), l.cylinder[k]), *qp = body_r(s.q.data(), l.piston[k]);
         const double *vc = body_r(s.q_dot.data(), l.cylinder[k]);
@@ -311,7 +322,6 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_inve
         out.lengths.length[k] = L * L0;
         out.lengths.length_rate[k] = L_dot * L0;
         out.lengths.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L * L0;
-        out.force[k] = 0;
     }
     if (l.drive == FullDrive::ActuatorLengths)
         for (int k = 0; k < STEWART_LEGS; ++k)

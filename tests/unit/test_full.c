@@ -32,6 +32,66 @@ static void expect_relative(double expected, double actual, double rel) {
     TEST_ASSERT_DOUBLE_WITHIN(rel * (1.0 + fabs(expected)), expected, actual);
 }
 
+/* w = 2 E(p) y for the Euler parameters p and y = p_dot (angular velocity) or p_ddot (its rate:
+ * E(p_dot) p_dot = 0), and A(p) u, written out here independently of the core. */
+static void world_rate(const double *p, const double *y, double w[3]) {
+    w[0] = 2 * (-p[1] * y[0] + p[0] * y[1] - p[3] * y[2] + p[2] * y[3]);
+    w[1] = 2 * (-p[2] * y[0] + p[3] * y[1] + p[0] * y[2] - p[1] * y[3]);
+    w[2] = 2 * (-p[3] * y[0] - p[2] * y[1] + p[1] * y[2] + p[0] * y[3]);
+}
+static void cross(const double a[3], const double b[3], double c[3]) {
+    c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2], c[2] = a[0] * b[1] - a[1] * b[0];
+}
+/* Position, velocity and acceleration of the point u (body frame) of body b. */
+static void body_point(const double *q, const double *v, const double *a, int b, const double u[3],
+                       double x[3], double xd[3], double xdd[3]) {
+    const double *r = q + MBS_BODY_R(b), *p = q + MBS_BODY_P(b);
+    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
+    const double A[3][3] = {
+        {e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3, 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2)},
+        {2 * (e1 * e2 + e0 * e3), e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3, 2 * (e2 * e3 - e0 * e1)},
+        {2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3}};
+    double s[3], w[3], alpha[3], ws[3], wws[3], as[3];
+    for (int i = 0; i < 3; ++i) s[i] = A[i][0] * u[0] + A[i][1] * u[1] + A[i][2] * u[2];
+    world_rate(p, v + MBS_BODY_P(b), w);
+    world_rate(p, a + MBS_BODY_P(b), alpha);
+    cross(w, s, ws);
+    cross(w, ws, wws);
+    cross(alpha, s, as);
+    for (int i = 0; i < 3; ++i) {
+        x[i] = r[i] + s[i];
+        xd[i] = v[MBS_BODY_R(b) + i] + ws[i];
+        xdd[i] = a[MBS_BODY_R(b) + i] + as[i] + wws[i];
+    }
+}
+
+/* The lengths, rates and accelerations the full level reports are those of its solved bodies:
+ * the distance between each leg's two Cardan centres (cylinder body 1 + k, its point
+ * (0, 0, -cylinder_com); piston body 7 + k, (0, 0, piston_com)), read from the core's state. */
+static void test_lengths_are_the_solved_bodies(void) {
+    const mbs_data *mech = stewart_inverse_mechanism(data);
+    const double L0 = stewart_model_length_unit(model);
+    for (int i = 0; i <= 120; i += 5) {
+        stewart_pose pose = combined_pose(0.1 * i);
+        stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
+        const double *q = mbs_q(mech), *v = mbs_q_dot(mech), *a = mbs_q_ddot(mech);
+        for (int k = 0; k < 6; ++k) {
+            const double uc[3] = {0, 0, -params.cylinder_com / L0}, up[3] = {0, 0, params.piston_com / L0};
+            double xc[3], vc[3], ac[3], xp[3], vp[3], ap[3], d[3], dd[3], ddd[3];
+            body_point(q, v, a, 1 + k, uc, xc, vc, ac);
+            body_point(q, v, a, 7 + k, up, xp, vp, ap);
+            for (int c = 0; c < 3; ++c) d[c] = xp[c] - xc[c], dd[c] = vp[c] - vc[c], ddd[c] = ap[c] - ac[c];
+            const double L = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            const double L_dot = (d[0] * dd[0] + d[1] * dd[1] + d[2] * dd[2]) / L;
+            const double L_ddot = (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2] +
+                                   d[0] * ddd[0] + d[1] * ddd[1] + d[2] * ddd[2] - L_dot * L_dot) / L;
+            expect_relative(L * L0, out.lengths.length[k], 1e-12);
+            expect_relative(L_dot * L0, out.lengths.length_rate[k], 1e-12);
+            expect_relative(L_ddot * L0, out.lengths.length_accel[k], 1e-12);
+        }
+    }
+}
+
 static void compare_with_massless(void) {
     for (int w = 2; w <= 6; ++w)
         for (int i = 0; i <= 120; i += 3) {
@@ -447,6 +507,7 @@ static void test_newton_capped_is_not_converged(void) {
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_lengths_match_closed_form);
+    RUN_TEST(test_lengths_are_the_solved_bodies);
     RUN_TEST(test_weightless_legs_equal_massless_level);
     RUN_TEST(test_weightless_legs_with_offset_payload);
     RUN_TEST(test_power_balance);
