@@ -4,12 +4,11 @@
 #pragma once
 
 #include "plant/plant_equations.hpp"
+#include "plant/plant_erk.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace stewart {
 namespace fd {
-
-constexpr int kStates = 13;
 
 // The six forces over one communication step [0, h]: linear between the end values, or cubic
 // Hermite when the end rates are known.
@@ -53,6 +52,9 @@ public:
     const stewart_plant_statistics &statistics() const { return stats_; }
 
 private:
+    // The end of a successful advance: whether the last evaluation is the step's end, the
+    // quaternion normalised, the state checked and copied to y.
+    stewart_status finish_step(double y[kStates], double h, char *msg, size_t size);
     IntegratorImpl *impl_ = nullptr;
     stewart_plant_statistics stats_{};
 };
