@@ -282,7 +282,7 @@ int collapsing_leg(const DynamicsModel &model, const double start[kStates],
 Integrator::~Integrator() { delete impl_; }
 
 bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o, char *msg,
-                      size_t size) {
+                      size_t size, bool written_out) {
     impl_ = new (std::nothrow) IntegratorImpl;
     if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
     IntegratorImpl &im = *impl_;
@@ -309,7 +309,7 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
         im.max_internal_steps = o.max_internal_steps;
         im.relative_tolerance = o.relative_tolerance;
         im.absolute_tolerance = o.absolute_tolerance;
-        im.by_hand = o.method == STEWART_PLANT_ERK &&
+        im.by_hand = written_out && o.method == STEWART_PLANT_ERK &&
                      load_erk_table(ARKODE_ZONNEVELD_5_3_4, im.table);
         if (!im.arkode)
             return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;

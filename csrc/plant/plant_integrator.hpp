@@ -34,9 +34,11 @@ public:
     Integrator(const Integrator &) = delete;
     Integrator &operator=(const Integrator &) = delete;
     ~Integrator();
-    // False (message says why) if SUNDIALS cannot be set up.
+    // False (message says why) if SUNDIALS cannot be set up. written_out: ERK 4(3) steps by
+    // plant_erk.hpp's copy of ARKODE's (the same bits), ARKODE only where it hands a step back;
+    // false: ARKODE alone (the reference of tests/unit/test_plant_erk.cpp).
     bool init(const DynamicsModel *model, const stewart_plant_options &options, char *msg,
-              size_t size);
+              size_t size, bool written_out = true);
     // Integrates y over [0, h]. On failure y is unchanged and the message names the cause
     // (the leg, or the integrator's flag and text). Normalises the quaternion of the result.
     // step_hint: the first internal step to try (0: the integrator estimates it); on success,
