@@ -1,6 +1,7 @@
 // Forward dynamics, time integration: CVODE or ARKODE on the 13 states (platform origin, unit
 // quaternion, velocity, angular velocity, world frame), restarted at every communication step
-// because the inputs change there.
+// because the inputs change there; ERK 4(3) by its written-out copy (plant_erk.hpp, the same
+// bits), ARKODE where the copy hands a step back.
 #pragma once
 
 #include "plant/plant_equations.hpp"
@@ -27,7 +28,7 @@ Motion motion_of_state(const double y[kStates]);
 
 struct IntegratorImpl;
 
-// One CVODE instance and its workspaces, made once; advance() allocates nothing.
+// One CVODE or ARKODE instance and its workspaces, made once; advance() allocates nothing.
 class Integrator {
 public:
     Integrator() = default;
