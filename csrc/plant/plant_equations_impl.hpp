@@ -123,7 +123,7 @@ template <class S>
     const Mat3T<S> I_platform =
         m.rotation * d.platform_inertia.template cast<S>() * m.rotation.transpose();
     const double mass = d.platform_mass;
-    if (with_mass) {
+    if (with_mass) {  // the four blocks fill M
         const Mat3T<S> c_cross = skew(c);
         M.template topLeftCorner<3, 3>() = mass * Mat3T<S>::Identity();
         M.template topRightCorner<3, 3>() = -mass * c_cross;
