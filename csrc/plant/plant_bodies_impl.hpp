@@ -52,6 +52,17 @@ void frame_rates(const Vec3T<S> &n, const AxisRates<S> &nr, const Vec3T<S> &s,
     alpha = n.cross(nr.n_ddot) + w_dot * n + w * nr.n_dot;
 }
 
+// R b for a column b of the model's 3 x 6 point sets, written out: the sums of Eigen's 3 x 3
+// product in its order (so the same bits), without the call and loop of its product kernel for
+// a block operand (1 k instructions per massless plant step).
+template <class S, class Column>
+[[gnu::always_inline]] inline Vec3T<S> rotate(const Mat3T<S> &R, const Column &b) {
+    const Vec3T<S> v = b.template cast<S>();
+    Vec3T<S> r;
+    for (int i = 0; i < 3; ++i) r[i] = R(i, 0) * v[0] + R(i, 1) * v[1] + R(i, 2) * v[2];
+    return r;
+}
+
 template <class S>
 Mat3T<S> leg_axes(const Vec3T<S> &x, const Vec3T<S> &n) {
     Mat3T<S> A;
@@ -66,14 +77,14 @@ Mat3T<S> leg_axes(const Vec3T<S> &x, const Vec3T<S> &n) {
 template <class S>
 LegFault leg_configuration(const LegParameters &p, int k, const Vec3T<S> &position,
                            const Mat3T<S> &rotation, LegConfigurationT<S> &c, bool frames) {
-    c.arm.noalias() = rotation * p.platform_points.col(k).template cast<S>();
+    c.arm = rotate(rotation, p.platform_points.col(k));
     const Vec3T<S> d = position + c.arm - p.base_points.col(k).template cast<S>();
     c.length = d.norm();
     if (!(c.length > p.min_length)) return LegFault::ZeroLength;
     c.inverse_length = 1.0 / c.length;
     c.n = d * c.inverse_length;
     if (!frames) return LegFault::None;
-    c.piston_arm.noalias() = rotation * p.platform_arm.col(k).template cast<S>();
+    c.piston_arm = rotate(rotation, p.platform_arm.col(k));
     const Vec3T<S> uc = p.base_arm.col(k).template cast<S>().cross(c.n),
                    up = c.piston_arm.cross(c.n);
     c.cylinder_sin = uc.norm();

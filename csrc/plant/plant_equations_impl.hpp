@@ -107,12 +107,13 @@ template <class S, class Force>
 
 // reduced_equations' body, and the platform's centre of mass c from its origin (world), inlined
 // into twist_rate: as a call, and with c computed twice, it cost the plant's step 1.5 % more
-// instructions at the massless fidelity.
+// instructions at the massless fidelity. with_mass false leaves M alone (twist_rate's massless
+// solve needs rhs and c only).
 template <class S>
 [[gnu::always_inline]] inline bool assemble(const DynamicsModel &d, const MotionT<S> &m,
                                             const S force[STEWART_LEGS], EvaluationT<S> &e,
-                                            Matrix66T<S> &M, Vector6T<S> &rhs, Vec3T<S> &c) {
-    M.setZero();
+                                            Matrix66T<S> &M, Vector6T<S> &rhs, Vec3T<S> &c,
+                                            bool with_mass = true) {
     rhs.setZero();
 
     // The platform (and payload), centre of mass at c from the platform origin: with
@@ -121,23 +122,29 @@ template <class S>
     c = m.rotation * d.platform_com.template cast<S>();
     const Mat3T<S> I_platform =
         m.rotation * d.platform_inertia.template cast<S>() * m.rotation.transpose();
-    const Mat3T<S> c_cross = skew(c);
     const double mass = d.platform_mass;
-    M.template topLeftCorner<3, 3>() = mass * Mat3T<S>::Identity();
-    M.template topRightCorner<3, 3>() = -mass * c_cross;
-    M.template bottomLeftCorner<3, 3>() = mass * c_cross;
-    M.template bottomRightCorner<3, 3>() = I_platform - mass * c_cross * c_cross;
+    if (with_mass) {  // the four blocks fill M
+        const Mat3T<S> c_cross = skew(c);
+        M.template topLeftCorner<3, 3>() = mass * Mat3T<S>::Identity();
+        M.template topRightCorner<3, 3>() = -mass * c_cross;
+        M.template bottomLeftCorner<3, 3>() = mass * c_cross;
+        M.template bottomRightCorner<3, 3>() = I_platform - mass * c_cross * c_cross;
+    }
     const Vec3T<S> f_platform =
         mass * (d.gravity.template cast<S>() - m.omega.cross(m.omega.cross(c)));
     rhs.template head<3>() = f_platform;
     rhs.template tail<3>() = c.cross(f_platform) - m.omega.cross(I_platform * m.omega);
 
+    if (!d.with_legs) {
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            if (!place_leg(d, m, k, force[k], e, rhs)) return false;
+        return true;
+    }
     MotionT<S> at_rest_rate = m;  // the twist, with zero twist rate: velocity products
     at_rest_rate.acceleration.setZero();
     at_rest_rate.alpha.setZero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
         if (!place_leg(d, m, k, force[k], e, rhs)) return false;
-        if (!d.with_legs) continue;
         const LegConfigurationT<S> &leg = e.legs[k];
         MotionT<S> cyl_bias, pis_bias;
         leg_body_motion(d.legs, k, leg, at_rest_rate, cyl_bias, pis_bias);
@@ -161,7 +168,7 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
     Matrix66T<S> M;
     Vector6T<S> rhs;
     Vec3T<S> c;
-    if (!assemble(d, m, force, e, M, rhs, c)) return false;
+    if (!assemble(d, m, force, e, M, rhs, c, d.with_legs)) return false;
     if (!d.with_legs) {
         const double mass = d.platform_mass;
         // One rigid body: I_c alpha = T - c x F (moments about the origin), a = F/m - alpha x c.

@@ -10,24 +10,44 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <type_traits>
 
+#include "core/sundials_holder.hpp"
+#include "plant/plant_erk.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
 namespace fd {
 
+// The fixed-point solver's free function (the shared holder has none for nonlinear solvers).
+struct NonlinearSolverFree {
+    void operator()(SUNNonlinearSolver s) const { SUNNonlinSolFree(s); }
+};
+
+// The SUNDIALS objects are freed in reverse order of declaration: the integrators first, the
+// context last.
 struct IntegratorImpl {
     const DynamicsModel *model = nullptr;
     const ForceProfile *forces = nullptr;
-    SUNContext context = nullptr;
-    N_Vector y = nullptr;
-    SUNMatrix matrix = nullptr;
-    SUNLinearSolver linear = nullptr;
-    SUNNonlinearSolver nonlinear = nullptr;
-    void *cvode = nullptr;
-    void *arkode = nullptr;  // ERKStep, for STEWART_PLANT_ERK and STEWART_PLANT_ERK5
+    mbs::sundials::Context context;
+    mbs::sundials::Vector y_holder;
+    N_Vector y = nullptr;  // y_holder's vector
+    mbs::sundials::Matrix matrix;
+    mbs::sundials::LinearSolver linear;
+    std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, NonlinearSolverFree> nonlinear;
+    mbs::sundials::Memory<CVodeFree> cvode_holder;
+    mbs::sundials::Memory<ERKStepFree> arkode_holder;
+    void *cvode = nullptr;   // cvode_holder's memory
+    void *arkode = nullptr;  // arkode_holder's: ERKStep, for STEWART_PLANT_ERK and _ERK5
     int erk_order = 0;
     int fixed_steps = 0;  // equal steps per communication step, or 0: adaptive
+    long max_internal_steps = 0;
+    // ERK 4(3) written out (plant_erk.hpp), ARKODE's when it hands a step back
+    bool by_hand = false;
+    ErkTable table;
+    ErkWork work;
+    double relative_tolerance = 0, absolute_tolerance = 0;
     double reference_angles[3] = {0, 0, 0};  // principal roll, pitch, yaw the pitch root follows
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
@@ -79,11 +99,9 @@ constexpr int kMaxRoots = 64;  // roots that are no crossing, per communication 
 
 // dy/dt: p_dot = v, e_dot = 1/2 (0, omega) * e (world-frame omega), (v, omega)_dot from the
 // reduced equations. 1 (recoverable: CVODE retries a shorter step) for a degenerate leg.
-int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, void *user) {
+int state_rate(double tau, const double *y, double *y_dot, void *user) {
     IntegratorImpl &im = *static_cast<IntegratorImpl *>(user);
     im.last_tau = -1;  // im.evaluation is overwritten below, even by an evaluation refused
-    const double *y = N_VGetArrayPointer(y_vector);
-    double *y_dot = N_VGetArrayPointer(y_dot_vector);
     const Motion m = motion_of_state(y);
     double force[STEWART_LEGS];
     im.forces->at(tau, force);
@@ -110,6 +128,11 @@ int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, v
     for (int i = 0; i < kStates; ++i) im.last_y[i] = y[i];
     for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = force[k];
     return 0;
+}
+
+// state_rate for the SUNDIALS integrators.
+int right_hand_side(sunrealtype tau, N_Vector y_vector, N_Vector y_dot_vector, void *user) {
+    return state_rate(tau, N_VGetArrayPointer(y_vector), N_VGetArrayPointer(y_dot_vector), user);
 }
 
 // N_VLinearCombination for the 13-state vectors: the serial vector's own arithmetic in the same
@@ -165,12 +188,17 @@ bool crosses_pitch_limit(const double before[3], const double after[3]) {
 // (the start of the step, or the last root that was no crossing). The principal pitch has
 // cos >= 0; where the other triple of the rotation is the nearer one, the continuous pitch is
 // beyond +-90 degrees and its cos is the negative: a sign change is a crossing.
-int pitch_root(sunrealtype, N_Vector y_vector, sunrealtype *g, void *user) {
+double pitch_function(const double *y, void *user) {
     const IntegratorImpl &im = *static_cast<const IntegratorImpl *>(user);
     double angles[3];
-    principal_angles(N_VGetArrayPointer(y_vector), angles);
+    principal_angles(y, angles);
     const double c = std::cos(angles[1]);
-    g[0] = crosses_pitch_limit(im.reference_angles, angles) ? -c : c;
+    return crosses_pitch_limit(im.reference_angles, angles) ? -c : c;
+}
+
+// pitch_function for the SUNDIALS integrators.
+int pitch_root(sunrealtype, N_Vector y_vector, sunrealtype *g, void *user) {
+    g[0] = pitch_function(N_VGetArrayPointer(y_vector), user);
     return 0;
 }
 
@@ -251,27 +279,18 @@ int collapsing_leg(const DynamicsModel &model, const double start[kStates],
 
 }  // namespace
 
-Integrator::~Integrator() {
-    if (!impl_) return;
-    IntegratorImpl &im = *impl_;
-    if (im.cvode) CVodeFree(&im.cvode);
-    if (im.arkode) ERKStepFree(&im.arkode);
-    if (im.nonlinear) SUNNonlinSolFree(im.nonlinear);
-    if (im.linear) SUNLinSolFree(im.linear);
-    if (im.matrix) SUNMatDestroy(im.matrix);
-    if (im.y) N_VDestroy(im.y);
-    if (im.context) SUNContext_Free(&im.context);
-    delete impl_;
-}
+Integrator::~Integrator() { delete impl_; }
 
 bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o, char *msg,
-                      size_t size) {
+                      size_t size, bool written_out) {
     impl_ = new (std::nothrow) IntegratorImpl;
     if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
     IntegratorImpl &im = *impl_;
     im.model = model;
-    if (SUNContext_Create(nullptr, &im.context) != 0 ||
-        !(im.y = N_VNew_Serial(kStates, im.context)))
+    im.context = mbs::sundials::make_context();
+    if (im.context) im.y_holder.reset(N_VNew_Serial(kStates, im.context.get()));
+    im.y = im.y_holder.get();
+    if (!im.y)
         return set_message(msg, size, STEWART_ERR_MEMORY, "SUNDIALS context or vector failed"),
                false;
     // Fused vector operations: one loop per linear combination in the Runge-Kutta stages.
@@ -283,9 +302,15 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     NV_Ith_S(im.y, 3) = 1.0;
     int flag;
     if (o.method == STEWART_PLANT_ERK || o.method == STEWART_PLANT_ERK5) {
-        im.arkode = ERKStepCreate(right_hand_side, 0.0, im.y, im.context);
+        im.arkode_holder.reset(ERKStepCreate(right_hand_side, 0.0, im.y, im.context.get()));
+        im.arkode = im.arkode_holder.get();
         im.erk_order = o.method == STEWART_PLANT_ERK ? 4 : 5;
         im.fixed_steps = o.fixed_steps;
+        im.max_internal_steps = o.max_internal_steps;
+        im.relative_tolerance = o.relative_tolerance;
+        im.absolute_tolerance = o.absolute_tolerance;
+        im.by_hand = written_out && o.method == STEWART_PLANT_ERK &&
+                     load_erk_table(ARKODE_ZONNEVELD_5_3_4, im.table);
         if (!im.arkode)
             return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
         if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
@@ -305,7 +330,8 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
         return true;
     }
     const bool bdf = o.method == STEWART_PLANT_BDF;
-    im.cvode = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, im.context);
+    im.cvode_holder.reset(CVodeCreate(bdf ? CV_BDF : CV_ADAMS, im.context.get()));
+    im.cvode = im.cvode_holder.get();
     if (!im.cvode) return set_message(msg, size, STEWART_ERR_MEMORY, "CVodeCreate failed"), false;
     if ((flag = CVodeSetErrHandlerFn(im.cvode, error_handler, &im)) != CV_SUCCESS ||
         (flag = CVodeInit(im.cvode, right_hand_side, 0.0, im.y)) != CV_SUCCESS ||
@@ -319,18 +345,20 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
                            flag_name(flag), im.cvode_message),
                false;
     if (bdf) {
-        im.matrix = SUNDenseMatrix(kStates, kStates, im.context);
-        im.linear = im.matrix ? SUNLinSol_Dense(im.y, im.matrix, im.context) : nullptr;
+        im.matrix.reset(SUNDenseMatrix(kStates, kStates, im.context.get()));
+        if (im.matrix)
+            im.linear.reset(SUNLinSol_Dense(im.y, im.matrix.get(), im.context.get()));
         if (!im.linear ||
-            (flag = CVodeSetLinearSolver(im.cvode, im.linear, im.matrix)) != CVLS_SUCCESS ||
+            (flag = CVodeSetLinearSolver(im.cvode, im.linear.get(), im.matrix.get())) !=
+                CVLS_SUCCESS ||
             (flag = CVodeSetJacFn(im.cvode, dense_jacobian)) != CVLS_SUCCESS)
             return set_message(msg, size, STEWART_ERR_MEMORY,
                                "CVODE dense linear solver setup failed"),
                    false;
     } else {
-        im.nonlinear = SUNNonlinSol_FixedPoint(im.y, 0, im.context);
+        im.nonlinear.reset(SUNNonlinSol_FixedPoint(im.y, 0, im.context.get()));
         if (!im.nonlinear ||
-            (flag = CVodeSetNonlinearSolver(im.cvode, im.nonlinear)) != CV_SUCCESS)
+            (flag = CVodeSetNonlinearSolver(im.cvode, im.nonlinear.get())) != CV_SUCCESS)
             return set_message(msg, size, STEWART_ERR_MEMORY,
                                "CVODE fixed-point solver setup failed"),
                    false;
@@ -370,6 +398,32 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
         const double first = im.fixed_steps > 0 ? forces.h / im.fixed_steps
                              : step_hint > 0 && step_hint < forces.h ? step_hint
                                                                      : forces.h;
+        if (im.by_hand) {
+            // ARKODE's step written out: the same bits, or nothing done (then ARKODE)
+            ErkControl control;
+            control.fixed_steps = im.fixed_steps;
+            control.first_step = first;
+            control.relative_tolerance = im.relative_tolerance;
+            control.absolute_tolerance = im.absolute_tolerance;
+            control.max_steps = im.max_internal_steps;
+            const ErkResult r =
+                erk_advance(im.table, control, im.work, forces.h, y,
+                            std::cos(im.reference_angles[1]), state_rate, pitch_function, &im, v);
+            if (r.done) {
+                stats_.steps = r.steps;
+                stats_.rhs_evaluations = r.rhs_evaluations;
+                stats_.error_test_failures = r.error_test_failures;
+                stats_.last_step_size = r.last_step;
+                stats_.last_order = im.erk_order;
+                step_hint = r.next_step;
+                return finish_step(y, forces.h, msg, size);
+            }
+            im.fault = LegFault::None;  // ARKODE repeats the step and says what failed
+            im.fault_leg = -1;
+            im.non_finite = false;
+            im.last_tau = -1;
+            for (int i = 0; i < kStates; ++i) v[i] = y[i];
+        }
         if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
             (flag = ERKStepSetStopTime(im.arkode, forces.h)) != ARK_SUCCESS ||
             (flag = im.fixed_steps > 0 ? ERKStepSetFixedStep(im.arkode, first)
@@ -454,8 +508,15 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "%s stopped at t + %g s, short of the step's end h = %g s", module,
                            static_cast<double>(t_reached), forces.h);
+    return finish_step(y, forces.h, msg, size);
+}
+
+stewart_status Integrator::finish_step(double y[kStates], double h, char *msg, size_t size) {
+    IntegratorImpl &im = *impl_;
+    const double *v = N_VGetArrayPointer(im.y);
+    const ForceProfile &forces = *im.forces;
     // Whether the last evaluation was at exactly the state returned, the end time and forces.
-    im.end_valid = im.last_tau == forces.h;
+    im.end_valid = im.last_tau == h;
     for (int i = 0; i < kStates && im.end_valid; ++i) im.end_valid = im.last_y[i] == v[i];
     for (int k = 0; k < STEWART_LEGS && im.end_valid; ++k)
         im.end_valid = im.last_force[k] == forces.end[k];

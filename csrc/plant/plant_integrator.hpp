@@ -1,15 +1,15 @@
 // Forward dynamics, time integration: CVODE or ARKODE on the 13 states (platform origin, unit
 // quaternion, velocity, angular velocity, world frame), restarted at every communication step
-// because the inputs change there.
+// because the inputs change there; ERK 4(3) by its written-out copy (plant_erk.hpp, the same
+// bits), ARKODE where the copy hands a step back.
 #pragma once
 
 #include "plant/plant_equations.hpp"
+#include "plant/plant_erk.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace stewart {
 namespace fd {
-
-constexpr int kStates = 13;
 
 // The six forces over one communication step [0, h]: linear between the end values, or cubic
 // Hermite when the end rates are known.
@@ -28,16 +28,18 @@ Motion motion_of_state(const double y[kStates]);
 
 struct IntegratorImpl;
 
-// One CVODE instance and its workspaces, made once; advance() allocates nothing.
+// One CVODE or ARKODE instance and its workspaces, made once; advance() allocates nothing.
 class Integrator {
 public:
     Integrator() = default;
     Integrator(const Integrator &) = delete;
     Integrator &operator=(const Integrator &) = delete;
     ~Integrator();
-    // False (message says why) if SUNDIALS cannot be set up.
+    // False (message says why) if SUNDIALS cannot be set up. written_out: ERK 4(3) steps by
+    // plant_erk.hpp's copy of ARKODE's (the same bits), ARKODE only where it hands a step back;
+    // false: ARKODE alone (the reference of tests/unit/test_plant_erk.cpp).
     bool init(const DynamicsModel *model, const stewart_plant_options &options, char *msg,
-              size_t size);
+              size_t size, bool written_out = true);
     // Integrates y over [0, h]. On failure y is unchanged and the message names the cause
     // (the leg, or the integrator's flag and text). Normalises the quaternion of the result.
     // step_hint: the first internal step to try (0: the integrator estimates it); on success,
@@ -53,6 +55,9 @@ public:
     const stewart_plant_statistics &statistics() const { return stats_; }
 
 private:
+    // The end of a successful advance: whether the last evaluation is the step's end, the
+    // quaternion normalised, the state checked and copied to y.
+    stewart_status finish_step(double y[kStates], double h, char *msg, size_t size);
     IntegratorImpl *impl_ = nullptr;
     stewart_plant_statistics stats_{};
 };

@@ -37,7 +37,8 @@ typedef struct stewart_plant_options {
     long max_internal_steps; /* CVODE steps allowed within one communication step; 10000 */
     int fixed_steps;         /* 0: adaptive steps (the tolerances); N in 1..1000: N equal steps of
                                 the explicit Runge-Kutta method per communication step, no error
-                                control (a fixed amount of work: ERK and ERK5 only); 0 */
+                                control (a fixed amount of work, ERK and ERK5 only: 5N + 1
+                                right-hand sides per step with ERK, 6N + 2 with ERK5); 0 */
 } stewart_plant_options;
 
 /* Integrator counters: of the last step, and summed since the plant was created or reset. */

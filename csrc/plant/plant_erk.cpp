@@ -1,0 +1,215 @@
+// ARKODE 6.4's ERKStep, step by step (arkInitialSetup, arkEvolve, erkStep_TakeStep,
+// erkStep_ComputeSolutions, arkCheckTemporalError, arkAdapt with the PI controller ERKStep sets,
+// arkCompleteStep, arkRootCheck3, arkGetDky with the cubic Hermite interpolant): each linear
+// combination below is the vector operation ARKODE calls there, with its operands in ARKODE's
+// order, and each scalar formula is ARKODE's, so every rounding is the same.
+#include "plant/plant_erk.hpp"
+
+#include <cstdio>  // arkode_butcher.h uses FILE without including it
+
+#include <arkode/arkode_butcher_erk.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+namespace stewart {
+namespace fd {
+
+namespace {
+
+constexpr double kUnitRoundoff = DBL_EPSILON;  // SUNDIALS' UNIT_ROUNDOFF for double
+constexpr double kFuzzFactor = 100.0;          // FUZZ_FACTOR
+constexpr double kOneMinus = 0.999999, kOnePlus = 1.000001;  // ONEMSM, ONEPSM
+constexpr double kTiny = 1e-10;                // TINY
+// ERKStep's step-size control: ERKStepSetDefaults over arkSetDefaults (arkode_adapt_impl.h)
+constexpr double kBias = 1.2, kSafety = 0.99, kGrowth = 25.0, kPiK1 = 0.8, kPiK2 = 0.31;
+constexpr double kEtaFirst = 10000.0, kEtaErrorFail = 0.3, kEtaMin = 0.1, kCfl = 0.5;
+constexpr double kFixedLower = 1.0, kFixedUpper = 1.5;  // no change of h within these ratios
+constexpr int kSmallErrorFails = 2, kMaxErrorFails = 7;
+
+// z = c[0] x[0] + c[1] x[1] + ... (left to right), then + y if given: N_VLinearCombination with
+// a last vector y at coefficient 1, as ERKStep forms stages and solutions (the serial vector's
+// loop for three or more vectors; for two it is N_VLinearSum's a x + y, the same operations).
+void combine(int count, const double *c, const double (*x)[kStates], const double *y,
+             double *z) {
+    for (int j = 0; j < kStates; ++j) z[j] = c[0] * x[0][j];
+    for (int i = 1; i < count; ++i)
+        for (int j = 0; j < kStates; ++j) z[j] += c[i] * x[i][j];
+    if (y)
+        for (int j = 0; j < kStates; ++j) z[j] += 1.0 * y[j];
+}
+
+// arkEwtSetSS: 1 / (rtol |y| + atol).
+void error_weights(const ErkControl &control, const double *y, double *w) {
+    for (int j = 0; j < kStates; ++j)
+        w[j] = 1.0 / (control.relative_tolerance * std::fabs(y[j]) + control.absolute_tolerance);
+}
+
+// N_VWrmsNorm_Serial.
+double wrms_norm(const double *x, const double *w) {
+    double sum = 0;
+    for (int j = 0; j < kStates; ++j) {
+        const double p = x[j] * w[j];
+        sum += p * p;
+    }
+    const double mean = sum / kStates;
+    return mean <= 0 ? 0.0 : std::sqrt(mean);
+}
+
+// SUNRpowerR.
+double power(double base, double exponent) { return base <= 0 ? 0.0 : std::pow(base, exponent); }
+
+// The step-size ratio arkAdapt proposes after a step of h with error dsm (ERKStep's PI
+// controller, no stability limit, no hmin or hmax).
+double adapt_ratio(const ErkTable &table, double h, double dsm, double error_history,
+                   double eta_max) {
+    const double ecur = kBias * dsm;
+    const double k1 = -kPiK1 / table.embedding_order, k2 = kPiK2 / table.embedding_order;
+    const double e1 = std::max(ecur, kTiny), e2 = std::max(error_history, kTiny);
+    double h_acc = h * power(e1, k1) * power(e2, k2);
+    const double direction = h / std::fabs(h);
+    double h_cfl = 1.0e30 * std::fabs(h);  // arkExpStab gives 0: no stability limit
+    h_acc *= kSafety;
+    h_cfl *= kCfl * direction;
+    h_acc = direction * std::min(std::fabs(h_acc), std::fabs(eta_max * h));
+    h_acc = direction * std::max(std::fabs(h_acc), std::fabs(kEtaMin * h));
+    h_acc = direction * std::min(std::fabs(h_acc), std::fabs(h_cfl));
+    if (dsm <= 1.0 && std::fabs(h_acc) > std::fabs(h * kFixedLower * kOneMinus) &&
+        std::fabs(h_acc) < std::fabs(h * kFixedUpper * kOnePlus))
+        h_acc = h;
+    double eta = h_acc / h;
+    eta = std::max(eta, 0.0 / std::fabs(h));                 // hmin = 0
+    eta /= std::max(1.0, std::fabs(h) * 0.0 * eta);         // hmax_inv = 0
+    return eta;
+}
+
+}  // namespace
+
+bool load_erk_table(int table_number, ErkTable &table) {
+    ARKodeButcherTable B = ARKodeButcherTable_LoadERK(static_cast<ARKODE_ERKTableID>(table_number));
+    if (!B) return false;
+    const bool fits = B->stages >= 2 && B->stages <= kMaxErkStages && B->d && B->p > 0 &&
+                      std::fabs(B->c[B->stages - 1] - 1.0) > 1e-14;  // erkStep_FullRHS's TINY
+    if (fits) {
+        table.stages = B->stages;
+        table.embedding_order = B->p;
+        for (int i = 0; i < B->stages; ++i) {
+            table.b[i] = B->b[i];
+            table.d[i] = B->d[i];
+            table.c[i] = B->c[i];
+            for (int j = 0; j < B->stages; ++j) table.A[i][j] = B->A[i][j];
+        }
+    }
+    ARKodeButcherTable_Free(B);
+    return fits;
+}
+
+ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &w,
+                      double h_comm, const double y0[kStates], double g_start, ErkRhs rhs,
+                      ErkRoot root, void *user, double y_out[kStates]) {
+    ErkResult r;
+    const bool fixed = control.fixed_steps > 0;
+    const double h_in = fixed ? h_comm / control.fixed_steps : control.first_step;
+    // arkRootCheck1: a zero of g at the start is ARKODE's to handle.
+    if (!(g_start > 0) || !(h_in > 0)) return r;
+    const int s = table.stages;
+    const double t_stop = h_comm, t_out = h_comm, stop_factor = 1.0 - 4.0 * kUnitRoundoff;
+    for (int j = 0; j < kStates; ++j) w.yn[j] = y0[j];
+    // arkInitialSetup: the full right-hand side at the start into F[0] (and fn, the same
+    // values); the first step, limited so as not to overtake the stop time
+    if (rhs(0.0, w.yn, w.F[0], user) != 0) return r;
+    ++r.rhs_evaluations;
+    double tn = 0, h = h_in;
+    if ((tn + h - t_stop) * h > 0) h = (t_stop - tn) * stop_factor;
+    double eta = 1.0, h_prime = h, eta_max = kEtaFirst, error_history = 1.0;
+    double c[kMaxErkStages];
+    for (;;) {
+        if (r.steps >= control.max_steps) return r;  // ARK_TOO_MUCH_WORK: ARKODE says so
+        if (fixed) {
+            h = h_in;
+            if ((tn + h - t_stop) * h > 0) h = (t_stop - tn) * stop_factor;
+        } else {
+            if (h_prime != h) h = h * eta;
+            error_weights(control, w.yn, w.weight);
+        }
+        double dsm = 0;
+        for (int error_fails = 0;;) {
+            // erkStep_TakeStep: stages 1..s-1
+            for (int is = 1; is < s; ++is) {
+                const double t_stage = tn + table.c[is] * h;
+                for (int js = 0; js < is; ++js) c[js] = h * table.A[is][js];
+                combine(is, c, w.F, w.yn, w.ycur);
+                if (rhs(t_stage, w.ycur, w.F[is], user) != 0) return r;
+                ++r.rhs_evaluations;
+            }
+            // erkStep_ComputeSolutions: the solution, and the error estimate when adaptive
+            for (int j = 0; j < s; ++j) c[j] = h * table.b[j];
+            combine(s, c, w.F, w.yn, w.ycur);
+            if (fixed) break;  // arkEvolve: eta = 1, no error test
+            for (int j = 0; j < s; ++j) c[j] = h * (table.b[j] - table.d[j]);
+            combine(s, c, w.F, nullptr, w.error);
+            dsm = wrms_norm(w.error, w.weight);
+            // arkCheckTemporalError, then arkEvolve's bounds on eta
+            eta = adapt_ratio(table, h, dsm, error_history, eta_max);
+            if (!(dsm <= 1.0)) {  // ARKODE's test: a NaN estimate fails too
+                ++r.error_test_failures;
+                if (++error_fails == kMaxErrorFails) return r;  // ARK_ERR_FAILURE
+                eta_max = 1.0;
+                if (error_fails >= kSmallErrorFails) eta = std::min(eta, kEtaErrorFail);
+            }
+            eta = std::min(eta, eta_max);
+            eta = std::max(eta, 0.0 / std::fabs(h));
+            eta /= std::max(1.0, std::fabs(h) * 0.0 * eta);
+            if (dsm <= 1.0) break;
+            h *= eta;
+            h_prime = h;
+        }
+        // arkCompleteStep: the time, snapped to the stop time within roundoff; the interpolant
+        // keeps the step's start; the end evaluation (the last stage is not at the end)
+        double t_cur = tn + h;
+        const double roundoff = kFuzzFactor * kUnitRoundoff * (std::fabs(t_cur) + std::fabs(h));
+        if (std::fabs(t_cur - t_stop) <= roundoff) t_cur = t_stop;
+        for (int j = 0; j < kStates; ++j) {
+            w.yold[j] = w.yn[j];
+            w.fold[j] = w.F[0][j];
+        }
+        if (rhs(t_cur, w.ycur, w.F[0], user) != 0) return r;
+        ++r.rhs_evaluations;
+        for (int j = 0; j < kStates; ++j) w.yn[j] = w.ycur[j];
+        error_history = dsm * kBias;
+        ++r.steps;
+        tn = t_cur;
+        r.last_step = h;
+        h_prime = h * (fixed ? 1.0 : eta);
+        eta_max = kGrowth;
+        // arkRootCheck3: g at the new state; a sign change or zero is a root, ARKODE's to locate
+        if (!(root(w.yn, user) > 0)) return r;
+        if ((t_cur - t_out) * h >= 0) break;  // tout reached
+        // the stop-time test after a step; the snap above makes its first branch unreachable
+        if (std::fabs(t_cur - t_stop) <= roundoff) return r;
+        if ((t_cur + h_prime - t_stop) * h > 0) {
+            h_prime = (t_stop - t_cur) * stop_factor;
+            eta = h_prime / h;
+        }
+        if (fixed) eta = 1.0;
+    }
+    r.next_step = h_prime;
+    // arkGetDky(tout): the cubic Hermite interpolant between the last step's ends
+    // (a = (0, 1, 0, 0) at tout = tcur), as N_VLinearCombination of (yold, ynew, fold, fnew)
+    const double tau = (t_out - tn) / h, tau2 = tau * tau, tau3 = tau * tau2;
+    const double a0 = 3.0 * tau2 + 2.0 * tau3, a1 = 1.0 - 3.0 * tau2 - 2.0 * tau3,
+                 a2 = h * (tau2 + tau3), a3 = h * (tau + 2.0 * tau2 + tau3);
+    for (int j = 0; j < kStates; ++j) {
+        double z = a0 * w.yold[j];
+        z += a1 * w.yn[j];
+        z += a2 * w.fold[j];
+        z += a3 * w.F[0][j];
+        y_out[j] = z;
+    }
+    r.done = true;
+    return r;
+}
+
+}  // namespace fd
+}  // namespace stewart
