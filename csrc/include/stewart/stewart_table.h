@@ -1,6 +1,6 @@
 /*
- * The parameter and option tables: one entry per field of stewart_params and
- * stewart_inverse_options,
+ * The parameter and option tables: one entry per field of stewart_params and of the options
+ * structs (stewart_inverse_options, stewart_forward_options, stewart_plant_options),
  * with its stable id, name, element count, unit, valid range, default and description. The
  * library's defaults, checks and setters are expanded from these lists, and the upper layers
  * (FMU variables and model descriptions, the CLI's --param, fuzz seeds, Python) iterate them
@@ -28,8 +28,10 @@
  * STEWART_PLANT_OPTION_TABLE(X) call
  *   X(id, name, type, unit, min, min_closed, max, max_closed, default, description)
  * once per field of stewart_inverse_options, stewart_forward_options and stewart_plant_options,
- * in declaration order; type is int, long or double. An option is one line here and its field in the struct (a static_assert
- * checks they match); defaults, checks, setters and lookup by name come from the table.
+ * in declaration order; type is int, long or double. An option is one line here and its field
+ * in the struct (a static_assert checks they match); setters and lookup by name come from the
+ * table, and so do the inverse and forward defaults and checks (the plant keeps its own,
+ * which a test holds to the table).
  */
 #ifndef STEWART_STEWART_TABLE_H
 #define STEWART_STEWART_TABLE_H
@@ -271,8 +273,9 @@ typedef struct stewart_option_info {
 /* The options of the inverse solver (STEWART_OPTION_TABLE), of forward kinematics
  * (STEWART_FORWARD_OPTION_TABLE) and of the plant (STEWART_PLANT_OPTION_TABLE), the same calls
  * for each: how many; option i (declaration order) or NULL; option i's value in options (ints
- * converted exactly; 0 if out of range); set option i (STEWART_ERR_PARAMETER, options unchanged, if the value is outside its range or, for
- * an integer option, not a whole number); the option named `name`, or -1. */
+ * converted exactly; 0 if out of range); set option i (STEWART_ERR_PARAMETER, options
+ * unchanged, if the value is outside its range or, for an integer option, not a whole number);
+ * the option named `name`, or -1. */
 int stewart_inverse_option_count(void);
 const stewart_option_info *stewart_inverse_option(int i);
 double stewart_inverse_option_get(const stewart_inverse_options *options, int i);
