@@ -11,6 +11,7 @@
 #include "kinematics/pose_names.hpp"
 #include "cli/param_assignment.hpp"
 #include "stewart/stewart_plant.h"
+#include "stewart/stewart_table.h"
 
 namespace {
 
@@ -27,10 +28,12 @@ int usage(FILE *to) {
                  "start\n"
                  "           state x0 y0 z0 roll0 pitch0 yaw0, x_dot0 .. yaw_dot0 (default: at "
                  "rest at home),\n"
-                 "           or an integrator setting: relative_tolerance, absolute_tolerance,\n"
-                 "           max_internal_steps, method (0 CVODE Adams, 1 CVODE BDF with a dense\n"
-                 "           Jacobian, 2 ARKODE explicit Runge-Kutta 4(3): the default, 3 ARKODE\n"
-                 "           explicit Runge-Kutta 5(4))\n"
+                 "           or a plant option (the library's table; default in brackets):\n");
+    for (int i = 0; i < stewart_plant_option_count(); ++i) {
+        const stewart_option_info *o = stewart_plant_option(i);
+        std::fprintf(to, "             %s [%.17g]: %s\n", o->name, o->default_value, o->description);
+    }
+    std::fprintf(to,
                  "  IN.csv:  t,F1..F6 [s, N] (F_k > 0 pushes platform and base apart; linear in "
                  "time between rows)\n"
                  "  OUT.csv: t,x,y,z,roll,pitch,yaw,x_dot..yaw_dot,L1..L6,L_dot1..L_dot6,"
@@ -56,19 +59,13 @@ bool set_param(const char *assignment, Settings &s) {
         if (name == std::string(kPoseNames[i]) + "0") return s.pose[i] = value, true;
         if (name == std::string(kPoseNames[i]) + "_dot0") return s.rate[i] = value, true;
     }
-    if (name == "relative_tolerance") return s.options.relative_tolerance = value, true;
-    if (name == "absolute_tolerance") return s.options.absolute_tolerance = value, true;
-    const bool integer = value == std::floor(value) && std::fabs(value) < 1e15;
-    if (name == "max_internal_steps" || name == "method" || name == "fidelity") {
-        if (!integer) {
-            std::fprintf(stderr, "stewart-simulate: --param %s = %g must be an integer\n",
-                         name.c_str(), value);
-            return false;
-        }
-        if (name == "max_internal_steps") s.options.max_internal_steps = static_cast<long>(value);
-        else if (name == "method") s.options.method = static_cast<int>(value);
-        else s.options.fidelity = static_cast<int>(value);
-        return true;
+    const int option = stewart_plant_option_find(name.c_str());
+    if (option >= 0) {
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_plant_option_set(&s.options, option, value, message, sizeof message) == STEWART_OK)
+            return true;
+        std::fprintf(stderr, "stewart-simulate: --param %s\n", message);
+        return false;
     }
     return stewart::set_platform_param("stewart-simulate", name, value, s.params);
 }

@@ -15,12 +15,19 @@ using stewart::set_message;
 
 namespace {
 
-template <class T> constexpr int is_integer_type() { return std::is_same<T, int>::value ? 1 : 0; }
+// How an option is stored: a double, an int or a long (the plant's max_internal_steps).
+enum class Storage { real, int_, long_ };
+template <class T> constexpr Storage storage_of() {
+    return std::is_same<T, int>::value    ? Storage::int_
+           : std::is_same<T, long>::value ? Storage::long_
+                                          : Storage::real;
+}
+template <class T> constexpr int is_integer_type() { return storage_of<T>() != Storage::real; }
 
 // Where an option of a table lives in its struct.
 struct Field {
     size_t offset;
-    int is_integer;
+    Storage storage;
 };
 
 // A table expanded: the options' descriptions and places.
@@ -32,19 +39,25 @@ struct Table {
 
 #define INFO(id, name, type, unit, min, min_closed, max, max_closed, fallback, text)             \
     {id, #name, is_integer_type<type>(), unit, text, min, max, min_closed, max_closed, fallback},
-#define INVERSE_FIELD(id, name, type, ...) {offsetof(stewart_inverse_options, name), is_integer_type<type>()},
-#define FORWARD_FIELD(id, name, type, ...) {offsetof(stewart_forward_options, name), is_integer_type<type>()},
+#define INVERSE_FIELD(id, name, type, ...) {offsetof(stewart_inverse_options, name), storage_of<type>()},
+#define FORWARD_FIELD(id, name, type, ...) {offsetof(stewart_forward_options, name), storage_of<type>()},
+#define PLANT_FIELD(id, name, type, ...) {offsetof(stewart_plant_options, name), storage_of<type>()},
 const stewart_option_info kInverseInfo[] = {STEWART_OPTION_TABLE(INFO)};
 const Field kInverseFields[] = {STEWART_OPTION_TABLE(INVERSE_FIELD)};
 const stewart_option_info kForwardInfo[] = {STEWART_FORWARD_OPTION_TABLE(INFO)};
 const Field kForwardFields[] = {STEWART_FORWARD_OPTION_TABLE(FORWARD_FIELD)};
+const stewart_option_info kPlantInfo[] = {STEWART_PLANT_OPTION_TABLE(INFO)};
+const Field kPlantFields[] = {STEWART_PLANT_OPTION_TABLE(PLANT_FIELD)};
 #undef INFO
 #undef INVERSE_FIELD
 #undef FORWARD_FIELD
-const Table kInverse = {kInverseInfo, kInverseFields,
-                        static_cast<int>(sizeof kInverseInfo / sizeof kInverseInfo[0])};
-const Table kForward = {kForwardInfo, kForwardFields,
-                        static_cast<int>(sizeof kForwardInfo / sizeof kForwardInfo[0])};
+#undef PLANT_FIELD
+template <size_t n> constexpr Table table_of(const stewart_option_info (&info)[n], const Field *field) {
+    return {info, field, static_cast<int>(n)};
+}
+const Table kInverse = table_of(kInverseInfo, kInverseFields);
+const Table kForward = table_of(kForwardInfo, kForwardFields);
+const Table kPlant = table_of(kPlantInfo, kPlantFields);
 
 // Each table lists every field of its struct, in order, with its type: a struct laid out from the
 // table is the same struct.
@@ -55,21 +68,29 @@ struct InverseMirror {
 struct ForwardMirror {
     STEWART_FORWARD_OPTION_TABLE(FIELD)
 };
+struct PlantMirror {
+    STEWART_PLANT_OPTION_TABLE(FIELD)
+};
 #undef FIELD
 static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_options),
               "STEWART_OPTION_TABLE lists every field");
 static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_options),
               "STEWART_FORWARD_OPTION_TABLE lists every field");
+static_assert(sizeof(PlantMirror) == sizeof(stewart_plant_options),
+              "STEWART_PLANT_OPTION_TABLE lists every field");
 #define SAME(Options, Mirror, name, type)                                                        \
     static_assert(offsetof(Mirror, name) == offsetof(Options, name) &&                           \
                       std::is_same<decltype(Options::name), type>::value,                        \
                   #name ": place and type as in " #Options);
 #define SAME_INVERSE(id, name, type, ...) SAME(stewart_inverse_options, InverseMirror, name, type)
 #define SAME_FORWARD(id, name, type, ...) SAME(stewart_forward_options, ForwardMirror, name, type)
+#define SAME_PLANT(id, name, type, ...) SAME(stewart_plant_options, PlantMirror, name, type)
 STEWART_OPTION_TABLE(SAME_INVERSE)
 STEWART_FORWARD_OPTION_TABLE(SAME_FORWARD)
+STEWART_PLANT_OPTION_TABLE(SAME_PLANT)
 #undef SAME_INVERSE
 #undef SAME_FORWARD
+#undef SAME_PLANT
 #undef SAME
 
 const stewart_option_info *option(const Table &t, int i) {
@@ -82,25 +103,32 @@ int find(const Table &t, const char *name) {
     return -1;
 }
 
-double get(const Table &t, const void *o, int i) {
-    const char *at = static_cast<const char *>(o) + t.field[i].offset;
-    if (t.field[i].is_integer) {
-        int v;
-        std::memcpy(&v, at, sizeof v);
-        return v;
-    }
-    double v;
+template <class T> T load(const char *at) {
+    T v;
     std::memcpy(&v, at, sizeof v);
     return v;
 }
 
+template <class T> void store(char *at, T v) { std::memcpy(at, &v, sizeof v); }
+
+double get(const Table &t, const void *o, int i) {
+    const char *at = static_cast<const char *>(o) + t.field[i].offset;
+    switch (t.field[i].storage) {
+    case Storage::int_: return load<int>(at);
+    case Storage::long_: return static_cast<double>(load<long>(at));
+    case Storage::real: break;
+    }
+    return load<double>(at);
+}
+
+// Stores a value that set() has checked: in range, and whole for an integer option (every
+// integer range fits an int).
 void put(const Table &t, void *o, int i, double value) {
     char *at = static_cast<char *>(o) + t.field[i].offset;
-    if (t.field[i].is_integer) {
-        const int v = static_cast<int>(value);
-        std::memcpy(at, &v, sizeof v);
-    } else {
-        std::memcpy(at, &value, sizeof value);
+    switch (t.field[i].storage) {
+    case Storage::int_: return store(at, static_cast<int>(value));
+    case Storage::long_: return store(at, static_cast<long>(value));
+    case Storage::real: return store(at, value);
     }
 }
 
@@ -200,6 +228,17 @@ stewart_status stewart_forward_options_check(const stewart_forward_options *o, c
                                              size_t size) {
     return check(kForward, o, o ? o->warn_condition : 0, o ? o->singular_condition : 0, msg,
                  size);
+}
+
+int stewart_plant_option_count(void) { return kPlant.count; }
+const stewart_option_info *stewart_plant_option(int i) { return option(kPlant, i); }
+int stewart_plant_option_find(const char *name) { return find(kPlant, name); }
+double stewart_plant_option_get(const stewart_plant_options *o, int i) {
+    return o && option(kPlant, i) ? get(kPlant, o, i) : 0;
+}
+stewart_status stewart_plant_option_set(stewart_plant_options *o, int i, double value, char *msg,
+                                        size_t size) {
+    return set(kPlant, o, i, value, msg, size);
 }
 
 }  // extern "C"

@@ -1,6 +1,6 @@
 /*
  * Expands the library's parameter and option tables (stewart/stewart_table.h: STEWART_PARAM_TABLE,
- * STEWART_OPTION_TABLE) into a model's variable families, one FMU variable per element:
+ * STEWART_OPTION_TABLE, STEWART_PLANT_OPTION_TABLE) into a model's variable families, one FMU variable per element:
  * element e of parameter `name` with id `id` becomes value reference id + e, variable
  * "name[e+1]" (or "name" if it has one element), C identifier name_<e+1>, struct field
  * name[e] (or name), and the table's description with the element's suffix (" x", " y", " z";
@@ -9,6 +9,7 @@
  *
  *     STEWART_PARAM_TABLE(FMU_PARAM_FROM_TABLE)
  *     STEWART_OPTION_TABLE(FMU_OPTION_FROM_TABLE)
+ *     STEWART_PLANT_OPTION_TABLE(FMU_PLANT_OPTION_FROM_TABLE)
  *
  * which calls FMU_PARAM(vr, id, "name", field, "unit", "displayUnit", "description") per element
  * and FMU_OPTION_INT(vr, id, "name", start, min, max, "description") or
@@ -70,13 +71,25 @@
     FMU_ELEMENT_(id, 16, 17, name, unit, display, description " y of leg 6") \
     FMU_ELEMENT_(id, 17, 18, name, unit, display, description " z of leg 6")
 
-/* Options: int ones are Integer parameters with the table's range, double ones Real. */
+/* Options: int and long ones are Integer parameters with the table's range, double ones Real
+ * (field: the option's name in the model's options struct). */
 #define FMU_OPTION_FROM_TABLE(id, name, type, unit, min, min_closed, max, max_closed, start,     \
                               description)                                                      \
     FMU_OPTION_FROM_TABLE_##type(id, name, unit, min, max, start, description)
 #define FMU_OPTION_FROM_TABLE_int(id, name, unit, min, max, start, description) \
     FMU_OPTION_INT(id, name, #name, start, min, max, description)
+#define FMU_OPTION_FROM_TABLE_long FMU_OPTION_FROM_TABLE_int
 #define FMU_OPTION_FROM_TABLE_double(id, name, unit, min, max, start, description) \
     FMU_OPTION_REAL(id, name, #name, name, unit, description)
+
+/* The plant's options (STEWART_PLANT_OPTION_TABLE): the same, with the Real ones bound to
+ * options.<name> of the model's settings (plant_settings, fmu/models/plant/config.h). */
+#define FMU_PLANT_OPTION_FROM_TABLE(id, name, type, unit, min, min_closed, max, max_closed,      \
+                                    start, description)                                         \
+    FMU_PLANT_OPTION_FROM_TABLE_##type(id, name, unit, min, max, start, description)
+#define FMU_PLANT_OPTION_FROM_TABLE_int FMU_OPTION_FROM_TABLE_int
+#define FMU_PLANT_OPTION_FROM_TABLE_long FMU_OPTION_FROM_TABLE_int
+#define FMU_PLANT_OPTION_FROM_TABLE_double(id, name, unit, min, max, start, description) \
+    FMU_OPTION_REAL(id, name, #name, options.name, unit, description)
 
 #endif

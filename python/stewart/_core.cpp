@@ -63,77 +63,62 @@ struct MessageBuffer {
     stewart_batch_messages c;
 };
 
-// v as an int, or ValueError naming the option and the value.
-int integer_option(const std::string &name, double v) {
-    // the range first: casting a NaN or a value beyond long long is undefined behaviour
-    if (!(v >= -2147483648.0 && v <= 2147483647.0) ||
-        v != static_cast<double>(static_cast<long long>(v)))
-        fail((name + " = " + std::to_string(v) + " must be an integer").c_str());
-    return static_cast<int>(v);
-}
+// One direction's option table (stewart/stewart_table.h) and its calls.
+template <typename Options> struct OptionTable {
+    const char *kind;  // in the message for an unknown name
+    void (*defaults)(Options *);
+    int (*find)(const char *);
+    stewart_status (*set)(Options *, int, double, char *, size_t);
+    stewart_status (*check)(const Options *, char *, size_t);
+};
 
-// Options by name (the library's option table) over stewart_inverse_options_default, each value
-// and then the whole set checked by the library.
-stewart_inverse_options make_options(const std::vector<std::pair<std::string, double>> &values) {
-    stewart_inverse_options o;
-    stewart_inverse_options_default(&o);
-    char message[STEWART_MESSAGE_SIZE];
-    for (const auto &[name, v] : values) {
-        const int i = stewart_inverse_option_find(name.c_str());
-        if (i < 0) fail(("unknown solver option '" + name + "'").c_str());
-        if (stewart_inverse_option_set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
-    }
-    if (stewart_inverse_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
-    return o;
-}
+const OptionTable<stewart_inverse_options> kInverseOptions = {
+    "solver", stewart_inverse_options_default, stewart_inverse_option_find,
+    stewart_inverse_option_set, stewart_inverse_options_check};
+const OptionTable<stewart_forward_options> kForwardOptions = {
+    "forward", stewart_forward_options_default, stewart_forward_option_find,
+    stewart_forward_option_set, stewart_forward_options_check};
+const OptionTable<stewart_plant_options> kPlantOptions = {
+    "plant", stewart_plant_options_default, stewart_plant_option_find, stewart_plant_option_set,
+    stewart_plant_options_check};
 
-// Options of a struct by name over its defaults: set(o, name, v) stores one (false: no such
-// name), then the library checks the whole set. Bad names and values raise ValueError.
-template <typename Options, typename Set>
-Options named_options(const std::vector<std::pair<std::string, double>> &values,
-                      void (*defaults)(Options *),
-                      stewart_status (*check)(const Options *, char *, size_t), const char *kind,
-                      Set set) {
+// Options by name over the defaults, each value set through the table (ValueError naming an
+// unknown option, or the option and its value) and then the whole set checked by the library.
+template <typename Options>
+Options options_by_name(const OptionTable<Options> &table,
+                        const std::vector<std::pair<std::string, double>> &values) {
     Options o;
-    defaults(&o);
-    for (const auto &[name, v] : values)
-        if (!set(o, name, v)) fail(("unknown " + std::string(kind) + " option '" + name + "'").c_str());
-    char message[STEWART_MESSAGE_SIZE];
-    if (check(&o, message, sizeof message) != STEWART_OK) fail(message);
-    return o;
-}
-
-// stewart_forward_options by name, from the library's table.
-stewart_forward_options make_forward_options(
-    const std::vector<std::pair<std::string, double>> &values) {
-    stewart_forward_options o;
-    stewart_forward_options_default(&o);
+    table.defaults(&o);
     char message[STEWART_MESSAGE_SIZE];
     for (const auto &[name, v] : values) {
-        const int i = stewart_forward_option_find(name.c_str());
-        if (i < 0) fail(("unknown forward option '" + name + "'").c_str());
-        if (stewart_forward_option_set(&o, i, v, message, sizeof message) != STEWART_OK)
-            fail(message);
+        const int i = table.find(name.c_str());
+        if (i < 0) fail(("unknown " + std::string(table.kind) + " option '" + name + "'").c_str());
+        if (table.set(&o, i, v, message, sizeof message) != STEWART_OK) fail(message);
     }
-    if (stewart_forward_options_check(&o, message, sizeof message) != STEWART_OK) fail(message);
+    if (table.check(&o, message, sizeof message) != STEWART_OK) fail(message);
     return o;
 }
 
-// stewart_plant_options by name.
-stewart_plant_options make_plant_options(
-    const std::vector<std::pair<std::string, double>> &values) {
-    return named_options<stewart_plant_options>(
-        values, stewart_plant_options_default, stewart_plant_options_check, "plant",
-        [](stewart_plant_options &o, const std::string &name, double v) {
-            if (name == "fidelity") o.fidelity = integer_option(name, v);
-            else if (name == "method") o.method = integer_option(name, v);
-            else if (name == "relative_tolerance") o.relative_tolerance = v;
-            else if (name == "absolute_tolerance") o.absolute_tolerance = v;
-            else if (name == "max_internal_steps") o.max_internal_steps = integer_option(name, v);
-            else if (name == "fixed_steps") o.fixed_steps = integer_option(name, v);
-            else return false;
-            return true;
-        });
+// An option table for Python: one dict per option (name, id, integer, unit, min, max,
+// min_closed, max_closed, default, description).
+nb::list option_table(int (*count)(), const stewart_option_info *(*option)(int)) {
+    nb::list table;
+    for (int i = 0; i < count(); ++i) {
+        const stewart_option_info *o = option(i);
+        nb::dict entry;
+        entry["name"] = o->name;
+        entry["id"] = o->id;
+        entry["integer"] = o->is_integer != 0;
+        entry["unit"] = o->unit;
+        entry["min"] = o->min;
+        entry["max"] = o->max;
+        entry["min_closed"] = o->min_closed != 0;
+        entry["max_closed"] = o->max_closed != 0;
+        entry["default"] = o->default_value;
+        entry["description"] = o->description;
+        table.append(entry);
+    }
+    return table;
 }
 
 class Model {
@@ -304,7 +289,7 @@ public:
         if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the poses");
-        const stewart_inverse_options options = make_options(option_values);
+        const stewart_inverse_options options = options_by_name(kInverseOptions, option_values);
         out_ = bind_outputs(out_, outputs, n_, held_);
         out_.status = status.data();
         char message[STEWART_MESSAGE_SIZE];
@@ -353,7 +338,7 @@ public:
         if (accels && !rates) fail("accels need rates");
         if (guess && guess->shape(0) != 6) fail("guess must have 6 values");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the lengths");
-        const stewart_forward_options options = make_forward_options(option_values);
+        const stewart_forward_options options = options_by_name(kForwardOptions, option_values);
         out_ = bind_outputs(out_, outputs, n_, held_);
         out_.status = status.data();
         char message[STEWART_MESSAGE_SIZE];
@@ -406,7 +391,7 @@ public:
         if ((start_pose && start_pose->shape(0) != 6) || (start_rate && start_rate->shape(0) != 6))
             fail("start and start_rate must have 6 values");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as t");
-        const stewart_plant_options options = make_plant_options(option_values);
+        const stewart_plant_options options = options_by_name(kPlantOptions, option_values);
         out_ = bind_outputs(out_, outputs, n_, held_);
         out_.status = status.data();
         char message[STEWART_MESSAGE_SIZE] = "";
@@ -732,6 +717,15 @@ NB_MODULE(_core, m) {
           "(name, values per row, dtype, unit, description) of each forward output column");
     m.def("plant_columns", &plant_columns,
           "(name, values per row, dtype, unit, description) of each plant output column");
+    m.def("option_table", [](const std::string &direction) {
+        if (direction == "inverse") return option_table(stewart_inverse_option_count, stewart_inverse_option);
+        if (direction == "forward") return option_table(stewart_forward_option_count, stewart_forward_option);
+        if (direction == "plant") return option_table(stewart_plant_option_count, stewart_plant_option);
+        fail(("no option table '" + direction + "': inverse, forward or plant").c_str());
+    }, nb::arg("direction"),
+          "The library's option table of a direction (inverse, forward, plant): one dict per "
+          "option (name, id, integer, unit, min, max, min_closed, max_closed, default, "
+          "description)");
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
     // The library's parameter table: one dict per parameter (name, count, unit, description,
     // defaults, min, max, scalar_fills: one value by the bare name sets every leg).

@@ -129,6 +129,30 @@ def test_bad_options(simulate, tmp_path):
         assert fragment in r.stderr, r.stderr
 
 
+def test_every_plant_option_by_name(simulate, tmp_path):
+    """--param takes every option of the library's plant table: each at its table default changes
+    no byte, fixed_steps = 3 takes 3 internal steps per row (the table reaches the integrator),
+    and a bad value is refused naming the option and the value."""
+    from stewart import _core
+    t = np.arange(0, 0.0201, 0.001)
+    write_forces(tmp_path / "in.csv", t, np.full((t.size, 6), 700.0))
+    r = simulate(tmp_path / "in.csv", tmp_path / "plain.csv")
+    assert r.returncode == 0, r.stderr
+    plain = (tmp_path / "plain.csv").read_bytes()
+    for option in _core.option_table("plant"):
+        r = simulate("--param", f"{option['name']}={option['default']!r}", tmp_path / "in.csv",
+                     tmp_path / "out.csv")
+        assert r.returncode == 0, (option, r.stderr)
+        assert (tmp_path / "out.csv").read_bytes() == plain, option["name"]
+    r = simulate("--param", "fixed_steps=3", tmp_path / "in.csv", tmp_path / "out.csv")
+    assert r.returncode == 0, r.stderr
+    header, data = read(tmp_path / "out.csv")
+    assert np.all(data[1:, header.index("steps")] == 3)
+    assert np.all(data[1:, header.index("error_test_failures")] == 0)
+    r = simulate("--param", "fixed_steps=2.5", tmp_path / "in.csv", tmp_path / "out.csv")
+    assert r.returncode == 2 and "fixed_steps = 2.5" in r.stderr, r.stderr
+
+
 def test_stroke_warning_on_stderr(simulate, tmp_path):
     t = np.arange(0, 0.4001, 0.01)
     write_forces(tmp_path / "in.csv", t, np.zeros((t.size, 6)))

@@ -1,6 +1,6 @@
 /*
- * The parameter and option tables: one entry per field of stewart_params and
- * stewart_inverse_options,
+ * The parameter and option tables: one entry per field of stewart_params and of the options
+ * structs (stewart_inverse_options, stewart_forward_options, stewart_plant_options),
  * with its stable id, name, element count, unit, valid range, default and description. The
  * library's defaults, checks and setters are expanded from these lists, and the upper layers
  * (FMU variables and model descriptions, the CLI's --param, fuzz seeds, Python) iterate them
@@ -24,11 +24,14 @@
  * Range checks across fields (inertia triangle inequalities, stroke_min < stroke_max) are code,
  * in stewart_params_check.
  *
- * STEWART_OPTION_TABLE(X) (the inverse solver's) and STEWART_FORWARD_OPTION_TABLE(X) call
+ * STEWART_OPTION_TABLE(X) (the inverse solver's), STEWART_FORWARD_OPTION_TABLE(X) and
+ * STEWART_PLANT_OPTION_TABLE(X) call
  *   X(id, name, type, unit, min, min_closed, max, max_closed, default, description)
- * once per field of stewart_inverse_options and stewart_forward_options, in declaration order;
- * type is int or double. An option is one line here and its field in the struct (a static_assert
- * checks they match); defaults, checks, setters and lookup by name come from the table.
+ * once per field of stewart_inverse_options, stewart_forward_options and stewart_plant_options,
+ * in declaration order; type is int, long or double. An option is one line here and its field
+ * in the struct (a static_assert checks they match); setters and lookup by name come from the
+ * table, and so do the inverse and forward defaults and checks (the plant keeps its own,
+ * which a test holds to the table).
  */
 #ifndef STEWART_STEWART_TABLE_H
 #define STEWART_STEWART_TABLE_H
@@ -39,6 +42,7 @@
 #include "mbs/mbs.h"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -192,6 +196,27 @@ extern "C" {
     X(403, singular_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e10,                            \
       "Condition number above which the lengths are not solved (singular)")
 
+/* The plant's (forward dynamics') options: ids 200.. are the StewartPlant FMU's value references,
+ * and the descriptions its parameters'. Type long is an integer option too (the FMU's Integer,
+ * hence at most 2^31 - 1). stewart_plant_options_check (plant/plant_api.cpp) checks the ranges
+ * with messages of its own, and that fixed_steps > 0 needs an explicit method; a test
+ * (tests/unit/test_plant_option_table.c) holds its ranges and defaults to these. */
+#define STEWART_PLANT_OPTION_TABLE(X)                                                            \
+    X(200, fidelity, int, "", 1, 1, 2, 1, STEWART_FULL,                                          \
+      "1 massless legs (one rigid body), 2 full 14-body model")                                  \
+    X(201, method, int, "", 0, 1, 3, 1, STEWART_PLANT_ERK,                                       \
+      "Integrator: 0 CVODE Adams, 1 CVODE BDF (dense Jacobian), 2 ARKODE explicit Runge-Kutta "  \
+      "4(3), 3 ARKODE explicit Runge-Kutta 5(4)")                                                \
+    X(202, relative_tolerance, double, "1", 1e-15, 1, 1.0, 0, 1e-10,                             \
+      "Integrator relative tolerance")                                                           \
+    X(203, absolute_tolerance, double, "1", 1e-20, 1, DBL_MAX, 1, 1e-12,                         \
+      "Integrator absolute tolerance on every state [m, -, m/s, rad/s]")                         \
+    X(204, max_internal_steps, long, "", 1, 1, 2147483647, 1, 10000,                             \
+      "Integrator steps allowed within one communication step")                                  \
+    X(205, fixed_steps, int, "", 0, 1, 1000, 1, 0,                                               \
+      "0: adaptive steps (the tolerances); N: N equal explicit Runge-Kutta steps per "           \
+      "communication step without error control, the same work every step (methods 2 and 3)")
+
 /* One parameter of the table, for iteration. */
 typedef struct stewart_param_info {
     int id;                     /* stable id of element 0; element e has id + e */
@@ -237,7 +262,7 @@ stewart_status stewart_param_check_value(int i, int e, double value, char *messa
 typedef struct stewart_option_info {
     int id;                     /* stable id (= FMU value reference) */
     const char *name;           /* field name in its options struct */
-    int is_integer;             /* 1: an int field, 0: a double */
+    int is_integer;             /* 1: an int or long field, 0: a double */
     const char *unit;           /* "1" for dimensionless reals, "" for integers */
     const char *description;
     double min, max;            /* valid range */
@@ -245,11 +270,12 @@ typedef struct stewart_option_info {
     double default_value;       /* the default (stewart_*_options_default's) */
 } stewart_option_info;
 
-/* The options of the inverse solver (STEWART_OPTION_TABLE) and of forward kinematics
- * (STEWART_FORWARD_OPTION_TABLE), the same calls for each: how many; option i (declaration
- * order) or NULL; option i's value in options (ints converted exactly; 0 if out of range); set
- * option i (STEWART_ERR_PARAMETER, options unchanged, if the value is outside its range or, for
- * an integer option, not a whole number); the option named `name`, or -1. */
+/* The options of the inverse solver (STEWART_OPTION_TABLE), of forward kinematics
+ * (STEWART_FORWARD_OPTION_TABLE) and of the plant (STEWART_PLANT_OPTION_TABLE), the same calls
+ * for each: how many; option i (declaration order) or NULL; option i's value in options (ints
+ * converted exactly; 0 if out of range); set option i (STEWART_ERR_PARAMETER, options
+ * unchanged, if the value is outside its range or, for an integer option, not a whole number);
+ * the option named `name`, or -1. */
 int stewart_inverse_option_count(void);
 const stewart_option_info *stewart_inverse_option(int i);
 double stewart_inverse_option_get(const stewart_inverse_options *options, int i);
@@ -263,6 +289,13 @@ double stewart_forward_option_get(const stewart_forward_options *options, int i)
 stewart_status stewart_forward_option_set(stewart_forward_options *options, int i, double value,
                                           char *message, size_t size);
 int stewart_forward_option_find(const char *name);
+
+int stewart_plant_option_count(void);
+const stewart_option_info *stewart_plant_option(int i);
+double stewart_plant_option_get(const stewart_plant_options *options, int i);
+stewart_status stewart_plant_option_set(stewart_plant_options *options, int i, double value,
+                                        char *message, size_t size);
+int stewart_plant_option_find(const char *name);
 
 #ifdef __cplusplus
 }

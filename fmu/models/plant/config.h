@@ -11,8 +11,8 @@
 
 #include "stewart/stewart.h"
 #include "stewart/stewart_plant.h"
-/* The library's parameter table: variables.def expands it (the inverse FMU's names and value
- * references for the geometry and masses). */
+/* The library's parameter and plant option tables: variables.def expands them (the inverse
+ * FMU's names and value references for the geometry and masses). */
 #include "stewart/stewart_table.h"
 
 #define FMU_MODEL_IDENTIFIER "StewartPlant"

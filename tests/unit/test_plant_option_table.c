@@ -1,0 +1,145 @@
+/* The plant's option table (STEWART_PLANT_OPTION_TABLE, stewart/stewart_table.h) against the
+ * plant's own code (plant/plant_api.cpp): its defaults are stewart_plant_options_default's, its
+ * ranges are those stewart_plant_options_check accepts, end by end; names are unique; the
+ * setter refuses a bad value naming the option and the value and leaves the options unchanged. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "stewart/stewart_plant.h"
+#include "stewart/stewart_table.h"
+#include "unity.h"
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static void test_defaults_are_the_plants(void) {
+    stewart_plant_options plant, from_table;
+    stewart_plant_options_default(&plant);
+    memset(&from_table, 0xff, sizeof from_table);
+    char msg[STEWART_MESSAGE_SIZE];
+    for (int i = 0; i < stewart_plant_option_count(); ++i) {
+        const stewart_option_info *info = stewart_plant_option(i);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_plant_option_set(&from_table, i, info->default_value, msg, sizeof msg), msg);
+        TEST_ASSERT_EQUAL_DOUBLE(stewart_plant_option_get(&plant, i), info->default_value);
+    }
+    /* field by field (the struct may have padding) */
+    TEST_ASSERT_EQUAL_INT(plant.fidelity, from_table.fidelity);
+    TEST_ASSERT_EQUAL_INT(plant.method, from_table.method);
+    TEST_ASSERT_EQUAL_DOUBLE(plant.relative_tolerance, from_table.relative_tolerance);
+    TEST_ASSERT_EQUAL_DOUBLE(plant.absolute_tolerance, from_table.absolute_tolerance);
+    TEST_ASSERT_TRUE(plant.max_internal_steps == from_table.max_internal_steps);
+    TEST_ASSERT_EQUAL_INT(plant.fixed_steps, from_table.fixed_steps);
+    /* the values stewart_plant.h documents */
+    TEST_ASSERT_EQUAL_INT(STEWART_FULL, from_table.fidelity);
+    TEST_ASSERT_EQUAL_INT(STEWART_PLANT_ERK, from_table.method);
+    TEST_ASSERT_EQUAL_DOUBLE(1e-10, from_table.relative_tolerance);
+    TEST_ASSERT_EQUAL_DOUBLE(1e-12, from_table.absolute_tolerance);
+    TEST_ASSERT_TRUE(from_table.max_internal_steps == 10000);
+    TEST_ASSERT_EQUAL_INT(0, from_table.fixed_steps);
+}
+
+static void test_names_unique_and_ids_the_fmus(void) {
+    const char *names[] = {"fidelity", "method", "relative_tolerance", "absolute_tolerance",
+                           "max_internal_steps", "fixed_steps"};
+    TEST_ASSERT_EQUAL_INT(6, stewart_plant_option_count());
+    for (int i = 0; i < stewart_plant_option_count(); ++i) {
+        const stewart_option_info *info = stewart_plant_option(i);
+        TEST_ASSERT_EQUAL_STRING(names[i], info->name);
+        TEST_ASSERT_EQUAL_INT(i, stewart_plant_option_find(info->name));
+        /* the StewartPlant FMU's value references (fmu/models/plant/variables.def) */
+        TEST_ASSERT_EQUAL_INT(200 + i, info->id);
+        for (int j = 0; j < i; ++j) TEST_ASSERT_TRUE(strcmp(info->name, stewart_plant_option(j)->name) != 0);
+    }
+    TEST_ASSERT_NULL(stewart_plant_option(-1));
+    TEST_ASSERT_NULL(stewart_plant_option(stewart_plant_option_count()));
+    TEST_ASSERT_EQUAL_INT(-1, stewart_plant_option_find("tolerance"));
+    TEST_ASSERT_EQUAL_INT(-1, stewart_plant_option_find(NULL));
+}
+
+/* The value just beyond an end of option i's range, outward (a whole number for an integer). */
+static double beyond(const stewart_option_info *info, double end, double outward) {
+    return info->is_integer ? end + outward : nextafter(end, outward * INFINITY);
+}
+
+/* stewart_plant_options_check's verdict on the defaults with option i set to value (stored as
+ * the field's type, the table setter bypassed). */
+static stewart_status check_with(int i, double value) {
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    switch (i) {
+    case 0: o.fidelity = (int)value; break;
+    case 1: o.method = (int)value; break;
+    case 2: o.relative_tolerance = value; break;
+    case 3: o.absolute_tolerance = value; break;
+    case 4: o.max_internal_steps = (long)value; break;
+    default: o.fixed_steps = (int)value; break;
+    }
+    char msg[STEWART_MESSAGE_SIZE];
+    return stewart_plant_options_check(&o, msg, sizeof msg);
+}
+
+/* Each end of each range: inside, the table's setter and the plant's check both accept; just
+ * outside, both refuse (the check is the plant's own code: the table must not drift from it).
+ * max_internal_steps' upper end is the FMU Integer's 2^31 - 1, below what a long holds: the
+ * check accepts more there, so only the setter's refusal is asked. */
+static void test_ranges_are_the_checks(void) {
+    TEST_ASSERT_EQUAL_STRING("fixed_steps", stewart_plant_option(5)->name);
+    char msg[STEWART_MESSAGE_SIZE];
+    for (int i = 0; i < stewart_plant_option_count(); ++i) {
+        const stewart_option_info *info = stewart_plant_option(i);
+        const double ends[2] = {info->min, info->max}, outward[2] = {-1, 1};
+        const int closed[2] = {info->min_closed, info->max_closed};
+        for (int side = 0; side < 2; ++side) {
+            if (ends[side] == DBL_MAX) continue; /* "finite": tested below */
+            const double inside = closed[side] ? ends[side] : beyond(info, ends[side], -outward[side]);
+            const double outside = closed[side] ? beyond(info, ends[side], outward[side]) : ends[side];
+            stewart_plant_options o;
+            stewart_plant_options_default(&o);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_plant_option_set(&o, i, inside, msg, sizeof msg), msg);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, check_with(i, inside), info->name);
+            TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, i, outside, msg, sizeof msg));
+            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, info->name), msg);
+            if (!(i == 4 && side == 1))
+                TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, check_with(i, outside), info->name);
+        }
+    }
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, 3, INFINITY, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, check_with(3, INFINITY));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, 2, NAN, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, check_with(2, NAN));
+}
+
+static void test_setter_refuses_naming_the_value(void) {
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    char msg[STEWART_MESSAGE_SIZE];
+    const int fixed = stewart_plant_option_find("fixed_steps");
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, fixed, 2.5, msg, sizeof msg));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "fixed_steps = 2.5"), msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "whole number"), msg);
+    TEST_ASSERT_EQUAL_INT(0, o.fixed_steps);
+    const int rtol = stewart_plant_option_find("relative_tolerance");
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, rtol, 1.5, msg, sizeof msg));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "relative_tolerance = 1.5"), msg);
+    TEST_ASSERT_EQUAL_DOUBLE(1e-10, o.relative_tolerance);
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_option_set(&o, 99, 1, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_option_set(NULL, fixed, 1, msg, sizeof msg));
+    /* a long option holds the largest value the table allows, exactly */
+    const int steps = stewart_plant_option_find("max_internal_steps");
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_option_set(&o, steps, 2147483647.0, msg, sizeof msg));
+    TEST_ASSERT_TRUE(o.max_internal_steps == 2147483647L);
+    TEST_ASSERT_EQUAL_DOUBLE(2147483647.0, stewart_plant_option_get(&o, steps));
+    TEST_ASSERT_EQUAL_DOUBLE(0.0, stewart_plant_option_get(NULL, steps));
+}
+
+int main(void) {
+    UNITY_BEGIN();
+    RUN_TEST(test_defaults_are_the_plants);
+    RUN_TEST(test_names_unique_and_ids_the_fmus);
+    RUN_TEST(test_ranges_are_the_checks);
+    RUN_TEST(test_setter_refuses_naming_the_value);
+    return UNITY_END();
+}
