@@ -1,10 +1,12 @@
-// stewart_batch.h: n rows through stewart_inverse_solve, stewart_forward_solve (one solver
-// object) or stewart_plant_step (one plant), arrays in and out.
+// stewart_batch.h: n rows through stewart_inverse_solve (at the kinematic and massless levels
+// four rows at a time on the vector units, closed_form_quad.hpp), stewart_forward_solve (one
+// solver object) or stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
 #include <cstdio>
 #include <cstring>
 
+#include "batch_paths.hpp"
 #include "model.hpp"
 #include "util/message.hpp"
 
@@ -126,11 +128,11 @@ void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
 
 }  // namespace
 
-extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,
-                                                const double *q_dot, const double *q_ddot,
-                                                const stewart_inverse_batch_outputs *out,
-                                                stewart_batch_messages *messages,
-                                                size_t *first_failed) {
+stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double *q,
+                                     const double *q_dot, const double *q_ddot,
+                                     const stewart_inverse_batch_outputs *out,
+                                     stewart_batch_messages *messages, size_t *first_failed,
+                                     VectorPath path) {
     FailureLog log(messages, first_failed, n);
     if (!d || !out || !out->status || (n > 0 && !q)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
@@ -139,7 +141,8 @@ extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, co
     }
     stewart_inverse_input in{};
     stewart_pose &pose = in.pose;
-    for (size_t j = 0; j < n; ++j) {
+    // Row j by stewart_inverse_solve.
+    auto solve_scalar = [&](size_t j) {
         std::memcpy(pose.q, q + 6 * j, sizeof pose.q);
         if (q_dot) std::memcpy(pose.q_dot, q_dot + 6 * j, sizeof pose.q_dot);
         if (q_ddot) std::memcpy(pose.q_ddot, q_ddot + 6 * j, sizeof pose.q_ddot);
@@ -150,9 +153,59 @@ extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, co
             log.record(j, s, d->message);
         }
         write_row(*out, j, o_j, s);
+    };
+    const stewart_model *m = d->model;
+    const bool vector = path != VectorPath::scalar && d->options.fidelity != STEWART_FULL &&
+                        m->frames.identity;
+    if (!vector) {
+        for (size_t j = 0; j < n; ++j) solve_scalar(j);
+    } else {
+        if (!vector_path_available(path)) path = VectorPath::portable;
+        const QuadModel model = quad_model(m->geometry, m->platform, m->gravity, m->params,
+                                           d->options);
+        // Blocks of four rows in order (a failing row's message keeps its place): the kernel
+        // takes the eligible rows of a block (an idle lane repeats one of them), the scalar
+        // solve every row the kernel leaves.
+        for (size_t block = 0; block < n; block += 4) {
+            const size_t count = n - block < 4 ? n - block : 4;
+            QuadRows rows{};
+            int lane_of[4], lanes = 0;
+            for (size_t r = 0; r < count; ++r) {
+                const size_t j = block + r;
+                const double *q_j = q + 6 * j, *q_dot_j = q_dot ? q_dot + 6 * j : nullptr,
+                             *q_ddot_j = q_ddot ? q_ddot + 6 * j : nullptr;
+                lane_of[r] = -1;
+                if (!quad_row_eligible(q_j, q_dot_j, q_ddot_j)) continue;
+                rows.q[lanes] = q_j, rows.q_dot[lanes] = q_dot_j, rows.q_ddot[lanes] = q_ddot_j;
+                lane_of[r] = lanes++;
+            }
+            stewart_inverse_output o[4];
+            bool done[4] = {false, false, false, false};
+            if (lanes > 0) {
+                for (int l = lanes; l < 4; ++l)
+                    rows.q[l] = rows.q[0], rows.q_dot[l] = rows.q_dot[0],
+                    rows.q_ddot[l] = rows.q_ddot[0];
+                closed_form_quad(path, model, rows, o, done);
+            }
+            for (size_t r = 0; r < count; ++r) {
+                if (lane_of[r] >= 0 && done[lane_of[r]])
+                    write_row(*out, block + r, o[lane_of[r]], STEWART_OK);
+                else
+                    solve_scalar(block + r);
+            }
+        }
     }
     std::memcpy(d->message, log.first_message, sizeof log.first_message);
     return log.first;
+}
+
+extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,
+                                                const double *q_dot, const double *q_ddot,
+                                                const stewart_inverse_batch_outputs *out,
+                                                stewart_batch_messages *messages,
+                                                size_t *first_failed) {
+    return stewart::inverse_batch(d, n, q, q_dot, q_ddot, out, messages, first_failed,
+                                  stewart::fastest_vector_path());
 }
 
 extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, const double *time,

@@ -1,0 +1,4 @@
+// The four-pose kernel compiled with -mavx2 -mfma (csrc/CMakeLists.txt): called only after a
+// run-time check of the CPU (closed_form_batch.cpp).
+#define STEWART_QUAD_KERNEL closed_form_quad_avx2
+#include "kinematics/closed_form_quad_kernel.inc"
