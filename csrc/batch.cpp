@@ -126,6 +126,35 @@ void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
 
 #undef PUT_COLUMN
 
+// The last rows (tail_rows < 4) of an inverse batch through the four-pose kernel: copies of the
+// rows, the last repeated, into four-row columns, and tail_rows rows back to out.
+void tail_block(stewart::VectorPath path, const stewart::QuadModel &model, const double *q,
+                const double *q_dot, const double *q_ddot, const stewart_inverse_batch_outputs &out,
+                size_t block, size_t tail_rows, bool done[4]) {
+    double rows[3][24];
+    const double *given[3] = {q, q_dot, q_ddot};
+    for (int i = 0; i < 3; ++i)
+        for (size_t r = 0; r < 4 && given[i]; ++r)
+            std::memcpy(rows[i] + 6 * r, given[i] + 6 * (block + (r < tail_rows ? r : tail_rows - 1)),
+                        6 * sizeof(double));
+#define TAIL_COLUMN(name, member, count, type, unit, description) type name[4 * (count)];
+    struct {
+        STEWART_INVERSE_OUTPUT_TABLE(TAIL_COLUMN)
+    } tail;
+#undef TAIL_COLUMN
+    stewart_inverse_batch_outputs tail_out{};
+#define TAIL_POINT(name, member, count, type, unit, description)                                  \
+    if (out.name) tail_out.name = tail.name;
+    STEWART_INVERSE_OUTPUT_TABLE(TAIL_POINT)
+#undef TAIL_POINT
+    const stewart::QuadRows quad = {rows[0], q_dot ? rows[1] : nullptr, q_ddot ? rows[2] : nullptr};
+    stewart::closed_form_quad(path, model, quad, tail_out, 0, done);
+#define TAIL_COPY(name, member, count, type, unit, description)                                   \
+    if (out.name) std::memcpy(out.name + block * (count), tail.name, tail_rows * (count) * sizeof(type));
+    STEWART_INVERSE_OUTPUT_TABLE(TAIL_COPY)
+#undef TAIL_COPY
+}
+
 }  // namespace
 
 stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double *q,
@@ -164,32 +193,22 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         const QuadModel model = quad_model(m->geometry, m->platform, m->gravity, m->params,
                                            d->options);
         // Blocks of four rows in order (a failing row's message keeps its place): the kernel
-        // takes the eligible rows of a block (an idle lane repeats one of them), the scalar
-        // solve every row the kernel leaves.
+        // writes the block, the scalar solve overwrites the rows it leaves. The last block, if
+        // short, through four-row copies (its last row repeated), so that a row's numbers do not
+        // depend on where a batch starts.
         for (size_t block = 0; block < n; block += 4) {
             const size_t count = n - block < 4 ? n - block : 4;
-            QuadRows rows{};
-            int lane_of[4], lanes = 0;
-            for (size_t r = 0; r < count; ++r) {
-                const size_t j = block + r;
-                const double *q_j = q + 6 * j, *q_dot_j = q_dot ? q_dot + 6 * j : nullptr,
-                             *q_ddot_j = q_ddot ? q_ddot + 6 * j : nullptr;
-                lane_of[r] = -1;
-                if (!quad_row_eligible(q_j, q_dot_j, q_ddot_j)) continue;
-                rows.q[lanes] = q_j, rows.q_dot[lanes] = q_dot_j, rows.q_ddot[lanes] = q_ddot_j;
-                lane_of[r] = lanes++;
-            }
-            stewart_inverse_output o[4];
-            bool done[4] = {false, false, false, false};
-            if (lanes > 0) {
-                for (int l = lanes; l < 4; ++l)
-                    rows.q[l] = rows.q[0], rows.q_dot[l] = rows.q_dot[0],
-                    rows.q_ddot[l] = rows.q_ddot[0];
-                closed_form_quad(path, model, rows, o, done);
+            bool done[4];
+            if (count == 4) {
+                const QuadRows rows = {q + 6 * block, q_dot ? q_dot + 6 * block : nullptr,
+                                       q_ddot ? q_ddot + 6 * block : nullptr};
+                closed_form_quad(path, model, rows, *out, block, done);
+            } else {
+                tail_block(path, model, q, q_dot, q_ddot, *out, block, count, done);
             }
             for (size_t r = 0; r < count; ++r) {
-                if (lane_of[r] >= 0 && done[lane_of[r]])
-                    write_row(*out, block + r, o[lane_of[r]], STEWART_OK);
+                if (done[r])
+                    out->status[block + r] = STEWART_OK;
                 else
                     solve_scalar(block + r);
             }

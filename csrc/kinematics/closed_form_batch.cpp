@@ -1,7 +1,5 @@
 #include "kinematics/closed_form_batch.hpp"
 
-#include <cmath>
-
 namespace stewart {
 
 namespace {
@@ -54,24 +52,13 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
     return m;
 }
 
-bool quad_row_eligible(const double q[6], const double *q_dot, const double *q_ddot) {
-    const double zero[6] = {0, 0, 0, 0, 0, 0};
-    const double *rows[3] = {q, q_dot ? q_dot : zero, q_ddot ? q_ddot : zero};
-    for (const double *row : rows)
-        for (int i = 0; i < 6; ++i)
-            if (!(std::fabs(row[i]) <= 1e50)) return false;  // NaN too
-    for (int i = 3; i < 6; ++i)
-        if (!(std::fabs(q[i]) <= 1e4)) return false;
-    return true;
-}
-
 void closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
-                      stewart_inverse_output out[4], bool done[4]) {
+                      const stewart_inverse_batch_outputs &out, size_t row, bool done[4]) {
 #ifdef STEWART_HAVE_AVX2_KERNEL
-    if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, done);
+    if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, row, done);
 #endif
     (void)path;
-    closed_form_quad_portable(m, rows, out, done);
+    closed_form_quad_portable(m, rows, out, row, done);
 }
 
 }  // namespace stewart

@@ -23,12 +23,8 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
                      const Eigen::Vector3d &gravity, const stewart_params &p,
                      const stewart_inverse_options &o);
 
-// True if the kernel may take this row: every input finite, no larger than 1e50, and the angles
-// within 1e4 rad (the kernel's sine and cosine); q_dot and q_ddot may be NULL (zero).
-bool quad_row_eligible(const double q[6], const double *q_dot, const double *q_ddot);
-
 // closed_form_quad_portable or closed_form_quad_avx2 by path (not scalar).
 void closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
-                      stewart_inverse_output out[4], bool done[4]);
+                      const stewart_inverse_batch_outputs &out, size_t row, bool done[4]);
 
 }  // namespace stewart

@@ -3,7 +3,9 @@
 // for AVX2 and FMA, once portable) and must share no inline code with the rest of the library.
 #pragma once
 
-#include "stewart/stewart.h"
+#include <stddef.h>
+
+#include "stewart/stewart_batch.h"
 
 namespace stewart {
 
@@ -18,19 +20,21 @@ struct QuadModel {
     bool massless;  // else kinematic
 };
 
-// Four poses: q, q_dot, q_ddot of lane l (q_dot and q_ddot NULL for zero).
+// Four consecutive rows of a batch's inputs, 6 values each: q, and q_dot and q_ddot (NULL: 0).
 struct QuadRows {
-    const double *q[4], *q_dot[4], *q_ddot[4];
+    const double *q, *q_dot, *q_ddot;
 };
 
-// Fills out[l] as stewart_inverse_solve would for lane l, to rounding, and done[l] = true, or
-// done[l] = false where the scalar path must decide: a failing row (a leg of no length, a
-// singular Jacobian, a non-finite output) or one within rounding of a stroke limit or a
-// condition threshold. The caller has checked the inputs (quad_row_eligible).
+// Writes rows row..row + 3 of every column of out (not status) as stewart_inverse_solve would
+// for the four poses, to rounding, and sets done[l] = true, or done[l] = false where the scalar
+// path must decide (and overwrite the row): bad input (not finite, beyond 1e50, an angle beyond
+// 1e4 rad), a failing row (a leg of no length, a singular Jacobian, a non-finite output) or one
+// within rounding of a stroke limit or a condition threshold.
 void closed_form_quad_portable(const QuadModel &m, const QuadRows &rows,
-                               stewart_inverse_output out[4], bool done[4]);
+                               const stewart_inverse_batch_outputs &out, size_t row,
+                               bool done[4]);
 // The same on AVX2 and FMA (call only where the CPU has both).
 void closed_form_quad_avx2(const QuadModel &m, const QuadRows &rows,
-                           stewart_inverse_output out[4], bool done[4]);
+                           const stewart_inverse_batch_outputs &out, size_t row, bool done[4]);
 
 }  // namespace stewart

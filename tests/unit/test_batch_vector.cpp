@@ -333,18 +333,15 @@ static void test_kernel_takes_ordinary_rows(void) {
             const stewart::QuadModel quad =
                 stewart::quad_model(m->geometry, m->platform, m->gravity, m->params, o);
             size_t taken = 0, ordinary = 0;
-            for (size_t j = 1; j + 4 <= 4000; j += 4) {  // rows 4i+1..4i+3: near home
-                stewart::QuadRows quad_rows{};
-                for (int l = 0; l < 4; ++l) {
-                    const size_t r = j + (l < 3 ? l : 0);
-                    quad_rows.q[l] = &rows.q[6 * r];
-                    quad_rows.q_dot[l] = &rows.q_dot[6 * r];
-                    quad_rows.q_ddot[l] = &rows.q_ddot[6 * r];
-                }
-                stewart_inverse_output out[4];
+            std::vector<double> length(6 * rows.n);
+            stewart_inverse_batch_outputs out{};
+            out.length = length.data();
+            for (size_t j = 0; j + 4 <= 4000; j += 4) {
+                const stewart::QuadRows quad_rows = {&rows.q[6 * j], &rows.q_dot[6 * j],
+                                                     &rows.q_ddot[6 * j]};
                 bool done[4];
-                stewart::closed_form_quad(path, quad, quad_rows, out, done);
-                for (int l = 0; l < 3; ++l) taken += done[l], ++ordinary;
+                stewart::closed_form_quad(path, quad, quad_rows, out, j, done);
+                for (int l = 1; l < 4; ++l) taken += done[l], ++ordinary;  // rows 4i+1..: near home
             }
             TEST_ASSERT_TRUE(taken >= ordinary * 9 / 10);
         }
