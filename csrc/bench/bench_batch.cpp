@@ -97,6 +97,7 @@ int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q
     const stewart::VectorPath path = path_name == "avx2"       ? stewart::VectorPath::avx2
                                      : path_name == "portable" ? stewart::VectorPath::portable
                                                                : stewart::VectorPath::scalar;
+    if (!stewart::vector_path_available(path)) return 2;  // not on this CPU
     stewart_inverse_options o;
     stewart_inverse_options_default(&o);
     o.fidelity = level;
