@@ -134,9 +134,10 @@ void tail_block(stewart::VectorPath path, const stewart::QuadModel &model, const
     double rows[3][24];
     const double *given[3] = {q, q_dot, q_ddot};
     for (int i = 0; i < 3; ++i)
-        for (size_t r = 0; r < 4 && given[i]; ++r)
-            std::memcpy(rows[i] + 6 * r, given[i] + 6 * (block + (r < tail_rows ? r : tail_rows - 1)),
-                        6 * sizeof(double));
+        for (size_t r = 0; r < 4 && given[i]; ++r) {
+            const size_t from = block + (r < tail_rows ? r : tail_rows - 1);
+            std::memcpy(rows[i] + 6 * r, given[i] + 6 * from, 6 * sizeof(double));
+        }
 #define TAIL_COLUMN(name, member, count, type, unit, description) type name[4 * (count)];
     struct {
         STEWART_INVERSE_OUTPUT_TABLE(TAIL_COLUMN)
@@ -147,10 +148,12 @@ void tail_block(stewart::VectorPath path, const stewart::QuadModel &model, const
     if (out.name) tail_out.name = tail.name;
     STEWART_INVERSE_OUTPUT_TABLE(TAIL_POINT)
 #undef TAIL_POINT
-    const stewart::QuadRows quad = {rows[0], q_dot ? rows[1] : nullptr, q_ddot ? rows[2] : nullptr};
+    const stewart::QuadRows quad = {rows[0], q_dot ? rows[1] : nullptr,
+                                    q_ddot ? rows[2] : nullptr};
     stewart::closed_form_quad(path, model, quad, tail_out, 0, done);
 #define TAIL_COPY(name, member, count, type, unit, description)                                   \
-    if (out.name) std::memcpy(out.name + block * (count), tail.name, tail_rows * (count) * sizeof(type));
+    if (out.name)                                                                                 \
+        std::memcpy(out.name + block * (count), tail.name, tail_rows * (count) * sizeof(type));
     STEWART_INVERSE_OUTPUT_TABLE(TAIL_COPY)
 #undef TAIL_COPY
 }

@@ -90,6 +90,14 @@ struct PlantColumns {
 #undef BENCH_SIZE
 #undef BENCH_POINT
 
+// An inverse solver at level (STEWART_KINEMATIC, ...) with default options otherwise.
+stewart_inverse *inverse_at(const stewart_model *model, int level) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    o.fidelity = level;
+    return stewart_inverse_create(model, &o, nullptr, 0);
+}
+
 // One batch of level (0 kinematic, 1 massless) on the kernel named path: what callgrind counts.
 int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q,
               const std::vector<double> &q_dot, const std::vector<double> &q_ddot, int level,
@@ -98,10 +106,7 @@ int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q
                                      : path_name == "portable" ? stewart::VectorPath::portable
                                                                : stewart::VectorPath::scalar;
     if (!stewart::vector_path_available(path)) return 2;  // not on this CPU
-    stewart_inverse_options o;
-    stewart_inverse_options_default(&o);
-    o.fidelity = level;
-    stewart_inverse *inverse = stewart_inverse_create(model, &o, nullptr, 0);
+    stewart_inverse *inverse = inverse_at(model, level);
     if (!inverse) return 1;
     InverseColumns columns(n);
     const stewart_inverse_batch_outputs out = columns.outputs();
@@ -138,10 +143,7 @@ int main(int argc, char **argv) {
     const int level_repeats[] = {51, 51, 5};
     std::vector<InverseColumns> levels(3, InverseColumns(n));
     for (int level = 0; level < 3; ++level) {
-        stewart_inverse_options o;
-        stewart_inverse_options_default(&o);
-        o.fidelity = level;
-        stewart_inverse *inverse = stewart_inverse_create(model, &o, nullptr, 0);
+        stewart_inverse *inverse = inverse_at(model, level);
         if (!inverse) return 1;
         const stewart_inverse_batch_outputs out = levels[level].outputs();
         const double ns = median_ns_per_row(level_repeats[level], n, [&] {
@@ -158,10 +160,7 @@ int main(int argc, char **argv) {
     for (int level = 0; level < 2; ++level)
         for (int path = 0; path < 3; ++path) {
             if (!stewart::vector_path_available(stewart::VectorPath(path))) continue;
-            stewart_inverse_options o;
-            stewart_inverse_options_default(&o);
-            o.fidelity = level;
-            stewart_inverse *inverse = stewart_inverse_create(model, &o, nullptr, 0);
+            stewart_inverse *inverse = inverse_at(model, level);
             if (!inverse) return 1;
             const stewart_inverse_batch_outputs out = levels[level].outputs();
             const double ns = median_ns_per_row(level_repeats[level], n, [&] {

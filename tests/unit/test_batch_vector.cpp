@@ -265,7 +265,8 @@ stewart_model *general_model() {
     uint64_t seed = 77;
     for (int k = 0; k < STEWART_LEGS; ++k)
         for (int i = 0; i < 3; ++i) {
-            p.base_joint[3 * k + i] = thesis->geometry.base_points(i, k) + uniform(seed, -0.03, 0.03);
+            p.base_joint[3 * k + i] =
+                thesis->geometry.base_points(i, k) + uniform(seed, -0.03, 0.03);
             p.platform_joint[3 * k + i] =
                 thesis->geometry.platform_points(i, k) + uniform(seed, -0.03, 0.03);
         }
