@@ -1,5 +1,5 @@
 // The closed-form levels of the inverse batch on the vector units: which kernel this CPU runs,
-// which rows and batches it takes, and the model's constants in the kernel's layout.
+// and the model's constants in the kernel's layout.
 #pragma once
 
 #include "kinematics/closed_form.hpp"
