@@ -1,10 +1,12 @@
-// stewart_batch.h: n rows through stewart_inverse_solve, stewart_forward_solve (one solver
-// object) or stewart_plant_step (one plant), arrays in and out.
+// stewart_batch.h: n rows through stewart_inverse_solve (at the kinematic and massless levels
+// four rows at a time on the vector units, closed_form_quad.hpp), stewart_forward_solve (one
+// solver object) or stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
 #include <cstdio>
 #include <cstring>
 
+#include "batch_paths.hpp"
 #include "model.hpp"
 #include "util/message.hpp"
 
@@ -124,13 +126,45 @@ void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
 
 #undef PUT_COLUMN
 
+// The last rows (tail_rows < 4) of an inverse batch through the four-pose kernel: copies of the
+// rows, the last repeated, into four-row columns, and tail_rows rows back to out.
+void tail_block(stewart::VectorPath path, const stewart::QuadModel &model, const double *q,
+                const double *q_dot, const double *q_ddot, const stewart_inverse_batch_outputs &out,
+                size_t block, size_t tail_rows, bool done[4]) {
+    double rows[3][24];
+    const double *given[3] = {q, q_dot, q_ddot};
+    for (int i = 0; i < 3; ++i)
+        for (size_t r = 0; r < 4 && given[i]; ++r) {
+            const size_t from = block + (r < tail_rows ? r : tail_rows - 1);
+            std::memcpy(rows[i] + 6 * r, given[i] + 6 * from, 6 * sizeof(double));
+        }
+#define TAIL_COLUMN(name, member, count, type, unit, description) type name[4 * (count)];
+    struct {
+        STEWART_INVERSE_OUTPUT_TABLE(TAIL_COLUMN)
+    } tail;
+#undef TAIL_COLUMN
+    stewart_inverse_batch_outputs tail_out{};
+#define TAIL_POINT(name, member, count, type, unit, description)                                  \
+    if (out.name) tail_out.name = tail.name;
+    STEWART_INVERSE_OUTPUT_TABLE(TAIL_POINT)
+#undef TAIL_POINT
+    const stewart::QuadRows quad = {rows[0], q_dot ? rows[1] : nullptr,
+                                    q_ddot ? rows[2] : nullptr};
+    stewart::closed_form_quad(path, model, quad, tail_out, 0, done);
+#define TAIL_COPY(name, member, count, type, unit, description)                                   \
+    if (out.name)                                                                                 \
+        std::memcpy(out.name + block * (count), tail.name, tail_rows * (count) * sizeof(type));
+    STEWART_INVERSE_OUTPUT_TABLE(TAIL_COPY)
+#undef TAIL_COPY
+}
+
 }  // namespace
 
-extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,
-                                                const double *q_dot, const double *q_ddot,
-                                                const stewart_inverse_batch_outputs *out,
-                                                stewart_batch_messages *messages,
-                                                size_t *first_failed) {
+stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double *q,
+                                     const double *q_dot, const double *q_ddot,
+                                     const stewart_inverse_batch_outputs *out,
+                                     stewart_batch_messages *messages, size_t *first_failed,
+                                     VectorPath path) {
     FailureLog log(messages, first_failed, n);
     if (!d || !out || !out->status || (n > 0 && !q)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
@@ -139,7 +173,8 @@ extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, co
     }
     stewart_inverse_input in{};
     stewart_pose &pose = in.pose;
-    for (size_t j = 0; j < n; ++j) {
+    // Row j by stewart_inverse_solve.
+    auto solve_scalar = [&](size_t j) {
         std::memcpy(pose.q, q + 6 * j, sizeof pose.q);
         if (q_dot) std::memcpy(pose.q_dot, q_dot + 6 * j, sizeof pose.q_dot);
         if (q_ddot) std::memcpy(pose.q_ddot, q_ddot + 6 * j, sizeof pose.q_ddot);
@@ -150,9 +185,49 @@ extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, co
             log.record(j, s, d->message);
         }
         write_row(*out, j, o_j, s);
+    };
+    const stewart_model *m = d->model;
+    const bool vector = path != VectorPath::scalar && d->options.fidelity != STEWART_FULL &&
+                        m->frames.identity;
+    if (!vector) {
+        for (size_t j = 0; j < n; ++j) solve_scalar(j);
+    } else {
+        if (!vector_path_available(path)) path = VectorPath::portable;
+        const QuadModel model = quad_model(m->geometry, m->platform, m->gravity, m->params,
+                                           d->options);
+        // Blocks of four rows in order (a failing row's message keeps its place): the kernel
+        // writes the block, the scalar solve overwrites the rows it leaves. The last block, if
+        // short, through four-row copies (its last row repeated), so that a row's numbers do not
+        // depend on where a batch starts.
+        for (size_t block = 0; block < n; block += 4) {
+            const size_t count = n - block < 4 ? n - block : 4;
+            bool done[4];
+            if (count == 4) {
+                const QuadRows rows = {q + 6 * block, q_dot ? q_dot + 6 * block : nullptr,
+                                       q_ddot ? q_ddot + 6 * block : nullptr};
+                closed_form_quad(path, model, rows, *out, block, done);
+            } else {
+                tail_block(path, model, q, q_dot, q_ddot, *out, block, count, done);
+            }
+            for (size_t r = 0; r < count; ++r) {
+                if (done[r])
+                    out->status[block + r] = STEWART_OK;
+                else
+                    solve_scalar(block + r);
+            }
+        }
     }
     std::memcpy(d->message, log.first_message, sizeof log.first_message);
     return log.first;
+}
+
+extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,
+                                                const double *q_dot, const double *q_ddot,
+                                                const stewart_inverse_batch_outputs *out,
+                                                stewart_batch_messages *messages,
+                                                size_t *first_failed) {
+    return stewart::inverse_batch(d, n, q, q_dot, q_ddot, out, messages, first_failed,
+                                  stewart::fastest_vector_path());
 }
 
 extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, const double *time,

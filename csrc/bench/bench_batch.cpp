@@ -2,14 +2,20 @@
 // per batch: the inverse at its three levels, forward kinematics tracking the kinematic lengths,
 // and the plant at both fidelities driven by the full level's forces. The median over repeated
 // whole batches. studies/bench/batches.py runs this beside the Python API on the same rows.
+// The kinematic and massless levels also on each kernel (batch_paths.hpp: "scalar", one
+// stewart_inverse_solve per row; "portable"; "avx2" where the CPU has it), in the same run.
 // usage: bench-batch [ROWS (6000)]
+//        bench-batch ROWS --once LEVEL PATH   one batch only, LEVEL 0 or 1, PATH scalar, portable
+//                                             or avx2 (for callgrind --toggle-collect)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <string>
 #include <vector>
 
+#include "batch_paths.hpp"
 #include "bench/combined_cue.hpp"
 #include "stewart/stewart_batch.h"
 #include "stewart/stewart_forward.h"
@@ -84,11 +90,39 @@ struct PlantColumns {
 #undef BENCH_SIZE
 #undef BENCH_POINT
 
+// An inverse solver at level (STEWART_KINEMATIC, ...) with default options otherwise.
+stewart_inverse *inverse_at(const stewart_model *model, int level) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    o.fidelity = level;
+    return stewart_inverse_create(model, &o, nullptr, 0);
+}
+
+// One batch of level (0 kinematic, 1 massless) on the kernel named path: what callgrind counts.
+int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q,
+              const std::vector<double> &q_dot, const std::vector<double> &q_ddot, int level,
+              const std::string &path_name) {
+    const stewart::VectorPath path = path_name == "avx2"       ? stewart::VectorPath::avx2
+                                     : path_name == "portable" ? stewart::VectorPath::portable
+                                                               : stewart::VectorPath::scalar;
+    if (!stewart::vector_path_available(path)) return 2;  // not on this CPU
+    stewart_inverse *inverse = inverse_at(model, level);
+    if (!inverse) return 1;
+    InverseColumns columns(n);
+    const stewart_inverse_batch_outputs out = columns.outputs();
+    const stewart_status s = stewart::inverse_batch(inverse, n, q.data(), q_dot.data(),
+                                                    q_ddot.data(), &out, nullptr, nullptr, path);
+    std::printf("%s %s: status %d\n", level ? "massless" : "kinematic", path_name.c_str(), s);
+    stewart_inverse_free(inverse);
+    return s == STEWART_OK ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
     const size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 6000;
     if (n < 2) return std::fprintf(stderr, "usage: bench-batch [ROWS >= 2]\n"), 2;
+    const bool once = argc == 5 && std::string(argv[2]) == "--once";
     stewart_params params;
     stewart_params_default(&params);
     stewart_model *model = stewart_model_create(&params, nullptr, 0);
@@ -101,6 +135,7 @@ int main(int argc, char **argv) {
         std::copy(p.q_ddot, p.q_ddot + 6, &q_ddot[6 * j]);
         time[j] = j * kStep;
     }
+    if (once) return one_batch(model, n, q, q_dot, q_ddot, std::atoi(argv[3]), argv[4]);
     std::printf("# ns per row, median of whole batches of %zu rows (combined cue, 1 ms)\n", n);
 
     // (the kinematic level's lengths drive forward kinematics, the full level's forces the plant)
@@ -108,10 +143,7 @@ int main(int argc, char **argv) {
     const int level_repeats[] = {51, 51, 5};
     std::vector<InverseColumns> levels(3, InverseColumns(n));
     for (int level = 0; level < 3; ++level) {
-        stewart_inverse_options o;
-        stewart_inverse_options_default(&o);
-        o.fidelity = level;
-        stewart_inverse *inverse = stewart_inverse_create(model, &o, nullptr, 0);
+        stewart_inverse *inverse = inverse_at(model, level);
         if (!inverse) return 1;
         const stewart_inverse_batch_outputs out = levels[level].outputs();
         const double ns = median_ns_per_row(level_repeats[level], n, [&] {
@@ -122,6 +154,24 @@ int main(int argc, char **argv) {
         std::printf("%-22s %10.1f\n", level_name[level], ns);
         stewart_inverse_free(inverse);
     }
+
+    // The closed-form levels on each kernel.
+    const char *path_name[] = {"scalar", "portable", "avx2"};
+    for (int level = 0; level < 2; ++level)
+        for (int path = 0; path < 3; ++path) {
+            if (!stewart::vector_path_available(stewart::VectorPath(path))) continue;
+            stewart_inverse *inverse = inverse_at(model, level);
+            if (!inverse) return 1;
+            const stewart_inverse_batch_outputs out = levels[level].outputs();
+            const double ns = median_ns_per_row(level_repeats[level], n, [&] {
+                return stewart::inverse_batch(inverse, n, q.data(), q_dot.data(), q_ddot.data(),
+                                              &out, nullptr, nullptr, stewart::VectorPath(path));
+            });
+            char name[64];
+            std::snprintf(name, sizeof name, "%s %s", level_name[level], path_name[path]);
+            std::printf("%-30s %10.1f\n", name, ns);
+            stewart_inverse_free(inverse);
+        }
 
     stewart_forward_options fo;
     stewart_forward_options_default(&fo);

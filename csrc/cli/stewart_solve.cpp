@@ -10,6 +10,7 @@
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
 #include "stewart/stewart.h"
+#include "stewart/stewart_batch.h"
 #include "stewart/stewart_limits.h"
 
 namespace {
@@ -188,25 +189,47 @@ int main(int argc, char **argv) {
         return 1;
     }
 
-    // Solve everything before writing, so a failed run leaves no partial OUT.csv behind.
-    std::vector<stewart_inverse_output> outputs(table.t.size());
-    std::vector<LimitRow> limit_rows(limits || ranges ? table.t.size() : 0);
+    // Solve everything before writing, so a failed run leaves no partial OUT.csv behind; through
+    // the batch, as the Python package and the sweeps (the same numbers bit for bit).
+    const size_t n = table.t.size();
+    std::vector<stewart_inverse_output> outputs(n);
+    std::vector<LimitRow> limit_rows(limits || ranges ? n : 0);
+    std::vector<double> q(6 * n), q_dot(6 * n), q_ddot(6 * n);
+    for (size_t j = 0; j < n; ++j) {
+        std::memcpy(&q[6 * j], table.poses[j].q, sizeof table.poses[j].q);
+        std::memcpy(&q_dot[6 * j], table.poses[j].q_dot, sizeof table.poses[j].q_dot);
+        std::memcpy(&q_ddot[6 * j], table.poses[j].q_ddot, sizeof table.poses[j].q_ddot);
+    }
+#define CLI_COLUMN(name, member, count, type, unit, description)                                  \
+    std::vector<type> name(n * (count));
+#define CLI_POINT(name, member, count, type, unit, description) columns.name = name.data();
+#define CLI_ROW(name, member, count, type, unit, description)                                      \
+    std::memcpy(&outputs[j].member, name.data() + j * (count), (count) * sizeof(type));
+    STEWART_INVERSE_OUTPUT_TABLE(CLI_COLUMN)
+    std::vector<int> row_status(n);
+    stewart_inverse_batch_outputs columns{};
+    STEWART_INVERSE_OUTPUT_TABLE(CLI_POINT)
+    columns.status = row_status.data();
+    size_t failed = n;
+    const stewart_status s = stewart_inverse_batch(inverse, n, q.data(), q_dot.data(),
+                                                   q_ddot.data(), &columns, nullptr, &failed);
     int status = 0;
-    for (size_t j = 0; j < table.t.size(); ++j) {
-        const stewart_inverse_input in = {table.poses[j]};
-        const stewart_status s = stewart_inverse_solve(inverse, &in, &outputs[j]);
-        if (s != STEWART_OK) {
-            std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s: %s\n", j + 1, table.t[j],
-                         stewart_status_name(s), stewart_inverse_message(inverse));
-            status = 1;
-            break;
-        }
+    if (s != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s: %s\n", failed + 1,
+                     table.t[failed], stewart_status_name(s), stewart_inverse_message(inverse));
+        status = 1;
+    }
+    for (size_t j = 0; j < n && status == 0; ++j) {
+        STEWART_INVERSE_OUTPUT_TABLE(CLI_ROW)
         stewart_limits_input pose;
         std::memcpy(pose.q, table.poses[j].q, sizeof pose.q);
         // The pose solved, so it is finite: neither call can fail.
         if (limits) stewart_limits_check(checker, &pose, &limit_rows[j].check);
         if (ranges) stewart_limits_ranges(checker, &pose, &limit_rows[j].ranges);
     }
+#undef CLI_COLUMN
+#undef CLI_POINT
+#undef CLI_ROW
     stewart_limits_free(checker);
     stewart_inverse_free(inverse);
     stewart_model_free(model);

@@ -2,7 +2,9 @@
  * Many poses in one call: the batch entry point behind the Python package and the sweeps.
  *
  * A batch solves n poses in order with one inverse solver, exactly as n successive
- * stewart_inverse_solve calls would (at the full level each pose starts from the previous one's solution), but with
+ * stewart_inverse_solve calls would (at the full level each pose starts from the previous one's
+ * solution; the kinematic and massless levels run four poses at a time on the vector units, the
+ * same numbers to rounding and the same statuses, messages and warnings: docs/api.md), but with
  * the inputs and outputs as row-major arrays, so that a caller holding arrays (numpy) needs no
  * loop per pose. A row that fails gets its status (and, if asked, its message) and zero outputs;
  * the rows after it are still solved. The same for forward kinematics (lengths to poses) and, for

@@ -1,0 +1,64 @@
+#include "kinematics/closed_form_batch.hpp"
+
+namespace stewart {
+
+namespace {
+
+bool cpu_has_avx2_fma() {
+#if defined(STEWART_HAVE_AVX2_KERNEL) && (defined(__x86_64__) || defined(__i386__))
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+#else
+    return false;
+#endif
+}
+
+}  // namespace
+
+VectorPath fastest_vector_path() {
+    static const VectorPath fastest = cpu_has_avx2_fma() ? VectorPath::avx2 : VectorPath::portable;
+    return fastest;
+}
+
+bool vector_path_available(VectorPath path) {
+    return path != VectorPath::avx2 || fastest_vector_path() == VectorPath::avx2;
+}
+
+QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
+                     const Eigen::Vector3d &gravity, const stewart_params &p,
+                     const stewart_inverse_options &o) {
+    QuadModel m{};
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            m.base[i][k] = g.base_points(i, k);
+            m.platform[i][k] = g.platform_points(i, k);
+        }
+    m.min_length = g.min_length;
+    m.characteristic_length = g.characteristic_length;
+    m.mass = body.mass;
+    for (int i = 0; i < 3; ++i) {
+        m.com[i] = body.com[i];
+        m.gravity[i] = gravity[i];
+        for (int j = 0; j < 3; ++j) m.inertia[i][j] = body.inertia(i, j);
+    }
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        m.stroke_min[k] = p.stroke_min[k];
+        m.stroke_max[k] = p.stroke_max[k];
+        m.length_offset[k] = p.length_offset[k];
+    }
+    m.warn_condition = o.warn_condition;
+    m.singular_condition = o.singular_condition;
+    m.massless = o.fidelity == STEWART_MASSLESS;
+    return m;
+}
+
+void closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
+                      const stewart_inverse_batch_outputs &out, size_t row, bool done[4]) {
+#ifdef STEWART_HAVE_AVX2_KERNEL
+    if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, row, done);
+#endif
+    (void)path;
+    closed_form_quad_portable(m, rows, out, row, done);
+}
+
+}  // namespace stewart

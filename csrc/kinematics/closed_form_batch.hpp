@@ -1,0 +1,30 @@
+// The closed-form levels of the inverse batch on the vector units: which kernel this CPU runs,
+// and the model's constants in the kernel's layout.
+#pragma once
+
+#include "kinematics/closed_form.hpp"
+#include "kinematics/closed_form_quad.hpp"
+#include "stewart/stewart.h"
+
+namespace stewart {
+
+// The kernels: none (the scalar stewart_inverse_solve per row), portable, AVX2 with FMA.
+enum class VectorPath { scalar, portable, avx2 };
+
+// The fastest kernel this CPU runs (decided once, thread-safely; no state changes after).
+VectorPath fastest_vector_path();
+
+// False where a path is not built or the CPU lacks it (AVX2 off x86).
+bool vector_path_available(VectorPath path);
+
+// The kernel's constants for a batch at the kinematic or massless level of model pieces g
+// (geometry), body, gravity, parameters p (strokes, length offsets) and options o.
+QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
+                     const Eigen::Vector3d &gravity, const stewart_params &p,
+                     const stewart_inverse_options &o);
+
+// closed_form_quad_portable or closed_form_quad_avx2 by path (not scalar).
+void closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
+                      const stewart_inverse_batch_outputs &out, size_t row, bool done[4]);
+
+}  // namespace stewart

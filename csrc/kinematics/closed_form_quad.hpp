@@ -1,0 +1,40 @@
+// The closed-form levels (kinematic, massless) of four poses at once, one pose per lane of a
+// 4-double vector: plain data in and out and no Eigen, because the kernel is compiled twice (once
+// for AVX2 and FMA, once portable) and must share no inline code with the rest of the library.
+#pragma once
+
+#include <stddef.h>
+
+#include "stewart/stewart_batch.h"
+
+namespace stewart {
+
+// What the kernel needs of a model and inverse options, copied once per batch.
+struct QuadModel {
+    double base[3][6], platform[3][6];  // a_k (world) and b_k (platform frame), column k = leg k
+    double min_length;                  // PlatformGeometry::min_length [m]
+    double characteristic_length;       // scales the Jacobian's angular rows [m]
+    double mass, com[3], inertia[3][3], gravity[3];  // the lumped platform (LumpedBody)
+    double stroke_min[6], stroke_max[6], length_offset[6];
+    double warn_condition, singular_condition;
+    bool massless;  // else kinematic
+};
+
+// Four consecutive rows of a batch's inputs, 6 values each: q, and q_dot and q_ddot (NULL: 0).
+struct QuadRows {
+    const double *q, *q_dot, *q_ddot;
+};
+
+// Writes rows row..row + 3 of every column of out (not status) as stewart_inverse_solve would
+// for the four poses, to rounding, and sets done[l] = true, or done[l] = false where the scalar
+// path must decide (and overwrite the row): bad input (not finite, beyond 1e50, an angle beyond
+// 1e4 rad), a failing row (a leg of no length, a singular Jacobian, a non-finite output) or one
+// within rounding of a stroke limit or a condition threshold.
+void closed_form_quad_portable(const QuadModel &m, const QuadRows &rows,
+                               const stewart_inverse_batch_outputs &out, size_t row,
+                               bool done[4]);
+// The same on AVX2 and FMA (call only where the CPU has both).
+void closed_form_quad_avx2(const QuadModel &m, const QuadRows &rows,
+                           const stewart_inverse_batch_outputs &out, size_t row, bool done[4]);
+
+}  // namespace stewart
