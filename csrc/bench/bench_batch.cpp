@@ -8,7 +8,6 @@
 //        bench-batch ROWS --once LEVEL PATH   one batch only, LEVEL 0 or 1, PATH scalar, portable
 //                                             or avx2 (for callgrind --toggle-collect)
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "batch_paths.hpp"
+#include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
 #include "stewart/stewart_batch.h"
 #include "stewart/stewart_forward.h"
@@ -30,17 +30,16 @@ constexpr double kStep = 1e-3;  // [s] between rows
 double median_ns_per_row(int repeats, size_t rows, const std::function<stewart_status()> &batch) {
     std::vector<double> ns;
     for (int r = 0; r < repeats; ++r) {
-        const auto start = std::chrono::steady_clock::now();
+        const auto start = bench::Clock::now();
         const stewart_status s = batch();
-        const auto stop = std::chrono::steady_clock::now();
+        const double elapsed = bench::ns_since(start);
         if (s != STEWART_OK) {
             std::fprintf(stderr, "bench-batch: a batch failed with status %d\n", s);
             std::exit(1);
         }
-        ns.push_back(std::chrono::duration<double, std::nano>(stop - start).count() / rows);
+        ns.push_back(elapsed / rows);
     }
-    std::nth_element(ns.begin(), ns.begin() + ns.size() / 2, ns.end());
-    return ns[ns.size() / 2];
+    return bench::median(std::move(ns));
 }
 
 // Every column of a batch's output tables, n rows each, and the batch outputs pointing at them:
@@ -123,9 +122,7 @@ int main(int argc, char **argv) {
     const size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 6000;
     if (n < 2) return std::fprintf(stderr, "usage: bench-batch [ROWS >= 2]\n"), 2;
     const bool once = argc == 5 && std::string(argv[2]) == "--once";
-    stewart_params params;
-    stewart_params_default(&params);
-    stewart_model *model = stewart_model_create(&params, nullptr, 0);
+    stewart_model *model = bench::make_model("bench-batch");
     if (!model) return 1;
     std::vector<double> q(6 * n), q_dot(6 * n), q_ddot(6 * n), time(n);
     for (size_t j = 0; j < n; ++j) {

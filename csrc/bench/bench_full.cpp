@@ -4,12 +4,12 @@
 // rest). Two initial-guess strategies: the closed-form placement (the product's path) and the
 // generic predictor q + h q_dot + h^2/2 q_ddot. Prints the medians and writes them to argv[1].
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "bench/full_platform.hpp"
 #include "core/step.hpp"
 #include "util/message.hpp"
@@ -63,7 +63,7 @@ Result run(const FullPlatform &model, const mbs::SolverOptions &kind, bool close
     for (int pass = 0; pass < passes; ++pass) {
         mbs::reset_history(state);
         for (const Sample &smp : samples) {
-            const auto start = std::chrono::steady_clock::now();
+            const auto start = bench::Clock::now();
             const stewart::Motion motion = stewart::motion_of_pose(smp.pose);
             stewart::LegKinematics legs;
             stewart::leg_kinematics(model.geometry, motion, legs, msg, sizeof msg);
@@ -78,21 +78,20 @@ Result run(const FullPlatform &model, const mbs::SolverOptions &kind, bool close
                 out.force[0] = -state.lambda[model.full->mechanism.first_row[model.full_layout.driver_joint[0]]];
                 out.iterations = state.stats.iterations;
             }
-            const auto stop = std::chrono::steady_clock::now();
+            const double us = 1e-3 * bench::ns_since(start);
             if (s != STEWART_OK) {
                 std::fprintf(stderr, "step at t = %g failed: %s\n", smp.t, msg);
                 r.ok = false;
                 return r;
             }
-            times.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
+            times.push_back(us);
             iterations += out.iterations;
             r.max_iterations = std::max(r.max_iterations, out.iterations);
             ++steps;
             r.checksum += out.force[0];
         }
     }
-    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-    r.median_us = times[times.size() / 2];
+    r.median_us = bench::median(std::move(times));
     r.mean_iterations = static_cast<double>(iterations) / steps;
     return r;
 }

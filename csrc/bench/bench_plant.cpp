@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
 #include "stewart/stewart_plant.h"
 
@@ -118,8 +119,7 @@ Result run(const stewart_model *model, const stewart_plant_options &o, const Dri
             r.pose_error = std::max(r.pose_error, std::fabs(out.pose.q[c] - cue.q[c]));
     }
     stewart_plant_free(plant);
-    std::sort(per_step.begin(), per_step.end());
-    if (!per_step.empty()) r.us_per_step = per_step[per_step.size() / 2];
+    r.us_per_step = bench::median(std::move(per_step));
     return r;
 }
 
@@ -176,14 +176,8 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
 }  // namespace
 
 int main(int argc, char **argv) {
-    stewart_params params;
-    stewart_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
-    if (!model) {
-        std::fprintf(stderr, "bench-plant: %s\n", msg);
-        return 1;
-    }
+    stewart_model *model = bench::make_model("bench-plant");
+    if (!model) return 1;
     const double duration = 2.0;
     const int passes = 7;
     std::string report =
