@@ -45,7 +45,9 @@ typedef struct stewart_batch_messages {
 } stewart_batch_messages;
 
 /* Solves rows 0..n-1 of q (n x 6), with q_dot and q_ddot (n x 6 each, NULL for zero), in order,
- * continuing from the solver's state (call stewart_inverse_reset first for a fresh start).
+ * continuing from the solver's state (call stewart_inverse_reset first for a fresh start). The
+ * output arrays must not overlap the inputs (the closed-form levels write a block of rows before
+ * they read all of it).
  * Returns STEWART_OK if every row solved, else the status of the first failing row, whose message
  * stewart_inverse_message then gives and whose index goes to *first_failed (if not NULL; n when
  * every row solved). messages may be NULL. */
