@@ -105,7 +105,11 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     const Motion m = motion_of_state(y);
     double force[STEWART_LEGS];
     im.forces->at(tau, force);
-    if (!twist_rate(*im.model, m, force, im.evaluation)) {
+    // the massless equations written out (the same bits as twist_rate's)
+    const bool defined = im.model->with_legs ? twist_rate(*im.model, m, force, im.evaluation)
+                                             : massless_twist_rate(*im.model, m, force,
+                                                                   im.evaluation);
+    if (!defined) {
         im.fault = im.evaluation.fault;
         im.fault_leg = im.evaluation.fault_leg;
         return 1;
