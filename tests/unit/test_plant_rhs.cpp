@@ -3,7 +3,8 @@
 // same massless model: plant_equations_impl.hpp's assemble and one-body solve): bit for bit, on
 // random states far from home (any rotation, fast motion), random forces, with and without a
 // payload off the platform's centre (a centre of mass off the origin and a full inertia), and
-// the same fault for a leg of zero length.
+// the same fault for a leg of zero length; and the state's rotation (fd::motion_of_state, written
+// out) against Eigen's quaternion.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -75,6 +76,24 @@ void check_model(const stewart_params &params) {
     TEST_ASSERT_EQUAL_INT(0, differing);
 }
 
+// fd::motion_of_state's rotation, written out, against Eigen's quaternion (which it copies), bit
+// for bit, on unnormalised quaternions of any rotation and scale.
+void test_rotation_of_state(void) {
+    uint64_t rng = 777;
+    int differing = 0;
+    for (int n = 0; n < 100000; ++n) {
+        double y[fd::kStates] = {0};
+        const double scale = std::pow(10.0, uniform(rng, -3, 3));
+        for (int i = 3; i < 7; ++i) y[i] = scale * uniform(rng, -1, 1);
+        Eigen::Quaterniond q(y[3], y[4], y[5], y[6]);
+        q.normalize();
+        const fd::Mat3 expected = q.toRotationMatrix(), R = fd::motion_of_state(y).rotation;
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) differing += !same_bits(expected(i, j), R(i, j));
+    }
+    TEST_ASSERT_EQUAL_INT(0, differing);
+}
+
 void test_default_platform(void) {
     stewart_params params;
     stewart_params_default(&params);
@@ -97,6 +116,7 @@ void tearDown(void) {}
 
 int main(void) {
     UNITY_BEGIN();
+    RUN_TEST(test_rotation_of_state);
     RUN_TEST(test_default_platform);
     RUN_TEST(test_payload_off_centre);
     return UNITY_END();
