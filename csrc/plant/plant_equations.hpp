@@ -49,7 +49,7 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
                 EvaluationT<S> &e);
 
 // twist_rate<double> for the massless model (d.with_legs false), written out in scalars with the
-// same arithmetic in the same order (plant_massless.cpp): the same bits, a third of the
+// same arithmetic in the same order (plant_massless.cpp): the same bits, 30 % fewer
 // instructions. The plant's integrator calls it for every massless right-hand side.
 bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                          Evaluation &e);

@@ -81,7 +81,7 @@ Motion motion_of_state(const double y[kStates]) {
     m.position = Vec3(y[0], y[1], y[2]);
     // Eigen's Quaterniond normalize() and toRotationMatrix() written out in their order of
     // operations (the squared norm summed as its two-wide packets, (x^2 + z^2) + (y^2 + w^2)): the
-    // same bits at a third of the instructions (test_plant_rhs compares them with Eigen's).
+    // same bits without its expression machinery (test_plant_rhs compares them with Eigen's).
     double w = y[3], x = y[4], yq = y[5], z = y[6];
     const double squared_norm = (x * x + z * z) + (yq * yq + w * w);
     if (squared_norm > 0) {

@@ -23,7 +23,8 @@ inline void cross(const double a[3], const double b[3], double r[3]) {
 
 // Row i of a 3 x 3 column-major product, sum of x0, x1, x2 (the products along the row), as
 // Eigen sums it: rows 0 and 1 from the left (a packet of two rows), row 2 as x0 + (x1 + x2)
-// (its scalar reduction's tree).
+// (its scalar reduction's tree). That is Eigen with two-wide packets (SSE2, the library's
+// x86-64 baseline); a build whose Eigen sums otherwise fails test_plant_rhs.
 inline double row_sum(int i, double x0, double x1, double x2) {
     return i < 2 ? x0 + x1 + x2 : x0 + (x1 + x2);
 }
