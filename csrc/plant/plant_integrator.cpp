@@ -79,9 +79,32 @@ void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
 Motion motion_of_state(const double y[kStates]) {
     Motion m;
     m.position = Vec3(y[0], y[1], y[2]);
-    Eigen::Quaterniond q(y[3], y[4], y[5], y[6]);
-    q.normalize();
-    m.rotation = q.toRotationMatrix();
+    // Eigen's Quaterniond normalize() and toRotationMatrix() written out in their order of
+    // operations (the squared norm summed as its two-wide packets, (x^2 + z^2) + (y^2 + w^2)): the
+    // same bits without its expression machinery (test_plant_rhs compares them with Eigen's).
+    double w = y[3], x = y[4], yq = y[5], z = y[6];
+    const double squared_norm = (x * x + z * z) + (yq * yq + w * w);
+    if (squared_norm > 0) {
+        const double norm = std::sqrt(squared_norm);
+        w /= norm;
+        x /= norm;
+        yq /= norm;
+        z /= norm;
+    }
+    const double tx = 2 * x, ty = 2 * yq, tz = 2 * z;
+    const double twx = tx * w, twy = ty * w, twz = tz * w;
+    const double txx = tx * x, txy = ty * x, txz = tz * x;
+    const double tyy = ty * yq, tyz = tz * yq, tzz = tz * z;
+    Mat3 &R = m.rotation;
+    R(0, 0) = 1 - (tyy + tzz);
+    R(0, 1) = txy - twz;
+    R(0, 2) = txz + twy;
+    R(1, 0) = txy + twz;
+    R(1, 1) = 1 - (txx + tzz);
+    R(1, 2) = tyz - twx;
+    R(2, 0) = txz - twy;
+    R(2, 1) = tyz + twx;
+    R(2, 2) = 1 - (txx + tyy);
     m.velocity = Vec3(y[7], y[8], y[9]);
     m.omega = Vec3(y[10], y[11], y[12]);
     m.acceleration.setZero();
@@ -105,7 +128,11 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     const Motion m = motion_of_state(y);
     double force[STEWART_LEGS];
     im.forces->at(tau, force);
-    if (!twist_rate(*im.model, m, force, im.evaluation)) {
+    // the massless equations written out (the same bits as twist_rate's)
+    const bool defined = im.model->with_legs ? twist_rate(*im.model, m, force, im.evaluation)
+                                             : massless_twist_rate(*im.model, m, force,
+                                                                   im.evaluation);
+    if (!defined) {
         im.fault = im.evaluation.fault;
         im.fault_leg = im.evaluation.fault_leg;
         return 1;
