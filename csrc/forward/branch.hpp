@@ -19,6 +19,9 @@ int jacobian_sign(const Matrix6 &transposed);
 struct BranchSides {
     Matrix36 base;      // world
     Matrix36 platform;  // platform frame
+    // +1 where both sides are +z, -1 where both are -z (the checks are then one product and one
+    // signed component), 0 otherwise.
+    int vertical[STEWART_LEGS];
 };
 BranchSides branch_sides(const PlatformGeometry &g, double home_height);
 

@@ -9,6 +9,7 @@
 
 #include "model.hpp"
 #include "forward/branch.hpp"
+#include "forward/leg_pairs.hpp"
 #include "forward/newton.hpp"
 #include "kinematics/frames.hpp"
 #include "kinematics/motion.hpp"
@@ -64,29 +65,35 @@ stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, co
     const Eigen::Vector3d alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch,
                                                                  t.cos_yaw, t.sin_yaw, rate[1],
                                                                  rate[2]) * rate;
-    // Written out in scalars (Eigen's packets cost more than the arithmetic on 3-vectors).
+    // Written out, two legs at a time (forward/leg_pairs.hpp: each lane the scalar arithmetic).
     const double w0 = omega[0], w1 = omega[1], w2 = omega[2];
     const double e0 = alpha[0], e1 = alpha[1], e2 = alpha[2];
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double b0 = g.platform_points(0, k), b1 = g.platform_points(1, k),
-                     b2 = g.platform_points(2, k);
-        const double r0 = R(0, 0) * b0 + R(0, 1) * b1 + R(0, 2) * b2;
-        const double r1 = R(1, 0) * b0 + R(1, 1) * b1 + R(1, 2) * b2;
-        const double r2 = R(2, 0) * b0 + R(2, 1) * b1 + R(2, 2) * b2;
-        const double d0 = q[0] + r0 - g.base_points(0, k), d1 = q[1] + r1 - g.base_points(1, k),
-                     d2 = q[2] + r2 - g.base_points(2, k);
-        const double L = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-        if (!(L > g.min_length)) return stewart::check_leg_length(k, L, g.min_length, msg, size);
-        const double inv_L = 1.0 / L;
-        const double n0 = d0 * inv_L, n1 = d1 * inv_L, n2 = d2 * inv_L;
-        const double wr0 = w1 * r2 - w2 * r1, wr1 = w2 * r0 - w0 * r2, wr2 = w0 * r1 - w1 * r0;
-        const double v0 = q_dot[0] + wr0, v1 = q_dot[1] + wr1, v2 = q_dot[2] + wr2;
-        const double a0 = (e1 * r2 - e2 * r1) + (w1 * wr2 - w2 * wr1),
-                     a1 = (e2 * r0 - e0 * r2) + (w2 * wr0 - w0 * wr2),
-                     a2 = (e0 * r1 - e1 * r0) + (w0 * wr1 - w1 * wr0);
-        const double L_dot = n0 * v0 + n1 * v1 + n2 * v2;
-        accel[k] = (v0 * v0 + v1 * v1 + v2 * v2 - L_dot * L_dot) * inv_L +
-                   (n0 * a0 + n1 * a1 + n2 * a2);
+    const double *platform = g.platform_points.data(), *base = g.base_points.data();
+    using stewart::Pair;
+    using stewart::point_pair;
+    for (int k = 0; k < STEWART_LEGS; k += 2) {
+        const Pair b0 = point_pair(platform, 0, k), b1 = point_pair(platform, 1, k),
+                   b2 = point_pair(platform, 2, k);
+        const Pair r0 = R(0, 0) * b0 + R(0, 1) * b1 + R(0, 2) * b2;
+        const Pair r1 = R(1, 0) * b0 + R(1, 1) * b1 + R(1, 2) * b2;
+        const Pair r2 = R(2, 0) * b0 + R(2, 1) * b1 + R(2, 2) * b2;
+        const Pair d0 = q[0] + r0 - point_pair(base, 0, k), d1 = q[1] + r1 - point_pair(base, 1, k),
+                   d2 = q[2] + r2 - point_pair(base, 2, k);
+        const Pair L = stewart::sqrt_pair(d0 * d0 + d1 * d1 + d2 * d2);
+        if (stewart::any(~(L > g.min_length)))  // (NaN too)
+            for (int lane = 0; lane < 2; ++lane)
+                if (!(L[lane] > g.min_length))
+                    return stewart::check_leg_length(k + lane, L[lane], g.min_length, msg, size);
+        const Pair inv_L = 1.0 / L;
+        const Pair n0 = d0 * inv_L, n1 = d1 * inv_L, n2 = d2 * inv_L;
+        const Pair wr0 = w1 * r2 - w2 * r1, wr1 = w2 * r0 - w0 * r2, wr2 = w0 * r1 - w1 * r0;
+        const Pair v0 = q_dot[0] + wr0, v1 = q_dot[1] + wr1, v2 = q_dot[2] + wr2;
+        const Pair a0 = (e1 * r2 - e2 * r1) + (w1 * wr2 - w2 * wr1),
+                   a1 = (e2 * r0 - e0 * r2) + (w2 * wr0 - w0 * wr2),
+                   a2 = (e0 * r1 - e1 * r0) + (w0 * wr1 - w1 * wr0);
+        const Pair L_dot = n0 * v0 + n1 * v1 + n2 * v2;
+        stewart::store_pair(accel + k, (v0 * v0 + v1 * v1 + v2 * v2 - L_dot * L_dot) * inv_L +
+                                           (n0 * a0 + n1 * a1 + n2 * a2));
     }
     return STEWART_OK;
 }
@@ -242,13 +249,21 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "condition number %g, so lengths known to the tolerance %g m do not "
                            "determine the pose (condition^2 tolerance / platform_radius = %g > "
                            "0.5)", condition, o.tolerance, h);
-    x.points = at.arm;
-    x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
+    // In scalars, the sums in Eigen's order (bit for bit its colwise().norm()): the largest
+    // squared distance, then one square root (sqrt is monotonic and correctly rounded).
+    const double q0 = at.q[0], q1 = at.q[1], q2 = at.q[2];
+    double farthest = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const double p0 = at.arm[0][k] + q0, p1 = at.arm[1][k] + q1, p2 = at.arm[2][k] + q2;
+        x.points(0, k) = p0, x.points(1, k) = p1, x.points(2, k) = p2;
+        const double d0 = p0 - f.points(0, k), d1 = p1 - f.points(1, k), d2 = p2 - f.points(2, k);
+        farthest = std::max(farthest, d0 * d0 + d1 * d1 + d2 * d2);
+    }
     x.branch = stewart::assembly_branch(g, m.forward.sides, at.rotation, x.points,
                                         stewart::determinant_sign(x.factors),
                                         m.forward.working_sign);
     if (tracking) {
-        x.jump = (x.points - f.points).colwise().norm().maxCoeff();
+        x.jump = std::sqrt(farthest);
         if (x.jump > m.forward.shortest_stroke_range) x.branch |= STEWART_BRANCH_JUMP;
     }
     return STEWART_OK;

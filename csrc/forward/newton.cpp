@@ -55,20 +55,25 @@ double evaluate_residual(Impl &im, const double *u, double *f) {
     // KINSOL evaluates its start again: the legs there are known already.
     if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
         evaluate_legs(*im.geometry, u, im.target, im.cache);
+    const double min_length = im.geometry->min_length;
+    std::copy(im.cache.residual.data(), im.cache.residual.data() + kN, f);
+    // The usual case in one pass: the largest |residual| (the first on ties), every residual
+    // finite and every leg longer than min_length.
     double worst = 0;
     int worst_leg = 0;
-    const double min_length = im.geometry->min_length;
+    bool usual = true;
     for (int k = 0; k < kN; ++k) {
-        f[k] = im.cache.residual[k];
-        // A leg of (nearly) zero length has no axis: no Jacobian there. (|NaN| > worst is
-        // false: the first leg not finite or too short is the worst, INFINITY, and stays so.)
+        const double size = std::fabs(f[k]);
+        usual &= (size <= DBL_MAX) & (im.cache.length[k] > min_length);  // (false for NaN)
+        if (size > worst) worst = size, worst_leg = k;
+    }
+    // A leg of (nearly) zero length has no axis: no Jacobian there. The first leg not finite or
+    // too short is the worst, INFINITY.
+    for (int k = 0; !usual && k < kN; ++k)
         if (!(std::fabs(f[k]) <= DBL_MAX) || !(im.cache.length[k] > min_length)) {
             worst = INFINITY, worst_leg = k;
             break;
         }
-        if (std::fabs(f[k]) > worst) worst = std::fabs(f[k]), worst_leg = k;
-    }
-    for (int k = worst_leg + 1; worst == INFINITY && k < kN; ++k) f[k] = im.cache.residual[k];
     im.worst_leg = worst_leg;
     im.last_residual = worst;
     return worst;
