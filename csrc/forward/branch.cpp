@@ -41,30 +41,42 @@ BranchSides branch_sides(const PlatformGeometry &g, double home_height) {
                             : side == -Eigen::Vector3d::UnitZ() ? -1
                                                                 : 0;
     }
+    sides.all_vertical = true;
+    for (int k = 0; k < STEWART_LEGS; ++k) sides.all_vertical &= sides.vertical[k] != 0;
     return sides;
 }
 
 int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
-                    const Matrix36 &points, int jacobian_sign, int working_sign) {
+                    const LegVectors &points, int jacobian_sign, int working_sign) {
     int branch = R(2, 2) > 0 ? 0 : STEWART_BRANCH_FLIPPED;  // the platform's normal points up
     if (jacobian_sign != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
+    // (R s) . leg as s . (R^T leg): no 3 x 6 product. The sums in Eigen's order (left to right),
+    // so the verdicts are those of the vector expressions.
     bool below_base = false, platform_cardan = false;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double l0 = points(0, k) - g.base_points(0, k), l1 = points(1, k) - g.base_points(1, k),
-                     l2 = points(2, k) - g.base_points(2, k);
-        // (R s) . leg as s . (R^T leg): no 3 x 6 product. The sums in Eigen's order (left to
-        // right), so the verdicts are those of the vector expressions.
-        const double t2 = R(0, 2) * l0 + R(1, 2) * l1 + R(2, 2) * l2;
-        if (const int v = sides.vertical[k]) {  // s = +-z: s . leg = +-l2, s . R^T leg = +-t2
-            below_base |= !(v * l2 > 0);
-            platform_cardan |= !(v * t2 > 0);
-            continue;
+    const double *base = g.base_points.data();
+    if (sides.all_vertical) {  // s = +-z: s . leg = +-leg_z, s . R^T leg = +-(R^T leg)_z
+        PairBits below = {0, 0}, above = {0, 0};
+        for (int k = 0; k < STEWART_LEGS; k += 2) {  // legs k and k + 1
+            const Pair l0 = load_pair(points.c[0] + k) - point_pair(base, 0, k),
+                       l1 = load_pair(points.c[1] + k) - point_pair(base, 1, k),
+                       l2 = load_pair(points.c[2] + k) - point_pair(base, 2, k);
+            const Pair t2 = R(0, 2) * l0 + R(1, 2) * l1 + R(2, 2) * l2;
+            const Pair side = load_pair(sides.vertical + k);
+            below |= ~(side * l2 > 0);
+            above |= ~(side * t2 > 0);
         }
-        const double *b = sides.base.col(k).data(), *s = sides.platform.col(k).data();
-        const double t0 = R(0, 0) * l0 + R(1, 0) * l1 + R(2, 0) * l2;
-        const double t1 = R(0, 1) * l0 + R(1, 1) * l1 + R(2, 1) * l2;
-        below_base |= !(l0 * b[0] + l1 * b[1] + l2 * b[2] > 0);
-        platform_cardan |= !(s[0] * t0 + s[1] * t1 + s[2] * t2 > 0);
+        below_base = any(below), platform_cardan = any(above);
+    } else {
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            const double l0 = points.c[0][k] - base[3 * k], l1 = points.c[1][k] - base[3 * k + 1],
+                         l2 = points.c[2][k] - base[3 * k + 2];
+            const double *b = sides.base.col(k).data(), *s = sides.platform.col(k).data();
+            const double t0 = R(0, 0) * l0 + R(1, 0) * l1 + R(2, 0) * l2;
+            const double t1 = R(0, 1) * l0 + R(1, 1) * l1 + R(2, 1) * l2;
+            const double t2 = R(0, 2) * l0 + R(1, 2) * l1 + R(2, 2) * l2;
+            below_base |= !(l0 * b[0] + l1 * b[1] + l2 * b[2] > 0);
+            platform_cardan |= !(s[0] * t0 + s[1] * t1 + s[2] * t2 > 0);
+        }
     }
     if (below_base) branch |= STEWART_BRANCH_BELOW_BASE;
     if (platform_cardan) branch |= STEWART_BRANCH_PLATFORM_CARDAN;

@@ -28,14 +28,16 @@ stewart_status check_values(const double *v, const char *name, bool positive, ch
                             size_t size) {
     // The common case in one test: lengths inside (0, 1e150) (false for NaN); v * 0 is 0 for a
     // finite v, NaN otherwise.
+    using stewart::load_pair;
     if (positive) {
-        bool inside = true;
-        for (int k = 0; k < STEWART_LEGS; ++k) inside &= (v[k] > 0) & (v[k] < 1e150);
-        if (inside) return STEWART_OK;
+        stewart::PairBits outside = {0, 0};
+        for (int k = 0; k < STEWART_LEGS; k += 2)
+            outside |= ~((load_pair(v + k) > 0) & (load_pair(v + k) < 1e150));
+        if (!stewart::any(outside)) return STEWART_OK;
     } else {
-        double zero = 0;
-        for (int k = 0; k < STEWART_LEGS; ++k) zero += v[k] * 0.0;
-        if (zero == 0) return STEWART_OK;
+        stewart::Pair zero = {0, 0};
+        for (int k = 0; k < STEWART_LEGS; k += 2) zero += load_pair(v + k) * 0.0;
+        if (zero[0] + zero[1] == 0) return STEWART_OK;
     }
     for (int k = 0; k < STEWART_LEGS; ++k) {
         if (!std::isfinite(v[k]))
@@ -101,10 +103,10 @@ stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, co
 // STEWART_ERR_ARGUMENT naming the first value of a pose found (`what`) that overflowed.
 stewart_status check_found(const stewart_pose &pose, const char *what, char *msg, size_t size) {
     const double *groups[3] = {pose.q, pose.q_dot, pose.q_ddot};
-    double zero = 0;  // (v * 0 is 0 for a finite v, NaN otherwise)
+    stewart::Pair zero = {0, 0};  // (v * 0 is 0 for a finite v, NaN otherwise)
     for (const double *v : groups)
-        for (int i = 0; i < 6; ++i) zero += v[i] * 0.0;
-    if (zero == 0) return STEWART_OK;
+        for (int i = 0; i < 6; i += 2) zero += stewart::load_pair(v + i) * 0.0;
+    if (zero[0] + zero[1] == 0) return STEWART_OK;
     for (const double *v : groups)
         for (int i = 0; i < 6; ++i)
             if (!std::isfinite(v[i]))
@@ -189,7 +191,7 @@ struct Found {
     stewart::LegFactors factors;  // the leg Jacobian at q, factored
     double condition = 0;         // its 1-norm condition number
     double angles[3], cos_angles[3], sin_angles[3];  // of the Newton iterate (before the wrap)
-    stewart::Matrix36 points;
+    stewart::LegVectors points;  // the platform points, world
     stewart::Vector6 residual;
 };
 
@@ -200,12 +202,17 @@ void start_pose(const stewart_model &m, const stewart::ForwardState &f, int star
         case STEWART_START_GUESS:
             std::memcpy(q, guess, 6 * sizeof(double));
             return;
-        case STEWART_START_PREDICTOR: {
-            const double dt = time - f.time;
-            for (int i = 0; i < 6; ++i) {
-                double rate = f.q_dot[i];
-                if (!f.has_rates) rate = (f.q[i] - f.previous_q[i]) / (f.time - f.previous_time);
-                q[i] = f.q[i] + dt * rate + (f.has_accels ? 0.5 * dt * dt * f.q_ddot[i] : 0.0);
+        case STEWART_START_PREDICTOR: {  // (two coordinates at a time, each the scalar formula)
+            using stewart::load_pair;
+            const double dt = time - f.time, half_dt2 = 0.5 * dt * dt;
+            for (int i = 0; i < 6; i += 2) {
+                const stewart::Pair last = load_pair(f.q + i);
+                const stewart::Pair rate =
+                    f.has_rates ? load_pair(f.q_dot + i)
+                                : (last - load_pair(f.previous_q + i)) / (f.time - f.previous_time);
+                const stewart::Pair accel = f.has_accels ? half_dt2 * load_pair(f.q_ddot + i)
+                                                         : stewart::Pair{0.0, 0.0};
+                stewart::store_pair(q + i, last + dt * rate + accel);
             }
             return;
         }
@@ -251,13 +258,18 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "0.5)", condition, o.tolerance, h);
     // In scalars, the sums in Eigen's order (bit for bit its colwise().norm()): the largest
     // squared distance, then one square root (sqrt is monotonic and correctly rounded).
-    const double q0 = at.q[0], q1 = at.q[1], q2 = at.q[2];
+    using stewart::load_pair;
+    using stewart::Pair;
     double farthest = 0;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double p0 = at.arm[0][k] + q0, p1 = at.arm[1][k] + q1, p2 = at.arm[2][k] + q2;
-        x.points(0, k) = p0, x.points(1, k) = p1, x.points(2, k) = p2;
-        const double d0 = p0 - f.points(0, k), d1 = p1 - f.points(1, k), d2 = p2 - f.points(2, k);
-        farthest = std::max(farthest, d0 * d0 + d1 * d1 + d2 * d2);
+    for (int k = 0; k < STEWART_LEGS; k += 2) {  // legs k and k + 1
+        Pair d[3];
+        for (int i = 0; i < 3; ++i) {
+            const Pair point = load_pair(at.arm[i] + k) + at.q[i];
+            stewart::store_pair(x.points.c[i] + k, point);
+            d[i] = point - load_pair(f.points.c[i] + k);
+        }
+        const Pair squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        farthest = std::max(farthest, std::max(squared[0], squared[1]));
     }
     x.branch = stewart::assembly_branch(g, m.forward.sides, at.rotation, x.points,
                                         stewart::determinant_sign(x.factors),
@@ -392,7 +404,8 @@ void forward_history_save(const ForwardState &f, unsigned char *buffer) {
     *p++ = f.previous_time;
     for (const double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
         for (int i = 0; i < 6; ++i) *p++ = a[i];
-    for (int i = 0; i < 18; ++i) *p++ = f.points.data()[i];
+    for (int k = 0; k < STEWART_LEGS; ++k)  // (leg after leg)
+        for (int i = 0; i < 3; ++i) *p++ = f.points.c[i][k];
     for (int i = 0; i < 36; ++i) *p++ = f.chord.lu[i];
     *p++ = f.chord.trig.cos_pitch, *p++ = f.chord.trig.sin_pitch;
     *p++ = f.chord.trig.cos_yaw, *p++ = f.chord.trig.sin_yaw;
@@ -453,7 +466,8 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
     f.previous_time = *p++;
     for (double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
         for (int i = 0; i < 6; ++i) a[i] = *p++;
-    for (int i = 0; i < 18; ++i) f.points.data()[i] = *p++;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        for (int i = 0; i < 3; ++i) f.points.c[i][k] = *p++;
     return true;
 }
 
@@ -634,9 +648,16 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
         const stewart::LegFactors *chord =
             starts[a] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
         double drift = 0;
-        for (int i = 0; i < 6 && chord; ++i)
-            drift = std::max(drift, std::fabs(start_q[i] - f.q[i]) /
-                                        (i < 3 ? m->geometry.characteristic_length : 1.0));
+        if (chord) {  // (two coordinates at a time; the maximum is exact in any order)
+            const double c = m->geometry.characteristic_length;
+            const stewart::Pair per[3] = {{c, c}, {c, 1.0}, {1.0, 1.0}};
+            for (int i = 0; i < 6; i += 2) {
+                const stewart::Pair moved =
+                    stewart::abs_pair(stewart::load_pair(start_q + i) - stewart::load_pair(f.q + i)) /
+                    per[i / 2];
+                drift = std::max(std::max(drift, moved[0]), moved[1]);  // (a NaN: ignored)
+            }
+        }
         last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, chord,
                                      drift, x.q, stats, msg, size);
         iterations += stats.iterations;
@@ -676,7 +697,11 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
     out.branch = x.branch;
     out.jump = x.jump;
     out.start = x.start;
-    for (int k = 0; k < STEWART_LEGS; ++k)
+    stewart::PairBits beyond = {0, 0};  // (two legs at a time; then which)
+    for (int k = 0; k < STEWART_LEGS; k += 2)
+        beyond |= (stewart::load_pair(lengths + k) < stewart::load_pair(m->params.stroke_min + k)) |
+                  (stewart::load_pair(lengths + k) > stewart::load_pair(m->params.stroke_max + k));
+    for (int k = 0; stewart::any(beyond) && k < STEWART_LEGS; ++k)
         if (lengths[k] < m->params.stroke_min[k] || lengths[k] > m->params.stroke_max[k])
             out.stroke_legs |= 1 << k;
     if (out.stroke_legs) out.warnings |= STEWART_WARN_STROKE;

@@ -11,7 +11,7 @@ namespace stewart {
 
 void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[6],
                    LegsAt &c) {
-    std::copy(q, q + 6, c.q);
+    for (int i = 0; i < 6; i += 2) store_pair(c.q + i, load_pair(q + i));
     c.valid = true;
     // Kept: the step, the rates and the chord of the next solve need them again.
     ::sincos(q[3], &c.sin_roll, &c.cos_roll);  // (libm's sin and cos, one call)

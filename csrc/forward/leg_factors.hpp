@@ -6,6 +6,12 @@
 
 namespace stewart {
 
+// Six leg vectors (world), component-major: c[i][k] is component i of leg k (the legs two at a
+// time).
+struct LegVectors {
+    double c[3][STEWART_LEGS];
+};
+
 // The legs at one pose: what the residual computes and the Jacobian (and the caller, at the
 // solution) reuse.
 struct LegsAt {
