@@ -27,8 +27,8 @@ struct BranchSides {
 };
 BranchSides branch_sides(const PlatformGeometry &g, double home_height);
 
-// STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points (world) and the sign of
-// its leg Jacobian's determinant (0: the working mode: every leg leaves its base Cardan and
+// STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points (world) and the
+// sign of its leg Jacobian's determinant (0: the working mode: every leg leaves its base Cardan and
 // reaches its platform Cardan on the sides it has at home, the platform faces up, and the
 // determinant has working_sign, its sign at home).
 int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,

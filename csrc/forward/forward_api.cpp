@@ -256,8 +256,9 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "condition number %g, so lengths known to the tolerance %g m do not "
                            "determine the pose (condition^2 tolerance / platform_radius = %g > "
                            "0.5)", condition, o.tolerance, h);
-    // In scalars, the sums in Eigen's order (bit for bit its colwise().norm()): the largest
-    // squared distance, then one square root (sqrt is monotonic and correctly rounded).
+    // The platform points, two legs at a time; the jump as the largest squared distance (the sum
+    // in Eigen's order), then one square root (monotonic and correctly rounded): bit for bit
+    // Eigen's colwise().norm().maxCoeff().
     using stewart::load_pair;
     using stewart::Pair;
     double farthest = 0;
@@ -652,9 +653,9 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
             const double c = m->geometry.characteristic_length;
             const stewart::Pair per[3] = {{c, c}, {c, 1.0}, {1.0, 1.0}};
             for (int i = 0; i < 6; i += 2) {
+                using stewart::load_pair;
                 const stewart::Pair moved =
-                    stewart::abs_pair(stewart::load_pair(start_q + i) - stewart::load_pair(f.q + i)) /
-                    per[i / 2];
+                    stewart::abs_pair(load_pair(start_q + i) - load_pair(f.q + i)) / per[i / 2];
                 drift = std::max(std::max(drift, moved[0]), moved[1]);  // (a NaN: ignored)
             }
         }
