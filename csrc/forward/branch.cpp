@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "forward/leg_pairs.hpp"
 #include "kinematics/lu6.hpp"
 #include "kinematics/motion.hpp"
 #include "stewart/stewart_forward.h"
@@ -36,21 +37,49 @@ BranchSides branch_sides(const PlatformGeometry &g, double home_height) {
                                                               : leg;
         sides.base.col(k) = side;
         sides.platform.col(k) = side;  // the platform frame is the world's at home
+        sides.vertical[k] = side == Eigen::Vector3d::UnitZ()    ? 1
+                            : side == -Eigen::Vector3d::UnitZ() ? -1
+                                                                : 0;
     }
+    sides.all_vertical = true;
+    for (int k = 0; k < STEWART_LEGS; ++k) sides.all_vertical &= sides.vertical[k] != 0;
     return sides;
 }
 
 int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
-                    const Matrix36 &points, int jacobian_sign, int working_sign) {
+                    const LegVectors &points, int jacobian_sign, int working_sign) {
     int branch = R(2, 2) > 0 ? 0 : STEWART_BRANCH_FLIPPED;  // the platform's normal points up
     if (jacobian_sign != working_sign) branch |= STEWART_BRANCH_SINGULARITY;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        const Eigen::Vector3d leg = points.col(k) - g.base_points.col(k);
-        if (!(leg.dot(sides.base.col(k)) > 0)) branch |= STEWART_BRANCH_BELOW_BASE;
-        // (R s) . leg as s . (R^T leg): no 3 x 6 product.
-        if (!(sides.platform.col(k).dot(R.transpose() * leg) > 0))
-            branch |= STEWART_BRANCH_PLATFORM_CARDAN;
+    // (R s) . leg as s . (R^T leg): no 3 x 6 product. The sums in Eigen's order (left to right),
+    // so the verdicts are those of the vector expressions.
+    bool below_base = false, platform_cardan = false;
+    const double *base = g.base_points.data();
+    if (sides.all_vertical) {  // s = +-z: s . leg = +-leg_z, s . R^T leg = +-(R^T leg)_z
+        PairBits below = {0, 0}, above = {0, 0};
+        for (int k = 0; k < STEWART_LEGS; k += 2) {  // legs k and k + 1
+            const Pair l0 = load_pair(points.c[0] + k) - point_pair(base, 0, k),
+                       l1 = load_pair(points.c[1] + k) - point_pair(base, 1, k),
+                       l2 = load_pair(points.c[2] + k) - point_pair(base, 2, k);
+            const Pair t2 = R(0, 2) * l0 + R(1, 2) * l1 + R(2, 2) * l2;
+            const Pair side = load_pair(sides.vertical + k);
+            below |= ~(side * l2 > 0);
+            above |= ~(side * t2 > 0);
+        }
+        below_base = any(below), platform_cardan = any(above);
+    } else {
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            const double l0 = points.c[0][k] - base[3 * k], l1 = points.c[1][k] - base[3 * k + 1],
+                         l2 = points.c[2][k] - base[3 * k + 2];
+            const double *b = sides.base.col(k).data(), *s = sides.platform.col(k).data();
+            const double t0 = R(0, 0) * l0 + R(1, 0) * l1 + R(2, 0) * l2;
+            const double t1 = R(0, 1) * l0 + R(1, 1) * l1 + R(2, 1) * l2;
+            const double t2 = R(0, 2) * l0 + R(1, 2) * l1 + R(2, 2) * l2;
+            below_base |= !(l0 * b[0] + l1 * b[1] + l2 * b[2] > 0);
+            platform_cardan |= !(s[0] * t0 + s[1] * t1 + s[2] * t2 > 0);
+        }
     }
+    if (below_base) branch |= STEWART_BRANCH_BELOW_BASE;
+    if (platform_cardan) branch |= STEWART_BRANCH_PLATFORM_CARDAN;
     return branch;
 }
 
@@ -75,13 +104,22 @@ LengthPairBounds length_pair_bounds(const PlatformGeometry &g) {
 
 stewart_status check_length_pairs(const LengthPairBounds &bounds,
                                   const double length[STEWART_LEGS], char *msg, size_t size) {
-    // The common case first: every pair inside its bounds.
-    bool inside = true;
-    for (int i = 0, p = 0; i < STEWART_LEGS; ++i)
-        for (int j = i + 1; j < STEWART_LEGS; ++j, ++p)
-            inside &= !(length[i] + length[j] < bounds.least_sum[p]) &
-                      !(std::fabs(length[i] - length[j]) > bounds.largest_difference[p]);
-    if (inside) return STEWART_OK;
+    // The common case first: every pair inside its bounds, two pairs at a time (the last lane
+    // repeats the last pair).
+    static constexpr int first[15] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 3, 3, 4};
+    static constexpr int second[15] = {1, 2, 3, 4, 5, 2, 3, 4, 5, 3, 4, 5, 4, 5, 5};
+    PairBits outside = {0, 0};
+#pragma GCC unroll 8
+    for (int p = 0; p < 16; p += 2) {
+        const int q = p + 1 < 15 ? p + 1 : 14;
+        const Pair L_i = {length[first[p]], length[first[q]]};
+        const Pair L_j = {length[second[p]], length[second[q]]};
+        const Pair least_sum = {bounds.least_sum[p], bounds.least_sum[q]};
+        const Pair largest_difference = {bounds.largest_difference[p],
+                                         bounds.largest_difference[q]};
+        outside |= (L_i + L_j < least_sum) | (abs_pair(L_i - L_j) > largest_difference);
+    }
+    if (!any(outside)) return STEWART_OK;
     int violations[STEWART_LEGS] = {0};
     int first_i = -1, first_j = -1, p = 0;
     double first_bound = 0;

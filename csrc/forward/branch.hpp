@@ -2,6 +2,7 @@
 // forward Newton solve.
 #pragma once
 
+#include "forward/leg_factors.hpp"
 #include "kinematics/closed_form.hpp"
 
 namespace stewart {
@@ -19,15 +20,19 @@ int jacobian_sign(const Matrix6 &transposed);
 struct BranchSides {
     Matrix36 base;      // world
     Matrix36 platform;  // platform frame
+    // +1 where both sides are +z, -1 where both are -z (the checks are then one product and one
+    // signed component), 0 otherwise; all_vertical: no 0.
+    double vertical[STEWART_LEGS];
+    bool all_vertical;
 };
 BranchSides branch_sides(const PlatformGeometry &g, double home_height);
 
-// STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points and the sign of
-// its leg Jacobian's determinant (0: the working mode: every leg leaves its base Cardan and
+// STEWART_BRANCH_* bits of a pose given by its rotation R, its platform points (world) and the
+// sign of its leg Jacobian's determinant (0: the working mode: every leg leaves its base Cardan and
 // reaches its platform Cardan on the sides it has at home, the platform faces up, and the
 // determinant has working_sign, its sign at home).
 int assembly_branch(const PlatformGeometry &g, const BranchSides &sides, const Eigen::Matrix3d &R,
-                    const Matrix36 &points, int jacobian_sign, int working_sign);
+                    const LegVectors &points, int jacobian_sign, int working_sign);
 
 // Bounds on the lengths of the 15 pairs i < j that hold at every pose: from
 // d_i - d_j = (a_j - a_i) + R (b_i - b_j), |L_i - L_j| <= |a_i - a_j| + |b_i - b_j| (difference)

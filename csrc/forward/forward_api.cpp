@@ -9,6 +9,7 @@
 
 #include "model.hpp"
 #include "forward/branch.hpp"
+#include "forward/leg_pairs.hpp"
 #include "forward/newton.hpp"
 #include "kinematics/frames.hpp"
 #include "kinematics/motion.hpp"
@@ -27,14 +28,16 @@ stewart_status check_values(const double *v, const char *name, bool positive, ch
                             size_t size) {
     // The common case in one test: lengths inside (0, 1e150) (false for NaN); v * 0 is 0 for a
     // finite v, NaN otherwise.
+    using stewart::load_pair;
     if (positive) {
-        bool inside = true;
-        for (int k = 0; k < STEWART_LEGS; ++k) inside &= (v[k] > 0) & (v[k] < 1e150);
-        if (inside) return STEWART_OK;
+        stewart::PairBits outside = {0, 0};
+        for (int k = 0; k < STEWART_LEGS; k += 2)
+            outside |= ~((load_pair(v + k) > 0) & (load_pair(v + k) < 1e150));
+        if (!stewart::any(outside)) return STEWART_OK;
     } else {
-        double zero = 0;
-        for (int k = 0; k < STEWART_LEGS; ++k) zero += v[k] * 0.0;
-        if (zero == 0) return STEWART_OK;
+        stewart::Pair zero = {0, 0};
+        for (int k = 0; k < STEWART_LEGS; k += 2) zero += load_pair(v + k) * 0.0;
+        if (zero[0] + zero[1] == 0) return STEWART_OK;
     }
     for (int k = 0; k < STEWART_LEGS; ++k) {
         if (!std::isfinite(v[k]))
@@ -64,29 +67,35 @@ stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, co
     const Eigen::Vector3d alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch,
                                                                  t.cos_yaw, t.sin_yaw, rate[1],
                                                                  rate[2]) * rate;
-    // Written out in scalars (Eigen's packets cost more than the arithmetic on 3-vectors).
+    // Written out, two legs at a time (forward/leg_pairs.hpp: each lane the scalar arithmetic).
     const double w0 = omega[0], w1 = omega[1], w2 = omega[2];
     const double e0 = alpha[0], e1 = alpha[1], e2 = alpha[2];
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double b0 = g.platform_points(0, k), b1 = g.platform_points(1, k),
-                     b2 = g.platform_points(2, k);
-        const double r0 = R(0, 0) * b0 + R(0, 1) * b1 + R(0, 2) * b2;
-        const double r1 = R(1, 0) * b0 + R(1, 1) * b1 + R(1, 2) * b2;
-        const double r2 = R(2, 0) * b0 + R(2, 1) * b1 + R(2, 2) * b2;
-        const double d0 = q[0] + r0 - g.base_points(0, k), d1 = q[1] + r1 - g.base_points(1, k),
-                     d2 = q[2] + r2 - g.base_points(2, k);
-        const double L = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-        if (!(L > g.min_length)) return stewart::check_leg_length(k, L, g.min_length, msg, size);
-        const double inv_L = 1.0 / L;
-        const double n0 = d0 * inv_L, n1 = d1 * inv_L, n2 = d2 * inv_L;
-        const double wr0 = w1 * r2 - w2 * r1, wr1 = w2 * r0 - w0 * r2, wr2 = w0 * r1 - w1 * r0;
-        const double v0 = q_dot[0] + wr0, v1 = q_dot[1] + wr1, v2 = q_dot[2] + wr2;
-        const double a0 = (e1 * r2 - e2 * r1) + (w1 * wr2 - w2 * wr1),
-                     a1 = (e2 * r0 - e0 * r2) + (w2 * wr0 - w0 * wr2),
-                     a2 = (e0 * r1 - e1 * r0) + (w0 * wr1 - w1 * wr0);
-        const double L_dot = n0 * v0 + n1 * v1 + n2 * v2;
-        accel[k] = (v0 * v0 + v1 * v1 + v2 * v2 - L_dot * L_dot) * inv_L +
-                   (n0 * a0 + n1 * a1 + n2 * a2);
+    const double *platform = g.platform_points.data(), *base = g.base_points.data();
+    using stewart::Pair;
+    using stewart::point_pair;
+    for (int k = 0; k < STEWART_LEGS; k += 2) {
+        const Pair b0 = point_pair(platform, 0, k), b1 = point_pair(platform, 1, k),
+                   b2 = point_pair(platform, 2, k);
+        const Pair r0 = R(0, 0) * b0 + R(0, 1) * b1 + R(0, 2) * b2;
+        const Pair r1 = R(1, 0) * b0 + R(1, 1) * b1 + R(1, 2) * b2;
+        const Pair r2 = R(2, 0) * b0 + R(2, 1) * b1 + R(2, 2) * b2;
+        const Pair d0 = q[0] + r0 - point_pair(base, 0, k), d1 = q[1] + r1 - point_pair(base, 1, k),
+                   d2 = q[2] + r2 - point_pair(base, 2, k);
+        const Pair L = stewart::sqrt_pair(d0 * d0 + d1 * d1 + d2 * d2);
+        if (stewart::any(~(L > g.min_length)))  // (NaN too)
+            for (int lane = 0; lane < 2; ++lane)
+                if (!(L[lane] > g.min_length))
+                    return stewart::check_leg_length(k + lane, L[lane], g.min_length, msg, size);
+        const Pair inv_L = 1.0 / L;
+        const Pair n0 = d0 * inv_L, n1 = d1 * inv_L, n2 = d2 * inv_L;
+        const Pair wr0 = w1 * r2 - w2 * r1, wr1 = w2 * r0 - w0 * r2, wr2 = w0 * r1 - w1 * r0;
+        const Pair v0 = q_dot[0] + wr0, v1 = q_dot[1] + wr1, v2 = q_dot[2] + wr2;
+        const Pair a0 = (e1 * r2 - e2 * r1) + (w1 * wr2 - w2 * wr1),
+                   a1 = (e2 * r0 - e0 * r2) + (w2 * wr0 - w0 * wr2),
+                   a2 = (e0 * r1 - e1 * r0) + (w0 * wr1 - w1 * wr0);
+        const Pair L_dot = n0 * v0 + n1 * v1 + n2 * v2;
+        stewart::store_pair(accel + k, (v0 * v0 + v1 * v1 + v2 * v2 - L_dot * L_dot) * inv_L +
+                                           (n0 * a0 + n1 * a1 + n2 * a2));
     }
     return STEWART_OK;
 }
@@ -94,10 +103,10 @@ stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, co
 // STEWART_ERR_ARGUMENT naming the first value of a pose found (`what`) that overflowed.
 stewart_status check_found(const stewart_pose &pose, const char *what, char *msg, size_t size) {
     const double *groups[3] = {pose.q, pose.q_dot, pose.q_ddot};
-    double zero = 0;  // (v * 0 is 0 for a finite v, NaN otherwise)
+    stewart::Pair zero = {0, 0};  // (v * 0 is 0 for a finite v, NaN otherwise)
     for (const double *v : groups)
-        for (int i = 0; i < 6; ++i) zero += v[i] * 0.0;
-    if (zero == 0) return STEWART_OK;
+        for (int i = 0; i < 6; i += 2) zero += stewart::load_pair(v + i) * 0.0;
+    if (zero[0] + zero[1] == 0) return STEWART_OK;
     for (const double *v : groups)
         for (int i = 0; i < 6; ++i)
             if (!std::isfinite(v[i]))
@@ -182,7 +191,7 @@ struct Found {
     stewart::LegFactors factors;  // the leg Jacobian at q, factored
     double condition = 0;         // its 1-norm condition number
     double angles[3], cos_angles[3], sin_angles[3];  // of the Newton iterate (before the wrap)
-    stewart::Matrix36 points;
+    stewart::LegVectors points;  // the platform points, world
     stewart::Vector6 residual;
 };
 
@@ -193,12 +202,17 @@ void start_pose(const stewart_model &m, const stewart::ForwardState &f, int star
         case STEWART_START_GUESS:
             std::memcpy(q, guess, 6 * sizeof(double));
             return;
-        case STEWART_START_PREDICTOR: {
-            const double dt = time - f.time;
-            for (int i = 0; i < 6; ++i) {
-                double rate = f.q_dot[i];
-                if (!f.has_rates) rate = (f.q[i] - f.previous_q[i]) / (f.time - f.previous_time);
-                q[i] = f.q[i] + dt * rate + (f.has_accels ? 0.5 * dt * dt * f.q_ddot[i] : 0.0);
+        case STEWART_START_PREDICTOR: {  // (two coordinates at a time, each the scalar formula)
+            using stewart::load_pair;
+            const double dt = time - f.time, half_dt2 = 0.5 * dt * dt;
+            for (int i = 0; i < 6; i += 2) {
+                const stewart::Pair last = load_pair(f.q + i);
+                const stewart::Pair rate =
+                    f.has_rates ? load_pair(f.q_dot + i)
+                                : (last - load_pair(f.previous_q + i)) / (f.time - f.previous_time);
+                const stewart::Pair accel = f.has_accels ? half_dt2 * load_pair(f.q_ddot + i)
+                                                         : stewart::Pair{0.0, 0.0};
+                stewart::store_pair(q + i, last + dt * rate + accel);
             }
             return;
         }
@@ -242,13 +256,27 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "condition number %g, so lengths known to the tolerance %g m do not "
                            "determine the pose (condition^2 tolerance / platform_radius = %g > "
                            "0.5)", condition, o.tolerance, h);
-    x.points = at.arm;
-    x.points.colwise() += Eigen::Vector3d(at.q[0], at.q[1], at.q[2]);
+    // The platform points, two legs at a time; the jump as the largest squared distance (the sum
+    // in Eigen's order), then one square root (monotonic and correctly rounded): bit for bit
+    // Eigen's colwise().norm().maxCoeff().
+    using stewart::load_pair;
+    using stewart::Pair;
+    double farthest = 0;
+    for (int k = 0; k < STEWART_LEGS; k += 2) {  // legs k and k + 1
+        Pair d[3];
+        for (int i = 0; i < 3; ++i) {
+            const Pair point = load_pair(at.arm[i] + k) + at.q[i];
+            stewart::store_pair(x.points.c[i] + k, point);
+            d[i] = point - load_pair(f.points.c[i] + k);
+        }
+        const Pair squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        farthest = std::max(farthest, std::max(squared[0], squared[1]));
+    }
     x.branch = stewart::assembly_branch(g, m.forward.sides, at.rotation, x.points,
                                         stewart::determinant_sign(x.factors),
                                         m.forward.working_sign);
     if (tracking) {
-        x.jump = (x.points - f.points).colwise().norm().maxCoeff();
+        x.jump = std::sqrt(farthest);
         if (x.jump > m.forward.shortest_stroke_range) x.branch |= STEWART_BRANCH_JUMP;
     }
     return STEWART_OK;
@@ -377,7 +405,8 @@ void forward_history_save(const ForwardState &f, unsigned char *buffer) {
     *p++ = f.previous_time;
     for (const double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
         for (int i = 0; i < 6; ++i) *p++ = a[i];
-    for (int i = 0; i < 18; ++i) *p++ = f.points.data()[i];
+    for (int k = 0; k < STEWART_LEGS; ++k)  // (leg after leg)
+        for (int i = 0; i < 3; ++i) *p++ = f.points.c[i][k];
     for (int i = 0; i < 36; ++i) *p++ = f.chord.lu[i];
     *p++ = f.chord.trig.cos_pitch, *p++ = f.chord.trig.sin_pitch;
     *p++ = f.chord.trig.cos_yaw, *p++ = f.chord.trig.sin_yaw;
@@ -438,7 +467,8 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
     f.previous_time = *p++;
     for (double *a : {f.q, f.q_dot, f.q_ddot, f.previous_q})
         for (int i = 0; i < 6; ++i) a[i] = *p++;
-    for (int i = 0; i < 18; ++i) f.points.data()[i] = *p++;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        for (int i = 0; i < 3; ++i) f.points.c[i][k] = *p++;
     return true;
 }
 
@@ -619,9 +649,16 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
         const stewart::LegFactors *chord =
             starts[a] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
         double drift = 0;
-        for (int i = 0; i < 6 && chord; ++i)
-            drift = std::max(drift, std::fabs(start_q[i] - f.q[i]) /
-                                        (i < 3 ? m->geometry.characteristic_length : 1.0));
+        if (chord) {  // (two coordinates at a time; the maximum is exact in any order)
+            const double c = m->geometry.characteristic_length;
+            const stewart::Pair per[3] = {{c, c}, {c, 1.0}, {1.0, 1.0}};
+            for (int i = 0; i < 6; i += 2) {
+                using stewart::load_pair;
+                const stewart::Pair moved =
+                    stewart::abs_pair(load_pair(start_q + i) - load_pair(f.q + i)) / per[i / 2];
+                drift = std::max(std::max(drift, moved[0]), moved[1]);  // (a NaN: ignored)
+            }
+        }
         last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, chord,
                                      drift, x.q, stats, msg, size);
         iterations += stats.iterations;
@@ -661,7 +698,11 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
     out.branch = x.branch;
     out.jump = x.jump;
     out.start = x.start;
-    for (int k = 0; k < STEWART_LEGS; ++k)
+    stewart::PairBits beyond = {0, 0};  // (two legs at a time; then which)
+    for (int k = 0; k < STEWART_LEGS; k += 2)
+        beyond |= (stewart::load_pair(lengths + k) < stewart::load_pair(m->params.stroke_min + k)) |
+                  (stewart::load_pair(lengths + k) > stewart::load_pair(m->params.stroke_max + k));
+    for (int k = 0; stewart::any(beyond) && k < STEWART_LEGS; ++k)
         if (lengths[k] < m->params.stroke_min[k] || lengths[k] > m->params.stroke_max[k])
             out.stroke_legs |= 1 << k;
     if (out.stroke_legs) out.warnings |= STEWART_WARN_STROKE;

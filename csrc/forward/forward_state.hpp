@@ -20,7 +20,7 @@ struct ForwardState {
     bool has_previous = false;  // the pose before the last (a secant predictor without rates)
     double previous_time = 0;
     double previous_q[6] = {0};
-    Matrix36 points = Matrix36::Zero();  // the last pose's platform points, world (the jump check)
+    LegVectors points = {};  // the last pose's platform points, world (the jump check)
     // The leg Jacobian factored at the last pose (its last Newton iterate): the next tracking
     // solve's first Newton step (a chord step) needs no Jacobian or factoring of its own.
     bool has_chord = false;

@@ -5,12 +5,13 @@
 
 #include "kinematics/lu6.hpp"
 #include "kinematics/motion.hpp"
+#include "forward/leg_pairs.hpp"
 
 namespace stewart {
 
 void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[6],
                    LegsAt &c) {
-    std::copy(q, q + 6, c.q);
+    for (int i = 0; i < 6; i += 2) store_pair(c.q + i, load_pair(q + i));
     c.valid = true;
     // Kept: the step, the rates and the chord of the next solve need them again.
     ::sincos(q[3], &c.sin_roll, &c.cos_roll);  // (libm's sin and cos, one call)
@@ -21,43 +22,56 @@ void evaluate_legs(const PlatformGeometry &g, const double q[6], const double ta
     const Eigen::Matrix3d &R = c.rotation;
     const double r00 = R(0, 0), r01 = R(0, 1), r02 = R(0, 2), r10 = R(1, 0), r11 = R(1, 1),
                  r12 = R(1, 2), r20 = R(2, 0), r21 = R(2, 1), r22 = R(2, 2);
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double b0 = g.platform_points(0, k), b1 = g.platform_points(1, k),
-                     b2 = g.platform_points(2, k);
-        const double a0 = r00 * b0 + r01 * b1 + r02 * b2, a1 = r10 * b0 + r11 * b1 + r12 * b2,
-                     a2 = r20 * b0 + r21 * b1 + r22 * b2;
-        c.arm(0, k) = a0, c.arm(1, k) = a1, c.arm(2, k) = a2;
-        const double d0 = q[0] + a0 - g.base_points(0, k);
-        const double d1 = q[1] + a1 - g.base_points(1, k);
-        const double d2 = q[2] + a2 - g.base_points(2, k);
-        const double length = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-        c.length[k] = length;
-        c.axis(0, k) = d0 / length, c.axis(1, k) = d1 / length, c.axis(2, k) = d2 / length;
-        c.residual[k] = length - target[k];
+    const double *platform = g.platform_points.data(), *base = g.base_points.data();
+    for (int k = 0; k < STEWART_LEGS; k += 2) {  // legs k and k + 1
+        const Pair b0 = point_pair(platform, 0, k), b1 = point_pair(platform, 1, k),
+                   b2 = point_pair(platform, 2, k);
+        const Pair a0 = r00 * b0 + r01 * b1 + r02 * b2, a1 = r10 * b0 + r11 * b1 + r12 * b2,
+                   a2 = r20 * b0 + r21 * b1 + r22 * b2;
+        store_pair(&c.arm[0][k], a0), store_pair(&c.arm[1][k], a1), store_pair(&c.arm[2][k], a2);
+        const Pair d0 = q[0] + a0 - point_pair(base, 0, k);
+        const Pair d1 = q[1] + a1 - point_pair(base, 1, k);
+        const Pair d2 = q[2] + a2 - point_pair(base, 2, k);
+        const Pair length = sqrt_pair(d0 * d0 + d1 * d1 + d2 * d2);
+        store_pair(&c.length[k], length);
+        store_pair(&c.axis[0][k], d0 / length), store_pair(&c.axis[1][k], d1 / length);
+        store_pair(&c.axis[2][k], d2 / length);
+        store_pair(&c.residual[k], length - load_pair(target + k));
     }
 }
 
 bool factor_legs(const PlatformGeometry &g, const LegsAt &at, LegFactors &f, double &norm1) {
     const double inv_scale = 1.0 / g.characteristic_length;
-    double column_sum[6] = {0, 0, 0, 0, 0, 0};
-    double largest = 0;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double n0 = at.axis(0, k), n1 = at.axis(1, k), n2 = at.axis(2, k);
-        const double r0 = at.arm(0, k), r1 = at.arm(1, k), r2 = at.arm(2, k);
-        double *row = f.lu + 6 * k;
-        row[0] = n0, row[1] = n1, row[2] = n2;
-        row[3] = (r1 * n2 - r2 * n1) * inv_scale;
-        row[4] = (r2 * n0 - r0 * n2) * inv_scale;
-        row[5] = (r0 * n1 - r1 * n0) * inv_scale;
+    for (int k = 0; k < STEWART_LEGS; k += 2) {  // legs k and k + 1: their rows
+        const Pair n0 = load_pair(&at.axis[0][k]), n1 = load_pair(&at.axis[1][k]),
+                   n2 = load_pair(&at.axis[2][k]);
+        const Pair r0 = load_pair(&at.arm[0][k]), r1 = load_pair(&at.arm[1][k]),
+                   r2 = load_pair(&at.arm[2][k]);
+        const Pair row[6] = {n0, n1, n2, (r1 * n2 - r2 * n1) * inv_scale,
+                             (r2 * n0 - r0 * n2) * inv_scale, (r0 * n1 - r1 * n0) * inv_scale};
 #pragma GCC unroll 6
-        for (int i = 0; i < 6; ++i) {
-            column_sum[i] += std::fabs(row[i]);
-            if (std::fabs(row[i]) > largest) largest = std::fabs(row[i]);
-        }
+        for (int i = 0; i < 6; ++i) f.lu[6 * k + i] = row[i][0], f.lu[6 * k + 6 + i] = row[i][1];
     }
-    norm1 = *std::max_element(column_sum, column_sum + 6);
+    // The column sums row after row (the scalar loop's order), three column pairs at a time.
+    Pair column_sum[3] = {}, largest_pair[3] = {};
+#pragma GCC unroll 6
+    for (int k = 0; k < STEWART_LEGS; ++k)
+#pragma GCC unroll 3
+        for (int h = 0; h < 3; ++h) {
+            const Pair magnitude = abs_pair(load_pair(f.lu + 6 * k + 2 * h));
+            column_sum[h] += magnitude;
+            largest_pair[h] = magnitude > largest_pair[h] ? magnitude : largest_pair[h];  // (exact)
+        }
     // A sum of entries of at most 1 in size is finite unless an entry is not.
-    const bool finite = std::isfinite(norm1);
+    const Pair total = column_sum[0] + column_sum[1] + column_sum[2];
+    const bool finite = std::isfinite(total[0] + total[1]);
+    norm1 = 0;
+    double largest = 0;
+    for (int h = 0; h < 3; ++h)
+        for (int lane = 0; lane < 2; ++lane) {
+            norm1 = std::max(norm1, column_sum[h][lane]);
+            largest = std::max(largest, largest_pair[h][lane]);
+        }
     f.trig = {at.cos_pitch, at.sin_pitch, at.cos_yaw, at.sin_yaw};
     f.scale = g.characteristic_length;
     return finite && lu6_factor(f.lu, f.pivot, f.order, largest);

@@ -6,6 +6,12 @@
 
 namespace stewart {
 
+// Six leg vectors (world), component-major: c[i][k] is component i of leg k (the legs two at a
+// time).
+struct LegVectors {
+    double c[3][STEWART_LEGS];
+};
+
 // The legs at one pose: what the residual computes and the Jacobian (and the caller, at the
 // solution) reuse.
 struct LegsAt {
@@ -13,7 +19,8 @@ struct LegsAt {
     double q[6];
     double cos_roll, sin_roll, cos_pitch, sin_pitch, cos_yaw, sin_yaw;
     Eigen::Matrix3d rotation;
-    Matrix36 arm, axis;  // R b_k and the unit leg axis n_k, world
+    // R b_k and the unit leg axis n_k, world, component-major (arm[i][k]: the legs two at a time).
+    double arm[3][STEWART_LEGS], axis[3][STEWART_LEGS];
     Vector6 length, residual;
 };
 

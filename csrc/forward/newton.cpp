@@ -12,6 +12,7 @@
 
 #include "core/kinsol_custom.hpp"
 #include "core/sundials_holder.hpp"
+#include "forward/leg_pairs.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -37,13 +38,16 @@ struct ForwardNewton::Impl {
     // Per solve: the problem.
     const PlatformGeometry *geometry = nullptr;
     const double *target = nullptr;
-    // The last residual evaluated, and the legs there.
+    // The last residual evaluated, and the legs there; scanned: last_residual and worst_leg are
+    // the cache's.
     LegsAt cache;
     double last_residual = 0;
     int worst_leg = 0;
-    // The linear solver's factors: the leg Jacobian at the last set-up (or the chord's).
+    bool scanned = false;
+    // The leg Jacobian factored at the last set-up; active: the linear solver's factors (these,
+    // or the chord's, read in place).
     LegFactors factors;
-    bool factors_ok = false;
+    const LegFactors *active = &factors;
 };
 
 namespace {
@@ -52,25 +56,37 @@ using Impl = ForwardNewton::Impl;
 
 // F(u) into f; returns its max-norm (INFINITY if not finite) and records the worst leg.
 double evaluate_residual(Impl &im, const double *u, double *f) {
-    // KINSOL evaluates its start again: the legs there are known already.
-    if (!im.cache.valid || !std::equal(u, u + 6, im.cache.q))
-        evaluate_legs(*im.geometry, u, im.target, im.cache);
+    const double *residual = im.cache.residual.data();
+    // KINSOL evaluates its start again: the legs there, and their scan, are known already.
+    const bool known = im.cache.valid && std::equal(u, u + 6, im.cache.q);
+    if (!known) evaluate_legs(*im.geometry, u, im.target, im.cache);
+    for (int k = 0; k < kN; k += 2) store_pair(f + k, load_pair(residual + k));
+    if (known && im.scanned) return im.last_residual;
+    // The usual case in one pass (two legs at a time): every residual finite and every leg
+    // longer than min_length; then the largest |residual| (the first on ties).
+    const double min_length = im.geometry->min_length;
+    double size[kN];
+    PairBits unusual = {0, 0};
+    for (int k = 0; k < kN; k += 2) {
+        const Pair magnitude = abs_pair(load_pair(residual + k));
+        store_pair(size + k, magnitude);
+        unusual |= ~((magnitude <= DBL_MAX) & (load_pair(im.cache.length.data() + k) > min_length));
+    }
+    const bool usual = !any(unusual);  // (NaN: unusual)
     double worst = 0;
     int worst_leg = 0;
-    const double min_length = im.geometry->min_length;
-    for (int k = 0; k < kN; ++k) {
-        f[k] = im.cache.residual[k];
-        // A leg of (nearly) zero length has no axis: no Jacobian there. (|NaN| > worst is
-        // false: the first leg not finite or too short is the worst, INFINITY, and stays so.)
+    for (int k = 0; k < kN; ++k)
+        if (size[k] > worst) worst = size[k], worst_leg = k;
+    // A leg of (nearly) zero length has no axis: no Jacobian there. The first leg not finite or
+    // too short is the worst, INFINITY.
+    for (int k = 0; !usual && k < kN; ++k)
         if (!(std::fabs(f[k]) <= DBL_MAX) || !(im.cache.length[k] > min_length)) {
             worst = INFINITY, worst_leg = k;
             break;
         }
-        if (std::fabs(f[k]) > worst) worst = std::fabs(f[k]), worst_leg = k;
-    }
-    for (int k = worst_leg + 1; worst == INFINITY && k < kN; ++k) f[k] = im.cache.residual[k];
     im.worst_leg = worst_leg;
     im.last_residual = worst;
+    im.scanned = true;
     return worst;
 }
 
@@ -85,8 +101,10 @@ int residual_fn(N_Vector u, N_Vector f, void *user) {
 int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector) {
     Impl &im = *static_cast<Impl *>(user);
     const double *ud = NV_DATA_S(u);
-    if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q))
+    if (!im.cache.valid || !std::equal(ud, ud + 6, im.cache.q)) {
         evaluate_legs(*im.geometry, ud, im.target, im.cache);
+        im.scanned = false;
+    }
     return 0;
 }
 
@@ -96,14 +114,15 @@ int jacobian_fn(N_Vector u, N_Vector, SUNMatrix, void *user, N_Vector, N_Vector)
 int solver_setup(SUNLinearSolver S, SUNMatrix) {
     Impl &im = *static_cast<Impl *>(S->content);
     double norm1;
-    im.factors_ok = factor_legs(*im.geometry, im.cache, im.factors, norm1);
-    return im.factors_ok ? SUNLS_SUCCESS : SUNLS_LUFACT_FAIL;
+    im.active = &im.factors;
+    return factor_legs(*im.geometry, im.cache, im.factors, norm1) ? SUNLS_SUCCESS
+                                                                   : SUNLS_LUFACT_FAIL;
 }
 // x = (dL/dq)^-1 b with the factors; recoverable failure (KINSOL sets up afresh if the factors
 // were the chord's) at pitch +-90 deg.
 int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
     Impl &im = *static_cast<Impl *>(S->content);
-    return pose_rates_from(im.factors, im.factors.trig, NV_DATA_S(b),
+    return pose_rates_from(*im.active, im.active->trig, NV_DATA_S(b),
                            NV_DATA_S(x))
                ? SUNLS_SUCCESS
                : SUNLS_PACKAGE_FAIL_REC;
@@ -155,7 +174,7 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
     Impl &im = *impl_;
     im.geometry = &g;
     im.target = target;
-    im.cache.valid = false;
+    im.cache.valid = im.scanned = false;
     stats = NewtonStats();
     int flag = KIN_SUCCESS;
     if (tolerance != im.tolerance || max_iterations != im.max_iterations) {
@@ -170,7 +189,7 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
     }
     void *kinsol = im.kinsol.get();
     double *u = NV_DATA_S(im.u.get());
-    std::copy(q, q + 6, u);
+    for (int i = 0; i < 6; i += 2) store_pair(u + i, load_pair(q + i));
     // KINSOL's own first test (the start accepted if its residual is <= 0.01 tolerance), made
     // here so that a measurement that did not change costs no KINSOL set-up.
     evaluate_residual(im, u, NV_DATA_S(im.f.get()));
@@ -181,7 +200,7 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
         // Chord: the first iteration with the given factors (no set-up), a fresh Jacobian every
         // second iteration after; else exact Newton, a fresh Jacobian every iteration.
         const bool use_chord = chord != nullptr && im.last_residual * drift <= tolerance;
-        if (use_chord) im.factors = *chord, im.factors_ok = true;
+        im.active = use_chord ? chord : &im.factors;
         if (use_chord != im.chord) {
             KINSetNoInitSetup(kinsol, use_chord ? SUNTRUE : SUNFALSE);
             KINSetMaxSetupCalls(kinsol, use_chord ? 2 : 1);
@@ -201,9 +220,11 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
     stats.residual = im.last_residual;
     stats.worst_leg = im.worst_leg;
     stats.flag = flag;
-    bool finite = std::isfinite(im.last_residual);
-    for (int i = 0; i < 6 && finite; ++i) finite = std::isfinite(u[i]);
-    if (finite) std::copy(u, u + 6, q);
+    Pair zero = {0, 0};  // (v * 0 is 0 for a finite v, NaN otherwise)
+    for (int i = 0; i < 6; i += 2) zero += load_pair(u + i) * 0.0;
+    const bool finite = std::isfinite(im.last_residual) && zero[0] + zero[1] == 0;
+    if (finite)
+        for (int i = 0; i < 6; i += 2) store_pair(q + i, load_pair(u + i));
     if (flag >= 0 && finite && im.last_residual <= tolerance) return STEWART_OK;
     if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
         return set_message(msg, size, STEWART_ERR_SINGULAR,
