@@ -66,8 +66,7 @@ def table_arrays(layout: Table, n: int) -> dict:
         offsets.append(size)
         size += -(-n * c.count * c.dtype.itemsize // BLOCK_ALIGNMENT) * BLOCK_ALIGNMENT
     block = np.empty(size, dtype=np.uint8)
-    return {c.name: block[o:o + n * c.count * c.dtype.itemsize].view(c.dtype).reshape(
-                (n, c.count) if c.count > 1 else n)
+    return {c.name: np.ndarray((n, c.count) if c.count > 1 else (n,), c.dtype, block, o)
             for c, o in zip(layout.columns, offsets)}
 
 
