@@ -61,13 +61,13 @@ def table_arrays(layout: Table, n: int) -> dict:
     the column's dtype (the batch writes every row). They are C-ordered views of one memory block
     (one allocation per result: a freed result's block is reused by the next one of its size,
     where a dozen arrays of their own would each be mapped and page-faulted anew)."""
-    offsets, size = [], 0
-    for c in layout.columns:
-        offsets.append(size)
-        size += -(-n * c.count * c.dtype.itemsize // BLOCK_ALIGNMENT) * BLOCK_ALIGNMENT
+    placed, size = [], 0  # (name, shape, dtype, byte offset in the block)
+    for name, count, dtype in layout.columns:
+        placed.append((name, (n, count) if count > 1 else (n,), dtype, size))
+        size += -(-n * count * dtype.itemsize // BLOCK_ALIGNMENT) * BLOCK_ALIGNMENT
     block = np.empty(size, dtype=np.uint8)
-    return {c.name: np.ndarray((n, c.count) if c.count > 1 else (n,), c.dtype, block, o)
-            for c, o in zip(layout.columns, offsets)}
+    view = np.ndarray
+    return {name: view(shape, dtype, block, offset) for name, shape, dtype, offset in placed}
 
 
 def table_outputs(layout: Table, result) -> dict:
