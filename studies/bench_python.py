@@ -6,8 +6,10 @@ usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
 1. Batch throughput of stewart.Platform.inverse per fidelity on a batch of 12001 poses (the yaw
    manoeuvre that build/bench-closed-form and build/bench-full time), median of repeated calls,
    against those C benchmarks run in the same invocation.
-2. Sweeps of >= 1e6 poses through scripts/sweep.py's engine on a LocalCluster of 1 and 2
-   workers: an envelope at the full level and a workspace slice at the massless level; wall time
+2. Sweeps through scripts/sweep.py's engine on a LocalCluster of 1 and 2 workers, in 10 chunks
+   of about 1 s of work each (docs/sweeps.md: chunks of >= 1 s keep Dask's overhead at a few
+   percent; 10 share out evenly on 1 or 2 workers): an envelope of 840 cases (about 1e6 poses)
+   at the full level and a 2400 x 2400 workspace slice (5.76e6 poses) at the massless level; wall time
    from the first submission to the last result (cluster start-up apart), the workers' own time
    (solving, building the table, writing its Parquet file), Dask's overhead
    (1 - workers' time / (wall x workers)), the speed-up, and the workers' CPU time over the wall
@@ -89,12 +91,12 @@ ENVELOPE = {"kind": "envelope", "fidelity": ["full"], "payload_mass": {"start": 
             "payload_com": [[0, 0, 0.1], [0.05, 0.05, 0.15]],
             "manoeuvres": [{"scene": s, "amplitude": [0.5, 1.0], "frequency": [1.0, 2.0]}
                            for s in ("heave", "roll", "pitch", "yaw", "combined")],
-            "cases_per_chunk": 10}
+            "cases_per_chunk": 84}
 WORKSPACE = {"kind": "workspace", "fidelity": "massless", "platform": {"payload_mass": 50},
              "slices": [{"name": "xy", "fixed": {"z": 0.55},
-                         "axes": {"x": {"start": -0.4, "stop": 0.4, "num": 1000},
-                                  "y": {"start": -0.4, "stop": 0.4, "num": 1000}}}],
-             "poses_per_chunk": 50000}
+                         "axes": {"x": {"start": -0.4, "stop": 0.4, "num": 2400},
+                                  "y": {"start": -0.4, "stop": 0.4, "num": 2400}}}],
+             "poses_per_chunk": 576000}
 
 
 def main():

@@ -11,6 +11,7 @@
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -49,17 +50,20 @@ using BatchResult = std::tuple<int, size_t, std::string, Messages>;
 [[noreturn]] void fail(const char *message) { throw nb::value_error(message); }
 
 // Room for the messages of up to max failing rows, and the (row, message) pairs a batch kept.
+// Left uninitialised: the batch writes only the entries it keeps (c.count), and a sweep asks room
+// for every row (max_messages = rows: 256 bytes each), which zeroing would page-fault and clear.
 struct MessageBuffer {
     explicit MessageBuffer(size_t max)
-        : rows(max), text(max * STEWART_MESSAGE_SIZE), c{max, 0, rows.data(), text.data()} {}
+        : rows(new size_t[max]), text(new char[max * STEWART_MESSAGE_SIZE]),
+          c{max, 0, rows.get(), text.get()} {}
     Messages kept() const {
         Messages out;
         for (size_t i = 0; i < c.count; ++i)
-            out.emplace_back(rows[i], std::string(text.data() + i * STEWART_MESSAGE_SIZE));
+            out.emplace_back(rows[i], std::string(text.get() + i * STEWART_MESSAGE_SIZE));
         return out;
     }
-    std::vector<size_t> rows;
-    std::vector<char> text;
+    std::unique_ptr<size_t[]> rows;
+    std::unique_ptr<char[]> text;
     stewart_batch_messages c;
 };
 
@@ -121,6 +125,55 @@ nb::list option_table(int (*count)(), const stewart_option_info *(*option)(int))
     return table;
 }
 
+using OptionValues = std::vector<std::pair<std::string, double>>;
+
+// Inverse solvers of the closed-form levels (kinematic, massless), kept between
+// Platform.inverse calls by their option values: creating one costs about as much as solving a
+// hundred rows, which a batch of a few thousand rows would otherwise pay every call. These levels
+// keep no history between rows, and a solver is reset when taken, so a call's numbers are those
+// of a new solver. Taken and given back with the GIL held (run objects are made and freed with
+// it), so that two threads never get the same solver.
+class InversePool {
+public:
+    InversePool() = default;
+    InversePool(const InversePool &) = delete;
+    InversePool &operator=(const InversePool &) = delete;
+    ~InversePool() { close(); }
+
+    // A kept solver made with options, reset, or nullptr (the caller makes one).
+    stewart_inverse *take(const OptionValues &options) {
+        for (auto it = kept_.begin(); it != kept_.end(); ++it)
+            if (it->first == options) {
+                stewart_inverse *solver = it->second;
+                kept_.erase(it);
+                stewart_inverse_reset(solver);
+                return solver;
+            }
+        return nullptr;
+    }
+    // Keeps solver (made with options) for a later call, or frees it: the pool is closed (its
+    // model is gone) or full (the oldest solver goes).
+    void give(const OptionValues &options, stewart_inverse *solver) {
+        if (closed_) return stewart_inverse_free(solver);
+        if (kept_.size() == kMaxKept) {
+            stewart_inverse_free(kept_.front().second);
+            kept_.erase(kept_.begin());
+        }
+        kept_.emplace_back(options, solver);
+    }
+    // Frees every kept solver and every one given later (before the model is freed).
+    void close() {
+        for (auto &k : kept_) stewart_inverse_free(k.second);
+        kept_.clear();
+        closed_ = true;
+    }
+
+private:
+    static constexpr size_t kMaxKept = 4;  // e.g. both levels, with and without options
+    std::vector<std::pair<OptionValues, stewart_inverse *>> kept_;
+    bool closed_ = false;
+};
+
 class Model {
 public:
     // Default (thesis) parameters, then each (name, value) through stewart_params_set, then the
@@ -136,15 +189,21 @@ public:
         model_ = stewart_model_create(&params, message, sizeof message);
         if (!model_) fail(message);
     }
-    ~Model() { stewart_model_free(model_); }
+    ~Model() {
+        inverse_pool_->close();
+        stewart_model_free(model_);
+    }
     Model(const Model &) = delete;
     Model &operator=(const Model &) = delete;
 
     // The library's model (the Python Run objects keep this Model alive while they use it).
     const stewart_model *get() const { return model_; }
+    // The inverse solvers kept for this model's closed-form levels.
+    const std::shared_ptr<InversePool> &inverse_pool() const { return inverse_pool_; }
 
 private:
     stewart_model *model_ = nullptr;
+    std::shared_ptr<InversePool> inverse_pool_ = std::make_shared<InversePool>();
 };
 
 // The data of an output array of n rows, or nullptr for an output the caller skips (None).
@@ -289,13 +348,29 @@ public:
         if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the poses");
-        const stewart_inverse_options options = options_by_name(kInverseOptions, option_values);
         out_ = bind_outputs(out_, outputs, n_, held_);
         out_.status = status.data();
+        inverse_.solver = model.inverse_pool()->take(option_values);
+        if (inverse_.solver) {
+            pool_ = model.inverse_pool();
+            options_ = option_values;
+            return;
+        }
+        const stewart_inverse_options options = options_by_name(kInverseOptions, option_values);
         char message[STEWART_MESSAGE_SIZE];
         inverse_.solver = stewart_inverse_create(model.get(), &options, message, sizeof message);
         if (!inverse_.solver) fail(message);  // the options were checked: memory is short
+        if (options.fidelity != STEWART_FULL) {  // the full level's history stays its own
+            pool_ = model.inverse_pool();
+            options_ = option_values;
+        }
     }
+    // Gives a closed-form level's solver back to the model's pool.
+    ~InverseRun() {
+        if (pool_) pool_->give(options_, std::exchange(inverse_.solver, nullptr));
+    }
+    InverseRun(const InverseRun &) = delete;
+    InverseRun &operator=(const InverseRun &) = delete;
 
     // Solves rows [first, stop). Returns as run_rows.
     BatchResult rows(size_t first, size_t stop, size_t max_messages) {
@@ -319,6 +394,9 @@ private:
     std::vector<nb::object> held_;
     stewart_inverse_batch_outputs out_{};
     Owned<stewart_inverse> inverse_{stewart_inverse_free, stewart_inverse_message};
+    // Where the solver goes back when the run is freed (none at the full level), and its key.
+    std::shared_ptr<InversePool> pool_;
+    OptionValues options_;
 };
 
 // One Platform.forward call: its arrays and one forward solver, made once (a cold start, or

@@ -14,18 +14,24 @@ class Choice(enum.IntEnum):
     def of(cls, value):
         """The member for value, or ParameterError naming the argument, the value and the
         choices."""
-        argument = getattr(cls, "ARGUMENT", cls.__name__.lower())
+        if isinstance(value, cls):
+            return value
         if isinstance(value, str):
             try:
                 return cls[value.upper()]
             except KeyError:
                 names = ", ".join(m.name.lower() for m in cls)
-                raise ParameterError(f"{argument} = {value!r} must be one of {names}") from None
+                raise ParameterError(f"{cls._argument()} = {value!r} must be one of {names}") from None
         try:
             return cls(int(value))
         except (ValueError, TypeError):
             numbers = ", ".join(f"{m.value} ({m.name.lower()})" for m in cls)
-            raise ParameterError(f"{argument} = {value!r} must be one of {numbers}") from None
+            raise ParameterError(f"{cls._argument()} = {value!r} must be one of {numbers}") from None
+
+    @classmethod
+    def _argument(cls) -> str:
+        # looked up only for an error: an Enum class's missing attribute costs microseconds
+        return getattr(cls, "ARGUMENT", cls.__name__.lower())
 
 
 class Fidelity(Choice):

@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _core
 from .errors import ParameterError
-from .results import RowStatus, table_arrays, table_outputs
+from .results import STATUS_COLUMN, RowStatus, table, table_arrays, table_outputs
 from .slices import keeping_messages, run_in_slices
 
 # The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
@@ -40,12 +40,13 @@ class ForwardSolution(RowStatus):
     status: np.ndarray      #: (N,) stewart_status per row: 0 solved, < 0 failed
     messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
 
+#: ForwardSolution's arrays: the library's forward output table, then status.
+FORWARD_TABLE = table(_core.forward_columns(), STATUS_COLUMN)
 
 
 def empty_forward_solution(n: int) -> ForwardSolution:
     """A ForwardSolution of n rows, uninitialised (the batch writes every row)."""
-    return ForwardSolution(**table_arrays(_core.forward_columns(), n),
-                           status=np.empty(n, dtype=np.int32))
+    return ForwardSolution(**table_arrays(FORWARD_TABLE, n))
 
 
 def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
@@ -60,7 +61,7 @@ def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
     try:
         run = _core.ForwardRun(
             model, lengths, rates, accels, t, guess, options,
-            table_outputs(_core.forward_columns(), out), out.status)
+            table_outputs(FORWARD_TABLE, out), out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("forward", n, SLICE_ROWS,

@@ -2,7 +2,6 @@
 (Platform.inverse)."""
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -11,7 +10,7 @@ import numpy as np
 from . import _core
 from .choices import Fidelity
 from .errors import ParameterError
-from .results import RowStatus, table_arrays, table_outputs
+from .results import STATUS_COLUMN, RowStatus, table, table_arrays, table_outputs
 from .slices import keeping_messages, run_in_slices
 
 #: Rows per call into the library when rows are independent (kinematic and massless levels) and
@@ -50,10 +49,13 @@ class InverseSolution(RowStatus):
         return p
 
 
+#: InverseSolution's arrays: the library's inverse output table, then status.
+INVERSE_TABLE = table(_core.inverse_columns(), STATUS_COLUMN)
+
+
 def empty_inverse_solution(n: int) -> InverseSolution:
     """An InverseSolution of n rows, uninitialised (the batch writes every row)."""
-    return InverseSolution(**table_arrays(_core.inverse_columns(), n),
-                           status=np.empty(n, dtype=np.int32))
+    return InverseSolution(**table_arrays(INVERSE_TABLE, n))
 
 
 def check_out(out: InverseSolution, n: int) -> None:
@@ -65,25 +67,22 @@ def check_out(out: InverseSolution, n: int) -> None:
     rows = np.shape(out.status)[0] if np.ndim(out.status) else 0
     if rows != n:
         raise ValueError(f"out has {rows} rows but poses has {n}")
-    model = empty_inverse_solution(0)
-    for f in dataclasses.fields(InverseSolution):
-        want = getattr(model, f.name)
-        if not isinstance(want, np.ndarray):
-            continue
-        a = getattr(out, f.name)
-        shape = (n, *want.shape[1:])
+    for name, count, dtype in INVERSE_TABLE.columns:
+        a = getattr(out, name)
+        shape = (n, count) if count > 1 else (n,)
         if not isinstance(a, np.ndarray):
-            raise ValueError(f"out.{f.name} is a {type(a).__name__}: it must be a numpy array {shape}")
-        if a.dtype != want.dtype:
-            raise ValueError(f"out.{f.name} has dtype {a.dtype}: it must be {want.dtype} "
+            raise ValueError(f"out.{name} is a {type(a).__name__}: it must be a numpy array {shape}")
+        if a.dtype != dtype:
+            raise ValueError(f"out.{name} has dtype {a.dtype}: it must be {dtype} "
                              "(results are written in place, never converted)")
         if a.shape != shape:
-            raise ValueError(f"out.{f.name} has shape {a.shape}: it must be {shape}")
-        if not (a.flags.c_contiguous and a.flags.aligned):
-            raise ValueError(f"out.{f.name} is not C-contiguous (Fortran order, strides or a "
+            raise ValueError(f"out.{name} has shape {a.shape}: it must be {shape}")
+        flags = a.flags
+        if not (flags.c_contiguous and flags.aligned):
+            raise ValueError(f"out.{name} is not C-contiguous (Fortran order, strides or a "
                              "view): results are written in place, give a C-ordered array")
-        if not a.flags.writeable:
-            raise ValueError(f"out.{f.name} is read-only")
+        if not flags.writeable:
+            raise ValueError(f"out.{name} is read-only")
 
 
 def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optional[np.ndarray],
@@ -101,7 +100,7 @@ def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optio
     out.messages = {}
     try:
         run = _core.InverseRun(
-            model, q, q_dot, q_ddot, options, table_outputs(_core.inverse_columns(), out),
+            model, q, q_dot, q_ddot, options, table_outputs(INVERSE_TABLE, out),
             out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None

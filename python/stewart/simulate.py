@@ -9,7 +9,8 @@ import numpy as np
 from . import _core
 from .choices import Choice
 from .errors import ParameterError
-from .results import STATUS_NOT_RUN, STATUS_OK, RowStatus, table_arrays, table_outputs
+from .results import (STATUS_COLUMN, STATUS_NOT_RUN, STATUS_OK, Column, RowStatus, table,
+                      table_arrays, table_outputs)
 from .slices import run_in_slices
 
 #: Communication points per call into the library: Python handles signals (Ctrl-C) between
@@ -56,10 +57,16 @@ class Simulation(RowStatus):
         return bool(np.all(self.status == STATUS_OK))
 
 
+#: Simulation's arrays: the library's plant output and step tables, then status and t.
+PLANT_TABLE = table(_core.plant_columns(), STATUS_COLUMN, Column("t", 1, np.dtype(np.float64)))
+
+
 def empty_simulation(t: np.ndarray) -> Simulation:
-    """A Simulation over the communication points t, uninitialised (the run writes every row)."""
-    return Simulation(t=t.copy(), **table_arrays(_core.plant_columns(), t.shape[0]),
-                      status=np.empty(t.shape[0], dtype=np.int32))
+    """A Simulation over the communication points t (copied), uninitialised otherwise (the run
+    writes every row)."""
+    arrays = table_arrays(PLANT_TABLE, t.shape[0])
+    arrays["t"][:] = t
+    return Simulation(**arrays)
 
 
 def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.ndarray],
@@ -73,7 +80,7 @@ def run_simulate(model, t: np.ndarray, forces: np.ndarray, start: Optional[np.nd
     try:
         run = _core.PlantRun(
             model, t, forces, start, start_rate, options,
-            table_outputs(_core.plant_columns(), out), out.status)
+            table_outputs(PLANT_TABLE, out), out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
 

@@ -9,9 +9,11 @@ through Platform.inverse, Platform.forward and Platform.simulate, timed alike, a
 row for both and the ratio C / Python (1.0: Python adds nothing; the goal is >= 0.9). bench-batch
 writes into the same arrays every repeat; a Python call makes new ones (their first touch costs
 page faults), so the inverse is also timed with out= (Platform.inverse's arrays reused), the like
-of the C side. Writes the table, with the machine's load, to studies/bench/batches-results.md.
+of the C side. C and Python take turns, ROUNDS times, and each number is the median over the
+rounds, so that a change of the shared machine's load between the two does not land on one side.
+Writes the table, with the machine's load, to studies/bench/batches-results.md.
 
-usage: studies/bench/batches.py [BUILD_DIR (build)] [ROWS (6000)]
+usage: studies/bench/batches.py [BUILD_DIR (build)] [ROWS (6000)] [ROUNDS (3)]
 """
 import pathlib
 import statistics
@@ -82,16 +84,19 @@ def python_batches(rows):
 def main():
     build = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else ROOT / "build").resolve()
     rows = int(sys.argv[2]) if len(sys.argv) > 2 else 6000
+    rounds = int(sys.argv[3]) if len(sys.argv) > 3 else 3
     if not (build / "bench-batch").exists():
         sys.exit(f"batches.py: {build}/bench-batch is missing: build first")
     load_before = pathlib.Path("/proc/loadavg").read_text().split()[:3]
-    c = c_batches(build, rows)
-    py, reused = python_batches(rows)
+    turns = [(c_batches(build, rows), *python_batches(rows)) for _ in range(rounds)]
+    c, py, reused = ({name: statistics.median(turn[side][name] for turn in turns)
+                      for name in turns[0][side]} for side in range(3))
     load_after = pathlib.Path("/proc/loadavg").read_text().split()[:3]
     lines = [
         "# The Python API against the C batches (studies/bench/batches.py)",
         "",
-        f"{rows} rows of the combined cue at 1 ms; ns per row, the median of whole batches; "
+        f"{rows} rows of the combined cue at 1 ms; ns per row, the median of whole batches "
+        f"(C and Python in turn, the median over {rounds} rounds); "
         f"load average before {' '.join(load_before)}, after {' '.join(load_after)}.",
         "",
         "| batch | C [ns/row] | Python [ns/row] | C / Python | Python, out= [ns/row] | C / Python, out= |",

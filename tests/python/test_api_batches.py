@@ -154,3 +154,34 @@ def test_arguments_that_are_not_numbers_are_refused_naming_them(call, words):
         call(stewart.Platform())
     for w in words:
         assert w in str(e.value), str(e.value)
+
+
+def _same_solution(a, b, where):
+    for name, v in _arrays(a).items():
+        np.testing.assert_array_equal(getattr(b, name), v, err_msg=f"{where}: {name}")
+    assert b.messages == a.messages, where
+
+
+@pytest.mark.parametrize("fidelity", ["kinematic", "massless"])
+def test_a_platform_s_kept_solvers_give_the_numbers_of_a_new_one(fidelity):
+    """A Platform keeps its closed-form levels' solvers between calls (binding: InversePool).
+    Calls in any order, with other options between, and from threads at once give what a new
+    Platform's first call gives, bit for bit, messages included."""
+    from concurrent.futures import ThreadPoolExecutor
+    q, qd, qdd = _poses(300)
+    calls = {"plain": {}, "warn": {"warn_condition": 20.0},
+             "singular": {"warn_condition": 20.0, "singular_condition": 40.0}}
+    reference = {k: stewart.Platform().inverse(q, qd, qdd, fidelity=fidelity, **o)
+                 for k, o in calls.items()}
+    assert len(reference["plain"].messages) > 10  # failing rows: the solver had errors to forget
+    if fidelity == "massless":  # the options' solvers differ where a condition is computed
+        assert not np.array_equal(reference["plain"].warnings, reference["warn"].warnings)
+    p = stewart.Platform()
+    for k in ["plain", "warn", "plain", "singular", "plain", "warn"]:
+        _same_solution(reference[k], p.inverse(q, qd, qdd, fidelity=fidelity, **calls[k]), k)
+    order = list(calls) * 8
+    with ThreadPoolExecutor(4) as pool:
+        results = list(pool.map(
+            lambda k: p.inverse(q, qd, qdd, fidelity=fidelity, **calls[k]), order))
+    for k, sol in zip(order, results):
+        _same_solution(reference[k], sol, f"threads, {k}")

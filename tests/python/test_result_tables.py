@@ -95,3 +95,20 @@ def test_an_output_array_the_library_cannot_write_in_place_is_refused_by_the_bin
     outputs["force"] = outputs["force"].astype(np.float32)
     with pytest.raises(ValueError, match="output force"):
         _core.InverseRun(model, q, None, None, [], outputs, out.status)
+
+
+@pytest.mark.parametrize("direction", DIRECTIONS)
+def test_a_result_s_arrays_share_no_byte(direction):
+    """A result's arrays are views of one memory block (results.table_arrays): each is C-ordered,
+    aligned and writeable, and writing one leaves every other unchanged."""
+    _, empty, _ = DIRECTIONS[direction]
+    result = empty(5)
+    arrays = {k: v for k, v in vars(result).items() if isinstance(v, np.ndarray)}
+    for a in arrays.values():
+        assert a.flags.c_contiguous and a.flags.aligned and a.flags.writeable
+        a[...] = 0
+    for name, a in arrays.items():
+        a[...] = 1
+        for other, b in arrays.items():
+            assert np.all(b == (1 if other == name else 0)), (name, other)
+        a[...] = 0

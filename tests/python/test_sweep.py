@@ -308,3 +308,21 @@ def test_a_worker_that_cannot_see_out_dir_sends_its_table(envelope_runs, tmp_pat
     table, stats = compute_chunk(spec, chunk, str(tmp_path / "not-there"))
     assert stats["worker"] == "local" and stats["cases"] == chunk.stop - chunk.start
     assert table.equals(pq.read_table(out / "chunks" / chunk.file_name))
+
+
+def test_dictionary_columns_equal_arrow_s_own_encoding():
+    """work.dictionary_column (a workspace chunk's slice and message columns, built without a
+    loop over rows) against pyarrow's dictionary_encode of the row-by-row list: same indices,
+    same dictionary in the same order, same type, whatever rows hold text."""
+    import random
+    import pyarrow as pa
+    from stewart.sweeps.work import dictionary_column
+    rng = random.Random(7)
+    for _ in range(2000):
+        n = rng.randint(1, 25)
+        texts = {r: rng.choice(["unreachable", "singular", "", "x"])
+                 for r in rng.sample(range(n), rng.randint(0, n))}
+        default = rng.choice(["", "xy", "singular"])
+        expected = pa.array([texts.get(j, default) for j in range(n)]).dictionary_encode()
+        got = dictionary_column(n, default, texts)
+        assert got.type == expected.type and got.equals(expected), (n, default, texts)

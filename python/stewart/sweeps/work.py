@@ -107,7 +107,7 @@ def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
     sol = platform.inverse(q, fidelity=spec["fidelity"], max_messages=len(q), **spec["options"])
     check = platform.limits(q, warn_condition=spec["options"].get("warn_condition"))
     reachable = sol.ok & check.within
-    columns = {"slice": pa.array([s["name"]] * len(q)).dictionary_encode(),
+    columns = {"slice": dictionary_column(len(q), s["name"], {}),
                "row": np.arange(chunk.start, chunk.stop)}
     for col, comp in enumerate(s["axes"]):
         columns[f"i_{comp}"] = index[:, col]
@@ -123,7 +123,26 @@ def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
         columns[f"L{k}"] = sol.length[:, k - 1]
     for k in LEGS:
         columns[f"F{k}"] = sol.force[:, k - 1]
-    messages = [sol.messages.get(j, "") for j in range(len(q))]
-    columns["message"] = pa.array(messages).dictionary_encode()
+    columns["message"] = dictionary_column(len(q), "", sol.messages)
     stats = {"seconds": time.perf_counter() - started, "poses": len(q), "cases": 0}
     return pa.table(columns), stats
+
+
+def dictionary_column(n: int, default: str, texts: dict[int, str]) -> pa.DictionaryArray:
+    """n rows of text, texts[j] in row j and default elsewhere, dictionary-encoded as
+    pa.array([texts.get(j, default) for j in range(n)]).dictionary_encode() encodes it (int32
+    indices, the dictionary in order of first appearance), without a Python loop over the rows:
+    a workspace chunk's rows are mostly default."""
+    rows = sorted(texts)
+    # the first row not in texts (rows are distinct and sorted: where rows[j] != j)
+    first_default = next((j for j, r in enumerate(rows) if r != j), len(rows))
+    order = [texts[r] for r in rows[:first_default]]
+    if first_default < n:
+        order.append(default)
+    order += [texts[r] for r in rows[first_default:]]
+    code: dict[str, int] = {}
+    for text in order:
+        code.setdefault(text, len(code))
+    indices = np.full(n, code.get(default, 0), dtype=np.int32)
+    indices[np.asarray(rows, dtype=np.intp)] = [code[texts[r]] for r in rows]
+    return pa.DictionaryArray.from_arrays(pa.array(indices), pa.array(list(code), pa.string()))
