@@ -315,6 +315,13 @@ public:
             }
             if (d <= -2) coupling_from_[-2 - d] = t;
         }
+        // The common run, a body's whole row, goes to a list of its own, copied without lengths.
+        for (size_t r = 0; r < run_from_.size(); ++r)
+            if (run_length_[r] == MBS_BODY_COORDINATES)
+                row_from_.push_back(run_from_[r]), row_to_.push_back(run_to_[r]);
+            else
+                other_from_.push_back(run_from_[r]), other_to_.push_back(run_to_[r]),
+                    other_length_.push_back(run_length_[r]);
     }
 
     bool factor(const double *values) override {
@@ -331,16 +338,20 @@ public:
             }
         }
         std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
-        for (size_t r = 0; r < run_from_.size(); ++r) {
-            const double *from = values + run_from_[r];
-            double *to = ws_.data() + run_to_[r];
-            if (run_length_[r] == MBS_BODY_COORDINATES) {  // the common run, unrolled
-                double row[MBS_BODY_COORDINATES];
-                std::memcpy(row, from, sizeof row);
-                std::memcpy(to, row, sizeof row);
-            } else {
-                for (int i = 0; i < run_length_[r]; ++i) to[i] = from[i];
-            }
+        // Typed copies through local pointers: a memcpy's stores may alias anything, and made
+        // the compiler reload every vector's data pointer per run.
+        double *const ws = ws_.data();
+        const int *const row_from = row_from_.data(), *const row_to = row_to_.data();
+        const size_t rows = row_from_.size();
+        for (size_t r = 0; r < rows; ++r) {
+            const double *from = values + row_from[r];
+            double *to = ws + row_to[r];
+            for (int i = 0; i < MBS_BODY_COORDINATES; ++i) to[i] = from[i];
+        }
+        for (size_t r = 0; r < other_from_.size(); ++r) {
+            const double *from = values + other_from_[r];
+            double *to = ws + other_to_[r];
+            for (int i = 0; i < other_length_[r]; ++i) to[i] = from[i];
         }
         for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
         const int nb = p_.border;
@@ -466,8 +477,10 @@ private:
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
     std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
-    // Jacobian values -> workspace: runs of run_length_ values from run_from_ to run_to_.
+    // Jacobian values -> workspace: runs of run_length_ values from run_from_ to run_to_ (built
+    // once), split into a body's whole rows (row_*) and the rest (other_*).
     std::vector<int> run_from_, run_to_, run_length_, coupling_from_;
+    std::vector<int> row_from_, row_to_, other_from_, other_to_, other_length_;
 };
 
 }  // namespace
