@@ -49,21 +49,6 @@ inline void put(double *row7, const Vec3 &r, const Eigen::Matrix<double, 1, 4> &
     for (int c = 0; c < 4; ++c) row7[3 + c] = p[c];
 }
 
-// v^T B(p, u) into out[4]: row_of_rotate_jacobian's arithmetic, stored straight (no Eigen
-// temporary to copy).
-inline void rotation_row(const double *p, const Vec3 &u, const Vec3 &v, double *out) {
-    const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
-    const double u0 = u[0], u1 = u[1], u2 = u[2], v0 = v[0], v1 = v[1], v2 = v[2];
-    const double vu = v0 * u0 + v1 * u1 + v2 * u2;
-    const double ve = v0 * e1 + v1 * e2 + v2 * e3;
-    const double eu = e1 * u0 + e2 * u1 + e3 * u2;
-    out[0] = 2.0 * (e0 * vu + (v0 * (e2 * u2 - e3 * u1) + v1 * (e3 * u0 - e1 * u2) +
-                               v2 * (e1 * u1 - e2 * u0)));
-    out[1] = 2.0 * (ve * u0 - vu * e1 + eu * v0 + e0 * (u1 * v2 - u2 * v1));
-    out[2] = 2.0 * (ve * u1 - vu * e2 + eu * v1 + e0 * (u2 * v0 - u0 * v2));
-    out[3] = 2.0 * (ve * u2 - vu * e3 + eu * v2 + e0 * (u0 * v1 - u1 * v0));
-}
-
 // r_i + A_i u_i - r_j - A_j u_j = 0, rows row..row+2.
 void point_coincidence(const JointInput &in, const RowWriter &w, int row);
 // (A_i a)^T (A_j b) = 0.
