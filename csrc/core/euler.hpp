@@ -77,20 +77,26 @@ inline Vec3 bilinear(const double *p, const double *q, const Vec3 &u) {
 }
 
 // v^T B(p, u) as a row, without forming B: 2 (e0 v.u + v.(e x u)), then
-// 2 ((v.e) u - (v.u) e + (e.u) v + e0 u x v); written out (Eigen's temporaries cost twice as much).
-inline Eigen::Matrix<double, 1, 4> row_of_rotate_jacobian(const double *p, const Vec3 &u,
-                                                          const Vec3 &v) {
+// 2 ((v.e) u - (v.u) e + (e.u) v + e0 u x v); written out (Eigen's temporaries cost twice as much),
+// into out[4] (a Jacobian row's p part).
+inline void rotation_row(const double *p, const Vec3 &u, const Vec3 &v, double *out) {
     const double e0 = p[0], e1 = p[1], e2 = p[2], e3 = p[3];
     const double u0 = u[0], u1 = u[1], u2 = u[2], v0 = v[0], v1 = v[1], v2 = v[2];
     const double vu = v0 * u0 + v1 * u1 + v2 * u2;
     const double ve = v0 * e1 + v1 * e2 + v2 * e3;
     const double eu = e1 * u0 + e2 * u1 + e3 * u2;
+    out[0] = 2.0 * (e0 * vu + (v0 * (e2 * u2 - e3 * u1) + v1 * (e3 * u0 - e1 * u2) +
+                               v2 * (e1 * u1 - e2 * u0)));
+    out[1] = 2.0 * (ve * u0 - vu * e1 + eu * v0 + e0 * (u1 * v2 - u2 * v1));
+    out[2] = 2.0 * (ve * u1 - vu * e2 + eu * v1 + e0 * (u2 * v0 - u0 * v2));
+    out[3] = 2.0 * (ve * u2 - vu * e3 + eu * v2 + e0 * (u0 * v1 - u1 * v0));
+}
+
+// The same as a 1 x 4 row.
+inline Eigen::Matrix<double, 1, 4> row_of_rotate_jacobian(const double *p, const Vec3 &u,
+                                                          const Vec3 &v) {
     Eigen::Matrix<double, 1, 4> r;
-    r[0] = 2.0 * (e0 * vu + (v0 * (e2 * u2 - e3 * u1) + v1 * (e3 * u0 - e1 * u2) +
-                             v2 * (e1 * u1 - e2 * u0)));
-    r[1] = 2.0 * (ve * u0 - vu * e1 + eu * v0 + e0 * (u1 * v2 - u2 * v1));
-    r[2] = 2.0 * (ve * u1 - vu * e2 + eu * v1 + e0 * (u2 * v0 - u0 * v2));
-    r[3] = 2.0 * (ve * u2 - vu * e3 + eu * v2 + e0 * (u0 * v1 - u1 * v0));
+    rotation_row(p, u, v, r.data());
     return r;
 }
 

@@ -1,7 +1,6 @@
 #include "core/linear_solver.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <random>
 #include <set>
 
@@ -298,23 +297,31 @@ public:
         for (size_t k = 0; k < p_.coupling_col.size(); ++k)
             coupling_fixed_row_[k] = row_of[p_.coupling_col[k]];
         coupling_from_.resize(p_.coupling_row.size());
+        std::vector<int> run_from, run_to, run_length;
         for (int t = 0; t < m.values(); ++t) {
             const int d = p_.value_dest[t];
             // Values go as runs: a joint's row of one body's 7 values lands on 7 neighbouring
             // places of its block. Identically zero values (e.g. in an identity) ride along: a
             // zero lands where the block holds a zero already.
             if (d >= 0) {
-                const bool extends = !run_from_.empty() &&
-                                     run_from_.back() + run_length_.back() == t &&
-                                     run_to_.back() + run_length_.back() == d;
+                const bool extends = !run_from.empty() &&
+                                     run_from.back() + run_length.back() == t &&
+                                     run_to.back() + run_length.back() == d;
                 if (extends) {
-                    ++run_length_.back();
+                    ++run_length.back();
                 } else {
-                    run_from_.push_back(t), run_to_.push_back(d), run_length_.push_back(1);
+                    run_from.push_back(t), run_to.push_back(d), run_length.push_back(1);
                 }
             }
             if (d <= -2) coupling_from_[-2 - d] = t;
         }
+        // The common run, a body's whole row, goes to a list of its own, copied without lengths.
+        for (size_t r = 0; r < run_from.size(); ++r)
+            if (run_length[r] == MBS_BODY_COORDINATES)
+                row_from_.push_back(run_from[r]), row_to_.push_back(run_to[r]);
+            else
+                other_from_.push_back(run_from[r]), other_to_.push_back(run_to[r]),
+                    other_length_.push_back(run_length[r]);
     }
 
     bool factor(const double *values) override {
@@ -331,16 +338,20 @@ public:
             }
         }
         std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
-        for (size_t r = 0; r < run_from_.size(); ++r) {
-            const double *from = values + run_from_[r];
-            double *to = ws_.data() + run_to_[r];
-            if (run_length_[r] == MBS_BODY_COORDINATES) {  // the common run, unrolled
-                double row[MBS_BODY_COORDINATES];
-                std::memcpy(row, from, sizeof row);
-                std::memcpy(to, row, sizeof row);
-            } else {
-                for (int i = 0; i < run_length_[r]; ++i) to[i] = from[i];
-            }
+        // Typed copies through local pointers: a memcpy's stores may alias anything, and made
+        // the compiler reload every vector's data pointer per run.
+        double *const ws = ws_.data();
+        const int *const row_from = row_from_.data(), *const row_to = row_to_.data();
+        const size_t rows = row_from_.size();
+        for (size_t r = 0; r < rows; ++r) {
+            const double *from = values + row_from[r];
+            double *to = ws + row_to[r];
+            for (int i = 0; i < MBS_BODY_COORDINATES; ++i) to[i] = from[i];
+        }
+        for (size_t r = 0; r < other_from_.size(); ++r) {
+            const double *from = values + other_from_[r];
+            double *to = ws + other_to_[r];
+            for (int i = 0; i < other_length_[r]; ++i) to[i] = from[i];
         }
         for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
         const int nb = p_.border;
@@ -466,8 +477,9 @@ private:
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
     std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
-    // Jacobian values -> workspace: runs of run_length_ values from run_from_ to run_to_.
-    std::vector<int> run_from_, run_to_, run_length_, coupling_from_;
+    // Jacobian values -> workspace: a body's whole rows (7 values from row_from_ to row_to_) and
+    // the other runs (other_length_ values from other_from_ to other_to_).
+    std::vector<int> row_from_, row_to_, other_from_, other_to_, other_length_, coupling_from_;
 };
 
 }  // namespace

@@ -88,12 +88,16 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
     std::vector<int> position(m);
     for (int r = 0; r < m; ++r) position[order[r]] = r;
     for (int &i : p.below) i = position[i];
+    p.below_at.resize(p.below.size());
+    for (int k = 0; k < n; ++k)
+        for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t)
+            p.below_at[t] = p.below[t] * width + k;
     return order;
 }
 
 bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
     const int w = p.width;
-    const int *below = p.below.data();
+    const int *below_at = p.below_at.data();
     // |pivot| >= threshold * |a(i, k)| for every i below is |l_i| <= 1 / threshold: checked on
     // the multipliers as they are made (a failed block is re-scattered by the caller).
     const double limit = 1.0 / kRuntimeThreshold;
@@ -106,7 +110,7 @@ bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) 
         const int c0 = p.span_begin[k], c1 = p.span_end[k];
         double largest = 0;
         for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
-            double *__restrict row_i = a + below[t] * w;
+            double *__restrict row_i = a + (below_at[t] - k);
             const double l = row_i[k] * inv;
             row_i[k] = l;
             const double size = std::fabs(l);
@@ -123,7 +127,7 @@ void lu_forward_static(const double *a, const EliminationProgram &p, double *t) 
         const double tk = t[k];
         if (tk != 0.0)
             for (int s = p.below_start[k]; s < p.below_start[k + 1]; ++s)
-                t[p.below[s]] -= a[p.below[s] * p.width + k] * tk;
+                t[p.below[s]] -= a[p.below_at[s]] * tk;
     }
 }
 
@@ -156,10 +160,11 @@ void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
 }
 
 void lu_backward_transposed_static(const double *a, const EliminationProgram &p, double *t) {
+    const int *below = p.below.data(), *below_at = p.below_at.data();
     for (int k = p.n - 1; k >= 0; --k) {
         double sum = t[k];
         for (int s = p.below_start[k]; s < p.below_start[k + 1]; ++s)
-            sum -= a[p.below[s] * p.width + k] * t[p.below[s]];
+            sum -= a[below_at[s]] * t[below[s]];
         t[k] = sum;
     }
 }

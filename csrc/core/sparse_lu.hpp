@@ -12,6 +12,7 @@ namespace mbs {
 struct EliminationProgram {
     int m = 0, n = 0, width = 0;
     std::vector<int> below_start, below;  // per pivot k: rows i > k with a structural a(i, k)
+    std::vector<int> below_at;            // per entry of below: where a(i, k) is, i width + k
     std::vector<int> right_start, right;  // per pivot k: columns c > k with a structural a(k, c)
     std::vector<int> right_carried;       // per pivot k: where its carried columns (c >= n) start
     // Per pivot k: the columns from its first to its last structural one right of the pivot,

@@ -41,6 +41,18 @@ void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
 
 void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
           const Vec3 &b_local) {
+    if (!w.out.gamma) {  // Newton's pass: the same products, without the rates' bookkeeping
+        const Vec3 a = times(in.frame_i->A, a_local), b = times(in.frame_j->A, b_local);
+        w.phi(row, a.dot(b));
+        w.phi_t(row, 0.0);
+        if (w.want_jac()) {
+            double *ri = w.jac_i(row), *rj = w.jac_j(row);
+            ri[0] = ri[1] = ri[2] = 0.0, rj[0] = rj[1] = rj[2] = 0.0;
+            rotation_row(in.q_i + 3, a_local, b, ri + 3);
+            rotation_row(in.q_j + 3, b_local, a, rj + 3);
+        }
+        return;
+    }
     const Attached a = attach_i(in, w.out, a_local);
     const Attached b = attach_j(in, w.out, b_local);
     w.phi(row, a.world.dot(b.world));
