@@ -157,16 +157,19 @@ void check_limits(const LimitConstants &c, const double q[6], stewart_limits_out
 namespace {
 
 // What both checks need at the platform's pose q: the rotation, the legs (arms, unit axes,
-// lengths), the platform joint centres, each leg's cosine to its neutral axes; false if a leg
-// has no direction (length <= min_length: its axis is minus the base neutral).
+// lengths), the platform joint centres and the legs' midpoints, each leg's cosine to its neutral
+// axes; has_direction false if a leg has none (length <= min_length: its axis is then minus the
+// base neutral).
 struct PlatformLegs {
     Eigen::Matrix3d R;
     LegKinematics legs;
-    Matrix36 top;  // platform joint centres, world
+    Matrix36 top;     // platform joint centres, world
+    Matrix36 middle;  // the legs' midpoints, world
     double base_cos[STEWART_LEGS], platform_cos[STEWART_LEGS];  // of the angle to the neutral
     bool has_direction;
 };
 
+// PlatformLegs at the platform's pose q (base frame).
 void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) {
     const PlatformGeometry &g = c.geometry;
     l.R = rotation_from_rpy(q[3], q[4], q[5]);
@@ -175,6 +178,7 @@ void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) 
     l.has_direction = true;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         l.top.col(k) = position + l.legs.arm.col(k);
+        l.middle.col(k) = 0.5 * (g.base_points.col(k) + l.top.col(k));
         const Eigen::Vector3d d = l.top.col(k) - g.base_points.col(k);
         const double L = d.norm();
         // A leg of (nearly) zero length has no direction: its joints are as far out as can be.
@@ -190,10 +194,9 @@ void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) 
 
 // The sphere bound: the two legs' segments are at least this far apart (their midpoints'
 // distance less both half lengths); a pair is measured only if it may beat `closest`.
-double sphere_gap(const PlatformGeometry &g, const PlatformLegs &l, int i, int j) {
-    const Eigen::Vector3d middle_i = 0.5 * (g.base_points.col(i) + l.top.col(i));
-    const Eigen::Vector3d middle_j = 0.5 * (g.base_points.col(j) + l.top.col(j));
-    return (middle_i - middle_j).norm() - 0.5 * (l.legs.length[i] + l.legs.length[j]);
+double sphere_gap(const PlatformLegs &l, int i, int j) {
+    return (l.middle.col(i) - l.middle.col(j)).norm() -
+           0.5 * (l.legs.length[i] + l.legs.length[j]);
 }
 
 // The distance between the axes of legs i and j.
@@ -237,7 +240,7 @@ int platform_limit_failures(const LimitConstants &c, const double q[6]) {
     // diameter (kept distances only fall).
     double closest = HUGE_VAL;
     for (const LegPair &pair : kPairs) {
-        if (sphere_gap(g, l, pair.first, pair.second) >= closest) continue;
+        if (sphere_gap(l, pair.first, pair.second) >= closest) continue;
         const double d = leg_distance(g, l, pair.first, pair.second);
         if (d < closest) {
             closest = d;
@@ -271,7 +274,7 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
     double closest = HUGE_VAL;
     for (const LegPair &pair : kPairs) {
         const int i = pair.first, j = pair.second;
-        if (sphere_gap(g, l, i, j) >= closest) continue;
+        if (sphere_gap(l, i, j) >= closest) continue;
         const double d = leg_distance(g, l, i, j);
         if (d < closest) {
             closest = d;
