@@ -25,8 +25,8 @@ struct LimitConstants {
     double longest_arm;              // max_k |b_k - tool origin|: the fastest platform joint per
                                      // rad of a tool angle [m]
     // A leg whose cosine to its neutral axis is at least this is inside its joint limit for sure
-    // (limit_failures skips its arc): cos(limit) + kJointCosineSlack, -inf for limits >= pi,
-    // +inf (never skipped) for limits <= 0.
+    // (platform_limit_failures skips its arc): cos(limit) + kJointCosineSlack, -inf for limits
+    // >= pi, +inf (never skipped) for limits <= 0.
     double base_inside_cosine[STEWART_LEGS], platform_inside_cosine[STEWART_LEGS];
 };
 
