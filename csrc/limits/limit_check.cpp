@@ -25,6 +25,25 @@ double angle_between(const Eigen::Vector3d &u, const Eigen::Vector3d &v) {
     return std::atan2(u.cross(v).norm(), u.dot(v));
 }
 
+// Slack between cos(limit) and the cosine above which a joint is inside its limit for sure. The
+// cosine c = fl(n . v) of the unit axis n = fl(d / L) and the unit neutral v (fl(neutral / norm),
+// or R v with R from rotation_from_rpy): |n|, |v| and R's columns are unit to within 10 eps
+// (eps = 2^-53), so the exact angle theta between n and v has cos(theta) >= c - 41 eps (the dot's
+// rounding 3 eps, the norms' 3 x 10 eps, cos(limit)'s rounding eps) and, arccos falling at least
+// as fast as its argument rises, theta <= limit - (slack - 41 eps). angle_between's atan2 of the
+// rounded |n x v| and n . v (each off by at most 10 eps, |n||v| >= 0.99) is off theta by at most
+// 20 eps + atan2's own ulp: the computed angle stays below the limit, margin >= 0, whenever
+// c >= cos(limit) + slack with slack far above those 65 eps (1.4e-14 rad).
+// tests/unit/test_limit_failures.cpp compares the verdicts on random poses near and far.
+constexpr double kJointCosineSlack = 1e-9;
+
+// The cosine above which a joint of this limit is inside it for sure (see kJointCosineSlack).
+double inside_cosine(double limit) {
+    if (!(limit > 0.0)) return HUGE_VAL;          // fails at every angle (or NaN): never skipped
+    if (limit >= M_PI) return -HUGE_VAL;          // atan2 never exceeds fl(pi): never fails
+    return std::cos(limit) + kJointCosineSlack;
+}
+
 // The 15 pairs of legs, neighbours (which share a corner of the hexagon) first.
 struct LegPair {
     int first, second;
@@ -80,6 +99,8 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
         c.stroke_max[k] = stroke_max_of(p, k);
         c.base_joint_limit[k] = p.base_joint_limit;
         c.platform_joint_limit[k] = p.platform_joint_limit;
+        c.base_inside_cosine[k] = inside_cosine(c.base_joint_limit[k]);
+        c.platform_inside_cosine[k] = inside_cosine(c.platform_joint_limit[k]);
         c.shortest_stroke_min = std::min(c.shortest_stroke_min, c.stroke_min[k]);
         c.longest_arm = std::max(
             c.longest_arm, (geometry.platform_points.col(k) - c.frames.tool_origin).norm());
@@ -133,56 +154,134 @@ void check_limits(const LimitConstants &c, const double q[6], stewart_limits_out
     check_platform_limits(c, platform, out, with_condition, inverse_norm);
 }
 
+namespace {
+
+// What both checks need at the platform's pose q: the rotation, the legs (arms, unit axes,
+// lengths), the platform joint centres and the legs' midpoints, each leg's cosine to its neutral
+// axes; has_direction false if a leg has none (length <= min_length: its axis is then minus the
+// base neutral).
+struct PlatformLegs {
+    Eigen::Matrix3d R;
+    LegKinematics legs;
+    Matrix36 top;     // platform joint centres, world
+    Matrix36 middle;  // the legs' midpoints, world
+    double base_cos[STEWART_LEGS], platform_cos[STEWART_LEGS];  // of the angle to the neutral
+    bool has_direction;
+};
+
+// PlatformLegs at the platform's pose q (base frame).
+void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) {
+    const PlatformGeometry &g = c.geometry;
+    l.R = rotation_from_rpy(q[3], q[4], q[5]);
+    const Eigen::Vector3d position(q[0], q[1], q[2]);
+    l.legs.arm.noalias() = l.R * g.platform_points;
+    l.has_direction = true;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        l.top.col(k) = position + l.legs.arm.col(k);
+        l.middle.col(k) = 0.5 * (g.base_points.col(k) + l.top.col(k));
+        const Eigen::Vector3d d = l.top.col(k) - g.base_points.col(k);
+        const double L = d.norm();
+        // A leg of (nearly) zero length has no direction: its joints are as far out as can be.
+        const bool defined = L > g.min_length;
+        l.has_direction = l.has_direction && defined;
+        const Eigen::Vector3d n = defined ? Eigen::Vector3d(d / L) : Eigen::Vector3d(-c.base_neutral.col(k));
+        l.legs.axis.col(k) = n;
+        l.legs.length[k] = L;
+        l.base_cos[k] = n.dot(c.base_neutral.col(k));
+        l.platform_cos[k] = n.dot(l.R * c.platform_neutral.col(k));
+    }
+}
+
+// The sphere bound: the two legs' segments are at least this far apart (their midpoints'
+// distance less both half lengths); a pair is measured only if it may beat `closest`.
+double sphere_gap(const PlatformLegs &l, int i, int j) {
+    return (l.middle.col(i) - l.middle.col(j)).norm() -
+           0.5 * (l.legs.length[i] + l.legs.length[j]);
+}
+
+// The distance between the axes of legs i and j.
+double leg_distance(const PlatformGeometry &g, const PlatformLegs &l, int i, int j) {
+    return std::sqrt(segment_distance_squared(g.base_points.col(i), l.top.col(i),
+                                              g.base_points.col(j), l.top.col(j)));
+}
+
+// True if a joint class fails: joint_margins' verdict, the arc only where the cosine leaves
+// doubt (below `inside`; with one limit only the widest leg's, as joint_margins).
+bool joint_fails(const double limit[STEWART_LEGS], const double inside[STEWART_LEGS],
+                 bool uniform, const Matrix36 &axis, const Matrix36 &neutral,
+                 const Eigen::Matrix3d *rotation, const double cosine[STEWART_LEGS]) {
+    auto fails = [&](int k) {
+        if (cosine[k] >= inside[k]) return false;
+        const Eigen::Vector3d u =
+            rotation ? Eigen::Vector3d(*rotation * neutral.col(k)) : Eigen::Vector3d(neutral.col(k));
+        return limit[k] - angle_between(axis.col(k), u) < 0.0;
+    };
+    if (uniform)
+        return fails(static_cast<int>(std::min_element(cosine, cosine + STEWART_LEGS) - cosine));
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (fails(k)) return true;
+    return false;
+}
+
+}  // namespace
+
+int platform_limit_failures(const LimitConstants &c, const double q[6]) {
+    const PlatformGeometry &g = c.geometry;
+    PlatformLegs l;
+    platform_legs(c, q, l);
+    int failed = 0;
+    if (joint_fails(c.base_joint_limit, c.base_inside_cosine, c.uniform_base_limit, l.legs.axis,
+                    c.base_neutral, nullptr, l.base_cos))
+        failed |= 1 << (STEWART_LIMIT_BASE_JOINT - 1);
+    if (joint_fails(c.platform_joint_limit, c.platform_inside_cosine, c.uniform_platform_limit,
+                    l.legs.axis, c.platform_neutral, &l.R, l.platform_cos))
+        failed |= 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
+    // check_platform_limits' pair loop: the class fails as soon as a kept distance is below the
+    // diameter (kept distances only fall).
+    double closest = HUGE_VAL;
+    for (const LegPair &pair : kPairs) {
+        if (sphere_gap(l, pair.first, pair.second) >= closest) continue;
+        const double d = leg_distance(g, l, pair.first, pair.second);
+        if (d < closest) {
+            closest = d;
+            if (d - c.leg_diameter < 0.0) return failed | 1 << (STEWART_LIMIT_INTERFERENCE - 1);
+        }
+    }
+    return failed;
+}
+
 void check_platform_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                            bool with_condition, double *inverse_norm) {
     const PlatformGeometry &g = c.geometry;
-    const Eigen::Matrix3d R = rotation_from_rpy(q[3], q[4], q[5]);
-    const Eigen::Vector3d position(q[0], q[1], q[2]);
     for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i) {
         out.margin[i] = HUGE_VAL;
         out.leg[i] = out.other_leg[i] = 0;
     }
-    LegKinematics legs;
-    legs.arm.noalias() = R * g.platform_points;
-    Matrix36 top;  // platform joint centres, world
-    double base_cos[STEWART_LEGS], platform_cos[STEWART_LEGS];  // of the angle to the neutral
-    bool has_direction = true;
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        top.col(k) = position + legs.arm.col(k);
-        const Eigen::Vector3d d = top.col(k) - g.base_points.col(k);
-        const double L = d.norm();
+    PlatformLegs l;
+    platform_legs(c, q, l);
+    const LegKinematics &legs = l.legs;
+    for (int k = 0; k < STEWART_LEGS; ++k)
         keep_smallest(out, STEWART_LIMIT_STROKE - 1,
-                      std::min(L - c.stroke_min[k], c.stroke_max[k] - L), k + 1, 0);
-        // A leg of (nearly) zero length has no direction: its joints are as far out as can be.
-        const bool defined = L > g.min_length;
-        has_direction = has_direction && defined;
-        const Eigen::Vector3d n = defined ? Eigen::Vector3d(d / L) : Eigen::Vector3d(-c.base_neutral.col(k));
-        legs.axis.col(k) = n;
-        legs.length[k] = L;
-        base_cos[k] = n.dot(c.base_neutral.col(k));
-        platform_cos[k] = n.dot(R * c.platform_neutral.col(k));
-    }
+                      std::min(legs.length[k] - c.stroke_min[k], c.stroke_max[k] - legs.length[k]),
+                      k + 1, 0);
     joint_margins(c.base_joint_limit, c.uniform_base_limit, legs.axis, c.base_neutral, nullptr,
-                  base_cos, out, STEWART_LIMIT_BASE_JOINT - 1);
+                  l.base_cos, out, STEWART_LIMIT_BASE_JOINT - 1);
     joint_margins(c.platform_joint_limit, c.uniform_platform_limit, legs.axis,
-                  c.platform_neutral, &R, platform_cos, out, STEWART_LIMIT_PLATFORM_JOINT - 1);
+                  c.platform_neutral, &l.R, l.platform_cos, out, STEWART_LIMIT_PLATFORM_JOINT - 1);
     // Every pair: legs that are not neighbours meet too when the platform turns far enough.
     // Neighbours first, then a pair only if the spheres around the two legs can be closer than
     // the closest pair so far.
     double closest = HUGE_VAL;
     for (const LegPair &pair : kPairs) {
         const int i = pair.first, j = pair.second;
-        const Eigen::Vector3d middle_i = 0.5 * (g.base_points.col(i) + top.col(i));
-        const Eigen::Vector3d middle_j = 0.5 * (g.base_points.col(j) + top.col(j));
-        const double apart = (middle_i - middle_j).norm() - 0.5 * (legs.length[i] + legs.length[j]);
-        if (apart >= closest) continue;
-        const double d = std::sqrt(segment_distance_squared(g.base_points.col(i), top.col(i),
-                                                            g.base_points.col(j), top.col(j)));
+        if (sphere_gap(l, i, j) >= closest) continue;
+        const double d = leg_distance(g, l, i, j);
         if (d < closest) {
             closest = d;
             keep_smallest(out, STEWART_LIMIT_INTERFERENCE - 1, d - c.leg_diameter, i + 1, j + 1);
         }
     }
+    const bool has_direction = l.has_direction;
     double inverse_condition = 0.0;
     out.condition = HUGE_VAL;
     if (!with_condition) {

@@ -24,6 +24,10 @@ struct LimitConstants {
     double shortest_stroke_min;      // min_k stroke_min[k]: the shortest leg within the stroke
     double longest_arm;              // max_k |b_k - tool origin|: the fastest platform joint per
                                      // rad of a tool angle [m]
+    // A leg whose cosine to its neutral axis is at least this is inside its joint limit for sure
+    // (platform_limit_failures skips its arc): cos(limit) + kJointCosineSlack, -inf for limits
+    // >= pi, +inf (never skipped) for limits <= 0.
+    double base_inside_cosine[STEWART_LEGS], platform_inside_cosine[STEWART_LEGS];
 };
 
 // The constants of the parameters' limits with condition limit warn_condition. A zero neutral
@@ -37,6 +41,10 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
 // *inverse_norm if given (+inf if singular).
 void check_platform_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                            bool with_condition = true, double *inverse_norm = nullptr);
+// The failing bits (stewart_limits_output.failed) of the joint classes and of interference at
+// the platform's pose q: those of check_platform_limits(c, q, out, false), found without the
+// margins (the plant's warnings).
+int platform_limit_failures(const LimitConstants &c, const double q[6]);
 // The same at the tool frame's pose q in the user frame (the API's poses).
 void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                   bool with_condition = true, double *inverse_norm = nullptr);

@@ -104,28 +104,32 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
 // platform origin position and roll-pitch-yaw angles.
 int limit_warnings(const stewart_plant &p, const double position[3], const double angles[3]) {
     const double q[6] = {position[0], position[1], position[2], angles[0], angles[1], angles[2]};
-    stewart_limits_output o;
-    stewart::check_platform_limits(p.limits, q, o, false);
+    const int failed = stewart::platform_limit_failures(p.limits, q);
     const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
-    return (o.failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
-           (o.failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
+    return (failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
+           (failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
 }
 
 // The 13 bodies' motion (accelerations included) under the given forces (NULL: the last step's);
 // STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
-// known: the equations already evaluated at this state and these forces (or nullptr).
+// known: the equations already evaluated at this state and these forces (or nullptr: then
+// evaluated into e; e is left as it was otherwise). platform: the platform's motion, if wanted.
 stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
                           stewart::Motion bodies[STEWART_PLANT_BODIES],
-                          const fd::Evaluation *known = nullptr) {
+                          const fd::Evaluation *known = nullptr,
+                          stewart::Motion *platform = nullptr) {
     if (!force) force = p.force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
     stewart::Motion m = fd::motion_of_state(p.y);
-    if (known) e = *known;
-    else if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
-    m.acceleration = e.twist_rate.head<3>();
-    m.alpha = e.twist_rate.tail<3>();
-    fd::body_motions(p.dynamics, m, e, bodies);
+    if (!known) {
+        if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
+        known = &e;
+    }
+    m.acceleration = known->twist_rate.head<3>();
+    m.alpha = known->twist_rate.tail<3>();
+    fd::body_motions(p.dynamics, m, *known, bodies);
+    if (platform) *platform = m;
     return STEWART_OK;
 }
 
@@ -431,9 +435,15 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
 }  // namespace
 
 namespace {
+// The legs' lengths (Cardan to Cardan), rates and stroke bits (leg_outputs) at a state.
+struct LegOutputs {
+    double length[STEWART_LEGS], rate[STEWART_LEGS];
+    int stroke_legs;
+};
+
 // stewart_plant_output_get with what the step already knows (defined below it).
 stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, stewart_plant_output *out);
+                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out);
 }  // namespace
 
 extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
@@ -523,11 +533,12 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
-    double length[6], rate[6];
+    LegOutputs legs;
     const int limit_bits = limit_warnings(*p, y, angles);
-    const int warnings = (leg_outputs(*p, m, length, rate) ? STEWART_WARN_STROKE : 0) | limit_bits;
+    legs.stroke_legs = leg_outputs(*p, m, legs.length, legs.rate);
+    const int warnings = (legs.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (!std::isfinite(length[k]) || !std::isfinite(rate[k]))
+        if (!std::isfinite(legs.length[k]) || !std::isfinite(legs.rate[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "the forces are out of range: leg %d's length or rate overflows "
                                "after the step", k + 1);
@@ -539,8 +550,10 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
     // the outputs from the integrator's own evaluation at the end of the step when it made one
-    // (the state before the quaternion's normalisation: the same equations to rounding)
-    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, output) != STEWART_OK) {
+    // (the state before the quaternion's normalisation: the same equations to rounding), and the
+    // legs and warnings just found at this state
+    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, &legs, output) !=
+        STEWART_OK) {
         restore_state(*p, before_step);
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "the forces are out of range: the outputs overflow after the step");
@@ -553,14 +566,13 @@ namespace {
 
 // stewart_plant_output_get's body. known: the equations' evaluation at the state and forces (the
 // step's last, or nullptr); limit_bits: the joint-limit and interference warnings of the state
-// (the step's, or -1: found here).
+// (the step's, or -1: found here); legs: leg_outputs at the state (the step's, or nullptr).
 stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, stewart_plant_output *out) {
+                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out) {
     fd::Evaluation e;
-    stewart::Motion bodies[STEWART_PLANT_BODIES];
-    const stewart_status s = all_bodies(*p, force, e, bodies, known);
+    stewart::Motion bodies[STEWART_PLANT_BODIES], m;
+    const stewart_status s = all_bodies(*p, force, e, bodies, known, &m);
     if (s != STEWART_OK) return s;
-    const stewart::Motion m = fd::motion_of_state(p->y);
     fd::Vec3 f, t;
     fd::base_wrench(p->dynamics, bodies, f, t);
 
@@ -571,7 +583,15 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
         o.base_force[i] = f[i];
         o.base_torque[i] = t[i];
     }
-    o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
+    if (legs) {
+        o.stroke_legs = legs->stroke_legs;
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            o.lengths.length[k] = legs->length[k];
+            o.lengths.length_rate[k] = legs->rate[k];
+        }
+    } else {
+        o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
+    }
     if (limit_bits < 0) limit_bits = limit_warnings(*p, p->y, p->angles);
     o.warnings = (o.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
@@ -593,7 +613,7 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
 extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const double *force,
                                                    stewart_plant_output *out) {
     if (!p || !out) return STEWART_ERR_ARGUMENT;
-    return output_of(p, force, nullptr, -1, out);
+    return output_of(p, force, nullptr, -1, nullptr, out);
 }
 
 extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, const double *force,

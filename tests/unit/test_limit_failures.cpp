@@ -1,0 +1,166 @@
+// White-box test of the plant's limit verdicts (stewart::platform_limit_failures,
+// csrc/limits/limit_check.cpp) against the full check they shortcut (check_platform_limits
+// without the condition): the same joint and interference bits on random poses far from the
+// limits and on poses put on the very edge of one (the limit or the leg diameter set to the
+// pose's own widest angle or closest distance, a few ulps either way), one limit for all legs
+// and one per leg.
+#include <cmath>
+#include <cstdint>
+
+#include "kinematics/closed_form.hpp"
+#include "limits/limit_check.hpp"
+#include "stewart/stewart.h"
+#include "unity.h"
+
+namespace {
+
+double uniform(uint64_t &state, double a, double b) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return a + (b - a) * static_cast<double>(state >> 11) / 9007199254740992.0;
+}
+
+constexpr int kVerdictBits = 1 << (STEWART_LIMIT_BASE_JOINT - 1) |
+                             1 << (STEWART_LIMIT_PLATFORM_JOINT - 1) |
+                             1 << (STEWART_LIMIT_INTERFERENCE - 1);
+
+// The full check's verdict bits at q.
+int full_verdict(const stewart::LimitConstants &c, const double q[6]) {
+    stewart_limits_output out;
+    stewart::check_platform_limits(c, q, out, false);
+    return out.failed & kVerdictBits;
+}
+
+// A random pose about home: small (far from the limits) or wide (beyond them).
+void random_pose(uint64_t &rng, double home_height, double reach, double q[6]) {
+    for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -reach, reach);
+    q[2] += home_height;
+    for (int i = 3; i < 6; ++i) q[i] = uniform(rng, -2.5 * reach, 2.5 * reach);
+}
+
+// Constants with one joint limit per leg (the base's if base, else the platform's).
+stewart::LimitConstants per_leg_limits(const stewart_params &params,
+                                       const stewart::PlatformGeometry &g, bool base,
+                                       const double limit[STEWART_LEGS]) {
+    stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        stewart_params one = params;
+        (base ? one.base_joint_limit : one.platform_joint_limit) = limit[k];
+        const stewart::LimitConstants ck = stewart::limit_constants(one, g, HUGE_VAL);
+        if (base) {
+            c.base_joint_limit[k] = limit[k];
+            c.base_inside_cosine[k] = ck.base_inside_cosine[k];
+        } else {
+            c.platform_joint_limit[k] = limit[k];
+            c.platform_inside_cosine[k] = ck.platform_inside_cosine[k];
+        }
+    }
+    (base ? c.uniform_base_limit : c.uniform_platform_limit) = false;
+    return c;
+}
+
+void test_far_and_beyond(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
+    const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
+    uint64_t rng = 2026;
+    int differing = 0, failing = 0;
+    for (int n = 0; n < 40000; ++n) {
+        double q[6];
+        random_pose(rng, params.home_height, n % 2 ? 0.05 : 0.4, q);
+        const int expected = full_verdict(c, q);
+        failing += expected != 0;
+        differing += stewart::platform_limit_failures(c, q) != expected;
+    }
+    TEST_ASSERT_EQUAL_INT(0, differing);
+    TEST_ASSERT_TRUE(failing > 1000);  // the wide poses do reach the limits
+}
+
+// Every pose on the edge: a limit or the diameter moved onto the pose's own value, then a few
+// ulps either way, so that the verdict turns on the last bits; and the joint limits a little wider,
+// across the cosine pre-test's slack.
+void test_on_the_edge(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
+    uint64_t rng = 99;
+    int differing = 0, failing = 0, uniform_checks = 0;
+    // the angle limits also a little wider, about where the cosine pre-test's slack ends
+    const double offsets[] = {0.0, 1e-11, 1e-10, 5e-10, 1e-9, 2e-9, 1e-8};
+    for (int n = 0; n < 1500; ++n) {
+        double q[6];
+        random_pose(rng, params.home_height, 0.15, q);
+        stewart_params wide = params;  // nothing fails: the margins are the values themselves
+        wide.base_joint_limit = wide.platform_joint_limit = M_PI;
+        wide.leg_diameter = 0.0;
+        stewart_limits_output out;
+        stewart::check_platform_limits(stewart::limit_constants(wide, g, HUGE_VAL), q, out, false);
+        const double base_angle = M_PI - out.margin[STEWART_LIMIT_BASE_JOINT - 1];
+        const double platform_angle = M_PI - out.margin[STEWART_LIMIT_PLATFORM_JOINT - 1];
+        const double distance = out.margin[STEWART_LIMIT_INTERFERENCE - 1];
+        for (int step = 0; step < 7 * 7; ++step) {
+            const int ulps = step % 7 - 3;
+            const double offset = offsets[step / 7];
+            stewart_params edge = params;
+            edge.base_joint_limit = base_angle + offset;
+            edge.platform_joint_limit = platform_angle + offset;
+            edge.leg_diameter = distance;
+            double *values[3] = {&edge.base_joint_limit, &edge.platform_joint_limit,
+                                 &edge.leg_diameter};
+            for (double *v : values)
+                for (int u = 0; u < std::abs(ulps); ++u)
+                    *v = std::nextafter(*v, ulps > 0 ? HUGE_VAL : 0.0);
+            const stewart::LimitConstants c = stewart::limit_constants(edge, g, HUGE_VAL);
+            const int expected = full_verdict(c, q);
+            failing += expected != 0;
+            differing += stewart::platform_limit_failures(c, q) != expected;
+            ++uniform_checks;
+            // one limit per leg: the edge on a random leg, the others wide or narrow
+            for (int base = 0; base < 2; ++base) {
+                double limit[STEWART_LEGS];
+                for (double &l : limit) l = uniform(rng, 0.0, 1.0) < 0.8 ? 1.2 : 0.1;
+                limit[static_cast<int>(uniform(rng, 0, STEWART_LEGS))] =
+                    base ? edge.base_joint_limit : edge.platform_joint_limit;
+                const stewart::LimitConstants cl = per_leg_limits(edge, g, base, limit);
+                const int e = full_verdict(cl, q);
+                differing += stewart::platform_limit_failures(cl, q) != e;
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(0, differing);
+    TEST_ASSERT_TRUE(failing > uniform_checks / 4);  // the edges do fail on one side
+}
+
+// Limits at the ends of their range: 0 fails at any angle but zero, pi never fails.
+void test_extreme_limits(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
+    uint64_t rng = 7;
+    int differing = 0;
+    const double limits[] = {0.0, 1e-12, M_PI - 1e-12, M_PI};
+    for (double limit : limits) {
+        stewart_params p = params;
+        p.base_joint_limit = p.platform_joint_limit = limit;
+        const stewart::LimitConstants c = stewart::limit_constants(p, g, HUGE_VAL);
+        for (int n = 0; n < 2000; ++n) {
+            double q[6];
+            random_pose(rng, params.home_height, 0.3, q);
+            differing += stewart::platform_limit_failures(c, q) != full_verdict(c, q);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(0, differing);
+}
+
+}  // namespace
+
+void setUp(void) {}
+void tearDown(void) {}
+
+int main(void) {
+    UNITY_BEGIN();
+    RUN_TEST(test_far_and_beyond);
+    RUN_TEST(test_on_the_edge);
+    RUN_TEST(test_extreme_limits);
+    return UNITY_END();
+}
