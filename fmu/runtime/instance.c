@@ -224,8 +224,9 @@ FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, doub
 #define USUAL_STEP fmu_run_step
 #endif
 
-fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
-    if (inst && usual_step(&inst->v, t, h)) return USUAL_STEP(inst, t, h, last_successful_time);
+/* Any other call: the call order and the step checked with their messages, then the step. */
+FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, double h,
+                                             double *last_successful_time) {
     if (!inst) return FMU_ERROR;
     if (check_do_step(inst, t, h) != FMU_OK) {
         /* a refused call, not a failed step: the mode stays as it was */
@@ -233,6 +234,11 @@ fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_succ
         return FMU_ERROR;
     }
     return fmu_run_step(inst, t, h, last_successful_time);
+}
+
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+    if (inst && usual_step(&inst->v, t, h)) return USUAL_STEP(inst, t, h, last_successful_time);
+    return checked_step(inst, t, h, last_successful_time);
 }
 
 fmu_status fmu_get_step_status(fmu_instance *inst, int *status) {

@@ -630,24 +630,23 @@ static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
 #define OWN_FRAME
 #endif
 
-/* The step's end: accepted (OK, Warning) or not (the time before it: t, or within the slack). */
-static inline fmu_status step_end(fmu_instance *inst, double t, double h, double time_before,
-                                  fmu_status s, double *last_successful_time) {
+/* The step's end: accepted (OK, Warning) or not. The usual step leaves the unit's time as it
+ * was (t, or within the slack of it) until here, so that is the time before it. */
+static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s,
+                                  double *last_successful_time) {
     if (s == FMU_OK || s == FMU_WARNING)
         return fmu_step_accepted(&inst->v, t, h, s, last_successful_time);
-    return fmu_step_not_taken(inst, t, s, time_before, 0, last_successful_time);
+    return fmu_step_not_taken(inst, t, s, inst->v.time, 0, last_successful_time);
 }
 
 OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h,
                                                double *last_successful_time) {
-    const double time_before = inst->v.time;
-    return step_end(inst, t, h, time_before, advance_in_place(inst, t, h), last_successful_time);
+    return step_end(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
 }
 
 OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h,
                                             double *last_successful_time) {
-    const double time_before = inst->v.time;
-    return step_end(inst, t, h, time_before, hold_with_quadratic(inst, t), last_successful_time);
+    return step_end(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
 }
 
 fmu_status model_usual_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
