@@ -165,23 +165,11 @@ static fmu_status check_step(fmu_instance *inst, double t, double h) {
     return FMU_OK;
 }
 
-/* The model's step from t to t + h, which check_step accepted, and the time bookkeeping. */
-static fmu_status run_step(fmu_instance *inst, double t, double h) {
+fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double time_before,
+                              int outputs_current_before, double *last_successful_time) {
     fmu_values *v = &inst->v;
-    const double time_before = v->time;
-    const int outputs_current_before = v->outputs_current;
-    if (t != v->time) { /* a rounding off the unit's time, or later (after a Discard) */
-        set_time(v, t);
-        v->outputs_current = 0;
-    }
-    const fmu_status s = model_do_step(inst, t, h);
     v->last_step_status = s;
-    if (s == FMU_OK || s == FMU_WARNING) {
-        set_time(v, t + h);
-        v->last_step_point = t;
-        v->has_stepped = 1;
-        v->last_successful_time = t + h;
-    } else if (s == FMU_DISCARD) {
+    if (s == FMU_DISCARD) {
         set_time(v, t);
         v->last_successful_time = t;
     } else {
@@ -191,16 +179,35 @@ static fmu_status run_step(fmu_instance *inst, double t, double h) {
         v->outputs_current = outputs_current_before;
         fmu_fail(inst);
     }
+    if (last_successful_time) *last_successful_time = v->last_successful_time;
     return s;
 }
 
+fmu_status fmu_run_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+    fmu_values *v = &inst->v;
+    const double time_before = v->time;
+    const int outputs_current_before = v->outputs_current;
+    if (t != v->time) { /* a rounding off the unit's time, or later (after a Discard) */
+        set_time(v, t);
+        v->outputs_current = 0;
+    }
+    const fmu_status s = model_do_step(inst, t, h);
+    if (s == FMU_OK || s == FMU_WARNING)
+        return fmu_step_accepted(v, t, h, s, last_successful_time);
+    return fmu_step_not_taken(inst, t, s, time_before, outputs_current_before,
+                              last_successful_time);
+}
+
 /* The usual call, told in a few comparisons: step mode, a step that advances t to a finite time
- * (so t and h are finite), after the last step, from the unit's time within its slack.
- * fmu_check_call and check_step accept it too. */
-static int usual_step(const fmu_instance *inst, double t, double h) {
-    const fmu_values *v = &inst->v;
-    return v->mode == MODE_STEP && h > 0 && t + h > t && isfinite(t + h) &&
-           (!v->has_stepped || t > v->last_step_point) && t >= v->time - time_slack(v);
+ * (t + h > t: h > 0 and t, h not NaN; below infinity: finite), from the unit's time (or within
+ * its slack), after the last step. fmu_check_call and check_step accept it too. From the unit's
+ * time itself it is after the last step: every step ends after its communication point, and a
+ * restored state is checked for that (state.c). */
+static int usual_step(const fmu_values *v, double t, double h) {
+    const double end = t + h;
+    if (!(v->mode == MODE_STEP && end > t && end < HUGE_VAL)) return 0;
+    if (t == v->time) return 1;
+    return t >= v->time - time_slack(v) && (!v->has_stepped || t > v->last_step_point);
 }
 
 /* The call order and the step (t, h) checked, with their messages: OK or Error. */
@@ -209,13 +216,29 @@ FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, doub
     return check_step(inst, t, h);
 }
 
-fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+/* The models that take the usual step themselves (model_usual_step, with fmu_step_accepted and
+ * fmu_step_not_taken) save the runtime's frame around it; the others run it here. */
+#if FMU_MODEL_USUAL_STEP
+#define USUAL_STEP model_usual_step
+#else
+#define USUAL_STEP fmu_run_step
+#endif
+
+/* Any other call: the call order and the step checked with their messages, then the step. */
+FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, double h,
+                                             double *last_successful_time) {
     if (!inst) return FMU_ERROR;
-    fmu_status s = usual_step(inst, t, h) ? FMU_OK : check_do_step(inst, t, h);
-    /* an Error here leaves the mode as it was (a refused call, not a failed step) */
-    if (s == FMU_OK) s = run_step(inst, t, h); /* one call: inlined */
-    if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
-    return s;
+    if (check_do_step(inst, t, h) != FMU_OK) {
+        /* a refused call, not a failed step: the mode stays as it was */
+        if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
+        return FMU_ERROR;
+    }
+    return fmu_run_step(inst, t, h, last_successful_time);
+}
+
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+    if (inst && usual_step(&inst->v, t, h)) return USUAL_STEP(inst, t, h, last_successful_time);
+    return checked_step(inst, t, h, last_successful_time);
 }
 
 fmu_status fmu_get_step_status(fmu_instance *inst, int *status) {

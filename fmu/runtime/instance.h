@@ -37,6 +37,11 @@ typedef enum {
 #ifndef FMU_MODEL_EXCHANGE
 #define FMU_MODEL_EXCHANGE 0
 #endif
+/* A model's config.h defines FMU_MODEL_USUAL_STEP 1 when it takes the usual doStep itself
+ * (model_usual_step, model_interface.h). */
+#ifndef FMU_MODEL_USUAL_STEP
+#define FMU_MODEL_USUAL_STEP 0
+#endif
 /* Where an instance goes at the end of initialisation, and the modes after it. */
 #define MODE_AFTER_INITIALIZATION (FMU_MODEL_EXCHANGE ? MODE_EVENT : MODE_STEP)
 #define MODES_RUNNING (MODE_STEP | MODE_EVENT | MODE_CONTINUOUS_TIME)
@@ -102,8 +107,34 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, double start_time);
 fmu_status fmu_enter_initialization(fmu_instance *inst, int has_start, double start_time);
 /* Applies the parameters and solves for the initial inputs (Discard there becomes Warning). */
 fmu_status fmu_exit_initialization(fmu_instance *inst);
-/* Checks the step (t, h) against the unit's time, then runs the model's step rules. */
+/* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual
+ * step (step mode, from the unit's time within its slack, advancing to a finite time) goes
+ * straight to model_usual_step if the model's config.h defines FMU_MODEL_USUAL_STEP 1, else to
+ * fmu_run_step. last_successful_time (may be NULL) receives the unit's last successful time. */
 fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time);
+/* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
+ * the time bookkeeping around them. */
+fmu_status fmu_run_step(fmu_instance *inst, double t, double h, double *last_successful_time);
+/* The bookkeeping of a step from t that the model did not take (Discard: time stays at t; Error:
+ * time and outputs_current go back to time_before and outputs_current_before, and the instance
+ * enters the Error mode). Returns s. */
+fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double time_before,
+                              int outputs_current_before, double *last_successful_time);
+
+/* The bookkeeping of an accepted step (s OK or Warning) from t to t + h: time moves on. Inline:
+ * it is the usual step's (issue 22: doStep within 5 % of the library call). Returns s. */
+static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fmu_status s,
+                                           double *last_successful_time) {
+    const double end = t + h;
+    v->time = end;
+    v->real[FMU_TIME_VR] = end;
+    v->last_step_point = t;
+    v->has_stepped = 1;
+    v->last_successful_time = end;
+    v->last_step_status = s;
+    if (last_successful_time) *last_successful_time = end;
+    return s;
+}
 fmu_status fmu_terminate(fmu_instance *inst);
 /* Back to the start values (the model keeps its built resources for reuse). */
 fmu_status fmu_reset(fmu_instance *inst);

@@ -42,6 +42,12 @@ fmu_status model_refresh_outputs(fmu_instance *inst);
  * the master reads at t + h. Discard or Error: nothing the master sees changes except status
  * outputs; the runtime keeps time at t. Never allocates. */
 fmu_status model_do_step(fmu_instance *inst, double t, double h);
+/* Only in a model whose config.h defines FMU_MODEL_USUAL_STEP 1: the usual doStep (step mode,
+ * t the unit's time within its slack, t + h finite and later: the runtime has checked that) with
+ * the runtime's time bookkeeping: fmu_step_accepted or fmu_step_not_taken (instance.h) at the
+ * end, or the whole of it handed to fmu_run_step (which calls model_do_step) when the model's
+ * own usual path does not apply. Never allocates. */
+fmu_status model_usual_step(fmu_instance *inst, double t, double h, double *last_successful_time);
 /* FMI 2 input derivatives (order[i] of variable vr[i]); FMU_ERROR with a message if the model
  * does not take that derivative. */
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,

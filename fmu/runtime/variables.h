@@ -35,6 +35,13 @@ enum fmu_value_reference {
     VR_END_OF_TABLE_ = -1
 };
 
+/* FMU_TIME_VR: the value reference of the independent variable (time), as a constant for the
+ * step's bookkeeping (fmu_time_vr below is the same number). */
+enum fmu_time_value_reference {
+#define FMU_INDEPENDENT(vr, ...) FMU_TIME_VR = vr,
+#include "variables.def"
+};
+
 /* Log categories: LOG_EVENTS, ... and their count. */
 enum fmu_log_category {
 #define FMU_LOG_CATEGORY(id, ...) id,

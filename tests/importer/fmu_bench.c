@@ -3,8 +3,9 @@
  * without Python, the way a
  * co-simulation master does (set the pose at t, doStep(t, h), read the outputs, which belong to
  * t + h), and prints the median microseconds per doStep and the mean Newton iterations. With
- * --out it also writes t + h and every leg output after each step, for accuracy studies
- * (studies/speed_accuracy.py).
+ * --out it also writes t + h and every output after each step (the leg outputs, newton_iterations,
+ * status, condition, residual, the base wrench), for accuracy studies (studies/speed_accuracy.py)
+ * and bit-for-bit comparisons of two builds.
  *
  * usage: fmu_bench FMU.so [--fmi 2|3] [--fidelity F] [--derivatives D] [--step H] [--duration T]
  *                  [--tolerance TOL] [--modified-newton M] [--max-iterations N]
@@ -177,6 +178,10 @@ int main(int argc, char **argv) {
     const fmi2ValueReference first_out[4] = {VR_L_1, VR_L_dot_1, VR_L_ddot_1, VR_F_1};
     for (int i = 0; i < 24; ++i) out_vr[i] = first_out[i / 6] + i % 6;
     const fmi2ValueReference int_out[2] = {VR_newton_iterations, VR_status};
+    /* with --out also the rest of the Real outputs (read only then: the timed loop stays) */
+    const fmi2ValueReference more_vr[8] = {VR_condition, VR_residual, VR_base_force_1,
+                                           VR_base_force_2, VR_base_force_3, VR_base_torque_1,
+                                           VR_base_torque_2, VR_base_torque_3};
 
     for (int i = 0; i < n_sets; ++i) {
         const char *eq = strchr(sets[i], '=');
@@ -211,7 +216,8 @@ int main(int argc, char **argv) {
         fprintf(out, "t");
         const char *g[4] = {"L", "L_dot", "L_ddot", "F"};
         for (int i = 0; i < 24; ++i) fprintf(out, ",%s%d", g[i / 6], i % 6 + 1);
-        fprintf(out, ",newton_iterations,status\n");
+        fprintf(out, ",newton_iterations,status,condition,residual,base_force1,base_force2,"
+                     "base_force3,base_torque1,base_torque2,base_torque3\n");
     }
     const long steps = lround(duration / h);
     double *t_step = malloc(steps * sizeof(double));
@@ -232,7 +238,11 @@ int main(int argc, char **argv) {
         if (out) {
             fprintf(out, "%.17g", (j + 1) * h);
             for (int i = 0; i < 24; ++i) fprintf(out, ",%.17g", y[i]);
-            fprintf(out, ",%d,%d\n", iv[0], iv[1]);
+            double more[8];
+            get_reals(&u, more_vr, 8, more);
+            fprintf(out, ",%d,%d", iv[0], iv[1]);
+            for (int i = 0; i < 8; ++i) fprintf(out, ",%.17g", more[i]);
+            fprintf(out, "\n");
         }
     }
     qsort(t_step, steps, sizeof *t_step, importer_cmp_double);

@@ -25,6 +25,8 @@
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.1\""
 /* FMI 2 canInterpolateInputs: the model takes input derivatives (model_set_input_derivatives). */
 #define FMU_CAN_INTERPOLATE_INPUTS 1
+/* The usual doStep goes straight from the FMI call to model_usual_step (model.c). */
+#define FMU_MODEL_USUAL_STEP 1
 
 /* Directional derivatives of the outputs with respect to the inputs (derivatives.c). */
 #define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1

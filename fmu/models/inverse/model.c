@@ -6,10 +6,19 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "logging.h"
 #include "model.h"
+
+/* A loop of the usual step unrolled where the compiler allows: the vectoriser then pairs its
+ * coordinates without a loop around them. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define UNROLLED _Pragma("GCC unroll 6")
+#else
+#define UNROLLED
+#endif
 
 /* ---------------------------------------------------------------- values <-> library */
 
@@ -62,11 +71,54 @@ typedef struct inverse_limit_values {
     stewart_axis_ranges ranges;
 } inverse_limit_values;
 
-static void outputs_to_values(fmu_values *v, const stewart_inverse_output *out) {
-#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out->field;
-#define FMU_LIMIT_OUTPUT(...)
-#include "variables.def"
-    v->integer[VR_newton_iterations] = out->iterations;
+/* The library writes its output straight into the output variables (no copy): the struct laid
+ * over real[VR_L_1..] has the outputs' order up to the residual (iterations passes through the
+ * slot of the Integer newton_iterations), and the base wrench one slot early (the Integer status
+ * sits between), which outputs_in_place moves. The pose inputs are a stewart_pose as they stand. */
+#define OUTPUT_SLOT(field) (VR_L_1 + offsetof(stewart_inverse_output, field) / sizeof(double))
+_Static_assert(OUTPUT_SLOT(lengths.length_rate) == VR_L_dot_1 &&
+                   OUTPUT_SLOT(lengths.length_accel) == VR_L_ddot_1 && OUTPUT_SLOT(force) == VR_F_1 &&
+                   OUTPUT_SLOT(condition) == VR_condition &&
+                   OUTPUT_SLOT(iterations) == VR_newton_iterations &&
+                   OUTPUT_SLOT(residual) == VR_residual &&
+                   OUTPUT_SLOT(base_force) == VR_base_force_1 - 1 &&
+                   OUTPUT_SLOT(base_torque) == VR_base_force_1 + 2 &&
+                   VR_base_torque_1 == VR_base_force_1 + 3 &&
+                   VR_L_1 + sizeof(stewart_inverse_output) / sizeof(double) <= VR_base_torque_3 + 1,
+               "stewart_inverse_output no longer lies over the output variables");
+_Static_assert(VR_x_dot == VR_x + 6 && VR_x_ddot == VR_x + 12 &&
+                   offsetof(stewart_pose, q_dot) == 6 * sizeof(double) &&
+                   offsetof(stewart_pose, q_ddot) == 12 * sizeof(double) &&
+                   sizeof(stewart_inverse_input) == 18 * sizeof(double),
+               "the pose inputs are no longer a stewart_pose");
+
+/* Where the library writes the outputs of a solve. */
+static stewart_inverse_output *output_slots(fmu_values *v) {
+    return (stewart_inverse_output *)(void *)&v->real[VR_L_1];
+}
+
+/* What a solve wrote over the output variables made theirs (bytes read through memcpy: the
+ * struct's ints lie in double slots): the iteration count, the base wrench moved to its slots.
+ * Returns the warning bits; *stroke_legs the legs outside their stroke. */
+static int outputs_in_place(fmu_values *v, int *stroke_legs) {
+    const unsigned char *at = (const unsigned char *)&v->real[VR_L_1];
+    int iterations, warnings;
+    memcpy(&iterations, at + offsetof(stewart_inverse_output, iterations), sizeof iterations);
+    memcpy(&warnings, at + offsetof(stewart_inverse_output, warnings), sizeof warnings);
+    memcpy(stroke_legs, at + offsetof(stewart_inverse_output, stroke_legs), sizeof *stroke_legs);
+    v->integer[VR_newton_iterations] = iterations;
+    v->real[VR_newton_iterations] = 0.0; /* no Real variable: no stray bytes in a state */
+    /* one slot on (the slots overlap: all read first; plain values, so no call to memmove) */
+    double *wrench = &v->real[VR_base_force_1];
+    const double f1 = wrench[-1], f2 = wrench[0], f3 = wrench[1], m1 = wrench[2],
+                 m2 = wrench[3], m3 = wrench[4];
+    wrench[0] = f1;
+    wrench[1] = f2;
+    wrench[2] = f3;
+    wrench[3] = m1;
+    wrench[4] = m2;
+    wrench[5] = m3;
+    return warnings;
 }
 
 /* ---------------------------------------------------------------- parameters */
@@ -166,6 +218,21 @@ static int taylor_mode(const fmu_values *v) {
     return v->integer[VR_derivatives] == 1 || v->model.input_derivatives;
 }
 
+/* The rates and accelerations of pose->q at `time` from the quadratic through it and the last two
+ * poses (two in the history). */
+static inline void quadratic_rates(const model_values *restrict m, double time,
+                                   stewart_pose *restrict pose) {
+    const double h1 = m->history_t[1] - m->history_t[0], h2 = time - m->history_t[1];
+    UNROLLED
+    for (int i = 0; i < 6; ++i) {
+        const double q0 = m->history_q[0][i], q1 = m->history_q[1][i], q2 = pose->q[i];
+        const double d1 = (q1 - q0) / h1, d2 = (q2 - q1) / h2;
+        const double dd = (d2 - d1) / (h1 + h2); /* q[t0, t1, t2] */
+        pose->q_dot[i] = d2 + h2 * dd;
+        pose->q_ddot[i] = 2.0 * dd;
+    }
+}
+
 /* The pose at `time`: inputs, and derivatives from the inputs or by finite differences of the
  * poses at earlier communication points (quadratic through the last three poses; with only one
  * earlier pose, the chord through both and zero acceleration; none: at rest). Assuming rest at the
@@ -193,14 +260,7 @@ static void current_pose(const fmu_values *restrict v, double time, stewart_pose
             pose->q_ddot[i] = 0.0;
         }
     } else {
-        const double h1 = m->history_t[1] - m->history_t[0], h2 = time - m->history_t[1];
-        for (int i = 0; i < 6; ++i) {
-            const double q0 = m->history_q[0][i], q1 = m->history_q[1][i], q2 = pose->q[i];
-            const double d1 = (q1 - q0) / h1, d2 = (q2 - q1) / h2;
-            const double dd = (d2 - d1) / (h1 + h2); /* q[t0, t1, t2] */
-            pose->q_dot[i] = d2 + h2 * dd;
-            pose->q_ddot[i] = 2.0 * dd;
-        }
+        quadratic_rates(m, time, pose);
     }
 }
 
@@ -285,13 +345,13 @@ static fmu_status discard_finite_differences(fmu_instance *inst, double time,
 }
 
 /* Logs the legs the library flags as outside their stroke. */
-static void warn_stroke(const fmu_instance *inst, double time, const stewart_inverse_output *out) {
+static void warn_stroke(const fmu_instance *inst, double time, int stroke_legs) {
     const stewart_params *p = &inst->res.params;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (out->stroke_legs & (1 << k))
+        if (stroke_legs & (1 << k))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %g m is outside the stroke [%g, %g] m", time, k + 1,
-                    out->lengths.length[k], p->stroke_min[k], p->stroke_max[k]);
+                    inst->v.real[VR_L_1 + k], p->stroke_min[k], p->stroke_max[k]);
 }
 
 /* The limit outputs for pose q (limit_outputs 1: the check; 2: and the axis ranges) and a
@@ -341,43 +401,64 @@ static fmu_status not_solved_by_library(fmu_instance *inst, double time, const s
     return not_solved(&inst->v, fs);
 }
 
-/* The status output and the warnings of a solved pose at `time` (its outputs written). */
-FMU_RARE_PATH static fmu_status warnings_of(fmu_instance *inst, double time, const stewart_pose *pose,
-                              const stewart_inverse_output *out) {
+/* The status output and the warnings of a solved pose q at `time` (its outputs written; the
+ * library's warning bits and legs outside their stroke). */
+FMU_RARE_PATH static fmu_status warnings_of(fmu_instance *inst, double time, const double q[6],
+                                            int warnings, int stroke_legs) {
     fmu_values *v = &inst->v;
     const model_resources *r = &inst->res;
     fmu_status fs = FMU_OK;
     int status = 0;
-    if (out->warnings & STEWART_WARN_STROKE) {
+    if (warnings & STEWART_WARN_STROKE) {
         status = 1;
         fs = FMU_WARNING;
-        warn_stroke(inst, time, out);
+        warn_stroke(inst, time, stroke_legs);
     }
-    if (out->warnings & STEWART_WARN_NEAR_SINGULAR) {
+    if (warnings & STEWART_WARN_NEAR_SINGULAR) {
         status = 2;
         fs = FMU_WARNING;
         fmu_log(inst, FMU_WARNING, LOG_WARNING,
                 "t = %.17g: near singular pose: condition = %g > warn_condition = %g", time,
-                out->condition, r->options.warn_condition);
+                v->real[VR_condition], r->options.warn_condition);
     }
-    if (v->integer[VR_limit_outputs] && limit_outputs(inst, time, pose->q) == FMU_WARNING)
+    if (v->integer[VR_limit_outputs] && limit_outputs(inst, time, q) == FMU_WARNING)
         fs = FMU_WARNING;
     v->integer[VR_status] = status;
     v->model.solve_status = fs;
     return fs;
 }
 
-/* The outputs, status and warnings of a solved pose at `time`; short when there is nothing to
- * warn of or check (the step's usual case, so that the compiler inlines it). */
-static fmu_status solved(fmu_instance *inst, double time, const stewart_pose *pose,
-                         const stewart_inverse_output *out) {
+/* The outputs (written in place by the library), status and warnings of a solved pose q at
+ * `time`; short when there is nothing to warn of or check (the step's usual case, so that the
+ * compiler inlines it). */
+static inline fmu_status solved_checking(fmu_instance *inst, double time, const double q[6],
+                                         int limit_outputs) {
     fmu_values *v = &inst->v;
-    outputs_to_values(v, out);
+    int stroke_legs;
+    const int warnings = outputs_in_place(v, &stroke_legs);
     v->outputs_current = 1;
-    if (out->warnings || v->integer[VR_limit_outputs]) return warnings_of(inst, time, pose, out);
+    if (warnings || limit_outputs)
+        return warnings_of(inst, time, q, warnings, stroke_legs);
     v->integer[VR_status] = 0;
     v->model.solve_status = FMU_OK;
     return FMU_OK;
+}
+
+/* solved_checking with the limit outputs as the parameter says. */
+static fmu_status solved(fmu_instance *inst, double time, const double q[6]) {
+    return solved_checking(inst, time, q, inst->v.integer[VR_limit_outputs]);
+}
+
+/* The library refused `pose` (the current inputs' at `time`): finite differences that are not
+ * finite are named as the FMU's (the library refuses them before any work: it checks its pose
+ * first, so they are looked for only now), else the library's reason. */
+FMU_RARE_PATH static fmu_status refused(fmu_instance *inst, double time, const stewart_pose *pose,
+                                        stewart_status s) {
+    if (!taylor_mode(&inst->v))
+        for (int i = 0; i < 6; ++i)
+            if (!isfinite(pose->q_dot[i]) || !isfinite(pose->q_ddot[i]))
+                return discard_finite_differences(inst, time, pose, i);
+    return not_solved_by_library(inst, time, pose, s);
 }
 
 /* Solves for the current inputs at `time` unless the outputs already belong to them. OK /
@@ -391,30 +472,26 @@ static fmu_status solve_at(fmu_instance *inst, double time) {
     if (v->inputs_unchecked && check_inputs(inst, time) != FMU_OK) return FMU_DISCARD;
     stewart_inverse_input in;
     current_pose(v, time, &in.pose);
-    stewart_inverse_output out;
-    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, &out);
-    if (s != STEWART_OK) {
-        /* Finite differences that are not finite: the library refuses them before any work (it
-         * checks its pose first), so they are looked for only now, and named as the FMU's. */
-        if (!taylor_mode(v))
-            for (int i = 0; i < 6; ++i)
-                if (!isfinite(in.pose.q_dot[i]) || !isfinite(in.pose.q_ddot[i]))
-                    return discard_finite_differences(inst, time, &in.pose, i);
-        return not_solved_by_library(inst, time, &in.pose, s);
-    }
-    return solved(inst, time, &in.pose, &out);
+    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, output_slots(v));
+    if (s != STEWART_OK) return refused(inst, time, &in.pose, s);
+    return solved(inst, time, in.pose.q);
 }
 
 fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, inst->v.time); }
 
 /* ---------------------------------------------------------------- the step rules */
 
-/* The pose q at communication point t joins the finite-difference history. */
-static void commit_pose(model_values *m, double t, const double q[6]) {
+/* The pose q at communication point t becomes the history's newer one, the newer the older. */
+static inline void shift_history(model_values *m, double t, const double q[6]) {
     m->history_t[0] = m->history_t[1];
     memcpy(m->history_q[0], m->history_q[1], sizeof m->history_q[0]);
     m->history_t[1] = t;
     memcpy(m->history_q[1], q, sizeof m->history_q[1]);
+}
+
+/* The pose q at communication point t joins the finite-difference history. */
+static void commit_pose(model_values *m, double t, const double q[6]) {
+    shift_history(m, t, q);
     if (m->n_history < 2) ++m->n_history;
 }
 
@@ -479,8 +556,7 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     v->outputs_current = 0;
     stewart_inverse_input in;
     advance_pose(v, h, &in.pose);
-    stewart_inverse_output out;
-    const stewart_status ls = stewart_inverse_solve(inst->res.inverse, &in, &out);
+    const stewart_status ls = stewart_inverse_solve(inst->res.inverse, &in, output_slots(v));
     if (ls != STEWART_OK) {
         const fmu_status s2 = advance_refused(inst, t + h, &in.pose, ls);
         m->advance_discarded = 1; /* status 3 and the kept outputs stand until a step or a set */
@@ -492,7 +568,98 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     /* the derivatives given through fmi2SetRealInputDerivatives served this step only; the
      * outputs just computed used them, so they stay valid */
     m->input_derivatives = 0;
-    return solved(inst, t + h, &in.pose, &out);
+    return solved(inst, t + h, in.pose.q);
+}
+
+/* ---------------------------------------------------------------- the usual step */
+
+/* The library refused the pose advanced in place (the inputs hold it; at_t: the inputs' pose and
+ * rates at t): as advance_refused, and the inputs go back to at_t. */
+FMU_RARE_PATH static fmu_status advance_in_place_refused(fmu_instance *inst, double time,
+                                                         const double at_t[12], stewart_status s) {
+    fmu_values *v = &inst->v;
+    const stewart_pose *advanced = (const stewart_pose *)(const void *)&v->real[VR_x];
+    fmu_status fs = check_inputs(inst, time);
+    if (fs == FMU_OK) fs = not_solved_by_library(inst, time, advanced, s);
+    memcpy(&v->real[VR_x], at_t, 12 * sizeof(double));
+    v->model.advance_discarded = 1; /* status 3 and the kept outputs stand until a step or a set */
+    return fs;
+}
+
+/* derivatives = 1, the usual step: model_do_step's advance with the pose advanced in the inputs
+ * themselves (the library's input as they stand), the inputs at t kept aside in case it fails. */
+static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h) {
+    fmu_values *v = &inst->v;
+    double *restrict pose = &v->real[VR_x];
+    double at_t[12];
+    const double half_h = 0.5 * h;
+    UNROLLED
+    for (int i = 0; i < 6; ++i) { /* as advance_pose: the same roundings */
+        const double q = pose[i], qd = pose[6 + i], qdd = pose[12 + i];
+        at_t[i] = q;
+        at_t[6 + i] = qd;
+        pose[i] = q + h * (qd + half_h * qdd);
+        pose[6 + i] = qd + h * qdd;
+    }
+    const stewart_status s = stewart_inverse_solve(
+        inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, output_slots(v));
+    if (s != STEWART_OK) return advance_in_place_refused(inst, t + h, at_t, s);
+    return solved_checking(inst, t + h, pose, 0); /* no limit outputs on the usual step */
+}
+
+/* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
+ * and the pose joins the history. */
+static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
+    fmu_values *v = &inst->v;
+    stewart_inverse_input in;
+    memcpy(in.pose.q, &v->real[VR_x], sizeof in.pose.q);
+    quadratic_rates(&v->model, t, &in.pose);
+    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, output_slots(v));
+    if (s != STEWART_OK) return refused(inst, t, &in.pose, s);
+    const fmu_status fs = solved_checking(inst, t, in.pose.q, 0);
+    shift_history(&v->model, t, in.pose.q); /* the history is full already */
+    return fs;
+}
+
+/* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
+ * fmu_step_not_taken): out of line, so that model_usual_step hands over to them without a frame
+ * of its own and each keeps only what it needs across the library call. */
+#if defined(__GNUC__)
+#define OWN_FRAME __attribute__((noinline))
+#else
+#define OWN_FRAME
+#endif
+
+/* The step's end: accepted (OK, Warning) or not. The usual step leaves the unit's time as it
+ * was (t, or within the slack of it) until here, so that is the time before it. */
+static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s,
+                                  double *last_successful_time) {
+    if (s == FMU_OK || s == FMU_WARNING)
+        return fmu_step_accepted(&inst->v, t, h, s, last_successful_time);
+    return fmu_step_not_taken(inst, t, s, inst->v.time, 0, last_successful_time);
+}
+
+OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h,
+                                               double *last_successful_time) {
+    return step_end(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
+}
+
+OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h,
+                                            double *last_successful_time) {
+    return step_end(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
+}
+
+fmu_status model_usual_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+    const fmu_values *v = &inst->v;
+    const model_values *m = &v->model;
+    /* The usual step: inputs set since the last step, all finite, no discarded advance standing,
+     * no FMI 2 input derivatives, no limit outputs. Anything else: the step rules in full. */
+    if (v->outputs_current | v->inputs_unchecked | m->advance_discarded | m->input_derivatives |
+        v->integer[VR_limit_outputs])
+        return fmu_run_step(inst, t, h, last_successful_time);
+    if (v->integer[VR_derivatives]) return usual_advance_step(inst, t, h, last_successful_time);
+    if (m->n_history == 2) return usual_hold_step(inst, t, h, last_successful_time);
+    return fmu_run_step(inst, t, h, last_successful_time);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
