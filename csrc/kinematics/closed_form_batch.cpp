@@ -30,8 +30,10 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
     QuadModel m{};
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < STEWART_LEGS; ++k) {
-            m.base[i][k] = g.base_points(i, k);
-            m.platform[i][k] = g.platform_points(i, k);
+            for (int l = 0; l < 4; ++l) {
+                m.base[i][k][l] = g.base_points(i, k);
+                m.platform[i][k][l] = g.platform_points(i, k);
+            }
         }
     m.min_length = g.min_length;
     m.characteristic_length = g.characteristic_length;
@@ -41,11 +43,12 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
         m.gravity[i] = gravity[i];
         for (int j = 0; j < 3; ++j) m.inertia[i][j] = body.inertia(i, j);
     }
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        m.stroke_min[k] = p.stroke_min[k];
-        m.stroke_max[k] = p.stroke_max[k];
-        m.length_offset[k] = p.length_offset[k];
-    }
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        for (int l = 0; l < 4; ++l) {
+            m.stroke_min[k][l] = p.stroke_min[k];
+            m.stroke_max[k][l] = p.stroke_max[k];
+            m.length_offset[k][l] = p.length_offset[k];
+        }
     m.warn_condition = o.warn_condition;
     m.singular_condition = o.singular_condition;
     m.massless = o.fidelity == STEWART_MASSLESS;

@@ -11,11 +11,14 @@ namespace stewart {
 
 // What the kernel needs of a model and inverse options, copied once per batch.
 struct QuadModel {
-    double base[3][6], platform[3][6];  // a_k (world) and b_k (platform frame), column k = leg k
+    // Per leg, each value four times over (a kernel loads one as a vector of lanes, the portable
+    // one its first two): a_k (world) and b_k (platform frame), column k = leg k; the stroke
+    // limits and the length offsets.
+    alignas(32) double base[3][6][4], platform[3][6][4];
+    alignas(32) double stroke_min[6][4], stroke_max[6][4], length_offset[6][4];
     double min_length;                  // PlatformGeometry::min_length [m]
     double characteristic_length;       // scales the Jacobian's angular rows [m]
     double mass, com[3], inertia[3][3], gravity[3];  // the lumped platform (LumpedBody)
-    double stroke_min[6], stroke_max[6], length_offset[6];
     double warn_condition, singular_condition;
     bool massless;  // else kinematic
 };
