@@ -1,5 +1,9 @@
 #include "kinematics/closed_form_batch.hpp"
 
+#include <cmath>
+
+#include "kinematics/lu6.hpp"
+
 namespace stewart {
 
 namespace {
@@ -11,6 +15,30 @@ bool cpu_has_avx2_fma() {
 #else
     return false;
 #endif
+}
+
+// The order of J^T's rows after partial pivoting at the home pose (0, 0, home_height, 0, 0, 0),
+// the natural order where that factorisation fails.
+void home_row_order(const PlatformGeometry &g, double home_height, int order[6]) {
+    double a[36];  // J^T, row-major: column k = (n_k, b_k x n_k / length)
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        double d[3];
+        for (int i = 0; i < 3; ++i)
+            d[i] = (i == 2 ? home_height : 0.0) + g.platform_points(i, k) - g.base_points(i, k);
+        const double L = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        const double n[3] = {d[0] / L, d[1] / L, d[2] / L};
+        const double b[3] = {g.platform_points(0, k), g.platform_points(1, k),
+                             g.platform_points(2, k)};
+        const double moment[3] = {b[1] * n[2] - b[2] * n[1], b[2] * n[0] - b[0] * n[2],
+                                  b[0] * n[1] - b[1] * n[0]};
+        for (int i = 0; i < 3; ++i) {
+            a[6 * i + k] = n[i];
+            a[6 * (i + 3) + k] = moment[i] / g.characteristic_length;
+        }
+    }
+    int pivot[6];
+    if (!lu6_factor(a, pivot, order, lu6_largest(a)))
+        for (int i = 0; i < 6; ++i) order[i] = i;
 }
 
 }  // namespace
@@ -52,6 +80,7 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
     m.warn_condition = o.warn_condition;
     m.singular_condition = o.singular_condition;
     m.massless = o.fidelity == STEWART_MASSLESS;
+    home_row_order(g, p.home_height, m.row_order);
     return m;
 }
 
