@@ -84,13 +84,13 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
     return m;
 }
 
-void closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
-                      const stewart_inverse_batch_outputs &out, size_t row, bool done[4]) {
+unsigned closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
+                          const stewart_inverse_batch_outputs &out, size_t row) {
 #ifdef STEWART_HAVE_AVX2_KERNEL
-    if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, row, done);
+    if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, row);
 #endif
     (void)path;
-    closed_form_quad_portable(m, rows, out, row, done);
+    return closed_form_quad_portable(m, rows, out, row);
 }
 
 }  // namespace stewart
