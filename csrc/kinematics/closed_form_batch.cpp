@@ -17,9 +17,9 @@ bool cpu_has_avx2_fma() {
 #endif
 }
 
-// The order of J^T's rows after partial pivoting at the home pose (0, 0, home_height, 0, 0, 0),
-// the natural order where that factorisation fails.
-void home_row_order(const PlatformGeometry &g, double home_height, int order[6]) {
+// The place of each of J^T's rows after partial pivoting at the home pose (0, 0, home_height, 0,
+// 0, 0); the natural order where that factorisation fails.
+void home_row_slots(const PlatformGeometry &g, double home_height, int slot[6]) {
     double a[36];  // J^T, row-major: column k = (n_k, b_k x n_k / length)
     for (int k = 0; k < STEWART_LEGS; ++k) {
         double d[3];
@@ -36,9 +36,9 @@ void home_row_order(const PlatformGeometry &g, double home_height, int order[6])
             a[6 * (i + 3) + k] = moment[i] / g.characteristic_length;
         }
     }
-    int pivot[6];
-    if (!lu6_factor(a, pivot, order, lu6_largest(a)))
-        for (int i = 0; i < 6; ++i) order[i] = i;
+    int pivot[6], order[6];
+    const bool factored = lu6_factor(a, pivot, order, lu6_largest(a));
+    for (int i = 0; i < 6; ++i) slot[factored ? order[i] : i] = i;
 }
 
 }  // namespace
@@ -80,7 +80,7 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
     m.warn_condition = o.warn_condition;
     m.singular_condition = o.singular_condition;
     m.massless = o.fidelity == STEWART_MASSLESS;
-    home_row_order(g, p.home_height, m.row_order);
+    home_row_slots(g, p.home_height, m.row_slot);
     return m;
 }
 

@@ -21,8 +21,9 @@ struct QuadModel {
     double mass, com[3], inertia[3][3], gravity[3];  // the lumped platform (LumpedBody)
     double warn_condition, singular_condition;
     // The rows of J^T in the order partial pivoting gives them at the home pose (lu6_factor):
-    // the kernel factors in that order without exchanges where its pivots stay large enough.
-    int row_order[6];
+    // row r in place row_slot[r]. The kernel factors in that order without exchanges where its
+    // pivots stay large enough.
+    int row_slot[6];
     bool massless;  // else kinematic
 };
 
