@@ -34,11 +34,12 @@ struct QuadRows {
 
 // Writes rows row..row + 3 of every column of out as stewart_inverse_solve would for the four
 // poses, to rounding, status STEWART_OK (where out.status is not NULL), and returns the rows the
-// scalar path must decide (and overwrite), bit l for row row + l: bad input (not finite, beyond 1e50, an angle beyond
-// 1e4 rad), a failing row (a leg of no length, a singular Jacobian, a non-finite output) or one
-// within rounding of a stroke limit or a condition threshold.
+// scalar path must decide (and overwrite), bit l for row row + l: bad input (not finite, beyond
+// 1e50, an angle beyond 1e4 rad, or near those limits), a failing row (a leg of no length, a
+// singular Jacobian, a non-finite output) or one within rounding of a stroke limit or a condition
+// threshold.
 unsigned closed_form_quad_portable(const QuadModel &m, const QuadRows &rows,
-                               const stewart_inverse_batch_outputs &out, size_t row);
+                                   const stewart_inverse_batch_outputs &out, size_t row);
 // The same on AVX2 and FMA (call only where the CPU has both).
 unsigned closed_form_quad_avx2(const QuadModel &m, const QuadRows &rows,
                                const stewart_inverse_batch_outputs &out, size_t row);
