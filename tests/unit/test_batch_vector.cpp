@@ -422,6 +422,34 @@ static void test_any_row_order_gives_the_same_forces(void) {
     stewart_model_free(m);
 }
 
+// Lanes never mix and the kernel's choices are per lane: a row's numbers are the same bits
+// wherever in a batch (in which block of four, in which lane) it sits.
+static void test_a_rows_numbers_do_not_depend_on_its_block(void) {
+    stewart_model *m = thesis_model();
+    Rows rows = test_rows(m, 11);
+    for (int fidelity : {STEWART_KINEMATIC, STEWART_MASSLESS})
+        for (stewart::VectorPath path : kernels()) {
+            stewart_inverse_options o;
+            stewart_inverse_options_default(&o);
+            o.fidelity = fidelity;
+            const Result whole = run(m, o, rows, path);
+            for (size_t shift = 1; shift < 4; ++shift) {
+                Rows shifted;
+                for (size_t j = shift; j < rows.n; ++j)
+                    shifted.add(&rows.q[6 * j], &rows.q_dot[6 * j], &rows.q_ddot[6 * j]);
+                const Result part = run(m, o, shifted, path);
+                for (size_t j = 0; j < shifted.n; ++j) {
+                    char where[80];
+                    std::snprintf(where, sizeof where, "row %zu shifted by %zu", j + shift, shift);
+                    TEST_ASSERT_EQUAL_INT_MESSAGE(whole.status[j + shift], part.status[j], where);
+                    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&whole.rows[j + shift], &part.rows[j],
+                                                     sizeof part.rows[j], where);
+                }
+            }
+        }
+    stewart_model_free(m);
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_thesis_platform);
@@ -430,5 +458,6 @@ int main(void) {
     RUN_TEST(test_pivot_rule_when_the_condition_never_refuses);
     RUN_TEST(test_kernel_takes_ordinary_rows);
     RUN_TEST(test_any_row_order_gives_the_same_forces);
+    RUN_TEST(test_a_rows_numbers_do_not_depend_on_its_block);
     return UNITY_END();
 }
