@@ -363,8 +363,8 @@ static void test_kernel_takes_ordinary_rows(void) {
     stewart_model_free(m);
 }
 
-// The massless kernel factors J^T without row exchanges in the model's row order where every lane
-// keeps threshold pivoting's rule, else with partial pivoting: whatever the order (the one from
+// The massless kernel factors J^T without row exchanges in the model's row order, a lane that
+// breaks threshold pivoting's rule with partial pivoting instead: whatever the order (the one from
 // home, the natural one, reversed, rotated), its forces and condition agree with the scalar
 // path's within the bounds, and it takes the ordinary rows (an order that breaks the rule takes
 // the pivoting branch).
