@@ -127,10 +127,11 @@ void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
 #undef PUT_COLUMN
 
 // The last rows (tail_rows < 4) of an inverse batch through the four-pose kernel: copies of the
-// rows, the last repeated, into four-row columns, and tail_rows rows back to out.
-void tail_block(stewart::VectorPath path, const stewart::QuadModel &model, const double *q,
-                const double *q_dot, const double *q_ddot, const stewart_inverse_batch_outputs &out,
-                size_t block, size_t tail_rows, bool done[4]) {
+// rows, the last repeated, into four-row columns, and tail_rows rows back to out. Returns the
+// rows the scalar solve decides (closed_form_quad).
+unsigned tail_block(stewart::VectorPath path, const stewart::QuadModel &model, const double *q,
+                    const double *q_dot, const double *q_ddot,
+                    const stewart_inverse_batch_outputs &out, size_t block, size_t tail_rows) {
     double rows[3][24];
     const double *given[3] = {q, q_dot, q_ddot};
     for (int i = 0; i < 3; ++i)
@@ -143,19 +144,23 @@ void tail_block(stewart::VectorPath path, const stewart::QuadModel &model, const
         STEWART_INVERSE_OUTPUT_TABLE(TAIL_COLUMN)
     } tail;
 #undef TAIL_COLUMN
+    int status[4];
     stewart_inverse_batch_outputs tail_out{};
+    tail_out.status = status;
 #define TAIL_POINT(name, member, count, type, unit, description)                                  \
     if (out.name) tail_out.name = tail.name;
     STEWART_INVERSE_OUTPUT_TABLE(TAIL_POINT)
 #undef TAIL_POINT
     const stewart::QuadRows quad = {rows[0], q_dot ? rows[1] : nullptr,
                                     q_ddot ? rows[2] : nullptr};
-    stewart::closed_form_quad(path, model, quad, tail_out, 0, done);
+    const unsigned left = stewart::closed_form_quad(path, model, quad, tail_out, 0);
 #define TAIL_COPY(name, member, count, type, unit, description)                                   \
     if (out.name)                                                                                 \
         std::memcpy(out.name + block * (count), tail.name, tail_rows * (count) * sizeof(type));
     STEWART_INVERSE_OUTPUT_TABLE(TAIL_COPY)
 #undef TAIL_COPY
+    std::memcpy(out.status + block, status, tail_rows * sizeof(int));
+    return left;
 }
 
 }  // namespace
@@ -201,20 +206,16 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         // depend on where a batch starts.
         for (size_t block = 0; block < n; block += 4) {
             const size_t count = n - block < 4 ? n - block : 4;
-            bool done[4];
+            unsigned left;  // rows the scalar solve decides, bit r for row block + r
             if (count == 4) {
                 const QuadRows rows = {q + 6 * block, q_dot ? q_dot + 6 * block : nullptr,
                                        q_ddot ? q_ddot + 6 * block : nullptr};
-                closed_form_quad(path, model, rows, *out, block, done);
+                left = closed_form_quad(path, model, rows, *out, block);
             } else {
-                tail_block(path, model, q, q_dot, q_ddot, *out, block, count, done);
+                left = tail_block(path, model, q, q_dot, q_ddot, *out, block, count);
             }
-            for (size_t r = 0; r < count; ++r) {
-                if (done[r])
-                    out->status[block + r] = STEWART_OK;
-                else
-                    solve_scalar(block + r);
-            }
+            for (size_t r = 0; left && r < count; ++r)
+                if (left >> r & 1) solve_scalar(block + r);
         }
     }
     std::memcpy(d->message, log.first_message, sizeof log.first_message);

@@ -1,5 +1,9 @@
 #include "kinematics/closed_form_batch.hpp"
 
+#include <cmath>
+
+#include "kinematics/lu6.hpp"
+
 namespace stewart {
 
 namespace {
@@ -11,6 +15,30 @@ bool cpu_has_avx2_fma() {
 #else
     return false;
 #endif
+}
+
+// The place of each of J^T's rows after partial pivoting at the home pose (0, 0, home_height, 0,
+// 0, 0); the natural order where that factorisation fails.
+void home_row_slots(const PlatformGeometry &g, double home_height, int slot[6]) {
+    double a[36];  // J^T, row-major: column k = (n_k, b_k x n_k / length)
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        double d[3];
+        for (int i = 0; i < 3; ++i)
+            d[i] = (i == 2 ? home_height : 0.0) + g.platform_points(i, k) - g.base_points(i, k);
+        const double L = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        const double n[3] = {d[0] / L, d[1] / L, d[2] / L};
+        const double b[3] = {g.platform_points(0, k), g.platform_points(1, k),
+                             g.platform_points(2, k)};
+        const double moment[3] = {b[1] * n[2] - b[2] * n[1], b[2] * n[0] - b[0] * n[2],
+                                  b[0] * n[1] - b[1] * n[0]};
+        for (int i = 0; i < 3; ++i) {
+            a[6 * i + k] = n[i];
+            a[6 * (i + 3) + k] = moment[i] / g.characteristic_length;
+        }
+    }
+    int pivot[6], order[6];
+    const bool factored = lu6_factor(a, pivot, order, lu6_largest(a));
+    for (int i = 0; i < 6; ++i) slot[factored ? order[i] : i] = i;
 }
 
 }  // namespace
@@ -30,8 +58,10 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
     QuadModel m{};
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < STEWART_LEGS; ++k) {
-            m.base[i][k] = g.base_points(i, k);
-            m.platform[i][k] = g.platform_points(i, k);
+            for (int l = 0; l < 4; ++l) {
+                m.base[i][k][l] = g.base_points(i, k);
+                m.platform[i][k][l] = g.platform_points(i, k);
+            }
         }
     m.min_length = g.min_length;
     m.characteristic_length = g.characteristic_length;
@@ -41,24 +71,26 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
         m.gravity[i] = gravity[i];
         for (int j = 0; j < 3; ++j) m.inertia[i][j] = body.inertia(i, j);
     }
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        m.stroke_min[k] = p.stroke_min[k];
-        m.stroke_max[k] = p.stroke_max[k];
-        m.length_offset[k] = p.length_offset[k];
-    }
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        for (int l = 0; l < 4; ++l) {
+            m.stroke_min[k][l] = p.stroke_min[k];
+            m.stroke_max[k][l] = p.stroke_max[k];
+            m.length_offset[k][l] = p.length_offset[k];
+        }
     m.warn_condition = o.warn_condition;
     m.singular_condition = o.singular_condition;
     m.massless = o.fidelity == STEWART_MASSLESS;
+    home_row_slots(g, p.home_height, m.row_slot);
     return m;
 }
 
-void closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
-                      const stewart_inverse_batch_outputs &out, size_t row, bool done[4]) {
+unsigned closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
+                          const stewart_inverse_batch_outputs &out, size_t row) {
 #ifdef STEWART_HAVE_AVX2_KERNEL
-    if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, row, done);
+    if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, row);
 #endif
     (void)path;
-    closed_form_quad_portable(m, rows, out, row, done);
+    return closed_form_quad_portable(m, rows, out, row);
 }
 
 }  // namespace stewart

@@ -24,7 +24,7 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
                      const stewart_inverse_options &o);
 
 // closed_form_quad_portable or closed_form_quad_avx2 by path (not scalar).
-void closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
-                      const stewart_inverse_batch_outputs &out, size_t row, bool done[4]);
+unsigned closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
+                          const stewart_inverse_batch_outputs &out, size_t row);
 
 }  // namespace stewart

@@ -11,12 +11,19 @@ namespace stewart {
 
 // What the kernel needs of a model and inverse options, copied once per batch.
 struct QuadModel {
-    double base[3][6], platform[3][6];  // a_k (world) and b_k (platform frame), column k = leg k
+    // Per leg, each value four times over (a kernel loads one as a vector of lanes, the portable
+    // one its first two): a_k (world) and b_k (platform frame), column k = leg k; the stroke
+    // limits and the length offsets.
+    alignas(32) double base[3][6][4], platform[3][6][4];
+    alignas(32) double stroke_min[6][4], stroke_max[6][4], length_offset[6][4];
     double min_length;                  // PlatformGeometry::min_length [m]
     double characteristic_length;       // scales the Jacobian's angular rows [m]
     double mass, com[3], inertia[3][3], gravity[3];  // the lumped platform (LumpedBody)
-    double stroke_min[6], stroke_max[6], length_offset[6];
     double warn_condition, singular_condition;
+    // The rows of J^T in the order partial pivoting gives them at the home pose (lu6_factor):
+    // row r in place row_slot[r]. The kernel factors in that order without exchanges where its
+    // pivots stay large enough.
+    int row_slot[6];
     bool massless;  // else kinematic
 };
 
@@ -25,16 +32,16 @@ struct QuadRows {
     const double *q, *q_dot, *q_ddot;
 };
 
-// Writes rows row..row + 3 of every column of out (not status) as stewart_inverse_solve would
-// for the four poses, to rounding, and sets done[l] = true, or done[l] = false where the scalar
-// path must decide (and overwrite the row): bad input (not finite, beyond 1e50, an angle beyond
-// 1e4 rad), a failing row (a leg of no length, a singular Jacobian, a non-finite output) or one
-// within rounding of a stroke limit or a condition threshold.
-void closed_form_quad_portable(const QuadModel &m, const QuadRows &rows,
-                               const stewart_inverse_batch_outputs &out, size_t row,
-                               bool done[4]);
+// Writes rows row..row + 3 of every column of out as stewart_inverse_solve would for the four
+// poses, to rounding, status STEWART_OK (where out.status is not NULL), and returns the rows the
+// scalar path must decide (and overwrite), bit l for row row + l: bad input (not finite, beyond
+// 1e50, an angle beyond 1e4 rad, or near those limits), a failing row (a leg of no length, a
+// singular Jacobian, a non-finite output) or one within rounding of a stroke limit or a condition
+// threshold.
+unsigned closed_form_quad_portable(const QuadModel &m, const QuadRows &rows,
+                                   const stewart_inverse_batch_outputs &out, size_t row);
 // The same on AVX2 and FMA (call only where the CPU has both).
-void closed_form_quad_avx2(const QuadModel &m, const QuadRows &rows,
-                           const stewart_inverse_batch_outputs &out, size_t row, bool done[4]);
+unsigned closed_form_quad_avx2(const QuadModel &m, const QuadRows &rows,
+                               const stewart_inverse_batch_outputs &out, size_t row);
 
 }  // namespace stewart

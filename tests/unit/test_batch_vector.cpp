@@ -354,11 +354,98 @@ static void test_kernel_takes_ordinary_rows(void) {
             for (size_t j = 0; j + 4 <= 4000; j += 4) {
                 const stewart::QuadRows quad_rows = {&rows.q[6 * j], &rows.q_dot[6 * j],
                                                      &rows.q_ddot[6 * j]};
-                bool done[4];
-                stewart::closed_form_quad(path, quad, quad_rows, out, j, done);
-                for (int l = 1; l < 4; ++l) taken += done[l], ++ordinary;  // rows 4i+1..: near home
+                const unsigned left = stewart::closed_form_quad(path, quad, quad_rows, out, j);
+                for (int l = 1; l < 4; ++l)  // rows 4i+1..: near home
+                    taken += !(left >> l & 1), ++ordinary;
             }
             TEST_ASSERT_TRUE(taken >= ordinary * 9 / 10);
+        }
+    stewart_model_free(m);
+}
+
+// The massless kernel factors J^T without row exchanges in the model's row order, a lane that
+// breaks threshold pivoting's rule with partial pivoting instead: whatever the order (the one from
+// home, the natural one, reversed, rotated), its forces and condition agree with the scalar
+// path's within the bounds, and it takes the ordinary rows (an order that breaks the rule takes
+// the pivoting branch).
+static void test_any_row_order_gives_the_same_forces(void) {
+    stewart_model *m = thesis_model();
+    Rows rows = test_rows(m, 7);
+    const size_t n = 4000;
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    o.fidelity = STEWART_MASSLESS;
+    stewart_inverse *d = stewart_inverse_create(m, &o, nullptr, 0);
+    TEST_ASSERT_NOT_NULL(d);
+    std::vector<stewart_inverse_output> scalar(n);
+    std::vector<int> status(n);
+    for (size_t j = 0; j < n; ++j) {
+        stewart_inverse_input in{};
+        std::memcpy(in.pose.q, &rows.q[6 * j], sizeof in.pose.q);
+        std::memcpy(in.pose.q_dot, &rows.q_dot[6 * j], sizeof in.pose.q_dot);
+        std::memcpy(in.pose.q_ddot, &rows.q_ddot[6 * j], sizeof in.pose.q_ddot);
+        status[j] = stewart_inverse_solve(d, &in, &scalar[j]);
+    }
+    stewart_inverse_free(d);
+    const stewart::QuadModel home =
+        stewart::quad_model(m->geometry, m->platform, m->gravity, m->params, o);
+    const int orders[5][6] = {{0, 1, 2, 3, 4, 5}, {5, 4, 3, 2, 1, 0}, {1, 2, 3, 4, 5, 0},
+                              {3, 4, 5, 0, 1, 2}, {2, 0, 1, 5, 3, 4}};
+    std::vector<double> force(6 * n), condition(n);
+    stewart_inverse_batch_outputs out{};
+    out.force = force.data(), out.condition = condition.data();
+    for (stewart::VectorPath path : kernels())
+        for (int which = -1; which < 5; ++which) {
+            stewart::QuadModel quad = home;
+            if (which >= 0) std::memcpy(quad.row_slot, orders[which], sizeof quad.row_slot);
+            size_t taken = 0, ordinary = 0;
+            for (size_t j = 0; j + 4 <= n; j += 4) {
+                const stewart::QuadRows quad_rows = {&rows.q[6 * j], &rows.q_dot[6 * j],
+                                                     &rows.q_ddot[6 * j]};
+                const unsigned left = stewart::closed_form_quad(path, quad, quad_rows, out, j);
+                for (int l = 0; l < 4; ++l) {
+                    const size_t row = j + l;
+                    if (l > 0) taken += !(left >> l & 1), ++ordinary;  // rows 4i+1..: near home
+                    if (left >> l & 1) continue;
+                    TEST_ASSERT_EQUAL_INT(STEWART_OK, status[row]);
+                    const stewart_inverse_output &s = scalar[row];
+                    const double cond = std::max(s.condition, 1.0);
+                    double error, scale;
+                    group_error(&condition[row], &s.condition, 1, error, scale);
+                    TEST_ASSERT_TRUE(error <= kForceBound * cond * scale);
+                    group_error(&force[6 * row], s.force, 6, error, scale);
+                    TEST_ASSERT_TRUE(error <= kForceBound * cond * scale);
+                }
+            }
+            TEST_ASSERT_TRUE(taken >= ordinary * 9 / 10);
+        }
+    stewart_model_free(m);
+}
+
+// Lanes never mix and the kernel's choices are per lane: a row's numbers are the same bits
+// wherever in a batch (in which block of four, in which lane) it sits.
+static void test_a_rows_numbers_do_not_depend_on_its_block(void) {
+    stewart_model *m = thesis_model();
+    Rows rows = test_rows(m, 11);
+    for (int fidelity : {STEWART_KINEMATIC, STEWART_MASSLESS})
+        for (stewart::VectorPath path : kernels()) {
+            stewart_inverse_options o;
+            stewart_inverse_options_default(&o);
+            o.fidelity = fidelity;
+            const Result whole = run(m, o, rows, path);
+            for (size_t shift = 1; shift < 4; ++shift) {
+                Rows shifted;
+                for (size_t j = shift; j < rows.n; ++j)
+                    shifted.add(&rows.q[6 * j], &rows.q_dot[6 * j], &rows.q_ddot[6 * j]);
+                const Result part = run(m, o, shifted, path);
+                for (size_t j = 0; j < shifted.n; ++j) {
+                    char where[80];
+                    std::snprintf(where, sizeof where, "row %zu shifted by %zu", j + shift, shift);
+                    TEST_ASSERT_EQUAL_INT_MESSAGE(whole.status[j + shift], part.status[j], where);
+                    TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&whole.rows[j + shift], &part.rows[j],
+                                                     sizeof part.rows[j], where);
+                }
+            }
         }
     stewart_model_free(m);
 }
@@ -370,5 +457,7 @@ int main(void) {
     RUN_TEST(test_tool_and_user_frames_stay_scalar);
     RUN_TEST(test_pivot_rule_when_the_condition_never_refuses);
     RUN_TEST(test_kernel_takes_ordinary_rows);
+    RUN_TEST(test_any_row_order_gives_the_same_forces);
+    RUN_TEST(test_a_rows_numbers_do_not_depend_on_its_block);
     return UNITY_END();
 }
