@@ -1,7 +1,8 @@
 // Two doubles in one vector register (GCC/Clang vector extensions: SSE2 on x86-64, NEON on ARM,
 // plain doubles elsewhere), for the six legs two at a time. Each lane does exactly the scalar
-// arithmetic, in the same order (no contraction into FMA without -mfma), so the results are
-// those of the scalar loops bit for bit.
+// arithmetic, in the same order (the forward sources are compiled with -ffp-contract=off, so no
+// target fuses a multiply-add in one and not the other), so the results are those of the scalar
+// loops bit for bit.
 #pragma once
 
 #include <cmath>

@@ -46,9 +46,13 @@ int main(int argc, char **argv) {
     const char *census_seconds = getenv("LATENCY_CENSUS_SECONDS");
     const double seconds = census_seconds ? atof(census_seconds) : 10.0;
     census before, after;
-    if (!(seconds > 0 && seconds <= 600) || !census_take(&before, seconds, 500.0)) {
+    if (!(seconds > 0 && seconds <= 600)) {
         fprintf(stderr, "latency: LATENCY_CENSUS_SECONDS = %s must be in (0, 600]\n",
-                census_seconds ? census_seconds : "10");
+                census_seconds);
+        return 2;
+    }
+    if (!census_take(&before, seconds, 500.0)) {
+        fprintf(stderr, "latency: cannot allocate the census's %d gaps\n", census_capacity);
         return 2;
     }
     fputs("The machine's interruptions (gaps in a loop that only reads the clock):\n\n", out);

@@ -3,7 +3,7 @@
  * records every gap between two reads longer than a threshold, over a fixed time. A gap is time
  * the loop did not run: an interrupt, the hypervisor, another task. From their sizes and rate
  * follows the p99.99 that a call of a given length would have on this machine if its own work
- * never varied (its "noise floor"): no code can show a smaller one here.
+ * never varied (its "noise floor"; an estimate, which takes the gaps as independent of the call).
  */
 #ifndef STEWART_LATENCY_CENSUS_H
 #define STEWART_LATENCY_CENSUS_H

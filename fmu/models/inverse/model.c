@@ -118,6 +118,7 @@ static int outputs_in_place(fmu_values *v, int *stroke_legs) {
     wrench[3] = m1;
     wrench[4] = m2;
     wrench[5] = m3;
+    wrench[-1] = 0.0; /* the slot of the Integer status: no Real variable, as above */
     return warnings;
 }
 
