@@ -82,6 +82,7 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     if ((m->input_derivatives & ~1) || (m->advance_discarded & ~1) ||
         m->solve_status < FMU_OK || m->solve_status > FMU_ERROR)
         return "a flag is out of range";
+    if (!inverse_usual_route_valid(v)) return "the usual step's route does not match the values";
     for (int j = 2 - m->n_history; j < 2; ++j) {
         if (!(m->history_t[j] < v->time) || (j == 0 && !(m->history_t[0] < m->history_t[1])))
             return "finite-difference history is not before the current time and ordered";
