@@ -10,6 +10,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h> /* memcpy: fmu_outputs_current_or_inputs_unchecked */
 
 #include "config.h"
 #include "variables.h"
@@ -138,6 +139,18 @@ static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fm
     v->last_successful_time = end;
     v->last_step_status = s;
     return s;
+}
+
+/* outputs_current or inputs_unchecked set (a usual step needs both clear): the two flags, side
+ * by side, read as one. */
+static inline int fmu_outputs_current_or_inputs_unchecked(const fmu_values *v) {
+    _Static_assert(offsetof(fmu_values, inputs_unchecked) ==
+                       offsetof(fmu_values, outputs_current) + sizeof(int) &&
+                   sizeof(int) == sizeof(uint32_t),
+                   "outputs_current and inputs_unchecked no longer lie side by side");
+    uint64_t both;
+    memcpy(&both, (const unsigned char *)v + offsetof(fmu_values, outputs_current), sizeof both);
+    return both != 0;
 }
 fmu_status fmu_terminate(fmu_instance *inst);
 /* Back to the start values (the model keeps its built resources for reuse). */

@@ -698,7 +698,7 @@ FMU_RARE_PATH static fmu_status advance_in_place_refused(fmu_instance *inst, dou
 #if PAIRED_ARITHMETIC
 /* Two coordinates of the pose inputs (pose: q, then q_dot 6 on, q_ddot 12 on) kept in at_t (q,
  * q_dot) and advanced over h in place, as advance_pose: the same roundings. */
-static inline void advance_pair(double *pose, double *at_t, double h, double half_h) {
+static inline void advance_pair(double *pose, double *at_t, double_pair h, double_pair half_h) {
     const double_pair q = load_pair(pose), qd = load_pair(pose + 6), qdd = load_pair(pose + 12);
     store_pair(at_t, q);
     store_pair(at_t + 6, qd);
@@ -713,13 +713,14 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
     fmu_values *v = &inst->v;
     double *pose = &v->real[VR_x];
     double at_t[12];
-    const double half_h = 0.5 * h;
 #if PAIRED_ARITHMETIC
     /* two coordinates at a time, each loaded once (the compiler's own pairing loaded some twice) */
-    advance_pair(pose, at_t, h, half_h);
-    advance_pair(pose + 2, at_t + 2, h, half_h);
-    advance_pair(pose + 4, at_t + 4, h, half_h);
+    const double_pair h2 = {h, h}, half_h2 = 0.5 * h2; /* each element 0.5 * h, as half_h */
+    advance_pair(pose, at_t, h2, half_h2);
+    advance_pair(pose + 2, at_t + 2, h2, half_h2);
+    advance_pair(pose + 4, at_t + 4, h2, half_h2);
 #else
+    const double half_h = 0.5 * h;
     for (int i = 0; i < 6; ++i) { /* as advance_pose: the same roundings */
         const double q = pose[i], qd = pose[6 + i], qdd = pose[12 + i];
         at_t[i] = q;
@@ -799,7 +800,7 @@ fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
     /* The usual step: inputs set since the last step, all finite, and a usual route (no
      * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
      * differences two earlier poses). Anything else: the step rules in full. */
-    if (v->outputs_current | v->inputs_unchecked) return fmu_run_step(inst, t, h);
+    if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
     if (v->model.usual_route == ROUTE_ADVANCE) return usual_advance_step(inst, t, h);
     if (v->model.usual_route == ROUTE_HOLD) return usual_hold_step(inst, t, h);
     return fmu_run_step(inst, t, h);
@@ -817,7 +818,7 @@ FMU_RARE_PATH static fmu_status run_step_reporting(fmu_instance *inst, double t,
 fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
                                       double *last_successful_time) {
     const fmu_values *v = &inst->v;
-    if (v->outputs_current | v->inputs_unchecked)
+    if (fmu_outputs_current_or_inputs_unchecked(v))
         return run_step_reporting(inst, t, h, last_successful_time);
     if (v->model.usual_route == ROUTE_ADVANCE)
         return usual_advance_step_reporting(inst, t, h, last_successful_time);
