@@ -795,15 +795,23 @@ OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double
     return step_end(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
 }
 
+/* model_usual_step other than the Taylor advance (out of line, so that the advance is told by
+ * one test of the route's value in memory). */
+OWN_FRAME static fmu_status usual_hold_or_run_step(fmu_instance *inst, double t, double h) {
+    const fmu_values *v = &inst->v;
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
+        return usual_hold_step(inst, t, h);
+    return fmu_run_step(inst, t, h);
+}
+
 fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
     const fmu_values *v = &inst->v;
     /* The usual step: inputs set since the last step, all finite, and a usual route (no
      * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
      * differences two earlier poses). Anything else: the step rules in full. */
-    if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
-    if (v->model.usual_route == ROUTE_ADVANCE) return usual_advance_step(inst, t, h);
-    if (v->model.usual_route == ROUTE_HOLD) return usual_hold_step(inst, t, h);
-    return fmu_run_step(inst, t, h);
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
+        return usual_advance_step(inst, t, h);
+    return usual_hold_or_run_step(inst, t, h);
 }
 
 /* fmu_run_step, then the unit's last successful time to *last_successful_time (out of line: the
@@ -815,16 +823,22 @@ FMU_RARE_PATH static fmu_status run_step_reporting(fmu_instance *inst, double t,
     return s;
 }
 
+/* model_usual_step_reporting other than the Taylor advance (as usual_hold_or_run_step). */
+OWN_FRAME static fmu_status usual_hold_or_run_step_reporting(fmu_instance *inst, double t,
+                                                             double h,
+                                                             double *last_successful_time) {
+    const fmu_values *v = &inst->v;
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
+        return usual_hold_step_reporting(inst, t, h, last_successful_time);
+    return run_step_reporting(inst, t, h, last_successful_time);
+}
+
 fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
                                       double *last_successful_time) {
     const fmu_values *v = &inst->v;
-    if (fmu_outputs_current_or_inputs_unchecked(v))
-        return run_step_reporting(inst, t, h, last_successful_time);
-    if (v->model.usual_route == ROUTE_ADVANCE)
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
         return usual_advance_step_reporting(inst, t, h, last_successful_time);
-    if (v->model.usual_route == ROUTE_HOLD)
-        return usual_hold_step_reporting(inst, t, h, last_successful_time);
-    return run_step_reporting(inst, t, h, last_successful_time);
+    return usual_hold_or_run_step_reporting(inst, t, h, last_successful_time);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
