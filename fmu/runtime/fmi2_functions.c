@@ -146,7 +146,7 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReferenc
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
                       fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
     (void)noSetFMUStatePriorToCurrentPoint;
-    CALL(fmu_do_step(INST, currentCommunicationPoint, communicationStepSize, NULL));
+    CALL(fmu_do_step(INST, currentCommunicationPoint, communicationStepSize));
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c) { return unsupported(c, "fmi2CancelStep"); }

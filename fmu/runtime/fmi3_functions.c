@@ -320,7 +320,8 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;
-    CALL(fmu_do_step(INST, currentCommunicationPoint, communicationStepSize, lastSuccessfulTime));
+    CALL(fmu_do_step_reporting(INST, currentCommunicationPoint, communicationStepSize,
+                               lastSuccessfulTime));
 }
 
 fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,

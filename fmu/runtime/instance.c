@@ -166,7 +166,7 @@ static fmu_status check_step(fmu_instance *inst, double t, double h) {
 }
 
 fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double time_before,
-                              int outputs_current_before, double *last_successful_time) {
+                              int outputs_current_before) {
     fmu_values *v = &inst->v;
     v->last_step_status = s;
     if (s == FMU_DISCARD) {
@@ -179,11 +179,10 @@ fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double
         v->outputs_current = outputs_current_before;
         fmu_fail(inst);
     }
-    if (last_successful_time) *last_successful_time = v->last_successful_time;
     return s;
 }
 
-fmu_status fmu_run_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+fmu_status fmu_run_step(fmu_instance *inst, double t, double h) {
     fmu_values *v = &inst->v;
     const double time_before = v->time;
     const int outputs_current_before = v->outputs_current;
@@ -193,20 +192,24 @@ fmu_status fmu_run_step(fmu_instance *inst, double t, double h, double *last_suc
     }
     const fmu_status s = model_do_step(inst, t, h);
     if (s == FMU_OK || s == FMU_WARNING)
-        return fmu_step_accepted(v, t, h, s, last_successful_time);
-    return fmu_step_not_taken(inst, t, s, time_before, outputs_current_before,
-                              last_successful_time);
+        return fmu_step_accepted(v, t, h, s);
+    return fmu_step_not_taken(inst, t, s, time_before, outputs_current_before);
 }
 
 /* The usual call, told in a few comparisons: step mode, a step that advances t to a finite time
- * (t + h > t: h > 0 and t, h not NaN; below infinity: finite), from the unit's time (or within
- * its slack), after the last step. fmu_check_call and check_step accept it too. From the unit's
- * time itself it is after the last step: every step ends after its communication point, and a
- * restored state is checked for that (state.c). */
-static int usual_step(const fmu_values *v, double t, double h) {
+ * (t + h > t: h > 0 and t, h not NaN; below infinity: finite), from the unit's time or later (a
+ * master's clock a rounding ahead, or after a Discard) or else within its slack (slack_step),
+ * after the last step. fmu_check_call and check_step accept it too. From the unit's time or later
+ * it is after the last step: every step ends after its communication point, and a restored state
+ * is checked for that (state.c). */
+static inline int usual_step_shape(const fmu_values *v, double t, double h) {
     const double end = t + h;
-    if (!(v->mode == MODE_STEP && end > t && end < HUGE_VAL)) return 0;
-    if (t == v->time) return 1;
+    /* (end is not NaN once end > t: !(end >= HUGE_VAL) is end < HUGE_VAL, one comparison less) */
+    return v->mode == MODE_STEP && end > t && !(end >= HUGE_VAL);
+}
+
+/* t before the unit's time but within its slack, and after the last step. */
+static int within_slack(const fmu_values *v, double t) {
     return t >= v->time - time_slack(v) && (!v->has_stepped || t > v->last_step_point);
 }
 
@@ -220,25 +223,59 @@ FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, doub
  * fmu_step_not_taken) save the runtime's frame around it; the others run it here. */
 #if FMU_MODEL_USUAL_STEP
 #define USUAL_STEP model_usual_step
+#define USUAL_STEP_REPORTING model_usual_step_reporting
 #else
 #define USUAL_STEP fmu_run_step
+#define USUAL_STEP_REPORTING run_step_reporting
+
+/* fmu_run_step, then the unit's last successful time to *last_successful_time. */
+static fmu_status run_step_reporting(fmu_instance *inst, double t, double h,
+                                     double *last_successful_time) {
+    const fmu_status s = fmu_run_step(inst, t, h);
+    *last_successful_time = inst->v.last_successful_time;
+    return s;
+}
 #endif
 
 /* Any other call: the call order and the step checked with their messages, then the step. */
-FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, double h,
-                                             double *last_successful_time) {
+FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, double h) {
     if (!inst) return FMU_ERROR;
-    if (check_do_step(inst, t, h) != FMU_OK) {
-        /* a refused call, not a failed step: the mode stays as it was */
-        if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
-        return FMU_ERROR;
-    }
-    return fmu_run_step(inst, t, h, last_successful_time);
+    /* a refused call, not a failed step: the mode stays as it was */
+    if (check_do_step(inst, t, h) != FMU_OK) return FMU_ERROR;
+    return fmu_run_step(inst, t, h);
 }
 
-fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
-    if (inst && usual_step(&inst->v, t, h)) return USUAL_STEP(inst, t, h, last_successful_time);
-    return checked_step(inst, t, h, last_successful_time);
+/* A usual step whose t is a few roundings before the unit's time: within the slack the usual
+ * step, else the checks (out of line, so that the usual step keeps no frame). */
+FMU_RARE_PATH static fmu_status slack_step(fmu_instance *inst, double t, double h) {
+    if (within_slack(&inst->v, t)) return USUAL_STEP(inst, t, h);
+    return checked_step(inst, t, h);
+}
+
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
+    if (inst && usual_step_shape(&inst->v, t, h)) {
+        if (t >= inst->v.time) return USUAL_STEP(inst, t, h);
+        return slack_step(inst, t, h);
+    }
+    return checked_step(inst, t, h);
+}
+
+/* fmu_do_step_reporting's call that is not a usual step from the unit's time or later. */
+FMU_RARE_PATH static fmu_status other_step_reporting(fmu_instance *inst, double t, double h,
+                                                     double *last_successful_time) {
+    if (inst && usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
+        return USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
+    const fmu_status s = checked_step(inst, t, h);
+    if (inst) *last_successful_time = inst->v.last_successful_time;
+    return s;
+}
+
+fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
+                                 double *last_successful_time) {
+    if (!last_successful_time) return fmu_do_step(inst, t, h);
+    if (inst && usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
+        return USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
+    return other_step_reporting(inst, t, h, last_successful_time);
 }
 
 fmu_status fmu_get_step_status(fmu_instance *inst, int *status) {

@@ -10,6 +10,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h> /* memcpy: fmu_outputs_current_or_inputs_unchecked */
 
 #include "config.h"
 #include "variables.h"
@@ -110,21 +111,26 @@ fmu_status fmu_exit_initialization(fmu_instance *inst);
 /* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual
  * step (step mode, from the unit's time within its slack, advancing to a finite time) goes
  * straight to model_usual_step if the model's config.h defines FMU_MODEL_USUAL_STEP 1, else to
- * fmu_run_step. last_successful_time (may be NULL) receives the unit's last successful time. */
-fmu_status fmu_do_step(fmu_instance *inst, double t, double h, double *last_successful_time);
+ * fmu_run_step. The unit's last successful time is in inst->v.last_successful_time after any
+ * call with an instance. */
+fmu_status fmu_do_step(fmu_instance *inst, double t, double h);
+/* fmu_do_step that also writes the unit's last successful time to *last_successful_time (if not
+ * NULL; FMI 3): the usual step to model_usual_step_reporting. Two entries, so that FMI 2's usual
+ * step carries no pointer it never uses. */
+fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
+                                 double *last_successful_time);
 /* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
  * the time bookkeeping around them. */
-fmu_status fmu_run_step(fmu_instance *inst, double t, double h, double *last_successful_time);
+fmu_status fmu_run_step(fmu_instance *inst, double t, double h);
 /* The bookkeeping of a step from t that the model did not take (Discard: time stays at t; Error:
  * time and outputs_current go back to time_before and outputs_current_before, and the instance
  * enters the Error mode). Returns s. */
 fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double time_before,
-                              int outputs_current_before, double *last_successful_time);
+                              int outputs_current_before);
 
 /* The bookkeeping of an accepted step (s OK or Warning) from t to t + h: time moves on. Inline:
  * it is the usual step's (issue 22: doStep within 5 % of the library call). Returns s. */
-static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fmu_status s,
-                                           double *last_successful_time) {
+static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fmu_status s) {
     const double end = t + h;
     v->time = end;
     v->real[FMU_TIME_VR] = end;
@@ -132,8 +138,19 @@ static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fm
     v->has_stepped = 1;
     v->last_successful_time = end;
     v->last_step_status = s;
-    if (last_successful_time) *last_successful_time = end;
     return s;
+}
+
+/* outputs_current or inputs_unchecked set (a usual step needs both clear): the two flags, side
+ * by side, read as one. */
+static inline int fmu_outputs_current_or_inputs_unchecked(const fmu_values *v) {
+    _Static_assert(offsetof(fmu_values, inputs_unchecked) ==
+                       offsetof(fmu_values, outputs_current) + sizeof(int) &&
+                   sizeof(int) == sizeof(uint32_t),
+                   "outputs_current and inputs_unchecked no longer lie side by side");
+    uint64_t both;
+    memcpy(&both, (const unsigned char *)v + offsetof(fmu_values, outputs_current), sizeof both);
+    return both != 0;
 }
 fmu_status fmu_terminate(fmu_instance *inst);
 /* Back to the start values (the model keeps its built resources for reuse). */

@@ -9,19 +9,28 @@
 # FMU's own), the difference and its share of the library call; then the median µs per doStep of
 # both builds (fmu_bench, 20,000 steps, the median of three alternating runs).
 # usage: studies/bench/fmu_dostep.sh [--commit C (6862cdd)] [--calls N (2000)]
-#                                    [--derivatives "D ..." ("1 0")]
+#                                    [--derivatives "D ..." ("1 0")] [--prebuilt]
+# --prebuilt: take the reference build .cache/reference-C/build as it stands (one shared by several
+# worktrees, built already) instead of bringing it up to date with studies/bench/reference.sh.
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
-commit=6862cdd; calls=2000; derivatives_list="1 0"
+commit=6862cdd; calls=2000; derivatives_list="1 0"; prebuilt=0
 while (($#)); do
   case "$1" in
     --commit) commit="$2"; shift 2 ;;
     --calls) calls="$2"; shift 2 ;;
     --derivatives) derivatives_list="$2"; shift 2 ;;
+    --prebuilt) prebuilt=1; shift ;;
     *) echo "fmu_dostep.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
-ref="$(bash "$repo/studies/bench/reference.sh" "$commit")"
+if ((prebuilt)); then
+  ref="$repo/.cache/reference-$commit"
+  [ -f "$ref/build/fmu/StewartPlatform/fmi2/StewartPlatform.so" ] ||
+    { echo "fmu_dostep.sh: no prebuilt reference build in $ref" >&2; exit 2; }
+else
+  ref="$(bash "$repo/studies/bench/reference.sh" "$commit")"
+fi
 nice -n 10 cmake --build "$repo/build" -j2 --target fmu_bench StewartPlatform_fmu2 \
   StewartPlatform_fmu3 >&2
 work="$(mktemp -d)"

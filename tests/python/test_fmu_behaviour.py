@@ -76,6 +76,8 @@ def _layout(u, blob):
     ("status", 64, "status is not 0..3"),
     ("fidelity", 7, "an option is out of range"),
     ("derivatives", -1, "option derivatives is out of range"),
+    # the usual step's route (finite differences, two poses held) no longer what the values give
+    ("limit_outputs", 1, "the usual step's route does not match the values"),
     ("mode", 0, "mode is not one of"),
     ("mode", 4 | 8, "mode is not one of"),
     ("mode", 16, "mode is not one of"),                 # error mode: no state is taken there
@@ -99,7 +101,7 @@ def test_corrupt_serialised_state_is_refused(version, field, value, words):
             expected = 4 if field == "mode" else t   # MODE_STEP; the time after the last step
         else:
             var = u.vr[field]
-            integer = field in ("status", "fidelity", "derivatives")
+            integer = field in ("status", "fidelity", "derivatives", "limit_outputs")
             offset, fmt = (at["integer"](var), "<i") if integer else (at["real"](var), "<d")
             expected = u.get([field])[0]
         assert struct.unpack_from(fmt, blob, offset)[0] == pytest.approx(expected, rel=1e-15)

@@ -51,6 +51,7 @@ typedef struct model_values {
     int input_derivatives;     /* fmi2SetRealInputDerivatives called since the last step */
     int solve_status;          /* fmu_status of the solve the outputs come from */
     int advance_discarded;     /* the outputs stand after a Taylor advance that was discarded */
+    int usual_route;           /* the step model_usual_step takes (model.c: settle_usual_route) */
 } model_values;
 
 /* The model's resources: built at the end of initialisation, never part of a state's plain

@@ -20,6 +20,35 @@
 #define UNROLLED
 #endif
 
+/* Two doubles moved and computed as one where the compiler has SSE2 pairs (GNU C vector
+ * extension; each element rounds as the scalar expression would); moved as bytes elsewhere. */
+#if defined(__GNUC__) && defined(__SSE2__)
+#define PAIRED_ARITHMETIC 1
+typedef double double_pair __attribute__((vector_size(2 * sizeof(double))));
+/* the same at any double's alignment, and allowed to alias the doubles it is read from */
+typedef double unaligned_pair
+    __attribute__((vector_size(2 * sizeof(double)), aligned(sizeof(double)), may_alias));
+
+/* The pair at p. */
+static inline double_pair load_pair(const double *p) { return *(const unaligned_pair *)p; }
+
+/* Writes r to p. */
+static inline void store_pair(double *p, double_pair r) { *(unaligned_pair *)p = r; }
+#else
+#define PAIRED_ARITHMETIC 0
+typedef struct double_pair { double e[2]; } double_pair;
+
+/* The pair at p. */
+static inline double_pair load_pair(const double *p) {
+    double_pair r;
+    memcpy(&r, p, sizeof r);
+    return r;
+}
+
+/* Writes r to p. */
+static inline void store_pair(double *p, double_pair r) { memcpy(p, &r, sizeof r); }
+#endif
+
 /* ---------------------------------------------------------------- values <-> library */
 
 void model_start_values(fmu_values *v) {
@@ -71,61 +100,123 @@ typedef struct inverse_limit_values {
     stewart_axis_ranges ranges;
 } inverse_limit_values;
 
-/* The library writes its output straight into the output variables (no copy): the struct laid
- * over real[VR_L_1..] has the outputs' order up to the residual (iterations passes through the
- * slot of the Integer newton_iterations), and the base wrench one slot early (the Integer status
- * sits between), which outputs_in_place moves. The pose inputs are a stewart_pose as they stand. */
+/* The library writes its output straight into the output variables (no copy) where the ABI lays
+ * its struct over real[VR_L_1..] in the outputs' order up to the residual (iterations passes
+ * through the slot of the Integer newton_iterations), and the base wrench one slot early (the
+ * Integer status sits between), which outputs_in_place moves: every ABI that aligns a double in
+ * a struct to 8 bytes (x86-64). Where it does not (i386 aligns it to 4: the residual follows the
+ * iteration count at once), a solve writes a local struct and outputs_copied copies it. The
+ * definition FMU_INVERSE_COPY_OUTPUTS=1 forces the copy (tests/importer: both paths, bit for
+ * bit). The pose inputs are a stewart_pose as they stand on every ABI (doubles only). */
 #define OUTPUT_SLOT(field) (VR_L_1 + offsetof(stewart_inverse_output, field) / sizeof(double))
-_Static_assert(OUTPUT_SLOT(lengths.length_rate) == VR_L_dot_1 &&
-                   OUTPUT_SLOT(lengths.length_accel) == VR_L_ddot_1 && OUTPUT_SLOT(force) == VR_F_1 &&
-                   OUTPUT_SLOT(condition) == VR_condition &&
-                   OUTPUT_SLOT(iterations) == VR_newton_iterations &&
-                   OUTPUT_SLOT(residual) == VR_residual &&
-                   OUTPUT_SLOT(base_force) == VR_base_force_1 - 1 &&
-                   OUTPUT_SLOT(base_torque) == VR_base_force_1 + 2 &&
-                   VR_base_torque_1 == VR_base_force_1 + 3 &&
-                   VR_L_1 + sizeof(stewart_inverse_output) / sizeof(double) <= VR_base_torque_3 + 1,
-               "stewart_inverse_output no longer lies over the output variables");
+#define OUTPUT_ON_SLOT(field) (offsetof(stewart_inverse_output, field) % sizeof(double) == 0)
+#define OUTPUTS_LIE_OVER_VARIABLES                                                              \
+    (OUTPUT_SLOT(lengths.length_rate) == VR_L_dot_1 &&                                          \
+     OUTPUT_SLOT(lengths.length_accel) == VR_L_ddot_1 && OUTPUT_SLOT(force) == VR_F_1 &&        \
+     OUTPUT_ON_SLOT(condition) && OUTPUT_SLOT(condition) == VR_condition &&                     \
+     OUTPUT_ON_SLOT(iterations) && OUTPUT_SLOT(iterations) == VR_newton_iterations &&           \
+     OUTPUT_ON_SLOT(residual) && OUTPUT_SLOT(residual) == VR_residual &&                        \
+     OUTPUT_ON_SLOT(base_force) && OUTPUT_SLOT(base_force) == VR_base_force_1 - 1 &&            \
+     OUTPUT_ON_SLOT(base_torque) && OUTPUT_SLOT(base_torque) == VR_base_force_1 + 2 &&          \
+     VR_base_torque_1 == VR_base_force_1 + 3 &&                                                 \
+     VR_L_1 + (sizeof(stewart_inverse_output) + sizeof(double) - 1) / sizeof(double) <=         \
+         VR_base_torque_3 + 1)
+#ifndef FMU_INVERSE_COPY_OUTPUTS
+#define FMU_INVERSE_COPY_OUTPUTS 0
+#endif
+enum { kOutputsInPlace = !FMU_INVERSE_COPY_OUTPUTS && OUTPUTS_LIE_OVER_VARIABLES };
+#if defined(__x86_64__) && !FMU_INVERSE_COPY_OUTPUTS
+_Static_assert(kOutputsInPlace, "stewart_inverse_output no longer lies over the output variables "
+                                "on x86-64: the usual step would copy it");
+#endif
 _Static_assert(VR_x_dot == VR_x + 6 && VR_x_ddot == VR_x + 12 &&
                    offsetof(stewart_pose, q_dot) == 6 * sizeof(double) &&
                    offsetof(stewart_pose, q_ddot) == 12 * sizeof(double) &&
                    sizeof(stewart_inverse_input) == 18 * sizeof(double),
                "the pose inputs are no longer a stewart_pose");
 
-/* Where the library writes the outputs of a solve. */
-static stewart_inverse_output *output_slots(fmu_values *v) {
-    return (stewart_inverse_output *)(void *)&v->real[VR_L_1];
+/* Where a solve writes its output: over the output variables, or `local` where the ABI does not
+ * lay the struct over them. */
+static inline stewart_inverse_output *output_target(fmu_values *v, stewart_inverse_output *local) {
+    return kOutputsInPlace ? (stewart_inverse_output *)(void *)&v->real[VR_L_1] : local;
 }
 
-/* What a solve wrote over the output variables made theirs (bytes read through memcpy: the
- * struct's ints lie in double slots): the iteration count, the base wrench moved to its slots.
- * Returns the warning bits; *stroke_legs the legs outside their stroke. */
-static int outputs_in_place(fmu_values *v, int *stroke_legs) {
-    const unsigned char *at = (const unsigned char *)&v->real[VR_L_1];
-    int iterations, warnings;
-    memcpy(&iterations, at + offsetof(stewart_inverse_output, iterations), sizeof iterations);
-    memcpy(&warnings, at + offsetof(stewart_inverse_output, warnings), sizeof warnings);
-    memcpy(stroke_legs, at + offsetof(stewart_inverse_output, stroke_legs), sizeof *stroke_legs);
-    v->integer[VR_newton_iterations] = iterations;
+/* An int field of the output a solve wrote at `out` (bytes read through memcpy: in place, the
+ * struct's ints lie in double slots). */
+#define OUTPUT_INT(out, field)                                                                  \
+    output_int((const unsigned char *)(const void *)(out), offsetof(stewart_inverse_output, field))
+static inline int output_int(const unsigned char *out, size_t offset) {
+    int value;
+    memcpy(&value, out + offset, sizeof value);
+    return value;
+}
+
+/* What a solve wrote over the output variables made theirs: the iteration count, the base
+ * wrench moved to its slots. */
+static inline void outputs_in_place(fmu_values *v) {
+    v->integer[VR_newton_iterations] = OUTPUT_INT(&v->real[VR_L_1], iterations);
     v->real[VR_newton_iterations] = 0.0; /* no Real variable: no stray bytes in a state */
-    /* one slot on (the slots overlap: all read first; plain values, so no call to memmove) */
+    /* one slot on (the slots overlap: all read first, then written, three pairs each way) */
     double *wrench = &v->real[VR_base_force_1];
-    const double f1 = wrench[-1], f2 = wrench[0], f3 = wrench[1], m1 = wrench[2],
-                 m2 = wrench[3], m3 = wrench[4];
-    wrench[0] = f1;
-    wrench[1] = f2;
-    wrench[2] = f3;
-    wrench[3] = m1;
-    wrench[4] = m2;
-    wrench[5] = m3;
-    wrench[-1] = 0.0; /* the slot of the Integer status: no Real variable, as above */
-    return warnings;
+    const double_pair f12 = load_pair(wrench - 1), f3m1 = load_pair(wrench + 1),
+                      m23 = load_pair(wrench + 3);
+    store_pair(wrench, f12);
+    store_pair(wrench + 2, f3m1);
+    store_pair(wrench + 4, m23);
+    v->real[VR_base_force_1 - 1] = 0.0; /* the slot of the Integer status: no Real variable */
+}
+
+/* The output of a solve written elsewhere (`out`), copied into the output variables. */
+static void outputs_copied(fmu_values *v, const stewart_inverse_output *out) {
+    memcpy(&v->real[VR_L_1], out->lengths.length, sizeof out->lengths.length);
+    memcpy(&v->real[VR_L_dot_1], out->lengths.length_rate, sizeof out->lengths.length_rate);
+    memcpy(&v->real[VR_L_ddot_1], out->lengths.length_accel, sizeof out->lengths.length_accel);
+    memcpy(&v->real[VR_F_1], out->force, sizeof out->force);
+    v->real[VR_condition] = out->condition;
+    v->integer[VR_newton_iterations] = out->iterations;
+    v->real[VR_residual] = out->residual;
+    memcpy(&v->real[VR_base_force_1], out->base_force, sizeof out->base_force);
+    memcpy(&v->real[VR_base_torque_1], out->base_torque, sizeof out->base_torque);
+}
+
+/* The output a solve wrote at `out` (output_target) made the output variables. */
+static inline void take_outputs(fmu_values *v, const stewart_inverse_output *out) {
+    if (kOutputsInPlace)
+        outputs_in_place(v);
+    else
+        outputs_copied(v, out);
+}
+
+/* ---------------------------------------------------------------- the usual step's route */
+
+/* What model_usual_step does with a step whose inputs are set since the last one and finite
+ * (model_values.usual_route, settled whenever what it depends on changes, so that the usual step
+ * tests one value): the step rules in full (FMI 2 input derivatives given, a discarded advance
+ * standing, limit outputs, fewer than two poses in the finite-difference history), or one of the
+ * two usual steps. 0 (a state's start) is the full rules. */
+enum { ROUTE_CHECKED = 0, ROUTE_ADVANCE = 1, ROUTE_HOLD = 2 };
+
+/* The route for the values as they stand. */
+static int usual_route_of(const fmu_values *v) {
+    const model_values *m = &v->model;
+    if (m->input_derivatives || m->advance_discarded || v->integer[VR_limit_outputs])
+        return ROUTE_CHECKED;
+    if (v->integer[VR_derivatives]) return ROUTE_ADVANCE;
+    return m->n_history == 2 ? ROUTE_HOLD : ROUTE_CHECKED;
+}
+
+/* Settles the route after anything it depends on changed (every change that rules a usual step
+ * out is followed by this). */
+static void settle_usual_route(fmu_values *v) { v->model.usual_route = usual_route_of(v); }
+
+int inverse_usual_route_valid(const fmu_values *v) {
+    return v->model.usual_route == ROUTE_CHECKED || v->model.usual_route == usual_route_of(v);
 }
 
 /* ---------------------------------------------------------------- parameters */
 
 fmu_status model_apply_parameters(fmu_instance *inst) {
-    const fmu_values *v = &inst->v;
+    fmu_values *v = &inst->v;
     model_resources *r = &inst->res;
     if (v->integer[VR_limit_outputs] < 0 || v->integer[VR_limit_outputs] > 2) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
@@ -189,6 +280,7 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
         r->limits = l;
     }
     r->options = o;
+    settle_usual_route(v);
     return FMU_OK;
 }
 
@@ -402,12 +494,16 @@ static fmu_status not_solved_by_library(fmu_instance *inst, double time, const s
     return not_solved(&inst->v, fs);
 }
 
-/* The status output and the warnings of a solved pose q at `time` (its outputs written; the
- * library's warning bits and legs outside their stroke). */
+/* The outputs, status output and warnings of a solved pose q at `time` (its output written by
+ * output_target(v, local); the library's warning bits `warnings`). */
 FMU_RARE_PATH static fmu_status warnings_of(fmu_instance *inst, double time, const double q[6],
-                                            int warnings, int stroke_legs) {
+                                            stewart_inverse_output *local, int warnings) {
     fmu_values *v = &inst->v;
     const model_resources *r = &inst->res;
+    const stewart_inverse_output *out = output_target(v, local);
+    const int stroke_legs = OUTPUT_INT(out, stroke_legs); /* before the outputs move over it */
+    take_outputs(v, out);
+    v->outputs_current = 1;
     fmu_status fs = FMU_OK;
     int status = 0;
     if (warnings & STEWART_WARN_STROKE) {
@@ -429,25 +525,27 @@ FMU_RARE_PATH static fmu_status warnings_of(fmu_instance *inst, double time, con
     return fs;
 }
 
-/* The outputs (written in place by the library), status and warnings of a solved pose q at
- * `time`; short when there is nothing to warn of or check (the step's usual case, so that the
- * compiler inlines it). */
+/* The outputs (the library's output at `out`, output_target), status and warnings of a solved
+ * pose q at `time`; short when there is nothing to warn of or check (the step's usual case, so
+ * that the compiler inlines it). */
 static inline fmu_status solved_checking(fmu_instance *inst, double time, const double q[6],
-                                         int limit_outputs) {
+                                         const stewart_inverse_output *out, int limit_outputs) {
     fmu_values *v = &inst->v;
-    int stroke_legs;
-    const int warnings = outputs_in_place(v, &stroke_legs);
+    const int warnings = OUTPUT_INT(out, warnings);
+    if (warnings || limit_outputs) /* (in place the rare path finds the output itself) */
+        return warnings_of(inst, time, q, kOutputsInPlace ? NULL : (stewart_inverse_output *)out,
+                           warnings);
+    take_outputs(v, out);
     v->outputs_current = 1;
-    if (warnings || limit_outputs)
-        return warnings_of(inst, time, q, warnings, stroke_legs);
     v->integer[VR_status] = 0;
     v->model.solve_status = FMU_OK;
     return FMU_OK;
 }
 
 /* solved_checking with the limit outputs as the parameter says. */
-static fmu_status solved(fmu_instance *inst, double time, const double q[6]) {
-    return solved_checking(inst, time, q, inst->v.integer[VR_limit_outputs]);
+static fmu_status solved(fmu_instance *inst, double time, const double q[6],
+                         const stewart_inverse_output *out) {
+    return solved_checking(inst, time, q, out, inst->v.integer[VR_limit_outputs]);
 }
 
 /* The library refused `pose` (the current inputs' at `time`): finite differences that are not
@@ -473,9 +571,10 @@ static fmu_status solve_at(fmu_instance *inst, double time) {
     if (v->inputs_unchecked && check_inputs(inst, time) != FMU_OK) return FMU_DISCARD;
     stewart_inverse_input in;
     current_pose(v, time, &in.pose);
-    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, output_slots(v));
+    stewart_inverse_output local, *out = output_target(v, &local);
+    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, out);
     if (s != STEWART_OK) return refused(inst, time, &in.pose, s);
-    return solved(inst, time, in.pose.q);
+    return solved(inst, time, in.pose.q, out);
 }
 
 fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, inst->v.time); }
@@ -528,7 +627,8 @@ static fmu_status advance_refused(fmu_instance *inst, double time, const stewart
     return fs;
 }
 
-fmu_status model_do_step(fmu_instance *inst, double t, double h) {
+/* The step rules over [t, t + h] (model_do_step without settling the route). */
+static fmu_status step_rules(fmu_instance *inst, double t, double h) {
     fmu_values *v = &inst->v;
     model_values *m = &v->model;
     /* A discarded advance left status 3 standing for the master to read; a retry decides anew. */
@@ -557,7 +657,8 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     v->outputs_current = 0;
     stewart_inverse_input in;
     advance_pose(v, h, &in.pose);
-    const stewart_status ls = stewart_inverse_solve(inst->res.inverse, &in, output_slots(v));
+    stewart_inverse_output local, *out = output_target(v, &local);
+    const stewart_status ls = stewart_inverse_solve(inst->res.inverse, &in, out);
     if (ls != STEWART_OK) {
         const fmu_status s2 = advance_refused(inst, t + h, &in.pose, ls);
         m->advance_discarded = 1; /* status 3 and the kept outputs stand until a step or a set */
@@ -569,7 +670,13 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     /* the derivatives given through fmi2SetRealInputDerivatives served this step only; the
      * outputs just computed used them, so they stay valid */
     m->input_derivatives = 0;
-    return solved(inst, t + h, in.pose.q);
+    return solved(inst, t + h, in.pose.q, out);
+}
+
+fmu_status model_do_step(fmu_instance *inst, double t, double h) {
+    const fmu_status s = step_rules(inst, t, h);
+    settle_usual_route(&inst->v);
+    return s;
 }
 
 /* ---------------------------------------------------------------- the usual step */
@@ -584,17 +691,36 @@ FMU_RARE_PATH static fmu_status advance_in_place_refused(fmu_instance *inst, dou
     if (fs == FMU_OK) fs = not_solved_by_library(inst, time, advanced, s);
     memcpy(&v->real[VR_x], at_t, 12 * sizeof(double));
     v->model.advance_discarded = 1; /* status 3 and the kept outputs stand until a step or a set */
+    settle_usual_route(v);
     return fs;
 }
+
+#if PAIRED_ARITHMETIC
+/* Two coordinates of the pose inputs (pose: q, then q_dot 6 on, q_ddot 12 on) kept in at_t (q,
+ * q_dot) and advanced over h in place, as advance_pose: the same roundings. */
+static inline void advance_pair(double *pose, double *at_t, double_pair h, double_pair half_h) {
+    const double_pair q = load_pair(pose), qd = load_pair(pose + 6), qdd = load_pair(pose + 12);
+    store_pair(at_t, q);
+    store_pair(at_t + 6, qd);
+    store_pair(pose, q + h * (qd + half_h * qdd));
+    store_pair(pose + 6, qd + h * qdd);
+}
+#endif
 
 /* derivatives = 1, the usual step: model_do_step's advance with the pose advanced in the inputs
  * themselves (the library's input as they stand), the inputs at t kept aside in case it fails. */
 static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h) {
     fmu_values *v = &inst->v;
-    double *restrict pose = &v->real[VR_x];
+    double *pose = &v->real[VR_x];
     double at_t[12];
+#if PAIRED_ARITHMETIC
+    /* two coordinates at a time, each loaded once (the compiler's own pairing loaded some twice) */
+    const double_pair h2 = {h, h}, half_h2 = 0.5 * h2; /* each element 0.5 * h, as half_h */
+    advance_pair(pose, at_t, h2, half_h2);
+    advance_pair(pose + 2, at_t + 2, h2, half_h2);
+    advance_pair(pose + 4, at_t + 4, h2, half_h2);
+#else
     const double half_h = 0.5 * h;
-    UNROLLED
     for (int i = 0; i < 6; ++i) { /* as advance_pose: the same roundings */
         const double q = pose[i], qd = pose[6 + i], qdd = pose[12 + i];
         at_t[i] = q;
@@ -602,10 +728,12 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
         pose[i] = q + h * (qd + half_h * qdd);
         pose[6 + i] = qd + h * qdd;
     }
+#endif
+    stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
-        inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, output_slots(v));
+        inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, out);
     if (s != STEWART_OK) return advance_in_place_refused(inst, t + h, at_t, s);
-    return solved_checking(inst, t + h, pose, 0); /* no limit outputs on the usual step */
+    return solved_checking(inst, t + h, pose, out, 0); /* no limit outputs on the usual step */
 }
 
 /* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
@@ -615,9 +743,10 @@ static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
     stewart_inverse_input in;
     memcpy(in.pose.q, &v->real[VR_x], sizeof in.pose.q);
     quadratic_rates(&v->model, t, &in.pose);
-    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, output_slots(v));
+    stewart_inverse_output local, *out = output_target(v, &local);
+    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, out);
     if (s != STEWART_OK) return refused(inst, t, &in.pose, s);
-    const fmu_status fs = solved_checking(inst, t, in.pose.q, 0);
+    const fmu_status fs = solved_checking(inst, t, in.pose.q, out, 0);
     shift_history(&v->model, t, in.pose.q); /* the history is full already */
     return fs;
 }
@@ -631,36 +760,85 @@ static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
 #define OWN_FRAME
 #endif
 
-/* The step's end: accepted (OK, Warning) or not. The usual step leaves the unit's time as it
- * was (t, or within the slack of it) until here, so that is the time before it. */
+/* The step's end: accepted (OK, Warning) or not; the unit's last successful time to
+ * *last_successful_time unless NULL (a constant in each caller). The usual step leaves the unit's
+ * time as it was (t, or within the slack of it) until here, so that is the time before it. */
 static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s,
                                   double *last_successful_time) {
-    if (s == FMU_OK || s == FMU_WARNING)
-        return fmu_step_accepted(&inst->v, t, h, s, last_successful_time);
-    return fmu_step_not_taken(inst, t, s, inst->v.time, 0, last_successful_time);
+    if (s == FMU_OK || s == FMU_WARNING) {
+        const fmu_status accepted = fmu_step_accepted(&inst->v, t, h, s);
+        if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
+        return accepted;
+    }
+    if (!last_successful_time) return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+    const fmu_status not_taken = fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+    *last_successful_time = inst->v.last_successful_time;
+    return not_taken;
 }
 
-OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h,
-                                               double *last_successful_time) {
+OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h) {
+    return step_end(inst, t, h, advance_in_place(inst, t, h), NULL);
+}
+
+OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h) {
+    return step_end(inst, t, h, hold_with_quadratic(inst, t), NULL);
+}
+
+/* The same for FMI 3, which takes the last successful time back. */
+OWN_FRAME static fmu_status usual_advance_step_reporting(fmu_instance *inst, double t, double h,
+                                                         double *last_successful_time) {
     return step_end(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
 }
 
-OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h,
-                                            double *last_successful_time) {
+OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double t, double h,
+                                                      double *last_successful_time) {
     return step_end(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
 }
 
-fmu_status model_usual_step(fmu_instance *inst, double t, double h, double *last_successful_time) {
+/* model_usual_step other than the Taylor advance (out of line, so that the advance is told by
+ * one test of the route's value in memory). */
+OWN_FRAME static fmu_status usual_hold_or_run_step(fmu_instance *inst, double t, double h) {
     const fmu_values *v = &inst->v;
-    const model_values *m = &v->model;
-    /* The usual step: inputs set since the last step, all finite, no discarded advance standing,
-     * no FMI 2 input derivatives, no limit outputs. Anything else: the step rules in full. */
-    if (v->outputs_current | v->inputs_unchecked | m->advance_discarded | m->input_derivatives |
-        v->integer[VR_limit_outputs])
-        return fmu_run_step(inst, t, h, last_successful_time);
-    if (v->integer[VR_derivatives]) return usual_advance_step(inst, t, h, last_successful_time);
-    if (m->n_history == 2) return usual_hold_step(inst, t, h, last_successful_time);
-    return fmu_run_step(inst, t, h, last_successful_time);
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
+        return usual_hold_step(inst, t, h);
+    return fmu_run_step(inst, t, h);
+}
+
+fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
+    const fmu_values *v = &inst->v;
+    /* The usual step: inputs set since the last step, all finite, and a usual route (no
+     * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
+     * differences two earlier poses). Anything else: the step rules in full. */
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
+        return usual_advance_step(inst, t, h);
+    return usual_hold_or_run_step(inst, t, h);
+}
+
+/* fmu_run_step, then the unit's last successful time to *last_successful_time (out of line: the
+ * usual step keeps no frame for it). */
+FMU_RARE_PATH static fmu_status run_step_reporting(fmu_instance *inst, double t, double h,
+                                                   double *last_successful_time) {
+    const fmu_status s = fmu_run_step(inst, t, h);
+    *last_successful_time = inst->v.last_successful_time;
+    return s;
+}
+
+/* model_usual_step_reporting other than the Taylor advance (as usual_hold_or_run_step). */
+OWN_FRAME static fmu_status usual_hold_or_run_step_reporting(fmu_instance *inst, double t,
+                                                             double h,
+                                                             double *last_successful_time) {
+    const fmu_values *v = &inst->v;
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
+        return usual_hold_step_reporting(inst, t, h, last_successful_time);
+    return run_step_reporting(inst, t, h, last_successful_time);
+}
+
+fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
+                                      double *last_successful_time) {
+    const fmu_values *v = &inst->v;
+    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
+        return usual_advance_step_reporting(inst, t, h, last_successful_time);
+    return usual_hold_or_run_step_reporting(inst, t, h, last_successful_time);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
@@ -687,5 +865,6 @@ fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], 
         if (!isfinite(value[i])) v->inputs_unchecked = 1; /* the step looks at the inputs */
     }
     if (n > 0) v->model.input_derivatives = 1;
+    settle_usual_route(v);
     return FMU_OK;
 }

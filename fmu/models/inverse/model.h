@@ -15,4 +15,8 @@ void inverse_current_pose(const fmu_values *v, double time, stewart_pose *pose);
  * derivatives), 0 if from finite differences of the pose. */
 int inverse_uses_rate_inputs(const fmu_values *v);
 
+/* 1 if the usual step's route (model_values.usual_route) is the full rules or what the values
+ * give (a restored state is checked for it). */
+int inverse_usual_route_valid(const fmu_values *v);
+
 #endif

@@ -93,7 +93,8 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
 #include "variables.def"
     if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
     if (v->integer[VR_newton_iterations] < 0) return "newton_iterations is negative";
-    if (!fmu_after_initialization(v)) return NULL;
+    static const char *const kRoute = "the usual step's route does not match the values";
+    if (!fmu_after_initialization(v)) return inverse_usual_route_valid(v) ? NULL : kRoute;
     /* parameters and options: exactly what initialisation accepted (model_apply_parameters) */
     if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1)
         return "option derivatives is out of range";
@@ -103,5 +104,6 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     stewart_params p;
     inverse_params_from_values(v, &p);
     if (stewart_params_check(&p, NULL, 0) != STEWART_OK) return "a parameter is invalid";
+    if (!inverse_usual_route_valid(v)) return kRoute; /* (after the values it is made of) */
     return size ? check_solver_data(inst, v, in, size, why, why_size) : NULL;
 }
