@@ -7,8 +7,9 @@
 // one 1 ms ERK 4(3) step (plant_erk.hpp, fixed steps) from each within kStepBound of the state's
 // scale (the plant's agreed bound), on random states far from home (any rotation, fast motion),
 // random forces, with and without a payload off the platform's centre (a centre of mass off the
-// origin and a full inertia); the same fault for a leg of zero length; and the state's rotation
-// (fd::motion_of_state, written out) against Eigen's quaternion, bit for bit.
+// origin and a full inertia); the same fault for a leg of zero length; the state's rotation
+// (fd::motion_of_state, written out) against Eigen's quaternion, bit for bit; and the pitch
+// root's pre-test (fd::near_level_turn) against the full crossing test.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -197,6 +198,39 @@ void test_rotation_of_state(void) {
     TEST_ASSERT_EQUAL_INT(0, differing);
 }
 
+// fd::near_level_turn (the pitch root's pre-test) against the full crossing test: wherever it
+// holds, the principal angles are finite and crosses_pitch_limit is false. Starts anywhere up to
+// +-90 degrees of pitch, end states turned by up to 0.3 rad about random axes (the pre-test's
+// edge is 0.1 rad from a start within 1.2 rad of level), quaternions of any scale and sign.
+void test_pitch_pre_test(void) {
+    uint64_t rng = 31337;
+    int held = 0, wrong = 0;
+    for (int n = 0; n < 200000; ++n) {
+        const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
+                     yaw = uniform(rng, -M_PI, M_PI);
+        const Eigen::Quaterniond q0 = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                      Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+        Eigen::Vector3d axis(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        if (!(axis.norm() > 1e-3)) continue;
+        const Eigen::Quaterniond turn(Eigen::AngleAxisd(uniform(rng, 0, 0.3), axis.normalized()));
+        const Eigen::Quaterniond q1 = turn * q0;
+        const double s0 = std::pow(10.0, uniform(rng, -2, 2)), s1 = uniform(rng, -3, 3);
+        double start[fd::kStates] = {0}, y[fd::kStates] = {0};
+        const double c0[4] = {q0.w(), q0.x(), q0.y(), q0.z()}, c1[4] = {q1.w(), q1.x(), q1.y(), q1.z()};
+        for (int i = 0; i < 4; ++i) start[3 + i] = s0 * c0[i], y[3 + i] = s1 * c1[i];
+        double before[3], after[3];
+        fd::principal_angles(start, before);
+        fd::principal_angles(y, after);
+        if (!fd::near_level_turn(start, before[1], y)) continue;
+        ++held;
+        wrong += !std::isfinite(after[1]) || fd::crosses_pitch_limit(before, after);
+    }
+    std::printf("the pitch pre-test held on %d of 200,000 turns\n", held);
+    TEST_ASSERT_EQUAL_INT(0, wrong);
+    TEST_ASSERT_TRUE(held > 20000);
+}
+
 void test_default_platform(void) {
     stewart_params params;
     stewart_params_default(&params);
@@ -220,6 +254,7 @@ void tearDown(void) {}
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_rotation_of_state);
+    RUN_TEST(test_pitch_pre_test);
     RUN_TEST(test_default_platform);
     RUN_TEST(test_payload_off_centre);
     return UNITY_END();
