@@ -36,6 +36,9 @@ double angle_between(const Eigen::Vector3d &u, const Eigen::Vector3d &v) {
 // c >= cos(limit) + slack with slack far above those 65 eps (1.4e-14 rad).
 // tests/unit/test_limit_failures.cpp compares the verdicts on random poses near and far.
 constexpr double kJointCosineSlack = 1e-9;
+// A pair of legs whose sphere gap (sphere_gap) is at least the diameter plus this is measured by
+// neither verdict of interference: far above the gap's and the distance's roundings [m].
+constexpr double kInterferenceSlack = 1e-9;
 
 // The cosine above which a joint of this limit is inside it for sure (see kJointCosineSlack).
 double inside_cosine(double limit) {
@@ -169,11 +172,11 @@ struct PlatformLegs {
     bool has_direction;
 };
 
-// PlatformLegs at the platform's pose q (base frame).
-void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) {
+// PlatformLegs at the platform's position and rotation (base frame).
+void platform_legs(const LimitConstants &c, const Eigen::Vector3d &position,
+                   const Eigen::Matrix3d &rotation, PlatformLegs &l) {
     const PlatformGeometry &g = c.geometry;
-    l.R = rotation_from_rpy(q[3], q[4], q[5]);
-    const Eigen::Vector3d position(q[0], q[1], q[2]);
+    l.R = rotation;
     l.legs.arm.noalias() = l.R * g.platform_points;
     l.has_direction = true;
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -190,6 +193,11 @@ void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) 
         l.base_cos[k] = n.dot(c.base_neutral.col(k));
         l.platform_cos[k] = n.dot(l.R * c.platform_neutral.col(k));
     }
+}
+
+// PlatformLegs at the platform's pose q (base frame; roll, pitch, yaw).
+void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) {
+    platform_legs(c, Eigen::Vector3d(q[0], q[1], q[2]), rotation_from_rpy(q[3], q[4], q[5]), l);
 }
 
 // The sphere bound: the two legs' segments are at least this far apart (their midpoints'
@@ -225,10 +233,11 @@ bool joint_fails(const double limit[STEWART_LEGS], const double inside[STEWART_L
 
 }  // namespace
 
-int platform_limit_failures(const LimitConstants &c, const double q[6]) {
+int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
+                            const Eigen::Matrix3d &rotation) {
     const PlatformGeometry &g = c.geometry;
     PlatformLegs l;
-    platform_legs(c, q, l);
+    platform_legs(c, position, rotation, l);
     int failed = 0;
     if (joint_fails(c.base_joint_limit, c.base_inside_cosine, c.uniform_base_limit, l.legs.axis,
                     c.base_neutral, nullptr, l.base_cos))
@@ -236,18 +245,23 @@ int platform_limit_failures(const LimitConstants &c, const double q[6]) {
     if (joint_fails(c.platform_joint_limit, c.platform_inside_cosine, c.uniform_platform_limit,
                     l.legs.axis, c.platform_neutral, &l.R, l.platform_cos))
         failed |= 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
-    // check_platform_limits' pair loop: the class fails as soon as a kept distance is below the
-    // diameter (kept distances only fall).
-    double closest = HUGE_VAL;
+    // Interference: some pair closer than the diameter. A pair whose spheres are at least
+    // kInterferenceSlack beyond the diameter apart cannot be (the sphere gap is a lower bound of
+    // the distance, both computed to about 1e-15 m), so only the others are measured; the full
+    // check's smallest distance is below the diameter exactly when one of them is, except at
+    // rounding distance from it (test_limit_failures: the same verdicts on the edge).
+    const double near = c.leg_diameter + kInterferenceSlack;
     for (const LegPair &pair : kPairs) {
-        if (sphere_gap(l, pair.first, pair.second) >= closest) continue;
-        const double d = leg_distance(g, l, pair.first, pair.second);
-        if (d < closest) {
-            closest = d;
-            if (d - c.leg_diameter < 0.0) return failed | 1 << (STEWART_LIMIT_INTERFERENCE - 1);
-        }
+        if (!(sphere_gap(l, pair.first, pair.second) < near)) continue;
+        if (leg_distance(g, l, pair.first, pair.second) - c.leg_diameter < 0.0)
+            return failed | 1 << (STEWART_LIMIT_INTERFERENCE - 1);
     }
     return failed;
+}
+
+int platform_limit_failures(const LimitConstants &c, const double q[6]) {
+    return platform_limit_failures(c, Eigen::Vector3d(q[0], q[1], q[2]),
+                                   rotation_from_rpy(q[3], q[4], q[5]));
 }
 
 void check_platform_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,

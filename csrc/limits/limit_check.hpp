@@ -43,8 +43,14 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
                            bool with_condition = true, double *inverse_norm = nullptr);
 // The failing bits (stewart_limits_output.failed) of the joint classes and of interference at
 // the platform's pose q: those of check_platform_limits(c, q, out, false), found without the
-// margins (the plant's warnings).
+// margins (the plant's warnings); interference's may differ at rounding distance from the
+// diameter (a pair is measured only where its sphere gap leaves doubt).
 int platform_limit_failures(const LimitConstants &c, const double q[6]);
+// The same at the platform's position and rotation (base frame; the plant's state, whose
+// rotation is its quaternion's): the verdicts at q's rotation except at rounding distance from
+// a limit (the two rotations differ by a few roundings).
+int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
+                            const Eigen::Matrix3d &rotation);
 // The same at the tool frame's pose q in the user frame (the API's poses).
 void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                   bool with_condition = true, double *inverse_norm = nullptr);

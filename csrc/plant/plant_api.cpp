@@ -100,11 +100,11 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
     return stroke_legs;
 }
 
-// STEWART_WARN_JOINT_LIMIT and STEWART_WARN_INTERFERENCE as they hold at the pose of the
-// platform origin position and roll-pitch-yaw angles.
-int limit_warnings(const stewart_plant &p, const double position[3], const double angles[3]) {
-    const double q[6] = {position[0], position[1], position[2], angles[0], angles[1], angles[2]};
-    const int failed = stewart::platform_limit_failures(p.limits, q);
+// STEWART_WARN_JOINT_LIMIT and STEWART_WARN_INTERFERENCE as they hold at the platform's pose
+// (its state's position and rotation: the roll-pitch-yaw pose's verdicts to rounding distance
+// from a limit, without the angles' sines and cosines).
+int limit_warnings(const stewart_plant &p, const stewart::Motion &m) {
+    const int failed = stewart::platform_limit_failures(p.limits, m.position, m.rotation);
     const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
     return (failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
            (failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
@@ -426,9 +426,9 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     p->step_hint = 0;
     double length[6], length_rate[6];
     msg[0] = '\0';
-    p->warnings =
-        (leg_outputs(*p, fd::motion_of_state(y), length, length_rate) ? STEWART_WARN_STROKE : 0) |
-        limit_warnings(*p, y, p->angles);
+    const stewart::Motion m = fd::motion_of_state(y);
+    p->warnings = (leg_outputs(*p, m, length, length_rate) ? STEWART_WARN_STROKE : 0) |
+                  limit_warnings(*p, m);
     return STEWART_OK;
 }
 
@@ -534,7 +534,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
     LegOutputs legs;
-    const int limit_bits = limit_warnings(*p, y, angles);
+    const int limit_bits = limit_warnings(*p, m);
     legs.stroke_legs = leg_outputs(*p, m, legs.length, legs.rate);
     const int warnings = (legs.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
     for (int k = 0; k < STEWART_LEGS; ++k)
@@ -592,7 +592,7 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
     } else {
         o.stroke_legs = leg_outputs(*p, m, o.lengths.length, o.lengths.length_rate);
     }
-    if (limit_bits < 0) limit_bits = limit_warnings(*p, p->y, p->angles);
+    if (limit_bits < 0) limit_bits = limit_warnings(*p, m);
     o.warnings = (o.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
         for (int k = 0; k < STEWART_LEGS; ++k)

@@ -49,6 +49,7 @@ struct IntegratorImpl {
     ErkWork work;
     double relative_tolerance = 0, absolute_tolerance = 0;
     double reference_angles[3] = {0, 0, 0};  // principal roll, pitch, yaw the pitch root follows
+    double start_state[kStates] = {0};  // the communication step's start (pitch_sign's)
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
     int fault_leg = -1;
@@ -76,12 +77,17 @@ void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
         force[k] = h00 * start[k] + h01 * end[k] + h * (h10 * start_rate[k] + h11 * end_rate[k]);
 }
 
-Motion motion_of_state(const double y[kStates]) {
-    Motion m;
-    m.position = Vec3(y[0], y[1], y[2]);
-    // Eigen's Quaterniond normalize() and toRotationMatrix() written out in their order of
-    // operations (the squared norm summed as its two-wide packets, (x^2 + z^2) + (y^2 + w^2)): the
-    // same bits without its expression machinery (test_plant_rhs compares them with Eigen's).
+namespace {
+
+// The state's quaternion (w, x, y, z) normalised as Eigen's Quaterniond normalize() (the squared
+// norm summed as its two-wide packets, (x^2 + z^2) + (y^2 + w^2)), and the doubled components
+// and products toRotationMatrix() forms from it: the same bits without its expression machinery
+// (test_plant_rhs compares the rotation with Eigen's).
+struct QuaternionProducts {
+    double twx, twy, twz, txx, txy, txz, tyy, tyz, tzz;
+};
+
+QuaternionProducts quaternion_products(const double y[kStates]) {
     double w = y[3], x = y[4], yq = y[5], z = y[6];
     const double squared_norm = (x * x + z * z) + (yq * yq + w * w);
     if (squared_norm > 0) {
@@ -92,24 +98,80 @@ Motion motion_of_state(const double y[kStates]) {
         z /= norm;
     }
     const double tx = 2 * x, ty = 2 * yq, tz = 2 * z;
-    const double twx = tx * w, twy = ty * w, twz = tz * w;
-    const double txx = tx * x, txy = ty * x, txz = tz * x;
-    const double tyy = ty * yq, tyz = tz * yq, tzz = tz * z;
+    return {tx * w, ty * w, tz * w, tx * x, ty * x, tz * x, ty * yq, tz * yq, tz * z};
+}
+
+}  // namespace
+
+Motion motion_of_state(const double y[kStates]) {
+    Motion m;
+    m.position = Vec3(y[0], y[1], y[2]);
+    // Eigen's normalize() and toRotationMatrix() written out in their order of operations.
+    const QuaternionProducts t = quaternion_products(y);
     Mat3 &R = m.rotation;
-    R(0, 0) = 1 - (tyy + tzz);
-    R(0, 1) = txy - twz;
-    R(0, 2) = txz + twy;
-    R(1, 0) = txy + twz;
-    R(1, 1) = 1 - (txx + tzz);
-    R(1, 2) = tyz - twx;
-    R(2, 0) = txz - twy;
-    R(2, 1) = tyz + twx;
-    R(2, 2) = 1 - (txx + tyy);
+    R(0, 0) = 1 - (t.tyy + t.tzz);
+    R(0, 1) = t.txy - t.twz;
+    R(0, 2) = t.txz + t.twy;
+    R(1, 0) = t.txy + t.twz;
+    R(1, 1) = 1 - (t.txx + t.tzz);
+    R(1, 2) = t.tyz - t.twx;
+    R(2, 0) = t.txz - t.twy;
+    R(2, 1) = t.tyz + t.twx;
+    R(2, 2) = 1 - (t.txx + t.tyy);
     m.velocity = Vec3(y[7], y[8], y[9]);
     m.omega = Vec3(y[10], y[11], y[12]);
     m.acceleration.setZero();
     m.alpha.setZero();
     return m;
+}
+
+// Roll, pitch, yaw of a state's rotation on the principal branch (pitch in [-pi/2, pi/2]), from
+// the five entries of motion_of_state's rotation it reads (the same bits).
+void principal_angles(const double y[kStates], double a[3]) {
+    const QuaternionProducts t = quaternion_products(y);
+    const double sp = -(t.txz - t.twy);
+    a[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
+    a[0] = std::atan2(t.tyz + t.twx, 1 - (t.txx + t.tyy));
+    a[2] = std::atan2(t.txy + t.twz, 1 - (t.tyy + t.tzz));
+}
+
+// Whether the motion from angles `before` to `after` (both principal) took pitch through
+// +-90 degrees: the other triple of the same rotation, (roll + pi, +-pi - pitch, yaw + pi), is
+// nearer to `before` than `after` is, so angles kept continuous would have |pitch| > 90 degrees
+// (roll and yaw jump by pi where pitch only touches 90 degrees on the principal branch).
+bool crosses_pitch_limit(const double before[3], const double after[3]) {
+    // |remainder(a, 2 pi)|; remainder is a itself where |a| <= fl(2 pi) / 2 (exactly)
+    auto turn = [](double a) {
+        return std::fabs(std::fabs(a) <= M_PI ? a : std::remainder(a, 2 * M_PI));
+    };
+    const double other_pitch = (after[1] >= 0 ? M_PI : -M_PI) - after[1];
+    const double direct = turn(after[0] - before[0]) + std::fabs(after[1] - before[1]) +
+                          turn(after[2] - before[2]);
+    const double other = turn(after[0] + M_PI - before[0]) + std::fabs(other_pitch - before[1]) +
+                         turn(after[2] + M_PI - before[2]);
+    return other < direct;
+}
+
+// pitch_sign's shortcut: a state whose rotation is within 0.1 rad of the start's (cos^2 of half
+// the angle between the quaternions >= this), when the start's pitch is within kLevelPitch of
+// level, crosses nothing. Along the shortest turn between them pitch stays within 1.3 rad of
+// level (it moves no faster than the turn), so roll and yaw move by at most 0.1 / cos(1.3) =
+// 0.37 rad each (|roll_dot|, |yaw_dot| <= |w| / cos(pitch)): crosses_pitch_limit's direct sum is
+// at most 0.85 rad, the other triple's at least 2 (pi - 0.37) + (pi - 2.5) = 6.2 rad, far beyond
+// the roundings of either. So the answer is the full test's, without its asin and atan2s.
+constexpr double kNearTurnHalfCosSquared = 0.9976;  // > cos(0.05)^2 = 0.99750
+constexpr double kLevelPitch = 1.2;
+
+bool near_level_turn(const double start[kStates], double start_pitch, const double y[kStates]) {
+    if (!(std::fabs(start_pitch) <= kLevelPitch)) return false;
+    const double *q = y + 3, *q0 = start + 3;
+    const double squared_norm = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+    const double start_norm = q0[0] * q0[0] + q0[1] * q0[1] + q0[2] * q0[2] + q0[3] * q0[3];
+    const double dot = q[0] * q0[0] + q[1] * q0[1] + q[2] * q0[2] + q[3] * q0[3];
+    // finite and non-zero quaternions (their angles are finite), within the turn
+    return squared_norm > 0 && squared_norm < HUGE_VAL && start_norm > 0 &&
+           start_norm < HUGE_VAL &&
+           dot * dot >= kNearTurnHalfCosSquared * squared_norm * start_norm;
 }
 
 namespace {
@@ -188,28 +250,9 @@ int linear_combination(int nvec, sunrealtype *c, N_Vector *X, N_Vector z) {
     return 0;
 }
 
-// Roll, pitch, yaw of a state's rotation on the principal branch (pitch in [-pi/2, pi/2]).
-void principal_angles(const double y[kStates], double a[3]) {
-    const Mat3 R = motion_of_state(y).rotation;
-    const double sp = -R(2, 0);
-    a[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
-    a[0] = std::atan2(R(2, 1), R(2, 2));
-    a[2] = std::atan2(R(1, 0), R(0, 0));
-}
-
-// Whether the motion from angles `before` to `after` (both principal) took pitch through
-// +-90 degrees: the other triple of the same rotation, (roll + pi, +-pi - pitch, yaw + pi), is
-// nearer to `before` than `after` is, so angles kept continuous would have |pitch| > 90 degrees
-// (roll and yaw jump by pi where pitch only touches 90 degrees on the principal branch).
-bool crosses_pitch_limit(const double before[3], const double after[3]) {
-    auto turn = [](double a) { return std::fabs(std::remainder(a, 2 * M_PI)); };
-    const double other_pitch = (after[1] >= 0 ? M_PI : -M_PI) - after[1];
-    const double direct = turn(after[0] - before[0]) + std::fabs(after[1] - before[1]) +
-                          turn(after[2] - before[2]);
-    const double other = turn(after[0] + M_PI - before[0]) + std::fabs(other_pitch - before[1]) +
-                         turn(after[2] + M_PI - before[2]);
-    return other < direct;
-}
+// cos(pitch) for a principal pitch where only its sign is read: positive (asin's range ends at
+// fl(pi/2) < pi/2, whose cosine is 6.1e-17), NaN with the pitch.
+double principal_cos_sign(double pitch) { return std::isnan(pitch) ? pitch : 1.0; }
 
 // The root the integrators watch: cos of the pitch kept continuous from the reference angles
 // (the start of the step, or the last root that was no crossing). The principal pitch has
@@ -220,6 +263,17 @@ double pitch_function(const double *y, void *user) {
     double angles[3];
     principal_angles(y, angles);
     const double c = std::cos(angles[1]);
+    return crosses_pitch_limit(im.reference_angles, angles) ? -c : c;
+}
+
+// pitch_function's sign (and NaN) without its cosine: the written-out ERK's root test reads
+// nothing else (it hands a sign change to ARKODE, which locates it with pitch_function).
+double pitch_sign(const double *y, void *user) {
+    const IntegratorImpl &im = *static_cast<const IntegratorImpl *>(user);
+    if (near_level_turn(im.start_state, im.reference_angles[1], y)) return 1.0;
+    double angles[3];
+    principal_angles(y, angles);
+    const double c = principal_cos_sign(angles[1]);
     return crosses_pitch_limit(im.reference_angles, angles) ? -c : c;
 }
 
@@ -414,6 +468,7 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     // there (a root where the continuous pitch is not near 90 degrees is a jump of the nearest
     // triple over a long rotation: the reference moves on and the step goes on).
     principal_angles(y, im.reference_angles);
+    for (int i = 0; i < kStates; ++i) im.start_state[i] = y[i];
     bool pitch_crossed = false;
     double angles[3] = {0, 0, 0};
     int roots = 0;
@@ -435,7 +490,8 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             control.max_steps = im.max_internal_steps;
             const ErkResult r =
                 erk_advance(im.table, control, im.work, forces.h, y,
-                            std::cos(im.reference_angles[1]), state_rate, pitch_function, &im, v);
+                            principal_cos_sign(im.reference_angles[1]), state_rate, pitch_sign,
+                            &im, v);
             if (r.done) {
                 stats_.steps = r.steps;
                 stats_.rhs_evaluations = r.rhs_evaluations;

@@ -26,6 +26,14 @@ struct ForceProfile {
 // normalised on the way.
 Motion motion_of_state(const double y[kStates]);
 
+// Roll, pitch, yaw of a state's rotation on the principal branch (pitch in [-pi/2, pi/2]).
+void principal_angles(const double y[kStates], double a[3]);
+// Whether the motion from principal angles `before` to `after` took pitch through +-90 degrees.
+bool crosses_pitch_limit(const double before[3], const double after[3]);
+// True if y's rotation is so near start's (whose principal pitch is start_pitch, near level)
+// that crosses_pitch_limit is false for their angles: the pitch root's cheap pre-test.
+bool near_level_turn(const double start[kStates], double start_pitch, const double y[kStates]);
+
 struct IntegratorImpl;
 
 // One CVODE or ARKODE instance and its workspaces, made once; advance() allocates nothing.

@@ -1,8 +1,11 @@
 // The massless plant's right-hand side written out in scalars (plant_equations.hpp,
-// massless_twist_rate): the generic path's arithmetic (plant_equations_impl.hpp's assemble with
-// with_legs false and twist_rate's one-body solve) operation for operation and in Eigen's order
-// of summation, so the same bits, without Eigen's temporaries and product kernels (they cost
-// the massless step more than the arithmetic). tests/unit/test_plant_rhs.cpp checks the bits.
+// massless_twist_rate): the generic path's equations (plant_equations_impl.hpp's assemble with
+// with_legs false and twist_rate's one-body solve) in a second, cheaper formulation: the
+// platform's gyroscopic moment in its own axes (w_b x I w_b, w_b = R^T w) instead of its world
+// inertia R I R^T, and the moments about the centre of mass, where gravity and the centripetal
+// force have none (the generic path adds c x F about the origin and takes it off again). The
+// legs' arms, axes and lengths are the generic path's bits; the twist rate differs by rounding
+// (tests/unit/test_plant_rhs.cpp: within 1e-14 of its terms' scale, one 1 ms step within 1e-13).
 #include <cmath>
 
 #include "plant/plant_equations.hpp"
@@ -50,35 +53,16 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
     const double com[3] = {d.platform_com[0], d.platform_com[1], d.platform_com[2]};
     double c[3];
     times(R, com, c);
-    // The platform's world inertia (R I) R^T, and I omega.
-    const Mat3 &I = d.platform_inertia;
-    Mat3 RI, I_world;
-    #pragma GCC unroll 3
-    for (int i = 0; i < 3; ++i)
-        #pragma GCC unroll 3
-        for (int j = 0; j < 3; ++j)
-            RI(i, j) = row_sum(i, R(i, 0) * I(0, j), R(i, 1) * I(1, j), R(i, 2) * I(2, j));
-    #pragma GCC unroll 3
-    for (int i = 0; i < 3; ++i)
-        #pragma GCC unroll 3
-        for (int j = 0; j < 3; ++j)
-            I_world(i, j) = row_sum(i, RI(i, 0) * R(j, 0), RI(i, 1) * R(j, 1), RI(i, 2) * R(j, 2));
-    double I_omega[3];
-    times(I_world, w, I_omega);
-    // Applied and velocity-product force at the centre of mass, moments about the origin.
-    double wc[3], wwc[3], head[3], tail[3], c_f[3], w_Iw[3];
-    cross(w, c, wc);
-    cross(w, wc, wwc);
-    const double mass = d.platform_mass;
-    #pragma GCC unroll 3
-    for (int i = 0; i < 3; ++i) head[i] = mass * (d.gravity[i] - wwc[i]);
-    cross(c, head, c_f);
-    cross(w, I_omega, w_Iw);
-    #pragma GCC unroll 3
-    for (int i = 0; i < 3; ++i) tail[i] = c_f[i] - w_Iw[i];
-    // The legs' axial forces (place_leg with leg_configuration's axis and length; R b summed from
-    // the left as plant_bodies' rotate sums it).
+    // The gyroscopic moment in the platform's axes, w_b x (I w_b) with w_b = R^T w: the world's
+    // w x (R I R^T w) turned back, without forming the world inertia R I R^T.
+    double w_body[3], I_w_body[3], gyroscopic[3];
+    times_transposed(R, w, w_body);
+    times(d.platform_inertia, w_body, I_w_body);
+    cross(w_body, I_w_body, gyroscopic);
+    // The legs' axial forces, their sum and their moments about the origin (place_leg with
+    // leg_configuration's axis and length; R b summed from the left as plant_bodies' rotate).
     const LegParameters &legs = d.legs;
+    double legs_force[3] = {0, 0, 0}, legs_moment[3] = {0, 0, 0};
     for (int k = 0; k < STEWART_LEGS; ++k) {
         LegConfiguration &leg = e.legs[k];
         double arm[3], dv[3];
@@ -102,26 +86,33 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
         const double F = force[k];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
-            head[i] += F * n[i];
-            tail[i] += F * arm_n[i];
+            legs_force[i] += F * n[i];
+            legs_moment[i] += F * arm_n[i];
             leg.arm[i] = arm[i];
             leg.n[i] = n[i];
         }
         leg.length = length;
         leg.inverse_length = inverse_length;
     }
-    // One rigid body: I_c alpha = T - c x F (moments about the origin), a = F/m - alpha x c.
-    double c_F[3], moment[3], local[3], local_alpha[3], alpha[3], alpha_c[3];
-    cross(c, head, c_F);
+    // One rigid body about its centre of mass: I_b alpha_b = R^T (T_legs - c x F_legs) - w_b x
+    // I_b w_b (gravity and the centripetal force act at the centre: no moment about it), and the
+    // origin's a = g + F_legs / m - w x (w x c) - alpha x c.
+    double c_F[3], moment[3], local[3], local_alpha[3], alpha[3], alpha_c[3], wc[3], wwc[3];
+    cross(c, legs_force, c_F);
     #pragma GCC unroll 3
-    for (int i = 0; i < 3; ++i) moment[i] = tail[i] - c_F[i];
+    for (int i = 0; i < 3; ++i) moment[i] = legs_moment[i] - c_F[i];
     times_transposed(R, moment, local);
+    #pragma GCC unroll 3
+    for (int i = 0; i < 3; ++i) local[i] -= gyroscopic[i];
     times(d.platform_inertia_inverse, local, local_alpha);
     times(R, local_alpha, alpha);
     cross(alpha, c, alpha_c);
+    cross(w, c, wc);
+    cross(w, wc, wwc);
+    const double inverse_mass = 1.0 / d.platform_mass;
     #pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) {
-        e.twist_rate[i] = head[i] / mass - alpha_c[i];
+        e.twist_rate[i] = d.gravity[i] + legs_force[i] * inverse_mass - wwc[i] - alpha_c[i];
         e.twist_rate[3 + i] = alpha[i];
     }
     e.fault = LegFault::None;

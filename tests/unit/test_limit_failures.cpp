@@ -3,9 +3,12 @@
 // without the condition): the same joint and interference bits on random poses far from the
 // limits and on poses put on the very edge of one (the limit or the leg diameter set to the
 // pose's own widest angle or closest distance, a few ulps either way), one limit for all legs
-// and one per leg.
+// and one per leg; and the plant's verdicts at a quaternion's rotation (platform_limit_failures
+// with a rotation) against the full check at that rotation's roll, pitch, yaw: the same verdicts
+// from 1e-12 (rad, m) of a limit on, where only rounding tells them apart.
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 
 #include "kinematics/closed_form.hpp"
 #include "limits/limit_check.hpp"
@@ -152,6 +155,80 @@ void test_extreme_limits(void) {
     TEST_ASSERT_EQUAL_INT(0, differing);
 }
 
+// A random rotation (a normalised random quaternion, as the plant's state gives it) and its
+// principal roll, pitch, yaw (as the plant's angles_of_rotation on the principal branch).
+Eigen::Matrix3d random_rotation(uint64_t &rng, double spread, double angles[3]) {
+    Eigen::Quaterniond q(1.0, uniform(rng, -spread, spread), uniform(rng, -spread, spread),
+                         uniform(rng, -spread, spread));
+    q.normalize();
+    const Eigen::Matrix3d R = q.toRotationMatrix();
+    angles[0] = std::atan2(R(2, 1), R(2, 2));
+    angles[1] = std::asin(std::fmax(-1.0, std::fmin(1.0, -R(2, 0))));
+    angles[2] = std::atan2(R(1, 0), R(0, 0));
+    return R;
+}
+
+// The verdicts at a rotation against the full check at its angles: on poses far from and beyond
+// the limits, equal; with a limit and the diameter moved onto the pose's own widest angle and
+// closest distance and then `offset` either way, equal from |offset| >= 1e-12 on (the rotations
+// differ by a few roundings, 1e-16, the angles and distances by as little).
+void test_rotation_verdicts(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
+    const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
+    uint64_t rng = 4242;
+    int differing = 0, failing = 0;
+    for (int n = 0; n < 40000; ++n) {
+        double q[6];
+        const Eigen::Matrix3d R = random_rotation(rng, n % 2 ? 0.05 : 0.5, q + 3);
+        for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -0.3, 0.3);
+        q[2] += params.home_height;
+        const int expected = full_verdict(c, q);
+        failing += expected != 0;
+        differing += stewart::platform_limit_failures(c, Eigen::Vector3d(q[0], q[1], q[2]), R) !=
+                     expected;
+    }
+    TEST_ASSERT_EQUAL_INT(0, differing);
+    TEST_ASSERT_TRUE(failing > 1000);
+    const double offsets[] = {-1e-9, -1e-11, -1e-12, 0.0, 1e-12, 1e-11, 1e-9};
+    int at_rounding = 0, checks = 0;
+    for (int n = 0; n < 2000; ++n) {
+        double q[6];
+        const Eigen::Matrix3d R = random_rotation(rng, 0.15, q + 3);
+        for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -0.15, 0.15);
+        q[2] += params.home_height;
+        stewart_params wide = params;
+        wide.base_joint_limit = wide.platform_joint_limit = M_PI;
+        wide.leg_diameter = 0.0;
+        stewart_limits_output out;
+        stewart::check_platform_limits(stewart::limit_constants(wide, g, HUGE_VAL), q, out, false);
+        for (double offset : offsets) {
+            for (int which = 0; which < 3; ++which) {  // the base's, the platform's, the diameter
+                stewart_params edge = params;
+                edge.base_joint_limit = edge.platform_joint_limit = M_PI / 2;
+                edge.leg_diameter = 0.0;
+                const int index = (which == 0   ? STEWART_LIMIT_BASE_JOINT
+                                   : which == 1 ? STEWART_LIMIT_PLATFORM_JOINT
+                                                : STEWART_LIMIT_INTERFERENCE) - 1;
+                const double value = which < 2 ? M_PI - out.margin[index] : out.margin[index];
+                (which == 0 ? edge.base_joint_limit
+                 : which == 1 ? edge.platform_joint_limit : edge.leg_diameter) = value + offset;
+                const stewart::LimitConstants ce = stewart::limit_constants(edge, g, HUGE_VAL);
+                const bool same = stewart::platform_limit_failures(
+                                      ce, Eigen::Vector3d(q[0], q[1], q[2]), R) ==
+                                  full_verdict(ce, q);
+                ++checks;
+                if (offset == 0.0) at_rounding += !same;
+                else differing += !same;
+            }
+        }
+    }
+    std::printf("%d of %d verdicts on the very edge differ at rounding distance\n", at_rounding,
+                checks / 7);
+    TEST_ASSERT_EQUAL_INT(0, differing);
+}
+
 }  // namespace
 
 void setUp(void) {}
@@ -162,5 +239,6 @@ int main(void) {
     RUN_TEST(test_far_and_beyond);
     RUN_TEST(test_on_the_edge);
     RUN_TEST(test_extreme_limits);
+    RUN_TEST(test_rotation_verdicts);
     return UNITY_END();
 }

@@ -1,14 +1,21 @@
 // White-box test of the massless plant's written-out right-hand side (fd::massless_twist_rate,
-// csrc/plant/plant_massless.cpp) against the generic equations it copies (fd::twist_rate on the
-// same massless model: plant_equations_impl.hpp's assemble and one-body solve): bit for bit, on
-// random states far from home (any rotation, fast motion), random forces, with and without a
-// payload off the platform's centre (a centre of mass off the origin and a full inertia), and
-// the same fault for a leg of zero length; and the state's rotation (fd::motion_of_state, written
-// out) against Eigen's quaternion.
+// csrc/plant/plant_massless.cpp) against the generic equations (fd::twist_rate on the same
+// massless model: plant_equations_impl.hpp's assemble and one-body solve), a second formulation
+// of the same physics (the world inertia R I R^T and the moments of gravity and the legs about
+// the origin there; the platform's axes and moments about the centre of mass here): the legs'
+// arms, axes and lengths bit for bit, the twist rate within kRateBound of its terms' scale, and
+// one 1 ms ERK 4(3) step (plant_erk.hpp, fixed steps) from each within kStepBound of the state's
+// scale (the plant's agreed bound), on random states far from home (any rotation, fast motion),
+// random forces, with and without a payload off the platform's centre (a centre of mass off the
+// origin and a full inertia); the same fault for a leg of zero length; the state's rotation
+// (fd::motion_of_state, written out) against Eigen's quaternion, bit for bit; and the pitch
+// root's pre-test (fd::near_level_turn) against the full crossing test.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+
+#include <arkode/arkode_butcher_erk.h>
 
 #include "plant/plant_integrator.hpp"
 #include "stewart/stewart.h"
@@ -25,8 +32,39 @@ double uniform(uint64_t &state, double a, double b) {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// Both evaluations of one state, compared bit for bit; the number of differing values.
-int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const double force[6]) {
+// The two formulations' twist rates may differ by a few roundings of their largest term (the
+// forces over the mass, the moments over the inertia; 20,000 random states: at most 3.1e-16 of
+// that scale): a wrong term (a gyroscopic moment of the wrong sign, a lever arm about the wrong
+// point) is off by 1e-3 or more of it.
+constexpr double kRateBound = 1e-14;
+// One 1 ms step from the same state within 1e-13 of the state's scale (max(1, |y|)).
+constexpr double kStepBound = 1e-13;
+
+struct Worst {
+    double rate = 0, step = 0;  // largest differences seen, relative to their scales
+};
+
+double norm3(const double *v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// The scale of a twist rate's terms: |g| + (sum |F| + |the centripetal and angular terms|) for
+// the linear part, |I^-1| (sum |F| |arm| + |w|^2 |I|) for the angular part, over the platform.
+void rate_scales(const fd::DynamicsModel &d, const stewart::Motion &m, const fd::Evaluation &e,
+                 const double force[STEWART_LEGS], double &linear, double &angular) {
+    double forces = 0, moments = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        forces += std::fabs(force[k]);
+        moments += std::fabs(force[k]) * (e.legs[k].arm.norm() + d.platform_com.norm());
+    }
+    const double w2 = m.omega.squaredNorm();
+    const double I = d.platform_inertia.norm(), I_inverse = d.platform_inertia_inverse.norm();
+    const double alpha = I_inverse * (moments + w2 * I);
+    linear = d.gravity.norm() + forces / d.platform_mass + (w2 + alpha) * d.platform_com.norm();
+    angular = alpha;
+}
+
+// Both evaluations of one state: the number of values out of their bounds; worst updated.
+int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const double force[6],
+                Worst &worst) {
     const stewart::Motion m = fd::motion_of_state(y);
     fd::Evaluation generic, written;
     const bool a = fd::twist_rate(d, m, force, generic);
@@ -34,12 +72,73 @@ int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const d
     if (a != b) return 1;
     if (!a) return generic.fault == written.fault && generic.fault_leg == written.fault_leg ? 0 : 1;
     int count = 0;
-    for (int i = 0; i < 6; ++i) count += !same_bits(generic.twist_rate[i], written.twist_rate[i]);
+    double linear, angular;
+    rate_scales(d, m, generic, force, linear, angular);
+    for (int i = 0; i < 6; ++i) {
+        const double off = std::fabs(generic.twist_rate[i] - written.twist_rate[i]) /
+                           (i < 3 ? linear : angular);
+        worst.rate = std::fmax(worst.rate, off);
+        count += !(off <= kRateBound);
+    }
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const fd::LegConfiguration &g = generic.legs[k], &w = written.legs[k];
         for (int i = 0; i < 3; ++i)
             count += !same_bits(g.arm[i], w.arm[i]) + !same_bits(g.n[i], w.n[i]);
         count += !same_bits(g.length, w.length) + !same_bits(g.inverse_length, w.inverse_length);
+    }
+    return count;
+}
+
+// The plant's state derivative (plant_integrator.cpp's state_rate) by either formulation.
+struct StepModel {
+    const fd::DynamicsModel *model;
+    const double *force;
+    bool written;
+};
+
+int state_rate(double, const double *y, double *y_dot, void *user) {
+    const StepModel &s = *static_cast<const StepModel *>(user);
+    fd::Evaluation e;
+    const stewart::Motion m = fd::motion_of_state(y);
+    if (!(s.written ? fd::massless_twist_rate(*s.model, m, s.force, e)
+                    : fd::twist_rate(*s.model, m, s.force, e)))
+        return 1;
+    const double w = y[3], x = y[4], yy = y[5], z = y[6], ox = y[10], oy = y[11], oz = y[12];
+    for (int i = 0; i < 3; ++i) y_dot[i] = y[7 + i];
+    y_dot[3] = -0.5 * (ox * x + oy * yy + oz * z);
+    y_dot[4] = 0.5 * (w * ox + oy * z - oz * yy);
+    y_dot[5] = 0.5 * (w * oy + oz * x - ox * z);
+    y_dot[6] = 0.5 * (w * oz + ox * yy - oy * x);
+    for (int i = 0; i < 6; ++i) y_dot[7 + i] = e.twist_rate[i];
+    return 0;
+}
+
+double no_root(const double *, void *) { return 1; }
+
+// One 1 ms step of ERK 4(3) with `steps` fixed steps from y by both formulations: the number of
+// states out of kStepBound; worst updated.
+int step_differences(const fd::DynamicsModel &d, const double y[fd::kStates],
+                     const double force[6], int steps, Worst &worst) {
+    fd::ErkTable table;
+    TEST_ASSERT_TRUE(fd::load_erk_table(ARKODE_ZONNEVELD_5_3_4, table));
+    fd::ErkControl control;
+    control.fixed_steps = steps;
+    control.max_steps = 10;
+    fd::ErkWork work;
+    double out[2][fd::kStates];
+    for (int written = 0; written < 2; ++written) {
+        StepModel s{&d, force, written != 0};
+        if (!fd::erk_advance(table, control, work, 1e-3, y, 1, state_rate, no_root, &s,
+                             out[written]).done)
+            return written == 0 ? 0 : 1;  // a leg through zero length: both or neither
+    }
+    double scale = 1;
+    for (int i = 0; i < fd::kStates; ++i) scale = std::fmax(scale, std::fabs(out[0][i]));
+    int count = 0;
+    for (int i = 0; i < fd::kStates; ++i) {
+        const double off = std::fabs(out[0][i] - out[1][i]) / scale;
+        worst.step = std::fmax(worst.step, off);
+        count += !(off <= kStepBound);
     }
     return count;
 }
@@ -50,7 +149,8 @@ void check_model(const stewart_params &params) {
     TEST_ASSERT_NOT_NULL_MESSAGE(model, message);
     const fd::DynamicsModel d = fd::dynamics_model(*model, STEWART_MASSLESS);
     uint64_t rng = 12345;
-    int differing = 0;
+    int differing = 0, step_differing = 0;
+    Worst worst;
     for (int n = 0; n < 20000; ++n) {
         double y[fd::kStates], force[STEWART_LEGS];
         y[0] = uniform(rng, -0.2, 0.2);
@@ -60,20 +160,24 @@ void check_model(const stewart_params &params) {
         for (int i = 3; i < 7; ++i) y[i] = uniform(rng, -1.5, 1.5);
         for (int i = 7; i < 13; ++i) y[i] = uniform(rng, -20, 20);
         for (double &f : force) f = uniform(rng, -5e4, 5e4);
-        differing += differences(d, y, force);
+        differing += differences(d, y, force, worst);
+        if (n % 10 == 0) step_differing += step_differences(d, y, force, 1 + n % 3, worst);
     }
     // A leg of zero length: the platform point of leg 1 on its base point.
     double y[fd::kStates] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     const fd::Vec3 gap = d.legs.base_points.col(0) - d.legs.platform_points.col(0);
     for (int i = 0; i < 3; ++i) y[i] = gap[i];
     const double zero[STEWART_LEGS] = {0};
-    differing += differences(d, y, zero);
+    differing += differences(d, y, zero, worst);
     stewart::Motion m = fd::motion_of_state(y);
     fd::Evaluation e;
     TEST_ASSERT_FALSE(fd::massless_twist_rate(d, m, zero, e));
     TEST_ASSERT_EQUAL_INT(0, e.fault_leg);
     stewart_model_free(model);
+    std::printf("twist rate off by %.3g of its scale, one step by %.3g of the state's\n",
+                worst.rate, worst.step);
     TEST_ASSERT_EQUAL_INT(0, differing);
+    TEST_ASSERT_EQUAL_INT(0, step_differing);
 }
 
 // fd::motion_of_state's rotation, written out, against Eigen's quaternion (which it copies), bit
@@ -92,6 +196,39 @@ void test_rotation_of_state(void) {
             for (int j = 0; j < 3; ++j) differing += !same_bits(expected(i, j), R(i, j));
     }
     TEST_ASSERT_EQUAL_INT(0, differing);
+}
+
+// fd::near_level_turn (the pitch root's pre-test) against the full crossing test: wherever it
+// holds, the principal angles are finite and crosses_pitch_limit is false. Starts anywhere up to
+// +-90 degrees of pitch, end states turned by up to 0.3 rad about random axes (the pre-test's
+// edge is 0.1 rad from a start within 1.2 rad of level), quaternions of any scale and sign.
+void test_pitch_pre_test(void) {
+    uint64_t rng = 31337;
+    int held = 0, wrong = 0;
+    for (int n = 0; n < 200000; ++n) {
+        const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
+                     yaw = uniform(rng, -M_PI, M_PI);
+        const Eigen::Quaterniond q0 = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                      Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+        Eigen::Vector3d axis(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        if (!(axis.norm() > 1e-3)) continue;
+        const Eigen::Quaterniond turn(Eigen::AngleAxisd(uniform(rng, 0, 0.3), axis.normalized()));
+        const Eigen::Quaterniond q1 = turn * q0;
+        const double s0 = std::pow(10.0, uniform(rng, -2, 2)), s1 = uniform(rng, -3, 3);
+        double start[fd::kStates] = {0}, y[fd::kStates] = {0};
+        const double c0[4] = {q0.w(), q0.x(), q0.y(), q0.z()}, c1[4] = {q1.w(), q1.x(), q1.y(), q1.z()};
+        for (int i = 0; i < 4; ++i) start[3 + i] = s0 * c0[i], y[3 + i] = s1 * c1[i];
+        double before[3], after[3];
+        fd::principal_angles(start, before);
+        fd::principal_angles(y, after);
+        if (!fd::near_level_turn(start, before[1], y)) continue;
+        ++held;
+        wrong += !std::isfinite(after[1]) || fd::crosses_pitch_limit(before, after);
+    }
+    std::printf("the pitch pre-test held on %d of 200,000 turns\n", held);
+    TEST_ASSERT_EQUAL_INT(0, wrong);
+    TEST_ASSERT_TRUE(held > 20000);
 }
 
 void test_default_platform(void) {
@@ -117,6 +254,7 @@ void tearDown(void) {}
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_rotation_of_state);
+    RUN_TEST(test_pitch_pre_test);
     RUN_TEST(test_default_platform);
     RUN_TEST(test_payload_off_centre);
     return UNITY_END();
