@@ -37,43 +37,40 @@ struct Equations {
     }
 }
 
-// The spin rate w of a leg body's frame (x, y = n x x, z = n; x = (s x n) / mu, mu = |s x n|,
-// s its Cardan's cross arm) and its rate's velocity-product part w_dot (zero accelerations of
-// the platform), as plant_bodies_impl.hpp's frame_rates: w = (-x.s_dot + (y x s).n_dot) / mu.
-// g = (y x s) / mu is returned (the spin acceleration's share of n_ddot).
-[[gnu::always_inline]] inline void spin_rates(const Vec3 &n, const Vec3 &n_dot, const Vec3 &n_ddot,
-                                              const Vec3 &s, const Vec3 &s_dot,
-                                              const Vec3 &s_ddot, const Vec3 &x, double mu,
-                                              double &w, double &w_dot, Vec3 &g) {
-    const double inv_mu = 1.0 / mu;
-    const Vec3 y = n.cross(x);
-    const Vec3 u_dot = s_dot.cross(n) + s.cross(n_dot);
-    const double mu_dot = x.dot(u_dot);
-    const Vec3 x_dot = (u_dot - mu_dot * x) * inv_mu;
-    const Vec3 y_dot = n_dot.cross(x) + n.cross(x_dot);
-    const Vec3 y_cross_s = y.cross(s);
-    w = (-x.dot(s_dot) + y_cross_s.dot(n_dot)) * inv_mu;
-    const double numerator_dot = -x_dot.dot(s_dot) - x.dot(s_ddot) +
-                                 (y_dot.cross(s) + y.cross(s_dot)).dot(n_dot) +
-                                 y_cross_s.dot(n_ddot);
-    w_dot = (numerator_dot - w * mu_dot) * inv_mu;
-    g = y_cross_s * inv_mu;
-}
+// The spin of a leg body about the leg n (its frame x, y = n x x, z = n with x = (s x n) / mu,
+// mu = |s x n|, s its Cardan's cross arm turning at omega_s: the platform's, or zero on the
+// base). The Cardan lets the body turn relative to s's body about s and x only, so e = s x x is
+// normal to their relative angular velocity: e.(n x n_dot + w n - omega_s) = 0, with e.n = -mu
+// and e x n = (s.n) x:
+//   w = g.n_dot - spin.omega_s,   g = (s.n) x / mu,   spin = e / mu,
+// and its rate's velocity-product part (zero accelerations of the platform), from the same
+// relation differentiated (x_dot = omega_b x x, s_dot = omega_s x s):
+//   w_dot = g.n_ddot + (e_dot.(omega_b - omega_s) + w e.n_dot) / mu.
+// The same quantities as plant_bodies_impl.hpp's frame_rates and leg_acceleration_map (g, the
+// spin) by a shorter way (so equal to rounding).
+struct Spin {
+    double w, w_dot;
+    Vec3 g, spin, omega;  // omega: the body's angular velocity
+};
 
-// The same for the base Cardan's fixed arm (s_dot = s_ddot = 0).
-[[gnu::always_inline]] inline void fixed_spin_rates(const Vec3 &n, const Vec3 &n_dot,
-                                                    const Vec3 &n_ddot, const Vec3 &s,
-                                                    const Vec3 &x, double mu, double &w,
-                                                    double &w_dot, Vec3 &g) {
+[[gnu::always_inline]] inline Spin spin_of(const Vec3 &n, const Vec3 &n_dot, const Vec3 &n_ddot,
+                                           const Vec3 &s, const Vec3 &omega_s, bool turning,
+                                           const Vec3 &x, double mu) {
+    Spin r;
     const double inv_mu = 1.0 / mu;
-    const Vec3 y = n.cross(x);
-    const Vec3 u_dot = s.cross(n_dot);
-    const double mu_dot = x.dot(u_dot);
-    const Vec3 x_dot = (u_dot - mu_dot * x) * inv_mu;
-    const Vec3 y_dot = n_dot.cross(x) + n.cross(x_dot);
-    g = y.cross(s) * inv_mu;
-    w = g.dot(n_dot);
-    w_dot = (y_dot.cross(s).dot(n_dot) * inv_mu - w * mu_dot * inv_mu) + g.dot(n_ddot);
+    const Vec3 e = s.cross(x);
+    r.g = (s.dot(n) * inv_mu) * x;
+    r.spin = e * inv_mu;
+    r.w = r.g.dot(n_dot);
+    if (turning) r.w -= r.spin.dot(omega_s);
+    r.omega = n.cross(n_dot) + r.w * n;
+    Vec3 e_dot = s.cross(r.omega.cross(x)), relative = r.omega;
+    if (turning) {
+        e_dot += omega_s.cross(s).cross(x);
+        relative -= omega_s;
+    }
+    r.w_dot = r.g.dot(n_ddot) + (e_dot.dot(relative) + r.w * e.dot(n_dot)) * inv_mu;
+    return r;
 }
 
 // Leg k's two bodies and its force F: the point mass it adds at its platform point (weight into
@@ -92,18 +89,13 @@ struct Equations {
     const double L_ddot = n.dot(P_ddot) + L * n_dot.squaredNorm();
     const Vec3 n_ddot = (P_ddot - L_ddot * n - 2.0 * L_dot * n_dot) * inv_L;
 
-    double w_c, w_dot_c, w_p, w_dot_p;
-    Vec3 g_c, g_p;
-    fixed_spin_rates(n, n_dot, n_ddot, d.legs.base_arm.col(k), leg.cylinder_x, leg.cylinder_sin,
-                     w_c, w_dot_c, g_c);
-    const Vec3 &s = leg.piston_arm;
-    const Vec3 s_dot = m.omega.cross(s);
-    const Vec3 s_ddot = m.omega.cross(s_dot);
-    spin_rates(n, n_dot, n_ddot, s, s_dot, s_ddot, leg.piston_x, leg.piston_sin, w_p, w_dot_p,
-               g_p);
-    const Vec3 h_c = (g_c - n.dot(g_c) * n) * inv_L;  // N g
-    const Vec3 h_p = (g_p - n.dot(g_p) * n) * inv_L;
-    const Vec3 spin = s.cross(leg.piston_x) / leg.piston_sin;
+    const Spin cyl = spin_of(n, n_dot, n_ddot, d.legs.base_arm.col(k), m.omega, false,
+                             leg.cylinder_x, leg.cylinder_sin);
+    const Spin pis = spin_of(n, n_dot, n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
+                             leg.piston_sin);
+    const double w_c = cyl.w, w_dot_c = cyl.w_dot, w_p = pis.w, w_dot_p = pis.w_dot;
+    const Vec3 h_c = cyl.g * inv_L, h_p = pis.g * inv_L;  // N g (g is normal to n)
+    const Vec3 &spin = pis.spin;
 
     const double m_c = d.cylinder_mass, m_p = d.piston_mass;
     const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
