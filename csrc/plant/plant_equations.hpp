@@ -58,6 +58,13 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
 bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e);
 
+// base_wrench of body_motions' bodies for the platform motion m with its accelerations (e its
+// configuration, twist_rate's evaluation), for the plant's scalar: in closed form for
+// axisymmetric leg bodies (plant_full_rhs.cpp, without the 13 bodies' motions; equal to rounding),
+// otherwise those two.
+void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
+                 Vec3 &torque);
+
 // twist_rate<double> for the massless model (d.with_legs false), written out in scalars with the
 // same arithmetic in the same order (plant_massless.cpp): the same bits, 30 % fewer
 // instructions. The plant's integrator calls it for every massless right-hand side.

@@ -73,6 +73,27 @@ struct Spin {
     return r;
 }
 
+// The leg's platform point P = position + arm, its rates, and the leg axis's rates (L n = P - a_k
+// twice differentiated, as plant_bodies_impl.hpp's axis_rates), for the platform's motion m
+// with its accelerations (accelerating) or at zero twist rate.
+struct AxisRates {
+    Vec3 P_dot, P_ddot, n_dot, n_ddot;
+};
+
+[[gnu::always_inline]] inline AxisRates axis_rates(const LegConfiguration &leg, const Motion &m,
+                                                   bool accelerating) {
+    AxisRates r;
+    const Vec3 &n = leg.n, &arm = leg.arm;
+    r.P_dot = m.velocity + m.omega.cross(arm);
+    r.P_ddot = m.omega.cross(m.omega.cross(arm));
+    if (accelerating) r.P_ddot += m.acceleration + m.alpha.cross(arm);
+    const double L_dot = n.dot(r.P_dot);
+    r.n_dot = (r.P_dot - L_dot * n) * leg.inverse_length;
+    const double L_ddot = n.dot(r.P_ddot) + leg.length * r.n_dot.squaredNorm();
+    r.n_ddot = (r.P_ddot - L_ddot * n - 2.0 * L_dot * r.n_dot) * leg.inverse_length;
+    return r;
+}
+
 // Leg k's two bodies and its force F: the point mass it adds at its platform point (weight into
 // point_mass), its three rank-one terms into q.M and its generalised forces into q.rhs.
 [[gnu::always_inline]] inline void add_axisymmetric_leg(const DynamicsModel &d, int k,
@@ -80,15 +101,10 @@ struct Spin {
                                                         const Motion &m, double F,
                                                         double &point_mass, Equations &q) {
     const Vec3 &n = leg.n, &arm = leg.arm;
-    const double L = leg.length, inv_L = leg.inverse_length;
+    const double inv_L = leg.inverse_length;
     // The leg's axis and its rates at zero twist rate (the velocity products).
-    const Vec3 P_dot = m.velocity + m.omega.cross(arm);
-    const Vec3 P_ddot = m.omega.cross(m.omega.cross(arm));
-    const double L_dot = n.dot(P_dot);
-    const Vec3 n_dot = (P_dot - L_dot * n) * inv_L;
-    const double L_ddot = n.dot(P_ddot) + L * n_dot.squaredNorm();
-    const Vec3 n_ddot = (P_ddot - L_ddot * n - 2.0 * L_dot * n_dot) * inv_L;
-
+    const AxisRates r = axis_rates(leg, m, false);
+    const Vec3 &P_ddot = r.P_ddot, &n_dot = r.n_dot, &n_ddot = r.n_ddot;
     const Spin cyl = spin_of(n, n_dot, n_ddot, d.legs.base_arm.col(k), m.omega, false,
                              leg.cylinder_x, leg.cylinder_sin);
     const Spin pis = spin_of(n, n_dot, n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
@@ -211,14 +227,60 @@ bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
 
 bool axisymmetric(const Vec3 &principal) { return principal[0] == principal[1]; }
 
+bool fast_path(const DynamicsModel &d) {
+    return d.with_legs && !d.reference_equations && axisymmetric(d.cylinder_inertia) &&
+           axisymmetric(d.piston_inertia);
+}
+
+// base_wrench's terms of leg k's two bodies (minus what the base supplies to them beyond
+// gravity), from the axis's rates and the bodies' spins: I alpha + omega x I omega of a body is
+// a n x n_ddot + c w_dot n + c w n_dot (plant_full_rhs.cpp's header).
+void subtract_leg_wrench(const DynamicsModel &d, int k, const LegConfiguration &leg,
+                         const Motion &m, Vec3 &force, Vec3 &torque) {
+    const Vec3 &n = leg.n;
+    const AxisRates r = axis_rates(leg, m, true);
+    const Spin cyl = spin_of(n, r.n_dot, r.n_ddot, d.legs.base_arm.col(k), m.omega, false,
+                             leg.cylinder_x, leg.cylinder_sin);
+    const Spin pis = spin_of(n, r.n_dot, r.n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
+                             leg.piston_sin);
+    const double w_dot_p = pis.w_dot - pis.spin.dot(m.alpha);  // the platform arm's alpha x s
+    const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
+    const double a_c = d.cylinder_inertia[0], c_c = d.cylinder_inertia[2];
+    const double a_p = d.piston_inertia[0], c_p = d.piston_inertia[2];
+    const Vec3 cylinder_position = d.legs.base_points.col(k) + cc * n;
+    const Vec3 piston_position = m.position + leg.arm - cp * n;
+    const Vec3 f_c = d.cylinder_mass * (cc * r.n_ddot - d.gravity);
+    const Vec3 f_p = d.piston_mass * (r.P_ddot - cp * r.n_ddot - d.gravity);
+    force -= f_c + f_p;
+    torque -= cylinder_position.cross(f_c) + piston_position.cross(f_p) +
+              (a_c + a_p) * n.cross(r.n_ddot) + (c_c * cyl.w_dot + c_p * w_dot_p) * n +
+              (c_c * cyl.w + c_p * pis.w) * r.n_dot;
+}
+
 }  // namespace
 
 bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e) {
-    if (d.with_legs && !d.reference_equations && axisymmetric(d.cylinder_inertia) &&
-        axisymmetric(d.piston_inertia))
-        return axisymmetric_twist_rate(d, m, force, e);
+    if (fast_path(d)) return axisymmetric_twist_rate(d, m, force, e);
     return twist_rate<double>(d, m, force, e);
+}
+
+void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
+                 Vec3 &torque) {
+    if (!fast_path(d)) {
+        Motion bodies[13];
+        body_motions(d, m, e, bodies);
+        base_wrench(d, bodies, force, torque);
+        return;
+    }
+    // The platform as base_wrench's body 0 (body_motions' platform motion).
+    const Vec3 c = m.rotation * d.platform_com;
+    const Mat3 I = m.rotation * d.platform_inertia * m.rotation.transpose();
+    const Vec3 acceleration = m.acceleration + m.alpha.cross(c) + m.omega.cross(m.omega.cross(c));
+    const Vec3 f = d.platform_mass * (acceleration - d.gravity);
+    force = -f;
+    torque = -((m.position + c).cross(f) + I * m.alpha + m.omega.cross(I * m.omega));
+    for (int k = 0; k < STEWART_LEGS; ++k) subtract_leg_wrench(d, k, e.legs[k], m, force, torque);
 }
 
 }  // namespace fd
