@@ -16,6 +16,7 @@
 // triangle and solved by a written-out LDL^T. Equal to the template's result to rounding
 // (tests/unit/test_plant_full_rhs.cpp holds the bound on random states); leg bodies that are not
 // axisymmetric, the massless model and the dual scalar take the template.
+#include "plant/plant_bodies_impl.hpp"  // leg_configuration inlined into the right-hand side
 #include "plant/plant_equations.hpp"
 
 namespace stewart {
@@ -76,13 +77,13 @@ struct Spin {
 // The leg's platform point P = position + arm, its rates, and the leg axis's rates (L n = P - a_k
 // twice differentiated, as plant_bodies_impl.hpp's axis_rates), for the platform's motion m
 // with its accelerations (accelerating) or at zero twist rate.
-struct AxisRates {
+struct LegRates {
     Vec3 P_dot, P_ddot, n_dot, n_ddot;
 };
 
-[[gnu::always_inline]] inline AxisRates axis_rates(const LegConfiguration &leg, const Motion &m,
+[[gnu::always_inline]] inline LegRates leg_rates(const LegConfiguration &leg, const Motion &m,
                                                    bool accelerating) {
-    AxisRates r;
+    LegRates r;
     const Vec3 &n = leg.n, &arm = leg.arm;
     r.P_dot = m.velocity + m.omega.cross(arm);
     r.P_ddot = m.omega.cross(m.omega.cross(arm));
@@ -103,7 +104,7 @@ struct AxisRates {
     const Vec3 &n = leg.n, &arm = leg.arm;
     const double inv_L = leg.inverse_length;
     // The leg's axis and its rates at zero twist rate (the velocity products).
-    const AxisRates r = axis_rates(leg, m, false);
+    const LegRates r = leg_rates(leg, m, false);
     const Vec3 &P_ddot = r.P_ddot, &n_dot = r.n_dot, &n_ddot = r.n_ddot;
     const Spin cyl = spin_of(n, n_dot, n_ddot, d.legs.base_arm.col(k), m.omega, false,
                              leg.cylinder_x, leg.cylinder_sin);
@@ -238,7 +239,7 @@ bool fast_path(const DynamicsModel &d) {
 void subtract_leg_wrench(const DynamicsModel &d, int k, const LegConfiguration &leg,
                          const Motion &m, Vec3 &force, Vec3 &torque) {
     const Vec3 &n = leg.n;
-    const AxisRates r = axis_rates(leg, m, true);
+    const LegRates r = leg_rates(leg, m, true);
     const Spin cyl = spin_of(n, r.n_dot, r.n_ddot, d.legs.base_arm.col(k), m.omega, false,
                              leg.cylinder_x, leg.cylinder_sin);
     const Spin pis = spin_of(n, r.n_dot, r.n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
