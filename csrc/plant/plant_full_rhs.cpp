@@ -206,7 +206,12 @@ bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
         const Vec3 &arm = e.legs[k].arm;
         total += point_mass;
         first += point_mass * arm;
-        second += point_mass * (arm.squaredNorm() * Mat3::Identity() - arm * arm.transpose());
+        // its second moment |arm|^2 1 - arm arm^T, the upper triangle only (M's)
+        const Vec3 weighted = point_mass * arm;
+        const double squared = weighted.dot(arm);
+        for (int i = 0; i < 3; ++i)
+            for (int j = i; j < 3; ++j) second(i, j) -= weighted[i] * arm[j];
+        for (int i = 0; i < 3; ++i) second(i, i) += squared;
     }
     // [total 1, -[first]x; [first]x, I_platform + second]
     second += I_platform;
