@@ -128,7 +128,7 @@ stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evalu
     }
     m.acceleration = known->twist_rate.head<3>();
     m.alpha = known->twist_rate.tail<3>();
-    fd::body_motions(p.dynamics, m, *known, bodies);
+    if (bodies) fd::body_motions(p.dynamics, m, *known, bodies);  // nullptr: not wanted
     if (platform) *platform = m;
     return STEWART_OK;
 }
@@ -570,11 +570,11 @@ namespace {
 stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
                          int limit_bits, const LegOutputs *legs, stewart_plant_output *out) {
     fd::Evaluation e;
-    stewart::Motion bodies[STEWART_PLANT_BODIES], m;
-    const stewart_status s = all_bodies(*p, force, e, bodies, known, &m);
+    stewart::Motion m;
+    const stewart_status s = all_bodies(*p, force, e, nullptr, known, &m);
     if (s != STEWART_OK) return s;
-    fd::Vec3 f, t;
-    fd::base_wrench(p->dynamics, bodies, f, t);
+    fd::Vec3 f, t;  // the base wrench without the bodies' motions where it can (axisymmetric legs)
+    fd::base_wrench(p->dynamics, m, known ? *known : e, f, t);
 
     stewart_plant_output o{};
     o.time = p->time;

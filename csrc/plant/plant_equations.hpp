@@ -19,6 +19,9 @@ struct DynamicsModel {
     double cylinder_mass = 0, piston_mass = 0;
     Vec3 cylinder_inertia, piston_inertia;  // principal, leg-body axes
     Vec3 gravity;
+    // The double twist_rate takes the template formulation even for axisymmetric leg bodies
+    // (tests compare the two formulations through the plant's integrator).
+    bool reference_equations = false;
 };
 
 // DynamicsModel from a built stewart_model; fidelity STEWART_MASSLESS or STEWART_FULL.
@@ -47,6 +50,20 @@ bool reduced_equations(const DynamicsModel &d, const MotionT<S> &m, const S forc
 template <class S>
 bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWART_LEGS],
                 EvaluationT<S> &e);
+
+// twist_rate for the plant's scalar: with leg bodies whose principal inertias are axisymmetric
+// (Ixx == Iyy, every catalogue platform) the same equations in closed form (plant_full_rhs.cpp:
+// no rotation matrix per body, no 3 x 3 product; equal to twist_rate<double> to rounding);
+// otherwise, and for the massless model, twist_rate<double> itself.
+bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
+                Evaluation &e);
+
+// base_wrench of body_motions' bodies for the platform motion m with its accelerations (e its
+// configuration, twist_rate's evaluation), for the plant's scalar: in closed form for
+// axisymmetric leg bodies (plant_full_rhs.cpp, without the 13 bodies' motions; equal to rounding),
+// otherwise those two.
+void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
+                 Vec3 &torque);
 
 // twist_rate<double> for the massless model (d.with_legs false), written out in scalars with the
 // same arithmetic in the same order (plant_massless.cpp): the same bits, 30 % fewer
