@@ -36,9 +36,13 @@ from fmpy import simulate_fmu
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 POSE = ("x", "y", "z", "roll", "pitch", "yaw")
 SIMULATED_SECONDS = 1.0
-# The plant's statistics columns (stewart_outputs.h STEWART_PLANT_STEP_TABLE, the FMUs' Integer
-# outputs of the same names): how much work the integrator did, not what it computed.
-COUNTERS = {"steps", "rhs_evaluations", "nonlinear_iterations", "error_test_failures"}
+# The plant's statistics columns (stewart_outputs.h STEWART_PLANT_STEP_TABLE; the plant FMUs'
+# outputs of the same names, their totals, the last internal step's size and order): how much
+# work the integrator did, not what it computed.
+STEP_COUNTERS = ("steps", "rhs_evaluations", "nonlinear_iterations", "error_test_failures",
+                 "jacobian_evaluations")
+COUNTERS = {*STEP_COUNTERS, *(f"total_{c}" for c in STEP_COUNTERS), "last_step_size",
+            "last_order"}
 
 
 def read_csv(path):
