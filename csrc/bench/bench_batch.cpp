@@ -121,11 +121,12 @@ int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q
 }
 
 // The kinematic and massless levels on each kernel this CPU runs, repeats whole batches each: one
-// line per level and kernel, the median and the fastest batch (the least disturbed by other
-// processes on a shared machine). Returns 0, 1 where a solver cannot be made.
+// line per level and kernel, the median and with show_fastest the fastest batch (the least
+// disturbed by other processes on a shared machine; studies/bench/batches.py reads the median as
+// a line's last value). Returns 0, 1 where a solver cannot be made.
 int time_kernels(const stewart_model *model, size_t n, const std::vector<double> &q,
                  const std::vector<double> &q_dot, const std::vector<double> &q_ddot,
-                 int repeats) {
+                 int repeats, bool show_fastest) {
     const char *level_name[] = {"inverse kinematic", "inverse massless"};
     const char *path_name[] = {"scalar", "portable", "avx2"};
     InverseColumns columns(n);
@@ -146,7 +147,10 @@ int time_kernels(const stewart_model *model, size_t n, const std::vector<double>
                 &fastest);
             char name[64];
             std::snprintf(name, sizeof name, "%s %s", level_name[level], path_name[path]);
-            std::printf("%-30s %10.1f  (fastest %.1f)\n", name, ns, fastest);
+            if (show_fastest)
+                std::printf("%-30s %10.1f  (fastest %.1f)\n", name, ns, fastest);
+            else
+                std::printf("%-30s %10.1f\n", name, ns);
             stewart_inverse_free(inverse);
         }
     return 0;
@@ -171,7 +175,7 @@ int main(int argc, char **argv) {
     if (once) return one_batch(model, n, q, q_dot, q_ddot, std::atoi(argv[3]), argv[4]);
     const bool kernels_only = argc == 3 && std::string(argv[2]) == "--kernels";
     std::printf("# ns per row, median of whole batches of %zu rows (combined cue, 1 ms)\n", n);
-    if (kernels_only) return time_kernels(model, n, q, q_dot, q_ddot, 201);
+    if (kernels_only) return time_kernels(model, n, q, q_dot, q_ddot, 201, true);
 
     // (the kinematic level's lengths drive forward kinematics, the full level's forces the plant)
     const char *level_name[] = {"inverse kinematic", "inverse massless", "inverse full"};
@@ -191,7 +195,7 @@ int main(int argc, char **argv) {
     }
 
     // The closed-form levels on each kernel.
-    if (time_kernels(model, n, q, q_dot, q_ddot, level_repeats[0]) != 0) return 1;
+    if (time_kernels(model, n, q, q_dot, q_ddot, level_repeats[0], false) != 0) return 1;
 
     stewart_forward_options fo;
     stewart_forward_options_default(&fo);
