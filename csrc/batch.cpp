@@ -201,21 +201,25 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         const QuadModel model = quad_model(m->geometry, m->platform, m->gravity, m->params,
                                            d->options);
         // Blocks of four rows in order (a failing row's message keeps its place): the kernel
-        // writes the block, the scalar solve overwrites the rows it leaves. The last block, if
-        // short, through four-row copies (its last row repeated), so that a row's numbers do not
-        // depend on where a batch starts.
-        for (size_t block = 0; block < n; block += 4) {
-            const size_t count = n - block < 4 ? n - block : 4;
-            unsigned left;  // rows the scalar solve decides, bit r for row block + r
-            if (count == 4) {
-                const QuadRows rows = {q + 6 * block, q_dot ? q_dot + 6 * block : nullptr,
-                                       q_ddot ? q_ddot + 6 * block : nullptr};
-                left = closed_form_quad(path, model, rows, *out, block);
-            } else {
-                left = tail_block(path, model, q, q_dot, q_ddot, *out, block, count);
-            }
-            for (size_t r = 0; left && r < count; ++r)
-                if (left >> r & 1) solve_scalar(block + r);
+        // writes blocks in a run until one leaves rows to the scalar solve, which overwrites
+        // them. The last block, if short, through four-row copies (its last row repeated), so
+        // that a row's numbers do not depend on where a batch starts.
+        const size_t whole = n - n % 4;
+        for (size_t block = 0; block < whole;) {
+            const QuadRows rows = {q + 6 * block, q_dot ? q_dot + 6 * block : nullptr,
+                                   q_ddot ? q_ddot + 6 * block : nullptr};
+            unsigned left;  // rows the scalar solve decides, bit r for row last + r
+            const size_t run = closed_form_quad_run(path, model, rows, *out, block,
+                                                    (whole - block) / 4, left);
+            const size_t last = block + 4 * (run - 1);
+            for (size_t r = 0; left && r < 4; ++r)
+                if (left >> r & 1) solve_scalar(last + r);
+            block += 4 * run;
+        }
+        if (whole < n) {
+            const unsigned left = tail_block(path, model, q, q_dot, q_ddot, *out, whole, n - whole);
+            for (size_t r = 0; left && r < n - whole; ++r)
+                if (left >> r & 1) solve_scalar(whole + r);
         }
     }
     std::memcpy(d->message, log.first_message, sizeof log.first_message);

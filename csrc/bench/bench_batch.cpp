@@ -5,6 +5,8 @@
 // The kinematic and massless levels also on each kernel (batch_paths.hpp: "scalar", one
 // stewart_inverse_solve per row; "portable"; "avx2" where the CPU has it), in the same run.
 // usage: bench-batch [ROWS (6000)]
+//        bench-batch ROWS --kernels           the kinematic and massless levels on each kernel
+//                                             only (201 batches each)
 //        bench-batch ROWS --once LEVEL PATH   one batch only, LEVEL 0 or 1, PATH scalar, portable
 //                                             or avx2 (for callgrind --toggle-collect)
 #include <algorithm>
@@ -27,7 +29,8 @@ constexpr double kStep = 1e-3;  // [s] between rows
 
 // The median of `repeats` runs of batch, in ns per row (a failed batch aborts the program: a
 // benchmark of a refusal measures nothing).
-double median_ns_per_row(int repeats, size_t rows, const std::function<stewart_status()> &batch) {
+double median_ns_per_row(int repeats, size_t rows, const std::function<stewart_status()> &batch,
+                         double *fastest = nullptr) {
     std::vector<double> ns;
     for (int r = 0; r < repeats; ++r) {
         const auto start = bench::Clock::now();
@@ -39,6 +42,7 @@ double median_ns_per_row(int repeats, size_t rows, const std::function<stewart_s
         }
         ns.push_back(elapsed / rows);
     }
+    if (fastest) *fastest = *std::min_element(ns.begin(), ns.end());
     return bench::median(std::move(ns));
 }
 
@@ -116,6 +120,42 @@ int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q
     return s == STEWART_OK ? 0 : 1;
 }
 
+// The kinematic and massless levels on each kernel this CPU runs, repeats whole batches each: one
+// line per level and kernel, the median and with show_fastest the fastest batch (the least
+// disturbed by other processes on a shared machine; studies/bench/batches.py reads the median as
+// a line's last value). Returns 0, 1 where a solver cannot be made.
+int time_kernels(const stewart_model *model, size_t n, const std::vector<double> &q,
+                 const std::vector<double> &q_dot, const std::vector<double> &q_ddot,
+                 int repeats, bool show_fastest) {
+    const char *level_name[] = {"inverse kinematic", "inverse massless"};
+    const char *path_name[] = {"scalar", "portable", "avx2"};
+    InverseColumns columns(n);
+    const stewart_inverse_batch_outputs out = columns.outputs();
+    for (int level = 0; level < 2; ++level)
+        for (int path = 0; path < 3; ++path) {
+            if (!stewart::vector_path_available(stewart::VectorPath(path))) continue;
+            stewart_inverse *inverse = inverse_at(model, level);
+            if (!inverse) return 1;
+            double fastest;
+            const double ns = median_ns_per_row(
+                repeats, n,
+                [&] {
+                    return stewart::inverse_batch(inverse, n, q.data(), q_dot.data(),
+                                                  q_ddot.data(), &out, nullptr, nullptr,
+                                                  stewart::VectorPath(path));
+                },
+                &fastest);
+            char name[64];
+            std::snprintf(name, sizeof name, "%s %s", level_name[level], path_name[path]);
+            if (show_fastest)
+                std::printf("%-30s %10.1f  (fastest %.1f)\n", name, ns, fastest);
+            else
+                std::printf("%-30s %10.1f\n", name, ns);
+            stewart_inverse_free(inverse);
+        }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -133,7 +173,9 @@ int main(int argc, char **argv) {
         time[j] = j * kStep;
     }
     if (once) return one_batch(model, n, q, q_dot, q_ddot, std::atoi(argv[3]), argv[4]);
+    const bool kernels_only = argc == 3 && std::string(argv[2]) == "--kernels";
     std::printf("# ns per row, median of whole batches of %zu rows (combined cue, 1 ms)\n", n);
+    if (kernels_only) return time_kernels(model, n, q, q_dot, q_ddot, 201, true);
 
     // (the kinematic level's lengths drive forward kinematics, the full level's forces the plant)
     const char *level_name[] = {"inverse kinematic", "inverse massless", "inverse full"};
@@ -153,22 +195,7 @@ int main(int argc, char **argv) {
     }
 
     // The closed-form levels on each kernel.
-    const char *path_name[] = {"scalar", "portable", "avx2"};
-    for (int level = 0; level < 2; ++level)
-        for (int path = 0; path < 3; ++path) {
-            if (!stewart::vector_path_available(stewart::VectorPath(path))) continue;
-            stewart_inverse *inverse = inverse_at(model, level);
-            if (!inverse) return 1;
-            const stewart_inverse_batch_outputs out = levels[level].outputs();
-            const double ns = median_ns_per_row(level_repeats[level], n, [&] {
-                return stewart::inverse_batch(inverse, n, q.data(), q_dot.data(), q_ddot.data(),
-                                              &out, nullptr, nullptr, stewart::VectorPath(path));
-            });
-            char name[64];
-            std::snprintf(name, sizeof name, "%s %s", level_name[level], path_name[path]);
-            std::printf("%-30s %10.1f\n", name, ns);
-            stewart_inverse_free(inverse);
-        }
+    if (time_kernels(model, n, q, q_dot, q_ddot, level_repeats[0], false) != 0) return 1;
 
     stewart_forward_options fo;
     stewart_forward_options_default(&fo);

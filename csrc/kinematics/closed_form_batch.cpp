@@ -93,4 +93,14 @@ unsigned closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &r
     return closed_form_quad_portable(m, rows, out, row);
 }
 
+size_t closed_form_quad_run(VectorPath path, const QuadModel &m, const QuadRows &rows,
+                            const stewart_inverse_batch_outputs &out, size_t row, size_t blocks,
+                            unsigned &left) {
+#ifdef STEWART_HAVE_AVX2_KERNEL
+    if (path == VectorPath::avx2) return closed_form_quad_avx2_run(m, rows, out, row, blocks, left);
+#endif
+    (void)path;
+    return closed_form_quad_portable_run(m, rows, out, row, blocks, left);
+}
+
 }  // namespace stewart

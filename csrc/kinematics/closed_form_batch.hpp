@@ -26,5 +26,9 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
 // closed_form_quad_portable or closed_form_quad_avx2 by path (not scalar).
 unsigned closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
                           const stewart_inverse_batch_outputs &out, size_t row);
+// closed_form_quad_portable_run or closed_form_quad_avx2_run by path (not scalar).
+size_t closed_form_quad_run(VectorPath path, const QuadModel &m, const QuadRows &rows,
+                            const stewart_inverse_batch_outputs &out, size_t row, size_t blocks,
+                            unsigned &left);
 
 }  // namespace stewart

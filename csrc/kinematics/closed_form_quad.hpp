@@ -44,4 +44,15 @@ unsigned closed_form_quad_portable(const QuadModel &m, const QuadRows &rows,
 unsigned closed_form_quad_avx2(const QuadModel &m, const QuadRows &rows,
                                const stewart_inverse_batch_outputs &out, size_t row);
 
+// closed_form_quad_portable on blocks (>= 1) of four rows in a row, rows row.. (rows: the first
+// block's inputs), until a block leaves a row to the scalar path: returns the blocks written, and
+// in left the mask of the last of them (0 where none leaves a row).
+size_t closed_form_quad_portable_run(const QuadModel &m, const QuadRows &rows,
+                                     const stewart_inverse_batch_outputs &out, size_t row,
+                                     size_t blocks, unsigned &left);
+// The same on AVX2 and FMA.
+size_t closed_form_quad_avx2_run(const QuadModel &m, const QuadRows &rows,
+                                 const stewart_inverse_batch_outputs &out, size_t row,
+                                 size_t blocks, unsigned &left);
+
 }  // namespace stewart

@@ -3,7 +3,8 @@
 # (scalar: stewart_inverse_solve per row; portable; avx2 where the CPU has it), counted by
 # callgrind inclusive of stewart::inverse_batch over one batch of ROWS rows of the combined cue
 # (build/bench-batch ROWS --once LEVEL PATH). Instruction counts are stable on a loaded machine
-# where times are not; build/bench-batch prints the medians. With BEFORE (a bench-batch program of
+# where times are not; build/bench-batch prints the medians (build/bench-batch ROWS --kernels: the
+# kernels alone, with the fastest batch beside the median). With BEFORE (a bench-batch program of
 # an older commit, e.g. one linked against a reference build's libstewart.a) a column for it
 # beside.
 # usage: studies/bench/batch_instructions.sh [BUILD_DIR (build)] [ROWS (2000)] [BEFORE]
