@@ -84,6 +84,8 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
         const bool any = p.right_start[k] < p.right_start[k + 1];
         p.span_begin.push_back(any ? p.right[p.right_start[k]] : k + 1);
         p.span_end.push_back(any ? p.right[p.right_start[k + 1] - 1] + 1 : k + 1);
+        p.own_end.push_back(std::min(p.span_end[k], n));
+        p.carried_begin.push_back(std::max(p.span_begin[k], n));
     }
     std::vector<int> position(m);
     for (int r = 0; r < m; ++r) position[order[r]] = r;
@@ -148,14 +150,15 @@ void lu_backward_static(const double *a, const EliminationProgram &p, const doub
 void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
                                   const double *inv_diag, const double *g, double *mu,
                                   double *carried) {
-    const int n = p.n;
+    const int n = p.n, w = p.width;
+    const int *span_begin = p.span_begin.data(), *own_end = p.own_end.data(),
+              *carried_begin = p.carried_begin.data(), *span_end = p.span_end.data();
     for (int k = 0; k < n; ++k) mu[k] = g[k];
     for (int k = 0; k < n; ++k) {
-        const double *__restrict row = a + k * p.width;
+        const double *__restrict row = a + k * w;
         const double mk = (mu[k] *= inv_diag[k]);
-        const int c0 = p.span_begin[k], c1 = p.span_end[k];
-        subtract_multiple(mu, row, mk, c0, std::min(c1, n));
-        subtract_multiple(carried - n, row, mk, std::max(c0, n), c1);
+        subtract_multiple(mu, row, mk, span_begin[k], own_end[k]);
+        subtract_multiple(carried - n, row, mk, carried_begin[k], span_end[k]);
     }
 }
 

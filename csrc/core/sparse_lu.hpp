@@ -20,6 +20,8 @@ struct EliminationProgram {
     // (nothing is ever written there), so a dense update over the span does what the list does,
     // with no index loads and in vector registers.
     std::vector<int> span_begin, span_end;
+    // Per pivot k: the span split at column n, [span_begin, own_end) and [carried_begin, span_end).
+    std::vector<int> own_end, carried_begin;
 };
 
 // Chooses the pivot order on the m x width row-major sample `a` (overwritten) with structure
