@@ -310,6 +310,9 @@ inline void subtract_pairs(double *__restrict y, const double *__restrict c, dou
     if (i < n) y[i] -= c[i] * a;
 }
 
+// The usual border: one hub body's coordinates (a platform), solved by the fixed-size LU.
+constexpr int kOneHub = MBS_BODY_COORDINATES;
+
 class BlockSolver final : public LinearSolver {
 public:
     explicit BlockSolver(const Mechanism &m)
@@ -417,6 +420,7 @@ public:
                 std::copy(a + r * (ng + nb) + ng, a + (r + 1) * (ng + nb),
                           border + (g.first_leftover + r - ng) * nb);
         }
+        if (nb == kOneHub) return lu_factor_square<kOneHub>(border, border_pivot_.data());
         return lu_factor(border, nb, nb, nb, border_pivot_.data());
     }
 
@@ -486,8 +490,13 @@ public:
             t += mg;
         }
         const double *s = ws_.data() + p_.border_offset;
-        lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
-        lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
+        if (nb == kOneHub) {
+            lu_solve_transposed_square<kOneHub>(s, border_pivot_.data(), border_.data(),
+                                                border_work_.data());
+        } else {
+            lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
+            lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
+        }
         t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
