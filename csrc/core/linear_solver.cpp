@@ -363,11 +363,6 @@ public:
             if (!extends) coupling_start_.push_back(k);
         }
         coupling_start_.push_back(coupling_from_.size());
-        for (const BlockGroup &g : p_.groups) {
-            bool contiguous = true;
-            for (size_t c = 0; c < g.cols.size(); ++c) contiguous = contiguous && g.cols[c] == g.cols[0] + static_cast<int>(c);
-            cols_contiguous_.push_back(contiguous && !g.cols.empty());
-        }
     }
 
     bool factor(const double *values) override {
@@ -481,12 +476,6 @@ public:
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             const double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
-            if (static_used_[gi] && cols_contiguous_[gi]) {  // g read where it is
-                lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
-                                             rhs_.data() + g.cols[0], t, border_.data());
-                t += mg;
-                continue;
-            }
             for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
             if (static_used_[gi]) {
                 lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
@@ -545,7 +534,6 @@ private:
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
     std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
-    std::vector<char> cols_contiguous_;  // per group: its coordinates are neighbours, in order
     // Jacobian values -> workspace: a body's whole rows (7 values from row_from_ to row_to_) and
     // the other runs (other_length_ values from other_from_ to other_to_).
     std::vector<int> row_from_, row_to_, other_from_, other_to_, other_length_, coupling_from_;
