@@ -39,7 +39,8 @@ MBS_LU_INLINE bool factor_body(double *a, int m, int n, int width, int *pivot) {
     return true;
 }
 
-MBS_LU_INLINE void forward_transposed_body(const double *a, int n, int width, const double *g, double *mu) {
+MBS_LU_INLINE void forward_transposed_body(const double *a, int n, int width, const double *g,
+                                            double *mu) {
     for (int k = 0; k < n; ++k) {
         double s = g[k];
         for (int j = 0; j < k; ++j) s -= a[j * width + k] * mu[j];
@@ -108,6 +109,5 @@ void lu_backward(const double *a, int n, int width, const double *t, const doubl
         x[k] = s / row[k];
     }
 }
-
 
 }  // namespace mbs

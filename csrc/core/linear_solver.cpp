@@ -357,9 +357,11 @@ public:
         for (size_t k = 0; k < coupling_from_.size(); ++k) {
             const size_t s = coupling_start_.empty() ? 0 : coupling_start_.back();
             const size_t n = k - s;
-            const bool extends = !coupling_start_.empty() && coupling_from_[k] == coupling_from_[s] + static_cast<int>(n) &&
+            const int step = static_cast<int>(n);
+            const bool extends = !coupling_start_.empty() &&
+                                 coupling_from_[k] == coupling_from_[s] + step &&
                                  p_.coupling_row[k] == p_.coupling_row[s] &&
-                                 coupling_fixed_row_[k] == coupling_fixed_row_[s] + static_cast<int>(n);
+                                 coupling_fixed_row_[k] == coupling_fixed_row_[s] + step;
             if (!extends) coupling_start_.push_back(k);
         }
         coupling_start_.push_back(coupling_from_.size());
