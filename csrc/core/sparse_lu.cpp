@@ -120,7 +120,7 @@ bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) 
         if (pivot == 0.0) return false;
         const double inv = 1.0 / pivot;
         inv_diag[k] = inv;
-        // subtract_multiple over [span_begin, span_end) with its bounds from the program.
+        // One update over [span_begin, span_end) per row, its bounds from the program.
         const int c0 = span_begin[k], ce = pair_end[k];
         const bool single = ce < span_end[k];
         double largest = 0;
