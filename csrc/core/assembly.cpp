@@ -22,7 +22,7 @@ void evaluate_with_frames(const Mechanism &m, int k, const double *q, const doub
                           const DriverValue *drv, const JointOutput &out,
                           const BodyFrame *frames) {
     const JointDef &j = m.joints[k];
-    const JointTypeInfo &info = joint_type(j.type);
+    const JointTypeInfo &info = *m.joint_info[k];
     const double *qi = body_r(q, j.body_i), *qj = j.body_j >= 0 ? body_r(q, j.body_j) : nullptr;
     const double *vi = q_dot ? body_r(q_dot, j.body_i) : nullptr;
     const double *vj = (q_dot && j.body_j >= 0) ? body_r(q_dot, j.body_j) : nullptr;
@@ -71,7 +71,7 @@ void assemble_residual(const Mechanism &m, const double *q, const DriverValue *d
 namespace {
 JointOutput jacobian_blocks(const Mechanism &m, size_t k, double *values, double *phi) {
     double *block = values + m.first_value[k];
-    const int n = joint_type(m.joints[k].type).equations;
+    const int n = m.joint_info[k]->equations;
     double *block_j = m.joints[k].body_j >= 0 ? block + MBS_BODY_COORDINATES * n : nullptr;
     return JointOutput{phi ? phi + m.first_row[k] : nullptr, block, block_j, nullptr, nullptr};
 }
@@ -90,7 +90,7 @@ void assemble_residual_and_jacobian(const Mechanism &m, const double *q, const D
 
 void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv, double *phi_t) {
     for (size_t k = 0; k < m.joints.size(); ++k) {
-        const JointTypeInfo &info = joint_type(m.joints[k].type);
+        const JointTypeInfo &info = *m.joint_info[k];
         if (info.drivers == 0) {  // only drivers depend on time
             std::fill(phi_t + m.first_row[k], phi_t + m.first_row[k] + info.equations, 0.0);
             continue;

@@ -5,7 +5,12 @@
 
 namespace mbs {
 
-bool lu_factor(double *a, int m, int n, int width, int *pivot) {
+namespace {
+// The bodies, inlined into the general entry points and into the square ones below, where the
+// sizes are constants (the same operations in the same order, unrolled by the compiler).
+#define MBS_LU_INLINE inline __attribute__((always_inline))
+
+MBS_LU_INLINE bool factor_body(double *a, int m, int n, int width, int *pivot) {
     double scale = 0;
     for (int i = 0; i < m * width; ++i) {
         const double v = std::fabs(a[i]);
@@ -34,6 +39,55 @@ bool lu_factor(double *a, int m, int n, int width, int *pivot) {
     return true;
 }
 
+MBS_LU_INLINE void forward_transposed_body(const double *a, int n, int width, const double *g,
+                                            double *mu) {
+    for (int k = 0; k < n; ++k) {
+        double s = g[k];
+        for (int j = 0; j < k; ++j) s -= a[j * width + k] * mu[j];
+        mu[k] = s / a[k * width + k];
+    }
+}
+
+MBS_LU_INLINE void backward_transposed_body(const double *a, int m, int n, int width,
+                                             const int *pivot, double *t) {
+    for (int k = n - 1; k >= 0; --k) {
+        double s = t[k];
+        for (int i = k + 1; i < m; ++i) s -= a[i * width + k] * t[i];
+        t[k] = s;
+    }
+    for (int k = n - 1; k >= 0; --k)
+        if (pivot[k] != k) std::swap(t[k], t[pivot[k]]);
+}
+
+}  // namespace
+
+bool lu_factor(double *a, int m, int n, int width, int *pivot) {
+    return factor_body(a, m, n, width, pivot);
+}
+
+void lu_forward_transposed(const double *a, int n, int width, const double *g, double *mu) {
+    forward_transposed_body(a, n, width, g, mu);
+}
+
+void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot,
+                            double *t) {
+    backward_transposed_body(a, m, n, width, pivot, t);
+}
+
+template <int N>
+bool lu_factor_square(double *a, int *pivot) {
+    return factor_body(a, N, N, N, pivot);
+}
+
+template <int N>
+void lu_solve_transposed_square(const double *a, const int *pivot, const double *g, double *mu) {
+    forward_transposed_body(a, N, N, g, mu);
+    backward_transposed_body(a, N, N, N, pivot, mu);
+}
+
+template bool lu_factor_square<7>(double *, int *);
+template void lu_solve_transposed_square<7>(const double *, const int *, const double *, double *);
+
 void lu_forward(const double *a, int m, int n, int width, const int *pivot, double *t) {
     for (int k = 0; k < n; ++k)
         if (pivot[k] != k) std::swap(t[k], t[pivot[k]]);
@@ -54,25 +108,6 @@ void lu_backward(const double *a, int n, int width, const double *t, const doubl
             for (int c = 0; c < carried; ++c) s -= row[n + c] * y[c];
         x[k] = s / row[k];
     }
-}
-
-void lu_forward_transposed(const double *a, int n, int width, const double *g, double *mu) {
-    for (int k = 0; k < n; ++k) {
-        double s = g[k];
-        for (int j = 0; j < k; ++j) s -= a[j * width + k] * mu[j];
-        mu[k] = s / a[k * width + k];
-    }
-}
-
-void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot,
-                            double *t) {
-    for (int k = n - 1; k >= 0; --k) {
-        double s = t[k];
-        for (int i = k + 1; i < m; ++i) s -= a[i * width + k] * t[i];
-        t[k] = s;
-    }
-    for (int k = n - 1; k >= 0; --k)
-        if (pivot[k] != k) std::swap(t[k], t[pivot[k]]);
 }
 
 }  // namespace mbs

@@ -18,4 +18,11 @@ void lu_forward_transposed(const double *a, int n, int width, const double *g, d
 void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot,
                             double *t);
 
+// lu_factor(a, N, N, N, pivot) with the size known when compiling (instantiated for N = 7).
+template <int N>
+bool lu_factor_square(double *a, int *pivot);
+// mu <- (P^T L U)^-T g, lu_forward_transposed then lu_backward_transposed, for N x N (N = 7).
+template <int N>
+void lu_solve_transposed_square(const double *a, const int *pivot, const double *g, double *mu);
+
 }  // namespace mbs

@@ -1,6 +1,7 @@
 #include "core/linear_solver.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <set>
 
@@ -283,6 +284,35 @@ private:
     std::vector<double> work_;
 };
 
+// to[i] = from[i] for i < n, two at a time.
+typedef double Pair __attribute__((vector_size(16)));
+inline void copy_pairs(double *__restrict to, const double *__restrict from, size_t n) {
+    size_t i = 0;
+    for (; i + 2 <= n; i += 2) {
+        Pair v;
+        std::memcpy(&v, from + i, sizeof v);
+        std::memcpy(to + i, &v, sizeof v);
+    }
+    if (i < n) to[i] = from[i];
+}
+
+// y[i] -= c[i] a for i < n, two at a time: each element the scalar loop's product and difference.
+inline void subtract_pairs(double *__restrict y, const double *__restrict c, double a, size_t n) {
+    const Pair a2 = {a, a};
+    size_t i = 0;
+    for (; i + 2 <= n; i += 2) {
+        Pair yi, ci;
+        std::memcpy(&yi, y + i, sizeof yi);
+        std::memcpy(&ci, c + i, sizeof ci);
+        yi -= ci * a2;
+        std::memcpy(y + i, &yi, sizeof yi);
+    }
+    if (i < n) y[i] -= c[i] * a;
+}
+
+// The usual border: one hub body's coordinates (a platform), solved by the fixed-size LU.
+constexpr int kOneHub = MBS_BODY_COORDINATES;
+
 class BlockSolver final : public LinearSolver {
 public:
     explicit BlockSolver(const Mechanism &m)
@@ -322,6 +352,19 @@ public:
             else
                 other_from_.push_back(run_from[r]), other_to_.push_back(run_to[r]),
                     other_length_.push_back(run_length[r]);
+        // Coupling values as runs too: a joint's row of a fixed body is neighbouring values, one
+        // equation, neighbouring identity rows (k is in value order, so runs are in k order).
+        for (size_t k = 0; k < coupling_from_.size(); ++k) {
+            const size_t s = coupling_start_.empty() ? 0 : coupling_start_.back();
+            const size_t n = k - s;
+            const int step = static_cast<int>(n);
+            const bool extends = !coupling_start_.empty() &&
+                                 coupling_from_[k] == coupling_from_[s] + step &&
+                                 p_.coupling_row[k] == p_.coupling_row[s] &&
+                                 coupling_fixed_row_[k] == coupling_fixed_row_[s] + step;
+            if (!extends) coupling_start_.push_back(k);
+        }
+        coupling_start_.push_back(coupling_from_.size());
     }
 
     bool factor(const double *values) override {
@@ -343,17 +386,22 @@ public:
         double *const ws = ws_.data();
         const int *const row_from = row_from_.data(), *const row_to = row_to_.data();
         const size_t rows = row_from_.size();
+        static_assert(MBS_BODY_COORDINATES == 7, "a body's row is three pairs and one value");
         for (size_t r = 0; r < rows; ++r) {
             const double *from = values + row_from[r];
             double *to = ws + row_to[r];
-            for (int i = 0; i < MBS_BODY_COORDINATES; ++i) to[i] = from[i];
+            copy_pairs(to, from, 6);
+            to[6] = from[6];
         }
         for (size_t r = 0; r < other_from_.size(); ++r) {
             const double *from = values + other_from_[r];
             double *to = ws + other_to_[r];
             for (int i = 0; i < other_length_[r]; ++i) to[i] = from[i];
         }
-        for (size_t k = 0; k < coupling_from_.size(); ++k) coupling_[k] = values[coupling_from_[k]];
+        for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
+            const size_t k = coupling_start_[r], n = coupling_start_[r + 1] - k;
+            copy_pairs(coupling_.data() + k, values + coupling_from_[k], n);
+        }
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
         for (const BlockGroup &g : p_.groups) {
@@ -374,6 +422,7 @@ public:
                 std::copy(a + r * (ng + nb) + ng, a + (r + 1) * (ng + nb),
                           border + (g.first_leftover + r - ng) * nb);
         }
+        if (nb == kOneHub) return lu_factor_square<kOneHub>(border, border_pivot_.data());
         return lu_factor(border, nb, nb, nb, border_pivot_.data());
     }
 
@@ -428,8 +477,9 @@ public:
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             const double *a = ws_.data() + g.offset;
+            const size_t gi = &g - p_.groups.data();
             for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
-            if (static_used_[&g - p_.groups.data()]) {
+            if (static_used_[gi]) {
                 lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
                                              group_x_.data(), t, border_.data());
             } else {
@@ -443,8 +493,13 @@ public:
             t += mg;
         }
         const double *s = ws_.data() + p_.border_offset;
-        lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
-        lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
+        if (nb == kOneHub) {
+            lu_solve_transposed_square<kOneHub>(s, border_pivot_.data(), border_.data(),
+                                                border_work_.data());
+        } else {
+            lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
+            lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
+        }
         t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
@@ -460,8 +515,12 @@ public:
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
         for (size_t r = 0; r < p_.border_rows.size(); ++r) x[p_.border_rows[r]] = border_work_[leftover + r];
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_rows[i]] = rhs_[p_.fixed_cols[i]];
-        for (size_t k = 0; k < coupling_.size(); ++k)
-            x[coupling_fixed_row_[k]] -= coupling_[k] * x[p_.coupling_row[k]];
+        // Run by run in k order: each fixed row takes the same differences in the same order.
+        for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
+            const size_t k = coupling_start_[r], n = coupling_start_[r + 1] - k;
+            subtract_pairs(x + coupling_fixed_row_[k], coupling_.data() + k,
+                           x[p_.coupling_row[k]], n);
+        }
     }
 
     const char *name() const override { return "bordered block LU"; }
@@ -480,6 +539,9 @@ private:
     // Jacobian values -> workspace: a body's whole rows (7 values from row_from_ to row_to_) and
     // the other runs (other_length_ values from other_from_ to other_to_).
     std::vector<int> row_from_, row_to_, other_from_, other_to_, other_length_, coupling_from_;
+    // Runs of coupling values: [coupling_start_[r], coupling_start_[r + 1]) share their equation
+    // and have neighbouring sources and fixed rows.
+    std::vector<size_t> coupling_start_;
 };
 
 }  // namespace

@@ -26,6 +26,7 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
     m.equations = 0;
     m.drivers = 0;
     m.first_row.clear();
+    m.joint_info.clear();
     m.first_value.clear();
     m.pattern_row.clear();
     m.pattern_col.clear();
@@ -34,6 +35,7 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
         const JointDef &j = m.joints[k];
         const JointTypeInfo &info = joint_type(j.type);
         m.first_row.push_back(m.equations);
+        m.joint_info.push_back(&info);
         m.first_value.push_back(static_cast<int>(m.pattern_row.size()));
         const int bodies[2] = {j.body_i, j.body_j};
         for (int side = 0; side < info.bodies; ++side)

@@ -32,6 +32,7 @@ struct Mechanism {
     bool finalized = false;
     int coordinates = 0, equations = 0, drivers = 0;
     std::vector<int> first_row;       // per joint
+    std::vector<const JointTypeInfo *> joint_info;  // per joint: joint_type(its type)
     std::vector<int> first_value;     // per joint: offset of its Jacobian blocks in the values
     std::vector<int> pattern_row, pattern_col;  // per Jacobian value
     std::vector<int> driver_joint;    // per driver slot: the joint that reads it

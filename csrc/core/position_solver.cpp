@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/assembly.hpp"
 #include "core/kinsol_custom.hpp"
@@ -39,14 +40,30 @@ namespace {
 
 using Impl = PositionSolver::Impl;
 
+// Largest |v[i]|; infinite if any entry is not finite. Two entries at a time: a maximum is exact
+// in any order, and a NaN is remembered (a later finite value must not hide it).
 double max_norm(const double *v, int n) {
-    double r = 0;
-    for (int i = 0; i < n; ++i) {
-        const double a = std::fabs(v[i]);
-        if (std::isnan(a)) return INFINITY;  // a later finite value must not hide it
-        if (a > r) r = a;
+    typedef double Pair __attribute__((vector_size(16)));
+    typedef long long Mask __attribute__((vector_size(16)));
+    const Mask magnitude = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+    Pair r = {0, 0};
+    Mask nan = {0, 0};
+    int i = 0;
+    for (; i + 2 <= n; i += 2) {
+        Pair x;
+        std::memcpy(&x, v + i, sizeof x);
+        const Pair a = reinterpret_cast<Pair>(reinterpret_cast<Mask>(x) & magnitude);
+        nan |= a != a;
+        r = a > r ? a : r;
     }
-    return std::isfinite(r) ? r : INFINITY;
+    double largest = r[1] > r[0] ? r[1] : r[0];
+    bool any_nan = nan[0] | nan[1];
+    if (i < n) {
+        const double a = std::fabs(v[i]);
+        any_nan = any_nan || std::isnan(a);
+        if (a > largest) largest = a;
+    }
+    return !any_nan && std::isfinite(largest) ? largest : INFINITY;
 }
 
 int residual(N_Vector u, N_Vector f, void *user) {
@@ -203,7 +220,7 @@ mbs_status PositionSolver::solve(const SolverOptions &o) {
     // No iteration is no licence: KINSOL may also stop before its first one with an error (its
     // set-up failing), leaving the guess and its residual above the tolerance. The guess stands
     // only on the same terms as an iterate.
-    for (int i = 0; i < n && finite; ++i) finite = std::isfinite(u[i]);
+    finite = finite && std::isfinite(max_norm(u, n));
     if (flag < 0 || !finite || !(im.last_residual <= o.tolerance)) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
             return set_message(msg, size, MBS_ERR_SINGULAR,

@@ -12,22 +12,26 @@ namespace {
 constexpr double kThreshold = 0.1;        // pivot choice: within 10 % of the column maximum
 constexpr double kRuntimeThreshold = 1e-3; // refactorisation: give up below 0.1 %
 
-// y[c] -= a x[c] for c in [c0, c1), two at a time: the spans are short (3 to 9 here), where the
-// compiler's own vector loop spends more on its alias checks and remainders than on the
-// arithmetic. Each element is the same product and difference as the scalar loop's.
 typedef double Pair __attribute__((vector_size(16)));
-inline void subtract_multiple(double *__restrict y, const double *__restrict x, double a, int c0,
-                              int c1) {
+
+// Where the pairs of [c0, c1) end: c0 + an even count (c0 if the range is empty).
+int pairs_end(int c0, int c1) { return c1 > c0 ? c0 + (c1 - c0) / 2 * 2 : c0; }
+
+// y[c] -= a x[c] for c in [c0, ce) two at a time, then at ce if `single`: the spans are short
+// (3 to 9 here), where the compiler's own vector loop spends more on its alias checks and
+// remainders than on the arithmetic, and the program knows where the pairs end. Each element is
+// the same product and difference as the scalar loop's.
+inline void subtract_multiple_planned(double *__restrict y, const double *__restrict x, double a,
+                                      int c0, int ce, bool single) {
     const Pair a2 = {a, a};
-    int c = c0;
-    for (; c + 2 <= c1; c += 2) {
+    for (int c = c0; c < ce; c += 2) {
         Pair yc, xc;
         std::memcpy(&yc, y + c, sizeof yc);
         std::memcpy(&xc, x + c, sizeof xc);
         yc -= a2 * xc;
         std::memcpy(y + c, &yc, sizeof yc);
     }
-    if (c < c1) y[c] -= a * x[c];
+    if (single) y[ce] -= a * x[ce];
 }
 }  // namespace
 
@@ -84,6 +88,11 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
         const bool any = p.right_start[k] < p.right_start[k + 1];
         p.span_begin.push_back(any ? p.right[p.right_start[k]] : k + 1);
         p.span_end.push_back(any ? p.right[p.right_start[k + 1] - 1] + 1 : k + 1);
+        p.own_end.push_back(std::min(p.span_end[k], n));
+        p.carried_begin.push_back(std::max(p.span_begin[k], n));
+        p.pair_end.push_back(pairs_end(p.span_begin[k], p.span_end[k]));
+        p.own_pair_end.push_back(pairs_end(p.span_begin[k], p.own_end[k]));
+        p.carried_pair_end.push_back(pairs_end(p.carried_begin[k], p.span_end[k]));
     }
     std::vector<int> position(m);
     for (int r = 0; r < m; ++r) position[order[r]] = r;
@@ -92,12 +101,16 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
     for (int k = 0; k < n; ++k)
         for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t)
             p.below_at[t] = p.below[t] * width + k;
+    p.below_row.resize(p.below.size());
+    for (size_t t = 0; t < p.below.size(); ++t) p.below_row[t] = p.below[t] * width;
     return order;
 }
 
 bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
     const int w = p.width;
-    const int *below_at = p.below_at.data();
+    const int *below_row = p.below_row.data(), *below_start = p.below_start.data();
+    const int *span_begin = p.span_begin.data(), *pair_end = p.pair_end.data(),
+              *span_end = p.span_end.data();
     // |pivot| >= threshold * |a(i, k)| for every i below is |l_i| <= 1 / threshold: checked on
     // the multipliers as they are made (a failed block is re-scattered by the caller).
     const double limit = 1.0 / kRuntimeThreshold;
@@ -107,15 +120,17 @@ bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) 
         if (pivot == 0.0) return false;
         const double inv = 1.0 / pivot;
         inv_diag[k] = inv;
-        const int c0 = p.span_begin[k], c1 = p.span_end[k];
+        // One update over [span_begin, span_end) per row, its bounds from the program.
+        const int c0 = span_begin[k], ce = pair_end[k];
+        const bool single = ce < span_end[k];
         double largest = 0;
-        for (int t = p.below_start[k]; t < p.below_start[k + 1]; ++t) {
-            double *__restrict row_i = a + (below_at[t] - k);
+        for (int t = below_start[k]; t < below_start[k + 1]; ++t) {
+            double *__restrict row_i = a + below_row[t];
             const double l = row_i[k] * inv;
             row_i[k] = l;
             const double size = std::fabs(l);
             if (size > largest) largest = size;
-            subtract_multiple(row_i, row_k, l, c0, c1);
+            subtract_multiple_planned(row_i, row_k, l, c0, ce, single);
         }
         if (!(largest <= limit)) return false;
     }
@@ -148,14 +163,18 @@ void lu_backward_static(const double *a, const EliminationProgram &p, const doub
 void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
                                   const double *inv_diag, const double *g, double *mu,
                                   double *carried) {
-    const int n = p.n;
+    const int n = p.n, w = p.width;
+    const int *span_begin = p.span_begin.data(), *own_end = p.own_end.data(),
+              *own_pair_end = p.own_pair_end.data(), *carried_begin = p.carried_begin.data(),
+              *carried_pair_end = p.carried_pair_end.data(), *span_end = p.span_end.data();
     for (int k = 0; k < n; ++k) mu[k] = g[k];
     for (int k = 0; k < n; ++k) {
-        const double *__restrict row = a + k * p.width;
+        const double *__restrict row = a + k * w;
         const double mk = (mu[k] *= inv_diag[k]);
-        const int c0 = p.span_begin[k], c1 = p.span_end[k];
-        subtract_multiple(mu, row, mk, c0, std::min(c1, n));
-        subtract_multiple(carried - n, row, mk, std::max(c0, n), c1);
+        subtract_multiple_planned(mu, row, mk, span_begin[k], own_pair_end[k],
+                                  own_pair_end[k] < own_end[k]);
+        subtract_multiple_planned(carried - n, row, mk, carried_begin[k], carried_pair_end[k],
+                                  carried_pair_end[k] < span_end[k]);
     }
 }
 

@@ -20,6 +20,13 @@ struct EliminationProgram {
     // (nothing is ever written there), so a dense update over the span does what the list does,
     // with no index loads and in vector registers.
     std::vector<int> span_begin, span_end;
+    // Per pivot k: the span split at column n, [span_begin, own_end) and [carried_begin, span_end).
+    std::vector<int> own_end, carried_begin;
+    // Per pivot k: where the span's pairs end (span_begin + an even count); one single beyond it
+    // if it is short of span_end.
+    std::vector<int> pair_end;
+    std::vector<int> own_pair_end, carried_pair_end;  // the same for the two parts of the split
+    std::vector<int> below_row;  // per entry of below: where row i starts, i width
 };
 
 // Chooses the pivot order on the m x width row-major sample `a` (overwritten) with structure
