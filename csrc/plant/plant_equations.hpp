@@ -53,8 +53,9 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
 
 // twist_rate for the plant's scalar: with leg bodies whose principal inertias are axisymmetric
 // (Ixx == Iyy, every catalogue platform) the same equations in closed form (plant_full_rhs.cpp:
-// no rotation matrix per body, no 3 x 3 product; equal to twist_rate<double> to rounding);
-// otherwise, and for the massless model, twist_rate<double> itself.
+// no rotation matrix per body, no 3 x 3 product; equal to twist_rate<double> to rounding); for
+// the massless model massless_twist_rate (the integrator's); otherwise (or with
+// d.reference_equations) twist_rate<double> itself.
 bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e);
 
@@ -65,9 +66,11 @@ bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEW
 void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
                  Vec3 &torque);
 
-// twist_rate<double> for the massless model (d.with_legs false), written out in scalars with the
-// same arithmetic in the same order (plant_massless.cpp): the same bits, 30 % fewer
-// instructions. The plant's integrator calls it for every massless right-hand side.
+// twist_rate<double>'s equations for the massless model (d.with_legs false), written out in
+// scalars with moments about the centre of mass and the gyroscopic term in the platform's axes
+// (plant_massless.cpp): equal to twist_rate<double> to rounding (tests/unit/test_plant_rhs.cpp
+// holds 1e-14), a third of its instructions. The plant's integrator calls it for every massless
+// right-hand side, and twist_rate for double does too.
 bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                          Evaluation &e);
 

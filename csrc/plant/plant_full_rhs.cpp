@@ -268,6 +268,9 @@ void subtract_leg_wrench(const DynamicsModel &d, int k, const LegConfiguration &
 bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e) {
     if (fast_path(d)) return axisymmetric_twist_rate(d, m, force, e);
+    // the integrator's massless equations, so that a step's outputs and a later output or
+    // derivative at the same state are the same bits
+    if (!d.with_legs && !d.reference_equations) return massless_twist_rate(d, m, force, e);
     return twist_rate<double>(d, m, force, e);
 }
 

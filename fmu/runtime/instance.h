@@ -109,7 +109,8 @@ fmu_status fmu_enter_initialization(fmu_instance *inst, int has_start, double st
 /* Applies the parameters and solves for the initial inputs (Discard there becomes Warning). */
 fmu_status fmu_exit_initialization(fmu_instance *inst);
 /* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual
- * step (step mode, from the unit's time within its slack, advancing to a finite time) goes
+ * step (step mode, from the unit's time or after it, or within its slack before it, advancing to
+ * a finite time) goes
  * straight to model_usual_step if the model's config.h defines FMU_MODEL_USUAL_STEP 1, else to
  * fmu_run_step. The unit's last successful time is in inst->v.last_successful_time after any
  * call with an instance. */

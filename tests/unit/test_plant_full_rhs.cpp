@@ -30,6 +30,17 @@ double uniform(uint64_t &state, double a, double b) {
     return a + (b - a) * static_cast<double>(state >> 11) / 9007199254740992.0;
 }
 
+// The larger of two differences, infinite if either is NaN (std::max would drop a NaN second
+// argument and let a fast path returning NaN pass).
+double worse(double a, double b) {
+    return std::isnan(a) || std::isnan(b) ? INFINITY : std::max(a, b);
+}
+
+// A difference relative to scale (absolute where the scale is zero).
+double relative(double difference, double scale) {
+    return scale > 0 ? difference / scale : difference;
+}
+
 // The larger relative difference of the two halves (linear, angular) of the twist rates.
 double relative_difference(const fd::Evaluation &a, const fd::Evaluation &b) {
     double worst = 0;
@@ -37,9 +48,9 @@ double relative_difference(const fd::Evaluation &a, const fd::Evaluation &b) {
         double scale = 0, difference = 0;
         for (int i = 3 * half; i < 3 * half + 3; ++i) {
             scale = std::max(scale, std::fabs(b.twist_rate[i]));
-            difference = std::max(difference, std::fabs(a.twist_rate[i] - b.twist_rate[i]));
+            difference = worse(difference, std::fabs(a.twist_rate[i] - b.twist_rate[i]));
         }
-        worst = std::max(worst, difference / scale);
+        worst = worse(worst, relative(difference, scale));
     }
     return worst;
 }
@@ -56,9 +67,11 @@ double base_wrench_difference(const fd::DynamicsModel &d, stewart::Motion m,
     fd::Vec3 force, torque, force_fast, torque_fast;
     fd::base_wrench(d, bodies, force, torque);
     fd::base_wrench(d, m, e, force_fast, torque_fast);
-    return std::max((force_fast - force).lpNorm<Eigen::Infinity>() / force.lpNorm<Eigen::Infinity>(),
-                    (torque_fast - torque).lpNorm<Eigen::Infinity>() /
-                        torque.lpNorm<Eigen::Infinity>());
+    if (!force_fast.allFinite() || !torque_fast.allFinite()) return INFINITY;
+    return worse(relative((force_fast - force).lpNorm<Eigen::Infinity>(),
+                          force.lpNorm<Eigen::Infinity>()),
+                 relative((torque_fast - torque).lpNorm<Eigen::Infinity>(),
+                          torque.lpNorm<Eigen::Infinity>()));
 }
 
 stewart_model *make_model(const stewart_params &params) {
@@ -95,8 +108,8 @@ double compare_twist_rates(const fd::DynamicsModel &d, bool same_bits_expected) 
         if (same_bits_expected)
             disagreements += std::memcmp(fast.twist_rate.data(), reference.twist_rate.data(),
                                          6 * sizeof(double)) != 0;
-        worst = std::max(worst, relative_difference(fast, reference));
-        worst = std::max(worst, base_wrench_difference(d, m, reference));
+        worst = worse(worst, relative_difference(fast, reference));
+        worst = worse(worst, base_wrench_difference(d, m, reference));
     }
     std::printf("%d defined states, worst relative difference %.3g\n", defined, worst);
     TEST_ASSERT_EQUAL_INT(0, disagreements);
@@ -144,7 +157,7 @@ double compare_steps(const fd::DynamicsModel &d) {
         TEST_ASSERT_EQUAL_INT_MESSAGE(b, a, m_a);
         if (a != STEWART_OK) continue;
         for (int i = 0; i < fd::kStates; ++i)
-            worst = std::max(worst, std::fabs(y[i] - y_ref[i]) / std::max(1.0, std::fabs(y_ref[i])));
+            worst = worse(worst, std::fabs(y[i] - y_ref[i]) / std::max(1.0, std::fabs(y_ref[i])));
     }
     std::printf("500 steps of 1 ms, worst difference %.3g of the state's scale\n", worst);
     return worst;

@@ -1,5 +1,5 @@
 // White-box test of the massless plant's written-out right-hand side (fd::massless_twist_rate,
-// csrc/plant/plant_massless.cpp) against the generic equations (fd::twist_rate on the same
+// csrc/plant/plant_massless.cpp) against the generic equations (fd::twist_rate<double> on the same
 // massless model: plant_equations_impl.hpp's assemble and one-body solve), a second formulation
 // of the same physics (the world inertia R I R^T and the moments of gravity and the legs about
 // the origin there; the platform's axes and moments about the centre of mass here): the legs'
@@ -67,7 +67,7 @@ int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const d
                 Worst &worst) {
     const stewart::Motion m = fd::motion_of_state(y);
     fd::Evaluation generic, written;
-    const bool a = fd::twist_rate(d, m, force, generic);
+    const bool a = fd::twist_rate<double>(d, m, force, generic);
     const bool b = fd::massless_twist_rate(d, m, force, written);
     if (a != b) return 1;
     if (!a) return generic.fault == written.fault && generic.fault_leg == written.fault_leg ? 0 : 1;
@@ -101,7 +101,7 @@ int state_rate(double, const double *y, double *y_dot, void *user) {
     fd::Evaluation e;
     const stewart::Motion m = fd::motion_of_state(y);
     if (!(s.written ? fd::massless_twist_rate(*s.model, m, s.force, e)
-                    : fd::twist_rate(*s.model, m, s.force, e)))
+                    : fd::twist_rate<double>(*s.model, m, s.force, e)))
         return 1;
     const double w = y[3], x = y[4], yy = y[5], z = y[6], ox = y[10], oy = y[11], oz = y[12];
     for (int i = 0; i < 3; ++i) y_dot[i] = y[7 + i];

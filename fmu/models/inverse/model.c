@@ -190,8 +190,10 @@ static inline void take_outputs(fmu_values *v, const stewart_inverse_output *out
 /* ---------------------------------------------------------------- the usual step's route */
 
 /* What model_usual_step does with a step whose inputs are set since the last one and finite
- * (model_values.usual_route, settled whenever what it depends on changes, so that the usual step
- * tests one value): the step rules in full (FMI 2 input derivatives given, a discarded advance
+ * (model_values.usual_route, settled after every change that rules a usual step out, so that the
+ * usual step tests one value; a change that allows one again, such as a discarded advance
+ * cleared by a solve, leaves it at the full rules until a full-rules step settles it): the step
+ * rules in full (FMI 2 input derivatives given, a discarded advance
  * standing, limit outputs, fewer than two poses in the finite-difference history), or one of the
  * two usual steps. 0 (a state's start) is the full rules. */
 enum { ROUTE_CHECKED = 0, ROUTE_ADVANCE = 1, ROUTE_HOLD = 2 };
