@@ -92,6 +92,9 @@ def test_slices_give_the_numbers_and_messages_of_one_call(monkeypatch, fidelity)
 
 CHILD = textwrap.dedent("""
     import json, os, signal, sys, threading, time
+    # Ctrl-C's handler whatever the parent left: a shell that starts a job with '&' and no job
+    # control makes it ignore SIGINT, and Python keeps an ignored SIGINT ignored.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     import numpy as np
     import stewart
     n = int(sys.argv[1])

@@ -101,6 +101,9 @@ def test_the_history_matters_so_a_fresh_solver_per_slice_would_not_do(platform):
 
 CHILD = textwrap.dedent("""
     import json, os, signal, sys, threading, time
+    # Ctrl-C's handler whatever the parent left: a shell that starts a job with '&' and no job
+    # control makes it ignore SIGINT, and Python keeps an ignored SIGINT ignored.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     import numpy as np
     import stewart
     direction, n = sys.argv[1], int(sys.argv[2])
