@@ -51,7 +51,7 @@ struct Equations {
 // spin) by a shorter way (so equal to rounding).
 struct Spin {
     double w, w_dot;
-    Vec3 g, spin, omega;  // omega: the body's angular velocity
+    Vec3 g, spin;
 };
 
 [[gnu::always_inline]] inline Spin spin_of(const Vec3 &n, const Vec3 &n_dot, const Vec3 &n_ddot,
@@ -60,17 +60,25 @@ struct Spin {
     Spin r;
     const double inv_mu = 1.0 / mu;
     const Vec3 e = s.cross(x);
-    r.g = (s.dot(n) * inv_mu) * x;
+    const double s_n = s.dot(n);
+    r.g = (s_n * inv_mu) * x;
     r.spin = e * inv_mu;
     r.w = r.g.dot(n_dot);
     if (turning) r.w -= r.spin.dot(omega_s);
-    r.omega = n.cross(n_dot) + r.w * n;
-    Vec3 e_dot = s.cross(r.omega.cross(x)), relative = r.omega;
+    // With the body's angular velocity omega = n x n_dot + w n, e_dot = s x (omega x x) +
+    // (omega_s x s) x x = -x (s.omega) + s (x.omega_s), x being normal to s; and x.omega =
+    // x.(n x n_dot), x being normal to n (so w's rounding stays out: w is large near a locked
+    // Cardan).
+    const Vec3 n_x_n_dot = n.cross(n_dot);
+    const double s_omega = s.dot(n_x_n_dot) + r.w * s_n, x_omega = x.dot(n_x_n_dot);
+    double e_dot_relative;
     if (turning) {
-        e_dot += omega_s.cross(s).cross(x);
-        relative -= omega_s;
+        const double x_omega_s = x.dot(omega_s);
+        e_dot_relative = (s_omega - s.dot(omega_s)) * x_omega_s - (x_omega - x_omega_s) * s_omega;
+    } else {
+        e_dot_relative = -x_omega * s_omega;
     }
-    r.w_dot = r.g.dot(n_ddot) + (e_dot.dot(relative) + r.w * e.dot(n_dot)) * inv_mu;
+    r.w_dot = r.g.dot(n_ddot) + (e_dot_relative + r.w * e.dot(n_dot)) * inv_mu;
     return r;
 }
 
