@@ -307,7 +307,8 @@ LegAccelerations leg_accelerations(const DynamicsModel &d, int k, const LegConfi
     const Spin pis = spin_of(n, r.n_dot, r.n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
                              leg.piston_sin);
     // the piston's: the platform arm's alpha x s
-    return {r.n_dot, r.n_ddot, r.P_ddot, cyl.w, cyl.w_dot, pis.w, pis.w_dot - pis.spin.dot(m.alpha)};
+    const double w_dot_p = pis.w_dot - pis.spin.dot(m.alpha);
+    return {r.n_dot, r.n_ddot, r.P_ddot, cyl.w, cyl.w_dot, pis.w, w_dot_p};
 }
 
 // The same from the kept velocity-product terms t and the platform's accelerations in m

@@ -228,7 +228,8 @@ double compare_step_outputs(const stewart_model *model) {
             for (int i = 0; i < 3; ++i) {
                 force_scale = std::max(force_scale, std::fabs(again.base_force[i]));
                 torque_scale = std::max(torque_scale, std::fabs(again.base_torque[i]));
-                force_error = worse(force_error, std::fabs(out.base_force[i] - again.base_force[i]));
+                force_error =
+                    worse(force_error, std::fabs(out.base_force[i] - again.base_force[i]));
                 torque_error =
                     worse(torque_error, std::fabs(out.base_torque[i] - again.base_torque[i]));
             }
