@@ -48,7 +48,12 @@ struct Equations {
 // relation differentiated (x_dot = omega_b x x, s_dot = omega_s x s):
 //   w_dot = g.n_ddot + (e_dot.(omega_b - omega_s) + w e.n_dot) / mu.
 // The same quantities as plant_bodies_impl.hpp's frame_rates and leg_acceleration_map (g, the
-// spin) by a shorter way (so equal to rounding).
+// spin) by a shorter way (so equal to rounding): in the frame (x, y, n), s = sigma n + mu y
+// (sigma = s.n; x is normal to s), so e = sigma y - mu n, and with the body's angular velocity
+// omega = n x n_dot + w n (n_dot = nu_x x + nu_y y):
+//   e_dot = s x (omega x x) + (omega_s x s) x x = -x (s.omega) + s (x.omega_s),
+//   s.omega = mu nu_x + sigma w,   x.omega = -nu_y,   e.n_dot = sigma nu_y:
+// scalar products only (and w's large value near a locked Cardan kept out of x.omega).
 struct Spin {
     double w, w_dot;
     Vec3 g, spin;
@@ -59,26 +64,23 @@ struct Spin {
                                            const Vec3 &x, double mu) {
     Spin r;
     const double inv_mu = 1.0 / mu;
-    const Vec3 e = s.cross(x);
-    const double s_n = s.dot(n);
-    r.g = (s_n * inv_mu) * x;
-    r.spin = e * inv_mu;
-    r.w = r.g.dot(n_dot);
-    if (turning) r.w -= r.spin.dot(omega_s);
-    // With the body's angular velocity omega = n x n_dot + w n, e_dot = s x (omega x x) +
-    // (omega_s x s) x x = -x (s.omega) + s (x.omega_s), x being normal to s; and x.omega =
-    // x.(n x n_dot), x being normal to n (so w's rounding stays out: w is large near a locked
-    // Cardan).
-    const Vec3 n_x_n_dot = n.cross(n_dot);
-    const double s_omega = s.dot(n_x_n_dot) + r.w * s_n, x_omega = x.dot(n_x_n_dot);
+    const Vec3 y = n.cross(x);
+    const double sigma = s.dot(n), ratio = sigma * inv_mu;
+    r.g = ratio * x;
+    r.spin = ratio * y - n;
+    const double nu_x = x.dot(n_dot), nu_y = y.dot(n_dot);
     double e_dot_relative;
     if (turning) {
-        const double x_omega_s = x.dot(omega_s);
-        e_dot_relative = (s_omega - s.dot(omega_s)) * x_omega_s - (x_omega - x_omega_s) * s_omega;
+        const double omega_x = x.dot(omega_s), omega_y = y.dot(omega_s), omega_n = n.dot(omega_s);
+        r.w = ratio * (nu_x - omega_y) + omega_n;
+        const double s_omega = mu * nu_x + sigma * r.w;
+        e_dot_relative = (s_omega - (sigma * omega_n + mu * omega_y)) * omega_x +
+                         (nu_y + omega_x) * s_omega;
     } else {
-        e_dot_relative = -x_omega * s_omega;
+        r.w = ratio * nu_x;
+        e_dot_relative = nu_y * (mu * nu_x + sigma * r.w);
     }
-    r.w_dot = r.g.dot(n_ddot) + (e_dot_relative + r.w * e.dot(n_dot)) * inv_mu;
+    r.w_dot = ratio * x.dot(n_ddot) + (e_dot_relative + r.w * sigma * nu_y) * inv_mu;
     return r;
 }
 
