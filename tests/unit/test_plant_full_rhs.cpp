@@ -206,8 +206,6 @@ double compare_step_outputs(const stewart_model *model) {
         char message[STEWART_MESSAGE_SIZE];
         stewart_plant *plant = stewart_plant_create(model, &o, message, sizeof message);
         TEST_ASSERT_NOT_NULL_MESSAGE(plant, message);
-        stewart_plant_output start;
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(plant, nullptr, &start));
         stewart_plant_input in{};
         in.h = 1e-3;
         uint64_t rng = 77;
