@@ -27,6 +27,26 @@ struct DynamicsModel {
 // DynamicsModel from a built stewart_model; fidelity STEWART_MASSLESS or STEWART_FULL.
 DynamicsModel dynamics_model(const stewart_model &model, int fidelity);
 
+// What the closed-form right-hand side (plant_full_rhs.cpp) finds per leg at the state's
+// velocities (zero twist rate), kept for the base wrench at the same state: the rest of a leg's
+// accelerations is linear in its platform point's acceleration P_acc = v_dot + alpha x arm
+// (n_ddot += N P_acc, P_ddot += P_acc, the cylinder's w_dot += h_cylinder . P_acc, the piston's
+// w_dot += h_piston . P_acc - spin . alpha).
+struct LegRateTerms {
+    Vec3 n_dot, n_ddot, P_ddot;         // the axis's rates, the platform point's acceleration
+    Vec3 h_cylinder, h_piston, spin;    // the spins' acceleration maps
+    double w_cylinder, w_piston;        // the bodies' spins about the leg
+    double w_dot_cylinder, w_dot_piston;  // their rates' velocity-product parts
+};
+
+// The kept terms of one closed-form evaluation: per leg, and the platform's centre of mass
+// (from the origin) and inertia in the world.
+struct KeptTerms {
+    LegRateTerms legs[STEWART_LEGS];
+    Vec3 platform_com;
+    Mat3 platform_inertia;
+};
+
 // Results and workspace of one evaluation (any scalar, as plant_bodies.hpp).
 template <class S>
 struct EvaluationT {
@@ -34,6 +54,12 @@ struct EvaluationT {
     LegFault fault = LegFault::None;
     int fault_leg = -1;                  // 0-based
     Eigen::Matrix<S, 6, 1> twist_rate;  // (v_dot, omega_dot) at the platform origin, world
+    // Asked of the closed-form right-hand side (double, axisymmetric leg bodies): keep its leg
+    // terms in `kept` (the plant's integrator asks at the step's end, whose outputs reuse them);
+    // terms_kept says whether this evaluation did.
+    bool keep_terms = false;
+    bool terms_kept = false;
+    KeptTerms kept;
 };
 using Evaluation = EvaluationT<double>;
 
@@ -61,7 +87,8 @@ bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEW
 
 // base_wrench of body_motions' bodies for the platform motion m with its accelerations (e its
 // configuration, twist_rate's evaluation), for the plant's scalar: in closed form for
-// axisymmetric leg bodies (plant_full_rhs.cpp, without the 13 bodies' motions; equal to rounding),
+// axisymmetric leg bodies (plant_full_rhs.cpp, without the 13 bodies' motions; equal to
+// rounding), from e's kept terms when it kept them (m's pose and twist must then be e's state's),
 // otherwise those two.
 void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
                  Vec3 &torque);

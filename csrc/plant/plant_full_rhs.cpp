@@ -48,10 +48,15 @@ struct Equations {
 // relation differentiated (x_dot = omega_b x x, s_dot = omega_s x s):
 //   w_dot = g.n_ddot + (e_dot.(omega_b - omega_s) + w e.n_dot) / mu.
 // The same quantities as plant_bodies_impl.hpp's frame_rates and leg_acceleration_map (g, the
-// spin) by a shorter way (so equal to rounding).
+// spin) by a shorter way (so equal to rounding): in the frame (x, y, n), s = sigma n + mu y
+// (sigma = s.n; x is normal to s), so e = sigma y - mu n, and with the body's angular velocity
+// omega = n x n_dot + w n (n_dot = nu_x x + nu_y y):
+//   e_dot = s x (omega x x) + (omega_s x s) x x = -x (s.omega) + s (x.omega_s),
+//   s.omega = mu nu_x + sigma w,   x.omega = -nu_y,   e.n_dot = sigma nu_y:
+// scalar products only (and w's large value near a locked Cardan kept out of x.omega).
 struct Spin {
     double w, w_dot;
-    Vec3 g, spin, omega;  // omega: the body's angular velocity
+    Vec3 g, spin;
 };
 
 [[gnu::always_inline]] inline Spin spin_of(const Vec3 &n, const Vec3 &n_dot, const Vec3 &n_ddot,
@@ -59,18 +64,23 @@ struct Spin {
                                            const Vec3 &x, double mu) {
     Spin r;
     const double inv_mu = 1.0 / mu;
-    const Vec3 e = s.cross(x);
-    r.g = (s.dot(n) * inv_mu) * x;
-    r.spin = e * inv_mu;
-    r.w = r.g.dot(n_dot);
-    if (turning) r.w -= r.spin.dot(omega_s);
-    r.omega = n.cross(n_dot) + r.w * n;
-    Vec3 e_dot = s.cross(r.omega.cross(x)), relative = r.omega;
+    const Vec3 y = n.cross(x);
+    const double sigma = s.dot(n), ratio = sigma * inv_mu;
+    r.g = ratio * x;
+    r.spin = ratio * y - n;
+    const double nu_x = x.dot(n_dot), nu_y = y.dot(n_dot);
+    double e_dot_relative;
     if (turning) {
-        e_dot += omega_s.cross(s).cross(x);
-        relative -= omega_s;
+        const double omega_x = x.dot(omega_s), omega_y = y.dot(omega_s), omega_n = n.dot(omega_s);
+        r.w = ratio * (nu_x - omega_y) + omega_n;
+        const double s_omega = mu * nu_x + sigma * r.w;
+        e_dot_relative = (s_omega - (sigma * omega_n + mu * omega_y)) * omega_x +
+                         (nu_y + omega_x) * s_omega;
+    } else {
+        r.w = ratio * nu_x;
+        e_dot_relative = nu_y * (mu * nu_x + sigma * r.w);
     }
-    r.w_dot = r.g.dot(n_ddot) + (e_dot.dot(relative) + r.w * e.dot(n_dot)) * inv_mu;
+    r.w_dot = ratio * x.dot(n_ddot) + (e_dot_relative + r.w * sigma * nu_y) * inv_mu;
     return r;
 }
 
@@ -96,11 +106,14 @@ struct LegRates {
 }
 
 // Leg k's two bodies and its force F: the point mass it adds at its platform point (weight into
-// point_mass), its three rank-one terms into q.M and its generalised forces into q.rhs.
+// point_mass), its three rank-one terms into q.M and its generalised forces into q.rhs; with
+// Keep, its rates and spins into kept as well.
+template <bool Keep>
 [[gnu::always_inline]] inline void add_axisymmetric_leg(const DynamicsModel &d, int k,
                                                         const LegConfiguration &leg,
                                                         const Motion &m, double F,
-                                                        double &point_mass, Equations &q) {
+                                                        double &point_mass, Equations &q,
+                                                        LegRateTerms &kept) {
     const Vec3 &n = leg.n, &arm = leg.arm;
     const double inv_L = leg.inverse_length;
     // The leg's axis and its rates at zero twist rate (the velocity products).
@@ -113,6 +126,18 @@ struct LegRates {
     const double w_c = cyl.w, w_dot_c = cyl.w_dot, w_p = pis.w, w_dot_p = pis.w_dot;
     const Vec3 h_c = cyl.g * inv_L, h_p = pis.g * inv_L;  // N g (g is normal to n)
     const Vec3 &spin = pis.spin;
+    if (Keep) {
+        kept.n_dot = n_dot;
+        kept.n_ddot = n_ddot;
+        kept.P_ddot = P_ddot;
+        kept.h_cylinder = h_c;
+        kept.h_piston = h_p;
+        kept.spin = spin;
+        kept.w_cylinder = w_c;
+        kept.w_piston = w_p;
+        kept.w_dot_cylinder = w_dot_c;
+        kept.w_dot_piston = w_dot_p;
+    }
 
     const double m_c = d.cylinder_mass, m_p = d.piston_mass;
     const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
@@ -173,9 +198,12 @@ struct LegRates {
     }
 }
 
-// The closed-form twist rate for axisymmetric leg bodies (d.with_legs).
+// The closed-form twist rate for axisymmetric leg bodies (d.with_legs); with Keep, its terms
+// into e.kept.
+template <bool Keep>
 bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
                              const double force[STEWART_LEGS], Evaluation &e) {
+    e.terms_kept = false;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegFault fault = leg_configuration(d.legs, k, m.position, m.rotation, e.legs[k]);
         if (fault != LegFault::None) {
@@ -202,7 +230,7 @@ bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
     Mat3 second = mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
     for (int k = 0; k < STEWART_LEGS; ++k) {
         double point_mass;
-        add_axisymmetric_leg(d, k, e.legs[k], m, force[k], point_mass, q);
+        add_axisymmetric_leg<Keep>(d, k, e.legs[k], m, force[k], point_mass, q, e.kept.legs[k]);
         const Vec3 &arm = e.legs[k].arm;
         total += point_mass;
         first += point_mass * arm;
@@ -228,6 +256,11 @@ bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
     for (int i = 0; i < 6; ++i) e.twist_rate[i] = x[i];
     e.fault = LegFault::None;
     e.fault_leg = -1;
+    if (Keep) {
+        e.kept.platform_com = c;
+        e.kept.platform_inertia = I_platform;
+        e.terms_kept = true;
+    }
     return true;
 }
 
@@ -238,18 +271,21 @@ bool fast_path(const DynamicsModel &d) {
            axisymmetric(d.piston_inertia);
 }
 
+// A leg's accelerations with the platform's: the axis's rates, its platform point's
+// acceleration, the bodies' spins and their rates.
+struct LegAccelerations {
+    Vec3 n_dot, n_ddot, P_ddot;
+    double w_c, w_dot_c, w_p, w_dot_p;
+};
+
 // base_wrench's terms of leg k's two bodies (minus what the base supplies to them beyond
 // gravity), from the axis's rates and the bodies' spins: I alpha + omega x I omega of a body is
 // a n x n_ddot + c w_dot n + c w n_dot (plant_full_rhs.cpp's header).
-void subtract_leg_wrench(const DynamicsModel &d, int k, const LegConfiguration &leg,
-                         const Motion &m, Vec3 &force, Vec3 &torque) {
+[[gnu::always_inline]] inline void subtract_leg_wrench(const DynamicsModel &d, int k,
+                                                       const LegConfiguration &leg,
+                                                       const Motion &m, const LegAccelerations &r,
+                                                       Vec3 &force, Vec3 &torque) {
     const Vec3 &n = leg.n;
-    const LegRates r = leg_rates(leg, m, true);
-    const Spin cyl = spin_of(n, r.n_dot, r.n_ddot, d.legs.base_arm.col(k), m.omega, false,
-                             leg.cylinder_x, leg.cylinder_sin);
-    const Spin pis = spin_of(n, r.n_dot, r.n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
-                             leg.piston_sin);
-    const double w_dot_p = pis.w_dot - pis.spin.dot(m.alpha);  // the platform arm's alpha x s
     const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
     const double a_c = d.cylinder_inertia[0], c_c = d.cylinder_inertia[2];
     const double a_p = d.piston_inertia[0], c_p = d.piston_inertia[2];
@@ -259,15 +295,48 @@ void subtract_leg_wrench(const DynamicsModel &d, int k, const LegConfiguration &
     const Vec3 f_p = d.piston_mass * (r.P_ddot - cp * r.n_ddot - d.gravity);
     force -= f_c + f_p;
     torque -= cylinder_position.cross(f_c) + piston_position.cross(f_p) +
-              (a_c + a_p) * n.cross(r.n_ddot) + (c_c * cyl.w_dot + c_p * w_dot_p) * n +
-              (c_c * cyl.w + c_p * pis.w) * r.n_dot;
+              (a_c + a_p) * n.cross(r.n_ddot) + (c_c * r.w_dot_c + c_p * r.w_dot_p) * n +
+              (c_c * r.w_c + c_p * r.w_p) * r.n_dot;
+}
+
+// Leg k's accelerations found anew for the platform's motion m with its accelerations.
+LegAccelerations leg_accelerations(const DynamicsModel &d, int k, const LegConfiguration &leg,
+                                   const Motion &m) {
+    const Vec3 &n = leg.n;
+    const LegRates r = leg_rates(leg, m, true);
+    const Spin cyl = spin_of(n, r.n_dot, r.n_ddot, d.legs.base_arm.col(k), m.omega, false,
+                             leg.cylinder_x, leg.cylinder_sin);
+    const Spin pis = spin_of(n, r.n_dot, r.n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
+                             leg.piston_sin);
+    // the piston's: the platform arm's alpha x s
+    const double w_dot_p = pis.w_dot - pis.spin.dot(m.alpha);
+    return {r.n_dot, r.n_ddot, r.P_ddot, cyl.w, cyl.w_dot, pis.w, w_dot_p};
+}
+
+// The same from the kept velocity-product terms t and the platform's accelerations in m
+// (the part linear in them: plant_equations.hpp's LegRateTerms).
+[[gnu::always_inline]] inline LegAccelerations leg_accelerations(const LegRateTerms &t,
+                                                                 const LegConfiguration &leg,
+                                                                 const Motion &m) {
+    const Vec3 &n = leg.n;
+    const Vec3 P_acc = m.acceleration + m.alpha.cross(leg.arm);
+    const Vec3 N_P_acc = (P_acc - n.dot(P_acc) * n) * leg.inverse_length;
+    return {t.n_dot,
+            t.n_ddot + N_P_acc,
+            t.P_ddot + P_acc,
+            t.w_cylinder,
+            t.w_dot_cylinder + t.h_cylinder.dot(P_acc),
+            t.w_piston,
+            t.w_dot_piston + t.h_piston.dot(P_acc) - t.spin.dot(m.alpha)};
 }
 
 }  // namespace
 
 bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e) {
-    if (fast_path(d)) return axisymmetric_twist_rate(d, m, force, e);
+    if (fast_path(d))
+        return e.keep_terms ? axisymmetric_twist_rate<true>(d, m, force, e)
+                            : axisymmetric_twist_rate<false>(d, m, force, e);
     // the integrator's massless equations, so that a step's outputs and a later output or
     // derivative at the same state are the same bits
     if (!d.with_legs && !d.reference_equations) return massless_twist_rate(d, m, force, e);
@@ -283,13 +352,20 @@ void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, V
         return;
     }
     // The platform as base_wrench's body 0 (body_motions' platform motion).
-    const Vec3 c = m.rotation * d.platform_com;
-    const Mat3 I = m.rotation * d.platform_inertia * m.rotation.transpose();
+    const bool kept = e.terms_kept;
+    const Vec3 c = kept ? e.kept.platform_com : Vec3(m.rotation * d.platform_com);
+    const Mat3 I = kept ? e.kept.platform_inertia
+                        : Mat3(m.rotation * d.platform_inertia * m.rotation.transpose());
     const Vec3 acceleration = m.acceleration + m.alpha.cross(c) + m.omega.cross(m.omega.cross(c));
     const Vec3 f = d.platform_mass * (acceleration - d.gravity);
     force = -f;
     torque = -((m.position + c).cross(f) + I * m.alpha + m.omega.cross(I * m.omega));
-    for (int k = 0; k < STEWART_LEGS; ++k) subtract_leg_wrench(d, k, e.legs[k], m, force, torque);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const LegConfiguration &leg = e.legs[k];
+        const LegAccelerations r = kept ? leg_accelerations(e.kept.legs[k], leg, m)
+                                        : leg_accelerations(d, k, leg, m);
+        subtract_leg_wrench(d, k, leg, m, r, force, torque);
+    }
 }
 
 }  // namespace fd

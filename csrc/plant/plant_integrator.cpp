@@ -191,9 +191,13 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     double force[STEWART_LEGS];
     im.forces->at(tau, force);
     // the massless equations written out (plant_massless.cpp; twist_rate's for the massless model)
-    const bool defined = im.model->with_legs ? twist_rate(*im.model, m, force, im.evaluation)
-                                             : massless_twist_rate(*im.model, m, force,
-                                                                   im.evaluation);
+    bool defined;
+    if (im.model->with_legs) {
+        im.evaluation.keep_terms = tau == im.forces->h;  // the step's end: its outputs reuse them
+        defined = twist_rate(*im.model, m, force, im.evaluation);
+    } else {
+        defined = massless_twist_rate(*im.model, m, force, im.evaluation);
+    }
     if (!defined) {
         im.fault = im.evaluation.fault;
         im.fault_leg = im.evaluation.fault_leg;

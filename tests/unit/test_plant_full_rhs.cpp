@@ -5,10 +5,13 @@
 // formulation of the dual scalar (linearisation): on random states (any rotation, fast motion,
 // forces to 50 kN) the two twist rates agree within 1e-13 relative (each half, linear and
 // angular, against its own size) and agree on the same faults, and so do the base wrench in
-// closed form (fd::base_wrench of the motion) and base_wrench of the 13 bodies' motions; one 1 ms plant step of each from
-// random states near home within 1e-13 of the state's scale; leg bodies that are not
-// axisymmetric take the template itself (equal bits). For the thesis platform and for one with
-// a payload off its centre (full inertia, centre of mass off the origin).
+// closed form (fd::base_wrench of the motion: its leg terms found anew, and reused from the
+// right-hand side's kept terms) and base_wrench of the 13 bodies' motions; one 1 ms plant step
+// of each from random states near home within 1e-13 of the state's scale; the plant's step
+// outputs (base wrench from the end evaluation's kept terms) against stewart_plant_output_get at
+// the same state (found anew); leg bodies that are not axisymmetric take the template itself
+// (equal bits). For the thesis platform and for one with a payload off its centre (full
+// inertia, centre of mass off the origin).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -55,18 +58,19 @@ double relative_difference(const fd::Evaluation &a, const fd::Evaluation &b) {
     return worst;
 }
 
-// The base wrench in closed form (fd::base_wrench of the motion) against base_wrench of
-// body_motions' 13 bodies, at the platform's motion m with the twist rate of e: the larger
-// relative difference of the force and the torque.
+// The base wrench in closed form (fd::base_wrench of the motion, with closed's configuration and
+// its kept terms if it kept them) against base_wrench of body_motions' 13 bodies, at the
+// platform's motion m with the twist rate of e: the larger relative difference of the force
+// and the torque.
 double base_wrench_difference(const fd::DynamicsModel &d, stewart::Motion m,
-                              const fd::Evaluation &e) {
+                              const fd::Evaluation &e, const fd::Evaluation &closed) {
     m.acceleration = e.twist_rate.head<3>();
     m.alpha = e.twist_rate.tail<3>();
     stewart::Motion bodies[13];
     fd::body_motions(d, m, e, bodies);
     fd::Vec3 force, torque, force_fast, torque_fast;
     fd::base_wrench(d, bodies, force, torque);
-    fd::base_wrench(d, m, e, force_fast, torque_fast);
+    fd::base_wrench(d, m, closed, force_fast, torque_fast);
     if (!force_fast.allFinite() || !torque_fast.allFinite()) return INFINITY;
     return worse(relative((force_fast - force).lpNorm<Eigen::Infinity>(),
                           force.lpNorm<Eigen::Infinity>()),
@@ -85,7 +89,7 @@ stewart_model *make_model(const stewart_params &params) {
 // caller) and the number of disagreements on whether (and where) a state is defined.
 double compare_twist_rates(const fd::DynamicsModel &d, bool same_bits_expected) {
     uint64_t rng = 424242;
-    double worst = 0;
+    double worst = 0, worst_wrench = 0, worst_kept = 0;
     int disagreements = 0, defined = 0;
     for (int n = 0; n < 20000; ++n) {
         double y[fd::kStates], force[STEWART_LEGS];
@@ -97,6 +101,7 @@ double compare_twist_rates(const fd::DynamicsModel &d, bool same_bits_expected) 
         for (double &f : force) f = uniform(rng, -5e4, 5e4);
         const stewart::Motion m = fd::motion_of_state(y);
         fd::Evaluation fast, reference;
+        fast.keep_terms = true;
         const bool a = fd::twist_rate(d, m, force, fast);
         const bool b = fd::twist_rate<double>(d, m, force, reference);
         if (a != b || fast.fault != reference.fault || fast.fault_leg != reference.fault_leg) {
@@ -108,10 +113,16 @@ double compare_twist_rates(const fd::DynamicsModel &d, bool same_bits_expected) 
         if (same_bits_expected)
             disagreements += std::memcmp(fast.twist_rate.data(), reference.twist_rate.data(),
                                          6 * sizeof(double)) != 0;
+        // the closed form keeps its terms when asked; the template never does
+        disagreements += fast.terms_kept == same_bits_expected;
         worst = worse(worst, relative_difference(fast, reference));
-        worst = worse(worst, base_wrench_difference(d, m, reference));
+        worst_wrench = worse(worst_wrench, base_wrench_difference(d, m, reference, reference));
+        worst_kept = worse(worst_kept, base_wrench_difference(d, m, reference, fast));
     }
-    std::printf("%d defined states, worst relative difference %.3g\n", defined, worst);
+    std::printf("%d defined states, worst relative difference %.3g (twist rate), %.3g (base "
+                "wrench), %.3g (base wrench from the kept terms)\n",
+                defined, worst, worst_wrench, worst_kept);
+    worst = worse(worst, worse(worst_wrench, worst_kept));
     TEST_ASSERT_EQUAL_INT(0, disagreements);
     TEST_ASSERT_TRUE(defined > 10000);
     return worst;
@@ -163,12 +174,79 @@ double compare_steps(const fd::DynamicsModel &d) {
     return worst;
 }
 
+// The full inverse solve's forces holding the platform at rest at home.
+void static_forces(const stewart_model *model, double force[STEWART_LEGS]) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    o.fidelity = STEWART_FULL;
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_inverse *inverse = stewart_inverse_create(model, &o, message, sizeof message);
+    TEST_ASSERT_NOT_NULL_MESSAGE(inverse, message);
+    stewart_inverse_input in{};
+    in.pose.q[2] = stewart_model_params(model)->home_height;
+    stewart_inverse_output out;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_solve(inverse, &in, &out),
+                                  stewart_inverse_message(inverse));
+    for (int k = 0; k < STEWART_LEGS; ++k) force[k] = out.force[k];
+    stewart_inverse_free(inverse);
+}
+
+// The full plant's step outputs (their base wrench from the end evaluation's kept terms) against
+// stewart_plant_output_get at the state the step reached (the terms found anew), along 300
+// steps of 1 ms under forces around the static ones, with every integrator: the worst relative
+// difference of the base force and torque.
+double compare_step_outputs(const stewart_model *model) {
+    double worst = 0;
+    const int methods[] = {STEWART_PLANT_ERK, STEWART_PLANT_ERK5, STEWART_PLANT_BDF};
+    for (int method : methods) {
+        stewart_plant_options o;
+        stewart_plant_options_default(&o);
+        o.fidelity = STEWART_FULL;
+        o.method = method;
+        char message[STEWART_MESSAGE_SIZE];
+        stewart_plant *plant = stewart_plant_create(model, &o, message, sizeof message);
+        TEST_ASSERT_NOT_NULL_MESSAGE(plant, message);
+        stewart_plant_input in{};
+        in.h = 1e-3;
+        uint64_t rng = 77;
+        double static_force[STEWART_LEGS];
+        static_forces(model, static_force);
+        for (int k = 0; k < STEWART_LEGS; ++k) in.force_end[k] = static_force[k];
+        for (int n = 0; n < 300; ++n) {
+            for (int k = 0; k < STEWART_LEGS; ++k) {
+                in.force_start[k] = in.force_end[k];
+                in.force_end[k] = static_force[k] * (1 + 0.05 * std::sin(0.01 * n * (k + 1))) +
+                                  uniform(rng, -20, 20);
+            }
+            stewart_plant_output out, again;
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_plant_step(plant, &in, &out),
+                                          stewart_plant_message(plant));
+            TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(plant, nullptr, &again));
+            double force_scale = 0, torque_scale = 0, force_error = 0, torque_error = 0;
+            for (int i = 0; i < 3; ++i) {
+                force_scale = std::max(force_scale, std::fabs(again.base_force[i]));
+                torque_scale = std::max(torque_scale, std::fabs(again.base_torque[i]));
+                force_error =
+                    worse(force_error, std::fabs(out.base_force[i] - again.base_force[i]));
+                torque_error =
+                    worse(torque_error, std::fabs(out.base_torque[i] - again.base_torque[i]));
+            }
+            worst = worse(worst, worse(relative(force_error, force_scale),
+                                       relative(torque_error, torque_scale)));
+        }
+        stewart_plant_free(plant);
+    }
+    std::printf("900 plant steps, outputs' base wrench against output_get's: worst %.3g\n", worst);
+    return worst;
+}
+
 void check_platform(const stewart_params &params) {
     stewart_model *model = make_model(params);
     const fd::DynamicsModel d = fd::dynamics_model(*model, STEWART_FULL);
     TEST_ASSERT_TRUE(d.cylinder_inertia[0] == d.cylinder_inertia[1]);  // the fast path's case
     TEST_ASSERT_TRUE(compare_twist_rates(d, false) <= kBound);
     TEST_ASSERT_TRUE(compare_steps(d) <= kBound);
+    TEST_ASSERT_TRUE(compare_step_outputs(model) <= kBound);
     stewart_model_free(model);
 }
 
