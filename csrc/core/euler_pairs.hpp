@@ -69,4 +69,27 @@ inline void rotate_jacobian_two(const double *pa, const Vec3 &ua, const double *
         for (int c = 0; c < 4; ++c) Ba(r, c) = B[r][c][0], Bb(r, c) = B[r][c][1];
 }
 
+// G_times(pa, xa, out_a) and G_times(pb, xb, out_b).
+inline void G_times_two(const double *pa, const double *xa, const double *pb, const double *xb,
+                        Lanes out[3]) {
+    const Lanes p0 = lanes(pa[0], pb[0]), p1 = lanes(pa[1], pb[1]), p2 = lanes(pa[2], pb[2]),
+                p3 = lanes(pa[3], pb[3]);
+    const Lanes x0 = lanes(xa[0], xb[0]), x1 = lanes(xa[1], xb[1]), x2 = lanes(xa[2], xb[2]),
+                x3 = lanes(xa[3], xb[3]);
+    out[0] = -p1 * x0 + p0 * x1 + p3 * x2 - p2 * x3;
+    out[1] = -p2 * x0 - p3 * x1 + p0 * x2 + p1 * x3;
+    out[2] = -p3 * x0 + p2 * x1 - p1 * x2 + p0 * x3;
+}
+
+// G_transpose_times(pa, lane 0 of y, out_a) and G_transpose_times(pb, lane 1 of y, out_b).
+inline void G_transpose_times_two(const double *pa, const double *pb, const Lanes y[3],
+                                  Lanes out[4]) {
+    const Lanes p0 = lanes(pa[0], pb[0]), p1 = lanes(pa[1], pb[1]), p2 = lanes(pa[2], pb[2]),
+                p3 = lanes(pa[3], pb[3]);
+    out[0] = -p1 * y[0] - p2 * y[1] - p3 * y[2];
+    out[1] = p0 * y[0] - p3 * y[1] + p2 * y[2];
+    out[2] = p3 * y[0] + p0 * y[1] - p1 * y[2];
+    out[3] = -p2 * y[0] + p1 * y[1] + p0 * y[2];
+}
+
 }  // namespace mbs
