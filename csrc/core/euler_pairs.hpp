@@ -13,6 +13,22 @@ typedef double Lanes __attribute__((vector_size(16)));
 // (a, b) in the two lanes.
 inline Lanes lanes(double a, double b) { return Lanes{a, b}; }
 
+// rotation(pa) into Aa and rotation(pb) into Ab.
+inline void rotation_two(const double *pa, const double *pb, Mat3 &Aa, Mat3 &Ab) {
+    const Lanes e0 = lanes(pa[0], pb[0]), e1 = lanes(pa[1], pb[1]), e2 = lanes(pa[2], pb[2]),
+                e3 = lanes(pa[3], pb[3]);
+    const Lanes two = lanes(2.0, 2.0);
+    const Lanes s = e0 * e0 - (e1 * e1 + e2 * e2 + e3 * e3);
+    Lanes A[3][3];
+    A[0][0] = s + two * e1 * e1, A[0][1] = two * (e1 * e2 - e0 * e3);
+    A[0][2] = two * (e1 * e3 + e0 * e2), A[1][0] = two * (e2 * e1 + e0 * e3);
+    A[1][1] = s + two * e2 * e2, A[1][2] = two * (e2 * e3 - e0 * e1);
+    A[2][0] = two * (e3 * e1 - e0 * e2), A[2][1] = two * (e3 * e2 + e0 * e1);
+    A[2][2] = s + two * e3 * e3;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) Aa(r, c) = A[r][c][0], Ab(r, c) = A[r][c][1];
+}
+
 // times(Ma, ua) into a and times(Mb, ub) into b.
 inline void times_two(const Mat3 &Ma, const Vec3 &ua, const Mat3 &Mb, const Vec3 &ub, Vec3 &a,
                       Vec3 &b) {
@@ -79,6 +95,17 @@ inline void G_times_two(const double *pa, const double *xa, const double *pb, co
     out[0] = -p1 * x0 + p0 * x1 + p3 * x2 - p2 * x3;
     out[1] = -p2 * x0 - p3 * x1 + p0 * x2 + p1 * x3;
     out[2] = -p3 * x0 + p2 * x1 - p1 * x2 + p0 * x3;
+}
+
+// E_transpose_times(p, ya, out_a) and E_transpose_times(p, yb, out_b): one body, two vectors.
+inline void E_transpose_times_two(const double *p, const double *ya, const double *yb,
+                                  double *out_a, double *out_b) {
+    const Lanes p0 = lanes(p[0], p[0]), p1 = lanes(p[1], p[1]), p2 = lanes(p[2], p[2]),
+                p3 = lanes(p[3], p[3]);
+    const Lanes y0 = lanes(ya[0], yb[0]), y1 = lanes(ya[1], yb[1]), y2 = lanes(ya[2], yb[2]);
+    const Lanes r[4] = {-p1 * y0 - p2 * y1 - p3 * y2, p0 * y0 + p3 * y1 - p2 * y2,
+                        -p3 * y0 + p0 * y1 + p1 * y2, p2 * y0 - p1 * y1 + p0 * y2};
+    for (int c = 0; c < 4; ++c) out_a[c] = r[c][0], out_b[c] = r[c][1];
 }
 
 // G_transpose_times(pa, lane 0 of y, out_a) and G_transpose_times(pb, lane 1 of y, out_b).

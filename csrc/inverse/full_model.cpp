@@ -51,8 +51,7 @@ void put_body_motion(mbs::State &s, int body, const Motion &b) {
     put_body(s, body, b.position, b.rotation);
     const double *p = mbs::body_p(s.q.data(), body);
     Vec4 p_dot, p_ddot;
-    mbs::E_transpose_times(p, b.omega.data(), p_dot.data());
-    mbs::E_transpose_times(p, b.alpha.data(), p_ddot.data());
+    mbs::E_transpose_times_two(p, b.omega.data(), b.alpha.data(), p_dot.data(), p_ddot.data());
     p_dot *= 0.5;  // a power of two: exact
     p_ddot = 0.5 * p_ddot - p_dot.squaredNorm() * Vec4(p);
     store_pose(mbs::body_r(s.q_dot.data(), body), b.velocity, p_dot);
