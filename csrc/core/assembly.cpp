@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/euler_pairs.hpp"
+
 namespace mbs {
 
 namespace {
@@ -47,8 +49,12 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
               Outputs output) {
     BodyFrame cache[kFrameCache];
     const bool cached = m.bodies.size() <= kFrameCache;
+    size_t b = 0;
+    if (cached && !q_dot)  // rotations only: two bodies at a time, in the lanes of a vector
+        for (; b + 2 <= m.bodies.size(); b += 2)
+            rotation_two(body_p(q, b), body_p(q, b + 1), cache[b].A, cache[b + 1].A);
     if (cached)
-        for (size_t b = 0; b < m.bodies.size(); ++b)
+        for (; b < m.bodies.size(); ++b)
             make_frame(body_r(q, b), q_dot ? body_r(q_dot, b) : nullptr, cache[b]);
     for (size_t k = 0; k < m.joints.size(); ++k)
         evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k),

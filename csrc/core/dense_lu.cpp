@@ -61,6 +61,8 @@ MBS_LU_INLINE void backward_transposed_body(const double *a, int m, int n, int w
 
 }  // namespace
 
+#undef MBS_LU_INLINE  // the bodies' attribute only: no other file sees the macro
+
 bool lu_factor(double *a, int m, int n, int width, int *pivot) {
     return factor_body(a, m, n, width, pivot);
 }

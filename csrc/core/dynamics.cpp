@@ -1,6 +1,7 @@
 #include "core/dynamics.hpp"
 
 #include "core/assembly.hpp"
+#include "core/euler_pairs.hpp"
 
 namespace mbs {
 
@@ -12,15 +13,14 @@ void applied_minus_inertial(const Mechanism &m, const double *q, const double *q
         double *o = body_r(out, b);
         for (int c = 0; c < 3; ++c) o[c] = body.mass * (m.gravity[c] - ab[c]);
         // 8 G_dot^T J' G_dot p - 4 G^T J' G p_ddot = G_dot^T (8 J' G_dot p) - G^T (4 J' G p_ddot).
+        // The two products side by side in the lanes of a vector (euler_pairs.hpp).
         const double *p = qb + 3, *pd = vb + 3, *pdd = ab + 3;
-        double wd[3], wa[3];
-        G_times(pd, p, wd);
-        G_times(p, pdd, wa);
-        for (int c = 0; c < 3; ++c) wd[c] *= 8.0 * body.inertia[c], wa[c] *= 4.0 * body.inertia[c];
-        double ra[4], rb[4];
-        G_transpose_times(pd, wd, ra);
-        G_transpose_times(p, wa, rb);
-        for (int c = 0; c < 4; ++c) o[3 + c] = ra[c] - rb[c];
+        Lanes w[3];  // (w_dot-side, w_acc-side)
+        G_times_two(pd, p, p, pdd, w);
+        for (int c = 0; c < 3; ++c) w[c] *= lanes(8.0 * body.inertia[c], 4.0 * body.inertia[c]);
+        Lanes r[4];
+        G_transpose_times_two(pd, p, w, r);
+        for (int c = 0; c < 4; ++c) o[3 + c] = r[c][0] - r[c][1];
     }
 }
 

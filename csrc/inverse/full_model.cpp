@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/dynamics.hpp"
+#include "core/euler_pairs.hpp"
 #include "core/step.hpp"
 #include "stewart/stewart_table.h"
 #include "util/message.hpp"
@@ -50,31 +51,72 @@ void put_body_motion(mbs::State &s, int body, const Motion &b) {
     put_body(s, body, b.position, b.rotation);
     const double *p = mbs::body_p(s.q.data(), body);
     Vec4 p_dot, p_ddot;
-    mbs::E_transpose_times(p, b.omega.data(), p_dot.data());
-    mbs::E_transpose_times(p, b.alpha.data(), p_ddot.data());
+    mbs::E_transpose_times_two(p, b.omega.data(), b.alpha.data(), p_dot.data(), p_ddot.data());
     p_dot *= 0.5;  // a power of two: exact
     p_ddot = 0.5 * p_ddot - p_dot.squaredNorm() * Vec4(p);
     store_pose(mbs::body_r(s.q_dot.data(), body), b.velocity, p_dot);
     store_pose(mbs::body_r(s.q_ddot.data(), body), b.acceleration, p_ddot);
 }
 
+// Two 3-vectors side by side: component c of the cylinder's in lane 0 of v[c], the piston's in
+// lane 1 (euler_pairs.hpp: each lane does the scalar arithmetic in Eigen's order, so both are the
+// scalar results' bits).
+struct TwoVec3 {
+    mbs::Lanes v[3];
+};
+TwoVec3 two(const Vec3 &a, const Vec3 &b) {
+    return {{mbs::lanes(a[0], b[0]), mbs::lanes(a[1], b[1]), mbs::lanes(a[2], b[2])}};
+}
+TwoVec3 operator+(const TwoVec3 &a, const TwoVec3 &b) {
+    return {{a.v[0] + b.v[0], a.v[1] + b.v[1], a.v[2] + b.v[2]}};
+}
+TwoVec3 operator-(const TwoVec3 &a, const TwoVec3 &b) {
+    return {{a.v[0] - b.v[0], a.v[1] - b.v[1], a.v[2] - b.v[2]}};
+}
+TwoVec3 operator*(mbs::Lanes k, const TwoVec3 &a) { return {{k * a.v[0], k * a.v[1], k * a.v[2]}}; }
+TwoVec3 operator/(const TwoVec3 &a, mbs::Lanes k) { return {{a.v[0] / k, a.v[1] / k, a.v[2] / k}}; }
+// Eigen's dot and cross of 3-vectors, term by term in its order.
+mbs::Lanes dot(const TwoVec3 &a, const TwoVec3 &b) {
+    return a.v[0] * b.v[0] + a.v[1] * b.v[1] + a.v[2] * b.v[2];
+}
+TwoVec3 cross(const TwoVec3 &a, const TwoVec3 &b) {
+    return {{a.v[1] * b.v[2] - a.v[2] * b.v[1], a.v[2] * b.v[0] - a.v[0] * b.v[2],
+             a.v[0] * b.v[1] - a.v[1] * b.v[0]}};
+}
+Vec3 lane(const TwoVec3 &a, int k) { return Vec3(a.v[0][k], a.v[1][k], a.v[2][k]); }
+
 // A leg body's angular velocity and acceleration. Its z axis is the leg axis n (with rates), its
 // Cardan partner (angular velocity w_o, acceleration alpha_o) carries the cross arm s (world);
 // the body's x axis is the other arm, s x n normalised. The relative rotation is about the two
 // arms, w = w_o + a s + b x, and n_dot = w x n fixes a and b; n_ddot = alpha x n + w x n_dot
 // fixes their rates the same way.
-void leg_body_rates(const Vec3 &n, const Vec3 &n_dot, const Vec3 &n_ddot, const Vec3 &s,
-                    const Vec3 &w_o, const Vec3 &alpha_o, Motion &b) {
-    const Vec3 c = s.cross(n);
-    const double c_norm = c.norm();
-    const Vec3 x = c / c_norm, y = n.cross(x);
-    // (a s + b x) x n = a |c| x - b y.
-    const Vec3 relative = n_dot - w_o.cross(n);
-    const double a = relative.dot(x) / c_norm, bb = -relative.dot(y);
-    b.omega = w_o + a * s + bb * x;
-    const Vec3 known = alpha_o + a * w_o.cross(s) + bb * b.omega.cross(x);
-    const Vec3 rest = n_ddot - b.omega.cross(n_dot) - known.cross(n);
-    b.alpha = known + (rest.dot(x) / c_norm) * s - rest.dot(y) * x;
+// Both bodies of a leg at once, in the two lanes: the cylinder (arm s_c, partner the fixed base)
+// and the piston (arm s_p, partner the platform: w_p, alpha_p); their frames (leg_frame's) too.
+void leg_bodies_rates(const Vec3 &n_, const Vec3 &n_dot_, const Vec3 &n_ddot_, const Vec3 &s_c,
+                      const Vec3 &s_p, const Vec3 &w_p, const Vec3 &alpha_p, Motion &cylinder,
+                      Motion &piston) {
+    const Vec3 zero = Vec3::Zero();
+    const TwoVec3 n = two(n_, n_), n_dot = two(n_dot_, n_dot_), n_ddot = two(n_ddot_, n_ddot_);
+    const TwoVec3 s = two(s_c, s_p), w_o = two(zero, w_p), alpha_o = two(zero, alpha_p);
+    const TwoVec3 c = cross(s, n);
+    const mbs::Lanes squared = dot(c, c);
+    const mbs::Lanes c_norm = mbs::lanes(std::sqrt(squared[0]), std::sqrt(squared[1]));
+    const TwoVec3 x = c / c_norm, y = cross(n, x);
+    const TwoVec3 relative = n_dot - cross(w_o, n);
+    const mbs::Lanes a = dot(relative, x) / c_norm, bb = -dot(relative, y);
+    const TwoVec3 omega = w_o + a * s + bb * x;
+    const TwoVec3 known = alpha_o + a * cross(w_o, s) + bb * cross(omega, x);
+    const TwoVec3 rest = n_ddot - cross(omega, n_dot) - cross(known, n);
+    const TwoVec3 alpha = known + (dot(rest, x) / c_norm) * s - dot(rest, y) * x;
+    Motion *bodies[2] = {&cylinder, &piston};
+    for (int k = 0; k < 2; ++k) {
+        bodies[k]->omega = lane(omega, k);
+        bodies[k]->alpha = lane(alpha, k);
+        // leg_frame(n, s): its x is s x n normalised, c / |c| (Eigen's normalized() divides).
+        bodies[k]->rotation.col(0) = lane(x, k);
+        bodies[k]->rotation.col(1) = lane(y, k);
+        bodies[k]->rotation.col(2) = n_;
+    }
 }
 
 struct Placement {
@@ -199,7 +241,6 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
 }
 
 void full_motion(const FullLayout &l, const Motion &mo, mbs::State &s) {
-    const Vec3 zero = Vec3::Zero();
     const Eigen::Matrix3d &R = mo.rotation;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         // The leg: d = P - a, its length, axis n and their rates.
@@ -220,17 +261,14 @@ void full_motion(const FullLayout &l, const Motion &mo, mbs::State &s) {
         cylinder.position = l.geometry.base_points.col(k) + l.cylinder_com * n;
         cylinder.velocity = l.cylinder_com * n_dot;
         cylinder.acceleration = l.cylinder_com * n_ddot;
-        cylinder.rotation = leg_frame(n, l.base_arm.col(k));
-        leg_body_rates(n, n_dot, n_ddot, l.base_arm.col(k), zero, zero, cylinder);
-        put_body_motion(s, l.cylinder[k], cylinder);
-
         Motion piston;
         const Vec3 plate_arm = R * l.platform_arm.col(k);
         piston.position = P - l.piston_com * n;
         piston.velocity = P_dot - l.piston_com * n_dot;
         piston.acceleration = P_ddot - l.piston_com * n_ddot;
-        piston.rotation = leg_frame(n, plate_arm);
-        leg_body_rates(n, n_dot, n_ddot, plate_arm, mo.omega, mo.alpha, piston);
+        leg_bodies_rates(n, n_dot, n_ddot, l.base_arm.col(k), plate_arm, mo.omega, mo.alpha,
+                         cylinder, piston);
+        put_body_motion(s, l.cylinder[k], cylinder);
         put_body_motion(s, l.piston[k], piston);
     }
     Motion platform;

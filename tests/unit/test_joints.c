@@ -192,6 +192,27 @@ static void test_bad_input_named(void) {
     mbs_model_free(m);
 }
 
+/* A multiplier that overflows (Euler-parameter rates of 1e200 square to infinity in the inertial
+ * forces) is refused with a status naming lambda, never returned with MBS_OK. */
+static void test_overflowing_multipliers_refused(void) {
+    mbs_model *m = mbs_model_create();
+    double I[3] = {1, 1, 1}, q[7] = {0, 0, 0, 1, 0, 0, 0};
+    const int b = mbs_add_body(m, "b", 1.0, I, q);
+    int slot = -1;
+    TEST_ASSERT_TRUE(mbs_add_pose_driver(m, b, &slot) >= 0);
+    char msg[MBS_MESSAGE_SIZE];
+    TEST_ASSERT_EQUAL_MESSAGE(MBS_OK, mbs_model_finalize(m, msg, sizeof msg), msg);
+    mbs_data *d = mbs_data_create(m, MBS_LINEAR_AUTOMATIC);
+    for (int k = 0; k < 7; ++k)
+        TEST_ASSERT_EQUAL(MBS_OK, mbs_set_driver(d, slot + k, q[k], k >= 3 ? 1e200 : 0.0, 0.0));
+    mbs_options o;
+    mbs_options_default(&o);
+    TEST_ASSERT_NOT_EQUAL(MBS_OK, mbs_step(d, 0, &o));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(mbs_data_message(d), "lambda"), mbs_data_message(d));
+    mbs_data_free(d);
+    mbs_model_free(m);
+}
+
 int main(void) {
     srand(12345);
     UNITY_BEGIN();
@@ -207,5 +228,6 @@ int main(void) {
     RUN_TEST(test_fixed_body);
     RUN_TEST(test_non_square_refused);
     RUN_TEST(test_bad_input_named);
+    RUN_TEST(test_overflowing_multipliers_refused);
     return UNITY_END();
 }

@@ -1,5 +1,7 @@
 #include "core/joints/primitives.hpp"
 
+#include "core/euler_pairs.hpp"
+
 namespace mbs {
 
 namespace {
@@ -11,14 +13,25 @@ const double *rate_source(const JointInput &in, bool body_i, const JointOutput &
 Attached attach_i(const JointInput &in, const JointOutput &out, const Vec3 &u) {
     return attach(*in.frame_i, out.gamma && in.v_i, u);
 }
-Attached attach_j(const JointInput &in, const JointOutput &out, const Vec3 &u) {
-    return attach(*in.frame_j, out.gamma && in.v_j, u);
+// attach_i(in, out, ui) into a and attach_j(in, out, uj) into b, body i's products and body j's
+// in the two lanes.
+void attach_both(const JointInput &in, const JointOutput &out, const Vec3 &ui, const Vec3 &uj,
+                 Attached &a, Attached &b) {
+    times_two(in.frame_i->A, ui, in.frame_j->A, uj, a.world, b.world);
+    const bool rates_i = out.gamma && in.v_i, rates_j = out.gamma && in.v_j;
+    if (rates_i && rates_j) {
+        times_two(in.frame_i->rate, ui, in.frame_j->rate, uj, a.rate, b.rate);
+        times_two(in.frame_i->quad, ui, in.frame_j->quad, uj, a.quad, b.quad);
+        return;
+    }
+    if (rates_i) a.rate = times(in.frame_i->rate, ui), a.quad = times(in.frame_i->quad, ui);
+    if (rates_j) b.rate = times(in.frame_j->rate, uj), b.quad = times(in.frame_j->quad, uj);
 }
 }  // namespace
 
 void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
-    const Attached ui = attach_i(in, w.out, in.def.point_i);
-    const Attached uj = attach_j(in, w.out, in.def.point_j);
+    Attached ui, uj;
+    attach_both(in, w.out, in.def.point_i, in.def.point_j, ui, uj);
     if (w.out.phi) {
         const Vec3 phi = position(in.q_i) + ui.world - position(in.q_j) - uj.world;
         for (int k = 0; k < 3; ++k) w.phi(row + k, phi[k]);
@@ -29,8 +42,8 @@ void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
     }
     for (int k = 0; k < 3; ++k) w.phi_t(row + k, 0.0);
     if (w.want_jac()) {
-        const Mat34 Bi = rotate_jacobian(in.q_i + 3, in.def.point_i);
-        const Mat34 Bj = rotate_jacobian(in.q_j + 3, in.def.point_j);
+        Mat34 Bi, Bj;
+        rotate_jacobian_two(in.q_i + 3, in.def.point_i, in.q_j + 3, in.def.point_j, Bi, Bj);
         for (int k = 0; k < 3; ++k) {
             double *ri = w.jac_i(row + k), *rj = w.jac_j(row + k);
             for (int c = 0; c < 3; ++c) ri[c] = (c == k) ? 1.0 : 0.0, rj[c] = (c == k) ? -1.0 : 0.0;
@@ -42,34 +55,35 @@ void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
 void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
           const Vec3 &b_local) {
     if (!w.out.gamma) {  // Newton's pass: the same products, without the rates' bookkeeping
-        const Vec3 a = times(in.frame_i->A, a_local), b = times(in.frame_j->A, b_local);
+        Vec3 a, b;
+        times_two(in.frame_i->A, a_local, in.frame_j->A, b_local, a, b);
         w.phi(row, a.dot(b));
         w.phi_t(row, 0.0);
         if (w.want_jac()) {
             double *ri = w.jac_i(row), *rj = w.jac_j(row);
             ri[0] = ri[1] = ri[2] = 0.0, rj[0] = rj[1] = rj[2] = 0.0;
-            rotation_row(in.q_i + 3, a_local, b, ri + 3);
-            rotation_row(in.q_j + 3, b_local, a, rj + 3);
+            rotation_row_two(in.q_i + 3, a_local, b, ri + 3, in.q_j + 3, b_local, a, rj + 3);
         }
         return;
     }
-    const Attached a = attach_i(in, w.out, a_local);
-    const Attached b = attach_j(in, w.out, b_local);
+    Attached a, b;
+    attach_both(in, w.out, a_local, b_local, a, b);
     w.phi(row, a.world.dot(b.world));
     w.phi_t(row, 0.0);
     if (w.out.gamma)
         w.gamma(row, -(a.quad.dot(b.world) + 2.0 * a.rate.dot(b.rate) + a.world.dot(b.quad)));
     if (w.want_jac()) {
-        const Vec3 zero = Vec3::Zero();
-        put(w.jac_i(row), zero, row_of_rotate_jacobian(in.q_i + 3, a_local, b.world));
-        put(w.jac_j(row), zero, row_of_rotate_jacobian(in.q_j + 3, b_local, a.world));
+        double *ri = w.jac_i(row), *rj = w.jac_j(row);
+        ri[0] = ri[1] = ri[2] = 0.0, rj[0] = rj[1] = rj[2] = 0.0;
+        rotation_row_two(in.q_i + 3, a_local, b.world, ri + 3, in.q_j + 3, b_local, a.world,
+                         rj + 3);
     }
 }
 
 Separation separation(const JointInput &in, const JointOutput &out) {
     const double *vi = rate_source(in, true, out), *vj = rate_source(in, false, out);
-    const Attached ui = attach_i(in, out, in.def.point_i);
-    const Attached uj = attach_j(in, out, in.def.point_j);
+    Attached ui, uj;
+    attach_both(in, out, in.def.point_i, in.def.point_j, ui, uj);
     Separation s;
     s.d = position(in.q_j) + uj.world - position(in.q_i) - ui.world;
     if (out.gamma) {
@@ -90,10 +104,13 @@ void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local
         w.gamma(row, gamma);
     }
     if (w.want_jac()) {
-        put(w.jac_i(row), -a.world,
-            row_of_rotate_jacobian(in.q_i + 3, a_local, sep.d) -
-                row_of_rotate_jacobian(in.q_i + 3, in.def.point_i, a.world));
-        put(w.jac_j(row), a.world, row_of_rotate_jacobian(in.q_j + 3, in.def.point_j, a.world));
+        double *ri = w.jac_i(row), *rj = w.jac_j(row);
+        double turn[4], lever[4];  // v^T B rows: of a turning with body i, of its point's lever
+        rotation_row_two(in.q_i + 3, a_local, sep.d, turn, in.q_j + 3, in.def.point_j, a.world,
+                         rj + 3);
+        rotation_row(in.q_i + 3, in.def.point_i, a.world, lever);
+        for (int c = 0; c < 3; ++c) ri[c] = -a.world[c], rj[c] = a.world[c];
+        for (int c = 0; c < 4; ++c) ri[3 + c] = turn[c] - lever[c];
     }
 }
 
