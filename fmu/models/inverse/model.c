@@ -738,19 +738,71 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
     return solved_checking(inst, t + h, pose, out, 0); /* no limit outputs on the usual step */
 }
 
+#if PAIRED_ARITHMETIC
+/* Two coordinates of quadratic_rates (the same roundings), each value loaded once: the pose q
+ * (the inputs), the history's older and newer poses at q0 and q1, into the library's input at
+ * in (q, q_dot 6 on, q_ddot 12 on); h12 = h1 + h2. */
+static inline void quadratic_pair(const double *q, const double *q0, const double *q1,
+                                  double *in, double_pair h1, double_pair h2, double_pair h12) {
+    const double_pair p0 = load_pair(q0), p1 = load_pair(q1), p2 = load_pair(q);
+    const double_pair d1 = (p1 - p0) / h1, d2 = (p2 - p1) / h2;
+    const double_pair dd = (d2 - d1) / h12; /* q[t0, t1, t2] */
+    store_pair(in, p2);
+    store_pair(in + 6, d2 + h2 * dd);
+    store_pair(in + 12, dd + dd); /* 2 dd, exactly */
+}
+
+/* The pose q at communication point t becomes the history's newer one, the newer the older, in
+ * pairs (shift_history's values). */
+static inline void shift_history_pairs(model_values *m, double t, const double q[6]) {
+    m->history_t[0] = m->history_t[1];
+    m->history_t[1] = t;
+    UNROLLED
+    for (int i = 0; i < 6; i += 2) {
+        store_pair(&m->history_q[0][i], load_pair(&m->history_q[1][i]));
+        store_pair(&m->history_q[1][i], load_pair(&q[i]));
+    }
+}
+#endif
+
+/* Inlined into each usual step whatever the compiler's estimate (each is one function with one
+ * library call: a call of its own would add a frame around it). */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 /* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
  * and the pose joins the history. */
-static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
+static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
     fmu_values *v = &inst->v;
+    model_values *m = &v->model;
     stewart_inverse_input in;
+#if PAIRED_ARITHMETIC
+    const double h1 = m->history_t[1] - m->history_t[0], h2 = t - m->history_t[1];
+    const double_pair h1_2 = {h1, h1}, h2_2 = {h2, h2}, h12_2 = h1_2 + h2_2;
+    const double *q = &v->real[VR_x];
+    quadratic_pair(q, m->history_q[0], m->history_q[1], in.pose.q, h1_2, h2_2, h12_2);
+    quadratic_pair(q + 2, m->history_q[0] + 2, m->history_q[1] + 2, in.pose.q + 2, h1_2, h2_2,
+                   h12_2);
+    quadratic_pair(q + 4, m->history_q[0] + 4, m->history_q[1] + 4, in.pose.q + 4, h1_2, h2_2,
+                   h12_2);
+#else
     memcpy(in.pose.q, &v->real[VR_x], sizeof in.pose.q);
-    quadratic_rates(&v->model, t, &in.pose);
+    quadratic_rates(m, t, &in.pose);
+#endif
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, out);
     if (s != STEWART_OK) return refused(inst, t, &in.pose, s);
-    const fmu_status fs = solved_checking(inst, t, in.pose.q, out, 0);
-    shift_history(&v->model, t, in.pose.q); /* the history is full already */
-    return fs;
+    /* solved: the pose joins the history (full already), before the outputs so that their
+     * status goes straight to the step's end */
+#if PAIRED_ARITHMETIC
+    shift_history_pairs(m, t, in.pose.q);
+#else
+    shift_history(m, t, in.pose.q);
+#endif
+    return solved_checking(inst, t, in.pose.q, out, 0);
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
@@ -762,47 +814,45 @@ static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
 #define OWN_FRAME
 #endif
 
-/* The step's end: accepted (OK, Warning) or not; the unit's last successful time to
- * *last_successful_time unless NULL (a constant in each caller). The usual step leaves the unit's
- * time as it was (t, or within the slack of it) until here, so that is the time before it. */
-static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s,
-                                  double *last_successful_time) {
-    if (s == FMU_OK || s == FMU_WARNING) {
-        const fmu_status accepted = fmu_step_accepted(&inst->v, t, h, s);
-        if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
-        return accepted;
-    }
-    if (!last_successful_time) return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
-    const fmu_status not_taken = fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+/* The step's end: accepted (OK, Warning) or not. The usual step leaves the unit's time as it
+ * was (t, or within the slack of it) until here, so that is the time before it. */
+static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s) {
+    if (s == FMU_OK || s == FMU_WARNING) return fmu_step_accepted(&inst->v, t, h, s);
+    return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+}
+
+/* step_end, then the unit's last successful time to *last_successful_time (FMI 3: not NULL, the
+ * runtime checked it, so the usual step does not test it again). */
+static inline fmu_status step_end_reporting(fmu_instance *inst, double t, double h, fmu_status s,
+                                            double *last_successful_time) {
+    const fmu_status end = step_end(inst, t, h, s);
     *last_successful_time = inst->v.last_successful_time;
-    return not_taken;
+    return end;
 }
 
 OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, advance_in_place(inst, t, h), NULL);
+    return step_end(inst, t, h, advance_in_place(inst, t, h));
 }
 
 OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, hold_with_quadratic(inst, t), NULL);
+    return step_end(inst, t, h, hold_with_quadratic(inst, t));
 }
 
 /* The same for FMI 3, which takes the last successful time back. */
 OWN_FRAME static fmu_status usual_advance_step_reporting(fmu_instance *inst, double t, double h,
                                                          double *last_successful_time) {
-    return step_end(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
+    return step_end_reporting(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
 }
 
 OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double t, double h,
                                                       double *last_successful_time) {
-    return step_end(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
+    return step_end_reporting(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
 }
 
-/* model_usual_step other than the Taylor advance (out of line, so that the advance is told by
- * one test of the route's value in memory). */
+/* model_usual_step on inputs set and finite, other than the Taylor advance (out of line, so that
+ * the advance is told by one test of the route's value in memory, not a load and two tests). */
 OWN_FRAME static fmu_status usual_hold_or_run_step(fmu_instance *inst, double t, double h) {
-    const fmu_values *v = &inst->v;
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
-        return usual_hold_step(inst, t, h);
+    if (inst->v.model.usual_route == ROUTE_HOLD) return usual_hold_step(inst, t, h);
     return fmu_run_step(inst, t, h);
 }
 
@@ -811,34 +861,26 @@ fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
     /* The usual step: inputs set since the last step, all finite, and a usual route (no
      * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
      * differences two earlier poses). Anything else: the step rules in full. */
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
-        return usual_advance_step(inst, t, h);
+    if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
+    if (v->model.usual_route == ROUTE_ADVANCE) return usual_advance_step(inst, t, h);
     return usual_hold_or_run_step(inst, t, h);
 }
 
-/* fmu_run_step, then the unit's last successful time to *last_successful_time (out of line: the
- * usual step keeps no frame for it). */
-FMU_RARE_PATH static fmu_status run_step_reporting(fmu_instance *inst, double t, double h,
-                                                   double *last_successful_time) {
-    const fmu_status s = fmu_run_step(inst, t, h);
-    *last_successful_time = inst->v.last_successful_time;
-    return s;
-}
-
-/* model_usual_step_reporting other than the Taylor advance (as usual_hold_or_run_step). */
+/* model_usual_step_reporting's usual_hold_or_run_step. */
 OWN_FRAME static fmu_status usual_hold_or_run_step_reporting(fmu_instance *inst, double t,
                                                              double h,
                                                              double *last_successful_time) {
-    const fmu_values *v = &inst->v;
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
+    if (inst->v.model.usual_route == ROUTE_HOLD)
         return usual_hold_step_reporting(inst, t, h, last_successful_time);
-    return run_step_reporting(inst, t, h, last_successful_time);
+    return fmu_run_step_reporting(inst, t, h, last_successful_time);
 }
 
 fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
                                       double *last_successful_time) {
     const fmu_values *v = &inst->v;
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
+    if (fmu_outputs_current_or_inputs_unchecked(v))
+        return fmu_run_step_reporting(inst, t, h, last_successful_time);
+    if (v->model.usual_route == ROUTE_ADVANCE)
         return usual_advance_step_reporting(inst, t, h, last_successful_time);
     return usual_hold_or_run_step_reporting(inst, t, h, last_successful_time);
 }
