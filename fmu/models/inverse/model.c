@@ -594,7 +594,7 @@ fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, ins
  * the last point, with its chord from the point before (the quotient current_pose took). */
 static void commit_pose(model_values *m, double t, const double q[6]) {
     const fd_point *newer = newer_point(m);
-    fd_point *next = &m->history[!m->newer];
+    fd_point *next = &m->history[m->newer ^ 1];
     const double interval = m->n_history > 0 ? t - newer->t : 0.0;
     for (int i = 0; i < 6; ++i)
         next->slope[i] = m->n_history > 0 ? (q[i] - newer->pose.q[i]) / interval : 0.0;
@@ -603,7 +603,7 @@ static void commit_pose(model_values *m, double t, const double q[6]) {
     memset(next->pose.q_ddot, 0, sizeof next->pose.q_ddot);
     next->t = t;
     next->interval = interval;
-    m->newer = !m->newer;
+    m->newer ^= 1;
     if (m->n_history < 2) ++m->n_history;
 }
 
