@@ -226,16 +226,15 @@ FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, doub
 #define USUAL_STEP_REPORTING model_usual_step_reporting
 #else
 #define USUAL_STEP fmu_run_step
-#define USUAL_STEP_REPORTING run_step_reporting
+#define USUAL_STEP_REPORTING fmu_run_step_reporting
+#endif
 
-/* fmu_run_step, then the unit's last successful time to *last_successful_time. */
-static fmu_status run_step_reporting(fmu_instance *inst, double t, double h,
-                                     double *last_successful_time) {
+fmu_status fmu_run_step_reporting(fmu_instance *inst, double t, double h,
+                                  double *last_successful_time) {
     const fmu_status s = fmu_run_step(inst, t, h);
     *last_successful_time = inst->v.last_successful_time;
     return s;
 }
-#endif
 
 /* Any other call: the call order and the step checked with their messages, then the step. */
 FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, double h) {

@@ -123,6 +123,9 @@ fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
 /* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
  * the time bookkeeping around them. */
 fmu_status fmu_run_step(fmu_instance *inst, double t, double h);
+/* fmu_run_step, then the unit's last successful time to *last_successful_time (not NULL). */
+fmu_status fmu_run_step_reporting(fmu_instance *inst, double t, double h,
+                                  double *last_successful_time);
 /* The bookkeeping of a step from t that the model did not take (Discard: time stays at t; Error:
  * time and outputs_current go back to time_before and outputs_current_before, and the instance
  * enters the Error mode). Returns s. */

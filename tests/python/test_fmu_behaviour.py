@@ -69,6 +69,22 @@ def _layout(u, blob):
                 last_successful_time=16 + n - 16, mode=16 + n - 8)
 
 
+def _refused_then_intact_restores(u, blob, words, state, t):
+    """The corrupted bytes `blob` are an Error whose message has `words`; the intact bytes of
+    `state` (taken at t) still restore and step to finite outputs. Frees `state`."""
+    u.messages.clear()
+    with pytest.raises(Exception):
+        u.deserialize(bytes(blob))
+    m = [x for s, c, x in u.messages if s == ERROR]
+    assert m and "corrupt state" in m[-1] and words in m[-1], u.messages
+    restored = u.deserialize(bytes(u.serialize(state)))
+    u.set_state(restored)
+    assert u.do_step(t, 0.1) == OK
+    assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
+    u.free_state(restored)
+    u.free_state(state)
+
+
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("field,value,words", [
     ("L[1]", math.nan, "output L[1] is not finite"),
@@ -106,17 +122,30 @@ def test_corrupt_serialised_state_is_refused(version, field, value, words):
             expected = u.get([field])[0]
         assert struct.unpack_from(fmt, blob, offset)[0] == pytest.approx(expected, rel=1e-15)
         struct.pack_into(fmt, blob, offset, value)
-        u.messages.clear()
-        with pytest.raises(Exception):
-            u.deserialize(bytes(blob))
-        m = [x for s, c, x in u.messages if s == ERROR]
-        assert m and "corrupt state" in m[-1] and words in m[-1], u.messages
-        restored = u.deserialize(bytes(u.serialize(state)))
-        u.set_state(restored)
-        assert u.do_step(t, 0.1) == OK
-        assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
-        u.free_state(restored)
-        u.free_state(state)
+        _refused_then_intact_restores(u, blob, words, state, t)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_corrupt_history_slot_is_refused(version):
+    """The finite-difference history is two slots and the index of the newer one (the model's
+    values follow the integers: n_history, then that index): an index other than 0 or 1 would
+    read past the history, so a state holding one is an Error naming it; the intact bytes
+    still restore and step."""
+    import struct
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1, derivatives=0) == OK
+        _, t = _drive(u, 0.0, _poses(3))
+        state = u.get_state()
+        blob = bytearray(u.serialize(state))
+        nvr = max(v.valueReference for v in model_description("3.0").modelVariables) + 1
+        n_history = 16 + 12 * nvr
+        assert struct.unpack_from("<i", blob, n_history)[0] == 2  # two points held
+        assert struct.unpack_from("<i", blob, n_history + 4)[0] in (0, 1)
+        struct.pack_into("<i", blob, n_history + 4, 2)
+        _refused_then_intact_restores(u, blob, "newer point is not 0 or 1", state, t)
     finally:
         u.free()
 

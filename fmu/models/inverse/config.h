@@ -43,11 +43,25 @@
      : (out) >= VR_limit_class ? (in) <= VR_yaw /* the limits: the pose's */                      \
          : 1)
 
+/* A communication point of the finite-difference history: its pose (with the rates a usual step
+ * solved it with: the library's input as it stands), and the chord to it from the point before,
+ * kept so that the next step's quadratic does not difference the older pose again (the same
+ * quotient, bit for bit). */
+typedef struct fd_point {
+    stewart_pose pose;         /* q at t (q_dot, q_ddot: what a usual step solved with) */
+    double slope[6];           /* (q - q before) / interval, with two points committed */
+    double t;                  /* the communication point */
+    double interval;           /* t - t before, with two points committed */
+    double padding[6];         /* zero: 256 bytes, so that a slot's offset is its index shifted */
+} fd_point;
+
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
 typedef struct model_values {
-    int n_history;             /* poses committed at earlier communication points (0..2) */
-    double history_t[2];       /* [0] older, [1] newer */
-    double history_q[2][6];
+    int n_history;             /* points committed at earlier communication points (0..2): one,
+                                  or one with its chord from the one before */
+    int newer;                 /* history[newer] is the last point; the other slot is where a
+                                  usual step writes its own before the solve (0 or 1) */
+    fd_point history[2];
     int input_derivatives;     /* fmi2SetRealInputDerivatives called since the last step */
     int solve_status;          /* fmu_status of the solve the outputs come from */
     int advance_discarded;     /* the outputs stand after a Taylor advance that was discarded */

@@ -24,11 +24,12 @@ static int jacobian_row(unsigned vr) {
 /* d(q_dot, q_ddot)/dq of the finite differences the model uses without rate inputs (model.c:
  * current_pose): the chord through the last pose, or the quadratic through the last two. */
 static void difference_weights(const model_values *m, double time, double *rate, double *accel) {
+    const fd_point *newer = &m->history[m->newer];
     *rate = *accel = 0;
     if (m->n_history == 1) {
-        *rate = 1 / (time - m->history_t[1]);
+        *rate = 1 / (time - newer->t);
     } else if (m->n_history == 2) {
-        const double h1 = m->history_t[1] - m->history_t[0], h2 = time - m->history_t[1];
+        const double h1 = newer->interval, h2 = time - newer->t;
         *rate = 1 / h2 + 1 / (h1 + h2);
         *accel = 2 / (h2 * (h1 + h2));
     }

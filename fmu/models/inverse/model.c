@@ -129,6 +129,7 @@ enum { kOutputsInPlace = !FMU_INVERSE_COPY_OUTPUTS && OUTPUTS_LIE_OVER_VARIABLES
 _Static_assert(kOutputsInPlace, "stewart_inverse_output no longer lies over the output variables "
                                 "on x86-64: the usual step would copy it");
 #endif
+_Static_assert(sizeof(fd_point) == 256, "a history slot is no longer 256 bytes");
 _Static_assert(VR_x_dot == VR_x + 6 && VR_x_ddot == VR_x + 12 &&
                    offsetof(stewart_pose, q_dot) == 6 * sizeof(double) &&
                    offsetof(stewart_pose, q_ddot) == 12 * sizeof(double) &&
@@ -313,15 +314,19 @@ static int taylor_mode(const fmu_values *v) {
     return v->integer[VR_derivatives] == 1 || v->model.input_derivatives;
 }
 
+/* The history's last point. */
+static inline const fd_point *newer_point(const model_values *m) { return &m->history[m->newer]; }
+
 /* The rates and accelerations of pose->q at `time` from the quadratic through it and the last two
- * poses (two in the history). */
+ * poses (two in the history: the newer point and its chord from the older). */
 static inline void quadratic_rates(const model_values *restrict m, double time,
                                    stewart_pose *restrict pose) {
-    const double h1 = m->history_t[1] - m->history_t[0], h2 = time - m->history_t[1];
+    const fd_point *newer = newer_point(m);
+    const double h1 = newer->interval, h2 = time - newer->t;
     UNROLLED
     for (int i = 0; i < 6; ++i) {
-        const double q0 = m->history_q[0][i], q1 = m->history_q[1][i], q2 = pose->q[i];
-        const double d1 = (q1 - q0) / h1, d2 = (q2 - q1) / h2;
+        const double q1 = newer->pose.q[i], q2 = pose->q[i];
+        const double d1 = newer->slope[i], d2 = (q2 - q1) / h2;
         const double dd = (d2 - d1) / (h1 + h2); /* q[t0, t1, t2] */
         pose->q_dot[i] = d2 + h2 * dd;
         pose->q_ddot[i] = 2.0 * dd;
@@ -349,9 +354,10 @@ static void current_pose(const fmu_values *restrict v, double time, stewart_pose
     if (m->n_history == 0) {
         for (int i = 0; i < 6; ++i) pose->q_dot[i] = pose->q_ddot[i] = 0.0;
     } else if (m->n_history == 1) {
-        const double h = time - m->history_t[1];
+        const fd_point *newer = newer_point(m);
+        const double h = time - newer->t;
         for (int i = 0; i < 6; ++i) {
-            pose->q_dot[i] = (pose->q[i] - m->history_q[1][i]) / h;
+            pose->q_dot[i] = (pose->q[i] - newer->pose.q[i]) / h;
             pose->q_ddot[i] = 0.0;
         }
     } else {
@@ -421,8 +427,9 @@ static fmu_status discard_finite_differences(fmu_instance *inst, double time,
     const model_values *m = &inst->v.model;
     const char *name = fmu_variable_by_vr(VR_x + i)->name;
     const int rate_bad = !isfinite(pose->q_dot[i]);
+    /* the input and the last point's pose (the one before is no longer kept: its chord is) */
     double largest = fabs(pose->q[i]);
-    for (int j = 2 - m->n_history; j < 2; ++j) largest = fmax(largest, fabs(m->history_q[j][i]));
+    if (m->n_history > 0) largest = fmax(largest, fabs(newer_point(m)->pose.q[i]));
     if (largest > kHugeCoordinate)
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: input %s = %g is too large: no finite-difference %s of it is finite "
@@ -435,7 +442,7 @@ static fmu_status discard_finite_differences(fmu_instance *inst, double time,
                 "small for this motion; use derivatives = 1 or larger steps. Outputs keep "
                 "their last valid values",
                 time, rate_bad ? "rate" : "acceleration", name,
-                rate_bad ? pose->q_dot[i] : pose->q_ddot[i], time - m->history_t[1]);
+                rate_bad ? pose->q_dot[i] : pose->q_ddot[i], time - newer_point(m)->t);
     return not_solved(&inst->v, FMU_DISCARD);
 }
 
@@ -583,17 +590,20 @@ fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, ins
 
 /* ---------------------------------------------------------------- the step rules */
 
-/* The pose q at communication point t becomes the history's newer one, the newer the older. */
-static inline void shift_history(model_values *m, double t, const double q[6]) {
-    m->history_t[0] = m->history_t[1];
-    memcpy(m->history_q[0], m->history_q[1], sizeof m->history_q[0]);
-    m->history_t[1] = t;
-    memcpy(m->history_q[1], q, sizeof m->history_q[1]);
-}
-
-/* The pose q at communication point t joins the finite-difference history. */
+/* The pose q at communication point t joins the finite-difference history: the free slot becomes
+ * the last point, with its chord from the point before (the quotient current_pose took). */
 static void commit_pose(model_values *m, double t, const double q[6]) {
-    shift_history(m, t, q);
+    const fd_point *newer = newer_point(m);
+    fd_point *next = &m->history[m->newer ^ 1];
+    const double interval = m->n_history > 0 ? t - newer->t : 0.0;
+    for (int i = 0; i < 6; ++i)
+        next->slope[i] = m->n_history > 0 ? (q[i] - newer->pose.q[i]) / interval : 0.0;
+    memcpy(next->pose.q, q, sizeof next->pose.q);
+    memset(next->pose.q_dot, 0, sizeof next->pose.q_dot); /* no rates of an earlier solve */
+    memset(next->pose.q_ddot, 0, sizeof next->pose.q_ddot);
+    next->t = t;
+    next->interval = interval;
+    m->newer ^= 1;
     if (m->n_history < 2) ++m->n_history;
 }
 
@@ -738,19 +748,62 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
     return solved_checking(inst, t + h, pose, out, 0); /* no limit outputs on the usual step */
 }
 
+#if PAIRED_ARITHMETIC
+/* Two coordinates of quadratic_rates (the same roundings), each value loaded once: the pose q
+ * (the inputs) and the last point's pose and chord (p1, d1) into the free slot's pose (next:
+ * q, q_dot 6 on, q_ddot 12 on) and chord (slope). */
+static inline void quadratic_pair(const double *q, const double *p1, const double *d1_at,
+                                  double *next, double *slope, double_pair h2, double_pair h12) {
+    const double_pair q1 = load_pair(p1), q2 = load_pair(q), d1 = load_pair(d1_at);
+    const double_pair d2 = (q2 - q1) / h2;
+    const double_pair dd = (d2 - d1) / h12; /* q[t0, t1, t2] */
+    store_pair(next, q2);
+    store_pair(next + 6, d2 + h2 * dd);
+    store_pair(next + 12, dd + dd); /* 2 dd, exactly */
+    store_pair(slope, d2);
+}
+#endif
+
+/* Inlined into each usual step whatever the compiler's estimate (each is one function with one
+ * library call: a call of its own would add a frame around it). */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 /* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
- * and the pose joins the history. */
-static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
+ * and the pose joins the history. The free slot of the history takes the pose, its rates (the
+ * library's input) and its chord before the solve; the solved pose becomes the last point by
+ * the flip of one index, and a refused one leaves the history as it was. */
+static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
     fmu_values *v = &inst->v;
-    stewart_inverse_input in;
-    memcpy(in.pose.q, &v->real[VR_x], sizeof in.pose.q);
-    quadratic_rates(&v->model, t, &in.pose);
+    model_values *m = &v->model;
+    const fd_point *newer = newer_point(m);
+    fd_point *next = &m->history[m->newer ^ 1];
+    const double h1 = newer->interval, h2 = t - newer->t;
+#if PAIRED_ARITHMETIC
+    const double_pair h2_2 = {h2, h2}, h12_2 = {h1 + h2, h1 + h2};
+    const double *q = &v->real[VR_x];
+    quadratic_pair(q, newer->pose.q, newer->slope, next->pose.q, next->slope, h2_2, h12_2);
+    quadratic_pair(q + 2, newer->pose.q + 2, newer->slope + 2, next->pose.q + 2, next->slope + 2,
+                   h2_2, h12_2);
+    quadratic_pair(q + 4, newer->pose.q + 4, newer->slope + 4, next->pose.q + 4, next->slope + 4,
+                   h2_2, h12_2);
+#else
+    memcpy(next->pose.q, &v->real[VR_x], sizeof next->pose.q);
+    quadratic_rates(m, t, &next->pose);
+    for (int i = 0; i < 6; ++i) /* the quotient quadratic_rates took as d2 */
+        next->slope[i] = (next->pose.q[i] - newer->pose.q[i]) / h2;
+#endif
+    next->t = t;
+    next->interval = h2;
     stewart_inverse_output local, *out = output_target(v, &local);
-    const stewart_status s = stewart_inverse_solve(inst->res.inverse, &in, out);
-    if (s != STEWART_OK) return refused(inst, t, &in.pose, s);
-    const fmu_status fs = solved_checking(inst, t, in.pose.q, out, 0);
-    shift_history(&v->model, t, in.pose.q); /* the history is full already */
-    return fs;
+    const stewart_status s = stewart_inverse_solve(
+        inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, out);
+    if (s != STEWART_OK) return refused(inst, t, &next->pose, s);
+    m->newer ^= 1; /* the history is full already */
+    return solved_checking(inst, t, next->pose.q, out, 0);
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
@@ -762,47 +815,45 @@ static inline fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
 #define OWN_FRAME
 #endif
 
-/* The step's end: accepted (OK, Warning) or not; the unit's last successful time to
- * *last_successful_time unless NULL (a constant in each caller). The usual step leaves the unit's
- * time as it was (t, or within the slack of it) until here, so that is the time before it. */
-static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s,
-                                  double *last_successful_time) {
-    if (s == FMU_OK || s == FMU_WARNING) {
-        const fmu_status accepted = fmu_step_accepted(&inst->v, t, h, s);
-        if (last_successful_time) *last_successful_time = inst->v.last_successful_time;
-        return accepted;
-    }
-    if (!last_successful_time) return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
-    const fmu_status not_taken = fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+/* The step's end: accepted (OK, Warning) or not. The usual step leaves the unit's time as it
+ * was (t, or within the slack of it) until here, so that is the time before it. */
+static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s) {
+    if (s == FMU_OK || s == FMU_WARNING) return fmu_step_accepted(&inst->v, t, h, s);
+    return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+}
+
+/* step_end, then the unit's last successful time to *last_successful_time (FMI 3: not NULL, the
+ * runtime checked it, so the usual step does not test it again). */
+static inline fmu_status step_end_reporting(fmu_instance *inst, double t, double h, fmu_status s,
+                                            double *last_successful_time) {
+    const fmu_status end = step_end(inst, t, h, s);
     *last_successful_time = inst->v.last_successful_time;
-    return not_taken;
+    return end;
 }
 
 OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, advance_in_place(inst, t, h), NULL);
+    return step_end(inst, t, h, advance_in_place(inst, t, h));
 }
 
 OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, hold_with_quadratic(inst, t), NULL);
+    return step_end(inst, t, h, hold_with_quadratic(inst, t));
 }
 
 /* The same for FMI 3, which takes the last successful time back. */
 OWN_FRAME static fmu_status usual_advance_step_reporting(fmu_instance *inst, double t, double h,
                                                          double *last_successful_time) {
-    return step_end(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
+    return step_end_reporting(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
 }
 
 OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double t, double h,
                                                       double *last_successful_time) {
-    return step_end(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
+    return step_end_reporting(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
 }
 
-/* model_usual_step other than the Taylor advance (out of line, so that the advance is told by
- * one test of the route's value in memory). */
+/* model_usual_step on inputs set and finite, other than the Taylor advance (out of line, so that
+ * the advance is told by one test of the route's value in memory, not a load and two tests). */
 OWN_FRAME static fmu_status usual_hold_or_run_step(fmu_instance *inst, double t, double h) {
-    const fmu_values *v = &inst->v;
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
-        return usual_hold_step(inst, t, h);
+    if (inst->v.model.usual_route == ROUTE_HOLD) return usual_hold_step(inst, t, h);
     return fmu_run_step(inst, t, h);
 }
 
@@ -811,34 +862,26 @@ fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
     /* The usual step: inputs set since the last step, all finite, and a usual route (no
      * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
      * differences two earlier poses). Anything else: the step rules in full. */
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
-        return usual_advance_step(inst, t, h);
+    if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
+    if (v->model.usual_route == ROUTE_ADVANCE) return usual_advance_step(inst, t, h);
     return usual_hold_or_run_step(inst, t, h);
 }
 
-/* fmu_run_step, then the unit's last successful time to *last_successful_time (out of line: the
- * usual step keeps no frame for it). */
-FMU_RARE_PATH static fmu_status run_step_reporting(fmu_instance *inst, double t, double h,
-                                                   double *last_successful_time) {
-    const fmu_status s = fmu_run_step(inst, t, h);
-    *last_successful_time = inst->v.last_successful_time;
-    return s;
-}
-
-/* model_usual_step_reporting other than the Taylor advance (as usual_hold_or_run_step). */
+/* model_usual_step_reporting's usual_hold_or_run_step. */
 OWN_FRAME static fmu_status usual_hold_or_run_step_reporting(fmu_instance *inst, double t,
                                                              double h,
                                                              double *last_successful_time) {
-    const fmu_values *v = &inst->v;
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_HOLD)
+    if (inst->v.model.usual_route == ROUTE_HOLD)
         return usual_hold_step_reporting(inst, t, h, last_successful_time);
-    return run_step_reporting(inst, t, h, last_successful_time);
+    return fmu_run_step_reporting(inst, t, h, last_successful_time);
 }
 
 fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
                                       double *last_successful_time) {
     const fmu_values *v = &inst->v;
-    if (!fmu_outputs_current_or_inputs_unchecked(v) && v->model.usual_route == ROUTE_ADVANCE)
+    if (fmu_outputs_current_or_inputs_unchecked(v))
+        return fmu_run_step_reporting(inst, t, h, last_successful_time);
+    if (v->model.usual_route == ROUTE_ADVANCE)
         return usual_advance_step_reporting(inst, t, h, last_successful_time);
     return usual_hold_or_run_step_reporting(inst, t, h, last_successful_time);
 }

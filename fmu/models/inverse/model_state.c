@@ -82,11 +82,13 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     if ((m->input_derivatives & ~1) || (m->advance_discarded & ~1) ||
         m->solve_status < FMU_OK || m->solve_status > FMU_ERROR)
         return "a flag is out of range";
-    for (int j = 2 - m->n_history; j < 2; ++j) {
-        if (!(m->history_t[j] < v->time) || (j == 0 && !(m->history_t[0] < m->history_t[1])))
+    if (m->newer & ~1) return "finite-difference history's newer point is not 0 or 1";
+    if (m->n_history > 0) {
+        const fd_point *newer = &m->history[m->newer];
+        if (!(newer->t < v->time) || (m->n_history == 2 && !(newer->interval > 0)))
             return "finite-difference history is not before the current time and ordered";
         for (int i = 0; i < 6; ++i)
-            if (!isfinite(m->history_q[j][i])) return "finite-difference history is not finite";
+            if (!isfinite(newer->pose.q[i])) return "finite-difference history is not finite";
     }
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) \
     if (!isfinite(v->real[vr])) return "output " name " is not finite";
