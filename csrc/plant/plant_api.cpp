@@ -11,6 +11,7 @@
 #include "plant/plant_object.hpp"
 #include "plant/plant_reactions.hpp"
 #include "stewart/stewart_plant.h"
+#include "stewart/stewart_table.h"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -234,12 +235,11 @@ void restore_state(stewart_plant &p, const PlantState &s) {
 
 extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
     if (!o) return;
-    o->fidelity = STEWART_FULL;
-    o->method = STEWART_PLANT_ERK;
-    o->relative_tolerance = 1e-10;
-    o->absolute_tolerance = 1e-12;
-    o->max_internal_steps = 10000;
-    o->fixed_steps = 0;
+    // the option table's defaults (stewart_table.h), where the FMU's and the Python API's are read
+#define PLANT_OPTION_DEFAULT(id, name, type, unit, min, min_closed, max, max_closed, value, text) \
+    o->name = value;
+    STEWART_PLANT_OPTION_TABLE(PLANT_OPTION_DEFAULT)
+#undef PLANT_OPTION_DEFAULT
 }
 
 extern "C" stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,

@@ -61,22 +61,38 @@ stewart::LimitConstants per_leg_limits(const stewart_params &params,
     return c;
 }
 
+// The verdicts at 40,000 poses (make_pose(n, q, R): q the pose, R its rotation where the verdict
+// wants one; odd n far from the limits, even n beyond them) by verdict(q, R) against the full
+// check's at q: all equal, and more than 1,000 failing (the wide poses do reach the limits).
+template <class MakePose, class Verdict>
+void require_full_verdicts(const stewart::LimitConstants &c, MakePose make_pose, Verdict verdict) {
+    int differing = 0, failing = 0;
+    for (int n = 0; n < 40000; ++n) {
+        double q[6];
+        Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+        make_pose(n, q, R);
+        const int expected = full_verdict(c, q);
+        failing += expected != 0;
+        differing += verdict(q, R) != expected;
+    }
+    TEST_ASSERT_EQUAL_INT(0, differing);
+    TEST_ASSERT_TRUE(failing > 1000);
+}
+
 void test_far_and_beyond(void) {
     stewart_params params;
     stewart_params_default(&params);
     const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
     uint64_t rng = 2026;
-    int differing = 0, failing = 0;
-    for (int n = 0; n < 40000; ++n) {
-        double q[6];
-        random_pose(rng, params.home_height, n % 2 ? 0.05 : 0.4, q);
-        const int expected = full_verdict(c, q);
-        failing += expected != 0;
-        differing += stewart::platform_limit_failures(c, q) != expected;
-    }
-    TEST_ASSERT_EQUAL_INT(0, differing);
-    TEST_ASSERT_TRUE(failing > 1000);  // the wide poses do reach the limits
+    require_full_verdicts(
+        c,
+        [&](int n, double q[6], Eigen::Matrix3d &) {
+            random_pose(rng, params.home_height, n % 2 ? 0.05 : 0.4, q);
+        },
+        [&](const double q[6], const Eigen::Matrix3d &) {
+            return stewart::platform_limit_failures(c, q);
+        });
 }
 
 // Every pose on the edge: a limit or the diameter moved onto the pose's own value, then a few
@@ -178,19 +194,17 @@ void test_rotation_verdicts(void) {
     const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
     uint64_t rng = 4242;
-    int differing = 0, failing = 0;
-    for (int n = 0; n < 40000; ++n) {
-        double q[6];
-        const Eigen::Matrix3d R = random_rotation(rng, n % 2 ? 0.05 : 0.5, q + 3);
-        for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -0.3, 0.3);
-        q[2] += params.home_height;
-        const int expected = full_verdict(c, q);
-        failing += expected != 0;
-        differing += stewart::platform_limit_failures(c, Eigen::Vector3d(q[0], q[1], q[2]), R) !=
-                     expected;
-    }
-    TEST_ASSERT_EQUAL_INT(0, differing);
-    TEST_ASSERT_TRUE(failing > 1000);
+    require_full_verdicts(
+        c,
+        [&](int n, double q[6], Eigen::Matrix3d &R) {
+            R = random_rotation(rng, n % 2 ? 0.05 : 0.5, q + 3);
+            for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -0.3, 0.3);
+            q[2] += params.home_height;
+        },
+        [&](const double q[6], const Eigen::Matrix3d &R) {
+            return stewart::platform_limit_failures(c, Eigen::Vector3d(q[0], q[1], q[2]), R);
+        });
+    int differing = 0;
     const double offsets[] = {-1e-9, -1e-11, -1e-12, 0.0, 1e-12, 1e-11, 1e-9};
     int at_rounding = 0, checks = 0;
     for (int n = 0; n < 2000; ++n) {
