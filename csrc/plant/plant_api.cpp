@@ -103,9 +103,13 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
 
 // STEWART_WARN_JOINT_LIMIT and STEWART_WARN_INTERFERENCE as they hold at the platform's pose
 // (its state's position and rotation: the roll-pitch-yaw pose's verdicts to rounding distance
-// from a limit, without the angles' sines and cosines).
-int limit_warnings(const stewart_plant &p, const stewart::Motion &m) {
-    const int failed = stewart::platform_limit_failures(p.limits, m.position, m.rotation);
+// from a limit, without the angles' sines and cosines). clearance: the plant's, kept from step
+// to step (the same verdicts, without the check near a pose far from every limit), or nullptr.
+int limit_warnings(const stewart_plant &p, const stewart::Motion &m,
+                   stewart::LimitClearance *clearance = nullptr) {
+    const int failed =
+        clearance ? stewart::platform_limit_failures(p.limits, m.position, m.rotation, *clearance)
+                  : stewart::platform_limit_failures(p.limits, m.position, m.rotation);
     const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
     return (failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
            (failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
@@ -543,7 +547,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
     LegOutputs legs;
-    const int limit_bits = limit_warnings(*p, m);
+    const int limit_bits = limit_warnings(*p, m, &p->limit_clearance);
     legs.stroke_legs = leg_outputs(*p, m, legs.length, legs.rate);
     const int warnings = (legs.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
     for (int k = 0; k < STEWART_LEGS; ++k)

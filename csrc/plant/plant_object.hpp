@@ -24,6 +24,9 @@ struct stewart_plant {
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
     stewart::LimitConstants limits;  // joint angles and interference, warned as strokes are
+    // where the steps' last exact limit check found nothing, and how far from failing: a pose
+    // near it needs no check (not part of the state: any pose's clearance is true of it)
+    stewart::LimitClearance limit_clearance;
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
