@@ -101,6 +101,16 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
     return stroke_legs;
 }
 
+// Every leg's vector p + R b_k - a_k at the platform's motion m (Eigen's arithmetic).
+void leg_vectors(const stewart_plant &p, const stewart::Motion &m, double d[STEWART_LEGS][3]) {
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const fd::Vec3 &a = p.dynamics.legs.base_points.col(k), &b =
+            p.dynamics.legs.platform_points.col(k);
+        const fd::Vec3 v = m.position + m.rotation * b - a;
+        for (int i = 0; i < 3; ++i) d[k][i] = v[i];
+    }
+}
+
 // STEWART_WARN_JOINT_LIMIT and STEWART_WARN_INTERFERENCE as they hold at the platform's pose
 // (its state's position and rotation: the roll-pitch-yaw pose's verdicts to rounding distance
 // from a limit, without the angles' sines and cosines). clearance: the plant's, kept from step
@@ -119,14 +129,16 @@ int limit_warnings(const stewart_plant &p, const stewart::Motion &m,
 // STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
 // known: the equations already evaluated at this state and these forces (or nullptr: then
 // evaluated into e; e is left as it was otherwise). platform: the platform's motion, if wanted.
+// state_motion: motion_of_state(p.y) if the caller has it (or nullptr).
 stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
                           stewart::Motion bodies[STEWART_PLANT_BODIES],
                           const fd::Evaluation *known = nullptr,
-                          stewart::Motion *platform = nullptr) {
+                          stewart::Motion *platform = nullptr,
+                          const stewart::Motion *state_motion = nullptr) {
     if (!force) force = p.force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
-    stewart::Motion m = fd::motion_of_state(p.y);
+    stewart::Motion m = state_motion ? *state_motion : fd::motion_of_state(p.y);
     if (!known) {
         if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
         known = &e;
@@ -236,6 +248,7 @@ bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const stewa
 }
 
 void restore_state(stewart_plant &p, const PlantState &s) {
+    p.leg_vectors_valid = false;
     p.time = s.time;
     std::memcpy(p.y, s.y, sizeof p.y);
     std::memcpy(p.angles, s.angles, sizeof p.angles);
@@ -433,6 +446,7 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
                            e.fault == fd::LegFault::ZeroLength ? "has zero length"
                                                                : "lies along a Cardan arm");
     p->time = time;
+    p->leg_vectors_valid = false;
     for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = pose[3 + i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = 0;
@@ -456,7 +470,8 @@ struct LegOutputs {
 
 // stewart_plant_output_get with what the step already knows (defined below it).
 stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out);
+                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out,
+                         const stewart::Motion *state_motion = nullptr);
 }  // namespace
 
 extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
@@ -520,13 +535,15 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     if (s != STEWART_OK) return s;
 
     const stewart::Motion m = fd::motion_of_state(y);
-    // A leg that passes through zero length between two evaluations flips its direction.
-    const stewart::Motion before = fd::motion_of_state(p->y);
+    // A leg that passes through zero length between two evaluations flips its direction. The
+    // legs at the step's start are the last step's end legs when it left them.
+    double start_legs[STEWART_LEGS][3], end_legs[STEWART_LEGS][3];
+    if (p->leg_vectors_valid) std::memcpy(start_legs, p->leg_vectors, sizeof start_legs);
+    else leg_vectors(*p, fd::motion_of_state(p->y), start_legs);
+    leg_vectors(*p, m, end_legs);
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::Vec3 &a = p->dynamics.legs.base_points.col(k), &b =
-            p->dynamics.legs.platform_points.col(k);
-        const fd::Vec3 d0 = before.position + before.rotation * b - a,
-                       d1 = m.position + m.rotation * b - a;
+        const fd::Vec3 d0(start_legs[k][0], start_legs[k][1], start_legs[k][2]),
+            d1(end_legs[k][0], end_legs[k][1], end_legs[k][2]);
         if (!(d0.dot(d1) > 0))
             return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                "the motion takes leg %d through zero length within the step",
@@ -562,10 +579,12 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     p->time += h;
     p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
+    std::memcpy(p->leg_vectors, end_legs, sizeof end_legs);
+    p->leg_vectors_valid = true;
     // the outputs from the integrator's own evaluation at the end of the step when it made one
     // (the state before the quaternion's normalisation: the same equations to rounding), and the
     // legs and warnings just found at this state
-    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, &legs, output) !=
+    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, &legs, output, &m) !=
         STEWART_OK) {
         restore_state(*p, before_step);
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -579,12 +598,14 @@ namespace {
 
 // stewart_plant_output_get's body. known: the equations' evaluation at the state and forces (the
 // step's last, or nullptr); limit_bits: the joint-limit and interference warnings of the state
-// (the step's, or -1: found here); legs: leg_outputs at the state (the step's, or nullptr).
+// (the step's, or -1: found here); legs: leg_outputs at the state (the step's, or nullptr);
+// state_motion: motion_of_state(p->y) (the step's, or nullptr).
 stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out) {
+                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out,
+                         const stewart::Motion *state_motion) {
     fd::Evaluation e;
     stewart::Motion m;
-    const stewart_status s = all_bodies(*p, force, e, nullptr, known, &m);
+    const stewart_status s = all_bodies(*p, force, e, nullptr, known, &m, state_motion);
     if (s != STEWART_OK) return s;
     fd::Vec3 f, t;  // the base wrench without the bodies' motions where it can (axisymmetric legs)
     fd::base_wrench(p->dynamics, m, known ? *known : e, f, t);
@@ -766,6 +787,7 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     if (check_range(y, angles, "saved plant state", p->message, sizeof p->message) != STEWART_OK)
         return STEWART_ERR_ARGUMENT;
     const double *in = state;
+    p->leg_vectors_valid = false;
     p->time = *in++;
     for (double &v : p->y) v = *in++;
     for (double &v : p->angles) v = *in++;

@@ -27,6 +27,10 @@ struct stewart_plant {
     // where the steps' last exact limit check found nothing, and how far from failing: a pose
     // near it needs no check (not part of the state: any pose's clearance is true of it)
     stewart::LimitClearance limit_clearance;
+    // p + R b_k - a_k of every leg at y, as the step's zero-length test forms them (the last
+    // step's, so the next one need not; false after anything else set y)
+    double leg_vectors[STEWART_LEGS][3] = {};
+    bool leg_vectors_valid = false;
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
