@@ -517,7 +517,8 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     double y[fd::kStates];
     for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
     double step_hint = p->step_hint;
-    s = p->integrator.advance(y, profile, step_hint, msg, size);
+    s = p->integrator.advance(y, profile, step_hint, msg, size,
+                              p->leg_vectors_valid ? p->principal_angles : nullptr);
     const stewart_plant_statistics &last = p->integrator.statistics();
     stewart_plant_statistics &st = p->stats;
     st.steps = last.steps;
@@ -549,8 +550,16 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                                "the motion takes leg %d through zero length within the step",
                                k + 1);
     }
-    double angles[3];
-    stewart::angles_of_rotation(m.rotation, p->angles, angles);
+    // angles_of_rotation(m.rotation, p->angles) in two parts: the principal angles (its
+    // formulas on the same rotation entries, motion_of_state's), which the next step's start
+    // needs too, then the turns of roll and yaw nearest the last step's, as it adds them
+    double principal[3], angles[3];
+    fd::principal_angles(y, principal);
+    for (int i = 0; i < 3; ++i) angles[i] = principal[i];
+    for (int i : {0, 2}) {
+        const double turns = std::round((p->angles[i] - angles[i]) / (2 * M_PI));
+        angles[i] += 2 * M_PI * turns;
+    }
     if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
@@ -580,6 +589,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
     std::memcpy(p->leg_vectors, end_legs, sizeof end_legs);
+    std::memcpy(p->principal_angles, principal, sizeof principal);
     p->leg_vectors_valid = true;
     // the outputs from the integrator's own evaluation at the end of the step when it made one
     // (the state before the quaternion's normalisation: the same equations to rounding), and the

@@ -451,7 +451,8 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
 }
 
 stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces,
-                                   double &step_hint, char *msg, size_t size) {
+                                   double &step_hint, char *msg, size_t size,
+                                   const double *start_angles) {
     IntegratorImpl &im = *impl_;
     im.forces = &forces;
     im.fault = LegFault::None;
@@ -470,7 +471,10 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     // The pitch root: a crossing of +-90 degrees anywhere within the step stops the integrator
     // there (a root where the continuous pitch is not near 90 degrees is a jump of the nearest
     // triple over a long rotation: the reference moves on and the step goes on).
-    principal_angles(y, im.reference_angles);
+    if (start_angles)
+        for (int i = 0; i < 3; ++i) im.reference_angles[i] = start_angles[i];
+    else
+        principal_angles(y, im.reference_angles);
     for (int i = 0; i < kStates; ++i) im.start_state[i] = y[i];
     bool pitch_crossed = false;
     double angles[3] = {0, 0, 0};

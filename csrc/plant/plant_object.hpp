@@ -27,9 +27,11 @@ struct stewart_plant {
     // where the steps' last exact limit check found nothing, and how far from failing: a pose
     // near it needs no check (not part of the state: any pose's clearance is true of it)
     stewart::LimitClearance limit_clearance;
-    // p + R b_k - a_k of every leg at y, as the step's zero-length test forms them (the last
-    // step's, so the next one need not; false after anything else set y)
+    // What the last step found at y that the next one needs at its start (valid false after
+    // anything else set y): p + R b_k - a_k of every leg, as the step's zero-length test forms
+    // them, and y's principal roll, pitch, yaw (fd::principal_angles, the integrator's start)
     double leg_vectors[STEWART_LEGS][3] = {};
+    double principal_angles[3] = {0, 0, 0};
     bool leg_vectors_valid = false;
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
