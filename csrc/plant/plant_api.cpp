@@ -248,7 +248,7 @@ bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const stewa
 }
 
 void restore_state(stewart_plant &p, const PlantState &s) {
-    p.leg_vectors_valid = false;
+    p.step_end_valid = false;
     p.time = s.time;
     std::memcpy(p.y, s.y, sizeof p.y);
     std::memcpy(p.angles, s.angles, sizeof p.angles);
@@ -446,7 +446,7 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
                            e.fault == fd::LegFault::ZeroLength ? "has zero length"
                                                                : "lies along a Cardan arm");
     p->time = time;
-    p->leg_vectors_valid = false;
+    p->step_end_valid = false;
     for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = pose[3 + i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = 0;
@@ -518,7 +518,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
     double step_hint = p->step_hint;
     s = p->integrator.advance(y, profile, step_hint, msg, size,
-                              p->leg_vectors_valid ? p->principal_angles : nullptr);
+                              p->step_end_valid ? p->principal_angles : nullptr);
     const stewart_plant_statistics &last = p->integrator.statistics();
     stewart_plant_statistics &st = p->stats;
     st.steps = last.steps;
@@ -539,7 +539,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     // A leg that passes through zero length between two evaluations flips its direction. The
     // legs at the step's start are the last step's end legs when it left them.
     double start_legs[STEWART_LEGS][3], end_legs[STEWART_LEGS][3];
-    if (p->leg_vectors_valid) std::memcpy(start_legs, p->leg_vectors, sizeof start_legs);
+    if (p->step_end_valid) std::memcpy(start_legs, p->leg_vectors, sizeof start_legs);
     else leg_vectors(*p, fd::motion_of_state(p->y), start_legs);
     leg_vectors(*p, m, end_legs);
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -590,7 +590,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     p->warnings = warnings;
     std::memcpy(p->leg_vectors, end_legs, sizeof end_legs);
     std::memcpy(p->principal_angles, principal, sizeof principal);
-    p->leg_vectors_valid = true;
+    p->step_end_valid = true;
     // the outputs from the integrator's own evaluation at the end of the step when it made one
     // (the state before the quaternion's normalisation: the same equations to rounding), and the
     // legs and warnings just found at this state
@@ -797,7 +797,7 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     if (check_range(y, angles, "saved plant state", p->message, sizeof p->message) != STEWART_OK)
         return STEWART_ERR_ARGUMENT;
     const double *in = state;
-    p->leg_vectors_valid = false;
+    p->step_end_valid = false;
     p->time = *in++;
     for (double &v : p->y) v = *in++;
     for (double &v : p->angles) v = *in++;

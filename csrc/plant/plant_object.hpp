@@ -32,7 +32,7 @@ struct stewart_plant {
     // them, and y's principal roll, pitch, yaw (fd::principal_angles, the integrator's start)
     double leg_vectors[STEWART_LEGS][3] = {};
     double principal_angles[3] = {0, 0, 0};
-    bool leg_vectors_valid = false;
+    bool step_end_valid = false;
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
