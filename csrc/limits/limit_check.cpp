@@ -92,6 +92,7 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
     const Eigen::Vector3d home(0.0, 0.0, p.home_height);
     c.shortest_stroke_min = HUGE_VAL;
     c.longest_arm = 0.0;
+    c.platform_radius = 0.0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d leg = home + geometry.platform_points.col(k) - geometry.base_points.col(k);
         // A leg of zero length at home has no direction: z up stands in for it.
@@ -105,6 +106,7 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
         c.base_inside_cosine[k] = inside_cosine(c.base_joint_limit[k]);
         c.platform_inside_cosine[k] = inside_cosine(c.platform_joint_limit[k]);
         c.shortest_stroke_min = std::min(c.shortest_stroke_min, c.stroke_min[k]);
+        c.platform_radius = std::max(c.platform_radius, geometry.platform_points.col(k).norm());
         c.longest_arm = std::max(
             c.longest_arm, (geometry.platform_points.col(k) - c.frames.tool_origin).norm());
     }
@@ -233,8 +235,13 @@ bool joint_fails(const double limit[STEWART_LEGS], const double inside[STEWART_L
 
 }  // namespace
 
-int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
-                            const Eigen::Matrix3d &rotation) {
+namespace {
+
+// The exact verdicts at the pose (platform_limit_failures' body); if found is given and nothing
+// fails, what the clearance needs: the smallest cosine above its inside cosine, distance (or
+// sphere gap) above the diameter and leg length.
+int limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
+                   const Eigen::Matrix3d &rotation, LimitClearance *found) {
     const PlatformGeometry &g = c.geometry;
     PlatformLegs l;
     platform_legs(c, position, rotation, l);
@@ -251,11 +258,77 @@ int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &posi
     // check's smallest distance is below the diameter exactly when one of them is, except at
     // rounding distance from it (test_limit_failures: the same verdicts on the edge).
     const double near = c.leg_diameter + kInterferenceSlack;
+    double closest = HUGE_VAL;  // the distance or sphere gap of each pair, the smallest
+    bool numbers = true;        // no NaN among them (a NaN clears nothing)
     for (const LegPair &pair : kPairs) {
-        if (!(sphere_gap(l, pair.first, pair.second) < near)) continue;
-        if (leg_distance(g, l, pair.first, pair.second) - c.leg_diameter < 0.0)
-            return failed | 1 << (STEWART_LIMIT_INTERFERENCE - 1);
+        const double gap = sphere_gap(l, pair.first, pair.second);
+        if (!(gap < near)) {
+            numbers = numbers && gap == gap;
+            closest = std::min(closest, gap);
+            continue;
+        }
+        const double distance = leg_distance(g, l, pair.first, pair.second);
+        if (distance - c.leg_diameter < 0.0) return failed | 1 << (STEWART_LIMIT_INTERFERENCE - 1);
+        numbers = numbers && distance == distance;
+        closest = std::min(closest, distance);
     }
+    if (found && failed == 0) {
+        found->joint_cosine = found->shortest_leg = HUGE_VAL;
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            const double base = l.base_cos[k] - c.base_inside_cosine[k],
+                         platform = l.platform_cos[k] - c.platform_inside_cosine[k];
+            numbers = numbers && base == base && platform == platform &&
+                      l.legs.length[k] == l.legs.length[k];
+            found->joint_cosine = std::min({found->joint_cosine, base, platform});
+            found->shortest_leg = std::min(found->shortest_leg, l.legs.length[k]);
+        }
+        found->interference = closest - c.leg_diameter;
+        found->valid = numbers && found->interference == found->interference;
+    }
+    return failed;
+}
+
+// Far above the roundings of the cosines, distances and lengths the clearance compares (about
+// 1e-15 of quantities near 1) [m, or a cosine's unit].
+constexpr double kClearanceSlack = 1e-9;
+
+}  // namespace
+
+int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
+                            const Eigen::Matrix3d &rotation) {
+    return limit_failures(c, position, rotation, nullptr);
+}
+
+// The bound. From the clearance's pose to this one, every platform joint b_k moved by at most
+// delta = |dp| + |dR|_F |b_k| (|dR|_2 <= |dR|_F), so each leg vector d_k = p + R b_k - a_k by
+// at most delta, and its unit axis n_k = d_k / |d_k| by at most 2 delta / |d_k| (at the old
+// length). A base joint's cosine n . v moves by at most that, a platform joint's n . R v by that
+// plus |dR|_2. Each point of a leg's segment moves by at most delta, so a pair's distance and its
+// sphere gap (midpoints' distance less the half lengths) move by at most 2 delta. So when the
+// clearances exceed these moves (and the roundings: kClearanceSlack), every cosine is still at or
+// above its inside cosine (no arc measured, no joint fails), every pair's sphere gap is still
+// above the diameter's slack or its distance above the diameter, and every leg keeps a
+// direction: the exact check would find nothing, as this returns. tests/unit/
+// test_limit_failures.cpp (test_clearance) compares it with the exact verdict along random walks
+// through the limits.
+int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
+                            const Eigen::Matrix3d &rotation, LimitClearance &clearance) {
+    if (clearance.valid) {
+        const double moved = (position - clearance.position).norm();
+        const double turned = (rotation - clearance.rotation).norm();  // Frobenius
+        const double delta = moved + turned * c.platform_radius;
+        const double shortest = clearance.shortest_leg - delta;
+        if (shortest > c.geometry.min_length + kClearanceSlack &&
+            clearance.interference >= 2.0 * delta + kClearanceSlack &&
+            clearance.joint_cosine >= 2.0 * delta / clearance.shortest_leg + turned + kClearanceSlack)
+            return 0;
+    }
+    LimitClearance found;
+    const int failed = limit_failures(c, position, rotation, &found);
+    clearance = found;
+    clearance.valid = failed == 0 && found.valid && position.allFinite() && rotation.allFinite();
+    clearance.position = position;
+    clearance.rotation = rotation;
     return failed;
 }
 

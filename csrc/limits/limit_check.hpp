@@ -24,6 +24,7 @@ struct LimitConstants {
     double shortest_stroke_min;      // min_k stroke_min[k]: the shortest leg within the stroke
     double longest_arm;              // max_k |b_k - tool origin|: the fastest platform joint per
                                      // rad of a tool angle [m]
+    double platform_radius;          // max_k |b_k|, platform frame [m]
     // A leg whose cosine to its neutral axis is at least this is inside its joint limit for sure
     // (platform_limit_failures skips its arc): cos(limit) + kJointCosineSlack, -inf for limits
     // >= pi, +inf (never skipped) for limits <= 0.
@@ -51,6 +52,24 @@ int platform_limit_failures(const LimitConstants &c, const double q[6]);
 // a limit (the two rotations differ by a few roundings).
 int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
                             const Eigen::Matrix3d &rotation);
+// How far the verdicts of the last exact platform_limit_failures without failures were from
+// changing, and where: the pose (base frame) and, from it, the smallest cosine above a joint's
+// inside cosine, the smallest leg-pair distance (or sphere gap) above the diameter, the
+// shortest leg. A pose whose legs moved less than these allow has no failure either.
+struct LimitClearance {
+    bool valid = false;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+    double joint_cosine = 0;  // min over legs and joints of cosine - inside cosine
+    double interference = 0;  // min over pairs of the distance (or sphere gap) - diameter [m]
+    double shortest_leg = 0;  // min_k length [m]
+};
+// platform_limit_failures(c, position, rotation), the same verdicts, and without the legs where
+// `clearance` (its last exact run's, kept by the caller) proves that nothing fails: no leg's
+// platform joint has moved further than every limit's clearance allows (the bound in
+// limit_check.cpp). Updates clearance where it runs the check.
+int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
+                            const Eigen::Matrix3d &rotation, LimitClearance &clearance);
 // The same at the tool frame's pose q in the user frame (the API's poses).
 void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                   bool with_condition = true, double *inverse_norm = nullptr);

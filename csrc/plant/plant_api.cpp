@@ -11,6 +11,7 @@
 #include "plant/plant_object.hpp"
 #include "plant/plant_reactions.hpp"
 #include "stewart/stewart_plant.h"
+#include "stewart/stewart_table.h"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -100,11 +101,25 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
     return stroke_legs;
 }
 
+// Every leg's vector p + R b_k - a_k at the platform's motion m (Eigen's arithmetic).
+void leg_vectors(const stewart_plant &p, const stewart::Motion &m, double d[STEWART_LEGS][3]) {
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const fd::Vec3 &a = p.dynamics.legs.base_points.col(k), &b =
+            p.dynamics.legs.platform_points.col(k);
+        const fd::Vec3 v = m.position + m.rotation * b - a;
+        for (int i = 0; i < 3; ++i) d[k][i] = v[i];
+    }
+}
+
 // STEWART_WARN_JOINT_LIMIT and STEWART_WARN_INTERFERENCE as they hold at the platform's pose
 // (its state's position and rotation: the roll-pitch-yaw pose's verdicts to rounding distance
-// from a limit, without the angles' sines and cosines).
-int limit_warnings(const stewart_plant &p, const stewart::Motion &m) {
-    const int failed = stewart::platform_limit_failures(p.limits, m.position, m.rotation);
+// from a limit, without the angles' sines and cosines). clearance: the plant's, kept from step
+// to step (the same verdicts, without the check near a pose far from every limit), or nullptr.
+int limit_warnings(const stewart_plant &p, const stewart::Motion &m,
+                   stewart::LimitClearance *clearance = nullptr) {
+    const int failed =
+        clearance ? stewart::platform_limit_failures(p.limits, m.position, m.rotation, *clearance)
+                  : stewart::platform_limit_failures(p.limits, m.position, m.rotation);
     const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
     return (failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
            (failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
@@ -114,14 +129,16 @@ int limit_warnings(const stewart_plant &p, const stewart::Motion &m) {
 // STEWART_ERR_ARGUMENT for a force that is not finite, STEWART_ERR_SINGULAR at a singular pose.
 // known: the equations already evaluated at this state and these forces (or nullptr: then
 // evaluated into e; e is left as it was otherwise). platform: the platform's motion, if wanted.
+// state_motion: motion_of_state(p.y) if the caller has it (or nullptr).
 stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
                           stewart::Motion bodies[STEWART_PLANT_BODIES],
                           const fd::Evaluation *known = nullptr,
-                          stewart::Motion *platform = nullptr) {
+                          stewart::Motion *platform = nullptr,
+                          const stewart::Motion *state_motion = nullptr) {
     if (!force) force = p.force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
-    stewart::Motion m = fd::motion_of_state(p.y);
+    stewart::Motion m = state_motion ? *state_motion : fd::motion_of_state(p.y);
     if (!known) {
         if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
         known = &e;
@@ -133,7 +150,16 @@ stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evalu
     return STEWART_OK;
 }
 
+// 0 if the n values are all finite, else NaN: the sum of v * 0 (NaN for an infinite or NaN v),
+// one pass without a branch per value.
+inline double zero_if_finite(const double *values, int n) {
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += values[i] * 0.0;
+    return sum;
+}
+
 stewart_status check_finite(const double *values, const char *name, char *msg, size_t size) {
+    if (zero_if_finite(values, STEWART_LEGS) == 0) return STEWART_OK;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(values[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s[%d] = %g must be finite",
@@ -222,6 +248,7 @@ bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const stewa
 }
 
 void restore_state(stewart_plant &p, const PlantState &s) {
+    p.step_end_valid = false;
     p.time = s.time;
     std::memcpy(p.y, s.y, sizeof p.y);
     std::memcpy(p.angles, s.angles, sizeof p.angles);
@@ -234,12 +261,11 @@ void restore_state(stewart_plant &p, const PlantState &s) {
 
 extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
     if (!o) return;
-    o->fidelity = STEWART_FULL;
-    o->method = STEWART_PLANT_ERK;
-    o->relative_tolerance = 1e-10;
-    o->absolute_tolerance = 1e-12;
-    o->max_internal_steps = 10000;
-    o->fixed_steps = 0;
+    // the option table's defaults (stewart_table.h), where the FMU's and the Python API's are read
+#define PLANT_OPTION_DEFAULT(id, name, type, unit, min, min_closed, max, max_closed, value, text) \
+    o->name = value;
+    STEWART_PLANT_OPTION_TABLE(PLANT_OPTION_DEFAULT)
+#undef PLANT_OPTION_DEFAULT
 }
 
 extern "C" stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
@@ -420,6 +446,7 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
                            e.fault == fd::LegFault::ZeroLength ? "has zero length"
                                                                : "lies along a Cardan arm");
     p->time = time;
+    p->step_end_valid = false;
     for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = pose[3 + i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = 0;
@@ -443,7 +470,8 @@ struct LegOutputs {
 
 // stewart_plant_output_get with what the step already knows (defined below it).
 stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out);
+                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out,
+                         const stewart::Motion *state_motion = nullptr);
 }  // namespace
 
 extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
@@ -489,7 +517,8 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     double y[fd::kStates];
     for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
     double step_hint = p->step_hint;
-    s = p->integrator.advance(y, profile, step_hint, msg, size);
+    s = p->integrator.advance(y, profile, step_hint, msg, size,
+                              p->step_end_valid ? p->principal_angles : nullptr);
     const stewart_plant_statistics &last = p->integrator.statistics();
     stewart_plant_statistics &st = p->stats;
     st.steps = last.steps;
@@ -507,20 +536,30 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     if (s != STEWART_OK) return s;
 
     const stewart::Motion m = fd::motion_of_state(y);
-    // A leg that passes through zero length between two evaluations flips its direction.
-    const stewart::Motion before = fd::motion_of_state(p->y);
+    // A leg that passes through zero length between two evaluations flips its direction. The
+    // legs at the step's start are the last step's end legs when it left them.
+    double start_legs[STEWART_LEGS][3], end_legs[STEWART_LEGS][3];
+    if (p->step_end_valid) std::memcpy(start_legs, p->leg_vectors, sizeof start_legs);
+    else leg_vectors(*p, fd::motion_of_state(p->y), start_legs);
+    leg_vectors(*p, m, end_legs);
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::Vec3 &a = p->dynamics.legs.base_points.col(k), &b =
-            p->dynamics.legs.platform_points.col(k);
-        const fd::Vec3 d0 = before.position + before.rotation * b - a,
-                       d1 = m.position + m.rotation * b - a;
+        const fd::Vec3 d0(start_legs[k][0], start_legs[k][1], start_legs[k][2]),
+            d1(end_legs[k][0], end_legs[k][1], end_legs[k][2]);
         if (!(d0.dot(d1) > 0))
             return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                "the motion takes leg %d through zero length within the step",
                                k + 1);
     }
-    double angles[3];
-    stewart::angles_of_rotation(m.rotation, p->angles, angles);
+    // angles_of_rotation(m.rotation, p->angles) in two parts: the principal angles (its
+    // formulas on the same rotation entries, motion_of_state's), which the next step's start
+    // needs too, then the turns of roll and yaw nearest the last step's, as it adds them
+    double principal[3], angles[3];
+    fd::principal_angles(y, principal);
+    for (int i = 0; i < 3; ++i) angles[i] = principal[i];
+    for (int i : {0, 2}) {
+        const double turns = std::round((p->angles[i] - angles[i]) / (2 * M_PI));
+        angles[i] += 2 * M_PI * turns;
+    }
     if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
@@ -534,7 +573,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
     LegOutputs legs;
-    const int limit_bits = limit_warnings(*p, m);
+    const int limit_bits = limit_warnings(*p, m, &p->limit_clearance);
     legs.stroke_legs = leg_outputs(*p, m, legs.length, legs.rate);
     const int warnings = (legs.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
     for (int k = 0; k < STEWART_LEGS; ++k)
@@ -549,10 +588,13 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     p->time += h;
     p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
     p->warnings = warnings;
+    std::memcpy(p->leg_vectors, end_legs, sizeof end_legs);
+    std::memcpy(p->principal_angles, principal, sizeof principal);
+    p->step_end_valid = true;
     // the outputs from the integrator's own evaluation at the end of the step when it made one
     // (the state before the quaternion's normalisation: the same equations to rounding), and the
     // legs and warnings just found at this state
-    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, &legs, output) !=
+    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, &legs, output, &m) !=
         STEWART_OK) {
         restore_state(*p, before_step);
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -566,12 +608,14 @@ namespace {
 
 // stewart_plant_output_get's body. known: the equations' evaluation at the state and forces (the
 // step's last, or nullptr); limit_bits: the joint-limit and interference warnings of the state
-// (the step's, or -1: found here); legs: leg_outputs at the state (the step's, or nullptr).
+// (the step's, or -1: found here); legs: leg_outputs at the state (the step's, or nullptr);
+// state_motion: motion_of_state(p->y) (the step's, or nullptr).
 stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out) {
+                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out,
+                         const stewart::Motion *state_motion) {
     fd::Evaluation e;
     stewart::Motion m;
-    const stewart_status s = all_bodies(*p, force, e, nullptr, known, &m);
+    const stewart_status s = all_bodies(*p, force, e, nullptr, known, &m, state_motion);
     if (s != STEWART_OK) return s;
     fd::Vec3 f, t;  // the base wrench without the bodies' motions where it can (axisymmetric legs)
     fd::base_wrench(p->dynamics, m, known ? *known : e, f, t);
@@ -598,12 +642,12 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
     // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
-    const double *groups[6] = {o.pose.q, o.pose.q_dot, o.lengths.length, o.lengths.length_rate,
-                               o.base_force, o.base_torque};
-    const int sizes[6] = {6, 6, STEWART_LEGS, STEWART_LEGS, 3, 3};
-    for (int g = 0; g < 6; ++g)
-        for (int i = 0; i < sizes[g]; ++i)
-            if (!std::isfinite(groups[g][i])) return STEWART_ERR_ARGUMENT;
+    if (!(zero_if_finite(o.pose.q, 6) + zero_if_finite(o.pose.q_dot, 6) +
+              zero_if_finite(o.lengths.length, STEWART_LEGS) +
+              zero_if_finite(o.lengths.length_rate, STEWART_LEGS) +
+              zero_if_finite(o.base_force, 3) + zero_if_finite(o.base_torque, 3) ==
+          0))
+        return STEWART_ERR_ARGUMENT;
     *out = o;
     return STEWART_OK;
 }
@@ -753,6 +797,7 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     if (check_range(y, angles, "saved plant state", p->message, sizeof p->message) != STEWART_OK)
         return STEWART_ERR_ARGUMENT;
     const double *in = state;
+    p->step_end_valid = false;
     p->time = *in++;
     for (double &v : p->y) v = *in++;
     for (double &v : p->angles) v = *in++;

@@ -79,8 +79,11 @@ double wrms_norm(const double *x, const double *w) {
     return mean <= 0 ? 0.0 : std::sqrt(mean);
 }
 
-// SUNRpowerR.
-double power(double base, double exponent) { return base <= 0 ? 0.0 : std::pow(base, exponent); }
+// SUNRpowerR. pow(1, y) is 1 exactly (IEEE 754, C99 F.9.4.4), the error history's value at the
+// first step of every communication step: then no call.
+double power(double base, double exponent) {
+    return base <= 0 ? 0.0 : base == 1.0 ? 1.0 : std::pow(base, exponent);
+}
 
 // The step-size ratio arkAdapt proposes after a step of h with error dsm (ERKStep's PI
 // controller, no stability limit, no hmin or hmax).

@@ -58,6 +58,8 @@ struct IntegratorImpl {
     // the last successful right-hand side's arguments, and whether they were the step's end
     double last_tau = -1, last_y[kStates] = {0}, last_force[STEWART_LEGS] = {0};
     bool end_valid = false;
+    // whether state_rate copies its arguments (the written-out ERK knows its last ones itself)
+    bool record_arguments = true;
 };
 
 void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
@@ -218,6 +220,7 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     y_dot[6] = 0.5 * (w * oz + ox * yy - oy * x);
     for (int i = 0; i < 6; ++i) y_dot[7 + i] = a[i];
     im.last_tau = tau;
+    if (!im.record_arguments) return 0;
     for (int i = 0; i < kStates; ++i) im.last_y[i] = y[i];
     for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = force[k];
     return 0;
@@ -452,7 +455,8 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
 }
 
 stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces,
-                                   double &step_hint, char *msg, size_t size) {
+                                   double &step_hint, char *msg, size_t size,
+                                   const double *start_angles) {
     IntegratorImpl &im = *impl_;
     im.forces = &forces;
     im.fault = LegFault::None;
@@ -471,7 +475,10 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     // The pitch root: a crossing of +-90 degrees anywhere within the step stops the integrator
     // there (a root where the continuous pitch is not near 90 degrees is a jump of the nearest
     // triple over a long rotation: the reference moves on and the step goes on).
-    principal_angles(y, im.reference_angles);
+    if (start_angles)
+        for (int i = 0; i < 3; ++i) im.reference_angles[i] = start_angles[i];
+    else
+        principal_angles(y, im.reference_angles);
     for (int i = 0; i < kStates; ++i) im.start_state[i] = y[i];
     bool pitch_crossed = false;
     double angles[3] = {0, 0, 0};
@@ -492,11 +499,17 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             control.relative_tolerance = im.relative_tolerance;
             control.absolute_tolerance = im.absolute_tolerance;
             control.max_steps = im.max_internal_steps;
+            im.record_arguments = false;
             const ErkResult r =
                 erk_advance(im.table, control, im.work, forces.h, y,
                             principal_cos_sign(im.reference_angles[1]), state_rate, pitch_sign,
                             &im, v);
+            im.record_arguments = true;
             if (r.done) {
+                // a step done ends with the evaluation at (its end time, work.yn, the forces
+                // there: the end forces exactly when that time is h)
+                for (int i = 0; i < kStates; ++i) im.last_y[i] = im.work.yn[i];
+                if (im.last_tau >= 0) forces.at(im.last_tau, im.last_force);
                 stats_.steps = r.steps;
                 stats_.rhs_evaluations = r.rhs_evaluations;
                 stats_.error_test_failures = r.error_test_failures;

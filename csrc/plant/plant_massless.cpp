@@ -61,38 +61,54 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
     cross(w_body, I_w_body, gyroscopic);
     // The legs' axial forces, their sum and their moments about the origin (place_leg with
     // leg_configuration's axis and length; R b summed from the left as plant_bodies' rotate).
+    // Each leg's arithmetic in its own lane (one leg per element of the arrays below): loops over
+    // the six legs that the compiler turns into two-wide vector operations (-fvect-cost-model
+    // in csrc/CMakeLists.txt), each lane the same IEEE operations in the same order as one leg
+    // alone, so the same bits; the sums over the legs stay in leg order.
     const LegParameters &legs = d.legs;
-    double legs_force[3] = {0, 0, 0}, legs_moment[3] = {0, 0, 0};
+    double arm[3][STEWART_LEGS], n[3][STEWART_LEGS], length[STEWART_LEGS];
+    double inverse_length[STEWART_LEGS], axial[3][STEWART_LEGS], moment_k[3][STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        LegConfiguration &leg = e.legs[k];
-        double arm[3], dv[3];
+        const double b0 = legs.platform_points(0, k), b1 = legs.platform_points(1, k),
+                     b2 = legs.platform_points(2, k);
+        double dv[3];
         #pragma GCC unroll 3
-        for (int i = 0; i < 3; ++i)
-            arm[i] = R(i, 0) * legs.platform_points(0, k) + R(i, 1) * legs.platform_points(1, k) +
-                     R(i, 2) * legs.platform_points(2, k);
+        for (int i = 0; i < 3; ++i) {
+            arm[i][k] = R(i, 0) * b0 + R(i, 1) * b1 + R(i, 2) * b2;
+            dv[i] = m.position[i] + arm[i][k] - legs.base_points(i, k);
+        }
+        length[k] = std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+        inverse_length[k] = 1.0 / length[k];
         #pragma GCC unroll 3
-        for (int i = 0; i < 3; ++i) dv[i] = m.position[i] + arm[i] - legs.base_points(i, k);
-        const double length = std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
-        if (!(length > legs.min_length)) {
+        for (int i = 0; i < 3; ++i) n[i][k] = dv[i] * inverse_length[k];
+        // arm x n, as cross()
+        moment_k[0][k] = arm[1][k] * n[2][k] - arm[2][k] * n[1][k];
+        moment_k[1][k] = arm[2][k] * n[0][k] - arm[0][k] * n[2][k];
+        moment_k[2][k] = arm[0][k] * n[1][k] - arm[1][k] * n[0][k];
+        #pragma GCC unroll 3
+        for (int i = 0; i < 3; ++i) {
+            axial[i][k] = force[k] * n[i][k];
+            moment_k[i][k] = force[k] * moment_k[i][k];
+        }
+    }
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!(length[k] > legs.min_length)) {  // the first leg without a direction
             e.fault = LegFault::ZeroLength;
             e.fault_leg = k;
             return false;
         }
-        const double inverse_length = 1.0 / length;
-        double n[3], arm_n[3];
-        #pragma GCC unroll 3
-        for (int i = 0; i < 3; ++i) n[i] = dv[i] * inverse_length;
-        cross(arm, n, arm_n);
-        const double F = force[k];
+    double legs_force[3] = {0, 0, 0}, legs_moment[3] = {0, 0, 0};
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        LegConfiguration &leg = e.legs[k];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
-            legs_force[i] += F * n[i];
-            legs_moment[i] += F * arm_n[i];
-            leg.arm[i] = arm[i];
-            leg.n[i] = n[i];
+            legs_force[i] += axial[i][k];
+            legs_moment[i] += moment_k[i][k];
+            leg.arm[i] = arm[i][k];
+            leg.n[i] = n[i][k];
         }
-        leg.length = length;
-        leg.inverse_length = inverse_length;
+        leg.length = length[k];
+        leg.inverse_length = inverse_length[k];
     }
     // One rigid body about its centre of mass: I_b alpha_b = R^T (T_legs - c x F_legs) - w_b x
     // I_b w_b (gravity and the centripetal force act at the centre: no moment about it), and the

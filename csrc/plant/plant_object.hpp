@@ -24,6 +24,15 @@ struct stewart_plant {
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
     stewart::LimitConstants limits;  // joint angles and interference, warned as strokes are
+    // where the steps' last exact limit check found nothing, and how far from failing: a pose
+    // near it needs no check (not part of the state: any pose's clearance is true of it)
+    stewart::LimitClearance limit_clearance;
+    // What the last step found at y that the next one needs at its start (valid false after
+    // anything else set y): p + R b_k - a_k of every leg, as the step's zero-length test forms
+    // them, and y's principal roll, pitch, yaw (fd::principal_angles, the integrator's start)
+    double leg_vectors[STEWART_LEGS][3] = {};
+    double principal_angles[3] = {0, 0, 0};
+    bool step_end_valid = false;
     double step_hint = 0;  // first internal step of the next communication step (0: estimate)
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too

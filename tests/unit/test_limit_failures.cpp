@@ -61,22 +61,38 @@ stewart::LimitConstants per_leg_limits(const stewart_params &params,
     return c;
 }
 
+// The verdicts at 40,000 poses (make_pose(n, q, R): q the pose, R its rotation where the verdict
+// wants one; odd n far from the limits, even n beyond them) by verdict(q, R) against the full
+// check's at q: all equal, and more than 1,000 failing (the wide poses do reach the limits).
+template <class MakePose, class Verdict>
+void require_full_verdicts(const stewart::LimitConstants &c, MakePose make_pose, Verdict verdict) {
+    int differing = 0, failing = 0;
+    for (int n = 0; n < 40000; ++n) {
+        double q[6];
+        Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+        make_pose(n, q, R);
+        const int expected = full_verdict(c, q);
+        failing += expected != 0;
+        differing += verdict(q, R) != expected;
+    }
+    TEST_ASSERT_EQUAL_INT(0, differing);
+    TEST_ASSERT_TRUE(failing > 1000);
+}
+
 void test_far_and_beyond(void) {
     stewart_params params;
     stewart_params_default(&params);
     const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
     uint64_t rng = 2026;
-    int differing = 0, failing = 0;
-    for (int n = 0; n < 40000; ++n) {
-        double q[6];
-        random_pose(rng, params.home_height, n % 2 ? 0.05 : 0.4, q);
-        const int expected = full_verdict(c, q);
-        failing += expected != 0;
-        differing += stewart::platform_limit_failures(c, q) != expected;
-    }
-    TEST_ASSERT_EQUAL_INT(0, differing);
-    TEST_ASSERT_TRUE(failing > 1000);  // the wide poses do reach the limits
+    require_full_verdicts(
+        c,
+        [&](int n, double q[6], Eigen::Matrix3d &) {
+            random_pose(rng, params.home_height, n % 2 ? 0.05 : 0.4, q);
+        },
+        [&](const double q[6], const Eigen::Matrix3d &) {
+            return stewart::platform_limit_failures(c, q);
+        });
 }
 
 // Every pose on the edge: a limit or the diameter moved onto the pose's own value, then a few
@@ -178,19 +194,17 @@ void test_rotation_verdicts(void) {
     const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
     uint64_t rng = 4242;
-    int differing = 0, failing = 0;
-    for (int n = 0; n < 40000; ++n) {
-        double q[6];
-        const Eigen::Matrix3d R = random_rotation(rng, n % 2 ? 0.05 : 0.5, q + 3);
-        for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -0.3, 0.3);
-        q[2] += params.home_height;
-        const int expected = full_verdict(c, q);
-        failing += expected != 0;
-        differing += stewart::platform_limit_failures(c, Eigen::Vector3d(q[0], q[1], q[2]), R) !=
-                     expected;
-    }
-    TEST_ASSERT_EQUAL_INT(0, differing);
-    TEST_ASSERT_TRUE(failing > 1000);
+    require_full_verdicts(
+        c,
+        [&](int n, double q[6], Eigen::Matrix3d &R) {
+            R = random_rotation(rng, n % 2 ? 0.05 : 0.5, q + 3);
+            for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -0.3, 0.3);
+            q[2] += params.home_height;
+        },
+        [&](const double q[6], const Eigen::Matrix3d &R) {
+            return stewart::platform_limit_failures(c, Eigen::Vector3d(q[0], q[1], q[2]), R);
+        });
+    int differing = 0;
     const double offsets[] = {-1e-9, -1e-11, -1e-12, 0.0, 1e-12, 1e-11, 1e-9};
     int at_rounding = 0, checks = 0;
     for (int n = 0; n < 2000; ++n) {
@@ -229,6 +243,131 @@ void test_rotation_verdicts(void) {
     TEST_ASSERT_EQUAL_INT(0, differing);
 }
 
+// The verdicts with a clearance kept from pose to pose (the plant's, platform_limit_failures with
+// a LimitClearance) against the exact ones, along random walks that wander in and out of the
+// limits: steps of 1e-4 to 3e-2 (m, rad), poses up to 0.4 m and rad from home, with the default
+// limits and with narrow ones (joints at 0.3 rad, a leg diameter of 0.25 m, so that walks spend
+// long stretches on the edges). Equal everywhere; the clearance spares the check on most poses.
+void test_clearance(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
+    stewart_params narrow = params;
+    narrow.base_joint_limit = narrow.platform_joint_limit = 0.3;
+    narrow.leg_diameter = 0.25;
+    uint64_t rng = 5150;
+    int differing = 0, failing = 0, spared = 0, poses = 0;
+    for (const stewart_params &limits : {params, narrow}) {
+        const stewart::LimitConstants c = stewart::limit_constants(limits, g, HUGE_VAL);
+        for (int walk = 0; walk < 60; ++walk) {
+            const double step = std::pow(10.0, uniform(rng, -4, -1.5));
+            Eigen::Vector3d position(0, 0, params.home_height);
+            Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+            stewart::LimitClearance clearance;
+            for (int n = 0; n < 1000; ++n, ++poses) {
+                const Eigen::Vector3d home(0, 0, params.home_height);
+                for (int i = 0; i < 3; ++i)
+                    position[i] += step * uniform(rng, -1, 1) - 0.01 * (position[i] - home[i]);
+                const Eigen::Vector3d axis(uniform(rng, -1, 1), uniform(rng, -1, 1),
+                                           uniform(rng, -1, 1));
+                const Eigen::AngleAxisd back(q.conjugate());  // drift toward level
+                q = Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * back.angle(), back.axis())) * q;
+                if (axis.norm() > 1e-3)
+                    q = Eigen::Quaterniond(Eigen::AngleAxisd(step * uniform(rng, 0, 1.7),
+                                                             axis.normalized())) * q;
+                q.normalize();
+                const Eigen::Matrix3d R = q.toRotationMatrix();
+                const Eigen::Vector3d before = clearance.position;
+                const int kept = stewart::platform_limit_failures(c, position, R, clearance);
+                const int exact = stewart::platform_limit_failures(c, position, R);
+                differing += kept != exact;
+                failing += exact != 0;
+                spared += clearance.valid && clearance.position == before && before != position;
+            }
+        }
+    }
+    std::printf("clearance: %d of %d poses spared the check, %d failing, %d differing\n", spared,
+                poses, failing, differing);
+    TEST_ASSERT_EQUAL_INT(0, differing);
+    TEST_ASSERT_TRUE(failing > poses / 20);  // the walks do reach the limits
+    TEST_ASSERT_TRUE(spared > poses / 4);    // and the clearance spares many checks
+}
+
+// What the clearance's bound rests on (limit_check.cpp, platform_limit_failures with a
+// LimitClearance), measured here from the geometry itself: from a pose to one moved by a random
+// small motion (1e-5 to 1e-1 m and rad), with delta = |dp| + |dR|_F max_k |b_k|, every leg's
+// length moves by at most delta, its base joint's cosine by at most 2 delta / |d_k| (the first
+// pose's length), its platform joint's by that plus |dR|_F, and every pair's segment distance and
+// sphere gap by at most 2 delta. The largest ratio of a move to its allowance, per quantity
+// (lengths, base cosines, platform cosines, distances, sphere gaps), into worst.
+void worst_bound_ratios(const stewart::LimitConstants &c, double home_height, uint64_t &rng,
+                        double worst[5]) {
+    const stewart::PlatformGeometry &g = c.geometry;
+    for (int i = 0; i < 5; ++i) worst[i] = 0;
+    for (int sample = 0; sample < 20000; ++sample) {
+        Eigen::Vector3d p[2];
+        Eigen::Matrix3d R[2];
+        double q[6];
+        R[0] = random_rotation(rng, 0.3, q);
+        for (int i = 0; i < 3; ++i) p[0][i] = uniform(rng, -0.2, 0.2);
+        p[0][2] += home_height;
+        const double size = std::pow(10.0, uniform(rng, -5, -1));
+        const Eigen::Vector3d axis(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        if (!(axis.norm() > 1e-3)) continue;
+        R[1] = Eigen::AngleAxisd(size * uniform(rng, 0, 1), axis.normalized()).toRotationMatrix() *
+               R[0];
+        for (int i = 0; i < 3; ++i) p[1][i] = p[0][i] + size * uniform(rng, -1, 1);
+        const double turned = (R[1] - R[0]).norm();
+        const double delta = (p[1] - p[0]).norm() + turned * c.platform_radius;
+        Eigen::Vector3d top[2][STEWART_LEGS], n[2][STEWART_LEGS];
+        double length[2][STEWART_LEGS];
+        for (int s = 0; s < 2; ++s)
+            for (int k = 0; k < STEWART_LEGS; ++k) {
+                top[s][k] = p[s] + R[s] * g.platform_points.col(k);
+                const Eigen::Vector3d d = top[s][k] - g.base_points.col(k);
+                length[s][k] = d.norm();
+                n[s][k] = d / length[s][k];
+            }
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            const double turn_allowed = 2 * delta / length[0][k];
+            const double base_move = std::fabs((n[1][k] - n[0][k]).dot(c.base_neutral.col(k)));
+            const double platform_move =
+                std::fabs(n[1][k].dot(R[1] * c.platform_neutral.col(k)) -
+                          n[0][k].dot(R[0] * c.platform_neutral.col(k)));
+            worst[0] = std::fmax(worst[0], std::fabs(length[1][k] - length[0][k]) / delta);
+            worst[1] = std::fmax(worst[1], base_move / turn_allowed);
+            worst[2] = std::fmax(worst[2], platform_move / (turn_allowed + turned));
+        }
+        for (int i = 0; i < STEWART_LEGS; ++i)
+            for (int j = i + 1; j < STEWART_LEGS; ++j) {
+                double distance[2], gap[2];
+                for (int s = 0; s < 2; ++s) {
+                    distance[s] = std::sqrt(stewart::segment_distance_squared(
+                        g.base_points.col(i), top[s][i], g.base_points.col(j), top[s][j]));
+                    const Eigen::Vector3d mi = 0.5 * (g.base_points.col(i) + top[s][i]),
+                                          mj = 0.5 * (g.base_points.col(j) + top[s][j]);
+                    gap[s] = (mi - mj).norm() - 0.5 * (length[s][i] + length[s][j]);
+                }
+                worst[3] = std::fmax(worst[3], std::fabs(distance[1] - distance[0]) / (2 * delta));
+                worst[4] = std::fmax(worst[4], std::fabs(gap[1] - gap[0]) / (2 * delta));
+            }
+    }
+}
+
+void test_clearance_bound(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
+    uint64_t rng = 8086;
+    double worst[5];
+    worst_bound_ratios(stewart::limit_constants(params, g, HUGE_VAL), params.home_height, rng,
+                       worst);
+    std::printf("clearance bound: the largest moves of lengths, base and platform cosines, "
+                "distances, sphere gaps are %.3g, %.3g, %.3g, %.3g, %.3g of their allowances\n",
+                worst[0], worst[1], worst[2], worst[3], worst[4]);
+    for (double w : worst) TEST_ASSERT_TRUE(w <= 1.0);
+}
+
 }  // namespace
 
 void setUp(void) {}
@@ -240,5 +379,7 @@ int main(void) {
     RUN_TEST(test_on_the_edge);
     RUN_TEST(test_extreme_limits);
     RUN_TEST(test_rotation_verdicts);
+    RUN_TEST(test_clearance);
+    RUN_TEST(test_clearance_bound);
     return UNITY_END();
 }
