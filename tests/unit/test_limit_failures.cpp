@@ -380,9 +380,11 @@ void moved_pose(const Eigen::Vector3d &p, const Eigen::Matrix3d &R, const Eigen:
 // The skip decision (clearance_spares) at its edge: from random poses near the limits (the
 // clearance of an exact check there), along random moves (translations, turns, both), the
 // farthest pose the clearance still spares (bisection on the move's size), where the exact check
-// must find nothing. The spared moves use up much of the clearance (else this tests nothing):
-// the smallest share of the joint cosine's and the interference's clearance left at such a pose,
-// and of the shortest leg's above min_length, into least_left.
+// must find nothing. How far the spared moves go into the clearance: the smallest share of the
+// joint cosine's clearance left at such a pose, of the interference's (as recorded: a far pair's
+// sphere gap, a lower bound that jumps where the pair is measured instead), and of the shortest
+// leg's above min_length, into least_left. Seen to fail with the allowance (delta) divided by 10
+// (112 failing in the first set), not by 5: the moves sampled stay within 1/5 of the bound.
 int spared_failures(const stewart::LimitConstants &c, double home_height, uint64_t &rng,
                     int &spared, double least_left[3]) {
     int failures = 0;
@@ -452,8 +454,7 @@ void test_clearance_edge(void) {
                         spared, failures, least_left[0], least_left[1], least_left[2]);
             TEST_ASSERT_EQUAL_INT(0, failures);
             TEST_ASSERT_TRUE(spared > 300);
-            // the spared moves reach well into the clearances (the bound's slack is about 2)
-            TEST_ASSERT_TRUE(least_left[0] < 0.9 && least_left[1] < 0.9);
+            TEST_ASSERT_TRUE(least_left[0] < 0.9);  // the spared moves reach into the clearance
         }
     }
 }
