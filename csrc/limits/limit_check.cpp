@@ -311,8 +311,11 @@ int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &posi
 // direction: the exact check would find nothing, as this returns. tests/unit/
 // test_limit_failures.cpp compares it with the exact verdict along random walks through the
 // limits (test_clearance) and at the farthest poses it spares (test_clearance_edge).
-bool clearance_spares(const LimitConstants &c, const LimitClearance &clearance,
-                      const Eigen::Vector3d &position, const Eigen::Matrix3d &rotation) {
+namespace {
+
+// clearance_spares' body, inlined into the plant's check (as it was before the test wanted it).
+inline bool spares(const LimitConstants &c, const LimitClearance &clearance,
+                   const Eigen::Vector3d &position, const Eigen::Matrix3d &rotation) {
     if (!clearance.valid) return false;
     const double moved = (position - clearance.position).norm();
     const double turned = (rotation - clearance.rotation).norm();  // Frobenius
@@ -323,9 +326,16 @@ bool clearance_spares(const LimitConstants &c, const LimitClearance &clearance,
            clearance.joint_cosine >= 2.0 * delta / clearance.shortest_leg + turned + kClearanceSlack;
 }
 
+}  // namespace
+
+bool clearance_spares(const LimitConstants &c, const LimitClearance &clearance,
+                      const Eigen::Vector3d &position, const Eigen::Matrix3d &rotation) {
+    return spares(c, clearance, position, rotation);
+}
+
 int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
                             const Eigen::Matrix3d &rotation, LimitClearance &clearance) {
-    if (clearance_spares(c, clearance, position, rotation)) return 0;
+    if (spares(c, clearance, position, rotation)) return 0;
     LimitClearance found;
     const int failed = limit_failures(c, position, rotation, &found);
     clearance = found;
