@@ -5,7 +5,9 @@
 // poses turning in and out of the limits every few steps and steps under forces between them.
 // Every step's warnings must equal output_get's; the path must cross the limits (steps with and
 // without each warning) and the clearance must spare the check on some steps (else this tests
-// nothing of it).
+// nothing of it). Seen to fail (10 steps differing) with the clearance's allowance divided by 30,
+// not by 10: this path's moves stay well inside the bound (test_limit_failures.cpp's
+// test_clearance_edge probes the bound itself).
 #include <cmath>
 #include <cstdio>
 
