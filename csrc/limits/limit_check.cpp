@@ -309,20 +309,33 @@ int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &posi
 // above its inside cosine (no arc measured, no joint fails), every pair's sphere gap is still
 // above the diameter's slack or its distance above the diameter, and every leg keeps a
 // direction: the exact check would find nothing, as this returns. tests/unit/
-// test_limit_failures.cpp (test_clearance) compares it with the exact verdict along random walks
-// through the limits.
+// test_limit_failures.cpp compares it with the exact verdict along random walks through the
+// limits (test_clearance) and at the farthest poses it spares (test_clearance_edge).
+namespace {
+
+// clearance_spares' body, inlined into the plant's check (as it was before the test wanted it).
+inline bool spares(const LimitConstants &c, const LimitClearance &clearance,
+                   const Eigen::Vector3d &position, const Eigen::Matrix3d &rotation) {
+    if (!clearance.valid) return false;
+    const double moved = (position - clearance.position).norm();
+    const double turned = (rotation - clearance.rotation).norm();  // Frobenius
+    const double delta = moved + turned * c.platform_radius;
+    const double shortest = clearance.shortest_leg - delta;
+    return shortest > c.geometry.min_length + kClearanceSlack &&
+           clearance.interference >= 2.0 * delta + kClearanceSlack &&
+           clearance.joint_cosine >= 2.0 * delta / clearance.shortest_leg + turned + kClearanceSlack;
+}
+
+}  // namespace
+
+bool clearance_spares(const LimitConstants &c, const LimitClearance &clearance,
+                      const Eigen::Vector3d &position, const Eigen::Matrix3d &rotation) {
+    return spares(c, clearance, position, rotation);
+}
+
 int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
                             const Eigen::Matrix3d &rotation, LimitClearance &clearance) {
-    if (clearance.valid) {
-        const double moved = (position - clearance.position).norm();
-        const double turned = (rotation - clearance.rotation).norm();  // Frobenius
-        const double delta = moved + turned * c.platform_radius;
-        const double shortest = clearance.shortest_leg - delta;
-        if (shortest > c.geometry.min_length + kClearanceSlack &&
-            clearance.interference >= 2.0 * delta + kClearanceSlack &&
-            clearance.joint_cosine >= 2.0 * delta / clearance.shortest_leg + turned + kClearanceSlack)
-            return 0;
-    }
+    if (spares(c, clearance, position, rotation)) return 0;
     LimitClearance found;
     const int failed = limit_failures(c, position, rotation, &found);
     clearance = found;

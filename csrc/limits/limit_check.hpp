@@ -64,6 +64,10 @@ struct LimitClearance {
     double interference = 0;  // min over pairs of the distance (or sphere gap) - diameter [m]
     double shortest_leg = 0;  // min_k length [m]
 };
+// Whether `clearance` proves that the exact check at the platform's position and rotation finds
+// nothing (the bound in limit_check.cpp): platform_limit_failures' test before it checks.
+bool clearance_spares(const LimitConstants &c, const LimitClearance &clearance,
+                      const Eigen::Vector3d &position, const Eigen::Matrix3d &rotation);
 // platform_limit_failures(c, position, rotation), the same verdicts, and without the legs where
 // `clearance` (its last exact run's, kept by the caller) proves that nothing fails: no leg's
 // platform joint has moved further than every limit's clearance allows (the bound in

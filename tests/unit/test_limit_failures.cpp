@@ -368,6 +368,97 @@ void test_clearance_bound(void) {
     for (double w : worst) TEST_ASSERT_TRUE(w <= 1.0);
 }
 
+// The pose moved from (p, R) by s times a move: dp along the position, a turn of s * angle about
+// axis (rotation pre-multiplied, as the plant's state turns).
+void moved_pose(const Eigen::Vector3d &p, const Eigen::Matrix3d &R, const Eigen::Vector3d &dp,
+                const Eigen::Vector3d &axis, double angle, double s, Eigen::Vector3d &p1,
+                Eigen::Matrix3d &R1) {
+    p1 = p + s * dp;
+    R1 = Eigen::AngleAxisd(s * angle, axis).toRotationMatrix() * R;
+}
+
+// The skip decision (clearance_spares) at its edge: from random poses near the limits (the
+// clearance of an exact check there), along random moves (translations, turns, both), the
+// farthest pose the clearance still spares (bisection on the move's size), where the exact check
+// must find nothing. How far the spared moves go into the clearance: the smallest share of the
+// joint cosine's clearance left at such a pose, of the interference's (as recorded: a far pair's
+// sphere gap, a lower bound that jumps where the pair is measured instead), and of the shortest
+// leg's above min_length, into least_left. Seen to fail with the allowance (delta) divided by 10
+// (112 failing in the first set), not by 5: the moves sampled stay within 1/5 of the bound.
+int spared_failures(const stewart::LimitConstants &c, double home_height, uint64_t &rng,
+                    int &spared, double least_left[3]) {
+    int failures = 0;
+    for (int sample = 0; sample < 6000; ++sample) {
+        double q[6];
+        random_pose(rng, home_height, 0.12, q);
+        const Eigen::Vector3d p(q[0], q[1], q[2]);
+        const Eigen::Matrix3d R = stewart::rotation_from_rpy(q[3], q[4], q[5]);
+        stewart::LimitClearance clearance;
+        if (stewart::platform_limit_failures(c, p, R, clearance) != 0 || !clearance.valid) continue;
+        Eigen::Vector3d dp(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)),
+            axis(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        if (!(axis.norm() > 1e-3)) continue;
+        axis.normalize();
+        const int kind = sample % 3;  // translation, turn, both
+        if (kind == 1) dp.setZero();
+        const double angle = kind == 0 ? 0.0 : uniform(rng, 0.2, 1.0);
+        double inside = 0, outside = 1;  // scales spared and not (a move of 1 m or rad is not)
+        Eigen::Vector3d p1;
+        Eigen::Matrix3d R1;
+        for (int i = 0; i < 60; ++i) {
+            const double mid = 0.5 * (inside + outside);
+            moved_pose(p, R, dp, axis, angle, mid, p1, R1);
+            (stewart::clearance_spares(c, clearance, p1, R1) ? inside : outside) = mid;
+        }
+        if (inside == 0) continue;
+        moved_pose(p, R, dp, axis, angle, inside, p1, R1);
+        if (!stewart::clearance_spares(c, clearance, p1, R1)) continue;
+        ++spared;
+        stewart::LimitClearance there;
+        failures += stewart::platform_limit_failures(c, p1, R1, there) != 0;
+        if (!there.valid) continue;
+        least_left[0] = std::fmin(least_left[0], there.joint_cosine / clearance.joint_cosine);
+        least_left[1] = std::fmin(least_left[1], there.interference / clearance.interference);
+        least_left[2] = std::fmin(least_left[2], (there.shortest_leg - c.geometry.min_length) /
+                                                     (clearance.shortest_leg - c.geometry.min_length));
+    }
+    return failures;
+}
+
+void test_clearance_edge(void) {
+    stewart_params params;
+    stewart_params_default(&params);
+    params.base_joint_limit = 0.35;
+    params.platform_joint_limit = 0.4;
+    params.leg_diameter = 0.1;
+    // another 6-6 geometry: smaller platform, legs that cross (1 and 2, 3 and 4, 5 and 6)
+    stewart_params crossing = params;
+    crossing.platform_radius = 0.35;
+    crossing.home_height = 0.6;
+    const double angle[STEWART_LEGS] = {25, 5, 145, 125, 265, 245};  // [deg]
+    for (int k = 0; k < STEWART_LEGS; ++k) crossing.platform_angle[k] = angle[k] * M_PI / 180;
+    crossing.leg_diameter = 0.01;
+    const double per_leg[STEWART_LEGS] = {0.3, 0.45, 0.35, 0.5, 0.25, 0.4};
+    uint64_t rng = 6502;
+    for (const stewart_params &set : {params, crossing}) {
+        const stewart::PlatformGeometry g = stewart::platform_geometry(set);
+        const stewart::LimitConstants constants[3] = {
+            stewart::limit_constants(set, g, HUGE_VAL), per_leg_limits(set, g, true, per_leg),
+            per_leg_limits(set, g, false, per_leg)};
+        for (const stewart::LimitConstants &c : constants) {
+            int spared = 0;
+            double least_left[3] = {1, 1, 1};
+            const int failures = spared_failures(c, set.home_height, rng, spared, least_left);
+            std::printf("clearance edge: %d spared moves, %d failing; least clearance left of "
+                        "the joint cosine %.3g, interference %.3g, leg length %.3g\n",
+                        spared, failures, least_left[0], least_left[1], least_left[2]);
+            TEST_ASSERT_EQUAL_INT(0, failures);
+            TEST_ASSERT_TRUE(spared > 300);
+            TEST_ASSERT_TRUE(least_left[0] < 0.9);  // the spared moves reach into the clearance
+        }
+    }
+}
+
 }  // namespace
 
 void setUp(void) {}
@@ -381,5 +472,6 @@ int main(void) {
     RUN_TEST(test_rotation_verdicts);
     RUN_TEST(test_clearance);
     RUN_TEST(test_clearance_bound);
+    RUN_TEST(test_clearance_edge);
     return UNITY_END();
 }

@@ -18,6 +18,7 @@
 #include <arkode/arkode_butcher_erk.h>
 
 #include "plant/plant_integrator.hpp"
+#include "plant/plant_object.hpp"
 #include "stewart/stewart.h"
 #include "unity.h"
 
@@ -275,9 +276,11 @@ int step_numbers(const stewart_plant *plant, const stewart_plant_output &o, doub
 // the principal angles the integrator starts from) against their fresh computation: a plant
 // stepped on, and beside it one loaded with the first's saved state before every step (a load
 // drops them), under the same forces: the same outputs and statistics bit for bit over 300
-// massless 1 ms steps, with the first plant's state set, copied and loaded from elsewhere on the
-// way (each drops them too). Seen: dropping none of them passes as well, since a stale start
-// only sends the step to ARKODE (a pitch "crossing" at its start), which gives the same bits.
+// massless 1 ms steps, with the first plant's state set, copied, loaded from elsewhere and reset
+// on the way: step_end_valid false after each of these, true after every step, unchanged by a
+// refused one. The bits alone do not see a value kept too long (a stale start only sends the step
+// to ARKODE, a pitch "crossing" at its start, which gives the same bits); the flag does: seen to
+// fail with the drop left out of start_at (set_state, reset), restore_state (copy) or the load.
 void test_carried_start_values(void) {
     stewart_params params;
     stewart_params_default(&params);
@@ -312,6 +315,19 @@ void test_carried_start_values(void) {
             TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_load(carried, elsewhere, size));
         if (n == 255)
             TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_set_state(carried, 0.2, level, rate));
+        if (n == 290) stewart_plant_reset(carried);
+        // the values carried are dropped by whatever set the state: a step's start takes them
+        // only from a step that ended there
+        if (n == 100 || n == 105 || n == 180 || n == 185 || n == 250 || n == 255 || n == 290)
+            TEST_ASSERT_FALSE(carried->step_end_valid);
+        if (n == 50) {  // a refused step leaves the state, and what was carried from it, as it was
+            stewart_plant_input refused{};
+            refused.h = -1e-3;
+            stewart_plant_output unused;
+            TEST_ASSERT_TRUE(carried->step_end_valid);
+            TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_step(carried, &refused, &unused));
+            TEST_ASSERT_TRUE(carried->step_end_valid);
+        }
         TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_save(carried, saved, size));
         TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_load(fresh, saved, size));
         stewart_plant_input in{};
@@ -325,6 +341,7 @@ void test_carried_start_values(void) {
                              sb = stewart_plant_step(fresh, &in, &b);
         differing += sa != sb;
         if (sa != STEWART_OK || sb != STEWART_OK) continue;
+        TEST_ASSERT_TRUE(carried->step_end_valid);
         ++done;
         double va[64], vb[64];
         const int count = step_numbers(carried, a, va);

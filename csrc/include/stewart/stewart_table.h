@@ -30,8 +30,8 @@
  * once per field of stewart_inverse_options, stewart_forward_options and stewart_plant_options,
  * in declaration order; type is int, long or double. An option is one line here and its field
  * in the struct (a static_assert checks they match); setters and lookup by name come from the
- * table, and so do the inverse and forward defaults and checks (the plant keeps its own,
- * which a test holds to the table).
+ * table, and so do the defaults of all three and the inverse and forward checks (the plant
+ * keeps its own check, whose ranges tests/unit/test_plant_option_table.c holds to the table).
  */
 #ifndef STEWART_STEWART_TABLE_H
 #define STEWART_STEWART_TABLE_H
