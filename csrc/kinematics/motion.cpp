@@ -14,10 +14,7 @@ void angles_of_rotation(const Eigen::Matrix3d &R, const double near[3], double a
     angles[1] = std::asin(sp > 1 ? 1 : sp < -1 ? -1 : sp);
     angles[0] = std::atan2(R(2, 1), R(2, 2));
     angles[2] = std::atan2(R(1, 0), R(0, 0));
-    for (int i : {0, 2}) {
-        const double turns = std::round((near[i] - angles[i]) / (2 * M_PI));
-        angles[i] += 2 * M_PI * turns;
-    }
+    nearest_turns(near, angles);
 }
 
 stewart_status check_pose(const stewart_pose &pose, char *msg, size_t size) {

@@ -73,6 +73,15 @@ Eigen::Matrix<S, 3, 3> angle_rate_matrix_dot(const S &cp, const S &sp, const S &
 // nearest to near[0] and near[2].
 void angles_of_rotation(const Eigen::Matrix3d &R, const double near[3], double angles[3]);
 
+// Adds to roll and yaw (angles[0], angles[2]) the whole turns that bring each nearest to
+// near's: angles_of_rotation's last part, for a caller that has the principal angles already.
+inline void nearest_turns(const double near[3], double angles[3]) {
+    for (int i : {0, 2}) {
+        const double turns = std::round((near[i] - angles[i]) / (2 * M_PI));
+        angles[i] += 2 * M_PI * turns;
+    }
+}
+
 // The inverse: (roll, pitch, yaw) rates from the angular velocity omega (world) at pose angles
 // pitch q[4] and yaw q[5]. False at pitch = +-90 deg (|cos pitch| <= min_cos_pitch), where roll
 // and yaw rates are not defined.

@@ -556,10 +556,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     double principal[3], angles[3];
     fd::principal_angles(y, principal);
     for (int i = 0; i < 3; ++i) angles[i] = principal[i];
-    for (int i : {0, 2}) {
-        const double turns = std::round((p->angles[i] - angles[i]) / (2 * M_PI));
-        angles[i] += 2 * M_PI * turns;
-    }
+    stewart::nearest_turns(p->angles, angles);
     if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
