@@ -36,6 +36,10 @@ struct Mechanism {
     std::vector<int> first_value;     // per joint: offset of its Jacobian blocks in the values
     std::vector<int> pattern_row, pattern_col;  // per Jacobian value
     std::vector<int> driver_joint;    // per driver slot: the joint that reads it
+    // Per joint: the distance driver evaluated in the same call (a cylindrical joint's), else -1;
+    // and whether it is such a driver (assembly then skips it: its joint's call wrote it).
+    std::vector<int> distance_with;
+    std::vector<char> evaluated_with_joint;
     std::shared_ptr<const BlockPlan> block_plan;  // null if the structure is not bordered blocks
 
     int values() const { return static_cast<int>(pattern_row.size()); }
