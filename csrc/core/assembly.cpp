@@ -65,9 +65,14 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
         for (; b < m.bodies.size(); ++b)
             make_frame(body_r(q, b), q_dot ? body_r(q_dot, b) : nullptr, cache[b]);
     const BodyFrame *frames = cached ? cache : nullptr;
-    for (size_t k = 0; k < m.joints.size(); ++k) {
-        if (m.evaluated_with_joint[k]) continue;  // its cylindrical joint's call writes it
-        const int driver = m.distance_with[k];
+    // Read once: the joints' calls could write anywhere for all the compiler knows, and it
+    // reloaded the count and these arrays per joint.
+    const size_t joints = m.joints.size();
+    const char *const evaluated_with_joint = m.evaluated_with_joint.data();
+    const int *const distance_with = m.distance_with.data();
+    for (size_t k = 0; k < joints; ++k) {
+        if (evaluated_with_joint[k]) continue;  // its cylindrical joint's call writes it
+        const int driver = distance_with[k];
         if (driver < 0) {
             evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k), frames);
             continue;

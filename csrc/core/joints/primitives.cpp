@@ -42,18 +42,19 @@ void attach_both(const JointInput &in, const JointOutput &out, const Vec3 &ui, c
     }
 }
 
-// dot2's value, phi_t and Jacobian rows (not gamma), from a = A_i a_local already formed.
+// dot2's value, phi_t and Jacobian rows (not gamma), from a = A_i a_local already formed and,
+// for the Jacobian, lever = rotation_row(p_i, point_i, a) (rows that share a body pair their
+// levers).
 [[gnu::always_inline]] inline void dot2_formed(const JointInput &in, const RowWriter &w, int row,
                                                const Vec3 &a_local, const Vec3 &a,
-                                               const Separation &sep,
+                                               const double *lever, const Separation &sep,
                                                const DriverValue *target = nullptr) {
     w.phi(row, a.dot(sep.d) - (target ? target->value : 0.0));
     w.phi_t(row, target ? -target->rate : 0.0);
     if (w.want_jac()) {
         double *ri = w.jac_i(row), *rj = w.jac_j(row);
-        double turn[4], lever[4];  // v^T B rows: of a turning with body i, of its point's lever
+        double turn[4];  // v^T B row of a turning with body i
         rotation_row_two(in.q_i + 3, a_local, sep.d, turn, in.q_j + 3, in.def.point_j, a, rj + 3);
-        rotation_row(in.q_i + 3, in.def.point_i, a, lever);
         for (int c = 0; c < 3; ++c) ri[c] = -a[c], rj[c] = a[c];
         for (int c = 0; c < 4; ++c) ri[3 + c] = turn[c] - lever[c];
     }
@@ -122,7 +123,9 @@ Separation separation(const JointInput &in, const JointOutput &out) {
 void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
           const Separation &sep, const DriverValue *target) {
     const Attached a = attach_i(in, w.out, a_local);
-    dot2_formed(in, w, row, a_local, a.world, sep, target);
+    double lever[4];  // v^T B row of body i's point's lever
+    if (w.want_jac()) rotation_row(in.q_i + 3, in.def.point_i, a.world, lever);
+    dot2_formed(in, w, row, a_local, a.world, lever, sep, target);
     if (w.out.gamma) {
         double gamma = -(a.quad.dot(sep.d) + 2.0 * a.rate.dot(sep.rate) + a.world.dot(sep.quad));
         if (target) gamma += target->accel;  // -Phi_tt
@@ -146,9 +149,15 @@ void evaluate_cylindrical_with_distance(const JointInput &in, const JointOutput 
     const Separation d = separation(in, out);
     dot1_formed(in, w, 0, in.def.axis_i[0], in.def.axis_j[2], a1, vj);
     dot1_formed(in, w, 1, in.def.axis_i[1], in.def.axis_j[2], a2, vj);
-    dot2_formed(in, w, 2, in.def.axis_i[0], a1, d);
-    dot2_formed(in, w, 3, in.def.axis_i[1], a2, d);
-    dot2_formed(driver, wd, 0, driver.def.axis_i[2], axis, d, driver.drive);
+    double lever1[4], lever2[4], lever[4];  // the dot-2 rows' levers, two of them paired
+    if (w.want_jac() || wd.want_jac()) {
+        rotation_row_two(in.q_i + 3, in.def.point_i, a1, lever1, in.q_i + 3, in.def.point_i, a2,
+                         lever2);
+        rotation_row(in.q_i + 3, driver.def.point_i, axis, lever);
+    }
+    dot2_formed(in, w, 2, in.def.axis_i[0], a1, lever1, d);
+    dot2_formed(in, w, 3, in.def.axis_i[1], a2, lever2, d);
+    dot2_formed(driver, wd, 0, driver.def.axis_i[2], axis, lever, d, driver.drive);
 }
 
 }  // namespace mbs
