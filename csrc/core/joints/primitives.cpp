@@ -60,9 +60,8 @@ void attach_both(const JointInput &in, const JointOutput &out, const Vec3 &ui, c
     }
 }
 
-}  // namespace
-
-void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
+[[gnu::always_inline]] inline void point_coincidence_rows(const JointInput &in, const RowWriter &w,
+                                                          int row) {
     Attached ui, uj;
     attach_both(in, w.out, in.def.point_i, in.def.point_j, ui, uj);
     if (w.out.phi) {
@@ -85,8 +84,8 @@ void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
     }
 }
 
-void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
-          const Vec3 &b_local) {
+[[gnu::always_inline]] inline void dot1_rows(const JointInput &in, const RowWriter &w, int row,
+                                             const Vec3 &a_local, const Vec3 &b_local) {
     if (!w.out.gamma) {  // Newton's pass: the same products, without the rates' bookkeeping
         Vec3 a, b;
         times_two(in.frame_i->A, a_local, in.frame_j->A, b_local, a, b);
@@ -105,6 +104,23 @@ void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local
         rotation_row_two(in.q_i + 3, a_local, b.world, ri + 3, in.q_j + 3, b_local, a.world,
                          rj + 3);
     }
+}
+
+}  // namespace
+
+void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
+    point_coincidence_rows(in, w, row);
+}
+
+void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
+          const Vec3 &b_local) {
+    dot1_rows(in, w, row, a_local, b_local);
+}
+
+void cardan_rows(const JointInput &in, const JointOutput &out) {
+    const RowWriter w{out};
+    point_coincidence_rows(in, w, 0);
+    dot1_rows(in, w, 3, in.def.axis_i[0], in.def.axis_j[0]);
 }
 
 Separation separation(const JointInput &in, const JointOutput &out) {

@@ -64,6 +64,10 @@ Separation separation(const JointInput &in, const JointOutput &out);
 void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Separation &d,
           const DriverValue *target = nullptr);
 
+// The Cardan joint's rows: a point coincidence (rows 0..2) and its cross arms axis_i[0], axis_j[0]
+// perpendicular (row 3), in one call with the two rows' bodies inlined.
+void cardan_rows(const JointInput &in, const JointOutput &out);
+
 // Body j's axis axis_j[2] stays parallel to body i's axis: perpendicular to axis_i[0] and
 // axis_i[1] (dot-1 rows row, row + 1). Revolute, cylindrical and prismatic joints.
 void parallel_axes(const JointInput &in, const RowWriter &w, int row);
