@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/euler_pairs.hpp"
+#include "core/joints/primitives.hpp"
 
 namespace mbs {
 
@@ -68,19 +69,30 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
     // Read once: the joints' calls could write anywhere for all the compiler knows, and it
     // reloaded the count and these arrays per joint.
     const size_t joints = m.joints.size();
-    const char *const evaluated_with_joint = m.evaluated_with_joint.data();
+    const AssemblyPath *const path = m.assembly_path.data();
     const int *const distance_with = m.distance_with.data();
+    const JointDef *const defs = m.joints.data();
     for (size_t k = 0; k < joints; ++k) {
-        if (evaluated_with_joint[k]) continue;  // its cylindrical joint's call writes it
-        const int driver = distance_with[k];
-        if (driver < 0) {
+        switch (path[k]) {
+        case AssemblyPath::Own:
             evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k), frames);
-            continue;
+            break;
+        case AssemblyPath::Normalization: {
+            const int b = defs[k].body_i;
+            normalization_rows(body_p(q, b), q_dot ? body_p(q_dot, b) : nullptr, output(k));
+            break;
         }
-        BodyFrame fi, fj, di, dj;
-        evaluate_cylindrical_with_distance(
-            joint_input(m, static_cast<int>(k), q, q_dot, drv, frames, fi, fj), output(k),
-            joint_input(m, driver, q, q_dot, drv, frames, di, dj), output(driver));
+        case AssemblyPath::WithDistance: {
+            BodyFrame fi, fj, di, dj;
+            const int driver = distance_with[k];
+            evaluate_cylindrical_with_distance(
+                joint_input(m, static_cast<int>(k), q, q_dot, drv, frames, fi, fj), output(k),
+                joint_input(m, driver, q, q_dot, drv, frames, di, dj), output(driver));
+            break;
+        }
+        case AssemblyPath::InJointCall:  // its cylindrical joint's call writes it
+            break;
+        }
     }
 }
 
