@@ -398,9 +398,20 @@ public:
             double *to = ws + other_to_[r];
             for (int i = 0; i < other_length_[r]; ++i) to[i] = from[i];
         }
+        // A fixed body's whole row (a joint's row of the ground) is the common run: copied
+        // unrolled, since the general loop became a memmove call per run.
+        const size_t *const start = coupling_start_.data();
+        const int *const coupling_from = coupling_from_.data();
+        double *const coupling = coupling_.data();
         for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
-            const size_t k = coupling_start_[r], n = coupling_start_[r + 1] - k;
-            copy_pairs(coupling_.data() + k, values + coupling_from_[k], n);
+            const size_t k = start[r], n = start[r + 1] - k;
+            const double *from = values + coupling_from[k];
+            if (n == MBS_BODY_COORDINATES) {
+                copy_pairs(coupling + k, from, 6);
+                coupling[k + 6] = from[6];
+            } else {
+                copy_pairs(coupling + k, from, n);
+            }
         }
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
@@ -418,9 +429,16 @@ public:
                 dirty_[gi] = 1;
                 if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
             }
-            for (int r = ng; r < mg; ++r)
-                std::copy(a + r * (ng + nb) + ng, a + (r + 1) * (ng + nb),
-                          border + (g.first_leftover + r - ng) * nb);
+            for (int r = ng; r < mg; ++r) {
+                const double *from = a + r * (ng + nb) + ng;
+                double *to = border + (g.first_leftover + r - ng) * nb;
+                if (nb == kOneHub) {  // one hub's 7 values, unrolled (std::copy called memmove)
+                    copy_pairs(to, from, 6);
+                    to[6] = from[6];
+                } else {
+                    std::copy(from, from + nb, to);
+                }
+            }
         }
         if (nb == kOneHub) return lu_factor_square<kOneHub>(border, border_pivot_.data());
         return lu_factor(border, nb, nb, nb, border_pivot_.data());
