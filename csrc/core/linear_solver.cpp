@@ -533,11 +533,21 @@ public:
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
         for (size_t r = 0; r < p_.border_rows.size(); ++r) x[p_.border_rows[r]] = border_work_[leftover + r];
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_rows[i]] = rhs_[p_.fixed_cols[i]];
-        // Run by run in k order: each fixed row takes the same differences in the same order.
+        // Run by run in k order: each fixed row takes the same differences in the same order. A
+        // fixed body's whole row, the common run, unrolled.
+        const size_t *const start = coupling_start_.data();
+        const int *const fixed_row = coupling_fixed_row_.data(), *const row = p_.coupling_row.data();
+        const double *const coupling = coupling_.data();
         for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
-            const size_t k = coupling_start_[r], n = coupling_start_[r + 1] - k;
-            subtract_pairs(x + coupling_fixed_row_[k], coupling_.data() + k,
-                           x[p_.coupling_row[k]], n);
+            const size_t k = start[r], n = start[r + 1] - k;
+            double *to = x + fixed_row[k];
+            const double mu = x[row[k]];
+            if (n == MBS_BODY_COORDINATES) {
+                subtract_pairs(to, coupling + k, mu, 6);
+                to[6] -= coupling[k + 6] * mu;
+            } else {
+                subtract_pairs(to, coupling + k, mu, n);
+            }
         }
     }
 
