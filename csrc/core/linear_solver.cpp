@@ -310,6 +310,18 @@ inline void subtract_pairs(double *__restrict y, const double *__restrict c, dou
     if (i < n) y[i] -= c[i] * a;
 }
 
+// to[c] = from[cols[c]] for c < n, where cols is whole bodies' 7 neighbouring coordinates in a
+// row (a group's columns, as find_groups lists them): body by body, unrolled.
+inline void gather_bodies(double *__restrict to, const double *__restrict from, const int *cols,
+                          int n) {
+    static_assert(MBS_BODY_COORDINATES == 7, "a body's coordinates are three pairs and one value");
+    for (int b = 0; b < n; b += MBS_BODY_COORDINATES) {
+        const double *body = from + cols[b];
+        copy_pairs(to + b, body, 6);
+        to[b + 6] = body[6];
+    }
+}
+
 // The usual border: one hub body's coordinates (a platform), solved by the fixed-size LU.
 constexpr int kOneHub = MBS_BODY_COORDINATES;
 
@@ -496,7 +508,7 @@ public:
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             const double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
-            for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
+            gather_bodies(group_x_.data(), rhs_.data(), g.cols.data(), ng);
             if (static_used_[gi]) {
                 lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
                                              group_x_.data(), t, border_.data());
