@@ -322,6 +322,19 @@ inline void gather_bodies(double *__restrict to, const double *__restrict from, 
     }
 }
 
+// x[rows[r]] = t[r] for r < n, three per turn (the rows are in pivot order, not neighbours: the
+// loop's own count and branch were as many instructions as the copies).
+inline void scatter_rows(double *__restrict x, const double *__restrict t, const int *rows,
+                         int n) {
+    int r = 0;
+    for (; r + 3 <= n; r += 3) {
+        x[rows[r]] = t[r];
+        x[rows[r + 1]] = t[r + 1];
+        x[rows[r + 2]] = t[r + 2];
+    }
+    for (; r < n; ++r) x[rows[r]] = t[r];
+}
+
 // The usual border: one hub body's coordinates (a platform), solved by the fixed-size LU.
 constexpr int kOneHub = MBS_BODY_COORDINATES;
 
@@ -539,7 +552,7 @@ public:
             else
                 lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
                                        pivot_.data() + g.pivot_offset, t);
-            for (int r = 0; r < mg; ++r) x[g.rows[r]] = t[r];
+            scatter_rows(x, t, g.rows.data(), mg);
             t += mg;
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
