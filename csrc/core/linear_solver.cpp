@@ -412,12 +412,16 @@ public:
         const int *const row_from = row_from_.data(), *const row_to = row_to_.data();
         const size_t rows = row_from_.size();
         static_assert(MBS_BODY_COORDINATES == 7, "a body's row is three pairs and one value");
-        for (size_t r = 0; r < rows; ++r) {
-            const double *from = values + row_from[r];
-            double *to = ws + row_to[r];
+        const auto copy_row = [](double *to, const double *from) {
             copy_pairs(to, from, 6);
             to[6] = from[6];
+        };
+        size_t r = 0;
+        for (; r + 2 <= rows; r += 2) {  // two per turn: the loop's count and branch halved
+            copy_row(ws + row_to[r], values + row_from[r]);
+            copy_row(ws + row_to[r + 1], values + row_from[r + 1]);
         }
+        if (r < rows) copy_row(ws + row_to[r], values + row_from[r]);
         for (size_t r = 0; r < other_from_.size(); ++r) {
             const double *from = values + other_from_[r];
             double *to = ws + other_to_[r];
