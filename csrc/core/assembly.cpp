@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/euler_pairs.hpp"
+#include "core/joints/primitives.hpp"
 
 namespace mbs {
 
@@ -20,17 +21,17 @@ void make_frame(const double *q, const double *v, BodyFrame &f) {
 // mechanisms form them per joint instead.
 constexpr size_t kFrameCache = 64;
 
-void evaluate_with_frames(const Mechanism &m, int k, const double *q, const double *q_dot,
-                          const DriverValue *drv, const JointOutput &out,
-                          const BodyFrame *frames) {
+// Joint k's input; its bodies' frames from `frames` (every body's), else formed into fi and fj.
+[[gnu::always_inline]] inline JointInput joint_input(const Mechanism &m, int k, const double *q,
+                                                     const double *q_dot, const DriverValue *drv,
+                                                     const BodyFrame *frames, BodyFrame &fi,
+                                                     BodyFrame &fj) {
     const JointDef &j = m.joints[k];
-    const JointTypeInfo &info = *m.joint_info[k];
     const double *qi = body_r(q, j.body_i), *qj = j.body_j >= 0 ? body_r(q, j.body_j) : nullptr;
     const double *vi = q_dot ? body_r(q_dot, j.body_i) : nullptr;
     const double *vj = (q_dot && j.body_j >= 0) ? body_r(q_dot, j.body_j) : nullptr;
-    BodyFrame fi, fj;
     const BodyFrame *pi = nullptr, *pj = nullptr;
-    if (info.bodies == 2) {
+    if (m.joint_info[k]->bodies == 2) {
         if (frames) {
             pi = frames + j.body_i, pj = frames + j.body_j;
         } else {
@@ -39,8 +40,16 @@ void evaluate_with_frames(const Mechanism &m, int k, const double *q, const doub
             pi = &fi, pj = &fj;
         }
     }
-    const JointInput in{j, qi, qj, vi, vj, j.driver >= 0 ? drv + j.driver : nullptr, pi, pj};
-    info.evaluate(in, out);
+    return JointInput{j, qi, qj, vi, vj, j.driver >= 0 ? drv + j.driver : nullptr, pi, pj};
+}
+
+[[gnu::always_inline]] inline void evaluate_with_frames(const Mechanism &m, int k,
+                                                       const double *q, const double *q_dot,
+                                                       const DriverValue *drv,
+                                                       const JointOutput &out,
+                                                       const BodyFrame *frames) {
+    BodyFrame fi, fj;
+    m.joint_info[k]->evaluate(joint_input(m, k, q, q_dot, drv, frames, fi, fj), out);
 }
 
 // Calls output(k) for the outputs of joint k and evaluates every joint.
@@ -56,9 +65,35 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
     if (cached)
         for (; b < m.bodies.size(); ++b)
             make_frame(body_r(q, b), q_dot ? body_r(q_dot, b) : nullptr, cache[b]);
-    for (size_t k = 0; k < m.joints.size(); ++k)
-        evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k),
-                             cached ? cache : nullptr);
+    const BodyFrame *frames = cached ? cache : nullptr;
+    // Read once: the joints' calls could write anywhere for all the compiler knows, and it
+    // reloaded the count and these arrays per joint.
+    const size_t joints = m.joints.size();
+    const AssemblyPath *const path = m.assembly_path.data();
+    const int *const distance_with = m.distance_with.data();
+    const JointDef *const defs = m.joints.data();
+    for (size_t k = 0; k < joints; ++k) {
+        switch (path[k]) {
+        case AssemblyPath::Own:
+            evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k), frames);
+            break;
+        case AssemblyPath::Normalization: {
+            const int b = defs[k].body_i;
+            normalization_rows(body_p(q, b), q_dot ? body_p(q_dot, b) : nullptr, output(k));
+            break;
+        }
+        case AssemblyPath::WithDistance: {
+            BodyFrame fi, fj, di, dj;
+            const int driver = distance_with[k];
+            evaluate_cylindrical_with_distance(
+                joint_input(m, static_cast<int>(k), q, q_dot, drv, frames, fi, fj), output(k),
+                joint_input(m, driver, q, q_dot, drv, frames, di, dj), output(driver));
+            break;
+        }
+        case AssemblyPath::InJointCall:  // its cylindrical joint's call writes it
+            break;
+        }
+    }
 }
 
 }  // namespace

@@ -75,4 +75,10 @@ struct JointTypeInfo {
 
 const JointTypeInfo &joint_type(JointType t);
 
+// A cylindrical joint and a distance driver of it (the same two bodies and points) in one call:
+// the driver's row takes the joint's separation, and each axis is turned into the world once.
+// Every row is the separate calls' products in their order (the same bits).
+void evaluate_cylindrical_with_distance(const JointInput &joint, const JointOutput &joint_out,
+                                        const JointInput &driver, const JointOutput &driver_out);
+
 }  // namespace mbs

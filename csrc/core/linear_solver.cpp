@@ -310,6 +310,31 @@ inline void subtract_pairs(double *__restrict y, const double *__restrict c, dou
     if (i < n) y[i] -= c[i] * a;
 }
 
+// to[c] = from[cols[c]] for c < n, where cols is whole bodies' 7 neighbouring coordinates in a
+// row (a group's columns, as find_groups lists them): body by body, unrolled.
+inline void gather_bodies(double *__restrict to, const double *__restrict from, const int *cols,
+                          int n) {
+    static_assert(MBS_BODY_COORDINATES == 7, "a body's coordinates are three pairs and one value");
+    for (int b = 0; b < n; b += MBS_BODY_COORDINATES) {
+        const double *body = from + cols[b];
+        copy_pairs(to + b, body, 6);
+        to[b + 6] = body[6];
+    }
+}
+
+// x[rows[r]] = t[r] for r < n, three per turn (the rows are in pivot order, not neighbours: the
+// loop's own count and branch were as many instructions as the copies).
+inline void scatter_rows(double *__restrict x, const double *__restrict t, const int *rows,
+                         int n) {
+    int r = 0;
+    for (; r + 3 <= n; r += 3) {
+        x[rows[r]] = t[r];
+        x[rows[r + 1]] = t[r + 1];
+        x[rows[r + 2]] = t[r + 2];
+    }
+    for (; r < n; ++r) x[rows[r]] = t[r];
+}
+
 // The usual border: one hub body's coordinates (a platform), solved by the fixed-size LU.
 constexpr int kOneHub = MBS_BODY_COORDINATES;
 
@@ -387,20 +412,35 @@ public:
         const int *const row_from = row_from_.data(), *const row_to = row_to_.data();
         const size_t rows = row_from_.size();
         static_assert(MBS_BODY_COORDINATES == 7, "a body's row is three pairs and one value");
-        for (size_t r = 0; r < rows; ++r) {
-            const double *from = values + row_from[r];
-            double *to = ws + row_to[r];
+        const auto copy_row = [](double *to, const double *from) {
             copy_pairs(to, from, 6);
             to[6] = from[6];
+        };
+        size_t r = 0;
+        for (; r + 2 <= rows; r += 2) {  // two per turn: the loop's count and branch halved
+            copy_row(ws + row_to[r], values + row_from[r]);
+            copy_row(ws + row_to[r + 1], values + row_from[r + 1]);
         }
+        if (r < rows) copy_row(ws + row_to[r], values + row_from[r]);
         for (size_t r = 0; r < other_from_.size(); ++r) {
             const double *from = values + other_from_[r];
             double *to = ws + other_to_[r];
             for (int i = 0; i < other_length_[r]; ++i) to[i] = from[i];
         }
+        // A fixed body's whole row (a joint's row of the ground) is the common run: copied
+        // unrolled, since the general loop became a memmove call per run.
+        const size_t *const start = coupling_start_.data();
+        const int *const coupling_from = coupling_from_.data();
+        double *const coupling = coupling_.data();
         for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
-            const size_t k = coupling_start_[r], n = coupling_start_[r + 1] - k;
-            copy_pairs(coupling_.data() + k, values + coupling_from_[k], n);
+            const size_t k = start[r], n = start[r + 1] - k;
+            const double *from = values + coupling_from[k];
+            if (n == MBS_BODY_COORDINATES) {
+                copy_pairs(coupling + k, from, 6);
+                coupling[k + 6] = from[6];
+            } else {
+                copy_pairs(coupling + k, from, n);
+            }
         }
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
@@ -418,9 +458,16 @@ public:
                 dirty_[gi] = 1;
                 if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
             }
-            for (int r = ng; r < mg; ++r)
-                std::copy(a + r * (ng + nb) + ng, a + (r + 1) * (ng + nb),
-                          border + (g.first_leftover + r - ng) * nb);
+            for (int r = ng; r < mg; ++r) {
+                const double *from = a + r * (ng + nb) + ng;
+                double *to = border + (g.first_leftover + r - ng) * nb;
+                if (nb == kOneHub) {  // one hub's 7 values, unrolled (std::copy called memmove)
+                    copy_pairs(to, from, 6);
+                    to[6] = from[6];
+                } else {
+                    std::copy(from, from + nb, to);
+                }
+            }
         }
         if (nb == kOneHub) return lu_factor_square<kOneHub>(border, border_pivot_.data());
         return lu_factor(border, nb, nb, nb, border_pivot_.data());
@@ -478,7 +525,7 @@ public:
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             const double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
-            for (int c = 0; c < ng; ++c) group_x_[c] = rhs_[g.cols[c]];
+            gather_bodies(group_x_.data(), rhs_.data(), g.cols.data(), ng);
             if (static_used_[gi]) {
                 lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
                                              group_x_.data(), t, border_.data());
@@ -509,17 +556,27 @@ public:
             else
                 lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
                                        pivot_.data() + g.pivot_offset, t);
-            for (int r = 0; r < mg; ++r) x[g.rows[r]] = t[r];
+            scatter_rows(x, t, g.rows.data(), mg);
             t += mg;
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
         for (size_t r = 0; r < p_.border_rows.size(); ++r) x[p_.border_rows[r]] = border_work_[leftover + r];
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_rows[i]] = rhs_[p_.fixed_cols[i]];
-        // Run by run in k order: each fixed row takes the same differences in the same order.
+        // Run by run in k order: each fixed row takes the same differences in the same order. A
+        // fixed body's whole row, the common run, unrolled.
+        const size_t *const start = coupling_start_.data();
+        const int *const fixed_row = coupling_fixed_row_.data(), *const row = p_.coupling_row.data();
+        const double *const coupling = coupling_.data();
         for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
-            const size_t k = coupling_start_[r], n = coupling_start_[r + 1] - k;
-            subtract_pairs(x + coupling_fixed_row_[k], coupling_.data() + k,
-                           x[p_.coupling_row[k]], n);
+            const size_t k = start[r], n = start[r + 1] - k;
+            double *to = x + fixed_row[k];
+            const double mu = x[row[k]];
+            if (n == MBS_BODY_COORDINATES) {
+                subtract_pairs(to, coupling + k, mu, 6);
+                to[6] -= coupling[k + 6] * mu;
+            } else {
+                subtract_pairs(to, coupling + k, mu, n);
+            }
         }
     }
 

@@ -19,7 +19,7 @@
 namespace mbs {
 
 struct BlockGroup {
-    std::vector<int> rows, cols;  // global rows and coordinates
+    std::vector<int> rows, cols;  // global rows and coordinates (cols: whole bodies, 7 in a row)
     int offset = 0;               // of its m x (n + border) row-major block in the workspace
     int first_leftover = 0;       // its first row in the border system
     int pivot_offset = 0;

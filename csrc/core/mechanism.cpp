@@ -13,6 +13,35 @@ void place_at_reference(const Mechanism &m, double *q) {
                   body_r(q, b));
 }
 
+namespace {
+
+// Pairs each distance driver with a cylindrical joint on the same bodies and points, so that
+// assembly evaluates the two in one call (evaluate_cylindrical_with_distance); normalisations are
+// written inline.
+void choose_assembly_paths(Mechanism &m) {
+    const size_t n = m.joints.size();
+    m.distance_with.assign(n, -1);
+    m.assembly_path.assign(n, AssemblyPath::Own);
+    for (size_t k = 0; k < n; ++k) {
+        const JointDef &d = m.joints[k];
+        if (d.type == JointType::Normalization) m.assembly_path[k] = AssemblyPath::Normalization;
+        if (d.type != JointType::DistanceDriver) continue;
+        for (size_t c = 0; c < n; ++c) {
+            const JointDef &j = m.joints[c];
+            if (j.type == JointType::Cylindrical && m.distance_with[c] < 0 &&
+                j.body_i == d.body_i && j.body_j == d.body_j && j.point_i == d.point_i &&
+                j.point_j == d.point_j) {
+                m.distance_with[c] = static_cast<int>(k);
+                m.assembly_path[c] = AssemblyPath::WithDistance;
+                m.assembly_path[k] = AssemblyPath::InJointCall;
+                break;
+            }
+        }
+    }
+}
+
+}  // namespace
+
 bool finalize(Mechanism &m, char *msg, size_t size) {
     if (m.finalized) return true;
     for (size_t b = 0; b < m.bodies.size(); ++b)
@@ -55,6 +84,7 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
                              m.equations, m.coordinates);
         return false;
     }
+    choose_assembly_paths(m);
     m.block_plan = plan_blocks(m);
     m.finalized = true;
     return true;

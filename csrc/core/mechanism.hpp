@@ -23,6 +23,11 @@ struct Body {
 
 struct BlockPlan;  // linear_solver.hpp
 
+// How assembly evaluates a joint: by its type's function; inline (a normalisation, a few
+// products not worth a call); together with its distance driver (a cylindrical joint); or not at
+// all (a distance driver written by its cylindrical joint's call).
+enum class AssemblyPath : char { Own, Normalization, WithDistance, InJointCall };
+
 struct Mechanism {
     std::vector<Body> bodies;
     std::vector<JointDef> joints;
@@ -36,6 +41,10 @@ struct Mechanism {
     std::vector<int> first_value;     // per joint: offset of its Jacobian blocks in the values
     std::vector<int> pattern_row, pattern_col;  // per Jacobian value
     std::vector<int> driver_joint;    // per driver slot: the joint that reads it
+    // Per joint: how assembly evaluates it, and for a cylindrical joint with a distance driver,
+    // that driver (else -1).
+    std::vector<AssemblyPath> assembly_path;
+    std::vector<int> distance_with;
     std::shared_ptr<const BlockPlan> block_plan;  // null if the structure is not bordered blocks
 
     int values() const { return static_cast<int>(pattern_row.size()); }

@@ -1,7 +1,8 @@
 /* The bordered-block solver against the dense LU on a hexapod's Jacobian: at assembled and at
  * random configurations, and with a planned pivot forced to zero so the refactorisation must
- * fall back to partial pivoting. Solves and transposed solves must agree. The core alone: no
- * platform header. */
+ * fall back to partial pivoting. Solves and transposed solves must agree. Also the assembly's
+ * shared evaluation of a cylindrical joint with its distance driver against the two joints
+ * evaluated alone. The core alone: no platform header. */
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
@@ -175,11 +176,48 @@ static void test_repeated_factorisations(void) {
     }
 }
 
+/* Assembly evaluates each cylindrical joint and its distance driver in one call that forms their
+ * common products once (evaluate_cylindrical_with_distance); evaluate_joint runs each joint's own
+ * type function alone. The assembled residual and Jacobian must be those, bit for bit, at the
+ * reference and at random configurations and driver values. */
+static void test_paired_joints_write_the_separate_rows(void) {
+    const mbs::Mechanism &m = model->mechanism;
+    int paired = 0;
+    for (int driver : m.distance_with) paired += driver >= 0;
+    TEST_ASSERT_EQUAL(6, paired); /* every leg's pair goes through the shared call */
+    std::mt19937 random(13);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    std::vector<mbs::DriverValue> drive(m.drivers);
+    for (int trial = 0; trial < 10; ++trial) {
+        std::vector<double> q = reference(m);
+        if (trial > 0)
+            for (double &v : q) v += 0.05 * uniform(random);
+        for (mbs::DriverValue &d : drive) d.value = uniform(random);
+        std::vector<double> phi(m.equations), values(m.values()), phi_only(m.equations);
+        mbs::assemble_residual_and_jacobian(m, q.data(), drive.data(), phi.data(), values.data());
+        mbs::assemble_residual(m, q.data(), drive.data(), phi_only.data());
+        std::vector<double> phi_alone(m.equations), values_alone(m.values());
+        for (size_t k = 0; k < m.joints.size(); ++k) {
+            double *block = values_alone.data() + m.first_value[k];
+            double *block_j = m.joints[k].body_j >= 0
+                                  ? block + MBS_BODY_COORDINATES * m.joint_info[k]->equations
+                                  : nullptr;
+            mbs::evaluate_joint(m, (int)k, q.data(), nullptr, drive.data(),
+                                mbs::JointOutput{phi_alone.data() + m.first_row[k], block,
+                                                 block_j, nullptr, nullptr});
+        }
+        TEST_ASSERT_EQUAL_MEMORY(phi_alone.data(), phi.data(), phi.size() * sizeof(double));
+        TEST_ASSERT_EQUAL_MEMORY(phi_alone.data(), phi_only.data(), phi.size() * sizeof(double));
+        TEST_ASSERT_EQUAL_MEMORY(values_alone.data(), values.data(), values.size() * sizeof(double));
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_structure_detected);
     RUN_TEST(test_agrees_at_reference_and_random_configurations);
     RUN_TEST(test_fallback_when_a_planned_pivot_is_tiny);
     RUN_TEST(test_repeated_factorisations);
+    RUN_TEST(test_paired_joints_write_the_separate_rows);
     return UNITY_END();
 }

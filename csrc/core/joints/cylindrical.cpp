@@ -21,6 +21,9 @@ static void evaluate_cylindrical(const JointInput &in, const JointOutput &out) {
     cylindrical_rows(in, out, RowWriter{out});
 }
 
+// With a distance driver of it: evaluate_cylindrical_with_distance (primitives.cpp, which
+// shares the rows' inlined bodies).
+
 extern const JointTypeInfo kCylindrical = {"cylindrical", 4, 0, 2, evaluate_cylindrical};
 
 }  // namespace mbs

@@ -27,9 +27,41 @@ void attach_both(const JointInput &in, const JointOutput &out, const Vec3 &ui, c
     if (rates_i) a.rate = times(in.frame_i->rate, ui), a.quad = times(in.frame_i->quad, ui);
     if (rates_j) b.rate = times(in.frame_j->rate, uj), b.quad = times(in.frame_j->quad, uj);
 }
-}  // namespace
 
-void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
+// dot1's row without the rates (no gamma), from a = A_i a_local and b = A_j b_local already
+// formed (rows that share them form them once).
+[[gnu::always_inline]] inline void dot1_formed(const JointInput &in, const RowWriter &w, int row,
+                                               const Vec3 &a_local, const Vec3 &b_local,
+                                               const Vec3 &a, const Vec3 &b) {
+    w.phi(row, a.dot(b));
+    w.phi_t(row, 0.0);
+    if (w.want_jac()) {
+        double *ri = w.jac_i(row), *rj = w.jac_j(row);
+        ri[0] = ri[1] = ri[2] = 0.0, rj[0] = rj[1] = rj[2] = 0.0;
+        rotation_row_two(in.q_i + 3, a_local, b, ri + 3, in.q_j + 3, b_local, a, rj + 3);
+    }
+}
+
+// dot2's value, phi_t and Jacobian rows (not gamma), from a = A_i a_local already formed and,
+// for the Jacobian, lever = rotation_row(p_i, point_i, a) (rows that share a body pair their
+// levers).
+[[gnu::always_inline]] inline void dot2_formed(const JointInput &in, const RowWriter &w, int row,
+                                               const Vec3 &a_local, const Vec3 &a,
+                                               const double *lever, const Separation &sep,
+                                               const DriverValue *target = nullptr) {
+    w.phi(row, a.dot(sep.d) - (target ? target->value : 0.0));
+    w.phi_t(row, target ? -target->rate : 0.0);
+    if (w.want_jac()) {
+        double *ri = w.jac_i(row), *rj = w.jac_j(row);
+        double turn[4];  // v^T B row of a turning with body i
+        rotation_row_two(in.q_i + 3, a_local, sep.d, turn, in.q_j + 3, in.def.point_j, a, rj + 3);
+        for (int c = 0; c < 3; ++c) ri[c] = -a[c], rj[c] = a[c];
+        for (int c = 0; c < 4; ++c) ri[3 + c] = turn[c] - lever[c];
+    }
+}
+
+[[gnu::always_inline]] inline void point_coincidence_rows(const JointInput &in, const RowWriter &w,
+                                                          int row) {
     Attached ui, uj;
     attach_both(in, w.out, in.def.point_i, in.def.point_j, ui, uj);
     if (w.out.phi) {
@@ -52,18 +84,12 @@ void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
     }
 }
 
-void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
-          const Vec3 &b_local) {
+[[gnu::always_inline]] inline void dot1_rows(const JointInput &in, const RowWriter &w, int row,
+                                             const Vec3 &a_local, const Vec3 &b_local) {
     if (!w.out.gamma) {  // Newton's pass: the same products, without the rates' bookkeeping
         Vec3 a, b;
         times_two(in.frame_i->A, a_local, in.frame_j->A, b_local, a, b);
-        w.phi(row, a.dot(b));
-        w.phi_t(row, 0.0);
-        if (w.want_jac()) {
-            double *ri = w.jac_i(row), *rj = w.jac_j(row);
-            ri[0] = ri[1] = ri[2] = 0.0, rj[0] = rj[1] = rj[2] = 0.0;
-            rotation_row_two(in.q_i + 3, a_local, b, ri + 3, in.q_j + 3, b_local, a, rj + 3);
-        }
+        dot1_formed(in, w, row, a_local, b_local, a, b);
         return;
     }
     Attached a, b;
@@ -78,6 +104,23 @@ void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local
         rotation_row_two(in.q_i + 3, a_local, b.world, ri + 3, in.q_j + 3, b_local, a.world,
                          rj + 3);
     }
+}
+
+}  // namespace
+
+void point_coincidence(const JointInput &in, const RowWriter &w, int row) {
+    point_coincidence_rows(in, w, row);
+}
+
+void dot1(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
+          const Vec3 &b_local) {
+    dot1_rows(in, w, row, a_local, b_local);
+}
+
+void cardan_rows(const JointInput &in, const JointOutput &out) {
+    const RowWriter w{out};
+    point_coincidence_rows(in, w, 0);
+    dot1_rows(in, w, 3, in.def.axis_i[0], in.def.axis_j[0]);
 }
 
 Separation separation(const JointInput &in, const JointOutput &out) {
@@ -96,22 +139,41 @@ Separation separation(const JointInput &in, const JointOutput &out) {
 void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a_local,
           const Separation &sep, const DriverValue *target) {
     const Attached a = attach_i(in, w.out, a_local);
-    w.phi(row, a.world.dot(sep.d) - (target ? target->value : 0.0));
-    w.phi_t(row, target ? -target->rate : 0.0);
+    double lever[4];  // v^T B row of body i's point's lever
+    if (w.want_jac()) rotation_row(in.q_i + 3, in.def.point_i, a.world, lever);
+    dot2_formed(in, w, row, a_local, a.world, lever, sep, target);
     if (w.out.gamma) {
         double gamma = -(a.quad.dot(sep.d) + 2.0 * a.rate.dot(sep.rate) + a.world.dot(sep.quad));
         if (target) gamma += target->accel;  // -Phi_tt
         w.gamma(row, gamma);
     }
-    if (w.want_jac()) {
-        double *ri = w.jac_i(row), *rj = w.jac_j(row);
-        double turn[4], lever[4];  // v^T B rows: of a turning with body i, of its point's lever
-        rotation_row_two(in.q_i + 3, a_local, sep.d, turn, in.q_j + 3, in.def.point_j, a.world,
-                         rj + 3);
-        rotation_row(in.q_i + 3, in.def.point_i, a.world, lever);
-        for (int c = 0; c < 3; ++c) ri[c] = -a.world[c], rj[c] = a.world[c];
-        for (int c = 0; c < 4; ++c) ri[3 + c] = turn[c] - lever[c];
+}
+
+void evaluate_cylindrical_with_distance(const JointInput &in, const JointOutput &out,
+                                        const JointInput &driver, const JointOutput &driver_out) {
+    const RowWriter w{out}, wd{driver_out};
+    if (out.gamma || driver_out.gamma) {  // the rates' pass: the two calls as they are
+        cylindrical_rows(in, out, w);
+        dot2(driver, wd, 0, driver.def.axis_i[2], separation(driver, driver_out), driver.drive);
+        return;
     }
+    // Newton's pass: A_i v1, A_i v2, the driver's A_i axis, A_j v_j and the separation formed
+    // once each (the separate calls formed A_i v1, A_i v2 and the separation twice).
+    Vec3 a1, a2, axis, vj;
+    times_two(in.frame_i->A, in.def.axis_i[0], in.frame_i->A, in.def.axis_i[1], a1, a2);
+    times_two(in.frame_i->A, driver.def.axis_i[2], in.frame_j->A, in.def.axis_j[2], axis, vj);
+    const Separation d = separation(in, out);
+    dot1_formed(in, w, 0, in.def.axis_i[0], in.def.axis_j[2], a1, vj);
+    dot1_formed(in, w, 1, in.def.axis_i[1], in.def.axis_j[2], a2, vj);
+    double lever1[4], lever2[4], lever[4];  // the dot-2 rows' levers, two of them paired
+    if (w.want_jac() || wd.want_jac()) {
+        rotation_row_two(in.q_i + 3, in.def.point_i, a1, lever1, in.q_i + 3, in.def.point_i, a2,
+                         lever2);
+        rotation_row(in.q_i + 3, driver.def.point_i, axis, lever);
+    }
+    dot2_formed(in, w, 2, in.def.axis_i[0], a1, lever1, d);
+    dot2_formed(in, w, 3, in.def.axis_i[1], a2, lever2, d);
+    dot2_formed(driver, wd, 0, driver.def.axis_i[2], axis, lever, d, driver.drive);
 }
 
 }  // namespace mbs

@@ -49,6 +49,19 @@ inline void put(double *row7, const Vec3 &r, const Eigen::Matrix<double, 1, 4> &
     for (int c = 0; c < 4; ++c) row7[3 + c] = p[c];
 }
 
+// The normalisation p.p - 1 = 0 of a body with Euler parameters p (rates p_dot, read only for
+// gamma): inline, since assembly writes it without a call (a few products).
+inline void normalization_rows(const double *p, const double *p_dot, const JointOutput &out) {
+    if (out.phi) out.phi[0] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1.0;
+    if (out.phi_t) out.phi_t[0] = 0.0;
+    if (out.gamma) {
+        const double *pd = p_dot;
+        out.gamma[0] = -2.0 * (pd[0] * pd[0] + pd[1] * pd[1] + pd[2] * pd[2] + pd[3] * pd[3]);
+    }
+    if (out.jac_i)
+        for (int c = 0; c < 7; ++c) out.jac_i[c] = c < 3 ? 0.0 : 2.0 * p[c - 3];
+}
+
 // r_i + A_i u_i - r_j - A_j u_j = 0, rows row..row+2.
 void point_coincidence(const JointInput &in, const RowWriter &w, int row);
 // (A_i a)^T (A_j b) = 0.
@@ -63,6 +76,10 @@ Separation separation(const JointInput &in, const JointOutput &out);
 // (A_i a)^T d = 0; `target` (value, rate, accel) turns it into the driver (A_i a)^T d - f(t) = 0.
 void dot2(const JointInput &in, const RowWriter &w, int row, const Vec3 &a, const Separation &d,
           const DriverValue *target = nullptr);
+
+// The Cardan joint's rows: a point coincidence (rows 0..2) and its cross arms axis_i[0], axis_j[0]
+// perpendicular (row 3), in one call with the two rows' bodies inlined.
+void cardan_rows(const JointInput &in, const JointOutput &out);
 
 // Body j's axis axis_j[2] stays parallel to body i's axis: perpendicular to axis_i[0] and
 // axis_i[1] (dot-1 rows row, row + 1). Revolute, cylindrical and prismatic joints.
