@@ -45,6 +45,9 @@ struct KeptTerms {
     LegRateTerms legs[STEWART_LEGS];
     Vec3 platform_com;
     Mat3 platform_inertia;
+    // massless_twist_rate's (every evaluation of it): the legs' axial forces summed, and their
+    // moments about the platform's origin (the base wrench of massless legs)
+    Vec3 legs_force, legs_moment;
 };
 
 // Results and workspace of one evaluation (any scalar, as plant_bodies.hpp).
@@ -89,7 +92,9 @@ bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEW
 // configuration, twist_rate's evaluation), for the plant's scalar: in closed form for
 // axisymmetric leg bodies (plant_full_rhs.cpp, without the 13 bodies' motions; equal to
 // rounding), from e's kept terms when it kept them (m's pose and twist must then be e's state's),
-// otherwise those two.
+// otherwise those two. For massless legs (massless_twist_rate's model) the base takes the legs'
+// axial forces, from e's sums (m's position must be e's state's): equal to the bodies' momentum
+// rates at e's accelerations to rounding.
 void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
                  Vec3 &torque);
 

@@ -130,6 +130,8 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
     for (int i = 0; i < 3; ++i) {
         e.twist_rate[i] = d.gravity[i] + legs_force[i] * inverse_mass - wwc[i] - alpha_c[i];
         e.twist_rate[3 + i] = alpha[i];
+        e.kept.legs_force[i] = legs_force[i];
+        e.kept.legs_moment[i] = legs_moment[i];
     }
     e.fault = LegFault::None;
     e.fault_leg = -1;
