@@ -69,6 +69,11 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
     d.cylinder_inertia = Vec3(p.cylinder_inertia);
     d.piston_inertia = Vec3(p.piston_inertia);
     d.gravity = model.gravity;
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            d.platform_point_rows[i][k] = d.legs.platform_points(i, k);
+            d.base_point_rows[i][k] = d.legs.base_points(i, k);
+        }
     return d;
 }
 

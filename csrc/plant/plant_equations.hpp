@@ -22,6 +22,10 @@ struct DynamicsModel {
     // The double twist_rate takes the template formulation even for axisymmetric leg bodies
     // (tests compare the two formulations through the plant's integrator).
     bool reference_equations = false;
+    // legs.platform_points and legs.base_points by coordinate (row i: the six legs' i-th
+    // coordinate, side by side), as dynamics_model copies them: the massless right-hand side's
+    // loops over the legs load them in pairs instead of one by one.
+    double platform_point_rows[3][STEWART_LEGS] = {}, base_point_rows[3][STEWART_LEGS] = {};
 };
 
 // DynamicsModel from a built stewart_model; fidelity STEWART_MASSLESS or STEWART_FULL.
