@@ -67,6 +67,9 @@ struct EvaluationT {
     bool keep_terms = false;
     bool terms_kept = false;
     KeptTerms kept;
+    // Asked of massless_twist_rate: fill legs[] (the arms, axes, lengths); the plant's integrator
+    // does not ask (its evaluations' twist rates, faults and leg sums are all it reads).
+    bool fill_legs = true;
 };
 using Evaluation = EvaluationT<double>;
 

@@ -401,6 +401,7 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     IntegratorImpl &im = *impl_;
     im.model = model;
     im.carry_end = carry_end;
+    im.evaluation.fill_legs = false;  // massless: nothing reads its legs (end_evaluation())
     im.context = mbs::sundials::make_context();
     if (im.context) im.y_holder.reset(N_VNew_Serial(kStates, im.context.get()));
     im.y = im.y_holder.get();

@@ -65,6 +65,7 @@ public:
     // advance() (tau = h, the end forces, the state the integrator returned: before the
     // quaternion's normalisation, or after it with carry_end), else nullptr: the step's outputs reuse it instead of
     // evaluating the same equations again (ERK's end-of-step evaluation is exactly that one).
+    // For the massless model its legs[] are not filled (Evaluation::fill_legs).
     const Evaluation *end_evaluation() const;
     // Whether the last advance took its start's right-hand side from the step before (carry_end).
     bool start_carried() const;

@@ -98,11 +98,16 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
         }
     double legs_force[3] = {0, 0, 0}, legs_moment[3] = {0, 0, 0};
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        LegConfiguration &leg = e.legs[k];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
             legs_force[i] += axial[i][k];
             legs_moment[i] += moment_k[i][k];
+        }
+    }
+    for (int k = 0; k < STEWART_LEGS && e.fill_legs; ++k) {
+        LegConfiguration &leg = e.legs[k];
+        #pragma GCC unroll 3
+        for (int i = 0; i < 3; ++i) {
             leg.arm[i] = arm[i][k];
             leg.n[i] = n[i][k];
         }
