@@ -540,7 +540,10 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
                 // a step done ends with the evaluation at (its end time, work.yn, the forces
                 // there: the end forces exactly when that time is h)
                 for (int i = 0; i < kStates; ++i) im.last_y[i] = im.work.yn[i];
-                if (im.last_tau >= 0) forces.at(im.last_tau, im.last_force);
+                if (im.last_tau == forces.h)  // what at(h) returns, without the call
+                    for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = forces.end[k];
+                else if (im.last_tau >= 0)
+                    forces.at(im.last_tau, im.last_force);
                 stats_.steps = r.steps;
                 stats_.rhs_evaluations = r.rhs_evaluations;
                 stats_.error_test_failures = r.error_test_failures;
@@ -653,17 +656,21 @@ stewart_status Integrator::finish_step(double y[kStates], double h, char *msg, s
     const double *v = N_VGetArrayPointer(im.y);
     const ForceProfile &forces = *im.forces;
     // Whether the last evaluation was at exactly the state returned, the end time and forces.
-    im.end_valid = im.last_tau == h;
-    for (int i = 0; i < kStates && im.end_valid; ++i) im.end_valid = im.last_y[i] == v[i];
-    for (int k = 0; k < STEWART_LEGS && im.end_valid; ++k)
-        im.end_valid = im.last_force[k] == forces.end[k];
+    // (each test in one pass without a branch per value)
+    bool same = im.last_tau == h;
+    for (int i = 0; i < kStates; ++i) same &= im.last_y[i] == v[i];
+    for (int k = 0; k < STEWART_LEGS; ++k) same &= im.last_force[k] == forces.end[k];
+    im.end_valid = same;
     double out[kStates];
     for (int i = 0; i < kStates; ++i) out[i] = v[i];
     if (!normalized) normalize_quaternion(out);
-    for (int i = 0; i < kStates; ++i)
-        if (!std::isfinite(out[i]))
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                               "the state is not finite after the step (state %d)", i);
+    double zero_if_finite = 0;  // the sum of x * 0: NaN exactly when some x is not finite
+    for (int i = 0; i < kStates; ++i) zero_if_finite += out[i] * 0.0;
+    if (zero_if_finite != 0)
+        for (int i = 0; i < kStates; ++i)
+            if (!std::isfinite(out[i]))
+                return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                                   "the state is not finite after the step (state %d)", i);
     for (int i = 0; i < kStates; ++i) y[i] = out[i];
     return STEWART_OK;
 }
