@@ -104,6 +104,21 @@ inline bool angle_rates_of(const double q[6], const Eigen::Vector3d &omega, doub
     return angle_rates_of<double>(q, omega, out, min_cos_pitch);
 }
 
+// The same rates at the angles of the rotation R (pitch on the principal branch, so cos pitch
+// >= 0; roll and yaw on any), read from R instead of the angles' sines and cosines: R's first
+// column is (cy cp, sy cp, -sp), so with cp^2 = R00^2 + R10^2
+//   roll_dot = (R00 wx + R10 wy) / cp^2,  pitch_dot = (R00 wy - R10 wx) / cp,
+//   yaw_dot = wz - R20 roll_dot.
+// Equal to the rates from the angles to rounding (tests/unit/test_plant_rhs.cpp); infinite or NaN
+// at pitch +-90 degrees.
+inline void angle_rates_of_rotation(const Eigen::Matrix3d &R, const Eigen::Vector3d &omega,
+                                    double out[3]) {
+    const double cos_pitch_squared = R(0, 0) * R(0, 0) + R(1, 0) * R(1, 0);
+    out[0] = (R(0, 0) * omega.x() + R(1, 0) * omega.y()) / cos_pitch_squared;
+    out[1] = (R(0, 0) * omega.y() - R(1, 0) * omega.x()) / std::sqrt(cos_pitch_squared);
+    out[2] = omega.z() - R(2, 0) * out[0];
+}
+
 // The motion of the platform frame at the pose q with rates q_dot and accelerations q_ddot;
 // omega = E (roll_dot, pitch_dot, yaw_dot), alpha = E angles_ddot + E_dot angles_dot.
 template <class S>

@@ -69,6 +69,11 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
     d.cylinder_inertia = Vec3(p.cylinder_inertia);
     d.piston_inertia = Vec3(p.piston_inertia);
     d.gravity = model.gravity;
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            d.platform_point_rows[i][k] = d.legs.platform_points(i, k);
+            d.base_point_rows[i][k] = d.legs.base_points(i, k);
+        }
     return d;
 }
 
@@ -227,12 +232,13 @@ PlantState state_of(const stewart_plant &p) {
 // (stewart_plant_set_state's statuses and messages).
 stewart_status start_at(stewart_plant &p, double time, const double pose[6], const double rate[6]);
 
-// The pose and rates the outputs show at state y (motion m) with continuous angles: the tool's in
-// the user frame (the platform's when the frames are identity). False at the tool's pitch +-90
-// deg.
+// The pose and rates the outputs show at state y (motion m) with continuous angles (those of
+// m's rotation): the tool's in the user frame (the platform's when the frames are identity).
+// False at the tool's pitch +-90 deg.
 bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const stewart::Motion &m,
                 const double angles[3], stewart_pose &pose) {
-    const fd::Vec3 angle_rates = rate_matrix(angles[1], angles[2]).inverse() * m.omega;
+    double angle_rates[3];  // from the rotation: no sines and cosines of the angles
+    stewart::angle_rates_of_rotation(m.rotation, m.omega, angle_rates);
     stewart_pose platform{};
     for (int i = 0; i < 3; ++i) {
         platform.q[i] = y[i];

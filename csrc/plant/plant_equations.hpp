@@ -22,6 +22,10 @@ struct DynamicsModel {
     // The double twist_rate takes the template formulation even for axisymmetric leg bodies
     // (tests compare the two formulations through the plant's integrator).
     bool reference_equations = false;
+    // legs.platform_points and legs.base_points by coordinate (row i: the six legs' i-th
+    // coordinate, side by side), as dynamics_model copies them: the massless right-hand side's
+    // loops over the legs load them in pairs instead of one by one.
+    double platform_point_rows[3][STEWART_LEGS] = {}, base_point_rows[3][STEWART_LEGS] = {};
 };
 
 // DynamicsModel from a built stewart_model; fidelity STEWART_MASSLESS or STEWART_FULL.
@@ -45,6 +49,9 @@ struct KeptTerms {
     LegRateTerms legs[STEWART_LEGS];
     Vec3 platform_com;
     Mat3 platform_inertia;
+    // massless_twist_rate's (every evaluation of it): the legs' axial forces summed, and their
+    // moments about the platform's origin (the base wrench of massless legs)
+    Vec3 legs_force, legs_moment;
 };
 
 // Results and workspace of one evaluation (any scalar, as plant_bodies.hpp).
@@ -60,6 +67,9 @@ struct EvaluationT {
     bool keep_terms = false;
     bool terms_kept = false;
     KeptTerms kept;
+    // Asked of massless_twist_rate: fill legs[] (the arms, axes, lengths); the plant's integrator
+    // does not ask (its evaluations' twist rates, faults and leg sums are all it reads).
+    bool fill_legs = true;
 };
 using Evaluation = EvaluationT<double>;
 
@@ -89,7 +99,9 @@ bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEW
 // configuration, twist_rate's evaluation), for the plant's scalar: in closed form for
 // axisymmetric leg bodies (plant_full_rhs.cpp, without the 13 bodies' motions; equal to
 // rounding), from e's kept terms when it kept them (m's pose and twist must then be e's state's),
-// otherwise those two.
+// otherwise those two. For massless legs (massless_twist_rate's model) the base takes the legs'
+// axial forces, from e's sums (m's position must be e's state's): equal to the bodies' momentum
+// rates at e's accelerations to rounding.
 void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
                  Vec3 &torque);
 

@@ -143,8 +143,8 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
     for (int j = 0; j < kStates; ++j) w.yn[j] = y0[j];
     // arkInitialSetup: the full right-hand side at the start into F[0] (and fn, the same
     // values); the first step, limited so as not to overtake the stop time
-    if (rhs(0.0, w.yn, w.F[0], user) != 0) return r;
-    ++r.rhs_evaluations;
+    if (!control.start_rate_known && rhs(0.0, w.yn, w.F[0], user) != 0) return r;
+    ++r.rhs_evaluations;  // ARKODE's count, made or carried (so a rollback repeats the count)
     double tn = 0, h = h_in;
     if ((tn + h - t_stop) * h > 0) h = (t_stop - tn) * stop_factor;
     double eta = 1.0, h_prime = h, eta_max = kEtaFirst, error_history = 1.0;
@@ -199,6 +199,13 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
             w.yold[j] = w.yn[j];
             w.fold[j] = w.F[0][j];
         }
+        // arkRootCheck3 (below in ARKODE, on the same values: a refusal of either hands the
+        // step back) before the projection, so that it decides on ARKODE's state
+        if (!(root(w.ycur, user) > 0)) return r;
+        if (control.project_end && t_cur == t_stop) {  // the last step: y_out will be yn
+            control.project_end(w.ycur);
+            r.end_projected = true;
+        }
         if (rhs(t_cur, w.ycur, w.F[0], user) != 0) return r;
         ++r.rhs_evaluations;
         for (int j = 0; j < kStates; ++j) w.yn[j] = w.ycur[j];
@@ -208,8 +215,8 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
         r.last_step = h;
         h_prime = h * (fixed ? 1.0 : eta);
         eta_max = kGrowth;
-        // arkRootCheck3: g at the new state; a sign change or zero is a root, ARKODE's to locate
-        if (!(root(w.yn, user) > 0)) return r;
+        // arkRootCheck3 was above: g at the new state; a sign change or zero is a root,
+        // ARKODE's to locate
         if ((t_cur - t_out) * h >= 0) break;  // tout reached
         // the stop-time test after a step; the snap above makes its first branch unreachable
         if (std::fabs(t_cur - t_stop) <= roundoff) return r;

@@ -24,12 +24,21 @@ struct ErkTable {
 // ARKODE's table `table_number` (an ARKODE_ERKTableID) copied; false if it does not fit ErkTable.
 bool load_erk_table(int table_number, ErkTable &table);
 
+// A change of the state in place (the quaternion's normalisation).
+using ErkProject = void (*)(double *y);
+
 // How a communication step is divided, as the ERKStep options the plant sets.
 struct ErkControl {
     int fixed_steps = 0;       // N equal steps (ERKStepSetFixedStep(h / N)); 0: adaptive
     double first_step = 0;     // adaptive: ERKStepSetInitStep, > 0
     double relative_tolerance = 0, absolute_tolerance = 0;  // ERKStepSStolerances
     long max_steps = 0;        // ERKStepSetMaxNumSteps
+    // Not ARKODE's (both off in its copy): the work's F[0] already holds the right-hand side at
+    // (0, y0) (the last step's end evaluation, carried; rhs_evaluations counts it all the same,
+    // as ARKODE would); and the state that reaches the stop time projected before its end
+    // evaluation, which then is at the state returned (y_out).
+    bool start_rate_known = false;
+    ErkProject project_end = nullptr;
 };
 
 // The right-hand side dy/dt at (t, y): 0 on success, else the caller's flag.
@@ -51,11 +60,15 @@ struct ErkResult {
     long steps = 0, rhs_evaluations = 0, error_test_failures = 0;
     double last_step = 0;  // ERKStepGetLastStep
     double next_step = 0;  // ERKStepGetCurrentStep after the step (the next first step)
+    // project_end was applied: work.yn, y_out and the end evaluation's state are the same bits,
+    // and work.F[0] is the right-hand side there at the stop time
+    bool end_projected = false;
 };
 
 // Integrates y0 over [0, h_comm] as ERKStepEvolve(h_comm) after ERKStepReInit with the stop
 // time h_comm and `control`, into y_out; g_start is the root function at y0. The right-hand
-// side's last evaluation is at (h_comm, the new state before y_out's interpolation).
+// side's last evaluation is at (h_comm, the new state before y_out's interpolation); with
+// control.project_end, at (h_comm, y_out) (end_projected).
 ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &work,
                       double h_comm, const double y0[kStates], double g_start, ErkRhs rhs,
                       ErkRoot root, void *user, double y_out[kStates]);

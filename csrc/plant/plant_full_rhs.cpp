@@ -345,6 +345,14 @@ bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEW
 
 void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
                  Vec3 &torque) {
+    if (!d.with_legs && !d.reference_equations) {
+        // Massless legs put their axial forces on the base at its points a_k, on their lines
+        // through the platform points p + arm_k: -(F, p x F + sum arm_k x F_k), which is minus
+        // the platform's momentum rates less gravity at the twist rate they cause.
+        force = -e.kept.legs_force;
+        torque = -(m.position.cross(e.kept.legs_force) + e.kept.legs_moment);
+        return;
+    }
     if (!fast_path(d)) {
         Motion bodies[13];
         body_motions(d, m, e, bodies);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <type_traits>
 
@@ -60,6 +61,13 @@ struct IntegratorImpl {
     bool end_valid = false;
     // whether state_rate copies its arguments (the written-out ERK knows its last ones itself)
     bool record_arguments = true;
+    // The written-out ERK's last step ends with the quaternion normalised before its end
+    // evaluation (carry_end), which the next step's start takes over when it starts from that
+    // state (work.yn, bit for bit) under the same forces (carried_force): start_carried.
+    bool carry_end = true;
+    bool start_carried = false;
+    double carried_force[STEWART_LEGS] = {0};
+    bool last_start_carried = false;  // the last advance's start was carried
 };
 
 void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
@@ -80,6 +88,23 @@ void ForceProfile::at(double tau, double force[STEWART_LEGS]) const {
 }
 
 namespace {
+
+// The state's quaternion scaled to unit norm (the step's end state, once).
+void normalize_quaternion(double *y) {
+    const double norm = std::sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
+    for (int i = 3; i < 7; ++i) y[i] /= norm;
+}
+
+// Whether the right-hand side the last step carried (at work.yn and the end forces) is the one
+// at the start of this step: the same state and forces at tau = 0, bit for bit.
+bool start_rate_carried(const IntegratorImpl &im, const double y[kStates],
+                        const ForceProfile &forces) {
+    if (!im.start_carried) return false;
+    double start_force[STEWART_LEGS];
+    forces.at(0.0, start_force);
+    return std::memcmp(y, im.work.yn, sizeof im.work.yn) == 0 &&
+           std::memcmp(start_force, im.carried_force, sizeof start_force) == 0;
+}
 
 // The state's quaternion (w, x, y, z) normalised as Eigen's Quaterniond normalize() (the squared
 // norm summed as its two-wide packets, (x^2 + z^2) + (y^2 + w^2)), and the doubled components
@@ -370,11 +395,13 @@ int collapsing_leg(const DynamicsModel &model, const double start[kStates],
 Integrator::~Integrator() { delete impl_; }
 
 bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o, char *msg,
-                      size_t size, bool written_out) {
+                      size_t size, bool written_out, bool carry_end) {
     impl_ = new (std::nothrow) IntegratorImpl;
     if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
     IntegratorImpl &im = *impl_;
     im.model = model;
+    im.carry_end = carry_end;
+    im.evaluation.fill_legs = false;  // massless: nothing reads its legs (end_evaluation())
     im.context = mbs::sundials::make_context();
     if (im.context) im.y_holder.reset(N_VNew_Serial(kStates, im.context.get()));
     im.y = im.y_holder.get();
@@ -464,6 +491,7 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     im.non_finite = false;
     im.cvode_message[0] = '\0';
     im.end_valid = false;
+    im.last_start_carried = false;
     im.last_tau = -1;
     double *v = N_VGetArrayPointer(im.y);
     for (int i = 0; i < kStates; ++i) v[i] = y[i];
@@ -499,6 +527,9 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             control.relative_tolerance = im.relative_tolerance;
             control.absolute_tolerance = im.absolute_tolerance;
             control.max_steps = im.max_internal_steps;
+            control.start_rate_known = start_rate_carried(im, y, forces);
+            control.project_end = im.carry_end ? normalize_quaternion : nullptr;
+            im.start_carried = false;  // erk_advance overwrites work.F[0]
             im.record_arguments = false;
             const ErkResult r =
                 erk_advance(im.table, control, im.work, forces.h, y,
@@ -509,14 +540,22 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
                 // a step done ends with the evaluation at (its end time, work.yn, the forces
                 // there: the end forces exactly when that time is h)
                 for (int i = 0; i < kStates; ++i) im.last_y[i] = im.work.yn[i];
-                if (im.last_tau >= 0) forces.at(im.last_tau, im.last_force);
+                if (im.last_tau == forces.h)  // what at(h) returns, without the call
+                    for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = forces.end[k];
+                else if (im.last_tau >= 0)
+                    forces.at(im.last_tau, im.last_force);
                 stats_.steps = r.steps;
                 stats_.rhs_evaluations = r.rhs_evaluations;
                 stats_.error_test_failures = r.error_test_failures;
                 stats_.last_step_size = r.last_step;
                 stats_.last_order = im.erk_order;
                 step_hint = r.next_step;
-                return finish_step(y, forces.h, msg, size);
+                im.last_start_carried = control.start_rate_known;
+                if (r.end_projected) {
+                    im.start_carried = true;
+                    forces.at(forces.h, im.carried_force);
+                }
+                return finish_step(y, forces.h, msg, size, r.end_projected);
             }
             im.fault = LegFault::None;  // ARKODE repeats the step and says what failed
             im.fault_leg = -1;
@@ -611,27 +650,32 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     return finish_step(y, forces.h, msg, size);
 }
 
-stewart_status Integrator::finish_step(double y[kStates], double h, char *msg, size_t size) {
+stewart_status Integrator::finish_step(double y[kStates], double h, char *msg, size_t size,
+                                       bool normalized) {
     IntegratorImpl &im = *impl_;
     const double *v = N_VGetArrayPointer(im.y);
     const ForceProfile &forces = *im.forces;
     // Whether the last evaluation was at exactly the state returned, the end time and forces.
-    im.end_valid = im.last_tau == h;
-    for (int i = 0; i < kStates && im.end_valid; ++i) im.end_valid = im.last_y[i] == v[i];
-    for (int k = 0; k < STEWART_LEGS && im.end_valid; ++k)
-        im.end_valid = im.last_force[k] == forces.end[k];
+    // (each test in one pass without a branch per value)
+    bool same = im.last_tau == h;
+    for (int i = 0; i < kStates; ++i) same &= im.last_y[i] == v[i];
+    for (int k = 0; k < STEWART_LEGS; ++k) same &= im.last_force[k] == forces.end[k];
+    im.end_valid = same;
     double out[kStates];
     for (int i = 0; i < kStates; ++i) out[i] = v[i];
-    const double norm = std::sqrt(out[3] * out[3] + out[4] * out[4] + out[5] * out[5] +
-                                  out[6] * out[6]);
-    for (int i = 3; i < 7; ++i) out[i] /= norm;
-    for (int i = 0; i < kStates; ++i)
-        if (!std::isfinite(out[i]))
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                               "the state is not finite after the step (state %d)", i);
+    if (!normalized) normalize_quaternion(out);
+    double zero_if_finite = 0;  // the sum of x * 0: NaN exactly when some x is not finite
+    for (int i = 0; i < kStates; ++i) zero_if_finite += out[i] * 0.0;
+    if (zero_if_finite != 0)
+        for (int i = 0; i < kStates; ++i)
+            if (!std::isfinite(out[i]))
+                return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                                   "the state is not finite after the step (state %d)", i);
     for (int i = 0; i < kStates; ++i) y[i] = out[i];
     return STEWART_OK;
 }
+
+bool Integrator::start_carried() const { return impl_ && impl_->last_start_carried; }
 
 const Evaluation *Integrator::end_evaluation() const {
     return impl_ && impl_->end_valid ? &impl_->evaluation : nullptr;

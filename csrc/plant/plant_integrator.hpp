@@ -45,9 +45,15 @@ public:
     ~Integrator();
     // False (message says why) if SUNDIALS cannot be set up. written_out: ERK 4(3) steps by
     // plant_erk.hpp's copy of ARKODE's (the same bits), ARKODE only where it hands a step back;
-    // false: ARKODE alone (the reference of tests/unit/test_plant_erk.cpp).
+    // false: ARKODE alone (the reference of tests/unit/test_plant_erk.cpp). carry_end (written
+    // out only): the step's last internal step normalises the quaternion before its end
+    // evaluation (the state returned is the same bits: advance() normalises it with the same
+    // arithmetic otherwise), so that evaluation is the next step's start derivative when it
+    // starts there under the same forces: one right-hand side fewer per step (rhs_evaluations
+    // still counts it, as ARKODE's count: the statistics do not depend on what was carried, so
+    // a rollback repeats them); the end evaluation is at the state returned. false: ARKODE's.
     bool init(const DynamicsModel *model, const stewart_plant_options &options, char *msg,
-              size_t size, bool written_out = true);
+              size_t size, bool written_out = true, bool carry_end = true);
     // Integrates y over [0, h]. On failure y is unchanged and the message names the cause
     // (the leg, or the integrator's flag and text). Normalises the quaternion of the result.
     // step_hint: the first internal step to try (0: the integrator estimates it); on success,
@@ -56,17 +62,21 @@ public:
     stewart_status advance(double y[kStates], const ForceProfile &forces, double &step_hint,
                            char *msg, size_t size, const double *start_angles = nullptr);
     // The right-hand side's last evaluation if it was at the end of the last successful
-    // advance() (tau = h, the end forces, the state the integrator returned before the
-    // quaternion's normalisation), else nullptr: the step's outputs reuse it instead of
+    // advance() (tau = h, the end forces, the state the integrator returned: before the
+    // quaternion's normalisation, or after it with carry_end), else nullptr: the step's outputs reuse it instead of
     // evaluating the same equations again (ERK's end-of-step evaluation is exactly that one).
+    // For the massless model its legs[] are not filled (Evaluation::fill_legs).
     const Evaluation *end_evaluation() const;
+    // Whether the last advance took its start's right-hand side from the step before (carry_end).
+    bool start_carried() const;
     // Counters of the last advance (the totals are the caller's).
     const stewart_plant_statistics &statistics() const { return stats_; }
 
 private:
     // The end of a successful advance: whether the last evaluation is the step's end, the
-    // quaternion normalised, the state checked and copied to y.
-    stewart_status finish_step(double y[kStates], double h, char *msg, size_t size);
+    // quaternion normalised (unless it is already), the state checked and copied to y.
+    stewart_status finish_step(double y[kStates], double h, char *msg, size_t size,
+                               bool normalized = false);
     IntegratorImpl *impl_ = nullptr;
     stewart_plant_statistics stats_{};
 };

@@ -68,14 +68,13 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
     const LegParameters &legs = d.legs;
     double arm[3][STEWART_LEGS], n[3][STEWART_LEGS], length[STEWART_LEGS];
     double inverse_length[STEWART_LEGS], axial[3][STEWART_LEGS], moment_k[3][STEWART_LEGS];
+    const double(&b)[3][STEWART_LEGS] = d.platform_point_rows;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const double b0 = legs.platform_points(0, k), b1 = legs.platform_points(1, k),
-                     b2 = legs.platform_points(2, k);
         double dv[3];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
-            arm[i][k] = R(i, 0) * b0 + R(i, 1) * b1 + R(i, 2) * b2;
-            dv[i] = m.position[i] + arm[i][k] - legs.base_points(i, k);
+            arm[i][k] = R(i, 0) * b[0][k] + R(i, 1) * b[1][k] + R(i, 2) * b[2][k];
+            dv[i] = m.position[i] + arm[i][k] - d.base_point_rows[i][k];
         }
         length[k] = std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
         inverse_length[k] = 1.0 / length[k];
@@ -99,11 +98,16 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
         }
     double legs_force[3] = {0, 0, 0}, legs_moment[3] = {0, 0, 0};
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        LegConfiguration &leg = e.legs[k];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
             legs_force[i] += axial[i][k];
             legs_moment[i] += moment_k[i][k];
+        }
+    }
+    for (int k = 0; k < STEWART_LEGS && e.fill_legs; ++k) {
+        LegConfiguration &leg = e.legs[k];
+        #pragma GCC unroll 3
+        for (int i = 0; i < 3; ++i) {
             leg.arm[i] = arm[i][k];
             leg.n[i] = n[i][k];
         }
@@ -130,6 +134,8 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
     for (int i = 0; i < 3; ++i) {
         e.twist_rate[i] = d.gravity[i] + legs_force[i] * inverse_mass - wwc[i] - alpha_c[i];
         e.twist_rate[3 + i] = alpha[i];
+        e.kept.legs_force[i] = legs_force[i];
+        e.kept.legs_moment[i] = legs_moment[i];
     }
     e.fault = LegFault::None;
     e.fault_leg = -1;

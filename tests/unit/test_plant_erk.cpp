@@ -5,7 +5,12 @@
 // and jump (so that the adaptive runs take two-step calls and reject steps), at both fidelities,
 // adaptive and with 1, 2 and 3 fixed steps. After every step the two must agree bit for bit: the
 // state, the next first step, the counters (steps, right-hand sides, rejected steps, last step
-// size) and the end-of-step evaluation the outputs reuse.
+// size) and the end-of-step evaluation the outputs reuse. The plant's own mode (Integrator::init's
+// carry_end: the quaternion normalised before the end evaluation, which the next step's start
+// takes over) is held against ARKODE the same way: the same state, next first step and counters
+// bit for bit, the start's right-hand side carried on every call that starts where the last one
+// ended (and only there: not after other start forces or a state moved), and an end evaluation
+// equal to a fresh one at the state returned.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -69,7 +74,8 @@ void same_bits(const char *what, const void *a, const void *b, size_t size, int 
     TEST_FAIL_MESSAGE(message);
 }
 
-void written_out_equals_arkode(int fidelity, int fixed_steps) {
+// carry_end: the written-out integrator in the plant's mode (see the header).
+void written_out_equals_arkode(int fidelity, int fixed_steps, bool carry_end) {
     const fd::DynamicsModel d = fd::dynamics_model(*model, fidelity);
     stewart_plant_options o;
     stewart_plant_options_default(&o);
@@ -77,10 +83,11 @@ void written_out_equals_arkode(int fidelity, int fixed_steps) {
     o.fixed_steps = fixed_steps;
     char message[STEWART_MESSAGE_SIZE];
     fd::Integrator written_out, arkode;
-    TEST_ASSERT_TRUE_MESSAGE(written_out.init(&d, o, message, sizeof message, true), message);
+    TEST_ASSERT_TRUE_MESSAGE(written_out.init(&d, o, message, sizeof message, true, carry_end),
+                             message);
     TEST_ASSERT_TRUE_MESSAGE(arkode.init(&d, o, message, sizeof message, false), message);
     uint64_t rng = 0x22b + 10 * static_cast<uint64_t>(fidelity) + fixed_steps;
-    long calls = 0, multi_step_calls = 0, rejections = 0;
+    long calls = 0, multi_step_calls = 0, rejections = 0, carried = 0;
     for (int run = 0; run < 4; ++run) {
         double y_a[fd::kStates], y_b[fd::kStates];
         random_state(rng, y_a);
@@ -90,6 +97,11 @@ void written_out_equals_arkode(int fidelity, int fixed_steps) {
         for (int n = 0; n < 250; ++n, ++calls) {
             fd::ForceProfile p;
             forces_at(n, phase, p);
+            // now and then a start that is not the last call's end: other start forces, or a
+            // state moved (the carried end evaluation must not be taken then)
+            const bool moved_force = n % 50 == 25, moved_state = n % 50 == 40;
+            if (moved_force) p.start[n % STEWART_LEGS] += 1.0;
+            if (moved_state) y_a[7] += 1e-3, y_b[7] += 1e-3;
             char msg_a[STEWART_MESSAGE_SIZE] = "", msg_b[STEWART_MESSAGE_SIZE] = "";
             const stewart_status s_a = written_out.advance(y_a, p, hint_a, msg_a, sizeof msg_a);
             const stewart_status s_b = arkode.advance(y_b, p, hint_b, msg_b, sizeof msg_b);
@@ -100,33 +112,52 @@ void written_out_equals_arkode(int fidelity, int fixed_steps) {
             same_bits("the step hint", &hint_a, &hint_b, sizeof hint_a, run, n);
             const stewart_plant_statistics &a = written_out.statistics(), &b = arkode.statistics();
             TEST_ASSERT_EQUAL_INT(b.steps, a.steps);
+            // carried: the start's right-hand side is the last call's end evaluation (a call
+            // after the first that starts at the state and forces the last one ended with)
+            const bool carries = carry_end && n > 0 && !moved_force && !moved_state;
             TEST_ASSERT_EQUAL_INT(b.rhs_evaluations, a.rhs_evaluations);
+            TEST_ASSERT_EQUAL_INT(carries, written_out.start_carried());
+            carried += carries;
             TEST_ASSERT_EQUAL_INT(b.error_test_failures, a.error_test_failures);
             TEST_ASSERT_EQUAL_INT(b.last_order, a.last_order);
             same_bits("the last step size", &a.last_step_size, &b.last_step_size,
                       sizeof a.last_step_size, run, n);
             const fd::Evaluation *e_a = written_out.end_evaluation(), *e_b = arkode.end_evaluation();
             TEST_ASSERT_EQUAL_INT(e_b != nullptr, e_a != nullptr);
-            if (e_a) same_bits("the end evaluation", e_a->twist_rate.data(),
-                               e_b->twist_rate.data(), 6 * sizeof(double), run, n);
+            if (e_a && !carry_end)
+                same_bits("the end evaluation", e_a->twist_rate.data(), e_b->twist_rate.data(),
+                          6 * sizeof(double), run, n);
+            if (e_a && carry_end) {  // at the state returned, as a fresh evaluation there
+                TEST_ASSERT_NOT_NULL(e_b);
+                fd::Evaluation fresh;
+                TEST_ASSERT_TRUE(fd::twist_rate(d, fd::motion_of_state(y_a), p.end, fresh));
+                same_bits("the end evaluation (carry_end)", e_a->twist_rate.data(),
+                          fresh.twist_rate.data(), 6 * sizeof(double), run, n);
+            }
             multi_step_calls += a.steps > 1;
             rejections += a.error_test_failures;
         }
     }
-    std::printf("fidelity %d, fixed steps %d: %ld calls equal bit for bit (%ld of more than one "
-                "step, %ld rejected steps)\n", fidelity, fixed_steps, calls, multi_step_calls,
-                rejections);
+    std::printf("fidelity %d, fixed steps %d%s: %ld calls equal bit for bit (%ld of more than one "
+                "step, %ld rejected steps, %ld starts carried)\n", fidelity, fixed_steps,
+                carry_end ? ", carry_end" : "", calls, multi_step_calls, rejections, carried);
     TEST_ASSERT_TRUE(calls == 1000);
     if (fixed_steps == 0) TEST_ASSERT_TRUE(multi_step_calls > 0 && rejections > 0);
 }
 
-void test_massless_adaptive(void) { written_out_equals_arkode(STEWART_MASSLESS, 0); }
-void test_full_adaptive(void) { written_out_equals_arkode(STEWART_FULL, 0); }
+void test_massless_adaptive(void) {
+    for (bool carry : {false, true}) written_out_equals_arkode(STEWART_MASSLESS, 0, carry);
+}
+void test_full_adaptive(void) {
+    for (bool carry : {false, true}) written_out_equals_arkode(STEWART_FULL, 0, carry);
+}
 void test_massless_fixed_steps(void) {
-    for (int n = 1; n <= 3; ++n) written_out_equals_arkode(STEWART_MASSLESS, n);
+    for (bool carry : {false, true})
+        for (int n = 1; n <= 3; ++n) written_out_equals_arkode(STEWART_MASSLESS, n, carry);
 }
 void test_full_fixed_steps(void) {
-    for (int n = 1; n <= 3; ++n) written_out_equals_arkode(STEWART_FULL, n);
+    for (bool carry : {false, true})
+        for (int n = 1; n <= 3; ++n) written_out_equals_arkode(STEWART_FULL, n, carry);
 }
 
 }  // namespace

@@ -5,8 +5,9 @@
 // the origin there; the platform's axes and moments about the centre of mass here): the legs'
 // arms, axes and lengths bit for bit, the twist rate within kRateBound of its terms' scale, and
 // one 1 ms ERK 4(3) step (plant_erk.hpp, fixed steps) from each within kStepBound of the state's
-// scale (the plant's agreed bound), on random states far from home (any rotation, fast motion),
-// random forces, with and without a payload off the platform's centre (a centre of mass off the
+// scale (the plant's agreed bound), and the base wrench from its leg sums (fd::base_wrench for
+// massless legs) against the bodies' momentum rates within kWrenchBound, on random states far
+// from home (any rotation, fast motion), random forces, with and without a payload off the platform's centre (a centre of mass off the
 // origin and a full inertia); the same fault for a leg of zero length; the state's rotation
 // (fd::motion_of_state, written out) against Eigen's quaternion, bit for bit; and the pitch
 // root's pre-test (fd::near_level_turn) against the full crossing test.
@@ -43,7 +44,11 @@ constexpr double kStepBound = 1e-13;
 
 struct Worst {
     double rate = 0, step = 0;  // largest differences seen, relative to their scales
+    double wrench = 0;
 };
+
+// The base wrench's bound against the bodies' momentum rates (relative to the scale below).
+constexpr double kWrenchBound = 1e-13;
 
 double norm3(const double *v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
@@ -80,6 +85,30 @@ int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const d
                            (i < 3 ? linear : angular);
         worst.rate = std::fmax(worst.rate, off);
         count += !(off <= kRateBound);
+    }
+    // The base wrench: the written-out evaluation's leg sums (fd::base_wrench's closed form for
+    // massless legs) against minus the 13 bodies' momentum rates less gravity at the generic
+    // evaluation's accelerations; scale: the platform's largest force and moment terms.
+    stewart::Motion mw = m, mg = m;
+    mw.acceleration = written.twist_rate.head<3>();
+    mw.alpha = written.twist_rate.tail<3>();
+    mg.acceleration = generic.twist_rate.head<3>();
+    mg.alpha = generic.twist_rate.tail<3>();
+    fd::Vec3 f_closed, t_closed, f_bodies, t_bodies;
+    fd::base_wrench(d, mw, written, f_closed, t_closed);
+    stewart::Motion bodies[STEWART_PLANT_BODIES];
+    fd::body_motions(d, mg, generic, bodies);
+    fd::base_wrench<double>(d, bodies, f_bodies, t_bodies);
+    double reach = d.platform_com.norm();
+    for (int k = 0; k < STEWART_LEGS; ++k) reach = std::fmax(reach, generic.legs[k].arm.norm());
+    const double force_scale = d.platform_mass * linear;
+    const double torque_scale = force_scale * (m.position.norm() + reach) +
+                                d.platform_inertia.norm() * (angular + m.omega.squaredNorm());
+    for (int i = 0; i < 3; ++i) {
+        const double off_f = std::fabs(f_closed[i] - f_bodies[i]) / force_scale,
+                     off_t = std::fabs(t_closed[i] - t_bodies[i]) / torque_scale;
+        worst.wrench = std::fmax(worst.wrench, std::fmax(off_f, off_t));
+        count += !(off_f <= kWrenchBound) + !(off_t <= kWrenchBound);
     }
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const fd::LegConfiguration &g = generic.legs[k], &w = written.legs[k];
@@ -181,8 +210,8 @@ void check_model(const stewart_params &params) {
     TEST_ASSERT_FALSE(fd::massless_twist_rate(d, m, zero, e));
     TEST_ASSERT_EQUAL_INT(0, e.fault_leg);
     stewart_model_free(model);
-    std::printf("twist rate off by %.3g of its scale, one step by %.3g of the state's\n",
-                worst.rate, worst.step);
+    std::printf("twist rate off by %.3g of its scale, one step by %.3g of the state's, the base "
+                "wrench by %.3g of its scale\n", worst.rate, worst.step, worst.wrench);
     TEST_ASSERT_EQUAL_INT(0, differing);
     TEST_ASSERT_EQUAL_INT(0, step_differing);
 }
@@ -236,6 +265,70 @@ void test_pitch_pre_test(void) {
     std::printf("the pitch pre-test held on %d of 200,000 turns\n", held);
     TEST_ASSERT_EQUAL_INT(0, wrong);
     TEST_ASSERT_TRUE(held > 20000);
+}
+
+// stewart::angle_rates_of_rotation (the step's shown angle rates, from the state's rotation)
+// against the formulation it replaced: the inverse of angle_rate_matrix at the state's principal
+// pitch and yaw (their cos and sin) times omega, on random rotations (pitch up to 1.5707 rad,
+// yaw turned by whole turns too) and angular velocities up to 20 rad/s. Scale |w| / cos(pitch)
+// (the rates' size); the old formulation's own pitch comes through asin, which loses eps /
+// cos(pitch) of it, so the bound is 1e-13 of the scale over cos(pitch)^2. Both against the rates
+// in long double from the same quaternion (its rotation's first column, then the formulas above):
+// the new one within 1e-14 of the scale over cos(pitch) (seen: 7.2e-16; the old one's error
+// reaches 2.8e-12 of it, its asin's).
+void test_angle_rates_of_rotation(void) {
+    uint64_t rng = 4242;
+    double worst = 0, worst_level = 0, worst_exact_new = 0, worst_exact_old = 0;
+    int over = 0;
+    for (int n = 0; n < 100000; ++n) {
+        const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
+                     yaw = uniform(rng, -M_PI, M_PI);
+        const Eigen::Quaterniond q = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                                     Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                                     Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+        double y[fd::kStates] = {0, 0, 0, q.w(), q.x(), q.y(), q.z()};
+        for (int i = 10; i < 13; ++i) y[i] = uniform(rng, -20, 20);
+        const stewart::Motion m = fd::motion_of_state(y);
+        double angles[3];
+        fd::principal_angles(y, angles);
+        angles[2] += 2 * M_PI * std::round(uniform(rng, -3, 3));  // a continuous yaw
+        const double cp = std::cos(angles[1]);
+        const fd::Vec3 old_rates = stewart::angle_rate_matrix(cp, std::sin(angles[1]),
+                                                              std::cos(angles[2]),
+                                                              std::sin(angles[2]))
+                                       .inverse() *
+                                   m.omega;
+        double rates[3];
+        stewart::angle_rates_of_rotation(m.rotation, m.omega, rates);
+        const double scale = m.omega.norm() / cp;
+        // the exact rates (long double) of y's quaternion
+        const long double qn = std::sqrt((long double)y[3] * y[3] + (long double)y[4] * y[4] +
+                                         (long double)y[5] * y[5] + (long double)y[6] * y[6]);
+        const long double w = y[3] / qn, x = y[4] / qn, yq = y[5] / qn, z = y[6] / qn;
+        const long double r00 = 1 - 2 * (yq * yq + z * z), r10 = 2 * (x * yq + w * z),
+                          r20 = 2 * (x * z - w * yq);
+        const long double c2 = r00 * r00 + r10 * r10, wx = m.omega.x(), wy = m.omega.y();
+        long double exact[3];
+        exact[0] = (r00 * wx + r10 * wy) / c2;
+        exact[1] = (r00 * wy - r10 * wx) / std::sqrt(c2);
+        exact[2] = m.omega.z() - r20 * exact[0];
+        for (int i = 0; i < 3; ++i) {
+            const double off = std::fabs(rates[i] - old_rates[i]) / scale;
+            worst = std::fmax(worst, off * cp * cp);
+            if (std::fabs(angles[1]) <= 1.3) worst_level = std::fmax(worst_level, off);
+            over += !(off * cp * cp <= 1e-13);
+            const double new_error = double(std::fabs(rates[i] - exact[i])) / scale,
+                         old_error = double(std::fabs(old_rates[i] - exact[i])) / scale;
+            worst_exact_new = std::fmax(worst_exact_new, new_error * cp);
+            worst_exact_old = std::fmax(worst_exact_old, old_error * cp);
+            over += !(new_error * cp <= 1e-14);
+        }
+    }
+    std::printf("angle rates from the rotation: off by %.3g of |w| / cos(pitch) within 1.3 rad "
+                "of level, %.3g of it times cos(pitch)^2 anywhere; from the exact rates %.3g "
+                "(the angles' formulation %.3g) of it times cos(pitch)\n", worst_level, worst,
+                worst_exact_new, worst_exact_old);
+    TEST_ASSERT_EQUAL_INT(0, over);
 }
 
 void test_default_platform(void) {
@@ -365,6 +458,7 @@ int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_rotation_of_state);
     RUN_TEST(test_pitch_pre_test);
+    RUN_TEST(test_angle_rates_of_rotation);
     RUN_TEST(test_default_platform);
     RUN_TEST(test_payload_off_centre);
     RUN_TEST(test_carried_start_values);
