@@ -41,7 +41,10 @@ typedef struct stewart_plant_options {
                                 right-hand sides per step with ERK, 6N + 2 with ERK5); 0 */
 } stewart_plant_options;
 
-/* Integrator counters: of the last step, and summed since the plant was created or reset. */
+/* Integrator counters: of the last step, and summed since the plant was created or reset. The
+   counts are ARKODE's and CVODE's: where the written-out ERK 4(3) starts a step from the right-hand
+   side its last step ended with (same state, same forces), rhs_evaluations counts that carried
+   evaluation as ARKODE would have made it, so a step repeated after a rollback counts the same. */
 typedef struct stewart_plant_statistics {
     long steps, rhs_evaluations, nonlinear_iterations, error_test_failures, jacobian_evaluations;
     long total_steps, total_rhs_evaluations, total_nonlinear_iterations,
