@@ -850,12 +850,26 @@ OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double
     return step_end_reporting(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
 }
 
-/* model_usual_step on inputs set and finite, other than the Taylor advance (out of line, so that
- * the advance is told by one test of the route's value in memory, not a load and two tests). */
-OWN_FRAME static fmu_status usual_hold_or_run_step(fmu_instance *inst, double t, double h) {
-    if (inst->v.model.usual_route == ROUTE_HOLD) return usual_hold_step(inst, t, h);
-    return fmu_run_step(inst, t, h);
-}
+/* The step each route takes on inputs set and finite, told by one indexed jump (the route is
+ * 0..2: settle_usual_route writes it, and a restored state whose route is not what its values
+ * give is refused, model_state.c). */
+typedef fmu_status (*usual_step_fn)(fmu_instance *inst, double t, double h);
+typedef fmu_status (*usual_step_reporting_fn)(fmu_instance *inst, double t, double h,
+                                              double *last_successful_time);
+static const usual_step_fn kUsualStepOfRoute[] = {
+    [ROUTE_CHECKED] = fmu_run_step,
+    [ROUTE_ADVANCE] = usual_advance_step,
+    [ROUTE_HOLD] = usual_hold_step,
+};
+static const usual_step_reporting_fn kUsualStepReportingOfRoute[] = {
+    [ROUTE_CHECKED] = fmu_run_step_reporting,
+    [ROUTE_ADVANCE] = usual_advance_step_reporting,
+    [ROUTE_HOLD] = usual_hold_step_reporting,
+};
+_Static_assert(sizeof kUsualStepOfRoute / sizeof *kUsualStepOfRoute == ROUTE_HOLD + 1 &&
+                   sizeof kUsualStepReportingOfRoute / sizeof *kUsualStepReportingOfRoute ==
+                       ROUTE_HOLD + 1,
+               "a route without its usual step");
 
 fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
     const fmu_values *v = &inst->v;
@@ -863,17 +877,7 @@ fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
      * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
      * differences two earlier poses). Anything else: the step rules in full. */
     if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
-    if (v->model.usual_route == ROUTE_ADVANCE) return usual_advance_step(inst, t, h);
-    return usual_hold_or_run_step(inst, t, h);
-}
-
-/* model_usual_step_reporting's usual_hold_or_run_step. */
-OWN_FRAME static fmu_status usual_hold_or_run_step_reporting(fmu_instance *inst, double t,
-                                                             double h,
-                                                             double *last_successful_time) {
-    if (inst->v.model.usual_route == ROUTE_HOLD)
-        return usual_hold_step_reporting(inst, t, h, last_successful_time);
-    return fmu_run_step_reporting(inst, t, h, last_successful_time);
+    return kUsualStepOfRoute[v->model.usual_route](inst, t, h);
 }
 
 fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
@@ -881,9 +885,7 @@ fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
     const fmu_values *v = &inst->v;
     if (fmu_outputs_current_or_inputs_unchecked(v))
         return fmu_run_step_reporting(inst, t, h, last_successful_time);
-    if (v->model.usual_route == ROUTE_ADVANCE)
-        return usual_advance_step_reporting(inst, t, h, last_successful_time);
-    return usual_hold_or_run_step_reporting(inst, t, h, last_successful_time);
+    return kUsualStepReportingOfRoute[v->model.usual_route](inst, t, h, last_successful_time);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
