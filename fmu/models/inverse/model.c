@@ -755,9 +755,9 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
 static inline void quadratic_pair(const double *q, const double *p1, const double *d1_at,
                                   double *next, double *slope, double_pair h2, double_pair h12) {
     const double_pair q1 = load_pair(p1), q2 = load_pair(q), d1 = load_pair(d1_at);
+    store_pair(next, q2); /* first: q2's register is then free for the difference (no copy) */
     const double_pair d2 = (q2 - q1) / h2;
     const double_pair dd = (d2 - d1) / h12; /* q[t0, t1, t2] */
-    store_pair(next, q2);
     store_pair(next + 6, d2 + h2 * dd);
     store_pair(next + 12, dd + dd); /* 2 dd, exactly */
     store_pair(slope, d2);
