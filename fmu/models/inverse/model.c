@@ -764,6 +764,13 @@ static inline void quadratic_pair(const double *q, const double *p1, const doubl
 }
 #endif
 
+/* The library refused the pose hold_with_quadratic wrote into the history's free slot (found
+ * again here, so that the usual step keeps no pointer to it across the library call). */
+FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, double t, stewart_status s) {
+    const model_values *m = &inst->v.model;
+    return refused(inst, t, &m->history[m->newer ^ 1].pose, s);
+}
+
 /* Inlined into each usual step whatever the compiler's estimate (each is one function with one
  * library call: a call of its own would add a frame around it). */
 #if defined(__GNUC__)
@@ -801,9 +808,10 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, out);
-    if (s != STEWART_OK) return refused(inst, t, &next->pose, s);
+    if (s != STEWART_OK) return hold_refused(inst, t, s);
     m->newer ^= 1; /* the history is full already */
-    return solved_checking(inst, t, next->pose.q, out, 0);
+    /* the pose is the inputs' (copied from them): no pointer to the slot kept across the call */
+    return solved_checking(inst, t, &v->real[VR_x], out, 0);
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
