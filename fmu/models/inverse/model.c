@@ -771,6 +771,11 @@ FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, double t, stewa
     return refused(inst, t, &m->history[m->newer ^ 1].pose, s);
 }
 
+/* The history slot `at` bytes into the history (0 or sizeof(fd_point)). */
+static inline fd_point *history_slot_at(model_values *m, size_t at) {
+    return (fd_point *)(void *)((char *)m->history + at);
+}
+
 /* Inlined into each usual step whatever the compiler's estimate (each is one function with one
  * library call: a call of its own would add a frame around it). */
 #if defined(__GNUC__)
@@ -786,8 +791,11 @@ FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, double t, stewa
 static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
     fmu_values *v = &inst->v;
     model_values *m = &v->model;
-    const fd_point *newer = newer_point(m);
-    fd_point *next = &m->history[m->newer ^ 1];
+    /* the slots by byte offset, the free one an exclusive or away (by index the compiler
+     * extended and shifted each index and formed two more addresses) */
+    const size_t newer_at = (size_t)(unsigned)m->newer * sizeof(fd_point); /* newer: 0 or 1 */
+    const fd_point *newer = history_slot_at(m, newer_at);
+    fd_point *next = history_slot_at(m, newer_at ^ sizeof(fd_point));
     const double h1 = newer->interval, h2 = t - newer->t;
 #if PAIRED_ARITHMETIC
     const double_pair h2_2 = {h2, h2}, h12_2 = {h1 + h2, h1 + h2};
