@@ -4,6 +4,7 @@
 
 #include "fmi3Functions.h"
 #include "derivatives.h"
+#include "do_step.h"
 #include "instance.h"
 #include "logging.h"
 #include "state.h"

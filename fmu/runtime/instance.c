@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "call_table.h"
+#include "do_step.h"
 #include "logging.h"
 #include "model_interface.h"
 
@@ -196,18 +197,6 @@ fmu_status fmu_run_step(fmu_instance *inst, double t, double h) {
     return fmu_step_not_taken(inst, t, s, time_before, outputs_current_before);
 }
 
-/* The usual call, told in a few comparisons: step mode, a step that advances t to a finite time
- * (t + h > t: h > 0 and t, h not NaN; below infinity: finite), from the unit's time or later (a
- * master's clock a rounding ahead, or after a Discard) or else within its slack (slack_step),
- * after the last step. fmu_check_call and check_step accept it too. From the unit's time or later
- * it is after the last step: every step ends after its communication point, and a restored state
- * is checked for that (state.c). */
-static inline int usual_step_shape(const fmu_values *v, double t, double h) {
-    const double end = t + h;
-    /* (end is not NaN once end > t: !(end >= HUGE_VAL) is end < HUGE_VAL, one comparison less) */
-    return v->mode == MODE_STEP && end > t && !(end >= HUGE_VAL);
-}
-
 /* t before the unit's time but within its slack, and after the last step. */
 static int within_slack(const fmu_values *v, double t) {
     return t >= v->time - time_slack(v) && (!v->has_stepped || t > v->last_step_point);
@@ -218,16 +207,6 @@ FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, doub
     if (fmu_check_call(inst, CALL_DO_STEP, "DoStep") != FMU_OK) return FMU_ERROR;
     return check_step(inst, t, h);
 }
-
-/* The models that take the usual step themselves (model_usual_step, with fmu_step_accepted and
- * fmu_step_not_taken) save the runtime's frame around it; the others run it here. */
-#if FMU_MODEL_USUAL_STEP
-#define USUAL_STEP model_usual_step
-#define USUAL_STEP_REPORTING model_usual_step_reporting
-#else
-#define USUAL_STEP fmu_run_step
-#define USUAL_STEP_REPORTING fmu_run_step_reporting
-#endif
 
 fmu_status fmu_run_step_reporting(fmu_instance *inst, double t, double h,
                                   double *last_successful_time) {
@@ -244,37 +223,19 @@ FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, doubl
     return fmu_run_step(inst, t, h);
 }
 
-/* A usual step whose t is a few roundings before the unit's time: within the slack the usual
- * step, else the checks (out of line, so that the usual step keeps no frame). */
-FMU_RARE_PATH static fmu_status slack_step(fmu_instance *inst, double t, double h) {
-    if (within_slack(&inst->v, t)) return USUAL_STEP(inst, t, h);
+FMU_RARE_PATH fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, double h) {
+    if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
+        return FMU_USUAL_STEP(inst, t, h);
     return checked_step(inst, t, h);
 }
 
-fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
-    if (inst && usual_step_shape(&inst->v, t, h)) {
-        if (t >= inst->v.time) return USUAL_STEP(inst, t, h);
-        return slack_step(inst, t, h);
-    }
-    return checked_step(inst, t, h);
-}
-
-/* fmu_do_step_reporting's call that is not a usual step from the unit's time or later. */
-FMU_RARE_PATH static fmu_status other_step_reporting(fmu_instance *inst, double t, double h,
-                                                     double *last_successful_time) {
-    if (inst && usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
-        return USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
+FMU_RARE_PATH fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double h,
+                                                         double *last_successful_time) {
+    if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
+        return FMU_USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
     const fmu_status s = checked_step(inst, t, h);
     if (inst) *last_successful_time = inst->v.last_successful_time;
     return s;
-}
-
-fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
-                                 double *last_successful_time) {
-    if (!last_successful_time) return fmu_do_step(inst, t, h);
-    if (inst && usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
-        return USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
-    return other_step_reporting(inst, t, h, last_successful_time);
 }
 
 fmu_status fmu_get_step_status(fmu_instance *inst, int *status) {

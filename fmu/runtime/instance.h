@@ -108,18 +108,7 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, double start_time);
 fmu_status fmu_enter_initialization(fmu_instance *inst, int has_start, double start_time);
 /* Applies the parameters and solves for the initial inputs (Discard there becomes Warning). */
 fmu_status fmu_exit_initialization(fmu_instance *inst);
-/* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual
- * step (step mode, from the unit's time or after it, or within its slack before it, advancing to
- * a finite time) goes
- * straight to model_usual_step if the model's config.h defines FMU_MODEL_USUAL_STEP 1, else to
- * fmu_run_step. The unit's last successful time is in inst->v.last_successful_time after any
- * call with an instance. */
-fmu_status fmu_do_step(fmu_instance *inst, double t, double h);
-/* fmu_do_step that also writes the unit's last successful time to *last_successful_time (if not
- * NULL; FMI 3): the usual step to model_usual_step_reporting. Two entries, so that FMI 2's usual
- * step carries no pointer it never uses. */
-fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
-                                 double *last_successful_time);
+/* doStep's entry: fmu_do_step and fmu_do_step_reporting (do_step.h). */
 /* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
  * the time bookkeeping around them. */
 fmu_status fmu_run_step(fmu_instance *inst, double t, double h);

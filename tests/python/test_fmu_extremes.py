@@ -709,6 +709,29 @@ def test_long_run(version, fidelity):
 
 
 @pytest.mark.parametrize("version", VERSIONS)
+def test_finite_differences_over_vanishing_steps_refused_by_the_usual_step(version):
+    """As test_finite_differences_over_vanishing_steps, the moved pose set and stepped at once (no
+    output read in between, so the step is the usual hold step, which writes the quadratic's
+    rates into the history's free slot before the library call): the refusal names the finite
+    differences from that slot, the outputs and the history stay as they were, and a later
+    step of ordinary size is solved."""
+    u = new_unit(version, fidelity=1, derivatives=0)
+    try:
+        for k in range(3):  # history: points 1e-300 s apart, the same pose
+            assert u.do_step(k * 1e-300, 1e-300) == OK
+        before = u.get_reals(REAL_OUTPUTS)
+        u.set(z=0.51)
+        assert u.do_step(3e-300, 1e-300) == DISCARD
+        m = step_messages(u, DISCARD)[-1]
+        assert "finite-difference" in m and "derivatives = 1" in m and " z " in m, m
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
+        assert u.get(["status"])[0] == 3
+        assert u.do_step(0.1, 0.1) == OK
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
 def test_finite_differences_over_vanishing_steps(version):
     """derivatives = 0 with steps of 1e-300 s (1/h^2 overflows): a pose that does not move is at
     rest (zero rates, the static closed-form forces), not NaN; a pose that moves over such a step

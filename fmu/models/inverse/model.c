@@ -755,14 +755,26 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
 static inline void quadratic_pair(const double *q, const double *p1, const double *d1_at,
                                   double *next, double *slope, double_pair h2, double_pair h12) {
     const double_pair q1 = load_pair(p1), q2 = load_pair(q), d1 = load_pair(d1_at);
+    store_pair(next, q2); /* first: q2's register is then free for the difference (no copy) */
     const double_pair d2 = (q2 - q1) / h2;
     const double_pair dd = (d2 - d1) / h12; /* q[t0, t1, t2] */
-    store_pair(next, q2);
     store_pair(next + 6, d2 + h2 * dd);
     store_pair(next + 12, dd + dd); /* 2 dd, exactly */
     store_pair(slope, d2);
 }
 #endif
+
+/* The library refused the pose hold_with_quadratic wrote into the history's free slot (found
+ * again here, so that the usual step keeps no pointer to it across the library call). */
+FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, double t, stewart_status s) {
+    const model_values *m = &inst->v.model;
+    return refused(inst, t, &m->history[m->newer ^ 1].pose, s);
+}
+
+/* The history slot `at` bytes into the history (0 or sizeof(fd_point)). */
+static inline fd_point *history_slot_at(model_values *m, size_t at) {
+    return (fd_point *)(void *)((char *)m->history + at);
+}
 
 /* Inlined into each usual step whatever the compiler's estimate (each is one function with one
  * library call: a call of its own would add a frame around it). */
@@ -779,8 +791,11 @@ static inline void quadratic_pair(const double *q, const double *p1, const doubl
 static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
     fmu_values *v = &inst->v;
     model_values *m = &v->model;
-    const fd_point *newer = newer_point(m);
-    fd_point *next = &m->history[m->newer ^ 1];
+    /* the slots by byte offset, the free one an exclusive or away (by index the compiler
+     * extended and shifted each index and formed two more addresses) */
+    const size_t newer_at = (size_t)(unsigned)m->newer * sizeof(fd_point); /* newer: 0 or 1 */
+    const fd_point *newer = history_slot_at(m, newer_at);
+    fd_point *next = history_slot_at(m, newer_at ^ sizeof(fd_point));
     const double h1 = newer->interval, h2 = t - newer->t;
 #if PAIRED_ARITHMETIC
     const double_pair h2_2 = {h2, h2}, h12_2 = {h1 + h2, h1 + h2};
@@ -801,9 +816,10 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, out);
-    if (s != STEWART_OK) return refused(inst, t, &next->pose, s);
+    if (s != STEWART_OK) return hold_refused(inst, t, s);
     m->newer ^= 1; /* the history is full already */
-    return solved_checking(inst, t, next->pose.q, out, 0);
+    /* the pose is the inputs' (copied from them): no pointer to the slot kept across the call */
+    return solved_checking(inst, t, &v->real[VR_x], out, 0);
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
@@ -850,12 +866,26 @@ OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double
     return step_end_reporting(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
 }
 
-/* model_usual_step on inputs set and finite, other than the Taylor advance (out of line, so that
- * the advance is told by one test of the route's value in memory, not a load and two tests). */
-OWN_FRAME static fmu_status usual_hold_or_run_step(fmu_instance *inst, double t, double h) {
-    if (inst->v.model.usual_route == ROUTE_HOLD) return usual_hold_step(inst, t, h);
-    return fmu_run_step(inst, t, h);
-}
+/* The step each route takes on inputs set and finite, told by one indexed jump (the route is
+ * 0..2: settle_usual_route writes it, and a restored state whose route is not what its values
+ * give is refused, model_state.c). */
+typedef fmu_status (*usual_step_fn)(fmu_instance *inst, double t, double h);
+typedef fmu_status (*usual_step_reporting_fn)(fmu_instance *inst, double t, double h,
+                                              double *last_successful_time);
+static const usual_step_fn kUsualStepOfRoute[] = {
+    [ROUTE_CHECKED] = fmu_run_step,
+    [ROUTE_ADVANCE] = usual_advance_step,
+    [ROUTE_HOLD] = usual_hold_step,
+};
+static const usual_step_reporting_fn kUsualStepReportingOfRoute[] = {
+    [ROUTE_CHECKED] = fmu_run_step_reporting,
+    [ROUTE_ADVANCE] = usual_advance_step_reporting,
+    [ROUTE_HOLD] = usual_hold_step_reporting,
+};
+_Static_assert(sizeof kUsualStepOfRoute / sizeof *kUsualStepOfRoute == ROUTE_HOLD + 1 &&
+                   sizeof kUsualStepReportingOfRoute / sizeof *kUsualStepReportingOfRoute ==
+                       ROUTE_HOLD + 1,
+               "a route without its usual step");
 
 fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
     const fmu_values *v = &inst->v;
@@ -863,17 +893,7 @@ fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
      * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
      * differences two earlier poses). Anything else: the step rules in full. */
     if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
-    if (v->model.usual_route == ROUTE_ADVANCE) return usual_advance_step(inst, t, h);
-    return usual_hold_or_run_step(inst, t, h);
-}
-
-/* model_usual_step_reporting's usual_hold_or_run_step. */
-OWN_FRAME static fmu_status usual_hold_or_run_step_reporting(fmu_instance *inst, double t,
-                                                             double h,
-                                                             double *last_successful_time) {
-    if (inst->v.model.usual_route == ROUTE_HOLD)
-        return usual_hold_step_reporting(inst, t, h, last_successful_time);
-    return fmu_run_step_reporting(inst, t, h, last_successful_time);
+    return kUsualStepOfRoute[v->model.usual_route](inst, t, h);
 }
 
 fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
@@ -881,9 +901,7 @@ fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
     const fmu_values *v = &inst->v;
     if (fmu_outputs_current_or_inputs_unchecked(v))
         return fmu_run_step_reporting(inst, t, h, last_successful_time);
-    if (v->model.usual_route == ROUTE_ADVANCE)
-        return usual_advance_step_reporting(inst, t, h, last_successful_time);
-    return usual_hold_or_run_step_reporting(inst, t, h, last_successful_time);
+    return kUsualStepReportingOfRoute[v->model.usual_route](inst, t, h, last_successful_time);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,

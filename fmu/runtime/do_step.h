@@ -1,0 +1,73 @@
+/*
+ * doStep's entry, inline in each FMI layer (fmi2DoStep, fmi3DoStep), so that the usual call goes
+ * from the FMI function straight to the model's usual step (issue 22: doStep within 5 % of the
+ * library call): a few comparisons tell it, and anything else is instance.c's
+ * fmu_do_step_otherwise with its checks and messages.
+ */
+#ifndef STEWART_FMU_DO_STEP_H
+#define STEWART_FMU_DO_STEP_H
+
+#include <math.h>
+
+#include "instance.h"
+#include "model_interface.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The models that take the usual step themselves (model_usual_step, with fmu_step_accepted and
+ * fmu_step_not_taken) save the runtime's frame around it; the others run it in fmu_run_step. */
+#if FMU_MODEL_USUAL_STEP
+#define FMU_USUAL_STEP model_usual_step
+#define FMU_USUAL_STEP_REPORTING model_usual_step_reporting
+#else
+#define FMU_USUAL_STEP fmu_run_step
+#define FMU_USUAL_STEP_REPORTING fmu_run_step_reporting
+#endif
+
+/* The usual call, told in a few comparisons: step mode, a step that advances t to a finite time
+ * (t + h > t: h > 0 and t, h not NaN; below infinity: finite). fmu_check_call and check_step
+ * (instance.c) accept it too. From the unit's time or later (a master's clock a rounding ahead,
+ * or after a Discard) it is after the last step: every step ends after its communication point,
+ * and a restored state is checked for that (state.c). */
+static inline int fmu_usual_step_shape(const fmu_values *v, double t, double h) {
+    const double end = t + h;
+    /* (end is not NaN once end > t: !(end >= HUGE_VAL) is end < HUGE_VAL, one comparison less) */
+    return v->mode == MODE_STEP && end > t && !(end >= HUGE_VAL);
+}
+
+/* Any call but the usual one from the unit's time or later (instance.c): a t within the slack
+ * before the unit's time takes the usual step, anything else the checks with their messages. */
+fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, double h);
+/* The same for fmu_do_step_reporting (last_successful_time not NULL). */
+fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double h,
+                                           double *last_successful_time);
+
+/* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual
+ * step (step mode, from the unit's time or after it, or within its slack before it, advancing to
+ * a finite time) goes straight to model_usual_step if the model's config.h defines
+ * FMU_MODEL_USUAL_STEP 1, else to fmu_run_step. The unit's last successful time is in
+ * inst->v.last_successful_time after any call with an instance. */
+static inline fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
+    if (inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
+        return FMU_USUAL_STEP(inst, t, h);
+    return fmu_do_step_otherwise(inst, t, h);
+}
+
+/* fmu_do_step that also writes the unit's last successful time to *last_successful_time (if not
+ * NULL; FMI 3): the usual step to model_usual_step_reporting. Two entries, so that FMI 2's usual
+ * step carries no pointer it never uses. */
+static inline fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
+                                               double *last_successful_time) {
+    if (!last_successful_time) return fmu_do_step(inst, t, h);
+    if (inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
+        return FMU_USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
+    return fmu_do_step_reporting_otherwise(inst, t, h, last_successful_time);
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
