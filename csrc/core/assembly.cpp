@@ -21,17 +21,18 @@ void make_frame(const double *q, const double *v, BodyFrame &f) {
 // mechanisms form them per joint instead.
 constexpr size_t kFrameCache = 64;
 
-// Joint k's input; its bodies' frames from `frames` (every body's), else formed into fi and fj.
-[[gnu::always_inline]] inline JointInput joint_input(const Mechanism &m, int k, const double *q,
-                                                     const double *q_dot, const DriverValue *drv,
+// Joint k's input, from its record; its bodies' frames from `frames` (every body's), else formed
+// into fi and fj.
+[[gnu::always_inline]] inline JointInput joint_input(const JointDef &j, const JointRecord &r,
+                                                     const double *q, const double *q_dot,
+                                                     const DriverValue *drv,
                                                      const BodyFrame *frames, BodyFrame &fi,
                                                      BodyFrame &fj) {
-    const JointDef &j = m.joints[k];
-    const double *qi = body_r(q, j.body_i), *qj = j.body_j >= 0 ? body_r(q, j.body_j) : nullptr;
-    const double *vi = q_dot ? body_r(q_dot, j.body_i) : nullptr;
-    const double *vj = (q_dot && j.body_j >= 0) ? body_r(q_dot, j.body_j) : nullptr;
+    const double *qi = q + r.coord_i, *qj = r.coord_j >= 0 ? q + r.coord_j : nullptr;
+    const double *vi = q_dot ? q_dot + r.coord_i : nullptr;
+    const double *vj = (q_dot && r.coord_j >= 0) ? q_dot + r.coord_j : nullptr;
     const BodyFrame *pi = nullptr, *pj = nullptr;
-    if (m.joint_info[k]->bodies == 2) {
+    if (r.frames) {
         if (frames) {
             pi = frames + j.body_i, pj = frames + j.body_j;
         } else {
@@ -40,19 +41,19 @@ constexpr size_t kFrameCache = 64;
             pi = &fi, pj = &fj;
         }
     }
-    return JointInput{j, qi, qj, vi, vj, j.driver >= 0 ? drv + j.driver : nullptr, pi, pj};
+    return JointInput{j, qi, qj, vi, vj, r.driver >= 0 ? drv + r.driver : nullptr, pi, pj};
 }
 
-[[gnu::always_inline]] inline void evaluate_with_frames(const Mechanism &m, int k,
+[[gnu::always_inline]] inline void evaluate_with_frames(const JointDef &j, const JointRecord &r,
                                                        const double *q, const double *q_dot,
                                                        const DriverValue *drv,
                                                        const JointOutput &out,
                                                        const BodyFrame *frames) {
     BodyFrame fi, fj;
-    m.joint_info[k]->evaluate(joint_input(m, k, q, q_dot, drv, frames, fi, fj), out);
+    r.evaluate(joint_input(j, r, q, q_dot, drv, frames, fi, fj), out);
 }
 
-// Calls output(k) for the outputs of joint k and evaluates every joint.
+// Calls output(record) for the outputs of each joint and evaluates every joint.
 template <class Outputs>
 void assemble(const Mechanism &m, const double *q, const double *q_dot, const DriverValue *drv,
               Outputs output) {
@@ -72,22 +73,25 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
     const AssemblyPath *const path = m.assembly_path.data();
     const int *const distance_with = m.distance_with.data();
     const JointDef *const defs = m.joints.data();
+    const JointRecord *const records = m.joint_records.data();
     for (size_t k = 0; k < joints; ++k) {
+        const JointRecord &r = records[k];
         switch (path[k]) {
         case AssemblyPath::Own:
-            evaluate_with_frames(m, static_cast<int>(k), q, q_dot, drv, output(k), frames);
+            evaluate_with_frames(defs[k], r, q, q_dot, drv, output(r), frames);
             break;
         case AssemblyPath::Normalization: {
-            const int b = defs[k].body_i;
-            normalization_rows(body_p(q, b), q_dot ? body_p(q_dot, b) : nullptr, output(k));
+            const int p = r.coord_i + MBS_BODY_P(0);  // its Euler parameters, after r
+            normalization_rows(q + p, q_dot ? q_dot + p : nullptr, output(r));
             break;
         }
         case AssemblyPath::WithDistance: {
             BodyFrame fi, fj, di, dj;
             const int driver = distance_with[k];
+            const JointRecord &rd = records[driver];
             evaluate_cylindrical_with_distance(
-                joint_input(m, static_cast<int>(k), q, q_dot, drv, frames, fi, fj), output(k),
-                joint_input(m, driver, q, q_dot, drv, frames, di, dj), output(driver));
+                joint_input(defs[k], r, q, q_dot, drv, frames, fi, fj), output(r),
+                joint_input(defs[driver], rd, q, q_dot, drv, frames, di, dj), output(rd));
             break;
         }
         case AssemblyPath::InJointCall:  // its cylindrical joint's call writes it
@@ -100,33 +104,33 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
 
 void evaluate_joint(const Mechanism &m, int k, const double *q, const double *q_dot,
                     const DriverValue *drv, const JointOutput &out) {
-    evaluate_with_frames(m, k, q, q_dot, drv, out, nullptr);
+    evaluate_with_frames(m.joints[k], m.joint_records[k], q, q_dot, drv, out, nullptr);
 }
 
 void assemble_residual(const Mechanism &m, const double *q, const DriverValue *drv, double *phi) {
-    assemble(m, q, nullptr, drv, [&](size_t k) {
-        return JointOutput{phi + m.first_row[k], nullptr, nullptr, nullptr, nullptr};
+    assemble(m, q, nullptr, drv, [&](const JointRecord &r) {
+        return JointOutput{phi + r.first_row, nullptr, nullptr, nullptr, nullptr};
     });
 }
 
 namespace {
-JointOutput jacobian_blocks(const Mechanism &m, size_t k, double *values, double *phi) {
-    double *block = values + m.first_value[k];
-    const int n = m.joint_info[k]->equations;
-    double *block_j = m.joints[k].body_j >= 0 ? block + MBS_BODY_COORDINATES * n : nullptr;
-    return JointOutput{phi ? phi + m.first_row[k] : nullptr, block, block_j, nullptr, nullptr};
+JointOutput jacobian_blocks(const JointRecord &r, double *values, double *phi) {
+    double *block = values + r.first_value;
+    double *block_j = r.block_j >= 0 ? block + r.block_j : nullptr;
+    return JointOutput{phi ? phi + r.first_row : nullptr, block, block_j, nullptr, nullptr};
 }
 }  // namespace
 
 void assemble_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
                        double *values) {
     assemble(m, q, nullptr, drv,
-             [&](size_t k) { return jacobian_blocks(m, k, values, nullptr); });
+             [&](const JointRecord &r) { return jacobian_blocks(r, values, nullptr); });
 }
 
 void assemble_residual_and_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
                                     double *phi, double *values) {
-    assemble(m, q, nullptr, drv, [&](size_t k) { return jacobian_blocks(m, k, values, phi); });
+    assemble(m, q, nullptr, drv,
+             [&](const JointRecord &r) { return jacobian_blocks(r, values, phi); });
 }
 
 void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv, double *phi_t) {
@@ -143,8 +147,8 @@ void assemble_phi_t(const Mechanism &m, const double *q, const DriverValue *drv,
 
 void assemble_gamma(const Mechanism &m, const double *q, const double *q_dot,
                     const DriverValue *drv, double *gamma) {
-    assemble(m, q, q_dot, drv, [&](size_t k) {
-        return JointOutput{nullptr, nullptr, nullptr, nullptr, gamma + m.first_row[k]};
+    assemble(m, q, q_dot, drv, [&](const JointRecord &r) {
+        return JointOutput{nullptr, nullptr, nullptr, nullptr, gamma + r.first_row};
     });
 }
 

@@ -456,6 +456,7 @@ public:
                 for (size_t v = 0; v < g.value_index.size(); ++v)
                     ws_[g.value_dest[v]] = values[g.value_index[v]];
                 dirty_[gi] = 1;
+                ++fallbacks_;
                 if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
             }
             for (int r = ng; r < mg; ++r) {
@@ -581,6 +582,7 @@ public:
     }
 
     const char *name() const override { return "bordered block LU"; }
+    long fallbacks() const override { return fallbacks_; }
 
 private:
     const Mechanism &m_;
@@ -593,6 +595,7 @@ private:
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
     std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
+    long fallbacks_ = 0;             // group factorisations that took partial pivoting
     // Jacobian values -> workspace: a body's whole rows (7 values from row_from_ to row_to_) and
     // the other runs (other_length_ values from other_from_ to other_to_).
     std::vector<int> row_from_, row_to_, other_from_, other_to_, other_length_, coupling_from_;

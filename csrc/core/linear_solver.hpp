@@ -56,6 +56,10 @@ public:
     // In place: b (coordinate order) in, x (equation order) out.
     virtual void solve_transposed(double *x) = 0;
     virtual const char *name() const = 0;
+    // Factorisations of a group block that left its planned pivot order for partial pivoting,
+    // since this solver was made (0 for solvers without a plan). A normal path should take none:
+    // the fallback repairs even a garbled block, so only this count (and the time) shows it.
+    virtual long fallbacks() const { return 0; }
 };
 
 enum class LinearSolverKind { Automatic, Dense, Block };

@@ -195,6 +195,9 @@ const double *mbs_q_ddot(const mbs_data *d) { return d ? d->state.q_ddot.data() 
 const double *mbs_lambda(const mbs_data *d) { return d ? d->state.lambda.data() : nullptr; }
 int mbs_iterations(const mbs_data *d) { return d ? d->state.stats.iterations : 0; }
 double mbs_residual(const mbs_data *d) { return d ? d->state.stats.residual : 0; }
+long mbs_linear_fallbacks(const mbs_data *d) {
+    return d && d->state.linear ? d->state.linear->fallbacks() : 0;
+}
 
 mbs_status mbs_joint_reaction(const mbs_data *d, int joint, int side, double force[3],
                                   double torque[3]) {

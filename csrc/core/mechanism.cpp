@@ -18,6 +18,19 @@ namespace {
 // Pairs each distance driver with a cylindrical joint on the same bodies and points, so that
 // assembly evaluates the two in one call (evaluate_cylindrical_with_distance); normalisations are
 // written inline.
+void make_joint_records(Mechanism &m) {
+    m.joint_records.clear();
+    for (size_t k = 0; k < m.joints.size(); ++k) {
+        const JointDef &j = m.joints[k];
+        const JointTypeInfo &info = *m.joint_info[k];
+        const bool has_j = j.body_j >= 0;
+        m.joint_records.push_back(JointRecord{
+            info.evaluate, MBS_BODY_R(j.body_i), has_j ? MBS_BODY_R(j.body_j) : -1, j.driver,
+            m.first_row[k], m.first_value[k], has_j ? MBS_BODY_COORDINATES * info.equations : -1,
+            info.bodies == 2});
+    }
+}
+
 void choose_assembly_paths(Mechanism &m) {
     const size_t n = m.joints.size();
     m.distance_with.assign(n, -1);
@@ -85,6 +98,7 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
         return false;
     }
     choose_assembly_paths(m);
+    make_joint_records(m);
     m.block_plan = plan_blocks(m);
     m.finalized = true;
     return true;

@@ -28,6 +28,17 @@ struct BlockPlan;  // linear_solver.hpp
 // all (a distance driver written by its cylindrical joint's call).
 enum class AssemblyPath : char { Own, Normalization, WithDistance, InJointCall };
 
+// Per joint, made by finalize: what the assembly loop reads for it, side by side (it read five
+// per-joint arrays, the joint's definition and its type's table entry).
+struct JointRecord {
+    JointEvaluate evaluate;  // its type's function
+    int coord_i, coord_j;    // its bodies' first coordinates; coord_j -1 without a body j
+    int driver;              // its first driver slot, -1 if none
+    int first_row, first_value;
+    int block_j;             // body j's Jacobian block after first_value (7 x equations), or -1
+    bool frames;             // a two-body type: it is given its bodies' frames
+};
+
 struct Mechanism {
     std::vector<Body> bodies;
     std::vector<JointDef> joints;
@@ -45,6 +56,7 @@ struct Mechanism {
     // that driver (else -1).
     std::vector<AssemblyPath> assembly_path;
     std::vector<int> distance_with;
+    std::vector<JointRecord> joint_records;
     std::shared_ptr<const BlockPlan> block_plan;  // null if the structure is not bordered blocks
 
     int values() const { return static_cast<int>(pattern_row.size()); }

@@ -134,6 +134,10 @@ const double *mbs_q_ddot(const mbs_data *d);
 const double *mbs_lambda(const mbs_data *d);
 int mbs_iterations(const mbs_data *d);
 double mbs_residual(const mbs_data *d);
+/* How many times the block solver's factorisation of a group left its planned pivot order for
+ * partial pivoting since d was made (0 for the dense solver). The results stay right either way;
+ * a normal path should take no fallback, so this is what shows one. */
+long mbs_linear_fallbacks(const mbs_data *d);
 /* Force and torque (world frame; torque about the body's centre of mass) that a joint puts on
  * its body i (side 0) or body j (side 1). */
 mbs_status mbs_joint_reaction(const mbs_data *d, int joint, int side, double force[3],
