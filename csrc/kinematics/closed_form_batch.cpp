@@ -56,6 +56,12 @@ VectorPath fastest_vector_path() {
     return fastest;
 }
 
+VectorPath batch_vector_path(int fidelity) {
+    const VectorPath fastest = fastest_vector_path();
+    return fastest == VectorPath::avx512vl && fidelity == STEWART_MASSLESS ? VectorPath::avx2
+                                                                          : fastest;
+}
+
 bool vector_path_available(VectorPath path) {  // (each path's CPU runs the ones before it)
     return int(path) <= int(fastest_vector_path());
 }

@@ -15,6 +15,11 @@ enum class VectorPath { scalar, portable, avx2, avx512vl };
 // The fastest kernel this CPU runs (decided once, thread-safely; no state changes after).
 VectorPath fastest_vector_path();
 
+// The kernel stewart_inverse_batch runs at level fidelity: the fastest, but AVX2 rather than
+// avx512vl at the massless level (there avx512vl takes 6 % fewer instructions and measured no
+// faster, slower in 8 of 10 runs: the LU's chains of dependent operations bound it, not spills).
+VectorPath batch_vector_path(int fidelity);
+
 // False where a path is not built or the CPU lacks it (AVX2, AVX-512 off x86).
 bool vector_path_available(VectorPath path);
 
