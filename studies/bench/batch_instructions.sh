@@ -18,8 +18,8 @@ trap 'rm -rf "$out"' EXIT
 # instructions per pose of PROGRAM at LEVEL on PATH (empty if the program lacks the path)
 per_pose() {
   if ! "$1" "$rows" --once "$2" "$3" >/dev/null 2>&1; then return; fi
-  # (valgrind knows no AVX-512: the avx512vl kernel stops on an illegal instruction, no count;
-  # studies/bench/step_count.c counts it)
+  # (valgrind runs no AVX-512 and its CPUID hides it, so bench-batch refuses the avx512vl kernel
+  # there: no count; studies/bench/step_count.sh counts it)
   valgrind --tool=callgrind --callgrind-out-file="$out/cg" "$1" "$rows" --once "$2" "$3" \
     >/dev/null 2>&1 || return 0
   # the batch function itself, not its lambda (whose name starts alike)

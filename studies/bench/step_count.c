@@ -1,5 +1,6 @@
 // Instructions a program runs inside one function, counted by single-stepping it with ptrace:
-// for kernels valgrind cannot run (AVX-512: callgrind stops on an illegal instruction). Slow (a
+// for kernels valgrind cannot run (AVX-512: its CPUID hides it, so the avx512vl kernel is not
+// chosen under callgrind, and it could not run it). Slow (a
 // few µs per instruction): use small batches. Prints the instructions in all and in the function.
 // Run through studies/bench/step_count.sh (the function's address range from nm, the program
 // without address randomisation).
