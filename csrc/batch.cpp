@@ -232,7 +232,7 @@ extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, co
                                                 stewart_batch_messages *messages,
                                                 size_t *first_failed) {
     return stewart::inverse_batch(d, n, q, q_dot, q_ddot, out, messages, first_failed,
-                                  stewart::fastest_vector_path());
+                                  stewart::batch_vector_path(d->options.fidelity));
 }
 
 extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, const double *time,

@@ -3,12 +3,13 @@
 // and the plant at both fidelities driven by the full level's forces. The median over repeated
 // whole batches. studies/bench/batches.py runs this beside the Python API on the same rows.
 // The kinematic and massless levels also on each kernel (batch_paths.hpp: "scalar", one
-// stewart_inverse_solve per row; "portable"; "avx2" where the CPU has it), in the same run.
+// stewart_inverse_solve per row; "portable"; "avx2" and "avx512vl" where the CPU has them), in
+// the same run.
 // usage: bench-batch [ROWS (6000)]
 //        bench-batch ROWS --kernels           the kinematic and massless levels on each kernel
 //                                             only (201 batches each)
-//        bench-batch ROWS --once LEVEL PATH   one batch only, LEVEL 0 or 1, PATH scalar, portable
-//                                             or avx2 (for callgrind --toggle-collect)
+//        bench-batch ROWS --once LEVEL PATH   one batch only, LEVEL 0 or 1, PATH scalar, portable,
+//                                             avx2 or avx512vl (for callgrind)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -105,7 +106,8 @@ stewart_inverse *inverse_at(const stewart_model *model, int level) {
 int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q,
               const std::vector<double> &q_dot, const std::vector<double> &q_ddot, int level,
               const std::string &path_name) {
-    const stewart::VectorPath path = path_name == "avx2"       ? stewart::VectorPath::avx2
+    const stewart::VectorPath path = path_name == "avx512vl"   ? stewart::VectorPath::avx512vl
+                                     : path_name == "avx2"     ? stewart::VectorPath::avx2
                                      : path_name == "portable" ? stewart::VectorPath::portable
                                                                : stewart::VectorPath::scalar;
     if (!stewart::vector_path_available(path)) return 2;  // not on this CPU
@@ -128,11 +130,11 @@ int time_kernels(const stewart_model *model, size_t n, const std::vector<double>
                  const std::vector<double> &q_dot, const std::vector<double> &q_ddot,
                  int repeats, bool show_fastest) {
     const char *level_name[] = {"inverse kinematic", "inverse massless"};
-    const char *path_name[] = {"scalar", "portable", "avx2"};
+    const char *path_name[] = {"scalar", "portable", "avx2", "avx512vl"};
     InverseColumns columns(n);
     const stewart_inverse_batch_outputs out = columns.outputs();
     for (int level = 0; level < 2; ++level)
-        for (int path = 0; path < 3; ++path) {
+        for (int path = 0; path < 4; ++path) {
             if (!stewart::vector_path_available(stewart::VectorPath(path))) continue;
             stewart_inverse *inverse = inverse_at(model, level);
             if (!inverse) return 1;

@@ -8,12 +8,20 @@ namespace stewart {
 
 namespace {
 
-bool cpu_has_avx2_fma() {
+// The fastest kernel built for this CPU.
+VectorPath cpu_vector_path() {
 #if defined(STEWART_HAVE_AVX2_KERNEL) && (defined(__x86_64__) || defined(__i386__))
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma"))
+        return VectorPath::portable;
+#ifdef STEWART_HAVE_AVX512VL_KERNEL
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512dq"))
+        return VectorPath::avx512vl;
+#endif
+    return VectorPath::avx2;
 #else
-    return false;
+    return VectorPath::portable;
 #endif
 }
 
@@ -44,12 +52,18 @@ void home_row_slots(const PlatformGeometry &g, double home_height, int slot[6]) 
 }  // namespace
 
 VectorPath fastest_vector_path() {
-    static const VectorPath fastest = cpu_has_avx2_fma() ? VectorPath::avx2 : VectorPath::portable;
+    static const VectorPath fastest = cpu_vector_path();
     return fastest;
 }
 
-bool vector_path_available(VectorPath path) {
-    return path != VectorPath::avx2 || fastest_vector_path() == VectorPath::avx2;
+VectorPath batch_vector_path(int fidelity) {
+    const VectorPath fastest = fastest_vector_path();
+    return fastest == VectorPath::avx512vl && fidelity == STEWART_MASSLESS ? VectorPath::avx2
+                                                                          : fastest;
+}
+
+bool vector_path_available(VectorPath path) {  // (each path's CPU runs the ones before it)
+    return int(path) <= int(fastest_vector_path());
 }
 
 QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
@@ -86,6 +100,9 @@ QuadModel quad_model(const PlatformGeometry &g, const LumpedBody &body,
 
 unsigned closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &rows,
                           const stewart_inverse_batch_outputs &out, size_t row) {
+#ifdef STEWART_HAVE_AVX512VL_KERNEL
+    if (path == VectorPath::avx512vl) return closed_form_quad_avx512vl(m, rows, out, row);
+#endif
 #ifdef STEWART_HAVE_AVX2_KERNEL
     if (path == VectorPath::avx2) return closed_form_quad_avx2(m, rows, out, row);
 #endif
@@ -96,6 +113,10 @@ unsigned closed_form_quad(VectorPath path, const QuadModel &m, const QuadRows &r
 size_t closed_form_quad_run(VectorPath path, const QuadModel &m, const QuadRows &rows,
                             const stewart_inverse_batch_outputs &out, size_t row, size_t blocks,
                             unsigned &left) {
+#ifdef STEWART_HAVE_AVX512VL_KERNEL
+    if (path == VectorPath::avx512vl)
+        return closed_form_quad_avx512vl_run(m, rows, out, row, blocks, left);
+#endif
 #ifdef STEWART_HAVE_AVX2_KERNEL
     if (path == VectorPath::avx2) return closed_form_quad_avx2_run(m, rows, out, row, blocks, left);
 #endif

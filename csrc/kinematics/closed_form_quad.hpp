@@ -44,6 +44,10 @@ unsigned closed_form_quad_portable(const QuadModel &m, const QuadRows &rows,
 unsigned closed_form_quad_avx2(const QuadModel &m, const QuadRows &rows,
                                const stewart_inverse_batch_outputs &out, size_t row);
 
+// The same with AVX-512F, VL and DQ too (their 32 registers; call only where the CPU has all five).
+unsigned closed_form_quad_avx512vl(const QuadModel &m, const QuadRows &rows,
+                                   const stewart_inverse_batch_outputs &out, size_t row);
+
 // closed_form_quad_portable on blocks (>= 1) of four rows in a row, rows row.. (rows: the first
 // block's inputs), until a block leaves a row to the scalar path: returns the blocks written, and
 // in left the mask of the last of them (0 where none leaves a row).
@@ -54,5 +58,9 @@ size_t closed_form_quad_portable_run(const QuadModel &m, const QuadRows &rows,
 size_t closed_form_quad_avx2_run(const QuadModel &m, const QuadRows &rows,
                                  const stewart_inverse_batch_outputs &out, size_t row,
                                  size_t blocks, unsigned &left);
+// The same with AVX-512F, VL and DQ too.
+size_t closed_form_quad_avx512vl_run(const QuadModel &m, const QuadRows &rows,
+                                     const stewart_inverse_batch_outputs &out, size_t row,
+                                     size_t blocks, unsigned &left);
 
 }  // namespace stewart

@@ -293,9 +293,15 @@ stewart_model *framed_model() {
 
 std::vector<stewart::VectorPath> kernels() {
     std::vector<stewart::VectorPath> paths = {stewart::VectorPath::portable};
-    if (stewart::vector_path_available(stewart::VectorPath::avx2))
-        paths.push_back(stewart::VectorPath::avx2);
+    for (stewart::VectorPath path : {stewart::VectorPath::avx2, stewart::VectorPath::avx512vl})
+        if (stewart::vector_path_available(path)) paths.push_back(path);
     return paths;
+}
+
+const char *kernel_name(stewart::VectorPath path) {
+    return path == stewart::VectorPath::avx512vl ? "avx512vl"
+           : path == stewart::VectorPath::avx2   ? "avx2"
+                                                 : "portable";
 }
 
 void on_every_kernel(stewart_model *m, bool exact) {
@@ -306,7 +312,7 @@ void on_every_kernel(stewart_model *m, bool exact) {
             compare(m, fidelity, path, exact, kinematic_error, force_error);
             std::printf("%s kernel, %s: largest relative difference %.2g (lengths, rates, "
                         "accelerations), %.2g x condition (forces, base wrench)\n",
-                        path == stewart::VectorPath::avx2 ? "avx2" : "portable",
+                        kernel_name(path),
                         fidelity ? "massless" : "kinematic", kinematic_error, force_error);
         }
     stewart_model_free(m);
@@ -450,6 +456,33 @@ static void test_a_rows_numbers_do_not_depend_on_its_block(void) {
     stewart_model_free(m);
 }
 
+// The AVX-512VL kernel is the AVX2 kernel's source with more registers: the same operations, so
+// every output and status the same bits (on the thesis platform and the general geometry).
+static void test_avx512vl_kernel_gives_the_avx2_bits(void) {
+    if (!stewart::vector_path_available(stewart::VectorPath::avx512vl))
+        TEST_IGNORE_MESSAGE("no AVX-512VL kernel on this CPU or build");
+    for (stewart_model *m : {thesis_model(), general_model()}) {
+        TEST_ASSERT_NOT_NULL(m);
+        Rows rows = test_rows(m, 13);
+        for (int fidelity : {STEWART_KINEMATIC, STEWART_MASSLESS}) {
+            stewart_inverse_options o;
+            stewart_inverse_options_default(&o);
+            o.fidelity = fidelity;
+            const Result avx2 = run(m, o, rows, stewart::VectorPath::avx2);
+            const Result avx512vl = run(m, o, rows, stewart::VectorPath::avx512vl);
+            TEST_ASSERT_EQUAL_size_t(avx2.messages, avx512vl.messages);
+            for (size_t j = 0; j < rows.n; ++j) {
+                char where[40];
+                std::snprintf(where, sizeof where, "row %zu", j);
+                TEST_ASSERT_EQUAL_INT_MESSAGE(avx2.status[j], avx512vl.status[j], where);
+                TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&avx2.rows[j], &avx512vl.rows[j],
+                                                 sizeof avx2.rows[j], where);
+            }
+        }
+        stewart_model_free(m);
+    }
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_thesis_platform);
@@ -459,5 +492,6 @@ int main(void) {
     RUN_TEST(test_kernel_takes_ordinary_rows);
     RUN_TEST(test_any_row_order_gives_the_same_forces);
     RUN_TEST(test_a_rows_numbers_do_not_depend_on_its_block);
+    RUN_TEST(test_avx512vl_kernel_gives_the_avx2_bits);
     return UNITY_END();
 }
