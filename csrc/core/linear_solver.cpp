@@ -161,22 +161,10 @@ void choose_group_orders(Planning &pl) {
             a[row_local[row] * width + c] = reference[t];
             nz[row_local[row] * width + c] = p.structural[t];
         }
-        const std::vector<double> sample = a;
-        const std::vector<char> sample_structure = nz;
         const std::vector<int> order = choose_pivot_order(a, nz, mg, ng, width, g.program);
         g.has_program = !order.empty();
         g.structure = nz;
         if (g.has_program) {
-            // Second order k keeps the first order's pivot row k off column k.
-            g.second_orders.resize(ng);
-            for (int k = 0; k < ng; ++k) {
-                SecondOrder &second = g.second_orders[k];
-                a = sample, nz = sample_structure;
-                const std::vector<int> rows =
-                    choose_pivot_order(a, nz, mg, ng, width, second.program, order[k], k);
-                second.usable = !rows.empty();
-                for (int r : rows) second.rows.push_back(g.rows[r]);
-            }
             std::vector<int> rows(mg);
             for (int r = 0; r < mg; ++r) rows[r] = g.rows[order[r]];
             g.rows = rows;
@@ -249,24 +237,6 @@ void find_fill(BlockPlan &p) {
     }
 }
 
-// Stage 7, the second orders' places: each value of a group moves to its row's place in the
-// second order, in the same column.
-void place_second_orders(const Mechanism &m, BlockPlan &p) {
-    std::vector<int> second_local(m.equations, -1);
-    for (BlockGroup &g : p.groups)
-        for (SecondOrder &second : g.second_orders) {
-            if (!second.usable) continue;
-            const int width = static_cast<int>(g.cols.size()) + p.border;
-            for (size_t r = 0; r < second.rows.size(); ++r)
-                second_local[second.rows[r]] = static_cast<int>(r);
-            for (int dest : g.value_dest) {
-                const int first_local = (dest - g.offset) / width, column = (dest - g.offset) % width;
-                second.value_dest.push_back(g.offset +
-                                            second_local[g.rows[first_local]] * width + column);
-            }
-        }
-}
-
 }  // namespace
 
 std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
@@ -279,7 +249,6 @@ std::shared_ptr<const BlockPlan> plan_blocks(const Mechanism &m) {
     choose_group_orders(pl);
     if (!lay_out_workspace(pl)) return nullptr;
     find_fill(*plan);
-    place_second_orders(m, *plan);
     return plan;
 }
 
@@ -375,10 +344,8 @@ public:
         : m_(m), p_(*m.block_plan), ws_(p_.workspace), coupling_(p_.coupling_row.size()),
           pivot_(p_.pivots), inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
-          coupling_fixed_row_(p_.coupling_row.size()), program_used_(p_.groups.size(), nullptr),
-          rows_used_(p_.groups.size(), nullptr),
+          coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0),
           dirty_(p_.groups.size(), 0) {
-        for (size_t gi = 0; gi < p_.groups.size(); ++gi) rows_used_[gi] = p_.groups[gi].rows.data();
         // Fixed coordinate -> its identity row, for the transposed solve.
         std::vector<int> row_of(m.coordinates, -1);
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
@@ -436,7 +403,6 @@ public:
                 const size_t size = g.rows.size() * (g.cols.size() + p_.border);
                 std::fill(ws_.begin() + g.offset, ws_.begin() + g.offset + size, 0.0);
                 dirty_[gi] = 0;
-                rows_used_[gi] = g.rows.data();
             }
         }
         std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
@@ -482,18 +448,10 @@ public:
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
-            // Rows stay the first order's unless a second order took the block (then it is dirty,
-            // and the next clearing puts them back).
-            program_used_[gi] = &g.program;
-            if (!g.has_program) {
-                program_used_[gi] = nullptr;
-            } else if (const int refused =
-                           lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
-                       refused >= 0) {
-                program_used_[gi] = factor_second_order(g, refused, values);
-            }
-            if (!program_used_[gi]) {
-                // Neither fixed pivot order is safe here: partial pivoting on fresh values.
+            static_used_[gi] =
+                g.has_program && lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
+            if (!static_used_[gi]) {
+                // The fixed pivot order is unsafe here: partial pivoting on fresh values.
                 std::fill(a, a + mg * (ng + nb), 0.0);
                 for (size_t v = 0; v < g.value_index.size(); ++v)
                     ws_[g.value_dest[v]] = values[g.value_index[v]];
@@ -516,27 +474,6 @@ public:
         return lu_factor(border, nb, nb, nb, border_pivot_.data());
     }
 
-    // The first order of group g refused its pivot `refused`: the second order planned for that
-    // pivot, on fresh values in its rows. Its program, or null if it refuses the block too. Out of
-    // line: the usual factorisation keeps its registers.
-    [[gnu::noinline]] const EliminationProgram *factor_second_order(const BlockGroup &g,
-                                                                    int refused,
-                                                                    const double *values) {
-        const SecondOrder &second = g.second_orders[refused];
-        if (!second.usable) return nullptr;
-        const size_t gi = &g - p_.groups.data();
-        double *a = ws_.data() + g.offset;
-        std::fill(a, a + g.rows.size() * (g.cols.size() + p_.border), 0.0);
-        for (size_t v = 0; v < g.value_index.size(); ++v)
-            ws_[second.value_dest[v]] = values[g.value_index[v]];
-        dirty_[gi] = 1;
-        if (lu_factor_static(a, second.program, inv_diag_.data() + g.pivot_offset) >= 0)
-            return nullptr;
-        rows_used_[gi] = second.rows.data();
-        ++second_orders_;
-        return &second.program;
-    }
-
     void solve(double *x) override {
         std::copy(x, x + m_.equations, rhs_.begin());
         bool fixed_move = false;  // fixed bodies usually stay put: then the coupling adds nothing
@@ -551,11 +488,9 @@ public:
         double *t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            const size_t gi = &g - p_.groups.data();
-            const int *const rows = rows_used_[gi];
-            for (int r = 0; r < mg; ++r) t[r] = rhs_[rows[r]];
-            if (const EliminationProgram *program = program_used_[gi])
-                lu_forward_static(ws_.data() + g.offset, *program, t);
+            for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
+            if (static_used_[&g - p_.groups.data()])
+                lu_forward_static(ws_.data() + g.offset, g.program, t);
             else
                 lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
             for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r];
@@ -570,8 +505,8 @@ public:
         t = group_t_.data();
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            if (const EliminationProgram *program = program_used_[&g - p_.groups.data()])
-                lu_backward_static(ws_.data() + g.offset, *program,
+            if (static_used_[&g - p_.groups.data()])
+                lu_backward_static(ws_.data() + g.offset, g.program,
                                    inv_diag_.data() + g.pivot_offset, t, border_work_.data(),
                                    group_x_.data());
             else
@@ -592,8 +527,8 @@ public:
             const double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
             gather_bodies(group_x_.data(), rhs_.data(), g.cols.data(), ng);
-            if (const EliminationProgram *program = program_used_[gi]) {
-                lu_forward_transposed_static(a, *program, inv_diag_.data() + g.pivot_offset,
+            if (static_used_[gi]) {
+                lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
                                              group_x_.data(), t, border_.data());
             } else {
                 lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
@@ -617,13 +552,12 @@ public:
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             for (int r = ng; r < mg; ++r) t[r] = border_work_[g.first_leftover + r - ng];
-            const size_t gi = &g - p_.groups.data();
-            if (const EliminationProgram *program = program_used_[gi])
-                lu_backward_transposed_static(ws_.data() + g.offset, *program, t);
+            if (static_used_[&g - p_.groups.data()])
+                lu_backward_transposed_static(ws_.data() + g.offset, g.program, t);
             else
                 lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
                                        pivot_.data() + g.pivot_offset, t);
-            scatter_rows(x, t, rows_used_[gi], mg);
+            scatter_rows(x, t, g.rows.data(), mg);
             t += mg;
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
@@ -649,7 +583,6 @@ public:
 
     const char *name() const override { return "bordered block LU"; }
     long fallbacks() const override { return fallbacks_; }
-    long second_orders() const override { return second_orders_; }
 
 private:
     const Mechanism &m_;
@@ -660,12 +593,9 @@ private:
     std::vector<int> border_pivot_;
     std::vector<double> rhs_, group_t_, border_, border_work_, group_x_;
     std::vector<int> coupling_fixed_row_;
-    // Per group: the pivot order it was factored with (null: partial pivoting) and its rows.
-    std::vector<const EliminationProgram *> program_used_;
-    std::vector<const int *> rows_used_;
+    std::vector<char> static_used_;  // per group: factored with its fixed pivot order
     std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
     long fallbacks_ = 0;             // group factorisations that took partial pivoting
-    long second_orders_ = 0;         // group factorisations that took their second order
     // Jacobian values -> workspace: a body's whole rows (7 values from row_from_ to row_to_) and
     // the other runs (other_length_ values from other_from_ to other_to_).
     std::vector<int> row_from_, row_to_, other_from_, other_to_, other_length_, coupling_from_;

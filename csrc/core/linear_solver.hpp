@@ -18,13 +18,6 @@
 
 namespace mbs {
 
-struct SecondOrder {
-    bool usable = false;         // the sample gave an order without the first order's pivot
-    EliminationProgram program;
-    std::vector<int> rows;        // global rows in this pivot order
-    std::vector<int> value_dest;  // per value_index entry of its group: its place in this order
-};
-
 struct BlockGroup {
     std::vector<int> rows, cols;  // global rows and coordinates (cols: whole bodies, 7 in a row)
     int offset = 0;               // of its m x (n + border) row-major block in the workspace
@@ -35,9 +28,6 @@ struct BlockGroup {
     std::vector<int> value_index, value_dest;  // its Jacobian values (for a re-scatter)
     std::vector<char> structure;  // m x width, in pivot order: structural nonzeros and fill
     std::vector<int> fill;        // workspace indices the program fills but no value lands on
-    // Per pivot k of the first order: a second order, tried when the first refuses the block at
-    // k (its pivot can pass through zero as the mechanism moves), which takes k from another row.
-    std::vector<SecondOrder> second_orders;
 };
 
 struct BlockPlan {
@@ -70,9 +60,6 @@ public:
     // since this solver was made (0 for solvers without a plan). A normal path should take none:
     // the fallback repairs even a garbled block, so only this count (and the time) shows it.
     virtual long fallbacks() const { return 0; }
-    // Factorisations of a group block that took its second planned pivot order (the first
-    // refused the block), since this solver was made: not counted in fallbacks().
-    virtual long second_orders() const { return 0; }
 };
 
 enum class LinearSolverKind { Automatic, Dense, Block };

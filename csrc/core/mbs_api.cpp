@@ -198,9 +198,6 @@ double mbs_residual(const mbs_data *d) { return d ? d->state.stats.residual : 0;
 long mbs_linear_fallbacks(const mbs_data *d) {
     return d && d->state.linear ? d->state.linear->fallbacks() : 0;
 }
-long mbs_linear_second_orders(const mbs_data *d) {
-    return d && d->state.linear ? d->state.linear->second_orders() : 0;
-}
 
 mbs_status mbs_joint_reaction(const mbs_data *d, int joint, int side, double force[3],
                                   double torque[3]) {

@@ -36,8 +36,7 @@ inline void subtract_multiple_planned(double *__restrict y, const double *__rest
 }  // namespace
 
 std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nz, int m, int n,
-                                    int width, EliminationProgram &p, int avoid_row,
-                                    int avoid_column) {
+                                    int width, EliminationProgram &p) {
     std::vector<int> order(m);
     std::iota(order.begin(), order.end(), 0);
     p = EliminationProgram{};
@@ -50,16 +49,13 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
         std::swap(order[r], order[s]);
     };
     for (int k = 0; k < n; ++k) {
-        // The avoided row takes no part in its column's choice, not even in the maximum.
-        const auto avoided = [&](int i) { return k == avoid_column && order[i] == avoid_row; };
         double column_max = 0;
-        for (int i = k; i < m; ++i)
-            if (!avoided(i)) column_max = std::fmax(column_max, std::fabs(a[i * width + k]));
+        for (int i = k; i < m; ++i) column_max = std::fmax(column_max, std::fabs(a[i * width + k]));
         if (!(column_max > 0)) return {};
         // Threshold Markowitz: among acceptable pivots, the row with the fewest nonzeros.
         int best = -1, best_count = 0;
         for (int i = k; i < m; ++i) {
-            if (avoided(i) || !(std::fabs(a[i * width + k]) >= kThreshold * column_max)) continue;
+            if (!(std::fabs(a[i * width + k]) >= kThreshold * column_max)) continue;
             int count = 0;
             for (int c = k; c < width; ++c) count += nz[i * width + c];
             if (best < 0 || count < best_count) best = i, best_count = count;
@@ -110,7 +106,7 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
     return order;
 }
 
-int lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
+bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
     const int w = p.width;
     const int *below_row = p.below_row.data(), *below_start = p.below_start.data();
     const int *span_begin = p.span_begin.data(), *pair_end = p.pair_end.data(),
@@ -121,7 +117,7 @@ int lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
     for (int k = 0; k < p.n; ++k) {
         const double *__restrict row_k = a + k * w;
         const double pivot = row_k[k];
-        if (pivot == 0.0) return k;
+        if (pivot == 0.0) return false;
         const double inv = 1.0 / pivot;
         inv_diag[k] = inv;
         // One update over [span_begin, span_end) per row, its bounds from the program.
@@ -136,9 +132,9 @@ int lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag) {
             if (size > largest) largest = size;
             subtract_multiple_planned(row_i, row_k, l, c0, ce, single);
         }
-        if (!(largest <= limit)) return k;
+        if (!(largest <= limit)) return false;
     }
-    return -1;
+    return true;
 }
 
 void lu_forward_static(const double *a, const EliminationProgram &p, double *t) {

@@ -32,16 +32,14 @@ struct EliminationProgram {
 // Chooses the pivot order on the m x width row-major sample `a` (overwritten) with structure
 // `nonzero` (overwritten with the fill), both in the current row order: returns the new order of
 // the rows (a permutation of 0..m-1) and fills the program, or returns an empty vector if some
-// column has no usable pivot. With avoid_column >= 0, the row first at avoid_row (before any
-// swap) is never the pivot of that column (a second order that avoids a first order's pivot).
+// column has no usable pivot.
 std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nonzero, int m,
-                                    int n, int width, EliminationProgram &program,
-                                    int avoid_row = -1, int avoid_column = -1);
+                                    int n, int width, EliminationProgram &program);
 
 // In place on the block (rows in pivot order), with the reciprocal pivots in inv_diag (n values:
-// the solves multiply, since a division chain would bound their speed). If a pivot is below
-// the threshold, returns that pivot's k (the first such), else -1.
-int lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag);
+// the solves multiply, since a division chain would bound their speed). False if a pivot is below
+// the threshold.
+bool lu_factor_static(double *a, const EliminationProgram &p, double *inv_diag);
 // t <- L^-1 t.
 void lu_forward_static(const double *a, const EliminationProgram &p, double *t);
 // x <- U^-1 (t - W y).

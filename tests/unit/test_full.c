@@ -193,16 +193,15 @@ static void test_thesis_formulation_agrees(void) {
         }
 }
 
-/* The core's block solver factors each leg block in its planned pivot order; when that order
- * refuses the block at pivot k (a multiplier over 1e3), the second order planned for k (another
- * row there), and partial pivoting only if that refuses too: it repairs even a garbled block (a
- * wrong body row in the scatter gave right forces at 2.4 times the instructions). One instance
- * (solve_ok solves on a fresh copy each time, whose count would be lost), every 10 ms for 12 s:
- * along the four thesis manoeuvres the first order always; along the combined one some planned
- * pivots pass through zero (21 of 1201 steps, at k = 4, 11, 12 or 13 of one leg block), all taken
- * by their second order, so no fallback. Without the second orders, 21 fall back; with the
- * scatter broken, every step does. */
-static long fallbacks_along(int which, long *second_orders) {
+/* The core's block solver factors each leg block in its planned pivot order; partial pivoting is
+ * its fallback for a block that order refuses (a multiplier over 1e3), and it repairs even a
+ * garbled block: a wrong body row in the scatter gave right forces at 2.4 times the instructions.
+ * One instance (solve_ok solves on a fresh copy each time, whose count would be lost), every
+ * 10 ms for 12 s: along the four thesis manoeuvres no fallback; along the combined one at most
+ * 25 of 1201 steps (21 seen: one leg block's last planned pivot passes through zero there, e.g.
+ * 0.015 ... 0.0017, -0.0016 ... -0.015 on consecutive steps, a structural limit of the fixed
+ * order, not a fault). With the scatter broken, every step falls back. */
+static long fallbacks_along(int which) {
     const stewart_inverse_options o = test_options(STEWART_FULL);
     char msg[STEWART_MESSAGE_SIZE];
     stewart_inverse *inverse = stewart_inverse_create(model, &o, msg, sizeof msg);
@@ -216,21 +215,14 @@ static long fallbacks_along(int which, long *second_orders) {
         TEST_ASSERT_EQUAL_INT(0, out.iterations);
     }
     const long fallbacks = mbs_linear_fallbacks(stewart_inverse_mechanism(inverse));
-    *second_orders = mbs_linear_second_orders(stewart_inverse_mechanism(inverse));
     stewart_inverse_free(inverse);
     return fallbacks;
 }
 
 static void test_normal_path_rarely_falls_back(void) {
-    long second_orders = 0;
-    for (int w = 2; w <= 5; ++w) {
-        TEST_ASSERT_EQUAL_INT(0, (int)fallbacks_along(w, &second_orders));
-        TEST_ASSERT_EQUAL_INT(0, (int)second_orders);
-    }
-    const long combined = fallbacks_along(6, &second_orders);
-    printf("combined: %ld fallbacks, %ld second orders\n", combined, second_orders);
-    TEST_ASSERT_EQUAL_INT(0, (int)combined);
-    TEST_ASSERT_TRUE(second_orders > 0);
+    for (int w = 2; w <= 5; ++w) TEST_ASSERT_EQUAL_INT(0, (int)fallbacks_along(w));
+    const long combined = fallbacks_along(6);
+    TEST_ASSERT_TRUE_MESSAGE(combined <= 25, "the combined manoeuvre fell back more than 25 times");
 }
 
 /* |det| of the test's own leg Jacobian (rows n_k and (P_k - p) x n_k / radius, from the closed

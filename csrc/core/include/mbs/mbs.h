@@ -138,9 +138,6 @@ double mbs_residual(const mbs_data *d);
  * partial pivoting since d was made (0 for the dense solver). The results stay right either way;
  * a normal path should take no fallback, so this is what shows one. */
 long mbs_linear_fallbacks(const mbs_data *d);
-/* How many times a group's first planned pivot order refused the block and its second planned
- * order took it (no partial pivoting: not counted in mbs_linear_fallbacks) since d was made. */
-long mbs_linear_second_orders(const mbs_data *d);
 /* Force and torque (world frame; torque about the body's centre of mass) that a joint puts on
  * its body i (side 0) or body j (side 1). */
 mbs_status mbs_joint_reaction(const mbs_data *d, int joint, int side, double force[3],
