@@ -7,6 +7,8 @@
 
 #include "core/assembly.hpp"
 #include "core/dense_lu.hpp"
+#include "core/lane_lu.hpp"
+#include "core/lane_sets.hpp"
 
 namespace mbs {
 
@@ -24,7 +26,8 @@ void fixed_body_rows(const Mechanism &m, std::vector<int> &rows, std::vector<int
 
 // Jacobian values at the reference configuration, and which are structurally nonzero: nonzero
 // at the reference or at random configurations (zeros at all of them are structural).
-void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::vector<char> &nonzero) {
+void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::vector<char> &nonzero,
+                     std::vector<std::vector<double>> &randoms) {
     std::vector<double> q(m.coordinates), values(m.values());
     std::vector<DriverValue> drive(m.drivers);
     place_at_reference(m, q.data());
@@ -39,6 +42,7 @@ void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::ve
         for (DriverValue &d : drive) d.value = uniform(random);
         assemble_jacobian(m, q.data(), drive.data(), values.data());
         for (int t = 0; t < m.values(); ++t) nonzero[t] |= values[t] != 0.0;
+        randoms.push_back(values);
     }
 }
 
@@ -136,38 +140,100 @@ bool assign_rows(Planning &pl) {
     return pl.leftover + static_cast<int>(p.border_rows.size()) == p.border;
 }
 
-// Stage 4, the pivot order and elimination program of each group, from sample values.
+// Stage 4, the pivot order and elimination program of each group, from sample values. Groups
+// whose Jacobian values land on the same places of their blocks (the legs of a hexapod) form a
+// family: they take the union of their structures and one order whose every pivot passes the
+// threshold in each member's sample, so that they share one program and the lane kernels
+// (lane_lu.hpp) factor their blocks side by side; if no such order exists, each its own.
 void choose_group_orders(Planning &pl) {
     const Mechanism &m = pl.m;
     BlockPlan &p = pl.p;
     std::vector<double> reference;
-    sample_jacobian(m, reference, p.structural);
+    std::vector<std::vector<double>> randoms;
+    sample_jacobian(m, reference, p.structural, randoms);
     std::vector<int> row_local(m.equations, -1), col_local(m.coordinates, -1);
     for (int c = 0; c < p.border; ++c) col_local[p.border_cols[c]] = c;  // + n below
-    for (BlockGroup &g : p.groups) {
+    struct Sample {
+        std::vector<double> a;    // reference values, rows in joint order
+        std::vector<std::vector<double>> randoms;  // the same at the random configurations
+        std::vector<char> nz;     // structural nonzeros
+        std::vector<char> lands;  // where any value lands
+    };
+    const int ngroups = static_cast<int>(p.groups.size());
+    std::vector<Sample> samples(ngroups);
+    for (int gi = 0; gi < ngroups; ++gi) {
+        const BlockGroup &g = p.groups[gi];
         const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
         const int width = ng + p.border;
-        std::vector<double> a(mg * width, 0.0);
-        std::vector<char> nz(mg * width, 0);
+        Sample &sample = samples[gi];
+        sample.a.assign(mg * width, 0.0);
+        sample.nz.assign(mg * width, 0);
+        sample.lands.assign(mg * width, 0);
+        sample.randoms.assign(randoms.size(), std::vector<double>(mg * width, 0.0));
         for (int r = 0; r < mg; ++r) row_local[g.rows[r]] = r;
         std::vector<int> group_col(m.coordinates, -1);
         for (int c = 0; c < ng; ++c) group_col[g.cols[c]] = c;
         for (int t = 0; t < m.values(); ++t) {
             const int row = m.pattern_row[t], col = m.pattern_col[t];
-            if (pl.row_group[row] != &g - p.groups.data()) continue;
+            if (pl.row_group[row] != gi) continue;
             const int c = group_col[col] >= 0 ? group_col[col]
                           : col_local[col] >= 0 ? ng + col_local[col] : -1;
             if (c < 0) continue;  // a fixed body's column
-            a[row_local[row] * width + c] = reference[t];
-            nz[row_local[row] * width + c] = p.structural[t];
+            sample.a[row_local[row] * width + c] = reference[t];
+            sample.nz[row_local[row] * width + c] = p.structural[t];
+            sample.lands[row_local[row] * width + c] = 1;
+            for (size_t r = 0; r < randoms.size(); ++r)
+                sample.randoms[r][row_local[row] * width + c] = randoms[r][t];
         }
-        const std::vector<int> order = choose_pivot_order(a, nz, mg, ng, width, g.program);
+    }
+    std::vector<int> family(ngroups);  // its first group
+    for (int gi = 0; gi < ngroups; ++gi) {
+        family[gi] = gi;
+        for (int f = 0; f < gi && family[gi] == gi; ++f)
+            if (family[f] == f && p.groups[f].rows.size() == p.groups[gi].rows.size() &&
+                p.groups[f].cols.size() == p.groups[gi].cols.size() &&
+                samples[f].lands == samples[gi].lands)
+                family[gi] = f;
+    }
+    for (int gi = 0; gi < ngroups; ++gi)
+        for (size_t i = 0; i < samples[gi].nz.size(); ++i)
+            samples[family[gi]].nz[i] |= samples[gi].nz[i];
+    auto take_order = [&](BlockGroup &g, const std::vector<int> &order, const std::vector<char> &nz) {
         g.has_program = !order.empty();
         g.structure = nz;
         if (g.has_program) {
-            std::vector<int> rows(mg);
-            for (int r = 0; r < mg; ++r) rows[r] = g.rows[order[r]];
+            std::vector<int> rows(order.size());
+            for (size_t r = 0; r < order.size(); ++r) rows[r] = g.rows[order[r]];
             g.rows = rows;
+        }
+    };
+    for (int f = 0; f < ngroups; ++f) {
+        if (family[f] != f) continue;
+        std::vector<int> members;
+        for (int gi = f; gi < ngroups; ++gi)
+            if (family[gi] == f) members.push_back(gi);
+        const int mg = static_cast<int>(p.groups[f].rows.size()),
+                  ng = static_cast<int>(p.groups[f].cols.size()), width = ng + p.border;
+        std::vector<std::vector<double>> a;
+        for (int gi : members) {  // the order must suit the random configurations too
+            a.push_back(samples[gi].a);
+            for (const std::vector<double> &r : samples[gi].randoms) a.push_back(r);
+        }
+        std::vector<char> nz = samples[f].nz;
+        EliminationProgram program;
+        const std::vector<int> order = members.size() > 1
+            ? choose_common_pivot_order(a, nz, mg, ng, width, program) : std::vector<int>{};
+        for (int gi : members) {
+            if (!order.empty()) {
+                p.groups[gi].program = program;
+                take_order(p.groups[gi], order, nz);
+            } else {  // one group, or no order that suits every member: each its own
+                std::vector<double> own = samples[gi].a;
+                std::vector<char> own_nz = samples[f].nz;
+                take_order(p.groups[gi],
+                           choose_pivot_order(own, own_nz, mg, ng, width, p.groups[gi].program),
+                           own_nz);
+            }
         }
     }
 }
@@ -230,8 +296,7 @@ void find_fill(BlockPlan &p) {
         if (!g.has_program) continue;
         const int width = static_cast<int>(g.cols.size()) + p.border;
         std::vector<char> scattered(g.rows.size() * width, 0);
-        for (size_t v = 0; v < g.value_dest.size(); ++v)
-            if (p.structural[g.value_index[v]]) scattered[g.value_dest[v] - g.offset] = 1;
+        for (size_t v = 0; v < g.value_dest.size(); ++v) scattered[g.value_dest[v] - g.offset] = 1;
         for (size_t i = 0; i < scattered.size(); ++i)
             if (g.structure[i] && !scattered[i]) g.fill.push_back(g.offset + static_cast<int>(i));
     }
@@ -340,8 +405,13 @@ constexpr int kOneHub = MBS_BODY_COORDINATES;
 
 class BlockSolver final : public LinearSolver {
 public:
-    explicit BlockSolver(const Mechanism &m)
-        : m_(m), p_(*m.block_plan), ws_(p_.workspace), coupling_(p_.coupling_row.size()),
+    // kernels: the lane kernels for groups of the same shape, or null for one group at a time.
+    BlockSolver(const Mechanism &m, const LaneKernels *kernels)
+        : m_(m), p_(*m.block_plan), kernels_(kernels),
+          lanes_(plan_lane_sets(p_, kernels ? kernels->lanes : 0)),
+          lane_ws_(lanes_.workspace), lane_inv_(lanes_.pivots), lane_t_(lanes_.vectors),
+          lane_x_(lanes_.vectors), group_t_offset_(p_.groups.size()),
+          ws_(p_.workspace), coupling_(p_.coupling_row.size()),
           pivot_(p_.pivots), inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
           coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0),
@@ -352,9 +422,23 @@ public:
         for (size_t k = 0; k < p_.coupling_col.size(); ++k)
             coupling_fixed_row_[k] = row_of[p_.coupling_col[k]];
         coupling_from_.resize(p_.coupling_row.size());
+        // The blocks of groups in lane sets take their values by the sets' gathers (and by the
+        // group's own list on a fallback), not by runs.
+        std::vector<char> in_lanes(p_.workspace, 0);
+        for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
+            const BlockGroup &g = p_.groups[gi];
+            if (lanes_.set_of[gi] >= 0)
+                std::fill(in_lanes.begin() + g.offset,
+                          in_lanes.begin() + g.offset + g.rows.size() * (g.cols.size() + p_.border), 1);
+        }
+        int t_offset = 0;
+        for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
+            group_t_offset_[gi] = t_offset;
+            t_offset += static_cast<int>(p_.groups[gi].rows.size());
+        }
         std::vector<int> run_from, run_to, run_length;
         for (int t = 0; t < m.values(); ++t) {
-            const int d = p_.value_dest[t];
+            const int d = p_.value_dest[t] >= 0 && in_lanes[p_.value_dest[t]] ? -1 : p_.value_dest[t];
             // Values go as runs: a joint's row of one body's 7 values lands on 7 neighbouring
             // places of its block. Identically zero values (e.g. in an identity) ride along: a
             // zero lands where the block holds a zero already.
@@ -397,6 +481,7 @@ public:
         // the fill needs clearing. Others (and the border system) are cleared whole.
         for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
             const BlockGroup &g = p_.groups[gi];
+            if (lanes_.set_of[gi] >= 0) continue;  // its block is written on a fallback only
             if (g.has_program && !dirty_[gi]) {
                 for (int f : g.fill) ws_[f] = 0.0;
             } else {
@@ -444,12 +529,21 @@ public:
         }
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
+        for (const LaneSet &s : lanes_.sets) {
+            const unsigned refused = kernels_->factor(
+                lane_ws_.data() + s.offset, s.lead->program, lane_inv_.data() + s.pivots, values,
+                s.entries.data(), s.gather.data(), static_cast<int>(s.entries.size()),
+                s.fill.data(), static_cast<int>(s.fill.size()));
+            for (size_t l = 0; l < s.groups.size(); ++l)
+                static_used_[s.groups[l]] = !((refused >> l) & 1u);
+        }
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
             double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
-            static_used_[gi] =
-                g.has_program && lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
+            if (lanes_.set_of[gi] < 0)
+                static_used_[gi] = g.has_program &&
+                                   lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
             if (!static_used_[gi]) {
                 // The fixed pivot order is unsafe here: partial pivoting on fresh values.
                 std::fill(a, a + mg * (ng + nb), 0.0);
@@ -458,6 +552,17 @@ public:
                 dirty_[gi] = 1;
                 ++fallbacks_;
                 if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+            }
+            if (in_lane(gi)) {  // its leftover rows' border columns, from its lane
+                const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
+                const int L = lanes_.lanes;
+                for (int r = ng; r < mg; ++r) {
+                    const double *from = lane_ws_.data() + s.offset + (r * s.width + ng) * L +
+                                         lanes_.lane_of[gi];
+                    double *to = border + (g.first_leftover + r - ng) * nb;
+                    for (int c = 0; c < nb; ++c) to[c] = from[c * L];
+                }
+                continue;
             }
             for (int r = ng; r < mg; ++r) {
                 const double *from = a + r * (ng + nb) + ng;
@@ -484,17 +589,31 @@ public:
         if (fixed_move)
             for (size_t k = 0; k < coupling_.size(); ++k)
                 rhs_[p_.coupling_row[k]] -= coupling_[k] * x[p_.coupling_col[k]];
-        const int nb = p_.border;
-        double *t = group_t_.data();
+        const int nb = p_.border, L = lanes_.lanes;
+        for (const LaneSet &s : lanes_.sets) {
+            double *t = lane_t_.data() + s.vectors;
+            for (int l = 0; l < L; ++l) {
+                const std::vector<int> &rows = lane_group(s, l).rows;
+                for (int r = 0; r < s.mg; ++r) t[r * L + l] = rhs_[rows[r]];
+            }
+            kernels_->forward(lane_ws_.data() + s.offset, s.lead->program, t);
+        }
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            const size_t gi = &g - p_.groups.data();
+            if (in_lane(gi)) {
+                const double *t = lane_t_.data() + lanes_.sets[lanes_.set_of[gi]].vectors +
+                                  lanes_.lane_of[gi];
+                for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r * L];
+                continue;
+            }
+            double *t = group_t_.data() + group_t_offset_[gi];
             for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
-            if (static_used_[&g - p_.groups.data()])
+            if (static_used_[gi])
                 lu_forward_static(ws_.data() + g.offset, g.program, t);
             else
                 lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
             for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r];
-            t += mg;
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
         for (size_t r = 0; r < p_.border_rows.size(); ++r) border_[leftover + r] = rhs_[p_.border_rows[r]];
@@ -502,10 +621,23 @@ public:
         lu_forward(s, nb, nb, nb, border_pivot_.data(), border_.data());
         lu_backward(s, nb, nb, border_.data(), nullptr, border_work_.data());
         for (int c = 0; c < nb; ++c) x[p_.border_cols[c]] = border_work_[c];
-        t = group_t_.data();
+        for (const LaneSet &set : lanes_.sets) {
+            double *xs = lane_x_.data() + set.vectors;
+            kernels_->backward(lane_ws_.data() + set.offset, set.lead->program,
+                               lane_inv_.data() + set.pivots, lane_t_.data() + set.vectors,
+                               border_work_.data(), xs);
+            for (size_t l = 0; l < set.groups.size(); ++l) {
+                if (!static_used_[set.groups[l]]) continue;
+                const std::vector<int> &cols = p_.groups[set.groups[l]].cols;
+                for (int c = 0; c < set.ng; ++c) x[cols[c]] = xs[c * L + l];
+            }
+        }
         for (const BlockGroup &g : p_.groups) {
-            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            if (static_used_[&g - p_.groups.data()])
+            const int ng = static_cast<int>(g.cols.size());
+            const size_t gi = &g - p_.groups.data();
+            if (in_lane(gi)) continue;
+            const double *t = group_t_.data() + group_t_offset_[gi];
+            if (static_used_[gi])
                 lu_backward_static(ws_.data() + g.offset, g.program,
                                    inv_diag_.data() + g.pivot_offset, t, border_work_.data(),
                                    group_x_.data());
@@ -513,19 +645,34 @@ public:
                 lu_backward(ws_.data() + g.offset, ng, ng + nb, t, border_work_.data(),
                             group_x_.data());
             for (int c = 0; c < ng; ++c) x[g.cols[c]] = group_x_[c];
-            t += mg;
         }
     }
 
     void solve_transposed(double *x) override {
         std::copy(x, x + m_.coordinates, rhs_.begin());  // g, coordinate order
-        const int nb = p_.border;
+        const int nb = p_.border, L = lanes_.lanes;
         for (int c = 0; c < nb; ++c) border_[c] = rhs_[p_.border_cols[c]];
-        double *t = group_t_.data();
+        for (const LaneSet &s : lanes_.sets) {
+            double *mu = lane_t_.data() + s.vectors;
+            for (int l = 0; l < L; ++l) {
+                const std::vector<int> &cols = lane_group(s, l).cols;
+                for (int c = 0; c < s.ng; ++c) mu[c * L + l] = rhs_[cols[c]];
+            }
+            kernels_->forward_transposed(lane_ws_.data() + s.offset, s.lead->program,
+                                         lane_inv_.data() + s.pivots, mu);
+        }
+        // The border's sums in group order, as one group at a time would make them.
         for (const BlockGroup &g : p_.groups) {
-            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            const double *a = ws_.data() + g.offset;
+            const int ng = static_cast<int>(g.cols.size());
             const size_t gi = &g - p_.groups.data();
+            if (in_lane(gi)) {
+                const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
+                subtract_carried(lane_ws_.data() + s.offset + lanes_.lane_of[gi], s.lead->program,
+                                 lane_t_.data() + s.vectors + lanes_.lane_of[gi], L);
+                continue;
+            }
+            double *t = group_t_.data() + group_t_offset_[gi];
+            const double *a = ws_.data() + g.offset;
             gather_bodies(group_x_.data(), rhs_.data(), g.cols.data(), ng);
             if (static_used_[gi]) {
                 lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
@@ -538,7 +685,6 @@ public:
                     for (int b = 0; b < nb; ++b) border_[b] -= w[b] * mu;
                 }
             }
-            t += mg;
         }
         const double *s = ws_.data() + p_.border_offset;
         if (nb == kOneHub) {
@@ -548,17 +694,31 @@ public:
             lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
             lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
         }
-        t = group_t_.data();
+        for (const LaneSet &set : lanes_.sets) {
+            double *t = lane_t_.data() + set.vectors;
+            for (int l = 0; l < L; ++l) {
+                const int first = lane_group(set, l).first_leftover - set.ng;
+                for (int r = set.ng; r < set.mg; ++r) t[r * L + l] = border_work_[first + r];
+            }
+            kernels_->backward_transposed(lane_ws_.data() + set.offset, set.lead->program, t);
+            for (size_t l = 0; l < set.groups.size(); ++l) {
+                if (!static_used_[set.groups[l]]) continue;
+                const std::vector<int> &rows = p_.groups[set.groups[l]].rows;
+                for (int r = 0; r < set.mg; ++r) x[rows[r]] = t[r * L + l];
+            }
+        }
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            const size_t gi = &g - p_.groups.data();
+            if (in_lane(gi)) continue;
+            double *t = group_t_.data() + group_t_offset_[gi];
             for (int r = ng; r < mg; ++r) t[r] = border_work_[g.first_leftover + r - ng];
-            if (static_used_[&g - p_.groups.data()])
+            if (static_used_[gi])
                 lu_backward_transposed_static(ws_.data() + g.offset, g.program, t);
             else
                 lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
                                        pivot_.data() + g.pivot_offset, t);
             scatter_rows(x, t, g.rows.data(), mg);
-            t += mg;
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
         for (size_t r = 0; r < p_.border_rows.size(); ++r) x[p_.border_rows[r]] = border_work_[leftover + r];
@@ -585,8 +745,30 @@ public:
     long fallbacks() const override { return fallbacks_; }
 
 private:
+    // True if group gi was factored in its lane (false on a fallback: its scalar block holds it).
+    bool in_lane(size_t gi) const { return lanes_.set_of[gi] >= 0 && static_used_[gi]; }
+    // Lane l's group; a pad lane (beyond the set's groups) repeats lane 0's, so its values stay
+    // those of a regular block.
+    const BlockGroup &lane_group(const LaneSet &s, int l) const {
+        return p_.groups[s.groups[l < static_cast<int>(s.groups.size()) ? l : 0]];
+    }
+    // border -= W^T mu for one lane's group (a and mu at the lane, stride L): each border entry
+    // takes the products in the order lu_forward_transposed_static gives them.
+    void subtract_carried(const double *a, const EliminationProgram &p, const double *mu, int L) {
+        double *carried = border_.data() - p.n;
+        for (int k = 0; k < p.n; ++k) {
+            const double mk = mu[k * L];
+            const double *row = a + k * p.width * L;
+            for (int c = p.carried_begin[k]; c < p.span_end[k]; ++c) carried[c] -= mk * row[c * L];
+        }
+    }
+
     const Mechanism &m_;
     const BlockPlan &p_;
+    const LaneKernels *kernels_;
+    LaneLayout lanes_;
+    std::vector<double> lane_ws_, lane_inv_, lane_t_, lane_x_;  // interleaved (lane_sets.hpp)
+    std::vector<int> group_t_offset_;  // per group: its right-hand side's place in group_t_
     std::vector<double> ws_, coupling_;
     std::vector<int> pivot_;
     std::vector<double> inv_diag_;  // reciprocal pivots of the groups factored by their program
@@ -607,9 +789,15 @@ private:
 }  // namespace
 
 std::unique_ptr<LinearSolver> make_linear_solver(const Mechanism &m, LinearSolverKind kind) {
-    if (kind != LinearSolverKind::Dense && m.block_plan) return std::make_unique<BlockSolver>(m);
+    if (kind != LinearSolverKind::Dense && m.block_plan)
+        return std::make_unique<BlockSolver>(m, &lane_kernels_for_cpu());
     if (kind == LinearSolverKind::Block && !m.block_plan) return nullptr;
     return std::make_unique<DenseSolver>(m);
+}
+
+std::unique_ptr<LinearSolver> make_block_solver(const Mechanism &m, const LaneKernels *lanes) {
+    if (!m.block_plan) return nullptr;
+    return std::make_unique<BlockSolver>(m, lanes);
 }
 
 }  // namespace mbs

@@ -64,6 +64,12 @@ public:
 
 enum class LinearSolverKind { Automatic, Dense, Block };
 
+// Block: the bordered-block LU with the widest lane kernels this CPU runs (lane_lu.hpp).
 std::unique_ptr<LinearSolver> make_linear_solver(const Mechanism &m, LinearSolverKind kind);
+
+struct LaneKernels;
+// The bordered-block LU with the given lane kernels, or one group at a time if null (tests and
+// benchmarks compare them); null if the mechanism has no block structure.
+std::unique_ptr<LinearSolver> make_block_solver(const Mechanism &m, const LaneKernels *lanes);
 
 }  // namespace mbs

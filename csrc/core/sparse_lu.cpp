@@ -37,45 +37,70 @@ inline void subtract_multiple_planned(double *__restrict y, const double *__rest
 
 std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nz, int m, int n,
                                     int width, EliminationProgram &p) {
+    std::vector<std::vector<double>> samples(1);
+    samples[0].swap(a);
+    std::vector<int> order = choose_common_pivot_order(samples, nz, m, n, width, p);
+    a.swap(samples[0]);
+    return order;
+}
+
+std::vector<int> choose_common_pivot_order(std::vector<std::vector<double>> &samples,
+                                           std::vector<char> &nz, int m, int n, int width,
+                                           EliminationProgram &p) {
     std::vector<int> order(m);
     std::iota(order.begin(), order.end(), 0);
     p = EliminationProgram{};
     p.m = m, p.n = n, p.width = width;
     auto swap_rows = [&](int r, int s) {
         for (int c = 0; c < width; ++c) {
-            std::swap(a[r * width + c], a[s * width + c]);
+            for (std::vector<double> &a : samples) std::swap(a[r * width + c], a[s * width + c]);
             std::swap(nz[r * width + c], nz[s * width + c]);
         }
         std::swap(order[r], order[s]);
     };
+    std::vector<double> column_max(samples.size());
     for (int k = 0; k < n; ++k) {
-        double column_max = 0;
-        for (int i = k; i < m; ++i) column_max = std::fmax(column_max, std::fabs(a[i * width + k]));
-        if (!(column_max > 0)) return {};
-        // Threshold Markowitz: among acceptable pivots, the row with the fewest nonzeros.
+        for (size_t s = 0; s < samples.size(); ++s) {
+            column_max[s] = 0;
+            for (int i = k; i < m; ++i)
+                column_max[s] = std::fmax(column_max[s], std::fabs(samples[s][i * width + k]));
+            if (!(column_max[s] > 0)) return {};
+        }
+        // Threshold Markowitz: among pivots acceptable in every sample, the row with the fewest
+        // nonzeros.
         int best = -1, best_count = 0;
+        double best_ratio = 0;
         for (int i = k; i < m; ++i) {
-            if (!(std::fabs(a[i * width + k]) >= kThreshold * column_max)) continue;
+            double ratio = INFINITY;  // the smallest over the samples of |a(i, k)| / column max
+            for (size_t s = 0; s < samples.size(); ++s)
+                ratio = std::fmin(ratio, std::fabs(samples[s][i * width + k]) / column_max[s]);
+            if (!(ratio >= kThreshold)) continue;
             int count = 0;
             for (int c = k; c < width; ++c) count += nz[i * width + c];
-            if (best < 0 || count < best_count) best = i, best_count = count;
+            // Ties of a common order go to the pivot largest against its column in every sample.
+            const bool better = best < 0 || count < best_count ||
+                                (samples.size() > 1 && count == best_count && ratio > best_ratio);
+            if (better) best = i, best_count = count, best_ratio = ratio;
         }
+        if (best < 0) return {};
         if (best != k) swap_rows(k, best);
         p.below_start.push_back(static_cast<int>(p.below.size()));
         p.right_start.push_back(static_cast<int>(p.right.size()));
         for (int c = k + 1; c < width; ++c)
             if (nz[k * width + c]) p.right.push_back(c);
-        const double pivot = a[k * width + k];
         for (int i = k + 1; i < m; ++i) {
             if (!nz[i * width + k]) continue;
             p.below.push_back(order[i]);  // by identity: later swaps move rows
-            const double l = a[i * width + k] / pivot;
-            a[i * width + k] = l;
-            for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t) {
-                const int c = p.right[t];
-                a[i * width + c] -= l * a[k * width + c];
-                nz[i * width + c] = 1;
+            for (std::vector<double> &a : samples) {
+                const double l = a[i * width + k] / a[k * width + k];
+                a[i * width + k] = l;
+                for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t) {
+                    const int c = p.right[t];
+                    a[i * width + c] -= l * a[k * width + c];
+                }
             }
+            for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t)
+                nz[i * width + p.right[t]] = 1;
         }
     }
     p.below_start.push_back(static_cast<int>(p.below.size()));

@@ -35,6 +35,11 @@ struct EliminationProgram {
 // column has no usable pivot.
 std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nonzero, int m,
                                     int n, int width, EliminationProgram &program);
+// The same for blocks of one structure (`nonzero`) with several samples: each pivot must pass the
+// threshold in every sample, so that the blocks share one order and one program (lane_lu.hpp).
+std::vector<int> choose_common_pivot_order(std::vector<std::vector<double>> &samples,
+                                           std::vector<char> &nonzero, int m, int n, int width,
+                                           EliminationProgram &program);
 
 // In place on the block (rows in pivot order), with the reciprocal pivots in inv_diag (n values:
 // the solves multiply, since a division chain would bound their speed). False if a pivot is below

@@ -1,0 +1,50 @@
+// The static LU of sparse_lu.hpp run on several group blocks at once, one block per vector lane:
+// groups with the same elimination program (the legs of a hexapod) are stored interleaved, entry
+// e of lane l at e * lanes + l, and every step of the program is one vector operation for all of
+// them. Each lane does the scalar code's operations in its order (the core is compiled without
+// fused multiply-add contraction), so every lane's results are the scalar path's, bit for bit.
+//
+// Kernels are built for 2 lanes (GCC's portable vector extension: SSE2 on every x86-64, NEON on
+// AArch64), 4 (AVX2) and 8 (AVX-512F); `lane_kernels_for_cpu` picks the widest this CPU runs.
+#pragma once
+
+#include "core/sparse_lu.hpp"
+
+namespace mbs {
+
+struct LaneKernels {
+    const char *name;
+    int lanes;
+    // Zeroes the fill entries, gathers values[gather[e * lanes + l]] into entry entries[e] of
+    // lane l, then factors every lane in place; returns a bit per lane whose factorisation the
+    // scalar lu_factor_static would have refused (a zero or a refused pivot).
+    unsigned (*factor)(double *a, const EliminationProgram &p, double *inv_diag,
+                       const double *values, const int *entries, const int *gather, int count,
+                       const int *fill, int fill_count);
+    // t <- L^-1 t (m values per lane).
+    void (*forward)(const double *a, const EliminationProgram &p, double *t);
+    // x <- U^-1 (t - W y), y shared by every lane (the border's unknowns).
+    void (*backward)(const double *a, const EliminationProgram &p, const double *inv_diag,
+                     const double *t, const double *y, double *x);
+    // mu <- U^-T mu (n values per lane); the carried columns' part (W^T mu) is left to the caller,
+    // which must subtract it from the shared border in group order to keep the scalar sums.
+    void (*forward_transposed)(const double *a, const EliminationProgram &p,
+                               const double *inv_diag, double *mu);
+    // t <- L^-T t (m values per lane).
+    void (*backward_transposed)(const double *a, const EliminationProgram &p, double *t);
+};
+
+extern const LaneKernels kLaneKernelsPairs;
+#ifdef MBS_HAVE_AVX2_LANES
+extern const LaneKernels kLaneKernelsAvx2;
+#endif
+#ifdef MBS_HAVE_AVX512_LANES
+extern const LaneKernels kLaneKernelsAvx512;
+#endif
+
+// The widest kernels this CPU runs (chosen when a solver is made: no global state).
+const LaneKernels &lane_kernels_for_cpu();
+// Every kernel built and runnable here, widest first (tests compare them all); returns the count.
+int runnable_lane_kernels(const LaneKernels *out[3]);
+
+}  // namespace mbs

@@ -1,0 +1,86 @@
+#include "core/lane_sets.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace mbs {
+
+namespace {
+
+// A group's values as (block entry, value index), by entry.
+std::vector<std::pair<int, int>> entry_values(const BlockGroup &g) {
+    std::vector<std::pair<int, int>> ev;
+    for (size_t v = 0; v < g.value_dest.size(); ++v)
+        ev.emplace_back(g.value_dest[v] - g.offset, g.value_index[v]);
+    std::sort(ev.begin(), ev.end());
+    return ev;
+}
+
+// True if the lane kernels may run b's block in a's program: the same shape, every index table
+// the kernels read, the same fill and values on the same entries.
+bool same_shape(const BlockGroup &a, const BlockGroup &b, const std::vector<std::pair<int, int>> &ea,
+                const std::vector<std::pair<int, int>> &eb) {
+    const EliminationProgram &p = a.program, &q = b.program;
+    if (!a.has_program || !b.has_program || a.rows.size() != b.rows.size() ||
+        a.cols.size() != b.cols.size() || p.m != q.m || p.n != q.n || p.width != q.width)
+        return false;
+    if (p.below_start != q.below_start || p.below != q.below || p.below_at != q.below_at ||
+        p.below_row != q.below_row || p.span_begin != q.span_begin || p.span_end != q.span_end ||
+        p.own_end != q.own_end || p.carried_begin != q.carried_begin)
+        return false;
+    if (ea.size() != eb.size() || a.fill.size() != b.fill.size()) return false;
+    for (size_t i = 0; i < ea.size(); ++i)
+        if (ea[i].first != eb[i].first) return false;
+    for (size_t i = 0; i < a.fill.size(); ++i)
+        if (a.fill[i] - a.offset != b.fill[i] - b.offset) return false;
+    return true;
+}
+
+}  // namespace
+
+LaneLayout plan_lane_sets(const BlockPlan &p, int lanes) {
+    LaneLayout out;
+    out.lanes = lanes;
+    const int ngroups = static_cast<int>(p.groups.size());
+    out.set_of.assign(ngroups, -1);
+    out.lane_of.assign(ngroups, -1);
+    if (lanes < 2) return out;
+    std::vector<std::vector<std::pair<int, int>>> values(ngroups);
+    for (int g = 0; g < ngroups; ++g) values[g] = entry_values(p.groups[g]);
+    for (int g = 0; g < ngroups; ++g) {
+        if (out.set_of[g] >= 0 || !p.groups[g].has_program) continue;
+        std::vector<int> members{g};
+        for (int h = g + 1; h < ngroups && static_cast<int>(members.size()) < lanes; ++h)
+            if (out.set_of[h] < 0 && same_shape(p.groups[g], p.groups[h], values[g], values[h]))
+                members.push_back(h);
+        if (members.size() < 2) continue;
+        LaneSet s;
+        s.groups = members;
+        s.lead = &p.groups[g];
+        s.mg = static_cast<int>(s.lead->rows.size());
+        s.ng = static_cast<int>(s.lead->cols.size());
+        s.width = s.ng + p.border;
+        s.offset = out.workspace;
+        s.pivots = out.pivots;
+        s.vectors = out.vectors;
+        out.workspace += s.mg * s.width * lanes;
+        out.pivots += s.ng * lanes;
+        out.vectors += s.mg * lanes;
+        for (const auto &ev : values[g]) s.entries.push_back(ev.first);
+        s.gather.resize(s.entries.size() * lanes);
+        for (int l = 0; l < lanes; ++l) {
+            const int from = l < static_cast<int>(members.size()) ? members[l] : g;
+            for (size_t e = 0; e < s.entries.size(); ++e)
+                s.gather[e * lanes + l] = values[from][e].second;
+        }
+        for (int f : s.lead->fill) s.fill.push_back(f - s.lead->offset);
+        for (size_t l = 0; l < members.size(); ++l) {
+            out.set_of[members[l]] = static_cast<int>(out.sets.size());
+            out.lane_of[members[l]] = static_cast<int>(l);
+        }
+        out.sets.push_back(std::move(s));
+    }
+    return out;
+}
+
+}  // namespace mbs

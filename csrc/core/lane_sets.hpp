@@ -1,0 +1,34 @@
+// Which group blocks of a bordered-block plan share a vector register (lane_lu.hpp): groups
+// whose elimination programs, fill and value positions are the same (a hexapod's legs), packed
+// in group order into sets of at most `lanes`, with the interleaved workspace of each set.
+#pragma once
+
+#include <vector>
+
+#include "core/linear_solver.hpp"
+
+namespace mbs {
+
+struct LaneSet {
+    std::vector<int> groups;             // its groups, in group order; lane l is groups[l]
+    const BlockGroup *lead = nullptr;    // groups[0]: its program and shape serve every lane
+    int mg = 0, ng = 0, width = 0;
+    int offset = 0;                      // interleaved block: entry e of lane l at offset + e L + l
+    int pivots = 0;                      // reciprocal pivots: pivot k of lane l at pivots + k L + l
+    int vectors = 0;                     // right-hand sides: row r of lane l at vectors + r L + l
+    std::vector<int> entries;            // block entries a Jacobian value lands on
+    std::vector<int> gather;             // per entry and lane: the value's index (pad lanes: lane 0's)
+    std::vector<int> fill;               // entries the program fills and no value lands on
+};
+
+struct LaneLayout {
+    int lanes = 0;
+    std::vector<LaneSet> sets;
+    std::vector<int> set_of, lane_of;    // per group: its set and lane, or -1
+    int workspace = 0, pivots = 0, vectors = 0;  // sizes of the three interleaved arrays
+};
+
+// Sets of two or more groups; none when lanes < 2.
+LaneLayout plan_lane_sets(const BlockPlan &p, int lanes);
+
+}  // namespace mbs
