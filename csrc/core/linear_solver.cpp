@@ -156,6 +156,7 @@ void choose_group_orders(Planning &pl) {
     struct Sample {
         std::vector<double> a;    // reference values, rows in joint order
         std::vector<std::vector<double>> randoms;  // the same at the random configurations
+        std::vector<int> rows;    // the group's rows in the order of the above
         std::vector<char> nz;     // structural nonzeros
         std::vector<char> lands;  // where any value lands
     };
@@ -185,6 +186,25 @@ void choose_group_orders(Planning &pl) {
             for (size_t r = 0; r < randoms.size(); ++r)
                 sample.randoms[r][row_local[row] * width + c] = randoms[r][t];
         }
+        // Rows sorted by where their values land (stable: joint order among equals), so that
+        // groups of the same shape list their rows alike whatever order the joints came in.
+        std::vector<int> perm(mg);
+        for (int r = 0; r < mg; ++r) perm[r] = r;
+        const std::vector<char> &lands = sample.lands;
+        std::stable_sort(perm.begin(), perm.end(), [&](int x, int y) {
+            return std::lexicographical_compare(lands.begin() + y * width, lands.begin() + (y + 1) * width,
+                                                lands.begin() + x * width, lands.begin() + (x + 1) * width);
+        });
+        auto permute = [&](auto &v) {
+            auto copy = v;
+            for (int r = 0; r < mg; ++r)
+                std::copy(copy.begin() + perm[r] * width, copy.begin() + (perm[r] + 1) * width,
+                          v.begin() + r * width);
+        };
+        permute(sample.a), permute(sample.nz), permute(sample.lands);
+        for (std::vector<double> &r : sample.randoms) permute(r);
+        sample.rows.resize(mg);
+        for (int r = 0; r < mg; ++r) sample.rows[r] = g.rows[perm[r]];
     }
     std::vector<int> family(ngroups);  // its first group
     for (int gi = 0; gi < ngroups; ++gi) {
@@ -198,12 +218,13 @@ void choose_group_orders(Planning &pl) {
     for (int gi = 0; gi < ngroups; ++gi)
         for (size_t i = 0; i < samples[gi].nz.size(); ++i)
             samples[family[gi]].nz[i] |= samples[gi].nz[i];
-    auto take_order = [&](BlockGroup &g, const std::vector<int> &order, const std::vector<char> &nz) {
+    auto take_order = [&](int gi, const std::vector<int> &order, const std::vector<char> &nz) {
+        BlockGroup &g = p.groups[gi];
         g.has_program = !order.empty();
         g.structure = nz;
         if (g.has_program) {
             std::vector<int> rows(order.size());
-            for (size_t r = 0; r < order.size(); ++r) rows[r] = g.rows[order[r]];
+            for (size_t r = 0; r < order.size(); ++r) rows[r] = samples[gi].rows[order[r]];
             g.rows = rows;
         }
     };
@@ -214,24 +235,30 @@ void choose_group_orders(Planning &pl) {
             if (family[gi] == f) members.push_back(gi);
         const int mg = static_cast<int>(p.groups[f].rows.size()),
                   ng = static_cast<int>(p.groups[f].cols.size()), width = ng + p.border;
-        std::vector<std::vector<double>> a;
-        for (int gi : members) {  // the order must suit the random configurations too
-            a.push_back(samples[gi].a);
-            for (const std::vector<double> &r : samples[gi].randoms) a.push_back(r);
-        }
-        std::vector<char> nz = samples[f].nz;
+        // One order for all: suiting every member at the reference and at the random
+        // configurations if there is one (fewer fallbacks as they move), else at the reference.
+        std::vector<char> nz;
         EliminationProgram program;
-        const std::vector<int> order = members.size() > 1
-            ? choose_common_pivot_order(a, nz, mg, ng, width, program) : std::vector<int>{};
+        std::vector<int> order;
+        for (int with_randoms = 1; with_randoms >= 0 && order.empty() && members.size() > 1;
+             --with_randoms) {
+            std::vector<std::vector<double>> a;
+            for (int gi : members) {
+                a.push_back(samples[gi].a);
+                if (with_randoms)
+                    for (const std::vector<double> &r : samples[gi].randoms) a.push_back(r);
+            }
+            nz = samples[f].nz;
+            order = choose_common_pivot_order(a, nz, mg, ng, width, program);
+        }
         for (int gi : members) {
             if (!order.empty()) {
                 p.groups[gi].program = program;
-                take_order(p.groups[gi], order, nz);
+                take_order(gi, order, nz);
             } else {  // one group, or no order that suits every member: each its own
                 std::vector<double> own = samples[gi].a;
                 std::vector<char> own_nz = samples[f].nz;
-                take_order(p.groups[gi],
-                           choose_pivot_order(own, own_nz, mg, ng, width, p.groups[gi].program),
+                take_order(gi, choose_pivot_order(own, own_nz, mg, ng, width, p.groups[gi].program),
                            own_nz);
             }
         }

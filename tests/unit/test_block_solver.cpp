@@ -2,13 +2,16 @@
  * random configurations, and with a planned pivot forced to zero so the refactorisation must
  * fall back to partial pivoting. Solves and transposed solves must agree. Also the assembly's
  * shared evaluation of a cylindrical joint with its distance driver against the two joints
- * evaluated alone. The core alone: no platform header. */
+ * evaluated alone. The lane kernels (the legs side by side, one per vector lane) against one leg
+ * at a time, bit for bit. The core alone: no platform header. */
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 #include <vector>
 
 #include "core/assembly.hpp"
+#include "core/lane_lu.hpp"
+#include "core/lane_sets.hpp"
 #include "core/linear_solver.hpp"
 #include "core/mbs_handles.hpp"
 #include "unity.h"
@@ -217,6 +220,65 @@ static void test_paired_joints_write_the_separate_rows(void) {
     }
 }
 
+/* The six legs share one elimination program (one pivot order suits every leg's samples, their
+ * rows listed alike whatever order the joints came in), so a set of lanes takes them all where
+ * the vector has room. */
+static void test_legs_share_one_program(void) {
+    const mbs::BlockPlan &plan = *model->mechanism.block_plan;
+    for (const mbs::BlockGroup &g : plan.groups) {
+        TEST_ASSERT_TRUE(g.program.below == plan.groups[0].program.below);
+        TEST_ASSERT_TRUE(g.program.span_end == plan.groups[0].program.span_end);
+    }
+    const mbs::LaneLayout eight = mbs::plan_lane_sets(plan, 8), four = mbs::plan_lane_sets(plan, 4),
+                          two = mbs::plan_lane_sets(plan, 2);
+    TEST_ASSERT_EQUAL(1, (int)eight.sets.size());
+    TEST_ASSERT_EQUAL(6, (int)eight.sets[0].groups.size());
+    TEST_ASSERT_EQUAL(2, (int)four.sets.size()); /* 4 + 2 (two pad lanes) */
+    TEST_ASSERT_EQUAL(3, (int)two.sets.size());
+    TEST_ASSERT_EQUAL(0, (int)mbs::plan_lane_sets(plan, 1).sets.size());
+}
+
+/* Each lane does the scalar path's operations in its order: solves and transposed solves of the
+ * lane solvers (every kernel this CPU runs) equal one group at a time bit for bit, at the
+ * reference, at random configurations, and with one leg's planned pivot refused (that leg alone
+ * falls back to partial pivoting, its lane's results unused). */
+static void test_lanes_equal_one_group_at_a_time(void) {
+    const mbs::Mechanism &m = model->mechanism;
+    const mbs::LaneKernels *kernels[3];
+    const int count = mbs::runnable_lane_kernels(kernels);
+    TEST_ASSERT_TRUE(count >= 1);
+    auto scalar = mbs::make_block_solver(m, nullptr);
+    std::mt19937 random(17);
+    std::uniform_real_distribution<double> uniform(-1, 1);
+    const std::vector<double> q = reference(m);
+    for (int trial = 0; trial < 12; ++trial) {
+        std::vector<double> p = q;
+        if (trial > 0)
+            for (double &v : p) v += 0.03 * uniform(random);
+        std::vector<double> values = jacobian_at(m, p);
+        if (trial == 5) values[m.block_plan->groups[3].value_index[0]] *= 1e-6;
+        TEST_ASSERT_TRUE(scalar->factor(values.data()));
+        std::vector<double> rhs(m.equations);
+        for (double &v : rhs) v = uniform(random);
+        std::vector<double> x0 = rhs, y0 = rhs;
+        scalar->solve(x0.data());
+        scalar->solve_transposed(y0.data());
+        for (int k = 0; k < count; ++k) {
+            auto lanes = mbs::make_block_solver(m, kernels[k]);
+            TEST_ASSERT_TRUE(lanes->factor(values.data()));
+            TEST_ASSERT_EQUAL_MESSAGE(trial == 5 ? 1 : 0, (int)lanes->fallbacks(), kernels[k]->name);
+            std::vector<double> x = rhs, y = rhs;
+            lanes->solve(x.data());
+            lanes->solve_transposed(y.data());
+            TEST_ASSERT_EQUAL_MEMORY_MESSAGE(x0.data(), x.data(), x.size() * sizeof(double),
+                                             kernels[k]->name);
+            TEST_ASSERT_EQUAL_MEMORY_MESSAGE(y0.data(), y.data(), y.size() * sizeof(double),
+                                             kernels[k]->name);
+        }
+    }
+    TEST_ASSERT_EQUAL(1, (int)scalar->fallbacks());
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_structure_detected);
@@ -224,5 +286,7 @@ int main(void) {
     RUN_TEST(test_fallback_when_a_planned_pivot_is_tiny);
     RUN_TEST(test_repeated_factorisations);
     RUN_TEST(test_paired_joints_write_the_separate_rows);
+    RUN_TEST(test_legs_share_one_program);
+    RUN_TEST(test_lanes_equal_one_group_at_a_time);
     return UNITY_END();
 }
