@@ -186,11 +186,34 @@ void choose_group_orders(Planning &pl) {
             for (size_t r = 0; r < randoms.size(); ++r)
                 sample.randoms[r][row_local[row] * width + c] = randoms[r][t];
         }
-        // Rows sorted by where their values land (stable: joint order among equals), so that
-        // groups of the same shape list their rows alike whatever order the joints came in.
+        sample.rows = g.rows;
+    }
+    // Rows sorted by where their values land (stable: joint order among equals) make groups of
+    // the same shape list their rows alike whatever order the joints came in; taken only where
+    // that joins more groups into families than the joint order does (it changes the order, so
+    // the pivots, of mechanisms whose joint order lists them alike already).
+    auto families = [&](const std::vector<Sample> &ss, std::vector<int> &family) {
+        int count = 0;
+        family.assign(ngroups, 0);
+        for (int gi = 0; gi < ngroups; ++gi) {
+            family[gi] = gi;
+            for (int f = 0; f < gi && family[gi] == gi; ++f)
+                if (family[f] == f && p.groups[f].rows.size() == p.groups[gi].rows.size() &&
+                    p.groups[f].cols.size() == p.groups[gi].cols.size() &&
+                    ss[f].lands == ss[gi].lands)
+                    family[gi] = f;
+            count += family[gi] == gi;
+        }
+        return count;
+    };
+    std::vector<Sample> sorted = samples;
+    for (int gi = 0; gi < ngroups; ++gi) {
+        const int mg = static_cast<int>(p.groups[gi].rows.size());
+        const int width = static_cast<int>(p.groups[gi].cols.size()) + p.border;
+        Sample &sample = sorted[gi];
         std::vector<int> perm(mg);
         for (int r = 0; r < mg; ++r) perm[r] = r;
-        const std::vector<char> &lands = sample.lands;
+        const std::vector<char> lands = sample.lands;
         std::stable_sort(perm.begin(), perm.end(), [&](int x, int y) {
             return std::lexicographical_compare(lands.begin() + y * width, lands.begin() + (y + 1) * width,
                                                 lands.begin() + x * width, lands.begin() + (x + 1) * width);
@@ -203,17 +226,12 @@ void choose_group_orders(Planning &pl) {
         };
         permute(sample.a), permute(sample.nz), permute(sample.lands);
         for (std::vector<double> &r : sample.randoms) permute(r);
-        sample.rows.resize(mg);
-        for (int r = 0; r < mg; ++r) sample.rows[r] = g.rows[perm[r]];
+        for (int r = 0; r < mg; ++r) sample.rows[r] = p.groups[gi].rows[perm[r]];
     }
-    std::vector<int> family(ngroups);  // its first group
-    for (int gi = 0; gi < ngroups; ++gi) {
-        family[gi] = gi;
-        for (int f = 0; f < gi && family[gi] == gi; ++f)
-            if (family[f] == f && p.groups[f].rows.size() == p.groups[gi].rows.size() &&
-                p.groups[f].cols.size() == p.groups[gi].cols.size() &&
-                samples[f].lands == samples[gi].lands)
-                family[gi] = f;
+    std::vector<int> family, family_sorted;
+    if (families(sorted, family_sorted) < families(samples, family)) {
+        samples.swap(sorted);
+        family.swap(family_sorted);
     }
     for (int gi = 0; gi < ngroups; ++gi)
         for (size_t i = 0; i < samples[gi].nz.size(); ++i)
@@ -235,13 +253,27 @@ void choose_group_orders(Planning &pl) {
             if (family[gi] == f) members.push_back(gi);
         const int mg = static_cast<int>(p.groups[f].rows.size()),
                   ng = static_cast<int>(p.groups[f].cols.size()), width = ng + p.border;
-        // One order for all: suiting every member at the reference and at the random
-        // configurations if there is one (fewer fallbacks as they move), else at the reference.
+        // Each member's own order on the family's structure; if their programs differ (the same
+        // program may come from orders that swap rows of one structure), one order for all
+        // (suiting every member at the reference and at the random configurations if there is
+        // one, else at the reference), and if there is none, each its own after all.
+        std::vector<std::vector<int>> own(members.size());
+        std::vector<std::vector<char>> own_nz(members.size());
+        std::vector<EliminationProgram> own_program(members.size());
+        bool alike = true;
+        for (size_t i = 0; i < members.size(); ++i) {
+            std::vector<double> a = samples[members[i]].a;
+            own_nz[i] = samples[f].nz;
+            own[i] = choose_pivot_order(a, own_nz[i], mg, ng, width, own_program[i]);
+            const EliminationProgram &a0 = own_program[0], &ai = own_program[i];
+            alike = alike && !own[i].empty() && ai.below_start == a0.below_start &&
+                    ai.below == a0.below && ai.span_begin == a0.span_begin &&
+                    ai.span_end == a0.span_end;
+        }
         std::vector<char> nz;
         EliminationProgram program;
         std::vector<int> order;
-        for (int with_randoms = 1; with_randoms >= 0 && order.empty() && members.size() > 1;
-             --with_randoms) {
+        for (int with_randoms = 1; with_randoms >= 0 && order.empty() && !alike; --with_randoms) {
             std::vector<std::vector<double>> a;
             for (int gi : members) {
                 a.push_back(samples[gi].a);
@@ -251,15 +283,13 @@ void choose_group_orders(Planning &pl) {
             nz = samples[f].nz;
             order = choose_common_pivot_order(a, nz, mg, ng, width, program);
         }
-        for (int gi : members) {
+        for (size_t i = 0; i < members.size(); ++i) {
             if (!order.empty()) {
-                p.groups[gi].program = program;
-                take_order(gi, order, nz);
-            } else {  // one group, or no order that suits every member: each its own
-                std::vector<double> own = samples[gi].a;
-                std::vector<char> own_nz = samples[f].nz;
-                take_order(gi, choose_pivot_order(own, own_nz, mg, ng, width, p.groups[gi].program),
-                           own_nz);
+                p.groups[members[i]].program = program;
+                take_order(members[i], order, nz);
+            } else {
+                p.groups[members[i]].program = own_program[i];
+                take_order(members[i], own[i], own_nz[i]);
             }
         }
     }

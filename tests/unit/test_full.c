@@ -193,14 +193,16 @@ static void test_thesis_formulation_agrees(void) {
         }
 }
 
-/* The core's block solver factors each leg block in its planned pivot order; partial pivoting is
- * its fallback for a block that order refuses (a multiplier over 1e3), and it repairs even a
- * garbled block: a wrong body row in the scatter gave right forces at 2.4 times the instructions.
- * One instance (solve_ok solves on a fresh copy each time, whose count would be lost), every
- * 10 ms for 12 s: along the four thesis manoeuvres no fallback; along the combined one at most
- * 25 of 1201 steps (21 seen: one leg block's last planned pivot passes through zero there, e.g.
- * 0.015 ... 0.0017, -0.0016 ... -0.015 on consecutive steps, a structural limit of the fixed
- * order, not a fault). With the scatter broken, every step falls back. */
+/* The core's block solver factors each leg block in its planned pivot order (one order for the
+ * six legs, so that they factor side by side in vector lanes); partial pivoting is its fallback
+ * for a block that order refuses (a multiplier over 1e3), and it repairs even a garbled block: a
+ * wrong body row in the scatter gave right forces at 2.4 times the instructions. One instance
+ * (solve_ok solves on a fresh copy each time, whose count would be lost), every 10 ms for 12 s:
+ * along the thesis manoeuvres 3 fallbacks in all (the third's; 0 with each leg's own order, which
+ * the lanes cannot share), along the combined one 5 (21 with each leg's own order): a planned
+ * pivot passing through zero as a leg turns, a structural limit of a fixed order, not a fault.
+ * Bounds with a little room: at most 5 and 10 of 1201 steps. With the scatter broken, every step
+ * falls back. */
 static long fallbacks_along(int which) {
     const stewart_inverse_options o = test_options(STEWART_FULL);
     char msg[STEWART_MESSAGE_SIZE];
@@ -220,9 +222,11 @@ static long fallbacks_along(int which) {
 }
 
 static void test_normal_path_rarely_falls_back(void) {
-    for (int w = 2; w <= 5; ++w) TEST_ASSERT_EQUAL_INT(0, (int)fallbacks_along(w));
+    long thesis = 0;
+    for (int w = 2; w <= 5; ++w) thesis += fallbacks_along(w);
+    TEST_ASSERT_TRUE_MESSAGE(thesis <= 5, "the thesis manoeuvres fell back more than 5 times");
     const long combined = fallbacks_along(6);
-    TEST_ASSERT_TRUE_MESSAGE(combined <= 25, "the combined manoeuvre fell back more than 25 times");
+    TEST_ASSERT_TRUE_MESSAGE(combined <= 10, "the combined manoeuvre fell back more than 10 times");
 }
 
 /* |det| of the test's own leg Jacobian (rows n_k and (P_k - p) x n_k / radius, from the closed
