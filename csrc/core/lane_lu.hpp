@@ -26,10 +26,10 @@ struct LaneKernels {
     // x <- U^-1 (t - W y), y shared by every lane (the border's unknowns).
     void (*backward)(const double *a, const EliminationProgram &p, const double *inv_diag,
                      const double *t, const double *y, double *x);
-    // mu <- U^-T mu (n values per lane); the carried columns' part (W^T mu) is left to the caller,
-    // which must subtract it from the shared border in group order to keep the scalar sums.
+    // mu <- U^-T mu (n values per lane); carried <- -W^T mu (width - n values per lane, from
+    // zero: the caller adds each lane's to the shared border, group by group).
     void (*forward_transposed)(const double *a, const EliminationProgram &p,
-                               const double *inv_diag, double *mu);
+                               const double *inv_diag, double *mu, double *carried);
     // t <- L^-T t (m values per lane).
     void (*backward_transposed)(const double *a, const EliminationProgram &p, double *t);
 };

@@ -63,6 +63,8 @@ LaneLayout plan_lane_sets(const BlockPlan &p, int lanes) {
         s.offset = out.workspace;
         s.pivots = out.pivots;
         s.vectors = out.vectors;
+        s.carried = out.carried;
+        out.carried += p.border * lanes;
         out.workspace += s.mg * s.width * lanes;
         out.pivots += s.ng * lanes;
         out.vectors += s.mg * lanes;

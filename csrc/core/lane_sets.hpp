@@ -16,6 +16,7 @@ struct LaneSet {
     int offset = 0;                      // interleaved block: entry e of lane l at offset + e L + l
     int pivots = 0;                      // reciprocal pivots: pivot k of lane l at pivots + k L + l
     int vectors = 0;                     // right-hand sides: row r of lane l at vectors + r L + l
+    int carried = 0;                     // -W^T mu: border column c of lane l at carried + c L + l
     std::vector<int> entries;            // block entries a Jacobian value lands on
     std::vector<int> gather;             // per entry and lane: the value's index (pad lanes: lane 0's)
     std::vector<int> fill;               // entries the program fills and no value lands on
@@ -25,7 +26,7 @@ struct LaneLayout {
     int lanes = 0;
     std::vector<LaneSet> sets;
     std::vector<int> set_of, lane_of;    // per group: its set and lane, or -1
-    int workspace = 0, pivots = 0, vectors = 0;  // sizes of the three interleaved arrays
+    int workspace = 0, pivots = 0, vectors = 0, carried = 0;  // sizes of the interleaved arrays
 };
 
 // Sets of two or more groups; none when lanes < 2.

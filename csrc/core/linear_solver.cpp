@@ -467,7 +467,8 @@ public:
         : m_(m), p_(*m.block_plan), kernels_(kernels),
           lanes_(plan_lane_sets(p_, kernels ? kernels->lanes : 0)),
           lane_ws_(lanes_.workspace), lane_inv_(lanes_.pivots), lane_t_(lanes_.vectors),
-          lane_x_(lanes_.vectors), group_t_offset_(p_.groups.size()),
+          lane_x_(lanes_.vectors), lane_carried_(lanes_.carried),
+          group_t_offset_(p_.groups.size()),
           ws_(p_.workspace), coupling_(p_.coupling_row.size()),
           pivot_(p_.pivots), inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
@@ -716,24 +717,29 @@ public:
                 for (int c = 0; c < s.ng; ++c) mu[c * L + l] = rhs_[cols[c]];
             }
             kernels_->forward_transposed(lane_ws_.data() + s.offset, s.lead->program,
-                                         lane_inv_.data() + s.pivots, mu);
+                                         lane_inv_.data() + s.pivots, mu,
+                                         lane_carried_.data() + s.carried);
         }
-        // The border's sums in group order, as one group at a time would make them.
+        // Each group's -W^T mu, from zero, added to the border in group order: the lanes make
+        // theirs side by side, one group at a time the same sums.
         for (const BlockGroup &g : p_.groups) {
             const int ng = static_cast<int>(g.cols.size());
             const size_t gi = &g - p_.groups.data();
             if (in_lane(gi)) {
-                const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
-                subtract_carried(lane_ws_.data() + s.offset + lanes_.lane_of[gi], s.lead->program,
-                                 lane_t_.data() + s.vectors + lanes_.lane_of[gi], L);
+                const double *carried = lane_carried_.data() +
+                                        lanes_.sets[lanes_.set_of[gi]].carried + lanes_.lane_of[gi];
+                for (int c = 0; c < nb; ++c) border_[c] += carried[c * L];
                 continue;
             }
             double *t = group_t_.data() + group_t_offset_[gi];
             const double *a = ws_.data() + g.offset;
             gather_bodies(group_x_.data(), rhs_.data(), g.cols.data(), ng);
             if (static_used_[gi]) {
+                double *carried = border_work_.data();
+                std::fill(carried, carried + nb, 0.0);
                 lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
-                                             group_x_.data(), t, border_.data());
+                                             group_x_.data(), t, carried);
+                for (int c = 0; c < nb; ++c) border_[c] += carried[c];
             } else {
                 lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
                 for (int k = 0; k < ng; ++k) {
@@ -809,22 +815,11 @@ private:
     const BlockGroup &lane_group(const LaneSet &s, int l) const {
         return p_.groups[s.groups[l < static_cast<int>(s.groups.size()) ? l : 0]];
     }
-    // border -= W^T mu for one lane's group (a and mu at the lane, stride L): each border entry
-    // takes the products in the order lu_forward_transposed_static gives them.
-    void subtract_carried(const double *a, const EliminationProgram &p, const double *mu, int L) {
-        double *carried = border_.data() - p.n;
-        for (int k = 0; k < p.n; ++k) {
-            const double mk = mu[k * L];
-            const double *row = a + k * p.width * L;
-            for (int c = p.carried_begin[k]; c < p.span_end[k]; ++c) carried[c] -= mk * row[c * L];
-        }
-    }
-
     const Mechanism &m_;
     const BlockPlan &p_;
     const LaneKernels *kernels_;
     LaneLayout lanes_;
-    std::vector<double> lane_ws_, lane_inv_, lane_t_, lane_x_;  // interleaved (lane_sets.hpp)
+    std::vector<double> lane_ws_, lane_inv_, lane_t_, lane_x_, lane_carried_;  // interleaved
     std::vector<int> group_t_offset_;  // per group: its right-hand side's place in group_t_
     std::vector<double> ws_, coupling_;
     std::vector<int> pivot_;

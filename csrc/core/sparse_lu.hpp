@@ -50,7 +50,8 @@ void lu_forward_static(const double *a, const EliminationProgram &p, double *t);
 // x <- U^-1 (t - W y).
 void lu_backward_static(const double *a, const EliminationProgram &p, const double *inv_diag,
                         const double *t, const double *y, double *x);
-// mu <- U^-T g (n values); carried -= W^T mu (width - n values).
+// mu <- U^-T g (n values); carried -= W^T mu (width - n values; the block solver starts it at
+// zero and adds it to the border, as the lane kernels do).
 void lu_forward_transposed_static(const double *a, const EliminationProgram &p,
                                   const double *inv_diag, const double *g, double *mu,
                                   double *carried);
