@@ -17,10 +17,13 @@ int runnable_lane_kernels(const LaneKernels *out[3]) {
     return count;
 }
 
-const LaneKernels &lane_kernels_for_cpu() {
+const LaneKernels &lane_kernels_for(int family) {
     const LaneKernels *kernels[3];
-    runnable_lane_kernels(kernels);
-    return *kernels[0];
+    const int count = runnable_lane_kernels(kernels);
+    const LaneKernels *chosen = kernels[0];
+    for (int k = 0; k < count; ++k)  // widest first: the last with room is the narrowest
+        if (kernels[k]->lanes >= family && kernels[k]->lanes < chosen->lanes) chosen = kernels[k];
+    return *chosen;
 }
 
 }  // namespace mbs

@@ -5,7 +5,10 @@
 // fused multiply-add contraction), so every lane's results are the scalar path's, bit for bit.
 //
 // Kernels are built for 2 lanes (GCC's portable vector extension: SSE2 on every x86-64, NEON on
-// AArch64), 4 (AVX2) and 8 (AVX-512F); `lane_kernels_for_cpu` picks the widest this CPU runs.
+// AArch64), 4 (AVX2) and 8 (AVX-512F); `lane_kernels_for` picks for a plan the narrowest that
+// takes its largest set in one pass, else the widest this CPU runs. (Eight lanes in two AVX2
+// registers were tried: GCC splits the 64-byte vectors poorly, 16.9 k instructions a factorisation
+// of the six legs against 9.6 k in two passes of four.)
 #pragma once
 
 #include "core/sparse_lu.hpp"
@@ -42,9 +45,11 @@ extern const LaneKernels kLaneKernelsAvx2;
 extern const LaneKernels kLaneKernelsAvx512;
 #endif
 
-// The widest kernels this CPU runs (chosen when a solver is made: no global state).
-const LaneKernels &lane_kernels_for_cpu();
 // Every kernel built and runnable here, widest first (tests compare them all); returns the count.
 int runnable_lane_kernels(const LaneKernels *out[3]);
+// For groups whose largest family (groups of one program) has `family` members: the narrowest
+// runnable kernel with room for them all, else the widest (chosen when a solver is made: no
+// global state).
+const LaneKernels &lane_kernels_for(int family);
 
 }  // namespace mbs

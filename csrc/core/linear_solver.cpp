@@ -840,9 +840,19 @@ private:
 
 }  // namespace
 
+namespace {
+// The most groups that share one program (what one pass of the lane kernels could take).
+int largest_family(const BlockPlan &p) {
+    int largest = 1;
+    for (const LaneSet &s : plan_lane_sets(p, static_cast<int>(p.groups.size())).sets)
+        largest = std::max(largest, static_cast<int>(s.groups.size()));
+    return largest;
+}
+}  // namespace
+
 std::unique_ptr<LinearSolver> make_linear_solver(const Mechanism &m, LinearSolverKind kind) {
     if (kind != LinearSolverKind::Dense && m.block_plan)
-        return std::make_unique<BlockSolver>(m, &lane_kernels_for_cpu());
+        return std::make_unique<BlockSolver>(m, &lane_kernels_for(largest_family(*m.block_plan)));
     if (kind == LinearSolverKind::Block && !m.block_plan) return nullptr;
     return std::make_unique<DenseSolver>(m);
 }

@@ -64,7 +64,7 @@ public:
 
 enum class LinearSolverKind { Automatic, Dense, Block };
 
-// Block: the bordered-block LU with the widest lane kernels this CPU runs (lane_lu.hpp).
+// Block: the bordered-block LU with the lane kernels lane_kernels_for chooses (lane_lu.hpp).
 std::unique_ptr<LinearSolver> make_linear_solver(const Mechanism &m, LinearSolverKind kind);
 
 struct LaneKernels;
