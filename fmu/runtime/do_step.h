@@ -20,10 +20,8 @@ extern "C" {
  * fmu_step_not_taken) save the runtime's frame around it; the others run it in fmu_run_step. */
 #if FMU_MODEL_USUAL_STEP
 #define FMU_USUAL_STEP model_usual_step
-#define FMU_USUAL_STEP_REPORTING model_usual_step_reporting
 #else
 #define FMU_USUAL_STEP fmu_run_step
-#define FMU_USUAL_STEP_REPORTING fmu_run_step_reporting
 #endif
 
 /* The usual call, told in a few comparisons: step mode, a step that advances t to a finite time
@@ -40,7 +38,7 @@ static inline int fmu_usual_step_shape(const fmu_values *v, double t, double h) 
 /* Any call but the usual one from the unit's time or later (instance.c): a t within the slack
  * before the unit's time takes the usual step, anything else the checks with their messages. */
 fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, double h);
-/* The same for fmu_do_step_reporting (last_successful_time not NULL). */
+/* The same for fmu_do_step_reporting (last_successful_time may be NULL). */
 fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double h,
                                            double *last_successful_time);
 
@@ -48,7 +46,8 @@ fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double 
  * step (step mode, from the unit's time or after it, or within its slack before it, advancing to
  * a finite time) goes straight to model_usual_step if the model's config.h defines
  * FMU_MODEL_USUAL_STEP 1, else to fmu_run_step. The unit's last successful time is in
- * inst->v.last_successful_time after any call with an instance. */
+ * inst->v.last_successful_time after any call with an instance. (FMI 2: no pointer to report
+ * it through; fmi2 instances never set last_successful_time_out.) */
 static inline fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
     if (inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
         return FMU_USUAL_STEP(inst, t, h);
@@ -56,13 +55,17 @@ static inline fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
 }
 
 /* fmu_do_step that also writes the unit's last successful time to *last_successful_time (if not
- * NULL; FMI 3): the usual step to model_usual_step_reporting. Two entries, so that FMI 2's usual
- * step carries no pointer it never uses. */
+ * NULL; FMI 3). The usual step writes its end there first (what it is if the step is accepted)
+ * and points the instance at it, so that a step not taken writes its own (fmu_step_not_taken):
+ * FMI 3's usual step is FMI 2's, with no pointer to keep across the library call. */
 static inline fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
                                                double *last_successful_time) {
-    if (!last_successful_time) return fmu_do_step(inst, t, h);
-    if (inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
-        return FMU_USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
+    if (last_successful_time && inst && fmu_usual_step_shape(&inst->v, t, h) &&
+        t >= inst->v.time) {
+        *last_successful_time = t + h;
+        inst->last_successful_time_out = last_successful_time;
+        return FMU_USUAL_STEP(inst, t, h);
+    }
     return fmu_do_step_reporting_otherwise(inst, t, h, last_successful_time);
 }
 

@@ -180,6 +180,7 @@ fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double
         v->outputs_current = outputs_current_before;
         fmu_fail(inst);
     }
+    if (inst->last_successful_time_out) *inst->last_successful_time_out = v->last_successful_time;
     return s;
 }
 
@@ -208,13 +209,6 @@ FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, doub
     return check_step(inst, t, h);
 }
 
-fmu_status fmu_run_step_reporting(fmu_instance *inst, double t, double h,
-                                  double *last_successful_time) {
-    const fmu_status s = fmu_run_step(inst, t, h);
-    *last_successful_time = inst->v.last_successful_time;
-    return s;
-}
-
 /* Any other call: the call order and the step checked with their messages, then the step. */
 FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, double h) {
     if (!inst) return FMU_ERROR;
@@ -231,10 +225,13 @@ FMU_RARE_PATH fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, dou
 
 FMU_RARE_PATH fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double h,
                                                          double *last_successful_time) {
-    if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
-        return FMU_USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
+    if (inst) inst->last_successful_time_out = last_successful_time; /* this call's, or NULL */
+    if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t)) {
+        if (last_successful_time) *last_successful_time = t + h; /* as fmu_do_step_reporting */
+        return FMU_USUAL_STEP(inst, t, h);
+    }
     const fmu_status s = checked_step(inst, t, h);
-    if (inst) *last_successful_time = inst->v.last_successful_time;
+    if (inst && last_successful_time) *last_successful_time = inst->v.last_successful_time;
     return s;
 }
 

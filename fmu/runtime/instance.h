@@ -49,6 +49,11 @@ typedef enum {
 
 typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
 
+/* outputs_current of outputs that belong to the current inputs and time but that a model leaves
+ * as its solver wrote them until they are read: the runtime calls model_refresh_outputs before
+ * any read of them (a Get of an output, GetFMUState), which lays them out and sets 1. */
+enum { FMU_OUTPUTS_UNREAD = 2 };
+
 /* Marks a function out of line where the compiler allows: a path the usual step does not take,
  * so that the step's own path stays short (issue 22: doStep within 5 % of the library call). */
 #if defined(__GNUC__)
@@ -67,7 +72,8 @@ typedef struct fmu_values {
     double time;               /* communication point the current inputs belong to */
     double last_step_point;    /* communication point of the last accepted step */
     int has_stepped;           /* a step has been accepted since initialisation */
-    int outputs_current;       /* the outputs belong to the current inputs and time */
+    int outputs_current;       /* the outputs belong to the current inputs and time: 1, or
+                                  FMU_OUTPUTS_UNREAD */
     int inputs_unchecked;      /* 0: every input is finite (the step need not look); set when a
                                   value that is not finite is set or restored, cleared by the
                                   model's scan of its inputs */
@@ -92,6 +98,10 @@ struct fmu_instance {
     void *environment;
     int logging_on;
     int category_on[FMU_N_LOG_CATEGORIES];
+    /* FMI 3's lastSuccessfulTime of the doStep under way (do_step.h; NULL for FMI 2): a step not
+     * taken writes the unit's last successful time through it. Set by every fmi3DoStep before
+     * its step and read only inside a doStep, so never stale when read; not part of a state. */
+    double *last_successful_time_out;
 };
 
 /* A new instance at its start values, or NULL (out of memory). */
@@ -112,12 +122,10 @@ fmu_status fmu_exit_initialization(fmu_instance *inst);
 /* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
  * the time bookkeeping around them. */
 fmu_status fmu_run_step(fmu_instance *inst, double t, double h);
-/* fmu_run_step, then the unit's last successful time to *last_successful_time (not NULL). */
-fmu_status fmu_run_step_reporting(fmu_instance *inst, double t, double h,
-                                  double *last_successful_time);
 /* The bookkeeping of a step from t that the model did not take (Discard: time stays at t; Error:
  * time and outputs_current go back to time_before and outputs_current_before, and the instance
- * enters the Error mode). Returns s. */
+ * enters the Error mode); FMI 3: the last successful time through last_successful_time_out.
+ * Returns s. */
 fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double time_before,
                               int outputs_current_before);
 

@@ -188,6 +188,22 @@ static inline void take_outputs(fmu_values *v, const stewart_inverse_output *out
         outputs_copied(v, out);
 }
 
+/* solve_status of a usual step's solve whose output still lies as the library wrote it (the
+ * base wrench one slot early, the iteration count in a Real slot): the step leaves outputs_in_place
+ * to the first read (outputs_current FMU_OUTPUTS_UNREAD), or to whatever else comes first that
+ * finds the outputs current (a step through the full rules, a refused solve, a state). A master
+ * that reads the outputs after every step pays the same instructions in its first Get; one that
+ * reads them less often pays less (issue 22: doStep within 5 % of the library call). */
+enum { SOLVED_UNREAD = FMU_ERROR + 8 };
+
+/* The outputs laid out if a usual step left them as the library wrote them (exactly once: the
+ * solve status says so). */
+static inline void lay_out_outputs(fmu_values *v) {
+    if (v->model.solve_status != SOLVED_UNREAD) return;
+    outputs_in_place(v);
+    v->model.solve_status = FMU_OK;
+}
+
 /* ---------------------------------------------------------------- the usual step's route */
 
 /* What model_usual_step does with a step whose inputs are set since the last one and finite
@@ -393,6 +409,7 @@ static int first_nonfinite_input(const fmu_values *v) {
 /* Not solved: status 3, the outputs keep their last valid values; the result stands for the
  * current inputs until they change. */
 static fmu_status not_solved(fmu_values *v, fmu_status s) {
+    lay_out_outputs(v); /* the last valid values, where they are read */
     v->integer[VR_status] = 3;
     v->outputs_current = 1;
     v->model.solve_status = s;
@@ -551,6 +568,20 @@ static inline fmu_status solved_checking(fmu_instance *inst, double time, const 
     return FMU_OK;
 }
 
+/* solved_checking for the usual step (no limit outputs): in place, the output stays as the
+ * library wrote it until it is read (SOLVED_UNREAD). */
+static inline fmu_status solved_unread(fmu_instance *inst, double time, const double q[6],
+                                       const stewart_inverse_output *out) {
+    if (!kOutputsInPlace) return solved_checking(inst, time, q, out, 0);
+    fmu_values *v = &inst->v;
+    const int warnings = OUTPUT_INT(out, warnings);
+    if (warnings) return warnings_of(inst, time, q, NULL, warnings);
+    v->outputs_current = FMU_OUTPUTS_UNREAD;
+    v->integer[VR_status] = 0;
+    v->model.solve_status = SOLVED_UNREAD;
+    return FMU_OK;
+}
+
 /* solved_checking with the limit outputs as the parameter says. */
 static fmu_status solved(fmu_instance *inst, double time, const double q[6],
                          const stewart_inverse_output *out) {
@@ -574,7 +605,10 @@ FMU_RARE_PATH static fmu_status refused(fmu_instance *inst, double time, const s
  * (unsupported fidelity, memory). */
 static fmu_status solve_at(fmu_instance *inst, double time) {
     fmu_values *v = &inst->v;
-    if (v->outputs_current) return v->model.solve_status;
+    if (v->outputs_current) {
+        lay_out_outputs(v);
+        return v->model.solve_status;
+    }
     v->model.advance_discarded = 0;
     /* Every input must be finite, used or not. */
     if (v->inputs_unchecked && check_inputs(inst, time) != FMU_OK) return FMU_DISCARD;
@@ -586,7 +620,15 @@ static fmu_status solve_at(fmu_instance *inst, double time) {
     return solved(inst, time, in.pose.q, out);
 }
 
-fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, inst->v.time); }
+fmu_status model_refresh_outputs(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    if (v->outputs_current == FMU_OUTPUTS_UNREAD) { /* current: laid out, as the runtime read them */
+        lay_out_outputs(v);
+        v->outputs_current = 1;
+        return FMU_OK;
+    }
+    return solve_at(inst, v->time);
+}
 
 /* ---------------------------------------------------------------- the step rules */
 
@@ -745,7 +787,7 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, out);
     if (s != STEWART_OK) return advance_in_place_refused(inst, t + h, at_t, s);
-    return solved_checking(inst, t + h, pose, out, 0); /* no limit outputs on the usual step */
+    return solved_unread(inst, t + h, pose, out); /* no limit outputs on the usual step */
 }
 
 #if PAIRED_ARITHMETIC
@@ -819,7 +861,7 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     if (s != STEWART_OK) return hold_refused(inst, t, s);
     m->newer ^= 1; /* the history is full already */
     /* the pose is the inputs' (copied from them): no pointer to the slot kept across the call */
-    return solved_checking(inst, t, &v->real[VR_x], out, 0);
+    return solved_unread(inst, t, &v->real[VR_x], out);
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
@@ -838,15 +880,6 @@ static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_st
     return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
 }
 
-/* step_end, then the unit's last successful time to *last_successful_time (FMI 3: not NULL, the
- * runtime checked it, so the usual step does not test it again). */
-static inline fmu_status step_end_reporting(fmu_instance *inst, double t, double h, fmu_status s,
-                                            double *last_successful_time) {
-    const fmu_status end = step_end(inst, t, h, s);
-    *last_successful_time = inst->v.last_successful_time;
-    return end;
-}
-
 OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h) {
     return step_end(inst, t, h, advance_in_place(inst, t, h));
 }
@@ -855,36 +888,16 @@ OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double
     return step_end(inst, t, h, hold_with_quadratic(inst, t));
 }
 
-/* The same for FMI 3, which takes the last successful time back. */
-OWN_FRAME static fmu_status usual_advance_step_reporting(fmu_instance *inst, double t, double h,
-                                                         double *last_successful_time) {
-    return step_end_reporting(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
-}
-
-OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double t, double h,
-                                                      double *last_successful_time) {
-    return step_end_reporting(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
-}
-
 /* The step each route takes on inputs set and finite, told by one indexed jump (the route is
  * 0..2: settle_usual_route writes it, and a restored state whose route is not what its values
  * give is refused, model_state.c). */
 typedef fmu_status (*usual_step_fn)(fmu_instance *inst, double t, double h);
-typedef fmu_status (*usual_step_reporting_fn)(fmu_instance *inst, double t, double h,
-                                              double *last_successful_time);
 static const usual_step_fn kUsualStepOfRoute[] = {
     [ROUTE_CHECKED] = fmu_run_step,
     [ROUTE_ADVANCE] = usual_advance_step,
     [ROUTE_HOLD] = usual_hold_step,
 };
-static const usual_step_reporting_fn kUsualStepReportingOfRoute[] = {
-    [ROUTE_CHECKED] = fmu_run_step_reporting,
-    [ROUTE_ADVANCE] = usual_advance_step_reporting,
-    [ROUTE_HOLD] = usual_hold_step_reporting,
-};
-_Static_assert(sizeof kUsualStepOfRoute / sizeof *kUsualStepOfRoute == ROUTE_HOLD + 1 &&
-                   sizeof kUsualStepReportingOfRoute / sizeof *kUsualStepReportingOfRoute ==
-                       ROUTE_HOLD + 1,
+_Static_assert(sizeof kUsualStepOfRoute / sizeof *kUsualStepOfRoute == ROUTE_HOLD + 1,
                "a route without its usual step");
 
 fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
@@ -894,14 +907,6 @@ fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
      * differences two earlier poses). Anything else: the step rules in full. */
     if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
     return kUsualStepOfRoute[v->model.usual_route](inst, t, h);
-}
-
-fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
-                                      double *last_successful_time) {
-    const fmu_values *v = &inst->v;
-    if (fmu_outputs_current_or_inputs_unchecked(v))
-        return fmu_run_step_reporting(inst, t, h, last_successful_time);
-    return kUsualStepReportingOfRoute[v->model.usual_route](inst, t, h, last_successful_time);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
