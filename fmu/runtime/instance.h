@@ -102,6 +102,9 @@ struct fmu_instance {
      * taken writes the unit's last successful time through it. Set by every fmi3DoStep before
      * its step and read only inside a doStep, so never stale when read; not part of a state. */
     double *last_successful_time_out;
+    /* A usual step's t and h across its library call, where a model keeps them (in memory
+     * rather than callee-saved registers: no frame to save them in); not part of a state. */
+    double step_t, step_h;
 };
 
 /* A new instance at its start values, or NULL (out of memory). */

@@ -34,6 +34,11 @@ static inline double_pair load_pair(const double *p) { return *(const unaligned_
 
 /* Writes r to p. */
 static inline void store_pair(double *p, double_pair r) { *(unaligned_pair *)p = r; }
+
+/* The pair at p, 16-byte aligned (the history slots: the instance comes from calloc, and the
+ * offsets are asserted below), so that SSE2 takes it as an arithmetic operand without a load. */
+typedef double aligned_pair __attribute__((vector_size(2 * sizeof(double)), may_alias));
+static inline double_pair load_aligned_pair(const double *p) { return *(const aligned_pair *)p; }
 #else
 #define PAIRED_ARITHMETIC 0
 typedef struct double_pair { double e[2]; } double_pair;
@@ -47,6 +52,7 @@ static inline double_pair load_pair(const double *p) {
 
 /* Writes r to p. */
 static inline void store_pair(double *p, double_pair r) { memcpy(p, &r, sizeof r); }
+#define load_aligned_pair load_pair
 #endif
 
 /* ---------------------------------------------------------------- values <-> library */
@@ -130,6 +136,16 @@ _Static_assert(kOutputsInPlace, "stewart_inverse_output no longer lies over the 
                                 "on x86-64: the usual step would copy it");
 #endif
 _Static_assert(sizeof(fd_point) == 256, "a history slot is no longer 256 bytes");
+/* The pose inputs' pairs and the history slots' pose and chord pairs lie on 16 bytes in an
+ * instance that calloc aligns for any type (load_aligned_pair). */
+_Static_assert(_Alignof(max_align_t) >= 16 &&
+                   (offsetof(fmu_instance, v) + offsetof(fmu_values, real) +
+                    VR_x * sizeof(double)) % 16 == 0 && (VR_x_dot - VR_x) % 2 == 0 &&
+                   (VR_x_ddot - VR_x) % 2 == 0 &&
+                   (offsetof(fmu_instance, v) + offsetof(fmu_values, model) +
+                    offsetof(model_values, history)) % 16 == 0 &&
+                   offsetof(fd_point, pose) % 16 == 0 && offsetof(fd_point, slope) % 16 == 0,
+               "the pose inputs' or the history's pairs no longer lie on 16 bytes");
 _Static_assert(VR_x_dot == VR_x + 6 && VR_x_ddot == VR_x + 12 &&
                    offsetof(stewart_pose, q_dot) == 6 * sizeof(double) &&
                    offsetof(stewart_pose, q_ddot) == 12 * sizeof(double) &&
@@ -753,7 +769,8 @@ FMU_RARE_PATH static fmu_status advance_in_place_refused(fmu_instance *inst, dou
 /* Two coordinates of the pose inputs (pose: q, then q_dot 6 on, q_ddot 12 on) kept in at_t (q,
  * q_dot) and advanced over h in place, as advance_pose: the same roundings. */
 static inline void advance_pair(double *pose, double *at_t, double_pair h, double_pair half_h) {
-    const double_pair q = load_pair(pose), qd = load_pair(pose + 6), qdd = load_pair(pose + 12);
+    const double_pair q = load_aligned_pair(pose), qd = load_aligned_pair(pose + 6),
+                      qdd = load_aligned_pair(pose + 12);
     store_pair(at_t, q);
     store_pair(at_t + 6, qd);
     store_pair(pose, q + h * (qd + half_h * qdd));
@@ -794,9 +811,10 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
 /* Two coordinates of quadratic_rates (the same roundings), each value loaded once: the pose q
  * (the inputs) and the last point's pose and chord (p1, d1) into the free slot's pose (next:
  * q, q_dot 6 on, q_ddot 12 on) and chord (slope). */
-static inline void quadratic_pair(const double *q, const double *p1, const double *d1_at,
-                                  double *next, double *slope, double_pair h2, double_pair h12) {
-    const double_pair q1 = load_pair(p1), q2 = load_pair(q), d1 = load_pair(d1_at);
+static inline void quadratic_pair(const double *restrict q, const double *restrict p1,
+                                  const double *restrict d1_at,
+                                  double *restrict next, double *restrict slope, double_pair h2, double_pair h12) {
+    const double_pair q1 = load_aligned_pair(p1), q2 = load_pair(q), d1 = load_aligned_pair(d1_at);
     store_pair(next, q2); /* first: q2's register is then free for the difference (no copy) */
     const double_pair d2 = (q2 - q1) / h2;
     const double_pair dd = (d2 - d1) / h12; /* q[t0, t1, t2] */
@@ -806,11 +824,12 @@ static inline void quadratic_pair(const double *q, const double *p1, const doubl
 }
 #endif
 
-/* The library refused the pose hold_with_quadratic wrote into the history's free slot (found
- * again here, so that the usual step keeps no pointer to it across the library call). */
-FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, double t, stewart_status s) {
+/* The library refused the pose hold_with_quadratic wrote into the history's free slot at
+ * inst->step_t (found again here, so that the usual step keeps no pointer to it, nor t, across
+ * the library call). */
+FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, stewart_status s) {
     const model_values *m = &inst->v.model;
-    return refused(inst, t, &m->history[m->newer ^ 1].pose, s);
+    return refused(inst, inst->step_t, &m->history[m->newer ^ 1].pose, s);
 }
 
 /* The history slot `at` bytes into the history (0 or sizeof(fd_point)). */
@@ -827,7 +846,7 @@ static inline fd_point *history_slot_at(model_values *m, size_t at) {
 #endif
 
 /* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
- * and the pose joins the history. The free slot of the history takes the pose, its rates (the
+ * and the pose joins the history (t is inst->step_t, for the rare paths). The free slot of the history takes the pose, its rates (the
  * library's input) and its chord before the solve; the solved pose becomes the last point by
  * the flip of one index, and a refused one leaves the history as it was. */
 static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
@@ -858,10 +877,10 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, out);
-    if (s != STEWART_OK) return hold_refused(inst, t, s);
+    if (s != STEWART_OK) return hold_refused(inst, s);
     m->newer ^= 1; /* the history is full already */
     /* the pose is the inputs' (copied from them): no pointer to the slot kept across the call */
-    return solved_unread(inst, t, &v->real[VR_x], out);
+    return solved_unread(inst, inst->step_t, &v->real[VR_x], out); /* (t: no register kept) */
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
@@ -885,7 +904,12 @@ OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, dou
 }
 
 OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, hold_with_quadratic(inst, t));
+    /* t and h kept in the instance across the library call: the step then saves no register but
+     * the instance's (t is in the history slot too, but its address is not kept) */
+    inst->step_t = t;
+    inst->step_h = h;
+    const fmu_status s = hold_with_quadratic(inst, t);
+    return step_end(inst, inst->step_t, inst->step_h, s);
 }
 
 /* The step each route takes on inputs set and finite, told by one indexed jump (the route is
