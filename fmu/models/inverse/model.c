@@ -217,6 +217,7 @@ enum { SOLVED_UNREAD = FMU_ERROR + 8 };
 static inline void lay_out_outputs(fmu_values *v) {
     if (v->model.solve_status != SOLVED_UNREAD) return;
     outputs_in_place(v);
+    v->integer[VR_status] = 0; /* a usual step's solve has nothing to warn of */
     v->model.solve_status = FMU_OK;
 }
 
@@ -584,16 +585,21 @@ static inline fmu_status solved_checking(fmu_instance *inst, double time, const 
     return FMU_OK;
 }
 
-/* solved_checking for the usual step (no limit outputs): in place, the output stays as the
- * library wrote it until it is read (SOLVED_UNREAD). */
-static inline fmu_status solved_unread(fmu_instance *inst, double time, const double q[6],
-                                       const stewart_inverse_output *out) {
-    if (!kOutputsInPlace) return solved_checking(inst, time, q, out, 0);
+/* The usual step's library status or the warning bits of its output, in one test (the rare
+ * case, either, is told apart out of line). In place the output's bytes are defined whatever the
+ * library did (a refused solve leaves the last outputs there, whose bits are then not used). */
+static inline int refused_or_warned(stewart_status s, const stewart_inverse_output *out) {
+    if (!kOutputsInPlace) return s != STEWART_OK || OUTPUT_INT(out, warnings);
+    return ((int)s | OUTPUT_INT(out, warnings)) != 0;
+}
+
+/* The outputs of the usual step's solve, which had nothing to warn of (no limit outputs): in
+ * place they stay as the library wrote them until read (SOLVED_UNREAD; the status output 0 is
+ * written with them, lay_out_outputs). */
+static inline fmu_status solved_plain(fmu_instance *inst, const stewart_inverse_output *out) {
     fmu_values *v = &inst->v;
-    const int warnings = OUTPUT_INT(out, warnings);
-    if (warnings) return warnings_of(inst, time, q, NULL, warnings);
+    if (!kOutputsInPlace) return solved_checking(inst, 0.0, NULL, out, 0); /* (no warnings) */
     v->outputs_current = FMU_OUTPUTS_UNREAD;
-    v->integer[VR_status] = 0;
     v->model.solve_status = SOLVED_UNREAD;
     return FMU_OK;
 }
@@ -765,6 +771,16 @@ FMU_RARE_PATH static fmu_status advance_in_place_refused(fmu_instance *inst, dou
     return fs;
 }
 
+/* The advance in place refused (the inputs go back to at_t) or solved with warnings (its output
+ * at output_target(v, out); no limit outputs on the usual step). */
+FMU_RARE_PATH static fmu_status advance_not_plain(fmu_instance *inst, double time,
+                                                  const double at_t[12], stewart_status s,
+                                                  const stewart_inverse_output *out) {
+    if (s != STEWART_OK) return advance_in_place_refused(inst, time, at_t, s);
+    return solved_checking(inst, time, &inst->v.real[VR_x],
+                           output_target(&inst->v, (stewart_inverse_output *)out), 0);
+}
+
 #if PAIRED_ARITHMETIC
 /* Two coordinates of the pose inputs (pose: q, then q_dot 6 on, q_ddot 12 on) kept in at_t (q,
  * q_dot) and advanced over h in place, as advance_pose: the same roundings. */
@@ -803,8 +819,9 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, out);
-    if (s != STEWART_OK) return advance_in_place_refused(inst, t + h, at_t, s);
-    return solved_unread(inst, t + h, pose, out); /* no limit outputs on the usual step */
+    if (refused_or_warned(s, out)) /* (in place the rare path finds the output itself) */
+        return advance_not_plain(inst, t + h, at_t, s, kOutputsInPlace ? NULL : out);
+    return solved_plain(inst, out);
 }
 
 #if PAIRED_ARITHMETIC
@@ -826,10 +843,15 @@ static inline void quadratic_pair(const double *restrict q, const double *restri
 
 /* The library refused the pose hold_with_quadratic wrote into the history's free slot at
  * inst->step_t (found again here, so that the usual step keeps no pointer to it, nor t, across
- * the library call). */
-FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, stewart_status s) {
-    const model_values *m = &inst->v.model;
-    return refused(inst, inst->step_t, &m->history[m->newer ^ 1].pose, s);
+ * the library call), or solved it with warnings (the pose joins the history; the output at
+ * output_target(v, out)). */
+FMU_RARE_PATH static fmu_status hold_not_plain(fmu_instance *inst, stewart_status s,
+                                               const stewart_inverse_output *out) {
+    model_values *m = &inst->v.model;
+    if (s != STEWART_OK) return refused(inst, inst->step_t, &m->history[m->newer ^ 1].pose, s);
+    m->newer ^= 1;
+    return solved_checking(inst, inst->step_t, &inst->v.real[VR_x],
+                           output_target(&inst->v, (stewart_inverse_output *)out), 0);
 }
 
 /* The history slot `at` bytes into the history (0 or sizeof(fd_point)). */
@@ -877,10 +899,10 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, out);
-    if (s != STEWART_OK) return hold_refused(inst, s);
+    if (refused_or_warned(s, out)) /* (in place the rare path finds the output itself) */
+        return hold_not_plain(inst, s, kOutputsInPlace ? NULL : out);
     m->newer ^= 1; /* the history is full already */
-    /* the pose is the inputs' (copied from them): no pointer to the slot kept across the call */
-    return solved_unread(inst, inst->step_t, &v->real[VR_x], out); /* (t: no register kept) */
+    return solved_plain(inst, out);
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
