@@ -19,9 +19,9 @@ extern "C" {
 /* The models that take the usual step themselves (model_usual_step, with fmu_step_accepted and
  * fmu_step_not_taken) save the runtime's frame around it; the others run it in fmu_run_step. */
 #if FMU_MODEL_USUAL_STEP
-#define FMU_USUAL_STEP model_usual_step
+#define FMU_USUAL_STEP(inst, t, h, end) model_usual_step(inst, t, h, end)
 #else
-#define FMU_USUAL_STEP fmu_run_step
+#define FMU_USUAL_STEP(inst, t, h, end) fmu_run_step(inst, t, h)
 #endif
 
 /* The usual call, told in a few comparisons: step mode, a step that advances t to a finite time
@@ -50,7 +50,7 @@ fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double 
  * it through; fmi2 instances never set last_successful_time_out.) */
 static inline fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
     if (inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
-        return FMU_USUAL_STEP(inst, t, h);
+        return FMU_USUAL_STEP(inst, t, h, t + h); /* (t + h: the shape's, in a register) */
     return fmu_do_step_otherwise(inst, t, h);
 }
 
@@ -64,7 +64,7 @@ static inline fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, dou
         t >= inst->v.time) {
         *last_successful_time = t + h;
         inst->last_successful_time_out = last_successful_time;
-        return FMU_USUAL_STEP(inst, t, h);
+        return FMU_USUAL_STEP(inst, t, h, t + h);
     }
     return fmu_do_step_reporting_otherwise(inst, t, h, last_successful_time);
 }

@@ -219,7 +219,7 @@ FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, doubl
 
 FMU_RARE_PATH fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, double h) {
     if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
-        return FMU_USUAL_STEP(inst, t, h);
+        return FMU_USUAL_STEP(inst, t, h, t + h);
     return checked_step(inst, t, h);
 }
 
@@ -228,7 +228,7 @@ FMU_RARE_PATH fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, dou
     if (inst) inst->last_successful_time_out = last_successful_time; /* this call's, or NULL */
     if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t)) {
         if (last_successful_time) *last_successful_time = t + h; /* as fmu_do_step_reporting */
-        return FMU_USUAL_STEP(inst, t, h);
+        return FMU_USUAL_STEP(inst, t, h, t + h);
     }
     const fmu_status s = checked_step(inst, t, h);
     if (inst && last_successful_time) *last_successful_time = inst->v.last_successful_time;

@@ -82,6 +82,11 @@ typedef struct fmu_values {
     int mode;                  /* fmu_mode */
 } fmu_values;
 
+/* A step's end (t + h) and t, side by side as the unit's time and last step point are. */
+typedef struct fmu_step_span {
+    double end, t;
+} fmu_step_span;
+
 typedef struct fmu_instance fmu_instance;
 /* Hands a message to the master's logger (the per-version layer knows how): the callbacks and
  * environment given at instantiation, the instance name. */
@@ -102,9 +107,9 @@ struct fmu_instance {
      * taken writes the unit's last successful time through it. Set by every fmi3DoStep before
      * its step and read only inside a doStep, so never stale when read; not part of a state. */
     double *last_successful_time_out;
-    /* A usual step's t and h across its library call, where a model keeps them (in memory
+    /* A usual step's end and t across its library call, where a model keeps them (in memory
      * rather than callee-saved registers: no frame to save them in); not part of a state. */
-    double step_t, step_h;
+    fmu_step_span step;
 };
 
 /* A new instance at its start values, or NULL (out of memory). */
@@ -139,6 +144,24 @@ static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fm
     v->time = end;
     v->real[FMU_TIME_VR] = end;
     v->last_step_point = t;
+    v->has_stepped = 1;
+    v->last_successful_time = end;
+    v->last_step_status = s;
+    return s;
+}
+
+/* fmu_step_accepted from the step's end and t as a model kept them across its library call
+ * (fmu_instance.step): side by side, as the unit's time and last step point, so that they move
+ * as one pair; the same values. */
+static inline fmu_status fmu_step_accepted_kept(fmu_values *v, const fmu_step_span *kept,
+                                                fmu_status s) {
+    _Static_assert(offsetof(fmu_values, last_step_point) ==
+                       offsetof(fmu_values, time) + sizeof(double),
+                   "the unit's time and last step point no longer lie side by side");
+    const double end = kept->end;
+    v->time = end;
+    v->last_step_point = kept->t;
+    v->real[FMU_TIME_VR] = end;
     v->has_stepped = 1;
     v->last_successful_time = end;
     v->last_step_status = s;

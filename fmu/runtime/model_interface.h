@@ -48,7 +48,7 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h);
  * the runtime's time bookkeeping: fmu_step_accepted or fmu_step_not_taken (instance.h) at the
  * end, or the whole of it handed to fmu_run_step (which calls model_do_step) when the model's
  * own usual path does not apply. Never allocates. */
-fmu_status model_usual_step(fmu_instance *inst, double t, double h);
+fmu_status model_usual_step(fmu_instance *inst, double t, double h, double end /* t + h */);
 /* FMI 2 input derivatives (order[i] of variable vr[i]); FMU_ERROR with a message if the model
  * does not take that derivative. */
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,

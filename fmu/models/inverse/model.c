@@ -796,7 +796,7 @@ static inline void advance_pair(double *pose, double *at_t, double_pair h, doubl
 
 /* derivatives = 1, the usual step: model_do_step's advance with the pose advanced in the inputs
  * themselves (the library's input as they stand), the inputs at t kept aside in case it fails. */
-static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h) {
+static inline fmu_status advance_in_place(fmu_instance *inst, double h) {
     fmu_values *v = &inst->v;
     double *pose = &v->real[VR_x];
     double at_t[12];
@@ -820,7 +820,7 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, out);
     if (refused_or_warned(s, out)) /* (in place the rare path finds the output itself) */
-        return advance_not_plain(inst, t + h, at_t, s, kOutputsInPlace ? NULL : out);
+        return advance_not_plain(inst, inst->step.end, at_t, s, kOutputsInPlace ? NULL : out);
     return solved_plain(inst, out);
 }
 
@@ -842,15 +842,15 @@ static inline void quadratic_pair(const double *restrict q, const double *restri
 #endif
 
 /* The library refused the pose hold_with_quadratic wrote into the history's free slot at
- * inst->step_t (found again here, so that the usual step keeps no pointer to it, nor t, across
+ * inst->step.t (found again here, so that the usual step keeps no pointer to it, nor t, across
  * the library call), or solved it with warnings (the pose joins the history; the output at
  * output_target(v, out)). */
 FMU_RARE_PATH static fmu_status hold_not_plain(fmu_instance *inst, stewart_status s,
                                                const stewart_inverse_output *out) {
     model_values *m = &inst->v.model;
-    if (s != STEWART_OK) return refused(inst, inst->step_t, &m->history[m->newer ^ 1].pose, s);
+    if (s != STEWART_OK) return refused(inst, inst->step.t, &m->history[m->newer ^ 1].pose, s);
     m->newer ^= 1;
-    return solved_checking(inst, inst->step_t, &inst->v.real[VR_x],
+    return solved_checking(inst, inst->step.t, &inst->v.real[VR_x],
                            output_target(&inst->v, (stewart_inverse_output *)out), 0);
 }
 
@@ -868,7 +868,7 @@ static inline fd_point *history_slot_at(model_values *m, size_t at) {
 #endif
 
 /* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
- * and the pose joins the history (t is inst->step_t, for the rare paths). The free slot of the history takes the pose, its rates (the
+ * and the pose joins the history (t is inst->step.t, for the rare paths). The free slot of the history takes the pose, its rates (the
  * library's input) and its chord before the solve; the solved pose becomes the last point by
  * the flip of one index, and a refused one leaves the history as it was. */
 static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
@@ -914,45 +914,63 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
 #define OWN_FRAME
 #endif
 
-/* The step's end: accepted (OK, Warning) or not. The usual step leaves the unit's time as it
- * was (t, or within the slack of it) until here, so that is the time before it. */
-static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s) {
-    if (s == FMU_OK || s == FMU_WARNING) return fmu_step_accepted(&inst->v, t, h, s);
-    return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+/* The step's end: accepted (OK, Warning) or not, from the step's end and t the usual step kept
+ * in the instance (inst->step). The usual step leaves the unit's time as it was (t,
+ * or within the slack of it) until here, so that is the time before it. */
+static inline fmu_status step_end(fmu_instance *inst, fmu_status s) {
+    if (s == FMU_OK || s == FMU_WARNING) return fmu_step_accepted_kept(&inst->v, &inst->step, s);
+    return fmu_step_not_taken(inst, inst->step.t, s, inst->v.time, 0);
 }
 
-OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, advance_in_place(inst, t, h));
+/* Keeps the step's end and t in the instance (inst->step), as one pair, for step_end and the rare
+ * paths: the usual steps then keep no register across the library call but the instance's. */
+static inline void keep_step(fmu_instance *inst, double t, double end) {
+#if PAIRED_ARITHMETIC
+    const double_pair end_and_t = {end, t};
+    store_pair(&inst->step.end, end_and_t);
+#else
+    inst->step.end = end;
+    inst->step.t = t;
+#endif
 }
 
-OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h) {
-    /* t and h kept in the instance across the library call: the step then saves no register but
-     * the instance's (t is in the history slot too, but its address is not kept) */
-    inst->step_t = t;
-    inst->step_h = h;
-    const fmu_status s = hold_with_quadratic(inst, t);
-    return step_end(inst, inst->step_t, inst->step_h, s);
+OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h,
+                                               double end) {
+    keep_step(inst, t, end);
+    return step_end(inst, advance_in_place(inst, h));
+}
+
+OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h, double end) {
+    (void)h;
+    keep_step(inst, t, end);
+    return step_end(inst, hold_with_quadratic(inst, t));
+}
+
+/* The step rules in full, as a route's step (end is t + h). */
+static fmu_status full_rules_step(fmu_instance *inst, double t, double h, double end) {
+    (void)end;
+    return fmu_run_step(inst, t, h);
 }
 
 /* The step each route takes on inputs set and finite, told by one indexed jump (the route is
  * 0..2: settle_usual_route writes it, and a restored state whose route is not what its values
  * give is refused, model_state.c). */
-typedef fmu_status (*usual_step_fn)(fmu_instance *inst, double t, double h);
+typedef fmu_status (*usual_step_fn)(fmu_instance *inst, double t, double h, double end);
 static const usual_step_fn kUsualStepOfRoute[] = {
-    [ROUTE_CHECKED] = fmu_run_step,
+    [ROUTE_CHECKED] = full_rules_step,
     [ROUTE_ADVANCE] = usual_advance_step,
     [ROUTE_HOLD] = usual_hold_step,
 };
 _Static_assert(sizeof kUsualStepOfRoute / sizeof *kUsualStepOfRoute == ROUTE_HOLD + 1,
                "a route without its usual step");
 
-fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
+fmu_status model_usual_step(fmu_instance *inst, double t, double h, double end) {
     const fmu_values *v = &inst->v;
     /* The usual step: inputs set since the last step, all finite, and a usual route (no
      * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
      * differences two earlier poses). Anything else: the step rules in full. */
     if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
-    return kUsualStepOfRoute[v->model.usual_route](inst, t, h);
+    return kUsualStepOfRoute[v->model.usual_route](inst, t, h, end);
 }
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
