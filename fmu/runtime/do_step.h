@@ -16,10 +16,16 @@
 extern "C" {
 #endif
 
-/* The models that take the usual step themselves (model_usual_step, with fmu_step_accepted and
+/* The models that take the usual step themselves (model_usual_steps, with fmu_step_accepted and
  * fmu_step_not_taken) save the runtime's frame around it; the others run it in fmu_run_step. */
 #if FMU_MODEL_USUAL_STEP
-#define FMU_USUAL_STEP(inst, t, h, end) model_usual_step(inst, t, h, end)
+/* The usual step: inputs set since the last step, all finite (else the step rules in full), and
+ * the model's step for its route, told by one indexed jump from the FMI call itself. */
+static inline fmu_status fmu_usual_step(fmu_instance *inst, double t, double h, double end) {
+    if (fmu_outputs_current_or_inputs_unchecked(&inst->v)) return fmu_run_step(inst, t, h);
+    return model_usual_steps[FMU_USUAL_ROUTE(&inst->v)](inst, t, h, end);
+}
+#define FMU_USUAL_STEP(inst, t, h, end) fmu_usual_step(inst, t, h, end)
 #else
 #define FMU_USUAL_STEP(inst, t, h, end) fmu_run_step(inst, t, h)
 #endif
@@ -44,8 +50,8 @@ fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double 
 
 /* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual
  * step (step mode, from the unit's time or after it, or within its slack before it, advancing to
- * a finite time) goes straight to model_usual_step if the model's config.h defines
- * FMU_MODEL_USUAL_STEP 1, else to fmu_run_step. The unit's last successful time is in
+ * a finite time) goes straight to the route's step (fmu_usual_step) if the model's config.h
+ * defines FMU_MODEL_USUAL_STEP 1, else to fmu_run_step. The unit's last successful time is in
  * inst->v.last_successful_time after any call with an instance. (FMI 2: no pointer to report
  * it through; fmi2 instances never set last_successful_time_out.) */
 static inline fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {

@@ -39,7 +39,7 @@ typedef enum {
 #define FMU_MODEL_EXCHANGE 0
 #endif
 /* A model's config.h defines FMU_MODEL_USUAL_STEP 1 when it takes the usual doStep itself
- * (model_usual_step, model_interface.h). */
+ * (model_usual_steps, model_interface.h). */
 #ifndef FMU_MODEL_USUAL_STEP
 #define FMU_MODEL_USUAL_STEP 0
 #endif
@@ -152,9 +152,10 @@ static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fm
 
 /* fmu_step_accepted from the step's end and t as a model kept them across its library call
  * (fmu_instance.step): side by side, as the unit's time and last step point, so that they move
- * as one pair; the same values. */
+ * as one pair; the same values. stepped_before: the model knows a step was accepted before
+ * (has_stepped is 1 already, and stays). */
 static inline fmu_status fmu_step_accepted_kept(fmu_values *v, const fmu_step_span *kept,
-                                                fmu_status s) {
+                                                fmu_status s, int stepped_before) {
     _Static_assert(offsetof(fmu_values, last_step_point) ==
                        offsetof(fmu_values, time) + sizeof(double),
                    "the unit's time and last step point no longer lie side by side");
@@ -162,7 +163,7 @@ static inline fmu_status fmu_step_accepted_kept(fmu_values *v, const fmu_step_sp
     v->time = end;
     v->last_step_point = kept->t;
     v->real[FMU_TIME_VR] = end;
-    v->has_stepped = 1;
+    if (!stepped_before) v->has_stepped = 1;
     v->last_successful_time = end;
     v->last_step_status = s;
     return s;

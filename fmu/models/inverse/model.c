@@ -223,8 +223,8 @@ static inline void lay_out_outputs(fmu_values *v) {
 
 /* ---------------------------------------------------------------- the usual step's route */
 
-/* What model_usual_step does with a step whose inputs are set since the last one and finite
- * (model_values.usual_route, settled after every change that rules a usual step out, so that the
+/* What the usual step (do_step.h: model_usual_steps) does with a step whose inputs are set since
+ * the last one and finite (model_values.usual_route, settled after every change that rules a usual step out, so that the
  * usual step tests one value; a change that allows one again, such as a discarded advance
  * cleared by a solve, leaves it at the full rules until a full-rules step settles it): the step
  * rules in full (FMI 2 input derivatives given, a discarded advance
@@ -906,7 +906,7 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
- * fmu_step_not_taken): out of line, so that model_usual_step hands over to them without a frame
+ * fmu_step_not_taken): out of line, so that the FMI call hands over to them without a frame
  * of its own and each keeps only what it needs across the library call. */
 #if defined(__GNUC__)
 #define OWN_FRAME __attribute__((noinline))
@@ -916,9 +916,12 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
 
 /* The step's end: accepted (OK, Warning) or not, from the step's end and t the usual step kept
  * in the instance (inst->step). The usual step leaves the unit's time as it was (t,
- * or within the slack of it) until here, so that is the time before it. */
-static inline fmu_status step_end(fmu_instance *inst, fmu_status s) {
-    if (s == FMU_OK || s == FMU_WARNING) return fmu_step_accepted_kept(&inst->v, &inst->step, s);
+ * or within the slack of it) until here, so that is the time before it. stepped_before: a step
+ * was accepted before (the hold step: its history's points were committed by steps, which a
+ * restored state is checked for, model_state.c). */
+static inline fmu_status step_end(fmu_instance *inst, fmu_status s, int stepped_before) {
+    if (s == FMU_OK || s == FMU_WARNING)
+        return fmu_step_accepted_kept(&inst->v, &inst->step, s, stepped_before);
     return fmu_step_not_taken(inst, inst->step.t, s, inst->v.time, 0);
 }
 
@@ -937,13 +940,13 @@ static inline void keep_step(fmu_instance *inst, double t, double end) {
 OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h,
                                                double end) {
     keep_step(inst, t, end);
-    return step_end(inst, advance_in_place(inst, h));
+    return step_end(inst, advance_in_place(inst, h), 0);
 }
 
 OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h, double end) {
     (void)h;
     keep_step(inst, t, end);
-    return step_end(inst, hold_with_quadratic(inst, t));
+    return step_end(inst, hold_with_quadratic(inst, t), 1);
 }
 
 /* The step rules in full, as a route's step (end is t + h). */
@@ -952,26 +955,18 @@ static fmu_status full_rules_step(fmu_instance *inst, double t, double h, double
     return fmu_run_step(inst, t, h);
 }
 
-/* The step each route takes on inputs set and finite, told by one indexed jump (the route is
- * 0..2: settle_usual_route writes it, and a restored state whose route is not what its values
- * give is refused, model_state.c). */
-typedef fmu_status (*usual_step_fn)(fmu_instance *inst, double t, double h, double end);
-static const usual_step_fn kUsualStepOfRoute[] = {
+/* The step each route takes on inputs set and finite (model_interface.h; do_step.h jumps to it
+ * by the route, which is 0..2: settle_usual_route writes it, and a restored state whose route is
+ * not what its values give is refused, model_state.c). The usual step: no discarded advance
+ * standing, no FMI 2 input derivatives, no limit outputs, and with finite differences two
+ * earlier poses; anything else the step rules in full. */
+const model_usual_step_fn model_usual_steps[] = {
     [ROUTE_CHECKED] = full_rules_step,
     [ROUTE_ADVANCE] = usual_advance_step,
     [ROUTE_HOLD] = usual_hold_step,
 };
-_Static_assert(sizeof kUsualStepOfRoute / sizeof *kUsualStepOfRoute == ROUTE_HOLD + 1,
+_Static_assert(sizeof model_usual_steps / sizeof *model_usual_steps == ROUTE_HOLD + 1,
                "a route without its usual step");
-
-fmu_status model_usual_step(fmu_instance *inst, double t, double h, double end) {
-    const fmu_values *v = &inst->v;
-    /* The usual step: inputs set since the last step, all finite, and a usual route (no
-     * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
-     * differences two earlier poses). Anything else: the step rules in full. */
-    if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
-    return kUsualStepOfRoute[v->model.usual_route](inst, t, h, end);
-}
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
                                        const int order[], const double value[]) {
