@@ -48,6 +48,12 @@ fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, double h);
 fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double h,
                                            double *last_successful_time);
 
+/* The usual call of fmu_do_step, told by its checks: an instance in step mode, a step that
+ * advances t to a finite time, t from the unit's time or later. */
+static inline int fmu_usual_call(const fmu_instance *inst, double t, double h) {
+    return inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time;
+}
+
 /* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual
  * step (step mode, from the unit's time or after it, or within its slack before it, advancing to
  * a finite time) goes straight to the route's step (fmu_usual_step) if the model's config.h
@@ -55,23 +61,28 @@ fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double 
  * inst->v.last_successful_time after any call with an instance. (FMI 2: no pointer to report
  * it through; fmi2 instances never set last_successful_time_out.) */
 static inline fmu_status fmu_do_step(fmu_instance *inst, double t, double h) {
-    if (inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time)
+    if (fmu_usual_call(inst, t, h))
         return FMU_USUAL_STEP(inst, t, h, t + h); /* (t + h: the shape's, in a register) */
     return fmu_do_step_otherwise(inst, t, h);
 }
 
+/* FMI 3's usual step, on a usual call (fmu_usual_call) with last_successful_time not NULL: the
+ * step's end written there first (what it is if the step is accepted) and the instance pointed
+ * at it, so that a step not taken writes its own (fmu_step_not_taken): FMI 3's usual step is
+ * FMI 2's, with no pointer to keep across the library call. */
+static inline fmu_status fmu_usual_step_reporting(fmu_instance *inst, double t, double h,
+                                                  double *last_successful_time) {
+    *last_successful_time = t + h;
+    inst->last_successful_time_out = last_successful_time;
+    return FMU_USUAL_STEP(inst, t, h, t + h);
+}
+
 /* fmu_do_step that also writes the unit's last successful time to *last_successful_time (if not
- * NULL; FMI 3). The usual step writes its end there first (what it is if the step is accepted)
- * and points the instance at it, so that a step not taken writes its own (fmu_step_not_taken):
- * FMI 3's usual step is FMI 2's, with no pointer to keep across the library call. */
+ * NULL; FMI 3). */
 static inline fmu_status fmu_do_step_reporting(fmu_instance *inst, double t, double h,
                                                double *last_successful_time) {
-    if (last_successful_time && inst && fmu_usual_step_shape(&inst->v, t, h) &&
-        t >= inst->v.time) {
-        *last_successful_time = t + h;
-        inst->last_successful_time_out = last_successful_time;
-        return FMU_USUAL_STEP(inst, t, h, t + h);
-    }
+    if (last_successful_time && fmu_usual_call(inst, t, h))
+        return fmu_usual_step_reporting(inst, t, h, last_successful_time);
     return fmu_do_step_reporting_otherwise(inst, t, h, last_successful_time);
 }
 
