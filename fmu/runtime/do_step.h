@@ -22,7 +22,8 @@ extern "C" {
 /* The usual step: inputs set since the last step, all finite (else the step rules in full), and
  * the model's step for its route, told by one indexed jump from the FMI call itself. */
 static inline fmu_status fmu_usual_step(fmu_instance *inst, double t, double h, double end) {
-    if (fmu_outputs_current_or_inputs_unchecked(&inst->v)) return fmu_run_step(inst, t, h);
+    if (fmu_outputs_current_or_inputs_unchecked(&inst->v))
+        return fmu_run_step_in_step_mode(inst, t, h);
     return model_usual_steps[FMU_USUAL_ROUTE(&inst->v)](inst, t, h, end);
 }
 #define FMU_USUAL_STEP(inst, t, h, end) fmu_usual_step(inst, t, h, end)
@@ -49,9 +50,15 @@ fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double 
                                            double *last_successful_time);
 
 /* The usual call of fmu_do_step, told by its checks: an instance in step mode, a step that
- * advances t to a finite time, t from the unit's time or later. */
+ * advances t to a finite time, t from the unit's time or later. Where the model takes the usual
+ * step itself the mode is left to its route, which is 0 (the step rules in full, which check it:
+ * fmu_run_step_in_step_mode) outside step mode (FMU_USUAL_ROUTE: the model settles it so, and
+ * the runtime sets it to 0 when the mode leaves step mode): one comparison less. */
 static inline int fmu_usual_call(const fmu_instance *inst, double t, double h) {
-    return inst && fmu_usual_step_shape(&inst->v, t, h) && t >= inst->v.time;
+    if (!inst) return 0;
+    const double end = t + h;
+    return (FMU_MODEL_USUAL_STEP || inst->v.mode == MODE_STEP) && end > t &&
+           !(end >= HUGE_VAL) && t >= inst->v.time;
 }
 
 /* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual

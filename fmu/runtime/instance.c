@@ -45,8 +45,16 @@ void fmu_free(fmu_instance *inst) {
     free(inst);
 }
 
+/* The mode leaves step mode: a model's usual route goes to 0 (do_step.h: fmu_usual_call). */
+static void leave_step_mode(fmu_values *v, int mode) {
+    v->mode = mode;
+#if FMU_MODEL_USUAL_STEP
+    FMU_USUAL_ROUTE(v) = 0;
+#endif
+}
+
 fmu_status fmu_fail(fmu_instance *inst) {
-    inst->v.mode = MODE_ERROR;
+    leave_step_mode(&inst->v, MODE_ERROR);
     return FMU_ERROR;
 }
 
@@ -110,7 +118,7 @@ fmu_status fmu_exit_initialization(fmu_instance *inst) {
 
 fmu_status fmu_terminate(fmu_instance *inst) {
     if (fmu_check_call(inst, CALL_TERMINATE, "Terminate") != FMU_OK) return FMU_ERROR;
-    inst->v.mode = MODE_TERMINATED;
+    leave_step_mode(&inst->v, MODE_TERMINATED);
     return FMU_OK;
 }
 
@@ -215,6 +223,15 @@ FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, doubl
     /* a refused call, not a failed step: the mode stays as it was */
     if (check_do_step(inst, t, h) != FMU_OK) return FMU_ERROR;
     return fmu_run_step(inst, t, h);
+}
+
+FMU_RARE_PATH fmu_status fmu_run_step_in_step_mode(fmu_instance *inst, double t, double h) {
+    if (inst->v.mode == MODE_STEP) return fmu_run_step(inst, t, h);
+    const fmu_status s = checked_step(inst, t, h); /* refused: the call order, with its message */
+    /* (FMI 3's usual call pointed the instance at its last successful time) */
+    if (inst->last_successful_time_out)
+        *inst->last_successful_time_out = inst->v.last_successful_time;
+    return s;
 }
 
 FMU_RARE_PATH fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, double h) {

@@ -130,6 +130,11 @@ fmu_status fmu_exit_initialization(fmu_instance *inst);
 /* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
  * the time bookkeeping around them. */
 fmu_status fmu_run_step(fmu_instance *inst, double t, double h);
+/* The step rules in full for a call that passed do_step.h's fmu_usual_call, which leaves the
+ * mode to here where the model takes the usual step itself (the inputs not set since the last
+ * step or not all finite, or the model's route 0, which it is outside step mode): in step mode
+ * fmu_run_step, else the call refused with its message. */
+fmu_status fmu_run_step_in_step_mode(fmu_instance *inst, double t, double h);
 /* The bookkeeping of a step from t that the model did not take (Discard: time stays at t; Error:
  * time and outputs_current go back to time_before and outputs_current_before, and the instance
  * enters the Error mode); FMI 3: the last successful time through last_successful_time_out.

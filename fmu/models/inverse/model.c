@@ -243,10 +243,15 @@ static int usual_route_of(const fmu_values *v) {
 
 /* Settles the route after anything it depends on changed (every change that rules a usual step
  * out is followed by this). */
-static void settle_usual_route(fmu_values *v) { v->model.usual_route = usual_route_of(v); }
+static void settle_usual_route(fmu_values *v) {
+    /* the full rules outside step mode: they check the mode, which the usual call leaves to the
+     * route (do_step.h: fmu_usual_call) */
+    v->model.usual_route = v->mode == MODE_STEP ? usual_route_of(v) : ROUTE_CHECKED;
+}
 
 int inverse_usual_route_valid(const fmu_values *v) {
-    return v->model.usual_route == ROUTE_CHECKED || v->model.usual_route == usual_route_of(v);
+    return v->model.usual_route == ROUTE_CHECKED ||
+           (v->mode == MODE_STEP && v->model.usual_route == usual_route_of(v));
 }
 
 /* ---------------------------------------------------------------- parameters */
@@ -952,7 +957,7 @@ OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double
 /* The step rules in full, as a route's step (end is t + h). */
 static fmu_status full_rules_step(fmu_instance *inst, double t, double h, double end) {
     (void)end;
-    return fmu_run_step(inst, t, h);
+    return fmu_run_step_in_step_mode(inst, t, h); /* (the route outside step mode too) */
 }
 
 /* The step each route takes on inputs set and finite (model_interface.h; do_step.h jumps to it
