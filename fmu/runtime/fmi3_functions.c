@@ -312,17 +312,38 @@ fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueRefere
     return unsupported(instance, "fmi3GetOutputDerivatives (maxOutputDerivativeOrder = 0)");
 }
 
+/* fmi3DoStep but its usual call (flags written): the runtime's checks. Its arguments are
+ * fmi3DoStep's own, in the same registers, so that the jump to it moves none (noclone: the
+ * compiler may not drop the unused ones and move the rest). */
+#if defined(__GNUC__)
+__attribute__((noinline, noclone, cold))
+#endif
+static fmi3Status do_step_otherwise(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
+                                    fmi3Float64 communicationStepSize,
+                                    fmi3Boolean noSetFMUStatePriorToCurrentPoint,
+                                    fmi3Boolean *eventHandlingNeeded,
+                                    fmi3Boolean *terminateSimulation, fmi3Boolean *earlyReturn,
+                                    fmi3Float64 *lastSuccessfulTime) {
+    (void)noSetFMUStatePriorToCurrentPoint; (void)eventHandlingNeeded; (void)terminateSimulation;
+    (void)earlyReturn;
+    CALL(fmu_do_step_reporting_otherwise(INST, currentCommunicationPoint, communicationStepSize,
+                                         lastSuccessfulTime));
+}
+
 fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoint,
                       fmi3Float64 communicationStepSize,
                       fmi3Boolean noSetFMUStatePriorToCurrentPoint,
                       fmi3Boolean *eventHandlingNeeded, fmi3Boolean *terminateSimulation,
                       fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime) {
-    (void)noSetFMUStatePriorToCurrentPoint;
     if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;
-    CALL(fmu_do_step_reporting(INST, currentCommunicationPoint, communicationStepSize,
-                               lastSuccessfulTime));
+    if (lastSuccessfulTime && fmu_usual_call(INST, currentCommunicationPoint, communicationStepSize))
+        CALL(fmu_usual_step_reporting(INST, currentCommunicationPoint, communicationStepSize,
+                                      lastSuccessfulTime));
+    return do_step_otherwise(instance, currentCommunicationPoint, communicationStepSize,
+                             noSetFMUStatePriorToCurrentPoint, eventHandlingNeeded,
+                             terminateSimulation, earlyReturn, lastSuccessfulTime);
 }
 
 fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,

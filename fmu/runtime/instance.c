@@ -45,8 +45,16 @@ void fmu_free(fmu_instance *inst) {
     free(inst);
 }
 
+/* The mode leaves step mode: a model's usual route goes to 0 (do_step.h: fmu_usual_call). */
+static void leave_step_mode(fmu_values *v, int mode) {
+    v->mode = mode;
+#if FMU_MODEL_USUAL_STEP
+    FMU_USUAL_ROUTE(v) = 0;
+#endif
+}
+
 fmu_status fmu_fail(fmu_instance *inst) {
-    inst->v.mode = MODE_ERROR;
+    leave_step_mode(&inst->v, MODE_ERROR);
     return FMU_ERROR;
 }
 
@@ -110,7 +118,7 @@ fmu_status fmu_exit_initialization(fmu_instance *inst) {
 
 fmu_status fmu_terminate(fmu_instance *inst) {
     if (fmu_check_call(inst, CALL_TERMINATE, "Terminate") != FMU_OK) return FMU_ERROR;
-    inst->v.mode = MODE_TERMINATED;
+    leave_step_mode(&inst->v, MODE_TERMINATED);
     return FMU_OK;
 }
 
@@ -180,6 +188,7 @@ fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double
         v->outputs_current = outputs_current_before;
         fmu_fail(inst);
     }
+    if (inst->last_successful_time_out) *inst->last_successful_time_out = v->last_successful_time;
     return s;
 }
 
@@ -208,13 +217,6 @@ FMU_RARE_PATH static fmu_status check_do_step(fmu_instance *inst, double t, doub
     return check_step(inst, t, h);
 }
 
-fmu_status fmu_run_step_reporting(fmu_instance *inst, double t, double h,
-                                  double *last_successful_time) {
-    const fmu_status s = fmu_run_step(inst, t, h);
-    *last_successful_time = inst->v.last_successful_time;
-    return s;
-}
-
 /* Any other call: the call order and the step checked with their messages, then the step. */
 FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, double h) {
     if (!inst) return FMU_ERROR;
@@ -223,18 +225,30 @@ FMU_RARE_PATH static fmu_status checked_step(fmu_instance *inst, double t, doubl
     return fmu_run_step(inst, t, h);
 }
 
+FMU_RARE_PATH fmu_status fmu_run_step_in_step_mode(fmu_instance *inst, double t, double h) {
+    if (inst->v.mode == MODE_STEP) return fmu_run_step(inst, t, h);
+    const fmu_status s = checked_step(inst, t, h); /* refused: the call order, with its message */
+    /* (FMI 3's usual call pointed the instance at its last successful time) */
+    if (inst->last_successful_time_out)
+        *inst->last_successful_time_out = inst->v.last_successful_time;
+    return s;
+}
+
 FMU_RARE_PATH fmu_status fmu_do_step_otherwise(fmu_instance *inst, double t, double h) {
     if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
-        return FMU_USUAL_STEP(inst, t, h);
+        return FMU_USUAL_STEP(inst, t, h, t + h);
     return checked_step(inst, t, h);
 }
 
 FMU_RARE_PATH fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double h,
                                                          double *last_successful_time) {
-    if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t))
-        return FMU_USUAL_STEP_REPORTING(inst, t, h, last_successful_time);
+    if (inst) inst->last_successful_time_out = last_successful_time; /* this call's, or NULL */
+    if (inst && fmu_usual_step_shape(&inst->v, t, h) && within_slack(&inst->v, t)) {
+        if (last_successful_time) *last_successful_time = t + h; /* as fmu_do_step_reporting */
+        return FMU_USUAL_STEP(inst, t, h, t + h);
+    }
     const fmu_status s = checked_step(inst, t, h);
-    if (inst) *last_successful_time = inst->v.last_successful_time;
+    if (inst && last_successful_time) *last_successful_time = inst->v.last_successful_time;
     return s;
 }
 

@@ -39,7 +39,7 @@ typedef enum {
 #define FMU_MODEL_EXCHANGE 0
 #endif
 /* A model's config.h defines FMU_MODEL_USUAL_STEP 1 when it takes the usual doStep itself
- * (model_usual_step, model_interface.h). */
+ * (model_usual_steps, model_interface.h). */
 #ifndef FMU_MODEL_USUAL_STEP
 #define FMU_MODEL_USUAL_STEP 0
 #endif
@@ -48,6 +48,11 @@ typedef enum {
 #define MODES_RUNNING (MODE_STEP | MODE_EVENT | MODE_CONTINUOUS_TIME)
 
 typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
+
+/* outputs_current of outputs that belong to the current inputs and time but that a model leaves
+ * as its solver wrote them until they are read: the runtime calls model_refresh_outputs before
+ * any read of them (a Get of an output, GetFMUState), which lays them out and sets 1. */
+enum { FMU_OUTPUTS_UNREAD = 2 };
 
 /* Marks a function out of line where the compiler allows: a path the usual step does not take,
  * so that the step's own path stays short (issue 22: doStep within 5 % of the library call). */
@@ -67,7 +72,8 @@ typedef struct fmu_values {
     double time;               /* communication point the current inputs belong to */
     double last_step_point;    /* communication point of the last accepted step */
     int has_stepped;           /* a step has been accepted since initialisation */
-    int outputs_current;       /* the outputs belong to the current inputs and time */
+    int outputs_current;       /* the outputs belong to the current inputs and time: 1, or
+                                  FMU_OUTPUTS_UNREAD */
     int inputs_unchecked;      /* 0: every input is finite (the step need not look); set when a
                                   value that is not finite is set or restored, cleared by the
                                   model's scan of its inputs */
@@ -75,6 +81,11 @@ typedef struct fmu_values {
     double last_successful_time;
     int mode;                  /* fmu_mode */
 } fmu_values;
+
+/* A step's end (t + h) and t, side by side as the unit's time and last step point are. */
+typedef struct fmu_step_span {
+    double end, t;
+} fmu_step_span;
 
 typedef struct fmu_instance fmu_instance;
 /* Hands a message to the master's logger (the per-version layer knows how): the callbacks and
@@ -92,6 +103,13 @@ struct fmu_instance {
     void *environment;
     int logging_on;
     int category_on[FMU_N_LOG_CATEGORIES];
+    /* FMI 3's lastSuccessfulTime of the doStep under way (do_step.h; NULL for FMI 2): a step not
+     * taken writes the unit's last successful time through it. Set by every fmi3DoStep before
+     * its step and read only inside a doStep, so never stale when read; not part of a state. */
+    double *last_successful_time_out;
+    /* A usual step's end and t across its library call, where a model keeps them (in memory
+     * rather than callee-saved registers: no frame to save them in); not part of a state. */
+    fmu_step_span step;
 };
 
 /* A new instance at its start values, or NULL (out of memory). */
@@ -112,12 +130,15 @@ fmu_status fmu_exit_initialization(fmu_instance *inst);
 /* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
  * the time bookkeeping around them. */
 fmu_status fmu_run_step(fmu_instance *inst, double t, double h);
-/* fmu_run_step, then the unit's last successful time to *last_successful_time (not NULL). */
-fmu_status fmu_run_step_reporting(fmu_instance *inst, double t, double h,
-                                  double *last_successful_time);
+/* The step rules in full for a call that passed do_step.h's fmu_usual_call, which leaves the
+ * mode to here where the model takes the usual step itself (the inputs not set since the last
+ * step or not all finite, or the model's route 0, which it is outside step mode): in step mode
+ * fmu_run_step, else the call refused with its message. */
+fmu_status fmu_run_step_in_step_mode(fmu_instance *inst, double t, double h);
 /* The bookkeeping of a step from t that the model did not take (Discard: time stays at t; Error:
  * time and outputs_current go back to time_before and outputs_current_before, and the instance
- * enters the Error mode). Returns s. */
+ * enters the Error mode); FMI 3: the last successful time through last_successful_time_out.
+ * Returns s. */
 fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double time_before,
                               int outputs_current_before);
 
@@ -129,6 +150,25 @@ static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fm
     v->real[FMU_TIME_VR] = end;
     v->last_step_point = t;
     v->has_stepped = 1;
+    v->last_successful_time = end;
+    v->last_step_status = s;
+    return s;
+}
+
+/* fmu_step_accepted from the step's end and t as a model kept them across its library call
+ * (fmu_instance.step): side by side, as the unit's time and last step point, so that they move
+ * as one pair; the same values. stepped_before: the model knows a step was accepted before
+ * (has_stepped is 1 already, and stays). */
+static inline fmu_status fmu_step_accepted_kept(fmu_values *v, const fmu_step_span *kept,
+                                                fmu_status s, int stepped_before) {
+    _Static_assert(offsetof(fmu_values, last_step_point) ==
+                       offsetof(fmu_values, time) + sizeof(double),
+                   "the unit's time and last step point no longer lie side by side");
+    const double end = kept->end;
+    v->time = end;
+    v->last_step_point = kept->t;
+    v->real[FMU_TIME_VR] = end;
+    if (!stepped_before) v->has_stepped = 1;
     v->last_successful_time = end;
     v->last_step_status = s;
     return s;

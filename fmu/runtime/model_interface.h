@@ -35,23 +35,25 @@ fmu_status model_start(fmu_instance *inst);
 /* Make the outputs those of the current inputs at inst->v.time unless they already are
  * (inst->v.outputs_current, cleared by the runtime when a variable is set). Returns what that
  * solve gave: OK, Warning, Discard (outputs keep their last valid values) or Error. Never
- * allocates. */
+ * allocates. With outputs_current FMU_OUTPUTS_UNREAD (any mode; only a model that sets it):
+ * lay them out, set outputs_current to 1 and return OK. */
 fmu_status model_refresh_outputs(fmu_instance *inst);
 /* The step rules over [t, t + h] (the runtime has checked t and h and set inst->v.time = t).
  * OK or Warning: the step is accepted and the runtime moves time to t + h; the outputs are those
  * the master reads at t + h. Discard or Error: nothing the master sees changes except status
  * outputs; the runtime keeps time at t. Never allocates. */
 fmu_status model_do_step(fmu_instance *inst, double t, double h);
-/* Only in a model whose config.h defines FMU_MODEL_USUAL_STEP 1: the usual doStep (step mode,
- * t the unit's time within its slack, t + h finite and later: the runtime has checked that) with
- * the runtime's time bookkeeping: fmu_step_accepted or fmu_step_not_taken (instance.h) at the
- * end, or the whole of it handed to fmu_run_step (which calls model_do_step) when the model's
- * own usual path does not apply. Never allocates. */
-fmu_status model_usual_step(fmu_instance *inst, double t, double h);
-/* model_usual_step that also writes the unit's last successful time to *last_successful_time
- * (not NULL) at the end (FMI 3). */
-fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
-                                      double *last_successful_time);
+#if FMU_MODEL_USUAL_STEP
+/* Only in a model whose config.h defines FMU_MODEL_USUAL_STEP 1 (and FMU_USUAL_ROUTE(v), the
+ * index of the model's usual step for values v, 0 .. its count - 1): its usual doSteps by route,
+ * which do_step.h's fmu_usual_step jumps to from the FMI call (step mode, t the unit's time
+ * within its slack, t + h = end finite and later: the runtime has checked that; inputs set since
+ * the last step and all finite), each with the runtime's time bookkeeping (fmu_step_accepted or
+ * fmu_step_not_taken, instance.h) at the end, or the whole of it handed to fmu_run_step (which
+ * calls model_do_step) when the model's own usual path does not apply. Never allocate. */
+typedef fmu_status (*model_usual_step_fn)(fmu_instance *inst, double t, double h, double end);
+extern const model_usual_step_fn model_usual_steps[];
+#endif
 /* FMI 2 input derivatives (order[i] of variable vr[i]); FMU_ERROR with a message if the model
  * does not take that derivative. */
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,

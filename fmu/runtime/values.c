@@ -23,6 +23,9 @@ static fmu_status null_arrays(fmu_instance *inst, const char *what) {
  * reported by the status outputs; the values returned are well defined. */
 fmu_status fmu_refresh_outputs(fmu_instance *inst) {
     fmu_values *v = &inst->v;
+    if (v->outputs_current == 1) return FMU_OK;
+    /* unread outputs (a step's) are laid out in any mode, and nothing else is done */
+    if (v->outputs_current == FMU_OUTPUTS_UNREAD) return model_refresh_outputs(inst);
     if (v->outputs_current || !(v->mode & (MODE_INITIALIZATION | MODES_RUNNING))) return FMU_OK;
     if (v->mode == MODE_INITIALIZATION && fmu_apply_initial_parameters(inst) != FMU_OK)
         return fmu_fail(inst);
@@ -46,7 +49,10 @@ fmu_status fmu_get_real(fmu_instance *inst, const unsigned vr[], size_t n, doubl
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = typed(inst, "GetReal", vr[i], FMU_REAL);
         if (!var) return FMU_ERROR;
-        if (var->causality == FMU_OUTPUT_VAR && fmu_refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        /* (the test that the outputs are current here: most reads need no call) */
+        if (var->causality == FMU_OUTPUT_VAR && inst->v.outputs_current != 1 &&
+            fmu_refresh_outputs(inst) != FMU_OK)
+            return FMU_ERROR;
         value[i] = inst->v.real[vr[i]];
     }
     return FMU_OK;
@@ -58,7 +64,9 @@ fmu_status fmu_get_integer(fmu_instance *inst, const unsigned vr[], size_t n, in
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = typed(inst, "GetInteger", vr[i], FMU_INTEGER);
         if (!var) return FMU_ERROR;
-        if (var->causality == FMU_OUTPUT_VAR && fmu_refresh_outputs(inst) != FMU_OK) return FMU_ERROR;
+        if (var->causality == FMU_OUTPUT_VAR && inst->v.outputs_current != 1 &&
+            fmu_refresh_outputs(inst) != FMU_OK)
+            return FMU_ERROR;
         value[i] = inst->v.integer[vr[i]];
     }
     return FMU_OK;

@@ -151,6 +151,56 @@ def test_corrupt_history_slot_is_refused(version):
 
 
 @pytest.mark.parametrize("version", VERSIONS)
+def test_history_without_a_step_is_refused(version):
+    """The finite-difference history's points are committed by accepted steps, so the usual hold
+    step leaves has_stepped as it is (issue 22): a state with a history and has_stepped 0 (the
+    runtime's flag, 32 bytes before the values' end) is an Error naming it."""
+    import struct
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1, derivatives=0) == OK
+        _, t = _drive(u, 0.0, _poses(3))
+        state = u.get_state()
+        blob = bytearray(u.serialize(state))
+        has_stepped = _layout(u, blob)["mode"] - 24
+        assert struct.unpack_from("<i", blob, has_stepped)[0] == 1
+        struct.pack_into("<i", blob, has_stepped, 0)
+        _refused_then_intact_restores(u, blob, "history without a step", state, t)
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("derivatives", [0, 1])
+def test_step_after_terminate_is_refused_after_usual_steps(version, derivatives):
+    """The usual doStep leaves the mode to the model's route, which is the full rules outside step
+    mode (issue 22): after usual steps and Terminate, a doStep is still an Error naming the call
+    order, the outputs stay, and FMI 3's lastSuccessfulTime is the unit's time, not t + h."""
+    import ctypes
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=1, derivatives=derivatives) == OK
+        poses = _poses(5)
+        _, t = _drive(u, 0.0, poses[:4])
+        u.set_values(dict(zip(POSE, poses[4])))
+        before = u.get_reals(REAL_OUTPUTS)
+        assert getattr(u.dll, "fmi2Terminate" if version == "2.0" else "fmi3Terminate")(u.c) == OK
+        u.messages.clear()
+        if version == "2.0":
+            assert u.dll.fmi2DoStep(u.c, t, 0.1, 1) == ERROR
+        else:
+            flags = [ctypes.c_bool(True) for _ in range(3)]
+            last = ctypes.c_double(-1.0)
+            assert u.dll.fmi3DoStep(u.c, ctypes.c_double(t), ctypes.c_double(0.1), ctypes.c_bool(True),
+                                    *(ctypes.byref(f) for f in flags), ctypes.byref(last)) == ERROR
+            assert last.value == t and not any(f.value for f in flags)
+        assert any("DoStep" in m for s, c, m in u.messages if s == ERROR), u.messages
+        assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
 def test_serialised_state_with_options_beyond_their_declared_range(version):
     """Whatever initialisation accepted, deserialisation accepts: max_iterations at the top of
     its range (1000)."""

@@ -25,8 +25,10 @@
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.1\""
 /* FMI 2 canInterpolateInputs: the model takes input derivatives (model_set_input_derivatives). */
 #define FMU_CAN_INTERPOLATE_INPUTS 1
-/* The usual doStep goes straight from the FMI call to model_usual_step (model.c). */
+/* The usual doStep goes straight from the FMI call to the route's step (model.c:
+ * model_usual_steps), by the route model_values.usual_route. */
 #define FMU_MODEL_USUAL_STEP 1
+#define FMU_USUAL_ROUTE(v) ((v)->model.usual_route)
 
 /* Directional derivatives of the outputs with respect to the inputs (derivatives.c). */
 #define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1
@@ -65,7 +67,7 @@ typedef struct model_values {
     int input_derivatives;     /* fmi2SetRealInputDerivatives called since the last step */
     int solve_status;          /* fmu_status of the solve the outputs come from */
     int advance_discarded;     /* the outputs stand after a Taylor advance that was discarded */
-    int usual_route;           /* the step model_usual_step takes (model.c: settle_usual_route) */
+    int usual_route;           /* the usual step's route (model.c: model_usual_steps, settle_usual_route) */
 } model_values;
 
 /* The model's resources: built at the end of initialisation, never part of a state's plain

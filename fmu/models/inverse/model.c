@@ -34,6 +34,11 @@ static inline double_pair load_pair(const double *p) { return *(const unaligned_
 
 /* Writes r to p. */
 static inline void store_pair(double *p, double_pair r) { *(unaligned_pair *)p = r; }
+
+/* The pair at p, 16-byte aligned (the history slots: the instance comes from calloc, and the
+ * offsets are asserted below), so that SSE2 takes it as an arithmetic operand without a load. */
+typedef double aligned_pair __attribute__((vector_size(2 * sizeof(double)), may_alias));
+static inline double_pair load_aligned_pair(const double *p) { return *(const aligned_pair *)p; }
 #else
 #define PAIRED_ARITHMETIC 0
 typedef struct double_pair { double e[2]; } double_pair;
@@ -47,6 +52,7 @@ static inline double_pair load_pair(const double *p) {
 
 /* Writes r to p. */
 static inline void store_pair(double *p, double_pair r) { memcpy(p, &r, sizeof r); }
+#define load_aligned_pair load_pair
 #endif
 
 /* ---------------------------------------------------------------- values <-> library */
@@ -130,6 +136,16 @@ _Static_assert(kOutputsInPlace, "stewart_inverse_output no longer lies over the 
                                 "on x86-64: the usual step would copy it");
 #endif
 _Static_assert(sizeof(fd_point) == 256, "a history slot is no longer 256 bytes");
+/* The pose inputs' pairs and the history slots' pose and chord pairs lie on 16 bytes in an
+ * instance that calloc aligns for any type (load_aligned_pair). */
+_Static_assert(_Alignof(max_align_t) >= 16 &&
+                   (offsetof(fmu_instance, v) + offsetof(fmu_values, real) +
+                    VR_x * sizeof(double)) % 16 == 0 && (VR_x_dot - VR_x) % 2 == 0 &&
+                   (VR_x_ddot - VR_x) % 2 == 0 &&
+                   (offsetof(fmu_instance, v) + offsetof(fmu_values, model) +
+                    offsetof(model_values, history)) % 16 == 0 &&
+                   offsetof(fd_point, pose) % 16 == 0 && offsetof(fd_point, slope) % 16 == 0,
+               "the pose inputs' or the history's pairs no longer lie on 16 bytes");
 _Static_assert(VR_x_dot == VR_x + 6 && VR_x_ddot == VR_x + 12 &&
                    offsetof(stewart_pose, q_dot) == 6 * sizeof(double) &&
                    offsetof(stewart_pose, q_ddot) == 12 * sizeof(double) &&
@@ -188,10 +204,27 @@ static inline void take_outputs(fmu_values *v, const stewart_inverse_output *out
         outputs_copied(v, out);
 }
 
+/* solve_status of a usual step's solve whose output still lies as the library wrote it (the
+ * base wrench one slot early, the iteration count in a Real slot): the step leaves outputs_in_place
+ * to the first read (outputs_current FMU_OUTPUTS_UNREAD), or to whatever else comes first that
+ * finds the outputs current (a step through the full rules, a refused solve, a state). A master
+ * that reads the outputs after every step pays the same instructions in its first Get; one that
+ * reads them less often pays less (issue 22: doStep within 5 % of the library call). */
+enum { SOLVED_UNREAD = FMU_ERROR + 8 };
+
+/* The outputs laid out if a usual step left them as the library wrote them (exactly once: the
+ * solve status says so). */
+static inline void lay_out_outputs(fmu_values *v) {
+    if (v->model.solve_status != SOLVED_UNREAD) return;
+    outputs_in_place(v);
+    v->integer[VR_status] = 0; /* a usual step's solve has nothing to warn of */
+    v->model.solve_status = FMU_OK;
+}
+
 /* ---------------------------------------------------------------- the usual step's route */
 
-/* What model_usual_step does with a step whose inputs are set since the last one and finite
- * (model_values.usual_route, settled after every change that rules a usual step out, so that the
+/* What the usual step (do_step.h: model_usual_steps) does with a step whose inputs are set since
+ * the last one and finite (model_values.usual_route, settled after every change that rules a usual step out, so that the
  * usual step tests one value; a change that allows one again, such as a discarded advance
  * cleared by a solve, leaves it at the full rules until a full-rules step settles it): the step
  * rules in full (FMI 2 input derivatives given, a discarded advance
@@ -210,10 +243,15 @@ static int usual_route_of(const fmu_values *v) {
 
 /* Settles the route after anything it depends on changed (every change that rules a usual step
  * out is followed by this). */
-static void settle_usual_route(fmu_values *v) { v->model.usual_route = usual_route_of(v); }
+static void settle_usual_route(fmu_values *v) {
+    /* the full rules outside step mode: they check the mode, which the usual call leaves to the
+     * route (do_step.h: fmu_usual_call) */
+    v->model.usual_route = v->mode == MODE_STEP ? usual_route_of(v) : ROUTE_CHECKED;
+}
 
 int inverse_usual_route_valid(const fmu_values *v) {
-    return v->model.usual_route == ROUTE_CHECKED || v->model.usual_route == usual_route_of(v);
+    return v->model.usual_route == ROUTE_CHECKED ||
+           (v->mode == MODE_STEP && v->model.usual_route == usual_route_of(v));
 }
 
 /* ---------------------------------------------------------------- parameters */
@@ -393,6 +431,7 @@ static int first_nonfinite_input(const fmu_values *v) {
 /* Not solved: status 3, the outputs keep their last valid values; the result stands for the
  * current inputs until they change. */
 static fmu_status not_solved(fmu_values *v, fmu_status s) {
+    lay_out_outputs(v); /* the last valid values, where they are read */
     v->integer[VR_status] = 3;
     v->outputs_current = 1;
     v->model.solve_status = s;
@@ -551,6 +590,25 @@ static inline fmu_status solved_checking(fmu_instance *inst, double time, const 
     return FMU_OK;
 }
 
+/* The usual step's library status or the warning bits of its output, in one test (the rare
+ * case, either, is told apart out of line). In place the output's bytes are defined whatever the
+ * library did (a refused solve leaves the last outputs there, whose bits are then not used). */
+static inline int refused_or_warned(stewart_status s, const stewart_inverse_output *out) {
+    if (!kOutputsInPlace) return s != STEWART_OK || OUTPUT_INT(out, warnings);
+    return ((int)s | OUTPUT_INT(out, warnings)) != 0;
+}
+
+/* The outputs of the usual step's solve, which had nothing to warn of (no limit outputs): in
+ * place they stay as the library wrote them until read (SOLVED_UNREAD; the status output 0 is
+ * written with them, lay_out_outputs). */
+static inline fmu_status solved_plain(fmu_instance *inst, const stewart_inverse_output *out) {
+    fmu_values *v = &inst->v;
+    if (!kOutputsInPlace) return solved_checking(inst, 0.0, NULL, out, 0); /* (no warnings) */
+    v->outputs_current = FMU_OUTPUTS_UNREAD;
+    v->model.solve_status = SOLVED_UNREAD;
+    return FMU_OK;
+}
+
 /* solved_checking with the limit outputs as the parameter says. */
 static fmu_status solved(fmu_instance *inst, double time, const double q[6],
                          const stewart_inverse_output *out) {
@@ -574,7 +632,10 @@ FMU_RARE_PATH static fmu_status refused(fmu_instance *inst, double time, const s
  * (unsupported fidelity, memory). */
 static fmu_status solve_at(fmu_instance *inst, double time) {
     fmu_values *v = &inst->v;
-    if (v->outputs_current) return v->model.solve_status;
+    if (v->outputs_current) {
+        lay_out_outputs(v);
+        return v->model.solve_status;
+    }
     v->model.advance_discarded = 0;
     /* Every input must be finite, used or not. */
     if (v->inputs_unchecked && check_inputs(inst, time) != FMU_OK) return FMU_DISCARD;
@@ -586,7 +647,15 @@ static fmu_status solve_at(fmu_instance *inst, double time) {
     return solved(inst, time, in.pose.q, out);
 }
 
-fmu_status model_refresh_outputs(fmu_instance *inst) { return solve_at(inst, inst->v.time); }
+fmu_status model_refresh_outputs(fmu_instance *inst) {
+    fmu_values *v = &inst->v;
+    if (v->outputs_current == FMU_OUTPUTS_UNREAD) { /* current: laid out, as the runtime read them */
+        lay_out_outputs(v);
+        v->outputs_current = 1;
+        return FMU_OK;
+    }
+    return solve_at(inst, v->time);
+}
 
 /* ---------------------------------------------------------------- the step rules */
 
@@ -707,11 +776,22 @@ FMU_RARE_PATH static fmu_status advance_in_place_refused(fmu_instance *inst, dou
     return fs;
 }
 
+/* The advance in place refused (the inputs go back to at_t) or solved with warnings (its output
+ * at output_target(v, out); no limit outputs on the usual step). */
+FMU_RARE_PATH static fmu_status advance_not_plain(fmu_instance *inst, double time,
+                                                  const double at_t[12], stewart_status s,
+                                                  const stewart_inverse_output *out) {
+    if (s != STEWART_OK) return advance_in_place_refused(inst, time, at_t, s);
+    return solved_checking(inst, time, &inst->v.real[VR_x],
+                           output_target(&inst->v, (stewart_inverse_output *)out), 0);
+}
+
 #if PAIRED_ARITHMETIC
 /* Two coordinates of the pose inputs (pose: q, then q_dot 6 on, q_ddot 12 on) kept in at_t (q,
  * q_dot) and advanced over h in place, as advance_pose: the same roundings. */
 static inline void advance_pair(double *pose, double *at_t, double_pair h, double_pair half_h) {
-    const double_pair q = load_pair(pose), qd = load_pair(pose + 6), qdd = load_pair(pose + 12);
+    const double_pair q = load_aligned_pair(pose), qd = load_aligned_pair(pose + 6),
+                      qdd = load_aligned_pair(pose + 12);
     store_pair(at_t, q);
     store_pair(at_t + 6, qd);
     store_pair(pose, q + h * (qd + half_h * qdd));
@@ -721,7 +801,7 @@ static inline void advance_pair(double *pose, double *at_t, double_pair h, doubl
 
 /* derivatives = 1, the usual step: model_do_step's advance with the pose advanced in the inputs
  * themselves (the library's input as they stand), the inputs at t kept aside in case it fails. */
-static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h) {
+static inline fmu_status advance_in_place(fmu_instance *inst, double h) {
     fmu_values *v = &inst->v;
     double *pose = &v->real[VR_x];
     double at_t[12];
@@ -744,17 +824,19 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double t, double h
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, out);
-    if (s != STEWART_OK) return advance_in_place_refused(inst, t + h, at_t, s);
-    return solved_checking(inst, t + h, pose, out, 0); /* no limit outputs on the usual step */
+    if (refused_or_warned(s, out)) /* (in place the rare path finds the output itself) */
+        return advance_not_plain(inst, inst->step.end, at_t, s, kOutputsInPlace ? NULL : out);
+    return solved_plain(inst, out);
 }
 
 #if PAIRED_ARITHMETIC
 /* Two coordinates of quadratic_rates (the same roundings), each value loaded once: the pose q
  * (the inputs) and the last point's pose and chord (p1, d1) into the free slot's pose (next:
  * q, q_dot 6 on, q_ddot 12 on) and chord (slope). */
-static inline void quadratic_pair(const double *q, const double *p1, const double *d1_at,
-                                  double *next, double *slope, double_pair h2, double_pair h12) {
-    const double_pair q1 = load_pair(p1), q2 = load_pair(q), d1 = load_pair(d1_at);
+static inline void quadratic_pair(const double *restrict q, const double *restrict p1,
+                                  const double *restrict d1_at,
+                                  double *restrict next, double *restrict slope, double_pair h2, double_pair h12) {
+    const double_pair q1 = load_aligned_pair(p1), q2 = load_pair(q), d1 = load_aligned_pair(d1_at);
     store_pair(next, q2); /* first: q2's register is then free for the difference (no copy) */
     const double_pair d2 = (q2 - q1) / h2;
     const double_pair dd = (d2 - d1) / h12; /* q[t0, t1, t2] */
@@ -764,11 +846,17 @@ static inline void quadratic_pair(const double *q, const double *p1, const doubl
 }
 #endif
 
-/* The library refused the pose hold_with_quadratic wrote into the history's free slot (found
- * again here, so that the usual step keeps no pointer to it across the library call). */
-FMU_RARE_PATH static fmu_status hold_refused(fmu_instance *inst, double t, stewart_status s) {
-    const model_values *m = &inst->v.model;
-    return refused(inst, t, &m->history[m->newer ^ 1].pose, s);
+/* The library refused the pose hold_with_quadratic wrote into the history's free slot at
+ * inst->step.t (found again here, so that the usual step keeps no pointer to it, nor t, across
+ * the library call), or solved it with warnings (the pose joins the history; the output at
+ * output_target(v, out)). */
+FMU_RARE_PATH static fmu_status hold_not_plain(fmu_instance *inst, stewart_status s,
+                                               const stewart_inverse_output *out) {
+    model_values *m = &inst->v.model;
+    if (s != STEWART_OK) return refused(inst, inst->step.t, &m->history[m->newer ^ 1].pose, s);
+    m->newer ^= 1;
+    return solved_checking(inst, inst->step.t, &inst->v.real[VR_x],
+                           output_target(&inst->v, (stewart_inverse_output *)out), 0);
 }
 
 /* The history slot `at` bytes into the history (0 or sizeof(fd_point)). */
@@ -785,7 +873,7 @@ static inline fd_point *history_slot_at(model_values *m, size_t at) {
 #endif
 
 /* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
- * and the pose joins the history. The free slot of the history takes the pose, its rates (the
+ * and the pose joins the history (t is inst->step.t, for the rare paths). The free slot of the history takes the pose, its rates (the
  * library's input) and its chord before the solve; the solved pose becomes the last point by
  * the flip of one index, and a refused one leaves the history as it was. */
 static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
@@ -816,14 +904,14 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     stewart_inverse_output local, *out = output_target(v, &local);
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, out);
-    if (s != STEWART_OK) return hold_refused(inst, t, s);
+    if (refused_or_warned(s, out)) /* (in place the rare path finds the output itself) */
+        return hold_not_plain(inst, s, kOutputsInPlace ? NULL : out);
     m->newer ^= 1; /* the history is full already */
-    /* the pose is the inputs' (copied from them): no pointer to the slot kept across the call */
-    return solved_checking(inst, t, &v->real[VR_x], out, 0);
+    return solved_plain(inst, out);
 }
 
 /* The usual step's two paths, each with the time bookkeeping (fmu_step_accepted or
- * fmu_step_not_taken): out of line, so that model_usual_step hands over to them without a frame
+ * fmu_step_not_taken): out of line, so that the FMI call hands over to them without a frame
  * of its own and each keeps only what it needs across the library call. */
 #if defined(__GNUC__)
 #define OWN_FRAME __attribute__((noinline))
@@ -831,78 +919,59 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
 #define OWN_FRAME
 #endif
 
-/* The step's end: accepted (OK, Warning) or not. The usual step leaves the unit's time as it
- * was (t, or within the slack of it) until here, so that is the time before it. */
-static inline fmu_status step_end(fmu_instance *inst, double t, double h, fmu_status s) {
-    if (s == FMU_OK || s == FMU_WARNING) return fmu_step_accepted(&inst->v, t, h, s);
-    return fmu_step_not_taken(inst, t, s, inst->v.time, 0);
+/* The step's end: accepted (OK, Warning) or not, from the step's end and t the usual step kept
+ * in the instance (inst->step). The usual step leaves the unit's time as it was (t,
+ * or within the slack of it) until here, so that is the time before it. stepped_before: a step
+ * was accepted before (the hold step: its history's points were committed by steps, which a
+ * restored state is checked for, model_state.c). */
+static inline fmu_status step_end(fmu_instance *inst, fmu_status s, int stepped_before) {
+    if (s == FMU_OK || s == FMU_WARNING)
+        return fmu_step_accepted_kept(&inst->v, &inst->step, s, stepped_before);
+    return fmu_step_not_taken(inst, inst->step.t, s, inst->v.time, 0);
 }
 
-/* step_end, then the unit's last successful time to *last_successful_time (FMI 3: not NULL, the
- * runtime checked it, so the usual step does not test it again). */
-static inline fmu_status step_end_reporting(fmu_instance *inst, double t, double h, fmu_status s,
-                                            double *last_successful_time) {
-    const fmu_status end = step_end(inst, t, h, s);
-    *last_successful_time = inst->v.last_successful_time;
-    return end;
+/* Keeps the step's end and t in the instance (inst->step), as one pair, for step_end and the rare
+ * paths: the usual steps then keep no register across the library call but the instance's. */
+static inline void keep_step(fmu_instance *inst, double t, double end) {
+#if PAIRED_ARITHMETIC
+    const double_pair end_and_t = {end, t};
+    store_pair(&inst->step.end, end_and_t);
+#else
+    inst->step.end = end;
+    inst->step.t = t;
+#endif
 }
 
-OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, advance_in_place(inst, t, h));
+OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h,
+                                               double end) {
+    keep_step(inst, t, end);
+    return step_end(inst, advance_in_place(inst, h), 0);
 }
 
-OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h) {
-    return step_end(inst, t, h, hold_with_quadratic(inst, t));
+OWN_FRAME static fmu_status usual_hold_step(fmu_instance *inst, double t, double h, double end) {
+    (void)h;
+    keep_step(inst, t, end);
+    return step_end(inst, hold_with_quadratic(inst, t), 1);
 }
 
-/* The same for FMI 3, which takes the last successful time back. */
-OWN_FRAME static fmu_status usual_advance_step_reporting(fmu_instance *inst, double t, double h,
-                                                         double *last_successful_time) {
-    return step_end_reporting(inst, t, h, advance_in_place(inst, t, h), last_successful_time);
+/* The step rules in full, as a route's step (end is t + h). */
+static fmu_status full_rules_step(fmu_instance *inst, double t, double h, double end) {
+    (void)end;
+    return fmu_run_step_in_step_mode(inst, t, h); /* (the route outside step mode too) */
 }
 
-OWN_FRAME static fmu_status usual_hold_step_reporting(fmu_instance *inst, double t, double h,
-                                                      double *last_successful_time) {
-    return step_end_reporting(inst, t, h, hold_with_quadratic(inst, t), last_successful_time);
-}
-
-/* The step each route takes on inputs set and finite, told by one indexed jump (the route is
- * 0..2: settle_usual_route writes it, and a restored state whose route is not what its values
- * give is refused, model_state.c). */
-typedef fmu_status (*usual_step_fn)(fmu_instance *inst, double t, double h);
-typedef fmu_status (*usual_step_reporting_fn)(fmu_instance *inst, double t, double h,
-                                              double *last_successful_time);
-static const usual_step_fn kUsualStepOfRoute[] = {
-    [ROUTE_CHECKED] = fmu_run_step,
+/* The step each route takes on inputs set and finite (model_interface.h; do_step.h jumps to it
+ * by the route, which is 0..2: settle_usual_route writes it, and a restored state whose route is
+ * not what its values give is refused, model_state.c). The usual step: no discarded advance
+ * standing, no FMI 2 input derivatives, no limit outputs, and with finite differences two
+ * earlier poses; anything else the step rules in full. */
+const model_usual_step_fn model_usual_steps[] = {
+    [ROUTE_CHECKED] = full_rules_step,
     [ROUTE_ADVANCE] = usual_advance_step,
     [ROUTE_HOLD] = usual_hold_step,
 };
-static const usual_step_reporting_fn kUsualStepReportingOfRoute[] = {
-    [ROUTE_CHECKED] = fmu_run_step_reporting,
-    [ROUTE_ADVANCE] = usual_advance_step_reporting,
-    [ROUTE_HOLD] = usual_hold_step_reporting,
-};
-_Static_assert(sizeof kUsualStepOfRoute / sizeof *kUsualStepOfRoute == ROUTE_HOLD + 1 &&
-                   sizeof kUsualStepReportingOfRoute / sizeof *kUsualStepReportingOfRoute ==
-                       ROUTE_HOLD + 1,
+_Static_assert(sizeof model_usual_steps / sizeof *model_usual_steps == ROUTE_HOLD + 1,
                "a route without its usual step");
-
-fmu_status model_usual_step(fmu_instance *inst, double t, double h) {
-    const fmu_values *v = &inst->v;
-    /* The usual step: inputs set since the last step, all finite, and a usual route (no
-     * discarded advance standing, no FMI 2 input derivatives, no limit outputs, and with finite
-     * differences two earlier poses). Anything else: the step rules in full. */
-    if (fmu_outputs_current_or_inputs_unchecked(v)) return fmu_run_step(inst, t, h);
-    return kUsualStepOfRoute[v->model.usual_route](inst, t, h);
-}
-
-fmu_status model_usual_step_reporting(fmu_instance *inst, double t, double h,
-                                      double *last_successful_time) {
-    const fmu_values *v = &inst->v;
-    if (fmu_outputs_current_or_inputs_unchecked(v))
-        return fmu_run_step_reporting(inst, t, h, last_successful_time);
-    return kUsualStepReportingOfRoute[v->model.usual_route](inst, t, h, last_successful_time);
-}
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
                                        const int order[], const double value[]) {
