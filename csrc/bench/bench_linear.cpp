@@ -3,7 +3,11 @@
 // factorised and solved once transposed for the multipliers (Phi_q^T lambda = Q - M q_ddot),
 // which is what a full step asks of it. Variants (each an extern "C" function, so that
 // studies/bench/linear_solvers.sh can count its instructions with callgrind --toggle-collect):
-//   linear_block        ours: the bordered-block LU (refactorisation on a fixed pivot order)
+//   linear_block        ours: the bordered-block LU (refactorisation on a fixed pivot order),
+//                       the legs side by side in the lane kernels the CPU's best choice
+//   linear_block_groups ours: the same one leg block at a time (no lanes)
+//   linear_block_2/4/8  ours: the same on the 2-, 4- or 8-lane kernels (lane_lu.hpp), where this
+//                       CPU runs them (valgrind runs no AVX-512: the 8 lanes are timed only)
 //   linear_dense        ours: dense LU with partial pivoting
 //   linear_klu          SUNDIALS' KLU linear solver (SuiteSparse; refactorisation after the first)
 //   linear_eigen_sparse Eigen's SparseLU (pattern analysed once, factorised every step)
@@ -28,6 +32,7 @@
 #include "bench/combined_cue.hpp"
 #include "core/assembly.hpp"
 #include "core/dynamics.hpp"
+#include "core/lane_lu.hpp"
 #include "core/linear_solver.hpp"
 #include "core/step.hpp"
 #include "core/sundials_holder.hpp"
@@ -45,7 +50,7 @@ struct Variants {
     const mbs::Mechanism &m;
     const int n;
     std::vector<int> entries;  // structural Jacobian values (the others are zero everywhere)
-    std::unique_ptr<mbs::LinearSolver> block, dense;
+    std::unique_ptr<mbs::LinearSolver> block, dense, groups, lanes[4];  // lanes[k]: 2^k lanes
     // KLU on A = Phi_q^T in compressed columns (column j of A = row j of Phi_q).
     mbs::sundials::Context context;
     mbs::sundials::Matrix klu_matrix;
@@ -65,6 +70,12 @@ struct Variants {
             if (structural[t]) entries.push_back(t);
         block = mbs::make_linear_solver(m, mbs::LinearSolverKind::Block);
         dense = mbs::make_linear_solver(m, mbs::LinearSolverKind::Dense);
+        groups = mbs::make_block_solver(m, nullptr);
+        const mbs::LaneKernels *kernels[3];
+        const int count = mbs::runnable_lane_kernels(kernels);
+        for (int k = 0; k < count; ++k)
+            for (int w = 1; w < 4; ++w)
+                if (kernels[k]->lanes == 1 << w) lanes[w] = mbs::make_block_solver(m, kernels[k]);
         // A(col(t), row(t)) = Phi_q(row(t), col(t)): sort the entries by A's column, then row.
         std::vector<int> order(entries.size());
         for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
@@ -121,6 +132,27 @@ __attribute__((noinline)) int linear_block(const Sample *s, double *lambda) {
     return 1;
 }
 
+// The block LU through a given solver (null: the kernel does not run on this CPU).
+int block_with(mbs::LinearSolver *solver, const Sample *s, double *lambda) {
+    if (!solver || !solver->factor(s->values.data())) return 0;
+    std::copy(s->g.begin(), s->g.end(), lambda);
+    solver->solve_transposed(lambda);
+    return 1;
+}
+
+__attribute__((noinline)) int linear_block_groups(const Sample *s, double *lambda) {
+    return block_with(variants->groups.get(), s, lambda);
+}
+__attribute__((noinline)) int linear_block_2(const Sample *s, double *lambda) {
+    return block_with(variants->lanes[1].get(), s, lambda);
+}
+__attribute__((noinline)) int linear_block_4(const Sample *s, double *lambda) {
+    return block_with(variants->lanes[2].get(), s, lambda);
+}
+__attribute__((noinline)) int linear_block_8(const Sample *s, double *lambda) {
+    return block_with(variants->lanes[3].get(), s, lambda);
+}
+
 __attribute__((noinline)) int linear_dense(const Sample *s, double *lambda) {
     Variants &v = *variants;
     if (!v.dense->factor(s->values.data())) return 0;
@@ -171,6 +203,10 @@ struct Named {
     Variant run;
 };
 const Named kVariants[] = {{"linear_block", linear_block},
+                           {"linear_block_groups", linear_block_groups},
+                           {"linear_block_2", linear_block_2},
+                           {"linear_block_4", linear_block_4},
+                           {"linear_block_8", linear_block_8},
                            {"linear_dense", linear_dense},
                            {"linear_klu", linear_klu},
                            {"linear_eigen_sparse", linear_eigen_sparse},
@@ -240,6 +276,10 @@ int main(int argc, char **argv) {
                 "transposed solve,\n%zu systems along the combined cue, median of 25 passes:\n",
                 m.equations, m.coordinates, v.entries.size(), samples.size());
     for (const Named &named : kVariants) {
+        if (!named.run(&samples[0], lambda.data())) {
+            std::printf("  %-20s not run on this CPU\n", named.name);
+            continue;
+        }
         std::vector<double> ns;
         double worst = 0;
         for (int pass = 0; pass < 25; ++pass)
