@@ -127,6 +127,15 @@ def test_corrupt_serialised_state_is_refused(version, field, value, words):
         u.free()
 
 
+def _driven_state(u):
+    """A massless unit with finite differences after three steps: its state, the state's bytes
+    (to corrupt) and the time reached."""
+    assert u.init(fidelity=1, derivatives=0) == OK
+    _, t = _drive(u, 0.0, _poses(3))
+    state = u.get_state()
+    return state, bytearray(u.serialize(state)), t
+
+
 @pytest.mark.parametrize("version", VERSIONS)
 def test_corrupt_history_slot_is_refused(version):
     """The finite-difference history is two slots and the index of the newer one (the model's
@@ -136,10 +145,7 @@ def test_corrupt_history_slot_is_refused(version):
     import struct
     u = Unit(version)
     try:
-        assert u.init(fidelity=1, derivatives=0) == OK
-        _, t = _drive(u, 0.0, _poses(3))
-        state = u.get_state()
-        blob = bytearray(u.serialize(state))
+        state, blob, t = _driven_state(u)
         nvr = max(v.valueReference for v in model_description("3.0").modelVariables) + 1
         n_history = 16 + 12 * nvr
         assert struct.unpack_from("<i", blob, n_history)[0] == 2  # two points held
@@ -158,10 +164,7 @@ def test_history_without_a_step_is_refused(version):
     import struct
     u = Unit(version)
     try:
-        assert u.init(fidelity=1, derivatives=0) == OK
-        _, t = _drive(u, 0.0, _poses(3))
-        state = u.get_state()
-        blob = bytearray(u.serialize(state))
+        state, blob, t = _driven_state(u)
         has_stepped = _layout(u, blob)["mode"] - 24
         assert struct.unpack_from("<i", blob, has_stepped)[0] == 1
         struct.pack_into("<i", blob, has_stepped, 0)
