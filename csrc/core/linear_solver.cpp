@@ -138,40 +138,35 @@ bool assign_rows(Planning &pl) {
     return pl.leftover + static_cast<int>(p.border_rows.size()) == p.border;
 }
 
-// Stage 4, the pivot order and elimination program of each group, from sample values. Groups
-// whose Jacobian values land on the same places of their blocks (the legs of a hexapod) form a
-// family: they take the union of their structures and one order whose every pivot passes the
-// threshold in each member's sample, so that they share one program and the lane kernels
-// (lane_lu.hpp) factor their blocks side by side; if no such order exists, each its own.
-void choose_group_orders(Planning &pl) {
+// A group's block at the reference configuration, for stage 4.
+struct GroupSample {
+    std::vector<double> a;    // reference values, row-major, rows in the order of `rows`
+    std::vector<int> rows;    // the group's rows
+    std::vector<char> nz;     // structural nonzeros
+    std::vector<char> lands;  // where any Jacobian value lands
+};
+
+std::vector<GroupSample> sample_groups(const Planning &pl, const std::vector<double> &reference) {
     const Mechanism &m = pl.m;
-    BlockPlan &p = pl.p;
-    std::vector<double> reference;
-    sample_jacobian(m, reference, p.structural);
+    const BlockPlan &p = pl.p;
     std::vector<int> row_local(m.equations, -1), col_local(m.coordinates, -1);
     for (int c = 0; c < p.border; ++c) col_local[p.border_cols[c]] = c;  // + n below
-    struct Sample {
-        std::vector<double> a;    // reference values, rows in joint order
-        std::vector<int> rows;    // the group's rows in the order of the above
-        std::vector<char> nz;     // structural nonzeros
-        std::vector<char> lands;  // where any value lands
-    };
-    const int ngroups = static_cast<int>(p.groups.size());
-    std::vector<Sample> samples(ngroups);
-    for (int gi = 0; gi < ngroups; ++gi) {
+    std::vector<GroupSample> samples(p.groups.size());
+    for (size_t gi = 0; gi < p.groups.size(); ++gi) {
         const BlockGroup &g = p.groups[gi];
         const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
         const int width = ng + p.border;
-        Sample &sample = samples[gi];
+        GroupSample &sample = samples[gi];
         sample.a.assign(mg * width, 0.0);
         sample.nz.assign(mg * width, 0);
         sample.lands.assign(mg * width, 0);
+        sample.rows = g.rows;
         for (int r = 0; r < mg; ++r) row_local[g.rows[r]] = r;
         std::vector<int> group_col(m.coordinates, -1);
         for (int c = 0; c < ng; ++c) group_col[g.cols[c]] = c;
         for (int t = 0; t < m.values(); ++t) {
             const int row = m.pattern_row[t], col = m.pattern_col[t];
-            if (pl.row_group[row] != gi) continue;
+            if (pl.row_group[row] != static_cast<int>(gi)) continue;
             const int c = group_col[col] >= 0 ? group_col[col]
                           : col_local[col] >= 0 ? ng + col_local[col] : -1;
             if (c < 0) continue;  // a fixed body's column
@@ -179,40 +174,30 @@ void choose_group_orders(Planning &pl) {
             sample.nz[row_local[row] * width + c] = p.structural[t];
             sample.lands[row_local[row] * width + c] = 1;
         }
-        sample.rows = g.rows;
     }
-    // Rows sorted by where their values land (stable: joint order among equals) make groups of
-    // the same shape list their rows alike whatever order the joints came in; taken only where
-    // that joins more groups into families than the joint order does (it changes the order, so
-    // the pivots, of mechanisms whose joint order lists them alike already).
-    auto families = [&](const std::vector<Sample> &ss, std::vector<int> &family) {
-        int count = 0;
-        family.assign(ngroups, 0);
-        for (int gi = 0; gi < ngroups; ++gi) {
-            family[gi] = gi;
-            for (int f = 0; f < gi && family[gi] == gi; ++f)
-                if (family[f] == f && p.groups[f].rows.size() == p.groups[gi].rows.size() &&
-                    p.groups[f].cols.size() == p.groups[gi].cols.size() &&
-                    ss[f].lands == ss[gi].lands)
-                    family[gi] = f;
-            count += family[gi] == gi;
-        }
-        return count;
-    };
-    std::vector<Sample> sorted = samples;
-    for (int gi = 0; gi < ngroups; ++gi) {
+    return samples;
+}
+
+// The same samples with each group's rows sorted by where their values land (stable: joint
+// order among equals), so that groups of one shape list their rows alike whatever order their
+// joints came in.
+std::vector<GroupSample> rows_by_where_values_land(const BlockPlan &p,
+                                                   std::vector<GroupSample> samples) {
+    for (size_t gi = 0; gi < samples.size(); ++gi) {
         const int mg = static_cast<int>(p.groups[gi].rows.size());
         const int width = static_cast<int>(p.groups[gi].cols.size()) + p.border;
-        Sample &sample = sorted[gi];
+        GroupSample &sample = samples[gi];
         std::vector<int> perm(mg);
         for (int r = 0; r < mg; ++r) perm[r] = r;
         const std::vector<char> lands = sample.lands;
         std::stable_sort(perm.begin(), perm.end(), [&](int x, int y) {
-            return std::lexicographical_compare(lands.begin() + y * width, lands.begin() + (y + 1) * width,
-                                                lands.begin() + x * width, lands.begin() + (x + 1) * width);
+            return std::lexicographical_compare(lands.begin() + y * width,
+                                                lands.begin() + (y + 1) * width,
+                                                lands.begin() + x * width,
+                                                lands.begin() + (x + 1) * width);
         });
         auto permute = [&](auto &v) {
-            auto copy = v;
+            const auto copy = v;
             for (int r = 0; r < mg; ++r)
                 std::copy(copy.begin() + perm[r] * width, copy.begin() + (perm[r] + 1) * width,
                           v.begin() + r * width);
@@ -220,66 +205,108 @@ void choose_group_orders(Planning &pl) {
         permute(sample.a), permute(sample.nz), permute(sample.lands);
         for (int r = 0; r < mg; ++r) sample.rows[r] = p.groups[gi].rows[perm[r]];
     }
+    return samples;
+}
+
+// Per group, the first group of its family (same shape, values landing on the same places);
+// returns the number of families.
+int find_families(const BlockPlan &p, const std::vector<GroupSample> &samples,
+                  std::vector<int> &family) {
+    const int ngroups = static_cast<int>(p.groups.size());
+    int count = 0;
+    family.assign(ngroups, 0);
+    for (int gi = 0; gi < ngroups; ++gi) {
+        family[gi] = gi;
+        for (int f = 0; f < gi && family[gi] == gi; ++f)
+            if (family[f] == f && p.groups[f].rows.size() == p.groups[gi].rows.size() &&
+                p.groups[f].cols.size() == p.groups[gi].cols.size() &&
+                samples[f].lands == samples[gi].lands)
+                family[gi] = f;
+        count += family[gi] == gi;
+    }
+    return count;
+}
+
+// The group's program and its rows in pivot order.
+void take_order(BlockGroup &g, const GroupSample &sample, const std::vector<int> &order,
+                const std::vector<char> &structure, const EliminationProgram &program) {
+    g.program = program;
+    g.has_program = !order.empty();
+    g.structure = structure;
+    if (g.has_program) {
+        std::vector<int> rows(order.size());
+        for (size_t r = 0; r < order.size(); ++r) rows[r] = sample.rows[order[r]];
+        g.rows = rows;
+    }
+}
+
+// One family's orders on the union of its structures (`nz`): each member's own if their programs
+// agree (orders that swap rows of one structure may give one program), else one order whose
+// pivots pass the threshold in every member's reference sample, and if there is none, each its
+// own after all. (Asking the common order to suit the random samples too found none, for the
+// platform or for test_block_solver's hexapod.)
+void order_family(BlockPlan &p, const std::vector<GroupSample> &samples,
+                  const std::vector<int> &members, const std::vector<char> &nz) {
+    const BlockGroup &first = p.groups[members[0]];
+    const int mg = static_cast<int>(first.rows.size()), ng = static_cast<int>(first.cols.size()),
+              width = ng + p.border;
+    std::vector<std::vector<int>> own(members.size());
+    std::vector<std::vector<char>> own_nz(members.size(), nz);
+    std::vector<EliminationProgram> own_program(members.size());
+    bool alike = true;
+    for (size_t i = 0; i < members.size(); ++i) {
+        std::vector<double> a = samples[members[i]].a;
+        own[i] = choose_pivot_order(a, own_nz[i], mg, ng, width, own_program[i]);
+        const EliminationProgram &a0 = own_program[0], &ai = own_program[i];
+        alike = alike && !own[i].empty() && ai.below_start == a0.below_start &&
+                ai.below == a0.below && ai.span_begin == a0.span_begin &&
+                ai.span_end == a0.span_end;
+    }
+    std::vector<char> common_nz = nz;
+    EliminationProgram common;
+    std::vector<int> order;
+    if (!alike) {
+        std::vector<std::vector<double>> a;
+        for (int gi : members) a.push_back(samples[gi].a);
+        order = choose_common_pivot_order(a, common_nz, mg, ng, width, common);
+    }
+    for (size_t i = 0; i < members.size(); ++i) {
+        const GroupSample &sample = samples[members[i]];
+        if (!order.empty())
+            take_order(p.groups[members[i]], sample, order, common_nz, common);
+        else
+            take_order(p.groups[members[i]], sample, own[i], own_nz[i], own_program[i]);
+    }
+}
+
+// Stage 4, the pivot order and elimination program of each group, from sample values. Groups
+// whose Jacobian values land on the same places of their blocks (the legs of a hexapod) form a
+// family with the union of their structures and, where it can, one program (order_family), so
+// that the lane kernels (lane_lu.hpp) factor their blocks side by side. Rows are sorted by where
+// their values land only where that joins more groups into families than the joint order does
+// (it changes the order, so the pivots, of mechanisms whose joint order lists them alike).
+void choose_group_orders(Planning &pl) {
+    BlockPlan &p = pl.p;
+    std::vector<double> reference;
+    sample_jacobian(pl.m, reference, p.structural);
+    std::vector<GroupSample> samples = sample_groups(pl, reference);
+    std::vector<GroupSample> sorted = rows_by_where_values_land(p, samples);
     std::vector<int> family, family_sorted;
-    if (families(sorted, family_sorted) < families(samples, family)) {
+    if (find_families(p, sorted, family_sorted) < find_families(p, samples, family)) {
         samples.swap(sorted);
         family.swap(family_sorted);
     }
-    for (int gi = 0; gi < ngroups; ++gi)
-        for (size_t i = 0; i < samples[gi].nz.size(); ++i)
-            samples[family[gi]].nz[i] |= samples[gi].nz[i];
-    auto take_order = [&](int gi, const std::vector<int> &order, const std::vector<char> &nz) {
-        BlockGroup &g = p.groups[gi];
-        g.has_program = !order.empty();
-        g.structure = nz;
-        if (g.has_program) {
-            std::vector<int> rows(order.size());
-            for (size_t r = 0; r < order.size(); ++r) rows[r] = samples[gi].rows[order[r]];
-            g.rows = rows;
-        }
-    };
+    const int ngroups = static_cast<int>(p.groups.size());
     for (int f = 0; f < ngroups; ++f) {
         if (family[f] != f) continue;
         std::vector<int> members;
-        for (int gi = f; gi < ngroups; ++gi)
-            if (family[gi] == f) members.push_back(gi);
-        const int mg = static_cast<int>(p.groups[f].rows.size()),
-                  ng = static_cast<int>(p.groups[f].cols.size()), width = ng + p.border;
-        // Each member's own order on the family's structure; if their programs differ (the same
-        // program may come from orders that swap rows of one structure), one order whose pivots
-        // pass the threshold in every member's reference sample, and if there is none, each its
-        // own after all. (Asking the order to suit the random samples too found none, for the
-        // platform or for test_block_solver's hexapod.)
-        std::vector<std::vector<int>> own(members.size());
-        std::vector<std::vector<char>> own_nz(members.size());
-        std::vector<EliminationProgram> own_program(members.size());
-        bool alike = true;
-        for (size_t i = 0; i < members.size(); ++i) {
-            std::vector<double> a = samples[members[i]].a;
-            own_nz[i] = samples[f].nz;
-            own[i] = choose_pivot_order(a, own_nz[i], mg, ng, width, own_program[i]);
-            const EliminationProgram &a0 = own_program[0], &ai = own_program[i];
-            alike = alike && !own[i].empty() && ai.below_start == a0.below_start &&
-                    ai.below == a0.below && ai.span_begin == a0.span_begin &&
-                    ai.span_end == a0.span_end;
-        }
         std::vector<char> nz = samples[f].nz;
-        EliminationProgram program;
-        std::vector<int> order;
-        if (!alike) {
-            std::vector<std::vector<double>> a;
-            for (int gi : members) a.push_back(samples[gi].a);
-            order = choose_common_pivot_order(a, nz, mg, ng, width, program);
-        }
-        for (size_t i = 0; i < members.size(); ++i) {
-            if (!order.empty()) {
-                p.groups[members[i]].program = program;
-                take_order(members[i], order, nz);
-            } else {
-                p.groups[members[i]].program = own_program[i];
-                take_order(members[i], own[i], own_nz[i]);
+        for (int gi = f; gi < ngroups; ++gi)
+            if (family[gi] == f) {
+                members.push_back(gi);
+                for (size_t i = 0; i < nz.size(); ++i) nz[i] |= samples[gi].nz[i];
             }
-        }
+        order_family(p, samples, members, nz);
     }
 }
 
