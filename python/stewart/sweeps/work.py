@@ -5,15 +5,16 @@ a result is the same bit for bit whichever worker computes it and however many t
 from __future__ import annotations
 
 import itertools
+import threading
 import time
 
 import numpy as np
 import pyarrow as pa
 
-from .. import scenes
-from ..inverse import InverseSolution
-from ..limits import LIMIT_CLASSES
-from ..platform import Platform
+from .. import _core, scenes
+from ..inverse import InverseSolution, empty_inverse_solution
+from ..limits import LIMIT_CLASSES, LimitCheck
+from ..platform import Platform, _warn_condition
 from ..scenes import POSE
 from .spec import Chunk
 
@@ -95,36 +96,102 @@ def slice_poses(s: dict, start: int, stop: int) -> tuple[np.ndarray, np.ndarray]
     return index, q
 
 
-def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
+class _Scratch:
+    """One worker process's arrays for workspace chunks of n rows, kept from one chunk to the
+    next: a chunk of 576 000 poses fills about 300 MB of result arrays and table columns, and
+    fresh arrays cost their first touch (page faults, the kernel zeroing pages) in every chunk.
+    Only for a table written before the next chunk starts (compute_chunk writing its own file):
+    the table's columns are views of these arrays."""
+
+    def __init__(self, n: int, n_axes: int):
+        self.n = n
+        self.row = np.empty(n, np.int64)
+        self.index = np.empty((n_axes, n), np.int64)  # one row per axis: the table's columns
+        self.q = np.empty((n, 6))                    # the poses, rows as the library reads them
+        self.pose = np.empty((6, n))                 # the same, one row per component (columns)
+        self.sol = empty_inverse_solution(n)
+        k = len(LIMIT_CLASSES)
+        self.check = LimitCheck(np.empty(n, np.int32), np.empty(n, np.int32), np.empty((n, k)),
+                                np.empty((n, k), np.int32), np.empty((n, k), np.int32),
+                                np.empty(n))
+        self.margin = np.empty((k, n))
+        self.length = np.empty((6, n))
+        self.force = np.empty((6, n))
+        self.limit_class = np.empty(n, np.int8)
+        self.reachable = np.empty(n, bool)
+
+
+# Per thread: a worker process with several threads computes chunks side by side.
+_scratch = threading.local()
+
+
+def _scratch_for(n: int, n_axes: int) -> _Scratch:
+    """This thread's arrays for chunks of n rows (one size at a time: a sweep's chunks all have
+    one size but its slices' last ones)."""
+    b = getattr(_scratch, "arrays", None)
+    if b is None or (b.n, b.index.shape[0]) != (n, n_axes):
+        _scratch.arrays = None  # free the old ones first
+        b = _scratch.arrays = _Scratch(n, n_axes)
+    return b
+
+
+def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False) -> tuple[pa.Table, dict]:
     """Poses [chunk.start, chunk.stop) of one slice at rest: status, reachability within every
     limit (Platform.limits: stroke, joint angles, leg interference, the condition number against
     the options' warn_condition), the first failing limit class and the margin to each,
-    condition, lengths and static forces for the spec's platform and payload."""
+    condition, lengths and static forces for the spec's platform and payload.
+
+    reuse: build the chunk in this process's arrays of the previous chunk (_Scratch) instead of
+    fresh ones; the table's columns are then views of them, valid only until the next call with
+    reuse (write it first). The values are the same either way."""
     started = time.perf_counter()
     s = next(x for x in spec["slices"] if x["name"] == chunk.part)
-    index, q = slice_poses(s, chunk.start, chunk.stop)
+    n = chunk.stop - chunk.start
+    axes = list(s["axes"].items())
+    b = _scratch_for(n, len(axes)) if reuse else _Scratch(n, len(axes))
+    # The grid indices and poses, row-major over the axes (as slice_poses), built column by
+    # column: no strided copies.
+    np.copyto(b.row, np.arange(chunk.start, chunk.stop))
+    rest = b.row
+    for col in range(len(axes) - 1, -1, -1):
+        size = len(axes[col][1])
+        np.remainder(rest, size, out=b.index[col])
+        rest = rest // size
+    b.pose.fill(0.0)
+    for comp, v in s["fixed"].items():
+        b.pose[POSE.index(comp)].fill(v)
+    for col, (comp, values) in enumerate(axes):
+        np.take(np.asarray(values, dtype=float), b.index[col], out=b.pose[POSE.index(comp)])
+    np.copyto(b.q, b.pose.T)
     platform = Platform(**spec["platform"])
-    sol = platform.inverse(q, fidelity=spec["fidelity"], max_messages=len(q), **spec["options"])
-    check = platform.limits(q, warn_condition=spec["options"].get("warn_condition"))
-    reachable = sol.ok & check.within
-    columns = {"slice": dictionary_column(len(q), s["name"], {}),
-               "row": np.arange(chunk.start, chunk.stop)}
+    sol = platform.inverse(b.q, fidelity=spec["fidelity"], max_messages=n, **spec["options"],
+                           out=b.sol)
+    check = b.check
+    _core.limits_check(platform._model, b.q, _warn_condition(spec["options"].get("warn_condition")),
+                       check.first, check.failed, check.margin, check.leg, check.other_leg,
+                       check.condition)
+    np.logical_and(sol.ok, check.within, out=b.reachable)
+    np.copyto(b.limit_class, check.first, casting="unsafe")
+    np.copyto(b.margin, check.margin.T)
+    np.copyto(b.length, sol.length.T)
+    np.copyto(b.force, sol.force.T)
+    columns = {"slice": dictionary_column(n, s["name"], {}), "row": b.row}
     for col, comp in enumerate(s["axes"]):
-        columns[f"i_{comp}"] = index[:, col]
+        columns[f"i_{comp}"] = b.index[col]
     for i, comp in enumerate(POSE):
-        columns[comp] = q[:, i]
+        columns[comp] = b.pose[i]
     columns["status"] = sol.status
-    columns["reachable"] = reachable
-    columns["limit_class"] = check.first.astype(np.int8)
+    columns["reachable"] = b.reachable
+    columns["limit_class"] = b.limit_class
     for c, name in enumerate(LIMIT_CLASSES):
-        columns[f"margin_{name}"] = check.margin[:, c]
+        columns[f"margin_{name}"] = b.margin[c]
     columns["condition"] = sol.condition
     for k in LEGS:
-        columns[f"L{k}"] = sol.length[:, k - 1]
+        columns[f"L{k}"] = b.length[k - 1]
     for k in LEGS:
-        columns[f"F{k}"] = sol.force[:, k - 1]
-    columns["message"] = dictionary_column(len(q), "", sol.messages)
-    stats = {"seconds": time.perf_counter() - started, "poses": len(q), "cases": 0}
+        columns[f"F{k}"] = b.force[k - 1]
+    columns["message"] = dictionary_column(n, "", sol.messages)
+    stats = {"seconds": time.perf_counter() - started, "poses": n, "cases": 0}
     return pa.table(columns), stats
 
 
