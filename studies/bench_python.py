@@ -16,13 +16,14 @@ usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
    time (how many cores they really had: on a shared machine, fewer than the workers), the median
    chunk's CPU time (it grows when the workers contend for something) and the load average at
    the start of each sweep. Each sweep starts after os.sync(), so that no earlier sweep's files
-   are written back during it.
+   are written back during it, and its OUT_DIR is deleted once measured (see sweep()).
 """
 import argparse
 import json
 import os
 import pathlib
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -73,26 +74,32 @@ def c_ns_per_pose(build):
 
 
 def sweep(spec, workers, tmp):
+    """One sweep, timed, then merged, its size taken and its OUT_DIR deleted. Deleting it
+    matters on the 2-core VM of the 2026-12-02 runs (docs/sweeps.md): while an earlier sweep's
+    files (a workspace map's 3 GB of chunks and merged results) stayed in the page cache, every
+    chunk's Parquet write took 4 times the system time (0.5 s instead of 0.12 s a chunk): the
+    page cache grew into memory the host had taken back. The sweep run second, always the one on
+    2 workers, paid for it."""
     path = pathlib.Path(tmp) / f"spec-{spec['kind']}-{workers}.json"
     path.write_text(json.dumps(spec))
-    # The previous sweep's files (a workspace map writes about 1 GB of chunks and as much merged)
-    # are still dirty in the page cache: written back to disk now, not by the kernel's flusher
-    # threads during this sweep, where they took CPU from the workers (docs/sweeps.md).
+    out = pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}"
+    # The previous sweep's files are written back to disk now, not by the kernel's flusher
+    # threads during this sweep.
     os.sync()
     load = os.getloadavg()[0]
     start = time.perf_counter()
-    summary = run(path, pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}", ROOT / "scenes",
-                  workers=workers, progress=False, log=lambda m: None)
+    summary = run(path, out, ROOT / "scenes", workers=workers, progress=False, log=lambda m: None)
     total = time.perf_counter() - start
     compute = sum(c["seconds"] + c.get("write_seconds", 0.0) for c in summary["computed"])
     cpu = sum(c["cpu_seconds"] for c in summary["computed"])
     poses = sum(c["poses"] for c in summary["computed"])
     cases = sum(c["cases"] for c in summary["computed"])
     wall = summary["wall_seconds"]
-    out = pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}"
     size = sum(f.stat().st_size for f in out.glob("*.parquet"))
+    shutil.rmtree(out)
     return {"workers": workers, "wall": wall, "total": total, "compute": compute, "poses": poses,
-            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size, "cpu": cpu, "load": load,
+            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size, "cpu": cpu,
+            "load": load,
             "chunk_cpu": statistics.median(c["cpu_seconds"] for c in summary["computed"])}
 
 
