@@ -326,3 +326,32 @@ def test_dictionary_columns_equal_arrow_s_own_encoding():
         expected = pa.array([texts.get(j, default) for j in range(n)]).dictionary_encode()
         got = dictionary_column(n, default, texts)
         assert got.type == expected.type and got.equals(expected), (n, default, texts)
+
+
+def test_workspace_chunks_in_reused_arrays_equal_fresh_ones(tmp_path):
+    """A workspace chunk built in the arrays of the thread's previous chunk (reuse=True, as a
+    worker that writes its own file builds it) is the table a chunk in fresh arrays gives, bit
+    for bit, across slices of two and of one axis and the shorter last chunk of a slice (a new
+    size); a worker that sends its table back (no OUT_DIR here) gets one that owns its arrays."""
+    from stewart.sweeps.work import workspace_chunk
+    spec = json.loads(json.dumps(WORKSPACE))
+    spec["slices"].append({"name": "z", "fixed": {"x": 0.01, "roll": 0.1},
+                           "axes": {"z": {"start": 0.3, "stop": 0.8, "num": 900}}})
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(spec))
+    from stewart.sweeps import load
+    spec = load(path, SCENES)
+    for chunk in chunks(spec):
+        fresh, _ = workspace_chunk(spec, chunk)
+        reused, _ = workspace_chunk(spec, chunk, reuse=True)
+        assert reused.schema == fresh.schema and reused.equals(fresh), chunk
+        for name in fresh.column_names:
+            a = fresh[name].to_numpy(zero_copy_only=False)
+            b = reused[name].to_numpy(zero_copy_only=False)
+            if a.dtype.kind == "f":
+                assert np.array_equal(a.view(np.int64), b.view(np.int64)), (chunk, name)
+    chunk = chunks(spec)[1]
+    sent, _ = compute_chunk(spec, chunk, str(tmp_path / "not-there"))
+    expected, _ = workspace_chunk(spec, chunk)
+    workspace_chunk(spec, chunks(spec)[0], reuse=True)  # another chunk in this thread's arrays
+    assert sent.equals(expected)
