@@ -9,17 +9,21 @@ usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
 2. Sweeps through scripts/sweep.py's engine on a LocalCluster of 1 and 2 workers, in 10 chunks
    of about 1 s of work each (docs/sweeps.md: chunks of >= 1 s keep Dask's overhead at a few
    percent; 10 share out evenly on 1 or 2 workers): an envelope of 840 cases (about 1e6 poses)
-   at the full level and a 2400 x 2400 workspace slice (5.76e6 poses) at the massless level; wall time
+   at the full level and a 3200 x 3200 workspace slice (1.02e7 poses) at the massless level; wall time
    from the first submission to the last result (cluster start-up apart), the workers' own time
    (solving, building the table, writing its Parquet file), Dask's overhead
    (1 - workers' time / (wall x workers)), the speed-up, and the workers' CPU time over the wall
-   time (how many cores they really had: on a shared machine, fewer than the workers).
+   time (how many cores they really had: on a shared machine, fewer than the workers), the median
+   chunk's CPU time (it grows when the workers contend for something) and the load average at
+   the start of each sweep. Each sweep starts after os.sync(), so that no earlier sweep's files
+   are written back during it, and its OUT_DIR is deleted once measured (see sweep()).
 """
 import argparse
 import json
 import os
 import pathlib
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -70,21 +74,33 @@ def c_ns_per_pose(build):
 
 
 def sweep(spec, workers, tmp):
+    """One sweep, timed, then merged, its size taken and its OUT_DIR deleted. Deleting it
+    matters on the 2-core VM of the 2026-12-02 runs (docs/sweeps.md): while an earlier sweep's
+    files (a workspace map's 3 GB of chunks and merged results) stayed in the page cache, every
+    chunk's Parquet write took 4 times the system time (0.5 s instead of 0.12 s a chunk): the
+    page cache grew into memory the host had taken back. The sweep run second, always the one on
+    2 workers, paid for it."""
     path = pathlib.Path(tmp) / f"spec-{spec['kind']}-{workers}.json"
     path.write_text(json.dumps(spec))
+    out = pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}"
+    # The previous sweep's files are written back to disk now, not by the kernel's flusher
+    # threads during this sweep.
+    os.sync()
+    load = os.getloadavg()[0]
     start = time.perf_counter()
-    summary = run(path, pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}", ROOT / "scenes",
-                  workers=workers, progress=False, log=lambda m: None)
+    summary = run(path, out, ROOT / "scenes", workers=workers, progress=False, log=lambda m: None)
     total = time.perf_counter() - start
     compute = sum(c["seconds"] + c.get("write_seconds", 0.0) for c in summary["computed"])
     cpu = sum(c["cpu_seconds"] for c in summary["computed"])
     poses = sum(c["poses"] for c in summary["computed"])
     cases = sum(c["cases"] for c in summary["computed"])
     wall = summary["wall_seconds"]
-    out = pathlib.Path(tmp) / f"out-{spec['kind']}-{workers}"
     size = sum(f.stat().st_size for f in out.glob("*.parquet"))
+    shutil.rmtree(out)
     return {"workers": workers, "wall": wall, "total": total, "compute": compute, "poses": poses,
-            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size, "cpu": cpu}
+            "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size, "cpu": cpu,
+            "load": load,
+            "chunk_cpu": statistics.median(c["cpu_seconds"] for c in summary["computed"])}
 
 
 ENVELOPE = {"kind": "envelope", "fidelity": ["full"], "payload_mass": {"start": 0, "stop": 100, "num": 21},
@@ -94,9 +110,9 @@ ENVELOPE = {"kind": "envelope", "fidelity": ["full"], "payload_mass": {"start": 
             "cases_per_chunk": 84}
 WORKSPACE = {"kind": "workspace", "fidelity": "massless", "platform": {"payload_mass": 50},
              "slices": [{"name": "xy", "fixed": {"z": 0.55},
-                         "axes": {"x": {"start": -0.4, "stop": 0.4, "num": 2400},
-                                  "y": {"start": -0.4, "stop": 0.4, "num": 2400}}}],
-             "poses_per_chunk": 576000}
+                         "axes": {"x": {"start": -0.4, "stop": 0.4, "num": 3200},
+                                  "y": {"start": -0.4, "stop": 0.4, "num": 3200}}}],
+             "poses_per_chunk": 1024000}
 
 
 def main():
@@ -130,7 +146,8 @@ def main():
                         f"{r['total']:.2f} s), workers' own time {r['compute']:.2f} s, Dask overhead "
                         f"{r['overhead']:.1%}, {r['poses'] / r['wall']:.3g} poses/s "
                         f"({per_core:.3g} per core); workers' CPU {r['cpu']:.2f} s = "
-                        f"{r['cpu'] / r['wall']:.2f} cores busy on average" +
+                        f"{r['cpu'] / r['wall']:.2f} cores busy on average, median chunk CPU "
+                        f"{r['chunk_cpu']:.2f} s, load average {r['load']:.2f} at its start" +
                         (f", {r['cases'] / r['wall']:.3g} cases/s" if r["cases"] else ""))
                 lines.append(f"  speed-up 2 vs 1 worker: {rows[0]['wall'] / rows[1]['wall']:.2f}x; "
                              f"merged Parquet {rows[0]['bytes'] / 1e6:.1f} MB "

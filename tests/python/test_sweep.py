@@ -326,3 +326,40 @@ def test_dictionary_columns_equal_arrow_s_own_encoding():
         expected = pa.array([texts.get(j, default) for j in range(n)]).dictionary_encode()
         got = dictionary_column(n, default, texts)
         assert got.type == expected.type and got.equals(expected), (n, default, texts)
+
+
+def test_workspace_chunks_in_reused_arrays_and_blocks_equal_one_call(tmp_path, monkeypatch):
+    """A workspace chunk built in the arrays of the thread's previous chunk (reuse=True, as a
+    worker that writes its own file builds it), solved and checked in blocks of 96 rows, is the
+    table one call per chunk in fresh arrays gives, bit for bit: slices of two and of one axis,
+    the shorter last chunk of a slice (a new size), a last block shorter than the others, and
+    failing rows with their messages. A worker that sends its table back (no OUT_DIR here) gets
+    one that owns its arrays."""
+    from stewart.sweeps import load
+    from stewart.sweeps import work
+    spec = json.loads(json.dumps(WORKSPACE))
+    spec["slices"].append({"name": "z", "fixed": {"x": 0.01, "roll": 0.1},
+                           "axes": {"z": {"start": 0.3, "stop": 0.8, "num": 900}}})
+    spec["options"] = {"singular_condition": 12.4, "warn_condition": 12.0}  # about half the rows fail
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(spec))
+    spec = load(path, SCENES)
+    failed = 0
+    for chunk in chunks(spec):
+        monkeypatch.setattr(work, "BLOCK_ROWS", 10**9)
+        fresh, _ = work.workspace_chunk(spec, chunk)
+        monkeypatch.setattr(work, "BLOCK_ROWS", 96)
+        reused, _ = work.workspace_chunk(spec, chunk, reuse=True)
+        assert reused.schema == fresh.schema and reused.equals(fresh), chunk
+        for name in fresh.column_names:
+            a = fresh[name].to_numpy(zero_copy_only=False)
+            b = reused[name].to_numpy(zero_copy_only=False)
+            if a.dtype.kind == "f":
+                assert np.array_equal(a.view(np.int64), b.view(np.int64)), (chunk, name)
+        failed += sum(1 for m in fresh["message"].to_pylist() if m)
+    assert failed > 100
+    chunk = chunks(spec)[1]
+    sent, _ = compute_chunk(spec, chunk, str(tmp_path / "not-there"))
+    expected, _ = work.workspace_chunk(spec, chunk)
+    work.workspace_chunk(spec, chunks(spec)[0], reuse=True)  # another chunk in this thread's arrays
+    assert sent.equals(expected)

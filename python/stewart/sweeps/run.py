@@ -30,17 +30,22 @@ def compute_chunk(spec: dict, chunk: Chunk, out_dir: str) -> tuple[Optional[pa.T
     """One chunk's statistics (seconds, poses, cases, worker address) and its table. A worker
     that sees OUT_DIR (same machine, or a shared file system) writes the chunk file itself and
     returns no table, which saves sending the results through the scheduler's connection."""
-    work = envelope_chunk if spec["kind"] == "envelope" else workspace_chunk
+    out = pathlib.Path(out_dir)
+    writes = (out / "chunks").is_dir() and (out / "spec.json").is_file() and \
+        json.loads((out / "spec.json").read_text()) == spec
     cpu = time.process_time()
-    table, stats = work(spec, chunk)
+    if spec["kind"] == "envelope":
+        table, stats = envelope_chunk(spec, chunk)
+    else:
+        # A table written here may live in this process's arrays of the previous chunk (no
+        # fresh memory to fault in per chunk); one sent back must own its arrays.
+        table, stats = workspace_chunk(spec, chunk, reuse=writes)
     try:
         from distributed import get_worker
         stats["worker"] = get_worker().address
     except (ImportError, ValueError):
         stats["worker"] = "local"
-    out = pathlib.Path(out_dir)
-    if (out / "chunks").is_dir() and (out / "spec.json").is_file() and \
-            json.loads((out / "spec.json").read_text()) == spec:
+    if writes:
         started = time.perf_counter()
         write_chunk(table, out, chunk)
         stats["write_seconds"] = time.perf_counter() - started

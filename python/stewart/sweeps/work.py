@@ -5,15 +5,16 @@ a result is the same bit for bit whichever worker computes it and however many t
 from __future__ import annotations
 
 import itertools
+import threading
 import time
 
 import numpy as np
 import pyarrow as pa
 
-from .. import scenes
-from ..inverse import InverseSolution
-from ..limits import LIMIT_CLASSES
-from ..platform import Platform
+from .. import _core, scenes
+from ..inverse import INVERSE_TABLE, InverseSolution, empty_inverse_solution
+from ..limits import LIMIT_CLASSES, LimitCheck
+from ..platform import Platform, _warn_condition
 from ..scenes import POSE
 from .spec import Chunk
 
@@ -95,36 +96,128 @@ def slice_poses(s: dict, start: int, stop: int) -> tuple[np.ndarray, np.ndarray]
     return index, q
 
 
-def workspace_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
+#: Rows solved and checked at a time within a workspace chunk at the kinematic and massless
+#: levels, whose rows are independent (the same bits at any place in a batch): the solver's and
+#: the limit check's arrays (about 470 B a row) are then this many rows, not the chunk's.
+BLOCK_ROWS = 65536
+
+
+class _Scratch:
+    """One worker thread's arrays for workspace chunks of n rows, kept from one chunk to the
+    next: fresh arrays cost their first touch (page faults, the kernel zeroing pages) in every
+    chunk. The table's columns (one array row each, about 220 B a pose) are chunk-sized, the
+    solver's and limit check's block-sized. Only for a table written before the next chunk
+    starts (compute_chunk writing its own file): the table's columns are views of these arrays."""
+
+    def __init__(self, n: int, n_axes: int, block: int):
+        self.n, self.block = n, block
+        self.row = np.empty(n, np.int64)
+        self.index = np.empty((n_axes, n), np.int64)  # one row per axis: the table's columns
+        self.pose = np.empty((6, n))                 # the poses, one row per component
+        self.q = np.empty((block, 6))                # a block of them as the library reads them
+        self.sol = empty_inverse_solution(block)
+        k = len(LIMIT_CLASSES)
+        self.check = LimitCheck(np.empty(block, np.int32), np.empty(block, np.int32),
+                                np.empty((block, k)), np.empty((block, k), np.int32),
+                                np.empty((block, k), np.int32), np.empty(block))
+        self.status = np.empty(n, self.sol.status.dtype)
+        self.condition = np.empty(n)
+        self.margin = np.empty((k, n))
+        self.length = np.empty((6, n))
+        self.force = np.empty((6, n))
+        self.limit_class = np.empty(n, np.int8)
+        self.reachable = np.empty(n, bool)
+
+    def rows(self, m: int) -> tuple[np.ndarray, InverseSolution, LimitCheck]:
+        """The block arrays' first m rows (C-contiguous views: out= takes them)."""
+        if m == self.block:
+            return self.q, self.sol, self.check
+        sol = InverseSolution(**{name: getattr(self.sol, name)[:m]
+                                 for name, _, _ in INVERSE_TABLE.columns})
+        c = self.check
+        return self.q[:m], sol, LimitCheck(c.first[:m], c.failed[:m], c.margin[:m], c.leg[:m],
+                                           c.other_leg[:m], c.condition[:m])
+
+
+# Per thread: a worker process with several threads computes chunks side by side.
+_scratch = threading.local()
+
+
+def _scratch_for(n: int, n_axes: int, block: int) -> _Scratch:
+    """This thread's arrays for chunks of n rows (one size at a time: a sweep's chunks all have
+    one size but its slices' last ones)."""
+    b = getattr(_scratch, "arrays", None)
+    if b is None or (b.n, b.index.shape[0], b.block) != (n, n_axes, block):
+        _scratch.arrays = None  # free the old ones first
+        b = _scratch.arrays = _Scratch(n, n_axes, block)
+    return b
+
+
+def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False) -> tuple[pa.Table, dict]:
     """Poses [chunk.start, chunk.stop) of one slice at rest: status, reachability within every
     limit (Platform.limits: stroke, joint angles, leg interference, the condition number against
     the options' warn_condition), the first failing limit class and the margin to each,
-    condition, lengths and static forces for the spec's platform and payload."""
+    condition, lengths and static forces for the spec's platform and payload.
+
+    reuse: build the chunk in this thread's arrays of the previous chunk (_Scratch) instead of
+    fresh ones; the table's columns are then views of them, valid only until the next call with
+    reuse (write it first). The values are the same either way."""
     started = time.perf_counter()
     s = next(x for x in spec["slices"] if x["name"] == chunk.part)
-    index, q = slice_poses(s, chunk.start, chunk.stop)
+    n = chunk.stop - chunk.start
+    axes = list(s["axes"].items())
+    # The full level starts each pose from the previous solution: one block, as one call.
+    block = n if spec["fidelity"] == "full" else min(n, BLOCK_ROWS)
+    b = _scratch_for(n, len(axes), block) if reuse else _Scratch(n, len(axes), block)
+    # The grid indices and poses, row-major over the axes (as slice_poses), built column by
+    # column: no strided copies.
+    np.copyto(b.row, np.arange(chunk.start, chunk.stop))
+    rest = b.row
+    for col in range(len(axes) - 1, -1, -1):
+        size = len(axes[col][1])
+        np.remainder(rest, size, out=b.index[col])
+        rest = rest // size
+    b.pose.fill(0.0)
+    for comp, v in s["fixed"].items():
+        b.pose[POSE.index(comp)].fill(v)
+    for col, (comp, values) in enumerate(axes):
+        np.take(np.asarray(values, dtype=float), b.index[col], out=b.pose[POSE.index(comp)])
     platform = Platform(**spec["platform"])
-    sol = platform.inverse(q, fidelity=spec["fidelity"], max_messages=len(q), **spec["options"])
-    check = platform.limits(q, warn_condition=spec["options"].get("warn_condition"))
-    reachable = sol.ok & check.within
-    columns = {"slice": dictionary_column(len(q), s["name"], {}),
-               "row": np.arange(chunk.start, chunk.stop)}
+    warn_condition = _warn_condition(spec["options"].get("warn_condition"))
+    messages: dict[int, str] = {}
+    for lo in range(0, n, block):
+        hi = min(lo + block, n)
+        q, sol, check = b.rows(hi - lo)
+        np.copyto(q, b.pose[:, lo:hi].T)
+        platform.inverse(q, fidelity=spec["fidelity"], max_messages=hi - lo, **spec["options"],
+                         out=sol)
+        messages.update((lo + j, text) for j, text in sol.messages.items())
+        _core.limits_check(platform._model, q, warn_condition, check.first, check.failed,
+                           check.margin, check.leg, check.other_leg, check.condition)
+        np.logical_and(sol.ok, check.within, out=b.reachable[lo:hi])
+        np.copyto(b.limit_class[lo:hi], check.first, casting="unsafe")
+        np.copyto(b.margin[:, lo:hi], check.margin.T)
+        np.copyto(b.length[:, lo:hi], sol.length.T)
+        np.copyto(b.force[:, lo:hi], sol.force.T)
+        np.copyto(b.status[lo:hi], sol.status)
+        np.copyto(b.condition[lo:hi], sol.condition)
+    columns = {"slice": dictionary_column(n, s["name"], {}), "row": b.row}
     for col, comp in enumerate(s["axes"]):
-        columns[f"i_{comp}"] = index[:, col]
+        columns[f"i_{comp}"] = b.index[col]
     for i, comp in enumerate(POSE):
-        columns[comp] = q[:, i]
-    columns["status"] = sol.status
-    columns["reachable"] = reachable
-    columns["limit_class"] = check.first.astype(np.int8)
+        columns[comp] = b.pose[i]
+    columns["status"] = b.status
+    columns["reachable"] = b.reachable
+    columns["limit_class"] = b.limit_class
     for c, name in enumerate(LIMIT_CLASSES):
-        columns[f"margin_{name}"] = check.margin[:, c]
-    columns["condition"] = sol.condition
+        columns[f"margin_{name}"] = b.margin[c]
+    columns["condition"] = b.condition
     for k in LEGS:
-        columns[f"L{k}"] = sol.length[:, k - 1]
+        columns[f"L{k}"] = b.length[k - 1]
     for k in LEGS:
-        columns[f"F{k}"] = sol.force[:, k - 1]
-    columns["message"] = dictionary_column(len(q), "", sol.messages)
-    stats = {"seconds": time.perf_counter() - started, "poses": len(q), "cases": 0}
+        columns[f"F{k}"] = b.force[k - 1]
+    columns["message"] = dictionary_column(n, "", messages)
+    stats = {"seconds": time.perf_counter() - started, "poses": n, "cases": 0}
     return pa.table(columns), stats
 
 
