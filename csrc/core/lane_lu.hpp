@@ -18,12 +18,12 @@ namespace mbs {
 struct LaneKernels {
     const char *name;
     int lanes;
-    // Zeroes the fill entries, gathers values[gather[e * lanes + l]] into entry entries[e] of
-    // lane l, then factors every lane in place; returns a bit per lane whose factorisation the
-    // scalar lu_factor_static would have refused (a zero or a refused pivot).
+    // Zeroes the fill (a + fill[f], each lanes wide), gathers values[gather[e * lanes + l]] into
+    // lane l at a + entries[e], then factors every lane in place; returns a bit per lane whose
+    // factorisation the scalar lu_factor_static would have refused (a zero or a refused pivot).
     unsigned (*factor)(double *a, const EliminationProgram &p, double *inv_diag,
-                       const double *values, const int *entries, const int *gather, int count,
-                       const int *fill, int fill_count);
+                       const double *values, const long *entries, const int *gather, int count,
+                       const long *fill, int fill_count);
     // t <- L^-1 t (m values per lane).
     void (*forward)(const double *a, const EliminationProgram &p, double *t);
     // x <- U^-1 (t - W y), y shared by every lane (the border's unknowns).

@@ -68,14 +68,23 @@ LaneLayout plan_lane_sets(const BlockPlan &p, int lanes) {
         out.workspace += s.mg * s.width * lanes;
         out.pivots += s.ng * lanes;
         out.vectors += s.mg * lanes;
-        for (const auto &ev : values[g]) s.entries.push_back(ev.first);
+        for (const auto &ev : values[g]) s.entries.push_back(static_cast<long>(ev.first) * lanes);
         s.gather.resize(s.entries.size() * lanes);
         for (int l = 0; l < lanes; ++l) {
             const int from = l < static_cast<int>(members.size()) ? members[l] : g;
             for (size_t e = 0; e < s.entries.size(); ++e)
                 s.gather[e * lanes + l] = values[from][e].second;
         }
-        for (int f : s.lead->fill) s.fill.push_back(f - s.lead->offset);
+        for (int f : s.lead->fill) s.fill.push_back(static_cast<long>(f - s.lead->offset) * lanes);
+        s.col_of.resize(s.ng * lanes);
+        s.row_of.resize(s.mg * lanes);
+        s.first_leftover.resize(lanes);
+        for (int l = 0; l < lanes; ++l) {
+            const BlockGroup &lg = p.groups[l < static_cast<int>(members.size()) ? members[l] : g];
+            for (int c = 0; c < s.ng; ++c) s.col_of[c * lanes + l] = lg.cols[c];
+            for (int r = 0; r < s.mg; ++r) s.row_of[r * lanes + l] = lg.rows[r];
+            s.first_leftover[l] = lg.first_leftover;
+        }
         for (size_t l = 0; l < members.size(); ++l) {
             out.set_of[members[l]] = static_cast<int>(out.sets.size());
             out.lane_of[members[l]] = static_cast<int>(l);

@@ -17,9 +17,12 @@ struct LaneSet {
     int pivots = 0;                      // reciprocal pivots: pivot k of lane l at pivots + k L + l
     int vectors = 0;                     // right-hand sides: row r of lane l at vectors + r L + l
     int carried = 0;                     // -W^T mu: border column c of lane l at carried + c L + l
-    std::vector<int> entries;            // block entries a Jacobian value lands on
+    std::vector<long> entries;           // where (in doubles: entry e L) a Jacobian value lands
     std::vector<int> gather;             // per entry and lane: the value's index (pad lanes: lane 0's)
-    std::vector<int> fill;               // entries the program fills and no value lands on
+    std::vector<long> fill;              // where the program fills and no value lands
+    // Per lane l (pad lanes: lane 0's group): at c L + l the coordinate of the group's column c,
+    // at r L + l the equation of its row r (pivot order), at l its first leftover row.
+    std::vector<int> col_of, row_of, first_leftover;
 };
 
 struct LaneLayout {

@@ -285,10 +285,8 @@ public:
         const int nb = p_.border, L = lanes_.lanes;
         for (const LaneSet &s : lanes_.sets) {
             double *t = lane_t_.data() + s.vectors;
-            for (int l = 0; l < L; ++l) {
-                const std::vector<int> &rows = lane_group(s, l).rows;
-                for (int r = 0; r < s.mg; ++r) t[r * L + l] = rhs_[rows[r]];
-            }
+            const int *row_of = s.row_of.data();
+            for (int i = 0; i < s.mg * L; ++i) t[i] = rhs_[row_of[i]];
             kernels_->forward(lane_ws_.data() + s.offset, s.lead->program, t);
         }
         for (const BlockGroup &g : p_.groups) {
@@ -347,10 +345,8 @@ public:
         for (int c = 0; c < nb; ++c) border_[c] = rhs_[p_.border_cols[c]];
         for (const LaneSet &s : lanes_.sets) {
             double *mu = lane_t_.data() + s.vectors;
-            for (int l = 0; l < L; ++l) {
-                const std::vector<int> &cols = lane_group(s, l).cols;
-                for (int c = 0; c < s.ng; ++c) mu[c * L + l] = rhs_[cols[c]];
-            }
+            const int *col_of = s.col_of.data();
+            for (int i = 0; i < s.ng * L; ++i) mu[i] = rhs_[col_of[i]];
             kernels_->forward_transposed(lane_ws_.data() + s.offset, s.lead->program,
                                          lane_inv_.data() + s.pivots, mu,
                                          lane_carried_.data() + s.carried);
@@ -395,14 +391,14 @@ public:
         for (const LaneSet &set : lanes_.sets) {
             double *t = lane_t_.data() + set.vectors;
             for (int l = 0; l < L; ++l) {
-                const int first = lane_group(set, l).first_leftover - set.ng;
+                const int first = set.first_leftover[l] - set.ng;
                 for (int r = set.ng; r < set.mg; ++r) t[r * L + l] = border_work_[first + r];
             }
             kernels_->backward_transposed(lane_ws_.data() + set.offset, set.lead->program, t);
+            const int *row_of = set.row_of.data();
             for (size_t l = 0; l < set.groups.size(); ++l) {
                 if (!static_used_[set.groups[l]]) continue;
-                const std::vector<int> &rows = p_.groups[set.groups[l]].rows;
-                for (int r = 0; r < set.mg; ++r) x[rows[r]] = t[r * L + l];
+                for (int i = static_cast<int>(l); i < set.mg * L; i += L) x[row_of[i]] = t[i];
             }
         }
         for (const BlockGroup &g : p_.groups) {
@@ -445,11 +441,6 @@ public:
 private:
     // True if group gi was factored in its lane (false on a fallback: its scalar block holds it).
     bool in_lane(size_t gi) const { return lanes_.set_of[gi] >= 0 && static_used_[gi]; }
-    // Lane l's group; a pad lane (beyond the set's groups) repeats lane 0's, so its values stay
-    // those of a regular block.
-    const BlockGroup &lane_group(const LaneSet &s, int l) const {
-        return p_.groups[s.groups[l < static_cast<int>(s.groups.size()) ? l : 0]];
-    }
     const Mechanism &m_;
     const BlockPlan &p_;
     const LaneKernels *kernels_;
