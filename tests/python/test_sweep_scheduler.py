@@ -78,21 +78,31 @@ def cluster(tmp_path):
 
 
 def test_sweep_on_an_external_scheduler_equals_the_local_one(cluster, tmp_path):
+    """Every sweep on the cluster equals the local run. Dask decides which worker takes a chunk:
+    on a loaded machine (CI's test run) one worker once took all twelve of a sweep's 20 ms chunks,
+    so the sweep runs up to three times, and at least one must have used both workers."""
     address, workers = cluster
     spec = tmp_path / "spec.json"
     spec.write_text(json.dumps(SPEC))
-    r = subprocess.run([sys.executable, str(ROOT / "scripts/sweep.py"), str(spec), str(tmp_path / "remote"),
-                        "--scheduler", address, "--no-progress"],
-                       capture_output=True, text=True, timeout=120)
-    assert r.returncode == 0, r.stderr
-    summary = json.loads((tmp_path / "remote/run.json").read_text())
-    used = {c["worker"] for c in summary["computed"]}
-    assert used == workers and len(used) == 2
     run(spec, tmp_path / "local", ROOT / "scenes", workers=1, progress=False, log=lambda m: None)
-    remote = pq.read_table(tmp_path / "remote/envelope.parquet")
     local = pq.read_table(tmp_path / "local/envelope.parquet")
-    assert remote.num_rows == 12 and np.all(remote["status"].to_numpy() == 0)
-    assert remote.equals(local)
-    for column in remote.column_names:
-        if remote[column].type == "double":
-            np.testing.assert_array_equal(remote[column].to_numpy(), local[column].to_numpy())
+    used_by_sweep = []
+    for attempt in range(3):
+        out = tmp_path / f"remote{attempt}"
+        r = subprocess.run([sys.executable, str(ROOT / "scripts/sweep.py"), str(spec), str(out),
+                            "--scheduler", address, "--no-progress"],
+                           capture_output=True, text=True, timeout=120)
+        assert r.returncode == 0, r.stderr
+        summary = json.loads((out / "run.json").read_text())
+        used = {c["worker"] for c in summary["computed"]}
+        assert used <= workers
+        remote = pq.read_table(out / "envelope.parquet")
+        assert remote.num_rows == 12 and np.all(remote["status"].to_numpy() == 0)
+        assert remote.equals(local)
+        for column in remote.column_names:
+            if remote[column].type == "double":
+                np.testing.assert_array_equal(remote[column].to_numpy(), local[column].to_numpy())
+        used_by_sweep.append(len(used))
+        if used == workers:
+            break
+    assert used_by_sweep[-1] == 2, f"workers used by each sweep: {used_by_sweep}"
