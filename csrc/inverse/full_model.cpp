@@ -216,7 +216,7 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
     }
     reference(home.r_platform, home.A_platform, q);
     l.platform = b.body("platform", lumped.mass, principal, q);
-    if (l.platform < 0 || b.fix(l.base) < 0) return nullptr;
+    if (l.platform < 0 || (l.base_fixed = b.fix(l.base)) < 0) return nullptr;
 
     const Vec3 ez = Vec3::UnitZ(), ex = Vec3::UnitX();
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -367,15 +367,14 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_inve
     else
         thesis_forces(l, s, out.force);  // in units of L0 N, scaled below
 
-    // The wrench of the base Cardans on the base, about the world origin.
-    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    const Vec3 r_base(mbs::body_r(s.q.data(), l.base));
-    for (int k = 0; k < STEWART_LEGS; ++k) {
-        Vec3 fk, nk;
-        mbs::joint_reaction(m, s, l.base_cardan[k], 0, fk, nk);
-        f += fk;
-        t += nk + r_base.cross(fk);
-    }
+    // The wrench of the base Cardans on the base, about the world origin. The base is massless
+    // and joined by them alone, so it is the ground's on the base reversed: the reaction of the
+    // joint that fixes it, whose multipliers the transposed solve forms anyway (one reaction
+    // where the six Cardans' took 1.8 k instructions; the same sums in another order).
+    Vec3 ground_force, ground_torque;
+    mbs::joint_reaction(m, s, l.base_fixed, 0, ground_force, ground_torque);
+    const Vec3 f = -ground_force;
+    const Vec3 t = -ground_torque + Vec3(mbs::body_r(s.q.data(), l.base)).cross(f);
     if (l.drive == FullDrive::PlatformPose)
         for (int k = 0; k < STEWART_LEGS; ++k) out.force[k] *= L0;
     for (int i = 0; i < 3; ++i) out.base_force[i] = f[i] * L0, out.base_torque[i] = t[i] * L0 * L0;

@@ -19,6 +19,7 @@ enum class FullDrive {
 struct FullLayout {
     FullDrive drive = FullDrive::ActuatorLengths;
     int base = 0, platform = 13;
+    int base_fixed = -1;  // the joint that fixes the base
     int cylinder[STEWART_LEGS], piston[STEWART_LEGS];
     int base_cardan[STEWART_LEGS], cylindrical[STEWART_LEGS];
     int driver_joint[STEWART_LEGS];  // length drivers (ActuatorLengths)

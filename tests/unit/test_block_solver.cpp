@@ -244,7 +244,7 @@ static void test_legs_share_one_program(void) {
  * falls back to partial pivoting, its lane's results unused). */
 static void test_lanes_equal_one_group_at_a_time(void) {
     const mbs::Mechanism &m = model->mechanism;
-    const mbs::LaneKernels *kernels[3];
+    const mbs::LaneKernels *kernels[mbs::kMaxLaneKernels];
     const int count = mbs::runnable_lane_kernels(kernels);
     TEST_ASSERT_TRUE(count >= 1);
     auto scalar = mbs::make_block_solver(m, nullptr);
