@@ -14,5 +14,6 @@ done
 ref="$(bash "$repo/studies/bench/reference.sh" "$commit")"
 nice -n 10 cmake --build "$repo/build" -j2 --target stewart-solve stewart-simulate \
   StewartPlatform_fmu2 StewartPlatform_fmu3 StewartPlant_fmu2 StewartPlant_fmu3 >&2
-"$repo/.venv/bin/python" "$repo/studies/bench/compare_outputs.py" "$ref/build" "$repo/build" \
+# The venv's installed package (PYTHONPATH=python, the source tree, has no built extension).
+env -u PYTHONPATH "$repo/.venv/bin/python" "$repo/studies/bench/compare_outputs.py" "$ref/build" "$repo/build" \
   "${extra[@]+"${extra[@]}"}"

@@ -884,8 +884,9 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     const size_t newer_at = (size_t)(unsigned)m->newer * sizeof(fd_point); /* newer: 0 or 1 */
     const fd_point *newer = history_slot_at(m, newer_at);
     fd_point *next = history_slot_at(m, newer_at ^ sizeof(fd_point));
-    const double h1 = newer->interval, h2 = t - newer->t;
+    const double h2 = t - newer->t;
 #if PAIRED_ARITHMETIC
+    const double h1 = newer->interval;
     const double_pair h2_2 = {h2, h2}, h12_2 = {h1 + h2, h1 + h2};
     const double *q = &v->real[VR_x];
     quadratic_pair(q, newer->pose.q, newer->slope, next->pose.q, next->slope, h2_2, h12_2);
