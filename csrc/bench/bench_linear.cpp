@@ -6,8 +6,8 @@
 //   linear_block        ours: the bordered-block LU (refactorisation on a fixed pivot order),
 //                       the legs side by side in the lane kernels the CPU's best choice
 //   linear_block_groups ours: the same one leg block at a time (no lanes)
-//   linear_block_2/4/8  ours: the same on the 2-, 4- or 8-lane kernels (lane_lu.hpp), where this
-//                       CPU runs them (valgrind runs no AVX-512: the 8 lanes are timed only)
+//   linear_block_2/4/8  ours: the same on the 2-, 4- or 8-lane kernels (lane_lu.hpp: 8 in two
+//                       AVX2 registers), where this CPU runs them
 //   linear_dense        ours: dense LU with partial pivoting
 //   linear_klu          SUNDIALS' KLU linear solver (SuiteSparse; refactorisation after the first)
 //   linear_eigen_sparse Eigen's SparseLU (pattern analysed once, factorised every step)
@@ -51,7 +51,6 @@ struct Variants {
     const int n;
     std::vector<int> entries;  // structural Jacobian values (the others are zero everywhere)
     std::unique_ptr<mbs::LinearSolver> block, dense, groups, lanes[4];  // lanes[k]: 2^k lanes
-    std::unique_ptr<mbs::LinearSolver> lanes_8x2;  // 8 lanes in two registers
     // KLU on A = Phi_q^T in compressed columns (column j of A = row j of Phi_q).
     mbs::sundials::Context context;
     mbs::sundials::Matrix klu_matrix;
@@ -76,10 +75,7 @@ struct Variants {
         const int count = mbs::runnable_lane_kernels(kernels);
         for (int k = 0; k < count; ++k)
             for (int w = 1; w < 4; ++w)
-                if (kernels[k]->lanes == 1 << w && kernels[k]->registers == 1)
-                    lanes[w] = mbs::make_block_solver(m, kernels[k]);
-        for (int k = 0; k < count; ++k)
-            if (kernels[k]->registers == 2) lanes_8x2 = mbs::make_block_solver(m, kernels[k]);
+                if (kernels[k]->lanes == 1 << w) lanes[w] = mbs::make_block_solver(m, kernels[k]);
         // A(col(t), row(t)) = Phi_q(row(t), col(t)): sort the entries by A's column, then row.
         std::vector<int> order(entries.size());
         for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
@@ -157,10 +153,6 @@ __attribute__((noinline)) int linear_block_8(const Sample *s, double *lambda) {
     return block_with(variants->lanes[3].get(), s, lambda);
 }
 
-__attribute__((noinline)) int linear_block_8x2(const Sample *s, double *lambda) {
-    return block_with(variants->lanes_8x2.get(), s, lambda);
-}
-
 __attribute__((noinline)) int linear_dense(const Sample *s, double *lambda) {
     Variants &v = *variants;
     if (!v.dense->factor(s->values.data())) return 0;
@@ -215,7 +207,6 @@ const Named kVariants[] = {{"linear_block", linear_block},
                            {"linear_block_2", linear_block_2},
                            {"linear_block_4", linear_block_4},
                            {"linear_block_8", linear_block_8},
-                           {"linear_block_8x2", linear_block_8x2},
                            {"linear_dense", linear_dense},
                            {"linear_klu", linear_klu},
                            {"linear_eigen_sparse", linear_eigen_sparse},

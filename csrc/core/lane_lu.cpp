@@ -6,9 +6,6 @@ int runnable_lane_kernels(const LaneKernels *out[kMaxLaneKernels]) {
     int count = 0;
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_cpu_init();
-#ifdef MBS_HAVE_AVX512_LANES
-    if (__builtin_cpu_supports("avx512f")) out[count++] = &kLaneKernelsAvx512;
-#endif
 #ifdef MBS_HAVE_AVX2X2_LANES
     if (__builtin_cpu_supports("avx2")) out[count++] = &kLaneKernelsAvx2x2;
 #endif

@@ -5,9 +5,10 @@
 // fused multiply-add contraction), so every lane's results are the scalar path's, bit for bit.
 //
 // Kernels are built for 2 lanes (GCC's portable vector extension: SSE2 on every x86-64, NEON on
-// AArch64), 4 (AVX2), 8 in two AVX2 registers (lane_register_pair.hpp) and 8 (AVX-512F);
-// `lane_kernels_for` picks for a plan the narrowest that takes its largest set in one pass (of
-// two as wide, the one in one register), else the widest this CPU runs.
+// AArch64), 4 (AVX2) and 8 in two AVX2 registers (lane_register_pair.hpp); `lane_kernels_for`
+// picks for a plan the narrowest that takes its largest set in one pass, else the widest this CPU
+// runs. (An 8-lane AVX-512F kernel was built and measured: on the one AVX-512 host at hand, a Zen
+// 5, it was 15 % slower than two AVX2 registers, its gathers and masks dearer: not kept.)
 #pragma once
 
 #include "core/sparse_lu.hpp"
@@ -17,7 +18,6 @@ namespace mbs {
 struct LaneKernels {
     const char *name;
     int lanes;
-    int registers;  // vector registers a value of all lanes takes (1, or 2: lane_register_pair.hpp)
     // Zeroes the fill (a + fill[f], each lanes wide), gathers values[gather[e * lanes + l]] into
     // lane l at a + entries[e], then factors every lane in place; returns a bit per lane whose
     // factorisation the scalar lu_factor_static would have refused (a zero or a refused pivot).
@@ -43,9 +43,6 @@ extern const LaneKernels kLaneKernelsAvx2;
 #endif
 #ifdef MBS_HAVE_AVX2X2_LANES
 extern const LaneKernels kLaneKernelsAvx2x2;
-#endif
-#ifdef MBS_HAVE_AVX512_LANES
-extern const LaneKernels kLaneKernelsAvx512;
 #endif
 
 // Every kernel built and runnable here, widest first (tests compare them all); returns the count.

@@ -1,5 +1,5 @@
 // The lane kernels (lane_lu_kernel.inc) with 8 lanes in two AVX2 registers, compiled with -mavx2
-// (chosen at run time where AVX-512 is not: six legs in one pass instead of two of four).
+// (chosen at run time: six legs in one pass instead of two of four).
 #define MBS_LANES 8
 #define MBS_LANE_REGISTERS 2
 #define MBS_LANE_KERNELS kLaneKernelsAvx2x2
