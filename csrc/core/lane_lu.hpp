@@ -46,7 +46,7 @@ extern const LaneKernels kLaneKernelsAvx2x2;
 #endif
 
 // Every kernel built and runnable here, widest first (tests compare them all); returns the count.
-constexpr int kMaxLaneKernels = 4;
+constexpr int kMaxLaneKernels = 3;
 int runnable_lane_kernels(const LaneKernels *out[kMaxLaneKernels]);
 // For groups whose largest family (groups of one program) has `family` members: the narrowest
 // runnable kernel with room for them all, else the widest (chosen when a solver is made: no
