@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "core/assembly.hpp"
 #include "core/linear_solver.hpp"
@@ -225,6 +226,13 @@ int find_families(const BlockPlan &p, const std::vector<GroupSample> &samples,
     return count;
 }
 
+// The number of distinct group shapes (rows, columns): the fewest families there can be.
+int count_shapes(const BlockPlan &p) {
+    std::set<std::pair<size_t, size_t>> shapes;
+    for (const BlockGroup &g : p.groups) shapes.emplace(g.rows.size(), g.cols.size());
+    return static_cast<int>(shapes.size());
+}
+
 // The group's program and its rows in pivot order.
 void take_order(BlockGroup &g, const GroupSample &sample, const std::vector<int> &order,
                 const std::vector<char> &structure, const EliminationProgram &program) {
@@ -255,10 +263,7 @@ void order_family(BlockPlan &p, const std::vector<GroupSample> &samples,
     for (size_t i = 0; i < members.size(); ++i) {
         std::vector<double> a = samples[members[i]].a;
         own[i] = choose_pivot_order(a, own_nz[i], mg, ng, width, own_program[i]);
-        const EliminationProgram &a0 = own_program[0], &ai = own_program[i];
-        alike = alike && !own[i].empty() && ai.below_start == a0.below_start &&
-                ai.below == a0.below && ai.span_begin == a0.span_begin &&
-                ai.span_end == a0.span_end;
+        alike = alike && !own[i].empty() && same_program(own_program[i], own_program[0]);
     }
     std::vector<char> common_nz = nz;
     EliminationProgram common;
@@ -288,11 +293,16 @@ void choose_group_orders(Planning &pl) {
     std::vector<double> reference;
     sample_jacobian(pl.m, reference, p.structural);
     std::vector<GroupSample> samples = sample_groups(pl, reference);
-    std::vector<GroupSample> sorted = rows_by_where_values_land(p, samples);
-    std::vector<int> family, family_sorted;
-    if (find_families(p, sorted, family_sorted) < find_families(p, samples, family)) {
-        samples.swap(sorted);
-        family.swap(family_sorted);
+    std::vector<int> family;
+    const int families = find_families(p, samples, family);
+    // Sorting can join only groups of one shape: with one family per shape it has nothing to do.
+    if (families > count_shapes(p)) {
+        std::vector<GroupSample> sorted = rows_by_where_values_land(p, samples);
+        std::vector<int> family_sorted;
+        if (find_families(p, sorted, family_sorted) < families) {
+            samples.swap(sorted);
+            family.swap(family_sorted);
+        }
     }
     const int ngroups = static_cast<int>(p.groups.size());
     for (int f = 0; f < ngroups; ++f) {

@@ -16,17 +16,12 @@ std::vector<std::pair<int, int>> entry_values(const BlockGroup &g) {
     return ev;
 }
 
-// True if the lane kernels may run b's block in a's program: the same shape, every index table
-// the kernels read, the same fill and values on the same entries.
+// True if the lane kernels may run b's block in a's program: the same shape, the same program
+// (same_program), the same fill and values on the same entries.
 bool same_shape(const BlockGroup &a, const BlockGroup &b, const std::vector<std::pair<int, int>> &ea,
                 const std::vector<std::pair<int, int>> &eb) {
-    const EliminationProgram &p = a.program, &q = b.program;
     if (!a.has_program || !b.has_program || a.rows.size() != b.rows.size() ||
-        a.cols.size() != b.cols.size() || p.m != q.m || p.n != q.n || p.width != q.width)
-        return false;
-    if (p.below_start != q.below_start || p.below != q.below || p.below_at != q.below_at ||
-        p.below_row != q.below_row || p.span_begin != q.span_begin || p.span_end != q.span_end ||
-        p.own_end != q.own_end || p.carried_begin != q.carried_begin)
+        a.cols.size() != b.cols.size() || !same_program(a.program, b.program))
         return false;
     if (ea.size() != eb.size() || a.fill.size() != b.fill.size()) return false;
     for (size_t i = 0; i < ea.size(); ++i)
@@ -38,7 +33,34 @@ bool same_shape(const BlockGroup &a, const BlockGroup &b, const std::vector<std:
 
 }  // namespace
 
+std::vector<int> lane_families(const BlockPlan &p) {
+    const int ngroups = static_cast<int>(p.groups.size());
+    std::vector<std::vector<std::pair<int, int>>> values(ngroups);
+    for (int g = 0; g < ngroups; ++g) values[g] = entry_values(p.groups[g]);
+    std::vector<int> family(ngroups, -1);
+    for (int g = 0; g < ngroups; ++g) {
+        if (!p.groups[g].has_program) continue;
+        family[g] = g;
+        for (int f = 0; f < g && family[g] == g; ++f)
+            if (family[f] == f && same_shape(p.groups[f], p.groups[g], values[f], values[g]))
+                family[g] = f;
+    }
+    return family;
+}
+
+int largest_family(const std::vector<int> &family) {
+    std::vector<int> size(family.size(), 0);
+    int largest = 1;
+    for (int f : family)
+        if (f >= 0) largest = std::max(largest, ++size[f]);
+    return largest;
+}
+
 LaneLayout plan_lane_sets(const BlockPlan &p, int lanes) {
+    return plan_lane_sets(p, lane_families(p), lanes);
+}
+
+LaneLayout plan_lane_sets(const BlockPlan &p, const std::vector<int> &family, int lanes) {
     LaneLayout out;
     out.lanes = lanes;
     const int ngroups = static_cast<int>(p.groups.size());
@@ -48,11 +70,10 @@ LaneLayout plan_lane_sets(const BlockPlan &p, int lanes) {
     std::vector<std::vector<std::pair<int, int>>> values(ngroups);
     for (int g = 0; g < ngroups; ++g) values[g] = entry_values(p.groups[g]);
     for (int g = 0; g < ngroups; ++g) {
-        if (out.set_of[g] >= 0 || !p.groups[g].has_program) continue;
+        if (out.set_of[g] >= 0 || family[g] < 0) continue;
         std::vector<int> members{g};
         for (int h = g + 1; h < ngroups && static_cast<int>(members.size()) < lanes; ++h)
-            if (out.set_of[h] < 0 && same_shape(p.groups[g], p.groups[h], values[g], values[h]))
-                members.push_back(h);
+            if (out.set_of[h] < 0 && family[h] == family[g]) members.push_back(h);
         if (members.size() < 2) continue;
         LaneSet s;
         s.groups = members;

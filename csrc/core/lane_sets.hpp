@@ -32,7 +32,14 @@ struct LaneLayout {
     int workspace = 0, pivots = 0, vectors = 0, carried = 0;  // sizes of the interleaved arrays
 };
 
-// Sets of two or more groups; none when lanes < 2.
+// Per group, the first group whose program, fill and value places it shares (itself if no
+// earlier one does), or -1 if it has no program: which groups one lane set may hold.
+std::vector<int> lane_families(const BlockPlan &p);
+// The most groups of one family (what one pass of the lane kernels could take).
+int largest_family(const std::vector<int> &family);
+// Sets of two or more groups of one family (`family` from lane_families); none when lanes < 2.
+LaneLayout plan_lane_sets(const BlockPlan &p, const std::vector<int> &family, int lanes);
+// The same, finding the families.
 LaneLayout plan_lane_sets(const BlockPlan &p, int lanes);
 
 }  // namespace mbs

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include "core/dense_lu.hpp"
 #include "core/lane_lu.hpp"
@@ -97,10 +98,10 @@ constexpr int kOneHub = MBS_BODY_COORDINATES;
 
 class BlockSolver final : public LinearSolver {
 public:
-    // kernels: the lane kernels for groups of the same shape, or null for one group at a time.
-    BlockSolver(const Mechanism &m, const LaneKernels *kernels)
-        : m_(m), p_(*m.block_plan), kernels_(kernels),
-          lanes_(plan_lane_sets(p_, kernels ? kernels->lanes : 0)),
+    // kernels: the lane kernels for groups of the same shape, or null for one group at a time;
+    // lanes: the lane sets planned for their width.
+    BlockSolver(const Mechanism &m, const LaneKernels *kernels, LaneLayout lanes)
+        : m_(m), p_(*m.block_plan), kernels_(kernels), lanes_(std::move(lanes)),
           lane_ws_(lanes_.workspace), lane_inv_(lanes_.pivots), lane_t_(lanes_.vectors),
           lane_x_(lanes_.vectors), lane_carried_(lanes_.carried),
           group_t_offset_(p_.groups.size()),
@@ -108,7 +109,7 @@ public:
           pivot_(p_.pivots), inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
           coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0),
-          dirty_(p_.groups.size(), 0) {
+          dirty_(p_.groups.size(), 0), steps_(p_.groups.size()) {
         // Fixed coordinate -> its identity row, for the transposed solve.
         std::vector<int> row_of(m.coordinates, -1);
         for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
@@ -169,6 +170,10 @@ public:
         coupling_start_.push_back(coupling_from_.size());
     }
 
+    // Not copied: steps_ point into its own vectors.
+    BlockSolver(const BlockSolver &) = delete;
+    BlockSolver &operator=(const BlockSolver &) = delete;
+
     bool factor(const double *values) override {
         // Blocks factored by their program keep zeros wherever the program does not write; only
         // the fill needs clearing. Others (and the border system) are cleared whole.
@@ -222,6 +227,7 @@ public:
         }
         const int nb = p_.border;
         double *border = ws_.data() + p_.border_offset;
+        bool fell_back = false;
         for (const LaneSet &s : lanes_.sets) {
             const unsigned refused = kernels_->factor(
                 lane_ws_.data() + s.offset, s.lead->program, lane_inv_.data() + s.pivots, values,
@@ -244,7 +250,11 @@ public:
                     ws_[g.value_dest[v]] = values[g.value_index[v]];
                 dirty_[gi] = 1;
                 ++fallbacks_;
-                if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+                fell_back = true;
+                if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) {
+                    steps_stale_ = true;
+                    return false;
+                }
             }
             if (in_lane(gi)) {  // its leftover rows' border columns, from its lane
                 const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
@@ -268,6 +278,9 @@ public:
                 }
             }
         }
+        // The steps change only with a fallback, this time or the time before.
+        if (fell_back || steps_stale_) choose_steps();
+        steps_stale_ = fell_back;
         if (nb == kOneHub) return lu_factor_square<kOneHub>(border, border_pivot_.data());
         return lu_factor(border, nb, nb, nb, border_pivot_.data());
     }
@@ -291,20 +304,18 @@ public:
         }
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            const size_t gi = &g - p_.groups.data();
-            if (in_lane(gi)) {
-                const double *t = lane_t_.data() + lanes_.sets[lanes_.set_of[gi]].vectors +
-                                  lanes_.lane_of[gi];
-                for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r * L];
-                continue;
+            const GroupStep &step = steps_[&g - p_.groups.data()];
+            if (step.path != kLane) {
+                double *t = step.t;
+                for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
+                if (step.path == kStatic)
+                    lu_forward_static(ws_.data() + g.offset, g.program, t);
+                else
+                    lu_forward(ws_.data() + g.offset, mg, ng, ng + nb,
+                               pivot_.data() + g.pivot_offset, t);
             }
-            double *t = group_t_.data() + group_t_offset_[gi];
-            for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
-            if (static_used_[gi])
-                lu_forward_static(ws_.data() + g.offset, g.program, t);
-            else
-                lu_forward(ws_.data() + g.offset, mg, ng, ng + nb, pivot_.data() + g.pivot_offset, t);
-            for (int r = ng; r < mg; ++r) border_[g.first_leftover + r - ng] = t[r];
+            for (int r = ng; r < mg; ++r)
+                border_[g.first_leftover + r - ng] = step.t[r * step.stride];
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
         for (size_t r = 0; r < p_.border_rows.size(); ++r) border_[leftover + r] = rhs_[p_.border_rows[r]];
@@ -325,10 +336,10 @@ public:
         }
         for (const BlockGroup &g : p_.groups) {
             const int ng = static_cast<int>(g.cols.size());
-            const size_t gi = &g - p_.groups.data();
-            if (in_lane(gi)) continue;
-            const double *t = group_t_.data() + group_t_offset_[gi];
-            if (static_used_[gi])
+            const GroupStep &step = steps_[&g - p_.groups.data()];
+            if (step.path == kLane) continue;
+            const double *t = step.t;
+            if (step.path == kStatic)
                 lu_backward_static(ws_.data() + g.offset, g.program,
                                    inv_diag_.data() + g.pivot_offset, t, border_work_.data(),
                                    group_x_.data());
@@ -351,34 +362,28 @@ public:
                                          lane_inv_.data() + s.pivots, mu,
                                          lane_carried_.data() + s.carried);
         }
-        // Each group's -W^T mu, from zero, added to the border in group order: the lanes make
-        // theirs side by side, one group at a time the same sums.
+        // Each group's -W^T mu, from zero, added to the border in group order from where its
+        // step has it: the lanes make theirs side by side, one group at a time the same sums.
         for (const BlockGroup &g : p_.groups) {
             const int ng = static_cast<int>(g.cols.size());
-            const size_t gi = &g - p_.groups.data();
-            if (in_lane(gi)) {
-                const double *carried = lane_carried_.data() +
-                                        lanes_.sets[lanes_.set_of[gi]].carried + lanes_.lane_of[gi];
-                for (int c = 0; c < nb; ++c) border_[c] += carried[c * L];
-                continue;
-            }
-            double *t = group_t_.data() + group_t_offset_[gi];
+            const GroupStep &step = steps_[&g - p_.groups.data()];
             const double *a = ws_.data() + g.offset;
-            gather_bodies(group_x_.data(), rhs_.data(), g.cols.data(), ng);
-            if (static_used_[gi]) {
-                double *carried = border_work_.data();
-                std::fill(carried, carried + nb, 0.0);
-                lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
-                                             group_x_.data(), t, carried);
-                for (int c = 0; c < nb; ++c) border_[c] += carried[c];
-            } else {
-                lu_forward_transposed(a, ng, ng + nb, group_x_.data(), t);
+            if (step.path != kLane) gather_bodies(group_x_.data(), rhs_.data(), g.cols.data(), ng);
+            if (step.path == kPivoted) {  // straight into the border, as partial pivoting does
+                lu_forward_transposed(a, ng, ng + nb, group_x_.data(), step.t);
                 for (int k = 0; k < ng; ++k) {
-                    const double mu = t[k];
+                    const double mu = step.t[k];
                     const double *w = a + k * (ng + nb) + ng;
                     for (int b = 0; b < nb; ++b) border_[b] -= w[b] * mu;
                 }
+                continue;
             }
+            if (step.path == kStatic) {
+                std::fill(step.carried, step.carried + nb, 0.0);
+                lu_forward_transposed_static(a, g.program, inv_diag_.data() + g.pivot_offset,
+                                             group_x_.data(), step.t, step.carried);
+            }
+            for (int c = 0; c < nb; ++c) border_[c] += step.carried[c * step.stride];
         }
         const double *s = ws_.data() + p_.border_offset;
         if (nb == kOneHub) {
@@ -403,11 +408,11 @@ public:
         }
         for (const BlockGroup &g : p_.groups) {
             const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            const size_t gi = &g - p_.groups.data();
-            if (in_lane(gi)) continue;
-            double *t = group_t_.data() + group_t_offset_[gi];
+            const GroupStep &step = steps_[&g - p_.groups.data()];
+            if (step.path == kLane) continue;
+            double *t = step.t;
             for (int r = ng; r < mg; ++r) t[r] = border_work_[g.first_leftover + r - ng];
-            if (static_used_[gi])
+            if (step.path == kStatic)
                 lu_backward_transposed_static(ws_.data() + g.offset, g.program, t);
             else
                 lu_backward_transposed(ws_.data() + g.offset, mg, ng, ng + nb,
@@ -439,6 +444,30 @@ public:
     long fallbacks() const override { return fallbacks_; }
 
 private:
+    enum Path : char { kLane, kStatic, kPivoted };
+    // One group's part of the solves: its path and where its vectors are, in its lane (stride
+    // L) or its own (stride 1), so that one loop takes lane and scalar groups alike.
+    struct GroupStep {
+        Path path;
+        int stride;
+        double *t;        // its right-hand side: row r at t[r * stride]
+        double *carried;  // its -W^T mu (transposed): border column c at carried[c * stride]
+    };
+    // steps_ from static_used_ (every group on its planned path at first).
+    void choose_steps() {
+        const int L = lanes_.lanes;
+        for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
+            GroupStep &step = steps_[gi];
+            if (in_lane(gi)) {
+                const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
+                step = {kLane, L, lane_t_.data() + s.vectors + lanes_.lane_of[gi],
+                        lane_carried_.data() + s.carried + lanes_.lane_of[gi]};
+            } else {
+                step = {static_used_[gi] ? kStatic : kPivoted, 1,
+                        group_t_.data() + group_t_offset_[gi], border_work_.data()};
+            }
+        }
+    }
     // True if group gi was factored in its lane (false on a fallback: its scalar block holds it).
     bool in_lane(size_t gi) const { return lanes_.set_of[gi] >= 0 && static_used_[gi]; }
     const Mechanism &m_;
@@ -455,6 +484,8 @@ private:
     std::vector<int> coupling_fixed_row_;
     std::vector<char> static_used_;  // per group: factored with its fixed pivot order
     std::vector<char> dirty_;        // per group: partial pivoting wrote all over its block
+    std::vector<GroupStep> steps_;   // per group: its path in the solves (choose_steps)
+    bool steps_stale_ = true;        // steps_ may not match static_used_
     long fallbacks_ = 0;             // group factorisations that took partial pivoting
     // Jacobian values -> workspace: a body's whole rows (7 values from row_from_ to row_to_) and
     // the other runs (other_length_ values from other_from_ to other_to_).
@@ -466,26 +497,22 @@ private:
 
 }  // namespace
 
-namespace {
-// The most groups that share one program (what one pass of the lane kernels could take).
-int largest_family(const BlockPlan &p) {
-    int largest = 1;
-    for (const LaneSet &s : plan_lane_sets(p, static_cast<int>(p.groups.size())).sets)
-        largest = std::max(largest, static_cast<int>(s.groups.size()));
-    return largest;
-}
-}  // namespace
-
 std::unique_ptr<LinearSolver> make_linear_solver(const Mechanism &m, LinearSolverKind kind) {
-    if (kind != LinearSolverKind::Dense && m.block_plan)
-        return std::make_unique<BlockSolver>(m, &lane_kernels_for(largest_family(*m.block_plan)));
+    if (kind != LinearSolverKind::Dense && m.block_plan) {
+        // The families once: they choose the kernels, then the sets are laid out for them.
+        const std::vector<int> family = lane_families(*m.block_plan);
+        const LaneKernels &kernels = lane_kernels_for(largest_family(family));
+        return std::make_unique<BlockSolver>(m, &kernels,
+                                             plan_lane_sets(*m.block_plan, family, kernels.lanes));
+    }
     if (kind == LinearSolverKind::Block && !m.block_plan) return nullptr;
     return std::make_unique<DenseSolver>(m);
 }
 
 std::unique_ptr<LinearSolver> make_block_solver(const Mechanism &m, const LaneKernels *lanes) {
     if (!m.block_plan) return nullptr;
-    return std::make_unique<BlockSolver>(m, lanes);
+    return std::make_unique<BlockSolver>(m, lanes,
+                                         plan_lane_sets(*m.block_plan, lanes ? lanes->lanes : 0));
 }
 
 }  // namespace mbs

@@ -35,6 +35,14 @@ inline void subtract_multiple_planned(double *__restrict y, const double *__rest
 }
 }  // namespace
 
+bool same_program(const EliminationProgram &p, const EliminationProgram &q) {
+    return p.m == q.m && p.n == q.n && p.width == q.width && p.below_start == q.below_start &&
+           p.below == q.below && p.below_at == q.below_at && p.below_row == q.below_row &&
+           p.span_begin == q.span_begin && p.span_end == q.span_end && p.own_end == q.own_end &&
+           p.carried_begin == q.carried_begin && p.pair_end == q.pair_end &&
+           p.own_pair_end == q.own_pair_end && p.carried_pair_end == q.carried_pair_end;
+}
+
 std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &nz, int m, int n,
                                     int width, EliminationProgram &p) {
     std::vector<std::vector<double>> samples(1);

@@ -29,6 +29,11 @@ struct EliminationProgram {
     std::vector<int> below_row;  // per entry of below: where row i starts, i width
 };
 
+// True if p and q make the same steps, so that one runs for blocks of the other (lane_lu.hpp):
+// every field the factor and solves read. right_start, right and right_carried are the
+// planner's record only (the spans carry their use) and are left out.
+bool same_program(const EliminationProgram &p, const EliminationProgram &q);
+
 // Chooses the pivot order on the m x width row-major sample `a` (overwritten) with structure
 // `nonzero` (overwritten with the fill), both in the current row order: returns the new order of
 // the rows (a permutation of 0..m-1) and fills the program, or returns an empty vector if some
