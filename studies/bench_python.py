@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Benchmark (not a test) of the Python package and the Dask sweeps; prints and writes FILE.
 
-usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
+usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps] [--sweeps KIND ...] [--pairs N]
 
 1. Batch throughput of stewart.Platform.inverse per fidelity on a batch of 12001 poses (the yaw
    manoeuvre that build/bench-closed-form and build/bench-full time), median of repeated calls,
@@ -15,8 +15,12 @@ usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps]
    (1 - workers' time / (wall x workers)), the speed-up, and the workers' CPU time over the wall
    time (how many cores they really had: on a shared machine, fewer than the workers), the median
    chunk's CPU time (it grows when the workers contend for something) and the load average at
-   the start of each sweep. Each sweep starts after os.sync(), so that no earlier sweep's files
-   are written back during it, and its OUT_DIR is deleted once measured (see sweep()).
+   the start of each sweep, and the CPU time of each worker's first chunk (the slowest of them:
+   it faults in the worker's arrays). Each sweep starts after os.sync(), so that no earlier
+   sweep's files are written back during it, and its OUT_DIR is deleted once measured (sweep()).
+   --pairs N: N pairs of sweeps (1 worker, then 2) of each kind, one after the other, each
+   pair's speed-up and their median (the machine may be shared: one pair says little);
+   --sweeps workspace: only the workspace map (with --skip-batches: no C benchmarks, no batches).
 """
 import argparse
 import json
@@ -97,7 +101,11 @@ def sweep(spec, workers, tmp):
     wall = summary["wall_seconds"]
     size = sum(f.stat().st_size for f in out.glob("*.parquet"))
     shutil.rmtree(out)
-    return {"workers": workers, "wall": wall, "total": total, "compute": compute, "poses": poses,
+    # A one-thread worker computes its chunks one after the other: its first result is its first chunk.
+    first = {}
+    for c in summary["computed"]:
+        first.setdefault(c["worker"], c["cpu_seconds"])
+    return {"workers": workers, "wall": wall, "first_cpu": max(first.values()), "total": total, "compute": compute, "poses": poses,
             "cases": cases, "overhead": 1 - compute / (wall * workers), "bytes": size, "cpu": cpu,
             "load": load,
             "chunk_cpu": statistics.median(c["cpu_seconds"] for c in summary["computed"])}
@@ -120,42 +128,61 @@ def main():
     parser.add_argument("file", nargs="?")
     parser.add_argument("--build", default=str(ROOT / "build"))
     parser.add_argument("--skip-sweeps", action="store_true")
+    parser.add_argument("--skip-batches", action="store_true")
+    parser.add_argument("--sweeps", nargs="+", choices=["envelope", "workspace"],
+                        default=["envelope", "workspace"])
+    parser.add_argument("--pairs", type=int, default=1)
     args = parser.parse_args()
     lines = [f"stewart {stewart.__version__}, {os.cpu_count()} cores; load average at start "
              f"{os.getloadavg()[0]:.2f} (the machine may be shared: see docs/sweeps.md)"]
-    c = c_ns_per_pose(pathlib.Path(args.build))
-    lines.append("batch throughput, yaw manoeuvre, 12001 poses per call, median of calls:")
-    lines.append(f"  {'level':10s} {'C ns/pose':>10s} {'python ns/pose':>15s} {'python/C poses/s':>17s}"
-                 f" {'out= ns/pose':>13s} {'out= python/C':>14s}")
-    for level, repeats in (("kinematic", 41), ("massless", 41), ("full", 5)):
-        fresh, reused = python_ns_per_pose(level, 12001, repeats)
-        lines.append(f"  {level:10s} {c[level]:10.1f} {fresh:15.1f} {c[level] / fresh:17.1%}"
-                     f" {reused:13.1f} {c[level] / reused:14.1%}")
+    if not args.skip_batches:
+        c = c_ns_per_pose(pathlib.Path(args.build))
+        lines.append("batch throughput, yaw manoeuvre, 12001 poses per call, median of calls:")
+        lines.append(f"  {'level':10s} {'C ns/pose':>10s} {'python ns/pose':>15s} {'python/C poses/s':>17s}"
+                     f" {'out= ns/pose':>13s} {'out= python/C':>14s}")
+        for level, repeats in (("kinematic", 41), ("massless", 41), ("full", 5)):
+            fresh, reused = python_ns_per_pose(level, 12001, repeats)
+            lines.append(f"  {level:10s} {c[level]:10.1f} {fresh:15.1f} {c[level] / fresh:17.1%}"
+                         f" {reused:13.1f} {c[level] / reused:14.1%}")
     print("\n".join(lines), flush=True)
+    specs = {"envelope": ENVELOPE, "workspace": WORKSPACE}
     if not args.skip_sweeps:
         with tempfile.TemporaryDirectory() as tmp:
-            for spec in (ENVELOPE, WORKSPACE):
-                rows = [sweep(spec, w, tmp) for w in (1, 2)]
-                level = spec["fidelity"][0] if spec["kind"] == "envelope" else spec["fidelity"]
-                lines.append(f"sweep {spec['kind']} ({level}), {rows[0]['poses']} poses, "
-                             f"{rows[0]['cases'] or '-'} cases:")
-                for r in rows:
-                    per_core = r["poses"] / (r["wall"] * r["workers"])
-                    lines.append(
-                        f"  {r['workers']} worker(s): wall {r['wall']:.2f} s (with start-up, merge, plots "
-                        f"{r['total']:.2f} s), workers' own time {r['compute']:.2f} s, Dask overhead "
-                        f"{r['overhead']:.1%}, {r['poses'] / r['wall']:.3g} poses/s "
-                        f"({per_core:.3g} per core); workers' CPU {r['cpu']:.2f} s = "
-                        f"{r['cpu'] / r['wall']:.2f} cores busy on average, median chunk CPU "
-                        f"{r['chunk_cpu']:.2f} s, load average {r['load']:.2f} at its start" +
-                        (f", {r['cases'] / r['wall']:.3g} cases/s" if r["cases"] else ""))
-                lines.append(f"  speed-up 2 vs 1 worker: {rows[0]['wall'] / rows[1]['wall']:.2f}x; "
-                             f"merged Parquet {rows[0]['bytes'] / 1e6:.1f} MB "
-                             f"({rows[0]['bytes'] / (rows[0]['cases'] or rows[0]['poses']):.0f} B per "
-                             f"{'case' if rows[0]['cases'] else 'pose'})")
-                print("\n".join(lines[-4:]), flush=True)
+            for spec in (specs[k] for k in args.sweeps):
+                speedups = []
+                for _ in range(args.pairs):
+                    rows = [sweep(spec, w, tmp) for w in (1, 2)]
+                    speedups.append(report(spec, rows, lines))
+                if args.pairs > 1:
+                    lines.append(f"{spec['kind']}: {args.pairs} pairs, speed-ups "
+                                 f"{', '.join(f'{x:.2f}x' for x in speedups)}, median "
+                                 f"{statistics.median(speedups):.2f}x")
+                    print(lines[-1], flush=True)
     if args.file:
         pathlib.Path(args.file).write_text("\n".join(lines) + "\n")
+
+
+def report(spec, rows, lines):
+    """Appends (and prints) one pair of sweeps' lines; returns the speed-up."""
+    level = spec["fidelity"][0] if spec["kind"] == "envelope" else spec["fidelity"]
+    lines.append(f"sweep {spec['kind']} ({level}), {rows[0]['poses']} poses, "
+                 f"{rows[0]['cases'] or '-'} cases:")
+    for r in rows:
+        per_core = r["poses"] / (r["wall"] * r["workers"])
+        lines.append(
+            f"  {r['workers']} worker(s): wall {r['wall']:.2f} s (with start-up, merge, plots "
+            f"{r['total']:.2f} s), workers' own time {r['compute']:.2f} s, Dask overhead "
+            f"{r['overhead']:.1%}, {r['poses'] / r['wall']:.3g} poses/s "
+            f"({per_core:.3g} per core); workers' CPU {r['cpu']:.2f} s = "
+            f"{r['cpu'] / r['wall']:.2f} cores busy on average, median chunk CPU "
+            f"{r['chunk_cpu']:.2f} s (a worker's first: {r['first_cpu']:.2f} s), load average {r['load']:.2f} at its start" +
+            (f", {r['cases'] / r['wall']:.3g} cases/s" if r["cases"] else ""))
+    lines.append(f"  speed-up 2 vs 1 worker: {rows[0]['wall'] / rows[1]['wall']:.2f}x; "
+                 f"merged Parquet {rows[0]['bytes'] / 1e6:.1f} MB "
+                 f"({rows[0]['bytes'] / (rows[0]['cases'] or rows[0]['poses']):.0f} B per "
+                 f"{'case' if rows[0]['cases'] else 'pose'})")
+    print("\n".join(lines[-4:]), flush=True)
+    return rows[0]['wall'] / rows[1]['wall']
 
 
 if __name__ == "__main__":

@@ -363,3 +363,53 @@ def test_workspace_chunks_in_reused_arrays_and_blocks_equal_one_call(tmp_path, m
     expected, _ = work.workspace_chunk(spec, chunk)
     work.workspace_chunk(spec, chunks(spec)[0], reuse=True)  # another chunk in this thread's arrays
     assert sent.equals(expected)
+
+
+def _assert_rows_equal(a, b, what):
+    """The same schema and the same values, floats bit for bit, text decoded (a table written
+    block by block has one message dictionary per block)."""
+    assert a.schema == b.schema, what
+    for name in a.column_names:
+        x = a[name].to_numpy(zero_copy_only=False)
+        y = b[name].to_numpy(zero_copy_only=False)
+        if x.dtype.kind == "f":
+            assert np.array_equal(x.view(np.int64), y.view(np.int64)), (what, name)
+        else:
+            assert list(x) == list(y), (what, name)
+
+
+def test_workspace_chunks_written_block_by_block_equal_one_call(tmp_path, monkeypatch):
+    """A workspace chunk written by the worker that computes it (compute_chunk with an OUT_DIR)
+    goes to its file block by block, one row group per block, the table's columns block-sized:
+    the file's rows are the table one call per chunk in fresh arrays gives, bit for bit (blocks
+    of 96 rows, a shorter last block and chunk, failing rows with their messages), and a chunk of
+    one block is the same file as write_parquet writes, byte for byte. The merged slices equal
+    the concatenated one-call tables."""
+    from stewart.sweeps import load, work
+    from stewart.sweeps.run import merge, prepare, write_parquet
+    spec = json.loads(json.dumps(WORKSPACE))
+    spec["options"] = {"singular_condition": 12.4, "warn_condition": 12.0}  # about half the rows fail
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(spec))
+    spec, out = prepare(path, tmp_path / "out", SCENES)
+    monkeypatch.setattr(work, "BLOCK_ROWS", 96)
+    expected = {}
+    for chunk in chunks(spec):
+        _, stats = compute_chunk(spec, chunk, str(out))
+        assert stats["write_seconds"] > 0
+        written = pq.read_table(out / "chunks" / chunk.file_name)
+        assert pq.ParquetFile(out / "chunks" / chunk.file_name).num_row_groups == -(-(chunk.stop - chunk.start) // 96)
+        expected[chunk] = work.workspace_chunk(spec, chunk)[0]
+        _assert_rows_equal(written, expected[chunk], chunk)
+    assert not list((out / "chunks").glob(".*.tmp"))
+    merge(spec, out)
+    for s in spec["slices"]:
+        merged = pq.read_table(out / f"workspace_{s['name']}.parquet").drop_columns(["boundary"])
+        import pyarrow as pa
+        one = pa.concat_tables(expected[c] for c in chunks(spec) if c.part == s["name"])
+        _assert_rows_equal(merged, one, s["name"])
+    monkeypatch.setattr(work, "BLOCK_ROWS", 10**9)
+    chunk = chunks(spec)[0]
+    compute_chunk(spec, chunk, str(out))
+    write_parquet(work.workspace_chunk(spec, chunk)[0], tmp_path / "one.parquet")
+    assert (out / "chunks" / chunk.file_name).read_bytes() == (tmp_path / "one.parquet").read_bytes()

@@ -36,16 +36,23 @@ def compute_chunk(spec: dict, chunk: Chunk, out_dir: str) -> tuple[Optional[pa.T
     cpu = time.process_time()
     if spec["kind"] == "envelope":
         table, stats = envelope_chunk(spec, chunk)
+    elif writes:
+        # Written block by block as the blocks are solved, in this process's arrays of the
+        # previous block and chunk: a worker's arrays are block-sized (no chunk-sized memory to
+        # fault in, in its first chunk or a slice's shorter last one).
+        with ChunkWriter(out, chunk) as writer:
+            table, stats = workspace_chunk(spec, chunk, reuse=True, write=writer.write)
+            stats["seconds"] -= writer.seconds  # computing apart from writing, as below
+        stats["write_seconds"] = writer.seconds
     else:
-        # A table written here may live in this process's arrays of the previous chunk (no
-        # fresh memory to fault in per chunk); one sent back must own its arrays.
-        table, stats = workspace_chunk(spec, chunk, reuse=writes)
+        # One sent back must own its arrays.
+        table, stats = workspace_chunk(spec, chunk)
     try:
         from distributed import get_worker
         stats["worker"] = get_worker().address
     except (ImportError, ValueError):
         stats["worker"] = "local"
-    if writes:
+    if writes and table is not None:
         started = time.perf_counter()
         write_chunk(table, out, chunk)
         stats["write_seconds"] = time.perf_counter() - started
@@ -65,11 +72,48 @@ def write_chunk(table: pa.Table, out: pathlib.Path, chunk: Chunk) -> None:
     os.replace(tmp, path)
 
 
-def write_parquet(table: pa.Table, path: pathlib.Path) -> None:
+class ChunkWriter:
+    """A chunk's file written table by table (one row group each), as write_chunk writes it:
+    under a unique temporary name, renamed into place when closed without an error. seconds: the
+    time spent writing."""
+
+    def __init__(self, out: pathlib.Path, chunk: Chunk):
+        self.path = out / "chunks" / chunk.file_name
+        self.tmp = self.path.with_name(f".{chunk.file_name}.{uuid.uuid4().hex}.tmp")
+        self.writer = None
+        self.seconds = 0.0
+
+    def write(self, table: pa.Table) -> None:
+        started = time.perf_counter()
+        if self.writer is None:
+            self.writer = pq.ParquetWriter(self.tmp, table.schema, **parquet_options(table.schema))
+        self.writer.write_table(table)
+        self.seconds += time.perf_counter() - started
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, exc_type, *exc):
+        started = time.perf_counter()
+        if self.writer is not None:
+            self.writer.close()
+            if exc_type is None:
+                os.replace(self.tmp, self.path)
+            else:
+                self.tmp.unlink(missing_ok=True)
+        self.seconds += time.perf_counter() - started
+
+
+def parquet_options(schema: pa.Schema) -> dict:
     """Parquet with dictionaries for the text columns only (on float columns they cost as much
     time as a massless solve and save nothing) and lz4 compression."""
-    text = [f.name for f in table.schema if pa.types.is_string(f.type) or pa.types.is_dictionary(f.type)]
-    pq.write_table(table, path, compression="lz4", use_dictionary=text)
+    text = [f.name for f in schema if pa.types.is_string(f.type) or pa.types.is_dictionary(f.type)]
+    return {"compression": "lz4", "use_dictionary": text}
+
+
+def write_parquet(table: pa.Table, path: pathlib.Path) -> None:
+    """One file, written with parquet_options."""
+    pq.write_table(table, path, **parquet_options(table.schema))
 
 
 def versions() -> dict:

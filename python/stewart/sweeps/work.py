@@ -7,6 +7,7 @@ from __future__ import annotations
 import itertools
 import threading
 import time
+from typing import Callable, Optional
 
 import numpy as np
 import pyarrow as pa
@@ -112,6 +113,9 @@ class _Scratch:
     def __init__(self, n: int, n_axes: int, block: int):
         self.n, self.block = n, block
         self.row = np.empty(n, np.int64)
+        self.ramp = np.arange(n, dtype=np.int64)     # 0, 1, ..., n - 1
+        self.rest = np.empty(n, np.int64)
+        self.codes = np.empty((2, n), np.int32)      # the slice and message columns' indices
         self.index = np.empty((n_axes, n), np.int64)  # one row per axis: the table's columns
         self.pose = np.empty((6, n))                 # the poses, one row per component
         self.q = np.empty((block, 6))                # a block of them as the library reads them
@@ -153,7 +157,8 @@ def _scratch_for(n: int, n_axes: int, block: int) -> _Scratch:
     return b
 
 
-def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False) -> tuple[pa.Table, dict]:
+def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False,
+                    write: Optional[Callable[[pa.Table], None]] = None) -> tuple[Optional[pa.Table], dict]:
     """Poses [chunk.start, chunk.stop) of one slice at rest: status, reachability within every
     limit (Platform.limits: stroke, joint angles, leg interference, the condition number against
     the options' warn_condition), the first failing limit class and the margin to each,
@@ -161,71 +166,92 @@ def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False) -> tuple[pa.T
 
     reuse: build the chunk in this thread's arrays of the previous chunk (_Scratch) instead of
     fresh ones; the table's columns are then views of them, valid only until the next call with
-    reuse (write it first). The values are the same either way."""
+    reuse (write it first). The values are the same either way.
+
+    write: instead of returning one table, hand the chunk's rows to write block by block (one
+    table of BLOCK_ROWS rows at a time, in row order, at the kinematic and massless levels; a
+    ParquetWriter's write_table, one row group each), each valid only until write returns; the
+    table's columns are then block-sized too, not chunk-sized. Returns (None, stats). The rows
+    are the same as the one table's, bit for bit (the message column dictionary-encoded per
+    block)."""
     started = time.perf_counter()
     s = next(x for x in spec["slices"] if x["name"] == chunk.part)
     n = chunk.stop - chunk.start
     axes = list(s["axes"].items())
     # The full level starts each pose from the previous solution: one block, as one call.
     block = n if spec["fidelity"] == "full" else min(n, BLOCK_ROWS)
-    b = _scratch_for(n, len(axes), block) if reuse else _Scratch(n, len(axes), block)
-    # The grid indices and poses, row-major over the axes (as slice_poses), built column by
-    # column: no strided copies.
-    np.copyto(b.row, np.arange(chunk.start, chunk.stop))
-    rest = b.row
-    for col in range(len(axes) - 1, -1, -1):
-        size = len(axes[col][1])
-        np.remainder(rest, size, out=b.index[col])
-        rest = rest // size
-    b.pose.fill(0.0)
-    for comp, v in s["fixed"].items():
-        b.pose[POSE.index(comp)].fill(v)
-    for col, (comp, values) in enumerate(axes):
-        np.take(np.asarray(values, dtype=float), b.index[col], out=b.pose[POSE.index(comp)])
+    # Rows per table: the whole chunk, or one block when each block is written as it is done.
+    rows = block if write is not None else n
+    b = _scratch_for(rows, len(axes), block) if reuse else _Scratch(rows, len(axes), block)
     platform = Platform(**spec["platform"])
     warn_condition = _warn_condition(spec["options"].get("warn_condition"))
-    messages: dict[int, str] = {}
-    for lo in range(0, n, block):
-        hi = min(lo + block, n)
-        q, sol, check = b.rows(hi - lo)
-        np.copyto(q, b.pose[:, lo:hi].T)
-        platform.inverse(q, fidelity=spec["fidelity"], max_messages=hi - lo, **spec["options"],
-                         out=sol)
-        messages.update((lo + j, text) for j, text in sol.messages.items())
-        _core.limits_check(platform._model, q, warn_condition, check.first, check.failed,
-                           check.margin, check.leg, check.other_leg, check.condition)
-        np.logical_and(sol.ok, check.within, out=b.reachable[lo:hi])
-        np.copyto(b.limit_class[lo:hi], check.first, casting="unsafe")
-        np.copyto(b.margin[:, lo:hi], check.margin.T)
-        np.copyto(b.length[:, lo:hi], sol.length.T)
-        np.copyto(b.force[:, lo:hi], sol.force.T)
-        np.copyto(b.status[lo:hi], sol.status)
-        np.copyto(b.condition[lo:hi], sol.condition)
-    columns = {"slice": dictionary_column(n, s["name"], {}), "row": b.row}
-    for col, comp in enumerate(s["axes"]):
-        columns[f"i_{comp}"] = b.index[col]
-    for i, comp in enumerate(POSE):
-        columns[comp] = b.pose[i]
-    columns["status"] = b.status
-    columns["reachable"] = b.reachable
-    columns["limit_class"] = b.limit_class
-    for c, name in enumerate(LIMIT_CLASSES):
-        columns[f"margin_{name}"] = b.margin[c]
-    columns["condition"] = b.condition
-    for k in LEGS:
-        columns[f"L{k}"] = b.length[k - 1]
-    for k in LEGS:
-        columns[f"F{k}"] = b.force[k - 1]
-    columns["message"] = dictionary_column(n, "", messages)
+    values = [np.asarray(v, dtype=float) for _, v in axes]
+    table = None
+    for start in range(0, n, rows):
+        m = min(rows, n - start)
+        row = b.row[:m]
+        # The grid indices and poses, row-major over the axes (as slice_poses), built column by
+        # column: no strided copies.
+        np.add(b.ramp[:m], chunk.start + start, out=row)
+        rest = row
+        for col in range(len(axes) - 1, -1, -1):
+            size = len(axes[col][1])
+            np.remainder(rest, size, out=b.index[col, :m])
+            rest = np.floor_divide(rest, size, out=b.rest[:m])
+        pose = b.pose[:, :m]
+        pose.fill(0.0)
+        for comp, v in s["fixed"].items():
+            pose[POSE.index(comp)].fill(v)
+        for col, (comp, _) in enumerate(axes):
+            np.take(values[col], b.index[col, :m], out=pose[POSE.index(comp)])
+        messages: dict[int, str] = {}
+        for lo in range(0, m, block):
+            hi = min(lo + block, m)
+            q, sol, check = b.rows(hi - lo)
+            np.copyto(q, pose[:, lo:hi].T)
+            platform.inverse(q, fidelity=spec["fidelity"], max_messages=hi - lo, **spec["options"],
+                             out=sol)
+            messages.update((lo + j, text) for j, text in sol.messages.items())
+            _core.limits_check(platform._model, q, warn_condition, check.first, check.failed,
+                               check.margin, check.leg, check.other_leg, check.condition)
+            np.logical_and(sol.ok, check.within, out=b.reachable[lo:hi])
+            np.copyto(b.limit_class[lo:hi], check.first, casting="unsafe")
+            np.copyto(b.margin[:, lo:hi], check.margin.T)
+            np.copyto(b.length[:, lo:hi], sol.length.T)
+            np.copyto(b.force[:, lo:hi], sol.force.T)
+            np.copyto(b.status[lo:hi], sol.status)
+            np.copyto(b.condition[lo:hi], sol.condition)
+        columns = {"slice": dictionary_column(m, s["name"], {}, out=b.codes[0, :m]), "row": row}
+        for col, comp in enumerate(s["axes"]):
+            columns[f"i_{comp}"] = b.index[col, :m]
+        for i, comp in enumerate(POSE):
+            columns[comp] = pose[i]
+        columns["status"] = b.status[:m]
+        columns["reachable"] = b.reachable[:m]
+        columns["limit_class"] = b.limit_class[:m]
+        for c, name in enumerate(LIMIT_CLASSES):
+            columns[f"margin_{name}"] = b.margin[c, :m]
+        columns["condition"] = b.condition[:m]
+        for k in LEGS:
+            columns[f"L{k}"] = b.length[k - 1, :m]
+        for k in LEGS:
+            columns[f"F{k}"] = b.force[k - 1, :m]
+        columns["message"] = dictionary_column(m, "", messages, out=b.codes[1, :m])
+        table = pa.table(columns)
+        if write is not None:
+            write(table)
+            table = None
     stats = {"seconds": time.perf_counter() - started, "poses": n, "cases": 0}
-    return pa.table(columns), stats
+    return table, stats
 
 
-def dictionary_column(n: int, default: str, texts: dict[int, str]) -> pa.DictionaryArray:
+def dictionary_column(n: int, default: str, texts: dict[int, str],
+                      out: Optional[np.ndarray] = None) -> pa.DictionaryArray:
     """n rows of text, texts[j] in row j and default elsewhere, dictionary-encoded as
     pa.array([texts.get(j, default) for j in range(n)]).dictionary_encode() encodes it (int32
     indices, the dictionary in order of first appearance), without a Python loop over the rows:
-    a workspace chunk's rows are mostly default."""
+    a workspace chunk's rows are mostly default. out: n int32 for the indices (the result views
+    it), instead of fresh ones."""
     rows = sorted(texts)
     # the first row not in texts (rows are distinct and sorted: where rows[j] != j)
     first_default = next((j for j, r in enumerate(rows) if r != j), len(rows))
@@ -236,6 +262,7 @@ def dictionary_column(n: int, default: str, texts: dict[int, str]) -> pa.Diction
     code: dict[str, int] = {}
     for text in order:
         code.setdefault(text, len(code))
-    indices = np.full(n, code.get(default, 0), dtype=np.int32)
+    indices = np.empty(n, np.int32) if out is None else out
+    indices.fill(code.get(default, 0))
     indices[np.asarray(rows, dtype=np.intp)] = [code[texts[r]] for r in rows]
     return pa.DictionaryArray.from_arrays(pa.array(indices), pa.array(list(code), pa.string()))
