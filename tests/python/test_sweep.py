@@ -168,6 +168,24 @@ def test_workspace_reachable_exactly_within_the_length_limits(workspace_run, nam
     np.testing.assert_array_equal(t["boundary"], (grid & edge).reshape(-1))
 
 
+@pytest.mark.parametrize("slice_index", [0, 1])
+def test_workspace_rows_are_the_grid_row_major(workspace_run, slice_index):
+    """Row j of a slice is grid point unravel_index(j) over its axes in spec order: the indices,
+    and the pose with the axes' values there, the fixed values, zeros elsewhere."""
+    s = resolve(WORKSPACE, SCENES)["slices"][slice_index]
+    t = _table(workspace_run, f"workspace_{s['name']}.parquet")
+    axes = list(s["axes"].items())
+    shape = [len(values) for _, values in axes]
+    np.testing.assert_array_equal(t["row"], np.arange(np.prod(shape)))
+    index = np.unravel_index(t["row"], shape)
+    for col, (comp, values) in enumerate(axes):
+        np.testing.assert_array_equal(t[f"i_{comp}"], index[col])
+        np.testing.assert_array_equal(t[comp], np.asarray(values, dtype=float)[index[col]])
+    for comp in POSE:
+        if comp not in s["axes"]:
+            np.testing.assert_array_equal(t[comp], s["fixed"].get(comp, 0.0))
+
+
 def test_workspace_values_at_sample_points_equal_direct_calls(workspace_run):
     rng = np.random.default_rng(3)
     t = _table(workspace_run, "workspace_xy.parquet")

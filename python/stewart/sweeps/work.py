@@ -83,20 +83,6 @@ def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
     return pa.table(columns), stats
 
 
-def slice_poses(s: dict, start: int, stop: int) -> tuple[np.ndarray, np.ndarray]:
-    """Grid indices (rows, one column per axis) and poses (rows, 6) of slice rows [start, stop):
-    row-major over the axes in their spec order."""
-    axes = list(s["axes"].items())
-    shape = [len(v) for _, v in axes]
-    index = np.column_stack(np.unravel_index(np.arange(start, stop), shape))
-    q = np.zeros((stop - start, 6))
-    for comp, v in s["fixed"].items():
-        q[:, POSE.index(comp)] = v
-    for col, (comp, values) in enumerate(axes):
-        q[:, POSE.index(comp)] = np.asarray(values)[index[:, col]]
-    return index, q
-
-
 #: Rows solved and checked at a time within a workspace chunk at the kinematic and massless
 #: levels, whose rows are independent (the same bits at any place in a batch): the solver's and
 #: the limit check's arrays (about 470 B a row) are then this many rows, not the chunk's.
@@ -106,8 +92,8 @@ BLOCK_ROWS = 65536
 class _Scratch:
     """One worker thread's arrays for workspace chunks of n rows, kept from one chunk to the
     next: fresh arrays cost their first touch (page faults, the kernel zeroing pages) in every
-    chunk. The table's columns (one array row each, about 220 B a pose) are chunk-sized, the
-    solver's and limit check's block-sized. Only for a table written before the next chunk
+    chunk. The table's columns (one array row each, about 220 B a pose) are n rows (a chunk, or
+    a block when the chunk is written block by block), the solver's and limit check's a block. Only for a table written before the next chunk
     starts (compute_chunk writing its own file): the table's columns are views of these arrays."""
 
     def __init__(self, n: int, n_axes: int, block: int):
@@ -190,8 +176,8 @@ def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False,
     for start in range(0, n, rows):
         m = min(rows, n - start)
         row = b.row[:m]
-        # The grid indices and poses, row-major over the axes (as slice_poses), built column by
-        # column: no strided copies.
+        # The grid indices (row-major over the axes in their spec order) and the poses, built
+        # column by column: no strided copies.
         np.add(b.ramp[:m], chunk.start + start, out=row)
         rest = row
         for col in range(len(axes) - 1, -1, -1):
