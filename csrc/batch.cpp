@@ -235,12 +235,15 @@ extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, co
                                   stewart::batch_vector_path(d->options.fidelity));
 }
 
-extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, const double *time,
-                                                const double *lengths, const double *rates,
-                                                const double *accels, const double guess[6],
-                                                const stewart_forward_batch_outputs *out,
-                                                stewart_batch_messages *messages,
-                                                size_t *first_failed) {
+namespace {
+
+// The rows of a forward batch: tracked (guesses: row 0's start or NULL) or each on its own
+// (cold: stewart_forward_solve_cold; guesses: n x 6 starts or NULL for home).
+stewart_status forward_rows(stewart_forward *d, size_t n, const double *time,
+                            const double *lengths, const double *rates, const double *accels,
+                            const double *guesses, bool cold,
+                            const stewart_forward_batch_outputs *out,
+                            stewart_batch_messages *messages, size_t *first_failed) {
     FailureLog log(messages, first_failed, n);
     if (!d || !out || !out->status || (n > 0 && !lengths) || (accels && !rates)) {
         if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
@@ -250,7 +253,6 @@ extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, co
     }
     stewart_forward_input in{};
     in.derivatives = accels ? 2 : rates ? 1 : 0;
-    if (guess) std::memcpy(in.guess, guess, sizeof in.guess);
     for (size_t j = 0; j < n; ++j) {
         in.time = time ? time[j] : 0.0;
         std::memcpy(in.lengths.length, lengths + 6 * j, sizeof in.lengths.length);
@@ -258,14 +260,39 @@ extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, co
             std::memcpy(in.lengths.length_rate, rates + 6 * j, sizeof in.lengths.length_rate);
         if (accels)
             std::memcpy(in.lengths.length_accel, accels + 6 * j, sizeof in.lengths.length_accel);
-        in.use_guess = j == 0 && guess;
+        in.use_guess = guesses && (cold || j == 0);
+        if (in.use_guess) std::memcpy(in.guess, guesses + (cold ? 6 * j : 0), sizeof in.guess);
         stewart_forward_output r{};
-        const stewart_status s = stewart_forward_solve(d, &in, &r);
+        const stewart_status s = cold ? stewart_forward_solve_cold(d, &in, &r)
+                                      : stewart_forward_solve(d, &in, &r);
         if (s != STEWART_OK) log.record(j, s, d->message);
         write_forward_row(*out, j, r, s);
     }
+    if (cold) stewart_forward_reset(d);
     std::memcpy(d->message, log.first_message, sizeof log.first_message);
     return log.first;
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_forward_batch(stewart_forward *d, size_t n, const double *time,
+                                                const double *lengths, const double *rates,
+                                                const double *accels, const double guess[6],
+                                                const stewart_forward_batch_outputs *out,
+                                                stewart_batch_messages *messages,
+                                                size_t *first_failed) {
+    return forward_rows(d, n, time, lengths, rates, accels, guess, false, out, messages,
+                        first_failed);
+}
+
+extern "C" stewart_status stewart_forward_batch_cold(stewart_forward *d, size_t n,
+                                                     const double *lengths, const double *rates,
+                                                     const double *accels, const double *guesses,
+                                                     const stewart_forward_batch_outputs *out,
+                                                     stewart_batch_messages *messages,
+                                                     size_t *first_failed) {
+    return forward_rows(d, n, nullptr, lengths, rates, accels, guesses, true, out, messages,
+                        first_failed);
 }
 
 extern "C" stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, const double *time,

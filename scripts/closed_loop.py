@@ -13,6 +13,11 @@ outputs at t come first and the loop has no algebraic part):
 
 usage: closed_loop.py [--scene combined] [--duration 12] [--step 0.001] [--kp 1e6] [--kd 1e4]
                       [--fidelity 2] [--fmus build/fmus/2.0] [--out out/closed_loop] [--no-plot]
+                      [--platform FILE.json [--scale-to-ranges]]
+
+With --platform the units get the machine's parameters (stewart.fmu_start_values), the scene
+moves about the machine's home, and the PD gains default to the thesis loop's natural frequency
+and damping on the machine's moving mass per leg (machine_gains).
 """
 import argparse
 import pathlib
@@ -71,9 +76,11 @@ class Unit:
 
 
 def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
-        fmus=ROOT / "build" / "fmus" / "2.0"):
+        fmus=ROOT / "build" / "fmus" / "2.0", machine=None):
     """Runs the loop; returns a dict of arrays (one row per communication point) and the wall
-    time [s] of the stepping loop."""
+    time [s] of the stepping loop. machine: the platform's FMU start values (None: the thesis
+    platform)."""
+    machine = machine or {}
     scene = scenes.load(scene) if isinstance(scene, (str, pathlib.Path)) else scene
     fmus = pathlib.Path(fmus)
     n = int(round(duration / h))
@@ -83,9 +90,9 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     start = {f"{p}0": v for p, v in zip(POSE, cue[0])}
     start.update({f"{p}_dot0": v for p, v in zip(POSE, cue_dot[0])})
     inverse = Unit(fmus / "StewartPlatform.fmu", "inverse",
-                   {"fidelity": fidelity, "derivatives": 1})
+                   {"fidelity": fidelity, "derivatives": 1, **machine})
     controller = Unit(fmus / "StewartController.fmu", "controller", {"kp": kp, "kd": kd})
-    plant = Unit(fmus / "StewartPlant.fmu", "plant", {"fidelity": fidelity, **start})
+    plant = Unit(fmus / "StewartPlant.fmu", "plant", {"fidelity": fidelity, **start, **machine})
     pose = np.zeros((n + 1, 6))
     force, feed_forward = np.zeros((n + 1, 6)), np.zeros((n + 1, 6))
     wall = time.perf_counter()
@@ -113,6 +120,31 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
         for unit in (inverse, controller, plant):
             unit.free()
     return {"t": t, "cue": cue, "pose": pose, "force": force, "feed_forward": feed_forward}, wall
+
+
+# The thesis loop (kp 1e6 N/m, kd 1e4 N s/m on the thesis platform's moving mass per leg): its
+# natural frequency and damping ratio, which machine_gains keeps on another machine.
+THESIS_KP, THESIS_KD = 1e6, 1e4
+
+
+def moving_mass_per_leg(platform):
+    """(platform + payload mass) / 6 + both leg bodies' masses [kg]: the mass one leg's loop
+    moves, roughly (the parameters the platform does not give are the thesis platform's)."""
+    import stewart
+    values = {p["name"]: p["defaults"][0] for p in stewart.parameters()}
+    values.update({k: v for k, v in platform.params.items() if np.ndim(v) == 0})
+    return ((values["platform_mass"] + values["payload_mass"]) / 6 + values["cylinder_mass"] +
+            values["piston_mass"])
+
+
+def machine_gains(platform):
+    """(kp, kd) with the thesis loop's natural frequency and damping ratio on platform's moving
+    mass per leg: kp = m w^2, kd = 2 zeta m w."""
+    import stewart
+    m0 = moving_mass_per_leg(stewart.Platform())
+    omega, zeta = np.sqrt(THESIS_KP / m0), THESIS_KD / (2 * np.sqrt(THESIS_KP * m0))
+    m = moving_mass_per_leg(platform)
+    return m * omega**2, 2 * zeta * m * omega
 
 
 def tracking_error(result):
@@ -163,16 +195,20 @@ def main():
     parser.add_argument("--scene", default="combined")
     parser.add_argument("--duration", type=float, help="[s] (default: the scene's)")
     parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
-    parser.add_argument("--kp", type=float, default=1e6, help="[N/m]")
-    parser.add_argument("--kd", type=float, default=1e4, help="[N s/m]")
+    parser.add_argument("--kp", type=float, help="[N/m] (default 1e6, or machine_gains)")
+    parser.add_argument("--kd", type=float, help="[N s/m] (default 1e4, or machine_gains)")
     parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
     parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
     parser.add_argument("--out", default=str(ROOT / "out" / "closed_loop"))
     parser.add_argument("--no-plot", action="store_true")
+    scenes.add_platform_arguments(parser)
     args = parser.parse_args()
-    scene = scenes.load(args.scene)
+    scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
+    kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)
+    args.kp, args.kd = args.kp or kp, args.kd or kd
     duration = args.duration or scene["duration"]
-    result, wall = run(scene, duration, args.step, args.kp, args.kd, args.fidelity, args.fmus)
+    result, wall = run(scene, duration, args.step, args.kp, args.kd, args.fidelity, args.fmus,
+                       machine)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     write_csv(result, out / "closed_loop.csv")

@@ -15,6 +15,11 @@ R = I / force_tol^2 (Bryson's rule). A continuous design ignores the sampling: i
 (-1e5 1/s at these weights) are far beyond 1/h, and the sampled loop diverges.
 
 usage: control_design.py [--scene combined] [--duration 4] [--step 0.001] [--fmus build/fmus/2.0]
+                         [--platform FILE.json [--scale-to-ranges]]
+
+With --platform: the machine's home pose, its parameters in the units, the scene about its home,
+the PD gains of closed_loop.machine_gains and FORCE_TOL scaled as the thesis' (1e3 N, about six
+times its largest static leg force at home) to the machine's largest static leg force.
 """
 import argparse
 import pathlib
@@ -34,9 +39,9 @@ SPEED_TOL, RATE_TOL = 1e-3, 1e-3       # [m/s], [rad/s]
 FORCE_TOL = 1e3                        # [N]
 
 
-def open_loop(platform, fidelity):
+def open_loop(platform, fidelity, home=HOME):
     """Eigenvalues of A at home, at rest, under the static forces."""
-    return np.linalg.eigvals(platform.linearize(HOME, fidelity=fidelity).A)
+    return np.linalg.eigvals(platform.linearize(home, fidelity=fidelity).A)
 
 
 def sampled(A, B, h):
@@ -48,18 +53,20 @@ def sampled(A, B, h):
     return E[:n, :n], E[:n, n:]
 
 
-def lqr(A, B, h):
+def lqr(A, B, h, force_tol=FORCE_TOL):
     """The discrete LQR gain K (u = -K x) of (A, B) sampled at h, and Ad, Bd."""
     Q = np.diag([1 / POSITION_TOL**2] * 3 + [1 / ANGLE_TOL**2] * 3 + [1 / SPEED_TOL**2] * 3 +
                 [1 / RATE_TOL**2] * 3)
-    R = np.eye(6) / FORCE_TOL**2
+    R = np.eye(6) / force_tol**2
     Ad, Bd = sampled(A, B, h)
     P = scipy.linalg.solve_discrete_are(Ad, Bd, Q, R)
     return np.linalg.solve(R + Bd.T @ P @ Bd, Bd.T @ P @ Ad), Ad, Bd
 
 
-def run_lqr(K, scene, duration, h, fmus, fidelity=2):
-    """The LQR loop around the plant FMU; the same shape of result as closed_loop.run."""
+def run_lqr(K, scene, duration, h, fmus, fidelity=2, machine=None):
+    """The LQR loop around the plant FMU; the same shape of result as closed_loop.run.
+    machine: the platform's FMU start values (None: the thesis platform)."""
+    machine = machine or {}
     n = int(round(duration / h))
     t = np.arange(n + 1) * h
     cue, cue_dot, cue_ddot = scenes.pose(scene, t)
@@ -67,8 +74,9 @@ def run_lqr(K, scene, duration, h, fmus, fidelity=2):
     start.update({f"{p}_dot0": v for p, v in zip(closed_loop.POSE, cue_dot[0])})
     fmus = pathlib.Path(fmus)
     inverse = closed_loop.Unit(fmus / "StewartPlatform.fmu", "inverse",
-                               {"fidelity": fidelity, "derivatives": 1})
-    plant = closed_loop.Unit(fmus / "StewartPlant.fmu", "plant", {"fidelity": fidelity, **start})
+                               {"fidelity": fidelity, "derivatives": 1, **machine})
+    plant = closed_loop.Unit(fmus / "StewartPlant.fmu", "plant",
+                             {"fidelity": fidelity, **start, **machine})
     rates = [f"{p}_dot" for p in closed_loop.POSE]
     pose, force = np.zeros((n + 1, 6)), np.zeros((n + 1, 6))
     try:
@@ -97,32 +105,41 @@ def main():
     parser.add_argument("--duration", type=float, default=4.0, help="[s]")
     parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
     parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
+    scenes.add_platform_arguments(parser)
     args = parser.parse_args()
-    platform = stewart.Platform()
+    scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
+    home, force_tol, (kp, kd) = HOME, FORCE_TOL, (closed_loop.THESIS_KP, closed_loop.THESIS_KD)
+    if args.platform:
+        home = platform.check().home
+        static = np.abs(platform.inverse(home).force).max()
+        thesis_static = np.abs(stewart.Platform().inverse(HOME).force).max()
+        force_tol = FORCE_TOL * static / thesis_static
+        kp, kd = closed_loop.machine_gains(platform)
     np.set_printoptions(precision=3, linewidth=110)
     for fidelity in ("massless", "full"):
-        ev = open_loop(platform, fidelity)
+        ev = open_loop(platform, fidelity, home)
         ev = ev[np.argsort(-ev.real)]
         print(f"open loop, {fidelity}: eigenvalues of A at home under the static forces [1/s]:")
         print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in ev))
-    lin = platform.linearize(HOME, fidelity="full")
-    K, Ad, Bd = lqr(lin.A, lin.B, args.step)
+    lin = platform.linearize(home, fidelity="full")
+    K, Ad, Bd = lqr(lin.A, lin.B, args.step, force_tol)
     closed = np.log(np.linalg.eigvals(Ad - Bd @ K).astype(complex)) / args.step
     print(f"LQR on the full model sampled at {args.step:g} s: closed-loop eigenvalues as rates "
           "log(z)/h [1/s], slowest first:")
     closed = closed[np.argsort(-closed.real)]
     print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in closed))
-    # today's PD on the legs as a state feedback of the same linear model: F = -kp dL - kd dL_dot,
+    # the PD on the legs as a state feedback of the same linear model: F = -kp dL - kd dL_dot,
     # dL = C_L dx, dL_dot = C_Ldot dx (rows 12-17 and 18-23 of C)
-    K_pd = 1e6 * lin.C[12:18] + 1e4 * lin.C[18:24]
+    K_pd = kp * lin.C[12:18] + kd * lin.C[18:24]
     pd = np.log(np.linalg.eigvals(Ad - Bd @ K_pd).astype(complex)) / args.step
     pd = pd[np.argsort(-pd.real)]
-    print("PD (kp 1e6 N/m, kd 1e4 N s/m) on the same sampled model: closed-loop rates [1/s]:")
+    gains = f"kp {kp:.4g} N/m, kd {kd:.4g} N s/m"
+    print(f"PD ({gains}) on the same sampled model: closed-loop rates [1/s]:")
     print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in pd))
-    scene = scenes.load(args.scene)
-    lqr_run = run_lqr(K, scene, args.duration, args.step, args.fmus)
-    pd_run, _ = closed_loop.run(scene, args.duration, args.step, fmus=args.fmus)
-    for name, run in (("PD (controller unit, kp 1e6 N/m, kd 1e4 N s/m)", pd_run),
+    lqr_run = run_lqr(K, scene, args.duration, args.step, args.fmus, machine=machine)
+    pd_run, _ = closed_loop.run(scene, args.duration, args.step, kp, kd, fmus=args.fmus,
+                                machine=machine)
+    for name, run in ((f"PD (controller unit, {gains})", pd_run),
                       ("LQR (state feedback on the linear model)", lqr_run)):
         position, angle = closed_loop.tracking_error(run)
         peak = np.abs(run["force"]).max()

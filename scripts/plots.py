@@ -80,12 +80,17 @@ def rotation(roll, pitch, yaw):
 
 
 def animate_platform(t, q, path, base_points, platform_points, title="", frames=60):
-    """A GIF of the platform moving: base and platform hexagons and the six legs."""
+    """A GIF of the platform moving: base and platform joints joined in leg order, and the six
+    legs; q are poses of the platform frame in the base frame (no tool or user frame)."""
     idx = np.linspace(0, len(t) - 1, min(frames, len(t))).astype(int)
     fig = plt.figure(figsize=(5, 5), dpi=80)
     ax = fig.add_subplot(projection="3d")
-    r = np.max(np.linalg.norm(base_points, axis=1))
-    ax.set_xlim(-r, r), ax.set_ylim(-r, r), ax.set_zlim(0, 1.4 * np.max(q[:, 2]))
+    tops = [q[i, :3] + platform_points @ rotation(*q[i, 3:]).T for i in idx]
+    points = np.vstack([base_points, *tops])
+    centre = (points.max(axis=0) + points.min(axis=0)) / 2
+    half = 0.6 * np.max(points.max(axis=0) - points.min(axis=0))  # equal axes: no distortion
+    ax.set_xlim(centre[0] - half, centre[0] + half), ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_zlim(centre[2] - half, centre[2] + half)
     ax.set_xlabel("x [m]"), ax.set_ylabel("y [m]"), ax.set_zlabel("z [m]")
     closed = list(range(6)) + [0]
     ax.plot(*base_points[closed].T, color="gray")

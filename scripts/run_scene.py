@@ -7,7 +7,7 @@ At each communication point the master sets the pose (and, with derivatives = 1,
 and second derivatives), reads the outputs (a direct function of the inputs set), then steps.
 
 usage: run_scene.py SCENE [--fmu PATH] [--out DIR] [--fidelity 0|1|2] [--derivatives 0|1]
-                          [--compare 1,2]
+                          [--compare 1,2] [--platform FILE.json [--scale-to-ranges]]
 """
 import argparse
 import pathlib
@@ -113,6 +113,7 @@ def main():
     parser.add_argument("--derivatives", type=int, default=1)
     parser.add_argument("--compare", default="1,2",
                         help="fidelity levels whose forces share one chart ('' for none)")
+    scenes.add_platform_arguments(parser)
     args = parser.parse_args()
     scene = scenes.load(args.scene)
     out = pathlib.Path(args.out)
@@ -121,7 +122,8 @@ def main():
     if scene.get("mechanism") == "slider-crank":
         return run_slider_crank(scene, out, name, title)
 
-    result = run(args.fmu, scene, args.fidelity, args.derivatives)
+    scene, platform, machine = scenes.on_platform(scene, args)
+    result = run(args.fmu, scene, args.fidelity, args.derivatives, parameters=machine)
     write_csv(result, out / f"{name}.csv")
     level = plots.FIDELITY_NAMES[args.fidelity]
     plots.plot_legs(result["t"], {g: legs(result, g) for g in ("L", "L_dot", "F")},
@@ -129,11 +131,16 @@ def main():
     written = [f"{name}.csv", f"{name}.png"]
     if args.compare:
         levels = [int(v) for v in args.compare.split(",")]
-        forces = {lv: legs(run(args.fmu, scene, lv, args.derivatives), "F") for lv in levels}
+        forces = {lv: legs(run(args.fmu, scene, lv, args.derivatives, parameters=machine), "F")
+                  for lv in levels}
         plots.plot_forces_per_fidelity(result["t"], forces, out / f"{name}_fidelity.png", title)
         written.append(f"{name}_fidelity.png")
-    if scene.get("animate"):
-        base, top = platform_points(scene)
+    framed = any(np.any(platform.params.get(f, 0.0)) for f in ("tool_frame", "user_frame"))
+    if scene.get("animate") and framed:
+        print("run_scene: no GIF: it draws the platform frame's poses, and this platform's poses "
+              "are a tool frame's in a user frame (scripts/view.py draws those)")
+    elif scene.get("animate"):
+        base, top = platform_points(platform)
         q = np.column_stack([result[n] for n in scenes.POSE])
         plots.animate_platform(result["t"], q, out / f"{name}.gif", base, top, title=name)
         written.append(f"{name}.gif")
@@ -150,15 +157,12 @@ def run_slider_crank(scene, out, name, title):
     print(f"run_scene: wrote {csv_path}, {out / f'{name}.png'}")
 
 
-def platform_points(scene):
-    """Attachment points for the drawing, from the scene's parameters or the thesis defaults."""
-    p = scene.get("parameters", {})
-    rb, rt = p.get("base_radius", 0.5), p.get("platform_radius", 0.5)
-    beta = np.radians([0, 30, 120, 150, 240, 270])
-    tau = np.radians([330, 60, 90, 180, 210, 300])
-    base = rb * np.column_stack([np.cos(beta), np.sin(beta), np.zeros(6)])
-    top = rt * np.column_stack([np.cos(tau), np.sin(tau), np.zeros(6)])
-    return base, top
+def platform_points(platform):
+    """The joint centres for the drawing, as the library has them: base (6, 3) in the base
+    frame, platform (6, 3) in the platform frame."""
+    from stewart import _core
+    base, top = _core.model_joints(platform._model)
+    return np.reshape(base, (6, 3)), np.reshape(top, (6, 3))
 
 
 if __name__ == "__main__":

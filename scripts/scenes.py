@@ -25,6 +25,31 @@ def load(scene):
     return scenes.load(scene, ROOT / "scenes")
 
 
+def add_platform_arguments(parser):
+    """--platform FILE.json and --scale-to-ranges, for every script that runs a scene."""
+    parser.add_argument("--platform", help="a platform file (docs/geometry.md): the machine the "
+                        "scene runs on; the scene then moves about the machine's home pose")
+    parser.add_argument("--scale-to-ranges", action="store_true",
+                        help="with --platform: scale the scene to half the machine's axis "
+                             "ranges from home (and less until every sample is within every "
+                             "limit)")
+
+
+def on_platform(scene, args):
+    """(scene, platform, FMU start values) for the script's arguments: the scene as given with
+    the thesis platform when there is no --platform; else the scene moved to the machine's home
+    (and scaled with --scale-to-ranges), the machine and its parameters as FMU start values."""
+    import stewart
+    from stewart.scenes import on_platform as move_scene
+    if not args.platform:
+        if args.scale_to_ranges:
+            raise SystemExit("--scale-to-ranges needs --platform")
+        return scene, stewart.Platform(**scene.get("parameters", {})), {}
+    platform = stewart.Platform.from_file(args.platform)
+    moved = move_scene(scene, platform, scale_to_ranges=args.scale_to_ranges)
+    return moved, platform, stewart.fmu_start_values(platform)
+
+
 def write_pose_csv(scene, path, dt=None, derivatives=True):
     if isinstance(scene, (str, pathlib.Path)):
         scene = load(scene)

@@ -113,7 +113,7 @@ void write_row(FILE *out, const Table &table, double t, const stewart_forward_ou
 }  // namespace
 
 int run_forward(const char *in_path, const char *out_path, const stewart_params &params,
-                const stewart_forward_options &options, const double *guess) {
+                const stewart_forward_options &options, const double *guess, bool cold) {
     Table table;
     const std::string error = read_table(in_path, table);
     if (!error.empty()) {
@@ -145,8 +145,9 @@ int run_forward(const char *in_path, const char *out_path, const stewart_params 
         if (table.has[2])
             std::memcpy(in.lengths.length_accel, row.values.data() + 12,
                         sizeof in.lengths.length_accel);
-        in.use_guess = j == 0 && guess;
-        const stewart_status s = stewart_forward_solve(forward, &in, &results[j]);
+        in.use_guess = guess && (cold || j == 0);
+        const stewart_status s = cold ? stewart_forward_solve_cold(forward, &in, &results[j])
+                                      : stewart_forward_solve(forward, &in, &results[j]);
         if (s != STEWART_OK) {
             std::fprintf(stderr, "stewart-solve: %s (t = %g): %s: %s\n",
                          where(in_path, row.line).c_str(), row.t, stewart_status_name(s),

@@ -69,7 +69,9 @@ std::vector<double> finite_difference(const std::vector<double> &t, const std::v
     return d;
 }
 
-std::string read_pose_table(const std::string &path, PoseTable &table) {
+std::string read_pose_table(const std::string &path, PoseTable &table,
+                            MissingDerivatives missing) {
+    const bool at_rest = missing == MissingDerivatives::kZero;
     std::ifstream in(path);
     if (!in) return "cannot open " + path;
     std::string line;
@@ -86,8 +88,11 @@ std::string read_pose_table(const std::string &path, PoseTable &table) {
             col[r][i] = find_column(header, std::string(kPoseNames[i]) + suffix[r]);
             if (col[r][i] < 0) have[r] = false; else ++found[r];
         }
-    if (col_t < 0 || !have[0])
+    if ((col_t < 0 && !at_rest) || !have[0])
         return path + ": the header must contain t,x,y,z,roll,pitch,yaw";
+    if (at_rest && (found[1] || found[2]))
+        return path + ": --static says the poses are at rest, but the file gives the " +
+               (found[1] ? "x_dot" : "x_ddot") + ".. columns: drop --static or those columns";
     for (int r = 1; r < 3; ++r)
         if (found[r] != 0 && found[r] != 6)
             return path + ": the " + suffix[r] + " columns must be all six (x" + suffix[r] +
@@ -111,7 +116,8 @@ std::string read_pose_table(const std::string &path, PoseTable &table) {
                 return path + " line " + std::to_string(line_no) + ": column " + header[c] +
                        " = '" + cells[c] + "' is not a finite number";
         }
-        if (!table.t.empty() && !(v[col_t] > table.t.back()))
+        const double t = col_t < 0 ? static_cast<double>(table.t.size()) : v[col_t];
+        if (!table.t.empty() && !(t > table.t.back()))
             return path + " line " + std::to_string(line_no) + ": t = " + cells[col_t] +
                    " does not increase";
         stewart_pose pose{};
@@ -120,12 +126,12 @@ std::string read_pose_table(const std::string &path, PoseTable &table) {
                 double *dst = r == 0 ? pose.q : r == 1 ? pose.q_dot : pose.q_ddot;
                 for (int i = 0; i < 6; ++i) dst[i] = v[col[r][i]];
             }
-        table.t.push_back(v[col_t]);
+        table.t.push_back(t);
         table.poses.push_back(pose);
     }
     if (table.t.empty()) return path + " has no data rows";
 
-    for (int r = 1; r < 3; ++r) {
+    for (int r = 1; r < 3 && !at_rest; ++r) {
         if (have[r]) continue;
         for (int i = 0; i < 6; ++i) {
             std::vector<double> f(table.t.size());

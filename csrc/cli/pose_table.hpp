@@ -16,11 +16,19 @@ struct PoseTable {
 // The cells of one CSV line, blanks around each trimmed.
 std::vector<std::string> csv_cells(const std::string &line);
 
+// What a derivative group absent from a pose table becomes.
+enum class MissingDerivatives {
+    kFiniteDifferences,  // central differences of the samples: a trajectory
+    kZero,               // zero: poses at rest (--static); t may then be absent (row numbers)
+};
+
 // Reads IN.csv: header `t,x,y,z,roll,pitch,yaw`, optionally `x_dot..yaw_dot` and/or
 // `x_ddot..yaw_ddot` (any column order). A derivative group that is absent is computed by central
-// finite differences of the samples (one-sided at the ends; variable spacing allowed). Returns ""
-// on success, else a message naming the line and the problem.
-std::string read_pose_table(const std::string &path, PoseTable &table);
+// finite differences of the samples (one-sided at the ends; variable spacing allowed), or is zero
+// for poses at rest (which then must not give derivative columns). Returns "" on success, else a
+// message naming the line and the problem.
+std::string read_pose_table(const std::string &path, PoseTable &table,
+                            MissingDerivatives missing = MissingDerivatives::kFiniteDifferences);
 
 // d/dt of samples f at times t (strictly increasing): three-point differences, second order on a
 // uniform grid, one-sided at the two ends. One sample: zero.

@@ -11,6 +11,7 @@
 #include "cli/pose_table.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
+#include "stewart/stewart_check.h"
 #include "stewart/stewart_limits.h"
 
 namespace {
@@ -18,8 +19,8 @@ namespace {
 int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
-                 "[--platform FILE.json] [--param NAME=VALUE ...] [--limits] [--ranges] IN.csv "
-                 "OUT.csv\n"
+                 "[--platform FILE.json] [--param NAME=VALUE ...] [--static] [--limits] [--ranges] "
+                 "IN.csv OUT.csv\n"
                  "  --platform: a platform file (docs/geometry.md: parameter names to values)\n"
                  "  --param: any platform parameter by its FMU name, SI units (e.g. "
                  "payload_mass=50,\n"
@@ -29,7 +30,9 @@ int usage(FILE *to) {
                  "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
                  "x_ddot..yaw_ddot\n"
                  "           (missing derivatives come from finite differences of the samples)\n"
-                 "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations\n"
+                 "  --static: the poses are at rest: missing derivatives are zero, not differences\n"
+                 "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations,\n"
+                 "           status (the first limit class the pose fails, none: within every limit)\n"
                  "  --limits: and limit_class (the first failing: none, stroke, base_joint,\n"
                  "           platform_joint, interference, condition) and the margin to each [m, rad,\n"
                  "           rad, m, 1] (docs/limits.md); --ranges: and each axis' range, the others\n"
@@ -41,7 +44,14 @@ int usage(FILE *to) {
                  "  OUT.csv: t,x,y,z,roll,pitch,yaw, x_dot.. and x_ddot.. when given their "
                  "inputs, iterations,residual,condition\n"
                  "  --guess: the first row's start (default: home); each later row tracks the "
-                 "one before\n");
+                 "one before\n"
+                 "  --cold: every row on its own from --guess or home (measured poses, not a "
+                 "trajectory)\n"
+                 "usage: stewart-solve --check FILE.json [--platform FILE.json] [--param "
+                 "NAME=VALUE ...]\n"
+                 "  prints the home pose against every limit, the axis ranges and hints on entry "
+                 "mistakes;\n"
+                 "  exit status 1 when home is not a valid pose (docs/geometry.md)\n");
     return to == stderr ? 2 : 0;
 }
 
@@ -55,7 +65,8 @@ bool parse_fidelity(const char *s, int &f) {
 
 const char *const kAxes[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 
-// What a row reports beyond the solve (--limits, --ranges).
+// What a row reports beyond the solve: the limit check (its first class is the status column;
+// --limits adds the margins) and, with --ranges, the axis ranges.
 struct LimitRow {
     stewart_limits_output check;
     stewart_axis_ranges ranges;
@@ -66,7 +77,7 @@ void write_header(FILE *out, bool limits, bool ranges) {
     const char *groups[4] = {"L", "L_dot", "L_ddot", "F"};
     for (const char *g : groups)
         for (int k = 1; k <= STEWART_LEGS; ++k) std::fprintf(out, ",%s%d", g, k);
-    std::fprintf(out, ",condition,iterations");
+    std::fprintf(out, ",condition,iterations,status");
     if (limits) {
         std::fprintf(out, ",limit_class");
         for (int c = 1; c <= STEWART_LIMIT_CLASSES; ++c)
@@ -77,21 +88,23 @@ void write_header(FILE *out, bool limits, bool ranges) {
     std::fprintf(out, "\n");
 }
 
-void write_row(FILE *out, double t, const stewart_inverse_output &o, const LimitRow *limits,
-               const LimitRow *ranges) {
+void write_row(FILE *out, double t, const stewart_inverse_output &o,
+               const LimitRow &row, bool limits, bool ranges) {
+    const stewart_limits_output &check = row.check;
     std::fprintf(out, "%.17g", t);
     const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
                                o.force};
     for (const double *g : groups)
         for (int k = 0; k < STEWART_LEGS; ++k) std::fprintf(out, ",%.17g", g[k]);
-    std::fprintf(out, ",%.17g,%d", o.condition, o.iterations);
+    std::fprintf(out, ",%.17g,%d,%s", o.condition, o.iterations,
+                 stewart_limit_class_name(check.first));
     if (limits) {
-        std::fprintf(out, ",%s", stewart_limit_class_name(limits->check.first));
-        for (double m : limits->check.margin) std::fprintf(out, ",%.17g", m);
+        std::fprintf(out, ",%s", stewart_limit_class_name(check.first));
+        for (double m : check.margin) std::fprintf(out, ",%.17g", m);
     }
     if (ranges)
         for (int a = 0; a < 6; ++a)
-            std::fprintf(out, ",%.17g,%.17g", ranges->ranges.min[a], ranges->ranges.max[a]);
+            std::fprintf(out, ",%.17g,%.17g", row.ranges.min[a], row.ranges.max[a]);
     std::fprintf(out, "\n");
 }
 
@@ -103,97 +116,95 @@ bool set_param(const char *assignment, stewart_params &params) {
            stewart::set_platform_param("stewart-solve", name, value, params);
 }
 
-}  // namespace
-
-int main(int argc, char **argv) {
+// What the command line asks for.
+struct Request {
     stewart_inverse_options options;
-    stewart_inverse_options_default(&options);
     stewart_params params;
-    stewart_params_default(&params);
     const char *paths[2] = {nullptr, nullptr};
-    bool forward = false;
+    bool forward = false, cold = false, check = false, at_rest = false;
+    bool limits = false, ranges = false;
     double guess[6];
     const double *guess_given = nullptr;
-    bool limits = false, ranges = false;
+};
+
+// Parses argv into request; -1 to go on, else the exit code.
+int parse(int argc, char **argv, Request &r) {
+    stewart_inverse_options_default(&r.options);
+    stewart_params_default(&r.params);
     const std::vector<stewart::CliOption> cli = {
-        {"--forward", nullptr, [&](const char *) { return forward = true, 0; }},
+        {"--forward", nullptr, [&](const char *) { return r.forward = true, 0; }},
+        {"--cold", nullptr, [&](const char *) { return r.cold = true, 0; }},
+        {"--static", nullptr, [&](const char *) { return r.at_rest = true, 0; }},
         {"--guess", "x,y,z,roll,pitch,yaw",
          [&](const char *v) {
-             if (std::sscanf(v, "%lf,%lf,%lf,%lf,%lf,%lf", &guess[0], &guess[1], &guess[2],
-                             &guess[3], &guess[4], &guess[5]) != 6) {
+             if (!stewart::parse_numbers(v, r.guess, 6)) {
                  std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
                  return 2;
              }
-             return guess_given = guess, 0;
+             return r.guess_given = r.guess, 0;
          }},
-        {"--param", "NAME=VALUE", [&](const char *v) { return set_param(v, params) ? 0 : 2; }},
+        {"--param", "NAME=VALUE", [&](const char *v) { return set_param(v, r.params) ? 0 : 2; }},
         {"--platform", "FILE.json",
          [&](const char *v) {
-             return stewart::read_platform_file("stewart-solve", v, params) ? 0 : 2;
+             return stewart::read_platform_file("stewart-solve", v, r.params) ? 0 : 2;
          }},
-        {"--limits", nullptr, [&](const char *) { return limits = true, 0; }},
-        {"--ranges", nullptr, [&](const char *) { return ranges = true, 0; }},
+        {"--check", "FILE.json",
+         [&](const char *v) {
+             r.check = true;
+             return stewart::read_platform_file("stewart-solve", v, r.params) ? 0 : 2;
+         }},
+        {"--limits", nullptr, [&](const char *) { return r.limits = true, 0; }},
+        {"--ranges", nullptr, [&](const char *) { return r.ranges = true, 0; }},
         {"--fidelity", "kinematic|massless|full",
          [&](const char *v) {
-             if (parse_fidelity(v, options.fidelity)) return 0;
+             if (parse_fidelity(v, r.options.fidelity)) return 0;
              std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", v);
              return usage(stderr);
          }},
         {"--tolerance", "a positive number",
          [&](const char *v) {
-             char *end = nullptr;
-             options.tolerance = std::strtod(v, &end);
-             if (end != v && *end == '\0') return 0;
+             if (stewart::parse_numbers(v, &r.options.tolerance, 1)) return 0;
              std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", v);
              return 2;
          }},
     };
-    const int code = stewart::parse_command_line("stewart-solve", argc, argv, cli, paths, 2, usage);
-    if (code >= 0) return code;
-    if (forward) {
-        stewart_forward_options forward_options;
-        stewart_forward_options_default(&forward_options);
-        forward_options.tolerance = options.tolerance;
-        char message[STEWART_MESSAGE_SIZE];
-        if (stewart_forward_options_check(&forward_options, message, sizeof message) != STEWART_OK) {
-            std::fprintf(stderr, "stewart-solve: %s\n", message);
-            return 2;
-        }
-        return stewart::run_forward(paths[0], paths[1], params, forward_options, guess_given);
-    }
+    bool checking = false;
+    for (int i = 1; i < argc; ++i) checking = checking || !std::strcmp(argv[i], "--check");
+    return stewart::parse_command_line("stewart-solve", argc, argv, cli, r.paths,
+                                       checking ? 0 : 2, usage);
+}
 
+// --check: the home pose's report on stdout; 1 when home is not valid.
+int run_check(const Request &r) {
     char message[STEWART_MESSAGE_SIZE];
-    if (stewart_inverse_options_check(&options, message, sizeof message) != STEWART_OK) {
-        std::fprintf(stderr, "stewart-solve: %s\n", message);
-        return 2;
-    }
-    stewart::PoseTable table;
-    const std::string read_error = stewart::read_pose_table(paths[0], table);
-    if (!read_error.empty()) {
-        std::fprintf(stderr, "stewart-solve: %s\n", read_error.c_str());
+    stewart_model *model = stewart_model_create(&r.params, message, sizeof message);
+    if (!model) {
+        std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
         return 1;
     }
-
-    stewart_model *model = stewart_model_create(&params, message, sizeof message);
-    stewart_inverse *inverse =
-        model ? stewart_inverse_create(model, &options, message, sizeof message) : nullptr;
     stewart_limits_options limit_options;
     stewart_limits_options_default(&limit_options);
-    limit_options.warn_condition = options.warn_condition;
-    stewart_limits *checker =
-        inverse ? stewart_limits_create(model, &limit_options, message, sizeof message) : nullptr;
-    if (!checker) {
-        std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
-        stewart_inverse_free(inverse);
-        stewart_model_free(model);
+    limit_options.warn_condition = r.options.warn_condition;
+    stewart_check_report report;
+    const stewart_status s = stewart_check_home(model, &limit_options, &report, message,
+                                                sizeof message);
+    stewart_model_free(model);
+    if (s != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: --check: %s\n", message);
         return 1;
     }
+    std::string text(stewart_check_text(&report, nullptr, 0) + 1, '\0');
+    stewart_check_text(&report, text.data(), text.size());
+    std::fputs(text.c_str(), stdout);
+    return report.valid ? 0 : 1;
+}
 
-    // Solve everything before writing, so a failed run leaves no partial OUT.csv behind; through
-    // the batch, as the Python package and the sweeps (the same numbers bit for bit).
+// Solves every row through the batch, then checks each pose's limits (and ranges); false with a
+// message on stderr when a row fails.
+bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inverse *inverse,
+                stewart_limits *checker, std::vector<stewart_inverse_output> &outputs,
+                std::vector<LimitRow> &limit_rows) {
     const size_t n = table.t.size();
-    std::vector<stewart_inverse_output> outputs(n);
-    std::vector<LimitRow> limit_rows(limits || ranges ? n : 0);
     std::vector<double> q(6 * n), q_dot(6 * n), q_ddot(6 * n);
     for (size_t j = 0; j < n; ++j) {
         std::memcpy(&q[6 * j], table.poses[j].q, sizeof table.poses[j].q);
@@ -213,40 +224,102 @@ int main(int argc, char **argv) {
     size_t failed = n;
     const stewart_status s = stewart_inverse_batch(inverse, n, q.data(), q_dot.data(),
                                                    q_ddot.data(), &columns, nullptr, &failed);
-    int status = 0;
     if (s != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s: %s\n", failed + 1,
                      table.t[failed], stewart_status_name(s), stewart_inverse_message(inverse));
-        status = 1;
+        return false;
     }
-    for (size_t j = 0; j < n && status == 0; ++j) {
+    for (size_t j = 0; j < n; ++j) {
         STEWART_INVERSE_OUTPUT_TABLE(CLI_ROW)
         stewart_limits_input pose;
         std::memcpy(pose.q, table.poses[j].q, sizeof pose.q);
         // The pose solved, so it is finite: neither call can fail.
-        if (limits) stewart_limits_check(checker, &pose, &limit_rows[j].check);
-        if (ranges) stewart_limits_ranges(checker, &pose, &limit_rows[j].ranges);
+        stewart_limits_check(checker, &pose, &limit_rows[j].check);
+        if (r.ranges) stewart_limits_ranges(checker, &pose, &limit_rows[j].ranges);
     }
 #undef CLI_COLUMN
 #undef CLI_POINT
 #undef CLI_ROW
-    stewart_limits_free(checker);
-    stewart_inverse_free(inverse);
-    stewart_model_free(model);
-    if (status != 0) return status;
+    return true;
+}
 
-    FILE *out = std::fopen(paths[1], "w");
+// Writes OUT.csv; 0, or 1 with a message.
+int write_table(const Request &r, const stewart::PoseTable &table,
+                const std::vector<stewart_inverse_output> &outputs,
+                const std::vector<LimitRow> &limit_rows) {
+    FILE *out = std::fopen(r.paths[1], "w");
     if (!out) {
-        std::fprintf(stderr, "stewart-solve: cannot write %s\n", paths[1]);
+        std::fprintf(stderr, "stewart-solve: cannot write %s\n", r.paths[1]);
         return 1;
     }
-    write_header(out, limits, ranges);
+    write_header(out, r.limits, r.ranges);
     for (size_t j = 0; j < table.t.size(); ++j)
-        write_row(out, table.t[j], outputs[j], limits ? &limit_rows[j] : nullptr,
-                  ranges ? &limit_rows[j] : nullptr);
+        write_row(out, table.t[j], outputs[j], limit_rows[j], r.limits, r.ranges);
     if (std::fclose(out) != 0) {
-        std::fprintf(stderr, "stewart-solve: error writing %s\n", paths[1]);
+        std::fprintf(stderr, "stewart-solve: error writing %s\n", r.paths[1]);
         return 1;
     }
     return 0;
+}
+
+// The inverse of IN.csv into OUT.csv.
+int run_inverse(const Request &r) {
+    stewart::PoseTable table;
+    const std::string read_error = stewart::read_pose_table(
+        r.paths[0], table, r.at_rest ? stewart::MissingDerivatives::kZero
+                                     : stewart::MissingDerivatives::kFiniteDifferences);
+    if (!read_error.empty()) {
+        std::fprintf(stderr, "stewart-solve: %s\n", read_error.c_str());
+        return 1;
+    }
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_model *model = stewart_model_create(&r.params, message, sizeof message);
+    stewart_inverse *inverse =
+        model ? stewart_inverse_create(model, &r.options, message, sizeof message) : nullptr;
+    stewart_limits_options limit_options;
+    stewart_limits_options_default(&limit_options);
+    limit_options.warn_condition = r.options.warn_condition;
+    stewart_limits *checker =
+        inverse ? stewart_limits_create(model, &limit_options, message, sizeof message) : nullptr;
+    if (!checker) {
+        std::fprintf(stderr, "stewart-solve: cannot build the model: %s\n", message);
+        stewart_inverse_free(inverse);
+        stewart_model_free(model);
+        return 1;
+    }
+    // Solve everything before writing, so a failed run leaves no partial OUT.csv behind; through
+    // the batch, as the Python package and the sweeps (the same numbers bit for bit).
+    std::vector<stewart_inverse_output> outputs(table.t.size());
+    std::vector<LimitRow> limit_rows(table.t.size());
+    const bool solved = solve_rows(r, table, inverse, checker, outputs, limit_rows);
+    stewart_limits_free(checker);
+    stewart_inverse_free(inverse);
+    stewart_model_free(model);
+    return solved ? write_table(r, table, outputs, limit_rows) : 1;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Request r;
+    const int code = parse(argc, argv, r);
+    if (code >= 0) return code;
+    if (r.check) return run_check(r);
+    char message[STEWART_MESSAGE_SIZE];
+    if (r.forward) {
+        stewart_forward_options forward_options;
+        stewart_forward_options_default(&forward_options);
+        forward_options.tolerance = r.options.tolerance;
+        if (stewart_forward_options_check(&forward_options, message, sizeof message) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-solve: %s\n", message);
+            return 2;
+        }
+        return stewart::run_forward(r.paths[0], r.paths[1], r.params, forward_options,
+                                    r.guess_given, r.cold);
+    }
+    if (stewart_inverse_options_check(&r.options, message, sizeof message) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: %s\n", message);
+        return 2;
+    }
+    return run_inverse(r);
 }

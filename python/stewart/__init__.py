@@ -16,9 +16,10 @@ from importlib.metadata import PackageNotFoundError, version as _version
 
 from .calibration import Calibration, UnobservableError, calibrate, observability
 from .calibration_poses import calibration_poses
+from .check import HomeCheck
 from .choices import Fidelity
 from .errors import ParameterError
-from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths
+from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values
 from .forward import ForwardSolution
 from .inverse import InverseSolution
 from .params import parameters, platform_files
@@ -30,7 +31,8 @@ try:
 except PackageNotFoundError:  # imported from a source tree, not installed
     __version__ = "unknown"
 
-__all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Fidelity", "Method",
-           "ParameterError", "fmu_path", "fmu_paths", "FMI_VERSIONS", "FMU_NAMES", "parameters",
+__all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "HomeCheck",
+           "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths", "fmu_start_values",
+           "FMI_VERSIONS", "FMU_NAMES", "parameters",
            "calibrate", "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "__version__"]

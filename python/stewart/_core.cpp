@@ -23,6 +23,7 @@
 extern "C" {
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
+#include "stewart/stewart_check.h"
 #include "stewart/stewart_calibration.h"
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_linearize.h"
@@ -405,16 +406,18 @@ class ForwardRun {
 public:
     ForwardRun(const Model &model, Poses lengths, std::optional<Poses> rates,
                std::optional<Poses> accels, std::optional<Times> time,
-               std::optional<Column<const double>> guess,
+               std::optional<Column<const double>> guess, bool cold,
                const std::vector<std::pair<std::string, double>> &option_values,
                const nb::dict &outputs, Column<int> status)
         : n_(lengths.shape(0)), lengths_(lengths), rates_(rates), accels_(accels), time_(time),
-          guess_(guess), status_(status) {
+          guess_(guess), cold_(cold), status_(status) {
         if ((rates && rates->shape(0) != n_) || (accels && accels->shape(0) != n_) ||
             (time && time->shape(0) != n_))
             fail("t, rates and accels must have as many rows as the lengths");
         if (accels && !rates) fail("accels need rates");
-        if (guess && guess->shape(0) != 6) fail("guess must have 6 values");
+        if (guess && guess->shape(0) != (cold ? 6 * n_ : 6))
+            fail(cold ? "guess must have 6 values per row" : "guess must have 6 values");
+        if (cold && time) fail("rows solved cold have no time");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the lengths");
         const stewart_forward_options options = options_by_name(kForwardOptions, option_values);
         out_ = bind_outputs(out_, outputs, n_, held_);
@@ -424,10 +427,20 @@ public:
         if (!forward_.solver) fail(message);
     }
 
-    // Solves rows [first, stop) (the guess only for row 0). Returns as run_rows.
+    // Solves rows [first, stop) (the guess only for row 0; cold: each row from its own guess
+    // or home). Returns as run_rows.
     BatchResult rows(size_t first, size_t stop, size_t max_messages) {
         if (stop > n_) fail("rows: stop is beyond the last row");
         const stewart_forward_batch_outputs out = from_row(out_, first);
+        if (cold_)
+            return run_rows(forward_, first, stop, max_messages,
+                            [&](stewart_batch_messages *messages, size_t *first_failed) {
+                return stewart_forward_batch_cold(
+                    forward_.solver, stop - first, lengths_.data() + 6 * first,
+                    rates_ ? rates_->data() + 6 * first : nullptr,
+                    accels_ ? accels_->data() + 6 * first : nullptr,
+                    guess_ ? guess_->data() + 6 * first : nullptr, &out, messages, first_failed);
+            });
         const double *guess = guess_ && first == 0 ? guess_->data() : nullptr;
         return run_rows(forward_, first, stop, max_messages,
                         [&](stewart_batch_messages *messages, size_t *first_failed) {
@@ -446,6 +459,7 @@ private:
     std::optional<Poses> rates_, accels_;
     std::optional<Times> time_;
     std::optional<Column<const double>> guess_;
+    bool cold_;
     // The output arrays, held so that they outlive the pointers in out_.
     Column<int> status_;
     std::vector<nb::object> held_;
@@ -701,6 +715,32 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
         fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
 }
 
+// The home check of stewart_check.h: its numbers and its text, in a dict.
+nb::dict check_home(const Model &model, std::optional<double> warn_condition) {
+    stewart_limits_options options;
+    stewart_limits_options_default(&options);
+    if (warn_condition) options.warn_condition = *warn_condition;
+    stewart_check_report r;
+    char message[STEWART_MESSAGE_SIZE];
+    if (stewart_check_home(model.get(), &options, &r, message, sizeof message) != STEWART_OK)
+        fail(message);
+    std::string text(stewart_check_text(&r, nullptr, 0) + 1, '\0');
+    stewart_check_text(&r, text.data(), text.size());
+    text.resize(text.size() - 1);
+    auto values = [](const double *v) { return std::vector<double>(v, v + 6); };
+    nb::dict d;
+    d["home"] = values(r.home);
+    d["length"] = values(r.length);
+    d["stroke_min"] = values(r.stroke_min);
+    d["stroke_max"] = values(r.stroke_max);
+    d["joint_spread"] = r.joint_spread;
+    d["crossing"] = std::make_pair(r.crossing[0], r.crossing[1]);
+    d["hints"] = r.hints;
+    d["valid"] = r.valid != 0;
+    d["text"] = text;
+    return d;
+}
+
 }  // namespace
 
 NB_MODULE(_core, m) {
@@ -719,12 +759,13 @@ NB_MODULE(_core, m) {
              nb::arg("max_messages"));
     nb::class_<ForwardRun>(m, "ForwardRun")
         .def(nb::init<const Model &, Poses, std::optional<Poses>, std::optional<Poses>,
-                      std::optional<Times>, std::optional<Column<const double>>,
+                      std::optional<Times>, std::optional<Column<const double>>, bool,
                       const std::vector<std::pair<std::string, double>> &, const nb::dict &,
                       Column<int>>(),
              nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
              nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
-             nb::arg("guess").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
+             nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("outputs"),
+             nb::arg("status"))
         .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"));
     nb::class_<PlantRun>(m, "PlantRun")
@@ -756,6 +797,10 @@ NB_MODULE(_core, m) {
     m.def("limits_ranges", &limits_ranges, nb::arg("model"), nb::arg("q"),
           nb::arg("warn_condition").none(), nb::arg("ends"), nb::arg("limit"), nb::arg("leg"),
           nb::arg("other_leg"));
+    m.def("check_home", &check_home, nb::arg("model"), nb::arg("warn_condition").none());
+    m.attr("CHECK_UNITS") = STEWART_CHECK_UNITS;
+    m.attr("CHECK_SWAPPED_LEGS") = STEWART_CHECK_SWAPPED_LEGS;
+    m.attr("CHECK_FRAME") = STEWART_CHECK_FRAME;
     m.def("limit_class_name", [](int c) { return std::string(stewart_limit_class_name(c)); });
     m.attr("LIMIT_CLASSES") = STEWART_LIMIT_CLASSES;
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;

@@ -29,3 +29,40 @@ def fmu_path(version: str = "2.0", model: str = "StewartPlatform") -> pathlib.Pa
 def fmu_paths() -> dict[str, dict[str, pathlib.Path]]:
     """{model: {FMI version: path}} of every installed unit (FMU_NAMES x FMI_VERSIONS)."""
     return {m: {v: fmu_path(v, m) for v in FMI_VERSIONS} for m in FMU_NAMES}
+
+
+def fmu_start_values(platform, fmi_version: str = "2.0") -> dict[str, float]:
+    """The start values that give an FMU unit of the library (StewartPlatform, StewartPlant,
+    StewartPlantME) the platform `platform`: a Platform, a platform file's path, or a mapping of
+    parameter names to values as Platform takes them. Arrays are expanded to the FMU's element
+    names (``base_joint[1]`` .. ``base_joint[18]``; a scalar stroke fills ``stroke_min[1]`` ..
+    ``stroke_min[6]``), every value in SI, for FMI `fmi_version` ("2.0" or "3.0": the names are
+    the same). The platform is built first, so a bad file or value raises ParameterError here,
+    not at the unit's instantiation. E.g. ``fmpy.simulate_fmu(stewart.fmu_path("2.0"),
+    start_values={**stewart.fmu_start_values("machine.json"), ...})``."""
+    import os
+    from collections.abc import Mapping
+
+    from .params import parameter_assignments, parameters
+    from .platform import Platform
+
+    if fmi_version not in FMI_VERSIONS:
+        raise ValueError(f"fmi_version = {fmi_version!r}: the FMUs exist for FMI "
+                         f"{', '.join(FMI_VERSIONS)}")
+    if isinstance(platform, Platform):
+        built = platform
+    elif isinstance(platform, Mapping):
+        built = Platform(**platform)
+    elif isinstance(platform, (str, os.PathLike)):
+        built = Platform.from_file(platform)
+    else:
+        raise TypeError(f"platform is a {type(platform).__name__}: give a Platform, a platform "
+                        "file's path or a mapping of parameter names to values")
+    counts = {p["name"]: p["count"] for p in parameters()}
+    values: dict[str, float] = {}
+    for name, value in parameter_assignments(built.params):
+        if counts.get(name, 1) > 1:  # a scalar that fills every element
+            values.update({f"{name}[{k}]": value for k in range(1, counts[name] + 1)})
+        else:
+            values[name] = value
+    return values

@@ -51,16 +51,16 @@ def empty_forward_solution(n: int) -> ForwardSolution:
 
 def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
                 accels: Optional[np.ndarray], t: Optional[np.ndarray], guess: Optional[np.ndarray],
-                options: list, max_messages: int) -> ForwardSolution:
+                options: list, max_messages: int, cold: bool = False) -> ForwardSolution:
     """The rows of lengths through the library, tracked in order by one solver in slices of
     SLICE_ROWS, so that Ctrl-C stops the batch between slices (slices.run_in_slices: a
-    KeyboardInterrupt with rows_done and the partial result). Bad options raise
-    ParameterError."""
+    KeyboardInterrupt with rows_done and the partial result); with cold, every row on its own
+    (guess: None, or one start per row, flattened). Bad options raise ParameterError."""
     n = lengths.shape[0]
     out = empty_forward_solution(n)
     try:
         run = _core.ForwardRun(
-            model, lengths, rates, accels, t, guess, options,
+            model, lengths, rates, accels, t, guess, cold, options,
             table_outputs(FORWARD_TABLE, out), out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None

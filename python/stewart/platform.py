@@ -10,6 +10,7 @@ import numpy as np
 
 from . import _core
 from .arrays import LEG_LAYOUT, POSE_LAYOUT, rows6, times, vector
+from .check import HomeCheck, check_home
 from .choices import Fidelity
 from .errors import ParameterError
 from .forward import ForwardSolution, run_forward
@@ -96,7 +97,7 @@ class Platform:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
         return run_inverse(self._model, q, q_dot, q_ddot, level, options, max_messages, out)
 
-    def forward(self, lengths, rates=None, accels=None, guess=None, *, t=None,
+    def forward(self, lengths, rates=None, accels=None, guess=None, *, t=None, cold: bool = False,
                 tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
                 warn_condition: Optional[float] = None,
                 singular_condition: Optional[float] = None,
@@ -112,7 +113,9 @@ class Platform:
         solved, advanced by its rates to the row's time. A pose on another assembly mode than
         the working one is never returned: that row gets status STATUS_OTHER_BRANCH (-8) and
         its branch bits say why; a row of bad or unreachable lengths gets its status; the other
-        rows are still solved. The first max_messages failing rows get a message. Bad options
+        rows are still solved. cold=True: the rows are not a trajectory (measured lengths of
+        unrelated poses): each row is solved on its own from home, or from guess (one pose for
+        every row, or (N, 6): a start per row), with the assembly-mode checks against home; t is then not taken. The first max_messages failing rows get a message. Bad options
         raise ParameterError; bad array shapes, a non-finite guess or a t that does not
         increase raise ValueError naming the argument and the value. Options left None keep the
         library's defaults (stewart_forward_options_default). Ctrl-C stops the batch within
@@ -124,14 +127,22 @@ class Platform:
         L_ddot = None if accels is None else rows6("accels", accels, n, "lengths", LEG_LAYOUT)
         if L_ddot is not None and L_dot is None:
             raise ValueError("accels were given without rates: the pose accelerations need both")
-        q0 = None if guess is None else vector("guess", guess, 6)
+        if cold:
+            if t is not None:
+                raise ValueError("t was given with cold=True: rows solved cold have no time")
+            q0 = None if guess is None else np.ascontiguousarray(np.broadcast_to(
+                rows6("guess", guess, None, "poses", POSE_LAYOUT), (n, 6))).ravel()
+            if q0 is not None and not np.all(np.isfinite(q0)):
+                raise ValueError("guess has a value that is not finite")
+        else:
+            q0 = None if guess is None else vector("guess", guess, 6)
         time = None if t is None else times("t", t, n)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
         options = option_values(tolerance=tolerance, max_iterations=max_iterations,
                                 warn_condition=warn_condition,
                                 singular_condition=singular_condition)
-        return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages)
+        return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages, cold)
 
     def limits(self, poses, *, warn_condition: Optional[float] = None) -> LimitCheck:
         """The limits a controller checks, for N poses ((N, 6) or one row of 6): per pose the
@@ -141,6 +152,14 @@ class Platform:
         non-finite pose raises ValueError naming its row and component."""
         q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
         return check_limits(self._model, q, _warn_condition(warn_condition))
+
+    def check(self, *, warn_condition: Optional[float] = None) -> HomeCheck:
+        """The check to run first on a new platform file: the home pose's leg lengths against
+        the strokes, the margin to every limit class, the condition number, the axis ranges
+        from home, whether home is a valid pose, and hints that name a likely entry mistake
+        ("units", "swapped_legs", "frame"); print() it for the report of `stewart-solve
+        --check` (docs/geometry.md)."""
+        return check_home(self._model, _warn_condition(warn_condition))
 
     def axis_ranges(self, poses, *, warn_condition: Optional[float] = None,
                     details: bool = False) -> Union[np.ndarray, AxisRanges]:

@@ -65,6 +65,10 @@ def check(scene: Any, where: str) -> None:
     for key in ("duration", "step"):
         if not (_finite(scene.get(key)) and scene[key] > 0):
             raise SceneError(f"{where}.{key} = {scene.get(key)!r} must be a finite number > 0")
+    home = scene.get("home", THESIS_HOME)
+    if not (isinstance(home, (list, tuple)) and len(home) == 6 and all(map(_finite, home))):
+        raise SceneError(f"{where}.home = {home!r} must be a pose of 6 finite numbers (the pose "
+                         "the scene moves about)")
 
 
 def samples(scene: dict, dt: Optional[float] = None, duration: Optional[float] = None) -> float:
@@ -107,3 +111,68 @@ def sample(scene: dict, amplitude: float = 1.0, frequency: float = 1.0,
 
 def _finite(v: Any) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+#: The pose the shipped scenes are written about: the thesis platform's home.
+THESIS_HOME = (0.0, 0.0, 0.5, 0.0, 0.0, 0.0)
+
+
+def on_platform(scene: dict, platform, scale_to_ranges: bool = False,
+                fraction: float = 0.5) -> dict:
+    """The scene moved to `platform` (a stewart.Platform): each component's motion about the
+    scene's home (its "home" field, default THESIS_HOME, the pose the shipped scenes move
+    about) becomes the same motion about the platform's home pose (Platform.check().home).
+    With scale_to_ranges, each component's excursion from home (|mean offset| + amplitude) is
+    scaled to `fraction` of the axis range from home on its nearer side (Platform.axis_ranges),
+    then all of them together by the largest factor <= 1 for which every sample of the scene
+    is within every limit (Platform.limits; halved until it is, at most 40 times). SceneError
+    if home itself is not a valid pose or no such factor is found. The result is a scene dict
+    like any other (sinusoids), with its "home" set to the platform's."""
+    if not 0.0 < fraction <= 1.0:
+        raise SceneError(f"fraction = {fraction!r} must be in (0, 1]")
+    check(scene, scene.get("name", "scene"))
+    report = platform.check()
+    if not report.valid:
+        raise SceneError(f"the platform's home pose is not valid, so no scene can move about it:"
+                         f"\n{report.text}")
+    old_home = np.asarray(scene.get("home", THESIS_HOME), dtype=float)
+    home = report.home
+    offset = np.array([scene["pose"].get(p, {}).get("mean", 0.0) - old_home[i]
+                       for i, p in enumerate(POSE)])
+    amplitude = np.array([abs(scene["pose"].get(p, {}).get("amplitude", 0.0)) for p in POSE])
+    scale = np.ones(6)
+    if scale_to_ranges:
+        ends = report.ranges.ends[0]  # (6, 2): [min, max] from home
+        room = np.minimum(home - ends[:, 0], ends[:, 1] - home)
+        excursion = np.abs(offset) + amplitude
+        moving = excursion > 0
+        scale[moving] = fraction * room[moving] / excursion[moving]
+    if scale_to_ranges:
+        return _within_limits(scene, platform, home, offset, scale)
+    return _scaled(scene, home, offset, scale)
+
+
+def _scaled(scene: dict, home: np.ndarray, offset: np.ndarray, scale: np.ndarray) -> dict:
+    """The scene with component i at home[i] + scale[i] (offset[i] + its sinusoid)."""
+    moved = {k: v for k, v in scene.items() if k != "pose"}
+    moved["home"] = [float(v) for v in home]
+    moved["pose"] = {}
+    for i, p in enumerate(POSE):
+        s = dict(scene["pose"].get(p, {}))
+        s["mean"] = float(home[i] + scale[i] * offset[i])
+        s["amplitude"] = float(scale[i] * s.get("amplitude", 0.0))
+        moved["pose"][p] = s
+    return moved
+
+
+def _within_limits(scene: dict, platform, home, offset, scale) -> dict:
+    """The scene scaled by scale, or by scale halved until every sample is within every limit
+    (SceneError if 40 halvings do not do it)."""
+    t = times(scene)
+    for _ in range(40):
+        moved = _scaled(scene, home, offset, scale)
+        if platform.limits(pose(moved, t)[0]).within.all():
+            return moved
+        scale = scale / 2
+    raise SceneError("the scene leaves the platform's limits at every scale tried: check the "
+                     "platform with Platform.check()")

@@ -82,6 +82,17 @@ stewart_status stewart_forward_batch(stewart_forward *forward, size_t n, const d
                                      const stewart_forward_batch_outputs *outputs,
                                      stewart_batch_messages *messages, size_t *first_failed);
 
+/* Forward kinematics of rows 0..n-1 of lengths each on its own, for measured lengths that are not
+ * a trajectory: every row through stewart_forward_solve_cold, from guesses[6j..6j+5] when
+ * guesses (n x 6) is not NULL, else from the home pose (walking from home's lengths when that
+ * start lands on another assembly mode). rates and accels as stewart_forward_batch. Returns as
+ * stewart_inverse_batch. */
+stewart_status stewart_forward_batch_cold(stewart_forward *forward, size_t n,
+                                          const double *lengths, const double *rates,
+                                          const double *accels, const double *guesses,
+                                          const stewart_forward_batch_outputs *outputs,
+                                          stewart_batch_messages *messages, size_t *first_failed);
+
 /* Where a plant batch writes its results: arrays of n rows, row-major, one per column of
  * STEWART_PLANT_OUTPUT_TABLE (pose, pose_rate, length, length_rate, base_force, base_torque,
  * warnings, stroke_legs) and of STEWART_PLANT_STEP_TABLE (steps, rhs_evaluations,

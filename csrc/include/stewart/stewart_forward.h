@@ -127,6 +127,17 @@ const stewart_forward_options *stewart_forward_options_of(const stewart_forward 
 stewart_status stewart_forward_solve(stewart_forward *forward, const stewart_forward_input *input,
                                      stewart_forward_output *output);
 
+/* The pose of input's lengths on its own, for measured lengths that are not a trajectory: the
+ * solver is reset, and Newton starts from input->guess (use_guess) or the home pose. When a
+ * start from home lands on another assembly mode, the lengths are walked from home's readings to
+ * input's in 8, then 64, equal steps, each solve tracking the one before: a path that stays on
+ * the working mode unless the straight path in length space crosses a singular pose. Returns and
+ * fills as stewart_forward_solve (output->start is STEWART_START_LAST after a walk); the history
+ * is the pose found. */
+stewart_status stewart_forward_solve_cold(stewart_forward *forward,
+                                          const stewart_forward_input *input,
+                                          stewart_forward_output *output);
+
 #ifdef __cplusplus
 }
 #endif
