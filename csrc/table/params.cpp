@@ -70,7 +70,7 @@ const char *const kPoseAxis[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 bool is_pose(const stewart_param_info &p) { return !std::strcmp(p.unit, STEWART_POSE_UNIT); }
 
 // Per-leg parameters that a single value (the bare name, e.g. "stroke_min") fills for all six
-// legs: they were scalars before issue 19, and their old spelling keeps working.
+// legs: they were scalars in earlier releases, and their old spelling keeps working.
 const char *const kScalarFills[] = {"stroke_min", "stroke_max"};
 
 // The element index of "[k]" (k = 1..count, no leading zero, then the end), or -1.

@@ -55,7 +55,7 @@ typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
 enum { FMU_OUTPUTS_UNREAD = 2 };
 
 /* Marks a function out of line where the compiler allows: a path the usual step does not take,
- * so that the step's own path stays short (issue 22: doStep within 5 % of the library call). */
+ * so that the step's own path stays short (doStep within 5 % of the library call it wraps). */
 #if defined(__GNUC__)
 #define FMU_RARE_PATH __attribute__((noinline, cold))
 #else
@@ -143,7 +143,7 @@ fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double
                               int outputs_current_before);
 
 /* The bookkeeping of an accepted step (s OK or Warning) from t to t + h: time moves on. Inline:
- * it is the usual step's (issue 22: doStep within 5 % of the library call). Returns s. */
+ * it is on the usual step's path, which a call would lengthen. Returns s. */
 static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fmu_status s) {
     const double end = t + h;
     v->time = end;

@@ -209,7 +209,7 @@ static inline void take_outputs(fmu_values *v, const stewart_inverse_output *out
  * to the first read (outputs_current FMU_OUTPUTS_UNREAD), or to whatever else comes first that
  * finds the outputs current (a step through the full rules, a refused solve, a state). A master
  * that reads the outputs after every step pays the same instructions in its first Get; one that
- * reads them less often pays less (issue 22: doStep within 5 % of the library call). */
+ * reads them less often pays less (so that doStep costs within 5 % of the library call). */
 enum { SOLVED_UNREAD = FMU_ERROR + 8 };
 
 /* The outputs laid out if a usual step left them as the library wrote them (exactly once: the
