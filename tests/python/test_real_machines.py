@@ -67,7 +67,7 @@ NEUTRAL = {
     # the header's joints, to 1e-4 in, give legs of 29.7464 .. 29.7468 in
     "genhexkins": ([29.7466 * 0.0254] * 6, 2.5e-4 * 0.0254,
                    "LinuxCNC configs/sim/axis/vismach/hexapod-sim/hexapod.ini: home leg 29.7466 in"),
-    "paired_hexapod": ([0.285] * 6, 2e-3,
+    "paired_hexapod": ([0.285] * 6, 1e-5,  # joints given to 1 um
                        "made up; its description: strokes +-0.05 m about the home length (0.235..0.335)"),
     "non_planar": (None, None, "made up; no source gives its lengths"),
     "rubin_camera_hexapod": (rubin_neutral(CAMERA_BASE_UM, CAMERA_MIRROR_UM), 1e-12,
