@@ -128,10 +128,12 @@ def convert(osp_path: pathlib.Path, stop_time: float = STOP_TIME) -> str:
         connectors = ET.SubElement(component, f"{{{SSD}}}Connectors")
         for variable, kind, kind_type in unit_connectors(fmu_of(osp_path, simulator),
                                                          kinds.get(simulator_name, {})):
-            connector = ET.SubElement(connectors, f"{{{SSD}}}Connector", {"name": variable, "kind": kind})
+            connector = ET.SubElement(connectors, f"{{{SSD}}}Connector",
+                                      {"name": variable, "kind": kind})
             ET.SubElement(connector, f"{{{SSC}}}{kind_type}")
-        values = [(value.get("variable"), list(value)[0].tag.split("}")[1], list(value)[0].get("value"))
-                  for value in simulator.findall("o:InitialValues/o:InitialValue", ns)]
+        values = [(value.get("variable"), typed.tag.split("}")[1], typed.get("value"))
+                  for value in simulator.findall("o:InitialValues/o:InitialValue", ns)
+                  for typed in value]
         values += [(variable, "Real", repr(value)) for (s, variable), value in starts.items()
                    if s == simulator_name]
         if values:

@@ -187,8 +187,8 @@ void write_row(FILE *f, const Row &r) {
 
 // The warnings that start at row j (strokes, joint angles, interference: docs/limits.md), each
 // when it starts.
-void report_warnings(const stewart_params &params, size_t j, double t, const stewart_plant_output &o,
-                     int &last_warnings) {
+void report_warnings(const stewart_params &params, size_t j, double t,
+                     const stewart_plant_output &o, int &last_warnings) {
     const int started = o.warnings & ~last_warnings;
     const std::string why[] = {stroke_warning(params, o),
                                "a joint is beyond its angle limit (base_joint_limit, "

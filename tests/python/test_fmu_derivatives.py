@@ -327,7 +327,8 @@ def test_units_without_derivatives_say_so(version, unit):
 
 
 POSE_OUTPUTS = (["condition", "residual"] + [f"limit_margin[{k}]" for k in range(1, 6)]
-                + [f"range_min[{k}]" for k in range(1, 7)] + [f"range_max[{k}]" for k in range(1, 7)])
+                + [f"range_min[{k}]" for k in range(1, 7)]
+                + [f"range_max[{k}]" for k in range(1, 7)])
 
 
 def started_within_limits(version, derivatives, seed):
