@@ -191,3 +191,17 @@ def test_fmpy_ssp_alone_starts_the_inverse_unit_at_the_singular_pose():
     import fmpy.ssp.simulation as fmpy_ssp
     with pytest.raises(Exception, match="fmi2DoStep failed with status 2"):  # Discard
         fmpy_ssp.simulate_ssp(str(ssp("2.0")), stop_time=0.01, step_size=H)
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_the_package_ships_the_archives(version):
+    """pip install . ships both archives (stewart.ssp_path): the committed SSD and the FMUs the
+    package ships beside them."""
+    import stewart
+    with zipfile.ZipFile(stewart.ssp_path(version)) as z:
+        assert z.read("SystemStructure.ssd") == (STRUCTURE / "SystemStructure.ssd").read_bytes()
+        for name in (n for n in z.namelist() if n.endswith(".fmu")):
+            unit = pathlib.Path(name).stem
+            assert z.read(name) == stewart.fmu_path(version, unit).read_bytes(), name
+    with pytest.raises(ValueError, match="1.0"):
+        stewart.ssp_path("1.0")
