@@ -18,7 +18,7 @@ from .calibration import Calibration, UnobservableError, calibrate, observabilit
 from .calibration_poses import calibration_poses
 from .choices import Fidelity
 from .errors import ParameterError
-from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths
+from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, ssp_path
 from .forward import ForwardSolution
 from .inverse import InverseSolution
 from .params import parameters, platform_files
@@ -31,6 +31,6 @@ except PackageNotFoundError:  # imported from a source tree, not installed
     __version__ = "unknown"
 
 __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Fidelity", "Method",
-           "ParameterError", "fmu_path", "fmu_paths", "FMI_VERSIONS", "FMU_NAMES", "parameters",
-           "calibrate", "calibration_poses", "observability", "Calibration", "UnobservableError",
-           "platform_files", "__version__"]
+           "ParameterError", "fmu_path", "fmu_paths", "ssp_path", "FMI_VERSIONS", "FMU_NAMES",
+           "parameters", "calibrate", "calibration_poses", "observability", "Calibration",
+           "UnobservableError", "platform_files", "__version__"]
