@@ -86,3 +86,21 @@ def random_poses(rng, n, home_height=0.5, position=0.08, angle=np.radians(15)):
     q[:, 2] += home_height
     q[:, 3:] = rng.uniform(-angle, angle, (n, 3))
     return q
+
+
+def precision_hexapod():
+    """Platform parameters of a precision small-stroke hexapod with a far pivot, written here in
+    the style of heavy-payload positioning hexapods (no vendor's data): joints in pairs on
+    radii 0.6 m (base) and 0.45 m (platform), the top plate 0.5 m above the base, strokes +-14 mm
+    about the home length, and the tool frame (the pivot the moves are commanded about) 2.6 m
+    below the top plate."""
+    base_angles = np.radians([350, 10, 110, 130, 230, 250])
+    platform_angles = np.radians([320, 40, 80, 160, 200, 280])
+
+    def circle(radius, a):
+        return np.stack([radius * np.cos(a), radius * np.sin(a), np.zeros(6)], axis=1)
+    a, b = circle(0.6, base_angles), circle(0.45, platform_angles)
+    home = float(np.linalg.norm(b[0] + [0, 0, 0.5] - a[0]))
+    return {"geometry": 1, "base_joint": a.ravel().tolist(), "platform_joint": b.ravel().tolist(),
+            "home_height": 0.5, "stroke_min": home - 0.014, "stroke_max": home + 0.014,
+            "tool_frame": [0.0, 0.0, -2.6, 0.0, 0.0, 0.0]}
