@@ -28,7 +28,7 @@ from .calibration_model import (Layout, Noise, Prior, is_angle, nominal_geometry
 from .platform import Platform
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
-ACCURACY_POSES = 200  # sample poses inside the workspace for the predicted pose error
+ACCURACY_POSES = 500  # sample poses inside the workspace for the predicted pose error
 
 
 class UnobservableError(ValueError):
@@ -302,8 +302,9 @@ def _result(nominal, q, s, problem: _Problem, fit, evaluate, outlier_threshold: 
     denominator = np.outer(std, std)
     correlation = np.divide(cov, denominator, out=np.zeros_like(cov), where=denominator > 0)
     count, names, _ = undetermined(A, T, problem.tolerance, layout.names, free)
-    samples = accuracy_samples(nominal)
-    accuracy = pose_accuracy(nominal, platform, layout, samples, T, cov_z, problem.tolerance)
+    from .calibration_poses import limits_failed_at_home
+    accuracy = pose_accuracy(nominal, platform, layout, accuracy_samples(nominal), T, cov_z,
+                             problem.tolerance, limits_failed_at_home(nominal))
     frames = layout.identified_frames()
     return Calibration(
         platform=platform, identify=tuple(_words(layout)), names=layout.names,

@@ -10,6 +10,7 @@ raises the determinant most) until no swap helps.
 """
 from __future__ import annotations
 
+import warnings
 from typing import Optional
 
 import numpy as np
@@ -34,7 +35,8 @@ def calibration_poses(platform: Platform, n: int, *, identify=None,
     Candidates are drawn uniformly in the box of the machine's own axis ranges at home
     (Platform.axis_ranges: how far each axis of the tool moves alone, within every limit),
     shrunk where too few combined moves stay inside, and kept only where the library solves
-    them (massless level) with no warning and within every limit of Platform.limits. Given
+    them (massless level) with no warning and within every limit of Platform.limits (a limit
+    the home pose itself is beyond is not applied, with a warning that names it). Given
     position_range [m] and angle_range [rad], the box is home +- those instead. seed makes the
     draw repeatable. ValueError if n is too small to identify the unknowns (6 readings a pose)
     or if too few candidates are inside the limits."""
@@ -49,6 +51,12 @@ def calibration_poses(platform: Platform, n: int, *, identify=None,
     noise.check()
     prior = Prior(joint_tolerance, offset_tolerance, frame_tolerance, frame_angle_tolerance)
     prior.check()
+    beyond = limits_failed_at_home(platform)
+    if beyond:
+        warnings.warn(f"calibration_poses: the machine's home pose is beyond its "
+                      f"{' and '.join(beyond)} limit as drawn; the poses are chosen within the "
+                      f"other limits only (check the platform file: stewart-solve --limits)",
+                      stacklevel=2)
     rng = np.random.default_rng(seed)
     pool = random_poses_inside_limits(platform, candidates, rng, position_range, angle_range)
     if pool.shape[0] < n:
@@ -74,20 +82,34 @@ def _home(platform: Platform) -> np.ndarray:
     return home
 
 
+LIMIT_CLASSES = {1: "stroke", 2: "base joint angle", 3: "platform joint angle",
+                 4: "leg interference", 5: "condition number"}
+
+
+def limits_failed_at_home(platform: Platform) -> list[str]:
+    """The limit classes the machine's home pose is beyond (as drawn, e.g. joints so close that
+    the legs touch): poses are then chosen within the other limits only."""
+    failed = int(platform.limits(_home(platform)).failed[0])
+    return [name for c, name in LIMIT_CLASSES.items() if failed & (1 << (c - 1))]
+
+
 def random_poses_inside_limits(platform: Platform, count: int, rng,
                                position_range: Optional[float] = None,
                                angle_range: Optional[float] = None) -> np.ndarray:
     """Up to count random poses (tool frame in the user frame) inside the limits, drawn in the
-    box calibration_poses says; rng: a numpy Generator."""
+    box calibration_poses says; rng: a numpy Generator. Limits the home pose is beyond
+    (limits_failed_at_home) are not applied."""
     home = _home(platform)
-    low, high = _box(platform, home, position_range, angle_range)
+    ignored = int(platform.limits(home).failed[0])
+    low, high = _box(platform, home, position_range, angle_range, ignored)
     kept, shrink = [], 1.0
     for _ in range(50):  # batches until enough are inside the limits
         middle, half = (low + high) / 2, (high - low) / 2 * shrink
         q = middle + rng.uniform(-1, 1, (4 * count, 6)) * half
         solved = platform.inverse(q, fidelity="massless")
         # Solvable with no warning, and within every limit (joint angles, interference too).
-        inside = (solved.status == 0) & (solved.warnings == 0) & platform.limits(q).within
+        inside = ((solved.status == 0) & (solved.warnings == 0)
+                  & ((platform.limits(q).failed & ~ignored) == 0))
         kept.append(q[inside])
         if sum(len(k) for k in kept) >= count:
             break
@@ -96,20 +118,30 @@ def random_poses_inside_limits(platform: Platform, count: int, rng,
     return np.concatenate(kept)[:count]
 
 
-def _box(platform: Platform, home: np.ndarray, position_range, angle_range):
+def _box(platform: Platform, home: np.ndarray, position_range, angle_range, ignored: int):
     """The candidates' box (low, high per axis): home +- the ranges given, else the axis
-    ranges at home (each axis alone, within every limit)."""
+    ranges at home (each axis alone, within every limit); when home is beyond a limit (ignored:
+    its bits), home +- 2/3 of the smallest stroke range and 2.5 times that over the platform
+    joints' radius (at most 0.5 rad)."""
     for name, value in (("position_range", position_range), ("angle_range", angle_range)):
         if value is not None and not (np.isfinite(value) and value > 0):
             raise ValueError(f"{name} = {value!r} must be finite and > 0")
+    if ignored:
+        strokes = parameter_value(platform, "stroke_max") - parameter_value(platform, "stroke_min")
+        position_range = position_range or 2.0 / 3.0 * float(np.min(strokes))
+        if angle_range is None:
+            from . import _core
+            _, top = _core.model_joints(platform._model)
+            radius = float(np.max(np.linalg.norm(np.reshape(top, (6, 3)), axis=1)))
+            angle_range = min(0.5, 2.5 * position_range / radius) if radius > 0 else 0.5
+    low, high = home.copy(), home.copy()
     if position_range is None or angle_range is None:
         ends = platform.axis_ranges(home)[0]
         if np.any(ends[:, 1] - ends[:, 0] <= 0):
-            raise ValueError("the machine's home pose is not inside its limits (an axis range "
-                             "is empty): check the platform file (stewart-solve --limits)")
+            raise ValueError("the machine cannot move from its home pose within its limits (an "
+                             "axis range is empty): check the platform file "
+                             "(stewart-solve --limits)")
         low, high = ends[:, 0].copy(), ends[:, 1].copy()
-    else:
-        low, high = home.copy(), home.copy()
     if position_range is not None:
         low[:3], high[:3] = home[:3] - position_range, home[:3] + position_range
     if angle_range is not None:
