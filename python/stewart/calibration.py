@@ -19,7 +19,7 @@ from typing import Optional
 import numpy as np
 
 from .arrays import POSE_LAYOUT, LEG_LAYOUT, rows6
-from .calibration_accuracy import PoseAccuracy, pose_accuracy, undetermined
+from .calibration_accuracy import PoseAccuracy, pose_accuracy, pose_error_std, undetermined
 from .calibration_checks import (FAR_FRACTION, FAR_MOVE, MeasurementError, check_measurements,
                                  check_options, refuse_far_moves, refuse_gross_errors)
 from .calibration_model import (Layout, Noise, Prior, is_angle, nominal_geometry,
@@ -81,6 +81,15 @@ class Calibration:
     iterations: int
     seconds: float
     parameters: dict[str, np.ndarray] = field(repr=False)
+    posterior: tuple = field(repr=False, default=())  # (layout, basis T, covariance of z)
+
+    def predicted_pose_error(self, poses):
+        """The predicted error (one standard deviation) of the poses the calibrated platform
+        computes from readings, at poses (N, 6) of the tool in the user frame: (position [m],
+        orientation [rad]) arrays of N, from the posterior covariance to first order."""
+        q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
+        layout, basis, covariance = self.posterior
+        return pose_error_std(self.platform, layout, q, basis, covariance)
 
     def rms(self, which: str = "after") -> float:
         """RMS of the residuals before or after calibration [m]."""
@@ -316,7 +325,7 @@ def _result(nominal, q, s, problem: _Problem, fit, evaluate, outlier_threshold: 
         outliers=_outliers(weighted, outlier_threshold), frames=frames,
         gauge=_gauge_text(layout, frames), iterations=int(fit.nfev),
         seconds=time.perf_counter() - started,
-        parameters=_geometry(layout, theta, problem.geometry0))
+        parameters=_geometry(layout, theta, problem.geometry0), posterior=(layout, T, cov_z))
 
 
 def _words(layout: Layout) -> list[str]:
