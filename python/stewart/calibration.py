@@ -322,7 +322,7 @@ def _result(nominal, q, s, problem: _Problem, fit, evaluate, outlier_threshold: 
         residuals_before=s - problem.predicted0, residuals_after=s - predicted,
         condition=_condition(np.vstack([A, prior_rows])), variance_factor=variance_factor,
         undetermined=count, undetermined_names=names, accuracy=accuracy,
-        outliers=_outliers(weighted, outlier_threshold), frames=frames,
+        outliers=_outliers(weighted, A, information, outlier_threshold), frames=frames,
         gauge=_gauge_text(layout, frames), iterations=int(fit.nfev),
         seconds=time.perf_counter() - started,
         parameters=_geometry(layout, theta, problem.geometry0), posterior=(layout, T, cov_z))
@@ -439,13 +439,34 @@ def _ranges(names: list[str]) -> str:
     return ", ".join(f"{b}[{i}]" if i == j else f"{b}[{i}..{j}]" for b, i, j in groups)
 
 
-def _outliers(weighted: np.ndarray, threshold: float) -> list[int]:
+def _outliers(weighted: np.ndarray, A: np.ndarray, information: np.ndarray,
+              threshold: float) -> list[int]:
     """Pose rows with a weighted residual above threshold robust standard deviations (the
-    median absolute residual's, which one bad pose does not inflate)."""
-    spread = 1.4826 * np.median(np.abs(weighted))
-    if spread <= 0:
-        return []
-    return np.flatnonzero(np.max(np.abs(weighted), axis=1) > threshold * spread).tolist()
+    median absolute residual's, which one bad pose does not inflate), found one at a time: each
+    pose named is taken out of the linearised fit (A: weighted, scaled data rows; information:
+    AᵀA + the prior's), so that its pull on the others' residuals does not name them too."""
+    n = weighted.shape[0]
+    rows = A.reshape(n, 6, -1)
+    named: list[int] = []
+    residual = weighted.copy()
+    for _ in range(max(1, n // 5)):
+        keep = np.setdiff1d(np.arange(n), named)
+        spread = 1.4826 * np.median(np.abs(residual[keep]))
+        if spread <= 0:
+            break
+        size = np.max(np.abs(residual), axis=1)
+        size[named] = -np.inf
+        worst = int(np.argmax(size))
+        if size[worst] <= threshold * spread:
+            break
+        named.append(worst)
+        out = rows[named].reshape(-1, rows.shape[2])
+        # Without the named poses, z moves by -(H - A_Sᵀ A_S)⁻¹ A_Sᵀ r_S (linearised; the
+        # residual is measured - predicted, predicted moving by A dz).
+        step = np.linalg.solve(information - out.T @ out,
+                               out.T @ weighted[named].reshape(-1))
+        residual = weighted + rows @ step
+    return sorted(named)
 
 
 def _gauge_text(layout: Layout, frames: tuple[str, ...]) -> str:
