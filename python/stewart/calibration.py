@@ -5,10 +5,13 @@ frames) identified from measured poses and the length sensors' readings (docs/ca
 >>> result.platform.params                                    # a platform file's content
 
 The model (stewart_calibration.h): at a measured pose q (tool frame in the user frame) leg k's
-sensor reads |p + R b_k - a_k| - o_k with the platform at T_user · T_q · T_tool⁻¹. Nonlinear least
-squares (scipy.optimize.least_squares) on the residuals measured - predicted readings, weighted by
-the measurement noise seen through the readings (Noise), with the library's closed-form Jacobian;
-the unknowns are scaled to unit Jacobian columns, the scale in which `condition` is reported.
+sensor reads |p + R b_k - a_k| - o_k with the platform at T_user · T_q · T_tool⁻¹. A maximum a
+posteriori fit: nonlinear least squares (scipy.optimize.least_squares) on the residuals measured
+- predicted readings, weighted by the measurement noise seen through the readings (Noise), stacked
+on the unknowns' distance from nominal in units of their tolerance (Prior), with the library's
+closed-form Jacobian; the unknowns are scaled to unit columns, the scale in which `condition` is
+reported. The checks that refuse measurements are in calibration_checks.py, the posterior's
+consequences (pose accuracy, what the prior set) in calibration_accuracy.py.
 """
 from __future__ import annotations
 
@@ -22,7 +25,7 @@ from .arrays import POSE_LAYOUT, LEG_LAYOUT, rows6
 from .calibration_accuracy import PoseAccuracy, pose_accuracy, pose_error_std, undetermined
 from .calibration_checks import (FAR_FRACTION, FAR_MOVE, MeasurementError, check_measurements,
                                  check_options, refuse_far_moves, refuse_gross_errors)
-from .calibration_model import (Layout, Noise, Prior, is_angle, nominal_geometry,
+from .calibration_model import (Layout, Noise, Prior, nominal_geometry,
                                 platform_with, readings_and_jacobian, scaled_basis,
                                 stacked_jacobian, whitening)
 from .platform import Platform

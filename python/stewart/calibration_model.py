@@ -303,16 +303,9 @@ class Prior:
     def vector(self, layout: Layout) -> np.ndarray:
         """The tolerance of each of the 54 parameters."""
         frame = np.r_[[self.frame_position] * 3, [self.frame_angle] * 3]
-        by_group = {"base_joint": np.full(18, self.joint), "platform_joint": np.full(18, self.joint),
+        joint = np.full(18, self.joint)
+        by_group = {"base_joint": joint, "platform_joint": joint,
                     "length_offset": np.full(6, self.offset), "tool_frame": frame,
                     "user_frame": frame}
         return np.concatenate([by_group[g] for g in layout.groups]).astype(float)
 
-
-def is_angle(layout: Layout) -> np.ndarray:
-    """Which of the 54 parameters are angles (the frames' roll, pitch, yaw)."""
-    angle = np.zeros(layout.size, bool)
-    for g, s in layout.slices().items():
-        if g in FRAME_GROUPS:
-            angle[s.start + 3:s.stop] = True
-    return angle

@@ -133,7 +133,8 @@ def test_bad_platform_files_are_named_and_nothing_is_written(tmp_path, capsys, f
 
 
 def write_csv(path, poses, readings, prefix=""):
-    rows = [HEADER] + [",".join(repr(float(v)) for v in row) for row in np.hstack([poses, readings])]
+    rows = [HEADER] + [",".join(repr(float(v)) for v in row)
+                       for row in np.hstack([poses, readings])]
     path.write_text(prefix + "\n".join(rows) + "\n", encoding="utf-8")
     return path
 
