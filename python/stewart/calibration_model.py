@@ -46,7 +46,11 @@ def parameter_value(platform: Platform, name: str) -> np.ndarray:
     if entry is None:
         raise KeyError(f"the library has no parameter '{name}'")
     value = platform.params.get(name, entry["defaults"])
-    return np.broadcast_to(np.asarray(value, dtype=float), (entry["count"],)).copy()
+    out = np.broadcast_to(np.asarray(value, dtype=float), (entry["count"],)).copy()
+    for key, element in platform.params.items():  # elements given by their own names
+        if key.startswith(name + "[") and key.endswith("]"):
+            out[int(key[len(name) + 1:-1]) - 1] = float(element)
+    return out
 
 
 def frame_groups(frames) -> tuple[str, ...]:
@@ -138,6 +142,9 @@ def platform_with(nominal: Platform, geometry: dict[str, np.ndarray]) -> Platfor
     params = dict(nominal.params)
     params["geometry"] = 1
     for name, value in geometry.items():
+        # The whole array replaces the nominal's, however it was spelled (element by element).
+        for key in [k for k in params if k.startswith(name + "[")]:
+            del params[key]
         params[name] = [float(v) for v in value]
     return Platform(**params)
 

@@ -206,3 +206,17 @@ def test_non_finite_measurements_are_named(nominal, design):
     readings[4, 3] = np.nan
     with pytest.raises(ValueError, match=r"readings\[4, 3\] = nan is not finite"):
         stewart.calibrate(nominal, design, readings)
+
+
+def test_a_nominal_given_element_by_element_is_read_whole():
+    """A platform whose offsets and strokes are given by element names: the nominal geometry
+    has them, and the calibrated platform replaces the whole array (no element left over)."""
+    from stewart.calibration_model import nominal_geometry, platform_with
+    nominal = stewart.Platform(**{"length_offset[3]": 1e-3, "stroke_max[2]": 0.71})
+    geometry = nominal_geometry(nominal)
+    np.testing.assert_array_equal(geometry["length_offset"], [0, 0, 1e-3, 0, 0, 0])
+    geometry["length_offset"] = geometry["length_offset"] + 1e-4
+    calibrated = platform_with(nominal, geometry)
+    assert "length_offset[3]" not in calibrated.params
+    np.testing.assert_allclose(calibrated.params["length_offset"], [1e-4] * 2 + [1.1e-3] + [1e-4] * 3)
+    assert calibrated.params["stroke_max[2]"] == 0.71
