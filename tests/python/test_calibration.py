@@ -218,5 +218,6 @@ def test_a_nominal_given_element_by_element_is_read_whole():
     geometry["length_offset"] = geometry["length_offset"] + 1e-4
     calibrated = platform_with(nominal, geometry)
     assert "length_offset[3]" not in calibrated.params
-    np.testing.assert_allclose(calibrated.params["length_offset"], [1e-4] * 2 + [1.1e-3] + [1e-4] * 3)
+    np.testing.assert_allclose(calibrated.params["length_offset"],
+                               [1e-4] * 2 + [1.1e-3] + [1e-4] * 3)
     assert calibrated.params["stroke_max[2]"] == 0.71

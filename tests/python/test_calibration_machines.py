@@ -118,3 +118,25 @@ def test_a_shipped_file_the_library_cannot_read_says_so():
     for name, path in stewart.platform_files().items():
         json.loads(path.read_text())
         stewart.Platform.from_file(path)
+
+
+@pytest.mark.parametrize("identify", ["offsets", "joints-xy,offsets", "base,offsets",
+                                      "joints,offsets,tool"])
+def test_calibration_poses_serve_the_identification_chosen(identify):
+    """On the far-pivot machine, the poses chosen for an identification are better conditioned
+    for it (observability with the same identify) than as many random poses from the same
+    region, and calibrate identifies a built machine's errors of that kind from them."""
+    platform = platform_of("precision_far_pivot")
+    design = stewart.calibration_poses(platform, 20, identify=identify, candidates=500)
+    random = random_poses_inside_limits(platform, 20, np.random.default_rng(5))
+    chosen = stewart.observability(platform, design, identify=identify)
+    assert chosen < stewart.observability(platform, random, identify=identify)
+    rng = np.random.default_rng(9)
+    nominal = as_machine(platform)
+    built = truth.shifted(nominal, np.r_[np.zeros(36), rng.uniform(*ERROR, 6)])
+    readings = truth.readings(built, design) + rng.normal(0, 1e-6, design.shape)
+    result = stewart.calibrate(platform, truth.measured(design, rng), readings, identify=identify)
+    assert result.accuracy.position_worst < 50e-6
+    held_out = random_poses_inside_limits(platform, 10, np.random.default_rng(6))
+    position, _ = truth.pose_errors(identified(result), built, held_out)
+    assert np.max(position) < 50e-6
