@@ -176,7 +176,8 @@ def main(argv=None) -> int:
         check_writable(outputs)
         measured = read_measurements(args.measured)
         result = calibrate(args, measured)
-        outliers = ", ".join(f"line {measured.lines[row]}" for row in result.outliers)
+        outliers = ", ".join(f"line {measured.lines[row]} (leg {result.outlier_leg(row)})"
+                             for row in result.outliers)
         report = (f"calibration of {args.nominal} from {args.measured}\n"
                   + (f"outliers (measurement file): {outliers}\n" if outliers else "")
                   + result.report())

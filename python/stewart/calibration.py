@@ -94,6 +94,10 @@ class Calibration:
         layout, basis, covariance = self.posterior
         return pose_error_std(self.platform, layout, q, basis, covariance)
 
+    def outlier_leg(self, row: int) -> int:
+        """The leg (1..6) of pose row's largest reading residual after calibration."""
+        return int(np.argmax(np.abs(self.residuals_after[row]))) + 1
+
     def rms(self, which: str = "after") -> float:
         """RMS of the residuals before or after calibration [m]."""
         r = self.residuals_after if which == "after" else self.residuals_before
@@ -113,8 +117,9 @@ class Calibration:
                   f"{self.variance_factor:.4g}",
                   _undetermined_text(self.undetermined, self.undetermined_names),
                   f"gauge: {self.gauge}",
-                  "outliers (pose rows, 0-based): "
-                  + (", ".join(map(str, self.outliers)) if self.outliers else "none"),
+                  "outliers (pose rows, 0-based; the leg of the largest residual): "
+                  + (", ".join(f"{row} (leg {self.outlier_leg(row)})" for row in self.outliers)
+                     if self.outliers else "none"),
                   f"identification: {self.iterations} evaluations, {self.seconds:.3f} s", "",
                   f"{'parameter':<20}{'nominal':>14}{'identified':>14}{'change':>12}"
                   f"{'std':>12}{'tolerance':>12}"]

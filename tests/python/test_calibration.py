@@ -162,7 +162,9 @@ def test_an_outlier_is_named_and_a_robust_loss_resists_it(nominal, design):
     machine = true_machine(rng)
     poses, readings = measure(machine, design, rng)
     readings[17, 2] += 0.5e-3  # one bad reading
-    assert stewart.calibrate(nominal, poses, readings).outliers == [17]
+    linear = stewart.calibrate(nominal, poses, readings)
+    assert linear.outliers == [17] and linear.outlier_leg(17) == 3
+    assert "17 (leg 3)" in linear.report()
     robust = stewart.calibrate(nominal, poses, readings, loss="soft_l1")
     assert 17 in robust.outliers
     held_out = truth.random_poses(rng, 10)
