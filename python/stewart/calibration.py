@@ -324,7 +324,7 @@ def _result(nominal, q, s, problem: _Problem, fit, evaluate, outlier_threshold: 
                              problem.tolerance, limits_failed_at_home(nominal))
     frames = layout.identified_frames()
     return Calibration(
-        platform=platform, identify=tuple(_words(layout)), names=layout.names,
+        platform=platform, identify=layout.words, names=layout.names,
         nominal=problem.theta0[free], values=theta[free], std=std,
         tolerance=problem.tolerance[free], correlation=correlation,
         residuals_before=s - problem.predicted0, residuals_after=s - predicted,
@@ -334,17 +334,6 @@ def _result(nominal, q, s, problem: _Problem, fit, evaluate, outlier_threshold: 
         gauge=_gauge_text(layout, frames), iterations=int(fit.nfev),
         seconds=time.perf_counter() - started,
         parameters=_geometry(layout, theta, problem.geometry0), posterior=(layout, T, cov_z))
-
-
-def _words(layout: Layout) -> list[str]:
-    from .calibration_model import IDENTIFY_CHOICES
-    free = layout.split(layout.free)
-    words = []
-    for word, groups in IDENTIFY_CHOICES.items():
-        covered = all(np.all(free[g][m]) for g, m in groups.items())
-        if covered and not any(set(groups) <= set(IDENTIFY_CHOICES[w]) for w in words):
-            words.append(word)
-    return words
 
 
 def accuracy_samples(nominal: Platform, count: int = ACCURACY_POSES) -> np.ndarray:

@@ -89,15 +89,17 @@ class Layout:
     """Every calibration parameter (the five groups, 54 values, each by its table name,
     "base_joint[4]") and which of them are unknown (`free`); the others stay nominal."""
     free: np.ndarray
+    words: tuple[str, ...] = DEFAULT_IDENTIFY
     groups: tuple[str, ...] = ALL_GROUPS
 
     @classmethod
     def of(cls, identify=None, frames=None) -> "Layout":
         free = {g: np.zeros(GROUP_SIZE[g], bool) for g in ALL_GROUPS}
-        for word in identify_words(identify, frames):
+        words = identify_words(identify, frames)
+        for word in words:
             for group, mask in IDENTIFY_CHOICES[word].items():
                 free[group] = free[group] | mask
-        return cls(np.concatenate([free[g] for g in ALL_GROUPS]))
+        return cls(np.concatenate([free[g] for g in ALL_GROUPS]), words)
 
     @property
     def all_names(self) -> list[str]:
