@@ -6,6 +6,8 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
+import stat
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,6 +15,7 @@ import numpy as np
 from .calibration_checks import MAX_POSES
 from .platform import Platform
 
+MAX_CSV_BYTES = 64 * 2 ** 20  # a CSV read whole; 20,000 poses take about 6 MB
 MEASUREMENT_COLUMNS = ("x", "y", "z", "roll", "pitch", "yaw", "L1", "L2", "L3", "L4", "L5", "L6")
 
 
@@ -35,6 +38,15 @@ def read_measurements(path: str) -> Measurements:
     skipped; a UTF-8 byte order mark (a spreadsheet's "CSV UTF-8") is read past. FileError
     naming the line and column of the first problem, or the number of rows when there are more
     than calibrate takes."""
+    try:
+        status = os.stat(path)
+    except OSError as e:
+        raise FileError(f"{path}: cannot be read ({e})") from None
+    if not stat.S_ISREG(status.st_mode):
+        raise FileError(f"{path}: not a regular file (a measurement CSV is read whole)")
+    if status.st_size > MAX_CSV_BYTES:
+        raise FileError(f"{path}: {status.st_size} bytes, larger than a calibration's "
+                        f"{MAX_CSV_BYTES} (at most {MAX_POSES} poses)")
     try:
         with open(path, newline="", encoding="utf-8-sig") as f:
             lines = f.read().splitlines()

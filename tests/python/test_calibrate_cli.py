@@ -210,6 +210,15 @@ def test_a_million_rows_are_refused_with_a_message(tmp_path, files):
     assert "Traceback" not in done.stderr
 
 
+@pytest.mark.parametrize("path, message", [("/dev/zero", "not a regular file"),
+                                           ("missing.csv", "cannot be read")])
+def test_a_csv_that_is_no_file_is_refused(tmp_path, capsys, files, path, message):
+    _, nominal, _ = files
+    status, stderr = run_here(capsys, nominal, path, tmp_path / "out.json")
+    assert status == 1 and message in stderr
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_identify_and_tolerances_with_units(tmp_path, capsys, files):
     _, nominal, measured = files
     out = tmp_path / "offsets.json"
