@@ -219,7 +219,7 @@ def calibrate(nominal: Platform, poses, readings, *, identify=None,
                                                           reading_noise),
                        Prior(joint_tolerance, offset_tolerance, frame_tolerance,
                              frame_angle_tolerance))
-    refuse_gross_errors(s, problem.predicted0, _reading_spread(problem))
+    refuse_gross_errors(s, problem.predicted0, _reading_spread(problem), q)
     if max_std is not None:
         _refuse_unobservable(problem, max_std)
     fit, evaluate = _fit(nominal, q, s, problem, loss, max_evaluations)

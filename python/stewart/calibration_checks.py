@@ -67,8 +67,8 @@ def check_measurements(poses: np.ndarray, readings: np.ndarray) -> None:
             f"{locked.tolist()} or measure away from that orientation", rows=locked)
 
 
-def refuse_gross_errors(readings: np.ndarray, predicted: np.ndarray,
-                        spread: np.ndarray) -> None:
+def refuse_gross_errors(readings: np.ndarray, predicted: np.ndarray, spread: np.ndarray,
+                        poses: np.ndarray) -> None:
     """MeasurementError when readings differ from the nominal machine's by more than GROSS_ERROR
     times what its tolerances and the noise allow (spread: that standard deviation per reading):
     one or a few named as outliers by row and leg, many as a units or set-up mistake."""
@@ -90,11 +90,15 @@ def refuse_gross_errors(readings: np.ndarray, predicted: np.ndarray,
         f"{bad.sum()} of {bad.size} readings differ from the nominal machine's by more than "
         f"{GROSS_ERROR:g} times what its tolerances and the noise allow (pose row {rows[0]}, "
         f"leg {legs[0] + 1}: {readings[rows[0], legs[0]]:.6g} m where the nominal machine reads "
-        f"{predicted[rows[0], legs[0]]:.6g} m). {_set_up_hint(readings, predicted)}",
+        f"{predicted[rows[0], legs[0]]:.6g} m). {_set_up_hint(readings, predicted, poses)}",
         rows=np.unique(rows), legs=np.unique(legs) + 1)
 
 
-def _set_up_hint(readings: np.ndarray, predicted: np.ndarray) -> str:
+def _set_up_hint(readings: np.ndarray, predicted: np.ndarray, poses: np.ndarray) -> str:
+    angle = float(np.max(np.abs(poses[:, 3:])))
+    if angle > 1.0:  # no hexapod tilts 57 degrees
+        return (f"The poses' angles reach {angle:.4g}: are they in degrees? Give them in "
+                f"radians.")
     if np.all(readings == 0):
         return "Every reading is 0: the readings columns are empty or not the sensors'."
     ratio = np.median(np.abs(readings)) / max(np.median(np.abs(predicted)), 1e-300)

@@ -56,6 +56,14 @@ def test_readings_no_machine_gives_are_refused(nominal, measured, case, message)
         assert "measure those poses again or leave their rows out" in str(error.value)
 
 
+def test_angles_in_degrees_are_named(nominal, measured):
+    poses, readings = measured
+    in_degrees = poses.copy()
+    in_degrees[:, 3:] = np.degrees(poses[:, 3:])
+    with pytest.raises(MeasurementError, match="are they in degrees"):
+        stewart.calibrate(nominal, in_degrees, readings)
+
+
 def test_a_pose_at_pitch_90_degrees_is_refused(nominal, measured):
     poses, readings = measured
     poses = poses.copy()
