@@ -2,9 +2,9 @@
 
 Criterion: D-optimality, the largest determinant of the posterior information matrix (JᵀJ of
 the weighted identification Jacobian, the gauge removed, plus the prior's) over n poses chosen
-from random candidates inside the limits. The determinant is the volume of the parameters' confidence ellipsoid's inverse and does
-not depend on the units or scaling of the unknowns; it also keeps the scaled condition number low
-(studies/calibration_study.py measures it). Search: greedy construction (each pose adds the most
+from random candidates inside the limits. The determinant is the inverse of the volume of the
+parameters' posterior ellipsoid and does not depend on the units or scaling of the unknowns; it
+also keeps the scaled condition number low (studies/calibration_study.py measures it). Search: greedy construction (each pose adds the most
 log-determinant), then Fedorov exchange passes (each chosen pose swapped for the candidate that
 raises the determinant most) until no swap helps.
 """
