@@ -320,8 +320,14 @@ def _result(nominal, q, s, problem: _Problem, fit, evaluate, outlier_threshold: 
     correlation = np.divide(cov, denominator, out=np.zeros_like(cov), where=denominator > 0)
     count, names, _ = undetermined(A, T, problem.tolerance, layout.names, free)
     from .calibration_poses import limits_failed_at_home
-    accuracy = pose_accuracy(nominal, platform, layout, accuracy_samples(nominal), T, cov_z,
-                             problem.tolerance, limits_failed_at_home(nominal))
+    samples, beyond = accuracy_samples(nominal), limits_failed_at_home(nominal)
+    region = ("random poses within every limit" if not beyond else
+              f"random poses within every limit but {' and '.join(beyond)}, which the home pose "
+              f"is beyond as drawn")
+    if len(samples) == 0:  # no random pose inside the limits: the poses the machine reached
+        samples, region = q, "measured poses (no random pose was found inside the limits)"
+    accuracy = pose_accuracy(nominal, platform, layout, samples, T, cov_z, problem.tolerance,
+                             region)
     frames = layout.identified_frames()
     return Calibration(
         platform=platform, identify=layout.words, names=layout.names,
@@ -340,7 +346,10 @@ def accuracy_samples(nominal: Platform, count: int = ACCURACY_POSES) -> np.ndarr
     """Poses inside every limit of nominal (the region calibration_poses draws from), a fixed
     draw: where the report predicts the pose error."""
     from .calibration_poses import random_poses_inside_limits
-    return random_poses_inside_limits(nominal, count, np.random.default_rng(12345))
+    try:
+        return random_poses_inside_limits(nominal, count, np.random.default_rng(12345))
+    except ValueError:  # no box to draw from (home cannot move)
+        return np.zeros((0, 6))
 
 
 def observability(nominal: Platform, poses, *, identify=None, frames: Optional[str] = None,

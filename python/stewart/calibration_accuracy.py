@@ -28,14 +28,11 @@ class PoseAccuracy:
     position_worst: float
     orientation_rms: float
     orientation_worst: float
-    limits_not_applied: tuple = ()
+    region: str = "random poses within every limit"
 
     def lines(self) -> list[str]:
-        where = ("every limit" if not self.limits_not_applied else
-                 f"every limit but {' and '.join(self.limits_not_applied)}, which the home pose "
-                 f"is beyond as drawn")
-        return [f"predicted pose error inside the workspace ({self.samples} random poses within "
-                f"{where}; one standard deviation):",
+        return [f"predicted pose error inside the workspace ({self.samples} {self.region}; one "
+                f"standard deviation):",
                 f"  position: RMS {self.position_rms * 1e6:.3f} um, worst "
                 f"{self.position_worst * 1e6:.3f} um (nominal geometry, its tolerances: RMS "
                 f"{self.position_rms_before * 1e6:.1f} um, worst "
@@ -63,8 +60,8 @@ def pose_error_std(platform: Platform, layout: Layout, samples: np.ndarray,
 
 def pose_accuracy(nominal: Platform, calibrated: Platform, layout: Layout, samples: np.ndarray,
                   basis: np.ndarray, covariance: np.ndarray,
-                  tolerance: np.ndarray, limits_not_applied=()) -> PoseAccuracy:
-    """PoseAccuracy at samples: before, the tolerances as the unknowns' covariance on the
+                  tolerance: np.ndarray, region: str) -> PoseAccuracy:
+    """PoseAccuracy at samples (region: what they are, in words): before, the tolerances as the unknowns' covariance on the
     nominal machine; after, the posterior covariance on the calibrated machine."""
     prior_basis = np.eye(layout.size)[:, layout.free]
     before = pose_error_std(nominal, layout, samples, prior_basis,
@@ -75,7 +72,7 @@ def pose_accuracy(nominal: Platform, calibrated: Platform, layout: Layout, sampl
         return float(np.sqrt(np.mean(a ** 2)))
     return PoseAccuracy(len(samples), rms(before[0]), float(before[0].max()), rms(before[1]),
                         float(before[1].max()), rms(after[0]), float(after[0].max()),
-                        rms(after[1]), float(after[1].max()), tuple(limits_not_applied))
+                        rms(after[1]), float(after[1].max()), region)
 
 
 def undetermined(data_rows: np.ndarray, basis: np.ndarray, tolerance: np.ndarray,

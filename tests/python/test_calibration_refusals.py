@@ -149,3 +149,15 @@ def test_the_prior_pulls_toward_nominal_by_the_tolerance(nominal, measured):
     assert moved[2] == pytest.approx(moved[3], rel=0.02)
     # The tight prior is too tight for these 0.5 mm errors: the data say so (variance factor).
     assert tight.variance_factor > 2 * few.variance_factor
+
+
+def test_the_report_predicts_at_the_measured_poses_when_no_random_pose_is_inside(
+        nominal, measured, monkeypatch):
+    """A machine with no random pose inside its limits still gets its prediction (no crash
+    after a good fit), at the poses it was measured at, and the report says so."""
+    import stewart.calibration as calibration
+    monkeypatch.setattr(calibration, "accuracy_samples", lambda platform: np.zeros((0, 6)))
+    result = stewart.calibrate(nominal, *measured)
+    assert result.accuracy.samples == 30
+    assert "30 measured poses (no random pose was found inside the limits)" in result.report()
+    assert np.isfinite(result.accuracy.position_worst) and result.accuracy.position_worst > 0
