@@ -236,3 +236,30 @@ def test_identify_and_tolerances_with_units(tmp_path, capsys, files):
     with pytest.raises(SystemExit):
         run_here(capsys, nominal, measured, out, "--joint-tolerance", "0.5furlong")
     assert "'0.5furlong' is not a length" in capsys.readouterr().err
+
+
+def test_the_default_command_line_is_the_default_calibration(tmp_path, capsys):
+    """On the far-pivot precision hexapod (the machine test_calibration_machines.py judges
+    against a regularised fit), the command line with no option writes the geometry
+    stewart.calibrate gives with its defaults."""
+    nominal_params = truth.precision_hexapod()
+    nominal = tmp_path / "precision.json"
+    nominal.write_text(json.dumps(nominal_params))
+    platform = stewart.Platform(**nominal_params)
+    poses = stewart.calibration_poses(platform, 30, candidates=500)
+    rng = np.random.default_rng(31)
+    a, b = np.reshape(nominal_params["base_joint"], (6, 3)), np.reshape(
+        nominal_params["platform_joint"], (6, 3))
+    built = {"base_joint": a + rng.uniform(-1e-3, 1e-3, (6, 3)),
+             "platform_joint": b + rng.uniform(-1e-3, 1e-3, (6, 3)),
+             "length_offset": rng.uniform(-1e-3, 1e-3, 6),
+             "tool_frame": np.array(nominal_params["tool_frame"]), "user_frame": np.zeros(6)}
+    measured_poses = truth.measured(poses, rng)
+    readings = truth.readings(built, poses) + rng.normal(0, 1e-6, (30, 6))
+    measured = write_csv(tmp_path / "measured.csv", measured_poses, readings)
+    status, stderr = run_here(capsys, nominal, measured, tmp_path / "out.json")
+    assert status == 0, stderr
+    written = json.loads((tmp_path / "out.json").read_text())
+    expected = stewart.calibrate(platform, measured_poses, readings).parameters
+    for group in ("base_joint", "platform_joint", "length_offset"):
+        np.testing.assert_allclose(written[group], expected[group], rtol=0, atol=1e-12)
