@@ -407,7 +407,8 @@ def test_a_base_origin_above_the_top_plane_gives_the_same_lengths(tmp_path):
 
 def test_the_documented_file_in_mm_is_the_documented_file_in_m(tmp_path):
     """docs/geometry.md shows one machine in m and again in mm and deg with its strokes as 285 mm
-    +- 50 mm: the library reads the same parameters (and the joint limit as 40 degrees)."""
+    +- 50 mm: the library reads the same parameters (and the joint limit as 40 degrees), the
+    strokes to rounding (285 mm - 50 mm is 0.285 - 0.05 in doubles, not the double of 0.235)."""
     import re
     page = (ROOT / "docs" / "geometry.md").read_text()
     section = page[page.index("## 3. Platform files"):page.index("### Shipped platforms")]
@@ -417,4 +418,6 @@ def test_the_documented_file_in_mm_is_the_documented_file_in_m(tmp_path):
     si = stewart.params.read_platform_file(tmp_path / "si.json")
     mm = stewart.params.read_platform_file(tmp_path / "mm.json")
     assert mm.pop("base_joint_limit") == 40 * (math.pi / 180)
+    for stroke in ("stroke_min", "stroke_max"):
+        assert np.max(np.abs(np.subtract(mm.pop(stroke), si.pop(stroke)))) <= 1e-16
     assert mm == si
