@@ -25,6 +25,13 @@ std::string point_text(const Eigen::Vector3d &v, double scale) {
     return text;
 }
 
+// The line's direction with its largest component positive: one answer for the message.
+Eigen::Vector3d line_direction(const Eigen::Vector3d &u) {
+    Eigen::Index largest = 0;
+    u.cwiseAbs().maxCoeff(&largest);
+    return u[largest] < 0 ? Eigen::Vector3d(-u) : u;
+}
+
 }  // namespace
 
 // Whether the joints lie on one line is the rank of their spread about their centroid: its
@@ -54,7 +61,7 @@ stewart_status check_not_singular_everywhere(const stewart_params &p, char *msg,
                                "the platform turns freely about it at every pose (singular "
                                "everywhere); no leg's length changes with that rotation",
                                fields, name, point_text(centre, scale).c_str(),
-                               point_text(svd.matrixU().col(0), 1.0).c_str(), frame);
+                               point_text(line_direction(svd.matrixU().col(0)), 1.0).c_str(), frame);
     }
     return STEWART_OK;
 }

@@ -780,18 +780,12 @@ NB_MODULE(_core, m) {
     m.def("limit_class_name", [](int c) { return std::string(stewart_limit_class_name(c)); });
     m.attr("LIMIT_CLASSES") = STEWART_LIMIT_CLASSES;
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
-    // A platform file read by the library (stewart_params_read_json_file; its text:
-    // stewart_params_read_json): [(name, values)] of the parameters it gives, each with all its
+    // A platform file read by the library (stewart_params_read_json_file): [(name, values)] of the parameters it gives, each with all its
     // elements in SI; ValueError with the library's message (line, column, field and value) if
     // any field is bad, or the path is not a regular file of at most the size cap.
     m.def("read_platform_file", [](const std::string &path) {
         return platform_fields([&](stewart_params *p, unsigned char *given, char *message, size_t size) {
             return stewart_params_read_json_file(p, path.c_str(), given, message, size);
-        });
-    });
-    m.def("read_platform_json", [](const std::string &text) {
-        return platform_fields([&](stewart_params *p, unsigned char *given, char *message, size_t size) {
-            return stewart_params_read_json(p, text.data(), text.size(), given, message, size);
         });
     });
     m.attr("PLATFORM_FILE_MAX_BYTES") = STEWART_PLATFORM_FILE_MAX_BYTES;
