@@ -1,6 +1,7 @@
 #include "table/json_fields.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <unordered_set>
 
 #include "table/units.hpp"
@@ -10,6 +11,20 @@ namespace stewart {
 
 namespace {
 
+// The length of the well-formed UTF-8 sequence at `at` (a lead byte >= 0x80), or 0: no overlong
+// forms, no surrogates, nothing above U+10FFFF (RFC 3629).
+size_t utf8_length(const unsigned char *at, const unsigned char *end) {
+    const unsigned char c = at[0];
+    const size_t n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    if (n == 0 || static_cast<size_t>(end - at) < n) return 0;
+    for (size_t i = 1; i < n; ++i)
+        if ((at[i] & 0xC0) != 0x80) return 0;
+    if ((c == 0xE0 && at[1] < 0xA0) || (c == 0xED && at[1] > 0x9F) || (c == 0xF0 && at[1] < 0x90) ||
+        (c == 0xF4 && at[1] > 0x8F))
+        return 0;
+    return n;
+}
+
 // A recursive-descent reader of exactly the subset; error() keeps the first problem and where.
 class Reader {
   public:
@@ -18,6 +33,7 @@ class Reader {
 
     bool object(std::vector<JsonField> &fields) {
         std::unordered_set<std::string> names;  // a hash set: linear in the number of fields
+        if (end_ - at_ >= 3 && !std::memcmp(at_, "\xEF\xBB\xBF", 3)) at_ += 3, line_start_ = at_;  // an editor's BOM
         space();
         if (!take('{')) return error("a platform file is one JSON object: expected '{'");
         space();
@@ -82,6 +98,14 @@ class Reader {
         while (at_ < end_ && *at_ != '"') {
             const unsigned char c = static_cast<unsigned char>(*at_);
             if (c < 0x20) return error("a control character inside a string");
+            if (c >= 0x80) {  // a UTF-8 sequence, copied whole
+                const size_t n = utf8_length(reinterpret_cast<const unsigned char *>(at_),
+                                             reinterpret_cast<const unsigned char *>(end_));
+                if (n == 0) return error("a platform file is UTF-8: a byte that is not UTF-8 inside a string");
+                out.append(at_, n);
+                at_ += n;
+                continue;
+            }
             if (c == '\\') {
                 ++at_;
                 if (at_ == end_ || (*at_ != '"' && *at_ != '\\' && *at_ != '/'))

@@ -79,6 +79,8 @@ static void test_bad_files_are_refused_by_field(void) {
     expect_refused("{\"payload_mass\": 1, \"payload_mass\": 2}", "\"payload_mass\" is given twice");
     expect_refused("{\"description\": 3}", "description = 3 must be a string");
     expect_refused("{\"pay\\nload\": 1}", "only the escapes");
+    expect_refused("{\"description\": \"5 \xB5m\", \"payload_mass\": 1}", "line 1 column 20: a platform file is UTF-8");
+    expect_refused("{\"description\": \"\xC0\xAF\"}", "is UTF-8");
     expect_refused("{\"base_joint[19]\": 1}", "no parameter is named 'base_joint[19]'");
     /* the line and column of the field */
     expect_refused("{\n  \"home_height\": 0.5,\n  \"payload_mass\": -2\n}", "line 3 column 3: payload_mass");
@@ -212,6 +214,12 @@ static void test_units_give_the_si_file(void) {
     expect_refused("{\"units\": {\"length\": \"furlong\"}}", "units.length = \"furlong\" is not a unit of length: one of m, cm");
     expect_refused("{\"units\": {\"mass\": \"g\"}}", "units.mass: a file gives the units of \"length\" and \"angle\" only");
     expect_refused("{\"units\": \"mm\"}", "units = \"mm\" must be an object");
+    /* micro in UTF-8, and a leading byte-order mark (as some editors write) */
+    stewart_params e;
+    stewart_params_default(&e);
+    const char *micro = "\xEF\xBB\xBF{\"description\": \"\xC2\xB5\", \"payload_com[3]\": \"2500 \xC2\xB5m\"}";
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, read_text(&e, micro, msg, sizeof msg), msg);
+    TEST_ASSERT_EQUAL_DOUBLE(a.payload_com[2], e.payload_com[2]);
     expect_refused("{\"units\": {\"length\": \"mm\"}, \"stroke_min\": -4}", "stroke_min[1] = -0.004 m must be > 0 (the file's -4)");
     expect_refused("{\"home_height\": \"1e400 mm\"}", "home_height = 1e400 mm is not a finite double");
 }
