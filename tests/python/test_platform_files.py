@@ -392,6 +392,35 @@ def test_a_shifted_base_origin_gives_the_same_lengths(tmp_path, c):
     assert np.max(np.abs(back.pose - moved)) < 1e-12
 
 
+def test_frames_anywhere_give_the_same_machine(tmp_path):
+    """The base origin 0.1 m above the platform's joints and the platform frame's origin 0.3 m
+    above them (home_height stays > 0): the same machine, so the same lengths and full-model
+    forces at the same physical poses (p' = p + R (0, 0, s) - (0, 0, c)), and forward kinematics
+    round-trips. Every use of home_height (the home pose, the model's length unit, the branch
+    sides, the limits' neutral axes) sees only where the joints are."""
+    data = json.loads((PLATFORMS / "paired_hexapod.json").read_text())
+    c, s = data["home_height"] + 0.1, 0.3
+    moved = shifted_origin("paired_hexapod", c)
+    plate = np.array(data["platform_joint"]).reshape(6, 3)
+    plate[:, 2] -= s
+    moved.update(platform_joint=plate.ravel().tolist(), home_height=moved["home_height"] + s,
+                 platform_com=[0.0, 0.0, -s])
+    assert 0 < moved["home_height"] < s
+    path = tmp_path / "frames.json"
+    path.write_text(json.dumps(moved))
+    rng = np.random.default_rng(33)
+    poses = np.column_stack([rng.uniform(-0.005, 0.005, (8, 2)), data["home_height"] + rng.uniform(-0.005, 0.005, 8),
+                             rng.uniform(-0.02, 0.02, (8, 3))])
+    there = np.array([np.r_[q[:3] + rotation(*q[3:]) @ [0, 0, s] - [0, 0, c], q[3:]] for q in poses])
+    a = stewart.Platform.from_file(PLATFORMS / "paired_hexapod.json").inverse(poses, fidelity="full")
+    b = stewart.Platform.from_file(path).inverse(there, fidelity="full")
+    assert np.all(b.status == 0)
+    assert np.max(np.abs(a.length - b.length)) < 1e-15
+    assert np.max(np.abs(a.force - b.force)) < 1e-9 * np.max(np.abs(a.force))
+    back = stewart.Platform.from_file(path).forward(b.length)
+    assert np.max(np.abs(back.pose - there)) < 1e-12
+
+
 @pytest.mark.xfail(strict=True, reason="home_height's table range (stewart_table.h) is still > 0: "
                    "geometry 1 takes any origin once its min is -DBL_MAX")
 def test_a_base_origin_above_the_top_plane_gives_the_same_lengths(tmp_path):
