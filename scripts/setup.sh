@@ -6,9 +6,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # libtbb12: ecospy's engine (the SSP master of tests/python/test_ssp.py); libsuitesparse-dev: KLU for
-# bench-linear (the core's solvers against SUNDIALS' KLU; skipped by CMake without it)
+# bench-linear (the core's solvers against SUNDIALS' KLU; skipped by CMake without it); locales: the
+# locale sources from which the tests build a decimal-comma locale (de_DE) with localedef
 debian_packages=(cmake make g++ binutils valgrind libsundials-dev libeigen3-dev libsuitesparse-dev python3
-                 python3-venv python3-dev libtbb12)
+                 python3-venv python3-dev libtbb12 locales)
 missing=()
 for p in "${debian_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

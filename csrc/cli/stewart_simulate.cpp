@@ -12,6 +12,7 @@
 #include "cli/param_assignment.hpp"
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_table.h"
+#include "util/number_text.hpp"
 
 namespace {
 
@@ -130,9 +131,7 @@ std::string read_forces(const char *path, ForceTable &table) {
         double row[7];
         for (int c = 0; c < 7; ++c) {
             const std::string &cell = cells[column_of[c]];
-            char *end = nullptr;
-            row[c] = std::strtod(cell.c_str(), &end);
-            if (cell.empty() || *end != '\0' || !std::isfinite(row[c]))
+            if (!stewart::read_double(cell, row[c]) || !std::isfinite(row[c]))
                 return where + ", column " + std::to_string(column_of[c] + 1) + " (" + names[c] +
                        "): '" + cell + "' is not a finite number";
         }

@@ -9,6 +9,7 @@
 #include "cli/forward_table.hpp"
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
+#include "util/number_text.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
 #include "stewart/stewart_limits.h"
@@ -119,8 +120,10 @@ int main(int argc, char **argv) {
         {"--forward", nullptr, [&](const char *) { return forward = true, 0; }},
         {"--guess", "x,y,z,roll,pitch,yaw",
          [&](const char *v) {
-             if (std::sscanf(v, "%lf,%lf,%lf,%lf,%lf,%lf", &guess[0], &guess[1], &guess[2],
-                             &guess[3], &guess[4], &guess[5]) != 6) {
+             const std::vector<std::string> cells = stewart::csv_cells(v);
+             bool read = cells.size() == 6;
+             for (size_t i = 0; read && i < 6; ++i) read = stewart::read_double(cells[i], guess[i]);
+             if (!read) {
                  std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
                  return 2;
              }
@@ -141,9 +144,7 @@ int main(int argc, char **argv) {
          }},
         {"--tolerance", "a positive number",
          [&](const char *v) {
-             char *end = nullptr;
-             options.tolerance = std::strtod(v, &end);
-             if (end != v && *end == '\0') return 0;
+             if (stewart::read_double(v, options.tolerance)) return 0;
              std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", v);
              return 2;
          }},
