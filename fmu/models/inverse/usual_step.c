@@ -65,8 +65,16 @@ _Static_assert(VR_x_dot == VR_x + 6 && VR_x_ddot == VR_x + 12 &&
                    sizeof(stewart_inverse_input) == 18 * sizeof(double),
                "the pose inputs are no longer a stewart_pose");
 
+/* Inlined into each usual step whatever the compiler's estimate (each is one function with one
+ * library call: a call of its own would add a frame around it). */
+#if defined(__GNUC__)
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define ALWAYS_INLINE inline
+#endif
+
 /* The usual step's library status or the warning bits of its output (the rare case, either, is
- * told apart out of line). A refused solve leaves the output unwritten: its bits are not read. */
+ * told apart out of line). */
 static inline int refused_or_warned(stewart_status s, const stewart_inverse_output *out) {
     return s != STEWART_OK || out->warnings;
 }
@@ -109,7 +117,7 @@ static inline void advance_pair(double *pose, double *at_t, double_pair h, doubl
 
 /* derivatives = 1, the usual step: model_do_step's advance with the pose advanced in the inputs
  * themselves (the library's input as they stand), the inputs at t kept aside in case it fails. */
-static inline fmu_status advance_in_place(fmu_instance *inst, double h) {
+static ALWAYS_INLINE fmu_status advance_in_place(fmu_instance *inst, double h) {
     fmu_values *v = &inst->v;
     double *pose = &v->real[VR_x];
     double at_t[12];
@@ -130,6 +138,7 @@ static inline fmu_status advance_in_place(fmu_instance *inst, double h) {
     }
 #endif
     stewart_inverse_output out;
+    out.warnings = 0; /* (read with the status, also when the library leaves out unwritten) */
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, &out);
     if (refused_or_warned(s, &out)) return advance_not_plain(inst, inst->step.end, at_t, s, &out);
@@ -171,14 +180,6 @@ static inline fd_point *history_slot_at(model_values *m, size_t at) {
     return (fd_point *)(void *)((char *)m->history + at);
 }
 
-/* Inlined into each usual step whatever the compiler's estimate (each is one function with one
- * library call: a call of its own would add a frame around it). */
-#if defined(__GNUC__)
-#define ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define ALWAYS_INLINE inline
-#endif
-
 /* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
  * and the pose joins the history (t is inst->step.t, for the rare paths). The free slot of the history takes the pose, its rates (the
  * library's input) and its chord before the solve; the solved pose becomes the last point by
@@ -210,6 +211,7 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     next->t = t;
     next->interval = h2;
     stewart_inverse_output out;
+    out.warnings = 0; /* (read with the status, also when the library leaves out unwritten) */
     const stewart_status s = stewart_inverse_solve(
         inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, &out);
     if (refused_or_warned(s, &out)) return hold_not_plain(inst, s, &out);
