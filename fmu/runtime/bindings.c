@@ -51,7 +51,8 @@ void fmu_settings_from_values(const fmu_values *v, FMU_SETTINGS_STRUCT *s) {
 #define OPTION_VALUE_double(x) (x)
 
 void fmu_table_options_to_values(fmu_values *v, const FMU_OPTION_TABLE_STRUCT *o) {
-#define OPTION_TO_VALUES(id, name, type, ...) OPTION_VARIABLE_##type(v, id) = OPTION_VALUE_##type(o->name);
+#define OPTION_TO_VALUES(id, name, type, ...) \
+    OPTION_VARIABLE_##type(v, id) = OPTION_VALUE_##type(o->name);
     FMU_OPTION_TABLE(OPTION_TO_VALUES)
 #undef OPTION_TO_VALUES
 }

@@ -150,8 +150,8 @@ static ALWAYS_INLINE fmu_status advance_in_place(fmu_instance *inst, double h) {
  * (the inputs) and the last point's pose and chord (p1, d1) into the free slot's pose (next:
  * q, q_dot 6 on, q_ddot 12 on) and chord (slope). */
 static inline void quadratic_pair(const double *restrict q, const double *restrict p1,
-                                  const double *restrict d1_at,
-                                  double *restrict next, double *restrict slope, double_pair h2, double_pair h12) {
+                                  const double *restrict d1_at, double *restrict next,
+                                  double *restrict slope, double_pair h2, double_pair h12) {
     const double_pair q1 = load_aligned_pair(p1), q2 = load_pair(q), d1 = load_aligned_pair(d1_at);
     store_pair(next, q2); /* first: q2's register is then free for the difference (no copy) */
     const double_pair d2 = (q2 - q1) / h2;
@@ -180,10 +180,11 @@ static inline fd_point *history_slot_at(model_values *m, size_t at) {
     return (fd_point *)(void *)((char *)m->history + at);
 }
 
-/* derivatives = 0 with two earlier poses, the usual step: solve_at(t) (the quadratic's rates)
- * and the pose joins the history (t is inst->step.t, for the rare paths). The free slot of the history takes the pose, its rates (the
- * library's input) and its chord before the solve; the solved pose becomes the last point by
- * the flip of one index, and a refused one leaves the history as it was. */
+/* derivatives = 0 with two earlier poses, the usual step: inverse_solve_at(t) (the quadratic's
+ * rates) and the pose joins the history (t is inst->step.t, for the rare paths). The free slot
+ * of the history takes the pose, its rates (the library's input) and its chord before the solve;
+ * the solved pose becomes the last point by the flip of one index, and a refused one leaves the
+ * history as it was. */
 static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t) {
     fmu_values *v = &inst->v;
     model_values *m = &v->model;
@@ -270,10 +271,10 @@ static fmu_status full_rules_step(fmu_instance *inst, double t, double h, double
 }
 
 /* The step each route takes on inputs set and finite (model_interface.h; do_step.h jumps to it
- * by the route, which is 0..2: inverse_settle_usual_route writes it, and a restored state whose route is
- * not what its values give is refused, model_state.c). The usual step: no discarded advance
- * standing, no FMI 2 input derivatives, no limit outputs, and with finite differences two
- * earlier poses; anything else the step rules in full. */
+ * by the route, which is 0..2: inverse_settle_usual_route writes it, and a restored state whose
+ * route is not what its values give is refused, model_state.c). The usual step: no discarded
+ * advance standing, no FMI 2 input derivatives, no limit outputs, and with finite differences
+ * two earlier poses; anything else the step rules in full. */
 const model_usual_step_fn model_usual_steps[] = {
     [ROUTE_CHECKED] = full_rules_step,
     [ROUTE_ADVANCE] = usual_advance_step,
