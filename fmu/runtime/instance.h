@@ -49,11 +49,6 @@ typedef enum {
 
 typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
 
-/* outputs_current of outputs that belong to the current inputs and time but that a model leaves
- * as its solver wrote them until they are read: the runtime calls model_refresh_outputs before
- * any read of them (a Get of an output, GetFMUState), which lays them out and sets 1. */
-enum { FMU_OUTPUTS_UNREAD = 2 };
-
 /* Marks a function out of line where the compiler allows: a path the usual step does not take,
  * so that the step's own path stays short (doStep within 5 % of the library call it wraps). */
 #if defined(__GNUC__)
@@ -72,8 +67,7 @@ typedef struct fmu_values {
     double time;               /* communication point the current inputs belong to */
     double last_step_point;    /* communication point of the last accepted step */
     int has_stepped;           /* a step has been accepted since initialisation */
-    int outputs_current;       /* the outputs belong to the current inputs and time: 1, or
-                                  FMU_OUTPUTS_UNREAD */
+    int outputs_current;       /* the outputs belong to the current inputs and time (1) */
     int inputs_unchecked;      /* 0: every input is finite (the step need not look); set when a
                                   value that is not finite is set or restored, cleared by the
                                   model's scan of its inputs */
