@@ -153,8 +153,11 @@ def test_a_small_stroke_machine_far_from_the_origin_has_its_volume():
     """Strokes of +-14 mm on a machine whose joints are 0.3 m out, the pivot 2.6 m away: the
     workspace is centimetres across and 2.6 m below the platform origin, nowhere near a box
     from the machine's overall size; its volume is of the order of the stroke cubed."""
-    volume = workspace_volume(MACHINES["precision"])
-    assert 1e-7 < volume < (2 * 0.014) ** 3 * 8
+    result = workspace_volume(MACHINES["precision"], details=True)
+    assert 1e-7 < result.volume < (2 * 0.014) ** 3 * 8
+    # The box is the machine's: centimetres around the pivot, not a box of the legs' reach.
+    assert np.all(result.box[1] - result.box[0] < 0.2)
+    assert np.all(np.abs(result.box.mean(axis=0) - home(MACHINES["precision"])[:3]) < 0.05)
 
 
 def test_a_home_beyond_a_limit_is_refused_naming_it():

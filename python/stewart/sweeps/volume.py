@@ -18,8 +18,8 @@ How it is measured (docs/sweeps.md, "The workspace volume"):
    x feasible length: the midpoint rule over the columns, with each column's length exact.
 3. Refinement. The columns are recomputed on grids 1.5 times finer until two successive volumes
    differ by less than half the accuracy asked for (default 0.5 %); the result is the last
-   grid's volume and the error estimate is that difference. Columns on the box's side faces or
-   intervals that reach its top or bottom grow the box and start again.
+   grid's volume and the error estimate is that difference. A seed whose x, y or z range ends
+   beyond the box grows the box, and the columns start again.
 """
 from __future__ import annotations
 
@@ -99,21 +99,20 @@ def reach_radius(platform: Platform) -> tuple[np.ndarray, float]:
     base, top = (np.reshape(j, (6, 3)) for j in _core.model_joints(platform._model))
     stroke = float(np.max(_value(platform, "stroke_max") + np.abs(_value(platform, "length_offset"))))
     tool, user = _value(platform, "tool_frame"), _value(platform, "user_frame")
+    # The tool at R_u^T (p + R d - u), the platform origin p within |a_k| + L_k + |b_k| of the
+    # base origin (leg k joins them): a ball about the user origin.
     radius = (float(np.linalg.norm(base, axis=1).max()) + stroke +
-              float(np.linalg.norm(top, axis=1).max()) + float(np.linalg.norm(tool[:3])))
-    # The base origin in user coordinates is -R_u^T u; |R_u^T u| = |u|: the ball is centred
-    # within |u| of the user origin. Its centre's exact place would need R_u, so the ball is
-    # taken about the user origin with |u| added: it still holds every position.
-    return np.zeros(3), radius + float(np.linalg.norm(user[:3]))
+              float(np.linalg.norm(top, axis=1).max()) + float(np.linalg.norm(tool[:3])) +
+              float(np.linalg.norm(user[:3])))
+    return np.zeros(3), radius
 
 
 class _Limits:
-    """The limit check and z ranges at one orientation, counting the calls."""
+    """The limit check and the axis ranges of positions at one orientation."""
 
     def __init__(self, platform: Platform, orientation: np.ndarray, warn_condition):
         self.platform, self.orientation = platform, orientation
         self.warn_condition = _warn_condition(warn_condition)
-        self.checks = self.ranges = 0
         # The smallest box holding every axis-range end found since reset_extent: where the
         # workspace reaches along x, y and z from the seeds.
         self.extent = np.array([[np.inf] * 3, [-np.inf] * 3])
@@ -128,14 +127,12 @@ class _Limits:
         return q
 
     def within(self, points: np.ndarray) -> np.ndarray:
-        self.checks += len(points)
         if not len(points):
             return np.zeros(0, bool)
         return self.platform.limits(self.poses(points), warn_condition=self.warn_condition).within
 
     def ends(self, points: np.ndarray) -> np.ndarray:
         """(N, 3, 2): the x, y, z axis ranges of points (within the limits)."""
-        self.ranges += len(points)
         if not len(points):
             return np.zeros((0, 3, 2))
         ends = self.platform.axis_ranges(self.poses(points),
