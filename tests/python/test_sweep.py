@@ -619,3 +619,38 @@ def test_envelope_csv_in_the_units_asked_for(tmp_path):
     assert 400 < float(rows[1][col]) < 700  # the thesis legs' half-metre in mm
     with pytest.raises(ValueError, match="'furlong' is neither a length unit"):
         run(path, tmp_path / "bad", SCENES, workers=1, progress=False, log=lambda m: None, units="furlong")
+
+
+@pytest.mark.parametrize("name", sorted(stewart.platform_files()))
+def test_feasibility_on_every_shipped_machine(name):
+    """A heave about each shipped machine's home (its platform file as it is, payload and all):
+    at half the distance to the nearer end of home's z axis range every pose is within every
+    limit; at 1.5 times it the case is a row beyond the limit that ends the axis range first,
+    with a negative margin of that class (a machine whose home is beyond a limit: every case,
+    from t = 0, with home's class)."""
+    from stewart.sweeps.work import envelope_chunk
+    from test_workspace_volume import home
+    path = stewart.platform_files()[name]
+    plat = stewart.Platform.from_file(path)
+    q0 = home(plat)
+    ranges = plat.axis_ranges(q0, details=True)
+    (low, high), (low_class, high_class) = ranges.ends[0, 2], ranges.limit[0, 2]
+    up, down = high - q0[2], q0[2] - low
+    amplitude = max(min(up, down), 1e-3)
+    scene = {"name": "heave", "pose": {c: {"mean": float(v)} for c, v in zip(POSE, q0)}}
+    scene["pose"]["z"].update(amplitude=amplitude, omega=2 * np.pi)
+    spec = resolve({"kind": "envelope", "platform_file": str(path), "duration": 1.0, "step": 0.005,
+                    "manoeuvres": [{"scene": scene, "amplitude": [0.5, 1.5]}]}, SCENES)
+    table, _ = envelope_chunk(spec, chunks(spec)[0])
+    t = {k: table[k].to_pylist() for k in table.column_names}
+    assert t["status"] == [0, 0] and t["poses"] == [201, 201]
+    at_home = plat.limits(q0)
+    if not at_home.within[0]:
+        assert t["feasible"] == [False, False] and t["limit_t"] == [0.0, 0.0]
+        assert t["limit_class"] == [int(at_home.first[0])] * 2
+        return
+    assert t["feasible"] == [True, False] and t["limit_class"][0] == 0
+    expected = high_class if 1.5 * amplitude >= up else low_class
+    assert t["limit_class"][1] == expected != 0
+    from stewart.limits import LIMIT_CLASSES
+    assert t[f"margin_{LIMIT_CLASSES[expected - 1]}"][1] < 0
