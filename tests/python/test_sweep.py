@@ -654,3 +654,23 @@ def test_feasibility_on_every_shipped_machine(name):
     assert t["limit_class"][1] == expected != 0
     from stewart.limits import LIMIT_CLASSES
     assert t[f"margin_{LIMIT_CLASSES[expected - 1]}"][1] < 0
+
+
+@pytest.mark.parametrize("about", ["home", [0.01, -0.02, 0.45, 0.0, 0.02, 0.1]])
+def test_csv_manoeuvres_scale_about_home_or_a_given_pose(tmp_path, about):
+    """about = "home" (the machine's home pose, from its frames, computed in the test) or 6
+    numbers: q = about + amplitude (q_file - about), rates x amplitude x frequency."""
+    from stewart.sweeps.spec import manoeuvre_samples
+    from test_workspace_volume import home
+    t, q = _trajectory()
+    (tmp_path / "move.csv").write_text("t,x,y,z,roll,pitch,yaw\n" + "".join(
+        ",".join(repr(float(v)) for v in r) + "\n" for r in np.hstack([t[:, None], q])))
+    frames = {"tool_frame": [0.0, 0.0, 0.1, 0.0, 0.0, 0.2], "user_frame": [0.0, 0.0, 0.05, 0, 0, 0]}
+    spec = resolve({"kind": "envelope", "platform": frames,
+                    "manoeuvres": [{"csv": str(tmp_path / "move.csv"), "about": about}]}, SCENES)
+    reference_pose = home(stewart.Platform(**frames)) if about == "home" else np.array(about)
+    scaled_t, scaled_q, scaled_qd, _ = manoeuvre_samples(spec, spec["manoeuvres"][0], 3.0, 2.0)
+    np.testing.assert_allclose(scaled_q, reference_pose + 3.0 * (q - reference_pose), atol=1e-14)
+    np.testing.assert_allclose(scaled_t, t / 2.0, atol=1e-15)
+    from stewart.sweeps.trajectory import finite_difference
+    np.testing.assert_allclose(scaled_qd[:, 2], 6.0 * finite_difference(t, q[:, 2], 1), rtol=1e-13)

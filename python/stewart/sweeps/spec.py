@@ -211,10 +211,11 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Pa
         raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: {', '.join(sorted(known))})")
     scales = {"amplitude": _values(m.get("amplitude", [1.0]), f"{field}.amplitude"),
               "frequency": _values(m.get("frequency", [1.0]), f"{field}.frequency")}
-    bad = [f for f in scales["frequency"] if f <= 0]
-    if bad:
-        raise SpecError(f"{field}.frequency = {bad[0]!r} must be > 0 (a time scale)")
     if "csv" in m:
+        bad = [f for f in scales["frequency"] if f <= 0]
+        if bad:
+            raise SpecError(f"{field}.frequency = {bad[0]!r} must be > 0 (it divides the "
+                            "trajectory's times)")
         return {**_csv_manoeuvre(m, field, spec_dir, base), **scales}
     scene = m["scene"]
     try:
