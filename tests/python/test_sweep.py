@@ -2,7 +2,10 @@
 1 and 2 LocalCluster workers and from stewart-solve; the workspace's reachability and boundary
 against the closed-form length limits in numpy; map values at sample points against direct
 calls; bad specs refused before any work; failing cases recorded; a rerun computes only missing
-chunks."""
+chunks; cases beyond a limit as rows (their class and margin against lengths computed here, on
+every shipped machine against its axis ranges); CSV manoeuvres against stewart-solve on the
+scaled trajectory; inline scenes and platform files with a payload; results in the units asked
+for."""
 import json
 import math
 import pathlib

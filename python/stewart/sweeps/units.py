@@ -2,12 +2,13 @@
 the merged tables, the CSV, volume.json and the plots when asked (`--units mm,deg`)."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from ..limits import LIMIT_CLASSES
 
 LENGTHS = {"m": 1.0, "mm": 1e3, "um": 1e6}
-ANGLES = {"rad": 1.0, "deg": 180.0 / 3.141592653589793, "mrad": 1e3, "urad": 1e6}
+ANGLES = {"rad": 1.0, "deg": 180.0 / math.pi, "mrad": 1e3, "urad": 1e6}
 
 # The SI quantity of each result column: L length, A angle, L/s, L/s2 rates of lengths; the rest
 # (forces, powers, condition numbers, times, counts) do not change with the units.
