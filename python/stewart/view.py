@@ -1,0 +1,318 @@
+"""stewart.view: one self-contained HTML page that shows a platform in 3D in a browser, at rest or
+playing a result (docs/view.md). The page holds its data and its scripts (three.js, inlined from
+the package's copy of the pinned npm package): it opens from a file with no server and no network.
+"""
+from __future__ import annotations
+
+import base64
+import json
+import math
+import os
+import pathlib
+from collections.abc import Mapping
+from typing import Optional, Union
+
+import numpy as np
+
+from . import _core
+from .limits import LIMIT_CLASSES, MARGIN_UNITS
+from .params import parameter_assignments, parameters
+from .platform import Platform
+from .scenes import POSE
+
+PathLike = Union[str, "os.PathLike[str]"]
+_HERE = pathlib.Path(__file__).resolve().parent
+#: The classes a leg is coloured by: the library's per-leg classes, then the force (when a
+#: force limit and forces are given). The condition number is the pose's, shown beside the view.
+LEG_CLASSES = ("stroke", "base_joint", "platform_joint", "interference", "force")
+LEG_CLASS_UNITS = ("m", "rad", "rad", "m", "N")
+NO_CLASS = 255  # a leg no class names at a frame (never: the stroke names every leg)
+
+
+def view(platform: Union[Platform, PathLike], result=None, poses=None,
+         output: PathLike = "view.html", *, title: Optional[str] = None,
+         force_limit=None, warn_condition: Optional[float] = None) -> pathlib.Path:
+    """Write one HTML page showing platform (a Platform or a platform file) and return its path.
+
+    result: None (the platform at poses, or at home), a CSV or Parquet file, or a mapping of
+    column names to arrays, with a column ``t`` [s] and the pose columns x, y, z, roll, pitch, yaw
+    (the tool frame in the user frame, as every pose of the package); forces are read from
+    F1..F6 (or F[1]..F[6]) when present. An inverse output has no pose columns: give its input
+    poses as poses (a file or mapping with the pose columns, row for row). Without a result,
+    poses may be an (N, 6) array or a file of poses to step through. force_limit: the largest
+    |F_k| [N] (one number or six), which adds the force class to the legs' colours.
+    warn_condition: the condition limit of the limit check (None: the library's 1e3).
+    ValueError names a missing column, a row count that differs, or a non-finite pose."""
+    if not isinstance(platform, Platform):
+        platform = Platform.from_file(platform)
+    t, q, forces = _frames(platform, result, poses)
+    data = _page_data(platform, t, q, forces, force_limit, warn_condition)
+    data["title"] = title or "Stewart platform"
+    output = pathlib.Path(output)
+    output.write_text(_page(data), encoding="utf-8")
+    return output
+
+
+def _frames(platform: Platform, result, poses):
+    """(t, q, forces or None) of the frames to show: the result's, or poses', or home."""
+    if result is None:
+        if poses is None:
+            return np.zeros(1), home_pose(platform)[None, :], None
+        if isinstance(poses, (str, os.PathLike)) or isinstance(poses, Mapping):
+            columns = read_columns(poses)
+            q = _pose_columns(columns, poses)
+            t = columns.get("t", np.arange(len(q), dtype=float))
+            return np.asarray(t, float), q, None
+        q = np.array(poses, dtype=float, ndmin=2)
+        if q.ndim != 2 or q.shape[1] != 6:
+            raise ValueError(f"poses has shape {q.shape}: it must be (N, 6), (x, y, z, roll, pitch, yaw) per row")
+        return np.arange(len(q), dtype=float), _finite(q, "poses"), None
+    columns = read_columns(result)
+    if "t" not in columns:
+        raise ValueError(f"{_name(result)} has no column t (the time [s] of each row)")
+    t = columns["t"]
+    if all(p in columns for p in POSE):
+        if poses is not None:
+            raise ValueError(f"{_name(result)} has the pose columns already: give poses only with "
+                             "an inverse output, whose poses are its input's")
+        q = _pose_columns(columns, result)
+    elif poses is None:
+        raise ValueError(f"{_name(result)} has no pose columns ({', '.join(POSE)}): for an inverse "
+                         "output give its input poses too (poses=, --poses IN.csv)")
+    else:
+        q = _pose_columns(read_columns(poses), poses)
+        if len(q) != len(t):
+            raise ValueError(f"{_name(poses)} has {len(q)} rows but {_name(result)} has {len(t)}: "
+                             "the poses must be the result's input, row for row")
+    return t, q, _leg_columns(columns, "F")
+
+
+def read_columns(source) -> dict[str, np.ndarray]:
+    """The numeric columns of a CSV or Parquet file (or a mapping of names to arrays) by name."""
+    if isinstance(source, Mapping):
+        return {str(k): np.asarray(v, dtype=float) for k, v in source.items()
+                if np.asarray(v).dtype.kind in "biuf"}
+    path = pathlib.Path(source)
+    if path.suffix.lower() in (".parquet", ".pq"):
+        try:
+            import pyarrow.parquet as pq
+        except ImportError:
+            raise ValueError(f"{path}: reading Parquet needs pyarrow (pip install pyarrow)") from None
+        table = pq.read_table(path)
+        return {name: table.column(name).to_numpy().astype(float) for name in table.column_names
+                if table.schema.field(name).type.__str__().startswith(("double", "float", "int"))}
+    with open(path, encoding="utf-8") as f:
+        header = f.readline().strip().split(",")
+    wanted = [i for i, name in enumerate(header) if _wanted(name)]
+    if not wanted:
+        return {}
+    try:
+        table = np.loadtxt(path, delimiter=",", skiprows=1, usecols=wanted, ndmin=2, quotechar='"')
+    except ValueError as e:
+        raise ValueError(f"{path}: {e}") from None
+    return {header[i]: table[:, j] for j, i in enumerate(wanted)}
+
+
+def _wanted(name: str) -> bool:
+    return name == "t" or name in POSE or name.startswith("F")
+
+
+def _name(source) -> str:
+    return str(source) if isinstance(source, (str, os.PathLike)) else "the result"
+
+
+def _pose_columns(columns: Mapping[str, np.ndarray], source) -> np.ndarray:
+    missing = [p for p in POSE if p not in columns]
+    if missing:
+        raise ValueError(f"{_name(source)} has no column {', '.join(missing)} (the pose columns are "
+                         f"{', '.join(POSE)})")
+    return _finite(np.column_stack([columns[p] for p in POSE]), _name(source))
+
+
+def _finite(q: np.ndarray, name: str) -> np.ndarray:
+    bad = np.flatnonzero(~np.all(np.isfinite(q), axis=1))
+    if bad.size:
+        raise ValueError(f"{name}: row {bad[0]} has a pose that is not finite "
+                         f"({q[bad[0]].tolist()}): the page cannot draw it; drop the row")
+    return np.ascontiguousarray(q, dtype=float)
+
+
+def _leg_columns(columns: Mapping[str, np.ndarray], prefix: str) -> Optional[np.ndarray]:
+    for pattern in ("{}{}", "{}[{}]"):
+        names = [pattern.format(prefix, k) for k in range(1, 7)]
+        if all(n in columns for n in names):
+            return np.column_stack([columns[n] for n in names])
+    return None
+
+
+def effective_parameters(platform: Platform) -> dict[str, np.ndarray]:
+    """Every parameter's values for platform: the thesis defaults with the platform's changes."""
+    values = {p["name"]: np.array(p["defaults"], dtype=float) for p in parameters()}
+    for name, value in parameter_assignments(platform.params):
+        base, _, index = name.partition("[")
+        if index:
+            values[base][int(index.rstrip("]")) - 1] = value
+        else:
+            values[base][:] = value  # a scalar, or one number that fills every leg
+    return values
+
+
+def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """R = Rz(yaw) Ry(pitch) Rx(roll) (docs/model.md §3)."""
+    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
+                              math.cos(yaw), math.sin(yaw))
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def home_pose(platform: Platform) -> np.ndarray:
+    """The tool's pose in the user frame when the platform is at its home (0, 0, home_height, 0,
+    0, 0) in the base frame: T(user)^-1 T(home) T(tool) (docs/api.md, tool and user frames)."""
+    values = effective_parameters(platform)
+    tool, user = values["tool_frame"], values["user_frame"]
+    Ru, Rd = _rotation(*user[3:]), _rotation(*tool[3:])
+    p_home = np.array([0.0, 0.0, float(values["home_height"][0])])
+    R = Ru.T @ Rd  # the platform's home turns nothing
+    p = Ru.T @ (p_home + tool[:3] - user[:3])
+    pitch = math.asin(max(-1.0, min(1.0, -R[2, 0])))
+    return np.array([*p, math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
+
+
+def _leg_margins(platform: Platform, values: dict, q: np.ndarray, lengths: np.ndarray,
+                 forces: Optional[np.ndarray], force_limit, warn_condition):
+    """Per frame and leg the margin to each class of LEG_CLASSES (NaN where the class does not
+    name the leg: the library's check gives each class's smallest margin and its leg), the scale
+    each margin is measured against, and the pose-level check (first class, condition)."""
+    n = len(q)
+    check = platform.limits(q, warn_condition=warn_condition)
+    margin = np.full((n, 6, len(LEG_CLASSES)), np.nan)
+    # The stroke of every leg from the library's lengths (Cardan to Cardan: reading + offset).
+    joint_to_joint = lengths + values["length_offset"]
+    smin, smax = values["stroke_min"], values["stroke_max"]
+    margin[:, :, 0] = np.minimum(joint_to_joint - smin, smax - joint_to_joint)
+    rows = np.arange(n)
+    for c in (1, 2, 3):  # base joint, platform joint, interference: the leg (pair) the check names
+        for legs in (check.leg[:, c], check.other_leg[:, c]):
+            named = legs > 0
+            margin[rows[named], legs[named] - 1, c] = check.margin[named, c]
+    scale = np.ones((6, len(LEG_CLASSES)))
+    scale[:, 0] = 0.5 * (smax - smin)
+    scale[:, 1] = values["base_joint_limit"][0]
+    scale[:, 2] = values["platform_joint_limit"][0]
+    diameter = float(values["leg_diameter"][0])
+    if diameter > 0:
+        scale[:, 3] = 5 * diameter  # a gap of five diameters is far
+    else:
+        margin[:, :, 3] = np.nan  # leg_diameter 0: no interference check
+    if force_limit is not None and forces is not None:
+        limit = np.broadcast_to(np.asarray(force_limit, dtype=float), (6,))
+        if not np.all(np.isfinite(limit) & (limit > 0)):
+            raise ValueError(f"force_limit = {force_limit!r} must be positive and finite (N)")
+        margin[:, :, 4] = limit - np.abs(forces)
+        scale[:, 4] = limit
+    return margin, scale, check
+
+
+def _nearest_class(margin: np.ndarray, scale: np.ndarray):
+    """The class each leg is nearest to (its smallest margin over the scale) and that margin."""
+    fraction = np.where(np.isnan(margin), np.inf, margin / scale)
+    nearest = np.argmin(fraction, axis=2)
+    chosen = np.take_along_axis(margin, nearest[..., None], axis=2)[..., 0]
+    nearest = np.where(np.isnan(chosen), NO_CLASS, nearest).astype(np.uint8)
+    return nearest, chosen
+
+
+def _page_data(platform: Platform, t, q, forces, force_limit, warn_condition) -> dict:
+    values = effective_parameters(platform)
+    base, top = _core.model_joints(platform._model)
+    solution = platform.inverse(q, fidelity="kinematic")
+    lengths = np.where(solution.status[:, None] == 0, solution.length, np.nan)
+    margin, scale, check = _leg_margins(platform, values, q, lengths, forces, force_limit,
+                                        warn_condition)
+    nearest, chosen = _nearest_class(margin, scale)
+    scalar = {name: float(values[name][0]) for name in
+              ("leg_diameter", "payload_mass", "home_height", "base_joint_limit",
+               "platform_joint_limit")}
+    vectors = {name: values[name].tolist() for name in
+               ("tool_frame", "user_frame", "length_offset", "stroke_min", "stroke_max",
+                "payload_com", "platform_com")}
+    return {
+        "machine": {"base_joint": list(base), "platform_joint": list(top), **scalar, **vectors,
+                    "warn_condition": 1e3 if warn_condition is None else float(warn_condition)},
+        "classes": list(LEG_CLASSES), "class_units": list(LEG_CLASS_UNITS),
+        "pose_classes": ["none", *LIMIT_CLASSES], "pose_class_units": ["", *MARGIN_UNITS],
+        "scale": scale.T.tolist(), "frames": len(q),
+        "t": _packed(t, np.float64), "pose": _packed(q, np.float64),
+        "force": None if forces is None else _packed(forces, np.float32),
+        "leg_class": _packed(nearest, np.uint8), "leg_margin": _packed(chosen, np.float32),
+        "first": _packed(check.first, np.uint8),
+        "first_margin": _packed(np.take_along_axis(
+            check.margin, np.maximum(check.first - 1, 0)[:, None].astype(np.intp), 1)[:, 0],
+            np.float32),
+        "condition": _packed(check.condition, np.float32),
+        "solved": _packed(solution.status == 0, np.uint8),
+    }
+
+
+def _packed(a, dtype) -> str:
+    """a as little-endian binary of dtype, base64: the page decodes it into a typed array."""
+    return base64.b64encode(np.ascontiguousarray(a, dtype=np.dtype(dtype).newbyteorder("<"))
+                            .tobytes()).decode("ascii")
+
+
+def three_dir() -> pathlib.Path:
+    """Where the package's copy of three.js is (installed with the package from the npm
+    package scripts/setup.sh fetches); STEWART_THREE_DIR overrides it."""
+    folder = pathlib.Path(os.environ.get("STEWART_THREE_DIR", _HERE / "three"))
+    for name in ("three.core.js", "three.module.js", "OrbitControls.js"):
+        if not (folder / name).is_file() and not (folder / "build" / name).is_file():
+            raise FileNotFoundError(
+                f"three.js is not in {folder} ({name} missing): scripts/setup.sh fetches the "
+                "pinned npm package `three` and the package install copies it here; run it and "
+                "reinstall, or set STEWART_THREE_DIR to an unpacked npm package of three")
+    return folder
+
+
+def _three_file(folder: pathlib.Path, name: str) -> str:
+    for path in (folder / name, folder / "build" / name,
+                 folder / "examples" / "jsm" / "controls" / name):
+        if path.is_file():
+            return path.read_text(encoding="utf-8")
+    raise FileNotFoundError(f"{name} is not in {folder}")
+
+
+def _data_url(code: str) -> str:
+    """A JavaScript data: URL of code, percent-encoding only what a URL would change ('%', '#',
+    and the line breaks and tabs a URL parser drops): a few percent larger than the code."""
+    for ch, esc in (("%", "%25"), ("#", "%23"), ("\n", "%0A"), ("\r", "%0D"), ("\t", "%09")):
+        code = code.replace(ch, esc)
+    return "data:text/javascript;charset=utf-8," + code
+
+
+def _script_json(value) -> str:
+    """JSON safe inside a <script> element: no '<' (so no '</script>' or '<!--')."""
+    return json.dumps(value, separators=(",", ":")).replace("<", "\\u003c")
+
+
+def _page(data: dict) -> str:
+    folder = three_dir()
+    core = _three_file(folder, "three.core.js")
+    module = _three_file(folder, "three.module.js").replace("'./three.core.js'", "'three/core'")
+    imports = {"three/core": _data_url(core), "three": _data_url(module),
+               "three/addons/controls/OrbitControls.js":
+                   _data_url(_three_file(folder, "OrbitControls.js"))}
+    page = (_HERE / "view_page.html").read_text(encoding="utf-8")
+    app = (_HERE / "view_page.js").read_text(encoding="utf-8")
+    version = (folder / "VERSION").read_text().strip() if (folder / "VERSION").is_file() else "?"
+    # The template's own fields first, then the inserted texts, the largest last, so that no
+    # marker is looked for inside an inserted text.
+    page = page.replace("@TITLE@", _html_text(data["title"])).replace("@THREE_VERSION@", version)
+    for key, text in (("/*APP*/", app), ("/*DATA*/", _script_json(data)),
+                      ("/*IMPORTMAP*/", _script_json({"imports": imports}))):
+        page = page.replace(key, text, 1)
+    return page
+
+
+def _html_text(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

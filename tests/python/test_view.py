@@ -1,0 +1,241 @@
+"""stewart.view's pages in a real browser: Debian's headless Chromium driven by Selenium through
+Debian's chromedriver, WebGL on SwiftShader, the network off. Each page is opened from its file.
+
+Checked against the library, never against the page itself: the page computes the leg lengths
+with its own script from the pose, the joints and the frames, and they must equal
+Platform.inverse's to 1e-9 m; the leg it colours as beyond its stroke must be the one
+Platform.limits names. Set STEWART_VIEW_DOCS=1 to write docs/view-NAME.png from the pages."""
+import io
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import stewart
+from stewart.view import home_pose
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+CHROMEDRIVER = shutil.which("chromedriver") or "/usr/bin/chromedriver"
+HAVE_CHROMIUM = bool(shutil.which("chromium")) and pathlib.Path(CHROMEDRIVER).is_file()
+needs_browser = pytest.mark.skipif(
+    not HAVE_CHROMIUM, reason="Debian's chromium and chromium-driver are not installed "
+                              "(scripts/setup.sh installs them)")
+BACKGROUND = np.array([0xf2, 0xf4, 0xf7])  # the page's scene background
+RED = "#d62728"  # the page's colour of a leg at or beyond its nearest limit
+POSE_NAMES = ("x", "y", "z", "roll", "pitch", "yaw")
+FRAMED = dict(tool_frame=[0.02, -0.01, 0.10, 0.05, -0.04, 0.30],
+              user_frame=[0.01, -0.02, 0.45, 0.02, -0.03, 0.40],
+              length_offset=[0.01, -0.02, 0.003, 0.0, 0.015, -0.005])
+
+
+@pytest.fixture(scope="module")
+def browser(tmp_path_factory):
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    options = webdriver.ChromeOptions()
+    options.binary_location = shutil.which("chromium")
+    for flag in ("--headless", "--no-sandbox", "--use-angle=swiftshader",
+                 "--enable-unsafe-swiftshader", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync", "--no-first-run",
+                 "--window-size=1200,800", "--disable-dev-shm-usage",
+                 f"--user-data-dir={tmp_path_factory.mktemp('chromium-profile')}"):
+        options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = webdriver.Chrome(service=Service(CHROMEDRIVER), options=options)
+    driver.set_network_conditions(offline=True, latency=0, download_throughput=0,
+                                  upload_throughput=0)
+    yield driver
+    driver.quit()
+
+
+def open_page(driver, path: pathlib.Path):
+    """Load the page from its file and wait for it; fail on any console error."""
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    driver.get_log("browser")  # drop what earlier pages logged
+    driver.get(path.resolve().as_uri())
+    WebDriverWait(driver, 60).until(
+        lambda d: d.execute_script("return !!(window.stewartView && window.stewartView.ready)"),
+        message=f"{path} never became ready: {driver.get_log('browser')}")
+    errors = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+    assert not errors, f"console errors in {path.name}: {errors}"
+
+
+def canvas_pixels(driver) -> np.ndarray:
+    """The 3D canvas as an (H, W, 3) uint8 array, from a screenshot of the element."""
+    from PIL import Image
+    from selenium.webdriver.common.by import By
+
+    png = driver.find_element(By.ID, "view3d").screenshot_as_png
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
+
+
+def drawn_fraction(pixels: np.ndarray) -> float:
+    """The share of pixels that are not the scene's background."""
+    return float(np.mean(np.abs(pixels.astype(int) - BACKGROUND).max(axis=2) > 24))
+
+
+def page_lengths(driver, frame: int) -> np.ndarray:
+    return np.array(driver.execute_script(f"return window.stewartView.legLengths({frame})"))
+
+
+def check_lengths(driver, platform, q, frames):
+    library = platform.inverse(q, fidelity="kinematic")
+    assert np.all(library.status == 0)
+    for i in frames:
+        np.testing.assert_allclose(page_lengths(driver, i), library.length[i], rtol=0, atol=1e-9)
+
+
+@needs_browser
+@pytest.mark.parametrize("name", sorted(stewart.platform_files()))
+def test_every_shipped_platform_renders(browser, tmp_path, name):
+    path = stewart.platform_files()[name]
+    platform = stewart.Platform.from_file(path)
+    page = stewart.view(path, output=tmp_path / f"{name}.html", title=f"{name}.json")
+    open_page(browser, page)
+    pixels = canvas_pixels(browser)
+    assert drawn_fraction(pixels) > 0.03, f"{name}: the canvas is (nearly) blank"
+    home = home_pose(platform)
+    check_lengths(browser, platform, home[None, :], [0])
+    if os.environ.get("STEWART_VIEW_DOCS") == "1":
+        from PIL import Image
+        Image.fromarray(pixels).save(ROOT / "docs" / f"view-{name}.png", optimize=True)
+
+
+@needs_browser
+def test_page_lengths_equal_the_library_along_a_result_with_frames(browser, tmp_path):
+    """Tool and user frames and sensor offsets set: the page's own transform of each pose."""
+    platform = stewart.Platform(**FRAMED)
+    rng = np.random.default_rng(3)
+    q = home_pose(platform) + rng.uniform(-1, 1, (40, 6)) * [0.03, 0.03, 0.03, 0.08, 0.08, 0.15]
+    t = np.arange(40) * 0.05
+    result = {"t": t, **{n: q[:, i] for i, n in enumerate(POSE_NAMES)}}
+    page = stewart.view(platform, result, output=tmp_path / "framed.html")
+    open_page(browser, page)
+    assert browser.execute_script("return window.stewartView.frames") == 40
+    check_lengths(browser, platform, q, range(40))
+    assert browser.execute_script("return window.stewartView.time(39)") == t[39]
+
+
+@needs_browser
+def test_two_poses_give_different_pictures(browser, tmp_path):
+    platform = stewart.Platform()
+    poses = [[0, 0, 0.5, 0, 0, 0], [0.05, -0.04, 0.55, 0.12, -0.1, 0.3]]
+    open_page(browser, stewart.view(platform, poses=poses, output=tmp_path / "two.html"))
+    browser.execute_script("window.stewartView.setFrame(0)")
+    first = canvas_pixels(browser)
+    browser.execute_script("window.stewartView.setFrame(1)")
+    second = canvas_pixels(browser)
+    changed = np.mean(np.abs(first.astype(int) - second.astype(int)).max(axis=2) > 24)
+    assert changed > 0.005, f"only {changed:.4f} of the pixels changed between the two poses"
+    browser.execute_script("window.stewartView.setFrame(0)")
+    again = canvas_pixels(browser)
+    assert np.array_equal(first, again), "the same frame drawn twice differs"
+
+
+def pose_beyond_one_stroke(platform):
+    """A pose a little past the z range's upper end of a tilted pose, where the axis ranges say
+    one leg meets its stroke first; and that leg (1..6)."""
+    start = np.array([0.02, 0.01, 0.5, 0.06, -0.04, 0.1])
+    ranges = platform.axis_ranges(start, details=True)
+    assert ranges.limit[0, 2, 1] == 1, "the z range of the start pose does not end at a stroke"
+    pose = start.copy()
+    pose[2] = ranges.ends[0, 2, 1] + 1e-4
+    return pose, int(ranges.leg[0, 2, 1])
+
+
+@needs_browser
+def test_the_leg_at_its_stroke_is_the_one_the_library_names(browser, tmp_path):
+    platform = stewart.Platform()
+    pose, leg = pose_beyond_one_stroke(platform)
+    check = platform.limits(pose)
+    assert check.first[0] == 1 and check.leg[0, 0] == leg  # the library: stroke, this leg
+    open_page(browser, stewart.view(platform, poses=[pose], output=tmp_path / "stroke.html"))
+    states = browser.execute_script("return window.stewartView.legStates(0)")
+    colours = browser.execute_script("return window.stewartView.legColours()")
+    beyond = [s["leg"] for s in states if s["beyond"]]
+    assert beyond == [leg], f"the page marks legs {beyond} beyond a limit, the library leg {leg}"
+    assert states[leg - 1]["class"] == "stroke"
+    assert states[leg - 1]["margin"] == pytest.approx(check.margin[0, 0], abs=1e-6)
+    assert colours[leg - 1] == RED and colours.count(RED) == 1
+    status = browser.execute_script("return document.getElementById('status').textContent")
+    assert "beyond: stroke" in status
+
+
+def write_csv(path, columns):
+    names = list(columns)
+    np.savetxt(path, np.column_stack([columns[n] for n in names]), delimiter=",",
+               header=",".join(names), comments="", fmt="%.17g")
+
+
+@needs_browser
+def test_an_inverse_output_with_its_poses_through_the_script(browser, tmp_path):
+    """scripts/view.py on an inverse output (t, L1..L6, F1..F6) and its input poses: the page's
+    lengths equal the output's own L columns, and the force plot is drawn."""
+    platform = stewart.Platform(payload_mass=50)
+    t = np.linspace(0, 2, 201)
+    q = np.column_stack([0.02 * np.sin(3 * t), 0 * t, 0.5 + 0.03 * np.sin(5 * t),
+                         0.05 * np.sin(2 * t), 0 * t, 0.1 * np.sin(t)])
+    solved = platform.inverse(q, fidelity="massless")
+    write_csv(tmp_path / "in.csv", {"t": t, **{n: q[:, i] for i, n in enumerate(POSE_NAMES)}})
+    write_csv(tmp_path / "out.csv", {"t": t, **{f"L{k + 1}": solved.length[:, k] for k in range(6)},
+                                     **{f"F{k + 1}": solved.force[:, k] for k in range(6)}})
+    platform_file = tmp_path / "payload.json"
+    platform_file.write_text('{"payload_mass": 50}')
+    page = tmp_path / "inverse.html"
+    run = subprocess.run([sys.executable, str(ROOT / "scripts" / "view.py"), "--platform",
+                          str(platform_file), str(tmp_path / "out.csv"), "--poses",
+                          str(tmp_path / "in.csv"), "-o", str(page)],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    open_page(browser, page)
+    for i in (0, 57, 200):
+        np.testing.assert_allclose(page_lengths(browser, i), solved.length[i], rtol=0, atol=1e-9)
+    assert browser.execute_script("return window.stewartView.setFrame(57)") == 57
+    assert "F [N]" in page.read_text()  # the force panel's title is in the script, so check
+    assert browser.execute_script("return window.stewartView.frame()") == 57
+
+
+@needs_browser
+def test_a_parquet_result_opens(browser, tmp_path):
+    pa = pytest.importorskip("pyarrow")
+    import pyarrow.parquet as pq
+
+    platform = stewart.Platform()
+    t = np.linspace(0, 1, 11)
+    q = np.column_stack([0 * t, 0 * t, 0.5 + 0.02 * t, 0 * t, 0.05 * t, 0 * t])
+    pq.write_table(pa.table({"t": t, **{n: q[:, i] for i, n in enumerate(POSE_NAMES)}}),
+                   tmp_path / "r.parquet")
+    open_page(browser, stewart.view(platform, tmp_path / "r.parquet", output=tmp_path / "p.html"))
+    check_lengths(browser, platform, q, [0, 10])
+
+
+def test_bad_results_are_refused_naming_the_cause(tmp_path):
+    platform = stewart.Platform()
+    write_csv(tmp_path / "lengths.csv", {"t": [0.0, 1.0], **{f"L{k}": [0.5, 0.5] for k in range(1, 7)}})
+    with pytest.raises(ValueError, match="no pose columns.*--poses"):
+        stewart.view(platform, tmp_path / "lengths.csv", output=tmp_path / "a.html")
+    with pytest.raises(ValueError, match="row 1 has a pose that is not finite"):
+        stewart.view(platform, poses=[[0, 0, 0.5, 0, 0, 0], [0, 0, np.nan, 0, 0, 0]],
+                     output=tmp_path / "b.html")
+    write_csv(tmp_path / "poses.csv", {"t": [0.0], **{n: [0.0] for n in POSE_NAMES}})
+    with pytest.raises(ValueError, match="has 1 rows but"):
+        stewart.view(platform, tmp_path / "lengths.csv", tmp_path / "poses.csv",
+                     output=tmp_path / "c.html")
+    assert not (tmp_path / "a.html").exists()
+
+
+def test_home_pose_is_the_platform_at_home_height():
+    """The tool pose the page starts from puts the platform at (0, 0, home_height): its lengths
+    equal those of the frameless platform at home (frames move where poses are taken, not the
+    machine)."""
+    from stewart.view import home_pose
+    framed = stewart.Platform(tool_frame=FRAMED["tool_frame"], user_frame=FRAMED["user_frame"])
+    plain = stewart.Platform()
+    np.testing.assert_allclose(framed.inverse(home_pose(framed)).length,
+                               plain.inverse([0, 0, 0.5, 0, 0, 0]).length, rtol=0, atol=1e-12)
