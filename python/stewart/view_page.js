@@ -4,6 +4,7 @@
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 
+const startedAt = performance.now();  // ms since the page's navigation began
 const data = JSON.parse(document.getElementById("stewart-data").textContent);
 const M = data.machine;
 const LEGS = 6;
@@ -409,6 +410,9 @@ window.stewartView = {
   },
   ready: false,
 };
+const sceneBuilt = performance.now();
 drawPlots();
+const plotsDrawn = performance.now();
 setFrame(0);
+window.stewartView.timings = { scriptStart: startedAt, sceneBuilt, plotsDrawn, ready: performance.now() };
 window.stewartView.ready = true;

@@ -239,3 +239,44 @@ def test_home_pose_is_the_platform_at_home_height():
     plain = stewart.Platform()
     np.testing.assert_allclose(framed.inverse(home_pose(framed)).length,
                                plain.inverse([0, 0, 0.5, 0, 0, 0]).length, rtol=0, atol=1e-12)
+
+
+REFERENCE = pathlib.Path(__file__).resolve().parent / "view_reference"
+REFERENCE_POSES = {"home": [0, 0, 0.5, 0, 0, 0], "tilted": [0.04, -0.03, 0.55, 0.15, -0.1, 0.4],
+                   "low": [-0.05, 0.05, 0.45, -0.1, 0.12, -0.3]}
+REFERENCE_SIZE = (240, 190)  # the stored pictures' size: small, and blurs antialiasing away
+
+
+def reference_picture(pixels: np.ndarray) -> np.ndarray:
+    from PIL import Image
+    return np.asarray(Image.fromarray(pixels).resize(REFERENCE_SIZE, Image.Resampling.BOX))
+
+
+@needs_browser
+def test_pictures_match_the_stored_ones(browser, tmp_path):
+    """Three poses of the thesis platform against stored pictures of the page (made by this test
+    with STEWART_VIEW_REFERENCE=1), box-filtered to 240 x 190 so software rendering's edge pixels
+    average out: the mean colour difference must stay below 2 levels of 255 and no more than 0.5 %
+    of the pixels may differ by more than 40 (a leg or a plate moved by a pixel does that; a
+    missing leg, a wrong colour or a wrong pose does not)."""
+    from PIL import Image
+    page = stewart.view(stewart.Platform(payload_mass=20, payload_com=[0.05, 0, 0.08]),
+                        poses=list(REFERENCE_POSES.values()), output=tmp_path / "ref.html")
+    open_page(browser, page)
+    pictures = {}
+    for i, name in enumerate(REFERENCE_POSES):
+        browser.execute_script(f"window.stewartView.setFrame({i})")
+        pictures[name] = reference_picture(canvas_pixels(browser))
+        if os.environ.get("STEWART_VIEW_REFERENCE") == "1":
+            REFERENCE.mkdir(exist_ok=True)
+            Image.fromarray(pictures[name]).save(REFERENCE / f"{name}.png", optimize=True)
+    for name, picture in pictures.items():
+        for other in REFERENCE_POSES:  # each pose matches its own picture and no other
+            expected = np.asarray(Image.open(REFERENCE / f"{other}.png").convert("RGB"))
+            assert picture.shape == expected.shape, f"{name}: {picture.shape} against {expected.shape}"
+            difference = np.abs(picture.astype(int) - expected.astype(int)).max(axis=2)
+            mean, far = difference.mean(), np.mean(difference > 40)
+            if other == name:
+                assert mean < 2.0 and far < 0.005, f"{name}: mean difference {mean:.2f}, {far:.4f} far"
+            else:
+                assert mean > 2.0 or far > 0.005, f"{name} passes as {other}: the test cannot tell"
