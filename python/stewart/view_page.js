@@ -13,10 +13,15 @@ const NO_CLASS = 255;
 // Arrays travel as little-endian base64 (stewart.view._packed).
 function unpack(b64, Type) {
   if (b64 === null) return null;
-  const bin = atob(b64);
-  const bytes = new Uint8Array(bin.length);
-  for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
-  return new Type(bytes.buffer);
+  let bytes;
+  if (typeof Uint8Array.fromBase64 === "function") {
+    bytes = Uint8Array.fromBase64(b64);
+  } else {
+    const bin = atob(b64);
+    bytes = new Uint8Array(bin.length);
+    for (let i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+  }
+  return new Type(bytes.buffer, bytes.byteOffset, bytes.byteLength / Type.BYTES_PER_ELEMENT);
 }
 const N = data.frames;
 const time = unpack(data.t, Float64Array);
@@ -76,7 +81,7 @@ function legGeometry(i) {
     const Rb = apply(R, platformJoint[k]);
     const top = [p[0] + Rb[0], p[1] + Rb[1], p[2] + Rb[2]];
     const v = [top[0] - a[0], top[1] - a[1], top[2] - a[2]];
-    const L = Math.hypot(v[0], v[1], v[2]);
+    const L = Math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     return { a, top, n: L > 0 ? v.map(x => x / L) : [0, 0, 1], L };
   });
 }
@@ -220,14 +225,24 @@ controls.addEventListener("change", render);
 window.addEventListener("resize", () => { render(); drawPlots(); });
 
 // ---- Plots: joint-to-joint lengths with the stroke, and forces when given ----
-const plotCanvas = document.getElementById("plot");
+// The plots are drawn once; the cursor on a canvas of its own above them, so a frame redraws a line.
+const plotCanvas = document.getElementById("plot"), cursorCanvas = document.getElementById("cursor");
 const LEG_COLOURS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b"];
 let allLengths = null;  // joint-to-joint, N x 6, computed once
-let plotImage = null, plotBoxes = [];
-function lengthsTable() {
+let plotBoxes = [];
+function lengthsTable() {  // legGeometry's lengths, without its per-leg arrays (10^5 rows)
   if (allLengths === null) {
     allLengths = new Float64Array(N * LEGS);
-    for (let i = 0; i < N; i++) legGeometry(i).forEach((g, k) => { allLengths[LEGS * i + k] = g.L; });
+    for (let i = 0; i < N; i++) {
+      const { p, R } = platformPose(i);
+      for (let k = 0; k < LEGS; k++) {
+        const a = baseJoint[k], b = platformJoint[k];
+        const x = p[0] + (R[0] * b[0] + R[1] * b[1] + R[2] * b[2]) - a[0];
+        const y = p[1] + (R[3] * b[0] + R[4] * b[1] + R[5] * b[2]) - a[1];
+        const z = p[2] + (R[6] * b[0] + R[7] * b[1] + R[8] * b[2]) - a[2];
+        allLengths[LEGS * i + k] = Math.sqrt(x * x + y * y + z * z);
+      }
+    }
   }
   return allLengths;
 }
@@ -275,12 +290,12 @@ function panel(ctx, box, values, limits, title) {
 }
 function drawPlots() {
   const w = plotCanvas.clientWidth, h = plotCanvas.clientHeight;
-  plotCanvas.width = w; plotCanvas.height = h;
+  plotCanvas.width = cursorCanvas.width = w; plotCanvas.height = cursorCanvas.height = h;
   const ctx = plotCanvas.getContext("2d");
   ctx.font = "11px system-ui, sans-serif";
   if (N < 2) {
     ctx.fillText("One pose: give a result (t and pose columns) for plots and playback.", 10, 20);
-    plotBoxes = []; plotImage = null;
+    plotBoxes = [];
     return;
   }
   const panels = force ? 2 : 1, left = 52, gap = 34, top = 22;
@@ -294,12 +309,11 @@ function drawPlots() {
   ctx.fillText(`${time[0].toPrecision(4)} s`, last.x, last.y + last.h + 14);
   ctx.fillText(`${time[N - 1].toPrecision(4)} s`, last.x + last.w - 50, last.y + last.h + 14);
   LEG_COLOURS.forEach((c, k) => { ctx.fillStyle = c; ctx.fillText(`leg ${k + 1}`, last.x + 60 + 42 * k, last.y + last.h + 14); });
-  plotImage = ctx.getImageData(0, 0, w, h);
 }
 function drawCursor() {
-  if (!plotImage) return;
-  const ctx = plotCanvas.getContext("2d");
-  ctx.putImageData(plotImage, 0, 0);
+  if (!plotBoxes.length) return;
+  const ctx = cursorCanvas.getContext("2d");
+  ctx.clearRect(0, 0, cursorCanvas.width, cursorCanvas.height);
   const box = plotBoxes[0], span = Math.max(time[N - 1] - time[0], 1e-300);
   const x = box.x + (time[current] - time[0]) / span * box.w;
   ctx.strokeStyle = "#000"; ctx.lineWidth = 1;
@@ -314,13 +328,13 @@ function frameAtTime(t) {  // the last frame at or before t
 }
 function seekPlot(event) {
   if (!plotBoxes.length || !(event.buttons & 1) && event.type !== "pointerdown") return;
-  const box = plotBoxes[0], r = plotCanvas.getBoundingClientRect();
+  const box = plotBoxes[0], r = cursorCanvas.getBoundingClientRect();
   const f = Math.min(Math.max((event.clientX - r.left - box.x) / box.w, 0), 1);
   pause();
   setFrame(frameAtTime(time[0] + f * (time[N - 1] - time[0])));
 }
-plotCanvas.addEventListener("pointerdown", seekPlot);
-plotCanvas.addEventListener("pointermove", seekPlot);
+cursorCanvas.addEventListener("pointerdown", seekPlot);
+cursorCanvas.addEventListener("pointermove", seekPlot);
 
 // ---- Status line, slider, playback ----
 const statusLine = document.getElementById("status"), slider = document.getElementById("slider");
