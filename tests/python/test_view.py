@@ -280,3 +280,19 @@ def test_pictures_match_the_stored_ones(browser, tmp_path):
                 assert mean < 2.0 and far < 0.005, f"{name}: mean difference {mean:.2f}, {far:.4f} far"
             else:
                 assert mean > 2.0 or far > 0.005, f"{name} passes as {other}: the test cannot tell"
+
+
+@needs_browser
+def test_run_scene_writes_the_page_beside_its_csv(browser, build_dir, tmp_path):
+    """scripts/run_scene.py --view: the page's lengths equal the FMU's L[k] outputs in the CSV."""
+    run = subprocess.run([sys.executable, str(ROOT / "scripts" / "run_scene.py"), "heave",
+                          "--fmu", str(build_dir / "fmus" / "2.0" / "StewartPlatform.fmu"),
+                          "--out", str(tmp_path), "--compare", "", "--view"],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    table = np.genfromtxt(tmp_path / "heave.csv", delimiter=",", names=True)
+    open_page(browser, tmp_path / "heave.html")
+    assert browser.execute_script("return window.stewartView.frames") == len(table)
+    for i in (0, 37, len(table) - 1):
+        fmu = [table[f"L{k}"][i] for k in range(1, 7)]  # genfromtxt drops the brackets of L[k]
+        np.testing.assert_allclose(page_lengths(browser, i), fmu, rtol=0, atol=1e-9)
