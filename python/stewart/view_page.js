@@ -418,6 +418,12 @@ window.stewartView = {
   legStates: i => [...Array(LEGS).keys()].map(k => legState(frameIndex(i), k)),
   legColours: () => legs.map(l => "#" + l.tube.material.color.getHexString()),
   play, pause,
+  // Where leg k's middle is drawn now, in CSS pixels from the canvas's centre (to point at it).
+  legPoint: k => {
+    const g = legGeometry(current)[k], r = canvas.getBoundingClientRect();
+    const v = new THREE.Vector3(...g.a.map((x, j) => (x + g.top[j]) / 2)).project(camera);
+    return { x: v.x * r.width / 2, y: -v.y * r.height / 2 };
+  },
   renderer: () => {
     const gl = renderer.getContext(), info = gl.getExtension("WEBGL_debug_renderer_info");
     return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);

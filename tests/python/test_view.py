@@ -165,6 +165,16 @@ def test_the_leg_at_its_stroke_is_the_one_the_library_names(browser, tmp_path):
     assert colours[leg - 1] == RED and colours.count(RED) == 1
     status = browser.execute_script("return document.getElementById('status').textContent")
     assert "beyond: stroke" in status
+    # Hovering the leg names it, its class and that it is beyond.
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    point = browser.execute_script(f"return window.stewartView.legPoint({leg - 1})")
+    ActionChains(browser).move_to_element_with_offset(
+        browser.find_element(By.ID, "view3d"), int(point["x"]), int(point["y"])).perform()
+    tip = browser.find_element(By.ID, "tooltip")
+    assert tip.is_displayed()
+    assert tip.text.startswith(f"leg {leg}:") and "nearest limit: stroke" in tip.text
+    assert "at or beyond it" in tip.text
 
 
 def write_csv(path, columns):
