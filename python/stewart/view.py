@@ -27,11 +27,14 @@ _HERE = pathlib.Path(__file__).resolve().parent
 LEG_CLASSES = ("stroke", "base_joint", "platform_joint", "interference", "force")
 LEG_CLASS_UNITS = ("m", "rad", "rad", "m", "N")
 NO_CLASS = 255  # a leg no class names at a frame (never: the stroke names every leg)
+#: Results of up to this many rows get their axis ranges drawn unless told otherwise.
+AXIS_RANGE_ROWS = 20000
 
 
 def view(platform: Union[Platform, PathLike], result=None, poses=None,
          output: PathLike = "view.html", *, title: Optional[str] = None,
-         force_limit=None, warn_condition: Optional[float] = None) -> pathlib.Path:
+         force_limit=None, warn_condition: Optional[float] = None,
+         axis_ranges: Optional[bool] = None) -> pathlib.Path:
     """Write one HTML page showing platform (a Platform or a platform file) and return its path.
 
     result: None (the platform at poses, or at home), a CSV or Parquet file, or a mapping of
@@ -42,11 +45,18 @@ def view(platform: Union[Platform, PathLike], result=None, poses=None,
     poses may be an (N, 6) array or a file of poses to step through. force_limit: the largest
     |F_k| [N] (one number or six), which adds the force class to the legs' colours.
     warn_condition: the condition limit of the limit check (None: the library's 1e3).
+    axis_ranges: draw each frame's axis ranges (Platform.axis_ranges) as arrows; None: for up
+    to AXIS_RANGE_ROWS frames (about 50 us and 64 bytes of page a frame).
     ValueError names a missing column, a row count that differs, or a non-finite pose."""
     if not isinstance(platform, Platform):
         platform = Platform.from_file(platform)
     t, q, forces = _frames(platform, result, poses)
     data = _page_data(platform, t, q, forces, force_limit, warn_condition)
+    if axis_ranges is None:
+        axis_ranges = len(q) <= AXIS_RANGE_ROWS
+    if axis_ranges:
+        ends = platform.axis_ranges(q, warn_condition=warn_condition)
+        data["ranges"] = _packed(ends - q[:, :, None], np.float32)  # (N, 6, 2) from the pose
     data["title"] = title or "Stewart platform"
     output = pathlib.Path(output)
     output.write_text(_page(data), encoding="utf-8")
@@ -251,7 +261,7 @@ def _page_data(platform: Platform, t, q, forces, force_limit, warn_condition) ->
             check.margin, np.maximum(check.first - 1, 0)[:, None].astype(np.intp), 1)[:, 0],
             np.float32),
         "condition": _packed(check.condition, np.float32),
-        "solved": _packed(solution.status == 0, np.uint8),
+        "solved": _packed(solution.status == 0, np.uint8), "ranges": None,
     }
 
 

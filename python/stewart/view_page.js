@@ -32,6 +32,7 @@ const legMargin = unpack(data.leg_margin, Float32Array);
 const first = unpack(data.first, Uint8Array);
 const firstMargin = unpack(data.first_margin, Float32Array);
 const condition = unpack(data.condition, Float32Array);
+const ranges = unpack(data.ranges, Float32Array);  // per frame and axis: min - q, max - q
 
 // ---- Kinematics (docs/model.md §3, docs/api.md "Tool and user frames") ----
 // R = Rz(yaw) Ry(pitch) Rx(roll), row-major 3x3.
@@ -189,8 +190,44 @@ function place(mesh, from, n, length) {
   mesh.visible = length > 0;
 }
 
+// The axis ranges at the pose: arrows from the tool origin along the user frame's x, y, z to the
+// first limit each way (the angles' ranges are in the status line).
+const AXIS_COLOURS = [0xd62728, 0x2ca02c, 0x1f77b4];
+const rangeArrows = [0, 1, 2].flatMap(axis => [0, 1].map(() => {
+  const arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1,
+                                      AXIS_COLOURS[axis], 0.04 * size, 0.025 * size);
+  scene.add(arrow);
+  return arrow;
+}));
+const rangesBox = document.getElementById("ranges");
+function showRanges(i) {
+  const shown = ranges !== null && rangesBox.checked;
+  const { p, R } = platformPose(i), d = apply(R, toolOrigin);
+  const origin = new THREE.Vector3(p[0] + d[0], p[1] + d[1], p[2] + d[2]);
+  rangeArrows.forEach((arrow, j) => {
+    const axis = j >> 1, end = shown ? ranges[12 * i + 2 * axis + (j & 1)] : 0;
+    const length = Math.abs(end);
+    arrow.visible = shown && length > 1e-6;
+    arrow.userData.length = arrow.visible ? length : 0;
+    if (!arrow.visible) return;
+    const u = [userR[axis], userR[3 + axis], userR[6 + axis]].map(x => x * Math.sign(end));
+    arrow.position.copy(origin);
+    arrow.setDirection(new THREE.Vector3(...u));
+    arrow.setLength(length, Math.min(0.04 * size, 0.5 * length), Math.min(0.025 * size, 0.3 * length));
+  });
+}
+function rangeText(i) {
+  if (ranges === null) return "";
+  const deg = 180 / Math.PI, names = ["roll", "pitch", "yaw"];
+  return " · ranges " + names.map((n, j) => {
+    const lo = ranges[12 * i + 2 * (3 + j)] * deg, hi = ranges[12 * i + 2 * (3 + j) + 1] * deg;
+    return `${n} ${lo.toFixed(1)}/+${hi.toFixed(1)}`;
+  }).join(" ") + " deg";
+}
+
 let current = 0;
 function showFrame(i) {
+  showRanges(i);
   const { p, R } = platformPose(i);
   platform.matrix.copy(frameMatrix(p, R));
   platform.matrixWorldNeedsUpdate = true;
@@ -348,7 +385,7 @@ function statusText(i) {
   const c = first[i];
   const verdict = c === 0 ? "within every limit"
     : `<span class="beyond">beyond: ${data.pose_classes[c]} (margin ${firstMargin[i].toPrecision(3)} ${data.pose_class_units[c]})</span>`;
-  return `${where} · ${verdict} · condition ${condition[i].toPrecision(4)}`;
+  return `${where} · ${verdict} · condition ${condition[i].toPrecision(4)}${rangeText(i)}`;
 }
 function setFrame(i) {
   i = Math.min(Math.max(Math.round(Number(i)) || 0, 0), N - 1);
@@ -362,6 +399,8 @@ function setFrame(i) {
   return i;
 }
 slider.addEventListener("input", () => { pause(); setFrame(slider.value); });
+rangesBox.disabled = ranges === null;
+rangesBox.addEventListener("change", () => setFrame(current));
 
 let playing = false, playClock = 0, playStart = 0;
 function tick(now) {
@@ -417,6 +456,9 @@ window.stewartView = {
   legLengths: i => legLengths(frameIndex(i)),
   legStates: i => [...Array(LEGS).keys()].map(k => legState(frameIndex(i), k)),
   legColours: () => legs.map(l => "#" + l.tube.material.color.getHexString()),
+  axisRanges: i => ranges === null ? null : [...Array(6).keys()].map(
+    a => [ranges[12 * frameIndex(i) + 2 * a], ranges[12 * frameIndex(i) + 2 * a + 1]]),
+  rangeArrows: () => rangeArrows.map(a => a.userData.length),
   play, pause,
   // Where leg k's middle is drawn now, in CSS pixels from the canvas's centre (to point at it).
   legPoint: k => {

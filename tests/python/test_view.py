@@ -306,3 +306,27 @@ def test_run_scene_writes_the_page_beside_its_csv(browser, build_dir, tmp_path):
     for i in (0, 37, len(table) - 1):
         fmu = [table[f"L{k}"][i] for k in range(1, 7)]  # genfromtxt drops the brackets of L[k]
         np.testing.assert_allclose(page_lengths(browser, i), fmu, rtol=0, atol=1e-9)
+
+
+@needs_browser
+def test_axis_range_arrows_are_the_library_ranges(browser, tmp_path):
+    """The arrows along x, y, z reach the ends Platform.axis_ranges gives (float32 in the page),
+    and the translation ends are where the library's inverse puts a leg on its stroke."""
+    platform = stewart.Platform()
+    poses = np.array([[0.01, 0.02, 0.5, 0.03, 0.02, 0.1], [0, 0, 0.55, 0, 0.1, 0]])
+    open_page(browser, stewart.view(platform, poses=poses, output=tmp_path / "ranges.html"))
+    ends = platform.axis_ranges(poses)
+    for i in range(2):
+        browser.execute_script(f"window.stewartView.setFrame({i})")
+        arrows = browser.execute_script("return window.stewartView.rangeArrows()")
+        expected = np.abs(ends[i, :3, :] - poses[i, :3, None]).reshape(-1)
+        np.testing.assert_allclose(arrows, expected, rtol=1e-6, atol=1e-7)
+        for axis in range(3):  # independent: a leg is on its stroke at each translation end
+            for side in range(2):
+                q = poses[i].copy()
+                q[axis] = ends[i, axis, side]
+                L = platform.inverse(q).length[0]
+                assert min(np.min(np.abs(L - 0.4)), np.min(np.abs(L - 0.7))) < 2e-6
+    page = stewart.view(platform, poses=poses, output=tmp_path / "none.html", axis_ranges=False)
+    open_page(browser, page)
+    assert browser.execute_script("return window.stewartView.axisRanges(0)") is None
