@@ -2,13 +2,15 @@
 (stewart.view, docs/view.md). The page needs nothing but a browser: open it from the file.
 
 usage: python scripts/view.py --platform FILE.json [RESULT.csv|RESULT.parquet] [--poses IN.csv]
-                              [-o view.html] [--title TEXT] [--force-limit N]
+                              [-o view.html] [--title TEXT] [--force-limit N] [--workspace]
 
 RESULT: any table with t and the pose columns x, y, z, roll, pitch, yaw (forward, plant, closed
 loop, move, cueing outputs); forces from F1..F6 when present. An inverse output has no pose
 columns: give its input poses with --poses IN.csv. Without RESULT, --poses alone steps through
-the poses of IN.csv, and neither shows the platform at home."""
+the poses of IN.csv, and neither shows the platform at home. --workspace draws the
+constant-orientation workspace at the first frame's orientation."""
 import argparse
+import pathlib
 import sys
 
 import stewart
@@ -26,12 +28,14 @@ def main(argv=None) -> int:
     parser.add_argument("--title", help="the page's title (default: the platform file's name)")
     parser.add_argument("--force-limit", type=float,
                         help="largest |F_k| [N]: colours the legs by their force margin too")
+    parser.add_argument("--workspace", action="store_true",
+                        help="draw the constant-orientation workspace at the first frame's orientation")
     args = parser.parse_args(argv)
     platform_file = stewart.platform_files().get(args.platform, args.platform)
     try:
         page = stewart.view(platform_file, args.result, args.poses, args.output,
-                            title=args.title or f"Stewart platform: {platform_file}",
-                            force_limit=args.force_limit)
+                            title=args.title or f"Stewart platform: {pathlib.Path(platform_file).name}",
+                            force_limit=args.force_limit, workspace=args.workspace or None)
     except (ParameterError, ValueError, OSError) as e:
         print(f"view: {e}", file=sys.stderr)
         return 2

@@ -34,7 +34,7 @@ AXIS_RANGE_ROWS = 20000
 def view(platform: Union[Platform, PathLike], result=None, poses=None,
          output: PathLike = "view.html", *, title: Optional[str] = None,
          force_limit=None, warn_condition: Optional[float] = None,
-         axis_ranges: Optional[bool] = None) -> pathlib.Path:
+         axis_ranges: Optional[bool] = None, workspace=None) -> pathlib.Path:
     """Write one HTML page showing platform (a Platform or a platform file) and return its path.
 
     result: None (the platform at poses, or at home), a CSV or Parquet file, or a mapping of
@@ -47,6 +47,8 @@ def view(platform: Union[Platform, PathLike], result=None, poses=None,
     warn_condition: the condition limit of the limit check (None: the library's 1e3).
     axis_ranges: draw each frame's axis ranges (Platform.axis_ranges) as arrows; None: for up
     to AXIS_RANGE_ROWS frames (about 50 us and 64 bytes of page a frame).
+    workspace: None, True (the first frame's orientation) or (roll, pitch, yaw) [rad]: draws the
+    constant-orientation workspace there (workspace_columns) as its top and bottom surfaces.
     ValueError names a missing column, a row count that differs, or a non-finite pose."""
     if not isinstance(platform, Platform):
         platform = Platform.from_file(platform)
@@ -57,6 +59,9 @@ def view(platform: Union[Platform, PathLike], result=None, poses=None,
     if axis_ranges:
         ends = platform.axis_ranges(q, warn_condition=warn_condition)
         data["ranges"] = _packed(ends - q[:, :, None], np.float32)  # (N, 6, 2) from the pose
+    if workspace is not None and workspace is not False:
+        orientation = q[0, 3:] if workspace is True else np.asarray(workspace, dtype=float)
+        data["workspace"] = workspace_columns(platform, orientation, warn_condition=warn_condition)
     data["title"] = title or "Stewart platform"
     output = pathlib.Path(output)
     output.write_text(_page(data), encoding="utf-8")
@@ -261,7 +266,7 @@ def _page_data(platform: Platform, t, q, forces, force_limit, warn_condition) ->
             check.margin, np.maximum(check.first - 1, 0)[:, None].astype(np.intp), 1)[:, 0],
             np.float32),
         "condition": _packed(check.condition, np.float32),
-        "solved": _packed(solution.status == 0, np.uint8), "ranges": None,
+        "solved": _packed(solution.status == 0, np.uint8), "ranges": None, "workspace": None,
     }
 
 
@@ -326,3 +331,64 @@ def _page(data: dict) -> str:
 
 def _html_text(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+
+
+def workspace_columns(platform: Platform, orientation, cells: int = 32,
+                      warn_condition: Optional[float] = None) -> dict:
+    """The constant-orientation workspace at orientation (roll, pitch, yaw [rad]) as columns: on
+    a cells x cells grid of (x, y) over its extent, the z interval [z_min, z_max] of the tool's
+    origin (user frame) within every limit of Platform.limits, each end measured to 1e-6 m by
+    Platform.axis_ranges from a feasible point of a scan (the longest run of the column's scan;
+    a column with more than one feasible run shows that run only). x, y: the grid's cell
+    centres; z_min, z_max: (cells, cells) lists, None where the column has no feasible z."""
+    orientation = np.asarray(orientation, dtype=float).reshape(3)
+    base, top = (np.asarray(j).reshape(6, 3) for j in _core.model_joints(platform._model))
+    values = effective_parameters(platform)
+    reach = float(values["stroke_max"].max()) + np.linalg.norm(base, axis=1).max() + \
+        np.linalg.norm(top, axis=1).max() + np.linalg.norm(values["user_frame"][:3]) + \
+        np.linalg.norm(values["tool_frame"][:3])
+
+    def feasible(points):
+        poses = np.column_stack([points, np.repeat(orientation[None, :], len(points), 0)])
+        return platform.limits(poses, warn_condition=warn_condition).within
+
+    axes = [np.linspace(-reach, reach, 25)] * 3
+    coarse = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    found = coarse[feasible(coarse)]
+    empty = {"x": [], "y": [], "z_min": [], "z_max": [], "orientation": orientation.tolist()}
+    if not len(found):
+        return empty
+    pitch = axes[0][1] - axes[0][0]
+    lo, hi = found.min(axis=0) - pitch, found.max(axis=0) + pitch
+    x, y = (np.linspace(lo[i], hi[i], cells + 2)[1:-1] for i in range(2))
+    z = np.linspace(lo[2], hi[2], 48)
+    grid = np.stack(np.meshgrid(x, y, z, indexing="ij"), axis=-1).reshape(-1, 3)
+    ok = feasible(grid).reshape(cells, cells, len(z))
+    seeds, where = [], []
+    for i in range(cells):
+        for j in range(cells):
+            run = _longest_run(ok[i, j])
+            if run is not None:
+                seeds.append([x[i], y[j], z[run], *orientation])
+                where.append((i, j))
+    z_min = [[None] * cells for _ in range(cells)]
+    z_max = [[None] * cells for _ in range(cells)]
+    if seeds:
+        ends = platform.axis_ranges(np.asarray(seeds), warn_condition=warn_condition)[:, 2, :]
+        for (i, j), (a, b) in zip(where, ends):
+            z_min[i][j], z_max[i][j] = float(a), float(b)
+    return {"x": x.tolist(), "y": y.tolist(), "z_min": z_min, "z_max": z_max,
+            "orientation": orientation.tolist()}
+
+
+def _longest_run(column: np.ndarray) -> Optional[int]:
+    """The middle index of the longest run of True in column, or None."""
+    best, start, middle = 0, None, None
+    for k, v in enumerate(np.append(column, False)):
+        if v and start is None:
+            start = k
+        elif not v and start is not None:
+            if k - start > best:
+                best, middle = k - start, (start + k - 1) // 2
+            start = None
+    return middle

@@ -225,6 +225,42 @@ function rangeText(i) {
   }).join(" ") + " deg";
 }
 
+// The constant-orientation workspace (stewart.view.workspace_columns): the top and bottom of its
+// columns as two surfaces over the grid of the tool origin's (x, y), in the user frame.
+function workspaceMesh(w) {
+  const nx = w.x.length, ny = w.y.length, positions = [], index = [];
+  for (const ends of [w.z_min, w.z_max]) {
+    const first = positions.length / 3;
+    for (let i = 0; i < nx; i++)
+      for (let j = 0; j < ny; j++) {
+        const z = ends[i][j] === null ? 0 : ends[i][j];
+        positions.push(...[0, 1, 2].map(r => userOrigin[r] + userR[3 * r] * w.x[i] + userR[3 * r + 1] * w.y[j] + userR[3 * r + 2] * z));
+      }
+    const at = (i, j) => first + i * ny + j, has = (i, j) => ends[i][j] !== null;
+    for (let i = 0; i + 1 < nx; i++)
+      for (let j = 0; j + 1 < ny; j++)
+        if (has(i, j) && has(i + 1, j) && has(i, j + 1) && has(i + 1, j + 1))
+          index.push(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1));
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute("position", new THREE.Float32BufferAttribute(positions, 3));
+  geometry.setIndex(index);
+  geometry.computeVertexNormals();
+  const group = new THREE.Group();
+  group.add(new THREE.Mesh(geometry, new THREE.MeshLambertMaterial({
+    color: 0x3f7fbf, transparent: true, opacity: 0.18, side: THREE.DoubleSide, depthWrite: false })));
+  group.add(new THREE.LineSegments(new THREE.WireframeGeometry(geometry),
+    new THREE.LineBasicMaterial({ color: 0x3f7fbf, transparent: true, opacity: 0.25 })));
+  group.userData.triangles = index.length / 3;
+  return group;
+}
+const workspace = data.workspace && data.workspace.x.length ? workspaceMesh(data.workspace) : null;
+const workspaceBox = document.getElementById("workspace");
+if (workspace) scene.add(workspace);
+workspaceBox.disabled = workspace === null;
+workspaceBox.checked = workspace !== null;
+workspaceBox.addEventListener("change", () => { if (workspace) workspace.visible = workspaceBox.checked; render(); });
+
 let current = 0;
 function showFrame(i) {
   showRanges(i);
@@ -459,6 +495,7 @@ window.stewartView = {
   axisRanges: i => ranges === null ? null : [...Array(6).keys()].map(
     a => [ranges[12 * frameIndex(i) + 2 * a], ranges[12 * frameIndex(i) + 2 * a + 1]]),
   rangeArrows: () => rangeArrows.map(a => a.userData.length),
+  workspaceTriangles: () => (workspace ? workspace.userData.triangles : 0),
   play, pause,
   // Where leg k's middle is drawn now, in CSS pixels from the canvas's centre (to point at it).
   legPoint: k => {

@@ -330,3 +330,27 @@ def test_axis_range_arrows_are_the_library_ranges(browser, tmp_path):
     page = stewart.view(platform, poses=poses, output=tmp_path / "none.html", axis_ranges=False)
     open_page(browser, page)
     assert browser.execute_script("return window.stewartView.axisRanges(0)") is None
+
+
+@needs_browser
+def test_workspace_overlay_is_the_workspace(browser, tmp_path):
+    """The workspace's columns hold the volume stewart.sweeps.workspace_volume computes its own
+    way (48 x 48 columns against 32 x 32: within 2 %), and the page draws their surfaces."""
+    from stewart.sweeps import workspace_volume
+    from stewart.view import workspace_columns
+
+    platform = stewart.Platform()
+    columns = workspace_columns(platform, [0.0, 0.0, 0.1])
+    z_min, z_max = (np.array([[np.nan if v is None else v for v in row] for row in columns[k]])
+                    for k in ("z_min", "z_max"))
+    cell = (columns["x"][1] - columns["x"][0]) * (columns["y"][1] - columns["y"][0])
+    volume = np.nansum(z_max - z_min) * cell
+    assert volume == pytest.approx(workspace_volume(platform, (0.0, 0.0, 0.1)), rel=0.02)
+    page = stewart.view(platform, poses=[[0, 0, 0.5, 0, 0, 0.1]], output=tmp_path / "ws.html",
+                        workspace=True)
+    open_page(browser, page)
+    assert browser.execute_script("return window.stewartView.workspaceTriangles()") > 1000
+    with_workspace = canvas_pixels(browser)
+    browser.execute_script("const b = document.getElementById('workspace'); b.click();")
+    without = canvas_pixels(browser)
+    assert np.mean(np.abs(with_workspace.astype(int) - without.astype(int)).max(axis=2) > 8) > 0.02
