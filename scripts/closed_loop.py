@@ -170,7 +170,7 @@ def main():
     parser.add_argument("--out", default=str(ROOT / "out" / "closed_loop"))
     parser.add_argument("--no-plot", action="store_true")
     parser.add_argument("--view", action="store_true",
-                        help="also write closed_loop.html, the run in 3D in a browser (docs/view.md)")
+                        help="also write closed_loop.html: the run in 3D (docs/view.md)")
     args = parser.parse_args()
     scene = scenes.load(args.scene)
     duration = args.duration or scene["duration"]

@@ -29,12 +29,14 @@ def main(argv=None) -> int:
     parser.add_argument("--force-limit", type=float,
                         help="largest |F_k| [N]: colours the legs by their force margin too")
     parser.add_argument("--workspace", action="store_true",
-                        help="draw the constant-orientation workspace at the first frame's orientation")
+                        help="draw the constant-orientation workspace at the first frame's "
+                             "orientation")
     args = parser.parse_args(argv)
     platform_file = stewart.platform_files().get(args.platform, args.platform)
+    title = args.title or f"Stewart platform: {pathlib.Path(platform_file).name}"
     try:
         page = stewart.view(platform_file, args.result, args.poses, args.output,
-                            title=args.title or f"Stewart platform: {pathlib.Path(platform_file).name}",
+                            title=title,
                             force_limit=args.force_limit, workspace=args.workspace or None)
     except (ParameterError, ValueError, OSError) as e:
         print(f"view: {e}", file=sys.stderr)

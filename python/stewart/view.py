@@ -76,16 +76,17 @@ def _frames(platform: Platform, result, poses):
         if isinstance(poses, (str, os.PathLike)) or isinstance(poses, Mapping):
             columns = read_columns(poses)
             q = _pose_columns(columns, poses)
-            t = columns.get("t", np.arange(len(q), dtype=float))
-            return np.asarray(t, float), q, None
+            t = _times(columns["t"], poses) if "t" in columns else np.arange(len(q), dtype=float)
+            return t, q, None
         q = np.array(poses, dtype=float, ndmin=2)
         if q.ndim != 2 or q.shape[1] != 6:
-            raise ValueError(f"poses has shape {q.shape}: it must be (N, 6), (x, y, z, roll, pitch, yaw) per row")
+            raise ValueError(f"poses has shape {q.shape}: it must be (N, 6), "
+                             "(x, y, z, roll, pitch, yaw) per row")
         return np.arange(len(q), dtype=float), _finite(q, "poses"), None
     columns = read_columns(result)
     if "t" not in columns:
         raise ValueError(f"{_name(result)} has no column t (the time [s] of each row)")
-    t = columns["t"]
+    t = _times(columns["t"], result)
     if all(p in columns for p in POSE):
         if poses is not None:
             raise ValueError(f"{_name(result)} has the pose columns already: give poses only with "
@@ -112,10 +113,13 @@ def read_columns(source) -> dict[str, np.ndarray]:
         try:
             import pyarrow.parquet as pq
         except ImportError:
-            raise ValueError(f"{path}: reading Parquet needs pyarrow (pip install pyarrow)") from None
+            raise ValueError(f"{path}: reading Parquet needs pyarrow (pip install pyarrow)") \
+                from None
+        import pyarrow.types as types
         table = pq.read_table(path)
-        return {name: table.column(name).to_numpy().astype(float) for name in table.column_names
-                if table.schema.field(name).type.__str__().startswith(("double", "float", "int"))}
+        return {field.name: table.column(field.name).to_numpy().astype(float)
+                for field in table.schema
+                if types.is_floating(field.type) or types.is_integer(field.type)}
     with open(path, encoding="utf-8") as f:
         header = f.readline().strip().split(",")
     wanted = [i for i, name in enumerate(header) if _wanted(name)]
@@ -136,11 +140,26 @@ def _name(source) -> str:
     return str(source) if isinstance(source, (str, os.PathLike)) else "the result"
 
 
+def _times(t: np.ndarray, source) -> np.ndarray:
+    """t, or ValueError naming the first row where it is not finite or goes back: the slider
+    and the playback follow t."""
+    t = np.asarray(t, dtype=float)
+    bad = np.flatnonzero(~np.isfinite(t))
+    if bad.size:
+        raise ValueError(f"{_name(source)}: t = {t[bad[0]]} in row {bad[0]} is not finite")
+    back = np.flatnonzero(np.diff(t) < 0)
+    if back.size:
+        raise ValueError(f"{_name(source)}: t goes back from {float(t[back[0]])!r} to "
+                         f"{float(t[back[0] + 1])!r} at row {back[0] + 1}: the page plays rows in the "
+                         "order of t")
+    return t
+
+
 def _pose_columns(columns: Mapping[str, np.ndarray], source) -> np.ndarray:
     missing = [p for p in POSE if p not in columns]
     if missing:
-        raise ValueError(f"{_name(source)} has no column {', '.join(missing)} (the pose columns are "
-                         f"{', '.join(POSE)})")
+        raise ValueError(f"{_name(source)} has no column {', '.join(missing)} (the pose columns "
+                         f"are {', '.join(POSE)})")
     return _finite(np.column_stack([columns[p] for p in POSE]), _name(source))
 
 
@@ -266,7 +285,7 @@ def _page_data(platform: Platform, t, q, forces, force_limit, warn_condition) ->
             check.margin, np.maximum(check.first - 1, 0)[:, None].astype(np.intp), 1)[:, 0],
             np.float32),
         "condition": _packed(check.condition, np.float32),
-        "solved": _packed(solution.status == 0, np.uint8), "ranges": None, "workspace": None,
+        "ranges": None, "workspace": None,
     }
 
 

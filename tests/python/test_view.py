@@ -237,6 +237,9 @@ def test_bad_results_are_refused_naming_the_cause(tmp_path):
     with pytest.raises(ValueError, match="has 1 rows but"):
         stewart.view(platform, tmp_path / "lengths.csv", tmp_path / "poses.csv",
                      output=tmp_path / "c.html")
+    write_csv(tmp_path / "back.csv", {"t": [0.0, 1.0, 0.5], **{n: [0.0, 0.0, 0.0] for n in POSE_NAMES}})
+    with pytest.raises(ValueError, match="t goes back from 1.0 to 0.5 at row 2"):
+        stewart.view(platform, tmp_path / "back.csv", output=tmp_path / "d.html")
     assert not (tmp_path / "a.html").exists()
 
 
