@@ -150,8 +150,8 @@ def _times(t: np.ndarray, source) -> np.ndarray:
     back = np.flatnonzero(np.diff(t) < 0)
     if back.size:
         raise ValueError(f"{_name(source)}: t goes back from {float(t[back[0]])!r} to "
-                         f"{float(t[back[0] + 1])!r} at row {back[0] + 1}: the page plays rows in the "
-                         "order of t")
+                         f"{float(t[back[0] + 1])!r} at row {back[0] + 1}: the page plays rows in "
+                         "the order of t")
     return t
 
 

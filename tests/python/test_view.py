@@ -75,6 +75,13 @@ def canvas_pixels(driver) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
 
 
+def show(driver, frame: int) -> None:
+    """setFrame(frame), then wait two animation frames: the screenshot then has it on screen."""
+    driver.execute_async_script(
+        f"window.stewartView.setFrame({frame}); const done = arguments[0];"
+        "requestAnimationFrame(() => requestAnimationFrame(() => done()));")
+
+
 def drawn_fraction(pixels: np.ndarray) -> float:
     """The share of pixels that are not the scene's background."""
     return float(np.mean(np.abs(pixels.astype(int) - BACKGROUND).max(axis=2) > 24))
@@ -98,6 +105,7 @@ def test_every_shipped_platform_renders(browser, tmp_path, name):
     platform = stewart.Platform.from_file(path)
     page = stewart.view(path, output=tmp_path / f"{name}.html", title=f"{name}.json")
     open_page(browser, page)
+    show(browser, 0)
     pixels = canvas_pixels(browser)
     assert drawn_fraction(pixels) > 0.03, f"{name}: the canvas is (nearly) blank"
     home = home_pose(platform)
@@ -127,13 +135,13 @@ def test_two_poses_give_different_pictures(browser, tmp_path):
     platform = stewart.Platform()
     poses = [[0, 0, 0.5, 0, 0, 0], [0.05, -0.04, 0.55, 0.12, -0.1, 0.3]]
     open_page(browser, stewart.view(platform, poses=poses, output=tmp_path / "two.html"))
-    browser.execute_script("window.stewartView.setFrame(0)")
+    show(browser, 0)
     first = canvas_pixels(browser)
-    browser.execute_script("window.stewartView.setFrame(1)")
+    show(browser, 1)
     second = canvas_pixels(browser)
     changed = np.mean(np.abs(first.astype(int) - second.astype(int)).max(axis=2) > 24)
     assert changed > 0.005, f"only {changed:.4f} of the pixels changed between the two poses"
-    browser.execute_script("window.stewartView.setFrame(0)")
+    show(browser, 0)
     again = canvas_pixels(browser)
     assert np.array_equal(first, again), "the same frame drawn twice differs"
 
@@ -278,7 +286,7 @@ def test_pictures_match_the_stored_ones(browser, tmp_path):
     open_page(browser, page)
     pictures = {}
     for i, name in enumerate(REFERENCE_POSES):
-        browser.execute_script(f"window.stewartView.setFrame({i})")
+        show(browser, i)
         pictures[name] = reference_picture(canvas_pixels(browser))
         if os.environ.get("STEWART_VIEW_REFERENCE") == "1":
             REFERENCE.mkdir(exist_ok=True)
@@ -320,7 +328,7 @@ def test_axis_range_arrows_are_the_library_ranges(browser, tmp_path):
     open_page(browser, stewart.view(platform, poses=poses, output=tmp_path / "ranges.html"))
     ends = platform.axis_ranges(poses)
     for i in range(2):
-        browser.execute_script(f"window.stewartView.setFrame({i})")
+        show(browser, i)
         arrows = browser.execute_script("return window.stewartView.rangeArrows()")
         expected = np.abs(ends[i, :3, :] - poses[i, :3, None]).reshape(-1)
         np.testing.assert_allclose(arrows, expected, rtol=1e-6, atol=1e-7)
@@ -353,7 +361,9 @@ def test_workspace_overlay_is_the_workspace(browser, tmp_path):
                         workspace=True)
     open_page(browser, page)
     assert browser.execute_script("return window.stewartView.workspaceTriangles()") > 1000
+    show(browser, 0)
     with_workspace = canvas_pixels(browser)
     browser.execute_script("const b = document.getElementById('workspace'); b.click();")
+    show(browser, 0)
     without = canvas_pixels(browser)
     assert np.mean(np.abs(with_workspace.astype(int) - without.astype(int)).max(axis=2) > 8) > 0.02
