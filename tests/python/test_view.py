@@ -208,12 +208,22 @@ def test_an_inverse_output_with_its_poses_through_the_script(browser, tmp_path):
     page = tmp_path / "inverse.html"
     run = subprocess.run([sys.executable, str(ROOT / "scripts" / "view.py"), "--platform",
                           str(platform_file), str(tmp_path / "out.csv"), "--poses",
-                          str(tmp_path / "in.csv"), "-o", str(page)],
+                          str(tmp_path / "in.csv"), "-o", str(page), "--force-limit", "260"],
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     open_page(browser, page)
     for i in (0, 57, 200):
         np.testing.assert_allclose(page_lengths(browser, i), solved.length[i], rtol=0, atol=1e-9)
+    # With a force limit the force class colours the legs whose force margin is the nearest,
+    # measured on the output's own forces.
+    by_force = 0
+    for i in range(0, 201, 20):
+        for state in browser.execute_script(f"return window.stewartView.legStates({i})"):
+            if state["class"] == "force":
+                by_force += 1
+                k = state["leg"] - 1
+                assert state["margin"] == pytest.approx(260 - abs(solved.force[i, k]), abs=1e-3)
+    assert by_force > 0, "no leg is nearest its force limit: the test checks nothing"
     assert browser.execute_script("return window.stewartView.setFrame(57)") == 57
     assert "F [N]" in page.read_text()  # the force panel's title is in the script, so check
     assert browser.execute_script("return window.stewartView.frame()") == 57
@@ -367,3 +377,16 @@ def test_workspace_overlay_is_the_workspace(browser, tmp_path):
     show(browser, 0)
     without = canvas_pixels(browser)
     assert np.mean(np.abs(with_workspace.astype(int) - without.astype(int)).max(axis=2) > 8) > 0.02
+
+
+@needs_browser
+def test_a_machine_without_leg_diameter_renders(browser, tmp_path):
+    """leg_diameter 0 turns the interference check off: the legs are still drawn and no leg is
+    coloured by interference."""
+    platform = stewart.Platform(leg_diameter=0)
+    open_page(browser, stewart.view(platform, poses=[[0, 0, 0.5, 0, 0, 0.2]],
+                                    output=tmp_path / "thin.html"))
+    show(browser, 0)
+    assert drawn_fraction(canvas_pixels(browser)) > 0.03
+    classes = {s["class"] for s in browser.execute_script("return window.stewartView.legStates(0)")}
+    assert "interference" not in classes
