@@ -360,7 +360,10 @@ def workspace_columns(platform: Platform, orientation, cells: int = 32,
     Platform.axis_ranges from a feasible point of a scan (the longest run of the column's scan;
     a column with more than one feasible run shows that run only). x, y: the grid's cell
     centres; z_min, z_max: (cells, cells) lists, None where the column has no feasible z."""
-    orientation = np.asarray(orientation, dtype=float).reshape(3)
+    orientation = np.asarray(orientation, dtype=float)
+    if orientation.shape != (3,) or not np.all(np.isfinite(orientation)):
+        raise ValueError(f"workspace orientation = {orientation.tolist()} must be 3 finite "
+                         "numbers (roll, pitch, yaw [rad])")
     base, top = (np.asarray(j).reshape(6, 3) for j in _core.model_joints(platform._model))
     values = effective_parameters(platform)
     reach = float(values["stroke_max"].max()) + np.linalg.norm(base, axis=1).max() + \

@@ -456,6 +456,15 @@ function play() {
 }
 function pause() { playing = false; playButton.textContent = "Play"; }
 playButton.addEventListener("click", () => (playing ? pause() : play()));
+// Space plays and pauses, the arrow keys step a frame (the slider steps by itself when focused).
+window.addEventListener("keydown", event => {
+  if (event.target === slider || event.target === speed || event.target.type === "checkbox") return;
+  if (event.key === " ") { event.preventDefault(); (playing ? pause : play)(); }
+  else if (event.key === "ArrowRight" || event.key === "ArrowLeft") {
+    pause();
+    setFrame(current + (event.key === "ArrowRight" ? 1 : -1));
+  }
+});
 speed.addEventListener("change", () => { if (playing) { playStart = time[current]; playClock = performance.now(); } });
 
 // ---- Hover: the leg's nearest limit class and margin ----

@@ -227,6 +227,25 @@ def test_an_inverse_output_with_its_poses_through_the_script(browser, tmp_path):
     assert browser.execute_script("return window.stewartView.setFrame(57)") == 57
     assert "F [N]" in page.read_text()  # the force panel's title is in the script, so check
     assert browser.execute_script("return window.stewartView.frame()") == 57
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.keys import Keys
+    ActionChains(browser).send_keys(Keys.ARROW_RIGHT).send_keys(Keys.ARROW_RIGHT).perform()
+    assert browser.execute_script("return window.stewartView.frame()") == 59
+    assert "t = 0.590 s (60/201)" in browser.execute_script(
+        "return document.getElementById('time').textContent")
+    # Play at real time from frame 59 (1.4 s): the frames only move forward, and it stops at the end.
+    from selenium.webdriver.support.ui import Select, WebDriverWait
+    from selenium.webdriver.common.by import By
+    Select(browser.find_element(By.ID, "speed")).select_by_value("1")
+    seen = browser.execute_async_script("""
+        const done = arguments[0], seen = [];
+        window.stewartView.play();
+        (function watch() {
+          seen.push(window.stewartView.frame());
+          if (document.getElementById('play').textContent === 'Play') done(seen);
+          else requestAnimationFrame(watch);
+        })();""")
+    assert seen[-1] == 200 and all(a <= b for a, b in zip(seen, seen[1:])) and len(set(seen)) > 2
 
 
 @needs_browser
