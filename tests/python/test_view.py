@@ -233,19 +233,23 @@ def test_an_inverse_output_with_its_poses_through_the_script(browser, tmp_path):
     assert browser.execute_script("return window.stewartView.frame()") == 59
     assert "t = 0.590 s (60/201)" in browser.execute_script(
         "return document.getElementById('time').textContent")
-    # Play at real time from frame 59 (1.4 s): the frames only move forward, and it stops at the end.
-    from selenium.webdriver.support.ui import Select, WebDriverWait
+    # Play at real time from frame 59: the frames only move forward, never ahead of the clock
+    # (a frame's t <= t0 + the time since play()), and the playback stops at the end.
     from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select
     Select(browser.find_element(By.ID, "speed")).select_by_value("1")
     seen = browser.execute_async_script("""
-        const done = arguments[0], seen = [];
+        const done = arguments[0], seen = [], start = performance.now();
         window.stewartView.play();
         (function watch() {
-          seen.push(window.stewartView.frame());
+          seen.push([(performance.now() - start) / 1000, window.stewartView.frame()]);
           if (document.getElementById('play').textContent === 'Play') done(seen);
           else requestAnimationFrame(watch);
         })();""")
-    assert seen[-1] == 200 and all(a <= b for a, b in zip(seen, seen[1:])) and len(set(seen)) > 2
+    frames = [f for _, f in seen]
+    assert frames[-1] == 200 and all(a <= b for a, b in zip(frames, frames[1:]))
+    assert all(t[f] <= t[59] + elapsed + 1e-9 for elapsed, f in seen)
+    assert seen[-1][0] >= t[200] - t[59] - 0.05  # it took (about) the 1.41 s it plays
 
 
 @needs_browser
