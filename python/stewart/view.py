@@ -27,6 +27,9 @@ _HERE = pathlib.Path(__file__).resolve().parent
 LEG_CLASSES = ("stroke", "base_joint", "platform_joint", "interference", "force")
 LEG_CLASS_UNITS = ("m", "rad", "rad", "m", "N")
 NO_CLASS = 255  # a leg no class names at a frame (never: the stroke names every leg)
+#: The longest URL Chromium loads (2 MiB): each module's data: URL must fit (three.core.js of
+#: three 0.187.0 makes 1.5 MB).
+CHROMIUM_MAX_URL = 2 * 1024 * 1024
 #: Results of up to this many rows get their axis ranges drawn unless told otherwise.
 AXIS_RANGE_ROWS = 20000
 
@@ -321,7 +324,11 @@ def _data_url(code: str) -> str:
     and the line breaks and tabs a URL parser drops): a few percent larger than the code."""
     for ch, esc in (("%", "%25"), ("#", "%23"), ("\n", "%0A"), ("\r", "%0D"), ("\t", "%09")):
         code = code.replace(ch, esc)
-    return "data:text/javascript;charset=utf-8," + code
+    url = "data:text/javascript;charset=utf-8," + code
+    if len(url.encode("utf-8")) > CHROMIUM_MAX_URL:
+        raise ValueError(f"a three.js module makes a data: URL of {len(url)} characters, beyond "
+                         f"the {CHROMIUM_MAX_URL} Chromium loads: use the pinned three.js")
+    return url
 
 
 def _script_json(value) -> str:
