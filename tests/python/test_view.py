@@ -413,3 +413,24 @@ def test_a_machine_without_leg_diameter_renders(browser, tmp_path):
     assert drawn_fraction(canvas_pixels(browser)) > 0.03
     classes = {s["class"] for s in browser.execute_script("return window.stewartView.legStates(0)")}
     assert "interference" not in classes
+
+
+@needs_browser
+def test_stewart_solve_output_with_its_poses(browser, solve, tmp_path):
+    """The inverse output of the command line itself (with --limits: a text column among the
+    numbers) and its input: the page's lengths equal the CSV's L1..L6."""
+    t = np.linspace(0, 1, 21)
+    q = np.column_stack([0.02 * t, 0 * t, 0.5 + 0.05 * t, 0 * t, 0.1 * t, 0.2 * t])
+    write_csv(tmp_path / "in.csv", {"t": t, **{n: q[:, i] for i, n in enumerate(POSE_NAMES)}})
+    platform_file = stewart.platform_files()["non_planar"]
+    run = solve("--limits", "--platform", platform_file, tmp_path / "in.csv", tmp_path / "out.csv")
+    assert run.returncode == 0, run.stderr
+    assert "limit_class" in (tmp_path / "out.csv").read_text().splitlines()[0]
+    page = stewart.view(platform_file, tmp_path / "out.csv", tmp_path / "in.csv",
+                        output=tmp_path / "solve.html")
+    open_page(browser, page)
+    table = np.genfromtxt(tmp_path / "out.csv", delimiter=",", names=True, dtype=None,
+                          encoding="utf-8")
+    for i in (0, 10, 20):
+        np.testing.assert_allclose(page_lengths(browser, i),
+                                   [table[f"L{k}"][i] for k in range(1, 7)], rtol=0, atol=1e-9)
