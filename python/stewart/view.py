@@ -345,6 +345,8 @@ def _page(data: dict) -> str:
                    _data_url(_three_file(folder, "OrbitControls.js"))}
     page = (_HERE / "view_page.html").read_text(encoding="utf-8")
     app = (_HERE / "view_page.js").read_text(encoding="utf-8")
+    if "</script" in app.lower() or "<!--" in app:  # would end or hide the inline script
+        raise ValueError("view_page.js holds '</script' or '<!--': it cannot be inlined")
     version = (folder / "VERSION").read_text().strip() if (folder / "VERSION").is_file() else "?"
     # The template's own fields first, then the inserted texts, the largest last, so that no
     # marker is looked for inside an inserted text.
