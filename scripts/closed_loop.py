@@ -169,6 +169,8 @@ def main():
     parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
     parser.add_argument("--out", default=str(ROOT / "out" / "closed_loop"))
     parser.add_argument("--no-plot", action="store_true")
+    parser.add_argument("--view", action="store_true",
+                        help="also write closed_loop.html: the run in 3D (docs/view.md)")
     args = parser.parse_args()
     scene = scenes.load(args.scene)
     duration = args.duration or scene["duration"]
@@ -178,6 +180,10 @@ def main():
     write_csv(result, out / "closed_loop.csv")
     if not args.no_plot:
         plot(result, out / "closed_loop.png")
+    if args.view:
+        import stewart
+        stewart.view(stewart.Platform(), out / "closed_loop.csv", output=out / "closed_loop.html",
+                     title=f"closed loop: {scene['name']}")
     position, angle = tracking_error(result)
     print(f"closed_loop: {scene['name']}, {duration:g} s at h = {args.step:g} s, fidelity "
           f"{args.fidelity}, kp = {args.kp:g} N/m, kd = {args.kd:g} N s/m")

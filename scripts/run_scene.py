@@ -113,6 +113,8 @@ def main():
     parser.add_argument("--derivatives", type=int, default=1)
     parser.add_argument("--compare", default="1,2",
                         help="fidelity levels whose forces share one chart ('' for none)")
+    parser.add_argument("--view", action="store_true",
+                        help="also write NAME.html, the run in 3D in a browser (docs/view.md)")
     args = parser.parse_args()
     scene = scenes.load(args.scene)
     out = pathlib.Path(args.out)
@@ -127,6 +129,11 @@ def main():
     plots.plot_legs(result["t"], {g: legs(result, g) for g in ("L", "L_dot", "F")},
                     out / f"{name}.png", f"{title} — {level}")
     written = [f"{name}.csv", f"{name}.png"]
+    if args.view:
+        import stewart
+        stewart.view(stewart.Platform(**scene.get("parameters", {})), result,
+                     output=out / f"{name}.html", title=title)
+        written.append(f"{name}.html")
     if args.compare:
         levels = [int(v) for v in args.compare.split(",")]
         forces = {lv: legs(run(args.fmu, scene, lv, args.derivatives), "F") for lv in levels}

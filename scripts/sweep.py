@@ -14,7 +14,7 @@ import argparse
 import pathlib
 import sys
 
-from stewart.sweeps import SpecError, run
+from stewart.sweeps import SpecError, load, run
 from stewart.sweeps.units import Units
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -30,6 +30,8 @@ def main() -> int:
     parser.add_argument("--units", default="m,rad",
                         help="length and angle units of the results, e.g. mm,deg (default m,rad)")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    parser.add_argument("--view", action="store_true", help="a workspace sweep: also write "
+                        "workspace.html, its platform and workspace in 3D (docs/view.md)")
     args = parser.parse_args()
     if args.workers is not None and args.workers < 1:
         parser.error(f"--workers = {args.workers} must be >= 1")
@@ -47,6 +49,11 @@ def main() -> int:
     except RuntimeError as e:
         print(f"sweep.py: {e}", file=sys.stderr)
         return 1
+    if args.view and (spec := load(args.spec, args.scenes))["kind"] == "workspace":
+        import stewart
+        stewart.view(stewart.Platform(**spec["platform"]), title=spec["title"],
+                     output=pathlib.Path(args.out_dir) / "workspace.html",
+                     workspace=spec.get("volume", {}).get("orientation", (0.0, 0.0, 0.0)))
     print(f"sweep.py: {len(summary['computed'])} chunks computed in "
           f"{summary['wall_seconds']:.2f} s; results in {args.out_dir}", file=sys.stderr)
     return 0
