@@ -61,6 +61,7 @@ function(stewart_fmu name model_dir)
     "${FMU_RUNTIME_DIR}/instance.c" "${FMU_RUNTIME_DIR}/call_table.c"
     "${FMU_RUNTIME_DIR}/logging.c" "${FMU_RUNTIME_DIR}/values.c" "${FMU_RUNTIME_DIR}/state.c"
     "${FMU_RUNTIME_DIR}/model_exchange.c" "${FMU_RUNTIME_DIR}/derivatives.c"
+    "${FMU_RUNTIME_DIR}/bindings.c"
     ${model_sources})
   target_link_libraries(${name}_model PUBLIC ${name}_table ${FMU_LIBRARIES} m)
   target_compile_options(${name}_model PRIVATE ${_fmu_warnings})

@@ -202,6 +202,8 @@ def main():
     parser.add_argument("--out", default=str(ROOT / "out" / "closed_loop"))
     parser.add_argument("--no-plot", action="store_true")
     scenes.add_platform_arguments(parser)
+    parser.add_argument("--view", action="store_true",
+                        help="also write closed_loop.html: the run in 3D (docs/view.md)")
     args = parser.parse_args()
     scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
     kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)
@@ -214,6 +216,10 @@ def main():
     write_csv(result, out / "closed_loop.csv")
     if not args.no_plot:
         plot(result, out / "closed_loop.png")
+    if args.view:
+        import stewart
+        stewart.view(platform, out / "closed_loop.csv", output=out / "closed_loop.html",
+                     title=f"closed loop: {scene['name']}")
     position, angle = tracking_error(result)
     print(f"closed_loop: {scene['name']}, {duration:g} s at h = {args.step:g} s, fidelity "
           f"{args.fidelity}, kp = {args.kp:g} N/m, kd = {args.kd:g} N s/m")

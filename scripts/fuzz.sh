@@ -10,12 +10,13 @@
 # a campaign also tells apart would keep about ten times as many inputs for the same edges).
 # The plant FMU (tests/fuzz/fuzz_plant_fmu.cpp, corpus tests/fuzz/corpus/plant_fmu): target `plant`;
 # the Model Exchange plant (tests/fuzz/fuzz_plant_me_fmu.cpp, corpus tests/fuzz/corpus/plant_me_fmu):
-# target `me`.
+# target `me`. The platform-file reader (tests/fuzz/fuzz_platform_file.cpp, corpus
+# tests/fuzz/corpus/platform_file): target `platform`.
 # Environment: FUZZ_RUNS=N stops each target after N inputs (SECONDS stays the cap; docs/limits.md
 # 5.4 has the campaigns' rates); FUZZ_MAX_LEN (default 4096) caps an input's bytes: libFuzzer lets
 # inputs grow, and the per-input work (operations, steps) with them, so the rate falls as a
 # campaign goes on.
-# usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|plant|me|all=all four]
+# usage: scripts/fuzz.sh [SECONDS=60 per target] [api|fmu|plant|me|platform|all=all five]
 #        scripts/fuzz.sh 0 minimize
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -37,7 +38,8 @@ cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" \
   -DSTEWART_FUZZ=ON \
   -DPython3_EXECUTABLE="$PWD/.venv/bin/python" -DUNITY_WHEEL_DIR="$PWD/.cache/wheels" >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu fuzz_plant_fmu fuzz_plant_me_fmu
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_api fuzz_fmu fuzz_plant_fmu fuzz_plant_me_fmu \
+  fuzz_platform_file
 
 # run TARGET CORPUS: fuzz for $seconds from the committed corpus, then keep only the inputs that
 # add edge coverage to it. Prints the number of executions.
@@ -65,11 +67,14 @@ minimize() {
 case "$targets" in
   minimize) minimize fuzz_api tests/fuzz/corpus/api; minimize fuzz_fmu tests/fuzz/corpus/fmu
     minimize fuzz_plant_fmu tests/fuzz/corpus/plant_fmu
-    minimize fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu ;;
+    minimize fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu
+    minimize fuzz_platform_file tests/fuzz/corpus/platform_file ;;
   api) run fuzz_api tests/fuzz/corpus/api ;;
   fmu) run fuzz_fmu tests/fuzz/corpus/fmu ;;
   plant) run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu ;;
   me) run fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu ;;
+  platform) run fuzz_platform_file tests/fuzz/corpus/platform_file ;;
   *) run fuzz_api tests/fuzz/corpus/api; run fuzz_fmu tests/fuzz/corpus/fmu
-    run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu; run fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu ;;
+    run fuzz_plant_fmu tests/fuzz/corpus/plant_fmu; run fuzz_plant_me_fmu tests/fuzz/corpus/plant_me_fmu
+    run fuzz_platform_file tests/fuzz/corpus/platform_file ;;
 esac

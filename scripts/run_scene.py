@@ -114,6 +114,8 @@ def main():
     parser.add_argument("--compare", default="1,2",
                         help="fidelity levels whose forces share one chart ('' for none)")
     scenes.add_platform_arguments(parser)
+    parser.add_argument("--view", action="store_true",
+                        help="also write NAME.html, the run in 3D in a browser (docs/view.md)")
     args = parser.parse_args()
     scene = scenes.load(args.scene)
     out = pathlib.Path(args.out)
@@ -129,6 +131,11 @@ def main():
     plots.plot_legs(result["t"], {g: legs(result, g) for g in ("L", "L_dot", "F")},
                     out / f"{name}.png", f"{title} — {level}")
     written = [f"{name}.csv", f"{name}.png"]
+    if args.view:
+        import stewart
+        stewart.view(platform, result,
+                     output=out / f"{name}.html", title=title)
+        written.append(f"{name}.html")
     if args.compare:
         levels = [int(v) for v in args.compare.split(",")]
         forces = {lv: legs(run(args.fmu, scene, lv, args.derivatives, parameters=machine), "F")

@@ -11,6 +11,7 @@ exact readings (nominal model vs calibrated model). Prints:
   * accuracy against the tracker's noise and against the number of poses.
 
 usage: .venv/bin/python studies/calibration_study.py [--machines N] [--frames tool|user|both]
+       .venv/bin/python studies/calibration_study.py --timing   (30 poses on every shipped machine)
 """
 import argparse
 import os
@@ -32,9 +33,9 @@ def true_platform(nominal, rng, frame_error):
     sign = lambda n: rng.choice([-1.0, 1.0], n)  # noqa: E731
     g["base_joint"] = g["base_joint"] + rng.uniform(1e-4, 1e-3, 18) * sign(18)
     g["platform_joint"] = g["platform_joint"] + rng.uniform(1e-4, 1e-3, 18) * sign(18)
-    g["length_offset"] = rng.uniform(1e-4, 2e-3, 6) * sign(6)
-    g["tool_frame"] = rng.normal(0, frame_error, 6)
-    g["user_frame"] = rng.normal(0, frame_error, 6)
+    g["length_offset"] = g["length_offset"] + rng.uniform(1e-4, 2e-3, 6) * sign(6)
+    g["tool_frame"] = g["tool_frame"] + rng.normal(0, frame_error, 6)
+    g["user_frame"] = g["user_frame"] + rng.normal(0, frame_error, 6)
     return platform_with(nominal, g)
 
 
@@ -92,11 +93,42 @@ def held_out_poses(nominal, count, seed):
     return random_poses_inside_limits(nominal, count, np.random.default_rng(seed))
 
 
+def timing(repeats: int = 5):
+    """Identification time for 30 poses (calibration_poses) on every shipped machine, with
+    the default command line's choices: median and worst of `repeats` synthetic machines."""
+    import scipy.optimize  # noqa: F401  (imported once per process: timed apart)
+    print(f"{'machine':<24}{'median [s]':>11}{'worst [s]':>10}{'pos. worst [um]':>16}"
+          f"{'rot. worst [urad]':>18}{'set by prior':>13}")
+    for name, path in stewart.platform_files().items():
+        nominal = stewart.Platform.from_file(path)
+        design = stewart.calibration_poses(nominal, 30)
+        rng = np.random.default_rng(7)
+        rows = []
+        for _ in range(repeats):
+            truth = true_platform(nominal, rng, 0.0)
+            readings = readings_and_jacobian(truth, design)[0] + rng.normal(0, 1e-6, (30, 6))
+            measured = tracker(design, rng, 10e-6, 20e-6)
+            started = time.perf_counter()
+            result = stewart.calibrate(nominal, measured, readings)
+            rows.append((time.perf_counter() - started, result.accuracy.position_worst,
+                         result.accuracy.orientation_worst, result.undetermined))
+        rows = np.array(rows)
+        print(f"{name:<24}{np.median(rows[:, 0]):>11.3f}{rows[:, 0].max():>10.3f}"
+              f"{np.median(rows[:, 1]) * 1e6:>16.2f}{np.median(rows[:, 2]) * 1e6:>18.2f}"
+              f"{int(np.median(rows[:, 3])):>13d}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--machines", type=int, default=10)
     parser.add_argument("--frames", choices=("tool", "user", "both"), default=None)
+    parser.add_argument("--timing", action="store_true",
+                        help="only the identification time on every shipped machine")
     args = parser.parse_args()
+    if args.timing:
+        print(f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']}")
+        timing()
+        return
     nominal = stewart.Platform()
     print(f"OPENBLAS_NUM_THREADS={os.environ['OPENBLAS_NUM_THREADS']}")
     started = time.perf_counter()

@@ -1,4 +1,5 @@
-// One row of issue 22's cost table per run, through the public API only, along the combined cue
+// One row of the cost-per-call table (docs/speed-accuracy.md) per run, through the public API
+// only, along the combined cue
 // (scenes/combined.json's formula): `bench-calls ROW CALLS` makes CALLS calls of the row's API
 // function and prints the median nanoseconds per call. The calls are the only uses of that
 // function in the run, so a profiler toggled on it (studies/bench/instructions.sh: callgrind

@@ -1,4 +1,5 @@
-// Linearisation's cost (issue 21's goal: A and B at full fidelity in <= 50 us): median
+// Linearisation's cost (the goal: A and B at full fidelity in <= 50 us, well below a finite-
+// difference linearisation): median
 // nanoseconds per call of stewart_linearize_plant and stewart_linearize_inverse at both
 // fidelities, at the poses of the combined cue (scenes/combined.json's formula) under the inverse
 // side's forces. `bench-linearize` runs every row; `bench-linearize ROW CALLS` one row, whose

@@ -1,7 +1,5 @@
 #include "cli/arguments.hpp"
 
-#include <charconv>
-#include <cmath>
 #include <cstring>
 
 namespace stewart {
@@ -37,18 +35,6 @@ int parse_command_line(const char *tool, int argc, char **argv,
         }
     }
     return found == n_paths ? -1 : usage(stderr);
-}
-
-bool parse_numbers(const char *text, double *values, int n) {
-    const char *p = text, *end = text + std::strlen(text);
-    for (int i = 0; i < n; ++i) {
-        if (i > 0 && (p == end || *p++ != ',')) return false;
-        if (p != end && *p == '+') ++p;  // from_chars takes no plus sign
-        const std::from_chars_result r = std::from_chars(p, end, values[i]);
-        if (r.ec != std::errc() || !std::isfinite(values[i])) return false;
-        p = r.ptr;
-    }
-    return p == end;
 }
 
 }  // namespace stewart

@@ -22,8 +22,4 @@ int parse_command_line(const char *tool, int argc, char **argv,
                        const std::vector<CliOption> &options, const char *paths[], int n_paths,
                        int (*usage)(FILE *));
 
-// Reads exactly n comma-separated numbers of text into values, the same in every locale (a
-// decimal point, never a comma). False if text is anything else or a number is not finite.
-bool parse_numbers(const char *text, double *values, int n);
-
 }  // namespace stewart

@@ -1,5 +1,6 @@
 #include "cli/forward_table.hpp"
 #include "kinematics/pose_names.hpp"
+#include "util/number_text.hpp"
 
 #include "cli/pose_table.hpp"
 
@@ -70,9 +71,7 @@ std::string read_table(const std::string &path, Table &table) {
             return where(path, line_no) + ": " + std::to_string(cells.size()) + " values for " +
                    std::to_string(header.size()) + " columns";
         auto number = [&](int c, double &v) {
-            char *end = nullptr;
-            v = std::strtod(cells[c].c_str(), &end);
-            return !cells[c].empty() && *end == '\0' && std::isfinite(v);
+            return read_double(cells[c], v) && std::isfinite(v);
         };
         Row row{line_no, 0, {}};
         if (!number(col_t, row.t))

@@ -7,8 +7,8 @@
 
 namespace stewart {
 
-// Splits NAME=VALUE (VALUE a whole number in strtod's syntax); false with a message on stderr,
-// prefixed by the program's name.
+// Splits NAME=VALUE (VALUE a whole number: sign, digits, '.', exponent, read the same in every
+// locale); false with a message on stderr, prefixed by the program's name.
 bool parse_assignment(const char *program, const char *assignment, std::string &name,
                       double &value);
 

@@ -1,5 +1,6 @@
 #include "cli/pose_table.hpp"
 #include "kinematics/pose_names.hpp"
+#include "util/number_text.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -110,9 +111,7 @@ std::string read_pose_table(const std::string &path, PoseTable &table,
                    " values for " + std::to_string(header.size()) + " columns";
         std::vector<double> v(cells.size());
         for (size_t c = 0; c < cells.size(); ++c) {
-            char *end = nullptr;
-            v[c] = std::strtod(cells[c].c_str(), &end);
-            if (cells[c].empty() || *end != '\0' || !std::isfinite(v[c]))
+            if (!read_double(cells[c], v[c]) || !std::isfinite(v[c]))
                 return path + " line " + std::to_string(line_no) + ": column " + header[c] +
                        " = '" + cells[c] + "' is not a finite number";
         }

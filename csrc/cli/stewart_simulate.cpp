@@ -12,6 +12,7 @@
 #include "cli/param_assignment.hpp"
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_table.h"
+#include "util/number_text.hpp"
 
 namespace {
 
@@ -40,7 +41,10 @@ int usage(FILE *to) {
                  "warnings (bits: 1\n"
                  "           stroke, 8 joint angle, 16 leg interference),\n"
                  "           steps,rhs_evaluations,nonlinear_iterations,error_test_failures "
-                 "(of the step into that row)\n");
+                 "(of the step into that row)\n"
+                 "  A row that cannot be simulated stops the run: OUT.csv then holds the rows "
+                 "before it\n"
+                 "  (partial output), stderr names the row and why, and the exit status is 1.\n");
     return to == stderr ? 2 : 0;
 }
 
@@ -127,9 +131,7 @@ std::string read_forces(const char *path, ForceTable &table) {
         double row[7];
         for (int c = 0; c < 7; ++c) {
             const std::string &cell = cells[column_of[c]];
-            char *end = nullptr;
-            row[c] = std::strtod(cell.c_str(), &end);
-            if (cell.empty() || *end != '\0' || !std::isfinite(row[c]))
+            if (!stewart::read_double(cell, row[c]) || !std::isfinite(row[c]))
                 return where + ", column " + std::to_string(column_of[c] + 1) + " (" + names[c] +
                        "): '" + cell + "' is not a finite number";
         }
@@ -180,6 +182,73 @@ void write_row(FILE *f, const Row &r) {
     for (double v : o.lengths.length_rate) std::fprintf(f, ",%.17g", v);
     std::fprintf(f, ",%d,%ld,%ld,%ld,%ld\n", o.warnings, r.stats.steps, r.stats.rhs_evaluations,
                  r.stats.nonlinear_iterations, r.stats.error_test_failures);
+}
+
+// The warnings that start at row j (strokes, joint angles, interference: docs/limits.md), each
+// when it starts.
+void report_warnings(const stewart_params &params, size_t j, double t,
+                     const stewart_plant_output &o, int &last_warnings) {
+    const int started = o.warnings & ~last_warnings;
+    const std::string why[] = {stroke_warning(params, o),
+                               "a joint is beyond its angle limit (base_joint_limit, "
+                               "platform_joint_limit; joint stops are not modelled)",
+                               "two legs are closer than leg_diameter (contacts are not "
+                               "modelled)"};
+    const int bits[] = {STEWART_WARN_STROKE, STEWART_WARN_JOINT_LIMIT, STEWART_WARN_INTERFERENCE};
+    for (int w = 0; w < 3; ++w)
+        if (started & bits[w])
+            std::fprintf(stderr, "stewart-simulate: warning at row %zu (t = %g): %s\n", j + 1, t,
+                         why[w].c_str());
+    last_warnings = o.warnings;
+}
+
+// Simulates the table's rows into rows from the start state (pose, rate): the number of rows
+// computed, all of them unless one fails (its number and why on stderr).
+size_t simulate_rows(stewart_plant *plant, const ForceTable &table, const stewart_params &params,
+                     const double pose[6], const double rate[6], std::vector<Row> &rows) {
+    if (stewart_plant_set_state(plant, table.t[0], pose, rate) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-simulate: start state: %s\n", stewart_plant_message(plant));
+        return 0;
+    }
+    int last_warnings = 0;
+    stewart_plant_input in{};
+    for (size_t j = 0; j < table.t.size(); ++j) {
+        const double *force = &table.force[6 * j];
+        if (j > 0) {
+            in.h = table.t[j] - table.t[j - 1];
+            std::memcpy(in.force_start, &table.force[6 * (j - 1)], sizeof in.force_start);
+            std::memcpy(in.force_end, force, sizeof in.force_end);
+            const stewart_status st = stewart_plant_step(plant, &in, &rows[j].out);
+            if (st != STEWART_OK) {
+                std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): %s: %s\n", j + 1,
+                             table.t[j], stewart_status_name(st), stewart_plant_message(plant));
+                return j;
+            }
+            stewart_plant_statistics_get(plant, &rows[j].stats);
+        } else if (stewart_plant_output_get(plant, force, &rows[j].out) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): no outputs at this pose\n",
+                         j + 1, table.t[j]);
+            return 0;
+        }
+        report_warnings(params, j, table.t[j], rows[j].out, last_warnings);
+    }
+    return table.t.size();
+}
+
+// Writes the header and the first n rows to path; false (said on stderr) if it cannot.
+bool write_rows(const char *path, const std::vector<Row> &rows, size_t n) {
+    FILE *out = std::fopen(path, "w");
+    if (!out) {
+        std::fprintf(stderr, "stewart-simulate: cannot write %s\n", path);
+        return false;
+    }
+    write_header(out);
+    for (size_t j = 0; j < n; ++j) write_row(out, rows[j]);
+    if (std::fclose(out) != 0) {
+        std::fprintf(stderr, "stewart-simulate: error writing %s\n", path);
+        return false;
+    }
+    return true;
 }
 
 }  // namespace
@@ -234,62 +303,17 @@ int main(int argc, char **argv) {
         stewart_model_free(model);
         return 1;
     }
-    int status = 0;
     std::vector<Row> rows(table.t.size());
-    if (stewart_plant_set_state(plant, table.t[0], s.pose, s.rate) != STEWART_OK) {
-        std::fprintf(stderr, "stewart-simulate: start state: %s\n", stewart_plant_message(plant));
-        status = 1;
-    }
-    // Simulate everything before writing, so a failed run leaves no partial OUT.csv behind.
-    int last_warnings = 0;
-    stewart_plant_input in{};
-    for (size_t j = 0; j < table.t.size() && status == 0; ++j) {
-        const double *force = &table.force[6 * j];
-        if (j > 0) {
-            in.h = table.t[j] - table.t[j - 1];
-            std::memcpy(in.force_start, &table.force[6 * (j - 1)], sizeof in.force_start);
-            std::memcpy(in.force_end, force, sizeof in.force_end);
-            const stewart_status st = stewart_plant_step(plant, &in, &rows[j].out);
-            if (st != STEWART_OK) {
-                std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): %s: %s\n", j + 1,
-                             table.t[j], stewart_status_name(st), stewart_plant_message(plant));
-                status = 1;
-                break;
-            }
-            stewart_plant_statistics_get(plant, &rows[j].stats);
-        } else if (stewart_plant_output_get(plant, force, &rows[j].out) != STEWART_OK) {
-            std::fprintf(stderr, "stewart-simulate: row %zu (t = %g): no outputs at this pose\n",
-                         j + 1, table.t[j]);
-            status = 1;
-            break;
-        }
-        // Each warning when it starts: strokes, joint angles, interference (docs/limits.md).
-        const int started = rows[j].out.warnings & ~last_warnings;
-        const std::string why[] = {stroke_warning(s.params, rows[j].out),
-                                   "a joint is beyond its angle limit (base_joint_limit, "
-                                   "platform_joint_limit; joint stops are not modelled)",
-                                   "two legs are closer than leg_diameter (contacts are not "
-                                   "modelled)"};
-        const int bits[] = {STEWART_WARN_STROKE, STEWART_WARN_JOINT_LIMIT, STEWART_WARN_INTERFERENCE};
-        for (int w = 0; w < 3; ++w)
-            if (started & bits[w])
-                std::fprintf(stderr, "stewart-simulate: warning at row %zu (t = %g): %s\n", j + 1,
-                             table.t[j], why[w].c_str());
-        last_warnings = rows[j].out.warnings;
-    }
+    const size_t computed = simulate_rows(plant, table, s.params, s.pose, s.rate, rows);
     stewart_plant_free(plant);
     stewart_model_free(model);
-    if (status != 0) return status;
-
-    FILE *out = std::fopen(paths[1], "w");
-    if (!out) {
-        std::fprintf(stderr, "stewart-simulate: cannot write %s\n", paths[1]);
-        return 1;
-    }
-    write_header(out);
-    for (const Row &r : rows) write_row(out, r);
-    if (std::fclose(out) != 0) {
-        std::fprintf(stderr, "stewart-simulate: error writing %s\n", paths[1]);
+    if (computed == 0) return 1;  // nothing to write: OUT.csv is left as it was
+    if (!write_rows(paths[1], rows, computed)) return 1;
+    if (computed < rows.size()) {
+        std::fprintf(stderr,
+                     "stewart-simulate: %s holds the %zu rows before row %zu only (partial "
+                     "output)\n",
+                     paths[1], computed, computed + 1);
         return 1;
     }
     return 0;

@@ -9,6 +9,7 @@
 #include "cli/forward_table.hpp"
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
+#include "util/number_text.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
 #include "stewart/stewart_check.h"
@@ -137,7 +138,10 @@ int parse(int argc, char **argv, Request &r) {
         {"--static", nullptr, [&](const char *) { return r.at_rest = true, 0; }},
         {"--guess", "x,y,z,roll,pitch,yaw",
          [&](const char *v) {
-             if (!stewart::parse_numbers(v, r.guess, 6)) {
+             const std::vector<std::string> cells = stewart::csv_cells(v);
+             bool read = cells.size() == 6;
+             for (size_t i = 0; read && i < 6; ++i) read = stewart::read_double(cells[i], r.guess[i]);
+             if (!read) {
                  std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
                  return 2;
              }
@@ -163,7 +167,7 @@ int parse(int argc, char **argv, Request &r) {
          }},
         {"--tolerance", "a positive number",
          [&](const char *v) {
-             if (stewart::parse_numbers(v, &r.options.tolerance, 1)) return 0;
+             if (stewart::read_double(v, r.options.tolerance)) return 0;
              std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", v);
              return 2;
          }},

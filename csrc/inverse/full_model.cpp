@@ -157,7 +157,7 @@ stewart_params in_length_unit(const stewart_params &si, double L0) {
 
 double length_unit(const stewart_params &p) {
     const JointGeometry joints = joint_geometry(p);
-    const double size = std::max({joints.base_size, joints.platform_size, p.home_height});
+    const double size = std::max({joints.base_size, joints.platform_size, std::fabs(p.home_height)});
     int exponent = 0;
     const double mantissa = std::frexp(2.0 * size, &exponent);  // 2 size = mantissa 2^exponent
     return std::ldexp(1.0, mantissa == 0.5 ? exponent - 1 : exponent);

@@ -98,7 +98,7 @@ stewart_status check_side(const stewart_params &p, const JointGeometry &g, bool 
                                vector_text(points.col(k)).c_str(), field);
         const Vec3 leg = Vec3(0, 0, p.home_height) + g.platform_points.col(k) - g.base_points.col(k);
         const double length = leg.norm();
-        if (!(length > kCoincident * (g.base_size + g.platform_size + p.home_height)))
+        if (!(length > kCoincident * (g.base_size + g.platform_size + std::fabs(p.home_height))))
             return set_message(msg, size, STEWART_ERR_PARAMETER,
                                "leg %d has length %s m at home (z = home_height = %s m): %s and "
                                "%s must differ there",

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "kinematics/joints.hpp"
+#include "table/singular_geometry.hpp"
 #include "util/message.hpp"
 #include "util/range.hpp"
 
@@ -70,7 +71,7 @@ const char *const kPoseAxis[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 bool is_pose(const stewart_param_info &p) { return !std::strcmp(p.unit, STEWART_POSE_UNIT); }
 
 // Per-leg parameters that a single value (the bare name, e.g. "stroke_min") fills for all six
-// legs: they were scalars before issue 19, and their old spelling keeps working.
+// legs: they were scalars in earlier releases, and their old spelling keeps working.
 const char *const kScalarFills[] = {"stroke_min", "stroke_max"};
 
 // The element index of "[k]" (k = 1..count, no leading zero, then the end), or -1.
@@ -101,10 +102,69 @@ size_t edit_distance(const char *a, const char *b) {
     return row[m];
 }
 
+// Bounds on the magnitude of the values that set the machine's size and load, beyond the table's
+// ranges: far past any machine, squares and products of these leave the doubles (joints of 1e300
+// m square to infinity and read as one point; gravity of 1e308 m/s2 overflows the forces), and
+// such a value is nearly always a unit mistake. max: the largest |value|; the lengths' bound
+// leaves room for the largest tested scale (a 5 km radius).
+struct Magnitude {
+    const char *name;
+    double max;
+};
+const Magnitude kMagnitudes[] = {
+    {"base_radius", 1e6}, {"platform_radius", 1e6}, {"base_joint", 1e6},
+    {"platform_joint", 1e6}, {"home_height", 1e6}, {"gravity", 1e4},
+};
+// A side's joints closer to its origin than this all (a radius, or the largest |joint|) are a
+// unit mistake too: their differences would square to nothing.
+constexpr double kSmallestSide = 1e-6;
+
 // Principal moments of a rigid body must satisfy the triangle inequalities (signs are the
 // table's per-element ranges).
 bool triangle_ok(const double I[3]) {
     return I[0] + I[1] >= I[2] && I[1] + I[2] >= I[0] && I[0] + I[2] >= I[1];
+}
+
+// Every element of kMagnitudes' parameters within its bound.
+stewart_status check_magnitudes(stewart_params &p, char *msg, size_t size) {
+    for (const Magnitude &m : kMagnitudes)
+        for (int i = 0; i < kParamCount; ++i) {
+            if (std::strcmp(kParams[i].name, m.name)) continue;
+            for (int e = 0; e < kParams[i].count; ++e) {
+                const double value = *stewart_param_element(&p, i, e);
+                if (std::fabs(value) <= m.max) continue;
+                char name[48];
+                stewart_param_element_name(i, e, name, sizeof name);
+                const char *unit = stewart_param_element_unit(i, e);
+                return set_message(msg, size, STEWART_ERR_PARAMETER,
+                                   "%s = %s %s is beyond any machine: its magnitude must be at "
+                                   "most %g %s (check the units)", name, ExactText(value).c_str(),
+                                   unit, m.max, unit);
+            }
+        }
+    return STEWART_OK;
+}
+
+// Each side's joints reach at least kSmallestSide from its origin (a side whose joints are all
+// at the origin is one point, which check_not_singular_everywhere names).
+// The largest coordinate, not the norm, whose squares would underflow.
+stewart_status check_side_sizes(const stewart_params &p, char *msg, size_t size) {
+    const bool joints = p.geometry == 1.0;
+    for (int side = 0; side < 2; ++side) {
+        double reach = side ? p.platform_radius : p.base_radius;
+        if (joints) {
+            reach = 0;
+            for (double x : side ? p.platform_joint : p.base_joint) reach = std::max(reach, std::fabs(x));
+        }
+        if (reach > 0 && reach < kSmallestSide)
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "%s: every %s joint is within %s m of its frame's origin: a "
+                               "machine's joints are at least %g m from it (check the units)",
+                               joints ? (side ? "platform_joint" : "base_joint")
+                                      : (side ? "platform_radius" : "base_radius"),
+                               side ? "platform" : "base", ExactText(reach).c_str(), kSmallestSide);
+    }
+    return STEWART_OK;
 }
 
 }  // namespace
@@ -232,7 +292,20 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
                                "stroke limits of leg %d [%s, %s] m must satisfy stroke_min[%d] < "
                                "stroke_max[%d]", k + 1, ExactText(p->stroke_min[k]).c_str(),
                                ExactText(p->stroke_max[k]).c_str(), k + 1, k + 1);
-    const stewart_status s = stewart::check_joint_geometry(*p, msg, size);
+    stewart_status s = check_magnitudes(values, msg, size);
+    if (s == STEWART_OK) s = check_side_sizes(*p, msg, size);
+    // The circles of geometry 0 lie in z = 0 of each frame: the platform is above the base. Joints
+    // given as coordinates (geometry 1) take any origin, so any home_height.
+    if (s == STEWART_OK && p->geometry == 0.0 && !(p->home_height > 0))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "home_height = %s m must be > 0 with geometry 0 (the joints' circles "
+                           "in z = 0 of each frame); with geometry 1 (joints as coordinates) any "
+                           "origin, so any home_height, is taken", ExactText(p->home_height).c_str());
+    // Singular everywhere first: joints at one point also fail the Cardans' checks, which would
+    // name a consequence instead.
+    if (s == STEWART_OK && (p->geometry == 0.0 || p->geometry == 1.0))
+        s = stewart::check_not_singular_everywhere(*p, msg, size);
+    if (s == STEWART_OK) s = stewart::check_joint_geometry(*p, msg, size);
     if (s != STEWART_OK) return s;
     return stewart::clear_message(msg, size);
 }

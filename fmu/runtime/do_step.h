@@ -1,7 +1,7 @@
 /*
  * doStep's entry, inline in each FMI layer (fmi2DoStep, fmi3DoStep), so that the usual call goes
- * from the FMI function straight to the model's usual step (issue 22: doStep within 5 % of the
- * library call): a few comparisons tell it, and anything else is instance.c's
+ * from the FMI function straight to the model's usual step (so that doStep costs within 5 % of
+ * the library call): a few comparisons tell it, and anything else is instance.c's
  * fmu_do_step_otherwise with its checks and messages.
  */
 #ifndef STEWART_FMU_DO_STEP_H

@@ -49,13 +49,8 @@ typedef enum {
 
 typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
 
-/* outputs_current of outputs that belong to the current inputs and time but that a model leaves
- * as its solver wrote them until they are read: the runtime calls model_refresh_outputs before
- * any read of them (a Get of an output, GetFMUState), which lays them out and sets 1. */
-enum { FMU_OUTPUTS_UNREAD = 2 };
-
 /* Marks a function out of line where the compiler allows: a path the usual step does not take,
- * so that the step's own path stays short (issue 22: doStep within 5 % of the library call). */
+ * so that the step's own path stays short (doStep within 5 % of the library call it wraps). */
 #if defined(__GNUC__)
 #define FMU_RARE_PATH __attribute__((noinline, cold))
 #else
@@ -72,8 +67,7 @@ typedef struct fmu_values {
     double time;               /* communication point the current inputs belong to */
     double last_step_point;    /* communication point of the last accepted step */
     int has_stepped;           /* a step has been accepted since initialisation */
-    int outputs_current;       /* the outputs belong to the current inputs and time: 1, or
-                                  FMU_OUTPUTS_UNREAD */
+    int outputs_current;       /* the outputs belong to the current inputs and time (1) */
     int inputs_unchecked;      /* 0: every input is finite (the step need not look); set when a
                                   value that is not finite is set or restored, cleared by the
                                   model's scan of its inputs */
@@ -143,7 +137,7 @@ fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double
                               int outputs_current_before);
 
 /* The bookkeeping of an accepted step (s OK or Warning) from t to t + h: time moves on. Inline:
- * it is the usual step's (issue 22: doStep within 5 % of the library call). Returns s. */
+ * it is on the usual step's path, which a call would lengthen. Returns s. */
 static inline fmu_status fmu_step_accepted(fmu_values *v, double t, double h, fmu_status s) {
     const double end = t + h;
     v->time = end;

@@ -35,8 +35,7 @@ fmu_status model_start(fmu_instance *inst);
 /* Make the outputs those of the current inputs at inst->v.time unless they already are
  * (inst->v.outputs_current, cleared by the runtime when a variable is set). Returns what that
  * solve gave: OK, Warning, Discard (outputs keep their last valid values) or Error. Never
- * allocates. With outputs_current FMU_OUTPUTS_UNREAD (any mode; only a model that sets it):
- * lay them out, set outputs_current to 1 and return OK. */
+ * allocates. */
 fmu_status model_refresh_outputs(fmu_instance *inst);
 /* The step rules over [t, t + h] (the runtime has checked t and h and set inst->v.time = t).
  * OK or Warning: the step is accepted and the runtime moves time to t + h; the outputs are those

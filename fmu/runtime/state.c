@@ -44,8 +44,6 @@ fmu_status fmu_get_state(fmu_instance *inst, fmu_snapshot **state) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "GetFMUState: cannot save the model's state");
         return FMU_ERROR;
     }
-    /* a state holds its outputs laid out (no solver bytes between them) */
-    if (inst->v.outputs_current == FMU_OUTPUTS_UNREAD) model_refresh_outputs(inst);
     s->size = size;
     s->v = inst->v;
     *state = s;

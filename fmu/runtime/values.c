@@ -23,9 +23,6 @@ static fmu_status null_arrays(fmu_instance *inst, const char *what) {
  * reported by the status outputs; the values returned are well defined. */
 fmu_status fmu_refresh_outputs(fmu_instance *inst) {
     fmu_values *v = &inst->v;
-    if (v->outputs_current == 1) return FMU_OK;
-    /* unread outputs (a step's) are laid out in any mode, and nothing else is done */
-    if (v->outputs_current == FMU_OUTPUTS_UNREAD) return model_refresh_outputs(inst);
     if (v->outputs_current || !(v->mode & (MODE_INITIALIZATION | MODES_RUNNING))) return FMU_OK;
     if (v->mode == MODE_INITIALIZATION && fmu_apply_initial_parameters(inst) != FMU_OK)
         return fmu_fail(inst);

@@ -11,6 +11,8 @@ inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.
 (forces to motion, simulate.py) return InverseSolution, ForwardSolution and Simulation.
 ``stewart.calibrate`` identifies a built machine's geometry from measured poses and
 ``stewart.calibration_poses`` says where to measure (calibration.py, docs/calibration.md).
+``stewart.view`` writes a self-contained HTML page that shows a platform and a result in 3D
+(view.py, docs/view.md).
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
@@ -19,12 +21,13 @@ from .calibration_poses import calibration_poses
 from .check import HomeCheck
 from .choices import Fidelity
 from .errors import ParameterError
-from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values
+from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
 from .forward import ForwardSolution
 from .inverse import InverseSolution
 from .params import parameters, platform_files
 from .platform import Platform
 from .simulate import Method, Simulation
+from .view import view
 
 try:
     __version__ = _version("stewart")
@@ -33,6 +36,6 @@ except PackageNotFoundError:  # imported from a source tree, not installed
 
 __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "HomeCheck",
            "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths", "fmu_start_values",
-           "FMI_VERSIONS", "FMU_NAMES", "parameters",
-           "calibrate", "calibration_poses", "observability", "Calibration", "UnobservableError",
-           "platform_files", "__version__"]
+           "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
+           "calibration_poses", "observability", "Calibration", "UnobservableError",
+           "platform_files", "view", "__version__"]

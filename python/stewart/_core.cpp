@@ -741,6 +741,27 @@ nb::dict check_home(const Model &model, std::optional<double> warn_condition) {
     return d;
 }
 
+// The parameters a platform file gives, read by `read` (the library's reader of a path or of a
+// text): [(name, all its values)], or std::invalid_argument (ValueError) with the message.
+template <class Read>
+std::vector<std::pair<std::string, std::vector<double>>> platform_fields(Read read) {
+    stewart_params params;
+    stewart_params_default(&params);
+    std::vector<unsigned char> given(static_cast<size_t>(stewart_param_count()));
+    char message[STEWART_MESSAGE_SIZE];
+    if (read(&params, given.data(), message, sizeof message) != STEWART_OK)
+        throw std::invalid_argument(message);
+    std::vector<std::pair<std::string, std::vector<double>>> fields;
+    for (int i = 0; i < stewart_param_count(); ++i)
+        if (given[static_cast<size_t>(i)]) {
+            std::vector<double> values;
+            for (int e = 0; e < stewart_param(i)->count; ++e)
+                values.push_back(*stewart_param_element(&params, i, e));
+            fields.emplace_back(stewart_param(i)->name, values);
+        }
+    return fields;
+}
+
 }  // namespace
 
 NB_MODULE(_core, m) {
@@ -804,27 +825,15 @@ NB_MODULE(_core, m) {
     m.def("limit_class_name", [](int c) { return std::string(stewart_limit_class_name(c)); });
     m.attr("LIMIT_CLASSES") = STEWART_LIMIT_CLASSES;
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
-    // A platform file's text read by the library (stewart_params_read_json): [(name, values)]
-    // of the parameters it gives, each with all its elements; ValueError with the library's
-    // message (line, column, field and value) if any field is bad.
-    m.def("read_platform_json", [](const std::string &text) {
-        stewart_params params;
-        stewart_params_default(&params);
-        std::vector<unsigned char> given(static_cast<size_t>(stewart_param_count()));
-        char message[STEWART_MESSAGE_SIZE];
-        if (stewart_params_read_json(&params, text.data(), text.size(), given.data(), message,
-                                     sizeof message) != STEWART_OK)
-            throw std::invalid_argument(message);
-        std::vector<std::pair<std::string, std::vector<double>>> fields;
-        for (int i = 0; i < stewart_param_count(); ++i)
-            if (given[static_cast<size_t>(i)]) {
-                std::vector<double> values;
-                for (int e = 0; e < stewart_param(i)->count; ++e)
-                    values.push_back(*stewart_param_element(&params, i, e));
-                fields.emplace_back(stewart_param(i)->name, values);
-            }
-        return fields;
+    // A platform file read by the library (stewart_params_read_json_file): [(name, values)] of the parameters it gives, each with all its
+    // elements in SI; ValueError with the library's message (line, column, field and value) if
+    // any field is bad, or the path is not a regular file of at most the size cap.
+    m.def("read_platform_file", [](const std::string &path) {
+        return platform_fields([&](stewart_params *p, unsigned char *given, char *message, size_t size) {
+            return stewart_params_read_json_file(p, path.c_str(), given, message, size);
+        });
     });
+    m.attr("PLATFORM_FILE_MAX_BYTES") = STEWART_PLATFORM_FILE_MAX_BYTES;
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {
         stewart_params scratch;

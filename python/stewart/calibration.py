@@ -5,10 +5,13 @@ frames) identified from measured poses and the length sensors' readings (docs/ca
 >>> result.platform.params                                    # a platform file's content
 
 The model (stewart_calibration.h): at a measured pose q (tool frame in the user frame) leg k's
-sensor reads |p + R b_k - a_k| - o_k with the platform at T_user · T_q · T_tool⁻¹. Nonlinear least
-squares (scipy.optimize.least_squares) on the residuals measured - predicted readings, weighted by
-the measurement noise seen through the readings (Noise), with the library's closed-form Jacobian;
-the unknowns are scaled to unit Jacobian columns, the scale in which `condition` is reported.
+sensor reads |p + R b_k - a_k| - o_k with the platform at T_user · T_q · T_tool⁻¹. A maximum a
+posteriori fit: nonlinear least squares (scipy.optimize.least_squares) on the residuals measured
+- predicted readings, weighted by the measurement noise seen through the readings (Noise), stacked
+on the unknowns' distance from nominal in units of their tolerance (Prior), with the library's
+closed-form Jacobian; the unknowns are scaled to unit columns, the scale in which `condition` is
+reported. The checks that refuse measurements are in calibration_checks.py, the posterior's
+consequences (pose accuracy, what the prior set) in calibration_accuracy.py.
 """
 from __future__ import annotations
 
@@ -19,17 +22,21 @@ from typing import Optional
 import numpy as np
 
 from .arrays import POSE_LAYOUT, LEG_LAYOUT, rows6
-from .calibration_model import (JOINT_GROUPS, Layout, Noise, frame_groups, nominal_geometry,
+from .calibration_accuracy import PoseAccuracy, pose_accuracy, pose_error_std, undetermined
+from .calibration_checks import (FAR_FRACTION, FAR_MOVE, MeasurementError, check_measurements,
+                                 check_options, refuse_far_moves, refuse_gross_errors)
+from .calibration_model import (Layout, Noise, Prior, nominal_geometry,
                                 platform_with, readings_and_jacobian, scaled_basis,
-                                stacked_jacobian, weighted_rows)
+                                stacked_jacobian, whitening)
 from .platform import Platform
 
 LOSSES = ("linear", "soft_l1", "huber", "cauchy", "arctan")
+ACCURACY_POSES = 500  # sample poses inside the workspace for the predicted pose error
 
 
 class UnobservableError(ValueError):
-    """The measurements cannot identify every unknown: `unobservable` names the parameters
-    involved in the combinations they leave free; no geometry is made up for them."""
+    """The measurements cannot identify the unknowns to max_std: `unobservable` names the
+    parameters whose standard deviation is above it; no geometry is made up for them."""
 
     def __init__(self, message: str, unobservable: list[str], condition: float) -> None:
         super().__init__(message)
@@ -42,31 +49,54 @@ class Calibration:
     """The result of stewart.calibrate.
 
     platform: the calibrated Platform (geometry 1: joints as coordinates); its params are a
-    platform file's content. names: the unknowns by table name ("base_joint[4]"); nominal,
-    values, std: their nominal and identified values and standard deviations (m, rad);
-    correlation: (p, p). residuals_before, residuals_after: (N, 6) measured - predicted readings
-    [m] with the nominal and the calibrated geometry. condition: the condition number of the
-    weighted identification Jacobian with unit columns (at the solution; the gauge removed).
-    variance_factor: the weighted residuals' sum of squares per degree of freedom (about 1 when
-    the noise given is the true one; the standard deviations include it). outliers: pose rows
-    whose weighted residual exceeds outlier_threshold robust standard deviations. frames: which
-    frames were identified; gauge: how the solution was fixed. seconds: identification time."""
+    platform file's content. identify: the words chosen; names: the unknowns by table name
+    ("base_joint[4]"); nominal, values, std, tolerance: their nominal and identified values,
+    posterior standard deviations and prior tolerances (m, rad); correlation: (p, p).
+    residuals_before, residuals_after: (N, 6) measured - predicted readings [m] with the
+    nominal and the calibrated geometry. condition: the condition number of the weighted
+    identification Jacobian, prior rows included, with unit columns (at the solution; the gauge
+    removed). variance_factor: the weighted residuals' sum of squares per degree of freedom
+    (about 1 when the noise given is the true one; the standard deviations include it when
+    above 1). undetermined: how many combinations of unknowns the data could not move (their
+    posterior standard deviation is above half the prior's: the prior set them), and
+    undetermined_names the unknowns carrying them. accuracy: the predicted pose error inside
+    the workspace (PoseAccuracy). outliers: pose rows whose weighted residual exceeds
+    outlier_threshold robust standard deviations. frames: the frames identified; gauge: how the
+    solution was fixed. seconds: identification time."""
     platform: Platform
+    identify: tuple[str, ...]
     names: list[str]
     nominal: np.ndarray
     values: np.ndarray
     std: np.ndarray
+    tolerance: np.ndarray
     correlation: np.ndarray
     residuals_before: np.ndarray
     residuals_after: np.ndarray
     condition: float
     variance_factor: float
+    undetermined: int
+    undetermined_names: list[str]
+    accuracy: PoseAccuracy
     outliers: list[int]
     frames: tuple[str, ...]
     gauge: str
     iterations: int
     seconds: float
     parameters: dict[str, np.ndarray] = field(repr=False)
+    posterior: tuple = field(repr=False, default=())  # (layout, basis T, covariance of z)
+
+    def predicted_pose_error(self, poses):
+        """The predicted error (one standard deviation) of the poses the calibrated platform
+        computes from readings, at poses (N, 6) of the tool in the user frame: (position [m],
+        orientation [rad]) arrays of N, from the posterior covariance to first order."""
+        q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
+        layout, basis, covariance = self.posterior
+        return pose_error_std(self.platform, layout, q, basis, covariance)
+
+    def outlier_leg(self, row: int) -> int:
+        """The leg (1..6) of pose row's largest reading residual after calibration."""
+        return int(np.argmax(np.abs(self.residuals_after[row]))) + 1
 
     def rms(self, which: str = "after") -> float:
         """RMS of the residuals before or after calibration [m]."""
@@ -74,145 +104,281 @@ class Calibration:
         return float(np.sqrt(np.mean(r ** 2)))
 
     def report(self) -> str:
-        """A text report: residuals, observability, outliers, and each unknown with its change
-        and standard deviation."""
+        """A text report: the predicted pose accuracy, residuals, observability, what the prior
+        set, outliers, and each unknown with its change, standard deviation and tolerance."""
         lines = [f"poses: {self.residuals_before.shape[0]}, unknowns: {len(self.names)} "
-                 f"(frames identified: {', '.join(self.frames) or 'none'})",
-                 f"reading residual RMS: before {self.rms('before') * 1e6:.3f} um, "
-                 f"after {self.rms('after') * 1e6:.3f} um",
-                 f"observability: condition number of the scaled identification Jacobian "
-                 f"{self.condition:.4g}",
-                 f"variance factor (weighted residuals per degree of freedom): "
-                 f"{self.variance_factor:.4g}",
-                 f"gauge: {self.gauge}",
-                 "outliers (pose rows, 0-based): "
-                 + (", ".join(map(str, self.outliers)) if self.outliers else "none"),
-                 f"identification: {self.iterations} evaluations, {self.seconds:.3f} s", "",
-                 f"{'parameter':<20}{'nominal':>14}{'identified':>14}{'change':>12}{'std':>12}"]
-        for name, n, v, s in zip(self.names, self.nominal, self.values, self.std):
+                 f"(identify: {','.join(self.identify)})"]
+        lines += self.accuracy.lines()
+        lines += [f"reading residual RMS: before {self.rms('before') * 1e6:.3f} um, "
+                  f"after {self.rms('after') * 1e6:.3f} um",
+                  f"observability: condition number of the scaled identification Jacobian "
+                  f"(prior rows included) {self.condition:.4g}",
+                  f"variance factor (weighted residuals per degree of freedom): "
+                  f"{self.variance_factor:.4g}",
+                  _undetermined_text(self.undetermined, self.undetermined_names),
+                  f"gauge: {self.gauge}",
+                  "outliers (pose rows, 0-based; the leg of the largest residual): "
+                  + (", ".join(f"{row} (leg {self.outlier_leg(row)})" for row in self.outliers)
+                     if self.outliers else "none"),
+                  f"identification: {self.iterations} evaluations, {self.seconds:.3f} s", "",
+                  f"{'parameter':<20}{'nominal':>14}{'identified':>14}{'change':>12}"
+                  f"{'std':>12}{'tolerance':>12}"]
+        for name, n, v, s, t in zip(self.names, self.nominal, self.values, self.std,
+                                    self.tolerance):
             lines.append(f"{name:<20}{n:>14.6f}{v:>14.6f}{(v - n) * 1e3:>10.4f}e-3"
-                         f"{s * 1e3:>10.4f}e-3")
+                         f"{s * 1e3:>10.4f}e-3{t * 1e3:>10.4f}e-3")
         return "\n".join(lines) + "\n"
 
 
-def calibrate(nominal: Platform, poses, readings, *, frames: Optional[str] = None,
-              loss: str = "linear", position_noise: float = 10e-6, angle_noise: float = 20e-6,
+def _undetermined_text(count: int, names: list[str]) -> str:
+    if count == 0:
+        return "set by the prior: nothing (the data moved every combination of unknowns)"
+    return (f"set by the prior: {count} combination(s) of unknowns the data could not move "
+            f"(posterior std above half the tolerance), carried by {_ranges(names)}; they "
+            f"stay near nominal and matter only as far as the predicted pose error says")
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """The linearised identification at the nominal geometry: the unknowns' layout, nominal
+    values, tolerances, the readings' whitening W, the scaled gauge-fixed basis T (parameters =
+    nominal + T z) and the weighted, scaled data rows A = W J T."""
+    layout: Layout
+    geometry0: dict
+    theta0: np.ndarray
+    tolerance: np.ndarray
+    predicted0: np.ndarray
+    W: np.ndarray
+    J: np.ndarray
+    T: np.ndarray
+    A: np.ndarray
+
+
+def _problem(nominal: Platform, q: np.ndarray, identify, frames, noise: Noise,
+             prior: Prior) -> _Problem:
+    noise.check()
+    prior.check()
+    layout = Layout.of(identify, frames)
+    geometry0 = nominal_geometry(nominal)
+    theta0 = np.concatenate([geometry0[g] for g in layout.groups])
+    tolerance = prior.vector(layout)
+    predicted0, derivatives = readings_and_jacobian(nominal, q)
+    W = whitening(derivatives["pose"], q, noise)
+    J = stacked_jacobian(layout, derivatives)
+    rows = (W @ J).reshape(-1, layout.size)
+    T = scaled_basis(layout, geometry0, rows, tolerance)
+    return _Problem(layout, geometry0, theta0, tolerance, predicted0, W, J, T, rows @ T)
+
+
+def _prior_rows(problem: _Problem) -> np.ndarray:
+    return problem.T / problem.tolerance[:, None]
+
+
+def calibrate(nominal: Platform, poses, readings, *, identify=None,
+              frames: Optional[str] = None, joint_tolerance: float = 1e-3,
+              offset_tolerance: float = 1e-3, frame_tolerance: float = 5e-3,
+              frame_angle_tolerance: float = 5e-3, loss: str = "linear",
+              position_noise: float = 10e-6, angle_noise: float = 20e-6,
               reading_noise: float = 1e-6, outlier_threshold: float = 5.0,
-              max_std: float = 1e-3, max_evaluations: int = 200) -> Calibration:
+              max_std: Optional[float] = None, max_evaluations: int = 200) -> Calibration:
     """Identifies the geometry of a built machine from measured poses and sensor readings.
 
     nominal: the Platform as drawn. poses: (N, 6) measured poses of the tool frame in the user
     frame (x, y, z [m], roll, pitch, yaw [rad]); readings: (N, 6) the length sensors' readings at
-    them [m]. Unknowns: base_joint, platform_joint (36 coordinates) and length_offset (6);
-    frames="tool", "user" or "both" adds tool_frame, user_frame or both (6 each).
+    them [m]. identify: the unknowns, words or one comma-separated string of "offsets"
+    (length_offset), "joints" (base_joint and platform_joint), "joints-xy" (their x and y),
+    "base", "platform" (one plate's joints), "tool", "user" (tool_frame, user_frame); default
+    "joints,offsets". frames="tool", "user" or "both" adds those frames.
 
-    Gauge: a frame and the joints it carries move together without changing a reading. With
-    frames=None the nominal tool and user frames are taken as exact: they fix the platform and
-    base frames, and every one of the 42 unknowns is identifiable from poses of varied
-    orientation. An identified frame brings 6 free combinations; they are fixed by holding the
-    net rigid motion of the joints it carries at zero (the base or platform frame stays where
-    the nominal joints put it, as a best fit): see docs/calibration.md.
+    Prior (a maximum a posteriori fit): the built machine's parameters are taken as the nominal
+    ones with standard deviations joint_tolerance, offset_tolerance [m] and, for frames,
+    frame_tolerance [m] and frame_angle_tolerance [rad]. What the data determine, they
+    determine; a combination of unknowns the poses cannot see stays near nominal and is named
+    (`undetermined`). Gauge: a frame identified together with all the joints it carries is
+    fixed by holding those joints' net rigid motion at zero (docs/calibration.md).
 
     Noise (standard deviations): position_noise [m] and angle_noise [rad] of each measured pose
     (the tracker), reading_noise [m] of each sensor; they weight the residuals. loss: "linear"
-    (least squares) or a robust loss of scipy's least_squares ("soft_l1", "huber", "cauchy",
-    "arctan", on residuals in units of their noise, scale 3) that down-weights a bad pose. A pose
-    whose weighted residual exceeds outlier_threshold robust standard deviations is named in
-    `outliers`; with a robust loss the standard deviations are those of the unweighted linear
-    model (approximate). Raises UnobservableError naming the parameters when some combination
-    of unknowns would have a standard deviation above max_std (m or rad) from these poses (e.g.
-    every pose at one orientation), ReadingError when the model has no reading at a pose, and
-    ValueError naming a bad argument or when the fit does not converge in max_evaluations."""
+    or a robust loss of scipy's least_squares ("soft_l1", "huber", "cauchy", "arctan", scale 3
+    noise standard deviations). A pose whose weighted residual exceeds outlier_threshold robust
+    standard deviations is named in `outliers`.
+
+    Refusals (ValueError subclasses, nothing returned): a bad argument (named); MeasurementError
+    for no poses or more than 20,000, values not finite, a pose at pitch +-90 deg, readings no
+    machine within the tolerances gives (a few named by row and leg as outliers, many as a units
+    or set-up mistake), a fit that moves an unknown more than 10 tolerances or a quarter of the
+    machine's size; UnobservableError when max_std [m or rad] is given and an unknown's
+    posterior standard deviation is above it; ReadingError when the model has no reading at a
+    pose; ValueError when the fit does not converge in max_evaluations."""
     started = time.perf_counter()
     q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
     s = rows6("readings", readings, q.shape[0], "poses", LEG_LAYOUT)
-    _check_finite("poses", q)
-    _check_finite("readings", s)
-    if loss not in LOSSES:
-        raise ValueError(f"loss = {loss!r} must be one of {', '.join(LOSSES)}")
-    for name, value in (("outlier_threshold", outlier_threshold), ("max_std", max_std)):
-        if not (np.isfinite(value) and value > 0):
-            raise ValueError(f"{name} = {value!r} must be finite and > 0")
-    if not isinstance(max_evaluations, (int, np.integer)) or max_evaluations < 1:
-        raise ValueError(f"max_evaluations = {max_evaluations!r} must be an integer >= 1")
-    noise = Noise(position_noise, angle_noise, reading_noise)
-    noise.check()
-    frame_names = frame_groups(frames)
-    layout = Layout(JOINT_GROUPS + frame_names)
-    geometry0 = nominal_geometry(nominal)
-    theta0 = np.concatenate([geometry0[g] for g in layout.groups])
+    check_options(loss, LOSSES, outlier_threshold, max_std, max_evaluations)
+    check_measurements(q, s)
+    problem = _problem(nominal, q, identify, frames, Noise(position_noise, angle_noise,
+                                                          reading_noise),
+                       Prior(joint_tolerance, offset_tolerance, frame_tolerance,
+                             frame_angle_tolerance))
+    refuse_gross_errors(s, problem.predicted0, _reading_spread(problem), q)
+    if max_std is not None:
+        _refuse_unobservable(problem, max_std)
+    fit, evaluate = _fit(nominal, q, s, problem, loss, max_evaluations)
+    return _result(nominal, q, s, problem, fit, evaluate, outlier_threshold, started)
 
-    predicted0, W, J0 = weighted_rows(nominal, q, layout, noise)
-    J0 = J0.reshape(-1, layout.size)
-    to_theta = scaled_basis(layout, geometry0, J0)  # theta = theta0 + to_theta z
 
-    _refuse_unobservable(J0 @ to_theta, to_theta, layout.names, max_std)
+def _reading_spread(problem: _Problem) -> np.ndarray:
+    """Standard deviation of each reading about the nominal machine's: the tolerances through
+    the readings' derivatives, and the measurement noise (W⁻¹ W⁻ᵀ)."""
+    free = problem.layout.free
+    tolerance_part = np.sum((problem.J[:, :, free] * problem.tolerance[free]) ** 2, axis=2)
+    Winv = np.linalg.inv(problem.W)
+    return np.sqrt(tolerance_part + np.sum(Winv ** 2, axis=2))
 
+
+def _fit(nominal, q, s, problem: _Problem, loss: str, max_evaluations: int):
+    layout, T, W = problem.layout, problem.T, problem.W
+    prior_rows = _prior_rows(problem)
     cache: dict = {}
 
     def evaluate(z):
         key = z.tobytes()
         if key not in cache:
             cache.clear()
-            theta = theta0 + to_theta @ z
-            platform = platform_with(nominal, _geometry(layout, theta, geometry0))
+            theta = problem.theta0 + T @ z
+            platform = platform_with(nominal, _geometry(layout, theta, problem.geometry0))
             predicted, derivatives = readings_and_jacobian(platform, q)
             rows = W @ stacked_jacobian(layout, derivatives)
-            cache[key] = (predicted, rows.reshape(-1, layout.size))
+            cache[key] = (predicted, rows.reshape(-1, layout.size), platform)
         return cache[key]
 
     def residual(z):
-        predicted, _ = evaluate(z)
-        return np.einsum("nij,nj->ni", W, s - predicted).reshape(-1)
+        predicted = evaluate(z)[0]
+        data = np.einsum("nij,nj->ni", W, s - predicted).reshape(-1)
+        return np.concatenate([data, prior_rows @ z])
 
     def jacobian(z):
-        return -evaluate(z)[1] @ to_theta
+        return np.vstack([-evaluate(z)[1] @ T, prior_rows])
 
     from scipy.optimize import least_squares  # only calibration needs scipy
 
-    method = "lm" if loss == "linear" and 6 * q.shape[0] >= to_theta.shape[1] else "trf"
-    fit = least_squares(residual, np.zeros(to_theta.shape[1]), jac=jacobian, method=method,
-                        loss=loss, f_scale=3.0, x_scale=1.0, xtol=1e-12, ftol=1e-12,
-                        gtol=1e-12, max_nfev=max_evaluations)
+    method = "lm" if loss == "linear" else "trf"
+    with np.errstate(all="ignore"):
+        fit = least_squares(residual, np.zeros(T.shape[1]), jac=jacobian, method=method,
+                            loss=loss, f_scale=3.0, x_scale=1.0, xtol=1e-12, ftol=1e-12,
+                            gtol=1e-12, max_nfev=max_evaluations)
+    if not np.all(np.isfinite(fit.fun)) or not np.all(np.isfinite(fit.x)):
+        raise MeasurementError("the fit's residuals are not finite: the measurements do not "
+                               "describe this machine (check the units and the outliers)")
     if fit.status <= 0:
         raise ValueError(f"the identification did not converge in {max_evaluations} evaluations "
                          f"of the readings (scipy: {fit.message}): check the nominal platform "
                          f"and the measurements, or allow more (max_evaluations)")
-    theta = theta0 + to_theta @ fit.x
-    predicted, Jw = evaluate(fit.x)
-    r = residual(fit.x)
-    A = Jw @ to_theta
-    dof = max(r.size - A.shape[1], 1)
-    variance_factor = float(r @ r / dof)
-    cov_z = variance_factor * np.linalg.pinv(A.T @ A)
-    cov = to_theta @ cov_z @ to_theta.T
+    return fit, evaluate
+
+
+def _move_limit(nominal: Platform, problem: _Problem) -> np.ndarray:
+    """How far each parameter may move from nominal: FAR_MOVE tolerances, and for joints and
+    offsets at most FAR_FRACTION of the machine's size (its largest joint radius)."""
+    joints = np.concatenate([problem.geometry0["base_joint"],
+                             problem.geometry0["platform_joint"]]).reshape(-1, 3)
+    size = float(np.max(np.linalg.norm(joints, axis=1)))
+    limit = FAR_MOVE * problem.tolerance
+    joint_or_offset = ~np.isin(np.arange(problem.layout.size),
+                               np.flatnonzero(_frame_mask(problem.layout)))
+    limit[joint_or_offset] = np.minimum(limit[joint_or_offset], FAR_FRACTION * size)
+    return limit
+
+
+def _frame_mask(layout: Layout) -> np.ndarray:
+    mask = np.zeros(layout.size, bool)
+    for g, sl in layout.slices().items():
+        mask[sl] = g.endswith("_frame")
+    return mask
+
+
+def _result(nominal, q, s, problem: _Problem, fit, evaluate, outlier_threshold: float,
+            started: float) -> Calibration:
+    layout, T = problem.layout, problem.T
+    free = layout.free
+    theta = problem.theta0 + T @ fit.x
+    predicted, Jw, platform = evaluate(fit.x)
+    weighted = np.einsum("nij,nj->ni", problem.W, s - predicted)
+    worst_rows = np.argsort(-np.max(np.abs(weighted), axis=1))[:3].tolist()
+    refuse_far_moves(layout.names, (theta - problem.theta0)[free], problem.tolerance[free],
+                     _move_limit(nominal, problem)[free], worst_rows)
+    A = Jw @ T
+    prior_rows = _prior_rows(problem)
+    information = A.T @ A + prior_rows.T @ prior_rows
+    cov_z = np.linalg.inv(information)
+    effective = float(np.trace(A.T @ A @ cov_z))  # parameters the data determine
+    r = weighted.reshape(-1)
+    variance_factor = float(r @ r / max(r.size - effective, 1.0))
+    cov_z = max(variance_factor, 1.0) * cov_z
+    cov = (T @ cov_z @ T.T)[np.ix_(free, free)]
     std = np.sqrt(np.clip(np.diag(cov), 0, None))
     denominator = np.outer(std, std)
     correlation = np.divide(cov, denominator, out=np.zeros_like(cov), where=denominator > 0)
-    geometry = _geometry(layout, theta, geometry0)
+    count, names, _ = undetermined(A, T, problem.tolerance, layout.names, free)
+    from .calibration_poses import limits_failed_at_home
+    samples, beyond = accuracy_samples(nominal), limits_failed_at_home(nominal)
+    region = ("random poses within every limit" if not beyond else
+              f"random poses within every limit but {' and '.join(beyond)}, which the home pose "
+              f"is beyond as drawn")
+    if len(samples) == 0:  # no random pose inside the limits: the poses the machine reached
+        samples, region = q, "measured poses (no random pose was found inside the limits)"
+    accuracy = pose_accuracy(nominal, platform, layout, samples, T, cov_z, problem.tolerance,
+                             region)
+    frames = layout.identified_frames()
     return Calibration(
-        platform=platform_with(nominal, geometry), names=layout.names, nominal=theta0,
-        values=theta, std=std, correlation=correlation, residuals_before=s - predicted0,
-        residuals_after=s - predicted, condition=_condition(A), variance_factor=variance_factor,
-        outliers=_outliers(r.reshape(-1, 6), outlier_threshold), frames=frame_names,
-        gauge=_gauge_text(frame_names), iterations=int(fit.nfev),
-        seconds=time.perf_counter() - started, parameters=geometry)
+        platform=platform, identify=layout.words, names=layout.names,
+        nominal=problem.theta0[free], values=theta[free], std=std,
+        tolerance=problem.tolerance[free], correlation=correlation,
+        residuals_before=s - problem.predicted0, residuals_after=s - predicted,
+        condition=_condition(np.vstack([A, prior_rows])), variance_factor=variance_factor,
+        undetermined=count, undetermined_names=names, accuracy=accuracy,
+        outliers=_outliers(weighted, A, information, outlier_threshold), frames=frames,
+        gauge=_gauge_text(layout, frames), iterations=int(fit.nfev),
+        seconds=time.perf_counter() - started,
+        parameters=_geometry(layout, theta, problem.geometry0), posterior=(layout, T, cov_z))
 
 
-def observability(nominal: Platform, poses, *, frames: Optional[str] = None,
+def accuracy_samples(nominal: Platform, count: int = ACCURACY_POSES) -> np.ndarray:
+    """Poses inside every limit of nominal (the region calibration_poses draws from), a fixed
+    draw: where the report predicts the pose error."""
+    from .calibration_poses import random_poses_inside_limits
+    try:
+        return random_poses_inside_limits(nominal, count, np.random.default_rng(12345))
+    except ValueError:  # no box to draw from (home cannot move)
+        return np.zeros((0, 6))
+
+
+def observability(nominal: Platform, poses, *, identify=None, frames: Optional[str] = None,
+                  joint_tolerance: float = 1e-3, offset_tolerance: float = 1e-3,
+                  frame_tolerance: float = 5e-3, frame_angle_tolerance: float = 5e-3,
                   position_noise: float = 10e-6, angle_noise: float = 20e-6,
-                  reading_noise: float = 1e-6) -> float:
-    """The condition number of the weighted identification Jacobian with unit columns (the gauge
-    removed) that calibrate would have at poses with the nominal geometry: about 1 is ideal,
-    infinite means some combination of unknowns cannot be identified."""
+                  reading_noise: float = 1e-6, max_std: Optional[float] = None) -> float:
+    """The condition number calibrate would report at these poses with the nominal geometry:
+    that of the weighted identification Jacobian, prior rows included, with unit columns and
+    the gauge removed (the same identify, tolerances and noise). About 1 is ideal; the prior
+    bounds it where the poses leave combinations of unknowns free, so a large value means the
+    prior, not the data, sets them. Infinite when calibrate would refuse the poses for
+    observability: no poses, or an unknown's standard deviation above max_std."""
     q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
-    _check_finite("poses", q)
-    noise = Noise(position_noise, angle_noise, reading_noise)
-    noise.check()
-    layout = Layout(JOINT_GROUPS + frame_groups(frames))
-    _, _, J = weighted_rows(nominal, q, layout, noise)
-    J = J.reshape(-1, layout.size)
-    return _condition(J @ scaled_basis(layout, nominal_geometry(nominal), J))
+    if q.shape[0] == 0:
+        return float("inf")
+    check_measurements(q, np.zeros_like(q))
+    problem = _problem(nominal, q, identify, frames,
+                       Noise(position_noise, angle_noise, reading_noise),
+                       Prior(joint_tolerance, offset_tolerance, frame_tolerance,
+                             frame_angle_tolerance))
+    if max_std is not None:
+        if not (np.isfinite(max_std) and max_std > 0):
+            raise ValueError(f"max_std = {max_std!r} must be None or finite and > 0")
+        try:
+            _refuse_unobservable(problem, max_std)
+        except UnobservableError:
+            return float("inf")
+    return _condition(np.vstack([problem.A, _prior_rows(problem)]))
 
 
 def forward_poses(platform: Platform, readings, guess, tolerance: float = 1e-13,
@@ -234,13 +400,6 @@ def forward_poses(platform: Platform, readings, guess, tolerance: float = 1e-13,
                      f"{max_iterations} iterations at reading rows {rows.tolist()}")
 
 
-def _check_finite(name: str, a: np.ndarray) -> None:
-    bad = np.argwhere(~np.isfinite(a))
-    if bad.size:
-        row, col = bad[0]
-        raise ValueError(f"{name}[{row}, {col}] = {float(a[row, col])!r} is not finite")
-
-
 def _geometry(layout: Layout, theta: np.ndarray, geometry0: dict) -> dict[str, np.ndarray]:
     geometry = {g: v.copy() for g, v in geometry0.items()}
     geometry.update({g: v.copy() for g, v in layout.split(theta).items()})
@@ -252,31 +411,25 @@ def _condition(A: np.ndarray) -> float:
     return float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
 
 
-def _refuse_unobservable(A: np.ndarray, to_theta: np.ndarray, names: list[str],
-                         max_std: float) -> None:
-    """UnobservableError when a combination of unknowns (a right singular vector of the
-    weighted, scaled Jacobian A) would have a standard deviation above max_std [m or rad]: it
-    names the unknowns carrying those combinations (projection above 0.1)."""
-    # Every right singular vector; the full U only when A is wide (then V needs it too).
-    _, sv, Vt = np.linalg.svd(A, full_matrices=A.shape[0] < A.shape[1])
-    sv = np.concatenate([sv, np.zeros(Vt.shape[0] - sv.size)])
-    directions = to_theta @ Vt.T  # physical change per unit of each combination
-    size = np.linalg.norm(directions, axis=0)
-    with np.errstate(divide="ignore"):
-        std = np.where(sv > sv[0] * 1e-14, size / np.where(sv > 0, sv, 1.0), np.inf)
-    free = np.flatnonzero(std > max_std)
-    if free.size == 0:
+def _refuse_unobservable(problem: _Problem, max_std: float) -> None:
+    """UnobservableError when an unknown's standard deviation from these poses (data and
+    prior, at the nominal geometry) would be above max_std [m or rad], naming those unknowns."""
+    prior_rows = _prior_rows(problem)
+    cov_z = np.linalg.inv(problem.A.T @ problem.A + prior_rows.T @ prior_rows)
+    free = problem.layout.free
+    std = np.sqrt(np.clip(np.diag(problem.T @ cov_z @ problem.T.T), 0, None))[free]
+    over = np.flatnonzero(std > max_std)
+    if over.size == 0:
         return
-    basis, _ = np.linalg.qr(directions[:, free])
-    weight = np.linalg.norm(basis, axis=1)
-    involved = [names[i] for i in np.flatnonzero(weight > 0.1)]
-    condition = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
+    names = [problem.layout.names[i] for i in over]
+    condition = _condition(np.vstack([problem.A, prior_rows]))
     raise UnobservableError(
-        f"these poses cannot identify the geometry: {free.size} combination(s) of unknowns would "
-        f"have a standard deviation above max_std = {max_std:g} (condition number "
-        f"{condition:.3g}); they involve {_ranges(involved)}. Measure poses of varied "
-        f"orientation and position (stewart.calibration_poses) or identify fewer unknowns.",
-        involved, condition)
+        f"these poses cannot identify the geometry to max_std = {max_std:g}: {over.size} "
+        f"unknown(s) would have a larger standard deviation (up to {std.max():.3g}; condition "
+        f"number {condition:.3g}): {_ranges(names)}. Measure poses of varied orientation and "
+        f"position (stewart.calibration_poses with the same identify), identify fewer unknowns "
+        f"(identify=), or accept a larger max_std",
+        names, condition)
 
 
 def _ranges(names: list[str]) -> str:
@@ -292,21 +445,50 @@ def _ranges(names: list[str]) -> str:
     return ", ".join(f"{b}[{i}]" if i == j else f"{b}[{i}..{j}]" for b, i, j in groups)
 
 
-def _outliers(weighted: np.ndarray, threshold: float) -> list[int]:
+def _outliers(weighted: np.ndarray, A: np.ndarray, information: np.ndarray,
+              threshold: float) -> list[int]:
     """Pose rows with a weighted residual above threshold robust standard deviations (the
-    median absolute residual's, which one bad pose does not inflate)."""
-    spread = 1.4826 * np.median(np.abs(weighted))
-    if spread <= 0:
-        return []
-    return np.flatnonzero(np.max(np.abs(weighted), axis=1) > threshold * spread).tolist()
+    median absolute residual's, which one bad pose does not inflate), found one at a time: each
+    pose named is taken out of the linearised fit (A: weighted, scaled data rows; information:
+    AᵀA + the prior's), so that its pull on the others' residuals does not name them too."""
+    n = weighted.shape[0]
+    rows = A.reshape(n, 6, -1)
+    named: list[int] = []
+    residual = weighted.copy()
+    for _ in range(max(1, n // 5)):
+        keep = np.setdiff1d(np.arange(n), named)
+        spread = 1.4826 * np.median(np.abs(residual[keep]))
+        if spread <= 0:
+            break
+        size = np.max(np.abs(residual), axis=1)
+        size[named] = -np.inf
+        worst = int(np.argmax(size))
+        if size[worst] <= threshold * spread:
+            break
+        named.append(worst)
+        out = rows[named].reshape(-1, rows.shape[2])
+        # Without the named poses, z moves by -(H - A_Sᵀ A_S)⁻¹ A_Sᵀ r_S (linearised; the
+        # residual is measured - predicted, predicted moving by A dz).
+        step = np.linalg.solve(information - out.T @ out,
+                               out.T @ weighted[named].reshape(-1))
+        residual = weighted + rows @ step
+    return sorted(named)
 
 
-def _gauge_text(frames: tuple[str, ...]) -> str:
+def _gauge_text(layout: Layout, frames: tuple[str, ...]) -> str:
+    from .calibration_model import gauge_constraints
+    fixed = gauge_constraints(layout, {"base_joint": np.zeros(18), "platform_joint": np.zeros(18)})
     if not frames:
         return ("the nominal tool and user frames fix the platform and base frames; every "
-                "joint and offset is identified relative to them")
+                "unknown is identified relative to them")
+    if fixed is None:
+        return ("the frames identified without all the joints they carry: the prior splits "
+                "what a frame and its joints cannot tell apart")
+    free = layout.split(layout.free)
     held = {"user_frame": "base joints' net rigid motion from nominal held at zero (fixes the "
                           "base frame; the user frame is identified in it)",
             "tool_frame": "platform joints' net rigid motion from nominal held at zero (fixes "
                           "the platform frame; the tool frame is identified in it)"}
-    return "; ".join(held[f] for f in frames)
+    pairs = {"user_frame": "base_joint", "tool_frame": "platform_joint"}
+    return "; ".join(held[f] if np.all(free[pairs[f]]) else
+                     f"{f}: the prior splits it from the joints it carries" for f in frames)

@@ -6,12 +6,16 @@ from __future__ import annotations
 import csv
 import json
 import math
+import os
+import stat
 from dataclasses import dataclass
 
 import numpy as np
 
+from .calibration_checks import MAX_POSES
 from .platform import Platform
 
+MAX_CSV_BYTES = 64 * 2 ** 20  # a CSV read whole; 20,000 poses take about 6 MB
 MEASUREMENT_COLUMNS = ("x", "y", "z", "roll", "pitch", "yaw", "L1", "L2", "L3", "L4", "L5", "L6")
 
 
@@ -31,9 +35,20 @@ class Measurements:
 def read_measurements(path: str) -> Measurements:
     """The measurement CSV at path: a header naming the 12 columns (any order; nothing else),
     then one pose per line of 12 finite numbers; blank lines and lines starting with # are
-    skipped. FileError naming the line and column of the first problem."""
+    skipped; a UTF-8 byte order mark (a spreadsheet's "CSV UTF-8") is read past. FileError
+    naming the line and column of the first problem, or the number of rows when there are more
+    than calibrate takes."""
     try:
-        with open(path, newline="") as f:
+        status = os.stat(path)
+    except OSError as e:
+        raise FileError(f"{path}: cannot be read ({e})") from None
+    if not stat.S_ISREG(status.st_mode):
+        raise FileError(f"{path}: not a regular file (a measurement CSV is read whole)")
+    if status.st_size > MAX_CSV_BYTES:
+        raise FileError(f"{path}: {status.st_size} bytes, larger than a calibration's "
+                        f"{MAX_CSV_BYTES} (at most {MAX_POSES} poses)")
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as f:
             lines = f.read().splitlines()
     except (OSError, UnicodeDecodeError) as e:
         raise FileError(f"{path}: cannot be read ({e})") from None
@@ -42,6 +57,10 @@ def read_measurements(path: str) -> Measurements:
     if not rows:
         raise FileError(f"{path}: no header: the first line must name the columns "
                         f"{','.join(MEASUREMENT_COLUMNS)}")
+    if len(rows) - 1 > MAX_POSES:
+        raise FileError(f"{path}: {len(rows) - 1} measurement rows; a calibration takes at most "
+                        f"{MAX_POSES} (tens of well-spread poses identify a machine: "
+                        f"stewart.calibration_poses chooses them): give a subset")
     header_line, header_text = rows[0]
     header = [name.strip() for name in next(csv.reader([header_text]))]
     for column, name in enumerate(header, start=1):

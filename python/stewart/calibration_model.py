@@ -20,11 +20,24 @@ from .platform import Platform
 
 JOINT_GROUPS = ("base_joint", "platform_joint", "length_offset")
 FRAME_GROUPS = ("tool_frame", "user_frame")
+ALL_GROUPS = JOINT_GROUPS + FRAME_GROUPS
 GROUP_SIZE = {"base_joint": 18, "platform_joint": 18, "length_offset": 6, "tool_frame": 6,
               "user_frame": 6}
 FRAME_CHOICES = {None: (), "none": (), "tool": ("tool_frame",), "user": ("user_frame",),
                  "both": FRAME_GROUPS}
-
+_XY = np.tile([True, True, False], 6)
+_ALL18 = np.ones(18, bool)
+# What each `identify` word frees: group -> mask over its elements.
+IDENTIFY_CHOICES = {
+    "offsets": {"length_offset": np.ones(6, bool)},
+    "joints": {"base_joint": _ALL18, "platform_joint": _ALL18},
+    "joints-xy": {"base_joint": _XY, "platform_joint": _XY},
+    "base": {"base_joint": _ALL18},
+    "platform": {"platform_joint": _ALL18},
+    "tool": {"tool_frame": np.ones(6, bool)},
+    "user": {"user_frame": np.ones(6, bool)},
+}
+DEFAULT_IDENTIFY = ("joints", "offsets")
 
 def parameter_value(platform: Platform, name: str) -> np.ndarray:
     """A parameter of platform as an array of its table count: the value given, else the
@@ -33,7 +46,11 @@ def parameter_value(platform: Platform, name: str) -> np.ndarray:
     if entry is None:
         raise KeyError(f"the library has no parameter '{name}'")
     value = platform.params.get(name, entry["defaults"])
-    return np.broadcast_to(np.asarray(value, dtype=float), (entry["count"],)).copy()
+    out = np.broadcast_to(np.asarray(value, dtype=float), (entry["count"],)).copy()
+    for key, element in platform.params.items():  # elements given by their own names
+        if key.startswith(name + "[") and key.endswith("]"):
+            out[int(key[len(name) + 1:-1]) - 1] = float(element)
+    return out
 
 
 def frame_groups(frames) -> tuple[str, ...]:
@@ -44,18 +61,61 @@ def frame_groups(frames) -> tuple[str, ...]:
         raise ValueError(f"frames = {frames!r} must be None, 'tool', 'user' or 'both'") from None
 
 
+def identify_words(identify, frames=None) -> tuple[str, ...]:
+    """The `identify` choice as its words ("joints,offsets", ["joints", "offsets"]), with the
+    frames of `frames` added; ValueError naming a word that is not a choice."""
+    if identify is None:
+        words = list(DEFAULT_IDENTIFY)
+    elif isinstance(identify, str):
+        words = [w.strip() for w in identify.split(",") if w.strip()]
+    else:
+        try:
+            words = [str(w).strip() for w in identify]
+        except TypeError:
+            raise ValueError(f"identify = {identify!r} must be a string or a list of "
+                             f"{', '.join(IDENTIFY_CHOICES)}") from None
+    words += [g.split("_")[0] for g in frame_groups(frames)]
+    for word in words:
+        if word not in IDENTIFY_CHOICES:
+            raise ValueError(f"identify: {word!r} is not one of {', '.join(IDENTIFY_CHOICES)}")
+    if not words:
+        raise ValueError("identify is empty: name at least one of "
+                         + ", ".join(IDENTIFY_CHOICES))
+    return tuple(dict.fromkeys(words))
+
+
 @dataclass(frozen=True)
 class Layout:
-    """The unknowns: groups in order, each element by its table name ("base_joint[4]")."""
-    groups: tuple[str, ...]
+    """Every calibration parameter (the five groups, 54 values, each by its table name,
+    "base_joint[4]") and which of them are unknown (`free`); the others stay nominal."""
+    free: np.ndarray
+    words: tuple[str, ...] = DEFAULT_IDENTIFY
+    groups: tuple[str, ...] = ALL_GROUPS
+
+    @classmethod
+    def of(cls, identify=None, frames=None) -> "Layout":
+        free = {g: np.zeros(GROUP_SIZE[g], bool) for g in ALL_GROUPS}
+        words = identify_words(identify, frames)
+        for word in words:
+            for group, mask in IDENTIFY_CHOICES[word].items():
+                free[group] = free[group] | mask
+        return cls(np.concatenate([free[g] for g in ALL_GROUPS]), words)
+
+    @property
+    def all_names(self) -> list[str]:
+        return [f"{g}[{i}]" for g in self.groups for i in range(1, GROUP_SIZE[g] + 1)]
 
     @property
     def names(self) -> list[str]:
-        return [f"{g}[{i}]" for g in self.groups for i in range(1, GROUP_SIZE[g] + 1)]
+        """The unknowns' names."""
+        return [n for n, f in zip(self.all_names, self.free) if f]
 
     @property
     def size(self) -> int:
         return sum(GROUP_SIZE[g] for g in self.groups)
+
+    def identified_frames(self) -> tuple[str, ...]:
+        return tuple(g for g in FRAME_GROUPS if np.any(self.split(self.free)[g]))
 
     def slices(self) -> dict[str, slice]:
         out, start = {}, 0
@@ -84,6 +144,9 @@ def platform_with(nominal: Platform, geometry: dict[str, np.ndarray]) -> Platfor
     params = dict(nominal.params)
     params["geometry"] = 1
     for name, value in geometry.items():
+        # The whole array replaces the nominal's, however it was spelled (element by element).
+        for key in [k for k in params if k.startswith(name + "[")]:
+            del params[key]
         params[name] = [float(v) for v in value]
     return Platform(**params)
 
@@ -146,13 +209,19 @@ class Noise:
     reading: float = 1e-6
 
     def check(self) -> None:
+        """ValueError naming a noise that is not 0 or from 1e-12 to 1 (m or rad): below, its
+        square underflows the weights; above, it is no measurement."""
         for name in ("position", "angle", "reading"):
             v = getattr(self, name)
-            if not (np.isfinite(v) and v >= 0):
-                raise ValueError(f"{name}_noise = {v!r} must be finite and >= 0")
-        if self.position == self.angle == self.reading == 0:
-            raise ValueError("position_noise, angle_noise and reading_noise are all 0: "
-                             "the residuals need a noise to be weighted by")
+            if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v)
+                    and (v == 0 or 1e-12 <= v <= 1.0)):
+                raise ValueError(f"{name}_noise = {v!r} must be 0 or from 1e-12 to 1 "
+                                 f"({'rad' if name == 'angle' else 'm'}): a standard deviation "
+                                 f"of the measurement")
+        if self.reading == 0:
+            raise ValueError("reading_noise = 0: every sensor has some noise, and a pose's six "
+                             "residuals need it to be weighted (give its standard deviation, "
+                             "e.g. 1e-6 m)")
 
 
 def whitening(pose_jacobian: np.ndarray, poses: np.ndarray, noise: Noise) -> np.ndarray:
@@ -170,16 +239,16 @@ def whitening(pose_jacobian: np.ndarray, poses: np.ndarray, noise: Noise) -> np.
 
 
 def gauge_constraints(layout: Layout, nominal: dict[str, np.ndarray]) -> Optional[np.ndarray]:
-    """The linear conditions that fix the gauge when a frame is identified (rows of C, C δ = 0):
-    a frame and the joints it carries can move together without changing a reading, so the
-    joints' net rigid motion from nominal is held at zero (6 rows per identified frame: the sum
-    of the joint shifts, and the sum of nominal joint x shift). None when no frame is identified:
-    the nominal frames then fix the gauge."""
+    """The linear conditions that fix the gauge when a frame is identified with every coordinate
+    of the joints it carries (rows of C, C δ = 0): a frame and its joints can move together
+    without changing a reading, so the joints' net rigid motion from nominal is held at zero
+    (6 rows per such frame: the sum of the joint shifts, and the sum of nominal joint x shift).
+    None when there is no such pair (the nominal frames, or the prior, fix the split)."""
     pairs = {"user_frame": "base_joint", "tool_frame": "platform_joint"}
-    slices = layout.slices()
+    slices, free = layout.slices(), layout.split(layout.free)
     rows = []
     for frame, joints in pairs.items():
-        if frame not in layout.groups:
+        if not (np.all(free[frame]) and np.all(free[joints])):
             continue
         points = nominal[joints].reshape(6, 3)
         for axis in range(3):  # translation: sum_k d_k = 0
@@ -198,21 +267,54 @@ def gauge_constraints(layout: Layout, nominal: dict[str, np.ndarray]) -> Optiona
 
 def weighted_rows(platform: Platform, poses: np.ndarray, layout: Layout, noise: Noise):
     """The readings platform predicts at poses (N, 6), the whitening W (N, 6, 6) of their
-    residuals, and the weighted identification Jacobian W d reading / d unknowns (N, 6, p)."""
+    residuals, and the weighted identification Jacobian W d reading / d parameters (N, 6, 54)."""
     predicted, derivatives = readings_and_jacobian(platform, poses)
     W = whitening(derivatives["pose"], poses, noise)
     return predicted, W, W @ stacked_jacobian(layout, derivatives)
 
 
-def scaled_basis(layout: Layout, geometry: dict[str, np.ndarray], rows: np.ndarray) -> np.ndarray:
-    """T (p, r) with unknowns = nominal + T z: each unknown scaled to a unit column of the
-    weighted Jacobian rows (m, p) (the scale of the reported condition number; an unknown no
-    reading depends on keeps scale 1), restricted to the gauge (C T = 0, gauge_constraints)."""
-    norms = np.linalg.norm(rows, axis=0)
-    scale = 1.0 / np.where(norms > 0, norms, 1.0)
+def scaled_basis(layout: Layout, geometry: dict[str, np.ndarray], rows: np.ndarray,
+                 tolerance: np.ndarray) -> np.ndarray:
+    """T (54, r) with parameters = nominal + T z: the unknowns only (the others' rows are zero),
+    each scaled to a unit column of the weighted Jacobian rows (m, 54) stacked on its prior row
+    (1 / tolerance), the scale of the reported condition number; restricted to the gauge
+    (C T = 0, gauge_constraints)."""
+    norms = np.sqrt(np.sum(rows ** 2, axis=0) + 1.0 / tolerance ** 2)
+    scale = np.where(layout.free, 1.0 / norms, 0.0)
+    T = np.diag(scale)[:, layout.free]
     constraints = gauge_constraints(layout, geometry)
     if constraints is None:
-        return np.diag(scale)
-    _, sv, Vt = np.linalg.svd(constraints * scale)
+        return T
+    _, sv, Vt = np.linalg.svd(constraints @ T)
     rank = int(np.sum(sv > sv[0] * 1e-12))
-    return scale[:, None] * Vt[rank:].T
+    return T @ Vt[rank:].T
+
+
+@dataclass(frozen=True)
+class Prior:
+    """The nominal geometry's tolerances: standard deviations of the built machine's parameters
+    about their nominal values (joints and offsets [m], frames' origins [m] and angles [rad])."""
+    joint: float = 1e-3
+    offset: float = 1e-3
+    frame_position: float = 5e-3
+    frame_angle: float = 5e-3
+
+    def check(self) -> None:
+        names = {"joint": "joint_tolerance", "offset": "offset_tolerance",
+                 "frame_position": "frame_tolerance", "frame_angle": "frame_angle_tolerance"}
+        for field, name in names.items():
+            v = getattr(self, field)
+            if not (isinstance(v, (int, float, np.floating, np.integer)) and np.isfinite(v)
+                    and 1e-9 <= v <= 1e3):
+                raise ValueError(f"{name} = {v!r} must be a number from 1e-9 to 1e3 "
+                                 f"({'rad' if field == 'frame_angle' else 'm'})")
+
+    def vector(self, layout: Layout) -> np.ndarray:
+        """The tolerance of each of the 54 parameters."""
+        frame = np.r_[[self.frame_position] * 3, [self.frame_angle] * 3]
+        joint = np.full(18, self.joint)
+        by_group = {"base_joint": joint, "platform_joint": joint,
+                    "length_offset": np.full(6, self.offset), "tool_frame": frame,
+                    "user_frame": frame}
+        return np.concatenate([by_group[g] for g in layout.groups]).astype(float)
+

@@ -31,6 +31,19 @@ def fmu_paths() -> dict[str, dict[str, pathlib.Path]]:
     return {m: {v: fmu_path(v, m) for v in FMI_VERSIONS} for m in FMU_NAMES}
 
 
+def ssp_path(version: str = "2.0") -> pathlib.Path:
+    """Path of the installed closed-loop SSP archive (docs/closed-loop.md: the scene player, the
+    inverse unit, the controller and the plant with their connections, start values and default
+    experiment) for FMI `version` ("2.0" or "3.0"), for an SSP master (ecos, OMSimulator,
+    fmpy.ssp). Raises as fmu_path."""
+    if version not in FMI_VERSIONS:
+        raise ValueError(f"version = {version!r}: the archives exist for FMI {', '.join(FMI_VERSIONS)}")
+    path = _HERE / "ssp" / version / "closed_loop.ssp"
+    if not path.is_file():
+        raise FileNotFoundError(f"{path} is missing: reinstall the package (pip install .)")
+    return path
+
+
 def fmu_start_values(platform, fmi_version: str = "2.0") -> dict[str, float]:
     """The start values that give an FMU unit of the library (StewartPlatform, StewartPlant,
     StewartPlantME) the platform `platform`: a Platform, a platform file's path, or a mapping of

@@ -86,17 +86,19 @@ def option_values(**options: Any) -> list[tuple[str, float]]:
 
 def read_platform_file(path: Union[str, "os.PathLike[str]"]) -> dict[str, ParameterValue]:
     """The parameters a platform file gives (docs/geometry.md), read and checked by the library
-    (the reader of ``--platform``): scalars as floats, arrays as lists. ParameterError names the
-    file, the line and column, and the field."""
+    (the reader of ``--platform``, which also converts the file's units to SI and its
+    stroke_neutral and stroke_travel to stroke_min and stroke_max): scalars as floats, arrays as
+    lists. ParameterError names the file, the line and column, and the field; a path that is not
+    a regular file, or one larger than PLATFORM_FILE_MAX_BYTES (1 MiB), is refused at once."""
     try:
-        text = pathlib.Path(path).read_bytes().decode("utf-8")
-    except (OSError, UnicodeDecodeError) as e:
-        raise ParameterError(f"{path}: {e}") from None
-    try:
-        fields = _core.read_platform_json(text)
+        fields = _core.read_platform_file(os.fsdecode(os.fspath(path)))
     except ValueError as e:
         raise ParameterError(f"{path}: {e}") from None
     return {name: values[0] if len(values) == 1 else list(values) for name, values in fields}
+
+
+#: The largest platform file read, in bytes (the library's STEWART_PLATFORM_FILE_MAX_BYTES).
+PLATFORM_FILE_MAX_BYTES: int = _core.PLATFORM_FILE_MAX_BYTES
 
 
 def platform_files() -> dict[str, pathlib.Path]:

@@ -48,8 +48,13 @@ class Platform:
         numbers or lists, e.g. one of ``stewart.platform_files()``), with ``params`` changed on
         top of it. The library reads the file and checks every field against the parameter
         table: ParameterError names the file, the line and the field, and nothing is built from
-        a file with any bad field."""
-        return cls(**read_platform_file(path), **params)
+        a file with any bad field. A parameter in ``params`` replaces the file's (whole, or the
+        element it names: ``stroke_max=0.8``, ``stroke_max[2]=0.8``)."""
+        merged: dict[str, ParameterValue] = dict(read_platform_file(path))
+        for name, value in params.items():
+            merged.pop(name, None)  # given again: placed after the file's, so it wins
+            merged[name] = value
+        return cls(**merged)
 
     @property
     def params(self) -> Mapping[str, ParameterValue]:

@@ -132,15 +132,134 @@ def test_bad_platform_files_are_named_and_nothing_is_written(tmp_path, capsys, f
     assert list(tmp_path.iterdir()) == [bad]
 
 
-def test_an_unobservable_set_is_named_and_nothing_is_written(tmp_path, files, machine):
+def write_csv(path, poses, readings, prefix=""):
+    rows = [HEADER] + [",".join(repr(float(v)) for v in row)
+                       for row in np.hstack([poses, readings])]
+    path.write_text(prefix + "\n".join(rows) + "\n", encoding="utf-8")
+    return path
+
+
+def test_one_orientation_is_left_to_the_prior_and_max_std_refuses_it(tmp_path, files, machine):
     _, nominal, _ = files
     poses = truth.random_poses(np.random.default_rng(5), 20)
     poses[:, 3:] = 0.05
-    rows = [HEADER] + [",".join(repr(float(v)) for v in row)
-                       for row in np.hstack([poses, truth.readings(machine, poses)])]
-    measured = tmp_path / "one_orientation.csv"
-    measured.write_text("\n".join(rows) + "\n")
-    done = run(nominal, measured, tmp_path / "out.json")  # and the script's own exit status
+    measured = write_csv(tmp_path / "one_orientation.csv", poses, truth.readings(machine, poses))
+    done = run(nominal, measured, tmp_path / "out.json", "--max-std", "0.1mm")
     assert done.returncode == 1
-    assert "cannot identify the geometry" in done.stderr and "base_joint[1..18]" in done.stderr
+    assert "cannot identify the geometry to max_std = 0.0001" in done.stderr
+    assert "base_joint[1..18]" in done.stderr
     assert list(tmp_path.iterdir()) == [measured]
+    done = run(nominal, measured, tmp_path / "out.json")  # the prior keeps the split nominal
+    assert done.returncode == 0, done.stderr
+    assert "combination(s) set by the prior" in done.stdout
+    report = (tmp_path / "out_report.txt").read_text()
+    assert "set by the prior: " in report and "predicted pose error inside the workspace" in report
+
+
+def test_a_byte_order_mark_is_read_past(tmp_path, capsys, files, machine):
+    _, nominal, measured = files
+    with_bom = tmp_path / "excel.csv"
+    with_bom.write_bytes(b"\xef\xbb\xbf" + measured.read_bytes())
+    status, stderr = run_here(capsys, nominal, with_bom, tmp_path / "out.json")
+    assert status == 0, stderr
+    assert json.loads((tmp_path / "out.json").read_text())["geometry"] == 1
+
+
+@pytest.mark.parametrize("case, message", [
+    ("report folder missing", "does not exist"),
+    ("out is a folder", "is a folder"),
+    ("angle noise 1e300", "angle_noise = 1e+300 must be 0 or from 1e-12 to 1"),
+    ("readings in mm", "are they in millimetres?"),
+    ("one reading +1 m", "pose row 3, leg 5"),
+])
+def test_refusals_name_the_cause_and_nothing_is_written(tmp_path, capsys, files, case,
+                                                        message):
+    _, nominal, measured = files
+    out = tmp_path / "out.json"
+    data = np.genfromtxt(measured, delimiter=",", skip_header=1)
+    args = []
+    if case == "report folder missing":
+        args = ["--report", str(tmp_path / "missing" / "report")]
+    elif case == "out is a folder":
+        out.mkdir()
+    elif case == "angle noise 1e300":
+        args = ["--angle-noise", "1e300"]
+    elif case == "readings in mm":
+        measured = write_csv(tmp_path / "mm.csv", data[:, :6], data[:, 6:] * 1e3)
+    else:
+        data[3, 10] += 1.0
+        measured = write_csv(tmp_path / "outlier.csv", data[:, :6], data[:, 6:])
+    before = sorted(tmp_path.rglob("*"))
+    status, stderr = run_here(capsys, nominal, measured, out, *args)
+    assert status == 1
+    assert message in stderr and "Traceback" not in stderr
+    if case == "one reading +1 m":
+        assert "is line 5 of" in stderr  # the header is line 1
+    assert sorted(tmp_path.rglob("*")) == before
+
+
+def test_a_million_rows_are_refused_with_a_message(tmp_path, files):
+    _, nominal, _ = files
+    big = tmp_path / "big.csv"
+    with open(big, "w") as f:
+        f.write(HEADER + "\n")
+        f.write("0,0,0.5,0,0,0,0.5,0.5,0.5,0.5,0.5,0.5\n" * 10 ** 6)
+    done = run(nominal, big, tmp_path / "out.json")
+    assert done.returncode == 1
+    assert "1000000 measurement rows; a calibration takes at most 20000" in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+@pytest.mark.parametrize("path, message", [("/dev/zero", "not a regular file"),
+                                           ("missing.csv", "cannot be read")])
+def test_a_csv_that_is_no_file_is_refused(tmp_path, capsys, files, path, message):
+    _, nominal, _ = files
+    status, stderr = run_here(capsys, nominal, path, tmp_path / "out.json")
+    assert status == 1 and message in stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_identify_and_tolerances_with_units(tmp_path, capsys, files):
+    _, nominal, measured = files
+    out = tmp_path / "offsets.json"
+    status, stderr = run_here(capsys, nominal, measured, out, "--identify", "offsets",
+                              "--offset-tolerance", "3mm", "--position-noise", "10um",
+                              "--angle-noise", "20urad")
+    assert status == 0, stderr
+    report = (tmp_path / "offsets_report.txt").read_text()
+    assert "identify: offsets" in report and "length_offset[6]" in report
+    assert "base_joint[1] " not in report
+    params = json.loads(out.read_text())
+    np.testing.assert_array_equal(params["base_joint"],
+                                  np.reshape(truth.thesis_joints()[0], -1))
+    assert "3.0000e-3" in report  # the tolerance given in mm, reported in m
+    with pytest.raises(SystemExit):
+        run_here(capsys, nominal, measured, out, "--joint-tolerance", "0.5furlong")
+    assert "'0.5furlong' is not a length" in capsys.readouterr().err
+
+
+def test_the_default_command_line_is_the_default_calibration(tmp_path, capsys):
+    """On the far-pivot precision hexapod (the machine test_calibration_machines.py judges
+    against a regularised fit), the command line with no option writes the geometry
+    stewart.calibrate gives with its defaults."""
+    nominal_params = truth.precision_hexapod()
+    nominal = tmp_path / "precision.json"
+    nominal.write_text(json.dumps(nominal_params))
+    platform = stewart.Platform(**nominal_params)
+    poses = stewart.calibration_poses(platform, 30, candidates=500)
+    rng = np.random.default_rng(31)
+    a, b = np.reshape(nominal_params["base_joint"], (6, 3)), np.reshape(
+        nominal_params["platform_joint"], (6, 3))
+    built = {"base_joint": a + rng.uniform(-1e-3, 1e-3, (6, 3)),
+             "platform_joint": b + rng.uniform(-1e-3, 1e-3, (6, 3)),
+             "length_offset": rng.uniform(-1e-3, 1e-3, 6),
+             "tool_frame": np.array(nominal_params["tool_frame"]), "user_frame": np.zeros(6)}
+    measured_poses = truth.measured(poses, rng)
+    readings = truth.readings(built, poses) + rng.normal(0, 1e-6, (30, 6))
+    measured = write_csv(tmp_path / "measured.csv", measured_poses, readings)
+    status, stderr = run_here(capsys, nominal, measured, tmp_path / "out.json")
+    assert status == 0, stderr
+    written = json.loads((tmp_path / "out.json").read_text())
+    expected = stewart.calibrate(platform, measured_poses, readings).parameters
+    for group in ("base_joint", "platform_joint", "length_offset"):
+        np.testing.assert_allclose(written[group], expected[group], rtol=0, atol=1e-12)

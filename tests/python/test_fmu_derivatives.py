@@ -2,7 +2,9 @@
 fmpy, against references independent of the code: the leg Jacobian written out here (dL/dq, and dL_dot/dq_dot, the same
 matrix), central finite differences of the unit's own outputs (every differentiable output,
 every input, fidelity 0, 1, 2, rate inputs and finite-difference rates, FMI 2 and 3), and the
-model structure's dependencies against what a change of each input does to each output; the
+model structure's dependencies against what a change of each input does to each output; every
+(output, input) pair the model structure lists answers, the outputs without a library Jacobian
+(condition, limit margins, axis ranges, residual) against central differences too; the
 controller's against its gains. Units without derivatives (the plant: no output depends on an
 input within a step; the scene: no inputs) keep answering Error; fmpy validate accepts the
 descriptions."""
@@ -248,7 +250,7 @@ def test_refused_requests(version):
     rng = np.random.default_rng(4)
     pose, rate, accel = random_point(rng)
     u = started(version, 2, 1, pose, rate, accel)
-    for unknown, known in ((["condition"], ["x"]), (["L[1]"], ["L[2]"]), (["x"], ["y"])):
+    for unknown, known in ((["status"], ["x"]), (["L[1]"], ["L[2]"]), (["x"], ["y"])):
         with pytest.raises(Exception):
             directional(u, unknown, known, [1.0])
         status, _, message = u.messages[-1]
@@ -322,3 +324,83 @@ def test_units_without_derivatives_say_so(version, unit):
     with pytest.raises(Exception, match="status 3"):  # Error: not supported
         fmu.getDirectionalDerivative([output.valueReference], [inputs[0].valueReference], [1.0])
     fmu.freeInstance()
+
+
+POSE_OUTPUTS = (["condition", "residual"] + [f"limit_margin[{k}]" for k in range(1, 6)]
+                + [f"range_min[{k}]" for k in range(1, 7)]
+                + [f"range_max[{k}]" for k in range(1, 7)])
+
+
+def started_within_limits(version, derivatives, seed):
+    """A unit with the limit outputs at a random point within every limit (the first of the
+    seed's points whose initialisation warns of none), and that point."""
+    rng = np.random.default_rng(seed)
+    for _ in range(50):
+        pose, rate, accel = random_point(rng)
+        u = Unit(version)
+        values = {"fidelity": 2, "derivatives": derivatives, "limit_outputs": 2,
+                  **dict(zip(INPUTS, np.concatenate([pose, rate, accel])))}
+        if u.init(**values) == OK:
+            return u, {n: values[n] for n in INPUTS}
+        u.fmu.freeInstance()
+    raise AssertionError("no point within the limits")
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+@pytest.mark.parametrize("derivatives", [0, 1])
+def test_every_declared_pair_answers(version, derivatives):
+    """Each Real output the model structure lists, with each input its dependencies name, has a
+    finite directional derivative (FMI: in step mode every listed Real output is an unknown of
+    GetDirectionalDerivative), and an unlisted input contributes nothing."""
+    md = fmpy.read_model_description(str(fmu_path(version)))
+    u, _ = started_within_limits(version, derivatives, 12 + derivatives)
+    for o in md.outputs:
+        if o.variable.type not in ("Real", "Float64"):
+            continue
+        listed = [d.name for d in o.dependencies]
+        assert listed, o.variable.name
+        row = directional(u, [o.variable.name], INPUTS, np.ones(len(INPUTS)))
+        assert np.isfinite(row).all(), o.variable.name
+        for name in listed:
+            value = directional(u, [o.variable.name], [name], [1.0])
+            assert np.isfinite(value).all(), (o.variable.name, name)
+        others = [n for n in INPUTS if n not in listed]
+        if others:
+            assert not directional(u, [o.variable.name], others, np.ones(len(others))).any()
+    u.fmu.terminate()
+    u.fmu.freeInstance()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_pose_outputs_equal_central_differences(version):
+    """condition, the limit margins and the axis ranges: their derivatives with respect to the
+    pose against central differences of the unit's own outputs (the margins and the condition at
+    h = 1e-5; the unit differences the library's check at 1e-6 itself; the ranges at h = 1e-4:
+    the unit's derivative comes from the margin that ends a range, not from differences of the
+    search). The residual's derivative is zero: the solver's leftover, 1e-15 m, has none."""
+    u, point = started_within_limits(version, 1, 31)
+    J = jacobian(u, POSE_OUTPUTS, POSE)
+    assert not J[1].any()  # residual
+    assert not jacobian(u, POSE_OUTPUTS, POSE_DOT + POSE_DDOT).any()
+    assert (np.abs(J[[0, 2, 3, 4, 6]]).max(axis=1) > 1e-2).all()  # not a comparison of zeros
+    worst = {}
+    for j, name in enumerate(POSE):
+        for h, rows in ((1e-5, range(0, 7)), (1e-4, range(7, 19))):
+            up = outputs_at(u, {**point, name: point[name] + h}, POSE_OUTPUTS)
+            down = outputs_at(u, {**point, name: point[name] - h}, POSE_OUTPUTS)
+            difference = (up - down) / (2 * h)
+            for i in rows:
+                if i == 1:  # the residual: differences of rounding
+                    assert abs(difference[i]) <= 1e-13 / h
+                    continue
+                rounding = 16 * np.finfo(float).eps * abs(up[i]) / h
+                error = max(abs(J[i, j] - difference[i]) - rounding, 0.0)
+                scale = max(np.abs(J[i]).max(), 1e-3)
+                worst[POSE_OUTPUTS[i]] = max(worst.get(POSE_OUTPUTS[i], 0.0), error / scale)
+    u.set_values(point)
+    print(f"FMI {version}: worst error relative to each row's largest derivative: "
+          + ", ".join(f"{k} {v:.1e}" for k, v in worst.items()))
+    for name, error in worst.items():
+        assert error < (1e-6 if not name.startswith("range") else 1e-4), (name, error)
+    u.fmu.terminate()
+    u.fmu.freeInstance()

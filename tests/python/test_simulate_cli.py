@@ -116,6 +116,34 @@ def test_refused_step_exits_1_naming_the_row(simulate, tmp_path):
     r = simulate(tmp_path / "in.csv", tmp_path / "out.csv")
     assert r.returncode == 1
     assert "row 2" in r.stderr and "out of range" in r.stderr, r.stderr
+    header, data = read(tmp_path / "out.csv")  # the row before it, marked partial on stderr
+    assert header == EXPECTED_HEADER and data.shape[0] == 1
+    assert "partial" in r.stderr and "before row 2" in r.stderr, r.stderr
+
+
+def test_late_failure_keeps_the_rows_before_it(simulate, tmp_path):
+    """A run that fails at row 1,341 writes the 1,340 rows before it, the same bit for bit as a
+    run of those rows alone, and exits 1 naming the row and the output as partial."""
+    t = np.arange(1341) * 1e-3
+    forces = np.zeros((t.size, 6))
+    forces[-1] = [1e308, -1e308] * 3
+    write_forces(tmp_path / "in.csv", t, forces)
+    write_forces(tmp_path / "good.csv", t[:-1], forces[:-1])
+    r = simulate("--fidelity", "massless", tmp_path / "in.csv", tmp_path / "out.csv")
+    assert r.returncode == 1
+    assert "row 1341" in r.stderr and "partial" in r.stderr, r.stderr
+    good = simulate("--fidelity", "massless", tmp_path / "good.csv", tmp_path / "good_out.csv")
+    assert good.returncode == 0, good.stderr
+    assert (tmp_path / "out.csv").read_text() == (tmp_path / "good_out.csv").read_text()
+    _, data = read(tmp_path / "out.csv")
+    assert data.shape[0] == 1340
+
+
+def test_failure_at_the_first_row_writes_nothing(simulate, tmp_path):
+    write_forces(tmp_path / "in.csv", [0.0, 0.001], [[0] * 6] * 2)
+    r = simulate("--param", "pitch0=1.5707963267948966", tmp_path / "in.csv", tmp_path / "out.csv")
+    assert r.returncode == 1, r.stderr
+    assert "start state" in r.stderr and "pitch0" in r.stderr, r.stderr
     assert not (tmp_path / "out.csv").exists()
 
 

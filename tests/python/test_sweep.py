@@ -2,7 +2,10 @@
 1 and 2 LocalCluster workers and from stewart-solve; the workspace's reachability and boundary
 against the closed-form length limits in numpy; map values at sample points against direct
 calls; bad specs refused before any work; failing cases recorded; a rerun computes only missing
-chunks."""
+chunks; cases beyond a limit as rows (their class and margin against lengths computed here, on
+every shipped machine against its axis ranges); CSV manoeuvres against stewart-solve on the
+scaled trajectory; inline scenes and platform files with a payload; results in the units asked
+for."""
 import json
 import math
 import pathlib
@@ -204,7 +207,6 @@ def test_workspace_values_at_sample_points_equal_direct_calls(workspace_run):
     ({"payload_mass": {"start": 0, "stop": 1, "num": 0}}, ["payload_mass.num", "empty"]),
     ({"payload_mass": []}, ["payload_mass", "empty"]),
     ({"payload_mass": [10, -5]}, ["payload_mass[1] = -5", "payload_mass = -5"]),
-    ({"manoeuvres": [{"scene": "heave", "amplitude": [1, 4]}]}, ["manoeuvres[0]", "heave", "amplitude x4", "unreachable"]),
     ({"manoeuvres": [{"scene": "hevae"}]}, ["manoeuvres[0].scene = 'hevae'"]),
     ({"fidelity": ["massless", "fast"]}, ["fidelity[1]", "fast"]),
     ({"options": {"tolerance": -1}}, ["options", "tolerance = -1"]),
@@ -431,3 +433,247 @@ def test_workspace_chunks_written_block_by_block_equal_one_call(tmp_path, monkey
     compute_chunk(spec, chunk, str(out))
     write_parquet(work.workspace_chunk(spec, chunk)[0], tmp_path / "one.parquet")
     assert (out / "chunks" / chunk.file_name).read_bytes() == (tmp_path / "one.parquet").read_bytes()
+
+
+# ---------------------------------------------------------------- feasibility studies
+
+
+def _solve_cli_peaks(t, q, tmp_path, params, derivatives=None):
+    """stewart-solve on a CSV of t and poses (its own finite differences when derivatives is
+    None): the envelope's peaks computed here from its output."""
+    inp, out = tmp_path / "in.csv", tmp_path / "out.csv"
+    cols = ["t", *POSE] + ([] if derivatives is None else [*POSE_DOT, *POSE_DDOT])
+    rows = np.hstack([t[:, None], q] + ([] if derivatives is None else list(derivatives)))
+    inp.write_text(",".join(cols) + "\n" + "".join(",".join(repr(float(v)) for v in r) + "\n" for r in rows))
+    args = [str(stewart_solve_path()), "--fidelity", "massless"]
+    for k, v in params.items():
+        args += ["--param", f"{k}={float(v)!r}"]
+    r = subprocess.run(args + [str(inp), str(out)], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 0, r.stderr
+    o = np.loadtxt(out, delimiter=",", skiprows=1)
+    return {"L": o[:, 1:7], "Ld": o[:, 7:13], "Ldd": o[:, 13:19], "F": o[:, 19:25]}
+
+
+def test_inline_scenes_take_the_spec_s_duration_and_step(tmp_path):
+    """An inline scene without duration and step plays for the spec's top-level duration at its
+    step (before: refused with "scene.duration = None", a field the user never wrote)."""
+    scene = {"name": "nod", "pose": {"z": {"mean": 0.5}, "pitch": {"amplitude": 0.05, "omega": 3.0}}}
+    spec = {"kind": "envelope", "manoeuvres": [{"scene": scene}], "duration": 0.6, "step": 0.02}
+    resolved = resolve(spec, SCENES)
+    assert resolved["manoeuvres"][0]["scene"]["duration"] == 0.6
+    out, _ = _sweep(tmp_path, spec, "inline", workers=1)
+    t = _table(out, "envelope.parquet")
+    assert list(t["poses"]) == [31] and list(t["status"]) == [0] and list(t["manoeuvre"]) == ["nod"]
+    with pytest.raises(SpecError, match=r"manoeuvres\[0\].scene has no step: give it in the "
+                                         r"scene or as the spec's top-level step"):
+        resolve({**spec, "step": None}, SCENES)
+
+
+def test_platform_files_with_a_payload_are_swept(tmp_path):
+    """A platform file that gives payload_mass and payload_com (any field a machine has): its
+    payload is the sweep's single case, or the top-level ranges sweep it (before: refused with
+    "platform.payload_mass: the envelope sweeps it", a field the user never wrote)."""
+    import json as _json
+    machine = _json.loads(stewart.platform_files()["thesis"].read_text())
+    machine.update(payload_mass=35.0, payload_com=[0.01, 0.0, 0.1])
+    (tmp_path / "machine.json").write_text(_json.dumps(machine))
+    spec = {"kind": "envelope", "platform_file": "machine.json",
+            "manoeuvres": [{"scene": "heave"}], "duration": 0.5}
+    path = tmp_path / "spec.json"
+    path.write_text(_json.dumps(spec))
+    resolved = stewart.sweeps.load(path, SCENES)
+    assert resolved["payload_mass"] == [35.0] and resolved["payload_com"] == [[0.01, 0.0, 0.1]]
+    assert "payload_mass" not in resolved["platform"]
+    path.write_text(_json.dumps({**spec, "payload_mass": [0, 70]}))
+    assert stewart.sweeps.load(path, SCENES)["payload_mass"] == [0.0, 70.0]
+    both = {**ENVELOPE, "platform": {"payload_mass": 3}, "payload_mass": [1, 2]}
+    with pytest.raises(SpecError, match="platform.payload_mass and the top-level payload_mass"):
+        resolve(both, SCENES)
+
+
+def test_cases_beyond_a_limit_are_rows_with_their_class_and_margin(tmp_path):
+    """Heave amplitudes x1 .. x4: the larger ones leave the stroke. Every case is a row (before:
+    one case beyond the stroke refused the whole sweep); its limit class, the time of the first
+    pose beyond a limit and the smallest stroke margin against the lengths computed here."""
+    spec = {"kind": "envelope", "platform": {"stroke_min": STROKE[0], "stroke_max": STROKE[1]},
+            "manoeuvres": [{"scene": "heave", "amplitude": [1, 2, 3, 4]}], "duration": 1.0}
+    out, _ = _sweep(tmp_path, spec, "feasible", workers=1)
+    t = _table(out, "envelope.parquet")
+    assert list(t["amplitude"]) == [1, 2, 3, 4] and np.all(t["status"] == 0)
+    assert t["feasible"][0] and not t["feasible"][3]
+    for row, amplitude in enumerate(t["amplitude"]):
+        time, q, _, _ = _scene_poses("heave", amplitude, 1.0, 1.0)
+        L = np.array([reference.lengths(p) for p in q])
+        margin = np.minimum(L - STROKE[0], STROKE[1] - L).min(axis=1)
+        assert t["margin_stroke"][row] == pytest.approx(margin.min(), abs=1e-12)
+        beyond = np.flatnonzero(margin < 0)
+        assert t["feasible"][row] == (beyond.size == 0)
+        if beyond.size:
+            assert t["limit_class"][row] == 1 and t["limit_t"][row] == pytest.approx(time[beyond[0]])
+        else:
+            assert t["limit_class"][row] == 0 and np.isnan(t["limit_t"][row].astype(float))
+    assert t["peak_force_1"][3] is not None and float(t["peak_force_1"][3]) > 0
+
+
+def _trajectory(n=60):
+    """A smooth made-up move: t not evenly spaced, every component moving."""
+    t = np.cumsum(np.r_[0.0, 0.01 + 0.005 * np.sin(np.arange(n - 1))])
+    s = t / t[-1]
+    q = np.column_stack([0.02 * np.sin(3 * s), -0.015 * s ** 2, 0.5 + 0.03 * s * (1 - s),
+                         0.04 * np.sin(2 * s), -0.03 * s, 0.05 * np.sin(5 * s)])
+    return t, q
+
+
+@pytest.mark.parametrize("derivatives", [False, True])
+def test_csv_manoeuvres_are_swept_in_amplitude_and_frequency(tmp_path, derivatives):
+    """A CSV trajectory (t and poses, with or without derivative columns) scaled about its first
+    pose by amplitude and played faster by frequency: each case's peaks equal stewart-solve's on
+    the scaled trajectory written here (stewart-solve differentiating it itself when the file
+    has no derivative columns)."""
+    t, q = _trajectory()
+    cols = ["t", *POSE]
+    rows = [t[:, None], q]
+    if derivatives:
+        from stewart.sweeps.trajectory import finite_difference
+        qd = np.column_stack([finite_difference(t, q[:, i], 1) for i in range(6)]) * 1.01
+        qdd = np.column_stack([finite_difference(t, q[:, i], 2) for i in range(6)]) * 0.99
+        cols += [*POSE_DOT, *POSE_DDOT]
+        rows += [qd, qdd]
+    (tmp_path / "move.csv").write_text(",".join(cols) + "\n" + "".join(
+        ",".join(repr(float(v)) for v in r) + "\n" for r in np.hstack(rows)))
+    spec = {"kind": "envelope", "payload_mass": [20.0],
+            "manoeuvres": [{"csv": "move.csv", "amplitude": [0.5, 2.0], "frequency": [1.0, 3.0]}]}
+    out, _ = _sweep(tmp_path, spec, "csv", workers=1)
+    table = _table(out, "envelope.parquet")
+    assert len(table["case"]) == 4 and np.all(table["status"] == 0)
+    assert list(table["manoeuvre"]) == ["move"] * 4
+    for row in range(4):
+        a, f = table["amplitude"][row], table["frequency"][row]
+        scaled_t = t[0] + (t - t[0]) / f
+        scaled_q = q[0] + a * (q - q[0])
+        d = None if not derivatives else (a * f * qd, a * f * f * qdd)
+        ref = _solve_cli_peaks(scaled_t, scaled_q, tmp_path, {"payload_mass": 20.0}, d)
+        for k in range(6):
+            assert table[f"peak_force_{k + 1}"][row] == pytest.approx(np.abs(ref["F"][:, k]).max(), rel=1e-9)
+        assert table["peak_length_rate"][row] == pytest.approx(np.abs(ref["Ld"]).max(), rel=1e-9)
+        assert table["peak_length_accel"][row] == pytest.approx(np.abs(ref["Ldd"]).max(), rel=1e-9)
+        assert table["length_max"][row] == pytest.approx(ref["L"].max(), rel=1e-12)
+
+
+@pytest.mark.parametrize("text, words", [
+    ("t,x,y,z,roll,pitch\n0,0,0,0.5,0,0\n", ["manoeuvres[0].csv", "'yaw' is missing"]),
+    ("t,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,0\n0,0,0,0.5,0,0,0\n", ["line 3", "does not increase"]),
+    ("t,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,nan\n", ["line 2", "column yaw = 'nan'"]),
+    ("t,x,y,z,roll,pitch,yaw,x_dot\n0,0,0,0.5,0,0,0,0\n", ["_dot columns must be all six"]),
+])
+def test_bad_csv_manoeuvres_are_refused_naming_the_line(tmp_path, text, words):
+    (tmp_path / "move.csv").write_text(text)
+    spec = {**ENVELOPE, "manoeuvres": [{"csv": str(tmp_path / "move.csv")}]}
+    _assert_refused(tmp_path, spec, words)
+
+
+def test_results_follow_the_units_asked_for(tmp_path):
+    """--units mm,deg: lengths x 1000, angles x 180/pi in the merged tables, the CSV and
+    volume.json, each field's unit in its metadata; forces, conditions and flags unchanged;
+    the chunks stay SI (the same files either way)."""
+    spec = {**WORKSPACE, "slices": [WORKSPACE["slices"][1]], "volume": {"cells": 24}}
+    si, _ = _sweep(tmp_path, spec, "si", workers=1)
+    path = tmp_path / "mm.json"
+    path.write_text(json.dumps(spec))
+    r = subprocess.run([sys.executable, str(ROOT / "scripts/sweep.py"), str(path), str(tmp_path / "mm"),
+                        "--workers", "1", "--no-progress", "--units", "mm,deg"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    mm = tmp_path / "mm"
+    a, b = _table(si, "workspace_rp.parquet"), _table(mm, "workspace_rp.parquet")
+    for name in a:
+        factor = {"x": 1e3, "y": 1e3, "z": 1e3, "margin_stroke": 1e3, "margin_interference": 1e3,
+                  **{f"L{k}": 1e3 for k in range(1, 7)}, "roll": 180 / np.pi, "pitch": 180 / np.pi,
+                  "yaw": 180 / np.pi, "margin_base_joint": 180 / np.pi,
+                  "margin_platform_joint": 180 / np.pi}.get(name, 1)
+        if a[name].dtype.kind == "f":
+            np.testing.assert_allclose(b[name], a[name] * factor, rtol=1e-15, err_msg=name)
+        else:
+            assert list(a[name]) == list(b[name]), name
+    schema = pq.read_schema(mm / "workspace_rp.parquet")
+    assert schema.field("x").metadata[b"unit"] == b"mm" and schema.field("roll").metadata[b"unit"] == b"deg"
+    assert schema.field("F1").metadata[b"unit"] == b"N"
+    for chunk in (si / "chunks").glob("*.parquet"):
+        assert chunk.read_bytes() == (mm / "chunks" / chunk.name).read_bytes()
+    va, vb = (json.loads((d / "volume.json").read_text()) for d in (si, mm))
+    assert vb["volume_unit"] == "mm^3" and vb["volume"] == pytest.approx(va["volume_m3"] * 1e9, rel=1e-15)
+    assert va["volume_unit"] == "m^3" and va["volume"] == va["volume_m3"]
+
+
+def test_envelope_csv_in_the_units_asked_for(tmp_path):
+    spec = {**ENVELOPE, "fidelity": ["massless"], "payload_mass": [10.0]}
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(spec))
+    run(path, tmp_path / "out", SCENES, workers=1, progress=False, log=lambda m: None, units="mm")
+    t = _table(tmp_path / "out", "envelope.parquet")
+    import csv
+    with open(tmp_path / "out" / "envelope.csv") as f:
+        rows = list(csv.reader(f))
+    header = rows[0]
+    assert "length_max [mm]" in header and "peak_length_rate [mm/s]" in header
+    assert "peak_force_1 [N]" in header and "manoeuvre" in header
+    col = header.index("length_max [mm]")
+    np.testing.assert_array_equal([float(r[col]) for r in rows[1:]], t["length_max"].astype(float))
+    assert 400 < float(rows[1][col]) < 700  # the thesis legs' half-metre in mm
+    with pytest.raises(ValueError, match="'furlong' is neither a length unit"):
+        run(path, tmp_path / "bad", SCENES, workers=1, progress=False, log=lambda m: None, units="furlong")
+
+
+@pytest.mark.parametrize("name", sorted(stewart.platform_files()))
+def test_feasibility_on_every_shipped_machine(name):
+    """A heave about each shipped machine's home (its platform file as it is, payload and all):
+    at half the distance to the nearer end of home's z axis range every pose is within every
+    limit; at 1.5 times it the case is a row beyond the limit that ends the axis range first,
+    with a negative margin of that class (a machine whose home is beyond a limit: every case,
+    from t = 0, with home's class)."""
+    from stewart.sweeps.work import envelope_chunk
+    from test_workspace_volume import home
+    path = stewart.platform_files()[name]
+    plat = stewart.Platform.from_file(path)
+    q0 = home(plat)
+    ranges = plat.axis_ranges(q0, details=True)
+    (low, high), (low_class, high_class) = ranges.ends[0, 2], ranges.limit[0, 2]
+    up, down = high - q0[2], q0[2] - low
+    amplitude = max(min(up, down), 1e-3)
+    scene = {"name": "heave", "pose": {c: {"mean": float(v)} for c, v in zip(POSE, q0)}}
+    scene["pose"]["z"].update(amplitude=amplitude, omega=2 * np.pi)
+    spec = resolve({"kind": "envelope", "platform_file": str(path), "duration": 1.0, "step": 0.005,
+                    "manoeuvres": [{"scene": scene, "amplitude": [0.5, 1.5]}]}, SCENES)
+    table, _ = envelope_chunk(spec, chunks(spec)[0])
+    t = {k: table[k].to_pylist() for k in table.column_names}
+    assert t["status"] == [0, 0] and t["poses"] == [201, 201]
+    at_home = plat.limits(q0)
+    if not at_home.within[0]:
+        assert t["feasible"] == [False, False] and t["limit_t"] == [0.0, 0.0]
+        assert t["limit_class"] == [int(at_home.first[0])] * 2
+        return
+    assert t["feasible"] == [True, False] and t["limit_class"][0] == 0
+    expected = high_class if 1.5 * amplitude >= up else low_class
+    assert t["limit_class"][1] == expected != 0
+    from stewart.limits import LIMIT_CLASSES
+    assert t[f"margin_{LIMIT_CLASSES[expected - 1]}"][1] < 0
+
+
+@pytest.mark.parametrize("about", ["home", [0.01, -0.02, 0.45, 0.0, 0.02, 0.1]])
+def test_csv_manoeuvres_scale_about_home_or_a_given_pose(tmp_path, about):
+    """about = "home" (the machine's home pose, from its frames, computed in the test) or 6
+    numbers: q = about + amplitude (q_file - about), rates x amplitude x frequency."""
+    from stewart.sweeps.spec import manoeuvre_samples
+    from test_workspace_volume import home
+    t, q = _trajectory()
+    (tmp_path / "move.csv").write_text("t,x,y,z,roll,pitch,yaw\n" + "".join(
+        ",".join(repr(float(v)) for v in r) + "\n" for r in np.hstack([t[:, None], q])))
+    frames = {"tool_frame": [0.0, 0.0, 0.1, 0.0, 0.0, 0.2], "user_frame": [0.0, 0.0, 0.05, 0, 0, 0]}
+    spec = resolve({"kind": "envelope", "platform": frames,
+                    "manoeuvres": [{"csv": str(tmp_path / "move.csv"), "about": about}]}, SCENES)
+    reference_pose = home(stewart.Platform(**frames)) if about == "home" else np.array(about)
+    scaled_t, scaled_q, scaled_qd, _ = manoeuvre_samples(spec, spec["manoeuvres"][0], 3.0, 2.0)
+    np.testing.assert_allclose(scaled_q, reference_pose + 3.0 * (q - reference_pose), atol=1e-14)
+    np.testing.assert_allclose(scaled_t, t / 2.0, atol=1e-15)
+    from stewart.sweeps.trajectory import finite_difference
+    np.testing.assert_allclose(scaled_qd[:, 2], 6.0 * finite_difference(t, q[:, 2], 1), rtol=1e-13)

@@ -50,7 +50,10 @@ def test_volume_of_a_spherical_shell():
     plat = stewart.Platform(base_radius=1e-3, platform_radius=1e-3, stroke_min=0.3, stroke_max=0.7,
                             base_joint_limit=np.pi, platform_joint_limit=np.pi, leg_diameter=0)
     exact = 4 / 3 * np.pi * (0.7 ** 3 - 0.3 ** 3)
-    assert workspace_volume(plat, cells=32, warn_condition=1e300) == pytest.approx(exact, rel=0.02)
+    # Near-singular everywhere (point joints): each axis range is slow, so a coarse first grid.
+    result = workspace_volume(plat, cells=24, warn_condition=1e300, details=True)
+    assert result.relative_error <= 0.0025 and not result.note
+    assert result.volume == pytest.approx(exact, rel=0.005)
 
 
 def test_volume_of_the_thesis_platform_against_monte_carlo():
@@ -75,6 +78,7 @@ def test_volume_of_the_thesis_platform_against_monte_carlo():
     ({"cells": 1}, ["volume.cells = 1"]),
     ({"orientation": [0, 0]}, ["volume.orientation", "3 finite numbers"]),
     ({"size": 3}, ["volume", "unknown field 'size'"]),
+    ({"accuracy": 0}, ["volume.accuracy = 0", "[1e-4, 0.5]"]),
 ])
 def test_volume_field_is_checked_by_name(volume, words):
     spec = {"kind": "workspace", "slices": [{"name": "z", "fixed": {}, "axes": {"z": [0.5]}}],
@@ -83,3 +87,10 @@ def test_volume_field_is_checked_by_name(volume, words):
         resolve(spec, ".")
     for w in words:
         assert w in str(e.value)
+
+
+def test_a_volume_for_a_machine_whose_home_is_beyond_a_limit_is_refused_at_once():
+    spec = {"kind": "workspace", "platform": {"stroke_min": 0.6, "stroke_max": 0.8},
+            "slices": [{"name": "z", "fixed": {}, "axes": {"z": [0.5]}}], "volume": {}}
+    with pytest.raises(SpecError, match=r"volume: the home pose .* stroke margin -0\.\d+ m"):
+        resolve(spec, ".")

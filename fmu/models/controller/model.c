@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "bindings.h"
 #include "logging.h"
 #include "model_interface.h"
 #include "model_without_resources.h"
@@ -11,13 +12,9 @@ enum { LEGS = 6 };
 static const double kDefaultKp = 1e6, kDefaultKd = 1e4;
 
 void model_start_values(fmu_values *v) {
-#define FMU_INPUT(vr, id, name, start, unit, row, col, desc) v->real[vr] = start;
-#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
-#include "variables.def"
+    fmu_start_values(v);
     v->real[VR_kp] = kDefaultKp;
     v->real[VR_kd] = kDefaultKd;
-    v->integer[VR_status] = 0;
-    memset(&v->model, 0, sizeof v->model);
 }
 
 fmu_status model_apply_parameters(fmu_instance *inst) {

@@ -15,6 +15,11 @@
 #include "stewart/stewart_table.h"
 
 #define FMU_MODEL_IDENTIFIER "StewartPlatform"
+/* What its variables bind to (runtime/bindings.h): the parameters to stewart_params, the options
+ * to the library's option table. */
+#define FMU_PARAMS_STRUCT stewart_params
+#define FMU_OPTION_TABLE STEWART_OPTION_TABLE
+#define FMU_OPTION_TABLE_STRUCT stewart_inverse_options
 #define FMU_GUID "{5d0f6a3e-9b1c-4c2e-a7f4-3e8b2c7d1a04}"
 /* Every value reference is below this bound (checked at compile time in variables.c). */
 #define FMU_NVR 618
@@ -25,7 +30,7 @@
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.1\""
 /* FMI 2 canInterpolateInputs: the model takes input derivatives (model_set_input_derivatives). */
 #define FMU_CAN_INTERPOLATE_INPUTS 1
-/* The usual doStep goes straight from the FMI call to the route's step (model.c:
+/* The usual doStep goes straight from the FMI call to the route's step (usual_step.c:
  * model_usual_steps), by the route model_values.usual_route. */
 #define FMU_MODEL_USUAL_STEP 1
 #define FMU_USUAL_ROUTE(v) ((v)->model.usual_route)
@@ -67,7 +72,8 @@ typedef struct model_values {
     int input_derivatives;     /* fmi2SetRealInputDerivatives called since the last step */
     int solve_status;          /* fmu_status of the solve the outputs come from */
     int advance_discarded;     /* the outputs stand after a Taylor advance that was discarded */
-    int usual_route;           /* the usual step's route (model.c: model_usual_steps, settle_usual_route) */
+    int usual_route;           /* the usual step's route (usual_step.c: model_usual_steps;
+                                  step_rules.c: inverse_settle_usual_route) */
 } model_values;
 
 /* The model's resources: built at the end of initialisation, never part of a state's plain

@@ -83,7 +83,8 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
         m->solve_status < FMU_OK || m->solve_status > FMU_ERROR)
         return "a flag is out of range";
     if (m->newer & ~1) return "finite-difference history's newer point is not 0 or 1";
-    /* (points are committed by accepted steps: the hold step relies on it, model.c step_end) */
+    /* (points are committed by accepted steps: the hold step relies on it, usual_step.c
+     * step_end) */
     if (m->n_history > 0 && !v->has_stepped) return "finite-difference history without a step";
     if (m->n_history > 0) {
         const fd_point *newer = &m->history[m->newer];

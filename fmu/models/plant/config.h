@@ -16,6 +16,12 @@
 #include "stewart/stewart_table.h"
 
 #define FMU_MODEL_IDENTIFIER "StewartPlant"
+/* What its variables bind to (runtime/bindings.h): the parameters to stewart_params, the start
+ * state and the Real options to plant_settings, the options to the plant's option table. */
+#define FMU_PARAMS_STRUCT stewart_params
+#define FMU_SETTINGS_STRUCT plant_settings
+#define FMU_OPTION_TABLE STEWART_PLANT_OPTION_TABLE
+#define FMU_OPTION_TABLE_STRUCT stewart_plant_options
 #define FMU_GUID "{b7e2c4a1-3f58-4d9e-8a61-2c0f7d93e5b2}"
 /* Every value reference is below this bound (checked at compile time in variables.c). */
 #define FMU_NVR 618

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bindings.h"
 #include "logging.h"
 #include "model.h"
 
@@ -31,34 +32,23 @@ void model_start_values(fmu_values *v) {
     stewart_params_default(&p);
     plant_settings s;
     default_settings(&s, &p);
-#define FMU_INPUT(vr, id, name, start, unit, row, col, desc) v->real[vr] = start;
-#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
-#define FMU_OUTPUT_INT(vr, id, name, desc) v->integer[vr] = 0;
-#define FMU_OPTION_INT(vr, id, name, start, min, max, desc) v->integer[vr] = start;
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) v->real[vr] = s.field;
-#define FMU_PARAM(vr, id, name, field, unit, display, desc) v->real[vr] = p.field;
-#define FMU_INDEPENDENT(vr, id, name, unit, desc) v->real[vr] = 0.0;
-#include "variables.def"
-    v->integer[VR_max_internal_steps] = (int32_t)s.options.max_internal_steps;
+    fmu_start_values(v);
+    fmu_params_to_values(v, &p);
+    fmu_settings_to_values(v, &s);
+    fmu_table_options_to_values(v, &s.options);
     v->integer[VR_status] = 3; /* nothing integrated yet */
-    memset(&v->model, 0, sizeof v->model);
 }
 
 void plant_params_from_values(const fmu_values *v, stewart_params *p) {
     stewart_params_default(p);
-#define FMU_PARAM(vr, id, name, field, unit, display, desc) p->field = v->real[vr];
-#include "variables.def"
+    fmu_params_from_values(v, p);
 }
 
 void plant_settings_from_values(const fmu_values *v, plant_settings *s) {
     memset(s, 0, sizeof *s);
     stewart_plant_options_default(&s->options);
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) s->field = v->real[vr];
-#include "variables.def"
-    s->options.fidelity = v->integer[VR_fidelity];
-    s->options.method = v->integer[VR_method];
-    s->options.max_internal_steps = v->integer[VR_max_internal_steps];
-    s->options.fixed_steps = v->integer[VR_fixed_steps];
+    fmu_settings_from_values(v, s);
+    fmu_table_options_from_values(v, &s->options);
 }
 
 const char *plant_check_settings(const fmu_values *v, char *why, size_t size) {

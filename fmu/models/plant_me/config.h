@@ -16,6 +16,10 @@
 #include "stewart/stewart_table.h"
 
 #define FMU_MODEL_IDENTIFIER "StewartPlantME"
+/* What its variables bind to (runtime/bindings.h): the parameters to stewart_params, the start
+ * state to plant_me_start (below). */
+#define FMU_PARAMS_STRUCT stewart_params
+#define FMU_SETTINGS_STRUCT plant_me_start
 #define FMU_GUID "{1082c231-0cb7-4444-8668-eaa9aa9d2c96}"
 /* Every value reference is below this bound (checked at compile time in variables.c): the
  * plant's. */
@@ -57,6 +61,11 @@
          : 1)
 
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
+/* The start state's parameters (variables.def's FMU_OPTION_REAL fields). */
+typedef struct plant_me_start {
+    double pose0[6], rate0[6];
+} plant_me_start;
+
 typedef struct model_values {
     int solve_status; /* fmu_status of the outputs' last refresh */
     int stroke_legs;  /* bit k: leg k+1 outside its stroke at the last refresh */

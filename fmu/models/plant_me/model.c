@@ -11,39 +11,23 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bindings.h"
 #include "logging.h"
 #include "model_interface.h"
-
-/* The start state's parameters (variables.def's FMU_OPTION_REAL fields). */
-typedef struct plant_me_start {
-    double pose0[6], rate0[6];
-} plant_me_start;
 
 void model_start_values(fmu_values *v) {
     stewart_params p;
     stewart_params_default(&p);
     plant_me_start s = {{0, 0, p.home_height, 0, 0, 0}, {0}};
-#define FMU_INPUT(vr, id, name, start, unit, row, col, desc) v->real[vr] = start;
-#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
-#define FMU_OUTPUT_INT(vr, id, name, desc) v->integer[vr] = 0;
-#define FMU_OPTION_INT(vr, id, name, start, min, max, desc) v->integer[vr] = start;
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) v->real[vr] = s.field;
-#define FMU_PARAM(vr, id, name, field, unit, display, desc) v->real[vr] = p.field;
-#define FMU_INDEPENDENT(vr, id, name, unit, desc) v->real[vr] = 0.0;
-#include "variables.def"
+    fmu_start_values(v);
+    fmu_params_to_values(v, &p);
+    fmu_settings_to_values(v, &s);
     v->integer[VR_status] = 3; /* nothing evaluated yet */
-    memset(&v->model, 0, sizeof v->model);
 }
 
 static void params_from_values(const fmu_values *v, stewart_params *p) {
     stewart_params_default(p);
-#define FMU_PARAM(vr, id, name, field, unit, display, desc) p->field = v->real[vr];
-#include "variables.def"
-}
-
-static void start_from_values(const fmu_values *v, plant_me_start *s) {
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) s->field = v->real[vr];
-#include "variables.def"
+    fmu_params_from_values(v, p);
 }
 
 /* ---------------------------------------------------------------- parameters */
@@ -105,7 +89,7 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
 fmu_status model_start(fmu_instance *inst) {
     fmu_values *v = &inst->v;
     plant_me_start s;
-    start_from_values(v, &s);
+    fmu_settings_from_values(v, &s);
     if (stewart_plant_set_state(inst->res.plant, 0.0, s.pose0, s.rate0) != STEWART_OK) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "invalid parameter: start state x0..yaw0 = (%g, %g, %g, %g, %g, %g), "

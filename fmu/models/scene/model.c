@@ -3,16 +3,14 @@
 #include <math.h>
 #include <string.h>
 
+#include "bindings.h"
 #include "logging.h"
 #include "model_interface.h"
 #include "model_without_resources.h"
 
 void model_start_values(fmu_values *v) {
-#define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = 0.0;
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc) v->real[vr] = 0.0;
-#include "variables.def"
+    fmu_start_values(v);
     v->real[VR_z_mean] = 0.5; /* at rest at home */
-    memset(&v->model, 0, sizeof v->model);
 }
 
 fmu_status model_apply_parameters(fmu_instance *inst) {

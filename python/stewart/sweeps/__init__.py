@@ -3,6 +3,7 @@ docs/sweeps.md describes the spec). Needs the `sweeps` extras: dask, distributed
 matplotlib."""
 from .run import merge, run
 from .spec import Chunk, SpecError, chunks, load, resolve
-from .volume import workspace_volume
+from .volume import WorkspaceVolume, workspace_volume
 
-__all__ = ["run", "merge", "load", "resolve", "chunks", "Chunk", "SpecError", "workspace_volume"]
+__all__ = ["run", "merge", "load", "resolve", "chunks", "Chunk", "SpecError", "workspace_volume",
+           "WorkspaceVolume"]

@@ -6,20 +6,24 @@ import pathlib
 import numpy as np
 import pyarrow.parquet as pq
 
+from .units import Units
 
-def plot(spec: dict, out: pathlib.Path) -> list[pathlib.Path]:
-    """Writes the plots of whatever parts are merged in out; returns their paths."""
+
+def plot(spec: dict, out: pathlib.Path, units: Units = Units()) -> list[pathlib.Path]:
+    """Writes the plots of whatever parts are merged in out (their values already in units);
+    returns their paths."""
     import matplotlib
     matplotlib.use("Agg")
     if spec["kind"] == "envelope":
         return _envelope(out) if (out / "envelope.parquet").exists() else []
     return [p for s in spec["slices"] if (out / f"workspace_{s['name']}.parquet").exists()
-            for p in [_slice(s, out)]]
+            for p in [_slice(s, out, units)]]
 
 
 def _envelope(out: pathlib.Path) -> list[pathlib.Path]:
     """Per fidelity: the worst case over centre of mass, amplitude and frequency of each
-    manoeuvre against payload mass: peak leg force, peak power, smallest distance to singularity."""
+    manoeuvre against payload mass, over the feasible cases (solved and within every limit):
+    peak leg force, peak power, smallest distance to singularity."""
     import matplotlib.pyplot as plt
     t = pq.read_table(out / "envelope.parquet")
     cols = {k: t[k].to_numpy(zero_copy_only=False) for k in t.column_names}
@@ -33,7 +37,8 @@ def _envelope(out: pathlib.Path) -> list[pathlib.Path]:
         fig, axes = plt.subplots(len(panels), 1, sharex=True, figsize=(8, 9))
         for ax, (label, values) in zip(axes, panels):
             for name in sorted(set(cols["manoeuvre"])):
-                sel = (cols["fidelity"] == level) & (cols["manoeuvre"] == name) & (cols["status"] == 0)
+                sel = ((cols["fidelity"] == level) & (cols["manoeuvre"] == name) &
+                       (cols["status"] == 0) & cols["feasible"].astype(bool))
                 masses = np.unique(cols["payload_mass"][sel])
                 worst = [(np.min if label.startswith("smallest") else np.nanmax)(
                     values[sel & (cols["payload_mass"] == m)]) for m in masses]
@@ -42,8 +47,12 @@ def _envelope(out: pathlib.Path) -> list[pathlib.Path]:
             ax.grid(True, alpha=0.3)
         axes[0].legend(fontsize="small")
         axes[-1].set_xlabel("payload mass [kg]")
-        failed = int(np.sum((cols["fidelity"] == level) & (cols["status"] != 0)))
-        fig.suptitle(f"load envelope, {level} level" + (f" ({failed} failed cases)" if failed else ""))
+        level_rows = cols["fidelity"] == level
+        failed = int(np.sum(level_rows & (cols["status"] != 0)))
+        beyond = int(np.sum(level_rows & (cols["status"] == 0) & ~cols["feasible"].astype(bool)))
+        notes = [f"{failed} failed cases"] * bool(failed) + \
+            [f"{beyond} cases beyond a limit, not drawn"] * bool(beyond)
+        fig.suptitle(f"load envelope, {level} level" + (f" ({'; '.join(notes)})" if notes else ""))
         fig.tight_layout()
         path = out / f"envelope_{level}.png"
         fig.savefig(path, dpi=100)
@@ -52,7 +61,7 @@ def _envelope(out: pathlib.Path) -> list[pathlib.Path]:
     return paths
 
 
-def _slice(s: dict, out: pathlib.Path) -> pathlib.Path:
+def _slice(s: dict, out: pathlib.Path, units: Units) -> pathlib.Path:
     """A two-axis slice: log10 condition and peak static |F| where reachable, the boundary drawn;
     a one-axis slice: the same as curves."""
     import matplotlib.pyplot as plt
@@ -65,20 +74,21 @@ def _slice(s: dict, out: pathlib.Path) -> pathlib.Path:
     force = np.abs(np.column_stack([t[f"F{k}"].to_numpy() for k in range(1, 7)])).max(axis=1)
     force = np.where(reachable, force.reshape(shape), np.nan)
     fig, panels = plt.subplots(1, 2, figsize=(12, 5))
-    fixed = ", ".join(f"{k} = {v:g}" for k, v in s["fixed"].items())
+    fixed = ", ".join(f"{k} = {v * units.axis(k):g} {units.unit(k)}" for k, v in s["fixed"].items())
+    axes_items = [(name, np.asarray(v) * units.axis(name)) for name, v in axes_items]
     for ax, values, label in zip(panels, (np.log10(np.where(cond > 0, cond, np.nan)), force),
                                  ("log10 condition", "peak static |F| [N]")):
         if len(shape) == 2:
             (n0, v0), (n1, v1) = axes_items
             mesh = ax.pcolormesh(v0, v1, values.T, shading="nearest")
             ax.contour(v0, v1, reachable.T.astype(float), levels=[0.5], colors="k", linewidths=1)
-            ax.set_xlabel(n0)
-            ax.set_ylabel(n1)
+            ax.set_xlabel(f"{n0} [{units.unit(n0)}]")
+            ax.set_ylabel(f"{n1} [{units.unit(n1)}]")
             fig.colorbar(mesh, ax=ax, label=label)
         else:
             (n0, v0), = axes_items
             ax.plot(v0, values)
-            ax.set_xlabel(n0)
+            ax.set_xlabel(f"{n0} [{units.unit(n0)}]")
             ax.set_ylabel(label)
         ax.set_title(f"{s['name']}: {label} (blank: unreachable)")
     fig.suptitle(f"workspace slice {s['name']} ({fixed})")

@@ -23,6 +23,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from .spec import Chunk, SpecError, chunks, load, slice_size
+from .units import LENGTHS, Units
 from .work import envelope_chunk, workspace_chunk
 
 
@@ -153,9 +154,12 @@ def missing_chunks(spec: dict, out: pathlib.Path) -> list[Chunk]:
 
 def run(spec_path, out_dir, scene_dir, workers: Optional[int] = None,
         scheduler: Optional[str] = None, progress: bool = True,
-        log: Callable[[str], None] = print) -> dict:
+        log: Callable[[str], None] = print, units: Units | str = Units()) -> dict:
     """Runs (or finishes) the sweep of spec_path into out_dir; returns the run summary, also in
-    run.json. A chunk that raises is reported and left missing (a rerun retries it)."""
+    run.json. A chunk that raises is reported and left missing (a rerun retries it). units
+    ("mm,deg", or a Units): the lengths and angles of the merged results, the CSV, volume.json
+    and the plots (the chunks stay SI); ValueError names a unit that is not one."""
+    units = units if isinstance(units, Units) else Units.parse(units)
     spec, out = prepare(spec_path, out_dir, scene_dir)
     todo = missing_chunks(spec, out)
     total = len(chunks(spec))
@@ -172,11 +176,11 @@ def run(spec_path, out_dir, scene_dir, workers: Optional[int] = None,
             started = time.perf_counter()
             _compute_all(client, spec, todo, out, summary, progress, log)
             summary["wall_seconds"] = time.perf_counter() - started
-    merge(spec, out)
+    merge(spec, out, units)
     if "volume" in spec:
-        write_volume(spec, out)
+        write_volume(spec, out, units)
     from .plots import plot
-    plot(spec, out)
+    plot(spec, out, units)
     (out / "run.json").write_text(json.dumps(summary, indent=1))
     if summary["failed_chunks"]:
         raise RuntimeError(f"{len(summary['failed_chunks'])} chunks raised (see run.json); "
@@ -231,9 +235,11 @@ def _compute_all(client, spec, todo, out, summary, progress, log):
             bar.update(sizes[chunk])
 
 
-def merge(spec: dict, out: pathlib.Path) -> list[pathlib.Path]:
+def merge(spec: dict, out: pathlib.Path, units: Units = Units()) -> list[pathlib.Path]:
     """The chunk files of each part, in chunk order, as one Parquet file per part (workspace
-    slices get a `boundary` column). Parts with missing chunks are left unmerged."""
+    slices get a `boundary` column), lengths and angles in `units` (each field's unit in its
+    metadata), and the envelope also as envelope.csv. Parts with missing chunks are left
+    unmerged."""
     parts: dict[str, list[Chunk]] = {}
     for c in chunks(spec):
         parts.setdefault(c.part, []).append(c)
@@ -250,22 +256,62 @@ def merge(spec: dict, out: pathlib.Path) -> list[pathlib.Path]:
             assert table.num_rows == slice_size(s)
             table = table.append_column("boundary", pa.array(boundary(s, table["reachable"].to_numpy())))
             path = out / f"workspace_{part}.parquet"
+        table = in_units(table, units)
         write_parquet(table, path)
         written.append(path)
+        if spec["kind"] == "envelope":
+            write_csv(table, out / "envelope.csv")
+            written.append(out / "envelope.csv")
     return written
 
 
-def write_volume(spec: dict, out: pathlib.Path) -> None:
-    """volume.json: the spec's platform's workspace volume at the spec's orientation, within
-    every limit (the options' warn_condition for the condition), in this process."""
+def in_units(table: pa.Table, units: Units) -> pa.Table:
+    """The table with its lengths and angles in units, each field's unit in its metadata."""
+    import pyarrow.compute as pc
+    columns, fields = [], []
+    for f, column in zip(table.schema, table.columns):
+        factor = units.factor(f.name)
+        if factor != 1.0:
+            column = pc.multiply(column, pa.scalar(factor, pa.float64()))
+        unit = units.unit(f.name)
+        fields.append(pa.field(f.name, column.type, f.nullable,
+                               {"unit": unit} if unit else None))
+        columns.append(column)
+    return pa.Table.from_arrays(columns, schema=pa.schema(fields))
+
+
+def write_csv(table: pa.Table, path: pathlib.Path) -> None:
+    """The table as CSV (numbers as Python writes them: the same in every locale), the unit of
+    each column in its header as `name [unit]`."""
+    import csv
+    names = [f"{f.name} [{f.metadata[b'unit'].decode()}]" if f.metadata else f.name
+             for f in table.schema]
+    rows = zip(*(c.to_pylist() for c in table.columns))
+    with open(path, "w", newline="") as handle:
+        writer = csv.writer(handle)
+        writer.writerow(names)
+        writer.writerows(["" if v is None else v for v in r] for r in rows)
+
+
+def write_volume(spec: dict, out: pathlib.Path, units: Units = Units()) -> None:
+    """volume.json: the spec's platform's constant-orientation workspace volume (at the spec's
+    orientation, or home's), within every limit (the options' warn_condition for the
+    condition), with its error estimate and the box that holds it, in this process."""
     from ..platform import Platform
     from .volume import workspace_volume
     v = spec["volume"]
     started = time.perf_counter()
-    volume = workspace_volume(Platform(**spec["platform"]), v["orientation"], v["cells"],
-                              warn_condition=spec["options"].get("warn_condition"))
+    result = workspace_volume(Platform(**spec["platform"]), v["orientation"], v["cells"],
+                              warn_condition=spec["options"].get("warn_condition"),
+                              accuracy=v["accuracy"], details=True)
     (out / "volume.json").write_text(json.dumps(
-        {"volume_m3": volume, "orientation": v["orientation"], "cells": v["cells"],
+        {"volume_m3": result.volume, "error_estimate_m3": result.error_estimate,
+         "accuracy": v["accuracy"], "orientation": list(result.orientation),
+         "box_m": result.box.tolist(), "cells": result.cells,
+         "grids": [list(g) for g in result.grids], "note": result.note,
+         "volume": result.volume * LENGTHS[units.length] ** 3,
+         "error_estimate": result.error_estimate * LENGTHS[units.length] ** 3,
+         "volume_unit": f"{units.length}^3",
          "seconds": time.perf_counter() - started}, indent=1))
 
 

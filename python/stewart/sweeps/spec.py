@@ -28,6 +28,8 @@ from ..choices import Fidelity
 from ..params import read_platform_file
 from ..platform import Platform
 from ..scenes import POSE
+from . import trajectory
+from .volume import FIRST_CELLS, MAX_CELLS, checked_home, home_pose
 
 SOLVER_OPTIONS = ("tolerance", "max_iterations", "modified_newton", "warn_condition",
                   "singular_condition")
@@ -95,7 +97,8 @@ def resolve(raw: Any, scene_dir: str | pathlib.Path,
         spec["fidelity"] = [_fidelity(f, f"fidelity[{i}]") for i, f in
                             enumerate(_list(fidelity, "fidelity"))]
         _check_options(base, spec["options"], spec["fidelity"])
-        spec.update(_envelope(raw, spec, base, pathlib.Path(scene_dir)))
+        spec.update(_envelope(raw, spec, base, pathlib.Path(scene_dir),
+                              pathlib.Path(spec_dir)))
     else:
         spec["fidelity"] = _fidelity(fidelity, "fidelity")
         _check_options(base, spec["options"], [spec["fidelity"]])
@@ -112,6 +115,10 @@ def resolve(raw: Any, scene_dir: str | pathlib.Path,
         _fits("poses_per_chunk", spec["poses_per_chunk"], BYTES_PER_POSE, "poses per chunk")
         if "volume" in raw:
             spec["volume"] = _volume(raw["volume"], "volume")
+            try:  # the volume is searched from home: refused now, not after the maps
+                checked_home(base, spec["options"].get("warn_condition"))
+            except ValueError as e:
+                raise SpecError(f"volume: {e}") from None
     return spec
 
 
@@ -142,11 +149,19 @@ def slice_size(s: dict) -> int:
 
 # ---------------------------------------------------------------- envelope fields
 
-def _envelope(raw: dict, spec: dict, base: Platform, scene_dir: pathlib.Path) -> dict:
+def _envelope(raw: dict, spec: dict, base: Platform, scene_dir: pathlib.Path,
+              spec_dir: pathlib.Path) -> dict:
     out: dict[str, Any] = {}
+    inline = _mapping(raw, "platform")
     for key in ("payload_mass", "payload_com"):
-        if key in spec["platform"]:
-            raise SpecError(f"platform.{key}: the envelope sweeps it; give it as the top-level {key}")
+        if key in inline and key in raw:
+            raise SpecError(f"platform.{key} and the top-level {key} are both given: the "
+                            f"envelope sweeps the top-level {key}; give it once")
+        # The platform's own payload (its file's or the spec's) is the sweep's single value
+        # unless the top-level list sweeps it.
+        given = spec["platform"].pop(key, None)
+        if key not in raw and given is not None:
+            raw = {**raw, key: [given]}
     out["payload_mass"] = _values(raw.get("payload_mass", [0.0]), "payload_mass")
     coms = _list(raw.get("payload_com", [[0.0, 0.0, 0.0]]), "payload_com")
     out["payload_com"] = []
@@ -157,37 +172,51 @@ def _envelope(raw: dict, spec: dict, base: Platform, scene_dir: pathlib.Path) ->
         out["payload_com"].append(c.tolist())
     out["duration"] = _optional_positive(raw, "duration")
     out["step"] = _optional_positive(raw, "step")
-    out["manoeuvres"] = [_manoeuvre(m, f"manoeuvres[{i}]", scene_dir) for i, m in
-                         enumerate(_list(raw.get("manoeuvres"), "manoeuvres"))]
+    out["manoeuvres"] = [_manoeuvre(m, f"manoeuvres[{i}]", scene_dir, spec_dir, out, base)
+                         for i, m in enumerate(_list(raw.get("manoeuvres"), "manoeuvres"))]
     out["cases_per_chunk"] = _positive_int(raw.get("cases_per_chunk", 8), "cases_per_chunk")
     _check_envelope_size({**spec, **out})
     for i, m in enumerate(out["payload_mass"]):
         for j, c in enumerate(out["payload_com"]):
             _platform(spec["platform"], {"payload_mass": m, "payload_com": c},
                       f"payload_mass[{i}] = {m} with payload_com[{j}] = {c}")
-    for i, m in enumerate(out["manoeuvres"]):
-        _check_reachable(base, m, out, f"manoeuvres[{i}]")
     return out
 
 
 def _check_envelope_size(spec: dict) -> None:
     """SpecError unless one case's trajectory and the table of all cases fit in memory."""
     for i, m in enumerate(spec["manoeuvres"]):
-        samples = scenes.samples(m["scene"], spec["step"], spec["duration"]) + 1
-        where = (f"manoeuvres[{i}] ({m['name']}): duration {spec['duration'] or m['scene']['duration']:g} s "
-                 f"at step {spec['step'] or m['scene']['step']:g} s")
+        if "trajectory" in m:
+            continue  # read whole already: its rows fit
+        scene = m["scene"]
+        samples = scenes.samples(scene, spec["step"], spec["duration"]) + 1
+        where = (f"manoeuvres[{i}] ({m['name']}): duration {spec['duration'] or scene['duration']:g} s "
+                 f"at step {spec['step'] or scene['step']:g} s")
         _fits(where, samples, BYTES_PER_POSE, "poses per case")
     _fits("the envelope (payload_mass x payload_com x manoeuvres x fidelity)", case_count(spec),
           BYTES_PER_ROW, "cases")
 
 
-def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
-    if not isinstance(m, dict) or "scene" not in m:
+def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Path,
+               top: dict, base: Platform) -> dict:
+    """A scene (a name in scene_dir or an inline scene object, whose duration and step default
+    to the spec's) or a CSV trajectory, with its amplitude and frequency scales."""
+    if not isinstance(m, dict) or ("scene" in m) == ("csv" in m):
         raise SpecError(f"{field} = {m!r} must be an object with a 'scene' (a name in scenes/ "
-                        "or an inline scene object)")
-    unknown = sorted(set(m) - {"scene", "amplitude", "frequency"})
+                        "or an inline scene object) or a 'csv' (a trajectory file)")
+    known = {"scene", "amplitude", "frequency"} if "scene" in m else \
+        {"csv", "name", "about", "amplitude", "frequency"}
+    unknown = sorted(set(m) - known)
     if unknown:
-        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: scene, amplitude, frequency)")
+        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: {', '.join(sorted(known))})")
+    scales = {"amplitude": _values(m.get("amplitude", [1.0]), f"{field}.amplitude"),
+              "frequency": _values(m.get("frequency", [1.0]), f"{field}.frequency")}
+    if "csv" in m:
+        bad = [f for f in scales["frequency"] if f <= 0]
+        if bad:
+            raise SpecError(f"{field}.frequency = {bad[0]!r} must be > 0 (it divides the "
+                            "trajectory's times)")
+        return {**_csv_manoeuvre(m, field, spec_dir, base), **scales}
     scene = m["scene"]
     try:
         if isinstance(scene, str):
@@ -196,6 +225,13 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
             name, scene = scene, scenes.load(scene, scene_dir)
         elif isinstance(scene, dict):
             name = str(scene.get("name", f"inline{field}"))
+            # The spec's duration and step stand in for the ones an inline scene leaves out.
+            scene = {**{k: top[k] for k in ("duration", "step") if top.get(k) is not None},
+                     **scene}
+            for key in ("duration", "step"):
+                if key not in scene:
+                    raise SpecError(f"{field}.scene has no {key}: give it in the scene or as "
+                                    f"the spec's top-level {key}")
             scenes.check(scene, f"{field}.scene")
         else:
             raise SpecError(f"{field}.scene = {scene!r} must be a scene name or a scene object")
@@ -204,25 +240,48 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path) -> dict:
     if "pose" not in scene:
         raise SpecError(f"{field}.scene = {name!r} has no pose (a mechanism scene cannot be swept)")
     return {"name": name, "scene": {"pose": scene["pose"], "duration": float(scene["duration"]),
-                                    "step": float(scene["step"])},
-            "amplitude": _values(m.get("amplitude", [1.0]), f"{field}.amplitude"),
-            "frequency": _values(m.get("frequency", [1.0]), f"{field}.frequency")}
+                                    "step": float(scene["step"])}, **scales}
 
 
-def _check_reachable(base: Platform, m: dict, spec: dict, field: str) -> None:
-    """Every variant of the manoeuvre stays within the stroke (lengths do not depend on the
-    payload, so the kinematic level on the base platform decides)."""
-    for a in m["amplitude"]:
-        for f in m["frequency"]:
-            t, q, qd, qdd = scenes.sample(m["scene"], a, f, spec["duration"], spec["step"])
-            sol = base.inverse(q, qd, qdd, fidelity="kinematic", max_messages=1)
-            bad = np.flatnonzero(~sol.ok | (sol.warnings & 1).astype(bool))
-            if bad.size:
-                j = int(bad[0])
-                why = sol.messages.get(j) or ("a leg length leaves the stroke: L = "
-                                              f"{np.array2string(sol.length[j], precision=4)} m")
-                raise SpecError(f"{field} ({m['name']}, amplitude x{a}, frequency x{f}) is "
-                                f"unreachable at t = {t[j]:g} s: {why}")
+def _csv_manoeuvre(m: dict, field: str, spec_dir: pathlib.Path, base: Platform) -> dict:
+    """A CSV trajectory read and embedded (the workers need no file), with the pose its
+    amplitude scales about: "first" (its first row, the default), "home" (the machine's home
+    pose) or 6 numbers."""
+    name = m["csv"]
+    if not isinstance(name, str) or not name:
+        raise SpecError(f"{field}.csv = {name!r} must be the path of a CSV file")
+    try:
+        data = trajectory.read_csv(spec_dir / name)
+    except trajectory.TrajectoryError as e:
+        raise SpecError(f"{field}.csv: {e}") from None
+    _fits(f"{field}.csv ({name})", len(data["t"]), BYTES_PER_POSE, "poses per case")
+    about = m.get("about", "first")
+    if about == "first":
+        about = data["pose"][0]
+    elif about == "home":
+        try:
+            about = home_pose(base)
+        except ValueError as e:
+            raise SpecError(f"{field}.about = 'home': {e}") from None
+    elif _is_numbers(about) and len(about) == 6 and all(math.isfinite(v) for v in about):
+        about = np.asarray(about, dtype=float)
+    else:
+        raise SpecError(f"{field}.about = {about!r} must be 'first', 'home' or 6 finite numbers "
+                        "(x, y, z [m], roll, pitch, yaw [rad])")
+    label = m.get("name", pathlib.Path(name).stem)
+    if not isinstance(label, str) or not label:
+        raise SpecError(f"{field}.name = {label!r} must be a text")
+    return {"name": label, "trajectory": {
+        "file": name, "t": data["t"].tolist(), "pose": data["pose"].tolist(),
+        "rate": data["rate"].tolist(), "accel": data["accel"].tolist(),
+        "about": np.asarray(about, dtype=float).tolist()}}
+
+
+def manoeuvre_samples(spec: dict, m: dict, amplitude: float, frequency: float):
+    """Times, poses, rates and accelerations of one variant of manoeuvre m of an envelope spec."""
+    if "trajectory" in m:
+        return trajectory.sample(m["trajectory"], amplitude, frequency)
+    return scenes.sample(m["scene"], amplitude, frequency, spec["duration"], spec["step"])
 
 
 # ---------------------------------------------------------------- workspace fields
@@ -258,21 +317,28 @@ def _slice(s: Any, field: str) -> dict:
 
 
 def _volume(v: Any, field: str) -> dict:
-    """{"orientation": [roll, pitch, yaw] (default 0, 0, 0), "cells": columns per side (48)}."""
+    """{"orientation": [roll, pitch, yaw] (default: home's), "cells": columns per side of the
+    first grid (48), "accuracy": relative (0.005)}."""
     if not isinstance(v, dict):
-        raise SpecError(f"{field} = {v!r} must be an object with orientation and cells")
-    unknown = sorted(set(v) - {"orientation", "cells"})
+        raise SpecError(f"{field} = {v!r} must be an object with orientation, cells, accuracy")
+    unknown = sorted(set(v) - {"orientation", "cells", "accuracy"})
     if unknown:
-        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: orientation, cells)")
-    orientation = v.get("orientation", [0.0, 0.0, 0.0])
-    if not (_is_numbers(orientation) and len(orientation) == 3 and
-            all(math.isfinite(x) for x in orientation)):
+        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: accuracy, cells, "
+                        "orientation)")
+    orientation = v.get("orientation")
+    if orientation is not None and not (_is_numbers(orientation) and len(orientation) == 3 and
+                                        all(math.isfinite(x) for x in orientation)):
         raise SpecError(f"{field}.orientation = {orientation!r} must be 3 finite numbers "
                         "(roll, pitch, yaw [rad])")
-    cells = v.get("cells", 48)
-    if not isinstance(cells, int) or isinstance(cells, bool) or not 2 <= cells <= 1024:
-        raise SpecError(f"{field}.cells = {cells!r} must be an integer in [2, 1024]")
-    return {"orientation": [float(x) for x in orientation], "cells": cells}
+    cells = v.get("cells", FIRST_CELLS)
+    if not isinstance(cells, int) or isinstance(cells, bool) or not 2 <= cells <= MAX_CELLS:
+        raise SpecError(f"{field}.cells = {cells!r} must be an integer in [2, {MAX_CELLS}]")
+    accuracy = v.get("accuracy", 0.005)
+    if not (isinstance(accuracy, (int, float)) and not isinstance(accuracy, bool) and
+            1e-4 <= accuracy <= 0.5):
+        raise SpecError(f"{field}.accuracy = {accuracy!r} must be a relative error in [1e-4, 0.5]")
+    return {"orientation": None if orientation is None else [float(x) for x in orientation],
+            "cells": cells, "accuracy": float(accuracy)}
 
 
 # ---------------------------------------------------------------- shared helpers

@@ -12,12 +12,12 @@ from typing import Callable, Optional
 import numpy as np
 import pyarrow as pa
 
-from .. import _core, scenes
+from .. import _core
 from ..inverse import INVERSE_TABLE, InverseSolution, empty_inverse_solution
 from ..limits import LIMIT_CLASSES, LimitCheck
 from ..platform import Platform, _warn_condition
 from ..scenes import POSE
-from .spec import Chunk
+from .spec import Chunk, manoeuvre_samples
 
 LEGS = range(1, 7)
 
@@ -51,22 +51,46 @@ def envelope_metrics(sol: InverseSolution) -> list[float | None]:
              float(np.abs(sol.power).max())])
 
 
+ENVELOPE_LIMITS = ["feasible", "limit_class", "limit_t", *[f"margin_{c}" for c in LIMIT_CLASSES]]
+
+
+def envelope_limits(platform: Platform, t: np.ndarray, q: np.ndarray,
+                    warn_condition) -> list:
+    """Per case, Platform.limits over its poses: feasible (every pose within every limit), the
+    first class met (0: none) and the time of the first pose beyond a limit (None: none), and
+    each class's smallest margin over the poses [m, rad, rad, m, 1]."""
+    check = platform.limits(q, warn_condition=warn_condition)
+    beyond = np.flatnonzero(~check.within)
+    first = int(beyond[0]) if beyond.size else None
+    return [first is None, 0 if first is None else int(check.first[first]),
+            None if first is None else float(t[first]),
+            *[float(v) for v in check.margin.min(axis=0)]]
+
+
 def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
-    """Cases [chunk.start, chunk.stop): one row each, failures with status and message."""
+    """Cases [chunk.start, chunk.stop): one row each, failures with status and message, and
+    every case's limits (a case beyond a limit is a row like any other: its limit class, where
+    and by how much)."""
     started = time.perf_counter()
     cases = itertools.islice(envelope_cases(spec), chunk.start, chunk.stop)
     platforms: dict[tuple, Platform] = {}
     columns: dict[str, list] = {k: [] for k in (
         "case", "fidelity", "payload_mass", "payload_com_x", "payload_com_y", "payload_com_z",
-        "manoeuvre", "amplitude", "frequency", "poses", *ENVELOPE_METRICS, "status", "message")}
+        "manoeuvre", "amplitude", "frequency", "poses", *ENVELOPE_METRICS, *ENVELOPE_LIMITS,
+        "status", "message")}
+    warn_condition = _warn_condition(spec["options"].get("warn_condition"))
+    limits: dict[tuple, list] = {}  # the limits do not depend on the payload or the level
     poses = 0
     for case, (mass, com, i, a, f, level) in enumerate(cases, start=chunk.start):
         key = (mass, tuple(com))
         if key not in platforms:
             platforms[key] = Platform(**spec["platform"], payload_mass=mass, payload_com=com)
         m = spec["manoeuvres"][i]
-        t, q, qd, qdd = scenes.sample(m["scene"], a, f, spec["duration"], spec["step"])
+        t, q, qd, qdd = manoeuvre_samples(spec, m, a, f)
         sol = platforms[key].inverse(q, qd, qdd, fidelity=level, max_messages=1, **spec["options"])
+        if (i, a, f) not in limits:
+            limits[(i, a, f)] = envelope_limits(platforms[key], t, q, warn_condition)
+        within = limits[(i, a, f)]
         poses += len(t)
         failed = np.flatnonzero(~sol.ok)
         if failed.size:
@@ -74,13 +98,18 @@ def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
             metrics = [None] * len(ENVELOPE_METRICS)
             status = int(sol.status[j])
             message = f"row {j + 1} (t = {t[j]:g} s): {sol.status_name(j)}: {sol.messages[j]}"
+            within = [False, *within[1:]]
         else:
             metrics, status, message = envelope_metrics(sol), 0, ""
-        row = [case, level, mass, *com, m["name"], a, f, len(t), *metrics, status, message]
+        row = [case, level, mass, *com, m["name"], a, f, len(t), *metrics, *within, status, message]
         for name, value in zip(columns, row):
             columns[name].append(value)
     stats = {"seconds": time.perf_counter() - started, "poses": poses, "cases": chunk.stop - chunk.start}
-    return pa.table(columns), stats
+    # Typed columns: a chunk whose cases all failed (null metrics) or met no limit (null
+    # limit_t) has the same schema as the others.
+    types = {**{k: pa.float64() for k in ENVELOPE_METRICS + ENVELOPE_LIMITS[2:]},
+             "feasible": pa.bool_(), "limit_class": pa.int8()}
+    return pa.table({k: pa.array(v, type=types.get(k)) for k, v in columns.items()}), stats
 
 
 #: Rows solved and checked at a time within a workspace chunk at the kinematic and massless

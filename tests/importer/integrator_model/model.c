@@ -2,17 +2,14 @@
 #include <math.h>
 #include <string.h>
 
+#include "bindings.h"
 #include "logging.h"
 #include "model_interface.h"
 #include "model_without_resources.h"
 
 void model_start_values(fmu_values *v) {
-    v->real[VR_u] = 0.0;
+    fmu_start_values(v);
     v->real[VR_gain] = 1.0;
-    v->real[VR_y0] = 0.0;
-    v->real[VR_y] = 0.0;
-    v->integer[VR_steps] = 0;
-    memset(&v->model, 0, sizeof v->model);
 }
 
 fmu_status model_apply_parameters(fmu_instance *inst) {
