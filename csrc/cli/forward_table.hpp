@@ -14,6 +14,6 @@ namespace stewart {
 // accelerations when their inputs are given, iterations,residual,condition). Returns 0, or 1
 // with a message on stderr naming the file line (and the leg) and no OUT.csv written.
 int run_forward(const char *in_path, const char *out_path, const stewart_params &params,
-                const stewart_forward_options &options, const double *guess, bool cold);
+                const stewart_forward_options &options, const double *guess, bool cold = false);
 
 }  // namespace stewart

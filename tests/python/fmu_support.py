@@ -282,7 +282,9 @@ def stewart_solve(t, q, qd=None, qdd=None, fidelity="massless"):
         assert r.returncode == 0, r.stderr
         with open(out) as f:
             rows = list(csv.reader(f))
-    header, body = rows[0], np.array([[float(v) for v in r] for r in rows[1:]])
+    numeric = [i for i, h in enumerate(rows[0]) if h != "status"]  # status: a limit class name
+    header = [rows[0][i] for i in numeric]
+    body = np.array([[float(r[i]) for i in numeric] for r in rows[1:]])
     return {h: body[:, i] for i, h in enumerate(header)}
 
 

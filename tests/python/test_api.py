@@ -59,7 +59,7 @@ def _cli_with_params(t, q, qd, qdd, assignments):
         r = subprocess.run(args + ["--fidelity", "massless", str(inp), str(out)],
                            capture_output=True, text=True, timeout=60)
         assert r.returncode == 0, r.stderr
-        body = np.loadtxt(out, delimiter=",", skiprows=1)
+        body = np.loadtxt(out, delimiter=",", skiprows=1, usecols=range(27))  # status is text
     return body[:, 1:25]
 
 

@@ -11,14 +11,17 @@ import scenes
 LEGS = range(1, 7)
 EXPECTED_HEADER = (["t"] + [f"L{k}" for k in LEGS] + [f"L_dot{k}" for k in LEGS]
                    + [f"L_ddot{k}" for k in LEGS] + [f"F{k}" for k in LEGS]
-                   + ["condition", "iterations"])
+                   + ["condition", "iterations", "status"])
 
 
 def read(path):
+    """header and values; the status column (a limit class name) as 0 for "none", else -1."""
     with open(path) as f:
         reader = csv.reader(f)
         header = next(reader)
-        return header, np.array([[float(v) for v in row] for row in reader])
+        text = header.index("status") if "status" in header else -1
+        return header, np.array([[(0.0 if v == "none" else -1.0) if i == text else float(v)
+                                  for i, v in enumerate(row)] for row in reader])
 
 
 def column(header, data, name):

@@ -113,7 +113,7 @@ def _cli(t, q, qd, qdd, fidelity, params, tmp_path):
         args += ["--param", f"{k}={float(v)!r}"]
     r = subprocess.run(args + [str(inp), str(out)], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
-    return np.loadtxt(out, delimiter=",", skiprows=1)
+    return np.loadtxt(out, delimiter=",", skiprows=1, usecols=range(27))  # status is text
 
 
 @pytest.mark.parametrize("case", [0, 7, 21, 30])
@@ -450,7 +450,7 @@ def _solve_cli_peaks(t, q, tmp_path, params, derivatives=None):
         args += ["--param", f"{k}={float(v)!r}"]
     r = subprocess.run(args + [str(inp), str(out)], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
-    o = np.loadtxt(out, delimiter=",", skiprows=1)
+    o = np.loadtxt(out, delimiter=",", skiprows=1, usecols=range(27))  # status is text
     return {"L": o[:, 1:7], "Ld": o[:, 7:13], "Ldd": o[:, 13:19], "F": o[:, 19:25]}
 
 
