@@ -15,7 +15,9 @@ def read(path):
     with open(path) as f:
         reader = csv.reader(f)
         header = next(reader)
-        return header, np.array([[float(v) for v in row] for row in reader])
+        numeric = [i for i, h in enumerate(header) if h != "status"]  # status: a class name
+        return ([header[i] for i in numeric],
+                np.array([[float(row[i]) for i in numeric] for row in reader]))
 
 
 def lengths_csv(solve, tmp_path, scene, dt):

@@ -64,11 +64,20 @@ def test_a_scene_moves_about_the_machine_home(name):
     scaled = stewart.scenes.on_platform(combined, platform, scale_to_ranges=True)
     q2 = stewart.scenes.pose(scaled, t)[0]
     assert platform.limits(q2).within.all()
-    # the same motion, smaller: each component's excursion from home a fixed multiple
-    ratio = [np.ptp(q2[:, i]) / np.ptp(q0[:, i]) for i in range(6)]
-    assert all(0 < r <= 1 or np.ptp(q0[:, i]) == 0 for i, r in enumerate(ratio))
+    # the same motion, scaled: each component's excursion from home a fixed multiple of the
+    # scene's, at most half the axis range from home on its nearer side
+    excursion0 = q0 - stewart.scenes.THESIS_HOME
+    excursion2 = q2 - home
     ends = platform.axis_ranges(home)[0]
-    assert np.all(q2.min(axis=0) >= ends[:, 0] - 1e-12) and np.all(q2.max(axis=0) <= ends[:, 1] + 1e-12)
+    room = np.minimum(home - ends[:, 0], ends[:, 1] - home)
+    for i in range(6):
+        if np.ptp(q0[:, i]) == 0 and excursion0[0, i] == 0:
+            assert np.all(excursion2[:, i] == 0)
+            continue
+        scale = excursion2[:, i] @ excursion0[:, i] / (excursion0[:, i] @ excursion0[:, i])
+        assert scale > 0
+        np.testing.assert_allclose(excursion2[:, i], scale * excursion0[:, i], atol=1e-12)
+        assert np.abs(excursion2[:, i]).max() <= 0.5 * room[i] * (1 + 1e-12)
 
 
 @pytest.mark.parametrize("name", MACHINES)
