@@ -145,7 +145,7 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     // The pose given is the tool's in the user frame: the platform's in the base frame moves so.
     const stewart::Motion motion =
         m->frames.identity ? stewart::motion_of_pose(*pose)
-                           : stewart::platform_motion(m->frames, stewart::motion_of_pose(*pose));
+                           : stewart::platform_motion_of_pose(m->frames, *pose);
     if (!m->frames.identity && !stewart::motion_finite(motion))
         return stewart::input_out_of_range(*pose, 0, 2, "platform's motion (tool and user frames)",
                                            msg, size);

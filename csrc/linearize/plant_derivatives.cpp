@@ -19,7 +19,7 @@ MotionT<Dual> seeded_motion(const Frames &f, const double q[6], const double q_d
     seed(q, 0, qs);
     seed(q_dot, 6, rates);
     seed(q_ddot, 12, accels);
-    const MotionT<Dual> tool = motion_of_pose<Dual>(qs, rates, accels);
+    const MotionT<Dual> tool = motion_of_pose_in_order<Dual>(f.rotation_order, qs, rates, accels);
     return f.identity ? tool : platform_motion(f, tool);
 }
 

@@ -14,6 +14,7 @@ inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
+from .angles import convert_angles, rotation_matrix
 from .calibration import Calibration, UnobservableError, calibrate, observability
 from .calibration_poses import calibration_poses
 from .choices import Fidelity
@@ -33,4 +34,4 @@ except PackageNotFoundError:  # imported from a source tree, not installed
 __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Fidelity", "Method",
            "ParameterError", "fmu_path", "fmu_paths", "FMI_VERSIONS", "FMU_NAMES", "parameters",
            "calibrate", "calibration_poses", "observability", "Calibration", "UnobservableError",
-           "platform_files", "__version__"]
+           "platform_files", "convert_angles", "rotation_matrix", "__version__"]

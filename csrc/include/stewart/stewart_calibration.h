@@ -42,7 +42,7 @@ stewart_status stewart_geometry_jacobian(const stewart_model *model, const doubl
 
 /* The joint centres the model uses, whichever parameters gave them (the circles of geometry 0 or
  * the coordinates of geometry 1): base_joint in the base frame, platform_joint in the platform
- * frame, x1, y1, z1, ..., z6 [m]. STEWART_ERR_ARGUMENT if an argument is NULL. */
+ * frame (both z down when frame_convention is 1), x1, y1, z1, ..., z6 [m]. STEWART_ERR_ARGUMENT if an argument is NULL. */
 stewart_status stewart_model_joints(const stewart_model *model, double base_joint[18],
                                     double platform_joint[18]);
 
