@@ -291,3 +291,25 @@ def test_z_down_plant_holds_its_home_under_its_weight(tmp_path):
     assert out.completed, out.message
     np.testing.assert_allclose(out.pose, np.tile(home, (t.size, 1)), atol=1e-9)
     assert out.pose[0, 2] < 0
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_plant_fmu_falls_toward_plus_z_in_z_down_frames(version):
+    """The thesis platform given z down (frame_convention 1), massless, no forces, started at its
+    home z0 = -home_height with a sideways speed: x = x0 + x_dot0 t, y = 0, z = z0 + g t^2 / 2 (z
+    down: gravity stays physical), the angles at 0."""
+    from test_plant_fmu import plant
+    u = plant(version, fidelity=1, frame_convention=1, x0=0.01, z0=-0.5, x_dot0=0.02)
+    try:
+        t = 0.0
+        for h in (1e-3, 2e-3, 5e-3, 1e-2):
+            assert u.step(t, h) == OK
+            t += h
+            x, y, z, z_dot, roll, pitch, yaw = u.get(["x", "y", "z", "z_dot", "roll", "pitch",
+                                                      "yaw"])
+            assert x == pytest.approx(0.01 + 0.02 * t, abs=1e-13)
+            assert z == pytest.approx(-0.5 + 0.5 * 9.81 * t * t, abs=1e-13)
+            assert z_dot == pytest.approx(9.81 * t, abs=1e-12)
+            assert max(abs(y), abs(roll), abs(pitch), abs(yaw)) < 1e-13
+    finally:
+        u.free()
