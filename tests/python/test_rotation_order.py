@@ -233,9 +233,9 @@ def test_bad_conventions_are_refused_by_name():
 
 # ---- z down: the SIMONA motion base in its own frame (x forward, y right, z down) ----
 
-def simona_z_down(tmp_path):
+def simona_z_down(tmp_path, **more):
     """platforms/simona_motion_base.json turned back into SIMONA's z-down frames (its description:
-    the shipped file is SIMONA's turned by 180 deg about x), as a platform file."""
+    the shipped file is SIMONA's turned by 180 deg about x), as a platform file with `more`."""
     data = json.loads(SIMONA.read_text())
     for name in ("base_joint", "platform_joint"):
         data[name] = (np.array(data[name]).reshape(6, 3) @ TURN_X).ravel().tolist()
@@ -243,7 +243,7 @@ def simona_z_down(tmp_path):
     data["frame_convention"] = 1
     data["description"] = "SIMONA in its own z-down frames"
     path = tmp_path / "simona_z_down.json"
-    path.write_text(json.dumps(data))
+    path.write_text(json.dumps(dict(data, **more)))
     return stewart.Platform.from_file(path)
 
 
@@ -313,3 +313,49 @@ def test_plant_fmu_falls_toward_plus_z_in_z_down_frames(version):
             assert max(abs(y), abs(roll), abs(pitch), abs(yaw)) < 1e-13
     finally:
         u.free()
+
+
+def xyz_path(t):
+    """A smooth manoeuvre (N, 6), angles Rx Ry Rz, and its first and second derivatives."""
+    t = np.asarray(t, dtype=float)[:, None]
+    amplitude = np.array([0.03, 0.02, 0.02, 0.2, 0.15, 0.25])
+    omega = np.array([2.0, 3.0, 1.5, 2.5, 3.5, 1.2])
+    phase = np.arange(6)
+    q = amplitude * np.sin(omega * t + phase) + [0, 0, 0.5, 0, 0, 0]
+    return q, amplitude * omega * np.cos(omega * t + phase), \
+        -amplitude * omega ** 2 * np.sin(omega * t + phase)
+
+
+def test_rates_and_accelerations_are_the_order_s_angle_derivatives():
+    """Inverse: the length rates and accelerations of Rx Ry Rz pose rates against differences in
+    time of the lengths computed here; forward: the pose rates it returns against the path's."""
+    t, h = np.linspace(0.1, 1.9, 10), 1e-4
+    q, q_dot, q_ddot = xyz_path(t)
+    platform = stewart.Platform(rotation_order=1)
+    out = platform.inverse(q, q_dot, q_ddot, fidelity="kinematic")
+    assert out.ok.all(), out.messages
+
+    def lengths(time):
+        return np.array([thesis_lengths(p[:3], r_xyz(*p[3:])) for p in xyz_path(time)[0]])
+
+    ahead, here, behind = lengths(t + h), lengths(t), lengths(t - h)
+    np.testing.assert_allclose(out.length_rate, (ahead - behind) / (2 * h), atol=1e-8)
+    np.testing.assert_allclose(out.length_accel, (ahead - 2 * here + behind) / h ** 2, atol=2e-5)
+    back = platform.forward(out.length, rates=out.length_rate, t=t)
+    assert back.ok.all(), back.messages
+    np.testing.assert_allclose(back.pose, q, atol=1e-11)
+    np.testing.assert_allclose(back.pose_rate, q_dot, atol=1e-9)
+
+
+def test_z_down_tool_frame_is_given_in_the_z_down_platform_frame(tmp_path):
+    """SIMONA's design eye point, 1.2075 m above the upper gimbal plane, as the tool frame: given
+    z down (0, 0, -1.2075) with z-down poses, the lengths of the z-up file with the tool frame
+    (0, 0, 1.2075) at the same physical poses."""
+    up = stewart.Platform.from_file(SIMONA, tool_frame=[0, 0, 1.2075, 0, 0, 0])
+    down = simona_z_down(tmp_path, tool_frame=[0, 0, -1.2075, 0, 0, 0])
+    q = simona_poses()
+    q[:, 2] += 1.2075  # the eye point's height
+    a = up.inverse(q, fidelity="kinematic")
+    b = down.inverse(np.array([z_down_pose(p) for p in q]), fidelity="kinematic")
+    assert a.ok.all() and b.ok.all(), b.messages
+    np.testing.assert_allclose(b.length, a.length, rtol=0, atol=1e-14)
