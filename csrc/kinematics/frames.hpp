@@ -88,6 +88,15 @@ inline Motion platform_motion_of_pose(const Frames &f, const stewart_pose &tool)
     return platform_motion(f, motion_of_pose_in_order(f.rotation_order, tool));
 }
 
+// The base wrench (force, torque about the base origin) from the solvers' z-up base frame into the
+// base frame of the parameters: turned back by 180 deg about x when z is down (user frames do not
+// move it).
+template <class S>
+void base_wrench_to_given_frame(const Frames &f, S force[3], S torque[3]) {
+    if (!f.z_down) return;
+    for (int i = 1; i < 3; ++i) force[i] = -force[i], torque[i] = -torque[i];
+}
+
 // Every value of m finite (a transformed motion can overflow where the given one did not).
 bool motion_finite(const Motion &m);
 

@@ -100,6 +100,7 @@ bool pose_base_wrench(const fd::DynamicsModel &d, const Frames &frames, const do
     fd::Vec3T<Dual> f, t;
     fd::base_wrench(d, bodies, f, t);
     for (int i = 0; i < 3; ++i) force[i] = f[i], torque[i] = t[i];
+    base_wrench_to_given_frame(frames, force, torque);
     return true;
 }
 

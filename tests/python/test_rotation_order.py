@@ -274,6 +274,9 @@ def test_z_down_machine_has_the_z_up_machine_s_lengths_and_forces(tmp_path):
     np.testing.assert_allclose(b.length_rate, a.length_rate, rtol=0, atol=1e-13)
     # gravity is physical: the same weight on the legs
     np.testing.assert_allclose(b.force, a.force, rtol=1e-10, atol=1e-8)
+    # the base wrench in the z-down base frame: the z-up one turned by 180 deg about x
+    np.testing.assert_allclose(b.base_force, a.base_force @ TURN_X, rtol=1e-10, atol=1e-8)
+    np.testing.assert_allclose(b.base_torque, a.base_torque @ TURN_X, rtol=1e-10, atol=1e-8)
     # forward kinematics answers in the z-down frames
     back = down.forward(a.length[:5])
     assert back.ok.all(), back.messages
@@ -291,6 +294,10 @@ def test_z_down_plant_holds_its_home_under_its_weight(tmp_path):
     assert out.completed, out.message
     np.testing.assert_allclose(out.pose, np.tile(home, (t.size, 1)), atol=1e-9)
     assert out.pose[0, 2] < 0
+    # at rest the legs push the base down with the weight of platform and payload (massless
+    # legs): +z in the z-down frame
+    weight = (1500.0 + 1000.0) * 9.81
+    np.testing.assert_allclose(out.base_force[-1], [0, 0, weight], rtol=1e-9, atol=1e-6)
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -359,3 +366,17 @@ def test_z_down_tool_frame_is_given_in_the_z_down_platform_frame(tmp_path):
     b = down.inverse(np.array([z_down_pose(p) for p in q]), fidelity="kinematic")
     assert a.ok.all() and b.ok.all(), b.messages
     np.testing.assert_allclose(b.length, a.length, rtol=0, atol=1e-14)
+
+
+def test_model_joints_come_back_in_the_frames_given(tmp_path):
+    from stewart import _core
+    down = simona_z_down(tmp_path)
+    base, top = _core.model_joints(down._model)
+    data = json.loads(SIMONA.read_text())
+    np.testing.assert_array_equal(np.ravel(base), (np.reshape(data["base_joint"], (6, 3)) @ TURN_X).ravel())
+    np.testing.assert_array_equal(np.ravel(top), (np.reshape(data["platform_joint"], (6, 3)) @ TURN_X).ravel())
+
+
+def test_calibration_refuses_the_conventions_it_does_not_take():
+    with pytest.raises(Exception, match="rotation_order 0 and frame_convention 0"):
+        stewart.observability(stewart.Platform(rotation_order=1), random_xyz_poses(30))
