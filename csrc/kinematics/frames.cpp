@@ -74,15 +74,19 @@ Frames frames_of(const stewart_params &p) {
     const double *u = p.user_frame, *t = p.tool_frame;
     const Eigen::Matrix3d user_turn = rotation_in_order(f.rotation_order, u + 3);
     const Eigen::Matrix3d tool_turn = rotation_in_order(f.rotation_order, t + 3);
-    // z down: the base and platform frames are the solvers' turned by 180 deg about x (F, its own
-    // inverse), and the user and tool frames are given in them.
-    const Eigen::Matrix3d F = f.z_down ? Eigen::Vector3d(1, -1, -1).asDiagonal().toDenseMatrix()
-                                       : Eigen::Matrix3d::Identity();
-    f.user_origin = F * Eigen::Vector3d(u[0], u[1], u[2]);
-    f.user_rotation = F * user_turn;
-    f.tool_origin = F * Eigen::Vector3d(t[0], t[1], t[2]);
-    f.tool_rotation = F * tool_turn;
-    if (f.z_down) f.angle_sign[1] = f.angle_sign[2] = -1;
+    f.user_origin = Eigen::Vector3d(u[0], u[1], u[2]);
+    f.user_rotation = user_turn;
+    f.tool_origin = Eigen::Vector3d(t[0], t[1], t[2]);
+    f.tool_rotation = tool_turn;
+    if (f.z_down) {
+        // The base and platform frames are the solvers' turned by 180 deg about x (F = diag(1,
+        // -1, -1), its own inverse), and the user and tool frames are given in them: F u, F R_u,
+        // F t, F R_t (negations: exact).
+        for (Eigen::Vector3d *origin : {&f.user_origin, &f.tool_origin}) origin->tail<2>() *= -1.0;
+        for (Eigen::Matrix3d *turn : {&f.user_rotation, &f.tool_rotation})
+            turn->bottomRows<2>() *= -1.0;
+        f.angle_sign[1] = f.angle_sign[2] = -1;
+    }
     // At zero platform rotation the tool turns by user^T tool (F cancels); its angles on the
     // branch of the frames' own (exact for turns about z alone).
     const double near[3] = {t[3] - u[3], t[4] - u[4], t[5] - u[5]};
