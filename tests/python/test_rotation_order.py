@@ -267,11 +267,14 @@ def test_z_down_machine_has_the_z_up_machine_s_lengths_and_forces(tmp_path):
     q = simona_poses()
     rates = np.tile([0.1, -0.2, 0.05, 0.1, 0.2, -0.1], (q.shape[0], 1))
     sign = np.array([1, -1, -1, 1, -1, -1])  # z-down angles are (r, -p, -y) of the z-up ones
-    a = up.inverse(q, rates, fidelity="full")
-    b = down.inverse(np.array([z_down_pose(p) for p in q]), rates * sign, fidelity="full")
+    accels = np.tile([-0.5, 0.3, 1.0, 0.4, -0.2, 0.3], (q.shape[0], 1))
+    a = up.inverse(q, rates, accels, fidelity="full")
+    b = down.inverse(np.array([z_down_pose(p) for p in q]), rates * sign, accels * sign,
+                     fidelity="full")
     assert a.ok.all() and b.ok.all(), b.messages
     np.testing.assert_allclose(b.length, a.length, rtol=0, atol=1e-14)
     np.testing.assert_allclose(b.length_rate, a.length_rate, rtol=0, atol=1e-13)
+    np.testing.assert_allclose(b.length_accel, a.length_accel, rtol=0, atol=1e-12)
     # gravity is physical: the same weight on the legs
     np.testing.assert_allclose(b.force, a.force, rtol=1e-10, atol=1e-8)
     # the base wrench in the z-down base frame: the z-up one turned by 180 deg about x
@@ -335,7 +338,8 @@ def xyz_path(t):
 
 def test_rates_and_accelerations_are_the_order_s_angle_derivatives():
     """Inverse: the length rates and accelerations of Rx Ry Rz pose rates against differences in
-    time of the lengths computed here; forward: the pose rates it returns against the path's."""
+    time of the lengths computed here; forward: the pose rates and accelerations it returns
+    against the path's derivatives written here."""
     t, h = np.linspace(0.1, 1.9, 10), 1e-4
     q, q_dot, q_ddot = xyz_path(t)
     platform = stewart.Platform(rotation_order=1)
@@ -348,10 +352,11 @@ def test_rates_and_accelerations_are_the_order_s_angle_derivatives():
     ahead, here, behind = lengths(t + h), lengths(t), lengths(t - h)
     np.testing.assert_allclose(out.length_rate, (ahead - behind) / (2 * h), atol=1e-8)
     np.testing.assert_allclose(out.length_accel, (ahead - 2 * here + behind) / h ** 2, atol=2e-5)
-    back = platform.forward(out.length, rates=out.length_rate, t=t)
+    back = platform.forward(out.length, rates=out.length_rate, accels=out.length_accel, t=t)
     assert back.ok.all(), back.messages
     np.testing.assert_allclose(back.pose, q, atol=1e-11)
     np.testing.assert_allclose(back.pose_rate, q_dot, atol=1e-9)
+    np.testing.assert_allclose(back.pose_accel, q_ddot, atol=1e-8)
 
 
 def test_z_down_tool_frame_is_given_in_the_z_down_platform_frame(tmp_path):
