@@ -16,8 +16,8 @@
 namespace stewart {
 
 struct Frames {
-    bool identity = true;   // both frames identity, order 0, z up: no transform at all (bit for bit)
-    bool turns = false;     // a frame is rotated or the angles are converted (else they pass through)
+    bool identity = true;  // frames identity, order 0, z up: no transform at all (bit for bit)
+    bool turns = false;    // a frame turned or the angles converted (else they pass through)
     int rotation_order = kRotationZYX;  // of the caller's angles (the frames' own included)
     bool z_down = false;    // frame_convention 1: base and platform frames z down (user_rotation
                             // and tool_rotation hold the 180 deg turn about x)
@@ -102,15 +102,16 @@ bool motion_finite(const Motion &m);
 
 // The tool's pose in the user frame (angles in the frames' rotation order) from the platform's
 // pose in the base frame, with rates if derivatives >= 1 and accelerations if 2 (else those rows
-// are 0). Pitch in [-pi/2, pi/2], roll and yaw continuous with the platform's. False (tool unchanged) when rates are wanted and the
-// tool's pitch is at +-90 deg (|cos pitch| <= min_cos_pitch), where its roll and yaw rates are
-// not defined.
+// are 0). Pitch in [-pi/2, pi/2], roll and yaw continuous with the platform's. False (tool
+// unchanged) when rates are wanted and the tool's pitch is at +-90 deg (|cos pitch| <=
+// min_cos_pitch), where its roll and yaw rates are not defined.
 bool tool_pose(const Frames &f, const stewart_pose &platform, int derivatives, stewart_pose &tool,
                double min_cos_pitch = 1e-12);
 
 // The inverse: the platform's pose q (and its rates if tool_rate is not NULL) in the base frame
-// from the tool's tool_q (and tool_rate) in the user frame (angles in the rotation order). False (q, rate unchanged) when the
-// platform's pitch is at +-90 deg (|cos pitch| <= min_cos_pitch) and rates are wanted.
+// from the tool's tool_q (and tool_rate) in the user frame (angles in the rotation order). False
+// (q, rate unchanged) when the platform's pitch is at +-90 deg (|cos pitch| <= min_cos_pitch) and
+// rates are wanted.
 bool platform_pose(const Frames &f, const double tool_q[6], const double *tool_rate, double q[6],
                    double *rate, double min_cos_pitch = 1e-12);
 

@@ -205,7 +205,8 @@ def test_linearisation_states_are_the_order_s_angles():
 def test_command_line_takes_the_order(solve, tmp_path):
     pose = random_xyz_poses(1, seed=5)[0]
     pose_csv, out_csv = tmp_path / "in.csv", tmp_path / "out.csv"
-    pose_csv.write_text("t,x,y,z,roll,pitch,yaw\n0," + ",".join(repr(float(v)) for v in pose) + "\n")
+    row = ",".join(repr(float(v)) for v in pose)
+    pose_csv.write_text(f"t,x,y,z,roll,pitch,yaw\n0,{row}\n")
     result = solve("--param", "rotation_order=1", pose_csv, out_csv)
     assert result.returncode == 0, result.stderr
     header, data = read(out_csv)
@@ -378,8 +379,9 @@ def test_model_joints_come_back_in_the_frames_given(tmp_path):
     down = simona_z_down(tmp_path)
     base, top = _core.model_joints(down._model)
     data = json.loads(SIMONA.read_text())
-    np.testing.assert_array_equal(np.ravel(base), (np.reshape(data["base_joint"], (6, 3)) @ TURN_X).ravel())
-    np.testing.assert_array_equal(np.ravel(top), (np.reshape(data["platform_joint"], (6, 3)) @ TURN_X).ravel())
+    for got, name in ((base, "base_joint"), (top, "platform_joint")):
+        given = np.reshape(data[name], (6, 3)) @ TURN_X
+        np.testing.assert_array_equal(np.ravel(got), given.ravel())
 
 
 def test_calibration_refuses_the_conventions_it_does_not_take():
