@@ -236,7 +236,8 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
     if (p->rotation_order != 0.0 && p->rotation_order != 1.0)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "rotation_order = %s must be 0 (R = Rz(yaw) Ry(pitch) Rx(roll)) or 1 "
-                           "(R = Rx(roll) Ry(pitch) Rz(yaw))", ExactText(p->rotation_order).c_str());
+                           "(R = Rx(roll) Ry(pitch) Rz(yaw))",
+                           ExactText(p->rotation_order).c_str());
     if (p->frame_convention != 0.0 && p->frame_convention != 1.0)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "frame_convention = %s must be 0 (z up) or 1 (z down, x forward, y "
