@@ -307,8 +307,8 @@ def test_z_down_plant_holds_its_home_under_its_weight(tmp_path):
 @pytest.mark.parametrize("version", VERSIONS)
 def test_plant_fmu_falls_toward_plus_z_in_z_down_frames(version):
     """The thesis' parameters given z down (frame_convention 1), massless, no forces, started at
-    its home z0 = -home_height with a sideways speed: x = x0 + x_dot0 t, y = 0, z = z0 + g t^2 / 2 (z
-    down: gravity stays physical), the angles at 0."""
+    its home z0 = -home_height with a sideways speed: x = x0 + x_dot0 t, y = 0,
+    z = z0 + g t^2 / 2 (z down: gravity stays physical), the angles at 0."""
     from test_plant_fmu import plant
     u = plant(version, fidelity=1, frame_convention=1, x0=0.01, z0=-0.5, x_dot0=0.02)
     try:
