@@ -16,7 +16,9 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
         set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the model");
         return nullptr;
     }
-    m->params = *params;
+    m->given = *params;
+    m->params = stewart::params_in_solver_frames(*params);
+    params = &m->params;
     m->geometry = stewart::platform_geometry(*params);
     m->platform = stewart::lumped_platform(*params);
     m->gravity = Eigen::Vector3d(params->gravity);
@@ -39,7 +41,7 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
 extern "C" void stewart_model_free(stewart_model *m) { delete m; }
 
 extern "C" const stewart_params *stewart_model_params(const stewart_model *m) {
-    return m ? &m->params : nullptr;
+    return m ? &m->given : nullptr;
 }
 
 extern "C" const char *stewart_status_name(stewart_status s) {

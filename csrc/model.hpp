@@ -13,7 +13,8 @@
 #include "stewart/stewart_forward.h"
 
 struct stewart_model {
-    stewart_params params;
+    stewart_params given;   // as the caller gave them (stewart_model_params)
+    stewart_params params;  // in the solvers' z-up frames (params_in_solver_frames)
     stewart::PlatformGeometry geometry;
     stewart::LumpedBody platform;  // platform plus payload
     Eigen::Vector3d gravity;

@@ -145,7 +145,7 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     // The pose given is the tool's in the user frame: the platform's in the base frame moves so.
     const stewart::Motion motion =
         m->frames.identity ? stewart::motion_of_pose(*pose)
-                           : stewart::platform_motion(m->frames, stewart::motion_of_pose(*pose));
+                           : stewart::platform_motion_of_pose(m->frames, *pose);
     if (!m->frames.identity && !stewart::motion_finite(motion))
         return stewart::input_out_of_range(*pose, 0, 2, "platform's motion (tool and user frames)",
                                            msg, size);
@@ -196,6 +196,7 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     stroke_and_condition_warnings(m->params, *o, out);  // on the Cardan-to-Cardan lengths
     if (m->length_offsets)  // the sensors read length - offset
         for (int k = 0; k < STEWART_LEGS; ++k) out.lengths.length[k] -= m->params.length_offset[k];
+    stewart::base_wrench_to_given_frame(m->frames, out.base_force, out.base_torque);
     *output = out;
     msg[0] = '\0';
     return STEWART_OK;

@@ -40,6 +40,12 @@ extern "C" stewart_status stewart_geometry_jacobian(const stewart_model *model,
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "pose input %s is %g: it must be finite", stewart::kPoseNames[i],
                                pose[i]);
+    // The closed forms take the frames' angles and the poses as Rz Ry Rx in z-up frames.
+    if (model->frames.rotation_order != stewart::kRotationZYX || model->frames.z_down)
+        return set_message(msg, size, STEWART_ERR_UNSUPPORTED,
+                           "the geometry Jacobian (calibration) takes rotation_order 0 and "
+                           "frame_convention 0: give the platform in those (stewart.convert_angles "
+                           "converts the poses and frames' angles)");
     stewart::GeometryJacobian J;
     const stewart_status s =
         stewart::geometry_jacobian(calibration_geometry(*model), pose, J, msg, size);
@@ -64,10 +70,13 @@ extern "C" stewart_status stewart_geometry_jacobian(const stewart_model *model,
 extern "C" stewart_status stewart_model_joints(const stewart_model *model, double base_joint[18],
                                                double platform_joint[18]) {
     if (!model || !base_joint || !platform_joint) return STEWART_ERR_ARGUMENT;
+    // In the frames the parameters are given in: z down turns y and z back.
+    const double sign[3] = {1.0, model->frames.z_down ? -1.0 : 1.0,
+                            model->frames.z_down ? -1.0 : 1.0};
     for (int k = 0; k < STEWART_LEGS; ++k)
         for (int i = 0; i < 3; ++i) {
-            base_joint[3 * k + i] = model->geometry.base_points(i, k);
-            platform_joint[3 * k + i] = model->geometry.platform_points(i, k);
+            base_joint[3 * k + i] = sign[i] * model->geometry.base_points(i, k);
+            platform_joint[3 * k + i] = sign[i] * model->geometry.platform_points(i, k);
         }
     return STEWART_OK;
 }

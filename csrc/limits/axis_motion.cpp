@@ -36,9 +36,7 @@ AxisMotion axis_motion(const Frames &f, const double q[6], int axis, double sign
     m.rotation = axis >= 3;
     Eigen::Vector3d user;  // the direction in the user frame
     if (axis < 3) user = Eigen::Vector3d::Unit(axis);
-    else if (axis == 5) user = Eigen::Vector3d::UnitZ();
-    else if (axis == 4) user = rotation_from_rpy(0.0, 0.0, q[5]).col(1);
-    else user = rotation_from_rpy(0.0, q[4], q[5]).col(0);
+    else user = angle_axis_in_order(f.rotation_order, q, axis);
     m.direction = sign * (f.user_rotation * user);
     m.centre = f.user_origin + f.user_rotation * Eigen::Vector3d(q[0], q[1], q[2]);
     return m;

@@ -19,7 +19,7 @@ MotionT<Dual> seeded_motion(const Frames &f, const double q[6], const double q_d
     seed(q, 0, qs);
     seed(q_dot, 6, rates);
     seed(q_ddot, 12, accels);
-    const MotionT<Dual> tool = motion_of_pose<Dual>(qs, rates, accels);
+    const MotionT<Dual> tool = motion_of_pose_in_order<Dual>(f.rotation_order, qs, rates, accels);
     return f.identity ? tool : platform_motion(f, tool);
 }
 
@@ -100,6 +100,7 @@ bool pose_base_wrench(const fd::DynamicsModel &d, const Frames &frames, const do
     fd::Vec3T<Dual> f, t;
     fd::base_wrench(d, bodies, f, t);
     for (int i = 0; i < 3; ++i) force[i] = f[i], torque[i] = t[i];
+    base_wrench_to_given_frame(frames, force, torque);
     return true;
 }
 

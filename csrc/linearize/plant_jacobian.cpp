@@ -26,7 +26,8 @@ bool pose_accelerations(const Frames &f, const MotionT<S> &p, const S q[6],
     }
     const MotionT<S> tool = tool_motion(f, p);
     for (int i = 0; i < 3; ++i) q_ddot[i] = tool.acceleration[i];
-    return angle_rates_of<S>(q, tool.alpha - angle_bias, q_ddot + 3, kMinCosPitch);
+    return angle_rates_in_order<S>(f.rotation_order, q, tool.alpha - angle_bias, q_ddot + 3,
+                                   kMinCosPitch);
 }
 
 }  // namespace
@@ -37,7 +38,8 @@ bool plant_rate(const fd::DynamicsModel &d, const Frames &f, const double q[6],
     // The twist rate nu_dot in plain numbers: M nu_dot = rhs, the plant's own equations. With
     // zero pose accelerations the tool's alpha is E_dot angles_dot.
     const double no_accel[6] = {0};
-    r.platform = motion_of_pose<double>(q, q_dot, no_accel);  // the tool's, then the platform's
+    // the tool's (angles in the frames' order), then the platform's
+    r.platform = motion_of_pose_in_order<double>(f.rotation_order, q, q_dot, no_accel);
     r.angle_bias = r.platform.alpha;
     if (!f.identity) r.platform = platform_motion(f, r.platform);
     fd::Evaluation e;
@@ -102,8 +104,9 @@ bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[
     seed(q, 0, qs);
     seed(q_dot, 6, rates);
     for (StateDual &a : zero) a = StateDual(0.0, StateDualDerivatives::Zero());
-    MotionT<StateDual> md = motion_of_pose<StateDual>(qs, rates, zero);  // the tool's, then
-    const fd::Vec3T<StateDual> angle_bias = md.alpha;                    // the platform's
+    MotionT<StateDual> md =  // the tool's, then the platform's
+        motion_of_pose_in_order<StateDual>(f.rotation_order, qs, rates, zero);
+    const fd::Vec3T<StateDual> angle_bias = md.alpha;
     if (!f.identity) md = platform_motion(f, md);
     for (int i = 0; i < 3; ++i) {
         md.acceleration[i] = StateDual(r.twist_rate[i], StateDualDerivatives::Zero());

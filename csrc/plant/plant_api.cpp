@@ -630,6 +630,7 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
         o.base_force[i] = f[i];
         o.base_torque[i] = t[i];
     }
+    stewart::base_wrench_to_given_frame(p->model->frames, o.base_force, o.base_torque);
     if (legs) {
         o.stroke_legs = legs->stroke_legs;
         for (int k = 0; k < STEWART_LEGS; ++k) {

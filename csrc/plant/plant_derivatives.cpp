@@ -142,6 +142,7 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
         o.base_force[i] = force[i];
         o.base_torque[i] = torque[i];
     }
+    stewart::base_wrench_to_given_frame(frames, o.base_force, o.base_torque);
     // The state given is the state returned (no other branch of roll and yaw); its accelerations
     // are the tool's in the user frame.
     o.pose = in->pose;

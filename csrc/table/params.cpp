@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "kinematics/frames.hpp"
 #include "kinematics/joints.hpp"
 #include "table/singular_geometry.hpp"
 #include "util/message.hpp"
@@ -292,6 +293,15 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
                                "stroke limits of leg %d [%s, %s] m must satisfy stroke_min[%d] < "
                                "stroke_max[%d]", k + 1, ExactText(p->stroke_min[k]).c_str(),
                                ExactText(p->stroke_max[k]).c_str(), k + 1, k + 1);
+    if (p->rotation_order != 0.0 && p->rotation_order != 1.0)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "rotation_order = %s must be 0 (R = Rz(yaw) Ry(pitch) Rx(roll)) or 1 "
+                           "(R = Rx(roll) Ry(pitch) Rz(yaw))",
+                           ExactText(p->rotation_order).c_str());
+    if (p->frame_convention != 0.0 && p->frame_convention != 1.0)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "frame_convention = %s must be 0 (z up) or 1 (z down, x forward, y "
+                           "right)", ExactText(p->frame_convention).c_str());
     stewart_status s = check_magnitudes(values, msg, size);
     if (s == STEWART_OK) s = check_side_sizes(*p, msg, size);
     // The circles of geometry 0 lie in z = 0 of each frame: the platform is above the base. Joints
@@ -305,7 +315,9 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
     // name a consequence instead.
     if (s == STEWART_OK && (p->geometry == 0.0 || p->geometry == 1.0))
         s = stewart::check_not_singular_everywhere(*p, msg, size);
-    if (s == STEWART_OK) s = stewart::check_joint_geometry(*p, msg, size);
+    // On the z-up twin of a z-down machine: the check places home above the base.
+    if (s == STEWART_OK)
+        s = stewart::check_joint_geometry(stewart::params_in_solver_frames(*p), msg, size);
     if (s != STEWART_OK) return s;
     return stewart::clear_message(msg, size);
 }

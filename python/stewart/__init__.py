@@ -16,6 +16,7 @@ inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
+from .angles import convert_angles, rotation_matrix
 from .calibration import Calibration, UnobservableError, calibrate, observability
 from .calibration_poses import calibration_poses
 from .check import HomeCheck
@@ -38,4 +39,4 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths", "fmu_start_values",
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
-           "platform_files", "view", "__version__"]
+           "platform_files", "view", "convert_angles", "rotation_matrix", "__version__"]

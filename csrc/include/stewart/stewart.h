@@ -105,6 +105,13 @@ typedef struct stewart_params {
                                platform frame; poses given and returned are the tool frame's */
     double user_frame[6];   /* pose of the user frame in the base frame; poses given and returned
                                are in it (docs/api.md, "Tool and user frames") */
+    /* The convention of every pose given and returned, the frames' included (docs/geometry.md,
+     * "Rotation order and frames"): */
+    double rotation_order;   /* 0 R = Rz(yaw) Ry(pitch) Rx(roll) (the default), 1 R = Rx(roll)
+                                Ry(pitch) Rz(yaw); rates and accelerations are the angles' own */
+    double frame_convention; /* 0 base and platform frames z up (the default); 1 z down, x
+                                forward, y right: joints, axes, centres of mass and poses are
+                                given in frames turned by 180 deg about x (gravity is not) */
     double length_offset[STEWART_LEGS]; /* Cardan-to-Cardan length = sensor reading + offset [m];
                                lengths given and returned are readings */
 

@@ -35,14 +35,16 @@ typedef struct stewart_geometry_jacobian_output {
 
 /* The readings at pose (6 values) and their derivatives. STEWART_OK and out written whole; else
  * out untouched and message naming the variable and its value: STEWART_ERR_ARGUMENT for a NULL
- * argument or a non-finite pose component, STEWART_ERR_UNREACHABLE for a leg of zero length. */
+ * argument or a non-finite pose component, STEWART_ERR_UNREACHABLE for a leg of zero length,
+ * STEWART_ERR_UNSUPPORTED for a model with rotation_order or frame_convention 1. */
 stewart_status stewart_geometry_jacobian(const stewart_model *model, const double pose[6],
                                          stewart_geometry_jacobian_output *out, char *message,
                                          size_t size);
 
 /* The joint centres the model uses, whichever parameters gave them (the circles of geometry 0 or
  * the coordinates of geometry 1): base_joint in the base frame, platform_joint in the platform
- * frame, x1, y1, z1, ..., z6 [m]. STEWART_ERR_ARGUMENT if an argument is NULL. */
+ * frame (both z down when frame_convention is 1), x1, y1, z1, ..., z6 [m]. STEWART_ERR_ARGUMENT
+ * if an argument is NULL. */
 stewart_status stewart_model_joints(const stewart_model *model, double base_joint[18],
                                     double platform_joint[18]);
 

@@ -153,6 +153,12 @@ extern "C" {
     X(606, user_frame, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -1e3, 1, 1e3, 1,         \
       (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),                                                            \
       "Pose of the user frame (poses are given and returned in it) in the base frame:")          \
+    X(590, rotation_order, 1, "", "", 0.0, 1, 1.0, 1, (0.0),                                    \
+      "Angles of every pose given and returned (frames too): 0 R = Rz(yaw) Ry(pitch) Rx(roll), "  \
+      "1 R = Rx(roll) Ry(pitch) Rz(yaw) (PI's U-V-W)")                                            \
+    X(591, frame_convention, 1, "", "", 0.0, 1, 1.0, 1, (0.0),                                  \
+      "Base and platform frames of the joints and poses: 0 z up, 1 z down (x forward, y right, "  \
+      "as flight simulators state them)")                                                         \
     X(612, length_offset, 6, "m", "", -1e3, 1, 1e3, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),           \
       "Length sensor offset: Cardan-to-Cardan length minus the reading given and returned")      \
     X(440, base_joint_limit, 1, "rad", "deg", 0.0, 0, STEWART_PI, 1, (STEWART_DEG(90.0)),       \
