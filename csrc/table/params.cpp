@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "kinematics/joints.hpp"
+#include "limits/limit_check.hpp"
 #include "util/message.hpp"
 #include "util/range.hpp"
 
@@ -232,7 +233,9 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
                                "stroke limits of leg %d [%s, %s] m must satisfy stroke_min[%d] < "
                                "stroke_max[%d]", k + 1, ExactText(p->stroke_min[k]).c_str(),
                                ExactText(p->stroke_max[k]).c_str(), k + 1, k + 1);
-    const stewart_status s = stewart::check_joint_geometry(*p, msg, size);
+    stewart_status s = stewart::check_joint_geometry(*p, msg, size);
+    if (s != STEWART_OK) return s;
+    s = stewart::check_limit_parameters(*p, msg, size);
     if (s != STEWART_OK) return s;
     return stewart::clear_message(msg, size);
 }

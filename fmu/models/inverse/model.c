@@ -510,7 +510,7 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
     if (level == 2) stewart_limits_ranges(inst->res.limits, &in, &values.ranges);
     v->integer[VR_limit_class] = values.check.first;
 #define FMU_LIMIT_OUTPUT(vr, id, name, unit, field, desc) \
-    if (level == 2 || vr < VR_range_min_1) v->real[vr] = values.field;
+    if (level == 2 || vr < VR_range_min_1 || vr == VR_limit_margin_6) v->real[vr] = values.field;
 #include "variables.def"
     fmu_status fs = FMU_OK;
     for (int c = STEWART_LIMIT_BASE_JOINT; c <= STEWART_LIMIT_INTERFERENCE; ++c)
@@ -527,6 +527,15 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
                         c == STEWART_LIMIT_BASE_JOINT ? "base joint" : "platform joint",
                         values.check.leg[i], -values.check.margin[i]);
         }
+    if (values.check.failed & (1 << (STEWART_LIMIT_AXIS - 1))) {
+        static const char *const axes[] = {"x", "y", "z", "roll", "pitch", "yaw"};
+        const int axis = values.check.leg[STEWART_LIMIT_AXIS - 1];
+        fs = FMU_WARNING;
+        fmu_log(inst, FMU_WARNING, LOG_WARNING,
+                "t = %.17g: %s is %g beyond its software position limit (axis_min, axis_max)",
+                time, axes[axis >= 1 && axis <= 6 ? axis - 1 : 0],
+                -values.check.margin[STEWART_LIMIT_AXIS - 1]);
+    }
     return fs;
 }
 
