@@ -123,12 +123,17 @@ def test_a_neutral_axis_too_small_for_a_direction_is_refused_by_name():
 
 # ---------------------------------------------------------------- legs that touch
 
+LOOSE = dict(stroke_min=0.05, stroke_max=3.0, base_joint_limit=np.pi, platform_joint_limit=np.pi)
+
+
 def test_legs_that_touch_interfere_and_the_range_says_so():
-    q = np.array([0.02, -0.01, 0.52, 0.03, -0.02, 0.05])
+    # turned far enough in yaw that legs 5 and 6 pass closer than any two joints are
+    q = np.array([0.02, -0.01, 0.52, 0.03, -0.02, 0.8])
     # the library's own distance of the closest pair: a diameter of exactly that makes the
     # margin exactly 0
-    distance = float(stewart.Platform(leg_diameter=1e-300).limits(q).margin[0, 3])
-    plat = stewart.Platform(leg_diameter=distance)
+    distance = float(stewart.Platform(**LOOSE, leg_diameter=1e-300).limits(q).margin[0, 3])
+    assert distance < 0.25  # the joints are 0.2588 m apart: the model accepts the diameter
+    plat = stewart.Platform(**LOOSE, leg_diameter=distance)
     r = plat.limits(q)
     assert r.margin[0, 3] == 0.0
     assert r.first[0] == INTERFERENCE and not r.within[0]
@@ -136,7 +141,7 @@ def test_legs_that_touch_interfere_and_the_range_says_so():
     assert (ranges.limit[0] == INTERFERENCE).all()
     np.testing.assert_array_equal(ranges.ends[0, :, 0], q)
     # a hair thinner: within, with a margin of that hair
-    thinner = stewart.Platform(leg_diameter=np.nextafter(distance, 0.0)).limits(q)
+    thinner = stewart.Platform(**LOOSE, leg_diameter=np.nextafter(distance, 0.0)).limits(q)
     assert thinner.within[0] and thinner.margin[0, 3] > 0.0
 
 
@@ -147,7 +152,10 @@ def test_joints_closer_than_the_legs_are_thick_are_refused_at_load(diameter_fiel
     spec.pop("description")
     a = np.reshape(spec["base_joint"], (6, 3))
     d = min(np.linalg.norm(a[i] - a[j]) for i in range(6) for j in range(i + 1, 6))
-    with pytest.raises(ValueError, match=r"base joints of legs \d and \d are .* m apart.*"
+    if diameter_field == "leg_diameter":  # the platform joints are closer still: thinner there
+        b = np.reshape(spec["platform_joint"], (6, 3))
+        d = min(np.linalg.norm(b[i] - b[j]) for i in range(6) for j in range(i + 1, 6))
+    with pytest.raises(ValueError, match=r"(base|platform) joints of legs \d and \d are .* m apart.*"
                                          + diameter_field):
         stewart.Platform(**spec, **{diameter_field: d}, **extra)
     stewart.Platform(**spec, **{diameter_field: 0.99 * d}, **extra)  # thinner: accepted
@@ -183,19 +191,22 @@ def actuator_margin(a, top, body, rod, shared=()):
 def test_actuator_interference_against_brute_force_distances():
     spec = json.loads((PLATFORMS / "paired_hexapod.json").read_text())
     spec.pop("description")
-    shapes = dict(leg_body_diameter=0.03, leg_body_length=0.2, leg_rod_diameter=0.016,
+    shapes = dict(leg_body_diameter=0.05, leg_body_length=0.2, leg_rod_diameter=0.04,
                   leg_rod_length=0.15)
     plat = stewart.Platform(**spec, **shapes)
     a = np.reshape(spec["base_joint"], (6, 3))
     b = np.reshape(spec["platform_joint"], (6, 3))
     rng = np.random.default_rng(11)
     home = np.array([0, 0, spec["home_height"], 0, 0, 0])
-    poses = home + np.column_stack([rng.uniform(-0.04, 0.04, (12, 3)), rng.uniform(-0.3, 0.3, (12, 3))])
+    poses = home + np.column_stack([rng.uniform(-0.04, 0.04, (200, 3)), rng.uniform(-0.3, 0.3, (200, 3))])
+    got = plat.limits(poses).margin[:, 3]
+    # the poses whose legs interfere and as many that do not
+    poses = np.vstack([poses[got < 0], poses[got >= 0][:6]])
     got = plat.limits(poses).margin[:, 3]
     for q, margin in zip(poses, got):
         from test_limits import rotation
         top = q[:3] + b @ rotation(*q[3:]).T
-        expected = actuator_margin(a, top, (0.015, 0.2), (0.008, 0.15))
+        expected = actuator_margin(a, top, (0.025, 0.2), (0.02, 0.15))
         # the sampled part is 4001 points: the brute force is above the exact distance by at
         # most the half spacing's sagitta, far below 1e-6 m here
         assert margin == pytest.approx(expected, abs=2e-6), q
