@@ -126,6 +126,13 @@ struct Side {
                 beyond = next.check;
                 return grazing ? t : bisect(t, x, beyond);
             }
+            if (grazing && crosses_singularity(now.legs, next.legs, jacobian)) {
+                beyond = next.check;
+                beyond.first = STEWART_LIMIT_CONDITION;
+                beyond.leg[STEWART_LIMIT_CONDITION - 1] = 0;
+                beyond.other_leg[STEWART_LIMIT_CONDITION - 1] = 0;
+                return t;
+            }
             t = x;
             now = next;
             held = holder;
@@ -170,6 +177,19 @@ struct Side {
             beyond.other_leg[limit - 1] = 0;
         }
         return last;
+    }
+
+    // Whether the leg Jacobian's determinant changes sign from `from` to `to` (the Jacobian
+    // there given): a singular pose lies between them, however narrow the excursion of the
+    // condition number (the mirror assembly lies beyond it).
+    bool crosses_singularity(const LegState &from, const LegState &to,
+                             const LegJacobian &to_jacobian) const {
+        if (!from.has_direction || !to.has_direction) return false;
+        LegJacobian from_jacobian;
+        leg_jacobian(c.geometry, from.kinematics, from_jacobian);
+        const double before = from_jacobian.transposed.partialPivLu().determinant();
+        const double after = to_jacobian.transposed.partialPivLu().determinant();
+        return (before > 0.0 && after < 0.0) || (before < 0.0 && after > 0.0);
     }
 
     // Bisection on the full check between t_ok (within) and t_bad (beyond) to the tolerance;

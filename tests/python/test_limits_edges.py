@@ -269,13 +269,15 @@ def test_axis_limits_are_checked_and_none_by_default():
 
 def test_a_range_toward_a_singular_plane_stops_short_of_it_and_names_the_condition():
     """Joints (nearly) at the centres, only strokes and an exactly singular plane z = 0 (the
-    legs lie in it) with warn_condition 1e300: the proof's steps shrink toward the plane, and
-    the z range ends above it, held by the condition, never in the mirror assembly below."""
+    legs lie in it) with warn_condition 1e300, where only the plane itself is refused: the
+    proof's steps shrink toward it, and the z range ends just above it, held by the condition,
+    never in the mirror assembly below."""
     plat = stewart.Platform(base_radius=1e-3, platform_radius=1e-3, stroke_min=0.3, stroke_max=0.7,
                             base_joint_limit=np.pi, platform_joint_limit=np.pi, leg_diameter=0)
     q = np.array([0.4, 0.0, 0.2, 0.0, 0.0, 0.0])
     r = plat.axis_ranges(q, warn_condition=1e300, details=True)
-    assert 0.0 < r.ends[0, 2, 0] < 0.2 and r.limit[0, 2, 0] == CONDITION
+    # within the ranges' 1e-6 of the plane, where the determinant changes sign
+    assert 0.0 < r.ends[0, 2, 0] < 1e-6 and r.limit[0, 2, 0] == CONDITION
     # the other end is the stroke: leg lengths sqrt(0.4^2 + z^2) reach 0.7 m
     assert r.limit[0, 2, 1] == STROKE
     assert r.ends[0, 2, 1] == pytest.approx(np.sqrt(0.7 ** 2 - 0.4 ** 2), abs=2e-3)

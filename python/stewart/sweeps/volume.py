@@ -84,13 +84,24 @@ def workspace_volume(platform: Platform, orientation: Sequence[float] = (0.0, 0.
                 columns.append((i, j))
     if not seeds:
         return 0.0
-    seeds = np.asarray(seeds)
-    poses = np.column_stack([seeds, np.repeat(np.asarray(orientation, float)[None, :], len(seeds), 0)])
-    ends = platform.axis_ranges(poses, warn_condition=warn_condition)[:, 2, :]
-    volume = 0.0
     by_column: dict[tuple[int, int], list[tuple[float, float]]] = {}
-    for column, (lo, hi) in zip(columns, ends):
-        by_column.setdefault(column, []).append((float(lo), float(hi)))
+    # A range stops at a singular pose inside a scanned run (it never joins the two sides):
+    # the run goes on from its next feasible scan point above the range, seeded again.
+    for _ in range(len(z)):
+        poses = np.column_stack([np.asarray(seeds),
+                                 np.repeat(np.asarray(orientation, float)[None, :], len(seeds), 0)])
+        ends = platform.axis_ranges(poses, warn_condition=warn_condition)[:, 2, :]
+        seeds, next_columns = [], []
+        for (i, j), (lo, hi) in zip(columns, ends):
+            by_column.setdefault((i, j), []).append((float(lo), float(hi)))
+            above = np.flatnonzero((z > hi) & ok[i, j])
+            if above.size and above[0] > 0 and ok[i, j, above[0] - 1] and z[above[0] - 1] >= lo:
+                seeds.append([centres[0][i], centres[1][j], z[above[0]]])
+                next_columns.append((i, j))
+        columns = next_columns
+        if not seeds:
+            break
+    volume = 0.0
     for intervals in by_column.values():  # runs of one column may share an interval
         intervals.sort()
         last = -np.inf
