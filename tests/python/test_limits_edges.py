@@ -58,6 +58,10 @@ def test_the_z_range_at_home_stops_before_the_singular_plane():
     below[2] = low - 2e-6
     assert plat.limits(below).first[0] == CONDITION
     assert refused_inside(plat, THESIS_HOME[None, :], r.ends) == []
+    # with a condition limit only a singular pose reaches (z = 0 exactly), the range ends within
+    # the ranges' 1e-6 of the plane, where det J changes sign, and names the condition
+    r = plat.axis_ranges(THESIS_HOME, warn_condition=1e300, details=True)
+    assert 0.0 < r.ends[0, 2, 0] < 1e-6 and r.limit[0, 2, 0] == CONDITION
 
 
 @pytest.mark.parametrize("name, stroke_min", [("thesis", 0.05), ("thesis", 0.01),
@@ -71,7 +75,7 @@ def test_no_range_contains_a_refused_pose(name, stroke_min):
     home = np.array([0.0, 0.0, spec.get("home_height", 0.5), 0.0, 0.0, 0.0])
     rng = np.random.default_rng(3)
     scale = home[2] / 0.5
-    poses = np.vstack([home, ordinary_poses(plat, home, 15, rng, (0.05 * scale, 0.1))])
+    poses = np.vstack([home, ordinary_poses(plat, home, 31, rng, (0.05 * scale, 0.1))])
     ranges = plat.axis_ranges(poses)
     assert refused_inside(plat, poses, ranges) == []
 
