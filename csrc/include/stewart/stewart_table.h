@@ -179,10 +179,10 @@ extern "C" {
       "Diameter of the actuator rod, a cylinder from the platform joint toward the base")        \
     X(623, leg_rod_length, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.0),                               \
       "Length of the actuator rod from the platform joint")                                      \
-    X(624, axis_min, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -DBL_MAX, 1, DBL_MAX, 1,  \
+    X(626, axis_min, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -DBL_MAX, 1, DBL_MAX, 1,  \
       (-DBL_MAX, -DBL_MAX, -DBL_MAX, -DBL_MAX, -DBL_MAX, -DBL_MAX),                              \
       "Software position limit, smallest tool pose in the user frame (-1.8e308: none):")        \
-    X(630, axis_max, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -DBL_MAX, 1, DBL_MAX, 1,  \
+    X(632, axis_max, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -DBL_MAX, 1, DBL_MAX, 1,  \
       (DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX),                                    \
       "Software position limit, largest tool pose in the user frame (1.8e308: none):")
 

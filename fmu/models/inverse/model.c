@@ -519,8 +519,10 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
             const int i = c - 1;
             if (c == STEWART_LIMIT_INTERFERENCE)
                 fmu_log(inst, FMU_WARNING, LOG_WARNING,
-                        "t = %.17g: legs %d and %d interfere: %g m closer than leg_diameter",
-                        time, values.check.leg[i], values.check.other_leg[i], -values.check.margin[i]);
+                        "t = %.17g: legs %d and %d interfere: %g m closer than the legs are thick "
+                        "(leg_diameter, or the bodies' and rods' diameters; 0: touching)",
+                        time, values.check.leg[i], values.check.other_leg[i],
+                        fabs(values.check.margin[i]));
             else
                 fmu_log(inst, FMU_WARNING, LOG_WARNING,
                         "t = %.17g: the %s of leg %d is %g rad beyond its limit", time,
