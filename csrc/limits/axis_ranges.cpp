@@ -13,15 +13,11 @@ namespace {
 // A stroke end is a closed-form root: the range ends this much inside it, well above the root's
 // rounding (about 1e-8 even where a leg's length barely changes there) [m or rad].
 constexpr double kInsideRoot = 1e-7;
-// Bounds on the evaluations of one side: a march that has not met a limit by then ends there
-// (reported as the search's end, STEWART_LIMIT_NONE); the bisection only runs where a step
-// proven safe met a limit after all (rounding at a margin of zero).
+// Bounds on the evaluations of one side: a march that has not met a limit by then ends at its
+// last proven pose, reported with the class that held its last step (the condition's proof is
+// loose near a singularity: docs/limits.md 7.2); the bisection only runs where a step proven
+// safe met a limit after all (rounding at a margin of zero).
 constexpr int kMaxSteps = 4000, kMaxBisection = 60;
-// The condition's proof is loose near a singularity (by about 100 there: docs/limits.md 7.2):
-// after this many steps limited by it on one side, its steps are at least kConditionGrid [m or
-// rad] (an excursion above warn_condition narrower than that may be missed from there on).
-constexpr int kProvenConditionSteps = 32;
-constexpr double kConditionGrid = 5e-3;
 
 bool within(const stewart_limits_output &o) { return o.failed == 0; }
 
@@ -42,6 +38,8 @@ void evaluate(const LimitConstants &c, const double q[6], bool full_check, bool 
     else platform_pose(c.frames, q, nullptr, platform, nullptr);  // cannot fail without rates
     if (full_check) {
         check_platform_limits(c, platform, p.check, false);
+        const int axis = STEWART_LIMIT_AXIS - 1;
+        p.check.margin[axis] = axis_limit_margin(c, q, &p.check.leg[axis]);
     } else {
         for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i) {
             p.check.margin[i] = HUGE_VAL;
@@ -62,7 +60,7 @@ void evaluate(const LimitConstants &c, const double q[6], bool full_check, bool 
         }
         p.check.margin[STEWART_LIMIT_CONDITION - 1] = inverse_condition - 1.0 / c.warn_condition;
     }
-    classify_margins(p.check);
+    classify_margins(c, p.check);
 }
 
 // One side of one axis: a march from the pose in steps that range_bounds proves safe, up to the
@@ -74,45 +72,50 @@ struct Side {
     int axis;
     double sign;
     AxisMotion motion;
+    double axis_room;   // the way to this side's software position limit
+    double axis_limit;  // that limit (axis_min or axis_max), the pose at t = axis_room
 
     void at(double t, bool full_check, bool with_condition, Point &p, LegJacobian &jacobian) const {
         double moved[6];
         std::copy(q, q + 6, moved);
-        moved[axis] += sign * t;
+        moved[axis] = t >= axis_room ? axis_limit : moved[axis] + sign * t;
         evaluate(c, moved, full_check, with_condition, p, jacobian);
     }
 
     // t of the last pose known within every limit, and the first limit's report beyond it
-    // (STEWART_LIMIT_NONE at the search's end).
+    // (STEWART_LIMIT_NONE at the search's end). `axis_room`: the way to the axis' own software
+    // limit, which ends the side exactly there (the other axes' limits do not change).
     double run(const Point &here, const LegJacobian &here_jacobian,
-               const double here_pairs[kLegPairs], double extent,
+               const double here_pairs[kLegPairs], double extent, double axis_room,
                stewart_limits_output &beyond) const {
         int stroke_leg = 0;
-        const double stroke_end = first_stroke_end(c, here.legs, motion, extent, stroke_leg);
+        const bool axis_ends = axis_room < extent;
+        const double stroke_end =
+            first_stroke_end(c, here.legs, motion, std::min(extent, axis_room), stroke_leg);
         Point now = here, next;
         LegJacobian jacobian;
         double t = 0.0;
         LegRates rates;
         leg_rates(c, here.legs, motion, rates);
-        double condition_until = condition_radius(c, here.legs, rates, here_jacobian, motion);
+        double condition_until =
+            std::min(condition_radius(c, here.legs, rates, here_jacobian, motion), rates.reach);
         PairBounds pairs;
-        pair_bounds(here.legs, rates, motion, here_pairs, pairs);
-        int condition_steps = 0;
+        pair_bounds(c, here.legs, rates, motion, here_pairs, pairs);
+        Holder holder, held;
         for (int n = 0; n < kMaxSteps; ++n) {
             // Interference is measured only for pairs that may limit the step.
             const double condition_left = condition_until - t;
-            const double others =
-                std::min(joint_radius(c, rc, now.legs, rates, motion), condition_left);
+            double others = joint_radius(c, rc, now.legs, rates, motion, holder);
+            if (condition_left < others) {
+                others = condition_left;
+                holder = {STEWART_LIMIT_CONDITION, 0, 0};
+            }
+            others = std::min(others, rates.reach);
             const double h = std::min(others, interference_radius(c, now.legs, t,
                                                                   std::min(others, stroke_end - t),
-                                                                  pairs));
-            if (t + std::max(h, kAxisRangeTolerance) >= stroke_end) {
-                beyond = here.check;
-                beyond.first = stroke_leg ? STEWART_LIMIT_STROKE : STEWART_LIMIT_NONE;
-                beyond.leg[0] = stroke_leg;
-                beyond.other_leg[0] = 0;
-                return stroke_leg ? std::max(0.0, stroke_end - kInsideRoot) : stroke_end;
-            }
+                                                                  pairs, holder));
+            if (t + std::max(h, kAxisRangeTolerance) >= stroke_end)
+                return end_side(here, t, h, stroke_end, stroke_leg, axis_ends, beyond);
             // A class within a tolerance of its limit: one tolerance ahead is beyond it (the
             // end), or the class only grazed its limit (the march goes on from there).
             const bool grazing = h < 0.5 * kAxisRangeTolerance;
@@ -123,20 +126,70 @@ struct Side {
                 beyond = next.check;
                 return grazing ? t : bisect(t, x, beyond);
             }
+            if (grazing && crosses_singularity(now.legs, next.legs, jacobian)) {
+                beyond = next.check;
+                beyond.first = STEWART_LIMIT_CONDITION;
+                beyond.leg[STEWART_LIMIT_CONDITION - 1] = 0;
+                beyond.other_leg[STEWART_LIMIT_CONDITION - 1] = 0;
+                return t;
+            }
             t = x;
             now = next;
+            held = holder;
             leg_rates(c, now.legs, motion, rates);
-            if (with_condition) {
-                const double radius = condition_radius(c, now.legs, rates, jacobian, motion);
-                condition_steps += !grazing;
-                condition_until = t + (condition_steps > kProvenConditionSteps
-                                           ? std::max(radius, kConditionGrid)
-                                           : radius);
+            // Past a grazing check, the condition's bound restarts from the Jacobian there.
+            if (with_condition)
+                condition_until =
+                    t + std::min(condition_radius(c, now.legs, rates, jacobian, motion), rates.reach);
+        }
+        // Out of steps: the proof reaches no further; the class that held the steps holds it.
+        beyond = now.check;
+        beyond.first = held.limit;
+        if (held.limit != STEWART_LIMIT_NONE) {
+            beyond.leg[held.limit - 1] = held.leg;
+            beyond.other_leg[held.limit - 1] = held.other_leg;
+        }
+        return t;
+    }
+
+    // The end of a side at the first stroke end, the axis' own limit or the search's end
+    // (`end`), from t with a proven step h: within every limit up to min(t + h, end). Where the
+    // proof stops short of the end (by less than the tolerance), the end itself is checked.
+    double end_side(const Point &here, double t, double h, double end, int stroke_leg,
+                    bool axis_ends, stewart_limits_output &beyond) const {
+        const double last = stroke_leg ? std::max(t, end - kInsideRoot) : end;
+        if (t + h < last) {
+            Point p;
+            LegJacobian jacobian;
+            at(last, true, true, p, jacobian);
+            if (!within(p.check)) {
+                beyond = p.check;
+                return t;
             }
         }
-        beyond = now.check;
-        beyond.first = STEWART_LIMIT_NONE;
-        return t;
+        beyond = here.check;
+        const int limit = stroke_leg    ? STEWART_LIMIT_STROKE
+                          : axis_ends   ? STEWART_LIMIT_AXIS
+                                        : STEWART_LIMIT_NONE;
+        beyond.first = limit;
+        if (limit != STEWART_LIMIT_NONE) {
+            beyond.leg[limit - 1] = limit == STEWART_LIMIT_AXIS ? axis + 1 : stroke_leg;
+            beyond.other_leg[limit - 1] = 0;
+        }
+        return last;
+    }
+
+    // Whether the leg Jacobian's determinant changes sign from `from` to `to` (the Jacobian
+    // there given): a singular pose lies between them, however narrow the excursion of the
+    // condition number (the mirror assembly lies beyond it).
+    bool crosses_singularity(const LegState &from, const LegState &to,
+                             const LegJacobian &to_jacobian) const {
+        if (!from.has_direction || !to.has_direction) return false;
+        LegJacobian from_jacobian;
+        leg_jacobian(c.geometry, from.kinematics, from_jacobian);
+        const double before = from_jacobian.transposed.partialPivLu().determinant();
+        const double after = to_jacobian.transposed.partialPivLu().determinant();
+        return (before > 0.0 && after < 0.0) || (before < 0.0 && after > 0.0);
     }
 
     // Bisection on the full check between t_ok (within) and t_bad (beyond) to the tolerance;
@@ -184,11 +237,14 @@ void axis_ranges(const LimitConstants &c, const double q[6], stewart_axis_ranges
             const double sign = side == 0 ? -1.0 : 1.0;
             double t = 0.0;
             stewart_limits_output beyond = here.check;
+            const double limit = side == 0 ? c.axis_min[axis] : c.axis_max[axis];
+            const double room = sign * (limit - q[axis]);
             if (within(here.check)) {
-                const Side s{c, q, rc, axis, sign, axis_motion(c.frames, q, axis, sign)};
-                t = s.run(here, here_jacobian, here_pairs, axis >= 3 ? M_PI : reach, beyond);
+                const Side s{c,    q,    rc, axis, sign, axis_motion(c.frames, q, axis, sign),
+                             room, limit};
+                t = s.run(here, here_jacobian, here_pairs, axis >= 3 ? M_PI : reach, room, beyond);
             }
-            (side == 0 ? out.min : out.max)[axis] = q[axis] + sign * t;
+            (side == 0 ? out.min : out.max)[axis] = t >= room ? limit : q[axis] + sign * t;
             end_of(beyond, (side == 0 ? out.min_limit : out.max_limit)[axis],
                    (side == 0 ? out.min_leg : out.max_leg)[axis],
                    (side == 0 ? out.min_other_leg : out.max_other_leg)[axis]);

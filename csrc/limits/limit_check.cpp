@@ -1,9 +1,13 @@
 #include "limits/limit_check.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
+#include "kinematics/joints.hpp"
 #include "kinematics/motion.hpp"
+#include "util/message.hpp"
+#include "util/range.hpp"
 
 namespace stewart {
 
@@ -13,11 +17,14 @@ namespace {
 double stroke_min_of(const stewart_params &p, int leg) { return p.stroke_min[leg]; }
 double stroke_max_of(const stewart_params &p, int leg) { return p.stroke_max[leg]; }
 
-// Column k of an x1, y1, z1, ..., z6 array, made unit; the fallback if it is zero.
+// Column k of an x1, y1, z1, ..., z6 array, made unit; the fallback if it is zero. Scaled by
+// its largest component first, so that no length overflows (1e155) or underflows (1e-200).
 Eigen::Vector3d unit_or(const double *xyz, int k, const Eigen::Vector3d &fallback) {
-    const Eigen::Vector3d v(xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]);
-    const double n = v.norm();
-    return n > 0.0 ? Eigen::Vector3d(v / n) : fallback;
+    Eigen::Vector3d v(xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]);
+    const double largest = v.cwiseAbs().maxCoeff();
+    if (!(largest > 0.0)) return fallback;
+    v /= largest;
+    return v / v.norm();
 }
 
 // The angle between two unit vectors, accurate near 0 and pi (acos is not).
@@ -116,8 +123,144 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
         std::equal(c.platform_joint_limit + 1, c.platform_joint_limit + STEWART_LEGS,
                    c.platform_joint_limit);
     c.leg_diameter = p.leg_diameter;
+    c.shaped = p.leg_body_length > 0.0 || p.leg_rod_length > 0.0;
+    c.body_radius = p.leg_body_length > 0.0 ? 0.5 * p.leg_body_diameter : 0.0;
+    c.body_length = p.leg_body_length;
+    c.rod_radius = p.leg_rod_length > 0.0 ? 0.5 * p.leg_rod_diameter : 0.0;
+    c.rod_length = p.leg_rod_length;
+    c.interference_reach =
+        c.shaped ? 2.0 * std::max(c.body_radius, c.rod_radius) : c.leg_diameter;
+    for (int i = 0; i < STEWART_LEGS; ++i)
+        for (int j = 0; j < STEWART_LEGS; ++j)
+            c.shares_joint[i][j] =
+                i != j && ((geometry.base_points.col(i) - geometry.base_points.col(j)).norm() <=
+                               geometry.min_length ||
+                           (geometry.platform_points.col(i) - geometry.platform_points.col(j))
+                                   .norm() <= geometry.min_length);
+    for (int i = 0; i < 6; ++i) {
+        c.axis_min[i] = p.axis_min[i];
+        c.axis_max[i] = p.axis_max[i];
+    }
     c.warn_condition = warn_condition;
     return c;
+}
+
+namespace {
+
+// The shortest distance between two parts of legs (segments) less their radii.
+double part_margin(const Eigen::Vector3d &p0, const Eigen::Vector3d &p1, double p_radius,
+                   const Eigen::Vector3d &q0, const Eigen::Vector3d &q1, double q_radius) {
+    return std::sqrt(segment_distance_squared(p0, p1, q0, q1)) - (p_radius + q_radius);
+}
+
+}  // namespace
+
+double leg_pair_margin(const LimitConstants &c, int i, int j, const Matrix36 &top,
+                       const Matrix36 &axis, const Vector6 &length) {
+    const Matrix36 &base = c.geometry.base_points;
+    if (c.shares_joint[i][j]) return HUGE_VAL;
+    if (!c.shaped)
+        return std::sqrt(segment_distance_squared(base.col(i), top.col(i), base.col(j),
+                                                  top.col(j))) -
+               c.leg_diameter;
+    // Each part cut to its leg: a body reaches at most the platform joint, a rod the base joint.
+    struct Part {
+        Eigen::Vector3d from, to;
+        double radius;
+    };
+    auto parts = [&](int k, Part out[2]) {
+        int n = 0;
+        if (c.body_length > 0.0)
+            out[n++] = {base.col(k),
+                        Eigen::Vector3d(base.col(k) + std::min(c.body_length, length[k]) * axis.col(k)),
+                        c.body_radius};
+        if (c.rod_length > 0.0)
+            out[n++] = {Eigen::Vector3d(top.col(k) - std::min(c.rod_length, length[k]) * axis.col(k)),
+                        top.col(k), c.rod_radius};
+        return n;
+    };
+    Part a[2], b[2];
+    const int na = parts(i, a), nb = parts(j, b);
+    double margin = HUGE_VAL;
+    for (int x = 0; x < na; ++x)
+        for (int y = 0; y < nb; ++y)
+            margin = std::min(margin, part_margin(a[x].from, a[x].to, a[x].radius, b[y].from,
+                                                  b[y].to, b[y].radius));
+    return margin;
+}
+
+double axis_limit_margin(const LimitConstants &c, const double q[6], int *axis) {
+    double margin = HUGE_VAL;
+    *axis = 0;
+    for (int i = 0; i < 6; ++i) {
+        const double m = std::min(q[i] - c.axis_min[i], c.axis_max[i] - q[i]);
+        if (m < margin) {
+            margin = m;
+            *axis = i + 1;
+        }
+    }
+    return margin;
+}
+
+stewart_status check_limit_parameters(const stewart_params &p, char *msg, size_t size) {
+    static const char *const kAxes[] = {"x", "y", "z", "roll", "pitch", "yaw"};
+    for (int i = 0; i < 6; ++i)
+        if (!(p.axis_min[i] <= p.axis_max[i]))
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "software position limits of %s: axis_min[%d] = %s must not be "
+                               "above axis_max[%d] = %s", kAxes[i], i + 1,
+                               ExactText(p.axis_min[i]).c_str(), i + 1,
+                               ExactText(p.axis_max[i]).c_str());
+    const struct {
+        const char *name;
+        const double *xyz;
+    } neutrals[] = {{"base_joint_neutral", p.base_joint_neutral},
+                    {"platform_joint_neutral", p.platform_joint_neutral}};
+    for (const auto &n : neutrals)
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            const double *v = n.xyz + 3 * k;
+            const double largest = std::max({std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])});
+            if (largest == 0.0 || largest >= DBL_MIN) continue;
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "%s[%d..%d] = (%s, %s, %s) of leg %d is too small to give a "
+                               "direction (every component below %g, where doubles lose "
+                               "digits): give the axis at any ordinary length, or zero for "
+                               "the leg's direction at home",
+                               n.name, 3 * k + 1, 3 * k + 3, ExactText(v[0]).c_str(),
+                               ExactText(v[1]).c_str(), ExactText(v[2]).c_str(), k + 1, DBL_MIN);
+        }
+    const JointGeometry g = joint_geometry(p);
+    const bool shaped = p.leg_body_length > 0.0 || p.leg_rod_length > 0.0;
+    const double coincident = 1e-12 * (g.base_size + g.platform_size);
+    struct Side {
+        const char *name;
+        const Matrix36 &points;
+        double thickness;
+        const char *field;
+    };
+    const Side sides[] = {
+        {"base", g.base_points, shaped ? (p.leg_body_length > 0.0 ? p.leg_body_diameter : 0.0)
+                                       : p.leg_diameter,
+         shaped ? "leg_body_diameter" : "leg_diameter"},
+        {"platform", g.platform_points,
+         shaped ? (p.leg_rod_length > 0.0 ? p.leg_rod_diameter : 0.0) : p.leg_diameter,
+         shaped ? "leg_rod_diameter" : "leg_diameter"}};
+    for (const Side &side : sides) {
+        if (!(side.thickness > 0.0)) continue;
+        for (int i = 0; i < STEWART_LEGS; ++i)
+            for (int j = i + 1; j < STEWART_LEGS; ++j) {
+                const double d = (side.points.col(i) - side.points.col(j)).norm();
+                if (d <= coincident || d > side.thickness) continue;  // shared, or apart
+                return set_message(msg, size, STEWART_ERR_PARAMETER,
+                                   "the %s joints of legs %d and %d are %s m apart, not farther "
+                                   "than the legs are thick there (%s = %s m): the legs would "
+                                   "interfere at every pose; move the joints apart or give the "
+                                   "legs' real diameter",
+                                   side.name, i + 1, j + 1, ExactText(d).c_str(), side.field,
+                                   ExactText(side.thickness).c_str());
+            }
+    }
+    return STEWART_OK;
 }
 
 double segment_distance_squared(const Eigen::Vector3d &p0, const Eigen::Vector3d &p1,
@@ -153,10 +296,13 @@ double segment_distance_squared(const Eigen::Vector3d &p0, const Eigen::Vector3d
 
 void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                   bool with_condition, double *inverse_norm) {
-    if (c.frames.identity) return check_platform_limits(c, q, out, with_condition, inverse_norm);
     double platform[6];
-    platform_pose(c.frames, q, nullptr, platform, nullptr);  // cannot fail without rates
+    if (c.frames.identity) std::copy(q, q + 6, platform);
+    else platform_pose(c.frames, q, nullptr, platform, nullptr);  // cannot fail without rates
     check_platform_limits(c, platform, out, with_condition, inverse_norm);
+    const int axis = STEWART_LIMIT_AXIS - 1;
+    out.margin[axis] = axis_limit_margin(c, q, &out.leg[axis]);
+    classify_margins(c, out);
 }
 
 namespace {
@@ -209,10 +355,9 @@ double sphere_gap(const PlatformLegs &l, int i, int j) {
            0.5 * (l.legs.length[i] + l.legs.length[j]);
 }
 
-// The distance between the axes of legs i and j.
-double leg_distance(const PlatformGeometry &g, const PlatformLegs &l, int i, int j) {
-    return std::sqrt(segment_distance_squared(g.base_points.col(i), l.top.col(i),
-                                              g.base_points.col(j), l.top.col(j)));
+// The interference margin of legs i and j.
+double leg_margin(const LimitConstants &c, const PlatformLegs &l, int i, int j) {
+    return leg_pair_margin(c, i, j, l.top, l.legs.axis, l.legs.length);
 }
 
 // True if a joint class fails: joint_margins' verdict, the arc only where the cosine leaves
@@ -242,7 +387,6 @@ namespace {
 // sphere gap) above the diameter and leg length.
 int limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
                    const Eigen::Matrix3d &rotation, LimitClearance *found) {
-    const PlatformGeometry &g = c.geometry;
     PlatformLegs l;
     platform_legs(c, position, rotation, l);
     int failed = 0;
@@ -257,20 +401,23 @@ int limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
     // the distance, both computed to about 1e-15 m), so only the others are measured; the full
     // check's smallest distance is below the diameter exactly when one of them is, except at
     // rounding distance from it (test_limit_failures: the same verdicts on the edge).
-    const double near = c.leg_diameter + kInterferenceSlack;
-    double closest = HUGE_VAL;  // the distance or sphere gap of each pair, the smallest
+    const double near = c.interference_reach + kInterferenceSlack;
+    const bool checked = c.interference_reach > 0.0;
+    double closest = HUGE_VAL;  // the margin or sphere gap less the reach of each pair, smallest
     bool numbers = true;        // no NaN among them (a NaN clears nothing)
     for (const LegPair &pair : kPairs) {
+        if (c.shares_joint[pair.first][pair.second]) continue;
         const double gap = sphere_gap(l, pair.first, pair.second);
         if (!(gap < near)) {
             numbers = numbers && gap == gap;
-            closest = std::min(closest, gap);
+            closest = std::min(closest, gap - c.interference_reach);
             continue;
         }
-        const double distance = leg_distance(g, l, pair.first, pair.second);
-        if (distance - c.leg_diameter < 0.0) return failed | 1 << (STEWART_LIMIT_INTERFERENCE - 1);
-        numbers = numbers && distance == distance;
-        closest = std::min(closest, distance);
+        const double margin = leg_margin(c, l, pair.first, pair.second);
+        if (margin < 0.0 || (checked && margin == 0.0))
+            return failed | 1 << (STEWART_LIMIT_INTERFERENCE - 1);
+        numbers = numbers && margin == margin;
+        closest = std::min(closest, margin);
     }
     if (found && failed == 0) {
         found->joint_cosine = found->shortest_leg = HUGE_VAL;
@@ -282,7 +429,7 @@ int limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
             found->joint_cosine = std::min({found->joint_cosine, base, platform});
             found->shortest_leg = std::min(found->shortest_leg, l.legs.length[k]);
         }
-        found->interference = closest - c.leg_diameter;
+        found->interference = closest;
         found->valid = numbers && found->interference == found->interference;
     }
     return failed;
@@ -321,8 +468,11 @@ inline bool spares(const LimitConstants &c, const LimitClearance &clearance,
     const double turned = (rotation - clearance.rotation).norm();  // Frobenius
     const double delta = moved + turned * c.platform_radius;
     const double shortest = clearance.shortest_leg - delta;
+    // A shaped leg's parts end at points a + f d (f = min(length, L) / L), which move by at
+    // most 2 delta: twice a segment's points.
+    const double pair_motion = (c.shaped ? 4.0 : 2.0) * delta;
     return shortest > c.geometry.min_length + kClearanceSlack &&
-           clearance.interference >= 2.0 * delta + kClearanceSlack &&
+           clearance.interference >= pair_motion + kClearanceSlack &&
            clearance.joint_cosine >= 2.0 * delta / clearance.shortest_leg + turned + kClearanceSlack;
 }
 
@@ -371,14 +521,20 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
     // Every pair: legs that are not neighbours meet too when the platform turns far enough.
     // Neighbours first, then a pair only if the spheres around the two legs can be closer than
     // the closest pair so far.
+    // Unshaped legs compare distances (margin + leg_diameter), shaped ones margins, each with
+    // the sphere gap less the same reach.
+    const double reach = c.shaped ? c.interference_reach : 0.0;
+    const double offset = c.shaped ? 0.0 : c.leg_diameter;
     double closest = HUGE_VAL;
     for (const LegPair &pair : kPairs) {
         const int i = pair.first, j = pair.second;
-        if (sphere_gap(l, i, j) >= closest) continue;
-        const double d = leg_distance(g, l, i, j);
+        if (c.shares_joint[i][j]) continue;
+        if (sphere_gap(l, i, j) - reach >= closest) continue;
+        const double margin = leg_margin(c, l, i, j);
+        const double d = margin + offset;
         if (d < closest) {
             closest = d;
-            keep_smallest(out, STEWART_LIMIT_INTERFERENCE - 1, d - c.leg_diameter, i + 1, j + 1);
+            keep_smallest(out, STEWART_LIMIT_INTERFERENCE - 1, margin, i + 1, j + 1);
         }
     }
     const bool has_direction = l.has_direction;
@@ -398,14 +554,16 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
         }
     }
     out.margin[STEWART_LIMIT_CONDITION - 1] = inverse_condition - 1.0 / c.warn_condition;
-    classify_margins(out);
+    classify_margins(c, out);
 }
 
-void classify_margins(stewart_limits_output &out) {
+void classify_margins(const LimitConstants &c, stewart_limits_output &out) {
     out.first = STEWART_LIMIT_NONE;
     out.failed = 0;
+    const int interference = STEWART_LIMIT_INTERFERENCE - 1;
+    const bool touching = c.interference_reach > 0.0;  // legs of no thickness never touch
     for (int i = STEWART_LIMIT_CLASSES - 1; i >= 0; --i)
-        if (out.margin[i] < 0.0) {
+        if (out.margin[i] < 0.0 || (touching && i == interference && out.margin[i] == 0.0)) {
             out.failed |= 1 << i;
             out.first = i + 1;
         }

@@ -20,6 +20,19 @@ struct LimitConstants {
     double base_joint_limit[STEWART_LEGS], platform_joint_limit[STEWART_LEGS];
     bool uniform_base_limit, uniform_platform_limit;  // one joint limit for all legs
     double leg_diameter;
+    // Legs as actuators (leg_body_length or leg_rod_length > 0): a body of radius body_radius
+    // from the base joint over body_length and a rod of radius rod_radius from the platform
+    // joint over rod_length, each cut to the leg; else (shaped false) a cylinder of diameter
+    // leg_diameter from joint to joint.
+    bool shaped;
+    double body_radius, body_length, rod_radius, rod_length;
+    // The largest sum of two parts' radii (leg_diameter unshaped): a pair whose joint-to-joint
+    // segments are farther apart than this cannot interfere; 0: no interference check.
+    double interference_reach;
+    // Legs that share a joint (a 3-6 platform's pairs) meet there by design: never checked.
+    bool shares_joint[STEWART_LEGS][STEWART_LEGS];
+    // Software position limits of the tool pose in the user frame (-DBL_MAX / DBL_MAX: none).
+    double axis_min[6], axis_max[6];
     double warn_condition;
     double shortest_stroke_min;      // min_k stroke_min[k]: the shortest leg within the stroke
     double longest_arm;              // max_k |b_k - tool origin|: the fastest platform joint per
@@ -79,8 +92,26 @@ void check_limits(const LimitConstants &c, const double q[6], stewart_limits_out
                   bool with_condition = true, double *inverse_norm = nullptr);
 
 // `first` (the failing class of lowest number, or none) and `failed` (a bit per failing class)
-// from the margins.
-void classify_margins(stewart_limits_output &out);
+// from the margins: every class fails below 0, interference also at 0 (legs that touch) when it
+// is checked at all.
+void classify_margins(const LimitConstants &c, stewart_limits_output &out);
+
+// The interference margin of legs i and j from their base joints, platform joints (world),
+// unit axes and lengths: the shortest distance between their parts less the parts' radii
+// (+inf for legs that share a joint).
+double leg_pair_margin(const LimitConstants &c, int i, int j, const Matrix36 &top,
+                       const Matrix36 &axis, const Vector6 &length);
+
+// The software position limits' margin at the tool pose q (user frame): the smallest of
+// q_i - axis_min[i], axis_max[i] - q_i over the axes [m or rad], and its axis (1..6) in *axis.
+double axis_limit_margin(const LimitConstants &c, const double q[6], int *axis);
+
+// STEWART_OK, or STEWART_ERR_PARAMETER naming the parameter and its value: a neutral axis that
+// is not zero but too small to have a direction (largest component subnormal); axis_min[i] >
+// axis_max[i]; two joints of one side (not one shared point) closer than the legs are thick
+// there, which would interfere at every pose (the legs and the distance named). Per-element
+// ranges (finite values) are checked before.
+stewart_status check_limit_parameters(const stewart_params &p, char *msg, size_t size);
 
 // The squared shortest distance between segments [p0, p1] and [q0, q1] (any, also degenerate
 // or parallel), and the legs' check on it.

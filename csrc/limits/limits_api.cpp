@@ -104,6 +104,7 @@ const char *stewart_limit_class_name(int limit_class) {
         case STEWART_LIMIT_PLATFORM_JOINT: return "platform_joint";
         case STEWART_LIMIT_INTERFERENCE: return "interference";
         case STEWART_LIMIT_CONDITION: return "condition";
+        case STEWART_LIMIT_AXIS: return "axis";
     }
     return "unknown";
 }

@@ -22,12 +22,19 @@ RangeConstants range_constants(const LimitConstants &c) {
 // <= a / L + (2 / sqrt(3)) (v / L)^2 (the maximum over phi).
 void leg_rates(const LimitConstants &c, const LegState &legs, const AxisMotion &m, LegRates &out) {
     const double bend_factor = 2.0 / std::sqrt(3.0);
+    out.reach = HUGE_VAL;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d u = legs.kinematics.axis.col(k);
         const Eigen::Vector3d v = point_velocity(m, legs.top.col(k));
-        out.turn_rate.col(k) = (v - u * u.dot(v)) / legs.kinematics.length[k];
+        const double length = legs.kinematics.length[k];
+        out.turn_rate.col(k) = (v - u * u.dot(v)) / length;
         const double speed = m.rotation ? v.norm() : 1.0;  // a turn keeps the distance to its axis
-        const double shortest = std::max(c.stroke_min[k], c.geometry.min_length);
+        double shortest = std::max(c.stroke_min[k], c.geometry.min_length);
+        // A short stroke_min bounds nothing: half the length now holds over a shorter way.
+        if (0.5 * length > shortest) {
+            shortest = 0.5 * length;
+            if (speed > 0.0) out.reach = std::min(out.reach, shortest / speed);
+        }
         out.speed[k] = speed;
         out.turn[k] = speed / shortest;
         out.bend[k] =
@@ -43,23 +50,29 @@ double taylor_radius(double g, double slope, double curvature) {
 }
 
 double joint_radius(const LimitConstants &c, const RangeConstants &rc, const LegState &legs,
-                    const LegRates &rates, const AxisMotion &m) {
+                    const LegRates &rates, const AxisMotion &m, Holder &holder) {
     double radius = HUGE_VAL;
+    auto keep = [&](double r, int limit, int k) {
+        if (r < radius) {
+            radius = r;
+            holder = {limit, k + 1, 0};
+        }
+    };
     const double spin = m.rotation ? 1.0 : 0.0;  // how fast the platform's neutral axes turn
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const Eigen::Vector3d u = legs.kinematics.axis.col(k), du = rates.turn_rate.col(k);
         if (rc.base_can_fail[k]) {
             const Eigen::Vector3d n = c.base_neutral.col(k);
-            radius = std::min(radius, taylor_radius(u.dot(n) - rc.cos_base_limit[k], du.dot(n),
-                                                    rates.bend[k]));
+            keep(taylor_radius(u.dot(n) - rc.cos_base_limit[k], du.dot(n), rates.bend[k]),
+                 STEWART_LIMIT_BASE_JOINT, k);
         }
         if (rc.platform_can_fail[k]) {
             // (u . n)'' = u'' . n + 2 u' . n' + u . n'' with |n'|, |n''| <= spin.
             const Eigen::Vector3d n = legs.rotation * c.platform_neutral.col(k);
             const double n_rate = m.rotation ? u.dot(m.direction.cross(n)) : 0.0;
             const double curvature = rates.bend[k] + spin * (2.0 * rates.turn[k] + 1.0);
-            radius = std::min(radius, taylor_radius(u.dot(n) - rc.cos_platform_limit[k],
-                                                    du.dot(n) + n_rate, curvature));
+            keep(taylor_radius(u.dot(n) - rc.cos_platform_limit[k], du.dot(n) + n_rate, curvature),
+                 STEWART_LIMIT_PLATFORM_JOINT, k);
         }
     }
     return radius;
@@ -69,10 +82,7 @@ namespace {
 
 // The margin of one pair of legs at `legs`.
 double pair_margin(const LimitConstants &c, const LegState &legs, int i, int j) {
-    const PlatformGeometry &g = c.geometry;
-    return std::sqrt(segment_distance_squared(g.base_points.col(i), legs.top.col(i),
-                                              g.base_points.col(j), legs.top.col(j))) -
-           c.leg_diameter;
+    return leg_pair_margin(c, i, j, legs.top, legs.kinematics.axis, legs.kinematics.length);
 }
 
 }  // namespace
@@ -83,18 +93,22 @@ void pair_margins(const LimitConstants &c, const LegState &legs, double margin[k
         for (int j = i + 1; j < STEWART_LEGS; ++j) margin[p++] = pair_margin(c, legs, i, j);
 }
 
-void pair_bounds(const LegState &legs, const LegRates &rates, const AxisMotion &m,
-                 const double margin[kLegPairs], PairBounds &out) {
+void pair_bounds(const LimitConstants &c, const LegState &legs, const LegRates &rates,
+                 const AxisMotion &m, const double margin[kLegPairs], PairBounds &out) {
     int p = 0;
     for (int i = 0; i < STEWART_LEGS; ++i)
         for (int j = i + 1; j < STEWART_LEGS; ++j, ++p) {
             // Points s and u of the two legs move apart at |s v_i - u v_j|: for a translation
             // |s - u| <= 1; for a turn |w x (s r_i - u r_j)|, convex in (s, u), so at most its
             // value at a corner of [0, 1]^2. A turn keeps every such length.
+            // A shaped leg's part ends at a + f d (f = min(length, L) / L), moving at
+            // |f d' + f' d| <= 2 |d'|: two legs' parts part at most 2 (v_i + v_j).
             const double rate =
-                m.rotation ? std::max({rates.speed[i], rates.speed[j],
-                                       m.direction.cross(legs.top.col(i) - legs.top.col(j)).norm()})
-                           : 1.0;
+                c.shaped ? 2.0 * (rates.speed[i] + rates.speed[j])
+                : m.rotation
+                    ? std::max({rates.speed[i], rates.speed[j],
+                                m.direction.cross(legs.top.col(i) - legs.top.col(j)).norm()})
+                    : 1.0;
             out.rate[p] = std::max(rate, 1e-300);  // two joints on the axis: cannot close
             out.margin[p] = margin[p];
             out.at[p] = 0.0;
@@ -102,8 +116,8 @@ void pair_bounds(const LegState &legs, const LegRates &rates, const AxisMotion &
 }
 
 double interference_radius(const LimitConstants &c, const LegState &legs, double t, double cap,
-                           PairBounds &pairs) {
-    if (!(c.leg_diameter > 0.0)) return HUGE_VAL;
+                           PairBounds &pairs, Holder &holder) {
+    if (!(c.interference_reach > 0.0)) return HUGE_VAL;
     double radius = cap;
     int p = 0;
     for (int i = 0; i < STEWART_LEGS; ++i)
@@ -112,7 +126,11 @@ double interference_radius(const LimitConstants &c, const LegState &legs, double
             if (pairs.margin[p] - rate * (t - pairs.at[p]) >= radius * rate) continue;
             pairs.margin[p] = pair_margin(c, legs, i, j);
             pairs.at[p] = t;
-            radius = std::min(radius, std::max(0.0, pairs.margin[p]) / rate);
+            const double r = std::max(0.0, pairs.margin[p]) / rate;
+            if (r < radius) {
+                radius = r;
+                holder = {STEWART_LIMIT_INTERFERENCE, i + 1, j + 1};
+            }
         }
     return radius;
 }
@@ -142,9 +160,14 @@ double condition_radius(const LimitConstants &c, const LegState &legs, const Leg
         return a.cwiseAbs().rowwise().sum().maxCoeff();
     };
     const double inverse_norm = infinity_norm(jacobian.inverse_transposed);  // b
-    const Matrix6 relative = jacobian.inverse_transposed * rate;             // J^-T D
-    // (b M / 2) h^2 + (g + S b / w) h - (1 - cond / w) <= 0, g = ||J^-T D||.
-    const double linear = infinity_norm(relative) + speed * inverse_norm / warn;
+    // J^T(t + h) is J^T (I + X) with X = J^-T (h D + R), or (I + Z) J^T with Z = (h D + R)
+    // J^-T: either bounds ||J^-T(t + h)|| by ||J^-T|| / (1 - ||X or Z||), so the smaller rate
+    // serves (near parallel legs one can be far below the other).
+    const Matrix6 right = jacobian.inverse_transposed * rate;                // J^-T D
+    const Matrix6 left = rate * jacobian.inverse_transposed;                 // D J^-T
+    // (b M / 2) h^2 + (g + S b / w) h - (1 - cond / w) <= 0, g = min(||J^-T D||, ||D J^-T||).
+    const double linear =
+        std::min(infinity_norm(right), infinity_norm(left)) + speed * inverse_norm / warn;
     const double quadratic = inverse_norm * curvature;
     return 2.0 * room / (linear + std::sqrt(linear * linear + 2.0 * quadratic * room));
 }

@@ -17,11 +17,20 @@ struct RangeConstants {
 RangeConstants range_constants(const LimitConstants &c);
 
 // Per leg at one pose of the motion: the unit leg vector's rate u' = P d' / L (P = I - u u^T),
-// the platform joint's speed bound v (|d'| <= v all along the motion), and bounds over the rest
-// of the motion |u'| <= turn and |u''| <= bend, from L_k >= stroke_min.
+// the platform joint's speed bound v (|d'| <= v all along the motion), and bounds |u'| <= turn
+// and |u''| <= bend over the next `reach` of the motion, from a lower bound on L_k there: the
+// larger of stroke_min (all along the side) and half the leg's length now (up to where it can
+// have halved: |L'| <= v).
 struct LegRates {
     Matrix36 turn_rate;
     double speed[STEWART_LEGS], turn[STEWART_LEGS], bend[STEWART_LEGS];
+    double reach;
+};
+
+// Which limit held a step of the march (the class, its leg and an interfering pair's other
+// leg): what an end reports where the proof ran out of steps.
+struct Holder {
+    int limit = STEWART_LIMIT_NONE, leg = 0, other_leg = 0;
 };
 void leg_rates(const LimitConstants &c, const LegState &legs, const AxisMotion &m, LegRates &out);
 
@@ -34,7 +43,7 @@ double taylor_radius(double g, double slope, double curvature);
 // bound on its second derivative (the leg's turn and, at the platform, the neutral axis' turn).
 // A class whose limit is pi or more cannot fail.
 double joint_radius(const LimitConstants &c, const RangeConstants &rc, const LegState &legs,
-                    const LegRates &rates, const AxisMotion &m);
+                    const LegRates &rates, const AxisMotion &m, Holder &holder);
 
 // The interference class along one side, per pair of legs: the margin (distance - leg_diameter)
 // last computed and the t it was computed at, and how fast that distance can change along the
@@ -47,13 +56,14 @@ struct PairBounds {
 // Every pair's margin at `legs` (t = 0 of every side).
 void pair_margins(const LimitConstants &c, const LegState &legs, double margin[kLegPairs]);
 // The rates along m, with the margins at t = 0.
-void pair_bounds(const LegState &legs, const LegRates &rates, const AxisMotion &m,
-                 const double margin[kLegPairs], PairBounds &out);
+void pair_bounds(const LimitConstants &c, const LegState &legs, const LegRates &rates,
+                 const AxisMotion &m, const double margin[kLegPairs], PairBounds &out);
 // How far from t (legs: there) no pair can come within leg_diameter, or `cap` if at least that:
 // a pair whose stored margin, less its rate times the way since, is that far from its limit
-// needs no new distance; the others are measured here (and stored). +inf with leg_diameter 0.
+// needs no new distance; the others are measured here (and stored). +inf with no interference
+// check (leg_diameter 0, or parts of no thickness).
 double interference_radius(const LimitConstants &c, const LegState &legs, double t, double cap,
-                           PairBounds &pairs);
+                           PairBounds &pairs, Holder &holder);
 
 // The condition number: J^T(t + h) = J^T (I + X) with ||X|| <= h ||J^-T D|| + ||J^-T|| M h^2 / 2
 // (D = dJ^T/dt here, M bounds |d2J^T/dt2| over the step), so that cond(t + h) <=

@@ -11,6 +11,7 @@
 #include "kinematics/frames.hpp"
 #include "kinematics/joints.hpp"
 #include "table/singular_geometry.hpp"
+#include "limits/limit_check.hpp"
 #include "util/message.hpp"
 #include "util/range.hpp"
 
@@ -318,6 +319,7 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
     // On the z-up twin of a z-down machine: the check places home above the base.
     if (s == STEWART_OK)
         s = stewart::check_joint_geometry(stewart::params_in_solver_frames(*p), msg, size);
+    if (s == STEWART_OK) s = stewart::check_limit_parameters(*p, msg, size);
     if (s != STEWART_OK) return s;
     return stewart::clear_message(msg, size);
 }

@@ -1,4 +1,5 @@
-"""Limits a controller checks (stroke, joint angles, leg interference, condition) and the axis
+"""Limits a controller checks (stroke, joint angles, leg interference, condition, software
+position limits per axis) and the axis
 ranges they leave, on numpy arrays through the library (stewart/stewart_limits.h,
 docs/limits.md). Platform.limits and Platform.axis_ranges call these."""
 from __future__ import annotations
@@ -11,22 +12,24 @@ import numpy as np
 from . import _core
 
 #: The limit classes in check order; index + 1 is the library's class number (0: none).
-LIMIT_CLASSES = ("stroke", "base_joint", "platform_joint", "interference", "condition")
-#: The unit of each class's margin.
-MARGIN_UNITS = ("m", "rad", "rad", "m", "1")
+LIMIT_CLASSES = ("stroke", "base_joint", "platform_joint", "interference", "condition", "axis")
+#: The unit of each class's margin (axis: the unit of the axis it is at, m or rad).
+MARGIN_UNITS = ("m", "rad", "rad", "m", "1", "m or rad")
 
 
 def class_name(number: int) -> str:
-    """The name of a class number: "none", "stroke", ..., "condition"."""
+    """The name of a class number: "none", "stroke", ..., "condition", "axis"."""
     return _core.limit_class_name(int(number))
 
 
 @dataclass
 class LimitCheck:
     """The check of N poses. first: (N,) the first failing class (0 none, 1 stroke, 2 base
-    joint, 3 platform joint, 4 interference, 5 condition); failed: (N,) bit c - 1 set for every
-    failing class c; margin: (N, 5) each class's smallest margin (> 0 within; m, rad, rad, m,
-    and 1/condition - 1/warn_condition); leg, other_leg: (N, 5) where it is (legs 1..6; the
+    joint, 3 platform joint, 4 interference, 5 condition, 6 axis: the software position limits
+    axis_min, axis_max); failed: (N,) bit c - 1 set for every failing class c; margin: (N, 6)
+    each class's smallest margin (> 0 within, 0 on the limit, which is within except for
+    interference: legs that touch interfere; m, rad, rad, m, 1/condition - 1/warn_condition,
+    and m or rad); leg, other_leg: (N, 6) where it is (legs 1..6, for axis the axis 1..6; the
     other leg of an interfering pair, else 0); condition: (N,) the leg Jacobian's."""
     first: np.ndarray
     failed: np.ndarray
@@ -57,8 +60,9 @@ def check(model, q: np.ndarray, warn_condition: Optional[float]) -> LimitCheck:
 class AxisRanges:
     """The axis ranges of N poses: ends (N, 6, 2) [min, max] of each axis (x, y, z [m], roll,
     pitch, yaw [rad]) with the other five held; limit, leg, other_leg (N, 6, 2): the class met
-    at each end (0: the search's end, pi away for an angle), its leg and the interfering pair's
-    other leg."""
+    at each end (0: the search's end, pi away for an angle; where the search's proof ran out of
+    steps, the class that held them), its leg (axis: the axis) and the interfering pair's other
+    leg."""
     ends: np.ndarray
     limit: np.ndarray
     leg: np.ndarray

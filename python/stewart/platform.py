@@ -152,8 +152,9 @@ class Platform:
     def limits(self, poses, *, warn_condition: Optional[float] = None) -> LimitCheck:
         """The limits a controller checks, for N poses ((N, 6) or one row of 6): per pose the
         first failing class (stroke, base joint angle, platform joint angle, leg interference,
-        condition number above warn_condition; None: the inverse option's default, 1e3) and the
-        margin to every class [m, rad, rad, m, 1] with the leg where it is (docs/limits.md). A
+        condition number above warn_condition; None: the inverse option's default, 1e3; software
+        position limits axis_min, axis_max) and the margin to every class [m, rad, rad, m, 1, m
+        or rad] with the leg (axis) where it is (docs/limits.md). A
         non-finite pose raises ValueError naming its row and component."""
         q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
         return check_limits(self._model, q, _warn_condition(warn_condition))

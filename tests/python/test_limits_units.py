@@ -11,7 +11,7 @@ from fmu_support import OK, WARNING, VERSIONS, Unit
 
 stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
 
-MARGINS = tuple(f"limit_margin[{c}]" for c in range(1, 6))
+MARGINS = tuple(f"limit_margin[{c}]" for c in range(1, 7))
 RANGE_MIN = tuple(f"range_min[{a}]" for a in range(1, 7))
 RANGE_MAX = tuple(f"range_max[{a}]" for a in range(1, 7))
 POSE = ("x", "y", "z", "roll", "pitch", "yaw")
@@ -39,9 +39,9 @@ def test_fmu_limit_outputs_are_the_library_check_and_ranges(version):
     assert status == OK and limit_class == 0
     check = stewart.Platform().limits(WITHIN)
     ranges = stewart.Platform().axis_ranges(WITHIN)[0]
-    np.testing.assert_array_equal(reals[:5], check.margin[0])
-    np.testing.assert_array_equal(reals[5:11], ranges[:, 0])
-    np.testing.assert_array_equal(reals[11:], ranges[:, 1])
+    np.testing.assert_array_equal(reals[:6], check.margin[0])
+    np.testing.assert_array_equal(reals[6:12], ranges[:, 0])
+    np.testing.assert_array_equal(reals[12:], ranges[:, 1])
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -52,8 +52,28 @@ def test_fmu_limit_outputs_off_by_default_and_ranges_only_at_level_2(version):
                                                  limit_outputs=1, fidelity=1)
     assert status == WARNING and limit_class == 2  # the base joint
     assert reals[1] == pytest.approx(stewart.Platform(base_joint_limit=0.2).limits(LEANING).margin[0, 1])
-    assert not reals[5:].any()
+    assert not reals[6:].any()
     assert "base joint of leg" in log
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_fmu_software_position_limit(version):
+    """A pose past axis_max[3] (z): class 6 with its margin, a Warning naming the axis, and the
+    z range ending on the limit; as the library's."""
+    limits = {"axis_max[3]": 0.51, "axis_min[3]": 0.45}
+    status, limit_class, reals, log = solve_once(version, WITHIN, limit_outputs=2, fidelity=1,
+                                                 **limits)
+    assert status == WARNING and limit_class == 6
+    assert reals[5] == pytest.approx(0.51 - WITHIN[2], abs=1e-15)
+    assert "z is" in log and "software position limit" in log
+    below = WITHIN.copy()
+    below[2] = 0.5
+    status, limit_class, reals, _ = solve_once(version, below, limit_outputs=2, fidelity=1, **limits)
+    plat = stewart.Platform(axis_max=[1e300, 1e300, 0.51, 1e300, 1e300, 1e300],
+                            axis_min=[-1e300, -1e300, 0.45, -1e300, -1e300, -1e300])
+    assert status == OK and limit_class == 0
+    np.testing.assert_array_equal(reals[:6], plat.limits(below).margin[0])
+    assert reals[6 + 2] == 0.45 and reals[12 + 2] == 0.51
 
 
 def test_cli_limits_and_ranges_columns(solve, tmp_path):
@@ -67,7 +87,7 @@ def test_cli_limits_and_ranges_columns(solve, tmp_path):
     rows = list(csv.DictReader(out.open()))
     plat = stewart.Platform(base_joint_limit=0.2)
     check, ranges = plat.limits(poses), plat.axis_ranges(poses)
-    names = ("stroke", "base_joint", "platform_joint", "interference", "condition")
+    names = ("stroke", "base_joint", "platform_joint", "interference", "condition", "axis")
     for j, row in enumerate(rows):
         assert row["limit_class"] == stewart.limits.class_name(check.first[j])
         np.testing.assert_array_equal([float(row[f"margin_{n}"]) for n in names], check.margin[j])

@@ -54,6 +54,7 @@ static void test_scaled_platform_is_similar(void) {
         params.base_radius *= s;
         params.platform_radius *= s;
         params.home_height *= s;
+        params.leg_diameter *= s;  /* legs thicker than the joints are apart are refused */
         for (int k = 0; k < 6; ++k) params.stroke_min[k] *= s, params.stroke_max[k] *= s;
         /* the inertia of the disc scales as s^2 (it plays no part at rest) */
         for (int j = 0; j < 3; ++j) params.platform_inertia[j] *= s * s;

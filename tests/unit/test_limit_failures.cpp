@@ -255,9 +255,13 @@ void test_clearance(void) {
     stewart_params narrow = params;
     narrow.base_joint_limit = narrow.platform_joint_limit = 0.3;
     narrow.leg_diameter = 0.25;
+    // actuators: a body and a rod, each thick enough to meet its neighbours' parts
+    stewart_params shaped = narrow;
+    shaped.leg_body_diameter = 0.2, shaped.leg_body_length = 0.3;
+    shaped.leg_rod_diameter = 0.15, shaped.leg_rod_length = 0.35;
     uint64_t rng = 5150;
     int differing = 0, failing = 0, spared = 0, poses = 0;
-    for (const stewart_params &limits : {params, narrow}) {
+    for (const stewart_params &limits : {params, narrow, shaped}) {
         const stewart::LimitConstants c = stewart::limit_constants(limits, g, HUGE_VAL);
         for (int walk = 0; walk < 60; ++walk) {
             const double step = std::pow(10.0, uniform(rng, -4, -1.5));
@@ -438,9 +442,13 @@ void test_clearance_edge(void) {
     const double angle[STEWART_LEGS] = {25, 5, 145, 125, 265, 245};  // [deg]
     for (int k = 0; k < STEWART_LEGS; ++k) crossing.platform_angle[k] = angle[k] * M_PI / 180;
     crossing.leg_diameter = 0.01;
+    // actuators (the clearance's moves are twice those of plain legs: parts end at a + f d)
+    stewart_params shaped = params;
+    shaped.leg_body_diameter = 0.12, shaped.leg_body_length = 0.25;
+    shaped.leg_rod_diameter = 0.08, shaped.leg_rod_length = 0.3;
     const double per_leg[STEWART_LEGS] = {0.3, 0.45, 0.35, 0.5, 0.25, 0.4};
     uint64_t rng = 6502;
-    for (const stewart_params &set : {params, crossing}) {
+    for (const stewart_params &set : {params, crossing, shaped}) {
         const stewart::PlatformGeometry g = stewart::platform_geometry(set);
         const stewart::LimitConstants constants[3] = {
             stewart::limit_constants(set, g, HUGE_VAL), per_leg_limits(set, g, true, per_leg),

@@ -58,10 +58,10 @@ static void test_options_and_arguments_are_refused_by_name(void) {
 
 static void test_class_names(void) {
     const char *names[] = {"none", "stroke", "base_joint", "platform_joint", "interference",
-                           "condition"};
+                           "condition", "axis"};
     for (int c = 0; c <= STEWART_LIMIT_CLASSES; ++c)
         TEST_ASSERT_EQUAL_STRING(names[c], stewart_limit_class_name(c));
-    TEST_ASSERT_EQUAL_STRING("unknown", stewart_limit_class_name(6));
+    TEST_ASSERT_EQUAL_STRING("unknown", stewart_limit_class_name(7));
 }
 
 static void assert_no_nan(const stewart_limits_output *out, const stewart_axis_ranges *r) {

@@ -47,6 +47,8 @@ static void thesis_platform(stewart_params *p) {
      * direction (the zero neutral axes), legs as thick as the rods. */
     p->base_joint_limit = p->platform_joint_limit = 90.0 * deg;
     p->leg_diameter = 2.0 * r;
+    /* no actuator body or rod (the legs are leg_diameter thick), no software position limits */
+    for (int i = 0; i < 6; ++i) p->axis_min[i] = -DBL_MAX, p->axis_max[i] = DBL_MAX;
 }
 
 static void test_defaults_are_the_thesis_platform_bit_for_bit(void) {

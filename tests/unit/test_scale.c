@@ -18,7 +18,7 @@ static stewart_params scaled(double s) {
     stewart_params p;
     stewart_params_default(&p);
     p.base_radius *= s, p.platform_radius *= s, p.home_height *= s;
-    p.cylinder_com *= s, p.piston_com *= s;
+    p.cylinder_com *= s, p.piston_com *= s, p.leg_diameter *= s;
     for (int k = 0; k < 6; ++k) p.stroke_min[k] *= s, p.stroke_max[k] *= s;
     for (int c = 0; c < 3; ++c) {
         p.platform_com[c] *= s, p.payload_com[c] *= s;

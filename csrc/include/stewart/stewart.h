@@ -122,7 +122,15 @@ typedef struct stewart_params {
     double base_joint_neutral[3 * STEWART_LEGS];     /* x1, y1, z1, ..., z6: base frame; zero:
                                                         the leg's direction at home */
     double platform_joint_neutral[3 * STEWART_LEGS]; /* the same, platform frame */
-    double leg_diameter;                    /* legs whose axes come closer interfere [m] */
+    double leg_diameter;                    /* legs whose axes come closer interfere, when
+                                               neither body nor rod length is given [m] */
+    double leg_body_diameter;               /* actuator body: a cylinder from the base joint [m] */
+    double leg_body_length;                 /* its length (0: no body) [m] */
+    double leg_rod_diameter;                /* actuator rod: a cylinder from the platform joint [m] */
+    double leg_rod_length;                  /* its length (0: no rod) [m] */
+    double axis_min[6];     /* software position limits of the tool pose in the user frame (x, y,
+                               z [m], roll, pitch, yaw [rad]); -DBL_MAX / DBL_MAX: none */
+    double axis_max[6];
 } stewart_params;
 
 /* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */

@@ -14,11 +14,15 @@
  *   base joint      per leg, the angle between the leg (base toward platform) and the base
  *                   joint's neutral axis at most base_joint_limit; margin [rad]
  *   platform joint  the same at the platform joint (neutral axis in the platform frame) [rad]
- *   interference    per pair of legs, the shortest distance between the two joint-to-joint
- *                   segments at least leg_diameter; margin [m]
+ *   interference    per pair of legs, the shortest distance between the legs' parts (the
+ *                   joint-to-joint segments leg_diameter thick, or an actuator's body and rod:
+ *                   leg_body_*, leg_rod_*) less their radii, above 0; margin [m]
  *   condition       the leg Jacobian's condition number at most warn_condition; margin
  *                   1/condition - 1/warn_condition [1] (finite through a singularity)
- * A margin is > 0 within the limit, 0 on it, < 0 beyond it: the smallest over the legs (pairs).
+ *   axis            software position limits: each axis of the tool pose (user frame) within
+ *                   [axis_min, axis_max]; margin [m or rad, the axis']
+ * A margin is > 0 within the limit, 0 on it, < 0 beyond it: the smallest over the legs (pairs,
+ * axes). A pose on a limit is within it, except for interference: legs that touch interfere.
  */
 #ifndef STEWART_STEWART_LIMITS_H
 #define STEWART_STEWART_LIMITS_H
@@ -39,9 +43,10 @@ typedef enum stewart_limit_class {
     STEWART_LIMIT_BASE_JOINT = 2,
     STEWART_LIMIT_PLATFORM_JOINT = 3,
     STEWART_LIMIT_INTERFERENCE = 4,
-    STEWART_LIMIT_CONDITION = 5
+    STEWART_LIMIT_CONDITION = 5,
+    STEWART_LIMIT_AXIS = 6
 } stewart_limit_class;
-#define STEWART_LIMIT_CLASSES 5
+#define STEWART_LIMIT_CLASSES 6
 
 /* Settings of a limits object; stewart_limits_options_default gives the values documented here. */
 typedef struct stewart_limits_options {
@@ -57,21 +62,24 @@ typedef struct stewart_limits_input {
 typedef struct stewart_limits_output {
     int first;                            /* first failing class in check order; NONE if none */
     int failed;                           /* bit (class - 1) set for every failing class */
-    double margin[STEWART_LIMIT_CLASSES]; /* smallest margin of each class [m, rad, rad, m, 1] */
-    int leg[STEWART_LIMIT_CLASSES];       /* the leg (1..6) of that margin */
+    double margin[STEWART_LIMIT_CLASSES]; /* smallest margin of each class [m, rad, rad, m, 1,
+                                             m or rad] */
+    int leg[STEWART_LIMIT_CLASSES];       /* the leg (1..6) of that margin; axis: the axis */
     int other_leg[STEWART_LIMIT_CLASSES]; /* interference: the other leg of the pair; else 0 */
     double condition;                     /* the leg Jacobian's 1-norm condition (inverse's) */
 } stewart_limits_output;
 
 /* What an axis-range search gives: per axis (x, y, z, roll, pitch, yaw) the interval it can
- * move over with the other five held, within every limit, to 1e-6 (m or rad) inside the first
- * limit met on each side. A pose beyond a limit gets [q_i, q_i] on every axis, its first
- * failing class at both ends. Roll, pitch and yaw are searched up to pi away from q_i, the
- * translations up to a length beyond which some leg is surely longer than stroke_max. */
+ * move over with the other five held, within every limit (proven between the poses it checks),
+ * to 1e-6 (m or rad) inside the first limit met on each side. A pose beyond a limit gets
+ * [q_i, q_i] on every axis, its first failing class at both ends. Roll, pitch and yaw are
+ * searched up to pi away from q_i, the translations up to a length beyond which some leg is
+ * surely longer than stroke_max. A side whose proof runs out of steps before any limit ends at
+ * its last proven pose with the class that held its steps. */
 typedef struct stewart_axis_ranges {
     double min[6], max[6];      /* the interval [pose units] */
     int min_limit[6], max_limit[6]; /* the class met at each end (NONE: the search's end) */
-    int min_leg[6], max_leg[6];     /* its leg (1..6; 0 for NONE) */
+    int min_leg[6], max_leg[6];     /* its leg (1..6; axis: the axis; 0 for NONE) */
     int min_other_leg[6], max_other_leg[6]; /* interference: the pair's other leg; else 0 */
 } stewart_axis_ranges;
 
@@ -97,7 +105,7 @@ stewart_status stewart_limits_check(stewart_limits *limits, const stewart_limits
 stewart_status stewart_limits_ranges(stewart_limits *limits, const stewart_limits_input *input,
                                      stewart_axis_ranges *output);
 /* The class's name: "none", "stroke", "base_joint", "platform_joint", "interference",
- * "condition"; "unknown" for any other value. */
+ * "condition", "axis"; "unknown" for any other value. */
 const char *stewart_limit_class_name(int limit_class);
 
 #ifdef __cplusplus

@@ -174,7 +174,23 @@ extern "C" {
       "Neutral axis of the platform joint, platform frame, base toward platform (zero: the "    \
       "leg at home)")                                                                            \
     X(478, leg_diameter, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.015),                               \
-      "Diameter of a leg: two legs' axes closer than it interfere (0: no check)")
+      "Diameter of a leg along its whole length when leg_body_length and leg_rod_length are 0: "  \
+      "two legs' axes closer than it interfere (0: no check)")                                   \
+    X(620, leg_body_diameter, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.0),                            \
+      "Diameter of the actuator body, a cylinder from the base joint toward the platform")       \
+    X(621, leg_body_length, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.0),                              \
+      "Length of the actuator body from the base joint (0 with leg_rod_length 0: the leg is "    \
+      "leg_diameter thick from joint to joint)")                                                 \
+    X(622, leg_rod_diameter, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.0),                             \
+      "Diameter of the actuator rod, a cylinder from the platform joint toward the base")        \
+    X(623, leg_rod_length, 1, "m", "", 0.0, 1, DBL_MAX, 1, (0.0),                               \
+      "Length of the actuator rod from the platform joint")                                      \
+    X(626, axis_min, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -DBL_MAX, 1, DBL_MAX, 1,  \
+      (-DBL_MAX, -DBL_MAX, -DBL_MAX, -DBL_MAX, -DBL_MAX, -DBL_MAX),                              \
+      "Software position limit, smallest tool pose in the user frame (-1.8e308: none):")        \
+    X(632, axis_max, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -DBL_MAX, 1, DBL_MAX, 1,  \
+      (DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX),                                    \
+      "Software position limit, largest tool pose in the user frame (1.8e308: none):")
 
 #define STEWART_OPTION_TABLE(X)                                                                  \
     X(200, fidelity, int, "", 0, 1, 2, 1, STEWART_MASSLESS,                                      \

@@ -175,6 +175,16 @@ static void warn_stroke(const fmu_instance *inst, double time, int stroke_legs) 
                     inst->v.real[VR_L_1 + k], p->stroke_min[k], p->stroke_max[k]);
 }
 
+/* Logs the axis past its software position limit (axis_min, axis_max); FMU_WARNING. */
+static fmu_status warn_axis(const fmu_instance *inst, double time, const stewart_limits_output *check) {
+    static const char *const axes[] = {"x", "y", "z", "roll", "pitch", "yaw"};
+    const int axis = check->leg[STEWART_LIMIT_AXIS - 1];
+    fmu_log(inst, FMU_WARNING, LOG_WARNING,
+            "t = %.17g: %s is %g beyond its software position limit (axis_min, axis_max)", time,
+            axes[axis >= 1 && axis <= 6 ? axis - 1 : 0], -check->margin[STEWART_LIMIT_AXIS - 1]);
+    return FMU_WARNING;
+}
+
 /* The limit outputs for pose q (limit_outputs 1: the check; 2: and the axis ranges) and a
  * Warning, logged, when a joint angle or two legs are beyond their limits (strokes and the
  * condition have warnings of their own). */
@@ -190,7 +200,7 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
     if (level == 2) stewart_limits_ranges(inst->res.limits, &in, &values.ranges);
     v->integer[VR_limit_class] = values.check.first;
 #define FMU_LIMIT_OUTPUT(vr, id, name, unit, field, desc) \
-    if (level == 2 || vr < VR_range_min_1) v->real[vr] = values.field;
+    if (level == 2 || vr < VR_range_min_1 || vr == VR_limit_margin_6) v->real[vr] = values.field;
 #include "variables.def"
     fmu_status fs = FMU_OK;
     for (int c = STEWART_LIMIT_BASE_JOINT; c <= STEWART_LIMIT_INTERFERENCE; ++c)
@@ -199,14 +209,17 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
             const int i = c - 1;
             if (c == STEWART_LIMIT_INTERFERENCE)
                 fmu_log(inst, FMU_WARNING, LOG_WARNING,
-                        "t = %.17g: legs %d and %d interfere: %g m closer than leg_diameter",
-                        time, values.check.leg[i], values.check.other_leg[i], -values.check.margin[i]);
+                        "t = %.17g: legs %d and %d interfere: %g m closer than the legs are thick "
+                        "(leg_diameter, or the bodies' and rods' diameters; 0: touching)",
+                        time, values.check.leg[i], values.check.other_leg[i],
+                        fabs(values.check.margin[i]));
             else
                 fmu_log(inst, FMU_WARNING, LOG_WARNING,
                         "t = %.17g: the %s of leg %d is %g rad beyond its limit", time,
                         c == STEWART_LIMIT_BASE_JOINT ? "base joint" : "platform joint",
                         values.check.leg[i], -values.check.margin[i]);
         }
+    if (values.check.failed & (1 << (STEWART_LIMIT_AXIS - 1))) fs = warn_axis(inst, time, &values.check);
     return fs;
 }
 
