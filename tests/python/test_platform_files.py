@@ -425,8 +425,6 @@ def test_frames_anywhere_give_the_same_machine(tmp_path):
     assert np.max(np.abs(back.pose - there)) < 1e-12
 
 
-@pytest.mark.xfail(strict=True, reason="home_height's table range (stewart_table.h) is still > 0: "
-                   "geometry 1 takes any origin once its min is -DBL_MAX")
 def test_a_base_origin_above_the_top_plane_gives_the_same_lengths(tmp_path):
     data = json.loads((PLATFORMS / "paired_hexapod.json").read_text())
     c = data["home_height"] + 0.1  # the origin 0.1 m above the platform's joints: home_height < 0

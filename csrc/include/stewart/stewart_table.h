@@ -100,7 +100,7 @@ extern "C" {
       (STEWART_DEG(330.0), STEWART_DEG(60.0), STEWART_DEG(90.0), STEWART_DEG(180.0),             \
        STEWART_DEG(210.0), STEWART_DEG(300.0)),                                                  \
       "Angle (platform frame) of the platform Cardan centre")                                   \
-    X(224, home_height, 1, "m", "", 0.0, 0, DBL_MAX, 1, (0.5), "z of the home pose")             \
+    X(224, home_height, 1, "m", "", -DBL_MAX, 1, DBL_MAX, 1, (0.5), "z of the home pose")        \
     X(500, geometry, 1, "", "", 0.0, 1, 1.0, 1, (0.0),                                           \
       "Which joints: 0 the circles (base_radius, platform_radius, base_angle, platform_angle), "  \
       "1 base_joint and platform_joint as given")                                                \
