@@ -316,10 +316,17 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     }
     const Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> lu(G);
     const double rcond = lu.rcond();
+    if (!std::isfinite(rcond))  // G not finite: the legs' directions give no force map at all
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the legs cannot hold this pose: it is a singular pose (the legs' "
+                           "directions do not span the platform's six motions, e.g. every leg "
+                           "in one plane); linearise about a pose within the limits "
+                           "(Platform.check gives home's condition number)");
     if (!(rcond > kMinForceMapConditionInverse))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the legs cannot hold this pose: the map from forces to pose "
-                           "accelerations is singular (reciprocal condition %g)", rcond);
+                           "accelerations is singular (reciprocal condition %g), a singular "
+                           "pose; linearise about a pose within the limits", rcond);
     const Eigen::Matrix<double, 6, 1> force = lu.solve(missing);
     double force_values[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) force_values[k] = force[k];

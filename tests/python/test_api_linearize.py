@@ -153,3 +153,13 @@ def test_bad_input():
         platform.linearize([0, 0, 0.5])
     with pytest.raises(ValueError, match=r"forces\[2\]"):
         platform.linearize(HOME, forces=[0, 0, np.nan, 0, 0, 0])
+
+
+@pytest.mark.parametrize("fidelity", ["massless", "full"])
+def test_a_singular_pose_is_named(fidelity):
+    """At z = 0 every leg of the thesis platform lies in the base plane: no forces hold the
+    platform there, and the message says it is a singular pose (it once said "reciprocal
+    condition nan")."""
+    with pytest.raises(ValueError) as refused:
+        stewart.Platform().linearize([0, 0, 0, 0, 0, 0], fidelity=fidelity)
+    assert "singular pose" in str(refused.value) and "nan" not in str(refused.value)
