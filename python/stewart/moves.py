@@ -178,69 +178,78 @@ def _speed_bound(name, value) -> Optional[float]:
 
 
 def _segment_constraints(Lp, Lpp, ds, accel_max, x_speed):
-    """The constraints a u + b x <= c of every grid segment i in (u, x_i) (u: d2s/dt2 on the
-    segment, x_i: (ds/dt)^2 at its start), as (N, K) arrays: the leg accelerations at both ends
-    (at the end x = x_i + 2 u ds), the speed bounds x_speed at both ends, and x at the end >= 0."""
+    """The bounds on u (d2s/dt2, constant on a grid segment) of every segment i as linear
+    functions of x_i ((ds/dt)^2 at its start): uppers u <= (c - b x_i) / d and lowers
+    u >= (c - b x_i) / d, d >= 0, each a triple of (N, K) arrays. They keep the leg
+    accelerations L' u + L'' x within accel_max at both ends of the segment (at its end
+    x = x_i + 2 u ds), (ds/dt)^2 at its end within x_speed and >= 0."""
     n = Lp.shape[0] - 1
-    A = np.where(np.isfinite(accel_max), accel_max, 0.0)
     on = np.isfinite(accel_max)
-    a_end = Lp[1:] + 2 * ds * Lpp[1:]
-    a = [Lp[:-1], -Lp[:-1], a_end, -a_end]
-    b = [Lpp[:-1], -Lpp[:-1], Lpp[1:], -Lpp[1:]]
-    a = [np.where(on, x, 0.0) for x in a]
-    b = [np.where(on, x, 0.0) for x in b]
-    c = [np.broadcast_to(np.where(on, A, _X_CAP), (n, 6))] * 4
+    A = np.broadcast_to(np.where(on, accel_max, _X_CAP), (n, 6))
+    ends = []
+    for a, b in ((Lp[:-1], Lpp[:-1]), (Lp[1:] + 2 * ds * Lpp[1:], Lpp[1:])):
+        sign = np.where(a >= 0, 1.0, -1.0)
+        ends.append((np.where(on, sign * b, 0.0), np.where(on, np.abs(a), 0.0)))
+    b_legs = np.hstack([e[0] for e in ends])
+    d_legs = np.hstack([e[1] for e in ends])
+    A2 = np.hstack([A, A])
     col = np.ones((n, 1))
-    a += [0 * col, 2 * ds * col, -2 * ds * col]
-    b += [col, col, -col]
-    c += [x_speed[:-1, None], x_speed[1:, None], 0 * col]
-    return np.hstack(a), np.hstack(b), np.hstack(c)
+    upper = (np.hstack([A2, x_speed[1:, None]]), np.hstack([b_legs, col]),
+             np.hstack([d_legs, 2 * ds * col]))
+    lower = (np.hstack([-A2, 0 * col]), np.hstack([b_legs, col]), np.hstack([d_legs, 2 * ds * col]))
+    return upper, lower
 
 
-def _controllable(a, b, c, ds):
-    """The largest x_i (ds/dt squared) of every grid node from which the goal is reached at rest
-    within the constraints (backward pass; u eliminated by Fourier-Motzkin pairs)."""
-    n = a.shape[0]
-    lower, upper = a < 0, a > 0
+def _controllable(upper, lower, x_speed, ds):
+    """The largest x_i ((ds/dt)^2) of every grid node from which the goal is reached at rest
+    within the bounds (backward pass). u is eliminated pairwise (Fourier-Motzkin): a lower
+    bound (c_l - b_l x) / d_l <= an upper (c_u - b_u x) / d_u is
+    x (d_l b_u - d_u b_l) <= d_l c_u - d_u c_l, written without dividing by a d that may be 0."""
+    (cu, bu, du), (cl, bl, dl) = upper, lower
+    n = cu.shape[0]
+    coef = dl[:, :, None] * bu[:, None, :] - du[:, None, :] * bl[:, :, None]
+    rhs = dl[:, :, None] * cu[:, None, :] - du[:, None, :] * cl[:, :, None]
     with np.errstate(divide="ignore", invalid="ignore"):
-        alpha = np.where(lower, c / a, -np.inf)   # u >= alpha + beta x
-        beta = np.where(lower, -b / a, 0.0)
-        gamma = np.where(upper, c / a, np.inf)    # u <= gamma + delta x
-        delta = np.where(upper, -b / a, 0.0)
-        coef = beta[:, :, None] - delta[:, None, :]
-        rhs = gamma[:, None, :] - alpha[:, :, None]
-        pair = lower[:, :, None] & upper[:, None, :] & (coef > 0)
-        static = np.min(np.where(pair, rhs / np.where(pair, coef, 1.0), np.inf), axis=(1, 2))
-        direct = np.min(np.where((a == 0) & (b > 0), c / np.where(b > 0, b, 1.0), np.inf), axis=1)
-    static = np.minimum(np.minimum(static, direct), _X_CAP)
-    # Pairs of each lower bound with the next node's set: x + 2 u ds <= hi[i + 1].
-    inv2 = 1.0 / (2 * ds)
-    next_coef = beta + inv2
-    use = lower & (next_coef > 0)
+        bound = np.where(coef > 0, rhs / np.where(coef > 0, coef, 1.0), np.inf)
+    static = np.minimum(np.min(bound, axis=(1, 2)), np.minimum(x_speed[:-1], _X_CAP))
+    # The pairs of each lower bound with the next node's set, x + 2 u ds <= hi[i + 1]:
+    # x (d_l - 2 ds b_l) <= d_l hi - 2 ds c_l.
+    next_coef = dl - 2 * ds * bl
+    use = next_coef > 0
     next_coef = np.where(use, next_coef, 1.0)
-    next_alpha = np.where(use, alpha, -np.inf)
-    hi = np.zeros(n + 1)
-    for i in range(n - 1, -1, -1):
-        bound = np.min((hi[i + 1] * inv2 - next_alpha[i]) / next_coef[i])
-        hi[i] = max(0.0, min(static[i], bound))
-    return hi
+    next_d = np.where(use, dl, 0.0)
+    next_c = np.where(use, 2 * ds * cl, -np.inf)
+    # The sequential passes run on Python floats: numpy's per-call cost dominates 13 values.
+    rows = zip(next_d.tolist(), next_c.tolist(), next_coef.tolist(), static.tolist())
+    hi = [0.0] * (n + 1)
+    for i, (d, c, k, top) in zip(range(n - 1, -1, -1), reversed(list(rows))):
+        h = hi[i + 1]
+        limit = min([(dj * h - cj) / kj for dj, cj, kj in zip(d, c, k)])
+        hi[i] = max(0.0, min(top, limit))
+    return np.array(hi)
 
 
-def _forward(a, b, c, hi, ds):
+def _forward(upper, hi, ds):
     """The fastest x of every node from rest (forward pass) and u of every segment: the largest
     u each segment allows that keeps the next node within hi."""
-    n = a.shape[0]
-    x = np.zeros(n + 1)
-    u = np.zeros(n)
-    upper = a > 0
-    safe_a = np.where(upper, a, 1.0)
-    for i in range(n):
-        room = np.where(upper[i], (c[i] - b[i] * x[i]) / safe_a[i], np.inf)
-        u[i] = min(np.min(room), (hi[i + 1] - x[i]) / (2 * ds))
-        x[i + 1] = max(0.0, x[i] + 2 * ds * u[i])
+    cu, bu, du = upper
+    n = cu.shape[0]
+    positive = du > 0
+    inv_d = np.where(positive, 1.0 / np.where(positive, du, 1.0), 0.0)
+    # A bound with d = 0 is no bound on u (its x part is in hi): c - b x times 0 drops it.
+    cu = np.where(positive, cu, _X_CAP)
+    bu = np.where(positive, bu, 0.0)
+    x = [0.0] * (n + 1)
+    u = [0.0] * n
+    his = hi.tolist()
+    for i, (c, b, r) in enumerate(zip(cu.tolist(), bu.tolist(), inv_d.tolist())):
+        xi = x[i]
+        room = min([(cj - bj * xi) * rj if rj else _X_CAP for cj, bj, rj in zip(c, b, r)])
+        u[i] = min(room, (his[i + 1] - xi) / (2 * ds))
+        x[i + 1] = max(0.0, xi + 2 * ds * u[i])
     x[n] = 0.0
     u[n - 1] = -x[n - 1] / (2 * ds)
-    return x, u
+    return np.array(x), np.array(u)
 
 
 def _time_law(path, platform, segments, margin, limits):
@@ -267,9 +276,9 @@ def _time_law(path, platform, segments, margin, limits):
                             (angular_speed, np.linalg.norm(omega, axis=1))):
             if bound is not None:
                 xs = np.minimum(xs, (shrink * bound / rate) ** 2)
-    a, b, c = _segment_constraints(Lp, Lpp, ds, shrink * accel, xs)
-    hi = _controllable(a, b, c, ds)
-    x, u = _forward(a, b, c, hi, ds)
+    upper, lower = _segment_constraints(Lp, Lpp, ds, shrink * accel, xs)
+    hi = _controllable(upper, lower, xs, ds)
+    x, u = _forward(upper, hi, ds)
     v = np.sqrt(x)
     if np.any(v[:-1] + v[1:] <= 0):
         raise MoveError("the time law stalls on the path (a zero speed bound)", "leg_speed")
