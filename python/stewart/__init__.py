@@ -25,6 +25,7 @@ from .errors import ParameterError
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
 from .forward import ForwardSolution
 from .inverse import InverseSolution
+from .feasibility import Feasibility, feasibility
 from .moves import Move, MoveError, move
 from .params import parameters, platform_files
 from .platform import Platform
@@ -41,4 +42,4 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
-           "MoveError", "__version__"]
+           "MoveError", "feasibility", "Feasibility", "__version__"]

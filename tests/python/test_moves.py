@@ -288,3 +288,39 @@ def test_the_command_line_writes_the_move(tmp_path):
     bad = subprocess.run(args[:-6] + ["--goal", "0,0,2,0,0,0", "--leg-accel-max", "0.5", "-o",
                                       str(out)], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 1 and "stroke" in bad.stderr
+
+
+def test_the_feasibility_report_of_a_move():
+    """The leg margins against the reference's closed-form length rates and accelerations
+    (tests/python/reference.py, the thesis geometry); the first class and the worst times."""
+    import reference
+    platform = stewart.Platform()
+    start, goal = np.array([0, 0, 0.5, 0, 0, 0.0]), np.array([0.02, -0.01, 0.51, 0.02, 0, 0.05])
+    m = stewart.move(platform, start, goal, "line", leg_speed_max=0.05, leg_accel_max=0.5)
+    rates = np.array([reference.length_rates_and_accelerations(q, qd, qdd)
+                      for q, qd, qdd in zip(m.pose, m.pose_rate, m.pose_accel)])
+    speed, accel = np.abs(rates[:, 0]), np.abs(rates[:, 1])
+    report = stewart.feasibility(platform, m.t, m.pose, m.pose_rate, m.pose_accel,
+                                 leg_speed_max=0.04, leg_accel_max=0.5)
+    assert np.allclose(report.margin[:, 5], 0.04 - speed.max(axis=1), rtol=0, atol=1e-12)
+    assert np.allclose(report.margin[:, 6], 0.5 - accel.max(axis=1), rtol=0, atol=1e-12)
+    assert np.array_equal(report.leg[:, 5], speed.argmax(axis=1) + 1)
+    over = np.flatnonzero(speed.max(axis=1) > 0.04)
+    assert over.size and np.array_equal(np.flatnonzero(~report.within), over)
+    assert np.all(np.array(report.names)[report.first[over]] == "leg_speed")
+    j = np.argmax(speed.max(axis=1))
+    assert report.worst["leg_speed"] == (pytest.approx(0.04 - speed.max()), m.t[j])
+    assert 0 < report.worst["leg_accel"][0] < 1e-3 * 0.5  # the move's own limit, just met
+    assert "leg_speed" in str(report) and "met" in str(report)
+
+
+def test_the_feasibility_report_names_a_geometric_limit_first():
+    platform = stewart.Platform()
+    poses = np.array([[0, 0, 0.5, 0, 0, 0], [0, 0, 0.95, 0, 0, 0], [0, 0, 0.5, 0, 0, 0.01]])
+    report = stewart.feasibility(platform, [0, 1, 2], poses, np.ones((3, 6)), np.zeros((3, 6)),
+                                 leg_speed_max=1e-3, leg_accel_max=10.0)
+    assert report.names[report.first[1]] == "stroke"
+    assert report.names[report.first[0]] == "leg_speed"
+    assert report.worst["stroke"][1] == 1.0 and report.worst["stroke"][0] < 0
+    with pytest.raises(ValueError, match="need the pose rates"):
+        stewart.feasibility(platform, [0, 1, 2], poses, leg_speed_max=0.1)
