@@ -37,7 +37,8 @@ class Feasibility:
     leg: np.ndarray
     worst: dict
 
-    names: ClassVar[tuple] = ("none",) + FEASIBILITY_CLASSES  #: first -> class name
+    #: The name of each number of first: "none", then FEASIBILITY_CLASSES.
+    names: ClassVar[tuple] = ("none",) + FEASIBILITY_CLASSES
 
     @property
     def within(self) -> np.ndarray:
