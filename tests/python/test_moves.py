@@ -324,3 +324,48 @@ def test_the_feasibility_report_names_a_geometric_limit_first():
     assert report.worst["stroke"][1] == 1.0 and report.worst["stroke"][0] < 0
     with pytest.raises(ValueError, match="need the pose rates"):
         stewart.feasibility(platform, [0, 1, 2], poses, leg_speed_max=0.1)
+
+
+def test_a_line_in_rotation_order_1():
+    """R = Rx Ry Rz (PI's U-V-W): the slerp, the limits and the rates in that order."""
+    data = json.loads(FILES["thesis"].read_text())
+    platform = stewart.Platform.from_file(FILES["thesis"], rotation_order=1)
+    start = np.array([0.01, 0.0, 0.5, 0.03, 0.02, -0.05])
+    goal = np.array([-0.01, 0.02, 0.51, -0.02, 0.04, 0.08])
+    m = stewart.move(platform, start, goal, "line", leg_speed_max=0.05, leg_accel_max=0.5)
+
+    def uvw(angles):
+        return Rotation.from_euler("XYZ", angles).as_matrix()
+    slerp = Slerp([0, 1], Rotation.from_matrix(uvw(np.vstack([start[3:], goal[3:]]))))
+    assert np.max(np.abs(uvw(m.pose[:, 3:]) - slerp(m.s).as_matrix())) < 1e-12
+    L = lengths_of(data, m.pose[:, :3], uvw(m.pose[:, 3:]))
+    v = (L[2:] - L[:-2]) / (2 * DT)
+    a = (L[2:] - 2 * L[1:-1] + L[:-2]) / DT ** 2
+    delta_L = 16 * EPS * np.max(L)
+    assert np.max(np.abs(v)) <= 0.05 * (1 + 1e-6) + delta_L / DT
+    assert np.max(np.abs(a)) <= 0.5 * (1 + 1e-6) + 4 * delta_L / DT ** 2
+    diff = (m.pose[2:] - m.pose[:-2]) / (2 * DT) - m.pose_rate[1:-1]
+    tight = np.abs(diff) > 1e-5 * np.max(np.abs(m.pose_rate), axis=0) + 16 * EPS / DT
+    assert np.count_nonzero(tight.any(axis=1)) <= 0.02 * len(m.t)
+
+
+def test_stewart_solve_takes_the_move(tmp_path, solve):
+    """The CSV of scripts/move.py through stewart-solve: its exact rates give the leg speeds,
+    within the limit and equal to Platform.inverse's."""
+    moved, out = tmp_path / "move.csv", tmp_path / "legs.csv"
+    run = subprocess.run([sys.executable, str(ROOT / "scripts" / "move.py"), "--start",
+                          "0,0,0.5,0,0,0", "--goal", "0.02,0.01,0.49,0.01,0,0.03",
+                          "--leg-speed-max", "0.03", "--leg-accel-max", "0.3", "-o", str(moved)],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    r = solve("--fidelity", "kinematic", moved, out)
+    assert r.returncode == 0, r.stderr
+    with open(out) as f:
+        header = f.readline().strip().split(",")
+    columns = [header.index(f"L_dot{k}") for k in range(1, 7)]
+    rate = np.loadtxt(out, delimiter=",", skiprows=1, usecols=columns)
+    table = np.loadtxt(moved, delimiter=",", skiprows=1)
+    expected = stewart.Platform().inverse(table[:, 1:7], table[:, 7:13], table[:, 13:19],
+                                          fidelity="kinematic").length_rate
+    assert np.max(np.abs(rate - expected)) < 1e-12
+    assert np.max(np.abs(rate)) <= 0.03 * (1 + 1e-9) and np.max(np.abs(rate)) > 0.0299
