@@ -76,12 +76,12 @@ class _PointPath:
     """q(s) = q0 + s (q1 - q0): a straight line in pose space."""
 
     def __init__(self, q0: np.ndarray, q1: np.ndarray, order: int) -> None:
-        self.q0, self.dq, self.order = q0, q1 - q0, order
+        self.q0, self.q1, self.dq, self.order = q0, q1, q1 - q0, order
 
     def derivatives(self, s: np.ndarray):
         """q, dq/ds, d2q/ds2 (n, 6) and the angular velocity per unit s (n, 3), base axes."""
         q = self.q0 + s[:, None] * self.dq
-        q[s == 1.0] = self.q0 + self.dq
+        q[s == 1.0] = self.q1
         dq = np.broadcast_to(self.dq, q.shape).copy()
         omega = np.einsum("nij,j->ni", _rate_matrix(q[:, 3:], self.order), self.dq[3:])
         return q, dq, np.zeros_like(q), omega
