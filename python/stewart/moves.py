@@ -78,7 +78,9 @@ class _PointPath:
     def __init__(self, q0: np.ndarray, q1: np.ndarray, order: int) -> None:
         self.q0, self.q1, self.dq, self.order = q0, q1, q1 - q0, order
 
-    def derivatives(self, s: np.ndarray):
+    breaks = np.zeros(0)  #: s where the path's second derivative jumps (none)
+
+    def derivatives(self, s: np.ndarray, side: str = "right"):
         """q, dq/ds, d2q/ds2 (n, 6) and the angular velocity per unit s (n, 3), base axes."""
         q = self.q0 + s[:, None] * self.dq
         q[s == 1.0] = self.q1
@@ -107,7 +109,9 @@ class _LinePath:
         a[:, [0, 2]] = np.unwrap(np.vstack([self.q0[[3, 5]], a[:, [0, 2]]]), axis=0)[1:]
         return a
 
-    def derivatives(self, s: np.ndarray):
+    breaks = np.zeros(0)
+
+    def derivatives(self, s: np.ndarray, side: str = "right"):
         n = s.size
         q = np.empty((n, 6))
         q[:, :3] = self.q0[:3] + s[:, None] * (self.q1[:3] - self.q0[:3])
@@ -127,6 +131,51 @@ class _LinePath:
         ddq = np.zeros((n, 6))
         ddq[:, 3:] = -np.linalg.solve(E, bias[..., None])[..., 0]
         return q, dq, ddq, np.broadcast_to(self.w, (n, 3)).copy()
+
+
+class _BlendedPath:
+    """Straight lines in pose space through waypoints, each corner replaced by a quadratic
+    Bezier blend from r before the corner to r after it (r = blend times the shorter adjacent
+    line, lengths in pose space with metres and radians alike): the path's direction is
+    continuous, so the move passes the corners without stopping. Every piece is a quadratic
+    c0 + c1 l + c2 l^2 in its own length l; the parameter s is the length over the total."""
+
+    def __init__(self, points: np.ndarray, blend: float, order: int) -> None:
+        steps = np.diff(points, axis=0)
+        lengths = np.linalg.norm(steps, axis=1)
+        if np.any(lengths == 0):
+            j = int(np.flatnonzero(lengths == 0)[0])
+            raise ValueError(f"waypoints {j} and {j + 1} (counting the start as 0) are the "
+                             "same pose: leave one out")
+        units = steps / lengths[:, None]
+        r = np.zeros(len(points))
+        r[1:-1] = blend * np.minimum(lengths[:-1], lengths[1:])
+        pieces = []  # (length, c0, c1, c2)
+        for j in range(len(steps)):
+            if j > 0:
+                pieces.append((2 * r[j], points[j] - r[j] * units[j - 1], units[j - 1],
+                               (units[j] - units[j - 1]) / (4 * r[j])))
+            straight = lengths[j] - r[j] - r[j + 1]
+            if straight > 0:
+                pieces.append((straight, points[j] + r[j] * units[j], units[j], 0 * units[j]))
+        size = np.array([p[0] for p in pieces])
+        self.total = float(np.sum(size))
+        self.starts = np.concatenate([[0.0], np.cumsum(size)[:-1]]) / self.total
+        self.c = np.array([[p[1], p[2], p[3]] for p in pieces])  # (pieces, 3, 6)
+        self.breaks = self.starts[1:]
+        self.q0, self.q1, self.order = points[0], points[-1], order
+
+    def derivatives(self, s: np.ndarray, side: str = "right"):
+        k = np.searchsorted(self.starts, s, side="right" if side == "right" else "left") - 1
+        k = np.clip(k, 0, len(self.starts) - 1)
+        length = (s - self.starts[k])[:, None] * self.total
+        c0, c1, c2 = self.c[k, 0], self.c[k, 1], self.c[k, 2]
+        q = c0 + c1 * length + c2 * length ** 2
+        q[s == 0.0], q[s == 1.0] = self.q0, self.q1
+        dq = (c1 + 2 * c2 * length) * self.total
+        ddq = 2 * c2 * self.total ** 2
+        omega = np.einsum("nij,nj->ni", _rate_matrix(q[:, 3:], self.order), dq[:, 3:])
+        return q, dq, ddq, omega
 
 
 def _skew(w: np.ndarray) -> np.ndarray:
@@ -177,17 +226,19 @@ def _speed_bound(name, value) -> Optional[float]:
     return float(value)
 
 
-def _segment_constraints(Lp, Lpp, ds, accel_max, x_speed):
+def _segment_constraints(start, end, ds, accel_max, x_speed):
     """The bounds on u (d2s/dt2, constant on a grid segment) of every segment i as linear
     functions of x_i ((ds/dt)^2 at its start): uppers u <= (c - b x_i) / d and lowers
     u >= (c - b x_i) / d, d >= 0, each a triple of (N, K) arrays. They keep the leg
     accelerations L' u + L'' x within accel_max at both ends of the segment (at its end
-    x = x_i + 2 u ds), (ds/dt)^2 at its end within x_speed and >= 0."""
-    n = Lp.shape[0] - 1
+    x = x_i + 2 u ds), (ds/dt)^2 at its end within x_speed and >= 0. start, end: (L', L'') at
+    the segments' starts and ends, (N, 6) each (one-sided where the path's L'' jumps); ds (N,)."""
+    n = ds.size
+    ds = ds[:, None]
     on = np.isfinite(accel_max)
     A = np.broadcast_to(np.where(on, accel_max, _X_CAP), (n, 6))
     ends = []
-    for a, b in ((Lp[:-1], Lpp[:-1]), (Lp[1:] + 2 * ds * Lpp[1:], Lpp[1:])):
+    for a, b in ((start[0], start[1]), (end[0] + 2 * ds * end[1], end[1])):
         sign = np.where(a >= 0, 1.0, -1.0)
         ends.append((np.where(on, sign * b, 0.0), np.where(on, np.abs(a), 0.0)))
     b_legs = np.hstack([e[0] for e in ends])
@@ -214,6 +265,7 @@ def _controllable(upper, lower, x_speed, ds):
     static = np.minimum(np.min(bound, axis=(1, 2)), np.minimum(x_speed[:-1], _X_CAP))
     # The pairs of each lower bound with the next node's set, x + 2 u ds <= hi[i + 1]:
     # x (d_l - 2 ds b_l) <= d_l hi - 2 ds c_l.
+    ds = ds[:, None]
     next_coef = dl - 2 * ds * bl
     use = next_coef > 0
     next_coef = np.where(use, next_coef, 1.0)
@@ -241,24 +293,21 @@ def _forward(upper, hi, ds):
     bu = np.where(positive, bu, 0.0)
     x = [0.0] * (n + 1)
     u = [0.0] * n
-    his = hi.tolist()
+    his, steps = hi.tolist(), ds.tolist()
     for i, (c, b, r) in enumerate(zip(cu.tolist(), bu.tolist(), inv_d.tolist())):
-        xi = x[i]
+        xi, step = x[i], steps[i]
         room = min([(cj - bj * xi) * rj if rj else _X_CAP for cj, bj, rj in zip(c, b, r)])
-        u[i] = min(room, (his[i + 1] - xi) / (2 * ds))
-        x[i + 1] = max(0.0, xi + 2 * ds * u[i])
+        u[i] = min(room, (his[i + 1] - xi) / (2 * step))
+        x[i + 1] = max(0.0, xi + 2 * step * u[i])
     x[n] = 0.0
-    u[n - 1] = -x[n - 1] / (2 * ds)
+    u[n - 1] = -x[n - 1] / (2 * steps[n - 1])
     return np.array(x), np.array(u)
 
 
-def _time_law(path, platform, segments, margin, limits):
-    """s nodes, x, u and node times of the time-optimal law on a grid of `segments`, with the
-    limits planned `margin` inside; the grid's poses and leg derivatives come along."""
-    speed, accel, tool_speed, angular_speed = limits
-    s = np.linspace(0.0, 1.0, segments + 1)
-    ds = 1.0 / segments
-    q, dq, ddq, omega = path.derivatives(s)
+def _leg_derivatives(platform, path, s, side):
+    """The path's poses, leg L' and L'' (the inverse's length rate and acceleration for the pose
+    moving along the path at ds/dt = 1, d2s/dt2 = 0) and x bounds' inputs at s, from `side`."""
+    q, dq, ddq, omega = path.derivatives(s, side)
     legs = platform.inverse(q, dq, ddq, fidelity="kinematic")
     bad = np.flatnonzero(legs.status != 0)
     if bad.size:
@@ -266,17 +315,38 @@ def _time_law(path, platform, segments, margin, limits):
         raise MoveError(f"the path has a pose the legs cannot reach at s = {s[i]:.6g} "
                         f"(pose {q[i].tolist()}): {legs.messages.get(i, legs.status_name(i))}",
                         "unreachable", None, float(s[i]))
-    Lp, Lpp = legs.length_rate, legs.length_accel
-    shrink = 1.0 - margin
+    return q, legs.length_rate, legs.length_accel, dq, omega
+
+
+def _speed_bound_x(Lp, dq, omega, limits, shrink):
+    """The largest (ds/dt)^2 the speed limits allow at each node."""
+    speed, _, tool_speed, angular_speed = limits
     with np.errstate(divide="ignore"):
-        xs = np.full(s.size, _X_CAP)
+        xs = np.full(Lp.shape[0], _X_CAP)
         if speed is not None:
             xs = np.minimum(xs, np.min((shrink * speed / np.abs(Lp)) ** 2, axis=1))
         for bound, rate in ((tool_speed, np.linalg.norm(dq[:, :3], axis=1)),
                             (angular_speed, np.linalg.norm(omega, axis=1))):
             if bound is not None:
                 xs = np.minimum(xs, (shrink * bound / rate) ** 2)
-    upper, lower = _segment_constraints(Lp, Lpp, ds, shrink * accel, xs)
+    return xs
+
+
+def _time_law(path, platform, segments, margin, limits):
+    """s nodes, ds/dt at them, u per segment and node times of the time-optimal law on a grid
+    of `segments` (plus the path's breaks), with the limits planned `margin` inside; and the
+    grid's poses."""
+    s = np.union1d(np.linspace(0.0, 1.0, segments + 1), path.breaks)
+    ds = np.diff(s)
+    shrink = 1.0 - margin
+    q, Lp, Lpp, dq, omega = _leg_derivatives(platform, path, s, "right")
+    xs = _speed_bound_x(Lp, dq, omega, limits, shrink)
+    end = (Lp[1:], Lpp[1:])
+    if path.breaks.size:  # at a break, the segment before it ends on the other side's L''
+        _, Lp_left, Lpp_left, dq_left, omega_left = _leg_derivatives(platform, path, s, "left")
+        xs = np.minimum(xs, _speed_bound_x(Lp_left, dq_left, omega_left, limits, shrink))
+        end = (Lp_left[1:], Lpp_left[1:])
+    upper, lower = _segment_constraints((Lp[:-1], Lpp[:-1]), end, ds, shrink * limits[1], xs)
     hi = _controllable(upper, lower, xs, ds)
     x, u = _forward(upper, hi, ds)
     v = np.sqrt(x)
