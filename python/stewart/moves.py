@@ -429,10 +429,49 @@ def _goal_pose(start, goal, frame, order) -> np.ndarray:
     return np.concatenate([p, angles])
 
 
+def _path(kind, q0, q1, via, blend, frame, order):
+    """The path of a move: a line in pose space, a line with a slerp, or blended lines through
+    the waypoints `via` ((K, 6) poses)."""
+    if via is None:
+        return (_PointPath if kind == "point" else _LinePath)(q0, q1, order)
+    if kind != "point" or frame is not None:
+        raise ValueError("waypoints (via) are blended in pose space: they need kind='point' "
+                         "and an absolute goal (frame=None)")
+    points = np.asarray(via, dtype=float)
+    if points.ndim != 2 or points.shape[1] != 6 or not np.all(np.isfinite(points)):
+        raise ValueError(f"via has shape {points.shape}: it must be (K, 6) finite poses")
+    if not (isinstance(blend, (int, float)) and 0 < blend <= 0.5):
+        raise ValueError(f"blend = {blend!r} must be in (0, 0.5]: the share of the shorter "
+                         "line next to a waypoint that its blend takes")
+    return _BlendedPath(np.vstack([q0, points, q1]), float(blend), order)
+
+
+def _plan(platform, path, q1, limits, sample_time, warn_condition, kind):
+    """The move along path: the time law, its samples, and the checks of every sample against
+    the geometric and the leg limits (the plan made again on a finer grid with a wider margin
+    if a leg limit is exceeded)."""
+    speed, accel = limits[0], limits[1]
+    for attempt in range(3):
+        nodes, v, u, t_nodes, grid = _time_law(path, platform, GRID_SEGMENTS * 4 ** attempt,
+                                               PLAN_MARGIN * 10 ** attempt, limits)
+        t, s, s_rate, s_accel, scale = _sample(nodes, v, u, t_nodes, sample_time)
+        q, dq, ddq, _ = path.derivatives(s)
+        q[-1] = q1
+        rate = dq * s_rate[:, None]
+        acc = dq * s_accel[:, None] + ddq * (s_rate ** 2)[:, None]
+        _first_limit(platform, np.vstack([q, grid]), np.concatenate([s, nodes]),
+                     np.concatenate([t, t_nodes * scale]), warn_condition)
+        excess = _leg_excess(platform, t, q, rate, acc, speed, accel, s)
+        if excess is None:
+            return Move(t, q, rate, acc, s, s_rate, s_accel, float(t[-1]), kind)
+    raise excess
+
+
 def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_accel_max=None,
          leg_jerk_max=None, speed_max: Optional[float] = None,
          angular_speed_max: Optional[float] = None, sample_time: float = 0.001,
-         frame: Optional[str] = None, warn_condition: Optional[float] = None) -> Move:
+         frame: Optional[str] = None, via=None, blend: float = 0.25,
+         warn_condition: Optional[float] = None) -> Move:
     """A rest-to-rest move of `platform` (a stewart.Platform) from pose `start` to `goal` (6
     values each: x, y, z [m], roll, pitch, yaw [rad] of the tool in the user frame), time-optimal
     under the limits along the whole path (docs/moves.md).
@@ -440,13 +479,15 @@ def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_
     kind: "point" (a straight line in pose space: every axis arrives together) or "line" (the
     tool point on a straight line, the orientation a slerp, one path parameter). frame: None
     (goal is a pose), "user" or "tool" (goal is a displacement: the position in that frame's
-    axes, the angles a rotation about the tool point in that frame's axes). leg_speed_max [m/s]
-    and leg_accel_max [m/s^2]: scalars or 6 values per leg (0: no limit of that leg);
-    leg_accel_max is required. speed_max [m/s]: the tool point's speed; angular_speed_max
-    [rad/s]: the platform's angular speed. Every sample and the planning grid are checked with
-    Platform.limits (warn_condition as there): MoveError names the class, time and s of the
-    first limit the path crosses; and the sampled leg speeds and accelerations are checked
-    against the limits. leg_jerk_max is not enforced (the time-optimal law switches the
+    axes, the angles a rotation about the tool point in that frame's axes). via: (K, 6)
+    waypoints between start and goal (kind "point"), passed without stopping on quadratic
+    blends that begin `blend` (0 to 0.5) of the shorter adjacent line before each waypoint.
+    leg_speed_max [m/s] and leg_accel_max [m/s^2]: scalars or 6 values per leg (0: no limit of
+    that leg); leg_accel_max is required. speed_max [m/s]: the tool point's speed;
+    angular_speed_max [rad/s]: the platform's angular speed. Every sample and the planning grid
+    are checked with Platform.limits (warn_condition as there): MoveError names the class, time
+    and s of the first limit the path crosses; and the sampled leg speeds and accelerations are
+    checked against the limits. leg_jerk_max is not enforced (the time-optimal law switches the
     acceleration instantly): a value other than None or 0 raises ValueError."""
     if kind not in KINDS:
         raise ValueError(f"kind = {kind!r} must be 'point' or 'line'")
@@ -472,22 +513,9 @@ def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_
             limit = class_name(ends.first[row])
             raise MoveError(f"the {name} pose {[q0, q1][row].tolist()} is beyond the {limit} "
                             "limit", limit, None, float(row))
-    if np.array_equal(q0, q1):
+    path = _path(kind, q0, q1, via, blend, frame, order)
+    if via is None and np.array_equal(q0, q1):
         zero = np.zeros((1, 6))
         return Move(np.zeros(1), q0[None].copy(), zero, zero.copy(), np.zeros(1), np.zeros(1),
                     np.zeros(1), 0.0, kind)
-    path = (_PointPath if kind == "point" else _LinePath)(q0, q1, order)
-    for attempt in range(3):
-        nodes, v, u, t_nodes, grid = _time_law(path, platform, GRID_SEGMENTS * 4 ** attempt,
-                                               PLAN_MARGIN * 10 ** attempt, limits)
-        t, s, s_rate, s_accel, scale = _sample(nodes, v, u, t_nodes, sample_time)
-        q, dq, ddq, _ = path.derivatives(s)
-        q[-1] = q1
-        rate = dq * s_rate[:, None]
-        acc = dq * s_accel[:, None] + ddq * (s_rate ** 2)[:, None]
-        _first_limit(platform, np.vstack([q, grid]), np.concatenate([s, nodes]),
-                     np.concatenate([t, t_nodes * scale]), warn_condition)
-        excess = _leg_excess(platform, t, q, rate, acc, speed, accel, s)
-        if excess is None:
-            return Move(t, q, rate, acc, s, s_rate, s_accel, float(t[-1]), kind)
-    raise excess
+    return _plan(platform, path, q1, limits, sample_time, warn_condition, kind)

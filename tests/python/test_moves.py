@@ -369,3 +369,66 @@ def test_stewart_solve_takes_the_move(tmp_path, solve):
                                           fidelity="kinematic").length_rate
     assert np.max(np.abs(rate - expected)) < 1e-12
     assert np.max(np.abs(rate)) <= 0.03 * (1 + 1e-9) and np.max(np.abs(rate)) > 0.0299
+
+
+def test_waypoints_are_passed_without_stopping_on_blends():
+    """Blended lines through two waypoints: the blend's closest approach to each waypoint is the
+    quadratic Bezier's midpoint, r |d_out - d_in| / 4 away (r the blend's reach, d the unit
+    directions in pose space), the rest of the path is on the lines, the legs keep their limits
+    (closed form, differences), the move never stops between its ends, and it is faster than
+    stopping at each waypoint."""
+    platform, data = load("thesis")
+    home = platform.check().home
+    points = home + np.array([[0, 0, 0, 0, 0, 0], [0.03, 0, 0, 0, 0, 0.05],
+                              [0.03, 0.03, 0.01, 0, 0.02, 0], [0, 0.03, 0, 0, 0, 0]])
+    limits = dict(leg_speed_max=0.05, leg_accel_max=0.5)
+    m = stewart.move(platform, points[0], points[-1], via=points[1:-1], blend=0.3, **limits)
+    assert np.max(np.abs(m.pose[-1] - points[-1])) <= 1e-12 and np.all(m.s_rate[1:-1] > 0)
+    step = np.max(np.linalg.norm(np.diff(m.pose, axis=0), axis=1))
+    lines = np.diff(points, axis=0)
+    length = np.linalg.norm(lines, axis=1)
+    units = lines / length[:, None]
+    offsets = []
+    for j in (1, 2):
+        r = 0.3 * min(length[j - 1], length[j])
+        offsets.append(r * np.linalg.norm(units[j] - units[j - 1]) / 4)
+        closest = np.min(np.linalg.norm(m.pose - points[j], axis=1))
+        assert abs(closest - offsets[-1]) <= step, (closest, offsets[-1])
+
+    def to_polyline(q):
+        along = np.clip(np.einsum("kj,kj->k", q - points[:-1], units), 0, length)
+        return np.min(np.linalg.norm(q - points[:-1] - along[:, None] * units, axis=1))
+    assert max(to_polyline(q) for q in m.pose) <= max(offsets) * (1 + 1e-9)
+    L = lengths(data, m.pose)
+    delta_L = 16 * EPS * np.max(L)
+    assert np.max(np.abs(L[2:] - L[:-2])) / (2 * DT) <= 0.05 * (1 + 1e-6) + delta_L / DT
+    assert (np.max(np.abs(L[2:] - 2 * L[1:-1] + L[:-2])) / DT ** 2
+            <= 0.5 * (1 + 1e-6) + 4 * delta_L / DT ** 2)
+    assert np.all(platform.limits(m.pose).within)
+    # The rates against differences of the poses where the path acceleration hardly changes
+    # over the difference's two samples (on the blends it changes fast where the legs'
+    # acceleration limits the speed): there the difference's error dt^2/6 times the rate's
+    # second derivative is small; the others within the mean-value bound.
+    diff = (m.pose[2:] - m.pose[:-2]) / (2 * DT) - m.pose_rate[1:-1]
+    assert np.all(np.abs(diff) <= 0.5 * DT * np.max(np.abs(m.pose_accel), axis=0) * 1.01
+                  + 16 * EPS / DT)
+    smooth = (np.abs(m.s_accel[2:] - m.s_accel[:-2]) <= 1e-3 * np.max(np.abs(m.s_accel)))
+    assert np.mean(smooth) > 0.75
+    tight = np.abs(diff) > 1e-5 * np.max(np.abs(m.pose_rate), axis=0) + 16 * EPS / DT
+    assert not np.any(tight[smooth])
+    stops = sum(stewart.move(platform, a, b, **limits).duration
+                for a, b in zip(points[:-1], points[1:]))
+    assert m.duration < stops
+
+
+def test_bad_waypoints_are_refused():
+    home = [0, 0, 0.5, 0, 0, 0]
+    with pytest.raises(ValueError, match="same pose"):
+        stewart.move(stewart.Platform(), home, [0.01, 0, 0.5, 0, 0, 0], via=[home],
+                     leg_accel_max=0.5)
+    with pytest.raises(ValueError, match="kind='point'"):
+        stewart.move(stewart.Platform(), home, [0.01, 0, 0.5, 0, 0, 0], "line",
+                     via=[[0.005, 0.01, 0.5, 0, 0, 0]], leg_accel_max=0.5)
+    with pytest.raises(ValueError, match="blend"):
+        stewart.move(stewart.Platform(), home, [0.01, 0, 0.5, 0, 0, 0],
+                     via=[[0.005, 0.01, 0.5, 0, 0, 0]], blend=0.7, leg_accel_max=0.5)
