@@ -5,7 +5,8 @@ rad, s). A move that cannot be made exits with status 1 and the message naming t
 time and the path parameter (docs/moves.md).
 
 usage: move.py [--platform FILE.json] --start x,y,z,roll,pitch,yaw --goal x,y,z,roll,pitch,yaw
-               [--line] [--frame user|tool] --leg-accel-max A [--leg-speed-max V]
+               [--line | --via x,y,z,roll,pitch,yaw ... [--blend F]] [--frame user|tool]
+               --leg-accel-max A [--leg-speed-max V]
                [--speed-max V] [--angular-speed-max W] [--sample-time DT] -o MOVE.csv
 """
 import argparse
@@ -50,6 +51,10 @@ def main(argv=None) -> int:
                     help="the goal pose, or with --frame the displacement")
     ap.add_argument("--line", action="store_true",
                     help="straight line of the tool point with a slerp (default: point to point)")
+    ap.add_argument("--via", type=pose, action="append",
+                    help="a waypoint passed on a blend (repeat for more; point-to-point only)")
+    ap.add_argument("--blend", type=float, default=0.25,
+                    help="share of the shorter line next to a waypoint its blend takes (0, 0.5]")
     ap.add_argument("--frame", choices=("user", "tool"),
                     help="the goal is a displacement in the user or the tool frame")
     ap.add_argument("--leg-speed-max", type=limit, help="[m/s], 1 or 6 values")
@@ -65,7 +70,8 @@ def main(argv=None) -> int:
         planned = stewart.move(platform, args.start, args.goal, "line" if args.line else "point",
                                leg_speed_max=args.leg_speed_max, leg_accel_max=args.leg_accel_max,
                                speed_max=args.speed_max, angular_speed_max=args.angular_speed_max,
-                               sample_time=args.sample_time, frame=args.frame)
+                               sample_time=args.sample_time, frame=args.frame, via=args.via,
+                               blend=args.blend)
     except (ValueError, OSError) as e:
         print(f"move.py: {e}", file=sys.stderr)
         return 1

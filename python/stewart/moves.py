@@ -4,7 +4,8 @@ every sample (docs/moves.md).
 
 A move is a path q(s), s in [0, 1], and a time law s(t). The path is either a straight line in
 the 6-D pose space ("point": every axis arrives together) or a straight line of the tool point
-with a slerp of the orientation ("line": one path parameter for both). The time law comes from a
+with a slerp of the orientation ("line": one path parameter for both), or straight lines in pose
+space through waypoints with blended corners (passed without stopping). The time law comes from a
 phase-plane computation on a fine grid of s (time-optimal path parametrisation, TOPP): with
 x = ds/dt squared and u = d2s/dt2 constant on each grid segment, the leg speed L'(s) ds/dt and
 acceleration L'(s) u + L''(s) x are kept within their limits at both ends of every segment, a

@@ -432,3 +432,18 @@ def test_bad_waypoints_are_refused():
     with pytest.raises(ValueError, match="blend"):
         stewart.move(stewart.Platform(), home, [0.01, 0, 0.5, 0, 0, 0],
                      via=[[0.005, 0.01, 0.5, 0, 0, 0]], blend=0.7, leg_accel_max=0.5)
+
+
+def test_the_command_line_takes_waypoints(tmp_path):
+    out = tmp_path / "tour.csv"
+    run = subprocess.run([sys.executable, str(ROOT / "scripts" / "move.py"), "--start",
+                          "0,0,0.5,0,0,0", "--goal", "0,0.02,0.5,0,0,0", "--via",
+                          "0.02,0,0.5,0,0,0.03", "--via", "0.02,0.02,0.505,0,0,0", "--blend",
+                          "0.3", "--leg-speed-max", "0.05", "--leg-accel-max", "0.5", "-o",
+                          str(out)], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    m = stewart.move(stewart.Platform(), [0, 0, 0.5, 0, 0, 0], [0, 0.02, 0.5, 0, 0, 0],
+                     via=[[0.02, 0, 0.5, 0, 0, 0.03], [0.02, 0.02, 0.505, 0, 0, 0]], blend=0.3,
+                     leg_speed_max=0.05, leg_accel_max=0.5)
+    table = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert np.array_equal(table, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]))
