@@ -17,7 +17,7 @@ def main() -> int:
     rounds = int(sys.argv[1]) if len(sys.argv) > 1 else 7
     platform = stewart.Platform()
     start, goal = [0.0, 0.0, 0.5, 0.0, 0.0, 0.0], [0.08, -0.05, 0.53, 0.03, -0.02, 0.1]
-    limits = dict(leg_speed_max=0.008, leg_accel_max=0.02, sample_time=0.001)
+    limits = dict(leg_speed_max=0.0083, leg_accel_max=0.02, sample_time=0.001)
     times = []
     for _ in range(rounds):
         t0 = time.perf_counter()
