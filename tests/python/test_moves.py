@@ -226,6 +226,12 @@ def test_a_move_across_a_limit_is_refused_naming_class_and_time():
     assert e.limit_class == limit and limit in str(e)
     assert abs(e.s - s_first) <= 1e-3 and 0 < e.time < math.inf
     assert f"t = {e.time:.6g} s" in str(e)
+    # The strokes do not enter the time law, only the check: with them wide the same move is
+    # made, and it reaches the refused s at the refused time.
+    assert limit == "stroke"
+    wide = stewart.move(stewart.Platform(stroke_min=0.05, stroke_max=3.0), a, b,
+                        leg_speed_max=0.1, leg_accel_max=0.5)
+    assert abs(np.interp(e.s, wide.s, wide.t) - e.time) <= DT
 
 
 def test_relative_moves_in_the_user_and_the_tool_frame():
