@@ -185,18 +185,25 @@ def topp_duration(data, p0, p1, R_of_s, speed, accel, nodes=10001):
     return float(np.sum(2 * ds / (v[1:] + v[:-1])))
 
 
-@pytest.mark.parametrize("name", ["thesis", "rubin_m2_hexapod", "simona_motion_base"])
-def test_a_line_is_time_optimal(name):
+@pytest.mark.parametrize("name, kind", [("thesis", "line"), ("rubin_m2_hexapod", "line"),
+                                        ("simona_motion_base", "line"), ("thesis", "point"),
+                                        ("paired_hexapod", "point")])
+def test_a_move_is_time_optimal(name, kind):
     platform, data = load(name)
     home = platform.check().home
-    goal = goal_of(platform, home, "line")
+    goal = goal_of(platform, home, kind)
     speed, accel = leg_limits(data)
-    m = stewart.move(platform, home, goal, "line", leg_speed_max=speed, leg_accel_max=accel)
-    R0, R1 = Rotation.from_matrix(rotation(np.vstack([home[3:], goal[3:]])))
-    w = (R1 * R0.inv()).as_rotvec()  # the slerp, R0 turned by s w (s a little beyond [0, 1])
-    optimum = topp_duration(data, home[:3], goal[:3],
-                            lambda s: (Rotation.from_rotvec(np.outer(s, w)) * R0).as_matrix(),
-                            speed, accel)
+    m = stewart.move(platform, home, goal, kind, leg_speed_max=speed, leg_accel_max=accel)
+    if kind == "line":
+        R0, R1 = Rotation.from_matrix(rotation(np.vstack([home[3:], goal[3:]])))
+        w = (R1 * R0.inv()).as_rotvec()  # the slerp, R0 turned by s w (s a little beyond [0, 1])
+
+        def R_of_s(s):
+            return (Rotation.from_rotvec(np.outer(s, w)) * R0).as_matrix()
+    else:
+        def R_of_s(s):  # the angles on a straight line
+            return rotation(home[3:] + np.outer(s, goal[3:] - home[3:]))
+    optimum = topp_duration(data, home[:3], goal[:3], R_of_s, speed, accel)
     assert abs(m.duration - optimum) <= 0.01 * optimum, (m.duration, optimum)
 
 
