@@ -261,8 +261,7 @@ def _controllable(upper, lower, x_speed, ds):
     n = cu.shape[0]
     coef = dl[:, :, None] * bu[:, None, :] - du[:, None, :] * bl[:, :, None]
     rhs = dl[:, :, None] * cu[:, None, :] - du[:, None, :] * cl[:, :, None]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        bound = np.where(coef > 0, rhs / np.where(coef > 0, coef, 1.0), np.inf)
+    bound = np.divide(rhs, coef, out=np.full_like(rhs, np.inf), where=coef > 0)
     static = np.minimum(np.min(bound, axis=(1, 2)), np.minimum(x_speed[:-1], _X_CAP))
     # The pairs of each lower bound with the next node's set, x + 2 u ds <= hi[i + 1]:
     # x (d_l - 2 ds b_l) <= d_l hi - 2 ds c_l.
