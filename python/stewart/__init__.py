@@ -25,6 +25,8 @@ from .errors import ParameterError
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
 from .forward import ForwardSolution
 from .inverse import InverseSolution
+from .feasibility import Feasibility, feasibility
+from .moves import Move, MoveError, move
 from .params import parameters, platform_files
 from .platform import Platform
 from .simulate import Method, Simulation
@@ -39,4 +41,5 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths", "fmu_start_values",
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
-           "platform_files", "view", "convert_angles", "rotation_matrix", "__version__"]
+           "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
+           "MoveError", "feasibility", "Feasibility", "__version__"]
