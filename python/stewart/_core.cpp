@@ -126,53 +126,81 @@ nb::list option_table(int (*count)(), const stewart_option_info *(*option)(int))
     return table;
 }
 
-using OptionValues = std::vector<std::pair<std::string, double>>;
-
-// Inverse solvers of the closed-form levels (kinematic, massless), kept between
-// Platform.inverse calls by their option values: creating one costs about as much as solving a
-// hundred rows, which a batch of a few thousand rows would otherwise pay every call. These levels
-// keep no history between rows, and a solver is reset when taken, so a call's numbers are those
-// of a new solver. Taken and given back with the GIL held (run objects are made and freed with
-// it), so that two threads never get the same solver.
-class InversePool {
+// Solvers of one kind (inverse, forward, linearisation, limits) kept between calls on one Model
+// by the key they were made with (their option values): creating one costs as much as solving
+// tens to hundreds of rows, which a call of a few rows would otherwise pay every time. A solver
+// is reset when taken (these solvers' reset leaves them as created: nothing carries over from
+// an earlier call), so a call's numbers are those of a new solver. Taken and given back with the
+// GIL held (run objects are made and freed with it), so that two threads never get the same one.
+template <typename Solver, typename Key>
+class SolverPool {
 public:
-    InversePool() = default;
-    InversePool(const InversePool &) = delete;
-    InversePool &operator=(const InversePool &) = delete;
-    ~InversePool() { close(); }
+    SolverPool(void (*free)(Solver *), void (*reset)(Solver *)) : free_(free), reset_(reset) {}
+    SolverPool(const SolverPool &) = delete;
+    SolverPool &operator=(const SolverPool &) = delete;
+    ~SolverPool() { close(); }
 
-    // A kept solver made with options, reset, or nullptr (the caller makes one).
-    stewart_inverse *take(const OptionValues &options) {
+    // A kept solver made with key, reset, or nullptr (the caller makes one).
+    Solver *take(const Key &key) {
         for (auto it = kept_.begin(); it != kept_.end(); ++it)
-            if (it->first == options) {
-                stewart_inverse *solver = it->second;
+            if (it->first == key) {
+                Solver *solver = it->second;
                 kept_.erase(it);
-                stewart_inverse_reset(solver);
+                if (reset_) reset_(solver);
                 return solver;
             }
         return nullptr;
     }
-    // Keeps solver (made with options) for a later call, or frees it: the pool is closed (its
+    // Keeps solver (made with key) for a later call, or frees it: the pool is closed (its
     // model is gone) or full (the oldest solver goes).
-    void give(const OptionValues &options, stewart_inverse *solver) {
-        if (closed_) return stewart_inverse_free(solver);
+    void give(const Key &key, Solver *solver) {
+        if (closed_) return free_(solver);
         if (kept_.size() == kMaxKept) {
-            stewart_inverse_free(kept_.front().second);
+            free_(kept_.front().second);
             kept_.erase(kept_.begin());
         }
-        kept_.emplace_back(options, solver);
+        kept_.emplace_back(key, solver);
     }
     // Frees every kept solver and every one given later (before the model is freed).
     void close() {
-        for (auto &k : kept_) stewart_inverse_free(k.second);
+        for (auto &k : kept_) free_(k.second);
         kept_.clear();
         closed_ = true;
     }
 
 private:
-    static constexpr size_t kMaxKept = 4;  // e.g. both levels, with and without options
-    std::vector<std::pair<OptionValues, stewart_inverse *>> kept_;
+    static constexpr size_t kMaxKept = 4;  // e.g. both closed-form levels, with and without options
+    std::vector<std::pair<Key, Solver *>> kept_;
+    void (*free_)(Solver *);
+    void (*reset_)(Solver *);
     bool closed_ = false;
+};
+
+using OptionValues = std::vector<std::pair<std::string, double>>;
+using InversePool = SolverPool<stewart_inverse, OptionValues>;
+using ForwardPool = SolverPool<stewart_forward, OptionValues>;
+using LinearizePool = SolverPool<stewart_linearize, int>;  // by fidelity
+using LimitsPool = SolverPool<stewart_limits, std::optional<double>>;  // by warn_condition
+
+// A solver taken from its pool (or made by the caller) and given back to it when the lease
+// ends; freed instead when it was never given a pool.
+template <typename Solver, typename Key>
+class Lease {
+public:
+    Lease(std::shared_ptr<SolverPool<Solver, Key>> pool, Key key)
+        : pool_(std::move(pool)), key_(std::move(key)), solver(pool_->take(key_)) {}
+    ~Lease() {
+        if (solver) pool_->give(key_, solver);
+    }
+    Lease(const Lease &) = delete;
+    Lease &operator=(const Lease &) = delete;
+
+private:
+    std::shared_ptr<SolverPool<Solver, Key>> pool_;
+    Key key_;
+
+public:
+    Solver *solver;  // nullptr until taken from the pool or made
 };
 
 class Model {
@@ -192,6 +220,9 @@ public:
     }
     ~Model() {
         inverse_pool_->close();
+        forward_pool_->close();
+        linearize_pool_->close();
+        limits_pool_->close();
         stewart_model_free(model_);
     }
     Model(const Model &) = delete;
@@ -199,12 +230,22 @@ public:
 
     // The library's model (the Python Run objects keep this Model alive while they use it).
     const stewart_model *get() const { return model_; }
-    // The inverse solvers kept for this model's closed-form levels.
+    // The solvers kept for this model.
     const std::shared_ptr<InversePool> &inverse_pool() const { return inverse_pool_; }
+    const std::shared_ptr<ForwardPool> &forward_pool() const { return forward_pool_; }
+    const std::shared_ptr<LinearizePool> &linearize_pool() const { return linearize_pool_; }
+    const std::shared_ptr<LimitsPool> &limits_pool() const { return limits_pool_; }
 
 private:
     stewart_model *model_ = nullptr;
-    std::shared_ptr<InversePool> inverse_pool_ = std::make_shared<InversePool>();
+    std::shared_ptr<InversePool> inverse_pool_ =
+        std::make_shared<InversePool>(stewart_inverse_free, stewart_inverse_reset);
+    std::shared_ptr<ForwardPool> forward_pool_ =
+        std::make_shared<ForwardPool>(stewart_forward_free, stewart_forward_reset);
+    std::shared_ptr<LinearizePool> linearize_pool_ =
+        std::make_shared<LinearizePool>(stewart_linearize_free, stewart_linearize_reset);
+    std::shared_ptr<LimitsPool> limits_pool_ =
+        std::make_shared<LimitsPool>(stewart_limits_free, nullptr);  // no history to reset
 };
 
 // The data of an output array of n rows, or nullptr for an output the caller skips (None).
@@ -301,16 +342,13 @@ stewart_forward_batch_outputs from_row(stewart_forward_batch_outputs o, size_t f
 }
 #undef STEWART_SHIFT_COLUMN
 
-// A solver object (inverse, forward or plant) with its free and message functions, freed with it.
-template <typename T>
-struct Owned {
-    T *solver;
-    void (*free)(T *);
-    const char *(*message)(const T *);
-    Owned(void (*f)(T *), const char *(*m)(const T *)) : solver(nullptr), free(f), message(m) {}
-    ~Owned() { free(solver); }
-    Owned(const Owned &) = delete;
-    Owned &operator=(const Owned &) = delete;
+// A plant, freed with its run.
+struct OwnedPlant {
+    stewart_plant *solver = nullptr;
+    OwnedPlant() = default;
+    ~OwnedPlant() { stewart_plant_free(solver); }
+    OwnedPlant(const OwnedPlant &) = delete;
+    OwnedPlant &operator=(const OwnedPlant &) = delete;
 };
 
 // Runs batch(messages, first_failed) -> status over rows [first, stop) of solver with the GIL
@@ -318,8 +356,8 @@ struct Owned {
 // 0, its index or stop, its message, [(row, message)] of up to max_messages failing rows), rows
 // numbered in the whole call; a failure before any row raises ValueError.
 template <typename T, typename Batch>
-BatchResult run_rows(const Owned<T> &owned, size_t first, size_t stop, size_t max_messages,
-                     Batch batch) {
+BatchResult run_rows(T *solver, const char *(*message)(const T *), size_t first, size_t stop,
+                     size_t max_messages, Batch batch) {
     if (first > stop) fail("rows: first must not be after stop");
     MessageBuffer messages(max_messages);
     size_t first_failed = stop - first;
@@ -328,7 +366,7 @@ BatchResult run_rows(const Owned<T> &owned, size_t first, size_t stop, size_t ma
     {
         nb::gil_scoped_release release;
         status = batch(&messages.c, &first_failed);
-        first_message = owned.message(owned.solver);
+        first_message = message(solver);
     }
     if (status != STEWART_OK && first_failed == stop - first) fail(first_message.c_str());
     Messages kept = messages.kept();
@@ -342,42 +380,27 @@ BatchResult run_rows(const Owned<T> &owned, size_t first, size_t stop, size_t ma
 class InverseRun {
 public:
     InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot,
-               std::optional<Poses> q_ddot,
-               const std::vector<std::pair<std::string, double>> &option_values,
+               std::optional<Poses> q_ddot, const OptionValues &option_values,
                const nb::dict &outputs, Column<int> status)
-        : n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot), status_(status) {
+        : n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot), status_(status),
+          inverse_(model.inverse_pool(), option_values) {
         if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the poses");
         out_ = bind_outputs(out_, outputs, n_, held_);
         out_.status = status.data();
-        inverse_.solver = model.inverse_pool()->take(option_values);
-        if (inverse_.solver) {
-            pool_ = model.inverse_pool();
-            options_ = option_values;
-            return;
-        }
+        if (inverse_.solver) return;
         const stewart_inverse_options options = options_by_name(kInverseOptions, option_values);
         char message[STEWART_MESSAGE_SIZE];
         inverse_.solver = stewart_inverse_create(model.get(), &options, message, sizeof message);
         if (!inverse_.solver) fail(message);  // the options were checked: memory is short
-        if (options.fidelity != STEWART_FULL) {  // the full level's history stays its own
-            pool_ = model.inverse_pool();
-            options_ = option_values;
-        }
     }
-    // Gives a closed-form level's solver back to the model's pool.
-    ~InverseRun() {
-        if (pool_) pool_->give(options_, std::exchange(inverse_.solver, nullptr));
-    }
-    InverseRun(const InverseRun &) = delete;
-    InverseRun &operator=(const InverseRun &) = delete;
 
     // Solves rows [first, stop). Returns as run_rows.
     BatchResult rows(size_t first, size_t stop, size_t max_messages) {
         if (stop > n_) fail("rows: stop is beyond the last row");
         const stewart_inverse_batch_outputs out = from_row(out_, first);
-        return run_rows(inverse_, first, stop, max_messages,
+        return run_rows(inverse_.solver, stewart_inverse_message, first, stop, max_messages,
                         [&](stewart_batch_messages *messages, size_t *first_failed) {
             return stewart_inverse_batch(inverse_.solver, stop - first, q_.data() + 6 * first,
                                          q_dot_ ? q_dot_->data() + 6 * first : nullptr,
@@ -394,10 +417,8 @@ private:
     Column<int> status_;
     std::vector<nb::object> held_;
     stewart_inverse_batch_outputs out_{};
-    Owned<stewart_inverse> inverse_{stewart_inverse_free, stewart_inverse_message};
-    // Where the solver goes back when the run is freed (none at the full level), and its key.
-    std::shared_ptr<InversePool> pool_;
-    OptionValues options_;
+    // The solver, from the model's pool and back to it when the run is freed.
+    Lease<stewart_inverse, OptionValues> inverse_;
 };
 
 // One Platform.forward call: its arrays and one forward solver, made once (a cold start, or
@@ -410,7 +431,8 @@ public:
                const std::vector<std::pair<std::string, double>> &option_values,
                const nb::dict &outputs, Column<int> status)
         : n_(lengths.shape(0)), lengths_(lengths), rates_(rates), accels_(accels), time_(time),
-          guess_(guess), cold_(cold), status_(status) {
+          guess_(guess), cold_(cold), status_(status),
+          forward_(model.forward_pool(), option_values) {
         if ((rates && rates->shape(0) != n_) || (accels && accels->shape(0) != n_) ||
             (time && time->shape(0) != n_))
             fail("t, rates and accels must have as many rows as the lengths");
@@ -419,11 +441,13 @@ public:
             fail(cold ? "guess must have 6 values per row" : "guess must have 6 values");
         if (cold && time) fail("rows solved cold have no time");
         if (status.shape(0) != n_) fail("output arrays must have as many rows as the lengths");
-        const stewart_forward_options options = options_by_name(kForwardOptions, option_values);
+        std::optional<stewart_forward_options> options;  // of a solver still to make
+        if (!forward_.solver) options = options_by_name(kForwardOptions, option_values);
         out_ = bind_outputs(out_, outputs, n_, held_);
         out_.status = status.data();
+        if (!options) return;
         char message[STEWART_MESSAGE_SIZE];
-        forward_.solver = stewart_forward_create(model.get(), &options, message, sizeof message);
+        forward_.solver = stewart_forward_create(model.get(), &*options, message, sizeof message);
         if (!forward_.solver) fail(message);
     }
 
@@ -433,7 +457,7 @@ public:
         if (stop > n_) fail("rows: stop is beyond the last row");
         const stewart_forward_batch_outputs out = from_row(out_, first);
         if (cold_)
-            return run_rows(forward_, first, stop, max_messages,
+            return run_rows(forward_.solver, stewart_forward_message, first, stop, max_messages,
                             [&](stewart_batch_messages *messages, size_t *first_failed) {
                 return stewart_forward_batch_cold(
                     forward_.solver, stop - first, lengths_.data() + 6 * first,
@@ -442,7 +466,7 @@ public:
                     guess_ ? guess_->data() + 6 * first : nullptr, &out, messages, first_failed);
             });
         const double *guess = guess_ && first == 0 ? guess_->data() : nullptr;
-        return run_rows(forward_, first, stop, max_messages,
+        return run_rows(forward_.solver, stewart_forward_message, first, stop, max_messages,
                         [&](stewart_batch_messages *messages, size_t *first_failed) {
             return stewart_forward_batch(forward_.solver, stop - first,
                                          time_ ? time_->data() + first : nullptr,
@@ -464,7 +488,9 @@ private:
     Column<int> status_;
     std::vector<nb::object> held_;
     stewart_forward_batch_outputs out_{};
-    Owned<stewart_forward> forward_{stewart_forward_free, stewart_forward_message};
+    // The solver, from the model's pool and back to it (reset when taken again) when the run is
+    // freed.
+    Lease<stewart_forward, OptionValues> forward_;
 };
 
 // One Platform.simulate call: its arrays and one plant, made once. rows(a, b) runs the
@@ -541,28 +567,39 @@ private:
     Column<int> status_;
     std::vector<nb::object> held_;
     stewart_plant_batch_outputs out_{};
-    Owned<stewart_plant> plant_{stewart_plant_free, stewart_plant_message};
+    OwnedPlant plant_;
 };
 
-// A linearisation of model at fidelity, or ValueError with the library's message.
+// A linearisation of model at fidelity from the model's pool, or ValueError with the library's
+// message. Used with the GIL held throughout.
 struct Linearization {
-    Linearization(const Model &model, int fidelity) {
+    Linearization(const Model &model, int fidelity) : lease(model.linearize_pool(), fidelity) {
+        if (lease.solver) return;
         stewart_linearize_options o;
         stewart_linearize_options_default(&o);
         o.fidelity = fidelity;
         char message[STEWART_MESSAGE_SIZE];
-        owned.solver = stewart_linearize_create(model.get(), &o, message, sizeof message);
-        if (!owned.solver) fail(message);
+        lease.solver = stewart_linearize_create(model.get(), &o, message, sizeof message);
+        if (!lease.solver) fail(message);
     }
-    Owned<stewart_linearize> owned{stewart_linearize_free, stewart_linearize_message};
+    Lease<stewart_linearize, int> lease;
 };
 
-std::vector<double> flat(const double *first, size_t n) { return std::vector<double>(first, first + n); }
+// A result array of a linearisation, of a fixed shape, which the caller makes.
+template <size_t... Shape>
+using Fixed = nb::ndarray<double, nb::shape<Shape...>, nb::c_contig, nb::device::cpu>;
 
-// Platform.linearize's call: (status, message, state_rate, output, A, B, C, D, warnings), the
-// matrices flat and row-major.
-nb::tuple linearize_plant(const Model &model, int fidelity, const std::vector<double> &q,
-                          const std::vector<double> &q_dot, const std::vector<double> &force) {
+// Copies the n values at first into a (of n values).
+template <typename Array>
+void put(const double *first, Array &a) {
+    std::copy_n(first, a.size(), a.data());
+}
+
+// Platform.linearize's call, into the caller's arrays: (status, message, warnings).
+std::tuple<int, std::string, int> linearize_plant(
+    const Model &model, int fidelity, const std::vector<double> &q,
+    const std::vector<double> &q_dot, const std::vector<double> &force, Fixed<12> state_rate,
+    Fixed<24> output, Fixed<12, 12> A, Fixed<12, 6> B, Fixed<24, 12> C, Fixed<24, 6> D) {
     if (q.size() != 6 || q_dot.size() != 6 || force.size() != 6)
         fail("linearize: pose, pose_rate and forces need 6 values each");
     Linearization l(model, fidelity);
@@ -571,17 +608,23 @@ nb::tuple linearize_plant(const Model &model, int fidelity, const std::vector<do
     std::copy(q_dot.begin(), q_dot.end(), in.pose.q_dot);
     std::copy(force.begin(), force.end(), in.force);
     stewart_linearize_output out{};
-    const stewart_status s = stewart_linearize_plant(l.owned.solver, &in, &out);
-    return nb::make_tuple(static_cast<int>(s), std::string(stewart_linearize_message(l.owned.solver)),
-                          flat(out.state_rate, 12), flat(out.output, 24), flat(&out.A[0][0], 144),
-                          flat(&out.B[0][0], 72), flat(&out.C[0][0], 288), flat(&out.D[0][0], 144),
-                          out.warnings);
+    const stewart_status s = stewart_linearize_plant(l.lease.solver, &in, &out);
+    put(out.state_rate, state_rate);
+    put(out.output, output);
+    put(&out.A[0][0], A);
+    put(&out.B[0][0], B);
+    put(&out.C[0][0], C);
+    put(&out.D[0][0], D);
+    return {static_cast<int>(s), stewart_linearize_message(l.lease.solver), out.warnings};
 }
 
-// Platform.linearize_inverse's call: (status, message, L, L_dot, L_ddot, force, base_force,
-// base_torque, jacobian (30 x 18 flat), warnings).
-nb::tuple linearize_inverse(const Model &model, int fidelity, const std::vector<double> &q,
-                            const std::vector<double> &q_dot, const std::vector<double> &q_ddot) {
+// Platform.linearize_inverse's call, into the caller's arrays (L, L_dot, L_ddot, force,
+// base_force, base_torque, jacobian): (status, message, warnings).
+std::tuple<int, std::string, int> linearize_inverse(
+    const Model &model, int fidelity, const std::vector<double> &q,
+    const std::vector<double> &q_dot, const std::vector<double> &q_ddot, Fixed<6> length,
+    Fixed<6> length_rate, Fixed<6> length_accel, Fixed<6> force, Fixed<3> base_force,
+    Fixed<3> base_torque, Fixed<30, 18> jacobian) {
     if (q.size() != 6 || q_dot.size() != 6 || q_ddot.size() != 6)
         fail("linearize_inverse: pose, pose_rate and pose_accel need 6 values each");
     Linearization l(model, fidelity);
@@ -590,12 +633,15 @@ nb::tuple linearize_inverse(const Model &model, int fidelity, const std::vector<
     std::copy(q_dot.begin(), q_dot.end(), pose.q_dot);
     std::copy(q_ddot.begin(), q_ddot.end(), pose.q_ddot);
     stewart_linearize_inverse_output out{};
-    const stewart_status s = stewart_linearize_inverse(l.owned.solver, &pose, &out);
-    return nb::make_tuple(static_cast<int>(s), std::string(stewart_linearize_message(l.owned.solver)),
-                          flat(out.lengths.length, 6), flat(out.lengths.length_rate, 6),
-                          flat(out.lengths.length_accel, 6), flat(out.force, 6),
-                          flat(out.base_force, 3), flat(out.base_torque, 3),
-                          flat(&out.jacobian[0][0], 30 * 18), out.warnings);
+    const stewart_status s = stewart_linearize_inverse(l.lease.solver, &pose, &out);
+    put(out.lengths.length, length);
+    put(out.lengths.length_rate, length_rate);
+    put(out.lengths.length_accel, length_accel);
+    put(out.force, force);
+    put(out.base_force, base_force);
+    put(out.base_torque, base_torque);
+    put(&out.jacobian[0][0], jacobian);
+    return {static_cast<int>(s), stewart_linearize_message(l.lease.solver), out.warnings};
 }
 
 // stewart_geometry_jacobian over the rows of poses, into the caller's arrays (rows of 6, 18 and
@@ -627,21 +673,20 @@ std::pair<long, std::string> geometry_jacobian_rows(
     return {-1, ""};
 }
 
-// A limits object for model with condition limit warn_condition (none: the default), freed
-// with it.
+// A limits object for model with condition limit warn_condition (none: the default), from the
+// model's pool and given back to it.
 struct LimitsObject {
-    LimitsObject(const Model &model, std::optional<double> warn_condition) {
+    LimitsObject(const Model &model, std::optional<double> warn_condition)
+        : lease(model.limits_pool(), warn_condition) {
+        if (lease.solver) return;
         stewart_limits_options o;
         stewart_limits_options_default(&o);
         if (warn_condition) o.warn_condition = *warn_condition;
         char message[STEWART_MESSAGE_SIZE];
-        limits = stewart_limits_create(model.get(), &o, message, sizeof message);
-        if (!limits) fail(message);
+        lease.solver = stewart_limits_create(model.get(), &o, message, sizeof message);
+        if (!lease.solver) fail(message);
     }
-    ~LimitsObject() { stewart_limits_free(limits); }
-    LimitsObject(const LimitsObject &) = delete;
-    LimitsObject &operator=(const LimitsObject &) = delete;
-    stewart_limits *limits;
+    Lease<stewart_limits, std::optional<double>> lease;
 };
 
 // The check of every row of q into the arrays (rows as q's); a non-finite row raises ValueError
@@ -662,7 +707,7 @@ void limits_check(const Model &model, Poses q, std::optional<double> warn_condit
             stewart_limits_input in;
             for (int i = 0; i < 6; ++i) in.q[i] = q(r, i);
             stewart_limits_output out;
-            if (stewart_limits_check(object.limits, &in, &out) != STEWART_OK) {
+            if (stewart_limits_check(object.lease.solver, &in, &out) != STEWART_OK) {
                 bad = r;
                 break;
             }
@@ -677,7 +722,7 @@ void limits_check(const Model &model, Poses q, std::optional<double> warn_condit
         }
     }
     if (bad < n)
-        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
+        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.lease.solver)).c_str());
 }
 
 // The axis ranges of every row of q: ends (min of the six axes, then max), the class at each
@@ -695,7 +740,7 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
             stewart_limits_input in;
             for (int i = 0; i < 6; ++i) in.q[i] = q(r, i);
             stewart_axis_ranges out;
-            if (stewart_limits_ranges(object.limits, &in, &out) != STEWART_OK) {
+            if (stewart_limits_ranges(object.lease.solver, &in, &out) != STEWART_OK) {
                 bad = r;
                 break;
             }
@@ -712,7 +757,7 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
         }
     }
     if (bad < n)
-        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.limits)).c_str());
+        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.lease.solver)).c_str());
 }
 
 // The home check of stewart_check.h: its numbers and its text, in a dict.
@@ -800,9 +845,12 @@ NB_MODULE(_core, m) {
         .def("rows", &PlantRun::rows, nb::arg("first"), nb::arg("stop"))
         .def("statistics", &PlantRun::statistics);
     m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"),
-          nb::arg("q"), nb::arg("q_dot"), nb::arg("force"));
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("force"), nb::arg("state_rate"),
+          nb::arg("output"), nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("D"));
     m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
-          nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"));
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"), nb::arg("length"),
+          nb::arg("length_rate"), nb::arg("length_accel"), nb::arg("force"),
+          nb::arg("base_force"), nb::arg("base_torque"), nb::arg("jacobian"));
     m.def("geometry_jacobian", &geometry_jacobian_rows, nb::arg("model"), nb::arg("poses"),
           nb::arg("length"), nb::arg("reading"), nb::arg("base_joint"), nb::arg("platform_joint"),
           nb::arg("tool_frame"), nb::arg("user_frame"), nb::arg("pose"));
