@@ -289,8 +289,9 @@ std::vector<ColumnInfo> plant_columns() {
 template <typename T>
 T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
                 std::vector<nb::object> &held) {
-    if (!outputs.contains(name)) return nullptr;
-    nb::object a = outputs[name];
+    PyObject *item = PyDict_GetItemString(outputs.ptr(), name);  // borrowed; one lookup
+    if (!item) return nullptr;
+    nb::object a = nb::borrow(item);
     using Array = nb::ndarray<T, nb::c_contig, nb::device::cpu>;
     Array array;
     if (!nb::try_cast<Array>(a, array, false))
