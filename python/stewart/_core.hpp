@@ -149,8 +149,8 @@ using ForwardPool = SolverPool<stewart_forward, OptionValues>;
 using LinearizePool = SolverPool<stewart_linearize, int>;  // by fidelity
 using LimitsPool = SolverPool<stewart_limits, std::optional<double>>;  // by warn_condition
 
-// A solver taken from its pool (or made by the caller) and given back to it when the lease
-// ends; freed instead when it was never given a pool.
+// A solver taken from its pool (or, when the pool has none made with key, made by the caller
+// into `solver`), given back to the pool when the lease ends.
 template <typename Solver, typename Key>
 class Lease {
 public:

@@ -2,6 +2,8 @@
 // (simulate.py), its communication points run a slice at a time.
 #include "_core.hpp"
 
+#include <new>
+
 namespace stewart_core {
 
 namespace {
