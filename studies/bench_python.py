@@ -2,6 +2,16 @@
 """Benchmark (not a test) of the Python package and the Dask sweeps; prints and writes FILE.
 
 usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps] [--sweeps KIND ...] [--pairs N]
+       bench_python.py --calls [--rounds N] [--against DIR] [--build BUILD_DIR]
+
+--calls: the cost of a one-row call (Platform.inverse at each fidelity, forward, limits,
+linearize, linearize_inverse) along the combined cue (scenes/combined.json's formula, as
+build/bench-calls and bench-linearize run it), CPU time per call (the median of blocks of calls,
+each in a fresh process per round), against the library's own cost of the same call from those
+C benchmarks: the difference is what the binding and the package add. --against DIR: an
+installed package `stewart` in DIR (e.g. a copy of an earlier build's site-packages/stewart)
+measured in rounds alternating with this one (the machine may be shared: alternating spreads
+its load over both), medians of the rounds printed side by side.
 
 1. Batch throughput of stewart.Platform.inverse per fidelity on a batch of 12001 poses (the yaw
    manoeuvre that build/bench-closed-form and build/bench-full time), median of repeated calls,
@@ -77,6 +87,104 @@ def c_ns_per_pose(build):
     return {"kinematic": kin, "massless": mass, "full": full_us * 1e3}
 
 
+CUE_MEAN = np.array([0, 0, 0.5, 0, 0, 0])
+CUE_AMPLITUDE = np.array([0.05, 0.04, 0.03, 0.10, 0.08, 0.15])
+CUE_FREQUENCY = np.array([3.0, 2.0, 4.0, 2.5, 3.5, 1.5])
+CUE_PHASE = np.array([0.1, 0.7, 0.3, 1.1, 0.4, 0.9])
+
+
+def combined_cue(t):
+    """csrc/bench/combined_cue.hpp's cue at times t: (q, q_dot, q_ddot), rows of 6."""
+    arg = CUE_FREQUENCY * np.asarray(t)[:, None] + CUE_PHASE
+    return (CUE_MEAN + CUE_AMPLITUDE * np.sin(arg), CUE_AMPLITUDE * CUE_FREQUENCY * np.cos(arg),
+            -CUE_AMPLITUDE * CUE_FREQUENCY ** 2 * np.sin(arg))
+
+
+def one_row_calls(poses=1000):
+    """(name, call(i)) of each one-row call, at pose i of the cue at 1 kHz: the C benchmarks'."""
+    platform = stewart.Platform()
+    q, qd, qdd = combined_cue(np.arange(poses + 1) * 1e-3)
+    legs = platform.inverse(q, qd, qdd, fidelity="kinematic")
+    force = platform.inverse(q, qd, qdd, fidelity="full").force
+    L, Ld, Ldd = legs.length, legs.length_rate, legs.length_accel
+    calls = [(f"inverse {level}",
+              lambda i, level=level: platform.inverse(q[i], qd[i], qdd[i], fidelity=level))
+             for level in ("kinematic", "massless", "full")]
+    # forward from the last pose, as a tracking solver starts a row from the row before
+    calls.append(("forward", lambda i: platform.forward(L[i + 1], Ld[i + 1], Ldd[i + 1], guess=q[i])))
+    calls.append(("limits", lambda i: platform.limits(q[i])))
+    calls.append(("linearize full", lambda i: platform.linearize(q[i], qd[i], force[i], fidelity="full")))
+    calls.append(("linearize_inverse full",
+                  lambda i: platform.linearize_inverse(q[i], qd[i], qdd[i], fidelity="full")))
+    return calls
+
+
+def calls_worker(poses=1000, blocks=15):
+    """Prints {name: median ns per call} as JSON: per call kind, blocks of `poses` calls (one per
+    cue pose), CPU time of the thread per block."""
+    result = {}
+    for name, call in one_row_calls(poses):
+        for i in range(min(poses, 200)):  # warm: kept solvers made, caches filled
+            call(i)
+        per_call = []
+        for _ in range(blocks):
+            start = time.thread_time_ns()
+            for i in range(poses):
+                call(i)
+            per_call.append((time.thread_time_ns() - start) / poses)
+        result[name] = statistics.median(per_call)
+    print(json.dumps(result))
+
+
+def c_call_ns(build):
+    """The library's own cost (median ns) of each one-row call, from the C benchmarks."""
+    def run(*args):
+        return subprocess.run([str(build / args[0]), *args[1:]], capture_output=True, text=True,
+                              check=True).stdout
+    ns = {}
+    for level in ("kinematic", "massless", "full"):
+        out = run("bench-calls", f"inverse-{level}", "20000")
+        ns[f"inverse {level}"] = float(re.search(r"median ([\d.]+) ns", out).group(1))
+    out = run("bench-calls", "forward-tracking", "20000")
+    ns["forward"] = float(re.search(r"median ([\d.]+) ns", out).group(1))
+    out = run("bench-limits", "2000")
+    ns["limits"] = 1e3 * float(re.search(r"check\s+median\s+([\d.]+) us", out).group(1))
+    out = run("bench-linearize")
+    ns["linearize full"] = float(re.search(r"plant-full\s+median ([\d.]+) ns", out).group(1))
+    ns["linearize_inverse full"] = float(re.search(r"inverse-full\s+median ([\d.]+) ns", out).group(1))
+    return ns
+
+
+def calls_report(args):
+    """--calls: rounds of one worker process per package (alternating which goes first), the
+    medians printed against the C costs."""
+    sides = [("this", None)] + ([("against", args.against)] if args.against else [])
+    rounds = {name: [] for name, _ in sides}
+    for r in range(args.rounds):
+        for name, path in (sides if r % 2 == 0 else sides[::-1]):
+            env = dict(os.environ)
+            if path:
+                env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(path), env.get("PYTHONPATH")]))
+            out = subprocess.run([sys.executable, __file__, "--calls-worker"], env=env,
+                                 capture_output=True, text=True, check=True).stdout
+            rounds[name].append(json.loads(out))
+    c = c_call_ns(pathlib.Path(args.build))
+    lines = [f"one-row calls, CPU us per call, median of {args.rounds} rounds (load average "
+             f"{os.getloadavg()[0]:.2f}); C: the library's call alone (bench-calls, bench-limits, "
+             "bench-linearize)"]
+    head = f"  {'call':24s} {'C':>8s} {'python':>8s} {'over C':>8s}"
+    if args.against:
+        head += f" {'against':>8s} {'over C':>8s}"
+    lines.append(head)
+    for name in c:
+        us = {side: statistics.median(r[name] for r in rounds[side]) / 1e3 for side in rounds}
+        line = f"  {name:24s} {c[name] / 1e3:8.2f} {us['this']:8.2f} {us['this'] - c[name] / 1e3:8.2f}"
+        if args.against:
+            line += f" {us['against']:8.2f} {us['against'] - c[name] / 1e3:8.2f}"
+        lines.append(line)
+    return lines
+
+
 def sweep(spec, workers, tmp):
     """One sweep, timed, then merged, its size taken and its OUT_DIR deleted. Deleting it
     matters on the 2-core VM of the 2026-12-02 runs (docs/sweeps.md): while an earlier sweep's
@@ -132,7 +240,19 @@ def main():
     parser.add_argument("--sweeps", nargs="+", choices=["envelope", "workspace"],
                         default=["envelope", "workspace"])
     parser.add_argument("--pairs", type=int, default=1)
+    parser.add_argument("--calls", action="store_true", help="one-row calls only (see above)")
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--against", help="an installed package stewart in this folder, alternated")
+    parser.add_argument("--calls-worker", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.calls_worker:
+        return calls_worker()
+    if args.calls:
+        lines = calls_report(args)
+        print("\n".join(lines), flush=True)
+        if args.file:
+            pathlib.Path(args.file).write_text("\n".join(lines) + "\n")
+        return 0
     lines = [f"stewart {stewart.__version__}, {os.cpu_count()} cores; load average at start "
              f"{os.getloadavg()[0]:.2f} (the machine may be shared: see docs/sweeps.md)"]
     if not args.skip_batches:

@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _core
 from .errors import ParameterError
-from .results import STATUS_COLUMN, RowStatus, table, table_arrays, table_outputs
+from .results import STATUS_COLUMN, RowStatus, table, table_arrays
 from .slices import keeping_messages, run_in_slices
 
 # The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
@@ -59,9 +59,9 @@ def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
     n = lengths.shape[0]
     out = empty_forward_solution(n)
     try:
+        # vars(out): its arrays by name, of which the binding takes its table's columns
         run = _core.ForwardRun(
-            model, lengths, rates, accels, t, guess, cold, options,
-            table_outputs(FORWARD_TABLE, out), out.status)
+            model, lengths, rates, accels, t, guess, cold, options, vars(out), out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("forward", n, SLICE_ROWS,

@@ -10,7 +10,7 @@ import numpy as np
 from . import _core
 from .choices import Fidelity
 from .errors import ParameterError
-from .results import STATUS_COLUMN, RowStatus, table, table_arrays, table_outputs
+from .results import STATUS_COLUMN, RowStatus, table, table_arrays
 from .slices import keeping_messages, run_in_slices
 
 #: Rows per call into the library when rows are independent (kinematic and massless levels) and
@@ -99,9 +99,8 @@ def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optio
         check_out(out, n)
     out.messages = {}
     try:
-        run = _core.InverseRun(
-            model, q, q_dot, q_ddot, options, table_outputs(INVERSE_TABLE, out),
-            out.status)
+        # vars(out): its arrays by name, of which the binding takes its table's columns
+        run = _core.InverseRun(model, q, q_dot, q_ddot, options, vars(out), out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("inverse", n, FULL_SLICE_ROWS if level == Fidelity.FULL else SLICE_ROWS,

@@ -58,10 +58,11 @@ def _six(name: str, value) -> list[float]:
     a = np.zeros(6) if value is None else np.asarray(value, dtype=float).reshape(-1)
     if a.shape != (6,):
         raise ValueError(f"{name} must hold 6 values, not {np.asarray(value).shape}")
-    if not np.all(np.isfinite(a)):
-        i = int(np.flatnonzero(~np.isfinite(a))[0])
+    finite = np.isfinite(a)
+    if not finite.all():
+        i = int(np.flatnonzero(~finite)[0])
         raise ValueError(f"{name}[{i}] = {a[i]} must be finite")
-    return [float(v) for v in a]
+    return a.tolist()
 
 
 def _level(fidelity) -> Fidelity:
@@ -73,14 +74,13 @@ def _level(fidelity) -> Fidelity:
 
 def run_linearize_inverse(model, pose, pose_rate, pose_accel, fidelity) -> InverseJacobian:
     level = _level(fidelity)
-    status, message, L, L_dot, L_ddot, F, base_f, base_t, jac, warnings = _core.linearize_inverse(
-        model, int(level), _six("pose", pose), _six("pose_rate", pose_rate),
-        _six("pose_accel", pose_accel))
+    q, q_dot, q_ddot = _six("pose", pose), _six("pose_rate", pose_rate), _six("pose_accel", pose_accel)
+    # L, L_dot, L_ddot, F, base force, base torque, jacobian: the library writes them in place
+    arrays = [np.empty(n) for n in (6, 6, 6, 6, 3, 3, (30, 18))]
+    status, message, warnings = _core.linearize_inverse(model, int(level), q, q_dot, q_ddot, *arrays)
     if status != 0:
         raise ValueError(message)
-    return InverseJacobian(np.array(L), np.array(L_dot), np.array(L_ddot), np.array(F),
-                           np.array(base_f), np.array(base_t), np.array(jac).reshape(30, 18),
-                           warnings, level)
+    return InverseJacobian(*arrays, warnings, level)
 
 
 def run_linearize(model, pose, pose_rate, forces, fidelity) -> Linearization:
@@ -88,10 +88,11 @@ def run_linearize(model, pose, pose_rate, forces, fidelity) -> Linearization:
     q, q_dot = _six("pose", pose), _six("pose_rate", pose_rate)
     if forces is None:  # the forces that hold the pose (at these rates, without acceleration)
         forces = run_linearize_inverse(model, q, q_dot, None, level).force
-    status, message, rate, output, A, B, C, D, warnings = _core.linearize_plant(
-        model, int(level), q, q_dot, _six("forces", forces))
+    # A, B, C, D, state rate, output: the library writes them in place
+    arrays = [np.empty(shape) for shape in ((12, 12), (12, 6), (24, 12), (24, 6), 12, 24)]
+    A, B, C, D, rate, output = arrays
+    status, message, warnings = _core.linearize_plant(
+        model, int(level), q, q_dot, _six("forces", forces), rate, output, A, B, C, D)
     if status != 0:
         raise ValueError(message)
-    return Linearization(np.array(A).reshape(12, 12), np.array(B).reshape(12, 6),
-                         np.array(C).reshape(24, 12), np.array(D).reshape(24, 6),
-                         np.array(rate), np.array(output), warnings, level)
+    return Linearization(*arrays, warnings, level)

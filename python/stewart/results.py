@@ -2,6 +2,7 @@
 tables (stewart_outputs.h, through _core.inverse_columns, forward_columns, plant_columns)."""
 from __future__ import annotations
 
+import functools
 from typing import NamedTuple
 
 import numpy as np
@@ -61,13 +62,21 @@ def table_arrays(layout: Table, n: int) -> dict:
     the column's dtype (the batch writes every row). They are C-ordered views of one memory block
     (one allocation per result: a freed result's block is reused by the next one of its size,
     where a dozen arrays of their own would each be mapped and page-faulted anew)."""
-    placed, size = [], 0  # (name, shape, dtype, byte offset in the block)
-    for name, count, dtype in layout.columns:
-        placed.append((name, (n, count) if count > 1 else (n,), dtype, size))
-        size += -(-n * count * dtype.itemsize // BLOCK_ALIGNMENT) * BLOCK_ALIGNMENT
+    size, placed = _placement(layout, n)
     block = np.empty(size, dtype=np.uint8)
     view = np.ndarray
     return {name: view(shape, dtype, block, offset) for name, shape, dtype, offset in placed}
+
+
+@functools.lru_cache(maxsize=64)
+def _placement(layout: Table, n: int) -> tuple[int, tuple]:
+    """The block size of layout's arrays of n rows and each array's (name, shape, dtype, byte
+    offset in the block), kept for the sizes last used: a loop of equal calls places them once."""
+    placed, size = [], 0
+    for name, count, dtype in layout.columns:
+        placed.append((name, (n, count) if count > 1 else (n,), dtype, size))
+        size += -(-n * count * dtype.itemsize // BLOCK_ALIGNMENT) * BLOCK_ALIGNMENT
+    return size, tuple(placed)
 
 
 def table_outputs(layout: Table, result) -> dict:

@@ -1,0 +1,88 @@
+// stewart._core's inverse: one run object per Platform.inverse call (inverse.py), its solver
+// from the model's pool, its rows solved a slice at a time.
+#include "_core.hpp"
+
+namespace stewart_core {
+
+namespace {
+
+const OptionTable<stewart_inverse_options> kInverseOptions = {
+    "solver", stewart_inverse_options_default, stewart_inverse_option_find,
+    stewart_inverse_option_set, stewart_inverse_options_check};
+
+// The batch outputs of the inverse table bound to the arrays of outputs (name -> array).
+stewart_inverse_batch_outputs bind_outputs(stewart_inverse_batch_outputs o, const nb::dict &outputs,
+                                           size_t n, std::vector<nb::object> &held) {
+    STEWART_INVERSE_OUTPUT_TABLE(STEWART_BIND_COLUMN)
+    return o;
+}
+
+// The batch outputs moved on to row first.
+stewart_inverse_batch_outputs from_row(stewart_inverse_batch_outputs o, size_t first) {
+    STEWART_INVERSE_OUTPUT_TABLE(STEWART_SHIFT_COLUMN)
+    o.status += first;
+    return o;
+}
+
+// One Platform.inverse call: its arrays and one inverse solver, made once. rows(a, b) solves rows
+// [a, b) continuing from the rows before (the full level's warm start), so that slices give the
+// numbers of one batch and Python can take Ctrl-C between them.
+class InverseRun {
+public:
+    InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot,
+               std::optional<Poses> q_ddot, const OptionValues &option_values,
+               const nb::dict &outputs, Column<int> status)
+        : n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot), status_(status),
+          inverse_(model.inverse_pool(), option_values) {
+        if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
+            fail("rates and accels must have as many rows as the poses");
+        if (status.shape(0) != n_) fail("output arrays must have as many rows as the poses");
+        out_ = bind_outputs(out_, outputs, n_, held_);
+        out_.status = status.data();
+        if (inverse_.solver) return;
+        const stewart_inverse_options options = options_by_name(kInverseOptions, option_values);
+        char message[STEWART_MESSAGE_SIZE];
+        inverse_.solver = stewart_inverse_create(model.get(), &options, message, sizeof message);
+        if (!inverse_.solver) fail(message);  // the options were checked: memory is short
+    }
+
+    // Solves rows [first, stop). Returns as run_rows.
+    BatchResult rows(size_t first, size_t stop, size_t max_messages) {
+        if (stop > n_) fail("rows: stop is beyond the last row");
+        const stewart_inverse_batch_outputs out = from_row(out_, first);
+        return run_rows(inverse_.solver, stewart_inverse_message, first, stop, max_messages,
+                        [&](stewart_batch_messages *messages, size_t *first_failed) {
+            return stewart_inverse_batch(inverse_.solver, stop - first, q_.data() + 6 * first,
+                                         q_dot_ ? q_dot_->data() + 6 * first : nullptr,
+                                         q_ddot_ ? q_ddot_->data() + 6 * first : nullptr, &out,
+                                         messages, first_failed);
+        });
+    }
+
+private:
+    size_t n_;
+    Poses q_;
+    std::optional<Poses> q_dot_, q_ddot_;
+    // The output arrays, held so that they outlive the pointers in out_.
+    Column<int> status_;
+    std::vector<nb::object> held_;
+    stewart_inverse_batch_outputs out_{};
+    // The solver, from the model's pool and back to it when the run is freed.
+    Lease<stewart_inverse, OptionValues> inverse_;
+};
+
+}  // namespace
+
+// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays.
+void bind_inverse(nb::module_ &m) {
+    nb::class_<InverseRun>(m, "InverseRun")
+        .def(nb::init<const Model &, Poses, std::optional<Poses>, std::optional<Poses>,
+                      const std::vector<std::pair<std::string, double>> &, const nb::dict &,
+                      Column<int>>(),
+             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
+             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
+        .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"),
+             nb::arg("max_messages"));
+}
+
+}  // namespace stewart_core

@@ -1,0 +1,95 @@
+// stewart._core's linearisation (linearize.py): the plant's A, B, C, D and the inverse side's
+// Jacobian at one point, into arrays Python makes.
+#include "_core.hpp"
+
+namespace stewart_core {
+
+namespace {
+
+// A linearisation of model at fidelity from the model's pool, or ValueError with the library's
+// message. Used with the GIL held throughout.
+struct Linearization {
+    Linearization(const Model &model, int fidelity) : lease(model.linearize_pool(), fidelity) {
+        if (lease.solver) return;
+        stewart_linearize_options o;
+        stewart_linearize_options_default(&o);
+        o.fidelity = fidelity;
+        char message[STEWART_MESSAGE_SIZE];
+        lease.solver = stewart_linearize_create(model.get(), &o, message, sizeof message);
+        if (!lease.solver) fail(message);
+    }
+    Lease<stewart_linearize, int> lease;
+};
+
+// A result array of a linearisation, of a fixed shape, which the caller makes.
+template <size_t... Shape>
+using Fixed = nb::ndarray<double, nb::shape<Shape...>, nb::c_contig, nb::device::cpu>;
+
+// Copies the n values at first into a (of n values).
+template <typename Array>
+void put(const double *first, Array &a) {
+    std::copy_n(first, a.size(), a.data());
+}
+
+// Platform.linearize's call, into the caller's arrays: (status, message, warnings).
+std::tuple<int, std::string, int> linearize_plant(
+    const Model &model, int fidelity, const std::vector<double> &q,
+    const std::vector<double> &q_dot, const std::vector<double> &force, Fixed<12> state_rate,
+    Fixed<24> output, Fixed<12, 12> A, Fixed<12, 6> B, Fixed<24, 12> C, Fixed<24, 6> D) {
+    if (q.size() != 6 || q_dot.size() != 6 || force.size() != 6)
+        fail("linearize: pose, pose_rate and forces need 6 values each");
+    Linearization l(model, fidelity);
+    stewart_linearize_input in{};
+    std::copy(q.begin(), q.end(), in.pose.q);
+    std::copy(q_dot.begin(), q_dot.end(), in.pose.q_dot);
+    std::copy(force.begin(), force.end(), in.force);
+    stewart_linearize_output out{};
+    const stewart_status s = stewart_linearize_plant(l.lease.solver, &in, &out);
+    put(out.state_rate, state_rate);
+    put(out.output, output);
+    put(&out.A[0][0], A);
+    put(&out.B[0][0], B);
+    put(&out.C[0][0], C);
+    put(&out.D[0][0], D);
+    return {static_cast<int>(s), stewart_linearize_message(l.lease.solver), out.warnings};
+}
+
+// Platform.linearize_inverse's call, into the caller's arrays (L, L_dot, L_ddot, force,
+// base_force, base_torque, jacobian): (status, message, warnings).
+std::tuple<int, std::string, int> linearize_inverse(
+    const Model &model, int fidelity, const std::vector<double> &q,
+    const std::vector<double> &q_dot, const std::vector<double> &q_ddot, Fixed<6> length,
+    Fixed<6> length_rate, Fixed<6> length_accel, Fixed<6> force, Fixed<3> base_force,
+    Fixed<3> base_torque, Fixed<30, 18> jacobian) {
+    if (q.size() != 6 || q_dot.size() != 6 || q_ddot.size() != 6)
+        fail("linearize_inverse: pose, pose_rate and pose_accel need 6 values each");
+    Linearization l(model, fidelity);
+    stewart_pose pose{};
+    std::copy(q.begin(), q.end(), pose.q);
+    std::copy(q_dot.begin(), q_dot.end(), pose.q_dot);
+    std::copy(q_ddot.begin(), q_ddot.end(), pose.q_ddot);
+    stewart_linearize_inverse_output out{};
+    const stewart_status s = stewart_linearize_inverse(l.lease.solver, &pose, &out);
+    put(out.lengths.length, length);
+    put(out.lengths.length_rate, length_rate);
+    put(out.lengths.length_accel, length_accel);
+    put(out.force, force);
+    put(out.base_force, base_force);
+    put(out.base_torque, base_torque);
+    put(&out.jacobian[0][0], jacobian);
+    return {static_cast<int>(s), stewart_linearize_message(l.lease.solver), out.warnings};
+}
+
+}  // namespace
+
+void bind_linearize(nb::module_ &m) {
+    m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"),
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("force"), nb::arg("state_rate"),
+          nb::arg("output"), nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("D"));
+    m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
+          nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"), nb::arg("length"),
+          nb::arg("length_rate"), nb::arg("length_accel"), nb::arg("force"),
+          nb::arg("base_force"), nb::arg("base_torque"), nb::arg("jacobian"));
+}
+
+}  // namespace stewart_core
