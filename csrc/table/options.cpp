@@ -132,8 +132,8 @@ void put(const Table &t, void *o, int i, double value) {
     }
 }
 
-// The message for option i's value outside its range. The tolerance's lower end is where the
-// residual floors: its refusal says so.
+// The message for option i's value outside its range. The lower ends of the inverse and forward
+// tolerance and of the plant's absolute tolerance are numerical floors: their refusals say so.
 stewart_status refuse(const Table &t, int i, double value, char *msg, size_t size) {
     const stewart_option_info &info = t.info[i];
     if (!std::strcmp(info.name, "tolerance") && value > 0 && value < info.min)
@@ -143,6 +143,13 @@ stewart_status refuse(const Table &t, int i, double value, char *msg, size_t siz
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "tolerance = %s is below what the position residual can reach (about "
                            "2.2e-16, machine precision on the coordinates): use at least %s",
+                           ExactText(value).c_str(), ExactText(info.min).c_str());
+    if (!std::strcmp(info.name, "absolute_tolerance"))
+        // A plant's first step at rest fails below 3e-26 (full level, ERK 5(4); 1.3e-26 ERK 4(3),
+        // 6.7e-28 Adams; 1e-156 massless), found by bisection: the floor keeps a margin.
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "absolute_tolerance = %s must be >= %s and finite (below it the "
+                           "integrators' error test fails on rounding alone)",
                            ExactText(value).c_str(), ExactText(info.min).c_str());
     char range[96];
     stewart::describe_range(info.min, info.min_closed, info.max, info.max_closed, range, sizeof range);
@@ -170,9 +177,8 @@ void defaults(const Table &t, void *o) {
     for (int i = 0; i < t.count; ++i) put(t, o, i, t.info[i].default_value);
 }
 
-// Every option in its range, and warn_condition <= singular_condition.
-stewart_status check(const Table &t, const void *o, double warn_condition,
-                     double singular_condition, char *msg, size_t size) {
+// Every option in its table's range, in the table's order.
+stewart_status check_ranges(const Table &t, const void *o, char *msg, size_t size) {
     if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
     for (int i = 0; i < t.count; ++i) {
         const stewart_option_info &info = t.info[i];
@@ -180,6 +186,14 @@ stewart_status check(const Table &t, const void *o, double warn_condition,
         if (!stewart::in_range(v, info.min, info.min_closed, info.max, info.max_closed))
             return refuse(t, i, v, msg, size);
     }
+    return stewart::clear_message(msg, size);
+}
+
+// Every option in its range, and warn_condition <= singular_condition.
+stewart_status check(const Table &t, const void *o, double warn_condition,
+                     double singular_condition, char *msg, size_t size) {
+    const stewart_status ranges = check_ranges(t, o, msg, size);
+    if (ranges != STEWART_OK) return ranges;
     if (!(singular_condition >= warn_condition))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "condition limits warn = %s, singular = %s must satisfy "
@@ -239,6 +253,18 @@ double stewart_plant_option_get(const stewart_plant_options *o, int i) {
 stewart_status stewart_plant_option_set(stewart_plant_options *o, int i, double value, char *msg,
                                         size_t size) {
     return set(kPlant, o, i, value, msg, size);
+}
+// Every option in its range, and fixed steps only for an explicit method (the implicit ones
+// need their error control).
+stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
+                                           size_t size) {
+    const stewart_status ranges = check_ranges(kPlant, o, msg, size);
+    if (ranges != STEWART_OK) return ranges;
+    if (o->fixed_steps > 0 && o->method != STEWART_PLANT_ERK && o->method != STEWART_PLANT_ERK5)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
+                           o->fixed_steps, o->method);
+    return stewart::clear_message(msg, size);
 }
 
 }  // extern "C"

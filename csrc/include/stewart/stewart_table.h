@@ -30,8 +30,7 @@
  * once per field of stewart_inverse_options, stewart_forward_options and stewart_plant_options,
  * in declaration order; type is int, long or double. An option is one line here and its field
  * in the struct (a static_assert checks they match); setters and lookup by name come from the
- * table, and so do the defaults of all three and the inverse and forward checks (the plant
- * keeps its own check, whose ranges tests/unit/test_plant_option_table.c holds to the table).
+ * table, and so do the defaults and the range checks of all three (table/options.cpp).
  */
 #ifndef STEWART_STEWART_TABLE_H
 #define STEWART_STEWART_TABLE_H
@@ -204,9 +203,8 @@ extern "C" {
 
 /* The plant's (forward dynamics') options: ids 200.. are the StewartPlant FMU's value references,
  * and the descriptions its parameters'. Type long is an integer option too (the FMU's Integer,
- * hence at most 2^31 - 1). stewart_plant_options_check (plant/plant_api.cpp) checks the ranges
- * with messages of its own, and that fixed_steps > 0 needs an explicit method; a test
- * (tests/unit/test_plant_option_table.c) holds its ranges and defaults to these. */
+ * hence at most 2^31 - 1). stewart_plant_options_check checks these ranges, and that
+ * fixed_steps > 0 needs an explicit method. */
 #define STEWART_PLANT_OPTION_TABLE(X)                                                            \
     X(200, fidelity, int, "", 1, 1, 2, 1, STEWART_FULL,                                          \
       "1 massless legs (one rigid body), 2 full 14-body model")                                  \
