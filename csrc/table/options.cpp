@@ -42,22 +42,32 @@ struct Table {
 #define INVERSE_FIELD(id, name, type, ...) {offsetof(stewart_inverse_options, name), storage_of<type>()},
 #define FORWARD_FIELD(id, name, type, ...) {offsetof(stewart_forward_options, name), storage_of<type>()},
 #define PLANT_FIELD(id, name, type, ...) {offsetof(stewart_plant_options, name), storage_of<type>()},
+#define LINEARIZE_FIELD(id, name, type, ...) {offsetof(stewart_linearize_options, name), storage_of<type>()},
+#define LIMITS_FIELD(id, name, type, ...) {offsetof(stewart_limits_options, name), storage_of<type>()},
 const stewart_option_info kInverseInfo[] = {STEWART_OPTION_TABLE(INFO)};
 const Field kInverseFields[] = {STEWART_OPTION_TABLE(INVERSE_FIELD)};
 const stewart_option_info kForwardInfo[] = {STEWART_FORWARD_OPTION_TABLE(INFO)};
 const Field kForwardFields[] = {STEWART_FORWARD_OPTION_TABLE(FORWARD_FIELD)};
 const stewart_option_info kPlantInfo[] = {STEWART_PLANT_OPTION_TABLE(INFO)};
 const Field kPlantFields[] = {STEWART_PLANT_OPTION_TABLE(PLANT_FIELD)};
+const stewart_option_info kLinearizeInfo[] = {STEWART_LINEARIZE_OPTION_TABLE(INFO)};
+const Field kLinearizeFields[] = {STEWART_LINEARIZE_OPTION_TABLE(LINEARIZE_FIELD)};
+const stewart_option_info kLimitsInfo[] = {STEWART_LIMITS_OPTION_TABLE(INFO)};
+const Field kLimitsFields[] = {STEWART_LIMITS_OPTION_TABLE(LIMITS_FIELD)};
 #undef INFO
 #undef INVERSE_FIELD
 #undef FORWARD_FIELD
 #undef PLANT_FIELD
+#undef LINEARIZE_FIELD
+#undef LIMITS_FIELD
 template <size_t n> constexpr Table table_of(const stewart_option_info (&info)[n], const Field *field) {
     return {info, field, static_cast<int>(n)};
 }
 const Table kInverse = table_of(kInverseInfo, kInverseFields);
 const Table kForward = table_of(kForwardInfo, kForwardFields);
 const Table kPlant = table_of(kPlantInfo, kPlantFields);
+const Table kLinearize = table_of(kLinearizeInfo, kLinearizeFields);
+const Table kLimits = table_of(kLimitsInfo, kLimitsFields);
 
 // Each table lists every field of its struct, in order, with its type: a struct laid out from the
 // table is the same struct.
@@ -71,6 +81,12 @@ struct ForwardMirror {
 struct PlantMirror {
     STEWART_PLANT_OPTION_TABLE(FIELD)
 };
+struct LinearizeMirror {
+    STEWART_LINEARIZE_OPTION_TABLE(FIELD)
+};
+struct LimitsMirror {
+    STEWART_LIMITS_OPTION_TABLE(FIELD)
+};
 #undef FIELD
 static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_options),
               "STEWART_OPTION_TABLE lists every field");
@@ -78,6 +94,10 @@ static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_options),
               "STEWART_FORWARD_OPTION_TABLE lists every field");
 static_assert(sizeof(PlantMirror) == sizeof(stewart_plant_options),
               "STEWART_PLANT_OPTION_TABLE lists every field");
+static_assert(sizeof(LinearizeMirror) == sizeof(stewart_linearize_options),
+              "STEWART_LINEARIZE_OPTION_TABLE lists every field");
+static_assert(sizeof(LimitsMirror) == sizeof(stewart_limits_options),
+              "STEWART_LIMITS_OPTION_TABLE lists every field");
 #define SAME(Options, Mirror, name, type)                                                        \
     static_assert(offsetof(Mirror, name) == offsetof(Options, name) &&                           \
                       std::is_same<decltype(Options::name), type>::value,                        \
@@ -85,12 +105,19 @@ static_assert(sizeof(PlantMirror) == sizeof(stewart_plant_options),
 #define SAME_INVERSE(id, name, type, ...) SAME(stewart_inverse_options, InverseMirror, name, type)
 #define SAME_FORWARD(id, name, type, ...) SAME(stewart_forward_options, ForwardMirror, name, type)
 #define SAME_PLANT(id, name, type, ...) SAME(stewart_plant_options, PlantMirror, name, type)
+#define SAME_LINEARIZE(id, name, type, ...)                                                      \
+    SAME(stewart_linearize_options, LinearizeMirror, name, type)
+#define SAME_LIMITS(id, name, type, ...) SAME(stewart_limits_options, LimitsMirror, name, type)
 STEWART_OPTION_TABLE(SAME_INVERSE)
 STEWART_FORWARD_OPTION_TABLE(SAME_FORWARD)
 STEWART_PLANT_OPTION_TABLE(SAME_PLANT)
+STEWART_LINEARIZE_OPTION_TABLE(SAME_LINEARIZE)
+STEWART_LIMITS_OPTION_TABLE(SAME_LIMITS)
 #undef SAME_INVERSE
 #undef SAME_FORWARD
 #undef SAME_PLANT
+#undef SAME_LINEARIZE
+#undef SAME_LIMITS
 #undef SAME
 
 const stewart_option_info *option(const Table &t, int i) {
@@ -265,6 +292,42 @@ stewart_status stewart_plant_options_check(const stewart_plant_options *o, char 
                            "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
                            o->fixed_steps, o->method);
     return stewart::clear_message(msg, size);
+}
+
+int stewart_linearize_option_count(void) { return kLinearize.count; }
+const stewart_option_info *stewart_linearize_option(int i) { return option(kLinearize, i); }
+int stewart_linearize_option_find(const char *name) { return find(kLinearize, name); }
+double stewart_linearize_option_get(const stewart_linearize_options *o, int i) {
+    return o && option(kLinearize, i) ? get(kLinearize, o, i) : 0;
+}
+stewart_status stewart_linearize_option_set(stewart_linearize_options *o, int i, double value,
+                                            char *msg, size_t size) {
+    return set(kLinearize, o, i, value, msg, size);
+}
+void stewart_linearize_options_default(stewart_linearize_options *o) {
+    if (o) defaults(kLinearize, o);
+}
+stewart_status stewart_linearize_options_check(const stewart_linearize_options *o, char *msg,
+                                               size_t size) {
+    return check_ranges(kLinearize, o, msg, size);
+}
+
+int stewart_limits_option_count(void) { return kLimits.count; }
+const stewart_option_info *stewart_limits_option(int i) { return option(kLimits, i); }
+int stewart_limits_option_find(const char *name) { return find(kLimits, name); }
+double stewart_limits_option_get(const stewart_limits_options *o, int i) {
+    return o && option(kLimits, i) ? get(kLimits, o, i) : 0;
+}
+stewart_status stewart_limits_option_set(stewart_limits_options *o, int i, double value,
+                                         char *msg, size_t size) {
+    return set(kLimits, o, i, value, msg, size);
+}
+void stewart_limits_options_default(stewart_limits_options *o) {
+    if (o) defaults(kLimits, o);
+}
+stewart_status stewart_limits_options_check(const stewart_limits_options *o, char *msg,
+                                            size_t size) {
+    return check_ranges(kLimits, o, msg, size);
 }
 
 }  // extern "C"

@@ -41,6 +41,8 @@
 #include "mbs/mbs.h"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_limits.h"
+#include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
@@ -221,6 +223,18 @@ extern "C" {
       "0: adaptive steps (the tolerances); N: N equal explicit Runge-Kutta steps per "           \
       "communication step without error control, the same work every step (methods 2 and 3)")
 
+/* The linearisation's options (stewart_linearize_options; ids 420..: no FMU has them, the units'
+ * derivatives take the unit's own fidelity) and the limits' (stewart_limits_options; ids 430..:
+ * the StewartPlatform unit gives its limits its inverse warn_condition, 205), in the form above;
+ * table/options.cpp gives them the same calls and checks as the three tables above. */
+#define STEWART_LINEARIZE_OPTION_TABLE(X)                                                        \
+    X(420, fidelity, int, "", 1, 1, 2, 1, STEWART_FULL,                                          \
+      "The plant's fidelity: 1 massless legs (one rigid body), 2 full 14-body model")
+#define STEWART_LIMITS_OPTION_TABLE(X)                                                           \
+    X(430, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
+      "Condition number above which a pose fails the condition limit (the inverse option of "    \
+      "that name)")
+
 /* One parameter of the table, for iteration. */
 typedef struct stewart_param_info {
     int id;                     /* stable id of element 0; element e has id + e */
@@ -300,6 +314,22 @@ double stewart_plant_option_get(const stewart_plant_options *options, int i);
 stewart_status stewart_plant_option_set(stewart_plant_options *options, int i, double value,
                                         char *message, size_t size);
 int stewart_plant_option_find(const char *name);
+
+/* The same for the linearisation's (STEWART_LINEARIZE_OPTION_TABLE) and the limits' options
+ * (STEWART_LIMITS_OPTION_TABLE). */
+int stewart_linearize_option_count(void);
+const stewart_option_info *stewart_linearize_option(int i);
+double stewart_linearize_option_get(const stewart_linearize_options *options, int i);
+stewart_status stewart_linearize_option_set(stewart_linearize_options *options, int i,
+                                            double value, char *message, size_t size);
+int stewart_linearize_option_find(const char *name);
+
+int stewart_limits_option_count(void);
+const stewart_option_info *stewart_limits_option(int i);
+double stewart_limits_option_get(const stewart_limits_options *options, int i);
+stewart_status stewart_limits_option_set(stewart_limits_options *options, int i, double value,
+                                         char *message, size_t size);
+int stewart_limits_option_find(const char *name);
 
 #ifdef __cplusplus
 }
