@@ -10,12 +10,35 @@
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
 #include "util/number_text.hpp"
+#include "util/range.hpp"
 #include "stewart/stewart.h"
 #include "stewart/stewart_batch.h"
 #include "stewart/stewart_check.h"
 #include "stewart/stewart_limits.h"
+#include "stewart/stewart_table.h"
 
 namespace {
+
+// A direction's option table (stewart_table.h), through its functions.
+struct OptionTable {
+    const char *direction;
+    int (*find)(const char *name);
+    int (*count)();
+    const stewart_option_info *(*option)(int i);
+};
+const OptionTable kInverseOptions = {"the inverse solver", stewart_inverse_option_find,
+                                     stewart_inverse_option_count, stewart_inverse_option};
+const OptionTable kForwardOptions = {"forward kinematics", stewart_forward_option_find,
+                                     stewart_forward_option_count, stewart_forward_option};
+
+// A table's lines of the usage text: "NAME [DEFAULT]: DESCRIPTION".
+void print_options(FILE *to, const OptionTable &table) {
+    for (int i = 0; i < table.count(); ++i) {
+        const stewart_option_info *o = table.option(i);
+        std::fprintf(to, "             %s [%s]: %s\n", o->name,
+                     stewart::ExactText(o->default_value).c_str(), o->description);
+    }
+}
 
 int usage(FILE *to) {
     std::fprintf(to,
@@ -27,7 +50,11 @@ int usage(FILE *to) {
                  "payload_mass=50,\n"
                  "           base_angle[2]=0.5236); the others are the thesis platform's; files "
                  "and --param\n"
-                 "           apply in the order given\n"
+                 "           apply in the order given; or an option of the inverse solver (the "
+                 "library's table;\n"
+                 "           default in brackets; --fidelity and --tolerance are two of them):\n");
+    print_options(to, kInverseOptions);
+    std::fprintf(to,
                  "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
                  "x_ddot..yaw_ddot\n"
                  "           (missing derivatives come from finite differences of the samples)\n"
@@ -48,6 +75,10 @@ int usage(FILE *to) {
                  "one before\n"
                  "  --cold: every row on its own from --guess or home (measured poses, not a "
                  "trajectory)\n"
+                 "  --param: also an option of forward kinematics (the library's table; "
+                 "--tolerance is one):\n");
+    print_options(to, kForwardOptions);
+    std::fprintf(to,
                  "usage: stewart-solve --check FILE.json [--platform FILE.json] [--param "
                  "NAME=VALUE ...]\n"
                  "  prints the home pose against every limit, the axis ranges and hints on entry "
@@ -109,17 +140,11 @@ void write_row(FILE *out, double t, const stewart_inverse_output &o,
     std::fprintf(out, "\n");
 }
 
-// NAME=VALUE into params; false with a message on stderr.
-bool set_param(const char *assignment, stewart_params &params) {
-    std::string name;
-    double value;
-    return stewart::parse_assignment("stewart-solve", assignment, name, value) &&
-           stewart::set_platform_param("stewart-solve", name, value, params);
-}
-
 // What the command line asks for.
 struct Request {
     stewart_inverse_options options;
+    stewart_forward_options forward_options;
+    std::vector<std::string> options_given;  // the option names --param set, in order
     stewart_params params;
     const char *paths[2] = {nullptr, nullptr};
     bool forward = false, cold = false, check = false, at_rest = false;
@@ -128,9 +153,50 @@ struct Request {
     const double *guess_given = nullptr;
 };
 
+// NAME=VALUE: an option of the inverse or the forward table (stewart_table.h; a name both have,
+// as tolerance, is set in both: the run uses one of them), else a platform parameter; false with
+// a message on stderr.
+bool set_param(const char *assignment, Request &r) {
+    std::string name;
+    double value;
+    if (!stewart::parse_assignment("stewart-solve", assignment, name, value)) return false;
+    const int inverse = kInverseOptions.find(name.c_str());
+    const int forward = kForwardOptions.find(name.c_str());
+    if (inverse < 0 && forward < 0)
+        return stewart::set_platform_param("stewart-solve", name, value, r.params);
+    char message[STEWART_MESSAGE_SIZE];
+    const bool set =
+        (inverse < 0 || stewart_inverse_option_set(&r.options, inverse, value, message,
+                                                   sizeof message) == STEWART_OK) &&
+        (forward < 0 || stewart_forward_option_set(&r.forward_options, forward, value, message,
+                                                   sizeof message) == STEWART_OK);
+    if (!set) {
+        std::fprintf(stderr, "stewart-solve: --param %s\n", message);
+        return false;
+    }
+    r.options_given.push_back(name);
+    return true;
+}
+
+// An option --param set that the direction run has not (its table lacks the name) would be
+// ignored: refused instead, naming the direction's options. True when every one is the run's.
+bool options_belong_to(const std::vector<std::string> &given, const OptionTable &table) {
+    for (const std::string &name : given) {
+        if (table.find(name.c_str()) >= 0) continue;
+        std::string names;
+        for (int i = 0; i < table.count(); ++i)
+            names += (i ? ", " : "") + std::string(table.option(i)->name);
+        std::fprintf(stderr, "stewart-solve: --param %s: not an option of %s (its options: %s)\n",
+                     name.c_str(), table.direction, names.c_str());
+        return false;
+    }
+    return true;
+}
+
 // Parses argv into request; -1 to go on, else the exit code.
 int parse(int argc, char **argv, Request &r) {
     stewart_inverse_options_default(&r.options);
+    stewart_forward_options_default(&r.forward_options);
     stewart_params_default(&r.params);
     const std::vector<stewart::CliOption> cli = {
         {"--forward", nullptr, [&](const char *) { return r.forward = true, 0; }},
@@ -147,7 +213,7 @@ int parse(int argc, char **argv, Request &r) {
              }
              return r.guess_given = r.guess, 0;
          }},
-        {"--param", "NAME=VALUE", [&](const char *v) { return set_param(v, r.params) ? 0 : 2; }},
+        {"--param", "NAME=VALUE", [&](const char *v) { return set_param(v, r) ? 0 : 2; }},
         {"--platform", "FILE.json",
          [&](const char *v) {
              return stewart::read_platform_file("stewart-solve", v, r.params) ? 0 : 2;
@@ -165,9 +231,10 @@ int parse(int argc, char **argv, Request &r) {
              std::fprintf(stderr, "stewart-solve: unknown fidelity '%s'\n", v);
              return usage(stderr);
          }},
-        {"--tolerance", "a positive number",
+        {"--tolerance", "a positive number",  // checked with the other options, as given
          [&](const char *v) {
-             if (stewart::read_double(v, r.options.tolerance)) return 0;
+             if (stewart::read_double(v, r.options.tolerance))
+                 return r.forward_options.tolerance = r.options.tolerance, 0;
              std::fprintf(stderr, "stewart-solve: --tolerance '%s' is not a number\n", v);
              return 2;
          }},
@@ -311,16 +378,16 @@ int main(int argc, char **argv) {
     if (r.check) return run_check(r);
     char message[STEWART_MESSAGE_SIZE];
     if (r.forward) {
-        stewart_forward_options forward_options;
-        stewart_forward_options_default(&forward_options);
-        forward_options.tolerance = r.options.tolerance;
-        if (stewart_forward_options_check(&forward_options, message, sizeof message) != STEWART_OK) {
+        if (!options_belong_to(r.options_given, kForwardOptions)) return 2;
+        if (stewart_forward_options_check(&r.forward_options, message, sizeof message) !=
+            STEWART_OK) {
             std::fprintf(stderr, "stewart-solve: %s\n", message);
             return 2;
         }
-        return stewart::run_forward(r.paths[0], r.paths[1], r.params, forward_options,
+        return stewart::run_forward(r.paths[0], r.paths[1], r.params, r.forward_options,
                                     r.guess_given, r.cold);
     }
+    if (!options_belong_to(r.options_given, kInverseOptions)) return 2;
     if (stewart_inverse_options_check(&r.options, message, sizeof message) != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: %s\n", message);
         return 2;

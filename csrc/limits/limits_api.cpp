@@ -39,12 +39,7 @@ stewart_status check_call(stewart_limits *limits, const stewart_limits_input *in
 
 extern "C" {
 
-void stewart_limits_options_default(stewart_limits_options *options) {
-    if (!options) return;
-    stewart_inverse_options inverse;
-    stewart_inverse_options_default(&inverse);
-    options->warn_condition = inverse.warn_condition;
-}
+// stewart_limits_options_default and _check: table/options.cpp, from the option table.
 
 stewart_limits *stewart_limits_create(const stewart_model *model,
                                       const stewart_limits_options *options, char *msg,
@@ -53,11 +48,7 @@ stewart_limits *stewart_limits_create(const stewart_model *model,
         set_message(msg, size, STEWART_ERR_ARGUMENT, "%s is NULL", model ? "options" : "model");
         return nullptr;
     }
-    if (!(options->warn_condition >= 1.0) || !std::isfinite(options->warn_condition)) {
-        set_message(msg, size, STEWART_ERR_PARAMETER,
-                    "option warn_condition = %g must be finite and >= 1", options->warn_condition);
-        return nullptr;
-    }
+    if (stewart_limits_options_check(options, msg, size) != STEWART_OK) return nullptr;
     stewart_limits *limits = new (std::nothrow) stewart_limits;
     if (!limits) {
         set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the limits object");

@@ -123,19 +123,7 @@ bool base_wrench(const stewart_linearize &l, const stewart_pose &pose, double fo
 
 }  // namespace
 
-extern "C" void stewart_linearize_options_default(stewart_linearize_options *o) {
-    if (o) o->fidelity = STEWART_FULL;
-}
-
-extern "C" stewart_status stewart_linearize_options_check(const stewart_linearize_options *o,
-                                                          char *msg, size_t size) {
-    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    if (o->fidelity != STEWART_MASSLESS && o->fidelity != STEWART_FULL)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "fidelity = %d must be %d (massless legs) or %d (full)", o->fidelity,
-                           STEWART_MASSLESS, STEWART_FULL);
-    return clear_message(msg, size);
-}
+// stewart_linearize_options_default and _check: table/options.cpp, from the option table.
 
 extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *model,
                                                        const stewart_linearize_options *options,

@@ -30,9 +30,6 @@ constexpr double kMaxTurnAngle = 1e12;  // [rad]
 // The smallest first internal step a step may start with: below it SUNDIALS' products of step
 // sizes underflow (a saved hint of 4.9e-324 s left ARKODE unable to step).
 constexpr double kMinStepSize = 1e-100;  // [s]
-// The smallest absolute tolerance allowed: a plant's first step at rest fails below 3e-26 (full
-// level, ERK 5(4); 1.3e-26 ERK 4(3), 6.7e-28 Adams; 1e-156 massless), found by bisection.
-constexpr double kMinAbsoluteTolerance = 1e-20;
 // The plant's clock: within +-1e10 s (317 years) a step of 1e-5 s still advances time by
 // itself to 1 part in 5.
 constexpr double kMaxTime = 1e10;  // [s]
@@ -274,37 +271,7 @@ extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
 #undef PLANT_OPTION_DEFAULT
 }
 
-extern "C" stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
-                                                      size_t size) {
-    if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
-    if (o->fidelity != STEWART_MASSLESS && o->fidelity != STEWART_FULL)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "fidelity = %d must be 1 (massless) or 2 (full)", o->fidelity);
-    if (o->method < STEWART_PLANT_ADAMS || o->method > STEWART_PLANT_ERK5)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "method = %d must be 0 (Adams), 1 (BDF), 2 (explicit Runge-Kutta 4(3)) "
-                           "or 3 (explicit Runge-Kutta 5(4))", o->method);
-    if (!(o->relative_tolerance >= 1e-15 && o->relative_tolerance < 1))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "relative_tolerance = %g must be in [1e-15, 1)", o->relative_tolerance);
-    if (!(o->absolute_tolerance >= kMinAbsoluteTolerance && std::isfinite(o->absolute_tolerance)))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "absolute_tolerance = %g must be >= %g and finite (below it the "
-                           "integrators' error test fails on rounding alone)",
-                           o->absolute_tolerance, kMinAbsoluteTolerance);
-    if (o->max_internal_steps < 1)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "max_internal_steps = %ld must be >= 1", o->max_internal_steps);
-    if (!(o->fixed_steps >= 0 && o->fixed_steps <= 1000))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "fixed_steps = %d must be 0 (adaptive) or 1..1000 steps per "
-                           "communication step", o->fixed_steps);
-    if (o->fixed_steps > 0 && o->method != STEWART_PLANT_ERK && o->method != STEWART_PLANT_ERK5)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
-                           o->fixed_steps, o->method);
-    return clear_message(msg, size);
-}
+// stewart_plant_options_check: table/options.cpp, from the option table.
 
 extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
                                                const stewart_plant_options *options, char *msg,

@@ -42,22 +42,32 @@ struct Table {
 #define INVERSE_FIELD(id, name, type, ...) {offsetof(stewart_inverse_options, name), storage_of<type>()},
 #define FORWARD_FIELD(id, name, type, ...) {offsetof(stewart_forward_options, name), storage_of<type>()},
 #define PLANT_FIELD(id, name, type, ...) {offsetof(stewart_plant_options, name), storage_of<type>()},
+#define LINEARIZE_FIELD(id, name, type, ...) {offsetof(stewart_linearize_options, name), storage_of<type>()},
+#define LIMITS_FIELD(id, name, type, ...) {offsetof(stewart_limits_options, name), storage_of<type>()},
 const stewart_option_info kInverseInfo[] = {STEWART_OPTION_TABLE(INFO)};
 const Field kInverseFields[] = {STEWART_OPTION_TABLE(INVERSE_FIELD)};
 const stewart_option_info kForwardInfo[] = {STEWART_FORWARD_OPTION_TABLE(INFO)};
 const Field kForwardFields[] = {STEWART_FORWARD_OPTION_TABLE(FORWARD_FIELD)};
 const stewart_option_info kPlantInfo[] = {STEWART_PLANT_OPTION_TABLE(INFO)};
 const Field kPlantFields[] = {STEWART_PLANT_OPTION_TABLE(PLANT_FIELD)};
+const stewart_option_info kLinearizeInfo[] = {STEWART_LINEARIZE_OPTION_TABLE(INFO)};
+const Field kLinearizeFields[] = {STEWART_LINEARIZE_OPTION_TABLE(LINEARIZE_FIELD)};
+const stewart_option_info kLimitsInfo[] = {STEWART_LIMITS_OPTION_TABLE(INFO)};
+const Field kLimitsFields[] = {STEWART_LIMITS_OPTION_TABLE(LIMITS_FIELD)};
 #undef INFO
 #undef INVERSE_FIELD
 #undef FORWARD_FIELD
 #undef PLANT_FIELD
+#undef LINEARIZE_FIELD
+#undef LIMITS_FIELD
 template <size_t n> constexpr Table table_of(const stewart_option_info (&info)[n], const Field *field) {
     return {info, field, static_cast<int>(n)};
 }
 const Table kInverse = table_of(kInverseInfo, kInverseFields);
 const Table kForward = table_of(kForwardInfo, kForwardFields);
 const Table kPlant = table_of(kPlantInfo, kPlantFields);
+const Table kLinearize = table_of(kLinearizeInfo, kLinearizeFields);
+const Table kLimits = table_of(kLimitsInfo, kLimitsFields);
 
 // Each table lists every field of its struct, in order, with its type: a struct laid out from the
 // table is the same struct.
@@ -71,6 +81,12 @@ struct ForwardMirror {
 struct PlantMirror {
     STEWART_PLANT_OPTION_TABLE(FIELD)
 };
+struct LinearizeMirror {
+    STEWART_LINEARIZE_OPTION_TABLE(FIELD)
+};
+struct LimitsMirror {
+    STEWART_LIMITS_OPTION_TABLE(FIELD)
+};
 #undef FIELD
 static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_options),
               "STEWART_OPTION_TABLE lists every field");
@@ -78,6 +94,10 @@ static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_options),
               "STEWART_FORWARD_OPTION_TABLE lists every field");
 static_assert(sizeof(PlantMirror) == sizeof(stewart_plant_options),
               "STEWART_PLANT_OPTION_TABLE lists every field");
+static_assert(sizeof(LinearizeMirror) == sizeof(stewart_linearize_options),
+              "STEWART_LINEARIZE_OPTION_TABLE lists every field");
+static_assert(sizeof(LimitsMirror) == sizeof(stewart_limits_options),
+              "STEWART_LIMITS_OPTION_TABLE lists every field");
 #define SAME(Options, Mirror, name, type)                                                        \
     static_assert(offsetof(Mirror, name) == offsetof(Options, name) &&                           \
                       std::is_same<decltype(Options::name), type>::value,                        \
@@ -85,12 +105,19 @@ static_assert(sizeof(PlantMirror) == sizeof(stewart_plant_options),
 #define SAME_INVERSE(id, name, type, ...) SAME(stewart_inverse_options, InverseMirror, name, type)
 #define SAME_FORWARD(id, name, type, ...) SAME(stewart_forward_options, ForwardMirror, name, type)
 #define SAME_PLANT(id, name, type, ...) SAME(stewart_plant_options, PlantMirror, name, type)
+#define SAME_LINEARIZE(id, name, type, ...)                                                      \
+    SAME(stewart_linearize_options, LinearizeMirror, name, type)
+#define SAME_LIMITS(id, name, type, ...) SAME(stewart_limits_options, LimitsMirror, name, type)
 STEWART_OPTION_TABLE(SAME_INVERSE)
 STEWART_FORWARD_OPTION_TABLE(SAME_FORWARD)
 STEWART_PLANT_OPTION_TABLE(SAME_PLANT)
+STEWART_LINEARIZE_OPTION_TABLE(SAME_LINEARIZE)
+STEWART_LIMITS_OPTION_TABLE(SAME_LIMITS)
 #undef SAME_INVERSE
 #undef SAME_FORWARD
 #undef SAME_PLANT
+#undef SAME_LINEARIZE
+#undef SAME_LIMITS
 #undef SAME
 
 const stewart_option_info *option(const Table &t, int i) {
@@ -132,8 +159,8 @@ void put(const Table &t, void *o, int i, double value) {
     }
 }
 
-// The message for option i's value outside its range. The tolerance's lower end is where the
-// residual floors: its refusal says so.
+// The message for option i's value outside its range. The lower ends of the inverse and forward
+// tolerance and of the plant's absolute tolerance are numerical floors: their refusals say so.
 stewart_status refuse(const Table &t, int i, double value, char *msg, size_t size) {
     const stewart_option_info &info = t.info[i];
     if (!std::strcmp(info.name, "tolerance") && value > 0 && value < info.min)
@@ -143,6 +170,13 @@ stewart_status refuse(const Table &t, int i, double value, char *msg, size_t siz
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "tolerance = %s is below what the position residual can reach (about "
                            "2.2e-16, machine precision on the coordinates): use at least %s",
+                           ExactText(value).c_str(), ExactText(info.min).c_str());
+    if (!std::strcmp(info.name, "absolute_tolerance"))
+        // A plant's first step at rest fails below 3e-26 (full level, ERK 5(4); 1.3e-26 ERK 4(3),
+        // 6.7e-28 Adams; 1e-156 massless), found by bisection: the floor keeps a margin.
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "absolute_tolerance = %s must be >= %s and finite (below it the "
+                           "integrators' error test fails on rounding alone)",
                            ExactText(value).c_str(), ExactText(info.min).c_str());
     char range[96];
     stewart::describe_range(info.min, info.min_closed, info.max, info.max_closed, range, sizeof range);
@@ -170,9 +204,8 @@ void defaults(const Table &t, void *o) {
     for (int i = 0; i < t.count; ++i) put(t, o, i, t.info[i].default_value);
 }
 
-// Every option in its range, and warn_condition <= singular_condition.
-stewart_status check(const Table &t, const void *o, double warn_condition,
-                     double singular_condition, char *msg, size_t size) {
+// Every option in its table's range, in the table's order.
+stewart_status check_ranges(const Table &t, const void *o, char *msg, size_t size) {
     if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
     for (int i = 0; i < t.count; ++i) {
         const stewart_option_info &info = t.info[i];
@@ -180,6 +213,14 @@ stewart_status check(const Table &t, const void *o, double warn_condition,
         if (!stewart::in_range(v, info.min, info.min_closed, info.max, info.max_closed))
             return refuse(t, i, v, msg, size);
     }
+    return stewart::clear_message(msg, size);
+}
+
+// Every option in its range, and warn_condition <= singular_condition.
+stewart_status check(const Table &t, const void *o, double warn_condition,
+                     double singular_condition, char *msg, size_t size) {
+    const stewart_status ranges = check_ranges(t, o, msg, size);
+    if (ranges != STEWART_OK) return ranges;
     if (!(singular_condition >= warn_condition))
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "condition limits warn = %s, singular = %s must satisfy "
@@ -239,6 +280,54 @@ double stewart_plant_option_get(const stewart_plant_options *o, int i) {
 stewart_status stewart_plant_option_set(stewart_plant_options *o, int i, double value, char *msg,
                                         size_t size) {
     return set(kPlant, o, i, value, msg, size);
+}
+// Every option in its range, and fixed steps only for an explicit method (the implicit ones
+// need their error control).
+stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
+                                           size_t size) {
+    const stewart_status ranges = check_ranges(kPlant, o, msg, size);
+    if (ranges != STEWART_OK) return ranges;
+    if (o->fixed_steps > 0 && o->method != STEWART_PLANT_ERK && o->method != STEWART_PLANT_ERK5)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
+                           o->fixed_steps, o->method);
+    return stewart::clear_message(msg, size);
+}
+
+int stewart_linearize_option_count(void) { return kLinearize.count; }
+const stewart_option_info *stewart_linearize_option(int i) { return option(kLinearize, i); }
+int stewart_linearize_option_find(const char *name) { return find(kLinearize, name); }
+double stewart_linearize_option_get(const stewart_linearize_options *o, int i) {
+    return o && option(kLinearize, i) ? get(kLinearize, o, i) : 0;
+}
+stewart_status stewart_linearize_option_set(stewart_linearize_options *o, int i, double value,
+                                            char *msg, size_t size) {
+    return set(kLinearize, o, i, value, msg, size);
+}
+void stewart_linearize_options_default(stewart_linearize_options *o) {
+    if (o) defaults(kLinearize, o);
+}
+stewart_status stewart_linearize_options_check(const stewart_linearize_options *o, char *msg,
+                                               size_t size) {
+    return check_ranges(kLinearize, o, msg, size);
+}
+
+int stewart_limits_option_count(void) { return kLimits.count; }
+const stewart_option_info *stewart_limits_option(int i) { return option(kLimits, i); }
+int stewart_limits_option_find(const char *name) { return find(kLimits, name); }
+double stewart_limits_option_get(const stewart_limits_options *o, int i) {
+    return o && option(kLimits, i) ? get(kLimits, o, i) : 0;
+}
+stewart_status stewart_limits_option_set(stewart_limits_options *o, int i, double value,
+                                         char *msg, size_t size) {
+    return set(kLimits, o, i, value, msg, size);
+}
+void stewart_limits_options_default(stewart_limits_options *o) {
+    if (o) defaults(kLimits, o);
+}
+stewart_status stewart_limits_options_check(const stewart_limits_options *o, char *msg,
+                                            size_t size) {
+    return check_ranges(kLimits, o, msg, size);
 }
 
 }  // extern "C"

@@ -6,9 +6,21 @@ from __future__ import annotations
 import pathlib
 
 FMI_VERSIONS = ("2.0", "3.0")
-FMU_NAMES = ("StewartPlatform", "StewartPlant", "StewartPlantME", "StewartController",
-             "StewartScene")
 _HERE = pathlib.Path(__file__).resolve().parent
+
+
+def _unit_names() -> tuple[str, ...]:
+    """The units this install ships, in the order of fmu/CMakeLists.txt's stewart_unit lines (the
+    build writes them into fmus/units.txt); none if the file is missing (then fmu_path says to
+    reinstall)."""
+    try:
+        text = (_HERE / "fmus" / "units.txt").read_text(encoding="utf-8")
+    except FileNotFoundError:
+        return ()
+    return tuple(line.strip() for line in text.splitlines() if line.strip())
+
+
+FMU_NAMES = _unit_names()
 
 
 def fmu_path(version: str = "2.0", model: str = "StewartPlatform") -> pathlib.Path:
@@ -18,6 +30,9 @@ def fmu_path(version: str = "2.0", model: str = "StewartPlatform") -> pathlib.Pa
     or model."""
     if version not in FMI_VERSIONS:
         raise ValueError(f"version = {version!r}: the FMUs exist for FMI {', '.join(FMI_VERSIONS)}")
+    if not FMU_NAMES:
+        raise FileNotFoundError(f"{_HERE / 'fmus' / 'units.txt'} is missing: reinstall the "
+                                "package (pip install .)")
     if model not in FMU_NAMES:
         raise ValueError(f"model = {model!r}: the package ships {', '.join(FMU_NAMES)}")
     path = _HERE / "fmus" / version / f"{model}.fmu"

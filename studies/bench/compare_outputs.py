@@ -45,11 +45,19 @@ COUNTERS = {*STEP_COUNTERS, *(f"total_{c}" for c in STEP_COUNTERS), "last_step_s
             "last_order"}
 
 
+# The text cells of stewart-solve's status and limit_class columns (stewart_limit_class_name), read
+# as their class numbers: a changed class is a difference like any other.
+LIMIT_CLASSES = ("none", "stroke", "base_joint", "platform_joint", "interference", "condition",
+                 "axis")
+
+
 def read_csv(path):
     """Header and float matrix of a CSV written by the CLIs (or by write_csv below)."""
     with open(path) as f:
         header = f.readline().strip().split(",")
-    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    text = {i: lambda cell: float(LIMIT_CLASSES.index(cell)) for i, name in enumerate(header)
+            if name in ("status", "limit_class")}
+    data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, converters=text or None)
     return header, data
 
 

@@ -245,3 +245,77 @@ def test_still_pose_at_vanishing_spacing_stays_at_rest(solve, tmp_path):
     for k in LEGS:
         assert np.all(column(header, data, f"L_dot{k}") == 0)
         assert np.all(column(header, data, f"L_ddot{k}") == 0)
+
+
+def test_every_inverse_option_by_name(solve, tmp_path):
+    """--param takes every option of the library's inverse table: each at its table default
+    changes no byte; a value below its range is refused naming it; fidelity and tolerance are
+    the --fidelity and --tolerance flags' options; warn_condition and singular_condition reach
+    the limit check and the solver; the usage lists each option."""
+    from stewart import _core
+    pose_csv = tmp_path / "in.csv"
+    scenes.write_pose_csv("combined", pose_csv, dt=0.05)
+
+    def run(*args):
+        out = tmp_path / "out.csv"
+        out.unlink(missing_ok=True)
+        result = solve(*args, pose_csv, out)
+        return result, (out.read_bytes() if out.exists() else None)
+
+    plain = run()[1]
+    usage = solve("--help").stdout
+    for option in _core.option_table("inverse"):
+        name = option["name"]
+        assert f"{name} [" in usage, name
+        result, got = run("--param", f"{name}={option['default']!r}")
+        assert result.returncode == 0 and got == plain, (name, result.stderr)
+        result, got = run("--param", f"{name}={option['min'] - 1!r}")
+        assert result.returncode == 2 and f"{name} = " in result.stderr, (name, result.stderr)
+        assert got is None
+    kinematic = run("--fidelity", "kinematic")[1]
+    assert kinematic != plain and run("--param", "fidelity=0")[1] == kinematic
+    assert run("--param", "fidelity=2", "--param", "tolerance=1e-9")[1] == \
+        run("--fidelity", "full", "--tolerance", "1e-9")[1]
+    # every pose of the manoeuvre has a condition number above 1: all flagged, then all refused
+    result, got = run("--param", "warn_condition=1")
+    assert result.returncode == 0, result.stderr
+    with open(tmp_path / "out.csv") as f:
+        assert {row["status"] for row in csv.DictReader(f)} == {"condition"}
+    result, got = run("--param", "warn_condition=1", "--param", "singular_condition=1")
+    assert result.returncode == 1 and "singular" in result.stderr and got is None, result.stderr
+
+
+def test_forward_options_by_name(solve, tmp_path):
+    """With --forward, --param takes forward kinematics' table (each default changes no byte,
+    tolerance is --tolerance's) and refuses an inverse option it would ignore."""
+    from stewart import _core
+    pose_csv, legs_csv = tmp_path / "pose.csv", tmp_path / "legs.csv"
+    scenes.write_pose_csv("combined", pose_csv, dt=0.05)
+    assert solve(pose_csv, legs_csv).returncode == 0
+
+    def run(*args):
+        out = tmp_path / "out.csv"
+        out.unlink(missing_ok=True)
+        result = solve("--forward", *args, legs_csv, out)
+        return result, (out.read_bytes() if out.exists() else None)
+
+    plain = run()[1]
+    usage = solve("--help").stdout
+    for option in _core.option_table("forward"):
+        assert f"{option['name']} [" in usage, option["name"]
+        result, got = run("--param", f"{option['name']}={option['default']!r}")
+        assert result.returncode == 0 and got == plain, (option["name"], result.stderr)
+    assert run("--param", "tolerance=1e-6")[1] == run("--tolerance", "1e-6")[1] != plain
+    result, got = run("--param", "fidelity=2")
+    assert result.returncode == 2 and got is None
+    assert "fidelity: not an option of forward kinematics" in result.stderr, result.stderr
+
+
+def test_option_names_are_no_parameter_names():
+    """--param finds an option before a parameter: no option of any table may hide one."""
+    import stewart
+    from stewart import _core
+    parameters = {p["name"] for p in stewart.parameters()}
+    for direction in ("inverse", "forward", "plant"):
+        names = {o["name"] for o in _core.option_table(direction)}
+        assert not names & parameters, (direction, names & parameters)

@@ -1,7 +1,8 @@
 /* The plant's option table (STEWART_PLANT_OPTION_TABLE, stewart/stewart_table.h) against the
- * plant's own code (plant/plant_api.cpp): its defaults are stewart_plant_options_default's, its
- * ranges are those stewart_plant_options_check accepts, end by end; names are unique; the
- * setter refuses a bad value naming the option and the value and leaves the options unchanged. */
+ * plant's calls: its defaults are stewart_plant_options_default's, its ranges are those
+ * stewart_plant_options_check accepts, end by end, with a message naming the option and the
+ * value; fixed steps need an explicit method; names are unique; the setter refuses a bad value
+ * naming the option and the value and leaves the options unchanged. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -63,7 +64,8 @@ static double beyond(const stewart_option_info *info, double end, double outward
 }
 
 /* stewart_plant_options_check's verdict on the defaults with option i set to value (stored as
- * the field's type, the table setter bypassed). */
+ * the field's type, the table setter bypassed), its message in msg. */
+static char msg_of_check[STEWART_MESSAGE_SIZE];
 static stewart_status check_with(int i, double value) {
     stewart_plant_options o;
     stewart_plant_options_default(&o);
@@ -75,14 +77,20 @@ static stewart_status check_with(int i, double value) {
     case 4: o.max_internal_steps = (long)value; break;
     default: o.fixed_steps = (int)value; break;
     }
-    char msg[STEWART_MESSAGE_SIZE];
-    return stewart_plant_options_check(&o, msg, sizeof msg);
+    return stewart_plant_options_check(&o, msg_of_check, sizeof msg_of_check);
+}
+
+/* check_with refuses option i = value naming the option and the value ("name = value"). */
+static void expect_refused(int i, double value, const char *value_text) {
+    char said[64];
+    snprintf(said, sizeof said, "%s = %s", stewart_plant_option(i)->name, value_text);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, check_with(i, value), said);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, said), msg_of_check);
 }
 
 /* Each end of each range: inside, the table's setter and the plant's check both accept; just
- * outside, both refuse (the check is the plant's own code: the table must not drift from it).
- * max_internal_steps' upper end is the FMU Integer's 2^31 - 1, below what a long holds: the
- * check accepts more there, so only the setter's refusal is asked. */
+ * outside, both refuse, naming the option (max_internal_steps' upper end is the FMU Integer's
+ * 2^31 - 1, below what a long holds: the check refuses a long beyond it too). */
 static void test_ranges_are_the_checks(void) {
     TEST_ASSERT_EQUAL_STRING("fixed_steps", stewart_plant_option(5)->name);
     char msg[STEWART_MESSAGE_SIZE];
@@ -100,8 +108,8 @@ static void test_ranges_are_the_checks(void) {
             TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, check_with(i, inside), info->name);
             TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, i, outside, msg, sizeof msg));
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, info->name), msg);
-            if (!(i == 4 && side == 1))
-                TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, check_with(i, outside), info->name);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, check_with(i, outside), info->name);
+            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, info->name), msg_of_check);
         }
     }
     stewart_plant_options o;
@@ -110,6 +118,33 @@ static void test_ranges_are_the_checks(void) {
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, check_with(3, INFINITY));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, 2, NAN, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, check_with(2, NAN));
+}
+
+/* The check's messages: the value as given, the reason of a floor, the cross-field rule. */
+static void test_check_says_why(void) {
+    expect_refused(0, 0, "0");
+    expect_refused(1, 4, "4");
+    expect_refused(2, 1.0, "1");
+    expect_refused(2, NAN, "nan");
+    expect_refused(4, 0, "0");
+    expect_refused(5, 1001, "1001");
+    expect_refused(3, 1e-21, "1e-21");
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, "error test fails on rounding"), msg_of_check);
+    expect_refused(3, INFINITY, "inf");
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, "finite"), msg_of_check);
+    /* fixed steps with each method: only the explicit ones (2, 3) take them */
+    for (int method = 0; method <= 3; ++method) {
+        stewart_plant_options o;
+        stewart_plant_options_default(&o);
+        o.method = method;
+        o.fixed_steps = 4;
+        char msg[STEWART_MESSAGE_SIZE];
+        const stewart_status s = stewart_plant_options_check(&o, msg, sizeof msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(method >= 2 ? STEWART_OK : STEWART_ERR_PARAMETER, s, msg);
+        if (method < 2) TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "fixed_steps = 4 needs method 2 or 3"), msg);
+    }
+    char msg[STEWART_MESSAGE_SIZE];
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_options_check(NULL, msg, sizeof msg));
 }
 
 static void test_setter_refuses_naming_the_value(void) {
@@ -140,6 +175,7 @@ int main(void) {
     RUN_TEST(test_defaults_are_the_plants);
     RUN_TEST(test_names_unique_and_ids_the_fmus);
     RUN_TEST(test_ranges_are_the_checks);
+    RUN_TEST(test_check_says_why);
     RUN_TEST(test_setter_refuses_naming_the_value);
     return UNITY_END();
 }

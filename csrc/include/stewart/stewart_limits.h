@@ -87,6 +87,9 @@ typedef struct stewart_limits stewart_limits;
 
 /* The defaults documented at stewart_limits_options. */
 void stewart_limits_options_default(stewart_limits_options *options);
+/* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the option and its value. */
+stewart_status stewart_limits_options_check(const stewart_limits_options *options, char *message,
+                                            size_t size);
 /* A limits object for model (which must outlive it) with a copy of options: NULL if an option is
  * out of range (message names it and its value), an argument is NULL or memory is short. */
 stewart_limits *stewart_limits_create(const stewart_model *model,

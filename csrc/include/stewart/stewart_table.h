@@ -30,8 +30,7 @@
  * once per field of stewart_inverse_options, stewart_forward_options and stewart_plant_options,
  * in declaration order; type is int, long or double. An option is one line here and its field
  * in the struct (a static_assert checks they match); setters and lookup by name come from the
- * table, and so do the defaults of all three and the inverse and forward checks (the plant
- * keeps its own check, whose ranges tests/unit/test_plant_option_table.c holds to the table).
+ * table, and so do the defaults and the range checks of all three (table/options.cpp).
  */
 #ifndef STEWART_STEWART_TABLE_H
 #define STEWART_STEWART_TABLE_H
@@ -42,6 +41,8 @@
 #include "mbs/mbs.h"
 #include "stewart/stewart.h"
 #include "stewart/stewart_forward.h"
+#include "stewart/stewart_limits.h"
+#include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
@@ -220,9 +221,8 @@ extern "C" {
 
 /* The plant's (forward dynamics') options: ids 200.. are the StewartPlant FMU's value references,
  * and the descriptions its parameters'. Type long is an integer option too (the FMU's Integer,
- * hence at most 2^31 - 1). stewart_plant_options_check (plant/plant_api.cpp) checks the ranges
- * with messages of its own, and that fixed_steps > 0 needs an explicit method; a test
- * (tests/unit/test_plant_option_table.c) holds its ranges and defaults to these. */
+ * hence at most 2^31 - 1). stewart_plant_options_check checks these ranges, and that
+ * fixed_steps > 0 needs an explicit method. */
 #define STEWART_PLANT_OPTION_TABLE(X)                                                            \
     X(200, fidelity, int, "", 1, 1, 2, 1, STEWART_FULL,                                          \
       "1 massless legs (one rigid body), 2 full 14-body model")                                  \
@@ -238,6 +238,18 @@ extern "C" {
     X(205, fixed_steps, int, "", 0, 1, 1000, 1, 0,                                               \
       "0: adaptive steps (the tolerances); N: N equal explicit Runge-Kutta steps per "           \
       "communication step without error control, the same work every step (methods 2 and 3)")
+
+/* The linearisation's options (stewart_linearize_options; ids 420..: no FMU has them, the units'
+ * derivatives take the unit's own fidelity) and the limits' (stewart_limits_options; ids 430..:
+ * the StewartPlatform unit gives its limits its inverse warn_condition, 205), in the form above;
+ * table/options.cpp gives them the same calls and checks as the three tables above. */
+#define STEWART_LINEARIZE_OPTION_TABLE(X)                                                        \
+    X(420, fidelity, int, "", 1, 1, 2, 1, STEWART_FULL,                                          \
+      "The plant's fidelity: 1 massless legs (one rigid body), 2 full 14-body model")
+#define STEWART_LIMITS_OPTION_TABLE(X)                                                           \
+    X(430, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
+      "Condition number above which a pose fails the condition limit (the inverse option of "    \
+      "that name)")
 
 /* One parameter of the table, for iteration. */
 typedef struct stewart_param_info {
@@ -318,6 +330,22 @@ double stewart_plant_option_get(const stewart_plant_options *options, int i);
 stewart_status stewart_plant_option_set(stewart_plant_options *options, int i, double value,
                                         char *message, size_t size);
 int stewart_plant_option_find(const char *name);
+
+/* The same for the linearisation's (STEWART_LINEARIZE_OPTION_TABLE) and the limits' options
+ * (STEWART_LIMITS_OPTION_TABLE). */
+int stewart_linearize_option_count(void);
+const stewart_option_info *stewart_linearize_option(int i);
+double stewart_linearize_option_get(const stewart_linearize_options *options, int i);
+stewart_status stewart_linearize_option_set(stewart_linearize_options *options, int i,
+                                            double value, char *message, size_t size);
+int stewart_linearize_option_find(const char *name);
+
+int stewart_limits_option_count(void);
+const stewart_option_info *stewart_limits_option(int i);
+double stewart_limits_option_get(const stewart_limits_options *options, int i);
+stewart_status stewart_limits_option_set(stewart_limits_options *options, int i, double value,
+                                         char *message, size_t size);
+int stewart_limits_option_find(const char *name);
 
 #ifdef __cplusplus
 }
