@@ -91,6 +91,26 @@ void joint_margins(const double limit[STEWART_LEGS], bool uniform, const Matrix3
 
 }  // namespace
 
+namespace {
+
+// How thick the legs are at one side's joints: the body at the base and the rod at the platform
+// for legs given as actuators, else leg_diameter.
+double joint_thickness(const stewart_params &p, bool base) {
+    if (!(p.leg_body_length > 0.0 || p.leg_rod_length > 0.0)) return p.leg_diameter;
+    if (base) return p.leg_body_length > 0.0 ? p.leg_body_diameter : 0.0;
+    return p.leg_rod_length > 0.0 ? p.leg_rod_diameter : 0.0;
+}
+
+// Two legs' joints a distance d apart are one joint of both (a 3-6 layout, as measured or
+// calibrated: sockets on one ball) when d is within the legs' radius there (two legs could not
+// be mounted so close otherwise), or below `coincident` for legs of no thickness; the legs are
+// then not checked against each other.
+bool one_joint(double d, double thickness, double coincident) {
+    return d <= std::max(coincident, 0.5 * thickness);
+}
+
+}  // namespace
+
 LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &geometry,
                                double warn_condition) {
     LimitConstants c;
@@ -133,10 +153,11 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
     for (int i = 0; i < STEWART_LEGS; ++i)
         for (int j = 0; j < STEWART_LEGS; ++j)
             c.shares_joint[i][j] =
-                i != j && ((geometry.base_points.col(i) - geometry.base_points.col(j)).norm() <=
-                               geometry.min_length ||
-                           (geometry.platform_points.col(i) - geometry.platform_points.col(j))
-                                   .norm() <= geometry.min_length);
+                i != j &&
+                (one_joint((geometry.base_points.col(i) - geometry.base_points.col(j)).norm(),
+                           joint_thickness(p, true), geometry.min_length) ||
+                 one_joint((geometry.platform_points.col(i) - geometry.platform_points.col(j)).norm(),
+                           joint_thickness(p, false), geometry.min_length));
     for (int i = 0; i < 6; ++i) {
         c.axis_min[i] = p.axis_min[i];
         c.axis_max[i] = p.axis_max[i];
@@ -239,18 +260,17 @@ stewart_status check_limit_parameters(const stewart_params &p, char *msg, size_t
         const char *field;
     };
     const Side sides[] = {
-        {"base", g.base_points, shaped ? (p.leg_body_length > 0.0 ? p.leg_body_diameter : 0.0)
-                                       : p.leg_diameter,
+        {"base", g.base_points, joint_thickness(p, true),
          shaped ? "leg_body_diameter" : "leg_diameter"},
-        {"platform", g.platform_points,
-         shaped ? (p.leg_rod_length > 0.0 ? p.leg_rod_diameter : 0.0) : p.leg_diameter,
+        {"platform", g.platform_points, joint_thickness(p, false),
          shaped ? "leg_rod_diameter" : "leg_diameter"}};
     for (const Side &side : sides) {
         if (!(side.thickness > 0.0)) continue;
         for (int i = 0; i < STEWART_LEGS; ++i)
             for (int j = i + 1; j < STEWART_LEGS; ++j) {
                 const double d = (side.points.col(i) - side.points.col(j)).norm();
-                if (d <= coincident || d > side.thickness) continue;  // shared, or apart
+                if (one_joint(d, side.thickness, coincident) || d > side.thickness)
+                    continue;  // one joint of two legs, or apart
                 return set_message(msg, size, STEWART_ERR_PARAMETER,
                                    "the %s joints of legs %d and %d are %s m apart, not farther "
                                    "than the legs are thick there (%s = %s m): the legs would "

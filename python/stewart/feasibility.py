@@ -23,13 +23,16 @@ from .limits import LIMIT_CLASSES, MARGIN_UNITS
 FEASIBILITY_CLASSES = LIMIT_CLASSES + ("leg_speed", "leg_accel")
 #: The unit of each class's margin.
 FEASIBILITY_UNITS = MARGIN_UNITS + ("m/s", "m/s^2")
+#: The columns of the leg speed and acceleration classes in a report's margin and leg arrays.
+SPEED, ACCEL = len(LIMIT_CLASSES), len(LIMIT_CLASSES) + 1
 
 
 @dataclass
 class Feasibility:
     """The report of N rows. first: (N,) the first class met (0 none, then 1 + the index in
-    FEASIBILITY_CLASSES); margin: (N, 7) each class's smallest margin (> 0 within; +inf for a
-    leg class without its limit); leg: (N, 7) the leg where it is (1..6); worst: class name ->
+    FEASIBILITY_CLASSES); margin: (N, len(FEASIBILITY_CLASSES)) each class's smallest margin
+    (> 0 within; +inf for a leg class without its limit); leg: the same shape, the leg where it
+    is (1..6; the axis for the axis class); worst: class name ->
     (the smallest margin over the rows, its time) for every class."""
     t: np.ndarray
     first: np.ndarray
@@ -93,11 +96,11 @@ def feasibility(platform, t, poses, rates=None, accels=None, *, leg_speed_max=No
         if bad.size:
             raise ValueError(f"row {bad[0]} (t = {time[bad[0]]:.6g} s): "
                              f"{legs.messages.get(bad[0], legs.status_name(bad[0]))}")
-        for column, values, limit in ((5, legs.length_rate, leg_speed_max),
-                                      (6, legs.length_accel, leg_accel_max)):
+        for column, values, limit in ((SPEED, legs.length_rate, leg_speed_max),
+                                      (ACCEL, legs.length_accel, leg_accel_max)):
             margin[:, column], leg[:, column] = _leg_margin(values, limit, n)
     first = np.where(check.first != 0, check.first, 0).astype(np.int32)
-    for column in (5, 6):
+    for column in (SPEED, ACCEL):
         first = np.where((first == 0) & (margin[:, column] < 0), column + 1, first)
     worst_rows = np.argmin(margin, axis=0)
     worst = {name: (float(margin[j, c]), float(time[j]))

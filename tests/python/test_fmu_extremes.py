@@ -476,6 +476,7 @@ def test_steps_at_a_large_start_time(version):
 
 def scaled_params(s):
     return dict(base_radius=0.5 * s, platform_radius=0.5 * s, home_height=0.5 * s,
+                leg_diameter=0.015 * s,
                 **every_leg(stroke_min=0.4 * s, stroke_max=0.7 * s),
                 **{f"platform_inertia[{i}]": v * s * s for i, v in
                    zip((1, 2, 3), (M_PLATFORM / 16, M_PLATFORM / 16, M_PLATFORM / 8))})

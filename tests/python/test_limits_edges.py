@@ -163,6 +163,13 @@ def test_joints_closer_than_the_legs_are_thick_are_refused_at_load(diameter_fiel
                                          + diameter_field):
         stewart.Platform(**spec, **{diameter_field: d}, **extra)
     stewart.Platform(**spec, **{diameter_field: 0.99 * d}, **extra)  # thinner: accepted
+    # within the legs' radius the two joints of a pair are one joint of both legs (a 3-6 layout,
+    # measured) and the pair is not checked: legs twice as thick as each side's pairs are apart
+    sides = [np.reshape(spec[f], (6, 3)) for f in ("base_joint", "platform_joint")]
+    pair = [min(np.linalg.norm(x[i] - x[j]) for i in range(6) for j in range(i + 1, 6))
+            for x in sides]
+    stewart.Platform(**spec, **{diameter_field: 2.01 * (max(pair) if not extra else pair[0])},
+                     **extra)
     # legs that share a joint (a 3-6 platform) meet there by design and are accepted
     genhexkins = json.loads((PLATFORMS / "genhexkins.json").read_text())
     genhexkins.pop("description")

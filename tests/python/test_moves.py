@@ -315,9 +315,11 @@ def test_the_feasibility_report_of_a_move():
     speed, accel = np.abs(rates[:, 0]), np.abs(rates[:, 1])
     report = stewart.feasibility(platform, m.t, m.pose, m.pose_rate, m.pose_accel,
                                  leg_speed_max=0.04, leg_accel_max=0.5)
-    assert np.allclose(report.margin[:, 5], 0.04 - speed.max(axis=1), rtol=0, atol=1e-12)
-    assert np.allclose(report.margin[:, 6], 0.5 - accel.max(axis=1), rtol=0, atol=1e-12)
-    assert np.array_equal(report.leg[:, 5], speed.argmax(axis=1) + 1)
+    classes = stewart.Feasibility.names[1:]  # the margin columns
+    SPEED, ACCEL = classes.index("leg_speed"), classes.index("leg_accel")
+    assert np.allclose(report.margin[:, SPEED], 0.04 - speed.max(axis=1), rtol=0, atol=1e-12)
+    assert np.allclose(report.margin[:, ACCEL], 0.5 - accel.max(axis=1), rtol=0, atol=1e-12)
+    assert np.array_equal(report.leg[:, SPEED], speed.argmax(axis=1) + 1)
     over = np.flatnonzero(speed.max(axis=1) > 0.04)
     assert over.size and np.array_equal(np.flatnonzero(~report.within), over)
     assert np.all(np.array(report.names)[report.first[over]] == "leg_speed")

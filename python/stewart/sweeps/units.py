@@ -21,7 +21,10 @@ _KIND = {
 }
 _OTHER = {**{f"peak_force_{k}": "N" for k in range(1, 7)}, **{f"F{k}": "N" for k in range(1, 7)},
           "peak_power": "W", "payload_mass": "kg", "limit_t": "s", "condition": "1",
-          "max_condition": "1", "min_inverse_condition": "1", "margin_condition": "1"}
+          "max_condition": "1", "min_inverse_condition": "1", "margin_condition": "1",
+          # the nearest software position limit's axis: m for x, y, z, rad for the angles (so
+          # it stays SI whatever the units asked)
+          "margin_axis": "m or rad"}
 assert all(f"margin_{c}" in {**_KIND, **_OTHER} for c in LIMIT_CLASSES)
 
 
