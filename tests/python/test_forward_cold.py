@@ -2,26 +2,18 @@
 `stewart-solve --forward --cold`): every row solved on its own from home, so independent poses
 far apart are all found. The lengths come from the closed form |p + R b_k - a_k| written here."""
 import json
-import math
 import subprocess
 
 import numpy as np
 import pytest
 
 import stewart
+from test_platform_files import rotation
 
 MACHINES = sorted(stewart.platform_files())
 _TABLE = {p["name"]: p["defaults"] for p in stewart.parameters()}
 BASE = np.reshape(_TABLE["base_joint"], (6, 3))  # the thesis platform's joints
 TOP = np.reshape(_TABLE["platform_joint"], (6, 3))
-
-
-def rotation(roll, pitch, yaw):
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
-                              math.cos(yaw), math.sin(yaw))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
 
 
 def independent_poses(platform, n, seed=7):
