@@ -441,7 +441,9 @@ rangesBox.addEventListener("change", () => setFrame(current));
 let playing = false, playClock = 0, playStart = 0;
 function tick(now) {
   if (!playing) return;
-  const t = playStart + (now - playClock) / 1000 * Number(speed.value);
+  // An animation frame's timestamp is when the frame began, which can be before play() read
+  // the clock: never earlier than the start, so the frames only move forward.
+  const t = playStart + Math.max(0, now - playClock) / 1000 * Number(speed.value);
   const i = frameAtTime(t);
   if (i !== current) setFrame(i);
   if (t >= time[N - 1]) { pause(); return; }
