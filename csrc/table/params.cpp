@@ -73,8 +73,15 @@ const char *const kPoseAxis[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
 bool is_pose(const stewart_param_info &p) { return !std::strcmp(p.unit, STEWART_POSE_UNIT); }
 
 // Per-leg parameters that a single value (the bare name, e.g. "stroke_min") fills for all six
-// legs: they were scalars in earlier releases, and their old spelling keeps working.
-const char *const kScalarFills[] = {"stroke_min", "stroke_max"};
+// legs: the legs of most machines are alike (the strokes were scalars in earlier releases).
+const char *const kScalarFills[] = {
+    "stroke_min", "stroke_max",
+    "screw_lead", "gear_ratio", "rotor_inertia", "screw_inertia", "screw_efficiency",
+    "screw_back_efficiency", "torque_constant", "winding_resistance", "winding_inductance",
+    "coulomb_friction", "viscous_friction", "stribeck_friction", "stribeck_speed",
+    "end_stop_stiffness", "end_stop_damping", "leg_stiffness", "leg_damping", "current_max",
+    "voltage_max", "motor_speed_max", "leg_speed_max", "leg_accel_max", "leg_jerk_max",
+    "leg_force_max"};
 
 // The element index of "[k]" (k = 1..count, no leading zero, then the end), or -1.
 int element_index(const char *bracket, int count) {

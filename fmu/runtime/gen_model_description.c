@@ -206,19 +206,26 @@ static void variable(unsigned vr, const char *name, int is_real, const char *cau
 }
 
 static const struct { const char *name; const char *base; } kUnits[] = {
+    {"A", "A=\"1\""},
+    {"H", "kg=\"1\" m=\"2\" s=\"-2\" A=\"-2\""},
     {"kg", "kg=\"1\""},
     {"kg.m2", "kg=\"1\" m=\"2\""},
     {"m", "m=\"1\""},
     {"m/s", "m=\"1\" s=\"-1\""},
     {"m/s2", "m=\"1\" s=\"-2\""},
+    {"m/s3", "m=\"1\" s=\"-3\""},
     {"N", "kg=\"1\" m=\"1\" s=\"-2\""},
     {"N.m", "kg=\"1\" m=\"2\" s=\"-2\""},
     {"N/m", "kg=\"1\" s=\"-2\""},
     {"N.s/m", "kg=\"1\" s=\"-1\""},
+    {"N.m/A", "kg=\"1\" m=\"2\" s=\"-2\" A=\"-1\""},
+    {"Ohm", "kg=\"1\" m=\"2\" s=\"-3\" A=\"-2\""},
     {"rad", "rad=\"1\""},
     {"rad/s", "rad=\"1\" s=\"-1\""},
     {"rad/s2", "rad=\"1\" s=\"-2\""},
     {"s", "s=\"1\""},
+    {"V", "kg=\"1\" m=\"2\" s=\"-3\" A=\"-1\""},
+    {"W", "kg=\"1\" m=\"2\" s=\"-3\""},
 };
 enum { N_UNITS = sizeof kUnits / sizeof kUnits[0] };
 

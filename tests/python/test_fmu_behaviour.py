@@ -1,11 +1,12 @@
 """What a master relies on: rollback, serialisation, several instances, reset, logging, bad
 input, invalid parameters, warnings. FMI 2 and FMI 3."""
 import math
+import re
 
 import numpy as np
 import pytest
 
-from fmu_support import (VERSIONS, REAL_OUTPUTS, L, POSE, POSE_DOT, POSE_DDOT, OK, WARNING,
+from fmu_support import (REPO, VERSIONS, REAL_OUTPUTS, L, POSE, POSE_DOT, POSE_DDOT, OK, WARNING,
                          DISCARD, ERROR, Unit, model_description,
                          require_fidelity, reference_matrix, stewart_solve, thesis_manoeuvre)
 from reference import lengths as closed_form_lengths
@@ -58,13 +59,22 @@ def test_rollback_reproduces_outputs_bit_for_bit(version, fidelity, derivatives)
         u.free()
 
 
+def _nvr():
+    """The arrays' length, FMU_NVR: above every value reference, with room to keep the model's
+    pairs 16-byte aligned."""
+    nvr = int(re.search(r"#define FMU_NVR (\d+)", (REPO / "fmu/models/inverse/config.h").read_text())[1])
+    assert nvr > max(v.valueReference for v in model_description("3.0").modelVariables)
+    return nvr
+
+
 def _layout(u, blob):
     """Offsets of fields in a serialised state: magic (8 bytes), sizeof(fmu_values) (uint64), then
     fmu_values: real[NVR], integer[NVR] by value reference, ..., last_successful_time, mode (its
     last members). The test checks each offset against a known value before it corrupts it."""
     n = int.from_bytes(blob[8:16], "little")
-    # both versions number their variables alike; FMI 3's also lists `time`, the largest
-    nvr = max(v.valueReference for v in model_description("3.0").modelVariables) + 1
+    # the arrays' length, FMU_NVR, is above every value reference, with room to keep the
+    # model's pairs 16-byte aligned
+    nvr = _nvr()
     return dict(real=lambda vr: 16 + 8 * vr, integer=lambda vr: 16 + 8 * nvr + 4 * vr,
                 last_successful_time=16 + n - 16, mode=16 + n - 8)
 
@@ -146,8 +156,7 @@ def test_corrupt_history_slot_is_refused(version):
     u = Unit(version)
     try:
         state, blob, t = _driven_state(u)
-        nvr = max(v.valueReference for v in model_description("3.0").modelVariables) + 1
-        n_history = 16 + 12 * nvr
+        n_history = 16 + 12 * _nvr()
         assert struct.unpack_from("<i", blob, n_history)[0] == 2  # two points held
         assert struct.unpack_from("<i", blob, n_history + 4)[0] in (0, 1)
         struct.pack_into("<i", blob, n_history + 4, 2)

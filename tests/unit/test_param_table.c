@@ -49,6 +49,9 @@ static void thesis_platform(stewart_params *p) {
     p->leg_diameter = 2.0 * r;
     /* no actuator body or rod (the legs are leg_diameter thick), no software position limits */
     for (int i = 0; i < 6; ++i) p->axis_min[i] = -DBL_MAX, p->axis_max[i] = DBL_MAX;
+    /* no drive (zero lead); its gear and efficiencies neutral; no leg motion limits */
+    for (int k = 0; k < 6; ++k)
+        p->gear_ratio[k] = p->screw_efficiency[k] = p->screw_back_efficiency[k] = 1.0;
 }
 
 static void test_defaults_are_the_thesis_platform_bit_for_bit(void) {

@@ -131,6 +131,35 @@ typedef struct stewart_params {
     double axis_min[6];     /* software position limits of the tool pose in the user frame (x, y,
                                z [m], roll, pitch, yaw [rad]); -DBL_MAX / DBL_MAX: none */
     double axis_max[6];
+
+    /* The drive of each leg (docs/drives.md): motor, gear, screw, friction, end stops and
+     * compliance. screw_lead 0 (the default): no drive, the leg is driven by its force. */
+    double screw_lead[STEWART_LEGS];            /* leg travel per screw turn [m] */
+    double gear_ratio[STEWART_LEGS];            /* motor turns per screw turn */
+    double rotor_inertia[STEWART_LEGS];         /* at motor speed [kg m^2] */
+    double screw_inertia[STEWART_LEGS];         /* at screw speed [kg m^2] */
+    double screw_efficiency[STEWART_LEGS];      /* motor drives the load, in (0, 1] */
+    double screw_back_efficiency[STEWART_LEGS]; /* load drives the motor, [0, 1]; 0 self-locking */
+    double torque_constant[STEWART_LEGS];       /* [N m/A] = back-EMF constant [V s/rad] */
+    double winding_resistance[STEWART_LEGS];    /* [ohm] */
+    double winding_inductance[STEWART_LEGS];    /* [H]; 0: no current state */
+    double coulomb_friction[STEWART_LEGS];      /* sliding friction on the leg's axis [N] */
+    double viscous_friction[STEWART_LEGS];      /* [N s/m] */
+    double stribeck_friction[STEWART_LEGS];     /* breakaway force at rest [N] */
+    double stribeck_speed[STEWART_LEGS];        /* [m/s] */
+    double end_stop_stiffness[STEWART_LEGS];    /* beyond the strokes [N/m]; 0: none */
+    double end_stop_damping[STEWART_LEGS];      /* [N s/m] */
+    double leg_stiffness[STEWART_LEGS];         /* axial compliance [N/m]; 0: rigid */
+    double leg_damping[STEWART_LEGS];           /* [N s/m] */
+    double current_max[STEWART_LEGS];           /* drive limits [A], 0: none */
+    double voltage_max[STEWART_LEGS];           /* [V], 0: none */
+    double motor_speed_max[STEWART_LEGS];       /* [rad/s], 0: none */
+
+    /* Leg motion limits a move or a cue stays within (0: no limit of that kind). */
+    double leg_speed_max[STEWART_LEGS];         /* [m/s] */
+    double leg_accel_max[STEWART_LEGS];         /* [m/s^2] */
+    double leg_jerk_max[STEWART_LEGS];          /* [m/s^3] */
+    double leg_force_max[STEWART_LEGS];         /* pushing or pulling [N] */
 } stewart_params;
 
 /* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */

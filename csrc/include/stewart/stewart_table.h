@@ -191,7 +191,55 @@ extern "C" {
       "Software position limit, smallest tool pose in the user frame (-1.8e308: none):")        \
     X(632, axis_max, STEWART_POSE_ELEMENTS, STEWART_POSE_UNIT, "deg", -DBL_MAX, 1, DBL_MAX, 1,  \
       (DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX),                                    \
-      "Software position limit, largest tool pose in the user frame (1.8e308: none):")
+      "Software position limit, largest tool pose in the user frame (1.8e308: none):")          \
+    X(640, screw_lead, 6, "m", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),          \
+      "Leg travel per turn of the leg's screw (0: no drive; the leg is driven by its force)")   \
+    X(646, gear_ratio, 6, "1", "", 0.0, 0, DBL_MAX, 1, (1.0, 1.0, 1.0, 1.0, 1.0, 1.0),          \
+      "Motor turns per screw turn (gearbox or belt)")                                           \
+    X(652, rotor_inertia, 6, "kg.m2", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),   \
+      "Motor rotor's inertia about its axis, with the parts that turn at motor speed")          \
+    X(658, screw_inertia, 6, "kg.m2", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),   \
+      "Screw's inertia about its axis, with the parts that turn at screw speed")                \
+    X(664, screw_efficiency, 6, "1", "", 0.0, 0, 1.0, 1, (1.0, 1.0, 1.0, 1.0, 1.0, 1.0),        \
+      "Screw and gear efficiency when the motor drives the load")                               \
+    X(670, screw_back_efficiency, 6, "1", "", 0.0, 1, 1.0, 1, (1.0, 1.0, 1.0, 1.0, 1.0, 1.0),   \
+      "Screw and gear efficiency when the load drives the motor (0: self-locking)")             \
+    X(676, torque_constant, 6, "N.m/A", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0), \
+      "Motor torque per ampere, equal to the back-EMF constant in V.s/rad")                     \
+    X(682, winding_resistance, 6, "Ohm", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),\
+      "Motor winding resistance, terminal to terminal as the current sees it")                  \
+    X(688, winding_inductance, 6, "H", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),  \
+      "Motor winding inductance (0: the current follows the voltage at once)")                  \
+    X(694, coulomb_friction, 6, "N", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),    \
+      "Leg friction force while sliding, on the leg's axis")                                    \
+    X(700, viscous_friction, 6, "N.s/m", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),\
+      "Leg friction force per leg speed")                                                       \
+    X(706, stribeck_friction, 6, "N", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),   \
+      "Leg breakaway friction force at rest (at most coulomb_friction: no Stribeck peak)")      \
+    X(712, stribeck_speed, 6, "m/s", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),    \
+      "Leg speed over which friction falls from stribeck_friction toward coulomb_friction")     \
+    X(718, end_stop_stiffness, 6, "N/m", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),\
+      "Stiffness of the leg's end stops beyond stroke_min and stroke_max (0: none)")            \
+    X(724, end_stop_damping, 6, "N.s/m", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),\
+      "Damping of the leg's end stops while compressed")                                        \
+    X(730, leg_stiffness, 6, "N/m", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),     \
+      "Axial stiffness of the leg between screw and joints (0: rigid)")                         \
+    X(736, leg_damping, 6, "N.s/m", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),     \
+      "Axial damping of the leg's compliance")                                                  \
+    X(742, current_max, 6, "A", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),         \
+      "Largest motor current of the drive (0: no limit)")                                       \
+    X(748, voltage_max, 6, "V", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),         \
+      "Largest motor terminal voltage of the drive (0: no limit)")                              \
+    X(754, motor_speed_max, 6, "rad/s", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0), \
+      "Largest motor speed (0: no limit)")                                                      \
+    X(760, leg_speed_max, 6, "m/s", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),     \
+      "Largest leg speed (0: no limit)")                                                        \
+    X(766, leg_accel_max, 6, "m/s2", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),    \
+      "Largest leg acceleration (0: no limit)")                                                 \
+    X(772, leg_jerk_max, 6, "m/s3", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),     \
+      "Largest leg jerk (0: no limit)")                                                         \
+    X(778, leg_force_max, 6, "N", "", 0.0, 1, DBL_MAX, 1, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),       \
+      "Largest leg force, pushing or pulling (0: no limit)")
 
 #define STEWART_OPTION_TABLE(X)                                                                  \
     X(200, fidelity, int, "", 0, 1, 2, 1, STEWART_MASSLESS,                                      \

@@ -24,7 +24,7 @@
 #define FMU_OPTION_TABLE_STRUCT stewart_plant_options
 #define FMU_GUID "{b7e2c4a1-3f58-4d9e-8a61-2c0f7d93e5b2}"
 /* Every value reference is below this bound (checked at compile time in variables.c). */
-#define FMU_NVR 638
+#define FMU_NVR 786
 
 #define FMU_MODEL_DESCRIPTION_TEXT                                                             \
     "Stewart platform forward dynamics (the plant): the six actuator forces in, the platform's " \

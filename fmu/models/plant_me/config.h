@@ -23,7 +23,7 @@
 #define FMU_GUID "{1082c231-0cb7-4444-8668-eaa9aa9d2c96}"
 /* Every value reference is below this bound (checked at compile time in variables.c): the
  * plant's. */
-#define FMU_NVR 638
+#define FMU_NVR 786
 
 #define FMU_MODEL_DESCRIPTION_TEXT                                                              \
     "Stewart platform forward dynamics as Model Exchange: the six actuator forces in; the pose " \
