@@ -1,0 +1,51 @@
+// The drive of one leg: motor, gear and screw, friction on the leg's axis (docs/drives.md).
+// Shared by the inverse (sizing: the torque, current and voltage a motion needs) and the plant
+// (the motion a current or voltage gives), so both use one law.
+//
+// Conventions: the motor angle grows as the leg extends, theta = 2 pi N L / lead, and a positive
+// torque extends the leg. The screw's efficiency acts on the axial force the nut transmits (the
+// leg force plus the leg-side friction): forward (tau = F lead / (2 pi N eta)) when the motor
+// drives the load, backward (tau = F lead eta_back / (2 pi N)) when the load drives the motor.
+// Rotor and screw inertia act on the motor's side (the screw's through the gear, / N^2).
+#pragma once
+
+#include "stewart/stewart.h"
+
+namespace stewart {
+
+struct LegDrive {
+    double motor_per_leg = 0;    // motor angle per leg length, 2 pi N / lead [rad/m]; 0: no drive
+    double inertia = 0;          // at the motor: rotor + screw / N^2 [kg m^2]
+    double efficiency = 1;       // motor drives the load
+    double back_efficiency = 1;  // load drives the motor
+    double torque_constant = 0;  // [N m/A] = back-EMF constant [V s/rad]
+    double resistance = 0;       // [ohm]
+    double inductance = 0;       // [H]
+    double coulomb = 0;          // sliding friction [N]
+    double breakaway = 0;        // friction at rest, at least coulomb [N]
+    double stribeck_speed = 0;   // [m/s]
+    double viscous = 0;          // [N s/m]
+};
+
+// Leg k's drive (0-based) from the parameters; motor_per_leg 0 if the leg has none.
+LegDrive leg_drive(const stewart_params &p, int k);
+
+// 1 if any leg has a drive (screw_lead > 0).
+bool has_drives(const stewart_params &p);
+
+// The leg's inertia seen at the leg: inertia (2 pi N / lead)^2 [kg].
+inline double reflected_mass(const LegDrive &d) {
+    return d.inertia * d.motor_per_leg * d.motor_per_leg;
+}
+
+// Friction on the leg's axis at leg speed v, opposing it [N]:
+// (F_c + (F_s - F_c) exp(-(v/v_s)^2)) s(v) + b v, where s(v) = sign(v) (0 at rest) if
+// smoothing_speed is 0, else v / sqrt(v^2 + smoothing_speed^2).
+double friction_force(const LegDrive &d, double v, double smoothing_speed);
+
+// The motor torque that makes the nut push the leg with axial force nut_force (> 0 extends) at
+// motor speed omega, through the screw's efficiency in the direction power flows. At rest the
+// forward efficiency is taken (the larger torque: the one that starts a motion).
+double screw_motor_torque(const LegDrive &d, double nut_force, double omega);
+
+}  // namespace stewart
