@@ -13,6 +13,7 @@
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_table.h"
 #include "util/number_text.hpp"
+#include "util/range.hpp"
 
 namespace {
 
@@ -32,7 +33,8 @@ int usage(FILE *to) {
                  "           or a plant option (the library's table; default in brackets):\n");
     for (int i = 0; i < stewart_plant_option_count(); ++i) {
         const stewart_option_info *o = stewart_plant_option(i);
-        std::fprintf(to, "             %s [%.17g]: %s\n", o->name, o->default_value, o->description);
+        std::fprintf(to, "             %s [%s]: %s\n", o->name, stewart::ExactText(o->default_value).c_str(),
+                     o->description);
     }
     std::fprintf(to,
                  "  IN.csv:  t,F1..F6 [s, N] (F_k > 0 pushes platform and base apart; linear in "

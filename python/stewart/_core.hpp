@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -97,8 +98,9 @@ Options options_by_name(const OptionTable<Options> &table,
 // by the key they were made with (their option values): creating one costs as much as solving
 // tens to hundreds of rows, which a call of a few rows would otherwise pay every time. A solver
 // is reset when taken (these solvers' reset leaves them as created: nothing carries over from
-// an earlier call), so a call's numbers are those of a new solver. Taken and given back with the
-// GIL held (run objects are made and freed with it), so that two threads never get the same one.
+// an earlier call), so a call's numbers are those of a new solver. Taking and giving back hold the
+// pool's lock, so that two threads never get the same one, with or without the GIL (free-threaded
+// Python).
 template <typename Solver, typename Key>
 class SolverPool {
 public:
@@ -109,6 +111,7 @@ public:
 
     // A kept solver made with key, reset, or nullptr (the caller makes one).
     Solver *take(const Key &key) {
+        std::lock_guard<std::mutex> hold(lock_);
         for (auto it = kept_.begin(); it != kept_.end(); ++it)
             if (it->first == key) {
                 Solver *solver = it->second;
@@ -121,6 +124,7 @@ public:
     // Keeps solver (made with key) for a later call, or frees it: the pool is closed (its
     // model is gone) or full (the oldest solver goes).
     void give(const Key &key, Solver *solver) {
+        std::lock_guard<std::mutex> hold(lock_);
         if (closed_) return free_(solver);
         if (kept_.size() == kMaxKept) {
             free_(kept_.front().second);
@@ -130,6 +134,7 @@ public:
     }
     // Frees every kept solver and every one given later (before the model is freed).
     void close() {
+        std::lock_guard<std::mutex> hold(lock_);
         for (auto &k : kept_) free_(k.second);
         kept_.clear();
         closed_ = true;
@@ -141,6 +146,7 @@ private:
     void (*free_)(Solver *);
     void (*reset_)(Solver *);
     bool closed_ = false;
+    std::mutex lock_;
 };
 
 using OptionValues = std::vector<std::pair<std::string, double>>;

@@ -259,7 +259,11 @@ def _fit(nominal, q, s, problem: _Problem, loss: str, max_evaluations: int):
     def jacobian(z):
         return np.vstack([-evaluate(z)[1] @ T, prior_rows])
 
-    from scipy.optimize import least_squares  # only calibration needs scipy
+    try:
+        from scipy.optimize import least_squares  # only calibration needs scipy
+    except ImportError as e:
+        raise ImportError("stewart.calibrate needs scipy: pip install 'stewart[calibration]' "
+                          "(from a checkout: pip install '.[calibration]')") from e
 
     method = "lm" if loss == "linear" else "trf"
     with np.errstate(all="ignore"):

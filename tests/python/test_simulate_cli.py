@@ -190,3 +190,17 @@ def test_stroke_warning_on_stderr(simulate, tmp_path):
     header, data = read(tmp_path / "out.csv")
     # the stroke bit; the collapsed platform's legs also pass their joints' 90 degrees (8)
     assert int(data[-1, header.index("warnings")]) & 1 == 1
+
+
+def test_usage_shows_each_default_in_its_shortest_exact_form(simulate):
+    """The usage names each plant option's default as the shortest text that reads back as the
+    table's double (Python's repr is that text), not 17 digits of binary noise."""
+    import re
+    from stewart import _core
+    usage = simulate("--help")
+    text = usage.stdout + usage.stderr
+    for o in _core.option_table("plant"):
+        shown = re.search(rf"^\s+{o['name']} \[([^\]]+)\]:", text, re.M)
+        assert shown, o["name"]
+        assert float(shown[1]) == o["default"]
+        assert len(shown[1]) <= len(repr(float(o["default"]))), shown[1]
