@@ -302,7 +302,7 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inver
     }
     for (size_t j = 0; j < n; ++j) {
         STEWART_INVERSE_OUTPUT_TABLE(CLI_ROW)
-        stewart_limits_input pose;
+        stewart_limits_input pose{};
         std::memcpy(pose.q, table.poses[j].q, sizeof pose.q);
         // The pose solved, so it is finite: neither call can fail.
         stewart_limits_check(checker, &pose, &limit_rows[j].check);
