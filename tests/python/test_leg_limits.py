@@ -16,7 +16,9 @@ from test_moves import FILES, lengths, load
 
 LEG_CLASSES = ("leg_speed", "leg_accel", "leg_jerk", "leg_force")
 SPEED, ACCEL, JERK, FORCE = (stewart.limits.LIMIT_CLASSES.index(c) for c in LEG_CLASSES)
-#: The differences' step [s]: the motions below change over seconds.
+#: The differences' step [s]: the motions below change over seconds. The jerk's is longer: its
+#: rounding, eps L / h^3, would otherwise reach 1e-6 of the small jerks of the long-legged
+#: Rubin hexapods.
 H = 0.01
 
 
@@ -34,14 +36,15 @@ def motions(platform, count, seed):
 
 def differences(data, q, rates, accels, jerks, h):
     """Fourth-order central differences of the closed-form lengths along the Taylor polynomial
-    of each row: (speed, acceleration, jerk), each (N, 6)."""
+    of each row: (speed, acceleration, jerk), each (N, 6); the jerk's step 5 h."""
     def at(t):
         return lengths(data, q + rates * t + accels * t ** 2 / 2 + jerks * t ** 3 / 6)
     m2, m1, z, p1, p2 = (at(k * h) for k in (-2, -1, 0, 1, 2))
-    m3, p3 = at(-3 * h), at(3 * h)
     speed = (m2 - 8 * m1 + 8 * p1 - p2) / (12 * h)
     accel = (-m2 + 16 * m1 - 30 * z + 16 * p1 - p2) / (12 * h ** 2)
-    jerk = (m3 - 8 * m2 + 13 * m1 - 13 * p1 + 8 * p2 - p3) / (8 * h ** 3)
+    g = 5 * h
+    m3, m2, m1, p1, p2, p3 = (at(k * g) for k in (-3, -2, -1, 1, 2, 3))
+    jerk = (m3 - 8 * m2 + 13 * m1 - 13 * p1 + 8 * p2 - p3) / (8 * g ** 3)
     return speed, accel, jerk
 
 
@@ -107,15 +110,22 @@ def test_a_row_exactly_on_each_leg_limit_is_within_and_one_ulp_beyond_is_met(nam
         return stewart.Platform.from_file(FILES[name], **{f"{parameter}[{leg + 1}]": value},
                                           **extra)
 
+    def exact(parameter, column, guess):
+        return exact_value(lambda e: limited(parameter, e), ((q, rates, accels, jerks), {}),
+                           column, leg, guess)
+
+    # The check's own values, found exactly; they agree with the inverse's (whose batch kernels
+    # may round differently) and with the differences of the closed form.
     on_limit = {
-        # the inverse's own values: the check computes them on the inverse's route, bit for bit
-        ("leg_speed_max", SPEED): abs(legs.length_rate[0, leg]),
-        ("leg_accel_max", ACCEL): abs(legs.length_accel[0, leg]),
-        ("leg_force_max", FORCE): abs(legs.force[0, leg]),
-        ("leg_jerk_max", JERK): exact_value(
-            lambda e: limited("leg_jerk_max", e), ((q, rates, accels, jerks), {}), JERK, leg,
-            abs(jerk[0, leg])),
+        ("leg_speed_max", SPEED): exact("leg_speed_max", SPEED, abs(legs.length_rate[0, leg])),
+        ("leg_accel_max", ACCEL): exact("leg_accel_max", ACCEL, abs(legs.length_accel[0, leg])),
+        ("leg_jerk_max", JERK): exact("leg_jerk_max", JERK, abs(jerk[0, leg])),
+        ("leg_force_max", FORCE): abs(legs.force[0, leg]),  # given: limit - |F| by hand
     }
+    assert on_limit[("leg_speed_max", SPEED)] == pytest.approx(abs(legs.length_rate[0, leg]),
+                                                               rel=1e-14)
+    assert on_limit[("leg_accel_max", ACCEL)] == pytest.approx(abs(legs.length_accel[0, leg]),
+                                                               rel=1e-14)
     for (parameter, column), value in on_limit.items():
         for limit, margin_sign in ((value, 0), (np.nextafter(value, 0), -1)):
             check = limited(parameter, limit).limits(q, rates, accels, jerks, forces=legs.force)
@@ -159,7 +169,7 @@ def test_leg_data_refusals_name_the_cause():
     q = platform.check().home
     with pytest.raises(ValueError, match="accels need rates"):
         platform.limits(q, None, np.zeros(6))
-    with pytest.raises(ValueError, match="rates"):
+    with pytest.raises(ValueError, match="row 0: pose z_dot is nan"):
         platform.limits(q, [0, 0, np.nan, 0, 0, 0])
     with pytest.raises(ValueError, match="force\\[2\\] is inf"):
         platform.limits(q, forces=[0, np.inf, 0, 0, 0, 0])
