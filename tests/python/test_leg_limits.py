@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import stewart
+from stewart.scenes import POSE as POSE_NAMES
 from test_moves import FILES, lengths, load
 
 LEG_CLASSES = ("leg_speed", "leg_accel", "leg_jerk", "leg_force")
@@ -175,3 +176,43 @@ def test_leg_data_refusals_name_the_cause():
         platform.limits(q, forces=[0, np.inf, 0, 0, 0, 0])
     with pytest.raises(ValueError, match="cannot be computed"):
         platform.limits([0, 0, 0, 0, 0, np.pi / 6], forces="massless")
+
+
+def test_stewart_solve_report_is_the_library_check_of_each_row(solve, tmp_path):
+    """stewart-solve --report: per row the first class met and the margin to every class, the
+    leg classes from the rows' own rates and accelerations and the forces it solved; equal to
+    Platform.limits of the same rows, bit for bit. --limits keeps the pose's classes only."""
+    platform = stewart.Platform()
+    home = platform.check().home
+    m = stewart.move(platform, home, home + [0.02, -0.01, 0.01, 0.0, 0.0, 0.05], "line",
+                     leg_speed_max=0.05, leg_accel_max=0.5, sample_time=0.01)
+    src = tmp_path / "move.csv"
+    header = ["t", *POSE_NAMES, *[f"{n}_dot" for n in POSE_NAMES],
+              *[f"{n}_ddot" for n in POSE_NAMES]]
+    np.savetxt(src, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]), delimiter=",",
+               header=",".join(header), comments="", fmt="%.17g")
+    limits = {"leg_speed_max": 0.045, "leg_accel_max": 0.6, "leg_force_max": 224.0}
+    params = [a for name, v in limits.items() for a in ("--param", f"{name}={v}")]
+    out = tmp_path / "out.csv"
+    r = solve("--report", *params, src, out)
+    assert r.returncode == 0, r.stderr
+    rows = np.genfromtxt(out, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    forces = np.column_stack([rows[f"F{k}"] for k in range(1, 7)])
+    limited = stewart.Platform(**limits)
+    check = limited.limits(m.pose, m.pose_rate, m.pose_accel, forces=forces)
+    names = stewart.limits.LIMIT_CLASSES
+    np.testing.assert_array_equal(np.column_stack([rows[f"margin_{n}"] for n in names]),
+                                  check.margin)
+    first = [stewart.limits.class_name(c) for c in check.first]
+    assert list(rows["limit_class"]) == first and list(rows["status"]) == first
+    assert {"leg_speed", "leg_force"} <= set(first)  # the limits were chosen to be met
+    assert np.all(np.isinf(check.margin[:, names.index("leg_jerk")]))  # no jerk in a CSV
+    # The forces solved are the massless inverse's: the same check with them computed.
+    again = limited.limits(m.pose, m.pose_rate, m.pose_accel, forces="massless")
+    np.testing.assert_allclose(again.margin, check.margin, rtol=0, atol=1e-9)
+    # --limits: the pose's classes only, as before the leg classes.
+    r = solve("--limits", *params, src, out)
+    assert r.returncode == 0, r.stderr
+    columns = open(out).readline().strip().split(",")
+    assert [c for c in columns if c.startswith("margin_")] == \
+        [f"margin_{n}" for n in stewart.limits.POSE_CLASSES]

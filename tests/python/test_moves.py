@@ -337,7 +337,7 @@ def test_the_feasibility_report_names_a_geometric_limit_first():
     assert report.names[report.first[1]] == "stroke"
     assert report.names[report.first[0]] == "leg_speed"
     assert report.worst["stroke"][1] == 1.0 and report.worst["stroke"][0] < 0
-    with pytest.raises(ValueError, match="need the pose rates"):
+    with pytest.raises(ValueError, match="leg_speed_max needs the trajectory.s data: give rates="):
         stewart.feasibility(platform, [0, 1, 2], poses, leg_speed_max=0.1)
 
 
