@@ -29,7 +29,7 @@ import numpy as np
 
 from .angles import _angles_of, _rate_matrix, _rate_matrix_dot, rotation_matrix
 from .arrays import vector
-from .limits import LIMIT_CLASSES, class_name, leg_limits_of, with_leg_limits
+from .limits import LIMIT_CLASSES, MARGIN_UNITS, class_name, leg_limits_of, with_leg_limits
 
 KINDS = ("point", "line")
 FRAMES = ("user", "tool")
@@ -407,8 +407,7 @@ def _leg_excess(limited, t, pose, rate, accel, s, with_forces, warn_condition):
             k = int(np.argmax(over[j]))
             return MoveError(f"the planned move exceeds {name} at t = {t[j]:.6g} s "
                              f"(s = {s[j]:.6g}): leg {k + 1} by "
-                             f"{-check.leg_margin[j, column, k]:.6g} "
-                             f"{'N' if name == 'leg_force' else 'm/s' if name == 'leg_speed' else 'm/s^2'}",
+                             f"{-check.leg_margin[j, column, k]:.6g} {MARGIN_UNITS[column]}",
                              name, float(t[j]), float(s[j]))
     return None
 

@@ -462,3 +462,76 @@ def test_the_command_line_takes_waypoints(tmp_path):
                      leg_speed_max=0.05, leg_accel_max=0.5)
     table = np.loadtxt(out, delimiter=",", skiprows=1)
     assert np.array_equal(table, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]))
+
+
+def test_a_move_takes_the_platform_s_leg_limits():
+    """leg_speed_max and leg_accel_max of the platform are the move's unless given: the same
+    move as with the keywords, bit for bit; a keyword overrides; every sample within the
+    platform's limits by differences of the closed-form lengths."""
+    limited = stewart.Platform(leg_speed_max=0.05, leg_accel_max=0.5)
+    home = limited.check().home
+    goal = home + [0.02, -0.01, 0.01, 0.0, 0.0, 0.05]
+    own = stewart.move(limited, home, goal, "line")
+    given = stewart.move(stewart.Platform(), home, goal, "line", leg_speed_max=0.05,
+                         leg_accel_max=0.5)
+    assert np.array_equal(own.pose, given.pose) and np.array_equal(own.pose_accel,
+                                                                   given.pose_accel)
+    slower = stewart.move(limited, home, goal, "line", leg_speed_max=0.03)
+    assert np.array_equal(slower.pose, stewart.move(stewart.Platform(), home, goal, "line",
+                                                    leg_speed_max=0.03, leg_accel_max=0.5).pose)
+    assert slower.duration > own.duration
+    import reference  # the thesis geometry's closed-form length rates and accelerations
+    rates = np.array([reference.length_rates_and_accelerations(q, qd, qdd)
+                      for q, qd, qdd in zip(own.pose, own.pose_rate, own.pose_accel)])
+    assert np.abs(rates[:, 0]).max() <= 0.05 * (1 + 1e-6)
+    assert np.abs(rates[:, 1]).max() <= 0.5 * (1 + 1e-6)
+    with pytest.raises(ValueError, match="leg_accel_max is needed"):
+        stewart.move(stewart.Platform(leg_speed_max=0.05), home, goal)
+    jerky = stewart.Platform(leg_accel_max=0.5, leg_jerk_max=5.0)
+    with pytest.raises(ValueError, match="the platform has leg_jerk_max"):
+        stewart.move(jerky, home, goal)
+    assert stewart.move(jerky, home, goal, leg_jerk_max=0).duration > 0
+
+
+def test_a_move_beyond_the_leg_force_limit_is_refused_naming_it():
+    """A platform whose leg_force_max the planned move's massless forces exceed: MoveError
+    leg_force at the first sample whose force exceeds it, found here from the inverse."""
+    home = np.array([0, 0, 0.5, 0, 0, 0.0])
+    goal = home + [0.02, -0.01, 0.01, 0.0, 0.0, 0.05]
+    free = stewart.move(stewart.Platform(), home, goal, "line", leg_accel_max=0.5,
+                        leg_speed_max=0.05)
+    forces = np.abs(stewart.Platform().inverse(free.pose, free.pose_rate, free.pose_accel).force)
+    limit = 0.5 * (forces.max() + np.abs(stewart.Platform().inverse(home).force).max())
+    with pytest.raises(stewart.MoveError) as e:
+        stewart.move(stewart.Platform(leg_force_max=limit), home, goal, "line",
+                     leg_accel_max=0.5, leg_speed_max=0.05)
+    first = np.flatnonzero((forces > limit * (1 + 1e-9)).any(axis=1))[0]
+    assert e.value.limit_class == "leg_force" and e.value.time == free.t[first]
+    assert "leg_force" in str(e.value) and "lower leg_accel_max" in str(e.value)
+
+
+def test_the_feasibility_report_has_the_jerk_and_force_classes():
+    """forces computed by the massless inverse against leg_force_max by hand; the jerk class
+    from jerks given; a platform limit without its data reported as not checked."""
+    platform = stewart.Platform(leg_jerk_max=2.0)
+    home = platform.check().home
+    m = stewart.move(platform, home, home + [0.01, 0, 0.005, 0, 0, 0.02], leg_accel_max=0.5,
+                     leg_jerk_max=0)
+    forces = platform.inverse(m.pose, m.pose_rate, m.pose_accel).force
+    report = stewart.feasibility(platform, m.t, m.pose, m.pose_rate, m.pose_accel,
+                                 forces="massless", leg_force_max=230.0)
+    FORCE = report.names.index("leg_force") - 1
+    assert np.array_equal(report.margin[:, FORCE], (230.0 - np.abs(forces)).min(axis=1))
+    assert np.array_equal(report.leg[:, FORCE], np.abs(forces).argmax(axis=1) + 1)
+    assert report.unchecked == ("leg_jerk",) and "leg_jerk        not checked" in str(report)
+    met = (np.abs(forces) > 230.0).any(axis=1)
+    assert met.any() and np.array_equal(~report.within, met)
+    jerks = np.zeros_like(m.pose)
+    jerks[:, 2] = 3.0  # a constant heave jerk: about 3 m/s^3 per leg at home, above 2
+    with_jerk = stewart.feasibility(platform, m.t, m.pose, m.pose_rate, m.pose_accel, jerks)
+    JERK = report.names.index("leg_jerk") - 1
+    assert with_jerk.unchecked == () and with_jerk.worst["leg_jerk"][0] < 0
+    assert np.array_equal(with_jerk.margin[:, JERK], platform.limits(
+        m.pose, m.pose_rate, m.pose_accel, jerks).margin[:, JERK])
+    with pytest.raises(ValueError, match="leg_jerk_max needs the trajectory's data"):
+        stewart.feasibility(platform, m.t, m.pose, m.pose_rate, leg_jerk_max=1.0)
