@@ -26,11 +26,6 @@ struct LimitsObject {
     Lease<stewart_limits, std::optional<double>> lease;
 };
 
-// The pose's derivatives and the legs' forces of a check, each optional (rows as q's).
-struct LegData {
-    std::optional<Poses> rates, accels, jerks, forces;
-};
-
 // The check of every row of q (with data's rows for the leg classes) into the arrays (rows as
 // q's); a row the library refuses raises ValueError naming the row and the cause.
 void limits_check(const Model &model, Poses q, std::optional<Poses> rates,
@@ -44,12 +39,12 @@ void limits_check(const Model &model, Poses q, std::optional<Poses> rates,
         leg.shape(0) != n || other_leg.shape(0) != n || condition.shape(0) != n ||
         leg_margin.shape(0) != n)
         fail("output arrays must have as many rows as the poses");
-    const LegData data{rates, accels, jerks, forces};
-    for (const auto *rows : {&data.rates, &data.accels, &data.jerks, &data.forces})
-        if (*rows && (*rows)->shape(0) != n) fail("rates, accels, jerks and forces need a row per pose");
-    if ((data.accels && !data.rates) || (data.jerks && !data.accels))
+    for (const auto *rows : {&rates, &accels, &jerks, &forces})
+        if (*rows && (*rows)->shape(0) != n)
+            fail("rates, accels, jerks and forces need a row per pose");
+    if ((accels && !rates) || (jerks && !accels))
         fail("the pose's derivatives go in order: accels need rates, jerks need accels");
-    const int derivatives = data.jerks ? 3 : data.accels ? 2 : data.rates ? 1 : 0;
+    const int derivatives = jerks ? 3 : accels ? 2 : rates ? 1 : 0;
     LimitsObject object(model, warn_condition);
     size_t bad = n;
     {
@@ -57,13 +52,13 @@ void limits_check(const Model &model, Poses q, std::optional<Poses> rates,
         for (size_t r = 0; r < n && bad == n; ++r) {
             stewart_limits_input in{};
             in.derivatives = derivatives;
-            in.has_force = data.forces ? 1 : 0;
+            in.has_force = forces ? 1 : 0;
             for (int i = 0; i < 6; ++i) {
                 in.q[i] = q(r, i);
-                if (data.rates) in.q_dot[i] = (*data.rates)(r, i);
-                if (data.accels) in.q_ddot[i] = (*data.accels)(r, i);
-                if (data.jerks) in.q_dddot[i] = (*data.jerks)(r, i);
-                if (data.forces) in.force[i] = (*data.forces)(r, i);
+                if (rates) in.q_dot[i] = (*rates)(r, i);
+                if (accels) in.q_ddot[i] = (*accels)(r, i);
+                if (jerks) in.q_dddot[i] = (*jerks)(r, i);
+                if (forces) in.force[i] = (*forces)(r, i);
             }
             stewart_limits_output out;
             if (stewart_limits_check(object.lease.solver, &in, &out) != STEWART_OK) {

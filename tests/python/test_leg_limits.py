@@ -216,3 +216,28 @@ def test_stewart_solve_report_is_the_library_check_of_each_row(solve, tmp_path):
     columns = open(out).readline().strip().split(",")
     assert [c for c in columns if c.startswith("margin_")] == \
         [f"margin_{n}" for n in stewart.limits.POSE_CLASSES]
+
+
+@pytest.mark.parametrize("order, convention", [(1, 0), (0, 1), (1, 1)])
+def test_leg_jerk_in_every_rotation_order_and_frame_convention(order, convention):
+    """With tool and user frames, R = Rx Ry Rz and z-down frames: the jerk against differences
+    of the library's own lengths (Platform.inverse, itself the closed form: test_frames.py,
+    test_rotation_order.py) along the Taylor polynomial; speed and acceleration against the
+    inverse's."""
+    platform = stewart.Platform(rotation_order=order, frame_convention=convention,
+                                tool_frame=[0.02, -0.01, 0.10, 0.05, -0.04, 0.30],
+                                user_frame=[0.01, -0.02, 0.45, 0.02, -0.03, 0.40],
+                                leg_jerk_max=1e3)
+    rng = np.random.default_rng(order + 2 * convention)
+    q = platform.check().home + rng.uniform(-1, 1, (8, 6)) * [0.02, 0.02, 0.02, 0.05, 0.05, 0.1]
+    rates, accels, jerks = (rng.uniform(-1, 1, (8, 6)) * 0.05 for _ in range(3))
+
+    def at(t):
+        return platform.inverse(q + rates * t + accels * t ** 2 / 2 + jerks * t ** 3 / 6,
+                                fidelity="kinematic").length
+    g = 2 * H  # faster motions than above: the truncation (h^4) falls 16-fold per halving
+    m3, m2, m1, p1, p2, p3 = (at(k * g) for k in (-3, -2, -1, 1, 2, 3))
+    jerk = (m3 - 8 * m2 + 13 * m1 - 13 * p1 + 8 * p2 - p3) / (8 * g ** 3)
+    check = platform.limits(q, rates, accels, jerks)
+    np.testing.assert_allclose(check.leg_margin[:, JERK], 1e3 - np.abs(jerk), rtol=0,
+                               atol=1e-6 * np.abs(jerk).max())
