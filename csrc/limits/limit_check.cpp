@@ -564,8 +564,9 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
     const double offset = c.shaped ? 0.0 : c.leg_diameter;
     const int interference = STEWART_LIMIT_INTERFERENCE - 1;
     double closest = HUGE_VAL;
-    double leg_closest[STEWART_LEGS];
+    double leg_closest[STEWART_LEGS], leg_margin_of[STEWART_LEGS];  // per leg: d, its margin
     std::fill(leg_closest, leg_closest + STEWART_LEGS, HUGE_VAL);
+    std::fill(leg_margin_of, leg_margin_of + STEWART_LEGS, HUGE_VAL);
     for (const LegPair &pair : kPairs) {
         const int i = pair.first, j = pair.second;
         if (c.shares_joint[i][j]) continue;
@@ -574,16 +575,15 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
         if (sphere_gap(l, i, j) - reach >= bound) continue;
         const double margin = leg_margin(c, l, i, j);
         const double d = margin + offset;
-        leg_closest[i] = std::min(leg_closest[i], d);
-        leg_closest[j] = std::min(leg_closest[j], d);
+        for (int k : {i, j})
+            if (d < leg_closest[k]) leg_closest[k] = d, leg_margin_of[k] = margin;
         if (d < closest) {
             closest = d;
             keep_smallest(out, interference, margin, i + 1, j + 1);
         }
     }
     if (every_leg)
-        for (int k = 0; k < STEWART_LEGS; ++k)
-            out.leg_margin[interference][k] = leg_closest[k] - offset;
+        std::copy(leg_margin_of, leg_margin_of + STEWART_LEGS, out.leg_margin[interference]);
     const bool has_direction = l.has_direction;
     double inverse_condition = 0.0;
     out.condition = HUGE_VAL;
