@@ -298,6 +298,17 @@ def test_the_command_line_writes_the_move(tmp_path):
     m = stewart.move(stewart.Platform.from_file(FILES["thesis"]), [0, 0, 0.5, 0, 0, 0],
                      [0.01, 0, 0.51, 0, 0, 0.02], "line", leg_speed_max=0.05, leg_accel_max=0.5)
     assert np.array_equal(table, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]))
+    # The platform file's leg limits when the command gives none: the same move.
+    machine = tmp_path / "machine.json"
+    machine.write_text(json.dumps({**json.loads(FILES["thesis"].read_text()),
+                                   "leg_speed_max": 0.05, "leg_accel_max": 0.5}))
+    own = subprocess.run(args[:3] + [str(machine)] + args[4:9] + ["-o", str(tmp_path / "own.csv")],
+                         capture_output=True, text=True, timeout=120)
+    assert own.returncode == 0, own.stderr
+    assert np.array_equal(np.loadtxt(tmp_path / "own.csv", delimiter=",", skiprows=1), table)
+    none = subprocess.run(args[:9] + ["-o", str(tmp_path / "none.csv")], capture_output=True,
+                          text=True, timeout=120)
+    assert none.returncode == 1 and "leg_accel_max is needed" in none.stderr
     bad = subprocess.run(args[:-6] + ["--goal", "0,0,2,0,0,0", "--leg-accel-max", "0.5", "-o",
                                       str(out)], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 1 and "stroke" in bad.stderr
