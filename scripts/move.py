@@ -6,7 +6,7 @@ time and the path parameter (docs/moves.md).
 
 usage: move.py [--platform FILE.json] --start x,y,z,roll,pitch,yaw --goal x,y,z,roll,pitch,yaw
                [--line | --via x,y,z,roll,pitch,yaw ... [--blend F]] [--frame user|tool]
-               --leg-accel-max A [--leg-speed-max V]
+               [--leg-accel-max A] [--leg-speed-max V]
                [--speed-max V] [--angular-speed-max W] [--sample-time DT] -o MOVE.csv
 """
 import argparse
@@ -57,8 +57,11 @@ def main(argv=None) -> int:
                     help="share of the shorter line next to a waypoint its blend takes (0, 0.5]")
     ap.add_argument("--frame", choices=("user", "tool"),
                     help="the goal is a displacement in the user or the tool frame")
-    ap.add_argument("--leg-speed-max", type=limit, help="[m/s], 1 or 6 values")
-    ap.add_argument("--leg-accel-max", type=limit, required=True, help="[m/s^2], 1 or 6 values")
+    ap.add_argument("--leg-speed-max", type=limit,
+                    help="[m/s], 1 or 6 values; default the platform's leg_speed_max")
+    ap.add_argument("--leg-accel-max", type=limit,
+                    help="[m/s^2], 1 or 6 values; default the platform's leg_accel_max (needed "
+                         "from the one or the other)")
     ap.add_argument("--speed-max", type=float, help="tool point speed [m/s]")
     ap.add_argument("--angular-speed-max", type=float, help="angular speed [rad/s]")
     ap.add_argument("--sample-time", type=float, default=0.001, help="[s], default 0.001")

@@ -143,7 +143,7 @@ int main(int argc, char **argv) {
         report(save, "ranges", time_each(poses, 1, 5, [&](const stewart_limits_input &in) {
                    stewart_limits_ranges(limits, &in, &r);
                }));
-        long ends[STEWART_LIMIT_CLASSES + 1] = {0};
+        long ends[STEWART_LIMIT_AXIS + 1] = {0};  // the leg classes never end a range
         for (const stewart_limits_input &in : poses) {
             stewart_limits_ranges(limits, &in, &r);
             for (int a = 0; a < 6; ++a) {
@@ -152,7 +152,7 @@ int main(int argc, char **argv) {
             }
         }
         char line[240] = "range ends by class:";
-        for (int c = 0; c <= STEWART_LIMIT_CLASSES; ++c)
+        for (int c = 0; c <= STEWART_LIMIT_AXIS; ++c)
             std::snprintf(line + std::strlen(line), sizeof line - std::strlen(line), " %s %ld",
                           stewart_limit_class_name(c), ends[c]);
         std::strncat(line, "\n", sizeof line - std::strlen(line) - 1);

@@ -134,7 +134,8 @@ void add_legs_and_margins(const stewart_check_report &r, std::string &out) {
             r.stroke_min[k], r.stroke_max[k], margin, margin < 0 ? "  (outside)" : "");
     }
     add(out, "margins at home (> 0 within, < 0 beyond):\n");
-    for (int c = 1; c <= STEWART_LIMIT_CLASSES; ++c)
+    // The pose's own classes: home is at rest, so the leg classes have nothing to check.
+    for (int c = 1; c <= STEWART_LIMIT_AXIS; ++c)
         add(out, "  %-15s %-12.6g%-5s %s\n", stewart_limit_class_name(c),
             shown_margin(c, r.limits.margin[c - 1]), margin_unit(c),
             legs_of(r.limits.leg[c - 1], r.limits.other_leg[c - 1]).c_str());

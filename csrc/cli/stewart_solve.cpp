@@ -43,8 +43,8 @@ void print_options(FILE *to, const OptionTable &table) {
 int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
-                 "[--platform FILE.json] [--param NAME=VALUE ...] [--static] [--limits] [--ranges] "
-                 "IN.csv OUT.csv\n"
+                 "[--platform FILE.json] [--param NAME=VALUE ...] [--static] [--limits] [--report] "
+                 "[--ranges] IN.csv OUT.csv\n"
                  "  --platform: a platform file (docs/geometry.md: parameter names to values)\n"
                  "  --param: any platform parameter by its FMU name, SI units (e.g. "
                  "payload_mass=50,\n"
@@ -63,7 +63,9 @@ int usage(FILE *to) {
                  "           status (the first limit class the pose fails, none: within every limit)\n"
                  "  --limits: and limit_class (the first failing: none, stroke, base_joint,\n"
                  "           platform_joint, interference, condition) and the margin to each [m, rad,\n"
-                 "           rad, m, 1] (docs/limits.md); --ranges: and each axis' range, the others\n"
+                 "           rad, m, 1] (docs/limits.md); --report: as --limits with the leg classes\n"
+                 "           too (leg_speed, leg_accel from the rows' derivatives, leg_force from F)\n"
+                 "           [m/s, m/s^2, m/s^3, N]; --ranges: and each axis' range, the others\n"
                  "           held: x_min,x_max, ..., yaw_max\n"
                  "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
                  "[--platform FILE.json] [--param NAME=VALUE ...] IN.csv OUT.csv\n"
@@ -104,7 +106,12 @@ struct LimitRow {
     stewart_axis_ranges ranges;
 };
 
-void write_header(FILE *out, bool limits, bool ranges) {
+// The classes --limits writes (the pose's own), and --report (every class, the legs' too).
+int limit_columns(bool limits, bool report) {
+    return report ? STEWART_LIMIT_CLASSES : limits ? STEWART_LIMIT_AXIS : 0;
+}
+
+void write_header(FILE *out, int limits, bool ranges) {
     std::fprintf(out, "t");
     const char *groups[4] = {"L", "L_dot", "L_ddot", "F"};
     for (const char *g : groups)
@@ -112,7 +119,7 @@ void write_header(FILE *out, bool limits, bool ranges) {
     std::fprintf(out, ",condition,iterations,status");
     if (limits) {
         std::fprintf(out, ",limit_class");
-        for (int c = 1; c <= STEWART_LIMIT_CLASSES; ++c)
+        for (int c = 1; c <= limits; ++c)
             std::fprintf(out, ",margin_%s", stewart_limit_class_name(c));
     }
     if (ranges)
@@ -121,7 +128,7 @@ void write_header(FILE *out, bool limits, bool ranges) {
 }
 
 void write_row(FILE *out, double t, const stewart_inverse_output &o,
-               const LimitRow &row, bool limits, bool ranges) {
+               const LimitRow &row, int limits, bool ranges) {
     const stewart_limits_output &check = row.check;
     std::fprintf(out, "%.17g", t);
     const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
@@ -132,7 +139,7 @@ void write_row(FILE *out, double t, const stewart_inverse_output &o,
                  stewart_limit_class_name(check.first));
     if (limits) {
         std::fprintf(out, ",%s", stewart_limit_class_name(check.first));
-        for (double m : check.margin) std::fprintf(out, ",%.17g", m);
+        for (int c = 0; c < limits; ++c) std::fprintf(out, ",%.17g", check.margin[c]);
     }
     if (ranges)
         for (int a = 0; a < 6; ++a)
@@ -148,7 +155,7 @@ struct Request {
     stewart_params params;
     const char *paths[2] = {nullptr, nullptr};
     bool forward = false, cold = false, check = false, at_rest = false;
-    bool limits = false, ranges = false;
+    bool limits = false, report = false, ranges = false;
     double guess[6];
     const double *guess_given = nullptr;
 };
@@ -224,6 +231,7 @@ int parse(int argc, char **argv, Request &r) {
              return stewart::read_platform_file("stewart-solve", v, r.params) ? 0 : 2;
          }},
         {"--limits", nullptr, [&](const char *) { return r.limits = true, 0; }},
+        {"--report", nullptr, [&](const char *) { return r.report = true, 0; }},
         {"--ranges", nullptr, [&](const char *) { return r.ranges = true, 0; }},
         {"--fidelity", "kinematic|massless|full",
          [&](const char *v) {
@@ -302,10 +310,22 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inver
     }
     for (size_t j = 0; j < n; ++j) {
         STEWART_INVERSE_OUTPUT_TABLE(CLI_ROW)
-        stewart_limits_input pose;
+        stewart_limits_input pose{};
         std::memcpy(pose.q, table.poses[j].q, sizeof pose.q);
-        // The pose solved, so it is finite: neither call can fail.
-        stewart_limits_check(checker, &pose, &limit_rows[j].check);
+        if (r.report) {  // the leg classes: the derivatives the row was solved with, its forces
+            pose.derivatives = 2;
+            std::memcpy(pose.q_dot, table.poses[j].q_dot, sizeof pose.q_dot);
+            std::memcpy(pose.q_ddot, table.poses[j].q_ddot, sizeof pose.q_ddot);
+            pose.has_force = r.options.fidelity != STEWART_KINEMATIC;
+            std::memcpy(pose.force, outputs[j].force, sizeof pose.force);
+        }
+        // The pose solved, so it is finite: the ranges cannot fail, the check only on leg rates
+        // too large to compute.
+        if (stewart_limits_check(checker, &pose, &limit_rows[j].check) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s\n", j + 1, table.t[j],
+                         stewart_limits_message(checker));
+            return false;
+        }
         if (r.ranges) stewart_limits_ranges(checker, &pose, &limit_rows[j].ranges);
     }
 #undef CLI_COLUMN
@@ -323,9 +343,10 @@ int write_table(const Request &r, const stewart::PoseTable &table,
         std::fprintf(stderr, "stewart-solve: cannot write %s\n", r.paths[1]);
         return 1;
     }
-    write_header(out, r.limits, r.ranges);
+    const int limits = limit_columns(r.limits, r.report);
+    write_header(out, limits, r.ranges);
     for (size_t j = 0; j < table.t.size(); ++j)
-        write_row(out, table.t[j], outputs[j], limit_rows[j], r.limits, r.ranges);
+        write_row(out, table.t[j], outputs[j], limit_rows[j], limits, r.ranges);
     if (std::fclose(out) != 0) {
         std::fprintf(stderr, "stewart-solve: error writing %s\n", r.paths[1]);
         return 1;

@@ -72,17 +72,23 @@ void keep_smallest(stewart_limits_output &out, int index, double margin, int leg
 
 // The joint-angle class's margin from the cosines of the legs' angles to their neutral axes
 // (unit vectors: the angle grows as the cosine falls). With one limit for all legs only the
-// largest angle needs its arc; the rotation turns platform-frame axes into the world.
+// largest angle needs its arc, unless every leg's margin is wanted (every_leg); the rotation
+// turns platform-frame axes into the world.
 void joint_margins(const double limit[STEWART_LEGS], bool uniform, const Matrix36 &axis,
                    const Matrix36 &neutral, const Eigen::Matrix3d *rotation,
-                   const double cosine[STEWART_LEGS], stewart_limits_output &out, int index) {
+                   const double cosine[STEWART_LEGS], stewart_limits_output &out, int index,
+                   bool every_leg) {
     auto margin = [&](int k) {
         const Eigen::Vector3d u =
             rotation ? Eigen::Vector3d(*rotation * neutral.col(k)) : Eigen::Vector3d(neutral.col(k));
         return limit[k] - angle_between(axis.col(k), u);
     };
-    if (!uniform) {
-        for (int k = 0; k < STEWART_LEGS; ++k) keep_smallest(out, index, margin(k), k + 1, 0);
+    if (!uniform || every_leg) {
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            const double m = margin(k);
+            if (every_leg) out.leg_margin[index][k] = m;
+            keep_smallest(out, index, m, k + 1, 0);
+        }
         return;
     }
     const int widest = static_cast<int>(std::min_element(cosine, cosine + STEWART_LEGS) - cosine);
@@ -163,6 +169,12 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
         c.axis_max[i] = p.axis_max[i];
     }
     c.warn_condition = warn_condition;
+    // The leg classes' limits, 0 (none) as +inf: a margin limit - |value| is then +inf.
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const double given[] = {p.leg_speed_max[k], p.leg_accel_max[k], p.leg_jerk_max[k],
+                                p.leg_force_max[k]};
+        for (int i = 0; i < 4; ++i) c.leg_limit[i][k] = given[i] > 0.0 ? given[i] : HUGE_VAL;
+    }
     return c;
 }
 
@@ -319,9 +331,10 @@ void check_limits(const LimitConstants &c, const double q[6], stewart_limits_out
     double platform[6];
     if (c.frames.identity) std::copy(q, q + 6, platform);
     else platform_pose(c.frames, q, nullptr, platform, nullptr);  // cannot fail without rates
-    check_platform_limits(c, platform, out, with_condition, inverse_norm);
+    check_platform_limits(c, platform, out, with_condition, inverse_norm, true);
     const int axis = STEWART_LIMIT_AXIS - 1;
     out.margin[axis] = axis_limit_margin(c, q, &out.leg[axis]);
+    std::fill(out.leg_margin[axis], out.leg_margin[axis] + STEWART_LEGS, out.margin[axis]);
     classify_margins(c, out);
 }
 
@@ -521,42 +534,56 @@ int platform_limit_failures(const LimitConstants &c, const double q[6]) {
 }
 
 void check_platform_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
-                           bool with_condition, double *inverse_norm) {
+                           bool with_condition, double *inverse_norm, bool every_leg) {
     const PlatformGeometry &g = c.geometry;
     for (int i = 0; i < STEWART_LIMIT_CLASSES; ++i) {
         out.margin[i] = HUGE_VAL;
         out.leg[i] = out.other_leg[i] = 0;
+        if (every_leg) std::fill(out.leg_margin[i], out.leg_margin[i] + STEWART_LEGS, HUGE_VAL);
     }
     PlatformLegs l;
     platform_legs(c, q, l);
     const LegKinematics &legs = l.legs;
-    for (int k = 0; k < STEWART_LEGS; ++k)
-        keep_smallest(out, STEWART_LIMIT_STROKE - 1,
-                      std::min(legs.length[k] - c.stroke_min[k], c.stroke_max[k] - legs.length[k]),
-                      k + 1, 0);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const double m =
+            std::min(legs.length[k] - c.stroke_min[k], c.stroke_max[k] - legs.length[k]);
+        if (every_leg) out.leg_margin[STEWART_LIMIT_STROKE - 1][k] = m;
+        keep_smallest(out, STEWART_LIMIT_STROKE - 1, m, k + 1, 0);
+    }
     joint_margins(c.base_joint_limit, c.uniform_base_limit, legs.axis, c.base_neutral, nullptr,
-                  l.base_cos, out, STEWART_LIMIT_BASE_JOINT - 1);
+                  l.base_cos, out, STEWART_LIMIT_BASE_JOINT - 1, every_leg);
     joint_margins(c.platform_joint_limit, c.uniform_platform_limit, legs.axis,
-                  c.platform_neutral, &l.R, l.platform_cos, out, STEWART_LIMIT_PLATFORM_JOINT - 1);
+                  c.platform_neutral, &l.R, l.platform_cos, out, STEWART_LIMIT_PLATFORM_JOINT - 1,
+                  every_leg);
     // Every pair: legs that are not neighbours meet too when the platform turns far enough.
     // Neighbours first, then a pair only if the spheres around the two legs can be closer than
-    // the closest pair so far.
+    // the closest pair so far (every_leg: than the closest pair so far of either leg).
     // Unshaped legs compare distances (margin + leg_diameter), shaped ones margins, each with
     // the sphere gap less the same reach.
     const double reach = c.shaped ? c.interference_reach : 0.0;
     const double offset = c.shaped ? 0.0 : c.leg_diameter;
+    const int interference = STEWART_LIMIT_INTERFERENCE - 1;
     double closest = HUGE_VAL;
+    double leg_closest[STEWART_LEGS], leg_margin_of[STEWART_LEGS];  // per leg: d, its margin
+    std::fill(leg_closest, leg_closest + STEWART_LEGS, HUGE_VAL);
+    std::fill(leg_margin_of, leg_margin_of + STEWART_LEGS, HUGE_VAL);
     for (const LegPair &pair : kPairs) {
         const int i = pair.first, j = pair.second;
         if (c.shares_joint[i][j]) continue;
-        if (sphere_gap(l, i, j) - reach >= closest) continue;
+        const double bound =
+            every_leg ? std::max(leg_closest[i], leg_closest[j]) : closest;
+        if (sphere_gap(l, i, j) - reach >= bound) continue;
         const double margin = leg_margin(c, l, i, j);
         const double d = margin + offset;
+        for (int k : {i, j})
+            if (d < leg_closest[k]) leg_closest[k] = d, leg_margin_of[k] = margin;
         if (d < closest) {
             closest = d;
-            keep_smallest(out, STEWART_LIMIT_INTERFERENCE - 1, margin, i + 1, j + 1);
+            keep_smallest(out, interference, margin, i + 1, j + 1);
         }
     }
+    if (every_leg)
+        std::copy(leg_margin_of, leg_margin_of + STEWART_LEGS, out.leg_margin[interference]);
     const bool has_direction = l.has_direction;
     double inverse_condition = 0.0;
     out.condition = HUGE_VAL;
@@ -573,7 +600,11 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
                 *inverse_norm = J.inverse_transposed.cwiseAbs().rowwise().sum().maxCoeff();
         }
     }
-    out.margin[STEWART_LIMIT_CONDITION - 1] = inverse_condition - 1.0 / c.warn_condition;
+    const int condition = STEWART_LIMIT_CONDITION - 1;
+    out.margin[condition] = inverse_condition - 1.0 / c.warn_condition;
+    if (every_leg)
+        std::fill(out.leg_margin[condition], out.leg_margin[condition] + STEWART_LEGS,
+                  out.margin[condition]);
     classify_margins(c, out);
 }
 

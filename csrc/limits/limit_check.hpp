@@ -34,6 +34,9 @@ struct LimitConstants {
     // Software position limits of the tool pose in the user frame (-DBL_MAX / DBL_MAX: none).
     double axis_min[6], axis_max[6];
     double warn_condition;
+    // The leg classes' limits (speed, acceleration, jerk, force; class STEWART_LIMIT_LEG_SPEED
+    // + i), per leg, +inf where the parameter is 0 (none).
+    double leg_limit[4][STEWART_LEGS];
     double shortest_stroke_min;      // min_k stroke_min[k]: the shortest leg within the stroke
     double longest_arm;              // max_k |b_k - tool origin|: the fastest platform joint per
                                      // rad of a tool angle [m]
@@ -49,12 +52,14 @@ struct LimitConstants {
 LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &geometry,
                                double warn_condition);
 
-// The margins of every class at the platform's pose q (base frame; finite), as
-// stewart_limits_output; never NaN. Without the condition (with_condition false: its margin
-// +inf, condition 0) for searches that know it is within its limit; else ||J^-T||_inf into
-// *inverse_norm if given (+inf if singular).
+// The margins of every geometric class at the platform's pose q (base frame; finite), as
+// stewart_limits_output (the leg classes' +inf); never NaN. Without the condition
+// (with_condition false: its margin +inf, condition 0) for searches that know it is within its
+// limit; else ||J^-T||_inf into *inverse_norm if given (+inf if singular). every_leg: each leg's
+// margins into out.leg_margin too (else it is not written; the searches need the smallest).
 void check_platform_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
-                           bool with_condition = true, double *inverse_norm = nullptr);
+                           bool with_condition = true, double *inverse_norm = nullptr,
+                           bool every_leg = false);
 // The failing bits (stewart_limits_output.failed) of the joint classes and of interference at
 // the platform's pose q: those of check_platform_limits(c, q, out, false), found without the
 // margins (the plant's warnings); interference's may differ at rounding distance from the
@@ -87,9 +92,16 @@ bool clearance_spares(const LimitConstants &c, const LimitClearance &clearance,
 // limit_check.cpp). Updates clearance where it runs the check.
 int platform_limit_failures(const LimitConstants &c, const Eigen::Vector3d &position,
                             const Eigen::Matrix3d &rotation, LimitClearance &clearance);
-// The same at the tool frame's pose q in the user frame (the API's poses).
+// The same at the tool frame's pose q in the user frame (the API's poses), with every leg's
+// margins (out.leg_margin) and the axis class.
 void check_limits(const LimitConstants &c, const double q[6], stewart_limits_output &out,
                   bool with_condition = true, double *inverse_norm = nullptr);
+
+// The leg classes (speed, acceleration, jerk, force) of the input's derivatives and forces
+// into out (margin, leg, leg_margin; +inf where not given or no limit), then first and failed
+// again. Errors as stewart_limits_check's for the derivatives (leg_limits.cpp).
+stewart_status check_leg_limits(const LimitConstants &c, const stewart_limits_input &in,
+                                 stewart_limits_output &out, char *msg, size_t size);
 
 // `first` (the failing class of lowest number, or none) and `failed` (a bit per failing class)
 // from the margins: every class fails below 0, interference also at 0 (legs that touch) when it

@@ -26,23 +26,40 @@ struct LimitsObject {
     Lease<stewart_limits, std::optional<double>> lease;
 };
 
-// The check of every row of q into the arrays (rows as q's); a non-finite row raises ValueError
-// naming the row and the component.
-void limits_check(const Model &model, Poses q, std::optional<double> warn_condition, Column<int> first,
-                  Column<int> failed, Rows<double, STEWART_LIMIT_CLASSES> margin,
+// The check of every row of q (with data's rows for the leg classes) into the arrays (rows as
+// q's); a row the library refuses raises ValueError naming the row and the cause.
+void limits_check(const Model &model, Poses q, std::optional<Poses> rates,
+                  std::optional<Poses> accels, std::optional<Poses> jerks,
+                  std::optional<Poses> forces, std::optional<double> warn_condition,
+                  Column<int> first, Column<int> failed, Rows<double, STEWART_LIMIT_CLASSES> margin,
                   Rows<int, STEWART_LIMIT_CLASSES> leg, Rows<int, STEWART_LIMIT_CLASSES> other_leg,
-                  Column<double> condition) {
+                  Column<double> condition, Rows<double, STEWART_LIMIT_CLASSES * 6> leg_margin) {
     const size_t n = q.shape(0);
     if (first.shape(0) != n || failed.shape(0) != n || margin.shape(0) != n ||
-        leg.shape(0) != n || other_leg.shape(0) != n || condition.shape(0) != n)
+        leg.shape(0) != n || other_leg.shape(0) != n || condition.shape(0) != n ||
+        leg_margin.shape(0) != n)
         fail("output arrays must have as many rows as the poses");
+    for (const auto *rows : {&rates, &accels, &jerks, &forces})
+        if (*rows && (*rows)->shape(0) != n)
+            fail("rates, accels, jerks and forces need a row per pose");
+    if ((accels && !rates) || (jerks && !accels))
+        fail("the pose's derivatives go in order: accels need rates, jerks need accels");
+    const int derivatives = jerks ? 3 : accels ? 2 : rates ? 1 : 0;
     LimitsObject object(model, warn_condition);
     size_t bad = n;
     {
         nb::gil_scoped_release release;
         for (size_t r = 0; r < n && bad == n; ++r) {
-            stewart_limits_input in;
-            for (int i = 0; i < 6; ++i) in.q[i] = q(r, i);
+            stewart_limits_input in{};
+            in.derivatives = derivatives;
+            in.has_force = forces ? 1 : 0;
+            for (int i = 0; i < 6; ++i) {
+                in.q[i] = q(r, i);
+                if (rates) in.q_dot[i] = (*rates)(r, i);
+                if (accels) in.q_ddot[i] = (*accels)(r, i);
+                if (jerks) in.q_dddot[i] = (*jerks)(r, i);
+                if (forces) in.force[i] = (*forces)(r, i);
+            }
             stewart_limits_output out;
             if (stewart_limits_check(object.lease.solver, &in, &out) != STEWART_OK) {
                 bad = r;
@@ -55,6 +72,7 @@ void limits_check(const Model &model, Poses q, std::optional<double> warn_condit
                 margin(r, c) = out.margin[c];
                 leg(r, c) = out.leg[c];
                 other_leg(r, c) = out.other_leg[c];
+                for (int k = 0; k < 6; ++k) leg_margin(r, 6 * c + k) = out.leg_margin[c][k];
             }
         }
     }
@@ -74,7 +92,7 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
     {
         nb::gil_scoped_release release;
         for (size_t r = 0; r < n; ++r) {
-            stewart_limits_input in;
+            stewart_limits_input in{};
             for (int i = 0; i < 6; ++i) in.q[i] = q(r, i);
             stewart_axis_ranges out;
             if (stewart_limits_ranges(object.lease.solver, &in, &out) != STEWART_OK) {
@@ -126,9 +144,10 @@ nb::dict check_home(const Model &model, std::optional<double> warn_condition) {
 }  // namespace
 
 void bind_limits(nb::module_ &m) {
-    m.def("limits_check", &limits_check, nb::arg("model"), nb::arg("q"),
+    m.def("limits_check", &limits_check, nb::arg("model"), nb::arg("q"), nb::arg("rates").none(),
+          nb::arg("accels").none(), nb::arg("jerks").none(), nb::arg("forces").none(),
           nb::arg("warn_condition").none(), nb::arg("first"), nb::arg("failed"), nb::arg("margin"),
-          nb::arg("leg"), nb::arg("other_leg"), nb::arg("condition"));
+          nb::arg("leg"), nb::arg("other_leg"), nb::arg("condition"), nb::arg("leg_margin"));
     m.def("limits_ranges", &limits_ranges, nb::arg("model"), nb::arg("q"),
           nb::arg("warn_condition").none(), nb::arg("ends"), nb::arg("limit"), nb::arg("leg"),
           nb::arg("other_leg"));

@@ -29,7 +29,7 @@ import numpy as np
 
 from .angles import _angles_of, _rate_matrix, _rate_matrix_dot, rotation_matrix
 from .arrays import vector
-from .limits import class_name
+from .limits import LIMIT_CLASSES, MARGIN_UNITS, class_name, leg_limits_of, with_leg_limits
 
 KINDS = ("point", "line")
 FRAMES = ("user", "tool")
@@ -46,8 +46,9 @@ _X_CAP = 1e30
 
 class MoveError(ValueError):
     """A move that cannot be made: limit_class names the limit ("stroke", "base_joint",
-    "platform_joint", "interference", "condition", "unreachable", "leg_speed", "leg_accel"), and
-    time [s] and s (the path parameter in [0, 1]) say where, when known."""
+    "platform_joint", "interference", "condition", "axis", "unreachable", "leg_speed",
+    "leg_accel", "leg_force"), and time [s] and s (the path parameter in [0, 1]) say where, when
+    known."""
 
     def __init__(self, message: str, limit_class: str, time: Optional[float] = None,
                  s: Optional[float] = None) -> None:
@@ -390,20 +391,24 @@ def _first_limit(platform, poses, s, times, warn_condition):
                         "the other kind", name, float(times[j]), float(s[j]))
 
 
-def _leg_excess(platform, t, pose, rate, accel, speed, accel_max, s):
-    """MoveError naming the first sample whose leg speed or acceleration exceeds its limit by
-    more than CHECK_SLACK, or None."""
-    legs = platform.inverse(pose, rate, accel, fidelity="kinematic")
-    for name, values, limit in (("leg_speed", legs.length_rate, speed),
-                                ("leg_accel", legs.length_accel, accel_max)):
-        if limit is None:
-            continue
-        over = np.abs(values) > limit * (1 + CHECK_SLACK)
+def _leg_excess(limited, t, pose, rate, accel, s, with_forces, warn_condition):
+    """MoveError naming the first sample whose leg speed, acceleration (or, with_forces, the
+    massless inverse's force) exceeds the limited platform's leg limit by more than
+    CHECK_SLACK (relative), from the library's leg classes (Platform.limits); or None."""
+    check = limited.limits(pose, rate, accel, forces="massless" if with_forces else None,
+                           warn_condition=warn_condition)
+    bounds = leg_limits_of(limited)
+    for name in ("leg_speed", "leg_accel", "leg_force"):
+        column = LIMIT_CLASSES.index(name)
+        over = check.leg_margin[:, column] < -CHECK_SLACK * bounds[f"{name}_max"]
         rows = np.flatnonzero(over.any(axis=1))
         if rows.size:
             j = rows[0]
+            k = int(np.argmax(over[j]))
             return MoveError(f"the planned move exceeds {name} at t = {t[j]:.6g} s "
-                             f"(s = {s[j]:.6g})", name, float(t[j]), float(s[j]))
+                             f"(s = {s[j]:.6g}): leg {k + 1} by "
+                             f"{-check.leg_margin[j, column, k]:.6g} {MARGIN_UNITS[column]}",
+                             name, float(t[j]), float(s[j]))
     return None
 
 
@@ -446,11 +451,12 @@ def _path(kind, q0, q1, via, blend, frame, order):
     return _BlendedPath(np.vstack([q0, points, q1]), float(blend), order)
 
 
-def _plan(platform, path, q1, limits, sample_time, warn_condition, kind):
+def _plan(platform, limited, path, q1, limits, sample_time, warn_condition, kind):
     """The move along path: the time law, its samples, and the checks of every sample against
-    the geometric and the leg limits (the plan made again on a finer grid with a wider margin
-    if a leg limit is exceeded)."""
-    speed, accel = limits[0], limits[1]
+    the geometric and the leg limits (the limited platform's leg classes; the plan made again
+    on a finer grid with a wider margin if a leg speed or acceleration is exceeded; a leg force
+    the planner does not plan for is refused at once)."""
+    with_forces = bool(np.any(leg_limits_of(limited)["leg_force_max"] > 0))
     for attempt in range(3):
         nodes, v, u, t_nodes, grid = _time_law(path, platform, GRID_SEGMENTS * 4 ** attempt,
                                                PLAN_MARGIN * 10 ** attempt, limits)
@@ -461,9 +467,13 @@ def _plan(platform, path, q1, limits, sample_time, warn_condition, kind):
         acc = dq * s_accel[:, None] + ddq * (s_rate ** 2)[:, None]
         _first_limit(platform, np.vstack([q, grid]), np.concatenate([s, nodes]),
                      np.concatenate([t, t_nodes * scale]), warn_condition)
-        excess = _leg_excess(platform, t, q, rate, acc, speed, accel, s)
+        excess = _leg_excess(limited, t, q, rate, acc, s, with_forces, warn_condition)
         if excess is None:
             return Move(t, q, rate, acc, s, s_rate, s_accel, float(t[-1]), kind)
+        if excess.limit_class == "leg_force":
+            raise MoveError(f"{excess}: the move is planned on the legs' speed and acceleration "
+                            "only; lower leg_accel_max (or leg_speed_max) until the forces "
+                            "fit", "leg_force", excess.time, excess.s)
     raise excess
 
 
@@ -482,26 +492,39 @@ def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_
     axes, the angles a rotation about the tool point in that frame's axes). via: (K, 6)
     waypoints between start and goal (kind "point"), passed without stopping on quadratic
     blends that begin `blend` (0 to 0.5) of the shorter adjacent line before each waypoint.
-    leg_speed_max [m/s] and leg_accel_max [m/s^2]: scalars or 6 values per leg (0: no limit of
-    that leg); leg_accel_max is required. speed_max [m/s]: the tool point's speed;
-    angular_speed_max [rad/s]: the platform's angular speed. Every sample and the planning grid
-    are checked with Platform.limits (warn_condition as there): MoveError names the class, time
-    and s of the first limit the path crosses; and the sampled leg speeds and accelerations are
-    checked against the limits. leg_jerk_max is not enforced (the time-optimal law switches the
-    acceleration instantly): a value other than None or 0 raises ValueError."""
+    leg_speed_max [m/s] and leg_accel_max [m/s^2]: the platform's parameters of those names
+    unless given here (scalars or 6 values per leg; 0: no limit of that leg); an acceleration
+    limit is required. speed_max [m/s]: the tool point's speed; angular_speed_max [rad/s]: the
+    platform's angular speed. Every sample and the planning grid are checked with
+    Platform.limits (warn_condition as there): MoveError names the class, time and s of the
+    first limit the path crosses; and every sample's leg speed and acceleration (and, when the
+    platform has leg_force_max, the massless inverse's forces) are checked with the library's
+    leg classes. A leg jerk limit is not kept (the time-optimal law switches the acceleration
+    instantly): leg_jerk_max other than None or 0, or a platform with leg_jerk_max, raises
+    ValueError (leg_jerk_max=0 plans without the platform's)."""
     if kind not in KINDS:
         raise ValueError(f"kind = {kind!r} must be 'point' or 'line'")
+    own = leg_limits_of(platform)
+    if leg_jerk_max is None and np.any(own["leg_jerk_max"] > 0):
+        raise ValueError("the platform has leg_jerk_max, which this planner cannot keep: the "
+                         "time-optimal law is bang-bang in the path acceleration, so the leg jerk "
+                         "is unbounded where it switches; pass leg_jerk_max=0 to plan without it")
     if leg_jerk_max not in (None, 0):
         raise ValueError("leg_jerk_max is not enforced: the time-optimal law is bang-bang in "
                          "the path acceleration, so the leg jerk is unbounded where it switches; "
                          "leave leg_jerk_max None")
     if not (isinstance(sample_time, (int, float)) and 0 < sample_time < math.inf):
         raise ValueError(f"sample_time = {sample_time!r} must be a finite number > 0 [s]")
+    leg_speed_max = own["leg_speed_max"] if leg_speed_max is None else leg_speed_max
+    leg_accel_max = own["leg_accel_max"] if leg_accel_max is None else leg_accel_max
     speed = _limit_vector("leg_speed_max", leg_speed_max)
     accel = _limit_vector("leg_accel_max", leg_accel_max)
     if accel is None or not np.all(np.isfinite(accel)):
-        raise ValueError("leg_accel_max is needed for every leg: without it a move from rest "
-                         "would reach its speed in no time")
+        raise ValueError("leg_accel_max is needed for every leg (the platform's parameter or "
+                         "the keyword): without it a move from rest would reach its speed in no "
+                         "time")
+    limited = with_leg_limits(platform, leg_speed_max=leg_speed_max, leg_accel_max=leg_accel_max,
+                              leg_jerk_max=0)
     limits = (speed, accel, _speed_bound("speed_max", speed_max),
               _speed_bound("angular_speed_max", angular_speed_max))
     order = _rotation_order(platform)
@@ -518,4 +541,4 @@ def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_
         zero = np.zeros((1, 6))
         return Move(np.zeros(1), q0[None].copy(), zero, zero.copy(), np.zeros(1), np.zeros(1),
                     np.zeros(1), 0.0, kind)
-    return _plan(platform, path, q1, limits, sample_time, warn_condition, kind)
+    return _plan(platform, limited, path, q1, limits, sample_time, warn_condition, kind)

@@ -149,15 +149,36 @@ class Platform:
                                 singular_condition=singular_condition)
         return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages, cold)
 
-    def limits(self, poses, *, warn_condition: Optional[float] = None) -> LimitCheck:
+    def limits(self, poses, rates=None, accels=None, jerks=None, *, forces=None,
+               warn_condition: Optional[float] = None) -> LimitCheck:
         """The limits a controller checks, for N poses ((N, 6) or one row of 6): per pose the
         first failing class (stroke, base joint angle, platform joint angle, leg interference,
         condition number above warn_condition; None: the inverse option's default, 1e3; software
-        position limits axis_min, axis_max) and the margin to every class [m, rad, rad, m, 1, m
-        or rad] with the leg (axis) where it is (docs/limits.md). A
-        non-finite pose raises ValueError naming its row and component."""
+        position limits axis_min, axis_max; then the legs' speed, acceleration, jerk and force
+        against leg_speed_max, leg_accel_max, leg_jerk_max, leg_force_max) and the margin to
+        every class [m, rad, rad, m, 1, m or rad, m/s, m/s^2, m/s^3, N] with the leg (axis)
+        where it is, and each leg's own margins (docs/limits.md). The leg classes need data:
+        rates, accels, jerks are the poses' first to third time derivatives ((N, 6) each;
+        accels need rates, jerks accels); forces the legs' forces (N, 6) [N], or a fidelity
+        ("massless", "full") to compute them with Platform.inverse from the poses, rates and
+        accels (zero where not given). A class without its data or its limit has margin +inf.
+        A non-finite value raises ValueError naming its row and component."""
         q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
-        return check_limits(self._model, q, _warn_condition(warn_condition))
+        n = q.shape[0]
+        derivatives = [None if v is None else rows6(name, v, n, "poses", POSE_LAYOUT)
+                       for name, v in (("rates", rates), ("accels", accels), ("jerks", jerks))]
+        if isinstance(forces, (str, Fidelity, int)) and not isinstance(forces, bool):
+            legs = self.inverse(q, derivatives[0], derivatives[1], forces,
+                                warn_condition=warn_condition)
+            bad = np.flatnonzero(~legs.ok)
+            if bad.size:
+                raise ValueError(f"poses row {bad[0]}: the forces cannot be computed: "
+                                 f"{legs.messages.get(bad[0], legs.status_name(bad[0]))}")
+            forces = legs.force
+        elif forces is not None:
+            forces = rows6("forces", forces, n, "poses", LEG_LAYOUT)
+        return check_limits(self._model, q, _warn_condition(warn_condition), *derivatives,
+                            forces)
 
     def check(self, *, warn_condition: Optional[float] = None) -> HomeCheck:
         """The check to run first on a new platform file: the home pose's leg lengths against

@@ -218,9 +218,9 @@ def home_pose(platform: Platform) -> np.ndarray:
 
 def _leg_margins(platform: Platform, values: dict, q: np.ndarray, lengths: np.ndarray,
                  forces: Optional[np.ndarray], force_limit, warn_condition):
-    """Per frame and leg the margin to each class of LEG_CLASSES (NaN where the class does not
-    name the leg: the library's check gives each class's smallest margin and its leg), the scale
-    each margin is measured against, and the pose-level check (first class, condition)."""
+    """Per frame and leg the margin to each class of LEG_CLASSES (each leg's own, from the
+    library's check; NaN for interference when leg_diameter is 0: no check), the scale each
+    margin is measured against, and the pose-level check (first class, condition)."""
     n = len(q)
     check = platform.limits(q, warn_condition=warn_condition)
     margin = np.full((n, 6, len(LEG_CLASSES)), np.nan)
@@ -228,11 +228,8 @@ def _leg_margins(platform: Platform, values: dict, q: np.ndarray, lengths: np.nd
     joint_to_joint = lengths + values["length_offset"]
     smin, smax = values["stroke_min"], values["stroke_max"]
     margin[:, :, 0] = np.minimum(joint_to_joint - smin, smax - joint_to_joint)
-    rows = np.arange(n)
-    for c in (1, 2, 3):  # base joint, platform joint, interference: the leg (pair) the check names
-        for legs in (check.leg[:, c], check.other_leg[:, c]):
-            named = legs > 0
-            margin[rows[named], legs[named] - 1, c] = check.margin[named, c]
+    for c in (1, 2, 3):  # base joint, platform joint, interference: every leg's own margin
+        margin[:, :, c] = check.leg_margin[:, c, :]
     scale = np.ones((6, len(LEG_CLASSES)))
     scale[:, 0] = 0.5 * (smax - smin)
     scale[:, 1] = values["base_joint_limit"][0]

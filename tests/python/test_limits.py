@@ -155,6 +155,42 @@ def test_interference_margin_on_random_poses_matches_brute_force():
         assert r.margin[row, 3] + 0.02 == pytest.approx(d, abs=1e-8), row
 
 
+def test_every_leg_s_own_margin_to_every_class():
+    """leg_margin: each leg's margin per class against numpy (stroke, joint angles to the
+    neutral axes, interference the smallest brute-force distance over the leg's pairs), the
+    class margin its smallest, condition and axis the pose's at every leg."""
+    rng = np.random.default_rng(23)
+    q = np.column_stack([rng.uniform(-0.05, 0.05, (12, 2)), rng.uniform(0.45, 0.6, 12),
+                         rng.uniform(-0.2, 0.2, (12, 2)), rng.uniform(-1.0, 1.0, 12)])
+    changes = dict(stroke_min=0.40, stroke_max=0.70, base_joint_limit=0.5,
+                   platform_joint_limit=0.6, leg_diameter=0.05, axis_max=[0.04] * 6)
+    p = params_of(**changes)
+    r = platform(**changes).limits(q)
+    assert r.leg_margin.shape == (12, 10, 6)
+    for row, pose in enumerate(q):
+        a, top, R = legs(p, pose)
+        L = np.linalg.norm(top - a, axis=1)
+        np.testing.assert_allclose(r.leg_margin[row, 0], np.minimum(L - 0.40, 0.70 - L),
+                                   rtol=0, atol=1e-14)
+        np.testing.assert_allclose(r.leg_margin[row, 1],
+                                   0.5 - angle(top - a, home_directions(p)), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(r.leg_margin[row, 2],
+                                   0.6 - angle(top - a, home_directions(p) @ R.T), rtol=0,
+                                   atol=1e-12)
+        pair = np.full((6, 6), np.inf)
+        for i in range(6):
+            for j in range(i + 1, 6):
+                pair[i, j] = pair[j, i] = brute_segment_distance(a[i], top[i], a[j], top[j],
+                                                                 20001) - 0.05
+        np.testing.assert_allclose(r.leg_margin[row, 3], pair.min(axis=1), rtol=0, atol=1e-8)
+        for c in (4, 5):  # condition and axis: the pose's margin at every leg
+            assert np.all(r.leg_margin[row, c] == r.margin[row, c])
+    assert np.array_equal(r.margin, r.leg_margin.min(axis=2))
+    for c in (0, 1, 2):  # the leg named is one whose own margin is the class margin
+        named = np.take_along_axis(r.leg_margin[:, c], r.leg[:, c, None] - 1, axis=1)[:, 0]
+        assert np.array_equal(named, r.margin[:, c])
+
+
 def test_condition_alone_with_its_margin():
     q = np.array([0.02, -0.03, 0.45, 0.1, 0.05, -0.2])
     p = params_of()

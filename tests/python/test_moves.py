@@ -298,6 +298,17 @@ def test_the_command_line_writes_the_move(tmp_path):
     m = stewart.move(stewart.Platform.from_file(FILES["thesis"]), [0, 0, 0.5, 0, 0, 0],
                      [0.01, 0, 0.51, 0, 0, 0.02], "line", leg_speed_max=0.05, leg_accel_max=0.5)
     assert np.array_equal(table, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]))
+    # The platform file's leg limits when the command gives none: the same move.
+    machine = tmp_path / "machine.json"
+    machine.write_text(json.dumps({**json.loads(FILES["thesis"].read_text()),
+                                   "leg_speed_max": 0.05, "leg_accel_max": 0.5}))
+    own = subprocess.run(args[:3] + [str(machine)] + args[4:9] + ["-o", str(tmp_path / "own.csv")],
+                         capture_output=True, text=True, timeout=120)
+    assert own.returncode == 0, own.stderr
+    assert np.array_equal(np.loadtxt(tmp_path / "own.csv", delimiter=",", skiprows=1), table)
+    none = subprocess.run(args[:9] + ["-o", str(tmp_path / "none.csv")], capture_output=True,
+                          text=True, timeout=120)
+    assert none.returncode == 1 and "leg_accel_max is needed" in none.stderr
     bad = subprocess.run(args[:-6] + ["--goal", "0,0,2,0,0,0", "--leg-accel-max", "0.5", "-o",
                                       str(out)], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 1 and "stroke" in bad.stderr
@@ -337,7 +348,7 @@ def test_the_feasibility_report_names_a_geometric_limit_first():
     assert report.names[report.first[1]] == "stroke"
     assert report.names[report.first[0]] == "leg_speed"
     assert report.worst["stroke"][1] == 1.0 and report.worst["stroke"][0] < 0
-    with pytest.raises(ValueError, match="need the pose rates"):
+    with pytest.raises(ValueError, match="leg_speed_max needs the trajectory.s data: give rates="):
         stewart.feasibility(platform, [0, 1, 2], poses, leg_speed_max=0.1)
 
 
@@ -462,3 +473,76 @@ def test_the_command_line_takes_waypoints(tmp_path):
                      leg_speed_max=0.05, leg_accel_max=0.5)
     table = np.loadtxt(out, delimiter=",", skiprows=1)
     assert np.array_equal(table, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]))
+
+
+def test_a_move_takes_the_platform_s_leg_limits():
+    """leg_speed_max and leg_accel_max of the platform are the move's unless given: the same
+    move as with the keywords, bit for bit; a keyword overrides; every sample within the
+    platform's limits by differences of the closed-form lengths."""
+    limited = stewart.Platform(leg_speed_max=0.05, leg_accel_max=0.5)
+    home = limited.check().home
+    goal = home + [0.02, -0.01, 0.01, 0.0, 0.0, 0.05]
+    own = stewart.move(limited, home, goal, "line")
+    given = stewart.move(stewart.Platform(), home, goal, "line", leg_speed_max=0.05,
+                         leg_accel_max=0.5)
+    assert np.array_equal(own.pose, given.pose) and np.array_equal(own.pose_accel,
+                                                                   given.pose_accel)
+    slower = stewart.move(limited, home, goal, "line", leg_speed_max=0.03)
+    assert np.array_equal(slower.pose, stewart.move(stewart.Platform(), home, goal, "line",
+                                                    leg_speed_max=0.03, leg_accel_max=0.5).pose)
+    assert slower.duration > own.duration
+    import reference  # the thesis geometry's closed-form length rates and accelerations
+    rates = np.array([reference.length_rates_and_accelerations(q, qd, qdd)
+                      for q, qd, qdd in zip(own.pose, own.pose_rate, own.pose_accel)])
+    assert np.abs(rates[:, 0]).max() <= 0.05 * (1 + 1e-6)
+    assert np.abs(rates[:, 1]).max() <= 0.5 * (1 + 1e-6)
+    with pytest.raises(ValueError, match="leg_accel_max is needed"):
+        stewart.move(stewart.Platform(leg_speed_max=0.05), home, goal)
+    jerky = stewart.Platform(leg_accel_max=0.5, leg_jerk_max=5.0)
+    with pytest.raises(ValueError, match="the platform has leg_jerk_max"):
+        stewart.move(jerky, home, goal)
+    assert stewart.move(jerky, home, goal, leg_jerk_max=0).duration > 0
+
+
+def test_a_move_beyond_the_leg_force_limit_is_refused_naming_it():
+    """A platform whose leg_force_max the planned move's massless forces exceed: MoveError
+    leg_force at the first sample whose force exceeds it, found here from the inverse."""
+    home = np.array([0, 0, 0.5, 0, 0, 0.0])
+    goal = home + [0.02, -0.01, 0.01, 0.0, 0.0, 0.05]
+    free = stewart.move(stewart.Platform(), home, goal, "line", leg_accel_max=0.5,
+                        leg_speed_max=0.05)
+    forces = np.abs(stewart.Platform().inverse(free.pose, free.pose_rate, free.pose_accel).force)
+    limit = 0.5 * (forces.max() + np.abs(stewart.Platform().inverse(home).force).max())
+    with pytest.raises(stewart.MoveError) as e:
+        stewart.move(stewart.Platform(leg_force_max=limit), home, goal, "line",
+                     leg_accel_max=0.5, leg_speed_max=0.05)
+    first = np.flatnonzero((forces > limit * (1 + 1e-9)).any(axis=1))[0]
+    assert e.value.limit_class == "leg_force" and e.value.time == free.t[first]
+    assert "leg_force" in str(e.value) and "lower leg_accel_max" in str(e.value)
+
+
+def test_the_feasibility_report_has_the_jerk_and_force_classes():
+    """forces computed by the massless inverse against leg_force_max by hand; the jerk class
+    from jerks given; a platform limit without its data reported as not checked."""
+    platform = stewart.Platform(leg_jerk_max=2.0)
+    home = platform.check().home
+    m = stewart.move(platform, home, home + [0.01, 0, 0.005, 0, 0, 0.02], leg_accel_max=0.5,
+                     leg_jerk_max=0)
+    forces = platform.inverse(m.pose, m.pose_rate, m.pose_accel).force
+    report = stewart.feasibility(platform, m.t, m.pose, m.pose_rate, m.pose_accel,
+                                 forces="massless", leg_force_max=230.0)
+    FORCE = report.names.index("leg_force") - 1
+    assert np.array_equal(report.margin[:, FORCE], (230.0 - np.abs(forces)).min(axis=1))
+    assert np.array_equal(report.leg[:, FORCE], np.abs(forces).argmax(axis=1) + 1)
+    assert report.unchecked == ("leg_jerk",) and "leg_jerk        not checked" in str(report)
+    met = (np.abs(forces) > 230.0).any(axis=1)
+    assert met.any() and np.array_equal(~report.within, met)
+    jerks = np.zeros_like(m.pose)
+    jerks[:, 2] = 3.0  # a constant heave jerk: about 3 m/s^3 per leg at home, above 2
+    with_jerk = stewart.feasibility(platform, m.t, m.pose, m.pose_rate, m.pose_accel, jerks)
+    JERK = report.names.index("leg_jerk") - 1
+    assert with_jerk.unchecked == () and with_jerk.worst["leg_jerk"][0] < 0
+    assert np.array_equal(with_jerk.margin[:, JERK], platform.limits(
+        m.pose, m.pose_rate, m.pose_accel, jerks).margin[:, JERK])
+    with pytest.raises(ValueError, match="leg_jerk_max needs the trajectory's data"):
+        stewart.feasibility(platform, m.t, m.pose, m.pose_rate, leg_jerk_max=1.0)

@@ -196,6 +196,28 @@ def test_the_leg_at_its_stroke_is_the_one_the_library_names(browser, tmp_path):
     assert "at or beyond it" in tip.text
 
 
+@needs_browser
+def test_every_leg_is_coloured_by_its_own_joint_and_interference_margins(browser, tmp_path):
+    """Vendor-like joint limits and thick legs at a pose where two base joints are beyond their
+    limit and the legs' nearest classes are all four: each leg's page margin is the library's
+    own margin of that leg (LimitCheck.leg_margin), not only the leg each class's smallest is at."""
+    platform = stewart.Platform(base_joint_limit=0.45, platform_joint_limit=0.45, leg_diameter=0.2)
+    pose = [0.05, 0.02, 0.48, 0.05, 0.1, 0.5]
+    check = platform.limits(pose)
+    names = list(stewart.limits.LIMIT_CLASSES)
+    open_page(browser, stewart.view(platform, poses=[pose], output=tmp_path / "joints.html"))
+    states = browser.execute_script("return window.stewartView.legStates(0)")
+    for k, state in enumerate(states):
+        own = check.leg_margin[0, names.index(state["class"]), k]
+        assert state["margin"] == pytest.approx(own, abs=1e-6), (k, state)
+    assert {s["class"] for s in states} == {"stroke", "base_joint", "platform_joint",
+                                            "interference"}
+    beyond = [s["leg"] for s in states if s["beyond"]]
+    expected = [k + 1 for k in range(6) if check.leg_margin[0, :4, k].min() < 0]
+    assert beyond == expected and len(beyond) == 3  # two base joints beyond, one stroke
+    assert sorted(np.flatnonzero(check.leg_margin[0, 1] < 0) + 1) == [1, 5]
+
+
 def write_csv(path, columns):
     names = list(columns)
     np.savetxt(path, np.column_stack([columns[n] for n in names]), delimiter=",",

@@ -21,8 +21,15 @@
  *                   1/condition - 1/warn_condition [1] (finite through a singularity)
  *   axis            software position limits: each axis of the tool pose (user frame) within
  *                   [axis_min, axis_max]; margin [m or rad, the axis']
+ *   leg speed       per leg, |dL_k/dt| at most leg_speed_max; margin [m/s]
+ *   leg accel       per leg, |d2L_k/dt2| at most leg_accel_max; margin [m/s^2]
+ *   leg jerk        per leg, |d3L_k/dt3| at most leg_jerk_max; margin [m/s^3]
+ *   leg force       per leg, |F_k| at most leg_force_max; margin [N]
  * A margin is > 0 within the limit, 0 on it, < 0 beyond it: the smallest over the legs (pairs,
  * axes). A pose on a limit is within it, except for interference: legs that touch interfere.
+ * The leg classes need what the input gives besides the pose (its time derivatives, the legs'
+ * forces): a class whose data is not given, or whose limit is 0 (none) for a leg, has margin
+ * +inf there and is never met.
  */
 #ifndef STEWART_STEWART_LIMITS_H
 #define STEWART_STEWART_LIMITS_H
@@ -44,18 +51,32 @@ typedef enum stewart_limit_class {
     STEWART_LIMIT_PLATFORM_JOINT = 3,
     STEWART_LIMIT_INTERFERENCE = 4,
     STEWART_LIMIT_CONDITION = 5,
-    STEWART_LIMIT_AXIS = 6
+    STEWART_LIMIT_AXIS = 6,
+    STEWART_LIMIT_LEG_SPEED = 7,
+    STEWART_LIMIT_LEG_ACCEL = 8,
+    STEWART_LIMIT_LEG_JERK = 9,
+    STEWART_LIMIT_LEG_FORCE = 10
 } stewart_limit_class;
-#define STEWART_LIMIT_CLASSES 6
+#define STEWART_LIMIT_CLASSES 10
 
 /* Settings of a limits object; stewart_limits_options_default gives the values documented here. */
 typedef struct stewart_limits_options {
     double warn_condition; /* condition number limit, as the inverse option of that name; 1e3 */
 } stewart_limits_options;
 
-/* What a check takes: the pose (x, y, z [m], roll, pitch, yaw [rad]). */
+/* What a check takes: the pose (x, y, z [m], roll, pitch, yaw [rad]; the tool's in the user
+ * frame, as every pose of the API) and, for the leg classes, optionally its time derivatives and
+ * the legs' forces. A zero-initialised input ({{x, y, z, roll, pitch, yaw}}) is the pose alone.
+ * The axis ranges use q only. */
 typedef struct stewart_limits_input {
     double q[6];
+    int derivatives;     /* how many derivatives of q follow: 0 none, 1 q_dot (leg speed),
+                            2 and q_ddot (leg acceleration), 3 and q_dddot (leg jerk) */
+    double q_dot[6];     /* dq/dt [m/s, rad/s] */
+    double q_ddot[6];    /* d2q/dt2 [m/s^2, rad/s^2] */
+    double q_dddot[6];   /* d3q/dt3 [m/s^3, rad/s^3] */
+    int has_force;       /* 1: force holds the legs' forces (leg force class); 0: none */
+    double force[STEWART_LEGS]; /* F_k [N] (the inverse's; its sign is not used) */
 } stewart_limits_input;
 
 /* What a check gives. Array index = class - 1. */
@@ -63,10 +84,14 @@ typedef struct stewart_limits_output {
     int first;                            /* first failing class in check order; NONE if none */
     int failed;                           /* bit (class - 1) set for every failing class */
     double margin[STEWART_LIMIT_CLASSES]; /* smallest margin of each class [m, rad, rad, m, 1,
-                                             m or rad] */
+                                             m or rad, m/s, m/s^2, m/s^3, N] */
     int leg[STEWART_LIMIT_CLASSES];       /* the leg (1..6) of that margin; axis: the axis */
     int other_leg[STEWART_LIMIT_CLASSES]; /* interference: the other leg of the pair; else 0 */
     double condition;                     /* the leg Jacobian's 1-norm condition (inverse's) */
+    /* Each leg's own margin to each class, [class - 1][leg - 1] (margin is their smallest):
+     * interference, the smallest over the pairs the leg is in (+inf if it is in none that is
+     * checked); condition and axis, properties of the pose, the class margin at every leg. */
+    double leg_margin[STEWART_LIMIT_CLASSES][STEWART_LEGS];
 } stewart_limits_output;
 
 /* What an axis-range search gives: per axis (x, y, z, roll, pitch, yaw) the interval it can
@@ -101,14 +126,18 @@ void stewart_limits_free(stewart_limits *limits);
 const char *stewart_limits_message(const stewart_limits *limits);
 
 /* Checks one pose against every limit class. STEWART_ERR_ARGUMENT (output untouched, message
- * names the component and its value) for a NULL argument or a non-finite pose. */
+ * names the component and its value) for a NULL argument, a non-finite pose, derivative or
+ * force, derivatives outside 0..3 or has_force outside 0..1, or leg rates too large to compute
+ * (they overflow); STEWART_ERR_UNREACHABLE (message names the leg) when derivatives are given
+ * and a leg has zero length (no direction, so no rate). */
 stewart_status stewart_limits_check(stewart_limits *limits, const stewart_limits_input *input,
                                     stewart_limits_output *output);
 /* The axis ranges of one pose (errors as stewart_limits_check). */
 stewart_status stewart_limits_ranges(stewart_limits *limits, const stewart_limits_input *input,
                                      stewart_axis_ranges *output);
 /* The class's name: "none", "stroke", "base_joint", "platform_joint", "interference",
- * "condition", "axis"; "unknown" for any other value. */
+ * "condition", "axis", "leg_speed", "leg_accel", "leg_jerk", "leg_force"; "unknown" for any
+ * other value. */
 const char *stewart_limit_class_name(int limit_class);
 
 #ifdef __cplusplus

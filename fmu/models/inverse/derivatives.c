@@ -78,6 +78,8 @@ static fmu_status check_gradient(fmu_instance *inst, const double q[6], check_va
                                  int index, double gradient[6], const char *function) {
     for (int j = 0; j < 6; ++j) {
         stewart_limits_input up, down;
+        memset(&up, 0, sizeof up);
+        memset(&down, 0, sizeof down);
         memcpy(up.q, q, sizeof up.q);
         memcpy(down.q, q, sizeof down.q);
         up.q[j] += CHECK_STEP;
@@ -117,6 +119,7 @@ static fmu_status range_gradient(fmu_instance *inst, const double q[6], int axis
                                  pose_ranges *at, double gradient[6], const char *function) {
     if (!at->made) {
         stewart_limits_input in;
+        memset(&in, 0, sizeof in);
         memcpy(in.q, q, sizeof in.q);
         if (stewart_limits_check(inst->res.limits, &in, &at->here) != STEWART_OK ||
             stewart_limits_ranges(inst->res.limits, &in, &at->ranges) != STEWART_OK) {

@@ -193,6 +193,7 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
     const int level = v->integer[VR_limit_outputs];
     if (level == 0) return FMU_OK;
     stewart_limits_input in;
+    memset(&in, 0, sizeof in);
     memcpy(in.q, q, sizeof in.q);
     inverse_limit_values values;
     memset(&values, 0, sizeof values);

@@ -177,6 +177,7 @@ static int report_limits(fmu_instance *inst) {
                  {STEWART_WARN_INTERFERENCE, "two legs are closer than leg_diameter"}};
     const fmu_values *v = &inst->v;
     stewart_limits_input in;
+    memset(&in, 0, sizeof in);
     for (int i = 0; i < 6; ++i) in.q[i] = v->real[VR_x + i];
     stewart_limits_output o;
     if (stewart_limits_check(inst->res.limits, &in, &o) != STEWART_OK) return 0; /* finite here */

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..limits import LIMIT_CLASSES
+from ..limits import POSE_CLASSES
 
 LENGTHS = {"m": 1.0, "mm": 1e3, "um": 1e6}
 ANGLES = {"rad": 1.0, "deg": 180.0 / math.pi, "mrad": 1e3, "urad": 1e6}
@@ -25,7 +25,7 @@ _OTHER = {**{f"peak_force_{k}": "N" for k in range(1, 7)}, **{f"F{k}": "N" for k
           # the nearest software position limit's axis: m for x, y, z, rad for the angles (so
           # it stays SI whatever the units asked)
           "margin_axis": "m or rad"}
-assert all(f"margin_{c}" in {**_KIND, **_OTHER} for c in LIMIT_CLASSES)
+assert all(f"margin_{c}" in {**_KIND, **_OTHER} for c in POSE_CLASSES)
 
 
 @dataclass(frozen=True)

@@ -14,7 +14,7 @@ import pyarrow as pa
 
 from .. import _core
 from ..inverse import INVERSE_TABLE, InverseSolution, empty_inverse_solution
-from ..limits import LIMIT_CLASSES, LimitCheck
+from ..limits import LIMIT_CLASSES, POSE_CLASSES, LimitCheck
 from ..platform import Platform, _warn_condition
 from ..scenes import POSE
 from .spec import Chunk, manoeuvre_samples
@@ -51,7 +51,7 @@ def envelope_metrics(sol: InverseSolution) -> list[float | None]:
              float(np.abs(sol.power).max())])
 
 
-ENVELOPE_LIMITS = ["feasible", "limit_class", "limit_t", *[f"margin_{c}" for c in LIMIT_CLASSES]]
+ENVELOPE_LIMITS = ["feasible", "limit_class", "limit_t", *[f"margin_{c}" for c in POSE_CLASSES]]
 
 
 def envelope_limits(platform: Platform, t: np.ndarray, q: np.ndarray,
@@ -64,7 +64,7 @@ def envelope_limits(platform: Platform, t: np.ndarray, q: np.ndarray,
     first = int(beyond[0]) if beyond.size else None
     return [first is None, 0 if first is None else int(check.first[first]),
             None if first is None else float(t[first]),
-            *[float(v) for v in check.margin.min(axis=0)]]
+            *[float(v) for v in check.margin[:, :len(POSE_CLASSES)].min(axis=0)]]
 
 
 def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
@@ -136,12 +136,14 @@ class _Scratch:
         self.q = np.empty((block, 6))                # a block of them as the library reads them
         self.sol = empty_inverse_solution(block)
         k = len(LIMIT_CLASSES)
+        self.leg_margin = np.empty((block, k * 6))
         self.check = LimitCheck(np.empty(block, np.int32), np.empty(block, np.int32),
                                 np.empty((block, k)), np.empty((block, k), np.int32),
-                                np.empty((block, k), np.int32), np.empty(block))
+                                np.empty((block, k), np.int32), np.empty(block),
+                                self.leg_margin.reshape(block, k, 6))
         self.status = np.empty(n, self.sol.status.dtype)
         self.condition = np.empty(n)
-        self.margin = np.empty((k, n))
+        self.margin = np.empty((len(POSE_CLASSES), n))  # the poses' classes: no rates here
         self.length = np.empty((6, n))
         self.force = np.empty((6, n))
         self.limit_class = np.empty(n, np.int8)
@@ -155,7 +157,7 @@ class _Scratch:
                                  for name, _, _ in INVERSE_TABLE.columns})
         c = self.check
         return self.q[:m], sol, LimitCheck(c.first[:m], c.failed[:m], c.margin[:m], c.leg[:m],
-                                           c.other_leg[:m], c.condition[:m])
+                                           c.other_leg[:m], c.condition[:m], c.leg_margin[:m])
 
 
 # Per thread: a worker process with several threads computes chunks side by side.
@@ -227,11 +229,13 @@ def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False,
             platform.inverse(q, fidelity=spec["fidelity"], max_messages=hi - lo, **spec["options"],
                              out=sol)
             messages.update((lo + j, text) for j, text in sol.messages.items())
-            _core.limits_check(platform._model, q, warn_condition, check.first, check.failed,
-                               check.margin, check.leg, check.other_leg, check.condition)
+            _core.limits_check(platform._model, q, None, None, None, None, warn_condition,
+                               check.first, check.failed, check.margin, check.leg,
+                               check.other_leg, check.condition,
+                               b.leg_margin[:hi - lo])
             np.logical_and(sol.ok, check.within, out=b.reachable[lo:hi])
             np.copyto(b.limit_class[lo:hi], check.first, casting="unsafe")
-            np.copyto(b.margin[:, lo:hi], check.margin.T)
+            np.copyto(b.margin[:, lo:hi], check.margin[:, :len(POSE_CLASSES)].T)
             np.copyto(b.length[:, lo:hi], sol.length.T)
             np.copyto(b.force[:, lo:hi], sol.force.T)
             np.copyto(b.status[lo:hi], sol.status)
@@ -244,7 +248,7 @@ def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False,
         columns["status"] = b.status[:m]
         columns["reachable"] = b.reachable[:m]
         columns["limit_class"] = b.limit_class[:m]
-        for c, name in enumerate(LIMIT_CLASSES):
+        for c, name in enumerate(POSE_CLASSES):
             columns[f"margin_{name}"] = b.margin[c, :m]
         columns["condition"] = b.condition[:m]
         for k in LEGS:
