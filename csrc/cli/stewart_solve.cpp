@@ -390,9 +390,9 @@ int main(int argc, char **argv) {
     Request r;
     const int code = parse(argc, argv, r);
     if (code >= 0) return code;
-    if (r.check && r.units_given) {  // the report is in the file's own units
-        std::fprintf(stderr, "stewart-solve: --units is for OUT.csv; --check reports in the "
-                     "platform file's units (its \"units\" field)\n");
+    if (r.check && r.units_given) {  // not silently ignored
+        std::fprintf(stderr, "stewart-solve: --units is for OUT.csv; the --check report is in "
+                     "m and deg\n");
         return 2;
     }
     if (r.check) return run_check(r);

@@ -390,4 +390,4 @@ def test_units_refused_by_name(solve, tmp_path):
     platform = tmp_path / "p.json"
     platform.write_text("{}")
     r = solve("--check", platform, "--units", "mm")
-    assert r.returncode == 2 and "file's units" in r.stderr
+    assert r.returncode == 2 and "--units is for OUT.csv" in r.stderr
