@@ -79,9 +79,10 @@ def z_down_file(path, tmp_path):
     return out
 
 
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
 @pytest.mark.parametrize("model", ["StewartPlant", "StewartPlantME"])
 @pytest.mark.parametrize("name", MACHINES + ["simona_motion_base z down"])
-def test_plant_start_values_start_at_the_machine_home(name, model, tmp_path):
+def test_plant_start_values_start_at_the_machine_home(name, model, version, tmp_path):
     """The plant started from fmu_start_values(..., model=plant) sits at the machine's home: its
     leg readings at t = 0 are the home lengths of the file's geometry (z down: those of the same
     machine z up), its rates zero."""
@@ -90,9 +91,9 @@ def test_plant_start_values_start_at_the_machine_home(name, model, tmp_path):
     expected = home_lengths(path)
     if name.endswith("z down"):
         path = z_down_file(path, tmp_path)
-    values = stewart.fmu_start_values(path, model=model)
+    values = stewart.fmu_start_values(path, fmi_version=version, model=model)
     assert values.keys() >= {"x0", "z0", "yaw0", "x_dot0", "yaw_dot0"}
-    result = fmpy.simulate_fmu(BUILD / "fmus" / "2.0" / f"{model}.fmu", stop_time=1e-3,
+    result = fmpy.simulate_fmu(BUILD / "fmus" / version / f"{model}.fmu", stop_time=1e-3,
                                output_interval=1e-3, start_values={**values, "fidelity": 1},
                                output=[*(f"L[{k}]" for k in range(1, 7)), "z", "z_dot"])
     lengths = np.array([result[f"L[{k}]"][0] for k in range(1, 7)])
