@@ -13,7 +13,7 @@ outputs at t come first and the loop has no algebraic part):
 
 usage: closed_loop.py [--scene combined] [--duration 12] [--step 0.001] [--kp 1e6] [--kd 1e4]
                       [--fidelity 2] [--fmus build/fmus/2.0] [--out out/closed_loop] [--no-plot]
-                      [--platform FILE.json [--scale-to-ranges]]
+                      [--platform FILE.json [--scale-to-ranges]] [--units mm,deg]
 
 With --platform the units get the machine's parameters (stewart.fmu_start_values), the scene
 moves about the machine's home, and the PD gains default to the thesis loop's natural frequency
@@ -161,18 +161,23 @@ def write_csv(result, path):
     np.savetxt(path, table, delimiter=",", header=",".join(columns), comments="", fmt="%.17g")
 
 
-def plot(result, path):
+def plot(result, path, unit_text="m,rad"):
+    """The run's cue and pose (in unit_text's units), error and forces; returns what each panel
+    draws (plots.drawn)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import plots
+    units = plots.units(unit_text)
     t = result["t"]
     fig, ax = plt.subplots(4, 1, figsize=(10, 12), sharex=True)
     for i, p in enumerate(POSE):
         a = ax[0] if i < 3 else ax[1]
-        line, = a.plot(t, result["cue"][:, i], "--", lw=1, label=f"{p} cue")
-        a.plot(t, result["pose"][:, i], color=line.get_color(), lw=0.8, label=f"{p} achieved")
-    ax[0].set_ylabel("position [m]")
-    ax[1].set_ylabel("angle [rad]")
+        f = units.factor(p)
+        line, = a.plot(t, result["cue"][:, i] * f, "--", lw=1, label=f"{p} cue")
+        a.plot(t, result["pose"][:, i] * f, color=line.get_color(), lw=0.8, label=f"{p} achieved")
+    ax[0].set_ylabel(f"position [{units.length}]")
+    ax[1].set_ylabel(f"angle [{units.angle}]")
     error = result["pose"] - result["cue"]
     for i, p in enumerate(POSE):
         ax[2].plot(t, error[:, i] * 1e6, lw=0.8, label=p)
@@ -188,6 +193,7 @@ def plot(result, path):
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+    return plots.drawn(ax)
 
 
 def main():
@@ -204,7 +210,13 @@ def main():
     scenes.add_platform_arguments(parser)
     parser.add_argument("--view", action="store_true",
                         help="also write closed_loop.html: the run in 3D (docs/view.md)")
+    import plots
+    parser.add_argument("--units", default="m,rad", help=plots.UNITS_HELP)
     args = parser.parse_args()
+    try:
+        units = plots.units(args.units)
+    except ValueError as e:
+        parser.error(f"--units: {e}")
     scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
     kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)
     args.kp, args.kd = args.kp or kp, args.kd or kd
@@ -215,7 +227,7 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     write_csv(result, out / "closed_loop.csv")
     if not args.no_plot:
-        plot(result, out / "closed_loop.png")
+        plot(result, out / "closed_loop.png", args.units)
     if args.view:
         import stewart
         stewart.view(platform, out / "closed_loop.csv", output=out / "closed_loop.html",
@@ -223,7 +235,8 @@ def main():
     position, angle = tracking_error(result)
     print(f"closed_loop: {scene['name']}, {duration:g} s at h = {args.step:g} s, fidelity "
           f"{args.fidelity}, kp = {args.kp:g} N/m, kd = {args.kd:g} N s/m")
-    print(f"closed_loop: tracking error max {position:.3e} m, {angle:.3e} rad")
+    print(f"closed_loop: tracking error max {position * units.factor('x'):.3e} {units.length}, "
+          f"{angle * units.factor('roll'):.3e} {units.angle}")
     print(f"closed_loop: wall time {wall:.2f} s, {wall / duration:.3f} s per simulated second")
     print(f"closed_loop: wrote {out / 'closed_loop.csv'}" +
           ("" if args.no_plot else f" and {out / 'closed_loop.png'}"))

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Plots a stewart-solve output CSV: actuator lengths, rates and forces per leg against time.
 
-usage: plot_legs.py IN.csv OUT.png [--title TEXT]
+usage: plot_legs.py IN.csv OUT.png [--title TEXT] [--units mm]
+
+IN.csv is stewart-solve's output in SI (its default); --units says the plot's units.
 """
 import argparse
 
@@ -15,11 +17,16 @@ def main():
     parser.add_argument("csv")
     parser.add_argument("png")
     parser.add_argument("--title", default="")
+    parser.add_argument("--units", default="m,rad", help=plots.UNITS_HELP)
     args = parser.parse_args()
+    try:
+        plots.units(args.units)
+    except ValueError as e:
+        parser.error(f"--units: {e}")
     data = np.genfromtxt(args.csv, delimiter=",", names=True)
     series = {key: np.column_stack([data[f"{key}{k}"] for k in range(1, 7)])
               for key, _ in plots.LEG_PANELS}
-    plots.plot_legs(data["t"], series, args.png, args.title)
+    plots.plot_legs(data["t"], series, args.png, args.title, args.units)
 
 
 if __name__ == "__main__":

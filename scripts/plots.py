@@ -7,6 +7,20 @@ import numpy as np  # noqa: E402
 from matplotlib import animation  # noqa: E402
 
 LEG_PANELS = (("L", "length L [m]"), ("L_dot", "rate dL/dt [m/s]"), ("F", "force F [N]"))
+UNITS_HELP = ("units of the plots' lengths (m, mm, um) and angles (rad, deg, mrad, urad), e.g. "
+              "mm,deg (default m,rad; the CSVs stay SI)")
+
+
+def units(text="m,rad"):
+    """The Units of a --units argument ('mm,deg'; stewart.sweeps.units, as sweep.py's)."""
+    from stewart.sweeps.units import Units
+    return Units.parse(text)
+
+
+def drawn(axes):
+    """{y label: (N, lines) array of what each panel draws}: the numbers as plotted."""
+    return {ax.get_ylabel(): np.column_stack([line.get_ydata() for line in ax.lines])
+            for ax in axes}
 FIDELITY_NAMES = {0: "kinematic", 1: "massless legs", 2: "full 14-body"}
 
 
@@ -29,14 +43,22 @@ def _stacked_panels(t, panels, draw, path, title, legend=False):
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
+    return drawn(axes)
 
 
-def plot_legs(t, series, path, title=""):
-    """series: {'L': (N, 6), 'L_dot': (N, 6), 'F': (N, 6)} → one panel each, a line per leg."""
+def plot_legs(t, series, path, title="", unit_text="m,rad"):
+    """series: {'L': (N, 6), 'L_dot': (N, 6), 'F': (N, 6)} in SI → one panel each, a line per
+    leg, lengths in unit_text's length unit; returns drawn()."""
+    length = units(unit_text).length
+    factor = {"L": units(unit_text).factor("L1"), "L_dot": units(unit_text).factor("L1"),
+              "F": 1.0}
+    panels = (("L", f"length L [{length}]"), ("L_dot", f"rate dL/dt [{length}/s]"),
+              LEG_PANELS[2])
+
     def draw(ax, key):
         for k in range(6):
-            ax.plot(t, series[key][:, k], **_leg_style(k + 1))
-    _stacked_panels(t, LEG_PANELS, draw, path, title, legend=True)
+            ax.plot(t, series[key][:, k] * factor[key], **_leg_style(k + 1))
+    return _stacked_panels(t, panels, draw, path, title, legend=True)
 
 
 def plot_forces_per_fidelity(t, forces, path, title=""):

@@ -116,7 +116,12 @@ def main():
     scenes.add_platform_arguments(parser)
     parser.add_argument("--view", action="store_true",
                         help="also write NAME.html, the run in 3D in a browser (docs/view.md)")
+    parser.add_argument("--units", default="m,rad", help=plots.UNITS_HELP)
     args = parser.parse_args()
+    try:
+        plots.units(args.units)
+    except ValueError as e:
+        parser.error(f"--units: {e}")
     scene = scenes.load(args.scene)
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -129,7 +134,7 @@ def main():
     write_csv(result, out / f"{name}.csv")
     level = plots.FIDELITY_NAMES[args.fidelity]
     plots.plot_legs(result["t"], {g: legs(result, g) for g in ("L", "L_dot", "F")},
-                    out / f"{name}.png", f"{title} — {level}")
+                    out / f"{name}.png", f"{title} — {level}", args.units)
     written = [f"{name}.csv", f"{name}.png"]
     if args.view:
         import stewart

@@ -101,18 +101,21 @@ void write_header(FILE *out, const Table &table) {
 }
 
 // One output row, every digit kept.
-void write_row(FILE *out, const Table &table, double t, const stewart_forward_output &r) {
+void write_row(FILE *out, const Table &table, double t, const stewart_forward_output &r,
+               const OutputUnits &u) {
     std::fprintf(out, "%.17g", t);
     const double *groups[3] = {r.pose.q, r.pose.q_dot, r.pose.q_ddot};
     for (int g = 0; g < 3; ++g)
-        for (int i = 0; i < 6 && table.has[g]; ++i) std::fprintf(out, ",%.17g", groups[g][i]);
-    std::fprintf(out, ",%d,%.17g,%.17g\n", r.iterations, r.residual, r.condition);
+        for (int i = 0; i < 6 && table.has[g]; ++i)
+            std::fprintf(out, ",%.17g", groups[g][i] * (i < 3 ? u.length : u.angle));
+    std::fprintf(out, ",%d,%.17g,%.17g\n", r.iterations, r.residual * u.length, r.condition);
 }
 
 }  // namespace
 
 int run_forward(const char *in_path, const char *out_path, const stewart_params &params,
-                const stewart_forward_options &options, const double *guess, bool cold) {
+                const stewart_forward_options &options, const double *guess, bool cold,
+                const OutputUnits &units) {
     Table table;
     const std::string error = read_table(in_path, table);
     if (!error.empty()) {
@@ -171,7 +174,7 @@ int run_forward(const char *in_path, const char *out_path, const stewart_params 
     }
     write_header(out, table);
     for (size_t j = 0; j < table.rows.size(); ++j)
-        write_row(out, table, table.rows[j].t, results[j]);
+        write_row(out, table, table.rows[j].t, results[j], units);
     if (std::fclose(out) != 0) {
         std::fprintf(stderr, "stewart-solve: error writing %s\n", out_path);
         return 1;

@@ -7,6 +7,7 @@
 
 #include "cli/arguments.hpp"
 #include "cli/forward_table.hpp"
+#include "cli/output_units.hpp"
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
 #include "util/number_text.hpp"
@@ -44,7 +45,7 @@ int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
                  "[--platform FILE.json] [--param NAME=VALUE ...] [--static] [--limits] [--report] "
-                 "[--ranges] IN.csv OUT.csv\n"
+                 "[--ranges] [--units mm,deg] IN.csv OUT.csv\n"
                  "  --platform: a platform file (docs/geometry.md: parameter names to values)\n"
                  "  --param: any platform parameter by its FMU name, SI units (e.g. "
                  "payload_mass=50,\n"
@@ -67,8 +68,10 @@ int usage(FILE *to) {
                  "           too (leg_speed, leg_accel from the rows' derivatives, leg_force from F)\n"
                  "           [m/s, m/s^2, m/s^3, N]; --ranges: and each axis' range, the others\n"
                  "           held: x_min,x_max, ..., yaw_max\n"
+                 "  --units: OUT.csv's lengths (m, mm, um) and angles (rad, deg, mrad, urad), e.g.\n"
+                 "           mm,deg (default m,rad; forces, conditions and margin_axis stay SI)\n"
                  "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
-                 "[--platform FILE.json] [--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "[--platform FILE.json] [--param NAME=VALUE ...] [--units mm,deg] IN.csv OUT.csv\n"
                  "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
                  "columns ignored)\n"
                  "  OUT.csv: t,x,y,z,roll,pitch,yaw, x_dot.. and x_ddot.. when given their "
@@ -127,23 +130,30 @@ void write_header(FILE *out, int limits, bool ranges) {
     std::fprintf(out, "\n");
 }
 
-void write_row(FILE *out, double t, const stewart_inverse_output &o,
-               const LimitRow &row, int limits, bool ranges) {
+void write_row(FILE *out, double t, const stewart_inverse_output &o, const LimitRow &row,
+               int limits, bool ranges, const stewart::OutputUnits &u) {
     const stewart_limits_output &check = row.check;
     std::fprintf(out, "%.17g", t);
     const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
                                o.force};
-    for (const double *g : groups)
-        for (int k = 0; k < STEWART_LEGS; ++k) std::fprintf(out, ",%.17g", g[k]);
+    for (int g = 0; g < 4; ++g)
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            std::fprintf(out, ",%.17g", g < 3 ? groups[g][k] * u.length : groups[g][k]);
     std::fprintf(out, ",%.17g,%d,%s", o.condition, o.iterations,
                  stewart_limit_class_name(check.first));
     if (limits) {
         std::fprintf(out, ",%s", stewart_limit_class_name(check.first));
-        for (int c = 0; c < limits; ++c) std::fprintf(out, ",%.17g", check.margin[c]);
+        // stroke, joints, interference, condition, axis (its own axis' unit: kept SI), leg
+        // speed, acceleration, jerk (lengths per time: the length unit), force (N)
+        const double factor[STEWART_LIMIT_CLASSES] = {u.length, u.angle, u.angle,  u.length, 1,
+                                                      1,        u.length, u.length, u.length, 1};
+        for (int c = 0; c < limits; ++c) std::fprintf(out, ",%.17g", check.margin[c] * factor[c]);
     }
     if (ranges)
-        for (int a = 0; a < 6; ++a)
-            std::fprintf(out, ",%.17g,%.17g", row.ranges.min[a], row.ranges.max[a]);
+        for (int a = 0; a < 6; ++a) {
+            const double f = a < 3 ? u.length : u.angle;
+            std::fprintf(out, ",%.17g,%.17g", row.ranges.min[a] * f, row.ranges.max[a] * f);
+        }
     std::fprintf(out, "\n");
 }
 
@@ -155,7 +165,8 @@ struct Request {
     stewart_params params;
     const char *paths[2] = {nullptr, nullptr};
     bool forward = false, cold = false, check = false, at_rest = false;
-    bool limits = false, report = false, ranges = false;
+    bool limits = false, report = false, ranges = false, units_given = false;
+    stewart::OutputUnits units;
     double guess[6];
     const double *guess_given = nullptr;
 };
@@ -233,6 +244,11 @@ int parse(int argc, char **argv, Request &r) {
         {"--limits", nullptr, [&](const char *) { return r.limits = true, 0; }},
         {"--report", nullptr, [&](const char *) { return r.report = true, 0; }},
         {"--ranges", nullptr, [&](const char *) { return r.ranges = true, 0; }},
+        {"--units", "mm,deg",
+         [&](const char *v) {
+             r.units_given = true;
+             return stewart::parse_output_units("stewart-solve", v, r.units) ? 0 : 2;
+         }},
         {"--fidelity", "kinematic|massless|full",
          [&](const char *v) {
              if (parse_fidelity(v, r.options.fidelity)) return 0;
@@ -346,7 +362,7 @@ int write_table(const Request &r, const stewart::PoseTable &table,
     const int limits = limit_columns(r.limits, r.report);
     write_header(out, limits, r.ranges);
     for (size_t j = 0; j < table.t.size(); ++j)
-        write_row(out, table.t[j], outputs[j], limit_rows[j], limits, r.ranges);
+        write_row(out, table.t[j], outputs[j], limit_rows[j], limits, r.ranges, r.units);
     if (std::fclose(out) != 0) {
         std::fprintf(stderr, "stewart-solve: error writing %s\n", r.paths[1]);
         return 1;
@@ -396,6 +412,11 @@ int main(int argc, char **argv) {
     Request r;
     const int code = parse(argc, argv, r);
     if (code >= 0) return code;
+    if (r.check && r.units_given) {  // not silently ignored
+        std::fprintf(stderr, "stewart-solve: --units is for OUT.csv; the --check report is in "
+                     "m and deg\n");
+        return 2;
+    }
     if (r.check) return run_check(r);
     char message[STEWART_MESSAGE_SIZE];
     if (r.forward) {
@@ -406,7 +427,7 @@ int main(int argc, char **argv) {
             return 2;
         }
         return stewart::run_forward(r.paths[0], r.paths[1], r.params, r.forward_options,
-                                    r.guess_given, r.cold);
+                                    r.guess_given, r.cold, r.units);
     }
     if (!options_belong_to(r.options_given, kInverseOptions)) return 2;
     if (stewart_inverse_options_check(&r.options, message, sizeof message) != STEWART_OK) {

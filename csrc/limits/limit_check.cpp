@@ -223,11 +223,17 @@ double leg_pair_margin(const LimitConstants &c, int i, int j, const Matrix36 &to
 }
 
 double axis_limit_margin(const LimitConstants &c, const double q[6], int *axis) {
-    double margin = HUGE_VAL;
+    // Metres and radians compare through the arm: an angle's margin counts as the way the
+    // farthest platform joint moves through it, so the axis named is the nearest to its limit
+    // in one unit; the margin returned stays in its axis' own unit.
+    const double arm = c.longest_arm > 0.0 ? c.longest_arm : 1.0;
+    double margin = HUGE_VAL, nearest = HUGE_VAL;
     *axis = 0;
     for (int i = 0; i < 6; ++i) {
         const double m = std::min(q[i] - c.axis_min[i], c.axis_max[i] - q[i]);
-        if (m < margin) {
+        const double way = i < 3 || m > 0.5 * DBL_MAX ? m : m * arm;  // no limit: as is
+        if (way < nearest) {
+            nearest = way;
             margin = m;
             *axis = i + 1;
         }

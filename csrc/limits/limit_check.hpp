@@ -114,8 +114,9 @@ void classify_margins(const LimitConstants &c, stewart_limits_output &out);
 double leg_pair_margin(const LimitConstants &c, int i, int j, const Matrix36 &top,
                        const Matrix36 &axis, const Vector6 &length);
 
-// The software position limits' margin at the tool pose q (user frame): the smallest of
-// q_i - axis_min[i], axis_max[i] - q_i over the axes [m or rad], and its axis (1..6) in *axis.
+// The software position limits' margin at the tool pose q (user frame): min(q_i - axis_min[i],
+// axis_max[i] - q_i) of the axis nearest its limit, in that axis' unit [m or rad], and the axis
+// (1..6) in *axis; an angle's margin times longest_arm ranks it among the positions'.
 double axis_limit_margin(const LimitConstants &c, const double q[6], int *axis);
 
 // STEWART_OK, or STEWART_ERR_PARAMETER naming the parameter and its value: a neutral axis that

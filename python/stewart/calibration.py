@@ -25,7 +25,7 @@ from .arrays import POSE_LAYOUT, LEG_LAYOUT, rows6
 from .calibration_accuracy import PoseAccuracy, pose_accuracy, pose_error_std, undetermined
 from .calibration_checks import (FAR_FRACTION, FAR_MOVE, MeasurementError, check_measurements,
                                  check_options, refuse_far_moves, refuse_gross_errors)
-from .calibration_model import (Layout, Noise, Prior, nominal_geometry,
+from .calibration_model import (Layout, Noise, Prior, check_conventions, nominal_geometry,
                                 platform_with, readings_and_jacobian, scaled_basis,
                                 stacked_jacobian, whitening)
 from .platform import Platform
@@ -158,6 +158,7 @@ def _problem(nominal: Platform, q: np.ndarray, identify, frames, noise: Noise,
              prior: Prior) -> _Problem:
     noise.check()
     prior.check()
+    check_conventions(nominal, "calibration")
     layout = Layout.of(identify, frames)
     geometry0 = nominal_geometry(nominal)
     theta0 = np.concatenate([geometry0[g] for g in layout.groups])

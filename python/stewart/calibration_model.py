@@ -151,6 +151,29 @@ def platform_with(nominal: Platform, geometry: dict[str, np.ndarray]) -> Platfor
     return Platform(**params)
 
 
+def check_conventions(platform: Platform, what: str) -> None:
+    """ValueError naming the parameter and the conversion to make when platform's poses or frames
+    are not in the conventions calibration takes (rotation_order 0 and frame_convention 0: the
+    closed-form derivatives of the readings are written in them). `what`: the function refusing,
+    for the message."""
+    order = int(parameter_value(platform, "rotation_order")[0])
+    z_down = int(parameter_value(platform, "frame_convention")[0])
+    if not (order or z_down):
+        return
+    steps = []
+    if z_down:
+        steps.append("frame_convention 1 (z down): give the machine in z-up frames, turned by 180 "
+                     "deg about x: every joint, axis (neutral, Cardan), centre of mass and "
+                     "position (x, y, z) of a pose or frame as (x, -y, -z), its angles (roll, "
+                     "pitch, yaw) as (roll, -pitch, -yaw)")
+    if order:
+        steps.append("rotation_order 1 (R = Rx Ry Rz): give the poses' and the tool and user "
+                     "frames' angles as Rz Ry Rx, stewart.convert_angles(angles, 1, 0)")
+    raise ValueError(f"{what} takes rotation_order 0 and frame_convention 0 (the platform file's "
+                     f"defaults); this platform has {'; and '.join(steps)}. Calibrate that "
+                     "machine, then turn its calibrated joints back")
+
+
 class ReadingError(ValueError):
     """A pose at which the model has no reading (a leg of zero length): names the pose row."""
 

@@ -15,8 +15,9 @@ from typing import Optional
 
 import numpy as np
 
-from .calibration_model import (Layout, Noise, Prior, nominal_geometry, parameter_value,
-                                scaled_basis, weighted_rows)
+from .calibration_model import (Layout, Noise, Prior, check_conventions, nominal_geometry,
+                                parameter_value, scaled_basis, weighted_rows)
+from .limits import LIMIT_CLASSES
 from .platform import Platform
 
 
@@ -40,6 +41,7 @@ def calibration_poses(platform: Platform, n: int, *, identify=None,
     position_range [m] and angle_range [rad], the box is home +- those instead. seed makes the
     draw repeatable. ValueError if n is too small to identify the unknowns (6 readings a pose)
     or if too few candidates are inside the limits."""
+    check_conventions(platform, "calibration_poses (poses for calibration)")
     layout = Layout.of(identify, frames)
     if not isinstance(n, (int, np.integer)) or n < 1 or 6 * n < min(layout.free.sum(), 42):
         raise ValueError(f"n = {n!r}: identifying {int(layout.free.sum())} unknowns needs an "
@@ -82,15 +84,11 @@ def _home(platform: Platform) -> np.ndarray:
     return home
 
 
-LIMIT_CLASSES = {1: "stroke", 2: "base joint angle", 3: "platform joint angle",
-                 4: "leg interference", 5: "condition number"}
-
-
 def limits_failed_at_home(platform: Platform) -> list[str]:
     """The limit classes the machine's home pose is beyond (as drawn, e.g. joints so close that
     the legs touch): poses are then chosen within the other limits only."""
     failed = int(platform.limits(_home(platform)).failed[0])
-    return [name for c, name in LIMIT_CLASSES.items() if failed & (1 << (c - 1))]
+    return [name.replace("_", " ") for c, name in enumerate(LIMIT_CLASSES) if failed & (1 << c)]
 
 
 def random_poses_inside_limits(platform: Platform, count: int, rng,

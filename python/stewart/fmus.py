@@ -59,14 +59,25 @@ def ssp_path(version: str = "2.0") -> pathlib.Path:
     return path
 
 
-def fmu_start_values(platform, fmi_version: str = "2.0") -> dict[str, float]:
+#: The units that take the library's parameter table, and those that start from a pose.
+PARAMETER_UNITS = ("StewartPlatform", "StewartPlant", "StewartPlantME")
+PLANT_UNITS = ("StewartPlant", "StewartPlantME")
+_POSE = ("x", "y", "z", "roll", "pitch", "yaw")
+
+
+def fmu_start_values(platform, fmi_version: str = "2.0",
+                     model: str = "StewartPlatform") -> dict[str, float]:
     """The start values that give an FMU unit of the library (StewartPlatform, StewartPlant,
     StewartPlantME) the platform `platform`: a Platform, a platform file's path, or a mapping of
     parameter names to values as Platform takes them. Arrays are expanded to the FMU's element
     names (``base_joint[1]`` .. ``base_joint[18]``; a scalar stroke fills ``stroke_min[1]`` ..
     ``stroke_min[6]``), every value in SI, for FMI `fmi_version` ("2.0" or "3.0": the names are
-    the same). The platform is built first, so a bad file or value raises ParameterError here,
-    not at the unit's instantiation. E.g. ``fmpy.simulate_fmu(stewart.fmu_path("2.0"),
+    the same). For a plant unit (`model` "StewartPlant" or "StewartPlantME") the values also
+    hold its start state: the machine at its home pose (x0 .. yaw0: the tool in the user frame,
+    in the file's rotation order and frame convention, as Platform.check().home), at rest
+    (x_dot0 .. yaw_dot0 zero); the unit's own start, z0 = 0.5 m, is the thesis platform's home
+    only. The platform is built first, so a bad file or value raises ParameterError here, not at
+    the unit's instantiation. E.g. ``fmpy.simulate_fmu(stewart.fmu_path("2.0"),
     start_values={**stewart.fmu_start_values("machine.json"), ...})``."""
     import os
     from collections.abc import Mapping
@@ -77,6 +88,9 @@ def fmu_start_values(platform, fmi_version: str = "2.0") -> dict[str, float]:
     if fmi_version not in FMI_VERSIONS:
         raise ValueError(f"fmi_version = {fmi_version!r}: the FMUs exist for FMI "
                          f"{', '.join(FMI_VERSIONS)}")
+    if model not in PARAMETER_UNITS:
+        raise ValueError(f"model = {model!r}: the units that take a platform are "
+                         f"{', '.join(PARAMETER_UNITS)}")
     if isinstance(platform, Platform):
         built = platform
     elif isinstance(platform, Mapping):
@@ -93,4 +107,8 @@ def fmu_start_values(platform, fmi_version: str = "2.0") -> dict[str, float]:
             values.update({f"{name}[{k}]": value for k in range(1, counts[name] + 1)})
         else:
             values[name] = value
+    if model in PLANT_UNITS:
+        home = built.check().home
+        values.update({f"{p}0": float(v) for p, v in zip(_POSE, home)})
+        values.update({f"{p}_dot0": 0.0 for p in _POSE})
     return values

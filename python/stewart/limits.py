@@ -54,6 +54,24 @@ class LimitCheck:
         return self.failed == 0
 
 
+def smallest_margins(platform, result: LimitCheck) -> np.ndarray:
+    """Each class's smallest margin over the N poses of result (one per class): for the axis class
+    that of the pose whose axis is nearest its limit, ranked as the library ranks the axes (an
+    angle's margin times the longest arm from the tool origin to a platform joint), so that a
+    margin in m and one in rad are never compared as numbers."""
+    smallest = result.margin.min(axis=0)
+    if len(result.margin):
+        _, top = _core.model_joints(platform._model)
+        tool = np.broadcast_to(platform.params.get("tool_frame", 0.0), (6,))[:3]
+        arm = float(np.linalg.norm(np.reshape(top, (6, 3)) - tool, axis=1).max()) or 1.0
+        axis = result.margin[:, 5]
+        with np.errstate(over="ignore"):
+            way = np.where((result.leg[:, 5] >= 4) & (axis <= 0.5 * np.finfo(float).max),
+                           axis * arm, axis)
+        smallest[5] = axis[int(np.argmin(way))]
+    return smallest
+
+
 def check(model, q: np.ndarray, warn_condition: Optional[float], rates=None, accels=None,
           jerks=None, forces=None) -> LimitCheck:
     """The check of every row of q (an (N, 6) C-contiguous float64 array), with the pose's

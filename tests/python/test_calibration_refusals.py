@@ -161,3 +161,26 @@ def test_the_report_predicts_at_the_measured_poses_when_no_random_pose_is_inside
     assert result.accuracy.samples == 30
     assert "30 measured poses (no random pose was found inside the limits)" in result.report()
     assert np.isfinite(result.accuracy.position_worst) and result.accuracy.position_worst > 0
+
+
+def test_poses_for_a_z_down_machine_are_refused_with_the_conversion(tmp_path):
+    """calibration_poses on SIMONA in its own z-down frames: no warning that home is beyond a
+    limit (it is not) and no "pose row 0" reading error, but a refusal naming frame_convention
+    and the turn to z up; that turn (the shipped z-up file) is then taken without a warning."""
+    import warnings
+    from test_rotation_order import simona_z_down
+    down = simona_z_down(tmp_path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match=r"frame_convention 1 \(z down\)") as refused:
+            stewart.calibration_poses(down, 30)
+        assert "(x, -y, -z)" in str(refused.value) and "row" not in str(refused.value)
+        up = stewart.Platform.from_file(stewart.platform_files()["simona_motion_base"])
+        assert stewart.calibration_poses(up, 30).shape == (30, 6)
+    with pytest.raises(ValueError, match="frame_convention 1") as refused:
+        stewart.observability(down, np.zeros((30, 6)))
+
+
+def test_poses_for_another_rotation_order_name_the_converter():
+    with pytest.raises(ValueError, match=r"rotation_order 1.*convert_angles\(angles, 1, 0\)"):
+        stewart.calibration_poses(stewart.Platform(rotation_order=1), 30)

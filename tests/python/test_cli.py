@@ -319,3 +319,75 @@ def test_option_names_are_no_parameter_names():
     for direction in ("inverse", "forward", "plant"):
         names = {o["name"] for o in _core.option_table(direction)}
         assert not names & parameters, (direction, names & parameters)
+
+
+class _Table(dict):
+    columns = property(lambda self: list(self))
+
+
+def _table(path):
+    """{column: float array, or a list of text for a text column}, in the file's order."""
+    with open(path, newline="") as f:
+        header, *rows = list(csv.reader(f))
+    table = _Table()
+    for i, name in enumerate(header):
+        cells = [r[i] for r in rows]
+        try:
+            table[name] = np.array([float(c) for c in cells])
+        except ValueError:
+            table[name] = cells
+    return table
+
+
+@pytest.mark.parametrize("units, length, angle", [("mm,deg", 1e3, 180 / math.pi),
+                                                  ("deg,um", 1e6, 180 / math.pi),
+                                                  ("mrad", 1.0, 1e3)])
+def test_units_of_the_output_are_the_si_output_converted(solve, tmp_path, units, length, angle):
+    """--units: every length (legs, their rates and accelerations, stroke and interference
+    margins, position ranges) times the length unit's factor, every angle (joint margins, angle
+    ranges) times the angle's; forces, conditions, status and margin_axis as in SI."""
+    path = tmp_path / "in.csv"
+    rows = [[0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0], [0.1, 0.01, -0.02, 0.51, 0.02, 0.01, 0.0],
+            [0.2, 0.02, 0.0, 0.52, 0.04, 0.0, 0.01]]
+    path.write_text("t,x,y,z,roll,pitch,yaw\n" + "".join(",".join(map(repr, r)) + "\n" for r in rows))
+    for extra in ([], ["--units", units]):
+        r = solve("--limits", "--ranges", *extra, path, tmp_path / f"out{len(extra)}.csv")
+        assert r.returncode == 0, r.stderr
+    si, converted = _table(tmp_path / "out0.csv"), _table(tmp_path / "out2.csv")
+    assert list(si.columns) == list(converted.columns)
+    lengths = [c for c in si.columns if c.startswith("L") or c in (
+        "margin_stroke", "margin_interference") or c[:2] in ("x_", "y_", "z_")]
+    angles = ["margin_base_joint", "margin_platform_joint",
+              *[f"{a}_{e}" for a in ("roll", "pitch", "yaw") for e in ("min", "max")]]
+    assert len(lengths) == 18 + 2 + 6 and len(angles) == 8
+    for c in si.columns:
+        factor = length if c in lengths else angle if c in angles else 1.0
+        if isinstance(si[c], list):
+            assert si[c] == converted[c], c
+        else:
+            np.testing.assert_allclose(converted[c], si[c] * factor, rtol=1e-15, atol=0,
+                                       err_msg=c)
+
+
+def test_forward_units_are_the_si_output_converted(solve, tmp_path):
+    lengths = tmp_path / "lengths.csv"
+    poses = tmp_path / "poses.csv"
+    poses.write_text("t,x,y,z,roll,pitch,yaw\n0,0.01,-0.02,0.51,0.02,0.01,0.03\n"
+                     "0.1,0.02,-0.01,0.52,0.01,0.02,0.02\n")
+    assert solve(poses, lengths).returncode == 0
+    for extra in ([], ["--units", "um,deg"]):
+        r = solve("--forward", *extra, lengths, tmp_path / f"f{len(extra)}.csv")
+        assert r.returncode == 0, r.stderr
+    si, converted = _table(tmp_path / "f0.csv"), _table(tmp_path / "f2.csv")
+    for c, factor in (("x", 1e6), ("z", 1e6), ("yaw", 180 / math.pi), ("residual", 1e6),
+                      ("condition", 1.0), ("t", 1.0)):
+        np.testing.assert_allclose(converted[c], si[c] * factor, rtol=1e-15, atol=0, err_msg=c)
+
+
+def test_units_refused_by_name(solve, tmp_path):
+    r = solve("--units", "mm,inch", "in.csv", "out.csv")
+    assert r.returncode == 2 and "'inch' is neither a length unit" in r.stderr
+    platform = tmp_path / "p.json"
+    platform.write_text("{}")
+    r = solve("--check", platform, "--units", "mm")
+    assert r.returncode == 2 and "--units is for OUT.csv" in r.stderr

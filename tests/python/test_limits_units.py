@@ -114,3 +114,54 @@ def test_plant_warns_of_joint_limits_and_interference_as_of_strokes():
     np.testing.assert_array_equal((sim.warnings & 16) != 0, interference)
     for bits in (joint_bits, interference):
         assert not bits[0] and bits[-1]
+
+
+def longest_arm(platform):
+    """The largest distance from the tool origin to a platform joint (platform frame) [m]."""
+    from stewart import _core
+    _, top = _core.model_joints(platform._model)
+    tool = np.broadcast_to(platform.params.get("tool_frame", 0.0), (6,))[:3]
+    return float(np.linalg.norm(np.reshape(top, (6, 3)) - tool, axis=1).max())
+
+
+@pytest.mark.parametrize("name", sorted(stewart.platform_files()))
+def test_axis_margin_is_one_axis_in_its_own_unit(name):
+    """Software position limits 10 mm from home in x and a roll limit whose arc at the farthest
+    platform joint is 9 mm (then 11 mm): the axis class names roll with its margin in rad (then x
+    with its margin in m), whichever number is smaller in m or rad."""
+    path = stewart.platform_files()[name]
+    home = stewart.Platform.from_file(path).check().home
+    arm = longest_arm(stewart.Platform.from_file(path))
+    for factor, axis, margin in ((0.9, 4, 0.009 / arm), (1.1, 1, 0.01)):
+        angle = factor * 0.01 / arm
+        low, high = np.full(6, -1e300), np.full(6, 1e300)
+        low[0], high[0] = home[0] - 0.01, home[0] + 0.01
+        low[3], high[3] = home[3] - angle, home[3] + angle
+        platform = stewart.Platform.from_file(path, axis_min=low.tolist(),
+                                              axis_max=high.tolist())
+        check = platform.limits(home)
+        assert check.leg[0, 5] == axis, (factor, check.margin[0, 5], arm)
+        assert check.margin[0, 5] == pytest.approx(margin, rel=1e-9)
+        assert check.within[0]
+
+
+def test_smallest_axis_margin_over_poses_is_ranked_as_the_library_ranks_axes():
+    """Over two poses of the Rubin camera hexapod (arm 2.7 m): x 5 mm from its limit at one,
+    roll 8 mm of arc (2.9 mrad) from its at the other. The smallest axis margin of the two (a
+    sweep's margin_axis) is the 5 mm, not the number 0.0029 of the other unit."""
+    from stewart.limits import smallest_margins
+    path = stewart.platform_files()["rubin_camera_hexapod"]
+    home = stewart.Platform.from_file(path).check().home
+    arm = longest_arm(stewart.Platform.from_file(path))
+    low, high = np.full(6, -1e300), np.full(6, 1e300)
+    low[0], high[0] = home[0] - 0.01, home[0] + 0.01
+    low[3], high[3] = home[3] - 0.01 / arm, home[3] + 0.01 / arm
+    platform = stewart.Platform.from_file(path, axis_min=low.tolist(), axis_max=high.tolist())
+    a, b = home.copy(), home.copy()
+    a[0] += 0.005
+    b[3] += 0.002 / arm
+    check = platform.limits(np.array([a, b]))
+    assert check.within.all() and list(check.leg[:, 5]) == [1, 4]
+    assert check.margin[1, 5] < 0.005  # the other unit's number is the smaller one
+    assert smallest_margins(platform, check)[5] == pytest.approx(0.005, rel=1e-9)
+    np.testing.assert_array_equal(smallest_margins(platform, check)[:5], check.margin.min(axis=0)[:5])

@@ -51,6 +51,64 @@ def test_start_values_refuse_what_is_not_a_platform(tmp_path):
         stewart.fmu_start_values(bad)
 
 
+def home_lengths(path):
+    """The readings at home from the z-up platform file alone: |platform joint + (0, 0,
+    home_height) - base joint| - length_offset (the joints as the model places them)."""
+    from stewart import _core
+    platform = stewart.Platform.from_file(path)
+    base, top = (np.reshape(j, (6, 3)) for j in _core.model_joints(platform._model))
+    height = platform.params.get("home_height", 0.5)
+    offset = np.broadcast_to(platform.params.get("length_offset", 0.0), (6,))
+    return np.linalg.norm(top + [0.0, 0.0, height] - base, axis=1) - offset
+
+
+def z_down_file(path, tmp_path):
+    """A z-up platform file without frames turned into z-down frames (frame_convention 1): the
+    same machine, joints and centres of mass turned by 180 deg about x."""
+    turn = np.diag([1.0, -1.0, -1.0])
+    data = json.loads(pathlib.Path(path).read_text())
+    assert not {"tool_frame", "user_frame", "frame_convention"} & data.keys()
+    for name in ("base_joint", "platform_joint"):
+        data[name] = (np.reshape(data[name], (6, 3)) @ turn).ravel().tolist()
+    for name in ("payload_com", "platform_com"):
+        if name in data:
+            data[name] = (turn @ data[name]).tolist()
+    data["frame_convention"] = 1
+    out = tmp_path / "z_down.json"
+    out.write_text(json.dumps(data))
+    return out
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+@pytest.mark.parametrize("model", ["StewartPlant", "StewartPlantME"])
+@pytest.mark.parametrize("name", MACHINES + ["simona_motion_base z down"])
+def test_plant_start_values_start_at_the_machine_home(name, model, version, tmp_path):
+    """The plant started from fmu_start_values(..., model=plant) sits at the machine's home: its
+    leg readings at t = 0 are the home lengths of the file's geometry (z down: those of the same
+    machine z up), its rates zero."""
+    import fmpy
+    path = stewart.platform_files()[name.split()[0]]
+    expected = home_lengths(path)
+    if name.endswith("z down"):
+        path = z_down_file(path, tmp_path)
+    values = stewart.fmu_start_values(path, fmi_version=version, model=model)
+    assert values.keys() >= {"x0", "z0", "yaw0", "x_dot0", "yaw_dot0"}
+    result = fmpy.simulate_fmu(BUILD / "fmus" / version / f"{model}.fmu", stop_time=1e-3,
+                               output_interval=1e-3, start_values={**values, "fidelity": 1},
+                               output=[*(f"L[{k}]" for k in range(1, 7)), "z", "z_dot"])
+    lengths = np.array([result[f"L[{k}]"][0] for k in range(1, 7)])
+    np.testing.assert_allclose(lengths, expected, rtol=0, atol=1e-12 * expected.max())
+    assert result["z_dot"][0] == 0.0
+    if name.endswith("z down"):
+        assert result["z"][0] < 0  # the platform above the base: z down is negative
+
+
+def test_start_values_name_the_units_that_take_a_platform():
+    with pytest.raises(ValueError, match="StewartPlant"):
+        stewart.fmu_start_values(stewart.Platform(), model="StewartController")
+    assert "z0" not in stewart.fmu_start_values(stewart.Platform())  # the inverse unit has none
+
+
 @pytest.mark.parametrize("name", MACHINES)
 def test_a_scene_moves_about_the_machine_home(name):
     platform = stewart.Platform.from_file(stewart.platform_files()[name])

@@ -205,3 +205,81 @@ def test_the_package_ships_the_archives(version):
             assert z.read(name) == stewart.fmu_path(version, unit).read_bytes(), name
     with pytest.raises(ValueError, match="1.0"):
         stewart.ssp_path("1.0")
+
+
+MACHINES = sorted(__import__("stewart").platform_files())
+
+
+def machine_ecos_run(archive, name, steps):
+    """ecos on a machine's archive with its parameter set: the plant's pose after each step, the
+    scene's means and the plant's base joints as the units hold them."""
+    ecospy = pytest.importorskip("ecospy")
+    simulation = ecospy.EcosSimulation(step_size=H, ssp_path=str(archive))
+    try:
+        simulation.init(parameter_set=name)
+        means = [simulation.get_real(f"scene::{p}_mean") for p in POSE]
+        joints = [simulation.get_real(f"plant::base_joint[{k}]") for k in range(1, 19)]
+        poses = []
+        for _ in range(steps):
+            simulation.step()
+            poses.append([simulation.get_real(f"plant::{p}") for p in POSE])
+        return np.array(poses), np.array(means), np.array(joints)
+    finally:
+        simulation.terminate()
+        simulation.free()
+
+
+@pytest.mark.parametrize("name", MACHINES)
+def test_a_platform_file_is_a_parameter_set_of_the_ssp_closed_loop(name, tmp_path):
+    """scripts/machine_ssp.py: the package's archive with the machine's SSV files; ecos runs it
+    with the set named after the file: the units hold the file's joints, the cue moves about the
+    machine's home (Platform.check().home), and the plant follows the fmpy loop of
+    scripts/closed_loop.py on the same machine within the coupling error (1 % of the cue's
+    excursion, as the fmpy loop tracks on every machine)."""
+    import machine_ssp
+    import stewart
+    path = stewart.platform_files()[name]
+    platform = stewart.Platform.from_file(path)
+    archive, osp = tmp_path / f"{name}.ssp", tmp_path / f"{name}.xml"
+    assert machine_ssp.write(path, archive, scale_to_ranges=True, fmus=BUILD / "fmus" / "2.0",
+                             osp_out=osp) == name
+    steps = 300
+    poses, means, joints = machine_ecos_run(archive, name, steps)
+    home = platform.check().home
+    np.testing.assert_allclose(means, home, rtol=0, atol=1e-15)
+    values = stewart.fmu_start_values(platform)
+    np.testing.assert_array_equal(joints, [values[f"base_joint[{k}]"] for k in range(1, 19)])
+    scene = stewart.scenes.on_platform(scenes_module().load("combined"), platform,
+                                       scale_to_ranges=True)
+    kp, kd = closed_loop.machine_gains(platform)
+    loop = closed_loop.run(scene, steps * H, H, kp, kd, fmus=BUILD / "fmus" / "2.0",
+                           machine=values)[0]
+    excursion = np.abs(loop["cue"] - home).max(axis=0)
+    tolerance = 1e-2 * np.r_[[excursion[:3].max()] * 3, [max(excursion[3:].max(), 1e-6)] * 3]
+    assert np.all(np.abs(poses - loop["pose"][1:]) <= tolerance), name
+    assert np.all(np.abs(poses - loop["cue"][1:]) <= tolerance), name
+    # libcosim on the OSP structure of the same values: the same coupling as ecos
+    np.testing.assert_allclose(libcosim_poses(osp, steps), poses, rtol=0,
+                               atol=1e-9 * max(1.0, np.abs(home).max()))
+
+
+def libcosim_poses(osp, steps):
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    log_output_level(CosimLogLevel.ERROR)
+    ex = CosimExecution.from_osp_config_file(str(osp))
+    observer = CosimObserver.create_last_value()
+    ex.add_observer(observer)
+    plant = {s.name.decode(): s.index for s in ex.slave_infos()}["plant"]
+    reference = {v.name.decode(): v.reference for v in ex.slave_variables(plant)}
+    poses = []
+    for _ in range(steps):
+        assert ex.step()
+        poses.append(observer.last_real_values(plant, [reference[p] for p in POSE]))
+    return np.array(poses)
+
+
+def scenes_module():
+    import scenes
+    return scenes

@@ -14,7 +14,7 @@ import pyarrow as pa
 
 from .. import _core
 from ..inverse import INVERSE_TABLE, InverseSolution, empty_inverse_solution
-from ..limits import LIMIT_CLASSES, POSE_CLASSES, LimitCheck
+from ..limits import LIMIT_CLASSES, POSE_CLASSES, LimitCheck, smallest_margins
 from ..platform import Platform, _warn_condition
 from ..scenes import POSE
 from .spec import Chunk, manoeuvre_samples
@@ -64,7 +64,7 @@ def envelope_limits(platform: Platform, t: np.ndarray, q: np.ndarray,
     first = int(beyond[0]) if beyond.size else None
     return [first is None, 0 if first is None else int(check.first[first]),
             None if first is None else float(t[first]),
-            *[float(v) for v in check.margin[:, :len(POSE_CLASSES)].min(axis=0)]]
+            *[float(v) for v in smallest_margins(platform, check)[:len(POSE_CLASSES)]]]
 
 
 def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
