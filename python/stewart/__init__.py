@@ -13,6 +13,8 @@ inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.
 ``stewart.calibration_poses`` says where to measure (calibration.py, docs/calibration.md).
 ``stewart.view`` writes a self-contained HTML page that shows a platform and a result in 3D
 (view.py, docs/view.md).
+``stewart.perception`` filters a motion through a model of the vestibular system (what a seated
+person feels, vestibular.py, docs/perception.md).
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
@@ -28,6 +30,7 @@ from .inverse import InverseSolution
 from .feasibility import Feasibility, feasibility
 from .moves import Move, MoveError, move
 from .params import parameters, platform_files
+from .vestibular import Perceived, VestibularModel, perception
 from .platform import Platform
 from .simulate import Method, Simulation
 from .view import view
@@ -42,4 +45,5 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
-           "MoveError", "feasibility", "Feasibility", "__version__"]
+           "MoveError", "feasibility", "Feasibility", "perception", "Perceived",
+           "VestibularModel", "__version__"]
