@@ -14,7 +14,8 @@ inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.
 ``stewart.view`` writes a self-contained HTML page that shows a platform and a result in 3D
 (view.py, docs/view.md).
 ``stewart.perception`` filters a motion through a model of the vestibular system (what a seated
-person feels, vestibular.py, docs/perception.md).
+person feels, vestibular.py, docs/perception.md); ``stewart.cueing_scores`` compares what a vehicle
+and a platform make one feel (scores.py).
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
@@ -32,6 +33,7 @@ from .moves import Move, MoveError, move
 from .params import parameters, platform_files
 from .vestibular import Perceived, VestibularModel, perception
 from .platform import Platform
+from .scores import CueingScores, cueing_scores
 from .simulate import Method, Simulation
 from .view import view
 
@@ -46,4 +48,4 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
            "MoveError", "feasibility", "Feasibility", "perception", "Perceived",
-           "VestibularModel", "__version__"]
+           "VestibularModel", "cueing_scores", "CueingScores", "__version__"]
