@@ -84,10 +84,10 @@ def cueing_scores(t, vehicle_perceived, platform_perceived, max_delay: float = M
     correlation, delay, peak = np.full(k, np.nan), np.full(k, np.nan), np.full(k, np.nan)
     notes = []
     for j in range(k):
-        flat = [who for who, x in (("vehicle", v[:, j]), ("platform", p[:, j])) if _flat(x)]
+        flat = [who for who, x in (("vehicle's", v[:, j]), ("platform's", p[:, j])) if _flat(x)]
         if flat:
-            notes.append(f"the {' and the '.join(flat)} signal does not vary: no correlation "
-                         "or delay")
+            what = "signals do not vary" if len(flat) == 2 else "signal does not vary"
+            notes.append(f"the {' and the '.join(flat)} {what}: no correlation or delay")
             continue
         correlation[j] = _pearson(v[:, j], p[:, j])
         delay[j], peak[j], at_edge = _delay(v[:, j], p[:, j], max_lag, dt)

@@ -137,7 +137,8 @@ def perception(t, specific_force, angular_velocity, model: Union[str, Vestibular
                      filter_channel(vestibular.canal, dt, w, initial))
 
 
-def filter_channel(channel: Channel, dt: float, u: np.ndarray, initial: str = "steady") -> np.ndarray:
+def filter_channel(channel: Channel, dt: float, u: np.ndarray,
+                   initial: str = "steady") -> np.ndarray:
     """channel's response to u (N, k) sampled every dt [s], each column held over its sample
     (exact zero-order-hold discretisation of the modal form); initial as in perception."""
     from scipy.signal import lfilter  # only the filters need scipy (calibration does the same)

@@ -60,7 +60,8 @@ def test_sinusoids_match_the_transfer_functions(hz):
     t = np.arange(0, 40, 0.005)
     u = np.sin(2 * np.pi * hz * t)  # zero at t = 0: the filters start at rest
     felt = run(t, np.outer(u, [1, 0, 0]), np.outer(u, [0, 0, 1]))
-    for tf, y in ((canal_tf(), felt.angular_velocity[:, 2]), (otolith_tf(), felt.specific_force[:, 0])):
+    for tf, y in ((canal_tf(), felt.angular_velocity[:, 2]),
+                  (otolith_tf(), felt.specific_force[:, 0])):
         expected = held(tf, t, u)
         assert np.max(np.abs(y - expected)) <= 1e-9 * np.max(np.abs(expected))
     assert np.all(felt.angular_velocity[:, :2] == 0) and np.all(felt.specific_force[:, 1:] == 0)
@@ -74,7 +75,8 @@ def test_sinusoid_amplitude_is_the_frequency_response():
     u = np.sin(2 * np.pi * hz * t)
     felt = run(t, np.outer(u, [0, 1, 0]), np.outer(u, [1, 0, 0]))
     last = t > 400
-    for tf, y in ((canal_tf(), felt.angular_velocity[:, 0]), (otolith_tf(), felt.specific_force[:, 1])):
+    for tf, y in ((canal_tf(), felt.angular_velocity[:, 0]),
+                  (otolith_tf(), felt.specific_force[:, 1])):
         _, h = signal.freqs(*tf, worN=[2 * np.pi * hz])
         assert np.max(np.abs(y[last])) == pytest.approx(abs(h[0]), rel=2e-3)
 
@@ -103,7 +105,8 @@ def test_canal_step_decays_with_the_cupula_and_reverses_with_adaptation():
 
 def test_resting_person_feels_gravity_scaled_by_the_otolith_gain_and_no_rotation():
     """Steady start: a constant specific force is felt as K f from the first sample (the DC gain
-    of the otolith's transfer function, 0.4), a constant rotation not at all (two zeros at s = 0)."""
+    of the otolith's transfer function, 0.4), a constant rotation not at all (two zeros at
+    s = 0)."""
     t = np.arange(0, 20, 0.01)
     f = np.tile([0.0, 0.0, G], (t.size, 1))
     w = np.tile([0.1, -0.2, 0.3], (t.size, 1))

@@ -94,7 +94,7 @@ def test_perceived_pairs_flat_channels_and_the_search_bound():
     assert s.channels == ("f_x", "f_y", "f_z", "w_x", "w_y", "w_z")
     for j in (1, 2, 3, 4):
         assert math.isnan(s.correlation[j]) and math.isnan(s.delay[j])
-        assert "does not vary" in s.notes[j]
+        assert "not vary" in s.notes[j]
     for j in (0, 5):  # shifted by 0.3 s, searched up to 0.2 s
         assert s.delay[j] == pytest.approx(0.2) and "search bound" in s.notes[j]
     wide = stewart.cueing_scores(t, vehicle, platform, max_delay=1.0)
