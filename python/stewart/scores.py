@@ -98,10 +98,8 @@ def cueing_scores(t, vehicle_perceived, platform_perceived, max_delay: float = M
 
 def _delay(v: np.ndarray, p: np.ndarray, max_lag: int, dt: float) -> Tuple[float, float, bool]:
     """(delay [s], c at the best lag, whether the best lag is the bound)."""
-    n = v.shape[0]
     lags = np.arange(-max_lag, max_lag + 1)
-    c = np.array([_pearson(v[max(0, -lag):n - max(0, lag)], p[max(0, lag):n - max(0, -lag)],
-                           undefined=-np.inf) for lag in lags])
+    c = _lagged_correlations(v, p, lags)
     best = int(np.argmax(c))
     if not np.isfinite(c[best]):
         return float("nan"), float("nan"), False
@@ -114,11 +112,46 @@ def _delay(v: np.ndarray, p: np.ndarray, max_lag: int, dt: float) -> Tuple[float
     return (float(lags[best]) + shift) * dt, float(c[best]), at_edge
 
 
-def _pearson(a: np.ndarray, b: np.ndarray, undefined: float = np.nan) -> float:
+def _lagged_correlations(v: np.ndarray, p: np.ndarray, lags: np.ndarray) -> np.ndarray:
+    """Pearson's coefficient of v[k] and p[k + lag] over the overlapping samples, per lag (-inf
+    where an overlap does not vary). Both are centred first (no digits lost to large means); the
+    sums of products come from one FFT, the sums over an overlap from the whole record less the
+    at most max|lag| samples it leaves out (no long running sums)."""
+    n = v.shape[0]
+    v = v - v.mean()
+    p = p - p.mean()
+    size = 1 << (2 * n - 1).bit_length()
+    cross = np.fft.irfft(np.conj(np.fft.rfft(v, size)) * np.fft.rfft(p, size), size)[lags % size]
+    out = int(np.max(np.abs(lags)))
+
+    def ends(x):  # sums of x and x^2 over the first and the last j samples, j = 0..out
+        first = [np.concatenate([[0.0], np.cumsum(y[:out])]) for y in (x, x * x)]
+        last = [np.concatenate([[0.0], np.cumsum(y[::-1][:out])]) for y in (x, x * x)]
+        return first, last, (x.sum(), np.dot(x, x))
+
+    (v_first, v_last, v_all), (p_first, p_last, p_all) = ends(v), ends(p)
+    j = np.abs(lags)
+    late = lags >= 0  # p later than v: v loses its last j samples, p its first j
+    sums = []
+    for k in range(2):
+        sums.append(v_all[k] - np.where(late, v_last[k][j], v_first[k][j]))
+        sums.append(p_all[k] - np.where(late, p_first[k][j], p_last[k][j]))
+    sa, sb, saa, sbb = sums[0], sums[1], sums[2], sums[3]
+    m = n - j
+    var_a = saa - sa * sa / m
+    var_b = sbb - sb * sb / m
+    c = np.full(lags.shape, -np.inf)
+    # below 1e-15 of the whole record's sum of squares: what rounding leaves of no variation
+    ok = (var_a > 1e-15 * v_all[1]) & (var_b > 1e-15 * p_all[1])
+    c[ok] = (cross[ok] - sa[ok] * sb[ok] / m[ok]) / np.sqrt(var_a[ok] * var_b[ok])
+    return c
+
+
+def _pearson(a: np.ndarray, b: np.ndarray) -> float:
     a = a - a.mean()
     b = b - b.mean()
     norm = np.sqrt(np.dot(a, a) * np.dot(b, b))
-    return float(np.dot(a, b) / norm) if norm > 0 else undefined
+    return float(np.dot(a, b) / norm) if norm > 0 else float("nan")
 
 
 def _flat(x: np.ndarray) -> bool:

@@ -141,7 +141,11 @@ def filter_channel(channel: Channel, dt: float, u: np.ndarray,
                    initial: str = "steady") -> np.ndarray:
     """channel's response to u (N, k) sampled every dt [s], each column held over its sample
     (exact zero-order-hold discretisation of the modal form); initial as in perception."""
-    from scipy.signal import lfilter  # only the filters need scipy (calibration does the same)
+    try:
+        from scipy.signal import lfilter  # only the filters need scipy (as calibration does)
+    except ImportError:
+        raise ImportError("stewart.perception needs scipy (its lfilter runs the recursions): "
+                          "pip install scipy") from None
     direct, tau, residues = channel.modes()
     y = direct * u
     for tau_i, r_i in zip(tau, residues):

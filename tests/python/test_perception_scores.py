@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import stewart
+from stewart.scores import _lagged_correlations
 
 DT = 0.01
 
@@ -33,6 +34,20 @@ def test_a_copy_shifted_by_whole_samples(shift):
     # the zero-lag correlation is Pearson's coefficient (numpy's), below 1 when shifted
     assert s.correlation[0] == pytest.approx(np.corrcoef(vehicle, platform)[0, 1], abs=1e-12)
     assert (s.correlation[0] < 1 - 1e-3) == (shift != 0)
+
+
+def test_lagged_correlations_are_pearson_on_the_overlap():
+    """The FFT-and-end-sums correlations against numpy's corrcoef of the overlapping samples,
+    for signals with large means and different scales."""
+    v = 100.0 + smooth_noise(2000, seed=1)
+    p = -3e-6 * smooth_noise(2000, seed=2) + 7.0
+    lags = np.arange(-40, 41)
+    c = _lagged_correlations(v, p, lags)
+    n = v.size
+    for lag, value in zip(lags, c):
+        a = v[max(0, -lag):n - max(0, lag)]
+        b = p[max(0, lag):n - max(0, -lag)]
+        assert value == pytest.approx(np.corrcoef(a, b)[0, 1], abs=1e-12)
 
 
 @pytest.mark.parametrize("delay", [0.123, 0.0049, -0.2567])
