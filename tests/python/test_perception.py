@@ -67,6 +67,21 @@ def test_sinusoids_match_the_transfer_functions(hz):
     assert np.all(felt.angular_velocity[:, :2] == 0) and np.all(felt.specific_force[:, 1:] == 0)
 
 
+def test_steady_start_is_the_state_space_equilibrium_of_the_first_sample():
+    """A motion that starts away from zero (an offset sinusoid): the default steady start equals
+    scipy's simulation of the transfer function started at its state-space equilibrium for the
+    first input, x0 = -A^-1 B u[0] (scipy's own realisation)."""
+    t = np.arange(0, 20, 0.01)
+    u = 2.0 + np.sin(2 * np.pi * 0.4 * t + 0.7)
+    felt = run(t, np.outer(u, [0, 0, 1]), np.outer(u, [0, 1, 0]))
+    for tf, y in ((canal_tf(), felt.angular_velocity[:, 1]),
+                  (otolith_tf(), felt.specific_force[:, 2])):
+        a, b, c, d = signal.tf2ss(*tf)
+        x0 = -np.linalg.solve(a, b[:, 0] * u[0])
+        _, expected, _ = signal.lsim((a, b, c, d), u, t, X0=x0, interp=False)
+        assert np.max(np.abs(y - expected)) <= 1e-9 * np.max(np.abs(expected))
+
+
 def test_sinusoid_amplitude_is_the_frequency_response():
     """In steady state a sinusoid comes out scaled by |H(j omega)| (scipy.signal.freqs) to the
     half-sample delay of the hold."""
