@@ -13,6 +13,10 @@ inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.
 ``stewart.calibration_poses`` says where to measure (calibration.py, docs/calibration.md).
 ``stewart.view`` writes a self-contained HTML page that shows a platform and a result in 3D
 (view.py, docs/view.md).
+``stewart.perception`` filters a motion through a model of the vestibular system (what a seated
+person feels, vestibular.py, docs/perception.md); ``stewart.cueing_scores`` compares what a vehicle
+and a platform make one feel (scores.py); ``stewart.manoeuvre`` loads the vehicle manoeuvres
+shipped as data (manoeuvres.py, manoeuvres/README.md).
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
@@ -25,10 +29,13 @@ from .errors import ParameterError
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
 from .forward import ForwardSolution
 from .inverse import InverseSolution
+from .manoeuvres import manoeuvre, manoeuvre_files
 from .feasibility import Feasibility, feasibility
 from .moves import Move, MoveError, move
 from .params import parameters, platform_files
+from .vestibular import Perceived, VestibularModel, perception
 from .platform import Platform
+from .scores import CueingScores, cueing_scores
 from .simulate import Method, Simulation
 from .view import view
 
@@ -42,4 +49,6 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
-           "MoveError", "feasibility", "Feasibility", "__version__"]
+           "MoveError", "feasibility", "Feasibility", "perception", "Perceived",
+           "VestibularModel", "cueing_scores", "CueingScores", "manoeuvre",
+           "manoeuvre_files", "__version__"]
