@@ -145,7 +145,7 @@ def filter_channel(channel: Channel, dt: float, u: np.ndarray,
         from scipy.signal import lfilter  # only the filters need scipy (as calibration does)
     except ImportError:
         raise ImportError("stewart.perception needs scipy (its lfilter runs the recursions): "
-                          "pip install scipy") from None
+                          "pip install 'stewart[cueing]' (from a checkout: pip install '.[cueing]')") from None
     direct, tau, residues = channel.modes()
     y = direct * u
     for tau_i, r_i in zip(tau, residues):
