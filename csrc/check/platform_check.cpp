@@ -1,6 +1,7 @@
 // The check of a platform's home pose (stewart/stewart_check.h): the limits and axis ranges at
 // home through the limits object, and the hints that name a likely entry mistake.
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -123,6 +124,17 @@ std::string limit_at(int limit_class, int leg, int other_leg) {
            (where.empty() ? "" : " (" + where + ")");
 }
 
+// The axis class: its margin in its axis' unit and the axis' name, or that no axis has a limit.
+void add_axis_margin(const stewart_limits_output &limits, std::string &out) {
+    const int a = limits.leg[STEWART_LIMIT_AXIS - 1] - 1;
+    const double margin = limits.margin[STEWART_LIMIT_AXIS - 1];
+    if (a < 0 || a >= 6 || !(std::fabs(margin) < 0.5 * DBL_MAX))
+        return add(out, "  %-15s none set (axis_min, axis_max)\n",
+                   stewart_limit_class_name(STEWART_LIMIT_AXIS));
+    add(out, "  %-15s %-12.6g%-5s %s\n", stewart_limit_class_name(STEWART_LIMIT_AXIS),
+        a < 3 ? margin : margin * 180.0 / M_PI, a < 3 ? " m" : " deg", kAxes[a]);
+}
+
 void add_legs_and_margins(const stewart_check_report &r, std::string &out) {
     add(out, "home pose: x %.6g m, y %.6g m, z %.6g m, roll %.6g deg, pitch %.6g deg, yaw %.6g deg\n",
         r.home[0], r.home[1], r.home[2], r.home[3] * 180.0 / M_PI, r.home[4] * 180.0 / M_PI,
@@ -135,10 +147,11 @@ void add_legs_and_margins(const stewart_check_report &r, std::string &out) {
     }
     add(out, "margins at home (> 0 within, < 0 beyond):\n");
     // The pose's own classes: home is at rest, so the leg classes have nothing to check.
-    for (int c = 1; c <= STEWART_LIMIT_AXIS; ++c)
+    for (int c = 1; c < STEWART_LIMIT_AXIS; ++c)
         add(out, "  %-15s %-12.6g%-5s %s\n", stewart_limit_class_name(c),
             shown_margin(c, r.limits.margin[c - 1]), margin_unit(c),
             legs_of(r.limits.leg[c - 1], r.limits.other_leg[c - 1]).c_str());
+    add_axis_margin(r.limits, out);
     add(out, "  condition number %.6g\n", r.limits.condition);
 }
 

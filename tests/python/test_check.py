@@ -112,6 +112,18 @@ def test_a_home_outside_the_strokes_fails_the_check(tmp_path):
     assert result.returncode == 1 and "first limit it fails is stroke" in result.stdout
 
 
+def test_the_axis_margin_names_its_axis_in_its_unit(tmp_path):
+    """The axis class's line: the margin of the axis nearest its limit, in that axis' unit, and
+    the axis' name; no limit set says so instead of printing the largest double."""
+    assert "axis            none set" in solve("--check", ROOT / "platforms" / "paired_hexapod.json").stdout
+    # home at z 0.25 m, yaw 0: z within 2 mm of its top, yaw 3 deg (a 0.1 m arm moves 5 mm)
+    path = write_variant(tmp_path, "soft", lambda d: d.update(
+        axis_max=[1, 1, 0.252, 1, 1, np.radians(3.0)], axis_min=[-1, -1, 0, -1, -1, -1]))
+    line = [x for x in solve("--check", path).stdout.splitlines() if x.startswith("  axis ")][0]
+    words = line.split()
+    assert words[2:] == ["m", "z"] and float(words[1]) == pytest.approx(0.002, abs=1e-9), line
+
+
 def test_check_with_a_bad_file_says_why(tmp_path):
     path = tmp_path / "bad.json"
     path.write_text('{"geometry": 1, "payload_mass": -3}')
