@@ -1,0 +1,243 @@
+// The cueing unit's C API (stewart/stewart_cueing.h): life cycle, state bytes, the step.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <new>
+
+#include "cueing/classical.hpp"
+#include "cueing/limiter.hpp"
+#include "model.hpp"
+#include "stewart/stewart_cueing.h"
+#include "stewart/stewart_limits.h"
+#include "util/message.hpp"
+
+using stewart::clear_message;
+using stewart::set_message;
+
+namespace {
+
+// What a cueing object carries from one sample to the next: all of it plain numbers.
+struct CueingState {
+    stewart::cueing::ClassicalState classical;
+    double scale;  // the limiter's s of the last sample
+};
+
+// The saved bytes: a tag, the options they were made with, the state.
+constexpr std::uint32_t kStateTag = 0x43554531;  // "CUE1"
+struct SavedState {
+    std::uint32_t tag;
+    stewart_cueing_options options;
+    CueingState state;
+};
+
+void rest(CueingState &s) {
+    std::memset(&s, 0, sizeof s);
+    s.scale = 1.0;
+}
+
+bool finite_state(const CueingState &s) {
+    const double *v = reinterpret_cast<const double *>(&s.classical);
+    for (size_t i = 0; i < sizeof s.classical / sizeof(double); ++i)
+        if (!std::isfinite(v[i])) return false;
+    return s.scale >= 0.0 && s.scale <= 1.0;
+}
+
+}  // namespace
+
+struct stewart_cueing {
+    const stewart_model *model;
+    stewart_cueing_options options;
+    mutable char message[STEWART_MESSAGE_SIZE];
+    stewart::cueing::ClassicalDesign design;
+    stewart::cueing::ClassicalSteps steps;  // the filters discretised for the last dt
+    stewart::cueing::Limiter limiter;
+    stewart_limits *limits;
+    CueingState state;
+};
+
+namespace {
+
+// The home pose within every limit, else a message naming the first limit it fails.
+bool home_within(stewart_cueing &c, char *msg, size_t size) {
+    const double none[6] = {0, 0, 0, 0, 0, 0};
+    if (stewart::cueing::within(c.limiter, none, 0.0)) return true;
+    stewart_limits_input in{};
+    stewart_pose platform{}, caller{};
+    for (int i = 0; i < 6; ++i) platform.q[i] = c.limiter.home[i];
+    stewart::cueing::caller_pose(c.limiter, platform, 0, caller);
+    std::memcpy(in.q, caller.q, sizeof in.q);
+    stewart_limits_output out{};
+    stewart_limits_check(c.limits, &in, &out);
+    set_message(msg, size, STEWART_ERR_PARAMETER,
+                "the home pose is beyond the %s limit: the cueing unit moves about home and needs "
+                "it within every limit (check the platform with stewart-solve --check)",
+                stewart_limit_class_name(out.first));
+    return false;
+}
+
+stewart_status check_input(stewart_cueing *c, const stewart_cueing_input *in, const void *out) {
+    if (!in || !out)
+        return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT, "%s is NULL",
+                           in ? "output" : "input");
+    if (!(std::isfinite(in->dt) && in->dt >= 0.0))
+        return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                           "dt = %g must be finite and >= 0 [s]", in->dt);
+    static const char *const kAxes[3] = {"x", "y", "z"};
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(in->specific_force[i]))
+            return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                               "specific_force %s is %g: every input must be finite", kAxes[i],
+                               in->specific_force[i]);
+        if (!std::isfinite(in->angular_velocity[i]))
+            return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                               "angular_velocity %s is %g: every input must be finite", kAxes[i],
+                               in->angular_velocity[i]);
+    }
+    return clear_message(c->message, sizeof c->message);
+}
+
+}  // namespace
+
+extern "C" {
+
+// stewart_cueing_options_default and _check: table/options.cpp, from the option table.
+
+stewart_cueing *stewart_cueing_create(const stewart_model *model,
+                                      const stewart_cueing_options *options, char *msg,
+                                      size_t size) {
+    if (!model || !options) {
+        set_message(msg, size, STEWART_ERR_ARGUMENT, "%s is NULL", model ? "options" : "model");
+        return nullptr;
+    }
+    if (stewart_cueing_options_check(options, msg, size) != STEWART_OK) return nullptr;
+    const double g = model->gravity.norm();
+    if (!(g > 0.0)) {
+        set_message(msg, size, STEWART_ERR_PARAMETER,
+                    "gravity is 0: the cueing unit needs it for the vehicle's rest specific force "
+                    "and the tilt coordination");
+        return nullptr;
+    }
+    stewart_limits_options lo;
+    stewart_limits_options_default(&lo);
+    lo.warn_condition = options->warn_condition;
+    stewart_limits *limits = stewart_limits_create(model, &lo, msg, size);
+    if (!limits) return nullptr;
+    stewart_cueing *c = new (std::nothrow) stewart_cueing;
+    if (!c) {
+        stewart_limits_free(limits);
+        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the cueing object");
+        return nullptr;
+    }
+    c->model = model;
+    c->options = *options;
+    c->message[0] = '\0';
+    c->design = stewart::cueing::classical_design(*options, g);
+    c->limits = limits;
+    c->limiter.limits = limits;
+    c->limiter.frames = &model->frames;
+    const double home[6] = {0, 0, model->params.home_height, 0, 0, 0};
+    std::memcpy(c->limiter.home, home, sizeof home);
+    c->limiter.rate = options->limiter_rate;
+    c->limiter.lookahead = options->limiter_lookahead;
+    rest(c->state);
+    if (!home_within(*c, msg, size)) {
+        stewart_cueing_free(c);
+        return nullptr;
+    }
+    clear_message(msg, size);
+    return c;
+}
+
+void stewart_cueing_free(stewart_cueing *c) {
+    if (!c) return;
+    stewart_limits_free(c->limits);
+    delete c;
+}
+
+void stewart_cueing_reset(stewart_cueing *c) {
+    if (!c) return;
+    rest(c->state);
+    c->message[0] = '\0';
+}
+
+stewart_status stewart_cueing_copy(stewart_cueing *dst, const stewart_cueing *src) {
+    if (!dst || !src) return STEWART_ERR_ARGUMENT;
+    if (dst->model != src->model || std::memcmp(&dst->options, &src->options, sizeof dst->options))
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
+                           "copy from a cueing object of another model or other options");
+    dst->state = src->state;
+    return clear_message(dst->message, sizeof dst->message);
+}
+
+size_t stewart_cueing_state_size(const stewart_cueing *) { return sizeof(SavedState); }
+
+stewart_status stewart_cueing_save(const stewart_cueing *c, void *buffer, size_t size) {
+    if (!c) return STEWART_ERR_ARGUMENT;
+    if (!buffer || size < sizeof(SavedState))
+        return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                           "the buffer needs %zu bytes", sizeof(SavedState));
+    SavedState saved;
+    std::memset(&saved, 0, sizeof saved);
+    saved.tag = kStateTag;
+    saved.options = c->options;
+    saved.state = c->state;
+    std::memcpy(buffer, &saved, sizeof saved);
+    return clear_message(c->message, sizeof c->message);
+}
+
+stewart_status stewart_cueing_load(stewart_cueing *c, const void *buffer, size_t size) {
+    if (!c) return STEWART_ERR_ARGUMENT;
+    if (!buffer || size != sizeof(SavedState))
+        return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                           "a cueing state is %zu bytes, not %zu", sizeof(SavedState), size);
+    SavedState saved;
+    std::memcpy(&saved, buffer, sizeof saved);
+    if (saved.tag != kStateTag || std::memcmp(&saved.options, &c->options, sizeof c->options) ||
+        !finite_state(saved.state))
+        return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                           "the bytes are not a state of a cueing object with these options");
+    c->state = saved.state;
+    return clear_message(c->message, sizeof c->message);
+}
+
+const char *stewart_cueing_message(const stewart_cueing *c) {
+    return c ? c->message : "cueing is NULL";
+}
+
+stewart_status stewart_cueing_step(stewart_cueing *c, const stewart_cueing_input *in,
+                                   stewart_cueing_output *out) {
+    if (!c) return STEWART_ERR_ARGUMENT;
+    const stewart_status s = check_input(c, in, out);
+    if (s != STEWART_OK) return s;
+    CueingState next = c->state;
+    stewart::cueing::Excursion e;
+    stewart::cueing::classical_step(c->design, c->steps, next.classical, *in, e);
+    next.scale = stewart::cueing::limited_scale(c->limiter, e, c->state.scale, in->dt);
+    // s is linear over the step: the pose home + s e has rate s e' + s' e and acceleration
+    // s e'' + 2 s' e'.
+    const double s_dot = in->dt > 0.0 ? (next.scale - c->state.scale) / in->dt : 0.0;
+    stewart_pose platform;
+    for (int i = 0; i < 6; ++i) {
+        platform.q[i] = c->limiter.home[i] + next.scale * e.q[i];
+        platform.q_dot[i] = next.scale * e.q_dot[i] + s_dot * e.q[i];
+        platform.q_ddot[i] = next.scale * e.q_ddot[i] + 2.0 * s_dot * e.q_dot[i];
+    }
+    stewart_cueing_output o;
+    if (!stewart::cueing::caller_pose(c->limiter, platform, 2, o.pose))
+        return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                           "the tool's pitch reaches 90 deg, where its rates are not defined: "
+                           "reduce the cue's angles (roll_scale, pitch_scale, tilt_max)");
+    for (int i = 0; i < 6; ++i)
+        if (!std::isfinite(o.pose.q[i]) || !std::isfinite(o.pose.q_dot[i]) ||
+            !std::isfinite(o.pose.q_ddot[i]))
+            return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
+                               "the input overflows the cue: reduce it or the scales");
+    o.scale = next.scale;
+    o.limited = next.scale < 1.0;
+    o.tilt_limited = e.tilt_limited;
+    c->state = next;
+    *out = o;
+    return STEWART_OK;
+}
+
+}  // extern "C"
