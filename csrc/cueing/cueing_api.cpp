@@ -19,7 +19,7 @@ namespace {
 // What a cueing object carries from one sample to the next: all of it plain numbers.
 struct CueingState {
     stewart::cueing::ClassicalState classical;
-    double scale;  // the limiter's s of the last sample
+    double scale, scale_rate;  // the limiter's s and s' at the last sample
 };
 
 // The saved bytes: a tag, the options they were made with, the state.
@@ -39,7 +39,7 @@ bool finite_state(const CueingState &s) {
     const double *v = reinterpret_cast<const double *>(&s.classical);
     for (size_t i = 0; i < sizeof s.classical / sizeof(double); ++i)
         if (!std::isfinite(v[i])) return false;
-    return s.scale >= 0.0 && s.scale <= 1.0;
+    return s.scale >= 0.0 && s.scale <= 1.0 && std::isfinite(s.scale_rate);
 }
 
 }  // namespace
@@ -138,6 +138,7 @@ stewart_cueing *stewart_cueing_create(const stewart_model *model,
     const double home[6] = {0, 0, model->params.home_height, 0, 0, 0};
     std::memcpy(c->limiter.home, home, sizeof home);
     c->limiter.rate = options->limiter_rate;
+    c->limiter.accel = options->limiter_accel;
     c->limiter.lookahead = options->limiter_lookahead;
     rest(c->state);
     if (!home_within(*c, msg, size)) {
@@ -207,20 +208,21 @@ const char *stewart_cueing_message(const stewart_cueing *c) {
 stewart_status stewart_cueing_step(stewart_cueing *c, const stewart_cueing_input *in,
                                    stewart_cueing_output *out) {
     if (!c) return STEWART_ERR_ARGUMENT;
-    const stewart_status s = check_input(c, in, out);
-    if (s != STEWART_OK) return s;
+    const stewart_status status = check_input(c, in, out);
+    if (status != STEWART_OK) return status;
     CueingState next = c->state;
     stewart::cueing::Excursion e;
     stewart::cueing::classical_step(c->design, c->steps, next.classical, *in, e);
-    next.scale = stewart::cueing::limited_scale(c->limiter, e, c->state.scale, in->dt);
-    // s is linear over the step: the pose home + s e has rate s e' + s' e and acceleration
-    // s e'' + 2 s' e'.
-    const double s_dot = in->dt > 0.0 ? (next.scale - c->state.scale) / in->dt : 0.0;
+    const stewart::cueing::Scale s =
+        stewart::cueing::limited_scale(c->limiter, e, c->state.scale, c->state.scale_rate, in->dt);
+    next.scale = s.value;
+    next.scale_rate = s.rate;
+    // The pose home + s e: rate s e' + s' e, acceleration s e'' + 2 s' e' + s'' e.
     stewart_pose platform;
     for (int i = 0; i < 6; ++i) {
-        platform.q[i] = c->limiter.home[i] + next.scale * e.q[i];
-        platform.q_dot[i] = next.scale * e.q_dot[i] + s_dot * e.q[i];
-        platform.q_ddot[i] = next.scale * e.q_ddot[i] + 2.0 * s_dot * e.q_dot[i];
+        platform.q[i] = c->limiter.home[i] + s.value * e.q[i];
+        platform.q_dot[i] = s.value * e.q_dot[i] + s.rate * e.q[i];
+        platform.q_ddot[i] = s.value * e.q_ddot[i] + 2.0 * s.rate * e.q_dot[i] + s.accel * e.q[i];
     }
     stewart_cueing_output o;
     if (!stewart::cueing::caller_pose(c->limiter, platform, 2, o.pose))
@@ -234,6 +236,7 @@ stewart_status stewart_cueing_step(stewart_cueing *c, const stewart_cueing_input
                                "the input overflows the cue: reduce it or the scales");
     o.scale = next.scale;
     o.limited = next.scale < 1.0;
+    o.cut = s.cut;
     o.tilt_limited = e.tilt_limited;
     c->state = next;
     *out = o;

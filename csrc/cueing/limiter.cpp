@@ -25,6 +25,28 @@ double largest_within(const Limiter &l, const double e[6], double high) {
     return lo;
 }
 
+// The acceleration at the end of the step of the cubic with value and rate (s0, v0) at its start
+// and (s1, v1) at its end.
+double cubic_end_accel(double s0, double v0, double s1, double v1, double dt) {
+    return (6.0 * (s0 - s1) + dt * (2.0 * v0 + 4.0 * v1)) / (dt * dt);
+}
+
+// One step of a bounded-rate, bounded-acceleration motion of s toward goal: the rate that
+// still stops at the goal under the acceleration bound, reached as far as the bound allows.
+Scale smooth_step(const Limiter &l, double s0, double v0, double goal, double dt) {
+    const double d = goal - s0;
+    const double v_goal = std::copysign(std::min(l.rate, std::sqrt(2.0 * l.accel * std::fabs(d))), d);
+    const double a = std::clamp((v_goal - v0) / dt, -l.accel, l.accel);
+    Scale s{s0 + v0 * dt + 0.5 * a * dt * dt, v0 + a * dt, a, false};
+    if (s.value > 1.0 || s.value < 0.0) {  // at an end of [0, 1]: stop there
+        s.value = std::clamp(s.value, 0.0, 1.0);
+        s.rate = 0.0;
+        s.accel = cubic_end_accel(s0, v0, s.value, s.rate, dt);
+    }
+    return s;
+}
+
+
 }  // namespace
 
 bool caller_pose(const Limiter &l, const stewart_pose &platform, int derivatives,
@@ -48,17 +70,27 @@ bool within(const Limiter &l, const double e[6], double s) {
            out.first == STEWART_LIMIT_NONE;
 }
 
-double limited_scale(const Limiter &l, const Excursion &e, double last, double dt) {
-    double ahead[6];
-    const double T = l.lookahead;
-    for (int i = 0; i < 6; ++i) ahead[i] = e.q[i] + T * e.q_dot[i] + 0.5 * T * T * e.q_ddot[i];
+Scale limited_scale(const Limiter &l, const Excursion &e, double last, double last_rate,
+                    double dt) {
     const double now = largest_within(l, e.q, 1.0);
-    const double goal = T > 0.0 ? std::min(now, largest_within(l, ahead, 1.0)) : now;
-    const double reach = l.rate * dt;
-    const double smooth = std::clamp(last + std::clamp(goal - last, -reach, reach), 0.0, 1.0);
-    // The final pose is always a checked one: `now` was, a smaller scale is checked again (the
-    // poses within the limits along the excursion need not be an interval).
-    return smooth == now ? now : largest_within(l, e.q, smooth);
+    double goal = now;
+    for (const double T : {0.5 * l.lookahead, l.lookahead}) {  // the excursion extrapolated
+        if (!(T > 0.0)) break;
+        double ahead[6];
+        for (int i = 0; i < 6; ++i) ahead[i] = e.q[i] + T * e.q_dot[i] + 0.5 * T * T * e.q_ddot[i];
+        goal = std::min(goal, largest_within(l, ahead, 1.0));
+    }
+    Scale s = dt > 0.0 ? smooth_step(l, last, last_rate, goal, dt) : Scale{last, last_rate, 0.0, false};
+    // The final pose is always a checked one: `now` was, any other scale is checked (the poses
+    // within the limits along the excursion need not be an interval).
+    if (s.value == now || within(l, e.q, s.value)) return s;
+    s.value = largest_within(l, e.q, s.value);
+    // Leave a cut moving down at the largest smooth rate: the scale within the limits is
+    // usually still falling, and a scale at rest would be cut again at the next sample.
+    s.rate = dt > 0.0 && s.value > 0.0 ? -l.rate : 0.0;
+    s.accel = dt > 0.0 ? cubic_end_accel(last, last_rate, s.value, s.rate, dt) : 0.0;
+    s.cut = true;
+    return s;
 }
 
 }  // namespace cueing

@@ -20,6 +20,7 @@ from .angles import convert_angles, rotation_matrix
 from .calibration import Calibration, UnobservableError, calibrate, observability
 from .calibration_poses import calibration_poses
 from .check import HomeCheck
+from .cueing import ALGORITHMS as CUEING_ALGORITHMS, Cueing, cueing
 from .choices import Fidelity
 from .errors import ParameterError
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
@@ -42,4 +43,5 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
-           "MoveError", "feasibility", "Feasibility", "__version__"]
+           "MoveError", "feasibility", "Feasibility", "cueing", "Cueing", "CUEING_ALGORITHMS",
+           "__version__"]

@@ -25,11 +25,13 @@
  *
  * The limiter then enforces the machine's limits (stewart_limits_check: strokes, joint angles,
  * interference, condition, axis ranges) on every output pose: the excursion from home is scaled
- * by s in [0, 1], s following the largest scale within the limits now and lookahead seconds ahead
- * at most limiter_rate per second, and cut at once to a scale within the limits (bisection along
- * the excursion) when that is not enough. The output's rates and accelerations are those of the
- * scaled trajectory (s linear over the step). It does not enforce the legs' speed, acceleration
- * or force limits (leg_speed_max, leg_accel_max, leg_force_max).
+ * by s in [0, 1], s moving toward the largest scale within the limits now and at the excursion
+ * extrapolated lookahead / 2 and lookahead seconds ahead, its rate at most limiter_rate and its
+ * acceleration at most limiter_accel, and cut at once to a scale within the limits (bisection
+ * along the excursion) when that is not enough. The output's rates and accelerations are those of
+ * the scaled trajectory (s a cubic over each step, s' continuous but at a cut). It does not
+ * enforce the legs' speed, acceleration or force limits (leg_speed_max, leg_accel_max,
+ * leg_force_max), nor the limits between samples.
  *
  * Never allocates after _create, never writes NaN.
  */
@@ -70,6 +72,7 @@ typedef struct stewart_cueing_options {
     double head_x, head_y, head_z;     /* the head in the platform frame [m] */
     double limiter_rate;               /* largest rate of the limiter's scale [1/s] */
     double limiter_lookahead;          /* how far ahead the limiter looks [s] */
+    double limiter_accel;              /* largest acceleration of the limiter's scale [1/s2] */
     double warn_condition;             /* the condition limit, as the limits' option [1] */
 } stewart_cueing_options;
 
@@ -87,6 +90,7 @@ typedef struct stewart_cueing_output {
     stewart_pose pose;
     double scale;       /* the limiter's scale s of the excursion from home, in [0, 1] */
     int limited;        /* 1: the limiter scaled the cue down at this sample (s < 1) */
+    int cut;            /* 1: the smooth motion of s did not suffice and s was cut at once */
     int tilt_limited;   /* 1: a tilt angle met tilt_max or tilt_rate_max at this sample */
 } stewart_cueing_output;
 

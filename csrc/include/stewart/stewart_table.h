@@ -339,11 +339,13 @@ extern "C" {
     X(818, head_x, double, "m", -1e3, 1, 1e3, 1, 0.0, "Head position x in the platform frame")   \
     X(819, head_y, double, "m", -1e3, 1, 1e3, 1, 0.0, "Head position y in the platform frame")   \
     X(820, head_z, double, "m", -1e3, 1, 1e3, 1, 0.0, "Head position z in the platform frame")   \
-    X(821, limiter_rate, double, "1/s", 0.0, 0, 1e6, 1, 2.0,                                     \
+    X(821, limiter_rate, double, "1/s", 0.0, 0, 1e6, 1, 5.0,                                     \
       "Largest rate at which the limiter's scale of the excursion changes smoothly")             \
-    X(822, limiter_lookahead, double, "s", 0.0, 1, 10.0, 1, 0.25,                                \
+    X(822, limiter_lookahead, double, "s", 0.0, 1, 10.0, 1, 0.5,                                 \
       "How far ahead the limiter extrapolates the excursion to scale it down in time")           \
-    X(823, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
+    X(823, limiter_accel, double, "1/s2", 0.0, 0, 1e9, 1, 50.0,                                  \
+      "Largest acceleration of the limiter's scale while it moves smoothly")                     \
+    X(824, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
       "Condition number above which a pose fails the condition limit (the limits' option)")
 
 /* One parameter of the table, for iteration. */
