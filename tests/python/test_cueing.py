@@ -259,3 +259,28 @@ def test_algorithms_and_options_are_listed():
     assert stewart.CUEING_ALGORITHMS == ("classical",)
     names = stewart.cueing.__module__ and [o["name"] for o in stewart._core.option_table("cueing")]
     assert names[0] == "algorithm" and "tilt_rate_max" in names and "head_z" in names
+
+
+def test_platform_turns_about_the_head():
+    """With the vehicle's rotation alone the head point (head_x, head_y, head_z in the platform
+    frame) stays where it is at home: p + R head = home + head at every sample, and its velocity
+    p' + omega x (R head) is zero (omega from the angle rates, R = Rz Ry Rx)."""
+    plat = stewart.Platform()
+    t = np.arange(0, 6, 0.01)
+    f, w = inputs(len(t))
+    w[:, 0] = np.radians(10) * np.sin(2 * t)
+    w[:, 1] = np.radians(8) * np.cos(3 * t)
+    w[:, 2] = np.radians(20) * (t > 1)
+    head = np.array([0.1, -0.05, 0.3])
+    r = stewart.cueing(plat, t, f, w, head_x=head[0], head_y=head[1], head_z=head[2])
+    assert not r.limited.any() and np.max(np.abs(r.pose[:, 3:])) > np.radians(2)
+    home_head = np.array([0, 0, 0.5]) + head
+    for q, qd in zip(r.pose, r.pose_rate):
+        R = rotation(*q[3:])
+        assert np.max(np.abs(q[:3] + R @ head - home_head)) < 1e-12
+        roll, pitch, yaw = q[3:]
+        E = np.array([[np.cos(yaw) * np.cos(pitch), -np.sin(yaw), 0],
+                      [np.sin(yaw) * np.cos(pitch), np.cos(yaw), 0],
+                      [-np.sin(pitch), 0, 1]])
+        omega = E @ qd[3:]
+        assert np.max(np.abs(qd[:3] + np.cross(omega, R @ head))) < 1e-12
