@@ -9,15 +9,28 @@ namespace cueing {
 
 namespace {
 
-// Bisection steps: the scale to 2^-30 of the excursion (1e-9), about 30 limit checks.
-constexpr int kBisections = 30;
+// How finely the scale within the limits is found: the scale used (now) to 1e-6 of the
+// excursion, the goals ahead (only aims of the smooth motion) to 1e-3.
+constexpr double kScaleTolerance = 1e-6, kGoalTolerance = 1e-3;
 
 // The largest scale in [0, high] found within the limits by bisection, starting from 0 (home)
-// as the known good end: the result is always a checked pose or home.
-double largest_within(const Limiter &l, const double e[6], double high) {
+// as the known good end: the result is always a checked pose or home. hint, a scale near the
+// answer (the last sample's), narrows the first bracket to 1/64 when it is right.
+double largest_within(const Limiter &l, const double e[6], double high, double hint,
+                      double tolerance) {
     if (within(l, e, high)) return high;
     double lo = 0.0, hi = high;
-    for (int k = 0; k < kBisections; ++k) {
+    if (hint > 0.0 && hint < high) {
+        if (within(l, e, hint)) {
+            lo = hint;
+            const double up = std::min(high, hint + 1.0 / 64.0);
+            if (within(l, e, up)) lo = up;
+            else hi = up;
+        } else {
+            hi = hint;
+        }
+    }
+    while (hi - lo > tolerance) {
         const double mid = 0.5 * (lo + hi);
         if (within(l, e, mid)) lo = mid;
         else hi = mid;
@@ -72,19 +85,19 @@ bool within(const Limiter &l, const double e[6], double s) {
 
 Scale limited_scale(const Limiter &l, const Excursion &e, double last, double last_rate,
                     double dt) {
-    const double now = largest_within(l, e.q, 1.0);
+    const double now = largest_within(l, e.q, 1.0, last, kScaleTolerance);
     double goal = now;
     for (const double T : {0.5 * l.lookahead, l.lookahead}) {  // the excursion extrapolated
         if (!(T > 0.0)) break;
         double ahead[6];
         for (int i = 0; i < 6; ++i) ahead[i] = e.q[i] + T * e.q_dot[i] + 0.5 * T * T * e.q_ddot[i];
-        goal = std::min(goal, largest_within(l, ahead, 1.0));
+        goal = std::min(goal, largest_within(l, ahead, 1.0, last, kGoalTolerance));
     }
     Scale s = dt > 0.0 ? smooth_step(l, last, last_rate, goal, dt) : Scale{last, last_rate, 0.0, false};
     // The final pose is always a checked one: `now` was, any other scale is checked (the poses
     // within the limits along the excursion need not be an interval).
     if (s.value == now || within(l, e.q, s.value)) return s;
-    s.value = largest_within(l, e.q, s.value);
+    s.value = largest_within(l, e.q, s.value, 0.0, kScaleTolerance);
     // Leave a cut moving down at the largest smooth rate: the scale within the limits is
     // usually still falling, and a scale at rest would be cut again at the next sample.
     s.rate = dt > 0.0 && s.value > 0.0 ? -l.rate : 0.0;
