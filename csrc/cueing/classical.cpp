@@ -49,8 +49,12 @@ FilterDesign rotation_design(const stewart_cueing_options &o) {
 }
 
 // asin(c) and its first two time derivatives from c, c', c''; at most `max` in magnitude (then
-// held there, derivatives 0). True when held.
+// held there, derivatives 0). True when held; max 0 (no tilt) holds nothing.
 bool asin_motion(double c, double c_dot, double c_ddot, double max, double out[3]) {
+    if (max == 0.0) {  // no tilt coordination: nothing is held back
+        out[0] = out[1] = out[2] = 0.0;
+        return false;
+    }
     if (std::fabs(c) >= std::sin(max)) {
         out[0] = std::copysign(max, c);
         out[1] = out[2] = 0.0;

@@ -2,6 +2,7 @@
  * the classical filter against closed-form responses of its transfer functions, the limiter on a
  * violent input, rollback, bad input, no allocation in a step. The filters against scipy.signal
  * and the limits on every shipped machine: tests/python/test_cueing.py. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,6 +39,48 @@ static stewart_cueing_input rest_input(double dt) {
     in.dt = dt;
     in.specific_force[2] = g;
     return in;
+}
+
+/* Every option of the table: its default is the options_default value, each finite end of its
+ * range is accepted inside (by the setter, the check and the create call) and refused just
+ * outside by the setter, naming the option. */
+static void test_option_table_ranges(void) {
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_cueing_options d;
+    stewart_cueing_options_default(&d);
+    TEST_ASSERT_EQUAL_INT(25, stewart_cueing_option_count());
+    for (int i = 0; i < stewart_cueing_option_count(); ++i) {
+        const stewart_option_info *info = stewart_cueing_option(i);
+        TEST_ASSERT_EQUAL_INT(i, stewart_cueing_option_find(info->name));
+        TEST_ASSERT_TRUE(info->id >= 800 && info->id < 900);
+        TEST_ASSERT_EQUAL_DOUBLE(info->default_value, stewart_cueing_option_get(&d, i));
+        const double ends[2] = {info->min, info->max};
+        const int closed[2] = {info->min_closed, info->max_closed};
+        for (int side = 0; side < 2; ++side) {
+            const double end = ends[side], outward = side ? 1.0 : -1.0;
+            if (fabs(end) >= DBL_MAX) continue;
+            const double inside = closed[side] ? end
+                                  : info->is_integer ? end - outward
+                                                     : nextafter(end, -outward * INFINITY);
+            const double outside = info->is_integer ? end + outward
+                                   : closed[side]   ? nextafter(end, outward * INFINITY)
+                                                    : end;
+            stewart_cueing_options o = d;
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_cueing_option_set(&o, i, inside, msg, sizeof msg), info->name);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_cueing_options_check(&o, msg, sizeof msg), msg);
+            stewart_cueing *c = stewart_cueing_create(model, &o, msg, sizeof msg);
+            if (!strcmp(info->name, "warn_condition") && side == 0) {
+                /* a condition limit of 1 puts home (condition 11.4) beyond it: refused so */
+                TEST_ASSERT_NULL(c);
+                TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "home pose is beyond the condition limit"), msg);
+            } else {
+                TEST_ASSERT_NOT_NULL_MESSAGE(c, msg);
+            }
+            stewart_cueing_free(c);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, stewart_cueing_option_set(&o, i, outside, msg, sizeof msg), info->name);
+            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, info->name), msg);
+        }
+    }
 }
 
 static void test_options_are_refused_by_name(void) {
@@ -303,6 +346,7 @@ static void test_a_step_allocates_nothing(void) {
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_options_are_refused_by_name);
+    RUN_TEST(test_option_table_ranges);
     RUN_TEST(test_home_beyond_a_limit_is_refused);
     RUN_TEST(test_rest_stays_at_home);
     RUN_TEST(test_surge_step_against_its_closed_form);
