@@ -284,3 +284,23 @@ def test_platform_turns_about_the_head():
                       [-np.sin(pitch), 0, 1]])
         omega = E @ qd[3:]
         assert np.max(np.abs(qd[:3] + np.cross(omega, R @ head))) < 1e-12
+
+
+def test_a_z_down_machine_gets_the_same_cue_in_its_own_frame():
+    """frame_convention 1 (z down, y right): the same machine's cue, turned by 180 deg about x:
+    (x, y, z, roll, pitch, yaw) -> (x, -y, -z, roll, -pitch, -yaw), rates and accelerations
+    alike (the joints' azimuths measured toward y right: the same physical machine)."""
+    t = np.arange(0, 8, 0.01)
+    f, w = inputs(len(t))
+    f[:, 0] += 1.5 * np.sin(1.1 * t)
+    f[:, 1] += 1.0 * (t > 2)
+    w[:, 0] = 0.2 * np.sin(2 * t)
+    w[:, 2] = 0.3 * (t > 1)
+    up = stewart.cueing(stewart.Platform(), t, f, w)
+    down_platform = stewart.Platform(frame_convention=1, base_angle=-np.radians([0, 30, 120, 150, 240, 270]),
+                                     platform_angle=-np.radians([330, 60, 90, 180, 210, 300]))
+    down = stewart.cueing(down_platform, t, f, w)
+    sign = np.array([1, -1, -1, 1, -1, -1])
+    for a, b in ((up.pose, down.pose), (up.pose_rate, down.pose_rate), (up.pose_accel, down.pose_accel)):
+        assert np.max(np.abs(a * sign - b)) < 1e-12
+    assert np.array_equal(up.limited, down.limited)
