@@ -59,7 +59,6 @@ Scale smooth_step(const Limiter &l, double s0, double v0, double goal, double dt
     return s;
 }
 
-
 }  // namespace
 
 bool caller_pose(const Limiter &l, const stewart_pose &platform, int derivatives,
