@@ -52,10 +52,59 @@ struct stewart_cueing {
     stewart::cueing::ClassicalSteps steps;  // the filters discretised for the last dt
     stewart::cueing::Limiter limiter;
     stewart_limits *limits;
+    stewart_inverse *legs;  // the legs' rates and forces, when a leg motion limit is given
+    int leg_limits_given;   // STEWART_CUEING_LEG_* bits of the limits given
     CueingState state;
 };
 
 namespace {
+
+// The STEWART_CUEING_LEG_* bits of the leg motion limits p gives (a limit of 0 is none).
+int leg_limits_given(const stewart_params &p) {
+    int bits = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        if (p.leg_speed_max[k] > 0) bits |= STEWART_CUEING_LEG_SPEED;
+        if (p.leg_accel_max[k] > 0) bits |= STEWART_CUEING_LEG_ACCEL;
+        if (p.leg_force_max[k] > 0) bits |= STEWART_CUEING_LEG_FORCE;
+    }
+    return bits;
+}
+
+// The leg motion limits the pose breaks (STEWART_CUEING_LEG_* bits): the inverse solver's leg
+// rates and accelerations (and massless forces when a force limit is given) against them; every
+// given bit when the pose cannot be solved, since nothing then vouches for the legs.
+int broken_leg_limits(stewart_cueing &c, const stewart_pose &pose) {
+    if (!c.legs) return 0;
+    stewart_inverse_input in;
+    in.pose = pose;
+    stewart_inverse_output out;
+    if (stewart_inverse_solve(c.legs, &in, &out) != STEWART_OK) return c.leg_limits_given;
+    const stewart_params &p = c.model->params;
+    int bits = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        if (p.leg_speed_max[k] > 0 && std::fabs(out.lengths.length_rate[k]) > p.leg_speed_max[k])
+            bits |= STEWART_CUEING_LEG_SPEED;
+        if (p.leg_accel_max[k] > 0 && std::fabs(out.lengths.length_accel[k]) > p.leg_accel_max[k])
+            bits |= STEWART_CUEING_LEG_ACCEL;
+        if (p.leg_force_max[k] > 0 && std::fabs(out.force[k]) > p.leg_force_max[k])
+            bits |= STEWART_CUEING_LEG_FORCE;
+    }
+    return bits;
+}
+
+// The inverse solver for the leg limits given (massless when a force limit is, else kinematic),
+// or NULL when none is given; false if it cannot be made (message says why).
+bool make_leg_solver(stewart_cueing &c, char *msg, size_t size) {
+    c.leg_limits_given = leg_limits_given(c.model->params);
+    c.legs = nullptr;
+    if (!c.leg_limits_given) return true;
+    stewart_inverse_options io;
+    stewart_inverse_options_default(&io);
+    io.fidelity = (c.leg_limits_given & STEWART_CUEING_LEG_FORCE) ? STEWART_MASSLESS : STEWART_KINEMATIC;
+    io.warn_condition = io.singular_condition = std::fmax(c.options.warn_condition, io.warn_condition);
+    c.legs = stewart_inverse_create(c.model, &io, msg, size);
+    return c.legs != nullptr;
+}
 
 // The home pose within every limit, else a message naming the first limit it fails.
 bool home_within(stewart_cueing &c, char *msg, size_t size) {
@@ -133,6 +182,7 @@ stewart_cueing *stewart_cueing_create(const stewart_model *model,
     c->message[0] = '\0';
     c->design = stewart::cueing::classical_design(*options, g);
     c->limits = limits;
+    c->legs = nullptr;
     c->limiter.limits = limits;
     c->limiter.frames = &model->frames;
     const double home[6] = {0, 0, model->params.home_height, 0, 0, 0};
@@ -141,7 +191,7 @@ stewart_cueing *stewart_cueing_create(const stewart_model *model,
     c->limiter.accel = options->limiter_accel;
     c->limiter.lookahead = options->limiter_lookahead;
     rest(c->state);
-    if (!home_within(*c, msg, size)) {
+    if (!make_leg_solver(*c, msg, size) || !home_within(*c, msg, size)) {
         stewart_cueing_free(c);
         return nullptr;
     }
@@ -152,6 +202,7 @@ stewart_cueing *stewart_cueing_create(const stewart_model *model,
 void stewart_cueing_free(stewart_cueing *c) {
     if (!c) return;
     stewart_limits_free(c->limits);
+    stewart_inverse_free(c->legs);
     delete c;
 }
 
@@ -238,6 +289,7 @@ stewart_status stewart_cueing_step(stewart_cueing *c, const stewart_cueing_input
     o.limited = next.scale < 1.0;
     o.cut = s.cut;
     o.tilt_limited = e.tilt_limited;
+    o.leg_limits = broken_leg_limits(*c, o.pose);
     c->state = next;
     *out = o;
     return STEWART_OK;

@@ -34,12 +34,14 @@ void cueing_run(const Model &model, Column<const double> t, Rows<const double, 3
                 Rows<const double, 3> omega,
                 const std::vector<std::pair<std::string, double>> &options, Rows<double, 6> pose,
                 Rows<double, 6> rate, Rows<double, 6> accel, Column<double> scale,
-                Column<int> limited, Column<int> cut, Column<int> tilt_limited) {
+                Column<int> limited, Column<int> cut, Column<int> tilt_limited,
+                Column<int> leg_limits) {
     const size_t n = t.shape(0);
     if (force.shape(0) != n || omega.shape(0) != n)
         fail("specific_force and angular_velocity must have one row per time");
     if (pose.shape(0) != n || rate.shape(0) != n || accel.shape(0) != n || scale.shape(0) != n ||
-        limited.shape(0) != n || cut.shape(0) != n || tilt_limited.shape(0) != n)
+        limited.shape(0) != n || cut.shape(0) != n || tilt_limited.shape(0) != n ||
+        leg_limits.shape(0) != n)
         fail("output arrays must have one row per time");
     const stewart_cueing_options o = options_by_name(kCueingOptions, options);
     CueingObject object(model, o);
@@ -67,6 +69,7 @@ void cueing_run(const Model &model, Column<const double> t, Rows<const double, 3
             limited(r) = out.limited;
             cut(r) = out.cut;
             tilt_limited(r) = out.tilt_limited;
+            leg_limits(r) = out.leg_limits;
         }
     }
     if (bad < n)
@@ -81,7 +84,7 @@ void bind_cueing(nb::module_ &m) {
     m.def("cueing_run", &cueing_run, nb::arg("model"), nb::arg("t"), nb::arg("specific_force"),
           nb::arg("angular_velocity"), nb::arg("options"), nb::arg("pose"), nb::arg("rate"),
           nb::arg("accel"), nb::arg("scale"), nb::arg("limited"), nb::arg("cut"),
-          nb::arg("tilt_limited"));
+          nb::arg("tilt_limited"), nb::arg("leg_limits"));
     m.attr("CUEING_ALGORITHMS") = STEWART_CUEING_ALGORITHMS;
 }
 

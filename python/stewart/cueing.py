@@ -25,7 +25,10 @@ class Cueing:
     (N,) True where the limiter scaled the cue down to keep the machine within its limits; cut:
     (N,) True where the scale's smooth motion (limiter_rate, limiter_accel, limiter_lookahead)
     did not suffice and it was cut at once (a jolt: tune the cue down or look further ahead);
-    tilt_limited: (N,) True where a tilt angle met tilt_max or tilt_rate_max."""
+    tilt_limited: (N,) True where a tilt angle met tilt_max or tilt_rate_max; leg_limits: (N,)
+    the legs' motion limits of the platform the pose breaks, checked when given but not
+    enforced: bit 1 a leg's speed beyond leg_speed_max, 2 its acceleration beyond leg_accel_max,
+    4 its force (massless legs) beyond leg_force_max (LEG_SPEED, LEG_ACCEL, LEG_FORCE)."""
     t: np.ndarray
     pose: np.ndarray
     pose_rate: np.ndarray
@@ -34,6 +37,11 @@ class Cueing:
     limited: np.ndarray
     cut: np.ndarray
     tilt_limited: np.ndarray
+    leg_limits: np.ndarray
+
+
+#: Bits of Cueing.leg_limits.
+LEG_SPEED, LEG_ACCEL, LEG_FORCE = 1, 2, 4
 
 
 def option_names() -> tuple:
@@ -63,7 +71,8 @@ def cueing(platform, t, specific_force, angular_velocity, algorithm: str = "clas
     meaning, unit and default), e.g. surge_scale=0.4, translation_frequency=2.0,
     tilt_rate_max=np.radians(3), head_z=1.0. Every output pose is within every limit of the
     platform (strokes, joint angles, interference, condition, axis_min/axis_max); the legs'
-    speed and acceleration limits are not enforced. Bad input raises ValueError naming it."""
+    speed, acceleration and force limits are not enforced, only reported (leg_limits). Bad input
+    raises ValueError naming it."""
     if algorithm not in ALGORITHMS:
         raise ValueError(f"algorithm = {algorithm!r} is not one of {ALGORITHMS}")
     if "algorithm" in options:
@@ -79,10 +88,11 @@ def cueing(platform, t, specific_force, angular_velocity, algorithm: str = "clas
         except (TypeError, ValueError):
             raise ValueError(f"option {name} = {value!r} is not a number") from None
     result = Cueing(time, np.zeros((n, 6)), np.zeros((n, 6)), np.zeros((n, 6)), np.zeros(n),
-                    np.zeros(n, np.int32), np.zeros(n, np.int32), np.zeros(n, np.int32))
+                    np.zeros(n, np.int32), np.zeros(n, np.int32), np.zeros(n, np.int32),
+                    np.zeros(n, np.int32))
     _core.cueing_run(platform._model, time, force, omega, values, result.pose, result.pose_rate,
                      result.pose_accel, result.scale, result.limited, result.cut,
-                     result.tilt_limited)
+                     result.tilt_limited, result.leg_limits)
     result.limited = result.limited.astype(bool)
     result.cut = result.cut.astype(bool)
     result.tilt_limited = result.tilt_limited.astype(bool)

@@ -304,3 +304,34 @@ def test_a_z_down_machine_gets_the_same_cue_in_its_own_frame():
     for a, b in ((up.pose, down.pose), (up.pose_rate, down.pose_rate), (up.pose_accel, down.pose_accel)):
         assert np.max(np.abs(a * sign - b)) < 1e-12
     assert np.array_equal(up.limited, down.limited)
+
+
+def test_leg_speed_limit_is_reported_against_closed_form_rates():
+    """leg_limits bit 1 where some |dL/dt| > leg_speed_max, the rates in closed form here:
+    dL/dt = d . (p' + omega x R b) / |d|, d = p + R b - a (reported, not enforced)."""
+    path = ROOT / "platforms" / "thesis.json"
+    a, b, _, _, _, _ = machine(path)
+    v_max = 0.05
+    plat = stewart.Platform.from_file(path, leg_speed_max=v_max)
+    t = np.arange(0, 10, 0.01)
+    f, w = inputs(len(t))
+    f[:, 0] += 3 * np.sin(1.5 * t)
+    w[:, 2] = 0.6 * np.sin(0.9 * t)
+    r = stewart.cueing(plat, t, f, w)
+    rates = np.empty((len(t), 6))
+    for i, (q, qd) in enumerate(zip(r.pose, r.pose_rate)):
+        roll, pitch, yaw = q[3:]
+        R = rotation(roll, pitch, yaw)
+        E = np.array([[np.cos(yaw) * np.cos(pitch), -np.sin(yaw), 0],
+                      [np.sin(yaw) * np.cos(pitch), np.cos(yaw), 0],
+                      [-np.sin(pitch), 0, 1]])
+        arm = b @ R.T
+        d = q[:3] + arm - a
+        v = qd[:3] + np.cross(E @ qd[3:], arm)
+        rates[i] = np.sum(d * v, axis=1) / np.linalg.norm(d, axis=1)
+    fastest = np.max(np.abs(rates), axis=1)
+    clear = np.abs(fastest - v_max) > 1e-9
+    assert np.array_equal(((r.leg_limits & 1) != 0)[clear],  # bit 1: LEG_SPEED
+                          (fastest > v_max)[clear])
+    assert (fastest > v_max).any() and not (fastest > v_max).all()
+    assert not (r.leg_limits & 6).any()  # no acceleration or force limit given

@@ -16,10 +16,11 @@ from test_plant_fmu import DISCARD, OK, Instance, fmu_file
 INPUTS = [f"specific_force[{i}]" for i in (1, 2, 3)] + [f"angular_velocity[{i}]" for i in (1, 2, 3)]
 POSE = ["x", "y", "z", "roll", "pitch", "yaw"]
 OUTPUTS = POSE + [p + "_dot" for p in POSE] + [p + "_ddot" for p in POSE] + ["scale"]
-FLAGS = ["limited", "cut", "tilt_limited", "status"]
+FLAGS = ["limited", "cut", "tilt_limited", "status", "leg_limits"]
 OPTIONS = dict(surge_scale=1.0, sway_scale=0.8, heave_scale=1.0, yaw_scale=0.9, head_z=0.3,
                translation_order=2, rotation_filter_order=1, limiter_lookahead=0.3)
-PARAMS = dict(payload_mass=20.0)  # a parameter the cue does not use: set, harmless
+PARAMS = dict(leg_speed_max=0.3, leg_accel_max=4.0)  # reported through leg_limits
+FMU_PARAMS = {f"{name}[{k}]": value for name, value in PARAMS.items() for k in range(1, 7)}
 
 
 def vehicle(n=1500, dt=2e-3):
@@ -56,10 +57,12 @@ def test_unit_against_the_library_bit_for_bit(version):
     t, f, w = vehicle()
     ref = stewart.cueing(stewart.Platform(**PARAMS), t, f, w, **OPTIONS)
     assert ref.limited.any() and not ref.limited.all()
-    u = start(cueing_unit(version), np.append(f[0], w[0]), **OPTIONS, **PARAMS)
+    u = start(cueing_unit(version), np.append(f[0], w[0]), **OPTIONS, **FMU_PARAMS)
     try:
         want = np.column_stack([ref.pose, ref.pose_rate, ref.pose_accel, ref.scale])
-        flags = np.column_stack([ref.limited, ref.cut, ref.tilt_limited, np.zeros(len(t))])
+        flags = np.column_stack([ref.limited, ref.cut, ref.tilt_limited, np.zeros(len(t)),
+                                 ref.leg_limits])
+        assert ref.leg_limits.any() and not ref.leg_limits.all()
         assert np.array_equal(u.get(OUTPUTS), want[0]) and np.array_equal(u.get(FLAGS), flags[0])
         for k in range(1, len(t)):
             u.set_reals(INPUTS, np.append(f[k], w[k]))

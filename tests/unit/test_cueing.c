@@ -325,6 +325,49 @@ static void test_bad_input_is_refused_and_changes_nothing(void) {
     stewart_cueing_free(c);
 }
 
+/* Leg speed and acceleration limits are reported (not enforced): the flag agrees with the legs'
+ * rates and accelerations of the kinematic inverse solve of the output. */
+static void test_leg_limits_are_reported(void) {
+    stewart_params p;
+    stewart_params_default(&p);
+    for (int k = 0; k < 6; ++k) p.leg_speed_max[k] = 0.05, p.leg_accel_max[k] = 1.0;
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_model *m = stewart_model_create(&p, msg, sizeof msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(m, msg);
+    stewart_cueing_options o;
+    stewart_cueing_options_default(&o);
+    stewart_cueing *c = stewart_cueing_create(m, &o, msg, sizeof msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(c, msg);
+    stewart_inverse_options io;
+    stewart_inverse_options_default(&io);
+    io.fidelity = STEWART_KINEMATIC;
+    stewart_inverse *inv = stewart_inverse_create(m, &io, msg, sizeof msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(inv, msg);
+    int speed = 0, accel = 0;
+    const long before = allocations;
+    for (int n = 0; n < 3000; ++n) {
+        stewart_cueing_input in = wavy_input(n);
+        stewart_cueing_output out;
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_cueing_step(c, &in, &out));
+        stewart_inverse_input ii = {out.pose};
+        stewart_inverse_output io_out;
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_solve(inv, &ii, &io_out));
+        int want = 0;
+        for (int k = 0; k < 6; ++k) {
+            if (fabs(io_out.lengths.length_rate[k]) > 0.05) want |= STEWART_CUEING_LEG_SPEED;
+            if (fabs(io_out.lengths.length_accel[k]) > 1.0) want |= STEWART_CUEING_LEG_ACCEL;
+        }
+        TEST_ASSERT_EQUAL_INT(want, out.leg_limits);
+        speed += (out.leg_limits & STEWART_CUEING_LEG_SPEED) != 0;
+        accel += (out.leg_limits & STEWART_CUEING_LEG_ACCEL) != 0;
+    }
+    TEST_ASSERT_EQUAL_INT(before, allocations);
+    TEST_ASSERT_TRUE(speed > 0 && speed < 3000 && accel > 0);
+    stewart_inverse_free(inv);
+    stewart_cueing_free(c);
+    stewart_model_free(m);
+}
+
 static void test_a_step_allocates_nothing(void) {
     stewart_cueing_options o;
     stewart_cueing_options_default(&o);
@@ -356,5 +399,6 @@ int main(void) {
     RUN_TEST(test_rollback_and_copy_repeat_the_steps);
     RUN_TEST(test_bad_input_is_refused_and_changes_nothing);
     RUN_TEST(test_a_step_allocates_nothing);
+    RUN_TEST(test_leg_limits_are_reported);
     return UNITY_END();
 }

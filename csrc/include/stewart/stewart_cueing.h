@@ -31,7 +31,8 @@
  * along the excursion) when that is not enough. The output's rates and accelerations are those of
  * the scaled trajectory (s a cubic over each step, s' continuous but at a cut). It does not
  * enforce the legs' speed, acceleration or force limits (leg_speed_max, leg_accel_max,
- * leg_force_max), nor the limits between samples.
+ * leg_force_max): it reports the samples that break them (leg_limits); nor does it check the
+ * poses between samples.
  *
  * Never allocates after _create, never writes NaN.
  */
@@ -51,6 +52,11 @@ typedef enum stewart_cueing_algorithm {
     STEWART_CUEING_CLASSICAL = 0 /* classical washout with tilt coordination (Reid & Nahon) */
 } stewart_cueing_algorithm;
 #define STEWART_CUEING_ALGORITHMS 1
+
+/* Bits of stewart_cueing_output.leg_limits. */
+#define STEWART_CUEING_LEG_SPEED 1
+#define STEWART_CUEING_LEG_ACCEL 2
+#define STEWART_CUEING_LEG_FORCE 4
 
 /* Settings of a cueing object, in the order of STEWART_CUEING_OPTION_TABLE (stewart_table.h,
  * where each one's range and default are); stewart_cueing_options_default gives the defaults. */
@@ -92,6 +98,9 @@ typedef struct stewart_cueing_output {
     int limited;        /* 1: the limiter scaled the cue down at this sample (s < 1) */
     int cut;            /* 1: the smooth motion of s did not suffice and s was cut at once */
     int tilt_limited;   /* 1: a tilt angle met tilt_max or tilt_rate_max at this sample */
+    int leg_limits;     /* the legs' motion limits the pose breaks, checked (not enforced) when
+                           given: bit 1 a leg's speed beyond leg_speed_max, 2 its acceleration
+                           beyond leg_accel_max, 4 its force (massless legs) beyond leg_force_max */
 } stewart_cueing_output;
 
 typedef struct stewart_cueing stewart_cueing;

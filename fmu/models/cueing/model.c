@@ -114,6 +114,7 @@ static fmu_status cue(fmu_instance *inst, double dt) {
     v->integer[VR_limited] = out.limited;
     v->integer[VR_cut] = out.cut;
     v->integer[VR_tilt_limited] = out.tilt_limited;
+    v->integer[VR_leg_limits] = out.leg_limits;
     v->integer[VR_status] = 0;
     v->model.solve_status = FMU_OK;
     v->model.stepped = 1;
