@@ -73,6 +73,10 @@ def cueing(platform, t, specific_force, angular_velocity, algorithm: str = "clas
     platform (strokes, joint angles, interference, condition, axis_min/axis_max); the legs'
     speed, acceleration and force limits are not enforced, only reported (leg_limits). Bad input
     raises ValueError naming it."""
+    from .platform import Platform
+    if not isinstance(platform, Platform):
+        raise TypeError(f"platform must be a stewart.Platform (Platform.from_file(path) for a "
+                        f"platform file), not {type(platform).__name__}")
     if algorithm not in ALGORITHMS:
         raise ValueError(f"algorithm = {algorithm!r} is not one of {ALGORITHMS}")
     if "algorithm" in options:

@@ -253,6 +253,8 @@ def test_bad_input_is_refused_by_name():
         stewart.cueing(plat, t, f, w)
     with pytest.raises(ValueError, match="shape"):
         stewart.cueing(plat, t, f[:5], w)
+    with pytest.raises(TypeError, match="stewart.Platform"):
+        stewart.cueing("thesis.json", t, f, w)
 
 
 def test_algorithms_and_options_are_listed():
