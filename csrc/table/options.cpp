@@ -44,6 +44,7 @@ struct Table {
 #define PLANT_FIELD(id, name, type, ...) {offsetof(stewart_plant_options, name), storage_of<type>()},
 #define LINEARIZE_FIELD(id, name, type, ...) {offsetof(stewart_linearize_options, name), storage_of<type>()},
 #define LIMITS_FIELD(id, name, type, ...) {offsetof(stewart_limits_options, name), storage_of<type>()},
+#define CUEING_FIELD(id, name, type, ...) {offsetof(stewart_cueing_options, name), storage_of<type>()},
 const stewart_option_info kInverseInfo[] = {STEWART_OPTION_TABLE(INFO)};
 const Field kInverseFields[] = {STEWART_OPTION_TABLE(INVERSE_FIELD)};
 const stewart_option_info kForwardInfo[] = {STEWART_FORWARD_OPTION_TABLE(INFO)};
@@ -54,12 +55,15 @@ const stewart_option_info kLinearizeInfo[] = {STEWART_LINEARIZE_OPTION_TABLE(INF
 const Field kLinearizeFields[] = {STEWART_LINEARIZE_OPTION_TABLE(LINEARIZE_FIELD)};
 const stewart_option_info kLimitsInfo[] = {STEWART_LIMITS_OPTION_TABLE(INFO)};
 const Field kLimitsFields[] = {STEWART_LIMITS_OPTION_TABLE(LIMITS_FIELD)};
+const stewart_option_info kCueingInfo[] = {STEWART_CUEING_OPTION_TABLE(INFO)};
+const Field kCueingFields[] = {STEWART_CUEING_OPTION_TABLE(CUEING_FIELD)};
 #undef INFO
 #undef INVERSE_FIELD
 #undef FORWARD_FIELD
 #undef PLANT_FIELD
 #undef LINEARIZE_FIELD
 #undef LIMITS_FIELD
+#undef CUEING_FIELD
 template <size_t n> constexpr Table table_of(const stewart_option_info (&info)[n], const Field *field) {
     return {info, field, static_cast<int>(n)};
 }
@@ -68,6 +72,7 @@ const Table kForward = table_of(kForwardInfo, kForwardFields);
 const Table kPlant = table_of(kPlantInfo, kPlantFields);
 const Table kLinearize = table_of(kLinearizeInfo, kLinearizeFields);
 const Table kLimits = table_of(kLimitsInfo, kLimitsFields);
+const Table kCueing = table_of(kCueingInfo, kCueingFields);
 
 // Each table lists every field of its struct, in order, with its type: a struct laid out from the
 // table is the same struct.
@@ -87,6 +92,9 @@ struct LinearizeMirror {
 struct LimitsMirror {
     STEWART_LIMITS_OPTION_TABLE(FIELD)
 };
+struct CueingMirror {
+    STEWART_CUEING_OPTION_TABLE(FIELD)
+};
 #undef FIELD
 static_assert(sizeof(InverseMirror) == sizeof(stewart_inverse_options),
               "STEWART_OPTION_TABLE lists every field");
@@ -98,6 +106,8 @@ static_assert(sizeof(LinearizeMirror) == sizeof(stewart_linearize_options),
               "STEWART_LINEARIZE_OPTION_TABLE lists every field");
 static_assert(sizeof(LimitsMirror) == sizeof(stewart_limits_options),
               "STEWART_LIMITS_OPTION_TABLE lists every field");
+static_assert(sizeof(CueingMirror) == sizeof(stewart_cueing_options),
+              "STEWART_CUEING_OPTION_TABLE lists every field");
 #define SAME(Options, Mirror, name, type)                                                        \
     static_assert(offsetof(Mirror, name) == offsetof(Options, name) &&                           \
                       std::is_same<decltype(Options::name), type>::value,                        \
@@ -108,16 +118,19 @@ static_assert(sizeof(LimitsMirror) == sizeof(stewart_limits_options),
 #define SAME_LINEARIZE(id, name, type, ...)                                                      \
     SAME(stewart_linearize_options, LinearizeMirror, name, type)
 #define SAME_LIMITS(id, name, type, ...) SAME(stewart_limits_options, LimitsMirror, name, type)
+#define SAME_CUEING(id, name, type, ...) SAME(stewart_cueing_options, CueingMirror, name, type)
 STEWART_OPTION_TABLE(SAME_INVERSE)
 STEWART_FORWARD_OPTION_TABLE(SAME_FORWARD)
 STEWART_PLANT_OPTION_TABLE(SAME_PLANT)
 STEWART_LINEARIZE_OPTION_TABLE(SAME_LINEARIZE)
 STEWART_LIMITS_OPTION_TABLE(SAME_LIMITS)
+STEWART_CUEING_OPTION_TABLE(SAME_CUEING)
 #undef SAME_INVERSE
 #undef SAME_FORWARD
 #undef SAME_PLANT
 #undef SAME_LINEARIZE
 #undef SAME_LIMITS
+#undef SAME_CUEING
 #undef SAME
 
 const stewart_option_info *option(const Table &t, int i) {
@@ -328,6 +341,24 @@ void stewart_limits_options_default(stewart_limits_options *o) {
 stewart_status stewart_limits_options_check(const stewart_limits_options *o, char *msg,
                                             size_t size) {
     return check_ranges(kLimits, o, msg, size);
+}
+
+int stewart_cueing_option_count(void) { return kCueing.count; }
+const stewart_option_info *stewart_cueing_option(int i) { return option(kCueing, i); }
+int stewart_cueing_option_find(const char *name) { return find(kCueing, name); }
+double stewart_cueing_option_get(const stewart_cueing_options *o, int i) {
+    return o && option(kCueing, i) ? get(kCueing, o, i) : 0;
+}
+stewart_status stewart_cueing_option_set(stewart_cueing_options *o, int i, double value,
+                                         char *msg, size_t size) {
+    return set(kCueing, o, i, value, msg, size);
+}
+void stewart_cueing_options_default(stewart_cueing_options *o) {
+    if (o) defaults(kCueing, o);
+}
+stewart_status stewart_cueing_options_check(const stewart_cueing_options *o, char *msg,
+                                            size_t size) {
+    return check_ranges(kCueing, o, msg, size);
 }
 
 }  // extern "C"

@@ -206,6 +206,8 @@ static void variable(unsigned vr, const char *name, int is_real, const char *cau
 }
 
 static const struct { const char *name; const char *base; } kUnits[] = {
+    {"1/s", "s=\"-1\""},
+    {"1/s2", "s=\"-2\""},
     {"A", "A=\"1\""},
     {"H", "kg=\"1\" m=\"2\" s=\"-2\" A=\"-2\""},
     {"kg", "kg=\"1\""},

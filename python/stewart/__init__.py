@@ -24,6 +24,7 @@ from .angles import convert_angles, rotation_matrix
 from .calibration import Calibration, UnobservableError, calibrate, observability
 from .calibration_poses import calibration_poses
 from .check import HomeCheck
+from .cueing import ALGORITHMS as CUEING_ALGORITHMS, Cueing, cueing
 from .choices import Fidelity
 from .errors import ParameterError
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
@@ -51,4 +52,4 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
            "MoveError", "feasibility", "Feasibility", "perception", "Perceived",
            "VestibularModel", "cueing_scores", "CueingScores", "manoeuvre",
-           "manoeuvre_files", "__version__"]
+           "manoeuvre_files", "cueing", "Cueing", "CUEING_ALGORITHMS", "__version__"]

@@ -14,4 +14,5 @@ NB_MODULE(_core, m) {
     bind_plant(m);
     bind_linearize(m);
     bind_limits(m);
+    bind_cueing(m);
 }

@@ -277,5 +277,6 @@ void bind_forward(nb::module_ &m);
 void bind_plant(nb::module_ &m);
 void bind_linearize(nb::module_ &m);
 void bind_limits(nb::module_ &m);
+void bind_cueing(nb::module_ &m);
 
 }  // namespace stewart_core

@@ -59,9 +59,10 @@ void bind_tables(nb::module_ &m) {
         if (direction == "inverse") return option_table(stewart_inverse_option_count, stewart_inverse_option);
         if (direction == "forward") return option_table(stewart_forward_option_count, stewart_forward_option);
         if (direction == "plant") return option_table(stewart_plant_option_count, stewart_plant_option);
-        fail(("no option table '" + direction + "': inverse, forward or plant").c_str());
+        if (direction == "cueing") return option_table(stewart_cueing_option_count, stewart_cueing_option);
+        fail(("no option table '" + direction + "': inverse, forward, plant or cueing").c_str());
     }, nb::arg("direction"),
-          "The library's option table of a direction (inverse, forward, plant): one dict per "
+          "The library's option table of a direction (inverse, forward, plant, cueing): one dict per "
           "option (name, id, integer, unit, min, max, min_closed, max_closed, default, "
           "description)");
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });

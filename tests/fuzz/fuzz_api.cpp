@@ -16,9 +16,11 @@
 
 #include "fuzz_reader.hpp"
 #include "stewart/stewart.h"
+#include "stewart/stewart_cueing.h"
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_linearize.h"
 #include "stewart/stewart_plant.h"
+#include "stewart/stewart_table.h"
 
 namespace {
 
@@ -294,6 +296,57 @@ void fuzz_linearize(Reader &in, const stewart_model *model) {
     stewart_linearize_free(l);
 }
 
+
+// The cueing unit on the same model: raw options (some out of range: refused), raw or moderate
+// vehicle inputs and steps (NaN, Inf, huge), save and load. A known status; a step that returns
+// STEWART_OK gives finite outputs and a pose within every limit of the machine.
+void fuzz_cueing(Reader &in, const stewart_model *model) {
+    stewart_cueing_options options;
+    stewart_cueing_options_default(&options);
+    const uint8_t edits = in.byte();
+    for (int e = 0; e < edits % 4; ++e) {
+        const int i = in.byte() % stewart_cueing_option_count();
+        stewart_cueing_option_set(&options, i, in.value(), nullptr, 0);
+    }
+    char message[STEWART_MESSAGE_SIZE];
+    stewart_cueing *c = stewart_cueing_create(model, &options, message, sizeof message);
+    if (!c) return;
+    stewart_limits_options lo;
+    stewart_limits_options_default(&lo);
+    lo.warn_condition = options.warn_condition;
+    stewart_limits *limits = stewart_limits_create(model, &lo, message, sizeof message);
+    unsigned char state[4096];
+    const size_t size = stewart_cueing_state_size(c);
+    for (int call = 0; limits && call < 16 && in.left > 0; ++call) {
+        const uint8_t what = in.byte();
+        stewart_cueing_input input{};
+        input.dt = (what & 1) ? in.value() : 1e-3 * (in.byte() % 50);
+        for (int i = 0; i < 3; ++i) {
+            input.specific_force[i] = (what & 2) ? in.value() : in.value() / 1e3 + (i == 2 ? 9.81 : 0);
+            input.angular_velocity[i] = (what & 4) ? in.value() : in.value() / 1e3;
+        }
+        if ((what & 8) && size <= sizeof state) {
+            if (stewart_cueing_save(c, state, size) != STEWART_OK) std::abort();
+            if (what & 16) state[in.byte() % size] ^= in.byte();
+            stewart_cueing_load(c, state, size);  // corrupted bytes: refused or a usable state
+        }
+        stewart_cueing_output out;
+        const stewart_status s = stewart_cueing_step(c, &input, &out);
+        if (s != STEWART_OK && s != STEWART_ERR_ARGUMENT) std::abort();
+        if (s != STEWART_OK) continue;
+        require_finite_values(out.pose.q, 6);
+        require_finite_values(out.pose.q_dot, 6);
+        require_finite_values(out.pose.q_ddot, 6);
+        stewart_limits_input check;
+        std::memcpy(check.q, out.pose.q, sizeof check.q);
+        stewart_limits_output verdict;
+        if (stewart_limits_check(limits, &check, &verdict) != STEWART_OK ||
+            verdict.first != STEWART_LIMIT_NONE)
+            std::abort();
+    }
+    stewart_limits_free(limits);
+    stewart_cueing_free(c);
+}
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
@@ -335,5 +388,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     fuzz_plant(plant_bytes, c->model);
     Reader linearize_bytes{bytes, size};
     fuzz_linearize(linearize_bytes, c->model);
+    Reader cueing_bytes{bytes, size};
+    fuzz_cueing(cueing_bytes, c->model);
     return 0;
 }

@@ -4,7 +4,8 @@ combined manoeuvre, then the edge paths through fmpy's slave classes.
 The plant (StewartPlant.fmu) runs a short forced motion at both fidelities with its edge paths
 (a NaN force, a refused step, FMU state get/set/serialise). The Model Exchange plant
 (StewartPlantME.fmu) runs under fmpy's CVODE with forces, then its refused derivatives (pitch at
-90 degrees, a NaN force) and an FMU state round trip.
+90 degrees, a NaN force) and an FMU state round trip. The cueing unit (StewartCueing.fmu) runs a
+vehicle signal that makes its limiter act, a NaN input and an FMU state round trip.
 
 usage: valgrind_drive.py BUILD_DIR (the FMUs are BUILD_DIR/fmus/<version>/StewartPlatform.fmu and
 StewartPlant.fmu)"""
@@ -200,7 +201,50 @@ def plant_me(path, version, fidelity):
     return r["z"][-1]
 
 
+def cueing(path, version):
+    """0.5 s of a vehicle signal beyond the machine (the limiter acts), then a NaN input (refused)
+    and an FMU state round trip; returns the final x."""
+    t = np.linspace(0.0, 0.5, 51)
+    vehicle = np.array([(ti, 8 * math.sin(4 * ti), 9.81, 2.0 * (ti > 0.2)) for ti in t],
+                       dtype=[("time", float), ("specific_force[1]", float),
+                              ("specific_force[3]", float), ("angular_velocity[3]", float)])
+    r = simulate_fmu(path, fmi_type="CoSimulation", stop_time=0.5, output_interval=0.01,
+                     step_size=0.01, input=vehicle, output=["x", "scale", "limited"])
+    md = fmpy.read_model_description(path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    v2 = version == "2.0"
+    fmu = (FMU2Slave if v2 else FMU3Slave)(guid=md.guid, instanceName="vg_cue",
+                                          unzipDirectory=fmpy.extract(path, tempfile.mkdtemp()),
+                                          modelIdentifier="StewartCueing")
+    fmu.instantiate(loggingOn=True)
+    if v2:
+        fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    set_real = fmu.setReal if v2 else fmu.setFloat64
+    step = (lambda t, h: fmu.dll.fmi2DoStep(fmu.component, t, h, 1)) if v2 else fmu.doStep
+    set_real([vr["specific_force[1]"]], [5.0])
+    step(0.0, 0.01)
+    state = fmu.getFMUstate() if v2 else fmu.getFMUState()
+    set_real([vr["specific_force[2]"]], [math.nan])
+    try:
+        step(0.01, 0.01)
+    except fmpy.fmi1.FMICallException:
+        pass
+    blob = (fmu.serializeFMUstate if v2 else fmu.serializeFMUState)(state)
+    other = (fmu.deSerializeFMUstate if v2 else fmu.deserializeFMUState)(blob)
+    (fmu.setFMUstate if v2 else fmu.setFMUState)(other)
+    for s in (other, state):
+        (fmu.freeFMUstate if v2 else fmu.freeFMUState)(s)
+    fmu.terminate()
+    fmu.freeInstance()
+    assert r["limited"].any()
+    return r["x"][-1]
+
+
 for version in ("2.0", "3.0"):
+    x = cueing(f"{build}/fmus/{version}/StewartCueing.fmu", version)
+    print(f"valgrind_fmu: cueing FMI {version}: x = {x:.6f} m")
     for fidelity in (1, 2):
         z = plant_me(f"{build}/fmus/{version}/StewartPlantME.fmu", version, fidelity)
         print(f"valgrind_fmu: Model Exchange plant FMI {version} fidelity {fidelity}: z = {z:.6f} m")

@@ -97,14 +97,14 @@ def test_manoeuvre_equals_the_shipped_fmu(shipped_fmus, version, fidelity):
     np.testing.assert_allclose(np.array(rows), _matrix(sol), **tol)
 
 
-def test_fmu_paths_are_the_five_units_for_both_versions():
+def test_fmu_paths_are_the_six_units_for_both_versions():
     """The package ships every unit the build makes (the inverse unit, the plant in co-simulation
-    and Model Exchange, the controller, the scene player), for FMI 2.0 and 3.0, each one the model
-    its name says."""
+    and Model Exchange, the controller, the scene player, the cueing unit), for FMI 2.0 and 3.0,
+    each one the model its name says."""
     import fmpy
     paths = stewart.fmu_paths()
     assert set(paths) == {"StewartPlatform", "StewartPlant", "StewartPlantME", "StewartController",
-                          "StewartScene"}
+                          "StewartScene", "StewartCueing"}
     for model, by_version in paths.items():
         assert set(by_version) == {"2.0", "3.0"}
         for version, path in by_version.items():

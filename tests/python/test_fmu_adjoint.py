@@ -95,7 +95,7 @@ def test_model_exchange_adjoint_is_the_transposed_jacobian():
 @pytest.mark.parametrize("unit,interface,provides", [
     ("StewartPlatform", "CoSimulation", "true"), ("StewartController", "CoSimulation", "true"),
     ("StewartPlantME", "ModelExchange", "true"), ("StewartPlant", "CoSimulation", "false"),
-    ("StewartScene", "CoSimulation", "false")])
+    ("StewartScene", "CoSimulation", "false"), ("StewartCueing", "CoSimulation", "false")])
 def test_descriptions_declare_the_adjoint(unit, interface, provides):
     path = fmu_path(VERSION).parent / f"{unit}.fmu"
     assert provides_adjoint(path, interface) == provides

@@ -40,6 +40,7 @@
 
 #include "mbs/mbs.h"
 #include "stewart/stewart.h"
+#include "stewart/stewart_cueing.h"
 #include "stewart/stewart_forward.h"
 #include "stewart/stewart_limits.h"
 #include "stewart/stewart_linearize.h"
@@ -299,6 +300,54 @@ extern "C" {
       "Condition number above which a pose fails the condition limit (the inverse option of "    \
       "that name)")
 
+/* The cueing unit's options (stewart_cueing_options; ids 800..: the StewartCueing FMU's value
+ * references). The defaults: the classical washout at a moderate tuning (docs/cueing.md), the
+ * tilt rate at 3 deg/s, the threshold of tilt perception used in tilt coordination (Groen & Bles
+ * 2004, J. Vestib. Res. 14(5): 375-385). */
+#define STEWART_CUEING_OPTION_TABLE(X)                                                           \
+    X(800, algorithm, int, "", 0, 1, STEWART_CUEING_ALGORITHMS - 1, 1, STEWART_CUEING_CLASSICAL,  \
+      "0 classical washout with tilt coordination")                                              \
+    X(801, surge_scale, double, "1", 0.0, 1, 10.0, 1, 0.5, "Scale of the specific force x")      \
+    X(802, sway_scale, double, "1", 0.0, 1, 10.0, 1, 0.5, "Scale of the specific force y")       \
+    X(803, heave_scale, double, "1", 0.0, 1, 10.0, 1, 0.5, "Scale of the specific force z")      \
+    X(804, roll_scale, double, "1", 0.0, 1, 10.0, 1, 0.5, "Scale of the roll rate")              \
+    X(805, pitch_scale, double, "1", 0.0, 1, 10.0, 1, 0.5, "Scale of the pitch rate")            \
+    X(806, yaw_scale, double, "1", 0.0, 1, 10.0, 1, 0.5, "Scale of the yaw rate")                \
+    X(807, translation_order, int, "", 2, 1, 3, 1, 3,                                            \
+      "Order of the translation's high-pass: 2, or 3 (returns to home after a sustained "        \
+      "acceleration)")                                                                           \
+    X(808, translation_frequency, double, "rad/s", 0.0, 0, 1e4, 1, 2.5,                          \
+      "Break frequency of the translation's second-order high-pass")                             \
+    X(809, translation_damping, double, "1", 0.0, 0, 10.0, 1, 1.0,                               \
+      "Damping ratio of the translation's second-order high-pass")                               \
+    X(810, translation_washout_frequency, double, "rad/s", 0.0, 0, 1e4, 1, 0.5,                  \
+      "Break frequency of the translation's first-order high-pass (order 3)")                    \
+    X(811, tilt_frequency, double, "rad/s", 0.0, 0, 1e4, 1, 2.0,                                 \
+      "Break frequency of the tilt coordination's second-order low-pass")                        \
+    X(812, tilt_damping, double, "1", 0.0, 0, 10.0, 1, 1.0,                                      \
+      "Damping ratio of the tilt coordination's low-pass")                                       \
+    X(813, tilt_max, double, "rad", 0.0, 1, STEWART_DEG(60.0), 1, STEWART_DEG(15.0),             \
+      "Largest tilt angle of the tilt coordination")                                             \
+    X(814, tilt_rate_max, double, "rad/s", 0.0, 1, STEWART_PI, 1, STEWART_DEG(3.0),              \
+      "Largest tilt rate (below the tilt perception threshold, about 3 deg/s)")                  \
+    X(815, rotation_filter_order, int, "", 1, 1, 2, 1, 2,                                        \
+      "Order of the rotation's high-pass: 1, or 2 (returns to home after a sustained rate)")     \
+    X(816, rotation_frequency, double, "rad/s", 0.0, 0, 1e4, 1, 1.0,                             \
+      "Break frequency of the rotation's high-pass")                                             \
+    X(817, rotation_damping, double, "1", 0.0, 0, 10.0, 1, 1.0,                                  \
+      "Damping ratio of the rotation's high-pass (order 2)")                                     \
+    X(818, head_x, double, "m", -1e3, 1, 1e3, 1, 0.0, "Head position x in the platform frame")   \
+    X(819, head_y, double, "m", -1e3, 1, 1e3, 1, 0.0, "Head position y in the platform frame")   \
+    X(820, head_z, double, "m", -1e3, 1, 1e3, 1, 0.0, "Head position z in the platform frame")   \
+    X(821, limiter_rate, double, "1/s", 0.0, 0, 1e6, 1, 5.0,                                     \
+      "Largest rate at which the limiter's scale of the excursion changes smoothly")             \
+    X(822, limiter_lookahead, double, "s", 0.0, 1, 10.0, 1, 0.5,                                 \
+      "How far ahead the limiter extrapolates the excursion to scale it down in time")           \
+    X(823, limiter_accel, double, "1/s2", 0.0, 0, 1e9, 1, 50.0,                                  \
+      "Largest acceleration of the limiter's scale while it moves smoothly")                     \
+    X(824, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
+      "Condition number above which a pose fails the condition limit (the limits' option)")
+
 /* One parameter of the table, for iteration. */
 typedef struct stewart_param_info {
     int id;                     /* stable id of element 0; element e has id + e */
@@ -379,8 +428,8 @@ stewart_status stewart_plant_option_set(stewart_plant_options *options, int i, d
                                         char *message, size_t size);
 int stewart_plant_option_find(const char *name);
 
-/* The same for the linearisation's (STEWART_LINEARIZE_OPTION_TABLE) and the limits' options
- * (STEWART_LIMITS_OPTION_TABLE). */
+/* The same for the linearisation's (STEWART_LINEARIZE_OPTION_TABLE), the limits' options
+ * (STEWART_LIMITS_OPTION_TABLE) and the cueing unit's (STEWART_CUEING_OPTION_TABLE). */
 int stewart_linearize_option_count(void);
 const stewart_option_info *stewart_linearize_option(int i);
 double stewart_linearize_option_get(const stewart_linearize_options *options, int i);
@@ -394,6 +443,13 @@ double stewart_limits_option_get(const stewart_limits_options *options, int i);
 stewart_status stewart_limits_option_set(stewart_limits_options *options, int i, double value,
                                          char *message, size_t size);
 int stewart_limits_option_find(const char *name);
+
+int stewart_cueing_option_count(void);
+const stewart_option_info *stewart_cueing_option(int i);
+double stewart_cueing_option_get(const stewart_cueing_options *options, int i);
+stewart_status stewart_cueing_option_set(stewart_cueing_options *options, int i, double value,
+                                         char *message, size_t size);
+int stewart_cueing_option_find(const char *name);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,339 @@
+"""stewart.cueing, the classical washout and its limiter (docs/cueing.md): each filter against
+its continuous transfer function written here and discretised by scipy.signal (zero-order hold on
+both sides) to 1e-9, the tilt coordination against arcsin of the low-passed specific force, and
+random vehicle signals of up to 2 g and 200 deg/s through every shipped machine with every leg
+length, from a closed form written here, within its stroke (studies/cueing_limits.py runs 10^3
+signals per machine)."""
+import json
+import pathlib
+
+import numpy as np
+import pytest
+
+stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
+signal = pytest.importorskip("scipy.signal")
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PLATFORMS = sorted((ROOT / "platforms").glob("*.json"))
+G = 9.81  # the default platform's |gravity|: the vehicle at rest reads (0, 0, +G)
+
+
+def reference(num, den, t, u):
+    """The response at the samples to the input u, each sample held over the interval that ends
+    at it (the unit's convention), of num/den and of its first two time derivatives, as left
+    limits (the input held): num s^j / den = P_j(s) + R_j(s) / den; a held input makes the
+    polynomial part P_j(0) u and the strictly proper part is scipy's zero-order-hold response."""
+    held = np.append(u[1:], u[-1])  # scipy holds u[k] over [t_k, t_k+1)
+    out = []
+    for j in range(3):
+        q, r = np.polydiv(np.polymul(num, [1.0] + [0.0] * j), den)
+        r = np.trim_zeros(r, "f") if np.any(r) else np.array([0.0])
+        _, y, _ = signal.lsim((r, den), held, t, interp=False)
+        out.append(np.asarray(y) + np.polyval(q, 0.0) * u)
+    return out
+
+
+def quadratic(w, zeta):
+    return np.array([1.0, 2 * zeta * w, w * w])
+
+
+def inputs(n, axis=None, force=None, omega=None):
+    f = np.tile([0.0, 0.0, G], (n, 1))
+    w = np.zeros((n, 3))
+    if force is not None:
+        f[:, axis] += force
+    if omega is not None:
+        w[:, axis] = omega
+    return f, w
+
+
+T = np.arange(0, 20.0, 0.01)
+SIGNALS = {"step": np.where(T > 0.5, 1.0, 0.0), "sine": np.sin(2 * np.pi * 0.4 * T)}
+
+
+@pytest.mark.parametrize("order", [2, 3])
+@pytest.mark.parametrize("axis", [0, 1, 2])
+@pytest.mark.parametrize("shape", sorted(SIGNALS))
+def test_translation_against_its_transfer_function(order, axis, shape):
+    plat = stewart.Platform()
+    k, w, zeta, wb = 0.3, 2.0, 0.8, 0.4
+    amplitude = 0.3
+    f, om = inputs(len(T), axis, force=amplitude * SIGNALS[shape])
+    r = stewart.cueing(plat, T, f, om, translation_order=order, translation_frequency=w,
+                       translation_damping=zeta, translation_washout_frequency=wb,
+                       surge_scale=k, sway_scale=k, heave_scale=k, tilt_max=0.0)
+    assert not r.limited.any()
+    den = quadratic(w, zeta) if order == 2 else np.polymul(quadratic(w, zeta), [1.0, wb])
+    num = [k] if order == 2 else [k, 0.0]
+    home = np.array([0, 0, 0.5, 0, 0, 0])
+    want = reference(num, den, T, amplitude * SIGNALS[shape])
+    for got, ref in zip((r.pose[:, axis] - home[axis], r.pose_rate[:, axis], r.pose_accel[:, axis]), want):
+        assert np.max(np.abs(got - ref)) < 1e-9 * max(1.0, np.max(np.abs(ref)))
+    assert np.max(np.abs(want[0])) > 1e-3  # the cue is not trivially small
+    others = [i for i in range(6) if i != axis]
+    assert np.all(r.pose[:, others] == home[others]) and not r.pose_rate[:, others].any()
+
+
+@pytest.mark.parametrize("order", [1, 2])
+@pytest.mark.parametrize("axis", [0, 1, 2])
+@pytest.mark.parametrize("shape", sorted(SIGNALS))
+def test_rotation_against_its_transfer_function(order, axis, shape):
+    plat = stewart.Platform()
+    k, w, zeta = 0.7, 1.5, 0.9
+    amplitude = np.radians(8)
+    f, om = inputs(len(T), axis, omega=amplitude * SIGNALS[shape])
+    r = stewart.cueing(plat, T, f, om, rotation_filter_order=order, rotation_frequency=w,
+                       rotation_damping=zeta, roll_scale=k, pitch_scale=k, yaw_scale=k)
+    assert not r.limited.any()
+    den = quadratic(w, zeta) if order == 2 else np.array([1.0, w])
+    num = [k, 0.0] if order == 2 else [k]
+    want = reference(num, den, T, amplitude * SIGNALS[shape])
+    i = 3 + axis
+    for got, ref in zip((r.pose[:, i], r.pose_rate[:, i], r.pose_accel[:, i]), want):
+        assert np.max(np.abs(got - ref)) < 1e-9 * max(1.0, np.max(np.abs(ref)))
+    assert np.max(np.abs(want[0])) > 1e-3
+
+
+@pytest.mark.parametrize("shape", sorted(SIGNALS))
+def test_tilt_coordination_against_arcsin_of_the_low_pass(shape):
+    """pitch = -asin(k LP f_x / g), roll = asin(k LP f_y / (g cos pitch)) with LP = w^2 / (s^2 +
+    2 zeta w s + w^2), slow enough for the rate limit to stay open; their rates by the chain
+    rule on scipy's responses."""
+    plat = stewart.Platform()
+    k, w, zeta = 0.5, 1.2, 0.7
+    ax, ay = 0.4 * SIGNALS[shape], -0.3 * SIGNALS[shape]
+    f, om = inputs(len(T))
+    f[:, 0] += ax
+    f[:, 1] += ay
+    r = stewart.cueing(plat, T, f, om, surge_scale=k, sway_scale=k, tilt_frequency=w,
+                       tilt_damping=zeta, translation_frequency=3.0)
+    assert not r.limited.any() and not r.tilt_limited.any()
+    lx = reference([k * w * w], quadratic(w, zeta), T, ax)
+    ly = reference([k * w * w], quadratic(w, zeta), T, ay)
+    pitch = -np.arcsin(lx[0] / G)
+    roll = np.arcsin(ly[0] / (G * np.cos(pitch)))
+    assert np.max(np.abs(r.pose[:, 4] - pitch)) < 1e-9
+    assert np.max(np.abs(r.pose[:, 3] - roll)) < 1e-9
+    pitch_rate = -lx[1] / G / np.sqrt(1 - (lx[0] / G) ** 2)
+    assert np.max(np.abs(r.pose_rate[:, 4] - pitch_rate)) < 1e-9
+    assert np.max(np.abs(pitch)) > 1e-3
+
+
+def test_tilt_rate_limit_and_tilt_max():
+    plat = stewart.Platform()
+    t = np.arange(0, 30, 0.005)
+    f, om = inputs(len(t), 0, force=np.where(t > 1, 0.9 * G, 0.0))
+    rate_max = np.radians(3)
+    r = stewart.cueing(plat, t, f, om, surge_scale=1.0, tilt_rate_max=rate_max, tilt_max=np.radians(10),
+                       translation_frequency=30.0, limiter_lookahead=0.0)
+    assert r.tilt_limited.any() and not r.limited.any()
+    assert np.max(np.abs(np.diff(r.pose[:, 4])) / 0.005) <= rate_max * (1 + 1e-9)
+    assert np.max(np.abs(r.pose_rate[:, 4])) <= rate_max * (1 + 1e-9)
+    assert abs(r.pose[-1, 4] + np.radians(10)) < 1e-6  # held at tilt_max, nose up
+
+
+# --- limits on every shipped machine --------------------------------------------------------
+
+def rotation(roll, pitch, yaw):
+    cr, sr, cp, sp, cy, sy = (np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch),
+                              np.cos(yaw), np.sin(yaw))
+    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                     [-sp, cp * sr, cp * cr]])
+
+
+def machine(path):
+    """Base joints a, platform joints b (6, 3), strokes and the translations of the tool and
+    user frames (the shipped files turn neither)."""
+    d = json.loads(path.read_text())
+    for frame in ("tool_frame", "user_frame"):
+        assert not np.any(d.get(frame, [0] * 6)[3:]), "a turned frame needs its rotation here"
+    strokes = [np.broadcast_to(np.asarray(d[k], float), 6) for k in ("stroke_min", "stroke_max")]
+    return (np.reshape(d["base_joint"], (6, 3)), np.reshape(d["platform_joint"], (6, 3)), *strokes,
+            np.asarray(d.get("tool_frame", [0] * 6)[:3], float),
+            np.asarray(d.get("user_frame", [0] * 6)[:3], float))
+
+
+def leg_lengths(path, poses):
+    """|R b + p - a| per leg, with p the platform origin: user origin + tool position - R tool
+    origin."""
+    a, b, _, _, tool, user = machine(path)
+    out = np.empty((len(poses), 6))
+    for i, q in enumerate(poses):
+        R = rotation(*q[3:])
+        p = user + q[:3] - R @ tool
+        out[i] = np.linalg.norm(b @ R.T + p - a, axis=1)
+    return out
+
+
+def random_vehicle(rng, t):
+    """A sum of steps, ramps and sines per axis, up to 2 g of specific force and 200 deg/s."""
+    n = len(t)
+    def channel(limit):
+        x = np.zeros(n)
+        for _ in range(rng.integers(1, 4)):
+            t0 = rng.uniform(0, t[-1])
+            kind = rng.integers(3)
+            a = rng.uniform(-1, 1)
+            if kind == 0:
+                x += a * (t > t0)
+            elif kind == 1:
+                x += a * np.clip((t - t0) / rng.uniform(0.2, 5), 0, 1)
+            else:
+                x += a * np.sin(2 * np.pi * rng.uniform(0.05, 3) * t + rng.uniform(0, 6.3))
+        peak = np.max(np.abs(x))
+        return x / peak * rng.uniform(0.2, 1.0) * limit if peak > 0 else x
+    f = np.column_stack([channel(2 * G) for _ in range(3)]) + [0, 0, G]
+    w = np.column_stack([channel(np.radians(200)) for _ in range(3)])
+    return f, w
+
+
+def run_signals(path, count, seed, dt=0.01):
+    """count random signals of 20 s through the machine of path: the samples beyond a stroke
+    (closed form), beyond any limit (the library's check), and the samples the limiter scaled."""
+    plat = stewart.Platform.from_file(path)
+    _, _, smin, smax, _, _ = machine(path)
+    t = np.arange(0, 20, dt)
+    rng = np.random.default_rng(seed)
+    beyond_stroke = beyond_check = limited = 0
+    for _ in range(count):
+        f, w = random_vehicle(rng, t)
+        r = stewart.cueing(plat, t, f, w, surge_scale=1, sway_scale=1, heave_scale=1,
+                           roll_scale=1, pitch_scale=1, yaw_scale=1)
+        L = leg_lengths(path, r.pose)
+        beyond_stroke += int(np.sum(np.any((L < smin) | (L > smax), axis=1)))
+        beyond_check += int(np.sum(~plat.limits(r.pose).within))
+        limited += int(np.sum(r.limited))
+        assert np.all(np.isfinite(r.pose_rate)) and np.all(np.isfinite(r.pose_accel))
+    return beyond_stroke, beyond_check, limited
+
+
+@pytest.mark.parametrize("path", PLATFORMS, ids=[p.stem for p in PLATFORMS])
+def test_random_vehicles_never_leave_the_limits(path):
+    beyond_stroke, beyond_check, limited = run_signals(path, 20, seed=37)
+    assert beyond_stroke == 0 and beyond_check == 0
+    assert limited > 0  # the limiter had work to do
+
+
+def test_limiter_scale_is_smooth_when_the_lookahead_suffices():
+    """A slow sine of surge that asks for twice the machine's travel: the scale moves no faster
+    than limiter_rate, and the rates and accelerations are those of the poses: the backward
+    difference of x over a step within dt max|acceleration| of the rate at its end (the scale
+    is linear over a step), and of the rate within dt max|jerk| of the acceleration."""
+    plat = stewart.Platform()
+    t = np.arange(0, 20, 0.002)
+    f, w = inputs(len(t), 0, force=8.0 * np.sin(2 * np.pi * 0.3 * t))
+    r = stewart.cueing(plat, t, f, w, surge_scale=1.0, tilt_max=0.0, limiter_rate=2.0,
+                       limiter_accel=20.0, limiter_lookahead=0.5)
+    assert r.limited.any() and np.all(plat.limits(r.pose).within)
+    smooth = ~(r.cut[1:] | r.cut[:-1])[1:]  # second differences over two steps without a cut
+    assert np.sum(r.cut) <= 0.01 * len(t)
+    assert np.max(np.abs(np.diff(r.scale)[~r.cut[1:]])) <= 2.0 * 0.002 * (1 + 1e-9)
+    assert np.max(np.abs(np.diff(r.scale, 2)[smooth])) <= 20.0 * 0.002 ** 2 * (1 + 1e-9)
+    x, v, a = r.pose[:, 0], r.pose_rate[:, 0], r.pose_accel[:, 0]
+    dt = 0.002
+    assert np.max(np.abs(np.diff(x) / dt - v[1:])) <= dt * np.max(np.abs(a)) * 1.01
+    jerk = np.max(np.abs(np.diff(a))) / dt
+    assert np.max(np.abs(np.diff(v) / dt - a[1:])) <= dt * jerk * 1.01 + 1e-9
+    assert np.max(np.abs(v)) > 0.1  # against a cue of no speed
+
+
+def test_bad_input_is_refused_by_name():
+    plat = stewart.Platform()
+    t = np.arange(0, 1, 0.01)
+    f, w = inputs(len(t))
+    with pytest.raises(ValueError, match="translation_order = 5"):
+        stewart.cueing(plat, t, f, w, translation_order=5)
+    with pytest.raises(ValueError, match="unknown cueing option 'tilt'"):
+        stewart.cueing(plat, t, f, w, tilt=1)
+    with pytest.raises(ValueError, match="algorithm = 'mpc'"):
+        stewart.cueing(plat, t, f, w, algorithm="mpc")
+    f[3, 1] = np.nan
+    with pytest.raises(ValueError, match=r"specific_force\[3, 1\]"):
+        stewart.cueing(plat, t, f, w)
+    with pytest.raises(ValueError, match="shape"):
+        stewart.cueing(plat, t, f[:5], w)
+    with pytest.raises(TypeError, match="stewart.Platform"):
+        stewart.cueing("thesis.json", t, f, w)
+
+
+def test_algorithms_and_options_are_listed():
+    assert stewart.CUEING_ALGORITHMS == ("classical",)
+    names = stewart.cueing.__module__ and [o["name"] for o in stewart._core.option_table("cueing")]
+    assert names[0] == "algorithm" and "tilt_rate_max" in names and "head_z" in names
+
+
+def test_platform_turns_about_the_head():
+    """With the vehicle's rotation alone the head point (head_x, head_y, head_z in the platform
+    frame) stays where it is at home: p + R head = home + head at every sample, and its velocity
+    p' + omega x (R head) is zero (omega from the angle rates, R = Rz Ry Rx)."""
+    plat = stewart.Platform()
+    t = np.arange(0, 6, 0.01)
+    f, w = inputs(len(t))
+    w[:, 0] = np.radians(10) * np.sin(2 * t)
+    w[:, 1] = np.radians(8) * np.cos(3 * t)
+    w[:, 2] = np.radians(20) * (t > 1)
+    head = np.array([0.1, -0.05, 0.3])
+    r = stewart.cueing(plat, t, f, w, head_x=head[0], head_y=head[1], head_z=head[2])
+    assert not r.limited.any() and np.max(np.abs(r.pose[:, 3:])) > np.radians(2)
+    home_head = np.array([0, 0, 0.5]) + head
+    for q, qd in zip(r.pose, r.pose_rate):
+        R = rotation(*q[3:])
+        assert np.max(np.abs(q[:3] + R @ head - home_head)) < 1e-12
+        roll, pitch, yaw = q[3:]
+        E = np.array([[np.cos(yaw) * np.cos(pitch), -np.sin(yaw), 0],
+                      [np.sin(yaw) * np.cos(pitch), np.cos(yaw), 0],
+                      [-np.sin(pitch), 0, 1]])
+        omega = E @ qd[3:]
+        assert np.max(np.abs(qd[:3] + np.cross(omega, R @ head))) < 1e-12
+
+
+def test_a_z_down_machine_gets_the_same_cue_in_its_own_frame():
+    """frame_convention 1 (z down, y right): the same machine's cue, turned by 180 deg about x:
+    (x, y, z, roll, pitch, yaw) -> (x, -y, -z, roll, -pitch, -yaw), rates and accelerations
+    alike (the joints' azimuths measured toward y right: the same physical machine)."""
+    t = np.arange(0, 8, 0.01)
+    f, w = inputs(len(t))
+    f[:, 0] += 1.5 * np.sin(1.1 * t)
+    f[:, 1] += 1.0 * (t > 2)
+    w[:, 0] = 0.2 * np.sin(2 * t)
+    w[:, 2] = 0.3 * (t > 1)
+    up = stewart.cueing(stewart.Platform(), t, f, w)
+    down_platform = stewart.Platform(frame_convention=1, base_angle=-np.radians([0, 30, 120, 150, 240, 270]),
+                                     platform_angle=-np.radians([330, 60, 90, 180, 210, 300]))
+    down = stewart.cueing(down_platform, t, f, w)
+    sign = np.array([1, -1, -1, 1, -1, -1])
+    for a, b in ((up.pose, down.pose), (up.pose_rate, down.pose_rate), (up.pose_accel, down.pose_accel)):
+        assert np.max(np.abs(a * sign - b)) < 1e-12
+    assert np.array_equal(up.limited, down.limited)
+
+
+def test_leg_speed_limit_is_reported_against_closed_form_rates():
+    """leg_limits bit 1 where some |dL/dt| > leg_speed_max, the rates in closed form here:
+    dL/dt = d . (p' + omega x R b) / |d|, d = p + R b - a (reported, not enforced)."""
+    path = ROOT / "platforms" / "thesis.json"
+    a, b, _, _, _, _ = machine(path)
+    v_max = 0.05
+    plat = stewart.Platform.from_file(path, leg_speed_max=v_max)
+    t = np.arange(0, 10, 0.01)
+    f, w = inputs(len(t))
+    f[:, 0] += 3 * np.sin(1.5 * t)
+    w[:, 2] = 0.6 * np.sin(0.9 * t)
+    r = stewart.cueing(plat, t, f, w)
+    rates = np.empty((len(t), 6))
+    for i, (q, qd) in enumerate(zip(r.pose, r.pose_rate)):
+        roll, pitch, yaw = q[3:]
+        R = rotation(roll, pitch, yaw)
+        E = np.array([[np.cos(yaw) * np.cos(pitch), -np.sin(yaw), 0],
+                      [np.sin(yaw) * np.cos(pitch), np.cos(yaw), 0],
+                      [-np.sin(pitch), 0, 1]])
+        arm = b @ R.T
+        d = q[:3] + arm - a
+        v = qd[:3] + np.cross(E @ qd[3:], arm)
+        rates[i] = np.sum(d * v, axis=1) / np.linalg.norm(d, axis=1)
+    fastest = np.max(np.abs(rates), axis=1)
+    clear = np.abs(fastest - v_max) > 1e-9
+    assert np.array_equal(((r.leg_limits & 1) != 0)[clear],  # bit 1: LEG_SPEED
+                          (fastest > v_max)[clear])
+    assert (fastest > v_max).any() and not (fastest > v_max).all()
+    assert not (r.leg_limits & 6).any()  # no acceleration or force limit given
