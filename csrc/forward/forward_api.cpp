@@ -7,12 +7,13 @@
 #include <cmath>
 #include <cstring>
 
-#include "model.hpp"
 #include "forward/branch.hpp"
+#include "forward/forward_object.hpp"
 #include "forward/leg_pairs.hpp"
 #include "forward/newton.hpp"
 #include "kinematics/frames.hpp"
 #include "kinematics/motion.hpp"
+#include "model.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
 
