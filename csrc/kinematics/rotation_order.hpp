@@ -50,28 +50,29 @@ Eigen::Matrix<S, 3, 3> angle_rate_matrix_xyz_dot(const S &cr, const S &sr, const
     return E_dot;
 }
 
+// The matrices of R = Rx Ry Rz (motion.hpp's AnglesZYX for the other order).
+struct AnglesXYZ {
+    template <class S>
+    static Eigen::Matrix<S, 3, 3> rotation(const AngleTrig<S> &t) {
+        return rotation_xyz_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy);
+    }
+    template <class S>
+    static Eigen::Matrix<S, 3, 3> rate_matrix(const AngleTrig<S> &t) {
+        return angle_rate_matrix_xyz(t.cr, t.sr, t.cp, t.sp);
+    }
+    template <class S>
+    static Eigen::Matrix<S, 3, 3> rate_matrix_dot(const AngleTrig<S> &t,
+                                                  const Eigen::Matrix<S, 3, 1> &rate) {
+        return angle_rate_matrix_xyz_dot(t.cr, t.sr, t.cp, t.sp, rate[0], rate[1]);
+    }
+};
+
 // The motion of a frame at the pose q (angles in `order`) with rates q_dot and accelerations
 // q_ddot.
 template <class S>
 MotionT<S> motion_of_pose_in_order(int order, const S q[6], const S q_dot[6], const S q_ddot[6]) {
-    if (order != kRotationXYZ) return motion_of_pose<S>(q, q_dot, q_ddot);
-    using std::cos;
-    using std::sin;
-    using Vec = Eigen::Matrix<S, 3, 1>;
-    MotionT<S> m;
-    m.position = Vec(q[0], q[1], q[2]);
-    m.velocity = Vec(q_dot[0], q_dot[1], q_dot[2]);
-    m.acceleration = Vec(q_ddot[0], q_ddot[1], q_ddot[2]);
-    const S cr = cos(q[3]), sr = sin(q[3]);
-    const S cp = cos(q[4]), sp = sin(q[4]);
-    const S cy = cos(q[5]), sy = sin(q[5]);
-    m.rotation = rotation_xyz_from_trig(cr, sr, cp, sp, cy, sy);
-    const Vec rate(q_dot[3], q_dot[4], q_dot[5]);
-    const Vec accel(q_ddot[3], q_ddot[4], q_ddot[5]);
-    m.omega = angle_rate_matrix_xyz(cr, sr, cp, sp) * rate;
-    m.alpha = angle_rate_matrix_xyz(cr, sr, cp, sp) * accel +
-              angle_rate_matrix_xyz_dot(cr, sr, cp, sp, rate[0], rate[1]) * rate;
-    return m;
+    if (order == kRotationXYZ) return motion_of_pose_as<AnglesXYZ, S>(q, q_dot, q_ddot);
+    return motion_of_pose_as<AnglesZYX, S>(q, q_dot, q_ddot);
 }
 
 inline Motion motion_of_pose_in_order(int order, const stewart_pose &pose) {
