@@ -13,7 +13,7 @@ import pytest
 import stewart
 from stewart.sweeps import SpecError, resolve
 
-from fmu_support import OK, Unit, F, L, stewart_solve_path
+from fmu_support import assert_unit_solves_as_the_library, stewart_solve_path
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PLATFORMS = ROOT / "platforms"
@@ -197,18 +197,11 @@ def test_a_platform_file_is_an_fmu_parameter_set(version):
             values.update({f"{name}[{k}]": value for k in range(1, 7)})
         else:
             values[name] = value
+    start_values = stewart.fmu_start_values(PLATFORMS / "paired_hexapod.json", version)
+    assert {name: start_values[name] for name in values} == values
     pose = [0.002, -0.001, data["home_height"] + 0.003, 0.01, -0.02, 0.015]
-    expected = stewart.Platform.from_file(PLATFORMS / "paired_hexapod.json").inverse(
-        np.array([pose]), fidelity="full")
-    u = Unit(version)
-    try:
-        at_pose = dict(zip(("x", "y", "z", "roll", "pitch", "yaw"), pose))
-        assert u.init(**values, **at_pose, derivatives=1) == OK, u.messages
-        assert u.do_step(0.0, 0.01) == OK, u.messages
-        assert np.array_equal(u.get_reals(L), expected.length[0])
-        assert np.max(np.abs(u.get_reals(F) - expected.force[0])) < 1e-9 * np.max(np.abs(expected.force))
-    finally:
-        u.free()
+    platform = stewart.Platform.from_file(PLATFORMS / "paired_hexapod.json")
+    assert_unit_solves_as_the_library(start_values, platform, pose, version)
 
 
 # ------------------------------------------------ overrides, units, strokes, locales, files
