@@ -119,57 +119,47 @@ inline void angle_rates_of_rotation(const Eigen::Matrix3d &R, const Eigen::Vecto
     out[2] = omega.z() - R(2, 0) * out[0];
 }
 
-// The cosines and sines of a pose's three angles (roll, pitch, yaw).
+// The cosines and sines of the pose q's three angles (roll, pitch, yaw).
 template <class S>
 struct AngleTrig {
     S cr, sr, cp, sp, cy, sy;
 };
-
-// The matrices of the solvers' rotation order, R = Rz(yaw) Ry(pitch) Rx(roll): R, E (omega = E
-// angles_dot) and E_dot at angle rates `rate` (rotation_order.hpp has the other order's).
-struct AnglesZYX {
-    template <class S>
-    static Eigen::Matrix<S, 3, 3> rotation(const AngleTrig<S> &t) {
-        return rotation_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy);
-    }
-    template <class S>
-    static Eigen::Matrix<S, 3, 3> rate_matrix(const AngleTrig<S> &t) {
-        return angle_rate_matrix(t.cp, t.sp, t.cy, t.sy);
-    }
-    template <class S>
-    static Eigen::Matrix<S, 3, 3> rate_matrix_dot(const AngleTrig<S> &t,
-                                                  const Eigen::Matrix<S, 3, 1> &rate) {
-        return angle_rate_matrix_dot(t.cp, t.sp, t.cy, t.sy, rate[1], rate[2]);
-    }
-};
-
-// The motion of a frame at the pose q, its angles in the rotation order whose matrices Angles
-// gives (AnglesZYX, rotation_order.hpp's AnglesXYZ), with rates q_dot and accelerations q_ddot:
-// omega = E (roll_dot, pitch_dot, yaw_dot), alpha = E angles_ddot + E_dot angles_dot.
-template <class Angles, class S>
-MotionT<S> motion_of_pose_as(const S q[6], const S q_dot[6], const S q_ddot[6]) {
+template <class S>
+AngleTrig<S> angle_trig(const S q[6]) {
     using std::cos;
     using std::sin;
+    return {cos(q[3]), sin(q[3]), cos(q[4]), sin(q[4]), cos(q[5]), sin(q[5])};
+}
+
+// The motion of a frame at the pose q with rates q_dot and accelerations q_ddot, from its angles'
+// matrices in their rotation order: R, E (omega = E angles_dot) and E_dot at the angle rates;
+// omega = E (roll_dot, pitch_dot, yaw_dot), alpha = E angles_ddot + E_dot angles_dot.
+template <class S>
+MotionT<S> motion_from_matrices(const S q[6], const S q_dot[6], const S q_ddot[6],
+                                const Eigen::Matrix<S, 3, 3> &R, const Eigen::Matrix<S, 3, 3> &E,
+                                const Eigen::Matrix<S, 3, 3> &E_dot) {
     using Vec = Eigen::Matrix<S, 3, 1>;
     MotionT<S> m;
     m.position = Vec(q[0], q[1], q[2]);
     m.velocity = Vec(q_dot[0], q_dot[1], q_dot[2]);
     m.acceleration = Vec(q_ddot[0], q_ddot[1], q_ddot[2]);
-    const AngleTrig<S> t{cos(q[3]), sin(q[3]), cos(q[4]), sin(q[4]), cos(q[5]), sin(q[5])};
-    m.rotation = Angles::rotation(t);
-    const Eigen::Matrix<S, 3, 3> E = Angles::rate_matrix(t);
+    m.rotation = R;
     const Vec rate(q_dot[3], q_dot[4], q_dot[5]);
     const Vec accel(q_ddot[3], q_ddot[4], q_ddot[5]);
-    const Eigen::Matrix<S, 3, 3> E_dot = Angles::rate_matrix_dot(t, rate);
     m.omega = E * rate;
     m.alpha = E * accel + E_dot * rate;
     return m;
 }
 
-// The motion of the platform frame at the pose q (the solvers' rotation order).
+// The motion of the platform frame at the pose q (the solvers' rotation order, R = Rz Ry Rx;
+// rotation_order.hpp has the other).
 template <class S>
 MotionT<S> motion_of_pose(const S q[6], const S q_dot[6], const S q_ddot[6]) {
-    return motion_of_pose_as<AnglesZYX, S>(q, q_dot, q_ddot);
+    const AngleTrig<S> t = angle_trig(q);
+    return motion_from_matrices<S>(
+        q, q_dot, q_ddot, rotation_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy),
+        angle_rate_matrix(t.cp, t.sp, t.cy, t.sy),
+        angle_rate_matrix_dot(t.cp, t.sp, t.cy, t.sy, q_dot[4], q_dot[5]));
 }
 
 // The motion of the platform frame at pose (its q, q_dot, q_ddot).

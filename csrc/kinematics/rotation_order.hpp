@@ -50,29 +50,17 @@ Eigen::Matrix<S, 3, 3> angle_rate_matrix_xyz_dot(const S &cr, const S &sr, const
     return E_dot;
 }
 
-// The matrices of R = Rx Ry Rz (motion.hpp's AnglesZYX for the other order).
-struct AnglesXYZ {
-    template <class S>
-    static Eigen::Matrix<S, 3, 3> rotation(const AngleTrig<S> &t) {
-        return rotation_xyz_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy);
-    }
-    template <class S>
-    static Eigen::Matrix<S, 3, 3> rate_matrix(const AngleTrig<S> &t) {
-        return angle_rate_matrix_xyz(t.cr, t.sr, t.cp, t.sp);
-    }
-    template <class S>
-    static Eigen::Matrix<S, 3, 3> rate_matrix_dot(const AngleTrig<S> &t,
-                                                  const Eigen::Matrix<S, 3, 1> &rate) {
-        return angle_rate_matrix_xyz_dot(t.cr, t.sr, t.cp, t.sp, rate[0], rate[1]);
-    }
-};
-
 // The motion of a frame at the pose q (angles in `order`) with rates q_dot and accelerations
 // q_ddot.
 template <class S>
 MotionT<S> motion_of_pose_in_order(int order, const S q[6], const S q_dot[6], const S q_ddot[6]) {
-    if (order == kRotationXYZ) return motion_of_pose_as<AnglesXYZ, S>(q, q_dot, q_ddot);
-    return motion_of_pose_as<AnglesZYX, S>(q, q_dot, q_ddot);
+    if (order != kRotationXYZ) return motion_of_pose<S>(q, q_dot, q_ddot);
+    const AngleTrig<S> t = angle_trig(q);
+    return motion_from_matrices<S>(q, q_dot, q_ddot,
+                                   rotation_xyz_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy),
+                                   angle_rate_matrix_xyz(t.cr, t.sr, t.cp, t.sp),
+                                   angle_rate_matrix_xyz_dot(t.cr, t.sr, t.cp, t.sp, q_dot[3],
+                                                             q_dot[4]));
 }
 
 inline Motion motion_of_pose_in_order(int order, const stewart_pose &pose) {
