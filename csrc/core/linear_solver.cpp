@@ -259,6 +259,26 @@ public:
 
     void solve_transposed(double *x) override {
         std::copy(x, x + m_.coordinates, rhs_.begin());  // g, coordinate order
+        reduce_transposed_to_border();
+        const int nb = p_.border;
+        const double *s = ws_.data() + p_.border_offset;
+        if (nb == kOneHub) {
+            lu_solve_transposed_square<kOneHub>(s, border_pivot_.data(), border_.data(),
+                                                border_work_.data());
+        } else {
+            lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
+            lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
+        }
+        back_substitute_transposed(x);
+    }
+
+    const char *name() const override { return "bordered block LU"; }
+    long fallbacks() const override { return fallbacks_; }
+
+private:
+    // solve_transposed's stages. The groups' forward substitutions (lanes, programs, pivoted),
+    // each group's -W^T mu reduced into the border's right-hand side border_.
+    void reduce_transposed_to_border() {
         const int nb = p_.border, L = lanes_.lanes;
         for (int c = 0; c < nb; ++c) border_[c] = rhs_[p_.border_cols[c]];
         for (const LaneSet &s : lanes_.sets) {
@@ -292,14 +312,12 @@ public:
             }
             for (int c = 0; c < nb; ++c) border_[c] += step.carried[c * step.stride];
         }
-        const double *s = ws_.data() + p_.border_offset;
-        if (nb == kOneHub) {
-            lu_solve_transposed_square<kOneHub>(s, border_pivot_.data(), border_.data(),
-                                                border_work_.data());
-        } else {
-            lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
-            lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
-        }
+    }
+
+    // From the border's solution (border_work_): every group's backward substitution into x,
+    // then the border rows, the fixed bodies' rows and their coupling.
+    void back_substitute_transposed(double *x) {
+        const int nb = p_.border, L = lanes_.lanes;
         for (const LaneSet &set : lanes_.sets) {
             double *t = lane_t_.data() + set.vectors;
             for (int l = 0; l < L; ++l) {
@@ -347,10 +365,6 @@ public:
         }
     }
 
-    const char *name() const override { return "bordered block LU"; }
-    long fallbacks() const override { return fallbacks_; }
-
-private:
     // factor's stages. The blocks' workspace cleared: blocks factored by their program keep zeros
     // wherever the program does not write, so only the fill needs clearing; others (and the
     // border system) are cleared whole.
