@@ -65,21 +65,9 @@ def function_head(head):
     h = re.sub(r"\b(const|noexcept|override|final|mutable)\b\s*$", "", h).strip()
     h = re.sub(r"\s*->\s*[\w:<>,\s*&]+$", "", h)  # a trailing return type
     # a constructor's initialisers: cut at the ':' after the parameter list
-    depth, cut = 0, None
-    for k, ch in enumerate(h):
-        if ch == "(":
-            depth += 1
-        elif ch == ")":
-            depth -= 1
-        elif ch == ":" and depth == 0 and k > 0 and h[k - 1] == ")" or \
-                ch == ":" and depth == 0 and h[k - 1:k + 1] == ") :"[1:]:
-            cut = k
-            break
-    if cut is None:
-        m = re.search(r"\)\s*:(?!:)", h)
-        cut = m.start() + 1 if m else None
-    if cut is not None:
-        h = h[:cut].strip()
+    m = re.search(r"\)\s*:(?!:)", h)
+    if m:
+        h = h[:m.start() + 1].strip()
     h = re.sub(r"\b(const|noexcept|override|final)\b\s*$", "", h).strip()
     if not h.endswith(")"):
         return None
@@ -117,8 +105,6 @@ def c_functions(path):
                 head = text[head_start:i]
                 name = function_head(head)
                 if name:
-                    first = line - head.rstrip().count("\n") - (len(head) - len(head.lstrip())
-                                                                 and 0)
                     lead = head[:len(head) - len(head.lstrip())]
                     first = line - head.count("\n") + lead.count("\n")
                     stack.append(("body", first, name))
