@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "batch_paths.hpp"
+#include "forward/forward_object.hpp"
 #include "model.hpp"
 #include "util/message.hpp"
 

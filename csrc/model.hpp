@@ -1,16 +1,16 @@
-// The immutable model and the mutable solver objects behind the opaque C handles: seen only by
-// the API files (model.cpp, inverse/inverse_api.cpp, inverse/full_api.cpp, forward/forward_api.cpp,
-// plant/plant_api.cpp, batch.cpp).
+// The immutable model behind the stewart_model handle, with what each direction keeps of it, and the
+// inverse solver's struct; seen only by the API files (model.cpp, batch.cpp, each direction's
+// *_api.cpp and the handle headers of the others: forward/forward_object.hpp,
+// plant/plant_object.hpp).
 #pragma once
 
 #include <memory>
 
-#include "forward/forward_state.hpp"
+#include "forward/forward_constants.hpp"
 #include "inverse/full_model.hpp"
 #include "kinematics/closed_form.hpp"
 #include "kinematics/frames.hpp"
 #include "stewart/stewart.h"
-#include "stewart/stewart_forward.h"
 
 struct stewart_model {
     stewart_params given;   // as the caller gave them (stewart_model_params)
@@ -30,11 +30,4 @@ struct stewart_inverse {
     stewart_inverse_options options;
     mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
     std::unique_ptr<mbs_data> full;  // state and workspaces of the full level
-};
-
-struct stewart_forward {
-    const stewart_model *model;
-    stewart_forward_options options;
-    mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
-    stewart::ForwardState state;  // its Newton solver and tracking history
 };

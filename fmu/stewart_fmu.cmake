@@ -58,7 +58,7 @@ function(stewart_fmu name model_dir)
   set_property(TARGET ${name}_table APPEND PROPERTY OBJECT_DEPENDS "${model_dir}/variables.def")
 
   add_library(${name}_model STATIC
-    "${FMU_RUNTIME_DIR}/instance.c" "${FMU_RUNTIME_DIR}/call_table.c"
+    "${FMU_RUNTIME_DIR}/instance.c" "${FMU_RUNTIME_DIR}/do_step.c" "${FMU_RUNTIME_DIR}/call_table.c"
     "${FMU_RUNTIME_DIR}/logging.c" "${FMU_RUNTIME_DIR}/values.c" "${FMU_RUNTIME_DIR}/state.c"
     "${FMU_RUNTIME_DIR}/model_exchange.c" "${FMU_RUNTIME_DIR}/derivatives.c"
     "${FMU_RUNTIME_DIR}/bindings.c"

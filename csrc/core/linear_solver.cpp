@@ -175,112 +175,19 @@ public:
     BlockSolver &operator=(const BlockSolver &) = delete;
 
     bool factor(const double *values) override {
-        // Blocks factored by their program keep zeros wherever the program does not write; only
-        // the fill needs clearing. Others (and the border system) are cleared whole.
-        for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
-            const BlockGroup &g = p_.groups[gi];
-            if (lanes_.set_of[gi] >= 0) continue;  // its block is written on a fallback only
-            if (g.has_program && !dirty_[gi]) {
-                for (int f : g.fill) ws_[f] = 0.0;
-            } else {
-                const size_t size = g.rows.size() * (g.cols.size() + p_.border);
-                std::fill(ws_.begin() + g.offset, ws_.begin() + g.offset + size, 0.0);
-                dirty_[gi] = 0;
-            }
-        }
-        std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
-        // Typed copies through local pointers: a memcpy's stores may alias anything, and made
-        // the compiler reload every vector's data pointer per run.
-        double *const ws = ws_.data();
-        const int *const row_from = row_from_.data(), *const row_to = row_to_.data();
-        const size_t rows = row_from_.size();
-        static_assert(MBS_BODY_COORDINATES == 7, "a body's row is three pairs and one value");
-        const auto copy_row = [](double *to, const double *from) {
-            copy_pairs(to, from, 6);
-            to[6] = from[6];
-        };
-        size_t r = 0;
-        for (; r + 2 <= rows; r += 2) {  // two per turn: the loop's count and branch halved
-            copy_row(ws + row_to[r], values + row_from[r]);
-            copy_row(ws + row_to[r + 1], values + row_from[r + 1]);
-        }
-        if (r < rows) copy_row(ws + row_to[r], values + row_from[r]);
-        for (size_t r = 0; r < other_from_.size(); ++r) {
-            const double *from = values + other_from_[r];
-            double *to = ws + other_to_[r];
-            for (int i = 0; i < other_length_[r]; ++i) to[i] = from[i];
-        }
-        // A fixed body's whole row (a joint's row of the ground) is the common run: copied
-        // unrolled, since the general loop became a memmove call per run.
-        const size_t *const start = coupling_start_.data();
-        const int *const coupling_from = coupling_from_.data();
-        double *const coupling = coupling_.data();
-        for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
-            const size_t k = start[r], n = start[r + 1] - k;
-            const double *from = values + coupling_from[k];
-            if (n == MBS_BODY_COORDINATES) {
-                copy_pairs(coupling + k, from, 6);
-                coupling[k + 6] = from[6];
-            } else {
-                copy_pairs(coupling + k, from, n);
-            }
-        }
-        const int nb = p_.border;
-        double *border = ws_.data() + p_.border_offset;
+        clear_blocks();
+        copy_values(values);
+        factor_lane_sets(values);
         bool fell_back = false;
-        for (const LaneSet &s : lanes_.sets) {
-            const unsigned refused = kernels_->factor(
-                lane_ws_.data() + s.offset, s.lead->program, lane_inv_.data() + s.pivots, values,
-                s.entries.data(), s.gather.data(), static_cast<int>(s.entries.size()),
-                s.fill.data(), static_cast<int>(s.fill.size()));
-            for (size_t l = 0; l < s.groups.size(); ++l)
-                static_used_[s.groups[l]] = !((refused >> l) & 1u);
-        }
-        for (const BlockGroup &g : p_.groups) {
-            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
-            double *a = ws_.data() + g.offset;
-            const size_t gi = &g - p_.groups.data();
-            if (lanes_.set_of[gi] < 0)
-                static_used_[gi] = g.has_program &&
-                                   lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
-            if (!static_used_[gi]) {
-                // The fixed pivot order is unsafe here: partial pivoting on fresh values.
-                std::fill(a, a + mg * (ng + nb), 0.0);
-                for (size_t v = 0; v < g.value_index.size(); ++v)
-                    ws_[g.value_dest[v]] = values[g.value_index[v]];
-                dirty_[gi] = 1;
-                ++fallbacks_;
-                fell_back = true;
-                if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) {
-                    steps_stale_ = true;
-                    return false;
-                }
-            }
-            if (in_lane(gi)) {  // its leftover rows' border columns, from its lane
-                const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
-                const int L = lanes_.lanes;
-                for (int r = ng; r < mg; ++r) {
-                    const double *from = lane_ws_.data() + s.offset + (r * s.width + ng) * L +
-                                         lanes_.lane_of[gi];
-                    double *to = border + (g.first_leftover + r - ng) * nb;
-                    for (int c = 0; c < nb; ++c) to[c] = from[c * L];
-                }
-                continue;
-            }
-            for (int r = ng; r < mg; ++r) {
-                const double *from = a + r * (ng + nb) + ng;
-                double *to = border + (g.first_leftover + r - ng) * nb;
-                if (nb == kOneHub) {  // one hub's 7 values, unrolled (std::copy called memmove)
-                    copy_pairs(to, from, 6);
-                    to[6] = from[6];
-                } else {
-                    std::copy(from, from + nb, to);
-                }
-            }
+        if (!factor_groups(values, fell_back)) {
+            steps_stale_ = true;
+            return false;
         }
         // The steps change only with a fallback, this time or the time before.
         if (fell_back || steps_stale_) choose_steps();
         steps_stale_ = fell_back;
+        const int nb = p_.border;
+        double *border = ws_.data() + p_.border_offset;
         if (nb == kOneHub) return lu_factor_square<kOneHub>(border, border_pivot_.data());
         return lu_factor(border, nb, nb, nb, border_pivot_.data());
     }
@@ -352,6 +259,26 @@ public:
 
     void solve_transposed(double *x) override {
         std::copy(x, x + m_.coordinates, rhs_.begin());  // g, coordinate order
+        reduce_transposed_to_border();
+        const int nb = p_.border;
+        const double *s = ws_.data() + p_.border_offset;
+        if (nb == kOneHub) {
+            lu_solve_transposed_square<kOneHub>(s, border_pivot_.data(), border_.data(),
+                                                border_work_.data());
+        } else {
+            lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
+            lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
+        }
+        back_substitute_transposed(x);
+    }
+
+    const char *name() const override { return "bordered block LU"; }
+    long fallbacks() const override { return fallbacks_; }
+
+private:
+    // solve_transposed's stages. The groups' forward substitutions (lanes, programs, pivoted),
+    // each group's -W^T mu reduced into the border's right-hand side border_.
+    void reduce_transposed_to_border() {
         const int nb = p_.border, L = lanes_.lanes;
         for (int c = 0; c < nb; ++c) border_[c] = rhs_[p_.border_cols[c]];
         for (const LaneSet &s : lanes_.sets) {
@@ -385,14 +312,12 @@ public:
             }
             for (int c = 0; c < nb; ++c) border_[c] += step.carried[c * step.stride];
         }
-        const double *s = ws_.data() + p_.border_offset;
-        if (nb == kOneHub) {
-            lu_solve_transposed_square<kOneHub>(s, border_pivot_.data(), border_.data(),
-                                                border_work_.data());
-        } else {
-            lu_forward_transposed(s, nb, nb, border_.data(), border_work_.data());
-            lu_backward_transposed(s, nb, nb, nb, border_pivot_.data(), border_work_.data());
-        }
+    }
+
+    // From the border's solution (border_work_): every group's backward substitution into x,
+    // then the border rows, the fixed bodies' rows and their coupling.
+    void back_substitute_transposed(double *x) {
+        const int nb = p_.border, L = lanes_.lanes;
         for (const LaneSet &set : lanes_.sets) {
             double *t = lane_t_.data() + set.vectors;
             for (int l = 0; l < L; ++l) {
@@ -440,10 +365,125 @@ public:
         }
     }
 
-    const char *name() const override { return "bordered block LU"; }
-    long fallbacks() const override { return fallbacks_; }
+    // factor's stages. The blocks' workspace cleared: blocks factored by their program keep zeros
+    // wherever the program does not write, so only the fill needs clearing; others (and the
+    // border system) are cleared whole.
+    void clear_blocks() {
+        for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
+            const BlockGroup &g = p_.groups[gi];
+            if (lanes_.set_of[gi] >= 0) continue;  // its block is written on a fallback only
+            if (g.has_program && !dirty_[gi]) {
+                for (int f : g.fill) ws_[f] = 0.0;
+            } else {
+                const size_t size = g.rows.size() * (g.cols.size() + p_.border);
+                std::fill(ws_.begin() + g.offset, ws_.begin() + g.offset + size, 0.0);
+                dirty_[gi] = 0;
+            }
+        }
+        std::fill(ws_.begin() + p_.border_offset, ws_.end(), 0.0);
+    }
 
-private:
+    // The Jacobian's values into the blocks' rows, the other runs and the fixed bodies' coupling.
+    void copy_values(const double *values) {
+        // Typed copies through local pointers: a memcpy's stores may alias anything, and made
+        // the compiler reload every vector's data pointer per run.
+        double *const ws = ws_.data();
+        const int *const row_from = row_from_.data(), *const row_to = row_to_.data();
+        const size_t rows = row_from_.size();
+        static_assert(MBS_BODY_COORDINATES == 7, "a body's row is three pairs and one value");
+        const auto copy_row = [](double *to, const double *from) {
+            copy_pairs(to, from, 6);
+            to[6] = from[6];
+        };
+        size_t r = 0;
+        for (; r + 2 <= rows; r += 2) {  // two per turn: the loop's count and branch halved
+            copy_row(ws + row_to[r], values + row_from[r]);
+            copy_row(ws + row_to[r + 1], values + row_from[r + 1]);
+        }
+        if (r < rows) copy_row(ws + row_to[r], values + row_from[r]);
+        for (size_t r = 0; r < other_from_.size(); ++r) {
+            const double *from = values + other_from_[r];
+            double *to = ws + other_to_[r];
+            for (int i = 0; i < other_length_[r]; ++i) to[i] = from[i];
+        }
+        // A fixed body's whole row (a joint's row of the ground) is the common run: copied
+        // unrolled, since the general loop became a memmove call per run.
+        const size_t *const start = coupling_start_.data();
+        const int *const coupling_from = coupling_from_.data();
+        double *const coupling = coupling_.data();
+        for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
+            const size_t k = start[r], n = start[r + 1] - k;
+            const double *from = values + coupling_from[k];
+            if (n == MBS_BODY_COORDINATES) {
+                copy_pairs(coupling + k, from, 6);
+                coupling[k + 6] = from[6];
+            } else {
+                copy_pairs(coupling + k, from, n);
+            }
+        }
+    }
+
+    // The groups in vector lanes, factored by their program set by set; static_used_ says which
+    // lanes kept the fixed pivot order.
+    void factor_lane_sets(const double *values) {
+        for (const LaneSet &s : lanes_.sets) {
+            const unsigned refused = kernels_->factor(
+                lane_ws_.data() + s.offset, s.lead->program, lane_inv_.data() + s.pivots, values,
+                s.entries.data(), s.gather.data(), static_cast<int>(s.entries.size()),
+                s.fill.data(), static_cast<int>(s.fill.size()));
+            for (size_t l = 0; l < s.groups.size(); ++l)
+                static_used_[s.groups[l]] = !((refused >> l) & 1u);
+        }
+    }
+
+    // The other groups by their program, or by partial pivoting where the program's fixed pivot
+    // order is unsafe (fell_back then true), and every group's leftover rows' border columns into
+    // the border system. False if a block is singular.
+    bool factor_groups(const double *values, bool &fell_back) {
+        const int nb = p_.border;
+        double *border = ws_.data() + p_.border_offset;
+        for (const BlockGroup &g : p_.groups) {
+            const int mg = static_cast<int>(g.rows.size()), ng = static_cast<int>(g.cols.size());
+            double *a = ws_.data() + g.offset;
+            const size_t gi = &g - p_.groups.data();
+            if (lanes_.set_of[gi] < 0)
+                static_used_[gi] = g.has_program &&
+                                   lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
+            if (!static_used_[gi]) {
+                // The fixed pivot order is unsafe here: partial pivoting on fresh values.
+                std::fill(a, a + mg * (ng + nb), 0.0);
+                for (size_t v = 0; v < g.value_index.size(); ++v)
+                    ws_[g.value_dest[v]] = values[g.value_index[v]];
+                dirty_[gi] = 1;
+                ++fallbacks_;
+                fell_back = true;
+                if (!lu_factor(a, mg, ng, ng + nb, pivot_.data() + g.pivot_offset)) return false;
+            }
+            if (in_lane(gi)) {  // its leftover rows' border columns, from its lane
+                const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
+                const int L = lanes_.lanes;
+                for (int r = ng; r < mg; ++r) {
+                    const double *from = lane_ws_.data() + s.offset + (r * s.width + ng) * L +
+                                         lanes_.lane_of[gi];
+                    double *to = border + (g.first_leftover + r - ng) * nb;
+                    for (int c = 0; c < nb; ++c) to[c] = from[c * L];
+                }
+                continue;
+            }
+            for (int r = ng; r < mg; ++r) {
+                const double *from = a + r * (ng + nb) + ng;
+                double *to = border + (g.first_leftover + r - ng) * nb;
+                if (nb == kOneHub) {  // one hub's 7 values, unrolled (std::copy called memmove)
+                    copy_pairs(to, from, 6);
+                    to[6] = from[6];
+                } else {
+                    std::copy(from, from + nb, to);
+                }
+            }
+        }
+        return true;
+    }
+
     enum Path : char { kLane, kStatic, kPivoted };
     // One group's part of the solves: its path and where its vectors are, in its lane (stride
     // L) or its own (stride 1), so that one loop takes lane and scalar groups alike.

@@ -52,65 +52,64 @@ std::vector<int> choose_pivot_order(std::vector<double> &a, std::vector<char> &n
     return order;
 }
 
-std::vector<int> choose_common_pivot_order(std::vector<std::vector<double>> &samples,
-                                           std::vector<char> &nz, int m, int n, int width,
-                                           EliminationProgram &p) {
-    std::vector<int> order(m);
-    std::iota(order.begin(), order.end(), 0);
-    p = EliminationProgram{};
-    p.m = m, p.n = n, p.width = width;
-    auto swap_rows = [&](int r, int s) {
-        for (int c = 0; c < width; ++c) {
-            for (std::vector<double> &a : samples) std::swap(a[r * width + c], a[s * width + c]);
-            std::swap(nz[r * width + c], nz[s * width + c]);
-        }
-        std::swap(order[r], order[s]);
-    };
-    std::vector<double> column_max(samples.size());
-    for (int k = 0; k < n; ++k) {
-        for (size_t s = 0; s < samples.size(); ++s) {
-            column_max[s] = 0;
-            for (int i = k; i < m; ++i)
-                column_max[s] = std::fmax(column_max[s], std::fabs(samples[s][i * width + k]));
-            if (!(column_max[s] > 0)) return {};
-        }
-        // Threshold Markowitz: among pivots acceptable in every sample, the row with the fewest
-        // nonzeros.
-        int best = -1, best_count = 0;
-        double best_ratio = 0;
-        for (int i = k; i < m; ++i) {
-            double ratio = INFINITY;  // the smallest over the samples of |a(i, k)| / column max
-            for (size_t s = 0; s < samples.size(); ++s)
-                ratio = std::fmin(ratio, std::fabs(samples[s][i * width + k]) / column_max[s]);
-            if (!(ratio >= kThreshold)) continue;
-            int count = 0;
-            for (int c = k; c < width; ++c) count += nz[i * width + c];
-            // Ties of a common order go to the pivot largest against its column in every sample.
-            const bool better = best < 0 || count < best_count ||
-                                (samples.size() > 1 && count == best_count && ratio > best_ratio);
-            if (better) best = i, best_count = count, best_ratio = ratio;
-        }
-        if (best < 0) return {};
-        if (best != k) swap_rows(k, best);
-        p.below_start.push_back(static_cast<int>(p.below.size()));
-        p.right_start.push_back(static_cast<int>(p.right.size()));
-        for (int c = k + 1; c < width; ++c)
-            if (nz[k * width + c]) p.right.push_back(c);
-        for (int i = k + 1; i < m; ++i) {
-            if (!nz[i * width + k]) continue;
-            p.below.push_back(order[i]);  // by identity: later swaps move rows
-            for (std::vector<double> &a : samples) {
-                const double l = a[i * width + k] / a[k * width + k];
-                a[i * width + k] = l;
-                for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t) {
-                    const int c = p.right[t];
-                    a[i * width + c] -= l * a[k * width + c];
-                }
-            }
-            for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t)
-                nz[i * width + p.right[t]] = 1;
-        }
+namespace {
+
+// The pivot row of column k (rows k..m-1) by threshold Markowitz: among the pivots acceptable in
+// every sample (within kThreshold of the column's maximum), the row with the fewest nonzeros; -1
+// if there is none or a column is zero in a sample.
+int markowitz_pivot(const std::vector<std::vector<double>> &samples, const std::vector<char> &nz,
+                    int k, int m, int width, std::vector<double> &column_max) {
+    for (size_t s = 0; s < samples.size(); ++s) {
+        column_max[s] = 0;
+        for (int i = k; i < m; ++i)
+            column_max[s] = std::fmax(column_max[s], std::fabs(samples[s][i * width + k]));
+        if (!(column_max[s] > 0)) return -1;
     }
+    int best = -1, best_count = 0;
+    double best_ratio = 0;
+    for (int i = k; i < m; ++i) {
+        double ratio = INFINITY;  // the smallest over the samples of |a(i, k)| / column max
+        for (size_t s = 0; s < samples.size(); ++s)
+            ratio = std::fmin(ratio, std::fabs(samples[s][i * width + k]) / column_max[s]);
+        if (!(ratio >= kThreshold)) continue;
+        int count = 0;
+        for (int c = k; c < width; ++c) count += nz[i * width + c];
+        // Ties of a common order go to the pivot largest against its column in every sample.
+        const bool better = best < 0 || count < best_count ||
+                            (samples.size() > 1 && count == best_count && ratio > best_ratio);
+        if (better) best = i, best_count = count, best_ratio = ratio;
+    }
+    return best;
+}
+
+// Pivot k's step of the program (its row's columns right of it, the rows below it that it
+// eliminates), and the elimination itself in every sample and in the nonzero pattern.
+void eliminate_column(std::vector<std::vector<double>> &samples, std::vector<char> &nz,
+                      const std::vector<int> &order, int k, int m, int width,
+                      EliminationProgram &p) {
+    p.below_start.push_back(static_cast<int>(p.below.size()));
+    p.right_start.push_back(static_cast<int>(p.right.size()));
+    for (int c = k + 1; c < width; ++c)
+        if (nz[k * width + c]) p.right.push_back(c);
+    for (int i = k + 1; i < m; ++i) {
+        if (!nz[i * width + k]) continue;
+        p.below.push_back(order[i]);  // by identity: later swaps move rows
+        for (std::vector<double> &a : samples) {
+            const double l = a[i * width + k] / a[k * width + k];
+            a[i * width + k] = l;
+            for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t) {
+                const int c = p.right[t];
+                a[i * width + c] -= l * a[k * width + c];
+            }
+        }
+        for (int t = p.right_start[k]; t < static_cast<int>(p.right.size()); ++t)
+            nz[i * width + p.right[t]] = 1;
+    }
+}
+
+// The program's spans and row positions, from its pivots' lists and the final row order.
+void finish_program(const std::vector<int> &order, int m, int n, int width,
+                    EliminationProgram &p) {
     p.below_start.push_back(static_cast<int>(p.below.size()));
     p.right_start.push_back(static_cast<int>(p.right.size()));
     // Columns were pushed in increasing order: the carried ones close each pivot's list.
@@ -136,6 +135,32 @@ std::vector<int> choose_common_pivot_order(std::vector<std::vector<double>> &sam
             p.below_at[t] = p.below[t] * width + k;
     p.below_row.resize(p.below.size());
     for (size_t t = 0; t < p.below.size(); ++t) p.below_row[t] = p.below[t] * width;
+}
+
+}  // namespace
+
+std::vector<int> choose_common_pivot_order(std::vector<std::vector<double>> &samples,
+                                           std::vector<char> &nz, int m, int n, int width,
+                                           EliminationProgram &p) {
+    std::vector<int> order(m);
+    std::iota(order.begin(), order.end(), 0);
+    p = EliminationProgram{};
+    p.m = m, p.n = n, p.width = width;
+    auto swap_rows = [&](int r, int s) {
+        for (int c = 0; c < width; ++c) {
+            for (std::vector<double> &a : samples) std::swap(a[r * width + c], a[s * width + c]);
+            std::swap(nz[r * width + c], nz[s * width + c]);
+        }
+        std::swap(order[r], order[s]);
+    };
+    std::vector<double> column_max(samples.size());
+    for (int k = 0; k < n; ++k) {
+        const int best = markowitz_pivot(samples, nz, k, m, width, column_max);
+        if (best < 0) return {};
+        if (best != k) swap_rows(k, best);
+        eliminate_column(samples, nz, order, k, m, width, p);
+    }
+    finish_program(order, m, n, width, p);
     return order;
 }
 

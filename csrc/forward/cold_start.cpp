@@ -2,6 +2,7 @@
 // and when that lands on another assembly mode, a walk in length space from home's readings.
 #include <cstring>
 
+#include "forward/forward_object.hpp"
 #include "model.hpp"
 #include "stewart/stewart_forward.h"
 

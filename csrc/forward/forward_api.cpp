@@ -7,12 +7,13 @@
 #include <cmath>
 #include <cstring>
 
-#include "model.hpp"
 #include "forward/branch.hpp"
+#include "forward/forward_object.hpp"
 #include "forward/leg_pairs.hpp"
 #include "forward/newton.hpp"
 #include "kinematics/frames.hpp"
 #include "kinematics/motion.hpp"
+#include "model.hpp"
 #include "stewart/stewart_forward.h"
 #include "util/message.hpp"
 
@@ -573,102 +574,126 @@ extern "C" const stewart_forward_options *stewart_forward_options_of(const stewa
     return d ? &d->options : nullptr;
 }
 
-extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
-                                                const stewart_forward_input *input,
-                                                stewart_forward_output *result) {
-    if (!d || !input || !result) {
-        if (d) set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "NULL argument");
-        return STEWART_ERR_ARGUMENT;
-    }
-    const stewart_model *m = d->model;
-    const stewart_forward_options *o = &d->options;
-    char *msg = d->message;
-    const size_t size = sizeof d->message;
-    if (input->derivatives < 0 || input->derivatives > 2)
+namespace {
+
+// One forward call's input, checked: the time, the Cardan-to-Cardan lengths, the rates and
+// accelerations given (or null) and the guess of the platform's pose (or null).
+struct CheckedInput {
+    double time;
+    double lengths[STEWART_LEGS];
+    const double *rates, *accels, *guess;
+    double platform_guess[6];  // the guess in the platform's frames, where the frames move it
+};
+
+// The input of stewart_forward_solve, every value finite and the lengths reachable; else the
+// message of the first that is not.
+stewart_status check_input(const stewart_model &m, const stewart_forward_input &input,
+                           CheckedInput &in, char *msg, size_t size) {
+    if (input.derivatives < 0 || input.derivatives > 2)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "derivatives is %d: it must be 0 (lengths), 1 (and rates) or 2 (and "
-                           "accelerations)", input->derivatives);
-    const double time = input->time;
-    const double *rates = input->derivatives >= 1 ? input->lengths.length_rate : nullptr;
-    const double *accels = input->derivatives >= 2 ? input->lengths.length_accel : nullptr;
-    const double *guess = input->use_guess ? input->guess : nullptr;
+                           "accelerations)", input.derivatives);
+    in.time = input.time;
+    in.rates = input.derivatives >= 1 ? input.lengths.length_rate : nullptr;
+    in.accels = input.derivatives >= 2 ? input.lengths.length_accel : nullptr;
+    in.guess = input.use_guess ? input.guess : nullptr;
     stewart_status s;
-    if (!std::isfinite(time))
-        return set_message(msg, size, STEWART_ERR_ARGUMENT, "time is %g: it must be finite", time);
+    if (!std::isfinite(in.time))
+        return set_message(msg, size, STEWART_ERR_ARGUMENT, "time is %g: it must be finite",
+                           in.time);
     // The lengths given are the sensors' readings; the Cardan-to-Cardan ones add the offsets.
-    double lengths[STEWART_LEGS];
-    if ((s = cardan_lengths(*m, input->lengths.length, lengths, msg, size)) != STEWART_OK)
+    if ((s = cardan_lengths(m, input.lengths.length, in.lengths, msg, size)) != STEWART_OK)
         return s;
-    if (rates && (s = check_values(rates, "L_dot", false, msg, size)) != STEWART_OK) return s;
-    if (accels && (s = check_values(accels, "L_ddot", false, msg, size)) != STEWART_OK) return s;
-    if (guess)
+    if (in.rates && (s = check_values(in.rates, "L_dot", false, msg, size)) != STEWART_OK)
+        return s;
+    if (in.accels && (s = check_values(in.accels, "L_ddot", false, msg, size)) != STEWART_OK)
+        return s;
+    if (in.guess)
         for (int i = 0; i < 6; ++i)
-            if (!std::isfinite(guess[i]))
+            if (!std::isfinite(in.guess[i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                    "guess %s is %g: it must be finite", stewart::kPoseNames[i],
-                                   guess[i]);
-    double platform_guess[6];  // the guess is the tool's pose in the user frame
-    if (guess && !m->frames.identity) {
-        stewart::platform_pose(m->frames, guess, nullptr, platform_guess, nullptr);
+                                   in.guess[i]);
+    if (in.guess && !m.frames.identity) {  // the guess is the tool's pose in the user frame
+        stewart::platform_pose(m.frames, in.guess, nullptr, in.platform_guess, nullptr);
         for (int i = 0; i < 6; ++i)
-            if (!std::isfinite(platform_guess[i]))
+            if (!std::isfinite(in.platform_guess[i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                    "guess %s = %g is out of range: the platform's pose it gives "
                                    "(tool and user frames) overflows", stewart::kPoseNames[i],
-                                   guess[i]);
-        guess = platform_guess;
+                                   in.guess[i]);
+        in.guess = in.platform_guess;
     }
-    stewart::ForwardState &f = d->state;
-    if ((s = stewart::check_length_pairs(m->forward.pair_bounds, lengths, msg, size)) != STEWART_OK)
-        return s;
+    return stewart::check_length_pairs(m.forward.pair_bounds, in.lengths, msg, size);
+}
 
-    // The starts, in order: the guess alone; or, tracking, the predictor then the last pose; or
-    // home.
-    int starts[2], n_starts = 0;
-    if (guess) {
-        starts[n_starts++] = STEWART_START_GUESS;
+// The starts, in order, into starts (returns how many): the guess alone; or, tracking, the
+// predictor then the last pose; or home.
+int choose_starts(const stewart::ForwardState &f, const CheckedInput &in, int starts[2]) {
+    int n = 0;
+    if (in.guess) {
+        starts[n++] = STEWART_START_GUESS;
     } else if (f.has_pose) {
-        if (time > f.time && (f.has_rates || (f.has_previous && f.time > f.previous_time)))
-            starts[n_starts++] = STEWART_START_PREDICTOR;
-        starts[n_starts++] = STEWART_START_LAST;
+        if (in.time > f.time && (f.has_rates || (f.has_previous && f.time > f.previous_time)))
+            starts[n++] = STEWART_START_PREDICTOR;
+        starts[n++] = STEWART_START_LAST;
     } else {
-        starts[n_starts++] = STEWART_START_HOME;
+        starts[n++] = STEWART_START_HOME;
     }
-    const bool tracking = !guess && f.has_pose;
+    return n;
+}
 
-    Found found[2];  // per start; the first on the working mode wins, else the first converged
+// How far start_q is from the last pose, where the chord step's Jacobian was factored: the
+// largest coordinate's move, positions in units of the characteristic length. (Two coordinates
+// at a time; the maximum is exact in any order; a NaN is ignored.)
+double chord_drift(const stewart_model &m, const stewart::ForwardState &f,
+                   const double start_q[6]) {
+    const double c = m.geometry.characteristic_length;
+    const stewart::Pair per[3] = {{c, c}, {c, 1.0}, {1.0, 1.0}};
+    double drift = 0;
+    for (int i = 0; i < 6; i += 2) {
+        using stewart::load_pair;
+        const stewart::Pair moved =
+            stewart::abs_pair(load_pair(start_q + i) - load_pair(f.q + i)) / per[i / 2];
+        drift = std::max(std::max(drift, moved[0]), moved[1]);
+    }
+    return drift;
+}
+
+// The poses Newton found from the starts: the first on the working mode is chosen, else the
+// first converged (chosen -1 then).
+struct Attempts {
+    Found found[2];
     int n_found = 0, chosen = -1, iterations = 0;
-    stewart_status last_error = STEWART_OK;
-    for (int a = 0; a < n_starts && chosen < 0; ++a) {
-        Found &x = found[n_found];
+    stewart_status last_error = STEWART_OK;  // its message is the last attempt's
+};
+
+// Newton from each start in turn until a pose on the working mode is found.
+void solve_from_starts(const stewart_model &m, stewart::ForwardState &f,
+                       const stewart_forward_options &o, const CheckedInput &in,
+                       const int starts[2], int n_starts, Attempts &a, char *msg, size_t size) {
+    const bool tracking = !in.guess && f.has_pose;
+    for (int k = 0; k < n_starts && a.chosen < 0; ++k) {
+        Found &x = a.found[a.n_found];
         double start_q[6];
-        start_pose(*m, f, starts[a], time, guess, start_q);
+        start_pose(m, f, starts[k], in.time, in.guess, start_q);
         std::memcpy(x.q, start_q, sizeof start_q);
         stewart::NewtonStats stats;
         // Tracking, the first step takes the Jacobian factored at the last pose.
         const stewart::LegFactors *chord =
-            starts[a] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
-        double drift = 0;
-        if (chord) {  // (two coordinates at a time; the maximum is exact in any order)
-            const double c = m->geometry.characteristic_length;
-            const stewart::Pair per[3] = {{c, c}, {c, 1.0}, {1.0, 1.0}};
-            for (int i = 0; i < 6; i += 2) {
-                using stewart::load_pair;
-                const stewart::Pair moved =
-                    stewart::abs_pair(load_pair(start_q + i) - load_pair(f.q + i)) / per[i / 2];
-                drift = std::max(std::max(drift, moved[0]), moved[1]);  // (a NaN: ignored)
-            }
-        }
-        last_error = f.newton->solve(m->geometry, lengths, o->tolerance, o->max_iterations, chord,
-                                     drift, x.q, stats, msg, size);
-        iterations += stats.iterations;
-        if (last_error == STEWART_OK)
-            last_error = examine(*m, f, *o, f.newton->last(), tracking, x, msg, size);
+            starts[k] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
+        const double drift = chord ? chord_drift(m, f, start_q) : 0;
+        stewart_status &error = a.last_error;
+        error = f.newton->solve(m.geometry, in.lengths, o.tolerance, o.max_iterations, chord,
+                                drift, x.q, stats, msg, size);
+        a.iterations += stats.iterations;
+        if (error == STEWART_OK)
+            error = examine(m, f, o, f.newton->last(), tracking, x, msg, size);
         else if (std::isfinite(stats.residual) &&  // Newton creeping toward a singular pose
-                 examine(*m, f, *o, f.newton->last(), tracking, x, msg, size) ==
+                 examine(m, f, o, f.newton->last(), tracking, x, msg, size) ==
                      STEWART_ERR_SINGULAR)
-            last_error = STEWART_ERR_SINGULAR;
-        if (last_error != STEWART_OK) continue;
+            error = STEWART_ERR_SINGULAR;
+        if (error != STEWART_OK) continue;
         // Angles within half a turn of the start's: the same rotation, the continuous angles.
         // (Inside half a turn the remainder is the difference itself, exactly: no libm call.)
         for (int i = 3; i < 6; ++i) {
@@ -676,47 +701,81 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
             x.q[i] = start_q[i] +
                      (std::fabs(turned) < kPi ? turned : std::remainder(turned, 2 * kPi));
         }
-        x.start = starts[a];
-        if (x.branch == 0) chosen = n_found;
-        ++n_found;
+        x.start = starts[k];
+        if (x.branch == 0) a.chosen = a.n_found;
+        ++a.n_found;
     }
-    if (n_found == 0) return last_error;  // the message is the last attempt's
-    if (chosen < 0) chosen = 0;
-    Found &x = found[chosen];
+}
 
-    // One more Newton correction with the exact Jacobian the rates need anyway: the pose then
-    // sits at rounding level even when KINSOL stopped just under the tolerance.
+// The legs whose length is outside their stroke, a bit each. (Two legs at a time; then which.)
+int legs_beyond_stroke(const stewart_params &p, const double lengths[STEWART_LEGS]) {
+    stewart::PairBits beyond = {0, 0};
+    for (int k = 0; k < STEWART_LEGS; k += 2)
+        beyond |= (stewart::load_pair(lengths + k) < stewart::load_pair(p.stroke_min + k)) |
+                  (stewart::load_pair(lengths + k) > stewart::load_pair(p.stroke_max + k));
+    int legs = 0;
+    for (int k = 0; stewart::any(beyond) && k < STEWART_LEGS; ++k)
+        if (lengths[k] < p.stroke_min[k] || lengths[k] > p.stroke_max[k]) legs |= 1 << k;
+    return legs;
+}
+
+// The pose found at x as the answer: one more Newton correction with the exact Jacobian the
+// rates need anyway (the pose then sits at rounding level even when KINSOL stopped just under the
+// tolerance), its rates and accelerations, statistics and warnings, shown in the caller's frames
+// in result; refused if it is on another assembly mode, else remembered for tracking.
+stewart_status answer(const stewart_model &m, stewart::ForwardState &f,
+                      const stewart_forward_options &o, const CheckedInput &in, Found &x,
+                      int iterations, stewart_forward_output &result, char *msg, size_t size) {
     stewart_forward_output out{};
     double step[6];
     std::memcpy(out.pose.q, x.q, sizeof x.q);
     if (stewart::pose_rates_from(x.factors, x.factors.trig, x.residual.data(), step))
         for (int i = 0; i < 6; ++i) out.pose.q[i] -= step[i];
-    if ((s = derivatives(*m, x, rates, accels, out, msg, size)) != STEWART_OK) return s;
+    stewart_status s;
+    if ((s = derivatives(m, x, in.rates, in.accels, out, msg, size)) != STEWART_OK) return s;
     out.iterations = iterations;
     out.residual = x.residual.cwiseAbs().maxCoeff();
     out.condition = x.condition;
     out.branch = x.branch;
     out.jump = x.jump;
     out.start = x.start;
-    stewart::PairBits beyond = {0, 0};  // (two legs at a time; then which)
-    for (int k = 0; k < STEWART_LEGS; k += 2)
-        beyond |= (stewart::load_pair(lengths + k) < stewart::load_pair(m->params.stroke_min + k)) |
-                  (stewart::load_pair(lengths + k) > stewart::load_pair(m->params.stroke_max + k));
-    for (int k = 0; stewart::any(beyond) && k < STEWART_LEGS; ++k)
-        if (lengths[k] < m->params.stroke_min[k] || lengths[k] > m->params.stroke_max[k])
-            out.stroke_legs |= 1 << k;
+    out.stroke_legs = legs_beyond_stroke(m.params, in.lengths);
     if (out.stroke_legs) out.warnings |= STEWART_WARN_STROKE;
-    if (out.condition > o->warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
-    if ((s = shown_pose(*m, out, accels ? 2 : rates ? 1 : 0, *result, msg, size)) != STEWART_OK)
-        return s;
+    if (out.condition > o.warn_condition) out.warnings |= STEWART_WARN_NEAR_SINGULAR;
+    const int derivatives_given = in.accels ? 2 : in.rates ? 1 : 0;
+    if ((s = shown_pose(m, out, derivatives_given, result, msg, size)) != STEWART_OK) return s;
     if (x.branch != 0) {
-        result->warnings |= STEWART_WARN_OTHER_BRANCH;
+        result.warnings |= STEWART_WARN_OTHER_BRANCH;
         return set_message(msg, size, STEWART_ERR_OTHER_BRANCH,
                            "the pose found from the %s is on another assembly mode: %s (z = %g "
                            "m); not taken as the answer", start_name(x.start),
                            branch_reason(x.branch), x.q[2]);
     }
-    remember(f, x, out, time, guess != nullptr, rates != nullptr, accels != nullptr);
+    remember(f, x, out, in.time, in.guess != nullptr, in.rates != nullptr, in.accels != nullptr);
     msg[0] = '\0';
     return STEWART_OK;
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
+                                                const stewart_forward_input *input,
+                                                stewart_forward_output *result) {
+    if (!d || !input || !result) {
+        if (d) set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT, "NULL argument");
+        return STEWART_ERR_ARGUMENT;
+    }
+    const stewart_model &m = *d->model;
+    char *msg = d->message;
+    const size_t size = sizeof d->message;
+    CheckedInput in;
+    stewart_status s;
+    if ((s = check_input(m, *input, in, msg, size)) != STEWART_OK) return s;
+    int starts[2];
+    const int n_starts = choose_starts(d->state, in, starts);
+    Attempts a;
+    solve_from_starts(m, d->state, d->options, in, starts, n_starts, a, msg, size);
+    if (a.n_found == 0) return a.last_error;  // the message is the last attempt's
+    Found &x = a.found[a.chosen < 0 ? 0 : a.chosen];
+    return answer(m, d->state, d->options, in, x, a.iterations, *result, msg, size);
 }

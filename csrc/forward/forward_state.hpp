@@ -1,6 +1,5 @@
 // Forward kinematics' state: the Newton solver (allocated with the solver object) and the tracking
-// history (the last pose, its rates, the pose before it, the leg Jacobian factored there); and the
-// constants of the model it needs.
+// history (the last pose, its rates, the pose before it, the leg Jacobian factored there).
 #pragma once
 
 #include <memory>
@@ -28,21 +27,6 @@ struct ForwardState {
     // Forgets the history.
     void reset() { has_pose = has_rates = has_accels = has_previous = has_chord = false; }
 };
-
-// Of the model, worked out when it is made: the sign of the leg Jacobian's determinant at home
-// (0: singular there, no working assembly mode), the bounds on pairs of lengths, and the
-// shortest leg's stroke range (a tracked platform point moving farther is a jump).
-struct ForwardConstants {
-    int working_sign = 0;
-    LengthPairBounds pair_bounds = {};
-    double shortest_stroke_range = 0;
-    BranchSides sides;  // the working mode's side of every Cardan
-};
-
-// The constants of geometry with the parameters p (home height, strokes); STEWART_ERR_SINGULAR
-// (message) if the leg Jacobian is singular at home.
-stewart_status forward_constants(const PlatformGeometry &geometry, const stewart_params &p,
-                                 ForwardConstants &out, char *msg, size_t size);
 
 // The history as bytes: its size, and save/load (load checks every field; false + message).
 size_t forward_history_size();

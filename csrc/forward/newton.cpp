@@ -10,8 +10,7 @@
 #include <cfloat>
 #include <cmath>
 
-#include "core/kinsol_custom.hpp"
-#include "core/sundials_holder.hpp"
+#include "core/published.hpp"
 #include "forward/leg_pairs.hpp"
 #include "util/message.hpp"
 

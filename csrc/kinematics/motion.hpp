@@ -119,30 +119,47 @@ inline void angle_rates_of_rotation(const Eigen::Matrix3d &R, const Eigen::Vecto
     out[2] = omega.z() - R(2, 0) * out[0];
 }
 
-// The motion of the platform frame at the pose q with rates q_dot and accelerations q_ddot;
-// omega = E (roll_dot, pitch_dot, yaw_dot), alpha = E angles_ddot + E_dot angles_dot.
+// The cosines and sines of the pose q's three angles (roll, pitch, yaw).
 template <class S>
-MotionT<S> motion_of_pose(const S q[6], const S q_dot[6], const S q_ddot[6]) {
+struct AngleTrig {
+    S cr, sr, cp, sp, cy, sy;
+};
+template <class S>
+AngleTrig<S> angle_trig(const S q[6]) {
     using std::cos;
     using std::sin;
+    return {cos(q[3]), sin(q[3]), cos(q[4]), sin(q[4]), cos(q[5]), sin(q[5])};
+}
+
+// The motion of a frame at the pose q with rates q_dot and accelerations q_ddot, from its angles'
+// matrices in their rotation order: R, E (omega = E angles_dot) and E_dot at the angle rates;
+// omega = E (roll_dot, pitch_dot, yaw_dot), alpha = E angles_ddot + E_dot angles_dot.
+template <class S>
+MotionT<S> motion_from_matrices(const S q[6], const S q_dot[6], const S q_ddot[6],
+                                const Eigen::Matrix<S, 3, 3> &R, const Eigen::Matrix<S, 3, 3> &E,
+                                const Eigen::Matrix<S, 3, 3> &E_dot) {
     using Vec = Eigen::Matrix<S, 3, 1>;
     MotionT<S> m;
     m.position = Vec(q[0], q[1], q[2]);
     m.velocity = Vec(q_dot[0], q_dot[1], q_dot[2]);
     m.acceleration = Vec(q_ddot[0], q_ddot[1], q_ddot[2]);
-    const S cr = cos(q[3]), sr = sin(q[3]);
-    const S cp = cos(q[4]), sp = sin(q[4]);
-    const S cy = cos(q[5]), sy = sin(q[5]);
-    m.rotation = rotation_from_trig(cr, sr, cp, sp, cy, sy);
-
-    // omega = roll_dot Rz Ry ex + pitch_dot Rz ey + yaw_dot ez.
-    const Eigen::Matrix<S, 3, 3> E = angle_rate_matrix(cp, sp, cy, sy);
+    m.rotation = R;
     const Vec rate(q_dot[3], q_dot[4], q_dot[5]);
     const Vec accel(q_ddot[3], q_ddot[4], q_ddot[5]);
-    const Eigen::Matrix<S, 3, 3> E_dot = angle_rate_matrix_dot(cp, sp, cy, sy, rate[1], rate[2]);
     m.omega = E * rate;
     m.alpha = E * accel + E_dot * rate;
     return m;
+}
+
+// The motion of the platform frame at the pose q (the solvers' rotation order, R = Rz Ry Rx;
+// rotation_order.hpp has the other).
+template <class S>
+MotionT<S> motion_of_pose(const S q[6], const S q_dot[6], const S q_ddot[6]) {
+    const AngleTrig<S> t = angle_trig(q);
+    return motion_from_matrices<S>(
+        q, q_dot, q_ddot, rotation_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy),
+        angle_rate_matrix(t.cp, t.sp, t.cy, t.sy),
+        angle_rate_matrix_dot(t.cp, t.sp, t.cy, t.sy, q_dot[4], q_dot[5]));
 }
 
 // The motion of the platform frame at pose (its q, q_dot, q_ddot).

@@ -55,23 +55,12 @@ Eigen::Matrix<S, 3, 3> angle_rate_matrix_xyz_dot(const S &cr, const S &sr, const
 template <class S>
 MotionT<S> motion_of_pose_in_order(int order, const S q[6], const S q_dot[6], const S q_ddot[6]) {
     if (order != kRotationXYZ) return motion_of_pose<S>(q, q_dot, q_ddot);
-    using std::cos;
-    using std::sin;
-    using Vec = Eigen::Matrix<S, 3, 1>;
-    MotionT<S> m;
-    m.position = Vec(q[0], q[1], q[2]);
-    m.velocity = Vec(q_dot[0], q_dot[1], q_dot[2]);
-    m.acceleration = Vec(q_ddot[0], q_ddot[1], q_ddot[2]);
-    const S cr = cos(q[3]), sr = sin(q[3]);
-    const S cp = cos(q[4]), sp = sin(q[4]);
-    const S cy = cos(q[5]), sy = sin(q[5]);
-    m.rotation = rotation_xyz_from_trig(cr, sr, cp, sp, cy, sy);
-    const Vec rate(q_dot[3], q_dot[4], q_dot[5]);
-    const Vec accel(q_ddot[3], q_ddot[4], q_ddot[5]);
-    m.omega = angle_rate_matrix_xyz(cr, sr, cp, sp) * rate;
-    m.alpha = angle_rate_matrix_xyz(cr, sr, cp, sp) * accel +
-              angle_rate_matrix_xyz_dot(cr, sr, cp, sp, rate[0], rate[1]) * rate;
-    return m;
+    const AngleTrig<S> t = angle_trig(q);
+    return motion_from_matrices<S>(q, q_dot, q_ddot,
+                                   rotation_xyz_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy),
+                                   angle_rate_matrix_xyz(t.cr, t.sr, t.cp, t.sp),
+                                   angle_rate_matrix_xyz_dot(t.cr, t.sr, t.cp, t.sp, q_dot[3],
+                                                             q_dot[4]));
 }
 
 inline Motion motion_of_pose_in_order(int order, const stewart_pose &pose) {

@@ -262,23 +262,26 @@ extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
     return clear_message(msg, size);
 }
 
-extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const stewart_pose *pose,
-                                                    stewart_linearize_inverse_output *out) {
-    if (!l) return STEWART_ERR_ARGUMENT;
-    char *msg = l->message;
-    const size_t size = sizeof l->message;
-    if (!pose || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or output");
-    stewart_status s;
-    if ((s = check_pose_rows(*pose, 2, msg, size)) != STEWART_OK) return s;
+namespace {
 
-    stewart_linearize_inverse_output o;
-    std::memset(&o, 0, sizeof o);
-    lin::Failure why;
+// The checks every call on a pose starts with: a linearisation, a pose and an output, the pose's
+// rows (to its accelerations) finite.
+stewart_status check_pose_call(stewart_linearize *l, const stewart_pose *pose, const void *out) {
+    if (!l) return STEWART_ERR_ARGUMENT;
+    if (!pose || !out)
+        return set_message(l->message, sizeof l->message, STEWART_ERR_ARGUMENT,
+                           "NULL pose or output");
+    return check_pose_rows(*pose, 2, l->message, sizeof l->message);
+}
+
+// The legs' lengths, rates and accelerations at the pose, and their rows of the Jacobian.
+bool length_rows(const stewart_linearize &l, const stewart_pose &pose,
+                 stewart_linearize_inverse_output &o, lin::Failure &why) {
     Dual L[STEWART_LEGS], L_dot[STEWART_LEGS], L_ddot[STEWART_LEGS];
-    const stewart::Frames &frames = l->model->frames;
-    if (!lin::leg_lengths(l->dynamics.legs, frames, pose->q, pose->q_dot, pose->q_ddot, L, L_dot,
+    const stewart::Frames &frames = l.model->frames;
+    if (!lin::leg_lengths(l.dynamics.legs, frames, pose.q, pose.q_dot, pose.q_ddot, L, L_dot,
                           L_ddot, why))
-        return failure(why, pose->q[4], msg, size);
+        return false;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         o.lengths.length[k] = L[k].value();
         o.lengths.length_rate[k] = L_dot[k].value();
@@ -288,19 +291,26 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
             for (int j = 0; j < STEWART_LINEARIZE_INVERSE_COLUMNS; ++j)
                 o.jacobian[6 * r + k][j] = rows[r]->derivatives()[j];
     }
+    return true;
+}
 
-    // The plant's q_ddot = a(q, q_dot) + G(q) F (affine in F): F = G^-1 (q_ddot - a), and by the
-    // implicit function theorem dF/dz = -G^-1 d q_ddot/dz at that F (z = q, q_dot), G^-1 for q_ddot.
-    // a and G in plain numbers at no force; the derivatives once, at the forces found.
+// The legs' forces that give the pose's accelerations, and their rows of the Jacobian. The
+// plant's q_ddot = a(q, q_dot) + G(q) F (affine in F): F = G^-1 (q_ddot - a), and by the implicit
+// function theorem dF/dz = -G^-1 d q_ddot/dz at that F (z = q, q_dot), G^-1 for q_ddot. a and G in
+// plain numbers at no force; the derivatives once, at the forces found.
+stewart_status force_rows(const stewart_linearize &l, const stewart_pose &pose,
+                          stewart_linearize_inverse_output &o, char *msg, size_t size) {
+    const stewart::Frames &frames = l.model->frames;
+    lin::Failure why;
     const double no_force[STEWART_LEGS] = {0};
     lin::PlantRate rate;
-    if (!lin::plant_rate(l->dynamics, frames, pose->q, pose->q_dot, no_force, rate, why))
-        return failure(why, pose->q[4], msg, size);
+    if (!lin::plant_rate(l.dynamics, frames, pose.q, pose.q_dot, no_force, rate, why))
+        return failure(why, pose.q[4], msg, size);
     Eigen::Matrix<double, 6, 6> G;
     Eigen::Matrix<double, 6, 1> missing;
     for (int i = 0; i < 6; ++i) {
         for (int k = 0; k < STEWART_LEGS; ++k) G(i, k) = rate.q_ddot_wrt_force[i][k];
-        missing[i] = pose->q_ddot[i] - rate.q_ddot[i];
+        missing[i] = pose.q_ddot[i] - rate.q_ddot[i];
     }
     const Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> lu(G);
     const double rcond = lu.rcond();
@@ -320,9 +330,9 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
     for (int k = 0; k < STEWART_LEGS; ++k) force_values[k] = force[k];
     lin::plant_rate_add_force(rate, force_values);
     lin::PlantJacobian at_force;
-    if (!lin::plant_jacobian(l->dynamics, frames, pose->q, pose->q_dot, force_values, rate,
+    if (!lin::plant_jacobian(l.dynamics, frames, pose.q, pose.q_dot, force_values, rate,
                              at_force, why))
-        return failure(why, pose->q[4], msg, size);
+        return failure(why, pose.q[4], msg, size);
     const Eigen::Map<const Eigen::Matrix<double, 6, 12, Eigen::RowMajor>> accel_wrt_state(
         &at_force.q_ddot_wrt_state[0][0]);
     const Eigen::Matrix<double, 6, 12> force_wrt_state = -lu.solve(accel_wrt_state);
@@ -332,6 +342,22 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
         for (int j = 0; j < 12; ++j) o.jacobian[18 + k][j] = force_wrt_state(k, j);
         for (int j = 0; j < 6; ++j) o.jacobian[18 + k][12 + j] = force_wrt_accel(k, j);
     }
+    return STEWART_OK;
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const stewart_pose *pose,
+                                                    stewart_linearize_inverse_output *out) {
+    stewart_status s;
+    if ((s = check_pose_call(l, pose, out)) != STEWART_OK) return s;
+    char *msg = l->message;
+    const size_t size = sizeof l->message;
+    stewart_linearize_inverse_output o;
+    std::memset(&o, 0, sizeof o);
+    lin::Failure why;
+    if (!length_rows(*l, *pose, o, why)) return failure(why, pose->q[4], msg, size);
+    if ((s = force_rows(*l, *pose, o, msg, size)) != STEWART_OK) return s;
     if (!base_wrench(*l, *pose, o.base_force, o.base_torque, o.jacobian + 24, why))
         return failure(why, pose->q[4], msg, size);
     static_assert(offsetof(stewart_linearize_inverse_output, jacobian) ==
@@ -352,12 +378,10 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
 extern "C" stewart_status stewart_linearize_base_wrench(stewart_linearize *l,
                                                         const stewart_pose *pose,
                                                         stewart_linearize_wrench_output *out) {
-    if (!l) return STEWART_ERR_ARGUMENT;
+    stewart_status s;
+    if ((s = check_pose_call(l, pose, out)) != STEWART_OK) return s;
     char *msg = l->message;
     const size_t size = sizeof l->message;
-    if (!pose || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or output");
-    stewart_status s;
-    if ((s = check_pose_rows(*pose, 2, msg, size)) != STEWART_OK) return s;
     stewart_linearize_wrench_output o;
     lin::Failure why;
     if (!base_wrench(*l, *pose, o.base_force, o.base_torque, o.jacobian, why))

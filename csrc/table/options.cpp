@@ -30,12 +30,41 @@ struct Field {
     Storage storage;
 };
 
-// A table expanded: the options' descriptions and places.
+// The rules of a table across its fields, checked once every option is in its range: OK, or the
+// message of the first broken.
+using Rules = stewart_status (*)(const void *options, char *msg, size_t size);
+
+// A table expanded: the options' descriptions and places, and its rules across fields (or none).
 struct Table {
     const stewart_option_info *info;
     const Field *field;
     int count;
+    Rules rules;
 };
+
+// The inverse and forward solvers': warn_condition <= singular_condition.
+template <class Options>
+stewart_status conditions_in_order(const void *options, char *msg, size_t size) {
+    const Options &o = *static_cast<const Options *>(options);
+    if (!(o.singular_condition >= o.warn_condition))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "condition limits warn = %s, singular = %s must satisfy "
+                           "warn_condition <= singular_condition",
+                           ExactText(o.warn_condition).c_str(),
+                           ExactText(o.singular_condition).c_str());
+    return STEWART_OK;
+}
+
+// The plant's: fixed steps only for an explicit method (the implicit ones need their error
+// control).
+stewart_status fixed_steps_explicit(const void *options, char *msg, size_t size) {
+    const stewart_plant_options &o = *static_cast<const stewart_plant_options *>(options);
+    if (o.fixed_steps > 0 && o.method != STEWART_PLANT_ERK && o.method != STEWART_PLANT_ERK5)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
+                           o.fixed_steps, o.method);
+    return STEWART_OK;
+}
 
 #define INFO(id, name, type, unit, min, min_closed, max, max_closed, fallback, text)             \
     {id, #name, is_integer_type<type>(), unit, text, min, max, min_closed, max_closed, fallback},
@@ -64,12 +93,16 @@ const Field kCueingFields[] = {STEWART_CUEING_OPTION_TABLE(CUEING_FIELD)};
 #undef LINEARIZE_FIELD
 #undef LIMITS_FIELD
 #undef CUEING_FIELD
-template <size_t n> constexpr Table table_of(const stewart_option_info (&info)[n], const Field *field) {
-    return {info, field, static_cast<int>(n)};
+template <size_t n>
+constexpr Table table_of(const stewart_option_info (&info)[n], const Field *field,
+                         Rules rules = nullptr) {
+    return {info, field, static_cast<int>(n), rules};
 }
-const Table kInverse = table_of(kInverseInfo, kInverseFields);
-const Table kForward = table_of(kForwardInfo, kForwardFields);
-const Table kPlant = table_of(kPlantInfo, kPlantFields);
+const Table kInverse =
+    table_of(kInverseInfo, kInverseFields, conditions_in_order<stewart_inverse_options>);
+const Table kForward =
+    table_of(kForwardInfo, kForwardFields, conditions_in_order<stewart_forward_options>);
+const Table kPlant = table_of(kPlantInfo, kPlantFields, fixed_steps_explicit);
 const Table kLinearize = table_of(kLinearizeInfo, kLinearizeFields);
 const Table kLimits = table_of(kLimitsInfo, kLimitsFields);
 const Table kCueing = table_of(kCueingInfo, kCueingFields);
@@ -217,8 +250,8 @@ void defaults(const Table &t, void *o) {
     for (int i = 0; i < t.count; ++i) put(t, o, i, t.info[i].default_value);
 }
 
-// Every option in its table's range, in the table's order.
-stewart_status check_ranges(const Table &t, const void *o, char *msg, size_t size) {
+// Every option in its table's range, in the table's order, then the table's rules across fields.
+stewart_status check(const Table &t, const void *o, char *msg, size_t size) {
     if (!o) return set_message(msg, size, STEWART_ERR_ARGUMENT, "options is NULL");
     for (int i = 0; i < t.count; ++i) {
         const stewart_option_info &info = t.info[i];
@@ -226,139 +259,51 @@ stewart_status check_ranges(const Table &t, const void *o, char *msg, size_t siz
         if (!stewart::in_range(v, info.min, info.min_closed, info.max, info.max_closed))
             return refuse(t, i, v, msg, size);
     }
-    return stewart::clear_message(msg, size);
-}
-
-// Every option in its range, and warn_condition <= singular_condition.
-stewart_status check(const Table &t, const void *o, double warn_condition,
-                     double singular_condition, char *msg, size_t size) {
-    const stewart_status ranges = check_ranges(t, o, msg, size);
-    if (ranges != STEWART_OK) return ranges;
-    if (!(singular_condition >= warn_condition))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "condition limits warn = %s, singular = %s must satisfy "
-                           "warn_condition <= singular_condition",
-                           ExactText(warn_condition).c_str(), ExactText(singular_condition).c_str());
+    if (t.rules) {
+        const stewart_status s = t.rules(o, msg, size);
+        if (s != STEWART_OK) return s;
+    }
     return stewart::clear_message(msg, size);
 }
 
 }  // namespace
 
+// The C API of one direction's option table, the same over every table:
+// stewart_<direction>_option_count, _option, _option_find, _option_get, _option_set and
+// _options_check; and _options_default (the plant's is in plant_api.cpp).
+#define OPTION_TABLE_API(direction, table)                                                       \
+    int stewart_##direction##_option_count(void) { return table.count; }                         \
+    const stewart_option_info *stewart_##direction##_option(int i) { return option(table, i); }  \
+    int stewart_##direction##_option_find(const char *name) { return find(table, name); }        \
+    double stewart_##direction##_option_get(const stewart_##direction##_options *o, int i) {     \
+        return o && option(table, i) ? get(table, o, i) : 0;                                     \
+    }                                                                                            \
+    stewart_status stewart_##direction##_option_set(stewart_##direction##_options *o, int i,     \
+                                                    double value, char *msg, size_t size) {      \
+        return set(table, o, i, value, msg, size);                                               \
+    }                                                                                            \
+    stewart_status stewart_##direction##_options_check(const stewart_##direction##_options *o,   \
+                                                       char *msg, size_t size) {                 \
+        return check(table, o, msg, size);                                                       \
+    }
+#define OPTION_TABLE_DEFAULTS(direction, table)                                                  \
+    void stewart_##direction##_options_default(stewart_##direction##_options *o) {               \
+        if (o) defaults(table, o);                                                               \
+    }
+
 extern "C" {
 
-int stewart_inverse_option_count(void) { return kInverse.count; }
-const stewart_option_info *stewart_inverse_option(int i) { return option(kInverse, i); }
-int stewart_inverse_option_find(const char *name) { return find(kInverse, name); }
-double stewart_inverse_option_get(const stewart_inverse_options *o, int i) {
-    return o && option(kInverse, i) ? get(kInverse, o, i) : 0;
-}
-stewart_status stewart_inverse_option_set(stewart_inverse_options *o, int i, double value,
-                                          char *msg, size_t size) {
-    return set(kInverse, o, i, value, msg, size);
-}
-void stewart_inverse_options_default(stewart_inverse_options *o) {
-    if (o) defaults(kInverse, o);
-}
-stewart_status stewart_inverse_options_check(const stewart_inverse_options *o, char *msg,
-                                             size_t size) {
-    return check(kInverse, o, o ? o->warn_condition : 0, o ? o->singular_condition : 0, msg,
-                 size);
-}
+OPTION_TABLE_API(inverse, kInverse)
+OPTION_TABLE_DEFAULTS(inverse, kInverse)
+OPTION_TABLE_API(forward, kForward)
+OPTION_TABLE_DEFAULTS(forward, kForward)
+OPTION_TABLE_API(plant, kPlant)
+OPTION_TABLE_API(linearize, kLinearize)
+OPTION_TABLE_DEFAULTS(linearize, kLinearize)
+OPTION_TABLE_API(limits, kLimits)
+OPTION_TABLE_DEFAULTS(limits, kLimits)
 
-int stewart_forward_option_count(void) { return kForward.count; }
-const stewart_option_info *stewart_forward_option(int i) { return option(kForward, i); }
-int stewart_forward_option_find(const char *name) { return find(kForward, name); }
-double stewart_forward_option_get(const stewart_forward_options *o, int i) {
-    return o && option(kForward, i) ? get(kForward, o, i) : 0;
-}
-stewart_status stewart_forward_option_set(stewart_forward_options *o, int i, double value,
-                                          char *msg, size_t size) {
-    return set(kForward, o, i, value, msg, size);
-}
-void stewart_forward_options_default(stewart_forward_options *o) {
-    if (o) defaults(kForward, o);
-}
-stewart_status stewart_forward_options_check(const stewart_forward_options *o, char *msg,
-                                             size_t size) {
-    return check(kForward, o, o ? o->warn_condition : 0, o ? o->singular_condition : 0, msg,
-                 size);
-}
-
-int stewart_plant_option_count(void) { return kPlant.count; }
-const stewart_option_info *stewart_plant_option(int i) { return option(kPlant, i); }
-int stewart_plant_option_find(const char *name) { return find(kPlant, name); }
-double stewart_plant_option_get(const stewart_plant_options *o, int i) {
-    return o && option(kPlant, i) ? get(kPlant, o, i) : 0;
-}
-stewart_status stewart_plant_option_set(stewart_plant_options *o, int i, double value, char *msg,
-                                        size_t size) {
-    return set(kPlant, o, i, value, msg, size);
-}
-// Every option in its range, and fixed steps only for an explicit method (the implicit ones
-// need their error control).
-stewart_status stewart_plant_options_check(const stewart_plant_options *o, char *msg,
-                                           size_t size) {
-    const stewart_status ranges = check_ranges(kPlant, o, msg, size);
-    if (ranges != STEWART_OK) return ranges;
-    if (o->fixed_steps > 0 && o->method != STEWART_PLANT_ERK && o->method != STEWART_PLANT_ERK5)
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "fixed_steps = %d needs method 2 or 3 (explicit Runge-Kutta), not %d",
-                           o->fixed_steps, o->method);
-    return stewart::clear_message(msg, size);
-}
-
-int stewart_linearize_option_count(void) { return kLinearize.count; }
-const stewart_option_info *stewart_linearize_option(int i) { return option(kLinearize, i); }
-int stewart_linearize_option_find(const char *name) { return find(kLinearize, name); }
-double stewart_linearize_option_get(const stewart_linearize_options *o, int i) {
-    return o && option(kLinearize, i) ? get(kLinearize, o, i) : 0;
-}
-stewart_status stewart_linearize_option_set(stewart_linearize_options *o, int i, double value,
-                                            char *msg, size_t size) {
-    return set(kLinearize, o, i, value, msg, size);
-}
-void stewart_linearize_options_default(stewart_linearize_options *o) {
-    if (o) defaults(kLinearize, o);
-}
-stewart_status stewart_linearize_options_check(const stewart_linearize_options *o, char *msg,
-                                               size_t size) {
-    return check_ranges(kLinearize, o, msg, size);
-}
-
-int stewart_limits_option_count(void) { return kLimits.count; }
-const stewart_option_info *stewart_limits_option(int i) { return option(kLimits, i); }
-int stewart_limits_option_find(const char *name) { return find(kLimits, name); }
-double stewart_limits_option_get(const stewart_limits_options *o, int i) {
-    return o && option(kLimits, i) ? get(kLimits, o, i) : 0;
-}
-stewart_status stewart_limits_option_set(stewart_limits_options *o, int i, double value,
-                                         char *msg, size_t size) {
-    return set(kLimits, o, i, value, msg, size);
-}
-void stewart_limits_options_default(stewart_limits_options *o) {
-    if (o) defaults(kLimits, o);
-}
-stewart_status stewart_limits_options_check(const stewart_limits_options *o, char *msg,
-                                            size_t size) {
-    return check_ranges(kLimits, o, msg, size);
-}
-
-int stewart_cueing_option_count(void) { return kCueing.count; }
-const stewart_option_info *stewart_cueing_option(int i) { return option(kCueing, i); }
-int stewart_cueing_option_find(const char *name) { return find(kCueing, name); }
-double stewart_cueing_option_get(const stewart_cueing_options *o, int i) {
-    return o && option(kCueing, i) ? get(kCueing, o, i) : 0;
-}
-stewart_status stewart_cueing_option_set(stewart_cueing_options *o, int i, double value,
-                                         char *msg, size_t size) {
-    return set(kCueing, o, i, value, msg, size);
-}
-void stewart_cueing_options_default(stewart_cueing_options *o) {
-    if (o) defaults(kCueing, o);
-}
-stewart_status stewart_cueing_options_check(const stewart_cueing_options *o, char *msg,
-                                            size_t size) {
-    return check_ranges(kCueing, o, msg, size);
-}
+OPTION_TABLE_API(cueing, kCueing)
+OPTION_TABLE_DEFAULTS(cueing, kCueing)
 
 }  // extern "C"

@@ -1,9 +1,9 @@
-// Status-plus-message helper of the platform library: the core's (core/message.hpp) with
-// stewart_status, and the mapping of the core's statuses onto the platform's.
+// Status-plus-message helper of the platform library: the core's (core/message.hpp, published in
+// core/published.hpp) with stewart_status, and the mapping of the core's statuses onto the
+// platform's.
 #pragma once
 
-#include "core/message.hpp"
-#include "mbs/mbs.h"
+#include "core/published.hpp"
 #include "stewart/stewart.h"
 
 namespace stewart {

@@ -120,7 +120,8 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, double start_time);
 fmu_status fmu_enter_initialization(fmu_instance *inst, int has_start, double start_time);
 /* Applies the parameters and solves for the initial inputs (Discard there becomes Warning). */
 fmu_status fmu_exit_initialization(fmu_instance *inst);
-/* doStep's entry: fmu_do_step and fmu_do_step_reporting (do_step.h). */
+/* doStep's entry: fmu_do_step and fmu_do_step_reporting (do_step.h); the rest of a step
+ * (do_step.c): */
 /* The model's step rules (model_do_step) over [t, t + h], which the call checks accepted, and
  * the time bookkeeping around them. */
 fmu_status fmu_run_step(fmu_instance *inst, double t, double h);
@@ -135,6 +136,12 @@ fmu_status fmu_run_step_in_step_mode(fmu_instance *inst, double t, double h);
  * Returns s. */
 fmu_status fmu_step_not_taken(fmu_instance *inst, double t, fmu_status s, double time_before,
                               int outputs_current_before);
+
+/* The unit's time, and the time variable that shows it. */
+static inline void fmu_values_set_time(fmu_values *v, double t) {
+    v->time = t;
+    v->real[fmu_time_vr] = t;
+}
 
 /* The bookkeeping of an accepted step (s OK or Warning) from t to t + h: time moves on. Inline:
  * it is on the usual step's path, which a call would lengthen. Returns s. */

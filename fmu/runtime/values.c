@@ -40,16 +40,20 @@ static const fmu_variable *typed(fmu_instance *inst, const char *what, unsigned 
     return var;
 }
 
+/* vr, a variable of `type` whose value may be read now: an output brought up to date first (the
+ * test that the outputs are current here: most reads need no call). 0 after an Error message. */
+static int readable(fmu_instance *inst, const char *what, unsigned vr, fmu_type type) {
+    const fmu_variable *var = typed(inst, what, vr, type);
+    if (!var) return 0;
+    return var->causality != FMU_OUTPUT_VAR || inst->v.outputs_current == 1 ||
+           fmu_refresh_outputs(inst) == FMU_OK;
+}
+
 fmu_status fmu_get_real(fmu_instance *inst, const unsigned vr[], size_t n, double value[]) {
     if (fmu_check_call(inst, CALL_GET, "GetReal") != FMU_OK) return FMU_ERROR;
     if (n > 0 && (!vr || !value)) return null_arrays(inst, "GetReal");
     for (size_t i = 0; i < n; ++i) {
-        const fmu_variable *var = typed(inst, "GetReal", vr[i], FMU_REAL);
-        if (!var) return FMU_ERROR;
-        /* (the test that the outputs are current here: most reads need no call) */
-        if (var->causality == FMU_OUTPUT_VAR && inst->v.outputs_current != 1 &&
-            fmu_refresh_outputs(inst) != FMU_OK)
-            return FMU_ERROR;
+        if (!readable(inst, "GetReal", vr[i], FMU_REAL)) return FMU_ERROR;
         value[i] = inst->v.real[vr[i]];
     }
     return FMU_OK;
@@ -59,11 +63,7 @@ fmu_status fmu_get_integer(fmu_instance *inst, const unsigned vr[], size_t n, in
     if (fmu_check_call(inst, CALL_GET, "GetInteger") != FMU_OK) return FMU_ERROR;
     if (n > 0 && (!vr || !value)) return null_arrays(inst, "GetInteger");
     for (size_t i = 0; i < n; ++i) {
-        const fmu_variable *var = typed(inst, "GetInteger", vr[i], FMU_INTEGER);
-        if (!var) return FMU_ERROR;
-        if (var->causality == FMU_OUTPUT_VAR && inst->v.outputs_current != 1 &&
-            fmu_refresh_outputs(inst) != FMU_OK)
-            return FMU_ERROR;
+        if (!readable(inst, "GetInteger", vr[i], FMU_INTEGER)) return FMU_ERROR;
         value[i] = inst->v.integer[vr[i]];
     }
     return FMU_OK;

@@ -246,6 +246,20 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
 #define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description)                        \
     if (o.name) o.name += first * (count);
 
+// A direction's bind_outputs (its batch outputs bound to the arrays of outputs, name -> array)
+// and from_row (moved on to row first), from its output table.
+#define STEWART_OUTPUT_BINDINGS(Outputs, TABLE)                                                  \
+    Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n,                           \
+                         std::vector<nb::object> &held) {                                        \
+        TABLE(STEWART_BIND_COLUMN)                                                               \
+        return o;                                                                                \
+    }                                                                                            \
+    Outputs from_row(Outputs o, size_t first) {                                                  \
+        TABLE(STEWART_SHIFT_COLUMN)                                                              \
+        o.status += first;                                                                       \
+        return o;                                                                                \
+    }
+
 // Runs batch(messages, first_failed) -> status over rows [first, stop) of solver with the GIL
 // released (the batch numbers rows from first = 0). Returns (status of the first failing row or
 // 0, its index or stop, its message, [(row, message)] of up to max_messages failing rows), rows

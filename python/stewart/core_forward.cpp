@@ -10,19 +10,8 @@ const OptionTable<stewart_forward_options> kForwardOptions = {
     "forward", stewart_forward_options_default, stewart_forward_option_find,
     stewart_forward_option_set, stewart_forward_options_check};
 
-// The batch outputs of the forward table bound to the arrays of outputs (name -> array).
-stewart_forward_batch_outputs bind_outputs(stewart_forward_batch_outputs o, const nb::dict &outputs,
-                                           size_t n, std::vector<nb::object> &held) {
-    STEWART_FORWARD_OUTPUT_TABLE(STEWART_BIND_COLUMN)
-    return o;
-}
-
-// The batch outputs moved on to row first.
-stewart_forward_batch_outputs from_row(stewart_forward_batch_outputs o, size_t first) {
-    STEWART_FORWARD_OUTPUT_TABLE(STEWART_SHIFT_COLUMN)
-    o.status += first;
-    return o;
-}
+// bind_outputs and from_row of the forward table.
+STEWART_OUTPUT_BINDINGS(stewart_forward_batch_outputs, STEWART_FORWARD_OUTPUT_TABLE)
 
 // One Platform.forward call: its arrays and one forward solver, made once (a cold start, or
 // row 0 from guess). rows(a, b) tracks rows [a, b) on from the rows before, as one batch would.

@@ -10,19 +10,8 @@ const OptionTable<stewart_inverse_options> kInverseOptions = {
     "solver", stewart_inverse_options_default, stewart_inverse_option_find,
     stewart_inverse_option_set, stewart_inverse_options_check};
 
-// The batch outputs of the inverse table bound to the arrays of outputs (name -> array).
-stewart_inverse_batch_outputs bind_outputs(stewart_inverse_batch_outputs o, const nb::dict &outputs,
-                                           size_t n, std::vector<nb::object> &held) {
-    STEWART_INVERSE_OUTPUT_TABLE(STEWART_BIND_COLUMN)
-    return o;
-}
-
-// The batch outputs moved on to row first.
-stewart_inverse_batch_outputs from_row(stewart_inverse_batch_outputs o, size_t first) {
-    STEWART_INVERSE_OUTPUT_TABLE(STEWART_SHIFT_COLUMN)
-    o.status += first;
-    return o;
-}
+// bind_outputs and from_row of the inverse table.
+STEWART_OUTPUT_BINDINGS(stewart_inverse_batch_outputs, STEWART_INVERSE_OUTPUT_TABLE)
 
 // One Platform.inverse call: its arrays and one inverse solver, made once. rows(a, b) solves rows
 // [a, b) continuing from the rows before (the full level's warm start), so that slices give the

@@ -246,6 +246,18 @@ void corrupted_round_trip(Unit &u, void *state, Reader &in, OutputCheck check) {
     }
 }
 
+// Operations 6 to 8 of every FMU target's input: take an FMU state (and the outputs it holds),
+// roll back to it (the same outputs bit for bit), or a corrupted serialise / deserialise round
+// trip of it.
+void state_operation(StateProbe &probe, int op, Unit &u, Reader &in, OutputCheck check) {
+    if (op == 6)
+        probe.take(u, check);
+    else if (op == 7)
+        probe.roll_back(u, check);
+    else if (probe.state)
+        corrupted_round_trip(u, probe.state, in, check);
+}
+
 // SetDebugLogging with the categories a selector byte picks (an unknown one among them).
 void random_debug_logging(Unit &u, uint8_t b) {
     const char *cats[] = {"logEvents", "logStatusWarning", "logStatusDiscard", "logStatusError",

@@ -192,14 +192,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
             case 5:
                 change_states(u, in);
                 break;
-            case 6:  // FMU state: take one and remember the outputs it holds
-                probe.take(u, check_outputs);
-                break;
-            case 7:  // ... and roll back to it: the same outputs bit for bit
-                probe.roll_back(u, check_outputs);
-                break;
-            case 8:  // serialise and deserialise (possibly corrupted)
-                if (probe.state) corrupted_round_trip(u, probe.state, in, check_outputs);
+            case 6:  // FMU states: take, roll back, serialise (state_operation)
+            case 7:
+            case 8:
+                state_operation(probe, op, u, in, check_outputs);
                 break;
             case 9:
                 u.reset();

@@ -4,6 +4,7 @@ the thesis manoeuvres, stewart-solve as the reference, and independent closed fo
 The build directory comes from STEWART_BUILD_DIR (default `build` relative to the repository root).
 """
 import atexit
+import contextlib
 import csv
 import math
 import os
@@ -223,24 +224,44 @@ class Unit:
         return "\n".join(m for _, _, m in self.messages)
 
 
+@contextlib.contextmanager
+def opened_unit(version, *args, **kwargs):
+    """A Unit (Unit(version, ...)), freed when the block ends, however it ends."""
+    u = Unit(version, *args, **kwargs)
+    try:
+        yield u
+    finally:
+        u.free()
+
+
 def fidelity_available(version, fidelity):
     """True if this build solves `fidelity` (detected at run time: exit initialisation fails with
     an 'unsupported' message otherwise)."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         s = u.init(fidelity=fidelity)
         if s in (OK, WARNING):
             return True
         text = u.messages_text().lower()
         assert "not available" in text or "unsupported" in text, text
         return False
-    finally:
-        u.free()
 
 
 def require_fidelity(version, fidelity):
     if fidelity == 2 and not fidelity_available(version, 2):
         pytest.skip("fidelity 2 (full 14-body model) is not available in this build")
+
+
+def assert_unit_solves_as_the_library(values, platform, pose, version):
+    """The StewartPlatform unit with start values `values` (stewart.fmu_start_values), started at
+    `pose` and stepped once, gives the library's full-fidelity lengths of `platform` at that pose
+    bit for bit and its forces to 1e-9 of their scale."""
+    expected = platform.inverse(np.array([pose]), fidelity="full")
+    with opened_unit(version) as u:
+        assert u.init(**values, **dict(zip(POSE, pose)), derivatives=1) == OK, u.messages
+        assert u.do_step(0.0, 0.01) == OK, u.messages
+        assert np.array_equal(u.get_reals(L), expected.length[0])
+        scale = np.max(np.abs(expected.force))
+        assert np.max(np.abs(u.get_reals(F) - expected.force[0])) < 1e-9 * scale
 
 
 # ---------------------------------------------------------------- manoeuvres and references

@@ -8,7 +8,7 @@ import pytest
 
 from fmu_support import (REPO, VERSIONS, REAL_OUTPUTS, L, POSE, POSE_DOT, POSE_DDOT, OK, WARNING,
                          DISCARD, ERROR, Unit, model_description,
-                         require_fidelity, reference_matrix, stewart_solve, thesis_manoeuvre)
+                         require_fidelity, reference_matrix, stewart_solve, thesis_manoeuvre, opened_unit)
 from reference import lengths as closed_form_lengths
 
 
@@ -35,8 +35,7 @@ def _poses(n, t0=0.0, kind="roll", h=0.1):
 @pytest.mark.parametrize("derivatives", [0, 1])
 def test_rollback_reproduces_outputs_bit_for_bit(version, fidelity, derivatives):
     require_fidelity(version, fidelity)
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=fidelity, derivatives=derivatives, x_dot=0.1, roll_ddot=0.5) == OK
         _, t = _drive(u, 0.0, _poses(5))
         state = u.get_state()
@@ -55,8 +54,6 @@ def test_rollback_reproduces_outputs_bit_for_bit(version, fidelity, derivatives)
         assert first.tobytes() == third.tobytes()  # the solver's data block travels too
         assert u.serialize(restored) == blob
         u.free_state(restored)
-    finally:
-        u.free()
 
 
 def _nvr():
@@ -114,8 +111,7 @@ def test_corrupt_serialised_state_is_refused(version, field, value, words):
     can have is an Error naming what is wrong, never a state that gives NaN outputs or an
     impossible status; the instance stays usable and the intact bytes still restore."""
     import struct
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         _, t = _drive(u, 0.0, _poses(3))
         state = u.get_state()
@@ -133,8 +129,6 @@ def test_corrupt_serialised_state_is_refused(version, field, value, words):
         assert struct.unpack_from(fmt, blob, offset)[0] == pytest.approx(expected, rel=1e-15)
         struct.pack_into(fmt, blob, offset, value)
         _refused_then_intact_restores(u, blob, words, state, t)
-    finally:
-        u.free()
 
 
 def _driven_state(u):
@@ -153,16 +147,13 @@ def test_corrupt_history_slot_is_refused(version):
     read past the history, so a state holding one is an Error naming it; the intact bytes
     still restore and step."""
     import struct
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         state, blob, t = _driven_state(u)
         n_history = 16 + 12 * _nvr()
         assert struct.unpack_from("<i", blob, n_history)[0] == 2  # two points held
         assert struct.unpack_from("<i", blob, n_history + 4)[0] in (0, 1)
         struct.pack_into("<i", blob, n_history + 4, 2)
         _refused_then_intact_restores(u, blob, "newer point is not 0 or 1", state, t)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -171,15 +162,12 @@ def test_history_without_a_step_is_refused(version):
     step leaves has_stepped as it is (issue 22): a state with a history and has_stepped 0 (the
     runtime's flag, 32 bytes before the values' end) is an Error naming it."""
     import struct
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         state, blob, t = _driven_state(u)
         has_stepped = _layout(u, blob)["mode"] - 24
         assert struct.unpack_from("<i", blob, has_stepped)[0] == 1
         struct.pack_into("<i", blob, has_stepped, 0)
         _refused_then_intact_restores(u, blob, "history without a step", state, t)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -189,8 +177,7 @@ def test_step_after_terminate_is_refused_after_usual_steps(version, derivatives)
     mode (issue 22): after usual steps and Terminate, a doStep is still an Error naming the call
     order, the outputs stay, and FMI 3's lastSuccessfulTime is the unit's time, not t + h."""
     import ctypes
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=derivatives) == OK
         poses = _poses(5)
         _, t = _drive(u, 0.0, poses[:4])
@@ -208,16 +195,13 @@ def test_step_after_terminate_is_refused_after_usual_steps(version, derivatives)
             assert last.value == t and not any(f.value for f in flags)
         assert any("DoStep" in m for s, c, m in u.messages if s == ERROR), u.messages
         assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_serialised_state_with_options_beyond_their_declared_range(version):
     """Whatever initialisation accepted, deserialisation accepts: max_iterations at the top of
     its range (1000)."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=2, max_iterations=1000) in (OK, WARNING)
         state = u.get_state()
         restored = u.deserialize(u.serialize(state))
@@ -225,8 +209,6 @@ def test_serialised_state_with_options_beyond_their_declared_range(version):
         assert u.do_step(0.0, 0.1) in (OK, WARNING)
         u.free_state(restored)
         u.free_state(state)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -234,8 +216,7 @@ def test_step_from_before_the_units_time_is_an_error(version):
     """doStep(t, h) with t before the end of the last step (and after the one before) would take
     the pose of the unit's time for an earlier one: Error naming both times; a t off by a
     rounding is accepted."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         _, t = _drive(u, 0.0, _poses(3))       # t = 0.3; the last accepted point is 0.2
         before = u.get_reals(REAL_OUTPUTS)
@@ -246,8 +227,6 @@ def test_step_from_before_the_units_time_is_an_error(version):
         assert u.get_reals(REAL_OUTPUTS).tobytes() == before.tobytes()
         assert t == 0.30000000000000004       # the unit's time, 0.1 + 0.1 + 0.1
         assert u.do_step(0.3, 0.1) == OK        # one ulp earlier, as a master's n h gives it
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -307,8 +286,7 @@ def test_two_instances_side_by_side(version):
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_reset(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, base_radius=0.55) == OK
         u.set(z=0.6)
         first = u.get_reals(REAL_OUTPUTS)
@@ -322,16 +300,13 @@ def test_reset(version):
         u.set(fidelity=1, base_radius=0.55, z=0.6)
         assert u.exit_init() == OK
         assert u.get_reals(REAL_OUTPUTS).tobytes() == first.tobytes()
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("name,value", [("x", math.nan), ("yaw", math.inf), ("z_dot", -math.inf),
                                         ("pitch_ddot", math.nan)])
 def test_non_finite_input_is_discarded(version, name, value):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         q = _poses(3)
         _drive(u, 0.0, q[:2])
@@ -350,8 +325,6 @@ def test_non_finite_input_is_discarded(version, name, value):
         assert u.get(["status"])[0] == 0
         assert u.do_step(0.2, 0.1) == OK
         np.testing.assert_allclose(u.get_reals(L), closed_form_lengths(q[2]), rtol=1e-12)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -359,8 +332,7 @@ def test_unreachable_pose_is_discarded(version):
     """z = 0 with yaw = 30 deg puts platform point 1 on base point 1 (closed form: L1 = 0)."""
     bad = [0.0, 0.0, 0.0, 0.0, 0.0, math.radians(30)]
     assert closed_form_lengths(bad)[0] < 1e-12
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         before = u.get_reals(REAL_OUTPUTS)
         u.set_values(dict(zip(POSE, bad)))
@@ -373,14 +345,11 @@ def test_unreachable_pose_is_discarded(version):
         u.set(z=0.5, yaw=0.0)
         assert u.do_step(0.0, 0.1) == OK
         assert u.get(["status"])[0] == 0
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_taylor_advance_into_an_unreachable_pose_is_discarded(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=1, z_dot=-5.0) == OK
         before = u.get_reals(REAL_OUTPUTS)
         assert u.do_step(0.0, 0.1) == DISCARD  # z would reach 0
@@ -388,8 +357,6 @@ def test_taylor_advance_into_an_unreachable_pose_is_discarded(version):
         assert u.get(["z"])[0] == 0.5
         u.set(z_dot=0.0)
         assert u.do_step(0.0, 0.1) == OK
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -402,8 +369,7 @@ def test_taylor_advance_into_an_unreachable_pose_is_discarded(version):
     ("fidelity", 7, "fidelity"),
 ])
 def test_invalid_parameter_at_initialisation_is_an_error(version, name, value, words):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         u.set_values({name: value})
         assert u.enter_init() == OK
         assert u.exit_init() == ERROR
@@ -411,14 +377,11 @@ def test_invalid_parameter_at_initialisation_is_an_error(version, name, value, w
         assert errors and words in errors[-1], u.messages
         assert u.reset() == OK  # and the instance can be reset and used
         assert u.init(fidelity=1) == OK
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_stroke_limit_gives_warning_and_status_1(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         u.set(z=0.75)  # closed form: every leg longer than stroke_max = 0.7 m
         assert np.all(closed_form_lengths([0, 0, 0.75, 0, 0, 0]) > 0.7)
@@ -427,38 +390,29 @@ def test_stroke_limit_gives_warning_and_status_1(version):
         warnings = [(c, m) for s, c, m in u.messages if s == WARNING]
         assert warnings and warnings[-1][0] == "logStatusWarning" and "stroke" in warnings[-1][1]
         assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_near_singular_gives_warning_and_status_2(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, warn_condition=1.0) == WARNING
         assert u.get(["status"])[0] == 2
         assert u.do_step(0.0, 0.1) == WARNING
         assert any("singular" in m for s, c, m in u.messages if s == WARNING)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_singular_is_discarded(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         s = u.init(fidelity=1, warn_condition=1.0, singular_condition=1.0)
         assert s == WARNING and u.get(["status"])[0] == 3  # initial pose not solved
         assert u.do_step(0.0, 0.1) == DISCARD
         assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_only_enabled_log_categories_reach_the_logger(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         u.set_debug_logging(False, [])          # all off
         u.set_debug_logging(True, ["logStatusDiscard"])
         assert u.init(fidelity=1) == OK
@@ -472,8 +426,6 @@ def test_only_enabled_log_categories_reach_the_logger(version):
         u.set(x=math.inf)
         assert u.do_step(0.1, 0.1) == DISCARD
         assert len(u.messages) == n
-    finally:
-        u.free()
     v = Unit(version, logging=False)
     try:
         v.set(x=math.nan)
@@ -485,8 +437,7 @@ def test_only_enabled_log_categories_reach_the_logger(version):
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_calls_out_of_sequence_are_errors(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.do_step(0.0, 0.1) == ERROR
         assert u.init(fidelity=1) == OK
         vr = u.vr["base_radius"]
@@ -498,15 +449,12 @@ def test_calls_out_of_sequence_are_errors(version):
         assert setter(*args) == ERROR  # fixed parameter after initialisation
         assert any("base_radius" in m for s, c, m in u.messages if s == ERROR)
         assert u.do_step(0.0, -0.1) == ERROR
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_misuse_returns_error_and_does_not_crash(version):
     import ctypes
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         d, c = u.dll, u.c
         vr = (ctypes.c_uint32 * 1)(9999)
@@ -540,8 +488,6 @@ def test_misuse_returns_error_and_does_not_crash(version):
             assert d.fmi3EnterInitializationMode(c, 0, 0.0, 0.0, 0, 0.0) == ERROR
         assert np.all(np.isfinite(u.get_reals(REAL_OUTPUTS)))
         assert any(c_ == "logStatusError" for s, c_, m in u.messages if s == ERROR)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)

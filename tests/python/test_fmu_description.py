@@ -7,7 +7,7 @@ import zipfile
 import pytest
 
 from fmu_support import (BUILD, REPO, VERSIONS, L, L_DOT, L_DDOT, F, POSE, POSE_DOT, POSE_DDOT,
-                         Unit, fmu_path, model_description)
+                         Unit, fmu_path, model_description, opened_unit)
 
 import fmpy
 from fmpy.validation import validate_fmu
@@ -113,8 +113,7 @@ def test_value_references_agree_with_the_c_tables(version):
     parameter defaults equal stewart-solve's platform (checked through the outputs elsewhere).
     Setting a distinct value through each input/parameter vr and reading all back finds no two
     vrs sharing storage."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.enter_init() == 0
         md = model_description(version)
         settable = [v for v in md.modelVariables if v.causality in ("input", "parameter")]
@@ -127,8 +126,6 @@ def test_value_references_agree_with_the_c_tables(version):
         u.set_values({n: x for n, x in values.items()})
         for n, x in values.items():
             assert u.get([n])[0] == x, n
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)

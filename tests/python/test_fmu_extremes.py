@@ -18,7 +18,7 @@ import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, L, L_DOT, L_DDOT, F, POSE, POSE_DOT, POSE_DDOT,
                          OK, WARNING, DISCARD, ERROR, Unit, backward_fd, reference_matrix,
-                         require_fidelity, stewart_solve, every_leg)
+                         require_fidelity, stewart_solve, every_leg, opened_unit)
 from reference import (BETA, G, M_PLATFORM, TAU, condition, geometry, leg_axes, rotation,
                        static_forces)
 from reference import lengths as closed_form_lengths
@@ -458,8 +458,7 @@ def test_steps_at_a_large_start_time(version):
     q, _, _ = combined(ts - t0)
     qd, qdd = backward_fd(ts, q)
     ref = reference_matrix(stewart_solve(np.arange(6), q, qd, qdd))
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(start_time=t0, fidelity=1) in (OK, WARNING)
         for j, t in enumerate(ts):
             u.set_values(dict(zip(POSE, q[j])))
@@ -468,8 +467,6 @@ def test_steps_at_a_large_start_time(version):
             np.testing.assert_allclose(got[6:], ref[j][6:12], rtol=0, atol=1e-6)
             assert u.do_step(t, h) == OK
             assert unit_time(u) == t + h
-    finally:
-        u.free()
 
 
 # ---------------------------------------------------------------- parameters at the extremes
@@ -584,8 +581,7 @@ def test_payload_far_outside(version, com):
     ("max_iterations", 0, "max_iterations"),
 ])
 def test_invalid_parameters_are_errors_naming_them(version, name, value, words):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         u.set_values({"fidelity": 1, name: value})
         assert u.enter_init() == OK
         assert u.exit_init() == ERROR
@@ -594,8 +590,6 @@ def test_invalid_parameters_are_errors_naming_them(version, name, value, words):
         assert all(c == "logStatusError" for s, c, m in u.messages if s == ERROR)
         assert u.reset() == OK
         assert u.init(fidelity=1) == OK
-    finally:
-        u.free()
 
 
 # ---------------------------------------------------------------- Newton at its limits (fidelity 2)

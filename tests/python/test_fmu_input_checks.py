@@ -8,15 +8,14 @@ import struct
 
 import pytest
 
-from fmu_support import VERSIONS, REAL_OUTPUTS, OK, DISCARD, Unit
+from fmu_support import VERSIONS, REAL_OUTPUTS, OK, DISCARD, Unit, opened_unit
 
 BIG = 1.7e308  # finite; BIG + 0.5 * 1e308 is not
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_taylor_advance_that_overflows_names_the_input(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=1) == OK
         assert u.do_step(0.0, 0.1) == OK
         kept = u.get_reals(REAL_OUTPUTS)
@@ -32,16 +31,13 @@ def test_taylor_advance_that_overflows_names_the_input(version):
         u.set(x=0.0, x_dot=0.0)
         assert u.do_step(0.1, 0.1) == OK
         assert u.get(["status"])[0] == 0
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_restored_state_is_checked_whatever_its_flag_says(version):
     """derivatives = 0: without the check the NaN would reach the finite differences, which
     blame the step size instead of naming the input."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=0) == OK
         assert u.do_step(0.0, 0.1) == OK
         assert u.do_step(0.1, 0.1) == OK
@@ -64,5 +60,3 @@ def test_restored_state_is_checked_whatever_its_flag_says(version):
         assert "input x = nan is not finite" in u.messages_text(), u.messages_text()
         u.free_state(restored)
         u.free_state(state)
-    finally:
-        u.free()

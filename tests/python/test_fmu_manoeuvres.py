@@ -10,7 +10,7 @@ import pytest
 
 from fmu_support import (MANOEUVRES, THESIS_T, VERSIONS, L, L_DOT, L_DDOT, F, POSE, POSE_DOT,
                          POSE_DDOT, OK, WARNING, Unit, backward_fd, reference_matrix,
-                         require_fidelity, stewart_solve, thesis_manoeuvre)
+                         require_fidelity, stewart_solve, thesis_manoeuvre, opened_unit)
 
 FIDELITY_NAMES = {0: "kinematic", 1: "massless", 2: "full"}
 OUT = L + L_DOT + L_DDOT + F
@@ -18,8 +18,7 @@ OUT = L + L_DOT + L_DDOT + F
 
 def _run(version, fidelity, derivatives, t, q, qd=None, qdd=None):
     """Master loop: set the inputs of t_j, read the outputs, step to t_{j+1}."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         u.set(fidelity=fidelity, derivatives=derivatives)
         u.set_values(dict(zip(POSE, q[0])))
         if qd is not None:
@@ -37,8 +36,6 @@ def _run(version, fidelity, derivatives, t, q, qd=None, qdd=None):
             if j + 1 < len(t):
                 assert u.do_step(t[j], t[j + 1] - t[j]) == OK, u.messages_text()
         return np.array(rows)
-    finally:
-        u.free()
 
 
 def _tol(fidelity):
@@ -119,8 +116,7 @@ def test_taylor_advance_over_a_step(version):
     q, qd, qdd = q + [0.01, -0.02, 0, 0, 0.03, 0.1], qd + [0.1, 0.2, -0.1, 0, 0.05, 0.3], \
         qdd + [1.0, -0.5, 0.2, 0.3, 0, -0.4]
     hs = [0.1, 0.03, 0.2]
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         u.set(fidelity=1, derivatives=1)
         u.set_values(dict(zip(POSE + POSE_DOT + POSE_DDOT, np.concatenate([q[0], qd[0], qdd[0]]))))
         assert u.enter_init(0.37) == OK and u.exit_init() == OK
@@ -133,8 +129,6 @@ def test_taylor_advance_over_a_step(version):
             ref = reference_matrix(stewart_solve(np.array([t]), p[None], v[None], a[None]))[0]
             np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12)
             np.testing.assert_allclose(u.get_reals(POSE), p, rtol=1e-15, atol=1e-15)
-    finally:
-        u.free()
 
 
 def test_fmi2_input_derivatives_interpolate_over_the_step():
@@ -143,8 +137,7 @@ def test_fmi2_input_derivatives_interpolate_over_the_step():
     q, qd, qdd = thesis_manoeuvre("yaw", np.array([1.3]))
     qd = qd + [0.05, 0, 0.1, 0, 0, 0]
     qdd = qdd + [0, 0.2, 0, 0.3, 0, 0]
-    u = Unit("2.0")
-    try:
+    with opened_unit("2.0") as u:
         u.set(fidelity=1, derivatives=0)
         assert u.enter_init(1.3) == OK and u.exit_init() == OK
         u.set_values(dict(zip(POSE, q[0])))
@@ -159,8 +152,6 @@ def test_fmi2_input_derivatives_interpolate_over_the_step():
         p, v = q[0] + qd[0] * h + 0.5 * qdd[0] * h * h, qd[0] + qdd[0] * h
         ref = reference_matrix(stewart_solve(np.array([1.3 + h]), p[None], v[None], qdd))[0]
         np.testing.assert_allclose(u.get_reals(OUT), ref, rtol=1e-12, atol=1e-12)
-    finally:
-        u.free()
 
 
 def test_fmi2_input_derivatives_not_given_are_zero():
@@ -168,8 +159,7 @@ def test_fmi2_input_derivatives_not_given_are_zero():
     gets only first derivatives, so its acceleration is zero, not the one of the first step."""
     q, qd, qdd = thesis_manoeuvre("yaw", np.array([1.3, 1.4]))
     qdd = qdd + [0.5, 0.2, -0.3, 0.3, 0.1, -0.2]  # large, so a left-over one would show
-    u = Unit("2.0")
-    try:
+    with opened_unit("2.0") as u:
         u.set(fidelity=1, derivatives=0)
         assert u.enter_init(1.3) == OK and u.exit_init() == OK
         vrs = [u.vr[n] for n in POSE]
@@ -187,8 +177,6 @@ def test_fmi2_input_derivatives_not_given_are_zero():
         ref = reference_matrix(stewart_solve(np.array([1.4 + h]), p[None], qd[1:],
                                              np.zeros((1, 6))))[0]
         np.testing.assert_allclose(u.get_reals(OUT), ref, rtol=1e-12, atol=1e-12)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -196,16 +184,13 @@ def test_hold_without_derivatives(version):
     """derivatives = 0 and no input derivatives: over a step the unit holds its inputs, so the
     outputs after doStep are those of the pose set at t."""
     q, _, _ = thesis_manoeuvre("pitch", np.array([0.0, 0.1]))
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=0, **dict(zip(POSE, q[0]))) == OK
         u.set_values(dict(zip(POSE, q[0])))
         before = u.get_reals(OUT)
         assert u.do_step(0.0, 0.1) == OK
         np.testing.assert_array_equal(u.get_reals(OUT), before)
         np.testing.assert_array_equal(u.get_reals(POSE), q[0])
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -223,13 +208,10 @@ def test_changed_geometry_and_payload_parameters(version):
     params["payload_inertia[1]"] = params["payload_inertia[2]"] = 1.0
     params["payload_inertia[3]"] = 1.5
     pose = [0.01, -0.02, 0.55, 0.05, -0.03, 0.1]
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, **params, **dict(zip(POSE, pose))) == OK, u.messages_text()
         np.testing.assert_allclose(u.get_reals(L), closed_form_lengths(
             pose, 0.6, 0.4, np.radians(beta), np.radians(tau)), rtol=1e-12)
         m = u.get(["platform_mass"])[0] + 50.0
         fz = u.get_reals(["base_force[3]"])[0]
         np.testing.assert_allclose(fz, -m * 9.81, rtol=1e-10)
-    finally:
-        u.free()

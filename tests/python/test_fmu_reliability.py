@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from fmu_support import (VERSIONS, REAL_OUTPUTS, INT_OUTPUTS, POSE, OK, WARNING, DISCARD, ERROR,
-                         Unit, fidelity_available, thesis_manoeuvre)
+                         Unit, fidelity_available, thesis_manoeuvre, opened_unit)
 
 
 def _step_messages(u, status):
@@ -73,8 +73,7 @@ def test_set_state_recovers_from_error(version):
     ExitInitializationMode returns Error (base_radius = -1), SetFMUState with a state saved
     earlier succeeds, the instance is back in the state's mode (step mode: doStep works) and
     reproduces what it did from that state bit for bit."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         _, t = _drive(u, 0.0, _poses(3))
         state = u.get_state()
@@ -89,16 +88,13 @@ def test_set_state_recovers_from_error(version):
         second, _ = _drive(u, t, later)
         assert first.tobytes() == second.tobytes()
         u.free_state(state)
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_state_before_initialisation_recovers_from_error_to_instantiated(version):
     """A state taken before initialisation brings an instance in Error back to that mode: it can
     be initialised again, with the state's (valid) parameters."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         state = u.get_state()                   # instantiated, default parameters
         u.set(base_radius=-1.0)
         assert u.enter_init() == OK
@@ -110,8 +106,6 @@ def test_state_before_initialisation_recovers_from_error_to_instantiated(version
         assert u.get(["base_radius"])[0] == 0.5
         assert u.do_step(0.0, 0.1) == OK
         u.free_state(state)
-    finally:
-        u.free()
 
 
 # ---------------------------------------------------------------- 2. solver data the library refuses
@@ -184,8 +178,7 @@ def test_taylor_advance_that_cannot_be_solved(version, read_before):
     """derivatives = 1 and x_dot = 1e8: the pose advanced to t + h cannot be solved. Discard,
     status = 3, the outputs keep their last valid values (not re-solved at t), time stays; a
     retry with a rate that can be followed succeeds."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=1, x_dot=0.01) == OK
         assert u.do_step(0.0, 0.1) == OK
         kept = u.get_reals(REAL_OUTPUTS)
@@ -202,8 +195,6 @@ def test_taylor_advance_that_cannot_be_solved(version, read_before):
         u.set(x_dot=0.01)
         assert u.do_step(0.1, 0.1) == OK
         assert u.get(["status"])[0] == 0
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -218,8 +209,7 @@ def test_every_discard_sets_status_3_and_keeps_the_outputs(version, derivatives,
     last valid ones, read right after the step; the next good step succeeds."""
     if "z_dot" in bad and derivatives == 0:
         pytest.skip("z_dot is used with derivatives = 1 only")
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=derivatives) == OK
         assert u.do_step(0.0, 0.1) == OK
         kept = u.get_reals(REAL_OUTPUTS)
@@ -232,8 +222,6 @@ def test_every_discard_sets_status_3_and_keeps_the_outputs(version, derivatives,
         u.set_values(good)
         assert u.do_step(0.1, 0.1) == OK
         assert u.get(["status"])[0] == 0
-    finally:
-        u.free()
 
 
 # ---------------------------------------------------------------- 8, 10. messages
@@ -244,8 +232,7 @@ def test_every_discard_sets_status_3_and_keeps_the_outputs(version, derivatives,
 def test_huge_pose_with_finite_differences_names_the_input(version, name, value):
     """derivatives = 0 and a pose coordinate of DBL_MAX: the finite differences overflow because
     of the input, not because the steps are small: the message names the input and its value."""
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1, derivatives=0) == OK
         assert u.do_step(0.0, 0.1) == OK
         u.set(**{name: value})
@@ -256,14 +243,11 @@ def test_huge_pose_with_finite_differences_names_the_input(version, name, value)
         assert f"input {name} = " in m[-1] and "too large" in m[-1], m[-1]
         assert "too small" not in m[-1] and "larger steps" not in m[-1], m[-1]
         assert u.get(["status"])[0] == 3
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_set_state_null_says_the_state_is_null(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=1) == OK
         u.messages.clear()
         f = u.dll.fmi2SetFMUstate if version == "2.0" else u.dll.fmi3SetFMUState
@@ -271,8 +255,6 @@ def test_set_state_null_says_the_state_is_null(version):
         m = _step_messages(u, ERROR)
         assert m and "state is NULL" in m[-1] and "value reference" not in m[-1], m
         assert u.do_step(0.0, 0.1) == OK        # still usable
-    finally:
-        u.free()
 
 
 # ---------------------------------------------------------------- misuse (the probe's checks)
@@ -341,15 +323,12 @@ def _null_calls(version, dll):
 
 @pytest.mark.parametrize("version", VERSIONS)
 def test_null_instance_is_an_error_everywhere(version):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         for j, call in enumerate(_null_calls(version, u.dll)):
             assert call() == ERROR, j
         getattr(u.dll, "fmi2FreeInstance" if version == "2.0" else "fmi3FreeInstance")(None)
         assert u.init(fidelity=1) == OK         # the live instance is untouched
         assert u.do_step(0.0, 0.1) == OK
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -436,8 +415,7 @@ def test_random_serialised_buffers(version):
     """Random bytes, and random bytes behind a valid header and size, are refused with Error (or,
     should one be a valid state, restore to finite outputs); the instance stays usable."""
     rng = np.random.default_rng(15)
-    u = Unit(version, logging=False)
-    try:
+    with opened_unit(version, logging=False) as u:
         assert u.init(fidelity=1) == OK
         state = u.get_state()
         blob = u.serialize(state)
@@ -474,20 +452,15 @@ def test_random_serialised_buffers(version):
         u.set_state(state)
         assert u.do_step(0.0, 0.1) == OK
         u.free_state(state)
-    finally:
-        u.free()
 
 
 def _run(version, fidelity, phase, steps=120):
     """One instance over a yaw manoeuvre shifted by `phase`: the outputs after each step."""
-    u = Unit(version, f"t{phase}", logging=False)
-    try:
+    with opened_unit(version, f"t{phase}", logging=False) as u:
         assert u.init(fidelity=fidelity) in (OK, WARNING)
         q = _poses(steps, 0.37 * phase, kind="yaw", h=0.01)
         rows, _ = _drive(u, 0.0, q, h=0.01)
         return rows.tobytes()
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import stewart
-from fmu_support import L, OK, POSE, VERSIONS, Unit
+from fmu_support import L, OK, POSE, VERSIONS, Unit, opened_unit
 from reference import lengths as closed_form_lengths
 from test_cli import column, read
 
@@ -155,15 +155,12 @@ def test_command_line_param(solve, tmp_path):
 @pytest.mark.parametrize("version", VERSIONS)
 def test_inverse_fmu_parameters(version):
     pose = np.array([0.01, -0.02, 0.05, 0.05, -0.03, 0.1])
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         params = {f"tool_frame[{k + 1}]": TOOL[k] for k in range(6)}
         params.update({f"user_frame[{k + 1}]": USER[k] for k in range(6)})
         params.update({f"length_offset[{k + 1}]": OFFSET[k] for k in range(6)})
         params.update(dict(zip(POSE, pose)))
         assert u.init(fidelity=0, **params) == OK
         got = np.array(u.get(L))
-    finally:
-        u.free()
     expected = closed_form_lengths(platform_pose(pose)) - OFFSET
     np.testing.assert_allclose(got, expected, atol=1e-13)

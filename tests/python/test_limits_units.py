@@ -7,7 +7,7 @@ import csv
 import numpy as np
 import pytest
 
-from fmu_support import OK, WARNING, VERSIONS, Unit
+from fmu_support import OK, WARNING, VERSIONS, Unit, opened_unit
 
 stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
 
@@ -21,16 +21,13 @@ LEANING = np.array([0.12, 0.0, 0.45, 0.0, 0.0, 0.0])
 
 
 def solve_once(version, pose, **params):
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(**params) == OK
         u.set(**dict(zip(POSE, pose)))
         status = u.do_step(0.0, 0.1)
         reals = u.get_reals(MARGINS + RANGE_MIN + RANGE_MAX)
         (limit_class,) = u.get(("limit_class",))
         return status, limit_class, reals, u.messages_text()
-    finally:
-        u.free()
 
 
 @pytest.mark.parametrize("version", VERSIONS)

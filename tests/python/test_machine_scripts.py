@@ -12,7 +12,7 @@ import pytest
 import closed_loop
 import scenes
 import stewart
-from fmu_support import BUILD, OK, L, F, Unit
+from fmu_support import BUILD, assert_unit_solves_as_the_library
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 MACHINES = sorted(stewart.platform_files())
@@ -27,17 +27,7 @@ def test_start_values_give_the_unit_the_machine(name, version):
     assert values == stewart.fmu_start_values(platform)
     home = platform.check().home
     pose = home + [0.001, -0.0005, 0.0008, 0.002, -0.001, 0.0015]
-    expected = platform.inverse(pose, fidelity="full")
-    u = Unit(version)
-    try:
-        at_pose = dict(zip(("x", "y", "z", "roll", "pitch", "yaw"), pose))
-        assert u.init(**values, **at_pose, derivatives=1) == OK, u.messages
-        assert u.do_step(0.0, 0.01) == OK, u.messages
-        assert np.array_equal(u.get_reals(L), expected.length[0])
-        scale = np.max(np.abs(expected.force))
-        assert np.max(np.abs(u.get_reals(F) - expected.force[0])) < 1e-9 * scale
-    finally:
-        u.free()
+    assert_unit_solves_as_the_library(values, platform, pose, version)
 
 
 def test_start_values_refuse_what_is_not_a_platform(tmp_path):

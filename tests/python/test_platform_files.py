@@ -13,7 +13,7 @@ import pytest
 import stewart
 from stewart.sweeps import SpecError, resolve
 
-from fmu_support import OK, Unit, F, L, stewart_solve_path
+from fmu_support import assert_unit_solves_as_the_library, stewart_solve_path
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PLATFORMS = ROOT / "platforms"
@@ -99,15 +99,20 @@ BAD_FILES = [
 ]
 
 
-@pytest.mark.parametrize("text,words", BAD_FILES)
-def test_bad_files_are_refused_naming_the_field(tmp_path, solve, text, words):
-    path = tmp_path / "bad.json"
+def refusal_naming(path, text, words):
+    """Platform.from_file's refusal of a file holding `text`, which names each of `words`."""
     path.write_text(text)
     with pytest.raises(stewart.ParameterError) as e:
         stewart.Platform.from_file(path)
     for w in words:
         assert w in str(e.value)
-    assert str(path) in str(e.value)
+    return str(e.value)
+
+
+@pytest.mark.parametrize("text,words", BAD_FILES)
+def test_bad_files_are_refused_naming_the_field(tmp_path, solve, text, words):
+    path = tmp_path / "bad.json"
+    assert str(path) in refusal_naming(path, text, words)
     # the command line: refused before anything is solved, nothing written
     poses, out = tmp_path / "in.csv", tmp_path / "out.csv"
     poses.write_text("t,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,0\n")
@@ -197,18 +202,11 @@ def test_a_platform_file_is_an_fmu_parameter_set(version):
             values.update({f"{name}[{k}]": value for k in range(1, 7)})
         else:
             values[name] = value
+    start_values = stewart.fmu_start_values(PLATFORMS / "paired_hexapod.json", version)
+    assert {name: start_values[name] for name in values} == values
     pose = [0.002, -0.001, data["home_height"] + 0.003, 0.01, -0.02, 0.015]
-    expected = stewart.Platform.from_file(PLATFORMS / "paired_hexapod.json").inverse(
-        np.array([pose]), fidelity="full")
-    u = Unit(version)
-    try:
-        at_pose = dict(zip(("x", "y", "z", "roll", "pitch", "yaw"), pose))
-        assert u.init(**values, **at_pose, derivatives=1) == OK, u.messages
-        assert u.do_step(0.0, 0.01) == OK, u.messages
-        assert np.array_equal(u.get_reals(L), expected.length[0])
-        assert np.max(np.abs(u.get_reals(F) - expected.force[0])) < 1e-9 * np.max(np.abs(expected.force))
-    finally:
-        u.free()
+    platform = stewart.Platform.from_file(PLATFORMS / "paired_hexapod.json")
+    assert_unit_solves_as_the_library(start_values, platform, pose, version)
 
 
 # ------------------------------------------------ overrides, units, strokes, locales, files
@@ -308,12 +306,7 @@ MORE_BAD_FILES = [
 
 @pytest.mark.parametrize("text,words", MORE_BAD_FILES)
 def test_more_bad_files_are_refused_naming_the_field(tmp_path, text, words):
-    path = tmp_path / "bad.json"
-    path.write_text(text)
-    with pytest.raises(stewart.ParameterError) as e:
-        stewart.Platform.from_file(path)
-    for w in words:
-        assert w in str(e.value)
+    refusal_naming(tmp_path / "bad.json", text, words)
 
 
 def test_only_regular_files_are_read_at_once(tmp_path, solve):

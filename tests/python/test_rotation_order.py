@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import stewart
-from fmu_support import L, OK, POSE, VERSIONS, Unit
+from fmu_support import L, OK, POSE, VERSIONS, Unit, opened_unit
 from reference import geometry
 from test_cli import column, read
 
@@ -217,12 +217,9 @@ def test_command_line_takes_the_order(solve, tmp_path):
 @pytest.mark.parametrize("version", VERSIONS)
 def test_inverse_fmu_takes_the_order(version):
     pose = random_xyz_poses(1, seed=9)[0]
-    u = Unit(version)
-    try:
+    with opened_unit(version) as u:
         assert u.init(fidelity=0, rotation_order=1, **dict(zip(POSE, pose))) == OK
         got = np.array(u.get(L))
-    finally:
-        u.free()
     np.testing.assert_allclose(got, thesis_lengths(pose[:3], r_xyz(*pose[3:])), atol=1e-14)
 
 

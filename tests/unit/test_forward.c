@@ -118,15 +118,22 @@ static stewart_status forward(const stewart_inverse_output *legs, double t, int 
                           derivatives ? legs->lengths.length_accel : NULL, guess, r);
 }
 
+/* A pose drawn in the workspace (its legs' lengths, rates and accelerations in legs), solved
+ * cold from home with its rates into r, which must succeed; returns the pose. */
+static stewart_pose cold_start_from_home(stewart_inverse_output *legs, stewart_forward_output *r) {
+    const stewart_pose truth = workspace_pose(legs);
+    stewart_forward_reset(forward_solver);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, forward(legs, 0, 1, NULL, r),
+                                  stewart_forward_message(forward_solver));
+    return truth;
+}
+
 static void test_cold_starts_over_the_workspace_find_the_pose(void) {
     int worst_iterations = 0;
     for (int i = 0; i < 2000; ++i) {
         stewart_inverse_output legs;
-        const stewart_pose truth = workspace_pose(&legs);
-        stewart_forward_reset(forward_solver);
         stewart_forward_output r;
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, forward(&legs, 0, 1, NULL, &r),
-                                      stewart_forward_message(forward_solver));
+        const stewart_pose truth = cold_start_from_home(&legs, &r);
         TEST_ASSERT_EQUAL_INT(STEWART_START_HOME, r.start);
         TEST_ASSERT_EQUAL_INT(0, r.branch);
         TEST_ASSERT_EQUAL_INT(0, r.warnings);
@@ -153,11 +160,8 @@ static void test_another_geometry_round_trips(void) {
     rebuild_platform();
     for (int i = 0; i < 500; ++i) {
         stewart_inverse_output legs;
-        const stewart_pose truth = workspace_pose(&legs);
-        stewart_forward_reset(forward_solver);
         stewart_forward_output r;
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, forward(&legs, 0, 1, NULL, &r),
-                                      stewart_forward_message(forward_solver));
+        const stewart_pose truth = cold_start_from_home(&legs, &r);
         check_round_trip(&r, &truth, 1);
         double guess[6];
         for (int j = 0; j < 6; ++j) guess[j] = (j >= 2 && j < 5 ? -1 : 1) * truth.q[j];

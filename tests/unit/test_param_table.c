@@ -206,6 +206,17 @@ static void test_options_table(void) {
     o.warn_condition = 1e11;
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "warn = 1e+11, singular = 1e+10"), msg);
+    /* forward kinematics' options keep the same rule across fields, after their ranges */
+    stewart_forward_options f;
+    stewart_forward_options_default(&f);
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_options_check(&f, msg, sizeof msg));
+    f.warn_condition = 2 * f.singular_condition;
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_forward_options_check(&f, msg, sizeof msg));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "warn_condition <= singular_condition"), msg);
+    f.tolerance = -1; /* a range is checked before the rule */
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_forward_options_check(&f, msg, sizeof msg));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "tolerance = -1"), msg);
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_options_check(NULL, msg, sizeof msg));
 }
 
 int main(void) {

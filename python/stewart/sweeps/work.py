@@ -206,62 +206,82 @@ def workspace_chunk(spec: dict, chunk: Chunk, reuse: bool = False,
     table = None
     for start in range(0, n, rows):
         m = min(rows, n - start)
-        row = b.row[:m]
-        # The grid indices (row-major over the axes in their spec order) and the poses, built
-        # column by column: no strided copies.
-        np.add(b.ramp[:m], chunk.start + start, out=row)
-        rest = row
-        for col in range(len(axes) - 1, -1, -1):
-            size = len(axes[col][1])
-            np.remainder(rest, size, out=b.index[col, :m])
-            rest = np.floor_divide(rest, size, out=b.rest[:m])
-        pose = b.pose[:, :m]
-        pose.fill(0.0)
-        for comp, v in s["fixed"].items():
-            pose[POSE.index(comp)].fill(v)
-        for col, (comp, _) in enumerate(axes):
-            np.take(values[col], b.index[col, :m], out=pose[POSE.index(comp)])
-        messages: dict[int, str] = {}
-        for lo in range(0, m, block):
-            hi = min(lo + block, m)
-            q, sol, check = b.rows(hi - lo)
-            np.copyto(q, pose[:, lo:hi].T)
-            platform.inverse(q, fidelity=spec["fidelity"], max_messages=hi - lo, **spec["options"],
-                             out=sol)
-            messages.update((lo + j, text) for j, text in sol.messages.items())
-            _core.limits_check(platform._model, q, None, None, None, None, warn_condition,
-                               check.first, check.failed, check.margin, check.leg,
-                               check.other_leg, check.condition,
-                               b.leg_margin[:hi - lo])
-            np.logical_and(sol.ok, check.within, out=b.reachable[lo:hi])
-            np.copyto(b.limit_class[lo:hi], check.first, casting="unsafe")
-            np.copyto(b.margin[:, lo:hi], check.margin[:, :len(POSE_CLASSES)].T)
-            np.copyto(b.length[:, lo:hi], sol.length.T)
-            np.copyto(b.force[:, lo:hi], sol.force.T)
-            np.copyto(b.status[lo:hi], sol.status)
-            np.copyto(b.condition[lo:hi], sol.condition)
-        columns = {"slice": dictionary_column(m, s["name"], {}, out=b.codes[0, :m]), "row": row}
-        for col, comp in enumerate(s["axes"]):
-            columns[f"i_{comp}"] = b.index[col, :m]
-        for i, comp in enumerate(POSE):
-            columns[comp] = pose[i]
-        columns["status"] = b.status[:m]
-        columns["reachable"] = b.reachable[:m]
-        columns["limit_class"] = b.limit_class[:m]
-        for c, name in enumerate(POSE_CLASSES):
-            columns[f"margin_{name}"] = b.margin[c, :m]
-        columns["condition"] = b.condition[:m]
-        for k in LEGS:
-            columns[f"L{k}"] = b.length[k - 1, :m]
-        for k in LEGS:
-            columns[f"F{k}"] = b.force[k - 1, :m]
-        columns["message"] = dictionary_column(m, "", messages, out=b.codes[1, :m])
-        table = pa.table(columns)
+        row, pose = _grid_poses(b, s, axes, values, chunk.start + start, m)
+        messages = _solve_and_check(b, platform, spec, warn_condition, pose, m, block)
+        table = _workspace_table(b, s, row, pose, m, messages)
         if write is not None:
             write(table)
             table = None
     stats = {"seconds": time.perf_counter() - started, "poses": n, "cases": 0}
     return table, stats
+
+
+def _grid_poses(b: _Scratch, s: dict, axes: list, values: list, first: int,
+                m: int) -> tuple[np.ndarray, np.ndarray]:
+    """The m grid rows from row `first` of slice s: their row numbers and their poses (6 x m),
+    built column by column in b's arrays (no strided copies); the grid indices (row-major over
+    the axes in their spec order) in b.index."""
+    row = b.row[:m]
+    np.add(b.ramp[:m], first, out=row)
+    rest = row
+    for col in range(len(axes) - 1, -1, -1):
+        size = len(axes[col][1])
+        np.remainder(rest, size, out=b.index[col, :m])
+        rest = np.floor_divide(rest, size, out=b.rest[:m])
+    pose = b.pose[:, :m]
+    pose.fill(0.0)
+    for comp, v in s["fixed"].items():
+        pose[POSE.index(comp)].fill(v)
+    for col, (comp, _) in enumerate(axes):
+        np.take(values[col], b.index[col, :m], out=pose[POSE.index(comp)])
+    return row, pose
+
+
+def _solve_and_check(b: _Scratch, platform: Platform, spec: dict, warn_condition: float,
+                     pose: np.ndarray, m: int, block: int) -> dict[int, str]:
+    """The inverse solve and the limit check of the m poses, block by block, into b's columns;
+    returns the messages of the rows that failed, by row."""
+    messages: dict[int, str] = {}
+    for lo in range(0, m, block):
+        hi = min(lo + block, m)
+        q, sol, check = b.rows(hi - lo)
+        np.copyto(q, pose[:, lo:hi].T)
+        platform.inverse(q, fidelity=spec["fidelity"], max_messages=hi - lo, **spec["options"],
+                         out=sol)
+        messages.update((lo + j, text) for j, text in sol.messages.items())
+        _core.limits_check(platform._model, q, None, None, None, None, warn_condition,
+                           check.first, check.failed, check.margin, check.leg, check.other_leg,
+                           check.condition, b.leg_margin[:hi - lo])
+        np.logical_and(sol.ok, check.within, out=b.reachable[lo:hi])
+        np.copyto(b.limit_class[lo:hi], check.first, casting="unsafe")
+        np.copyto(b.margin[:, lo:hi], check.margin[:, :len(POSE_CLASSES)].T)
+        np.copyto(b.length[:, lo:hi], sol.length.T)
+        np.copyto(b.force[:, lo:hi], sol.force.T)
+        np.copyto(b.status[lo:hi], sol.status)
+        np.copyto(b.condition[lo:hi], sol.condition)
+    return messages
+
+
+def _workspace_table(b: _Scratch, s: dict, row: np.ndarray, pose: np.ndarray, m: int,
+                     messages: dict[int, str]) -> pa.Table:
+    """The m rows' table of slice s, its columns views of b's arrays."""
+    columns = {"slice": dictionary_column(m, s["name"], {}, out=b.codes[0, :m]), "row": row}
+    for col, comp in enumerate(s["axes"]):
+        columns[f"i_{comp}"] = b.index[col, :m]
+    for i, comp in enumerate(POSE):
+        columns[comp] = pose[i]
+    columns["status"] = b.status[:m]
+    columns["reachable"] = b.reachable[:m]
+    columns["limit_class"] = b.limit_class[:m]
+    for c, name in enumerate(LIMIT_CLASSES):
+        columns[f"margin_{name}"] = b.margin[c, :m]
+    columns["condition"] = b.condition[:m]
+    for k in LEGS:
+        columns[f"L{k}"] = b.length[k - 1, :m]
+    for k in LEGS:
+        columns[f"F{k}"] = b.force[k - 1, :m]
+    columns["message"] = dictionary_column(m, "", messages, out=b.codes[1, :m])
+    return pa.table(columns)
 
 
 def dictionary_column(n: int, default: str, texts: dict[int, str],
