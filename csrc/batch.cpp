@@ -3,10 +3,12 @@
 // solver object) or stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
 #include "batch_paths.hpp"
+#include "drives/drive_outputs.hpp"
 #include "model.hpp"
 #include "util/message.hpp"
 
@@ -142,7 +144,7 @@ unsigned tail_block(stewart::VectorPath path, const stewart::QuadModel &model, c
 #define TAIL_COLUMN(name, member, count, type, unit, description) type name[4 * (count)];
     struct {
         STEWART_INVERSE_OUTPUT_TABLE(TAIL_COLUMN)
-    } tail;
+    } tail{};  // the drive columns, which the kernel leaves, as zeros
 #undef TAIL_COLUMN
     int status[4];
     stewart_inverse_batch_outputs tail_out{};
@@ -192,8 +194,10 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         write_row(*out, j, o_j, s);
     };
     const stewart_model *m = d->model;
+    // The drive columns come after the kernel from its lengths, rates, accelerations and forces.
+    const bool drive_inputs = out->length && out->length_rate && out->length_accel && out->force;
     const bool vector = path != VectorPath::scalar && d->options.fidelity != STEWART_FULL &&
-                        m->frames.identity;
+                        m->frames.identity && (!m->drives || drive_inputs);
     if (!vector) {
         for (size_t j = 0; j < n; ++j) solve_scalar(j);
     } else {
@@ -221,9 +225,32 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
             for (size_t r = 0; left && r < n - whole; ++r)
                 if (left >> r & 1) solve_scalar(whole + r);
         }
+        if (!m->drives)
+            batch_drive_zeros(*out, 0, n);
+        else  // a row whose drive columns overflow: its solve refuses it with a message
+            for (size_t j = 0; j < n; ++j)
+                if (out->status[j] == STEWART_OK && !batch_drive_row(m->drive, m->params, *out, j))
+                    solve_scalar(j);
     }
     std::memcpy(d->message, log.first_message, sizeof log.first_message);
     return log.first;
+}
+
+extern "C" stewart_status stewart_inverse_batch_current_rates(
+    const stewart_model *m, size_t n, const double *t, const stewart_inverse_batch_outputs *out,
+    char *msg, size_t size) {
+    if (!m || !out || !out->status || (n > 0 && !t) ||
+        (m->drives && !(out->current && out->current_rate && out->motor_speed && out->voltage)))
+        return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                    "stewart_inverse_batch_current_rates: a NULL argument or "
+                                    "column (current, current_rate, motor_speed, voltage, status)");
+    for (size_t j = 0; j < n; ++j)
+        if (!std::isfinite(t[j]) || (j > 0 && !(t[j] > t[j - 1])))
+            return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                        "t[%zu] = %.17g s: the times of a trajectory must be "
+                                        "finite and increase from row to row", j, t[j]);
+    if (m->drives) stewart::trajectory_current_rates(m->drive, m->params, n, t, *out);
+    return stewart::clear_message(msg, size);
 }
 
 extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,

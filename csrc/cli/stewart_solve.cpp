@@ -104,7 +104,31 @@ struct LimitRow {
     stewart_axis_ranges ranges;
 };
 
-void write_header(FILE *out, bool limits, bool ranges) {
+// The drive columns (STEWART_INVERSE_DRIVE_OUTPUT_TABLE), only for a model with drives: a
+// column of six as name1..name6, a bit set as its name.
+void write_drive_header(FILE *out) {
+#define DRIVE_HEADER(name, member, count, type, unit, description)                               \
+    if ((count) == 1) std::fprintf(out, "," #name);                                             \
+    else for (int k = 1; k <= (count); ++k) std::fprintf(out, "," #name "%d", k);
+    STEWART_INVERSE_DRIVE_OUTPUT_TABLE(DRIVE_HEADER)
+#undef DRIVE_HEADER
+}
+
+void put_value(FILE *out, double value) { std::fprintf(out, ",%.17g", value); }
+void put_value(FILE *out, int value) { std::fprintf(out, ",%d", value); }
+template <typename T, size_t N>
+void put_values(FILE *out, const T (&values)[N]) {
+    for (const T &v : values) put_value(out, v);
+}
+void put_values(FILE *out, int value) { put_value(out, value); }
+
+void write_drive_row(FILE *out, const stewart_inverse_output &o) {
+#define DRIVE_ROW(name, member, count, type, unit, description) put_values(out, o.member);
+    STEWART_INVERSE_DRIVE_OUTPUT_TABLE(DRIVE_ROW)
+#undef DRIVE_ROW
+}
+
+void write_header(FILE *out, bool limits, bool ranges, bool drives) {
     std::fprintf(out, "t");
     const char *groups[4] = {"L", "L_dot", "L_ddot", "F"};
     for (const char *g : groups)
@@ -117,11 +141,12 @@ void write_header(FILE *out, bool limits, bool ranges) {
     }
     if (ranges)
         for (const char *axis : kAxes) std::fprintf(out, ",%s_min,%s_max", axis, axis);
+    if (drives) write_drive_header(out);
     std::fprintf(out, "\n");
 }
 
 void write_row(FILE *out, double t, const stewart_inverse_output &o,
-               const LimitRow &row, bool limits, bool ranges) {
+               const LimitRow &row, bool limits, bool ranges, bool drives) {
     const stewart_limits_output &check = row.check;
     std::fprintf(out, "%.17g", t);
     const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
@@ -137,6 +162,7 @@ void write_row(FILE *out, double t, const stewart_inverse_output &o,
     if (ranges)
         for (int a = 0; a < 6; ++a)
             std::fprintf(out, ",%.17g,%.17g", row.ranges.min[a], row.ranges.max[a]);
+    if (drives) write_drive_row(out, o);
     std::fprintf(out, "\n");
 }
 
@@ -272,7 +298,8 @@ int run_check(const Request &r) {
 
 // Solves every row through the batch, then checks each pose's limits (and ranges); false with a
 // message on stderr when a row fails.
-bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inverse *inverse,
+bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart_model *model,
+                stewart_inverse *inverse,
                 stewart_limits *checker, std::vector<stewart_inverse_output> &outputs,
                 std::vector<LimitRow> &limit_rows) {
     const size_t n = table.t.size();
@@ -300,6 +327,14 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inver
                      table.t[failed], stewart_status_name(s), stewart_inverse_message(inverse));
         return false;
     }
+    // The rows are a trajectory (unless --at-rest): the drives' current rates over t.
+    char message[STEWART_MESSAGE_SIZE];
+    if (!r.at_rest && stewart_inverse_batch_current_rates(model, n, table.t.data(), &columns,
+                                                          message, sizeof message) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: %s (or give --static: poses, not a trajectory)\n",
+                     message);
+        return false;
+    }
     for (size_t j = 0; j < n; ++j) {
         STEWART_INVERSE_OUTPUT_TABLE(CLI_ROW)
         stewart_limits_input pose;
@@ -317,15 +352,15 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inver
 // Writes OUT.csv; 0, or 1 with a message.
 int write_table(const Request &r, const stewart::PoseTable &table,
                 const std::vector<stewart_inverse_output> &outputs,
-                const std::vector<LimitRow> &limit_rows) {
+                const std::vector<LimitRow> &limit_rows, bool drives) {
     FILE *out = std::fopen(r.paths[1], "w");
     if (!out) {
         std::fprintf(stderr, "stewart-solve: cannot write %s\n", r.paths[1]);
         return 1;
     }
-    write_header(out, r.limits, r.ranges);
+    write_header(out, r.limits, r.ranges, drives);
     for (size_t j = 0; j < table.t.size(); ++j)
-        write_row(out, table.t[j], outputs[j], limit_rows[j], r.limits, r.ranges);
+        write_row(out, table.t[j], outputs[j], limit_rows[j], r.limits, r.ranges, drives);
     if (std::fclose(out) != 0) {
         std::fprintf(stderr, "stewart-solve: error writing %s\n", r.paths[1]);
         return 1;
@@ -362,11 +397,13 @@ int run_inverse(const Request &r) {
     // the batch, as the Python package and the sweeps (the same numbers bit for bit).
     std::vector<stewart_inverse_output> outputs(table.t.size());
     std::vector<LimitRow> limit_rows(table.t.size());
-    const bool solved = solve_rows(r, table, inverse, checker, outputs, limit_rows);
+    const bool solved = solve_rows(r, table, model, inverse, checker, outputs, limit_rows);
+    bool drives = false;  // the drive columns only for a model with drives
+    for (double lead : r.params.screw_lead) drives = drives || lead > 0;
     stewart_limits_free(checker);
     stewart_inverse_free(inverse);
     stewart_model_free(model);
-    return solved ? write_table(r, table, outputs, limit_rows) : 1;
+    return solved ? write_table(r, table, outputs, limit_rows, drives) : 1;
 }
 
 }  // namespace

@@ -48,4 +48,12 @@ double friction_force(const LegDrive &d, double v, double smoothing_speed);
 // forward efficiency is taken (the larger torque: the one that starts a motion).
 double screw_motor_torque(const LegDrive &d, double nut_force, double omega);
 
+// The motor torque that moves the leg at speed v and acceleration a against the leg force
+// leg_force (> 0 pushes the platform away): the drive's inertia, J (2 pi N / lead) a, plus the
+// screw's torque for the leg force and the friction at v (exact sign: 0 at rest).
+inline double drive_torque(const LegDrive &d, double leg_force, double v, double a) {
+    return d.inertia * d.motor_per_leg * a +
+           screw_motor_torque(d, leg_force + friction_force(d, v, 0.0), d.motor_per_leg * v);
+}
+
 }  // namespace stewart

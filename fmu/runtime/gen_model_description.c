@@ -207,6 +207,7 @@ static void variable(unsigned vr, const char *name, int is_real, const char *cau
 
 static const struct { const char *name; const char *base; } kUnits[] = {
     {"A", "A=\"1\""},
+    {"A/s", "s=\"-1\" A=\"1\""},
     {"H", "kg=\"1\" m=\"2\" s=\"-2\" A=\"-2\""},
     {"kg", "kg=\"1\""},
     {"kg.m2", "kg=\"1\" m=\"2\""},

@@ -30,6 +30,7 @@ from .moves import Move, MoveError, move
 from .params import parameters, platform_files
 from .platform import Platform
 from .simulate import Method, Simulation
+from .sizing import SizingReport, sizing
 from .view import view
 
 try:
@@ -42,4 +43,4 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
-           "MoveError", "feasibility", "Feasibility", "__version__"]
+           "MoveError", "feasibility", "Feasibility", "sizing", "SizingReport", "__version__"]

@@ -56,6 +56,19 @@ stewart_status stewart_inverse_batch(stewart_inverse *inverse, size_t n, const d
                                      const stewart_inverse_batch_outputs *outputs,
                                      stewart_batch_messages *messages, size_t *first_failed);
 
+/* Along a trajectory: rows 0..n-1 of an inverse batch's outputs at the times t (n, finite,
+ * increasing) get each drive's current_rate by differences of current over t, as
+ * numpy.gradient takes them: central of second order on uneven steps between rows, one-sided of
+ * first order at the ends of each run of solved rows (a run of one row: 0). Their voltage gains
+ * winding_inductance x current_rate, and electrical_power and voltage_max_legs follow it.
+ * Needs the columns current, current_rate, motor_speed, voltage and status (electrical_power and
+ * voltage_max_legs if there). STEWART_ERR_ARGUMENT (message names the row and time, outputs
+ * untouched) for a NULL or a t that does not increase. A model without drives: nothing to do. */
+stewart_status stewart_inverse_batch_current_rates(const stewart_model *model, size_t n,
+                                                   const double *t,
+                                                   const stewart_inverse_batch_outputs *outputs,
+                                                   char *message, size_t size);
+
 /* The status of a row a batch did not run (stewart_plant_batch after a refused step): positive,
  * unlike every stewart_status. */
 #define STEWART_BATCH_NOT_RUN 1

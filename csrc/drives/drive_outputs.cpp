@@ -1,0 +1,131 @@
+// The inverse's drive columns: what each leg's motor must give for the motion and forces found.
+#include "drives/drive_outputs.hpp"
+
+#include <cmath>
+#include <cstring>
+
+namespace stewart {
+
+int legs_over(const double (&value)[STEWART_LEGS], const double (&limit)[STEWART_LEGS]) {
+    int legs = 0;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (limit[k] > 0 && std::fabs(value[k]) > limit[k]) legs |= 1 << k;
+    return legs;
+}
+
+void fill_drive_outputs(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                        stewart_inverse_output &out) {
+    const stewart_lengths &l = out.lengths;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const LegDrive &d = drive[k];
+        if (d.motor_per_leg == 0) continue;  // the output's zeros
+        const double r = d.motor_per_leg;
+        const double torque = drive_torque(d, out.force[k], l.length_rate[k], l.length_accel[k]);
+        const double current = torque / d.torque_constant;
+        out.motor_angle[k] = r * l.length[k];
+        out.motor_speed[k] = r * l.length_rate[k];
+        out.motor_accel[k] = r * l.length_accel[k];
+        out.motor_torque[k] = torque;
+        out.current[k] = current;
+        out.current_rate[k] = 0;
+        out.voltage[k] = d.resistance * current + d.torque_constant * out.motor_speed[k];
+        out.electrical_power[k] = out.voltage[k] * current;
+        out.motor_power[k] = torque * out.motor_speed[k];
+    }
+    out.current_max_legs = legs_over(out.current, p.current_max);
+    out.voltage_max_legs = legs_over(out.voltage, p.voltage_max);
+    out.motor_speed_max_legs = legs_over(out.motor_speed, p.motor_speed_max);
+}
+
+namespace {
+
+// Row j of a column of count values into value / from value (a NULL column: nothing).
+template <typename T, size_t N>
+void get_row(const T *column, size_t j, T (&value)[N]) {
+    if (column) std::memcpy(value, column + j * N, sizeof value);
+}
+template <typename T, size_t N>
+void put_row(T *column, size_t j, const T (&value)[N]) {
+    if (column) std::memcpy(column + j * N, value, sizeof value);
+}
+template <typename T>
+void put_row(T *column, size_t j, const T &value) {
+    if (column) column[j] = value;
+}
+
+}  // namespace
+
+bool drive_outputs_finite(const stewart_inverse_output &o) {
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(o.motor_torque[k]) || !std::isfinite(o.current[k]) ||
+            !std::isfinite(o.voltage[k]) || !std::isfinite(o.electrical_power[k]) ||
+            !std::isfinite(o.motor_power[k]) || !std::isfinite(o.motor_angle[k]))
+            return false;
+    return true;
+}
+
+#define PUT(name, member, count, type, unit, description) put_row(out.name, j, o.member);
+
+void batch_drive_zeros(const stewart_inverse_batch_outputs &out, size_t first, size_t last) {
+    const stewart_inverse_output o{};
+    for (size_t j = first; j < last; ++j) { STEWART_INVERSE_DRIVE_OUTPUT_TABLE(PUT) }
+}
+
+bool batch_drive_row(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                     const stewart_inverse_batch_outputs &out, size_t j) {
+    stewart_inverse_output o{};
+    get_row(out.length, j, o.lengths.length);
+    get_row(out.length_rate, j, o.lengths.length_rate);
+    get_row(out.length_accel, j, o.lengths.length_accel);
+    get_row(out.force, j, o.force);
+    fill_drive_outputs(drive, p, o);
+    if (!drive_outputs_finite(o)) return false;
+    STEWART_INVERSE_DRIVE_OUTPUT_TABLE(PUT)
+    return true;
+}
+
+#undef PUT
+
+namespace {
+
+// d current / dt at row j of the solved run [first, last) (numpy.gradient, edge_order 1).
+double current_rate_at(const double *current, const double *t, size_t first, size_t last,
+                       size_t j, int k) {
+    auto i = [&](size_t row) { return current[6 * row + k]; };
+    if (last - first < 2) return 0;
+    if (j == first) return (i(j + 1) - i(j)) / (t[j + 1] - t[j]);
+    if (j + 1 == last) return (i(j) - i(j - 1)) / (t[j] - t[j - 1]);
+    const double h1 = t[j] - t[j - 1], h2 = t[j + 1] - t[j];
+    return (h1 * h1 * i(j + 1) - h2 * h2 * i(j - 1) + (h2 * h2 - h1 * h1) * i(j)) /
+           (h1 * h2 * (h1 + h2));
+}
+
+}  // namespace
+
+void trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                              size_t n, const double *t, const stewart_inverse_batch_outputs &out) {
+    for (size_t first = 0; first < n;) {
+        if (out.status[first] != STEWART_OK) { ++first; continue; }
+        size_t last = first + 1;
+        while (last < n && out.status[last] == STEWART_OK) ++last;
+        for (size_t j = first; j < last; ++j) {
+            double voltage[STEWART_LEGS];
+            for (int k = 0; k < STEWART_LEGS; ++k) {
+                const LegDrive &d = drive[k];
+                const size_t e = 6 * j + k;
+                voltage[k] = out.voltage[e];
+                if (d.motor_per_leg == 0) continue;
+                const double rate = current_rate_at(out.current, t, first, last, j, k);
+                out.current_rate[e] = rate;
+                voltage[k] = d.resistance * out.current[e] +
+                             d.torque_constant * out.motor_speed[e] + d.inductance * rate;
+                out.voltage[e] = voltage[k];
+                if (out.electrical_power) out.electrical_power[e] = voltage[k] * out.current[e];
+            }
+            if (out.voltage_max_legs) out.voltage_max_legs[j] = legs_over(voltage, p.voltage_max);
+        }
+        first = last;
+    }
+}
+
+}  // namespace stewart
