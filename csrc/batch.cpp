@@ -3,6 +3,7 @@
 // solver object) or stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -13,6 +14,9 @@
 #include "util/message.hpp"
 
 namespace {
+
+// Blocks of four rows the kernel runs before their drive columns (about 40 kB of outputs).
+constexpr size_t kDriveChunkBlocks = 16;
 
 // Row j of a column of `count` values: an array member, or a scalar one.
 template <typename T, size_t N>
@@ -208,29 +212,34 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         // writes blocks in a run until one leaves rows to the scalar solve, which overwrites
         // them. The last block, if short, through four-row copies (its last row repeated), so
         // that a row's numbers do not depend on where a batch starts.
+        // The drive columns of rows [from, to) while the kernel's are still in the cache (a
+        // row whose drive columns overflow: its solve refuses it with a message).
+        auto drive_rows = [&](size_t from, size_t to) {
+            if (!m->drives) return batch_drive_zeros(*out, from, to);
+            for (size_t j = from; j < to; ++j)
+                if (out->status[j] == STEWART_OK && !batch_drive_row(m->drive, m->params, *out, j))
+                    solve_scalar(j);
+        };
         const size_t whole = n - n % 4;
+        const size_t chunk = m->drives ? kDriveChunkBlocks : whole / 4 + 1;
         for (size_t block = 0; block < whole;) {
             const QuadRows rows = {q + 6 * block, q_dot ? q_dot + 6 * block : nullptr,
                                    q_ddot ? q_ddot + 6 * block : nullptr};
             unsigned left;  // rows the scalar solve decides, bit r for row last + r
             const size_t run = closed_form_quad_run(path, model, rows, *out, block,
-                                                    (whole - block) / 4, left);
+                                                    std::min(chunk, (whole - block) / 4), left);
             const size_t last = block + 4 * (run - 1);
             for (size_t r = 0; left && r < 4; ++r)
                 if (left >> r & 1) solve_scalar(last + r);
+            drive_rows(block, block + 4 * run);
             block += 4 * run;
         }
         if (whole < n) {
             const unsigned left = tail_block(path, model, q, q_dot, q_ddot, *out, whole, n - whole);
             for (size_t r = 0; left && r < n - whole; ++r)
                 if (left >> r & 1) solve_scalar(whole + r);
+            drive_rows(whole, n);
         }
-        if (!m->drives)
-            batch_drive_zeros(*out, 0, n);
-        else  // a row whose drive columns overflow: its solve refuses it with a message
-            for (size_t j = 0; j < n; ++j)
-                if (out->status[j] == STEWART_OK && !batch_drive_row(m->drive, m->params, *out, j))
-                    solve_scalar(j);
     }
     std::memcpy(d->message, log.first_message, sizeof log.first_message);
     return log.first;

@@ -313,11 +313,17 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart
     std::vector<type> name(n * (count));
 #define CLI_POINT(name, member, count, type, unit, description) columns.name = name.data();
 #define CLI_ROW(name, member, count, type, unit, description)                                      \
-    std::memcpy(&outputs[j].member, name.data() + j * (count), (count) * sizeof(type));
+    if (columns.name)                                                                              \
+        std::memcpy(&outputs[j].member, name.data() + j * (count), (count) * sizeof(type));
     STEWART_INVERSE_OUTPUT_TABLE(CLI_COLUMN)
     std::vector<int> row_status(n);
     stewart_inverse_batch_outputs columns{};
     STEWART_INVERSE_OUTPUT_TABLE(CLI_POINT)
+    bool drives = false;  // without drives the drive columns are neither asked for nor written
+    for (double lead : r.params.screw_lead) drives = drives || lead > 0;
+#define CLI_NO_DRIVE(name, member, count, type, unit, description) columns.name = nullptr;
+    if (!drives) { STEWART_INVERSE_DRIVE_OUTPUT_TABLE(CLI_NO_DRIVE) }
+#undef CLI_NO_DRIVE
     columns.status = row_status.data();
     size_t failed = n;
     const stewart_status s = stewart_inverse_batch(inverse, n, q.data(), q_dot.data(),

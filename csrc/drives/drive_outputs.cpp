@@ -18,8 +18,13 @@ void fill_drive_outputs(const LegDrive (&drive)[STEWART_LEGS], const stewart_par
     const stewart_lengths &l = out.lengths;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegDrive &d = drive[k];
-        if (d.motor_per_leg == 0) continue;  // the output's zeros
         const double r = d.motor_per_leg;
+        if (r == 0) {  // no drive: every column 0 (not r times a negative rate, -0)
+            out.motor_angle[k] = out.motor_speed[k] = out.motor_accel[k] = 0;
+            out.motor_torque[k] = out.current[k] = out.current_rate[k] = out.voltage[k] = 0;
+            out.electrical_power[k] = out.motor_power[k] = 0;
+            continue;
+        }
         const double torque = drive_torque(d, out.force[k], l.length_rate[k], l.length_accel[k]);
         const double current = torque / d.torque_constant;
         out.motor_angle[k] = r * l.length[k];
@@ -35,6 +40,14 @@ void fill_drive_outputs(const LegDrive (&drive)[STEWART_LEGS], const stewart_par
     out.current_max_legs = legs_over(out.current, p.current_max);
     out.voltage_max_legs = legs_over(out.voltage, p.voltage_max);
     out.motor_speed_max_legs = legs_over(out.motor_speed, p.motor_speed_max);
+}
+
+bool drive_outputs_finite(const stewart_inverse_output &o) {
+    double sum = 0;  // inf or NaN in any term makes the sum's difference with itself NaN
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        sum += ((o.motor_torque[k] + o.current[k]) + (o.voltage[k] + o.electrical_power[k])) +
+               (o.motor_power[k] + o.motor_angle[k]);
+    return sum - sum == 0;
 }
 
 namespace {
@@ -55,25 +68,18 @@ void put_row(T *column, size_t j, const T &value) {
 
 }  // namespace
 
-bool drive_outputs_finite(const stewart_inverse_output &o) {
-    for (int k = 0; k < STEWART_LEGS; ++k)
-        if (!std::isfinite(o.motor_torque[k]) || !std::isfinite(o.current[k]) ||
-            !std::isfinite(o.voltage[k]) || !std::isfinite(o.electrical_power[k]) ||
-            !std::isfinite(o.motor_power[k]) || !std::isfinite(o.motor_angle[k]))
-            return false;
-    return true;
-}
-
 #define PUT(name, member, count, type, unit, description) put_row(out.name, j, o.member);
 
 void batch_drive_zeros(const stewart_inverse_batch_outputs &out, size_t first, size_t last) {
-    const stewart_inverse_output o{};
-    for (size_t j = first; j < last; ++j) { STEWART_INVERSE_DRIVE_OUTPUT_TABLE(PUT) }
+#define ZEROS(name, member, count, type, unit, description)                                       \
+    if (out.name) std::memset(out.name + first * (count), 0, (last - first) * (count) * sizeof(type));
+    STEWART_INVERSE_DRIVE_OUTPUT_TABLE(ZEROS)
+#undef ZEROS
 }
 
 bool batch_drive_row(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                      const stewart_inverse_batch_outputs &out, size_t j) {
-    stewart_inverse_output o{};
+    stewart_inverse_output o;  // the fields read and written here (a memset of it costs more)
     get_row(out.length, j, o.lengths.length);
     get_row(out.length_rate, j, o.lengths.length_rate);
     get_row(out.length_accel, j, o.lengths.length_accel);

@@ -69,11 +69,21 @@ class InverseSolution(RowStatus):
 
 #: InverseSolution's arrays: the library's inverse output table, then status.
 INVERSE_TABLE = table(_core.inverse_columns(), STATUS_COLUMN)
+#: The drive columns: the table's last, after stroke_legs (stewart_outputs.h).
+DRIVE_COLUMNS = tuple(c.name for c in INVERSE_TABLE.columns[
+    [c.name for c in INVERSE_TABLE.columns].index("stroke_legs") + 1:] if c.name != "status")
 
 
-def empty_inverse_solution(n: int) -> InverseSolution:
-    """An InverseSolution of n rows, uninitialised (the batch writes every row)."""
-    return InverseSolution(**table_arrays(INVERSE_TABLE, n))
+def empty_inverse_solution(n: int, drives: bool = True) -> InverseSolution:
+    """An InverseSolution of n rows, uninitialised (the batch writes every row); without drives
+    the drive columns are zeros the batch is not asked to write (calloc'd pages: no work)."""
+    arrays = table_arrays(INVERSE_TABLE, n)
+    if not drives:
+        for name in DRIVE_COLUMNS:
+            arrays[name] = np.zeros(arrays[name].shape, arrays[name].dtype)
+    sol = InverseSolution(**arrays)
+    sol._drive_zeros = not drives
+    return sol
 
 
 def check_out(out: InverseSolution, n: int) -> None:
@@ -112,14 +122,22 @@ def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optio
     (slices.run_in_slices). Bad options raise ParameterError. t: (N,) increasing times of the
     rows, or None (the rows are not a trajectory: current_rate 0)."""
     n = q.shape[0]
+    drives = _core.model_has_drives(model)
     if out is None:
-        out = empty_inverse_solution(n)
+        out = empty_inverse_solution(n, drives)
     else:
         check_out(out, n)
+        if not drives and not getattr(out, "_drive_zeros", False):  # once per out reused
+            for name in DRIVE_COLUMNS:
+                getattr(out, name).fill(0)
+        out._drive_zeros = not drives
     out.messages = {}
+    # its arrays by name, of which the binding takes its table's columns (the drive columns only
+    # for a model with drives)
+    arrays = vars(out) if drives else {k: v for k, v in vars(out).items()
+                                       if k not in DRIVE_COLUMNS}
     try:
-        # vars(out): its arrays by name, of which the binding takes its table's columns
-        run = _core.InverseRun(model, q, q_dot, q_ddot, options, vars(out), out.status)
+        run = _core.InverseRun(model, q, q_dot, q_ddot, options, arrays, out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("inverse", n, FULL_SLICE_ROWS if level == Fidelity.FULL else SLICE_ROWS,

@@ -262,3 +262,13 @@ def test_size_script_and_cli_columns(tmp_path, build_dir):
                           ROOT / "platforms" / "genhexkins.json", poses], capture_output=True,
                          text=True, timeout=300)
     assert bad.returncode == 1 and "no drive" in bad.stderr
+
+
+def test_a_reused_out_holds_zeros_after_a_model_without_drives():
+    t, q, qd, qdd = manoeuvre(n=50)
+    sol = driven(rotor_inertia=1e-4).inverse(q, qd, qdd, "massless")
+    assert np.any(sol.motor_torque)
+    again = stewart.Platform().inverse(q, qd, qdd, "massless", out=sol)
+    assert again is sol
+    for name in DRIVE_COLUMNS:
+        assert not np.any(getattr(sol, name)), name
