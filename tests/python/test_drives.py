@@ -272,3 +272,20 @@ def test_a_reused_out_holds_zeros_after_a_model_without_drives():
     assert again is sol
     for name in DRIVE_COLUMNS:
         assert not np.any(getattr(sol, name)), name
+
+
+@pytest.mark.parametrize("machine", ["simona_motion_base", "rubin_m2_hexapod"])
+def test_drive_files_are_their_machine_with_drives(machine):
+    """platforms/<machine>_drives.json: every field of <machine>.json unchanged, the drive's
+    fields added (the datasheet's numbers, platforms/README.md), a model that builds."""
+    import json
+    base = json.loads((ROOT / "platforms" / f"{machine}.json").read_text())
+    drives = json.loads((ROOT / "platforms" / f"{machine}_drives.json").read_text())
+    for key, value in base.items():
+        if key != "description":
+            assert drives[key] == value, key
+    added = set(drives) - set(base)
+    assert {"screw_lead", "torque_constant", "rotor_inertia", "current_max"} <= added
+    platform = stewart.Platform.from_file(stewart.platform_files()[f"{machine}_drives"])
+    lead, J = drives["screw_lead"], drives["rotor_inertia"]
+    assert platform.reflected_mass == pytest.approx(J * (2 * np.pi / lead) ** 2, rel=1e-14)
