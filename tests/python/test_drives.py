@@ -289,3 +289,34 @@ def test_drive_files_are_their_machine_with_drives(machine):
     platform = stewart.Platform.from_file(stewart.platform_files()[f"{machine}_drives"])
     lead, J = drives["screw_lead"], drives["rotor_inertia"]
     assert platform.reflected_mass == pytest.approx(J * (2 * np.pi / lead) ** 2, rel=1e-14)
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_the_inverse_fmu_gives_the_drive_outputs(version):
+    """StewartPlatform with drives (parameters by element): its drive outputs at a pose with
+    rates and accelerations given are the library's (Platform.inverse, one pose: dI/dt 0)."""
+    from fmu_support import Unit, every_leg
+    params = dict(screw_lead=LEAD, gear_ratio=GEAR, torque_constant=KT, rotor_inertia=1e-4,
+                  winding_resistance=1.1, screw_efficiency=0.9, current_max=0.5)
+    pose = [0.01, -0.02, 0.52, 0.03, -0.02, 0.05]
+    rate = [0.1, 0.05, -0.08, 0.2, -0.1, 0.15]
+    accel = [1.0, -0.5, 0.8, -1.5, 2.0, 0.7]
+    u = Unit(version)
+    try:
+        assert u.init(fidelity=2, derivatives=1, **every_leg(**params)) == 0
+        names = ["x", "y", "z", "roll", "pitch", "yaw"]
+        u.set_values({**dict(zip(names, pose)), **{n + "_dot": v for n, v in zip(names, rate)},
+                      **{n + "_ddot": v for n, v in zip(names, accel)}})
+        assert u.do_step(0.0, 0.01) in (0, 1)
+        got = {c: np.array(u.get([f"{c}[{k}]" for k in range(1, 7)]))
+               for c in ("motor_torque", "current", "voltage", "motor_speed", "motor_power")}
+        flags = u.get(["current_max_legs"])[0]
+    finally:
+        u.free()
+    # the unit holds the step's end: the pose advanced by its rates and accelerations over h
+    h, q, qd, qdd = 0.01, np.array(pose), np.array(rate), np.array(accel)
+    sol = stewart.Platform(**params).inverse([q + h * qd + h * h / 2 * qdd], [qd + h * qdd],
+                                             [qdd], "full")
+    for name, values in got.items():
+        np.testing.assert_allclose(values, getattr(sol, name)[0], rtol=1e-9, atol=1e-9)
+    assert flags == sol.current_max_legs[0] and flags != 0
