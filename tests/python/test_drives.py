@@ -320,3 +320,16 @@ def test_the_inverse_fmu_gives_the_drive_outputs(version):
     for name, values in got.items():
         np.testing.assert_allclose(values, getattr(sol, name)[0], rtol=1e-9, atol=1e-9)
     assert flags == sol.current_max_legs[0] and flags != 0
+
+
+def test_current_rates_stop_at_a_failed_row():
+    """A row that does not solve splits the trajectory: the rates of each run of solved rows are
+    its own differences (one-sided beside the gap), the failed row keeps its zeros."""
+    t, q, qd, qdd = manoeuvre(n=60)
+    q[25, 2] = np.nan  # refused: not finite
+    platform = driven(rotor_inertia=1e-4, winding_inductance=2e-3)
+    sol = platform.inverse(q, qd, qdd, "massless", t=t)
+    assert list(np.flatnonzero(sol.status)) == [25]
+    for run in (slice(0, 25), slice(26, 60)):
+        close(sol.current_rate[run], np.gradient(sol.current[run], t[run], axis=0), rel=1e-10)
+    assert not np.any(sol.current_rate[25]) and not np.any(sol.voltage[25])
