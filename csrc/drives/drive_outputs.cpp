@@ -16,6 +16,7 @@ int legs_over(const double (&value)[STEWART_LEGS], const double (&limit)[STEWART
 void fill_drive_outputs(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                         stewart_inverse_output &out) {
     const stewart_lengths &l = out.lengths;
+    int current_legs = 0, voltage_legs = 0, speed_legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegDrive &d = drive[k];
         const double r = d.motor_per_leg;
@@ -26,20 +27,25 @@ void fill_drive_outputs(const LegDrive (&drive)[STEWART_LEGS], const stewart_par
             continue;
         }
         const double torque = drive_torque(d, out.force[k], l.length_rate[k], l.length_accel[k]);
-        const double current = torque / d.torque_constant;
+        const double current = torque / d.torque_constant, speed = r * l.length_rate[k];
+        const double voltage = d.resistance * current + d.torque_constant * speed;
         out.motor_angle[k] = r * l.length[k];
-        out.motor_speed[k] = r * l.length_rate[k];
+        out.motor_speed[k] = speed;
         out.motor_accel[k] = r * l.length_accel[k];
         out.motor_torque[k] = torque;
         out.current[k] = current;
         out.current_rate[k] = 0;
-        out.voltage[k] = d.resistance * current + d.torque_constant * out.motor_speed[k];
-        out.electrical_power[k] = out.voltage[k] * current;
-        out.motor_power[k] = torque * out.motor_speed[k];
+        out.voltage[k] = voltage;
+        out.electrical_power[k] = voltage * current;
+        out.motor_power[k] = torque * speed;
+        // the limits (0: none) as legs_over takes them
+        current_legs |= (p.current_max[k] > 0 && std::fabs(current) > p.current_max[k]) << k;
+        voltage_legs |= (p.voltage_max[k] > 0 && std::fabs(voltage) > p.voltage_max[k]) << k;
+        speed_legs |= (p.motor_speed_max[k] > 0 && std::fabs(speed) > p.motor_speed_max[k]) << k;
     }
-    out.current_max_legs = legs_over(out.current, p.current_max);
-    out.voltage_max_legs = legs_over(out.voltage, p.voltage_max);
-    out.motor_speed_max_legs = legs_over(out.motor_speed, p.motor_speed_max);
+    out.current_max_legs = current_legs;
+    out.voltage_max_legs = voltage_legs;
+    out.motor_speed_max_legs = speed_legs;
 }
 
 bool drive_outputs_finite(const stewart_inverse_output &o) {
