@@ -78,7 +78,8 @@ void put_row(T *column, size_t j, const T &value) {
 
 void batch_drive_zeros(const stewart_inverse_batch_outputs &out, size_t first, size_t last) {
 #define ZEROS(name, member, count, type, unit, description)                                       \
-    if (out.name) std::memset(out.name + first * (count), 0, (last - first) * (count) * sizeof(type));
+    if (out.name)                                                                                  \
+        std::memset(out.name + first * (count), 0, (last - first) * (count) * sizeof(type));
     STEWART_INVERSE_DRIVE_OUTPUT_TABLE(ZEROS)
 #undef ZEROS
 }

@@ -32,7 +32,8 @@ public:
     InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot,
                std::optional<Poses> q_ddot, const OptionValues &option_values,
                const nb::dict &outputs, Column<int> status)
-        : model_(model.get()), n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot), status_(status),
+        : model_(model.get()), n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot),
+          status_(status),
           inverse_(model.inverse_pool(), option_values) {
         if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
