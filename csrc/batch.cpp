@@ -262,6 +262,29 @@ extern "C" stewart_status stewart_inverse_batch_current_rates(
     return stewart::clear_message(msg, size);
 }
 
+extern "C" stewart_status stewart_inverse_batch_current_rates_from_jerks(
+    const stewart_model *m, int fidelity, size_t n, const double *q, const double *q_dot,
+    const double *q_ddot, const double *q_dddot, const stewart_inverse_batch_outputs *out,
+    char *msg, size_t size) {
+    if (!m || !out || !out->status || (n > 0 && !(q && q_dddot)) ||
+        (m->drives && !(out->current && out->current_rate && out->motor_speed && out->voltage &&
+                        out->force && out->length_rate && out->length_accel)))
+        return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                    "stewart_inverse_batch_current_rates_from_jerks: a NULL "
+                                    "argument or column");
+    if (!m->drives) return stewart::clear_message(msg, size);
+    stewart_linearize_options o;
+    stewart_linearize_options_default(&o);
+    o.fidelity = fidelity == STEWART_FULL ? STEWART_FULL : STEWART_MASSLESS;
+    stewart_linearize *lin = stewart_linearize_create(m, &o, msg, size);
+    if (!lin) return STEWART_ERR_MEMORY;
+    const stewart_status s = stewart::jerk_current_rates(
+        m->drive, m->params, lin, fidelity != STEWART_KINEMATIC, n, q, q_dot, q_ddot, q_dddot,
+        *out, msg, size);
+    stewart_linearize_free(lin);
+    return s == STEWART_OK ? stewart::clear_message(msg, size) : s;
+}
+
 extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,
                                                 const double *q_dot, const double *q_ddot,
                                                 const stewart_inverse_batch_outputs *out,

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "util/message.hpp"
+
 namespace stewart {
 
 int legs_over(const double (&value)[STEWART_LEGS], const double (&limit)[STEWART_LEGS]) {
@@ -115,6 +117,24 @@ double current_rate_at(const double *current, const double *t, size_t first, siz
 
 }  // namespace
 
+void set_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                       const stewart_inverse_batch_outputs &out, size_t j,
+                       const double (&rate)[STEWART_LEGS]) {
+    double voltage[STEWART_LEGS];
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const LegDrive &d = drive[k];
+        const size_t e = 6 * j + k;
+        voltage[k] = out.voltage[e];
+        if (d.motor_per_leg == 0) continue;
+        out.current_rate[e] = rate[k];
+        voltage[k] = d.resistance * out.current[e] + d.torque_constant * out.motor_speed[e] +
+                     d.inductance * rate[k];
+        out.voltage[e] = voltage[k];
+        if (out.electrical_power) out.electrical_power[e] = voltage[k] * out.current[e];
+    }
+    if (out.voltage_max_legs) out.voltage_max_legs[j] = legs_over(voltage, p.voltage_max);
+}
+
 void trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                               size_t n, const double *t, const stewart_inverse_batch_outputs &out) {
     for (size_t first = 0; first < n;) {
@@ -122,23 +142,52 @@ void trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewa
         size_t last = first + 1;
         while (last < n && out.status[last] == STEWART_OK) ++last;
         for (size_t j = first; j < last; ++j) {
-            double voltage[STEWART_LEGS];
-            for (int k = 0; k < STEWART_LEGS; ++k) {
-                const LegDrive &d = drive[k];
-                const size_t e = 6 * j + k;
-                voltage[k] = out.voltage[e];
-                if (d.motor_per_leg == 0) continue;
-                const double rate = current_rate_at(out.current, t, first, last, j, k);
-                out.current_rate[e] = rate;
-                voltage[k] = d.resistance * out.current[e] +
-                             d.torque_constant * out.motor_speed[e] + d.inductance * rate;
-                out.voltage[e] = voltage[k];
-                if (out.electrical_power) out.electrical_power[e] = voltage[k] * out.current[e];
-            }
-            if (out.voltage_max_legs) out.voltage_max_legs[j] = legs_over(voltage, p.voltage_max);
+            double rate[STEWART_LEGS];
+            for (int k = 0; k < STEWART_LEGS; ++k)
+                rate[k] = current_rate_at(out.current, t, first, last, j, k);
+            set_current_rates(drive, p, out, j, rate);
         }
         first = last;
     }
+}
+
+stewart_status jerk_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                                  stewart_linearize *lin, bool forces, size_t n, const double *q,
+                                  const double *q_dot, const double *q_ddot, const double *q_dddot,
+                                  const stewart_inverse_batch_outputs &out, char *msg,
+                                  size_t size) {
+    stewart_linearize_inverse_output d;
+    for (size_t j = 0; j < n; ++j) {
+        if (out.status[j] != STEWART_OK) continue;
+        stewart_pose pose{};
+        std::memcpy(pose.q, q + 6 * j, sizeof pose.q);
+        if (q_dot) std::memcpy(pose.q_dot, q_dot + 6 * j, sizeof pose.q_dot);
+        if (q_ddot) std::memcpy(pose.q_ddot, q_ddot + 6 * j, sizeof pose.q_ddot);
+        const stewart_status s = stewart_linearize_inverse(lin, &pose, &d);
+        if (s != STEWART_OK)
+            return set_message(msg, size, s, "row %zu: the derivatives of its forces: %s", j,
+                               stewart_linearize_message(lin));
+        // The rates of the legs' accelerations (rows 12..17) and forces (rows 18..23): the
+        // Jacobian times the pose's rate, acceleration and jerk.
+        const double *motion[3] = {pose.q_dot, pose.q_ddot, q_dddot + 6 * j};
+        double rate[STEWART_LEGS];
+        for (int k = 0; k < STEWART_LEGS; ++k) {
+            double jerk = 0, force_rate = 0;
+            for (int c = 0; c < 18; ++c) {
+                jerk += d.jacobian[12 + k][c] * motion[c / 6][c % 6];
+                force_rate += d.jacobian[18 + k][c] * motion[c / 6][c % 6];
+            }
+            const size_t e = 6 * j + k;
+            const LegDrive &dk = drive[k];
+            rate[k] = dk.motor_per_leg == 0
+                          ? 0.0
+                          : drive_torque_rate(dk, out.force[e], forces ? force_rate : 0.0,
+                                              out.length_rate[e], out.length_accel[e], jerk) /
+                                dk.torque_constant;
+        }
+        set_current_rates(drive, p, out, j, rate);
+    }
+    return STEWART_OK;
 }
 
 }  // namespace stewart

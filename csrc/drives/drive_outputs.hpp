@@ -6,6 +6,7 @@
 
 #include "drives/leg_drive.hpp"
 #include "stewart/stewart_batch.h"
+#include "stewart/stewart_linearize.h"
 
 namespace stewart {
 
@@ -32,4 +33,18 @@ bool batch_drive_row(const LegDrive (&drive)[STEWART_LEGS], const stewart_params
 void trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                               size_t n, const double *t, const stewart_inverse_batch_outputs &out);
 
+// Row j's current rates (0 on a leg without a drive) into its current_rate, voltage (with
+// L dI/dt), electrical_power and voltage_max_legs.
+void set_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                       const stewart_inverse_batch_outputs &out, size_t j,
+                       const double (&rate)[STEWART_LEGS]);
+
+// stewart_inverse_batch_current_rates_from_jerks on checked arguments, lin at the inverse's
+// fidelity (massless for the kinematic level, whose forces are 0: forces false).
+stewart_status jerk_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                                  stewart_linearize *lin, bool forces, size_t n, const double *q,
+                                  const double *q_dot, const double *q_ddot, const double *q_dddot,
+                                  const stewart_inverse_batch_outputs &out, char *msg, size_t size);
+
 }  // namespace stewart
+

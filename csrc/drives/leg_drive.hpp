@@ -74,4 +74,28 @@ inline double drive_torque(const LegDrive &d, double leg_force, double v, double
            screw_motor_torque(d, leg_force + friction_force(d, v, 0.0), d.motor_per_leg * v);
 }
 
+// d friction_force / dv at exact sign (smoothing_speed 0), v != 0; at rest the Stribeck term's
+// slope vanishes and only the viscous one is left (the sign's step has no slope).
+inline double friction_slope(const LegDrive &d, double v) {
+    double slope = d.viscous;
+    if (v != 0 && d.breakaway > d.coulomb) {
+        const double x = v / d.stribeck_speed;
+        const double peak = d.breakaway - d.coulomb;
+        slope -= peak * std::exp(-x * x) * 2.0 * std::fabs(x) / d.stribeck_speed;
+    }
+    return slope;
+}
+
+// d drive_torque / dt along a motion: the leg force's rate force_rate, the leg's speed v,
+// acceleration a and jerk. The power flow's direction held where drive_torque takes it (at a
+// change of direction the torque steps; this is the rate on the side drive_torque is on).
+inline double drive_torque_rate(const LegDrive &d, double leg_force, double force_rate, double v,
+                                double a, double jerk) {
+    const double nut = leg_force + friction_force(d, v, 0.0);
+    const double nut_rate = force_rate + friction_slope(d, v) * a;
+    const double ideal = nut / d.motor_per_leg, omega = d.motor_per_leg * v;
+    const double through = ideal * omega < 0 ? d.back_efficiency : 1.0 / d.efficiency;
+    return d.inertia * d.motor_per_leg * jerk + nut_rate / d.motor_per_leg * through;
+}
+
 }  // namespace stewart

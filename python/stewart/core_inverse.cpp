@@ -70,6 +70,18 @@ public:
             fail(message);
     }
 
+    // With the poses' jerks (n x 6): the drives' current rates from them at the inverse's
+    // fidelity (stewart_inverse_batch_current_rates_from_jerks), once every row is solved.
+    void current_rates_from_jerks(int fidelity, Poses q_dddot) {
+        if (q_dddot.shape(0) != n_) fail("jerks must have as many rows as the poses");
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_inverse_batch_current_rates_from_jerks(
+                model_, fidelity, n_, q_.data(), q_dot_ ? q_dot_->data() : nullptr,
+                q_ddot_ ? q_ddot_->data() : nullptr, q_dddot.data(), &out_, message,
+                sizeof message) != STEWART_OK)
+            fail(message);
+    }
+
 private:
     const stewart_model *model_;
     size_t n_;
@@ -95,7 +107,9 @@ void bind_inverse(nb::module_ &m) {
              nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
         .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"))
-        .def("current_rates", &InverseRun::current_rates, nb::arg("t"));
+        .def("current_rates", &InverseRun::current_rates, nb::arg("t"))
+        .def("current_rates_from_jerks", &InverseRun::current_rates_from_jerks,
+             nb::arg("fidelity"), nb::arg("q_dddot"));
 }
 
 }  // namespace stewart_core

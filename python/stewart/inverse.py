@@ -115,12 +115,14 @@ def check_out(out: InverseSolution, n: int) -> None:
 
 def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optional[np.ndarray],
                 level: Fidelity, options: list, max_messages: int,
-                out: Optional[InverseSolution], t: Optional[np.ndarray] = None) -> InverseSolution:
+                out: Optional[InverseSolution], t: Optional[np.ndarray] = None,
+                q_dddot: Optional[np.ndarray] = None) -> InverseSolution:
     """The rows of q through the library into out (a new InverseSolution if None), in slices of
     SLICE_ROWS (FULL_SLICE_ROWS at the full level) on one solver, so that Ctrl-C stops the batch
     between slices: KeyboardInterrupt, whose rows_done says how many rows of out are solved
     (slices.run_in_slices). Bad options raise ParameterError. t: (N,) increasing times of the
-    rows, or None (the rows are not a trajectory: current_rate 0)."""
+    rows, or None (the rows are not a trajectory: current_rate 0); q_dddot: (N, 6) the poses'
+    jerks instead (current_rate from the drive's law along the motion)."""
     n = q.shape[0]
     drives = _core.model_has_drives(model)
     if out is None:
@@ -144,4 +146,9 @@ def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optio
                   keeping_messages(run, out.messages, max_messages), out)
     if t is not None:  # the rows are a trajectory: the currents' rates by differences over t
         run.current_rates(t)
+    elif q_dddot is not None:  # the poses' jerks: the currents' rates from the drive's law
+        try:
+            run.current_rates_from_jerks(int(level), q_dddot)
+        except ValueError as e:
+            raise ParameterError(str(e)) from None
     return out

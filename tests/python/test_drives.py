@@ -333,3 +333,48 @@ def test_current_rates_stop_at_a_failed_row():
     for run in (slice(0, 25), slice(26, 60)):
         close(sol.current_rate[run], np.gradient(sol.current[run], t[run], axis=0), rel=1e-10)
     assert not np.any(sol.current_rate[25]) and not np.any(sol.voltage[25])
+
+
+def manoeuvre_with_jerk(t):
+    """The manoeuvre's poses at t and their rate, acceleration and jerk, exactly."""
+    q, qd, qdd, qddd = (np.zeros((t.size, 6)) for _ in range(4))
+    for axis, amplitude, w, home in ((2, 0.03, 3.0, 0.5), (3, 0.05, 2.0, 0.0),
+                                     (5, 0.04, 2.5, 0.0)):
+        q[:, axis] = home + amplitude * np.sin(w * t)
+        qd[:, axis] = amplitude * w * np.cos(w * t)
+        qdd[:, axis] = -amplitude * w**2 * np.sin(w * t)
+        qddd[:, axis] = -amplitude * w**3 * np.cos(w * t)
+    return q, qd, qdd, qddd
+
+
+@pytest.mark.parametrize("fidelity", ["kinematic", "massless", "full"])
+def test_current_rates_from_jerks_are_the_currents_time_derivative(fidelity):
+    """jerks=: dI/dt from the drive's law along each pose's motion, against central differences
+    in time of the currents of the exact poses at t -/+ h (away from the instants where the
+    power flow or the leg's direction turns, where the current steps)."""
+    params = dict(rotor_inertia=1e-4, screw_efficiency=0.9, screw_back_efficiency=0.7,
+                  coulomb_friction=20, stribeck_friction=35, stribeck_speed=0.01,
+                  viscous_friction=150, winding_resistance=1.1, winding_inductance=2e-3)
+    platform = driven(**params)
+    t = np.linspace(0.05, 2.0, 80)
+    q, qd, qdd, qddd = manoeuvre_with_jerk(t)
+    sol = platform.inverse(q, qd, qdd, fidelity, jerks=qddd)
+    h = 1e-4 if fidelity == "full" else 1e-5
+    before = platform.inverse(*manoeuvre_with_jerk(t - h)[:3], fidelity)
+    after = platform.inverse(*manoeuvre_with_jerk(t + h)[:3], fidelity)
+    differences = (after.current - before.current) / (2 * h)
+
+    def flow(s):  # the screw's power flow and the leg's direction at each row and leg
+        v = s.length_rate
+        friction = ((20 + 15 * np.exp(-(v / 0.01) ** 2)) * np.sign(v) + 150 * v)
+        return np.sign((s.force + friction) * v), np.sign(v)
+    steady = np.ones_like(sol.current, bool)
+    for a, b in list(zip(flow(sol), flow(before))) + list(zip(flow(sol), flow(after))):
+        steady &= a == b
+    assert steady.mean() > 0.8
+    scale = np.max(np.abs(differences[steady]))
+    np.testing.assert_allclose(sol.current_rate[steady], differences[steady], rtol=0,
+                               atol=(1e-4 if fidelity == "full" else 1e-6) * scale)
+    close(sol.voltage, 1.1 * sol.current + KT * sol.motor_speed + 2e-3 * sol.current_rate)
+    with pytest.raises(ValueError, match="not both"):
+        platform.inverse(q, qd, qdd, fidelity, t=t, jerks=qddd)

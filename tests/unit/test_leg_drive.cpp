@@ -95,6 +95,30 @@ static void test_the_whole_torque(void) {
                               stewart::drive_torque(d, F, v, a));
 }
 
+// The rates against central differences of the laws themselves along a motion.
+static void test_the_rates_are_the_laws_derivatives(void) {
+    stewart::LegDrive d = friction_drive(20, 35, 0.01, 150);
+    d.inertia = 2e-4, d.efficiency = 0.8, d.back_efficiency = 0.6;
+    const double h = 1e-7;
+    for (double v : {-0.3, -0.012, -0.004, 0.003, 0.02, 0.2}) {
+        const double slope = (stewart::friction_force(d, v + h, 0) -
+                              stewart::friction_force(d, v - h, 0)) / (2 * h);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-5 * (1 + std::fabs(slope)), slope,
+                                  stewart::friction_slope(d, v));
+        // F(t) = F0 + F1 t, L'(t) = v + a t, L''(t) = a + j t: d torque / dt at t = 0
+        for (double F0 : {-900.0, 700.0}) {
+            const double F1 = 350, a = -2.5, j = 40;
+            auto torque = [&](double t) {
+                return stewart::drive_torque(d, F0 + F1 * t, v + a * t + j * t * t / 2, a + j * t);
+            };
+            const double rate = (torque(h) - torque(-h)) / (2 * h);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-5 * (1 + std::fabs(rate)), rate,
+                                      stewart::drive_torque_rate(d, F0, F1, v, a, j));
+        }
+    }
+    TEST_ASSERT_EQUAL_DOUBLE(150.0, stewart::friction_slope(d, 0.0));  // at rest: the viscous
+}
+
 int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_parameters_of_a_leg);
@@ -102,5 +126,6 @@ int main(void) {
     RUN_TEST(test_the_stribeck_skip_keeps_every_bit);
     RUN_TEST(test_screw_efficiency_by_power_flow);
     RUN_TEST(test_the_whole_torque);
+    RUN_TEST(test_the_rates_are_the_laws_derivatives);
     return UNITY_END();
 }
