@@ -378,3 +378,37 @@ def test_current_rates_from_jerks_are_the_currents_time_derivative(fidelity):
     close(sol.voltage, 1.1 * sol.current + KT * sol.motor_speed + 2e-3 * sol.current_rate)
     with pytest.raises(ValueError, match="not both"):
         platform.inverse(q, qd, qdd, fidelity, t=t, jerks=qddd)
+
+
+def test_the_envelope_sweep_gives_the_sizing_numbers(tmp_path):
+    """A load-envelope sweep on a platform with drives: per case the drive columns are
+    stewart.sizing's on the case's trajectory; without drives they are null."""
+    pytest.importorskip("distributed")
+    import json
+    import pyarrow.parquet as pq
+    from stewart.sweeps import run
+    drive = {"screw_lead": LEAD, "gear_ratio": GEAR, "torque_constant": KT,
+             "rotor_inertia": 1e-4, "winding_resistance": 1.0, "winding_inductance": 2e-3}
+    spec = {"kind": "envelope", "fidelity": ["massless"], "platform": drive,
+            "payload_mass": [20.0], "payload_com": [[0.0, 0.0, 0.1]],
+            "manoeuvres": [{"scene": "heave", "amplitude": [1.0]}], "duration": 1.0}
+    path = tmp_path / "spec.json"
+    path.write_text(json.dumps(spec))
+    run(path, tmp_path / "out", ROOT / "scenes", progress=False, log=lambda m: None, workers=1)
+    row = pq.read_table(tmp_path / "out" / "envelope.parquet").to_pylist()[0]
+    from stewart.sweeps.spec import manoeuvre_samples, resolve
+    resolved = resolve(json.loads(path.read_text()), ROOT / "scenes")
+    t, q, qd, qdd = manoeuvre_samples(resolved, resolved["manoeuvres"][0], 1.0, 1.0)
+    platform = stewart.Platform(**drive, payload_mass=20.0, payload_com=[0.0, 0.0, 0.1])
+    report = stewart.sizing(platform, [(t, q, qd, qdd)], "massless")
+    for k in range(6):
+        assert row[f"peak_motor_torque_{k + 1}"] == report.peak_torque[0, k]
+        assert row[f"rms_motor_torque_{k + 1}"] == report.rms_torque[0, k]
+        assert row[f"peak_current_{k + 1}"] == report.peak_current[0, k]
+        assert row[f"peak_motor_speed_{k + 1}"] == report.peak_speed[0, k]
+        assert row[f"peak_electrical_power_{k + 1}"] == report.peak_power[0, k]
+    spec["platform"] = {}
+    path.write_text(json.dumps(spec))
+    run(path, tmp_path / "plain", ROOT / "scenes", progress=False, log=lambda m: None, workers=1)
+    plain = pq.read_table(tmp_path / "plain" / "envelope.parquet").to_pylist()[0]
+    assert plain["peak_motor_torque_1"] is None and plain["peak_force_1"] > 0
