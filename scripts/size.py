@@ -30,7 +30,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     try:
         platform = stewart.Platform.from_file(args.platform)
-        report = stewart.sizing(platform, args.trajectories, args.fidelity)
+        report = stewart.sizing(platform, args.trajectories, args.fidelity, keep=bool(args.plot))
     except (ValueError, OSError) as e:
         print(f"size.py: {e}", file=sys.stderr)
         return 1

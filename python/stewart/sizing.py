@@ -72,6 +72,9 @@ class SizingReport:
         """A PNG at path: each leg's motor torque against motor speed over every trajectory,
         with the motor's limits over it (torque at current_max, motor_speed_max, and the torque
         the voltage_max leaves at each speed: (V_max - k_t |w|) k_t / R)."""
+        if not self.solutions:
+            raise ValueError("the report keeps no solutions (sizing(..., keep=False)): size "
+                             "again with keep=True to plot")
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
@@ -144,12 +147,15 @@ def _arrays(trajectory, i: int):
     return name, t, q, np.asarray(qd, dtype=float), np.asarray(qdd, dtype=float)
 
 
-def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str] = Fidelity.FULL
-           ) -> SizingReport:
+def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str] = Fidelity.FULL,
+           keep: bool = True) -> SizingReport:
     """The sizing report of platform's drives (it must have drives: screw_lead > 0) over the
     trajectories (each a pose CSV path, or (t, poses[, rates[, accels]]) arrays: a duty cycle),
-    through Platform.inverse at fidelity with t, so the voltages hold L dI/dt. ValueError if
-    the platform has no drive or a row of a trajectory does not solve (its message)."""
+    through Platform.inverse at fidelity with t, so the voltages hold L dI/dt. keep: the report
+    keeps each trajectory's InverseSolution (report.solutions, which plot draws); False for many
+    long trajectories (about 1.1 kB a pose): the numbers only, one result's arrays reused.
+    ValueError if the platform has no drive or a row of a trajectory does not solve (its
+    message)."""
     lead = parameter_value(platform, "screw_lead")
     if not np.any(lead > 0):
         raise ValueError("the platform has no drive (every screw_lead is 0): give its drives "
@@ -161,7 +167,9 @@ def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str]
     names, solutions = [], []
     for i, trajectory in enumerate(trajectories):
         name, t, q, qd, qdd = _arrays(trajectory, i)
-        sol = platform.inverse(q, qd, qdd, fidelity, t=t)
+        reuse = None if keep or not solutions or len(solutions[-1][1]) != len(t) else \
+            solutions.pop()[1]
+        sol = platform.inverse(q, qd, qdd, fidelity, t=t, out=reuse)
         bad = np.flatnonzero(sol.status != 0)
         if bad.size:
             raise ValueError(f"{name}: row {bad[0]} (t = {t[bad[0]]:g}) does not solve: "
@@ -184,6 +192,8 @@ def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str]
         solutions.append((t, sol))
     if not names:
         raise ValueError("no trajectory given")
+    if not keep:
+        solutions = []
     limits = {n: parameter_value(platform, n) for n in
               ("current_max", "voltage_max", "motor_speed_max", "torque_constant",
                "winding_resistance")}

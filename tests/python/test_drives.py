@@ -212,6 +212,15 @@ def test_sizing_report_against_numpy(tmp_path):
     assert (tmp_path / "torque_speed.png").read_bytes()[:4] == b"\x89PNG"
     with pytest.raises(ValueError, match="no drive"):
         stewart.sizing(stewart.Platform(), [(t1, q1)])
+    # keep=False: the same numbers, one result's arrays reused, nothing to plot
+    lean = stewart.sizing(platform, [(t1, q1, qd1, qdd1), (t2, q2), (t1, q1, qd1, qdd1)],
+                          keep=False)
+    from stewart.sizing import REPORT_FIELDS
+    for name in REPORT_FIELDS:
+        assert np.array_equal(getattr(lean, name)[:2], getattr(report, name)), name
+        assert np.array_equal(getattr(lean, name)[2], getattr(report, name)[0]), name
+    with pytest.raises(ValueError, match="keep=True"):
+        lean.plot(tmp_path / "none.png")
 
 
 def write_poses(path, t, q):
