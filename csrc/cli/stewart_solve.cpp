@@ -333,10 +333,19 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart
                      table.t[failed], stewart_status_name(s), stewart_inverse_message(inverse));
         return false;
     }
-    // The rows are a trajectory (unless --at-rest): the drives' current rates over t.
+    // The drives' current rates: from the poses' jerks when the file gives them, else over t
+    // (the rows are a trajectory unless --static).
     char message[STEWART_MESSAGE_SIZE];
-    if (!r.at_rest && stewart_inverse_batch_current_rates(model, n, table.t.data(), &columns,
-                                                          message, sizeof message) != STEWART_OK) {
+    if (!table.jerks.empty()) {
+        if (stewart_inverse_batch_current_rates_from_jerks(
+                model, r.options.fidelity, n, q.data(), q_dot.data(), q_ddot.data(),
+                table.jerks.data(), &columns, message, sizeof message) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-solve: %s\n", message);
+            return false;
+        }
+    } else if (!r.at_rest && stewart_inverse_batch_current_rates(model, n, table.t.data(),
+                                                                 &columns, message,
+                                                                 sizeof message) != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: %s (or give --static: poses, not a trajectory)\n",
                      message);
         return false;

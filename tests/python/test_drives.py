@@ -421,3 +421,30 @@ def test_the_envelope_sweep_gives_the_sizing_numbers(tmp_path):
     run(path, tmp_path / "plain", ROOT / "scenes", progress=False, log=lambda m: None, workers=1)
     plain = pq.read_table(tmp_path / "plain" / "envelope.parquet").to_pylist()[0]
     assert plain["peak_motor_torque_1"] is None and plain["peak_force_1"] > 0
+
+
+def test_stewart_solve_takes_the_poses_jerks(tmp_path, build_dir):
+    """x_dddot..yaw_dddot columns: stewart-solve's currents' rates from the jerks, as
+    Platform.inverse(jerks=) gives them, bit for bit."""
+    t = np.linspace(0.0, 1.0, 41)
+    q, qd, qdd, qddd = manoeuvre_with_jerk(t)
+    names = ["x", "y", "z", "roll", "pitch", "yaw"]
+    header = ["t"] + [n + s for s in ("", "_dot", "_ddot", "_dddot") for n in names]
+    rows = np.column_stack([t, q, qd, qdd, qddd])
+    poses = tmp_path / "poses.csv"
+    poses.write_text(",".join(header) + "\n" +
+                     "".join(",".join(repr(float(v)) for v in r) + "\n" for r in rows))
+    params = dict(rotor_inertia=1e-4, winding_resistance=1.1, winding_inductance=2e-3,
+                  coulomb_friction=20, viscous_friction=100)
+    args = [a for k, v in {"screw_lead": LEAD, "gear_ratio": GEAR, "torque_constant": KT,
+                            **params}.items() for a in ("--param", f"{k}={v!r}")]
+    out = tmp_path / "out.csv"
+    run = subprocess.run([build_dir / "stewart-solve", *args, "--fidelity", "massless", poses,
+                          out], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    data = list(csv.DictReader(open(out)))
+    rate = np.array([[float(r[f"current_rate{k}"]) for k in range(1, 7)] for r in data])
+    voltage = np.array([[float(r[f"voltage{k}"]) for k in range(1, 7)] for r in data])
+    sol = driven(**params).inverse(q, qd, qdd, "massless", jerks=qddd)
+    assert np.array_equal(rate, sol.current_rate) and np.any(rate)
+    assert np.array_equal(voltage, sol.voltage)
