@@ -3,15 +3,21 @@
 // solver object) or stewart_plant_step (one plant), arrays in and out.
 #include "stewart/stewart_batch.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
 #include "batch_paths.hpp"
+#include "drives/drive_outputs.hpp"
 #include "forward/forward_object.hpp"
 #include "model.hpp"
 #include "util/message.hpp"
 
 namespace {
+
+// Blocks of four rows the kernel runs before their drive columns (about 40 kB of outputs).
+constexpr size_t kDriveChunkBlocks = 16;
 
 // Row j of a column of `count` values: an array member, or a scalar one.
 template <typename T, size_t N>
@@ -143,7 +149,7 @@ unsigned tail_block(stewart::VectorPath path, const stewart::QuadModel &model, c
 #define TAIL_COLUMN(name, member, count, type, unit, description) type name[4 * (count)];
     struct {
         STEWART_INVERSE_OUTPUT_TABLE(TAIL_COLUMN)
-    } tail;
+    } tail{};  // the drive columns, which the kernel leaves, as zeros
 #undef TAIL_COLUMN
     int status[4];
     stewart_inverse_batch_outputs tail_out{};
@@ -193,8 +199,10 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         write_row(*out, j, o_j, s);
     };
     const stewart_model *m = d->model;
+    // The drive columns come after the kernel from its lengths, rates, accelerations and forces.
+    const bool drive_inputs = out->length && out->length_rate && out->length_accel && out->force;
     const bool vector = path != VectorPath::scalar && d->options.fidelity != STEWART_FULL &&
-                        m->frames.identity;
+                        m->frames.identity && (!m->drives || drive_inputs);
     if (!vector) {
         for (size_t j = 0; j < n; ++j) solve_scalar(j);
     } else {
@@ -205,26 +213,77 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         // writes blocks in a run until one leaves rows to the scalar solve, which overwrites
         // them. The last block, if short, through four-row copies (its last row repeated), so
         // that a row's numbers do not depend on where a batch starts.
+        // The drive columns of rows [from, to) while the kernel's are still in the cache (a
+        // row whose drive columns overflow: its solve refuses it with a message).
+        auto drive_rows = [&](size_t from, size_t to) {
+            if (!m->drives) return batch_drive_zeros(*out, from, to);
+            for (size_t j = from; j < to; ++j)
+                if (out->status[j] == STEWART_OK && !batch_drive_row(m->drive, m->params, *out, j))
+                    solve_scalar(j);
+        };
         const size_t whole = n - n % 4;
+        const size_t chunk = m->drives ? kDriveChunkBlocks : whole / 4 + 1;
         for (size_t block = 0; block < whole;) {
             const QuadRows rows = {q + 6 * block, q_dot ? q_dot + 6 * block : nullptr,
                                    q_ddot ? q_ddot + 6 * block : nullptr};
             unsigned left;  // rows the scalar solve decides, bit r for row last + r
             const size_t run = closed_form_quad_run(path, model, rows, *out, block,
-                                                    (whole - block) / 4, left);
+                                                    std::min(chunk, (whole - block) / 4), left);
             const size_t last = block + 4 * (run - 1);
             for (size_t r = 0; left && r < 4; ++r)
                 if (left >> r & 1) solve_scalar(last + r);
+            drive_rows(block, block + 4 * run);
             block += 4 * run;
         }
         if (whole < n) {
             const unsigned left = tail_block(path, model, q, q_dot, q_ddot, *out, whole, n - whole);
             for (size_t r = 0; left && r < n - whole; ++r)
                 if (left >> r & 1) solve_scalar(whole + r);
+            drive_rows(whole, n);
         }
     }
     std::memcpy(d->message, log.first_message, sizeof log.first_message);
     return log.first;
+}
+
+extern "C" stewart_status stewart_inverse_batch_current_rates(
+    const stewart_model *m, size_t n, const double *t, const stewart_inverse_batch_outputs *out,
+    char *msg, size_t size) {
+    if (!m || !out || !out->status || (n > 0 && !t) ||
+        (m->drives && !(out->current && out->current_rate && out->motor_speed && out->voltage)))
+        return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                    "stewart_inverse_batch_current_rates: a NULL argument or "
+                                    "column (current, current_rate, motor_speed, voltage, status)");
+    for (size_t j = 0; j < n; ++j)
+        if (!std::isfinite(t[j]) || (j > 0 && !(t[j] > t[j - 1])))
+            return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                        "t[%zu] = %.17g s: the times of a trajectory must be "
+                                        "finite and increase from row to row", j, t[j]);
+    if (m->drives) stewart::trajectory_current_rates(m->drive, m->params, n, t, *out);
+    return stewart::clear_message(msg, size);
+}
+
+extern "C" stewart_status stewart_inverse_batch_current_rates_from_jerks(
+    const stewart_model *m, int fidelity, size_t n, const double *q, const double *q_dot,
+    const double *q_ddot, const double *q_dddot, const stewart_inverse_batch_outputs *out,
+    char *msg, size_t size) {
+    if (!m || !out || !out->status || (n > 0 && !(q && q_dddot)) ||
+        (m->drives && !(out->current && out->current_rate && out->motor_speed && out->voltage &&
+                        out->force && out->length_rate && out->length_accel)))
+        return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                    "stewart_inverse_batch_current_rates_from_jerks: a NULL "
+                                    "argument or column");
+    if (!m->drives) return stewart::clear_message(msg, size);
+    stewart_linearize_options o;
+    stewart_linearize_options_default(&o);
+    o.fidelity = fidelity == STEWART_FULL ? STEWART_FULL : STEWART_MASSLESS;
+    stewart_linearize *lin = stewart_linearize_create(m, &o, msg, size);
+    if (!lin) return STEWART_ERR_MEMORY;
+    const stewart_status s = stewart::jerk_current_rates(
+        m->drive, m->params, lin, fidelity != STEWART_KINEMATIC, n, q, q_dot, q_ddot, q_dddot,
+        *out, msg, size);
+    stewart_linearize_free(lin);
+    return s == STEWART_OK ? stewart::clear_message(msg, size) : s;
 }
 
 extern "C" stewart_status stewart_inverse_batch(stewart_inverse *d, size_t n, const double *q,

@@ -25,6 +25,8 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
     m->frames = stewart::frames_of(*params);
     m->length_offsets = false;
     for (double offset : params->length_offset) m->length_offsets = m->length_offsets || offset != 0;
+    for (int k = 0; k < STEWART_LEGS; ++k) m->drive[k] = stewart::leg_drive(*params, k);
+    m->drives = stewart::has_drives(*params);
     m->full = stewart::build_full_platform(*params, stewart::FullDrive::ActuatorLengths,
                                            m->full_layout, msg, size);
     if (!m->full) {
@@ -42,6 +44,11 @@ extern "C" void stewart_model_free(stewart_model *m) { delete m; }
 
 extern "C" const stewart_params *stewart_model_params(const stewart_model *m) {
     return m ? &m->given : nullptr;
+}
+
+extern "C" void stewart_model_reflected_mass(const stewart_model *m, double mass[STEWART_LEGS]) {
+    if (!m || !mass) return;
+    for (int k = 0; k < STEWART_LEGS; ++k) mass[k] = stewart::reflected_mass(m->drive[k]);
 }
 
 extern "C" const char *stewart_status_name(stewart_status s) {

@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "drives/leg_drive.hpp"
 #include "forward/forward_constants.hpp"
 #include "inverse/full_model.hpp"
 #include "kinematics/closed_form.hpp"
@@ -23,6 +24,8 @@ struct stewart_model {
     stewart::ForwardConstants forward;  // what forward kinematics needs from the geometry
     stewart::Frames frames;  // tool and user frames: the poses given and returned are the tool's
     bool length_offsets;     // some length_offset is not 0: lengths given and returned differ
+    stewart::LegDrive drive[STEWART_LEGS];  // each leg's drive (motor_per_leg 0: none)
+    bool drives;                            // some leg has a drive
 };
 
 struct stewart_inverse {

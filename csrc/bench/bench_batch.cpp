@@ -10,6 +10,7 @@
 //                                             only (201 batches each)
 //        bench-batch ROWS --once LEVEL PATH   one batch only, LEVEL 0 or 1, PATH scalar, portable,
 //                                             avx2 or avx512vl (for callgrind)
+//        ... --drives                        any of these on a model with a drive on every leg
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -52,13 +53,21 @@ double median_ns_per_row(int repeats, size_t rows, const std::function<stewart_s
 #define BENCH_VECTOR(name, member, count, type, unit, description) std::vector<type> name;
 #define BENCH_SIZE(name, member, count, type, unit, description) name.resize(n * (count));
 #define BENCH_POINT(name, member, count, type, unit, description) out.name = name.data();
+// The drive columns only for a model with drives (as the Python API and stewart-solve ask).
+#define BENCH_NO_DRIVE(name, member, count, type, unit, description) out.name = nullptr;
 struct InverseColumns {
     STEWART_INVERSE_OUTPUT_TABLE(BENCH_VECTOR)
     std::vector<int> status;
-    explicit InverseColumns(size_t n) : status(n) { STEWART_INVERSE_OUTPUT_TABLE(BENCH_SIZE) }
+    bool drive_columns;
+    InverseColumns(size_t n, const stewart_model *model) : status(n), drive_columns(false) {
+        STEWART_INVERSE_OUTPUT_TABLE(BENCH_SIZE)
+        for (double lead : stewart_model_params(model)->screw_lead)
+            drive_columns = drive_columns || lead > 0;
+    }
     stewart_inverse_batch_outputs outputs() {
         stewart_inverse_batch_outputs out{};
         STEWART_INVERSE_OUTPUT_TABLE(BENCH_POINT)
+        if (!drive_columns) { STEWART_INVERSE_DRIVE_OUTPUT_TABLE(BENCH_NO_DRIVE) }
         out.status = status.data();
         return out;
     }
@@ -113,7 +122,7 @@ int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q
     if (!stewart::vector_path_available(path)) return 2;  // not on this CPU
     stewart_inverse *inverse = inverse_at(model, level);
     if (!inverse) return 1;
-    InverseColumns columns(n);
+    InverseColumns columns(n, model);
     const stewart_inverse_batch_outputs out = columns.outputs();
     const stewart_status s = stewart::inverse_batch(inverse, n, q.data(), q_dot.data(),
                                                     q_ddot.data(), &out, nullptr, nullptr, path);
@@ -131,7 +140,7 @@ int time_kernels(const stewart_model *model, size_t n, const std::vector<double>
                  int repeats, bool show_fastest) {
     const char *level_name[] = {"inverse kinematic", "inverse massless"};
     const char *path_name[] = {"scalar", "portable", "avx2", "avx512vl"};
-    InverseColumns columns(n);
+    InverseColumns columns(n, model);
     const stewart_inverse_batch_outputs out = columns.outputs();
     for (int level = 0; level < 2; ++level)
         for (int path = 0; path < 4; ++path) {
@@ -160,11 +169,30 @@ int time_kernels(const stewart_model *model, size_t n, const std::vector<double>
 
 }  // namespace
 
+// A drive on every leg (docs/drives.md): screw, gear, rotor, motor winding and friction with a
+// Stribeck peak, so that every term of the drive columns is computed.
+stewart_params drive_params() {
+    stewart_params p;
+    stewart_params_default(&p);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        p.screw_lead[k] = 0.005, p.gear_ratio[k] = 3, p.rotor_inertia[k] = 1.37e-4;
+        p.screw_efficiency[k] = 0.9, p.screw_back_efficiency[k] = 0.8;
+        p.torque_constant[k] = 0.5, p.winding_resistance[k] = 1.2;
+        p.winding_inductance[k] = 3e-3, p.coulomb_friction[k] = 20;
+        p.stribeck_friction[k] = 30, p.stribeck_speed[k] = 0.01, p.viscous_friction[k] = 100;
+    }
+    return p;
+}
+
 int main(int argc, char **argv) {
+    // a last argument --drives: the same runs on a model with drives
+    const bool drives = argc > 1 && std::string(argv[argc - 1]) == "--drives";
+    if (drives) --argc;
     const size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 6000;
-    if (n < 2) return std::fprintf(stderr, "usage: bench-batch [ROWS >= 2]\n"), 2;
+    if (n < 2) return std::fprintf(stderr, "usage: bench-batch [ROWS >= 2] [--drives]\n"), 2;
     const bool once = argc == 5 && std::string(argv[2]) == "--once";
-    stewart_model *model = bench::make_model("bench-batch");
+    const stewart_params with_drives = drive_params();
+    stewart_model *model = bench::make_model("bench-batch", drives ? &with_drives : nullptr);
     if (!model) return 1;
     std::vector<double> q(6 * n), q_dot(6 * n), q_ddot(6 * n), time(n);
     for (size_t j = 0; j < n; ++j) {
@@ -182,7 +210,7 @@ int main(int argc, char **argv) {
     // (the kinematic level's lengths drive forward kinematics, the full level's forces the plant)
     const char *level_name[] = {"inverse kinematic", "inverse massless", "inverse full"};
     const int level_repeats[] = {51, 51, 5};
-    std::vector<InverseColumns> levels(3, InverseColumns(n));
+    std::vector<InverseColumns> levels(3, InverseColumns(n, model));
     for (int level = 0; level < 3; ++level) {
         stewart_inverse *inverse = inverse_at(model, level);
         if (!inverse) return 1;

@@ -80,27 +80,29 @@ std::string read_pose_table(const std::string &path, PoseTable &table,
     const std::vector<std::string> header = split(line);
 
     int col_t = find_column(header, "t");
-    int col[3][6];
-    bool have[3] = {true, true, true};
-    int found[3] = {0, 0, 0};
-    const char *suffix[3] = {"", "_dot", "_ddot"};
-    for (int r = 0; r < 3; ++r)
+    int col[4][6];
+    bool have[4] = {true, true, true, true};
+    int found[4] = {0, 0, 0, 0};
+    const char *suffix[4] = {"", "_dot", "_ddot", "_dddot"};
+    for (int r = 0; r < 4; ++r)
         for (int i = 0; i < 6; ++i) {
             col[r][i] = find_column(header, std::string(kPoseNames[i]) + suffix[r]);
             if (col[r][i] < 0) have[r] = false; else ++found[r];
         }
     if ((col_t < 0 && !at_rest) || !have[0])
         return path + ": the header must contain t,x,y,z,roll,pitch,yaw";
-    if (at_rest && (found[1] || found[2]))
+    if (at_rest && (found[1] || found[2] || found[3]))
         return path + ": --static says the poses are at rest, but the file gives the " +
-               (found[1] ? "x_dot" : "x_ddot") + ".. columns: drop --static or those columns";
-    for (int r = 1; r < 3; ++r)
+               (found[1] ? "x_dot" : found[2] ? "x_ddot" : "x_dddot") +
+               ".. columns: drop --static or those columns";
+    for (int r = 1; r < 4; ++r)
         if (found[r] != 0 && found[r] != 6)
             return path + ": the " + suffix[r] + " columns must be all six (x" + suffix[r] +
                    " ... yaw" + suffix[r] + ") or none";
 
     table.t.clear();
     table.poses.clear();
+    table.jerks.clear();
     int line_no = 1;
     while (std::getline(in, line)) {
         ++line_no;
@@ -127,6 +129,8 @@ std::string read_pose_table(const std::string &path, PoseTable &table,
             }
         table.t.push_back(t);
         table.poses.push_back(pose);
+        if (have[3])
+            for (int i = 0; i < 6; ++i) table.jerks.push_back(v[col[3][i]]);
     }
     if (table.t.empty()) return path + " has no data rows";
 

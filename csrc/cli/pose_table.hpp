@@ -11,6 +11,7 @@ namespace stewart {
 struct PoseTable {
     std::vector<double> t;
     std::vector<stewart_pose> poses;
+    std::vector<double> jerks;  // n x 6, the x_dddot..yaw_dddot columns; empty if not given
 };
 
 // The cells of one CSV line, blanks around each trimmed.
@@ -23,7 +24,8 @@ enum class MissingDerivatives {
 };
 
 // Reads IN.csv: header `t,x,y,z,roll,pitch,yaw`, optionally `x_dot..yaw_dot` and/or
-// `x_ddot..yaw_ddot` (any column order). A derivative group that is absent is computed by central
+// `x_ddot..yaw_ddot`, and the jerks `x_dddot..yaw_dddot` (any column order; jerks are never
+// computed: without them table.jerks is empty). A derivative group that is absent is computed by central
 // finite differences of the samples (one-sided at the ends; variable spacing allowed), or is zero
 // for poses at rest (which then must not give derivative columns). Returns "" on success, else a
 // message naming the line and the problem.

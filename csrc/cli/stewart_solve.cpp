@@ -69,7 +69,8 @@ int usage(FILE *to) {
                  "           [m/s, m/s^2, m/s^3, N]; --ranges: and each axis' range, the others\n"
                  "           held: x_min,x_max, ..., yaw_max\n"
                  "  --units: OUT.csv's lengths (m, mm, um) and angles (rad, deg, mrad, urad), e.g.\n"
-                 "           mm,deg (default m,rad; forces, conditions and margin_axis stay SI)\n"
+                 "           mm,deg (default m,rad; forces, conditions, margin_axis and the drive columns\n"
+                 "           stay SI)\n"
                  "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
                  "[--platform FILE.json] [--param NAME=VALUE ...] [--units mm,deg] IN.csv OUT.csv\n"
                  "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
@@ -114,7 +115,31 @@ int limit_columns(bool limits, bool report) {
     return report ? STEWART_LIMIT_CLASSES : limits ? STEWART_LIMIT_AXIS : 0;
 }
 
-void write_header(FILE *out, int limits, bool ranges) {
+// The drive columns (STEWART_INVERSE_DRIVE_OUTPUT_TABLE), only for a model with drives: a
+// column of six as name1..name6, a bit set as its name.
+void write_drive_header(FILE *out) {
+#define DRIVE_HEADER(name, member, count, type, unit, description)                               \
+    if ((count) == 1) std::fprintf(out, "," #name);                                             \
+    else for (int k = 1; k <= (count); ++k) std::fprintf(out, "," #name "%d", k);
+    STEWART_INVERSE_DRIVE_OUTPUT_TABLE(DRIVE_HEADER)
+#undef DRIVE_HEADER
+}
+
+void put_value(FILE *out, double value) { std::fprintf(out, ",%.17g", value); }
+void put_value(FILE *out, int value) { std::fprintf(out, ",%d", value); }
+template <typename T, size_t N>
+void put_values(FILE *out, const T (&values)[N]) {
+    for (const T &v : values) put_value(out, v);
+}
+void put_values(FILE *out, int value) { put_value(out, value); }
+
+void write_drive_row(FILE *out, const stewart_inverse_output &o) {
+#define DRIVE_ROW(name, member, count, type, unit, description) put_values(out, o.member);
+    STEWART_INVERSE_DRIVE_OUTPUT_TABLE(DRIVE_ROW)
+#undef DRIVE_ROW
+}
+
+void write_header(FILE *out, int limits, bool ranges, bool drives) {
     std::fprintf(out, "t");
     const char *groups[4] = {"L", "L_dot", "L_ddot", "F"};
     for (const char *g : groups)
@@ -127,11 +152,12 @@ void write_header(FILE *out, int limits, bool ranges) {
     }
     if (ranges)
         for (const char *axis : kAxes) std::fprintf(out, ",%s_min,%s_max", axis, axis);
+    if (drives) write_drive_header(out);
     std::fprintf(out, "\n");
 }
 
 void write_row(FILE *out, double t, const stewart_inverse_output &o, const LimitRow &row,
-               int limits, bool ranges, const stewart::OutputUnits &u) {
+               int limits, bool ranges, bool drives, const stewart::OutputUnits &u) {
     const stewart_limits_output &check = row.check;
     std::fprintf(out, "%.17g", t);
     const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
@@ -154,6 +180,7 @@ void write_row(FILE *out, double t, const stewart_inverse_output &o, const Limit
             const double f = a < 3 ? u.length : u.angle;
             std::fprintf(out, ",%.17g,%.17g", row.ranges.min[a] * f, row.ranges.max[a] * f);
         }
+    if (drives) write_drive_row(out, o);
     std::fprintf(out, "\n");
 }
 
@@ -296,7 +323,8 @@ int run_check(const Request &r) {
 
 // Solves every row through the batch, then checks each pose's limits (and ranges); false with a
 // message on stderr when a row fails.
-bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inverse *inverse,
+bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart_model *model,
+                stewart_inverse *inverse,
                 stewart_limits *checker, std::vector<stewart_inverse_output> &outputs,
                 std::vector<LimitRow> &limit_rows) {
     const size_t n = table.t.size();
@@ -310,11 +338,17 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inver
     std::vector<type> name(n * (count));
 #define CLI_POINT(name, member, count, type, unit, description) columns.name = name.data();
 #define CLI_ROW(name, member, count, type, unit, description)                                      \
-    std::memcpy(&outputs[j].member, name.data() + j * (count), (count) * sizeof(type));
+    if (columns.name)                                                                              \
+        std::memcpy(&outputs[j].member, name.data() + j * (count), (count) * sizeof(type));
     STEWART_INVERSE_OUTPUT_TABLE(CLI_COLUMN)
     std::vector<int> row_status(n);
     stewart_inverse_batch_outputs columns{};
     STEWART_INVERSE_OUTPUT_TABLE(CLI_POINT)
+    bool drives = false;  // without drives the drive columns are neither asked for nor written
+    for (double lead : r.params.screw_lead) drives = drives || lead > 0;
+#define CLI_NO_DRIVE(name, member, count, type, unit, description) columns.name = nullptr;
+    if (!drives) { STEWART_INVERSE_DRIVE_OUTPUT_TABLE(CLI_NO_DRIVE) }
+#undef CLI_NO_DRIVE
     columns.status = row_status.data();
     size_t failed = n;
     const stewart_status s = stewart_inverse_batch(inverse, n, q.data(), q_dot.data(),
@@ -322,6 +356,23 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inver
     if (s != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s: %s\n", failed + 1,
                      table.t[failed], stewart_status_name(s), stewart_inverse_message(inverse));
+        return false;
+    }
+    // The drives' current rates: from the poses' jerks when the file gives them, else over t
+    // (the rows are a trajectory unless --static).
+    char message[STEWART_MESSAGE_SIZE];
+    if (!table.jerks.empty()) {
+        if (stewart_inverse_batch_current_rates_from_jerks(
+                model, r.options.fidelity, n, q.data(), q_dot.data(), q_ddot.data(),
+                table.jerks.data(), &columns, message, sizeof message) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-solve: %s\n", message);
+            return false;
+        }
+    } else if (!r.at_rest && stewart_inverse_batch_current_rates(model, n, table.t.data(),
+                                                                 &columns, message,
+                                                                 sizeof message) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: %s (or give --static: poses, not a trajectory)\n",
+                     message);
         return false;
     }
     for (size_t j = 0; j < n; ++j) {
@@ -353,16 +404,16 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, stewart_inver
 // Writes OUT.csv; 0, or 1 with a message.
 int write_table(const Request &r, const stewart::PoseTable &table,
                 const std::vector<stewart_inverse_output> &outputs,
-                const std::vector<LimitRow> &limit_rows) {
+                const std::vector<LimitRow> &limit_rows, bool drives) {
     FILE *out = std::fopen(r.paths[1], "w");
     if (!out) {
         std::fprintf(stderr, "stewart-solve: cannot write %s\n", r.paths[1]);
         return 1;
     }
     const int limits = limit_columns(r.limits, r.report);
-    write_header(out, limits, r.ranges);
+    write_header(out, limits, r.ranges, drives);
     for (size_t j = 0; j < table.t.size(); ++j)
-        write_row(out, table.t[j], outputs[j], limit_rows[j], limits, r.ranges, r.units);
+        write_row(out, table.t[j], outputs[j], limit_rows[j], limits, r.ranges, drives, r.units);
     if (std::fclose(out) != 0) {
         std::fprintf(stderr, "stewart-solve: error writing %s\n", r.paths[1]);
         return 1;
@@ -399,11 +450,13 @@ int run_inverse(const Request &r) {
     // the batch, as the Python package and the sweeps (the same numbers bit for bit).
     std::vector<stewart_inverse_output> outputs(table.t.size());
     std::vector<LimitRow> limit_rows(table.t.size());
-    const bool solved = solve_rows(r, table, inverse, checker, outputs, limit_rows);
+    const bool solved = solve_rows(r, table, model, inverse, checker, outputs, limit_rows);
+    bool drives = false;  // the drive columns only for a model with drives
+    for (double lead : r.params.screw_lead) drives = drives || lead > 0;
     stewart_limits_free(checker);
     stewart_inverse_free(inverse);
     stewart_model_free(model);
-    return solved ? write_table(r, table, outputs, limit_rows) : 1;
+    return solved ? write_table(r, table, outputs, limit_rows, drives) : 1;
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 // Rotor and screw inertia act on the motor's side (the screw's through the gear, / N^2).
 #pragma once
 
+#include <cmath>
+
 #include "stewart/stewart.h"
 
 namespace stewart {
@@ -41,11 +43,59 @@ inline double reflected_mass(const LegDrive &d) {
 // Friction on the leg's axis at leg speed v, opposing it [N]:
 // (F_c + (F_s - F_c) exp(-(v/v_s)^2)) s(v) + b v, where s(v) = sign(v) (0 at rest) if
 // smoothing_speed is 0, else v / sqrt(v^2 + smoothing_speed^2).
-double friction_force(const LegDrive &d, double v, double smoothing_speed);
+inline double friction_force(const LegDrive &d, double v, double smoothing_speed) {
+    const double s = smoothing_speed > 0 ? v / std::sqrt(v * v + smoothing_speed * smoothing_speed)
+                     : v > 0             ? 1.0
+                     : v < 0             ? -1.0
+                                         : 0.0;
+    double sliding = d.coulomb;
+    if (d.breakaway > d.coulomb) {  // the Stribeck peak (stewart_params_check: its speed > 0)
+        const double x = v / d.stribeck_speed, peak = d.breakaway - d.coulomb;
+        // Far past the peak its term is below 2^-60 coulomb (exp(-50) 256 < 2^-60), which
+        // rounds away in the sum: the same bits without the exp.
+        if (!(x * x > 50.0 && peak < 256.0 * d.coulomb)) sliding += peak * std::exp(-x * x);
+    }
+    return sliding * s + d.viscous * v;
+}
 
 // The motor torque that makes the nut push the leg with axial force nut_force (> 0 extends) at
 // motor speed omega, through the screw's efficiency in the direction power flows. At rest the
 // forward efficiency is taken (the larger torque: the one that starts a motion).
-double screw_motor_torque(const LegDrive &d, double nut_force, double omega);
+inline double screw_motor_torque(const LegDrive &d, double nut_force, double omega) {
+    const double ideal = nut_force / d.motor_per_leg;  // lossless: tau omega = F v
+    return ideal * omega < 0 ? ideal * d.back_efficiency : ideal / d.efficiency;
+}
+
+// The motor torque that moves the leg at speed v and acceleration a against the leg force
+// leg_force (> 0 pushes the platform away): the drive's inertia, J (2 pi N / lead) a, plus the
+// screw's torque for the leg force and the friction at v (exact sign: 0 at rest).
+inline double drive_torque(const LegDrive &d, double leg_force, double v, double a) {
+    return d.inertia * d.motor_per_leg * a +
+           screw_motor_torque(d, leg_force + friction_force(d, v, 0.0), d.motor_per_leg * v);
+}
+
+// d friction_force / dv at exact sign (smoothing_speed 0), v != 0; at rest the Stribeck term's
+// slope vanishes and only the viscous one is left (the sign's step has no slope).
+inline double friction_slope(const LegDrive &d, double v) {
+    double slope = d.viscous;
+    if (v != 0 && d.breakaway > d.coulomb) {
+        const double x = v / d.stribeck_speed;
+        const double peak = d.breakaway - d.coulomb;
+        slope -= peak * std::exp(-x * x) * 2.0 * std::fabs(x) / d.stribeck_speed;
+    }
+    return slope;
+}
+
+// d drive_torque / dt along a motion: the leg force's rate force_rate, the leg's speed v,
+// acceleration a and jerk. The power flow's direction held where drive_torque takes it (at a
+// change of direction the torque steps; this is the rate on the side drive_torque is on).
+inline double drive_torque_rate(const LegDrive &d, double leg_force, double force_rate, double v,
+                                double a, double jerk) {
+    const double nut = leg_force + friction_force(d, v, 0.0);
+    const double nut_rate = force_rate + friction_slope(d, v) * a;
+    const double ideal = nut / d.motor_per_leg, omega = d.motor_per_leg * v;
+    const double through = ideal * omega < 0 ? d.back_efficiency : 1.0 / d.efficiency;
+    return d.inertia * d.motor_per_leg * jerk + nut_rate / d.motor_per_leg * through;
+}
 
 }  // namespace stewart

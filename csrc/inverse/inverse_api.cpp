@@ -4,6 +4,7 @@
 #include <cstring>
 #include <new>
 
+#include "drives/drive_outputs.hpp"
 #include "model.hpp"
 #include "util/message.hpp"
 
@@ -196,6 +197,12 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     stroke_and_condition_warnings(m->params, *o, out);  // on the Cardan-to-Cardan lengths
     if (m->length_offsets)  // the sensors read length - offset
         for (int k = 0; k < STEWART_LEGS; ++k) out.lengths.length[k] -= m->params.length_offset[k];
+    if (m->drives) {  // on the readings: the motor's encoder turns with the sensor's length
+        stewart::fill_drive_outputs(m->drive, m->params, out);
+        if (!stewart::drive_outputs_finite(out))
+            return stewart::input_out_of_range(*pose, 0, 2, "motor torque, current or voltage",
+                                               msg, size);
+    }
     stewart::base_wrench_to_given_frame(m->frames, out.base_force, out.base_torque);
     *output = out;
     msg[0] = '\0';

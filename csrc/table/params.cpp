@@ -176,6 +176,63 @@ stewart_status check_side_sizes(const stewart_params &p, char *msg, size_t size)
     return STEWART_OK;
 }
 
+// The drive parameters across fields (docs/drives.md, "Entering a drive"): each leg with a
+// screw has a motor constant; the motor's and screw's parameters only on a leg with a screw
+// (elsewhere they would be ignored); a Stribeck peak has its speed; damping has its spring.
+stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t size) {
+    struct Field { const char *name; const double *value; double neutral; const char *unit; };
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const int leg = k + 1;
+        const bool drive = p.screw_lead[k] > 0;
+        if (drive && !(p.torque_constant[k] > 0))
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "torque_constant[%d] = %s N.m/A: leg %d has a drive (screw_lead[%d] "
+                               "= %s m) and its motor needs a torque constant > 0 (the datasheet's "
+                               "Kt; a motor not chosen yet: any Kt, then read the torques)",
+                               leg, ExactText(p.torque_constant[k]).c_str(), leg, leg,
+                               ExactText(p.screw_lead[k]).c_str());
+        const Field motor[] = {
+            {"gear_ratio", p.gear_ratio, 1, ""}, {"rotor_inertia", p.rotor_inertia, 0, " kg.m2"},
+            {"screw_inertia", p.screw_inertia, 0, " kg.m2"},
+            {"screw_efficiency", p.screw_efficiency, 1, ""},
+            {"screw_back_efficiency", p.screw_back_efficiency, 1, ""},
+            {"torque_constant", p.torque_constant, 0, " N.m/A"},
+            {"winding_resistance", p.winding_resistance, 0, " Ohm"},
+            {"winding_inductance", p.winding_inductance, 0, " H"},
+            {"current_max", p.current_max, 0, " A"}, {"voltage_max", p.voltage_max, 0, " V"},
+            {"motor_speed_max", p.motor_speed_max, 0, " rad/s"}};
+        for (const Field &f : motor)
+            if (!drive && f.value[k] != f.neutral)
+                return set_message(msg, size, STEWART_ERR_PARAMETER,
+                                   "%s[%d] = %s%s, but leg %d has no drive (screw_lead[%d] = 0): "
+                                   "give its screw_lead, or leave %s[%d] at %g", f.name, leg,
+                                   ExactText(f.value[k]).c_str(), f.unit, leg, leg, f.name, leg,
+                                   f.neutral);
+        if (p.stribeck_friction[k] > p.coulomb_friction[k] && !(p.stribeck_speed[k] > 0))
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "stribeck_speed[%d] = %s m/s: leg %d has a Stribeck peak "
+                               "(stribeck_friction[%d] = %s N > coulomb_friction[%d] = %s N), "
+                               "which needs the speed over which it falls, > 0", leg,
+                               ExactText(p.stribeck_speed[k]).c_str(), leg, leg,
+                               ExactText(p.stribeck_friction[k]).c_str(), leg,
+                               ExactText(p.coulomb_friction[k]).c_str());
+        struct Damper {
+            const char *name, *spring_name;
+            const double *damping, *spring;
+        };
+        const Damper dampers[] = {
+            {"end_stop_damping", "end_stop_stiffness", p.end_stop_damping, p.end_stop_stiffness},
+            {"leg_damping", "leg_stiffness", p.leg_damping, p.leg_stiffness}};
+        for (const Damper &d : dampers)
+            if (d.damping[k] > 0 && !(d.spring[k] > 0))
+                return set_message(msg, size, STEWART_ERR_PARAMETER,
+                                   "%s[%d] = %s N.s/m without a spring (%s[%d] = 0): give the "
+                                   "stiffness, or leave the damping at 0", d.name, leg,
+                                   ExactText(d.damping[k]).c_str(), d.spring_name, leg);
+    }
+    return STEWART_OK;
+}
+
 }  // namespace
 
 extern "C" {
@@ -327,6 +384,7 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
     if (s == STEWART_OK)
         s = stewart::check_joint_geometry(stewart::params_in_solver_frames(*p), msg, size);
     if (s == STEWART_OK) s = stewart::check_limit_parameters(*p, msg, size);
+    if (s == STEWART_OK) s = check_drive_parameters(*p, msg, size);
     if (s != STEWART_OK) return s;
     return stewart::clear_message(msg, size);
 }

@@ -209,6 +209,7 @@ static const struct { const char *name; const char *base; } kUnits[] = {
     {"1/s", "s=\"-1\""},
     {"1/s2", "s=\"-2\""},
     {"A", "A=\"1\""},
+    {"A/s", "s=\"-1\" A=\"1\""},
     {"H", "kg=\"1\" m=\"2\" s=\"-2\" A=\"-2\""},
     {"kg", "kg=\"1\""},
     {"kg.m2", "kg=\"1\" m=\"2\""},

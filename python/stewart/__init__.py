@@ -38,6 +38,7 @@ from .vestibular import Perceived, VestibularModel, perception
 from .platform import Platform
 from .scores import CueingScores, cueing_scores
 from .simulate import Method, Simulation
+from .sizing import SizingReport, sizing
 from .view import view
 
 try:
@@ -52,4 +53,5 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
            "MoveError", "feasibility", "Feasibility", "perception", "Perceived",
            "VestibularModel", "cueing_scores", "CueingScores", "manoeuvre",
-           "manoeuvre_files", "cueing", "Cueing", "CUEING_ALGORITHMS", "__version__"]
+           "manoeuvre_files", "cueing", "Cueing", "CUEING_ALGORITHMS", "sizing", "SizingReport",
+           "__version__"]

@@ -21,7 +21,8 @@ public:
     InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot,
                std::optional<Poses> q_ddot, const OptionValues &option_values,
                const nb::dict &outputs, Column<int> status)
-        : n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot), status_(status),
+        : model_(model.get()), n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot),
+          status_(status),
           inverse_(model.inverse_pool(), option_values) {
         if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
@@ -48,7 +49,30 @@ public:
         });
     }
 
+    // Along a trajectory at times t (n): the drives' current rates and the voltages with them
+    // (stewart_inverse_batch_current_rates), once every row is solved.
+    void current_rates(Column<const double> t) {
+        if (t.shape(0) != n_) fail("t must have as many rows as the poses");
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_inverse_batch_current_rates(model_, n_, t.data(), &out_, message,
+                                                sizeof message) != STEWART_OK)
+            fail(message);
+    }
+
+    // With the poses' jerks (n x 6): the drives' current rates from them at the inverse's
+    // fidelity (stewart_inverse_batch_current_rates_from_jerks), once every row is solved.
+    void current_rates_from_jerks(int fidelity, Poses q_dddot) {
+        if (q_dddot.shape(0) != n_) fail("jerks must have as many rows as the poses");
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_inverse_batch_current_rates_from_jerks(
+                model_, fidelity, n_, q_.data(), q_dot_ ? q_dot_->data() : nullptr,
+                q_ddot_ ? q_ddot_->data() : nullptr, q_dddot.data(), &out_, message,
+                sizeof message) != STEWART_OK)
+            fail(message);
+    }
+
 private:
+    const stewart_model *model_;
     size_t n_;
     Poses q_;
     std::optional<Poses> q_dot_, q_ddot_;
@@ -71,7 +95,10 @@ void bind_inverse(nb::module_ &m) {
              nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
              nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
         .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"),
-             nb::arg("max_messages"));
+             nb::arg("max_messages"))
+        .def("current_rates", &InverseRun::current_rates, nb::arg("t"))
+        .def("current_rates_from_jerks", &InverseRun::current_rates_from_jerks,
+             nb::arg("fidelity"), nb::arg("q_dddot"));
 }
 
 }  // namespace stewart_core

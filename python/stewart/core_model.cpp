@@ -97,6 +97,18 @@ void bind_model(nb::module_ &m) {
         stewart_model_joints(model.get(), base.data(), platform.data());
         return std::make_pair(base, platform);
     });
+    // The drive's inertia seen on each leg's axis [kg] (stewart_model_reflected_mass).
+    m.def("model_reflected_mass", [](const Model &model) {
+        std::vector<double> mass(STEWART_LEGS);
+        stewart_model_reflected_mass(model.get(), mass.data());
+        return mass;
+    });
+    // Whether some leg has a drive (screw_lead > 0): the batch then writes the drive columns.
+    m.def("model_has_drives", [](const Model &model) {
+        for (double lead : stewart_model_params(model.get())->screw_lead)
+            if (lead > 0) return true;
+        return false;
+    });
     // A platform file read by the library (stewart_params_read_json_file): [(name, values)] of the parameters it gives, each with all its
     // elements in SI; ValueError with the library's message (line, column, field and value) if
     // any field is bad, or the path is not a regular file of at most the size cap.

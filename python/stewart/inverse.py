@@ -37,8 +37,26 @@ class InverseSolution(RowStatus):
     iterations: np.ndarray    #: (N,) Newton iterations (full level)
     warnings: np.ndarray      #: (N,) STEWART_WARN_* bits: 1 stroke limit, 2 near singular
     stroke_legs: np.ndarray   #: (N,) bit k set: leg k+1 is outside its stroke
+    # Each leg's drive (docs/drives.md): 0 on a leg without one (screw_lead 0).
+    motor_angle: np.ndarray   #: (N, 6) motor angle 2 pi N L_k / lead [rad]
+    motor_speed: np.ndarray   #: (N, 6) motor speed [rad/s]
+    motor_accel: np.ndarray   #: (N, 6) motor acceleration [rad/s^2]
+    motor_torque: np.ndarray  #: (N, 6) motor torque: drive inertia, leg force, friction [N m]
+    current: np.ndarray       #: (N, 6) motor current [A]
+    current_rate: np.ndarray  #: (N, 6) dI/dt [A/s]: differences over t when t is given, else 0
+    voltage: np.ndarray       #: (N, 6) R I + L dI/dt + k_t motor_speed [V]
+    electrical_power: np.ndarray  #: (N, 6) voltage x current [W], < 0 regenerating
+    motor_power: np.ndarray   #: (N, 6) motor_torque x motor_speed [W]
+    current_max_legs: np.ndarray  #: (N,) bit k set: leg k+1's |current| > current_max
+    voltage_max_legs: np.ndarray  #: (N,) bit k set: leg k+1's |voltage| > voltage_max
+    motor_speed_max_legs: np.ndarray  #: (N,) bit k set: leg k+1's |motor_speed| > motor_speed_max
     status: np.ndarray        #: (N,) stewart_status per row: 0 solved, < 0 failed
     messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
+
+    @property
+    def torque(self) -> np.ndarray:
+        """(N, 6) the motors' torques [N m] (motor_torque)."""
+        return self.motor_torque
 
     @property
     def power(self) -> np.ndarray:
@@ -51,11 +69,21 @@ class InverseSolution(RowStatus):
 
 #: InverseSolution's arrays: the library's inverse output table, then status.
 INVERSE_TABLE = table(_core.inverse_columns(), STATUS_COLUMN)
+#: The drive columns: the table's last, after stroke_legs (stewart_outputs.h).
+DRIVE_COLUMNS = tuple(c.name for c in INVERSE_TABLE.columns[
+    [c.name for c in INVERSE_TABLE.columns].index("stroke_legs") + 1:] if c.name != "status")
 
 
-def empty_inverse_solution(n: int) -> InverseSolution:
-    """An InverseSolution of n rows, uninitialised (the batch writes every row)."""
-    return InverseSolution(**table_arrays(INVERSE_TABLE, n))
+def empty_inverse_solution(n: int, drives: bool = True) -> InverseSolution:
+    """An InverseSolution of n rows, uninitialised (the batch writes every row); without drives
+    the drive columns are zeros the batch is not asked to write (calloc'd pages: no work)."""
+    arrays = table_arrays(INVERSE_TABLE, n)
+    if not drives:
+        for name in DRIVE_COLUMNS:
+            arrays[name] = np.zeros(arrays[name].shape, arrays[name].dtype)
+    sol = InverseSolution(**arrays)
+    sol._drive_zeros = not drives
+    return sol
 
 
 def check_out(out: InverseSolution, n: int) -> None:
@@ -87,22 +115,40 @@ def check_out(out: InverseSolution, n: int) -> None:
 
 def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optional[np.ndarray],
                 level: Fidelity, options: list, max_messages: int,
-                out: Optional[InverseSolution]) -> InverseSolution:
+                out: Optional[InverseSolution], t: Optional[np.ndarray] = None,
+                q_dddot: Optional[np.ndarray] = None) -> InverseSolution:
     """The rows of q through the library into out (a new InverseSolution if None), in slices of
     SLICE_ROWS (FULL_SLICE_ROWS at the full level) on one solver, so that Ctrl-C stops the batch
     between slices: KeyboardInterrupt, whose rows_done says how many rows of out are solved
-    (slices.run_in_slices). Bad options raise ParameterError."""
+    (slices.run_in_slices). Bad options raise ParameterError. t: (N,) increasing times of the
+    rows, or None (the rows are not a trajectory: current_rate 0); q_dddot: (N, 6) the poses'
+    jerks instead (current_rate from the drive's law along the motion)."""
     n = q.shape[0]
+    drives = _core.model_has_drives(model)
     if out is None:
-        out = empty_inverse_solution(n)
+        out = empty_inverse_solution(n, drives)
     else:
         check_out(out, n)
+        if not drives and not getattr(out, "_drive_zeros", False):  # once per out reused
+            for name in DRIVE_COLUMNS:
+                getattr(out, name).fill(0)
+        out._drive_zeros = not drives
     out.messages = {}
+    # its arrays by name, of which the binding takes its table's columns (the drive columns only
+    # for a model with drives)
+    arrays = vars(out) if drives else {k: v for k, v in vars(out).items()
+                                       if k not in DRIVE_COLUMNS}
     try:
-        # vars(out): its arrays by name, of which the binding takes its table's columns
-        run = _core.InverseRun(model, q, q_dot, q_ddot, options, vars(out), out.status)
+        run = _core.InverseRun(model, q, q_dot, q_ddot, options, arrays, out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("inverse", n, FULL_SLICE_ROWS if level == Fidelity.FULL else SLICE_ROWS,
                   keeping_messages(run, out.messages, max_messages), out)
+    if t is not None:  # the rows are a trajectory: the currents' rates by differences over t
+        run.current_rates(t)
+    elif q_dddot is not None:  # the poses' jerks: the currents' rates from the drive's law
+        try:
+            run.current_rates_from_jerks(int(level), q_dddot)
+        except ValueError as e:
+            raise ParameterError(str(e)) from None
     return out

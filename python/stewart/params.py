@@ -104,6 +104,8 @@ PLATFORM_FILE_MAX_BYTES: int = _core.PLATFORM_FILE_MAX_BYTES
 def platform_files() -> dict[str, pathlib.Path]:
     """The platform files shipped with the package, by name (the file's stem): "thesis",
     "paired_hexapod", "genhexkins", "non_planar" and the real machines "rubin_camera_hexapod",
-    "rubin_m2_hexapod", "simona_motion_base" (platforms/README.md says where each comes from)."""
+    "rubin_m2_hexapod", "simona_motion_base", and two of them with electric drives,
+    "rubin_m2_hexapod_drives", "simona_motion_base_drives" (platforms/README.md says where each
+    comes from)."""
     folder = pathlib.Path(__file__).resolve().parent / "platforms"
     return {p.stem: p for p in sorted(folder.glob("*.json"))}

@@ -73,7 +73,7 @@ class Platform:
                 tolerance: Optional[float] = None, max_iterations: Optional[int] = None,
                 modified_newton: Optional[bool] = None, warn_condition: Optional[float] = None,
                 singular_condition: Optional[float] = None, max_messages: int = 100,
-                out: Optional[InverseSolution] = None) -> InverseSolution:
+                out: Optional[InverseSolution] = None, t=None, jerks=None) -> InverseSolution:
         """Inverse kinematics and dynamics of N poses in one batch through the library.
 
         poses, rates, accels: (N, 6) arrays of (x, y, z [m], roll, pitch, yaw [rad]) and their
@@ -89,10 +89,25 @@ class Platform:
         result has (dtype, shape, C order): any other raises ValueError naming it, since the
         library would write into a converted copy. Ctrl-C stops the batch within about a slice
         of rows (inverse.SLICE_ROWS, FULL_SLICE_ROWS at the full level): KeyboardInterrupt,
-        with the rows solved so far valid in out (its rows_done says how many)."""
+        with the rows solved so far valid in out (its rows_done says how many).
+
+        With drives (screw_lead > 0, docs/drives.md) each row also gives the motors' angle,
+        speed, torque, current, voltage and power. t: (N,) increasing times [s] of the rows
+        when they are a trajectory: the currents' rates (current_rate) are then differences of
+        the currents over t (central, second order; one-sided at the ends and beside a failed
+        row), and the voltages include the winding's L dI/dt; None (the default): the rows are
+        unrelated poses, current_rate 0. jerks: (N, 6) the poses' third time derivatives
+        instead of t: current_rate is then the drive's law differentiated along each pose's own
+        motion (the legs' jerks and the forces' rates from Platform.linearize_inverse's
+        Jacobian; exact, about 20-40x a massless row's work), for poses that are not samples of
+        one trajectory or whose jerk is known."""
         level = Fidelity.of(fidelity)
         q = rows6("poses", poses, None, "poses", POSE_LAYOUT)
         n = q.shape[0]
+        row_times = None if t is None else times("t", t, n)
+        if t is not None and jerks is not None:
+            raise ValueError("give t (differences along the rows) or jerks, not both")
+        q_dddot = None if jerks is None else rows6("jerks", jerks, n, "poses", POSE_LAYOUT)
         q_dot = None if rates is None else rows6("rates", rates, n, "poses", POSE_LAYOUT)
         q_ddot = None if accels is None else rows6("accels", accels, n, "poses", POSE_LAYOUT)
         options = [("fidelity", float(level))] + option_values(
@@ -100,7 +115,14 @@ class Platform:
             warn_condition=warn_condition, singular_condition=singular_condition)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
-        return run_inverse(self._model, q, q_dot, q_ddot, level, options, max_messages, out)
+        return run_inverse(self._model, q, q_dot, q_ddot, level, options, max_messages, out,
+                           row_times, q_dddot)
+
+    @property
+    def reflected_mass(self) -> np.ndarray:
+        """(6,) each leg's drive inertia seen on the leg's axis [kg]: (rotor_inertia +
+        screw_inertia / N^2) (2 pi N / screw_lead)^2, N the gear ratio; 0 without a drive."""
+        return np.array(_core.model_reflected_mass(self._model))
 
     def forward(self, lengths, rates=None, accels=None, guess=None, *, t=None, cold: bool = False,
                 tolerance: Optional[float] = None, max_iterations: Optional[int] = None,

@@ -25,7 +25,10 @@
 namespace {
 
 void require_finite(const stewart_inverse_output &o) {
-    const double *all[] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel, o.force};
+    const double *all[] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel, o.force,
+                           o.motor_angle, o.motor_speed, o.motor_accel, o.motor_torque,
+                           o.current, o.current_rate, o.voltage, o.electrical_power,
+                           o.motor_power};
     for (const double *g : all)
         for (int k = 0; k < STEWART_LEGS; ++k)
             if (!std::isfinite(g[k])) std::abort();

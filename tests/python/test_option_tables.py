@@ -28,8 +28,8 @@ def test_each_call_takes_its_tables_options(method, table, positional):
     assert len(names) == len(set(names)), names
     parameters = inspect.signature(getattr(stewart.Platform, method)).parameters
     # the call's own keywords, not solver options: how many messages, where to write, the rows'
-    # times, and forward's rows solved each on its own
-    own = {"max_messages", "out", "t", "cold"}
+    # times (or the inverse's poses' jerks), and forward's rows solved each on its own
+    own = {"max_messages", "out", "t", "jerks", "cold"}
     keywords = {n for n, p in parameters.items() if p.kind == p.KEYWORD_ONLY} - own
     assert keywords | positional == set(names)
     assert positional <= set(parameters)

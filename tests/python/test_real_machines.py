@@ -78,6 +78,9 @@ NEUTRAL = {
     "simona_motion_base": ([float(np.linalg.norm(u - l)) for u, l in zip(SIMONA_UPPER, SIMONA_LOWER)],
                            1e-12, "DUECA MotionLimiter.cxx SIMONA geometry data, MotionLimiterEngine.cc"),
 }
+# The drive files are their machine's geometry with drives added: its neutral lengths.
+NEUTRAL["simona_motion_base_drives"] = NEUTRAL["simona_motion_base"]
+NEUTRAL["rubin_m2_hexapod_drives"] = NEUTRAL["rubin_m2_hexapod"]
 
 
 def load(name):

@@ -211,6 +211,24 @@ typedef struct stewart_inverse_output {
     double base_torque[3];  /* torque of that wrench about the world origin [N m] */
     int warnings;           /* STEWART_WARN_* bits */
     int stroke_legs;        /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
+
+    /* Each leg's drive (docs/drives.md), leg k at index k-1; 0 on a leg without a drive
+     * (screw_lead 0). The motor angle grows as the leg extends; a positive torque extends it. */
+    double motor_angle[STEWART_LEGS];      /* 2 pi N L / lead, L the reading [rad] */
+    double motor_speed[STEWART_LEGS];      /* [rad/s] */
+    double motor_accel[STEWART_LEGS];      /* [rad/s^2] */
+    double motor_torque[STEWART_LEGS];     /* J (2 pi N / lead) L'' + the screw's torque for
+                                              F_k + friction, efficiency by power flow [N m] */
+    double current[STEWART_LEGS];          /* motor_torque / torque_constant [A] */
+    double current_rate[STEWART_LEGS];     /* dI/dt [A/s]: 0 from one pose; along a trajectory
+                                              from differences of the currents over time
+                                              (stewart_inverse_batch_current_rates) */
+    double voltage[STEWART_LEGS];          /* R I + L dI/dt + k_t motor_speed [V] */
+    double electrical_power[STEWART_LEGS]; /* voltage x current, < 0 regenerating [W] */
+    double motor_power[STEWART_LEGS];      /* motor_torque x motor_speed [W] */
+    int current_max_legs;                  /* bit k set: |current| of leg k+1 > current_max */
+    int voltage_max_legs;                  /* bit k set: |voltage| > voltage_max */
+    int motor_speed_max_legs;              /* bit k set: |motor_speed| > motor_speed_max */
 } stewart_inverse_output;
 
 typedef struct stewart_model stewart_model;
@@ -237,6 +255,9 @@ stewart_status stewart_inverse_options_check(const stewart_inverse_options *opti
 stewart_model *stewart_model_create(const stewart_params *params, char *message, size_t size);
 void stewart_model_free(stewart_model *model);
 const stewart_params *stewart_model_params(const stewart_model *model);
+/* The drive's inertia seen on each leg's axis, (rotor_inertia + screw_inertia / N^2)
+ * (2 pi N / screw_lead)^2 [kg]; 0 on a leg without a drive (docs/drives.md). */
+void stewart_model_reflected_mass(const stewart_model *model, double reflected_mass[STEWART_LEGS]);
 
 /* An inverse solver for model (which must outlive it) with a copy of options: NULL if the options
  * are invalid (message names the option and its value), an argument is NULL or memory is short

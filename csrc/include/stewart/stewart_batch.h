@@ -56,6 +56,35 @@ stewart_status stewart_inverse_batch(stewart_inverse *inverse, size_t n, const d
                                      const stewart_inverse_batch_outputs *outputs,
                                      stewart_batch_messages *messages, size_t *first_failed);
 
+/* Along a trajectory: rows 0..n-1 of an inverse batch's outputs at the times t (n, finite,
+ * increasing) get each drive's current_rate by differences of current over t, as
+ * numpy.gradient takes them: central of second order on uneven steps between rows, one-sided of
+ * first order at the ends of each run of solved rows (a run of one row: 0). Their voltage gains
+ * winding_inductance x current_rate, and electrical_power and voltage_max_legs follow it.
+ * Needs the columns current, current_rate, motor_speed, voltage and status (electrical_power and
+ * voltage_max_legs if there). STEWART_ERR_ARGUMENT (message names the row and time, outputs
+ * untouched) for a NULL or a t that does not increase. A model without drives: nothing to do. */
+stewart_status stewart_inverse_batch_current_rates(const stewart_model *model, size_t n,
+                                                   const double *t,
+                                                   const stewart_inverse_batch_outputs *outputs,
+                                                   char *message, size_t size);
+
+/* With the poses' jerks q_dddot (n x 6, d3q/dt3): rows 0..n-1 of an inverse batch's outputs,
+ * solved at q, q_dot, q_ddot (NULL: zero) by an inverse of this fidelity, get each drive's
+ * current_rate from the drive's law differentiated along the motion: the legs' jerks and the
+ * forces' rates are stewart_linearize_inverse's Jacobian at that fidelity times (q_dot, q_ddot,
+ * q_dddot) (the kinematic level's forces are 0: their rates too). The power flow's direction
+ * and the friction's sign as at the pose (at a change of direction the current steps: its rate
+ * there is the side the current is on). Voltage, electrical_power and voltage_max_legs follow.
+ * About 200 k (massless) and 900 k (full) instructions a row: the Jacobian's. Needs the columns
+ * of stewart_inverse_batch_current_rates and force, length_rate, length_accel. STEWART_ERR_ARGUMENT
+ * for a NULL, the linearisation's status for a row whose derivatives it refuses (message names
+ * the row; rows before it are done). A model without drives: nothing to do. */
+stewart_status stewart_inverse_batch_current_rates_from_jerks(
+    const stewart_model *model, int fidelity, size_t n, const double *q, const double *q_dot,
+    const double *q_ddot, const double *q_dddot, const stewart_inverse_batch_outputs *outputs,
+    char *message, size_t size);
+
 /* The status of a row a batch did not run (stewart_plant_batch after a refused step): positive,
  * unlike every stewart_status. */
 #define STEWART_BATCH_NOT_RUN 1

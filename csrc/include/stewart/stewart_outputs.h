@@ -30,7 +30,27 @@
     X(base_torque, base_torque, 3, double, "N.m", "Its torque about the world origin")           \
     X(iterations, iterations, 1, int, "", "Newton iterations of the position problem")           \
     X(warnings, warnings, 1, int, "", "STEWART_WARN_* bits")                                     \
-    X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: leg k+1 is outside the stroke")
+    X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: leg k+1 is outside the stroke")       \
+    STEWART_INVERSE_DRIVE_OUTPUT_TABLE(X)
+
+/* The inverse's drive columns (docs/drives.md), the last of its table: 0 on a leg without a
+ * drive. */
+#define STEWART_INVERSE_DRIVE_OUTPUT_TABLE(X)                                                    \
+    X(motor_angle, motor_angle, 6, double, "rad", "Motor angle 2 pi N L_k / lead")               \
+    X(motor_speed, motor_speed, 6, double, "rad/s", "Motor speed")                               \
+    X(motor_accel, motor_accel, 6, double, "rad/s2", "Motor acceleration")                       \
+    X(motor_torque, motor_torque, 6, double, "N.m",                                              \
+      "Motor torque: drive inertia, leg force and friction through the screw")                   \
+    X(current, current, 6, double, "A", "Motor current, motor_torque / torque_constant")         \
+    X(current_rate, current_rate, 6, double, "A/s",                                              \
+      "dI/dt: 0 from one pose, differences along a trajectory")                                  \
+    X(voltage, voltage, 6, double, "V", "Motor voltage R I + L dI/dt + k_t motor_speed")         \
+    X(electrical_power, electrical_power, 6, double, "W", "voltage x current, < 0 regenerating") \
+    X(motor_power, motor_power, 6, double, "W", "motor_torque x motor_speed")                    \
+    X(current_max_legs, current_max_legs, 1, int, "", "Bit k set: leg k+1 is over current_max")  \
+    X(voltage_max_legs, voltage_max_legs, 1, int, "", "Bit k set: leg k+1 is over voltage_max")  \
+    X(motor_speed_max_legs, motor_speed_max_legs, 1, int, "",                                    \
+      "Bit k set: leg k+1 is over motor_speed_max")
 
 #define STEWART_FORWARD_OUTPUT_TABLE(X)                                                          \
     X(pose, pose.q, 6, double, "m, rad", "Pose (x, y, z, roll, pitch, yaw)")                     \

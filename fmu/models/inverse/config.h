@@ -22,7 +22,7 @@
 #define FMU_OPTION_TABLE_STRUCT stewart_inverse_options
 #define FMU_GUID "{5d0f6a3e-9b1c-4c2e-a7f4-3e8b2c7d1a04}"
 /* Every value reference is below this bound (checked at compile time in variables.c). */
-#define FMU_NVR 786
+#define FMU_NVR 1058
 
 #define FMU_MODEL_DESCRIPTION_TEXT                                                              \
     "Stewart platform inverse kinematics and inverse dynamics: actuator lengths, rates, "       \

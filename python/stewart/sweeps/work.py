@@ -17,6 +17,7 @@ from ..inverse import INVERSE_TABLE, InverseSolution, empty_inverse_solution
 from ..limits import LIMIT_CLASSES, POSE_CLASSES, LimitCheck, smallest_margins
 from ..platform import Platform, _warn_condition
 from ..scenes import POSE
+from ..sizing import rms
 from .spec import Chunk, manoeuvre_samples
 
 LEGS = range(1, 7)
@@ -32,23 +33,37 @@ def envelope_cases(spec: dict):
         yield mass, com, i, a, f, level
 
 
+#: The drives' numbers per leg (docs/drives.md; null for a platform without drives).
+ENVELOPE_DRIVE_METRICS = [f"{name}_{k}" for name in (
+    "peak_motor_torque", "rms_motor_torque", "peak_current", "peak_motor_speed",
+    "peak_electrical_power") for k in LEGS]
 ENVELOPE_METRICS = ([f"peak_force_{k}" for k in LEGS] +
                     ["peak_length_rate", "peak_length_accel", "length_min", "length_max",
-                     "stroke_used", "max_condition", "min_inverse_condition", "peak_power"])
+                     "stroke_used", "max_condition", "min_inverse_condition", "peak_power"] +
+                    ENVELOPE_DRIVE_METRICS)
 
 
-def envelope_metrics(sol: InverseSolution) -> list[float | None]:
+def envelope_metrics(sol: InverseSolution, t: np.ndarray, drives: bool) -> list[float | None]:
     """Per case: peak |F_k| per leg [N], peak |dL/dt| [m/s] and |d2L/dt2| [m/s^2] over legs,
     shortest and longest length [m], stroke used (the largest length excursion of one leg [m]),
     largest condition number and its reciprocal (the smallest distance to a singularity, 0 at
-    one; null at the kinematic level, which computes no condition), peak |sum_k F_k dL_k/dt| [W]."""
+    one; null at the kinematic level, which computes no condition), peak |sum_k F_k dL_k/dt| [W];
+    with drives, per leg the peak and time-weighted RMS motor torque [N m], peak current [A],
+    motor speed [rad/s] and electrical power [W] (stewart.sizing's numbers)."""
     cond = float(sol.condition.max())
     excursion = (sol.length.max(axis=0) - sol.length.min(axis=0)).max()
+    if drives:
+        per_leg = [np.abs(sol.motor_torque).max(axis=0), rms(t, sol.motor_torque),
+                   np.abs(sol.current).max(axis=0), np.abs(sol.motor_speed).max(axis=0),
+                   np.abs(sol.electrical_power).max(axis=0)]
+        drive = [float(v) for values in per_leg for v in values]
+    else:
+        drive = [None] * len(ENVELOPE_DRIVE_METRICS)
     return ([float(v) for v in np.abs(sol.force).max(axis=0)] +
             [float(np.abs(sol.length_rate).max()), float(np.abs(sol.length_accel).max()),
              float(sol.length.min()), float(sol.length.max()), float(excursion),
              cond if cond > 0 else None, 1.0 / cond if cond > 0 else None,
-             float(np.abs(sol.power).max())])
+             float(np.abs(sol.power).max())] + drive)
 
 
 ENVELOPE_LIMITS = ["feasible", "limit_class", "limit_t", *[f"margin_{c}" for c in POSE_CLASSES]]
@@ -87,7 +102,9 @@ def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
             platforms[key] = Platform(**spec["platform"], payload_mass=mass, payload_com=com)
         m = spec["manoeuvres"][i]
         t, q, qd, qdd = manoeuvre_samples(spec, m, a, f)
-        sol = platforms[key].inverse(q, qd, qdd, fidelity=level, max_messages=1, **spec["options"])
+        drives = _core.model_has_drives(platforms[key]._model)
+        sol = platforms[key].inverse(q, qd, qdd, fidelity=level, max_messages=1,
+                                     t=t if drives else None, **spec["options"])
         if (i, a, f) not in limits:
             limits[(i, a, f)] = envelope_limits(platforms[key], t, q, warn_condition)
         within = limits[(i, a, f)]
@@ -100,7 +117,7 @@ def envelope_chunk(spec: dict, chunk: Chunk) -> tuple[pa.Table, dict]:
             message = f"row {j + 1} (t = {t[j]:g} s): {sol.status_name(j)}: {sol.messages[j]}"
             within = [False, *within[1:]]
         else:
-            metrics, status, message = envelope_metrics(sol), 0, ""
+            metrics, status, message = envelope_metrics(sol, t, drives), 0, ""
         row = [case, level, mass, *com, m["name"], a, f, len(t), *metrics, *within, status, message]
         for name, value in zip(columns, row):
             columns[name].append(value)
