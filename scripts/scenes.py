@@ -14,7 +14,8 @@ import argparse
 import pathlib
 
 import numpy as np
-from stewart.scenes import DDOT, DOT, POSE, pose, times, trajectory  # noqa: F401  (the scripts' names)
+# the scripts' names
+from stewart.scenes import DDOT, DOT, POSE, pose, times, trajectory  # noqa: F401
 from stewart import scenes
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]

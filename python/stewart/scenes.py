@@ -89,7 +89,8 @@ def _check_pose(scene: dict, where: str) -> None:
             if not _finite(s.get(key, 0.0)):
                 raise SceneError(f"{where}.pose.{comp}.{key} = {s.get(key)!r} must be a finite number")
     if not (_finite(scene.get("duration")) and scene["duration"] > 0):
-        raise SceneError(f"{where}.duration = {scene.get('duration')!r} must be a finite number > 0")
+        raise SceneError(f"{where}.duration = {scene.get('duration')!r} must be a finite "
+                         "number > 0")
 
 
 def _check_move(move: Any, where: str) -> None:
