@@ -432,8 +432,11 @@ def _time_law(path, platform, segments, margin, limits):
     xs = _speed_bound_x(Lp, dq, omega, limits, shrink)
     end = (Lp[1:], Lpp[1:])
     if path.breaks.size:  # at a break, the segment before it ends on the other side's L''
-        _, Lp_left, Lpp_left, dq_left, omega_left = _leg_derivatives(platform, path, s, "left")
-        xs = np.minimum(xs, _speed_bound_x(Lp_left, dq_left, omega_left, limits, shrink))
+        at = np.flatnonzero(np.isin(s, path.breaks))  # elsewhere both sides are the same
+        _, Lp_at, Lpp_at, dq_at, omega_at = _leg_derivatives(platform, path, s[at], "left")
+        xs[at] = np.minimum(xs[at], _speed_bound_x(Lp_at, dq_at, omega_at, limits, shrink))
+        Lp_left, Lpp_left = Lp.copy(), Lpp.copy()
+        Lp_left[at], Lpp_left[at] = Lp_at, Lpp_at
         end = (Lp_left[1:], Lpp_left[1:])
     upper, lower = _segment_constraints((Lp[:-1], Lpp[:-1]), end, ds, shrink * limits[1], xs)
     hi = _controllable(upper, lower, xs, ds)
