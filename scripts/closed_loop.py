@@ -5,7 +5,8 @@ steps. Writes OUT/closed_loop.csv (cue, achieved pose, forces) and OUT/closed_lo
 
 At each communication point t (Gauss-Seidel order; the plant has no direct feedthrough, so its
 outputs at t come first and the loop has no algebraic part):
-  1. the scene's pose and its exact rates and accelerations at t -> the inverse unit
+  1. the scene's pose and its exact rates and accelerations at t (for a scene with a move, the
+     move planned by stewart.move on the machine) -> the inverse unit
      (derivatives = 1): reference lengths L_ref, rates L_dot_ref, feed-forward forces F_ff;
   2. the plant's measured lengths L and rates L_dot at t -> the controller, with 1.:
      F = F_ff + kp (L_ref - L) + kd (L_dot_ref - L_dot);
@@ -76,16 +77,17 @@ class Unit:
 
 
 def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
-        fmus=ROOT / "build" / "fmus" / "2.0", machine=None):
+        fmus=ROOT / "build" / "fmus" / "2.0", machine=None, platform=None):
     """Runs the loop; returns a dict of arrays (one row per communication point) and the wall
     time [s] of the stepping loop. machine: the platform's FMU start values (None: the thesis
-    platform)."""
+    platform); platform: the same machine as a stewart.Platform, on which a scene's move is
+    planned at the step h (None: the thesis platform). duration None: the scene's (a move's
+    own; beyond a move's end its goal is held at rest)."""
     machine = machine or {}
     scene = scenes.load(scene) if isinstance(scene, (str, pathlib.Path)) else scene
     fmus = pathlib.Path(fmus)
-    n = int(round(duration / h))
-    t = np.arange(n + 1) * h
-    cue, cue_dot, cue_ddot = scenes.pose(scene, t)
+    t, cue, cue_dot, cue_ddot = scenes.trajectory(scene, platform, h, duration)
+    n = len(t) - 1
     # the plant starts on the trajectory: the cue's pose and rates at t = 0
     start = {f"{p}0": v for p, v in zip(POSE, cue[0])}
     start.update({f"{p}_dot0": v for p, v in zip(POSE, cue_dot[0])})
@@ -199,7 +201,8 @@ def plot(result, path, unit_text="m,rad"):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="combined")
-    parser.add_argument("--duration", type=float, help="[s] (default: the scene's)")
+    parser.add_argument("--duration", type=float,
+                        help="[s] (default: the scene's; a move's: its own)")
     parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
     parser.add_argument("--kp", type=float, help="[N/m] (default 1e6, or machine_gains)")
     parser.add_argument("--kd", type=float, help="[N s/m] (default 1e4, or machine_gains)")
@@ -217,12 +220,16 @@ def main():
         units = plots.units(args.units)
     except ValueError as e:
         parser.error(f"--units: {e}")
-    scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
-    kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)
-    args.kp, args.kd = args.kp or kp, args.kd or kd
-    duration = args.duration or scene["duration"]
-    result, wall = run(scene, duration, args.step, args.kp, args.kd, args.fidelity, args.fmus,
-                       machine)
+    try:
+        scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
+        kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)
+        args.kp, args.kd = args.kp or kp, args.kd or kd
+        duration = args.duration or ("move" not in scene and scene["duration"]) or None
+        result, wall = run(scene, duration, args.step, args.kp, args.kd, args.fidelity,
+                           args.fmus, machine, platform)
+    except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
+        raise SystemExit(f"closed_loop: {e}") from None
+    duration = result["t"][-1]
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     write_csv(result, out / "closed_loop.csv")

@@ -4,7 +4,8 @@ and PNG plots (and a GIF for scenes with "animate": true) into the output folder
 scene runs build/slider-crank-solve instead.
 
 At each communication point the master sets the pose (and, with derivatives = 1, its exact first
-and second derivatives), reads the outputs (a direct function of the inputs set), then steps.
+and second derivatives), reads the outputs (a direct function of the inputs set), then steps. A
+scene with a move section plays the move planned by stewart.move on the platform (docs/moves.md).
 
 usage: run_scene.py SCENE [--fmu PATH] [--out DIR] [--fidelity 0|1|2] [--derivatives 0|1]
                           [--compare 1,2] [--platform FILE.json [--scale-to-ranges]]
@@ -72,10 +73,11 @@ class Unit:
         shutil.rmtree(self.unzipped, ignore_errors=True)
 
 
-def run(fmu_path, scene, fidelity=2, derivatives=1, dt=None, parameters=None):
-    """Every output at every communication point: {name: array}, plus 't' and the pose."""
-    t = scenes.times(scene, dt)
-    q, qd, qdd = scenes.pose(scene, t)
+def run(fmu_path, scene, fidelity=2, derivatives=1, dt=None, parameters=None, platform=None):
+    """Every output at every communication point: {name: array}, plus 't' and the pose. A
+    move is planned on `platform` (the machine `parameters` describe; default the thesis
+    platform with the scene's parameters)."""
+    t, q, qd, qdd = scenes.trajectory(scene, platform, dt)
     unit = Unit(fmu_path, {"fidelity": fidelity, "derivatives": derivatives,
                            **scene.get("parameters", {}), **(parameters or {})})
     rows = []
@@ -122,15 +124,22 @@ def main():
         plots.units(args.units)
     except ValueError as e:
         parser.error(f"--units: {e}")
-    scene = scenes.load(args.scene)
+    try:
+        scene = scenes.load(args.scene)
+    except ValueError as e:
+        raise SystemExit(f"run_scene: {e}") from None
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     name, title = scene["name"], scene.get("title", scene["name"])
     if scene.get("mechanism") == "slider-crank":
         return run_slider_crank(scene, out, name, title)
 
-    scene, platform, machine = scenes.on_platform(scene, args)
-    result = run(args.fmu, scene, args.fidelity, args.derivatives, parameters=machine)
+    try:
+        scene, platform, machine = scenes.on_platform(scene, args)
+        result = run(args.fmu, scene, args.fidelity, args.derivatives, parameters=machine,
+                     platform=platform)
+    except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
+        raise SystemExit(f"run_scene: {e}") from None
     write_csv(result, out / f"{name}.csv")
     level = plots.FIDELITY_NAMES[args.fidelity]
     plots.plot_legs(result["t"], {g: legs(result, g) for g in ("L", "L_dot", "F")},
@@ -143,8 +152,8 @@ def main():
         written.append(f"{name}.html")
     if args.compare:
         levels = [int(v) for v in args.compare.split(",")]
-        forces = {lv: legs(run(args.fmu, scene, lv, args.derivatives, parameters=machine), "F")
-                  for lv in levels}
+        forces = {lv: legs(run(args.fmu, scene, lv, args.derivatives, parameters=machine,
+                               platform=platform), "F") for lv in levels}
         plots.plot_forces_per_fidelity(result["t"], forces, out / f"{name}_fidelity.png", title)
         written.append(f"{name}_fidelity.png")
     framed = any(np.any(platform.params.get(f, 0.0)) for f in ("tool_frame", "user_frame"))

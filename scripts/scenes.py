@@ -3,7 +3,7 @@
 
 A scene's pose is a sum of one sinusoid per component, value = mean + amplitude sin(omega t + phase),
 so its first and second derivatives are exact (the package's stewart.scenes reads and samples
-them). The thesis manoeuvres (heave, roll, pitch, yaw) and a combined cue are in scenes/;
+them); or a move section, a rest-to-rest move that stewart.move plans (docs/moves.md). The thesis manoeuvres (heave, roll, pitch, yaw) and a combined cue are in scenes/;
 scenes/slider_crank.json ("mechanism": "slider-crank") is the thesis' other mechanism, run by
 build/slider-crank-solve instead of the FMU.
 
@@ -14,7 +14,8 @@ import argparse
 import pathlib
 
 import numpy as np
-from stewart.scenes import DDOT, DOT, POSE, pose, times  # noqa: F401  (the scripts' names)
+# the scripts' names
+from stewart.scenes import DDOT, DOT, POSE, pose, times, trajectory  # noqa: F401
 from stewart import scenes
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -50,11 +51,11 @@ def on_platform(scene, args):
     return moved, platform, stewart.fmu_start_values(platform)
 
 
-def write_pose_csv(scene, path, dt=None, derivatives=True):
+def write_pose_csv(scene, path, dt=None, derivatives=True, platform=None):
+    """The scene's poses (a move planned on platform, default the thesis') as a CSV."""
     if isinstance(scene, (str, pathlib.Path)):
         scene = load(scene)
-    t = times(scene, dt)
-    q, qd, qdd = pose(scene, t)
+    t, q, qd, qdd = trajectory(scene, platform, dt)
     columns = ["t", *POSE] + ([*DOT, *DDOT] if derivatives else [])
     table = np.column_stack([t, q] + ([qd, qdd] if derivatives else []))
     with open(path, "w") as f:
@@ -71,7 +72,10 @@ def main():
     parser.add_argument("--no-derivatives", action="store_true",
                         help="pose columns only (stewart-solve then uses finite differences)")
     args = parser.parse_args()
-    write_pose_csv(args.scene, args.out, args.dt, not args.no_derivatives)
+    try:
+        write_pose_csv(args.scene, args.out, args.dt, not args.no_derivatives)
+    except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
+        raise SystemExit(f"scenes.py: {e}") from None
 
 
 if __name__ == "__main__":

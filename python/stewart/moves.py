@@ -29,12 +29,13 @@ import numpy as np
 
 from .angles import _angles_of, _rate_matrix, _rate_matrix_dot, rotation_matrix
 from .arrays import vector
-from .limits import LIMIT_CLASSES, MARGIN_UNITS, class_name, leg_limits_of, with_leg_limits
+from .limits import (LIMIT_CLASSES, MARGIN_UNITS, POSE_CLASSES, LimitCheck, class_name,
+                     leg_limits_of, with_leg_limits)
 
 KINDS = ("point", "line")
 FRAMES = ("user", "tool")
 #: Grid segments of s for the phase-plane computation (the first try; refined on a retry).
-GRID_SEGMENTS = 2000
+GRID_SEGMENTS = 1000
 #: The limits are planned this much inside (relative); the samples are then checked at the full
 #: limits. Between grid nodes the constraints vary by O(segment^2): this margin covers it.
 PLAN_MARGIN = 1e-4
@@ -126,12 +127,12 @@ class _LinePath:
         E = _rate_matrix(q[:, 3:], self.order)
         dq = np.empty((n, 6))
         dq[:, :3] = self.q1[:3] - self.q0[:3]
-        dq[:, 3:] = np.linalg.solve(E, np.broadcast_to(self.w, (n, 3))[..., None])[..., 0]
+        dq[:, 3:] = _solve3(E, np.broadcast_to(self.w, (n, 3)))
         # d/ds (E a') = dw/ds = 0, so E a'' = -(dE/ds) a'.
         bias = np.einsum("nij,nj->ni", _rate_matrix_dot(q[:, 3:], dq[:, 3:], self.order),
                          dq[:, 3:])
         ddq = np.zeros((n, 6))
-        ddq[:, 3:] = -np.linalg.solve(E, bias[..., None])[..., 0]
+        ddq[:, 3:] = -_solve3(E, bias)
         return q, dq, ddq, np.broadcast_to(self.w, (n, 3)).copy()
 
 
@@ -180,22 +181,39 @@ class _BlendedPath:
         return q, dq, ddq, omega
 
 
-def _skew(w: np.ndarray) -> np.ndarray:
-    z = np.zeros(w.shape[:-1])
-    return np.stack([np.stack([z, -w[..., 2], w[..., 1]], -1),
-                     np.stack([w[..., 2], z, -w[..., 0]], -1),
-                     np.stack([-w[..., 1], w[..., 0], z], -1)], -2)
-
-
 def _exp(w: np.ndarray) -> np.ndarray:
-    """Rodrigues: exp([w]) for (n, 3) rotation vectors."""
-    theta = np.linalg.norm(w, axis=-1)[..., None, None]
-    K = _skew(w)
+    """Rodrigues: exp([w]) = cos(t) I + sin(t)/t [w] + (1 - cos(t))/t^2 w w^T for (n, 3)
+    rotation vectors w of angle t, entry by entry."""
+    theta = np.linalg.norm(w, axis=-1)
     small = theta < 1e-8
     safe = np.where(small, 1.0, theta)
     a = np.where(small, 1.0 - theta ** 2 / 6, np.sin(safe) / safe)
     b = np.where(small, 0.5 - theta ** 2 / 24, (1 - np.cos(safe)) / safe ** 2)
-    return np.eye(3) + a * K + b * (K @ K)
+    c = np.where(small, 1.0 - theta ** 2 / 2, np.cos(safe))
+    R = (b[:, None] * w)[:, :, None] * w[:, None, :]
+    R[:, [0, 1, 2], [0, 1, 2]] += c[:, None]
+    aw = a[:, None] * w
+    R[:, 0, 1] -= aw[:, 2]
+    R[:, 1, 0] += aw[:, 2]
+    R[:, 0, 2] += aw[:, 1]
+    R[:, 2, 0] -= aw[:, 1]
+    R[:, 1, 2] -= aw[:, 0]
+    R[:, 2, 1] += aw[:, 0]
+    return R
+
+
+def _solve3(E: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with E x = rhs for (n, 3, 3) E and (n, 3) rhs, by the adjugate, entry by entry (the
+    rate matrices here are well conditioned away from pitch +-90 degrees, which is refused)."""
+    (a, b, c), (d, e, f), (g, h, k) = ([E[:, r, col] for col in range(3)] for r in range(3))
+    x, y, z = rhs[:, 0], rhs[:, 1], rhs[:, 2]
+    A, B, C = e * k - f * h, f * g - d * k, d * h - e * g   # cofactors of the first row
+    det = a * A + b * B + c * C
+    out = np.empty_like(rhs)
+    out[:, 0] = A * x + (c * h - b * k) * y + (b * f - c * e) * z
+    out[:, 1] = B * x + (a * k - c * g) * y + (c * d - a * f) * z
+    out[:, 2] = C * x + (b * g - a * h) * y + (a * e - b * d) * z
+    return out / det[:, None]
 
 
 def _rotation_vector(R: np.ndarray) -> np.ndarray:
@@ -260,10 +278,7 @@ def _controllable(upper, lower, x_speed, ds):
     x (d_l b_u - d_u b_l) <= d_l c_u - d_u c_l, written without dividing by a d that may be 0."""
     (cu, bu, du), (cl, bl, dl) = upper, lower
     n = cu.shape[0]
-    coef = dl[:, :, None] * bu[:, None, :] - du[:, None, :] * bl[:, :, None]
-    rhs = dl[:, :, None] * cu[:, None, :] - du[:, None, :] * cl[:, :, None]
-    bound = np.divide(rhs, coef, out=np.full_like(rhs, np.inf), where=coef > 0)
-    static = np.minimum(np.min(bound, axis=(1, 2)), np.minimum(x_speed[:-1], _X_CAP))
+    static = np.minimum(_static_bound(upper, lower), np.minimum(x_speed[:-1], _X_CAP))
     # The pairs of each lower bound with the next node's set, x + 2 u ds <= hi[i + 1]:
     # x (d_l - 2 ds b_l) <= d_l hi - 2 ds c_l.
     ds = ds[:, None]
@@ -272,7 +287,11 @@ def _controllable(upper, lower, x_speed, ds):
     next_coef = np.where(use, next_coef, 1.0)
     next_d = np.where(use, dl, 0.0)
     next_c = np.where(use, 2 * ds * cl, -np.inf)
-    # The sequential passes run on Python floats: numpy's per-call cost dominates 13 values.
+    # The sequential pass runs on Python floats (numpy's per-call cost dominates a few values)
+    # over the bounds that are the smallest for some x in [0, the next node's static bound].
+    top_next = np.append(np.minimum(static[1:], _X_CAP), 0.0)
+    keep = _envelope(next_d / next_coef, -next_c / next_coef, top_next)
+    next_d, next_c, next_coef = _compact(keep, (next_d, 0.0), (next_c, -np.inf), (next_coef, 1.0))
     rows = zip(next_d.tolist(), next_c.tolist(), next_coef.tolist(), static.tolist())
     hi = [0.0] * (n + 1)
     for i, (d, c, k, top) in zip(range(n - 1, -1, -1), reversed(list(rows))):
@@ -280,6 +299,71 @@ def _controllable(upper, lower, x_speed, ds):
         limit = min([(dj * h - cj) / kj for dj, cj, kj in zip(d, c, k)])
         hi[i] = max(0.0, min(top, limit))
     return np.array(hi)
+
+
+def _static_bound(upper, lower):
+    """Per segment the smallest x bound of every pair (lower, upper) of _segment_constraints'
+    bounds (the pairs of _controllable's docstring). The legs' bounds (all columns but the
+    last) come in pairs of one line, u within +-A: the pair (lower j, upper k) gives
+    x (d_j b_k - d_k b_j) <= d_j A_k + d_k A_j and (lower k, upper j) the same with the
+    coefficient negated, so each unordered pair is computed once, with |coefficient|."""
+    (cu, bu, du), (cl, bl, dl) = upper, lower
+    A, b, d = cu[:, :-1], bu[:, :-1], du[:, :-1]
+    j, k = np.triu_indices(A.shape[1], 1)
+    coef = [np.abs(d[:, j] * b[:, k] - d[:, k] * b[:, j]),
+            dl[:, :-1] * bu[:, -1:] - du[:, -1:] * bl[:, :-1],   # leg lowers, last upper
+            dl[:, -1:] * bu[:, :-1] - du[:, :-1] * bl[:, -1:]]   # last lower, leg uppers
+    rhs = [d[:, j] * A[:, k] + d[:, k] * A[:, j],
+           dl[:, :-1] * cu[:, -1:] - du[:, -1:] * cl[:, :-1],
+           dl[:, -1:] * cu[:, :-1] - du[:, :-1] * cl[:, -1:]]
+    smallest = np.full(cu.shape[0], np.inf)
+    for c, r in zip(coef, rhs):
+        bound = np.divide(r, c, out=np.full_like(r, np.inf), where=c > 0)
+        smallest = np.minimum(smallest, bound.min(axis=1))
+    return smallest
+
+
+def _envelope(slope, offset, top):
+    """Which of the lines slope h + offset ((n, m) each; offset +inf: no line) are the smallest
+    of row i's lines somewhere in h in [0, top[i]]: the lower envelope, walked from h = 0 (the
+    smallest line there, ties to the smaller slope) to each next line that crosses below the
+    current one (the first crossing, ties to the smaller slope) until a crossing lies beyond
+    top. The slope falls at every step, so at most m steps, each one numpy pass over all rows.
+    Exact but for rounding at a crossing, where the lines differ by rounding."""
+    n, m = slope.shape
+    rows = np.arange(n)
+    finite = np.isfinite(offset)
+    keep = np.zeros((n, m), dtype=bool)
+    start = np.where(finite, offset, np.inf)
+    tied = finite & (start == start.min(axis=1)[:, None])
+    line = np.argmin(np.where(tied, slope, np.inf), axis=1)
+    live = finite.any(axis=1)
+    h = np.zeros(n)
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for _ in range(m):
+            keep[rows[live], line[live]] = True
+            s_now, o_now = slope[rows, line][:, None], offset[rows, line][:, None]
+            below = finite & (slope < s_now)
+            cross = np.where(below, np.maximum((offset - o_now) / (s_now - slope), h[:, None]),
+                             np.inf)
+            h_next = cross.min(axis=1)
+            live &= h_next <= top
+            if not live.any():
+                break
+            tied = below & (cross == h_next[:, None])
+            line = np.where(live, np.argmin(np.where(tied, slope, np.inf), axis=1), line)
+            h = np.where(live, h_next, h)
+    return keep
+
+
+def _compact(keep, *columns):
+    """Each (array, inert value) of columns with row i's kept entries first, cut to the widest
+    row's count, the rest filled with the inert value (a bound that never binds)."""
+    width = max(1, int(keep.sum(axis=1).max()))
+    order = np.argsort(~keep, axis=1, kind="stable")[:, :width]
+    kept = np.take_along_axis(keep, order, axis=1)
+    return tuple(np.where(kept, np.take_along_axis(a, order, axis=1), inert)
+                 for a, inert in columns)
 
 
 def _forward(upper, hi, ds):
@@ -292,6 +376,10 @@ def _forward(upper, hi, ds):
     # A bound with d = 0 is no bound on u (its x part is in hi): c - b x times 0 drops it.
     cu = np.where(positive, cu, _X_CAP)
     bu = np.where(positive, bu, 0.0)
+    # Only the bounds that are the smallest for some x in [0, hi] of their node enter the
+    # sequential pass.
+    keep = _envelope(-bu * inv_d, np.where(positive, cu * inv_d, np.inf), hi[:-1])
+    cu, bu, inv_d = _compact(keep, (cu, _X_CAP), (bu, 0.0), (inv_d, 0.0))
     x = [0.0] * (n + 1)
     u = [0.0] * n
     his, steps = hi.tolist(), ds.tolist()
@@ -344,8 +432,11 @@ def _time_law(path, platform, segments, margin, limits):
     xs = _speed_bound_x(Lp, dq, omega, limits, shrink)
     end = (Lp[1:], Lpp[1:])
     if path.breaks.size:  # at a break, the segment before it ends on the other side's L''
-        _, Lp_left, Lpp_left, dq_left, omega_left = _leg_derivatives(platform, path, s, "left")
-        xs = np.minimum(xs, _speed_bound_x(Lp_left, dq_left, omega_left, limits, shrink))
+        at = np.flatnonzero(np.isin(s, path.breaks))  # elsewhere both sides are the same
+        _, Lp_at, Lpp_at, dq_at, omega_at = _leg_derivatives(platform, path, s[at], "left")
+        xs[at] = np.minimum(xs[at], _speed_bound_x(Lp_at, dq_at, omega_at, limits, shrink))
+        Lp_left, Lpp_left = Lp.copy(), Lpp.copy()
+        Lp_left[at], Lpp_left[at] = Lp_at, Lpp_at
         end = (Lp_left[1:], Lpp_left[1:])
     upper, lower = _segment_constraints((Lp[:-1], Lpp[:-1]), end, ds, shrink * limits[1], xs)
     hi = _controllable(upper, lower, xs, ds)
@@ -377,10 +468,11 @@ def _sample(s_nodes, v, u, t_nodes, sample_time):
     return t, s, rate, accel, scale
 
 
-def _first_limit(platform, poses, s, times, warn_condition):
-    """MoveError at the smallest s whose pose is beyond a geometric limit, if any."""
-    check = platform.limits(poses, warn_condition=warn_condition)
-    bad = np.flatnonzero(check.first != 0)
+def _first_limit(check, poses, s, times):
+    """MoveError at the smallest s whose pose is beyond a geometric limit in check (a
+    Platform.limits result of poses; the geometric classes are checked first, so a row's first
+    class is geometric if one is met), if any."""
+    bad = np.flatnonzero((check.first != 0) & (check.first <= len(POSE_CLASSES)))
     if bad.size:
         j = bad[np.argmin(s[bad])]
         name = class_name(check.first[j])
@@ -391,12 +483,11 @@ def _first_limit(platform, poses, s, times, warn_condition):
                         "the other kind", name, float(times[j]), float(s[j]))
 
 
-def _leg_excess(limited, t, pose, rate, accel, s, with_forces, warn_condition):
-    """MoveError naming the first sample whose leg speed, acceleration (or, with_forces, the
-    massless inverse's force) exceeds the limited platform's leg limit by more than
-    CHECK_SLACK (relative), from the library's leg classes (Platform.limits); or None."""
-    check = limited.limits(pose, rate, accel, forces="massless" if with_forces else None,
-                           warn_condition=warn_condition)
+def _leg_excess(limited, check, t, s):
+    """MoveError naming the first sample whose leg speed, acceleration (or the massless
+    inverse's force) exceeds the limited platform's leg limit by more than CHECK_SLACK
+    (relative), from the library's leg classes in check (limited.limits of the samples with
+    their rates and accelerations); or None."""
     bounds = leg_limits_of(limited)
     for name in ("leg_speed", "leg_accel", "leg_force"):
         column = LIMIT_CLASSES.index(name)
@@ -410,6 +501,13 @@ def _leg_excess(limited, t, pose, rate, accel, s, with_forces, warn_condition):
                              f"{-check.leg_margin[j, column, k]:.6g} {MARGIN_UNITS[column]}",
                              name, float(t[j]), float(s[j]))
     return None
+
+
+def _joined(a, b):
+    """The first classes and margins of two limit checks, rows of a then b (what
+    _first_limit reads)."""
+    return LimitCheck(np.concatenate([a.first, b.first]), None,
+                      np.vstack([a.margin, b.margin]), None, None, None, None)
 
 
 def _rotation_order(platform) -> int:
@@ -465,9 +563,16 @@ def _plan(platform, limited, path, q1, limits, sample_time, warn_condition, kind
         q[-1] = q1
         rate = dq * s_rate[:, None]
         acc = dq * s_accel[:, None] + ddq * (s_rate ** 2)[:, None]
-        _first_limit(platform, np.vstack([q, grid]), np.concatenate([s, nodes]),
-                     np.concatenate([t, t_nodes * scale]), warn_condition)
-        excess = _leg_excess(limited, t, q, rate, acc, s, with_forces, warn_condition)
+        # One check of the samples gives their geometric and leg classes; the grid's poses
+        # (between the samples) are checked for the geometric ones.
+        check = limited.limits(q, rate, acc, warn_condition=warn_condition)
+        on_grid = platform.limits(grid, warn_condition=warn_condition)
+        _first_limit(_joined(check, on_grid), np.vstack([q, grid]),
+                     np.concatenate([s, nodes]), np.concatenate([t, t_nodes * scale]))
+        if with_forces:  # the forces need poses within the geometric limits
+            check = limited.limits(q, rate, acc, forces="massless",
+                                   warn_condition=warn_condition)
+        excess = _leg_excess(limited, check, t, s)
         if excess is None:
             return Move(t, q, rate, acc, s, s_rate, s_accel, float(t[-1]), kind)
         if excess.limit_class == "leg_force":
