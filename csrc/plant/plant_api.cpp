@@ -290,6 +290,10 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     p->options = *options;
     p->limits = stewart::limit_constants(model->params, model->geometry, HUGE_VAL);
     p->dynamics = fd::dynamics_model(*model, options->fidelity);
+    if (fd::drive_model(model->params, *options, p->dynamics.drives, msg, size) != STEWART_OK) {
+        delete p;
+        return nullptr;
+    }
     if (!p->integrator.init(&p->dynamics, *options, msg, size)) {
         delete p;
         return nullptr;
@@ -576,6 +580,35 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
 
 namespace {
 
+// The legs' forces and drive outputs of o at the evaluation e of the inputs.
+void drive_outputs(const stewart_plant &p, const double *input, const fd::Evaluation &e,
+                   stewart_plant_output &o) {
+    const fd::DriveModel &dm = p.dynamics.drives;
+    if (dm.input == STEWART_PLANT_INPUT_FORCE) {
+        std::memcpy(o.force, input, sizeof o.force);
+        return;
+    }
+    const stewart_params &par = p.model->params;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const stewart::LegDrive &d = dm.legs[k];
+        const double i = e.drive.current[k], omega = d.motor_per_leg * e.drive.length_rate[k];
+        o.force[k] = e.drive.leg_force[k];
+        o.current[k] = i;
+        o.motor_speed[k] = omega;
+        o.motor_torque[k] = d.torque_constant * i;
+        o.voltage[k] = dm.input == STEWART_PLANT_INPUT_VOLTAGE
+                           ? input[k]
+                           : d.resistance * i + d.torque_constant * omega;
+        o.electrical_power[k] = o.voltage[k] * i;
+        const int bit = 1 << k;
+        if (par.current_max[k] > 0 && std::fabs(i) > par.current_max[k]) o.current_limit_legs |= bit;
+        if (par.voltage_max[k] > 0 && std::fabs(o.voltage[k]) > par.voltage_max[k])
+            o.voltage_limit_legs |= bit;
+        if (par.motor_speed_max[k] > 0 && std::fabs(omega) > par.motor_speed_max[k])
+            o.speed_limit_legs |= bit;
+    }
+}
+
 // stewart_plant_output_get's body. known: the equations' evaluation at the state and forces (the
 // step's last, or nullptr); limit_bits: the joint-limit and interference warnings of the state
 // (the step's, or -1: found here); legs: leg_outputs at the state (the step's, or nullptr);
@@ -612,11 +645,13 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
+    drive_outputs(*p, force ? force : p->force, known ? *known : e, o);
     // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
     if (!(zero_if_finite(o.pose.q, 6) + zero_if_finite(o.pose.q_dot, 6) +
               zero_if_finite(o.lengths.length, STEWART_LEGS) +
               zero_if_finite(o.lengths.length_rate, STEWART_LEGS) +
-              zero_if_finite(o.base_force, 3) + zero_if_finite(o.base_torque, 3) ==
+              zero_if_finite(o.base_force, 3) + zero_if_finite(o.base_torque, 3) +
+              zero_if_finite(o.force, STEWART_LEGS) + zero_if_finite(o.electrical_power, 6) ==
           0))
         return STEWART_ERR_ARGUMENT;
     *out = o;

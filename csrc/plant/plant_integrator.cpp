@@ -219,7 +219,7 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     im.forces->at(tau, force);
     // the massless equations written out (plant_massless.cpp; twist_rate's for the massless model)
     bool defined;
-    if (im.model->with_legs) {
+    if (im.model->with_legs || im.model->drives.input != STEWART_PLANT_INPUT_FORCE) {
         im.evaluation.keep_terms = tau == im.forces->h;  // the step's end: its outputs reuse them
         defined = twist_rate(*im.model, m, force, im.evaluation);
     } else {

@@ -29,7 +29,7 @@ from .feasibility import Feasibility, feasibility
 from .moves import Move, MoveError, move
 from .params import parameters, platform_files
 from .platform import Platform
-from .simulate import Method, Simulation
+from .simulate import Method, PlantInput, Simulation
 from .view import view
 
 try:
@@ -38,7 +38,7 @@ except PackageNotFoundError:  # imported from a source tree, not installed
     __version__ = "unknown"
 
 __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "HomeCheck",
-           "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths", "fmu_start_values",
+           "Fidelity", "Method", "ParameterError", "PlantInput", "fmu_path", "fmu_paths", "fmu_start_values",
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",

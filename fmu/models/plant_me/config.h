@@ -92,6 +92,7 @@ typedef struct model_resources {
     plant_me_derivatives derivatives; /* of `linearize`; cleared when it is rebuilt */
     stewart_params params;
     int fidelity;
+    int input;  /* stewart_plant_options.input of `plant` */
     char message[2 * STEWART_MESSAGE_SIZE];
 } model_resources;
 
