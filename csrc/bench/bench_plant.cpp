@@ -5,6 +5,7 @@
 // with the pose error against the cue. Prints the medians of 7 passes and writes them to argv[1].
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
+#include "drives/leg_drive.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace {
@@ -175,7 +177,124 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
 
 }  // namespace
 
+// A drive on every leg (5 mm lead, gear 3, k_t 0.5 N m/A, efficiencies 0.9 / 0.8, Coulomb,
+// Stribeck and viscous friction; rigid legs).
+void with_drives(stewart_params &p) {
+    for (int k = 0; k < 6; ++k) {
+        p.screw_lead[k] = 0.005;
+        p.gear_ratio[k] = 3;
+        p.rotor_inertia[k] = 2e-5;
+        p.screw_inertia[k] = 9e-5;
+        p.torque_constant[k] = 0.5;
+        p.winding_resistance[k] = 1.2;
+        p.screw_efficiency[k] = 0.9;
+        p.screw_back_efficiency[k] = 0.8;
+        p.coulomb_friction[k] = 40;
+        p.stribeck_friction[k] = 60;
+        p.stribeck_speed[k] = 0.01;
+        p.viscous_friction[k] = 300;
+    }
+}
+
+// The currents of the inverse side's forces by the drive's law (leg_drive.hpp): the nut pushes
+// F + friction, the motor adds the rotor's J omega_dot; rates by the same central differences.
+bool make_current_drive(const stewart_model *model, const stewart_params &p, int fidelity,
+                        double h, double duration, Drive &d) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    o.fidelity = fidelity;
+    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
+    const int n = static_cast<int>(duration / h + 0.5);
+    d.h = h;
+    d.force.assign(6 * (n + 1), 0);
+    d.rate.assign(6 * (n + 1), 0);
+    auto current = [&](double t, double i[6]) {
+        stewart_inverse_output out;
+        stewart_inverse_input in = {combined_cue(t)};
+        if (stewart_inverse_solve(data, &in, &out) != STEWART_OK) return false;
+        for (int k = 0; k < 6; ++k) {
+            const stewart::LegDrive dr = stewart::leg_drive(p, k);
+            const double v = out.lengths.length_rate[k];
+            const double omega = dr.motor_per_leg * v, omega_dot = dr.motor_per_leg * out.lengths.length_accel[k];
+            const double nut = out.force[k] + stewart::friction_force(dr, v, 0.0);
+            i[k] = (stewart::screw_motor_torque(dr, nut, omega) + dr.inertia * omega_dot) /
+                   dr.torque_constant;
+        }
+        return true;
+    };
+    bool ok = data != nullptr;
+    const double delta = 1e-4;
+    for (int i = 0; i <= n && ok; ++i) {
+        double now[6], ahead[6], behind[6];
+        ok = current(i * h, now) && current(i * h + delta, ahead) && current(i * h - delta, behind);
+        for (int k = 0; k < 6 && ok; ++k) {
+            d.force[6 * i + k] = now[k];
+            d.rate[6 * i + k] = (ahead[k] - behind[k]) / (2 * delta);
+        }
+    }
+    for (int i = 0; i < n && ok; ++i) {
+        stewart_plant_input in{};
+        in.h = h;
+        in.derivatives = 1;
+        for (int k = 0; k < 6; ++k) {
+            in.force_start[k] = d.force[6 * i + k];
+            in.force_end[k] = d.force[6 * i + 6 + k];
+            in.force_rate_start[k] = d.rate[6 * i + k];
+            in.force_rate_end[k] = d.rate[6 * i + 6 + k];
+        }
+        d.input.push_back(in);
+    }
+    stewart_inverse_free(data);
+    return ok;
+}
+
+// The plant driven by currents against the same plant driven by forces (the drives' cost), at
+// 1 ms, default method and tolerances: the report's lines.
+bool drives_report(std::string &report, int passes) {
+    stewart_params p;
+    stewart_params_default(&p);
+    with_drives(p);
+    stewart_model *driven = bench::make_model("bench-plant", &p);
+    stewart_model *plain = bench::make_model("bench-plant");
+    bool ok = driven && plain;
+    char line[256];
+    report += "\ndrives (current input, efficiencies 0.9/0.8, friction, rigid legs) against force "
+              "input, 1 ms, default tolerances:\n";
+    report += "fidelity  input    us/step  rhs/step  pose error\n";
+    const char *names[3] = {"", "massless", "full"};
+    for (int f : {STEWART_MASSLESS, STEWART_FULL}) {
+        Drive forces, currents;
+        ok = ok && make_drive(plain, f, 1e-3, 2.0, forces) &&
+             make_current_drive(driven, p, f, 1e-3, 2.0, currents);
+        if (!ok) break;
+        stewart_plant_options o;
+        stewart_plant_options_default(&o);
+        o.fidelity = f;
+        const Result by_force = run(plain, o, forces, passes);
+        o.input = STEWART_PLANT_INPUT_CURRENT;
+        const Result by_current = run(driven, o, currents, passes);
+        ok = ok && by_force.ok && by_current.ok;
+        std::snprintf(line, sizeof line, "%-9s force    %7.2f  %8.1f  %10.2e\n", names[f],
+                      by_force.us_per_step, by_force.rhs_per_step, by_force.pose_error);
+        report += line;
+        std::snprintf(line, sizeof line, "%-9s current  %7.2f  %8.1f  %10.2e   (%.2f x force)\n",
+                      names[f], by_current.us_per_step, by_current.rhs_per_step,
+                      by_current.pose_error, by_current.us_per_step / by_force.us_per_step);
+        report += line;
+    }
+    stewart_model_free(driven);
+    stewart_model_free(plain);
+    return ok;
+}
+
 int main(int argc, char **argv) {
+    // "bench-plant drives": the drives' comparison alone (for callgrind, docs/latency.md)
+    if (argc > 1 && std::string(argv[1]) == "drives") {
+        std::string report;
+        const bool ok = drives_report(report, argc > 2 ? std::atoi(argv[2]) : 7);
+        std::fputs(report.c_str(), stdout);
+        return ok ? 0 : 1;
+    }
     stewart_model *model = bench::make_model("bench-plant");
     if (!model) return 1;
     const double duration = 2.0;
@@ -265,6 +384,7 @@ int main(int argc, char **argv) {
         }
         report += "\n";
     }
+    ok = drives_report(report, passes) && ok;
     std::fputs(report.c_str(), stdout);
     if (argc > 1) {
         FILE *out = std::fopen(argv[1], "w");
