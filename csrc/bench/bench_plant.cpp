@@ -13,7 +13,7 @@
 
 #include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
-#include "drives/leg_drive.hpp"
+#include "drives/plant_drive.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace {
@@ -196,10 +196,10 @@ void with_drives(stewart_params &p) {
     }
 }
 
-// The currents of the inverse side's forces by the drive's law (leg_drive.hpp): the nut pushes
-// F + friction, the motor adds the rotor's J omega_dot; rates by the same central differences.
+// The currents of the inverse side's forces by the plant's drive law (plant_drive.hpp, with the
+// plant's smoothing speed vs); rates by the same central differences.
 bool make_current_drive(const stewart_model *model, const stewart_params &p, int fidelity,
-                        double h, double duration, Drive &d) {
+                        double h, double duration, double vs, Drive &d) {
     stewart_inverse_options o;
     stewart_inverse_options_default(&o);
     o.fidelity = fidelity;
@@ -213,12 +213,9 @@ bool make_current_drive(const stewart_model *model, const stewart_params &p, int
         stewart_inverse_input in = {combined_cue(t)};
         if (stewart_inverse_solve(data, &in, &out) != STEWART_OK) return false;
         for (int k = 0; k < 6; ++k) {
-            const stewart::LegDrive dr = stewart::leg_drive(p, k);
-            const double v = out.lengths.length_rate[k];
-            const double omega = dr.motor_per_leg * v, omega_dot = dr.motor_per_leg * out.lengths.length_accel[k];
-            const double nut = out.force[k] + stewart::friction_force(dr, v, 0.0);
-            i[k] = (stewart::screw_motor_torque(dr, nut, omega) + dr.inertia * omega_dot) /
-                   dr.torque_constant;
+            i[k] = stewart::drive_current(stewart::leg_drive(p, k), out.force[k],
+                                          out.lengths.length_rate[k],
+                                          out.lengths.length_accel[k], vs);
         }
         return true;
     };
@@ -250,37 +247,53 @@ bool make_current_drive(const stewart_model *model, const stewart_params &p, int
 
 // The plant driven by currents against the same plant driven by forces (the drives' cost), at
 // 1 ms, default method and tolerances: the report's lines.
-bool drives_report(std::string &report, int passes) {
+bool drives_report(std::string &report, int passes, bool lossless) {
     stewart_params p;
     stewart_params_default(&p);
     with_drives(p);
+    if (lossless)
+        for (int k = 0; k < 6; ++k) {
+            p.screw_efficiency[k] = p.screw_back_efficiency[k] = 1;
+            p.coulomb_friction[k] = p.stribeck_friction[k] = p.viscous_friction[k] = 0;
+        }
     stewart_model *driven = bench::make_model("bench-plant", &p);
     stewart_model *plain = bench::make_model("bench-plant");
     bool ok = driven && plain;
     char line[256];
-    report += "\ndrives (current input, efficiencies 0.9/0.8, friction, rigid legs) against force "
-              "input, 1 ms, default tolerances:\n";
-    report += "fidelity  input    us/step  rhs/step  pose error\n";
+    report += lossless ? "\ndrives, lossless (current input, rotor and screw inertia only, rigid "
+                         "legs) against force input, 1 ms, default tolerances:\n"
+                       : "\ndrives (current input, efficiencies 0.9/0.8, friction, rigid legs) "
+                         "against force input, 1 ms, default tolerances:\n";
+    report += "fidelity  input                   us/step  rhs/step  pose error\n";
     const char *names[3] = {"", "massless", "full"};
     for (int f : {STEWART_MASSLESS, STEWART_FULL}) {
-        Drive forces, currents;
-        ok = ok && make_drive(plain, f, 1e-3, 2.0, forces) &&
-             make_current_drive(driven, p, f, 1e-3, 2.0, currents);
+        Drive forces;
+        ok = ok && make_drive(plain, f, 1e-3, 2.0, forces);
         if (!ok) break;
         stewart_plant_options o;
         stewart_plant_options_default(&o);
         o.fidelity = f;
         const Result by_force = run(plain, o, forces, passes);
+        ok = ok && by_force.ok;
+        std::snprintf(line, sizeof line, "%-9s force                   %7.2f  %8.1f  %10.2e\n",
+                      names[f], by_force.us_per_step, by_force.rhs_per_step, by_force.pose_error);
+        report += line;
         o.input = STEWART_PLANT_INPUT_CURRENT;
-        const Result by_current = run(driven, o, currents, passes);
-        ok = ok && by_force.ok && by_current.ok;
-        std::snprintf(line, sizeof line, "%-9s force    %7.2f  %8.1f  %10.2e\n", names[f],
-                      by_force.us_per_step, by_force.rhs_per_step, by_force.pose_error);
-        report += line;
-        std::snprintf(line, sizeof line, "%-9s current  %7.2f  %8.1f  %10.2e   (%.2f x force)\n",
-                      names[f], by_current.us_per_step, by_current.rhs_per_step,
-                      by_current.pose_error, by_current.us_per_step / by_force.us_per_step);
-        report += line;
+        // the friction's smoothing speed: what the turns cost (lossless: no friction, one run)
+        for (double vs : {1e-4, 1e-3, 1e-2}) {
+            if (lossless && vs != 1e-4) break;
+            o.smoothing_speed = vs;
+            Drive currents;
+            ok = ok && make_current_drive(driven, p, f, 1e-3, 2.0, vs, currents);
+            if (!ok) break;
+            const Result by_current = run(driven, o, currents, passes);
+            ok = ok && by_current.ok;
+            std::snprintf(line, sizeof line,
+                          "%-9s current, v_s %-8.0e  %7.2f  %8.1f  %10.2e   (%.2f x force)\n",
+                          names[f], vs, by_current.us_per_step, by_current.rhs_per_step,
+                          by_current.pose_error, by_current.us_per_step / by_force.us_per_step);
+            report += line;
+        }
     }
     stewart_model_free(driven);
     stewart_model_free(plain);
@@ -291,7 +304,8 @@ int main(int argc, char **argv) {
     // "bench-plant drives": the drives' comparison alone (for callgrind, docs/latency.md)
     if (argc > 1 && std::string(argv[1]) == "drives") {
         std::string report;
-        const bool ok = drives_report(report, argc > 2 ? std::atoi(argv[2]) : 7);
+        const int passes = argc > 2 ? std::atoi(argv[2]) : 7;
+        const bool ok = drives_report(report, passes, true) && drives_report(report, passes, false);
         std::fputs(report.c_str(), stdout);
         return ok ? 0 : 1;
     }
@@ -384,7 +398,7 @@ int main(int argc, char **argv) {
         }
         report += "\n";
     }
-    ok = drives_report(report, passes) && ok;
+    ok = drives_report(report, passes, true) && drives_report(report, passes, false) && ok;
     std::fputs(report.c_str(), stdout);
     if (argc > 1) {
         FILE *out = std::fopen(argv[1], "w");

@@ -12,6 +12,7 @@
 // solved again), starting from the sign of c k_t i - m_r a_k.
 #include <cmath>
 
+#include "drives/plant_drive.hpp"
 #include "plant/plant_equations.hpp"
 #include "util/message.hpp"
 
@@ -21,15 +22,6 @@ namespace fd {
 namespace {
 
 constexpr int kMaxSignPasses = 8;  // the efficiencies' sign pattern, solved again at most so often
-
-// The screw's efficiency as a factor of F_i: x = sign(F_i) s(L_dot) in (-1, 1) says how much
-// power flows from the motor (x > 0: forward, eta) or from the load (x < 0: F_i / eta_back). It
-// fades to 1 (lossless) at rest, so the loss (1 - e) F_i L_dot is never negative: no energy is
-// made where the regularisation blends the two directions.
-inline double efficiency_factor(const LegDrive &drive, double x) {
-    return x >= 0 ? 1.0 + (drive.efficiency - 1.0) * x
-                  : 1.0 - (1.0 / drive.back_efficiency - 1.0) * x;
-}
 
 // The end stop's force on the leg beyond [stop_min, stop_max]: a spring k delta and a damper
 // d L_dot limited to +-k delta, so that the force is continuous where the leg meets the stop
@@ -138,8 +130,8 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
         const double friction = friction_force(drive, L_dot, vs);
         const double stop = stop_force(dm, k, leg.length, L_dot);
         r.passive = stop - friction;
-        r.smoothed = L_dot / std::sqrt(L_dot * L_dot + vs * vs);
-        r.lossy = efficiency_factor(drive, r.smoothed) != efficiency_factor(drive, -r.smoothed);
+        r.smoothed = smooth_sign(L_dot, vs);
+        r.lossy = screw_force_factor(drive, r.smoothed) != screw_force_factor(drive, -r.smoothed);
         sign[k] = r.bias >= 0 ? 1 : -1;
         e.drive.current[k] = current;
         e.drive.length_rate[k] = L_dot;
@@ -153,7 +145,7 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
         Eigen::Matrix<double, 6, 1> b = rhs;
         for (int k = 0; k < STEWART_LEGS; ++k) {
             const LegDriveRow &r = rows[k];
-            factor[k] = efficiency_factor(dm.legs[k], sign[k] * r.smoothed);
+            factor[k] = screw_force_factor(dm.legs[k], sign[k] * r.smoothed);
             const double weight = factor[k] * r.reflected, force = factor[k] * r.bias + r.passive;
             for (int i = 0; i < 6; ++i) {
                 b[i] += r.j[i] * force;
