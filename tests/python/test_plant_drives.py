@@ -61,3 +61,116 @@ def test_inverse_currents_reproduce_the_cue(fidelity):
 def test_current_input_without_drives_is_refused():
     with pytest.raises(stewart.ParameterError, match="screw_lead"):
         stewart.Platform().simulate([0, 1e-3], np.zeros((2, 6)), input="current")
+
+
+# ---------------------------------------------------------------- the plant FMUs
+
+def fmu_drive(input_kind=1):
+    """The drive's parameters as the FMUs name them (one per leg), and the input kind."""
+    values = {f"{name}[{k}]": v for name, v in DRIVE.items() for k in range(1, 7)}
+    values["input"] = input_kind
+    return values
+
+
+HOLD = [0.45, 0.40, 0.43, 0.41, 0.44, 0.42]  # currents about those that hold the platform [A]
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+@pytest.mark.parametrize("fidelity", [1, 2])
+def test_co_simulation_fmu_takes_currents_as_the_library_does(version, fidelity):
+    """StewartPlant with input = 1: its F[k] inputs carry currents, held over each step; its pose
+    and drive outputs are Platform.simulate's on the same currents, to rounding."""
+    from test_plant_fmu import Instance
+    h, n = 1e-3, 200
+    t = np.arange(n + 1) * h
+    currents = np.tile(HOLD, (n + 1, 1))
+    lib = stewart.Platform(**DRIVE).simulate(t, currents, fidelity, input="current")
+    assert lib.completed, lib.message
+    u = Instance("StewartPlant", version, "driven").init(fidelity=fidelity, **fmu_drive())
+    names = (list(scenes.POSE) + [f"current[{k}]" for k in range(1, 7)] +
+             [f"motor_speed[{k}]" for k in range(1, 7)] + [f"force[{k}]" for k in range(1, 7)] +
+             [f"electrical_power[{k}]" for k in range(1, 7)])
+    try:
+        got = []
+        for j in range(n):
+            u.set_reals([f"F[{k}]" for k in range(1, 7)], currents[j])
+            assert u.step(t[j], h) == 0, u.messages[-3:]
+            got.append(u.get(names))
+        got = np.array(got)
+    finally:
+        u.free()
+    want = np.column_stack([lib.pose, lib.current, lib.motor_speed, lib.force,
+                            lib.electrical_power])[1:]
+    assert np.abs(lib.pose[-1] - lib.pose[0]).max() > 1e-4  # the currents did move it
+    np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("version", ["2.0", "3.0"])
+def test_model_exchange_fmu_under_cvode_follows_the_co_simulation_plant(version):
+    """StewartPlantME with input = 1 under fmpy's CVODE against StewartPlant under the same
+    currents (held): the two integrators agree to their tolerances."""
+    from test_plant_fmu import Instance, fmu_file
+    import fmpy
+    t_end, h = 0.2, 1e-3
+    names = list(scenes.POSE) + [f"motor_speed[{k}]" for k in range(1, 7)]
+    table = np.array([(0.0, *HOLD), (1e3, *HOLD)],
+                     dtype=[("time", float)] + [(f"F[{k}]", float) for k in range(1, 7)])
+    result = fmpy.simulate_fmu(fmu_file("StewartPlantME", version), fmi_type="ModelExchange",
+                               solver="CVode", relative_tolerance=1e-10, stop_time=t_end,
+                               output_interval=h, start_values=fmu_drive(), input=table,
+                               output=names)
+    u = Instance("StewartPlant", version, "cs").init(**fmu_drive())
+    try:
+        rows = [u.get(names)]
+        for j in range(int(round(t_end / h))):
+            u.set_reals([f"F[{k}]" for k in range(1, 7)], HOLD)
+            assert u.step(j * h, h) == 0
+            rows.append(u.get(names))
+    finally:
+        u.free()
+    me = np.column_stack([result[n] for n in names])
+    keep = np.append(np.diff(result["time"]) > 0, True)
+    me = me[keep]
+    cs = np.array(rows)
+    assert me.shape == cs.shape
+    err = np.abs(me[:, :6] - cs[:, :6]).max()
+    print(f"ME under CVODE against CS, FMI {version}: pose {err:.3g}")
+    assert err < 1e-7
+    np.testing.assert_allclose(me[:, 6:], cs[:, 6:], rtol=1e-6, atol=1e-6)
+
+
+def test_model_exchange_refuses_directional_derivatives_with_currents():
+    """The linearisation knows force input only: with input = 1 the ME unit says so instead of
+    giving the force-driven derivatives."""
+    from test_plant_me_fmu import MEInstance
+    me = MEInstance("2.0").init(**fmu_drive()).continuous()
+    try:
+        vr = me.vr
+        with pytest.raises(Exception):
+            me.fmu.getDirectionalDerivative([vr["x_dot"]], [vr["x"]], [1.0])
+        assert any("directional derivatives" in m for m in me.messages)
+    finally:
+        me.free()
+
+
+def test_stewart_simulate_takes_the_input_option(tmp_path):
+    """stewart-simulate --param input=1 with the drive's parameters: Platform.simulate's rows."""
+    import subprocess
+    from fmu_support import BUILD
+    h, n = 1e-3, 50
+    t = np.arange(n + 1) * h
+    currents = np.tile(HOLD, (n + 1, 1))
+    with open(tmp_path / "in.csv", "w") as f:
+        f.write("t,F1,F2,F3,F4,F5,F6\n")
+        for ti, row in zip(t, currents):
+            f.write(",".join(repr(float(v)) for v in (ti, *row)) + "\n")
+    params = [a for name, v in DRIVE.items() for a in ("--param", f"{name}={v!r}")]
+    r = subprocess.run([str(BUILD / "stewart-simulate"), *params, "--param", "input=1",
+                        str(tmp_path / "in.csv"), str(tmp_path / "out.csv")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    out = np.genfromtxt(tmp_path / "out.csv", delimiter=",", names=True)
+    lib = stewart.Platform(**DRIVE).simulate(t, currents, input="current")
+    np.testing.assert_allclose(out["z"], lib.pose[:, 2], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(out["current1"], lib.current[:, 0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(out["motor_speed3"], lib.motor_speed[:, 2], rtol=0, atol=1e-9)
