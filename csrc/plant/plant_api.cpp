@@ -578,10 +578,8 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     return STEWART_OK;
 }
 
-namespace {
-
 // The legs' forces and drive outputs of o at the evaluation e of the inputs.
-void drive_outputs(const stewart_plant &p, const double *input, const fd::Evaluation &e,
+void plant_drive_outputs(const stewart_plant &p, const double *input, const fd::Evaluation &e,
                    stewart_plant_output &o) {
     const fd::DriveModel &dm = p.dynamics.drives;
     if (dm.input == STEWART_PLANT_INPUT_FORCE) {
@@ -608,6 +606,8 @@ void drive_outputs(const stewart_plant &p, const double *input, const fd::Evalua
             o.speed_limit_legs |= bit;
     }
 }
+
+namespace {
 
 // stewart_plant_output_get's body. known: the equations' evaluation at the state and forces (the
 // step's last, or nullptr); limit_bits: the joint-limit and interference warnings of the state
@@ -645,7 +645,7 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
-    drive_outputs(*p, force ? force : p->force, known ? *known : e, o);
+    plant_drive_outputs(*p, force ? force : p->force, known ? *known : e, o);
     // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
     if (!(zero_if_finite(o.pose.q, 6) + zero_if_finite(o.pose.q_dot, 6) +
               zero_if_finite(o.lengths.length, STEWART_LEGS) +

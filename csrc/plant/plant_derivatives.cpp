@@ -157,6 +157,7 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    plant_drive_outputs(*p, in->force, e, o);
     const double *values[6] = {o.pose.q_ddot, o.lengths.length, o.lengths.length_rate,
                                o.lengths.length_accel, o.base_force, o.base_torque};
     const int counts[6] = {6, STEWART_LEGS, STEWART_LEGS, STEWART_LEGS, 3, 3};

@@ -37,3 +37,8 @@ struct stewart_plant {
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
 };
+
+// The legs' forces and drive outputs of o (force, current, voltage, motor speed and torque,
+// electrical power, the drive-limit bits) at the evaluation e of the inputs (plant_api.cpp).
+void plant_drive_outputs(const stewart_plant &p, const double *input,
+                         const stewart::fd::Evaluation &e, stewart_plant_output &o);

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import stewart
-from stewart import scenes
+import scenes
 
 DRIVE = dict(screw_lead=0.005, gear_ratio=3.0, rotor_inertia=2e-5, screw_inertia=9e-5,
              torque_constant=0.5, winding_resistance=1.2)
