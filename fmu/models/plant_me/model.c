@@ -18,7 +18,9 @@
 void model_start_values(fmu_values *v) {
     stewart_params p;
     stewart_params_default(&p);
-    plant_me_start s = {{0, 0, p.home_height, 0, 0, 0}, {0}};
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    plant_me_start s = {{0, 0, p.home_height, 0, 0, 0}, {0}, o.smoothing_speed};
     fmu_start_values(v);
     fmu_params_to_values(v, &p);
     fmu_settings_to_values(v, &s);
@@ -42,14 +44,19 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
         return FMU_ERROR;
     }
     const int input = v->integer[VR_input];
+    plant_me_start settings;
+    fmu_settings_from_values(v, &settings);
     stewart_params p;
     params_from_values(v, &p);
     const int new_model = !r->model || memcmp(&p, &r->params, sizeof p) != 0;
-    if (!new_model && r->plant && fidelity == r->fidelity && input == r->input) return FMU_OK;
+    if (!new_model && r->plant && fidelity == r->fidelity && input == r->input &&
+        settings.smoothing_speed == r->smoothing_speed)
+        return FMU_OK;
     stewart_plant_options o;
     stewart_plant_options_default(&o);
     o.fidelity = fidelity;
     o.input = input;
+    o.smoothing_speed = settings.smoothing_speed;
     stewart_model *m = new_model ? stewart_model_create(&p, r->message, sizeof r->message)
                                  : r->model;
     stewart_plant *plant = m ? stewart_plant_create(m, &o, r->message, sizeof r->message) : NULL;
@@ -83,6 +90,7 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     r->derivatives.valid = 0;
     r->fidelity = fidelity;
     r->input = input;
+    r->smoothing_speed = settings.smoothing_speed;
     fmu_log(inst, FMU_OK, LOG_EVENTS, "plant built (fidelity %d)", fidelity);
     return FMU_OK;
 }
