@@ -104,8 +104,7 @@ stewart_status drive_model(const stewart_params &p, const stewart_plant_options 
 bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double input[STEWART_LEGS],
                        Evaluation &e) {
     static const double zero[STEWART_LEGS] = {0, 0, 0, 0, 0, 0};
-    Eigen::Matrix<double, 6, 6> M;
-    Eigen::Matrix<double, 6, 1> rhs;
+    double M[6][6], rhs[6];
     if (!reduced_equations(d, m, zero, e, M, rhs)) return false;
     const DriveModel &dm = d.drives;
     const double vs = dm.smoothing_speed;
@@ -138,21 +137,22 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
         e.drive.friction[k] = friction;
         e.drive.stop_force[k] = stop;
     }
-    Eigen::Matrix<double, 6, 1> nu_dot;
-    double factor[STEWART_LEGS];
+    bool any_lossy = false;
+    for (const LegDriveRow &r : rows) any_lossy |= r.lossy;
+    double nu_dot[6], factor[STEWART_LEGS], weight[STEWART_LEGS], j[STEWART_LEGS][6];
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        for (int i = 0; i < 6; ++i) j[k][i] = rows[k].j[i];
     for (int pass = 0; pass < kMaxSignPasses; ++pass) {
-        Eigen::Matrix<double, 6, 6> A = M;
-        Eigen::Matrix<double, 6, 1> b = rhs;
+        double b[6];
+        for (int i = 0; i < 6; ++i) b[i] = rhs[i];
         for (int k = 0; k < STEWART_LEGS; ++k) {
             const LegDriveRow &r = rows[k];
             factor[k] = screw_force_factor(dm.legs[k], sign[k] * r.smoothed);
-            const double weight = factor[k] * r.reflected, force = factor[k] * r.bias + r.passive;
-            for (int i = 0; i < 6; ++i) {
-                b[i] += r.j[i] * force;
-                for (int c = 0; c < 6; ++c) A(i, c) += weight * r.j[i] * r.j[c];
-            }
+            weight[k] = factor[k] * r.reflected;
+            const double force = factor[k] * r.bias + r.passive;
+            for (int i = 0; i < 6; ++i) b[i] += r.j[i] * force;
         }
-        nu_dot = A.llt().solve(b);
+        solve_with_rank_ones(M, b, j, weight, nu_dot);
         bool settled = true;
         for (int k = 0; k < STEWART_LEGS; ++k) {
             const LegDriveRow &r = rows[k];
@@ -166,7 +166,7 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
                 settled = false;
             }
         }
-        if (settled) break;
+        if (settled || !any_lossy) break;
     }
     Vec3 legs_force = Vec3::Zero(), legs_moment = Vec3::Zero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -179,7 +179,7 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
     }
     e.kept.legs_force = legs_force;  // the base wrench of massless legs (base_wrench)
     e.kept.legs_moment = legs_moment;
-    e.twist_rate = nu_dot;
+    for (int i = 0; i < 6; ++i) e.twist_rate[i] = nu_dot[i];
     e.fault = LegFault::None;
     e.fault_leg = -1;
     return true;

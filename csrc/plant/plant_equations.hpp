@@ -133,12 +133,17 @@ bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEW
 void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
                  Vec3 &torque);
 
-// The reduced equations' M (full, symmetric) and rhs under the given leg forces for the plant's
-// scalar, by twist_rate's own assembly (closed form for axisymmetric leg bodies, else the
-// template's; for the massless model the template's): what the drives add to (plant_full_rhs.cpp).
+// The reduced equations' M (its upper triangle, row-major) and rhs under the given leg forces
+// for the plant's scalar, by twist_rate's own assembly (closed form for axisymmetric leg bodies,
+// else the template's; for the massless model the template's): what the drives add to
+// (plant_full_rhs.cpp).
 bool reduced_equations(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
-                       Evaluation &e, Eigen::Matrix<double, 6, 6> &M,
-                       Eigen::Matrix<double, 6, 1> &rhs);
+                       Evaluation &e, double M[6][6], double rhs[6]);
+
+// x = (M + sum_k weight_k j_k j_k^T)^-1 rhs, M symmetric positive definite by its upper triangle
+// and the weights >= 0 (the six legs' rank-one terms), by the written-out LDL^T.
+void solve_with_rank_ones(const double M[6][6], const double rhs[6],
+                          const double (*j)[6], const double *weight, double x[6]);
 
 // The drives of a plant with these options (input FORCE: none). STEWART_ERR_PARAMETER, with a
 // message naming the leg and the parameter, for a drive the plant cannot take.

@@ -342,9 +342,17 @@ LegAccelerations leg_accelerations(const DynamicsModel &d, int k, const LegConfi
 }  // namespace
 
 bool reduced_equations(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
-                       Evaluation &e, Eigen::Matrix<double, 6, 6> &M,
-                       Eigen::Matrix<double, 6, 1> &rhs) {
-    if (!fast_path(d)) return reduced_equations<double>(d, m, force, e, M, rhs);
+                       Evaluation &e, double M[6][6], double rhs[6]) {
+    if (!fast_path(d)) {
+        Eigen::Matrix<double, 6, 6> full;
+        Eigen::Matrix<double, 6, 1> b;
+        if (!reduced_equations<double>(d, m, force, e, full, b)) return false;
+        for (int r = 0; r < 6; ++r) {
+            rhs[r] = b[r];
+            for (int c = r; c < 6; ++c) M[r][c] = full(r, c);
+        }
+        return true;
+    }
     Equations q;
     const bool defined = e.keep_terms ? axisymmetric_equations<true>(d, m, force, e, q)
                                       : axisymmetric_equations<false>(d, m, force, e, q);
@@ -352,9 +360,20 @@ bool reduced_equations(const DynamicsModel &d, const Motion &m, const double for
     if (e.keep_terms) e.terms_kept = true;
     for (int r = 0; r < 6; ++r) {
         rhs[r] = q.rhs[r];
-        for (int c = r; c < 6; ++c) M(r, c) = M(c, r) = q.M[r][c];
+        for (int c = r; c < 6; ++c) M[r][c] = q.M[r][c];
     }
     return true;
+}
+
+void solve_with_rank_ones(const double M[6][6], const double rhs[6], const double (*j)[6],
+                          const double *weight, double x[6]) {
+    Equations q;
+    for (int r = 0; r < 6; ++r) {
+        q.rhs[r] = rhs[r];
+        for (int c = r; c < 6; ++c) q.M[r][c] = M[r][c];
+    }
+    for (int k = 0; k < STEWART_LEGS; ++k) add_rank_one(q, weight[k], j[k]);
+    solve_ldlt(q, x);
 }
 
 bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
