@@ -300,18 +300,22 @@ bool drives_report(std::string &report, int passes, bool lossless) {
     return ok;
 }
 
-// One plant of drives_report (fidelity 1 or 2, force or current input at smoothing speed vs,
-// lossless or not), one pass over the cue: what callgrind counts per step
+// One plant of drives_report (fidelity 1 or 2, the kind of input and losses below, smoothing
+// speed vs), one pass over the cue: what callgrind counts per step
 // (`valgrind --tool=callgrind --toggle-collect=stewart_plant_step bench-plant drives-one ...`).
-bool drives_one(int fidelity, bool current, bool lossless, double vs) {
+// kind: "force", "current" (every loss), "lossless", "friction" (lossless screw), "screw" (no
+// friction)
+bool drives_one(int fidelity, const std::string &kind, double vs) {
+    const bool current = kind != "force", lossless = kind == "lossless";
     stewart_params p;
     stewart_params_default(&p);
     if (current) with_drives(p);
-    if (lossless)
-        for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < 6; ++k) {
+        if (lossless || kind == "friction")
             p.screw_efficiency[k] = p.screw_back_efficiency[k] = 1;
+        if (lossless || kind == "screw")
             p.coulomb_friction[k] = p.stribeck_friction[k] = p.viscous_friction[k] = 0;
-        }
+    }
     stewart_model *model = bench::make_model("bench-plant", &p);
     if (!model) return false;
     Drive d;
@@ -323,17 +327,16 @@ bool drives_one(int fidelity, bool current, bool lossless, double vs) {
     o.smoothing_speed = vs;
     if (current) o.input = STEWART_PLANT_INPUT_CURRENT;
     const Result r = ok ? run(model, o, d, 1) : Result();
-    std::printf("%s, %s input%s: %.2f us/step, %.1f rhs/step\n",
-                fidelity == STEWART_FULL ? "full" : "massless", current ? "current" : "force",
-                lossless ? " (lossless)" : "", r.us_per_step, r.rhs_per_step);
+    std::printf("%s, %s: %.2f us/step, %.1f rhs/step\n",
+                fidelity == STEWART_FULL ? "full" : "massless", kind.c_str(), r.us_per_step,
+                r.rhs_per_step);
     stewart_model_free(model);
     return ok && r.ok;
 }
 
 int main(int argc, char **argv) {
     if (argc > 4 && std::string(argv[1]) == "drives-one")
-        return drives_one(std::atoi(argv[2]), std::string(argv[3]) != "force",
-                          std::string(argv[3]) == "lossless", std::atof(argv[4]))
+        return drives_one(std::atoi(argv[2]), argv[3], std::atof(argv[4]))
                    ? 0
                    : 1;
     // "bench-plant drives": the drives' comparison alone (for callgrind, docs/latency.md)
