@@ -674,6 +674,8 @@ extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, co
     const stewart_status s = all_bodies(*p, force, e, bodies);
     if (s != STEWART_OK) return s;
     if (!force) force = p->force;
+    // the legs' axial forces: the input, or what the drives made of it
+    if (p->dynamics.drives.input != STEWART_PLANT_INPUT_FORCE) force = e.drive.leg_force;
     stewart_plant_reactions r;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!fd::leg_reactions(p->dynamics, k, e.legs[k], bodies, force[k], r))

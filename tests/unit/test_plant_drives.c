@@ -329,6 +329,45 @@ static void test_end_stop_holds_full_current(void) {
     TEST_ASSERT_TRUE(miss < 2e-4);
 }
 
+/* ---- joint reactions with driven legs ---- */
+
+/* The base Cardans' reactions (which carry the legs' axial forces the drives made, not the
+ * currents) add up to the base wrench the plant reports, the momentum balance of the bodies. */
+static void test_reactions_carry_the_drives_forces(void) {
+    model = test_model(&params);
+    stewart_plant *plant = driven_plant(STEWART_FULL, STEWART_PLANT_INPUT_CURRENT, 1e-4);
+    double i0[6], i1[6];
+    for (int k = 0; k < 6; ++k) i0[k] = 0.45;
+    double worst = 0;
+    for (int step = 0; step < 200; ++step) {
+        for (int k = 0; k < 6; ++k) i1[k] = 0.45 + 0.05 * sin(0.05 * step + k);
+        step_ok(plant, 1e-3, i0, i1, NULL, NULL);
+        for (int k = 0; k < 6; ++k) i0[k] = i1[k];
+        if (step % 40 != 39) continue;
+        stewart_plant_output out;
+        stewart_plant_reactions r;
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
+        TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_reactions_get(plant, NULL, &r));
+        for (int a = 0; a < 3; ++a) {
+            double force = 0, torque = 0;
+            for (int k = 0; k < 6; ++k) {
+                const double p[3] = {params.base_radius * cos(params.base_angle[k]),
+                                     params.base_radius * sin(params.base_angle[k]), 0};
+                const double *fb = r.base_cardan_force[k];
+                const double moment[3] = {p[1] * fb[2] - p[2] * fb[1], p[2] * fb[0] - p[0] * fb[2],
+                                          p[0] * fb[1] - p[1] * fb[0]};
+                force -= fb[a];
+                torque -= moment[a] + r.base_cardan_torque[k][a];
+            }
+            worst = fmax(worst, fmax(fabs(force - out.base_force[a]),
+                                     fabs(torque - out.base_torque[a])));
+        }
+    }
+    printf("reactions with drives: base wrench %.3g N or N m off the base Cardans' sum\n", worst);
+    TEST_ASSERT_TRUE(worst <= 1e-9);
+    stewart_plant_free(plant);
+}
+
 /* ---- force input: the drives are not used, bit for bit ---- */
 
 static void run_bytes(const stewart_params *p, int set_input, unsigned char *bytes, size_t size) {
@@ -397,6 +436,7 @@ int main(void) {
     RUN_TEST(test_power_balance_full);
     RUN_TEST(test_power_balance_massless_default_smoothing);
     RUN_TEST(test_end_stop_holds_full_current);
+    RUN_TEST(test_reactions_carry_the_drives_forces);
     RUN_TEST(test_force_input_ignores_drives_bit_for_bit);
     RUN_TEST(test_current_input_needs_a_drive_on_every_leg);
     return UNITY_END();
