@@ -77,6 +77,11 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
     char *msg = p->message;
     const size_t size = sizeof p->message;
     if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
+    if (p->dynamics.drives.inductive)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "voltage input with winding_inductance > 0: the windings' currents "
+                           "are states this call does not take (stewart_plant_step integrates "
+                           "them; or set the inductances to 0)");
     stewart_status s = check_input(*in, msg, size);
     if (s != STEWART_OK) return s;
     if (!(std::fabs(std::cos(in->pose.q[4])) > fd::kMinCosPitch))

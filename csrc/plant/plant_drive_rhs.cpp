@@ -84,10 +84,7 @@ stewart_status drive_model(const stewart_params &p, const stewart_plant_options 
         if (o.input == STEWART_PLANT_INPUT_VOLTAGE) {
             if (!(p.winding_resistance[k] > 0))
                 return refuse("winding_resistance", p.winding_resistance[k], "must be > 0");
-            if (p.winding_inductance[k] != 0)
-                return refuse("winding_inductance", p.winding_inductance[k],
-                              "must be 0 (the winding's current as a state is not modelled: the "
-                              "current follows the voltage at once)");
+            if (p.winding_inductance[k] > 0) d.inductive = true;
         }
         d.legs[k] = leg_drive(p, k);
         d.reflected_mass[k] = reflected_mass(d.legs[k]);
@@ -99,6 +96,19 @@ stewart_status drive_model(const stewart_params &p, const stewart_plant_options 
     d.input = o.input;
     d.smoothing_speed = o.smoothing_speed;
     return STEWART_OK;
+}
+
+void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS],
+                   const Evaluation &e, double rates[STEWART_LEGS]) {
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const LegDrive &drive = d.drives.legs[k];
+        const double omega = drive.motor_per_leg * e.drive.length_rate[k];
+        rates[k] = drive.inductance > 0
+                       ? (voltage[k] - drive.resistance * e.drive.current[k] -
+                          drive.torque_constant * omega) /
+                             drive.inductance
+                       : 0.0;
+    }
 }
 
 bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double input[STEWART_LEGS],
@@ -121,9 +131,11 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
         r.a = leg.n.dot(m.omega.cross(m.omega.cross(leg.arm))) +
               (P_dot.squaredNorm() - L_dot * L_dot) * leg.inverse_length;
         const double omega = drive.motor_per_leg * L_dot;
-        const double current = dm.input == STEWART_PLANT_INPUT_CURRENT
-                                   ? input[k]
-                                   : (input[k] - drive.torque_constant * omega) / drive.resistance;
+        const double current =
+            dm.input == STEWART_PLANT_INPUT_CURRENT ? input[k]
+            : drive.inductance > 0                   ? e.winding_current[k]  // a state
+                                                    : (input[k] - drive.torque_constant * omega) /
+                                                          drive.resistance;
         r.reflected = dm.reflected_mass[k];
         r.bias = drive.motor_per_leg * drive.torque_constant * current - r.reflected * r.a;
         const double friction = friction_force(drive, L_dot, vs);

@@ -13,6 +13,7 @@ namespace fd {
 // input STEWART_PLANT_INPUT_FORCE leaves them unused and every equation as without drives.
 struct DriveModel {
     int input = 0;               // stewart_plant_input_kind
+    bool inductive = false;      // voltage input and a winding with inductance: currents are states
     double smoothing_speed = 0;  // [m/s]
     LegDrive legs[STEWART_LEGS];
     double reflected_mass[STEWART_LEGS] = {};  // J (2 pi N / lead)^2 [kg]
@@ -98,6 +99,9 @@ struct EvaluationT {
     // does not ask (its evaluations' twist rates, faults and leg sums are all it reads).
     bool fill_legs = true;
     DriveTerms drive;  // a driven evaluation's (DriveModel input current or voltage)
+    // The windings' currents of the state (DriveModel inductive: the integrator's states after
+    // the platform's), read for the legs with an inductance; set by whoever evaluates.
+    const double *winding_current = nullptr;
 };
 using Evaluation = EvaluationT<double>;
 
@@ -149,6 +153,11 @@ void solve_with_rank_ones(const double M[6][6], const double rhs[6],
 // message naming the leg and the parameter, for a drive the plant cannot take.
 stewart_status drive_model(const stewart_params &p, const stewart_plant_options &o,
                            DriveModel &d, char *msg, size_t size);
+
+// d/dt of the windings' currents at the evaluation e of a driven state under the voltages:
+// (V - R i - k_t omega) / L for a leg with an inductance, 0 for the others.
+void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS],
+                   const Evaluation &e, double rates[STEWART_LEGS]);
 
 // twist_rate for a plant driven by currents or voltages (d.drives.input not FORCE): input holds
 // each leg's current [A] or voltage [V]; the leg forces follow from the drives' law

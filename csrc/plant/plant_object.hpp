@@ -19,7 +19,7 @@ struct stewart_plant {
     stewart::fd::DynamicsModel dynamics;
     stewart::fd::Integrator integrator;
     double time = 0;
-    double y[stewart::fd::kStates] = {0};
+    double y[stewart::fd::kMaxStates] = {0};  // the platform, then the windings' currents (fd::state_count)
     double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
