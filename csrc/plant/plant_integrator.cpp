@@ -96,6 +96,16 @@ void normalize_quaternion(double *y) {
     for (int i = 3; i < 7; ++i) y[i] /= norm;
 }
 
+// f(i) for each of the n states; the platform's 13 as a loop of known length (unrolled, as before
+// the windings' currents could be states).
+template <class F>
+[[gnu::always_inline]] inline void each_state(int n, F f) {
+    if (n == kStates)
+        for (int i = 0; i < kStates; ++i) f(i);
+    else
+        for (int i = 0; i < n; ++i) f(i);
+}
+
 // Whether the right-hand side the last step carried (at work.yn and the end forces) is the one
 // at the start of this step: the same state and forces at tau = 0, bit for bit.
 bool start_rate_carried(const IntegratorImpl &im, const double *y, const ForceProfile &forces) {
@@ -248,7 +258,7 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     if (im.n > kStates) winding_rates(*im.model, force, im.evaluation, y_dot + kStates);
     im.last_tau = tau;
     if (!im.record_arguments) return 0;
-    for (int i = 0; i < im.n; ++i) im.last_y[i] = y[i];
+    each_state(im.n, [&](int i) { im.last_y[i] = y[i]; });
     for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = force[k];
     return 0;
 }
@@ -498,7 +508,7 @@ stewart_status Integrator::advance(double *y, const ForceProfile &forces,
     im.last_start_carried = false;
     im.last_tau = -1;
     double *v = N_VGetArrayPointer(im.y);
-    for (int i = 0; i < im.n; ++i) v[i] = y[i];
+    each_state(im.n, [&](int i) { v[i] = y[i]; });
     int flag;
     sunrealtype t_reached = 0;
     stats_ = stewart_plant_statistics{};
@@ -511,7 +521,7 @@ stewart_status Integrator::advance(double *y, const ForceProfile &forces,
         for (int i = 0; i < 3; ++i) im.reference_angles[i] = start_angles[i];
     else
         principal_angles(y, im.reference_angles);
-    for (int i = 0; i < im.n; ++i) im.start_state[i] = y[i];
+    each_state(im.n, [&](int i) { im.start_state[i] = y[i]; });
     bool pitch_crossed = false;
     double angles[3] = {0, 0, 0};
     int roots = 0;
@@ -543,7 +553,7 @@ stewart_status Integrator::advance(double *y, const ForceProfile &forces,
             if (r.done) {
                 // a step done ends with the evaluation at (its end time, work.yn, the forces
                 // there: the end forces exactly when that time is h)
-                for (int i = 0; i < im.n; ++i) im.last_y[i] = im.work.yn[i];
+                each_state(im.n, [&](int i) { im.last_y[i] = im.work.yn[i]; });
                 if (im.last_tau == forces.h)  // what at(h) returns, without the call
                     for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = forces.end[k];
                 else if (im.last_tau >= 0)
@@ -662,20 +672,20 @@ stewart_status Integrator::finish_step(double *y, double h, char *msg, size_t si
     // Whether the last evaluation was at exactly the state returned, the end time and forces.
     // (each test in one pass without a branch per value)
     bool same = im.last_tau == h;
-    for (int i = 0; i < im.n; ++i) same &= im.last_y[i] == v[i];
+    each_state(im.n, [&](int i) { same &= im.last_y[i] == v[i]; });
     for (int k = 0; k < STEWART_LEGS; ++k) same &= im.last_force[k] == forces.end[k];
     im.end_valid = same;
     double out[kMaxStates];
-    for (int i = 0; i < im.n; ++i) out[i] = v[i];
+    each_state(im.n, [&](int i) { out[i] = v[i]; });
     if (!normalized) normalize_quaternion(out);
     double zero_if_finite = 0;  // the sum of x * 0: NaN exactly when some x is not finite
-    for (int i = 0; i < im.n; ++i) zero_if_finite += out[i] * 0.0;
+    each_state(im.n, [&](int i) { zero_if_finite += out[i] * 0.0; });
     if (zero_if_finite != 0)
         for (int i = 0; i < im.n; ++i)
             if (!std::isfinite(out[i]))
                 return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                    "the state is not finite after the step (state %d)", i);
-    for (int i = 0; i < im.n; ++i) y[i] = out[i];
+    each_state(im.n, [&](int i) { y[i] = out[i]; });
     return STEWART_OK;
 }
 
