@@ -32,7 +32,9 @@ typedef enum stewart_plant_method {
  * used: the input is the leg's axial force, as without drives. With CURRENT or VOLTAGE every leg
  * needs a drive (screw_lead > 0, torque_constant > 0; VOLTAGE also winding_resistance > 0): the
  * motor's torque turns the screw, the rotor's and screw's inertia, the screw's efficiency,
- * friction and the end stops act on the leg (docs/forward-dynamics.md, "Drives"). */
+ * friction and the end stops act on the leg (docs/drives-plant.md). With VOLTAGE and a
+ * winding_inductance > 0 the windings' currents are states of the plant (zero after
+ * stewart_plant_set_state, saved with the state; stewart_plant_derivatives refuses them). */
 typedef enum stewart_plant_input_kind {
     STEWART_PLANT_INPUT_FORCE = 0,   /* F_k [N] */
     STEWART_PLANT_INPUT_CURRENT = 1, /* motor current i_k [A] */
@@ -94,8 +96,8 @@ typedef struct stewart_plant_output {
     /* The legs' forces and drives (with input force: force is the input, the drive's 0). */
     double force[STEWART_LEGS];            /* axial force on the mechanism, > 0 extends [N] */
     double current[STEWART_LEGS];          /* motor current [A] */
-    double voltage[STEWART_LEGS];          /* R i + k_t omega [V] (with current input and an
-                                              inductance, L di/dt is the master's to add) */
+    double voltage[STEWART_LEGS];          /* the input with voltage input; with current input
+                                              R i + k_t omega [V] (L di/dt not included) */
     double motor_speed[STEWART_LEGS];      /* omega = 2 pi N L_dot / lead [rad/s] */
     double motor_torque[STEWART_LEGS];     /* k_t i [N m] */
     double electrical_power[STEWART_LEGS]; /* voltage * current [W], < 0: the drive regenerates */
