@@ -58,7 +58,7 @@ class Simulation(RowStatus):
     stroke_legs: np.ndarray  #: (N,) bit k set: leg k+1 is outside its stroke
     force: np.ndarray        #: (N, 6) axial force F_k on the mechanism [N] (the input, or the drive's)
     current: np.ndarray      #: (N, 6) motor current [A] (0 with force input)
-    voltage: np.ndarray      #: (N, 6) motor voltage R i + k_t omega [V]
+    voltage: np.ndarray      #: (N, 6) motor voltage [V]: the input, or R i + k_t omega (current input)
     motor_speed: np.ndarray  #: (N, 6) 2 pi N L_dot / lead [rad/s]
     motor_torque: np.ndarray  #: (N, 6) k_t i [N m]
     electrical_power: np.ndarray  #: (N, 6) voltage times current [W], < 0 regenerates

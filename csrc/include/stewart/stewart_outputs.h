@@ -59,7 +59,7 @@
     X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: leg k+1 is outside the stroke")         \
     X(force, force, 6, double, "N", "Actuator force F_k on the mechanism, > 0 extends")           \
     X(current, current, 6, double, "A", "Motor current (0 with force input)")                    \
-    X(voltage, voltage, 6, double, "V", "Motor voltage R i + k_t omega (0 with force input)")     \
+    X(voltage, voltage, 6, double, "V", "Motor voltage: the input, or R i + k_t omega (current)") \
     X(motor_speed, motor_speed, 6, double, "rad/s", "Motor speed 2 pi N L_dot / lead")           \
     X(motor_torque, motor_torque, 6, double, "N.m", "Motor torque k_t i")                        \
     X(electrical_power, electrical_power, 6, double, "W", "Voltage times current, < 0 regenerates") \
