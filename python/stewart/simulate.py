@@ -34,6 +34,10 @@ class PlantInput(Choice):
     CURRENT = 1  #: the motor's current [A]
     VOLTAGE = 2  #: the motor's terminal voltage [V]
 
+    @classmethod
+    def _argument(cls) -> str:
+        return "input"  # Platform.simulate's keyword, named in errors
+
 
 def plant_input_kind(value) -> int:
     """The option value of a PlantInput given as a member, number or name."""

@@ -61,6 +61,8 @@ def test_inverse_currents_reproduce_the_cue(fidelity):
 def test_current_input_without_drives_is_refused():
     with pytest.raises(stewart.ParameterError, match="screw_lead"):
         stewart.Platform().simulate([0, 1e-3], np.zeros((2, 6)), input="current")
+    with pytest.raises(stewart.ParameterError, match="input = 'torque' must be one of force, current, voltage"):
+        stewart.Platform(**DRIVE).simulate([0, 1e-3], np.zeros((2, 6)), input="torque")
 
 
 # ---------------------------------------------------------------- the plant FMUs
