@@ -5,6 +5,7 @@
 // with the pose error against the cue. Prints the medians of 7 passes and writes them to argv[1].
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "bench/bench_support.hpp"
 #include "bench/combined_cue.hpp"
+#include "drives/plant_drive.hpp"
 #include "stewart/stewart_plant.h"
 
 namespace {
@@ -175,7 +177,176 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
 
 }  // namespace
 
+// A drive on every leg (5 mm lead, gear 3, k_t 0.5 N m/A, efficiencies 0.9 / 0.8, Coulomb,
+// Stribeck and viscous friction; rigid legs).
+void with_drives(stewart_params &p) {
+    for (int k = 0; k < 6; ++k) {
+        p.screw_lead[k] = 0.005;
+        p.gear_ratio[k] = 3;
+        p.rotor_inertia[k] = 2e-5;
+        p.screw_inertia[k] = 9e-5;
+        p.torque_constant[k] = 0.5;
+        p.winding_resistance[k] = 1.2;
+        p.screw_efficiency[k] = 0.9;
+        p.screw_back_efficiency[k] = 0.8;
+        p.coulomb_friction[k] = 40;
+        p.stribeck_friction[k] = 60;
+        p.stribeck_speed[k] = 0.01;
+        p.viscous_friction[k] = 300;
+    }
+}
+
+// The currents of the inverse side's forces by the plant's drive law (plant_drive.hpp, with the
+// plant's smoothing speed vs); rates by the same central differences.
+bool make_current_drive(const stewart_model *model, const stewart_params &p, int fidelity,
+                        double h, double duration, double vs, Drive &d) {
+    stewart_inverse_options o;
+    stewart_inverse_options_default(&o);
+    o.fidelity = fidelity;
+    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
+    const int n = static_cast<int>(duration / h + 0.5);
+    d.h = h;
+    d.force.assign(6 * (n + 1), 0);
+    d.rate.assign(6 * (n + 1), 0);
+    auto current = [&](double t, double i[6]) {
+        stewart_inverse_output out;
+        stewart_inverse_input in = {combined_cue(t)};
+        if (stewart_inverse_solve(data, &in, &out) != STEWART_OK) return false;
+        for (int k = 0; k < 6; ++k) {
+            i[k] = stewart::drive_current(stewart::leg_drive(p, k), out.force[k],
+                                          out.lengths.length_rate[k],
+                                          out.lengths.length_accel[k], vs);
+        }
+        return true;
+    };
+    bool ok = data != nullptr;
+    const double delta = 1e-4;
+    for (int i = 0; i <= n && ok; ++i) {
+        double now[6], ahead[6], behind[6];
+        ok = current(i * h, now) && current(i * h + delta, ahead) && current(i * h - delta, behind);
+        for (int k = 0; k < 6 && ok; ++k) {
+            d.force[6 * i + k] = now[k];
+            d.rate[6 * i + k] = (ahead[k] - behind[k]) / (2 * delta);
+        }
+    }
+    for (int i = 0; i < n && ok; ++i) {
+        stewart_plant_input in{};
+        in.h = h;
+        in.derivatives = 1;
+        for (int k = 0; k < 6; ++k) {
+            in.force_start[k] = d.force[6 * i + k];
+            in.force_end[k] = d.force[6 * i + 6 + k];
+            in.force_rate_start[k] = d.rate[6 * i + k];
+            in.force_rate_end[k] = d.rate[6 * i + 6 + k];
+        }
+        d.input.push_back(in);
+    }
+    stewart_inverse_free(data);
+    return ok;
+}
+
+// The plant driven by currents against the same plant driven by forces (the drives' cost), at
+// 1 ms, default method and tolerances: the report's lines.
+bool drives_report(std::string &report, int passes, bool lossless) {
+    stewart_params p;
+    stewart_params_default(&p);
+    with_drives(p);
+    if (lossless)
+        for (int k = 0; k < 6; ++k) {
+            p.screw_efficiency[k] = p.screw_back_efficiency[k] = 1;
+            p.coulomb_friction[k] = p.stribeck_friction[k] = p.viscous_friction[k] = 0;
+        }
+    stewart_model *driven = bench::make_model("bench-plant", &p);
+    stewart_model *plain = bench::make_model("bench-plant");
+    bool ok = driven && plain;
+    char line[256];
+    report += lossless ? "\ndrives, lossless (current input, rotor and screw inertia only, rigid "
+                         "legs) against force input, 1 ms, default tolerances:\n"
+                       : "\ndrives (current input, efficiencies 0.9/0.8, friction, rigid legs) "
+                         "against force input, 1 ms, default tolerances:\n";
+    report += "fidelity  input                   us/step  rhs/step  pose error\n";
+    const char *names[3] = {"", "massless", "full"};
+    for (int f : {STEWART_MASSLESS, STEWART_FULL}) {
+        Drive forces;
+        ok = ok && make_drive(plain, f, 1e-3, 2.0, forces);
+        if (!ok) break;
+        stewart_plant_options o;
+        stewart_plant_options_default(&o);
+        o.fidelity = f;
+        const Result by_force = run(plain, o, forces, passes);
+        ok = ok && by_force.ok;
+        std::snprintf(line, sizeof line, "%-9s force                   %7.2f  %8.1f  %10.2e\n",
+                      names[f], by_force.us_per_step, by_force.rhs_per_step, by_force.pose_error);
+        report += line;
+        o.input = STEWART_PLANT_INPUT_CURRENT;
+        // the friction's smoothing speed: what the turns cost (lossless: no friction, one run)
+        for (double vs : {1e-4, 1e-3, 1e-2}) {
+            if (lossless && vs != 1e-4) break;
+            o.smoothing_speed = vs;
+            Drive currents;
+            ok = ok && make_current_drive(driven, p, f, 1e-3, 2.0, vs, currents);
+            if (!ok) break;
+            const Result by_current = run(driven, o, currents, passes);
+            ok = ok && by_current.ok;
+            std::snprintf(line, sizeof line,
+                          "%-9s current, v_s %-8.0e  %7.2f  %8.1f  %10.2e   (%.2f x force)\n",
+                          names[f], vs, by_current.us_per_step, by_current.rhs_per_step,
+                          by_current.pose_error, by_current.us_per_step / by_force.us_per_step);
+            report += line;
+        }
+    }
+    stewart_model_free(driven);
+    stewart_model_free(plain);
+    return ok;
+}
+
+// One plant of drives_report (fidelity 1 or 2, the kind of input and losses below, smoothing
+// speed vs), one pass over the cue: what callgrind counts per step
+// (`valgrind --tool=callgrind --toggle-collect=stewart_plant_step bench-plant drives-one ...`).
+// kind: "force", "current" (every loss), "lossless", "friction" (lossless screw), "screw" (no
+// friction)
+bool drives_one(int fidelity, const std::string &kind, double vs) {
+    const bool current = kind != "force", lossless = kind == "lossless";
+    stewart_params p;
+    stewart_params_default(&p);
+    if (current) with_drives(p);
+    for (int k = 0; k < 6; ++k) {
+        if (lossless || kind == "friction")
+            p.screw_efficiency[k] = p.screw_back_efficiency[k] = 1;
+        if (lossless || kind == "screw")
+            p.coulomb_friction[k] = p.stribeck_friction[k] = p.viscous_friction[k] = 0;
+    }
+    stewart_model *model = bench::make_model("bench-plant", &p);
+    if (!model) return false;
+    Drive d;
+    bool ok = current ? make_current_drive(model, p, fidelity, 1e-3, 2.0, vs, d)
+                      : make_drive(model, fidelity, 1e-3, 2.0, d);
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    o.fidelity = fidelity;
+    o.smoothing_speed = vs;
+    if (current) o.input = STEWART_PLANT_INPUT_CURRENT;
+    const Result r = ok ? run(model, o, d, 1) : Result();
+    std::printf("%s, %s: %.2f us/step, %.1f rhs/step\n",
+                fidelity == STEWART_FULL ? "full" : "massless", kind.c_str(), r.us_per_step,
+                r.rhs_per_step);
+    stewart_model_free(model);
+    return ok && r.ok;
+}
+
 int main(int argc, char **argv) {
+    if (argc > 4 && std::string(argv[1]) == "drives-one")
+        return drives_one(std::atoi(argv[2]), argv[3], std::atof(argv[4]))
+                   ? 0
+                   : 1;
+    // "bench-plant drives": the drives' comparison alone (for callgrind, docs/latency.md)
+    if (argc > 1 && std::string(argv[1]) == "drives") {
+        std::string report;
+        const int passes = argc > 2 ? std::atoi(argv[2]) : 7;
+        const bool ok = drives_report(report, passes, true) && drives_report(report, passes, false);
+        std::fputs(report.c_str(), stdout);
+        return ok ? 0 : 1;
+    }
     stewart_model *model = bench::make_model("bench-plant");
     if (!model) return 1;
     const double duration = 2.0;
@@ -265,6 +436,7 @@ int main(int argc, char **argv) {
         }
         report += "\n";
     }
+    ok = drives_report(report, passes, true) && drives_report(report, passes, false) && ok;
     std::fputs(report.c_str(), stdout);
     if (argc > 1) {
         FILE *out = std::fopen(argv[1], "w");

@@ -43,7 +43,12 @@ int usage(FILE *to) {
                  "warnings (bits: 1\n"
                  "           stroke, 8 joint angle, 16 leg interference),\n"
                  "           steps,rhs_evaluations,nonlinear_iterations,error_test_failures "
-                 "(of the step into that row)\n"
+                 "(of the step into that row);\n"
+                 "           with input 1 (F1..F6 are currents [A]) or 2 (voltages [V]) also "
+                 "force1..6, current1..6,\n"
+                 "           voltage1..6, motor_speed1..6, motor_torque1..6, "
+                 "electrical_power1..6 and the bit sets\n"
+                 "           current_limit_legs, voltage_limit_legs, speed_limit_legs\n"
                  "  A row that cannot be simulated stops the run: OUT.csv then holds the rows "
                  "before it\n"
                  "  (partial output), stderr names the row and why, and the exit status is 1.\n");
@@ -166,24 +171,42 @@ struct Row {
     stewart_plant_statistics stats;
 };
 
-void write_header(FILE *f) {
+// The drives' columns (input current or voltage only: force input writes today's columns).
+const char *const kDriveColumns[] = {"force", "current", "voltage", "motor_speed",
+                                     "motor_torque", "electrical_power"};
+
+void write_header(FILE *f, bool drives) {
     std::fprintf(f, "t");
     for (const char *p : kPoseNames) std::fprintf(f, ",%s", p);
     for (const char *p : kPoseNames) std::fprintf(f, ",%s_dot", p);
     for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L%d", k);
     for (int k = 1; k <= 6; ++k) std::fprintf(f, ",L_dot%d", k);
-    std::fprintf(f, ",warnings,steps,rhs_evaluations,nonlinear_iterations,error_test_failures\n");
+    std::fprintf(f, ",warnings,steps,rhs_evaluations,nonlinear_iterations,error_test_failures");
+    if (drives) {
+        for (const char *c : kDriveColumns)
+            for (int k = 1; k <= 6; ++k) std::fprintf(f, ",%s%d", c, k);
+        std::fprintf(f, ",current_limit_legs,voltage_limit_legs,speed_limit_legs");
+    }
+    std::fprintf(f, "\n");
 }
 
-void write_row(FILE *f, const Row &r) {
+void write_row(FILE *f, const Row &r, bool drives) {
     const stewart_plant_output &o = r.out;
     std::fprintf(f, "%.17g", o.time);
     for (double v : o.pose.q) std::fprintf(f, ",%.17g", v);
     for (double v : o.pose.q_dot) std::fprintf(f, ",%.17g", v);
     for (double v : o.lengths.length) std::fprintf(f, ",%.17g", v);
     for (double v : o.lengths.length_rate) std::fprintf(f, ",%.17g", v);
-    std::fprintf(f, ",%d,%ld,%ld,%ld,%ld\n", o.warnings, r.stats.steps, r.stats.rhs_evaluations,
+    std::fprintf(f, ",%d,%ld,%ld,%ld,%ld", o.warnings, r.stats.steps, r.stats.rhs_evaluations,
                  r.stats.nonlinear_iterations, r.stats.error_test_failures);
+    if (drives) {
+        for (const double *column : {o.force, o.current, o.voltage, o.motor_speed,
+                                     o.motor_torque, o.electrical_power})
+            for (int k = 0; k < 6; ++k) std::fprintf(f, ",%.17g", column[k]);
+        std::fprintf(f, ",%d,%d,%d", o.current_limit_legs, o.voltage_limit_legs,
+                     o.speed_limit_legs);
+    }
+    std::fprintf(f, "\n");
 }
 
 // The warnings that start at row j (strokes, joint angles, interference: docs/limits.md), each
@@ -238,14 +261,14 @@ size_t simulate_rows(stewart_plant *plant, const ForceTable &table, const stewar
 }
 
 // Writes the header and the first n rows to path; false (said on stderr) if it cannot.
-bool write_rows(const char *path, const std::vector<Row> &rows, size_t n) {
+bool write_rows(const char *path, const std::vector<Row> &rows, size_t n, bool drives) {
     FILE *out = std::fopen(path, "w");
     if (!out) {
         std::fprintf(stderr, "stewart-simulate: cannot write %s\n", path);
         return false;
     }
-    write_header(out);
-    for (size_t j = 0; j < n; ++j) write_row(out, rows[j]);
+    write_header(out, drives);
+    for (size_t j = 0; j < n; ++j) write_row(out, rows[j], drives);
     if (std::fclose(out) != 0) {
         std::fprintf(stderr, "stewart-simulate: error writing %s\n", path);
         return false;
@@ -310,7 +333,8 @@ int main(int argc, char **argv) {
     stewart_plant_free(plant);
     stewart_model_free(model);
     if (computed == 0) return 1;  // nothing to write: OUT.csv is left as it was
-    if (!write_rows(paths[1], rows, computed)) return 1;
+    if (!write_rows(paths[1], rows, computed, s.options.input != STEWART_PLANT_INPUT_FORCE))
+        return 1;
     if (computed < rows.size()) {
         std::fprintf(stderr,
                      "stewart-simulate: %s holds the %zu rows before row %zu only (partial "

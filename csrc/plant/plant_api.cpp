@@ -20,7 +20,10 @@ namespace fd = stewart::fd;
 
 namespace {
 
+// time, the states, angles, forces, warnings, step hint (the windings' currents among the states
+// only where they are states: kSavedDoubles without them)
 constexpr int kSavedDoubles = 1 + fd::kStates + 3 + STEWART_LEGS + 1 + 1;
+constexpr int kMaxSavedDoubles = kSavedDoubles + (fd::kMaxStates - fd::kStates);
 using fd::kMinCosPitch;
 // The plant's range (docs/forward-dynamics.md section 4): speeds far beyond any platform's, below
 // which a 1 ms step stays within the default max_internal_steps; continuous roll and yaw within
@@ -142,6 +145,7 @@ stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evalu
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
     stewart::Motion m = state_motion ? *state_motion : fd::motion_of_state(p.y);
     if (!known) {
+        e.winding_current = p.y + fd::kStates;
         if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
         known = &e;
     }
@@ -207,7 +211,7 @@ bool angles_match(const double y[fd::kStates], const double saved[3]) {
 // A plant's state without its integrator and counters: what a rollback puts back.
 struct PlantState {
     double time;
-    double y[fd::kStates];
+    double y[fd::kMaxStates];
     double angles[3];
     double force[STEWART_LEGS];
     int warnings;
@@ -290,6 +294,10 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     p->options = *options;
     p->limits = stewart::limit_constants(model->params, model->geometry, HUGE_VAL);
     p->dynamics = fd::dynamics_model(*model, options->fidelity);
+    if (fd::drive_model(model->params, *options, p->dynamics.drives, msg, size) != STEWART_OK) {
+        delete p;
+        return nullptr;
+    }
     if (!p->integrator.init(&p->dynamics, *options, msg, size)) {
         delete p;
         return nullptr;
@@ -304,8 +312,8 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     // no step of the caller allocates.
     fd::ForceProfile rest_forces;
     rest_forces.h = 1e-6;
-    double y[fd::kStates], hint = 0;
-    for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
+    double y[fd::kMaxStates], hint = 0;
+    for (int i = 0; i < fd::kMaxStates; ++i) y[i] = p->y[i];
     char why[STEWART_MESSAGE_SIZE];
     if (p->integrator.advance(y, rest_forces, hint, why, sizeof why) != STEWART_OK) {
         set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -401,7 +409,7 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "roll_dot0, pitch_dot0, yaw_dot0 = %g, %g, %g rad/s overflow the "
                            "angular velocity", rate[3], rate[4], rate[5]);
-    double y[fd::kStates];
+    double y[fd::kMaxStates] = {0};  // the windings start without current
     const Eigen::Quaterniond q(R);
     const double yq[7] = {pose[0], pose[1], pose[2], q.w(), q.x(), q.y(), q.z()};
     for (int i = 0; i < 7; ++i) y[i] = yq[i];
@@ -411,6 +419,7 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     // The pose must give every leg a direction (and, full level, unlocked Cardans).
     fd::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
+    e.winding_current = y + fd::kStates;
     if (!fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
         return set_message(msg, size,
                            e.fault == fd::LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
@@ -420,7 +429,7 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
                                                                : "lies along a Cardan arm");
     p->time = time;
     p->step_end_valid = false;
-    for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
+    for (int i = 0; i < fd::kMaxStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = pose[3 + i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = 0;
     p->step_hint = 0;
@@ -487,8 +496,8 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
         profile.start_rate[k] = r0 ? r0[k] : 0;
         profile.end_rate[k] = r1 ? r1[k] : 0;
     }
-    double y[fd::kStates];
-    for (int i = 0; i < fd::kStates; ++i) y[i] = p->y[i];
+    double y[fd::kMaxStates];
+    for (int i = 0; i < fd::kMaxStates; ++i) y[i] = p->y[i];
     double step_hint = p->step_hint;
     s = p->integrator.advance(y, profile, step_hint, msg, size,
                               p->step_end_valid ? p->principal_angles : nullptr);
@@ -552,7 +561,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                                "the forces are out of range: leg %d's length or rate overflows "
                                "after the step", k + 1);
     const PlantState before_step = state_of(*p);  // the outputs may overflow: then back to it
-    for (int i = 0; i < fd::kStates; ++i) p->y[i] = y[i];
+    for (int i = 0; i < fd::kMaxStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
     p->time += h;
@@ -572,6 +581,35 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     }
     msg[0] = '\0';
     return STEWART_OK;
+}
+
+// The legs' forces and drive outputs of o at the evaluation e of the inputs.
+void plant_drive_outputs(const stewart_plant &p, const double *input, const fd::Evaluation &e,
+                   stewart_plant_output &o) {
+    const fd::DriveModel &dm = p.dynamics.drives;
+    if (dm.input == STEWART_PLANT_INPUT_FORCE) {
+        std::memcpy(o.force, input, sizeof o.force);
+        return;
+    }
+    const stewart_params &par = p.model->params;
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const stewart::LegDrive &d = dm.legs[k];
+        const double i = e.drive.current[k], omega = d.motor_per_leg * e.drive.length_rate[k];
+        o.force[k] = e.drive.leg_force[k];
+        o.current[k] = i;
+        o.motor_speed[k] = omega;
+        o.motor_torque[k] = d.torque_constant * i;
+        o.voltage[k] = dm.input == STEWART_PLANT_INPUT_VOLTAGE
+                           ? input[k]
+                           : d.resistance * i + d.torque_constant * omega;
+        o.electrical_power[k] = o.voltage[k] * i;
+        const int bit = 1 << k;
+        if (par.current_max[k] > 0 && std::fabs(i) > par.current_max[k]) o.current_limit_legs |= bit;
+        if (par.voltage_max[k] > 0 && std::fabs(o.voltage[k]) > par.voltage_max[k])
+            o.voltage_limit_legs |= bit;
+        if (par.motor_speed_max[k] > 0 && std::fabs(omega) > par.motor_speed_max[k])
+            o.speed_limit_legs |= bit;
+    }
 }
 
 namespace {
@@ -612,11 +650,13 @@ stewart_status output_of(const stewart_plant *p, const double *force, const fd::
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
+    plant_drive_outputs(*p, force ? force : p->force, known ? *known : e, o);
     // Finite forces can still overflow the base wrench (|F| near 1e308): no output then.
     if (!(zero_if_finite(o.pose.q, 6) + zero_if_finite(o.pose.q_dot, 6) +
               zero_if_finite(o.lengths.length, STEWART_LEGS) +
               zero_if_finite(o.lengths.length_rate, STEWART_LEGS) +
-              zero_if_finite(o.base_force, 3) + zero_if_finite(o.base_torque, 3) ==
+              zero_if_finite(o.base_force, 3) + zero_if_finite(o.base_torque, 3) +
+              zero_if_finite(o.force, STEWART_LEGS) + zero_if_finite(o.electrical_power, 6) ==
           0))
         return STEWART_ERR_ARGUMENT;
     *out = o;
@@ -639,6 +679,8 @@ extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, co
     const stewart_status s = all_bodies(*p, force, e, bodies);
     if (s != STEWART_OK) return s;
     if (!force) force = p->force;
+    // the legs' axial forces: the input, or what the drives made of it
+    if (p->dynamics.drives.input != STEWART_PLANT_INPUT_FORCE) force = e.drive.leg_force;
     stewart_plant_reactions r;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!fd::leg_reactions(p->dynamics, k, e.legs[k], bodies, force[k], r))
@@ -693,11 +735,18 @@ namespace {
 constexpr unsigned kStateMagic = 0x53545044u;  // "STPD"
 constexpr unsigned kStateVersion = 1;
 constexpr size_t kStateHeader = 3 * sizeof(unsigned);
-constexpr size_t kStateBytes = kStateHeader + kSavedDoubles * sizeof(double);
+
+// The doubles and bytes of p's saved state.
+int saved_doubles(const stewart_plant &p) {
+    return kSavedDoubles + (fd::state_count(p.dynamics) - fd::kStates);
+}
+size_t state_bytes(const stewart_plant &p) {
+    return kStateHeader + saved_doubles(p) * sizeof(double);
+}
 
 void save_doubles(const stewart_plant &p, double *out) {
     *out++ = p.time;
-    for (double v : p.y) *out++ = v;
+    for (int i = 0; i < fd::state_count(p.dynamics); ++i) *out++ = p.y[i];
     for (double v : p.angles) *out++ = v;
     for (double v : p.force) *out++ = v;
     *out++ = p.warnings;
@@ -706,20 +755,23 @@ void save_doubles(const stewart_plant &p, double *out) {
 
 }  // namespace
 
-extern "C" size_t stewart_plant_state_size(const stewart_plant *p) { return p ? kStateBytes : 0; }
+extern "C" size_t stewart_plant_state_size(const stewart_plant *p) {
+    return p ? state_bytes(*p) : 0;
+}
 
 extern "C" stewart_status stewart_plant_save(const stewart_plant *p, void *buffer, size_t size) {
     if (!p) return STEWART_ERR_ARGUMENT;
-    if (!buffer || size < kStateBytes)
+    const size_t bytes = state_bytes(*p);
+    if (!buffer || size < bytes)
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "state not saved: a buffer of %zu bytes%s, the state needs %zu", size,
-                           buffer ? "" : " (NULL)", kStateBytes);
-    const unsigned header[3] = {kStateMagic, kStateVersion, static_cast<unsigned>(kStateBytes)};
-    double state[kSavedDoubles];
+                           buffer ? "" : " (NULL)", bytes);
+    const unsigned header[3] = {kStateMagic, kStateVersion, static_cast<unsigned>(bytes)};
+    double state[kMaxSavedDoubles];
     save_doubles(*p, state);
     unsigned char *out = static_cast<unsigned char *>(buffer);
     std::memcpy(out, header, sizeof header);
-    std::memcpy(out + kStateHeader, state, sizeof state);
+    std::memcpy(out + kStateHeader, state, saved_doubles(*p) * sizeof(double));
     return STEWART_OK;
 }
 
@@ -727,24 +779,27 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     if (!p) return STEWART_ERR_ARGUMENT;
     if (!buffer)
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
+    const size_t bytes = state_bytes(*p);
+    const int states = fd::state_count(p->dynamics), kSaved = saved_doubles(*p);
     unsigned header[3] = {0, 0, 0};
     if (size >= kStateHeader) std::memcpy(header, buffer, sizeof header);
-    if (size != kStateBytes || header[0] != kStateMagic || header[1] != kStateVersion ||
-        header[2] != kStateBytes)
+    if (size != bytes || header[0] != kStateMagic || header[1] != kStateVersion ||
+        header[2] != bytes)
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "not a saved plant state of this version (%zu bytes, magic %#x, "
                            "version %u; expected %zu bytes, %#x, %u)", size, header[0], header[1],
-                           kStateBytes, kStateMagic, kStateVersion);
-    double state[kSavedDoubles];
-    std::memcpy(state, static_cast<const unsigned char *>(buffer) + kStateHeader, sizeof state);
-    const size_t count = kSavedDoubles;
+                           bytes, kStateMagic, kStateVersion);
+    double state[kMaxSavedDoubles];
+    std::memcpy(state, static_cast<const unsigned char *>(buffer) + kStateHeader,
+                kSaved * sizeof(double));
+    const size_t count = kSaved;
     for (size_t i = 0; i < count; ++i)
         if (!std::isfinite(state[i]))
             return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                                "saved plant state: value %zu is not finite", i);
     // What a step could have left: a unit quaternion, pitch off +-90 degrees, a defined pose.
-    const double *y = state + 1, *angles = y + fd::kStates;
-    const double warnings = state[kSavedDoubles - 2], hint = state[kSavedDoubles - 1];
+    const double *y = state + 1, *angles = y + states;
+    const double warnings = state[kSaved - 2], hint = state[kSaved - 1];
     const double q_norm = std::sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
     fd::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
@@ -752,7 +807,8 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
         !(warnings >= 0 && warnings <= kPlantWarnings &&
           (static_cast<int>(warnings) & ~kPlantWarnings) == 0 && warnings == std::floor(warnings)) ||
         !(hint == 0 || hint >= kMinStepSize) ||
-        !fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
+        !(e.winding_current = y + fd::kStates,
+          fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e)))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "saved plant state is not one a step leaves (quaternion norm %g, pitch "
                            "%g rad, warnings %g, step hint %g s (0 or >= %g s), or a singular "
@@ -770,7 +826,7 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     const double *in = state;
     p->step_end_valid = false;
     p->time = *in++;
-    for (double &v : p->y) v = *in++;
+    for (int i = 0; i < states; ++i) p->y[i] = *in++;
     for (double &v : p->angles) v = *in++;
     for (double &v : p->force) v = *in++;
     p->warnings = static_cast<int>(*in++);

@@ -77,6 +77,11 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
     char *msg = p->message;
     const size_t size = sizeof p->message;
     if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
+    if (p->dynamics.drives.inductive)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                           "voltage input with winding_inductance > 0: the windings' currents "
+                           "are states this call does not take (stewart_plant_step integrates "
+                           "them; or set the inductances to 0)");
     stewart_status s = check_input(*in, msg, size);
     if (s != STEWART_OK) return s;
     if (!(std::fabs(std::cos(in->pose.q[4])) > fd::kMinCosPitch))
@@ -157,6 +162,7 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
         for (int k = 0; k < STEWART_LEGS; ++k)
             o.lengths.length[k] -= p->model->params.length_offset[k];
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
+    plant_drive_outputs(*p, in->force, e, o);
     const double *values[6] = {o.pose.q_ddot, o.lengths.length, o.lengths.length_rate,
                                o.lengths.length_accel, o.base_force, o.base_torque};
     const int counts[6] = {6, STEWART_LEGS, STEWART_LEGS, STEWART_LEGS, 3, 3};

@@ -2,14 +2,42 @@
 // (sum J_b^T M_b J_b) nu_dot = sum J_b^T (f_b - M_b J_b_dot nu) + J_legs^T F, and the base wrench.
 #pragma once
 
+#include "drives/leg_drive.hpp"
 #include "plant/plant_bodies.hpp"
+#include "stewart/stewart_plant.h"
 
 namespace stewart {
 namespace fd {
 
+// The legs' drives when the plant's input is a current or a voltage (plant_drive_rhs.cpp):
+// input STEWART_PLANT_INPUT_FORCE leaves them unused and every equation as without drives.
+struct DriveModel {
+    int input = 0;               // stewart_plant_input_kind
+    bool inductive = false;      // voltage input and a winding with inductance: currents are states
+    double smoothing_speed = 0;  // [m/s]
+    LegDrive legs[STEWART_LEGS];
+    double reflected_mass[STEWART_LEGS] = {};  // J (2 pi N / lead)^2 [kg]
+    // end stops on the Cardan-to-Cardan length (the stroke's), and their stiffness and damping
+    double stop_min[STEWART_LEGS] = {}, stop_max[STEWART_LEGS] = {};
+    double stop_stiffness[STEWART_LEGS] = {}, stop_damping[STEWART_LEGS] = {};
+};
+
+// What a driven evaluation found per leg (plant_drive_rhs.cpp): the step's drive outputs.
+struct DriveTerms {
+    double current[STEWART_LEGS];      // motor current [A]
+    double length_rate[STEWART_LEGS];  // [m/s]
+    double leg_force[STEWART_LEGS];    // axial force on the mechanism (F_k of force input) [N]
+    double nut_force[STEWART_LEGS];    // the screw's nut on the leg [N]
+    double friction[STEWART_LEGS];     // friction on the leg, opposing its speed [N]
+    double stop_force[STEWART_LEGS];   // end stop on the leg [N]
+    double ideal_force[STEWART_LEGS];  // the screw's torque from the motor side, as a force
+                                       // (2 pi N / lead) (k_t i - J omega_dot) [N]
+};
+
 // The bodies' masses and inertias and what the leg bodies need; with_legs false drops the leg
 // bodies (massless legs: the platform driven by the axial forces alone).
 struct DynamicsModel {
+    DriveModel drives;
     LegParameters legs;
     bool with_legs = true;
     double platform_mass = 0;
@@ -70,6 +98,10 @@ struct EvaluationT {
     // Asked of massless_twist_rate: fill legs[] (the arms, axes, lengths); the plant's integrator
     // does not ask (its evaluations' twist rates, faults and leg sums are all it reads).
     bool fill_legs = true;
+    DriveTerms drive;  // a driven evaluation's (DriveModel input current or voltage)
+    // The windings' currents of the state (DriveModel inductive: the integrator's states after
+    // the platform's), read for the legs with an inductance; set by whoever evaluates.
+    const double *winding_current = nullptr;
 };
 using Evaluation = EvaluationT<double>;
 
@@ -104,6 +136,34 @@ bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEW
 // rates at e's accelerations to rounding.
 void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, Vec3 &force,
                  Vec3 &torque);
+
+// The reduced equations' M (its upper triangle, row-major) and rhs under the given leg forces
+// for the plant's scalar, by twist_rate's own assembly (closed form for axisymmetric leg bodies,
+// else the template's; for the massless model the template's): what the drives add to
+// (plant_full_rhs.cpp).
+bool reduced_equations(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
+                       Evaluation &e, double M[6][6], double rhs[6]);
+
+// x = (M + sum_k weight_k j_k j_k^T)^-1 rhs, M symmetric positive definite by its upper triangle
+// and the weights >= 0 (the six legs' rank-one terms), by the written-out LDL^T.
+void solve_with_rank_ones(const double M[6][6], const double rhs[6],
+                          const double (*j)[6], const double *weight, double x[6]);
+
+// The drives of a plant with these options (input FORCE: none). STEWART_ERR_PARAMETER, with a
+// message naming the leg and the parameter, for a drive the plant cannot take.
+stewart_status drive_model(const stewart_params &p, const stewart_plant_options &o,
+                           DriveModel &d, char *msg, size_t size);
+
+// d/dt of the windings' currents at the evaluation e of a driven state under the voltages:
+// (V - R i - k_t omega) / L for a leg with an inductance, 0 for the others.
+void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS],
+                   const Evaluation &e, double rates[STEWART_LEGS]);
+
+// twist_rate for a plant driven by currents or voltages (d.drives.input not FORCE): input holds
+// each leg's current [A] or voltage [V]; the leg forces follow from the drives' law
+// (plant_drive_rhs.cpp) into e.drive. False (fault set) as twist_rate.
+bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double input[STEWART_LEGS],
+                       Evaluation &e);
 
 // twist_rate<double>'s equations for the massless model (d.with_legs false), written out in
 // scalars with moments about the centre of mass and the gyroscopic term in the platform's axes

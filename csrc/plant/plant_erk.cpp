@@ -33,9 +33,9 @@ constexpr int kSmallErrorFails = 2, kMaxErrorFails = 7;
 // loop for three or more vectors; for two it is N_VLinearSum's a x + y, the same operations).
 // Each element's sum in one pass, unrolled for the count (the same operations in the same order
 // as the vector's loops over z, at half the instructions).
-template <int Count, bool WithY>
-void combine_fixed(const double *c, const double (*x)[kStates], const double *y, double *z) {
-    for (int j = 0; j < kStates; ++j) {
+template <int N, int Count, bool WithY>
+void combine_fixed(const double *c, const double (*x)[kMaxStates], const double *y, double *z) {
+    for (int j = 0; j < N; ++j) {
         double sum = c[0] * x[0][j];
 #pragma GCC unroll 5
         for (int i = 1; i < Count; ++i) sum += c[i] * x[i][j];
@@ -44,38 +44,41 @@ void combine_fixed(const double *c, const double (*x)[kStates], const double *y,
     }
 }
 
-template <int Count>
-void combine_count(const double *c, const double (*x)[kStates], const double *y, double *z) {
-    if (y) combine_fixed<Count, true>(c, x, y, z);
-    else combine_fixed<Count, false>(c, x, y, z);
+template <int N, int Count>
+void combine_count(const double *c, const double (*x)[kMaxStates], const double *y, double *z) {
+    if (y) combine_fixed<N, Count, true>(c, x, y, z);
+    else combine_fixed<N, Count, false>(c, x, y, z);
 }
 
-void combine(int count, const double *c, const double (*x)[kStates], const double *y,
+template <int N>
+void combine(int count, const double *c, const double (*x)[kMaxStates], const double *y,
              double *z) {
     static_assert(kMaxErkStages == 5, "combine unrolls up to five stages");
     switch (count) {
-        case 1: return combine_count<1>(c, x, y, z);
-        case 2: return combine_count<2>(c, x, y, z);
-        case 3: return combine_count<3>(c, x, y, z);
-        case 4: return combine_count<4>(c, x, y, z);
-        default: return combine_count<5>(c, x, y, z);
+        case 1: return combine_count<N, 1>(c, x, y, z);
+        case 2: return combine_count<N, 2>(c, x, y, z);
+        case 3: return combine_count<N, 3>(c, x, y, z);
+        case 4: return combine_count<N, 4>(c, x, y, z);
+        default: return combine_count<N, 5>(c, x, y, z);
     }
 }
 
 // arkEwtSetSS: 1 / (rtol |y| + atol).
+template <int N>
 void error_weights(const ErkControl &control, const double *y, double *w) {
-    for (int j = 0; j < kStates; ++j)
+    for (int j = 0; j < N; ++j)
         w[j] = 1.0 / (control.relative_tolerance * std::fabs(y[j]) + control.absolute_tolerance);
 }
 
 // N_VWrmsNorm_Serial.
+template <int N>
 double wrms_norm(const double *x, const double *w) {
     double sum = 0;
-    for (int j = 0; j < kStates; ++j) {
+    for (int j = 0; j < N; ++j) {
         const double p = x[j] * w[j];
         sum += p * p;
     }
-    const double mean = sum / kStates;
+    const double mean = sum / N;
     return mean <= 0 ? 0.0 : std::sqrt(mean);
 }
 
@@ -130,9 +133,12 @@ bool load_erk_table(int table_number, ErkTable &table) {
     return fits;
 }
 
-ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &w,
-                      double h_comm, const double y0[kStates], double g_start, ErkRhs rhs,
-                      ErkRoot root, void *user, double y_out[kStates]) {
+namespace {
+
+template <int N>
+ErkResult advance_states(const ErkTable &table, const ErkControl &control, ErkWork &w,
+                         double h_comm, const double *y0, double g_start, ErkRhs rhs,
+                         ErkRoot root, void *user, double *y_out) {
     ErkResult r;
     const bool fixed = control.fixed_steps > 0;
     const double h_in = fixed ? h_comm / control.fixed_steps : control.first_step;
@@ -140,7 +146,7 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
     if (!(g_start > 0) || !(h_in > 0)) return r;
     const int s = table.stages;
     const double t_stop = h_comm, t_out = h_comm, stop_factor = 1.0 - 4.0 * kUnitRoundoff;
-    for (int j = 0; j < kStates; ++j) w.yn[j] = y0[j];
+    for (int j = 0; j < N; ++j) w.yn[j] = y0[j];
     // arkInitialSetup: the full right-hand side at the start into F[0] (and fn, the same
     // values); the first step, limited so as not to overtake the stop time
     if (!control.start_rate_known && rhs(0.0, w.yn, w.F[0], user) != 0) return r;
@@ -156,7 +162,7 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
             if ((tn + h - t_stop) * h > 0) h = (t_stop - tn) * stop_factor;
         } else {
             if (h_prime != h) h = h * eta;
-            error_weights(control, w.yn, w.weight);
+            error_weights<N>(control, w.yn, w.weight);
         }
         double dsm = 0;
         for (int error_fails = 0;;) {
@@ -164,17 +170,17 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
             for (int is = 1; is < s; ++is) {
                 const double t_stage = tn + table.c[is] * h;
                 for (int js = 0; js < is; ++js) c[js] = h * table.A[is][js];
-                combine(is, c, w.F, w.yn, w.ycur);
+                combine<N>(is, c, w.F, w.yn, w.ycur);
                 if (rhs(t_stage, w.ycur, w.F[is], user) != 0) return r;
                 ++r.rhs_evaluations;
             }
             // erkStep_ComputeSolutions: the solution, and the error estimate when adaptive
             for (int j = 0; j < s; ++j) c[j] = h * table.b[j];
-            combine(s, c, w.F, w.yn, w.ycur);
+            combine<N>(s, c, w.F, w.yn, w.ycur);
             if (fixed) break;  // arkEvolve: eta = 1, no error test
             for (int j = 0; j < s; ++j) c[j] = h * (table.b[j] - table.d[j]);
-            combine(s, c, w.F, nullptr, w.error);
-            dsm = wrms_norm(w.error, w.weight);
+            combine<N>(s, c, w.F, nullptr, w.error);
+            dsm = wrms_norm<N>(w.error, w.weight);
             // arkCheckTemporalError, then arkEvolve's bounds on eta
             eta = adapt_ratio(table, h, dsm, error_history, eta_max);
             if (!(dsm <= 1.0)) {  // ARKODE's test: a NaN estimate fails too
@@ -195,7 +201,7 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
         double t_cur = tn + h;
         const double roundoff = kFuzzFactor * kUnitRoundoff * (std::fabs(t_cur) + std::fabs(h));
         if (std::fabs(t_cur - t_stop) <= roundoff) t_cur = t_stop;
-        for (int j = 0; j < kStates; ++j) {
+        for (int j = 0; j < N; ++j) {
             w.yold[j] = w.yn[j];
             w.fold[j] = w.F[0][j];
         }
@@ -208,7 +214,7 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
         }
         if (rhs(t_cur, w.ycur, w.F[0], user) != 0) return r;
         ++r.rhs_evaluations;
-        for (int j = 0; j < kStates; ++j) w.yn[j] = w.ycur[j];
+        for (int j = 0; j < N; ++j) w.yn[j] = w.ycur[j];
         error_history = dsm * kBias;
         ++r.steps;
         tn = t_cur;
@@ -232,7 +238,7 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
     const double tau = (t_out - tn) / h, tau2 = tau * tau, tau3 = tau * tau2;
     const double a0 = 3.0 * tau2 + 2.0 * tau3, a1 = 1.0 - 3.0 * tau2 - 2.0 * tau3,
                  a2 = h * (tau2 + tau3), a3 = h * (tau + 2.0 * tau2 + tau3);
-    for (int j = 0; j < kStates; ++j) {
+    for (int j = 0; j < N; ++j) {
         double z = a0 * w.yold[j];
         z += a1 * w.yn[j];
         z += a2 * w.fold[j];
@@ -241,6 +247,18 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
     }
     r.done = true;
     return r;
+}
+
+}  // namespace
+
+ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &w,
+                      double h_comm, const double *y0, double g_start, ErkRhs rhs,
+                      ErkRoot root, void *user, double *y_out, int states) {
+    return states == kStates
+               ? advance_states<kStates>(table, control, w, h_comm, y0, g_start, rhs, root, user,
+                                         y_out)
+               : advance_states<kMaxStates>(table, control, w, h_comm, y0, g_start, rhs, root,
+                                            user, y_out);
 }
 
 }  // namespace fd

@@ -10,7 +10,9 @@
 namespace stewart {
 namespace fd {
 
-constexpr int kStates = 13;
+constexpr int kStates = 13;  // the platform: position, quaternion, velocity, angular velocity
+// and, with the windings' currents as states (voltage input, an inductance), six more
+constexpr int kMaxStates = kStates + 6;
 constexpr int kMaxErkStages = 5;
 
 // An explicit Butcher table with an embedding, of at most kMaxErkStages stages, whose last stage
@@ -48,10 +50,10 @@ using ErkRoot = double (*)(const double *y, void *user);
 
 // The vectors of one communication step, made once (a step allocates nothing).
 struct ErkWork {
-    double F[kMaxErkStages][kStates];    // stage derivatives; F[0] at the step's start
-    double yn[kStates], ycur[kStates];   // the step's start, the stage or new state
-    double yold[kStates], fold[kStates]; // the last step's start and its derivative
-    double weight[kStates], error[kStates];
+    double F[kMaxErkStages][kMaxStates];       // stage derivatives; F[0] at the step's start
+    double yn[kMaxStates], ycur[kMaxStates];   // the step's start, the stage or new state
+    double yold[kMaxStates], fold[kMaxStates]; // the last step's start and its derivative
+    double weight[kMaxStates], error[kMaxStates];
 };
 
 // What one communication step did (ARKODE's counters of the same run).
@@ -69,9 +71,10 @@ struct ErkResult {
 // time h_comm and `control`, into y_out; g_start is the root function at y0. The right-hand
 // side's last evaluation is at (h_comm, the new state before y_out's interpolation); with
 // control.project_end, at (h_comm, y_out) (end_projected).
+// states: kStates or kMaxStates, the length of y0, y_out and the right-hand side's vectors.
 ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &work,
-                      double h_comm, const double y0[kStates], double g_start, ErkRhs rhs,
-                      ErkRoot root, void *user, double y_out[kStates]);
+                      double h_comm, const double *y0, double g_start, ErkRhs rhs,
+                      ErkRoot root, void *user, double *y_out, int states = kStates);
 
 }  // namespace fd
 }  // namespace stewart

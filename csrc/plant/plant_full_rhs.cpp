@@ -198,11 +198,12 @@ template <bool Keep>
     }
 }
 
-// The closed-form twist rate for axisymmetric leg bodies (d.with_legs); with Keep, its terms
-// into e.kept.
+// The closed-form equations for axisymmetric leg bodies (d.with_legs) into q; with Keep, their
+// terms into e.kept.
 template <bool Keep>
-bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
-                             const double force[STEWART_LEGS], Evaluation &e) {
+[[gnu::always_inline]] inline bool axisymmetric_equations(const DynamicsModel &d, const Motion &m,
+                                                          const double force[STEWART_LEGS],
+                                                          Evaluation &e, Equations &q) {
     e.terms_kept = false;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegFault fault = leg_configuration(d.legs, k, m.position, m.rotation, e.legs[k]);
@@ -212,7 +213,6 @@ bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
             return false;
         }
     }
-    Equations q;
     for (auto &row : q.M)
         for (double &v : row) v = 0;
     // The platform (and payload), centre of mass at c from the origin, as in the template.
@@ -250,17 +250,26 @@ bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
     q.M[0][4] += first[2], q.M[0][5] -= first[1];
     q.M[1][3] -= first[2], q.M[1][5] += first[0];
     q.M[2][3] += first[1], q.M[2][4] -= first[0];
+    if (Keep) {
+        e.kept.platform_com = c;
+        e.kept.platform_inertia = I_platform;
+    }
+    return true;
+}
 
+// The closed-form twist rate for axisymmetric leg bodies (d.with_legs); with Keep, its terms
+// into e.kept.
+template <bool Keep>
+bool axisymmetric_twist_rate(const DynamicsModel &d, const Motion &m,
+                             const double force[STEWART_LEGS], Evaluation &e) {
+    Equations q;
+    if (!axisymmetric_equations<Keep>(d, m, force, e, q)) return false;
     double x[6];
     solve_ldlt(q, x);
     for (int i = 0; i < 6; ++i) e.twist_rate[i] = x[i];
     e.fault = LegFault::None;
     e.fault_leg = -1;
-    if (Keep) {
-        e.kept.platform_com = c;
-        e.kept.platform_inertia = I_platform;
-        e.terms_kept = true;
-    }
+    if (Keep) e.terms_kept = true;
     return true;
 }
 
@@ -332,8 +341,44 @@ LegAccelerations leg_accelerations(const DynamicsModel &d, int k, const LegConfi
 
 }  // namespace
 
+bool reduced_equations(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
+                       Evaluation &e, double M[6][6], double rhs[6]) {
+    if (!fast_path(d)) {
+        Eigen::Matrix<double, 6, 6> full;
+        Eigen::Matrix<double, 6, 1> b;
+        if (!reduced_equations<double>(d, m, force, e, full, b)) return false;
+        for (int r = 0; r < 6; ++r) {
+            rhs[r] = b[r];
+            for (int c = r; c < 6; ++c) M[r][c] = full(r, c);
+        }
+        return true;
+    }
+    Equations q;
+    const bool defined = e.keep_terms ? axisymmetric_equations<true>(d, m, force, e, q)
+                                      : axisymmetric_equations<false>(d, m, force, e, q);
+    if (!defined) return false;
+    if (e.keep_terms) e.terms_kept = true;
+    for (int r = 0; r < 6; ++r) {
+        rhs[r] = q.rhs[r];
+        for (int c = r; c < 6; ++c) M[r][c] = q.M[r][c];
+    }
+    return true;
+}
+
+void solve_with_rank_ones(const double M[6][6], const double rhs[6], const double (*j)[6],
+                          const double *weight, double x[6]) {
+    Equations q;
+    for (int r = 0; r < 6; ++r) {
+        q.rhs[r] = rhs[r];
+        for (int c = r; c < 6; ++c) q.M[r][c] = M[r][c];
+    }
+    for (int k = 0; k < STEWART_LEGS; ++k) add_rank_one(q, weight[k], j[k]);
+    solve_ldlt(q, x);
+}
+
 bool twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
                 Evaluation &e) {
+    if (d.drives.input != STEWART_PLANT_INPUT_FORCE) return driven_twist_rate(d, m, force, e);
     if (fast_path(d))
         return e.keep_terms ? axisymmetric_twist_rate<true>(d, m, force, e)
                             : axisymmetric_twist_rate<false>(d, m, force, e);

@@ -50,14 +50,15 @@ struct IntegratorImpl {
     ErkWork work;
     double relative_tolerance = 0, absolute_tolerance = 0;
     double reference_angles[3] = {0, 0, 0};  // principal roll, pitch, yaw the pitch root follows
-    double start_state[kStates] = {0};  // the communication step's start (pitch_sign's)
+    int n = kStates;  // states: kStates, or kMaxStates with the windings' currents
+    double start_state[kMaxStates] = {0};  // the communication step's start (pitch_sign's)
     Evaluation evaluation;
     LegFault fault = LegFault::None;  // the last right-hand side refused, and why
     int fault_leg = -1;
     bool non_finite = false;
     char cvode_message[160] = "";
     // the last successful right-hand side's arguments, and whether they were the step's end
-    double last_tau = -1, last_y[kStates] = {0}, last_force[STEWART_LEGS] = {0};
+    double last_tau = -1, last_y[kMaxStates] = {0}, last_force[STEWART_LEGS] = {0};
     bool end_valid = false;
     // whether state_rate copies its arguments (the written-out ERK knows its last ones itself)
     bool record_arguments = true;
@@ -95,14 +96,23 @@ void normalize_quaternion(double *y) {
     for (int i = 3; i < 7; ++i) y[i] /= norm;
 }
 
+// f(i) for each of the n states; the platform's 13 as a loop of known length (unrolled, as before
+// the windings' currents could be states).
+template <class F>
+[[gnu::always_inline]] inline void each_state(int n, F f) {
+    if (n == kStates)
+        for (int i = 0; i < kStates; ++i) f(i);
+    else
+        for (int i = 0; i < n; ++i) f(i);
+}
+
 // Whether the right-hand side the last step carried (at work.yn and the end forces) is the one
 // at the start of this step: the same state and forces at tau = 0, bit for bit.
-bool start_rate_carried(const IntegratorImpl &im, const double y[kStates],
-                        const ForceProfile &forces) {
+bool start_rate_carried(const IntegratorImpl &im, const double *y, const ForceProfile &forces) {
     if (!im.start_carried) return false;
     double start_force[STEWART_LEGS];
     forces.at(0.0, start_force);
-    return std::memcmp(y, im.work.yn, sizeof im.work.yn) == 0 &&
+    return std::memcmp(y, im.work.yn, im.n * sizeof(double)) == 0 &&
            std::memcmp(start_force, im.carried_force, sizeof start_force) == 0;
 }
 
@@ -217,9 +227,10 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     const Motion m = motion_of_state(y);
     double force[STEWART_LEGS];
     im.forces->at(tau, force);
+    im.evaluation.winding_current = im.n > kStates ? y + kStates : nullptr;
     // the massless equations written out (plant_massless.cpp; twist_rate's for the massless model)
     bool defined;
-    if (im.model->with_legs) {
+    if (im.model->with_legs || im.model->drives.input != STEWART_PLANT_INPUT_FORCE) {
         im.evaluation.keep_terms = tau == im.forces->h;  // the step's end: its outputs reuse them
         defined = twist_rate(*im.model, m, force, im.evaluation);
     } else {
@@ -244,9 +255,10 @@ int state_rate(double tau, const double *y, double *y_dot, void *user) {
     y_dot[5] = 0.5 * (w * oy + oz * x - ox * z);
     y_dot[6] = 0.5 * (w * oz + ox * yy - oy * x);
     for (int i = 0; i < 6; ++i) y_dot[7 + i] = a[i];
+    if (im.n > kStates) winding_rates(*im.model, force, im.evaluation, y_dot + kStates);
     im.last_tau = tau;
     if (!im.record_arguments) return 0;
-    for (int i = 0; i < kStates; ++i) im.last_y[i] = y[i];
+    each_state(im.n, [&](int i) { im.last_y[i] = y[i]; });
     for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = force[k];
     return 0;
 }
@@ -322,16 +334,17 @@ int dense_jacobian(sunrealtype t, N_Vector y, N_Vector f, SUNMatrix J, void *use
     const double *yv = N_VGetArrayPointer(y), *fv = N_VGetArrayPointer(f);
     double *yp = N_VGetArrayPointer(perturbed);
     const double *fp = N_VGetArrayPointer(f_perturbed);
-    for (int i = 0; i < kStates; ++i) yp[i] = yv[i];
+    const int n = static_cast<int>(N_VGetLength(y));
+    for (int i = 0; i < n; ++i) yp[i] = yv[i];
     const double root_eps = 1.4901161193847656e-08;  // sqrt(2^-52)
-    for (int j = 0; j < kStates; ++j) {
+    for (int j = 0; j < n; ++j) {
         const double increment = root_eps * std::max(std::fabs(yv[j]), 1e-3);
         yp[j] = yv[j] + increment;
         const int flag = right_hand_side(t, perturbed, f_perturbed, user);
         yp[j] = yv[j];
         if (flag != 0) return flag;
         double *column = SUNDenseMatrix_Column(J, j);
-        for (int i = 0; i < kStates; ++i) column[i] = (fp[i] - fv[i]) / increment;
+        for (int i = 0; i < n; ++i) column[i] = (fp[i] - fv[i]) / increment;
     }
     return 0;
 }
@@ -400,10 +413,11 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
     IntegratorImpl &im = *impl_;
     im.model = model;
+    im.n = state_count(*model);
     im.carry_end = carry_end;
     im.evaluation.fill_legs = false;  // massless: nothing reads its legs (end_evaluation())
     im.context = mbs::sundials::make_context();
-    if (im.context) im.y_holder.reset(N_VNew_Serial(kStates, im.context.get()));
+    if (im.context) im.y_holder.reset(N_VNew_Serial(im.n, im.context.get()));
     im.y = im.y_holder.get();
     if (!im.y)
         return set_message(msg, size, STEWART_ERR_MEMORY, "SUNDIALS context or vector failed"),
@@ -460,7 +474,7 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
                            flag_name(flag), im.cvode_message),
                false;
     if (bdf) {
-        im.matrix.reset(SUNDenseMatrix(kStates, kStates, im.context.get()));
+        im.matrix.reset(SUNDenseMatrix(im.n, im.n, im.context.get()));
         if (im.matrix)
             im.linear.reset(SUNLinSol_Dense(im.y, im.matrix.get(), im.context.get()));
         if (!im.linear ||
@@ -481,7 +495,7 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     return true;
 }
 
-stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces,
+stewart_status Integrator::advance(double *y, const ForceProfile &forces,
                                    double &step_hint, char *msg, size_t size,
                                    const double *start_angles) {
     IntegratorImpl &im = *impl_;
@@ -494,7 +508,7 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     im.last_start_carried = false;
     im.last_tau = -1;
     double *v = N_VGetArrayPointer(im.y);
-    for (int i = 0; i < kStates; ++i) v[i] = y[i];
+    each_state(im.n, [&](int i) { v[i] = y[i]; });
     int flag;
     sunrealtype t_reached = 0;
     stats_ = stewart_plant_statistics{};
@@ -507,7 +521,7 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
         for (int i = 0; i < 3; ++i) im.reference_angles[i] = start_angles[i];
     else
         principal_angles(y, im.reference_angles);
-    for (int i = 0; i < kStates; ++i) im.start_state[i] = y[i];
+    each_state(im.n, [&](int i) { im.start_state[i] = y[i]; });
     bool pitch_crossed = false;
     double angles[3] = {0, 0, 0};
     int roots = 0;
@@ -534,12 +548,12 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             const ErkResult r =
                 erk_advance(im.table, control, im.work, forces.h, y,
                             principal_cos_sign(im.reference_angles[1]), state_rate, pitch_sign,
-                            &im, v);
+                            &im, v, im.n);
             im.record_arguments = true;
             if (r.done) {
                 // a step done ends with the evaluation at (its end time, work.yn, the forces
                 // there: the end forces exactly when that time is h)
-                for (int i = 0; i < kStates; ++i) im.last_y[i] = im.work.yn[i];
+                each_state(im.n, [&](int i) { im.last_y[i] = im.work.yn[i]; });
                 if (im.last_tau == forces.h)  // what at(h) returns, without the call
                     for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = forces.end[k];
                 else if (im.last_tau >= 0)
@@ -561,7 +575,7 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
             im.fault_leg = -1;
             im.non_finite = false;
             im.last_tau = -1;
-            for (int i = 0; i < kStates; ++i) v[i] = y[i];
+            for (int i = 0; i < im.n; ++i) v[i] = y[i];
         }
         if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
             (flag = ERKStepSetStopTime(im.arkode, forces.h)) != ARK_SUCCESS ||
@@ -650,7 +664,7 @@ stewart_status Integrator::advance(double y[kStates], const ForceProfile &forces
     return finish_step(y, forces.h, msg, size);
 }
 
-stewart_status Integrator::finish_step(double y[kStates], double h, char *msg, size_t size,
+stewart_status Integrator::finish_step(double *y, double h, char *msg, size_t size,
                                        bool normalized) {
     IntegratorImpl &im = *impl_;
     const double *v = N_VGetArrayPointer(im.y);
@@ -658,20 +672,20 @@ stewart_status Integrator::finish_step(double y[kStates], double h, char *msg, s
     // Whether the last evaluation was at exactly the state returned, the end time and forces.
     // (each test in one pass without a branch per value)
     bool same = im.last_tau == h;
-    for (int i = 0; i < kStates; ++i) same &= im.last_y[i] == v[i];
+    each_state(im.n, [&](int i) { same &= im.last_y[i] == v[i]; });
     for (int k = 0; k < STEWART_LEGS; ++k) same &= im.last_force[k] == forces.end[k];
     im.end_valid = same;
-    double out[kStates];
-    for (int i = 0; i < kStates; ++i) out[i] = v[i];
+    double out[kMaxStates];
+    each_state(im.n, [&](int i) { out[i] = v[i]; });
     if (!normalized) normalize_quaternion(out);
     double zero_if_finite = 0;  // the sum of x * 0: NaN exactly when some x is not finite
-    for (int i = 0; i < kStates; ++i) zero_if_finite += out[i] * 0.0;
+    each_state(im.n, [&](int i) { zero_if_finite += out[i] * 0.0; });
     if (zero_if_finite != 0)
-        for (int i = 0; i < kStates; ++i)
+        for (int i = 0; i < im.n; ++i)
             if (!std::isfinite(out[i]))
                 return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                    "the state is not finite after the step (state %d)", i);
-    for (int i = 0; i < kStates; ++i) y[i] = out[i];
+    each_state(im.n, [&](int i) { y[i] = out[i]; });
     return STEWART_OK;
 }
 

@@ -34,6 +34,10 @@ bool crosses_pitch_limit(const double before[3], const double after[3]);
 // that crosses_pitch_limit is false for their angles: the pitch root's cheap pre-test.
 bool near_level_turn(const double start[kStates], double start_pitch, const double y[kStates]);
 
+// The integrator's states for this model: kStates (the platform), or kMaxStates with the
+// windings' currents after them (voltage input and an inductance).
+inline int state_count(const DynamicsModel &d) { return d.drives.inductive ? kMaxStates : kStates; }
+
 struct IntegratorImpl;
 
 // One CVODE or ARKODE instance and its workspaces, made once; advance() allocates nothing.
@@ -54,12 +58,12 @@ public:
     // a rollback repeats them); the end evaluation is at the state returned. false: ARKODE's.
     bool init(const DynamicsModel *model, const stewart_plant_options &options, char *msg,
               size_t size, bool written_out = true, bool carry_end = true);
-    // Integrates y over [0, h]. On failure y is unchanged and the message names the cause
+    // Integrates y (state_count(*model) values) over [0, h]. On failure y is unchanged and the message names the cause
     // (the leg, or the integrator's flag and text). Normalises the quaternion of the result.
     // step_hint: the first internal step to try (0: the integrator estimates it); on success,
     // the step the integrator would take next (explicit Runge-Kutta only; CVODE ignores it).
     // start_angles: principal_angles(y) if the caller has them (or nullptr).
-    stewart_status advance(double y[kStates], const ForceProfile &forces, double &step_hint,
+    stewart_status advance(double *y, const ForceProfile &forces, double &step_hint,
                            char *msg, size_t size, const double *start_angles = nullptr);
     // The right-hand side's last evaluation if it was at the end of the last successful
     // advance() (tau = h, the end forces, the state the integrator returned: before the
@@ -75,7 +79,7 @@ public:
 private:
     // The end of a successful advance: whether the last evaluation is the step's end, the
     // quaternion normalised (unless it is already), the state checked and copied to y.
-    stewart_status finish_step(double y[kStates], double h, char *msg, size_t size,
+    stewart_status finish_step(double *y, double h, char *msg, size_t size,
                                bool normalized = false);
     IntegratorImpl *impl_ = nullptr;
     stewart_plant_statistics stats_{};

@@ -19,7 +19,7 @@ struct stewart_plant {
     stewart::fd::DynamicsModel dynamics;
     stewart::fd::Integrator integrator;
     double time = 0;
-    double y[stewart::fd::kStates] = {0};
+    double y[stewart::fd::kMaxStates] = {0};  // the platform, then the windings' currents (fd::state_count)
     double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
@@ -37,3 +37,8 @@ struct stewart_plant {
     stewart_plant_statistics stats{};
     mutable char message[STEWART_MESSAGE_SIZE] = "";  // a refused save (const) says why too
 };
+
+// The legs' forces and drive outputs of o (force, current, voltage, motor speed and torque,
+// electrical power, the drive-limit bits) at the evaluation e of the inputs (plant_api.cpp).
+void plant_drive_outputs(const stewart_plant &p, const double *input,
+                         const stewart::fd::Evaluation &e, stewart_plant_output &o);

@@ -37,7 +37,7 @@ from .params import parameters, platform_files
 from .vestibular import Perceived, VestibularModel, perception
 from .platform import Platform
 from .scores import CueingScores, cueing_scores
-from .simulate import Method, Simulation
+from .simulate import Method, PlantInput, Simulation
 from .sizing import SizingReport, sizing
 from .view import view
 
@@ -47,7 +47,7 @@ except PackageNotFoundError:  # imported from a source tree, not installed
     __version__ = "unknown"
 
 __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "HomeCheck",
-           "Fidelity", "Method", "ParameterError", "fmu_path", "fmu_paths", "fmu_start_values",
+           "Fidelity", "Method", "ParameterError", "PlantInput", "fmu_path", "fmu_paths", "fmu_start_values",
            "ssp_path", "FMI_VERSIONS", "FMU_NAMES", "parameters", "calibrate",
            "calibration_poses", "observability", "Calibration", "UnobservableError",
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",

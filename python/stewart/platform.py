@@ -20,7 +20,7 @@ from .limits import AxisRanges, LimitCheck
 from .limits import check as check_limits
 from .limits import ranges as limit_ranges
 from .params import ParameterValue, option_values, parameter_assignments, read_platform_file
-from .simulate import Method, Simulation, run_simulate
+from .simulate import Method, Simulation, plant_input_kind, run_simulate
 
 
 class Platform:
@@ -228,7 +228,9 @@ class Platform:
                  relative_tolerance: Optional[float] = None,
                  absolute_tolerance: Optional[float] = None,
                  max_internal_steps: Optional[int] = None,
-                 fixed_steps: Optional[int] = None) -> Simulation:
+                 fixed_steps: Optional[int] = None,
+                 input: Optional[Union[int, str]] = None,
+                 smoothing_speed: Optional[float] = None) -> Simulation:
         """Forward dynamics: the platform's motion under the actuator forces, in one batch.
 
         t: (N,) increasing communication points [s]; forces: (N, 6) F_k [N] at those points
@@ -244,7 +246,13 @@ class Platform:
         the library's defaults (stewart_plant_options_default: ERK 4(3), rtol 1e-10, atol
         1e-12). fixed_steps = N (1..1000, explicit methods only) takes N equal steps per
         communication step without error control, a fixed amount of work per step (the
-        latency-bound choice; docs/speed-accuracy.md says its accuracy). Ctrl-C stops the run within about a slice of communication points
+        latency-bound choice; docs/speed-accuracy.md says its accuracy). input: what the
+        (N, 6) array `forces` carries per leg, "force" [N] (default), "current" [A] or "voltage"
+        [V] (0, 1, 2): with a current or voltage every leg needs a drive (screw_lead,
+        torque_constant; docs/forward-dynamics.md "Drives"), and the result's force, current,
+        voltage, motor_speed, motor_torque and electrical_power say what the drives did.
+        smoothing_speed [m/s]: the leg speed below which the drives' friction and screw losses
+        fade out (default 1e-4). Ctrl-C stops the run within about a slice of communication points
         (simulate.SLICE_ROWS; the plant goes on across slices): KeyboardInterrupt, whose result
         holds its first rows_done rows run."""
         level = Fidelity.of(fidelity)
@@ -261,7 +269,10 @@ class Platform:
         options += option_values(relative_tolerance=relative_tolerance,
                                  absolute_tolerance=absolute_tolerance,
                                  max_internal_steps=max_internal_steps,
-                                 fixed_steps=fixed_steps)
+                                 fixed_steps=fixed_steps,
+                                 smoothing_speed=smoothing_speed)
+        if input is not None:
+            options.append(("input", float(plant_input_kind(input))))
         return run_simulate(self._model, time, F, q0, q0_dot, options)
 
     def linearize(self, pose, pose_rate=None, forces=None,

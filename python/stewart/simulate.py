@@ -27,6 +27,23 @@ class Method(Choice):
     ERK5 = 3   #: ARKODE explicit Runge-Kutta 5(4), Dormand-Prince
 
 
+class PlantInput(Choice):
+    """What drives the plant's legs (stewart_plant_input_kind); PlantInput.of takes a member,
+    its number or its name ("force", "current", "voltage")."""
+    FORCE = 0    #: the leg's axial force [N]
+    CURRENT = 1  #: the motor's current [A]
+    VOLTAGE = 2  #: the motor's terminal voltage [V]
+
+    @classmethod
+    def _argument(cls) -> str:
+        return "input"  # Platform.simulate's keyword, named in errors
+
+
+def plant_input_kind(value) -> int:
+    """The option value of a PlantInput given as a member, number or name."""
+    return int(PlantInput.of(value))
+
+
 @dataclass
 class Simulation(RowStatus):
     """The result of Platform.simulate over N communication points: arrays of N rows.
@@ -43,6 +60,15 @@ class Simulation(RowStatus):
     warnings: np.ndarray     #: (N,) bits: 1 a leg outside the stroke, 8 a joint beyond its
     #: angle limit, 16 two legs closer than leg_diameter (docs/limits.md)
     stroke_legs: np.ndarray  #: (N,) bit k set: leg k+1 is outside its stroke
+    force: np.ndarray        #: (N, 6) axial force F_k on the mechanism [N] (the input, or the drive's)
+    current: np.ndarray      #: (N, 6) motor current [A] (0 with force input)
+    voltage: np.ndarray      #: (N, 6) motor voltage [V]: the input, or R i + k_t omega (current input)
+    motor_speed: np.ndarray  #: (N, 6) 2 pi N L_dot / lead [rad/s]
+    motor_torque: np.ndarray  #: (N, 6) k_t i [N m]
+    electrical_power: np.ndarray  #: (N, 6) voltage times current [W], < 0 regenerates
+    current_limit_legs: np.ndarray  #: (N,) bit k set: leg k+1 above its current_max
+    voltage_limit_legs: np.ndarray  #: (N,) bit k set: leg k+1 above its voltage_max
+    speed_limit_legs: np.ndarray    #: (N,) bit k set: leg k+1 above its motor_speed_max
     steps: np.ndarray        #: (N,) internal integrator steps of the step into the row
     rhs_evaluations: np.ndarray       #: (N,) of the step into the row
     nonlinear_iterations: np.ndarray  #: (N,) of the step into the row

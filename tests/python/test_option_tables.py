@@ -38,8 +38,8 @@ def test_each_call_takes_its_tables_options(method, table, positional):
 def test_plant_table_describes_every_option():
     table = {o["name"]: o for o in _core.option_table("plant")}
     assert list(table) == ["fidelity", "method", "relative_tolerance", "absolute_tolerance",
-                           "max_internal_steps", "fixed_steps"]
-    assert [o["id"] for o in table.values()] == list(range(200, 206))  # the plant FMU's
+                           "max_internal_steps", "fixed_steps", "input", "smoothing_speed"]
+    assert [o["id"] for o in table.values()] == list(range(200, 208))  # the plant FMU's
     assert table["max_internal_steps"]["integer"] and not table["relative_tolerance"]["integer"]
     for o in table.values():
         assert o["description"] and o["min"] <= o["default"] <= o["max"], o

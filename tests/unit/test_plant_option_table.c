@@ -42,8 +42,8 @@ static void test_defaults_are_the_plants(void) {
 
 static void test_names_unique_and_ids_the_fmus(void) {
     const char *names[] = {"fidelity", "method", "relative_tolerance", "absolute_tolerance",
-                           "max_internal_steps", "fixed_steps"};
-    TEST_ASSERT_EQUAL_INT(6, stewart_plant_option_count());
+                           "max_internal_steps", "fixed_steps", "input", "smoothing_speed"};
+    TEST_ASSERT_EQUAL_INT(8, stewart_plant_option_count());
     for (int i = 0; i < stewart_plant_option_count(); ++i) {
         const stewart_option_info *info = stewart_plant_option(i);
         TEST_ASSERT_EQUAL_STRING(names[i], info->name);
@@ -75,7 +75,9 @@ static stewart_status check_with(int i, double value) {
     case 2: o.relative_tolerance = value; break;
     case 3: o.absolute_tolerance = value; break;
     case 4: o.max_internal_steps = (long)value; break;
-    default: o.fixed_steps = (int)value; break;
+    case 5: o.fixed_steps = (int)value; break;
+    case 6: o.input = (int)value; break;
+    default: o.smoothing_speed = value; break;
     }
     return stewart_plant_options_check(&o, msg_of_check, sizeof msg_of_check);
 }

@@ -76,7 +76,16 @@
     X(base_force, base_force, 3, double, "N", "Force the moving bodies put on the base, world frame") \
     X(base_torque, base_torque, 3, double, "N.m", "Its torque about the world origin")           \
     X(warnings, warnings, 1, int, "", "STEWART_WARN_* bits")                                     \
-    X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: leg k+1 is outside the stroke")
+    X(stroke_legs, stroke_legs, 1, int, "", "Bit k set: leg k+1 is outside the stroke")         \
+    X(force, force, 6, double, "N", "Actuator force F_k on the mechanism, > 0 extends")           \
+    X(current, current, 6, double, "A", "Motor current (0 with force input)")                    \
+    X(voltage, voltage, 6, double, "V", "Motor voltage: the input, or R i + k_t omega (current)") \
+    X(motor_speed, motor_speed, 6, double, "rad/s", "Motor speed 2 pi N L_dot / lead")           \
+    X(motor_torque, motor_torque, 6, double, "N.m", "Motor torque k_t i")                        \
+    X(electrical_power, electrical_power, 6, double, "W", "Voltage times current, < 0 regenerates") \
+    X(current_limit_legs, current_limit_legs, 1, int, "", "Bit k set: leg k+1 above current_max") \
+    X(voltage_limit_legs, voltage_limit_legs, 1, int, "", "Bit k set: leg k+1 above voltage_max") \
+    X(speed_limit_legs, speed_limit_legs, 1, int, "", "Bit k set: leg k+1 above motor_speed_max")
 
 #define STEWART_PLANT_STEP_TABLE(X)                                                              \
     X(steps, steps, 1, long, "", "Internal integrator steps of the step into the row")           \

@@ -28,6 +28,19 @@ typedef enum stewart_plant_method {
     STEWART_PLANT_ERK5 = 3   /* ARKODE explicit Runge-Kutta, Dormand-Prince 5(4), 7 stages */
 } stewart_plant_method;
 
+/* What drives the legs (stewart_plant_options.input). With FORCE the drives' parameters are not
+ * used: the input is the leg's axial force, as without drives. With CURRENT or VOLTAGE every leg
+ * needs a drive (screw_lead > 0, torque_constant > 0; VOLTAGE also winding_resistance > 0): the
+ * motor's torque turns the screw, the rotor's and screw's inertia, the screw's efficiency,
+ * friction and the end stops act on the leg (docs/drives-plant.md). With VOLTAGE and a
+ * winding_inductance > 0 the windings' currents are states of the plant (zero after
+ * stewart_plant_set_state, saved with the state; stewart_plant_derivatives refuses them). */
+typedef enum stewart_plant_input_kind {
+    STEWART_PLANT_INPUT_FORCE = 0,   /* F_k [N] */
+    STEWART_PLANT_INPUT_CURRENT = 1, /* motor current i_k [A] */
+    STEWART_PLANT_INPUT_VOLTAGE = 2  /* motor terminal voltage V_k [V] */
+} stewart_plant_input_kind;
+
 /* Integrator settings; stewart_plant_options_default gives the values documented here. */
 typedef struct stewart_plant_options {
     int fidelity;            /* STEWART_MASSLESS or STEWART_FULL; STEWART_FULL */
@@ -39,6 +52,11 @@ typedef struct stewart_plant_options {
                                 the explicit Runge-Kutta method per communication step, no error
                                 control (a fixed amount of work, ERK and ERK5 only: 5N + 1
                                 right-hand sides per step with ERK, 6N + 2 with ERK5); 0 */
+    int input;               /* a stewart_plant_input_kind: what the step's force_start/force_end
+                                arrays carry per leg (forces, motor currents or motor voltages);
+                                STEWART_PLANT_INPUT_FORCE */
+    double smoothing_speed;  /* [m/s] leg speed below which friction and the screw's losses fade
+                                out (v / sqrt(v^2 + smoothing_speed^2)); 1e-4 */
 } stewart_plant_options;
 
 /* Integrator counters: of the last step, and summed since the plant was created or reset. The
@@ -75,6 +93,17 @@ typedef struct stewart_plant_output {
     int warnings;            /* STEWART_WARN_STROKE, _JOINT_LIMIT, _INTERFERENCE (end stops and
                                 contacts are not modelled: warnings only) */
     int stroke_legs;         /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
+    /* The legs' forces and drives (with input force: force is the input, the drive's 0). */
+    double force[STEWART_LEGS];            /* axial force on the mechanism, > 0 extends [N] */
+    double current[STEWART_LEGS];          /* motor current [A] */
+    double voltage[STEWART_LEGS];          /* the input with voltage input; with current input
+                                              R i + k_t omega [V] (L di/dt not included) */
+    double motor_speed[STEWART_LEGS];      /* omega = 2 pi N L_dot / lead [rad/s] */
+    double motor_torque[STEWART_LEGS];     /* k_t i [N m] */
+    double electrical_power[STEWART_LEGS]; /* voltage * current [W], < 0: the drive regenerates */
+    int current_limit_legs;  /* bit k set: |current| of leg k+1 above its current_max (> 0) */
+    int voltage_limit_legs;  /* bit k set: |voltage| above voltage_max (> 0) */
+    int speed_limit_legs;    /* bit k set: |motor_speed| above motor_speed_max (> 0) */
 } stewart_plant_output;
 
 /* One moving body at the current state, world frame: its centre of mass, orientation (columns =

@@ -286,7 +286,13 @@ extern "C" {
       "Integrator steps allowed within one communication step")                                  \
     X(205, fixed_steps, int, "", 0, 1, 1000, 1, 0,                                               \
       "0: adaptive steps (the tolerances); N: N equal explicit Runge-Kutta steps per "           \
-      "communication step without error control, the same work every step (methods 2 and 3)")
+      "communication step without error control, the same work every step (methods 2 and 3)")  \
+    X(206, input, int, "", 0, 1, 2, 1, STEWART_PLANT_INPUT_FORCE,                                \
+      "What drives each leg: 0 force [N] (the drives' parameters unused), 1 motor current [A], " \
+      "2 motor voltage [V] (1 and 2 need a drive on every leg)")                                 \
+    X(207, smoothing_speed, double, "m/s", 1e-9, 1, 1e3, 1, 1e-4,                               \
+      "Leg speed below which the drives' friction and screw losses fade out smoothly (current " \
+      "and voltage input)")
 
 /* The linearisation's options (stewart_linearize_options; ids 420..: no FMU has them, the units'
  * derivatives take the unit's own fidelity) and the limits' (stewart_limits_options; ids 430..:

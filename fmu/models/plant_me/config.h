@@ -64,6 +64,7 @@
 /* The start state's parameters (variables.def's FMU_OPTION_REAL fields). */
 typedef struct plant_me_start {
     double pose0[6], rate0[6];
+    double smoothing_speed; /* the plant option of the drives' friction [m/s] */
 } plant_me_start;
 
 typedef struct model_values {
@@ -92,6 +93,8 @@ typedef struct model_resources {
     plant_me_derivatives derivatives; /* of `linearize`; cleared when it is rebuilt */
     stewart_params params;
     int fidelity;
+    int input;  /* stewart_plant_options.input of `plant` */
+    double smoothing_speed; /* stewart_plant_options.smoothing_speed of `plant` */
     char message[2 * STEWART_MESSAGE_SIZE];
 } model_resources;
 

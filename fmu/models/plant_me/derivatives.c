@@ -105,6 +105,14 @@ fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unkno
                                         size_t n_unknown, const unsigned known[], size_t n_known,
                                         const double seed[], double sensitivity[],
                                         const char *function) {
+    if (inst->res.input != STEWART_PLANT_INPUT_FORCE) {
+        /* the linearisation knows the force-driven equations only */
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "%s: the directional derivatives are those of force input; with input = %d "
+                "(driven legs) they are not available: let the master use difference quotients",
+                function, inst->res.input);
+        return FMU_ERROR;
+    }
     int wrench = 0;
     for (size_t i = 0; i < n_unknown; ++i) wrench |= is_base_wrench(unknown[i]);
     if (linearised(inst, wrench) != STEWART_OK) return failed(inst, function);

@@ -18,7 +18,9 @@
 void model_start_values(fmu_values *v) {
     stewart_params p;
     stewart_params_default(&p);
-    plant_me_start s = {{0, 0, p.home_height, 0, 0, 0}, {0}};
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    plant_me_start s = {{0, 0, p.home_height, 0, 0, 0}, {0}, o.smoothing_speed};
     fmu_start_values(v);
     fmu_params_to_values(v, &p);
     fmu_settings_to_values(v, &s);
@@ -41,13 +43,20 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
                 "invalid parameter: fidelity = %d must be 1 (massless) or 2 (full)", fidelity);
         return FMU_ERROR;
     }
+    const int input = v->integer[VR_input];
+    plant_me_start settings;
+    fmu_settings_from_values(v, &settings);
     stewart_params p;
     params_from_values(v, &p);
     const int new_model = !r->model || memcmp(&p, &r->params, sizeof p) != 0;
-    if (!new_model && r->plant && fidelity == r->fidelity) return FMU_OK;
+    if (!new_model && r->plant && fidelity == r->fidelity && input == r->input &&
+        settings.smoothing_speed == r->smoothing_speed)
+        return FMU_OK;
     stewart_plant_options o;
     stewart_plant_options_default(&o);
     o.fidelity = fidelity;
+    o.input = input;
+    o.smoothing_speed = settings.smoothing_speed;
     stewart_model *m = new_model ? stewart_model_create(&p, r->message, sizeof r->message)
                                  : r->model;
     stewart_plant *plant = m ? stewart_plant_create(m, &o, r->message, sizeof r->message) : NULL;
@@ -80,6 +89,8 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     r->limits = limits;
     r->derivatives.valid = 0;
     r->fidelity = fidelity;
+    r->input = input;
+    r->smoothing_speed = settings.smoothing_speed;
     fmu_log(inst, FMU_OK, LOG_EVENTS, "plant built (fidelity %d)", fidelity);
     return FMU_OK;
 }
@@ -147,6 +158,9 @@ fmu_status model_refresh_outputs(fmu_instance *inst) {
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out.field;
 #include "variables.def"
     v->integer[VR_status] = out.stroke_legs ? 1 : 0;
+    v->integer[VR_current_limit_legs] = out.current_limit_legs;
+    v->integer[VR_voltage_limit_legs] = out.voltage_limit_legs;
+    v->integer[VR_speed_limit_legs] = out.speed_limit_legs;
     v->model.stroke_legs = out.stroke_legs;
     v->model.solve_status = FMU_OK;
     return FMU_OK;
