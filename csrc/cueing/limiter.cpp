@@ -75,7 +75,7 @@ bool within(const Limiter &l, const double e[6], double s) {
     for (int i = 0; i < 6; ++i) platform.q[i] = l.home[i] + s * e[i];
     stewart_pose caller;
     if (!caller_pose(l, platform, 0, caller)) return false;
-    stewart_limits_input in;
+    stewart_limits_input in{};  // no derivatives, no forces: the pose alone
     for (int i = 0; i < 6; ++i) in.q[i] = caller.q[i];
     stewart_limits_output out;
     return stewart_limits_check(l.limits, &in, &out) == STEWART_OK &&

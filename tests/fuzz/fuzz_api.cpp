@@ -337,7 +337,7 @@ void fuzz_cueing(Reader &in, const stewart_model *model) {
         require_finite_values(out.pose.q, 6);
         require_finite_values(out.pose.q_dot, 6);
         require_finite_values(out.pose.q_ddot, 6);
-        stewart_limits_input check;
+        stewart_limits_input check{};
         std::memcpy(check.q, out.pose.q, sizeof check.q);
         stewart_limits_output verdict;
         if (stewart_limits_check(limits, &check, &verdict) != STEWART_OK ||

@@ -237,7 +237,7 @@ static void test_limiter_keeps_every_sample_within_the_limits(void) {
         stewart_cueing_output out;
         TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_cueing_step(c, &in, &out),
                                       stewart_cueing_message(c));
-        stewart_limits_input li;
+        stewart_limits_input li = {0};
         memcpy(li.q, out.pose.q, sizeof li.q);
         stewart_limits_output lout;
         TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_limits_check(limits, &li, &lout));
