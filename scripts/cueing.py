@@ -80,8 +80,9 @@ def write(result, out):
         stream.write("channel,rmse,correlation,delay,peak_correlation,note\n")
         for i, name in enumerate(s.channels):
             note = s.notes[i].replace('"', "'")
-            stream.write(f"{name},{s.rmse[i]!r},{s.correlation[i]!r},{s.delay[i]!r},"
-                         f"{s.peak_correlation[i]!r},\"{note}\"\n")
+            values = ",".join(repr(float(getattr(s, key)[i]))
+                              for key in ("rmse", "correlation", "delay", "peak_correlation"))
+            stream.write(f"{name},{values},\"{note}\"\n")
     return paths
 
 
