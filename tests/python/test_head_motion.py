@@ -207,3 +207,25 @@ def test_bad_input_is_refused_by_name():
         stewart.head_motion("thesis.json", pose, zero, zero)
     with pytest.raises(ValueError, match="overflows"):
         stewart.head_motion(platform, pose, zero + 1e300, zero + 1e300, head=[1e3, 0, 0])
+
+
+def test_a_z_down_machine_feels_what_its_z_up_twin_feels():
+    """frame_convention 1 (the same machine stated z down, y right): its cue comes back in its own
+    frames, and the head (given as the cueing unit takes it) feels the same as on the z-up twin,
+    in the cabin's x forward, y left, z up."""
+    t = np.arange(0.0, 6.0, 0.01)
+    f = np.tile([0.0, 0.0, G], (t.size, 1))
+    f[:, 0] += 1.5 * np.sin(1.1 * t)
+    f[:, 1] += 1.0 * (t > 2)
+    w = np.column_stack([0.2 * np.sin(2 * t), 0.15 * np.cos(3 * t), 0.35 * (t > 1)])
+    head = [0.1, -0.05, 0.3]
+    down = stewart.Platform(frame_convention=1, **{k: FRAMES["z down"][k]
+                                                    for k in ("base_angle", "platform_angle")})
+    felt = []
+    for platform in (stewart.Platform(), down):
+        cue = stewart.cueing(platform, t, f, w, head_x=head[0], head_y=head[1], head_z=head[2])
+        felt.append(stewart.head_motion(platform, cue.pose, cue.pose_rate, cue.pose_accel,
+                                        head=head))
+    assert np.ptp(felt[0].specific_force[:, 1]) > 0.1
+    for a, b in zip(*felt):
+        np.testing.assert_allclose(b, a, rtol=0, atol=1e-12)
