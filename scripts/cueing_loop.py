@@ -26,6 +26,7 @@ import argparse
 import pathlib
 import sys
 import time
+import xml.etree.ElementTree as ET
 
 import numpy as np
 
@@ -105,6 +106,42 @@ def run(platform, t_vehicle, specific_force, angular_velocity, options=None, dur
     return {"t": t, "vehicle": vehicle, "cue": cue[:, :6], "cue_rate": cue[:, 6:12],
             "cue_accel": cue[:, 12:], "pose": pose, "force": force,
             "feed_forward": feed_forward}, wall
+
+
+def osp_structure(platform, options, inputs, fmus=ROOT / "build" / "fmus" / "2.0"):
+    """The loop as an OSP system structure for libcosim (CosimExecution.from_osp_config_file), as
+    an ElementTree root: scenes/closed_loop's structure with the scene player replaced by the
+    cueing unit (its outputs have the scene player's names), the machine's parameters, the cueing
+    options, the vehicle's specific force and angular velocity `inputs` (6 values) held from t = 0
+    (a step from rest: a structure has no unit that plays a recorded signal), the PD gains of
+    closed_loop.machine_gains and the plant started at home; the FMI 2 units of the folder fmus.
+    libcosim steps every unit from the values of the last step (docs/closed-loop.md)."""
+    import machine_ssp
+    import osp_to_ssd
+    kp, kd = closed_loop.machine_gains(platform)
+    machine = stewart.fmu_start_values(platform)
+    values = {"cueing": {**machine, **options, **dict(zip(INPUTS, map(float, inputs)))},
+              "inverse": {"fidelity": 2, "derivatives": 1, **machine},
+              "controller": {"kp": kp, "kd": kd},
+              "plant": {"fidelity": 2, **stewart.fmu_start_values(platform, model="StewartPlant")}}
+    integers = {"algorithm", "translation_order", "rotation_filter_order"}
+    values["cueing"].update({k: int(v) for k, v in values["cueing"].items() if k in integers})
+    ns = {"o": osp_to_ssd.OSP}
+    template = machine_ssp.osp_structure({**values, "scene": {}}, pathlib.Path(fmus))
+    for simulator in template.findall("o:Simulators/o:Simulator", ns):
+        if simulator.get("name") == "scene":
+            simulator.set("name", "cueing")
+            simulator.set("source", str(pathlib.Path(fmus) / "StewartCueing.fmu"))
+            initial = simulator.find("o:InitialValues", ns)
+            for variable, value in values["cueing"].items():
+                entry = ET.SubElement(initial, f"{{{osp_to_ssd.OSP}}}InitialValue",
+                                      {"variable": variable})
+                kind, text = machine_ssp.typed(value)
+                ET.SubElement(entry, f"{{{osp_to_ssd.OSP}}}{kind}", {"value": text})
+    for variable in template.findall("o:Connections/o:VariableConnection/o:Variable", ns):
+        if variable.get("simulator") == "scene":
+            variable.set("simulator", "cueing")
+    return template
 
 
 def main(argv=None):

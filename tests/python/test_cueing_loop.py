@@ -63,3 +63,46 @@ def test_without_feedback_the_plant_drifts(simona, lane_change):
     position, angle = closed_loop.tracking_error(closed)
     open_position, open_angle = closed_loop.tracking_error(open_loop)
     assert open_position > 10 * position and open_angle > 10 * angle
+
+
+def test_libcosim_runs_the_osp_structure_of_the_loop(simona, tmp_path):
+    """cueing_loop.osp_structure with a braking step and a yaw rate from rest: libcosim's cue is
+    stewart.cueing's for the held input (to rounding: its dt is the step, the library's the
+    difference of the times), and its plant follows the fmpy loop and the cue within 1 % of the
+    cue's excursion (libcosim hands each unit the others' values of the last step)."""
+    libcosimpy = pytest.importorskip("libcosimpy")  # noqa: F841
+    import xml.etree.ElementTree as ET
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    log_output_level(CosimLogLevel.ERROR)
+    options = {"head_z": 1.2075, "surge_scale": 0.4}
+    inputs = [-3.0, 0.0, 9.81, 0.0, 0.0, 0.1]
+    path = tmp_path / "cueing_loop.xml"
+    ET.ElementTree(cueing_loop.osp_structure(simona, options, inputs, FMUS)).write(
+        path, encoding="utf-8", xml_declaration=True)
+    ex = CosimExecution.from_osp_config_file(str(path))
+    observer = CosimObserver.create_last_value()
+    ex.add_observer(observer)
+    index = {s.name.decode(): s.index for s in ex.slave_infos()}
+    reference = {name: {v.name.decode(): v.reference for v in ex.slave_variables(i)}
+                 for name, i in index.items()}
+    pose = list(closed_loop.POSE)
+    n = 1000
+    cues, poses = [], []
+    for _ in range(n):
+        assert ex.step()
+        cues.append(observer.last_real_values(index["cueing"], [reference["cueing"][p] for p in pose]))
+        poses.append(observer.last_real_values(index["plant"], [reference["plant"][p] for p in pose]))
+    t = np.arange(n + 1) * 1e-3
+    held = np.tile(inputs, (n + 1, 1))
+    library = stewart.cueing(simona, t, held[:, :3], held[:, 3:], **options)
+    np.testing.assert_allclose(cues, library.pose[1:], rtol=0, atol=1e-12)
+    loop = cueing_loop.run(simona, np.array([0.0, 1.0]), held[:2, :3], held[:2, 3:], options,
+                           fmus=FMUS)[0]
+    np.testing.assert_array_equal(loop["cue"], library.pose)
+    excursion = np.abs(loop["cue"] - simona.check().home).max(axis=0)
+    tolerance = 1e-2 * np.r_[[excursion[:3].max()] * 3, [excursion[3:].max()] * 3]
+    assert excursion[0] > 0.1 and excursion[5] > 0.01
+    assert np.all(np.abs(np.array(poses) - loop["pose"][1:]) <= tolerance)
+    assert np.all(np.abs(np.array(poses) - loop["cue"][1:]) <= tolerance)
