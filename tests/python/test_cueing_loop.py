@@ -92,8 +92,8 @@ def test_libcosim_runs_the_osp_structure_of_the_loop(simona, tmp_path):
     cues, poses = [], []
     for _ in range(n):
         assert ex.step()
-        cues.append(observer.last_real_values(index["cueing"], [reference["cueing"][p] for p in pose]))
-        poses.append(observer.last_real_values(index["plant"], [reference["plant"][p] for p in pose]))
+        for unit, out in (("cueing", cues), ("plant", poses)):
+            out.append(observer.last_real_values(index[unit], [reference[unit][p] for p in pose]))
     t = np.arange(n + 1) * 1e-3
     held = np.tile(inputs, (n + 1, 1))
     library = stewart.cueing(simona, t, held[:, :3], held[:, 3:], **options)

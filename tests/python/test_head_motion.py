@@ -70,7 +70,8 @@ def test_at_rest_the_head_reads_plus_g(name):
 @pytest.mark.parametrize("order", [0, 1])
 def test_a_tilted_platform_at_rest_reads_gravity_components(order):
     """R^T (0, 0, g) in closed form: order 0 (Rz Ry Rx) (-sin p, sin r cos p, cos r cos p) g;
-    order 1 (Rx Ry Rz, yaw 0) (-cos r sin p, sin r, cos r cos p) g. Yaw changes neither in order 0."""
+    order 1 (Rx Ry Rz, yaw 0) (-cos r sin p, sin r, cos r cos p) g. Yaw changes neither in
+    order 0."""
     platform = stewart.Platform(rotation_order=order)
     rng = np.random.default_rng(3)
     poses = np.zeros((20, 6))
@@ -159,7 +160,8 @@ def test_cueing_pure_translation_gives_back_the_high_passed_input():
     den = np.polymul([1.0, 2 * zeta * w, w * w], [1.0, wb])
     for axis in range(3):
         u = k * (f[:, axis] - [0.0, 0.0, G][axis])
-        held = np.append(u[1:], u[-1])  # scipy holds u[k] over [t_k, t_k+1); the unit over (t_k-1, t_k]
+        # scipy holds u[k] over [t_k, t_k+1), the unit over (t_k-1, t_k]
+        held = np.append(u[1:], u[-1])
         q, r = np.polydiv(num, den)  # the direct term q and the strictly proper rest
         _, y, _ = signal.lsim((np.trim_zeros(r, "f"), den), held, t, interp=False)
         expected = y + q[0] * u + [0.0, 0.0, G][axis]
