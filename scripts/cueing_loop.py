@@ -144,6 +144,29 @@ def osp_structure(platform, options, inputs, fmus=ROOT / "build" / "fmus" / "2.0
     return template
 
 
+def write_ssp(platform, options, inputs, out, fmus=ROOT / "build" / "fmus" / "2.0",
+              stop_time=10.0):
+    """The loop of osp_structure as an SSP archive at out (SystemStructure.ssd written by
+    scripts/osp_to_ssd.py: the parameter set "initialValues", every input connector's start
+    value, a default experiment to stop_time [s]; the FMI 2 units of fmus as resources), for SSP
+    masters (ecos: init(parameter_set="initialValues"))."""
+    import tempfile
+    import zipfile
+
+    import osp_to_ssd
+    fmus = pathlib.Path(fmus)
+    with tempfile.TemporaryDirectory() as folder:
+        osp_path = pathlib.Path(folder) / "cueing_loop" / "OspSystemStructure.xml"
+        osp_path.parent.mkdir()
+        ET.ElementTree(osp_structure(platform, options, inputs, fmus)).write(
+            osp_path, encoding="utf-8", xml_declaration=True)
+        ssd = osp_to_ssd.convert(osp_path, stop_time)
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("SystemStructure.ssd", ssd)
+        for unit in ("StewartCueing", "StewartPlatform", "StewartController", "StewartPlant"):
+            archive.write(fmus / f"{unit}.fmu", f"resources/{unit}.fmu")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("vehicle", nargs="?", help="a vehicle CSV (the manoeuvre files' columns)")

@@ -106,3 +106,43 @@ def test_libcosim_runs_the_osp_structure_of_the_loop(simona, tmp_path):
     assert excursion[0] > 0.1 and excursion[5] > 0.01
     assert np.all(np.abs(np.array(poses) - loop["pose"][1:]) <= tolerance)
     assert np.all(np.abs(np.array(poses) - loop["cue"][1:]) <= tolerance)
+
+
+def test_ecos_runs_the_ssp_archive_of_the_loop_as_libcosim_the_osp_structure(simona, tmp_path):
+    """cueing_loop.write_ssp: ecos (SSP) and libcosim (OSP) couple alike (every unit from the
+    values of the last step), so on the same loop their plants agree to rounding."""
+    ecospy = pytest.importorskip("ecospy")
+    pytest.importorskip("libcosimpy")
+    import xml.etree.ElementTree as ET
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimObserver import CosimObserver
+    options = {"head_z": 1.2075, "sway_scale": 0.5}
+    inputs = [0.0, 2.0, 9.81, 0.1, 0.0, 0.0]
+    archive = tmp_path / "cueing_loop.ssp"
+    cueing_loop.write_ssp(simona, options, inputs, archive, FMUS)
+    steps = 300
+    simulation = ecospy.EcosSimulation(step_size=1e-3, ssp_path=str(archive))
+    try:
+        simulation.init(parameter_set="initialValues")
+        ecos = []
+        for _ in range(steps):
+            simulation.step()
+            ecos.append([simulation.get_real(f"plant::{p}") for p in closed_loop.POSE])
+    finally:
+        simulation.terminate()
+        simulation.free()
+    path = tmp_path / "cueing_loop.xml"
+    ET.ElementTree(cueing_loop.osp_structure(simona, options, inputs, FMUS)).write(
+        path, encoding="utf-8", xml_declaration=True)
+    ex = CosimExecution.from_osp_config_file(str(path))
+    observer = CosimObserver.create_last_value()
+    ex.add_observer(observer)
+    plant = {s.name.decode(): s.index for s in ex.slave_infos()}["plant"]
+    reference = {v.name.decode(): v.reference for v in ex.slave_variables(plant)}
+    cosim = []
+    for _ in range(steps):
+        assert ex.step()
+        cosim.append(observer.last_real_values(plant, [reference[p] for p in closed_loop.POSE]))
+    ecos, cosim = np.array(ecos), np.array(cosim)
+    assert np.abs(ecos[:, 1] - simona.check().home[1]).max() > 1e-3  # the sway moves the cabin
+    np.testing.assert_allclose(ecos, cosim, rtol=0, atol=1e-12)
