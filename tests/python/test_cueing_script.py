@@ -1,9 +1,11 @@
 """scripts/cueing.py (docs/cueing.md, section 8) on every shipped manoeuvre, on SIMONA's motion base
 and the thesis platform: what it writes read back and checked against the package's pieces run
 here (the trajectory within every limit, the platform's felt motion from the written trajectory,
-the perceived signals, the scores recomputed from the written columns, the plot's lines), and bad
-arguments refused with exit status 2 naming them."""
+the perceived signals, the scores recomputed from the written columns, the plot's lines), bad arguments refused with
+exit status 2 naming them; and studies/cueing_tuning.py's choices within their admissible sets."""
 import csv
+import pathlib
+import sys
 
 import numpy as np
 import pytest
@@ -95,3 +97,23 @@ def test_bad_arguments_are_refused_by_name(arguments, message, tmp_path, capsys)
     assert stop.value.code == 2
     assert message in capsys.readouterr().err
     assert not (tmp_path / "o.csv").exists()
+
+
+def test_tuning_study_keeps_within_its_admissible_sets():
+    """studies/cueing_tuning.py on a small grid: the per-manoeuvre tuning leaves the limiter idle,
+    the no-cut one never cuts and, choosing from a superset of points, scores no worse; the
+    machine tuning is one point idle on every manoeuvre; a platform standing still scores >= 1
+    (its RMSE is the vehicle's RMS about the rest value, at least its standard deviation)."""
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "studies"))
+    import cueing_tuning
+    platform = stewart.Platform.from_file(stewart.platform_files()["simona_motion_base"])
+    vehicles = {n: stewart.manoeuvre(n) for n in ("car_braking", "car_lane_change")}
+    tuned, count = cueing_tuning.tune(platform, vehicles, [0.5, 2.0], [0.2, 1.0], [0, 0, 1.2])
+    assert count == 8
+    for name in vehicles:
+        idle, no_cut = tuned["manoeuvre"][name], tuned["no cut"][name]
+        assert not idle[2]["cue"].limited.any() and not no_cut[2]["cue"].cut.any()
+        assert cueing_tuning.criterion(no_cut[2]) <= cueing_tuning.criterion(idle[2])
+        assert not tuned["machine"][name][2]["cue"].limited.any()
+        assert cueing_tuning.standing_still(platform, vehicles[name]) >= 1.0
+    assert len({tuned["machine"][n][:2] for n in vehicles}) == 1
