@@ -42,9 +42,10 @@ def legs(name):
 
 
 class Unit:
-    """One FMI 2 co-simulation instance, variables by name, initialised with `parameters`."""
+    """One FMI 2 co-simulation instance, variables by name, initialised with `parameters` (and
+    its real `inputs` set in initialisation mode, when given)."""
 
-    def __init__(self, path, name, parameters):
+    def __init__(self, path, name, parameters, inputs=None):
         md = read_model_description(str(path))
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.directory = extract(str(path))
@@ -59,6 +60,8 @@ class Unit:
                 self.fmu.setReal([self.vr[key]], [float(value)])
         self.fmu.setupExperiment(startTime=0.0)
         self.fmu.enterInitializationMode()
+        if inputs:
+            self.set(list(inputs), list(inputs.values()))
         self.fmu.exitInitializationMode()
 
     def set(self, names, values):

@@ -16,7 +16,8 @@ inverse.py), ``Platform.forward`` (lengths to poses, forward.py) and ``Platform.
 ``stewart.perception`` filters a motion through a model of the vestibular system (what a seated
 person feels, vestibular.py, docs/perception.md); ``stewart.cueing_scores`` compares what a vehicle
 and a platform make one feel (scores.py); ``stewart.manoeuvre`` loads the vehicle manoeuvres
-shipped as data (manoeuvres.py, manoeuvres/README.md).
+shipped as data (manoeuvres.py, manoeuvres/README.md); ``stewart.head_motion`` gives what a
+platform's poses make the head feel, for the same comparison (head_motion.py, docs/cueing.md).
 """
 from importlib.metadata import PackageNotFoundError, version as _version
 
@@ -27,6 +28,7 @@ from .check import HomeCheck
 from .cueing import ALGORITHMS as CUEING_ALGORITHMS, Cueing, cueing
 from .choices import Fidelity
 from .errors import ParameterError
+from .head_motion import HeadMotion, head_motion
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
 from .forward import ForwardSolution
 from .inverse import InverseSolution
@@ -53,5 +55,6 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
            "MoveError", "feasibility", "Feasibility", "perception", "Perceived",
            "VestibularModel", "cueing_scores", "CueingScores", "manoeuvre",
-           "manoeuvre_files", "cueing", "Cueing", "CUEING_ALGORITHMS", "sizing", "SizingReport",
+           "manoeuvre_files", "cueing", "Cueing", "CUEING_ALGORITHMS", "head_motion", "HeadMotion",
+           "sizing", "SizingReport",
            "__version__"]

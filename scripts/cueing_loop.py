@@ -1,0 +1,214 @@
+#!/usr/bin/env python3
+"""Closed loop of a vehicle's motion in fmpy: cueing unit (StewartCueing.fmu) -> inverse unit
+(StewartPlatform.fmu) -> controller (StewartController.fmu) -> plant (StewartPlant.fmu), FMI 2
+co-simulation at fixed communication steps on one machine (docs/cueing.md, docs/closed-loop.md).
+Writes OUT/cueing_loop.csv (cue, achieved pose, forces) and OUT/cueing_loop.png.
+
+The vehicle's samples (a manoeuvre file, 100 Hz) are interpolated linearly to the loop's steps.
+At each communication point t_j (the Gauss-Seidel order of scripts/closed_loop.py; neither the
+cueing unit nor the plant has direct feedthrough, so the loop has no algebraic part):
+  1. the cueing unit's pose with its exact rates and accelerations at t_j -> the inverse unit
+     (derivatives = 1): L_ref, L_dot_ref, F_ff;
+  2. the plant's L and L_dot at t_j -> the controller, with 1.: F;
+  3. F -> the plant; the vehicle's sample at t_j+1 -> the cueing unit (its input is held over the
+     step that ends at the sample, as stewart.cueing takes it); every unit steps to t_j+1.
+Each step is t_j+1 - t_j (exact, t_j = t_0 + j h), the dt stewart.cueing takes from the same
+samples: the cue is then the library's, bit for bit.
+
+usage: cueing_loop.py (VEHICLE.csv | --manoeuvre NAME) --platform FILE [--option NAME=VALUE ...]
+                      [--duration S] [--step 0.001] [--kp KP] [--kd KD] [--fidelity 2]
+                      [--fmus build/fmus/2.0] [--out out/cueing_loop] [--no-plot]
+
+The PD gains default to closed_loop.machine_gains (the thesis loop's natural frequency and
+damping on the machine's moving mass per leg).
+"""
+import argparse
+import pathlib
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+import closed_loop
+import cueing as cueing_script
+import stewart
+from closed_loop import POSE, Unit, legs
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+DOT = [f"{p}_dot" for p in POSE]
+DDOT = [f"{p}_ddot" for p in POSE]
+INPUTS = [f"specific_force[{i}]" for i in (1, 2, 3)] + [f"angular_velocity[{i}]" for i in (1, 2, 3)]
+
+
+def vehicle_at(t, t_vehicle, specific_force, angular_velocity):
+    """The vehicle's specific force and angular velocity at the times t, linearly interpolated
+    (held at the ends), as (N, 6)."""
+    columns = np.hstack([specific_force, angular_velocity])
+    return np.column_stack([np.interp(t, t_vehicle, columns[:, i]) for i in range(6)])
+
+
+def run(platform, t_vehicle, specific_force, angular_velocity, options=None, duration=None,
+        h=1e-3, kp=None, kd=None, fidelity=2, fmus=ROOT / "build" / "fmus" / "2.0"):
+    """Runs the loop; returns a dict of arrays (one row per communication point: t, vehicle (the
+    inputs), cue, cue_rate, cue_accel, pose, force, feed_forward) and the wall time [s]."""
+    options = dict(options or {})
+    duration = t_vehicle[-1] - t_vehicle[0] if duration is None else duration
+    n = int(round(duration / h))
+    t = t_vehicle[0] + np.arange(n + 1) * h
+    vehicle = vehicle_at(t, t_vehicle, specific_force, angular_velocity)
+    gains = closed_loop.machine_gains(platform)
+    kp, kd = gains[0] if kp is None else kp, gains[1] if kd is None else kd
+    fmus = pathlib.Path(fmus)
+    machine = stewart.fmu_start_values(platform)
+    units = []
+    try:
+        cueing = Unit(fmus / "StewartCueing.fmu", "cueing", {**machine, **options},
+                      dict(zip(INPUTS, vehicle[0])))
+        units.append(cueing)
+        cue0 = cueing.get(POSE + DOT)
+        start = {**stewart.fmu_start_values(platform, model="StewartPlant"),
+                 **{f"{p}0": v for p, v in zip(POSE, cue0[:6])},
+                 **{f"{p}_dot0": v for p, v in zip(POSE, cue0[6:])}}
+        inverse = Unit(fmus / "StewartPlatform.fmu", "inverse",
+                       {"fidelity": fidelity, "derivatives": 1, **machine})
+        units.append(inverse)
+        controller = Unit(fmus / "StewartController.fmu", "controller", {"kp": kp, "kd": kd})
+        units.append(controller)
+        plant = Unit(fmus / "StewartPlant.fmu", "plant", {"fidelity": fidelity, **start})
+        units.append(plant)
+        cue = np.zeros((n + 1, 18))
+        pose, force, feed_forward = (np.zeros((n + 1, 6)) for _ in range(3))
+        wall = time.perf_counter()
+        for j in range(n + 1):
+            # 1. cue -> inverse unit
+            cue[j] = cueing.get(POSE + DOT + DDOT)
+            inverse.set(POSE + DOT + DDOT, cue[j])
+            reference = inverse.get(legs("L") + legs("L_dot") + legs("F"))
+            # 2. plant and reference -> controller
+            measured = plant.get(legs("L") + legs("L_dot"))
+            controller.set(legs("L_ref") + legs("L_dot_ref") + legs("F_ff") + legs("L") +
+                           legs("L_dot"), [*reference, *measured])
+            force[j] = controller.get(legs("F"))
+            pose[j] = plant.get(POSE)
+            feed_forward[j] = reference[12:]
+            if j == n:
+                break
+            # 3. controller -> plant, the next vehicle sample -> cueing unit, every unit steps
+            plant.set(legs("F"), force[j])
+            cueing.set(INPUTS, vehicle[j + 1])
+            for unit in units:  # t[j + 1] - t[j]: the library's dt for the same samples
+                unit.step(t[j], t[j + 1] - t[j])
+        wall = time.perf_counter() - wall
+    finally:
+        for unit in units:
+            unit.free()
+    return {"t": t, "vehicle": vehicle, "cue": cue[:, :6], "cue_rate": cue[:, 6:12],
+            "cue_accel": cue[:, 12:], "pose": pose, "force": force,
+            "feed_forward": feed_forward}, wall
+
+
+def osp_structure(platform, options, inputs, fmus=ROOT / "build" / "fmus" / "2.0"):
+    """The loop as an OSP system structure for libcosim (CosimExecution.from_osp_config_file), as
+    an ElementTree root: scenes/closed_loop's structure with the scene player replaced by the
+    cueing unit (its outputs have the scene player's names), the machine's parameters, the cueing
+    options, the vehicle's specific force and angular velocity `inputs` (6 values) held from t = 0
+    (a step from rest: a structure has no unit that plays a recorded signal), the PD gains of
+    closed_loop.machine_gains and the plant started at home; the FMI 2 units of the folder fmus.
+    libcosim steps every unit from the values of the last step (docs/closed-loop.md)."""
+    import machine_ssp
+    import osp_to_ssd
+    kp, kd = closed_loop.machine_gains(platform)
+    machine = stewart.fmu_start_values(platform)
+    values = {"cueing": {**machine, **options, **dict(zip(INPUTS, map(float, inputs)))},
+              "inverse": {"fidelity": 2, "derivatives": 1, **machine},
+              "controller": {"kp": kp, "kd": kd},
+              "plant": {"fidelity": 2, **stewart.fmu_start_values(platform, model="StewartPlant")}}
+    integers = {"algorithm", "translation_order", "rotation_filter_order"}
+    values["cueing"].update({k: int(v) for k, v in values["cueing"].items() if k in integers})
+    ns = {"o": osp_to_ssd.OSP}
+    template = machine_ssp.osp_structure({**values, "scene": {}}, pathlib.Path(fmus))
+    for simulator in template.findall("o:Simulators/o:Simulator", ns):
+        if simulator.get("name") == "scene":
+            simulator.set("name", "cueing")
+            simulator.set("source", str(pathlib.Path(fmus) / "StewartCueing.fmu"))
+            initial = simulator.find("o:InitialValues", ns)
+            for variable, value in values["cueing"].items():
+                entry = ET.SubElement(initial, f"{{{osp_to_ssd.OSP}}}InitialValue",
+                                      {"variable": variable})
+                kind, text = machine_ssp.typed(value)
+                ET.SubElement(entry, f"{{{osp_to_ssd.OSP}}}{kind}", {"value": text})
+    for variable in template.findall("o:Connections/o:VariableConnection/o:Variable", ns):
+        if variable.get("simulator") == "scene":
+            variable.set("simulator", "cueing")
+    return template
+
+
+def write_ssp(platform, options, inputs, out, fmus=ROOT / "build" / "fmus" / "2.0",
+              stop_time=10.0):
+    """The loop of osp_structure as an SSP archive at out (SystemStructure.ssd written by
+    scripts/osp_to_ssd.py: the parameter set "initialValues", every input connector's start
+    value, a default experiment to stop_time [s]; the FMI 2 units of fmus as resources), for SSP
+    masters (ecos: init(parameter_set="initialValues"))."""
+    import tempfile
+    import zipfile
+
+    import osp_to_ssd
+    fmus = pathlib.Path(fmus)
+    with tempfile.TemporaryDirectory() as folder:
+        osp_path = pathlib.Path(folder) / "cueing_loop" / "OspSystemStructure.xml"
+        osp_path.parent.mkdir()
+        ET.ElementTree(osp_structure(platform, options, inputs, fmus)).write(
+            osp_path, encoding="utf-8", xml_declaration=True)
+        ssd = osp_to_ssd.convert(osp_path, stop_time)
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as archive:
+        archive.writestr("SystemStructure.ssd", ssd)
+        for unit in ("StewartCueing", "StewartPlatform", "StewartController", "StewartPlant"):
+            archive.write(fmus / f"{unit}.fmu", f"resources/{unit}.fmu")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("vehicle", nargs="?", help="a vehicle CSV (the manoeuvre files' columns)")
+    parser.add_argument("--manoeuvre", help="a shipped manoeuvre: " +
+                        ", ".join(stewart.manoeuvre_files()))
+    parser.add_argument("--platform", required=True, help="a platform file (docs/geometry.md)")
+    parser.add_argument("--option", action="append", metavar="NAME=VALUE",
+                        help="a cueing option (docs/cueing.md, section 3); repeat for more")
+    parser.add_argument("--duration", type=float, help="[s] (default: the vehicle's)")
+    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
+    parser.add_argument("--kp", type=float, help="[N/m] (default closed_loop.machine_gains)")
+    parser.add_argument("--kd", type=float, help="[N s/m] (default closed_loop.machine_gains)")
+    parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
+    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
+    parser.add_argument("--out", default=str(ROOT / "out" / "cueing_loop"))
+    parser.add_argument("--no-plot", action="store_true")
+    args = parser.parse_args(argv)
+    if (args.vehicle is None) == (args.manoeuvre is None):
+        parser.error("give either VEHICLE.csv or --manoeuvre NAME")
+    options = cueing_script.options_of(args.option, parser)
+    try:
+        t, f, w = stewart.manoeuvre(args.manoeuvre if args.manoeuvre else args.vehicle)
+        platform = stewart.Platform.from_file(args.platform)
+    except (ValueError, TypeError) as e:
+        parser.exit(2, f"cueing_loop.py: {e}\n")
+    result, wall = run(platform, t, f, w, options, args.duration, args.step, args.kp, args.kd,
+                       args.fidelity, args.fmus)
+    out = pathlib.Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    closed_loop.write_csv(result, out / "cueing_loop.csv")
+    if not args.no_plot:
+        closed_loop.plot(result, out / "cueing_loop.png")
+    position, angle = closed_loop.tracking_error(result)
+    duration = result["t"][-1] - result["t"][0]
+    print(f"cueing_loop: {args.manoeuvre or args.vehicle} on {args.platform}, {duration:g} s at "
+          f"h = {args.step:g} s")
+    print(f"cueing_loop: tracking error max {position:.3e} m, {angle:.3e} rad")
+    print(f"cueing_loop: wall time {wall:.2f} s, {wall / duration:.3f} s per simulated second")
+    print(f"cueing_loop: wrote {out / 'cueing_loop.csv'}" +
+          ("" if args.no_plot else f" and {out / 'cueing_loop.png'}"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
