@@ -248,12 +248,7 @@ int parse(int argc, char **argv, Request &r) {
         {"--limits", nullptr, [&](const char *) { return r.limits = true, 0; }},
         {"--report", nullptr, [&](const char *) { return r.report = true, 0; }},
         {"--ranges", nullptr, [&](const char *) { return r.ranges = true, 0; }},
-        {"--view", nullptr,
-         [&](const char *v) {
-             if (v && !*v) return std::fprintf(stderr, "stewart-solve: --view= needs a path\n"), 2;
-             return r.view = true, r.view_path = v ? v : "", 0;
-         },
-         true},
+        stewart::view_option("stewart-solve", r.view, r.view_path),
         {"--units", "mm,deg",
          [&](const char *v) {
              r.units_given = true;
@@ -388,14 +383,8 @@ int write_view(const Request &r, const stewart::PoseTable &table,
         q.insert(q.end(), table.poses[j].q, table.poses[j].q + 6);
         force.insert(force.end(), outputs[j].force, outputs[j].force + STEWART_LEGS);
     }
-    const std::string path = r.view_path.empty() ? stewart::view_page_beside(r.paths[1])
-                                                 : r.view_path;
-    const std::string error = stewart::write_view_page(
-        path, r.params, r.options.warn_condition, {table.t, q, force},
-        std::string("stewart-solve ") + r.paths[0]);
-    if (error.empty()) return 0;
-    std::fprintf(stderr, "stewart-solve: --view: %s\n", error.c_str());
-    return 1;
+    return stewart::write_view("stewart-solve", r.view_path, r.paths[1], r.params,
+                               r.options.warn_condition, {table.t, q, force});
 }
 
 // The inverse of IN.csv into OUT.csv.

@@ -296,4 +296,24 @@ std::string write_view_page(const std::string &path, const stewart_params &param
     return "";
 }
 
+CliOption view_option(const char *tool, bool &view, std::string &path) {
+    return {"--view", nullptr,
+            [tool, &view, &path](const char *value) {
+                if (value && !*value)
+                    return std::fprintf(stderr, "%s: --view= needs a path\n", tool), 2;
+                return view = true, path = value ? value : "", 0;
+            },
+            true};
+}
+
+int write_view(const char *tool, const std::string &path, const char *out_csv,
+               const stewart_params &params, double warn_condition, const ViewRows &rows) {
+    const std::string error =
+        write_view_page(path.empty() ? view_page_beside(out_csv) : path, params, warn_condition,
+                        rows, std::string(tool) + " " + out_csv);
+    if (error.empty()) return 0;
+    std::fprintf(stderr, "%s: --view: %s\n", tool, error.c_str());
+    return 1;
+}
+
 }  // namespace stewart

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/arguments.hpp"
 #include "stewart/stewart.h"
 
 namespace stewart {
@@ -28,5 +29,14 @@ struct ViewRows {
 std::string write_view_page(const std::string &path, const stewart_params &params,
                             double warn_condition, const ViewRows &rows,
                             const std::string &title);
+
+// The command lines' --view (the page beside OUT.csv) and --view=PAGE.html: sets view and path
+// ("" for beside OUT.csv); an empty PAGE.html is refused.
+CliOption view_option(const char *tool, bool &view, std::string &path);
+
+// --view's page: write_view_page to path (or beside out_csv when path is ""); 0, or 1 with
+// "TOOL: --view: why" on stderr.
+int write_view(const char *tool, const std::string &path, const char *out_csv,
+               const stewart_params &params, double warn_condition, const ViewRows &rows);
 
 }  // namespace stewart

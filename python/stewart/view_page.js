@@ -1,6 +1,8 @@
 // The page of stewart.view (docs/view.md): the machine in 3D (three.js), a time slider and
 // playback, the legs coloured by their margin to the nearest limit, plots of the lengths and
-// forces with a cursor, and window.stewartView for scripts and tests.
+// forces with a cursor, and window.stewartView for scripts and tests. Its data is the JSON of
+// #stewart-data, whose keys docs/view.md ("The page's data") defines: stewart.view (Python) and
+// the command lines' --view (csrc/cli/view_page.cpp) write it.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 
@@ -423,7 +425,9 @@ function statusText(i) {
     : `<span class="beyond">beyond: ${data.pose_classes[c]} (margin ${firstMargin[i].toPrecision(3)} ${data.pose_class_units[c]})</span>`;
   return `${where} · ${verdict} · condition ${condition[i].toPrecision(4)}${rangeText(i)}`;
 }
+const frameWork = [];  // the last 1000 setFrame calls' own work [ms] (docs/view.md, speed)
 function setFrame(i) {
+  const began = performance.now();
   i = Math.min(Math.max(Math.round(Number(i)) || 0, 0), N - 1);
   current = i;
   showFrame(i);
@@ -432,6 +436,7 @@ function setFrame(i) {
   slider.value = String(i);
   timeLabel.textContent = `t = ${time[i].toFixed(3)} s (${i + 1}/${N})`;
   statusLine.innerHTML = statusText(i);
+  if (frameWork.push(performance.now() - began) > 1000) frameWork.shift();
   return i;
 }
 slider.addEventListener("input", () => { pause(); setFrame(slider.value); });
@@ -514,6 +519,7 @@ window.stewartView = {
     const v = new THREE.Vector3(...g.a.map((x, j) => (x + g.top[j]) / 2)).project(camera);
     return { x: v.x * r.width / 2, y: -v.y * r.height / 2 };
   },
+  frameWork: () => frameWork.slice(),
   renderer: () => {
     const gl = renderer.getContext(), info = gl.getExtension("WEBGL_debug_renderer_info");
     return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
