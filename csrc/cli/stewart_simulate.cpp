@@ -244,9 +244,11 @@ size_t simulate_rows(stewart_plant *plant, const ForceTable &table, const stewar
 // --view: the page of the first n rows (the plant's poses, IN.csv's forces); 0, or 1 (said).
 int write_view(const std::string &page, const char *out_csv, const stewart_params &params,
                const ForceTable &table, const std::vector<Row> &rows, size_t n) {
-    std::vector<double> t(table.t.begin(), table.t.begin() + n), q;
-    std::vector<double> force(table.force.begin(), table.force.begin() + 6 * n);
-    for (size_t j = 0; j < n; ++j) q.insert(q.end(), rows[j].out.pose.q, rows[j].out.pose.q + 6);
+    std::vector<double> t, q, force(table.force.begin(), table.force.begin() + 6 * n);
+    for (size_t j = 0; j < n; ++j) {  // the rows' own times and poses, as OUT.csv's
+        t.push_back(rows[j].out.time);
+        q.insert(q.end(), rows[j].out.pose.q, rows[j].out.pose.q + 6);
+    }
     stewart_limits_options limits;  // the limit check's defaults, as stewart.view's
     stewart_limits_options_default(&limits);
     return stewart::write_view("stewart-simulate", page, out_csv, params, limits.warn_condition,

@@ -70,10 +70,16 @@ def run_with_view(solve, tmp_path, platform_file, q, *options):
     return tmp_path / "out.html"
 
 
-def moving_poses(rows=41):
+def moving_poses(rows=41, home=(0, 0, 0.5, 0, 0, 0)):
+    """A run about home (the tool's home pose in the user frame) turning and moving on all axes."""
     s = np.linspace(0, 1, rows)
-    return np.column_stack([0.03 * np.sin(4 * s), 0.02 * s, 0.5 + 0.05 * np.sin(3 * s),
-                            0.05 * s, -0.08 * np.sin(2 * s), 0.2 * s])
+    return np.asarray(home) + np.column_stack([0.03 * np.sin(4 * s), 0.02 * s,
+                                               0.05 * np.sin(3 * s), 0.05 * s,
+                                               -0.08 * np.sin(2 * s), 0.2 * s])
+
+
+def framed_home(platform_file):
+    return home_pose(stewart.Platform.from_file(platform_file))
 
 
 @pytest.mark.parametrize("case", ["framed", "thesis_full", "beyond_stroke"])
@@ -82,7 +88,8 @@ def test_the_command_line_page_carries_the_python_page_data(solve, tmp_path, cas
     key, list and packed array equal (the title aside), along a run with frames and offsets, with
     the full model's forces, and through a pose beyond one stroke (a leg red, the pose refused)."""
     if case == "framed":
-        platform_file, q, options = framed_platform(tmp_path), moving_poses(), ()
+        platform_file = framed_platform(tmp_path)
+        q, options = moving_poses(home=framed_home(platform_file)), ()
     elif case == "thesis_full":
         platform_file, q, options = "thesis", moving_poses(), ("--fidelity", "full")
     else:
@@ -156,11 +163,12 @@ def test_a_build_without_three_js_says_to_run_setup(tmp_path):
 def test_the_command_line_page_renders_with_the_library_lengths(browser, solve, tmp_path):
     """The page of stewart-solve --view=PAGE opens from its file with the network off, draws the
     machine, and its lengths are the run's own L1..L6 (its output CSV) to 1e-9 m."""
-    q = moving_poses()
+    platform_file = framed_platform(tmp_path)
+    q = moving_poses(home=framed_home(platform_file))
     t = np.linspace(0, 2, len(q))
     write_csv(tmp_path / "in.csv", {"t": t, **{n: q[:, i] for i, n in enumerate(POSE_NAMES)}})
     page = tmp_path / "elsewhere.html"
-    run = solve("--platform", framed_platform(tmp_path), f"--view={page}", tmp_path / "in.csv",
+    run = solve("--platform", platform_file, f"--view={page}", tmp_path / "in.csv",
                 tmp_path / "out.csv")
     assert run.returncode == 0, run.stderr
     open_page(browser, page)
