@@ -46,6 +46,10 @@ def assert_same_data(a, b, where="data"):
             assert_same_data(a[key], b[key], f"{where}.{key}")
     elif isinstance(a, (str, type(None), bool)):
         assert a == b, f"{where}: {a!r} != {b!r}"
+    elif isinstance(a, list) and any(isinstance(x, (str, list, dict)) for x in a):
+        assert isinstance(b, list) and len(a) == len(b), f"{where}: {a!r} != {b!r}"
+        for i, (x, y) in enumerate(zip(a, b)):
+            assert_same_data(x, y, f"{where}[{i}]")
     else:
         a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
         assert a.shape == b.shape, f"{where}: shapes {a.shape} != {b.shape}"
@@ -115,13 +119,15 @@ def test_the_command_line_page_carries_the_python_page_data(solve, tmp_path, cas
 def test_the_simulate_page_carries_the_python_page_data(build_dir, tmp_path):
     """stewart-simulate --view: the plant's poses with IN.csv's forces, the same data as
     stewart.view of OUT.csv's poses and IN.csv's forces."""
-    platform = stewart.Platform.from_file(stewart.platform_files()["thesis"])
+    platform_file = stewart.platform_files()["thesis"]
+    platform = stewart.Platform.from_file(platform_file)
     hold = platform.inverse(home_pose(platform)[None, :], fidelity="full").force[0]
     t = np.linspace(0, 0.5, 26)
     force = hold[None, :] * (1 + 0.02 * np.sin(8 * t)[:, None] * np.arange(1, 7)[None, :] / 6)
     write_csv(tmp_path / "in.csv", {"t": t, **{f"F{k + 1}": force[:, k] for k in range(6)}})
-    run = subprocess.run([str(build_dir / "stewart-simulate"), "--view", tmp_path / "in.csv",
-                          tmp_path / "sim.csv"], capture_output=True, text=True, timeout=120)
+    run = subprocess.run([str(build_dir / "stewart-simulate"), "--platform", platform_file,
+                          "--view", tmp_path / "in.csv", tmp_path / "sim.csv"],
+                         capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     out = read_columns(tmp_path / "sim.csv")
     python_page = stewart.view(platform, {"t": out["t"], **{n: out[n] for n in POSE_NAMES},
@@ -189,22 +195,28 @@ def test_scrub_work_per_slider_move(browser, solve, tmp_path):
     s = np.linspace(0, 1, rows)
     q = np.column_stack([0.03 * np.sin(40 * s), 0 * s, 0.5 + 0.04 * np.sin(70 * s), 0 * s,
                          0.1 * np.sin(30 * s), 0 * s])
-    page = run_with_view(solve, tmp_path, "thesis", q, "--fidelity", "full")
+    page = run_with_view(solve, tmp_path, stewart.platform_files()["thesis"], q, "--fidelity",
+                         "full")
     open_page(browser, page)
     times = browser.execute_async_script("""
         const done = arguments[0], slider = document.getElementById('slider');
         const frames = window.stewartView.frames, moves = 300;
         let m = 0;
         function step() {
-          if (m === moves) { done(window.stewartView.frameWork()); return; }
+          if (m === moves) {
+            done([window.stewartView.frameWork(), window.stewartView.drawWork()]);
+            return;
+          }
           slider.value = String(Math.floor(m++ * (frames - 1) / (moves - 1)));
           slider.dispatchEvent(new Event('input'));
           requestAnimationFrame(step);
         }
         requestAnimationFrame(step);""")
-    work = np.array(times[-300:])
-    assert len(work) == 300 and np.all(work >= 0)
-    print(f"\nscrub, {rows} rows, {browser.execute_script('return window.stewartView.renderer()')}"
-          f": the page's work per slider move [ms]: median {np.median(work):.2f}, "
-          f"p90 {np.percentile(work, 90):.2f}, p99 {np.percentile(work, 99):.2f}, "
-          f"max {work.max():.2f}; page {page.stat().st_size / 1e6:.1f} MB")
+    moves, draws = np.array(times[0][-300:]), np.array(times[1][-300:])
+    assert len(moves) == 300 and np.all(moves >= 0) and len(draws) >= 290
+    print(f"\nscrub, {rows} rows, page {page.stat().st_size / 1e6:.1f} MB, "
+          f"{browser.execute_script('return window.stewartView.renderer()')}")
+    for name, work in (("a slider move's (setFrame)", moves), ("a draw's (render)", draws)):
+        print(f"the page's work, {name} [ms]: median {np.median(work):.2f}, "
+              f"p90 {np.percentile(work, 90):.2f}, p99 {np.percentile(work, 99):.2f}, "
+              f"max {work.max():.2f}")
