@@ -254,6 +254,8 @@ def _nearest_class(margin: np.ndarray, scale: np.ndarray):
 
 
 def _page_data(platform: Platform, t, q, forces, force_limit, warn_condition) -> dict:
+    """The page's data: the keys docs/view.md ("The page's data") defines, as the command lines'
+    --view writes them (csrc/cli/view_page.cpp)."""
     values = effective_parameters(platform)
     base, top = _core.model_joints(platform._model)
     solution = platform.inverse(q, fidelity="kinematic")
