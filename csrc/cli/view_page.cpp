@@ -272,7 +272,8 @@ const char *view_page_missing() { return kViewTemplateParts ? "" : kViewTemplate
 
 std::string view_page_beside(const std::string &out_csv) {
     const size_t slash = out_csv.find_last_of('/'), dot = out_csv.find_last_of('.');
-    const bool has_extension = dot != std::string::npos && (slash == std::string::npos || dot > slash + 1);
+    const bool has_extension =  // a dot in the file's name, not its first character
+        dot != std::string::npos && (slash == std::string::npos || dot > slash + 1);
     return (has_extension ? out_csv.substr(0, dot) : out_csv) + ".html";
 }
 

@@ -18,7 +18,7 @@ from .limits import LIMIT_CLASSES, MARGIN_UNITS
 from .params import parameter_assignments, parameters
 from .platform import Platform
 from .scenes import POSE
-from .view_template import CHROMIUM_MAX_URL, fill, script_json, template_parts, three_dir  # noqa: F401
+from .view_template import fill, script_json, template_parts
 
 PathLike = Union[str, "os.PathLike[str]"]
 #: The classes a leg is coloured by: the library's per-leg classes, then the force (when a
