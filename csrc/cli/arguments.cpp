@@ -12,11 +12,15 @@ int parse_command_line(const char *tool, int argc, char **argv,
         const char *arg = argv[i];
         if (!std::strcmp(arg, "--help") || !std::strcmp(arg, "-h")) return usage(stdout);
         const CliOption *option = nullptr;
-        for (const CliOption &o : options)
+        const char *value = nullptr;
+        for (const CliOption &o : options) {
+            const size_t n = std::strlen(o.flag);
             if (!std::strcmp(arg, o.flag)) option = &o;
+            if (o.inline_value && !std::strncmp(arg, o.flag, n) && arg[n] == '=')
+                option = &o, value = arg + n + 1;
+        }
         if (option) {
-            const char *value = nullptr;
-            if (option->value_hint) {
+            if (option->value_hint && !value) {
                 if (i + 1 == argc) {
                     std::fprintf(stderr, "%s: %s needs a value (%s)\n", tool, arg,
                                  option->value_hint);

@@ -10,6 +10,8 @@
 #include "cli/arguments.hpp"
 #include "kinematics/pose_names.hpp"
 #include "cli/param_assignment.hpp"
+#include "cli/view_page.hpp"
+#include "stewart/stewart_limits.h"
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_table.h"
 #include "util/number_text.hpp"
@@ -22,7 +24,7 @@ using stewart::kPoseNames;
 int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-simulate [--fidelity massless|full] [--platform FILE.json] "
-                 "[--param NAME=VALUE ...] IN.csv OUT.csv\n"
+                 "[--param NAME=VALUE ...] [--view[=PAGE.html]] IN.csv OUT.csv\n"
                  "  --platform: a platform file (docs/geometry.md: parameter names to values); "
                  "files and\n"
                  "           --param apply in the order given\n"
@@ -51,7 +53,9 @@ int usage(FILE *to) {
                  "           current_limit_legs, voltage_limit_legs, speed_limit_legs\n"
                  "  A row that cannot be simulated stops the run: OUT.csv then holds the rows "
                  "before it\n"
-                 "  (partial output), stderr names the row and why, and the exit status is 1.\n");
+                 "  (partial output), stderr names the row and why, and the exit status is 1.\n"
+                 "  --view: and OUT.html (or PAGE.html), the rows written in 3D in a browser,\n"
+                 "           self-contained, with the forces of IN.csv (docs/view.md)\n");
     return to == stderr ? 2 : 0;
 }
 
@@ -260,6 +264,20 @@ size_t simulate_rows(stewart_plant *plant, const ForceTable &table, const stewar
     return table.t.size();
 }
 
+// --view: the page of the first n rows (the plant's poses, IN.csv's forces); 0, or 1 (said).
+int write_view(const std::string &page, const char *out_csv, const stewart_params &params,
+               const ForceTable &table, const std::vector<Row> &rows, size_t n) {
+    std::vector<double> t, q, force(table.force.begin(), table.force.begin() + 6 * n);
+    for (size_t j = 0; j < n; ++j) {  // the rows' own times and poses, as OUT.csv's
+        t.push_back(rows[j].out.time);
+        q.insert(q.end(), rows[j].out.pose.q, rows[j].out.pose.q + 6);
+    }
+    stewart_limits_options limits;  // the limit check's defaults, as stewart.view's
+    stewart_limits_options_default(&limits);
+    return stewart::write_view("stewart-simulate", page, out_csv, params, limits.warn_condition,
+                               {t, q, force});
+}
+
 // Writes the header and the first n rows to path; false (said on stderr) if it cannot.
 bool write_rows(const char *path, const std::vector<Row> &rows, size_t n, bool drives) {
     FILE *out = std::fopen(path, "w");
@@ -283,7 +301,8 @@ int main(int argc, char **argv) {
     stewart_params_default(&s.params);
     stewart_plant_options_default(&s.options);
     for (int i = 0; i < 6; ++i) s.pose[i] = s.rate[i] = 0;
-    bool pose_z_given = false;
+    bool pose_z_given = false, view = false;
+    std::string view_path;
     const char *paths[2] = {nullptr, nullptr};
     const std::vector<stewart::CliOption> cli = {
         {"--param", "NAME=VALUE",
@@ -296,6 +315,7 @@ int main(int argc, char **argv) {
          [&](const char *v) {
              return stewart::read_platform_file("stewart-simulate", v, s.params) ? 0 : 2;
          }},
+        stewart::view_option("stewart-simulate", view, view_path),
         {"--fidelity", "massless|full",
          [&](const char *v) {
              if (!std::strcmp(v, "massless")) return s.options.fidelity = STEWART_MASSLESS, 0;
@@ -308,6 +328,10 @@ int main(int argc, char **argv) {
         stewart::parse_command_line("stewart-simulate", argc, argv, cli, paths, 2, usage);
     if (code >= 0) return code;
     if (!pose_z_given) s.pose[2] = s.params.home_height;  // at home unless told otherwise
+    if (view && *stewart::view_page_missing()) {
+        std::fprintf(stderr, "stewart-simulate: --view: %s\n", stewart::view_page_missing());
+        return 2;
+    }
 
     char message[STEWART_MESSAGE_SIZE];
     if (stewart_plant_options_check(&s.options, message, sizeof message) != STEWART_OK) {
@@ -335,6 +359,7 @@ int main(int argc, char **argv) {
     if (computed == 0) return 1;  // nothing to write: OUT.csv is left as it was
     if (!write_rows(paths[1], rows, computed, s.options.input != STEWART_PLANT_INPUT_FORCE))
         return 1;
+    if (view && write_view(view_path, paths[1], s.params, table, rows, computed) != 0) return 1;
     if (computed < rows.size()) {
         std::fprintf(stderr,
                      "stewart-simulate: %s holds the %zu rows before row %zu only (partial "

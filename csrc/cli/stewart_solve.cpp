@@ -10,6 +10,7 @@
 #include "cli/output_units.hpp"
 #include "cli/param_assignment.hpp"
 #include "cli/pose_table.hpp"
+#include "cli/view_page.hpp"
 #include "util/number_text.hpp"
 #include "util/range.hpp"
 #include "stewart/stewart.h"
@@ -45,7 +46,7 @@ int usage(FILE *to) {
     std::fprintf(to,
                  "usage: stewart-solve [--fidelity kinematic|massless|full] [--tolerance TOL] "
                  "[--platform FILE.json] [--param NAME=VALUE ...] [--static] [--limits] [--report] "
-                 "[--ranges] [--units mm,deg] IN.csv OUT.csv\n"
+                 "[--ranges] [--units mm,deg] [--view[=PAGE.html]] IN.csv OUT.csv\n"
                  "  --platform: a platform file (docs/geometry.md: parameter names to values)\n"
                  "  --param: any platform parameter by its FMU name, SI units (e.g. "
                  "payload_mass=50,\n"
@@ -71,6 +72,8 @@ int usage(FILE *to) {
                  "  --units: OUT.csv's lengths (m, mm, um) and angles (rad, deg, mrad, urad), e.g.\n"
                  "           mm,deg (default m,rad; forces, conditions, margin_axis and the drive columns\n"
                  "           stay SI)\n"
+                 "  --view: and OUT.html (or PAGE.html), the run in 3D in a browser, self-contained\n"
+                 "           (docs/view.md)\n"
                  "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
                  "[--platform FILE.json] [--param NAME=VALUE ...] [--units mm,deg] IN.csv OUT.csv\n"
                  "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
@@ -192,7 +195,8 @@ struct Request {
     stewart_params params;
     const char *paths[2] = {nullptr, nullptr};
     bool forward = false, cold = false, check = false, at_rest = false;
-    bool limits = false, report = false, ranges = false, units_given = false;
+    bool limits = false, report = false, ranges = false, units_given = false, view = false;
+    std::string view_path;  // --view=PAGE.html; "": OUT.html
     stewart::OutputUnits units;
     double guess[6];
     const double *guess_given = nullptr;
@@ -271,6 +275,7 @@ int parse(int argc, char **argv, Request &r) {
         {"--limits", nullptr, [&](const char *) { return r.limits = true, 0; }},
         {"--report", nullptr, [&](const char *) { return r.report = true, 0; }},
         {"--ranges", nullptr, [&](const char *) { return r.ranges = true, 0; }},
+        stewart::view_option("stewart-solve", r.view, r.view_path),
         {"--units", "mm,deg",
          [&](const char *v) {
              r.units_given = true;
@@ -421,6 +426,18 @@ int write_table(const Request &r, const stewart::PoseTable &table,
     return 0;
 }
 
+// --view: the page of the run (its poses and forces) beside OUT.csv; 0, or 1 with a message.
+int write_view(const Request &r, const stewart::PoseTable &table,
+               const std::vector<stewart_inverse_output> &outputs) {
+    std::vector<double> q, force;
+    for (size_t j = 0; j < table.t.size(); ++j) {
+        q.insert(q.end(), table.poses[j].q, table.poses[j].q + 6);
+        force.insert(force.end(), outputs[j].force, outputs[j].force + STEWART_LEGS);
+    }
+    return stewart::write_view("stewart-solve", r.view_path, r.paths[1], r.params,
+                               r.options.warn_condition, {table.t, q, force});
+}
+
 // The inverse of IN.csv into OUT.csv.
 int run_inverse(const Request &r) {
     stewart::PoseTable table;
@@ -456,7 +473,9 @@ int run_inverse(const Request &r) {
     stewart_limits_free(checker);
     stewart_inverse_free(inverse);
     stewart_model_free(model);
-    return solved ? write_table(r, table, outputs, limit_rows, drives) : 1;
+    if (!solved) return 1;
+    const int written = write_table(r, table, outputs, limit_rows, drives);
+    return written || !r.view ? written : write_view(r, table, outputs);
 }
 
 }  // namespace
@@ -468,6 +487,13 @@ int main(int argc, char **argv) {
     if (r.check && r.units_given) {  // not silently ignored
         std::fprintf(stderr, "stewart-solve: --units is for OUT.csv; the --check report is in "
                      "m and deg\n");
+        return 2;
+    }
+    if (r.view && (r.check || r.forward || *stewart::view_page_missing())) {
+        std::fprintf(stderr, "stewart-solve: --view: %s\n",
+                     *stewart::view_page_missing() ? stewart::view_page_missing()
+                     : "the page is of the inverse's run (for --forward's OUT.csv: "
+                       "scripts/view.py --platform FILE.json OUT.csv)");
         return 2;
     }
     if (r.check) return run_check(r);

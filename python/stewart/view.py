@@ -5,7 +5,6 @@ the package's copy of the pinned npm package): it opens from a file with no serv
 from __future__ import annotations
 
 import base64
-import json
 import math
 import os
 import pathlib
@@ -19,17 +18,14 @@ from .limits import LIMIT_CLASSES, MARGIN_UNITS
 from .params import parameter_assignments, parameters
 from .platform import Platform
 from .scenes import POSE
+from .view_template import fill, script_json, template_parts
 
 PathLike = Union[str, "os.PathLike[str]"]
-_HERE = pathlib.Path(__file__).resolve().parent
 #: The classes a leg is coloured by: the library's per-leg classes, then the force (when a
 #: force limit and forces are given). The condition number is the pose's, shown beside the view.
 LEG_CLASSES = ("stroke", "base_joint", "platform_joint", "interference", "force")
 LEG_CLASS_UNITS = ("m", "rad", "rad", "m", "N")
 NO_CLASS = 255  # a leg no class names at a frame (never: the stroke names every leg)
-#: The longest URL Chromium loads (2 MiB): each module's data: URL must fit (three.core.js of
-#: three 0.187.0 makes 1.5 MB).
-CHROMIUM_MAX_URL = 2 * 1024 * 1024
 #: Results of up to this many rows get their axis ranges drawn unless told otherwise.
 AXIS_RANGE_ROWS = 20000
 
@@ -258,6 +254,8 @@ def _nearest_class(margin: np.ndarray, scale: np.ndarray):
 
 
 def _page_data(platform: Platform, t, q, forces, force_limit, warn_condition) -> dict:
+    """The page's data: the keys docs/view.md ("The page's data") defines, as the command lines'
+    --view writes them (csrc/cli/view_page.cpp)."""
     values = effective_parameters(platform)
     base, top = _core.model_joints(platform._model)
     solution = platform.inverse(q, fidelity="kinematic")
@@ -295,67 +293,8 @@ def _packed(a, dtype) -> str:
                             .tobytes()).decode("ascii")
 
 
-def three_dir() -> pathlib.Path:
-    """Where the package's copy of three.js is (installed with the package from the npm
-    package scripts/setup.sh fetches); STEWART_THREE_DIR overrides it."""
-    folder = pathlib.Path(os.environ.get("STEWART_THREE_DIR", _HERE / "three"))
-    for name in ("three.core.js", "three.module.js", "OrbitControls.js"):
-        if not (folder / name).is_file() and not (folder / "build" / name).is_file():
-            raise FileNotFoundError(
-                f"three.js is not in {folder} ({name} missing): scripts/setup.sh fetches the "
-                "pinned npm package `three` and the package install copies it here; run it and "
-                "reinstall, or set STEWART_THREE_DIR to an unpacked npm package of three")
-    return folder
-
-
-def _three_file(folder: pathlib.Path, name: str) -> str:
-    for path in (folder / name, folder / "build" / name,
-                 folder / "examples" / "jsm" / "controls" / name):
-        if path.is_file():
-            return path.read_text(encoding="utf-8")
-    raise FileNotFoundError(f"{name} is not in {folder}")
-
-
-def _data_url(code: str) -> str:
-    """A JavaScript data: URL of code, percent-encoding only what a URL would change ('%', '#',
-    and the line breaks and tabs a URL parser drops): a few percent larger than the code."""
-    for ch, esc in (("%", "%25"), ("#", "%23"), ("\n", "%0A"), ("\r", "%0D"), ("\t", "%09")):
-        code = code.replace(ch, esc)
-    url = "data:text/javascript;charset=utf-8," + code
-    if len(url.encode("utf-8")) > CHROMIUM_MAX_URL:
-        raise ValueError(f"a three.js module makes a data: URL of {len(url)} characters, beyond "
-                         f"the {CHROMIUM_MAX_URL} Chromium loads: use the pinned three.js")
-    return url
-
-
-def _script_json(value) -> str:
-    """JSON safe inside a <script> element: no '<' (so no '</script>' or '<!--')."""
-    return json.dumps(value, separators=(",", ":")).replace("<", "\\u003c")
-
-
 def _page(data: dict) -> str:
-    folder = three_dir()
-    core = _three_file(folder, "three.core.js")
-    module = _three_file(folder, "three.module.js").replace("'./three.core.js'", "'three/core'")
-    imports = {"three/core": _data_url(core), "three": _data_url(module),
-               "three/addons/controls/OrbitControls.js":
-                   _data_url(_three_file(folder, "OrbitControls.js"))}
-    page = (_HERE / "view_page.html").read_text(encoding="utf-8")
-    app = (_HERE / "view_page.js").read_text(encoding="utf-8")
-    if "</script" in app.lower() or "<!--" in app:  # would end or hide the inline script
-        raise ValueError("view_page.js holds '</script' or '<!--': it cannot be inlined")
-    version = (folder / "VERSION").read_text().strip() if (folder / "VERSION").is_file() else "?"
-    # The template's own fields first, then the inserted texts, the largest last, so that no
-    # marker is looked for inside an inserted text.
-    page = page.replace("@TITLE@", _html_text(data["title"])).replace("@THREE_VERSION@", version)
-    for key, text in (("/*APP*/", app), ("/*DATA*/", _script_json(data)),
-                      ("/*IMPORTMAP*/", _script_json({"imports": imports}))):
-        page = page.replace(key, text, 1)
-    return page
-
-
-def _html_text(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return fill(template_parts(), data["title"], script_json(data))
 
 
 def workspace_columns(platform: Platform, orientation, cells: int = 32,

@@ -1,6 +1,8 @@
 // The page of stewart.view (docs/view.md): the machine in 3D (three.js), a time slider and
 // playback, the legs coloured by their margin to the nearest limit, plots of the lengths and
-// forces with a cursor, and window.stewartView for scripts and tests.
+// forces with a cursor, and window.stewartView for scripts and tests. Its data is the JSON of
+// #stewart-data, whose keys docs/view.md ("The page's data") defines: stewart.view (Python) and
+// the command lines' --view (csrc/cli/view_page.cpp) write it.
 import * as THREE from "three";
 import { OrbitControls } from "three/addons/controls/OrbitControls.js";
 
@@ -293,7 +295,22 @@ function resize() {
     camera.updateProjectionMatrix();
   }
 }
-function render() { resize(); renderer.render(scene, camera); }
+// The scene is drawn at most once per animation frame: moves that come faster than the screen
+// shows them (a drag's input events, a held arrow key, a slow software renderer) each update the
+// scene, and only the last state of a frame is drawn, not every one queued behind the others.
+let drawQueued = false;
+const drawWork = [];  // the last 1000 draws' work [ms] (docs/view.md, speed)
+function render() {
+  if (drawQueued) return;
+  drawQueued = true;
+  requestAnimationFrame(() => {
+    drawQueued = false;
+    const began = performance.now();
+    resize();
+    renderer.render(scene, camera);
+    if (drawWork.push(performance.now() - began) > 1000) drawWork.shift();
+  });
+}
 controls.addEventListener("change", render);
 window.addEventListener("resize", () => { render(); drawPlots(); });
 
@@ -423,7 +440,9 @@ function statusText(i) {
     : `<span class="beyond">beyond: ${data.pose_classes[c]} (margin ${firstMargin[i].toPrecision(3)} ${data.pose_class_units[c]})</span>`;
   return `${where} · ${verdict} · condition ${condition[i].toPrecision(4)}${rangeText(i)}`;
 }
+const frameWork = [];  // the last 1000 setFrame calls' work but the draw [ms] (docs/view.md)
 function setFrame(i) {
+  const began = performance.now();
   i = Math.min(Math.max(Math.round(Number(i)) || 0, 0), N - 1);
   current = i;
   showFrame(i);
@@ -432,6 +451,7 @@ function setFrame(i) {
   slider.value = String(i);
   timeLabel.textContent = `t = ${time[i].toFixed(3)} s (${i + 1}/${N})`;
   statusLine.innerHTML = statusText(i);
+  if (frameWork.push(performance.now() - began) > 1000) frameWork.shift();
   return i;
 }
 slider.addEventListener("input", () => { pause(); setFrame(slider.value); });
@@ -514,6 +534,8 @@ window.stewartView = {
     const v = new THREE.Vector3(...g.a.map((x, j) => (x + g.top[j]) / 2)).project(camera);
     return { x: v.x * r.width / 2, y: -v.y * r.height / 2 };
   },
+  frameWork: () => frameWork.slice(),
+  drawWork: () => drawWork.slice(),
   renderer: () => {
     const gl = renderer.getContext(), info = gl.getExtension("WEBGL_debug_renderer_info");
     return info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
@@ -524,5 +546,7 @@ const sceneBuilt = performance.now();
 drawPlots();
 const plotsDrawn = performance.now();
 setFrame(0);
-window.stewartView.timings = { scriptStart: startedAt, sceneBuilt, plotsDrawn, ready: performance.now() };
-window.stewartView.ready = true;
+requestAnimationFrame(() => {  // after the first draw's (queued first by setFrame)
+  window.stewartView.timings = { scriptStart: startedAt, sceneBuilt, plotsDrawn, ready: performance.now() };
+  window.stewartView.ready = true;
+});
