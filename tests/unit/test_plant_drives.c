@@ -476,8 +476,16 @@ static void test_force_input_ignores_drives_bit_for_bit(void) {
 
 /* ---- refusals ---- */
 
+/* Leg k without a drive: its motor and screw parameters back at their defaults (the parameter
+ * check refuses them on a leg without a screw); friction stays, which a force-driven leg has. */
+static void without_drive(stewart_params *p, int k) {
+    p->screw_lead[k] = p->rotor_inertia[k] = p->screw_inertia[k] = 0;
+    p->torque_constant[k] = p->winding_resistance[k] = 0;
+    p->gear_ratio[k] = p->screw_efficiency[k] = p->screw_back_efficiency[k] = 1;
+}
+
 static void test_current_input_needs_a_drive_on_every_leg(void) {
-    params.screw_lead[3] = 0;
+    without_drive(&params, 3);
     model = test_model(&params);
     stewart_plant_options o;
     stewart_plant_options_default(&o);
@@ -485,7 +493,7 @@ static void test_current_input_needs_a_drive_on_every_leg(void) {
     char msg[STEWART_MESSAGE_SIZE];
     TEST_ASSERT_NULL(stewart_plant_create(model, &o, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL(strstr(msg, "screw_lead[4]"));
-    params.screw_lead[3] = 0.005;
+    with_drives(&params);
     params.winding_resistance[2] = 0;
     stewart_model_free(model);
     model = test_model(&params);
