@@ -178,7 +178,8 @@ stewart_status check_side_sizes(const stewart_params &p, char *msg, size_t size)
 
 // The drive parameters across fields (docs/drives.md, "Entering a drive"): each leg with a
 // screw has a motor constant; the motor's and screw's parameters only on a leg with a screw
-// (elsewhere they would be ignored); a Stribeck peak has its speed; damping has its spring.
+// (elsewhere they would be ignored), friction and end stops too; a Stribeck peak has its speed;
+// damping has its spring; no leg compliance (not modelled).
 stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t size) {
     struct Field { const char *name; const double *value; double neutral; const char *unit; };
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -200,7 +201,15 @@ stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t
             {"winding_resistance", p.winding_resistance, 0, " Ohm"},
             {"winding_inductance", p.winding_inductance, 0, " H"},
             {"current_max", p.current_max, 0, " A"}, {"voltage_max", p.voltage_max, 0, " V"},
-            {"motor_speed_max", p.motor_speed_max, 0, " rad/s"}};
+            {"motor_speed_max", p.motor_speed_max, 0, " rad/s"},
+            // friction and end stops act through the drive (with force input the plant takes
+            // the leg's whole axial force as given)
+            {"coulomb_friction", p.coulomb_friction, 0, " N"},
+            {"viscous_friction", p.viscous_friction, 0, " N.s/m"},
+            {"stribeck_friction", p.stribeck_friction, 0, " N"},
+            {"stribeck_speed", p.stribeck_speed, 0, " m/s"},
+            {"end_stop_stiffness", p.end_stop_stiffness, 0, " N/m"},
+            {"end_stop_damping", p.end_stop_damping, 0, " N.s/m"}};
         for (const Field &f : motor)
             if (!drive && f.value[k] != f.neutral)
                 return set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -216,13 +225,18 @@ stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t
                                ExactText(p.stribeck_speed[k]).c_str(), leg, leg,
                                ExactText(p.stribeck_friction[k]).c_str(), leg,
                                ExactText(p.coulomb_friction[k]).c_str());
+        if (p.leg_stiffness[k] != 0 || p.leg_damping[k] != 0)
+            return set_message(msg, size, STEWART_ERR_PARAMETER,
+                               "leg_stiffness[%d] = %s N/m, leg_damping[%d] = %s N.s/m: the legs' "
+                               "axial compliance is not modelled yet (every leg is rigid); leave "
+                               "both at 0", leg, ExactText(p.leg_stiffness[k]).c_str(), leg,
+                               ExactText(p.leg_damping[k]).c_str());
         struct Damper {
             const char *name, *spring_name;
             const double *damping, *spring;
         };
         const Damper dampers[] = {
-            {"end_stop_damping", "end_stop_stiffness", p.end_stop_damping, p.end_stop_stiffness},
-            {"leg_damping", "leg_stiffness", p.leg_damping, p.leg_stiffness}};
+            {"end_stop_damping", "end_stop_stiffness", p.end_stop_damping, p.end_stop_stiffness}};
         for (const Damper &d : dampers)
             if (d.damping[k] > 0 && !(d.spring[k] > 0))
                 return set_message(msg, size, STEWART_ERR_PARAMETER,

@@ -183,7 +183,7 @@ LOSSES = dict(screw_efficiency=0.9, screw_back_efficiency=0.8, coulomb_friction=
 
 
 def law_currents(force, rate, accel, vs):
-    """The plant's drive law (docs/drives-plant.md) solved for the current, written here: the nut
+    """The plant's drive law (docs/drives.md) solved for the current, written here: the nut
     pushes F + friction, the screw's factor e = 1 + (eta - 1) x (x >= 0) or
     1 - (1 / eta_back - 1) x with x = sign(F_nut) v / sqrt(v^2 + v_s^2), then
     i = (F_nut / e + m_r L_ddot) / (c k_t)."""

@@ -45,21 +45,29 @@ static void test_a_drive_with_every_parameter_is_taken(void) {
         p.viscous_friction[k] = 200;
         p.end_stop_stiffness[k] = 1e8;
         p.end_stop_damping[k] = 1e4;
-        p.leg_stiffness[k] = 1e8;
-        p.leg_damping[k] = 1e3;
         p.current_max[k] = 20;
         p.voltage_max[k] = 320;
         p.motor_speed_max[k] = 600;
     }
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_params_check(&p, message, sizeof message),
                                   message);
-    stewart_params none;  /* friction, end stops and compliance need no drive */
-    stewart_params_default(&none);
-    none.coulomb_friction[2] = 40;
-    none.stribeck_friction[2] = 30;  /* below coulomb: no peak, no speed needed */
-    none.end_stop_stiffness[2] = 1e8;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_params_check(&none, message, sizeof message),
+    p.stribeck_friction[2] = 30;  /* below coulomb: no peak, no speed needed */
+    p.stribeck_speed[2] = 0;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_params_check(&p, message, sizeof message),
                                   message);
+}
+
+/* The legs' axial compliance is not modelled: a stiffness or damping given is refused, not
+ * ignored (the legs would stay rigid). */
+static void test_leg_compliance_is_refused(void) {
+    stewart_params p = with_drives();
+    p.leg_stiffness[4] = 1e8;
+    const char *texts[] = {"leg_stiffness[5] = 1e+08 N/m", "not modelled"};
+    assert_refused(&p, texts, 2);
+    p = with_drives();
+    p.leg_damping[0] = 1e3;
+    const char *damping[] = {"leg_damping[1] = 1000 N.s/m", "not modelled"};
+    assert_refused(&p, damping, 2);
 }
 
 static void test_a_drive_needs_a_torque_constant(void) {
@@ -79,6 +87,8 @@ static void test_motor_parameters_need_a_drive(void) {
         {"winding_inductance[2]", 0.003, "winding_inductance[2] = 0.003 H, but leg 2"},
         {"current_max[2]", 20, "current_max[2] = 20 A, but leg 2"},
         {"motor_speed_max[2]", 600, "motor_speed_max[2] = 600 rad/s, but leg 2"},
+        {"coulomb_friction[2]", 40, "coulomb_friction[2] = 40 N, but leg 2"},
+        {"end_stop_stiffness[2]", 1e8, "end_stop_stiffness[2] = 1e+08 N/m, but leg 2"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         stewart_params p = with_drives();
@@ -131,6 +141,7 @@ int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_a_drive_with_every_parameter_is_taken);
     RUN_TEST(test_a_drive_needs_a_torque_constant);
+    RUN_TEST(test_leg_compliance_is_refused);
     RUN_TEST(test_motor_parameters_need_a_drive);
     RUN_TEST(test_a_stribeck_peak_needs_its_speed);
     RUN_TEST(test_damping_needs_its_spring);

@@ -476,12 +476,14 @@ static void test_force_input_ignores_drives_bit_for_bit(void) {
 
 /* ---- refusals ---- */
 
-/* Leg k without a drive: its motor and screw parameters back at their defaults (the parameter
- * check refuses them on a leg without a screw); friction stays, which a force-driven leg has. */
+/* Leg k without a drive: its motor, screw and friction parameters back at their defaults (the
+ * parameter check refuses them on a leg without a screw). */
 static void without_drive(stewart_params *p, int k) {
     p->screw_lead[k] = p->rotor_inertia[k] = p->screw_inertia[k] = 0;
     p->torque_constant[k] = p->winding_resistance[k] = 0;
     p->gear_ratio[k] = p->screw_efficiency[k] = p->screw_back_efficiency[k] = 1;
+    p->coulomb_friction[k] = p->stribeck_friction[k] = p->stribeck_speed[k] = 0;
+    p->viscous_friction[k] = 0;
 }
 
 static void test_current_input_needs_a_drive_on_every_leg(void) {
