@@ -19,8 +19,8 @@
 #include "variables.h"
 
 #define GUID FMU_GUID
-#define N_OUT 104 /* Real outputs: 32, the 18 limit outputs (limit_margin, range_min, range_max) and
-                     the 54 drive outputs (motor_angle .. motor_power, 9 of six legs) */
+#define N_OUT 98 /* Real outputs: 32, the 18 limit outputs (limit_margin, range_min, range_max) and
+                     the 48 drive outputs (motor_angle .. motor_power, 8 of six legs) */
 
 /* Every Real output, in table order (L[1..6] first), from the FMU's own variable table. */
 static void real_outputs(unsigned vr[N_OUT]) {

@@ -203,6 +203,10 @@ def test_dependencies_are_exact(version):
     generic["piston_mass"] = 1.3 * float(start["piston_mass"])
     if "limit_outputs" in start:  # the limits' outputs are zero unless asked for
         generic["limit_outputs"] = 2
+    # a drive on every leg, so that the drives' outputs move with the pose (zero without one)
+    for k in range(1, 7):
+        generic |= {f"screw_lead[{k}]": 0.005, f"torque_constant[{k}]": 0.5,
+                    f"winding_resistance[{k}]": 1.2, f"rotor_inertia[{k}]": 1e-4}
     u = started(version, 2, 1, pose, rate, accel, **generic)
     point = dict(zip(INPUTS, np.concatenate([pose, rate, accel])))
     outputs = [o.variable.name for o in md.outputs]

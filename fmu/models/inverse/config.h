@@ -40,13 +40,18 @@
 /* The model structure: which inputs each output depends on (over every value of the parameters
  * derivatives and fidelity). Lengths on the pose, their rates on the pose and its rates (the
  * rates are inputs, or finite differences of the pose), the condition number, the Newton
- * iterations and the residual on the pose; the rest (accelerations, forces, base wrench, and
- * status, which checks that every input is finite) on every input. */
+ * iterations and the residual on the pose; the motors' angles on the pose, their speeds on the
+ * pose and its rates; the rest (accelerations, forces, base wrench, the drives' torques,
+ * currents, voltages and powers, and status, which checks that every input is finite) on every
+ * input. */
 #define FMU_OUTPUT_DEPENDS_ON(out, in)                                                            \
     ((out) >= VR_L_1 && (out) <= VR_L_6                 ? (in) <= VR_yaw                          \
      : (out) >= VR_L_dot_1 && (out) <= VR_L_dot_6       ? (in) <= VR_yaw_dot                      \
      : (out) == VR_condition || (out) == VR_residual || (out) == VR_newton_iterations             \
          ? (in) <= VR_yaw                                                                         \
+     : (out) >= VR_motor_angle_1 && (out) <= VR_motor_angle_6 ? (in) <= VR_yaw                  \
+     : (out) >= VR_motor_speed_1 && (out) <= VR_motor_speed_6 ? (in) <= VR_yaw_dot               \
+     : (out) >= VR_motor_angle_1 ? 1 /* the drives' torques, currents, powers: every input */     \
      : (out) >= VR_limit_class ? (in) <= VR_yaw /* the limits: the pose's */                      \
          : 1)
 

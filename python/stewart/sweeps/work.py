@@ -290,7 +290,7 @@ def _workspace_table(b: _Scratch, s: dict, row: np.ndarray, pose: np.ndarray, m:
     columns["status"] = b.status[:m]
     columns["reachable"] = b.reachable[:m]
     columns["limit_class"] = b.limit_class[:m]
-    for c, name in enumerate(LIMIT_CLASSES):
+    for c, name in enumerate(POSE_CLASSES):
         columns[f"margin_{name}"] = b.margin[c, :m]
     columns["condition"] = b.condition[:m]
     for k in LEGS:
