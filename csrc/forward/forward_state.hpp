@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "forward/branch.hpp"
+#include "forward/continuation.hpp"
 #include "forward/newton.hpp"
 
 namespace stewart {
@@ -25,6 +26,10 @@ struct ForwardState {
     // solve's first Newton step (a chord step) needs no Jacobian or factoring of its own.
     bool has_chord = false;
     LegFactors chord = {};
+    // The last pose's Cardan-to-Cardan lengths and the proven step there (tolerance 0): a
+    // tracked pose within it is the one the lengths' change leads to.
+    double lengths[6] = {0};
+    ProvenStep step;
     // Forgets the history.
     void reset() { has_pose = has_rates = has_accels = has_previous = has_chord = false; }
 };
@@ -37,6 +42,11 @@ struct ForwardConstants {
     LengthPairBounds pair_bounds = {};
     double shortest_stroke_range = 0;
     BranchSides sides;  // the working mode's side of every Cardan
+    // Home's Cardan-to-Cardan lengths and the proven step there (tolerance 0); the largest
+    // |b_k| / r_t.
+    double home_lengths[6] = {0};
+    ProvenStep home_step;
+    double arm = 0;
 };
 
 // The constants of geometry with the parameters p (home height, strokes); STEWART_ERR_SINGULAR

@@ -34,8 +34,12 @@ enum {
     STEWART_BRANCH_JUMP = 8,             /* tracking: a platform point moved farther than the
                                             shortest stroke range (stroke_max[k] - stroke_min[k])
                                             since the last pose */
-    STEWART_BRANCH_SINGULARITY = 16      /* the leg Jacobian's determinant has the other sign
+    STEWART_BRANCH_SINGULARITY = 16,     /* the leg Jacobian's determinant has the other sign
                                             than at home: a singular pose lies in between */
+    STEWART_BRANCH_UNPROVEN = 32         /* passes the checks above, but is neither a proven
+                                            step from the last pose nor the pose reached from
+                                            home along the straight path of lengths: the lengths
+                                            have several such poses */
 };
 
 /* Which start the solution was reached from. */
