@@ -36,11 +36,11 @@ def machine(name):
     return platform, np.reshape(data["base_joint"], (6, 3)), np.reshape(data["platform_joint"], (6, 3))
 
 
-def far_poses(platform, n, seed):
-    """n poses within every (opened) limit, drawn over the axis ranges from home, that the solver
-    takes as the working mode when started at the pose itself."""
-    report = platform.check()
-    ends = report.ranges.ends[0]
+def far_poses(platform, n, seed, ends=None):
+    """n poses within every (opened) limit, drawn over `ends` (default: the axis ranges from
+    home), that the solver takes as the working mode when started at the pose itself."""
+    if ends is None:
+        ends = platform.check().ranges.ends[0]
     rng = np.random.default_rng(seed)
     kept = []
     while sum(len(k) for k in kept) < n:
@@ -71,11 +71,15 @@ def other_poses(found, q, scale):
     return solved & (far > 1e-7)
 
 
-@pytest.mark.parametrize("name", MACHINES)
-def test_no_other_pose_silently(name):
+# The thesis platform over a wider box about home: a yaw of +-115 deg, roll and pitch +-69 deg.
+WIDE = np.array([[-0.5, 0.5], [-0.5, 0.5], [0.1, 0.9], [-1.2, 1.2], [-1.2, 1.2], [-2.0, 2.0]])
+
+
+@pytest.mark.parametrize("name, box", [(m, None) for m in MACHINES] + [("thesis-defaults", WIDE)])
+def test_no_other_pose_silently(name, box):
     platform, base, top = machine(name)
     _JOINTS[id(platform)] = (base, top)
-    q = far_poses(platform, POSES, seed=11)
+    q = far_poses(platform, POSES, seed=11, ends=box)
     lengths = closed_lengths(platform, q)
     scale = max(1.0, np.abs(q[:, :3]).max())
     cold = platform.forward(lengths, cold=True)
