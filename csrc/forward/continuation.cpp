@@ -42,10 +42,10 @@ ProvenStep proven_step(const PlatformGeometry &g, double inverse_norm1, double s
 }
 
 double pose_distance(const PlatformGeometry &g, const double a[6], const double b[6]) {
-    const Eigen::Matrix3d turn =
-        rotation_from_rpy(a[3], a[4], a[5]) * rotation_from_rpy(b[3], b[4], b[5]).transpose();
-    const double cosine = std::clamp(0.5 * (turn.trace() - 1.0), -1.0, 1.0);
-    double d = g.characteristic_length * std::acos(cosine);
+    // The angle from |R_a - R_b|_F = 2 sqrt2 sin(angle / 2): exact to rounding for small angles
+    // (acos of the trace loses half the digits there).
+    const double chord = (rotation_from_rpy(a[3], a[4], a[5]) - rotation_from_rpy(b[3], b[4], b[5])).norm();
+    double d = g.characteristic_length * 2.0 * std::asin(std::min(1.0, chord / std::sqrt(8.0)));
     for (int i = 0; i < 3; ++i) d = std::max(d, std::fabs(a[i] - b[i]));
     return d;
 }

@@ -382,17 +382,25 @@ stewart_status prove(const stewart_model &m, stewart::ForwardState &f,
             stewart::pose_distance(g, x.q, tracking ? f.q : home) < step.radius)
             return STEWART_OK;
     }
+    // Same pose: within the radius where the lengths have one pose, or a millionth of the
+    // platform radius (both ends solved to the tolerance; near a singular pose that radius is
+    // smaller than their rounding).
+    const double same = std::max(x.step.radius, 1e-6 * g.characteristic_length);
     double reached[6];
     int steps = 0;
     char why[STEWART_MESSAGE_SIZE];
+    // From the last pose along the straight path of lengths (tracking), then from home.
+    if (tracking && stewart::continue_lengths(g, *f.newton, f.q, f.lengths, lengths, o.tolerance,
+                                              o.max_iterations, reached, steps, why, sizeof why) &&
+        stewart::pose_distance(g, reached, x.q) <= same)
+        return STEWART_OK;
     if (!stewart::continue_lengths(g, *f.newton, home, m.forward.home_lengths, lengths,
                                    o.tolerance, o.max_iterations, reached, steps, why,
                                    sizeof why)) {
         x.branch |= STEWART_BRANCH_UNPROVEN;
         return STEWART_OK;  // refused by the caller, naming the reason
     }
-    // The same pose: within the tolerance's effect (condition x tolerance), rotation included.
-    if (stewart::pose_distance(g, reached, x.q) <= 1e-9 * g.characteristic_length) return STEWART_OK;
+    if (stewart::pose_distance(g, reached, x.q) <= same) return STEWART_OK;
     if (!from_home) {
         x.branch |= STEWART_BRANCH_UNPROVEN;
         return STEWART_OK;
