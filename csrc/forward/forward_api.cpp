@@ -378,8 +378,16 @@ stewart_status prove(const stewart_model &m, stewart::ForwardState &f,
         double change = 0;
         for (int k = 0; k < STEWART_LEGS; ++k)
             change = std::max(change, std::fabs(lengths[k] - from_lengths[k]));
+        // The rotation angle between two Euler triples is at most the sum of the three angles'
+        // changes (each elementary turn moves the rotation by its own angle): a bound on
+        // pose_distance without trigonometry.
+        const double *from = tracking ? f.q : home;
+        double moved = 0;
+        for (int i = 0; i < 3; ++i) moved = std::max(moved, std::fabs(x.q[i] - from[i]));
+        const double turned = std::fabs(x.q[3] - from[3]) + std::fabs(x.q[4] - from[4]) +
+                              std::fabs(x.q[5] - from[5]);
         if (change + o.tolerance <= step.max_change &&
-            stewart::pose_distance(g, x.q, tracking ? f.q : home) < step.radius)
+            std::max(moved, g.characteristic_length * turned) < step.radius)
             return STEWART_OK;
     }
     // Same pose: within the radius where the lengths have one pose, or a millionth of the
