@@ -167,6 +167,12 @@ const char *branch_reason(int branch) {
     if (branch & STEWART_BRANCH_PLATFORM_CARDAN)
         return "a leg reaches its platform Cardan from above the platform";
     if (branch & STEWART_BRANCH_FLIPPED) return "the platform faces down";
+    if (branch & STEWART_BRANCH_UNPROVEN)
+        return "these lengths have more than one pose on the working mode's side of every check, "
+               "and this one is neither a proven step from the last pose nor the pose reached from "
+               "home along the straight path of lengths: track the machine from a proven pose "
+               "(samples close enough for each step to be proven), or reset to take the pose "
+               "reached from home";
     if (branch & STEWART_BRANCH_SINGULARITY)
         return "the leg Jacobian's determinant has the other sign than at home (a singular pose "
                "lies in between)";
@@ -194,6 +200,7 @@ struct Found {
     double angles[3], cos_angles[3], sin_angles[3];  // of the Newton iterate (before the wrap)
     stewart::LegVectors points;  // the platform points, world
     stewart::Vector6 residual;
+    stewart::ProvenStep step;  // at q (tolerance 0)
 };
 
 // The start pose of attempt `start`.
@@ -240,9 +247,11 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
     // cond_1(J) = |J|_1 |J^-1|_1 from the one factoring that also serves the step, the rates and
     // the next solve's chord.
     double norm1;
-    x.condition = stewart::factor_legs(g, at, x.factors, norm1)
-                      ? norm1 * stewart::inverse_norm1(x.factors)
-                      : HUGE_VAL;
+    const double inverse = stewart::factor_legs(g, at, x.factors, norm1)
+                               ? stewart::inverse_norm1(x.factors)
+                               : HUGE_VAL;
+    x.condition = norm1 * inverse;
+    x.step = stewart::proven_step(g, inverse, at.length.minCoeff(), m.forward.arm, 0.0);
     const double condition = x.condition;
     stewart_status s = stewart::check_condition(condition, o.singular_condition, msg, size);
     if (s != STEWART_OK) return s;
@@ -333,7 +342,7 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
 
 // The accepted pose becomes the solver's last pose.
 void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_output &out,
-              double time, bool from_guess, bool rates, bool accels) {
+              const double lengths[6], double time, bool from_guess, bool rates, bool accels) {
     f.has_previous = f.has_pose && !from_guess;  // a guess starts a new history
     f.previous_time = f.time;
     std::memcpy(f.previous_q, f.q, sizeof f.q);
@@ -347,8 +356,71 @@ void remember(stewart::ForwardState &f, const Found &x, const stewart_forward_ou
     f.points = x.points;
     f.has_chord = true;
     f.chord = x.factors;
+    std::memcpy(f.lengths, lengths, sizeof f.lengths);
+    f.step = x.step;
 }
 
+
+// Whether the pose x (on the working mode's side of every check) is the one the lengths lead to:
+// a proven step from the last pose (tracking) or from home (no history), else the pose reached
+// from home along the straight path of lengths in proven steps. From home with another answer,
+// that pose is taken (into walked, walked.start = -1: the caller's marker); from the last pose or
+// a guess, x is refused (STEWART_BRANCH_UNPROVEN). STEWART_ERR_SINGULAR (message) when the path
+// from home meets a singular pose and nothing else proves x.
+stewart_status prove(const stewart_model &m, stewart::ForwardState &f,
+                     const stewart_forward_options &o, const double lengths[6], bool tracking,
+                     Found &x, Found &walked, char *msg, size_t size) {
+    const stewart::PlatformGeometry &g = m.geometry;
+    const double home[6] = {0, 0, m.params.home_height, 0, 0, 0};
+    const bool from_home = x.start == STEWART_START_HOME;
+    if (tracking || from_home) {
+        const double *from_lengths = tracking ? f.lengths : m.forward.home_lengths;
+        const stewart::ProvenStep &step = tracking ? f.step : m.forward.home_step;
+        double change = 0;
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            change = std::max(change, std::fabs(lengths[k] - from_lengths[k]));
+        // The rotation angle between two Euler triples is at most the sum of the three angles'
+        // changes (each elementary turn moves the rotation by its own angle): a bound on
+        // pose_distance without trigonometry.
+        const double *from = tracking ? f.q : home;
+        double moved = 0;
+        for (int i = 0; i < 3; ++i) moved = std::max(moved, std::fabs(x.q[i] - from[i]));
+        const double turned = std::fabs(x.q[3] - from[3]) + std::fabs(x.q[4] - from[4]) +
+                              std::fabs(x.q[5] - from[5]);
+        if (change + o.tolerance <= step.max_change &&
+            std::max(moved, g.characteristic_length * turned) < step.radius)
+            return STEWART_OK;
+    }
+    // Same pose: within the radius where the lengths have one pose, or a millionth of the
+    // platform radius (both ends solved to the tolerance; near a singular pose that radius is
+    // smaller than their rounding).
+    const double same = std::max(x.step.radius, 1e-6 * g.characteristic_length);
+    double reached[6];
+    int steps = 0;
+    char why[STEWART_MESSAGE_SIZE];
+    // From the last pose along the straight path of lengths (tracking), then from home.
+    if (tracking && stewart::continue_lengths(g, *f.newton, f.q, f.lengths, lengths, o.tolerance,
+                                              o.max_iterations, reached, steps, why, sizeof why) &&
+        stewart::pose_distance(g, reached, x.q) <= same)
+        return STEWART_OK;
+    if (!stewart::continue_lengths(g, *f.newton, home, m.forward.home_lengths, lengths,
+                                   o.tolerance, o.max_iterations, reached, steps, why,
+                                   sizeof why)) {
+        x.branch |= STEWART_BRANCH_UNPROVEN;
+        return STEWART_OK;  // refused by the caller, naming the reason
+    }
+    if (stewart::pose_distance(g, reached, x.q) <= same) return STEWART_OK;
+    if (!from_home) {
+        x.branch |= STEWART_BRANCH_UNPROVEN;
+        return STEWART_OK;
+    }
+    walked = x;
+    std::memcpy(walked.q, reached, sizeof reached);
+    stewart_status s = examine(m, f, o, f.newton->last(), false, walked, msg, size);
+    if (s != STEWART_OK) return s;
+    walked.start = -1;
+    return STEWART_OK;
+}
 }  // namespace
 
 
@@ -373,6 +445,15 @@ stewart_status forward_constants(const PlatformGeometry &g, const stewart_params
                            "the leg Jacobian is singular at the home pose: the working assembly "
                            "mode is not defined");
     f.pair_bounds = length_pair_bounds(g);
+    f.arm = largest_arm(g);
+    const double q_home[6] = {0, 0, p.home_height, 0, 0, 0};
+    LegsAt at;
+    evaluate_legs(g, q_home, q_home, at);  // (target unused: the lengths are read)
+    for (int k = 0; k < STEWART_LEGS; ++k) f.home_lengths[k] = at.length[k];
+    LegFactors factors;
+    double norm1;
+    if (factor_legs(g, at, factors, norm1))
+        f.home_step = proven_step(g, inverse_norm1(factors), at.length.minCoeff(), f.arm, 0.0);
     return STEWART_OK;
 }
 
@@ -380,9 +461,9 @@ stewart_status forward_constants(const PlatformGeometry &g, const stewart_params
 namespace {
 
 constexpr unsigned kHistoryMagic = 0x53544657u;  // "STFW"
-constexpr unsigned kHistoryVersion = 2;  // 2: the chord's factors
+constexpr unsigned kHistoryVersion = 3;  // 2: the chord's factors; 3: lengths, proven step
 // times, q, q_dot, q_ddot, previous_q, points; the chord's LU, pitch and yaw trig, scale
-constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18 + 36 + 4 + 1;
+constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18 + 36 + 4 + 1 + 6 + 2;
 constexpr size_t kHistoryFlags = 5 + 6;  // has_pose .. has_chord; the chord's pivots
 constexpr size_t kHistoryHeader = 3 * sizeof(unsigned);
 
@@ -412,6 +493,8 @@ void forward_history_save(const ForwardState &f, unsigned char *buffer) {
     *p++ = f.chord.trig.cos_pitch, *p++ = f.chord.trig.sin_pitch;
     *p++ = f.chord.trig.cos_yaw, *p++ = f.chord.trig.sin_yaw;
     *p++ = f.chord.scale;
+    for (int k = 0; k < 6; ++k) *p++ = f.lengths[k];
+    *p++ = f.step.max_change, *p++ = f.step.radius;
     std::memcpy(flags + kHistoryFlags, v, sizeof v);
 }
 
@@ -454,6 +537,10 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
     chord.trig.cos_pitch = *p++, chord.trig.sin_pitch = *p++;
     chord.trig.cos_yaw = *p++, chord.trig.sin_yaw = *p++;
     chord.scale = *p++;
+    double lengths[6];
+    for (int k = 0; k < 6; ++k) lengths[k] = *p++;
+    ProvenStep step;
+    step.max_change = *p++, step.radius = *p++;
     if (flags[4] && !factors_usable(chord)) {
         set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
                     "the forward history's leg Jacobian factors are not usable (a pivot out of "
@@ -463,6 +550,8 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
     f.has_pose = flags[0], f.has_rates = flags[1], f.has_accels = flags[2],
     f.has_previous = flags[3], f.has_chord = flags[4];
     f.chord = chord;
+    std::memcpy(f.lengths, lengths, sizeof lengths);
+    f.step = step;
     p = v;
     f.time = *p++;
     f.previous_time = *p++;
@@ -529,6 +618,8 @@ extern "C" stewart_status stewart_forward_copy(stewart_forward *dst, const stewa
     d.points = s.points;
     d.has_chord = s.has_chord;
     d.chord = s.chord;
+    std::memcpy(d.lengths, s.lengths, sizeof d.lengths);
+    d.step = s.step;
     return STEWART_OK;
 }
 
@@ -751,7 +842,8 @@ stewart_status answer(const stewart_model &m, stewart::ForwardState &f,
                            "m); not taken as the answer", start_name(x.start),
                            branch_reason(x.branch), x.q[2]);
     }
-    remember(f, x, out, in.time, in.guess != nullptr, in.rates != nullptr, in.accels != nullptr);
+    remember(f, x, out, in.lengths, in.time, in.guess != nullptr, in.rates != nullptr,
+             in.accels != nullptr);
     msg[0] = '\0';
     return STEWART_OK;
 }
@@ -776,6 +868,14 @@ extern "C" stewart_status stewart_forward_solve(stewart_forward *d,
     Attempts a;
     solve_from_starts(m, d->state, d->options, in, starts, n_starts, a, msg, size);
     if (a.n_found == 0) return a.last_error;  // the message is the last attempt's
-    Found &x = a.found[a.chosen < 0 ? 0 : a.chosen];
+    if (a.chosen < 0) a.chosen = 0;
+    Found &found = a.found[a.chosen], walked;
+    if (found.branch == 0) {  // on the working mode's side of every check: is it the lengths' pose?
+        const bool tracking = !in.guess && d->state.has_pose;
+        s = prove(m, d->state, d->options, in.lengths, tracking, found, walked, msg, size);
+        if (s != STEWART_OK) return s;
+    }
+    Found &x = found.branch == 0 && walked.start == -1 ? walked : found;
+    if (x.start == -1) x.start = STEWART_START_LAST;  // reached from home in proven steps
     return answer(m, d->state, d->options, in, x, a.iterations, *result, msg, size);
 }

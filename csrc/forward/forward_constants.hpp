@@ -3,6 +3,7 @@
 #pragma once
 
 #include "forward/branch.hpp"
+#include "forward/continuation.hpp"
 
 namespace stewart {
 
@@ -14,6 +15,11 @@ struct ForwardConstants {
     LengthPairBounds pair_bounds = {};
     double shortest_stroke_range = 0;
     BranchSides sides;  // the working mode's side of every Cardan
+    // Home's Cardan-to-Cardan lengths and the proven step there (tolerance 0); the largest
+    // |b_k| / r_t.
+    double home_lengths[6] = {0};
+    ProvenStep home_step;
+    double arm = 0;
 };
 
 // The constants of geometry with the parameters p (home height, strokes); STEWART_ERR_SINGULAR

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "forward/branch.hpp"
+#include "forward/continuation.hpp"
 #include "forward/newton.hpp"
 
 namespace stewart {
@@ -24,6 +25,10 @@ struct ForwardState {
     // solve's first Newton step (a chord step) needs no Jacobian or factoring of its own.
     bool has_chord = false;
     LegFactors chord = {};
+    // The last pose's Cardan-to-Cardan lengths and the proven step there (tolerance 0): a
+    // tracked pose within it is the one the lengths' change leads to.
+    double lengths[6] = {0};
+    ProvenStep step;
     // Forgets the history.
     void reset() { has_pose = has_rates = has_accels = has_previous = has_chord = false; }
 };

@@ -65,6 +65,8 @@ static void test_the_published_reflected_mass(void) {
     p.gear_ratio[5] = 1, p.rotor_inertia[5] = 0, p.torque_constant[5] = 0;
     p.winding_resistance[5] = p.winding_inductance[5] = 0;
     p.screw_efficiency[5] = p.screw_back_efficiency[5] = 1;
+    p.coulomb_friction[5] = p.stribeck_friction[5] = p.stribeck_speed[5] = 0;
+    p.viscous_friction[5] = 0;
     stewart_model *m = stewart_model_create(&p, message, sizeof message);
     TEST_ASSERT_NOT_NULL_MESSAGE(m, message);
     double mass[STEWART_LEGS];

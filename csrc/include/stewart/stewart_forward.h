@@ -8,8 +8,10 @@
  * last rates), a first measurement starts from the guess given, else from the home pose. A pose
  * on another assembly mode than the working one (platform below the base, a leg beyond the
  * half-space of one of its Cardans, a singular pose between it and home, a jump larger than the
- * stroke allows) is never returned as the answer: the solve fails with STEWART_ERR_OTHER_BRANCH
- * and says which.
+ * stroke allows), or a pose the lengths do not lead to (neither a proven step from the last pose
+ * nor the end of the straight path of lengths from it or from home: far from home two poses can
+ * pass the other checks), is never returned as the answer: the solve fails with
+ * STEWART_ERR_OTHER_BRANCH and says which.
  */
 #ifndef STEWART_STEWART_FORWARD_H
 #define STEWART_STEWART_FORWARD_H
@@ -34,8 +36,12 @@ enum {
     STEWART_BRANCH_JUMP = 8,             /* tracking: a platform point moved farther than the
                                             shortest stroke range (stroke_max[k] - stroke_min[k])
                                             since the last pose */
-    STEWART_BRANCH_SINGULARITY = 16      /* the leg Jacobian's determinant has the other sign
+    STEWART_BRANCH_SINGULARITY = 16,     /* the leg Jacobian's determinant has the other sign
                                             than at home: a singular pose lies in between */
+    STEWART_BRANCH_UNPROVEN = 32         /* passes the checks above, but is neither a proven
+                                            step from the last pose nor the pose reached from
+                                            home along the straight path of lengths: the lengths
+                                            have several such poses */
 };
 
 /* Which start the solution was reached from. */
@@ -120,6 +126,8 @@ const stewart_forward_options *stewart_forward_options_of(const stewart_forward 
  * leg Jacobian. With use_guess the start is guess, and the history is forgotten; without, the
  * last pose is the start (advanced to time by its last rates when time is later), or the home
  * pose if there is none.
+ * Without history the answer is the pose reached from home along the straight path of lengths
+ * (output->start STEWART_START_LAST when Newton from home found another).
  * On STEWART_OK the output is filled and the pose becomes the last pose.
  * STEWART_ERR_OTHER_BRANCH: output filled with the other mode's pose, history unchanged.
  * Any other error: output untouched, history unchanged, stewart_forward_message says why (naming
