@@ -50,7 +50,7 @@ int usage(FILE *to) {
                  "force1..6, current1..6,\n"
                  "           voltage1..6, motor_speed1..6, motor_torque1..6, "
                  "electrical_power1..6 and the bit sets\n"
-                 "           current_limit_legs, voltage_limit_legs, speed_limit_legs\n"
+                 "           current_max_legs, voltage_max_legs, motor_speed_max_legs\n"
                  "  A row that cannot be simulated stops the run: OUT.csv then holds the rows "
                  "before it\n"
                  "  (partial output), stderr names the row and why, and the exit status is 1.\n"
@@ -189,7 +189,7 @@ void write_header(FILE *f, bool drives) {
     if (drives) {
         for (const char *c : kDriveColumns)
             for (int k = 1; k <= 6; ++k) std::fprintf(f, ",%s%d", c, k);
-        std::fprintf(f, ",current_limit_legs,voltage_limit_legs,speed_limit_legs");
+        std::fprintf(f, ",current_max_legs,voltage_max_legs,motor_speed_max_legs");
     }
     std::fprintf(f, "\n");
 }
@@ -207,8 +207,8 @@ void write_row(FILE *f, const Row &r, bool drives) {
         for (const double *column : {o.force, o.current, o.voltage, o.motor_speed,
                                      o.motor_torque, o.electrical_power})
             for (int k = 0; k < 6; ++k) std::fprintf(f, ",%.17g", column[k]);
-        std::fprintf(f, ",%d,%d,%d", o.current_limit_legs, o.voltage_limit_legs,
-                     o.speed_limit_legs);
+        std::fprintf(f, ",%d,%d,%d", o.current_max_legs, o.voltage_max_legs,
+                     o.motor_speed_max_legs);
     }
     std::fprintf(f, "\n");
 }
@@ -264,13 +264,17 @@ size_t simulate_rows(stewart_plant *plant, const ForceTable &table, const stewar
     return table.t.size();
 }
 
-// --view: the page of the first n rows (the plant's poses, IN.csv's forces); 0, or 1 (said).
+// --view: the page of the first n rows (the plant's poses; the forces IN.csv gives, or with
+// current or voltage input the plant's leg forces); 0, or 1 (said).
 int write_view(const std::string &page, const char *out_csv, const stewart_params &params,
-               const ForceTable &table, const std::vector<Row> &rows, size_t n) {
-    std::vector<double> t, q, force(table.force.begin(), table.force.begin() + 6 * n);
+               const ForceTable &table, bool forces_given, const std::vector<Row> &rows,
+               size_t n) {
+    std::vector<double> t, q, force;
+    if (forces_given) force.assign(table.force.begin(), table.force.begin() + 6 * n);
     for (size_t j = 0; j < n; ++j) {  // the rows' own times and poses, as OUT.csv's
         t.push_back(rows[j].out.time);
         q.insert(q.end(), rows[j].out.pose.q, rows[j].out.pose.q + 6);
+        if (!forces_given) force.insert(force.end(), rows[j].out.force, rows[j].out.force + 6);
     }
     stewart_limits_options limits;  // the limit check's defaults, as stewart.view's
     stewart_limits_options_default(&limits);
@@ -359,7 +363,9 @@ int main(int argc, char **argv) {
     if (computed == 0) return 1;  // nothing to write: OUT.csv is left as it was
     if (!write_rows(paths[1], rows, computed, s.options.input != STEWART_PLANT_INPUT_FORCE))
         return 1;
-    if (view && write_view(view_path, paths[1], s.params, table, rows, computed) != 0) return 1;
+    const bool forces_given = s.options.input == STEWART_PLANT_INPUT_FORCE;
+    if (view && write_view(view_path, paths[1], s.params, table, forces_given, rows, computed) != 0)
+        return 1;
     if (computed < rows.size()) {
         std::fprintf(stderr,
                      "stewart-simulate: %s holds the %zu rows before row %zu only (partial "

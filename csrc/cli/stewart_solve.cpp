@@ -390,6 +390,10 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart
             std::memcpy(pose.q_ddot, table.poses[j].q_ddot, sizeof pose.q_ddot);
             pose.has_force = r.options.fidelity != STEWART_KINEMATIC;
             std::memcpy(pose.force, outputs[j].force, sizeof pose.force);
+            if (!table.jerks.empty()) {  // the file's x_dddot..yaw_dddot: the leg jerk class too
+                pose.derivatives = 3;
+                std::memcpy(pose.q_dddot, &table.jerks[6 * j], sizeof pose.q_dddot);
+            }
         }
         // The pose solved, so it is finite: the ranges cannot fail, the check only on leg rates
         // too large to compute.

@@ -9,6 +9,7 @@
 #include "model.hpp"
 #include "stewart/stewart_cueing.h"
 #include "stewart/stewart_limits.h"
+#include "stewart/stewart_table.h"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -178,7 +179,12 @@ stewart_cueing *stewart_cueing_create(const stewart_model *model,
         return nullptr;
     }
     c->model = model;
-    c->options = *options;
+    // Field by field over zeroed bytes: copy and load compare the options as bytes, and the
+    // caller's struct may hold anything in its padding.
+    std::memset(&c->options, 0, sizeof c->options);
+#define COPY_OPTION(id, name, ...) c->options.name = options->name;
+    STEWART_CUEING_OPTION_TABLE(COPY_OPTION)
+#undef COPY_OPTION
     c->message[0] = '\0';
     c->design = stewart::cueing::classical_design(*options, g);
     c->limits = limits;

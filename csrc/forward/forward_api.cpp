@@ -405,10 +405,11 @@ stewart_status prove(const stewart_model &m, stewart::ForwardState &f,
         return STEWART_OK;
     if (!stewart::continue_lengths(g, *f.newton, home, m.forward.home_lengths, lengths,
                                    o.tolerance, o.max_iterations, reached, steps, why,
-                                   sizeof why)) {
-        x.branch |= STEWART_BRANCH_UNPROVEN;
-        return STEWART_OK;  // refused by the caller, naming the reason
-    }
+                                   sizeof why))
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "the pose found cannot be proven to be the one these lengths lead to: "
+                           "%s; track the machine from a proven pose (samples close enough), or "
+                           "give a guess", why);
     if (stewart::pose_distance(g, reached, x.q) <= same) return STEWART_OK;
     if (!from_home) {
         x.branch |= STEWART_BRANCH_UNPROVEN;

@@ -604,11 +604,11 @@ void plant_drive_outputs(const stewart_plant &p, const double *input, const fd::
                            : d.resistance * i + d.torque_constant * omega;
         o.electrical_power[k] = o.voltage[k] * i;
         const int bit = 1 << k;
-        if (par.current_max[k] > 0 && std::fabs(i) > par.current_max[k]) o.current_limit_legs |= bit;
+        if (par.current_max[k] > 0 && std::fabs(i) > par.current_max[k]) o.current_max_legs |= bit;
         if (par.voltage_max[k] > 0 && std::fabs(o.voltage[k]) > par.voltage_max[k])
-            o.voltage_limit_legs |= bit;
+            o.voltage_max_legs |= bit;
         if (par.motor_speed_max[k] > 0 && std::fabs(omega) > par.motor_speed_max[k])
-            o.speed_limit_legs |= bit;
+            o.motor_speed_max_legs |= bit;
     }
 }
 

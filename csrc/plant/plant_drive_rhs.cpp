@@ -154,7 +154,10 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
     double nu_dot[6], factor[STEWART_LEGS], weight[STEWART_LEGS], j[STEWART_LEGS][6];
     for (int k = 0; k < STEWART_LEGS; ++k)
         for (int i = 0; i < 6; ++i) j[k][i] = rows[k].j[i];
-    for (int pass = 0; pass < kMaxSignPasses; ++pass) {
+    // The last pass (after kMaxSignPasses unsettled ones) takes the legs whose direction still
+    // flips as lossless (sign 0): at the turn of its power flow a leg's loss is then left out for
+    // this evaluation, and no energy is made.
+    for (int pass = 0; pass <= kMaxSignPasses; ++pass) {
         double b[6];
         for (int i = 0; i < 6; ++i) b[i] = rhs[i];
         for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -173,8 +176,8 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
             const double ideal = r.bias + r.reflected * r.a - r.reflected * L_ddot;
             e.drive.ideal_force[k] = ideal;
             const int found = ideal >= 0 ? 1 : -1;
-            if (found != sign[k] && r.lossy) {
-                sign[k] = found;
+            if (found != sign[k] && sign[k] != 0 && r.lossy && pass < kMaxSignPasses) {
+                sign[k] = pass + 1 < kMaxSignPasses ? found : 0;
                 settled = false;
             }
         }

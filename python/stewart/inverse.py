@@ -54,11 +54,6 @@ class InverseSolution(RowStatus):
     messages: dict[int, str] = field(default_factory=dict)  #: row -> message, first failing rows
 
     @property
-    def torque(self) -> np.ndarray:
-        """(N, 6) the motors' torques [N m] (motor_torque)."""
-        return self.motor_torque
-
-    @property
     def power(self) -> np.ndarray:
         """(N,) actuator power sum_k F_k dL_k/dt [W], summed over legs in order 1..6."""
         p = self.force[:, 0] * self.length_rate[:, 0]

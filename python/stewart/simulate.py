@@ -66,9 +66,9 @@ class Simulation(RowStatus):
     motor_speed: np.ndarray  #: (N, 6) 2 pi N L_dot / lead [rad/s]
     motor_torque: np.ndarray  #: (N, 6) k_t i [N m]
     electrical_power: np.ndarray  #: (N, 6) voltage times current [W], < 0 regenerates
-    current_limit_legs: np.ndarray  #: (N,) bit k set: leg k+1 above its current_max
-    voltage_limit_legs: np.ndarray  #: (N,) bit k set: leg k+1 above its voltage_max
-    speed_limit_legs: np.ndarray    #: (N,) bit k set: leg k+1 above its motor_speed_max
+    current_max_legs: np.ndarray  #: (N,) bit k set: leg k+1 above its current_max
+    voltage_max_legs: np.ndarray  #: (N,) bit k set: leg k+1 above its voltage_max
+    motor_speed_max_legs: np.ndarray    #: (N,) bit k set: leg k+1 above its motor_speed_max
     steps: np.ndarray        #: (N,) internal integrator steps of the step into the row
     rhs_evaluations: np.ndarray       #: (N,) of the step into the row
     nonlinear_iterations: np.ndarray  #: (N,) of the step into the row

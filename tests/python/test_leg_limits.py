@@ -206,7 +206,7 @@ def test_stewart_solve_report_is_the_library_check_of_each_row(solve, tmp_path):
     first = [stewart.limits.class_name(c) for c in check.first]
     assert list(rows["limit_class"]) == first and list(rows["status"]) == first
     assert {"leg_speed", "leg_force"} <= set(first)  # the limits were chosen to be met
-    assert np.all(np.isinf(check.margin[:, names.index("leg_jerk")]))  # no jerk in a CSV
+    assert np.all(np.isinf(check.margin[:, names.index("leg_jerk")]))  # no jerk columns given
     # The forces solved are the massless inverse's: the same check with them computed.
     again = limited.limits(m.pose, m.pose_rate, m.pose_accel, forces="massless")
     np.testing.assert_allclose(again.margin, check.margin, rtol=0, atol=1e-9)
@@ -241,3 +241,26 @@ def test_leg_jerk_in_every_rotation_order_and_frame_convention(order, convention
     check = platform.limits(q, rates, accels, jerks)
     np.testing.assert_allclose(check.leg_margin[:, JERK], 1e3 - np.abs(jerk), rtol=0,
                                atol=1e-6 * np.abs(jerk).max())
+
+
+def test_stewart_solve_report_checks_the_jerks_a_file_gives(solve, tmp_path):
+    """With x_dddot..yaw_dddot columns, --report checks the leg jerk class too: its margins equal
+    Platform.limits given the same jerks, bit for bit."""
+    platform = stewart.Platform()
+    home = platform.check().home
+    m = stewart.move(platform, home, home + [0.02, -0.01, 0.01, 0.0, 0.0, 0.05], "line",
+                     leg_speed_max=0.05, leg_accel_max=0.5, sample_time=0.01)
+    jerk = np.gradient(m.pose_accel, m.t, axis=0)
+    src = tmp_path / "move.csv"
+    header = ["t", *POSE_NAMES, *[f"{n}_dot" for n in POSE_NAMES],
+              *[f"{n}_ddot" for n in POSE_NAMES], *[f"{n}_dddot" for n in POSE_NAMES]]
+    np.savetxt(src, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel, jerk]),
+               delimiter=",", header=",".join(header), comments="", fmt="%.17g")
+    out = tmp_path / "out.csv"
+    r = solve("--report", "--fidelity", "kinematic", "--param", "leg_jerk_max=5", src, out)
+    assert r.returncode == 0, r.stderr
+    rows = np.genfromtxt(out, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    check = stewart.Platform(leg_jerk_max=5.0).limits(m.pose, m.pose_rate, m.pose_accel, jerk)
+    margin = rows["margin_leg_jerk"]
+    assert np.all(np.isfinite(margin))
+    np.testing.assert_array_equal(margin, check.margin[:, stewart.limits.LIMIT_CLASSES.index("leg_jerk")])

@@ -106,8 +106,8 @@ def test_derivatives_equal_central_differences(version, fidelity, framed):
 
 # the drives' outputs (tests/python/test_plant_drives.py)
 DRIVE_OUTPUTS = {"force", "current", "voltage", "motor_speed", "motor_torque",
-                 "electrical_power", "current_limit_legs", "voltage_limit_legs",
-                 "speed_limit_legs"}
+                 "electrical_power", "current_max_legs", "voltage_max_legs",
+                 "motor_speed_max_legs"}
 
 
 @pytest.mark.parametrize("version", VERSIONS)

@@ -198,6 +198,8 @@ def test_scrub_work_per_slider_move(browser, solve, tmp_path):
     page = run_with_view(solve, tmp_path, stewart.platform_files()["thesis"], q, "--fidelity",
                          "full")
     open_page(browser, page)
+    # 300 animation frames: a software renderer on a loaded machine takes 0.1-0.3 s a frame
+    browser.set_script_timeout(600)
     times = browser.execute_async_script("""
         const done = arguments[0], slider = document.getElementById('slider');
         const frames = window.stewartView.frames, moves = 300;

@@ -31,8 +31,8 @@
  * along the excursion) when that is not enough. The output's rates and accelerations are those of
  * the scaled trajectory (s a cubic over each step, s' continuous but at a cut). It does not
  * enforce the legs' speed, acceleration or force limits (leg_speed_max, leg_accel_max,
- * leg_force_max): it reports the samples that break them (leg_limits); nor does it check the
- * poses between samples.
+ * leg_force_max): it reports the samples that break them (leg_limits); it neither enforces nor
+ * reports leg_jerk_max; nor does it check the poses between samples.
  *
  * Never allocates after _create, never writes NaN.
  */

@@ -83,9 +83,9 @@
     X(motor_speed, motor_speed, 6, double, "rad/s", "Motor speed 2 pi N L_dot / lead")           \
     X(motor_torque, motor_torque, 6, double, "N.m", "Motor torque k_t i")                        \
     X(electrical_power, electrical_power, 6, double, "W", "Voltage times current, < 0 regenerates") \
-    X(current_limit_legs, current_limit_legs, 1, int, "", "Bit k set: leg k+1 above current_max") \
-    X(voltage_limit_legs, voltage_limit_legs, 1, int, "", "Bit k set: leg k+1 above voltage_max") \
-    X(speed_limit_legs, speed_limit_legs, 1, int, "", "Bit k set: leg k+1 above motor_speed_max")
+    X(current_max_legs, current_max_legs, 1, int, "", "Bit k set: leg k+1 above current_max") \
+    X(voltage_max_legs, voltage_max_legs, 1, int, "", "Bit k set: leg k+1 above voltage_max") \
+    X(motor_speed_max_legs, motor_speed_max_legs, 1, int, "", "Bit k set: leg k+1 above motor_speed_max")
 
 #define STEWART_PLANT_STEP_TABLE(X)                                                              \
     X(steps, steps, 1, long, "", "Internal integrator steps of the step into the row")           \

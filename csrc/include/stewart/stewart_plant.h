@@ -101,9 +101,9 @@ typedef struct stewart_plant_output {
     double motor_speed[STEWART_LEGS];      /* omega = 2 pi N L_dot / lead [rad/s] */
     double motor_torque[STEWART_LEGS];     /* k_t i [N m] */
     double electrical_power[STEWART_LEGS]; /* voltage * current [W], < 0: the drive regenerates */
-    int current_limit_legs;  /* bit k set: |current| of leg k+1 above its current_max (> 0) */
-    int voltage_limit_legs;  /* bit k set: |voltage| above voltage_max (> 0) */
-    int speed_limit_legs;    /* bit k set: |motor_speed| above motor_speed_max (> 0) */
+    int current_max_legs;  /* bit k set: |current| of leg k+1 above its current_max (> 0) */
+    int voltage_max_legs;  /* bit k set: |voltage| above voltage_max (> 0) */
+    int motor_speed_max_legs;    /* bit k set: |motor_speed| above motor_speed_max (> 0) */
 } stewart_plant_output;
 
 /* One moving body at the current state, world frame: its centre of mass, orientation (columns =

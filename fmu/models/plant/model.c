@@ -98,9 +98,9 @@ static void outputs_to_values(fmu_values *v, const plant_outputs *o) {
     v->integer[VR_total_error_test_failures] = counter(t->error_test_failures);
     v->integer[VR_total_jacobian_evaluations] = counter(t->jacobian_evaluations);
     v->integer[VR_last_order] = o->stats.last_order;
-    v->integer[VR_current_limit_legs] = o->out.current_limit_legs;
-    v->integer[VR_voltage_limit_legs] = o->out.voltage_limit_legs;
-    v->integer[VR_speed_limit_legs] = o->out.speed_limit_legs;
+    v->integer[VR_current_max_legs] = o->out.current_max_legs;
+    v->integer[VR_voltage_max_legs] = o->out.voltage_max_legs;
+    v->integer[VR_motor_speed_max_legs] = o->out.motor_speed_max_legs;
 }
 
 /* ---------------------------------------------------------------- parameters */

@@ -158,9 +158,9 @@ fmu_status model_refresh_outputs(fmu_instance *inst) {
 #define FMU_OUTPUT(vr, id, name, unit, field, desc) v->real[vr] = out.field;
 #include "variables.def"
     v->integer[VR_status] = out.stroke_legs ? 1 : 0;
-    v->integer[VR_current_limit_legs] = out.current_limit_legs;
-    v->integer[VR_voltage_limit_legs] = out.voltage_limit_legs;
-    v->integer[VR_speed_limit_legs] = out.speed_limit_legs;
+    v->integer[VR_current_max_legs] = out.current_max_legs;
+    v->integer[VR_voltage_max_legs] = out.voltage_max_legs;
+    v->integer[VR_motor_speed_max_legs] = out.motor_speed_max_legs;
     v->model.stroke_legs = out.stroke_legs;
     v->model.solve_status = FMU_OK;
     return FMU_OK;
