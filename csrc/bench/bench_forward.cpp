@@ -321,6 +321,10 @@ int write_map(const stewart_model *m, Solvers *d, const char *path) {
 }  // namespace
 
 int main(int argc, char **argv) {
+    if (argc > 1 && argv[1][0] == '-' && std::strcmp(argv[1], "--map") != 0) {
+        std::fprintf(stderr, "usage: bench-forward [OUT.txt [TRACKING_SOLVES]] | --map OUT.csv\n");
+        return 2;  // an option is not a file to write the table to
+    }
     stewart_params params;
     stewart_params_default(&params);
     char msg[STEWART_MESSAGE_SIZE];
