@@ -67,17 +67,20 @@ def open_page(driver, path: pathlib.Path):
 
 
 def canvas_pixels(driver) -> np.ndarray:
-    """The 3D canvas as an (H, W, 3) uint8 array, from a screenshot of the element."""
-    from PIL import Image
-    from selenium.webdriver.common.by import By
+    """The 3D canvas as an (H, W, 3) uint8 array, read from its drawing buffer (the page keeps
+    it): a screenshot of the element can catch the compositor's previous frame on a loaded
+    machine, the buffer holds what the last render drew."""
+    import base64
 
-    png = driver.find_element(By.ID, "view3d").screenshot_as_png
+    from PIL import Image
+
+    url = driver.execute_script("return document.getElementById('view3d').toDataURL('image/png')")
+    png = base64.b64decode(url.split(",", 1)[1])
     return np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
 
 
 def settled_pixels(driver, frame: int) -> np.ndarray:
-    """The canvas once frame is on screen: shown until two screenshots in a row agree (on a
-    loaded machine a screenshot can catch the software renderer's previous frame)."""
+    """The canvas once frame is drawn: shown until two reads in a row agree."""
     show(driver, frame)
     last = canvas_pixels(driver)
     for _ in range(4):
