@@ -120,15 +120,22 @@ std::string machine_json(const stewart_model *model, const stewart_params &p,
 }
 
 // Each class's scale per leg ([class][leg]): half the stroke, the joint limits, five leg
-// diameters, the force limit (none: 1).
-void class_scales(const stewart_params &p, double scale[kClasses][6]) {
+// diameters, the leg's leg_force_max when the rows have forces and the leg has one (else 1).
+void class_scales(const stewart_params &p, bool forces, double scale[kClasses][6]) {
     for (int k = 0; k < 6; ++k) {
         scale[0][k] = 0.5 * (p.stroke_max[k] - p.stroke_min[k]);
         scale[1][k] = p.base_joint_limit;
         scale[2][k] = p.platform_joint_limit;
         scale[3][k] = p.leg_diameter > 0 ? 5 * p.leg_diameter : 1;
-        scale[4][k] = 1;
+        scale[4][k] = forces && p.leg_force_max[k] > 0 ? p.leg_force_max[k] : 1;
     }
+}
+
+// Leg k's force margin in row j: leg_force_max - |F_k|; NaN (not checked) without forces or
+// without a limit on that leg.
+double force_margin(const stewart_params &p, const ViewRows &rows, size_t j, int k) {
+    if (rows.force.empty() || !(p.leg_force_max[k] > 0)) return std::nan("");
+    return p.leg_force_max[k] - std::fabs(rows.force[6 * j + k]);
 }
 
 // The class a leg is nearest to (its smallest margin over the scale; NaN margins are not
@@ -183,7 +190,7 @@ std::string frames_of(const stewart_model *model, const stewart_params &p, doubl
     stewart_inverse_batch(inverse.get(), n, rows.q.data(), nullptr, nullptr, &out, nullptr,
                           &failed);
     double scale[kClasses][6];
-    class_scales(p, scale);
+    class_scales(p, !rows.force.empty(), scale);
     const bool ranges = n <= kRangeRows;
     f.leg_class.resize(6 * n), f.leg_margin.resize(6 * n), f.first.resize(n);
     f.first_margin.resize(n), f.condition.resize(n), f.ranges.resize(ranges ? 12 * n : 0);
@@ -202,7 +209,8 @@ std::string frames_of(const stewart_model *model, const stewart_params &p, doubl
             const double margin[kClasses] = {
                 std::fmin(L - p.stroke_min[k], p.stroke_max[k] - L), check.leg_margin[1][k],
                 check.leg_margin[2][k],
-                p.leg_diameter > 0 ? check.leg_margin[3][k] : std::nan(""), std::nan("")};
+                p.leg_diameter > 0 ? check.leg_margin[3][k] : std::nan(""),
+                force_margin(p, rows, j, k)};
             nearest_class(margin, scale, k, f.leg_class[6 * j + k], f.leg_margin[6 * j + k]);
         }
         if (!ranges) continue;
@@ -239,7 +247,7 @@ std::string data_json(const stewart_params &p, double warn_condition, const View
     error = frames_of(model.get(), p, warn_condition, rows, f);
     if (!error.empty()) return "";
     double scale[kClasses][6];
-    class_scales(p, scale);
+    class_scales(p, !rows.force.empty(), scale);
     std::string scales = "[";
     for (int c = 0; c < kClasses; ++c) scales += (c ? "," : "") + numbers(scale[c], 6);
     const char *pose_classes[STEWART_LIMIT_CLASSES + 1];

@@ -42,7 +42,8 @@ def view(platform: Union[Platform, PathLike], result=None, poses=None,
     F1..F6 (or F[1]..F[6]) when present. An inverse output has no pose columns: give its input
     poses as poses (a file or mapping with the pose columns, row for row). Without a result,
     poses may be an (N, 6) array or a file of poses to step through. force_limit: the largest
-    |F_k| [N] (one number or six), which adds the force class to the legs' colours.
+    |F_k| [N] (one number or six), which adds the force class to the legs' colours; None: the
+    platform's leg_force_max (legs without one have no force class).
     warn_condition: the condition limit of the limit check (None: the library's 1e3).
     axis_ranges: draw each frame's axis ranges (Platform.axis_ranges) as arrows; None: for up
     to AXIS_RANGE_ROWS frames (about 50 us and 64 bytes of page a frame).
@@ -235,13 +236,23 @@ def _leg_margins(platform: Platform, values: dict, q: np.ndarray, lengths: np.nd
         scale[:, 3] = 5 * diameter  # a gap of five diameters is far
     else:
         margin[:, :, 3] = np.nan  # leg_diameter 0: no interference check
-    if force_limit is not None and forces is not None:
-        limit = np.broadcast_to(np.asarray(force_limit, dtype=float), (6,))
-        if not np.all(np.isfinite(limit) & (limit > 0)):
-            raise ValueError(f"force_limit = {force_limit!r} must be positive and finite (N)")
-        margin[:, :, 4] = limit - np.abs(forces)
-        scale[:, 4] = limit
+    if forces is not None:
+        limit = _force_limits(values, force_limit)
+        limited = limit > 0  # a leg without a limit: no force class
+        margin[:, limited, 4] = limit[limited] - np.abs(forces[:, limited])
+        scale[limited, 4] = limit[limited]
     return margin, scale, check
+
+
+def _force_limits(values: dict, force_limit) -> np.ndarray:
+    """Each leg's largest |F_k| [N]: force_limit when given, else the platform's leg_force_max
+    (0: that leg has no force limit)."""
+    if force_limit is None:
+        return np.asarray(values["leg_force_max"], dtype=float).reshape(6)
+    limit = np.broadcast_to(np.asarray(force_limit, dtype=float), (6,))
+    if not np.all(np.isfinite(limit) & (limit > 0)):
+        raise ValueError(f"force_limit = {force_limit!r} must be positive and finite (N)")
+    return limit
 
 
 def _nearest_class(margin: np.ndarray, scale: np.ndarray):

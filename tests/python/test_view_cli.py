@@ -116,6 +116,37 @@ def test_the_command_line_page_carries_the_python_page_data(solve, tmp_path, cas
     assert strip.sub("", page.read_text()) == strip.sub("", python_page.read_text())
 
 
+def test_the_platform_force_limits_colour_the_legs(solve, tmp_path):
+    """A platform file with leg_force_max (leg 3 without one): stewart-solve --view and
+    stewart.view (no force_limit=) both take the force class from the file, margins equal to
+    leg_force_max - |F_k| of OUT.csv's own forces, and never on the leg without a limit."""
+    fields = json.loads(pathlib.Path(stewart.platform_files()["thesis"]).read_text())
+    fields["payload_mass"] = 60
+    platform_file = tmp_path / "forces.json"
+    platform_file.write_text(json.dumps(fields))
+    q = moving_poses()
+    peak = np.abs(stewart.Platform.from_file(platform_file).inverse(q, fidelity="full").force).max()
+    limit = [1.02 * peak] * 6
+    limit[2] = 0  # leg 3: no force limit
+    fields["leg_force_max"] = limit
+    platform_file.write_text(json.dumps(fields))
+    page = run_with_view(solve, tmp_path, platform_file, q, "--fidelity", "full")
+    python_page = stewart.view(platform_file, tmp_path / "out.csv", tmp_path / "in.csv",
+                               output=tmp_path / "python.html")
+    cli, python = page_data(page), page_data(python_page)
+    cli.pop("title"), python.pop("title")
+    assert_same_data(cli, python)
+    out = read_columns(tmp_path / "out.csv")
+    force = np.column_stack([out[f"F{k + 1}"] for k in range(6)])
+    leg_class = np.asarray(cli["leg_class"]).reshape(-1, 6)
+    margin = np.asarray(cli["leg_margin"]).reshape(-1, 6)
+    by_force = leg_class == cli["classes"].index("force")
+    assert by_force.any(), "no leg is nearest its force limit: the test checks nothing"
+    assert not by_force[:, 2].any(), "leg 3 has no force limit but is coloured by force"
+    expected = 1.02 * peak - np.abs(force)
+    np.testing.assert_allclose(margin[by_force], expected[by_force], rtol=1e-6, atol=1e-3)
+
+
 def test_the_simulate_page_carries_the_python_page_data(build_dir, tmp_path):
     """stewart-simulate --view: the plant's poses with IN.csv's forces, the same data as
     stewart.view of OUT.csv's poses and IN.csv's forces."""
