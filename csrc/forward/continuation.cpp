@@ -52,7 +52,7 @@ double pose_distance(const PlatformGeometry &g, const double a[6], const double 
 
 bool continue_lengths(const PlatformGeometry &g, ForwardNewton &newton, const double start[6],
                       const double start_lengths[6], const double target[6], double tolerance,
-                      int max_iterations, double q[6], int &steps, char *msg, size_t size) {
+                      double q[6], int &steps, char *msg, size_t size) {
     // A path tracker: a step is taken when Newton from the last pose reaches the next lengths in
     // a few iterations, the determinant keeps its sign and the pose moves less than a tenth of the
     // platform radius; else the step is halved. The steps double again after a success.
@@ -94,7 +94,6 @@ bool continue_lengths(const PlatformGeometry &g, ForwardNewton &newton, const do
             break;
         }
     }
-    (void)max_iterations;
     if (t >= 1) return true;
     set_message(msg, size, STEWART_ERR_SINGULAR,
                 "the straight path of lengths from home meets a singular pose (or passes so near "

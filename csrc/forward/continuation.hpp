@@ -26,11 +26,12 @@ double largest_arm(const PlatformGeometry &g);
 double pose_distance(const PlatformGeometry &g, const double a[6], const double b[6]);
 
 // The pose reached from `start` (whose lengths are start_lengths) along the straight path of
-// lengths to `target`, in proven steps (each at most ProvenStep::max_change); q holds it. False
-// when the path meets a singular pose, a step needs more than max_steps or Newton fails (the
-// message says which; q then undefined). newton is a workspace (its last legs are q's).
+// lengths to `target`, in steps Newton takes in a few iterations with the determinant's sign kept
+// (a step is halved until it does; the solve's max_iterations does not apply); q holds it. False
+// when the path meets a singular pose or its steps shrink below 1/65536 of the way (the message
+// says so; q then undefined). newton is a workspace (its last legs are q's).
 bool continue_lengths(const PlatformGeometry &g, ForwardNewton &newton, const double start[6],
                       const double start_lengths[6], const double target[6], double tolerance,
-                      int max_iterations, double q[6], int &steps, char *msg, size_t size);
+                      double q[6], int &steps, char *msg, size_t size);
 
 }  // namespace stewart

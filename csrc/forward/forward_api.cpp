@@ -400,12 +400,11 @@ stewart_status prove(const stewart_model &m, stewart::ForwardState &f,
     char why[STEWART_MESSAGE_SIZE];
     // From the last pose along the straight path of lengths (tracking), then from home.
     if (tracking && stewart::continue_lengths(g, *f.newton, f.q, f.lengths, lengths, o.tolerance,
-                                              o.max_iterations, reached, steps, why, sizeof why) &&
+                                              reached, steps, why, sizeof why) &&
         stewart::pose_distance(g, reached, x.q) <= same)
         return STEWART_OK;
     if (!stewart::continue_lengths(g, *f.newton, home, m.forward.home_lengths, lengths,
-                                   o.tolerance, o.max_iterations, reached, steps, why,
-                                   sizeof why))
+                                   o.tolerance, reached, steps, why, sizeof why))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the pose found cannot be proven to be the one these lengths lead to: "
                            "%s; track the machine from a proven pose (samples close enough), or "
