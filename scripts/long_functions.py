@@ -4,11 +4,12 @@ csrc/ and fmu/, Python and C++ under python/ (benchmarks, csrc/bench, aside).
 
     python3 scripts/long_functions.py [--over N] [ROOT]
 
-One line a function, longest first: lines, file:first line, name; then the count. A function's
-lines run from its signature's first line to its closing brace (C, C++) or its last line
-(Python, decorators aside). C and C++ are read as text: a body is a brace block at the top level,
-in a namespace, extern "C" block, struct or class, whose head ends in `)` (after any const,
-noexcept, override or a constructor's initialisers); lambdas count in the function around them.
+One line a function, longest first: lines, file:first line, name; then the count. The exit status
+is 1 when there is any (ctest long_function_gate runs it on the repository), else 0. A function's
+lines run from its signature's first line to its closing brace (C, C++) or its last line (Python,
+decorators aside). C and C++ are read as text: a body is a brace block at the top level, in a
+namespace, extern "C" block, struct or class, whose head ends in `)` (after any const, noexcept,
+override or a constructor's initialisers); lambdas count in the function around them.
 """
 import ast
 import re
@@ -157,7 +158,7 @@ def main(argv):
     for lines, where, name in rows:
         print(f"{lines:5d}  {where}  {name}")
     print(f"{len(rows)} functions over {over} lines")
-    return 0
+    return 1 if rows else 0
 
 
 if __name__ == "__main__":

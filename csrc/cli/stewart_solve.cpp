@@ -326,6 +326,59 @@ int run_check(const Request &r) {
     return report.valid ? 0 : 1;
 }
 
+// The drives' current rates: from the poses' jerks when the file gives them, else over t (the
+// rows are a trajectory unless --static); false with a message on stderr when they fail.
+bool current_rates(const Request &r, const stewart::PoseTable &table, const stewart_model *model,
+                   const std::vector<double> &q, const std::vector<double> &q_dot,
+                   const std::vector<double> &q_ddot, stewart_inverse_batch_outputs &columns) {
+    const size_t n = table.t.size();
+    char message[STEWART_MESSAGE_SIZE];
+    if (!table.jerks.empty()) {
+        if (stewart_inverse_batch_current_rates_from_jerks(
+                model, r.options.fidelity, n, q.data(), q_dot.data(), q_ddot.data(),
+                table.jerks.data(), &columns, message, sizeof message) != STEWART_OK) {
+            std::fprintf(stderr, "stewart-solve: %s\n", message);
+            return false;
+        }
+    } else if (!r.at_rest && stewart_inverse_batch_current_rates(model, n, table.t.data(),
+                                                                 &columns, message,
+                                                                 sizeof message) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: %s (or give --static: poses, not a trajectory)\n",
+                     message);
+        return false;
+    }
+    return true;
+}
+
+// Row j's limit check (and ranges) on its solved output; false with a message on stderr when
+// the check fails.
+bool check_row_limits(const Request &r, const stewart::PoseTable &table, size_t j,
+                      const stewart_inverse_output &output, stewart_limits *checker,
+                      LimitRow &limit_row) {
+    stewart_limits_input pose{};
+    std::memcpy(pose.q, table.poses[j].q, sizeof pose.q);
+    if (r.report) {  // the leg classes: the derivatives the row was solved with, its forces
+        pose.derivatives = 2;
+        std::memcpy(pose.q_dot, table.poses[j].q_dot, sizeof pose.q_dot);
+        std::memcpy(pose.q_ddot, table.poses[j].q_ddot, sizeof pose.q_ddot);
+        pose.has_force = r.options.fidelity != STEWART_KINEMATIC;
+        std::memcpy(pose.force, output.force, sizeof pose.force);
+        if (!table.jerks.empty()) {  // the file's x_dddot..yaw_dddot: the leg jerk class too
+            pose.derivatives = 3;
+            std::memcpy(pose.q_dddot, &table.jerks[6 * j], sizeof pose.q_dddot);
+        }
+    }
+    // The pose solved, so it is finite: the ranges cannot fail, the check only on leg rates
+    // too large to compute.
+    if (stewart_limits_check(checker, &pose, &limit_row.check) != STEWART_OK) {
+        std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s\n", j + 1, table.t[j],
+                     stewart_limits_message(checker));
+        return false;
+    }
+    if (r.ranges) stewart_limits_ranges(checker, &pose, &limit_row.ranges);
+    return true;
+}
+
 // Solves every row through the batch, then checks each pose's limits (and ranges); false with a
 // message on stderr when a row fails.
 bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart_model *model,
@@ -363,46 +416,10 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart
                      table.t[failed], stewart_status_name(s), stewart_inverse_message(inverse));
         return false;
     }
-    // The drives' current rates: from the poses' jerks when the file gives them, else over t
-    // (the rows are a trajectory unless --static).
-    char message[STEWART_MESSAGE_SIZE];
-    if (!table.jerks.empty()) {
-        if (stewart_inverse_batch_current_rates_from_jerks(
-                model, r.options.fidelity, n, q.data(), q_dot.data(), q_ddot.data(),
-                table.jerks.data(), &columns, message, sizeof message) != STEWART_OK) {
-            std::fprintf(stderr, "stewart-solve: %s\n", message);
-            return false;
-        }
-    } else if (!r.at_rest && stewart_inverse_batch_current_rates(model, n, table.t.data(),
-                                                                 &columns, message,
-                                                                 sizeof message) != STEWART_OK) {
-        std::fprintf(stderr, "stewart-solve: %s (or give --static: poses, not a trajectory)\n",
-                     message);
-        return false;
-    }
+    if (!current_rates(r, table, model, q, q_dot, q_ddot, columns)) return false;
     for (size_t j = 0; j < n; ++j) {
         STEWART_INVERSE_OUTPUT_TABLE(CLI_ROW)
-        stewart_limits_input pose{};
-        std::memcpy(pose.q, table.poses[j].q, sizeof pose.q);
-        if (r.report) {  // the leg classes: the derivatives the row was solved with, its forces
-            pose.derivatives = 2;
-            std::memcpy(pose.q_dot, table.poses[j].q_dot, sizeof pose.q_dot);
-            std::memcpy(pose.q_ddot, table.poses[j].q_ddot, sizeof pose.q_ddot);
-            pose.has_force = r.options.fidelity != STEWART_KINEMATIC;
-            std::memcpy(pose.force, outputs[j].force, sizeof pose.force);
-            if (!table.jerks.empty()) {  // the file's x_dddot..yaw_dddot: the leg jerk class too
-                pose.derivatives = 3;
-                std::memcpy(pose.q_dddot, &table.jerks[6 * j], sizeof pose.q_dddot);
-            }
-        }
-        // The pose solved, so it is finite: the ranges cannot fail, the check only on leg rates
-        // too large to compute.
-        if (stewart_limits_check(checker, &pose, &limit_rows[j].check) != STEWART_OK) {
-            std::fprintf(stderr, "stewart-solve: row %zu (t = %g): %s\n", j + 1, table.t[j],
-                         stewart_limits_message(checker));
-            return false;
-        }
-        if (r.ranges) stewart_limits_ranges(checker, &pose, &limit_rows[j].ranges);
+        if (!check_row_limits(r, table, j, outputs[j], checker, limit_rows[j])) return false;
     }
 #undef CLI_COLUMN
 #undef CLI_POINT

@@ -17,13 +17,13 @@
 using stewart::clear_message;
 using stewart::Dual;
 using stewart::set_message;
-namespace fd = stewart::fd;
+namespace plant = stewart::plant;
 namespace lin = stewart::lin;
 
 struct stewart_linearize {
     const stewart_model *model = nullptr;
     stewart_linearize_options options{};
-    fd::DynamicsModel dynamics;
+    plant::DynamicsModel dynamics;
     char message[STEWART_MESSAGE_SIZE] = "";
 };
 
@@ -68,11 +68,11 @@ stewart_status failure(const lin::Failure &why, double pitch, char *msg, size_t 
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "pitch = %g rad is at +-90 degrees, where roll and yaw rates are "
                            "undefined", pitch);
-    if (why.fault == fd::LegFault::ZeroLength)
+    if (why.fault == plant::LegFault::ZeroLength)
         return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                            "leg %d has zero length at this pose", why.leg + 1);
     return set_message(msg, size, STEWART_ERR_SINGULAR, "the %s Cardan of leg %d is locked",
-                       why.fault == fd::LegFault::LockedBaseCardan ? "base" : "platform",
+                       why.fault == plant::LegFault::LockedBaseCardan ? "base" : "platform",
                        why.leg + 1);
 }
 
@@ -98,7 +98,7 @@ stewart_status check_pose_rows(const stewart_pose &pose, int last_row, char *msg
         if (s != STEWART_OK) return s;
     }
     if (!(std::fabs(std::cos(pose.q[4])) > lin::kMinCosPitch))
-        return failure(lin::Failure{fd::LegFault::None, -1, true}, pose.q[4], msg, size);
+        return failure(lin::Failure{plant::LegFault::None, -1, true}, pose.q[4], msg, size);
     return STEWART_OK;
 }
 
@@ -140,7 +140,7 @@ extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *mode
     }
     l->model = model;
     l->options = *options;
-    l->dynamics = fd::dynamics_model(*model, options->fidelity);
+    l->dynamics = plant::dynamics_model(*model, options->fidelity);
     clear_message(msg, size);
     return l;
 }
@@ -203,7 +203,7 @@ extern "C" stewart_status stewart_linearize_load(stewart_linearize *l, const voi
     if (stewart_linearize_options_check(&o, why, sizeof why) != STEWART_OK)
         return set_message(msg, sizeof l->message, STEWART_ERR_ARGUMENT, "state: %s", why);
     l->options = o;
-    l->dynamics = fd::dynamics_model(*l->model, o.fidelity);
+    l->dynamics = plant::dynamics_model(*l->model, o.fidelity);
     return clear_message(msg, sizeof l->message);
 }
 

@@ -25,7 +25,7 @@ MotionT<Dual> seeded_motion(const Frames &f, const double q[6], const double q_d
 
 }  // namespace
 
-bool plant_point(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
+bool plant_point(const plant::DynamicsModel &d, const double q[6], const double q_dot[6],
                  const double force[STEWART_LEGS], PlantPoint &out, Failure &why) {
     Dual qs[6], rates[6], forces[6], no_accel[6];
     seed(q, 0, qs);
@@ -35,70 +35,71 @@ bool plant_point(const fd::DynamicsModel &d, const double q[6], const double q_d
     // With zero pose accelerations, alpha = E_dot angles_dot: the part of the platform's angular
     // acceleration that the angle accelerations do not give.
     const MotionT<Dual> m = motion_of_pose<Dual>(qs, rates, no_accel);
-    fd::EvaluationT<Dual> e;
-    if (!fd::twist_rate(d, m, forces, e)) {
+    plant::EvaluationT<Dual> e;
+    if (!plant::twist_rate(d, m, forces, e)) {
         why.fault = e.fault;
         why.leg = e.fault_leg;
         return false;
     }
     for (int i = 0; i < 3; ++i) out.q_ddot[i] = e.twist_rate[i];
     // omega_dot = E angles_ddot + E_dot angles_dot.
-    const fd::Vec3T<Dual> turn = e.twist_rate.tail<3>() - m.alpha;
+    const plant::Vec3T<Dual> turn = e.twist_rate.tail<3>() - m.alpha;
     if (!angle_rates_of<Dual>(qs, turn, out.q_ddot + 3, kMinCosPitch)) {
         why.pitch = true;
         return false;
     }
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::LegConfigurationT<Dual> &leg = e.legs[k];
+        const plant::LegConfigurationT<Dual> &leg = e.legs[k];
         out.length[k] = leg.length;
         out.length_rate[k] = leg.n.dot(m.velocity + m.omega.cross(leg.arm));
     }
     return true;
 }
 
-bool leg_lengths(const fd::LegParameters &p, const Frames &f, const double q[6],
+bool leg_lengths(const plant::LegParameters &p, const Frames &f, const double q[6],
                  const double q_dot[6], const double q_ddot[6], Dual length[STEWART_LEGS],
                  Dual rate[STEWART_LEGS], Dual accel[STEWART_LEGS], Failure &why) {
     const MotionT<Dual> m = seeded_motion(f, q, q_dot, q_ddot);
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        fd::LegConfigurationT<Dual> leg;
-        const fd::LegFault fault = fd::leg_configuration(p, k, m.position, m.rotation, leg, false);
-        if (fault != fd::LegFault::None) {
+        plant::LegConfigurationT<Dual> leg;
+        const plant::LegFault fault =
+            plant::leg_configuration(p, k, m.position, m.rotation, leg, false);
+        if (fault != plant::LegFault::None) {
             why.fault = fault;
             why.leg = k;
             return false;
         }
         // L n = P - a twice differentiated: L_dot = n.P_dot, L_ddot = n.P_ddot + |n_dot|^2 L
         // with L n_dot = P_dot - L_dot n.
-        const fd::Vec3T<Dual> P_dot = m.velocity + m.omega.cross(leg.arm);
-        const fd::Vec3T<Dual> P_ddot =
+        const plant::Vec3T<Dual> P_dot = m.velocity + m.omega.cross(leg.arm);
+        const plant::Vec3T<Dual> P_ddot =
             m.acceleration + m.alpha.cross(leg.arm) + m.omega.cross(m.omega.cross(leg.arm));
         length[k] = leg.length;
         rate[k] = leg.n.dot(P_dot);
-        const fd::Vec3T<Dual> across = P_dot - rate[k] * leg.n;
+        const plant::Vec3T<Dual> across = P_dot - rate[k] * leg.n;
         accel[k] = leg.n.dot(P_ddot) + across.squaredNorm() * leg.inverse_length;
     }
     return true;
 }
 
-bool pose_base_wrench(const fd::DynamicsModel &d, const Frames &frames, const double q[6],
+bool pose_base_wrench(const plant::DynamicsModel &d, const Frames &frames, const double q[6],
                       const double q_dot[6], const double q_ddot[6], Dual force[3], Dual torque[3],
                       Failure &why) {
     const MotionT<Dual> m = seeded_motion(frames, q, q_dot, q_ddot);
-    fd::EvaluationT<Dual> e;
+    plant::EvaluationT<Dual> e;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::LegFault fault =
-            fd::leg_configuration(d.legs, k, m.position, m.rotation, e.legs[k], d.with_legs);
-        if (fault != fd::LegFault::None) {
+        const plant::LegFault fault =
+            plant::leg_configuration(d.legs, k, m.position, m.rotation, e.legs[k], d.with_legs);
+        if (fault != plant::LegFault::None) {
             why.fault = fault;
             why.leg = k;
             return false;
         }
     }
     MotionT<Dual> bodies[13];
-    fd::body_motions(d, m, e, bodies);
-    fd::Vec3T<Dual> f, t;
-    fd::base_wrench(d, bodies, f, t);
+    plant::body_motions(d, m, e, bodies);
+    plant::Vec3T<Dual> f, t;
+    plant::base_wrench(d, bodies, f, t);
     for (int i = 0; i < 3; ++i) force[i] = f[i], torque[i] = t[i];
     base_wrench_to_given_frame(frames, force, torque);
     return true;

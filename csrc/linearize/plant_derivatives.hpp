@@ -12,9 +12,9 @@ namespace lin {
 // Below it roll and yaw rates are undefined (pitch = +-90 deg); the plant's own bound.
 constexpr double kMinCosPitch = 1e-9;
 
-// Why an evaluation failed: a leg fault (fd::LegFault, 0-based leg) or pitch at +-90 deg.
+// Why an evaluation failed: a leg fault (plant::LegFault, 0-based leg) or pitch at +-90 deg.
 struct Failure {
-    fd::LegFault fault = fd::LegFault::None;
+    plant::LegFault fault = plant::LegFault::None;
     int leg = -1;
     bool pitch = false;
 };
@@ -25,13 +25,13 @@ struct PlantPoint {
     Dual q_ddot[6];
     Dual length[STEWART_LEGS], length_rate[STEWART_LEGS];
 };
-bool plant_point(const fd::DynamicsModel &d, const double q[6], const double q_dot[6],
+bool plant_point(const plant::DynamicsModel &d, const double q[6], const double q_dot[6],
                  const double force[STEWART_LEGS], PlantPoint &out, Failure &why);
 
 // The legs' lengths and their first two rates at the pose (q, q_dot, q_ddot: the tool's in the
 // user frame, frames f), each with its derivatives along directions 0-5 q, 6-11 q_dot, 12-17
 // q_ddot.
-bool leg_lengths(const fd::LegParameters &p, const Frames &f, const double q[6],
+bool leg_lengths(const plant::LegParameters &p, const Frames &f, const double q[6],
                  const double q_dot[6],
                  const double q_ddot[6], Dual length[STEWART_LEGS], Dual rate[STEWART_LEGS],
                  Dual accel[STEWART_LEGS], Failure &why);
@@ -39,7 +39,7 @@ bool leg_lengths(const fd::LegParameters &p, const Frames &f, const double q[6],
 // The wrench the moving bodies put on the base (plant/plant_equations.hpp: base_wrench; base
 // frame) when the tool moves with the pose (q, q_dot, q_ddot), with its derivatives along the
 // directions of leg_lengths.
-bool pose_base_wrench(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+bool pose_base_wrench(const plant::DynamicsModel &d, const Frames &f, const double q[6],
                       const double q_dot[6],
                       const double q_ddot[6], Dual force[3], Dual torque[3], Failure &why);
 

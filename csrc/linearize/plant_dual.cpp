@@ -7,12 +7,12 @@
 #include "util/dual.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 STEWART_PLANT_BODIES_INSTANTIATE(Dual)
 STEWART_PLANT_EQUATIONS_INSTANTIATE(Dual)
 STEWART_PLANT_BODIES_INSTANTIATE(StateDual)
 STEWART_PLANT_RESIDUAL_INSTANTIATE(StateDual)
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

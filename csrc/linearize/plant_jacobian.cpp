@@ -19,7 +19,7 @@ void seed(const double v[6], int first, StateDual out[6]) {
 // pitch +-90 deg.
 template <class S>
 bool pose_accelerations(const Frames &f, const MotionT<S> &p, const S q[6],
-                        const fd::Vec3T<S> &angle_bias, S q_ddot[6]) {
+                        const plant::Vec3T<S> &angle_bias, S q_ddot[6]) {
     if (f.identity) {
         for (int i = 0; i < 3; ++i) q_ddot[i] = p.acceleration[i];
         return angle_rates_of<S>(q, p.alpha - angle_bias, q_ddot + 3, kMinCosPitch);
@@ -32,7 +32,7 @@ bool pose_accelerations(const Frames &f, const MotionT<S> &p, const S q[6],
 
 }  // namespace
 
-bool plant_rate(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+bool plant_rate(const plant::DynamicsModel &d, const Frames &f, const double q[6],
                 const double q_dot[6], const double force[STEWART_LEGS], PlantRate &r,
                 Failure &why) {
     // The twist rate nu_dot in plain numbers: M nu_dot = rhs, the plant's own equations. With
@@ -42,10 +42,10 @@ bool plant_rate(const fd::DynamicsModel &d, const Frames &f, const double q[6],
     r.platform = motion_of_pose_in_order<double>(f.rotation_order, q, q_dot, no_accel);
     r.angle_bias = r.platform.alpha;
     if (!f.identity) r.platform = platform_motion(f, r.platform);
-    fd::Evaluation e;
+    plant::Evaluation e;
     Matrix6 M;
     Vector6 rhs;
-    if (!fd::reduced_equations(d, r.platform, force, e, M, rhs)) {
+    if (!plant::reduced_equations(d, r.platform, force, e, M, rhs)) {
         why.fault = e.fault;
         why.leg = e.fault_leg;
         return false;
@@ -87,7 +87,7 @@ void plant_rate_add_force(PlantRate &r, const double change[STEWART_LEGS]) {
         for (int k = 0; k < STEWART_LEGS; ++k) r.q_ddot[i] += r.q_ddot_wrt_force[i][k] * change[k];
 }
 
-bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+bool plant_jacobian(const plant::DynamicsModel &d, const Frames &f, const double q[6],
                     const double q_dot[6], const double force[STEWART_LEGS], PlantJacobian &out,
                     Failure &why) {
     PlantRate r;
@@ -95,7 +95,7 @@ bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[
            plant_jacobian(d, f, q, q_dot, force, r, out, why);
 }
 
-bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+bool plant_jacobian(const plant::DynamicsModel &d, const Frames &f, const double q[6],
                     const double q_dot[6], const double force[STEWART_LEGS], const PlantRate &r,
                     PlantJacobian &out, Failure &why) {
     // d nu_dot / dx = M^-1 d residual / dx at the twist rate held fixed (implicit function
@@ -106,15 +106,15 @@ bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[
     for (StateDual &a : zero) a = StateDual(0.0, StateDualDerivatives::Zero());
     MotionT<StateDual> md =  // the tool's, then the platform's
         motion_of_pose_in_order<StateDual>(f.rotation_order, qs, rates, zero);
-    const fd::Vec3T<StateDual> angle_bias = md.alpha;
+    const plant::Vec3T<StateDual> angle_bias = md.alpha;
     if (!f.identity) md = platform_motion(f, md);
     for (int i = 0; i < 3; ++i) {
         md.acceleration[i] = StateDual(r.twist_rate[i], StateDualDerivatives::Zero());
         md.alpha[i] = StateDual(r.twist_rate[3 + i], StateDualDerivatives::Zero());
     }
-    fd::EvaluationT<StateDual> ed;
+    plant::EvaluationT<StateDual> ed;
     Eigen::Matrix<StateDual, 6, 1> residual;
-    if (!fd::motion_residual(d, md, force, ed, residual)) {
+    if (!plant::motion_residual(d, md, force, ed, residual)) {
         why.fault = ed.fault;
         why.leg = ed.fault_leg;
         return false;
@@ -142,7 +142,7 @@ bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[
         for (int k = 0; k < STEWART_LEGS; ++k) out.q_ddot_wrt_force[i][k] = r.q_ddot_wrt_force[i][k];
     }
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::LegConfigurationT<StateDual> &leg = ed.legs[k];
+        const plant::LegConfigurationT<StateDual> &leg = ed.legs[k];
         const StateDual rate = leg.n.dot(md.velocity + md.omega.cross(leg.arm));
         out.length[k] = leg.length.value();
         out.length_rate[k] = rate.value();

@@ -32,7 +32,7 @@ struct PlantRate {
 
 // Fills r at the forces; false (why set) for a leg fault or pitch at +-90 deg (the tool's or,
 // through the frames, the platform's).
-bool plant_rate(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+bool plant_rate(const plant::DynamicsModel &d, const Frames &f, const double q[6],
                 const double q_dot[6], const double force[STEWART_LEGS], PlantRate &r,
                 Failure &why);
 
@@ -51,12 +51,12 @@ struct PlantJacobian {
 
 // Fills out; false (why set) for a leg fault or pitch at +-90 deg. Inputs beyond the plant's
 // range give non-finite values (the caller checks them), as plant_point.
-bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+bool plant_jacobian(const plant::DynamicsModel &d, const Frames &f, const double q[6],
                     const double q_dot[6], const double force[STEWART_LEGS], PlantJacobian &out,
                     Failure &why);
 
 // The same from r = plant_rate(d, f, q, q_dot, force) (the second stage alone).
-bool plant_jacobian(const fd::DynamicsModel &d, const Frames &f, const double q[6],
+bool plant_jacobian(const plant::DynamicsModel &d, const Frames &f, const double q[6],
                     const double q_dot[6], const double force[STEWART_LEGS], const PlantRate &r,
                     PlantJacobian &out, Failure &why);
 

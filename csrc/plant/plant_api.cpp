@@ -16,15 +16,15 @@
 
 using stewart::clear_message;
 using stewart::set_message;
-namespace fd = stewart::fd;
+namespace plant = stewart::plant;
 
 namespace {
 
 // time, the states, angles, forces, warnings, step hint (the windings' currents among the states
 // only where they are states: kSavedDoubles without them)
-constexpr int kSavedDoubles = 1 + fd::kStates + 3 + STEWART_LEGS + 1 + 1;
-constexpr int kMaxSavedDoubles = kSavedDoubles + (fd::kMaxStates - fd::kStates);
-using fd::kMinCosPitch;
+constexpr int kSavedDoubles = 1 + plant::kStates + 3 + STEWART_LEGS + 1 + 1;
+constexpr int kMaxSavedDoubles = kSavedDoubles + (plant::kMaxStates - plant::kStates);
+using plant::kMinCosPitch;
 // The plant's range (docs/forward-dynamics.md section 4): speeds far beyond any platform's, below
 // which a 1 ms step stays within the default max_internal_steps; continuous roll and yaw within
 // +-1e12 rad, where 2 pi still has digits to spare.
@@ -43,7 +43,7 @@ using stewart::kPoseNames;
 // struct stewart_plant: plant/plant_object.hpp (the derivative call shares it).
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 // The plant's equations read the model through this copy (plant_equations.hpp), made here where
 // the model's layout is known (model.hpp is for the API files).
@@ -77,7 +77,7 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
     return d;
 }
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart
 
 namespace {
@@ -86,7 +86,7 @@ namespace {
 constexpr int kPlantWarnings = STEWART_WARN_STROKE | STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE;
 
 // omega = E(pitch, yaw) * (roll, pitch, yaw)_dot (kinematics/motion.hpp).
-fd::Mat3 rate_matrix(double pitch, double yaw) {
+plant::Mat3 rate_matrix(double pitch, double yaw) {
     return stewart::angle_rate_matrix(std::cos(pitch), std::sin(pitch), std::cos(yaw),
                                       std::sin(yaw));
 }
@@ -97,8 +97,8 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
     const stewart_params &par = p.model->params;
     int stroke_legs = 0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::Vec3 arm = m.rotation * p.dynamics.legs.platform_points.col(k);
-        const fd::Vec3 d = m.position + arm - p.dynamics.legs.base_points.col(k);
+        const plant::Vec3 arm = m.rotation * p.dynamics.legs.platform_points.col(k);
+        const plant::Vec3 d = m.position + arm - p.dynamics.legs.base_points.col(k);
         length[k] = d.norm();
         rate[k] = d.dot(m.velocity + m.omega.cross(arm)) / length[k];
         if (length[k] < par.stroke_min[k] || length[k] > par.stroke_max[k]) stroke_legs |= 1 << k;
@@ -109,9 +109,9 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
 // Every leg's vector p + R b_k - a_k at the platform's motion m (Eigen's arithmetic).
 void leg_vectors(const stewart_plant &p, const stewart::Motion &m, double d[STEWART_LEGS][3]) {
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::Vec3 &a = p.dynamics.legs.base_points.col(k), &b =
+        const plant::Vec3 &a = p.dynamics.legs.base_points.col(k), &b =
             p.dynamics.legs.platform_points.col(k);
-        const fd::Vec3 v = m.position + m.rotation * b - a;
+        const plant::Vec3 v = m.position + m.rotation * b - a;
         for (int i = 0; i < 3; ++i) d[k][i] = v[i];
     }
 }
@@ -135,23 +135,23 @@ int limit_warnings(const stewart_plant &p, const stewart::Motion &m,
 // known: the equations already evaluated at this state and these forces (or nullptr: then
 // evaluated into e; e is left as it was otherwise). platform: the platform's motion, if wanted.
 // state_motion: motion_of_state(p.y) if the caller has it (or nullptr).
-stewart_status all_bodies(const stewart_plant &p, const double *force, fd::Evaluation &e,
+stewart_status all_bodies(const stewart_plant &p, const double *force, plant::Evaluation &e,
                           stewart::Motion bodies[STEWART_PLANT_BODIES],
-                          const fd::Evaluation *known = nullptr,
+                          const plant::Evaluation *known = nullptr,
                           stewart::Motion *platform = nullptr,
                           const stewart::Motion *state_motion = nullptr) {
     if (!force) force = p.force;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(force[k])) return STEWART_ERR_ARGUMENT;
-    stewart::Motion m = state_motion ? *state_motion : fd::motion_of_state(p.y);
+    stewart::Motion m = state_motion ? *state_motion : plant::motion_of_state(p.y);
     if (!known) {
-        e.winding_current = p.y + fd::kStates;
-        if (!fd::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
+        e.winding_current = p.y + plant::kStates;
+        if (!plant::twist_rate(p.dynamics, m, force, e)) return STEWART_ERR_SINGULAR;
         known = &e;
     }
     m.acceleration = known->twist_rate.head<3>();
     m.alpha = known->twist_rate.tail<3>();
-    if (bodies) fd::body_motions(p.dynamics, m, *known, bodies);  // nullptr: not wanted
+    if (bodies) plant::body_motions(p.dynamics, m, *known, bodies);  // nullptr: not wanted
     if (platform) *platform = m;
     return STEWART_OK;
 }
@@ -175,9 +175,9 @@ stewart_status check_finite(const double *values, const char *name, char *msg, s
 
 // Why a state (time and angles aside) is outside the plant's range, or STEWART_OK: the speeds
 // and the continuous roll and yaw; `what` says whose state it is.
-stewart_status check_range(const double y[fd::kStates], const double angles[3], const char *what,
+stewart_status check_range(const double y[plant::kStates], const double angles[3], const char *what,
                            char *msg, size_t size) {
-    const fd::Vec3 velocity(y[7], y[8], y[9]), omega(y[10], y[11], y[12]);
+    const plant::Vec3 velocity(y[7], y[8], y[9]), omega(y[10], y[11], y[12]);
     if (!(velocity.norm() <= kMaxSpeed))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "%s: the speed |v| = %g m/s is beyond the plant's range (%g m/s)", what,
@@ -196,10 +196,10 @@ stewart_status check_range(const double y[fd::kStates], const double angles[3], 
 
 // Whether saved roll, pitch, yaw are the angles of the saved quaternion (roll and yaw on any
 // branch): to a few roundings of the angle.
-bool angles_match(const double y[fd::kStates], const double saved[3]) {
+bool angles_match(const double y[plant::kStates], const double saved[3]) {
     double principal[3];
     const double zero[3] = {0, 0, 0};
-    stewart::angles_of_rotation(fd::motion_of_state(y).rotation, zero, principal);
+    stewart::angles_of_rotation(plant::motion_of_state(y).rotation, zero, principal);
     for (int i = 0; i < 3; ++i) {
         const double off = i == 1 ? saved[i] - principal[i]
                                   : std::remainder(saved[i] - principal[i], 2 * M_PI);
@@ -211,7 +211,7 @@ bool angles_match(const double y[fd::kStates], const double saved[3]) {
 // A plant's state without its integrator and counters: what a rollback puts back.
 struct PlantState {
     double time;
-    double y[fd::kMaxStates];
+    double y[plant::kMaxStates];
     double angles[3];
     double force[STEWART_LEGS];
     int warnings;
@@ -236,7 +236,7 @@ stewart_status start_at(stewart_plant &p, double time, const double pose[6], con
 // The pose and rates the outputs show at state y (motion m) with continuous angles (those of
 // m's rotation): the tool's in the user frame (the platform's when the frames are identity).
 // False at the tool's pitch +-90 deg.
-bool shown_pose(const stewart_plant &p, const double y[fd::kStates], const stewart::Motion &m,
+bool shown_pose(const stewart_plant &p, const double y[plant::kStates], const stewart::Motion &m,
                 const double angles[3], stewart_pose &pose) {
     double angle_rates[3];  // from the rotation: no sines and cosines of the angles
     stewart::angle_rates_of_rotation(m.rotation, m.omega, angle_rates);
@@ -293,8 +293,8 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     p->model = model;
     p->options = *options;
     p->limits = stewart::limit_constants(model->params, model->geometry, HUGE_VAL);
-    p->dynamics = fd::dynamics_model(*model, options->fidelity);
-    if (fd::drive_model(model->params, *options, p->dynamics.drives, msg, size) != STEWART_OK) {
+    p->dynamics = plant::dynamics_model(*model, options->fidelity);
+    if (plant::drive_model(model->params, *options, p->dynamics.drives, msg, size) != STEWART_OK) {
         delete p;
         return nullptr;
     }
@@ -310,10 +310,10 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
     }
     // SUNDIALS allocates some workspaces at the first step: take one here, on a copy, so that
     // no step of the caller allocates.
-    fd::ForceProfile rest_forces;
+    plant::ForceProfile rest_forces;
     rest_forces.h = 1e-6;
-    double y[fd::kMaxStates], hint = 0;
-    for (int i = 0; i < fd::kMaxStates; ++i) y[i] = p->y[i];
+    double y[plant::kMaxStates], hint = 0;
+    for (int i = 0; i < plant::kMaxStates; ++i) y[i] = p->y[i];
     char why[STEWART_MESSAGE_SIZE];
     if (p->integrator.advance(y, rest_forces, hint, why, sizeof why) != STEWART_OK) {
         set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -401,15 +401,16 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     stewart_plant *p = &plant;
     char *msg = p->message;
     const size_t size = sizeof p->message;
-    const fd::Mat3 R = stewart::rotation_from_rpy(pose[3], pose[4], pose[5]);
-    const fd::Vec3 omega = rate_matrix(pose[4], pose[5]) * fd::Vec3(rate[3], rate[4], rate[5]);
+    const plant::Mat3 R = stewart::rotation_from_rpy(pose[3], pose[4], pose[5]);
+    const plant::Vec3 omega =
+        rate_matrix(pose[4], pose[5]) * plant::Vec3(rate[3], rate[4], rate[5]);
     // Finite angle rates near DBL_MAX can overflow the angular velocity (found by the fuzz
     // target: such a state could be set, but not saved and loaded back).
     if (!omega.allFinite())
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "roll_dot0, pitch_dot0, yaw_dot0 = %g, %g, %g rad/s overflow the "
                            "angular velocity", rate[3], rate[4], rate[5]);
-    double y[fd::kMaxStates] = {0};  // the windings start without current
+    double y[plant::kMaxStates] = {0};  // the windings start without current
     const Eigen::Quaterniond q(R);
     const double yq[7] = {pose[0], pose[1], pose[2], q.w(), q.x(), q.y(), q.z()};
     for (int i = 0; i < 7; ++i) y[i] = yq[i];
@@ -417,25 +418,25 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     stewart_status range;
     if ((range = check_range(y, pose + 3, "start state", msg, size)) != STEWART_OK) return range;
     // The pose must give every leg a direction (and, full level, unlocked Cardans).
-    fd::Evaluation e;
+    plant::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
-    e.winding_current = y + fd::kStates;
-    if (!fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e))
+    e.winding_current = y + plant::kStates;
+    if (!plant::twist_rate(p->dynamics, plant::motion_of_state(y), zero, e))
         return set_message(msg, size,
-                           e.fault == fd::LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
+                           e.fault == plant::LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
                                                                : STEWART_ERR_SINGULAR,
                            "the start pose is singular: leg %d %s", e.fault_leg + 1,
-                           e.fault == fd::LegFault::ZeroLength ? "has zero length"
+                           e.fault == plant::LegFault::ZeroLength ? "has zero length"
                                                                : "lies along a Cardan arm");
     p->time = time;
     p->step_end_valid = false;
-    for (int i = 0; i < fd::kMaxStates; ++i) p->y[i] = y[i];
+    for (int i = 0; i < plant::kMaxStates; ++i) p->y[i] = y[i];
     for (int i = 0; i < 3; ++i) p->angles[i] = pose[3 + i];
     for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = 0;
     p->step_hint = 0;
     double length[6], length_rate[6];
     msg[0] = '\0';
-    const stewart::Motion m = fd::motion_of_state(y);
+    const stewart::Motion m = plant::motion_of_state(y);
     p->warnings = (leg_outputs(*p, m, length, length_rate) ? STEWART_WARN_STROKE : 0) |
                   limit_warnings(*p, m);
     return STEWART_OK;
@@ -451,58 +452,63 @@ struct LegOutputs {
 };
 
 // stewart_plant_output_get with what the step already knows (defined below it).
-stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out,
+stewart_status output_of(const stewart_plant *p, const double *force,
+                         const plant::Evaluation *known, int limit_bits, const LegOutputs *legs,
+                         stewart_plant_output *out,
                          const stewart::Motion *state_motion = nullptr);
-}  // namespace
 
-extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
-                                             stewart_plant_output *output) {
-    if (!p) return STEWART_ERR_ARGUMENT;
-    char *msg = p->message;
-    const size_t size = sizeof p->message;
-    if (!input || !output) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
-    if (input->derivatives != 0 && input->derivatives != 1)
+// STEWART_OK, or STEWART_ERR_ARGUMENT saying what of a step's input is refused: the choice of
+// derivatives, a step h that does not advance time or takes it out of range, a force or force
+// rate that is not finite.
+stewart_status check_step_input(const stewart_plant &p, const stewart_plant_input &input,
+                                char *msg, size_t size) {
+    if (input.derivatives != 0 && input.derivatives != 1)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "derivatives is %d: it must be 0 (forces linear over the step) or 1 "
-                           "(cubic Hermite with the force rates)", input->derivatives);
-    const double h = input->h, *f0 = input->force_start, *f1 = input->force_end;
-    const double *r0 = input->derivatives ? input->force_rate_start : nullptr;
-    const double *r1 = input->derivatives ? input->force_rate_end : nullptr;
+                           "(cubic Hermite with the force rates)", input.derivatives);
+    const double h = input.h;
     if (!(h > 0 && std::isfinite(h)))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s must be > 0 and finite", h);
-    if (!(h >= kMinStepSize && p->time + h > p->time))
+    if (!(h >= kMinStepSize && p.time + h > p.time))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s does not advance time t = %.17g s (h must "
-                           "be >= %g s and above the resolution of t)", h, p->time, kMinStepSize);
-    if (!(std::fabs(p->time + h) <= kMaxTime))
+                           "be >= %g s and above the resolution of t)", h, p.time, kMinStepSize);
+    if (!(std::fabs(p.time + h) <= kMaxTime))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s takes time beyond %g s", h, kMaxTime);
     stewart_status s;
-    if ((s = check_finite(f0, "F (start of step)", msg, size)) != STEWART_OK ||
-        (s = check_finite(f1, "F (end of step)", msg, size)) != STEWART_OK)
+    if ((s = check_finite(input.force_start, "F (start of step)", msg, size)) != STEWART_OK ||
+        (s = check_finite(input.force_end, "F (end of step)", msg, size)) != STEWART_OK)
         return s;
-    if (r0 && ((s = check_finite(r0, "dF/dt (start of step)", msg, size)) != STEWART_OK ||
-               (s = check_finite(r1, "dF/dt (end of step)", msg, size)) != STEWART_OK))
+    if (input.derivatives &&
+        ((s = check_finite(input.force_rate_start, "dF/dt (start of step)", msg, size)) !=
+             STEWART_OK ||
+         (s = check_finite(input.force_rate_end, "dF/dt (end of step)", msg, size)) !=
+             STEWART_OK))
         return s;
+    return STEWART_OK;
+}
 
-    fd::ForceProfile profile;
-    profile.h = h;
+// The forces over the step the input gives: linear between its end values, or cubic Hermite
+// with its force rates.
+plant::ForceProfile force_profile(const stewart_plant_input &input) {
+    const double *r0 = input.derivatives ? input.force_rate_start : nullptr;
+    const double *r1 = input.derivatives ? input.force_rate_end : nullptr;
+    plant::ForceProfile profile;
+    profile.h = input.h;
     profile.hermite = r0 != nullptr;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        profile.start[k] = f0[k];
-        profile.end[k] = f1[k];
+        profile.start[k] = input.force_start[k];
+        profile.end[k] = input.force_end[k];
         profile.start_rate[k] = r0 ? r0[k] : 0;
         profile.end_rate[k] = r1 ? r1[k] : 0;
     }
-    double y[fd::kMaxStates];
-    for (int i = 0; i < fd::kMaxStates; ++i) y[i] = p->y[i];
-    double step_hint = p->step_hint;
-    s = p->integrator.advance(y, profile, step_hint, msg, size,
-                              p->step_end_valid ? p->principal_angles : nullptr);
-    const stewart_plant_statistics &last = p->integrator.statistics();
-    stewart_plant_statistics &st = p->stats;
+    return profile;
+}
+
+// The last step's counters, and added to the totals.
+void record_statistics(const stewart_plant_statistics &last, stewart_plant_statistics &st) {
     st.steps = last.steps;
     st.rhs_evaluations = last.rhs_evaluations;
     st.nonlinear_iterations = last.nonlinear_iterations;
@@ -515,36 +521,101 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
     st.total_nonlinear_iterations += last.nonlinear_iterations;
     st.total_error_test_failures += last.error_test_failures;
     st.total_jacobian_evaluations += last.jacobian_evaluations;
-    if (s != STEWART_OK) return s;
+}
 
-    const stewart::Motion m = fd::motion_of_state(y);
-    // A leg that passes through zero length between two evaluations flips its direction. The
-    // legs at the step's start are the last step's end legs when it left them.
-    double start_legs[STEWART_LEGS][3], end_legs[STEWART_LEGS][3];
-    if (p->step_end_valid) std::memcpy(start_legs, p->leg_vectors, sizeof start_legs);
-    else leg_vectors(*p, fd::motion_of_state(p->y), start_legs);
-    leg_vectors(*p, m, end_legs);
+// A leg that passes through zero length between two evaluations flips its direction: refused
+// (STEWART_ERR_UNREACHABLE) if any leg points against itself from the step's start to its end
+// m. The legs at the step's start are the last step's end legs when it left them; end_legs gets
+// the legs at m.
+stewart_status check_legs_kept_direction(const stewart_plant &p, const stewart::Motion &m,
+                                         double end_legs[STEWART_LEGS][3], char *msg,
+                                         size_t size) {
+    double start_legs[STEWART_LEGS][3];
+    if (p.step_end_valid) std::memcpy(start_legs, p.leg_vectors, sizeof start_legs);
+    else leg_vectors(p, plant::motion_of_state(p.y), start_legs);
+    leg_vectors(p, m, end_legs);
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::Vec3 d0(start_legs[k][0], start_legs[k][1], start_legs[k][2]),
+        const plant::Vec3 d0(start_legs[k][0], start_legs[k][1], start_legs[k][2]),
             d1(end_legs[k][0], end_legs[k][1], end_legs[k][2]);
         if (!(d0.dot(d1) > 0))
             return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                "the motion takes leg %d through zero length within the step",
                                k + 1);
     }
-    // angles_of_rotation(m.rotation, p->angles) in two parts: the principal angles (its
-    // formulas on the same rotation entries, motion_of_state's), which the next step's start
-    // needs too, then the turns of roll and yaw nearest the last step's, as it adds them
-    double principal[3], angles[3];
-    fd::principal_angles(y, principal);
+    return STEWART_OK;
+}
+
+// The roll, pitch, yaw of the step's end state y: principal (which the next step's start needs
+// too) and continued from the last step's (angles); refused at pitch +-90 degrees or a state out
+// of range. angles_of_rotation(m.rotation, p.angles) in two parts: the principal angles (its
+// formulas on the same rotation entries, motion_of_state's), then the turns of roll and yaw
+// nearest the last step's, as it adds them.
+stewart_status end_angles(const stewart_plant &p, const double *y, double principal[3],
+                          double angles[3], char *msg, size_t size) {
+    plant::principal_angles(y, principal);
     for (int i = 0; i < 3; ++i) angles[i] = principal[i];
-    stewart::nearest_turns(p->angles, angles);
+    stewart::nearest_turns(p.angles, angles);
     if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
                            "are undefined", angles[1]);
-    if ((s = check_range(y, angles, "the forces are out of range: after the step", msg, size)) !=
-        STEWART_OK)
+    return check_range(y, angles, "the forces are out of range: after the step", msg, size);
+}
+
+// The legs' lengths, rates and stroke bits at the step's end m (refused if one overflows), and
+// the step's warnings.
+stewart_status end_legs_and_warnings(stewart_plant &p, const stewart::Motion &m,
+                                     LegOutputs &legs, int &limit_bits, int &warnings, char *msg,
+                                     size_t size) {
+    limit_bits = limit_warnings(p, m, &p.limit_clearance);
+    legs.stroke_legs = leg_outputs(p, m, legs.length, legs.rate);
+    warnings = (legs.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!std::isfinite(legs.length[k]) || !std::isfinite(legs.rate[k]))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "the forces are out of range: leg %d's length or rate overflows "
+                               "after the step", k + 1);
+    return STEWART_OK;
+}
+
+// The plant at the step's end: its state, angles, forces, time, the next step's first internal
+// step, the warnings, and what the next step's start takes over (its legs and principal angles).
+void take_step_end(stewart_plant &p, const double *y, const double angles[3],
+                   const double principal[3], const double end_legs[STEWART_LEGS][3],
+                   const stewart_plant_input &input, double step_hint, int warnings) {
+    for (int i = 0; i < plant::kMaxStates; ++i) p.y[i] = y[i];
+    for (int i = 0; i < 3; ++i) p.angles[i] = angles[i];
+    for (int k = 0; k < STEWART_LEGS; ++k) p.force[k] = input.force_end[k];
+    p.time += input.h;
+    p.step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
+    p.warnings = warnings;
+    std::memcpy(p.leg_vectors, end_legs, sizeof p.leg_vectors);
+    std::memcpy(p.principal_angles, principal, sizeof p.principal_angles);
+    p.step_end_valid = true;
+}
+}  // namespace
+
+extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
+                                             stewart_plant_output *output) {
+    if (!p) return STEWART_ERR_ARGUMENT;
+    char *msg = p->message;
+    const size_t size = sizeof p->message;
+    if (!input || !output) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
+    stewart_status s = check_step_input(*p, *input, msg, size);
+    if (s != STEWART_OK) return s;
+    const plant::ForceProfile profile = force_profile(*input);
+    double y[plant::kMaxStates];
+    for (int i = 0; i < plant::kMaxStates; ++i) y[i] = p->y[i];
+    double step_hint = p->step_hint;
+    s = p->integrator.advance(y, profile, step_hint, msg, size,
+                              p->step_end_valid ? p->principal_angles : nullptr);
+    record_statistics(p->integrator.statistics(), p->stats);
+    if (s != STEWART_OK) return s;
+
+    const stewart::Motion m = plant::motion_of_state(y);
+    double end_legs[STEWART_LEGS][3], principal[3], angles[3];
+    if ((s = check_legs_kept_direction(*p, m, end_legs, msg, size)) != STEWART_OK ||
+        (s = end_angles(*p, y, principal, angles, msg, size)) != STEWART_OK)
         return s;
     stewart_pose shown;
     if (!p->model->frames.identity && !shown_pose(*p, y, m, angles, shown))
@@ -552,29 +623,16 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
                            "the motion reaches the tool frame's pitch +-90 degrees in the user "
                            "frame, where its roll and yaw are undefined");
     LegOutputs legs;
-    const int limit_bits = limit_warnings(*p, m, &p->limit_clearance);
-    legs.stroke_legs = leg_outputs(*p, m, legs.length, legs.rate);
-    const int warnings = (legs.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
-    for (int k = 0; k < STEWART_LEGS; ++k)
-        if (!std::isfinite(legs.length[k]) || !std::isfinite(legs.rate[k]))
-            return set_message(msg, size, STEWART_ERR_ARGUMENT,
-                               "the forces are out of range: leg %d's length or rate overflows "
-                               "after the step", k + 1);
+    int limit_bits, warnings;
+    if ((s = end_legs_and_warnings(*p, m, legs, limit_bits, warnings, msg, size)) != STEWART_OK)
+        return s;
     const PlantState before_step = state_of(*p);  // the outputs may overflow: then back to it
-    for (int i = 0; i < fd::kMaxStates; ++i) p->y[i] = y[i];
-    for (int i = 0; i < 3; ++i) p->angles[i] = angles[i];
-    for (int k = 0; k < STEWART_LEGS; ++k) p->force[k] = f1[k];
-    p->time += h;
-    p->step_hint = step_hint >= kMinStepSize ? step_hint : 0;  // a hint a load takes back
-    p->warnings = warnings;
-    std::memcpy(p->leg_vectors, end_legs, sizeof end_legs);
-    std::memcpy(p->principal_angles, principal, sizeof principal);
-    p->step_end_valid = true;
+    take_step_end(*p, y, angles, principal, end_legs, *input, step_hint, warnings);
     // the outputs from the integrator's own evaluation at the end of the step when it made one
     // (the state before the quaternion's normalisation: the same equations to rounding), and the
     // legs and warnings just found at this state
-    if (output_of(p, f1, p->integrator.end_evaluation(), limit_bits, &legs, output, &m) !=
-        STEWART_OK) {
+    if (output_of(p, input->force_end, p->integrator.end_evaluation(), limit_bits, &legs, output,
+                  &m) != STEWART_OK) {
         restore_state(*p, before_step);
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "the forces are out of range: the outputs overflow after the step");
@@ -584,9 +642,9 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
 }
 
 // The legs' forces and drive outputs of o at the evaluation e of the inputs.
-void plant_drive_outputs(const stewart_plant &p, const double *input, const fd::Evaluation &e,
+void plant_drive_outputs(const stewart_plant &p, const double *input, const plant::Evaluation &e,
                    stewart_plant_output &o) {
-    const fd::DriveModel &dm = p.dynamics.drives;
+    const plant::DriveModel &dm = p.dynamics.drives;
     if (dm.input == STEWART_PLANT_INPUT_FORCE) {
         std::memcpy(o.force, input, sizeof o.force);
         return;
@@ -618,15 +676,17 @@ namespace {
 // step's last, or nullptr); limit_bits: the joint-limit and interference warnings of the state
 // (the step's, or -1: found here); legs: leg_outputs at the state (the step's, or nullptr);
 // state_motion: motion_of_state(p->y) (the step's, or nullptr).
-stewart_status output_of(const stewart_plant *p, const double *force, const fd::Evaluation *known,
-                         int limit_bits, const LegOutputs *legs, stewart_plant_output *out,
+stewart_status output_of(const stewart_plant *p, const double *force,
+                         const plant::Evaluation *known, int limit_bits, const LegOutputs *legs,
+                         stewart_plant_output *out,
                          const stewart::Motion *state_motion) {
-    fd::Evaluation e;
+    plant::Evaluation e;
     stewart::Motion m;
     const stewart_status s = all_bodies(*p, force, e, nullptr, known, &m, state_motion);
     if (s != STEWART_OK) return s;
-    fd::Vec3 f, t;  // the base wrench without the bodies' motions where it can (axisymmetric legs)
-    fd::base_wrench(p->dynamics, m, known ? *known : e, f, t);
+    // the base wrench without the bodies' motions where it can (axisymmetric legs)
+    plant::Vec3 f, t;
+    plant::base_wrench(p->dynamics, m, known ? *known : e, f, t);
 
     stewart_plant_output o{};
     o.time = p->time;
@@ -674,7 +734,7 @@ extern "C" stewart_status stewart_plant_output_get(const stewart_plant *p, const
 extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, const double *force,
                                                       stewart_plant_reactions *reactions) {
     if (!p || !reactions) return STEWART_ERR_ARGUMENT;
-    fd::Evaluation e;
+    plant::Evaluation e;
     stewart::Motion bodies[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, force, e, bodies);
     if (s != STEWART_OK) return s;
@@ -683,7 +743,7 @@ extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, co
     if (p->dynamics.drives.input != STEWART_PLANT_INPUT_FORCE) force = e.drive.leg_force;
     stewart_plant_reactions r;
     for (int k = 0; k < STEWART_LEGS; ++k)
-        if (!fd::leg_reactions(p->dynamics, k, e.legs[k], bodies, force[k], r))
+        if (!plant::leg_reactions(p->dynamics, k, e.legs[k], bodies, force[k], r))
             return STEWART_ERR_SINGULAR;
     const double *values = &r.base_cardan_force[0][0];
     for (size_t i = 0; i < sizeof r / sizeof(double); ++i)
@@ -695,7 +755,7 @@ extern "C" stewart_status stewart_plant_reactions_get(const stewart_plant *p, co
 extern "C" stewart_status stewart_plant_bodies(const stewart_plant *p,
                                                stewart_plant_body bodies[STEWART_PLANT_BODIES]) {
     if (!p || !bodies) return STEWART_ERR_ARGUMENT;
-    fd::Evaluation e;
+    plant::Evaluation e;
     stewart::Motion motion[STEWART_PLANT_BODIES];
     const stewart_status s = all_bodies(*p, nullptr, e, motion);
     if (s != STEWART_OK) return s;
@@ -738,7 +798,7 @@ constexpr size_t kStateHeader = 3 * sizeof(unsigned);
 
 // The doubles and bytes of p's saved state.
 int saved_doubles(const stewart_plant &p) {
-    return kSavedDoubles + (fd::state_count(p.dynamics) - fd::kStates);
+    return kSavedDoubles + (plant::state_count(p.dynamics) - plant::kStates);
 }
 size_t state_bytes(const stewart_plant &p) {
     return kStateHeader + saved_doubles(p) * sizeof(double);
@@ -746,7 +806,7 @@ size_t state_bytes(const stewart_plant &p) {
 
 void save_doubles(const stewart_plant &p, double *out) {
     *out++ = p.time;
-    for (int i = 0; i < fd::state_count(p.dynamics); ++i) *out++ = p.y[i];
+    for (int i = 0; i < plant::state_count(p.dynamics); ++i) *out++ = p.y[i];
     for (double v : p.angles) *out++ = v;
     for (double v : p.force) *out++ = v;
     *out++ = p.warnings;
@@ -780,7 +840,7 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     if (!buffer)
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT, "buffer is NULL");
     const size_t bytes = state_bytes(*p);
-    const int states = fd::state_count(p->dynamics), kSaved = saved_doubles(*p);
+    const int states = plant::state_count(p->dynamics), kSaved = saved_doubles(*p);
     unsigned header[3] = {0, 0, 0};
     if (size >= kStateHeader) std::memcpy(header, buffer, sizeof header);
     if (size != bytes || header[0] != kStateMagic || header[1] != kStateVersion ||
@@ -801,14 +861,14 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     const double *y = state + 1, *angles = y + states;
     const double warnings = state[kSaved - 2], hint = state[kSaved - 1];
     const double q_norm = std::sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6]);
-    fd::Evaluation e;
+    plant::Evaluation e;
     const double zero[STEWART_LEGS] = {0};
     if (!(std::fabs(q_norm - 1) < 1e-9) || !(std::fabs(std::cos(angles[1])) > kMinCosPitch) ||
         !(warnings >= 0 && warnings <= kPlantWarnings &&
           (static_cast<int>(warnings) & ~kPlantWarnings) == 0 && warnings == std::floor(warnings)) ||
         !(hint == 0 || hint >= kMinStepSize) ||
-        !(e.winding_current = y + fd::kStates,
-          fd::twist_rate(p->dynamics, fd::motion_of_state(y), zero, e)))
+        !(e.winding_current = y + plant::kStates,
+          plant::twist_rate(p->dynamics, plant::motion_of_state(y), zero, e)))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "saved plant state is not one a step leaves (quaternion norm %g, pitch "
                            "%g rad, warnings %g, step hint %g s (0 or >= %g s), or a singular "

@@ -3,9 +3,9 @@
 #include "plant/plant_bodies_impl.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 STEWART_PLANT_BODIES_INSTANTIATE(double)
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -7,7 +7,7 @@
 #include "kinematics/closed_form.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
@@ -87,5 +87,5 @@ void leg_point_forces(const LegParameters &p, int k, const LegConfigurationT<S> 
                       const Vec3T<S> &f_cyl, const Vec3T<S> &t_cyl, const Vec3T<S> &f_pis,
                       const Vec3T<S> &t_pis, Vec3T<S> &f_point, Vec3T<S> &f_alpha);
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -6,7 +6,7 @@
 #include "plant/plant_bodies.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 namespace {
 
@@ -160,7 +160,7 @@ void leg_point_forces(const LegParameters &p, int k, const LegConfigurationT<S> 
     f_alpha = (-n_t_pis / c.piston_sin) * c.piston_arm.cross(c.piston_x);
 }
 
-// Explicit instantiation for the scalar S (inside namespace stewart::fd).
+// Explicit instantiation for the scalar S (inside namespace stewart::plant).
 #define STEWART_PLANT_BODIES_INSTANTIATE(S)                                                       \
     template LegFault leg_configuration<S>(const LegParameters &, int, const Vec3T<S> &,          \
                                            const Mat3T<S> &, LegConfigurationT<S> &, bool);       \
@@ -169,5 +169,5 @@ void leg_point_forces(const LegParameters &p, int k, const LegConfigurationT<S> 
     template void leg_acceleration_map<S>(const LegParameters &, int,                             \
                                           const LegConfigurationT<S> &, LegAccelerationMapT<S> &);
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -17,7 +17,7 @@
 #include "util/message.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 namespace {
 
@@ -111,15 +111,17 @@ void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS],
     }
 }
 
-bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double input[STEWART_LEGS],
-                       Evaluation &e) {
-    static const double zero[STEWART_LEGS] = {0, 0, 0, 0, 0, 0};
-    double M[6][6], rhs[6];
-    if (!reduced_equations(d, m, zero, e, M, rhs)) return false;
+namespace {
+
+// Each leg's drive row at the motion m (its Jacobian row, bias, passive force, smoothed
+// direction, reflected mass, velocity product, whether lossy), the power flow's first guess of
+// its sign, and e's drive values that do not depend on the twist rate.
+[[gnu::always_inline]] inline void drive_rows(const DynamicsModel &d, const Motion &m,
+                                              const double input[STEWART_LEGS], Evaluation &e,
+                                              LegDriveRow rows[STEWART_LEGS],
+                                              int sign[STEWART_LEGS]) {
     const DriveModel &dm = d.drives;
     const double vs = dm.smoothing_speed;
-    LegDriveRow rows[STEWART_LEGS];
-    int sign[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegConfiguration &leg = e.legs[k];
         const LegDrive &drive = dm.legs[k];
@@ -149,14 +151,24 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
         e.drive.friction[k] = friction;
         e.drive.stop_force[k] = stop;
     }
+}
+
+// The twist rate nu_dot of M nu_dot = rhs + the legs' drive forces, each leg's screw efficiency
+// (factor) taken for the direction of its power flow, solved again while a lossy leg's
+// direction changes. The last pass (after kMaxSignPasses unsettled ones) takes the legs whose
+// direction still flips as lossless (sign 0): at the turn of its power flow a leg's loss is then
+// left out for this evaluation, and no energy is made. e's ideal forces from the last pass.
+[[gnu::always_inline]] inline void solve_power_flow(const DriveModel &dm, const double M[6][6],
+                                                    const double rhs[6],
+                                                    const LegDriveRow rows[STEWART_LEGS],
+                                                    int sign[STEWART_LEGS], Evaluation &e,
+                                                    double nu_dot[6],
+                                                    double factor[STEWART_LEGS]) {
     bool any_lossy = false;
-    for (const LegDriveRow &r : rows) any_lossy |= r.lossy;
-    double nu_dot[6], factor[STEWART_LEGS], weight[STEWART_LEGS], j[STEWART_LEGS][6];
+    for (int k = 0; k < STEWART_LEGS; ++k) any_lossy |= rows[k].lossy;
+    double weight[STEWART_LEGS], j[STEWART_LEGS][6];
     for (int k = 0; k < STEWART_LEGS; ++k)
         for (int i = 0; i < 6; ++i) j[k][i] = rows[k].j[i];
-    // The last pass (after kMaxSignPasses unsettled ones) takes the legs whose direction still
-    // flips as lossless (sign 0): at the turn of its power flow a leg's loss is then left out for
-    // this evaluation, and no energy is made.
     for (int pass = 0; pass <= kMaxSignPasses; ++pass) {
         double b[6];
         for (int i = 0; i < 6; ++i) b[i] = rhs[i];
@@ -183,6 +195,20 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
         }
         if (settled || !any_lossy) break;
     }
+}
+
+}  // namespace
+
+bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double input[STEWART_LEGS],
+                       Evaluation &e) {
+    static const double zero[STEWART_LEGS] = {0, 0, 0, 0, 0, 0};
+    double M[6][6], rhs[6];
+    if (!reduced_equations(d, m, zero, e, M, rhs)) return false;
+    LegDriveRow rows[STEWART_LEGS];
+    int sign[STEWART_LEGS];
+    drive_rows(d, m, input, e, rows, sign);
+    double nu_dot[6], factor[STEWART_LEGS];
+    solve_power_flow(d.drives, M, rhs, rows, sign, e, nu_dot, factor);
     Vec3 legs_force = Vec3::Zero(), legs_moment = Vec3::Zero();
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const double nut = factor[k] * e.drive.ideal_force[k];
@@ -200,5 +226,5 @@ bool driven_twist_rate(const DynamicsModel &d, const Motion &m, const double inp
     return true;
 }
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

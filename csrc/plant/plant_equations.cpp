@@ -4,9 +4,9 @@
 #include "plant/plant_equations_impl.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 STEWART_PLANT_EQUATIONS_INSTANTIATE(double)
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

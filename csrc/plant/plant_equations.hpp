@@ -7,7 +7,7 @@
 #include "stewart/stewart_plant.h"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 // The legs' drives when the plant's input is a current or a voltage (plant_drive_rhs.cpp):
 // input STEWART_PLANT_INPUT_FORCE leaves them unused and every equation as without drives.
@@ -195,5 +195,5 @@ template <class S>
 void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &force,
                  Vec3T<S> &torque);
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

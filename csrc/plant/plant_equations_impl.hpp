@@ -6,7 +6,7 @@
 #include "plant/plant_equations.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 namespace {
 
@@ -265,7 +265,7 @@ void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &
 }
 
 
-// Explicit instantiation for the scalar S (inside namespace stewart::fd).
+// Explicit instantiation for the scalar S (inside namespace stewart::plant).
 #define STEWART_PLANT_EQUATIONS_INSTANTIATE(S)                                                    \
     template bool reduced_equations<S>(const DynamicsModel &, const MotionT<S> &, const S *,      \
                                        EvaluationT<S> &, Eigen::Matrix<S, 6, 6> &,                \
@@ -277,10 +277,10 @@ void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &
     template void base_wrench<S>(const DynamicsModel &, const MotionT<S>[13], Vec3T<S> &,         \
                                  Vec3T<S> &);
 
-// Explicit instantiation of motion_residual for the scalar S (inside namespace stewart::fd).
+// Explicit instantiation of motion_residual for the scalar S (inside namespace stewart::plant).
 #define STEWART_PLANT_RESIDUAL_INSTANTIATE(S)                                                     \
     template bool motion_residual<S>(const DynamicsModel &, const MotionT<S> &, const double *,   \
                                      EvaluationT<S> &, Eigen::Matrix<S, 6, 1> &);
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

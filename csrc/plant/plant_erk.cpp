@@ -14,7 +14,7 @@
 #include <cmath>
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 namespace {
 
@@ -135,106 +135,95 @@ bool load_erk_table(int table_number, ErkTable &table) {
 
 namespace {
 
+// The step-size controller between internal steps (arkEvolve's): the time reached, the step to
+// take, its ratio to the last, the step the last one proposed, the bound on the ratio, and the
+// last step's error (its estimate's norm with the controller's bias).
+struct StepController {
+    double tn = 0, h = 0, eta = 1.0, h_prime = 0, eta_max = kEtaFirst, error_history = 1.0;
+};
+
+// erkStep_TakeStep and erkStep_ComputeSolutions: stages 1..s-1 of the step h from (tn, w.yn),
+// the solution in w.ycur and, adaptive only, the WRMS norm of the error estimate in dsm. False
+// if the right-hand side refused a stage.
 template <int N>
-ErkResult advance_states(const ErkTable &table, const ErkControl &control, ErkWork &w,
-                         double h_comm, const double *y0, double g_start, ErkRhs rhs,
-                         ErkRoot root, void *user, double *y_out) {
-    ErkResult r;
-    const bool fixed = control.fixed_steps > 0;
-    const double h_in = fixed ? h_comm / control.fixed_steps : control.first_step;
-    // arkRootCheck1: a zero of g at the start is ARKODE's to handle.
-    if (!(g_start > 0) || !(h_in > 0)) return r;
+bool stages_and_solution(const ErkTable &table, bool fixed, ErkWork &w, double tn, double h,
+                         ErkRhs rhs, void *user, ErkResult &r, double &dsm) {
     const int s = table.stages;
-    const double t_stop = h_comm, t_out = h_comm, stop_factor = 1.0 - 4.0 * kUnitRoundoff;
-    for (int j = 0; j < N; ++j) w.yn[j] = y0[j];
-    // arkInitialSetup: the full right-hand side at the start into F[0] (and fn, the same
-    // values); the first step, limited so as not to overtake the stop time
-    if (!control.start_rate_known && rhs(0.0, w.yn, w.F[0], user) != 0) return r;
-    ++r.rhs_evaluations;  // ARKODE's count, made or carried (so a rollback repeats the count)
-    double tn = 0, h = h_in;
-    if ((tn + h - t_stop) * h > 0) h = (t_stop - tn) * stop_factor;
-    double eta = 1.0, h_prime = h, eta_max = kEtaFirst, error_history = 1.0;
-    double c[kMaxErkStages];
-    for (;;) {
-        if (r.steps >= control.max_steps) return r;  // ARK_TOO_MUCH_WORK: ARKODE says so
-        if (fixed) {
-            h = h_in;
-            if ((tn + h - t_stop) * h > 0) h = (t_stop - tn) * stop_factor;
-        } else {
-            if (h_prime != h) h = h * eta;
-            error_weights<N>(control, w.yn, w.weight);
-        }
-        double dsm = 0;
-        for (int error_fails = 0;;) {
-            // erkStep_TakeStep: stages 1..s-1
-            for (int is = 1; is < s; ++is) {
-                const double t_stage = tn + table.c[is] * h;
-                for (int js = 0; js < is; ++js) c[js] = h * table.A[is][js];
-                combine<N>(is, c, w.F, w.yn, w.ycur);
-                if (rhs(t_stage, w.ycur, w.F[is], user) != 0) return r;
-                ++r.rhs_evaluations;
-            }
-            // erkStep_ComputeSolutions: the solution, and the error estimate when adaptive
-            for (int j = 0; j < s; ++j) c[j] = h * table.b[j];
-            combine<N>(s, c, w.F, w.yn, w.ycur);
-            if (fixed) break;  // arkEvolve: eta = 1, no error test
-            for (int j = 0; j < s; ++j) c[j] = h * (table.b[j] - table.d[j]);
-            combine<N>(s, c, w.F, nullptr, w.error);
-            dsm = wrms_norm<N>(w.error, w.weight);
-            // arkCheckTemporalError, then arkEvolve's bounds on eta
-            eta = adapt_ratio(table, h, dsm, error_history, eta_max);
-            if (!(dsm <= 1.0)) {  // ARKODE's test: a NaN estimate fails too
-                ++r.error_test_failures;
-                if (++error_fails == kMaxErrorFails) return r;  // ARK_ERR_FAILURE
-                eta_max = 1.0;
-                if (error_fails >= kSmallErrorFails) eta = std::min(eta, kEtaErrorFail);
-            }
-            eta = std::min(eta, eta_max);
-            eta = std::max(eta, 0.0 / std::fabs(h));
-            eta /= std::max(1.0, std::fabs(h) * 0.0 * eta);
-            if (dsm <= 1.0) break;
-            h *= eta;
-            h_prime = h;
-        }
-        // arkCompleteStep: the time, snapped to the stop time within roundoff; the interpolant
-        // keeps the step's start; the end evaluation (the last stage is not at the end)
-        double t_cur = tn + h;
-        const double roundoff = kFuzzFactor * kUnitRoundoff * (std::fabs(t_cur) + std::fabs(h));
-        if (std::fabs(t_cur - t_stop) <= roundoff) t_cur = t_stop;
-        for (int j = 0; j < N; ++j) {
-            w.yold[j] = w.yn[j];
-            w.fold[j] = w.F[0][j];
-        }
-        // arkRootCheck3 (below in ARKODE, on the same values: a refusal of either hands the
-        // step back) before the projection, so that it decides on ARKODE's state
-        if (!(root(w.ycur, user) > 0)) return r;
-        if (control.project_end && t_cur == t_stop) {  // the last step: y_out will be yn
-            control.project_end(w.ycur);
-            r.end_projected = true;
-        }
-        if (rhs(t_cur, w.ycur, w.F[0], user) != 0) return r;
+    double c[kMaxErkStages] = {0};  // (every coefficient read is set: GCC cannot see it)
+    for (int is = 1; is < s; ++is) {
+        const double t_stage = tn + table.c[is] * h;
+        for (int js = 0; js < is; ++js) c[js] = h * table.A[is][js];
+        combine<N>(is, c, w.F, w.yn, w.ycur);
+        if (rhs(t_stage, w.ycur, w.F[is], user) != 0) return false;
         ++r.rhs_evaluations;
-        for (int j = 0; j < N; ++j) w.yn[j] = w.ycur[j];
-        error_history = dsm * kBias;
-        ++r.steps;
-        tn = t_cur;
-        r.last_step = h;
-        h_prime = h * (fixed ? 1.0 : eta);
-        eta_max = kGrowth;
-        // arkRootCheck3 was above: g at the new state; a sign change or zero is a root,
-        // ARKODE's to locate
-        if ((t_cur - t_out) * h >= 0) break;  // tout reached
-        // the stop-time test after a step; the snap above makes its first branch unreachable
-        if (std::fabs(t_cur - t_stop) <= roundoff) return r;
-        if ((t_cur + h_prime - t_stop) * h > 0) {
-            h_prime = (t_stop - t_cur) * stop_factor;
-            eta = h_prime / h;
-        }
-        if (fixed) eta = 1.0;
     }
-    r.next_step = h_prime;
-    // arkGetDky(tout): the cubic Hermite interpolant between the last step's ends
-    // (a = (0, 1, 0, 0) at tout = tcur), as N_VLinearCombination of (yold, ynew, fold, fnew)
+    for (int j = 0; j < s; ++j) c[j] = h * table.b[j];
+    combine<N>(s, c, w.F, w.yn, w.ycur);
+    if (fixed) return true;  // arkEvolve: eta = 1, no error test
+    for (int j = 0; j < s; ++j) c[j] = h * (table.b[j] - table.d[j]);
+    combine<N>(s, c, w.F, nullptr, w.error);
+    dsm = wrms_norm<N>(w.error, w.weight);
+    return true;
+}
+
+// One internal step tried until it passes the error test (adaptive; each failure shrinks k.h),
+// with the ratio of the next step in k.eta. False when the right-hand side refused a stage or
+// the test failed kMaxErrorFails times (ARK_ERR_FAILURE): ARKODE's to repeat.
+template <int N>
+bool step_passing_error_test(const ErkTable &table, bool fixed, ErkWork &w, StepController &k,
+                             ErkRhs rhs, void *user, ErkResult &r, double &dsm) {
+    for (int error_fails = 0;;) {
+        if (!stages_and_solution<N>(table, fixed, w, k.tn, k.h, rhs, user, r, dsm)) return false;
+        if (fixed) return true;
+        // arkCheckTemporalError, then arkEvolve's bounds on eta
+        k.eta = adapt_ratio(table, k.h, dsm, k.error_history, k.eta_max);
+        if (!(dsm <= 1.0)) {  // ARKODE's test: a NaN estimate fails too
+            ++r.error_test_failures;
+            if (++error_fails == kMaxErrorFails) return false;  // ARK_ERR_FAILURE
+            k.eta_max = 1.0;
+            if (error_fails >= kSmallErrorFails) k.eta = std::min(k.eta, kEtaErrorFail);
+        }
+        k.eta = std::min(k.eta, k.eta_max);
+        k.eta = std::max(k.eta, 0.0 / std::fabs(k.h));
+        k.eta /= std::max(1.0, std::fabs(k.h) * 0.0 * k.eta);
+        if (dsm <= 1.0) return true;
+        k.h *= k.eta;
+        k.h_prime = k.h;
+    }
+}
+
+// arkCompleteStep: the step's end time t_cur, snapped to the stop time within roundoff; the
+// interpolant keeps the step's start; the end evaluation (the last stage is not at the end) at
+// the new state, which becomes w.yn. False when the root function or the right-hand side
+// refuses the new state: ARKODE's to repeat.
+template <int N>
+bool complete_step(const ErkControl &control, ErkWork &w, const StepController &k,
+                   double t_stop, ErkRhs rhs, ErkRoot root, void *user, ErkResult &r,
+                   double &t_cur, double &roundoff) {
+    t_cur = k.tn + k.h;
+    roundoff = kFuzzFactor * kUnitRoundoff * (std::fabs(t_cur) + std::fabs(k.h));
+    if (std::fabs(t_cur - t_stop) <= roundoff) t_cur = t_stop;
+    for (int j = 0; j < N; ++j) {
+        w.yold[j] = w.yn[j];
+        w.fold[j] = w.F[0][j];
+    }
+    // arkRootCheck3 (below in ARKODE, on the same values: a refusal of either hands the
+    // step back) before the projection, so that it decides on ARKODE's state
+    if (!(root(w.ycur, user) > 0)) return false;
+    if (control.project_end && t_cur == t_stop) {  // the last step: y_out will be yn
+        control.project_end(w.ycur);
+        r.end_projected = true;
+    }
+    if (rhs(t_cur, w.ycur, w.F[0], user) != 0) return false;
+    ++r.rhs_evaluations;
+    for (int j = 0; j < N; ++j) w.yn[j] = w.ycur[j];
+    return true;
+}
+
+// arkGetDky(t_out): the cubic Hermite interpolant between the last step's ends (h, ending at
+// tn) (a = (0, 1, 0, 0) at tout = tcur), as N_VLinearCombination of (yold, ynew, fold, fnew).
+template <int N>
+void interpolate(const ErkWork &w, double t_out, double tn, double h, double *y_out) {
     const double tau = (t_out - tn) / h, tau2 = tau * tau, tau3 = tau * tau2;
     const double a0 = 3.0 * tau2 + 2.0 * tau3, a1 = 1.0 - 3.0 * tau2 - 2.0 * tau3,
                  a2 = h * (tau2 + tau3), a3 = h * (tau + 2.0 * tau2 + tau3);
@@ -245,6 +234,59 @@ ErkResult advance_states(const ErkTable &table, const ErkControl &control, ErkWo
         z += a3 * w.F[0][j];
         y_out[j] = z;
     }
+}
+
+template <int N>
+ErkResult advance_states(const ErkTable &table, const ErkControl &control, ErkWork &w,
+                         double h_comm, const double *y0, double g_start, ErkRhs rhs,
+                         ErkRoot root, void *user, double *y_out) {
+    ErkResult r;
+    const bool fixed = control.fixed_steps > 0;
+    const double h_in = fixed ? h_comm / control.fixed_steps : control.first_step;
+    // arkRootCheck1: a zero of g at the start is ARKODE's to handle.
+    if (!(g_start > 0) || !(h_in > 0)) return r;
+    const double t_stop = h_comm, t_out = h_comm, stop_factor = 1.0 - 4.0 * kUnitRoundoff;
+    for (int j = 0; j < N; ++j) w.yn[j] = y0[j];
+    // arkInitialSetup: the full right-hand side at the start into F[0] (and fn, the same
+    // values); the first step, limited so as not to overtake the stop time
+    if (!control.start_rate_known && rhs(0.0, w.yn, w.F[0], user) != 0) return r;
+    ++r.rhs_evaluations;  // ARKODE's count, made or carried (so a rollback repeats the count)
+    StepController k;
+    k.h = h_in;
+    if ((k.tn + k.h - t_stop) * k.h > 0) k.h = (t_stop - k.tn) * stop_factor;
+    k.h_prime = k.h;
+    for (;;) {
+        if (r.steps >= control.max_steps) return r;  // ARK_TOO_MUCH_WORK: ARKODE says so
+        if (fixed) {
+            k.h = h_in;
+            if ((k.tn + k.h - t_stop) * k.h > 0) k.h = (t_stop - k.tn) * stop_factor;
+        } else {
+            if (k.h_prime != k.h) k.h = k.h * k.eta;
+            error_weights<N>(control, w.yn, w.weight);
+        }
+        double dsm = 0, t_cur, roundoff;
+        if (!step_passing_error_test<N>(table, fixed, w, k, rhs, user, r, dsm) ||
+            !complete_step<N>(control, w, k, t_stop, rhs, root, user, r, t_cur, roundoff))
+            return r;
+        k.error_history = dsm * kBias;
+        ++r.steps;
+        k.tn = t_cur;
+        r.last_step = k.h;
+        k.h_prime = k.h * (fixed ? 1.0 : k.eta);
+        k.eta_max = kGrowth;
+        // arkRootCheck3 was in complete_step: g at the new state; a sign change or zero is a
+        // root, ARKODE's to locate
+        if ((t_cur - t_out) * k.h >= 0) break;  // tout reached
+        // the stop-time test after a step; the snap above makes its first branch unreachable
+        if (std::fabs(t_cur - t_stop) <= roundoff) return r;
+        if ((t_cur + k.h_prime - t_stop) * k.h > 0) {
+            k.h_prime = (t_stop - t_cur) * stop_factor;
+            k.eta = k.h_prime / k.h;
+        }
+        if (fixed) k.eta = 1.0;
+    }
+    r.next_step = k.h_prime;
+    interpolate<N>(w, t_out, k.tn, k.h, y_out);
     r.done = true;
     return r;
 }
@@ -261,5 +303,5 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
                                             user, y_out);
 }
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -8,7 +8,7 @@
 #pragma once
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 constexpr int kStates = 13;  // the platform: position, quaternion, velocity, angular velocity
 // and, with the windings' currents as states (voltage input, an inductance), six more
@@ -76,5 +76,5 @@ ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork 
                       double h_comm, const double *y0, double g_start, ErkRhs rhs,
                       ErkRoot root, void *user, double *y_out, int states = kStates);
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -1,4 +1,4 @@
-// The full plant's right-hand side (fd::twist_rate for double) for axisymmetric leg bodies:
+// The full plant's right-hand side (plant::twist_rate for double) for axisymmetric leg bodies:
 // the same reduced equations as plant_equations_impl.hpp's template, written in closed form.
 //
 // A leg body whose principal inertia is (a, a, c) about its axes (x, y, z = n) has the world
@@ -20,7 +20,7 @@
 #include "plant/plant_equations.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 namespace {
 
@@ -421,5 +421,5 @@ void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, V
     }
 }
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

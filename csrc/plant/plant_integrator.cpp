@@ -19,7 +19,7 @@
 #include "util/message.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 // The fixed-point solver's free function (the shared holder has none for nonlinear solvers).
 struct NonlinearSolverFree {
@@ -403,19 +403,9 @@ int collapsing_leg(const DynamicsModel &model, const double start[kStates],
     return leg;
 }
 
-}  // namespace
-
-Integrator::~Integrator() { delete impl_; }
-
-bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o, char *msg,
-                      size_t size, bool written_out, bool carry_end) {
-    impl_ = new (std::nothrow) IntegratorImpl;
-    if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
-    IntegratorImpl &im = *impl_;
-    im.model = model;
-    im.n = state_count(*model);
-    im.carry_end = carry_end;
-    im.evaluation.fill_legs = false;  // massless: nothing reads its legs (end_evaluation())
+// The state vector SUNDIALS integrates (the platform at rest at the origin until a step sets
+// it), with fused vector operations and the 13-state linear combination.
+bool make_state_vector(IntegratorImpl &im, char *msg, size_t size) {
     im.context = mbs::sundials::make_context();
     if (im.context) im.y_holder.reset(N_VNew_Serial(im.n, im.context.get()));
     im.y = im.y_holder.get();
@@ -429,39 +419,49 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     im.y->ops->nvlinearcombination = linear_combination;  // clones copy the operations
     N_VConst(0.0, im.y);
     NV_Ith_S(im.y, 3) = 1.0;
+    return true;
+}
+
+// ARKODE's ERKStep for STEWART_PLANT_ERK (ERK 4(3); written out when written_out) and
+// STEWART_PLANT_ERK5.
+bool init_arkode(IntegratorImpl &im, const stewart_plant_options &o, bool written_out, char *msg,
+                 size_t size) {
+    im.arkode_holder.reset(ERKStepCreate(right_hand_side, 0.0, im.y, im.context.get()));
+    im.arkode = im.arkode_holder.get();
+    im.erk_order = o.method == STEWART_PLANT_ERK ? 4 : 5;
+    im.fixed_steps = o.fixed_steps;
+    im.max_internal_steps = o.max_internal_steps;
+    im.relative_tolerance = o.relative_tolerance;
+    im.absolute_tolerance = o.absolute_tolerance;
+    im.by_hand = written_out && o.method == STEWART_PLANT_ERK &&
+                 load_erk_table(ARKODE_ZONNEVELD_5_3_4, im.table);
+    if (!im.arkode)
+        return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
     int flag;
-    if (o.method == STEWART_PLANT_ERK || o.method == STEWART_PLANT_ERK5) {
-        im.arkode_holder.reset(ERKStepCreate(right_hand_side, 0.0, im.y, im.context.get()));
-        im.arkode = im.arkode_holder.get();
-        im.erk_order = o.method == STEWART_PLANT_ERK ? 4 : 5;
-        im.fixed_steps = o.fixed_steps;
-        im.max_internal_steps = o.max_internal_steps;
-        im.relative_tolerance = o.relative_tolerance;
-        im.absolute_tolerance = o.absolute_tolerance;
-        im.by_hand = written_out && o.method == STEWART_PLANT_ERK &&
-                     load_erk_table(ARKODE_ZONNEVELD_5_3_4, im.table);
-        if (!im.arkode)
-            return set_message(msg, size, STEWART_ERR_MEMORY, "ERKStepCreate failed"), false;
-        if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
-            (flag = ERKStepSetUserData(im.arkode, &im)) != ARK_SUCCESS ||
-            (flag = ERKStepSetTableNum(im.arkode, o.method == STEWART_PLANT_ERK
-                                                          ? ARKODE_ZONNEVELD_5_3_4
-                                                          : ARKODE_DORMAND_PRINCE_7_4_5)) !=
-                ARK_SUCCESS ||
-            (flag = ERKStepSStolerances(im.arkode, o.relative_tolerance,
-                                        o.absolute_tolerance)) != ARK_SUCCESS ||
-            (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS ||
-            (flag = ERKStepRootInit(im.arkode, 1, pitch_root)) != ARK_SUCCESS ||
-            (flag = ERKStepSetNoInactiveRootWarn(im.arkode)) != ARK_SUCCESS)
-            return set_message(msg, size, STEWART_ERR_MEMORY, "ARKODE setup failed with %s: %s",
-                               flag_name(flag), im.cvode_message),
-                   false;
-        return true;
-    }
+    if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
+        (flag = ERKStepSetUserData(im.arkode, &im)) != ARK_SUCCESS ||
+        (flag = ERKStepSetTableNum(im.arkode, o.method == STEWART_PLANT_ERK
+                                                      ? ARKODE_ZONNEVELD_5_3_4
+                                                      : ARKODE_DORMAND_PRINCE_7_4_5)) !=
+            ARK_SUCCESS ||
+        (flag = ERKStepSStolerances(im.arkode, o.relative_tolerance, o.absolute_tolerance)) !=
+            ARK_SUCCESS ||
+        (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS ||
+        (flag = ERKStepRootInit(im.arkode, 1, pitch_root)) != ARK_SUCCESS ||
+        (flag = ERKStepSetNoInactiveRootWarn(im.arkode)) != ARK_SUCCESS)
+        return set_message(msg, size, STEWART_ERR_MEMORY, "ARKODE setup failed with %s: %s",
+                           flag_name(flag), im.cvode_message),
+               false;
+    return true;
+}
+
+// CVODE: BDF with a dense Newton solve, or Adams with fixed-point iteration.
+bool init_cvode(IntegratorImpl &im, const stewart_plant_options &o, char *msg, size_t size) {
     const bool bdf = o.method == STEWART_PLANT_BDF;
     im.cvode_holder.reset(CVodeCreate(bdf ? CV_BDF : CV_ADAMS, im.context.get()));
     im.cvode = im.cvode_holder.get();
     if (!im.cvode) return set_message(msg, size, STEWART_ERR_MEMORY, "CVodeCreate failed"), false;
+    int flag;
     if ((flag = CVodeSetErrHandlerFn(im.cvode, error_handler, &im)) != CV_SUCCESS ||
         (flag = CVodeInit(im.cvode, right_hand_side, 0.0, im.y)) != CV_SUCCESS ||
         (flag = CVodeSetUserData(im.cvode, &im)) != CV_SUCCESS ||
@@ -495,10 +495,21 @@ bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o
     return true;
 }
 
-stewart_status Integrator::advance(double *y, const ForceProfile &forces,
-                                   double &step_hint, char *msg, size_t size,
-                                   const double *start_angles) {
-    IntegratorImpl &im = *impl_;
+// How an integrator's run over the step ended: its last flag, the time reached, and whether it
+// stopped at a crossing of pitch +-90 degrees (the principal angles there).
+struct RunEnd {
+    int flag = 0;
+    sunrealtype t_reached = 0;
+    bool pitch_crossed = false;
+    double angles[3] = {0, 0, 0};
+};
+
+// The step's start: no fault and no end evaluation yet, y in the integrator's vector, and the
+// angles the pitch root follows. The pitch root: a crossing of +-90 degrees anywhere within the
+// step stops the integrator there (a root where the continuous pitch is not near 90 degrees is a
+// jump of the nearest triple over a long rotation: the reference moves on and the step goes on).
+void start_advance(IntegratorImpl &im, const double *y, const ForceProfile &forces,
+                   const double *start_angles) {
     im.forces = &forces;
     im.fault = LegFault::None;
     im.fault_leg = -1;
@@ -509,135 +520,166 @@ stewart_status Integrator::advance(double *y, const ForceProfile &forces,
     im.last_tau = -1;
     double *v = N_VGetArrayPointer(im.y);
     each_state(im.n, [&](int i) { v[i] = y[i]; });
-    int flag;
-    sunrealtype t_reached = 0;
-    stats_ = stewart_plant_statistics{};
-    long n;
-    const char *module = im.arkode ? "ARKODE" : "CVODE";
-    // The pitch root: a crossing of +-90 degrees anywhere within the step stops the integrator
-    // there (a root where the continuous pitch is not near 90 degrees is a jump of the nearest
-    // triple over a long rotation: the reference moves on and the step goes on).
     if (start_angles)
         for (int i = 0; i < 3; ++i) im.reference_angles[i] = start_angles[i];
     else
         principal_angles(y, im.reference_angles);
     each_state(im.n, [&](int i) { im.start_state[i] = y[i]; });
-    bool pitch_crossed = false;
-    double angles[3] = {0, 0, 0};
-    int roots = 0;
-    if (im.arkode) {
-        // A one-step method restarts for free; the first step tries the size the last step
-        // would have taken next (part of the saved state, so a rollback repeats it exactly).
-        // Fixed steps: h / N each, no error test (ARKODE's fixed-step mode; the stop time cuts
-        // the last one to end at h exactly).
-        const double first = im.fixed_steps > 0 ? forces.h / im.fixed_steps
-                             : step_hint > 0 && step_hint < forces.h ? step_hint
-                                                                     : forces.h;
-        if (im.by_hand) {
-            // ARKODE's step written out: the same bits, or nothing done (then ARKODE)
-            ErkControl control;
-            control.fixed_steps = im.fixed_steps;
-            control.first_step = first;
-            control.relative_tolerance = im.relative_tolerance;
-            control.absolute_tolerance = im.absolute_tolerance;
-            control.max_steps = im.max_internal_steps;
-            control.start_rate_known = start_rate_carried(im, y, forces);
-            control.project_end = im.carry_end ? normalize_quaternion : nullptr;
-            im.start_carried = false;  // erk_advance overwrites work.F[0]
-            im.record_arguments = false;
-            const ErkResult r =
-                erk_advance(im.table, control, im.work, forces.h, y,
-                            principal_cos_sign(im.reference_angles[1]), state_rate, pitch_sign,
-                            &im, v, im.n);
-            im.record_arguments = true;
-            if (r.done) {
-                // a step done ends with the evaluation at (its end time, work.yn, the forces
-                // there: the end forces exactly when that time is h)
-                each_state(im.n, [&](int i) { im.last_y[i] = im.work.yn[i]; });
-                if (im.last_tau == forces.h)  // what at(h) returns, without the call
-                    for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = forces.end[k];
-                else if (im.last_tau >= 0)
-                    forces.at(im.last_tau, im.last_force);
-                stats_.steps = r.steps;
-                stats_.rhs_evaluations = r.rhs_evaluations;
-                stats_.error_test_failures = r.error_test_failures;
-                stats_.last_step_size = r.last_step;
-                stats_.last_order = im.erk_order;
-                step_hint = r.next_step;
-                im.last_start_carried = control.start_rate_known;
-                if (r.end_projected) {
-                    im.start_carried = true;
-                    forces.at(forces.h, im.carried_force);
-                }
-                return finish_step(y, forces.h, msg, size, r.end_projected);
-            }
-            im.fault = LegFault::None;  // ARKODE repeats the step and says what failed
-            im.fault_leg = -1;
-            im.non_finite = false;
-            im.last_tau = -1;
-            for (int i = 0; i < im.n; ++i) v[i] = y[i];
-        }
-        if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
-            (flag = ERKStepSetStopTime(im.arkode, forces.h)) != ARK_SUCCESS ||
-            (flag = im.fixed_steps > 0 ? ERKStepSetFixedStep(im.arkode, first)
-                                       : ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
-                               flag_name(flag), im.cvode_message);
-        do {
-            flag = ERKStepEvolve(im.arkode, forces.h, im.y, &t_reached, ARK_NORMAL);
-            if (flag != ARK_ROOT_RETURN) break;
-            principal_angles(v, angles);
-            pitch_crossed = std::fabs(std::cos(angles[1])) < kCrossingCos;
-            for (int i = 0; i < 3; ++i) im.reference_angles[i] = angles[i];
-        } while (!pitch_crossed && ++roots < kMaxRoots);
-        if (ERKStepGetNumSteps(im.arkode, &n) == ARK_SUCCESS) stats_.steps = n;
-        if (ERKStepGetNumErrTestFails(im.arkode, &n) == ARK_SUCCESS) stats_.error_test_failures = n;
-        long explicit_evals = 0;
-        if (ERKStepGetNumRhsEvals(im.arkode, &explicit_evals) == ARK_SUCCESS)
-            stats_.rhs_evaluations = explicit_evals;
-        sunrealtype h_last = 0, h_next = 0;
-        if (ERKStepGetLastStep(im.arkode, &h_last) == ARK_SUCCESS) stats_.last_step_size = h_last;
-        if (ERKStepGetCurrentStep(im.arkode, &h_next) == ARK_SUCCESS && flag >= 0)
-            step_hint = h_next;
-        stats_.last_order = im.erk_order;
-    } else {
-        if ((flag = CVodeReInit(im.cvode, 0.0, im.y)) != CV_SUCCESS ||
-            (flag = CVodeSetStopTime(im.cvode, forces.h)) != CV_SUCCESS)
-            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
-                               flag_name(flag), im.cvode_message);
-        do {
-            flag = CVode(im.cvode, forces.h, im.y, &t_reached, CV_NORMAL);
-            if (flag != CV_ROOT_RETURN) break;
-            principal_angles(v, angles);
-            pitch_crossed = std::fabs(std::cos(angles[1])) < kCrossingCos;
-            for (int i = 0; i < 3; ++i) im.reference_angles[i] = angles[i];
-        } while (!pitch_crossed && ++roots < kMaxRoots);
-        if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats_.steps = n;
-        if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats_.rhs_evaluations = n;
-        if (CVodeGetNumNonlinSolvIters(im.cvode, &n) == CV_SUCCESS)
-            stats_.nonlinear_iterations = n;
-        if (CVodeGetNumErrTestFails(im.cvode, &n) == CV_SUCCESS) stats_.error_test_failures = n;
-        if (im.linear && CVodeGetNumJacEvals(im.cvode, &n) == CVLS_SUCCESS)
-            stats_.jacobian_evaluations = n;
-        int order = 0;
-        sunrealtype h_last = 0;
-        if (CVodeGetLastOrder(im.cvode, &order) == CV_SUCCESS) stats_.last_order = order;
-        if (CVodeGetLastStep(im.cvode, &h_last) == CV_SUCCESS) stats_.last_step_size = h_last;
+}
+
+// An explicit Runge-Kutta run's first internal step. A one-step method restarts for free; the
+// first step tries the size the last step would have taken next (part of the saved state, so a
+// rollback repeats it exactly). Fixed steps: h / N each, no error test (ARKODE's fixed-step
+// mode; the stop time cuts the last one to end at h exactly).
+double first_step_size(const IntegratorImpl &im, double h, double step_hint) {
+    return im.fixed_steps > 0 ? h / im.fixed_steps
+           : step_hint > 0 && step_hint < h ? step_hint
+                                            : h;
+}
+
+// ERK 4(3) by the written-out copy of ARKODE's step: the same bits, or nothing done. True when
+// it took the whole step: the end state in im.y's array, the counters in stats, the next step's
+// size in step_hint, and projected whether the end state's quaternion is normalised already.
+// False when it handed the step back: im.y's array is y again, for ARKODE to take the step.
+bool written_out_step(IntegratorImpl &im, const double *y, const ForceProfile &forces,
+                      double first, stewart_plant_statistics &stats, double &step_hint,
+                      bool &projected) {
+    double *v = N_VGetArrayPointer(im.y);
+    ErkControl control;
+    control.fixed_steps = im.fixed_steps;
+    control.first_step = first;
+    control.relative_tolerance = im.relative_tolerance;
+    control.absolute_tolerance = im.absolute_tolerance;
+    control.max_steps = im.max_internal_steps;
+    control.start_rate_known = start_rate_carried(im, y, forces);
+    control.project_end = im.carry_end ? normalize_quaternion : nullptr;
+    im.start_carried = false;  // erk_advance overwrites work.F[0]
+    im.record_arguments = false;
+    const ErkResult r = erk_advance(im.table, control, im.work, forces.h, y,
+                                    principal_cos_sign(im.reference_angles[1]), state_rate,
+                                    pitch_sign, &im, v, im.n);
+    im.record_arguments = true;
+    if (!r.done) {
+        im.fault = LegFault::None;  // ARKODE repeats the step and says what failed
+        im.fault_leg = -1;
+        im.non_finite = false;
+        im.last_tau = -1;
+        for (int i = 0; i < im.n; ++i) v[i] = y[i];
+        return false;
     }
-    if (pitch_crossed)
+    // a step done ends with the evaluation at (its end time, work.yn, the forces there: the end
+    // forces exactly when that time is h)
+    each_state(im.n, [&](int i) { im.last_y[i] = im.work.yn[i]; });
+    if (im.last_tau == forces.h)  // what at(h) returns, without the call
+        for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = forces.end[k];
+    else if (im.last_tau >= 0)
+        forces.at(im.last_tau, im.last_force);
+    stats.steps = r.steps;
+    stats.rhs_evaluations = r.rhs_evaluations;
+    stats.error_test_failures = r.error_test_failures;
+    stats.last_step_size = r.last_step;
+    stats.last_order = im.erk_order;
+    step_hint = r.next_step;
+    im.last_start_carried = control.start_rate_known;
+    if (r.end_projected) {
+        im.start_carried = true;
+        forces.at(forces.h, im.carried_force);
+    }
+    projected = r.end_projected;
+    return true;
+}
+
+// Runs an integrator (evolve(&t_reached) returns its flag) to the step's end, on past the pitch
+// function's roots that are no crossing (each moves the reference angles on).
+template <class Evolve>
+void evolve_past_roots(IntegratorImpl &im, int root_return, Evolve evolve, RunEnd &end) {
+    const double *v = N_VGetArrayPointer(im.y);
+    int roots = 0;
+    do {
+        end.flag = evolve(&end.t_reached);
+        if (end.flag != root_return) break;
+        principal_angles(v, end.angles);
+        end.pitch_crossed = std::fabs(std::cos(end.angles[1])) < kCrossingCos;
+        for (int i = 0; i < 3; ++i) im.reference_angles[i] = end.angles[i];
+    } while (!end.pitch_crossed && ++roots < kMaxRoots);
+}
+
+// ARKODE's ERKStep over [0, h] from im.y (restarted there): its counters into stats, the step
+// it would take next into step_hint.
+stewart_status run_arkode(IntegratorImpl &im, double h, double first, RunEnd &end,
+                          stewart_plant_statistics &stats, double &step_hint, char *msg,
+                          size_t size) {
+    int flag;
+    if ((flag = ERKStepReInit(im.arkode, right_hand_side, 0.0, im.y)) != ARK_SUCCESS ||
+        (flag = ERKStepSetStopTime(im.arkode, h)) != ARK_SUCCESS ||
+        (flag = im.fixed_steps > 0 ? ERKStepSetFixedStep(im.arkode, first)
+                                   : ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
+        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
+                           flag_name(flag), im.cvode_message);
+    evolve_past_roots(im, ARK_ROOT_RETURN, [&](sunrealtype *t_reached) {
+        return ERKStepEvolve(im.arkode, h, im.y, t_reached, ARK_NORMAL);
+    }, end);
+    long n;
+    if (ERKStepGetNumSteps(im.arkode, &n) == ARK_SUCCESS) stats.steps = n;
+    if (ERKStepGetNumErrTestFails(im.arkode, &n) == ARK_SUCCESS) stats.error_test_failures = n;
+    long explicit_evals = 0;
+    if (ERKStepGetNumRhsEvals(im.arkode, &explicit_evals) == ARK_SUCCESS)
+        stats.rhs_evaluations = explicit_evals;
+    sunrealtype h_last = 0, h_next = 0;
+    if (ERKStepGetLastStep(im.arkode, &h_last) == ARK_SUCCESS) stats.last_step_size = h_last;
+    if (ERKStepGetCurrentStep(im.arkode, &h_next) == ARK_SUCCESS && end.flag >= 0)
+        step_hint = h_next;
+    stats.last_order = im.erk_order;
+    return STEWART_OK;
+}
+
+// CVODE over [0, h] from im.y (restarted there): its counters into stats.
+stewart_status run_cvode(IntegratorImpl &im, double h, RunEnd &end,
+                         stewart_plant_statistics &stats, char *msg, size_t size) {
+    int flag;
+    if ((flag = CVodeReInit(im.cvode, 0.0, im.y)) != CV_SUCCESS ||
+        (flag = CVodeSetStopTime(im.cvode, h)) != CV_SUCCESS)
+        return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
+                           flag_name(flag), im.cvode_message);
+    evolve_past_roots(im, CV_ROOT_RETURN, [&](sunrealtype *t_reached) {
+        return CVode(im.cvode, h, im.y, t_reached, CV_NORMAL);
+    }, end);
+    long n;
+    if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats.steps = n;
+    if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats.rhs_evaluations = n;
+    if (CVodeGetNumNonlinSolvIters(im.cvode, &n) == CV_SUCCESS) stats.nonlinear_iterations = n;
+    if (CVodeGetNumErrTestFails(im.cvode, &n) == CV_SUCCESS) stats.error_test_failures = n;
+    if (im.linear && CVodeGetNumJacEvals(im.cvode, &n) == CVLS_SUCCESS)
+        stats.jacobian_evaluations = n;
+    int order = 0;
+    sunrealtype h_last = 0;
+    if (CVodeGetLastOrder(im.cvode, &order) == CV_SUCCESS) stats.last_order = order;
+    if (CVodeGetLastStep(im.cvode, &h_last) == CV_SUCCESS) stats.last_step_size = h_last;
+    return STEWART_OK;
+}
+
+// Why a run from y did not take the whole step [0, h] (STEWART_OK when it did): a crossing of
+// pitch +-90 degrees, a leg driven toward zero length, a singular pose, accelerations out of
+// range, or the integrator's own failure or stop short of h.
+stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
+                           const RunEnd &end, char *msg, size_t size) {
+    const double *v = N_VGetArrayPointer(im.y);
+    const char *module = im.arkode ? "ARKODE" : "CVODE";
+    const double t_reached = static_cast<double>(end.t_reached);
+    if (end.pitch_crossed)
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion takes pitch through +-90 degrees near t + %g s (pitch = %g "
                            "rad there), where roll and yaw are undefined",
-                           static_cast<double>(t_reached), angles[1]);
-    if (flag == CV_ROOT_RETURN) flag = CV_TOO_MUCH_WORK;  // kMaxRoots jumps of the triple
-    if (flag < 0 || t_reached != forces.h) {
+                           t_reached, end.angles[1]);
+    // kMaxRoots jumps of the triple
+    const int flag = end.flag == CV_ROOT_RETURN ? CV_TOO_MUCH_WORK : end.flag;
+    if (flag < 0 || end.t_reached != h) {
         double length = 0;
         const int leg = collapsing_leg(*im.model, y, v, length);
         if (leg >= 0)
             return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                "unreachable, leg %d: the motion drives it toward zero length "
-                               "(%.3g m near t + %g s)", leg + 1, length,
-                               static_cast<double>(t_reached));
+                               "(%.3g m near t + %g s)", leg + 1, length, t_reached);
     }
     if (flag < 0) {
         if (im.fault != LegFault::None)
@@ -645,23 +687,61 @@ stewart_status Integrator::advance(double *y, const ForceProfile &forces,
                                im.fault == LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
                                                                 : STEWART_ERR_SINGULAR,
                                "the motion reaches a singular pose near t + %g s: leg %d %s",
-                               static_cast<double>(t_reached), im.fault_leg + 1,
-                               fault_text(im.fault));
+                               t_reached, im.fault_leg + 1, fault_text(im.fault));
         if (im.non_finite)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                "the accelerations are not finite or above 1e100 near t + %g s "
-                               "(forces or motion out of range)", static_cast<double>(t_reached));
+                               "(forces or motion out of range)", t_reached);
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                           "%s failed at t + %g s with %s: %s", module,
-                           static_cast<double>(t_reached), flag_name(flag), im.cvode_message);
+                           "%s failed at t + %g s with %s: %s", module, t_reached,
+                           flag_name(flag), im.cvode_message);
     }
     // a solver's success short of the end would be a step not taken (found with a saved step
     // hint of 4.9e-324 s)
-    if (t_reached != forces.h)
+    if (end.t_reached != h)
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "%s stopped at t + %g s, short of the step's end h = %g s", module,
-                           static_cast<double>(t_reached), forces.h);
-    return finish_step(y, forces.h, msg, size);
+                           t_reached, h);
+    return STEWART_OK;
+}
+
+}  // namespace
+
+Integrator::~Integrator() { delete impl_; }
+
+bool Integrator::init(const DynamicsModel *model, const stewart_plant_options &o, char *msg,
+                      size_t size, bool written_out, bool carry_end) {
+    impl_ = new (std::nothrow) IntegratorImpl;
+    if (!impl_) return set_message(msg, size, STEWART_ERR_MEMORY, "out of memory"), false;
+    IntegratorImpl &im = *impl_;
+    im.model = model;
+    im.n = state_count(*model);
+    im.carry_end = carry_end;
+    im.evaluation.fill_legs = false;  // massless: nothing reads its legs (end_evaluation())
+    if (!make_state_vector(im, msg, size)) return false;
+    return o.method == STEWART_PLANT_ERK || o.method == STEWART_PLANT_ERK5
+               ? init_arkode(im, o, written_out, msg, size)
+               : init_cvode(im, o, msg, size);
+}
+
+stewart_status Integrator::advance(double *y, const ForceProfile &forces, double &step_hint,
+                                   char *msg, size_t size, const double *start_angles) {
+    IntegratorImpl &im = *impl_;
+    start_advance(im, y, forces, start_angles);
+    stats_ = stewart_plant_statistics{};
+    RunEnd end;
+    stewart_status s;
+    if (im.arkode) {
+        const double first = first_step_size(im, forces.h, step_hint);
+        bool projected = false;
+        if (im.by_hand && written_out_step(im, y, forces, first, stats_, step_hint, projected))
+            return finish_step(y, forces.h, msg, size, projected);
+        s = run_arkode(im, forces.h, first, end, stats_, step_hint, msg, size);
+    } else {
+        s = run_cvode(im, forces.h, end, stats_, msg, size);
+    }
+    if (s == STEWART_OK) s = run_failure(im, y, forces.h, end, msg, size);
+    return s == STEWART_OK ? finish_step(y, forces.h, msg, size) : s;
 }
 
 stewart_status Integrator::finish_step(double *y, double h, char *msg, size_t size,
@@ -695,5 +775,5 @@ const Evaluation *Integrator::end_evaluation() const {
     return impl_ && impl_->end_valid ? &impl_->evaluation : nullptr;
 }
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -9,7 +9,7 @@
 #include "stewart/stewart_plant.h"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 // The six forces over one communication step [0, h]: linear between the end values, or cubic
 // Hermite when the end rates are known.
@@ -85,5 +85,5 @@ private:
     stewart_plant_statistics stats_{};
 };
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -11,7 +11,7 @@
 #include "plant/plant_equations.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 namespace {
 
@@ -44,79 +44,76 @@ inline void times_transposed(const Mat3 &A, const double v[3], double r[3]) {
     for (int i = 0; i < 3; ++i) r[i] = A(0, i) * v[0] + A(1, i) * v[1] + A(2, i) * v[2];
 }
 
-}  // namespace
-
-bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
-                         Evaluation &e) {
-    const Mat3 &R = m.rotation;
-    const double w[3] = {m.omega[0], m.omega[1], m.omega[2]};
-    const double com[3] = {d.platform_com[0], d.platform_com[1], d.platform_com[2]};
-    double c[3];
-    times(R, com, c);
-    // The gyroscopic moment in the platform's axes, w_b x (I w_b) with w_b = R^T w: the world's
-    // w x (R I R^T w) turned back, without forming the world inertia R I R^T.
-    double w_body[3], I_w_body[3], gyroscopic[3];
-    times_transposed(R, w, w_body);
-    times(d.platform_inertia, w_body, I_w_body);
-    cross(w_body, I_w_body, gyroscopic);
-    // The legs' axial forces, their sum and their moments about the origin (place_leg with
-    // leg_configuration's axis and length; R b summed from the left as plant_bodies' rotate).
-    // Each leg's arithmetic in its own lane (one leg per element of the arrays below): loops over
-    // the six legs that the compiler turns into two-wide vector operations (-fvect-cost-model
-    // in csrc/CMakeLists.txt), each lane the same IEEE operations in the same order as one leg
-    // alone, so the same bits; the sums over the legs stay in leg order.
-    const LegParameters &legs = d.legs;
+// Each leg's arm R b, axis n, length, its inverse, and its axial force and moment about the
+// origin (place_leg with leg_configuration's axis and length; R b summed from the left as
+// plant_bodies' rotate), one leg per element of the arrays.
+struct LegLanes {
     double arm[3][STEWART_LEGS], n[3][STEWART_LEGS], length[STEWART_LEGS];
-    double inverse_length[STEWART_LEGS], axial[3][STEWART_LEGS], moment_k[3][STEWART_LEGS];
+    double inverse_length[STEWART_LEGS], axial[3][STEWART_LEGS], moment[3][STEWART_LEGS];
+};
+
+// The legs' lanes at the platform pose (R, position) under the forces. Each leg's arithmetic in
+// its own lane: loops over the six legs that the compiler turns into two-wide vector operations
+// (-fvect-cost-model in csrc/CMakeLists.txt), each lane the same IEEE operations in the same
+// order as one leg alone, so the same bits.
+[[gnu::always_inline]] inline void leg_lanes(const DynamicsModel &d, const Mat3 &R,
+                                             const Vec3 &position,
+                                             const double force[STEWART_LEGS], LegLanes &l) {
     const double(&b)[3][STEWART_LEGS] = d.platform_point_rows;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         double dv[3];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
-            arm[i][k] = R(i, 0) * b[0][k] + R(i, 1) * b[1][k] + R(i, 2) * b[2][k];
-            dv[i] = m.position[i] + arm[i][k] - d.base_point_rows[i][k];
+            l.arm[i][k] = R(i, 0) * b[0][k] + R(i, 1) * b[1][k] + R(i, 2) * b[2][k];
+            dv[i] = position[i] + l.arm[i][k] - d.base_point_rows[i][k];
         }
-        length[k] = std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
-        inverse_length[k] = 1.0 / length[k];
+        l.length[k] = std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+        l.inverse_length[k] = 1.0 / l.length[k];
         #pragma GCC unroll 3
-        for (int i = 0; i < 3; ++i) n[i][k] = dv[i] * inverse_length[k];
+        for (int i = 0; i < 3; ++i) l.n[i][k] = dv[i] * l.inverse_length[k];
         // arm x n, as cross()
-        moment_k[0][k] = arm[1][k] * n[2][k] - arm[2][k] * n[1][k];
-        moment_k[1][k] = arm[2][k] * n[0][k] - arm[0][k] * n[2][k];
-        moment_k[2][k] = arm[0][k] * n[1][k] - arm[1][k] * n[0][k];
+        l.moment[0][k] = l.arm[1][k] * l.n[2][k] - l.arm[2][k] * l.n[1][k];
+        l.moment[1][k] = l.arm[2][k] * l.n[0][k] - l.arm[0][k] * l.n[2][k];
+        l.moment[2][k] = l.arm[0][k] * l.n[1][k] - l.arm[1][k] * l.n[0][k];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
-            axial[i][k] = force[k] * n[i][k];
-            moment_k[i][k] = force[k] * moment_k[i][k];
+            l.axial[i][k] = force[k] * l.n[i][k];
+            l.moment[i][k] = force[k] * l.moment[i][k];
         }
     }
-    for (int k = 0; k < STEWART_LEGS; ++k)
-        if (!(length[k] > legs.min_length)) {  // the first leg without a direction
-            e.fault = LegFault::ZeroLength;
-            e.fault_leg = k;
-            return false;
-        }
-    double legs_force[3] = {0, 0, 0}, legs_moment[3] = {0, 0, 0};
+}
+
+// The legs' total force and moment about the origin, summed in leg order; e's legs (when it
+// fills them) from the lanes.
+[[gnu::always_inline]] inline void sum_legs(const LegLanes &l, double legs_force[3],
+                                            double legs_moment[3], Evaluation &e) {
     for (int k = 0; k < STEWART_LEGS; ++k) {
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
-            legs_force[i] += axial[i][k];
-            legs_moment[i] += moment_k[i][k];
+            legs_force[i] += l.axial[i][k];
+            legs_moment[i] += l.moment[i][k];
         }
     }
     for (int k = 0; k < STEWART_LEGS && e.fill_legs; ++k) {
         LegConfiguration &leg = e.legs[k];
         #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
-            leg.arm[i] = arm[i][k];
-            leg.n[i] = n[i][k];
+            leg.arm[i] = l.arm[i][k];
+            leg.n[i] = l.n[i][k];
         }
-        leg.length = length[k];
-        leg.inverse_length = inverse_length[k];
+        leg.length = l.length[k];
+        leg.inverse_length = l.inverse_length[k];
     }
-    // One rigid body about its centre of mass: I_b alpha_b = R^T (T_legs - c x F_legs) - w_b x
-    // I_b w_b (gravity and the centripetal force act at the centre: no moment about it), and the
-    // origin's a = g + F_legs / m - w x (w x c) - alpha x c.
+}
+
+// One rigid body about its centre of mass c (world axes): I_b alpha_b = R^T (T_legs - c x
+// F_legs) - w_b x I_b w_b (gravity and the centripetal force act at the centre: no moment about
+// it), and the origin's a = g + F_legs / m - w x (w x c) - alpha x c, into e's twist rate.
+[[gnu::always_inline]] inline void rigid_body_rate(const DynamicsModel &d, const Mat3 &R,
+                                                   const double w[3], const double c[3],
+                                                   const double gyroscopic[3],
+                                                   const double legs_force[3],
+                                                   const double legs_moment[3], Evaluation &e) {
     double c_F[3], moment[3], local[3], local_alpha[3], alpha[3], alpha_c[3], wc[3], wwc[3];
     cross(c, legs_force, c_F);
     #pragma GCC unroll 3
@@ -137,10 +134,38 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
         e.kept.legs_force[i] = legs_force[i];
         e.kept.legs_moment[i] = legs_moment[i];
     }
+}
+
+}  // namespace
+
+bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double force[STEWART_LEGS],
+                         Evaluation &e) {
+    const Mat3 &R = m.rotation;
+    const double w[3] = {m.omega[0], m.omega[1], m.omega[2]};
+    const double com[3] = {d.platform_com[0], d.platform_com[1], d.platform_com[2]};
+    double c[3];
+    times(R, com, c);
+    // The gyroscopic moment in the platform's axes, w_b x (I w_b) with w_b = R^T w: the world's
+    // w x (R I R^T w) turned back, without forming the world inertia R I R^T.
+    double w_body[3], I_w_body[3], gyroscopic[3];
+    times_transposed(R, w, w_body);
+    times(d.platform_inertia, w_body, I_w_body);
+    cross(w_body, I_w_body, gyroscopic);
+    LegLanes lanes;
+    leg_lanes(d, R, m.position, force, lanes);
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        if (!(lanes.length[k] > d.legs.min_length)) {  // the first leg without a direction
+            e.fault = LegFault::ZeroLength;
+            e.fault_leg = k;
+            return false;
+        }
+    double legs_force[3] = {0, 0, 0}, legs_moment[3] = {0, 0, 0};
+    sum_legs(lanes, legs_force, legs_moment, e);
+    rigid_body_rate(d, R, w, c, gyroscopic, legs_force, legs_moment, e);
     e.fault = LegFault::None;
     e.fault_leg = -1;
     return true;
 }
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

@@ -1,5 +1,5 @@
 // The plant object's fields, shared by the files of its C API (plant_api.cpp: life cycle and
-// step; plant_derivatives.cpp: the state's time derivatives). Not part of the public API.
+// step; plant_derivatives_api.cpp: the state's time derivatives). Not part of the public API.
 #pragma once
 
 #include "limits/limit_check.hpp"
@@ -8,18 +8,19 @@
 #include "stewart/stewart_plant.h"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 constexpr double kMinCosPitch = 1e-9;  // roll and yaw rates are undefined at pitch = +-90 deg
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart
 
 struct stewart_plant {
     const stewart_model *model = nullptr;
     stewart_plant_options options{};
-    stewart::fd::DynamicsModel dynamics;
-    stewart::fd::Integrator integrator;
+    stewart::plant::DynamicsModel dynamics;
+    stewart::plant::Integrator integrator;
     double time = 0;
-    double y[stewart::fd::kMaxStates] = {0};  // the platform, then the windings' currents (fd::state_count)
+    // the platform, then the windings' currents (plant::state_count)
+    double y[stewart::plant::kMaxStates] = {0};
     double angles[3] = {0};  // roll, pitch, yaw of the state, continuous from step to step
     double force[STEWART_LEGS] = {0};  // at the current time (the end of the last step)
     int warnings = 0;
@@ -29,7 +30,7 @@ struct stewart_plant {
     stewart::LimitClearance limit_clearance;
     // What the last step found at y that the next one needs at its start (valid false after
     // anything else set y): p + R b_k - a_k of every leg, as the step's zero-length test forms
-    // them, and y's principal roll, pitch, yaw (fd::principal_angles, the integrator's start)
+    // them, and y's principal roll, pitch, yaw (plant::principal_angles, the integrator's start)
     double leg_vectors[STEWART_LEGS][3] = {};
     double principal_angles[3] = {0, 0, 0};
     bool step_end_valid = false;
@@ -41,4 +42,4 @@ struct stewart_plant {
 // The legs' forces and drive outputs of o (force, current, voltage, motor speed and torque,
 // electrical power, the drive-limit bits) at the evaluation e of the inputs (plant_api.cpp).
 void plant_drive_outputs(const stewart_plant &p, const double *input,
-                         const stewart::fd::Evaluation &e, stewart_plant_output &o);
+                         const stewart::plant::Evaluation &e, stewart_plant_output &o);

@@ -1,7 +1,7 @@
 #include "plant/plant_reactions.hpp"
 
 namespace stewart {
-namespace fd {
+namespace plant {
 
 namespace {
 
@@ -76,5 +76,5 @@ bool leg_reactions(const DynamicsModel &d, int k, const LegConfiguration &leg,
     return true;
 }
 
-}  // namespace fd
+}  // namespace plant
 }  // namespace stewart

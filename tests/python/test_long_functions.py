@@ -34,3 +34,17 @@ def test_c_cpp_and_python_functions_over_the_length(tmp_path):
     assert [(n, where.split(":")[0], name) for n, where, name in rows] == [
         (95, "csrc/x/a.cpp", "stewart_long"), (90, "fmu/m.c", "main"),
         (86, "python/pkg/p.py", "long_one"), (81, "csrc/x/a.cpp", "member")]
+
+
+def test_exit_status_says_whether_any_function_is_over(tmp_path, capsys):
+    """The gate's status (ctest long_function_gate): 1 with a function over the length, and 0
+    once it is split, with the count printed either way."""
+    (tmp_path / "csrc").mkdir()
+    source = tmp_path / "csrc" / "a.c"
+    source.write_text(c_function("long_one", 81))
+    assert long_functions.main([str(tmp_path)]) == 1
+    assert capsys.readouterr().out.endswith("1 functions over 80 lines\n")
+    source.write_text(c_function("first_half", 41) + c_function("second_half", 41))
+    assert long_functions.main([str(tmp_path)]) == 0
+    assert capsys.readouterr().out == "0 functions over 80 lines\n"
+    assert long_functions.main(["--over", "40", str(tmp_path)]) == 1

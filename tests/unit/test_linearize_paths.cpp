@@ -14,7 +14,7 @@
 #include "model.hpp"
 #include "unity.h"
 
-namespace fd = stewart::fd;
+namespace plant = stewart::plant;
 namespace lin = stewart::lin;
 
 namespace {
@@ -40,7 +40,7 @@ struct Block {
 };
 
 void paths_agree(int fidelity) {
-    const fd::DynamicsModel d = fd::dynamics_model(*model, fidelity);
+    const plant::DynamicsModel d = plant::dynamics_model(*model, fidelity);
     uint64_t rng = 0x9a7b5u + static_cast<uint64_t>(fidelity);
     // q_ddot, A's q and q_dot blocks, B, C's L and L_dot rows.
     Block blocks[6];

@@ -20,7 +20,7 @@
 #include "stewart/stewart.h"
 #include "unity.h"
 
-namespace fd = stewart::fd;
+namespace plant = stewart::plant;
 
 namespace {
 
@@ -35,7 +35,7 @@ double uniform(uint64_t &state, double a, double b) {
 
 // A state near home: position within 3 cm, a rotation of up to 0.1 rad about a random axis,
 // velocity up to 0.02 m/s, angular velocity up to 0.05 rad/s.
-void random_state(uint64_t &rng, double y[fd::kStates]) {
+void random_state(uint64_t &rng, double y[plant::kStates]) {
     y[0] = uniform(rng, -0.03, 0.03);
     y[1] = uniform(rng, -0.03, 0.03);
     y[2] = params.home_height + uniform(rng, -0.03, 0.03);
@@ -52,7 +52,7 @@ void random_state(uint64_t &rng, double y[fd::kStates]) {
 // Forces at step n of a run: static ones plus a swing of 40 N, a jump of up to 400 N every 40
 // steps (the steps the adaptive control splits or rejects), linear or Hermite by the step's
 // parity.
-void forces_at(int n, double phase, fd::ForceProfile &p) {
+void forces_at(int n, double phase, plant::ForceProfile &p) {
     auto force = [&](int step, int k) {
         const double jump = (step / 40) % 2 ? 400.0 * std::sin(phase + k) : 0.0;
         return static_force[k] + 40.0 * std::sin(0.05 * step + phase + k) + jump;
@@ -76,26 +76,26 @@ void same_bits(const char *what, const void *a, const void *b, size_t size, int 
 
 // carry_end: the written-out integrator in the plant's mode (see the header).
 void written_out_equals_arkode(int fidelity, int fixed_steps, bool carry_end) {
-    const fd::DynamicsModel d = fd::dynamics_model(*model, fidelity);
+    const plant::DynamicsModel d = plant::dynamics_model(*model, fidelity);
     stewart_plant_options o;
     stewart_plant_options_default(&o);
     o.fidelity = fidelity;
     o.fixed_steps = fixed_steps;
     char message[STEWART_MESSAGE_SIZE];
-    fd::Integrator written_out, arkode;
+    plant::Integrator written_out, arkode;
     TEST_ASSERT_TRUE_MESSAGE(written_out.init(&d, o, message, sizeof message, true, carry_end),
                              message);
     TEST_ASSERT_TRUE_MESSAGE(arkode.init(&d, o, message, sizeof message, false), message);
     uint64_t rng = 0x22b + 10 * static_cast<uint64_t>(fidelity) + fixed_steps;
     long calls = 0, multi_step_calls = 0, rejections = 0, carried = 0;
     for (int run = 0; run < 4; ++run) {
-        double y_a[fd::kStates], y_b[fd::kStates];
+        double y_a[plant::kStates], y_b[plant::kStates];
         random_state(rng, y_a);
         std::memcpy(y_b, y_a, sizeof y_a);
         double hint_a = 0, hint_b = 0;
         const double phase = uniform(rng, 0, 6.283);
         for (int n = 0; n < 250; ++n, ++calls) {
-            fd::ForceProfile p;
+            plant::ForceProfile p;
             forces_at(n, phase, p);
             // now and then a start that is not the last call's end: other start forces, or a
             // state moved (the carried end evaluation must not be taken then)
@@ -122,15 +122,16 @@ void written_out_equals_arkode(int fidelity, int fixed_steps, bool carry_end) {
             TEST_ASSERT_EQUAL_INT(b.last_order, a.last_order);
             same_bits("the last step size", &a.last_step_size, &b.last_step_size,
                       sizeof a.last_step_size, run, n);
-            const fd::Evaluation *e_a = written_out.end_evaluation(), *e_b = arkode.end_evaluation();
+            const plant::Evaluation *e_a = written_out.end_evaluation(),
+                                    *e_b = arkode.end_evaluation();
             TEST_ASSERT_EQUAL_INT(e_b != nullptr, e_a != nullptr);
             if (e_a && !carry_end)
                 same_bits("the end evaluation", e_a->twist_rate.data(), e_b->twist_rate.data(),
                           6 * sizeof(double), run, n);
             if (e_a && carry_end) {  // at the state returned, as a fresh evaluation there
                 TEST_ASSERT_NOT_NULL(e_b);
-                fd::Evaluation fresh;
-                TEST_ASSERT_TRUE(fd::twist_rate(d, fd::motion_of_state(y_a), p.end, fresh));
+                plant::Evaluation fresh;
+                TEST_ASSERT_TRUE(plant::twist_rate(d, plant::motion_of_state(y_a), p.end, fresh));
                 same_bits("the end evaluation (carry_end)", e_a->twist_rate.data(),
                           fresh.twist_rate.data(), 6 * sizeof(double), run, n);
             }

@@ -1,11 +1,11 @@
 // White-box test of the full plant's closed-form right-hand side for axisymmetric leg bodies
-// (fd::twist_rate for double, csrc/plant/plant_full_rhs.cpp) against the template formulation
-// it replaces (fd::twist_rate<double>, plant_equations_impl.hpp: every body's world inertia
+// (plant::twist_rate for double, csrc/plant/plant_full_rhs.cpp) against the template formulation
+// it replaces (plant::twist_rate<double>, plant_equations_impl.hpp: every body's world inertia
 // A diag A^T, the u-space mass blocks, the leg bodies' full motions), which stays the
 // formulation of the dual scalar (linearisation): on random states (any rotation, fast motion,
 // forces to 50 kN) the two twist rates agree within 1e-13 relative (each half, linear and
 // angular, against its own size) and agree on the same faults, and so do the base wrench in
-// closed form (fd::base_wrench of the motion: its leg terms found anew, and reused from the
+// closed form (plant::base_wrench of the motion: its leg terms found anew, and reused from the
 // right-hand side's kept terms) and base_wrench of the 13 bodies' motions; one 1 ms plant step
 // of each from random states near home within 1e-13 of the state's scale; the plant's step
 // outputs (base wrench from the end evaluation's kept terms) against stewart_plant_output_get at
@@ -23,7 +23,7 @@
 #include "stewart/stewart.h"
 #include "unity.h"
 
-namespace fd = stewart::fd;
+namespace plant = stewart::plant;
 
 namespace {
 
@@ -46,7 +46,7 @@ double relative(double difference, double scale) {
 }
 
 // The larger relative difference of the two halves (linear, angular) of the twist rates.
-double relative_difference(const fd::Evaluation &a, const fd::Evaluation &b) {
+double relative_difference(const plant::Evaluation &a, const plant::Evaluation &b) {
     double worst = 0;
     for (int half = 0; half < 2; ++half) {
         double scale = 0, difference = 0;
@@ -59,19 +59,19 @@ double relative_difference(const fd::Evaluation &a, const fd::Evaluation &b) {
     return worst;
 }
 
-// The base wrench in closed form (fd::base_wrench of the motion, with closed's configuration and
+// The base wrench in closed form (plant::base_wrench of the motion, with closed's configuration and
 // its kept terms if it kept them) against base_wrench of body_motions' 13 bodies, at the
 // platform's motion m with the twist rate of e: the larger relative difference of the force
 // and the torque.
-double base_wrench_difference(const fd::DynamicsModel &d, stewart::Motion m,
-                              const fd::Evaluation &e, const fd::Evaluation &closed) {
+double base_wrench_difference(const plant::DynamicsModel &d, stewart::Motion m,
+                              const plant::Evaluation &e, const plant::Evaluation &closed) {
     m.acceleration = e.twist_rate.head<3>();
     m.alpha = e.twist_rate.tail<3>();
     stewart::Motion bodies[13];
-    fd::body_motions(d, m, e, bodies);
-    fd::Vec3 force, torque, force_fast, torque_fast;
-    fd::base_wrench(d, bodies, force, torque);
-    fd::base_wrench(d, m, closed, force_fast, torque_fast);
+    plant::body_motions(d, m, e, bodies);
+    plant::Vec3 force, torque, force_fast, torque_fast;
+    plant::base_wrench(d, bodies, force, torque);
+    plant::base_wrench(d, m, closed, force_fast, torque_fast);
     if (!force_fast.allFinite() || !torque_fast.allFinite()) return INFINITY;
     return worse(relative((force_fast - force).lpNorm<Eigen::Infinity>(),
                           force.lpNorm<Eigen::Infinity>()),
@@ -88,23 +88,23 @@ stewart_model *make_model(const stewart_params &params) {
 
 // Both formulations on 20,000 random states: the worst relative difference (bound checked by the
 // caller) and the number of disagreements on whether (and where) a state is defined.
-double compare_twist_rates(const fd::DynamicsModel &d, bool same_bits_expected) {
+double compare_twist_rates(const plant::DynamicsModel &d, bool same_bits_expected) {
     uint64_t rng = 424242;
     double worst = 0, worst_wrench = 0, worst_kept = 0;
     int disagreements = 0, defined = 0;
     for (int n = 0; n < 20000; ++n) {
-        double y[fd::kStates], force[STEWART_LEGS];
+        double y[plant::kStates], force[STEWART_LEGS];
         y[0] = uniform(rng, -0.2, 0.2);
         y[1] = uniform(rng, -0.2, 0.2);
         y[2] = 1.0 + uniform(rng, -0.3, 0.3);
         for (int i = 3; i < 7; ++i) y[i] = uniform(rng, -1.5, 1.5);
         for (int i = 7; i < 13; ++i) y[i] = uniform(rng, -20, 20);
         for (double &f : force) f = uniform(rng, -5e4, 5e4);
-        const stewart::Motion m = fd::motion_of_state(y);
-        fd::Evaluation fast, reference;
+        const stewart::Motion m = plant::motion_of_state(y);
+        plant::Evaluation fast, reference;
         fast.keep_terms = true;
-        const bool a = fd::twist_rate(d, m, force, fast);
-        const bool b = fd::twist_rate<double>(d, m, force, reference);
+        const bool a = plant::twist_rate(d, m, force, fast);
+        const bool b = plant::twist_rate<double>(d, m, force, reference);
         if (a != b || fast.fault != reference.fault || fast.fault_leg != reference.fault_leg) {
             ++disagreements;
             continue;
@@ -131,21 +131,21 @@ double compare_twist_rates(const fd::DynamicsModel &d, bool same_bits_expected) 
 
 // One 1 ms step of the plant's integrator with each formulation from random states near home
 // under random forces around the static ones: the worst difference relative to max(1, |y_i|).
-double compare_steps(const fd::DynamicsModel &d) {
-    fd::DynamicsModel reference_model = d;
+double compare_steps(const plant::DynamicsModel &d) {
+    plant::DynamicsModel reference_model = d;
     reference_model.reference_equations = true;
     stewart_plant_options o;
     stewart_plant_options_default(&o);
     o.fidelity = STEWART_FULL;
     char message[STEWART_MESSAGE_SIZE];
-    fd::Integrator fast, reference;
+    plant::Integrator fast, reference;
     TEST_ASSERT_TRUE_MESSAGE(fast.init(&d, o, message, sizeof message), message);
     TEST_ASSERT_TRUE_MESSAGE(reference.init(&reference_model, o, message, sizeof message),
                              message);
     uint64_t rng = 2024;
     double worst = 0;
     for (int n = 0; n < 500; ++n) {
-        double y[fd::kStates] = {0}, y_ref[fd::kStates];
+        double y[plant::kStates] = {0}, y_ref[plant::kStates];
         y[0] = uniform(rng, -0.05, 0.05);
         y[1] = uniform(rng, -0.05, 0.05);
         y[2] = 1.0 + uniform(rng, -0.1, 0.1);
@@ -156,7 +156,7 @@ double compare_steps(const fd::DynamicsModel &d) {
         for (int i = 0; i < 3; ++i) y[4 + i] = std::sin(half) * axis[i] / std::sqrt(norm);
         for (int i = 7; i < 13; ++i) y[i] = uniform(rng, -0.5, 0.5);
         std::memcpy(y_ref, y, sizeof y);
-        fd::ForceProfile p;
+        plant::ForceProfile p;
         p.h = 1e-3;
         for (int k = 0; k < STEWART_LEGS; ++k) {
             p.start[k] = uniform(rng, 0, 3000);
@@ -168,7 +168,7 @@ double compare_steps(const fd::DynamicsModel &d) {
         const stewart_status b = reference.advance(y_ref, p, hint_ref, m_b, sizeof m_b);
         TEST_ASSERT_EQUAL_INT_MESSAGE(b, a, m_a);
         if (a != STEWART_OK) continue;
-        for (int i = 0; i < fd::kStates; ++i)
+        for (int i = 0; i < plant::kStates; ++i)
             worst = worse(worst, std::fabs(y[i] - y_ref[i]) / std::max(1.0, std::fabs(y_ref[i])));
     }
     std::printf("500 steps of 1 ms, worst difference %.3g of the state's scale\n", worst);
@@ -226,7 +226,7 @@ double compare_step_outputs(const stewart_model *model) {
             stewart_plant_output out, again;
             TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_plant_step(plant, &in, &out),
                                           stewart_plant_message(plant));
-            const fd::Evaluation *end = plant->integrator.end_evaluation();
+            const plant::Evaluation *end = plant->integrator.end_evaluation();
             if (end && end->terms_kept) ++reused;
             TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(plant, nullptr, &again));
             double force_scale = 0, torque_scale = 0, force_error = 0, torque_error = 0;
@@ -251,7 +251,7 @@ double compare_step_outputs(const stewart_model *model) {
 
 void check_platform(const stewart_params &params) {
     stewart_model *model = make_model(params);
-    const fd::DynamicsModel d = fd::dynamics_model(*model, STEWART_FULL);
+    const plant::DynamicsModel d = plant::dynamics_model(*model, STEWART_FULL);
     TEST_ASSERT_TRUE(d.cylinder_inertia[0] == d.cylinder_inertia[1]);  // the fast path's case
     TEST_ASSERT_TRUE(compare_twist_rates(d, false) <= kBound);
     TEST_ASSERT_TRUE(compare_steps(d) <= kBound);
@@ -289,7 +289,7 @@ void test_not_axisymmetric(void) {
     payload_off_centre(params);
     params.piston_inertia[1] = params.piston_inertia[0] + 0.5 * params.piston_inertia[2];
     stewart_model *model = make_model(params);
-    const fd::DynamicsModel d = fd::dynamics_model(*model, STEWART_FULL);
+    const plant::DynamicsModel d = plant::dynamics_model(*model, STEWART_FULL);
     compare_twist_rates(d, true);
     stewart_model_free(model);
 }

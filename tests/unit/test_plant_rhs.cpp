@@ -1,16 +1,17 @@
-// White-box test of the massless plant's written-out right-hand side (fd::massless_twist_rate,
-// csrc/plant/plant_massless.cpp) against the generic equations (fd::twist_rate<double> on the same
-// massless model: plant_equations_impl.hpp's assemble and one-body solve), a second formulation
-// of the same physics (the world inertia R I R^T and the moments of gravity and the legs about
-// the origin there; the platform's axes and moments about the centre of mass here): the legs'
-// arms, axes and lengths bit for bit, the twist rate within kRateBound of its terms' scale, and
-// one 1 ms ERK 4(3) step (plant_erk.hpp, fixed steps) from each within kStepBound of the state's
-// scale (the plant's agreed bound), and the base wrench from its leg sums (fd::base_wrench for
-// massless legs) against the bodies' momentum rates within kWrenchBound, on random states far
-// from home (any rotation, fast motion), random forces, with and without a payload off the platform's centre (a centre of mass off the
-// origin and a full inertia); the same fault for a leg of zero length; the state's rotation
-// (fd::motion_of_state, written out) against Eigen's quaternion, bit for bit; and the pitch
-// root's pre-test (fd::near_level_turn) against the full crossing test.
+// White-box test of the massless plant's written-out right-hand side (plant::massless_twist_rate,
+// csrc/plant/plant_massless.cpp) against the generic equations (plant::twist_rate<double> on the
+// same massless model: plant_equations_impl.hpp's assemble and one-body solve), a second
+// formulation of the same physics (the world inertia R I R^T and the moments of gravity and the
+// legs about the origin there; the platform's axes and moments about the centre of mass here): the
+// legs' arms, axes and lengths bit for bit, the twist rate within kRateBound of its terms' scale,
+// and one 1 ms ERK 4(3) step (plant_erk.hpp, fixed steps) from each within kStepBound of the
+// state's scale (the plant's agreed bound), and the base wrench from its leg sums
+// (plant::base_wrench for massless legs) against the bodies' momentum rates within kWrenchBound, on
+// random states far from home (any rotation, fast motion), random forces, with and without a
+// payload off the platform's centre (a centre of mass off the origin and a full inertia); the same
+// fault for a leg of zero length; the state's rotation (plant::motion_of_state, written out)
+// against Eigen's quaternion, bit for bit; and the pitch root's pre-test (plant::near_level_turn)
+// against the full crossing test.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -23,7 +24,7 @@
 #include "stewart/stewart.h"
 #include "unity.h"
 
-namespace fd = stewart::fd;
+namespace plant = stewart::plant;
 
 namespace {
 
@@ -54,7 +55,8 @@ double norm3(const double *v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2
 
 // The scale of a twist rate's terms: |g| + (sum |F| + |the centripetal and angular terms|) for
 // the linear part, |I^-1| (sum |F| |arm| + |w|^2 |I|) for the angular part, over the platform.
-void rate_scales(const fd::DynamicsModel &d, const stewart::Motion &m, const fd::Evaluation &e,
+void rate_scales(const plant::DynamicsModel &d, const stewart::Motion &m,
+                 const plant::Evaluation &e,
                  const double force[STEWART_LEGS], double &linear, double &angular) {
     double forces = 0, moments = 0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
@@ -69,12 +71,13 @@ void rate_scales(const fd::DynamicsModel &d, const stewart::Motion &m, const fd:
 }
 
 // Both evaluations of one state: the number of values out of their bounds; worst updated.
-int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const double force[6],
+int differences(const plant::DynamicsModel &d, const double y[plant::kStates],
+                const double force[6],
                 Worst &worst) {
-    const stewart::Motion m = fd::motion_of_state(y);
-    fd::Evaluation generic, written;
-    const bool a = fd::twist_rate<double>(d, m, force, generic);
-    const bool b = fd::massless_twist_rate(d, m, force, written);
+    const stewart::Motion m = plant::motion_of_state(y);
+    plant::Evaluation generic, written;
+    const bool a = plant::twist_rate<double>(d, m, force, generic);
+    const bool b = plant::massless_twist_rate(d, m, force, written);
     if (a != b) return 1;
     if (!a) return generic.fault == written.fault && generic.fault_leg == written.fault_leg ? 0 : 1;
     int count = 0;
@@ -86,7 +89,7 @@ int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const d
         worst.rate = std::fmax(worst.rate, off);
         count += !(off <= kRateBound);
     }
-    // The base wrench: the written-out evaluation's leg sums (fd::base_wrench's closed form for
+    // The base wrench: the written-out evaluation's leg sums (plant::base_wrench's closed form for
     // massless legs) against minus the 13 bodies' momentum rates less gravity at the generic
     // evaluation's accelerations; scale: the platform's largest force and moment terms.
     stewart::Motion mw = m, mg = m;
@@ -94,11 +97,11 @@ int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const d
     mw.alpha = written.twist_rate.tail<3>();
     mg.acceleration = generic.twist_rate.head<3>();
     mg.alpha = generic.twist_rate.tail<3>();
-    fd::Vec3 f_closed, t_closed, f_bodies, t_bodies;
-    fd::base_wrench(d, mw, written, f_closed, t_closed);
+    plant::Vec3 f_closed, t_closed, f_bodies, t_bodies;
+    plant::base_wrench(d, mw, written, f_closed, t_closed);
     stewart::Motion bodies[STEWART_PLANT_BODIES];
-    fd::body_motions(d, mg, generic, bodies);
-    fd::base_wrench<double>(d, bodies, f_bodies, t_bodies);
+    plant::body_motions(d, mg, generic, bodies);
+    plant::base_wrench<double>(d, bodies, f_bodies, t_bodies);
     double reach = d.platform_com.norm();
     for (int k = 0; k < STEWART_LEGS; ++k) reach = std::fmax(reach, generic.legs[k].arm.norm());
     const double force_scale = d.platform_mass * linear;
@@ -111,7 +114,7 @@ int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const d
         count += !(off_f <= kWrenchBound) + !(off_t <= kWrenchBound);
     }
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const fd::LegConfiguration &g = generic.legs[k], &w = written.legs[k];
+        const plant::LegConfiguration &g = generic.legs[k], &w = written.legs[k];
         for (int i = 0; i < 3; ++i)
             count += !same_bits(g.arm[i], w.arm[i]) + !same_bits(g.n[i], w.n[i]);
         count += !same_bits(g.length, w.length) + !same_bits(g.inverse_length, w.inverse_length);
@@ -121,17 +124,17 @@ int differences(const fd::DynamicsModel &d, const double y[fd::kStates], const d
 
 // The plant's state derivative (plant_integrator.cpp's state_rate) by either formulation.
 struct StepModel {
-    const fd::DynamicsModel *model;
+    const plant::DynamicsModel *model;
     const double *force;
     bool written;
 };
 
 int state_rate(double, const double *y, double *y_dot, void *user) {
     const StepModel &s = *static_cast<const StepModel *>(user);
-    fd::Evaluation e;
-    const stewart::Motion m = fd::motion_of_state(y);
-    if (!(s.written ? fd::massless_twist_rate(*s.model, m, s.force, e)
-                    : fd::twist_rate<double>(*s.model, m, s.force, e)))
+    plant::Evaluation e;
+    const stewart::Motion m = plant::motion_of_state(y);
+    if (!(s.written ? plant::massless_twist_rate(*s.model, m, s.force, e)
+                    : plant::twist_rate<double>(*s.model, m, s.force, e)))
         return 1;
     const double w = y[3], x = y[4], yy = y[5], z = y[6], ox = y[10], oy = y[11], oz = y[12];
     for (int i = 0; i < 3; ++i) y_dot[i] = y[7 + i];
@@ -147,29 +150,29 @@ double no_root(const double *, void *) { return 1; }
 
 // One 1 ms step of ERK 4(3) with `steps` fixed steps from y by both formulations: the number of
 // states out of kStepBound; worst updated.
-int step_differences(const fd::DynamicsModel &d, const double y[fd::kStates],
+int step_differences(const plant::DynamicsModel &d, const double y[plant::kStates],
                      const double force[6], int steps, Worst &worst) {
-    fd::ErkTable table;
-    TEST_ASSERT_TRUE(fd::load_erk_table(ARKODE_ZONNEVELD_5_3_4, table));
-    fd::ErkControl control;
+    plant::ErkTable table;
+    TEST_ASSERT_TRUE(plant::load_erk_table(ARKODE_ZONNEVELD_5_3_4, table));
+    plant::ErkControl control;
     control.fixed_steps = steps;
     control.max_steps = 10;
-    fd::ErkWork work;
-    double out[2][fd::kStates];
+    plant::ErkWork work;
+    double out[2][plant::kStates];
     bool done[2];
     for (int written = 0; written < 2; ++written) {
         StepModel s{&d, force, written != 0};
         done[written] =
-            fd::erk_advance(table, control, work, 1e-3, y, 1, state_rate, no_root, &s, out[written])
-                .done;
+            plant::erk_advance(table, control, work, 1e-3, y, 1, state_rate, no_root, &s,
+                               out[written]).done;
     }
     // a leg through zero length: the step fails by both formulations or by neither
     if (done[0] != done[1]) return 1;
     if (!done[0]) return 0;
     double scale = 1;
-    for (int i = 0; i < fd::kStates; ++i) scale = std::fmax(scale, std::fabs(out[0][i]));
+    for (int i = 0; i < plant::kStates; ++i) scale = std::fmax(scale, std::fabs(out[0][i]));
     int count = 0;
-    for (int i = 0; i < fd::kStates; ++i) {
+    for (int i = 0; i < plant::kStates; ++i) {
         const double off = std::fabs(out[0][i] - out[1][i]) / scale;
         worst.step = std::fmax(worst.step, off);
         count += !(off <= kStepBound);
@@ -181,12 +184,12 @@ void check_model(const stewart_params &params) {
     char message[STEWART_MESSAGE_SIZE];
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
     TEST_ASSERT_NOT_NULL_MESSAGE(model, message);
-    const fd::DynamicsModel d = fd::dynamics_model(*model, STEWART_MASSLESS);
+    const plant::DynamicsModel d = plant::dynamics_model(*model, STEWART_MASSLESS);
     uint64_t rng = 12345;
     int differing = 0, step_differing = 0;
     Worst worst;
     for (int n = 0; n < 20000; ++n) {
-        double y[fd::kStates], force[STEWART_LEGS];
+        double y[plant::kStates], force[STEWART_LEGS];
         y[0] = uniform(rng, -0.2, 0.2);
         y[1] = uniform(rng, -0.2, 0.2);
         y[2] = params.home_height + uniform(rng, -0.2, 0.2);
@@ -198,16 +201,16 @@ void check_model(const stewart_params &params) {
         if (n % 10 == 0) step_differing += step_differences(d, y, force, 1 + n % 3, worst);
     }
     // A leg of zero length: the platform point of leg 1 on its base point.
-    double y[fd::kStates] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-    const fd::Vec3 gap = d.legs.base_points.col(0) - d.legs.platform_points.col(0);
+    double y[plant::kStates] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const plant::Vec3 gap = d.legs.base_points.col(0) - d.legs.platform_points.col(0);
     for (int i = 0; i < 3; ++i) y[i] = gap[i];
     const double zero[STEWART_LEGS] = {0};
     differing += differences(d, y, zero, worst);
     for (int steps = 1; steps <= 3; ++steps)  // each step fails at its first right-hand side
         step_differing += step_differences(d, y, zero, steps, worst);
-    stewart::Motion m = fd::motion_of_state(y);
-    fd::Evaluation e;
-    TEST_ASSERT_FALSE(fd::massless_twist_rate(d, m, zero, e));
+    stewart::Motion m = plant::motion_of_state(y);
+    plant::Evaluation e;
+    TEST_ASSERT_FALSE(plant::massless_twist_rate(d, m, zero, e));
     TEST_ASSERT_EQUAL_INT(0, e.fault_leg);
     stewart_model_free(model);
     std::printf("twist rate off by %.3g of its scale, one step by %.3g of the state's, the base "
@@ -216,25 +219,25 @@ void check_model(const stewart_params &params) {
     TEST_ASSERT_EQUAL_INT(0, step_differing);
 }
 
-// fd::motion_of_state's rotation, written out, against Eigen's quaternion (which it copies), bit
+// plant::motion_of_state's rotation, written out, against Eigen's quaternion (which it copies), bit
 // for bit, on unnormalised quaternions of any rotation and scale.
 void test_rotation_of_state(void) {
     uint64_t rng = 777;
     int differing = 0;
     for (int n = 0; n < 100000; ++n) {
-        double y[fd::kStates] = {0};
+        double y[plant::kStates] = {0};
         const double scale = std::pow(10.0, uniform(rng, -3, 3));
         for (int i = 3; i < 7; ++i) y[i] = scale * uniform(rng, -1, 1);
         Eigen::Quaterniond q(y[3], y[4], y[5], y[6]);
         q.normalize();
-        const fd::Mat3 expected = q.toRotationMatrix(), R = fd::motion_of_state(y).rotation;
+        const plant::Mat3 expected = q.toRotationMatrix(), R = plant::motion_of_state(y).rotation;
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) differing += !same_bits(expected(i, j), R(i, j));
     }
     TEST_ASSERT_EQUAL_INT(0, differing);
 }
 
-// fd::near_level_turn (the pitch root's pre-test) against the full crossing test: wherever it
+// plant::near_level_turn (the pitch root's pre-test) against the full crossing test: wherever it
 // holds, the principal angles are finite and crosses_pitch_limit is false. Starts anywhere up to
 // +-90 degrees of pitch, end states turned by up to 0.3 rad about random axes (the pre-test's
 // edge is 0.1 rad from a start within 1.2 rad of level), quaternions of any scale and sign.
@@ -252,15 +255,15 @@ void test_pitch_pre_test(void) {
         const Eigen::Quaterniond turn(Eigen::AngleAxisd(uniform(rng, 0, 0.3), axis.normalized()));
         const Eigen::Quaterniond q1 = turn * q0;
         const double s0 = std::pow(10.0, uniform(rng, -2, 2)), s1 = uniform(rng, -3, 3);
-        double start[fd::kStates] = {0}, y[fd::kStates] = {0};
+        double start[plant::kStates] = {0}, y[plant::kStates] = {0};
         const double c0[4] = {q0.w(), q0.x(), q0.y(), q0.z()}, c1[4] = {q1.w(), q1.x(), q1.y(), q1.z()};
         for (int i = 0; i < 4; ++i) start[3 + i] = s0 * c0[i], y[3 + i] = s1 * c1[i];
         double before[3], after[3];
-        fd::principal_angles(start, before);
-        fd::principal_angles(y, after);
-        if (!fd::near_level_turn(start, before[1], y)) continue;
+        plant::principal_angles(start, before);
+        plant::principal_angles(y, after);
+        if (!plant::near_level_turn(start, before[1], y)) continue;
         ++held;
-        wrong += !std::isfinite(after[1]) || fd::crosses_pitch_limit(before, after);
+        wrong += !std::isfinite(after[1]) || plant::crosses_pitch_limit(before, after);
     }
     std::printf("the pitch pre-test held on %d of 200,000 turns\n", held);
     TEST_ASSERT_EQUAL_INT(0, wrong);
@@ -286,14 +289,14 @@ void test_angle_rates_of_rotation(void) {
         const Eigen::Quaterniond q = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
                                      Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
                                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
-        double y[fd::kStates] = {0, 0, 0, q.w(), q.x(), q.y(), q.z()};
+        double y[plant::kStates] = {0, 0, 0, q.w(), q.x(), q.y(), q.z()};
         for (int i = 10; i < 13; ++i) y[i] = uniform(rng, -20, 20);
-        const stewart::Motion m = fd::motion_of_state(y);
+        const stewart::Motion m = plant::motion_of_state(y);
         double angles[3];
-        fd::principal_angles(y, angles);
+        plant::principal_angles(y, angles);
         angles[2] += 2 * M_PI * std::round(uniform(rng, -3, 3));  // a continuous yaw
         const double cp = std::cos(angles[1]);
-        const fd::Vec3 old_rates = stewart::angle_rate_matrix(cp, std::sin(angles[1]),
+        const plant::Vec3 old_rates = stewart::angle_rate_matrix(cp, std::sin(angles[1]),
                                                               std::cos(angles[2]),
                                                               std::sin(angles[2]))
                                        .inverse() *
