@@ -118,6 +118,23 @@ void bind_model(nb::module_ &m) {
         });
     });
     m.attr("PLATFORM_FILE_MAX_BYTES") = STEWART_PLATFORM_FILE_MAX_BYTES;
+    // (length, angle): the units a platform file writes in (stewart_platform_file_units; ""
+    // where it states none); ValueError with the library's message.
+    m.def("platform_file_units", [](const std::string &path) {
+        stewart_file_units units;
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_platform_file_units(path.c_str(), &units, message, sizeof message) != STEWART_OK)
+            fail(message);
+        return std::make_pair(std::string(units.length), std::string(units.angle));
+    });
+    // (SI unit, what an SI value is multiplied by to be in name), or None for a name that is no
+    // unit (stewart_unit_per_si).
+    m.def("unit_per_si", [](const std::string &name) -> std::optional<std::pair<std::string, double>> {
+        double per_si = 0;
+        const char *si = stewart_unit_per_si(name.c_str(), &per_si);
+        if (!si) return std::nullopt;
+        return std::make_pair(std::string(si), per_si);
+    });
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {
         stewart_params scratch;
