@@ -97,6 +97,12 @@ void bind_model(nb::module_ &m) {
         stewart_model_joints(model.get(), base.data(), platform.data());
         return std::make_pair(base, platform);
     });
+    // The tool frame the model uses (x, y, z [m], angles [rad] in the frames the parameters are
+    // given in, as stewart_model_joints' joints): every element, however it was set.
+    m.def("model_tool_frame", [](const Model &model) {
+        const double *t = stewart_model_params(model.get())->tool_frame;
+        return std::vector<double>(t, t + 6);
+    });
     // The drive's inertia seen on each leg's axis [kg] (stewart_model_reflected_mass).
     m.def("model_reflected_mass", [](const Model &model) {
         std::vector<double> mass(STEWART_LEGS);
