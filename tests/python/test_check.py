@@ -35,9 +35,9 @@ def si_joints(path):
         return None
 
 
-def write_variant(tmp_path, name, change):
-    """A copy of platforms/paired_hexapod.json with change(data) applied."""
-    data = json.loads((ROOT / "platforms" / "paired_hexapod.json").read_text())
+def write_variant(tmp_path, name, change, machine="paired_hexapod"):
+    """A copy of platforms/MACHINE.json with change(data) applied."""
+    data = json.loads((ROOT / "platforms" / f"{machine}.json").read_text())
     change(data)
     path = tmp_path / f"{name}.json"
     path.write_text(json.dumps(data))
@@ -71,11 +71,17 @@ def test_the_check_report_agrees_with_the_library():
     np.testing.assert_array_equal(report.ranges.ends, platform.axis_ranges(report.home, details=True).ends)
 
 
-def test_joints_in_millimetres_are_named(tmp_path):
+# The entry mistakes on a machine of each kind: a positioning hexapod, the precision hexapod with
+# its far pivot, the motion simulator.
+MISTAKE_MACHINES = ["paired_hexapod", "rubin_camera_hexapod", "simona_motion_base"]
+
+
+@pytest.mark.parametrize("machine", MISTAKE_MACHINES)
+def test_joints_in_millimetres_are_named(tmp_path, machine):
     def to_mm(data):
         data["base_joint"] = [1000 * v for v in data["base_joint"]]
         data["platform_joint"] = [1000 * v for v in data["platform_joint"]]
-    path = write_variant(tmp_path, "mm", to_mm)
+    path = write_variant(tmp_path, "mm", to_mm, machine)
     report = stewart.Platform.from_file(path).check()
     assert not report.valid and "units" in report.hints
     result = solve("--check", path)
@@ -83,22 +89,24 @@ def test_joints_in_millimetres_are_named(tmp_path):
     assert "units?" in result.stdout and "NOT a valid pose" in result.stdout
 
 
-def test_swapped_legs_are_named(tmp_path):
+@pytest.mark.parametrize("machine", MISTAKE_MACHINES)
+def test_swapped_legs_are_named(tmp_path, machine):
     def swap(data):
         p = data["platform_joint"]
         data["platform_joint"] = p[3:6] + p[0:3] + p[6:]
-    path = write_variant(tmp_path, "swapped", swap)
+    path = write_variant(tmp_path, "swapped", swap, machine)
     report = stewart.Platform.from_file(path).check()
     assert "swapped_legs" in report.hints and report.crossing == (1, 2), report.text
     assert "Legs 1 and 2 cross" in solve("--check", path).stdout
 
 
-def test_platform_joints_in_the_base_frame_are_named(tmp_path):
+@pytest.mark.parametrize("machine", MISTAKE_MACHINES)
+def test_platform_joints_in_the_base_frame_are_named(tmp_path, machine):
     def in_base_frame(data):
         p = np.reshape(data["platform_joint"], (6, 3))
         p[:, 2] += data["home_height"]
         data["platform_joint"] = p.ravel().tolist()
-    path = write_variant(tmp_path, "base_frame", in_base_frame)
+    path = write_variant(tmp_path, "base_frame", in_base_frame, machine)
     report = stewart.Platform.from_file(path).check()
     assert "frame" in report.hints and not report.valid, report.text
     assert "frame?" in solve("--check", path).stdout
