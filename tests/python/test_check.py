@@ -197,6 +197,35 @@ def test_static_poses_get_static_forces(tmp_path):
     assert refused.returncode == 1 and "--static" in refused.stderr
 
 
+def test_static_poses_of_a_precision_hexapod_carry_its_weight(tmp_path):
+    """The Rubin camera hexapod (3.4 t on its legs) at home, moved, and at home again, rows with
+    times but no derivatives: with --static the home rows' forces hold the weight, sum F_k n_kz
+    = (platform_mass + payload_mass) g with n_k from the joints; without it the rows are a
+    trajectory, differentiated, and row 0's forces are dynamic ones."""
+    path = stewart.platform_files()["rubin_camera_hexapod"]
+    base, top, h = si_joints(path)
+    data = json.loads(pathlib.Path(path).read_text())
+    top = top + [0, 0, h]
+    n_z = (top - base)[:, 2] / np.linalg.norm(top - base, axis=1)
+    weight = (data["platform_mass"] + data["payload_mass"]) * 9.81
+    home = stewart.Platform.from_file(path).check().home
+    poses = np.array([home, home + [0.005, 0, 0.004, 0, 0.002, 0], home])
+    infile = tmp_path / "in.csv"
+    infile.write_text("t,x,y,z,roll,pitch,yaw\n" + "".join(
+        f"{0.1 * i},{','.join(repr(float(v)) for v in p)}\n" for i, p in enumerate(poses)))
+    forces = {}
+    for extra in ([], ["--static"]):
+        out = tmp_path / f"out{len(extra)}.csv"
+        result = solve(*extra, "--platform", path, infile, out)
+        assert result.returncode == 0, result.stderr
+        header, rows = read_out(out)
+        forces[len(extra)] = np.array([[float(r[header.index(f"F{k}")]) for k in range(1, 7)]
+                                       for r in rows])
+    for j in (0, 2):
+        assert abs(forces[1][j] @ n_z - weight) < 1e-9 * weight
+    assert abs(forces[0][0] @ n_z - weight) > 0.01 * weight  # differentiated: not at rest
+
+
 # ---- the check in the file's units -------------------------------------------------------------
 
 NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
