@@ -11,6 +11,7 @@
 #include "kinematics/frames.hpp"
 #include "model.hpp"
 #include "stewart/stewart_check.h"
+#include "stewart/stewart_platform_file.h"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -93,19 +94,32 @@ void add(std::string &out, const char *format, ...) {
     out += line;
 }
 
-// A class's margin in the text's units: degrees for the joint angles.
-double shown_margin(int limit_class, double margin) {
-    const bool angle = limit_class == STEWART_LIMIT_BASE_JOINT ||
-                       limit_class == STEWART_LIMIT_PLATFORM_JOINT;
-    return angle ? margin * 180.0 / M_PI : margin;
-}
+// The units the text is in: SI values are multiplied by length or angle (stewart_unit_per_si).
+struct Shown {
+    double length = 1.0, angle = 1.0;
+    const char *length_name = "m", *angle_name = "deg";
+    // An axis' value (x, y, z a length, the rest angles) and its unit.
+    double axis(int a, double v) const { return v * (a < 3 ? length : angle); }
+    const char *axis_unit(int a) const { return a < 3 ? length_name : angle_name; }
+};
 
-const char *margin_unit(int limit_class) {
+// A class's margin in the text's units and its unit ("" for the condition number).
+double shown_margin(const Shown &u, int limit_class, double margin) {
     switch (limit_class) {
         case STEWART_LIMIT_STROKE:
-        case STEWART_LIMIT_INTERFERENCE: return " m";
+        case STEWART_LIMIT_INTERFERENCE: return margin * u.length;
         case STEWART_LIMIT_BASE_JOINT:
-        case STEWART_LIMIT_PLATFORM_JOINT: return " deg";
+        case STEWART_LIMIT_PLATFORM_JOINT: return margin * u.angle;
+        default: return margin;
+    }
+}
+
+std::string margin_unit(const Shown &u, int limit_class) {
+    switch (limit_class) {
+        case STEWART_LIMIT_STROKE:
+        case STEWART_LIMIT_INTERFERENCE: return std::string(" ") + u.length_name;
+        case STEWART_LIMIT_BASE_JOINT:
+        case STEWART_LIMIT_PLATFORM_JOINT: return std::string(" ") + u.angle_name;
         default: return "";
     }
 }
@@ -125,54 +139,57 @@ std::string limit_at(int limit_class, int leg, int other_leg) {
 }
 
 // The axis class: its margin in its axis' unit and the axis' name, or that no axis has a limit.
-void add_axis_margin(const stewart_limits_output &limits, std::string &out) {
+void add_axis_margin(const stewart_limits_output &limits, const Shown &u, std::string &out) {
     const int a = limits.leg[STEWART_LIMIT_AXIS - 1] - 1;
     const double margin = limits.margin[STEWART_LIMIT_AXIS - 1];
     if (a < 0 || a >= 6 || !(std::fabs(margin) < 0.5 * DBL_MAX))
         return add(out, "  %-15s none set (axis_min, axis_max)\n",
                    stewart_limit_class_name(STEWART_LIMIT_AXIS));
-    add(out, "  %-15s %-12.6g%-5s %s\n", stewart_limit_class_name(STEWART_LIMIT_AXIS),
-        a < 3 ? margin : margin * 180.0 / M_PI, a < 3 ? " m" : " deg", kAxes[a]);
+    add(out, "  %-15s %-12.6g %-4s %s\n", stewart_limit_class_name(STEWART_LIMIT_AXIS),
+        u.axis(a, margin), u.axis_unit(a), kAxes[a]);
 }
 
-void add_legs_and_margins(const stewart_check_report &r, std::string &out) {
-    add(out, "home pose: x %.6g m, y %.6g m, z %.6g m, roll %.6g deg, pitch %.6g deg, yaw %.6g deg\n",
-        r.home[0], r.home[1], r.home[2], r.home[3] * 180.0 / M_PI, r.home[4] * 180.0 / M_PI,
-        r.home[5] * 180.0 / M_PI);
-    add(out, "leg  length [m]     stroke [m]                    to the nearer end [m]\n");
+void add_legs_and_margins(const stewart_check_report &r, const Shown &u, std::string &out) {
+    out += "home pose:";
+    for (int a = 0; a < 6; ++a)
+        add(out, "%s %s %.6g %s", a ? "," : "", kAxes[a], u.axis(a, r.home[a]), u.axis_unit(a));
+    const std::string unit = std::string("[") + u.length_name + "]";
+    add(out, "\nleg  length %-7s stroke %-22s to the nearer end %s\n", unit.c_str(),
+        unit.c_str(), unit.c_str());
     for (int k = 0; k < 6; ++k) {
         const double margin = std::min(r.length[k] - r.stroke_min[k], r.stroke_max[k] - r.length[k]);
-        add(out, "%d    %-13.7g  %-12.7g .. %-12.7g   %.6g%s\n", k + 1, r.length[k],
-            r.stroke_min[k], r.stroke_max[k], margin, margin < 0 ? "  (outside)" : "");
+        add(out, "%d    %-13.7g  %-12.7g .. %-12.7g   %.6g%s\n", k + 1, r.length[k] * u.length,
+            r.stroke_min[k] * u.length, r.stroke_max[k] * u.length, margin * u.length,
+            margin < 0 ? "  (outside)" : "");
     }
     add(out, "margins at home (> 0 within, < 0 beyond):\n");
     // The pose's own classes: home is at rest, so the leg classes have nothing to check.
     for (int c = 1; c < STEWART_LIMIT_AXIS; ++c)
         add(out, "  %-15s %-12.6g%-5s %s\n", stewart_limit_class_name(c),
-            shown_margin(c, r.limits.margin[c - 1]), margin_unit(c),
+            shown_margin(u, c, r.limits.margin[c - 1]), margin_unit(u, c).c_str(),
             legs_of(r.limits.leg[c - 1], r.limits.other_leg[c - 1]).c_str());
-    add_axis_margin(r.limits, out);
+    add_axis_margin(r.limits, u, out);
     add(out, "  condition number %.6g\n", r.limits.condition);
 }
 
-void add_ranges(const stewart_check_report &r, std::string &out) {
+void add_ranges(const stewart_check_report &r, const Shown &u, std::string &out) {
     add(out, "axis ranges from home (the other five axes held):\n");
     for (int a = 0; a < 6; ++a) {
-        const double scale = a < 3 ? 1.0 : 180.0 / M_PI;
-        add(out, "  %-5s %.6g .. %.6g %s  (%s / %s)\n", kAxes[a], r.ranges.min[a] * scale,
-            r.ranges.max[a] * scale, a < 3 ? "m" : "deg",
+        add(out, "  %-5s %.6g .. %.6g %s  (%s / %s)\n", kAxes[a], u.axis(a, r.ranges.min[a]),
+            u.axis(a, r.ranges.max[a]), u.axis_unit(a),
             limit_at(r.ranges.min_limit[a], r.ranges.min_leg[a], r.ranges.min_other_leg[a]).c_str(),
             limit_at(r.ranges.max_limit[a], r.ranges.max_leg[a], r.ranges.max_other_leg[a]).c_str());
     }
 }
 
-void add_hints(const stewart_check_report &r, std::string &out) {
+void add_hints(const stewart_check_report &r, const Shown &u, std::string &out) {
     if (r.hints & STEWART_CHECK_UNITS)
-        add(out, "hint: units? The legs (%.6g to %.6g m at home) do not fit the strokes or the "
-                 "joints (spread %.6g m): are the joints, home_height and the strokes all in the "
-                 "same unit (metres, or the file's \"units\")?\n",
-            *std::min_element(r.length, r.length + 6), *std::max_element(r.length, r.length + 6),
-            r.joint_spread);
+        add(out, "hint: units? The legs (%.6g to %.6g %s at home) do not fit the strokes or the "
+                 "joints (spread %.6g %s): are the joints, home_height and the strokes all in "
+                 "the same unit (metres, or the file's \"units\")?\n",
+            *std::min_element(r.length, r.length + 6) * u.length, u.length_name,
+            *std::max_element(r.length, r.length + 6) * u.length, r.joint_spread * u.length,
+            u.length_name);
     if (r.hints & STEWART_CHECK_SWAPPED_LEGS)
         add(out, "hint: swapped legs? Legs %d and %d cross each other (seen from above): leg k "
                  "joins base_joint k to platform_joint k; check the order of both lists.\n",
@@ -182,6 +199,15 @@ void add_hints(const stewart_check_report &r, std::string &out) {
                  "equals home_height: platform_joint is in the platform frame (its origin moves "
                  "with the platform, at home_height above the base frame's at home), with z toward "
                  "the platform from the base. Ignore this if the platform hangs below its base.\n");
+}
+
+// name (NULL or "": keep the default) as the text's unit of the SI unit si; false if it is not one.
+bool set_unit(const char *name, const char *si, double &factor, const char *&shown_name) {
+    if (!name || !*name) return true;
+    const char *its_si = stewart_unit_per_si(name, &factor);
+    if (!its_si || std::strcmp(its_si, si)) return false;
+    shown_name = name;
+    return true;
 }
 
 }  // namespace
@@ -223,19 +249,30 @@ stewart_status stewart_check_home(const stewart_model *model,
 }
 
 size_t stewart_check_text(const stewart_check_report *report, char *text, size_t size) {
+    return stewart_check_text_in(report, nullptr, nullptr, text, size);
+}
+
+size_t stewart_check_text_in(const stewart_check_report *report, const char *length_unit,
+                             const char *angle_unit, char *text, size_t size) {
+    Shown u;
+    if (!set_unit(length_unit, "m", u.length, u.length_name) ||
+        !set_unit(angle_unit, "rad", u.angle, u.angle_name)) {
+        if (text && size > 0) text[0] = '\0';
+        return 0;
+    }
     std::string out;
     if (!report) {
         out = "no report\n";
     } else {
-        add_legs_and_margins(*report, out);
-        add_ranges(*report, out);
+        add_legs_and_margins(*report, u, out);
+        add_ranges(*report, u, out);
         if (report->valid)
             out += "home is within every limit.\n";
         else
             add(out, "home is NOT a valid pose: the first limit it fails is %s.\n",
                 limit_at(report->limits.first, report->limits.leg[report->limits.first - 1],
                          report->limits.other_leg[report->limits.first - 1]).c_str());
-        add_hints(*report, out);
+        add_hints(*report, u, out);
     }
     if (text && size > 0) {
         const size_t n = std::min(out.size(), size - 1);

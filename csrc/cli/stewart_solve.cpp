@@ -69,7 +69,8 @@ int usage(FILE *to) {
                  "           too (leg_speed, leg_accel from the rows' derivatives, leg_force from F)\n"
                  "           [m/s, m/s^2, m/s^3, N]; --ranges: and each axis' range, the others\n"
                  "           held: x_min,x_max, ..., yaw_max\n"
-                 "  --units: OUT.csv's lengths (m, mm, um) and angles (rad, deg, mrad, urad), e.g.\n"
+                 "  --units: OUT.csv's lengths (m, cm, mm, um, nm, in) and angles (rad, deg, mrad,\n"
+                 "           urad), e.g.\n"
                  "           mm,deg (default m,rad; forces, conditions, margin_axis and the drive columns\n"
                  "           stay SI)\n"
                  "  --view: and OUT.html (or PAGE.html), the run in 3D in a browser, self-contained\n"
@@ -89,10 +90,13 @@ int usage(FILE *to) {
     print_options(to, kForwardOptions);
     std::fprintf(to,
                  "usage: stewart-solve --check FILE.json [--platform FILE.json] [--param "
-                 "NAME=VALUE ...]\n"
+                 "NAME=VALUE ...] [--units mm,deg]\n"
                  "  prints the home pose against every limit, the axis ranges and hints on entry "
                  "mistakes;\n"
-                 "  exit status 1 when home is not a valid pose (docs/geometry.md)\n");
+                 "  exit status 1 when home is not a valid pose (docs/geometry.md); in FILE.json's "
+                 "units (its\n"
+                 "  \"units\", else the unit its values are written in; else m and deg), or "
+                 "those --units names\n");
     return to == stderr ? 2 : 0;
 }
 
@@ -195,7 +199,9 @@ struct Request {
     stewart_params params;
     const char *paths[2] = {nullptr, nullptr};
     bool forward = false, cold = false, check = false, at_rest = false;
-    bool limits = false, report = false, ranges = false, units_given = false, view = false;
+    bool limits = false, report = false, ranges = false, view = false;
+    const char *check_path = nullptr;  // --check's file: the report is in its units
+    const char *units_given = nullptr;  // --units' text
     std::string view_path;  // --view=PAGE.html; "": OUT.html
     stewart::OutputUnits units;
     double guess[6];
@@ -270,6 +276,7 @@ int parse(int argc, char **argv, Request &r) {
         {"--check", "FILE.json",
          [&](const char *v) {
              r.check = true;
+             r.check_path = v;
              return stewart::read_platform_file("stewart-solve", v, r.params) ? 0 : 2;
          }},
         {"--limits", nullptr, [&](const char *) { return r.limits = true, 0; }},
@@ -278,7 +285,7 @@ int parse(int argc, char **argv, Request &r) {
         stewart::view_option("stewart-solve", r.view, r.view_path),
         {"--units", "mm,deg",
          [&](const char *v) {
-             r.units_given = true;
+             r.units_given = v;
              return stewart::parse_output_units("stewart-solve", v, r.units) ? 0 : 2;
          }},
         {"--fidelity", "kinematic|massless|full",
@@ -320,8 +327,15 @@ int run_check(const Request &r) {
         std::fprintf(stderr, "stewart-solve: --check: %s\n", message);
         return 1;
     }
-    std::string text(stewart_check_text(&report, nullptr, 0) + 1, '\0');
-    stewart_check_text(&report, text.data(), text.size());
+    // The file's units, those --units names over them; m and deg where neither says.
+    stewart::OutputUnits units;
+    if (!stewart::parse_output_units("stewart-solve", "m,deg", units) ||
+        !stewart::file_output_units("stewart-solve --check", r.check_path, units) ||
+        (r.units_given && !stewart::parse_output_units("stewart-solve", r.units_given, units)))
+        return 2;
+    const char *length = units.length_name.c_str(), *angle = units.angle_name.c_str();
+    std::string text(stewart_check_text_in(&report, length, angle, nullptr, 0) + 1, '\0');
+    stewart_check_text_in(&report, length, angle, text.data(), text.size());
     std::fputs(text.c_str(), stdout);
     return report.valid ? 0 : 1;
 }
@@ -505,11 +519,6 @@ int main(int argc, char **argv) {
     Request r;
     const int code = parse(argc, argv, r);
     if (code >= 0) return code;
-    if (r.check && r.units_given) {  // not silently ignored
-        std::fprintf(stderr, "stewart-solve: --units is for OUT.csv; the --check report is in "
-                     "m and deg\n");
-        return 2;
-    }
     if (r.view && (r.check || r.forward || *stewart::view_page_missing())) {
         std::fprintf(stderr, "stewart-solve: --view: %s\n",
                      *stewart::view_page_missing() ? stewart::view_page_missing()

@@ -393,3 +393,64 @@ extern "C" stewart_status stewart_params_read_json_file(stewart_params *params, 
         return set_message(msg, size, STEWART_ERR_PARAMETER, "%s", why.c_str());
     return stewart_params_read_json(params, text.data(), text.size(), given, msg, size);
 }
+
+namespace {
+
+// One unit of a kind for the file: "units" wins; else the values' own unit if they all use one.
+struct UnitVotes {
+    const stewart::Unit *stated = nullptr, *written = nullptr;
+    bool mixed = false;
+    void add(const stewart::Unit *u) {
+        if (written && written != u) mixed = true;
+        written = u;
+    }
+    const char *name() const {
+        return stated ? stated->name : written && !mixed ? written->name : "";
+    }
+};
+
+void copy_name(char (&to)[8], const char *name) {
+    std::strncpy(to, name, sizeof to - 1);
+    to[sizeof to - 1] = '\0';
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_platform_file_units(const char *path, stewart_file_units *units,
+                                                      char *msg, size_t size) {
+    if (!path || !units) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
+    std::string text, why;
+    std::vector<JsonField> fields;
+    int line = 0, column = 0;
+    if (!read_regular_file(path, text, why))
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "%s", why.c_str());
+    if (!stewart::read_json_fields(text.data(), text.size(), "units", fields, why, line, column))
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "line %d column %d: %s", line,
+                           column, why.c_str());
+    UnitVotes length, angle;
+    for (const JsonField &f : fields) {
+        for (const auto &m : f.value.members) {  // "units": {"length": "mm", ...}
+            const stewart::Unit *u = stewart::find_unit(m.second);
+            if (u && f.name == "units") (std::strcmp(u->si, "m") ? angle : length).stated = u;
+        }
+        std::vector<JsonItem> items = f.value.items;
+        if (f.value.kind == JsonValue::Text && f.name != "description")  // "12.5 mm" alone
+            items.push_back({f.value.text, true});
+        for (const JsonItem &x : items) {
+            std::string number, name;
+            if (!x.quoted || !stewart::split_quantity(x.text, number, name)) continue;
+            const stewart::Unit *u = stewart::find_unit(name);
+            if (u) (std::strcmp(u->si, "m") ? angle : length).add(u);
+        }
+    }
+    copy_name(units->length, length.name());
+    copy_name(units->angle, angle.name());
+    return stewart::clear_message(msg, size);
+}
+
+extern "C" const char *stewart_unit_per_si(const char *name, double *per_si) {
+    const stewart::Unit *u = name ? stewart::find_unit(name) : nullptr;
+    if (!u) return nullptr;
+    if (per_si) *per_si = u->per_si;
+    return u->si;
+}

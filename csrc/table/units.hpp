@@ -12,6 +12,7 @@ struct Unit {
     const char *si;     // the SI unit it converts to: "m" or "rad"
     int decimal_shift;  // a power-of-ten prefix: the number's exponent moves by it (exact)
     double factor;      // then multiplied by this (1 for m, mm, rad, ...; pi/180 for deg)
+    double per_si;      // what an SI value is multiplied by to be in this unit (printing)
 };
 
 // The unit named `name` (any of "m cm mm um µm nm in rad mrad urad µrad deg"), or nullptr.

@@ -115,8 +115,10 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
         fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.lease.solver)).c_str());
 }
 
-// The home check of stewart_check.h: its numbers and its text, in a dict.
-nb::dict check_home(const Model &model, std::optional<double> warn_condition) {
+// The home check of stewart_check.h: its numbers and its text (lengths in length_unit, angles in
+// angle_unit: names of stewart_unit_per_si, "" for m and deg), in a dict.
+nb::dict check_home(const Model &model, std::optional<double> warn_condition,
+                    const std::string &length_unit, const std::string &angle_unit) {
     stewart_limits_options options;
     stewart_limits_options_default(&options);
     if (warn_condition) options.warn_condition = *warn_condition;
@@ -124,8 +126,11 @@ nb::dict check_home(const Model &model, std::optional<double> warn_condition) {
     char message[STEWART_MESSAGE_SIZE];
     if (stewart_check_home(model.get(), &options, &r, message, sizeof message) != STEWART_OK)
         fail(message);
-    std::string text(stewart_check_text(&r, nullptr, 0) + 1, '\0');
-    stewart_check_text(&r, text.data(), text.size());
+    const char *length = length_unit.c_str(), *angle = angle_unit.c_str();
+    const size_t needed = stewart_check_text_in(&r, length, angle, nullptr, 0);
+    if (needed == 0) fail(("not a length and an angle unit: " + length_unit + ", " + angle_unit).c_str());
+    std::string text(needed + 1, '\0');
+    stewart_check_text_in(&r, length, angle, text.data(), text.size());
     text.resize(text.size() - 1);
     auto values = [](const double *v) { return std::vector<double>(v, v + 6); };
     nb::dict d;
@@ -151,7 +156,8 @@ void bind_limits(nb::module_ &m) {
     m.def("limits_ranges", &limits_ranges, nb::arg("model"), nb::arg("q"),
           nb::arg("warn_condition").none(), nb::arg("ends"), nb::arg("limit"), nb::arg("leg"),
           nb::arg("other_leg"));
-    m.def("check_home", &check_home, nb::arg("model"), nb::arg("warn_condition").none());
+    m.def("check_home", &check_home, nb::arg("model"), nb::arg("warn_condition").none(),
+          nb::arg("length_unit"), nb::arg("angle_unit"));
     m.attr("CHECK_UNITS") = STEWART_CHECK_UNITS;
     m.attr("CHECK_SWAPPED_LEGS") = STEWART_CHECK_SWAPPED_LEGS;
     m.attr("CHECK_FRAME") = STEWART_CHECK_FRAME;

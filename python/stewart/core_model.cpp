@@ -97,6 +97,12 @@ void bind_model(nb::module_ &m) {
         stewart_model_joints(model.get(), base.data(), platform.data());
         return std::make_pair(base, platform);
     });
+    // The tool frame the model uses (x, y, z [m], angles [rad] in the frames the parameters are
+    // given in, as stewart_model_joints' joints): every element, however it was set.
+    m.def("model_tool_frame", [](const Model &model) {
+        const double *t = stewart_model_params(model.get())->tool_frame;
+        return std::vector<double>(t, t + 6);
+    });
     // The drive's inertia seen on each leg's axis [kg] (stewart_model_reflected_mass).
     m.def("model_reflected_mass", [](const Model &model) {
         std::vector<double> mass(STEWART_LEGS);
@@ -118,6 +124,23 @@ void bind_model(nb::module_ &m) {
         });
     });
     m.attr("PLATFORM_FILE_MAX_BYTES") = STEWART_PLATFORM_FILE_MAX_BYTES;
+    // (length, angle): the units a platform file writes in (stewart_platform_file_units; ""
+    // where it states none); ValueError with the library's message.
+    m.def("platform_file_units", [](const std::string &path) {
+        stewart_file_units units;
+        char message[STEWART_MESSAGE_SIZE];
+        if (stewart_platform_file_units(path.c_str(), &units, message, sizeof message) != STEWART_OK)
+            fail(message);
+        return std::make_pair(std::string(units.length), std::string(units.angle));
+    });
+    // (SI unit, what an SI value is multiplied by to be in name), or None for a name that is no
+    // unit (stewart_unit_per_si).
+    m.def("unit_per_si", [](const std::string &name) -> std::optional<std::pair<std::string, double>> {
+        double per_si = 0;
+        const char *si = stewart_unit_per_si(name.c_str(), &per_si);
+        if (!si) return std::nullopt;
+        return std::make_pair(std::string(si), per_si);
+    });
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {
         stewart_params scratch;

@@ -61,8 +61,10 @@ def smallest_margins(platform, result: LimitCheck) -> np.ndarray:
     margin in m and one in rad are never compared as numbers."""
     smallest = result.margin.min(axis=0)
     if len(result.margin):
+        # the model's own joints and tool frame (both in the frames the parameters are given
+        # in), not the parameters as given: an element set alone counts too
         _, top = _core.model_joints(platform._model)
-        tool = np.broadcast_to(platform.params.get("tool_frame", 0.0), (6,))[:3]
+        tool = np.array(_core.model_tool_frame(platform._model))[:3]
         arm = float(np.linalg.norm(np.reshape(top, (6, 3)) - tool, axis=1).max()) or 1.0
         axis = result.margin[:, 5]
         with np.errstate(over="ignore"):

@@ -10,7 +10,7 @@ import numpy as np
 
 from . import _core
 from .arrays import LEG_LAYOUT, POSE_LAYOUT, rows6, times, vector
-from .check import HomeCheck, check_home
+from .check import HomeCheck, check_home, text_units
 from .choices import Fidelity
 from .errors import ParameterError
 from .forward import ForwardSolution, run_forward
@@ -35,6 +35,7 @@ class Platform:
 
     def __init__(self, **params: ParameterValue) -> None:
         self._params: dict[str, ParameterValue] = dict(params)
+        self._file_units = ("", "")  # (length, angle) of the file read, for printing in them
         try:
             self._model = _core.Model(parameter_assignments(self._params))
         except ParameterError:
@@ -54,7 +55,9 @@ class Platform:
         for name, value in params.items():
             merged.pop(name, None)  # given again: placed after the file's, so it wins
             merged[name] = value
-        return cls(**merged)
+        platform = cls(**merged)
+        platform._file_units = tuple(_core.platform_file_units(os.fsdecode(os.fspath(path))))
+        return platform
 
     @property
     def params(self) -> Mapping[str, ParameterValue]:
@@ -66,7 +69,7 @@ class Platform:
         return f"Platform({inner})"
 
     def __reduce__(self):
-        return (_rebuild, (self._params,))
+        return (_rebuild, (self._params, self._file_units))
 
     def inverse(self, poses, rates=None, accels=None,
                 fidelity: Union[Fidelity, int, str] = Fidelity.MASSLESS, *,
@@ -202,13 +205,18 @@ class Platform:
         return check_limits(self._model, q, _warn_condition(warn_condition), *derivatives,
                             forces)
 
-    def check(self, *, warn_condition: Optional[float] = None) -> HomeCheck:
+    def check(self, *, warn_condition: Optional[float] = None,
+              units: Optional[str] = None) -> HomeCheck:
         """The check to run first on a new platform file: the home pose's leg lengths against
         the strokes, the margin to every limit class, the condition number, the axis ranges
         from home, whether home is a valid pose, and hints that name a likely entry mistake
         ("units", "swapped_legs", "frame"); print() it for the report of `stewart-solve
-        --check` (docs/geometry.md)."""
-        return check_home(self._model, _warn_condition(warn_condition))
+        --check` (docs/geometry.md). The report's numbers are SI; its text is in the units of
+        the file read by from_file (its "units", else the unit its values are written in; m
+        and deg where it states none), or in units ("mm,deg", either alone; as `--units`).
+        ValueError names a word of units that is not a unit."""
+        shown = text_units(self._file_units, units)
+        return check_home(self._model, _warn_condition(warn_condition), shown)
 
     def axis_ranges(self, poses, *, warn_condition: Optional[float] = None,
                     details: bool = False) -> Union[np.ndarray, AxisRanges]:
@@ -307,5 +315,7 @@ def _warn_condition(value: Optional[float]) -> Optional[float]:
     return pairs[0][1]
 
 
-def _rebuild(params: dict) -> Platform:
-    return Platform(**params)
+def _rebuild(params: dict, file_units: tuple = ("", "")) -> Platform:
+    platform = Platform(**params)
+    platform._file_units = file_units
+    return platform

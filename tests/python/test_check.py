@@ -6,6 +6,7 @@ import csv
 import json
 import pathlib
 import subprocess
+from decimal import Decimal
 
 import numpy as np
 import pytest
@@ -34,9 +35,9 @@ def si_joints(path):
         return None
 
 
-def write_variant(tmp_path, name, change):
-    """A copy of platforms/paired_hexapod.json with change(data) applied."""
-    data = json.loads((ROOT / "platforms" / "paired_hexapod.json").read_text())
+def write_variant(tmp_path, name, change, machine="paired_hexapod"):
+    """A copy of platforms/MACHINE.json with change(data) applied."""
+    data = json.loads((ROOT / "platforms" / f"{machine}.json").read_text())
     change(data)
     path = tmp_path / f"{name}.json"
     path.write_text(json.dumps(data))
@@ -70,11 +71,17 @@ def test_the_check_report_agrees_with_the_library():
     np.testing.assert_array_equal(report.ranges.ends, platform.axis_ranges(report.home, details=True).ends)
 
 
-def test_joints_in_millimetres_are_named(tmp_path):
+# The entry mistakes on a machine of each kind: a positioning hexapod, the precision hexapod with
+# its far pivot, the motion simulator.
+MISTAKE_MACHINES = ["paired_hexapod", "rubin_camera_hexapod", "simona_motion_base"]
+
+
+@pytest.mark.parametrize("machine", MISTAKE_MACHINES)
+def test_joints_in_millimetres_are_named(tmp_path, machine):
     def to_mm(data):
         data["base_joint"] = [1000 * v for v in data["base_joint"]]
         data["platform_joint"] = [1000 * v for v in data["platform_joint"]]
-    path = write_variant(tmp_path, "mm", to_mm)
+    path = write_variant(tmp_path, "mm", to_mm, machine)
     report = stewart.Platform.from_file(path).check()
     assert not report.valid and "units" in report.hints
     result = solve("--check", path)
@@ -82,22 +89,24 @@ def test_joints_in_millimetres_are_named(tmp_path):
     assert "units?" in result.stdout and "NOT a valid pose" in result.stdout
 
 
-def test_swapped_legs_are_named(tmp_path):
+@pytest.mark.parametrize("machine", MISTAKE_MACHINES)
+def test_swapped_legs_are_named(tmp_path, machine):
     def swap(data):
         p = data["platform_joint"]
         data["platform_joint"] = p[3:6] + p[0:3] + p[6:]
-    path = write_variant(tmp_path, "swapped", swap)
+    path = write_variant(tmp_path, "swapped", swap, machine)
     report = stewart.Platform.from_file(path).check()
     assert "swapped_legs" in report.hints and report.crossing == (1, 2), report.text
     assert "Legs 1 and 2 cross" in solve("--check", path).stdout
 
 
-def test_platform_joints_in_the_base_frame_are_named(tmp_path):
+@pytest.mark.parametrize("machine", MISTAKE_MACHINES)
+def test_platform_joints_in_the_base_frame_are_named(tmp_path, machine):
     def in_base_frame(data):
         p = np.reshape(data["platform_joint"], (6, 3))
         p[:, 2] += data["home_height"]
         data["platform_joint"] = p.ravel().tolist()
-    path = write_variant(tmp_path, "base_frame", in_base_frame)
+    path = write_variant(tmp_path, "base_frame", in_base_frame, machine)
     report = stewart.Platform.from_file(path).check()
     assert "frame" in report.hints and not report.valid, report.text
     assert "frame?" in solve("--check", path).stdout
@@ -186,3 +195,151 @@ def test_static_poses_get_static_forces(tmp_path):
                       "0,0,0,0.5,0,0,0,0.1,0,0,0,0,0\n")
     refused = solve("--static", moving, outfile)
     assert refused.returncode == 1 and "--static" in refused.stderr
+
+
+def test_static_poses_of_a_precision_hexapod_carry_its_weight(tmp_path):
+    """The Rubin camera hexapod (3.4 t on its legs) at home, moved, and at home again, rows with
+    times but no derivatives: with --static the home rows' forces hold the weight, sum F_k n_kz
+    = (platform_mass + payload_mass) g with n_k from the joints; without it the rows are a
+    trajectory, differentiated, and row 0's forces are dynamic ones."""
+    path = stewart.platform_files()["rubin_camera_hexapod"]
+    base, top, h = si_joints(path)
+    data = json.loads(pathlib.Path(path).read_text())
+    top = top + [0, 0, h]
+    n_z = (top - base)[:, 2] / np.linalg.norm(top - base, axis=1)
+    weight = (data["platform_mass"] + data["payload_mass"]) * 9.81
+    home = stewart.Platform.from_file(path).check().home
+    poses = np.array([home, home + [0.005, 0, 0.004, 0, 0.002, 0], home])
+    infile = tmp_path / "in.csv"
+    infile.write_text("t,x,y,z,roll,pitch,yaw\n" + "".join(
+        f"{0.1 * i},{','.join(repr(float(v)) for v in p)}\n" for i, p in enumerate(poses)))
+    forces = {}
+    for extra in ([], ["--static"]):
+        out = tmp_path / f"out{len(extra)}.csv"
+        result = solve(*extra, "--platform", path, infile, out)
+        assert result.returncode == 0, result.stderr
+        header, rows = read_out(out)
+        forces[len(extra)] = np.array([[float(r[header.index(f"F{k}")]) for k in range(1, 7)]
+                                       for r in rows])
+    for j in (0, 2):
+        assert abs(forces[1][j] @ n_z - weight) < 1e-9 * weight
+    assert abs(forces[0][0] @ n_z - weight) > 0.01 * weight  # differentiated: not at rest
+
+
+# ---- the check in the file's units -------------------------------------------------------------
+
+NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
+
+def _in_units(data, length, angle, as_strings=False):
+    """data (SI, as a platform file gives it) with every length times `length` (a power of ten),
+    every angle times `angle`, by the parameter table's units; as_strings writes "12.5 mm" and
+    "0.4 deg" values instead of plain numbers."""
+    units = {p["name"]: p["unit"] for p in stewart.parameters()}
+    out = {}
+    for name, value in data.items():
+        unit = units.get(name)
+        kinds = {"m": ["m"], "rad": ["rad"], "m, rad": ["m"] * 3 + ["rad"] * 3}.get(unit)
+        if kinds is None:
+            out[name] = value
+            continue
+        values = list(np.atleast_1d(value))
+        kinds = kinds * (len(values) // len(kinds)) if len(kinds) < len(values) else kinds
+        # lengths by moving the decimal point (the reader's prefixes do too: the same doubles)
+        converted = [(Decimal(repr(float(v))) * Decimal(length), "mm") if k == "m"
+                     else (float(v) * angle, "deg") for v, k in zip(values, kinds)]
+        written = [f"{v} {u}" if as_strings else float(v) for v, u in converted]
+        out[name] = written if np.ndim(value) else written[0]
+    return out
+
+
+def _shown(si_text, text, length, angle, si_names=("m", "deg"), names=("mm", "deg")):
+    """Every number of text against the same number of si_text times its unit's factor: a
+    number followed by a length unit (after '..' and the range's other end) times length, by an
+    angle unit times angle, the rows of the leg table times length, leg numbers and the
+    condition number unchanged."""
+    import re
+    token = re.compile(rf"{NUMBER}|[A-Za-z_]+|\.\.")
+    si_lines, lines = si_text.splitlines(), text.splitlines()
+    assert len(si_lines) == len(lines)
+    compared = 0
+    for si_line, line in zip(si_lines, lines):
+        si_tokens, tokens = token.findall(si_line), token.findall(line)
+        assert len(si_tokens) == len(tokens), (si_line, line)
+        leg_row = re.match(r"\d    ", si_line) is not None
+        for i, (a, b) in enumerate(zip(si_tokens, tokens)):
+            if not re.fullmatch(NUMBER, a):
+                if a in si_names:  # the SI name where the text has its own
+                    assert b == names[si_names.index(a)], (si_line, line)
+                else:
+                    assert a == b, (si_line, line)
+                continue
+            after = [t for t in si_tokens[i + 1:i + 4] if t != ".." and not re.fullmatch(NUMBER, t)]
+            unit = after[0] if after else None
+            factor = 1.0
+            if leg_row and i > 0:
+                factor = length
+            elif i > 0 and si_tokens[i - 1] in ("leg", "legs", "and"):
+                factor = 1.0
+            elif unit == si_names[0]:
+                factor = length
+            elif unit == si_names[1]:
+                factor = angle
+            # both printed to 6 significant digits (each within 5e-6)
+            assert float(b) == pytest.approx(float(a) * factor, rel=1e-5, abs=1e-9 * abs(factor)), \
+                (si_line, line)
+            compared += factor != 1.0
+    return compared
+
+
+@pytest.mark.parametrize("as_strings", [False, True], ids=["file_units", "values_with_units"])
+def test_the_check_prints_in_the_file_units(tmp_path, as_strings):
+    """A real machine written in mm and deg (the file's "units", or each value with its unit):
+    every length and angle the check prints (legs, strokes, margins, clearances, the axis limit,
+    the ranges, home) is the SI file's check times the unit's factor, and the text names mm; the
+    numbers of the report stay SI. --units (and units=) override the file's."""
+    data = json.loads((ROOT / "platforms" / "rubin_camera_hexapod.json").read_text())
+    # software limits of 20 mm and 0.4 deg, so that the axis class prints a margin too
+    data.update(axis_min=[-0.02, -0.02, -0.02, -0.007, -0.007, -0.007],
+                axis_max=[0.02, 0.02, 0.02, 0.007, 0.007, 0.007])
+    si_path, mm_path = tmp_path / "si.json", tmp_path / "mm.json"
+    si_path.write_text(json.dumps(data))
+    deg = 180 / np.pi
+    mm = _in_units(data, 1000, deg, as_strings)
+    if not as_strings:
+        mm["units"] = {"length": "mm", "angle": "deg"}
+    mm_path.write_text(json.dumps(mm))
+    si_run, mm_run = solve("--check", si_path), solve("--check", mm_path)
+    assert si_run.returncode == 0 and mm_run.returncode == 0, si_run.stderr + mm_run.stderr
+    assert "length [mm]" in mm_run.stdout and " mm  (stroke" in mm_run.stdout
+    assert "length [m]" in si_run.stdout
+    # home x y z, 6 legs x 4, the stroke and interference margins, the x y z ranges
+    assert _shown(si_run.stdout, mm_run.stdout, 1e3, 1.0) >= 3 + 6 * 4 + 2 + 6
+    report = stewart.Platform.from_file(mm_path).check()
+    assert report.text == mm_run.stdout and report.units == ("mm", "deg")
+    np.testing.assert_allclose(report.length, stewart.Platform.from_file(si_path).check().length,
+                               rtol=1e-15)
+    # --units over the file's: um and urad
+    um_run = solve("--check", mm_path, "--units", "um,urad")
+    assert um_run.returncode == 0, um_run.stderr
+    _shown(si_run.stdout, um_run.stdout, 1e6, 1e6 / deg, names=("um", "urad"))
+    assert stewart.Platform.from_file(mm_path).check(units="urad,um").text == um_run.stdout
+    bad = solve("--check", mm_path, "--units", "mm,inch")
+    assert bad.returncode == 2 and "'inch' is neither a length unit" in bad.stderr
+    with pytest.raises(ValueError, match="'inch' is neither"):
+        stewart.Platform.from_file(mm_path).check(units="inch")
+
+
+@pytest.mark.parametrize("fields, units", [
+    ({"units": {"length": "um"}, "stroke_max": "0.7 m"}, ("um", "deg")),  # stated wins
+    ({"stroke_min": "400 mm", "stroke_max": "0.6 m"}, ("m", "deg")),  # two units: neither
+    ({"stroke_min": "400 mm", "axis_max[6]": "3 deg", "axis_max[5]": "50 mrad"}, ("mm", "deg")),
+    ({"stroke_min": "400 mm", "stroke_max": "700 mm", "axis_max[6]": "50 mrad"}, ("mm", "mrad")),
+])
+def test_the_file_units_are_the_stated_else_the_one_written(tmp_path, fields, units):
+    path = tmp_path / "p.json"
+    path.write_text(json.dumps(fields))
+    report = stewart.Platform.from_file(path).check()
+    assert report.units == units
+    assert f"length [{units[0]}]" in report.text and f"roll 0 {units[1]}" in report.text
+    assert solve("--check", path).stdout == report.text

@@ -162,3 +162,58 @@ def test_smallest_axis_margin_over_poses_is_ranked_as_the_library_ranks_axes():
     assert check.margin[1, 5] < 0.005  # the other unit's number is the smaller one
     assert smallest_margins(platform, check)[5] == pytest.approx(0.005, rel=1e-9)
     np.testing.assert_array_equal(smallest_margins(platform, check)[:5], check.margin.min(axis=0)[:5])
+
+
+def _turned_z_down(data):
+    """A z-up platform file's fields (no Cardan axes or frame angles) in z-down frames
+    (frame_convention 1): every joint, centre of mass and frame origin (x, y, z) -> (x, -y, -z)."""
+    turn = np.array([1.0, -1.0, -1.0])
+    out = dict(data, frame_convention=1)
+    for name in ("base_joint", "platform_joint"):
+        out[name] = (np.reshape(data[name], (6, 3)) * turn).ravel().tolist()
+    for name in ("payload_com", "platform_com"):
+        if name in data:
+            out[name] = (np.asarray(data[name]) * turn).tolist()
+    for name in ("tool_frame", "user_frame"):
+        assert not np.any(data[name][3:])
+        out[name] = (np.asarray(data[name][:3]) * turn).tolist() + [0.0, 0.0, 0.0]
+    return out
+
+
+def _rubin_camera_as(how):
+    """The Rubin camera hexapod (its pivot 2.6 m below the top joints) with its tool frame given
+    as `how` says: "file" (the shipped file), "elements" (each tool_frame[k] by its own name, as
+    a sweep spec or Platform(**params) gives them), "z_down" (the same machine in z-down
+    frames); a function of the axis limits to a Platform."""
+    data = stewart.params.read_platform_file(stewart.platform_files()["rubin_camera_hexapod"])
+    if how == "elements":
+        tool = data.pop("tool_frame")
+        data.update({f"tool_frame[{k}]": v for k, v in enumerate(tool, start=1)})
+    elif how == "z_down":
+        data = _turned_z_down(data)
+    return lambda **limits: stewart.Platform(**data, **limits)
+
+
+@pytest.mark.parametrize("how", ["file", "elements", "z_down"])
+def test_smallest_axis_margin_ranks_as_the_library_whatever_way_the_tool_frame_is_given(how):
+    """Poses a (x 1.5 mm from its limit) and b (yaw 1 mrad from its): which is nearer its limit
+    is the library's own answer at the pose c with both (its check ranks an angle through the
+    arm from the tool origin, 2.7 m here, 0.7 m without the pivot: 1 mrad is then 2.7 mm, farther
+    than 1.5 mm). smallest_margins over a and b gives the margin the library gives at c."""
+    from stewart.limits import smallest_margins
+    make = _rubin_camera_as(how)
+    home = make().check().home
+    d, theta = 0.0015, 0.001
+    low, high = home - 1.0, home + 1.0  # far, but for x and yaw (2 d and 2 theta above home)
+    high[0], high[5] = home[0] + 2 * d, home[5] + 2 * theta
+    platform = make(axis_min=low.tolist(), axis_max=high.tolist())
+    a, b, c = home.copy(), home.copy(), home.copy()
+    a[0] += d
+    b[5] += theta
+    c[0] += d
+    c[5] += theta
+    library = platform.limits(c[None, :])
+    assert library.within[0] and library.leg[0, 5] == 1, library.margin[0]  # x: the pivot counts
+    check = platform.limits(np.array([a, b]))
+    assert check.within.all() and list(check.leg[:, 5]) == [1, 6]
+    assert smallest_margins(platform, check)[5] == pytest.approx(library.margin[0, 5], rel=1e-9)

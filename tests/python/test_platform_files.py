@@ -248,18 +248,23 @@ def as_json_numbers(data):
     return "{" + ", ".join(f'"{k}": {value(v)}' for k, v in data.items()) + "}"
 
 
-@pytest.mark.parametrize("name", ["paired_hexapod", "genhexkins"])
+@pytest.mark.parametrize("name", ["paired_hexapod", "genhexkins", "rubin_camera_hexapod",
+                                  "rubin_m2_hexapod_drives", "simona_motion_base_drives"])
 def test_a_file_in_mm_and_deg_gives_the_outputs_of_the_file_in_m(tmp_path, solve, name):
     """The same machine in mm and deg (file-wide units) and in m and rad: the same parameters bit
     for bit (a decimal prefix moves the exponent, so 198.054 mm reads as 0.198054 does), so the
-    same lengths and forces from Python and the command line."""
-    lengths = {"base_joint", "platform_joint", "home_height", "stroke_min", "stroke_max", "platform_com",
-               "payload_com", "cylinder_com", "piston_com"}
+    same lengths and forces from Python and the command line. Every length of the parameter
+    table's (m; the x, y, z of the frames), the real machines' frames, leg diameters and screw
+    leads too."""
+    units = {p["name"]: p["unit"] for p in stewart.parameters()}
     data = json.loads((PLATFORMS / f"{name}.json").read_text(), parse_float=str, parse_int=str)
     mm = {"units": {"length": "mm", "angle": "deg"}}
     for key, value in data.items():
-        if key in lengths:
+        if units.get(key) == "m":
             value = [shifted_decimal(v, 3) for v in value] if isinstance(value, list) else shifted_decimal(value, 3)
+        elif units.get(key) == "m, rad":  # x, y, z, roll, pitch, yaw: zero angles in the files
+            assert all(float(v) == 0 for v in value[3:]), key
+            value = [shifted_decimal(v, 3) for v in value[:3]] + value[3:]
         mm[key] = value
     mm["base_joint_limit"] = "40"
     si = dict(data, base_joint_limit=repr(40 * (math.pi / 180)))
@@ -269,8 +274,8 @@ def test_a_file_in_mm_and_deg_gives_the_outputs_of_the_file_in_m(tmp_path, solve
     a = stewart.params.read_platform_file(tmp_path / "m.json")
     b = stewart.params.read_platform_file(tmp_path / "mm.json")
     assert a == b
-    h = float(data["home_height"])
-    poses = np.array([[0.001, -0.002, h + 0.003, 0.01, -0.02, 0.015], [0, 0, h, 0, 0, 0]])
+    home = stewart.Platform.from_file(tmp_path / "m.json").check().home
+    poses = home + np.array([[0.001, -0.002, 0.003, 0.01, -0.02, 0.015], [0, 0, 0, 0, 0, 0]])
     pa = stewart.Platform.from_file(tmp_path / "m.json").inverse(poses, fidelity="full")
     pb = stewart.Platform.from_file(tmp_path / "mm.json").inverse(poses, fidelity="full")
     assert np.array_equal(pa.length, pb.length) and np.array_equal(pa.force, pb.force)

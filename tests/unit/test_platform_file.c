@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "stewart/stewart_check.h"
 #include "stewart/stewart_platform_file.h"
 #include "stewart/stewart_table.h"
 #include "decimal_comma.h"
@@ -319,6 +320,60 @@ static void test_only_regular_files_of_at_most_the_cap(void) {
     rmdir(dir);
 }
 
+/* The units a file writes in: "units" first, else the one unit of its values; every unit's
+ * factor from SI is the inverse of its factor to SI (the reader's), "in" and "deg" too. */
+static void test_the_units_a_file_writes_in(void) {
+    const char *files[][3] = {
+        {"{\"units\": {\"length\": \"um\"}, \"stroke_max\": \"0.7 m\", \"axis_max[4]\": \"1 deg\"}", "um", "deg"},
+        {"{\"stroke_min\": \"400 mm\", \"stroke_max\": [\"0.6 m\", 0.6, 0.6, 0.6, 0.6, 0.6]}", "", ""},
+        {"{\"description\": \"12 mm\", \"stroke_min\": [\"400 mm\", 0.4, 0.4, 0.4, 0.4, 0.4]}", "mm", ""},
+        {"{\"payload_mass\": 3}", "", ""},
+    };
+    char dir[] = "/tmp/stewart-file-units-XXXXXX", path[128];
+    TEST_ASSERT_NOT_NULL(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/p.json", dir);
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; ++i) {
+        FILE *f = fopen(path, "wb");
+        TEST_ASSERT_NOT_NULL(f);
+        fputs(files[i][0], f);
+        fclose(f);
+        stewart_file_units units;
+        char msg[STEWART_MESSAGE_SIZE];
+        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_platform_file_units(path, &units, msg, sizeof msg), msg);
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(files[i][1], units.length, files[i][0]);
+        TEST_ASSERT_EQUAL_STRING_MESSAGE(files[i][2], units.angle, files[i][0]);
+    }
+    unlink(path);
+    stewart_file_units units;
+    char msg[STEWART_MESSAGE_SIZE];
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_platform_file_units(dir, &units, msg, sizeof msg));
+    rmdir(dir);
+    double per_si = 0;
+    TEST_ASSERT_EQUAL_STRING("m", stewart_unit_per_si("in", &per_si));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-12, 1 / 0.0254, per_si);
+    TEST_ASSERT_EQUAL_STRING("rad", stewart_unit_per_si("deg", &per_si));
+    TEST_ASSERT_DOUBLE_WITHIN(1e-12, 180.0 / 3.14159265358979323846, per_si);
+    TEST_ASSERT_EQUAL_STRING("m", stewart_unit_per_si("\xC2\xB5m", &per_si));
+    TEST_ASSERT_EQUAL_DOUBLE(1e6, per_si);
+    TEST_ASSERT_NULL(stewart_unit_per_si("inch", &per_si));
+    TEST_ASSERT_NULL(stewart_unit_per_si(NULL, &per_si));
+    /* the check's text in those units; a name of the wrong kind gives no text */
+    stewart_params p;
+    stewart_params_default(&p);
+    stewart_model *model = stewart_model_create(&p, msg, sizeof msg);
+    TEST_ASSERT_NOT_NULL_MESSAGE(model, msg);
+    stewart_check_report report;
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_check_home(model, NULL, &report, msg, sizeof msg), msg);
+    stewart_model_free(model);
+    char text[4096] = "x";
+    TEST_ASSERT_EQUAL_size_t(0, stewart_check_text_in(&report, "deg", NULL, text, sizeof text));
+    TEST_ASSERT_EQUAL_STRING("", text);
+    TEST_ASSERT_EQUAL_size_t(0, stewart_check_text_in(&report, NULL, "mm", text, sizeof text));
+    TEST_ASSERT_TRUE(stewart_check_text_in(&report, "mm", "urad", text, sizeof text) < sizeof text);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(text, "z 500 mm, roll 0 urad"), text);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(text, "length [mm]"), text);
+}
+
 /* A file of the cap, 1 MiB of fields, its first one unknown: the error is the first field's (at
  * line 1), after reading every field once (each field's name checked against those before it in
  * a hash set, so the reading is linear in the fields). */
@@ -356,5 +411,6 @@ int main(void) {
     RUN_TEST(test_numbers_read_the_same_in_every_locale);
     RUN_TEST(test_only_regular_files_of_at_most_the_cap);
     RUN_TEST(test_a_large_file_reports_its_first_error);
+    RUN_TEST(test_the_units_a_file_writes_in);
     return UNITY_END();
 }

@@ -8,7 +8,7 @@
  *
  * `stewart-solve --check FILE.json` prints the text and exits 1 when home is not a valid pose;
  * Python's Platform.check() returns the report. Lengths [m], angles [rad] in the struct; the text
- * gives angles in degrees.
+ * gives them in m and degrees, or in the units asked (stewart_check_text_in: the file's).
  */
 #ifndef STEWART_STEWART_CHECK_H
 #define STEWART_STEWART_CHECK_H
@@ -52,6 +52,13 @@ stewart_status stewart_check_home(const stewart_model *model,
  * verdict and a sentence per hint), NUL-terminated in text (cut to size); returns the length the
  * whole text needs, without the NUL. */
 size_t stewart_check_text(const stewart_check_report *report, char *text, size_t size);
+
+/* stewart_check_text with the lengths (legs, strokes, clearances, x y z) in length_unit and the
+ * angles (joint angles, roll pitch yaw) in angle_unit: unit names of stewart_unit_per_si
+ * ("mm", "in", "deg", "urad"; NULL or "": m and deg, as stewart_check_text), e.g. the platform
+ * file's (stewart_platform_file_units). 0 and text "" for a name that is not a unit of its kind. */
+size_t stewart_check_text_in(const stewart_check_report *report, const char *length_unit,
+                             const char *angle_unit, char *text, size_t size);
 
 #ifdef __cplusplus
 }

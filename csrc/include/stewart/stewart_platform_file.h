@@ -46,6 +46,26 @@ stewart_status stewart_params_read_json(stewart_params *params, const char *text
 stewart_status stewart_params_read_json_file(stewart_params *params, const char *path,
                                              unsigned char *given, char *message, size_t size);
 
+/* The units a platform file writes its lengths and angles in, to print results in them (the
+ * values read are SI whatever they are). Each is a unit name of the list below, or "" when the
+ * file states none (then SI). */
+typedef struct stewart_file_units {
+    char length[8]; /* the file's "units" length; else the one length unit its values written
+                       with a unit use ("12.5 mm"), when they all use the same one; else "" */
+    char angle[8];  /* the same for angles */
+} stewart_file_units;
+
+/* The units of the platform file at path (read as stewart_params_read_json_file reads it; only
+ * its "units" and the units of its values are looked at, the parameters are not checked). */
+stewart_status stewart_platform_file_units(const char *path, stewart_file_units *units,
+                                           char *message, size_t size);
+
+/* The one conversion from SI to a unit a platform file may name (m cm mm um nm in, rad mrad urad
+ * deg; um and urad also with the micro sign): sets *per_si to what a value in SI is multiplied
+ * by to be in name and returns name's SI unit ("m" or "rad"); NULL (per_si unchanged) for a
+ * name that is not one. */
+const char *stewart_unit_per_si(const char *name, double *per_si);
+
 #ifdef __cplusplus
 }
 #endif

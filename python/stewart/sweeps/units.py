@@ -2,13 +2,15 @@
 the merged tables, the CSV, volume.json and the plots when asked (`--units mm,deg`)."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
+from .. import _core
 from ..limits import POSE_CLASSES
 
-LENGTHS = {"m": 1.0, "mm": 1e3, "um": 1e6}
-ANGLES = {"rad": 1.0, "deg": 180.0 / math.pi, "mrad": 1e3, "urad": 1e6}
+# What an SI value is multiplied by in each unit: the library's one table (stewart_unit_per_si,
+# as stewart-solve --units and the check).
+LENGTHS = {name: _core.unit_per_si(name)[1] for name in ("m", "mm", "um")}
+ANGLES = {name: _core.unit_per_si(name)[1] for name in ("rad", "deg", "mrad", "urad")}
 
 # The SI quantity of each result column: L length, A angle, L/s, L/s2 rates of lengths; the rest
 # (forces, powers, condition numbers, times, counts) do not change with the units.
