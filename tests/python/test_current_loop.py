@@ -302,3 +302,67 @@ def test_script_runs_the_loop_on_currents(tmp_path):
     np.testing.assert_allclose(result["feed_forward"], reference[:, 12:], rtol=1e-14)
     with pytest.raises(ValueError, match="drives"):
         closed_loop.run("combined", 0.01, H, drive="current")
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_cascade_derivatives_are_its_slopes(version):
+    """Directional derivatives in current mode against central differences of the outputs (the
+    cascade is piecewise linear: exact away from a limit's edge), with a nonzero integral; legs 3
+    and 4 at their speed limit (the position and reference-rate paths cut), legs 5 and 6 at
+    their current limit (every slope 0)."""
+    drive = {"screw_lead": np.full(6, 0.01), "gear_ratio": np.full(6, 2.0),
+             "torque_constant": np.full(6, 0.7), "current_max": np.r_[0, 0, 0, 0, 5, 5],
+             "motor_speed_max": np.r_[0, 0, 50, 50, 0, 0]}
+    u = Instance("StewartController", version).init(
+        output=1, position_gain=60.0, speed_gain=0.4, speed_integral_time=0.03,
+        **drive_parameters(drive))
+    try:
+        ref = np.full(6, 0.5)
+        length = ref - np.r_[1e-4, -1e-4, 0.02, -0.02, 0.05, -0.05]
+        point = [*ref, *np.full(6, 0.01), *np.full(6, 0.3), *length, *np.full(6, 0.005)]
+        u.set_reals(INPUTS, point)
+        assert u.step(0.0, H) == OK  # a nonzero integral
+        outs, ins = [u.vr[n] for n in LEGS("F")], [u.vr[n] for n in INPUTS]
+        J = np.array([u.fmu.getDirectionalDerivative(outs, ins, list(np.eye(30)[j]))
+                      for j in range(30)]).T
+        differences = np.zeros_like(J)
+        for j, name in enumerate(INPUTS):
+            step = 1e-7
+            u.set_reals([name], [point[j] + step])
+            up = u.get(LEGS("F"))
+            u.set_reals([name], [point[j] - step])
+            down = u.get(LEGS("F"))
+            u.set_reals([name], [point[j]])
+            differences[:, j] = (up - down) / (2 * step)
+        np.testing.assert_allclose(J, differences, rtol=1e-6, atol=1e-6)
+        c = 2 * np.pi * 2.0 / 0.01
+        assert J[0, 0] == pytest.approx(0.4 * 60.0 * c / 0.7, rel=1e-14)  # dI/dL_ref
+        assert J[2, 2] == 0 and J[2, 14] == 1 and J[2, 26] != 0  # speed limit: no position path
+        assert not J[4:].any()  # at the current limit
+    finally:
+        u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_cascade_state_rolls_back(version):
+    """The speed loop's integral is part of the FMU state: restore a state, step again with the
+    same inputs, the same output bytes; serialised and back, the same."""
+    drive = {"screw_lead": np.full(6, 0.01), "torque_constant": np.full(6, 0.7)}
+    u = Instance("StewartController", version).init(
+        output=1, position_gain=60.0, speed_gain=0.4, speed_integral_time=0.03,
+        **drive_parameters(drive))
+    try:
+        u.set_reals(INPUTS, [*np.full(6, 0.5), *np.zeros(6), *np.zeros(6),
+                             *np.full(6, 0.499), *np.zeros(6)])
+        assert u.step(0.0, H) == OK
+        saved = u.get_state()
+        blob = u.serialize(saved)
+        outputs = []
+        for j in range(2):
+            assert u.step(H, H) == OK and u.step(2 * H, H) == OK
+            outputs.append(u.get(LEGS("F")).tobytes())
+            u.set_state(saved if j == 0 else u.deserialize(blob))
+        assert outputs[0] == outputs[1]
+        assert u.get(LEGS("F")).tobytes() != outputs[0]  # the integral went back
+    finally:
+        u.free()
