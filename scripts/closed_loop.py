@@ -176,6 +176,8 @@ def machine_gains(platform):
     return m * omega**2, 2 * zeta * m * omega
 
 
+# The cascade's gains (the controller's parameters of these names; cascade_gains gives them).
+CASCADE_GAINS = ("position_gain", "speed_gain", "speed_integral_time")
 # The drive parameters the controller's cascade takes, named as the platform's.
 CASCADE_DRIVE = ("screw_lead", "gear_ratio", "torque_constant", "current_max", "motor_speed_max")
 
@@ -197,6 +199,13 @@ def leg_values(platform):
     return values
 
 
+def require_drives(platform):
+    """ValueError unless every leg of platform has a drive (screw_lead > 0)."""
+    if platform is None or not np.all(leg_values(platform)["screw_lead"] > 0):
+        raise ValueError("drive = current needs a platform with a drive on every leg "
+                         "(screw_lead > 0, e.g. platforms/*_drives.json)")
+
+
 def cascade_gains(platform):
     """The current cascade's gains with the thesis loop's dynamics on platform's legs, as
     machine_gains does for the PD: the PD F = kp e + kd e_dot on the moving mass m per leg is a
@@ -206,6 +215,7 @@ def cascade_gains(platform):
     4 / position_gain puts the integral's corner a quarter below the position loop's. With legs
     of different drives the smallest J_total sets the gain (the fastest loop stays stable)."""
     import stewart
+    require_drives(platform)
     m0 = moving_mass_per_leg(stewart.Platform())
     speed_bandwidth, position_gain = THESIS_KD / m0, THESIS_KP / THESIS_KD
     c = motor_per_leg(platform)
@@ -217,9 +227,9 @@ def cascade_gains(platform):
 def controller_parameters(platform, machine, cascade=None):
     """The controller's parameters for the current cascade on platform (its FMU start values
     `machine`): output = 1, the gains (default cascade_gains), each leg's drive."""
-    if platform is None or not np.any(np.asarray(platform.reflected_mass) > 0) or not machine:
-        raise ValueError("drive = current needs a platform with drives (screw_lead > 0, e.g. "
-                         "platforms/*_drives.json)")
+    import stewart
+    require_drives(platform)
+    machine = machine or stewart.fmu_start_values(platform)
     drive = {name: value for name, value in machine.items()
              if name.split("[")[0] in CASCADE_DRIVE}
     return {"output": 1, **(cascade or cascade_gains(platform)), **drive}
@@ -314,6 +324,15 @@ def main():
         args.kp, args.kd = args.kp or kp, args.kd or kd
         duration = args.duration or ("move" not in scene and scene["duration"]) or None
         cascade = None
+        given = [f"--{name.replace('_', '-')}" for name in CASCADE_GAINS
+                 if getattr(args, name) is not None]
+        if given and args.drive != "current":
+            parser.error(f"{', '.join(given)}: the cascade's gains, for --drive current only")
+        for name in given:
+            value = getattr(args, name[2:].replace("-", "_"))
+            if not (np.isfinite(value) and (value > 0 if name == "--speed-gain" else value >= 0)):
+                parser.error(f"{name} = {value:g}: a gain is finite and >= 0 (the speed gain "
+                             "> 0)")
         if args.drive == "current":
             if not args.platform:
                 raise ValueError("--drive current needs --platform with drives "

@@ -114,7 +114,8 @@ def test_force_mode_is_unchanged_by_the_drive_parameters(version):
     ({"screw_lead[3]": 0.0}, ["screw_lead[3]", "drive on every leg"]),
     ({"torque_constant[6]": -1.0}, ["torque_constant[6]"]),
     ({"current_max[2]": -1.0}, ["current_max[2]", ">= 0"]),
-    ({"speed_integral_time": math.nan}, ["speed_integral_time", "finite"])])
+    ({"speed_integral_time": math.nan}, ["speed_integral_time", "finite"]),
+    ({"output": 2}, ["output = 2", "0 (force) or 1 (current)"])])
 def test_current_mode_without_a_drive_is_refused(version, bad, words):
     parameters = {"output": 1, "speed_gain": 1.0,
                   **drive_parameters({"screw_lead": np.full(6, 0.01),
@@ -366,3 +367,32 @@ def test_cascade_state_rolls_back(version):
         assert u.get(LEGS("F")).tobytes() != outputs[0]  # the integral went back
     finally:
         u.free()
+
+
+def test_script_command_line(tmp_path):
+    """--drive current: the CSV holds the commands as currents (current1..6, current_ff1..6);
+    refused without a platform with drives, with a cascade gain for the force loop, and with a
+    speed gain of 0, each with a message naming the cause."""
+    import subprocess
+    import sys
+    from fmu_support import BUILD
+    script = [sys.executable, str(closed_loop.ROOT / "scripts" / "closed_loop.py"),
+              "--duration", "0.02", "--no-plot", "--out", str(tmp_path),
+              "--fmus", str(BUILD / "fmus" / "2.0")]
+    drives = ["--platform", str(stewart.platform_files()["rubin_m2_hexapod_drives"]),
+              "--scale-to-ranges"]
+    run = subprocess.run(script + drives + ["--drive", "current"], capture_output=True,
+                         text=True, check=True)
+    assert "current cascade: position_gain = 100 1/s" in run.stdout
+    header = (tmp_path / "closed_loop.csv").read_text().splitlines()[0].split(",")
+    assert header[13:25] == [f"current{k}" for k in range(1, 7)] + [
+        f"current_ff{k}" for k in range(1, 7)]
+    for extra, words in (
+            (["--drive", "current"], "needs --platform with drives"),
+            (["--platform", str(stewart.platform_files()["simona_motion_base"]), "--drive",
+              "current"], "a drive on every leg"),
+            (drives + ["--speed-gain", "1"], "for --drive current only"),
+            (drives + ["--drive", "current", "--speed-gain", "0"], "--speed-gain = 0")):
+        refused = subprocess.run(script + extra, capture_output=True, text=True)
+        assert refused.returncode != 0 and words in refused.stderr, (extra, refused.stderr)
+

@@ -40,6 +40,10 @@ static const unsigned kLimits[] = {VR_current_max_1, VR_motor_speed_max_1};
 
 /* Why the parameters in v cannot run, with the parameter's name in *vr, or NULL. */
 static const char *refused_parameter(const fmu_values *v, unsigned *vr) {
+    if (v->integer[VR_output] != 0 && v->integer[VR_output] != 1) {
+        *vr = VR_output;
+        return "output is 0 (force) or 1 (current)";
+    }
     for (size_t i = 0; i < sizeof kNonNegative / sizeof *kNonNegative; ++i)
         if (!(isfinite(v->real[*vr = kNonNegative[i]]) && v->real[*vr] >= 0.0))
             return "a gain must be finite and >= 0";
@@ -62,8 +66,9 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     unsigned vr = 0;
     const char *why = refused_parameter(&inst->v, &vr);
     if (!why) return FMU_OK;
+    const double value = vr == VR_output ? inst->v.integer[vr] : inst->v.real[vr];
     fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter %s = %g: %s",
-            fmu_variable_by_vr(vr)->name, inst->v.real[vr], why);
+            fmu_variable_by_vr(vr)->name, value, why);
     return FMU_ERROR;
 }
 
@@ -164,7 +169,6 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     if (v->integer[VR_status] != 0 && v->integer[VR_status] != 3) return "status is not 0 or 3";
     if (v->model.solve_status < FMU_OK || v->model.solve_status > FMU_ERROR)
         return "a flag is out of range";
-    if (v->integer[VR_output] != 0 && v->integer[VR_output] != 1) return "output is not 0 or 1";
     unsigned vr;
     if (refused_parameter(v, &vr)) return "a parameter is refused (a gain or a drive)";
     return NULL;
