@@ -1,7 +1,7 @@
 """The closed loop on currents (docs/drives.md, "Closing the loop on currents"): the controller's
 cascade (output = 1) against its law written here, a held static load against the drive law's
 closed form, and the loop inverse unit -> cascade -> current-driven plant tracking the combined
-cue on every shipped machine with drives, at both master clocks, FMI 2 and 3, Gauss-Seidel and
+cue and a planned move on every shipped machine with drives, at both master clocks, FMI 2 and 3, Gauss-Seidel and
 Jacobi coupling, within a bound derived from the force loop on the same machine."""
 import math
 
@@ -189,15 +189,16 @@ def test_held_static_load_needs_the_drive_laws_current():
             u.free()
 
 
-def machine_loop(name, version, coupling, clock, drive, horizon=1.0):
-    """The loop on machine `name` over `horizon` of the combined cue scaled to its ranges:
+def machine_loop(name, version, coupling, clock, drive, horizon=1.0, scene="combined"):
+    """The loop on machine `name` over `horizon` of `scene` scaled to its ranges (a move's
+    horizon None: the move and its hold):
     (cue, achieved pose, reference lengths, rates and feed-forward, measured lengths) per
     communication point, and the inverse unit's leg forces. coupling "gauss-seidel": scripts/closed_loop.py's order (the plant's
     command at t computed from its state at t); "jacobi": libcosim's (every unit steps from the
     values transferred after the last step: the command one step late). clock "j*h": the master
     passes t = j h, "t+=h": the sum of its steps."""
     platform = stewart.Platform.from_file(stewart.platform_files()[name])
-    scene = stewart.scenes.on_platform(scenes.load("combined"), platform, scale_to_ranges=True)
+    scene = stewart.scenes.on_platform(scenes.load(scene), platform, scale_to_ranges=True)
     t, cue, cue_dot, cue_ddot = scenes.trajectory(scene, platform, H, horizon)
     start = {f"{p}0": v for p, v in zip(POSE, cue[0])}
     start.update({f"{p}_dot0": v for p, v in zip(POSE, cue_dot[0])})
@@ -238,19 +239,25 @@ def machine_loop(name, version, coupling, clock, drive, horizon=1.0):
 def force_loops():
     cache = {}
 
-    def get(name, version, coupling, clock):
-        key = (name, version, coupling, clock)
+    def get(name, version, coupling, clock, scene):
+        key = (name, version, coupling, clock, scene)
         if key not in cache:
-            cache[key] = machine_loop(name, version, coupling, clock, "force")
+            cache[key] = machine_loop(name, version, coupling, clock, "force",
+                                      SCENES[scene], scene)
         return cache[key]
     return get
+
+
+# The cues: 1 s of the combined scene's sinusoids, and a planned move with its hold at rest.
+SCENES = {"combined": 1.0, "move_line": None}
 
 
 @pytest.mark.parametrize("name", DRIVE_MACHINES)
 @pytest.mark.parametrize("version", VERSIONS)
 @pytest.mark.parametrize("coupling", ["gauss-seidel", "jacobi"])
 @pytest.mark.parametrize("clock", ["j*h", "t+=h"])
-def test_current_loop_tracks_the_cue(name, version, coupling, clock, force_loops):
+@pytest.mark.parametrize("scene", SCENES)
+def test_current_loop_tracks_the_cue(name, version, coupling, clock, scene, force_loops):
     """The bound, derived: the cascade on the motor side is the PD of machine_gains on the
     leg's side (speed bandwidth kd / m, position gain kp / kd) with the drive's inertia added to
     m and a speed integral, so its leg-length error is the force loop's plus what the
@@ -265,8 +272,9 @@ def test_current_loop_tracks_the_cue(name, version, coupling, clock, force_loops
     And both loops stay within 1 % of the cue's excursion (the machines' bound of
     test_ssp.py)."""
     cue, pose, reference, measured, force = machine_loop(name, version, coupling, clock,
-                                                         "current")
-    f_cue, f_pose, f_reference, f_measured, _ = force_loops(name, version, coupling, clock)
+                                                         "current", SCENES[scene], scene)
+    f_cue, f_pose, f_reference, f_measured, _ = force_loops(name, version, coupling, clock,
+                                                            scene)
     np.testing.assert_array_equal(cue, f_cue)
     platform = stewart.Platform.from_file(stewart.platform_files()[name])
     gains = closed_loop.cascade_gains(platform)
@@ -279,7 +287,7 @@ def test_current_loop_tracks_the_cue(name, version, coupling, clock, force_loops
     bound = force_leg_error + np.abs(force).max() * loss / stiffness
     position, angle = np.abs(pose - cue)[:, :3].max(), np.abs(pose - cue)[:, 3:].max()
     f_position, f_angle = np.abs(f_pose - f_cue)[:, :3].max(), np.abs(f_pose - f_cue)[:, 3:].max()
-    print(f"{name} {version} {coupling} {clock}: legs {leg_error:.2e} m (force loop "
+    print(f"{name} {scene} {version} {coupling} {clock}: legs {leg_error:.2e} m (force loop "
           f"{force_leg_error:.2e}, bound {bound:.2e}); pose {position:.2e} m, {angle:.2e} rad "
           f"(force loop {f_position:.2e} m, {f_angle:.2e} rad)")
     assert leg_error <= bound
