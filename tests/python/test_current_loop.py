@@ -1,8 +1,9 @@
 """The closed loop on currents (docs/drives.md, "Closing the loop on currents"): the controller's
 cascade (output = 1) against its law written here, a held static load against the drive law's
 closed form, and the loop inverse unit -> cascade -> current-driven plant tracking the combined
-cue and a planned move on every shipped machine with drives, at both master clocks, FMI 2 and 3, Gauss-Seidel and
-Jacobi coupling, within a bound derived from the force loop on the same machine."""
+cue and a planned move on every shipped machine with drives, at both master clocks, FMI 2 and 3,
+Gauss-Seidel and Jacobi coupling, within a bound derived from the force loop on the same
+machine."""
 import math
 
 import numpy as np
