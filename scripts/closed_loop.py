@@ -279,8 +279,8 @@ def plot(result, path, unit_text="m,rad"):
     for a in ax:
         a.legend(ncol=6, fontsize=7)
         a.grid(alpha=0.3)
-    ax[0].set_title("Closed loop: inverse unit (feed-forward) + " +
-                    ("current cascade per leg" if current else "PD on the leg lengths") + " + plant")
+    loop = "current cascade per leg" if current else "PD on the leg lengths"
+    ax[0].set_title(f"Closed loop: inverse unit (feed-forward) + {loop} + plant")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
