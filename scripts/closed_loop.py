@@ -287,6 +287,30 @@ def plot(result, path, unit_text="m,rad"):
     return plots.drawn(ax)
 
 
+def cascade_arguments(parser, args, platform):
+    """The cascade's gains the command line asks for (cascade_gains where not given), None for
+    the force loop; refuses a gain out of range or given to the force loop, and --drive current
+    without a platform with drives (ValueError)."""
+    given = [f"--{name.replace('_', '-')}" for name in CASCADE_GAINS
+             if getattr(args, name) is not None]
+    if given and args.drive != "current":
+        parser.error(f"{', '.join(given)}: the cascade's gains, for --drive current only")
+    for name in given:
+        value = getattr(args, name[2:].replace("-", "_"))
+        if not (np.isfinite(value) and (value > 0 if name == "--speed-gain" else value >= 0)):
+            parser.error(f"{name} = {value:g}: a gain is finite and >= 0 (the speed gain > 0)")
+    if args.drive != "current":
+        return None
+    if not args.platform:
+        raise ValueError("--drive current needs --platform with drives (platforms/*_drives.json)")
+    cascade = cascade_gains(platform)
+    for name in cascade:
+        value = getattr(args, name)
+        cascade[name] = cascade[name] if value is None else value
+    args.cascade = cascade
+    return cascade
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="combined")
@@ -323,25 +347,7 @@ def main():
         kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)
         args.kp, args.kd = args.kp or kp, args.kd or kd
         duration = args.duration or ("move" not in scene and scene["duration"]) or None
-        cascade = None
-        given = [f"--{name.replace('_', '-')}" for name in CASCADE_GAINS
-                 if getattr(args, name) is not None]
-        if given and args.drive != "current":
-            parser.error(f"{', '.join(given)}: the cascade's gains, for --drive current only")
-        for name in given:
-            value = getattr(args, name[2:].replace("-", "_"))
-            if not (np.isfinite(value) and (value > 0 if name == "--speed-gain" else value >= 0)):
-                parser.error(f"{name} = {value:g}: a gain is finite and >= 0 (the speed gain "
-                             "> 0)")
-        if args.drive == "current":
-            if not args.platform:
-                raise ValueError("--drive current needs --platform with drives "
-                                 "(platforms/*_drives.json)")
-            cascade = cascade_gains(platform)
-            for name in cascade:
-                given = getattr(args, name)
-                cascade[name] = cascade[name] if given is None else given
-            args.cascade = cascade
+        cascade = cascade_arguments(parser, args, platform)
         result, wall = run(scene, duration, args.step, args.kp, args.kd, args.fidelity,
                            args.fmus, machine, platform, args.drive, cascade)
     except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
