@@ -405,3 +405,29 @@ def test_script_command_line(tmp_path):
         refused = subprocess.run(script + extra, capture_output=True, text=True)
         assert refused.returncode != 0 and words in refused.stderr, (extra, refused.stderr)
 
+
+
+@pytest.mark.parametrize("name", DRIVE_MACHINES)
+def test_cascade_turns_legs_into_motors_as_the_library_does(name):
+    """The controller states the drive's transmission c = 2 pi N / lead itself (it links only
+    libm); the library's drive law gives it as the inverse unit's motor_speed / L_dot. The
+    cascade's slope d i / d L_dot = -speed_gain c / k_t holds the library's c to rounding."""
+    platform = stewart.Platform.from_file(stewart.platform_files()[name])
+    machine = stewart.fmu_start_values(platform)
+    controls = closed_loop.controller_parameters(platform, machine)
+    inverse = Instance("StewartPlatform", name="inverse").init(derivatives=1, **machine)
+    controller = Instance("StewartController", name="controller").init(**controls)
+    try:
+        home = platform.check().home
+        inverse.set_reals(POSE + list(scenes.DOT), [*home, 0.01, -0.02, 0.015, 0.01, 0.02, -0.01])
+        c = inverse.get(LEGS("motor_speed")) / inverse.get(LEGS("L_dot"))
+        controller.set_reals(INPUTS, [*inverse.get(LEGS("L")), *np.zeros(12),
+                                      *inverse.get(LEGS("L")), *np.zeros(6)])
+        outs, ins = [controller.vr[n] for n in LEGS("F")], [controller.vr[n] for n in LEGS("L_dot")]
+        slope = np.array([controller.fmu.getDirectionalDerivative(outs, ins, list(np.eye(6)[k]))
+                          for k in range(6)]).diagonal()
+        kt = closed_loop.leg_values(platform)["torque_constant"]
+        np.testing.assert_allclose(-slope * kt / controls["speed_gain"], c, rtol=1e-13)
+    finally:
+        inverse.free()
+        controller.free()
