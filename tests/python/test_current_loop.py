@@ -195,8 +195,9 @@ def machine_loop(name, version, coupling, clock, drive, horizon=1.0, scene="comb
     horizon None: the move and its hold):
     (cue, achieved pose, reference lengths, rates and feed-forward, measured lengths) per
     communication point, and the inverse unit's leg forces. coupling "gauss-seidel":
-    scripts/closed_loop.py's order (the plant's command at t computed from its state at t); "jacobi": libcosim's (every unit steps from the
-    values transferred after the last step: the command one step late). clock "j*h": the master
+    scripts/closed_loop.py's order (the plant's command at t computed from its state at t);
+    "jacobi": libcosim's (every unit steps from the values transferred after the last step: the
+    command one step late). clock "j*h": the master
     passes t = j h, "t+=h": the sum of its steps."""
     platform = stewart.Platform.from_file(stewart.platform_files()[name])
     scene = stewart.scenes.on_platform(scenes.load(scene), platform, scale_to_ranges=True)
