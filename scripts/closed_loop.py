@@ -189,7 +189,8 @@ def motor_per_leg(platform):
 
 
 def leg_values(platform):
-    """The drive parameters per leg (six values each) of platform, defaults filled in."""
+    """The per-leg parameters of platform (six values each: the drives' among them), defaults
+    filled in."""
     import stewart
     values = {}
     for p in stewart.parameters():
