@@ -12,13 +12,21 @@ outputs at t come first and the loop has no algebraic part):
      F = F_ff + kp (L_ref - L) + kd (L_dot_ref - L_dot);
   3. F -> the plant, held over [t, t + h]; every unit steps to t + h.
 
+With --drive current (a platform with drives) the controller runs its current cascade (output =
+1: position -> speed -> current per leg), fed forward with the inverse unit's currents instead of
+its forces, and the plant is driven by the currents (input = 1): the same three steps, currents
+in place of forces (docs/drives.md, "Closing the loop on currents").
+
 usage: closed_loop.py [--scene combined] [--duration 12] [--step 0.001] [--kp 1e6] [--kd 1e4]
                       [--fidelity 2] [--fmus build/fmus/2.0] [--out out/closed_loop] [--no-plot]
                       [--platform FILE.json [--scale-to-ranges]] [--units mm,deg]
+                      [--drive current [--position-gain 100] [--speed-gain G]
+                       [--speed-integral-time 0.04]]
 
 With --platform the units get the machine's parameters (stewart.fmu_start_values), the scene
 moves about the machine's home, and the PD gains default to the thesis loop's natural frequency
-and damping on the machine's moving mass per leg (machine_gains).
+and damping on the machine's moving mass per leg (machine_gains); the cascade's gains default to
+the same loop on the motor's side (cascade_gains).
 """
 import argparse
 import pathlib
@@ -79,14 +87,23 @@ class Unit:
         shutil.rmtree(self.directory, ignore_errors=True)
 
 
+DRIVES = ("force", "current")  # what the controller sends the plant: its output / input 0, 1
+
+
 def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
-        fmus=ROOT / "build" / "fmus" / "2.0", machine=None, platform=None):
+        fmus=ROOT / "build" / "fmus" / "2.0", machine=None, platform=None, drive="force",
+        cascade=None):
     """Runs the loop; returns a dict of arrays (one row per communication point) and the wall
     time [s] of the stepping loop. machine: the platform's FMU start values (None: the thesis
     platform); platform: the same machine as a stewart.Platform, on which a scene's move is
     planned at the step h (None: the thesis platform). duration None: the scene's (a move's
-    own; beyond a move's end its goal is held at rest)."""
+    own; beyond a move's end its goal is held at rest). drive "current": the controller's
+    cascade with the gains `cascade` (cascade_gains' dict; default: cascade_gains(platform))
+    drives the plant with currents; "force" (the default): the PD with kp, kd, forces. The
+    result's "force" column holds what the controller sent (currents [A] with "current")."""
     machine = machine or {}
+    if drive not in DRIVES:
+        raise ValueError(f"drive = {drive!r}: give one of {', '.join(DRIVES)}")
     scene = scenes.load(scene) if isinstance(scene, (str, pathlib.Path)) else scene
     fmus = pathlib.Path(fmus)
     t, cue, cue_dot, cue_ddot = scenes.trajectory(scene, platform, h, duration)
@@ -96,8 +113,14 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     start.update({f"{p}_dot0": v for p, v in zip(POSE, cue_dot[0])})
     inverse = Unit(fmus / "StewartPlatform.fmu", "inverse",
                    {"fidelity": fidelity, "derivatives": 1, **machine})
-    controller = Unit(fmus / "StewartController.fmu", "controller", {"kp": kp, "kd": kd})
-    plant = Unit(fmus / "StewartPlant.fmu", "plant", {"fidelity": fidelity, **start, **machine})
+    controls = {"kp": kp, "kd": kd}
+    feed_forward_name = "F"
+    if drive == "current":
+        controls = controller_parameters(platform, machine, cascade)
+        feed_forward_name = "current"
+    controller = Unit(fmus / "StewartController.fmu", "controller", controls)
+    plant = Unit(fmus / "StewartPlant.fmu", "plant",
+                 {"fidelity": fidelity, **start, **machine, "input": DRIVES.index(drive)})
     pose = np.zeros((n + 1, 6))
     force, feed_forward = np.zeros((n + 1, 6)), np.zeros((n + 1, 6))
     wall = time.perf_counter()
@@ -106,7 +129,7 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
             # 1. trajectory -> inverse unit
             inverse.set(POSE + list(scenes.DOT) + list(scenes.DDOT),
                         [*cue[j], *cue_dot[j], *cue_ddot[j]])
-            reference = inverse.get(legs("L") + legs("L_dot") + legs("F"))
+            reference = inverse.get(legs("L") + legs("L_dot") + legs(feed_forward_name))
             # 2. plant (state only, no feedthrough) and reference -> controller
             measured = plant.get(legs("L") + legs("L_dot"))
             controller.set(legs("L_ref") + legs("L_dot_ref") + legs("F_ff") + legs("L") +
@@ -124,7 +147,8 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     finally:
         for unit in (inverse, controller, plant):
             unit.free()
-    return {"t": t, "cue": cue, "pose": pose, "force": force, "feed_forward": feed_forward}, wall
+    return {"t": t, "cue": cue, "pose": pose, "force": force, "feed_forward": feed_forward,
+            "drive": drive}, wall
 
 
 # The thesis loop (kp 1e6 N/m, kd 1e4 N s/m on the thesis platform's moving mass per leg): its
@@ -152,6 +176,66 @@ def machine_gains(platform):
     return m * omega**2, 2 * zeta * m * omega
 
 
+# The cascade's gains (the controller's parameters of these names; cascade_gains gives them).
+CASCADE_GAINS = ("position_gain", "speed_gain", "speed_integral_time")
+# The drive parameters the controller's cascade takes, named as the platform's.
+CASCADE_DRIVE = ("screw_lead", "gear_ratio", "torque_constant", "current_max", "motor_speed_max")
+
+
+def motor_per_leg(platform):
+    """Each leg's motor angle per leg length, c = 2 pi N / lead [rad/m] (docs/drives.md)."""
+    values = leg_values(platform)
+    return 2 * np.pi * values["gear_ratio"] / values["screw_lead"]
+
+
+def leg_values(platform):
+    """The per-leg parameters of platform (six values each: the drives' among them), defaults
+    filled in."""
+    import stewart
+    values = {}
+    for p in stewart.parameters():
+        if p["count"] == 6:
+            given = platform.params.get(p["name"], p["defaults"])
+            values[p["name"]] = np.broadcast_to(np.asarray(given, float), (6,)).copy()
+    return values
+
+
+def require_drives(platform):
+    """ValueError unless every leg of platform has a drive (screw_lead > 0)."""
+    if platform is None or not np.all(leg_values(platform)["screw_lead"] > 0):
+        raise ValueError("drive = current needs a platform with a drive on every leg "
+                         "(screw_lead > 0, e.g. platforms/*_drives.json)")
+
+
+def cascade_gains(platform):
+    """The current cascade's gains with the thesis loop's dynamics on platform's legs, as
+    machine_gains does for the PD: the PD F = kp e + kd e_dot on the moving mass m per leg is a
+    speed loop of bandwidth w_v = kd / m around a position loop of gain kp / kd. On the motor's
+    side the speed loop moves J_total = J + m / c^2 (the drive's own inertia J and the leg's
+    share of the platform, c = 2 pi N / lead), so speed_gain = J_total w_v; the integral time
+    4 / position_gain puts the integral's corner a quarter below the position loop's. With legs
+    of different drives the smallest J_total sets the gain (the fastest loop stays stable)."""
+    import stewart
+    require_drives(platform)
+    m0 = moving_mass_per_leg(stewart.Platform())
+    speed_bandwidth, position_gain = THESIS_KD / m0, THESIS_KP / THESIS_KD
+    c = motor_per_leg(platform)
+    inertia = np.asarray(platform.reflected_mass) / c**2 + moving_mass_per_leg(platform) / c**2
+    return {"position_gain": position_gain, "speed_gain": float(inertia.min() * speed_bandwidth),
+            "speed_integral_time": 4.0 / position_gain}
+
+
+def controller_parameters(platform, machine, cascade=None):
+    """The controller's parameters for the current cascade on platform (its FMU start values
+    `machine`): output = 1, the gains (default cascade_gains), each leg's drive."""
+    import stewart
+    require_drives(platform)
+    machine = machine or stewart.fmu_start_values(platform)
+    drive = {name: value for name, value in machine.items()
+             if name.split("[")[0] in CASCADE_DRIVE}
+    return {"output": 1, **(cascade or cascade_gains(platform)), **drive}
+
+
 def tracking_error(result):
     """Max |achieved - cue| over the run: (position [m], angle [rad])."""
     e = np.abs(result["pose"] - result["cue"])
@@ -159,8 +243,9 @@ def tracking_error(result):
 
 
 def write_csv(result, path):
-    columns = (["t"] + [f"{p}_cue" for p in POSE] + POSE + [f"F{k}" for k in LEGS] +
-               [f"F_ff{k}" for k in LEGS])
+    name = "F" if result.get("drive", "force") == "force" else "current"
+    columns = (["t"] + [f"{p}_cue" for p in POSE] + POSE + [f"{name}{k}" for k in LEGS] +
+               [f"{name}_ff{k}" for k in LEGS])
     table = np.column_stack([result["t"], result["cue"], result["pose"], result["force"],
                              result["feed_forward"]])
     np.savetxt(path, table, delimiter=",", header=",".join(columns), comments="", fmt="%.17g")
@@ -187,18 +272,44 @@ def plot(result, path, unit_text="m,rad"):
     for i, p in enumerate(POSE):
         ax[2].plot(t, error[:, i] * 1e6, lw=0.8, label=p)
     ax[2].set_ylabel("achieved - cue [µm, µrad]")
+    current = result.get("drive", "force") == "current"
     for k in range(6):
-        ax[3].plot(t, result["force"][:, k], lw=0.8, label=f"F{k + 1}")
-    ax[3].set_ylabel("actuator force [N]")
+        ax[3].plot(t, result["force"][:, k], lw=0.8, label=f"{'i' if current else 'F'}{k + 1}")
+    ax[3].set_ylabel("motor current [A]" if current else "actuator force [N]")
     ax[3].set_xlabel("t [s]")
     for a in ax:
         a.legend(ncol=6, fontsize=7)
         a.grid(alpha=0.3)
-    ax[0].set_title("Closed loop: inverse unit (feed-forward) + PD on the leg lengths + plant")
+    loop = "current cascade per leg" if current else "PD on the leg lengths"
+    ax[0].set_title(f"Closed loop: inverse unit (feed-forward) + {loop} + plant")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return plots.drawn(ax)
+
+
+def cascade_arguments(parser, args, platform):
+    """The cascade's gains the command line asks for (cascade_gains where not given), None for
+    the force loop; refuses a gain out of range or given to the force loop, and --drive current
+    without a platform with drives (ValueError)."""
+    given = [f"--{name.replace('_', '-')}" for name in CASCADE_GAINS
+             if getattr(args, name) is not None]
+    if given and args.drive != "current":
+        parser.error(f"{', '.join(given)}: the cascade's gains, for --drive current only")
+    for name in given:
+        value = getattr(args, name[2:].replace("-", "_"))
+        if not (np.isfinite(value) and (value > 0 if name == "--speed-gain" else value >= 0)):
+            parser.error(f"{name} = {value:g}: a gain is finite and >= 0 (the speed gain > 0)")
+    if args.drive != "current":
+        return None
+    if not args.platform:
+        raise ValueError("--drive current needs --platform with drives (platforms/*_drives.json)")
+    cascade = cascade_gains(platform)
+    for name in cascade:
+        value = getattr(args, name)
+        cascade[name] = cascade[name] if value is None else value
+    args.cascade = cascade
+    return cascade
 
 
 def main():
@@ -210,6 +321,15 @@ def main():
     parser.add_argument("--kp", type=float, help="[N/m] (default 1e6, or machine_gains)")
     parser.add_argument("--kd", type=float, help="[N s/m] (default 1e4, or machine_gains)")
     parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
+    parser.add_argument("--drive", default="force", choices=DRIVES,
+                        help="what the controller sends the plant: forces (PD) or motor "
+                             "currents (the cascade; needs --platform with drives)")
+    parser.add_argument("--position-gain", type=float,
+                        help="--drive current: [1/s] (default: cascade_gains)")
+    parser.add_argument("--speed-gain", type=float,
+                        help="--drive current: [N m s/rad] (default: cascade_gains)")
+    parser.add_argument("--speed-integral-time", type=float,
+                        help="--drive current: [s], 0 for none (default: cascade_gains)")
     parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
     parser.add_argument("--out", default=str(ROOT / "out" / "closed_loop"))
     parser.add_argument("--no-plot", action="store_true")
@@ -228,8 +348,9 @@ def main():
         kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)
         args.kp, args.kd = args.kp or kp, args.kd or kd
         duration = args.duration or ("move" not in scene and scene["duration"]) or None
+        cascade = cascade_arguments(parser, args, platform)
         result, wall = run(scene, duration, args.step, args.kp, args.kd, args.fidelity,
-                           args.fmus, machine, platform)
+                           args.fmus, machine, platform, args.drive, cascade)
     except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
         raise SystemExit(f"closed_loop: {e}") from None
     duration = result["t"][-1]
@@ -243,8 +364,11 @@ def main():
         stewart.view(platform, out / "closed_loop.csv", output=out / "closed_loop.html",
                      title=f"closed loop: {scene['name']}")
     position, angle = tracking_error(result)
+    gains = (f"kp = {args.kp:g} N/m, kd = {args.kd:g} N s/m" if args.drive == "force" else
+             "current cascade: position_gain = {position_gain:g} 1/s, speed_gain = {speed_gain:g} "
+             "N m s/rad, speed_integral_time = {speed_integral_time:g} s".format(**args.cascade))
     print(f"closed_loop: {scene['name']}, {duration:g} s at h = {args.step:g} s, fidelity "
-          f"{args.fidelity}, kp = {args.kp:g} N/m, kd = {args.kd:g} N s/m")
+          f"{args.fidelity}, {gains}")
     print(f"closed_loop: tracking error max {position * units.factor('x'):.3e} {units.length}, "
           f"{angle * units.factor('roll'):.3e} {units.angle}")
     print(f"closed_loop: wall time {wall:.2f} s, {wall / duration:.3f} s per simulated second")

@@ -222,6 +222,7 @@ static const struct { const char *name; const char *base; } kUnits[] = {
     {"N/m", "kg=\"1\" s=\"-2\""},
     {"N.s/m", "kg=\"1\" s=\"-1\""},
     {"N.m/A", "kg=\"1\" m=\"2\" s=\"-2\" A=\"-1\""},
+    {"N.m.s/rad", "kg=\"1\" m=\"2\" s=\"-1\" rad=\"-1\""},
     {"Ohm", "kg=\"1\" m=\"2\" s=\"-3\" A=\"-2\""},
     {"rad", "rad=\"1\""},
     {"rad/s", "rad=\"1\" s=\"-1\""},
