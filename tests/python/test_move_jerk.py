@@ -16,7 +16,7 @@ import pytest
 
 import stewart
 from stewart import moves, moves_jerk
-from test_moves import DT, EPS, FILES, goal_of, leg_limits, lengths, lengths_of, load, rotation
+from test_moves import DT, EPS, FILES, goal_of, leg_limits, lengths, load, rotation
 
 
 def limits_of(data):
@@ -205,3 +205,36 @@ def test_a_move_beyond_the_motors_current_is_refused_naming_it():
     assert np.array_equal(stewart.move(shipped, home, goal, leg_speed_max=speed,
                                        leg_accel_max=accel).pose, m.pose)
     assert current.max() <= data["current_max"]
+
+
+def test_a_scene_s_move_takes_a_jerk_limit():
+    """The move section's leg_jerk_max reaches the planner: the scene's trajectory is the
+    jerk-limited move, its third differences of the closed-form lengths within the limit."""
+    platform, data = load("thesis")
+    scene = stewart.scenes.load("move_line", "scenes")
+    scene["move"]["leg_jerk_max"] = 2.0
+    t, pose, rate, accel = stewart.scenes.trajectory(scene, platform)
+    section = scene["move"]
+    m = stewart.move(platform, platform.check().home, section["goal"], section["kind"],
+                     leg_speed_max=section["leg_speed_max"],
+                     leg_accel_max=section["leg_accel_max"], leg_jerk_max=2.0)
+    assert np.array_equal(pose[:len(m.t)], m.pose) and np.array_equal(accel[:len(m.t)],
+                                                                      m.pose_accel)
+    L = lengths(data, pose)
+    assert differences(L, DT)[2] <= 2.0 * (1 + 1e-6) + 8 * 16 * EPS * np.max(L) / DT ** 3
+
+
+def test_the_command_line_takes_a_jerk_limit(tmp_path):
+    import subprocess
+    import sys
+    from conftest import ROOT
+    out = tmp_path / "move.csv"
+    run = subprocess.run([sys.executable, str(ROOT / "scripts" / "move.py"), "--start",
+                          "0,0,0.5,0,0,0", "--goal", "0.01,0,0.51,0,0,0.02", "--line",
+                          "--leg-speed-max", "0.05", "--leg-accel-max", "0.5", "--leg-jerk-max",
+                          "3", "-o", str(out)], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    m = stewart.move(stewart.Platform(), [0, 0, 0.5, 0, 0, 0], [0.01, 0, 0.51, 0, 0, 0.02],
+                     "line", leg_speed_max=0.05, leg_accel_max=0.5, leg_jerk_max=3.0)
+    table = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert np.array_equal(table, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]))
