@@ -1,55 +1,64 @@
 """The jerk-limited time law of a move (docs/moves.md "Jerk"): a rest-to-rest seven-segment
-S-curve s(t) of the path parameter (jerk +-j, acceleration up to a, speed up to v), its shape
-(v and a for a given j) chosen by a Nelder-Mead search and its time scale in closed form, so that
-along the whole path the legs' speed L' ds/dt, acceleration L' s'' + L'' s'^2 and jerk
-L' s''' + 3 L'' s' s'' + L''' s'^3 stay within their limits with one of them met.
+S-curve s(t) of the path parameter (jerk +-j while speeding up, acceleration up to a, speed up to
+v, and its own jerk and deceleration bounds while braking), its shape chosen by a Nelder-Mead
+search and its time scale in closed form, so that along the whole path the legs' speed
+L' ds/dt, acceleration L' s'' + L'' s'^2 and jerk L' s''' + 3 L'' s' s'' + L''' s'^3 stay within
+their limits with one of them met.
 
 Stretching a law's time by k divides the legs' speeds by k, accelerations by k^2 and jerks by
 k^3 (every term of each has the same order in d/dt), so the shortest stretch of a shape is
 max(speed ratio, sqrt(acceleration ratio), cbrt(jerk ratio)) of its peaks: exact, no search.
 Where the legs' lengths are affine in s (L' constant, the limit of a short move) the shortest
-law is a seven-segment S-curve, so this family holds the time optimum; along curved leg paths it
-is near it (docs/moves.md gives the measured gap to a lower bound).
+law is a symmetric seven-segment S-curve, so this family holds the time optimum; along curved
+leg paths it is near it (docs/moves.md gives the measured gap to a lower bound).
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 
 #: Evaluation points per S-curve segment when the legs' peaks of a shape are sought (both ends
-#: of each segment included, where the jerk jumps).
-PEAK_POINTS = 48
+#: of each segment included, where the jerk jumps): fewer while the shape is searched, more for
+#: the stretch of the shape found.
+SEARCH_POINTS = 16
+PEAK_POINTS = 64
 #: Nelder-Mead iterations of the shape search, and its relative tolerance on the duration.
-SEARCH_ITERATIONS = 120
-SEARCH_TOLERANCE = 1e-6
+SEARCH_ITERATIONS = 200
+SEARCH_TOLERANCE = 1e-5
 
 
 class SCurve:
-    """A rest-to-rest S-curve from s = 0 to 1 with speed bound v, acceleration bound a and jerk
-    j: seven segments (jerk +j, 0, -j, cruise, -j, 0, +j), durations in `durations`, the state
-    (s, s', s'') at each segment's start in `starts`."""
+    """A rest-to-rest S-curve from s = 0 to 1: it speeds up with jerk +-j up to acceleration a,
+    cruises at speed v if the distance leaves room, and brakes with jerk +-j_brake down to
+    deceleration a_brake (those of the speeding up unless given). Seven segments (jerk +j, 0,
+    -j, cruise, -j_brake, 0, +j_brake) of `durations`; the state (s, s', s'') at each segment's
+    start in `starts`."""
 
-    def __init__(self, v: float, a: float, j: float) -> None:
-        def accel_time(peak):  # from rest to the speed `peak` and the ramp time
-            return (peak / a + a / j, a / j) if peak >= a * a / j else \
-                (2 * math.sqrt(peak / j), math.sqrt(peak / j))
+    def __init__(self, v: float, a: float, j: float, a_brake=None, j_brake=None) -> None:
+        a2 = a if a_brake is None else a_brake
+        j2 = j if j_brake is None else j_brake
+
+        def distance(w):
+            return _rise(w, a, j)[1] + _rise(w, a2, j2)[1]
         peak = v
-        if v * accel_time(v)[0] > 1.0:  # no cruise: the peak speed covers the distance
-            q = a * a / j
-            peak = 0.5 * (-q + math.sqrt(q * q + 4 * a))
-            if peak < q:
-                peak = (j / 4) ** (1 / 3)
-        total, ramp = accel_time(peak)
-        hold = total - 2 * ramp
-        cruise = max(0.0, 1.0 / peak - total)
-        self.durations = np.array([ramp, hold, ramp, cruise, ramp, hold, ramp])
-        self.jerks = np.array([j, 0.0, -j, 0.0, -j, 0.0, j])
+        if distance(v) > 1.0:  # no cruise: the peak speed that covers the distance, bisected
+            lo, hi = 0.0, v
+            for _ in range(64):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if distance(mid) <= 1.0 else (lo, mid)
+            peak = lo
+        (ramp, hold), (ramp2, hold2) = _rise(peak, a, j)[0], _rise(peak, a2, j2)[0]
+        cruise = max(0.0, (1.0 - distance(peak)) / peak)
+        self.durations = np.array([ramp, hold, ramp, cruise, ramp2, hold2, ramp2])
+        self.jerks = np.array([j, 0.0, -j, 0.0, -j2, 0.0, j2])
         self.times = np.concatenate([[0.0], np.cumsum(self.durations)])
         self.duration = float(self.times[-1])
-        state = np.zeros(3)
+        state = (0.0, 0.0, 0.0)
         starts = [state]
-        for d, jk in zip(self.durations, self.jerks):
+        for d, jk in zip((ramp, hold, ramp, cruise, ramp2, hold2, ramp2),
+                         (j, 0.0, -j, 0.0, -j2, 0.0, j2)):
             state = _advance(state, jk, d)
             starts.append(state)
         self.starts = np.array(starts)
@@ -66,18 +75,34 @@ class SCurve:
         return (s0 + d * (v0 + d * (a0 / 2 + d * jk / 6)), v0 + d * (a0 + d * jk / 2),
                 a0 + d * jk, jk + 0 * d)
 
-    def peak_samples(self):
-        """s, s', s'', s''' on PEAK_POINTS points of every segment, its ends included (the
-        jerk from inside the segment)."""
-        d = np.linspace(0.0, 1.0, PEAK_POINTS)[None, :] * self.durations[:, None]
-        k = np.broadcast_to(np.arange(7)[:, None], d.shape)
-        return tuple(x.ravel() for x in self.in_segment(k, d))
+    def peak_samples(self, points: int = PEAK_POINTS):
+        """s, s', s'', s''' on `points` points of every segment, its ends included (the jerk
+        from inside the segment)."""
+        unit, k = _unit_grid(points)
+        return self.in_segment(k, (unit * self.durations[:, None]).ravel())
+
+
+@functools.lru_cache(maxsize=4)
+def _unit_grid(points):
+    """`points` fractions of a segment from 0 to 1 as a row, and the segment of each of the
+    7 x points values of a grid of every segment, flattened."""
+    return np.linspace(0.0, 1.0, points)[None, :], np.repeat(np.arange(7), points)
+
+
+def _rise(w, a, j):
+    """From rest to speed w (or from w to rest) with jerk j and acceleration up to a: the ramp
+    and hold times of the acceleration (a trapezoid; a triangle when w < a^2 / j), and the
+    distance covered: w times half the time."""
+    if w >= a * a / j:
+        ramp, hold = a / j, w / a - a / j
+    else:
+        ramp, hold = math.sqrt(w / j), 0.0
+    return (ramp, hold), w * (ramp + hold / 2)
 
 
 def _advance(state, jerk, d):
     s, v, a = state
-    return np.array([s + d * (v + d * (a / 2 + d * jerk / 6)), v + d * (a + d * jerk / 2),
-                     a + d * jerk])
+    return (s + d * (v + d * (a / 2 + d * jerk / 6)), v + d * (a + d * jerk / 2), a + d * jerk)
 
 
 class LegPeaks:
@@ -87,14 +112,16 @@ class LegPeaks:
     def __init__(self, s, Lp, Lpp, Lppp, speed_per_rate, speed, accel, jerk) -> None:
         self.s = s
         self.columns = np.hstack([Lp, Lpp, Lppp, speed_per_rate])
+        self.steps = np.diff(self.columns, axis=0)
         self.speed, self.accel, self.jerk = speed, accel, jerk
 
-    def stretch(self, curve: SCurve) -> float:
-        """The smallest k with the law s(t / k) within every limit, from its peaks."""
-        s, v, a, j = curve.peak_samples()
+    def stretch(self, curve: SCurve, points: int = PEAK_POINTS) -> float:
+        """The smallest k with the law s(t / k) within every limit, from its peaks on `points`
+        points of each segment (the columns linear between grid nodes)."""
+        s, v, a, j = curve.peak_samples(points)
         i = np.clip(np.searchsorted(self.s, s, side="right") - 1, 0, self.s.size - 2)
         w = ((s - self.s[i]) / (self.s[i + 1] - self.s[i]))[:, None]
-        c = self.columns[i] * (1 - w) + self.columns[i + 1] * w
+        c = self.columns[i] + self.steps[i] * w
         Lp, Lpp, Lppp, cart = c[:, :6], c[:, 6:12], c[:, 12:18], c[:, 18:]
         v, a, j = v[:, None], a[:, None], j[:, None]
         speed = np.max(np.abs(np.hstack([Lp, cart]) * v) / self.speed)
@@ -105,22 +132,32 @@ class LegPeaks:
 
 def jerk_limited_law(peaks: LegPeaks):
     """The S-curve whose stretched duration is the shortest found, and its stretch k (the law
-    is s(t / k), of duration k curve.duration)."""
-    Lp = np.abs(peaks.columns[:, :6])
-    top = np.max(Lp, axis=0)
+    is s(t / k), of duration k curve.duration). The shape has four free ratios (the cruise
+    speed, the acceleration and braking bounds and the braking jerk, to the jerk of speeding
+    up): the speeding up and the braking happen on different parts of the path, where the legs
+    allow different bounds."""
+    columns = np.abs(peaks.columns)
+    top = np.max(columns[:, :6], axis=0)
+    moving = top > 0
     # A shape of the right order: each bound the legs' own limit over the largest L'.
-    v0 = float(np.min(np.divide(np.append(peaks.speed[:6], np.inf), np.append(top, 1.0))))
-    a0 = float(np.min(peaks.accel / top))
-    j0 = float(np.min(peaks.jerk / top))
+    speed_top = np.max(np.hstack([columns[:, :6], columns[:, 18:]]), axis=0)
+    with np.errstate(divide="ignore"):
+        v0 = float(np.min(peaks.speed / speed_top))
+    a0 = float(np.min(peaks.accel[moving] / top[moving]))
+    j0 = float(np.min(peaks.jerk[moving] / top[moving]))
     if not math.isfinite(v0):  # no speed limit: a bound the accelerations never let it reach
         v0 = 10 * math.sqrt(a0)
 
-    def duration(x):
-        curve = SCurve(v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0)
-        return peaks.stretch(curve) * curve.duration
+    def shape(x):
+        return SCurve(v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0, a0 * math.exp(x[2]),
+                      j0 * math.exp(x[3]))
 
-    best = _nelder_mead(duration, np.zeros(2), 0.3)
-    curve = SCurve(v0 * math.exp(best[0]), a0 * math.exp(best[1]), j0)
+    def duration(x):
+        curve = shape(x)
+        return peaks.stretch(curve, SEARCH_POINTS) * curve.duration
+
+    best = _nelder_mead(duration, _nelder_mead(duration, np.zeros(4), 0.3), 0.05)
+    curve = shape(best)
     return curve, peaks.stretch(curve)
 
 

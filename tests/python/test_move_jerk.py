@@ -238,3 +238,53 @@ def test_the_command_line_takes_a_jerk_limit(tmp_path):
                      "line", leg_speed_max=0.05, leg_accel_max=0.5, leg_jerk_max=3.0)
     table = np.loadtxt(out, delimiter=",", skiprows=1)
     assert np.array_equal(table, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]))
+
+
+def test_an_asymmetric_s_curve_ends_at_rest_within_its_bounds():
+    """Speeding up and braking with their own bounds, with and without a cruise."""
+    for v in (0.5, 50.0):
+        curve = moves_jerk.SCurve(v, 3.0, 40.0, 1.5, 10.0)
+        tau = np.linspace(0, curve.duration, 40001)
+        s, sd, sdd, sddd = curve.at(tau)
+        assert abs(s[-1] - 1) < 1e-12 and abs(sd[-1]) < 1e-12 and abs(sdd[-1]) < 1e-9
+        assert sd.max() <= v * (1 + 1e-12) and np.all(np.diff(s) >= 0)
+        assert sdd.max() <= 3.0 * (1 + 1e-12) and sdd.min() >= -1.5 * (1 + 1e-12)
+        braking = tau > curve.times[3]  # after the speeding up (and the cruise, if any)
+        assert np.all(sdd[braking] <= 1e-12) and np.all(sdd[~braking] >= -1e-12)
+        assert np.abs(sddd[~braking]).max() == 40.0 and np.abs(sddd[braking]).max() == 10.0
+
+
+def test_the_shape_search_finds_the_family_s_best():
+    """The planner's shape against a grid over the family's four ratios around its start (9
+    values each, log-spaced over a factor e^1.5 either way): no grid point gives a shorter
+    stretched duration."""
+    captured = {}
+
+    def spy(peaks):
+        captured["peaks"] = peaks
+        return law(peaks)
+    law = moves_jerk.jerk_limited_law
+    moves.jerk_limited_law = spy
+    try:
+        platform, data = load("thesis")
+        home = platform.check().home
+        speed, accel, jerk = limits_of(data)
+        stewart.move(platform, home, goal_of(platform, home, "line"), "line",
+                     leg_speed_max=speed, leg_accel_max=accel, leg_jerk_max=jerk)
+    finally:
+        moves.jerk_limited_law = law
+    peaks = captured["peaks"]
+    curve, stretch = law(peaks)
+    found = stretch * curve.duration
+    top = np.max(np.abs(peaks.columns[:, :6]), axis=0)
+    v0, a0, j0 = (float(np.min(limit / top)) for limit in (peaks.speed[:6], peaks.accel,
+                                                             peaks.jerk))
+    steps = np.exp(np.linspace(-1.5, 1.5, 9))
+    best = np.inf
+    for fv in steps:
+        for fa in steps:
+            for fa2 in steps:
+                for fj2 in steps:
+                    c = moves_jerk.SCurve(v0 * fv, a0 * fa, j0, a0 * fa2, j0 * fj2)
+                    best = min(best, peaks.stretch(c, 16) * c.duration)
+    assert found <= best * (1 + 1e-4), (found, best)
