@@ -10,8 +10,10 @@ phase-plane computation on a fine grid of s (time-optimal path parametrisation, 
 x = ds/dt squared and u = d2s/dt2 constant on each grid segment, the leg speed L'(s) ds/dt and
 acceleration L'(s) u + L''(s) x are kept within their limits at both ends of every segment, a
 backward pass finds the largest speed from which the goal can still be reached at rest, and a
-forward pass accelerates as hard as that allows. Rates and accelerations of the samples are
-exact: q' ds/dt and q' d2s/dt2 + q'' (ds/dt)^2 with the path's own derivatives.
+forward pass accelerates as hard as that allows. With a leg jerk limit that law (whose path
+acceleration switches at once) is replaced by a jerk-limited S-curve of s (moves_jerk). Rates,
+accelerations and jerks of the samples are exact: q' ds/dt, q' d2s/dt2 + q'' (ds/dt)^2 and
+q' d3s/dt3 + 3 q'' ds/dt d2s/dt2 + q''' (ds/dt)^3 with the path's own derivatives.
 
 >>> import stewart
 >>> m = stewart.move(stewart.Platform(), [0, 0, 0.5, 0, 0, 0], [0.01, 0, 0.5, 0, 0, 0],
@@ -50,8 +52,8 @@ _X_CAP = 1e30
 class MoveError(ValueError):
     """A move that cannot be made: limit_class names the limit ("stroke", "base_joint",
     "platform_joint", "interference", "condition", "axis", "unreachable", "leg_speed",
-    "leg_accel", "leg_jerk", "leg_force", "current"), and time [s] and s (the path parameter in [0, 1]) say where, when
-    known."""
+    "leg_accel", "leg_jerk", "leg_force", "current"), and time [s] and s (the path parameter
+    in [0, 1]) say where, when known."""
 
     def __init__(self, message: str, limit_class: str, time: Optional[float] = None,
                  s: Optional[float] = None) -> None:
