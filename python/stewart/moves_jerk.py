@@ -26,6 +26,8 @@ SEARCH_POINTS = 16
 PEAK_POINTS = 64
 #: Nelder-Mead iterations of the shape search, and its relative tolerance on the duration.
 SEARCH_ITERATIONS = 200
+#: The shape search's starting simplex sizes (in the logarithms of the ratios).
+START_STEPS = (0.3, 0.5)
 SEARCH_TOLERANCE = 1e-5
 
 
@@ -156,7 +158,11 @@ def jerk_limited_law(peaks: LegPeaks):
         curve = shape(x)
         return peaks.stretch(curve, SEARCH_POINTS) * curve.duration
 
-    best = _nelder_mead(duration, _nelder_mead(duration, np.zeros(4), 0.3), 0.05)
+    # The duration is the largest of several ratios (a minimax): the simplex can stall on a
+    # ridge where two limits trade places, so it starts twice, with two sizes, and the shorter
+    # result is taken.
+    best = min((_nelder_mead(duration, np.zeros(4), step) for step in START_STEPS),
+               key=duration)
     curve = shape(best)
     return curve, peaks.stretch(curve)
 

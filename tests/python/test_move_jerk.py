@@ -85,7 +85,7 @@ def test_every_jerk_limited_move_keeps_every_limit(name, kind):
     # Tight: sped up uniformly by 0.5 % the samples would break a limit.
     assert smallest_time_scale(L, speed, accel, jerk) > 0.995
     # Near time-optimal: no shorter than any leg's own fastest motion over its length change
-    # (a lower bound of the optimum), and at most 5 % longer (measured: 0.06 % to 4.5 %).
+    # (a lower bound of the optimum), and at most 5 % longer (measured: 0.06 % to 3.9 %).
     bound = max(one_leg_time(abs(d), speed, accel, jerk) for d in L[-1] - L[0])
     assert bound <= m.duration <= 1.05 * bound, (m.duration, bound)
 
