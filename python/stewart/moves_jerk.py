@@ -20,10 +20,12 @@ import math
 import numpy as np
 
 #: Evaluation points per S-curve segment when the legs' peaks of a shape are sought (both ends
-#: of each segment included, where the jerk jumps): fewer while the shape is searched, more for
-#: the stretch of the shape found.
+#: of each segment included, where the jerk jumps): few while the shape is searched; for the
+#: stretch of the shape found, enough that between two of them the legs' rates (varying along
+#: s) cannot peak above them by more than about 1e-6, well inside moves.PLAN_MARGIN (with 64 a
+#: long cruise missed a speed peak by 2.7e-5 of the limit).
 SEARCH_POINTS = 16
-PEAK_POINTS = 64
+PEAK_POINTS = 1024
 #: Nelder-Mead iterations of the shape search, and its relative tolerance on the duration.
 SEARCH_ITERATIONS = 200
 #: The shape search's starting simplex sizes (in the logarithms of the ratios).
