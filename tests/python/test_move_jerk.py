@@ -288,3 +288,16 @@ def test_the_shape_search_finds_the_family_s_best():
                     c = moves_jerk.SCurve(v0 * fv, a0 * fa, j0, a0 * fa2, j0 * fj2)
                     best = min(best, peaks.stretch(c, 16) * c.duration)
     assert found <= best * (1 + 1e-4), (found, best)
+
+
+def test_a_jerk_limited_move_across_a_limit_is_refused_naming_class_and_time():
+    """The pair of test_moves.py whose straight line crosses the stroke limit: refused with
+    the class, and at the path parameter where a fine scan of the line first meets it."""
+    from test_moves import crossing_pair
+    platform = stewart.Platform()
+    a, b, limit, s_first = crossing_pair(platform, platform.check().home)
+    with pytest.raises(stewart.MoveError) as info:
+        stewart.move(platform, a, b, leg_speed_max=0.1, leg_accel_max=0.5, leg_jerk_max=5.0)
+    e = info.value
+    assert e.limit_class == limit and limit in str(e) and f"t = {e.time:.6g} s" in str(e)
+    assert abs(e.s - s_first) <= 1e-3 and 0 < e.time < math.inf
