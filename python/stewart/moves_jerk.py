@@ -28,8 +28,12 @@ SEARCH_POINTS = 16
 PEAK_POINTS = 1024
 #: Nelder-Mead iterations of the shape search, and its relative tolerance on the duration.
 SEARCH_ITERATIONS = 200
-#: The shape search's starting simplex sizes (in the logarithms of the ratios).
-START_STEPS = (0.3, 0.5)
+#: The shape search's starting simplex sizes (in the logarithms of the ratios and in the warp's
+#: coefficients), and the size of the last search from the best of those.
+START_STEPS = (0.3,)
+POLISH_STEP = 0.1
+#: The warp's |b| + |c| stays below this (below 1 its derivative stays positive: at least 0.1).
+WARP_MAX = 0.9
 SEARCH_TOLERANCE = 1e-5
 
 
@@ -111,35 +115,79 @@ def _advance(state, jerk, d):
 
 class LegPeaks:
     """The legs' L', L'', L''' (and the Cartesian speeds per unit ds/dt) on a grid of s, and
-    the limits they are held to (inf: none): the stretch a time law of s needs."""
+    the limits they are held to (inf: none): the stretch a time law of s needs. The columns
+    are kept divided by their limits, the speed ones by their largest (|L'| ds/dt is largest
+    where |L'| is), so a stretch is a few products."""
 
     def __init__(self, s, Lp, Lpp, Lppp, speed_per_rate, speed, accel, jerk) -> None:
         self.s = s
         self.columns = np.hstack([Lp, Lpp, Lppp, speed_per_rate])
-        self.steps = np.diff(self.columns, axis=0)
         self.speed, self.accel, self.jerk = speed, accel, jerk
+        self.uniform = np.allclose(np.diff(s), 1.0 / (s.size - 1), rtol=1e-12, atol=0)
+        with np.errstate(divide="ignore"):
+            inv = [np.where(np.isfinite(x), 1.0 / x, 0.0) for x in (speed, accel, jerk)]
+        speeds = np.max(np.abs(np.hstack([Lp, speed_per_rate])) * inv[0], axis=1)
+        table = np.hstack([speeds[:, None], Lp * inv[1], Lpp * inv[1], Lp * inv[2],
+                           3 * Lpp * inv[2], Lppp * inv[2]])
+        self.table, self.table_steps = table, np.diff(table, axis=0)
 
-    def stretch(self, curve: SCurve, points: int = PEAK_POINTS) -> float:
+    def stretch(self, curve, points: int = PEAK_POINTS) -> float:
         """The smallest k with the law s(t / k) within every limit, from its peaks on `points`
         points of each segment (the columns linear between grid nodes)."""
         s, v, a, j = curve.peak_samples(points)
-        i = np.clip(np.searchsorted(self.s, s, side="right") - 1, 0, self.s.size - 2)
-        w = ((s - self.s[i]) / (self.s[i + 1] - self.s[i]))[:, None]
-        c = self.columns[i] + self.steps[i] * w
-        Lp, Lpp, Lppp, cart = c[:, :6], c[:, 6:12], c[:, 12:18], c[:, 18:]
+        n = self.s.size - 1
+        if self.uniform:
+            at = np.clip(s, 0.0, 1.0) * n
+            i = np.minimum(at.astype(np.intp), n - 1)
+            w = (at - i)[:, None]
+        else:
+            i = np.clip(np.searchsorted(self.s, s, side="right") - 1, 0, n - 1)
+            w = ((s - self.s[i]) / (self.s[i + 1] - self.s[i]))[:, None]
+        c = self.table[i] + self.table_steps[i] * w
         v, a, j = v[:, None], a[:, None], j[:, None]
-        speed = np.max(np.abs(np.hstack([Lp, cart]) * v) / self.speed)
-        accel = np.max(np.abs(Lp * a + Lpp * v * v) / self.accel)
-        jerk = np.max(np.abs(Lp * j + 3 * Lpp * v * a + Lppp * v ** 3) / self.jerk)
+        speed = np.max(c[:, 0] * v[:, 0])
+        accel = np.max(np.abs(c[:, 1:7] * a + c[:, 7:13] * (v * v)))
+        jerk = np.max(np.abs(c[:, 13:19] * j + c[:, 19:25] * (v * a) + c[:, 25:31] * v ** 3))
         return max(speed, math.sqrt(accel), jerk ** (1 / 3))
 
 
+class WarpedLaw:
+    """The time law s = w(sigma(t)): an S-curve sigma(t) from 0 to 1 through the warp
+    w(x) = x + b x (1 - x) + c x (1 - x) (2 x - 1), a cubic from 0 to 1 that lets the path go
+    faster where the legs allow it (b > 0: faster at the start); |b| + |c| < 1 keeps w' > 0.
+    Its derivatives are exact by the chain rule."""
+
+    def __init__(self, curve: SCurve, b: float = 0.0, c: float = 0.0) -> None:
+        if abs(b) + abs(c) >= WARP_MAX:
+            raise ValueError(f"the warp's |b| + |c| = {abs(b) + abs(c):.3g} must be below "
+                             f"{WARP_MAX}: the path parameter would not increase")
+        self.curve, self.b, self.c, self.duration = curve, b, c, curve.duration
+
+    def _through(self, x, xv, xa, xj):
+        b, c = self.b, self.c
+        u = x * (1 - x)
+        s = x + b * u + c * u * (2 * x - 1)
+        d1 = 1 + b * (1 - 2 * x) + c * (6 * u - 1)
+        d2 = -2 * b + c * (6 - 12 * x)
+        d3 = -12 * c
+        return (s, d1 * xv, d2 * xv * xv + d1 * xa,
+                d3 * xv ** 3 + 3 * d2 * xv * xa + d1 * xj)
+
+    def at(self, tau):
+        """s, s', s'', s''' at times tau (clipped to [0, duration])."""
+        return self._through(*self.curve.at(tau))
+
+    def peak_samples(self, points: int = PEAK_POINTS):
+        return self._through(*self.curve.peak_samples(points))
+
+
 def jerk_limited_law(peaks: LegPeaks):
-    """The S-curve whose stretched duration is the shortest found, and its stretch k (the law
-    is s(t / k), of duration k curve.duration). The shape has four free ratios (the cruise
-    speed, the acceleration and braking bounds and the braking jerk, to the jerk of speeding
-    up): the speeding up and the braking happen on different parts of the path, where the legs
-    allow different bounds."""
+    """The warped S-curve whose stretched duration is the shortest found, and its stretch k
+    (the law is s(t / k), of duration k law.duration). The shape has six free ratios: the
+    cruise speed, the acceleration and braking bounds and the braking jerk (to the jerk of
+    speeding up), since the speeding up and the braking happen on different parts of the path
+    where the legs allow different bounds; and the warp's b and c, which let the cruise and the
+    ramps go faster where the legs' L' is smaller."""
     columns = np.abs(peaks.columns)
     top = np.max(columns[:, :6], axis=0)
     moving = top > 0
@@ -152,25 +200,28 @@ def jerk_limited_law(peaks: LegPeaks):
     if not math.isfinite(v0):  # no speed limit: a bound the accelerations never let it reach
         v0 = 10 * math.sqrt(a0)
 
-    def shape(x):
-        return SCurve(v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0, a0 * math.exp(x[2]),
-                      j0 * math.exp(x[3]))
+    def law(x):
+        curve = SCurve(v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0, a0 * math.exp(x[2]),
+                       j0 * math.exp(x[3]))
+        return WarpedLaw(curve, x[4], x[5])
 
     def duration(x):
-        curve = shape(x)
-        return peaks.stretch(curve, SEARCH_POINTS) * curve.duration
+        if abs(x[4]) + abs(x[5]) >= WARP_MAX:
+            return math.inf
+        shape = law(x)
+        return peaks.stretch(shape, SEARCH_POINTS) * shape.duration
 
     # The duration is the largest of several ratios (a minimax): the simplex can stall on a
     # ridge where two limits trade places, so it starts twice, with two sizes, and the shorter
-    # result is taken.
-    best = min((_nelder_mead(duration, np.zeros(4), step) for step in START_STEPS),
+    # result is searched again from a small simplex.
+    best = min((_nelder_mead(duration, np.zeros(6), step) for step in START_STEPS),
                key=duration)
-    curve = shape(best)
-    return curve, peaks.stretch(curve)
+    shape = law(_nelder_mead(duration, best, POLISH_STEP))
+    return shape, peaks.stretch(shape)
 
 
 def _nelder_mead(f, x0, step):
-    """A minimum of f near x0 by the Nelder-Mead simplex (2-D here)."""
+    """A minimum of f near x0 by the Nelder-Mead simplex."""
     n = x0.size
     simplex = [x0] + [x0 + step * np.eye(n)[i] for i in range(n)]
     values = [f(x) for x in simplex]
@@ -200,7 +251,7 @@ def _nelder_mead(f, x0, step):
     return simplex[int(np.argmin(values))]
 
 
-def sample_law(curve: SCurve, stretch: float, sample_time: float):
+def sample_law(curve, stretch: float, sample_time: float):
     """Sample times (the duration rounded up to whole samples by stretching the law further,
     which keeps every limit) and s, ds/dt, d2s/dt2, d3s/dt3 at them."""
     duration = stretch * curve.duration

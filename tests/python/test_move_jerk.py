@@ -85,9 +85,10 @@ def test_every_jerk_limited_move_keeps_every_limit(name, kind):
     # Tight: sped up uniformly by 0.5 % the samples would break a limit.
     assert smallest_time_scale(L, speed, accel, jerk) > 0.995
     # Near time-optimal: no shorter than any leg's own fastest motion over its length change
-    # (a lower bound of the optimum), and at most 5 % longer (measured: 0.06 % to 3.9 %).
+    # (a lower bound of the optimum), and at most 4 % longer (measured: 0.01 % to 3.3 %, all
+    # but the thesis line within 0.5 %).
     bound = max(one_leg_time(abs(d), speed, accel, jerk) for d in L[-1] - L[0])
-    assert bound <= m.duration <= 1.05 * bound, (m.duration, bound)
+    assert bound <= m.duration <= 1.04 * bound, (m.duration, bound)
 
 
 def test_the_jerks_are_the_accelerations_derivatives():
@@ -255,9 +256,9 @@ def test_an_asymmetric_s_curve_ends_at_rest_within_its_bounds():
 
 
 def test_the_shape_search_finds_the_family_s_best():
-    """The planner's shape against a grid over the family's four ratios around its start (9
-    values each, log-spaced over a factor e^1.5 either way): no grid point gives a shorter
-    stretched duration."""
+    """The planner's law against a grid over the S-curve's four ratios around its start (9
+    values each, log-spaced over a factor e^1.5 either way), unwarped: no grid point gives a
+    shorter stretched duration (the planner's warp can only shorten it further)."""
     captured = {}
 
     def spy(peaks):
@@ -301,3 +302,23 @@ def test_a_jerk_limited_move_across_a_limit_is_refused_naming_class_and_time():
     e = info.value
     assert e.limit_class == limit and limit in str(e) and f"t = {e.time:.6g} s" in str(e)
     assert abs(e.s - s_first) <= 1e-3 and 0 < e.time < math.inf
+
+
+def test_the_warped_law_s_derivatives_are_its_differences():
+    """s(t) = w(sigma(t)) through the cubic warp: its rate, acceleration and jerk against
+    central differences of s, s' and s'' (away from the S-curve's segment ends, where the jerk
+    jumps); it goes from 0 to 1 at rest."""
+    curve = moves_jerk.SCurve(0.8, 3.0, 40.0, 2.0, 25.0)
+    law = moves_jerk.WarpedLaw(curve, 0.3, -0.2)
+    tau = np.linspace(0, law.duration, 4001)
+    h = 1e-6
+    s, v, a, j = law.at(tau)
+    ahead, behind = law.at(tau + h), law.at(tau - h)
+    inside = np.all(np.abs(tau[:, None] - curve.times[None, :]) > 2 * h, axis=1)
+    for value, k in ((v, 0), (a, 1), (j, 2)):
+        central = (ahead[k] - behind[k]) / (2 * h)
+        assert np.max(np.abs(central - value)[inside]) <= 1e-6 * np.max(np.abs(value))
+    assert s[0] == 0 and abs(s[-1] - 1) < 1e-12 and v[0] == 0 and abs(v[-1]) < 1e-12
+    assert np.all(np.diff(s) > 0)
+    with pytest.raises(ValueError, match="would not increase"):
+        moves_jerk.WarpedLaw(curve, 0.6, 0.4)
