@@ -1,9 +1,9 @@
-"""The jerk-limited time law of a move (docs/moves.md "Jerk"): a rest-to-rest seven-segment
-S-curve s(t) of the path parameter (jerk +-j while speeding up, acceleration up to a, speed up to
-v, and its own jerk and deceleration bounds while braking), its shape chosen by a Nelder-Mead
-search and its time scale in closed form, so that along the whole path the legs' speed
-L' ds/dt, acceleration L' s'' + L'' s'^2 and jerk L' s''' + 3 L'' s' s'' + L''' s'^3 stay within
-their limits with one of them met.
+"""The jerk-limited time law of a move (docs/moves.md "Jerk limits"): s(t) = w(sigma(t)), a
+rest-to-rest seven-segment S-curve sigma(t) (jerk +-j while speeding up, acceleration up to a,
+speed up to v, and its own jerk and deceleration bounds while braking) through a cubic warp w of
+the path parameter, its shape chosen by a Nelder-Mead search and its time scale in closed form,
+so that along the whole path the legs' speed L' ds/dt, acceleration L' s'' + L'' s'^2 and jerk
+L' s''' + 3 L'' s' s'' + L''' s'^3 stay within their limits with one of them met.
 
 Stretching a law's time by k divides the legs' speeds by k, accelerations by k^2 and jerks by
 k^3 (every term of each has the same order in d/dt), so the shortest stretch of a shape is
