@@ -93,8 +93,11 @@ class SCurve:
 @functools.lru_cache(maxsize=4)
 def _unit_grid(points):
     """`points` fractions of a segment from 0 to 1 as a row, and the segment of each of the
-    7 x points values of a grid of every segment, flattened."""
-    return np.linspace(0.0, 1.0, points)[None, :], np.repeat(np.arange(7), points)
+    7 x points values of a grid of every segment, flattened (read-only: shared by every call)."""
+    unit, segment = np.linspace(0.0, 1.0, points)[None, :], np.repeat(np.arange(7), points)
+    unit.setflags(write=False)
+    segment.setflags(write=False)
+    return unit, segment
 
 
 def _rise(w, a, j):
