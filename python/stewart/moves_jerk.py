@@ -214,9 +214,9 @@ def jerk_limited_law(peaks: LegPeaks):
         shape = law(x)
         return peaks.stretch(shape, SEARCH_POINTS) * shape.duration
 
-    # The duration is the largest of several ratios (a minimax): the simplex can stall on a
-    # ridge where two limits trade places, so it starts twice, with two sizes, and the shorter
-    # result is searched again from a small simplex.
+    # The duration is the largest of several ratios (a minimax): a simplex can stall on a
+    # ridge where two limits trade places, so the best of the starts is searched again from a
+    # small simplex.
     best = min((_nelder_mead(duration, np.zeros(6), step) for step in START_STEPS),
                key=duration)
     shape = law(_nelder_mead(duration, best, POLISH_STEP))
