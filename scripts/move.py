@@ -6,7 +6,7 @@ time and the path parameter (docs/moves.md).
 
 usage: move.py [--platform FILE.json] --start x,y,z,roll,pitch,yaw --goal x,y,z,roll,pitch,yaw
                [--line | --via x,y,z,roll,pitch,yaw ... [--blend F]] [--frame user|tool]
-               [--leg-accel-max A] [--leg-speed-max V]
+               [--leg-accel-max A] [--leg-speed-max V] [--leg-jerk-max J]
                [--speed-max V] [--angular-speed-max W] [--sample-time DT] -o MOVE.csv
 """
 import argparse
@@ -62,6 +62,8 @@ def main(argv=None) -> int:
     ap.add_argument("--leg-accel-max", type=limit,
                     help="[m/s^2], 1 or 6 values; default the platform's leg_accel_max (needed "
                          "from the one or the other)")
+    ap.add_argument("--leg-jerk-max", type=limit,
+                    help="[m/s^3], 1 or 6 values; default the platform's leg_jerk_max (0: none)")
     ap.add_argument("--speed-max", type=float, help="tool point speed [m/s]")
     ap.add_argument("--angular-speed-max", type=float, help="angular speed [rad/s]")
     ap.add_argument("--sample-time", type=float, default=0.001, help="[s], default 0.001")
@@ -72,6 +74,7 @@ def main(argv=None) -> int:
                     else stewart.Platform())
         planned = stewart.move(platform, args.start, args.goal, "line" if args.line else "point",
                                leg_speed_max=args.leg_speed_max, leg_accel_max=args.leg_accel_max,
+                               leg_jerk_max=args.leg_jerk_max,
                                speed_max=args.speed_max, angular_speed_max=args.angular_speed_max,
                                sample_time=args.sample_time, frame=args.frame, via=args.via,
                                blend=args.blend)

@@ -10,8 +10,10 @@ phase-plane computation on a fine grid of s (time-optimal path parametrisation, 
 x = ds/dt squared and u = d2s/dt2 constant on each grid segment, the leg speed L'(s) ds/dt and
 acceleration L'(s) u + L''(s) x are kept within their limits at both ends of every segment, a
 backward pass finds the largest speed from which the goal can still be reached at rest, and a
-forward pass accelerates as hard as that allows. Rates and accelerations of the samples are
-exact: q' ds/dt and q' d2s/dt2 + q'' (ds/dt)^2 with the path's own derivatives.
+forward pass accelerates as hard as that allows. With a leg jerk limit that law (whose path
+acceleration switches at once) is replaced by a jerk-limited S-curve of s (moves_jerk). Rates,
+accelerations and jerks of the samples are exact: q' ds/dt, q' d2s/dt2 + q'' (ds/dt)^2 and
+q' d3s/dt3 + 3 q'' ds/dt d2s/dt2 + q''' (ds/dt)^3 with the path's own derivatives.
 
 >>> import stewart
 >>> m = stewart.move(stewart.Platform(), [0, 0, 0.5, 0, 0, 0], [0.01, 0, 0.5, 0, 0, 0],
@@ -31,6 +33,8 @@ from .angles import _angles_of, _rate_matrix, _rate_matrix_dot, rotation_matrix
 from .arrays import vector
 from .limits import (LIMIT_CLASSES, MARGIN_UNITS, POSE_CLASSES, LimitCheck, class_name,
                      leg_limits_of, with_leg_limits)
+from .moves_jerk import LegPeaks, jerk_limited_law, sample_law
+from .params import parameter_assignments, parameters
 
 KINDS = ("point", "line")
 FRAMES = ("user", "tool")
@@ -48,8 +52,8 @@ _X_CAP = 1e30
 class MoveError(ValueError):
     """A move that cannot be made: limit_class names the limit ("stroke", "base_joint",
     "platform_joint", "interference", "condition", "axis", "unreachable", "leg_speed",
-    "leg_accel", "leg_force"), and time [s] and s (the path parameter in [0, 1]) say where, when
-    known."""
+    "leg_accel", "leg_jerk", "leg_force", "current"), and time [s] and s (the path parameter
+    in [0, 1]) say where, when known."""
 
     def __init__(self, message: str, limit_class: str, time: Optional[float] = None,
                  s: Optional[float] = None) -> None:
@@ -73,6 +77,7 @@ class Move:
     s_accel: np.ndarray
     duration: float
     kind: str
+    pose_jerk: Optional[np.ndarray] = None  #: (N, 6) exact third derivatives (jerk-limited moves)
 
 
 class _PointPath:
@@ -90,6 +95,10 @@ class _PointPath:
         dq = np.broadcast_to(self.dq, q.shape).copy()
         omega = np.einsum("nij,j->ni", _rate_matrix(q[:, 3:], self.order), self.dq[3:])
         return q, dq, np.zeros_like(q), omega
+
+    def third(self, q, dq, ddq):
+        """d3q/ds3 (n, 6): zero on a straight line."""
+        return np.zeros_like(q)
 
 
 class _LinePath:
@@ -134,6 +143,20 @@ class _LinePath:
         ddq = np.zeros((n, 6))
         ddq[:, 3:] = -_solve3(E, bias)
         return q, dq, ddq, np.broadcast_to(self.w, (n, 3)).copy()
+
+    def third(self, q, dq, ddq):
+        """d3q/ds3 (n, 6) from q, dq, ddq of derivatives(): differentiating E a' = w twice,
+        E a''' = -(d2E/ds2) a' - 2 (dE/ds) a'', where d2E/ds2 is dE/ds differentiated along a'
+        at fixed rates (by a complex step: exact to rounding) plus dE/ds at the rates a''."""
+        a, a1, a2 = q[:, 3:], dq[:, 3:], ddq[:, 3:]
+        h = 1e-30
+        E2 = (np.imag(_rate_matrix_dot(a + 1j * h * a1, a1, self.order)) / h
+              + _rate_matrix_dot(a, a2, self.order))
+        E1 = _rate_matrix_dot(a, a1, self.order)
+        rhs = np.einsum("nij,nj->ni", E2, a1) + 2 * np.einsum("nij,nj->ni", E1, a2)
+        out = np.zeros_like(q)
+        out[:, 3:] = -_solve3(_rate_matrix(a, self.order), rhs)
+        return out
 
 
 class _BlendedPath:
@@ -489,7 +512,7 @@ def _leg_excess(limited, check, t, s):
     (relative), from the library's leg classes in check (limited.limits of the samples with
     their rates and accelerations); or None."""
     bounds = leg_limits_of(limited)
-    for name in ("leg_speed", "leg_accel", "leg_force"):
+    for name in ("leg_speed", "leg_accel", "leg_jerk", "leg_force"):
         column = LIMIT_CLASSES.index(name)
         over = check.leg_margin[:, column] < -CHECK_SLACK * bounds[f"{name}_max"]
         rows = np.flatnonzero(over.any(axis=1))
@@ -549,37 +572,116 @@ def _path(kind, q0, q1, via, blend, frame, order):
     return _BlendedPath(np.vstack([q0, points, q1]), float(blend), order)
 
 
-def _plan(platform, limited, path, q1, limits, sample_time, warn_condition, kind):
-    """The move along path: the time law, its samples, and the checks of every sample against
-    the geometric and the leg limits (the limited platform's leg classes; the plan made again
-    on a finer grid with a wider margin if a leg speed or acceleration is exceeded; a leg force
-    the planner does not plan for is refused at once)."""
+def _topp_law(path, platform, attempt, limits, sample_time):
+    """The speed and acceleration law's samples (s and its first three time derivatives; the
+    third None) and its grid nodes' s, times and poses."""
+    nodes, v, u, t_nodes, grid = _time_law(path, platform, GRID_SEGMENTS * 4 ** attempt,
+                                           PLAN_MARGIN * 10 ** attempt, limits)
+    t, s, s_rate, s_accel, scale = _sample(nodes, v, u, t_nodes, sample_time)
+    return (t, s, s_rate, s_accel, None), (nodes, t_nodes * scale, grid)
+
+
+def _jerk_law(path, platform, attempt, limits, jerk, sample_time):
+    """The jerk-limited law's samples and its grid (moves_jerk): the legs' L', L'' from the
+    library on the grid, L''' by second-order differences of L'' (the samples are then checked
+    with the exact jerks)."""
+    nodes = np.linspace(0.0, 1.0, GRID_SEGMENTS * 4 ** attempt + 1)
+    shrink = 1.0 - PLAN_MARGIN * 10 ** attempt
+    grid, Lp, Lpp, dq, omega = _leg_derivatives(platform, path, nodes, "right")
+    Lppp = np.gradient(Lpp, nodes, axis=0, edge_order=2)
+    speed, accel, tool_speed, angular_speed = limits
+    cartesian = np.column_stack([np.linalg.norm(dq[:, :3], axis=1),
+                                 np.linalg.norm(omega, axis=1)])
+    bounds = np.concatenate([np.full(6, np.inf) if speed is None else speed,
+                             [tool_speed or np.inf, angular_speed or np.inf]])
+    peaks = LegPeaks(nodes, Lp, Lpp, Lppp, cartesian, shrink * bounds, shrink * accel,
+                     shrink * jerk)
+    curve, stretch = jerk_limited_law(peaks)
+    t, s, s_rate, s_accel, s_jerk = sample_law(curve, stretch, sample_time)
+    return (t, s, s_rate, s_accel, s_jerk), (nodes, np.interp(nodes, s, t), grid)
+
+
+def _plan(platform, limited, path, q1, limits, jerk, sample_time, warn_condition, kind):
+    """The move along path: the time law (jerk-limited when jerk is not None), its samples, and
+    the checks of every sample against the geometric and the leg limits (the limited platform's
+    leg classes; the plan made again on a finer grid with a wider margin if a leg speed,
+    acceleration or jerk is exceeded; a leg force or motor current the planner does not plan
+    for is refused at once)."""
     with_forces = bool(np.any(leg_limits_of(limited)["leg_force_max"] > 0))
+    current_max = _per_leg(platform, "current_max") * (_per_leg(platform, "screw_lead") > 0)
     for attempt in range(3):
-        nodes, v, u, t_nodes, grid = _time_law(path, platform, GRID_SEGMENTS * 4 ** attempt,
-                                               PLAN_MARGIN * 10 ** attempt, limits)
-        t, s, s_rate, s_accel, scale = _sample(nodes, v, u, t_nodes, sample_time)
+        if jerk is None:
+            law, (nodes, t_nodes, grid) = _topp_law(path, platform, attempt, limits, sample_time)
+        else:
+            law, (nodes, t_nodes, grid) = _jerk_law(path, platform, attempt, limits, jerk,
+                                                    sample_time)
+        t, s, s_rate, s_accel, s_jerk = law
         q, dq, ddq, _ = path.derivatives(s)
         q[-1] = q1
         rate = dq * s_rate[:, None]
         acc = dq * s_accel[:, None] + ddq * (s_rate ** 2)[:, None]
+        pose_jerk = None if s_jerk is None else (
+            dq * s_jerk[:, None] + 3 * ddq * (s_rate * s_accel)[:, None]
+            + path.third(q, dq, ddq) * (s_rate ** 3)[:, None])
         # One check of the samples gives their geometric and leg classes; the grid's poses
         # (between the samples) are checked for the geometric ones.
-        check = limited.limits(q, rate, acc, warn_condition=warn_condition)
+        check = limited.limits(q, rate, acc, pose_jerk, warn_condition=warn_condition)
         on_grid = platform.limits(grid, warn_condition=warn_condition)
         _first_limit(_joined(check, on_grid), np.vstack([q, grid]),
-                     np.concatenate([s, nodes]), np.concatenate([t, t_nodes * scale]))
+                     np.concatenate([s, nodes]), np.concatenate([t, t_nodes]))
         if with_forces:  # the forces need poses within the geometric limits
-            check = limited.limits(q, rate, acc, forces="massless",
+            check = limited.limits(q, rate, acc, pose_jerk, forces="massless",
                                    warn_condition=warn_condition)
         excess = _leg_excess(limited, check, t, s)
+        if excess is None and np.any(current_max > 0):
+            excess = _current_excess(platform, q, rate, acc, current_max, t, s)
         if excess is None:
-            return Move(t, q, rate, acc, s, s_rate, s_accel, float(t[-1]), kind)
-        if excess.limit_class == "leg_force":
-            raise MoveError(f"{excess}: the move is planned on the legs' speed and acceleration "
-                            "only; lower leg_accel_max (or leg_speed_max) until the forces "
-                            "fit", "leg_force", excess.time, excess.s)
+            return Move(t, q, rate, acc, s, s_rate, s_accel, float(t[-1]), kind, pose_jerk)
+        if excess.limit_class in ("leg_force", "current"):
+            raise MoveError(f"{excess}: the move is planned on the legs' speed, acceleration "
+                            "and jerk only; lower leg_accel_max (or leg_speed_max) until it "
+                            "fits", excess.limit_class, excess.time, excess.s)
     raise excess
+
+
+def _current_excess(platform, q, rate, acc, current_max, t, s):
+    """MoveError naming the first sample whose motor current (the massless inverse's: the
+    drive's inertia, the leg force through the screw, friction) exceeds current_max by more
+    than CHECK_SLACK (relative); or None."""
+    current = np.abs(platform.inverse(q, rate, acc, fidelity="massless").current)
+    limit = np.where(current_max > 0, current_max, np.inf)
+    over = current > limit * (1 + CHECK_SLACK)
+    rows = np.flatnonzero(over.any(axis=1))
+    if not rows.size:
+        return None
+    j = rows[0]
+    k = int(np.argmax(over[j]))
+    return MoveError(f"the planned move exceeds current_max at t = {t[j]:.6g} s "
+                     f"(s = {s[j]:.6g}): leg {k + 1}'s motor takes {current[j, k]:.6g} A of "
+                     f"{limit[k]:.6g} A", "current", float(t[j]), float(s[j]))
+
+
+def _per_leg(platform, name) -> np.ndarray:
+    """A per-leg parameter's 6 values on platform (its defaults where not given)."""
+    default = next(p["defaults"] for p in parameters() if p["name"] == name)
+    values = np.broadcast_to(np.asarray(default, dtype=float), (6,)).copy()
+    for assigned, value in parameter_assignments({k: v for k, v in platform.params.items()
+                                                  if k.partition("[")[0] == name}):
+        _, _, index = assigned.partition("[")
+        if index:
+            values[int(index.rstrip("]")) - 1] = value
+        else:
+            values[:] = value
+    return values
+
+
+def drive_leg_speed_max(platform) -> np.ndarray:
+    """(6,) the leg speed [m/s] at which each leg's motor turns at motor_speed_max:
+    motor_speed_max screw_lead / (2 pi gear_ratio); 0 (no limit) on a leg without a drive
+    (screw_lead 0) or without motor_speed_max."""
+    lead, speed = _per_leg(platform, "screw_lead"), _per_leg(platform, "motor_speed_max")
+    gear = _per_leg(platform, "gear_ratio")
+    return np.where((lead > 0) & (speed > 0), speed * lead / (2 * math.pi * gear), 0.0)
 
 
 def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_accel_max=None,
@@ -597,39 +699,41 @@ def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_
     axes, the angles a rotation about the tool point in that frame's axes). via: (K, 6)
     waypoints between start and goal (kind "point"), passed without stopping on quadratic
     blends that begin `blend` (0 to 0.5) of the shorter adjacent line before each waypoint.
-    leg_speed_max [m/s] and leg_accel_max [m/s^2]: the platform's parameters of those names
-    unless given here (scalars or 6 values per leg; 0: no limit of that leg); an acceleration
-    limit is required. speed_max [m/s]: the tool point's speed; angular_speed_max [rad/s]: the
-    platform's angular speed. Every sample and the planning grid are checked with
-    Platform.limits (warn_condition as there): MoveError names the class, time and s of the
-    first limit the path crosses; and every sample's leg speed and acceleration (and, when the
-    platform has leg_force_max, the massless inverse's forces) are checked with the library's
-    leg classes. A leg jerk limit is not kept (the time-optimal law switches the acceleration
-    instantly): leg_jerk_max other than None or 0, or a platform with leg_jerk_max, raises
-    ValueError (leg_jerk_max=0 plans without the platform's)."""
+    leg_speed_max [m/s], leg_accel_max [m/s^2] and leg_jerk_max [m/s^3]: the platform's
+    parameters of those names unless given here (scalars or 6 values per leg; 0: no limit of
+    that leg); an acceleration limit is required. With a jerk limit the time law is a
+    jerk-limited S-curve of the path parameter (moves_jerk; waypoints are then refused, since
+    their blends' curvature jumps). On a platform with drives the legs' speed is held within
+    motor_speed_max too (drive_leg_speed_max; the tighter of the two per leg). speed_max
+    [m/s]: the tool point's speed; angular_speed_max [rad/s]: the platform's angular speed.
+    Every sample and the planning grid are checked with Platform.limits (warn_condition as
+    there): MoveError names the class, time and s of the first limit the path crosses; and
+    every sample's leg speed, acceleration and jerk (and, when the platform has leg_force_max,
+    the massless inverse's forces; with drives and current_max, its motor currents) are
+    checked with the library's leg classes."""
     if kind not in KINDS:
         raise ValueError(f"kind = {kind!r} must be 'point' or 'line'")
-    own = leg_limits_of(platform)
-    if leg_jerk_max is None and np.any(own["leg_jerk_max"] > 0):
-        raise ValueError("the platform has leg_jerk_max, which this planner cannot keep: the "
-                         "time-optimal law is bang-bang in the path acceleration, so the leg jerk "
-                         "is unbounded where it switches; pass leg_jerk_max=0 to plan without it")
-    if leg_jerk_max not in (None, 0):
-        raise ValueError("leg_jerk_max is not enforced: the time-optimal law is bang-bang in "
-                         "the path acceleration, so the leg jerk is unbounded where it switches; "
-                         "leave leg_jerk_max None")
     if not (isinstance(sample_time, (int, float)) and 0 < sample_time < math.inf):
         raise ValueError(f"sample_time = {sample_time!r} must be a finite number > 0 [s]")
+    own = leg_limits_of(platform)
     leg_speed_max = own["leg_speed_max"] if leg_speed_max is None else leg_speed_max
     leg_accel_max = own["leg_accel_max"] if leg_accel_max is None else leg_accel_max
-    speed = _limit_vector("leg_speed_max", leg_speed_max)
+    leg_jerk_max = own["leg_jerk_max"] if leg_jerk_max is None else leg_jerk_max
+    speed = _tighter(_limit_vector("leg_speed_max", leg_speed_max),
+                     _limit_vector("motor_speed_max", drive_leg_speed_max(platform)))
     accel = _limit_vector("leg_accel_max", leg_accel_max)
+    jerk = _limit_vector("leg_jerk_max", leg_jerk_max)
     if accel is None or not np.all(np.isfinite(accel)):
         raise ValueError("leg_accel_max is needed for every leg (the platform's parameter or "
                          "the keyword): without it a move from rest would reach its speed in no "
                          "time")
-    limited = with_leg_limits(platform, leg_speed_max=leg_speed_max, leg_accel_max=leg_accel_max,
-                              leg_jerk_max=0)
+    if jerk is not None and via is not None:
+        raise ValueError("waypoints (via) with leg_jerk_max: the blends' curvature jumps where "
+                         "they meet the lines, so the legs' acceleration jumps there while "
+                         "moving; plan the legs between waypoints as separate moves, or pass "
+                         "leg_jerk_max=0 to plan without a jerk limit")
+    limited = with_leg_limits(platform, leg_speed_max=_as_parameter(speed),
+                              leg_accel_max=leg_accel_max, leg_jerk_max=_as_parameter(jerk))
     limits = (speed, accel, _speed_bound("speed_max", speed_max),
               _speed_bound("angular_speed_max", angular_speed_max))
     order = _rotation_order(platform)
@@ -646,4 +750,14 @@ def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_
         zero = np.zeros((1, 6))
         return Move(np.zeros(1), q0[None].copy(), zero, zero.copy(), np.zeros(1), np.zeros(1),
                     np.zeros(1), 0.0, kind)
-    return _plan(platform, limited, path, q1, limits, sample_time, warn_condition, kind)
+    return _plan(platform, limited, path, q1, limits, jerk, sample_time, warn_condition, kind)
+
+
+def _tighter(a: Optional[np.ndarray], b: Optional[np.ndarray]) -> Optional[np.ndarray]:
+    """The smaller of two limits per leg (None: no limit)."""
+    return b if a is None else a if b is None else np.minimum(a, b)
+
+
+def _as_parameter(limit: Optional[np.ndarray]):
+    """A limit vector (inf: none) as a leg-limit parameter (0: none)."""
+    return 0.0 if limit is None else np.where(np.isfinite(limit), limit, 0.0)

@@ -24,7 +24,7 @@ SINUSOID = ("mean", "amplitude", "omega", "phase")
 #: The fields of a scene's move section: stewart.move's arguments of the same names, and hold
 #: [s], the time the goal is held at rest after the move.
 MOVE_FIELDS = ("kind", "start", "goal", "frame", "via", "blend", "leg_speed_max",
-               "leg_accel_max", "speed_max", "angular_speed_max", "hold")
+               "leg_accel_max", "leg_jerk_max", "speed_max", "angular_speed_max", "hold")
 #: Rates below this [m/s, rad/s] at the end of a scene's sinusoids count as rest (a move after
 #: them starts at rest).
 REST_RATE = 1e-9
@@ -115,7 +115,7 @@ def _check_move(move: Any, where: str) -> None:
     for key in ("blend", "speed_max", "angular_speed_max", "hold"):
         if key in move and not (_finite(move[key]) and move[key] >= 0):
             raise SceneError(f"{where}.{key} = {move[key]!r} must be a finite number >= 0")
-    for key in ("leg_speed_max", "leg_accel_max"):
+    for key in ("leg_speed_max", "leg_accel_max", "leg_jerk_max"):
         value = move.get(key, 0.0)
         values = value if isinstance(value, list) and len(value) == 6 else [value]
         if not all(_finite(v) and v >= 0 for v in values):

@@ -258,7 +258,9 @@ def test_relative_moves_in_the_user_and_the_tool_frame():
 
 
 @pytest.mark.parametrize("kwargs, words", [
-    (dict(leg_accel_max=0.5, leg_jerk_max=5.0), "leg_jerk_max is not enforced"),
+    (dict(leg_accel_max=0.5, leg_jerk_max=5.0, via=[[0.005, 0.0, 0.5, 0.0, 0.0, 0.0]]),
+     "waypoints .via. with leg_jerk_max"),
+    (dict(leg_accel_max=0.5, leg_jerk_max=-5.0), "leg_jerk_max .* must be finite and >= 0"),
     (dict(leg_speed_max=0.1), "leg_accel_max is needed"),
     (dict(leg_accel_max=-1.0), "must be finite and >= 0"),
     (dict(leg_accel_max=0.5, sample_time=0.0), "sample_time"),
@@ -498,10 +500,13 @@ def test_a_move_takes_the_platform_s_leg_limits():
     assert np.abs(rates[:, 1]).max() <= 0.5 * (1 + 1e-6)
     with pytest.raises(ValueError, match="leg_accel_max is needed"):
         stewart.move(stewart.Platform(leg_speed_max=0.05), home, goal)
+    # The platform's jerk limit is planned for unless the keyword says none (0).
     jerky = stewart.Platform(leg_accel_max=0.5, leg_jerk_max=5.0)
-    with pytest.raises(ValueError, match="the platform has leg_jerk_max"):
-        stewart.move(jerky, home, goal)
-    assert stewart.move(jerky, home, goal, leg_jerk_max=0).duration > 0
+    free = stewart.move(jerky, home, goal, leg_jerk_max=0)
+    limited = stewart.move(jerky, home, goal)
+    assert limited.duration > free.duration and free.pose_jerk is None
+    assert np.array_equal(limited.pose, stewart.move(stewart.Platform(), home, goal,
+                                                     leg_accel_max=0.5, leg_jerk_max=5.0).pose)
 
 
 def test_a_move_beyond_the_leg_force_limit_is_refused_naming_it():
