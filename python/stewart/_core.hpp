@@ -14,6 +14,7 @@
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -237,6 +238,51 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
     return array.data();
 }
 
+// Where a result's arrays lie in its block (results.py table_arrays): per column of a direction's
+// output table, then status, the byte offset of its row 0, or -1 for a column the batch leaves
+// alone. Made once per (direction, rows, columns left alone) and kept by Python, so that a call
+// binds its outputs by arithmetic, not by checking two dozen arrays. Checked when made: every
+// column lies inside `bytes`, aligned for its type, so that any block of `bytes` bytes takes it.
+class Placement {
+public:
+    struct ColumnSize {
+        size_t row_bytes, align;
+    };
+    Placement(const std::vector<ColumnSize> &columns, size_t rows, size_t bytes,
+              std::vector<long> offsets)
+        : rows_(rows), bytes_(bytes), offsets_(std::move(offsets)) {
+        if (offsets_.size() != columns.size())
+            fail(("a placement needs " + std::to_string(columns.size()) + " offsets").c_str());
+        for (size_t i = 0; i < columns.size(); ++i) {
+            const long o = offsets_[i];
+            if (o < 0) continue;
+            if (size_t(o) % columns[i].align != 0 || size_t(o) > bytes ||
+                rows > (bytes - size_t(o)) / columns[i].row_bytes)
+                fail(("placement column " + std::to_string(i) + " at " + std::to_string(o) +
+                      " is misaligned or beyond the block").c_str());
+        }
+    }
+    size_t rows() const { return rows_; }
+    // The block's data if it holds the placement (rows as the call's, at least `bytes` bytes).
+    uint8_t *data(Column<uint8_t> block, size_t rows) const {
+        if (rows != rows_ || block.shape(0) < bytes_)
+            fail("the result block does not match its placement");
+        return block.data();
+    }
+    template <typename T>
+    T *column(uint8_t *data, size_t i) const {
+        return offsets_[i] < 0 ? nullptr : reinterpret_cast<T *>(data + offsets_[i]);
+    }
+
+private:
+    size_t rows_, bytes_;
+    std::vector<long> offsets_;
+};
+
+// A Placement::ColumnSize per column of an output table.
+#define STEWART_PLACEMENT_COLUMN(name, member, count, type, unit, description)                    \
+    Placement::ColumnSize{size_t(count) * sizeof(type), alignof(type)},
+
 // The batch outputs of a direction's table bound to the arrays of outputs (name -> array).
 #define STEWART_BIND_COLUMN(name, member, count, type, unit, description)                         \
     o.name = table_column<type>(outputs, #name, n, count, held);
@@ -246,13 +292,29 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
 #define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description)                        \
     if (o.name) o.name += first * (count);
 
-// A direction's bind_outputs (its batch outputs bound to the arrays of outputs, name -> array)
-// and from_row (moved on to row first), from its output table.
+// A batch's output bound to its column of a block (Placement).
+#define STEWART_PLACE_COLUMN(name, member, count, type, unit, description)                        \
+    o.name = placement.column<type>(data, i++);
+
+// A direction's bind_outputs (its batch outputs bound to the arrays of outputs, name -> array),
+// place_outputs (bound to a block's columns), placement_columns (its table's ColumnSize, then
+// status's) and from_row (moved on to row first), from its output table.
 #define STEWART_OUTPUT_BINDINGS(Outputs, TABLE)                                                  \
     Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n,                           \
                          std::vector<nb::object> &held) {                                        \
         TABLE(STEWART_BIND_COLUMN)                                                               \
         return o;                                                                                \
+    }                                                                                            \
+    Outputs place_outputs(Outputs o, uint8_t *data, const Placement &placement) {                \
+        size_t i = 0;                                                                            \
+        TABLE(STEWART_PLACE_COLUMN)                                                              \
+        o.status = placement.column<int>(data, i);                                               \
+        return o;                                                                                \
+    }                                                                                            \
+    const std::vector<Placement::ColumnSize> &placement_columns() {                              \
+        static const std::vector<Placement::ColumnSize> columns = {                              \
+            TABLE(STEWART_PLACEMENT_COLUMN) Placement::ColumnSize{sizeof(int), alignof(int)}};   \
+        return columns;                                                                          \
     }                                                                                            \
     Outputs from_row(Outputs o, size_t first) {                                                  \
         TABLE(STEWART_SHIFT_COLUMN)                                                              \

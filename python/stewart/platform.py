@@ -9,7 +9,7 @@ from typing import Optional, Union
 import numpy as np
 
 from . import _core
-from .arrays import LEG_LAYOUT, POSE_LAYOUT, rows6, times, vector
+from .arrays import LEG_LAYOUT, POSE_LAYOUT, all_finite, rows6, times, vector
 from .check import HomeCheck, check_home
 from .choices import Fidelity
 from .errors import ParameterError
@@ -159,7 +159,7 @@ class Platform:
                 raise ValueError("t was given with cold=True: rows solved cold have no time")
             q0 = None if guess is None else np.ascontiguousarray(np.broadcast_to(
                 rows6("guess", guess, None, "poses", POSE_LAYOUT), (n, 6))).ravel()
-            if q0 is not None and not np.all(np.isfinite(q0)):
+            if q0 is not None and not all_finite(q0):
                 raise ValueError("guess has a value that is not finite")
         else:
             q0 = None if guess is None else vector("guess", guess, 6)
