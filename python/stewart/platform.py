@@ -110,9 +110,13 @@ class Platform:
         q_dddot = None if jerks is None else rows6("jerks", jerks, n, "poses", POSE_LAYOUT)
         q_dot = None if rates is None else rows6("rates", rates, n, "poses", POSE_LAYOUT)
         q_ddot = None if accels is None else rows6("accels", accels, n, "poses", POSE_LAYOUT)
-        options = [("fidelity", float(level))] + option_values(
-            tolerance=tolerance, max_iterations=max_iterations, modified_newton=modified_newton,
-            warn_condition=warn_condition, singular_condition=singular_condition)
+        options = [("fidelity", float(level))]
+        if (tolerance is not None or max_iterations is not None or modified_newton is not None
+                or warn_condition is not None or singular_condition is not None):
+            options += option_values(
+                tolerance=tolerance, max_iterations=max_iterations,
+                modified_newton=modified_newton, warn_condition=warn_condition,
+                singular_condition=singular_condition)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
         return run_inverse(self._model, q, q_dot, q_ddot, level, options, max_messages, out,
@@ -299,9 +303,9 @@ class Platform:
 def _warn_condition(value: Optional[float]) -> Optional[float]:
     """The condition limit of the limit check (None: the library's default), or
     ParameterError if it is not a number."""
-    pairs = option_values(warn_condition=value)
-    if not pairs:
+    if value is None:
         return None
+    pairs = option_values(warn_condition=value)
     if not 1.0 <= pairs[0][1] < float("inf"):
         raise ParameterError(f"warn_condition = {value!r} must be finite and >= 1")
     return pairs[0][1]
