@@ -170,9 +170,12 @@ class Platform:
         time = None if t is None else times("t", t, n)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
-        options = option_values(tolerance=tolerance, max_iterations=max_iterations,
-                                warn_condition=warn_condition,
-                                singular_condition=singular_condition)
+        options = []
+        if (tolerance is not None or max_iterations is not None or warn_condition is not None
+                or singular_condition is not None):
+            options = option_values(tolerance=tolerance, max_iterations=max_iterations,
+                                    warn_condition=warn_condition,
+                                    singular_condition=singular_condition)
         return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages, cold)
 
     def limits(self, poses, rates=None, accels=None, jerks=None, *, forces=None,
