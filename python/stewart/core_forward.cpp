@@ -83,11 +83,25 @@ private:
 
 }  // namespace
 
-// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays: given by name
-// (outputs, each checked) or as a block of a placement made by forward_placement (a new
-// result's, bound by their offsets).
+// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays: a new result's
+// as their block and its placement (made by forward_placement; bound by their offsets), or by
+// name (outputs, each checked). The block comes first: nanobind tries the overloads in order,
+// converting every argument, and Platform.forward makes a new result.
 void bind_forward(nb::module_ &m) {
     nb::class_<ForwardRun>(m, "ForwardRun")
+        .def("__init__",
+             [](ForwardRun *self, const Model &model, Poses lengths, std::optional<Poses> rates,
+                std::optional<Poses> accels, std::optional<Times> time,
+                std::optional<Column<const double>> guess, bool cold, const OptionValues &options,
+                Column<uint8_t> block, const Placement &placement) {
+                 uint8_t *data = placement.data(block, lengths.shape(0));
+                 new (self) ForwardRun(model, lengths, rates, accels, time, guess, cold, options,
+                                       place_outputs({}, data, placement), {nb::cast(block)});
+             },
+             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
+             nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
+             nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("block"),
+             nb::arg("placement"))
         .def("__init__",
              [](ForwardRun *self, const Model &model, Poses lengths, std::optional<Poses> rates,
                 std::optional<Poses> accels, std::optional<Times> time,
@@ -107,19 +121,6 @@ void bind_forward(nb::module_ &m) {
              nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
              nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("outputs"),
              nb::arg("status"))
-        .def("__init__",
-             [](ForwardRun *self, const Model &model, Poses lengths, std::optional<Poses> rates,
-                std::optional<Poses> accels, std::optional<Times> time,
-                std::optional<Column<const double>> guess, bool cold, const OptionValues &options,
-                Column<uint8_t> block, const Placement &placement) {
-                 uint8_t *data = placement.data(block, lengths.shape(0));
-                 new (self) ForwardRun(model, lengths, rates, accels, time, guess, cold, options,
-                                       place_outputs({}, data, placement), {nb::cast(block)});
-             },
-             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
-             nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
-             nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("block"),
-             nb::arg("placement"))
         .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"));
     // Where a new result's arrays lie in its block: for rows rows, a block of bytes bytes, the

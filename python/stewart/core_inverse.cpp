@@ -83,11 +83,22 @@ private:
 
 }  // namespace
 
-// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays: given by name
-// (outputs, an earlier result's arrays, each checked) or as a block of a placement made by
-// inverse_placement (a new result's, bound by their offsets).
+// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays: a new result's
+// as their block and its placement (made by inverse_placement; bound by their offsets), or an
+// earlier result's by name (outputs, each checked). The block comes first: nanobind tries the
+// overloads in order, converting every argument, and a new result is the common call.
 void bind_inverse(nb::module_ &m) {
     nb::class_<InverseRun>(m, "InverseRun")
+        .def("__init__",
+             [](InverseRun *self, const Model &model, Poses q, std::optional<Poses> q_dot,
+                std::optional<Poses> q_ddot, const OptionValues &options, Column<uint8_t> block,
+                const Placement &placement) {
+                 uint8_t *data = placement.data(block, q.shape(0));
+                 new (self) InverseRun(model, q, q_dot, q_ddot, options,
+                                       place_outputs({}, data, placement), {nb::cast(block)});
+             },
+             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
+             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("block"), nb::arg("placement"))
         .def("__init__",
              [](InverseRun *self, const Model &model, Poses q, std::optional<Poses> q_dot,
                 std::optional<Poses> q_ddot, const OptionValues &options, const nb::dict &outputs,
@@ -102,16 +113,6 @@ void bind_inverse(nb::module_ &m) {
              },
              nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
              nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
-        .def("__init__",
-             [](InverseRun *self, const Model &model, Poses q, std::optional<Poses> q_dot,
-                std::optional<Poses> q_ddot, const OptionValues &options, Column<uint8_t> block,
-                const Placement &placement) {
-                 uint8_t *data = placement.data(block, q.shape(0));
-                 new (self) InverseRun(model, q, q_dot, q_ddot, options,
-                                       place_outputs({}, data, placement), {nb::cast(block)});
-             },
-             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
-             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("block"), nb::arg("placement"))
         .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"))
         .def("current_rates", &InverseRun::current_rates, nb::arg("t"))
