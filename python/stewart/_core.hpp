@@ -296,15 +296,10 @@ private:
 #define STEWART_PLACE_COLUMN(name, member, count, type, unit, description)                        \
     o.name = placement.column<type>(data, i++);
 
-// A direction's bind_outputs (its batch outputs bound to the arrays of outputs, name -> array),
-// place_outputs (bound to a block's columns), placement_columns (its table's ColumnSize, then
-// status's) and from_row (moved on to row first), from its output table.
+// A direction's place_outputs (its batch outputs bound to a block's columns), placement_columns
+// (its table's ColumnSize, then status's) and from_row (moved on to row first), from its output
+// table.
 #define STEWART_OUTPUT_BINDINGS(Outputs, TABLE)                                                  \
-    Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n,                           \
-                         std::vector<nb::object> &held) {                                        \
-        TABLE(STEWART_BIND_COLUMN)                                                               \
-        return o;                                                                                \
-    }                                                                                            \
     Outputs place_outputs(Outputs o, uint8_t *data, const Placement &placement) {                \
         size_t i = 0;                                                                            \
         TABLE(STEWART_PLACE_COLUMN)                                                              \
@@ -319,6 +314,14 @@ private:
     Outputs from_row(Outputs o, size_t first) {                                                  \
         TABLE(STEWART_SHIFT_COLUMN)                                                              \
         o.status += first;                                                                       \
+        return o;                                                                                \
+    }
+
+// A direction's bind_outputs: its batch outputs bound to the arrays of outputs (name -> array).
+#define STEWART_OUTPUTS_BY_NAME(Outputs, TABLE)                                                  \
+    Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n,                           \
+                         std::vector<nb::object> &held) {                                        \
+        TABLE(STEWART_BIND_COLUMN)                                                               \
         return o;                                                                                \
     }
 

@@ -10,7 +10,7 @@ const OptionTable<stewart_forward_options> kForwardOptions = {
     "forward", stewart_forward_options_default, stewart_forward_option_find,
     stewart_forward_option_set, stewart_forward_options_check};
 
-// bind_outputs and from_row of the forward table.
+// place_outputs, placement_columns and from_row of the forward table.
 STEWART_OUTPUT_BINDINGS(stewart_forward_batch_outputs, STEWART_FORWARD_OUTPUT_TABLE)
 
 // One Platform.forward call: its arrays and one forward solver, made once (a cold start, or
@@ -83,10 +83,8 @@ private:
 
 }  // namespace
 
-// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays: a new result's
-// as their block and its placement (made by forward_placement; bound by their offsets), or by
-// name (outputs, each checked). The block comes first: nanobind tries the overloads in order,
-// converting every argument, and Platform.forward makes a new result.
+// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays: a new result's,
+// as their block and its placement (made by forward_placement; bound by their offsets).
 void bind_forward(nb::module_ &m) {
     nb::class_<ForwardRun>(m, "ForwardRun")
         .def("__init__",
@@ -102,25 +100,6 @@ void bind_forward(nb::module_ &m) {
              nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
              nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("block"),
              nb::arg("placement"))
-        .def("__init__",
-             [](ForwardRun *self, const Model &model, Poses lengths, std::optional<Poses> rates,
-                std::optional<Poses> accels, std::optional<Times> time,
-                std::optional<Column<const double>> guess, bool cold, const OptionValues &options,
-                const nb::dict &outputs, Column<int> status) {
-                 const size_t n = lengths.shape(0);
-                 if (status.shape(0) != n)
-                     fail("output arrays must have as many rows as the lengths");
-                 std::vector<nb::object> held;
-                 stewart_forward_batch_outputs out = bind_outputs({}, outputs, n, held);
-                 out.status = status.data();
-                 held.push_back(nb::cast(status));
-                 new (self) ForwardRun(model, lengths, rates, accels, time, guess, cold, options,
-                                       out, std::move(held));
-             },
-             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
-             nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
-             nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("outputs"),
-             nb::arg("status"))
         .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"));
     // Where a new result's arrays lie in its block: for rows rows, a block of bytes bytes, the

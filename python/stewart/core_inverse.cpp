@@ -10,8 +10,9 @@ const OptionTable<stewart_inverse_options> kInverseOptions = {
     "solver", stewart_inverse_options_default, stewart_inverse_option_find,
     stewart_inverse_option_set, stewart_inverse_options_check};
 
-// bind_outputs and from_row of the inverse table.
+// place_outputs, placement_columns, from_row and bind_outputs of the inverse table.
 STEWART_OUTPUT_BINDINGS(stewart_inverse_batch_outputs, STEWART_INVERSE_OUTPUT_TABLE)
+STEWART_OUTPUTS_BY_NAME(stewart_inverse_batch_outputs, STEWART_INVERSE_OUTPUT_TABLE)
 
 // One Platform.inverse call: its arrays and one inverse solver, made once. rows(a, b) solves rows
 // [a, b) continuing from the rows before (the full level's warm start), so that slices give the
