@@ -45,7 +45,6 @@ using Column = nb::ndarray<T, nb::shape<-1>, nb::c_contig, nb::device::cpu>;
 using Poses = Rows<const double, 6>;
 using Times = Column<const double>;
 using Messages = std::vector<std::pair<size_t, std::string>>;
-using BatchResult = std::tuple<int, size_t, std::string, Messages>;
 
 // A Python ValueError subclass defined in stewart/errors.py is raised from Python; here the
 // C messages travel as ValueError (bad parameters, options) and the caller re-raises.
@@ -326,26 +325,24 @@ private:
     }
 
 // Runs batch(messages, first_failed) -> status over rows [first, stop) of solver with the GIL
-// released (the batch numbers rows from first = 0). Returns (status of the first failing row or
-// 0, its index or stop, its message, [(row, message)] of up to max_messages failing rows), rows
-// numbered in the whole call; a failure before any row raises ValueError.
+// released (the batch numbers rows from first = 0). Returns [(row, message)] of up to
+// max_messages failing rows, rows numbered in the whole call (each failing row's status is in
+// the result's status array); a failure before any row raises ValueError.
 template <typename T, typename Batch>
-BatchResult run_rows(T *solver, const char *(*message)(const T *), size_t first, size_t stop,
-                     size_t max_messages, Batch batch) {
+Messages run_rows(T *solver, const char *(*message)(const T *), size_t first, size_t stop,
+                  size_t max_messages, Batch batch) {
     if (first > stop) fail("rows: first must not be after stop");
     MessageBuffer messages(max_messages);
     size_t first_failed = stop - first;
     stewart_status status;
-    std::string first_message;
     {
         nb::gil_scoped_release release;
         status = batch(&messages.c, &first_failed);
-        first_message = message(solver);
     }
-    if (status != STEWART_OK && first_failed == stop - first) fail(first_message.c_str());
+    if (status != STEWART_OK && first_failed == stop - first) fail(message(solver));
     Messages kept = messages.kept();
     for (auto &m : kept) m.first += first;
-    return {status, first + first_failed, first_message, kept};
+    return kept;
 }
 
 // Each file's part of the module (the functions and classes Python calls).

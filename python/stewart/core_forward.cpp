@@ -42,7 +42,7 @@ public:
 
     // Solves rows [first, stop) (the guess only for row 0; cold: each row from its own guess
     // or home). Returns as run_rows.
-    BatchResult rows(size_t first, size_t stop, size_t max_messages) {
+    Messages rows(size_t first, size_t stop, size_t max_messages) {
         if (stop > n_) fail("rows: stop is beyond the last row");
         const stewart_forward_batch_outputs out = from_row(out_, first);
         if (cold_)

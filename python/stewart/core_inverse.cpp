@@ -36,7 +36,7 @@ public:
     }
 
     // Solves rows [first, stop). Returns as run_rows.
-    BatchResult rows(size_t first, size_t stop, size_t max_messages) {
+    Messages rows(size_t first, size_t stop, size_t max_messages) {
         if (stop > n_) fail("rows: stop is beyond the last row");
         const stewart_inverse_batch_outputs out = from_row(out_, first);
         return run_rows(inverse_.solver, stewart_inverse_message, first, stop, max_messages,
