@@ -3,7 +3,6 @@ tables (stewart_outputs.h, through _core.inverse_columns, forward_columns, plant
 from __future__ import annotations
 
 import functools
-import math
 from typing import NamedTuple
 
 import numpy as np
@@ -109,12 +108,12 @@ def _stacks(layout: Table, n: int, member) -> tuple[tuple, int]:
     stacks, size = [], 0
     for (count, dtype), members in groups.items():
         row_bytes = count * dtype.itemsize
-        per_block = BLOCK_ALIGNMENT // math.gcd(BLOCK_ALIGNMENT, row_bytes)
-        rows = -(-n // per_block) * per_block  # each column starts BLOCK_ALIGNMENT-aligned
+        # each column starts BLOCK_ALIGNMENT-aligned: the stack's step from one to the next
+        column_bytes = -(-n * row_bytes // BLOCK_ALIGNMENT) * BLOCK_ALIGNMENT
         shape = (len(members), n, count) if count > 1 else (len(members), n)
-        strides = (rows * row_bytes, row_bytes, dtype.itemsize)[:len(shape)]
+        strides = (column_bytes, row_bytes, dtype.itemsize)[:len(shape)]
         stacks.append((tuple(members), shape, strides, dtype, size))
-        size += len(members) * rows * row_bytes
+        size += len(members) * column_bytes
     return tuple(stacks), size
 
 
