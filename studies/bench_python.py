@@ -8,7 +8,9 @@ usage: bench_python.py [FILE] [--build BUILD_DIR] [--skip-sweeps] [--sweeps KIND
 linearize, linearize_inverse) along the combined cue (scenes/combined.json's formula, as
 build/bench-calls and bench-linearize run it), CPU time per call (the median of blocks of calls,
 each in a fresh process per round), against the library's own cost of the same call from those
-C benchmarks: the difference is what the binding and the package add. --against DIR: an
+C benchmarks (the full level's inverse and forward on a reset solver, bench-calls
+inverse-full-fresh and forward-fresh, as the binding's kept solvers are reset when taken; forward
+from the previous pose as its guess): the difference is what the binding and the package add. --against DIR: an
 installed package `stewart` in DIR (e.g. a copy of an earlier build's site-packages/stewart)
 measured in rounds alternating with this one (the machine may be shared: alternating spreads
 its load over both), medians of the rounds printed side by side.
@@ -142,10 +144,13 @@ def c_call_ns(build):
         return subprocess.run([str(build / args[0]), *args[1:]], capture_output=True, text=True,
                               check=True).stdout
     ns = {}
-    for level in ("kinematic", "massless", "full"):
-        out = run("bench-calls", f"inverse-{level}", "20000")
+    # A one-row call's solver is reset first (the binding's kept solvers are): the "-fresh" rows
+    # time that, forward from the previous pose as its guess, as one_row_calls calls it.
+    for level, row in (("kinematic", "inverse-kinematic"), ("massless", "inverse-massless"),
+                       ("full", "inverse-full-fresh")):
+        out = run("bench-calls", row, "20000")
         ns[f"inverse {level}"] = float(re.search(r"median ([\d.]+) ns", out).group(1))
-    out = run("bench-calls", "forward-tracking", "20000")
+    out = run("bench-calls", "forward-fresh", "20000")
     ns["forward"] = float(re.search(r"median ([\d.]+) ns", out).group(1))
     out = run("bench-limits", "2000")
     ns["limits"] = 1e3 * float(re.search(r"check\s+median\s+([\d.]+) us", out).group(1))

@@ -8,6 +8,9 @@
 // Rows:
 //   inverse-kinematic, inverse-massless, inverse-full   stewart_inverse_solve at each fidelity
 //   forward-tracking                                    stewart_forward_solve at 1 kHz, with rates
+//   inverse-full-fresh, forward-fresh                   as a one-row Python call makes them: each
+//       call resets the solver first (the binding's kept solvers are reset when taken), the reset
+//       timed with it; forward from the cue's previous pose as its guess, without a time
 //   plant-massless, plant-full                          stewart_plant_step, 1 ms, Hermite forces
 #include <algorithm>
 #include <cmath>
@@ -63,7 +66,8 @@ bool inverse_along_cue(const stewart_model *m, int fidelity, int calls,
     return ok;
 }
 
-double run_inverse(const stewart_model *m, int fidelity, int calls) {
+// fresh: each call on a reset solver (inverse-full-fresh).
+double run_inverse(const stewart_model *m, int fidelity, int calls, bool fresh = false) {
     stewart_inverse *d = inverse_at(m, fidelity);
     if (!d) return -1;
     std::vector<stewart_inverse_input> poses(calls);
@@ -72,6 +76,7 @@ double run_inverse(const stewart_model *m, int fidelity, int calls) {
     stewart_inverse_output out;
     for (int i = 0; i < calls; ++i) {
         const Clock::time_point start = Clock::now();
+        if (fresh) stewart_inverse_reset(d);
         const stewart_status s = stewart_inverse_solve(d, &poses[i], &out);
         ns[i] = ns_since(start);
         if (s != STEWART_OK) return -1;
@@ -80,7 +85,8 @@ double run_inverse(const stewart_model *m, int fidelity, int calls) {
     return median(ns);
 }
 
-double run_forward(const stewart_model *m, int calls) {
+// fresh: each call on a reset solver from the previous cue pose (forward-fresh).
+double run_forward(const stewart_model *m, int calls, bool fresh = false) {
     std::vector<stewart_inverse_output> legs;
     if (!inverse_along_cue(m, STEWART_KINEMATIC, calls, legs, nullptr)) return -1;
     stewart_forward_options o;
@@ -90,14 +96,17 @@ double run_forward(const stewart_model *m, int calls) {
     if (!d) return -1;
     std::vector<stewart_forward_input> in(calls);
     for (int i = 0; i < calls; ++i) {
-        in[i].time = i * kStep;
-        in[i].lengths = legs[i].lengths;
+        in[i].time = fresh ? 0.0 : i * kStep;
+        in[i].lengths = legs[fresh ? i + 1 : i].lengths;
         in[i].derivatives = 2;
+        in[i].use_guess = fresh;
+        if (fresh) std::copy_n(combined_cue(i * kStep).q, 6, in[i].guess);
     }
     std::vector<double> ns(calls);
     stewart_forward_output r;
     for (int i = 0; i < calls; ++i) {
         const Clock::time_point start = Clock::now();
+        if (fresh) stewart_forward_reset(d);
         const stewart_status s = stewart_forward_solve(d, &in[i], &r);
         ns[i] = ns_since(start);
         if (s != STEWART_OK) return -1;
@@ -178,6 +187,8 @@ int main(int argc, char **argv) {
     if (!std::strcmp(row, "inverse-massless")) ns = run_inverse(m, STEWART_MASSLESS, calls);
     if (!std::strcmp(row, "inverse-full")) ns = run_inverse(m, STEWART_FULL, calls);
     if (!std::strcmp(row, "forward-tracking")) ns = run_forward(m, calls);
+    if (!std::strcmp(row, "inverse-full-fresh")) ns = run_inverse(m, STEWART_FULL, calls, true);
+    if (!std::strcmp(row, "forward-fresh")) ns = run_forward(m, calls, true);
     if (!std::strcmp(row, "plant-massless")) ns = run_plant(m, STEWART_MASSLESS, calls);
     if (!std::strcmp(row, "plant-full")) ns = run_plant(m, STEWART_FULL, calls);
     stewart_model_free(m);

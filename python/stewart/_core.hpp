@@ -14,6 +14,7 @@
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -44,7 +45,6 @@ using Column = nb::ndarray<T, nb::shape<-1>, nb::c_contig, nb::device::cpu>;
 using Poses = Rows<const double, 6>;
 using Times = Column<const double>;
 using Messages = std::vector<std::pair<size_t, std::string>>;
-using BatchResult = std::tuple<int, size_t, std::string, Messages>;
 
 // A Python ValueError subclass defined in stewart/errors.py is raised from Python; here the
 // C messages travel as ValueError (bad parameters, options) and the caller re-raises.
@@ -237,6 +237,51 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
     return array.data();
 }
 
+// Where a result's arrays lie in its block (results.py table_arrays): per column of a direction's
+// output table, then status, the byte offset of its row 0, or -1 for a column the batch leaves
+// alone. Made once per (direction, rows, columns left alone) and kept by Python, so that a call
+// binds its outputs by arithmetic, not by checking two dozen arrays. Checked when made: every
+// column lies inside `bytes`, aligned for its type, so that any block of `bytes` bytes takes it.
+class Placement {
+public:
+    struct ColumnSize {
+        size_t row_bytes, align;
+    };
+    Placement(const std::vector<ColumnSize> &columns, size_t rows, size_t bytes,
+              std::vector<long> offsets)
+        : rows_(rows), bytes_(bytes), offsets_(std::move(offsets)) {
+        if (offsets_.size() != columns.size())
+            fail(("a placement needs " + std::to_string(columns.size()) + " offsets").c_str());
+        for (size_t i = 0; i < columns.size(); ++i) {
+            const long o = offsets_[i];
+            if (o < 0) continue;
+            if (size_t(o) % columns[i].align != 0 || size_t(o) > bytes ||
+                rows > (bytes - size_t(o)) / columns[i].row_bytes)
+                fail(("placement column " + std::to_string(i) + " at " + std::to_string(o) +
+                      " is misaligned or beyond the block").c_str());
+        }
+    }
+    size_t rows() const { return rows_; }
+    // The block's data if it holds the placement (rows as the call's, at least `bytes` bytes).
+    uint8_t *data(Column<uint8_t> block, size_t rows) const {
+        if (rows != rows_ || block.shape(0) < bytes_)
+            fail("the result block does not match its placement");
+        return block.data();
+    }
+    template <typename T>
+    T *column(uint8_t *data, size_t i) const {
+        return offsets_[i] < 0 ? nullptr : reinterpret_cast<T *>(data + offsets_[i]);
+    }
+
+private:
+    size_t rows_, bytes_;
+    std::vector<long> offsets_;
+};
+
+// A Placement::ColumnSize per column of an output table.
+#define STEWART_PLACEMENT_COLUMN(name, member, count, type, unit, description)                    \
+    Placement::ColumnSize{size_t(count) * sizeof(type), alignof(type)},
+
 // The batch outputs of a direction's table bound to the arrays of outputs (name -> array).
 #define STEWART_BIND_COLUMN(name, member, count, type, unit, description)                         \
     o.name = table_column<type>(outputs, #name, n, count, held);
@@ -246,13 +291,24 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
 #define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description)                        \
     if (o.name) o.name += first * (count);
 
-// A direction's bind_outputs (its batch outputs bound to the arrays of outputs, name -> array)
-// and from_row (moved on to row first), from its output table.
+// A batch's output bound to its column of a block (Placement).
+#define STEWART_PLACE_COLUMN(name, member, count, type, unit, description)                        \
+    o.name = placement.column<type>(data, i++);
+
+// A direction's place_outputs (its batch outputs bound to a block's columns), placement_columns
+// (its table's ColumnSize, then status's) and from_row (moved on to row first), from its output
+// table.
 #define STEWART_OUTPUT_BINDINGS(Outputs, TABLE)                                                  \
-    Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n,                           \
-                         std::vector<nb::object> &held) {                                        \
-        TABLE(STEWART_BIND_COLUMN)                                                               \
+    Outputs place_outputs(Outputs o, uint8_t *data, const Placement &placement) {                \
+        size_t i = 0;                                                                            \
+        TABLE(STEWART_PLACE_COLUMN)                                                              \
+        o.status = placement.column<int>(data, i);                                               \
         return o;                                                                                \
+    }                                                                                            \
+    const std::vector<Placement::ColumnSize> &placement_columns() {                              \
+        static const std::vector<Placement::ColumnSize> columns = {                              \
+            TABLE(STEWART_PLACEMENT_COLUMN) Placement::ColumnSize{sizeof(int), alignof(int)}};   \
+        return columns;                                                                          \
     }                                                                                            \
     Outputs from_row(Outputs o, size_t first) {                                                  \
         TABLE(STEWART_SHIFT_COLUMN)                                                              \
@@ -260,27 +316,33 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
         return o;                                                                                \
     }
 
+// A direction's bind_outputs: its batch outputs bound to the arrays of outputs (name -> array).
+#define STEWART_OUTPUTS_BY_NAME(Outputs, TABLE)                                                  \
+    Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n,                           \
+                         std::vector<nb::object> &held) {                                        \
+        TABLE(STEWART_BIND_COLUMN)                                                               \
+        return o;                                                                                \
+    }
+
 // Runs batch(messages, first_failed) -> status over rows [first, stop) of solver with the GIL
-// released (the batch numbers rows from first = 0). Returns (status of the first failing row or
-// 0, its index or stop, its message, [(row, message)] of up to max_messages failing rows), rows
-// numbered in the whole call; a failure before any row raises ValueError.
+// released (the batch numbers rows from first = 0). Returns [(row, message)] of up to
+// max_messages failing rows, rows numbered in the whole call (each failing row's status is in
+// the result's status array); a failure before any row raises ValueError.
 template <typename T, typename Batch>
-BatchResult run_rows(T *solver, const char *(*message)(const T *), size_t first, size_t stop,
-                     size_t max_messages, Batch batch) {
+Messages run_rows(T *solver, const char *(*message)(const T *), size_t first, size_t stop,
+                  size_t max_messages, Batch batch) {
     if (first > stop) fail("rows: first must not be after stop");
     MessageBuffer messages(max_messages);
     size_t first_failed = stop - first;
     stewart_status status;
-    std::string first_message;
     {
         nb::gil_scoped_release release;
         status = batch(&messages.c, &first_failed);
-        first_message = message(solver);
     }
-    if (status != STEWART_OK && first_failed == stop - first) fail(first_message.c_str());
+    if (status != STEWART_OK && first_failed == stop - first) fail(message(solver));
     Messages kept = messages.kept();
     for (auto &m : kept) m.first += first;
-    return {status, first + first_failed, first_message, kept};
+    return kept;
 }
 
 // Each file's part of the module (the functions and classes Python calls).

@@ -10,20 +10,21 @@ const OptionTable<stewart_forward_options> kForwardOptions = {
     "forward", stewart_forward_options_default, stewart_forward_option_find,
     stewart_forward_option_set, stewart_forward_options_check};
 
-// bind_outputs and from_row of the forward table.
+// place_outputs, placement_columns and from_row of the forward table.
 STEWART_OUTPUT_BINDINGS(stewart_forward_batch_outputs, STEWART_FORWARD_OUTPUT_TABLE)
 
 // One Platform.forward call: its arrays and one forward solver, made once (a cold start, or
 // row 0 from guess). rows(a, b) tracks rows [a, b) on from the rows before, as one batch would.
 class ForwardRun {
 public:
+    // out: the batch outputs, bound to arrays that held keeps alive.
     ForwardRun(const Model &model, Poses lengths, std::optional<Poses> rates,
                std::optional<Poses> accels, std::optional<Times> time,
                std::optional<Column<const double>> guess, bool cold,
-               const std::vector<std::pair<std::string, double>> &option_values,
-               const nb::dict &outputs, Column<int> status)
+               const OptionValues &option_values, stewart_forward_batch_outputs out,
+               std::vector<nb::object> held)
         : n_(lengths.shape(0)), lengths_(lengths), rates_(rates), accels_(accels), time_(time),
-          guess_(guess), cold_(cold), status_(status),
+          guess_(guess), cold_(cold), held_(std::move(held)), out_(out),
           forward_(model.forward_pool(), option_values) {
         if ((rates && rates->shape(0) != n_) || (accels && accels->shape(0) != n_) ||
             (time && time->shape(0) != n_))
@@ -32,20 +33,16 @@ public:
         if (guess && guess->shape(0) != (cold ? 6 * n_ : 6))
             fail(cold ? "guess must have 6 values per row" : "guess must have 6 values");
         if (cold && time) fail("rows solved cold have no time");
-        if (status.shape(0) != n_) fail("output arrays must have as many rows as the lengths");
-        std::optional<stewart_forward_options> options;  // of a solver still to make
-        if (!forward_.solver) options = options_by_name(kForwardOptions, option_values);
-        out_ = bind_outputs(out_, outputs, n_, held_);
-        out_.status = status.data();
-        if (!options) return;
+        if (forward_.solver) return;
+        const stewart_forward_options options = options_by_name(kForwardOptions, option_values);
         char message[STEWART_MESSAGE_SIZE];
-        forward_.solver = stewart_forward_create(model.get(), &*options, message, sizeof message);
+        forward_.solver = stewart_forward_create(model.get(), &options, message, sizeof message);
         if (!forward_.solver) fail(message);
     }
 
     // Solves rows [first, stop) (the guess only for row 0; cold: each row from its own guess
     // or home). Returns as run_rows.
-    BatchResult rows(size_t first, size_t stop, size_t max_messages) {
+    Messages rows(size_t first, size_t stop, size_t max_messages) {
         if (stop > n_) fail("rows: stop is beyond the last row");
         const stewart_forward_batch_outputs out = from_row(out_, first);
         if (cold_)
@@ -76,8 +73,7 @@ private:
     std::optional<Times> time_;
     std::optional<Column<const double>> guess_;
     bool cold_;
-    // The output arrays, held so that they outlive the pointers in out_.
-    Column<int> status_;
+    // The output arrays (or their block), held so that they outlive the pointers in out_.
     std::vector<nb::object> held_;
     stewart_forward_batch_outputs out_{};
     // The solver, from the model's pool and back to it (reset when taken again) when the run is
@@ -87,19 +83,30 @@ private:
 
 }  // namespace
 
-// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays.
+// The run object keeps its Model alive (keep_alive<1, 2>) and holds its arrays: a new result's,
+// as their block and its placement (made by forward_placement; bound by their offsets).
 void bind_forward(nb::module_ &m) {
     nb::class_<ForwardRun>(m, "ForwardRun")
-        .def(nb::init<const Model &, Poses, std::optional<Poses>, std::optional<Poses>,
-                      std::optional<Times>, std::optional<Column<const double>>, bool,
-                      const std::vector<std::pair<std::string, double>> &, const nb::dict &,
-                      Column<int>>(),
+        .def("__init__",
+             [](ForwardRun *self, const Model &model, Poses lengths, std::optional<Poses> rates,
+                std::optional<Poses> accels, std::optional<Times> time,
+                std::optional<Column<const double>> guess, bool cold, const OptionValues &options,
+                Column<uint8_t> block, const Placement &placement) {
+                 uint8_t *data = placement.data(block, lengths.shape(0));
+                 new (self) ForwardRun(model, lengths, rates, accels, time, guess, cold, options,
+                                       place_outputs({}, data, placement), {nb::cast(block)});
+             },
              nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
              nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
-             nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("outputs"),
-             nb::arg("status"))
+             nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("block"),
+             nb::arg("placement"))
         .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"),
              nb::arg("max_messages"));
+    // Where a new result's arrays lie in its block: for rows rows, a block of bytes bytes, the
+    // byte offset of each forward output column then status's (-1: a column left alone).
+    m.def("forward_placement", [](size_t rows, size_t bytes, std::vector<long> offsets) {
+        return Placement(placement_columns(), rows, bytes, std::move(offsets));
+    }, nb::arg("rows"), nb::arg("bytes"), nb::arg("offsets"));
 }
 
 }  // namespace stewart_core

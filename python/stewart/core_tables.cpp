@@ -65,6 +65,10 @@ void bind_tables(nb::module_ &m) {
           "The library's option table of a direction (inverse, forward, plant, cueing): one dict per "
           "option (name, id, integer, unit, min, max, min_closed, max_closed, default, "
           "description)");
+    nb::class_<Placement>(m, "Placement",
+                          "Where a result's arrays lie in its block (made by inverse_placement, "
+                          "forward_placement)")
+        .def_prop_ro("rows", &Placement::rows);
     m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
 }

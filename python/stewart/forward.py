@@ -1,6 +1,7 @@
 """Forward kinematics on numpy arrays: actuator lengths to platform poses (Platform.forward)."""
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -8,7 +9,7 @@ import numpy as np
 
 from . import _core
 from .errors import ParameterError
-from .results import STATUS_COLUMN, RowStatus, table, table_arrays
+from .results import STATUS_COLUMN, RowStatus, new_table, place, result_of, table
 from .slices import keeping_messages, run_in_slices
 
 # The status (stewart.h) and bits (stewart_forward.h) a caller tests rows against.
@@ -46,7 +47,23 @@ FORWARD_TABLE = table(_core.forward_columns(), STATUS_COLUMN)
 
 def empty_forward_solution(n: int) -> ForwardSolution:
     """A ForwardSolution of n rows, uninitialised (the batch writes every row)."""
-    return ForwardSolution(**table_arrays(FORWARD_TABLE, n))
+    return _new_solution(n)[0]
+
+
+def _new_solution(n: int) -> tuple:
+    """A new ForwardSolution of n rows, the block of its arrays and where the binding finds them
+    in it."""
+    placement, core_placement = _placements(n)
+    arrays, block = new_table(placement)
+    return result_of(ForwardSolution, arrays, messages={}), block, core_placement
+
+
+@functools.lru_cache(maxsize=64)
+def _placements(n: int) -> tuple:
+    """The placement of a result of n rows and the binding's copy of its offsets; kept for the
+    sizes last used (never changed, so threads share them)."""
+    placement = place(FORWARD_TABLE, n)
+    return placement, _core.forward_placement(n, placement.written_bytes, list(placement.offsets))
 
 
 def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
@@ -57,11 +74,10 @@ def run_forward(model, lengths: np.ndarray, rates: Optional[np.ndarray],
     KeyboardInterrupt with rows_done and the partial result); with cold, every row on its own
     (guess: None, or one start per row, flattened). Bad options raise ParameterError."""
     n = lengths.shape[0]
-    out = empty_forward_solution(n)
+    out, block, placement = _new_solution(n)
     try:
-        # vars(out): its arrays by name, of which the binding takes its table's columns
         run = _core.ForwardRun(
-            model, lengths, rates, accels, t, guess, cold, options, vars(out), out.status)
+            model, lengths, rates, accels, t, guess, cold, options, block, placement)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("forward", n, SLICE_ROWS,

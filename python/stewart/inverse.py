@@ -2,6 +2,7 @@
 (Platform.inverse)."""
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -10,7 +11,7 @@ import numpy as np
 from . import _core
 from .choices import Fidelity
 from .errors import ParameterError
-from .results import STATUS_COLUMN, RowStatus, table, table_arrays
+from .results import STATUS_COLUMN, RowStatus, new_table, place, result_of, table
 from .slices import keeping_messages, run_in_slices
 
 #: Rows per call into the library when rows are independent (kinematic and massless levels) and
@@ -72,13 +73,27 @@ DRIVE_COLUMNS = tuple(c.name for c in INVERSE_TABLE.columns[
 def empty_inverse_solution(n: int, drives: bool = True) -> InverseSolution:
     """An InverseSolution of n rows, uninitialised (the batch writes every row); without drives
     the drive columns are zeros the batch is not asked to write (calloc'd pages: no work)."""
-    arrays = table_arrays(INVERSE_TABLE, n)
-    if not drives:
-        for name in DRIVE_COLUMNS:
-            arrays[name] = np.zeros(arrays[name].shape, arrays[name].dtype)
-    sol = InverseSolution(**arrays)
+    return _new_solution(n, drives)[0]
+
+
+def _new_solution(n: int, drives: bool) -> tuple:
+    """A new InverseSolution of n rows, the block of the arrays the batch writes and where the
+    binding finds them in it."""
+    placement, core_placement = _placements(n, drives)
+    arrays, block = new_table(placement)
+    sol = result_of(InverseSolution, arrays, messages={})
     sol._drive_zeros = not drives
-    return sol
+    return sol, block, core_placement
+
+
+@functools.lru_cache(maxsize=64)
+def _placements(n: int, drives: bool) -> tuple:
+    """The placement of a result of n rows (without drives the drive columns zeroed), and the
+    binding's copy of its offsets; kept for the sizes last used (a loop of equal calls places
+    them once; they are never changed, so threads share them)."""
+    placement = place(INVERSE_TABLE, n, frozenset() if drives else frozenset(DRIVE_COLUMNS))
+    return placement, _core.inverse_placement(n, placement.written_bytes,
+                                              list(placement.offsets))
 
 
 def check_out(out: InverseSolution, n: int) -> None:
@@ -120,21 +135,25 @@ def run_inverse(model, q: np.ndarray, q_dot: Optional[np.ndarray], q_ddot: Optio
     jerks instead (current_rate from the drive's law along the motion)."""
     n = q.shape[0]
     drives = _core.model_has_drives(model)
-    if out is None:
-        out = empty_inverse_solution(n, drives)
+    if out is None:  # a new result: the binding finds its arrays in their block
+        out, block, placement = _new_solution(n, drives)
+        arrays = None
     else:
         check_out(out, n)
         if not drives and not getattr(out, "_drive_zeros", False):  # once per out reused
             for name in DRIVE_COLUMNS:
                 getattr(out, name).fill(0)
         out._drive_zeros = not drives
-    out.messages = {}
-    # its arrays by name, of which the binding takes its table's columns (the drive columns only
-    # for a model with drives)
-    arrays = vars(out) if drives else {k: v for k, v in vars(out).items()
-                                       if k not in DRIVE_COLUMNS}
+        out.messages = {}
+        # its arrays by name, of which the binding takes its table's columns (the drive columns
+        # only for a model with drives)
+        arrays = vars(out) if drives else {k: v for k, v in vars(out).items()
+                                           if k not in DRIVE_COLUMNS}
     try:
-        run = _core.InverseRun(model, q, q_dot, q_ddot, options, arrays, out.status)
+        if arrays is None:
+            run = _core.InverseRun(model, q, q_dot, q_ddot, options, block, placement)
+        else:
+            run = _core.InverseRun(model, q, q_dot, q_ddot, options, arrays, out.status)
     except ValueError as e:
         raise ParameterError(str(e)) from None
     run_in_slices("inverse", n, FULL_SLICE_ROWS if level == Fidelity.FULL else SLICE_ROWS,

@@ -3,6 +3,7 @@ A, B, C, D at an operating point and the inverse side's Jacobian, exact (automat
 differentiation through the library's equations of motion, stewart_linearize.h)."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -55,14 +56,16 @@ class InverseJacobian:
 
 
 def _six(name: str, value) -> list[float]:
-    a = np.zeros(6) if value is None else np.asarray(value, dtype=float).reshape(-1)
+    if value is None:
+        return [0.0] * 6
+    a = np.asarray(value, dtype=float).reshape(-1)
     if a.shape != (6,):
         raise ValueError(f"{name} must hold 6 values, not {np.asarray(value).shape}")
-    finite = np.isfinite(a)
-    if not finite.all():
-        i = int(np.flatnonzero(~finite)[0])
+    values = a.tolist()
+    if not all(map(math.isfinite, values)):
+        i = int(np.flatnonzero(~np.isfinite(a))[0])
         raise ValueError(f"{name}[{i}] = {a[i]} must be finite")
-    return a.tolist()
+    return values
 
 
 def _level(fidelity) -> Fidelity:

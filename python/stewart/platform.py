@@ -9,7 +9,7 @@ from typing import Optional, Union
 import numpy as np
 
 from . import _core
-from .arrays import LEG_LAYOUT, POSE_LAYOUT, rows6, times, vector
+from .arrays import LEG_LAYOUT, POSE_LAYOUT, all_finite, rows6, times, vector
 from .check import HomeCheck, check_home, text_units
 from .choices import Fidelity
 from .errors import ParameterError
@@ -113,9 +113,13 @@ class Platform:
         q_dddot = None if jerks is None else rows6("jerks", jerks, n, "poses", POSE_LAYOUT)
         q_dot = None if rates is None else rows6("rates", rates, n, "poses", POSE_LAYOUT)
         q_ddot = None if accels is None else rows6("accels", accels, n, "poses", POSE_LAYOUT)
-        options = [("fidelity", float(level))] + option_values(
-            tolerance=tolerance, max_iterations=max_iterations, modified_newton=modified_newton,
-            warn_condition=warn_condition, singular_condition=singular_condition)
+        options = [("fidelity", float(level))]
+        if (tolerance is not None or max_iterations is not None or modified_newton is not None
+                or warn_condition is not None or singular_condition is not None):
+            options += option_values(
+                tolerance=tolerance, max_iterations=max_iterations,
+                modified_newton=modified_newton, warn_condition=warn_condition,
+                singular_condition=singular_condition)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
         return run_inverse(self._model, q, q_dot, q_ddot, level, options, max_messages, out,
@@ -162,16 +166,19 @@ class Platform:
                 raise ValueError("t was given with cold=True: rows solved cold have no time")
             q0 = None if guess is None else np.ascontiguousarray(np.broadcast_to(
                 rows6("guess", guess, None, "poses", POSE_LAYOUT), (n, 6))).ravel()
-            if q0 is not None and not np.all(np.isfinite(q0)):
+            if q0 is not None and not all_finite(q0):
                 raise ValueError("guess has a value that is not finite")
         else:
             q0 = None if guess is None else vector("guess", guess, 6)
         time = None if t is None else times("t", t, n)
         if max_messages < 0:
             raise ValueError(f"max_messages = {max_messages} must be >= 0")
-        options = option_values(tolerance=tolerance, max_iterations=max_iterations,
-                                warn_condition=warn_condition,
-                                singular_condition=singular_condition)
+        options = []
+        if (tolerance is not None or max_iterations is not None or warn_condition is not None
+                or singular_condition is not None):
+            options = option_values(tolerance=tolerance, max_iterations=max_iterations,
+                                    warn_condition=warn_condition,
+                                    singular_condition=singular_condition)
         return run_forward(self._model, L, L_dot, L_ddot, time, q0, options, max_messages, cold)
 
     def limits(self, poses, rates=None, accels=None, jerks=None, *, forces=None,
@@ -307,9 +314,9 @@ class Platform:
 def _warn_condition(value: Optional[float]) -> Optional[float]:
     """The condition limit of the limit check (None: the library's default), or
     ParameterError if it is not a number."""
-    pairs = option_values(warn_condition=value)
-    if not pairs:
+    if value is None:
         return None
+    pairs = option_values(warn_condition=value)
     if not 1.0 <= pairs[0][1] < float("inf"):
         raise ParameterError(f"warn_condition = {value!r} must be finite and >= 1")
     return pairs[0][1]

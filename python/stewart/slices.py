@@ -31,10 +31,9 @@ def run_in_slices(what: str, n: int, slice_rows: int, run_rows: Callable[[int, i
 
 def keeping_messages(run, messages: dict, max_messages: int) -> Callable[[int, int], bool]:
     """run_rows for run_in_slices over a _core run whose rows(first, stop, max_messages) returns
-    (status, first failing row, its message, [(row, message)]): the messages of the first
-    max_messages failing rows of the whole batch go into messages."""
+    [(row, message)] of up to max_messages failing rows: the messages of the first max_messages
+    failing rows of the whole batch go into messages."""
     def run_rows(first: int, stop: int) -> bool:
-        _, _, _, kept = run.rows(first, stop, min(max_messages - len(messages), stop - first))
-        messages.update(kept)
+        messages.update(run.rows(first, stop, min(max_messages - len(messages), stop - first)))
         return True
     return run_rows

@@ -119,9 +119,9 @@ CHILD = textwrap.dedent("""
     legs = p.inverse(q, qd, qdd, "kinematic")
     forces = p.inverse(q, qd, qdd, "massless").force
     calls = {
-        "inverse": (stewart.inverse, "empty_inverse_solution", "FULL_SLICE_ROWS",
+        "inverse": (stewart.inverse, "_new_solution", "FULL_SLICE_ROWS",
                     lambda m: p.inverse(q[:m], qd[:m], qdd[:m], "full")),
-        "forward": (stewart.forward, "empty_forward_solution", "SLICE_ROWS",
+        "forward": (stewart.forward, "_new_solution", "SLICE_ROWS",
                     lambda m: p.forward(legs.length[:m], legs.length_rate[:m], t=t[:m])),
         "simulate": (stewart.simulate, "empty_simulation", "SLICE_ROWS",
                      lambda m: p.simulate(t[:m], forces[:m], "massless", start=q[0],
@@ -132,10 +132,11 @@ CHILD = textwrap.dedent("""
     empty = getattr(module, factory)
 
     def marked(*args):  # the result arrays, rows the batch has not written marked 99
-        sol = empty(*args)
+        new = empty(*args)  # the result, or (the result, its block, their placement)
+        sol = new[0] if isinstance(new, tuple) else new
         sol.status[:] = 99
         made.append(sol)
-        return sol
+        return new
     setattr(module, factory, marked)
     first_slice = getattr(module, slice_name)
     sent = []
