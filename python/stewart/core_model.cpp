@@ -84,10 +84,10 @@ Model::~Model() {
     stewart_model_free(model_);
 }
 
-void bind_model(nb::module_ &m) {
-    nb::class_<Model>(m, "Model")
-        .def(nb::init<const std::vector<std::pair<std::string, double>> &>(),
-             nb::arg("assignments"));
+namespace {
+
+// What a made model holds: its joints, tool frame, drives and geometry Jacobian.
+void bind_model_queries(nb::module_ &m) {
     m.def("geometry_jacobian", &geometry_jacobian_rows, nb::arg("model"), nb::arg("poses"),
           nb::arg("length"), nb::arg("reading"), nb::arg("base_joint"), nb::arg("platform_joint"),
           nb::arg("tool_frame"), nb::arg("user_frame"), nb::arg("pose"));
@@ -115,6 +115,10 @@ void bind_model(nb::module_ &m) {
             if (lead > 0) return true;
         return false;
     });
+}
+
+// Platform files and the units they are written in.
+void bind_platform_files(nb::module_ &m) {
     // A platform file read by the library (stewart_params_read_json_file): [(name, values)] of the parameters it gives, each with all its
     // elements in SI; ValueError with the library's message (line, column, field and value) if
     // any field is bad, or the path is not a regular file of at most the size cap.
@@ -141,6 +145,10 @@ void bind_model(nb::module_ &m) {
         if (!si) return std::nullopt;
         return std::make_pair(std::string(si), per_si);
     });
+}
+
+// The library's parameter table.
+void bind_parameter_table(nb::module_ &m) {
     // (True, "") if the library knows the parameter name, else (False, its message).
     m.def("parameter_known", [](const std::string &name) {
         stewart_params scratch;
@@ -169,6 +177,17 @@ void bind_model(nb::module_ &m) {
         }
         return table;
     });
+}
+
+}  // namespace
+
+void bind_model(nb::module_ &m) {
+    nb::class_<Model>(m, "Model")
+        .def(nb::init<const std::vector<std::pair<std::string, double>> &>(),
+             nb::arg("assignments"));
+    bind_model_queries(m);
+    bind_platform_files(m);
+    bind_parameter_table(m);
 }
 
 }  // namespace stewart_core
