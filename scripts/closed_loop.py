@@ -79,6 +79,19 @@ class Unit:
         shutil.rmtree(self.directory, ignore_errors=True)
 
 
+def pd_point(inverse, controller, plant, cue):
+    """Steps 1 and 2 of the loop at one communication point: the cue (pose, rates and
+    accelerations, 18 values) -> the inverse unit; its reference and the plant's measured L, L_dot
+    (state only, no feedthrough) -> the controller. Returns the controller's forces F, the plant's
+    pose and the feed-forward forces F_ff at this point."""
+    inverse.set(POSE + list(scenes.DOT) + list(scenes.DDOT), cue)
+    reference = inverse.get(legs("L") + legs("L_dot") + legs("F"))
+    measured = plant.get(legs("L") + legs("L_dot"))
+    controller.set(legs("L_ref") + legs("L_dot_ref") + legs("F_ff") + legs("L") + legs("L_dot"),
+                   [*reference, *measured])
+    return controller.get(legs("F")), plant.get(POSE), reference[12:]
+
+
 def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
         fmus=ROOT / "build" / "fmus" / "2.0", machine=None, platform=None):
     """Runs the loop; returns a dict of arrays (one row per communication point) and the wall
@@ -103,17 +116,8 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     wall = time.perf_counter()
     try:
         for j in range(n + 1):
-            # 1. trajectory -> inverse unit
-            inverse.set(POSE + list(scenes.DOT) + list(scenes.DDOT),
-                        [*cue[j], *cue_dot[j], *cue_ddot[j]])
-            reference = inverse.get(legs("L") + legs("L_dot") + legs("F"))
-            # 2. plant (state only, no feedthrough) and reference -> controller
-            measured = plant.get(legs("L") + legs("L_dot"))
-            controller.set(legs("L_ref") + legs("L_dot_ref") + legs("F_ff") + legs("L") +
-                           legs("L_dot"), [*reference, *measured])
-            force[j] = controller.get(legs("F"))
-            pose[j] = plant.get(POSE)
-            feed_forward[j] = reference[12:]
+            force[j], pose[j], feed_forward[j] = pd_point(
+                inverse, controller, plant, [*cue[j], *cue_dot[j], *cue_ddot[j]])
             if j == n:
                 break
             # 3. controller -> plant, then every unit steps to t + h
@@ -217,12 +221,7 @@ def main():
     parser.add_argument("--view", action="store_true",
                         help="also write closed_loop.html: the run in 3D (docs/view.md)")
     import plots
-    parser.add_argument("--units", default="m,rad", help=plots.UNITS_HELP)
-    args = parser.parse_args()
-    try:
-        units = plots.units(args.units)
-    except ValueError as e:
-        parser.error(f"--units: {e}")
+    args, units = plots.parse_args_with_units(parser)
     try:
         scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
         kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)

@@ -77,13 +77,8 @@ static void with_frames(void) {
 }
 
 static stewart_plant *make_plant(int fidelity) {
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = fidelity;
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_plant *p = stewart_plant_create(model, &o, message, sizeof message);
-    TEST_ASSERT_NOT_NULL_MESSAGE(p, message);
-    return p;
+    const stewart_plant_options o = test_plant_options(fidelity);
+    return test_plant_with(model, &o);
 }
 
 /* The plant's right-hand side: q_ddot (6), then L and L_dot (12). */

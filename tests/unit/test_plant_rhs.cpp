@@ -21,6 +21,7 @@
 #include "plant/plant_integrator.hpp"
 #include "plant/plant_object.hpp"
 #include "stewart/stewart.h"
+#include "test_support.h"
 #include "unity.h"
 
 namespace fd = stewart::fd;
@@ -377,16 +378,11 @@ int step_numbers(const stewart_plant *plant, const stewart_plant_output &o, doub
 void test_carried_start_values(void) {
     stewart_params params;
     stewart_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(model, msg);
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = STEWART_MASSLESS;
-    stewart_plant *carried = stewart_plant_create(model, &o, msg, sizeof msg);
-    stewart_plant *fresh = stewart_plant_create(model, &o, msg, sizeof msg);
-    stewart_plant *other = stewart_plant_create(model, &o, msg, sizeof msg);
-    TEST_ASSERT_TRUE(carried && fresh && other);
+    stewart_model *model = test_model(&params);
+    const stewart_plant_options o = test_plant_options(STEWART_MASSLESS);
+    stewart_plant *carried = test_plant_with(model, &o);
+    stewart_plant *fresh = test_plant_with(model, &o);
+    stewart_plant *other = test_plant_with(model, &o);
     // a level pose and one pitched by 1.3 rad with roll and yaw near +-pi: a step from the
     // level pose that took the pitched one's principal angles as its start (stale) sees a pitch
     // crossing at its start (the pitch root's pre-test does not hold at 1.3 rad)

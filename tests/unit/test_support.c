@@ -77,10 +77,28 @@ double closed_form_length(const stewart_params *params, const stewart_pose *pose
 stewart_inverse *test_inverse(const stewart_model *m) {
     stewart_inverse_options o;
     stewart_inverse_options_default(&o);
+    return test_inverse_with(m, &o);
+}
+
+stewart_inverse *test_inverse_with(const stewart_model *m, const stewart_inverse_options *o) {
     char msg[STEWART_MESSAGE_SIZE];
-    stewart_inverse *d = stewart_inverse_create(m, &o, msg, sizeof msg);
+    stewart_inverse *d = stewart_inverse_create(m, o, msg, sizeof msg);
     if (!d) TEST_FAIL_MESSAGE(msg);
     return d;
+}
+
+stewart_plant_options test_plant_options(int fidelity) {
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    o.fidelity = fidelity;
+    return o;
+}
+
+stewart_plant *test_plant_with(const stewart_model *m, const stewart_plant_options *o) {
+    char msg[STEWART_MESSAGE_SIZE];
+    stewart_plant *p = stewart_plant_create(m, o, msg, sizeof msg);
+    if (!p) TEST_FAIL_MESSAGE(msg);
+    return p;
 }
 
 stewart_status solve_as(stewart_inverse *d, const stewart_inverse_options *o,
