@@ -8,16 +8,11 @@
 #include "unity.h"
 
 stewart_plant *test_plant(const stewart_model *model, int fidelity, double rtol, double atol) {
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = fidelity;
+    stewart_plant_options o = test_plant_options(fidelity);
     o.relative_tolerance = rtol;
     o.absolute_tolerance = atol;
     o.max_internal_steps = 100000;
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_plant *p = stewart_plant_create(model, &o, msg, sizeof msg);
-    if (!p) TEST_FAIL_MESSAGE(msg);
-    return p;
+    return test_plant_with(model, &o);
 }
 
 /* 1/2 m v.v + 1/2 w.(A I A^T) w, and -m g.r, for one body with principal inertia I. */
