@@ -205,18 +205,24 @@ def plot(result, path, unit_text="m,rad"):
     return plots.drawn(ax)
 
 
+def add_loop_arguments(parser, name, kp_default, kd_default):
+    """The loop's --step, --kp, --kd (their defaults as kp_default, kd_default say), --fidelity,
+    --fmus, --out (default out/name) and --no-plot."""
+    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
+    parser.add_argument("--kp", type=float, help=f"[N/m] (default {kp_default})")
+    parser.add_argument("--kd", type=float, help=f"[N s/m] (default {kd_default})")
+    parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
+    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
+    parser.add_argument("--out", default=str(ROOT / "out" / name))
+    parser.add_argument("--no-plot", action="store_true")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="combined")
     parser.add_argument("--duration", type=float,
                         help="[s] (default: the scene's; a move's: its own)")
-    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
-    parser.add_argument("--kp", type=float, help="[N/m] (default 1e6, or machine_gains)")
-    parser.add_argument("--kd", type=float, help="[N s/m] (default 1e4, or machine_gains)")
-    parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
-    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
-    parser.add_argument("--out", default=str(ROOT / "out" / "closed_loop"))
-    parser.add_argument("--no-plot", action="store_true")
+    add_loop_arguments(parser, "closed_loop", "1e6, or machine_gains", "1e4, or machine_gains")
     scenes.add_platform_arguments(parser)
     parser.add_argument("--view", action="store_true",
                         help="also write closed_loop.html: the run in 3D (docs/view.md)")

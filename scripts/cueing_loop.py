@@ -164,13 +164,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     cueing_script.add_vehicle_arguments(parser)
     parser.add_argument("--duration", type=float, help="[s] (default: the vehicle's)")
-    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
-    parser.add_argument("--kp", type=float, help="[N/m] (default closed_loop.machine_gains)")
-    parser.add_argument("--kd", type=float, help="[N s/m] (default closed_loop.machine_gains)")
-    parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
-    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
-    parser.add_argument("--out", default=str(ROOT / "out" / "cueing_loop"))
-    parser.add_argument("--no-plot", action="store_true")
+    closed_loop.add_loop_arguments(parser, "cueing_loop", "closed_loop.machine_gains",
+                                   "closed_loop.machine_gains")
     args = parser.parse_args(argv)
     t, f, w, platform, options = cueing_script.vehicle_of(args, parser, "cueing_loop.py")
     result, wall = run(platform, t, f, w, options, args.duration, args.step, args.kp, args.kd,

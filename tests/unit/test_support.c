@@ -89,6 +89,13 @@ stewart_inverse *test_inverse_with(const stewart_model *m, const stewart_inverse
     return made(stewart_inverse_create(m, o, msg, sizeof msg), msg);
 }
 
+stewart_forward *test_forward(const stewart_model *m) {
+    stewart_forward_options o;
+    stewart_forward_options_default(&o);
+    char msg[STEWART_MESSAGE_SIZE];
+    return made(stewart_forward_create(m, &o, msg, sizeof msg), msg);
+}
+
 stewart_plant_options test_plant_options(int fidelity) {
     stewart_plant_options o;
     stewart_plant_options_default(&o);

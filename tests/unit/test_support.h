@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_forward.h"
 #include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
@@ -37,6 +38,8 @@ double closed_form_length(const stewart_params *params, const stewart_pose *pose
 stewart_inverse *test_inverse(const stewart_model *m);
 /* An inverse solver for m with the options o; fails the test if it cannot be made. */
 stewart_inverse *test_inverse_with(const stewart_model *m, const stewart_inverse_options *o);
+/* A forward solver for m with the default options; fails the test if it cannot be made. */
+stewart_forward *test_forward(const stewart_model *m);
 /* The plant's default options at fidelity, and a plant for m with options o (fails the test
  * with the library's message if it cannot be made). */
 stewart_plant_options test_plant_options(int fidelity);
