@@ -258,6 +258,33 @@ void state_operation(StateProbe &probe, int op, Unit &u, Reader &in, OutputCheck
         corrupted_round_trip(u, probe.state, in, check);
 }
 
+// The operations every FMU target's input shares: 0 SetReal of any Real variable, 2 SetInteger
+// of any Integer one (small values below `small`), 4 the outputs checked, 6 to 8 FMU states
+// (state_operation), 10 Terminate. False for any other op (the target's own).
+bool shared_operation(int op, Unit &u, Reader &in, StateProbe &probe, int small,
+                      OutputCheck check) {
+    switch (op) {
+        case 0:
+            random_set_real(u, in);
+            return true;
+        case 2:
+            random_set_integer(u, in, small);
+            return true;
+        case 4:
+            check(u, nullptr);
+            return true;
+        case 6:
+        case 7:
+        case 8:
+            state_operation(probe, op, u, in, check);
+            return true;
+        case 10:
+            u.terminate();
+            return true;
+    }
+    return false;
+}
+
 // SetDebugLogging with the categories a selector byte picks (an unknown one among them).
 void random_debug_logging(Unit &u, uint8_t b) {
     const char *cats[] = {"logEvents", "logStatusWarning", "logStatusDiscard", "logStatusError",

@@ -74,19 +74,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 14;
+        if (shared_operation(op, u, in, probe, 5, check_outputs)) continue;  // 0, 2, 4, 6..8, 10
         switch (op) {
-            case 0:  // SetReal of any Real variable (outputs and time must be refused)
-                random_set_real(u, in);
-                break;
             case 1: {  // SetReal of one force, any value (scaled: the specials are small)
                 const unsigned vr = VR_F_1 + in.byte() % 6;
                 const double v = 1e3 * in.value();
                 u.set_real(&vr, 1, &v);
                 break;
             }
-            case 2:  // SetInteger of any Integer variable
-                random_set_integer(u, in, 5);
-                break;
             case 3: {  // DoStep from the current time (or from a raw t), any step size
                 const uint8_t how = in.byte();
                 const double h = in.value();
@@ -113,28 +108,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 }
                 break;
             }
-            case 4:
-                check_outputs(u);
-                break;
             case 5: {  // SetRealInputDerivatives (FMI 2), any variable and order
                 const unsigned vr = in.byte() % 8;
                 const int order = in.byte() % 3;
                 u.input_derivative(vr, order, 1e3 * in.value());
                 break;
             }
-            case 6:  // FMU states: take, roll back, serialise (state_operation)
-            case 7:
-            case 8:
-                state_operation(probe, op, u, in, check_outputs);
-                break;
             case 9:
                 u.reset();
                 u.set_int(&cap_vr, 1, &step_cap);
                 u.setup(0.0);
                 t = 0;
-                break;
-            case 10:
-                u.terminate();
                 break;
             case 11:  // initialisation, at a random start time
                 t = in.value();

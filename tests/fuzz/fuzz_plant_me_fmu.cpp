@@ -168,42 +168,26 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 16;
+        if (shared_operation(op, u, in, probe, 4, check_outputs)) continue;  // 0, 2, 4, 6..8, 10
         switch (op) {
-            case 0:  // SetReal of any Real variable (outputs, states' derivatives, time refused)
-                random_set_real(u, in);
-                break;
             case 1: {  // SetReal of one force, any value (scaled: the specials are small)
                 const unsigned vr = VR_F_1 + in.byte() % 6;
                 const double v = 1e3 * in.value();
                 u.set_real(&vr, 1, &v);
                 break;
             }
-            case 2:  // SetInteger of any Integer variable
-                random_set_integer(u, in, 4);
-                break;
             case 3: {  // SetTime: any value, or the current time plus one
                 const double v = in.value();
                 if (set_time(u, (flags & 16) ? t + v : v) == 0) t = (flags & 16) ? t + v : v;
                 break;
             }
-            case 4:
-                check_outputs(u);
-                break;
             case 5:
                 change_states(u, in);
-                break;
-            case 6:  // FMU states: take, roll back, serialise (state_operation)
-            case 7:
-            case 8:
-                state_operation(probe, op, u, in, check_outputs);
                 break;
             case 9:
                 u.reset();
                 u.setup(0.0);
                 t = 0;
-                break;
-            case 10:
-                u.terminate();
                 break;
             case 11:  // initialisation, at a random start time
                 t = in.value();
