@@ -55,7 +55,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 14;
-        if (shared_operation(op, u, in, probe, 4, check_outputs)) continue;  // 0, 2, 4, 6..8, 10
+        if (shared_operation(op, u, in, probe, t, 4, check_outputs, [] {}))
+            continue;  // 0, 2, 4, 6..11
         switch (op) {
             case 1: {  // SetReal of a pose input (most useful for coverage)
                 const unsigned vr = in.byte() % 18;
@@ -79,18 +80,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 u.input_derivative(vr, order, in.value());
                 break;
             }
-            case 9:
-                u.reset();
-                u.setup(0.0);
-                t = 0;
-                break;
-            case 11:  // initialisation, at a random start time
-                t = in.value();
-                u.setup(t);
-                u.enter_init(t);
-                u.exit_init();
-                check_outputs(u);
-                break;
             case 12:
                 random_debug_logging(u, in.byte());
                 break;

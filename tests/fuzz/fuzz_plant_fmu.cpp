@@ -54,27 +54,26 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     const int32_t step_cap = 1 + in.byte() % 32;
     Unit &u = unit_for((flags & 32) != 0, (flags & 1) != 0);
     const unsigned cap_vr = VR_max_internal_steps;
-    auto initialise = [&](double t0) {
-        u.set_int(&cap_vr, 1, &step_cap);
-        u.setup(t0);
-        u.enter_init(t0);
-        u.exit_init();
-    };
+    auto set_cap = [&] { u.set_int(&cap_vr, 1, &step_cap); };
     double t = 0;
-    u.set_int(&cap_vr, 1, &step_cap);
+    set_cap();
     u.setup(0.0);
     if (flags & 2) {
         const unsigned vrs[2] = {VR_fidelity, VR_method};
         const int32_t values[2] = {1 + ((flags >> 2) & 1), (flags >> 3) & 3};
         u.set_int(vrs, 2, values);
-        initialise(0.0);
+        set_cap();
+        u.setup(0.0);
+        u.enter_init(0.0);
+        u.exit_init();
     }
     int budget = kStepBudget;
     StateProbe probe;
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 14;
-        if (shared_operation(op, u, in, probe, 5, check_outputs)) continue;  // 0, 2, 4, 6..8, 10
+        if (shared_operation(op, u, in, probe, t, 5, check_outputs, set_cap))
+            continue;  // 0, 2, 4, 6..11
         switch (op) {
             case 1: {  // SetReal of one force, any value (scaled: the specials are small)
                 const unsigned vr = VR_F_1 + in.byte() % 6;
@@ -114,17 +113,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 u.input_derivative(vr, order, 1e3 * in.value());
                 break;
             }
-            case 9:
-                u.reset();
-                u.set_int(&cap_vr, 1, &step_cap);
-                u.setup(0.0);
-                t = 0;
-                break;
-            case 11:  // initialisation, at a random start time
-                t = in.value();
-                initialise(t);
-                check_outputs(u);
-                break;
             case 12:
                 random_debug_logging(u, in.byte());
                 break;

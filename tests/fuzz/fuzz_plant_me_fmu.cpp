@@ -151,24 +151,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     Reader in{bytes, size};
     const uint8_t flags = in.byte();
     Unit &u = unit_for((flags & 32) != 0, (flags & 1) != 0);
-    auto initialise = [&](double t0) {
-        u.setup(t0);
-        u.enter_init(t0);
-        u.exit_init();
-    };
     double t = 0;
     u.setup(0.0);
     if (flags & 2) {
         const unsigned vr = VR_fidelity;
         const int32_t fidelity = 1 + ((flags >> 2) & 1);
         u.set_int(&vr, 1, &fidelity);
-        initialise(0.0);
+        u.setup(0.0);
+        u.enter_init(0.0);
+        u.exit_init();
     }
     StateProbe probe;
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 16;
-        if (shared_operation(op, u, in, probe, 4, check_outputs)) continue;  // 0, 2, 4, 6..8, 10
+        if (shared_operation(op, u, in, probe, t, 4, check_outputs, [] {}))
+            continue;  // 0, 2, 4, 6..11
         switch (op) {
             case 1: {  // SetReal of one force, any value (scaled: the specials are small)
                 const unsigned vr = VR_F_1 + in.byte() % 6;
@@ -183,16 +181,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
             }
             case 5:
                 change_states(u, in);
-                break;
-            case 9:
-                u.reset();
-                u.setup(0.0);
-                t = 0;
-                break;
-            case 11:  // initialisation, at a random start time
-                t = in.value();
-                initialise(t);
-                check_outputs(u);
                 break;
             case 12:
                 event_call(u, in.byte());
