@@ -33,6 +33,16 @@ double uniform(uint64_t &state, double a, double b) {
     return a + (b - a) * static_cast<double>(state >> 11) / 9007199254740992.0;
 }
 
+// Rz(yaw) Ry(pitch) Rx(roll) with roll and yaw anywhere and |pitch| up to 1.5707 rad (drawn in
+// that order).
+Eigen::Quaterniond random_attitude(uint64_t &rng) {
+    const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
+                 yaw = uniform(rng, -M_PI, M_PI);
+    return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+           Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+}
+
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // The two formulations' twist rates may differ by a few roundings of their largest term (the
@@ -243,11 +253,7 @@ void test_pitch_pre_test(void) {
     uint64_t rng = 31337;
     int held = 0, wrong = 0;
     for (int n = 0; n < 200000; ++n) {
-        const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
-                     yaw = uniform(rng, -M_PI, M_PI);
-        const Eigen::Quaterniond q0 = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                                      Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+        const Eigen::Quaterniond q0 = random_attitude(rng);
         Eigen::Vector3d axis(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
         if (!(axis.norm() > 1e-3)) continue;
         const Eigen::Quaterniond turn(Eigen::AngleAxisd(uniform(rng, 0, 0.3), axis.normalized()));
@@ -282,11 +288,7 @@ void test_angle_rates_of_rotation(void) {
     double worst = 0, worst_level = 0, worst_exact_new = 0, worst_exact_old = 0;
     int over = 0;
     for (int n = 0; n < 100000; ++n) {
-        const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
-                     yaw = uniform(rng, -M_PI, M_PI);
-        const Eigen::Quaterniond q = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                                     Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                                     Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+        const Eigen::Quaterniond q = random_attitude(rng);
         double y[fd::kStates] = {0, 0, 0, q.w(), q.x(), q.y(), q.z()};
         for (int i = 10; i < 13; ++i) y[i] = uniform(rng, -20, 20);
         const stewart::Motion m = fd::motion_of_state(y);

@@ -156,3 +156,23 @@ stewart_status plant_load_doubles(stewart_plant *plant, const double *state, siz
     memcpy(bytes + header, state, count * sizeof(double));
     return stewart_plant_load(plant, bytes, header + count * sizeof(double));
 }
+
+double base_wrench_error(const stewart_params *params, const stewart_plant_reactions *r,
+                         const stewart_plant_output *out) {
+    double worst = 0;
+    for (int a = 0; a < 3; ++a) {
+        double force = 0, torque = 0;
+        for (int k = 0; k < 6; ++k) {
+            const double p[3] = {params->base_radius * cos(params->base_angle[k]),
+                                 params->base_radius * sin(params->base_angle[k]), 0};
+            const double *fb = r->base_cardan_force[k];
+            const double moment[3] = {p[1] * fb[2] - p[2] * fb[1], p[2] * fb[0] - p[0] * fb[2],
+                                      p[0] * fb[1] - p[1] * fb[0]};
+            force -= fb[a];
+            torque -= moment[a] + r->base_cardan_torque[k][a];
+        }
+        worst = fmax(worst, fmax(fabs(force - out->base_force[a]),
+                                 fabs(torque - out->base_torque[a])));
+    }
+    return worst;
+}
