@@ -15,6 +15,7 @@
 #include "kinematics/motion.hpp"
 #include "model.hpp"
 #include "stewart/stewart_forward.h"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::set_message;
@@ -568,11 +569,8 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
 extern "C" stewart_forward *stewart_forward_create(const stewart_model *m,
                                                    const stewart_forward_options *o, char *msg,
                                                    size_t size) {
-    if (!m || !o) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, !m ? "model is NULL" : "options is NULL");
+    if (!stewart::create_arguments_ok(m, o, stewart_forward_options_check, msg, size))
         return nullptr;
-    }
-    if (stewart_forward_options_check(o, msg, size) != STEWART_OK) return nullptr;
     if (m->forward.working_sign == 0) {  // the model's constants say why
         stewart::ForwardConstants again;
         stewart::forward_constants(m->geometry, m->params, again, msg, size);

@@ -12,6 +12,7 @@
 #include "linearize/plant_jacobian.hpp"
 #include "model.hpp"
 #include "stewart/stewart_linearize.h"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -128,16 +129,10 @@ bool base_wrench(const stewart_linearize &l, const stewart_pose &pose, double fo
 extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *model,
                                                        const stewart_linearize_options *options,
                                                        char *msg, size_t size) {
-    if (!model) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, "model is NULL");
+    if (!stewart::create_arguments_ok(model, options, stewart_linearize_options_check, msg, size))
         return nullptr;
-    }
-    if (stewart_linearize_options_check(options, msg, size) != STEWART_OK) return nullptr;
-    stewart_linearize *l = new (std::nothrow) stewart_linearize;
-    if (!l) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the linearisation");
-        return nullptr;
-    }
+    stewart_linearize *l = stewart::new_object<stewart_linearize>("linearisation", msg, size);
+    if (!l) return nullptr;
     l->model = model;
     l->options = *options;
     l->dynamics = fd::dynamics_model(*model, options->fidelity);
