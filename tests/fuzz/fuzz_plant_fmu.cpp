@@ -72,15 +72,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 14;
-        if (shared_operation(op, u, in, probe, t, 5, check_outputs, set_cap))
-            continue;  // 0, 2, 4, 6..11
+        if (shared_operation(op, u, in, probe, t, 5, check_outputs, set_cap) ||
+            plant_operation(op, u, in))
+            continue;  // 0, 1, 2, 4, 6..11, 13
         switch (op) {
-            case 1: {  // SetReal of one force, any value (scaled: the specials are small)
-                const unsigned vr = VR_F_1 + in.byte() % 6;
-                const double v = 1e3 * in.value();
-                u.set_real(&vr, 1, &v);
-                break;
-            }
             case 3: {  // DoStep from the current time (or from a raw t), any step size
                 const uint8_t how = in.byte();
                 const double h = in.value();
@@ -115,9 +110,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
             }
             case 12:
                 random_debug_logging(u, in.byte());
-                break;
-            case 13:
-                set_forces_near_statics(u, in);
                 break;
         }
     }

@@ -165,15 +165,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 16;
-        if (shared_operation(op, u, in, probe, t, 4, check_outputs, [] {}))
-            continue;  // 0, 2, 4, 6..11
+        if (shared_operation(op, u, in, probe, t, 4, check_outputs, [] {}) ||
+            plant_operation(op, u, in))
+            continue;  // 0, 1, 2, 4, 6..11, 13
         switch (op) {
-            case 1: {  // SetReal of one force, any value (scaled: the specials are small)
-                const unsigned vr = VR_F_1 + in.byte() % 6;
-                const double v = 1e3 * in.value();
-                u.set_real(&vr, 1, &v);
-                break;
-            }
             case 3: {  // SetTime: any value, or the current time plus one
                 const double v = in.value();
                 if (set_time(u, (flags & 16) ? t + v : v) == 0) t = (flags & 16) ? t + v : v;
@@ -184,9 +179,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 break;
             case 12:
                 event_call(u, in.byte());
-                break;
-            case 13:
-                set_forces_near_statics(u, in);
                 break;
             case 14: {  // a few explicit Euler steps (1 .. 16) of any size
                 const int count = 1 + in.byte() % 16;
