@@ -597,12 +597,8 @@ extern "C" void stewart_forward_reset(stewart_forward *d) {
 }
 
 extern "C" stewart_status stewart_forward_copy(stewart_forward *dst, const stewart_forward *src) {
-    if (!dst) return STEWART_ERR_ARGUMENT;
-    if (!src)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
-    if (dst->model != src->model)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
-                           "the forward solvers were made for different models");
+    const stewart_status checked = stewart::copy_arguments_ok(dst, src, "forward solvers");
+    if (checked != STEWART_OK) return checked;
     std::memcpy(dst->message, src->message, sizeof dst->message);
     // The history; the Newton solver's workspace is rebuilt by every solve.
     stewart::ForwardState &d = dst->state;

@@ -36,12 +36,8 @@ extern "C" stewart_inverse *stewart_inverse_create(const stewart_model *m,
 extern "C" void stewart_inverse_free(stewart_inverse *d) { delete d; }
 
 extern "C" stewart_status stewart_inverse_copy(stewart_inverse *dst, const stewart_inverse *src) {
-    if (!dst) return STEWART_ERR_ARGUMENT;
-    if (!src)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
-    if (dst->model != src->model)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
-                           "the inverse solvers were made for different models");
+    const stewart_status checked = stewart::copy_arguments_ok(dst, src, "inverse solvers");
+    if (checked != STEWART_OK) return checked;
     std::memcpy(dst->message, src->message, sizeof dst->message);
     mbs::copy_state(dst->full->state, src->full->state);
     return STEWART_OK;

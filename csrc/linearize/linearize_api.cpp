@@ -153,12 +153,8 @@ extern "C" void stewart_linearize_reset(stewart_linearize *l) {
 
 extern "C" stewart_status stewart_linearize_copy(stewart_linearize *dst,
                                                  const stewart_linearize *src) {
-    if (!dst) return STEWART_ERR_ARGUMENT;
-    if (!src)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
-    if (dst->model != src->model)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
-                           "the linearisations were made for different models");
+    const stewart_status checked = stewart::copy_arguments_ok(dst, src, "linearisations");
+    if (checked != STEWART_OK) return checked;
     dst->options = src->options;
     dst->dynamics = src->dynamics;
     std::memcpy(dst->message, src->message, sizeof dst->message);

@@ -1,5 +1,6 @@
 // What every direction's create function starts with: the model and options given and the
-// options within their table's ranges, then the object allocated; each refusal leaves its message.
+// options within their table's ranges, then the object allocated; and what its copy starts
+// with. Each refusal leaves its message.
 #pragma once
 
 #include <new>
@@ -20,6 +21,19 @@ bool create_arguments_ok(const stewart_model *model, const Options *options,
         return false;
     }
     return check(options, msg, size) == STEWART_OK;
+}
+
+// The checks a copy starts with: dst and src given and made for the same model. STEWART_OK, or
+// the status with dst's message naming the cause ("the <what> were made for different models").
+template <class T>
+stewart_status copy_arguments_ok(T *dst, const T *src, const char *what) {
+    if (!dst) return STEWART_ERR_ARGUMENT;
+    if (!src)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
+    if (dst->model != src->model)
+        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
+                           "the %s were made for different models", what);
+    return STEWART_OK;
 }
 
 // A new T, or nullptr with msg "out of memory creating the <what>".
