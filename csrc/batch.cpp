@@ -12,6 +12,7 @@
 #include "drives/drive_outputs.hpp"
 #include "forward/forward_object.hpp"
 #include "model.hpp"
+#include "util/columns.hpp"
 #include "util/message.hpp"
 
 namespace {
@@ -19,15 +20,7 @@ namespace {
 // Blocks of four rows the kernel runs before their drive columns (about 40 kB of outputs).
 constexpr size_t kDriveChunkBlocks = 16;
 
-// Row j of a column of `count` values: an array member, or a scalar one.
-template <typename T, size_t N>
-void put(T *column, size_t j, const T (&value)[N]) {
-    if (column) std::memcpy(column + j * N, value, sizeof value);
-}
-template <typename T>
-void put(T *column, size_t j, const T &value) {
-    if (column) column[j] = value;
-}
+using stewart::put_row;
 
 // Every column of the output tables is a member of the output struct, of its type and count,
 // and together they are the whole struct: a struct laid out from the table has its size (a field
@@ -66,7 +59,7 @@ static_assert(sizeof(ForwardMirror) == sizeof(stewart_forward_output),
 #undef PLANT_STEP_COLUMN
 #undef MIRROR_COLUMN
 
-#define PUT_COLUMN(name, member, count, type, unit, description) put(out.name, j, o.member);
+#define PUT_COLUMN(name, member, count, type, unit, description) put_row(out.name, j, o.member);
 
 // Writes one row's results (zeros for a failed row) and its status.
 void write_row(const stewart_inverse_batch_outputs &out, size_t j, const stewart_inverse_output &o,
@@ -125,7 +118,7 @@ void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
 void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
                      const stewart_plant_output &o, const stewart_plant_statistics &step, int s) {
     STEWART_PLANT_OUTPUT_TABLE(PUT_COLUMN)
-#define PUT_STEP_COLUMN(name, member, count, type, unit, description) put(out.name, j, step.member);
+#define PUT_STEP_COLUMN(name, member, count, type, unit, description) put_row(out.name, j, step.member);
     STEWART_PLANT_STEP_TABLE(PUT_STEP_COLUMN)
 #undef PUT_STEP_COLUMN
     out.status[j] = s;

@@ -90,6 +90,20 @@ class Unit:
 DRIVES = ("force", "current")  # what the controller sends the plant: its output / input 0, 1
 
 
+def pd_point(inverse, controller, plant, cue, feed_forward="F"):
+    """Steps 1 and 2 of the loop at one communication point: the cue (pose, rates and
+    accelerations, 18 values) -> the inverse unit; its reference and the plant's measured L, L_dot
+    (state only, no feedthrough) -> the controller. Returns the controller's output F (forces,
+    or currents in the cascade), the plant's pose and the feed-forward (the inverse's outputs
+    named feed_forward: F, or current) at this point."""
+    inverse.set(POSE + list(scenes.DOT) + list(scenes.DDOT), cue)
+    reference = inverse.get(legs("L") + legs("L_dot") + legs(feed_forward))
+    measured = plant.get(legs("L") + legs("L_dot"))
+    controller.set(legs("L_ref") + legs("L_dot_ref") + legs("F_ff") + legs("L") + legs("L_dot"),
+                   [*reference, *measured])
+    return controller.get(legs("F")), plant.get(POSE), reference[12:]
+
+
 def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
         fmus=ROOT / "build" / "fmus" / "2.0", machine=None, platform=None, drive="force",
         cascade=None):
@@ -126,17 +140,9 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     wall = time.perf_counter()
     try:
         for j in range(n + 1):
-            # 1. trajectory -> inverse unit
-            inverse.set(POSE + list(scenes.DOT) + list(scenes.DDOT),
-                        [*cue[j], *cue_dot[j], *cue_ddot[j]])
-            reference = inverse.get(legs("L") + legs("L_dot") + legs(feed_forward_name))
-            # 2. plant (state only, no feedthrough) and reference -> controller
-            measured = plant.get(legs("L") + legs("L_dot"))
-            controller.set(legs("L_ref") + legs("L_dot_ref") + legs("F_ff") + legs("L") +
-                           legs("L_dot"), [*reference, *measured])
-            force[j] = controller.get(legs("F"))
-            pose[j] = plant.get(POSE)
-            feed_forward[j] = reference[12:]
+            force[j], pose[j], feed_forward[j] = pd_point(
+                inverse, controller, plant, [*cue[j], *cue_dot[j], *cue_ddot[j]],
+                feed_forward_name)
             if j == n:
                 break
             # 3. controller -> plant, then every unit steps to t + h
@@ -312,15 +318,24 @@ def cascade_arguments(parser, args, platform):
     return cascade
 
 
+def add_loop_arguments(parser, name, kp_default, kd_default):
+    """The loop's --step, --kp, --kd (their defaults as kp_default, kd_default say), --fidelity,
+    --fmus, --out (default out/name) and --no-plot."""
+    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
+    parser.add_argument("--kp", type=float, help=f"[N/m] (default {kp_default})")
+    parser.add_argument("--kd", type=float, help=f"[N s/m] (default {kd_default})")
+    parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
+    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
+    parser.add_argument("--out", default=str(ROOT / "out" / name))
+    parser.add_argument("--no-plot", action="store_true")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="combined")
     parser.add_argument("--duration", type=float,
                         help="[s] (default: the scene's; a move's: its own)")
-    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
-    parser.add_argument("--kp", type=float, help="[N/m] (default 1e6, or machine_gains)")
-    parser.add_argument("--kd", type=float, help="[N s/m] (default 1e4, or machine_gains)")
-    parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
+    add_loop_arguments(parser, "closed_loop", "1e6, or machine_gains", "1e4, or machine_gains")
     parser.add_argument("--drive", default="force", choices=DRIVES,
                         help="what the controller sends the plant: forces (PD) or motor "
                              "currents (the cascade; needs --platform with drives)")
@@ -330,19 +345,11 @@ def main():
                         help="--drive current: [N m s/rad] (default: cascade_gains)")
     parser.add_argument("--speed-integral-time", type=float,
                         help="--drive current: [s], 0 for none (default: cascade_gains)")
-    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
-    parser.add_argument("--out", default=str(ROOT / "out" / "closed_loop"))
-    parser.add_argument("--no-plot", action="store_true")
     scenes.add_platform_arguments(parser)
     parser.add_argument("--view", action="store_true",
                         help="also write closed_loop.html: the run in 3D (docs/view.md)")
     import plots
-    parser.add_argument("--units", default="m,rad", help=plots.UNITS_HELP)
-    args = parser.parse_args()
-    try:
-        units = plots.units(args.units)
-    except ValueError as e:
-        parser.error(f"--units: {e}")
+    args, units = plots.parse_args_with_units(parser)
     try:
         scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
         kp, kd = machine_gains(platform) if args.platform else (THESIS_KP, THESIS_KD)

@@ -139,26 +139,41 @@ def options_of(pairs, parser):
     return options
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def add_vehicle_arguments(parser):
+    """The vehicle (a CSV or --manoeuvre), --platform and the repeated --option NAME=VALUE."""
     parser.add_argument("vehicle", nargs="?", help="a vehicle CSV (the manoeuvre files' columns)")
     parser.add_argument("--manoeuvre", help="a shipped manoeuvre: " +
                         ", ".join(stewart.manoeuvre_files()))
     parser.add_argument("--platform", required=True, help="a platform file (docs/geometry.md)")
-    parser.add_argument("--algorithm", default="classical", choices=stewart.CUEING_ALGORITHMS)
     parser.add_argument("--option", action="append", metavar="NAME=VALUE",
                         help="a cueing option (docs/cueing.md, section 3); repeat for more")
-    parser.add_argument("--max-delay", type=float, default=1.0,
-                        help="bound of the delay search [s] (default 1)")
-    parser.add_argument("-o", "--out", default="cueing.csv", help="OUT.csv (default cueing.csv)")
-    parser.add_argument("--no-plot", action="store_true")
-    args = parser.parse_args(argv)
+
+
+def vehicle_of(args, parser, script):
+    """(t, specific_force, angular_velocity, platform, options) of add_vehicle_arguments's
+    arguments; a bad or missing one exits with its usage error or a message naming the cause."""
     if (args.vehicle is None) == (args.manoeuvre is None):
         parser.error("give either VEHICLE.csv or --manoeuvre NAME")
     options = options_of(args.option, parser)
     try:
         t, f, w = stewart.manoeuvre(args.manoeuvre if args.manoeuvre else args.vehicle)
         platform = stewart.Platform.from_file(args.platform)
+    except (ValueError, TypeError) as e:  # ParameterError is a ValueError
+        parser.exit(2, f"{script}: {e}\n")
+    return t, f, w, platform, options
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    add_vehicle_arguments(parser)
+    parser.add_argument("--algorithm", default="classical", choices=stewart.CUEING_ALGORITHMS)
+    parser.add_argument("--max-delay", type=float, default=1.0,
+                        help="bound of the delay search [s] (default 1)")
+    parser.add_argument("-o", "--out", default="cueing.csv", help="OUT.csv (default cueing.csv)")
+    parser.add_argument("--no-plot", action="store_true")
+    args = parser.parse_args(argv)
+    t, f, w, platform, options = vehicle_of(args, parser, "cueing.py")
+    try:
         result = run(platform, t, f, w, args.algorithm, args.max_delay, **options)
     except (ValueError, TypeError) as e:  # ParameterError is a ValueError
         parser.exit(2, f"cueing.py: {e}\n")

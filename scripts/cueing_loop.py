@@ -81,17 +81,10 @@ def run(platform, t_vehicle, specific_force, angular_velocity, options=None, dur
         pose, force, feed_forward = (np.zeros((n + 1, 6)) for _ in range(3))
         wall = time.perf_counter()
         for j in range(n + 1):
-            # 1. cue -> inverse unit
+            # 1. and 2. cue -> inverse unit; plant and reference -> controller
             cue[j] = cueing.get(POSE + DOT + DDOT)
-            inverse.set(POSE + DOT + DDOT, cue[j])
-            reference = inverse.get(legs("L") + legs("L_dot") + legs("F"))
-            # 2. plant and reference -> controller
-            measured = plant.get(legs("L") + legs("L_dot"))
-            controller.set(legs("L_ref") + legs("L_dot_ref") + legs("F_ff") + legs("L") +
-                           legs("L_dot"), [*reference, *measured])
-            force[j] = controller.get(legs("F"))
-            pose[j] = plant.get(POSE)
-            feed_forward[j] = reference[12:]
+            force[j], pose[j], feed_forward[j] = closed_loop.pd_point(inverse, controller, plant,
+                                                                      cue[j])
             if j == n:
                 break
             # 3. controller -> plant, the next vehicle sample -> cueing unit, every unit steps
@@ -169,29 +162,12 @@ def write_ssp(platform, options, inputs, out, fmus=ROOT / "build" / "fmus" / "2.
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("vehicle", nargs="?", help="a vehicle CSV (the manoeuvre files' columns)")
-    parser.add_argument("--manoeuvre", help="a shipped manoeuvre: " +
-                        ", ".join(stewart.manoeuvre_files()))
-    parser.add_argument("--platform", required=True, help="a platform file (docs/geometry.md)")
-    parser.add_argument("--option", action="append", metavar="NAME=VALUE",
-                        help="a cueing option (docs/cueing.md, section 3); repeat for more")
+    cueing_script.add_vehicle_arguments(parser)
     parser.add_argument("--duration", type=float, help="[s] (default: the vehicle's)")
-    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
-    parser.add_argument("--kp", type=float, help="[N/m] (default closed_loop.machine_gains)")
-    parser.add_argument("--kd", type=float, help="[N s/m] (default closed_loop.machine_gains)")
-    parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
-    parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
-    parser.add_argument("--out", default=str(ROOT / "out" / "cueing_loop"))
-    parser.add_argument("--no-plot", action="store_true")
+    closed_loop.add_loop_arguments(parser, "cueing_loop", "closed_loop.machine_gains",
+                                   "closed_loop.machine_gains")
     args = parser.parse_args(argv)
-    if (args.vehicle is None) == (args.manoeuvre is None):
-        parser.error("give either VEHICLE.csv or --manoeuvre NAME")
-    options = cueing_script.options_of(args.option, parser)
-    try:
-        t, f, w = stewart.manoeuvre(args.manoeuvre if args.manoeuvre else args.vehicle)
-        platform = stewart.Platform.from_file(args.platform)
-    except (ValueError, TypeError) as e:
-        parser.exit(2, f"cueing_loop.py: {e}\n")
+    t, f, w, platform, options = cueing_script.vehicle_of(args, parser, "cueing_loop.py")
     result, wall = run(platform, t, f, w, options, args.duration, args.step, args.kp, args.kd,
                        args.fidelity, args.fmus)
     out = pathlib.Path(args.out)

@@ -17,12 +17,7 @@ def main():
     parser.add_argument("csv")
     parser.add_argument("png")
     parser.add_argument("--title", default="")
-    parser.add_argument("--units", default="m,rad", help=plots.UNITS_HELP)
-    args = parser.parse_args()
-    try:
-        plots.units(args.units)
-    except ValueError as e:
-        parser.error(f"--units: {e}")
+    args, _ = plots.parse_args_with_units(parser)
     data = np.genfromtxt(args.csv, delimiter=",", names=True)
     series = {key: np.column_stack([data[f"{key}{k}"] for k in range(1, 7)])
               for key, _ in plots.LEG_PANELS}

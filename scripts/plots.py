@@ -17,6 +17,17 @@ def units(text="m,rad"):
     return Units.parse(text)
 
 
+def parse_args_with_units(parser, argv=None):
+    """parser's arguments with a --units argument added, and the Units it names; a bad --units
+    is the parser's usage error."""
+    parser.add_argument("--units", default="m,rad", help=UNITS_HELP)
+    args = parser.parse_args(argv)
+    try:
+        return args, units(args.units)
+    except ValueError as e:
+        parser.error(f"--units: {e}")
+
+
 def drawn(axes):
     """{y label: (N, lines) array of what each panel draws}: the numbers as plotted."""
     return {ax.get_ylabel(): np.column_stack([line.get_ydata() for line in ax.lines])

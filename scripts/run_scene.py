@@ -118,12 +118,7 @@ def main():
     scenes.add_platform_arguments(parser)
     parser.add_argument("--view", action="store_true",
                         help="also write NAME.html, the run in 3D in a browser (docs/view.md)")
-    parser.add_argument("--units", default="m,rad", help=plots.UNITS_HELP)
-    args = parser.parse_args()
-    try:
-        plots.units(args.units)
-    except ValueError as e:
-        parser.error(f"--units: {e}")
+    args, _ = plots.parse_args_with_units(parser)
     try:
         scene = scenes.load(args.scene)
     except ValueError as e:

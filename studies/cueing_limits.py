@@ -1,18 +1,19 @@
 #!/usr/bin/env python3
 """Random vehicle signals through stewart.cueing on every shipped machine: the count of samples
-beyond a stroke (the leg lengths |R b + p - a| in closed form here, against stroke_min and
-stroke_max) and beyond any limit (Platform.limits), with how often the limiter acted.
+beyond a stroke (the leg lengths |R b + p - a| in the tests' closed form,
+tests/python/reference.py, against stroke_min and stroke_max) and beyond any limit
+(Platform.limits), with how often the limiter acted.
 
-Each signal is 20 s at 100 Hz, per axis a sum of 1 to 3 steps, ramps and sines scaled to a
-random peak up to 2 g of specific force (about the rest value (0, 0, g)) and 200 deg/s of
-angular velocity, all scales 1 (the cue asks for far more than any machine has).
+Each signal is 20 s at 100 Hz from stewart.random_vehicle: per axis a sum of 1 to 3 steps, ramps
+and sines scaled to a random peak up to 2 g of specific force (about the rest value (0, 0, g))
+and 200 deg/s of angular velocity, all scales 1 (the cue asks for far more than any machine has).
 tests/python/test_cueing.py runs 20 signals per machine; this runs the rest.
 
 usage: cueing_limits.py [--signals 1000] [--platform NAME ...] [--seed 37]
 """
 import argparse
-import json
 import pathlib
+import sys
 import time
 
 import numpy as np
@@ -20,57 +21,8 @@ import numpy as np
 import stewart
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-G = 9.81
-
-
-def rotation(roll, pitch, yaw):
-    cr, sr, cp, sp, cy, sy = (np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch),
-                              np.cos(yaw), np.sin(yaw))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
-def machine(path):
-    """Joints a, b (6, 3), strokes, and the translations of the tool and user frames."""
-    d = json.loads(path.read_text())
-    for frame in ("tool_frame", "user_frame"):
-        if np.any(d.get(frame, [0] * 6)[3:]):
-            raise SystemExit(f"{path.name}: a turned {frame} needs its rotation here")
-    strokes = [np.broadcast_to(np.asarray(d[k], float), 6) for k in ("stroke_min", "stroke_max")]
-    return (np.reshape(d["base_joint"], (6, 3)), np.reshape(d["platform_joint"], (6, 3)), *strokes,
-            np.asarray(d.get("tool_frame", [0] * 6)[:3], float),
-            np.asarray(d.get("user_frame", [0] * 6)[:3], float))
-
-
-def lengths(m, poses):
-    a, b, _, _, tool, user = m
-    out = np.empty((len(poses), 6))
-    for i, q in enumerate(poses):
-        R = rotation(*q[3:])
-        out[i] = np.linalg.norm(b @ R.T + user + q[:3] - R @ tool - a, axis=1)
-    return out
-
-
-def random_vehicle(rng, t):
-    n = len(t)
-
-    def channel(limit):
-        x = np.zeros(n)
-        for _ in range(rng.integers(1, 4)):
-            t0, kind, a = rng.uniform(0, t[-1]), rng.integers(3), rng.uniform(-1, 1)
-            if kind == 0:
-                x += a * (t > t0)
-            elif kind == 1:
-                x += a * np.clip((t - t0) / rng.uniform(0.2, 5), 0, 1)
-            else:
-                x += a * np.sin(2 * np.pi * rng.uniform(0.05, 3) * t + rng.uniform(0, 6.3))
-        peak = np.max(np.abs(x))
-        return x / peak * rng.uniform(0.2, 1.0) * limit if peak > 0 else x
-
-    f = np.column_stack([channel(2 * G) for _ in range(3)]) + [0, 0, G]
-    w = np.column_stack([channel(np.radians(200)) for _ in range(3)])
-    return f, w
+sys.path.insert(0, str(ROOT / "tests" / "python"))
+from reference import machine_lengths, shipped_machine  # noqa: E402  the tests' closed form
 
 
 def main():
@@ -86,15 +38,15 @@ def main():
     total_beyond = 0
     for path in files:
         plat = stewart.Platform.from_file(path)
-        m = machine(path)
+        m = shipped_machine(path)
         rng = np.random.default_rng(args.seed)
         samples = beyond_stroke = beyond_any = limited = cut = 0
         start = time.perf_counter()
         for _ in range(args.signals):
-            f, w = random_vehicle(rng, t)
+            f, w = stewart.random_vehicle(rng, t)
             r = stewart.cueing(plat, t, f, w, surge_scale=1, sway_scale=1, heave_scale=1,
                                roll_scale=1, pitch_scale=1, yaw_scale=1)
-            L = lengths(m, r.pose)
+            L = machine_lengths(m, r.pose)
             beyond_stroke += int(np.sum(np.any((L < m[2]) | (L > m[3]), axis=1)))
             beyond_any += int(np.sum(~plat.limits(r.pose).within))
             limited += int(np.sum(r.limited))

@@ -24,16 +24,44 @@ struct Drive {
     std::vector<stewart_plant_input> input;  // step i: samples i to i + 1, cubic Hermite
 };
 
-// Inverse-side forces at every communication point and their rates (central differences).
-bool make_drive(const stewart_model *model, int fidelity, double h, double duration, Drive &d) {
+// An inverse solver at fidelity (nullptr if it cannot be made).
+stewart_inverse *inverse_at(const stewart_model *model, int fidelity) {
     stewart_inverse_options o;
     stewart_inverse_options_default(&o);
     o.fidelity = fidelity;
-    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
+    return stewart_inverse_create(model, &o, nullptr, 0);
+}
+
+// d's step h and room for its values and rates at the communication points of duration; their
+// count less one (the steps).
+int start_drive(double h, double duration, Drive &d) {
     const int n = static_cast<int>(duration / h + 0.5);
     d.h = h;
     d.force.assign(6 * (n + 1), 0);
     d.rate.assign(6 * (n + 1), 0);
+    return n;
+}
+
+// The n steps' inputs: each from the values and rates at its two ends.
+void add_step_inputs(int n, Drive &d) {
+    for (int i = 0; i < n; ++i) {
+        stewart_plant_input in{};
+        in.h = d.h;
+        in.derivatives = 1;
+        for (int k = 0; k < 6; ++k) {
+            in.force_start[k] = d.force[6 * i + k];
+            in.force_end[k] = d.force[6 * i + 6 + k];
+            in.force_rate_start[k] = d.rate[6 * i + k];
+            in.force_rate_end[k] = d.rate[6 * i + 6 + k];
+        }
+        d.input.push_back(in);
+    }
+}
+
+// Inverse-side forces at every communication point and their rates (central differences).
+bool make_drive(const stewart_model *model, int fidelity, double h, double duration, Drive &d) {
+    stewart_inverse *data = inverse_at(model, fidelity);
+    const int n = start_drive(h, duration, d);
     const double delta = 1e-4;
     bool ok = data != nullptr;
     for (int i = 0; i <= n && ok; ++i) {
@@ -49,18 +77,7 @@ bool make_drive(const stewart_model *model, int fidelity, double h, double durat
             d.rate[6 * i + k] = (ahead.force[k] - behind.force[k]) / (2 * delta);
         }
     }
-    for (int i = 0; i < n && ok; ++i) {
-        stewart_plant_input in{};
-        in.h = h;
-        in.derivatives = 1;
-        for (int k = 0; k < 6; ++k) {
-            in.force_start[k] = d.force[6 * i + k];
-            in.force_end[k] = d.force[6 * i + 6 + k];
-            in.force_rate_start[k] = d.rate[6 * i + k];
-            in.force_rate_end[k] = d.rate[6 * i + 6 + k];
-        }
-        d.input.push_back(in);
-    }
+    if (ok) add_step_inputs(n, d);
     stewart_inverse_free(data);
     return ok;
 }
@@ -200,14 +217,8 @@ void with_drives(stewart_params &p) {
 // plant's smoothing speed vs); rates by the same central differences.
 bool make_current_drive(const stewart_model *model, const stewart_params &p, int fidelity,
                         double h, double duration, double vs, Drive &d) {
-    stewart_inverse_options o;
-    stewart_inverse_options_default(&o);
-    o.fidelity = fidelity;
-    stewart_inverse *data = stewart_inverse_create(model, &o, nullptr, 0);
-    const int n = static_cast<int>(duration / h + 0.5);
-    d.h = h;
-    d.force.assign(6 * (n + 1), 0);
-    d.rate.assign(6 * (n + 1), 0);
+    stewart_inverse *data = inverse_at(model, fidelity);
+    const int n = start_drive(h, duration, d);
     auto current = [&](double t, double i[6]) {
         stewart_inverse_output out;
         stewart_inverse_input in = {combined_cue(t)};
@@ -229,18 +240,7 @@ bool make_current_drive(const stewart_model *model, const stewart_params &p, int
             d.rate[6 * i + k] = (ahead[k] - behind[k]) / (2 * delta);
         }
     }
-    for (int i = 0; i < n && ok; ++i) {
-        stewart_plant_input in{};
-        in.h = h;
-        in.derivatives = 1;
-        for (int k = 0; k < 6; ++k) {
-            in.force_start[k] = d.force[6 * i + k];
-            in.force_end[k] = d.force[6 * i + 6 + k];
-            in.force_rate_start[k] = d.rate[6 * i + k];
-            in.force_rate_end[k] = d.rate[6 * i + 6 + k];
-        }
-        d.input.push_back(in);
-    }
+    if (ok) add_step_inputs(n, d);
     stewart_inverse_free(data);
     return ok;
 }

@@ -10,6 +10,7 @@
 #include "stewart/stewart_cueing.h"
 #include "stewart/stewart_limits.h"
 #include "stewart/stewart_table.h"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -155,11 +156,8 @@ extern "C" {
 stewart_cueing *stewart_cueing_create(const stewart_model *model,
                                       const stewart_cueing_options *options, char *msg,
                                       size_t size) {
-    if (!model || !options) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, "%s is NULL", model ? "options" : "model");
+    if (!stewart::create_arguments_ok(model, options, stewart_cueing_options_check, msg, size))
         return nullptr;
-    }
-    if (stewart_cueing_options_check(options, msg, size) != STEWART_OK) return nullptr;
     const double g = model->gravity.norm();
     if (!(g > 0.0)) {
         set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -172,10 +170,9 @@ stewart_cueing *stewart_cueing_create(const stewart_model *model,
     lo.warn_condition = options->warn_condition;
     stewart_limits *limits = stewart_limits_create(model, &lo, msg, size);
     if (!limits) return nullptr;
-    stewart_cueing *c = new (std::nothrow) stewart_cueing;
+    stewart_cueing *c = stewart::new_object<stewart_cueing>("cueing object", msg, size);
     if (!c) {
         stewart_limits_free(limits);
-        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the cueing object");
         return nullptr;
     }
     c->model = model;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "util/columns.hpp"
 #include "util/message.hpp"
 
 namespace stewart {
@@ -57,24 +58,6 @@ bool drive_outputs_finite(const stewart_inverse_output &o) {
                (o.motor_power[k] + o.motor_angle[k]);
     return sum - sum == 0;
 }
-
-namespace {
-
-// Row j of a column of count values into value / from value (a NULL column: nothing).
-template <typename T, size_t N>
-void get_row(const T *column, size_t j, T (&value)[N]) {
-    if (column) std::memcpy(value, column + j * N, sizeof value);
-}
-template <typename T, size_t N>
-void put_row(T *column, size_t j, const T (&value)[N]) {
-    if (column) std::memcpy(column + j * N, value, sizeof value);
-}
-template <typename T>
-void put_row(T *column, size_t j, const T &value) {
-    if (column) column[j] = value;
-}
-
-}  // namespace
 
 #define PUT(name, member, count, type, unit, description) put_row(out.name, j, o.member);
 

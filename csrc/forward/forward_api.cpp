@@ -15,6 +15,7 @@
 #include "kinematics/motion.hpp"
 #include "model.hpp"
 #include "stewart/stewart_forward.h"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::set_message;
@@ -567,11 +568,8 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
 extern "C" stewart_forward *stewart_forward_create(const stewart_model *m,
                                                    const stewart_forward_options *o, char *msg,
                                                    size_t size) {
-    if (!m || !o) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, !m ? "model is NULL" : "options is NULL");
+    if (!stewart::create_arguments_ok(m, o, stewart_forward_options_check, msg, size))
         return nullptr;
-    }
-    if (stewart_forward_options_check(o, msg, size) != STEWART_OK) return nullptr;
     if (m->forward.working_sign == 0) {  // the model's constants say why
         stewart::ForwardConstants again;
         stewart::forward_constants(m->geometry, m->params, again, msg, size);
@@ -598,12 +596,8 @@ extern "C" void stewart_forward_reset(stewart_forward *d) {
 }
 
 extern "C" stewart_status stewart_forward_copy(stewart_forward *dst, const stewart_forward *src) {
-    if (!dst) return STEWART_ERR_ARGUMENT;
-    if (!src)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
-    if (dst->model != src->model)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
-                           "the forward solvers were made for different models");
+    const stewart_status checked = stewart::copy_arguments_ok(dst, src, "forward solvers");
+    if (checked != STEWART_OK) return checked;
     std::memcpy(dst->message, src->message, sizeof dst->message);
     // The history; the Newton solver's workspace is rebuilt by every solve.
     stewart::ForwardState &d = dst->state;

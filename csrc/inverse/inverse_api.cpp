@@ -6,6 +6,7 @@
 
 #include "drives/drive_outputs.hpp"
 #include "model.hpp"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -14,16 +15,10 @@ using stewart::set_message;
 extern "C" stewart_inverse *stewart_inverse_create(const stewart_model *m,
                                                    const stewart_inverse_options *o, char *msg,
                                                    size_t size) {
-    if (!m || !o) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, !m ? "model is NULL" : "options is NULL");
+    if (!stewart::create_arguments_ok(m, o, stewart_inverse_options_check, msg, size))
         return nullptr;
-    }
-    if (stewart_inverse_options_check(o, msg, size) != STEWART_OK) return nullptr;
-    stewart_inverse *d = new (std::nothrow) stewart_inverse;
-    if (!d) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the inverse solver");
-        return nullptr;
-    }
+    stewart_inverse *d = stewart::new_object<stewart_inverse>("inverse solver", msg, size);
+    if (!d) return nullptr;
     d->model = m;
     d->options = *o;
     d->full.reset(new (std::nothrow) mbs_data(m->full.get(), mbs::SolverOptions()));
@@ -41,12 +36,8 @@ extern "C" stewart_inverse *stewart_inverse_create(const stewart_model *m,
 extern "C" void stewart_inverse_free(stewart_inverse *d) { delete d; }
 
 extern "C" stewart_status stewart_inverse_copy(stewart_inverse *dst, const stewart_inverse *src) {
-    if (!dst) return STEWART_ERR_ARGUMENT;
-    if (!src)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
-    if (dst->model != src->model)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
-                           "the inverse solvers were made for different models");
+    const stewart_status checked = stewart::copy_arguments_ok(dst, src, "inverse solvers");
+    if (checked != STEWART_OK) return checked;
     std::memcpy(dst->message, src->message, sizeof dst->message);
     mbs::copy_state(dst->full->state, src->full->state);
     return STEWART_OK;

@@ -7,6 +7,7 @@
 #include "limits/limit_check.hpp"
 #include "model.hpp"
 #include "stewart/stewart_limits.h"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -72,16 +73,10 @@ extern "C" {
 stewart_limits *stewart_limits_create(const stewart_model *model,
                                       const stewart_limits_options *options, char *msg,
                                       size_t size) {
-    if (!model || !options) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, "%s is NULL", model ? "options" : "model");
+    if (!stewart::create_arguments_ok(model, options, stewart_limits_options_check, msg, size))
         return nullptr;
-    }
-    if (stewart_limits_options_check(options, msg, size) != STEWART_OK) return nullptr;
-    stewart_limits *limits = new (std::nothrow) stewart_limits;
-    if (!limits) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the limits object");
-        return nullptr;
-    }
+    stewart_limits *limits = stewart::new_object<stewart_limits>("limits object", msg, size);
+    if (!limits) return nullptr;
     limits->model = model;
     limits->options = *options;
     limits->message[0] = '\0';

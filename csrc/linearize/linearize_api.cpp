@@ -12,6 +12,7 @@
 #include "linearize/plant_jacobian.hpp"
 #include "model.hpp"
 #include "stewart/stewart_linearize.h"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -128,16 +129,10 @@ bool base_wrench(const stewart_linearize &l, const stewart_pose &pose, double fo
 extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *model,
                                                        const stewart_linearize_options *options,
                                                        char *msg, size_t size) {
-    if (!model) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, "model is NULL");
+    if (!stewart::create_arguments_ok(model, options, stewart_linearize_options_check, msg, size))
         return nullptr;
-    }
-    if (stewart_linearize_options_check(options, msg, size) != STEWART_OK) return nullptr;
-    stewart_linearize *l = new (std::nothrow) stewart_linearize;
-    if (!l) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the linearisation");
-        return nullptr;
-    }
+    stewart_linearize *l = stewart::new_object<stewart_linearize>("linearisation", msg, size);
+    if (!l) return nullptr;
     l->model = model;
     l->options = *options;
     l->dynamics = plant::dynamics_model(*model, options->fidelity);
@@ -158,12 +153,8 @@ extern "C" void stewart_linearize_reset(stewart_linearize *l) {
 
 extern "C" stewart_status stewart_linearize_copy(stewart_linearize *dst,
                                                  const stewart_linearize *src) {
-    if (!dst) return STEWART_ERR_ARGUMENT;
-    if (!src)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
-    if (dst->model != src->model)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
-                           "the linearisations were made for different models");
+    const stewart_status checked = stewart::copy_arguments_ok(dst, src, "linearisations");
+    if (checked != STEWART_OK) return checked;
     dst->options = src->options;
     dst->dynamics = src->dynamics;
     std::memcpy(dst->message, src->message, sizeof dst->message);

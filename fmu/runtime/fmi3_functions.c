@@ -222,17 +222,27 @@ fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte seriali
     CALL(fmu_deserialize_state(INST, serializedState, size, (fmu_snapshot **)FMUState));
 }
 
+/* FMI 3 gives the sizes of the seed and sensitivity arrays again: they must be the counts of
+ * what the call seeds (seed_of) and what it gives a sensitivity of (sensitivity_of); no array
+ * variables here. 0 after an Error message. */
+static int derivative_counts_ok(fmi3Instance instance, const char *function, size_t nSeed,
+                                size_t n_seeded, const char *seed_of, size_t nSensitivity,
+                                size_t n_sensitive, const char *sensitivity_of) {
+    if (!instance || (nSeed == n_seeded && nSensitivity == n_sensitive)) return 1;
+    fmu_log(INST, FMU_ERROR, LOG_ERROR,
+            "%s: nSeed = %zu must equal %s = %zu and nSensitivity = %zu %s = %zu", function,
+            nSeed, seed_of, n_seeded, nSensitivity, sensitivity_of, n_sensitive);
+    return 0;
+}
+
 fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[],
                                         size_t nUnknowns, const fmi3ValueReference knowns[],
                                         size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                         fmi3Float64 sensitivity[], size_t nSensitivity) {
-    /* FMI 3: one seed per known and one sensitivity per unknown (no array variables here) */
-    if (instance && (nSeed != nKnowns || nSensitivity != nUnknowns)) {
-        fmu_log(INST, FMU_ERROR, LOG_ERROR,
-                "fmi3GetDirectionalDerivative: nSeed = %zu must equal nKnowns = %zu and "
-                "nSensitivity = %zu nUnknowns = %zu", nSeed, nKnowns, nSensitivity, nUnknowns);
+    /* one seed per known and one sensitivity per unknown */
+    if (!derivative_counts_ok(instance, "fmi3GetDirectionalDerivative", nSeed, nKnowns, "nKnowns",
+                              nSensitivity, nUnknowns, "nUnknowns"))
         return fmi3Error;
-    }
     CALL(fmu_get_directional_derivative(INST, unknowns, nUnknowns, knowns, nKnowns, seed,
                                         sensitivity, "fmi3GetDirectionalDerivative"));
 }
@@ -241,12 +251,9 @@ fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueRefere
                                     size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                     fmi3Float64 sensitivity[], size_t nSensitivity) {
     /* the adjoint: one seed per unknown and one sensitivity per known */
-    if (instance && (nSeed != nUnknowns || nSensitivity != nKnowns)) {
-        fmu_log(INST, FMU_ERROR, LOG_ERROR,
-                "fmi3GetAdjointDerivative: nSeed = %zu must equal nUnknowns = %zu and "
-                "nSensitivity = %zu nKnowns = %zu", nSeed, nUnknowns, nSensitivity, nKnowns);
+    if (!derivative_counts_ok(instance, "fmi3GetAdjointDerivative", nSeed, nUnknowns, "nUnknowns",
+                              nSensitivity, nKnowns, "nKnowns"))
         return fmi3Error;
-    }
     CALL(fmu_get_adjoint_derivative(INST, unknowns, nUnknowns, knowns, nKnowns, seed,
                                     sensitivity, "fmi3GetAdjointDerivative"));
 }

@@ -49,30 +49,36 @@ static int readable(fmu_instance *inst, const char *what, unsigned vr, fmu_type 
            fmu_refresh_outputs(inst) == FMU_OK;
 }
 
+/* The checks of a get of n values of `type`: the call allowed now, the arrays given, and every
+ * vr a variable of that type whose value may be read (outputs brought up to date). */
+static fmu_status readable_all(fmu_instance *inst, const char *what, fmu_type type,
+                               const unsigned vr[], size_t n, const void *value) {
+    if (fmu_check_call(inst, CALL_GET, what) != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, what);
+    for (size_t i = 0; i < n; ++i)
+        if (!readable(inst, what, vr[i], type)) return FMU_ERROR;
+    return FMU_OK;
+}
+
 fmu_status fmu_get_real(fmu_instance *inst, const unsigned vr[], size_t n, double value[]) {
-    if (fmu_check_call(inst, CALL_GET, "GetReal") != FMU_OK) return FMU_ERROR;
-    if (n > 0 && (!vr || !value)) return null_arrays(inst, "GetReal");
-    for (size_t i = 0; i < n; ++i) {
-        if (!readable(inst, "GetReal", vr[i], FMU_REAL)) return FMU_ERROR;
-        value[i] = inst->v.real[vr[i]];
-    }
+    if (readable_all(inst, "GetReal", FMU_REAL, vr, n, value) != FMU_OK) return FMU_ERROR;
+    for (size_t i = 0; i < n; ++i) value[i] = inst->v.real[vr[i]];
     return FMU_OK;
 }
 
 fmu_status fmu_get_integer(fmu_instance *inst, const unsigned vr[], size_t n, int32_t value[]) {
-    if (fmu_check_call(inst, CALL_GET, "GetInteger") != FMU_OK) return FMU_ERROR;
-    if (n > 0 && (!vr || !value)) return null_arrays(inst, "GetInteger");
-    for (size_t i = 0; i < n; ++i) {
-        if (!readable(inst, "GetInteger", vr[i], FMU_INTEGER)) return FMU_ERROR;
-        value[i] = inst->v.integer[vr[i]];
-    }
+    if (readable_all(inst, "GetInteger", FMU_INTEGER, vr, n, value) != FMU_OK) return FMU_ERROR;
+    for (size_t i = 0; i < n; ++i) value[i] = inst->v.integer[vr[i]];
     return FMU_OK;
 }
 
 /* Inputs may be set in any mode before Terminate; parameters (fixed) only before the end of
- * initialisation; outputs and time never. All are checked before any is written. */
+ * initialisation; outputs and time never. All are checked before any is written (the call
+ * allowed now and the arrays given first). */
 static fmu_status check_settable(fmu_instance *inst, const char *what, const unsigned vr[],
-                                 size_t n, fmu_type type) {
+                                 size_t n, fmu_type type, const void *value) {
+    if (fmu_check_call(inst, CALL_SET, what) != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, what);
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = typed(inst, what, vr[i], type);
         if (!var) return FMU_ERROR;
@@ -88,9 +94,7 @@ static fmu_status check_settable(fmu_instance *inst, const char *what, const uns
 }
 
 fmu_status fmu_set_real(fmu_instance *inst, const unsigned vr[], size_t n, const double value[]) {
-    if (fmu_check_call(inst, CALL_SET, "SetReal") != FMU_OK) return FMU_ERROR;
-    if (n > 0 && (!vr || !value)) return null_arrays(inst, "SetReal");
-    if (check_settable(inst, "SetReal", vr, n, FMU_REAL) != FMU_OK) return FMU_ERROR;
+    if (check_settable(inst, "SetReal", vr, n, FMU_REAL, value) != FMU_OK) return FMU_ERROR;
     int nonfinite = 0;
     for (size_t i = 0; i < n; ++i) {
         inst->v.real[vr[i]] = value[i];
@@ -104,9 +108,7 @@ fmu_status fmu_set_real(fmu_instance *inst, const unsigned vr[], size_t n, const
 
 fmu_status fmu_set_integer(fmu_instance *inst, const unsigned vr[], size_t n,
                            const int32_t value[]) {
-    if (fmu_check_call(inst, CALL_SET, "SetInteger") != FMU_OK) return FMU_ERROR;
-    if (n > 0 && (!vr || !value)) return null_arrays(inst, "SetInteger");
-    if (check_settable(inst, "SetInteger", vr, n, FMU_INTEGER) != FMU_OK) return FMU_ERROR;
+    if (check_settable(inst, "SetInteger", vr, n, FMU_INTEGER, value) != FMU_OK) return FMU_ERROR;
     for (size_t i = 0; i < n; ++i) inst->v.integer[vr[i]] = value[i];
     if (n > 0) inst->v.outputs_current = 0;
     return FMU_OK;

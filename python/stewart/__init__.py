@@ -32,7 +32,7 @@ from .head_motion import HeadMotion, head_motion
 from .fmus import FMI_VERSIONS, FMU_NAMES, fmu_path, fmu_paths, fmu_start_values, ssp_path
 from .forward import ForwardSolution
 from .inverse import InverseSolution
-from .manoeuvres import manoeuvre, manoeuvre_files
+from .manoeuvres import manoeuvre, manoeuvre_files, random_vehicle
 from .feasibility import Feasibility, feasibility
 from .moves import Move, MoveError, move
 from .params import parameters, platform_files
@@ -55,6 +55,7 @@ __all__ = ["Platform", "InverseSolution", "ForwardSolution", "Simulation", "Home
            "platform_files", "view", "convert_angles", "rotation_matrix", "move", "Move",
            "MoveError", "feasibility", "Feasibility", "perception", "Perceived",
            "VestibularModel", "cueing_scores", "CueingScores", "manoeuvre",
-           "manoeuvre_files", "cueing", "Cueing", "CUEING_ALGORITHMS", "head_motion", "HeadMotion",
+           "manoeuvre_files", "random_vehicle", "cueing", "Cueing", "CUEING_ALGORITHMS",
+           "head_motion", "HeadMotion",
            "sizing", "SizingReport",
            "__version__"]

@@ -45,6 +45,19 @@ def all_finite(a: np.ndarray) -> bool:
     return bool(np.isfinite(a).all())
 
 
+def rows3(name: str, value, n: int) -> np.ndarray:
+    """value as a C-contiguous float64 (n, 3) array of finite values (x, y, z per row of t), or
+    ValueError naming it and its first value that is not finite."""
+    a = floats(name, value)
+    if a.shape != (n, 3):
+        raise ValueError(f"{name} has shape {a.shape}: it must be ({n}, 3), x, y, z per row of t")
+    bad = np.argwhere(~np.isfinite(a))
+    if bad.size:
+        i, j = bad[0]
+        raise ValueError(f"{name}[{i}, {j}] = {float(a[i, j])!r} is not finite")
+    return a
+
+
 def times(name: str, value, n: Optional[int]) -> np.ndarray:
     """value as (n,) float64 times, finite and increasing (n None: any length), or ValueError
     naming the first bad entry and its value."""

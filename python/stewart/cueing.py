@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core
-from .arrays import floats, times
+from .arrays import rows3, times
 
 #: The cueing algorithms, by name; the index is the library's `algorithm` option.
 #: "classical": the classical washout with tilt coordination (Reid & Nahon 1985).
@@ -49,17 +49,6 @@ def option_names() -> tuple:
     return tuple(o["name"] for o in _core.option_table("cueing"))
 
 
-def _vectors(name: str, value, n: int) -> np.ndarray:
-    a = floats(name, value)
-    if a.shape != (n, 3):
-        raise ValueError(f"{name} has shape {a.shape}: it must be ({n}, 3), x, y, z per time")
-    bad = np.argwhere(~np.isfinite(a))
-    if bad.size:
-        r, c = bad[0]
-        raise ValueError(f"{name}[{r}, {c}] = {float(a[r, c])!r} is not finite")
-    return a
-
-
 def cueing(platform, t, specific_force, angular_velocity, algorithm: str = "classical",
            **options) -> Cueing:
     """The platform motion that cues a vehicle's motion. t: (N,) increasing times [s];
@@ -83,8 +72,8 @@ def cueing(platform, t, specific_force, angular_velocity, algorithm: str = "clas
         raise ValueError("give the algorithm by name: algorithm='classical'")
     time = times("t", t, None)
     n = time.shape[0]
-    force = _vectors("specific_force", specific_force, n)
-    omega = _vectors("angular_velocity", angular_velocity, n)
+    force = rows3("specific_force", specific_force, n)
+    omega = rows3("angular_velocity", angular_velocity, n)
     values = [("algorithm", float(ALGORITHMS.index(algorithm)))]
     for name, value in options.items():
         try:

@@ -36,7 +36,7 @@ from typing import NamedTuple, Tuple, Union
 
 import numpy as np
 
-from .arrays import floats, times
+from .arrays import rows3, times
 
 #: The relative tolerance on the sample spacing: the filters are discretised for one time step.
 UNIFORM_TOLERANCE = 1e-6
@@ -128,8 +128,8 @@ def perception(t, specific_force, angular_velocity, model: Union[str, Vestibular
     if t.shape[0] < 2:
         raise ValueError(f"t has {t.shape[0]} sample(s): give at least 2")
     dt = _time_step(t)
-    f = _rows3("specific_force", specific_force, t.shape[0])
-    w = _rows3("angular_velocity", angular_velocity, t.shape[0])
+    f = rows3("specific_force", specific_force, t.shape[0])
+    w = rows3("angular_velocity", angular_velocity, t.shape[0])
     vestibular = _model(model)
     if initial not in INITIAL_STATES:
         raise ValueError(f"initial = {initial!r}: one of {', '.join(INITIAL_STATES)}")
@@ -166,17 +166,6 @@ def _time_step(t: np.ndarray) -> float:
                          f"{t[worst + 1] - t[worst]!r} s against a mean step of {dt!r} s; "
                          "resample the signals on a uniform grid (numpy.interp)")
     return float(dt)
-
-
-def _rows3(name: str, value, n: int) -> np.ndarray:
-    a = floats(name, value)
-    if a.ndim != 2 or a.shape != (n, 3):
-        raise ValueError(f"{name} has shape {a.shape}: it must be ({n}, 3), x, y, z per row of t")
-    bad = np.argwhere(~np.isfinite(a))
-    if bad.size:
-        i, j = bad[0]
-        raise ValueError(f"{name}[{i}, {j}] = {float(a[i, j])!r} is not finite")
-    return a
 
 
 def _model(model) -> VestibularModel:

@@ -258,6 +258,50 @@ void state_operation(StateProbe &probe, int op, Unit &u, Reader &in, OutputCheck
         corrupted_round_trip(u, probe.state, in, check);
 }
 
+// The operations every FMU target's input shares: 0 SetReal of any Real variable, 2 SetInteger
+// of any Integer one (small values below `small`), 4 the outputs checked, 6 to 8 FMU states
+// (state_operation), 9 Reset (the master's time t back to 0), 10 Terminate, 11 initialisation
+// at a random start time t. prepare() gives the unit what the target sets before every
+// initialisation. False for any other op (the target's own).
+template <class Prepare>
+bool shared_operation(int op, Unit &u, Reader &in, StateProbe &probe, double &t, int small,
+                      OutputCheck check, Prepare prepare) {
+    switch (op) {
+        case 0:
+            random_set_real(u, in);
+            return true;
+        case 2:
+            random_set_integer(u, in, small);
+            return true;
+        case 4:
+            check(u, nullptr);
+            return true;
+        case 6:
+        case 7:
+        case 8:
+            state_operation(probe, op, u, in, check);
+            return true;
+        case 9:
+            u.reset();
+            prepare();
+            u.setup(0.0);
+            t = 0;
+            return true;
+        case 10:
+            u.terminate();
+            return true;
+        case 11:
+            t = in.value();
+            prepare();
+            u.setup(t);
+            u.enter_init(t);
+            u.exit_init();
+            check(u, nullptr);
+            return true;
+    }
+    return false;
+}
+
 // SetDebugLogging with the categories a selector byte picks (an unknown one among them).
 void random_debug_logging(Unit &u, uint8_t b) {
     const char *cats[] = {"logEvents", "logStatusWarning", "logStatusDiscard", "logStatusError",

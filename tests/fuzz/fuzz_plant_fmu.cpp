@@ -54,39 +54,28 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     const int32_t step_cap = 1 + in.byte() % 32;
     Unit &u = unit_for((flags & 32) != 0, (flags & 1) != 0);
     const unsigned cap_vr = VR_max_internal_steps;
-    auto initialise = [&](double t0) {
-        u.set_int(&cap_vr, 1, &step_cap);
-        u.setup(t0);
-        u.enter_init(t0);
-        u.exit_init();
-    };
+    auto set_cap = [&] { u.set_int(&cap_vr, 1, &step_cap); };
     double t = 0;
-    u.set_int(&cap_vr, 1, &step_cap);
+    set_cap();
     u.setup(0.0);
     if (flags & 2) {
         const unsigned vrs[2] = {VR_fidelity, VR_method};
         const int32_t values[2] = {1 + ((flags >> 2) & 1), (flags >> 3) & 3};
         u.set_int(vrs, 2, values);
-        initialise(0.0);
+        set_cap();
+        u.setup(0.0);
+        u.enter_init(0.0);
+        u.exit_init();
     }
     int budget = kStepBudget;
     StateProbe probe;
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 14;
+        if (shared_operation(op, u, in, probe, t, 5, check_outputs, set_cap) ||
+            plant_operation(op, u, in))
+            continue;  // 0, 1, 2, 4, 6..11, 13
         switch (op) {
-            case 0:  // SetReal of any Real variable (outputs and time must be refused)
-                random_set_real(u, in);
-                break;
-            case 1: {  // SetReal of one force, any value (scaled: the specials are small)
-                const unsigned vr = VR_F_1 + in.byte() % 6;
-                const double v = 1e3 * in.value();
-                u.set_real(&vr, 1, &v);
-                break;
-            }
-            case 2:  // SetInteger of any Integer variable
-                random_set_integer(u, in, 5);
-                break;
             case 3: {  // DoStep from the current time (or from a raw t), any step size
                 const uint8_t how = in.byte();
                 const double h = in.value();
@@ -113,39 +102,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 }
                 break;
             }
-            case 4:
-                check_outputs(u);
-                break;
             case 5: {  // SetRealInputDerivatives (FMI 2), any variable and order
                 const unsigned vr = in.byte() % 8;
                 const int order = in.byte() % 3;
                 u.input_derivative(vr, order, 1e3 * in.value());
                 break;
             }
-            case 6:  // FMU states: take, roll back, serialise (state_operation)
-            case 7:
-            case 8:
-                state_operation(probe, op, u, in, check_outputs);
-                break;
-            case 9:
-                u.reset();
-                u.set_int(&cap_vr, 1, &step_cap);
-                u.setup(0.0);
-                t = 0;
-                break;
-            case 10:
-                u.terminate();
-                break;
-            case 11:  // initialisation, at a random start time
-                t = in.value();
-                initialise(t);
-                check_outputs(u);
-                break;
             case 12:
                 random_debug_logging(u, in.byte());
-                break;
-            case 13:
-                set_forces_near_statics(u, in);
                 break;
         }
     }

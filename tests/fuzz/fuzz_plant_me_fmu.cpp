@@ -151,70 +151,34 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
     Reader in{bytes, size};
     const uint8_t flags = in.byte();
     Unit &u = unit_for((flags & 32) != 0, (flags & 1) != 0);
-    auto initialise = [&](double t0) {
-        u.setup(t0);
-        u.enter_init(t0);
-        u.exit_init();
-    };
     double t = 0;
     u.setup(0.0);
     if (flags & 2) {
         const unsigned vr = VR_fidelity;
         const int32_t fidelity = 1 + ((flags >> 2) & 1);
         u.set_int(&vr, 1, &fidelity);
-        initialise(0.0);
+        u.setup(0.0);
+        u.enter_init(0.0);
+        u.exit_init();
     }
     StateProbe probe;
     int ops = 0;
     while (in.left > 0 && ++ops < 512) {
         const uint8_t op = in.byte() % 16;
+        if (shared_operation(op, u, in, probe, t, 4, check_outputs, [] {}) ||
+            plant_operation(op, u, in))
+            continue;  // 0, 1, 2, 4, 6..11, 13
         switch (op) {
-            case 0:  // SetReal of any Real variable (outputs, states' derivatives, time refused)
-                random_set_real(u, in);
-                break;
-            case 1: {  // SetReal of one force, any value (scaled: the specials are small)
-                const unsigned vr = VR_F_1 + in.byte() % 6;
-                const double v = 1e3 * in.value();
-                u.set_real(&vr, 1, &v);
-                break;
-            }
-            case 2:  // SetInteger of any Integer variable
-                random_set_integer(u, in, 4);
-                break;
             case 3: {  // SetTime: any value, or the current time plus one
                 const double v = in.value();
                 if (set_time(u, (flags & 16) ? t + v : v) == 0) t = (flags & 16) ? t + v : v;
                 break;
             }
-            case 4:
-                check_outputs(u);
-                break;
             case 5:
                 change_states(u, in);
                 break;
-            case 6:  // FMU states: take, roll back, serialise (state_operation)
-            case 7:
-            case 8:
-                state_operation(probe, op, u, in, check_outputs);
-                break;
-            case 9:
-                u.reset();
-                u.setup(0.0);
-                t = 0;
-                break;
-            case 10:
-                u.terminate();
-                break;
-            case 11:  // initialisation, at a random start time
-                t = in.value();
-                initialise(t);
-                check_outputs(u);
-                break;
             case 12:
                 event_call(u, in.byte());
-                break;
-            case 13:
-                set_forces_near_statics(u, in);
                 break;
             case 14: {  // a few explicit Euler steps (1 .. 16) of any size
                 const int count = 1 + in.byte() % 16;

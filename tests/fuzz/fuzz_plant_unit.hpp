@@ -54,6 +54,22 @@ void set_forces_near_statics(Unit &u, Reader &in) {
     u.set_real(vrs, 6, f);
 }
 
+// The operations both plant targets' inputs have: 1 SetReal of one force, any value (scaled:
+// the specials are small), 13 all six forces near the static ones. False for any other op.
+bool plant_operation(int op, Unit &u, Reader &in) {
+    if (op == 1) {
+        const unsigned vr = VR_F_1 + in.byte() % 6;
+        const double v = 1e3 * in.value();
+        u.set_real(&vr, 1, &v);
+        return true;
+    }
+    if (op == 13) {
+        set_forces_near_statics(u, in);
+        return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 #endif

@@ -158,6 +158,34 @@ def plant(path, version, fidelity):
     return z
 
 
+def initialised(path, version, classes, instance_name, identifier):
+    """(fmu, value references by name, FMI 2?): an instance of classes[0] (FMI 2) or classes[1]
+    (FMI 3) of the unit at path, through its initialisation with its start values."""
+    md = fmpy.read_model_description(path)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    v2 = version == "2.0"
+    fmu = classes[0 if v2 else 1](guid=md.guid, instanceName=instance_name,
+                                  unzipDirectory=fmpy.extract(path, tempfile.mkdtemp()),
+                                  modelIdentifier=identifier)
+    fmu.instantiate(loggingOn=True)
+    if v2:
+        fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    return fmu, vr, v2
+
+
+def round_trip_and_free(fmu, v2, state):
+    """The FMU state serialised, deserialised and set; both states freed, the instance too."""
+    blob = (fmu.serializeFMUstate if v2 else fmu.serializeFMUState)(state)
+    other = (fmu.deSerializeFMUstate if v2 else fmu.deserializeFMUState)(blob)
+    (fmu.setFMUstate if v2 else fmu.setFMUState)(other)
+    for s in (other, state):
+        (fmu.freeFMUstate if v2 else fmu.freeFMUState)(s)
+    fmu.terminate()
+    fmu.freeInstance()
+
+
 def plant_me(path, version, fidelity):
     """0.05 s of CVODE under uneven forces, then the derivative call's refusals and a state round
     trip; returns the final z."""
@@ -167,17 +195,7 @@ def plant_me(path, version, fidelity):
     r = simulate_fmu(path, fmi_type="ModelExchange", solver="CVode", stop_time=0.05,
                      output_interval=0.01, input=forces, start_values={"fidelity": fidelity},
                      output=["z", "L[1]"])
-    md = fmpy.read_model_description(path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    v2 = version == "2.0"
-    fmu = (FMU2Model if v2 else FMU3Model)(guid=md.guid, instanceName="vg_me",
-                                          unzipDirectory=fmpy.extract(path, tempfile.mkdtemp()),
-                                          modelIdentifier="StewartPlantME")
-    fmu.instantiate(loggingOn=True)
-    if v2:
-        fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
-    fmu.exitInitializationMode()
+    fmu, vr, v2 = initialised(path, version, (FMU2Model, FMU3Model), "vg_me", "StewartPlantME")
     fmu.newDiscreteStates() if v2 else fmu.updateDiscreteStates()
     fmu.enterContinuousTimeMode()
     state = fmu.getFMUstate() if v2 else fmu.getFMUState()
@@ -191,13 +209,7 @@ def plant_me(path, version, fidelity):
             raise AssertionError("derivatives at a refused state")
         except fmpy.fmi1.FMICallException as e:
             assert e.status == 2, e.status
-    blob = (fmu.serializeFMUstate if v2 else fmu.serializeFMUState)(state)
-    other = (fmu.deSerializeFMUstate if v2 else fmu.deserializeFMUState)(blob)
-    (fmu.setFMUstate if v2 else fmu.setFMUState)(other)
-    for s in (other, state):
-        (fmu.freeFMUstate if v2 else fmu.freeFMUState)(s)
-    fmu.terminate()
-    fmu.freeInstance()
+    round_trip_and_free(fmu, v2, state)
     return r["z"][-1]
 
 
@@ -210,17 +222,7 @@ def cueing(path, version):
                               ("specific_force[3]", float), ("angular_velocity[3]", float)])
     r = simulate_fmu(path, fmi_type="CoSimulation", stop_time=0.5, output_interval=0.01,
                      step_size=0.01, input=vehicle, output=["x", "scale", "limited"])
-    md = fmpy.read_model_description(path)
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    v2 = version == "2.0"
-    fmu = (FMU2Slave if v2 else FMU3Slave)(guid=md.guid, instanceName="vg_cue",
-                                          unzipDirectory=fmpy.extract(path, tempfile.mkdtemp()),
-                                          modelIdentifier="StewartCueing")
-    fmu.instantiate(loggingOn=True)
-    if v2:
-        fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
-    fmu.exitInitializationMode()
+    fmu, vr, v2 = initialised(path, version, (FMU2Slave, FMU3Slave), "vg_cue", "StewartCueing")
     set_real = fmu.setReal if v2 else fmu.setFloat64
     step = (lambda t, h: fmu.dll.fmi2DoStep(fmu.component, t, h, 1)) if v2 else fmu.doStep
     set_real([vr["specific_force[1]"]], [5.0])
@@ -231,13 +233,7 @@ def cueing(path, version):
         step(0.01, 0.01)
     except fmpy.fmi1.FMICallException:
         pass
-    blob = (fmu.serializeFMUstate if v2 else fmu.serializeFMUState)(state)
-    other = (fmu.deSerializeFMUstate if v2 else fmu.deserializeFMUState)(blob)
-    (fmu.setFMUstate if v2 else fmu.setFMUState)(other)
-    for s in (other, state):
-        (fmu.freeFMUstate if v2 else fmu.freeFMUState)(s)
-    fmu.terminate()
-    fmu.freeInstance()
+    round_trip_and_free(fmu, v2, state)
     assert r["limited"].any()
     return r["x"][-1]
 

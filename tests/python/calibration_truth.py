@@ -177,3 +177,12 @@ def pose_errors(machine, true_machine, poses):
     turn = np.array([np.arccos(np.clip((np.trace(rotation(*f[3:]).T @ rotation(*q[3:])) - 1) / 2,
                                        -1, 1)) for f, q in zip(found, poses)])
     return position, turn
+
+
+def identified_machine(result):
+    """The machine (the dict readings takes) a stewart.calibrate result identified."""
+    p = result.parameters
+    return {"base_joint": p["base_joint"].reshape(6, 3),
+            "platform_joint": p["platform_joint"].reshape(6, 3),
+            "length_offset": p["length_offset"], "tool_frame": p["tool_frame"],
+            "user_frame": p["user_frame"]}

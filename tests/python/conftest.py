@@ -1,4 +1,4 @@
-"""Shared fixtures: where the build is, and how to run stewart-solve."""
+"""Shared fixtures: where the build is, and how to run stewart-solve and stewart-simulate."""
 import os
 import pathlib
 import subprocess
@@ -18,10 +18,22 @@ def build_dir():
     return path
 
 
+def program(build_dir, name):
+    """A call that runs the build's program `name` with the given arguments and returns the
+    CompletedProcess."""
+    def run(*args):
+        return subprocess.run([str(build_dir / name), *map(str, args)],
+                              capture_output=True, text=True, timeout=120)
+    return run
+
+
 @pytest.fixture
 def solve(build_dir):
     """Runs stewart-solve with the given arguments; returns the CompletedProcess."""
-    def run(*args):
-        return subprocess.run([str(build_dir / "stewart-solve"), *map(str, args)],
-                              capture_output=True, text=True, timeout=120)
-    return run
+    return program(build_dir, "stewart-solve")
+
+
+@pytest.fixture
+def simulate(build_dir):
+    """Runs stewart-simulate with the given arguments; returns the CompletedProcess."""
+    return program(build_dir, "stewart-simulate")

@@ -336,3 +336,25 @@ def backward_fd(ts, qs):
         qdd[j] = 2 * (q0 / ((t0 - t1) * (t0 - t2)) + q1 / ((t1 - t0) * (t1 - t2)) +
                       q2 / ((t2 - t0) * (t2 - t1)))
     return qd, qdd
+
+
+def libcosim_outputs(osp, steps, units=("plant",), names=POSE):
+    """libcosim on an OSP system structure (a path): the Real outputs `names` of each of `units`
+    after each of `steps` steps, {unit: (steps, len(names))}."""
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimObserver import CosimObserver
+    log_output_level(CosimLogLevel.ERROR)
+    ex = CosimExecution.from_osp_config_file(str(osp))
+    observer = CosimObserver.create_last_value()
+    ex.add_observer(observer)
+    index = {s.name.decode(): s.index for s in ex.slave_infos()}
+    references = {unit: {v.name.decode(): v.reference for v in ex.slave_variables(index[unit])}
+                  for unit in units}
+    out = {unit: [] for unit in units}
+    for _ in range(steps):
+        assert ex.step()
+        for unit in units:
+            out[unit].append(observer.last_real_values(index[unit],
+                                                       [references[unit][n] for n in names]))
+    return {unit: np.array(rows) for unit, rows in out.items()}

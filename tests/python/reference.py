@@ -4,6 +4,7 @@ docs/model.md (§3 conventions, §4 closed-form levels) and not from the C code 
 Poses are (x, y, z, roll, pitch, yaw); rates and accelerations are the time derivatives of those six
 components (model.md §3). Angles of the attachment points are in radians.
 """
+import json
 import math
 
 import numpy as np
@@ -112,3 +113,30 @@ def static_forces(pose, mass=M_PLATFORM, com=(0.0, 0.0, 0.0), rb=0.5, rt=0.5, gr
     c = rotation(*pose[3:]) @ np.asarray(com, dtype=float)
     J = leg_jacobian(pose, rb, rt, scale=1.0)
     return np.linalg.solve(J.T, -np.concatenate([weight, np.cross(c, weight)]))
+
+
+def shipped_machine(path):
+    """Base joints a, platform joints b (6, 3), strokes (6,) each and the translations of the
+    tool and user frames of a platform file (ValueError for a turned frame: the closed form here
+    has no rotation of a frame)."""
+    with open(path, encoding="utf-8") as stream:
+        d = json.load(stream)
+    for frame in ("tool_frame", "user_frame"):
+        if np.any(d.get(frame, [0] * 6)[3:]):
+            raise ValueError(f"{path}: a turned {frame} needs its rotation here")
+    strokes = [np.broadcast_to(np.asarray(d[k], float), 6) for k in ("stroke_min", "stroke_max")]
+    return (np.reshape(d["base_joint"], (6, 3)), np.reshape(d["platform_joint"], (6, 3)), *strokes,
+            np.asarray(d.get("tool_frame", [0] * 6)[:3], float),
+            np.asarray(d.get("user_frame", [0] * 6)[:3], float))
+
+
+def machine_lengths(machine, poses):
+    """|R b + p - a| per leg (N, 6) of a shipped_machine at poses (N, 6) of the tool in the user
+    frame, with p the platform origin: user origin + tool position - R tool origin."""
+    a, b, _, _, tool, user = machine
+    out = np.empty((len(poses), 6))
+    for i, q in enumerate(poses):
+        R = rotation(*q[3:])
+        out[i] = np.linalg.norm(b @ R.T + user + q[:3] - R @ tool - a, axis=1)
+    return out
+

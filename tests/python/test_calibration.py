@@ -41,14 +41,6 @@ def measure(machine, poses, rng):
     return truth.measured(poses, rng), readings
 
 
-def identified_machine(result):
-    p = result.parameters
-    return {"base_joint": p["base_joint"].reshape(6, 3),
-            "platform_joint": p["platform_joint"].reshape(6, 3),
-            "length_offset": p["length_offset"], "tool_frame": p["tool_frame"],
-            "user_frame": p["user_frame"]}
-
-
 def pose_errors(machine, true_machine_, poses):
     """Position [m] and rotation [rad] errors of the poses machine computes from the readings
     the true machine gives at poses (forward kinematics of this file)."""
@@ -104,12 +96,12 @@ def test_held_out_pose_error_falls_by_99_percent(nominal, design):
     assert result.condition < 200 and 0.5 < result.variance_factor < 2
     held_out = truth.random_poses(rng, 15)
     before = pose_errors(nominal_machine(), machine, held_out)
-    after = pose_errors(identified_machine(result), machine, held_out)
+    after = pose_errors(truth.identified_machine(result), machine, held_out)
     for b, a in zip(before, after):
         assert np.sqrt(np.mean(a ** 2)) < 0.01 * np.sqrt(np.mean(b ** 2))
     # The package's forward kinematics on the calibrated Platform agrees with this file's.
     found = forward_poses(result.platform, truth.readings(machine, held_out), held_out)
-    expected = truth.forward(identified_machine(result), truth.readings(machine, held_out),
+    expected = truth.forward(truth.identified_machine(result), truth.readings(machine, held_out),
                              held_out)
     np.testing.assert_allclose(found, expected, rtol=0, atol=1e-11)
 
@@ -168,7 +160,7 @@ def test_an_outlier_is_named_and_a_robust_loss_resists_it(nominal, design):
     robust = stewart.calibrate(nominal, poses, readings, loss="soft_l1")
     assert 17 in robust.outliers
     held_out = truth.random_poses(rng, 10)
-    position, _ = pose_errors(identified_machine(robust), machine, held_out)
+    position, _ = pose_errors(truth.identified_machine(robust), machine, held_out)
     assert np.max(position) < 50e-6
 
 
@@ -186,7 +178,7 @@ def test_frames_are_identified_in_the_stated_gauge(nominal, design):
         np.testing.assert_allclose(np.cross(nominal_points, shift).sum(axis=0), 0, atol=1e-12)
     held_out = truth.random_poses(rng, 10)
     before = pose_errors(nominal_machine(), machine, held_out)
-    after = pose_errors(identified_machine(result), machine, held_out)
+    after = pose_errors(truth.identified_machine(result), machine, held_out)
     for b, a in zip(before, after):
         assert np.sqrt(np.mean(a ** 2)) < 0.01 * np.sqrt(np.mean(b ** 2))
 

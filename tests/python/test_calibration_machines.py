@@ -43,14 +43,6 @@ def as_machine(platform):
             "user_frame": g["user_frame"]}
 
 
-def identified(result):
-    p = result.parameters
-    return {"base_joint": p["base_joint"].reshape(6, 3),
-            "platform_joint": p["platform_joint"].reshape(6, 3),
-            "length_offset": p["length_offset"], "tool_frame": p["tool_frame"],
-            "user_frame": p["user_frame"]}
-
-
 @pytest.mark.parametrize("name", machines())
 def test_default_calibration_is_within_2x_of_a_regularised_fit(name):
     platform = platform_of(name)
@@ -72,7 +64,7 @@ def test_default_calibration_is_within_2x_of_a_regularised_fit(name):
     held_out = random_poses_inside_limits(platform, 30, np.random.default_rng(77))
     assert len(held_out) == 30
     before = truth.pose_errors(nominal, built, held_out)
-    ours = truth.pose_errors(identified(result), built, held_out)
+    ours = truth.pose_errors(truth.identified_machine(result), built, held_out)
     best = truth.pose_errors(reference, built, held_out)
     for kind, o, b, n in zip(("position", "orientation"), ours, best, before):
         assert np.max(o) <= 2 * np.max(b), (kind, np.max(o), np.max(b))
@@ -142,5 +134,5 @@ def test_calibration_poses_serve_the_identification_chosen(identify):
     result = stewart.calibrate(platform, truth.measured(design, rng), readings, identify=identify)
     assert result.accuracy.position_worst < 50e-6
     held_out = random_poses_inside_limits(platform, 10, np.random.default_rng(6))
-    position, _ = truth.pose_errors(identified(result), built, held_out)
+    position, _ = truth.pose_errors(truth.identified_machine(result), built, held_out)
     assert np.max(position) < 50e-6

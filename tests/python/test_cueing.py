@@ -4,7 +4,6 @@ both sides) to 1e-9, the tilt coordination against arcsin of the low-passed spec
 random vehicle signals of up to 2 g and 200 deg/s through every shipped machine with every leg
 length, from a closed form written here, within its stroke (studies/cueing_limits.py runs 10^3
 signals per machine)."""
-import json
 import pathlib
 
 import numpy as np
@@ -12,6 +11,8 @@ import pytest
 
 stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
 signal = pytest.importorskip("scipy.signal")
+
+from reference import machine_lengths, rotation, shipped_machine  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PLATFORMS = sorted((ROOT / "platforms").glob("*.json"))
@@ -134,73 +135,20 @@ def test_tilt_rate_limit_and_tilt_max():
 
 # --- limits on every shipped machine --------------------------------------------------------
 
-def rotation(roll, pitch, yaw):
-    cr, sr, cp, sp, cy, sy = (np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch),
-                              np.cos(yaw), np.sin(yaw))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
-def machine(path):
-    """Base joints a, platform joints b (6, 3), strokes and the translations of the tool and
-    user frames (the shipped files turn neither)."""
-    d = json.loads(path.read_text())
-    for frame in ("tool_frame", "user_frame"):
-        assert not np.any(d.get(frame, [0] * 6)[3:]), "a turned frame needs its rotation here"
-    strokes = [np.broadcast_to(np.asarray(d[k], float), 6) for k in ("stroke_min", "stroke_max")]
-    return (np.reshape(d["base_joint"], (6, 3)), np.reshape(d["platform_joint"], (6, 3)), *strokes,
-            np.asarray(d.get("tool_frame", [0] * 6)[:3], float),
-            np.asarray(d.get("user_frame", [0] * 6)[:3], float))
-
-
-def leg_lengths(path, poses):
-    """|R b + p - a| per leg, with p the platform origin: user origin + tool position - R tool
-    origin."""
-    a, b, _, _, tool, user = machine(path)
-    out = np.empty((len(poses), 6))
-    for i, q in enumerate(poses):
-        R = rotation(*q[3:])
-        p = user + q[:3] - R @ tool
-        out[i] = np.linalg.norm(b @ R.T + p - a, axis=1)
-    return out
-
-
-def random_vehicle(rng, t):
-    """A sum of steps, ramps and sines per axis, up to 2 g of specific force and 200 deg/s."""
-    n = len(t)
-    def channel(limit):
-        x = np.zeros(n)
-        for _ in range(rng.integers(1, 4)):
-            t0 = rng.uniform(0, t[-1])
-            kind = rng.integers(3)
-            a = rng.uniform(-1, 1)
-            if kind == 0:
-                x += a * (t > t0)
-            elif kind == 1:
-                x += a * np.clip((t - t0) / rng.uniform(0.2, 5), 0, 1)
-            else:
-                x += a * np.sin(2 * np.pi * rng.uniform(0.05, 3) * t + rng.uniform(0, 6.3))
-        peak = np.max(np.abs(x))
-        return x / peak * rng.uniform(0.2, 1.0) * limit if peak > 0 else x
-    f = np.column_stack([channel(2 * G) for _ in range(3)]) + [0, 0, G]
-    w = np.column_stack([channel(np.radians(200)) for _ in range(3)])
-    return f, w
-
-
 def run_signals(path, count, seed, dt=0.01):
     """count random signals of 20 s through the machine of path: the samples beyond a stroke
     (closed form), beyond any limit (the library's check), and the samples the limiter scaled."""
     plat = stewart.Platform.from_file(path)
-    _, _, smin, smax, _, _ = machine(path)
+    machine = shipped_machine(path)
+    smin, smax = machine[2:4]
     t = np.arange(0, 20, dt)
     rng = np.random.default_rng(seed)
     beyond_stroke = beyond_check = limited = 0
     for _ in range(count):
-        f, w = random_vehicle(rng, t)
+        f, w = stewart.random_vehicle(rng, t)
         r = stewart.cueing(plat, t, f, w, surge_scale=1, sway_scale=1, heave_scale=1,
                            roll_scale=1, pitch_scale=1, yaw_scale=1)
-        L = leg_lengths(path, r.pose)
+        L = machine_lengths(machine, r.pose)
         beyond_stroke += int(np.sum(np.any((L < smin) | (L > smax), axis=1)))
         beyond_check += int(np.sum(~plat.limits(r.pose).within))
         limited += int(np.sum(r.limited))
@@ -312,7 +260,7 @@ def test_leg_speed_limit_is_reported_against_closed_form_rates():
     """leg_limits bit 1 where some |dL/dt| > leg_speed_max, the rates in closed form here:
     dL/dt = d . (p' + omega x R b) / |d|, d = p + R b - a (reported, not enforced)."""
     path = ROOT / "platforms" / "thesis.json"
-    a, b, _, _, _, _ = machine(path)
+    a, b, _, _, _, _ = shipped_machine(path)
     v_max = 0.05
     plat = stewart.Platform.from_file(path, leg_speed_max=v_max)
     t = np.arange(0, 10, 0.01)

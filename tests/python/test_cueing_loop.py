@@ -10,7 +10,7 @@ import pytest
 stewart = pytest.importorskip("stewart", reason="the package is not installed: pip install .")
 import closed_loop  # noqa: E402  (scripts/, on the path by conftest.py)
 import cueing_loop  # noqa: E402
-from fmu_support import BUILD  # noqa: E402
+from fmu_support import BUILD, libcosim_outputs  # noqa: E402
 
 FMUS = BUILD / "fmus" / "2.0"
 # The lane change on SIMONA, tuned as studies/cueing_tuning.py found for it (docs/cueing.md).
@@ -65,35 +65,26 @@ def test_without_feedback_the_plant_drifts(simona, lane_change):
     assert open_position > 10 * position and open_angle > 10 * angle
 
 
+def osp_file(folder, platform, options, inputs):
+    """cueing_loop.osp_structure written to folder/cueing_loop.xml; its path."""
+    import xml.etree.ElementTree as ET
+    path = folder / "cueing_loop.xml"
+    ET.ElementTree(cueing_loop.osp_structure(platform, options, inputs, FMUS)).write(
+        path, encoding="utf-8", xml_declaration=True)
+    return path
+
+
 def test_libcosim_runs_the_osp_structure_of_the_loop(simona, tmp_path):
     """cueing_loop.osp_structure with a braking step and a yaw rate from rest: libcosim's cue is
     stewart.cueing's for the held input (to rounding: its dt is the step, the library's the
     difference of the times), and its plant follows the fmpy loop and the cue within 1 % of the
     cue's excursion (libcosim hands each unit the others' values of the last step)."""
-    libcosimpy = pytest.importorskip("libcosimpy")  # noqa: F841
-    import xml.etree.ElementTree as ET
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
-    log_output_level(CosimLogLevel.ERROR)
+    pytest.importorskip("libcosimpy")
     options = {"head_z": 1.2075, "surge_scale": 0.4}
     inputs = [-3.0, 0.0, 9.81, 0.0, 0.0, 0.1]
-    path = tmp_path / "cueing_loop.xml"
-    ET.ElementTree(cueing_loop.osp_structure(simona, options, inputs, FMUS)).write(
-        path, encoding="utf-8", xml_declaration=True)
-    ex = CosimExecution.from_osp_config_file(str(path))
-    observer = CosimObserver.create_last_value()
-    ex.add_observer(observer)
-    index = {s.name.decode(): s.index for s in ex.slave_infos()}
-    reference = {name: {v.name.decode(): v.reference for v in ex.slave_variables(i)}
-                 for name, i in index.items()}
-    pose = list(closed_loop.POSE)
     n = 1000
-    cues, poses = [], []
-    for _ in range(n):
-        assert ex.step()
-        for unit, out in (("cueing", cues), ("plant", poses)):
-            out.append(observer.last_real_values(index[unit], [reference[unit][p] for p in pose]))
+    run = libcosim_outputs(osp_file(tmp_path, simona, options, inputs), n, ("cueing", "plant"))
+    cues, poses = run["cueing"], run["plant"]
     t = np.arange(n + 1) * 1e-3
     held = np.tile(inputs, (n + 1, 1))
     library = stewart.cueing(simona, t, held[:, :3], held[:, 3:], **options)
@@ -113,9 +104,6 @@ def test_ecos_runs_the_ssp_archive_of_the_loop_as_libcosim_the_osp_structure(sim
     values of the last step), so on the same loop their plants agree to rounding."""
     ecospy = pytest.importorskip("ecospy")
     pytest.importorskip("libcosimpy")
-    import xml.etree.ElementTree as ET
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimObserver import CosimObserver
     options = {"head_z": 1.2075, "sway_scale": 0.5}
     inputs = [0.0, 2.0, 9.81, 0.1, 0.0, 0.0]
     archive = tmp_path / "cueing_loop.ssp"
@@ -131,18 +119,7 @@ def test_ecos_runs_the_ssp_archive_of_the_loop_as_libcosim_the_osp_structure(sim
     finally:
         simulation.terminate()
         simulation.free()
-    path = tmp_path / "cueing_loop.xml"
-    ET.ElementTree(cueing_loop.osp_structure(simona, options, inputs, FMUS)).write(
-        path, encoding="utf-8", xml_declaration=True)
-    ex = CosimExecution.from_osp_config_file(str(path))
-    observer = CosimObserver.create_last_value()
-    ex.add_observer(observer)
-    plant = {s.name.decode(): s.index for s in ex.slave_infos()}["plant"]
-    reference = {v.name.decode(): v.reference for v in ex.slave_variables(plant)}
-    cosim = []
-    for _ in range(steps):
-        assert ex.step()
-        cosim.append(observer.last_real_values(plant, [reference[p] for p in closed_loop.POSE]))
-    ecos, cosim = np.array(ecos), np.array(cosim)
+    cosim = libcosim_outputs(osp_file(tmp_path, simona, options, inputs), steps)["plant"]
+    ecos = np.array(ecos)
     assert np.abs(ecos[:, 1] - simona.check().home[1]).max() > 1e-3  # the sway moves the cabin
     np.testing.assert_allclose(ecos, cosim, rtol=0, atol=1e-12)

@@ -1,7 +1,7 @@
 """Tool and user frames and length_offset through Python keywords, `stewart-solve --param` and the
 inverse FMU's parameters (docs/api.md, "Tool and user frames"): poses transformed by hand here
-(numpy, rotations of this file's own), pose rates by differences in time of the transformed
-pose; bad frames refused by name; sensor readings against lengths computed here."""
+(numpy, the rotations of calibration_truth.py), pose rates by differences in time of the
+transformed pose; bad frames refused by name; sensor readings against lengths computed here."""
 import math
 
 import numpy as np
@@ -9,26 +9,13 @@ import pytest
 
 import stewart
 from fmu_support import L, OK, POSE, VERSIONS, Unit, opened_unit
+from calibration_truth import angles, rotation
 from reference import lengths as closed_form_lengths
 from test_cli import column, read
 
 TOOL = np.array([0.02, -0.01, 0.10, 0.05, -0.04, 0.30])
 USER = np.array([0.01, -0.02, 0.45, 0.02, -0.03, 0.40])
 OFFSET = np.array([0.001, -0.002, 0.3, 0.0, 0.0005, -0.1])
-
-
-def rotation(roll, pitch, yaw):
-    """Rz(yaw) Ry(pitch) Rx(roll)."""
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
-                              math.cos(yaw), math.sin(yaw))
-    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    return rz @ ry @ rx
-
-
-def angles(R):
-    return np.array([math.atan2(R[2, 1], R[2, 2]), math.asin(-R[2, 0]), math.atan2(R[1, 0], R[0, 0])])
 
 
 def tool_pose(q, tool=TOOL, user=USER):

@@ -163,3 +163,28 @@ def test_slalom_passes_the_cones_on_alternate_sides():
         side = 1 if k % 2 == 0 else -1  # the first cone on the car's right: the car on its left
         assert side * at_cone > model.CAR_WIDTH / 2 + 0.15
     assert np.max(np.abs(f[:, 1])) < 0.5 * G  # within a linear tyre model's range
+
+
+def test_random_vehicle_peaks_repeats_and_refusals():
+    """stewart.random_vehicle: each axis peaks at 0.2 to 1 times its peak (about (0, 0, g) for
+    the specific force), the same seed gives the same signal and another seed another; bad times
+    and peaks are refused by name."""
+    t = np.arange(0, 20, 0.01)
+    peaks = []
+    for seed in range(20):
+        f, w = stewart.random_vehicle(np.random.default_rng(seed), t, force_peak=5.0, rate_peak=2.0)
+        assert f.shape == w.shape == (len(t), 3)
+        peaks.append(np.r_[np.abs(f - [0, 0, G]).max(axis=0) / 5.0, np.abs(w).max(axis=0) / 2.0])
+    peaks = np.array(peaks)
+    assert peaks.min() >= 0.2 - 1e-12 and peaks.max() <= 1 + 1e-12 and peaks.max() > 0.9
+    one = stewart.random_vehicle(np.random.default_rng(7), t)
+    again = stewart.random_vehicle(np.random.default_rng(7), t)
+    other = stewart.random_vehicle(np.random.default_rng(8), t)
+    assert all(np.array_equal(a, b) for a, b in zip(one, again))
+    assert not np.array_equal(one[0], other[0])
+    with pytest.raises(ValueError, match=r"t\[2\]"):
+        stewart.random_vehicle(np.random.default_rng(7), [0.0, 1.0, 1.0])
+    with pytest.raises(ValueError, match="force_peak"):
+        stewart.random_vehicle(np.random.default_rng(7), t, force_peak=math.nan)
+    with pytest.raises(ValueError, match="rate_peak"):
+        stewart.random_vehicle(np.random.default_rng(7), t, rate_peak=-1.0)

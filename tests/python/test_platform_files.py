@@ -14,6 +14,7 @@ import stewart
 from stewart.sweeps import SpecError, resolve
 
 from fmu_support import assert_unit_solves_as_the_library, stewart_solve_path
+from reference import rotation
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 PLATFORMS = ROOT / "platforms"
@@ -24,14 +25,6 @@ def joints(name):
     data = json.loads((PLATFORMS / f"{name}.json").read_text())
     return (np.array(data["base_joint"]).reshape(6, 3), np.array(data["platform_joint"]).reshape(6, 3),
             data["home_height"])
-
-
-def rotation(roll, pitch, yaw):
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
-                              math.cos(yaw), math.sin(yaw))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
 
 
 def closed_form(base, plate, pose):

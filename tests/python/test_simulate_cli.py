@@ -1,6 +1,5 @@
 """stewart-simulate from the command line: format, closed-form motions, a round trip through
 stewart-solve, and errors naming the line and column."""
-import subprocess
 
 import numpy as np
 import pytest
@@ -14,14 +13,6 @@ EXPECTED_HEADER = (["t"] + POSE + [f"{p}_dot" for p in POSE] + [f"L{k}" for k in
                    + [f"L_dot{k}" for k in LEGS]
                    + ["warnings", "steps", "rhs_evaluations", "nonlinear_iterations",
                       "error_test_failures"])
-
-
-@pytest.fixture
-def simulate(build_dir):
-    def run(*args):
-        return subprocess.run([str(build_dir / "stewart-simulate"), *map(str, args)],
-                              capture_output=True, text=True, timeout=120)
-    return run
 
 
 def write_forces(path, t, forces):

@@ -15,7 +15,7 @@ import zipfile
 import numpy as np
 import pytest
 
-from fmu_support import BUILD, POSE
+from fmu_support import BUILD, POSE, libcosim_outputs
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 STRUCTURE = ROOT / "scenes" / "closed_loop"
@@ -65,24 +65,11 @@ def ecos_run(version):
 
 def libcosim_run(tmp_path):
     """The same with libcosim from the OSP structure (its FMUs relative to it: this build's)."""
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
-    log_output_level(CosimLogLevel.ERROR)
     (tmp_path / "scenes" / "closed_loop").mkdir(parents=True)
     shutil.copy(STRUCTURE / "OspSystemStructure.xml", tmp_path / "scenes" / "closed_loop")
     shutil.copytree(BUILD / "fmus" / "2.0", tmp_path / "build" / "fmus" / "2.0")
-    ex = CosimExecution.from_osp_config_file(
-        str(tmp_path / "scenes" / "closed_loop" / "OspSystemStructure.xml"))
-    observer = CosimObserver.create_last_value()
-    ex.add_observer(observer)
-    plant = {s.name.decode(): s.index for s in ex.slave_infos()}["plant"]
-    reference = {v.name.decode(): v.reference for v in ex.slave_variables(plant)}
-    poses = []
-    for _ in range(STEPS):
-        assert ex.step()
-        poses.append(observer.last_real_values(plant, [reference[p] for p in POSE]))
-    return np.array(poses)
+    return libcosim_outputs(tmp_path / "scenes" / "closed_loop" / "OspSystemStructure.xml",
+                            STEPS)["plant"]
 
 
 def test_ecos_runs_the_ssp_for_both_fmi_versions_like_libcosim_and_fmpy(tmp_path):
@@ -259,25 +246,8 @@ def test_a_platform_file_is_a_parameter_set_of_the_ssp_closed_loop(name, tmp_pat
     assert np.all(np.abs(poses - loop["pose"][1:]) <= tolerance), name
     assert np.all(np.abs(poses - loop["cue"][1:]) <= tolerance), name
     # libcosim on the OSP structure of the same values: the same coupling as ecos
-    np.testing.assert_allclose(libcosim_poses(osp, steps), poses, rtol=0,
+    np.testing.assert_allclose(libcosim_outputs(osp, steps)["plant"], poses, rtol=0,
                                atol=1e-9 * max(1.0, np.abs(home).max()))
-
-
-def libcosim_poses(osp, steps):
-    from libcosimpy.CosimExecution import CosimExecution
-    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
-    from libcosimpy.CosimObserver import CosimObserver
-    log_output_level(CosimLogLevel.ERROR)
-    ex = CosimExecution.from_osp_config_file(str(osp))
-    observer = CosimObserver.create_last_value()
-    ex.add_observer(observer)
-    plant = {s.name.decode(): s.index for s in ex.slave_infos()}["plant"]
-    reference = {v.name.decode(): v.reference for v in ex.slave_variables(plant)}
-    poses = []
-    for _ in range(steps):
-        assert ex.step()
-        poses.append(observer.last_real_values(plant, [reference[p] for p in POSE]))
-    return np.array(poses)
 
 
 def scenes_module():

@@ -163,13 +163,8 @@ static void forces(double F[ROWS][6]) {
 }
 
 static stewart_plant *plant_of(int fidelity) {
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = fidelity;
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_plant *plant = stewart_plant_create(model, &o, message, sizeof message);
-    TEST_ASSERT_NOT_NULL_MESSAGE(plant, message);
-    return plant;
+    const stewart_plant_options o = test_plant_options(fidelity);
+    return test_plant_with(model, &o);
 }
 
 static void simulate_equals_the_loop(int fidelity) {

@@ -11,6 +11,7 @@
 #include "stewart/stewart_cueing.h"
 #include "stewart/stewart_limits.h"
 #include "stewart/stewart_table.h"
+#include "test_support.h"
 #include "unity.h"
 
 static stewart_model *model;
@@ -332,17 +333,13 @@ static void test_leg_limits_are_reported(void) {
     stewart_params_default(&p);
     for (int k = 0; k < 6; ++k) p.leg_speed_max[k] = 0.05, p.leg_accel_max[k] = 1.0;
     char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *m = stewart_model_create(&p, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(m, msg);
+    stewart_model *m = test_model(&p);
     stewart_cueing_options o;
     stewart_cueing_options_default(&o);
     stewart_cueing *c = stewart_cueing_create(m, &o, msg, sizeof msg);
     TEST_ASSERT_NOT_NULL_MESSAGE(c, msg);
-    stewart_inverse_options io;
-    stewart_inverse_options_default(&io);
-    io.fidelity = STEWART_KINEMATIC;
-    stewart_inverse *inv = stewart_inverse_create(m, &io, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(inv, msg);
+    const stewart_inverse_options io = test_options(STEWART_KINEMATIC);
+    stewart_inverse *inv = test_inverse_with(m, &io);
     int speed = 0, accel = 0;
     const long before = allocations;
     for (int n = 0; n < 3000; ++n) {

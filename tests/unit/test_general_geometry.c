@@ -477,12 +477,8 @@ static void test_thesis_as_coordinates(void) {
             TEST_ASSERT_TRUE(fabs(a.force[k] - b.force[k]) <= 1e-12 * fabs(a.force[k]));
         }
     }
-    stewart_forward_options fo;
-    stewart_forward_options_default(&fo);
-    stewart_forward *fc = stewart_forward_create(mc, &fo, NULL, 0);
-    stewart_forward *fj = stewart_forward_create(mj, &fo, NULL, 0);
-    TEST_ASSERT_NOT_NULL(fc);
-    TEST_ASSERT_NOT_NULL(fj);
+    stewart_forward *fc = test_forward(mc);
+    stewart_forward *fj = test_forward(mj);
     for (int n = 0; n < 50; ++n) {
         const stewart_pose pose = combined_pose(0.1 * n);
         const stewart_inverse_output legs = solve_at(dc, STEWART_KINEMATIC, 1e-12, &pose);

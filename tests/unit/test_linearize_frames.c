@@ -77,13 +77,8 @@ static void with_frames(void) {
 }
 
 static stewart_plant *make_plant(int fidelity) {
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = fidelity;
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_plant *p = stewart_plant_create(model, &o, message, sizeof message);
-    TEST_ASSERT_NOT_NULL_MESSAGE(p, message);
-    return p;
+    const stewart_plant_options o = test_plant_options(fidelity);
+    return test_plant_with(model, &o);
 }
 
 /* The plant's right-hand side: q_ddot (6), then L and L_dot (12). */
@@ -98,6 +93,16 @@ static void plant_values(stewart_plant *p, const stewart_linearize_input *in, do
     memcpy(v, out.pose.q_ddot, 6 * sizeof v[0]);
     memcpy(v + 6, out.lengths.length, 6 * sizeof v[0]);
     memcpy(v + 12, out.lengths.length_rate, 6 * sizeof v[0]);
+}
+
+/* Prints what was checked and its worst errors (the second step: a force or an acceleration);
+ * fails unless the worst block error is within kRelative and the values within 1e-9. */
+static void expect_close(const char *check, int fidelity, double second_step, double worst,
+                         double worst_value) {
+    printf("frames, fidelity %d: %s (steps %g, %g), worst block error %.2e; values against its "
+           "%.2e\n", fidelity, check, kStepState, second_step, worst, worst_value);
+    TEST_ASSERT_LESS_THAN_DOUBLE(kRelative, worst);
+    TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, worst_value);
 }
 
 static void plant_against_differences(int fidelity) {
@@ -155,11 +160,8 @@ static void plant_against_differences(int fidelity) {
                 TEST_ASSERT_EQUAL_DOUBLE(j == i ? 1 : 0, exact.C[i][j]);
             }
     }
-    printf("frames, fidelity %d: A, B, C against central differences of stewart_plant_derivatives "
-           "(steps %g, %g N), worst block error %.2e; values against its %.2e\n", fidelity,
-           kStepState, kStepForce, worst, worst_value);
-    TEST_ASSERT_LESS_THAN_DOUBLE(kRelative, worst);
-    TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, worst_value);
+    expect_close("A, B, C against central differences of stewart_plant_derivatives", fidelity,
+                 kStepForce, worst, worst_value);
     stewart_plant_free(plant);
     stewart_linearize_free(l);
 }
@@ -204,11 +206,8 @@ static void inverse_against_differences(int fidelity) {
         const double e = inverse_jacobian_error(&exact, &pose, fidelity);
         if (e > worst) worst = e;
     }
-    printf("frames, inverse fidelity %d: Jacobian against central differences of the inverse "
-           "solver (steps %g, %g), worst block error %.2e; values against its %.2e\n", fidelity,
-           kStepState, kStepAccel, worst, worst_value);
-    TEST_ASSERT_LESS_THAN_DOUBLE(kRelative, worst);
-    TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, worst_value);
+    expect_close("inverse Jacobian against central differences of the inverse solver", fidelity,
+                 kStepAccel, worst, worst_value);
     stewart_linearize_free(l);
 }
 static void test_inverse_massless_with_frames(void) { inverse_against_differences(STEWART_MASSLESS); }

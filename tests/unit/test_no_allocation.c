@@ -83,12 +83,8 @@ static void test_forward_solves_do_not_allocate(void) {
     stewart_params_default(&params);
     stewart_model *model = test_model(&params);
     stewart_inverse *data = test_inverse(model);
-    stewart_forward_options fo;
-    stewart_forward_options_default(&fo);
-    stewart_forward *forward = stewart_forward_create(model, &fo, NULL, 0);
-    stewart_forward *saved = stewart_forward_create(model, &fo, NULL, 0);
-    TEST_ASSERT_NOT_NULL(forward);
-    TEST_ASSERT_NOT_NULL(saved);
+    stewart_forward *forward = test_forward(model);
+    stewart_forward *saved = test_forward(model);
     stewart_inverse_output legs[200];
     for (int i = 0; i < 200; ++i) {
         const stewart_pose p = combined_pose(1e-3 * i);

@@ -4,26 +4,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "plant_fixture.h"
 #include "stewart/stewart_plant.h"
 #include "test_plant_support.h"
 #include "test_support.h"
 #include "unity.h"
-
-static stewart_params params;
-static stewart_model *model;
-static stewart_plant *plant;
-static const double kZero[6] = {0};
-
-void setUp(void) {
-    stewart_params_default(&params);
-    model = test_model(&params);
-    plant = test_plant(model, STEWART_FULL, 1e-10, 1e-12);
-}
-
-void tearDown(void) {
-    stewart_plant_free(plant);
-    stewart_model_free(model);
-}
 
 static void saved(const stewart_plant *p, double *state) {
     plant_save_doubles(p, state);

@@ -379,20 +379,7 @@ static void joint_reactions_balance(int fidelity) {
             stewart_plant_output out;
             TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
             TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_reactions_get(plant, f, &r_now));
-            for (int a = 0; a < 3; ++a) {
-                double force = 0, torque = 0;
-                for (int k = 0; k < 6; ++k) {
-                    const double p[3] = {params.base_radius * cos(params.base_angle[k]),
-                                         params.base_radius * sin(params.base_angle[k]), 0};
-                    const double *fb = r_now.base_cardan_force[k];
-                    const double moment[3] = {p[1] * fb[2] - p[2] * fb[1], p[2] * fb[0] - p[0] * fb[2],
-                                              p[0] * fb[1] - p[1] * fb[0]};
-                    force -= fb[a];
-                    torque -= moment[a] + r_now.base_cardan_torque[k][a];
-                }
-                worst_base = fmax(worst_base, fmax(fabs(force - out.base_force[a]),
-                                                   fabs(torque - out.base_torque[a])));
-            }
+            worst_base = fmax(worst_base, base_wrench_error(&params, &r_now, &out));
             for (int a = 0; a < 3; ++a) v_prev[a] = v_now[a]; /* the step before */
         }
         for (int a = 0; a < 3; ++a) v_now[a] = bodies[0].velocity[a];

@@ -412,20 +412,7 @@ static void test_reactions_carry_the_drives_forces(void) {
         stewart_plant_reactions r;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_reactions_get(plant, NULL, &r));
-        for (int a = 0; a < 3; ++a) {
-            double force = 0, torque = 0;
-            for (int k = 0; k < 6; ++k) {
-                const double p[3] = {params.base_radius * cos(params.base_angle[k]),
-                                     params.base_radius * sin(params.base_angle[k]), 0};
-                const double *fb = r.base_cardan_force[k];
-                const double moment[3] = {p[1] * fb[2] - p[2] * fb[1], p[2] * fb[0] - p[0] * fb[2],
-                                          p[0] * fb[1] - p[1] * fb[0]};
-                force -= fb[a];
-                torque -= moment[a] + r.base_cardan_torque[k][a];
-            }
-            worst = fmax(worst, fmax(fabs(force - out.base_force[a]),
-                                     fabs(torque - out.base_torque[a])));
-        }
+        worst = fmax(worst, base_wrench_error(&params, &r, &out));
     }
     printf("reactions with drives: base wrench %.3g N or N m off the base Cardans' sum\n", worst);
     TEST_ASSERT_TRUE(worst <= 1e-9);

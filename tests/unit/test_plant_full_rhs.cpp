@@ -21,6 +21,7 @@
 #include "plant/plant_integrator.hpp"
 #include "plant/plant_object.hpp"
 #include "stewart/stewart.h"
+#include "test_support.h"
 #include "unity.h"
 
 namespace plant = stewart::plant;
@@ -177,12 +178,8 @@ double compare_steps(const plant::DynamicsModel &d) {
 
 // The full inverse solve's forces holding the platform at rest at home.
 void static_forces(const stewart_model *model, double force[STEWART_LEGS]) {
-    stewart_inverse_options o;
-    stewart_inverse_options_default(&o);
-    o.fidelity = STEWART_FULL;
-    char message[STEWART_MESSAGE_SIZE];
-    stewart_inverse *inverse = stewart_inverse_create(model, &o, message, sizeof message);
-    TEST_ASSERT_NOT_NULL_MESSAGE(inverse, message);
+    const stewart_inverse_options o = test_options(STEWART_FULL);
+    stewart_inverse *inverse = test_inverse_with(model, &o);
     stewart_inverse_input in{};
     in.pose.q[2] = stewart_model_params(model)->home_height;
     stewart_inverse_output out;
@@ -203,13 +200,9 @@ double compare_step_outputs(const stewart_model *model) {
     double worst = 0;
     const int methods[] = {STEWART_PLANT_ERK, STEWART_PLANT_ERK5, STEWART_PLANT_BDF};
     for (int method : methods) {
-        stewart_plant_options o;
-        stewart_plant_options_default(&o);
-        o.fidelity = STEWART_FULL;
+        stewart_plant_options o = test_plant_options(STEWART_FULL);
         o.method = method;
-        char message[STEWART_MESSAGE_SIZE];
-        stewart_plant *plant = stewart_plant_create(model, &o, message, sizeof message);
-        TEST_ASSERT_NOT_NULL_MESSAGE(plant, message);
+        stewart_plant *plant = test_plant_with(model, &o);
         stewart_plant_input in{};
         in.h = 1e-3;
         uint64_t rng = 77;

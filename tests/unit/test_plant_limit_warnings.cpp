@@ -13,6 +13,7 @@
 
 #include "plant/plant_object.hpp"
 #include "stewart/stewart.h"
+#include "test_support.h"
 #include "unity.h"
 
 namespace {
@@ -44,14 +45,9 @@ void run_path(int fidelity, Counts &counts) {
     params.base_joint_limit = 0.4;
     params.platform_joint_limit = 0.45;
     params.leg_diameter = 0.01;
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(model, msg);
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = fidelity;
-    stewart_plant *plant = stewart_plant_create(model, &o, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(plant, msg);
+    stewart_model *model = test_model(&params);
+    const stewart_plant_options o = test_plant_options(fidelity);
+    stewart_plant *plant = test_plant_with(model, &o);
     int last = 0;  // the last step's exact limit warnings
     for (int n = 0; n < 5000; ++n) {
         if (n % 5 == 0) {  // the path speeds up: 0.5 .. 20 path seconds per second

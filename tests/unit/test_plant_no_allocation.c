@@ -16,13 +16,9 @@ static void steps_do_not_allocate(int fidelity, int method) {
     stewart_params params;
     stewart_params_default(&params);
     stewart_model *model = test_model(&params);
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = fidelity;
+    stewart_plant_options o = test_plant_options(fidelity);
     o.method = method;
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_plant *plant = stewart_plant_create(model, &o, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(plant, msg);
+    stewart_plant *plant = test_plant_with(model, &o);
     double state[32], f0[6], f1[6];
     for (int k = 0; k < 6; ++k) f0[k] = 175.0;
     stewart_plant_output out;

@@ -22,6 +22,7 @@
 #include "plant/plant_integrator.hpp"
 #include "plant/plant_object.hpp"
 #include "stewart/stewart.h"
+#include "test_support.h"
 #include "unity.h"
 
 namespace plant = stewart::plant;
@@ -31,6 +32,16 @@ namespace {
 double uniform(uint64_t &state, double a, double b) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     return a + (b - a) * static_cast<double>(state >> 11) / 9007199254740992.0;
+}
+
+// Rz(yaw) Ry(pitch) Rx(roll) with roll and yaw anywhere and |pitch| up to 1.5707 rad (drawn in
+// that order).
+Eigen::Quaterniond random_attitude(uint64_t &rng) {
+    const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
+                 yaw = uniform(rng, -M_PI, M_PI);
+    return Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+           Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+           Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -245,11 +256,7 @@ void test_pitch_pre_test(void) {
     uint64_t rng = 31337;
     int held = 0, wrong = 0;
     for (int n = 0; n < 200000; ++n) {
-        const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
-                     yaw = uniform(rng, -M_PI, M_PI);
-        const Eigen::Quaterniond q0 = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                                      Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                                      Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+        const Eigen::Quaterniond q0 = random_attitude(rng);
         Eigen::Vector3d axis(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
         if (!(axis.norm() > 1e-3)) continue;
         const Eigen::Quaterniond turn(Eigen::AngleAxisd(uniform(rng, 0, 0.3), axis.normalized()));
@@ -284,11 +291,7 @@ void test_angle_rates_of_rotation(void) {
     double worst = 0, worst_level = 0, worst_exact_new = 0, worst_exact_old = 0;
     int over = 0;
     for (int n = 0; n < 100000; ++n) {
-        const double roll = uniform(rng, -M_PI, M_PI), pitch = uniform(rng, -1.5707, 1.5707),
-                     yaw = uniform(rng, -M_PI, M_PI);
-        const Eigen::Quaterniond q = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
-                                     Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
-                                     Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+        const Eigen::Quaterniond q = random_attitude(rng);
         double y[plant::kStates] = {0, 0, 0, q.w(), q.x(), q.y(), q.z()};
         for (int i = 10; i < 13; ++i) y[i] = uniform(rng, -20, 20);
         const stewart::Motion m = plant::motion_of_state(y);
@@ -380,16 +383,11 @@ int step_numbers(const stewart_plant *plant, const stewart_plant_output &o, doub
 void test_carried_start_values(void) {
     stewart_params params;
     stewart_params_default(&params);
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *model = stewart_model_create(&params, msg, sizeof msg);
-    TEST_ASSERT_NOT_NULL_MESSAGE(model, msg);
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = STEWART_MASSLESS;
-    stewart_plant *carried = stewart_plant_create(model, &o, msg, sizeof msg);
-    stewart_plant *fresh = stewart_plant_create(model, &o, msg, sizeof msg);
-    stewart_plant *other = stewart_plant_create(model, &o, msg, sizeof msg);
-    TEST_ASSERT_TRUE(carried && fresh && other);
+    stewart_model *model = test_model(&params);
+    const stewart_plant_options o = test_plant_options(STEWART_MASSLESS);
+    stewart_plant *carried = test_plant_with(model, &o);
+    stewart_plant *fresh = test_plant_with(model, &o);
+    stewart_plant *other = test_plant_with(model, &o);
     // a level pose and one pitched by 1.3 rad with roll and yaw near +-pi: a step from the
     // level pose that took the pitched one's principal angles as its start (stale) sees a pitch
     // crossing at its start (the pitch root's pre-test does not hold at 1.3 rad)

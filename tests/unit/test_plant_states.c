@@ -9,28 +9,13 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "plant_fixture.h"
 #include "stewart/stewart_plant.h"
 #include "test_plant_support.h"
 #include "test_support.h"
 #include "unity.h"
 
 #define MAX_STATE 64
-
-static stewart_params params;
-static stewart_model *model;
-static stewart_plant *plant;
-static const double kZero[6] = {0};
-
-void setUp(void) {
-    stewart_params_default(&params);
-    model = test_model(&params);
-    plant = test_plant(model, STEWART_FULL, 1e-10, 1e-12);
-}
-
-void tearDown(void) {
-    stewart_plant_free(plant);
-    stewart_model_free(model);
-}
 
 static size_t state_size(void) {
     TEST_ASSERT_TRUE(plant_state_doubles() <= MAX_STATE);
@@ -322,12 +307,9 @@ void test_fixed_steps_do_fixed_work_near_the_adaptive_result(void) {
     static_forces(force);
     double worst[3] = {0, 0, 0};
     for (int n_fixed = 0; n_fixed <= 2; ++n_fixed) {
-        stewart_plant_options o;
-        stewart_plant_options_default(&o);
+        stewart_plant_options o = test_plant_options(STEWART_FULL);  /* the default fidelity */
         o.fixed_steps = n_fixed;
-        char msg[STEWART_MESSAGE_SIZE];
-        stewart_plant *p = stewart_plant_create(model, &o, msg, sizeof msg);
-        TEST_ASSERT_NOT_NULL_MESSAGE(p, msg);
+        stewart_plant *p = test_plant_with(model, &o);
         stewart_plant_output out;
         for (int n = 0; n < 200; ++n) {
             stewart_plant_input in;

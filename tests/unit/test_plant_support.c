@@ -8,16 +8,11 @@
 #include "unity.h"
 
 stewart_plant *test_plant(const stewart_model *model, int fidelity, double rtol, double atol) {
-    stewart_plant_options o;
-    stewart_plant_options_default(&o);
-    o.fidelity = fidelity;
+    stewart_plant_options o = test_plant_options(fidelity);
     o.relative_tolerance = rtol;
     o.absolute_tolerance = atol;
     o.max_internal_steps = 100000;
-    char msg[STEWART_MESSAGE_SIZE];
-    stewart_plant *p = stewart_plant_create(model, &o, msg, sizeof msg);
-    if (!p) TEST_FAIL_MESSAGE(msg);
-    return p;
+    return test_plant_with(model, &o);
 }
 
 /* 1/2 m v.v + 1/2 w.(A I A^T) w, and -m g.r, for one body with principal inertia I. */
@@ -160,4 +155,24 @@ stewart_status plant_load_doubles(stewart_plant *plant, const double *state, siz
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_save(plant, bytes, size)); /* its header */
     memcpy(bytes + header, state, count * sizeof(double));
     return stewart_plant_load(plant, bytes, header + count * sizeof(double));
+}
+
+double base_wrench_error(const stewart_params *params, const stewart_plant_reactions *r,
+                         const stewart_plant_output *out) {
+    double worst = 0;
+    for (int a = 0; a < 3; ++a) {
+        double force = 0, torque = 0;
+        for (int k = 0; k < 6; ++k) {
+            const double p[3] = {params->base_radius * cos(params->base_angle[k]),
+                                 params->base_radius * sin(params->base_angle[k]), 0};
+            const double *fb = r->base_cardan_force[k];
+            const double moment[3] = {p[1] * fb[2] - p[2] * fb[1], p[2] * fb[0] - p[0] * fb[2],
+                                      p[0] * fb[1] - p[1] * fb[0]};
+            force -= fb[a];
+            torque -= moment[a] + r->base_cardan_torque[k][a];
+        }
+        worst = fmax(worst, fmax(fabs(force - out->base_force[a]),
+                                 fabs(torque - out->base_torque[a])));
+    }
+    return worst;
 }

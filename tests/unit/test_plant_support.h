@@ -35,6 +35,11 @@ stewart_status plant_load_doubles(stewart_plant *plant, const double *state, siz
 double leg_joint_error(const stewart_params *params, const double pose[6],
                        const stewart_plant_body bodies[STEWART_PLANT_BODIES]);
 
+/* The largest difference [N or N m] between the base wrench out reports and minus the sum of
+ * the base Cardans' reactions r (forces, and their moments about the base origin from the joint
+ * centres of params' base circle, plus the Cardans' torques). */
+double base_wrench_error(const stewart_params *params, const stewart_plant_reactions *r,
+                         const stewart_plant_output *out);
 /* The thesis platform with heavy legs (10 kg rods of 0.05 m radius), so that leg inertia
  * matters in a check. */
 void heavy_legs(stewart_params *params);

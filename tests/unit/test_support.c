@@ -7,11 +7,15 @@
 
 #include "unity.h"
 
+/* object, or the test fails with the library's message when it could not be made. */
+static void *made(void *object, const char *msg) {
+    if (!object) TEST_FAIL_MESSAGE(msg);
+    return object;
+}
+
 stewart_model *test_model(const stewart_params *params) {
     char msg[STEWART_MESSAGE_SIZE];
-    stewart_model *m = stewart_model_create(params, msg, sizeof msg);
-    if (!m) TEST_FAIL_MESSAGE(msg);
-    return m;
+    return made(stewart_model_create(params, msg, sizeof msg), msg);
 }
 
 stewart_inverse_options test_options(stewart_fidelity fidelity) {
@@ -77,10 +81,31 @@ double closed_form_length(const stewart_params *params, const stewart_pose *pose
 stewart_inverse *test_inverse(const stewart_model *m) {
     stewart_inverse_options o;
     stewart_inverse_options_default(&o);
+    return test_inverse_with(m, &o);
+}
+
+stewart_inverse *test_inverse_with(const stewart_model *m, const stewart_inverse_options *o) {
     char msg[STEWART_MESSAGE_SIZE];
-    stewart_inverse *d = stewart_inverse_create(m, &o, msg, sizeof msg);
-    if (!d) TEST_FAIL_MESSAGE(msg);
-    return d;
+    return made(stewart_inverse_create(m, o, msg, sizeof msg), msg);
+}
+
+stewart_forward *test_forward(const stewart_model *m) {
+    stewart_forward_options o;
+    stewart_forward_options_default(&o);
+    char msg[STEWART_MESSAGE_SIZE];
+    return made(stewart_forward_create(m, &o, msg, sizeof msg), msg);
+}
+
+stewart_plant_options test_plant_options(int fidelity) {
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    o.fidelity = fidelity;
+    return o;
+}
+
+stewart_plant *test_plant_with(const stewart_model *m, const stewart_plant_options *o) {
+    char msg[STEWART_MESSAGE_SIZE];
+    return made(stewart_plant_create(m, o, msg, sizeof msg), msg);
 }
 
 stewart_status solve_as(stewart_inverse *d, const stewart_inverse_options *o,

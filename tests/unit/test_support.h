@@ -5,6 +5,12 @@
 #include <stdint.h>
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_forward.h"
+#include "stewart/stewart_plant.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -30,6 +36,14 @@ double closed_form_length(const stewart_params *params, const stewart_pose *pose
 
 /* An inverse solver for m with the default options; fails the test if it cannot be made. */
 stewart_inverse *test_inverse(const stewart_model *m);
+/* An inverse solver for m with the options o; fails the test if it cannot be made. */
+stewart_inverse *test_inverse_with(const stewart_model *m, const stewart_inverse_options *o);
+/* A forward solver for m with the default options; fails the test if it cannot be made. */
+stewart_forward *test_forward(const stewart_model *m);
+/* The plant's default options at fidelity, and a plant for m with options o (fails the test
+ * with the library's message if it cannot be made). */
+stewart_plant_options test_plant_options(int fidelity);
+stewart_plant *test_plant_with(const stewart_model *m, const stewart_plant_options *o);
 /* stewart_inverse_solve as with options o from d's state: a solver made with o takes d's state
  * (stewart_inverse_copy), solves, and gives its state and message back to d. The tests' way to
  * vary the options along one history. */
@@ -44,5 +58,9 @@ uint64_t test_random(uint64_t *state);
  * special value (0, 1e15, DBL_MAX, subnormal, NaN, inf, ...), a small relative change, 2 pi added,
  * the sign changed, or a random magnitude. */
 double corrupted_value(uint64_t *rng, double v);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
