@@ -29,7 +29,7 @@ from ..params import read_platform_file
 from ..platform import Platform
 from ..scenes import POSE
 from . import trajectory
-from .volume import FIRST_CELLS, MAX_CELLS, checked_home, home_pose
+from .volume import FIRST_CELLS, MAX_CELLS, checked_home
 
 SOLVER_OPTIONS = ("tolerance", "max_iterations", "modified_newton", "warn_condition",
                   "singular_condition")
@@ -259,10 +259,7 @@ def _csv_manoeuvre(m: dict, field: str, spec_dir: pathlib.Path, base: Platform) 
     if about == "first":
         about = data["pose"][0]
     elif about == "home":
-        try:
-            about = home_pose(base)
-        except ValueError as e:
-            raise SpecError(f"{field}.about = 'home': {e}") from None
+        about = base.check().home
     elif _is_numbers(about) and len(about) == 6 and all(math.isfinite(v) for v in about):
         about = np.asarray(about, dtype=float)
     else:
