@@ -5,8 +5,8 @@ of Platform.limits (strokes, joint angles, leg interference, condition number).
 How it is measured (docs/sweeps.md, "The workspace volume"):
 
 1. The box. Home (Platform.check().home: the tool's pose in the user frame with the platform at
-   (0, 0, home_height)) must be within every limit. The box starts as the x, y and z axis ranges (Platform.axis_ranges)
-   of the home position at the chosen orientation, and each face on which a grid of points finds
+   (0, 0, home_height)) must be within every limit. The box starts as the x, y and z axis
+   ranges (Platform.axis_ranges) of the home position at the chosen orientation, and each face on which a grid of points finds
    a position within the limits is moved out to the farthest axis-range end from those points,
    until no face holds one: the box follows the machine's own size, whatever its units or
    frames.
