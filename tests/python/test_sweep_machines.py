@@ -118,6 +118,19 @@ def test_bad_placements_are_refused_naming_the_field(change, words):
         assert w in str(e.value)
 
 
+def test_a_scene_with_a_move_is_refused_not_cut_to_its_sinusoids():
+    """Before, a scene with sinusoids and a move was swept as its sinusoids alone, and a move
+    alone was refused as "a mechanism scene"."""
+    sinusoids = {"name": "nod_then_go", "duration": 1.0, "step": 0.01,
+                 "pose": {"z": {"mean": 0.5, "amplitude": 0.01, "omega": 1.5 * np.pi,
+                                "phase": 0.0}},
+                 "move": {"goal": [0.02, 0, 0.49, 0, 0, 0]}}
+    for scene in ("move_line", sinusoids):
+        with pytest.raises(SpecError, match=r"manoeuvres\[0\].scene = '(move_line|nod_then_go)' "
+                                            r"has a move section"):
+            resolve({"kind": "envelope", "manoeuvres": [{"scene": scene}]}, SCENES)
+
+
 def test_a_home_beyond_a_limit_refuses_the_placement_and_says_what_to_do():
     spec = {"kind": "envelope", "platform": {"stroke_max": 0.45},
             "manoeuvres": [{"scene": "heave"}]}

@@ -254,6 +254,9 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Pa
             raise SpecError(f"{field}.scene = {scene!r} must be a scene name or a scene object")
     except scenes.SceneError as e:
         raise SpecError(f"{field}.scene: {e}" if isinstance(m["scene"], str) else str(e)) from None
+    if "move" in scene:  # planned on a platform, not a sum of sinusoids the sweep can scale
+        raise SpecError(f"{field}.scene = {name!r} has a move section: an envelope sweeps "
+                        "sinusoids; give the move's poses as a CSV trajectory ({\"csv\": ...})")
     if "pose" not in scene:
         raise SpecError(f"{field}.scene = {name!r} has no pose (a mechanism scene cannot be swept)")
     place = m.get("place", "home")
