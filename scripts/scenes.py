@@ -31,7 +31,7 @@ def add_platform_arguments(parser):
     parser.add_argument("--platform", help="a platform file (docs/geometry.md): the machine the "
                         "scene runs on; the scene then moves about the machine's home pose")
     parser.add_argument("--scale-to-ranges", action="store_true",
-                        help="with --platform: scale the scene to half the machine's axis "
+                        help="scale the scene to half the machine's (--platform's) axis "
                              "ranges from home (and less until every sample is within every "
                              "limit)")
 

@@ -15,6 +15,7 @@ consequences (pose accuracy, what the prior set) in calibration_accuracy.py.
 """
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from typing import Optional
@@ -416,25 +417,58 @@ def _condition(A: np.ndarray) -> float:
     return float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
 
 
+#: The most poses, as a multiple of those given, a refusal of max_std looks for.
+MORE_POSES_MAX = 10.0
+
+
+def _posterior_std(problem: _Problem, information: np.ndarray) -> np.ndarray:
+    """Each free unknown's standard deviation [m or rad] from the information (scaled)."""
+    cov_z = np.linalg.inv(information)
+    std = np.sqrt(np.clip(np.diag(problem.T @ cov_z @ problem.T.T), 0, None))
+    return std[problem.layout.free]
+
+
 def _refuse_unobservable(problem: _Problem, max_std: float) -> None:
     """UnobservableError when an unknown's standard deviation from these poses (data and
-    prior, at the nominal geometry) would be above max_std [m or rad], naming those unknowns."""
+    prior, at the nominal geometry) would be above max_std [m or rad], naming those unknowns
+    and what would pass: the poses needed if more poses of the same spread would do (the data's
+    information grows with their number, the prior's does not), else that none would."""
     prior_rows = _prior_rows(problem)
-    cov_z = np.linalg.inv(problem.A.T @ problem.A + prior_rows.T @ prior_rows)
-    free = problem.layout.free
-    std = np.sqrt(np.clip(np.diag(problem.T @ cov_z @ problem.T.T), 0, None))[free]
+    data, prior = problem.A.T @ problem.A, prior_rows.T @ prior_rows
+    std = _posterior_std(problem, data + prior)
     over = np.flatnonzero(std > max_std)
     if over.size == 0:
         return
     names = [problem.layout.names[i] for i in over]
     condition = _condition(np.vstack([problem.A, prior_rows]))
+    poses = problem.A.shape[0] // 6  # six whitened readings a pose
+    needed = next((k for k in np.arange(1.25, MORE_POSES_MAX + 1e-9, 0.25)
+                   if _posterior_std(problem, k * data + prior).max() <= max_std), None)
+    if needed is not None:
+        more = math.ceil(needed * poses)
+        advice = (f"About {more} poses of the same spread would (stewart.calibration_poses("
+                  f"platform, {more}) with the same identify and tolerances; "
+                  f"stewart.observability(..., max_std=) checks them before measuring)")
+    else:
+        advice = (f"No number of poses of this spread would (not {MORE_POSES_MAX:g} times as "
+                  "many): the data barely see these unknowns, as on a machine whose legs hardly "
+                  "turn, where a joint's shift along its leg reads as its length offset. Leave "
+                  "max_std out: the fit then keeps what the data cannot see near nominal, and its "
+                  "report's predicted pose error says what that costs; or identify fewer "
+                  "unknowns (identify=, --identify; stewart.observability(..., identify=, "
+                  "max_std=) says whether a choice passes)")
     raise UnobservableError(
-        f"these poses cannot identify the geometry to max_std = {max_std:g}: {over.size} "
-        f"unknown(s) would have a larger standard deviation (up to {std.max():.3g}; condition "
-        f"number {condition:.3g}): {_ranges(names)}. Measure poses of varied orientation and "
-        f"position (stewart.calibration_poses with the same identify), identify fewer unknowns "
-        f"(identify=), or accept a larger max_std",
-        names, condition)
+        f"these poses cannot identify the geometry to max_std = {max_std:g} (m or rad): "
+        f"{over.size} unknown(s) would have a larger standard deviation (up to "
+        f"{std.max():.4g}, {std.max() / max_std:.4g} times max_std; condition number "
+        f"{condition:.3g}): {_ranges(names)}. {advice}; or accept a max_std of "
+        f"{_round_up(std.max())} (--max-std)", names, condition)
+
+
+def _round_up(value: float) -> str:
+    """value rounded up to 2 significant digits, as text."""
+    digits = 1 - math.floor(math.log10(value))
+    return f"{math.ceil(value * 10 ** digits) / 10 ** digits:g}"
 
 
 def _ranges(names: list[str]) -> str:

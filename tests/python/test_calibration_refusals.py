@@ -1,12 +1,15 @@
 """What stewart.calibrate refuses, each with a message naming the cause and what to do: readings
 in millimetres, a reading of 1e300, all readings 0, a reading of -5 m, one +1 m reading (the
 outlier named by row and leg), a pose at pitch 90 deg, noises and max_evaluations out of range;
-and the unknowns chosen with identify (the others stay exactly nominal)."""
+and the unknowns chosen with identify (the others stay exactly nominal); a max_std that the
+poses cannot meet, with what would pass (more poses, checked with calibration_poses; or none).
+"""
 import numpy as np
 import pytest
 
 import stewart
 from stewart.calibration_checks import MeasurementError
+from stewart.calibration_model import readings_and_jacobian
 
 import calibration_truth as truth
 
@@ -184,3 +187,53 @@ def test_poses_for_a_z_down_machine_are_refused_with_the_conversion(tmp_path):
 def test_poses_for_another_rotation_order_name_the_converter():
     with pytest.raises(ValueError, match=r"rotation_order 1.*convert_angles\(angles, 1, 0\)"):
         stewart.calibration_poses(stewart.Platform(rotation_order=1), 30)
+
+
+def _advice(machine):
+    """The max_std = 0.1 mm refusal with a 0.5 mm joint tolerance of 30 poses from
+    calibration_poses on a shipped machine (as docs/calibration.md did), its poses and the
+    message."""
+    platform = stewart.Platform.from_file(stewart.platform_files()[machine])
+    poses = stewart.calibration_poses(platform, 30)
+    readings = readings_and_jacobian(platform, poses)[0]  # the nominal machine's
+    with pytest.raises(stewart.UnobservableError) as error:
+        stewart.calibrate(platform, poses, readings, joint_tolerance=5e-4, max_std=1e-4)
+    return platform, poses, str(error.value)
+
+
+def _accepted(message):
+    import re
+    return float(re.search(r"accept a max_std of ([0-9.e+-]+) \(--max-std\)", message).group(1))
+
+
+def test_a_max_std_refusal_names_the_poses_that_would_pass():
+    """SIMONA's 30 poses leave one length offset at 1.005 times 0.1 mm: the refusal names how
+    many poses of the same spread would pass (checked here with poses calibration_poses chooses)
+    and the smallest max_std these poses pass (before, it advised poses of varied orientation,
+    which these already are, and gave the value as "up to 0.0001", the limit itself)."""
+    import re
+    platform, poses, message = _advice("simona_motion_base")
+    assert "length_offset[3]" in message
+    more = int(re.search(r"About (\d+) poses of the same spread would", message).group(1))
+    assert 30 < more <= 60
+    design = stewart.calibration_poses(platform, more)
+    assert np.isfinite(stewart.observability(platform, design, joint_tolerance=5e-4,
+                                             max_std=1e-4))
+    assert np.isfinite(stewart.observability(platform, poses, joint_tolerance=5e-4,
+                                             max_std=_accepted(message)))
+
+
+def test_a_max_std_no_poses_can_meet_says_so_and_what_passes():
+    """On the Rubin camera hexapod (+-14 mm strokes) the data barely see 18 combinations of the
+    joints and offsets: four times the poses still refuse, and the refusal says no number of
+    poses would, and what does pass: leaving max_std out (the regularised fit), fewer unknowns
+    (offsets alone pass), or the max_std it names."""
+    platform, poses, message = _advice("rubin_camera_hexapod")
+    assert "No number of poses of this spread would" in message
+    assert "Leave max_std out" in message and "--identify" in message
+    design = stewart.calibration_poses(platform, 120)
+    assert stewart.observability(platform, design, joint_tolerance=5e-4, max_std=1e-4) == np.inf
+    assert np.isfinite(stewart.observability(platform, poses, identify="offsets",
+                                             joint_tolerance=5e-4, max_std=1e-4))
+    assert np.isfinite(stewart.observability(platform, poses, joint_tolerance=5e-4,
+                                             max_std=_accepted(message)))

@@ -626,7 +626,8 @@ def test_envelope_csv_in_the_units_asked_for(tmp_path):
 
 @pytest.mark.parametrize("name", sorted(stewart.platform_files()))
 def test_feasibility_on_every_shipped_machine(name):
-    """A heave about each shipped machine's home (its platform file as it is, payload and all):
+    """A heave written about each shipped machine's home ("place": "absolute": its poses as
+    written; its platform file as it is, payload and all):
     at half the distance to the nearer end of home's z axis range every pose is within every
     limit; at 1.5 times it the case is a row beyond the limit that ends the axis range first,
     with a negative margin of that class (a machine whose home is beyond a limit: every case,
@@ -643,7 +644,8 @@ def test_feasibility_on_every_shipped_machine(name):
     scene = {"name": "heave", "pose": {c: {"mean": float(v)} for c, v in zip(POSE, q0)}}
     scene["pose"]["z"].update(amplitude=amplitude, omega=2 * np.pi)
     spec = resolve({"kind": "envelope", "platform_file": str(path), "duration": 1.0, "step": 0.005,
-                    "manoeuvres": [{"scene": scene, "amplitude": [0.5, 1.5]}]}, SCENES)
+                    "manoeuvres": [{"scene": scene, "place": "absolute",
+                                    "amplitude": [0.5, 1.5]}]}, SCENES)
     table, _ = envelope_chunk(spec, chunks(spec)[0])
     t = {k: table[k].to_pylist() for k in table.column_names}
     assert t["status"] == [0, 0] and t["poses"] == [201, 201]

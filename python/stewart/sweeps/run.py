@@ -127,10 +127,12 @@ def versions() -> dict:
             "python": sys.version.split()[0], "machine": host.machine()}
 
 
-def prepare(spec_path, out_dir, scene_dir) -> tuple[dict, pathlib.Path]:
-    """Loads and checks the spec (SpecError before anything is written), then creates OUT_DIR
-    with spec.json and version.json; refuses an OUT_DIR that holds another spec's results."""
-    spec = load(spec_path, scene_dir)
+def prepare(spec_path, out_dir, scene_dir, platform_file=None,
+            scale_to_ranges: bool = False) -> tuple[dict, pathlib.Path]:
+    """Loads and checks the spec (SpecError before anything is written; platform_file and
+    scale_to_ranges as spec.load takes them), then creates OUT_DIR with spec.json and
+    version.json; refuses an OUT_DIR that holds another spec's results."""
+    spec = load(spec_path, scene_dir, platform_file, scale_to_ranges)
     out = pathlib.Path(out_dir)
     spec_file = out / "spec.json"
     text = json.dumps(spec, indent=1, sort_keys=True)
@@ -154,13 +156,16 @@ def missing_chunks(spec: dict, out: pathlib.Path) -> list[Chunk]:
 
 def run(spec_path, out_dir, scene_dir, workers: Optional[int] = None,
         scheduler: Optional[str] = None, progress: bool = True,
-        log: Callable[[str], None] = print, units: Units | str = Units()) -> dict:
+        log: Callable[[str], None] = print, units: Units | str = Units(),
+        platform_file=None, scale_to_ranges: bool = False) -> dict:
     """Runs (or finishes) the sweep of spec_path into out_dir; returns the run summary, also in
     run.json. A chunk that raises is reported and left missing (a rerun retries it). units
     ("mm,deg", or a Units): the lengths and angles of the merged results, the CSV, volume.json
-    and the plots (the chunks stay SI); ValueError names a unit that is not one."""
+    and the plots (the chunks stay SI); ValueError names a unit that is not one.
+    platform_file (a path from the working directory) replaces the spec's platform_file;
+    scale_to_ranges sets an envelope's (its scenes scaled to the machine's axis ranges)."""
     units = units if isinstance(units, Units) else Units.parse(units)
-    spec, out = prepare(spec_path, out_dir, scene_dir)
+    spec, out = prepare(spec_path, out_dir, scene_dir, platform_file, scale_to_ranges)
     todo = missing_chunks(spec, out)
     total = len(chunks(spec))
     log(f"sweep: {total} chunks, {total - len(todo)} already done, {len(todo)} to compute")

@@ -3,7 +3,10 @@
 A spec is JSON (docs/sweeps.md has the full format). Two kinds:
 
 * ``"kind": "envelope"``: cases = payload_mass x payload_com x manoeuvre (scene x amplitude scale
-  x frequency scale) x fidelity; each case is one trajectory; per case the peaks (work.py).
+  x frequency scale) x fidelity; each case is one trajectory; per case the peaks (work.py). A
+  scene moves about the machine's home pose as scripts/run_scene.py --platform moves it
+  (stewart.scenes.on_platform; ``"scale_to_ranges"`` scales it to the machine's axis ranges),
+  unless its manoeuvre says ``"place": "absolute"`` (its poses as written).
 * ``"kind": "workspace"``: slices of the pose space, each one or two pose components on a grid
   with the others fixed; per pose reachability within every limit, the limit margins, condition
   and static forces; optionally (``"volume"``) the constant-orientation workspace volume.
@@ -29,7 +32,7 @@ from ..params import read_platform_file
 from ..platform import Platform
 from ..scenes import POSE
 from . import trajectory
-from .volume import FIRST_CELLS, MAX_CELLS, checked_home, home_pose
+from .volume import FIRST_CELLS, MAX_CELLS, checked_home
 
 SOLVER_OPTIONS = ("tolerance", "max_iterations", "modified_newton", "warn_condition",
                   "singular_condition")
@@ -42,7 +45,7 @@ BYTES_PER_VALUE = 48
 _COMMON = {"kind", "platform_file", "platform", "options", "fidelity", "title"}
 _FIELDS = {
     "envelope": _COMMON | {"payload_mass", "payload_com", "manoeuvres", "duration", "step",
-                           "cases_per_chunk"},
+                           "cases_per_chunk", "scale_to_ranges"},
     "workspace": _COMMON | {"slices", "poses_per_chunk", "volume"},
 }
 
@@ -64,13 +67,23 @@ class Chunk:
         return f"{self.part}-{self.index:05d}.parquet"
 
 
-def load(path: str | pathlib.Path, scene_dir: str | pathlib.Path) -> dict:
+def load(path: str | pathlib.Path, scene_dir: str | pathlib.Path,
+         platform_file: str | pathlib.Path | None = None, scale_to_ranges: bool = False) -> dict:
     """The spec in JSON file `path`, checked and resolved (see resolve); a relative
-    platform_file is found beside the spec."""
+    platform_file is found beside the spec. platform_file (a path from the working directory:
+    `sweep.py --platform`) replaces the spec's; scale_to_ranges (`--scale-to-ranges`) sets an
+    envelope's."""
     try:
         raw = json.loads(pathlib.Path(path).read_text())
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as e:
         raise SpecError(f"{path}: {e}") from None
+    if isinstance(raw, dict) and platform_file is not None:
+        raw = {**raw, "platform_file": str(pathlib.Path(platform_file).resolve())}
+    if isinstance(raw, dict) and scale_to_ranges:
+        if raw.get("kind") != "envelope":
+            raise SpecError(f"--scale-to-ranges scales an envelope's scenes: {path} is a "
+                            f"{raw.get('kind')!r} spec")
+        raw = {**raw, "scale_to_ranges": True}
     return resolve(raw, scene_dir, pathlib.Path(path).parent)
 
 
@@ -172,6 +185,9 @@ def _envelope(raw: dict, spec: dict, base: Platform, scene_dir: pathlib.Path,
         out["payload_com"].append(c.tolist())
     out["duration"] = _optional_positive(raw, "duration")
     out["step"] = _optional_positive(raw, "step")
+    out["scale_to_ranges"] = raw.get("scale_to_ranges", False)
+    if not isinstance(out["scale_to_ranges"], bool):
+        raise SpecError(f"scale_to_ranges = {out['scale_to_ranges']!r} must be true or false")
     out["manoeuvres"] = [_manoeuvre(m, f"manoeuvres[{i}]", scene_dir, spec_dir, out, base)
                          for i, m in enumerate(_list(raw.get("manoeuvres"), "manoeuvres"))]
     out["cases_per_chunk"] = _positive_int(raw.get("cases_per_chunk", 8), "cases_per_chunk")
@@ -200,11 +216,12 @@ def _check_envelope_size(spec: dict) -> None:
 def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Path,
                top: dict, base: Platform) -> dict:
     """A scene (a name in scene_dir or an inline scene object, whose duration and step default
-    to the spec's) or a CSV trajectory, with its amplitude and frequency scales."""
+    to the spec's), placed as its "place" says, or a CSV trajectory, with its amplitude and
+    frequency scales."""
     if not isinstance(m, dict) or ("scene" in m) == ("csv" in m):
         raise SpecError(f"{field} = {m!r} must be an object with a 'scene' (a name in scenes/ "
                         "or an inline scene object) or a 'csv' (a trajectory file)")
-    known = {"scene", "amplitude", "frequency"} if "scene" in m else \
+    known = {"scene", "place", "amplitude", "frequency"} if "scene" in m else \
         {"csv", "name", "about", "amplitude", "frequency"}
     unknown = sorted(set(m) - known)
     if unknown:
@@ -237,10 +254,41 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Pa
             raise SpecError(f"{field}.scene = {scene!r} must be a scene name or a scene object")
     except scenes.SceneError as e:
         raise SpecError(f"{field}.scene: {e}" if isinstance(m["scene"], str) else str(e)) from None
+    if "move" in scene:  # planned on a platform, not a sum of sinusoids the sweep can scale
+        raise SpecError(f"{field}.scene = {name!r} has a move section: an envelope sweeps "
+                        "sinusoids; give the move's poses as a CSV trajectory ({\"csv\": ...})")
     if "pose" not in scene:
         raise SpecError(f"{field}.scene = {name!r} has no pose (a mechanism scene cannot be swept)")
-    return {"name": name, "scene": {"pose": scene["pose"], "duration": float(scene["duration"]),
-                                    "step": float(scene["step"])}, **scales}
+    place = m.get("place", "home")
+    if place == "home":
+        scene = _placed(scene, base, top, field)
+    elif place != "absolute":
+        raise SpecError(f"{field}.place = {place!r} must be 'home' (the scene moved from the pose "
+                        "it is written about to the machine's home) or 'absolute' (its poses as "
+                        "written)")
+    elif top["scale_to_ranges"]:
+        raise SpecError(f"{field}.place = 'absolute' with scale_to_ranges: the scaling is about "
+                        "the machine's home; place the scene at home, or do not scale")
+    played = {"pose": scene["pose"], "duration": float(scene["duration"]),
+              "step": float(scene["step"])}
+    if place == "home":
+        played["home"] = scene["home"]  # the machine's: where the scene was placed
+    return {"name": name, "place": place, "scene": played, **scales}
+
+
+def _placed(scene: dict, base: Platform, top: dict, field: str) -> dict:
+    """The scene moved from its home (the pose it is written about: its "home", default the
+    thesis platform's, as the shipped scenes are) to the machine's home pose and scaled to its
+    axis ranges with the spec's scale_to_ranges, as scripts/run_scene.py --platform moves it
+    (stewart.scenes.on_platform); scaled, its samples are checked on the sweep's time grid."""
+    on_grid = {**scene, **{k: top[k] for k in ("duration", "step") if top.get(k) is not None}}
+    try:
+        placed = scenes.on_platform({k: v for k, v in on_grid.items() if k != "move"}, base,
+                                    scale_to_ranges=top["scale_to_ranges"])
+    except scenes.SceneError as e:
+        raise SpecError(f"{field}: {e}\n(\"place\": \"absolute\" plays the scene's poses as "
+                        "written)") from None
+    return {**scene, "pose": placed["pose"], "home": placed["home"]}
 
 
 def _csv_manoeuvre(m: dict, field: str, spec_dir: pathlib.Path, base: Platform) -> dict:
@@ -259,10 +307,7 @@ def _csv_manoeuvre(m: dict, field: str, spec_dir: pathlib.Path, base: Platform) 
     if about == "first":
         about = data["pose"][0]
     elif about == "home":
-        try:
-            about = home_pose(base)
-        except ValueError as e:
-            raise SpecError(f"{field}.about = 'home': {e}") from None
+        about = base.check().home
     elif _is_numbers(about) and len(about) == 6 and all(math.isfinite(v) for v in about):
         about = np.asarray(about, dtype=float)
     else:

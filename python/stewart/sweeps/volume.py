@@ -4,9 +4,9 @@ of Platform.limits (strokes, joint angles, leg interference, condition number).
 
 How it is measured (docs/sweeps.md, "The workspace volume"):
 
-1. The box. Home (the tool's pose in the user frame with the platform at (0, 0, home_height))
-   must be within every limit. The box starts as the x, y and z axis ranges (Platform.axis_ranges)
-   of the home position at the chosen orientation, and each face on which a grid of points finds
+1. The box. Home (Platform.check().home: the tool's pose in the user frame with the platform at
+   (0, 0, home_height)) must be within every limit. The box starts as the x, y and z axis
+   ranges (Platform.axis_ranges) of the home position at the chosen orientation, and each face on which a grid of points finds
    a position within the limits is moved out to the farthest axis-range end from those points,
    until no face holds one: the box follows the machine's own size, whatever its units or
    frames.
@@ -69,27 +69,14 @@ def _value(platform: Platform, name: str) -> np.ndarray:
     return np.broadcast_to(np.asarray(value, dtype=float), (entry["count"],)).copy()
 
 
-def home_pose(platform: Platform) -> np.ndarray:
-    """The tool frame's pose in the user frame (6 values) with the platform at home (0, 0,
-    home_height, 0, 0, 0): forward kinematics of the home readings, so any frames and the
-    library's own pose convention hold. ValueError if the library cannot solve it."""
-    base, top = (np.reshape(j, (6, 3)) for j in _core.model_joints(platform._model))
-    height = _value(platform, "home_height")[0]
-    lengths = np.linalg.norm(top + [0.0, 0.0, height] - base, axis=1)
-    readings = lengths - _value(platform, "length_offset")
-    solved = platform.forward(readings[None, :], max_messages=1)
-    if not solved.ok[0]:
-        raise ValueError(f"the home pose cannot be solved: {solved.messages.get(0, '')}")
-    return np.asarray(solved.pose[0], dtype=float)
-
-
 def checked_home(platform: Platform, warn_condition: Optional[float] = None) -> np.ndarray:
-    """home_pose, or ValueError naming the first limit it is beyond and by how much."""
-    home = home_pose(platform)
-    check = platform.limits(home[None, :], warn_condition=_warn_condition(warn_condition))
-    if not check.within[0]:
-        raise ValueError(_invalid_home(home, check))
-    return home
+    """The home pose (Platform.check().home: the tool's pose in the user frame with the platform
+    at (0, 0, home_height)), or ValueError naming the first limit it is beyond and by how
+    much."""
+    report = platform.check(warn_condition=warn_condition)
+    if not report.valid:
+        raise ValueError(_invalid_home(report.home, report.limits))
+    return report.home
 
 
 def reach_radius(platform: Platform) -> tuple[np.ndarray, float]:
