@@ -137,7 +137,8 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     if player:
         folder = tempfile.TemporaryDirectory()
         units.append(Unit(fmus / "StewartScene.fmu", "scene",
-                          scenes.player_values(scene, folder.name, platform, h, duration)))
+                          scenes.player_values(scene, pathlib.Path(folder.name) / "scene.csv",
+                                               platform, h, duration)))
         cue, cue_dot, cue_ddot = (np.zeros((n + 1, 6)) for _ in range(3))
     pose = np.zeros((n + 1, 6))
     force, feed_forward = np.zeros((n + 1, 6)), np.zeros((n + 1, 6))

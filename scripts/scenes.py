@@ -70,15 +70,15 @@ def write_trajectory(path, t, q, qd, qdd, derivatives=True):
             f.write(",".join(repr(float(v)) for v in row) + "\n")
 
 
-def player_values(scene, folder, platform=None, step=None, duration=None):
+def player_values(scene, path, platform=None, step=None, duration=None):
     """The scene player's (StewartScene.fmu) parameters that play the scene: its sinusoids; for
     a scene with a move, its trajectory (trajectory(): the move planned by stewart.move on
-    platform at `step`, held at rest to `duration`) written to folder/scene_trajectory.csv and
-    that file's absolute path as trajectory_file."""
+    platform at `step`, held at rest to `duration`) written to the file `path` and that file's
+    absolute path as trajectory_file (the player reads it when it is initialised)."""
     if "move" not in scene:
         return {f"{p}_{key}": float(scene["pose"].get(p, {}).get(key, 0.0))
                 for p in POSE for key in scenes.SINUSOID}
-    path = (pathlib.Path(folder) / "scene_trajectory.csv").resolve()
+    path = pathlib.Path(path).resolve()
     write_trajectory(path, *trajectory(scene, platform, step, duration))
     return {"trajectory_file": str(path)}
 

@@ -258,3 +258,36 @@ def test_the_closed_loop_with_the_player_tracks_as_the_python_loop(name):
     assert difference <= 1e-12
     assert np.allclose(closed_loop.tracking_error(fmu), closed_loop.tracking_error(python),
                        rtol=1e-6, atol=0)
+
+
+@pytest.mark.parametrize("name", sorted(FILES))
+def test_machine_ssp_plays_a_move_scene_in_ecos_and_libcosim(name, tmp_path):
+    """scripts/machine_ssp.py --scene move_line: the move planned on the machine, written next to
+    the archive and named by the player's trajectory_file in the SSV set and the OSP structure.
+    ecos (SSP, FMI 2 and FMI 3) and libcosim (OSP) run it alike, and the plant follows the fmpy
+    loop fed from Python within the coupling error (1 % of the move's excursion, the bound of
+    test_ssp.py's sinusoidal cue)."""
+    import machine_ssp
+    from test_ssp import H, libcosim_poses, machine_ecos_run
+    path = FILES[name]
+    platform = stewart.Platform.from_file(path)
+    scene, _, _ = scene_on(name)
+    steps = len(scenes.trajectory(scene, platform, H)[0]) + 20  # and 20 steps held at the goal
+    runs = []
+    for version in ("2.0", "3.0"):
+        archive = tmp_path / f"{name}_{version}.ssp"
+        osp = tmp_path / f"{name}.xml"
+        assert machine_ssp.write(path, archive, version, scale_to_ranges=True, scene="move_line",
+                                 fmus=BUILD / "fmus" / "2.0", osp_out=osp) == name
+        assert (tmp_path / f"{name}_{version}_trajectory.csv").exists()
+        runs.append(machine_ecos_run(archive, name, steps)[0])
+    np.testing.assert_allclose(runs[1], runs[0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(libcosim_poses(osp, steps), runs[0], rtol=0,
+                               atol=1e-9 * max(1.0, np.abs(runs[0]).max()))
+    kp, kd = closed_loop.machine_gains(platform)
+    loop = closed_loop.run(scene, steps * H, H, kp, kd, fmus=BUILD / "fmus" / "2.0",
+                           machine=stewart.fmu_start_values(platform), platform=platform)[0]
+    excursion = np.abs(loop["cue"] - loop["cue"][0]).max(axis=0)
+    tolerance = 1e-2 * np.r_[[excursion[:3].max()] * 3, [max(excursion[3:].max(), 1e-6)] * 3]
+    assert np.all(np.abs(runs[0] - loop["pose"][1:]) <= tolerance), name
+    assert np.all(np.abs(runs[0][-1] - loop["cue"][-1]) <= tolerance), name
