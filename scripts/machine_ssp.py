@@ -45,7 +45,7 @@ def machine_values(platform, scene, trajectory_path=None):
     """{unit: {variable: value}}: the closed loop's initial values for the machine (before the
     input connectors' start values). A scene with a move: the move planned on the machine at
     the scene's step, written to trajectory_path for the scene player (scenes.player_values)."""
-    _, cue, cue_dot, _ = scenes.trajectory(scene, platform, duration=0.0)
+    _, cue, cue_dot, _ = scenes.trajectory(scene, platform)
     kp, kd = closed_loop.machine_gains(platform)
     plant = stewart.fmu_start_values(platform, model="StewartPlant")
     plant.update({f"{p}0": float(v) for p, v in zip(POSE, cue[0])})

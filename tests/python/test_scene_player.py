@@ -9,6 +9,7 @@ shipped machine, through the closed loop with the player in it (scripts/closed_l
 as the OSP and SSP structures run it) tracks as the Python-driven loop does, and
 scripts/machine_ssp.py writes a move scene's closed loop for libcosim."""
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -291,3 +292,21 @@ def test_machine_ssp_plays_a_move_scene_in_ecos_and_libcosim(name, tmp_path):
     tolerance = 1e-2 * np.r_[[excursion[:3].max()] * 3, [max(excursion[3:].max(), 1e-6)] * 3]
     assert np.all(np.abs(runs[0] - loop["pose"][1:]) <= tolerance), name
     assert np.all(np.abs(runs[0][-1] - loop["cue"][-1]) <= tolerance), name
+
+
+def test_control_design_runs_a_move_scene():
+    """scripts/control_design.py --scene move_line: both loops run the planned move (no
+    SceneError) over the move and its hold, and track it within the closed loop's goal (1 mm,
+    1 mrad)."""
+    ran = subprocess.run([sys.executable, str(scenes.ROOT / "scripts" / "control_design.py"),
+                          "--scene", "move_line", "--fmus", str(BUILD / "fmus" / "2.0")],
+                         capture_output=True, text=True, timeout=600)
+    assert ran.returncode == 0, ran.stderr
+    scene = scenes.load("move_line")
+    duration = scenes.trajectory(scene, stewart.Platform(), DT)[0][-1]
+    lines = [line for line in ran.stdout.splitlines() if f"move_line over {duration:g} s" in line]
+    assert len(lines) == 2, ran.stdout
+    for line in lines:
+        position, angle = map(float, re.search(r"tracking error max (\S+) m, (\S+) rad",
+                                               line).groups())
+        assert position <= 1e-3 and angle <= 1e-3, line
