@@ -231,6 +231,8 @@ def test_a_restored_state_replays_bit_for_bit(tmp_path, version):
         assert np.array_equal(first, again)
         # the serialised state carries its file's path: another instance replays it too
         other.set_state(other.deserialize(saved))
+        got = other.fmu.getString([other.vr["trajectory_file"]])[0]
+        assert (got.decode() if isinstance(got, bytes) else got) == str(tmp_path / "move.csv")
         replay = []
         for j in range(20, 40):
             assert other.step(j * h, h) == OK

@@ -19,7 +19,7 @@
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.001\""
 #define FMU_CAN_INTERPOLATE_INPUTS 0
 
-/* One String parameter, trajectory_file: its value lives in the plain values, so a state holds it. */
+/* One String parameter, trajectory_file: in the plain values, so that a state holds it. */
 #define FMU_STRING_PARAMETERS 1
 #define FMU_STRING_SIZE 4096
 
