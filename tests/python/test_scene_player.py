@@ -191,8 +191,8 @@ def comma_locale(folder):
         return {}
     except locale.Error:
         pass
-    made = subprocess.run(["localedef", "-i", "de_DE", "-f", "UTF-8",
-                           str(folder / "de_DE.UTF-8")], capture_output=True)
+    subprocess.run(["localedef", "-i", "de_DE", "-f", "UTF-8",
+                    str(folder / "de_DE.UTF-8")], capture_output=True)
     return {"LOCPATH": str(folder)} if (folder / "de_DE.UTF-8").exists() else None
 
 
