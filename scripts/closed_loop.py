@@ -11,6 +11,9 @@ outputs at t come first and the loop has no algebraic part):
   2. the plant's measured lengths L and rates L_dot at t -> the controller, with 1.:
      F = F_ff + kp (L_ref - L) + kd (L_dot_ref - L_dot);
   3. F -> the plant, held over [t, t + h]; every unit steps to t + h.
+With --player the cue of 1. comes from the scene player unit (StewartScene.fmu) instead, stepped
+with the others: its sinusoids, or for a move the planned trajectory written to a file and played
+through its trajectory_file, as the OSP and SSP structures run the loop.
 
 With --drive current (a platform with drives) the controller runs its current cascade (output =
 1: position -> speed -> current per leg), fed forward with the inverse unit's currents instead of
@@ -18,7 +21,8 @@ its forces, and the plant is driven by the currents (input = 1): the same three 
 in place of forces (docs/drives.md, "Closing the loop on currents").
 
 usage: closed_loop.py [--scene combined] [--duration 12] [--step 0.001] [--kp 1e6] [--kd 1e4]
-                      [--fidelity 2] [--fmus build/fmus/2.0] [--out out/closed_loop] [--no-plot]
+                      [--fidelity 2] [--player] [--fmus build/fmus/2.0] [--out out/closed_loop]
+                      [--no-plot]
                       [--platform FILE.json [--scale-to-ranges]] [--units mm,deg]
                       [--drive current [--position-gain 100] [--speed-gain G]
                        [--speed-integral-time 0.04]]
@@ -31,6 +35,7 @@ the same loop on the motor's side (cascade_gains).
 import argparse
 import pathlib
 import shutil
+import tempfile
 import time
 
 import numpy as np
@@ -42,6 +47,7 @@ import scenes
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 POSE = list(scenes.POSE)
 LEGS = range(1, 7)
+DERIVED = POSE + list(scenes.DOT) + list(scenes.DDOT)
 
 
 def legs(name):
@@ -62,7 +68,9 @@ class Unit:
         self.fmu.instantiate()
         integers = {v.name for v in md.modelVariables if v.type == "Integer"}
         for key, value in parameters.items():
-            if key in integers:
+            if isinstance(value, str):
+                self.fmu.setString([self.vr[key]], [value])
+            elif key in integers:
                 self.fmu.setInteger([self.vr[key]], [int(value)])
             else:
                 self.fmu.setReal([self.vr[key]], [float(value)])
@@ -106,7 +114,7 @@ def pd_point(inverse, controller, plant, cue, feed_forward="F"):
 
 def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
         fmus=ROOT / "build" / "fmus" / "2.0", machine=None, platform=None, drive="force",
-        cascade=None):
+        cascade=None, player=False):
     """Runs the loop; returns a dict of arrays (one row per communication point) and the wall
     time [s] of the stepping loop. machine: the platform's FMU start values (None: the thesis
     platform); platform: the same machine as a stewart.Platform, on which a scene's move is
@@ -114,7 +122,11 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     own; beyond a move's end its goal is held at rest). drive "current": the controller's
     cascade with the gains `cascade` (cascade_gains' dict; default: cascade_gains(platform))
     drives the plant with currents; "force" (the default): the PD with kp, kd, forces. The
-    result's "force" column holds what the controller sent (currents [A] with "current")."""
+    result's "force" column holds what the controller sent (currents [A] with "current").
+    player: the cue comes from the scene player unit (StewartScene.fmu) stepped with the others,
+    as libcosim and SSP masters run the loop (a move's trajectory through its trajectory_file);
+    else from the scene sampled in Python. The two give the same cue at the communication
+    points."""
     machine = machine or {}
     if drive not in DRIVES:
         raise ValueError(f"drive = {drive!r}: give one of {', '.join(DRIVES)}")
@@ -135,11 +147,20 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
     controller = Unit(fmus / "StewartController.fmu", "controller", controls)
     plant = Unit(fmus / "StewartPlant.fmu", "plant",
                  {"fidelity": fidelity, **start, **machine, "input": DRIVES.index(drive)})
+    units = [inverse, controller, plant]
+    if player:
+        folder = tempfile.TemporaryDirectory()
+        units.append(Unit(fmus / "StewartScene.fmu", "scene",
+                          scenes.player_values(scene, pathlib.Path(folder.name) / "scene.csv",
+                                               platform, h, duration)))
+        cue, cue_dot, cue_ddot = (np.zeros((n + 1, 6)) for _ in range(3))
     pose = np.zeros((n + 1, 6))
     force, feed_forward = np.zeros((n + 1, 6)), np.zeros((n + 1, 6))
     wall = time.perf_counter()
     try:
         for j in range(n + 1):
+            if player:  # 1. the cue from the scene player unit
+                cue[j], cue_dot[j], cue_ddot[j] = units[3].get(DERIVED).reshape(3, 6)
             force[j], pose[j], feed_forward[j] = pd_point(
                 inverse, controller, plant, [*cue[j], *cue_dot[j], *cue_ddot[j]],
                 feed_forward_name)
@@ -147,12 +168,14 @@ def run(scene="combined", duration=12.0, h=1e-3, kp=1e6, kd=1e4, fidelity=2,
                 break
             # 3. controller -> plant, then every unit steps to t + h
             plant.set(legs("F"), force[j])
-            for unit in (inverse, controller, plant):
+            for unit in units:
                 unit.step(t[j], h)
         wall = time.perf_counter() - wall
     finally:
-        for unit in (inverse, controller, plant):
+        for unit in units:
             unit.free()
+        if player:
+            folder.cleanup()
     return {"t": t, "cue": cue, "pose": pose, "force": force, "feed_forward": feed_forward,
             "drive": drive}, wall
 
@@ -345,6 +368,10 @@ def main():
                         help="--drive current: [N m s/rad] (default: cascade_gains)")
     parser.add_argument("--speed-integral-time", type=float,
                         help="--drive current: [s], 0 for none (default: cascade_gains)")
+    parser.add_argument("--player", action="store_true",
+                        help="the cue from the scene player unit (StewartScene.fmu, a move "
+                             "through its trajectory_file) stepped with the others, as the "
+                             "OSP and SSP structures run the loop")
     scenes.add_platform_arguments(parser)
     parser.add_argument("--view", action="store_true",
                         help="also write closed_loop.html: the run in 3D (docs/view.md)")
@@ -357,7 +384,7 @@ def main():
         duration = args.duration or ("move" not in scene and scene["duration"]) or None
         cascade = cascade_arguments(parser, args, platform)
         result, wall = run(scene, duration, args.step, args.kp, args.kd, args.fidelity,
-                           args.fmus, machine, platform, args.drive, cascade)
+                           args.fmus, machine, platform, args.drive, cascade, args.player)
     except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
         raise SystemExit(f"closed_loop: {e}") from None
     duration = result["t"][-1]

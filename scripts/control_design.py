@@ -17,6 +17,9 @@ R = I / force_tol^2 (Bryson's rule). A continuous design ignores the sampling: i
 usage: control_design.py [--scene combined] [--duration 4] [--step 0.001] [--fmus build/fmus/2.0]
                          [--platform FILE.json [--scale-to-ranges]]
 
+A scene with a move (scenes/move_line.json) runs the move planned by stewart.move on the machine
+(scenes.trajectory), in both loops, and holds its goal after it.
+
 With --platform: the machine's home pose, its parameters in the units, the scene about its home,
 the PD gains of closed_loop.machine_gains and FORCE_TOL scaled as the thesis' (1e3 N, about six
 times its largest static leg force at home) to the machine's largest static leg force.
@@ -63,13 +66,14 @@ def lqr(A, B, h, force_tol=FORCE_TOL):
     return np.linalg.solve(R + Bd.T @ P @ Bd, Bd.T @ P @ Ad), Ad, Bd
 
 
-def run_lqr(K, scene, duration, h, fmus, fidelity=2, machine=None):
+def run_lqr(K, scene, duration, h, fmus, fidelity=2, machine=None, platform=None):
     """The LQR loop around the plant FMU; the same shape of result as closed_loop.run.
-    machine: the platform's FMU start values (None: the thesis platform)."""
+    machine: the platform's FMU start values (None: the thesis platform); platform: the same
+    machine, on which a scene's move is planned (scenes.trajectory; duration None: the move's
+    own)."""
     machine = machine or {}
-    n = int(round(duration / h))
-    t = np.arange(n + 1) * h
-    cue, cue_dot, cue_ddot = scenes.pose(scene, t)
+    t, cue, cue_dot, cue_ddot = scenes.trajectory(scene, platform, h, duration)
+    n = len(t) - 1
     start = {f"{p}0": v for p, v in zip(closed_loop.POSE, cue[0])}
     start.update({f"{p}_dot0": v for p, v in zip(closed_loop.POSE, cue_dot[0])})
     fmus = pathlib.Path(fmus)
@@ -102,12 +106,15 @@ def run_lqr(K, scene, duration, h, fmus, fidelity=2, machine=None):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="combined")
-    parser.add_argument("--duration", type=float, default=4.0, help="[s]")
+    parser.add_argument("--duration", type=float,
+                        help="[s] (default: 4, a move scene's: the move's own and its hold)")
     parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
     parser.add_argument("--fmus", default=str(ROOT / "build" / "fmus" / "2.0"))
     scenes.add_platform_arguments(parser)
     args = parser.parse_args()
     scene, platform, machine = scenes.on_platform(scenes.load(args.scene), args)
+    if args.duration is None and "move" not in scene:
+        args.duration = 4.0
     home, force_tol, (kp, kd) = HOME, FORCE_TOL, (closed_loop.THESIS_KP, closed_loop.THESIS_KD)
     if args.platform:
         home = platform.check().home
@@ -136,14 +143,19 @@ def main():
     gains = f"kp {kp:.4g} N/m, kd {kd:.4g} N s/m"
     print(f"PD ({gains}) on the same sampled model: closed-loop rates [1/s]:")
     print("  " + ", ".join(f"{e.real:+.4g}{e.imag:+.4g}j" for e in pd))
-    lqr_run = run_lqr(K, scene, args.duration, args.step, args.fmus, machine=machine)
-    pd_run, _ = closed_loop.run(scene, args.duration, args.step, kp, kd, fmus=args.fmus,
-                                machine=machine)
+    try:
+        lqr_run = run_lqr(K, scene, args.duration, args.step, args.fmus, machine=machine,
+                          platform=platform)
+        pd_run, _ = closed_loop.run(scene, args.duration, args.step, kp, kd, fmus=args.fmus,
+                                    machine=machine, platform=platform)
+    except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
+        raise SystemExit(f"control_design: {e}") from None
+    duration = lqr_run["t"][-1]
     for name, run in ((f"PD (controller unit, {gains})", pd_run),
                       ("LQR (state feedback on the linear model)", lqr_run)):
         position, angle = closed_loop.tracking_error(run)
         peak = np.abs(run["force"]).max()
-        print(f"{name}: {scene['name']} over {args.duration:g} s at h = {args.step:g} s: "
+        print(f"{name}: {scene['name']} over {duration:g} s at h = {args.step:g} s: "
               f"tracking error max {position:.3e} m, {angle:.3e} rad; peak force {peak:.4g} N")
 
 

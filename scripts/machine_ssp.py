@@ -16,6 +16,11 @@ init(parameter_set=NAME)); the thesis' set "initialValues" stays in it.
 usage: machine_ssp.py PLATFORM.json OUT.ssp [--fmi 2.0|3.0] [--scale-to-ranges] [--scene combined]
                       [--osp OUT.xml]
 
+A scene with a move (scenes/move_line.json): the move is planned on the machine (stewart.move)
+and written next to OUT.ssp as OUT_trajectory.csv, which the scene player reads by its absolute
+path (its String parameter trajectory_file): move the archive freely, but keep that file where it
+is (or write the set again).
+
 --osp also writes the same closed loop as an OSP system structure for libcosim
 (CosimExecution.from_osp_config_file): the machine's values as its initial values, the package's
 FMI 2 units by their absolute paths.
@@ -36,18 +41,19 @@ OSP_FILE = ROOT / "scenes" / "closed_loop" / "OspSystemStructure.xml"
 POSE = ("x", "y", "z", "roll", "pitch", "yaw")
 
 
-def machine_values(platform, scene):
+def machine_values(platform, scene, trajectory_path=None):
     """{unit: {variable: value}}: the closed loop's initial values for the machine (before the
-    input connectors' start values)."""
-    import numpy as np
-    cue, cue_dot, _ = stewart.scenes.pose(scene, np.array([0.0]))
+    input connectors' start values). A scene with a move: the move planned on the machine at
+    the scene's step, written to trajectory_path for the scene player (scenes.player_values)."""
+    _, cue, cue_dot, _ = scenes.trajectory(scene, platform)
     kp, kd = closed_loop.machine_gains(platform)
     plant = stewart.fmu_start_values(platform, model="StewartPlant")
     plant.update({f"{p}0": float(v) for p, v in zip(POSE, cue[0])})
     plant.update({f"{p}_dot0": float(v) for p, v in zip(POSE, cue_dot[0])})
+    if "move" in scene and trajectory_path is None:
+        raise ValueError("a scene with a move needs a trajectory file to write for the player")
     return {
-        "scene": {f"{p}_{field}": float(scene["pose"].get(p, {}).get(field, 0.0))
-                  for p in POSE for field in stewart.scenes.SINUSOID},
+        "scene": scenes.player_values(scene, trajectory_path, platform),
         "inverse": {"fidelity": 2, "derivatives": 1, **stewart.fmu_start_values(platform)},
         "controller": {"kp": kp, "kd": kd},
         "plant": {"fidelity": 2, **plant},
@@ -55,8 +61,11 @@ def machine_values(platform, scene):
 
 
 def typed(value):
-    """(SSP type, text) of a value: integers as Integer, every other number as Real."""
+    """(SSP type, text) of a value: integers as Integer, text as String, every other number as
+    Real."""
     import numpy as np
+    if isinstance(value, str):
+        return "String", value
     if isinstance(value, (int, np.integer)):
         return "Integer", str(int(value))
     return "Real", repr(float(value))
@@ -82,10 +91,11 @@ def osp_structure(values, fmus):
     return root
 
 
-def parameter_set(platform, scene, name, fmus, osp_out=None):
+def parameter_set(platform, scene, name, fmus, osp_out=None, trajectory_path=None):
     """{unit: SSV text}: each unit's initial values and input start values, the set `name`;
-    the OSP structure of the machine's values written to osp_out if given."""
-    values = machine_values(platform, scene)
+    the OSP structure of the machine's values written to osp_out if given; a move's trajectory
+    to trajectory_path (machine_values)."""
+    values = machine_values(platform, scene, trajectory_path)
     if osp_out is not None:
         ET.ElementTree(osp_structure(values, fmus)).write(osp_out, encoding="utf-8",
                                                           xml_declaration=True)
@@ -148,7 +158,8 @@ def write(platform_file, out, version="2.0", scale_to_ranges=False, scene="combi
                                        scale_to_ranges=scale_to_ranges)
     name = platform_file.stem
     fmus = pathlib.Path(fmus) if fmus else stewart.fmu_path("2.0").parent
-    files = parameter_set(platform, moved, name, fmus, osp_out)
+    files = parameter_set(platform, moved, name, fmus, osp_out,
+                          out.with_name(f"{out.stem}_trajectory.csv"))
     archive = stewart.ssp_path(version)
     with zipfile.ZipFile(archive) as source, \
             zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as target:
@@ -171,9 +182,15 @@ def main():
     parser.add_argument("--scene", default="combined")
     parser.add_argument("--osp", type=pathlib.Path, help="also write the OSP structure here")
     args = parser.parse_args()
-    name = write(args.platform, args.out, args.fmi, args.scale_to_ranges, args.scene,
-                 osp_out=args.osp)
+    try:
+        name = write(args.platform, args.out, args.fmi, args.scale_to_ranges, args.scene,
+                     osp_out=args.osp)
+    except ValueError as e:  # SceneError, stewart.MoveError: the message names the cause
+        raise SystemExit(f"machine_ssp: {e}") from None
     print(f"machine_ssp: wrote {args.out} (parameter set {name!r})")
+    trajectory = args.out.with_name(f"{args.out.stem}_trajectory.csv")
+    if "move" in scenes.load(args.scene):
+        print(f"machine_ssp: the scene player plays {trajectory.resolve()} (keep it there)")
 
 
 if __name__ == "__main__":

@@ -38,8 +38,9 @@ def initial_values(simulator, ns):
     for value in simulator.findall("o:InitialValues/o:InitialValue", ns):
         (typed,) = list(value)
         kind = typed.tag.split("}")[1]
-        values[value.get("variable")] = float(typed.get("value")) if kind == "Real" else \
-            int(typed.get("value"))
+        text = typed.get("value")
+        values[value.get("variable")] = (float(text) if kind == "Real" else
+                                         text if kind == "String" else int(text))
     return values
 
 
@@ -56,7 +57,8 @@ def initialised_outputs(fmu, name, values, outputs):
         unit.setupExperiment(startTime=0.0)
         for variable, value in values.items():
             ref, kind = refs[variable]
-            (unit.setReal if kind == "Real" else unit.setInteger)([ref], [value])
+            setter = {"Real": unit.setReal, "String": unit.setString}.get(kind, unit.setInteger)
+            setter([ref], [value])
         unit.enterInitializationMode()
         unit.exitInitializationMode()
         return {o: unit.getReal([refs[o][0]])[0] for o in outputs}

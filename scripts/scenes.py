@@ -56,12 +56,31 @@ def write_pose_csv(scene, path, dt=None, derivatives=True, platform=None):
     if isinstance(scene, (str, pathlib.Path)):
         scene = load(scene)
     t, q, qd, qdd = trajectory(scene, platform, dt)
+    write_trajectory(path, t, q, qd, qdd, derivatives)
+
+
+def write_trajectory(path, t, q, qd, qdd, derivatives=True):
+    """Times, poses, rates and accelerations as a stewart-solve input CSV (the scene player's
+    trajectory file), every number as the shortest text that reads back to the same double."""
     columns = ["t", *POSE] + ([*DOT, *DDOT] if derivatives else [])
     table = np.column_stack([t, q] + ([qd, qdd] if derivatives else []))
     with open(path, "w") as f:
         f.write(",".join(columns) + "\n")
         for row in table:
             f.write(",".join(repr(float(v)) for v in row) + "\n")
+
+
+def player_values(scene, path, platform=None, step=None, duration=None):
+    """The scene player's (StewartScene.fmu) parameters that play the scene: its sinusoids; for
+    a scene with a move, its trajectory (trajectory(): the move planned by stewart.move on
+    platform at `step`, held at rest to `duration`) written to the file `path` and that file's
+    absolute path as trajectory_file (the player reads it when it is initialised)."""
+    if "move" not in scene:
+        return {f"{p}_{key}": float(scene["pose"].get(p, {}).get(key, 0.0))
+                for p in POSE for key in scenes.SINUSOID}
+    path = pathlib.Path(path).resolve()
+    write_trajectory(path, *trajectory(scene, platform, step, duration))
+    return {"trajectory_file": str(path)}
 
 
 def main():

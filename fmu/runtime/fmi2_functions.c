@@ -99,7 +99,14 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
         return nvr == 0 ? fmi2OK : unsupported(c, "fmi2Set" #Name " (there are no " #Name " variables)"); \
     }
 NO_VARIABLES(Boolean, fmi2Boolean)
-NO_VARIABLES(String, fmi2String)
+fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                         fmi2String value[]) {
+    CALL(fmu_get_string(INST, vr, nvr, value));
+}
+fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                         const fmi2String value[]) {
+    CALL(fmu_set_string(INST, vr, nvr, value));
+}
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *state) {
     CALL(fmu_get_state(INST, (fmu_snapshot **)state));

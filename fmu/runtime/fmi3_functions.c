@@ -163,7 +163,17 @@ NO_VARIABLES(UInt32, fmi3UInt32)
 NO_VARIABLES(Int64, fmi3Int64)
 NO_VARIABLES(UInt64, fmi3UInt64)
 NO_VARIABLES(Boolean, fmi3Boolean)
-NO_VARIABLES(String, fmi3String)
+
+fmi3Status fmi3GetString(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
+                         fmi3String values[], size_t nValues) {
+    if (check_counts(instance, "fmi3GetString", nvr, nValues) != fmi3OK) return fmi3Error;
+    CALL(fmu_get_string(INST, vr, nvr, values));
+}
+fmi3Status fmi3SetString(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
+                         const fmi3String values[], size_t nValues) {
+    if (check_counts(instance, "fmi3SetString", nvr, nValues) != fmi3OK) return fmi3Error;
+    CALL(fmu_set_string(INST, vr, nvr, values));
+}
 
 fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                          size_t valueSizes[], fmi3Binary values[], size_t nValues) {

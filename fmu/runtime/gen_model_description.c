@@ -240,10 +240,27 @@ static int unit_index(const char *unit) {
     return -1;
 }
 
+/* A String parameter, empty at the start (the model's start values hold no strings). */
+static void string_parameter(const fmu_variable *var) {
+    if (version == 2) {
+        fputs("    <ScalarVariable", out);
+        common_attributes(var->vr, var->name, "parameter", "fixed", "exact", var->description);
+        fputs(">\n      <String start=\"\"/>\n    </ScalarVariable>\n", out);
+    } else {
+        fputs("    <String", out);
+        common_attributes(var->vr, var->name, "parameter", "fixed", "exact", var->description);
+        fputs(">\n      <Start value=\"\"/>\n    </String>\n", out);
+    }
+}
+
 /* One variable of the table, with its start value from the model's start values. FMI 3 requires
  * the independent variable; FMI 2 does not, and FMI Library (libcosim) rejects an FMI 2
  * independent variable without a start value, so FMI 2 leaves it out. */
 static void table_variable(const fmu_variable *var, const fmu_values *start) {
+    if (var->type == FMU_STRING) {
+        string_parameter(var);
+        return;
+    }
     const int is_real = var->type == FMU_REAL;
     const double start_value = is_real ? start->real[var->vr] : start->integer[var->vr];
     switch (var->causality) {

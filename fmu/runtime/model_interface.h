@@ -78,6 +78,12 @@ void model_free(fmu_instance *inst);
  * UpdateDiscreteStates: its state is accepted too); report what holds there and only there, not
  * at the trial states of the derivative calls (warnings). OK or Warning. Never allocates. */
 fmu_status model_accepted_state(fmu_instance *inst);
+#if FMU_STRING_PARAMETERS
+/* Only in a model whose config.h defines FMU_STRING_PARAMETERS 1: where the String parameter vr
+ * keeps its value in the plain values (FMU_STRING_SIZE bytes, NUL-terminated), so that a state
+ * holds it. */
+char *model_string(fmu_values *v, unsigned vr);
+#endif
 /* Only in a model whose config.h defines FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1 (the others need
  * not define it: the runtime then answers that the call is not supported). The partial
  * derivatives of the outputs at the current inputs (those the outputs are, or would be, solved

@@ -2,6 +2,7 @@
 #include "values.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "call_table.h"
 #include "logging.h"
@@ -111,6 +112,37 @@ fmu_status fmu_set_integer(fmu_instance *inst, const unsigned vr[], size_t n,
     if (check_settable(inst, "SetInteger", vr, n, FMU_INTEGER, value) != FMU_OK) return FMU_ERROR;
     for (size_t i = 0; i < n; ++i) inst->v.integer[vr[i]] = value[i];
     if (n > 0) inst->v.outputs_current = 0;
+    return FMU_OK;
+}
+
+fmu_status fmu_get_string(fmu_instance *inst, const unsigned vr[], size_t n, const char *value[]) {
+    if (fmu_check_call(inst, CALL_GET, "GetString") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, "GetString");
+    for (size_t i = 0; i < n; ++i) {
+        if (!typed(inst, "GetString", vr[i], FMU_STRING)) return FMU_ERROR;
+#if FMU_STRING_PARAMETERS
+        value[i] = model_string(&inst->v, vr[i]);
+#endif
+    }
+    return FMU_OK;
+}
+
+fmu_status fmu_set_string(fmu_instance *inst, const unsigned vr[], size_t n,
+                          const char *const value[]) {
+    if (fmu_check_call(inst, CALL_SET, "SetString") != FMU_OK) return FMU_ERROR;
+    if (n > 0 && (!vr || !value)) return null_arrays(inst, "SetString");
+    if (check_settable(inst, "SetString", vr, n, FMU_STRING) != FMU_OK) return FMU_ERROR;
+#if FMU_STRING_PARAMETERS
+    for (size_t i = 0; i < n; ++i)
+        if (!value[i] || strlen(value[i]) >= FMU_STRING_SIZE) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetString: %s is %s: give at most %d bytes",
+                    fmu_variable_by_vr(vr[i])->name, value[i] ? "too long" : "NULL",
+                    FMU_STRING_SIZE - 1);
+            return FMU_ERROR;
+        }
+    for (size_t i = 0; i < n; ++i) strcpy(model_string(&inst->v, vr[i]), value[i]);
+    if (n > 0) inst->v.outputs_current = 0;
+#endif
     return FMU_OK;
 }
 

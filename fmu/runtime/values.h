@@ -25,6 +25,12 @@ fmu_status fmu_set_real(fmu_instance *inst, const unsigned vr[], size_t n, const
 /* As fmu_set_real, for Integer variables. */
 fmu_status fmu_set_integer(fmu_instance *inst, const unsigned vr[], size_t n,
                            const int32_t value[]);
+/* Strings by value reference: String parameters of a model with FMU_STRING_PARAMETERS (the
+ * pointers stay valid until the value is set again); Error for any other value reference. */
+fmu_status fmu_get_string(fmu_instance *inst, const unsigned vr[], size_t n, const char *value[]);
+/* As fmu_set_real for parameters; a value of FMU_STRING_SIZE bytes or more is refused. */
+fmu_status fmu_set_string(fmu_instance *inst, const unsigned vr[], size_t n,
+                          const char *const value[]);
 /* FMI 2 input derivatives, handed to the model after the call-order and argument checks. */
 fmu_status fmu_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
                                      const int order[], const double value[]);

@@ -15,9 +15,12 @@
     {vr, name, FMU_REAL, FMU_PARAMETER_VAR, unit, display, 0, 0, 0, desc},
 #define FMU_INDEPENDENT(vr, id, name, unit, desc) \
     {vr, name, FMU_REAL, FMU_INDEPENDENT_VAR, unit, "", 0, 0, 0, desc},
+#define FMU_OPTION_STRING(vr, id, name, desc) \
+    {vr, name, FMU_STRING, FMU_PARAMETER_VAR, "", "", 0, 0, 0, desc},
 const fmu_variable fmu_variables[] = {
 #include "variables.def"
 };
+#undef FMU_OPTION_STRING
 const size_t fmu_n_variables = sizeof fmu_variables / sizeof fmu_variables[0];
 
 #define FMU_INDEPENDENT(vr, ...) const unsigned fmu_time_vr = vr;
@@ -31,10 +34,12 @@ const size_t fmu_n_variables = sizeof fmu_variables / sizeof fmu_variables[0];
 #define FMU_OPTION_REAL FMU_INPUT
 #define FMU_PARAM FMU_INPUT
 #define FMU_INDEPENDENT FMU_INPUT
+#define FMU_OPTION_STRING FMU_INPUT
 enum { fmu_counter_base_ = __COUNTER__ };
 static const unsigned short kIndex[FMU_NVR] = {
 #include "variables.def"
 };
+#undef FMU_OPTION_STRING
 
 const fmu_variable *fmu_variable_by_vr(unsigned vr) {
     if (vr >= FMU_NVR || kIndex[vr] == 0) return NULL;

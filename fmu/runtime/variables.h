@@ -10,11 +10,18 @@
 
 #include "config.h"
 
+/* A model's config.h defines FMU_STRING_PARAMETERS 1 when its variables.def has String parameters
+ * (FMU_OPTION_STRING); it then defines model_string (model_interface.h) and FMU_STRING_SIZE, the
+ * bytes each value may take with its terminating NUL. */
+#ifndef FMU_STRING_PARAMETERS
+#define FMU_STRING_PARAMETERS 0
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-typedef enum { FMU_REAL = 1, FMU_INTEGER = 2 } fmu_type;
+typedef enum { FMU_REAL = 1, FMU_INTEGER = 2, FMU_STRING = 3 } fmu_type;
 typedef enum {
     FMU_INPUT_VAR = 1,
     FMU_OUTPUT_VAR = 2,
@@ -31,7 +38,9 @@ enum fmu_value_reference {
 #define FMU_OPTION_REAL(vr, id, ...) VR_##id = vr,
 #define FMU_PARAM(vr, id, ...) VR_##id = vr,
 #define FMU_INDEPENDENT(vr, id, ...) VR_##id = vr,
+#define FMU_OPTION_STRING(vr, id, ...) VR_##id = vr,
 #include "variables.def"
+#undef FMU_OPTION_STRING /* a model without String parameters leaves it defined */
     VR_END_OF_TABLE_ = -1
 };
 

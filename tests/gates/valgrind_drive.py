@@ -5,7 +5,8 @@ The plant (StewartPlant.fmu) runs a short forced motion at both fidelities with 
 (a NaN force, a refused step, FMU state get/set/serialise). The Model Exchange plant
 (StewartPlantME.fmu) runs under fmpy's CVODE with forces, then its refused derivatives (pitch at
 90 degrees, a NaN force) and an FMU state round trip. The cueing unit (StewartCueing.fmu) runs a
-vehicle signal that makes its limiter act, a NaN input and an FMU state round trip.
+vehicle signal that makes its limiter act, a NaN input and an FMU state round trip. The scene
+player (StewartScene.fmu) plays a trajectory file and refuses a bad one.
 
 usage: valgrind_drive.py BUILD_DIR (the FMUs are BUILD_DIR/fmus/<version>/StewartPlatform.fmu and
 StewartPlant.fmu)"""
@@ -238,7 +239,32 @@ def cueing(path, version):
     return r["x"][-1]
 
 
+def scene_player(path):
+    """The scene player on a trajectory file (read at initialisation, played between its rows,
+    held after them), then a file it refuses at a bad line; returns the final x."""
+    folder = tempfile.mkdtemp()
+    names = ["x", "y", "z", "roll", "pitch", "yaw"]
+    header = ",".join(["t", *names, *(n + "_dot" for n in names), *(n + "_ddot" for n in names)])
+    rows = [[0.0] + [0.0] * 18, [0.1, 0.01] + [0.0] * 17, [0.2, 0.02] + [0.0] * 17]
+    good, bad = f"{folder}/move.csv", f"{folder}/bad.csv"
+    with open(good, "w") as f:
+        f.write(header + "\n" + "".join(",".join(map(repr, r)) + "\n" for r in rows))
+    with open(bad, "w") as f:
+        f.write(header + "\n" + ",".join(map(repr, rows[0])) + "\n0,nan\n")
+    r = simulate_fmu(path, fmi_type="CoSimulation", stop_time=0.3, output_interval=0.01,
+                     step_size=0.01, start_values={"trajectory_file": good}, output=["x"])
+    try:
+        simulate_fmu(path, fmi_type="CoSimulation", stop_time=0.1, output_interval=0.01,
+                     start_values={"trajectory_file": bad})
+        raise AssertionError("the bad trajectory file was not refused")
+    except fmpy.fmi1.FMICallException:
+        pass
+    return r["x"][-1]
+
+
 for version in ("2.0", "3.0"):
+    x = scene_player(f"{build}/fmus/{version}/StewartScene.fmu")
+    print(f"valgrind_fmu: scene player FMI {version}: x = {x:.6f} m")
     x = cueing(f"{build}/fmus/{version}/StewartCueing.fmu", version)
     print(f"valgrind_fmu: cueing FMI {version}: x = {x:.6f} m")
     for fidelity in (1, 2):
