@@ -5,11 +5,15 @@
  * (and per full communication step: set inputs, doStep, get outputs), in microseconds.
  *
  * It also counts heap allocations (malloc, calloc, realloc interposed below, glibc) while the
- * steps run: a step must not allocate.
+ * steps run: a step must not allocate. And it sets every Integer parameter and input with a
+ * declared min and max (the unit's own variable table, from which its model description is
+ * written) just outside its range, which both versions must refuse with an Error naming it, the
+ * value kept, and at both ends, which they must take.
  *
  * usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -229,6 +233,75 @@ static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, doub
     return tm;
 }
 
+/* ------------------------------------------------------------------ declared ranges */
+
+/* The last message a ranges instance logged (its environment is this buffer). */
+static void remember2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
+                      fmi2String category, fmi2String message, ...) {
+    (void)name; (void)status; (void)category;
+    snprintf((char *)env, 512, "%s", message);
+}
+
+static void remember3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
+                      fmi3String message) {
+    (void)status; (void)category;
+    snprintf((char *)env, 512, "%s", message);
+}
+
+/* One set of value x of var through SetInteger (v3 0) or SetInt32 (v3 1): Error with a message
+ * naming var and x if x is outside the declared range, else OK; the value read back is x if
+ * taken, else what it was. */
+static void check_one_set(void *c, int v3, void *lib, const fmu_variable *var, int32_t x,
+                          const char *message) {
+    const fmi2_api f = fmi2_api_load(lib);
+    fmi3SetInt32TYPE *set3 = v3 ? importer_symbol(lib, "fmi3SetInt32") : NULL;
+    fmi3GetInt32TYPE *get3 = v3 ? importer_symbol(lib, "fmi3GetInt32") : NULL;
+    const unsigned vr = var->vr;
+    int32_t before = 0, after = 0;
+    if (v3) get3(c, &vr, 1, &before, 1); else f.get_int(c, &vr, 1, &before);
+    const int status = v3 ? (int)set3(c, &vr, 1, &x, 1) : (int)f.set_int(c, &vr, 1, &x);
+    if (v3) get3(c, &vr, 1, &after, 1); else f.get_int(c, &vr, 1, &after);
+    const int inside = x >= var->min && x <= var->max;
+    char words[256];
+    snprintf(words, sizeof words, "%s = %d is outside its declared range [%ld, %ld]", var->name,
+             (int)x, var->min, var->max);
+    CHECK(status == (inside ? 0 : 3), "fmi%d set %s = %d: status %d", v3 ? 3 : 2, var->name,
+          (int)x, status);
+    CHECK(after == (inside ? x : before), "fmi%d %s reads %d after a set of %d", v3 ? 3 : 2,
+          var->name, (int)after, (int)x);
+    CHECK(inside || strstr(message, words), "fmi%d: no message '%s' (last: %s)", v3 ? 3 : 2, words,
+          message);
+}
+
+/* Every Integer parameter and input with a declared range, just outside it and at its ends. */
+static int check_declared_ranges(void *lib, int v3) {
+    fmi3InstantiateCoSimulationTYPE *instantiate3 =
+        v3 ? importer_symbol(lib, "fmi3InstantiateCoSimulation") : NULL;
+    fmi3FreeInstanceTYPE *free3 = v3 ? importer_symbol(lib, "fmi3FreeInstance") : NULL;
+    const fmi2_api f = fmi2_api_load(lib);
+    char message[512] = "";
+    const fmi2CallbackFunctions cb = {remember2, calloc, free, NULL, message};
+    void *c = v3 ? instantiate3("ranges", GUID, "", fmi3False, fmi3True, fmi3False, fmi3False,
+                                NULL, 0, message, remember3, NULL)
+                 : f.instantiate("ranges", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2True);
+    CHECK(c != NULL, "fmi%d instantiate for the ranges", v3 ? 3 : 2);
+    if (!c) return 0;
+    int checked = 0;
+    for (size_t i = 0; i < fmu_n_variables; ++i) {
+        const fmu_variable *var = &fmu_variables[i];
+        if (!var->has_range || var->type != FMU_INTEGER ||
+            (var->causality != FMU_PARAMETER_VAR && var->causality != FMU_INPUT_VAR))
+            continue;
+        if (var->min > INT32_MIN) check_one_set(c, v3, lib, var, (int32_t)(var->min - 1), message);
+        if (var->max < INT32_MAX) check_one_set(c, v3, lib, var, (int32_t)(var->max + 1), message);
+        check_one_set(c, v3, lib, var, (int32_t)var->min, message);
+        check_one_set(c, v3, lib, var, (int32_t)var->max, message);
+        ++checked;
+    }
+    if (v3) free3(c); else f.free_instance(c);
+    return checked;
+}
+
 int main(int argc, char **argv) {
     if (argc < 3) {
         fprintf(stderr, "usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]\n");
@@ -241,6 +314,11 @@ int main(int argc, char **argv) {
     if (!lib3) { fprintf(stderr, "importer: %s\n", dlerror()); return 2; }
     FILE *out = argc > 3 ? fopen(argv[3], "w") : NULL;
     if (argc > 3 && !out) { fprintf(stderr, "importer: cannot write %s\n", argv[3]); return 2; }
+
+    const int ranged = check_declared_ranges(lib2, 0);
+    CHECK(ranged > 0 && check_declared_ranges(lib3, 1) == ranged,
+          "the declared ranges: %d Integer variables with one", ranged);
+    printf("declared ranges: %d Integer parameters and inputs, FMI 2 and 3\n", ranged);
 
     static const char *const level[3] = {"kinematic", "massless", "full"};
     double *o2 = calloc((size_t)steps * N_OUT, sizeof(double));
