@@ -248,43 +248,83 @@ static void remember3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String
     snprintf((char *)env, 512, "%s", message);
 }
 
-/* One set of value x of var through SetInteger (v3 0) or SetInt32 (v3 1): Error with a message
- * naming var and x if x is outside the declared range, else OK; the value read back is x if
- * taken, else what it was. */
-static void check_one_set(void *c, int v3, void *lib, const fmu_variable *var, int32_t x,
+/* The calls of the ranges check, of one FMI version (v3 0: fmi2*, 1: fmi3*). */
+typedef struct {
+    int v3;
+    fmi2_api f2;
+    fmi3InstantiateCoSimulationTYPE *instantiate3;
+    fmi3EnterInitializationModeTYPE *enter3;
+    fmi3SetInt32TYPE *set3;
+    fmi3GetInt32TYPE *get3;
+    fmi3FreeInstanceTYPE *free3;
+} range_api;
+
+static range_api range_api_load(void *lib, int v3) {
+    range_api a;
+    memset(&a, 0, sizeof a);
+    a.v3 = v3;
+    if (!v3) {
+        a.f2 = fmi2_api_load(lib);
+        return a;
+    }
+    a.instantiate3 = importer_symbol(lib, "fmi3InstantiateCoSimulation");
+    a.enter3 = importer_symbol(lib, "fmi3EnterInitializationMode");
+    a.set3 = importer_symbol(lib, "fmi3SetInt32");
+    a.get3 = importer_symbol(lib, "fmi3GetInt32");
+    a.free3 = importer_symbol(lib, "fmi3FreeInstance");
+    return a;
+}
+
+static int32_t range_get(const range_api *a, void *c, unsigned vr) {
+    int32_t x = 0;
+    if (a->v3) a->get3(c, &vr, 1, &x, 1);
+    else a->f2.get_int(c, &vr, 1, &x);
+    return x;
+}
+
+/* One set of value x of var: Error with a message naming var, x and the range if x is outside
+ * the declared range, else OK; the value read back is x if taken, else what it was. */
+static void check_one_set(const range_api *a, void *c, const fmu_variable *var, int32_t x,
                           const char *message) {
-    const fmi2_api f = fmi2_api_load(lib);
-    fmi3SetInt32TYPE *set3 = v3 ? importer_symbol(lib, "fmi3SetInt32") : NULL;
-    fmi3GetInt32TYPE *get3 = v3 ? importer_symbol(lib, "fmi3GetInt32") : NULL;
     const unsigned vr = var->vr;
-    int32_t before = 0, after = 0;
-    if (v3) get3(c, &vr, 1, &before, 1); else f.get_int(c, &vr, 1, &before);
-    const int status = v3 ? (int)set3(c, &vr, 1, &x, 1) : (int)f.set_int(c, &vr, 1, &x);
-    if (v3) get3(c, &vr, 1, &after, 1); else f.get_int(c, &vr, 1, &after);
+    const int32_t before = range_get(a, c, vr);
+    const int status = a->v3 ? (int)a->set3(c, &vr, 1, &x, 1) : (int)a->f2.set_int(c, &vr, 1, &x);
+    const int32_t after = range_get(a, c, vr);
     const int inside = x >= var->min && x <= var->max;
     char words[256];
     snprintf(words, sizeof words, "%s = %d is outside its declared range [%ld, %ld]", var->name,
              (int)x, var->min, var->max);
-    CHECK(status == (inside ? 0 : 3), "fmi%d set %s = %d: status %d", v3 ? 3 : 2, var->name,
-          (int)x, status);
-    CHECK(after == (inside ? x : before), "fmi%d %s reads %d after a set of %d", v3 ? 3 : 2,
-          var->name, (int)after, (int)x);
-    CHECK(inside || strstr(message, words), "fmi%d: no message '%s' (last: %s)", v3 ? 3 : 2, words,
-          message);
+    const int v = a->v3 ? 3 : 2;
+    CHECK(status == (inside ? 0 : 3), "fmi%d set %s = %d: status %d", v, var->name, (int)x, status);
+    CHECK(after == (inside ? x : before), "fmi%d %s reads %d after a set of %d", v, var->name,
+          (int)after, (int)x);
+    CHECK(inside || strstr(message, words), "fmi%d: no message '%s' (last: %s)", v, words, message);
 }
 
-/* Every Integer parameter and input with a declared range, just outside it and at its ends. */
+/* An instance in initialisation mode (where parameters are set and read) logging into message. */
+static void *range_instance(const range_api *a, char *message, fmi2CallbackFunctions *cb) {
+    if (a->v3) {
+        void *c = a->instantiate3("ranges", GUID, "", fmi3False, fmi3True, fmi3False, fmi3False,
+                                  NULL, 0, message, remember3, NULL);
+        if (c && a->enter3(c, fmi3False, 0, 0.0, fmi3False, 0) != fmi3OK) c = NULL;
+        return c;
+    }
+    *cb = (fmi2CallbackFunctions){remember2, calloc, free, NULL, message};
+    void *c = a->f2.instantiate("ranges", fmi2CoSimulation, GUID, "", cb, fmi2False, fmi2True);
+    if (c && (a->f2.setup(c, fmi2False, 0, 0.0, fmi2False, 0) != fmi2OK || a->f2.enter(c) != fmi2OK))
+        c = NULL;
+    return c;
+}
+
+/* Every Integer parameter and input with a declared range, just outside it and at its ends; the
+ * number of such variables. */
 static int check_declared_ranges(void *lib, int v3) {
-    fmi3InstantiateCoSimulationTYPE *instantiate3 =
-        v3 ? importer_symbol(lib, "fmi3InstantiateCoSimulation") : NULL;
-    fmi3FreeInstanceTYPE *free3 = v3 ? importer_symbol(lib, "fmi3FreeInstance") : NULL;
-    const fmi2_api f = fmi2_api_load(lib);
+    const range_api a = range_api_load(lib, v3);
     char message[512] = "";
-    const fmi2CallbackFunctions cb = {remember2, calloc, free, NULL, message};
-    void *c = v3 ? instantiate3("ranges", GUID, "", fmi3False, fmi3True, fmi3False, fmi3False,
-                                NULL, 0, message, remember3, NULL)
-                 : f.instantiate("ranges", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2True);
-    CHECK(c != NULL, "fmi%d instantiate for the ranges", v3 ? 3 : 2);
+    fmi2CallbackFunctions cb;
+    void *c = range_instance(&a, message, &cb);
+    CHECK(c != NULL, "fmi%d instance in initialisation mode for the ranges: %s", v3 ? 3 : 2,
+          message);
     if (!c) return 0;
     int checked = 0;
     for (size_t i = 0; i < fmu_n_variables; ++i) {
@@ -292,13 +332,14 @@ static int check_declared_ranges(void *lib, int v3) {
         if (!var->has_range || var->type != FMU_INTEGER ||
             (var->causality != FMU_PARAMETER_VAR && var->causality != FMU_INPUT_VAR))
             continue;
-        if (var->min > INT32_MIN) check_one_set(c, v3, lib, var, (int32_t)(var->min - 1), message);
-        if (var->max < INT32_MAX) check_one_set(c, v3, lib, var, (int32_t)(var->max + 1), message);
-        check_one_set(c, v3, lib, var, (int32_t)var->min, message);
-        check_one_set(c, v3, lib, var, (int32_t)var->max, message);
+        if (var->min > INT32_MIN) check_one_set(&a, c, var, (int32_t)(var->min - 1), message);
+        if (var->max < INT32_MAX) check_one_set(&a, c, var, (int32_t)(var->max + 1), message);
+        check_one_set(&a, c, var, (int32_t)var->min, message);
+        check_one_set(&a, c, var, (int32_t)var->max, message);
         ++checked;
     }
-    if (v3) free3(c); else f.free_instance(c);
+    if (v3) a.free3(c);
+    else a.f2.free_instance(c);
     return checked;
 }
 

@@ -50,9 +50,16 @@ def _cases():
 
 
 def _instance(unit, version):
+    """An instance in initialisation mode, where parameters are set and read."""
     model_exchange = _description(unit, version).coSimulation is None
     classes = (FMU2Model, FMU3Model) if model_exchange else (FMU2Slave, FMU3Slave)
-    return Instance(unit, version, classes=classes)
+    u = Instance(unit, version, classes=classes)
+    if u.v2:
+        u.fmu.setupExperiment(startTime=0.0)
+        u.fmu.enterInitializationMode()
+    else:
+        u.fmu.enterInitializationMode(startTime=0.0)
+    return u
 
 
 def _text(x):
@@ -129,13 +136,14 @@ def _state_cases():
     """One ranged Integer variable per unit that has one (its last)."""
     cases = {}
     for version, unit, name, kind, low, high, start in _cases():
-        if kind in INTEGER_TYPES and high is not None and high < INT32_MAX:
-            cases[(version, unit)] = (name, high, start)
+        if kind in INTEGER_TYPES and low is not None and high is not None and high < INT32_MAX:
+            cases[(version, unit)] = (name, low, high, start)
     return [(version, unit, *rest) for (version, unit), rest in sorted(cases.items())]
 
 
-@pytest.mark.parametrize("version,unit,name,high,start", _state_cases())
-def test_deserialised_state_outside_declared_range_is_refused(version, unit, name, high, start):
+@pytest.mark.parametrize("version,unit,name,low,high,start", _state_cases())
+def test_deserialised_state_outside_declared_range_is_refused(version, unit, name, low, high,
+                                                              start):
     """The state's bytes: magic (8), sizeof(fmu_values) (8), then real[NVR], integer[NVR]."""
     u = _instance(unit, version)
     try:
@@ -147,10 +155,17 @@ def test_deserialised_state_outside_declared_range_is_refused(version, unit, nam
         u.messages.clear()
         with pytest.raises(Exception):
             u.deserialize(bytes(blob))
-        words = f"corrupt state: {name} = {high + 1} is outside its declared range"
+        words = f"corrupt state: {name} = {high + 1} is outside its declared range [{low}, {high}]"
         assert any(words in m for m in u.messages), u.messages
-        struct.pack_into("<i", blob, offset, high)  # the boundary is a state
-        u.set_state(u.deserialize(bytes(blob)))
-        assert u.get([name])[0] == high
+        for boundary in (low, high):
+            # the range takes its ends; the model may still refuse one with other values (e.g.
+            # the controller's output = 1 without drives), but not as out of range
+            struct.pack_into("<i", blob, offset, boundary)
+            u.messages.clear()
+            try:
+                u.set_state(u.deserialize(bytes(blob)))
+                assert u.get([name])[0] == boundary
+            except Exception:
+                assert u.messages and not any("declared range" in m for m in u.messages)
     finally:
         u.free()
