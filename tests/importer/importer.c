@@ -311,7 +311,8 @@ static void *range_instance(const range_api *a, char *message, fmi2CallbackFunct
     }
     *cb = (fmi2CallbackFunctions){remember2, calloc, free, NULL, message};
     void *c = a->f2.instantiate("ranges", fmi2CoSimulation, GUID, "", cb, fmi2False, fmi2True);
-    if (c && (a->f2.setup(c, fmi2False, 0, 0.0, fmi2False, 0) != fmi2OK || a->f2.enter(c) != fmi2OK))
+    if (c && (a->f2.setup(c, fmi2False, 0, 0.0, fmi2False, 0) != fmi2OK ||
+              a->f2.enter(c) != fmi2OK))
         c = NULL;
     return c;
 }
