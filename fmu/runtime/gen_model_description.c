@@ -418,6 +418,20 @@ static void write_model_structure(void) {
     fputs("  </ModelStructure>\n", out);
 }
 
+/* 0, or 1 with a message if a start value lies outside its variable's declared range (the
+ * runtime refuses such a value when it is set: a unit must start within its own description). */
+static int check_start_ranges(const fmu_values *start) {
+    for (size_t i = 0; i < fmu_n_variables; ++i) {
+        const fmu_variable *var = &fmu_variables[i];
+        const double x = var->type == FMU_REAL ? start->real[var->vr] : start->integer[var->vr];
+        if (var->causality == FMU_OUTPUT_VAR || fmu_within_range(var, x)) continue;
+        fprintf(stderr, "gen_model_description: start value of " FMU_OUT_OF_RANGE_FORMAT "\n",
+                var->name, x, var->min, var->max);
+        return 1;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv) {
     if (argc != 3 || (strcmp(argv[1], "2") && strcmp(argv[1], "3"))) {
         fprintf(stderr, "usage: gen_model_description 2|3 OUT.xml\n");
@@ -426,13 +440,14 @@ int main(int argc, char **argv) {
     version = atoi(argv[1]);
     int used[N_UNITS] = {0};
     if (mark_used_units(used)) return 1;
+    static fmu_values start; /* large: not on the stack */
+    model_start_values(&start);
+    if (check_start_ranges(&start)) return 1;
     out = fopen(argv[2], "w");
     if (!out) {
         fprintf(stderr, "gen_model_description: cannot write %s\n", argv[2]);
         return 1;
     }
-    static fmu_values start; /* large: not on the stack */
-    model_start_values(&start);
     write_header();
     write_interface();
     write_unit_definitions(used);

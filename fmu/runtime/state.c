@@ -147,6 +147,19 @@ static const char *corrupt_values(const fmu_values *v) {
     return NULL;
 }
 
+/* The first parameter or input of v outside its declared range (as a set would refuse it), or
+ * NULL. */
+static const fmu_variable *outside_declared_range(const fmu_values *v) {
+    for (size_t j = 0; j < fmu_n_variables; ++j) {
+        const fmu_variable *var = &fmu_variables[j];
+        if (var->causality != FMU_INPUT_VAR && var->causality != FMU_PARAMETER_VAR) continue;
+        if (!fmu_within_range(var, var->type == FMU_REAL ? v->real[var->vr]
+                                                         : v->integer[var->vr]))
+            return var;
+    }
+    return NULL;
+}
+
 fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, size_t size,
                                  fmu_snapshot **state) {
     if (fmu_check_call(inst, CALL_SERIALIZE, "DeserializeFMUState") != FMU_OK) return FMU_ERROR;
@@ -165,6 +178,13 @@ fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, si
     memcpy(&v, in + sizeof kMagic + sizeof n, sizeof v);
     char why[256];
     const char *corrupt = corrupt_values(&v);
+    const fmu_variable *outside = corrupt ? NULL : outside_declared_range(&v);
+    if (outside) {
+        const double x = outside->type == FMU_REAL ? v.real[outside->vr] : v.integer[outside->vr];
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "DeserializeFMUState: corrupt state: "
+                FMU_OUT_OF_RANGE_FORMAT, outside->name, x, outside->min, outside->max);
+        return FMU_ERROR;
+    }
     if (!corrupt) corrupt = model_check_state(inst, &v, in + HEADER, data_size, why, sizeof why);
     if (corrupt) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "DeserializeFMUState: corrupt state: %s", corrupt);

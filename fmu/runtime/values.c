@@ -73,9 +73,25 @@ fmu_status fmu_get_integer(fmu_instance *inst, const unsigned vr[], size_t n, in
     return FMU_OK;
 }
 
-/* Inputs may be set in any mode before Terminate; parameters (fixed) only before the end of
- * initialisation; outputs and time never. All are checked before any is written (the call
- * allowed now and the arrays given first). */
+/* Whether var may be set now: inputs in any mode before Terminate, parameters (fixed) only
+ * before the end of initialisation; outputs and time never. */
+static int settable_now(const fmu_instance *inst, const fmu_variable *var) {
+    return var->causality == FMU_INPUT_VAR ||
+           (var->causality == FMU_PARAMETER_VAR &&
+            (inst->v.mode & (MODE_INSTANTIATED | MODE_INITIALIZATION)));
+}
+
+/* Element i of a set call's values as a double (an Int32 converts exactly). */
+static double given(fmu_type type, const void *value, size_t i) {
+    return type == FMU_REAL ? ((const double *)value)[i] : ((const int32_t *)value)[i];
+}
+
+/* The checks of a set of n values of `type`, all made before any value is written (the call
+ * allowed now and the arrays given first): every vr a variable of that type that may be set now,
+ * and every value within the variable's declared min and max. A declared range belongs to one
+ * variable alone, so the order in which a master sets values cannot make a valid value look out
+ * of range: it is refused at the call that gives it, naming it (checks across variables, such as
+ * stroke_min < stroke_max, are the model's, at the end of initialisation). */
 static fmu_status check_settable(fmu_instance *inst, const char *what, const unsigned vr[],
                                  size_t n, fmu_type type, const void *value) {
     if (fmu_check_call(inst, CALL_SET, what) != FMU_OK) return FMU_ERROR;
@@ -83,13 +99,18 @@ static fmu_status check_settable(fmu_instance *inst, const char *what, const uns
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = typed(inst, what, vr[i], type);
         if (!var) return FMU_ERROR;
-        if (var->causality == FMU_INPUT_VAR) continue;
-        if (var->causality == FMU_PARAMETER_VAR &&
-            (inst->v.mode & (MODE_INSTANTIATED | MODE_INITIALIZATION)))
-            continue;
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: variable %s cannot be set in %s", what,
-                var->name, fmu_mode_name(inst->v.mode));
-        return FMU_ERROR;
+        if (!settable_now(inst, var)) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: variable %s cannot be set in %s", what,
+                    var->name, fmu_mode_name(inst->v.mode));
+            return FMU_ERROR;
+        }
+        const double x = given(type, value, i);
+        if (!fmu_within_range(var, x)) {
+            fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: " FMU_OUT_OF_RANGE_FORMAT
+                    " (none of this call's values is set)", what, var->name, x, var->min,
+                    var->max);
+            return FMU_ERROR;
+        }
     }
     return FMU_OK;
 }

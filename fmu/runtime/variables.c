@@ -46,6 +46,10 @@ const fmu_variable *fmu_variable_by_vr(unsigned vr) {
     return &fmu_variables[kIndex[vr] - 1];
 }
 
+int fmu_within_range(const fmu_variable *var, double x) {
+    return !var->has_range || !(x < (double)var->min || x > (double)var->max);
+}
+
 #define FMU_LOG_CATEGORY(id, name, description) [id] = name,
 const char *const fmu_log_category_names[FMU_N_LOG_CATEGORIES] = {
 #include "variables.def"

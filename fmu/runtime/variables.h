@@ -72,6 +72,14 @@ typedef struct fmu_variable {
     const char *description;
 } fmu_variable;
 
+/* 1 if x lies within var's declared range (min <= x <= max, the model description's min and
+ * max) or var declares none, else 0. NaN is not judged here: a Real input that is not finite is
+ * the step's to report, naming it. */
+int fmu_within_range(const fmu_variable *var, double x);
+/* How an out-of-range value is named in a message: the arguments are the variable's name, the
+ * value (as a double: an Int32 converts exactly) and the variable's min and max. */
+#define FMU_OUT_OF_RANGE_FORMAT "%s = %.17g is outside its declared range [%ld, %ld]"
+
 /* All variables in table order, and per value reference (NULL where unused). */
 extern const fmu_variable fmu_variables[];
 extern const size_t fmu_n_variables;

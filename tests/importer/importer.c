@@ -5,11 +5,15 @@
  * (and per full communication step: set inputs, doStep, get outputs), in microseconds.
  *
  * It also counts heap allocations (malloc, calloc, realloc interposed below, glibc) while the
- * steps run: a step must not allocate.
+ * steps run: a step must not allocate. And it sets every Integer parameter and input with a
+ * declared min and max (the unit's own variable table, from which its model description is
+ * written) just outside its range, which both versions must refuse with an Error naming it, the
+ * value kept, and at both ends, which they must take.
  *
  * usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -229,6 +233,117 @@ static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, doub
     return tm;
 }
 
+/* ------------------------------------------------------------------ declared ranges */
+
+/* The last message a ranges instance logged (its environment is this buffer). */
+static void remember2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
+                      fmi2String category, fmi2String message, ...) {
+    (void)name; (void)status; (void)category;
+    snprintf((char *)env, 512, "%s", message);
+}
+
+static void remember3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
+                      fmi3String message) {
+    (void)status; (void)category;
+    snprintf((char *)env, 512, "%s", message);
+}
+
+/* The calls of the ranges check, of one FMI version (v3 0: fmi2*, 1: fmi3*). */
+typedef struct {
+    int v3;
+    fmi2_api f2;
+    fmi3InstantiateCoSimulationTYPE *instantiate3;
+    fmi3EnterInitializationModeTYPE *enter3;
+    fmi3SetInt32TYPE *set3;
+    fmi3GetInt32TYPE *get3;
+    fmi3FreeInstanceTYPE *free3;
+} range_api;
+
+static range_api range_api_load(void *lib, int v3) {
+    range_api a;
+    memset(&a, 0, sizeof a);
+    a.v3 = v3;
+    if (!v3) {
+        a.f2 = fmi2_api_load(lib);
+        return a;
+    }
+    a.instantiate3 = importer_symbol(lib, "fmi3InstantiateCoSimulation");
+    a.enter3 = importer_symbol(lib, "fmi3EnterInitializationMode");
+    a.set3 = importer_symbol(lib, "fmi3SetInt32");
+    a.get3 = importer_symbol(lib, "fmi3GetInt32");
+    a.free3 = importer_symbol(lib, "fmi3FreeInstance");
+    return a;
+}
+
+static int32_t range_get(const range_api *a, void *c, unsigned vr) {
+    int32_t x = 0;
+    if (a->v3) a->get3(c, &vr, 1, &x, 1);
+    else a->f2.get_int(c, &vr, 1, &x);
+    return x;
+}
+
+/* One set of value x of var: Error with a message naming var, x and the range if x is outside
+ * the declared range, else OK; the value read back is x if taken, else what it was. */
+static void check_one_set(const range_api *a, void *c, const fmu_variable *var, int32_t x,
+                          const char *message) {
+    const unsigned vr = var->vr;
+    const int32_t before = range_get(a, c, vr);
+    const int status = a->v3 ? (int)a->set3(c, &vr, 1, &x, 1) : (int)a->f2.set_int(c, &vr, 1, &x);
+    const int32_t after = range_get(a, c, vr);
+    const int inside = x >= var->min && x <= var->max;
+    char words[256];
+    snprintf(words, sizeof words, "%s = %d is outside its declared range [%ld, %ld]", var->name,
+             (int)x, var->min, var->max);
+    const int v = a->v3 ? 3 : 2;
+    CHECK(status == (inside ? 0 : 3), "fmi%d set %s = %d: status %d", v, var->name, (int)x, status);
+    CHECK(after == (inside ? x : before), "fmi%d %s reads %d after a set of %d", v, var->name,
+          (int)after, (int)x);
+    CHECK(inside || strstr(message, words), "fmi%d: no message '%s' (last: %s)", v, words, message);
+}
+
+/* An instance in initialisation mode (where parameters are set and read) logging into message. */
+static void *range_instance(const range_api *a, char *message, fmi2CallbackFunctions *cb) {
+    if (a->v3) {
+        void *c = a->instantiate3("ranges", GUID, "", fmi3False, fmi3True, fmi3False, fmi3False,
+                                  NULL, 0, message, remember3, NULL);
+        if (c && a->enter3(c, fmi3False, 0, 0.0, fmi3False, 0) != fmi3OK) c = NULL;
+        return c;
+    }
+    *cb = (fmi2CallbackFunctions){remember2, calloc, free, NULL, message};
+    void *c = a->f2.instantiate("ranges", fmi2CoSimulation, GUID, "", cb, fmi2False, fmi2True);
+    if (c && (a->f2.setup(c, fmi2False, 0, 0.0, fmi2False, 0) != fmi2OK ||
+              a->f2.enter(c) != fmi2OK))
+        c = NULL;
+    return c;
+}
+
+/* Every Integer parameter and input with a declared range, just outside it and at its ends; the
+ * number of such variables. */
+static int check_declared_ranges(void *lib, int v3) {
+    const range_api a = range_api_load(lib, v3);
+    char message[512] = "";
+    fmi2CallbackFunctions cb;
+    void *c = range_instance(&a, message, &cb);
+    CHECK(c != NULL, "fmi%d instance in initialisation mode for the ranges: %s", v3 ? 3 : 2,
+          message);
+    if (!c) return 0;
+    int checked = 0;
+    for (size_t i = 0; i < fmu_n_variables; ++i) {
+        const fmu_variable *var = &fmu_variables[i];
+        if (!var->has_range || var->type != FMU_INTEGER ||
+            (var->causality != FMU_PARAMETER_VAR && var->causality != FMU_INPUT_VAR))
+            continue;
+        if (var->min > INT32_MIN) check_one_set(&a, c, var, (int32_t)(var->min - 1), message);
+        if (var->max < INT32_MAX) check_one_set(&a, c, var, (int32_t)(var->max + 1), message);
+        check_one_set(&a, c, var, (int32_t)var->min, message);
+        check_one_set(&a, c, var, (int32_t)var->max, message);
+        ++checked;
+    }
+    if (v3) a.free3(c);
+    else a.f2.free_instance(c);
+    return checked;
+}
+
 int main(int argc, char **argv) {
     if (argc < 3) {
         fprintf(stderr, "usage: fmu_importer FMI2.so FMI3.so [OUT.txt] [STEPS]\n");
@@ -241,6 +356,11 @@ int main(int argc, char **argv) {
     if (!lib3) { fprintf(stderr, "importer: %s\n", dlerror()); return 2; }
     FILE *out = argc > 3 ? fopen(argv[3], "w") : NULL;
     if (argc > 3 && !out) { fprintf(stderr, "importer: cannot write %s\n", argv[3]); return 2; }
+
+    const int ranged = check_declared_ranges(lib2, 0);
+    CHECK(ranged > 0 && check_declared_ranges(lib3, 1) == ranged,
+          "the declared ranges: %d Integer variables with one", ranged);
+    printf("declared ranges: %d Integer parameters and inputs, FMI 2 and 3\n", ranged);
 
     static const char *const level[3] = {"kinematic", "massless", "full"};
     double *o2 = calloc((size_t)steps * N_OUT, sizeof(double));

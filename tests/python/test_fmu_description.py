@@ -111,8 +111,9 @@ def test_capabilities():
 def test_value_references_agree_with_the_c_tables(version):
     """Each variable's XML start value is what the binary returns for its value reference, and
     parameter defaults equal stewart-solve's platform (checked through the outputs elsewhere).
-    Setting a distinct value through each input/parameter vr and reading all back finds no two
-    vrs sharing storage."""
+    Setting a distinct value through each Real input/parameter vr and reading all back, and
+    each Integer one in turn to another value of its declared range, finds no two vrs sharing
+    storage."""
     with opened_unit(version) as u:
         assert u.enter_init() == 0
         md = model_description(version)
@@ -120,12 +121,20 @@ def test_value_references_agree_with_the_c_tables(version):
         for v in settable:
             got = u.get([v.name])[0]
             assert float(got) == float(v.start), (v.name, got, v.start)
-        values = {}
-        for i, v in enumerate(settable):
-            values[v.name] = (i + 1) * (1.25 if v.type in ("Real", "Float64") else 1)
-        u.set_values({n: x for n, x in values.items()})
+        reals = [v for v in settable if v.type in ("Real", "Float64")]
+        values = {v.name: (i + 1) * 1.25 for i, v in enumerate(reals)}
+        u.set_values(values)
         for n, x in values.items():
             assert u.get([n])[0] == x, n
+        integers = [v for v in settable if v not in reals]
+        names = [v.name for v in integers]
+        for v in integers:
+            before = u.get(names)
+            other = int(v.min) if int(v.start) != int(v.min) else int(v.max)
+            u.set_values({v.name: other})
+            after = u.get(names)
+            assert [n for n, a, b in zip(names, before, after) if a != b] == [v.name]
+            u.set_values({v.name: int(v.start)})
 
 
 @pytest.mark.parametrize("version", VERSIONS)

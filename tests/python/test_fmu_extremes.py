@@ -578,7 +578,6 @@ def test_payload_far_outside(version, com):
     ("singular_condition", 10.0, "singular"),  # below warn_condition
     ("tolerance", math.nan, "tolerance"),
     ("tolerance", 1e-16, "below what the position residual can reach"),
-    ("max_iterations", 0, "max_iterations"),
 ])
 def test_invalid_parameters_are_errors_naming_them(version, name, value, words):
     with opened_unit(version) as u:
