@@ -76,6 +76,21 @@ mbs_status check_finite(State &s, std::vector<double> &v, const char *what,
     return MBS_OK;
 }
 
+// One of a step's linear solves on the shared factor of Phi_q: assemble_rhs puts the right-hand
+// side into x, solved in place (with the transpose for the multipliers), then checked finite.
+template <bool kTransposed, class AssembleRhs>
+mbs_status solve_linear(State &s, std::vector<double> &x, const char *what,
+                        AssembleRhs assemble_rhs) {
+    const mbs_status st = ensure_factor(s);
+    if (st != MBS_OK) return st;
+    assemble_rhs();
+    if (kTransposed)
+        s.linear->solve_transposed(x.data());
+    else
+        s.linear->solve(x.data());
+    return check_finite(s, x, what, assemble_rhs);
+}
+
 }  // namespace
 
 mbs_status solve_position(State &s, double t, const SolverOptions &o, bool use_predictor) {
@@ -93,36 +108,23 @@ mbs_status solve_position(State &s, double t, const SolverOptions &o, bool use_p
 }
 
 mbs_status solve_velocity(State &s) {
-    mbs_status st = ensure_factor(s);
-    if (st != MBS_OK) return st;
-    auto rhs = [&s] { assemble_phi_t(s.mechanism, s.q.data(), s.drive.data(), s.q_dot.data()); };
-    rhs();
-    for (double &v : s.q_dot) v = -v;
-    s.linear->solve(s.q_dot.data());
-    return check_finite(s, s.q_dot, "q_dot", rhs);
+    return solve_linear<false>(s, s.q_dot, "q_dot", [&s] {
+        assemble_phi_t(s.mechanism, s.q.data(), s.drive.data(), s.q_dot.data());
+        for (double &v : s.q_dot) v = -v;
+    });
 }
 
 mbs_status solve_acceleration(State &s) {
-    mbs_status st = ensure_factor(s);
-    if (st != MBS_OK) return st;
-    auto rhs = [&s] {
+    return solve_linear<false>(s, s.q_ddot, "q_ddot", [&s] {
         assemble_gamma(s.mechanism, s.q.data(), s.q_dot.data(), s.drive.data(), s.q_ddot.data());
-    };
-    rhs();
-    s.linear->solve(s.q_ddot.data());
-    return check_finite(s, s.q_ddot, "q_ddot", rhs);
+    });
 }
 
 mbs_status solve_multipliers(State &s) {
-    mbs_status st = ensure_factor(s);
-    if (st != MBS_OK) return st;
-    auto rhs = [&s] {
+    return solve_linear<true>(s, s.lambda, "lambda", [&s] {
         applied_minus_inertial(s.mechanism, s.q.data(), s.q_dot.data(), s.q_ddot.data(),
                                s.lambda.data());
-    };
-    rhs();
-    s.linear->solve_transposed(s.lambda.data());
-    return check_finite(s, s.lambda, "lambda", rhs);
+    });
 }
 
 mbs_status solve_step(State &s, double t, const SolverOptions &o, bool use_predictor) {

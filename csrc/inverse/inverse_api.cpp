@@ -15,12 +15,9 @@ using stewart::set_message;
 extern "C" stewart_inverse *stewart_inverse_create(const stewart_model *m,
                                                    const stewart_inverse_options *o, char *msg,
                                                    size_t size) {
-    if (!stewart::create_arguments_ok(m, o, stewart_inverse_options_check, msg, size))
-        return nullptr;
-    stewart_inverse *d = stewart::new_object<stewart_inverse>("inverse solver", msg, size);
+    stewart_inverse *d = stewart::new_object_for<stewart_inverse>(
+        m, o, stewart_inverse_options_check, "inverse solver", msg, size);
     if (!d) return nullptr;
-    d->model = m;
-    d->options = *o;
     d->full.reset(new (std::nothrow) mbs_data(m->full.get(), mbs::SolverOptions()));
     if (!d->full || !d->full->state.ok()) {
         set_message(msg, size, STEWART_ERR_MEMORY,

@@ -73,12 +73,9 @@ extern "C" {
 stewart_limits *stewart_limits_create(const stewart_model *model,
                                       const stewart_limits_options *options, char *msg,
                                       size_t size) {
-    if (!stewart::create_arguments_ok(model, options, stewart_limits_options_check, msg, size))
-        return nullptr;
-    stewart_limits *limits = stewart::new_object<stewart_limits>("limits object", msg, size);
+    stewart_limits *limits = stewart::new_object_for<stewart_limits>(
+        model, options, stewart_limits_options_check, "limits object", msg, size);
     if (!limits) return nullptr;
-    limits->model = model;
-    limits->options = *options;
     limits->message[0] = '\0';
     limits->constants =
         stewart::limit_constants(model->params, model->geometry, options->warn_condition);

@@ -129,12 +129,9 @@ bool base_wrench(const stewart_linearize &l, const stewart_pose &pose, double fo
 extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *model,
                                                        const stewart_linearize_options *options,
                                                        char *msg, size_t size) {
-    if (!stewart::create_arguments_ok(model, options, stewart_linearize_options_check, msg, size))
-        return nullptr;
-    stewart_linearize *l = stewart::new_object<stewart_linearize>("linearisation", msg, size);
+    stewart_linearize *l = stewart::new_object_for<stewart_linearize>(
+        model, options, stewart_linearize_options_check, "linearisation", msg, size);
     if (!l) return nullptr;
-    l->model = model;
-    l->options = *options;
     l->dynamics = plant::dynamics_model(*model, options->fidelity);
     clear_message(msg, size);
     return l;
@@ -205,11 +202,10 @@ extern "C" const char *stewart_linearize_message(const stewart_linearize *l) {
 extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
                                                   const stewart_linearize_input *in,
                                                   stewart_linearize_output *out) {
-    if (!l) return STEWART_ERR_ARGUMENT;
+    stewart_status s = stewart::call_arguments_ok(l, in, out, "input or output");
+    if (s != STEWART_OK) return s;
     char *msg = l->message;
     const size_t size = sizeof l->message;
-    if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL input or output");
-    stewart_status s;
     if ((s = check_pose_rows(in->pose, 1, msg, size)) != STEWART_OK) return s;
     if ((s = check_finite(in->force, STEWART_LEGS, "force", 1, msg, size)) != STEWART_OK) return s;
     lin::PlantJacobian p;
@@ -258,10 +254,8 @@ namespace {
 // The checks every call on a pose starts with: a linearisation, a pose and an output, the pose's
 // rows (to its accelerations) finite.
 stewart_status check_pose_call(stewart_linearize *l, const stewart_pose *pose, const void *out) {
-    if (!l) return STEWART_ERR_ARGUMENT;
-    if (!pose || !out)
-        return set_message(l->message, sizeof l->message, STEWART_ERR_ARGUMENT,
-                           "NULL pose or output");
+    const stewart_status s = stewart::call_arguments_ok(l, pose, out, "pose or output");
+    if (s != STEWART_OK) return s;
     return check_pose_rows(*pose, 2, l->message, sizeof l->message);
 }
 
@@ -336,21 +330,27 @@ stewart_status force_rows(const stewart_linearize &l, const stewart_pose &pose,
     return STEWART_OK;
 }
 
-}  // namespace
-
-extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const stewart_pose *pose,
-                                                    stewart_linearize_inverse_output *out) {
-    stewart_status s;
-    if ((s = check_pose_call(l, pose, out)) != STEWART_OK) return s;
-    char *msg = l->message;
-    const size_t size = sizeof l->message;
-    stewart_linearize_inverse_output o;
+// A call at one pose: its arguments checked, then rows fills a zeroed output (STEWART_OK or the
+// status with msg naming the cause), which is given to the caller only when complete.
+template <class Output, class Rows>
+stewart_status pose_call(stewart_linearize *l, const stewart_pose *pose, Output *out, Rows rows) {
+    stewart_status s = check_pose_call(l, pose, out);
+    if (s != STEWART_OK) return s;
+    Output o;
     std::memset(&o, 0, sizeof o);
+    if ((s = rows(*l, *pose, o, l->message, sizeof l->message)) != STEWART_OK) return s;
+    *out = o;
+    return clear_message(l->message, sizeof l->message);
+}
+
+stewart_status inverse_rows(const stewart_linearize &l, const stewart_pose &pose,
+                            stewart_linearize_inverse_output &o, char *msg, size_t size) {
+    stewart_status s;
     lin::Failure why;
-    if (!length_rows(*l, *pose, o, why)) return failure(why, pose->q[4], msg, size);
-    if ((s = force_rows(*l, *pose, o, msg, size)) != STEWART_OK) return s;
-    if (!base_wrench(*l, *pose, o.base_force, o.base_torque, o.jacobian + 24, why))
-        return failure(why, pose->q[4], msg, size);
+    if (!length_rows(l, pose, o, why)) return failure(why, pose.q[4], msg, size);
+    if ((s = force_rows(l, pose, o, msg, size)) != STEWART_OK) return s;
+    if (!base_wrench(l, pose, o.base_force, o.base_torque, o.jacobian + 24, why))
+        return failure(why, pose.q[4], msg, size);
     static_assert(offsetof(stewart_linearize_inverse_output, jacobian) ==
                       offsetof(stewart_linearize_inverse_output, lengths) +
                           sizeof(stewart_lengths) + 12 * sizeof(double),
@@ -359,27 +359,31 @@ extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const 
                                                        6 * sizeof(double) + sizeof o.jacobian,
                             msg, size)) != STEWART_OK)
         return s;
-    o.stroke_legs = stroke_legs_of(l->model->params, o.lengths.length);
+    o.stroke_legs = stroke_legs_of(l.model->params, o.lengths.length);
     o.warnings = o.stroke_legs ? STEWART_WARN_STROKE : 0;
-    subtract_offsets(*l->model, o.lengths.length);
-    *out = o;
-    return clear_message(msg, size);
+    subtract_offsets(*l.model, o.lengths.length);
+    return STEWART_OK;
+}
+
+stewart_status wrench_rows(const stewart_linearize &l, const stewart_pose &pose,
+                           stewart_linearize_wrench_output &o, char *msg, size_t size) {
+    lin::Failure why;
+    if (!base_wrench(l, pose, o.base_force, o.base_torque, o.jacobian, why))
+        return failure(why, pose.q[4], msg, size);
+    static_assert(sizeof o == (6 + 6 * STEWART_LINEARIZE_INVERSE_COLUMNS) * sizeof(double),
+                  "the checked values are contiguous");
+    return check_overflow(o.base_force, sizeof o, msg, size);
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_linearize_inverse(stewart_linearize *l, const stewart_pose *pose,
+                                                    stewart_linearize_inverse_output *out) {
+    return pose_call(l, pose, out, inverse_rows);
 }
 
 extern "C" stewart_status stewart_linearize_base_wrench(stewart_linearize *l,
                                                         const stewart_pose *pose,
                                                         stewart_linearize_wrench_output *out) {
-    stewart_status s;
-    if ((s = check_pose_call(l, pose, out)) != STEWART_OK) return s;
-    char *msg = l->message;
-    const size_t size = sizeof l->message;
-    stewart_linearize_wrench_output o;
-    lin::Failure why;
-    if (!base_wrench(*l, *pose, o.base_force, o.base_torque, o.jacobian, why))
-        return failure(why, pose->q[4], msg, size);
-    static_assert(sizeof o == (6 + 6 * STEWART_LINEARIZE_INVERSE_COLUMNS) * sizeof(double),
-                  "the checked values are contiguous");
-    if ((s = check_overflow(o.base_force, sizeof o, msg, size)) != STEWART_OK) return s;
-    *out = o;
-    return clear_message(msg, size);
+    return pose_call(l, pose, out, wrench_rows);
 }

@@ -3,7 +3,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
-#include <new>
 
 #include "limits/limit_check.hpp"
 #include "model.hpp"
@@ -12,6 +11,7 @@
 #include "plant/plant_reactions.hpp"
 #include "stewart/stewart_plant.h"
 #include "stewart/stewart_table.h"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::clear_message;
@@ -218,14 +218,20 @@ struct PlantState {
     double step_hint;
 };
 
+// The fields a rollback keeps, from one holder (a plant or a PlantState) to the other.
+template <class To, class From>
+void copy_rollback_fields(To &to, const From &from) {
+    to.time = from.time;
+    std::memcpy(to.y, from.y, sizeof to.y);
+    std::memcpy(to.angles, from.angles, sizeof to.angles);
+    std::memcpy(to.force, from.force, sizeof to.force);
+    to.warnings = from.warnings;
+    to.step_hint = from.step_hint;
+}
+
 PlantState state_of(const stewart_plant &p) {
     PlantState s;
-    s.time = p.time;
-    std::memcpy(s.y, p.y, sizeof s.y);
-    std::memcpy(s.angles, p.angles, sizeof s.angles);
-    std::memcpy(s.force, p.force, sizeof s.force);
-    s.warnings = p.warnings;
-    s.step_hint = p.step_hint;
+    copy_rollback_fields(s, p);
     return s;
 }
 
@@ -256,12 +262,7 @@ bool shown_pose(const stewart_plant &p, const double y[plant::kStates], const st
 
 void restore_state(stewart_plant &p, const PlantState &s) {
     p.step_end_valid = false;
-    p.time = s.time;
-    std::memcpy(p.y, s.y, sizeof p.y);
-    std::memcpy(p.angles, s.angles, sizeof p.angles);
-    std::memcpy(p.force, s.force, sizeof p.force);
-    p.warnings = s.warnings;
-    p.step_hint = s.step_hint;
+    copy_rollback_fields(p, s);
 }
 
 }  // namespace
@@ -280,18 +281,9 @@ extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
 extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
                                                const stewart_plant_options *options, char *msg,
                                                size_t size) {
-    if (!model) {
-        set_message(msg, size, STEWART_ERR_ARGUMENT, "model is NULL");
-        return nullptr;
-    }
-    if (stewart_plant_options_check(options, msg, size) != STEWART_OK) return nullptr;
-    stewart_plant *p = new (std::nothrow) stewart_plant;
-    if (!p) {
-        set_message(msg, size, STEWART_ERR_MEMORY, "out of memory creating the plant");
-        return nullptr;
-    }
-    p->model = model;
-    p->options = *options;
+    stewart_plant *p = stewart::new_object_for<stewart_plant>(
+        model, options, stewart_plant_options_check, "plant", msg, size);
+    if (!p) return nullptr;
     p->limits = stewart::limit_constants(model->params, model->geometry, HUGE_VAL);
     p->dynamics = plant::dynamics_model(*model, options->fidelity);
     if (plant::drive_model(model->params, *options, p->dynamics.drives, msg, size) != STEWART_OK) {
@@ -340,12 +332,8 @@ extern "C" void stewart_plant_reset(stewart_plant *p) {
 }
 
 extern "C" stewart_status stewart_plant_copy(stewart_plant *dst, const stewart_plant *src) {
-    if (!dst) return STEWART_ERR_ARGUMENT;
-    if (!src)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT, "src is NULL");
-    if (dst->model != src->model)
-        return set_message(dst->message, sizeof dst->message, STEWART_ERR_ARGUMENT,
-                           "the plants were made for different models");
+    const stewart_status checked = stewart::copy_arguments_ok(dst, src, "plants");
+    if (checked != STEWART_OK) return checked;
     restore_state(*dst, state_of(*src));
     std::memcpy(dst->message, src->message, sizeof dst->message);
     return STEWART_OK;
@@ -353,10 +341,10 @@ extern "C" stewart_status stewart_plant_copy(stewart_plant *dst, const stewart_p
 
 extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
                                                   const double pose[6], const double rate[6]) {
-    if (!p) return STEWART_ERR_ARGUMENT;
+    const stewart_status checked = stewart::call_arguments_ok(p, pose, rate, "pose or rates");
+    if (checked != STEWART_OK) return checked;
     char *msg = p->message;
     const size_t size = sizeof p->message;
-    if (!pose || !rate) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL pose or rates");
     if (!(std::fabs(time) <= kMaxTime))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "time = %g s must be finite and within +-%g s", time, kMaxTime);
@@ -597,12 +585,11 @@ void take_step_end(stewart_plant &p, const double *y, const double angles[3],
 
 extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_plant_input *input,
                                              stewart_plant_output *output) {
-    if (!p) return STEWART_ERR_ARGUMENT;
+    stewart_status s = stewart::call_arguments_ok(p, input, output, "argument");
+    if (s != STEWART_OK) return s;
     char *msg = p->message;
     const size_t size = sizeof p->message;
-    if (!input || !output) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
-    stewart_status s = check_step_input(*p, *input, msg, size);
-    if (s != STEWART_OK) return s;
+    if ((s = check_step_input(*p, *input, msg, size)) != STEWART_OK) return s;
     const plant::ForceProfile profile = force_profile(*input);
     double y[plant::kMaxStates];
     for (int i = 0; i < plant::kMaxStates; ++i) y[i] = p->y[i];

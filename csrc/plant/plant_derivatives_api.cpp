@@ -10,6 +10,7 @@
 #include "kinematics/motion.hpp"
 #include "kinematics/pose_names.hpp"
 #include "plant/plant_object.hpp"
+#include "util/create.hpp"
 #include "util/message.hpp"
 
 using stewart::set_message;
@@ -155,17 +156,16 @@ stewart_status check_outputs_finite(const stewart_plant_output &o, const double 
 extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
                                                     const stewart_plant_derivative_input *in,
                                                     stewart_plant_output *out) {
-    if (!p) return STEWART_ERR_ARGUMENT;
+    stewart_status s = stewart::call_arguments_ok(p, in, out, "argument");
+    if (s != STEWART_OK) return s;
     char *msg = p->message;
     const size_t size = sizeof p->message;
-    if (!in || !out) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
     if (p->dynamics.drives.inductive)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "voltage input with winding_inductance > 0: the windings' currents "
                            "are states this call does not take (stewart_plant_step integrates "
                            "them; or set the inductances to 0)");
-    stewart_status s = check_input(*in, msg, size);
-    if (s != STEWART_OK) return s;
+    if ((s = check_input(*in, msg, size)) != STEWART_OK) return s;
     if (!(std::fabs(std::cos(in->pose.q[4])) > plant::kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "pitch = %.17g rad is at +-90 degrees, where roll and yaw rates are "

@@ -17,6 +17,12 @@
 
 namespace {
 
+// The fixture (setUp): the thesis platform's parameters, geometry and limit constants; a test may
+// change params, which the next test's setUp puts back.
+stewart_params params;
+stewart::PlatformGeometry g;
+stewart::LimitConstants thesis_limits;
+
 double uniform(uint64_t &state, double a, double b) {
     state = state * 6364136223846793005ull + 1442695040888963407ull;
     return a + (b - a) * static_cast<double>(state >> 11) / 9007199254740992.0;
@@ -80,18 +86,14 @@ void require_full_verdicts(const stewart::LimitConstants &c, MakePose make_pose,
 }
 
 void test_far_and_beyond(void) {
-    stewart_params params;
-    stewart_params_default(&params);
-    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
-    const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
     uint64_t rng = 2026;
     require_full_verdicts(
-        c,
+        thesis_limits,
         [&](int n, double q[6], Eigen::Matrix3d &) {
             random_pose(rng, params.home_height, n % 2 ? 0.05 : 0.4, q);
         },
         [&](const double q[6], const Eigen::Matrix3d &) {
-            return stewart::platform_limit_failures(c, q);
+            return stewart::platform_limit_failures(thesis_limits, q);
         });
 }
 
@@ -99,9 +101,6 @@ void test_far_and_beyond(void) {
 // ulps either way, so that the verdict turns on the last bits; and the joint limits a little wider,
 // across the cosine pre-test's slack.
 void test_on_the_edge(void) {
-    stewart_params params;
-    stewart_params_default(&params);
-    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     uint64_t rng = 99;
     int differing = 0, failing = 0, uniform_checks = 0;
     // the angle limits also a little wider, about where the cosine pre-test's slack ends
@@ -152,9 +151,6 @@ void test_on_the_edge(void) {
 
 // Limits at the ends of their range: 0 fails at any angle but zero, pi never fails.
 void test_extreme_limits(void) {
-    stewart_params params;
-    stewart_params_default(&params);
-    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     uint64_t rng = 7;
     int differing = 0;
     const double limits[] = {0.0, 1e-12, M_PI - 1e-12, M_PI};
@@ -189,20 +185,17 @@ Eigen::Matrix3d random_rotation(uint64_t &rng, double spread, double angles[3]) 
 // closest distance and then `offset` either way, equal from |offset| >= 1e-12 on (the rotations
 // differ by a few roundings, 1e-16, the angles and distances by as little).
 void test_rotation_verdicts(void) {
-    stewart_params params;
-    stewart_params_default(&params);
-    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
-    const stewart::LimitConstants c = stewart::limit_constants(params, g, HUGE_VAL);
     uint64_t rng = 4242;
     require_full_verdicts(
-        c,
+        thesis_limits,
         [&](int n, double q[6], Eigen::Matrix3d &R) {
             R = random_rotation(rng, n % 2 ? 0.05 : 0.5, q + 3);
             for (int i = 0; i < 3; ++i) q[i] = uniform(rng, -0.3, 0.3);
             q[2] += params.home_height;
         },
         [&](const double q[6], const Eigen::Matrix3d &R) {
-            return stewart::platform_limit_failures(c, Eigen::Vector3d(q[0], q[1], q[2]), R);
+            return stewart::platform_limit_failures(thesis_limits, Eigen::Vector3d(q[0], q[1], q[2]),
+                                                    R);
         });
     int differing = 0;
     const double offsets[] = {-1e-9, -1e-11, -1e-12, 0.0, 1e-12, 1e-11, 1e-9};
@@ -249,9 +242,6 @@ void test_rotation_verdicts(void) {
 // limits and with narrow ones (joints at 0.3 rad, a leg diameter of 0.25 m, so that walks spend
 // long stretches on the edges). Equal everywhere; the clearance spares the check on most poses.
 void test_clearance(void) {
-    stewart_params params;
-    stewart_params_default(&params);
-    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     stewart_params narrow = params;
     narrow.base_joint_limit = narrow.platform_joint_limit = 0.3;
     narrow.leg_diameter = 0.25;
@@ -359,13 +349,9 @@ void worst_bound_ratios(const stewart::LimitConstants &c, double home_height, ui
 }
 
 void test_clearance_bound(void) {
-    stewart_params params;
-    stewart_params_default(&params);
-    const stewart::PlatformGeometry g = stewart::platform_geometry(params);
     uint64_t rng = 8086;
     double worst[5];
-    worst_bound_ratios(stewart::limit_constants(params, g, HUGE_VAL), params.home_height, rng,
-                       worst);
+    worst_bound_ratios(thesis_limits, params.home_height, rng, worst);
     std::printf("clearance bound: the largest moves of lengths, base and platform cosines, "
                 "distances, sphere gaps are %.3g, %.3g, %.3g, %.3g, %.3g of their allowances\n",
                 worst[0], worst[1], worst[2], worst[3], worst[4]);
@@ -430,8 +416,6 @@ int spared_failures(const stewart::LimitConstants &c, double home_height, uint64
 }
 
 void test_clearance_edge(void) {
-    stewart_params params;
-    stewart_params_default(&params);
     params.base_joint_limit = 0.35;
     params.platform_joint_limit = 0.4;
     params.leg_diameter = 0.1;
@@ -469,7 +453,12 @@ void test_clearance_edge(void) {
 
 }  // namespace
 
-void setUp(void) {}
+void setUp(void) {
+    stewart_params_default(&params);
+    g = stewart::platform_geometry(params);
+    thesis_limits = stewart::limit_constants(params, g, HUGE_VAL);
+}
+
 void tearDown(void) {}
 
 int main(void) {

@@ -12,6 +12,7 @@
 
 #include "linearize/plant_jacobian.hpp"
 #include "model.hpp"
+#include "test_support.h"
 #include "unity.h"
 
 namespace plant = stewart::plant;
@@ -96,21 +97,19 @@ void test_full_paths_agree() { paths_agree(STEWART_FULL); }
 
 }  // namespace
 
-void setUp(void) {}
-void tearDown(void) {}
+void setUp(void) {
+    stewart_params_default(&params);
+    model = test_model(&params);
+}
+
+void tearDown(void) {
+    stewart_model_free(model);
+    model = nullptr;
+}
 
 int main(void) {
-    stewart_params_default(&params);
-    char message[STEWART_MESSAGE_SIZE];
-    model = stewart_model_create(&params, message, sizeof message);
-    if (!model) {
-        std::fprintf(stderr, "test_linearize_paths: %s\n", message);
-        return 1;
-    }
     UNITY_BEGIN();
     RUN_TEST(test_massless_paths_agree);
     RUN_TEST(test_full_paths_agree);
-    const int failures = UNITY_END();
-    stewart_model_free(model);
-    return failures;
+    return UNITY_END();
 }

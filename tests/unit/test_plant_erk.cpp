@@ -18,6 +18,7 @@
 
 #include "plant/plant_integrator.hpp"
 #include "stewart/stewart.h"
+#include "test_support.h"
 #include "unity.h"
 
 namespace plant = stewart::plant;
@@ -163,33 +164,31 @@ void test_full_fixed_steps(void) {
 
 }  // namespace
 
-void setUp(void) {}
-void tearDown(void) {}
-
-int main(void) {
+// The thesis platform, and the legs' forces that hold it at home (the forces swing about them).
+void setUp(void) {
     stewart_params_default(&params);
-    char message[STEWART_MESSAGE_SIZE];
-    model = stewart_model_create(&params, message, sizeof message);
-    stewart_inverse_options io;
-    stewart_inverse_options_default(&io);
-    io.fidelity = STEWART_FULL;
-    stewart_inverse *inverse = model ? stewart_inverse_create(model, &io, message, sizeof message)
-                                     : nullptr;
+    model = test_model(&params);
+    const stewart_inverse_options full = test_options(STEWART_FULL);
+    stewart_inverse *inverse = test_inverse_with(model, &full);
     stewart_inverse_input home{};
     home.pose.q[2] = params.home_height;
     stewart_inverse_output out;
-    if (!inverse || stewart_inverse_solve(inverse, &home, &out) != STEWART_OK) {
-        std::fprintf(stderr, "test_plant_erk: %s\n", message);
-        return 1;
-    }
+    const stewart_status s = stewart_inverse_solve(inverse, &home, &out);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, s, stewart_inverse_message(inverse));
     std::memcpy(static_force, out.force, sizeof static_force);
     stewart_inverse_free(inverse);
+}
+
+void tearDown(void) {
+    stewart_model_free(model);
+    model = nullptr;
+}
+
+int main(void) {
     UNITY_BEGIN();
     RUN_TEST(test_massless_adaptive);
     RUN_TEST(test_full_adaptive);
     RUN_TEST(test_massless_fixed_steps);
     RUN_TEST(test_full_fixed_steps);
-    const int failures = UNITY_END();
-    stewart_model_free(model);
-    return failures;
+    return UNITY_END();
 }
