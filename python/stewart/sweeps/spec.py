@@ -347,7 +347,7 @@ def _slice(s: Any, field: str) -> dict:
         raise SpecError(f"{field}.place = {place!r} must be 'home' (the slice moved from the "
                         "pose it is written about to the machine's home) or 'absolute' (its "
                         "poses as written)")
-    written_about = s.get("home", scenes.THESIS_HOME)
+    written_about = s.get("home", list(scenes.THESIS_HOME))
     if not (_is_numbers(written_about) and len(written_about) == 6 and
             all(math.isfinite(v) for v in written_about)):
         raise SpecError(f"{field}.home = {written_about!r} must be 6 finite numbers (the pose "
