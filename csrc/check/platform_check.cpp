@@ -72,14 +72,17 @@ void find_hints(const stewart_model &m, stewart_check_report &r) {
     bool like_base_frame = h > 0.0;
     for (int k = 0; k < 6; ++k)
         like_base_frame = like_base_frame && std::fabs(g.platform_points(2, k) - h) < 0.1 * h;
-    // The mistake itself: joints entered in the base frame get home_height added twice, so home
-    // fails while the legs measured from the joints as entered fit their strokes. This catches
-    // machines whose platform joints lie at several heights (the flat tests above miss them).
-    bool fits_as_entered = !r.valid && h != 0.0;
+    // The mistake itself: joints entered in the base frame get home_height added twice, so a
+    // leg misses its stroke at home while every leg measured between the joints as entered fits
+    // it. This catches machines whose platform joints lie at several heights (the flat tests
+    // above miss them); a home refused for another limit with the strokes met is not hinted.
+    bool fits_as_entered = h != 0.0, misses_at_home = false;
     for (int k = 0; k < 6; ++k) {
         const double entered = (g.platform_points.col(k) - g.base_points.col(k)).norm();
         fits_as_entered = fits_as_entered && entered >= r.stroke_min[k] && entered <= r.stroke_max[k];
+        misses_at_home = misses_at_home || r.length[k] < r.stroke_min[k] || r.length[k] > r.stroke_max[k];
     }
+    fits_as_entered = fits_as_entered && misses_at_home;
     if (highest_top < lowest_base || like_base_frame || fits_as_entered)
         r.hints |= STEWART_CHECK_FRAME;
 }

@@ -124,6 +124,17 @@ def test_a_home_outside_the_strokes_fails_the_check(tmp_path):
     assert result.returncode == 1 and "first limit it fails is stroke" in result.stdout
 
 
+@pytest.mark.parametrize("machine", ["rubin_m2_hexapod", "simona_motion_base"])
+def test_a_home_refused_by_another_limit_is_no_frame_mistake(machine):
+    """The frame hint wants a leg beyond its stroke at home: a home refused by the condition
+    number (a warn_condition no machine meets), its strokes met, names that limit and no entry
+    mistake."""
+    report = stewart.Platform.from_file(stewart.platform_files()[machine]).check(warn_condition=1.5)
+    assert not report.valid and report.limits.first[0] == 5, report.text  # condition
+    assert (report.length > report.stroke_min).all() and (report.length < report.stroke_max).all()
+    assert report.hints == frozenset(), report.text
+
+
 def test_the_axis_margin_names_its_axis_in_its_unit(tmp_path):
     """The axis class's line: the margin of the axis nearest its limit, in that axis' unit, and
     the axis' name; no limit set says so instead of printing the largest double."""
