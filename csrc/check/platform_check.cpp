@@ -72,7 +72,19 @@ void find_hints(const stewart_model &m, stewart_check_report &r) {
     bool like_base_frame = h > 0.0;
     for (int k = 0; k < 6; ++k)
         like_base_frame = like_base_frame && std::fabs(g.platform_points(2, k) - h) < 0.1 * h;
-    if (highest_top < lowest_base || like_base_frame) r.hints |= STEWART_CHECK_FRAME;
+    // The mistake itself: joints entered in the base frame get home_height added twice, so a
+    // leg misses its stroke at home while every leg measured between the joints as entered fits
+    // it. This catches machines whose platform joints lie at several heights (the flat tests
+    // above miss them); a home refused for another limit with the strokes met is not hinted.
+    bool fits_as_entered = h != 0.0, misses_at_home = false;
+    for (int k = 0; k < 6; ++k) {
+        const double entered = (g.platform_points.col(k) - g.base_points.col(k)).norm();
+        fits_as_entered = fits_as_entered && entered >= r.stroke_min[k] && entered <= r.stroke_max[k];
+        misses_at_home = misses_at_home || r.length[k] < r.stroke_min[k] || r.length[k] > r.stroke_max[k];
+    }
+    fits_as_entered = fits_as_entered && misses_at_home;
+    if (highest_top < lowest_base || like_base_frame || fits_as_entered)
+        r.hints |= STEWART_CHECK_FRAME;
 }
 
 // The home pose as the caller's poses give it: the tool's in the user frame.
@@ -195,10 +207,11 @@ void add_hints(const stewart_check_report &r, const Shown &u, std::string &out) 
                  "joins base_joint k to platform_joint k; check the order of both lists.\n",
             r.crossing[0], r.crossing[1]);
     if (r.hints & STEWART_CHECK_FRAME)
-        add(out, "hint: frame? The platform joints are below the base joints at home, or their z "
-                 "equals home_height: platform_joint is in the platform frame (its origin moves "
-                 "with the platform, at home_height above the base frame's at home), with z toward "
-                 "the platform from the base. Ignore this if the platform hangs below its base.\n");
+        add(out, "hint: frame? The platform joints are below the base joints at home, their z "
+                 "equals home_height, or the legs would fit their strokes without home_height "
+                 "added: platform_joint is in the platform frame (its origin moves with the "
+                 "platform, at home_height above the base frame's at home), with z toward the "
+                 "platform from the base. Ignore this if the platform hangs below its base.\n");
 }
 
 // name (NULL or "": keep the default) as the text's unit of the SI unit si; false if it is not one.

@@ -5,7 +5,6 @@ the package's copy of the pinned npm package): it opens from a file with no serv
 from __future__ import annotations
 
 import base64
-import math
 import os
 import pathlib
 from collections.abc import Mapping
@@ -191,26 +190,11 @@ def effective_parameters(platform: Platform) -> dict[str, np.ndarray]:
     return values
 
 
-def _rotation(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """R = Rz(yaw) Ry(pitch) Rx(roll) (docs/model.md §3)."""
-    cr, sr, cp, sp, cy, sy = (math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch),
-                              math.cos(yaw), math.sin(yaw))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
-
-
 def home_pose(platform: Platform) -> np.ndarray:
     """The tool's pose in the user frame when the platform is at its home (0, 0, home_height, 0,
-    0, 0) in the base frame: T(user)^-1 T(home) T(tool) (docs/api.md, tool and user frames)."""
-    values = effective_parameters(platform)
-    tool, user = values["tool_frame"], values["user_frame"]
-    Ru, Rd = _rotation(*user[3:]), _rotation(*tool[3:])
-    p_home = np.array([0.0, 0.0, float(values["home_height"][0])])
-    R = Ru.T @ Rd  # the platform's home turns nothing
-    p = Ru.T @ (p_home + tool[:3] - user[:3])
-    pitch = math.asin(max(-1.0, min(1.0, -R[2, 0])))
-    return np.array([*p, math.atan2(R[2, 1], R[2, 2]), pitch, math.atan2(R[1, 0], R[0, 0])])
+    0, 0) in the base frame: the check's (Platform.check().home), in the platform's rotation
+    convention."""
+    return platform.check().home
 
 
 def _leg_margins(platform: Platform, values: dict, q: np.ndarray, lengths: np.ndarray,

@@ -100,8 +100,11 @@ def test_swapped_legs_are_named(tmp_path, machine):
     assert "Legs 1 and 2 cross" in solve("--check", path).stdout
 
 
-@pytest.mark.parametrize("machine", MISTAKE_MACHINES)
+@pytest.mark.parametrize("machine", MACHINES)
 def test_platform_joints_in_the_base_frame_are_named(tmp_path, machine):
+    """On every shipped machine, including one whose platform joints lie at several heights
+    (rubin_m2_hexapod: legs 1-3 vertical, 4-6 horizontal), where neither "below the base" nor "z
+    equal to home_height" holds."""
     def in_base_frame(data):
         p = np.reshape(data["platform_joint"], (6, 3))
         p[:, 2] += data["home_height"]
@@ -119,6 +122,17 @@ def test_a_home_outside_the_strokes_fails_the_check(tmp_path):
     assert report.hints == frozenset()  # a real mistake of stroke, not of units or frames
     result = solve("--check", path)
     assert result.returncode == 1 and "first limit it fails is stroke" in result.stdout
+
+
+@pytest.mark.parametrize("machine", ["rubin_m2_hexapod", "simona_motion_base"])
+def test_a_home_refused_by_another_limit_is_no_frame_mistake(machine):
+    """The frame hint wants a leg beyond its stroke at home: a home refused by the condition
+    number (a warn_condition no machine meets), its strokes met, names that limit and no entry
+    mistake."""
+    report = stewart.Platform.from_file(stewart.platform_files()[machine]).check(warn_condition=1.5)
+    assert not report.valid and report.limits.first[0] == 5, report.text  # condition
+    assert (report.length > report.stroke_min).all() and (report.length < report.stroke_max).all()
+    assert report.hints == frozenset(), report.text
 
 
 def test_the_axis_margin_names_its_axis_in_its_unit(tmp_path):

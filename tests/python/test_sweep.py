@@ -454,11 +454,15 @@ def _solve_cli_peaks(t, q, tmp_path, params, derivatives=None):
     return {"L": o[:, 1:7], "Ld": o[:, 7:13], "Ldd": o[:, 13:19], "F": o[:, 19:25]}
 
 
-def test_inline_scenes_take_the_spec_s_duration_and_step(tmp_path):
+@pytest.mark.parametrize("machine", [None, "simona_motion_base"])
+def test_inline_scenes_take_the_spec_s_duration_and_step(tmp_path, machine):
     """An inline scene without duration and step plays for the spec's top-level duration at its
-    step (before: refused with "scene.duration = None", a field the user never wrote)."""
+    step (before: refused with "scene.duration = None", a field the user never wrote), on the
+    thesis platform and on the motion simulator where it was met."""
     scene = {"name": "nod", "pose": {"z": {"mean": 0.5}, "pitch": {"amplitude": 0.05, "omega": 3.0}}}
     spec = {"kind": "envelope", "manoeuvres": [{"scene": scene}], "duration": 0.6, "step": 0.02}
+    if machine is not None:
+        spec["platform_file"] = str(stewart.platform_files()[machine])
     resolved = resolve(spec, SCENES)
     assert resolved["manoeuvres"][0]["scene"]["duration"] == 0.6
     out, _ = _sweep(tmp_path, spec, "inline", workers=1)

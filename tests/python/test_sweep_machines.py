@@ -4,7 +4,8 @@ ranges with scale_to_ranges; the poses each case solves against the home pose an
 sinusoid written here, the home against the frames' closed form, the stroke margins against the
 lengths at home. A scene written about an absolute pose plays as written with "place":
 "absolute", or moves from its own "home". scripts/sweep.py takes --platform and
---scale-to-ranges."""
+--scale-to-ranges. Workspace slices move to the machine's home the same way, their poses against
+the frames' closed form of home plus the offsets written here."""
 import json
 import pathlib
 import subprocess
@@ -157,3 +158,67 @@ def test_the_sweep_script_takes_a_platform(tmp_path):
     assert all(rows["feasible"]) and min(rows["margin_stroke"]) > 0
     home = stewart.Platform.from_file(path).check().home
     assert spec["manoeuvres"][0]["scene"]["pose"]["z"]["mean"] == home[2]
+
+
+# A workspace slice written about the thesis' home (the docs' and the shipped specs' way): an xy
+# grid and a roll line about z = 0.5 m, offsets small enough for the precision hexapods' ±14 mm.
+XY = [-2e-4, 0.0, 2e-4]
+SLICES = [{"name": "xy", "fixed": {"z": 0.5}, "axes": {"x": XY, "y": XY}},
+          {"name": "roll", "fixed": {"x": 1e-4, "z": 0.5}, "axes": {"roll": [-1e-4, 0.0, 1e-4]}}]
+
+
+def _slice_tables(spec):
+    from stewart.sweeps.work import workspace_chunk
+    return {c.part: {k: np.asarray(v) for k, v in
+                     ((k, workspace_chunk(spec, c)[0][k].to_pylist()) for k in
+                      ("x", "y", "z", "roll", "pitch", "yaw", "reachable"))}
+            for c in chunks(spec)}
+
+
+def _written_offsets(name):
+    """The slices' poses about their home, written here: (9 or 3, 6), row-major over the axes."""
+    if name == "xy":
+        return np.array([[x, y, 0, 0, 0, 0] for x in XY for y in XY])
+    return np.array([[1e-4, 0, 0, r, 0, 0] for r in (-1e-4, 0.0, 1e-4)])
+
+
+@pytest.mark.parametrize("name", sorted(FILES))
+def test_a_workspace_slice_moves_about_the_machine_home(name):
+    """Before, a slice's fixed values and axes were absolute: on any machine whose home is not
+    the thesis' z = 0.5 m (the Rubin hexapods' home is the zero pose, SIMONA's z = 2.39 m) every
+    pose was unreachable. Now each pose is the machine's home (the frames' closed form) plus
+    the slice's offset from the pose it is written about, and the grid about home is reachable."""
+    platform = stewart.Platform.from_file(FILES[name])
+    spec = resolve({"kind": "workspace", "platform_file": str(FILES[name]), "slices": SLICES},
+                   SCENES)
+    home = frames_home(platform)
+    for part, t in _slice_tables(spec).items():
+        q = np.column_stack([t[c] for c in ("x", "y", "z", "roll", "pitch", "yaw")])
+        np.testing.assert_allclose(q, home + _written_offsets(part), rtol=0, atol=1e-15)
+        assert t["reachable"].all(), (name, part)
+
+
+def test_an_absolute_slice_plays_as_written_and_a_slice_moves_from_its_own_home():
+    path = FILES["rubin_m2_hexapod"]
+    home = stewart.Platform.from_file(path).check().home
+    for change, z in (({"place": "absolute"}, 0.5),
+                      ({"home": [0, 0, 0.495, 0, 0, 0]}, home[2] + 0.005), ({}, home[2])):
+        s = {**SLICES[0], **change}
+        spec = resolve({"kind": "workspace", "platform_file": str(path), "slices": [s]}, SCENES)
+        t = _slice_tables(spec)["xy"]
+        np.testing.assert_allclose(t["z"], z, rtol=0, atol=1e-15)
+        # As written, z = 0.5 m is far beyond the ±14 mm strokes: nothing reachable.
+        assert t["reachable"].all() == ("place" not in change), change
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"place": "there"}, ["slices[0].place = 'there' must be 'home'", "'absolute'"]),
+    ({"home": [0, 0, 0.5]}, ["slices[0].home = [0, 0, 0.5] must be 6 finite numbers"]),
+    ({"place": "absolute", "home": [0, 0, 0.5, 0, 0, 0]}, ["slices[0]: 'home' with place "
+                                                           "'absolute'"]),
+])
+def test_bad_slice_placements_are_refused_naming_the_field(change, words):
+    with pytest.raises(SpecError) as e:
+        resolve({"kind": "workspace", "slices": [{**SLICES[0], **change}]}, SCENES)
+    for w in words:
+        assert w in str(e.value)

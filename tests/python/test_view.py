@@ -331,6 +331,20 @@ def test_home_pose_is_the_platform_at_home_height():
                                plain.inverse([0, 0, 0.5, 0, 0, 0]).length, rtol=0, atol=1e-12)
 
 
+@pytest.mark.parametrize("convention", [{}, {"rotation_order": 1}, {"frame_convention": 1}])
+def test_home_pose_is_the_check_s_home_in_the_machine_s_convention(convention):
+    """The page starts where every other workflow starts, Platform.check().home, bit for bit,
+    in the machine's rotation order and frame convention: the pose whose inverse puts the
+    platform at (0, 0, home_height) (its lengths those of the frameless thesis platform)."""
+    from stewart.view import home_pose
+    framed = stewart.Platform(tool_frame=FRAMED["tool_frame"], user_frame=FRAMED["user_frame"],
+                              **convention)
+    np.testing.assert_array_equal(home_pose(framed), framed.check().home)
+    plain = stewart.Platform(**convention)
+    np.testing.assert_allclose(framed.inverse(home_pose(framed)).length,
+                               plain.inverse(plain.check().home).length, rtol=0, atol=1e-12)
+
+
 REFERENCE = pathlib.Path(__file__).resolve().parent / "view_reference"
 REFERENCE_POSES = {"home": [0, 0, 0.5, 0, 0, 0], "tilted": [0.04, -0.03, 0.55, 0.15, -0.1, 0.4],
                    "low": [-0.05, 0.05, 0.45, -0.1, 0.12, -0.3]}

@@ -8,7 +8,8 @@ A spec is JSON (docs/sweeps.md has the full format). Two kinds:
   (stewart.scenes.on_platform; ``"scale_to_ranges"`` scales it to the machine's axis ranges),
   unless its manoeuvre says ``"place": "absolute"`` (its poses as written).
 * ``"kind": "workspace"``: slices of the pose space, each one or two pose components on a grid
-  with the others fixed; per pose reachability within every limit, the limit margins, condition
+  with the others fixed, moved to the machine's home as scenes are (unless the slice says
+  ``"place": "absolute"``); per pose reachability within every limit, the limit margins, condition
   and static forces; optionally (``"volume"``) the constant-orientation workspace volume.
 
 Every field is checked here, before anything is sent to a worker: a bad one raises SpecError
@@ -115,7 +116,8 @@ def resolve(raw: Any, scene_dir: str | pathlib.Path,
     else:
         spec["fidelity"] = _fidelity(fidelity, "fidelity")
         _check_options(base, spec["options"], [spec["fidelity"]])
-        spec["slices"] = [_slice(s, f"slices[{i}]") for i, s in
+        home = base.check().home
+        spec["slices"] = [_placed_slice(_slice(s, f"slices[{i}]"), home) for i, s in
                           enumerate(_list(raw.get("slices"), "slices"))]
         names = [s["name"] for s in spec["slices"]]
         if len(set(names)) != len(names):
@@ -332,11 +334,26 @@ def manoeuvre_samples(spec: dict, m: dict, amplitude: float, frequency: float):
 # ---------------------------------------------------------------- workspace fields
 
 def _slice(s: Any, field: str) -> dict:
+    """A slice as written: its poses about its "home" (default the thesis platform's, as the
+    shipped scenes are) unless "place" is "absolute"."""
     if not isinstance(s, dict):
         raise SpecError(f"{field} = {s!r} must be an object with name, fixed and axes")
-    unknown = sorted(set(s) - {"name", "fixed", "axes"})
+    known = {"name", "fixed", "axes", "place", "home"}
+    unknown = sorted(set(s) - known)
     if unknown:
-        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: name, fixed, axes)")
+        raise SpecError(f"{field}: unknown field {unknown[0]!r} (known: {', '.join(sorted(known))})")
+    place = s.get("place", "home")
+    if place not in ("home", "absolute"):
+        raise SpecError(f"{field}.place = {place!r} must be 'home' (the slice moved from the "
+                        "pose it is written about to the machine's home) or 'absolute' (its "
+                        "poses as written)")
+    written_about = s.get("home", list(scenes.THESIS_HOME))
+    if not (_is_numbers(written_about) and len(written_about) == 6 and
+            all(math.isfinite(v) for v in written_about)):
+        raise SpecError(f"{field}.home = {written_about!r} must be 6 finite numbers (the pose "
+                        "the slice is written about: x, y, z [m], roll, pitch, yaw [rad])")
+    if place == "absolute" and "home" in s:
+        raise SpecError(f"{field}: 'home' with place 'absolute': an absolute slice is not moved")
     name = s.get("name")
     if not isinstance(name, str) or not name.replace("_", "").replace("-", "").replace(".", "").isalnum():
         raise SpecError(f"{field}.name = {name!r} must be a word (letters, digits, _ - .)")
@@ -357,8 +374,27 @@ def _slice(s: Any, field: str) -> dict:
         if not isinstance(v, (int, float)) or not math.isfinite(v):
             raise SpecError(f"{field}.fixed.{comp} = {v!r} must be a finite number")
         out_fixed[comp] = float(v)
-    return {"name": name, "fixed": out_fixed,
+    return {"name": name, "place": place, "home": [float(v) for v in written_about],
+            "fixed": out_fixed,
             "axes": {comp: _values(v, f"{field}.axes.{comp}") for comp, v in axes.items()}}
+
+
+def _placed_slice(s: dict, home: np.ndarray) -> dict:
+    """Slice s moved by the machine's home (Platform.check().home) minus the pose it is written
+    about, component by component, as a sweep's scenes are moved (stewart.scenes.on_platform):
+    its fixed values, its axes' values, and a component it leaves out (0 about its home) where
+    the two homes differ. An absolute slice is kept as written. The result's "home" is the
+    machine's where the slice was placed."""
+    if s["place"] == "absolute":
+        return {k: v for k, v in s.items() if k != "home"}
+    shift = np.asarray(home, dtype=float) - np.asarray(s["home"], dtype=float)
+    fixed = {comp: float(v + shift[POSE.index(comp)]) for comp, v in s["fixed"].items()}
+    for i, comp in enumerate(POSE):  # in POSE order: the same spec gives the same dict
+        if comp not in fixed and comp not in s["axes"] and shift[i] != 0.0:
+            fixed[comp] = float(shift[i])
+    axes = {comp: [float(v + shift[POSE.index(comp)]) for v in values]
+            for comp, values in s["axes"].items()}
+    return {**s, "home": [float(v) for v in home], "fixed": fixed, "axes": axes}
 
 
 def _volume(v: Any, field: str) -> dict:
