@@ -174,16 +174,21 @@ EndState hold(const LegState &last, double dt) {
     return s;
 }
 
-// The output's own step when it cannot follow the cue: the tracking acceleration scaled, else a
-// brake along the rate, else a hold (within the pose limits, its legs perhaps not); false only
-// when the hold's pose, home + the stored excursion, rounds beyond a pose limit.
+// The output's own step when it cannot follow the cue: the tracking acceleration (the cue's plus
+// a critically damped pull toward it) scaled, else a brake along the rate, else a hold (within
+// the pose limits, its legs perhaps not); false only when the hold's pose, home + the stored
+// excursion, rounds beyond a pose limit.
 bool own_step(const LegLimiter &l, const LegState &last, const EndState &cue, double dt,
               EndState &s) {
+    // The pull on the errors at the step's start, the cue's own acceleration the mean over the
+    // step of its rates (its output acceleration leaves out the input's change).
     const double w = kTrackingFrequency;
     double track[6];
-    for (int i = 0; i < 6; ++i)
-        track[i] = cue.q_ddot[i] + 2.0 * w * (cue.q_dot[i] - last.q_dot[i]) +
-                   w * w * (cue.q[i] - last.q[i]);
+    for (int i = 0; i < 6; ++i) {
+        const double a = dt > 0.0 ? (cue.q_dot[i] - last.cue_dot[i]) / dt : cue.q_ddot[i];
+        track[i] = a + 2.0 * w * (last.cue_dot[i] - last.q_dot[i]) +
+                   w * w * (last.cue[i] - last.q[i]);
+    }
     if (tracking_step(l, last, track, dt, s)) return true;
     // Coasting does not pass: brake along the rate, within one step if the limits allow. The
     // last output's stop (on kStopShare) was within the pose limits; this one is shorter, on the
@@ -232,19 +237,18 @@ bool leg_limited_step(const LegLimiter &l, const stewart_pose &desired, double d
         cue.q_ddot[i] = desired.q_ddot[i];
     }
     EndState own;
-    if (!l.active || follows_exactly(l, state, cue, dt) || !own_step(l, state, cue, dt, own)) {
-        platform = desired;
-        for (int i = 0; i < 6; ++i) state.q[i] = cue.q[i], state.q_dot[i] = cue.q_dot[i];
-        return false;
-    }
+    const bool exact =
+        !l.active || follows_exactly(l, state, cue, dt) || !own_step(l, state, cue, dt, own);
     for (int i = 0; i < 6; ++i) {
-        platform.q[i] = l.limiter->home[i] + own.q[i];
-        platform.q_dot[i] = own.q_dot[i];
-        platform.q_ddot[i] = own.q_ddot[i];
-        state.q[i] = own.q[i];
-        state.q_dot[i] = own.q_dot[i];
+        platform.q[i] = exact ? desired.q[i] : l.limiter->home[i] + own.q[i];
+        platform.q_dot[i] = exact ? desired.q_dot[i] : own.q_dot[i];
+        platform.q_ddot[i] = exact ? desired.q_ddot[i] : own.q_ddot[i];
+        state.q[i] = exact ? cue.q[i] : own.q[i];
+        state.q_dot[i] = exact ? cue.q_dot[i] : own.q_dot[i];
+        state.cue[i] = cue.q[i];
+        state.cue_dot[i] = cue.q_dot[i];
     }
-    return true;
+    return !exact;
 }
 
 }  // namespace cueing

@@ -30,9 +30,10 @@ struct LegLimiter {
 };
 
 // The output's motion at the last sample: the excursion of the platform pose from home and its
-// rate, solvers' base frame.
+// rate, and the pose limiter's (the cue's) likewise, solvers' base frame.
 struct LegState {
     double q[6], q_dot[6];
+    double cue[6], cue_dot[6];
 };
 
 // The limiter for params (its leg_speed_max and leg_accel_max; 0 is none).
