@@ -11,8 +11,8 @@ namespace cueing {
 
 namespace {
 
-// How fast the output is pulled back to the cue after it left it [rad/s]: critically damped,
-// settling in about 0.3 s, and stable (omega dt <= 0.2) down to 100 Hz.
+// How fast the output is pulled back to the cue after it left it [1/s]: errors decay by e in
+// 50 ms.
 constexpr double kTrackingFrequency = 20.0;
 // The share of the acceleration limit of the stop that every output must be able to make (its
 // stop pose within the pose limits), and of the brake it makes when it has to: the rest is left
@@ -63,19 +63,27 @@ double stop_time(const LegLimiter &l, const LegKinematics &legs, double share) {
 }
 
 // The end state passes: legs within their speed and acceleration limits, the pose within the
-// pose limits (unless known to be), and the pose where a stop at constant deceleration along
-// the rate would end within them too.
-bool passes(const LegLimiter &l, const EndState &s, bool pose_known_within) {
+// pose limits (unless known to be), and, if `stop`, the pose where a stop at constant
+// deceleration along the rate would end within them too (a stop of at least one step dt: the
+// acceleration changes at the samples only), and the pose of the brake's first step (the pose
+// limits need not be convex between the pose and its stop).
+bool passes(const LegLimiter &l, const EndState &s, double dt, bool pose_known_within,
+            bool stop = true) {
     LegKinematics legs;
     if (!legs_at(l, s.q, s.q_dot, s.q_ddot, legs) || !speeds_within(l, legs) ||
         !accels_within(l, legs))
         return false;
     if (!pose_known_within && !within(*l.limiter, s.q, 1.0)) return false;
-    const double T = stop_time(l, legs, kStopShare);
+    if (!stop) return true;
+    const double T = std::fmax(stop_time(l, legs, kStopShare), dt);
     if (!(T > 0.0)) return true;
-    double stop[6];
-    for (int i = 0; i < 6; ++i) stop[i] = s.q[i] + 0.5 * T * s.q_dot[i];
-    return within(*l.limiter, stop, 1.0);
+    double stopped[6];
+    for (int i = 0; i < 6; ++i) stopped[i] = s.q[i] + 0.5 * T * s.q_dot[i];
+    if (!within(*l.limiter, stopped, 1.0)) return false;
+    const double brake = std::fmax(stop_time(l, legs, kBrakeShare), dt);
+    double braked[6];
+    for (int i = 0; i < 6; ++i) braked[i] = s.q[i] + dt * s.q_dot[i] * (1.0 - 0.5 * dt / brake);
+    return within(*l.limiter, braked, 1.0);
 }
 
 // The cubic from the last output (x0, v0) to the cue's (x1, v1) over dt has leg accelerations
@@ -100,7 +108,7 @@ bool follows_exactly(const LegLimiter &l, const LegState &last, const EndState &
         for (int i = 0; i < 6; ++i)  // no time passes: only the acceleration may change
             if (cue.q[i] != last.q[i] || cue.q_dot[i] != last.q_dot[i]) return false;
     }
-    return passes(l, cue, true);  // the pose limiter checked the cue's pose
+    return passes(l, cue, dt, true);  // the pose limiter checked the cue's pose
 }
 
 // The end of a step of dt at constant acceleration a from the last output.
@@ -137,25 +145,26 @@ double linear_factor(const LegLimiter &l, const LegKinematics &none, const LegKi
     return std::fmax(factor, 0.0);
 }
 
-// The tracking acceleration's step, scaled by the largest factor found to pass: the linear
-// estimate, else bisections below it. false when even factor 0 (coasting) does not pass.
+// The tracking acceleration's step, scaled by the largest factor found to pass (with the stop
+// pose checked if `stop`): the linear estimate, else bisections below it. false when even factor
+// 0 (coasting) does not pass.
 bool tracking_step(const LegLimiter &l, const LegState &last, const double track[6], double dt,
-                   EndState &s) {
+                   bool stop, EndState &s) {
     s = scaled_step(last, track, 1.0, dt);
-    if (passes(l, s, false)) return true;
+    if (passes(l, s, dt, false, stop)) return true;
     const EndState coast = scaled_step(last, track, 0.0, dt);
-    if (!passes(l, coast, false)) return false;
+    if (!passes(l, coast, dt, false, stop)) return false;
     LegKinematics none, full;
     double hi = 0.0;
     if (legs_at(l, coast.q, coast.q_dot, coast.q_ddot, none) &&
         legs_at(l, s.q, s.q_dot, s.q_ddot, full))
         hi = linear_factor(l, none, full);
     s = scaled_step(last, track, hi, dt);
-    if (hi > 0.0 && passes(l, s, false)) return true;
+    if (hi > 0.0 && passes(l, s, dt, false, stop)) return true;
     double lo = 0.0;
     for (int n = 0; n < kBisections; ++n) {
         const double mid = 0.5 * (lo + hi);
-        if (passes(l, scaled_step(last, track, mid, dt), false)) lo = mid;
+        if (passes(l, scaled_step(last, track, mid, dt), dt, false, stop)) lo = mid;
         else hi = mid;
     }
     s = scaled_step(last, track, lo, dt);
@@ -174,22 +183,25 @@ EndState hold(const LegState &last, double dt) {
     return s;
 }
 
-// The output's own step when it cannot follow the cue: the tracking acceleration (the cue's plus
-// a critically damped pull toward it) scaled, else a brake along the rate, else a hold (within
-// the pose limits, its legs perhaps not); false only when the hold's pose, home + the stored
-// excursion, rounds beyond a pose limit.
+// The output's own step when it cannot follow the cue: the tracking acceleration (toward the cue,
+// its errors decaying at kTrackingFrequency) scaled, else a brake along the rate, else the
+// tracking step without the stop's check, else a hold (within the pose limits, its legs perhaps
+// not); false only when the hold's pose, home + the stored excursion, rounds beyond a pose
+// limit.
 bool own_step(const LegLimiter &l, const LegState &last, const EndState &cue, double dt,
               EndState &s) {
-    // The pull on the errors at the step's start, the cue's own acceleration the mean over the
-    // step of its rates (its output acceleration leaves out the input's change).
+    // The acceleration that brings the end of the step onto e' + w e = 0 (e the error to the
+    // cue): the error then decays as exp(-w t), by (2 - w dt) / (2 + w dt) a step at any dt, and
+    // a cue the output is on is followed as it is (its own acceleration over the step). No time
+    // passing, only the acceleration can change: the cue's, pulled as a PD.
     const double w = kTrackingFrequency;
     double track[6];
     for (int i = 0; i < 6; ++i) {
-        const double a = dt > 0.0 ? (cue.q_dot[i] - last.cue_dot[i]) / dt : cue.q_ddot[i];
-        track[i] = a + 2.0 * w * (last.cue_dot[i] - last.q_dot[i]) +
-                   w * w * (last.cue[i] - last.q[i]);
+        const double ex = last.q[i] - cue.q[i], ev = last.q_dot[i] - cue.q_dot[i];
+        track[i] = dt > 0.0 ? -(ev + w * (ex + dt * last.q_dot[i])) / (dt * (1.0 + 0.5 * w * dt))
+                            : cue.q_ddot[i] - 2.0 * w * ev - w * w * ex;
     }
-    if (tracking_step(l, last, track, dt, s)) return true;
+    if (tracking_step(l, last, track, dt, true, s)) return true;
     // Coasting does not pass: brake along the rate, within one step if the limits allow. The
     // last output's stop (on kStopShare) was within the pose limits; this one is shorter, on the
     // same line.
@@ -202,10 +214,11 @@ bool own_step(const LegLimiter &l, const LegState &last, const EndState &cue, do
         double brake[6];
         for (int i = 0; i < 6; ++i) brake[i] = -last.q_dot[i] / T;
         s = constant_accel(last, brake, dt);
-        if (legs_at(l, s.q, s.q_dot, s.q_ddot, legs) && speeds_within(l, legs) &&
-            accels_within(l, legs) && within(*l.limiter, s.q, 1.0))
-            return true;
+        if (passes(l, s, dt, false, true) || passes(l, s, dt, false, false)) return true;
     }
+    // The brake leaves the pose limits (they need not be convex between the pose and its stop):
+    // the tracking step without the stop's check, toward the cue (within them).
+    if (tracking_step(l, last, track, dt, false, s)) return true;
     s = hold(last, dt);
     return within(*l.limiter, s.q, 1.0);
 }
@@ -245,8 +258,6 @@ bool leg_limited_step(const LegLimiter &l, const stewart_pose &desired, double d
         platform.q_ddot[i] = exact ? desired.q_ddot[i] : own.q_ddot[i];
         state.q[i] = exact ? cue.q[i] : own.q[i];
         state.q_dot[i] = exact ? cue.q_dot[i] : own.q_dot[i];
-        state.cue[i] = cue.q[i];
-        state.cue_dot[i] = cue.q_dot[i];
     }
     return !exact;
 }

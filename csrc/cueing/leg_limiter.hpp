@@ -5,8 +5,8 @@
 // The output follows the pose limiter's pose exactly while that is possible: its end state
 // passes the checks below and the cubic from the last output to it has leg accelerations within
 // the limit at both ends (a jump of the cue's rate fails this). Otherwise the output moves on its
-// own: a constant pose acceleration over the step, the tracking acceleration (the cue's own plus
-// a critically damped pull toward it) scaled by the largest factor in [0, 1] found to pass; if
+// own: a constant pose acceleration over the step, the tracking acceleration (toward the cue,
+// the errors decaying exponentially) scaled by the largest factor in [0, 1] found to pass; if
 // none does, braking along the pose rate. The checks of an end state: the pose within every pose
 // limit, the legs within their speed and acceleration limits, and the pose where it would stop
 // (braking on half the acceleration limit) within the pose limits, so that the output never
@@ -30,10 +30,9 @@ struct LegLimiter {
 };
 
 // The output's motion at the last sample: the excursion of the platform pose from home and its
-// rate, and the pose limiter's (the cue's) likewise, solvers' base frame.
+// rate, solvers' base frame.
 struct LegState {
     double q[6], q_dot[6];
-    double cue[6], cue_dot[6];
 };
 
 // The limiter for params (its leg_speed_max and leg_accel_max; 0 is none).

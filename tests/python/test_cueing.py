@@ -352,15 +352,16 @@ def leg_motion_limits(path):
 def run_signals_with_leg_limits(path, count, seed, dt=0.01):
     """count random signals through the machine with leg_speed_max and leg_accel_max set: the
     samples beyond a stroke or a pose limit, whose closed-form leg rate or acceleration is beyond
-    its limit, the largest finite differences of the closed-form lengths over the limits, and the
-    largest gap between the first differences and the mean of the rates at both ends (over
-    dt max|L''|: the rates are those of the lengths)."""
+    its limit (and of those, the ones leg_limits does not report), the largest finite differences
+    of the closed-form lengths over the limits away from reported samples, and the largest gap
+    between the first differences and the mean of the rates at both ends (over dt a_max: the
+    rates are those of the lengths)."""
     v_max, a_max = leg_motion_limits(path)
     plat = stewart.Platform.from_file(path, leg_speed_max=v_max, leg_accel_max=a_max)
     _, _, smin, smax, _, _ = machine(path)
     t = np.arange(0, 20, dt)
     rng = np.random.default_rng(seed)
-    out = dict(beyond_pose=0, beyond_speed=0, beyond_accel=0, reported=0, limited=0,
+    out = dict(samples=0, beyond_pose=0, beyond_legs=0, unreported=0, limited=0,
                fd_speed=0.0, fd_accel=0.0, rate_gap=0.0)
     for _ in range(count):
         f, w = random_vehicle(rng, t)
@@ -369,13 +370,18 @@ def run_signals_with_leg_limits(path, count, seed, dt=0.01):
         L, Ld, Ldd = leg_motion(path, r.pose, r.pose_rate, r.pose_accel)
         out["beyond_pose"] += int(np.sum(np.any((L < smin) | (L > smax), axis=1) |
                                          ~plat.limits(r.pose).within))
-        out["beyond_speed"] += int(np.sum(np.any(np.abs(Ld) > v_max, axis=1)))
-        out["beyond_accel"] += int(np.sum(np.any(np.abs(Ldd) > a_max, axis=1)))
-        out["reported"] += int(np.sum(r.leg_limits != 0))
+        beyond = np.any((np.abs(Ld) > v_max) | (np.abs(Ldd) > a_max), axis=1)
+        reported = (r.leg_limits & 3) != 0  # LEG_SPEED, LEG_ACCEL
+        out["samples"] += len(t)
+        out["beyond_legs"] += int(np.sum(beyond))
+        out["unreported"] += int(np.sum(beyond & ~reported))
         out["limited"] += int(np.sum(r.limited))
-        out["fd_speed"] = max(out["fd_speed"], np.max(np.abs(np.diff(L, axis=0))) / dt / v_max)
-        out["fd_accel"] = max(out["fd_accel"], np.max(np.abs(np.diff(L, 2, axis=0))) / dt**2 / a_max)
-        gap = np.abs(np.diff(L, axis=0) / dt - 0.5 * (Ld[1:] + Ld[:-1]))
+        clear = ~(reported | np.roll(reported, 1) | np.roll(reported, -1))  # not next to one
+        step = np.abs(np.diff(L, axis=0))[clear[1:] & clear[:-1]]
+        out["fd_speed"] = max(out["fd_speed"], np.max(step) / dt / v_max)
+        second = np.abs(np.diff(L, 2, axis=0))[clear[2:] & clear[1:-1] & clear[:-2]]
+        out["fd_accel"] = max(out["fd_accel"], np.max(second) / dt**2 / a_max)
+        gap = np.abs(np.diff(L, axis=0) / dt - 0.5 * (Ld[1:] + Ld[:-1]))[clear[1:] & clear[:-1]]
         out["rate_gap"] = max(out["rate_gap"], np.max(gap) / (dt * a_max))
     return out
 
@@ -383,13 +389,15 @@ def run_signals_with_leg_limits(path, count, seed, dt=0.01):
 @pytest.mark.parametrize("path", PLATFORMS, ids=[p.stem for p in PLATFORMS])
 def test_random_vehicles_keep_the_legs_speed_and_acceleration_limits(path):
     """Every output sample's leg rates and accelerations (closed form) within leg_speed_max and
-    leg_accel_max, with the pose limits still kept; the lengths' finite differences agree (the
-    first within dt a_max of the rates' mean, a check that the rates are the lengths'; the
-    speeds between samples within 0.1 %; the second differences, which average the acceleration
-    between samples the limiter does not see, within 5 %)."""
+    leg_accel_max, with the pose limits still kept, but where the pose limits left no motion
+    within the legs' limits: rare (at most 1e-4 of the samples) and every one reported in
+    leg_limits; the lengths' finite differences agree (the first within dt a_max of the rates'
+    mean, a check that the rates are the lengths'; the speeds between samples within 0.1 %; the
+    second differences, which average the acceleration between samples the limiter does not
+    see, within 5 %)."""
     r = run_signals_with_leg_limits(path, 10, seed=37)
-    assert r["beyond_pose"] == 0 and r["beyond_speed"] == 0 and r["beyond_accel"] == 0
-    assert r["reported"] == 0  # the inverse solver's check agrees
+    assert r["beyond_pose"] == 0
+    assert r["unreported"] == 0 and r["beyond_legs"] <= 1e-4 * r["samples"]
     assert r["limited"] > 0
     assert r["rate_gap"] <= 1.0
     assert r["fd_speed"] <= 1.001 and r["fd_accel"] <= 1.05
