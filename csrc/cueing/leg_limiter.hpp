@@ -2,16 +2,17 @@
 // speed and acceleration within leg_speed_max and leg_accel_max at every output sample, the
 // legs' rates and accelerations exact (leg_kinematics on the output pose and its derivatives).
 //
-// The output follows the pose limiter's pose exactly while that is possible: its end state
-// passes the checks below and the cubic from the last output to it has leg accelerations within
-// the limit at both ends (a jump of the cue's rate fails this). Otherwise the output moves on its
-// own: a constant pose acceleration over the step, the tracking acceleration (toward the cue,
-// the errors decaying exponentially) scaled by the largest factor in [0, 1] found to pass; if
-// none does, braking along the pose rate. The checks of an end state: the pose within every pose
-// limit, the legs within their speed and acceleration limits, and the pose where it would stop
-// (braking on half the acceleration limit) within the pose limits, so that the output never
-// commits to a motion it cannot stop before a stroke end. The pose limits come first: when no
-// motion passes them, the output takes the pose limiter's pose (its legs then reported).
+// An end state passes when its legs are within both limits, its pose within every pose limit,
+// and so are the pose where a stop along its rate would end (braking on half the acceleration
+// limit, at least one step long) and the pose of that brake's first step: the output never
+// commits to a motion it cannot stop before a stroke end. The output follows the pose limiter's
+// pose exactly while that passes and the cubic from the last output to it has leg accelerations
+// within the limit at both ends (a jump of the cue's rate fails this). Otherwise it moves on its
+// own: a constant pose acceleration over the step, the tracking acceleration (toward the cue)
+// scaled by the largest factor in [0, 1] found to pass; if none does, a brake along the pose
+// rate, the tracking step without the stop's checks, a hold at the last pose. The pose limits
+// come first: when no motion passes them and the legs' limits, the legs' are broken (and
+// reported by the caller's check).
 #pragma once
 
 #include "cueing/limiter.hpp"
