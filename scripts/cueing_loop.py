@@ -17,7 +17,11 @@ samples: the cue is then the library's, bit for bit.
 
 usage: cueing_loop.py (VEHICLE.csv | --manoeuvre NAME) --platform FILE [--option NAME=VALUE ...]
                       [--duration S] [--step 0.001] [--kp KP] [--kd KD] [--fidelity 2]
-                      [--fmus build/fmus/2.0] [--out out/cueing_loop] [--no-plot]
+                      [--fmus build/fmus/2.0] [--out out/cueing_loop] [--no-plot] [--osp DIR]
+
+The same loop runs in libcosim from osp_structure, the vehicle's recorded samples given as the
+events of a libcosim scenario (libcosim_scenario; --osp writes both files), and in ecos from
+write_ssp with the vehicle held.
 
 The PD gains default to closed_loop.machine_gains (the thesis loop's natural frequency and
 damping on the machine's moving mass per leg).
@@ -53,10 +57,8 @@ def run(platform, t_vehicle, specific_force, angular_velocity, options=None, dur
     """Runs the loop; returns a dict of arrays (one row per communication point: t, vehicle (the
     inputs), cue, cue_rate, cue_accel, pose, force, feed_forward) and the wall time [s]."""
     options = dict(options or {})
-    duration = t_vehicle[-1] - t_vehicle[0] if duration is None else duration
-    n = int(round(duration / h))
-    t = t_vehicle[0] + np.arange(n + 1) * h
-    vehicle = vehicle_at(t, t_vehicle, specific_force, angular_velocity)
+    t, vehicle = vehicle_samples(t_vehicle, specific_force, angular_velocity, h, duration)
+    n = len(t) - 1
     gains = closed_loop.machine_gains(platform)
     kp, kd = gains[0] if kp is None else kp, gains[1] if kd is None else kd
     fmus = pathlib.Path(fmus)
@@ -101,14 +103,42 @@ def run(platform, t_vehicle, specific_force, angular_velocity, options=None, dur
             "feed_forward": feed_forward}, wall
 
 
+def vehicle_samples(t_vehicle, specific_force, angular_velocity, h=1e-3, duration=None):
+    """The vehicle at the loop's communication points t_j = t_0 + j h (linearly interpolated, as
+    run takes it): (t, (N + 1, 6) inputs)."""
+    duration = t_vehicle[-1] - t_vehicle[0] if duration is None else duration
+    t = t_vehicle[0] + np.arange(int(round(duration / h)) + 1) * h
+    return t, vehicle_at(t, t_vehicle, specific_force, angular_velocity)
+
+
+def vehicle_events(t, vehicle):
+    """A recorded vehicle signal as the structures' events, (time from the start [s], cueing
+    unit's input, value) per input and step: at t_j the sample of t_j+1, which the cueing unit
+    then holds over the step that ends at it (the loop of run, and stewart.cueing of the same
+    samples); the first sample is the structure's start value (osp_structure's inputs)."""
+    return [(float(t[j] - t[0]), name, float(vehicle[j + 1, i]))
+            for j in range(len(t) - 1) for i, name in enumerate(INPUTS)]
+
+
+def libcosim_scenario(t, vehicle):
+    """vehicle_events as a libcosim scenario (JSON text: CosimExecution.load_scenario with a
+    scenario manager), each an override of the cueing unit's input."""
+    import json
+    events = [{"time": time, "model": "cueing", "variable": name, "action": "override",
+               "value": value} for time, name, value in vehicle_events(t, vehicle)]
+    return json.dumps({"description": "a recorded vehicle signal at the cueing unit's inputs",
+                       "events": events, "end": float(t[-1] - t[0])})
+
+
 def osp_structure(platform, options, inputs, fmus=ROOT / "build" / "fmus" / "2.0"):
     """The loop as an OSP system structure for libcosim (CosimExecution.from_osp_config_file), as
     an ElementTree root: scenes/closed_loop's structure with the scene player replaced by the
     cueing unit (its outputs have the scene player's names), the machine's parameters, the cueing
-    options, the vehicle's specific force and angular velocity `inputs` (6 values) held from t = 0
-    (a step from rest: a structure has no unit that plays a recorded signal), the PD gains of
-    closed_loop.machine_gains and the plant started at home; the FMI 2 units of the folder fmus.
-    libcosim steps every unit from the values of the last step (docs/closed-loop.md)."""
+    options, the vehicle's specific force and angular velocity `inputs` (6 values) from t = 0
+    (held, or the first sample of a recorded signal whose others come as the events of
+    libcosim_scenario), the PD gains of closed_loop.machine_gains and the plant
+    started at home; the FMI 2 units of the folder fmus. libcosim steps every unit from the values
+    of the last step (docs/closed-loop.md)."""
     import machine_ssp
     import osp_to_ssd
     kp, kd = closed_loop.machine_gains(platform)
@@ -166,10 +196,23 @@ def main(argv=None):
     parser.add_argument("--duration", type=float, help="[s] (default: the vehicle's)")
     closed_loop.add_loop_arguments(parser, "cueing_loop", "closed_loop.machine_gains",
                                    "closed_loop.machine_gains")
+    parser.add_argument("--osp", metavar="DIR",
+                        help="also write the loop's OSP structure (OspSystemStructure.xml) with "
+                             "the vehicle as a libcosim scenario (vehicle_scenario.json) to DIR")
     args = parser.parse_args(argv)
     t, f, w, platform, options = cueing_script.vehicle_of(args, parser, "cueing_loop.py")
     result, wall = run(platform, t, f, w, options, args.duration, args.step, args.kp, args.kd,
                        args.fidelity, args.fmus)
+    if args.osp:
+        osp = pathlib.Path(args.osp)
+        osp.mkdir(parents=True, exist_ok=True)
+        steps, vehicle = vehicle_samples(t, f, w, args.step, args.duration)
+        structure = osp_structure(platform, options, vehicle[0], pathlib.Path(args.fmus).resolve())
+        ET.ElementTree(structure).write(osp / "OspSystemStructure.xml", encoding="utf-8",
+                                        xml_declaration=True)
+        (osp / "vehicle_scenario.json").write_text(libcosim_scenario(steps, vehicle))
+        print(f"cueing_loop: wrote {osp / 'OspSystemStructure.xml'} and "
+              f"{osp / 'vehicle_scenario.json'}")
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     closed_loop.write_csv(result, out / "cueing_loop.csv")

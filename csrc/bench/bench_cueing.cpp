@@ -1,7 +1,9 @@
 // Cueing unit speed: median, p99 and max microseconds per stewart_cueing_step at 1 kHz on the
 // thesis platform, for a gentle vehicle signal the machine can follow (the limiter checks the
 // pose, and the extrapolated ones, and finds them within every limit) with the default
-// lookahead and with none, and for a violent one (2 g, 200 deg/s: the limiter bisects).
+// lookahead and with none, and for a violent one (2 g, 200 deg/s: the limiter bisects); then the
+// same with leg speed and acceleration limits (0.3 m/s, 3 m/s2: the leg limiter checks the legs
+// and the stop pose at every step, and on the violent signal scales its tracking acceleration).
 // usage: bench-cueing [STEPS (20000)]
 #include <cmath>
 #include <cstdio>
@@ -72,6 +74,13 @@ int main(int argc, char **argv) {
     int failed = run(model, "gentle, lookahead 0.5 s (default)", steps, 0.5, 0.05, 0.5);
     failed |= run(model, "gentle, no lookahead", steps, 0.5, 0.05, 0.0);
     failed |= run(model, "violent (2 g, 200 deg/s)", steps, 2 * 9.81, 200 * M_PI / 180, 0.5);
+    stewart_params limited = *stewart_model_params(model);
+    for (int k = 0; k < STEWART_LEGS; ++k) limited.leg_speed_max[k] = 0.3, limited.leg_accel_max[k] = 3.0;
+    stewart_model *legs = bench::make_model("bench-cueing", &limited);
+    if (!legs) return 1;
+    failed |= run(legs, "leg limits, gentle, lookahead 0.5 s", steps, 0.5, 0.05, 0.5);
+    failed |= run(legs, "leg limits, violent", steps, 2 * 9.81, 200 * M_PI / 180, 0.5);
+    stewart_model_free(legs);
     stewart_model_free(model);
     return failed;
 }

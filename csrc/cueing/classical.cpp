@@ -129,7 +129,7 @@ void turn_about_head(const ClassicalDesign &d, Excursion &e) {
 
 }  // namespace
 
-ClassicalDesign classical_design(const stewart_cueing_options &o, double gravity) {
+ClassicalDesign classical_design(const stewart_cueing_options &o, double gravity, bool z_down) {
     ClassicalDesign d;
     d.translation = translation_design(o);
     d.tilt = second_order(o.tilt_frequency, o.tilt_damping, 0);
@@ -146,9 +146,12 @@ ClassicalDesign classical_design(const stewart_cueing_options &o, double gravity
     d.gravity = gravity;
     d.tilt_max = o.tilt_max;
     d.tilt_rate_max = o.tilt_rate_max;
+    // The head is given in the machine's platform frame; a z-down one is the solvers' z-up frame
+    // turned by 180 deg about x.
+    const double turn = z_down ? -1.0 : 1.0;
     d.head[0] = o.head_x;
-    d.head[1] = o.head_y;
-    d.head[2] = o.head_z;
+    d.head[1] = turn * o.head_y;
+    d.head[2] = turn * o.head_z;
     return d;
 }
 

@@ -17,7 +17,7 @@ struct ClassicalDesign {
     double rotation_gain[3];
     double gravity;              // g [m/s2], the rest value of the specific force's z
     double tilt_max, tilt_rate_max;
-    double head[3];
+    double head[3];              // solvers' z-up platform frame
 };
 
 // The three discretised filters for the last dt (a cache, not state: a step of another dt
@@ -41,7 +41,10 @@ struct Excursion {
     bool tilt_limited;
 };
 
-ClassicalDesign classical_design(const stewart_cueing_options &options, double gravity);
+// head_x, head_y, head_z are in the machine's platform frame: z_down (frame_convention 1) turns
+// them into the solvers' z-up one.
+ClassicalDesign classical_design(const stewart_cueing_options &options, double gravity,
+                                 bool z_down);
 
 // One sample: the state advanced by input.dt with the input held, then the excursion at the end
 // of the step.

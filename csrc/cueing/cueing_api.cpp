@@ -5,6 +5,7 @@
 #include <new>
 
 #include "cueing/classical.hpp"
+#include "cueing/leg_limiter.hpp"
 #include "cueing/limiter.hpp"
 #include "model.hpp"
 #include "stewart/stewart_cueing.h"
@@ -22,10 +23,11 @@ namespace {
 struct CueingState {
     stewart::cueing::ClassicalState classical;
     double scale, scale_rate;  // the limiter's s and s' at the last sample
+    stewart::cueing::LegState output;  // the output's motion (the leg limiter's), from home
 };
 
 // The saved bytes: a tag, the options they were made with, the state.
-constexpr std::uint32_t kStateTag = 0x43554531;  // "CUE1"
+constexpr std::uint32_t kStateTag = 0x43554532;  // "CUE2"
 struct SavedState {
     std::uint32_t tag;
     stewart_cueing_options options;
@@ -41,6 +43,9 @@ bool finite_state(const CueingState &s) {
     const double *v = reinterpret_cast<const double *>(&s.classical);
     for (size_t i = 0; i < sizeof s.classical / sizeof(double); ++i)
         if (!std::isfinite(v[i])) return false;
+    const double *w = reinterpret_cast<const double *>(&s.output);
+    for (size_t i = 0; i < sizeof s.output / sizeof(double); ++i)
+        if (!std::isfinite(w[i])) return false;
     return s.scale >= 0.0 && s.scale <= 1.0 && std::isfinite(s.scale_rate);
 }
 
@@ -53,6 +58,7 @@ struct stewart_cueing {
     stewart::cueing::ClassicalDesign design;
     stewart::cueing::ClassicalSteps steps;  // the filters discretised for the last dt
     stewart::cueing::Limiter limiter;
+    stewart::cueing::LegLimiter leg_limiter;  // the legs' speed and acceleration limits
     stewart_limits *limits;
     stewart_inverse *legs;  // the legs' rates and forces, when a leg motion limit is given
     int leg_limits_given;   // STEWART_CUEING_LEG_* bits of the limits given
@@ -97,6 +103,7 @@ int broken_leg_limits(stewart_cueing &c, const stewart_pose &pose) {
 // The inverse solver for the leg limits given (massless when a force limit is, else kinematic),
 // or NULL when none is given; false if it cannot be made (message says why).
 bool make_leg_solver(stewart_cueing &c, char *msg, size_t size) {
+    c.leg_limiter = stewart::cueing::leg_limiter(c.limiter, c.model->geometry, c.model->params);
     c.leg_limits_given = leg_limits_given(c.model->params);
     c.legs = nullptr;
     if (!c.leg_limits_given) return true;
@@ -183,7 +190,7 @@ stewart_cueing *stewart_cueing_create(const stewart_model *model,
     STEWART_CUEING_OPTION_TABLE(COPY_OPTION)
 #undef COPY_OPTION
     c->message[0] = '\0';
-    c->design = stewart::cueing::classical_design(*options, g);
+    c->design = stewart::cueing::classical_design(*options, g, model->frames.z_down);
     c->limits = limits;
     c->legs = nullptr;
     c->limiter.limits = limits;
@@ -272,12 +279,15 @@ stewart_status stewart_cueing_step(stewart_cueing *c, const stewart_cueing_input
     next.scale = s.value;
     next.scale_rate = s.rate;
     // The pose home + s e: rate s e' + s' e, acceleration s e'' + 2 s' e' + s'' e.
-    stewart_pose platform;
+    stewart_pose scaled;
     for (int i = 0; i < 6; ++i) {
-        platform.q[i] = c->limiter.home[i] + s.value * e.q[i];
-        platform.q_dot[i] = s.value * e.q_dot[i] + s.rate * e.q[i];
-        platform.q_ddot[i] = s.value * e.q_ddot[i] + 2.0 * s.rate * e.q_dot[i] + s.accel * e.q[i];
+        scaled.q[i] = c->limiter.home[i] + s.value * e.q[i];
+        scaled.q_dot[i] = s.value * e.q_dot[i] + s.rate * e.q[i];
+        scaled.q_ddot[i] = s.value * e.q_ddot[i] + 2.0 * s.rate * e.q_dot[i] + s.accel * e.q[i];
     }
+    stewart_pose platform;
+    const bool legs_limited =
+        stewart::cueing::leg_limited_step(c->leg_limiter, scaled, in->dt, next.output, platform);
     stewart_cueing_output o;
     if (!stewart::cueing::caller_pose(c->limiter, platform, 2, o.pose))
         return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
@@ -289,7 +299,7 @@ stewart_status stewart_cueing_step(stewart_cueing *c, const stewart_cueing_input
             return set_message(c->message, sizeof c->message, STEWART_ERR_ARGUMENT,
                                "the input overflows the cue: reduce it or the scales");
     o.scale = next.scale;
-    o.limited = next.scale < 1.0;
+    o.limited = next.scale < 1.0 || legs_limited;
     o.cut = s.cut;
     o.tilt_limited = e.tilt_limited;
     o.leg_limits = broken_leg_limits(*c, o.pose);

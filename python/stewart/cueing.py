@@ -22,13 +22,15 @@ class Cueing:
     (N, 6) the pose as Platform.inverse takes it (x, y, z [m], roll, pitch, yaw [rad]: the tool
     in the user frame, home when the vehicle is at rest) and its exact time derivatives; scale:
     (N,) the limiter's scale of the excursion from home (1: the filter's cue unchanged); limited:
-    (N,) True where the limiter scaled the cue down to keep the machine within its limits; cut:
+    (N,) True where the limiter scaled the cue down to keep the machine within its limits, or
+    the output left the scaled cue to keep the legs' speed and acceleration limits; cut:
     (N,) True where the scale's smooth motion (limiter_rate, limiter_accel, limiter_lookahead)
     did not suffice and it was cut at once (a jolt: tune the cue down or look further ahead);
     tilt_limited: (N,) True where a tilt angle met tilt_max or tilt_rate_max; leg_limits: (N,)
-    the legs' motion limits of the platform the pose breaks, checked when given but not
-    enforced: bit 1 a leg's speed beyond leg_speed_max, 2 its acceleration beyond leg_accel_max,
-    4 its force (massless legs) beyond leg_force_max (LEG_SPEED, LEG_ACCEL, LEG_FORCE)."""
+    the legs' motion limits of the platform the pose breaks, checked when given: bit 1 a leg's
+    speed beyond leg_speed_max, 2 its acceleration beyond leg_accel_max (both enforced: set only
+    where the pose limits left no motion within them), 4 its force (massless legs) beyond
+    leg_force_max (reported, not enforced) (LEG_SPEED, LEG_ACCEL, LEG_FORCE)."""
     t: np.ndarray
     pose: np.ndarray
     pose_rate: np.ndarray
@@ -58,10 +60,11 @@ def cueing(platform, t, specific_force, angular_velocity, algorithm: str = "clas
     finds the filters at rest), and the outputs are at the samples. algorithm: one of ALGORITHMS.
     options: the cueing unit's options by name (option_names(); docs/cueing.md has each one's
     meaning, unit and default), e.g. surge_scale=0.4, translation_frequency=2.0,
-    tilt_rate_max=np.radians(3), head_z=1.0. Every output pose is within every limit of the
-    platform (strokes, joint angles, interference, condition, axis_min/axis_max); the legs'
-    speed, acceleration and force limits are not enforced, only reported (leg_limits). Bad input
-    raises ValueError naming it."""
+    tilt_rate_max=np.radians(3), head_z=1.0 (the head in the machine's platform frame). Every
+    output pose is within every limit of the platform (strokes, joint angles, interference,
+    condition, axis_min/axis_max), and every leg's speed and acceleration within leg_speed_max
+    and leg_accel_max when given (at the samples); the legs' force limit is reported only
+    (leg_limits). Bad input raises ValueError naming it."""
     from .platform import Platform
     if not isinstance(platform, Platform):
         raise TypeError(f"platform must be a stewart.Platform (Platform.from_file(path) for a "

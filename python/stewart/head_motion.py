@@ -44,6 +44,11 @@ def _finite(name: str, a: np.ndarray) -> np.ndarray:
     return a
 
 
+def _z_down(platform) -> bool:
+    from .calibration_model import parameter_value
+    return bool(parameter_value(platform, "frame_convention")[0])
+
+
 def head_motion(platform, pose, pose_rate, pose_accel, head=(0.0, 0.0, 0.0)) -> HeadMotion:
     """The specific force and angular velocity at the head, in the platform frame, for the
     platform's poses. pose, pose_rate, pose_accel: (N, 6) or (6,), as Platform.inverse takes them
@@ -51,9 +56,10 @@ def head_motion(platform, pose, pose_rate, pose_accel, head=(0.0, 0.0, 0.0)) -> 
     rotation_order, z down with frame_convention 1; rates and accelerations the time derivatives
     of those components). head: (3,) [m], the head's position in the platform frame from the
     platform frame's origin, as the cueing unit's options head_x, head_y, head_z take it (the
-    solvers' z-up platform frame, also for a z-down machine). The output's axes are that frame's:
-    x forward, y left, z up, the vehicle's axes in stewart.cueing. Returns HeadMotion; ValueError
-    names a bad argument."""
+    machine's platform frame: z down with frame_convention 1). The output's axes are the z-up
+    platform frame's: x forward, y left, z up, the vehicle's axes in stewart.cueing (for a z-down
+    machine, its platform frame turned by 180 deg about x). Returns HeadMotion; ValueError names
+    a bad argument."""
     from .platform import Platform
     if not isinstance(platform, Platform):
         raise TypeError(f"platform must be a stewart.Platform (Platform.from_file(path) for a "
@@ -63,6 +69,8 @@ def head_motion(platform, pose, pose_rate, pose_accel, head=(0.0, 0.0, 0.0)) -> 
     rates = _finite("pose_rate", rows6("pose_rate", pose_rate, n, "pose", POSE_LAYOUT))
     accels = _finite("pose_accel", rows6("pose_accel", pose_accel, n, "pose", POSE_LAYOUT))
     arm = vector("head", head, 3)
+    if _z_down(platform):  # the solvers' z-up platform frame: turned by 180 deg about x
+        arm = arm * np.array([1.0, -1.0, -1.0])
     position, velocity, acceleration, omega, alpha = (np.empty((n, 3)) for _ in range(5))
     rotation = np.empty((n, 9))
     _core.platform_motion(platform._model, q, rates, accels, position, velocity, acceleration,

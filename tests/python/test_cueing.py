@@ -256,32 +256,181 @@ def test_a_z_down_machine_gets_the_same_cue_in_its_own_frame():
     assert np.array_equal(up.limited, down.limited)
 
 
-def test_leg_speed_limit_is_reported_against_closed_form_rates():
-    """leg_limits bit 1 where some |dL/dt| > leg_speed_max, the rates in closed form here:
-    dL/dt = d . (p' + omega x R b) / |d|, d = p + R b - a (reported, not enforced)."""
+def angle_rate_matrix(pitch, yaw):
+    """E with omega = E (roll, pitch, yaw)' for R = Rz Ry Rx."""
+    return np.array([[np.cos(yaw) * np.cos(pitch), -np.sin(yaw), 0],
+                     [np.sin(yaw) * np.cos(pitch), np.cos(yaw), 0],
+                     [-np.sin(pitch), 0, 1]])
+
+
+def leg_motion(path, pose, rate, accel):
+    """Each leg's length, rate and acceleration (N, 6) in closed form from the tool's poses in the
+    user frame: d = p + R b - a with p = user + q - R tool, L = |d|, L' = d.d' / L and
+    L'' = (|d'|^2 - L'^2) / L + d.d'' / L; omega = E angles', alpha = E angles'' + E' angles'
+    (E' by a central difference of E along the angles: E is smooth)."""
+    a, b, _, _, tool, user = shipped_machine(path)
+    n = len(pose)
+    L, Ld, Ldd = (np.empty((n, 6)) for _ in range(3))
+    for i, (q, qd, qdd) in enumerate(zip(pose, rate, accel)):
+        R = rotation(*q[3:])
+        E = angle_rate_matrix(q[4], q[5])
+        h = 1e-6
+        E_dot = (angle_rate_matrix(q[4] + h * qd[4], q[5] + h * qd[5]) -
+                 angle_rate_matrix(q[4] - h * qd[4], q[5] - h * qd[5])) / (2 * h)
+        omega = E @ qd[3:]
+        alpha = E @ qdd[3:] + E_dot @ qd[3:]
+        arm = b @ R.T - R @ tool  # platform joints from the tool origin
+        d = user + q[:3] + arm - a
+        v = qd[:3] + np.cross(omega, arm)
+        acc = qdd[:3] + np.cross(alpha, arm) + np.cross(omega, np.cross(omega, arm))
+        L[i] = np.linalg.norm(d, axis=1)
+        Ld[i] = np.sum(d * v, axis=1) / L[i]
+        Ldd[i] = (np.sum(v * v, axis=1) - Ld[i] ** 2) / L[i] + np.sum(d * acc, axis=1) / L[i]
+    return L, Ld, Ldd
+
+
+def leg_motion_limits(path):
+    """A leg speed limit of one stroke per second and an acceleration limit of ten strokes per
+    s^2: far below what the random signals ask for on every machine."""
+    _, _, smin, smax, _, _ = shipped_machine(path)
+    span = float(np.min(smax - smin))
+    return span, 10 * span
+
+
+def run_signals_with_leg_limits(path, count, seed, dt=0.01):
+    """count random signals through the machine with leg_speed_max and leg_accel_max set: the
+    samples beyond a stroke or a pose limit, whose closed-form leg rate or acceleration is beyond
+    its limit (and of those, the ones leg_limits does not report), the largest finite differences
+    of the closed-form lengths over the limits away from reported samples, and the largest gap
+    between the first differences and the mean of the rates at both ends (over dt a_max: the
+    rates are those of the lengths)."""
+    v_max, a_max = leg_motion_limits(path)
+    plat = stewart.Platform.from_file(path, leg_speed_max=v_max, leg_accel_max=a_max)
+    _, _, smin, smax, _, _ = shipped_machine(path)
+    t = np.arange(0, 20, dt)
+    rng = np.random.default_rng(seed)
+    out = dict(samples=0, beyond_pose=0, beyond_legs=0, unreported=0, limited=0,
+               fd_speed=0.0, fd_accel=0.0, rate_gap=0.0)
+    for _ in range(count):
+        f, w = stewart.random_vehicle(rng, t)
+        r = stewart.cueing(plat, t, f, w, surge_scale=1, sway_scale=1, heave_scale=1,
+                           roll_scale=1, pitch_scale=1, yaw_scale=1)
+        L, Ld, Ldd = leg_motion(path, r.pose, r.pose_rate, r.pose_accel)
+        out["beyond_pose"] += int(np.sum(np.any((L < smin) | (L > smax), axis=1) |
+                                         ~plat.limits(r.pose).within))
+        beyond = np.any((np.abs(Ld) > v_max) | (np.abs(Ldd) > a_max), axis=1)
+        reported = (r.leg_limits & 3) != 0  # LEG_SPEED, LEG_ACCEL
+        out["samples"] += len(t)
+        out["beyond_legs"] += int(np.sum(beyond))
+        out["unreported"] += int(np.sum(beyond & ~reported))
+        out["limited"] += int(np.sum(r.limited))
+        clear = ~(reported | np.roll(reported, 1) | np.roll(reported, -1))  # not next to one
+        step = np.abs(np.diff(L, axis=0))[clear[1:] & clear[:-1]]
+        out["fd_speed"] = max(out["fd_speed"], np.max(step) / dt / v_max)
+        second = np.abs(np.diff(L, 2, axis=0))[clear[2:] & clear[1:-1] & clear[:-2]]
+        out["fd_accel"] = max(out["fd_accel"], np.max(second) / dt**2 / a_max)
+        gap = np.abs(np.diff(L, axis=0) / dt - 0.5 * (Ld[1:] + Ld[:-1]))[clear[1:] & clear[:-1]]
+        out["rate_gap"] = max(out["rate_gap"], np.max(gap) / (dt * a_max))
+    return out
+
+
+@pytest.mark.parametrize("path", PLATFORMS, ids=[p.stem for p in PLATFORMS])
+def test_random_vehicles_keep_the_legs_speed_and_acceleration_limits(path):
+    """Every output sample's leg rates and accelerations (closed form) within leg_speed_max and
+    leg_accel_max, with the pose limits still kept, but where the pose limits left no motion
+    within the legs' limits: rare (at most 1e-4 of the samples) and every one reported in
+    leg_limits; the lengths' finite differences agree (the first within dt a_max of the rates'
+    mean, a check that the rates are the lengths'; the speeds between samples within 0.1 %; the
+    second differences, which average the acceleration between samples the limiter does not
+    see, within 5 %)."""
+    r = run_signals_with_leg_limits(path, 10, seed=37)
+    assert r["beyond_pose"] == 0
+    assert r["unreported"] == 0 and r["beyond_legs"] <= 1e-4 * r["samples"]
+    assert r["limited"] > 0
+    assert r["rate_gap"] <= 1.0
+    assert r["fd_speed"] <= 1.001 and r["fd_accel"] <= 1.05
+
+
+def test_generous_leg_limits_leave_the_cue_bit_for_bit():
+    """Leg limits the cue never reaches: the output is the cue without them, bit for bit."""
     path = ROOT / "platforms" / "thesis.json"
-    a, b, _, _, _, _ = shipped_machine(path)
-    v_max = 0.05
-    plat = stewart.Platform.from_file(path, leg_speed_max=v_max)
     t = np.arange(0, 10, 0.01)
     f, w = inputs(len(t))
-    f[:, 0] += 3 * np.sin(1.5 * t)
-    w[:, 2] = 0.6 * np.sin(0.9 * t)
+    f[:, 0] += 1.5 * np.sin(1.5 * t)
+    w[:, 2] = 0.3 * np.sin(0.9 * t)
+    free = stewart.cueing(stewart.Platform.from_file(path), t, f, w)
+    loose = stewart.cueing(stewart.Platform.from_file(path, leg_speed_max=10.0,
+                                                      leg_accel_max=1e3), t, f, w)
+    assert not loose.limited.any()
+    for name in ("pose", "pose_rate", "pose_accel"):
+        assert np.array_equal(getattr(free, name), getattr(loose, name))
+
+
+def test_a_rate_step_is_smoothed_within_the_leg_limits():
+    """A step of yaw rate makes the rotation channel's angle rate jump: with the legs' limits the
+    output's yaw rate rises over several samples instead, every leg within both limits, and then
+    rejoins the cue (the same yaw as without limits once the cue is slow again)."""
+    path = ROOT / "platforms" / "thesis.json"
+    t = np.arange(0, 12, 0.001)
+    f, w = inputs(len(t), 2, omega=np.radians(20) * (t > 1))
+    v_max, a_max = 0.05, 0.5
+    free = stewart.cueing(stewart.Platform.from_file(path), t, f, w)
+    plat = stewart.Platform.from_file(path, leg_speed_max=v_max, leg_accel_max=a_max)
     r = stewart.cueing(plat, t, f, w)
-    rates = np.empty((len(t), 6))
-    for i, (q, qd) in enumerate(zip(r.pose, r.pose_rate)):
-        roll, pitch, yaw = q[3:]
-        R = rotation(roll, pitch, yaw)
-        E = np.array([[np.cos(yaw) * np.cos(pitch), -np.sin(yaw), 0],
-                      [np.sin(yaw) * np.cos(pitch), np.cos(yaw), 0],
-                      [-np.sin(pitch), 0, 1]])
-        arm = b @ R.T
-        d = q[:3] + arm - a
-        v = qd[:3] + np.cross(E @ qd[3:], arm)
-        rates[i] = np.sum(d * v, axis=1) / np.linalg.norm(d, axis=1)
-    fastest = np.max(np.abs(rates), axis=1)
-    clear = np.abs(fastest - v_max) > 1e-9
-    assert np.array_equal(((r.leg_limits & 1) != 0)[clear],  # bit 1: LEG_SPEED
-                          (fastest > v_max)[clear])
-    assert (fastest > v_max).any() and not (fastest > v_max).all()
-    assert not (r.leg_limits & 6).any()  # no acceleration or force limit given
+    _, Ld, Ldd = leg_motion(path, r.pose[::10], r.pose_rate[::10], r.pose_accel[::10])
+    assert np.max(np.abs(Ld)) <= v_max and np.max(np.abs(Ldd)) <= a_max
+    assert np.max(np.abs(Ld)) > 0.5 * v_max  # the limits were met
+    jump = np.max(np.abs(np.diff(free.pose_rate[:, 5])))
+    assert jump > 0.05 and np.max(np.abs(np.diff(r.pose_rate[:, 5]))) < 0.1 * jump
+    assert r.limited[1000:1100].any() and not r.limited[-1000:].any()
+    assert np.max(np.abs(r.pose[-1000:] - free.pose[-1000:])) < 1e-9
+
+
+def test_leg_force_limit_is_reported():
+    """leg_force_max is checked (massless legs through the inverse solver), not enforced: a limit
+    below the platform's weight share is reported (bit 4) at every sample, and only that bit."""
+    path = ROOT / "platforms" / "thesis.json"
+    plat = stewart.Platform.from_file(path, leg_force_max=1.0)
+    t = np.arange(0, 2, 0.01)
+    f, w = inputs(len(t))
+    f[:, 0] += np.sin(3 * t)
+    r = stewart.cueing(plat, t, f, w)
+    assert np.all(r.leg_limits == 4)
+
+
+def simona_in_its_own_frame():
+    """SIMONA as its motion software states it: x forward, y right, z down (frame_convention 1),
+    the joints and the payload's centre of the file's z-up machine turned by 180 deg about x."""
+    d = json.loads((ROOT / "platforms" / "simona_motion_base.json").read_text())
+    turn = np.array([1.0, -1.0, -1.0])
+    params = {k: v for k, v in d.items() if k != "description"}
+    for key in ("base_joint", "platform_joint"):
+        params[key] = (np.reshape(d[key], (6, 3)) * turn).ravel().tolist()
+    params["payload_com"] = (np.asarray(d["payload_com"], float) * turn).tolist()
+    params["frame_convention"] = 1
+    return stewart.Platform(**params)
+
+
+def test_the_head_is_given_in_the_machines_frame():
+    """SIMONA's design eye point (1.2075 m above the upper gimbal plane, a little forward and to
+    the side here) given in each statement's own platform frame gives the same cue, turned: (x,
+    y, z, roll, pitch, yaw) -> (x, -y, -z, roll, -pitch, -yaw). The same numbers given to both
+    do not (the head matters to the cue)."""
+    t = np.arange(0, 8, 0.01)
+    f, w = inputs(len(t))
+    f[:, 0] += 1.5 * np.sin(1.1 * t)
+    w[:, 0] = 0.2 * np.sin(2 * t)
+    w[:, 1] = 0.15 * np.cos(1.3 * t)
+    w[:, 2] = 0.3 * (t > 1)
+    head_up = np.array([0.3, 0.2, 1.2075])
+    head_down = head_up * [1, -1, -1]
+    up_platform = stewart.Platform.from_file(ROOT / "platforms" / "simona_motion_base.json")
+    down_platform = simona_in_its_own_frame()
+    def cue(platform, head):
+        return stewart.cueing(platform, t, f, w, head_x=head[0], head_y=head[1], head_z=head[2])
+    up, down, misread = cue(up_platform, head_up), cue(down_platform, head_down), cue(down_platform, head_up)
+    assert not up.limited.any()
+    sign = np.array([1, -1, -1, 1, -1, -1])
+    for name in ("pose", "pose_rate", "pose_accel"):
+        assert np.max(np.abs(getattr(up, name) * sign - getattr(down, name))) < 1e-9
+    assert np.max(np.abs(up.pose * sign - misread.pose)) > 0.01

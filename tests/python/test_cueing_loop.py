@@ -123,3 +123,46 @@ def test_ecos_runs_the_ssp_archive_of_the_loop_as_libcosim_the_osp_structure(sim
     ecos = np.array(ecos)
     assert np.abs(ecos[:, 1] - simona.check().home[1]).max() > 1e-3  # the sway moves the cabin
     np.testing.assert_allclose(ecos, cosim, rtol=0, atol=1e-12)
+
+
+def test_a_recorded_vehicle_drives_the_osp_structure(simona, tmp_path):
+    """The slalom's first 3 s as recorded samples (cueing_loop.vehicle_events): libcosim with the
+    scenario of libcosim_scenario gives stewart.cueing's cue for the same samples (to rounding:
+    its dt is the step) and its plant follows the cue within 1 % of the cue's excursion."""
+    pytest.importorskip("libcosimpy")
+    import xml.etree.ElementTree as ET
+    from libcosimpy.CosimExecution import CosimExecution
+    from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
+    from libcosimpy.CosimManipulator import CosimManipulator
+    from libcosimpy.CosimObserver import CosimObserver
+    log_output_level(CosimLogLevel.ERROR)
+    t_vehicle, f, w = stewart.manoeuvre("car_slalom")
+    t, vehicle = cueing_loop.vehicle_samples(t_vehicle, f, w, 1e-3, 3.0)
+    n = len(t) - 1
+    path = tmp_path / "cueing_loop.xml"
+    ET.ElementTree(cueing_loop.osp_structure(simona, OPTIONS, vehicle[0], FMUS)).write(
+        path, encoding="utf-8", xml_declaration=True)
+    scenario = tmp_path / "vehicle_scenario.json"
+    scenario.write_text(cueing_loop.libcosim_scenario(t, vehicle))
+    ex = CosimExecution.from_osp_config_file(str(path))
+    observer = CosimObserver.create_last_value()
+    ex.add_observer(observer)
+    manager = CosimManipulator.create_scenario_manager()
+    ex.add_manipulator(manager)
+    assert ex.load_scenario(manager, str(scenario))
+    index = {s.name.decode(): s.index for s in ex.slave_infos()}
+    reference = {name: {v.name.decode(): v.reference for v in ex.slave_variables(i)}
+                 for name, i in index.items()}
+    pose = list(closed_loop.POSE)
+    cosim = {"cueing": [], "plant": []}
+    for _ in range(n):
+        assert ex.step()
+        for unit, out in cosim.items():
+            out.append(observer.last_real_values(index[unit], [reference[unit][p] for p in pose]))
+    cosim = {unit: np.array(values) for unit, values in cosim.items()}
+    library = stewart.cueing(simona, t, vehicle[:, :3], vehicle[:, 3:], **OPTIONS)
+    np.testing.assert_allclose(cosim["cueing"], library.pose[1:], rtol=0, atol=1e-12)
+    excursion = np.abs(library.pose - simona.check().home).max(axis=0)
+    assert excursion[1] > 0.01  # the slalom sways the cabin
+    tolerance = 1e-2 * np.r_[[excursion[:3].max()] * 3, [excursion[3:].max()] * 3]
+    assert np.all(np.abs(cosim["plant"] - library.pose[1:]) <= tolerance)

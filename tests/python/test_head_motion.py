@@ -127,7 +127,9 @@ def test_moving_head_against_finite_differences(case):
     for i, ti in enumerate(t):
         frames = [platform_in_base(trajectory(np.array([ti + k * h]), home)[0][0], params)
                   for k in (-1, 0, 1)]
-        points = [p + R @ head for p, R in frames]
+        # head is given in the machine's platform frame: z down turns it into the solvers' z up
+        arm = F @ head if params.get("frame_convention", 0) == 1 else head
+        points = [p + R @ arm for p, R in frames]
         accel = (points[0] - 2 * points[1] + points[2]) / h**2
         R = frames[1][1]
         skew = (frames[2][1] - frames[0][1]) / (2 * h) @ R.T
@@ -213,8 +215,9 @@ def test_bad_input_is_refused_by_name():
 
 def test_a_z_down_machine_feels_what_its_z_up_twin_feels():
     """frame_convention 1 (the same machine stated z down, y right): its cue comes back in its own
-    frames, and the head (given as the cueing unit takes it) feels the same as on the z-up twin,
-    in the cabin's x forward, y left, z up."""
+    frames, and the same physical head, given in each machine's platform frame (z down: (x, -y,
+    -z)) to the cueing unit and to head_motion, feels the same as on the z-up twin, in the
+    cabin's x forward, y left, z up."""
     t = np.arange(0.0, 6.0, 0.01)
     f = np.tile([0.0, 0.0, G], (t.size, 1))
     f[:, 0] += 1.5 * np.sin(1.1 * t)
@@ -224,10 +227,10 @@ def test_a_z_down_machine_feels_what_its_z_up_twin_feels():
     down = stewart.Platform(frame_convention=1, **{k: FRAMES["z down"][k]
                                                     for k in ("base_angle", "platform_angle")})
     felt = []
-    for platform in (stewart.Platform(), down):
-        cue = stewart.cueing(platform, t, f, w, head_x=head[0], head_y=head[1], head_z=head[2])
+    for platform, h in ((stewart.Platform(), head), (down, [head[0], -head[1], -head[2]])):
+        cue = stewart.cueing(platform, t, f, w, head_x=h[0], head_y=h[1], head_z=h[2])
         felt.append(stewart.head_motion(platform, cue.pose, cue.pose_rate, cue.pose_accel,
-                                        head=head))
+                                        head=h))
     assert np.ptp(felt[0].specific_force[:, 1]) > 0.1
     for a, b in zip(*felt):
         np.testing.assert_allclose(b, a, rtol=0, atol=1e-12)

@@ -20,8 +20,9 @@
  *                each at most tilt_max and moving at most tilt_rate_max
  *   rotation     angle_i = k_i H_r(s) / s w_i, H_r = s^2 / (s^2 + 2 zeta_r w_r s + w_r^2)
  *                (rotation_filter_order 2) or s / (s + w_r) (order 1)
- * The platform turns about the head (head_x, head_y, head_z in the platform frame): its origin
- * moves by (I - R) head besides the translation. The excursion is added to the home pose.
+ * The platform turns about the head (head_x, head_y, head_z in the machine's platform frame, z
+ * down with frame_convention 1): its origin moves by (I - R) head besides the translation. The
+ * excursion is added to the home pose.
  *
  * The limiter then enforces the machine's limits (stewart_limits_check: strokes, joint angles,
  * interference, condition, axis ranges) on every output pose: the excursion from home is scaled
@@ -29,10 +30,16 @@
  * extrapolated lookahead / 2 and lookahead seconds ahead, its rate at most limiter_rate and its
  * acceleration at most limiter_accel, and cut at once to a scale within the limits (bisection
  * along the excursion) when that is not enough. The output's rates and accelerations are those of
- * the scaled trajectory (s a cubic over each step, s' continuous but at a cut). It does not
- * enforce the legs' speed, acceleration or force limits (leg_speed_max, leg_accel_max,
- * leg_force_max): it reports the samples that break them (leg_limits); it neither enforces nor
- * reports leg_jerk_max; nor does it check the poses between samples.
+ * the scaled trajectory (s a cubic over each step, s' continuous but at a cut).
+ *
+ * When the platform gives leg_speed_max or leg_accel_max, a leg limiter then keeps every output
+ * sample's leg rates and accelerations within them: the output follows the scaled pose exactly
+ * while its legs, the step to it and the pose where it would stop (braking on half the
+ * acceleration limit) pass, and otherwise moves at a constant pose acceleration over the step
+ * (the cue's plus a critically damped pull toward it, scaled down to pass; else a brake; else a
+ * hold at the last pose, the pose limits first). It reports, not enforces, leg_force_max
+ * (leg_limits); it neither enforces nor reports leg_jerk_max; nor does it check the poses between
+ * samples.
  *
  * Never allocates after _create, never writes NaN.
  */
@@ -75,7 +82,7 @@ typedef struct stewart_cueing_options {
     int rotation_filter_order;         /* 1 or 2: the high-pass order of the rotation */
     double rotation_frequency;         /* w_r [rad/s] */
     double rotation_damping;           /* zeta_r [1] (order 2) */
-    double head_x, head_y, head_z;     /* the head in the platform frame [m] */
+    double head_x, head_y, head_z;     /* the head in the machine's platform frame [m] */
     double limiter_rate;               /* largest rate of the limiter's scale [1/s] */
     double limiter_lookahead;          /* how far ahead the limiter looks [s] */
     double limiter_accel;              /* largest acceleration of the limiter's scale [1/s2] */
@@ -95,12 +102,15 @@ typedef struct stewart_cueing_input {
 typedef struct stewart_cueing_output {
     stewart_pose pose;
     double scale;       /* the limiter's scale s of the excursion from home, in [0, 1] */
-    int limited;        /* 1: the limiter scaled the cue down at this sample (s < 1) */
+    int limited;        /* 1: the limiter scaled the cue down at this sample (s < 1), or the
+                           output left the scaled cue for the legs' speed and acceleration limits */
     int cut;            /* 1: the smooth motion of s did not suffice and s was cut at once */
     int tilt_limited;   /* 1: a tilt angle met tilt_max or tilt_rate_max at this sample */
-    int leg_limits;     /* the legs' motion limits the pose breaks, checked (not enforced) when
-                           given: bit 1 a leg's speed beyond leg_speed_max, 2 its acceleration
-                           beyond leg_accel_max, 4 its force (massless legs) beyond leg_force_max */
+    int leg_limits;     /* the legs' motion limits the pose breaks, checked when given: bit 1 a
+                           leg's speed beyond leg_speed_max, 2 its acceleration beyond
+                           leg_accel_max (both enforced: set only when the pose limits left no
+                           motion within them), 4 its force (massless legs) beyond
+                           leg_force_max (reported, not enforced) */
 } stewart_cueing_output;
 
 typedef struct stewart_cueing stewart_cueing;
