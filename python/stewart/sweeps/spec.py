@@ -285,7 +285,7 @@ def _placed(scene: dict, base: Platform, top: dict, field: str) -> dict:
     try:
         placed = scenes.on_platform({k: v for k, v in on_grid.items() if k != "move"}, base,
                                     scale_to_ranges=top["scale_to_ranges"])
-    except scenes.SceneError as e:
+    except ValueError as e:  # SceneError, or the machine's check (ParameterError)
         raise SpecError(f"{field}: {e}\n(\"place\": \"absolute\" plays the scene's poses as "
                         "written)") from None
     return {**scene, "pose": placed["pose"], "home": placed["home"]}
@@ -307,7 +307,10 @@ def _csv_manoeuvre(m: dict, field: str, spec_dir: pathlib.Path, base: Platform) 
     if about == "first":
         about = data["pose"][0]
     elif about == "home":
-        about = base.check().home
+        try:
+            about = base.check().home
+        except ValueError as e:
+            raise SpecError(f"{field}.about = 'home': {e}") from None
     elif _is_numbers(about) and len(about) == 6 and all(math.isfinite(v) for v in about):
         about = np.asarray(about, dtype=float)
     else:
