@@ -261,6 +261,8 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Pa
         raise SpecError(f"{field}.scene = {name!r} has no pose (a mechanism scene cannot be swept)")
     place = m.get("place", "home")
     if place == "home":
+        if "place" not in m and "home" not in scene:
+            _written_about_thesis_home(scene, base, field, name)
         scene = _placed(scene, base, top, field)
     elif place != "absolute":
         raise SpecError(f"{field}.place = {place!r} must be 'home' (the scene moved from the pose "
@@ -274,6 +276,24 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Pa
     if place == "home":
         played["home"] = scene["home"]  # the machine's: where the scene was placed
     return {"name": name, "place": place, "scene": played, **scales}
+
+
+def _written_about_thesis_home(scene: dict, base: Platform, field: str, name: str) -> None:
+    """SpecError when a scene that states neither its home nor its place has its mean position
+    nearer this machine's home than the thesis home it would be moved from: it was most likely
+    written for this machine in absolute poses, and moving it would play it elsewhere."""
+    mean = np.array([scene["pose"].get(p, {}).get("mean", 0.0) for p in scenes.POSE[:3]])
+    try:
+        home = base.check().home[:3]
+    except ValueError:
+        return  # _placed refuses a machine without a valid home, naming why
+    thesis = np.asarray(scenes.THESIS_HOME[:3])
+    if np.linalg.norm(mean - home) < np.linalg.norm(mean - thesis):
+        raise SpecError(
+            f"{field}.scene = {name!r}: its mean position {mean.tolist()} m is nearer this "
+            f"machine's home {home.tolist()} m than the thesis home {thesis.tolist()} m it would "
+            "be moved from; give \"place\": \"absolute\" to play its poses as written, or the "
+            "scene's \"home\" (the pose it is written about)")
 
 
 def _placed(scene: dict, base: Platform, top: dict, field: str) -> dict:
