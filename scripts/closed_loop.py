@@ -219,14 +219,11 @@ def motor_per_leg(platform):
 
 def leg_values(platform):
     """The per-leg parameters of platform (six values each: the drives' among them), defaults
-    filled in."""
+    filled in and per-leg elements (gear_ratio[2]) applied."""
     import stewart
-    values = {}
-    for p in stewart.parameters():
-        if p["count"] == 6:
-            given = platform.params.get(p["name"], p["defaults"])
-            values[p["name"]] = np.broadcast_to(np.asarray(given, float), (6,)).copy()
-    return values
+    counts = {p["name"]: p["count"] for p in stewart.parameters()}
+    return {name: values for name, values in stewart.params.parameter_values(platform.params).items()
+            if counts[name] == 6}
 
 
 def require_drives(platform):

@@ -241,7 +241,8 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
 // output table, then status, the byte offset of its row 0, or -1 for a column the batch leaves
 // alone. Made once per (direction, rows, columns left alone) and kept by Python, so that a call
 // binds its outputs by arithmetic, not by checking two dozen arrays. Checked when made: every
-// column lies inside `bytes`, aligned for its type, so that any block of `bytes` bytes takes it.
+// column lies inside `bytes`, aligned for its type, and no two overlap; a block takes it when it
+// has `bytes` bytes and starts aligned for every column's type.
 class Placement {
 public:
     struct ColumnSize {
@@ -252,6 +253,7 @@ public:
         : rows_(rows), bytes_(bytes), offsets_(std::move(offsets)) {
         if (offsets_.size() != columns.size())
             fail(("a placement needs " + std::to_string(columns.size()) + " offsets").c_str());
+        std::vector<std::pair<size_t, size_t>> spans;  // [start, end) of each placed column
         for (size_t i = 0; i < columns.size(); ++i) {
             const long o = offsets_[i];
             if (o < 0) continue;
@@ -259,12 +261,20 @@ public:
                 rows > (bytes - size_t(o)) / columns[i].row_bytes)
                 fail(("placement column " + std::to_string(i) + " at " + std::to_string(o) +
                       " is misaligned or beyond the block").c_str());
+            align_ = std::max(align_, columns[i].align);
+            spans.emplace_back(size_t(o), size_t(o) + rows * columns[i].row_bytes);
         }
+        std::sort(spans.begin(), spans.end());
+        for (size_t i = 1; i < spans.size(); ++i)
+            if (spans[i].first < spans[i - 1].second)
+                fail(("placement columns overlap at byte " + std::to_string(spans[i].first))
+                         .c_str());
     }
     size_t rows() const { return rows_; }
     // The block's data if it holds the placement (rows as the call's, at least `bytes` bytes).
     uint8_t *data(Column<uint8_t> block, size_t rows) const {
-        if (rows != rows_ || block.shape(0) < bytes_)
+        if (rows != rows_ || block.shape(0) < bytes_ ||
+            reinterpret_cast<uintptr_t>(block.data()) % align_ != 0)
             fail("the result block does not match its placement");
         return block.data();
     }
@@ -274,7 +284,7 @@ public:
     }
 
 private:
-    size_t rows_, bytes_;
+    size_t rows_, bytes_, align_ = 1;
     std::vector<long> offsets_;
 };
 

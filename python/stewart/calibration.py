@@ -466,9 +466,15 @@ def _refuse_unobservable(problem: _Problem, max_std: float) -> None:
 
 
 def _round_up(value: float) -> str:
-    """value rounded up to 2 significant digits, as text."""
+    """value rounded up to 2 significant digits, as text that reads back as at least value (the
+    product with the power of ten can round onto an integer just below it)."""
+    if not (math.isfinite(value) and value > 0):
+        return f"{value:g}"
     digits = 1 - math.floor(math.log10(value))
-    return f"{math.ceil(value * 10 ** digits) / 10 ** digits:g}"
+    steps = math.ceil(value * 10 ** digits)
+    while float(f"{steps / 10 ** digits:g}") < value:
+        steps += 1
+    return f"{steps / 10 ** digits:g}"
 
 
 def _ranges(names: list[str]) -> str:

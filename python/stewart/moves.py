@@ -34,7 +34,7 @@ from .arrays import vector
 from .limits import (LIMIT_CLASSES, MARGIN_UNITS, POSE_CLASSES, LimitCheck, class_name,
                      leg_limits_of, with_leg_limits)
 from .moves_jerk import LegPeaks, jerk_limited_law, sample_law
-from .params import parameter_assignments, parameters
+from .params import parameter_values
 
 KINDS = ("point", "line")
 FRAMES = ("user", "tool")
@@ -663,16 +663,7 @@ def _current_excess(platform, q, rate, acc, current_max, t, s):
 
 def _per_leg(platform, name) -> np.ndarray:
     """A per-leg parameter's 6 values on platform (its defaults where not given)."""
-    default = next(p["defaults"] for p in parameters() if p["name"] == name)
-    values = np.broadcast_to(np.asarray(default, dtype=float), (6,)).copy()
-    for assigned, value in parameter_assignments({k: v for k, v in platform.params.items()
-                                                  if k.partition("[")[0] == name}):
-        _, _, index = assigned.partition("[")
-        if index:
-            values[int(index.rstrip("]")) - 1] = value
-        else:
-            values[:] = value
-    return values
+    return parameter_values(platform.params)[name]
 
 
 def drive_leg_speed_max(platform) -> np.ndarray:

@@ -70,6 +70,20 @@ def parameter_assignments(params: Mapping[str, ParameterValue]) -> list[tuple[st
     return assignments
 
 
+def parameter_values(params: Mapping[str, ParameterValue]) -> dict[str, np.ndarray]:
+    """Every parameter's values (an array of its count) for a mapping of parameter names to
+    values, as the library takes them: the defaults (the thesis platform) with params applied,
+    a whole array, one element (``gear_ratio[2]``) or one number that fills every leg."""
+    values = {p["name"]: np.array(p["defaults"], dtype=float) for p in _table()}
+    for name, value in parameter_assignments(params):
+        base, _, index = name.partition("[")
+        if index:
+            values[base][int(index.rstrip("]")) - 1] = value
+        else:
+            values[base][:] = value  # a scalar, or one number that fills every leg
+    return values
+
+
 def option_values(**options: Any) -> list[tuple[str, float]]:
     """(name, value) pairs of the options given (None: the library's default), or ParameterError
     naming an option whose value is not a number."""

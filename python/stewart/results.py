@@ -11,7 +11,7 @@ from . import _core
 
 STATUS_OK = 0  #: stewart_status of a row that solved (or ran)
 STATUS_NOT_RUN: int = _core.BATCH_NOT_RUN  #: a plant row after the one that stopped the run
-#: Byte alignment of each array inside a result's block (a cache line).
+#: Each array of a result starts a multiple of this many bytes after its block's start.
 BLOCK_ALIGNMENT = 64
 
 

@@ -14,7 +14,7 @@ import numpy as np
 
 from . import _core
 from .limits import LIMIT_CLASSES, MARGIN_UNITS
-from .params import parameter_assignments, parameters
+from .params import parameter_values
 from .platform import Platform
 from .scenes import POSE
 from .view_template import fill, script_json, template_parts
@@ -180,14 +180,7 @@ def _leg_columns(columns: Mapping[str, np.ndarray], prefix: str) -> Optional[np.
 
 def effective_parameters(platform: Platform) -> dict[str, np.ndarray]:
     """Every parameter's values for platform: the thesis defaults with the platform's changes."""
-    values = {p["name"]: np.array(p["defaults"], dtype=float) for p in parameters()}
-    for name, value in parameter_assignments(platform.params):
-        base, _, index = name.partition("[")
-        if index:
-            values[base][int(index.rstrip("]")) - 1] = value
-        else:
-            values[base][:] = value  # a scalar, or one number that fills every leg
-    return values
+    return parameter_values(platform.params)
 
 
 def home_pose(platform: Platform) -> np.ndarray:

@@ -237,3 +237,22 @@ def test_a_max_std_no_poses_can_meet_says_so_and_what_passes():
                                              joint_tolerance=5e-4, max_std=1e-4))
     assert np.isfinite(stewart.observability(platform, poses, joint_tolerance=5e-4,
                                              max_std=_accepted(message)))
+
+
+def test_the_advised_max_std_is_never_below_the_largest_std():
+    """The max_std a refusal advises is the largest standard deviation rounded up to two
+    significant digits: it reads back as at least that value (so the advice is taken), and one
+    step of the second digit below it would not (so it is the nearest such number)."""
+    from decimal import Decimal
+
+    from stewart.calibration import _round_up
+    rng = np.random.default_rng(7)
+    values = list(10.0 ** rng.uniform(-7, 1, 2000))
+    values += [0.95 + 1e-16, 0.9500000000000001, 1.0000000000000002, 9.9e-5 + 1e-20, 3e-4]
+    for value in values:
+        text = _round_up(value)
+        advised = Decimal(text)
+        assert advised >= Decimal(value), (value, text)
+        assert len(advised.normalize().as_tuple().digits) <= 2, (value, text)
+        step = Decimal(1).scaleb(advised.adjusted() - 1)
+        assert advised - step < Decimal(value), (value, text)

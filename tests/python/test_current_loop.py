@@ -408,12 +408,14 @@ def test_script_command_line(tmp_path):
 
 
 
-@pytest.mark.parametrize("name", DRIVE_MACHINES)
-def test_cascade_turns_legs_into_motors_as_the_library_does(name):
+@pytest.mark.parametrize("name, leg_changes", [(name, {}) for name in DRIVE_MACHINES] + [
+    (DRIVE_MACHINES[0], {"gear_ratio[2]": 2.0, "torque_constant[5]": 0.5})])
+def test_cascade_turns_legs_into_motors_as_the_library_does(name, leg_changes):
     """The controller states the drive's transmission c = 2 pi N / lead itself (it links only
     libm); the library's drive law gives it as the inverse unit's motor_speed / L_dot. The
-    cascade's slope d i / d L_dot = -speed_gain c / k_t holds the library's c to rounding."""
-    platform = stewart.Platform.from_file(stewart.platform_files()[name])
+    cascade's slope d i / d L_dot = -speed_gain c / k_t holds the library's c to rounding, also
+    with one leg's gear ratio and another's torque constant set by element."""
+    platform = stewart.Platform.from_file(stewart.platform_files()[name], **leg_changes)
     machine = stewart.fmu_start_values(platform)
     controls = closed_loop.controller_parameters(platform, machine)
     inverse = Instance("StewartPlatform", name="inverse").init(derivatives=1, **machine)

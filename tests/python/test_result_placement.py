@@ -96,7 +96,8 @@ def test_a_new_result_holds_the_numbers_of_one_whose_arrays_are_given_by_name(le
 
 def test_a_placement_that_does_not_fit_its_block_is_refused():
     """The binding checks a placement when it is made (every column inside the block, aligned for
-    its type) and a block against its placement, so no offset can send the library outside."""
+    its type, none over another) and a block against its placement (its size and its start's
+    alignment), so no offset can send the library outside or write one column over another."""
     placement = place(INVERSE_TABLE, 4)
     offsets = list(placement.offsets)
     _core.inverse_placement(4, placement.written_bytes, offsets)  # the right one is taken
@@ -118,6 +119,15 @@ def test_a_placement_that_does_not_fit_its_block_is_refused():
     with pytest.raises(ValueError, match="does not match its placement"):
         _core.InverseRun(model, q[:3], None, None, [],
                          np.empty(placement.written_bytes, np.uint8), core)
+    # A block that starts off the alignment of its doubles is refused, and so are two columns
+    # placed over each other (each alone inside the block and aligned).
+    with pytest.raises(ValueError, match="does not match its placement"):
+        _core.InverseRun(model, q, None, None, [],
+                         np.empty(placement.written_bytes + 9, np.uint8)[1:], core)
+    placed = [o for o in offsets if o >= 0]
+    overlapping = [placed[0] if o == placed[1] else o for o in offsets]
+    with pytest.raises(ValueError, match="overlap"):
+        _core.inverse_placement(4, placement.written_bytes, overlapping)
 
 
 def test_table_arrays_of_a_large_result_leave_the_zeroed_columns_in_a_block_of_their_own():

@@ -88,7 +88,7 @@ def test_a_heave_scaled_to_the_ranges_is_feasible_on_every_machine(name):
 
 def test_a_scene_written_about_an_absolute_pose_plays_as_written_or_from_its_home():
     """"place": "absolute" plays the poses as written; a scene with its own "home" moves from
-    it to the machine's (run_scene.py's convention)."""
+    it to the machine's (run_scene.py's convention), one without from the thesis home."""
     path = FILES["simona_motion_base"]
     home = stewart.Platform.from_file(path).check().home
     written = {"name": "bob", "duration": DURATION, "step": STEP,
@@ -97,12 +97,21 @@ def test_a_scene_written_about_an_absolute_pose_plays_as_written_or_from_its_hom
     bob = 0.05 * np.sin(2.0 * t)
     for manoeuvre, z in (({"scene": written, "place": "absolute"}, 2.3 + bob),
                          ({"scene": {**written, "home": [0, 0, 2.2, 0, 0, 0]}}, home[2] + 0.1 + bob),
-                         ({"scene": written}, home[2] + 1.8 + bob)):
+                         ({"scene": {**written, "pose": {"z": {**written["pose"]["z"],
+                                                               "mean": 0.6}}}},
+                          home[2] + 0.1 + bob)):
         spec = resolve({"kind": "envelope", "platform_file": str(path),
                         "manoeuvres": [manoeuvre]}, SCENES)
         q = manoeuvre_samples(spec, spec["manoeuvres"][0], 1.0, 1.0)[1]
         np.testing.assert_allclose(q[:, 2], z, rtol=0, atol=1e-14)
         np.testing.assert_allclose(q[:, [0, 1, 3, 4, 5]], 0.0, atol=0)
+    # Stating neither: a scene about the thesis home (z 0.6 above) moves; one whose poses lie
+    # nearer this machine's home than the thesis' was written for it and is refused, not moved
+    # 1.7 m up.
+    with pytest.raises(SpecError, match=r"(?s)manoeuvres\[0\].scene = 'bob'.*nearer this "
+                                        r"machine's home.*\"place\": \"absolute\""):
+        resolve({"kind": "envelope", "platform_file": str(path),
+                 "manoeuvres": [{"scene": written}]}, SCENES)
 
 
 @pytest.mark.parametrize("change, words", [

@@ -263,6 +263,8 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Pa
         raise SpecError(f"{field}.scene = {name!r} has no pose (a mechanism scene cannot be swept)")
     place = m.get("place", "home")
     if place == "home":
+        if "place" not in m and "home" not in scene:
+            _written_about_thesis_home(scene, base, field, name)
         scene = _placed(scene, base, top, field)
     elif place != "absolute":
         raise SpecError(f"{field}.place = {place!r} must be 'home' (the scene moved from the pose "
@@ -278,6 +280,24 @@ def _manoeuvre(m: Any, field: str, scene_dir: pathlib.Path, spec_dir: pathlib.Pa
     return {"name": name, "place": place, "scene": played, **scales}
 
 
+def _written_about_thesis_home(scene: dict, base: Platform, field: str, name: str) -> None:
+    """SpecError when a scene that states neither its home nor its place has its mean position
+    nearer this machine's home than the thesis home it would be moved from: it was most likely
+    written for this machine in absolute poses, and moving it would play it elsewhere."""
+    mean = np.array([scene["pose"].get(p, {}).get("mean", 0.0) for p in scenes.POSE[:3]])
+    try:
+        home = base.check().home[:3]
+    except ValueError:
+        return  # _placed refuses a machine without a valid home, naming why
+    thesis = np.asarray(scenes.THESIS_HOME[:3])
+    if np.linalg.norm(mean - home) < np.linalg.norm(mean - thesis):
+        raise SpecError(
+            f"{field}.scene = {name!r}: its mean position {mean.tolist()} m is nearer this "
+            f"machine's home {home.tolist()} m than the thesis home {thesis.tolist()} m it would "
+            "be moved from; give \"place\": \"absolute\" to play its poses as written, or the "
+            "scene's \"home\" (the pose it is written about)")
+
+
 def _placed(scene: dict, base: Platform, top: dict, field: str) -> dict:
     """The scene moved from its home (the pose it is written about: its "home", default the
     thesis platform's, as the shipped scenes are) to the machine's home pose and scaled to its
@@ -287,7 +307,7 @@ def _placed(scene: dict, base: Platform, top: dict, field: str) -> dict:
     try:
         placed = scenes.on_platform({k: v for k, v in on_grid.items() if k != "move"}, base,
                                     scale_to_ranges=top["scale_to_ranges"])
-    except scenes.SceneError as e:
+    except ValueError as e:  # SceneError, or the machine's check (ParameterError)
         raise SpecError(f"{field}: {e}\n(\"place\": \"absolute\" plays the scene's poses as "
                         "written)") from None
     return {**scene, "pose": placed["pose"], "home": placed["home"]}
@@ -309,7 +329,10 @@ def _csv_manoeuvre(m: dict, field: str, spec_dir: pathlib.Path, base: Platform) 
     if about == "first":
         about = data["pose"][0]
     elif about == "home":
-        about = base.check().home
+        try:
+            about = base.check().home
+        except ValueError as e:
+            raise SpecError(f"{field}.about = 'home': {e}") from None
     elif _is_numbers(about) and len(about) == 6 and all(math.isfinite(v) for v in about):
         about = np.asarray(about, dtype=float)
     else:
