@@ -104,6 +104,7 @@ static fmu_status check_settable(fmu_instance *inst, const char *what, const uns
                     var->name, fmu_mode_name(inst->v.mode));
             return FMU_ERROR;
         }
+        if (type == FMU_STRING) continue; /* a path or a name: no range */
         const double x = given(type, value, i);
         if (!fmu_within_range(var, x)) {
             fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: " FMU_OUT_OF_RANGE_FORMAT
@@ -150,9 +151,7 @@ fmu_status fmu_get_string(fmu_instance *inst, const unsigned vr[], size_t n, con
 
 fmu_status fmu_set_string(fmu_instance *inst, const unsigned vr[], size_t n,
                           const char *const value[]) {
-    if (fmu_check_call(inst, CALL_SET, "SetString") != FMU_OK) return FMU_ERROR;
-    if (n > 0 && (!vr || !value)) return null_arrays(inst, "SetString");
-    if (check_settable(inst, "SetString", vr, n, FMU_STRING) != FMU_OK) return FMU_ERROR;
+    if (check_settable(inst, "SetString", vr, n, FMU_STRING, value) != FMU_OK) return FMU_ERROR;
 #if FMU_STRING_PARAMETERS
     for (size_t i = 0; i < n; ++i)
         if (!value[i] || strlen(value[i]) >= FMU_STRING_SIZE) {
