@@ -62,9 +62,7 @@ enum {
     STEWART_WARN_OTHER_BRANCH = 4,  /* forward kinematics: the pose is on another assembly mode */
     STEWART_WARN_JOINT_LIMIT = 8,   /* the plant: a leg beyond base_joint_limit or
                                        platform_joint_limit (stewart/stewart_limits.h) */
-    STEWART_WARN_INTERFERENCE = 16, /* the plant: two legs closer than leg_diameter */
-    STEWART_WARN_NOT_SMOOTH = 32    /* linearisation: a derivative taken as the mean of its
-                                       one-sided values where the equations have a kink */
+    STEWART_WARN_INTERFERENCE = 16  /* the plant: two legs closer than leg_diameter */
 };
 
 /* Geometry and mass parameters. Inertias are principal moments about the body's own centre of

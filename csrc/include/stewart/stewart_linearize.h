@@ -153,6 +153,9 @@ stewart_status stewart_linearize_base_wrench(stewart_linearize *l, const stewart
  * one-sided derivatives (what central differences give); on a stroke end or where an end stop's
  * damper meets its limit, the side the plant's equations take. */
 #define STEWART_LINEARIZE_DRIVEN_STATES 18 /* at most: (q, q_dot, i_1 .. i_6) */
+/* A warnings bit (beside stewart.h's STEWART_WARN_*): a derivative taken as the mean of its
+ * one-sided values where the equations have a kink. */
+#define STEWART_WARN_NOT_SMOOTH 32
 
 typedef struct stewart_linearize_driven_input {
     stewart_pose pose;             /* q and q_dot (q_ddot is not used) */
