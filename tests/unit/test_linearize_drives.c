@@ -29,12 +29,11 @@
 #endif
 
 static const double kStepState = 1e-7; /* m, rad, m/s, rad/s: 1e-3 of the smoothing speed */
+static const double kStepRest = 1e-8;  /* the same at rest, at the efficiency's kink */
 static const double kStepInput = 1e-3; /* A, V */
 static const double kRelative = 1e-5;
 static const double kSmoothing = 1e-4; /* the plant's default smoothing_speed [m/s] */
 
-void setUp(void) {}
-void tearDown(void) {}
 
 static void read_platform(const char *name, stewart_params *p) {
     char path[512], text[16384], msg[STEWART_MESSAGE_SIZE];
@@ -139,7 +138,7 @@ static void check_against_plant(const stewart_params *p, const char *name, int f
     }
     block_error by_state = {0, 0}, by_input = {0, 0};
     for (int j = 0; j < 18; ++j) {
-        const double h = j < 12 ? kStepState : kStepInput;
+        const double h = j >= 12 ? kStepInput : moving ? kStepState : kStepRest;
         double xp[12], xm[12], up[6], um[6], fp[12], fm[12];
         memcpy(xp, x, sizeof xp), memcpy(xm, x, sizeof xm);
         memcpy(up, u, sizeof up), memcpy(um, u, sizeof um);
@@ -153,10 +152,12 @@ static void check_against_plant(const stewart_params *p, const char *name, int f
             else block_add(&by_input, o.B[i][j - 12], difference);
         }
     }
-    const double state_error = block_relative(by_state, rate_scale, kStepState);
+    const double state_error =
+        block_relative(by_state, rate_scale, moving ? kStepState : kStepRest);
     const double input_error = block_relative(by_input, rate_scale, kStepInput);
-    snprintf(what, sizeof what, "%s fidelity %d input %d moving %d: A %.3g, B %.3g (scales %.3g, %.3g)",
-             name, fidelity, input, moving, state_error, input_error, by_state.scale, by_input.scale);
+    snprintf(what, sizeof what, "%s fidelity %d input %d moving %d: A %.3g, B %.3g beyond rounding (raw %.3g, %.3g; "
+             "scales %.3g, %.3g)", name, fidelity, input, moving, state_error, input_error,
+             by_state.error, by_input.error, by_state.scale, by_input.scale);
     printf("%s\n", what);
     TEST_ASSERT_TRUE_MESSAGE(state_error < kRelative && input_error < kRelative, what);
     /* At rest every leg with a screw force has the efficiency's kink (0.9 forward, 0.8889 back:
@@ -238,12 +239,13 @@ static void test_winding_rows_closed_form(void) {
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_linearize_driven(l, &current, &by_current, &oc),
                                   stewart_linearize_message(l));
     TEST_ASSERT_EQUAL_INT(18, o.states);
+    double fastest = 0;
     for (int k = 0; k < 6; ++k) {
         const double R = p.winding_resistance[k], Lw = p.winding_inductance[k];
         const double kt = p.torque_constant[k];
         const double c = 2 * M_PI * p.gear_ratio[k] / p.screw_lead[k];
         const double L_dot = o.output[18 + k];
-        TEST_ASSERT_TRUE(fabs(L_dot) > 1e-3);  /* the back-EMF term is there */
+        fastest = fmax(fastest, fabs(L_dot));
         const double rate = (in.input[k] - R * in.current[k] - kt * c * L_dot) / Lw;
         TEST_ASSERT_DOUBLE_WITHIN(1e-12 * fabs(rate) + 1e-9, rate, o.state_rate[12 + k]);
         for (int j = 0; j < 6; ++j) {
@@ -255,6 +257,7 @@ static void test_winding_rows_closed_form(void) {
             TEST_ASSERT_DOUBLE_WITHIN(1e-12 * (fabs(expected) + kt * c / Lw), expected, o.A[12 + k][j]);
         }
     }
+    TEST_ASSERT_TRUE(fastest > 1e-2);  /* the back-EMF term is there */
     double scale_a = 0, scale_b = 0;
     for (int i = 6; i < 12; ++i) {
         for (int j = 0; j < 12; ++j) scale_a = fmax(scale_a, fabs(oc.A[i][j]));
