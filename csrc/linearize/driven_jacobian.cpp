@@ -95,6 +95,21 @@ bool leg_law(const plant::DriveModel &dm, int k, const plant::Evaluation &e, dou
     return true;
 }
 
+// The windings' current rows (voltage input): di/dt = (V - R i - k_t c L_dot) / L_w on a leg
+// with an inductance, zero on the others.
+void winding_rows(const plant::DynamicsModel &driven, const double voltage[STEWART_LEGS],
+                  const plant::Evaluation &e, const PlantJacobian &p, DrivenJacobian &out) {
+    plant::winding_rates(driven, voltage, e, out.state_rate + 12);
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        const LegDrive &d = driven.drives.legs[k];
+        if (!(d.inductance > 0)) continue;
+        const double back_emf = d.torque_constant * d.motor_per_leg / d.inductance;
+        for (int j = 0; j < 12; ++j) out.A[12 + k][j] = -back_emf * p.length_rate_wrt_state[k][j];
+        out.A[12 + k][12 + k] = -d.resistance / d.inductance;
+        out.B[12 + k][k] = 1.0 / d.inductance;
+    }
+}
+
 }  // namespace
 
 bool driven_jacobian(const plant::DynamicsModel &force_model, const plant::DynamicsModel &driven,
@@ -124,9 +139,6 @@ bool driven_jacobian(const plant::DynamicsModel &force_model, const plant::Dynam
     Matrix6x12 force_x = Matrix6x12::Zero();
     Matrix6 force_a = Matrix6::Zero(), force_u = Matrix6::Zero(), force_i = Matrix6::Zero();
     out = DrivenJacobian();
-    std::memset(out.state_rate, 0, sizeof out.state_rate);
-    std::memset(out.A, 0, sizeof out.A);
-    std::memset(out.B, 0, sizeof out.B);
     for (int k = 0; k < STEWART_LEGS; ++k) {
         LegLaw law;
         if (!leg_law(dm, k, e, p.length[k], law)) {
@@ -170,17 +182,7 @@ bool driven_jacobian(const plant::DynamicsModel &force_model, const plant::Dynam
             if (dm.inductive) out.A[6 + i][12 + k] = accel_i(i, k);
         }
     }
-    if (dm.inductive) {  // di/dt = (V - R i - k_t c L_dot) / L_w on a leg with an inductance
-        plant::winding_rates(driven, input, e, out.state_rate + 12);
-        for (int k = 0; k < STEWART_LEGS; ++k) {
-            const LegDrive &d = dm.legs[k];
-            if (!(d.inductance > 0)) continue;
-            const double back_emf = d.torque_constant * d.motor_per_leg / d.inductance;
-            for (int j = 0; j < 12; ++j) out.A[12 + k][j] = -back_emf * p.length_rate_wrt_state[k][j];
-            out.A[12 + k][12 + k] = -d.resistance / d.inductance;
-            out.B[12 + k][k] = 1.0 / d.inductance;
-        }
-    }
+    if (dm.inductive) winding_rows(driven, input, e, p, out);
     std::memcpy(out.length, p.length, sizeof out.length);
     std::memcpy(out.length_rate, p.length_rate, sizeof out.length_rate);
     std::memcpy(out.length_wrt_state, p.length_wrt_state, sizeof out.length_wrt_state);

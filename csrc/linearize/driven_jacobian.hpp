@@ -16,9 +16,9 @@ constexpr int kDrivenStates = 18;  // (q, q_dot, i_1 .. i_6) at most
 
 struct DrivenJacobian {
     int states = 12;  // 18 with the windings' currents (voltage input, an inductance)
-    double state_rate[kDrivenStates];
-    double A[kDrivenStates][kDrivenStates];  // rows and columns beyond states zero
-    double B[kDrivenStates][STEWART_LEGS];
+    double state_rate[kDrivenStates] = {};
+    double A[kDrivenStates][kDrivenStates] = {};  // rows and columns beyond states zero
+    double B[kDrivenStates][STEWART_LEGS] = {};
     double length[STEWART_LEGS], length_rate[STEWART_LEGS];
     double length_wrt_state[STEWART_LEGS][12], length_rate_wrt_state[STEWART_LEGS][12];
     double leg_force[STEWART_LEGS];

@@ -29,7 +29,9 @@ WINDING_STATES = tuple(f"winding_current[{k}]" for k in range(1, 7))
 class Linearization:
     """The plant at an operating point in minimal coordinates x = (pose, pose rates) (12),
     u = the leg forces (6), y = (pose, pose rates, lengths, length rates) (24):
-    dx/dt ~= state_rate + A dx + B du, y ~= output + C dx + D du (D = 0)."""
+    dx/dt ~= state_rate + A dx + B du, y ~= output + C dx + D du (D = 0). Driven by the motors
+    (input current or voltage) u is the currents or voltages, and with voltage input and a
+    winding inductance x gains the windings' currents (18): `states` and `inputs` name them."""
     A: np.ndarray           #: (12, 12) df/dx
     B: np.ndarray           #: (12, 6) df/du
     C: np.ndarray           #: (24, 12) dg/dx
