@@ -9,6 +9,7 @@
 
 #include <Eigen/LU>
 
+#include "linearize/driven_jacobian.hpp"
 #include "linearize/plant_jacobian.hpp"
 #include "model.hpp"
 #include "stewart/stewart_linearize.h"
@@ -65,6 +66,11 @@ stewart_status check_overflow(const double *values, size_t bytes, char *msg, siz
 
 // The message and status of a failed evaluation.
 stewart_status failure(const lin::Failure &why, double pitch, char *msg, size_t size) {
+    if (why.unsettled_leg >= 0)
+        return set_message(msg, size, STEWART_ERR_SINGULAR,
+                           "leg %d's power flow turns here (the plant's screw force flips with "
+                           "its own efficiency): the driven plant has no derivative at this "
+                           "point; linearise a little away from it", why.unsettled_leg + 1);
     if (why.pitch)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "pitch = %g rad is at +-90 degrees, where roll and yaw rates are "
@@ -386,4 +392,87 @@ extern "C" stewart_status stewart_linearize_base_wrench(stewart_linearize *l,
                                                         const stewart_pose *pose,
                                                         stewart_linearize_wrench_output *out) {
     return pose_call(l, pose, out, wrench_rows);
+}
+
+namespace {
+
+// The driven plant's linearisation laid out as the output (y as stewart_linearize_plant's).
+void driven_output(const stewart_linearize &l, const stewart_linearize_driven_input &in,
+                   const lin::DrivenJacobian &p, stewart_linearize_driven_output &o) {
+    std::memset(&o, 0, sizeof o);
+    o.states = p.states;
+    std::memcpy(o.state_rate, p.state_rate, sizeof o.state_rate);
+    std::memcpy(o.A, p.A, sizeof o.A);
+    std::memcpy(o.B, p.B, sizeof o.B);
+    for (int i = 0; i < 6; ++i) {
+        o.output[i] = in.pose.q[i];
+        o.output[6 + i] = in.pose.q_dot[i];
+        o.C[i][i] = 1;
+        o.C[6 + i][6 + i] = 1;
+    }
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        o.output[12 + k] = p.length[k];
+        o.output[18 + k] = p.length_rate[k];
+        std::memcpy(o.C[12 + k], p.length_wrt_state[k], sizeof p.length_wrt_state[k]);
+        std::memcpy(o.C[18 + k], p.length_rate_wrt_state[k], sizeof p.length_rate_wrt_state[k]);
+    }
+    std::memcpy(o.leg_force, p.leg_force, sizeof o.leg_force);
+    o.stroke_legs = stroke_legs_of(l.model->params, p.length);
+    o.not_smooth_legs = p.not_smooth_legs;
+    o.warnings = (o.stroke_legs ? STEWART_WARN_STROKE : 0) |
+                 (o.not_smooth_legs ? STEWART_WARN_NOT_SMOOTH : 0);
+    subtract_offsets(*l.model, o.output + 12);
+}
+
+}  // namespace
+
+extern "C" stewart_status stewart_linearize_driven(stewart_linearize *l,
+                                                   const stewart_plant_options *plant_options,
+                                                   const stewart_linearize_driven_input *in,
+                                                   stewart_linearize_driven_output *out) {
+    if (!l) return STEWART_ERR_ARGUMENT;
+    char *msg = l->message;
+    const size_t size = sizeof l->message;
+    if (!plant_options || !in || !out)
+        return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL options, input or output");
+    if (plant_options->input != STEWART_PLANT_INPUT_CURRENT &&
+        plant_options->input != STEWART_PLANT_INPUT_VOLTAGE)
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "input = %d: the driven linearisation takes current (%d) or voltage "
+                           "(%d) input; stewart_linearize_plant linearises force input",
+                           plant_options->input, STEWART_PLANT_INPUT_CURRENT,
+                           STEWART_PLANT_INPUT_VOLTAGE);
+    if (!(plant_options->smoothing_speed > 0))
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "smoothing_speed = %g must be > 0", plant_options->smoothing_speed);
+    plant::DynamicsModel driven = l->dynamics;
+    stewart_status s =
+        plant::drive_model(l->model->params, *plant_options, driven.drives, msg, size);
+    if (s != STEWART_OK) return s;
+    if ((s = check_pose_rows(in->pose, 1, msg, size)) != STEWART_OK) return s;
+    if ((s = check_finite(in->input, STEWART_LEGS, "input", 1, msg, size)) != STEWART_OK) return s;
+    if (driven.drives.inductive &&
+        (s = check_finite(in->current, STEWART_LEGS, "current", 1, msg, size)) != STEWART_OK)
+        return s;
+    static const double no_current[STEWART_LEGS] = {0, 0, 0, 0, 0, 0};
+    lin::DrivenJacobian p;
+    lin::Failure why;
+    if (!lin::driven_jacobian(l->dynamics, driven, l->model->frames, in->pose.q, in->pose.q_dot,
+                              in->input, driven.drives.inductive ? in->current : no_current, p,
+                              why))
+        return failure(why, in->pose.q[4], msg, size);
+    stewart_linearize_driven_output o;
+    driven_output(*l, *in, p, o);
+    static_assert(offsetof(stewart_linearize_driven_output, leg_force) + sizeof o.leg_force ==
+                      offsetof(stewart_linearize_driven_output, state_rate) +
+                          sizeof o.state_rate + sizeof o.output + sizeof o.A + sizeof o.B +
+                          sizeof o.C + sizeof o.D + sizeof o.leg_force,
+                  "the checked values are contiguous");
+    if ((s = check_overflow(&o.state_rate[0], sizeof o.state_rate + sizeof o.output + sizeof o.A +
+                                                  sizeof o.B + sizeof o.C + sizeof o.D +
+                                                  sizeof o.leg_force,
+                            msg, size)) != STEWART_OK)
+        return s;
+    *out = o;
+    return clear_message(msg, size);
 }

@@ -17,6 +17,7 @@ struct Failure {
     plant::LegFault fault = plant::LegFault::None;
     int leg = -1;
     bool pitch = false;
+    int unsettled_leg = -1;  // the driven plant's power flow did not settle on this leg (0-based)
 };
 
 // The plant at x = (q, q_dot), u = F: q_ddot and the outputs L, L_dot, each with its derivatives

@@ -80,12 +80,50 @@ std::tuple<int, std::string, int> linearize_inverse(
     return {static_cast<int>(s), stewart_linearize_message(l.lease.solver), out.warnings};
 }
 
+// Platform.linearize's call with current or voltage input, into the caller's arrays:
+// (status, message, warnings, states, not_smooth_legs).
+std::tuple<int, std::string, int, int, int> linearize_driven(
+    const Model &model, int fidelity, int input, std::optional<double> smoothing_speed,
+    const std::vector<double> &q, const std::vector<double> &q_dot,
+    const std::vector<double> &inputs, const std::vector<double> &current, Fixed<18> state_rate,
+    Fixed<24> output, Fixed<18, 18> A, Fixed<18, 6> B, Fixed<24, 18> C, Fixed<24, 6> D,
+    Fixed<6> leg_force) {
+    if (q.size() != 6 || q_dot.size() != 6 || inputs.size() != 6 || current.size() != 6)
+        fail("linearize: pose, pose_rate, inputs and currents need 6 values each");
+    Linearization l(model, fidelity);
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    o.fidelity = fidelity;
+    o.input = input;
+    if (smoothing_speed) o.smoothing_speed = *smoothing_speed;  // else the plant's default
+    stewart_linearize_driven_input in{};
+    std::copy(q.begin(), q.end(), in.pose.q);
+    std::copy(q_dot.begin(), q_dot.end(), in.pose.q_dot);
+    std::copy(inputs.begin(), inputs.end(), in.input);
+    std::copy(current.begin(), current.end(), in.current);
+    stewart_linearize_driven_output out{};
+    const stewart_status s = stewart_linearize_driven(l.lease.solver, &o, &in, &out);
+    put(out.state_rate, state_rate);
+    put(out.output, output);
+    put(&out.A[0][0], A);
+    put(&out.B[0][0], B);
+    put(&out.C[0][0], C);
+    put(&out.D[0][0], D);
+    put(out.leg_force, leg_force);
+    return {static_cast<int>(s), stewart_linearize_message(l.lease.solver), out.warnings,
+            out.states, out.not_smooth_legs};
+}
+
 }  // namespace
 
 void bind_linearize(nb::module_ &m) {
     m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"),
           nb::arg("q"), nb::arg("q_dot"), nb::arg("force"), nb::arg("state_rate"),
           nb::arg("output"), nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("D"));
+    m.def("linearize_driven", &linearize_driven, nb::arg("model"), nb::arg("fidelity"),
+          nb::arg("input"), nb::arg("smoothing_speed"), nb::arg("q"), nb::arg("q_dot"),
+          nb::arg("inputs"), nb::arg("current"), nb::arg("state_rate"), nb::arg("output"),
+          nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("D"), nb::arg("leg_force"));
     m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
           nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"), nb::arg("length"),
           nb::arg("length_rate"), nb::arg("length_accel"), nb::arg("force"),

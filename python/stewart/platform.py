@@ -291,7 +291,9 @@ class Platform:
         return run_simulate(self._model, time, F, q0, q0_dot, options)
 
     def linearize(self, pose, pose_rate=None, forces=None,
-                  fidelity: Union[Fidelity, int, str] = Fidelity.FULL) -> Linearization:
+                  fidelity: Union[Fidelity, int, str] = Fidelity.FULL, input="force",
+                  winding_current=None,
+                  smoothing_speed: Optional[float] = None) -> Linearization:
         """The plant linearised at one operating point: A, B, C, D in the minimal coordinates
         x = (pose, pose rates), u = forces, y = (pose, pose rates, lengths, length rates), exact
         (automatic differentiation through the library's equations of motion, not finite
@@ -300,8 +302,17 @@ class Platform:
         pose, its rates and x are the tool's in the user frame, as every pose of the package.
         fidelity "massless" or "full". A pose
         the plant cannot take (a zero-length leg, a locked Cardan, pitch at +-90 degrees) raises
-        ValueError with the library's message."""
-        return run_linearize(self._model, pose, pose_rate, forces, fidelity)
+        ValueError with the library's message.
+
+        input "current" or "voltage" (as Platform.simulate's; a drive on every leg): the plant
+        driven by its motors, forces then holding the six currents [A] or voltages [V] (needed),
+        u those and B by them; the drives' reflected inertia, screw efficiency, friction and end
+        stops are in A and B (docs/drives.md). With voltage input and a winding_inductance the
+        windings' currents are states 13-18 (winding_current: their values, 6, default 0);
+        smoothing_speed as Platform.simulate's. Linearization.not_smooth_legs names the legs at a
+        kink of the law (at rest with a lossy screw: the one-sided derivatives' mean)."""
+        return run_linearize(self._model, pose, pose_rate, forces, fidelity, input,
+                             winding_current, smoothing_speed)
 
     def linearize_inverse(self, pose, pose_rate=None, pose_accel=None,
                           fidelity: Union[Fidelity, int, str] = Fidelity.FULL) -> InverseJacobian:

@@ -141,20 +141,6 @@ def test_model_exchange_fmu_under_cvode_follows_the_co_simulation_plant(version)
     np.testing.assert_allclose(me[:, 6:], cs[:, 6:], rtol=1e-6, atol=1e-6)
 
 
-def test_model_exchange_refuses_directional_derivatives_with_currents():
-    """The linearisation knows force input only: with input = 1 the ME unit says so instead of
-    giving the force-driven derivatives."""
-    from test_plant_me_fmu import MEInstance
-    me = MEInstance("2.0").init(**fmu_drive()).continuous()
-    try:
-        vr = me.vr
-        with pytest.raises(Exception):
-            me.fmu.getDirectionalDerivative([vr["x_dot"]], [vr["x"]], [1.0])
-        assert any("directional derivatives" in m for m in me.messages)
-    finally:
-        me.free()
-
-
 def test_stewart_simulate_takes_the_input_option(tmp_path):
     """stewart-simulate --param input=1 with the drive's parameters: Platform.simulate's rows."""
     import subprocess

@@ -25,6 +25,7 @@
 #include <stddef.h>
 
 #include "stewart/stewart.h"
+#include "stewart/stewart_plant.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -136,6 +137,57 @@ stewart_status stewart_linearize_inverse(stewart_linearize *l, const stewart_pos
 /* The base wrench and its Jacobian at pose. Errors as stewart_linearize_plant. */
 stewart_status stewart_linearize_base_wrench(stewart_linearize *l, const stewart_pose *pose,
                                              stewart_linearize_wrench_output *out);
+
+/* The plant driven by its motors (stewart_plant_options.input CURRENT or VOLTAGE, docs/drives.md)
+ * linearised: x = (q, q_dot) (12), or (q, q_dot, i_1 .. i_6) (18) with voltage input and a
+ * winding_inductance > 0 on some leg (the windings' currents are then states; a leg without
+ * inductance keeps a zero row and column for its current); u = the six currents [A] or voltages
+ * [V]; y = (q, q_dot, L, L_dot) (24) as stewart_linearize_plant's, D = 0. The rotor's and screw's
+ * reflected inertia, the screw's efficiency in the direction of the power flow, friction and the
+ * end stops are in A and B, as the plant's right-hand side has them (smoothing_speed
+ * regularises friction and the efficiency near rest; the direction of each leg's power flow is
+ * held where the plant finds it). Where the right-hand side has a kink the derivative does not
+ * exist; there the leg is flagged (STEWART_WARN_NOT_SMOOTH, not_smooth_legs) and its terms are:
+ * at rest (L_dot = 0) with a screw force and efficiencies whose slopes differ forward and back,
+ * and at a zero screw force of a moving leg (the power flow's turn), the mean of the two
+ * one-sided derivatives (what central differences give); on a stroke end or where an end stop's
+ * damper meets its limit, the side the plant's equations take. */
+#define STEWART_LINEARIZE_DRIVEN_STATES 18 /* at most: (q, q_dot, i_1 .. i_6) */
+/* A warnings bit (beside stewart.h's STEWART_WARN_*): a derivative taken as the mean of its
+ * one-sided values where the equations have a kink. */
+#define STEWART_WARN_NOT_SMOOTH 32
+
+typedef struct stewart_linearize_driven_input {
+    stewart_pose pose;             /* q and q_dot (q_ddot is not used) */
+    double input[STEWART_LEGS];    /* the motors' currents [A] or voltages [V] */
+    double current[STEWART_LEGS];  /* the windings' currents [A] (states with an inductance;
+                                      not used otherwise) */
+} stewart_linearize_driven_input;
+
+typedef struct stewart_linearize_driven_output {
+    int states; /* 12, or 18 with the windings' currents */
+    double state_rate[STEWART_LINEARIZE_DRIVEN_STATES]; /* (q_dot, q_ddot[, di/dt]) */
+    double output[STEWART_LINEARIZE_OUTPUTS];           /* (q, q_dot, L, L_dot) */
+    /* rows and columns beyond `states` are zero */
+    double A[STEWART_LINEARIZE_DRIVEN_STATES][STEWART_LINEARIZE_DRIVEN_STATES];
+    double B[STEWART_LINEARIZE_DRIVEN_STATES][STEWART_LINEARIZE_INPUTS];
+    double C[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_DRIVEN_STATES];
+    double D[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_INPUTS]; /* zero */
+    double leg_force[STEWART_LEGS]; /* the drives' axial forces on the mechanism [N] */
+    int warnings;        /* STEWART_WARN_STROKE, STEWART_WARN_NOT_SMOOTH */
+    int stroke_legs;     /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
+    int not_smooth_legs; /* bit k set: leg k+1's derivatives are the one-sided ones' mean */
+} stewart_linearize_driven_output;
+
+/* The driven plant's A, B, C, D at in, with the drives of plant_options (its input, CURRENT or
+ * VOLTAGE, and smoothing_speed; the fidelity is the linearisation's). Errors as
+ * stewart_linearize_plant; STEWART_ERR_PARAMETER for plant_options the plant refuses (a leg
+ * without a drive) or input FORCE (stewart_linearize_plant linearises that); STEWART_ERR_SINGULAR
+ * where the plant's power flow does not settle (a leg's direction flips in its own iteration). */
+stewart_status stewart_linearize_driven(stewart_linearize *l,
+                                        const stewart_plant_options *plant_options,
+                                        const stewart_linearize_driven_input *in,
+                                        stewart_linearize_driven_output *out);
 
 #ifdef __cplusplus
 }

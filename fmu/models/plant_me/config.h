@@ -80,6 +80,7 @@ typedef struct plant_me_derivatives {
     int valid, has_wrench;
     double point[STEWART_LINEARIZE_STATES + STEWART_LINEARIZE_INPUTS];
     stewart_linearize_output plant;
+    stewart_linearize_driven_output driven; /* with current or voltage input: plant's source */
     double wrench[6][STEWART_LINEARIZE_STATES + STEWART_LINEARIZE_INPUTS];
 } plant_me_derivatives;
 

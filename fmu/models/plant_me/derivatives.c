@@ -3,6 +3,8 @@
  * derivatives, lengths and length rates, and for the base wrench its Jacobian
  * W = d wrench / d(q, q_dot, q_ddot) (stewart_linearize_base_wrench) composed with the plant's:
  * d wrench = W_x dx + W_a (A dx + B dF). Knowns: the states x .. yaw_dot and the forces.
+ * With current or voltage input (the F[k] carry the motors' currents or voltages) the driven
+ * plant's (stewart_linearize_driven: the drives' law in A and B, the inputs its columns).
  * The linearisation is kept (model_resources.derivatives) for the states and forces it was made
  * at: the adjoint, one directional derivative per known, and a master that asks column by
  * column linearise once per point. */
@@ -72,6 +74,37 @@ static stewart_status wrench_rows(stewart_linearize *l, const stewart_linearize_
     return STEWART_OK;
 }
 
+/* The driven plant's linearisation at in (its forces the inputs: currents or voltages) as the
+ * force-driven one's layout: the windings' currents are no states here (stewart_plant_derivatives
+ * refuses an inductance), so its A, B, C are 12 states wide. */
+static stewart_status linearise_driven(fmu_instance *inst, const stewart_linearize_input *in,
+                                       stewart_linearize_output *out) {
+    stewart_plant_options o;
+    stewart_plant_options_default(&o);
+    o.fidelity = inst->res.fidelity;
+    o.input = inst->res.input;
+    o.smoothing_speed = inst->res.smoothing_speed;
+    stewart_linearize_driven_input driven;
+    memset(&driven, 0, sizeof driven);
+    driven.pose = in->pose;
+    memcpy(driven.input, in->force, sizeof driven.input);
+    stewart_linearize_driven_output *d = &inst->res.derivatives.driven;
+    const stewart_status s = stewart_linearize_driven(inst->res.linearize, &o, &driven, d);
+    if (s != STEWART_OK) return s;
+    if (d->states != N_STATES) return STEWART_ERR_ARGUMENT; /* refused by the equations first */
+    memset(out, 0, sizeof *out);
+    for (int i = 0; i < N_STATES; ++i) {
+        out->state_rate[i] = d->state_rate[i];
+        memcpy(out->A[i], d->A[i], sizeof out->A[i]);
+        memcpy(out->B[i], d->B[i], sizeof out->B[i]);
+    }
+    memcpy(out->output, d->output, sizeof out->output);
+    for (int r = 0; r < STEWART_LINEARIZE_OUTPUTS; ++r) memcpy(out->C[r], d->C[r], sizeof out->C[r]);
+    out->warnings = d->warnings;
+    out->stroke_legs = d->stroke_legs;
+    return STEWART_OK;
+}
+
 /* The cache made current for the states and forces set (the base wrench's rows only if wrench):
  * the linearisation runs only when they changed since it was made. */
 static stewart_status linearised(fmu_instance *inst, int wrench) {
@@ -87,7 +120,9 @@ static stewart_status linearised(fmu_instance *inst, int wrench) {
     }
     if (!c->valid || memcmp(point, c->point, sizeof point) != 0) {
         c->valid = 0;
-        const stewart_status s = stewart_linearize_plant(inst->res.linearize, &in, &c->plant);
+        const stewart_status s = inst->res.input == STEWART_PLANT_INPUT_FORCE
+                                     ? stewart_linearize_plant(inst->res.linearize, &in, &c->plant)
+                                     : linearise_driven(inst, &in, &c->plant);
         if (s != STEWART_OK) return s;
         memcpy(c->point, point, sizeof point);
         c->valid = 1;
@@ -105,14 +140,6 @@ fmu_status model_directional_derivative(fmu_instance *inst, const unsigned unkno
                                         size_t n_unknown, const unsigned known[], size_t n_known,
                                         const double seed[], double sensitivity[],
                                         const char *function) {
-    if (inst->res.input != STEWART_PLANT_INPUT_FORCE) {
-        /* the linearisation knows the force-driven equations only */
-        fmu_log(inst, FMU_ERROR, LOG_ERROR,
-                "%s: the directional derivatives are those of force input; with input = %d "
-                "(driven legs) they are not available: let the master use difference quotients",
-                function, inst->res.input);
-        return FMU_ERROR;
-    }
     int wrench = 0;
     for (size_t i = 0; i < n_unknown; ++i) wrench |= is_base_wrench(unknown[i]);
     if (linearised(inst, wrench) != STEWART_OK) return failed(inst, function);
