@@ -45,10 +45,30 @@ class SCurve:
     start in `starts`."""
 
     def __init__(self, v: float, a: float, j: float, a_brake=None, j_brake=None) -> None:
-        durations, jerks, starts = _segments(v, a, j, a_brake, j_brake)
-        self.durations, self.jerks = np.array(durations), np.array(jerks)
+        a2 = a if a_brake is None else a_brake
+        j2 = j if j_brake is None else j_brake
+
+        def distance(w):
+            return _rise(w, a, j)[1] + _rise(w, a2, j2)[1]
+        peak = v
+        if distance(v) > 1.0:  # no cruise: the peak speed that covers the distance, bisected
+            lo, hi = 0.0, v
+            for _ in range(64):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if distance(mid) <= 1.0 else (lo, mid)
+            peak = lo
+        (ramp, hold), (ramp2, hold2) = _rise(peak, a, j)[0], _rise(peak, a2, j2)[0]
+        cruise = max(0.0, (1.0 - distance(peak)) / peak)
+        self.durations = np.array([ramp, hold, ramp, cruise, ramp2, hold2, ramp2])
+        self.jerks = np.array([j, 0.0, -j, 0.0, -j2, 0.0, j2])
         self.times = np.concatenate([[0.0], np.cumsum(self.durations)])
         self.duration = float(self.times[-1])
+        state = (0.0, 0.0, 0.0)
+        starts = [state]
+        for d, jk in zip((ramp, hold, ramp, cruise, ramp2, hold2, ramp2),
+                         (j, 0.0, -j, 0.0, -j2, 0.0, j2)):
+            state = _advance(state, jk, d)
+            starts.append(state)
         self.starts = np.array(starts)
 
     def at(self, tau: np.ndarray):
@@ -68,33 +88,6 @@ class SCurve:
         from inside the segment)."""
         unit, k = _unit_grid(points)
         return self.in_segment(k, (unit * self.durations[:, None]).ravel())
-
-
-def _segments(v, a, j, a_brake=None, j_brake=None):
-    """SCurve's segment durations, jerks and starting states (s, s', s''), as Python floats
-    (the shape search builds hundreds of curves: numpy's per-call cost would dominate)."""
-    a2 = a if a_brake is None else a_brake
-    j2 = j if j_brake is None else j_brake
-
-    def distance(w):
-        return _rise(w, a, j)[1] + _rise(w, a2, j2)[1]
-    peak = v
-    if distance(v) > 1.0:  # no cruise: the peak speed that covers the distance, bisected
-        lo, hi = 0.0, v
-        for _ in range(64):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if distance(mid) <= 1.0 else (lo, mid)
-        peak = lo
-    (ramp, hold), (ramp2, hold2) = _rise(peak, a, j)[0], _rise(peak, a2, j2)[0]
-    cruise = max(0.0, (1.0 - distance(peak)) / peak)
-    durations = (ramp, hold, ramp, cruise, ramp2, hold2, ramp2)
-    jerks = (j, 0.0, -j, 0.0, -j2, 0.0, j2)
-    state = (0.0, 0.0, 0.0)
-    starts = [state]
-    for d, jk in zip(durations, jerks):
-        state = _advance(state, jk, d)
-        starts.append(state)
-    return durations, jerks, starts
 
 
 @functools.lru_cache(maxsize=4)
@@ -144,13 +137,7 @@ class LegPeaks:
     def stretch(self, curve, points: int = PEAK_POINTS) -> float:
         """The smallest k with the law s(t / k) within every limit, from its peaks on `points`
         points of each segment (the columns linear between grid nodes)."""
-        return self.stretches(*(x[None, :] for x in curve.peak_samples(points)))[0]
-
-    def stretches(self, s, v, a, j) -> list:
-        """stretch of each of several laws at once: row r of s, v, a, j (R, M) are law r's
-        s and its time derivatives at its peak samples (one numpy pass for all the rows)."""
-        rows = s.shape[0]
-        s, v, a, j = s.ravel(), v.ravel(), a.ravel(), j.ravel()
+        s, v, a, j = curve.peak_samples(points)
         n = self.s.size - 1
         if self.uniform:
             at = np.clip(s, 0.0, 1.0) * n
@@ -161,12 +148,10 @@ class LegPeaks:
             w = ((s - self.s[i]) / (self.s[i + 1] - self.s[i]))[:, None]
         c = self.table[i] + self.table_steps[i] * w
         v, a, j = v[:, None], a[:, None], j[:, None]
-        speed = (c[:, 0] * v[:, 0]).reshape(rows, -1).max(axis=1)
-        accel = np.abs(c[:, 1:7] * a + c[:, 7:13] * (v * v)).reshape(rows, -1).max(axis=1)
-        jerk = np.abs(c[:, 13:19] * j + c[:, 19:25] * (v * a)
-                      + c[:, 25:31] * v ** 3).reshape(rows, -1).max(axis=1)
-        return [max(x, math.sqrt(y), z ** (1 / 3))
-                for x, y, z in zip(speed.tolist(), accel.tolist(), jerk.tolist())]
+        speed = np.max(c[:, 0] * v[:, 0])
+        accel = np.max(np.abs(c[:, 1:7] * a + c[:, 7:13] * (v * v)))
+        jerk = np.max(np.abs(c[:, 13:19] * j + c[:, 19:25] * (v * a) + c[:, 25:31] * v ** 3))
+        return max(speed, math.sqrt(accel), jerk ** (1 / 3))
 
 
 class WarpedLaw:
@@ -182,7 +167,14 @@ class WarpedLaw:
         self.curve, self.b, self.c, self.duration = curve, b, c, curve.duration
 
     def _through(self, x, xv, xa, xj):
-        return _warp(self.b, self.c, x, xv, xa, xj)
+        b, c = self.b, self.c
+        u = x * (1 - x)
+        s = x + b * u + c * u * (2 * x - 1)
+        d1 = 1 + b * (1 - 2 * x) + c * (6 * u - 1)
+        d2 = -2 * b + c * (6 - 12 * x)
+        d3 = -12 * c
+        return (s, d1 * xv, d2 * xv * xv + d1 * xa,
+                d3 * xv ** 3 + 3 * d2 * xv * xa + d1 * xj)
 
     def at(self, tau):
         """s, s', s'', s''' at times tau (clipped to [0, duration])."""
@@ -190,35 +182,6 @@ class WarpedLaw:
 
     def peak_samples(self, points: int = PEAK_POINTS):
         return self._through(*self.curve.peak_samples(points))
-
-
-def _warp(b, c, x, xv, xa, xj):
-    """s and its time derivatives through the warp w(x) of WarpedLaw (b, c scalars or
-    broadcasting arrays) from x and its time derivatives, by the chain rule."""
-    u = x * (1 - x)
-    s = x + b * u + c * u * (2 * x - 1)
-    d1 = 1 + b * (1 - 2 * x) + c * (6 * u - 1)
-    d2 = -2 * b + c * (6 - 12 * x)
-    d3 = -12 * c
-    return (s, d1 * xv, d2 * xv * xv + d1 * xa,
-            d3 * xv ** 3 + 3 * d2 * xv * xa + d1 * xj)
-
-
-def _shape_samples(shapes, points: int):
-    """s and its first three time derivatives (R, 7 points each) of R warped S-curves, each
-    (segments of _segments, b, c), on `points` points of every segment as
-    SCurve.peak_samples and WarpedLaw give them, in one numpy pass."""
-    unit = _unit_grid(points)[0][None]
-    durations = np.array([shape[0][0] for shape in shapes])[:, :, None]
-    jk = np.array([shape[0][1] for shape in shapes])[:, :, None]
-    starts = np.array([shape[0][2][:7] for shape in shapes])
-    s0, v0, a0 = starts[:, :, 0:1], starts[:, :, 1:2], starts[:, :, 2:3]
-    d = unit * durations
-    x = (s0 + d * (v0 + d * (a0 / 2 + d * jk / 6)), v0 + d * (a0 + d * jk / 2), a0 + d * jk,
-         jk + 0 * d)
-    b = np.array([shape[1] for shape in shapes])[:, None, None]
-    c = np.array([shape[2] for shape in shapes])[:, None, None]
-    return tuple(y.reshape(len(shapes), -1) for y in _warp(b, c, *x))
 
 
 def jerk_limited_law(peaks: LegPeaks):
@@ -240,47 +203,31 @@ def jerk_limited_law(peaks: LegPeaks):
     if not math.isfinite(v0):  # no speed limit: a bound the accelerations never let it reach
         v0 = 10 * math.sqrt(a0)
 
-    def scaled(x):
-        return (v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0, a0 * math.exp(x[2]),
-                j0 * math.exp(x[3]))
+    def law(x):
+        curve = SCurve(v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0, a0 * math.exp(x[2]),
+                       j0 * math.exp(x[3]))
+        return WarpedLaw(curve, x[4], x[5])
 
-    def durations(xs):
-        """The stretched durations of the shapes xs, evaluated together (inf: a warp that
-        would not increase)."""
-        out = [math.inf] * len(xs)
-        valid = [i for i, x in enumerate(xs) if abs(x[4]) + abs(x[5]) < WARP_MAX]
-        if valid:
-            shapes = [(_segments(*scaled(xs[i])), xs[i][4], xs[i][5]) for i in valid]
-            stretches = peaks.stretches(*_shape_samples(shapes, SEARCH_POINTS))
-            for i, shape, k in zip(valid, shapes, stretches):
-                out[i] = k * _total(shape[0][0])
-        return out
+    def duration(x):
+        if abs(x[4]) + abs(x[5]) >= WARP_MAX:
+            return math.inf
+        shape = law(x)
+        return peaks.stretch(shape, SEARCH_POINTS) * shape.duration
 
     # The duration is the largest of several ratios (a minimax): a simplex can stall on a
     # ridge where two limits trade places, so the best of the starts is searched again from a
     # small simplex.
-    best = min((_nelder_mead(durations, np.zeros(6), step) for step in START_STEPS),
-               key=lambda x: durations([x])[0])
-    x = _nelder_mead(durations, best, POLISH_STEP)
-    shape = WarpedLaw(SCurve(*scaled(x)), x[4], x[5])
+    best = min((_nelder_mead(duration, np.zeros(6), step) for step in START_STEPS),
+               key=duration)
+    shape = law(_nelder_mead(duration, best, POLISH_STEP))
     return shape, peaks.stretch(shape)
 
 
-def _total(durations) -> float:
-    """The sum of the segments' durations, added in order as SCurve's times are."""
-    total = 0.0
-    for d in durations:
-        total += d
-    return total
-
-
 def _nelder_mead(f, x0, step):
-    """A minimum near x0 by the Nelder-Mead simplex; f gives the values of a list of points.
-    Each step's candidates (reflected, expanded, contracted) are evaluated together and those
-    the step does not take are dropped: the same steps as evaluating them one by one."""
+    """A minimum of f near x0 by the Nelder-Mead simplex."""
     n = x0.size
     simplex = [x0] + [x0 + step * np.eye(n)[i] for i in range(n)]
-    values = f(simplex)
+    values = [f(x) for x in simplex]
     for _ in range(SEARCH_ITERATIONS):
         order = np.argsort(values)
         simplex = [simplex[i] for i in order]
@@ -289,18 +236,21 @@ def _nelder_mead(f, x0, step):
             break
         centre = np.mean(simplex[:-1], axis=0)
         reflected = centre + (centre - simplex[-1])
-        expanded = centre + 2 * (centre - simplex[-1])
-        inner = centre + 0.5 * (simplex[-1] - centre)
-        fr, fe, fi = f([reflected, expanded, inner])
+        fr = f(reflected)
         if fr < values[0]:
+            expanded = centre + 2 * (centre - simplex[-1])
+            fe = f(expanded)
             simplex[-1], values[-1] = (expanded, fe) if fe < fr else (reflected, fr)
         elif fr < values[-2]:
             simplex[-1], values[-1] = reflected, fr
-        elif fi < values[-1]:
-            simplex[-1], values[-1] = inner, fi
         else:
-            simplex = [simplex[0] + 0.5 * (x - simplex[0]) for x in simplex]
-            values = [values[0]] + f(simplex[1:])
+            inner = centre + 0.5 * (simplex[-1] - centre)
+            fi = f(inner)
+            if fi < values[-1]:
+                simplex[-1], values[-1] = inner, fi
+            else:
+                simplex = [simplex[0] + 0.5 * (x - simplex[0]) for x in simplex]
+                values = [values[0]] + [f(x) for x in simplex[1:]]
     return simplex[int(np.argmin(values))]
 
 
