@@ -7,7 +7,6 @@
 
 #include "kinematics/frames.hpp"
 #include "linearize/plant_derivatives.hpp"
-#include "plant/plant_equations.hpp"
 
 namespace stewart {
 namespace lin {

@@ -20,6 +20,7 @@
 
 #include "linearize_support.h"
 #include "stewart/stewart_linearize.h"
+#include "stewart/stewart_platform_file.h"
 #include "stewart/stewart_plant.h"
 #include "test_support.h"
 #include "unity.h"
