@@ -19,6 +19,8 @@
 #ifndef STEWART_STEWART_OUTPUTS_H
 #define STEWART_STEWART_OUTPUTS_H
 
+/* The tables are laid out by hand, one entry a line (not formatted). */
+/* clang-format off */
 #define STEWART_INVERSE_OUTPUT_TABLE(X)                                                          \
     X(length, lengths.length, 6, double, "m", "Actuator length L_k")                             \
     X(length_rate, lengths.length_rate, 6, double, "m/s", "dL_k/dt")                             \
@@ -92,5 +94,6 @@
     X(rhs_evaluations, rhs_evaluations, 1, long, "", "Right-hand side evaluations of that step") \
     X(nonlinear_iterations, nonlinear_iterations, 1, long, "", "Nonlinear iterations of that step") \
     X(error_test_failures, error_test_failures, 1, long, "", "Error test failures of that step")
+/* clang-format on */
 
 #endif /* STEWART_STEWART_OUTPUTS_H */

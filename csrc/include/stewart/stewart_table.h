@@ -50,6 +50,8 @@
 extern "C" {
 #endif
 
+/* The values and tables below are laid out by hand, one entry a line (not formatted). */
+/* clang-format off */
 /* The thesis platform's values, from its formulas (thesis 4.2.8): an aluminium (2700 kg/m^3)
  * disc of radius 0.5 m and 0.05 m thickness, and leg bodies that are aluminium rods of
  * diameter 0.015 m and length 0.3 m, each with its centre 0.15 m from its Cardan centre. */
@@ -353,6 +355,7 @@ extern "C" {
       "Largest acceleration of the limiter's scale while it moves smoothly")                     \
     X(824, warn_condition, double, "1", 1.0, 1, DBL_MAX, 1, 1e3,                                 \
       "Condition number above which a pose fails the condition limit (the limits' option)")
+/* clang-format on */
 
 /* One parameter of the table, for iteration. */
 typedef struct stewart_param_info {
