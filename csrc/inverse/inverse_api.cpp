@@ -130,7 +130,6 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     const size_t size = sizeof d->message;
     stewart_status s;
     if ((s = stewart::check_pose(*pose, msg, size)) != STEWART_OK) return s;
-
     // The pose given is the tool's in the user frame: the platform's in the base frame moves so.
     const stewart::Motion motion =
         m->frames.identity ? stewart::motion_of_pose(*pose)
