@@ -4,6 +4,7 @@ both sides) to 1e-9, the tilt coordination against arcsin of the low-passed spec
 random vehicle signals of up to 2 g and 200 deg/s through every shipped machine with every leg
 length, from a closed form written here, within its stroke (studies/cueing_limits.py runs 10^3
 signals per machine)."""
+import json
 import pathlib
 
 import numpy as np

@@ -287,7 +287,8 @@ def test_machine_ssp_plays_a_move_scene_in_ecos_and_libcosim(name, tmp_path):
     loop fed from Python within the coupling error (1 % of the move's excursion, the bound of
     test_ssp.py's sinusoidal cue)."""
     import machine_ssp
-    from test_ssp import H, libcosim_poses, machine_ecos_run
+    from fmu_support import libcosim_outputs
+    from test_ssp import H, machine_ecos_run
     path = FILES[name]
     platform = stewart.Platform.from_file(path)
     scene, _, _ = scene_on(name)
@@ -301,7 +302,7 @@ def test_machine_ssp_plays_a_move_scene_in_ecos_and_libcosim(name, tmp_path):
         assert (tmp_path / f"{name}_{version}_trajectory.csv").exists()
         runs.append(machine_ecos_run(archive, name, steps)[0])
     np.testing.assert_allclose(runs[1], runs[0], rtol=0, atol=1e-12)
-    np.testing.assert_allclose(libcosim_poses(osp, steps), runs[0], rtol=0,
+    np.testing.assert_allclose(libcosim_outputs(osp, steps)["plant"], runs[0], rtol=0,
                                atol=1e-9 * max(1.0, np.abs(runs[0]).max()))
     kp, kd = closed_loop.machine_gains(platform)
     loop = closed_loop.run(scene, steps * H, H, kp, kd, fmus=BUILD / "fmus" / "2.0",
