@@ -140,6 +140,9 @@ def _arrays(trajectory, i: int):
     q = np.asarray(q, dtype=float)
     if t.ndim != 1 or t.shape[0] < 2:
         raise ValueError(f"{name}: a trajectory needs at least two times, as a (N,) array")
+    if q.shape != (t.shape[0], 6):  # before numpy.gradient, whose message names no argument
+        raise ValueError(f"{name}: poses has shape {q.shape}: it must be ({t.shape[0]}, 6), one "
+                         "row (x, y, z, roll, pitch, yaw) per time")
     if qd is None:
         qd = np.gradient(q, t, axis=0)
     if qdd is None:

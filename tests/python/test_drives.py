@@ -223,6 +223,13 @@ def test_sizing_report_against_numpy(tmp_path):
         lean.plot(tmp_path / "none.png")
 
 
+def test_sizing_refuses_poses_of_another_length_than_t():
+    t, q, _, _ = manoeuvre()
+    with pytest.raises(ValueError, match=r"trajectory 1: poses has shape \(%d, 6\): it must be "
+                       r"\(%d, 6\)" % (t.size - 1, t.size)):
+        stewart.sizing(driven(), [(t, q[:-1])])
+
+
 def write_poses(path, t, q):
     with open(path, "w", newline="") as f:
         w = csv.writer(f)

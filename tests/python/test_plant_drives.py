@@ -65,6 +65,14 @@ def test_current_input_without_drives_is_refused():
         stewart.Platform(**DRIVE).simulate([0, 1e-3], np.zeros((2, 6)), input="torque")
 
 
+@pytest.mark.parametrize("value", [1.5, 0.999, float("inf"), float("nan")])
+def test_input_number_that_names_no_kind_is_refused(value):
+    # int() would take 1.5 or 0.999 for another kind (current, force) and fail on inf unhandled
+    with pytest.raises(stewart.ParameterError, match="input = .* must be one of 0 .force."):
+        stewart.Platform(**DRIVE).simulate([0, 1e-3], np.zeros((2, 6)), input=value)
+    assert stewart.PlantInput.of(1.0) is stewart.PlantInput.CURRENT
+
+
 # ---------------------------------------------------------------- the plant FMUs
 
 def fmu_drive(input_kind=1):
