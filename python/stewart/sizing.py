@@ -70,8 +70,9 @@ class SizingReport:
 
     def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """A PNG at path: each leg's motor torque against motor speed over every trajectory,
-        with the motor's limits over it (torque at current_max, motor_speed_max, and the torque
-        the voltage_max leaves at each speed: (V_max - k_t |w|) k_t / R)."""
+        with the motors' limits over it (torque at current_max, motor_speed_max, and the torque
+        the voltage_max leaves at each speed: (V_max - k_t |w|) k_t / R), once for legs whose
+        drives are alike and named by their legs where they differ."""
         if not self.solutions:
             raise ValueError("the report keeps no solutions (sizing(..., keep=False)): size "
                              "again with keep=True to plot")
@@ -84,21 +85,21 @@ class SizingReport:
             tau = np.concatenate([s.motor_torque[:, k] for _, s in self.solutions])
             ax.scatter(w, tau, s=2, label=f"leg {k + 1}")
         lim = self.limits
-        kt, R = lim["torque_constant"][0], lim["winding_resistance"][0]
-        speed = max(np.max(self.peak_speed), lim["motor_speed_max"][0]) * 1.1 or 1.0
-        if lim["current_max"][0] > 0:
-            for sign in (1, -1):
-                ax.axhline(sign * lim["current_max"][0] * kt, color="k", linestyle="--",
-                           label="current_max x k_t" if sign > 0 else None)
-        if lim["motor_speed_max"][0] > 0:
-            for sign in (1, -1):
-                ax.axvline(sign * lim["motor_speed_max"][0], color="k", linestyle=":",
-                           label="motor_speed_max" if sign > 0 else None)
-        if lim["voltage_max"][0] > 0 and R > 0:
-            w = np.linspace(-speed, speed, 201)
-            for sign in (1, -1):  # the torque of the same sign as w is what the voltage caps
-                ax.plot(w, sign * (lim["voltage_max"][0] - kt * np.abs(w)) * kt / R, "r-.",
-                        label="voltage_max" if sign > 0 else None)
+        speed = max(np.max(self.peak_speed), np.max(lim["motor_speed_max"])) * 1.1 or 1.0
+        for legs, (kt, R, i_max, u_max, w_max) in _limit_groups(lim):
+            # legs whose drives differ each get their own lines, named by their legs
+            which = "" if len(legs) == 6 else " (legs " + ", ".join(map(str, legs)) + ")"
+            for sign in (1, -1) if i_max > 0 else ():
+                ax.axhline(sign * i_max * kt, color="k", linestyle="--",
+                           label="current_max x k_t" + which if sign > 0 else None)
+            for sign in (1, -1) if w_max > 0 else ():
+                ax.axvline(sign * w_max, color="k", linestyle=":",
+                           label="motor_speed_max" + which if sign > 0 else None)
+            if u_max > 0 and R > 0:
+                w = np.linspace(-speed, speed, 201)
+                for sign in (1, -1):  # the torque of the same sign as w is what the voltage caps
+                    ax.plot(w, sign * (u_max - kt * np.abs(w)) * kt / R, "r-.",
+                            label="voltage_max" + which if sign > 0 else None)
         ax.set_xlabel("motor speed [rad/s]")
         ax.set_ylabel("motor torque [N m]")
         ax.set_xlim(-speed, speed)
@@ -107,6 +108,19 @@ class SizingReport:
         fig.tight_layout()
         fig.savefig(path, dpi=120)
         plt.close(fig)
+
+
+def _limit_groups(limits: dict) -> list:
+    """The driven legs (torque_constant > 0) grouped by equal (torque_constant,
+    winding_resistance, current_max, voltage_max, motor_speed_max): [(legs 1-based, values)]."""
+    keys = ("torque_constant", "winding_resistance", "current_max", "voltage_max",
+            "motor_speed_max")
+    groups: dict = {}
+    for k in range(6):
+        values = tuple(float(limits[key][k]) for key in keys)
+        if values[0] > 0:
+            groups.setdefault(values, []).append(k + 1)
+    return [(legs, values) for values, legs in groups.items()]
 
 
 def read_trajectory(path: Union[str, "os.PathLike[str]"]):

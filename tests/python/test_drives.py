@@ -223,6 +223,20 @@ def test_sizing_report_against_numpy(tmp_path):
         lean.plot(tmp_path / "none.png")
 
 
+def test_sizing_plot_draws_each_legs_own_limits(tmp_path, monkeypatch):
+    # leg 2 with its own motor (k_t, current_max): its torque limit is not leg 1's
+    pytest.importorskip("matplotlib")
+    from matplotlib.axes import Axes
+    drawn = []
+    axhline = Axes.axhline
+    monkeypatch.setattr(Axes, "axhline", lambda ax, y=0, *a, **kw: (drawn.append(y),
+                                                                       axhline(ax, y, *a, **kw))[1])
+    platform = driven(current_max=10, **{"torque_constant[2]": 2 * KT, "current_max[2]": 4})
+    t, q, qd, qdd = manoeuvre(n=21, duration=0.2)
+    stewart.sizing(platform, [(t, q, qd, qdd)]).plot(tmp_path / "legs.png")
+    assert sorted(drawn) == pytest.approx(sorted([10 * KT, -10 * KT, 4 * 2 * KT, -4 * 2 * KT]))
+
+
 def test_sizing_refuses_poses_of_another_length_than_t():
     t, q, _, _ = manoeuvre()
     with pytest.raises(ValueError, match=r"trajectory 1: poses has shape \(%d, 6\): it must be "
