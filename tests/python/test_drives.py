@@ -237,6 +237,17 @@ def test_sizing_plot_draws_each_legs_own_limits(tmp_path, monkeypatch):
     assert sorted(drawn) == pytest.approx(sorted([10 * KT, -10 * KT, 4 * 2 * KT, -4 * 2 * KT]))
 
 
+def test_a_drive_whose_reflected_inertia_overflows_is_refused_by_its_parameters():
+    # 2 pi N / lead = 1.9e301 rad/m: J r^2 is inf, every torque of the leg inf or NaN (the
+    # inverse then refused each pose as if the pose were out of range)
+    with pytest.raises(stewart.ParameterError, match=r"screw_lead\[3\] = 1e-300 m, "
+                       r"gear_ratio\[3\] = 3: .* give the lead in metres"):
+        driven(rotor_inertia=1e-4, **{"screw_lead[3]": 1e-300})
+    with pytest.raises(stewart.ParameterError, match=r"screw_lead\[1\] = 1e-310 m"):
+        driven(**{"screw_lead[1]": 1e-310})  # the ratio itself overflows
+    assert np.isfinite(driven(rotor_inertia=1e-4, **{"screw_lead[3]": 1e-9}).reflected_mass).all()
+
+
 def test_sizing_refuses_poses_of_another_length_than_t():
     t, q, _, _ = manoeuvre()
     with pytest.raises(ValueError, match=r"trajectory 1: poses has shape \(%d, 6\): it must be "
