@@ -248,6 +248,22 @@ def test_a_drive_whose_reflected_inertia_overflows_is_refused_by_its_parameters(
     assert np.isfinite(driven(rotor_inertia=1e-4, **{"screw_lead[3]": 1e-9}).reflected_mass).all()
 
 
+def test_current_rates_that_overflow_are_refused():
+    # increasing finite times 5e-324 s apart, or a jerk of 1e308: dI/dt and L dI/dt are inf
+    # (they came back with status 0)
+    platform = driven(winding_inductance=0.01, winding_resistance=1.0)
+    t, q, qd, qdd = manoeuvre(n=3)
+    rows = [0, 2]
+    with pytest.raises(ValueError, match=r"row 0 \(t = 0 s\): the currents' rates over t overflow"):
+        platform.inverse(q[rows], qd[rows], qdd[rows], t=np.array([0.0, 5e-324]))
+    jerks = np.zeros((2, 6))
+    jerks[:, 2] = 1e308
+    with pytest.raises(ValueError, match="row 0: its jerk makes a current's rate or the voltage"):
+        platform.inverse(q[rows], qd[rows], qdd[rows], jerks=jerks)
+    ok = platform.inverse(q[rows], qd[rows], qdd[rows], t=np.array([0.0, 1e-3]))
+    assert np.isfinite(ok.voltage).all() and np.any(ok.current_rate != 0)
+
+
 def test_sizing_refuses_poses_of_another_length_than_t():
     t, q, _, _ = manoeuvre()
     with pytest.raises(ValueError, match=r"trajectory 1: poses has shape \(%d, 6\): it must be "
