@@ -116,7 +116,8 @@ def test_force_mode_is_unchanged_by_the_drive_parameters(version):
     ({"torque_constant[6]": -1.0}, ["torque_constant[6]"]),
     ({"current_max[2]": -1.0}, ["current_max[2]", ">= 0"]),
     ({"speed_integral_time": math.nan}, ["speed_integral_time", "finite"]),
-    ({"output": 2}, ["output = 2", "outside its declared range [0, 1]"])])
+    ({"output": 2}, ["output = 2", "outside its declared range [0, 1]"]),
+    ({"screw_lead[2]": 1e-310}, ["screw_lead[2] = 1e-310", "overflows a double"])])
 def test_current_mode_without_a_drive_is_refused(version, bad, words):
     parameters = {"output": 1, "speed_gain": 1.0,
                   **drive_parameters({"screw_lead": np.full(6, 0.01),
