@@ -157,11 +157,20 @@ def _arrays(trajectory, i: int):
     if q.shape != (t.shape[0], 6):  # before numpy.gradient, whose message names no argument
         raise ValueError(f"{name}: poses has shape {q.shape}: it must be ({t.shape[0]}, 6), one "
                          "row (x, y, z, roll, pitch, yaw) per time")
+    qd, qdd = (None if v is None else np.asarray(v, dtype=float) for v in (qd, qdd))
+    if not np.all(np.isfinite(t)):
+        raise ValueError(f"{name}: t[{np.flatnonzero(~np.isfinite(t))[0]}] is not a finite number")
+    for label, values in (("poses", q), ("rates", qd), ("accels", qdd)):
+        # before numpy.gradient spreads a NaN (a CSV's unreadable cell) to the rows beside it
+        if values is not None and values.shape == q.shape and not np.all(np.isfinite(values)):
+            j, c = np.argwhere(~np.isfinite(values))[0]
+            raise ValueError(f"{name}: {label} row {j} (t = {t[j]:g}): {POSE[c]} = "
+                             f"{values[j, c]} is not a finite number")
     if qd is None:
         qd = np.gradient(q, t, axis=0)
     if qdd is None:
-        qdd = np.gradient(np.asarray(qd, dtype=float), t, axis=0)
-    return name, t, q, np.asarray(qd, dtype=float), np.asarray(qdd, dtype=float)
+        qdd = np.gradient(qd, t, axis=0)
+    return name, t, q, qd, qdd
 
 
 def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str] = Fidelity.FULL,

@@ -264,6 +264,24 @@ def test_current_rates_that_overflow_are_refused():
     assert np.isfinite(ok.voltage).all() and np.any(ok.current_rate != 0)
 
 
+def test_sizing_names_the_cell_that_is_not_a_number(tmp_path):
+    # a CSV cell that does not read ("abc" in row 2's z): the differences spread its NaN to
+    # rows 0..3, and the refusal named row 0's z_ddot
+    t, q, _, _ = manoeuvre(n=6)
+    write_poses(tmp_path / "cycle.csv", t, q)
+    lines = (tmp_path / "cycle.csv").read_text().splitlines()
+    cells = lines[3].split(",")
+    cells[3] = "abc"
+    lines[3] = ",".join(cells)
+    (tmp_path / "cycle.csv").write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=r"cycle.csv: poses row 2 \(t = 0.8\): z = nan is not"):
+        stewart.sizing(driven(), [tmp_path / "cycle.csv"])
+    with pytest.raises(ValueError, match=r"trajectory 1: rates row 1 \(t = 0.4\): roll = inf"):
+        qd = np.zeros((6, 6))
+        qd[1, 3] = np.inf
+        stewart.sizing(driven(), [(t, q, qd)])
+
+
 def test_sizing_refuses_poses_of_another_length_than_t():
     t, q, _, _ = manoeuvre()
     with pytest.raises(ValueError, match=r"trajectory 1: poses has shape \(%d, 6\): it must be "
