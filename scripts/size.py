@@ -35,15 +35,19 @@ def main(argv=None) -> int:
         print(f"size.py: {e}", file=sys.stderr)
         return 1
     print(report.summary())
-    if args.csv:
-        with open(args.csv, "w", encoding="utf-8") as f:
-            f.write("trajectory,leg," + ",".join(REPORT_FIELDS) + "\n")
-            for i, name in enumerate(report.names):
-                for k in range(6):
-                    values = [float(getattr(report, n)[i, k]) for n in REPORT_FIELDS]
-                    f.write(f"{name},{k + 1}," + ",".join(repr(v) for v in values) + "\n")
-    if args.plot:
-        report.plot(args.plot)
+    try:
+        if args.csv:
+            with open(args.csv, "w", encoding="utf-8") as f:
+                f.write("trajectory,leg," + ",".join(REPORT_FIELDS) + "\n")
+                for i, name in enumerate(report.names):
+                    for k in range(6):
+                        values = [float(getattr(report, n)[i, k]) for n in REPORT_FIELDS]
+                        f.write(f"{name},{k + 1}," + ",".join(repr(v) for v in values) + "\n")
+        if args.plot:
+            report.plot(args.plot)
+    except OSError as e:  # an output path that cannot be written: its name and why
+        print(f"size.py: cannot write {e.filename}: {e.strerror}", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -315,6 +315,12 @@ def test_size_script_and_cli_columns(tmp_path, build_dir):
     report = stewart.sizing(platform, [poses])
     rows = list(csv.DictReader(open(tmp_path / "size.csv")))
     assert float(rows[2]["peak_torque"]) == report.peak_torque[0, 2]
+    for option in ("--csv", "--plot"):  # an output it cannot write: its name, no traceback
+        run = subprocess.run([sys.executable, ROOT / "scripts" / "size.py", "--platform",
+                              platform_file, option, tmp_path / "no" / "out", poses],
+                             capture_output=True, text=True, timeout=300)
+        assert run.returncode == 1 and "size.py: cannot write" in run.stderr, run.stderr
+        assert "Traceback" not in run.stderr
     # stewart-solve: the drive columns of the same table, the currents' rates over its t
     out = tmp_path / "out.csv"
     params = ["--param", "screw_lead=0.005", "--param", "gear_ratio=3", "--param",
