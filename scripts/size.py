@@ -5,8 +5,8 @@ rates x_dot..yaw_dot and accelerations x_ddot..yaw_ddot; absent ones are differe
 samples), then per leg the peak and RMS torque, current and power, the peak motor speed, the
 energy per cycle, the regenerated energy and the drive inertia's share of the torque. It prints
 the largest of each over the trajectories and, with --plot, writes the torque-speed scatter with
-the motor's limits over it. A platform without drives, or a row that does not solve: exit
-status 1 and the message.
+the motor's limits over it. A platform without drives, a row that does not solve or an output
+it cannot write: exit status 1 and the message.
 
 usage: size.py --platform FILE.json [--fidelity kinematic|massless|full] [--plot OUT.png]
                [--csv OUT.csv] TRAJ.csv [TRAJ.csv ...]
