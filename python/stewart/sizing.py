@@ -80,7 +80,7 @@ class SizingReport:
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(7, 5))
-        for k in range(6):
+        for k in np.flatnonzero(self.limits["torque_constant"] > 0):  # the legs with a drive
             w = np.concatenate([s.motor_speed[:, k] for _, s in self.solutions])
             tau = np.concatenate([s.motor_torque[:, k] for _, s in self.solutions])
             ax.scatter(w, tau, s=2, label=f"leg {k + 1}")
