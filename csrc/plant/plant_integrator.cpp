@@ -692,6 +692,15 @@ stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                "the accelerations are not finite or above 1e100 near t + %g s "
                                "(forces or motion out of range)", t_reached);
+        if (im.arkode && im.model->drives.inductive) {  // the usual cause, and its cure
+            double tau = HUGE_VAL;
+            for (const LegDrive &d : im.model->drives.legs)
+                if (d.inductance > 0) tau = std::min(tau, d.inductance / d.resistance);
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "%s failed at t + %g s with %s (the windings' L/R = %g s makes the "
+                               "equations stiff for an explicit method: take method = bdf): %s",
+                               module, t_reached, flag_name(flag), tau, im.cvode_message);
+        }
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "%s failed at t + %g s with %s: %s", module, t_reached,
                            flag_name(flag), im.cvode_message);

@@ -75,6 +75,19 @@ def test_input_number_that_names_no_kind_is_refused(value):
 
 # ---------------------------------------------------------------- the plant FMUs
 
+def test_stiff_windings_name_their_cure():
+    # L / R = 1e-7 s: the explicit default fails within a step; the message says why and what
+    # takes it (BDF runs the same)
+    platform = stewart.Platform(**{**DRIVE, "winding_resistance": 1.0}, winding_inductance=1e-7)
+    t = np.linspace(0.0, 0.01, 11)
+    volts = np.full((11, 6), 2.0)
+    run = platform.simulate(t, volts, input="voltage", max_internal_steps=2000)
+    assert not run.completed
+    assert "the windings' L/R = 1e-07 s makes the equations stiff" in run.message, run.message
+    assert "take method = bdf" in run.message
+    assert platform.simulate(t, volts, input="voltage", method="bdf").completed
+
+
 def fmu_drive(input_kind=1):
     """The drive's parameters as the FMUs name them (one per leg), and the input kind."""
     values = {f"{name}[{k}]": v for name, v in DRIVE.items() for k in range(1, 7)}
