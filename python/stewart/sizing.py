@@ -182,6 +182,12 @@ def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str]
     long trajectories (about 1.1 kB a pose): the numbers only, one result's arrays reused.
     ValueError if the platform has no drive or a row of a trajectory does not solve (its
     message)."""
+    if isinstance(trajectories, (str, os.PathLike)) or (
+            isinstance(trajectories, (list, tuple)) and len(trajectories)
+            and isinstance(trajectories[0], np.ndarray) and trajectories[0].ndim == 1):
+        # one trajectory: its path's characters, or its t and poses, would be taken as several
+        raise ValueError("trajectories is one trajectory: give a list of them, [path] or "
+                         "[(t, poses)]")
     lead = parameter_value(platform, "screw_lead")
     if not np.any(lead > 0):
         raise ValueError("the platform has no drive (every screw_lead is 0): give its drives "

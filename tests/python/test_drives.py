@@ -282,6 +282,16 @@ def test_sizing_names_the_cell_that_is_not_a_number(tmp_path):
         stewart.sizing(driven(), [(t, q, qd)])
 
 
+def test_sizing_of_one_trajectory_not_in_a_list_says_so(tmp_path):
+    # the path's characters were read as files ("/": a directory), (t, q) as two trajectories
+    t, q, _, _ = manoeuvre(n=11)
+    write_poses(tmp_path / "cycle.csv", t, q)
+    for one in (str(tmp_path / "cycle.csv"), tmp_path / "cycle.csv", (t, q)):
+        with pytest.raises(ValueError, match=r"one trajectory: give a list of them"):
+            stewart.sizing(driven(), one)
+    assert stewart.sizing(driven(), [(t, q)]).names == ["trajectory 1"]
+
+
 def test_sizing_refuses_poses_of_another_length_than_t():
     t, q, _, _ = manoeuvre()
     with pytest.raises(ValueError, match=r"trajectory 1: poses has shape \(%d, 6\): it must be "
