@@ -696,10 +696,11 @@ stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
             double tau = HUGE_VAL;
             for (const LegDrive &d : im.model->drives.legs)
                 if (d.inductance > 0) tau = std::min(tau, d.inductance / d.resistance);
+            // first, so that a caller's longer prefix leaves it whole
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                               "%s failed at t + %g s with %s (the windings' L/R = %g s makes the "
-                               "equations stiff for an explicit method: take method = bdf): %s",
-                               module, t_reached, flag_name(flag), tau, im.cvode_message);
+                               "stiff windings (L/R = %g s: take method = bdf): %s failed at t + "
+                               "%g s with %s: %s", tau, module, t_reached, flag_name(flag),
+                               im.cvode_message);
         }
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "%s failed at t + %g s with %s: %s", module, t_reached,
