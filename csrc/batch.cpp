@@ -252,7 +252,13 @@ extern "C" stewart_status stewart_inverse_batch_current_rates(
             return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
                                         "t[%zu] = %.17g s: the times of a trajectory must be "
                                         "finite and increase from row to row", j, t[j]);
-    if (m->drives) stewart::trajectory_current_rates(m->drive, m->params, n, t, *out);
+    const size_t bad = m->drives ? stewart::trajectory_current_rates(m->drive, m->params, n, t, *out)
+                                 : n;
+    if (bad < n)
+        return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
+                                    "row %zu (t = %.17g s): the currents' rates over t overflow "
+                                    "(times too close for the currents' change): give the "
+                                    "trajectory's times farther apart", bad, t[bad]);
     return stewart::clear_message(msg, size);
 }
 

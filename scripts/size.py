@@ -5,8 +5,8 @@ rates x_dot..yaw_dot and accelerations x_ddot..yaw_ddot; absent ones are differe
 samples), then per leg the peak and RMS torque, current and power, the peak motor speed, the
 energy per cycle, the regenerated energy and the drive inertia's share of the torque. It prints
 the largest of each over the trajectories and, with --plot, writes the torque-speed scatter with
-the motor's limits over it. A platform without drives, or a row that does not solve: exit
-status 1 and the message.
+the motor's limits over it. A platform without drives, a row that does not solve or an output
+it cannot write: exit status 1 and the message.
 
 usage: size.py --platform FILE.json [--fidelity kinematic|massless|full] [--plot OUT.png]
                [--csv OUT.csv] TRAJ.csv [TRAJ.csv ...]
@@ -35,15 +35,19 @@ def main(argv=None) -> int:
         print(f"size.py: {e}", file=sys.stderr)
         return 1
     print(report.summary())
-    if args.csv:
-        with open(args.csv, "w", encoding="utf-8") as f:
-            f.write("trajectory,leg," + ",".join(REPORT_FIELDS) + "\n")
-            for i, name in enumerate(report.names):
-                for k in range(6):
-                    values = [float(getattr(report, n)[i, k]) for n in REPORT_FIELDS]
-                    f.write(f"{name},{k + 1}," + ",".join(repr(v) for v in values) + "\n")
-    if args.plot:
-        report.plot(args.plot)
+    try:
+        if args.csv:
+            with open(args.csv, "w", encoding="utf-8") as f:
+                f.write("trajectory,leg," + ",".join(REPORT_FIELDS) + "\n")
+                for i, name in enumerate(report.names):
+                    for k in range(6):
+                        values = [float(getattr(report, n)[i, k]) for n in REPORT_FIELDS]
+                        f.write(f"{name},{k + 1}," + ",".join(repr(v) for v in values) + "\n")
+        if args.plot:
+            report.plot(args.plot)
+    except OSError as e:  # an output path that cannot be written: its name and why
+        print(f"size.py: cannot write {e.filename}: {e.strerror}", file=sys.stderr)
+        return 1
     return 0
 
 

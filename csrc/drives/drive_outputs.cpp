@@ -100,10 +100,10 @@ double current_rate_at(const double *current, const double *t, size_t first, siz
 
 }  // namespace
 
-void set_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+bool set_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                        const stewart_inverse_batch_outputs &out, size_t j,
                        const double (&rate)[STEWART_LEGS]) {
-    double voltage[STEWART_LEGS];
+    double voltage[STEWART_LEGS], sum = 0;  // inf or NaN in a term: sum - sum is NaN
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegDrive &d = drive[k];
         const size_t e = 6 * j + k;
@@ -114,12 +114,15 @@ void set_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_para
                      d.inductance * rate[k];
         out.voltage[e] = voltage[k];
         if (out.electrical_power) out.electrical_power[e] = voltage[k] * out.current[e];
+        sum += rate[k] + voltage[k] * out.current[e];
     }
     if (out.voltage_max_legs) out.voltage_max_legs[j] = legs_over(voltage, p.voltage_max);
+    return sum - sum == 0;
 }
 
-void trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
-                              size_t n, const double *t, const stewart_inverse_batch_outputs &out) {
+size_t trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+                                size_t n, const double *t,
+                                const stewart_inverse_batch_outputs &out) {
     for (size_t first = 0; first < n;) {
         if (out.status[first] != STEWART_OK) { ++first; continue; }
         size_t last = first + 1;
@@ -128,10 +131,11 @@ void trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewa
             double rate[STEWART_LEGS];
             for (int k = 0; k < STEWART_LEGS; ++k)
                 rate[k] = current_rate_at(out.current, t, first, last, j, k);
-            set_current_rates(drive, p, out, j, rate);
+            if (!set_current_rates(drive, p, out, j, rate)) return j;
         }
         first = last;
     }
+    return n;
 }
 
 stewart_status jerk_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
@@ -168,7 +172,10 @@ stewart_status jerk_current_rates(const LegDrive (&drive)[STEWART_LEGS], const s
                                               out.length_rate[e], out.length_accel[e], jerk) /
                                 dk.torque_constant;
         }
-        set_current_rates(drive, p, out, j, rate);
+        if (!set_current_rates(drive, p, out, j, rate))
+            return set_message(msg, size, STEWART_ERR_ARGUMENT,
+                               "row %zu: its jerk makes a current's rate or the voltage overflow: "
+                               "give jerks (q_dddot) of the size the motion has", j);
     }
     return STEWART_OK;
 }

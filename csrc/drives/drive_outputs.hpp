@@ -29,13 +29,15 @@ void batch_drive_zeros(const stewart_inverse_batch_outputs &out, size_t first, s
 bool batch_drive_row(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                      const stewart_inverse_batch_outputs &out, size_t j);
 
-// stewart_inverse_batch_current_rates on checked arguments (t finite and increasing).
-void trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+// stewart_inverse_batch_current_rates on checked arguments (t finite and increasing): the first
+// row whose rates, voltages or powers overflow (times too close for the currents' change), n if
+// none.
+size_t trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                               size_t n, const double *t, const stewart_inverse_batch_outputs &out);
 
 // Row j's current rates (0 on a leg without a drive) into its current_rate, voltage (with
-// L dI/dt), electrical_power and voltage_max_legs.
-void set_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
+// L dI/dt), electrical_power and voltage_max_legs; false if one of them is not finite.
+bool set_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
                        const stewart_inverse_batch_outputs &out, size_t j,
                        const double (&rate)[STEWART_LEGS]);
 

@@ -692,6 +692,16 @@ stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                "the accelerations are not finite or above 1e100 near t + %g s "
                                "(forces or motion out of range)", t_reached);
+        if (im.arkode && im.model->drives.inductive) {  // the usual cause, and its cure
+            double tau = HUGE_VAL;
+            for (const LegDrive &d : im.model->drives.legs)
+                if (d.inductance > 0) tau = std::min(tau, d.inductance / d.resistance);
+            // first, so that a caller's longer prefix leaves it whole
+            return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
+                               "stiff windings (L/R = %g s: take method = bdf): %s failed at t + "
+                               "%g s with %s: %s", tau, module, t_reached, flag_name(flag),
+                               im.cvode_message);
+        }
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                            "%s failed at t + %g s with %s: %s", module, t_reached,
                            flag_name(flag), im.cvode_message);

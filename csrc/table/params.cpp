@@ -247,6 +247,26 @@ stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t
     return STEWART_OK;
 }
 
+// A drive whose motor angle per leg length 2 pi N / lead or reflected inertia J (2 pi N /
+// lead)^2 overflows: every torque and current of that leg would be inf or NaN, which the inverse
+// would blame on the pose.
+stewart_status check_drive_overflow(const stewart_params &p, char *msg, size_t size) {
+    for (int k = 0; k < STEWART_LEGS; ++k) {
+        if (!(p.screw_lead[k] > 0)) continue;
+        const double N = p.gear_ratio[k], ratio = 2.0 * M_PI * N / p.screw_lead[k];
+        const double inertia = p.rotor_inertia[k] + p.screw_inertia[k] / (N * N);
+        if (std::isfinite(ratio) && std::isfinite(inertia * ratio * ratio)) continue;
+        const int leg = k + 1;
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "screw_lead[%d] = %s m, gear_ratio[%d] = %s: the motor turns %g rad "
+                           "per metre of leg (2 pi N / lead) and its inertia reflects to %g kg on "
+                           "the leg, beyond a double; give the lead in metres and the gear as motor "
+                           "turns per screw turn", leg, ExactText(p.screw_lead[k]).c_str(), leg,
+                           ExactText(N).c_str(), ratio, inertia * ratio * ratio);
+    }
+    return STEWART_OK;
+}
+
 }  // namespace
 
 extern "C" {
@@ -399,6 +419,7 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
         s = stewart::check_joint_geometry(stewart::params_in_solver_frames(*p), msg, size);
     if (s == STEWART_OK) s = stewart::check_limit_parameters(*p, msg, size);
     if (s == STEWART_OK) s = check_drive_parameters(*p, msg, size);
+    if (s == STEWART_OK) s = check_drive_overflow(*p, msg, size);
     if (s != STEWART_OK) return s;
     return stewart::clear_message(msg, size);
 }

@@ -23,8 +23,11 @@ class Choice(enum.IntEnum):
                 names = ", ".join(m.name.lower() for m in cls)
                 raise ParameterError(f"{cls._argument()} = {value!r} must be one of {names}") from None
         try:
-            return cls(int(value))
-        except (ValueError, TypeError):
+            number = int(value)
+            if number != value:  # 1.5 names no member: not truncated to 1
+                raise ValueError(value)
+            return cls(number)
+        except (ValueError, TypeError, OverflowError):
             numbers = ", ".join(f"{m.value} ({m.name.lower()})" for m in cls)
             raise ParameterError(f"{cls._argument()} = {value!r} must be one of {numbers}") from None
 

@@ -308,8 +308,9 @@ class Platform:
         driven by its motors, forces then holding the six currents [A] or voltages [V] (needed),
         u those and B by them; the drives' reflected inertia, screw efficiency, friction and end
         stops are in A and B (docs/drives.md). With voltage input and a winding_inductance the
-        windings' currents are states 13-18 (winding_current: their values, 6, default 0);
-        smoothing_speed as Platform.simulate's. Linearization.not_smooth_legs names the legs at a
+        windings' currents are states 13-18 (winding_current: their values, 6, default 0;
+        refused where they are no states); smoothing_speed as Platform.simulate's (refused with
+        force input). Linearization.not_smooth_legs names the legs at a
         kink of the law (at rest with a lossy screw: the one-sided derivatives' mean)."""
         return run_linearize(self._model, pose, pose_rate, forces, fidelity, input,
                              winding_current, smoothing_speed)

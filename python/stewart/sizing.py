@@ -70,8 +70,9 @@ class SizingReport:
 
     def plot(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """A PNG at path: each leg's motor torque against motor speed over every trajectory,
-        with the motor's limits over it (torque at current_max, motor_speed_max, and the torque
-        the voltage_max leaves at each speed: (V_max - k_t |w|) k_t / R)."""
+        with the motors' limits over it (torque at current_max, motor_speed_max, and the torque
+        the voltage_max leaves at each speed: (V_max - k_t |w|) k_t / R), once for legs whose
+        drives are alike and named by their legs where they differ."""
         if not self.solutions:
             raise ValueError("the report keeps no solutions (sizing(..., keep=False)): size "
                              "again with keep=True to plot")
@@ -79,26 +80,26 @@ class SizingReport:
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, ax = plt.subplots(figsize=(7, 5))
-        for k in range(6):
+        for k in np.flatnonzero(self.limits["torque_constant"] > 0):  # the legs with a drive
             w = np.concatenate([s.motor_speed[:, k] for _, s in self.solutions])
             tau = np.concatenate([s.motor_torque[:, k] for _, s in self.solutions])
             ax.scatter(w, tau, s=2, label=f"leg {k + 1}")
         lim = self.limits
-        kt, R = lim["torque_constant"][0], lim["winding_resistance"][0]
-        speed = max(np.max(self.peak_speed), lim["motor_speed_max"][0]) * 1.1 or 1.0
-        if lim["current_max"][0] > 0:
-            for sign in (1, -1):
-                ax.axhline(sign * lim["current_max"][0] * kt, color="k", linestyle="--",
-                           label="current_max x k_t" if sign > 0 else None)
-        if lim["motor_speed_max"][0] > 0:
-            for sign in (1, -1):
-                ax.axvline(sign * lim["motor_speed_max"][0], color="k", linestyle=":",
-                           label="motor_speed_max" if sign > 0 else None)
-        if lim["voltage_max"][0] > 0 and R > 0:
-            w = np.linspace(-speed, speed, 201)
-            for sign in (1, -1):  # the torque of the same sign as w is what the voltage caps
-                ax.plot(w, sign * (lim["voltage_max"][0] - kt * np.abs(w)) * kt / R, "r-.",
-                        label="voltage_max" if sign > 0 else None)
+        speed = max(np.max(self.peak_speed), np.max(lim["motor_speed_max"])) * 1.1 or 1.0
+        for legs, (kt, R, i_max, u_max, w_max) in _limit_groups(lim):
+            # legs whose drives differ each get their own lines, named by their legs
+            which = "" if len(legs) == 6 else " (legs " + ", ".join(map(str, legs)) + ")"
+            for sign in (1, -1) if i_max > 0 else ():
+                ax.axhline(sign * i_max * kt, color="k", linestyle="--",
+                           label="current_max x k_t" + which if sign > 0 else None)
+            for sign in (1, -1) if w_max > 0 else ():
+                ax.axvline(sign * w_max, color="k", linestyle=":",
+                           label="motor_speed_max" + which if sign > 0 else None)
+            if u_max > 0 and R > 0:
+                w = np.linspace(-speed, speed, 201)
+                for sign in (1, -1):  # the torque of the same sign as w is what the voltage caps
+                    ax.plot(w, sign * (u_max - kt * np.abs(w)) * kt / R, "r-.",
+                            label="voltage_max" + which if sign > 0 else None)
         ax.set_xlabel("motor speed [rad/s]")
         ax.set_ylabel("motor torque [N m]")
         ax.set_xlim(-speed, speed)
@@ -107,6 +108,19 @@ class SizingReport:
         fig.tight_layout()
         fig.savefig(path, dpi=120)
         plt.close(fig)
+
+
+def _limit_groups(limits: dict) -> list:
+    """The driven legs (torque_constant > 0) grouped by equal (torque_constant,
+    winding_resistance, current_max, voltage_max, motor_speed_max): [(legs 1-based, values)]."""
+    keys = ("torque_constant", "winding_resistance", "current_max", "voltage_max",
+            "motor_speed_max")
+    groups: dict = {}
+    for k in range(6):
+        values = tuple(float(limits[key][k]) for key in keys)
+        if values[0] > 0:
+            groups.setdefault(values, []).append(k + 1)
+    return [(legs, values) for values, legs in groups.items()]
 
 
 def read_trajectory(path: Union[str, "os.PathLike[str]"]):
@@ -140,11 +154,23 @@ def _arrays(trajectory, i: int):
     q = np.asarray(q, dtype=float)
     if t.ndim != 1 or t.shape[0] < 2:
         raise ValueError(f"{name}: a trajectory needs at least two times, as a (N,) array")
+    if q.shape != (t.shape[0], 6):  # before numpy.gradient, whose message names no argument
+        raise ValueError(f"{name}: poses has shape {q.shape}: it must be ({t.shape[0]}, 6), one "
+                         "row (x, y, z, roll, pitch, yaw) per time")
+    qd, qdd = (None if v is None else np.asarray(v, dtype=float) for v in (qd, qdd))
+    if not np.all(np.isfinite(t)):
+        raise ValueError(f"{name}: t[{np.flatnonzero(~np.isfinite(t))[0]}] is not a finite number")
+    for label, values in (("poses", q), ("rates", qd), ("accels", qdd)):
+        # before numpy.gradient spreads a NaN (a CSV's unreadable cell) to the rows beside it
+        if values is not None and values.shape == q.shape and not np.all(np.isfinite(values)):
+            j, c = np.argwhere(~np.isfinite(values))[0]
+            raise ValueError(f"{name}: {label} row {j} (t = {t[j]:g}): {POSE[c]} = "
+                             f"{values[j, c]} is not a finite number")
     if qd is None:
         qd = np.gradient(q, t, axis=0)
     if qdd is None:
-        qdd = np.gradient(np.asarray(qd, dtype=float), t, axis=0)
-    return name, t, q, np.asarray(qd, dtype=float), np.asarray(qdd, dtype=float)
+        qdd = np.gradient(qd, t, axis=0)
+    return name, t, q, qd, qdd
 
 
 def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str] = Fidelity.FULL,
@@ -156,6 +182,12 @@ def sizing(platform, trajectories: Sequence, fidelity: Union[Fidelity, int, str]
     long trajectories (about 1.1 kB a pose): the numbers only, one result's arrays reused.
     ValueError if the platform has no drive or a row of a trajectory does not solve (its
     message)."""
+    if isinstance(trajectories, (str, os.PathLike)) or (
+            isinstance(trajectories, (list, tuple)) and len(trajectories)
+            and isinstance(trajectories[0], np.ndarray) and trajectories[0].ndim == 1):
+        # one trajectory: its path's characters, or its t and poses, would be taken as several
+        raise ValueError("trajectories is one trajectory: give a list of them, [path] or "
+                         "[(t, poses)]")
     lead = parameter_value(platform, "screw_lead")
     if not np.any(lead > 0):
         raise ValueError("the platform has no drive (every screw_lead is 0): give its drives "

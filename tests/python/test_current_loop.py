@@ -116,7 +116,8 @@ def test_force_mode_is_unchanged_by_the_drive_parameters(version):
     ({"torque_constant[6]": -1.0}, ["torque_constant[6]"]),
     ({"current_max[2]": -1.0}, ["current_max[2]", ">= 0"]),
     ({"speed_integral_time": math.nan}, ["speed_integral_time", "finite"]),
-    ({"output": 2}, ["output = 2", "outside its declared range [0, 1]"])])
+    ({"output": 2}, ["output = 2", "outside its declared range [0, 1]"]),
+    ({"screw_lead[2]": 1e-310}, ["screw_lead[2] = 1e-310", "overflows a double"])])
 def test_current_mode_without_a_drive_is_refused(version, bad, words):
     parameters = {"output": 1, "speed_gain": 1.0,
                   **drive_parameters({"screw_lead": np.full(6, 0.01),
@@ -402,7 +403,11 @@ def test_script_command_line(tmp_path):
             (["--platform", str(stewart.platform_files()["simona_motion_base"]), "--drive",
               "current"], "a drive on every leg"),
             (drives + ["--speed-gain", "1"], "for --drive current only"),
-            (drives + ["--drive", "current", "--speed-gain", "0"], "--speed-gain = 0")):
+            (drives + ["--drive", "current", "--speed-gain", "0"], "--speed-gain = 0"),
+            # these crashed (IndexError, an FMI error) or ran no step and printed inf
+            (drives + ["--drive", "current", "--duration", "-1"], "--duration = -1 s must be"),
+            (drives + ["--drive", "current", "--step", "0"], "--step = 0 s: the communication"),
+            (drives + ["--drive", "current", "--duration", "0.0005"], "shorter than one --step")):
         refused = subprocess.run(script + extra, capture_output=True, text=True)
         assert refused.returncode != 0 and words in refused.stderr, (extra, refused.stderr)
 

@@ -223,6 +223,82 @@ def test_sizing_report_against_numpy(tmp_path):
         lean.plot(tmp_path / "none.png")
 
 
+def test_sizing_plot_draws_each_legs_own_limits(tmp_path, monkeypatch):
+    # leg 2 with its own motor (k_t, current_max): its torque limit is not leg 1's
+    pytest.importorskip("matplotlib")
+    from matplotlib.axes import Axes
+    drawn = []
+    axhline = Axes.axhline
+    monkeypatch.setattr(Axes, "axhline", lambda ax, y=0, *a, **kw: (drawn.append(y),
+                                                                       axhline(ax, y, *a, **kw))[1])
+    platform = driven(current_max=10, **{"torque_constant[2]": 2 * KT, "current_max[2]": 4})
+    t, q, qd, qdd = manoeuvre(n=21, duration=0.2)
+    stewart.sizing(platform, [(t, q, qd, qdd)]).plot(tmp_path / "legs.png")
+    assert sorted(drawn) == pytest.approx(sorted([10 * KT, -10 * KT, 4 * 2 * KT, -4 * 2 * KT]))
+
+
+def test_a_drive_whose_reflected_inertia_overflows_is_refused_by_its_parameters():
+    # 2 pi N / lead = 1.9e301 rad/m: J r^2 is inf, every torque of the leg inf or NaN (the
+    # inverse then refused each pose as if the pose were out of range)
+    with pytest.raises(stewart.ParameterError, match=r"screw_lead\[3\] = 1e-300 m, "
+                       r"gear_ratio\[3\] = 3: .* give the lead in metres"):
+        driven(rotor_inertia=1e-4, **{"screw_lead[3]": 1e-300})
+    with pytest.raises(stewart.ParameterError, match=r"screw_lead\[1\] = 1e-310 m"):
+        driven(**{"screw_lead[1]": 1e-310})  # the ratio itself overflows
+    assert np.isfinite(driven(rotor_inertia=1e-4, **{"screw_lead[3]": 1e-9}).reflected_mass).all()
+
+
+def test_current_rates_that_overflow_are_refused():
+    # increasing finite times 5e-324 s apart, or a jerk of 1e308: dI/dt and L dI/dt are inf
+    # (they came back with status 0)
+    platform = driven(winding_inductance=0.01, winding_resistance=1.0)
+    t, q, qd, qdd = manoeuvre(n=3)
+    rows = [0, 2]
+    with pytest.raises(ValueError, match=r"row 0 \(t = 0 s\): the currents' rates over t overflow"):
+        platform.inverse(q[rows], qd[rows], qdd[rows], t=np.array([0.0, 5e-324]))
+    jerks = np.zeros((2, 6))
+    jerks[:, 2] = 1e308
+    with pytest.raises(ValueError, match="row 0: its jerk makes a current's rate or the voltage"):
+        platform.inverse(q[rows], qd[rows], qdd[rows], jerks=jerks)
+    ok = platform.inverse(q[rows], qd[rows], qdd[rows], t=np.array([0.0, 1e-3]))
+    assert np.isfinite(ok.voltage).all() and np.any(ok.current_rate != 0)
+
+
+def test_sizing_names_the_cell_that_is_not_a_number(tmp_path):
+    # a CSV cell that does not read ("abc" in row 2's z): the differences spread its NaN to
+    # rows 0..3, and the refusal named row 0's z_ddot
+    t, q, _, _ = manoeuvre(n=6)
+    write_poses(tmp_path / "cycle.csv", t, q)
+    lines = (tmp_path / "cycle.csv").read_text().splitlines()
+    cells = lines[3].split(",")
+    cells[3] = "abc"
+    lines[3] = ",".join(cells)
+    (tmp_path / "cycle.csv").write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError, match=r"cycle.csv: poses row 2 \(t = 0.8\): z = nan is not"):
+        stewart.sizing(driven(), [tmp_path / "cycle.csv"])
+    with pytest.raises(ValueError, match=r"trajectory 1: rates row 1 \(t = 0.4\): roll = inf"):
+        qd = np.zeros((6, 6))
+        qd[1, 3] = np.inf
+        stewart.sizing(driven(), [(t, q, qd)])
+
+
+def test_sizing_of_one_trajectory_not_in_a_list_says_so(tmp_path):
+    # the path's characters were read as files ("/": a directory), (t, q) as two trajectories
+    t, q, _, _ = manoeuvre(n=11)
+    write_poses(tmp_path / "cycle.csv", t, q)
+    for one in (str(tmp_path / "cycle.csv"), tmp_path / "cycle.csv", (t, q)):
+        with pytest.raises(ValueError, match=r"one trajectory: give a list of them"):
+            stewart.sizing(driven(), one)
+    assert stewart.sizing(driven(), [(t, q)]).names == ["trajectory 1"]
+
+
+def test_sizing_refuses_poses_of_another_length_than_t():
+    t, q, _, _ = manoeuvre()
+    with pytest.raises(ValueError, match=r"trajectory 1: poses has shape \(%d, 6\): it must be "
+                       r"\(%d, 6\)" % (t.size - 1, t.size)):
+        stewart.sizing(driven(), [(t, q[:-1])])
+
+
 def write_poses(path, t, q):
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
@@ -249,6 +325,12 @@ def test_size_script_and_cli_columns(tmp_path, build_dir):
     report = stewart.sizing(platform, [poses])
     rows = list(csv.DictReader(open(tmp_path / "size.csv")))
     assert float(rows[2]["peak_torque"]) == report.peak_torque[0, 2]
+    for option in ("--csv", "--plot"):  # an output it cannot write: its name, no traceback
+        run = subprocess.run([sys.executable, ROOT / "scripts" / "size.py", "--platform",
+                              platform_file, option, tmp_path / "no" / "out", poses],
+                             capture_output=True, text=True, timeout=300)
+        assert run.returncode == 1 and "size.py: cannot write" in run.stderr, run.stderr
+        assert "Traceback" not in run.stderr
     # stewart-solve: the drive columns of the same table, the currents' rates over its t
     out = tmp_path / "out.csv"
     params = ["--param", "screw_lead=0.005", "--param", "gear_ratio=3", "--param",

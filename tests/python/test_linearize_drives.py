@@ -45,3 +45,10 @@ def test_refusals():
         stewart.Platform(**DRIVE).linearize(POSE, input="current")
     with pytest.raises(stewart.ParameterError, match="input = 'torque'"):
         stewart.Platform(**DRIVE).linearize(POSE, None, np.ones(6), input="torque")
+    # arguments the linearisation would ignore: no winding states with current input, no
+    # drives in the plant with force input
+    with pytest.raises(ValueError, match="winding_current: the windings' currents are states"):
+        stewart.Platform(**DRIVE).linearize(POSE, None, np.ones(6), input="current",
+                                            winding_current=np.ones(6))
+    with pytest.raises(ValueError, match="are for input = current or voltage"):
+        stewart.Platform(**DRIVE).linearize(POSE, None, None, smoothing_speed=1e-3)

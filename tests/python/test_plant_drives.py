@@ -65,7 +65,32 @@ def test_current_input_without_drives_is_refused():
         stewart.Platform(**DRIVE).simulate([0, 1e-3], np.zeros((2, 6)), input="torque")
 
 
+@pytest.mark.parametrize("value", [1.5, 0.999, float("inf"), float("nan")])
+def test_input_number_that_names_no_kind_is_refused(value):
+    # int() would take 1.5 or 0.999 for another kind (current, force) and fail on inf unhandled
+    with pytest.raises(stewart.ParameterError, match="input = .* must be one of 0 .force."):
+        stewart.Platform(**DRIVE).simulate([0, 1e-3], np.zeros((2, 6)), input=value)
+    assert stewart.PlantInput.of(1.0) is stewart.PlantInput.CURRENT
+
+
 # ---------------------------------------------------------------- the plant FMUs
+
+def test_stiff_windings_name_their_cure():
+    # L / R = 1e-7 s: the explicit default fails within a step; the message says why and what
+    # takes it (BDF runs the same)
+    platform = stewart.Platform(**{**DRIVE, "winding_resistance": 1.0}, winding_inductance=1e-7)
+    t = np.linspace(0.0, 0.01, 11)
+    volts = np.full((11, 6), 2.0)
+    run = platform.simulate(t, volts, input="voltage", max_internal_steps=2000)
+    assert not run.completed
+    assert "stiff windings (L/R = 1e-07 s: take method = bdf)" in run.message, run.message
+    # the plant's first step (its creation) fails so when L/R is far below the step it tries
+    with pytest.raises(stewart.ParameterError, match=r"stiff windings \(L/R = 1e-12 s: take "
+                       r"method = bdf\)"):
+        stewart.Platform(**{**DRIVE, "winding_resistance": 1.0},
+                         winding_inductance=1e-12).simulate(t, volts, input="voltage")
+    assert platform.simulate(t, volts, input="voltage", method="bdf").completed
+
 
 def fmu_drive(input_kind=1):
     """The drive's parameters as the FMUs name them (one per leg), and the input kind."""

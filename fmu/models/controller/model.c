@@ -59,6 +59,11 @@ static const char *refused_parameter(const fmu_values *v, unsigned *vr) {
             if (!(isfinite(v->real[*vr = kDrive[i] + k]) && v->real[*vr] > 0.0))
                 return "output = 1 (current) needs a drive on every leg: screw_lead, gear_ratio "
                        "and torque_constant finite and > 0, as the platform's";
+    for (int k = 0; k < LEGS; ++k)  /* else every command of the leg is NaN, blamed on inputs */
+        if (!isfinite(cascade_motor_per_leg(v->real[*vr = VR_screw_lead_1 + k],
+                                            v->real[VR_gear_ratio_1 + k])))
+            return "output = 1 (current): 2 pi gear_ratio / screw_lead overflows a double; give "
+                   "the lead in metres, as the platform's";
     return NULL;
 }
 
