@@ -202,6 +202,8 @@ def jerk_limited_law(peaks: LegPeaks):
     j0 = float(np.min(peaks.jerk[moving] / top[moving]))
     if not math.isfinite(v0):  # no speed limit: a bound the accelerations never let it reach
         v0 = 10 * math.sqrt(a0)
+    if not math.isfinite(j0):  # no moving leg has a jerk limit: ramps short beside the move's
+        j0 = 100 * a0 ** 1.5
 
     def law(x):
         curve = SCurve(v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0, a0 * math.exp(x[2]),
