@@ -122,10 +122,12 @@ def test_the_slerp_s_third_derivative_is_the_difference_of_its_second(order):
 
 
 @pytest.mark.parametrize("v, a, j", [(0.8, 3.0, 40.0), (5.0, 3.0, 40.0), (0.8, 3.0, 5.0),
-                                     (50.0, 300.0, 2.0)])
+                                     (50.0, 300.0, 2.0), (1e30, 1e20, 1e10),
+                                     (1e30, 1e2, 1e8)])
 def test_the_s_curve_is_the_fastest_one_dimensional_motion(v, a, j):
-    """Every case of the S-curve (cruise or none, acceleration limit reached or not): it ends
-    at rest at 1, keeps its bounds (sampled), and takes the time of one_leg_time."""
+    """Every case of the S-curve (cruise or none, acceleration limit reached or not, a speed
+    bound far above the peak, as in a tiny move): it ends at rest at 1, keeps its bounds
+    (sampled), and takes the time of one_leg_time."""
     curve = moves_jerk.SCurve(v, a, j)
     s, sd, sdd, sddd = curve.at(np.linspace(0, curve.duration, 20001))
     assert abs(s[-1] - 1) < 1e-12 and abs(sd[-1]) < 1e-12 and abs(sdd[-1]) < 1e-9
@@ -348,3 +350,19 @@ def test_a_jerk_limit_on_a_leg_that_does_not_move(name):
     assert a <= accel * (1 + 1e-6) + 4 * delta_L / DT ** 2
     bound = max(one_leg_time(abs(d), speed, accel, math.inf) for d in L[-1] - L[0])
     assert bound <= m.duration <= 1.02 * bound, (m.duration, bound)
+
+
+def test_a_move_below_the_legs_rounding_with_a_jerk_limit():
+    """A goal 5e-324 m from the start changes no leg length (closed form: equal in every
+    bit), so every limit holds at any speed: one sample step to the goal, at rest at both
+    ends, as without a jerk limit."""
+    platform, data = load("simona_motion_base")
+    home = platform.check().home
+    goal = home + [5e-324, 0, 0, 0, 0, 0]
+    assert np.array_equal(lengths(data, home[None]), lengths(data, goal[None]))
+    speed, accel, jerk = limits_of(data)
+    plain = stewart.move(platform, home, goal, leg_speed_max=speed, leg_accel_max=accel)
+    m = stewart.move(platform, home, goal, leg_speed_max=speed, leg_accel_max=accel,
+                     leg_jerk_max=jerk)
+    assert m.duration == plain.duration == DT and np.array_equal(m.pose[-1], goal)
+    assert not m.pose_rate.any() and not m.pose_accel.any()
