@@ -551,3 +551,20 @@ def test_the_feasibility_report_has_the_jerk_and_force_classes():
         m.pose, m.pose_rate, m.pose_accel, jerks).margin[:, JERK])
     with pytest.raises(ValueError, match="leg_jerk_max needs the trajectory's data"):
         stewart.feasibility(platform, m.t, m.pose, m.pose_rate, leg_jerk_max=1.0)
+
+
+def test_numpy_scalars_are_numbers_as_floats_are():
+    """speed_max, angular_speed_max, blend and sample_time as numpy scalars (a float32, an
+    array's max): the same move, bit for bit, as the equal Python floats."""
+    platform = stewart.Platform()
+    home = platform.check().home
+    goal = home + [0.03, -0.01, 0.01, 0.0, 0.0, 0.02]
+    via = [home + [0.02, 0.01, 0.0, 0.0, 0.0, 0.0]]
+    kw = dict(via=via, leg_speed_max=0.1, leg_accel_max=0.5)
+    plain = stewart.move(platform, home, goal, speed_max=0.25, angular_speed_max=0.5,
+                         blend=0.25, sample_time=2.0 ** -10, **kw)
+    numpy = stewart.move(platform, home, goal, speed_max=np.float32(0.25),
+                         angular_speed_max=np.max(np.array([0.5], np.float32)),
+                         blend=np.float32(0.25), sample_time=np.float32(2.0 ** -10), **kw)
+    for name in ("t", "pose", "pose_rate", "pose_accel"):
+        assert np.array_equal(getattr(plain, name), getattr(numpy, name)), name
