@@ -87,7 +87,7 @@ def read_manoeuvre(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     decimals in any locale)."""
     path = pathlib.Path(path)
     try:
-        with path.open() as stream:
+        with path.open(encoding="utf-8-sig") as stream:  # a spreadsheet's byte order mark
             header = stream.readline().strip()
             if tuple(header.split(",")) != COLUMNS:
                 raise ValueError(f"{path}: the first line is {header!r}, not the columns "

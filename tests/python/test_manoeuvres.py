@@ -204,3 +204,13 @@ def test_random_vehicle_on_any_times_and_numpy_peaks():
     numpy = stewart.random_vehicle(np.random.default_rng(4), t, force_peak=np.float32(5.0),
                                    rate_peak=np.int64(2))
     assert all(np.array_equal(a, b) for a, b in zip(plain, numpy))
+
+
+def test_a_manoeuvre_file_as_a_spreadsheet_writes_it(tmp_path):
+    """A shipped manoeuvre rewritten with a UTF-8 byte order mark and CRLF line ends (a
+    spreadsheet's "CSV UTF-8"): the same columns, bit for bit."""
+    path = stewart.manoeuvre_files()["car_braking"]
+    sheet = tmp_path / "sheet.csv"
+    sheet.write_bytes(b"\xef\xbb\xbf" + path.read_bytes().replace(b"\n", b"\r\n"))
+    for a, b in zip(stewart.manoeuvre("car_braking"), stewart.manoeuvre(sheet)):
+        assert np.array_equal(a, b)
