@@ -355,3 +355,24 @@ def test_control_design_runs_a_move_scene():
         position, angle = map(float, re.search(r"tracking error max (\S+) m, (\S+) rad",
                                                line).groups())
         assert position <= 1e-3 and angle <= 1e-3, line
+
+
+@pytest.mark.parametrize("script", ["closed_loop.py", "cueing_loop.py"])
+def test_the_loops_refuse_a_bad_step_or_a_unit_s_refusal_naming_the_cause(tmp_path, script):
+    """A step or duration that is not a finite time > 0: the option named (was a traceback, or a
+    division by zero); a step the plant refuses (0.3 s: the legs leave their strokes between
+    steps): the unit, the time and the plant's own message, not only fmpy's status."""
+    base = [sys.executable, str(closed_loop.ROOT / "scripts" / script), "--no-plot",
+            "--fmus", str(BUILD / "fmus" / "2.0"), "--out", str(tmp_path)]
+    base += (["--scene", "move_line", "--player"] if script == "closed_loop.py" else
+             ["--manoeuvre", "car_braking", "--platform",
+              str(FILES["simona_motion_base"])])
+    for bad in (["--step", "0"], ["--step", "nan"], ["--duration", "-1"]):
+        run = subprocess.run(base + bad, capture_output=True, text=True, timeout=300)
+        assert run.returncode == 2 and f"argument {bad[0]}" in run.stderr, run.stderr
+        assert "finite time > 0" in run.stderr and "Traceback" not in run.stderr
+    if script == "closed_loop.py":
+        run = subprocess.run(base + ["--step", "0.3"], capture_output=True, text=True,
+                             timeout=300)
+        assert run.returncode == 1 and "Traceback" not in run.stderr, run.stderr
+        assert "unit plant" in run.stderr and "left the stroke" in run.stderr, run.stderr
