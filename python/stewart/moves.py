@@ -467,7 +467,9 @@ def _time_law(path, platform, segments, margin, limits):
     x, u = _forward(upper, hi, ds)
     v = np.sqrt(x)
     if np.any(v[:-1] + v[1:] <= 0):
-        raise MoveError("the time law stalls on the path (a zero speed bound)", "leg_speed")
+        raise MoveError("the time law stalls on the path (a zero speed bound): a speed limit "
+                        "(leg_speed_max, motor_speed_max, speed_max, angular_speed_max) is too "
+                        "small to time this path; give a larger one", "leg_speed")
     t = np.concatenate([[0.0], np.cumsum(2 * ds / (v[:-1] + v[1:]))])
     return s, v, u, t, q
 
@@ -478,7 +480,7 @@ def _sample(s_nodes, v, u, t_nodes, sample_time):
     duration = t_nodes[-1]
     count = max(1, math.ceil(duration / sample_time - 1e-9))
     if count > 100_000_000:
-        raise ValueError(f"the move takes {duration:.6g} s: {count} samples of {sample_time} s "
+        raise ValueError(f"the move takes {duration:.6g} s: {count:.6g} samples of {sample_time} s "
                          "are too many; give a larger sample_time")
     scale = count * sample_time / duration
     t = np.arange(count + 1) * sample_time

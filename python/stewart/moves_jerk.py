@@ -267,7 +267,7 @@ def sample_law(curve, stretch: float, sample_time: float):
     duration = stretch * curve.duration
     count = max(1, math.ceil(duration / sample_time - 1e-9))
     if count > 100_000_000:
-        raise ValueError(f"the move takes {duration:.6g} s: {count} samples of {sample_time} s "
+        raise ValueError(f"the move takes {duration:.6g} s: {count:.6g} samples of {sample_time} s "
                          "are too many; give a larger sample_time")
     k = count * sample_time / curve.duration
     t = np.arange(count + 1) * sample_time
