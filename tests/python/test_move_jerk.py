@@ -366,3 +366,22 @@ def test_a_move_below_the_legs_rounding_with_a_jerk_limit():
                      leg_jerk_max=jerk)
     assert m.duration == plain.duration == DT and np.array_equal(m.pose[-1], goal)
     assert not m.pose_rate.any() and not m.pose_accel.any()
+
+
+def test_stewart_solve_reads_a_move_as_a_spreadsheet_saves_it(tmp_path, solve):
+    """scripts/move.py's table saved with a UTF-8 byte order mark and CRLF line ends: the same
+    solution, byte for byte, as from the table itself."""
+    plain = tmp_path / "move.csv"
+    m = stewart.move(stewart.Platform(), [0, 0, 0.5, 0, 0, 0], [0.01, 0, 0.51, 0, 0, 0.02],
+                     leg_speed_max=0.05, leg_accel_max=0.5, leg_jerk_max=3.0)
+    header = "t," + ",".join(n + s for s in ("", "_dot", "_ddot")
+                             for n in ("x", "y", "z", "roll", "pitch", "yaw"))
+    np.savetxt(plain, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]), delimiter=",",
+               header=header, comments="", fmt="%.17g")
+    sheet = tmp_path / "sheet.csv"
+    sheet.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes().replace(b"\n", b"\r\n"))
+    for path in (plain, sheet):
+        run = solve(path, path.with_suffix(".out.csv"))
+        assert run.returncode == 0, run.stderr
+    assert (plain.with_suffix(".out.csv").read_bytes() ==
+            sheet.with_suffix(".out.csv").read_bytes())
