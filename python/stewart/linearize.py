@@ -113,9 +113,6 @@ def run_linearize_driven(model, pose, pose_rate, inputs, fidelity, kind, winding
     if status != 0:
         raise ParameterError(message) if status == -2 else ValueError(message)
     n = states
-    if n == 12 and winding_current is not None:  # it would be ignored
-        raise ValueError("winding_current: the windings' currents are states only with input = "
-                         "voltage and a winding_inductance > 0; leave it None here")
     lin = Linearization(A[:n, :n].copy(), B[:n].copy(), C[:, :n].copy(), D, rate[:n].copy(),
                         output, warnings, level, kind, leg_force, not_smooth)
     lin.states = STATES + (WINDING_STATES if n == 18 else ())
@@ -129,9 +126,6 @@ def run_linearize(model, pose, pose_rate, forces, fidelity, input="force", windi
     if kind != PlantInput.FORCE:
         return run_linearize_driven(model, pose, pose_rate, forces, fidelity, kind,
                                     winding_current, smoothing_speed)
-    if winding_current is not None or smoothing_speed is not None:  # they would be ignored
-        raise ValueError("winding_current and smoothing_speed are for input = current or "
-                         "voltage: with force input the drives are not in the plant")
     level = _level(fidelity)
     q, q_dot = _six("pose", pose), _six("pose_rate", pose_rate)
     if forces is None:  # the forces that hold the pose (at these rates, without acceleration)
