@@ -430,7 +430,8 @@ def main():
           f"{args.fidelity}, {gains}")
     print(f"closed_loop: tracking error max {position * units.factor('x'):.3e} {units.length}, "
           f"{angle * units.factor('roll'):.3e} {units.angle}")
-    print(f"closed_loop: wall time {wall:.2f} s, {wall / duration:.3f} s per simulated second")
+    print(f"closed_loop: wall time {wall:.2f} s" + (f", {wall / duration:.3f} s per simulated "
+                                                 "second" if duration > 0 else ""))
     print(f"closed_loop: wrote {out / 'closed_loop.csv'}" +
           ("" if args.no_plot else f" and {out / 'closed_loop.png'}"))
 

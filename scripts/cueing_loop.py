@@ -227,7 +227,8 @@ def main(argv=None):
     print(f"cueing_loop: {args.manoeuvre or args.vehicle} on {args.platform}, {duration:g} s at "
           f"h = {args.step:g} s")
     print(f"cueing_loop: tracking error max {position:.3e} m, {angle:.3e} rad")
-    print(f"cueing_loop: wall time {wall:.2f} s, {wall / duration:.3f} s per simulated second")
+    print(f"cueing_loop: wall time {wall:.2f} s" + (f", {wall / duration:.3f} s per simulated "
+                                                 "second" if duration > 0 else ""))
     print(f"cueing_loop: wrote {out / 'cueing_loop.csv'}" +
           ("" if args.no_plot else f" and {out / 'cueing_loop.png'}"))
     return 0

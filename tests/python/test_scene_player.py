@@ -8,6 +8,7 @@ in any locale; a state restored replays bit for bit. Then scenes/move_line.json,
 shipped machine, through the closed loop with the player in it (scripts/closed_loop.py --player,
 as the OSP and SSP structures run it) tracks as the Python-driven loop does, and
 scripts/machine_ssp.py writes a move scene's closed loop for libcosim."""
+import json
 import pathlib
 import re
 import subprocess
@@ -376,3 +377,19 @@ def test_the_loops_refuse_a_bad_step_or_a_unit_s_refusal_naming_the_cause(tmp_pa
                              timeout=300)
         assert run.returncode == 1 and "Traceback" not in run.stderr, run.stderr
         assert "unit plant" in run.stderr and "left the stroke" in run.stderr, run.stderr
+
+
+def test_the_loop_plays_a_move_of_zero_length(tmp_path):
+    """A scene whose move goes nowhere and holds for no time: one communication point at the
+    start pose, without a division by its zero duration."""
+    scene = tmp_path / "still.json"
+    scene.write_text(json.dumps({"title": "still", "step": 0.001, "move": {
+        "kind": "line", "goal": [0, 0, 0.5, 0, 0, 0], "leg_speed_max": 0.05,
+        "leg_accel_max": 0.5, "hold": 0}}))
+    run = subprocess.run([sys.executable, str(closed_loop.ROOT / "scripts" / "closed_loop.py"),
+                          "--scene", str(scene), "--player", "--no-plot",
+                          "--fmus", str(BUILD / "fmus" / "2.0"), "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0 and "Warning" not in run.stderr, run.stderr
+    data = np.genfromtxt(tmp_path / "closed_loop.csv", delimiter=",", names=True)
+    assert data.size == 1 and float(data["z"]) == 0.5
