@@ -33,14 +33,19 @@ and damping on the machine's moving mass per leg (machine_gains); the cascade's 
 the same loop on the motor's side (cascade_gains).
 """
 import argparse
+import collections
+import math
 import pathlib
 import shutil
 import tempfile
 import time
 
 import numpy as np
+import fmpy.fmi2
 from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
 
 import scenes
 
@@ -61,11 +66,21 @@ class Unit:
 
     def __init__(self, path, name, parameters, inputs=None):
         md = read_model_description(str(path))
+        self.name = name
         self.vr = {v.name: v.valueReference for v in md.modelVariables}
         self.directory = extract(str(path))
         self.fmu = FMU2Slave(guid=md.guid, unzipDirectory=self.directory,
                              modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
-        self.fmu.instantiate()
+        # the unit's last messages, for the error of a call it refuses (they name the cause)
+        self.messages = collections.deque(maxlen=4)
+        callbacks = fmi2CallbackFunctions()
+        callbacks.logger = fmi2CallbackLoggerTYPE(
+            lambda env, inst, status, category, message: self.messages.append(message.decode()))
+        callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(fmpy.fmi2.calloc)
+        callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(fmpy.fmi2.free)
+        self._callbacks = callbacks  # alive as long as the instance
+        self.fmu.instantiate(callbacks=callbacks, loggingOn=True)
+        self.fmu.setDebugLogging(True, ["logStatusDiscard", "logStatusError"])  # not per step
         integers = {v.name for v in md.modelVariables if v.type == "Integer"}
         for key, value in parameters.items():
             if isinstance(value, str):
@@ -87,7 +102,12 @@ class Unit:
         return np.array(self.fmu.getReal([self.vr[n] for n in names]))
 
     def step(self, t, h):
-        self.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        try:
+            self.fmu.doStep(currentCommunicationPoint=t, communicationStepSize=h)
+        except FMICallException as e:
+            raise ValueError(f"unit {self.name}, step from t = {t:.6g} s by {h:.6g} s: "
+                             f"{str(e).rstrip('.')}: "
+                             + " / ".join(self.messages)) from None
 
     def free(self):
         self.fmu.terminate()
@@ -338,10 +358,18 @@ def cascade_arguments(parser, args, platform):
     return cascade
 
 
+def seconds(text):
+    """A time span [s] of the command line: a finite number > 0."""
+    value = float(text)
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text}: give a finite time > 0 [s]")
+    return value
+
+
 def add_loop_arguments(parser, name, kp_default, kd_default):
     """The loop's --step, --kp, --kd (their defaults as kp_default, kd_default say), --fidelity,
     --fmus, --out (default out/name) and --no-plot."""
-    parser.add_argument("--step", type=float, default=1e-3, help="communication step [s]")
+    parser.add_argument("--step", type=seconds, default=1e-3, help="communication step [s]")
     parser.add_argument("--kp", type=float, help=f"[N/m] (default {kp_default})")
     parser.add_argument("--kd", type=float, help=f"[N s/m] (default {kd_default})")
     parser.add_argument("--fidelity", type=int, default=2, choices=(1, 2))
@@ -353,7 +381,7 @@ def add_loop_arguments(parser, name, kp_default, kd_default):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scene", default="combined")
-    parser.add_argument("--duration", type=float,
+    parser.add_argument("--duration", type=seconds,
                         help="[s] (default: the scene's; a move's: its own)")
     add_loop_arguments(parser, "closed_loop", "1e6, or machine_gains", "1e4, or machine_gains")
     parser.add_argument("--drive", default="force", choices=DRIVES,
@@ -409,7 +437,8 @@ def main():
           f"{args.fidelity}, {gains}")
     print(f"closed_loop: tracking error max {position * units.factor('x'):.3e} {units.length}, "
           f"{angle * units.factor('roll'):.3e} {units.angle}")
-    print(f"closed_loop: wall time {wall:.2f} s, {wall / duration:.3f} s per simulated second")
+    print(f"closed_loop: wall time {wall:.2f} s" + (f", {wall / duration:.3f} s per simulated "
+                                                 "second" if duration > 0 else ""))
     print(f"closed_loop: wrote {out / 'closed_loop.csv'}" +
           ("" if args.no_plot else f" and {out / 'closed_loop.png'}"))
 

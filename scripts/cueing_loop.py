@@ -193,7 +193,8 @@ def write_ssp(platform, options, inputs, out, fmus=ROOT / "build" / "fmus" / "2.
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     cueing_script.add_vehicle_arguments(parser)
-    parser.add_argument("--duration", type=float, help="[s] (default: the vehicle's)")
+    parser.add_argument("--duration", type=closed_loop.seconds,
+                        help="[s] (default: the vehicle's)")
     closed_loop.add_loop_arguments(parser, "cueing_loop", "closed_loop.machine_gains",
                                    "closed_loop.machine_gains")
     parser.add_argument("--osp", metavar="DIR",
@@ -201,8 +202,11 @@ def main(argv=None):
                              "the vehicle as a libcosim scenario (vehicle_scenario.json) to DIR")
     args = parser.parse_args(argv)
     t, f, w, platform, options = cueing_script.vehicle_of(args, parser, "cueing_loop.py")
-    result, wall = run(platform, t, f, w, options, args.duration, args.step, args.kp, args.kd,
-                       args.fidelity, args.fmus)
+    try:
+        result, wall = run(platform, t, f, w, options, args.duration, args.step, args.kp,
+                           args.kd, args.fidelity, args.fmus)
+    except ValueError as e:  # a unit's refusal: its message names the cause
+        raise SystemExit(f"cueing_loop: {e}") from None
     if args.osp:
         osp = pathlib.Path(args.osp)
         osp.mkdir(parents=True, exist_ok=True)
@@ -223,7 +227,8 @@ def main(argv=None):
     print(f"cueing_loop: {args.manoeuvre or args.vehicle} on {args.platform}, {duration:g} s at "
           f"h = {args.step:g} s")
     print(f"cueing_loop: tracking error max {position:.3e} m, {angle:.3e} rad")
-    print(f"cueing_loop: wall time {wall:.2f} s, {wall / duration:.3f} s per simulated second")
+    print(f"cueing_loop: wall time {wall:.2f} s" + (f", {wall / duration:.3f} s per simulated "
+                                                 "second" if duration > 0 else ""))
     print(f"cueing_loop: wrote {out / 'cueing_loop.csv'}" +
           ("" if args.no_plot else f" and {out / 'cueing_loop.png'}"))
     return 0

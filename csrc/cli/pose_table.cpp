@@ -77,6 +77,7 @@ std::string read_pose_table(const std::string &path, PoseTable &table,
     if (!in) return "cannot open " + path;
     std::string line;
     if (!std::getline(in, line)) return path + " is empty: expected the header t,x,y,z,roll,pitch,yaw";
+    if (line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3); // a spreadsheet's byte order mark
     const std::vector<std::string> header = split(line);
 
     int col_t = find_column(header, "t");

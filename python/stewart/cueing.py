@@ -9,6 +9,7 @@ import numpy as np
 
 from . import _core
 from .arrays import rows3, times
+from .params import parameters
 
 #: The cueing algorithms, by name; the index is the library's `algorithm` option.
 #: "classical": the classical washout with tilt coordination (Reid & Nahon 1985).
@@ -78,7 +79,11 @@ def cueing(platform, t, specific_force, angular_velocity, algorithm: str = "clas
     force = rows3("specific_force", specific_force, n)
     omega = rows3("angular_velocity", angular_velocity, n)
     values = [("algorithm", float(ALGORITHMS.index(algorithm)))]
+    platform_names = {p["name"] for p in parameters()} - set(option_names())
     for name, value in options.items():
+        if name in platform_names:  # leg_speed_max, payload_mass ...: the machine's, not the cue's
+            raise ValueError(f"{name} is a parameter of the platform, not a cueing option: "
+                             f"give it to the platform (Platform.from_file(path, {name}=...))")
         try:
             values.append((name, float(value)))
         except (TypeError, ValueError):

@@ -9,6 +9,7 @@ the vehicle frame (x forward, y left, z up; (0, 0, +9.81) m/s2 at rest), sampled
 """
 from __future__ import annotations
 
+import numbers
 import pathlib
 from typing import Dict, Tuple
 
@@ -57,14 +58,16 @@ def random_vehicle(rng: np.random.Generator, t, force_peak: float = 2 * 9.81,
     """
     t = times("t", t, None)
     for name, peak in (("force_peak", force_peak), ("rate_peak", rate_peak)):
-        if not isinstance(peak, (int, float)) or not np.isfinite(peak) or peak < 0:
+        if not isinstance(peak, numbers.Real) or not np.isfinite(peak) or peak < 0:
             raise ValueError(f"{name} = {peak!r}: it must be a finite peak >= 0")
     n = len(t)
+    if n == 0:
+        return np.zeros((0, 3)), np.zeros((0, 3))
 
     def channel(limit):
         x = np.zeros(n)
         for _ in range(rng.integers(1, 4)):
-            t0, kind, a = rng.uniform(0, t[-1]), rng.integers(3), rng.uniform(-1, 1)
+            t0, kind, a = rng.uniform(t[0], t[-1]), rng.integers(3), rng.uniform(-1, 1)
             if kind == 0:
                 x += a * (t > t0)
             elif kind == 1:
@@ -84,7 +87,7 @@ def read_manoeuvre(path) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     decimals in any locale)."""
     path = pathlib.Path(path)
     try:
-        with path.open() as stream:
+        with path.open(encoding="utf-8-sig") as stream:  # a spreadsheet's byte order mark
             header = stream.readline().strip()
             if tuple(header.split(",")) != COLUMNS:
                 raise ValueError(f"{path}: the first line is {header!r}, not the columns "

@@ -24,6 +24,7 @@ True
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Optional
 
@@ -264,7 +265,7 @@ def _limit_vector(name: str, value) -> Optional[np.ndarray]:
 def _speed_bound(name, value) -> Optional[float]:
     if value is None or value == 0:
         return None
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+    if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
         raise ValueError(f"{name} = {value!r} must be a finite number > 0 (or None)")
     return float(value)
 
@@ -466,7 +467,9 @@ def _time_law(path, platform, segments, margin, limits):
     x, u = _forward(upper, hi, ds)
     v = np.sqrt(x)
     if np.any(v[:-1] + v[1:] <= 0):
-        raise MoveError("the time law stalls on the path (a zero speed bound)", "leg_speed")
+        raise MoveError("the time law stalls on the path (a zero speed bound): a speed limit "
+                        "(leg_speed_max, motor_speed_max, speed_max, angular_speed_max) is too "
+                        "small to time this path; give a larger one", "leg_speed")
     t = np.concatenate([[0.0], np.cumsum(2 * ds / (v[:-1] + v[1:]))])
     return s, v, u, t, q
 
@@ -477,7 +480,7 @@ def _sample(s_nodes, v, u, t_nodes, sample_time):
     duration = t_nodes[-1]
     count = max(1, math.ceil(duration / sample_time - 1e-9))
     if count > 100_000_000:
-        raise ValueError(f"the move takes {duration:.6g} s: {count} samples of {sample_time} s "
+        raise ValueError(f"the move takes {duration:.6g} s: {count:.6g} samples of {sample_time} s "
                          "are too many; give a larger sample_time")
     scale = count * sample_time / duration
     t = np.arange(count + 1) * sample_time
@@ -566,7 +569,7 @@ def _path(kind, q0, q1, via, blend, frame, order):
     points = np.asarray(via, dtype=float)
     if points.ndim != 2 or points.shape[1] != 6 or not np.all(np.isfinite(points)):
         raise ValueError(f"via has shape {points.shape}: it must be (K, 6) finite poses")
-    if not (isinstance(blend, (int, float)) and 0 < blend <= 0.5):
+    if not (isinstance(blend, numbers.Real) and 0 < blend <= 0.5):
         raise ValueError(f"blend = {blend!r} must be in (0, 0.5]: the share of the shorter "
                          "line next to a waypoint that its blend takes")
     return _BlendedPath(np.vstack([q0, points, q1]), float(blend), order)
@@ -704,8 +707,9 @@ def move(platform, start, goal, kind: str = "point", *, leg_speed_max=None, leg_
     checked with the library's leg classes."""
     if kind not in KINDS:
         raise ValueError(f"kind = {kind!r} must be 'point' or 'line'")
-    if not (isinstance(sample_time, (int, float)) and 0 < sample_time < math.inf):
+    if not (isinstance(sample_time, numbers.Real) and 0 < sample_time < math.inf):
         raise ValueError(f"sample_time = {sample_time!r} must be a finite number > 0 [s]")
+    sample_time = float(sample_time)
     own = leg_limits_of(platform)
     leg_speed_max = own["leg_speed_max"] if leg_speed_max is None else leg_speed_max
     leg_accel_max = own["leg_accel_max"] if leg_accel_max is None else leg_accel_max

@@ -52,7 +52,10 @@ class SCurve:
             return _rise(w, a, j)[1] + _rise(w, a2, j2)[1]
         peak = v
         if distance(v) > 1.0:  # no cruise: the peak speed that covers the distance, bisected
-            lo, hi = 0.0, v
+            # from a bound near it (a rise to w covers at least w^2 / 2a and, by AM-GM, w^1.5 /
+            # sqrt(j)), so that 64 halvings resolve it however large v is
+            lo, hi = 0.0, min(v, math.sqrt(2 / (1 / a + 1 / a2)),
+                              (1 / math.sqrt(j) + 1 / math.sqrt(j2)) ** (-2 / 3))
             for _ in range(64):
                 mid = 0.5 * (lo + hi)
                 lo, hi = (mid, hi) if distance(mid) <= 1.0 else (lo, mid)
@@ -198,10 +201,14 @@ def jerk_limited_law(peaks: LegPeaks):
     speed_top = np.max(np.hstack([columns[:, :6], columns[:, 18:]]), axis=0)
     with np.errstate(divide="ignore"):
         v0 = float(np.min(peaks.speed / speed_top))
-    a0 = float(np.min(peaks.accel[moving] / top[moving]))
-    j0 = float(np.min(peaks.jerk[moving] / top[moving]))
+    a0 = float(np.min(peaks.accel[moving] / top[moving], initial=math.inf))
+    j0 = float(np.min(peaks.jerk[moving] / top[moving], initial=math.inf))
+    if not math.isfinite(a0):  # no leg's length changes (a move below its rounding): any shape
+        a0 = 1.0
     if not math.isfinite(v0):  # no speed limit: a bound the accelerations never let it reach
         v0 = 10 * math.sqrt(a0)
+    if not math.isfinite(j0):  # no moving leg has a jerk limit: ramps short beside the move's
+        j0 = 100 * a0 ** 1.5
 
     def law(x):
         curve = SCurve(v0 * math.exp(x[0]), a0 * math.exp(x[1]), j0, a0 * math.exp(x[2]),
@@ -260,7 +267,7 @@ def sample_law(curve, stretch: float, sample_time: float):
     duration = stretch * curve.duration
     count = max(1, math.ceil(duration / sample_time - 1e-9))
     if count > 100_000_000:
-        raise ValueError(f"the move takes {duration:.6g} s: {count} samples of {sample_time} s "
+        raise ValueError(f"the move takes {duration:.6g} s: {count:.6g} samples of {sample_time} s "
                          "are too many; give a larger sample_time")
     k = count * sample_time / curve.duration
     t = np.arange(count + 1) * sample_time

@@ -195,6 +195,10 @@ def test_bad_input_is_refused_by_name():
         stewart.cueing(plat, t, f, w, translation_order=5)
     with pytest.raises(ValueError, match="unknown cueing option 'tilt'"):
         stewart.cueing(plat, t, f, w, tilt=1)
+    # a platform's parameter given as an option: where it goes
+    with pytest.raises(ValueError, match=r"leg_speed_max is a parameter of the platform.*"
+                       r"Platform.from_file\(path, leg_speed_max=...\)"):
+        stewart.cueing(plat, t, f, w, leg_speed_max=0.1)
     with pytest.raises(ValueError, match="algorithm = 'mpc'"):
         stewart.cueing(plat, t, f, w, algorithm="mpc")
     f[3, 1] = np.nan

@@ -188,3 +188,29 @@ def test_random_vehicle_peaks_repeats_and_refusals():
         stewart.random_vehicle(np.random.default_rng(7), t, force_peak=math.nan)
     with pytest.raises(ValueError, match="rate_peak"):
         stewart.random_vehicle(np.random.default_rng(7), t, rate_peak=-1.0)
+
+
+def test_random_vehicle_on_any_times_and_numpy_peaks():
+    """No times give empty signals; times before 0 give a signal of the same peaks (0.2 to 1
+    times each peak) as any; a numpy scalar peak is the same number as a float."""
+    f, w = stewart.random_vehicle(np.random.default_rng(3), [])
+    assert f.shape == w.shape == (0, 3)
+    t = np.arange(-30, -10, 0.01)
+    f, w = stewart.random_vehicle(np.random.default_rng(3), t, force_peak=5.0, rate_peak=2.0)
+    peaks = np.r_[np.abs(f - [0, 0, G]).max(axis=0) / 5.0, np.abs(w).max(axis=0) / 2.0]
+    assert peaks.min() >= 0.2 - 1e-12 and peaks.max() <= 1 + 1e-12
+    t = np.arange(0, 20, 0.01)
+    plain = stewart.random_vehicle(np.random.default_rng(4), t, force_peak=5.0, rate_peak=2.0)
+    numpy = stewart.random_vehicle(np.random.default_rng(4), t, force_peak=np.float32(5.0),
+                                   rate_peak=np.int64(2))
+    assert all(np.array_equal(a, b) for a, b in zip(plain, numpy))
+
+
+def test_a_manoeuvre_file_as_a_spreadsheet_writes_it(tmp_path):
+    """A shipped manoeuvre rewritten with a UTF-8 byte order mark and CRLF line ends (a
+    spreadsheet's "CSV UTF-8"): the same columns, bit for bit."""
+    path = stewart.manoeuvre_files()["car_braking"]
+    sheet = tmp_path / "sheet.csv"
+    sheet.write_bytes(b"\xef\xbb\xbf" + path.read_bytes().replace(b"\n", b"\r\n"))
+    for a, b in zip(stewart.manoeuvre("car_braking"), stewart.manoeuvre(sheet)):
+        assert np.array_equal(a, b)

@@ -122,10 +122,12 @@ def test_the_slerp_s_third_derivative_is_the_difference_of_its_second(order):
 
 
 @pytest.mark.parametrize("v, a, j", [(0.8, 3.0, 40.0), (5.0, 3.0, 40.0), (0.8, 3.0, 5.0),
-                                     (50.0, 300.0, 2.0)])
+                                     (50.0, 300.0, 2.0), (1e30, 1e20, 1e10),
+                                     (1e30, 1e2, 1e8)])
 def test_the_s_curve_is_the_fastest_one_dimensional_motion(v, a, j):
-    """Every case of the S-curve (cruise or none, acceleration limit reached or not): it ends
-    at rest at 1, keeps its bounds (sampled), and takes the time of one_leg_time."""
+    """Every case of the S-curve (cruise or none, acceleration limit reached or not, a speed
+    bound far above the peak, as in a tiny move): it ends at rest at 1, keeps its bounds
+    (sampled), and takes the time of one_leg_time."""
     curve = moves_jerk.SCurve(v, a, j)
     s, sd, sdd, sddd = curve.at(np.linspace(0, curve.duration, 20001))
     assert abs(s[-1] - 1) < 1e-12 and abs(sd[-1]) < 1e-12 and abs(sdd[-1]) < 1e-9
@@ -322,3 +324,64 @@ def test_the_warped_law_s_derivatives_are_its_differences():
     assert np.all(np.diff(s) > 0)
     with pytest.raises(ValueError, match="would not increase"):
         moves_jerk.WarpedLaw(curve, 0.6, 0.4)
+
+
+@pytest.mark.parametrize("name", ["simona_motion_base", "rubin_m2_hexapod"])
+def test_a_jerk_limit_on_a_leg_that_does_not_move(name):
+    """A turn about a pivot at leg 1's platform joint leaves that leg's length constant (its
+    joint's velocity w x 0 is exactly zero), so its jerk limit, the only one, binds nothing:
+    the move keeps the speed and acceleration limits by the closed-form lengths' differences,
+    and takes no less than any leg's own fastest motion without a jerk limit and at most 2 %
+    longer (the S-curve's ramps; measured 0.4 % and 0.9 %)."""
+    platform, data = load(name)
+    data = dict(data, tool_frame=[*data["platform_joint"][:3], 0, 0, 0])
+    platform = stewart.Platform.from_file(FILES[name], tool_frame=data["tool_frame"])
+    home = platform.check().home
+    goal = home + [0, 0, 0, np.radians(0.1), np.radians(-0.05), np.radians(0.1)]
+    speed, accel = leg_limits(data)
+    m = stewart.move(platform, home, goal, leg_speed_max=speed, leg_accel_max=accel,
+                     leg_jerk_max=[8 * accel, 0, 0, 0, 0, 0])
+    assert np.all(np.isfinite(m.pose)) and np.max(np.abs(m.pose[-1] - goal)) <= 1e-12
+    L = lengths(data, m.pose)
+    assert np.ptp(L[:, 0]) <= 1e-12
+    delta_L = 16 * EPS * np.max(L)
+    v, a, _ = differences(L, DT)
+    assert v <= speed * (1 + 1e-6) + delta_L / DT
+    assert a <= accel * (1 + 1e-6) + 4 * delta_L / DT ** 2
+    bound = max(one_leg_time(abs(d), speed, accel, math.inf) for d in L[-1] - L[0])
+    assert bound <= m.duration <= 1.02 * bound, (m.duration, bound)
+
+
+def test_a_move_below_the_legs_rounding_with_a_jerk_limit():
+    """A goal 5e-324 m from the start changes no leg length (closed form: equal in every
+    bit), so every limit holds at any speed: one sample step to the goal, at rest at both
+    ends, as without a jerk limit."""
+    platform, data = load("simona_motion_base")
+    home = platform.check().home
+    goal = home + [5e-324, 0, 0, 0, 0, 0]
+    assert np.array_equal(lengths(data, home[None]), lengths(data, goal[None]))
+    speed, accel, jerk = limits_of(data)
+    plain = stewart.move(platform, home, goal, leg_speed_max=speed, leg_accel_max=accel)
+    m = stewart.move(platform, home, goal, leg_speed_max=speed, leg_accel_max=accel,
+                     leg_jerk_max=jerk)
+    assert m.duration == plain.duration == DT and np.array_equal(m.pose[-1], goal)
+    assert not m.pose_rate.any() and not m.pose_accel.any()
+
+
+def test_stewart_solve_reads_a_move_as_a_spreadsheet_saves_it(tmp_path, solve):
+    """scripts/move.py's table saved with a UTF-8 byte order mark and CRLF line ends: the same
+    solution, byte for byte, as from the table itself."""
+    plain = tmp_path / "move.csv"
+    m = stewart.move(stewart.Platform(), [0, 0, 0.5, 0, 0, 0], [0.01, 0, 0.51, 0, 0, 0.02],
+                     leg_speed_max=0.05, leg_accel_max=0.5, leg_jerk_max=3.0)
+    header = "t," + ",".join(n + s for s in ("", "_dot", "_ddot")
+                             for n in ("x", "y", "z", "roll", "pitch", "yaw"))
+    np.savetxt(plain, np.column_stack([m.t, m.pose, m.pose_rate, m.pose_accel]), delimiter=",",
+               header=header, comments="", fmt="%.17g")
+    sheet = tmp_path / "sheet.csv"
+    sheet.write_bytes(b"\xef\xbb\xbf" + plain.read_bytes().replace(b"\n", b"\r\n"))
+    for path in (plain, sheet):
+        run = solve(path, path.with_suffix(".out.csv"))
+        assert run.returncode == 0, run.stderr
+    assert (plain.with_suffix(".out.csv").read_bytes() ==
+            sheet.with_suffix(".out.csv").read_bytes())

@@ -12,6 +12,7 @@ so a speed difference can be off by DELTA_L / dt and an acceleration difference 
 4 DELTA_L / dt^2, on top of the relative 1e-6 slack."""
 import json
 import math
+import re
 import subprocess
 import sys
 
@@ -551,3 +552,37 @@ def test_the_feasibility_report_has_the_jerk_and_force_classes():
         m.pose, m.pose_rate, m.pose_accel, jerks).margin[:, JERK])
     with pytest.raises(ValueError, match="leg_jerk_max needs the trajectory's data"):
         stewart.feasibility(platform, m.t, m.pose, m.pose_rate, leg_jerk_max=1.0)
+
+
+def test_numpy_scalars_are_numbers_as_floats_are():
+    """speed_max, angular_speed_max, blend and sample_time as numpy scalars (a float32, an
+    array's max): the same move, bit for bit, as the equal Python floats."""
+    platform = stewart.Platform()
+    home = platform.check().home
+    goal = home + [0.03, -0.01, 0.01, 0.0, 0.0, 0.02]
+    via = [home + [0.02, 0.01, 0.0, 0.0, 0.0, 0.0]]
+    kw = dict(via=via, leg_speed_max=0.1, leg_accel_max=0.5)
+    plain = stewart.move(platform, home, goal, speed_max=0.25, angular_speed_max=0.5,
+                         blend=0.25, sample_time=2.0 ** -10, **kw)
+    numpy = stewart.move(platform, home, goal, speed_max=np.float32(0.25),
+                         angular_speed_max=np.max(np.array([0.5], np.float32)),
+                         blend=np.float32(0.25), sample_time=np.float32(2.0 ** -10), **kw)
+    for name in ("t", "pose", "pose_rate", "pose_accel"):
+        assert np.array_equal(getattr(plain, name), getattr(numpy, name)), name
+
+
+def test_limits_too_small_for_the_path_are_refused_naming_them():
+    """A speed bound whose square underflows stalls the time law: the refusal names the speed
+    limits to raise. A move too long for its samples gives the count as a number a person
+    reads (6 digits: the duration over the sample time), not hundreds of digits."""
+    platform = stewart.Platform()
+    home = platform.check().home
+    goal = home + [0.03, 0, 0, 0, 0, 0]
+    with pytest.raises(stewart.MoveError, match="speed_max.*give a larger one"):
+        stewart.move(platform, home, goal, speed_max=1e-300, leg_speed_max=0.1,
+                     leg_accel_max=0.5)
+    with pytest.raises(ValueError, match=r"the move takes (\S+) s: (\S+) samples") as info:
+        stewart.move(platform, home, goal, leg_speed_max=0.1, leg_accel_max=1e-300)
+    duration, count = (float(x) for x in re.search(r"takes (\S+) s: (\S+) samples",
+                                                    str(info.value)).groups())
+    assert len(str(info.value)) < 200 and count == pytest.approx(duration / 0.001, rel=1e-5)

@@ -8,6 +8,7 @@ in any locale; a state restored replays bit for bit. Then scenes/move_line.json,
 shipped machine, through the closed loop with the player in it (scripts/closed_loop.py --player,
 as the OSP and SSP structures run it) tracks as the Python-driven loop does, and
 scripts/machine_ssp.py writes a move scene's closed loop for libcosim."""
+import json
 import pathlib
 import re
 import subprocess
@@ -161,6 +162,33 @@ def test_a_bad_file_is_refused_naming_the_line_and_cause(tmp_path, version, text
         assert refusal and all(w in refusal[0] for w in words), (words, u.messages)
     finally:
         u.free()
+
+
+@pytest.mark.parametrize("version", VERSIONS)
+def test_a_spreadsheet_s_file_plays_as_the_plain_one(tmp_path, version):
+    """A byte order mark before the header, CRLF line ends, blanks after the fields and numbers
+    in scientific notation (a spreadsheet's "CSV UTF-8"): the same outputs, bit for bit, as the
+    plain file at its rows and between them."""
+    rows = random_rows(np.random.default_rng(5))
+    plain = write(tmp_path / "plain.csv", rows)
+    text = "\ufeff" + ",".join(HEADER) + "\r\n" + "".join(
+        ",".join("%.17e " % v for v in row) + "\r\n" for row in rows)
+    (tmp_path / "sheet.csv").write_bytes(text.encode("utf-8"))
+    outputs = []
+    for path in (plain, tmp_path / "sheet.csv"):
+        u = player(version, path)
+        try:
+            got = [u.get(DERIVED)]
+            for t0, t1 in zip(rows[:-1, 0], rows[1:, 0]):
+                assert u.step(t0, 0.5 * (t1 - t0)) == OK
+                got.append(u.get(DERIVED))
+                assert u.step(0.5 * (t0 + t1), t1 - 0.5 * (t0 + t1)) == OK
+                got.append(u.get(DERIVED))
+            outputs.append(np.array(got))
+        finally:
+            u.free()
+    assert np.array_equal(outputs[0], outputs[1])
+    assert np.array_equal(outputs[0][0], rows[0, 1:])
 
 
 @pytest.mark.parametrize("version", VERSIONS)
@@ -329,3 +357,40 @@ def test_control_design_runs_a_move_scene():
         position, angle = map(float, re.search(r"tracking error max (\S+) m, (\S+) rad",
                                                line).groups())
         assert position <= 1e-3 and angle <= 1e-3, line
+
+
+@pytest.mark.parametrize("script", ["closed_loop.py", "cueing_loop.py"])
+def test_the_loops_refuse_a_bad_step_or_a_unit_s_refusal_naming_the_cause(tmp_path, script):
+    """A step or duration that is not a finite time > 0: the option named (was a traceback, or a
+    division by zero); a step the plant refuses (0.3 s: the legs leave their strokes between
+    steps): the unit, the time and the plant's own message, not only fmpy's status."""
+    base = [sys.executable, str(closed_loop.ROOT / "scripts" / script), "--no-plot",
+            "--fmus", str(BUILD / "fmus" / "2.0"), "--out", str(tmp_path)]
+    base += (["--scene", "move_line", "--player"] if script == "closed_loop.py" else
+             ["--manoeuvre", "car_braking", "--platform",
+              str(FILES["simona_motion_base"])])
+    for bad in (["--step", "0"], ["--step", "nan"], ["--duration", "-1"]):
+        run = subprocess.run(base + bad, capture_output=True, text=True, timeout=300)
+        assert run.returncode == 2 and f"argument {bad[0]}" in run.stderr, run.stderr
+        assert "finite time > 0" in run.stderr and "Traceback" not in run.stderr
+    if script == "closed_loop.py":
+        run = subprocess.run(base + ["--step", "0.3"], capture_output=True, text=True,
+                             timeout=300)
+        assert run.returncode == 1 and "Traceback" not in run.stderr, run.stderr
+        assert "unit plant" in run.stderr and "left the stroke" in run.stderr, run.stderr
+
+
+def test_the_loop_plays_a_move_of_zero_length(tmp_path):
+    """A scene whose move goes nowhere and holds for no time: one communication point at the
+    start pose, without a division by its zero duration."""
+    scene = tmp_path / "still.json"
+    scene.write_text(json.dumps({"title": "still", "step": 0.001, "move": {
+        "kind": "line", "goal": [0, 0, 0.5, 0, 0, 0], "leg_speed_max": 0.05,
+        "leg_accel_max": 0.5, "hold": 0}}))
+    run = subprocess.run([sys.executable, str(closed_loop.ROOT / "scripts" / "closed_loop.py"),
+                          "--scene", str(scene), "--player", "--no-plot",
+                          "--fmus", str(BUILD / "fmus" / "2.0"), "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0 and "Warning" not in run.stderr, run.stderr
+    data = np.genfromtxt(tmp_path / "closed_loop.csv", delimiter=",", names=True)
+    assert data.size == 1 and float(data["z"]) == 0.5

@@ -147,8 +147,10 @@ static fmu_status read_lines(reader *r, FILE *file) {
     errno = 0;
     while (s == FMU_OK && getline(&line, &size, file) >= 0) {
         ++number;
-        if (blank(line)) continue;
-        s = have_header ? read_row(r, line, number) : read_header(r, line, number);
+        /* a UTF-8 byte order mark (spreadsheets write one) is not part of the first column */
+        char *text = number == 1 && !strncmp(line, "\xEF\xBB\xBF", 3) ? line + 3 : line;
+        if (blank(text)) continue;
+        s = have_header ? read_row(r, text, number) : read_header(r, text, number);
         have_header = 1;
     }
     if (s == FMU_OK && ferror(file))
