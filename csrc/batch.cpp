@@ -26,17 +26,17 @@ using stewart::put_row;
 // and together they are the whole struct: a struct laid out from the table has its size (a field
 // missing from a table is caught here).
 #define MIRROR_COLUMN(name, member, count, type, unit, description) type name[count];
-#define INVERSE_COLUMN(name, member, count, type, unit, description)                             \
-    static_assert(sizeof(stewart_inverse_output::member) == (count) * sizeof(type),              \
+#define INVERSE_COLUMN(name, member, count, type, unit, description)                \
+    static_assert(sizeof(stewart_inverse_output::member) == (count) * sizeof(type), \
                   #name ": count and type as in stewart_inverse_output");
-#define FORWARD_COLUMN(name, member, count, type, unit, description)                             \
-    static_assert(sizeof(stewart_forward_output::member) == (count) * sizeof(type),              \
+#define FORWARD_COLUMN(name, member, count, type, unit, description)                \
+    static_assert(sizeof(stewart_forward_output::member) == (count) * sizeof(type), \
                   #name ": count and type as in stewart_forward_output");
-#define PLANT_COLUMN(name, member, count, type, unit, description)                               \
-    static_assert(sizeof(stewart_plant_output::member) == (count) * sizeof(type),                \
+#define PLANT_COLUMN(name, member, count, type, unit, description)                \
+    static_assert(sizeof(stewart_plant_output::member) == (count) * sizeof(type), \
                   #name ": count and type as in stewart_plant_output");
-#define PLANT_STEP_COLUMN(name, member, count, type, unit, description)                          \
-    static_assert(sizeof(stewart_plant_statistics::member) == (count) * sizeof(type),            \
+#define PLANT_STEP_COLUMN(name, member, count, type, unit, description)               \
+    static_assert(sizeof(stewart_plant_statistics::member) == (count) * sizeof(type), \
                   #name ": count and type as in stewart_plant_statistics");
 struct InverseMirror {
     STEWART_INVERSE_OUTPUT_TABLE(MIRROR_COLUMN)
@@ -118,7 +118,8 @@ void write_forward_row(const stewart_forward_batch_outputs &out, size_t j,
 void write_plant_row(const stewart_plant_batch_outputs &out, size_t j,
                      const stewart_plant_output &o, const stewart_plant_statistics &step, int s) {
     STEWART_PLANT_OUTPUT_TABLE(PUT_COLUMN)
-#define PUT_STEP_COLUMN(name, member, count, type, unit, description) put_row(out.name, j, step.member);
+#define PUT_STEP_COLUMN(name, member, count, type, unit, description) \
+    put_row(out.name, j, step.member);
     STEWART_PLANT_STEP_TABLE(PUT_STEP_COLUMN)
 #undef PUT_STEP_COLUMN
     out.status[j] = s;
@@ -147,15 +148,14 @@ unsigned tail_block(stewart::VectorPath path, const stewart::QuadModel &model, c
     int status[4];
     stewart_inverse_batch_outputs tail_out{};
     tail_out.status = status;
-#define TAIL_POINT(name, member, count, type, unit, description)                                  \
+#define TAIL_POINT(name, member, count, type, unit, description) \
     if (out.name) tail_out.name = tail.name;
     STEWART_INVERSE_OUTPUT_TABLE(TAIL_POINT)
 #undef TAIL_POINT
-    const stewart::QuadRows quad = {rows[0], q_dot ? rows[1] : nullptr,
-                                    q_ddot ? rows[2] : nullptr};
+    const stewart::QuadRows quad = {rows[0], q_dot ? rows[1] : nullptr, q_ddot ? rows[2] : nullptr};
     const unsigned left = stewart::closed_form_quad(path, model, quad, tail_out, 0);
-#define TAIL_COPY(name, member, count, type, unit, description)                                   \
-    if (out.name)                                                                                 \
+#define TAIL_COPY(name, member, count, type, unit, description) \
+    if (out.name)                                               \
         std::memcpy(out.name + block * (count), tail.name, tail_rows * (count) * sizeof(type));
     STEWART_INVERSE_OUTPUT_TABLE(TAIL_COPY)
 #undef TAIL_COPY
@@ -166,14 +166,15 @@ unsigned tail_block(stewart::VectorPath path, const stewart::QuadModel &model, c
 }  // namespace
 
 stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double *q,
-                                     const double *q_dot, const double *q_ddot,
-                                     const stewart_inverse_batch_outputs *out,
-                                     stewart_batch_messages *messages, size_t *first_failed,
-                                     VectorPath path) {
+                                      const double *q_dot, const double *q_ddot,
+                                      const stewart_inverse_batch_outputs *out,
+                                      stewart_batch_messages *messages, size_t *first_failed,
+                                      VectorPath path) {
     FailureLog log(messages, first_failed, n);
     if (!d || !out || !out->status || (n > 0 && !q)) {
-        if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
-                                    "NULL argument to stewart_inverse_batch");
+        if (d)
+            stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                                 "NULL argument to stewart_inverse_batch");
         return STEWART_ERR_ARGUMENT;
     }
     stewart_inverse_input in{};
@@ -200,8 +201,8 @@ stewart_status stewart::inverse_batch(stewart_inverse *d, size_t n, const double
         for (size_t j = 0; j < n; ++j) solve_scalar(j);
     } else {
         if (!vector_path_available(path)) path = VectorPath::portable;
-        const QuadModel model = quad_model(m->geometry, m->platform, m->gravity, m->params,
-                                           d->options);
+        const QuadModel model =
+            quad_model(m->geometry, m->platform, m->gravity, m->params, d->options);
         // Blocks of four rows in order (a failing row's message keeps its place): the kernel
         // writes blocks in a run until one leaves rows to the scalar solve, which overwrites
         // them. The last block, if short, through four-row copies (its last row repeated), so
@@ -251,14 +252,16 @@ extern "C" stewart_status stewart_inverse_batch_current_rates(
         if (!std::isfinite(t[j]) || (j > 0 && !(t[j] > t[j - 1])))
             return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
                                         "t[%zu] = %.17g s: the times of a trajectory must be "
-                                        "finite and increase from row to row", j, t[j]);
-    const size_t bad = m->drives ? stewart::trajectory_current_rates(m->drive, m->params, n, t, *out)
-                                 : n;
+                                        "finite and increase from row to row",
+                                        j, t[j]);
+    const size_t bad =
+        m->drives ? stewart::trajectory_current_rates(m->drive, m->params, n, t, *out) : n;
     if (bad < n)
         return stewart::set_message(msg, size, STEWART_ERR_ARGUMENT,
                                     "row %zu (t = %.17g s): the currents' rates over t overflow "
                                     "(times too close for the currents' change): give the "
-                                    "trajectory's times farther apart", bad, t[bad]);
+                                    "trajectory's times farther apart",
+                                    bad, t[bad]);
     return stewart::clear_message(msg, size);
 }
 
@@ -278,9 +281,9 @@ extern "C" stewart_status stewart_inverse_batch_current_rates_from_jerks(
     o.fidelity = fidelity == STEWART_FULL ? STEWART_FULL : STEWART_MASSLESS;
     stewart_linearize *lin = stewart_linearize_create(m, &o, msg, size);
     if (!lin) return STEWART_ERR_MEMORY;
-    const stewart_status s = stewart::jerk_current_rates(
-        m->drive, m->params, lin, fidelity != STEWART_KINEMATIC, n, q, q_dot, q_ddot, q_dddot,
-        *out, msg, size);
+    const stewart_status s =
+        stewart::jerk_current_rates(m->drive, m->params, lin, fidelity != STEWART_KINEMATIC, n, q,
+                                    q_dot, q_ddot, q_dddot, *out, msg, size);
     stewart_linearize_free(lin);
     return s == STEWART_OK ? stewart::clear_message(msg, size) : s;
 }
@@ -298,16 +301,16 @@ namespace {
 
 // The rows of a forward batch: tracked (guesses: row 0's start or NULL) or each on its own
 // (cold: stewart_forward_solve_cold; guesses: n x 6 starts or NULL for home).
-stewart_status forward_rows(stewart_forward *d, size_t n, const double *time,
-                            const double *lengths, const double *rates, const double *accels,
-                            const double *guesses, bool cold,
-                            const stewart_forward_batch_outputs *out,
+stewart_status forward_rows(stewart_forward *d, size_t n, const double *time, const double *lengths,
+                            const double *rates, const double *accels, const double *guesses,
+                            bool cold, const stewart_forward_batch_outputs *out,
                             stewart_batch_messages *messages, size_t *first_failed) {
     FailureLog log(messages, first_failed, n);
     if (!d || !out || !out->status || (n > 0 && !lengths) || (accels && !rates)) {
-        if (d) stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
-                                    accels && !rates ? "stewart_forward_batch: accels need rates"
-                                                     : "NULL argument to stewart_forward_batch");
+        if (d)
+            stewart::set_message(d->message, sizeof d->message, STEWART_ERR_ARGUMENT,
+                                 accels && !rates ? "stewart_forward_batch: accels need rates"
+                                                  : "NULL argument to stewart_forward_batch");
         return STEWART_ERR_ARGUMENT;
     }
     stewart_forward_input in{};
@@ -322,8 +325,8 @@ stewart_status forward_rows(stewart_forward *d, size_t n, const double *time,
         in.use_guess = guesses && (cold || j == 0);
         if (in.use_guess) std::memcpy(in.guess, guesses + (cold ? 6 * j : 0), sizeof in.guess);
         stewart_forward_output r{};
-        const stewart_status s = cold ? stewart_forward_solve_cold(d, &in, &r)
-                                      : stewart_forward_solve(d, &in, &r);
+        const stewart_status s =
+            cold ? stewart_forward_solve_cold(d, &in, &r) : stewart_forward_solve(d, &in, &r);
         if (s != STEWART_OK) log.record(j, s, d->message);
         write_forward_row(*out, j, r, s);
     }
@@ -366,15 +369,13 @@ extern "C" stewart_status stewart_plant_batch(stewart_plant *plant, size_t n, co
 
 extern "C" stewart_status stewart_plant_batch_rows(stewart_plant *plant, size_t n, size_t first,
                                                    size_t stop, const double *time,
-                                                   const double *force,
-                                                   const double start_pose[6],
+                                                   const double *force, const double start_pose[6],
                                                    const double start_rate[6],
                                                    const stewart_plant_batch_outputs *out,
                                                    stewart_batch_messages *messages,
                                                    size_t *first_failed) {
     FailureLog log(messages, first_failed, stop);
-    if (!plant || !out || !out->status || (n > 0 && (!time || !force)) || first > stop ||
-        stop > n)
+    if (!plant || !out || !out->status || (n > 0 && (!time || !force)) || first > stop || stop > n)
         return STEWART_ERR_ARGUMENT;
     const stewart_plant_output none{};
     const stewart_plant_statistics no_steps{};
@@ -407,6 +408,7 @@ extern "C" stewart_status stewart_plant_batch_rows(stewart_plant *plant, size_t 
                   stewart_plant_message(plant));
     log.record(j, s, text);
     write_plant_row(*out, j, none, no_steps, s);
-    for (size_t k = j + 1; k < n; ++k) write_plant_row(*out, k, none, no_steps, STEWART_BATCH_NOT_RUN);
+    for (size_t k = j + 1; k < n; ++k)
+        write_plant_row(*out, k, none, no_steps, STEWART_BATCH_NOT_RUN);
     return s;
 }

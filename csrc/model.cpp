@@ -24,7 +24,8 @@ extern "C" stewart_model *stewart_model_create(const stewart_params *params, cha
     m->gravity = Eigen::Vector3d(params->gravity);
     m->frames = stewart::frames_of(*params);
     m->length_offsets = false;
-    for (double offset : params->length_offset) m->length_offsets = m->length_offsets || offset != 0;
+    for (double offset : params->length_offset)
+        m->length_offsets = m->length_offsets || offset != 0;
     for (int k = 0; k < STEWART_LEGS; ++k) m->drive[k] = stewart::leg_drive(*params, k);
     m->drives = stewart::has_drives(*params);
     m->full = stewart::build_full_platform(*params, stewart::FullDrive::ActuatorLengths,

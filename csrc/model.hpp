@@ -32,5 +32,5 @@ struct stewart_inverse {
     const stewart_model *model;
     stewart_inverse_options options;
     mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
-    std::unique_ptr<mbs_data> full;  // state and workspaces of the full level
+    std::unique_ptr<mbs_data> full;              // state and workspaces of the full level
 };

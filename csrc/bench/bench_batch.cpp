@@ -51,7 +51,7 @@ double median_ns_per_row(int repeats, size_t rows, const std::function<stewart_s
 // Every column of a batch's output tables, n rows each, and the batch outputs pointing at them:
 // the arrays the Python API asks for, so that both sides do the same work.
 #define BENCH_VECTOR(name, member, count, type, unit, description) std::vector<type> name;
-#define BENCH_SIZE(name, member, count, type, unit, description) name.resize(n * (count));
+#define BENCH_SIZE(name, member, count, type, unit, description) name.resize(n *(count));
 #define BENCH_POINT(name, member, count, type, unit, description) out.name = name.data();
 // The drive columns only for a model with drives (as the Python API and stewart-solve ask).
 #define BENCH_NO_DRIVE(name, member, count, type, unit, description) out.name = nullptr;
@@ -67,7 +67,9 @@ struct InverseColumns {
     stewart_inverse_batch_outputs outputs() {
         stewart_inverse_batch_outputs out{};
         STEWART_INVERSE_OUTPUT_TABLE(BENCH_POINT)
-        if (!drive_columns) { STEWART_INVERSE_DRIVE_OUTPUT_TABLE(BENCH_NO_DRIVE) }
+        if (!drive_columns) {
+            STEWART_INVERSE_DRIVE_OUTPUT_TABLE(BENCH_NO_DRIVE)
+        }
         out.status = status.data();
         return out;
     }
@@ -75,8 +77,9 @@ struct InverseColumns {
 struct ForwardColumns {
     STEWART_FORWARD_OUTPUT_TABLE(BENCH_VECTOR)
     std::vector<int> status;
-    explicit ForwardColumns(size_t n) : status(n) { STEWART_FORWARD_OUTPUT_TABLE(BENCH_SIZE) }
-    stewart_forward_batch_outputs outputs() {
+    explicit ForwardColumns(size_t n)
+        : status(n){STEWART_FORWARD_OUTPUT_TABLE(BENCH_SIZE)} stewart_forward_batch_outputs
+          outputs() {
         stewart_forward_batch_outputs out{};
         STEWART_FORWARD_OUTPUT_TABLE(BENCH_POINT)
         out.status = status.data();
@@ -87,11 +90,10 @@ struct PlantColumns {
     STEWART_PLANT_OUTPUT_TABLE(BENCH_VECTOR)
     STEWART_PLANT_STEP_TABLE(BENCH_VECTOR)
     std::vector<int> status;
-    explicit PlantColumns(size_t n) : status(n) {
-        STEWART_PLANT_OUTPUT_TABLE(BENCH_SIZE)
-        STEWART_PLANT_STEP_TABLE(BENCH_SIZE)
-    }
-    stewart_plant_batch_outputs outputs() {
+    explicit PlantColumns(size_t n)
+        : status(n){STEWART_PLANT_OUTPUT_TABLE(BENCH_SIZE)
+                        STEWART_PLANT_STEP_TABLE(BENCH_SIZE)} stewart_plant_batch_outputs
+          outputs() {
         stewart_plant_batch_outputs out{};
         STEWART_PLANT_OUTPUT_TABLE(BENCH_POINT)
         STEWART_PLANT_STEP_TABLE(BENCH_POINT)
@@ -136,8 +138,8 @@ int one_batch(const stewart_model *model, size_t n, const std::vector<double> &q
 // disturbed by other processes on a shared machine; studies/bench/batches.py reads the median as
 // a line's last value). Returns 0, 1 where a solver cannot be made.
 int time_kernels(const stewart_model *model, size_t n, const std::vector<double> &q,
-                 const std::vector<double> &q_dot, const std::vector<double> &q_ddot,
-                 int repeats, bool show_fastest) {
+                 const std::vector<double> &q_dot, const std::vector<double> &q_ddot, int repeats,
+                 bool show_fastest) {
     const char *level_name[] = {"inverse kinematic", "inverse massless"};
     const char *path_name[] = {"scalar", "portable", "avx2", "avx512vl"};
     InverseColumns columns(n, model);
@@ -151,17 +153,15 @@ int time_kernels(const stewart_model *model, size_t n, const std::vector<double>
             const double ns = median_ns_per_row(
                 repeats, n,
                 [&] {
-                    return stewart::inverse_batch(inverse, n, q.data(), q_dot.data(),
-                                                  q_ddot.data(), &out, nullptr, nullptr,
+                    return stewart::inverse_batch(inverse, n, q.data(), q_dot.data(), q_ddot.data(),
+                                                  &out, nullptr, nullptr,
                                                   stewart::VectorPath(path));
                 },
                 &fastest);
             char name[64];
             std::snprintf(name, sizeof name, "%s %s", level_name[level], path_name[path]);
-            if (show_fastest)
-                std::printf("%-30s %10.1f  (fastest %.1f)\n", name, ns, fastest);
-            else
-                std::printf("%-30s %10.1f\n", name, ns);
+            if (show_fastest) std::printf("%-30s %10.1f  (fastest %.1f)\n", name, ns, fastest);
+            else std::printf("%-30s %10.1f\n", name, ns);
             stewart_inverse_free(inverse);
         }
     return 0;

@@ -153,7 +153,8 @@ double run_plant(const stewart_model *m, int fidelity, int calls) {
 
 int main(int argc, char **argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: bench-calls ROW CALLS [NAME=VALUE ...] (rows: see the source)\n");
+        std::fprintf(stderr,
+                     "usage: bench-calls ROW CALLS [NAME=VALUE ...] (rows: see the source)\n");
         return 2;
     }
     const char *row = argv[1];
@@ -175,7 +176,8 @@ int main(int argc, char **argv) {
         }
         std::memcpy(name, argv[a], length);
         name[length] = '\0';
-        if (stewart_params_set(&params, name, std::atof(equals + 1), msg, sizeof msg) != STEWART_OK) {
+        if (stewart_params_set(&params, name, std::atof(equals + 1), msg, sizeof msg) !=
+            STEWART_OK) {
             std::fprintf(stderr, "bench-calls: %s\n", msg);
             return 2;
         }

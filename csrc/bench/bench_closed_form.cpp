@@ -56,15 +56,19 @@ int main(int argc, char **argv) {
     const double kin = median_ns_per_pose(m, STEWART_KINEMATIC, poses, &checksum);
     const double mass = median_ns_per_pose(m, STEWART_MASSLESS, poses, &checksum);
     char report[256];
-    std::snprintf(report, sizeof report,
-                  "closed-form levels, median of 201 batches of 1201 poses (yaw manoeuvre):\n"
-                  "  kinematic: %.1f ns/pose\n  massless:  %.1f ns/pose\n  ratio massless/kinematic: %.2f\n",
-                  kin, mass, mass / kin);
+    std::snprintf(
+        report, sizeof report,
+        "closed-form levels, median of 201 batches of 1201 poses (yaw manoeuvre):\n"
+        "  kinematic: %.1f ns/pose\n  massless:  %.1f ns/pose\n  ratio massless/kinematic: %.2f\n",
+        kin, mass, mass / kin);
     std::fputs(report, stdout);
     std::fprintf(stderr, "(checksum %g)\n", checksum);
     if (argc > 1) {
         FILE *f = std::fopen(argv[1], "w");
-        if (f) { std::fputs(report, f); std::fclose(f); }
+        if (f) {
+            std::fputs(report, f);
+            std::fclose(f);
+        }
     }
     stewart_model_free(m);
     return 0;

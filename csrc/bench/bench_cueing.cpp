@@ -75,7 +75,8 @@ int main(int argc, char **argv) {
     failed |= run(model, "gentle, no lookahead", steps, 0.5, 0.05, 0.0);
     failed |= run(model, "violent (2 g, 200 deg/s)", steps, 2 * 9.81, 200 * M_PI / 180, 0.5);
     stewart_params limited = *stewart_model_params(model);
-    for (int k = 0; k < STEWART_LEGS; ++k) limited.leg_speed_max[k] = 0.3, limited.leg_accel_max[k] = 3.0;
+    for (int k = 0; k < STEWART_LEGS; ++k)
+        limited.leg_speed_max[k] = 0.3, limited.leg_accel_max[k] = 3.0;
     stewart_model *legs = bench::make_model("bench-cueing", &limited);
     if (!legs) return 1;
     failed |= run(legs, "leg limits, gentle, lookahead 0.5 s", steps, 0.5, 0.05, 0.5);

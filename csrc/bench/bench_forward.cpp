@@ -40,8 +40,8 @@ struct Geometry {
 };
 
 void baseline_lengths(const Geometry &g, const double q[6], double L[6]) {
-    const double cr = std::cos(q[3]), sr = std::sin(q[3]), cp = std::cos(q[4]),
-                 sp = std::sin(q[4]), cy = std::cos(q[5]), sy = std::sin(q[5]);
+    const double cr = std::cos(q[3]), sr = std::sin(q[3]), cp = std::cos(q[4]), sp = std::sin(q[4]),
+                 cy = std::cos(q[5]), sy = std::sin(q[5]);
     const double R[3][3] = {{cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr},
                             {sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr},
                             {-sp, cp * sr, cp * cr}};
@@ -84,7 +84,8 @@ int baseline_newton(const Geometry &g, const double target[6], double q[6], doub
     for (int it = 0; it <= 50; ++it) {
         baseline_lengths(g, q, L);
         double worst = 0;
-        for (int k = 0; k < 6; ++k) F[k] = L[k] - target[k], worst = std::max(worst, std::fabs(F[k]));
+        for (int k = 0; k < 6; ++k)
+            F[k] = L[k] - target[k], worst = std::max(worst, std::fabs(F[k]));
         if (worst <= tol) return it;
         double J[6][6];
         for (int j = 0; j < 6; ++j) {
@@ -272,9 +273,14 @@ std::string line(const char *name, const Stats &s) {
 int write_map(const stewart_model *m, Solvers *d, const char *path) {
     FILE *out = std::fopen(path, "w");
     if (!out) return 1;
-    std::fprintf(out, "slice,u,v,inside_stroke,condition,truth_branch,status,iterations,branch,error\n");
+    std::fprintf(out,
+                 "slice,u,v,inside_stroke,condition,truth_branch,status,iterations,branch,error\n");
     const stewart_params *p = stewart_model_params(m);
-    struct Slice { const char *name; int u, v; double u0, u1, v0, v1; };
+    struct Slice {
+        const char *name;
+        int u, v;
+        double u0, u1, v0, v1;
+    };
     const Slice slices[3] = {{"x-y", 0, 1, -0.4, 0.4, -0.4, 0.4},
                              {"roll-pitch", 3, 4, -0.8, 0.8, -0.8, 0.8},
                              {"yaw-z", 5, 2, -1.8, 1.8, 0.1, 0.9}};
@@ -297,8 +303,8 @@ int write_map(const stewart_model *m, Solvers *d, const char *path) {
                 stewart_status s = STEWART_ERR_SINGULAR;
                 if (inv == STEWART_OK) {
                     stewart_forward_reset(d->forward);
-                    s = forward_solve(d->forward, 0, legs.lengths.length, nullptr, nullptr,
-                                      nullptr, &r);
+                    s = forward_solve(d->forward, 0, legs.lengths.length, nullptr, nullptr, nullptr,
+                                      &r);
                 }
                 // The branch of the pose the lengths came from: solved from itself.
                 stewart_forward_output self{};
@@ -306,10 +312,12 @@ int write_map(const stewart_model *m, Solvers *d, const char *path) {
                 if (inv == STEWART_OK) {
                     const stewart_status t = forward_solve(d->forward, 0, legs.lengths.length,
                                                            nullptr, nullptr, pose.q, &self);
-                    if (t == STEWART_OK || t == STEWART_ERR_OTHER_BRANCH) truth_branch = self.branch;
+                    if (t == STEWART_OK || t == STEWART_ERR_OTHER_BRANCH)
+                        truth_branch = self.branch;
                 }
                 double error = 0;
-                for (int c = 0; c < 6; ++c) error = std::max(error, std::fabs(r.pose.q[c] - pose.q[c]));
+                for (int c = 0; c < 6; ++c)
+                    error = std::max(error, std::fabs(r.pose.q[c] - pose.q[c]));
                 std::fprintf(out, "%s,%.6g,%.6g,%d,%.6g,%d,%d,%d,%d,%.3g\n", sl.name, pose.q[sl.u],
                              pose.q[sl.v], inside ? 1 : 0, inv == STEWART_OK ? legs.condition : 0,
                              truth_branch, static_cast<int>(s), r.iterations, r.branch,

@@ -75,7 +75,8 @@ Result run(const FullPlatform &model, const mbs::SolverOptions &kind, bool close
             } else {
                 stewart::full_set_drivers(model.full_layout, motion, legs, state);
                 s = stewart::from_mbs(mbs::solve_step(state, smp.t, kind, true));
-                out.force[0] = -state.lambda[model.full->mechanism.first_row[model.full_layout.driver_joint[0]]];
+                out.force[0] = -state.lambda[model.full->mechanism
+                                                 .first_row[model.full_layout.driver_joint[0]]];
                 out.iterations = state.stats.iterations;
             }
             const double us = 1e-3 * bench::ns_since(start);

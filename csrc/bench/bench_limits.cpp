@@ -121,8 +121,8 @@ int main(int argc, char **argv) {
                              : "thesis (default)");
     say(save, title);
     stewart_model *model = stewart_model_create(&params, message, sizeof message);
-    stewart_limits *limits = model ? stewart_limits_create(model, &options, message, sizeof message)
-                                   : nullptr;
+    stewart_limits *limits =
+        model ? stewart_limits_create(model, &options, message, sizeof message) : nullptr;
     if (!limits) {
         std::fprintf(stderr, "bench-limits: %s\n", message);
         if (save) std::fclose(save);

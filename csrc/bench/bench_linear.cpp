@@ -85,8 +85,8 @@ struct Variants {
             return a_col(x) != a_col(y) ? a_col(x) < a_col(y) : a_row(x) < a_row(y);
         });
         context = mbs::sundials::make_context();
-        klu_matrix.reset(SUNSparseMatrix(n, n, static_cast<sunindextype>(entries.size()),
-                                         CSC_MAT, context.get()));
+        klu_matrix.reset(SUNSparseMatrix(n, n, static_cast<sunindextype>(entries.size()), CSC_MAT,
+                                         context.get()));
         sunindextype *colptr = SUNSparseMatrix_IndexPointers(klu_matrix.get());
         sunindextype *rowind = SUNSparseMatrix_IndexValues(klu_matrix.get());
         klu_slot.assign(entries.size(), 0);
@@ -217,7 +217,8 @@ double residual(const mbs::Mechanism &m, const Sample &s, const double *lambda) 
     std::vector<double> r(s.g);
     double scale = 0;
     for (double x : s.g) scale = std::max(scale, std::fabs(x));
-    for (int t = 0; t < m.values(); ++t) r[m.pattern_col[t]] -= s.values[t] * lambda[m.pattern_row[t]];
+    for (int t = 0; t < m.values(); ++t)
+        r[m.pattern_col[t]] -= s.values[t] * lambda[m.pattern_row[t]];
     double worst = 0;
     for (double x : r) worst = std::max(worst, std::fabs(x));
     return worst / scale;
@@ -254,8 +255,8 @@ int main(int argc, char **argv) {
             s.values.resize(m.values());
             mbs::assemble_jacobian(m, state.q.data(), state.drive.data(), s.values.data());
             s.g.resize(m.coordinates);
-            mbs::applied_minus_inertial(m, state.q.data(), state.q_dot.data(),
-                                        state.q_ddot.data(), s.g.data());
+            mbs::applied_minus_inertial(m, state.q.data(), state.q_dot.data(), state.q_ddot.data(),
+                                        s.g.data());
         }
     }
     Variants v(m);

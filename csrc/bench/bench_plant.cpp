@@ -20,7 +20,7 @@ namespace {
 
 struct Drive {
     double h;
-    std::vector<double> force, rate;  // 6 per sample
+    std::vector<double> force, rate;         // 6 per sample
     std::vector<stewart_plant_input> input;  // step i: samples i to i + 1, cubic Hermite
 };
 
@@ -98,8 +98,7 @@ double cpu_seconds() {
     return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-Result run(const stewart_model *model, const stewart_plant_options &o, const Drive &d,
-           int passes) {
+Result run(const stewart_model *model, const stewart_plant_options &o, const Drive &d, int passes) {
     Result r;
     char msg[STEWART_MESSAGE_SIZE];
     stewart_plant *plant = stewart_plant_create(model, &o, msg, sizeof msg);
@@ -168,8 +167,7 @@ void closed_loop(const stewart_model *model, double kp, double kd, double h, dou
         double force[6];
         if (stewart_inverse_solve(data, &in, &inverse) != STEWART_OK) break;
         for (int k = 0; k < 6; ++k)
-            force[k] = inverse.force[k] +
-                       kp * (inverse.lengths.length[k] - out.lengths.length[k]) +
+            force[k] = inverse.force[k] + kp * (inverse.lengths.length[k] - out.lengths.length[k]) +
                        kd * (inverse.lengths.length_rate[k] - out.lengths.length_rate[k]);
         stewart_plant_input held{};  // zero-order hold
         held.h = h;
@@ -215,8 +213,8 @@ void with_drives(stewart_params &p) {
 
 // The currents of the inverse side's forces by the plant's drive law (plant_drive.hpp, with the
 // plant's smoothing speed vs); rates by the same central differences.
-bool make_current_drive(const stewart_model *model, const stewart_params &p, int fidelity,
-                        double h, double duration, double vs, Drive &d) {
+bool make_current_drive(const stewart_model *model, const stewart_params &p, int fidelity, double h,
+                        double duration, double vs, Drive &d) {
     stewart_inverse *data = inverse_at(model, fidelity);
     const int n = start_drive(h, duration, d);
     auto current = [&](double t, double i[6]) {
@@ -224,9 +222,9 @@ bool make_current_drive(const stewart_model *model, const stewart_params &p, int
         stewart_inverse_input in = {combined_cue(t)};
         if (stewart_inverse_solve(data, &in, &out) != STEWART_OK) return false;
         for (int k = 0; k < 6; ++k) {
-            i[k] = stewart::drive_current(stewart::leg_drive(p, k), out.force[k],
-                                          out.lengths.length_rate[k],
-                                          out.lengths.length_accel[k], vs);
+            i[k] =
+                stewart::drive_current(stewart::leg_drive(p, k), out.force[k],
+                                       out.lengths.length_rate[k], out.lengths.length_accel[k], vs);
         }
         return true;
     };
@@ -311,8 +309,7 @@ bool drives_one(int fidelity, const std::string &kind, double vs) {
     stewart_params_default(&p);
     if (current) with_drives(p);
     for (int k = 0; k < 6; ++k) {
-        if (lossless || kind == "friction")
-            p.screw_efficiency[k] = p.screw_back_efficiency[k] = 1;
+        if (lossless || kind == "friction") p.screw_efficiency[k] = p.screw_back_efficiency[k] = 1;
         if (lossless || kind == "screw")
             p.coulomb_friction[k] = p.stribeck_friction[k] = p.viscous_friction[k] = 0;
     }
@@ -336,9 +333,7 @@ bool drives_one(int fidelity, const std::string &kind, double vs) {
 
 int main(int argc, char **argv) {
     if (argc > 4 && std::string(argv[1]) == "drives-one")
-        return drives_one(std::atoi(argv[2]), argv[3], std::atof(argv[4]))
-                   ? 0
-                   : 1;
+        return drives_one(std::atoi(argv[2]), argv[3], std::atof(argv[4])) ? 0 : 1;
     // "bench-plant drives": the drives' comparison alone (for callgrind, docs/latency.md)
     if (argc > 1 && std::string(argv[1]) == "drives") {
         std::string report;
@@ -399,8 +394,8 @@ int main(int argc, char **argv) {
                 const Result r = run(model, o, drive[f], passes);
                 ok = ok && r.ok;
                 std::snprintf(line, sizeof line, "%-9s %-7s %-8.0e %-8.0e %7.2f  %8.1f  %10.2e\n",
-                              names[f], kShortNames[method], rtol,
-                              rtol * 1e-2, r.us_per_step, r.rhs_per_step, r.pose_error);
+                              names[f], kShortNames[method], rtol, rtol * 1e-2, r.us_per_step,
+                              r.rhs_per_step, r.pose_error);
                 report += line;
             }
 
@@ -428,10 +423,8 @@ int main(int argc, char **argv) {
         for (double h : {1e-3, 2e-3, 5e-3}) {
             double position, angle;
             closed_loop(model, g[0], g[1], h, position, angle);
-            if (position < 0)
-                std::snprintf(line, sizeof line, " %-23s", "unstable");
-            else
-                std::snprintf(line, sizeof line, " %.2e / %.2e    ", position, angle);
+            if (position < 0) std::snprintf(line, sizeof line, " %-23s", "unstable");
+            else std::snprintf(line, sizeof line, " %.2e / %.2e    ", position, angle);
             report += line;
         }
         report += "\n";

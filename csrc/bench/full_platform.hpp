@@ -14,10 +14,11 @@ struct FullPlatform {
     stewart::FullLayout full_layout;
     std::unique_ptr<mbs_model> full;  // null if the build failed (the message was printed)
 
-    explicit FullPlatform(const stewart_params &params) : geometry(stewart::platform_geometry(params)) {
+    explicit FullPlatform(const stewart_params &params)
+        : geometry(stewart::platform_geometry(params)) {
         char msg[STEWART_MESSAGE_SIZE];
-        full = stewart::build_full_platform(params, stewart::FullDrive::ActuatorLengths, full_layout,
-                                            msg, sizeof msg);
+        full = stewart::build_full_platform(params, stewart::FullDrive::ActuatorLengths,
+                                            full_layout, msg, sizeof msg);
         if (!full) std::fprintf(stderr, "%s\n", msg);
     }
 };

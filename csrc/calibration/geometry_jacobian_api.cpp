@@ -34,7 +34,9 @@ extern "C" stewart_status stewart_geometry_jacobian(const stewart_model *model,
                                                     char *msg, size_t size) {
     if (!model || !pose || !out)
         return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s is NULL",
-                           !model ? "model" : !pose ? "pose" : "out");
+                           !model  ? "model"
+                           : !pose ? "pose"
+                                   : "out");
     for (int i = 0; i < 6; ++i)
         if (!std::isfinite(pose[i]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,

@@ -79,8 +79,10 @@ void find_hints(const stewart_model &m, stewart_check_report &r) {
     bool fits_as_entered = h != 0.0, misses_at_home = false;
     for (int k = 0; k < 6; ++k) {
         const double entered = (g.platform_points.col(k) - g.base_points.col(k)).norm();
-        fits_as_entered = fits_as_entered && entered >= r.stroke_min[k] && entered <= r.stroke_max[k];
-        misses_at_home = misses_at_home || r.length[k] < r.stroke_min[k] || r.length[k] > r.stroke_max[k];
+        fits_as_entered =
+            fits_as_entered && entered >= r.stroke_min[k] && entered <= r.stroke_max[k];
+        misses_at_home =
+            misses_at_home || r.length[k] < r.stroke_min[k] || r.length[k] > r.stroke_max[k];
     }
     fits_as_entered = fits_as_entered && misses_at_home;
     if (highest_top < lowest_base || like_base_frame || fits_as_entered)
@@ -166,10 +168,11 @@ void add_legs_and_margins(const stewart_check_report &r, const Shown &u, std::st
     for (int a = 0; a < 6; ++a)
         add(out, "%s %s %.6g %s", a ? "," : "", kAxes[a], u.axis(a, r.home[a]), u.axis_unit(a));
     const std::string unit = std::string("[") + u.length_name + "]";
-    add(out, "\nleg  length %-7s stroke %-22s to the nearer end %s\n", unit.c_str(),
-        unit.c_str(), unit.c_str());
+    add(out, "\nleg  length %-7s stroke %-22s to the nearer end %s\n", unit.c_str(), unit.c_str(),
+        unit.c_str());
     for (int k = 0; k < 6; ++k) {
-        const double margin = std::min(r.length[k] - r.stroke_min[k], r.stroke_max[k] - r.length[k]);
+        const double margin =
+            std::min(r.length[k] - r.stroke_min[k], r.stroke_max[k] - r.length[k]);
         add(out, "%d    %-13.7g  %-12.7g .. %-12.7g   %.6g%s\n", k + 1, r.length[k] * u.length,
             r.stroke_min[k] * u.length, r.stroke_max[k] * u.length, margin * u.length,
             margin < 0 ? "  (outside)" : "");
@@ -190,21 +193,24 @@ void add_ranges(const stewart_check_report &r, const Shown &u, std::string &out)
         add(out, "  %-5s %.6g .. %.6g %s  (%s / %s)\n", kAxes[a], u.axis(a, r.ranges.min[a]),
             u.axis(a, r.ranges.max[a]), u.axis_unit(a),
             limit_at(r.ranges.min_limit[a], r.ranges.min_leg[a], r.ranges.min_other_leg[a]).c_str(),
-            limit_at(r.ranges.max_limit[a], r.ranges.max_leg[a], r.ranges.max_other_leg[a]).c_str());
+            limit_at(r.ranges.max_limit[a], r.ranges.max_leg[a], r.ranges.max_other_leg[a])
+                .c_str());
     }
 }
 
 void add_hints(const stewart_check_report &r, const Shown &u, std::string &out) {
     if (r.hints & STEWART_CHECK_UNITS)
-        add(out, "hint: units? The legs (%.6g to %.6g %s at home) do not fit the strokes or the "
-                 "joints (spread %.6g %s): are the joints, home_height and the strokes all in "
-                 "the same unit (metres, or the file's \"units\")?\n",
+        add(out,
+            "hint: units? The legs (%.6g to %.6g %s at home) do not fit the strokes or the "
+            "joints (spread %.6g %s): are the joints, home_height and the strokes all in "
+            "the same unit (metres, or the file's \"units\")?\n",
             *std::min_element(r.length, r.length + 6) * u.length, u.length_name,
             *std::max_element(r.length, r.length + 6) * u.length, r.joint_spread * u.length,
             u.length_name);
     if (r.hints & STEWART_CHECK_SWAPPED_LEGS)
-        add(out, "hint: swapped legs? Legs %d and %d cross each other (seen from above): leg k "
-                 "joins base_joint k to platform_joint k; check the order of both lists.\n",
+        add(out,
+            "hint: swapped legs? Legs %d and %d cross each other (seen from above): leg k "
+            "joins base_joint k to platform_joint k; check the order of both lists.\n",
             r.crossing[0], r.crossing[1]);
     if (r.hints & STEWART_CHECK_FRAME)
         add(out, "hint: frame? The platform joints are below the base joints at home, their z "
@@ -227,23 +233,23 @@ bool set_unit(const char *name, const char *si, double &factor, const char *&sho
 
 extern "C" {
 
-stewart_status stewart_check_home(const stewart_model *model,
-                                  const stewart_limits_options *options,
+stewart_status stewart_check_home(const stewart_model *model, const stewart_limits_options *options,
                                   stewart_check_report *report, char *message, size_t size) {
     if (!model || !report)
         return set_message(message, size, STEWART_ERR_ARGUMENT, "%s is NULL",
                            model ? "report" : "model");
     stewart_limits_options defaults;
     stewart_limits_options_default(&defaults);
-    stewart_limits *limits = stewart_limits_create(model, options ? options : &defaults, message, size);
+    stewart_limits *limits =
+        stewart_limits_create(model, options ? options : &defaults, message, size);
     if (!limits) return options ? STEWART_ERR_PARAMETER : STEWART_ERR_MEMORY;
     stewart_check_report &r = *report;
     r = stewart_check_report{};
     home_pose(*model, r.home);
     const stewart::PlatformGeometry &g = model->geometry;
     for (int k = 0; k < 6; ++k) {
-        const Eigen::Vector3d top = g.platform_points.col(k) +
-                                    Eigen::Vector3d(0, 0, model->params.home_height);
+        const Eigen::Vector3d top =
+            g.platform_points.col(k) + Eigen::Vector3d(0, 0, model->params.home_height);
         r.length[k] = (top - g.base_points.col(k)).norm();
         r.stroke_min[k] = model->params.stroke_min[k];
         r.stroke_max[k] = model->params.stroke_max[k];
@@ -279,12 +285,12 @@ size_t stewart_check_text_in(const stewart_check_report *report, const char *len
     } else {
         add_legs_and_margins(*report, u, out);
         add_ranges(*report, u, out);
-        if (report->valid)
-            out += "home is within every limit.\n";
+        if (report->valid) out += "home is within every limit.\n";
         else
             add(out, "home is NOT a valid pose: the first limit it fails is %s.\n",
                 limit_at(report->limits.first, report->limits.leg[report->limits.first - 1],
-                         report->limits.other_leg[report->limits.first - 1]).c_str());
+                         report->limits.other_leg[report->limits.first - 1])
+                    .c_str());
         add_hints(*report, u, out);
     }
     if (text && size > 0) {

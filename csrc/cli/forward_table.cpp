@@ -52,8 +52,7 @@ std::string read_table(const std::string &path, Table &table) {
                 if (header[c] == kGroups[g] + std::to_string(k + 1))
                     col[g][k] = static_cast<int>(c), ++found[g];
     }
-    if (col_t < 0 || found[0] != 6)
-        return path + ": the header must contain t,L1,L2,L3,L4,L5,L6";
+    if (col_t < 0 || found[0] != 6) return path + ": the header must contain t,L1,L2,L3,L4,L5,L6";
     for (int g = 1; g < 3; ++g) {
         if (found[g] != 0 && found[g] != 6)
             return path + ": the " + kGroups[g] + " columns must be all six (" + kGroups[g] +
@@ -164,7 +163,8 @@ int run_forward(const char *in_path, const char *out_path, const stewart_params 
     stewart_model_free(model);
     if (status != 0) return status;
     if (warned[0] || warned[1])
-        std::fprintf(stderr, "stewart-solve: warning: %d rows with a length outside the stroke, "
+        std::fprintf(stderr,
+                     "stewart-solve: warning: %d rows with a length outside the stroke, "
                      "%d rows near a singular pose (condition > %g)\n",
                      warned[0], warned[1], options.warn_condition);
     FILE *out = std::fopen(out_path, "w");

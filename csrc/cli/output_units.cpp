@@ -28,9 +28,10 @@ bool parse_output_units(const char *tool, const char *text, OutputUnits &units) 
     OutputUnits parsed = units;
     for (const std::string &word : csv_cells(text))
         if (!set_unit(word, parsed)) {
-            std::fprintf(stderr, "%s: --units %s: '%s' is neither a length unit (m, cm, mm, um, "
-                         "nm, in) nor an angle unit (rad, deg, mrad, urad)\n", tool, text,
-                         word.c_str());
+            std::fprintf(stderr,
+                         "%s: --units %s: '%s' is neither a length unit (m, cm, mm, um, "
+                         "nm, in) nor an angle unit (rad, deg, mrad, urad)\n",
+                         tool, text, word.c_str());
             return false;
         }
     units = parsed;

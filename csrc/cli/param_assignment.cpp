@@ -37,7 +37,8 @@ bool set_platform_param(const char *program, const std::string &name, double val
 
 bool read_platform_file(const char *program, const char *path, stewart_params &params) {
     char message[STEWART_MESSAGE_SIZE];
-    if (stewart_params_read_json_file(&params, path, nullptr, message, sizeof message) != STEWART_OK) {
+    if (stewart_params_read_json_file(&params, path, nullptr, message, sizeof message) !=
+        STEWART_OK) {
         std::fprintf(stderr, "%s: --platform %s: %s\n", program, path, message);
         return false;
     }

@@ -70,14 +70,15 @@ std::vector<double> finite_difference(const std::vector<double> &t, const std::v
     return d;
 }
 
-std::string read_pose_table(const std::string &path, PoseTable &table,
-                            MissingDerivatives missing) {
+std::string read_pose_table(const std::string &path, PoseTable &table, MissingDerivatives missing) {
     const bool at_rest = missing == MissingDerivatives::kZero;
     std::ifstream in(path);
     if (!in) return "cannot open " + path;
     std::string line;
-    if (!std::getline(in, line)) return path + " is empty: expected the header t,x,y,z,roll,pitch,yaw";
-    if (line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3); // a spreadsheet's byte order mark
+    if (!std::getline(in, line))
+        return path + " is empty: expected the header t,x,y,z,roll,pitch,yaw";
+    if (line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+        line.erase(0, 3);  // a spreadsheet's byte order mark
     const std::vector<std::string> header = split(line);
 
     int col_t = find_column(header, "t");
@@ -88,13 +89,16 @@ std::string read_pose_table(const std::string &path, PoseTable &table,
     for (int r = 0; r < 4; ++r)
         for (int i = 0; i < 6; ++i) {
             col[r][i] = find_column(header, std::string(kPoseNames[i]) + suffix[r]);
-            if (col[r][i] < 0) have[r] = false; else ++found[r];
+            if (col[r][i] < 0) have[r] = false;
+            else ++found[r];
         }
     if ((col_t < 0 && !at_rest) || !have[0])
         return path + ": the header must contain t,x,y,z,roll,pitch,yaw";
     if (at_rest && (found[1] || found[2] || found[3]))
         return path + ": --static says the poses are at rest, but the file gives the " +
-               (found[1] ? "x_dot" : found[2] ? "x_ddot" : "x_dddot") +
+               (found[1]   ? "x_dot"
+                : found[2] ? "x_ddot"
+                           : "x_dddot") +
                ".. columns: drop --static or those columns";
     for (int r = 1; r < 4; ++r)
         if (found[r] != 0 && found[r] != 6)

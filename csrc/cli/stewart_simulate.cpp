@@ -22,21 +22,20 @@ namespace {
 using stewart::kPoseNames;
 
 int usage(FILE *to) {
-    std::fprintf(to,
-                 "usage: stewart-simulate [--fidelity massless|full] [--platform FILE.json] "
-                 "[--param NAME=VALUE ...] [--view[=PAGE.html]] IN.csv OUT.csv\n"
-                 "  --platform: a platform file (docs/geometry.md: parameter names to values); "
-                 "files and\n"
-                 "           --param apply in the order given\n"
-                 "  --param: a platform parameter by its FMU name (e.g. payload_mass=50), the "
-                 "start\n"
-                 "           state x0 y0 z0 roll0 pitch0 yaw0, x_dot0 .. yaw_dot0 (default: at "
-                 "rest at home),\n"
-                 "           or a plant option (the library's table; default in brackets):\n");
+    std::fprintf(to, "usage: stewart-simulate [--fidelity massless|full] [--platform FILE.json] "
+                     "[--param NAME=VALUE ...] [--view[=PAGE.html]] IN.csv OUT.csv\n"
+                     "  --platform: a platform file (docs/geometry.md: parameter names to values); "
+                     "files and\n"
+                     "           --param apply in the order given\n"
+                     "  --param: a platform parameter by its FMU name (e.g. payload_mass=50), the "
+                     "start\n"
+                     "           state x0 y0 z0 roll0 pitch0 yaw0, x_dot0 .. yaw_dot0 (default: at "
+                     "rest at home),\n"
+                     "           or a plant option (the library's table; default in brackets):\n");
     for (int i = 0; i < stewart_plant_option_count(); ++i) {
         const stewart_option_info *o = stewart_plant_option(i);
-        std::fprintf(to, "             %s [%s]: %s\n", o->name, stewart::ExactText(o->default_value).c_str(),
-                     o->description);
+        std::fprintf(to, "             %s [%s]: %s\n", o->name,
+                     stewart::ExactText(o->default_value).c_str(), o->description);
     }
     std::fprintf(to,
                  "  IN.csv:  t,F1..F6 [s, N] (F_k > 0 pushes platform and base apart; linear in "
@@ -77,7 +76,8 @@ bool set_param(const char *assignment, Settings &s) {
     const int option = stewart_plant_option_find(name.c_str());
     if (option >= 0) {
         char message[STEWART_MESSAGE_SIZE];
-        if (stewart_plant_option_set(&s.options, option, value, message, sizeof message) == STEWART_OK)
+        if (stewart_plant_option_set(&s.options, option, value, message, sizeof message) ==
+            STEWART_OK)
             return true;
         std::fprintf(stderr, "stewart-simulate: --param %s\n", message);
         return false;
@@ -90,8 +90,8 @@ std::vector<std::string> split(const std::string &line) {
     size_t start = 0;
     for (;;) {
         const size_t comma = line.find(',', start);
-        std::string cell = line.substr(start, comma == std::string::npos ? std::string::npos
-                                                                         : comma - start);
+        std::string cell =
+            line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
         const size_t b = cell.find_first_not_of(" \t\r"), e = cell.find_last_not_of(" \t\r");
         out.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
         if (comma == std::string::npos) return out;
@@ -147,8 +147,8 @@ std::string read_forces(const char *path, ForceTable &table) {
                        "): '" + cell + "' is not a finite number";
         }
         if (!table.t.empty() && !(row[0] > table.t.back()))
-            return where + ", column " + std::to_string(column_of[0] + 1) + " (t): t = " +
-                   number_text(row[0]) + " does not increase";
+            return where + ", column " + std::to_string(column_of[0] + 1) +
+                   " (t): t = " + number_text(row[0]) + " does not increase";
         table.t.push_back(row[0]);
         for (int k = 1; k <= 6; ++k) table.force.push_back(row[k]);
     }
@@ -163,8 +163,8 @@ std::string stroke_warning(const stewart_params &p, const stewart_plant_output &
         if (o.stroke_legs & (1 << k)) {
             std::snprintf(text, sizeof text,
                           "leg %d has left its stroke: length %.9g m outside [%g, %g] m (end "
-                          "stops are not modelled)", k + 1, o.lengths.length[k], p.stroke_min[k],
-                          p.stroke_max[k]);
+                          "stops are not modelled)",
+                          k + 1, o.lengths.length[k], p.stroke_min[k], p.stroke_max[k]);
             break;
         }
     return text;
@@ -176,8 +176,8 @@ struct Row {
 };
 
 // The drives' columns (input current or voltage only: force input writes today's columns).
-const char *const kDriveColumns[] = {"force", "current", "voltage", "motor_speed",
-                                     "motor_torque", "electrical_power"};
+const char *const kDriveColumns[] = {"force",       "current",      "voltage",
+                                     "motor_speed", "motor_torque", "electrical_power"};
 
 void write_header(FILE *f, bool drives) {
     std::fprintf(f, "t");
@@ -204,8 +204,8 @@ void write_row(FILE *f, const Row &r, bool drives) {
     std::fprintf(f, ",%d,%ld,%ld,%ld,%ld", o.warnings, r.stats.steps, r.stats.rhs_evaluations,
                  r.stats.nonlinear_iterations, r.stats.error_test_failures);
     if (drives) {
-        for (const double *column : {o.force, o.current, o.voltage, o.motor_speed,
-                                     o.motor_torque, o.electrical_power})
+        for (const double *column :
+             {o.force, o.current, o.voltage, o.motor_speed, o.motor_torque, o.electrical_power})
             for (int k = 0; k < 6; ++k) std::fprintf(f, ",%.17g", column[k]);
         std::fprintf(f, ",%d,%d,%d", o.current_max_legs, o.voltage_max_legs,
                      o.motor_speed_max_legs);
@@ -267,8 +267,7 @@ size_t simulate_rows(stewart_plant *plant, const ForceTable &table, const stewar
 // --view: the page of the first n rows (the plant's poses; the forces IN.csv gives, or with
 // current or voltage input the plant's leg forces); 0, or 1 (said).
 int write_view(const std::string &page, const char *out_csv, const stewart_params &params,
-               const ForceTable &table, bool forces_given, const std::vector<Row> &rows,
-               size_t n) {
+               const ForceTable &table, bool forces_given, const std::vector<Row> &rows, size_t n) {
     std::vector<double> t, q, force;
     if (forces_given) force.assign(table.force.begin(), table.force.begin() + 6 * n);
     for (size_t j = 0; j < n; ++j) {  // the rows' own times and poses, as OUT.csv's
@@ -349,8 +348,8 @@ int main(int argc, char **argv) {
         return 1;
     }
     stewart_model *model = stewart_model_create(&s.params, message, sizeof message);
-    stewart_plant *plant = model ? stewart_plant_create(model, &s.options, message, sizeof message)
-                                 : nullptr;
+    stewart_plant *plant =
+        model ? stewart_plant_create(model, &s.options, message, sizeof message) : nullptr;
     if (!plant) {
         std::fprintf(stderr, "stewart-simulate: cannot build the plant: %s\n", message);
         stewart_model_free(model);

@@ -56,37 +56,38 @@ int usage(FILE *to) {
                  "library's table;\n"
                  "           default in brackets; --fidelity and --tolerance are two of them):\n");
     print_options(to, kInverseOptions);
-    std::fprintf(to,
-                 "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
-                 "x_ddot..yaw_ddot\n"
-                 "           (missing derivatives come from finite differences of the samples)\n"
-                 "  --static: the poses are at rest: missing derivatives are zero, not differences\n"
-                 "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations,\n"
-                 "           status (the first limit class the pose fails, none: within every limit)\n"
-                 "  --limits: and limit_class (the first failing: none, stroke, base_joint,\n"
-                 "           platform_joint, interference, condition) and the margin to each [m, rad,\n"
-                 "           rad, m, 1] (docs/limits.md); --report: as --limits with the leg classes\n"
-                 "           too (leg_speed, leg_accel from the rows' derivatives, leg_force from F)\n"
-                 "           [m/s, m/s^2, m/s^3, N]; --ranges: and each axis' range, the others\n"
-                 "           held: x_min,x_max, ..., yaw_max\n"
-                 "  --units: OUT.csv's lengths (m, cm, mm, um, nm, in) and angles (rad, deg, mrad,\n"
-                 "           urad), e.g.\n"
-                 "           mm,deg (default m,rad; forces, conditions, margin_axis and the drive columns\n"
-                 "           stay SI)\n"
-                 "  --view: and OUT.html (or PAGE.html), the run in 3D in a browser, self-contained\n"
-                 "           (docs/view.md)\n"
-                 "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
-                 "[--platform FILE.json] [--param NAME=VALUE ...] [--units mm,deg] IN.csv OUT.csv\n"
-                 "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
-                 "columns ignored)\n"
-                 "  OUT.csv: t,x,y,z,roll,pitch,yaw, x_dot.. and x_ddot.. when given their "
-                 "inputs, iterations,residual,condition\n"
-                 "  --guess: the first row's start (default: home); each later row tracks the "
-                 "one before\n"
-                 "  --cold: every row on its own from --guess or home (measured poses, not a "
-                 "trajectory)\n"
-                 "  --param: also an option of forward kinematics (the library's table; "
-                 "--tolerance is one):\n");
+    std::fprintf(
+        to,
+        "  IN.csv:  t,x,y,z,roll,pitch,yaw [m, rad], optionally x_dot..yaw_dot and "
+        "x_ddot..yaw_ddot\n"
+        "           (missing derivatives come from finite differences of the samples)\n"
+        "  --static: the poses are at rest: missing derivatives are zero, not differences\n"
+        "  OUT.csv: t,L1..L6,L_dot1..L_dot6,L_ddot1..L_ddot6,F1..F6,condition,iterations,\n"
+        "           status (the first limit class the pose fails, none: within every limit)\n"
+        "  --limits: and limit_class (the first failing: none, stroke, base_joint,\n"
+        "           platform_joint, interference, condition) and the margin to each [m, rad,\n"
+        "           rad, m, 1] (docs/limits.md); --report: as --limits with the leg classes\n"
+        "           too (leg_speed, leg_accel from the rows' derivatives, leg_force from F)\n"
+        "           [m/s, m/s^2, m/s^3, N]; --ranges: and each axis' range, the others\n"
+        "           held: x_min,x_max, ..., yaw_max\n"
+        "  --units: OUT.csv's lengths (m, cm, mm, um, nm, in) and angles (rad, deg, mrad,\n"
+        "           urad), e.g.\n"
+        "           mm,deg (default m,rad; forces, conditions, margin_axis and the drive columns\n"
+        "           stay SI)\n"
+        "  --view: and OUT.html (or PAGE.html), the run in 3D in a browser, self-contained\n"
+        "           (docs/view.md)\n"
+        "usage: stewart-solve --forward [--guess x,y,z,roll,pitch,yaw] [--tolerance TOL] "
+        "[--platform FILE.json] [--param NAME=VALUE ...] [--units mm,deg] IN.csv OUT.csv\n"
+        "  IN.csv:  t,L1..L6 [m], optionally L_dot1..L_dot6 and L_ddot1..L_ddot6 (other "
+        "columns ignored)\n"
+        "  OUT.csv: t,x,y,z,roll,pitch,yaw, x_dot.. and x_ddot.. when given their "
+        "inputs, iterations,residual,condition\n"
+        "  --guess: the first row's start (default: home); each later row tracks the "
+        "one before\n"
+        "  --cold: every row on its own from --guess or home (measured poses, not a "
+        "trajectory)\n"
+        "  --param: also an option of forward kinematics (the library's table; "
+        "--tolerance is one):\n");
     print_options(to, kForwardOptions);
     std::fprintf(to,
                  "usage: stewart-solve --check FILE.json [--platform FILE.json] [--param "
@@ -125,9 +126,10 @@ int limit_columns(bool limits, bool report) {
 // The drive columns (STEWART_INVERSE_DRIVE_OUTPUT_TABLE), only for a model with drives: a
 // column of six as name1..name6, a bit set as its name.
 void write_drive_header(FILE *out) {
-#define DRIVE_HEADER(name, member, count, type, unit, description)                               \
-    if ((count) == 1) std::fprintf(out, "," #name);                                             \
-    else for (int k = 1; k <= (count); ++k) std::fprintf(out, "," #name "%d", k);
+#define DRIVE_HEADER(name, member, count, type, unit, description) \
+    if ((count) == 1) std::fprintf(out, "," #name);                \
+    else                                                           \
+        for (int k = 1; k <= (count); ++k) std::fprintf(out, "," #name "%d", k);
     STEWART_INVERSE_DRIVE_OUTPUT_TABLE(DRIVE_HEADER)
 #undef DRIVE_HEADER
 }
@@ -178,7 +180,7 @@ void write_row(FILE *out, double t, const stewart_inverse_output &o, const Limit
         std::fprintf(out, ",%s", stewart_limit_class_name(check.first));
         // stroke, joints, interference, condition, axis (its own axis' unit: kept SI), leg
         // speed, acceleration, jerk (lengths per time: the length unit), force (N)
-        const double factor[STEWART_LIMIT_CLASSES] = {u.length, u.angle, u.angle,  u.length, 1,
+        const double factor[STEWART_LIMIT_CLASSES] = {u.length, u.angle,  u.angle,  u.length, 1,
                                                       1,        u.length, u.length, u.length, 1};
         for (int c = 0; c < limits; ++c) std::fprintf(out, ",%.17g", check.margin[c] * factor[c]);
     }
@@ -200,9 +202,9 @@ struct Request {
     const char *paths[2] = {nullptr, nullptr};
     bool forward = false, cold = false, check = false, at_rest = false;
     bool limits = false, report = false, ranges = false, view = false;
-    const char *check_path = nullptr;  // --check's file: the report is in its units
+    const char *check_path = nullptr;   // --check's file: the report is in its units
     const char *units_given = nullptr;  // --units' text
-    std::string view_path;  // --view=PAGE.html; "": OUT.html
+    std::string view_path;              // --view=PAGE.html; "": OUT.html
     stewart::OutputUnits units;
     double guess[6];
     const double *guess_given = nullptr;
@@ -261,7 +263,8 @@ int parse(int argc, char **argv, Request &r) {
          [&](const char *v) {
              const std::vector<std::string> cells = stewart::csv_cells(v);
              bool read = cells.size() == 6;
-             for (size_t i = 0; read && i < 6; ++i) read = stewart::read_double(cells[i], r.guess[i]);
+             for (size_t i = 0; read && i < 6; ++i)
+                 read = stewart::read_double(cells[i], r.guess[i]);
              if (!read) {
                  std::fprintf(stderr, "stewart-solve: --guess needs x,y,z,roll,pitch,yaw\n");
                  return 2;
@@ -304,8 +307,8 @@ int parse(int argc, char **argv, Request &r) {
     };
     bool checking = false;
     for (int i = 1; i < argc; ++i) checking = checking || !std::strcmp(argv[i], "--check");
-    return stewart::parse_command_line("stewart-solve", argc, argv, cli, r.paths,
-                                       checking ? 0 : 2, usage);
+    return stewart::parse_command_line("stewart-solve", argc, argv, cli, r.paths, checking ? 0 : 2,
+                                       usage);
 }
 
 // --check: the home pose's report on stdout; 1 when home is not valid.
@@ -320,8 +323,8 @@ int run_check(const Request &r) {
     stewart_limits_options_default(&limit_options);
     limit_options.warn_condition = r.options.warn_condition;
     stewart_check_report report;
-    const stewart_status s = stewart_check_home(model, &limit_options, &report, message,
-                                                sizeof message);
+    const stewart_status s =
+        stewart_check_home(model, &limit_options, &report, message, sizeof message);
     stewart_model_free(model);
     if (s != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: --check: %s\n", message);
@@ -348,15 +351,16 @@ bool current_rates(const Request &r, const stewart::PoseTable &table, const stew
     const size_t n = table.t.size();
     char message[STEWART_MESSAGE_SIZE];
     if (!table.jerks.empty()) {
-        if (stewart_inverse_batch_current_rates_from_jerks(
-                model, r.options.fidelity, n, q.data(), q_dot.data(), q_ddot.data(),
-                table.jerks.data(), &columns, message, sizeof message) != STEWART_OK) {
+        if (stewart_inverse_batch_current_rates_from_jerks(model, r.options.fidelity, n, q.data(),
+                                                           q_dot.data(), q_ddot.data(),
+                                                           table.jerks.data(), &columns, message,
+                                                           sizeof message) != STEWART_OK) {
             std::fprintf(stderr, "stewart-solve: %s\n", message);
             return false;
         }
-    } else if (!r.at_rest && stewart_inverse_batch_current_rates(model, n, table.t.data(),
-                                                                 &columns, message,
-                                                                 sizeof message) != STEWART_OK) {
+    } else if (!r.at_rest &&
+               stewart_inverse_batch_current_rates(model, n, table.t.data(), &columns, message,
+                                                   sizeof message) != STEWART_OK) {
         std::fprintf(stderr, "stewart-solve: %s (or give --static: poses, not a trajectory)\n",
                      message);
         return false;
@@ -396,9 +400,8 @@ bool check_row_limits(const Request &r, const stewart::PoseTable &table, size_t 
 // Solves every row through the batch, then checks each pose's limits (and ranges); false with a
 // message on stderr when a row fails.
 bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart_model *model,
-                stewart_inverse *inverse,
-                stewart_limits *checker, std::vector<stewart_inverse_output> &outputs,
-                std::vector<LimitRow> &limit_rows) {
+                stewart_inverse *inverse, stewart_limits *checker,
+                std::vector<stewart_inverse_output> &outputs, std::vector<LimitRow> &limit_rows) {
     const size_t n = table.t.size();
     std::vector<double> q(6 * n), q_dot(6 * n), q_ddot(6 * n);
     for (size_t j = 0; j < n; ++j) {
@@ -406,11 +409,10 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart
         std::memcpy(&q_dot[6 * j], table.poses[j].q_dot, sizeof table.poses[j].q_dot);
         std::memcpy(&q_ddot[6 * j], table.poses[j].q_ddot, sizeof table.poses[j].q_ddot);
     }
-#define CLI_COLUMN(name, member, count, type, unit, description)                                  \
-    std::vector<type> name(n * (count));
+#define CLI_COLUMN(name, member, count, type, unit, description) std::vector<type> name(n *(count));
 #define CLI_POINT(name, member, count, type, unit, description) columns.name = name.data();
-#define CLI_ROW(name, member, count, type, unit, description)                                      \
-    if (columns.name)                                                                              \
+#define CLI_ROW(name, member, count, type, unit, description) \
+    if (columns.name)                                         \
         std::memcpy(&outputs[j].member, name.data() + j * (count), (count) * sizeof(type));
     STEWART_INVERSE_OUTPUT_TABLE(CLI_COLUMN)
     std::vector<int> row_status(n);
@@ -419,7 +421,9 @@ bool solve_rows(const Request &r, const stewart::PoseTable &table, const stewart
     bool drives = false;  // without drives the drive columns are neither asked for nor written
     for (double lead : r.params.screw_lead) drives = drives || lead > 0;
 #define CLI_NO_DRIVE(name, member, count, type, unit, description) columns.name = nullptr;
-    if (!drives) { STEWART_INVERSE_DRIVE_OUTPUT_TABLE(CLI_NO_DRIVE) }
+    if (!drives) {
+        STEWART_INVERSE_DRIVE_OUTPUT_TABLE(CLI_NO_DRIVE)
+    }
 #undef CLI_NO_DRIVE
     columns.status = row_status.data();
     size_t failed = n;
@@ -476,9 +480,10 @@ int write_view(const Request &r, const stewart::PoseTable &table,
 // The inverse of IN.csv into OUT.csv.
 int run_inverse(const Request &r) {
     stewart::PoseTable table;
-    const std::string read_error = stewart::read_pose_table(
-        r.paths[0], table, r.at_rest ? stewart::MissingDerivatives::kZero
-                                     : stewart::MissingDerivatives::kFiniteDifferences);
+    const std::string read_error =
+        stewart::read_pose_table(r.paths[0], table,
+                                 r.at_rest ? stewart::MissingDerivatives::kZero
+                                           : stewart::MissingDerivatives::kFiniteDifferences);
     if (!read_error.empty()) {
         std::fprintf(stderr, "stewart-solve: %s\n", read_error.c_str());
         return 1;
@@ -521,9 +526,10 @@ int main(int argc, char **argv) {
     if (code >= 0) return code;
     if (r.view && (r.check || r.forward || *stewart::view_page_missing())) {
         std::fprintf(stderr, "stewart-solve: --view: %s\n",
-                     *stewart::view_page_missing() ? stewart::view_page_missing()
-                     : "the page is of the inverse's run (for --forward's OUT.csv: "
-                       "scripts/view.py --platform FILE.json OUT.csv)");
+                     *stewart::view_page_missing()
+                         ? stewart::view_page_missing()
+                         : "the page is of the inverse's run (for --forward's OUT.csv: "
+                           "scripts/view.py --platform FILE.json OUT.csv)");
         return 2;
     }
     if (r.check) return run_check(r);

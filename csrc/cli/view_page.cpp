@@ -27,10 +27,10 @@ namespace {
 const char *const kLegClasses[] = {"stroke", "base_joint", "platform_joint", "interference",
                                    "force"};
 const char *const kLegClassUnits[] = {"m", "rad", "rad", "m", "N"};
-const char *const kMarginUnits[] = {"m", "rad", "rad", "m", "1", "m or rad",
-                                    "m/s", "m/s^2", "m/s^3", "N"};
-constexpr int kClasses = 5;         // kLegClasses
-constexpr uint8_t kNoClass = 255;   // a leg no class names at a frame
+const char *const kMarginUnits[] = {"m",        "rad", "rad",   "m",     "1",
+                                    "m or rad", "m/s", "m/s^2", "m/s^3", "N"};
+constexpr int kClasses = 5;           // kLegClasses
+constexpr uint8_t kNoClass = 255;     // a leg no class names at a frame
 constexpr size_t kRangeRows = 20000;  // rows up to which the page gets axis ranges
 
 // A number as JSON: the shortest text that reads back as the same double, in every locale.
@@ -107,14 +107,17 @@ std::string machine_json(const stewart_model *model, const stewart_params &p,
     double base[18], top[18];
     stewart_model_joints(model, base, top);
     return "{\"base_joint\":" + numbers(base, 18) + ",\"platform_joint\":" + numbers(top, 18) +
-           ",\"leg_diameter\":" + number(p.leg_diameter) + ",\"payload_mass\":" +
-           number(p.payload_mass) + ",\"home_height\":" + number(p.home_height) +
+           ",\"leg_diameter\":" + number(p.leg_diameter) +
+           ",\"payload_mass\":" + number(p.payload_mass) +
+           ",\"home_height\":" + number(p.home_height) +
            ",\"base_joint_limit\":" + number(p.base_joint_limit) +
            ",\"platform_joint_limit\":" + number(p.platform_joint_limit) +
-           ",\"tool_frame\":" + numbers(p.tool_frame, 6) + ",\"user_frame\":" +
-           numbers(p.user_frame, 6) + ",\"length_offset\":" + numbers(p.length_offset, 6) +
-           ",\"stroke_min\":" + numbers(p.stroke_min, 6) + ",\"stroke_max\":" +
-           numbers(p.stroke_max, 6) + ",\"payload_com\":" + numbers(p.payload_com, 3) +
+           ",\"tool_frame\":" + numbers(p.tool_frame, 6) +
+           ",\"user_frame\":" + numbers(p.user_frame, 6) +
+           ",\"length_offset\":" + numbers(p.length_offset, 6) +
+           ",\"stroke_min\":" + numbers(p.stroke_min, 6) +
+           ",\"stroke_max\":" + numbers(p.stroke_max, 6) +
+           ",\"payload_com\":" + numbers(p.payload_com, 3) +
            ",\"platform_com\":" + numbers(p.platform_com, 3) +
            ",\"warn_condition\":" + number(warn_condition) + "}";
 }
@@ -147,8 +150,14 @@ void nearest_class(const double margin[kClasses], const double scale[kClasses][6
     for (int c = 0; c < kClasses; ++c) {
         const double f = std::isnan(margin[c]) ? std::numeric_limits<double>::infinity()
                                                : margin[c] / scale[c][leg];
-        if (std::isnan(f)) { best = c; break; }  // 0/0: numpy's argmin takes the first NaN
-        if (f < best_fraction || c == 0) { best = c; best_fraction = f; }
+        if (std::isnan(f)) {
+            best = c;
+            break;
+        }  // 0/0: numpy's argmin takes the first NaN
+        if (f < best_fraction || c == 0) {
+            best = c;
+            best_fraction = f;
+        }
     }
     chosen = margin[best];
     cls = std::isnan(chosen) ? kNoClass : static_cast<uint8_t>(best);
@@ -160,9 +169,15 @@ struct Frames {
     std::vector<double> leg_margin, first_margin, condition, ranges;
 };
 
-struct ModelFree { void operator()(stewart_model *m) const { stewart_model_free(m); } };
-struct InverseFree { void operator()(stewart_inverse *i) const { stewart_inverse_free(i); } };
-struct LimitsFree { void operator()(stewart_limits *l) const { stewart_limits_free(l); } };
+struct ModelFree {
+    void operator()(stewart_model *m) const { stewart_model_free(m); }
+};
+struct InverseFree {
+    void operator()(stewart_inverse *i) const { stewart_inverse_free(i); }
+};
+struct LimitsFree {
+    void operator()(stewart_limits *l) const { stewart_limits_free(l); }
+};
 
 // The legs' lengths (the kinematic inverse), each frame's limit check and (up to kRangeRows)
 // axis ranges, as stewart.view computes them; "" or why not.
@@ -173,13 +188,14 @@ std::string frames_of(const stewart_model *model, const stewart_params &p, doubl
     stewart_inverse_options io;
     stewart_inverse_options_default(&io);
     io.fidelity = STEWART_KINEMATIC;
-    std::unique_ptr<stewart_inverse, InverseFree> inverse(
-        stewart_inverse_create(model, &io, message, sizeof message));
+    std::unique_ptr<stewart_inverse, InverseFree> inverse(stewart_inverse_create(model, &io,
+                                                                                 message,
+                                                                                 sizeof message));
     stewart_limits_options lo;
     stewart_limits_options_default(&lo);
     lo.warn_condition = warn_condition;
-    std::unique_ptr<stewart_limits, LimitsFree> limits(
-        stewart_limits_create(model, &lo, message, sizeof message));
+    std::unique_ptr<stewart_limits, LimitsFree> limits(stewart_limits_create(model, &lo, message,
+                                                                             sizeof message));
     if (!inverse || !limits) return message;
     std::vector<double> length(6 * n);
     std::vector<int> status(n);
@@ -204,12 +220,11 @@ std::string frames_of(const stewart_model *model, const stewart_params &p, doubl
         f.first_margin[j] = check.margin[check.first > 0 ? check.first - 1 : 0];
         f.condition[j] = check.condition;
         for (int k = 0; k < 6; ++k) {
-            const double L = status[j] == STEWART_OK ? length[6 * j + k] + p.length_offset[k]
-                                                     : std::nan("");
+            const double L =
+                status[j] == STEWART_OK ? length[6 * j + k] + p.length_offset[k] : std::nan("");
             const double margin[kClasses] = {
                 std::fmin(L - p.stroke_min[k], p.stroke_max[k] - L), check.leg_margin[1][k],
-                check.leg_margin[2][k],
-                p.leg_diameter > 0 ? check.leg_margin[3][k] : std::nan(""),
+                check.leg_margin[2][k], p.leg_diameter > 0 ? check.leg_margin[3][k] : std::nan(""),
                 force_margin(p, rows, j, k)};
             nearest_class(margin, scale, k, f.leg_class[6 * j + k], f.leg_margin[6 * j + k]);
         }
@@ -240,8 +255,8 @@ std::string json_string(const std::string &s) {
 std::string data_json(const stewart_params &p, double warn_condition, const ViewRows &rows,
                       const std::string &title, std::string &error) {
     char message[STEWART_MESSAGE_SIZE];
-    std::unique_ptr<stewart_model, ModelFree> model(
-        stewart_model_create(&p, message, sizeof message));
+    std::unique_ptr<stewart_model, ModelFree> model(stewart_model_create(&p, message,
+                                                                         sizeof message));
     if (!model) return error = message, "";
     Frames f;
     error = frames_of(model.get(), p, warn_condition, rows, f);
@@ -253,17 +268,17 @@ std::string data_json(const stewart_params &p, double warn_condition, const View
     const char *pose_classes[STEWART_LIMIT_CLASSES + 1];
     for (int c = 0; c <= STEWART_LIMIT_CLASSES; ++c) pose_classes[c] = stewart_limit_class_name(c);
     return "{\"machine\":" + machine_json(model.get(), p, warn_condition) +
-           ",\"classes\":" + names(kLegClasses, kClasses) + ",\"class_units\":" +
-           names(kLegClassUnits, kClasses) + ",\"pose_classes\":" +
-           names(pose_classes, STEWART_LIMIT_CLASSES + 1) + ",\"pose_class_units\":[\"\"," +
-           names(kMarginUnits, STEWART_LIMIT_CLASSES).substr(1) + ",\"scale\":" + scales +
-           "],\"frames\":" + std::to_string(rows.t.size()) + ",\"t\":" + packed64(rows.t) +
-           ",\"pose\":" + packed64(rows.q) + ",\"force\":" +
-           (rows.force.empty() ? "null" : packed32(rows.force)) + ",\"leg_class\":" +
-           packed8(f.leg_class) + ",\"leg_margin\":" + packed32(f.leg_margin) + ",\"first\":" +
-           packed8(f.first) + ",\"first_margin\":" + packed32(f.first_margin) +
-           ",\"condition\":" + packed32(f.condition) + ",\"ranges\":" +
-           (f.ranges.empty() ? "null" : packed32(f.ranges)) +
+           ",\"classes\":" + names(kLegClasses, kClasses) +
+           ",\"class_units\":" + names(kLegClassUnits, kClasses) +
+           ",\"pose_classes\":" + names(pose_classes, STEWART_LIMIT_CLASSES + 1) +
+           ",\"pose_class_units\":[\"\"," + names(kMarginUnits, STEWART_LIMIT_CLASSES).substr(1) +
+           ",\"scale\":" + scales + "],\"frames\":" + std::to_string(rows.t.size()) +
+           ",\"t\":" + packed64(rows.t) + ",\"pose\":" + packed64(rows.q) +
+           ",\"force\":" + (rows.force.empty() ? "null" : packed32(rows.force)) +
+           ",\"leg_class\":" + packed8(f.leg_class) + ",\"leg_margin\":" + packed32(f.leg_margin) +
+           ",\"first\":" + packed8(f.first) + ",\"first_margin\":" + packed32(f.first_margin) +
+           ",\"condition\":" + packed32(f.condition) +
+           ",\"ranges\":" + (f.ranges.empty() ? "null" : packed32(f.ranges)) +
            ",\"workspace\":null,\"title\":" + json_string(title) + "}";
 }
 
@@ -286,8 +301,7 @@ std::string view_page_beside(const std::string &out_csv) {
 }
 
 std::string write_view_page(const std::string &path, const stewart_params &params,
-                            double warn_condition, const ViewRows &rows,
-                            const std::string &title) {
+                            double warn_condition, const ViewRows &rows, const std::string &title) {
     if (*view_page_missing()) return view_page_missing();
     std::string error;
     const std::string data = data_json(params, warn_condition, rows, title, error);

@@ -27,8 +27,7 @@ struct ViewRows {
 // Writes the page of the machine params (the limit check's warn_condition) playing rows to path.
 // "" or a message naming the cause (a pose the model cannot solve, a file not written).
 std::string write_view_page(const std::string &path, const stewart_params &params,
-                            double warn_condition, const ViewRows &rows,
-                            const std::string &title);
+                            double warn_condition, const ViewRows &rows, const std::string &title);
 
 // The command lines' --view (the page beside OUT.csv) and --view=PAGE.html: sets view and path
 // ("" for beside OUT.csv); an empty PAGE.html is refused.

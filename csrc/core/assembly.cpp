@@ -45,10 +45,10 @@ constexpr size_t kFrameCache = 64;
 }
 
 [[gnu::always_inline]] inline void evaluate_with_frames(const JointDef &j, const JointRecord &r,
-                                                       const double *q, const double *q_dot,
-                                                       const DriverValue *drv,
-                                                       const JointOutput &out,
-                                                       const BodyFrame *frames) {
+                                                        const double *q, const double *q_dot,
+                                                        const DriverValue *drv,
+                                                        const JointOutput &out,
+                                                        const BodyFrame *frames) {
     BodyFrame fi, fj;
     r.evaluate(joint_input(j, r, q, q_dot, drv, frames, fi, fj), out);
 }
@@ -77,25 +77,25 @@ void assemble(const Mechanism &m, const double *q, const double *q_dot, const Dr
     for (size_t k = 0; k < joints; ++k) {
         const JointRecord &r = records[k];
         switch (path[k]) {
-        case AssemblyPath::Own:
-            evaluate_with_frames(defs[k], r, q, q_dot, drv, output(r), frames);
-            break;
-        case AssemblyPath::Normalization: {
-            const int p = r.coord_i + MBS_BODY_P(0);  // its Euler parameters, after r
-            normalization_rows(q + p, q_dot ? q_dot + p : nullptr, output(r));
-            break;
-        }
-        case AssemblyPath::WithDistance: {
-            BodyFrame fi, fj, di, dj;
-            const int driver = distance_with[k];
-            const JointRecord &rd = records[driver];
-            evaluate_cylindrical_with_distance(
-                joint_input(defs[k], r, q, q_dot, drv, frames, fi, fj), output(r),
-                joint_input(defs[driver], rd, q, q_dot, drv, frames, di, dj), output(rd));
-            break;
-        }
-        case AssemblyPath::InJointCall:  // its cylindrical joint's call writes it
-            break;
+            case AssemblyPath::Own:
+                evaluate_with_frames(defs[k], r, q, q_dot, drv, output(r), frames);
+                break;
+            case AssemblyPath::Normalization: {
+                const int p = r.coord_i + MBS_BODY_P(0);  // its Euler parameters, after r
+                normalization_rows(q + p, q_dot ? q_dot + p : nullptr, output(r));
+                break;
+            }
+            case AssemblyPath::WithDistance: {
+                BodyFrame fi, fj, di, dj;
+                const int driver = distance_with[k];
+                const JointRecord &rd = records[driver];
+                evaluate_cylindrical_with_distance(
+                    joint_input(defs[k], r, q, q_dot, drv, frames, fi, fj), output(r),
+                    joint_input(defs[driver], rd, q, q_dot, drv, frames, di, dj), output(rd));
+                break;
+            }
+            case AssemblyPath::InJointCall:  // its cylindrical joint's call writes it
+                break;
         }
     }
 }

@@ -7,8 +7,7 @@
 namespace mbs {
 
 void assemble_residual(const Mechanism &m, const double *q, const DriverValue *drv, double *phi);
-void assemble_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
-                       double *values);
+void assemble_jacobian(const Mechanism &m, const double *q, const DriverValue *drv, double *values);
 // Both in one pass (they share most of the work).
 void assemble_residual_and_jacobian(const Mechanism &m, const double *q, const DriverValue *drv,
                                     double *phi, double *values);

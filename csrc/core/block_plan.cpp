@@ -25,7 +25,8 @@ void fixed_body_rows(const Mechanism &m, std::vector<int> &rows, std::vector<int
 
 // Jacobian values at the reference configuration, and which are structurally nonzero: nonzero
 // at the reference or at random configurations (zeros at all of them are structural).
-void sample_jacobian(const Mechanism &m, std::vector<double> &reference, std::vector<char> &nonzero) {
+void sample_jacobian(const Mechanism &m, std::vector<double> &reference,
+                     std::vector<char> &nonzero) {
     std::vector<double> q(m.coordinates), values(m.values());
     std::vector<DriverValue> drive(m.drivers);
     place_at_reference(m, q.data());
@@ -95,7 +96,8 @@ void find_groups(Planning &pl) {
         while (!stack.empty()) {
             const int u = stack.back();
             stack.pop_back();
-            for (int c = 0; c < MBS_BODY_COORDINATES; ++c) p.groups[g].cols.push_back(body_column(u, c));
+            for (int c = 0; c < MBS_BODY_COORDINATES; ++c)
+                p.groups[g].cols.push_back(body_column(u, c));
             for (int v : pl.neighbours[u])
                 if (pl.border_index[v] < 0 && pl.group_of[v] < 0) {
                     pl.group_of[v] = g;
@@ -122,10 +124,8 @@ bool assign_rows(Planning &pl) {
         for (int r = 0; r < n; ++r) {
             const int row = m.first_row[k] + r;
             pl.row_group[row] = g;
-            if (g >= 0)
-                p.groups[g].rows.push_back(row);
-            else
-                p.border_rows.push_back(row);
+            if (g >= 0) p.groups[g].rows.push_back(row);
+            else p.border_rows.push_back(row);
         }
     }
     pl.leftover = 0;
@@ -166,8 +166,9 @@ std::vector<GroupSample> sample_groups(const Planning &pl, const std::vector<dou
         for (int t = 0; t < m.values(); ++t) {
             const int row = m.pattern_row[t], col = m.pattern_col[t];
             if (pl.row_group[row] != static_cast<int>(gi)) continue;
-            const int c = group_col[col] >= 0 ? group_col[col]
-                          : col_local[col] >= 0 ? ng + col_local[col] : -1;
+            const int c = group_col[col] >= 0   ? group_col[col]
+                          : col_local[col] >= 0 ? ng + col_local[col]
+                                                : -1;
             if (c < 0) continue;  // a fixed body's column
             sample.a[row_local[row] * width + c] = reference[t];
             sample.nz[row_local[row] * width + c] = p.structural[t];
@@ -275,10 +276,8 @@ void order_family(BlockPlan &p, const std::vector<GroupSample> &samples,
     }
     for (size_t i = 0; i < members.size(); ++i) {
         const GroupSample &sample = samples[members[i]];
-        if (!order.empty())
-            take_order(p.groups[members[i]], sample, order, common_nz, common);
-        else
-            take_order(p.groups[members[i]], sample, own[i], own_nz[i], own_program[i]);
+        if (!order.empty()) take_order(p.groups[members[i]], sample, order, common_nz, common);
+        else take_order(p.groups[members[i]], sample, own[i], own_nz[i], own_program[i]);
     }
 }
 
@@ -327,7 +326,8 @@ bool lay_out_workspace(Planning &pl) {
     for (BlockGroup &g : p.groups) {
         g.offset = p.workspace;
         g.pivot_offset = p.pivots;
-        p.workspace += static_cast<int>(g.rows.size()) * (static_cast<int>(g.cols.size()) + p.border);
+        p.workspace +=
+            static_cast<int>(g.rows.size()) * (static_cast<int>(g.cols.size()) + p.border);
         p.pivots += static_cast<int>(g.cols.size());
     }
     p.border_offset = p.workspace;

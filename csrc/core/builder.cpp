@@ -60,16 +60,16 @@ int Builder::check_pair(int bi, int bj) {
 
 int Builder::check_free(int b) {
     if (m.bodies[b].fixed || m.bodies[b].pose_driven)
-        return set_message(msg, size, MBS_ERR_ARGUMENT,
-                           "body %d is already fixed or pose-driven", b);
+        return set_message(msg, size, MBS_ERR_ARGUMENT, "body %d is already fixed or pose-driven",
+                           b);
     return MBS_OK;
 }
 
 int Builder::check_direction(const Vec3 &v, const char *what, Vec3 &unit) {
     if (!finite(v) || !(v.norm() > 1e-12))
         return set_message(msg, size, MBS_ERR_ARGUMENT,
-                           "%s = (%g, %g, %g) must be a finite nonzero direction", what, v[0],
-                           v[1], v[2]);
+                           "%s = (%g, %g, %g) must be a finite nonzero direction", what, v[0], v[1],
+                           v[2]);
     unit = v.normalized();
     return MBS_OK;
 }
@@ -107,7 +107,8 @@ int Builder::body(const char *name, double mass, const Vec3 &I, const double q[7
         I[0] + I[2] < I[1])
         return set_message(msg, size, MBS_ERR_PARAMETER,
                            "inertia of body %s = (%g, %g, %g) must be >= 0 and satisfy the "
-                           "triangle inequalities", name ? name : "?", I[0], I[1], I[2]);
+                           "triangle inequalities",
+                           name ? name : "?", I[0], I[1], I[2]);
     double pn = 0;
     for (int c = 0; c < 7; ++c)
         if (!std::isfinite(q[c]))

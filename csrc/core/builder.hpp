@@ -15,11 +15,9 @@ struct Builder {
     int fix(int body);
     int spherical(int bi, const Vec3 &ui, int bj, const Vec3 &uj);
     int cardan(int bi, const Vec3 &ui, const Vec3 &si, int bj, const Vec3 &uj, const Vec3 &sj);
-    int cylindrical(int bi, const Vec3 &ui, const Vec3 &vi, int bj, const Vec3 &uj,
-                    const Vec3 &vj);
+    int cylindrical(int bi, const Vec3 &ui, const Vec3 &vi, int bj, const Vec3 &uj, const Vec3 &vj);
     int revolute(int bi, const Vec3 &ui, const Vec3 &vi, int bj, const Vec3 &uj, const Vec3 &vj);
-    int prismatic(int bi, const Vec3 &ui, const Vec3 &vi, int bj, const Vec3 &uj,
-                  const Vec3 &vj);
+    int prismatic(int bi, const Vec3 &ui, const Vec3 &vi, int bj, const Vec3 &uj, const Vec3 &vj);
     int weld(int bi, const Vec3 &ui, int bj, const Vec3 &uj);
     // Drivers also report their first driver slot.
     int coordinate_driver(int body, int coordinate, int *slot);

@@ -44,7 +44,7 @@ MBS_LU_INLINE bool factor_body(double *a, int m, int n, int width, int *pivot) {
 }
 
 MBS_LU_INLINE void forward_transposed_body(const double *a, int n, int width, const double *g,
-                                            double *mu) {
+                                           double *mu) {
 #pragma GCC unroll 8
     for (int k = 0; k < n; ++k) {
         double s = g[k];
@@ -54,7 +54,7 @@ MBS_LU_INLINE void forward_transposed_body(const double *a, int n, int width, co
 }
 
 MBS_LU_INLINE void backward_transposed_body(const double *a, int m, int n, int width,
-                                             const int *pivot, double *t) {
+                                            const int *pivot, double *t) {
 #pragma GCC unroll 8
     for (int k = n - 1; k >= 0; --k) {
         double s = t[k];
@@ -77,8 +77,7 @@ void lu_forward_transposed(const double *a, int n, int width, const double *g, d
     forward_transposed_body(a, n, width, g, mu);
 }
 
-void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot,
-                            double *t) {
+void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot, double *t) {
     backward_transposed_body(a, m, n, width, pivot, t);
 }
 

@@ -15,8 +15,7 @@ void lu_backward(const double *a, int n, int width, const double *t, const doubl
 // mu_top (n values) <- U^-T g.
 void lu_forward_transposed(const double *a, int n, int width, const double *g, double *mu);
 // t (m values, mu) <- P^T L^-T t.
-void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot,
-                            double *t);
+void lu_backward_transposed(const double *a, int m, int n, int width, const int *pivot, double *t);
 
 // lu_factor(a, N, N, N, pivot) with the size known when compiling (instantiated for N = 7).
 template <int N>

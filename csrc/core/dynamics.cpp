@@ -33,8 +33,9 @@ void joint_reaction(const Mechanism &m, const State &s, int joint, int side, Vec
     const double *block = s.values.data() + m.first_value[joint];
     if (!s.values_current) {
         evaluate_joint(m, joint, s.q.data(), nullptr, s.drive.data(),
-                       JointOutput{nullptr, jac, j.body_j >= 0 ? jac + MBS_BODY_COORDINATES * n : nullptr, nullptr,
-                                   nullptr});
+                       JointOutput{nullptr, jac,
+                                   j.body_j >= 0 ? jac + MBS_BODY_COORDINATES * n : nullptr,
+                                   nullptr, nullptr});
         block = jac;
     }
     const double *rows = block + side * MBS_BODY_COORDINATES * n;  // n rows of one body's 7

@@ -61,8 +61,8 @@ inline void rotation_row_two(const double *pa, const Vec3 &ua, const Vec3 &va, d
 }
 
 // rotate_jacobian(pa, ua) into Ba and rotate_jacobian(pb, ub) into Bb.
-inline void rotate_jacobian_two(const double *pa, const Vec3 &ua, const double *pb,
-                                const Vec3 &ub, Mat34 &Ba, Mat34 &Bb) {
+inline void rotate_jacobian_two(const double *pa, const Vec3 &ua, const double *pb, const Vec3 &ub,
+                                Mat34 &Ba, Mat34 &Bb) {
     const Lanes e0 = lanes(pa[0], pb[0]), e1 = lanes(pa[1], pb[1]), e2 = lanes(pa[2], pb[2]),
                 e3 = lanes(pa[3], pb[3]);
     const Lanes u0 = lanes(ua[0], ub[0]), u1 = lanes(ua[1], ub[1]), u2 = lanes(ua[2], ub[2]);

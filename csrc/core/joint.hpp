@@ -10,18 +10,18 @@
 namespace mbs {
 
 enum class JointType {
-    FixedBody,        // 7: q_i = q_fixed
-    Normalization,    // 1: p_i.p_i - 1
-    Spherical,        // 3: points coincide
-    Cardan,           // 4: points coincide, cross arms perpendicular
-    Cylindrical,      // 4: axes parallel and collinear
-    Revolute,         // 5: points coincide, axes parallel
-    Prismatic,        // 5: cylindrical, and no rotation about the axis
-    Weld,             // 6: points coincide, frames aligned
-    CoordinateDriver, // 1: q_i[c] = f(t)
-    PoseDriver,       // 7: q_i = f(t) (position and Euler parameters)
-    DistanceDriver,   // 1: distance along a cylindrical/prismatic axis = f(t)
-    AngleDriver,      // 1: rotation angle of a revolute joint = f(t)
+    FixedBody,         // 7: q_i = q_fixed
+    Normalization,     // 1: p_i.p_i - 1
+    Spherical,         // 3: points coincide
+    Cardan,            // 4: points coincide, cross arms perpendicular
+    Cylindrical,       // 4: axes parallel and collinear
+    Revolute,          // 5: points coincide, axes parallel
+    Prismatic,         // 5: cylindrical, and no rotation about the axis
+    Weld,              // 6: points coincide, frames aligned
+    CoordinateDriver,  // 1: q_i[c] = f(t)
+    PoseDriver,        // 7: q_i = f(t) (position and Euler parameters)
+    DistanceDriver,    // 1: distance along a cylindrical/prismatic axis = f(t)
+    AngleDriver,       // 1: rotation angle of a revolute joint = f(t)
     Count
 };
 
@@ -32,15 +32,15 @@ struct DriverValue {
 
 struct JointDef {
     JointType type = JointType::FixedBody;
-    int body_i = -1, body_j = -1;  // body_j = -1 for one-body constraints
+    int body_i = -1, body_j = -1;                         // body_j = -1 for one-body constraints
     Vec3 point_i = Vec3::Zero(), point_j = Vec3::Zero();  // attachment points, body frames
     // Per type: Cardan arm in [0]; cylindrical/revolute/prismatic: [0], [1] perpendicular to the
     // axis [2] on body i, axis in [2] and (prismatic) a perpendicular in [0] on body j;
     // weld: the frame of each body; drivers: copied from the joint they drive.
     Vec3 axis_i[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
     Vec3 axis_j[3] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-    int coordinate = 0;              // coordinate driver: 0..6 of body i
-    int driver = -1;                 // first driver slot, -1 if not a driver
+    int coordinate = 0;                         // coordinate driver: 0..6 of body i
+    int driver = -1;                            // first driver slot, -1 if not a driver
     double q_fixed[7] = {0, 0, 0, 1, 0, 0, 0};  // fixed body
 };
 
@@ -52,9 +52,9 @@ struct BodyFrame {
 
 struct JointInput {
     const JointDef &def;
-    const double *q_i, *q_j;  // 7 coordinates of each body (q_j null for one body)
-    const double *v_i, *v_j;  // their velocities; null unless gamma is asked for
-    const DriverValue *drive; // the joint's driver slots, null if none
+    const double *q_i, *q_j;             // 7 coordinates of each body (q_j null for one body)
+    const double *v_i, *v_j;             // their velocities; null unless gamma is asked for
+    const DriverValue *drive;            // the joint's driver slots, null if none
     const BodyFrame *frame_i, *frame_j;  // two-body joints only; rate and quad only with v
 };
 
@@ -68,8 +68,8 @@ using JointEvaluate = void (*)(const JointInput &, const JointOutput &);
 struct JointTypeInfo {
     const char *name;
     int equations;
-    int drivers;    // driver slots it reads
-    int bodies;     // 1 or 2
+    int drivers;  // driver slots it reads
+    int bodies;   // 1 or 2
     JointEvaluate evaluate;
 };
 

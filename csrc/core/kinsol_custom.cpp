@@ -152,8 +152,8 @@ bool make_custom_linear_solver(SUNContext context, void *content, LinearSetup se
 
 void keep_kinsol_message(int code, const char *module, const char *function, char *text,
                          void *user) {
-    std::snprintf(static_cast<char *>(user), MBS_MESSAGE_SIZE, "%s %s (%d): %s", module,
-                  function, code, text);
+    std::snprintf(static_cast<char *>(user), MBS_MESSAGE_SIZE, "%s %s (%d): %s", module, function,
+                  code, text);
 }
 
 }  // namespace mbs

@@ -31,8 +31,8 @@ struct LaneKernels {
                      const double *t, const double *y, double *x);
     // mu <- U^-T mu (n values per lane); carried <- -W^T mu (width - n values per lane, from
     // zero: the caller adds each lane's to the shared border, group by group).
-    void (*forward_transposed)(const double *a, const EliminationProgram &p,
-                               const double *inv_diag, double *mu, double *carried);
+    void (*forward_transposed)(const double *a, const EliminationProgram &p, const double *inv_diag,
+                               double *mu, double *carried);
     // t <- L^-T t (m values per lane).
     void (*backward_transposed)(const double *a, const EliminationProgram &p, double *t);
 };

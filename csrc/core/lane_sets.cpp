@@ -18,7 +18,8 @@ std::vector<std::pair<int, int>> entry_values(const BlockGroup &g) {
 
 // True if the lane kernels may run b's block in a's program: the same shape, the same program
 // (same_program), the same fill and values on the same entries.
-bool same_shape(const BlockGroup &a, const BlockGroup &b, const std::vector<std::pair<int, int>> &ea,
+bool same_shape(const BlockGroup &a, const BlockGroup &b,
+                const std::vector<std::pair<int, int>> &ea,
                 const std::vector<std::pair<int, int>> &eb) {
     if (!a.has_program || !b.has_program || a.rows.size() != b.rows.size() ||
         a.cols.size() != b.cols.size() || !same_program(a.program, b.program))

@@ -10,16 +10,16 @@
 namespace mbs {
 
 struct LaneSet {
-    std::vector<int> groups;             // its groups, in group order; lane l is groups[l]
-    const BlockGroup *lead = nullptr;    // groups[0]: its program and shape serve every lane
+    std::vector<int> groups;           // its groups, in group order; lane l is groups[l]
+    const BlockGroup *lead = nullptr;  // groups[0]: its program and shape serve every lane
     int mg = 0, ng = 0, width = 0;
-    int offset = 0;                      // interleaved block: entry e of lane l at offset + e L + l
-    int pivots = 0;                      // reciprocal pivots: pivot k of lane l at pivots + k L + l
-    int vectors = 0;                     // right-hand sides: row r of lane l at vectors + r L + l
-    int carried = 0;                     // -W^T mu: border column c of lane l at carried + c L + l
-    std::vector<long> entries;           // where (in doubles: entry e L) a Jacobian value lands
-    std::vector<int> gather;             // per entry and lane: the value's index (pad lanes: lane 0's)
-    std::vector<long> fill;              // where the program fills and no value lands
+    int offset = 0;             // interleaved block: entry e of lane l at offset + e L + l
+    int pivots = 0;             // reciprocal pivots: pivot k of lane l at pivots + k L + l
+    int vectors = 0;            // right-hand sides: row r of lane l at vectors + r L + l
+    int carried = 0;            // -W^T mu: border column c of lane l at carried + c L + l
+    std::vector<long> entries;  // where (in doubles: entry e L) a Jacobian value lands
+    std::vector<int> gather;    // per entry and lane: the value's index (pad lanes: lane 0's)
+    std::vector<long> fill;     // where the program fills and no value lands
     // Per lane l (pad lanes: lane 0's group): at c L + l the coordinate of the group's column c,
     // at r L + l the equation of its row r (pivot order), at l its first leftover row.
     std::vector<int> col_of, row_of, first_leftover;
@@ -28,7 +28,7 @@ struct LaneSet {
 struct LaneLayout {
     int lanes = 0;
     std::vector<LaneSet> sets;
-    std::vector<int> set_of, lane_of;    // per group: its set and lane, or -1
+    std::vector<int> set_of, lane_of;                         // per group: its set and lane, or -1
     int workspace = 0, pivots = 0, vectors = 0, carried = 0;  // sizes of the interleaved arrays
 };
 

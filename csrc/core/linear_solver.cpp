@@ -82,8 +82,7 @@ inline void gather_bodies(double *__restrict to, const double *__restrict from, 
 
 // x[rows[r]] = t[r] for r < n, three per turn (the rows are in pivot order, not neighbours: the
 // loop's own count and branch were as many instructions as the copies).
-inline void scatter_rows(double *__restrict x, const double *__restrict t, const int *rows,
-                         int n) {
+inline void scatter_rows(double *__restrict x, const double *__restrict t, const int *rows, int n) {
     int r = 0;
     for (; r + 3 <= n; r += 3) {
         x[rows[r]] = t[r];
@@ -103,16 +102,16 @@ public:
     BlockSolver(const Mechanism &m, const LaneKernels *kernels, LaneLayout lanes)
         : m_(m), p_(*m.block_plan), kernels_(kernels), lanes_(std::move(lanes)),
           lane_ws_(lanes_.workspace), lane_inv_(lanes_.pivots), lane_t_(lanes_.vectors),
-          lane_x_(lanes_.vectors), lane_carried_(lanes_.carried),
-          group_t_offset_(p_.groups.size()),
-          ws_(p_.workspace), coupling_(p_.coupling_row.size()),
-          pivot_(p_.pivots), inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
+          lane_x_(lanes_.vectors), lane_carried_(lanes_.carried), group_t_offset_(p_.groups.size()),
+          ws_(p_.workspace), coupling_(p_.coupling_row.size()), pivot_(p_.pivots),
+          inv_diag_(p_.pivots), border_pivot_(p_.border), rhs_(m.equations), group_t_(m.equations),
           border_(p_.border), border_work_(p_.border), group_x_(m.coordinates),
           coupling_fixed_row_(p_.coupling_row.size()), static_used_(p_.groups.size(), 0),
           dirty_(p_.groups.size(), 0), steps_(p_.groups.size()) {
         // Fixed coordinate -> its identity row, for the transposed solve.
         std::vector<int> row_of(m.coordinates, -1);
-        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
+        for (size_t i = 0; i < p_.fixed_cols.size(); ++i)
+            row_of[p_.fixed_cols[i]] = p_.fixed_rows[i];
         for (size_t k = 0; k < p_.coupling_col.size(); ++k)
             coupling_fixed_row_[k] = row_of[p_.coupling_col[k]];
         coupling_from_.resize(p_.coupling_row.size());
@@ -123,7 +122,8 @@ public:
             const BlockGroup &g = p_.groups[gi];
             if (lanes_.set_of[gi] >= 0)
                 std::fill(in_lanes.begin() + g.offset,
-                          in_lanes.begin() + g.offset + g.rows.size() * (g.cols.size() + p_.border), 1);
+                          in_lanes.begin() + g.offset + g.rows.size() * (g.cols.size() + p_.border),
+                          1);
         }
         int t_offset = 0;
         for (size_t gi = 0; gi < p_.groups.size(); ++gi) {
@@ -132,7 +132,8 @@ public:
         }
         std::vector<int> run_from, run_to, run_length;
         for (int t = 0; t < m.values(); ++t) {
-            const int d = p_.value_dest[t] >= 0 && in_lanes[p_.value_dest[t]] ? -1 : p_.value_dest[t];
+            const int d =
+                p_.value_dest[t] >= 0 && in_lanes[p_.value_dest[t]] ? -1 : p_.value_dest[t];
             // Values go as runs: a joint's row of one body's 7 values lands on 7 neighbouring
             // places of its block. Identically zero values (e.g. in an identity) ride along: a
             // zero lands where the block holds a zero already.
@@ -215,8 +216,7 @@ public:
             if (step.path != kLane) {
                 double *t = step.t;
                 for (int r = 0; r < mg; ++r) t[r] = rhs_[g.rows[r]];
-                if (step.path == kStatic)
-                    lu_forward_static(ws_.data() + g.offset, g.program, t);
+                if (step.path == kStatic) lu_forward_static(ws_.data() + g.offset, g.program, t);
                 else
                     lu_forward(ws_.data() + g.offset, mg, ng, ng + nb,
                                pivot_.data() + g.pivot_offset, t);
@@ -225,7 +225,8 @@ public:
                 border_[g.first_leftover + r - ng] = step.t[r * step.stride];
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
-        for (size_t r = 0; r < p_.border_rows.size(); ++r) border_[leftover + r] = rhs_[p_.border_rows[r]];
+        for (size_t r = 0; r < p_.border_rows.size(); ++r)
+            border_[leftover + r] = rhs_[p_.border_rows[r]];
         const double *s = ws_.data() + p_.border_offset;
         lu_forward(s, nb, nb, nb, border_pivot_.data(), border_.data());
         lu_backward(s, nb, nb, border_.data(), nullptr, border_work_.data());
@@ -345,12 +346,15 @@ private:
             scatter_rows(x, t, g.rows.data(), mg);
         }
         const int leftover = nb - static_cast<int>(p_.border_rows.size());
-        for (size_t r = 0; r < p_.border_rows.size(); ++r) x[p_.border_rows[r]] = border_work_[leftover + r];
-        for (size_t i = 0; i < p_.fixed_cols.size(); ++i) x[p_.fixed_rows[i]] = rhs_[p_.fixed_cols[i]];
+        for (size_t r = 0; r < p_.border_rows.size(); ++r)
+            x[p_.border_rows[r]] = border_work_[leftover + r];
+        for (size_t i = 0; i < p_.fixed_cols.size(); ++i)
+            x[p_.fixed_rows[i]] = rhs_[p_.fixed_cols[i]];
         // Run by run in k order: each fixed row takes the same differences in the same order. A
         // fixed body's whole row, the common run, unrolled.
         const size_t *const start = coupling_start_.data();
-        const int *const fixed_row = coupling_fixed_row_.data(), *const row = p_.coupling_row.data();
+        const int *const fixed_row = coupling_fixed_row_.data(), *const row =
+                                                                     p_.coupling_row.data();
         const double *const coupling = coupling_.data();
         for (size_t r = 0; r + 1 < coupling_start_.size(); ++r) {
             const size_t k = start[r], n = start[r + 1] - k;
@@ -427,10 +431,11 @@ private:
     // lanes kept the fixed pivot order.
     void factor_lane_sets(const double *values) {
         for (const LaneSet &s : lanes_.sets) {
-            const unsigned refused = kernels_->factor(
-                lane_ws_.data() + s.offset, s.lead->program, lane_inv_.data() + s.pivots, values,
-                s.entries.data(), s.gather.data(), static_cast<int>(s.entries.size()),
-                s.fill.data(), static_cast<int>(s.fill.size()));
+            const unsigned refused =
+                kernels_->factor(lane_ws_.data() + s.offset, s.lead->program,
+                                 lane_inv_.data() + s.pivots, values, s.entries.data(),
+                                 s.gather.data(), static_cast<int>(s.entries.size()), s.fill.data(),
+                                 static_cast<int>(s.fill.size()));
             for (size_t l = 0; l < s.groups.size(); ++l)
                 static_used_[s.groups[l]] = !((refused >> l) & 1u);
         }
@@ -447,8 +452,9 @@ private:
             double *a = ws_.data() + g.offset;
             const size_t gi = &g - p_.groups.data();
             if (lanes_.set_of[gi] < 0)
-                static_used_[gi] = g.has_program &&
-                                   lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
+                static_used_[gi] =
+                    g.has_program &&
+                    lu_factor_static(a, g.program, inv_diag_.data() + g.pivot_offset);
             if (!static_used_[gi]) {
                 // The fixed pivot order is unsafe here: partial pivoting on fresh values.
                 std::fill(a, a + mg * (ng + nb), 0.0);
@@ -463,8 +469,8 @@ private:
                 const LaneSet &s = lanes_.sets[lanes_.set_of[gi]];
                 const int L = lanes_.lanes;
                 for (int r = ng; r < mg; ++r) {
-                    const double *from = lane_ws_.data() + s.offset + (r * s.width + ng) * L +
-                                         lanes_.lane_of[gi];
+                    const double *from =
+                        lane_ws_.data() + s.offset + (r * s.width + ng) * L + lanes_.lane_of[gi];
                     double *to = border + (g.first_leftover + r - ng) * nb;
                     for (int c = 0; c < nb; ++c) to[c] = from[c * L];
                 }

@@ -23,7 +23,7 @@ struct BlockGroup {
     int offset = 0;               // of its m x (n + border) row-major block in the workspace
     int first_leftover = 0;       // its first row in the border system
     int pivot_offset = 0;
-    bool has_program = false;     // rows are in a chosen pivot order with this program
+    bool has_program = false;  // rows are in a chosen pivot order with this program
     EliminationProgram program;
     std::vector<int> value_index, value_dest;  // its Jacobian values (for a re-scatter)
     std::vector<char> structure;  // m x width, in pivot order: structural nonzeros and fill
@@ -31,15 +31,15 @@ struct BlockGroup {
 };
 
 struct BlockPlan {
-    int border = 0;                      // border unknowns
-    std::vector<int> border_cols;        // their global coordinates
+    int border = 0;                // border unknowns
+    std::vector<int> border_cols;  // their global coordinates
     std::vector<BlockGroup> groups;
-    std::vector<int> border_rows;        // global rows of border-only equations
+    std::vector<int> border_rows;             // global rows of border-only equations
     std::vector<int> fixed_cols, fixed_rows;  // x[fixed_cols[i]] = b[fixed_rows[i]]
-    std::vector<int> value_dest;         // per Jacobian value: workspace index, -1 ignored,
-                                         // -2 - k: coupling entry k
+    std::vector<int> value_dest;              // per Jacobian value: workspace index, -1 ignored,
+                                              // -2 - k: coupling entry k
     std::vector<int> coupling_row, coupling_col;  // values of fixed columns in other rows
-    std::vector<char> structural;        // per Jacobian value: not identically zero
+    std::vector<char> structural;                 // per Jacobian value: not identically zero
     int workspace = 0, border_offset = 0, pivots = 0;
 };
 

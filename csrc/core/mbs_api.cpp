@@ -179,12 +179,12 @@ mbs_status mbs_step(mbs_data *d, double t, const mbs_options *o) {
     if (!d || !o) return MBS_ERR_ARGUMENT;
     mbs::State &s = d->state;
     if (!std::isfinite(t))
-        return set_message(s.message, sizeof s.message, MBS_ERR_ARGUMENT,
-                           "t = %g must be finite", t);
+        return set_message(s.message, sizeof s.message, MBS_ERR_ARGUMENT, "t = %g must be finite",
+                           t);
     if (!(o->tolerance > 0) || o->max_iterations < 1)
         return set_message(s.message, sizeof s.message, MBS_ERR_PARAMETER,
-                           "tolerance = %g must be > 0 and max_iterations = %d >= 1",
-                           o->tolerance, o->max_iterations);
+                           "tolerance = %g must be > 0 and max_iterations = %d >= 1", o->tolerance,
+                           o->max_iterations);
     const mbs::SolverOptions so = solver_options(*o, MBS_LINEAR_AUTOMATIC);
     return mbs::solve_step(s, t, so, o->use_predictor != 0);
 }
@@ -200,7 +200,7 @@ long mbs_linear_fallbacks(const mbs_data *d) {
 }
 
 mbs_status mbs_joint_reaction(const mbs_data *d, int joint, int side, double force[3],
-                                  double torque[3]) {
+                              double torque[3]) {
     if (!d || !force || !torque) return MBS_ERR_ARGUMENT;
     const mbs::Mechanism &m = d->model->mechanism;
     if (joint < 0 || joint >= static_cast<int>(m.joints.size()) || side < 0 || side > 1 ||
@@ -213,7 +213,7 @@ mbs_status mbs_joint_reaction(const mbs_data *d, int joint, int side, double for
 }
 
 mbs_status mbs_evaluate(const mbs_data *d, const double *q, const double *q_dot, double *phi,
-                            double *jacobian, double *phi_t, double *gamma) {
+                        double *jacobian, double *phi_t, double *gamma) {
     if (!d || !q || (gamma && !q_dot)) return MBS_ERR_ARGUMENT;
     const mbs::Mechanism &m = d->model->mechanism;
     const mbs::DriverValue *drv = d->state.drive.data();

@@ -92,9 +92,9 @@ bool finalize(Mechanism &m, char *msg, size_t size) {
     }
     if (m.equations != m.coordinates) {
         mbs::set_message(msg, size, MBS_ERR_PARAMETER,
-                             "the mechanism has %d constraint equations for %d coordinates: it "
-                             "must have exactly as many (add or remove drivers)",
-                             m.equations, m.coordinates);
+                         "the mechanism has %d constraint equations for %d coordinates: it "
+                         "must have exactly as many (add or remove drivers)",
+                         m.equations, m.coordinates);
         return false;
     }
     choose_assembly_paths(m);

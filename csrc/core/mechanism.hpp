@@ -15,10 +15,10 @@ namespace mbs {
 struct Body {
     std::string name;
     double mass = 0;
-    Vec3 inertia = Vec3::Zero();          // principal moments about the centre of mass
+    Vec3 inertia = Vec3::Zero();                    // principal moments about the centre of mass
     double q_reference[7] = {0, 0, 0, 1, 0, 0, 0};  // assembly configuration
     bool fixed = false;
-    bool pose_driven = false;             // a pose driver replaces its normalisation
+    bool pose_driven = false;  // a pose driver replaces its normalisation
 };
 
 struct BlockPlan;  // linear_solver.hpp
@@ -35,8 +35,8 @@ struct JointRecord {
     int coord_i, coord_j;    // its bodies' first coordinates; coord_j -1 without a body j
     int driver;              // its first driver slot, -1 if none
     int first_row, first_value;
-    int block_j;             // body j's Jacobian block after first_value (7 x equations), or -1
-    bool frames;             // a two-body type: it is given its bodies' frames
+    int block_j;  // body j's Jacobian block after first_value (7 x equations), or -1
+    bool frames;  // a two-body type: it is given its bodies' frames
 };
 
 struct Mechanism {
@@ -47,11 +47,11 @@ struct Mechanism {
     // Filled by finalize().
     bool finalized = false;
     int coordinates = 0, equations = 0, drivers = 0;
-    std::vector<int> first_row;       // per joint
+    std::vector<int> first_row;                     // per joint
     std::vector<const JointTypeInfo *> joint_info;  // per joint: joint_type(its type)
-    std::vector<int> first_value;     // per joint: offset of its Jacobian blocks in the values
+    std::vector<int> first_value;  // per joint: offset of its Jacobian blocks in the values
     std::vector<int> pattern_row, pattern_col;  // per Jacobian value
-    std::vector<int> driver_joint;    // per driver slot: the joint that reads it
+    std::vector<int> driver_joint;              // per driver slot: the joint that reads it
     // Per joint: how assembly evaluates it, and for a cylindrical joint with a distance driver,
     // that driver (else -1).
     std::vector<AssemblyPath> assembly_path;
@@ -63,8 +63,14 @@ struct Mechanism {
 };
 
 // Body b's position r and Euler parameters p inside a coordinate vector (q, q_dot, q_ddot).
-template <class T> inline T *body_r(T *q, size_t b) { return q + MBS_BODY_R(b); }
-template <class T> inline T *body_p(T *q, size_t b) { return q + MBS_BODY_P(b); }
+template <class T>
+inline T *body_r(T *q, size_t b) {
+    return q + MBS_BODY_R(b);
+}
+template <class T>
+inline T *body_p(T *q, size_t b) {
+    return q + MBS_BODY_P(b);
+}
 // Coordinate c (0..6: r then p) of body b: its column in the Jacobian.
 inline int body_column(int b, int c) { return MBS_BODY_R(b) + c; }
 

@@ -28,7 +28,8 @@ Status set_message(char *msg, size_t size, Status status, const char *fmt, ...) 
 }
 
 // Empties msg and returns `ok`.
-template <class Status> Status clear_message(char *msg, size_t size, Status ok) {
+template <class Status>
+Status clear_message(char *msg, size_t size, Status ok) {
     if (msg && size > 0) msg[0] = '\0';
     return ok;
 }

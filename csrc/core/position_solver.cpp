@@ -225,7 +225,8 @@ mbs_status PositionSolver::solve(const SolverOptions &o) {
         if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
             return set_message(msg, size, MBS_ERR_SINGULAR,
                                "the constraint Jacobian is singular during the position solve "
-                               "(KINSOL flag %d after %ld iterations)", flag, iterations);
+                               "(KINSOL flag %d after %ld iterations)",
+                               flag, iterations);
         if (im.last_residual <= o.tolerance)  // small enough, but KINSOL reported a failure
             return set_message(msg, size, MBS_ERR_NOT_CONVERGED,
                                "position solve failed: KINSOL flag %d after %ld iterations "

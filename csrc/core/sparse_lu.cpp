@@ -9,8 +9,8 @@
 namespace mbs {
 
 namespace {
-constexpr double kThreshold = 0.1;        // pivot choice: within 10 % of the column maximum
-constexpr double kRuntimeThreshold = 1e-3; // refactorisation: give up below 0.1 %
+constexpr double kThreshold = 0.1;          // pivot choice: within 10 % of the column maximum
+constexpr double kRuntimeThreshold = 1e-3;  // refactorisation: give up below 0.1 %
 
 typedef double Pair __attribute__((vector_size(16)));
 
@@ -108,8 +108,7 @@ void eliminate_column(std::vector<std::vector<double>> &samples, std::vector<cha
 }
 
 // The program's spans and row positions, from its pivots' lists and the final row order.
-void finish_program(const std::vector<int> &order, int m, int n, int width,
-                    EliminationProgram &p) {
+void finish_program(const std::vector<int> &order, int m, int n, int width, EliminationProgram &p) {
     p.below_start.push_back(static_cast<int>(p.below.size()));
     p.right_start.push_back(static_cast<int>(p.right.size()));
     // Columns were pushed in increasing order: the carried ones close each pivot's list.

@@ -19,7 +19,8 @@ State::State(const Mechanism &m, const SolverOptions &kind)
     place_at_reference(m, q.data());
     linear = make_linear_solver(m, kind.linear);
     if (!linear) {
-        std::snprintf(message, sizeof message, "the requested block linear solver does not fit "
+        std::snprintf(message, sizeof message,
+                      "the requested block linear solver does not fit "
                       "this mechanism's structure");
         return;
     }
@@ -53,16 +54,15 @@ struct Counts {
     uint64_t q, lambda, drive;
 };
 
-Counts counts(const State &s) {
-    return {s.q.size(), s.lambda.size(), 3 * s.drive.size()};
-}
+Counts counts(const State &s) { return {s.q.size(), s.lambda.size(), 3 * s.drive.size()}; }
 
 size_t doubles(const Counts &c) { return 3 * c.q + c.lambda + c.drive + 2; }  // + time, residual
 
 }  // namespace
 
 size_t saved_state_size(const State &s) {
-    return sizeof kStateTag + sizeof(Counts) + 2 * sizeof(int32_t) + doubles(counts(s)) * sizeof(double);
+    return sizeof kStateTag + sizeof(Counts) + 2 * sizeof(int32_t) +
+           doubles(counts(s)) * sizeof(double);
 }
 
 void save_state(const State &s, unsigned char *out) {
@@ -112,17 +112,20 @@ bool fits_mechanism(State &s, bool solved, double recorded_residual, char *msg, 
         if (!(std::fabs(norm2 - 1.0) <= kLoadNormalization))
             return set_message(msg, size, false,
                                "the Euler parameters of body %zu (%s) have norm^2 %.17g in the "
-                               "state: they must be unit", b, body.name.c_str(), norm2);
+                               "state: they must be unit",
+                               b, body.name.c_str(), norm2);
     }
     if (!solved) return true;  // q is only the next solve's initial guess
     assemble_residual(m, q, s.load_drive.data(), s.load_phi.data());
     double residual = 0;
-    for (double r : s.load_phi) residual = std::isfinite(r) ? std::fmax(residual, std::fabs(r)) : INFINITY;
+    for (double r : s.load_phi)
+        residual = std::isfinite(r) ? std::fmax(residual, std::fabs(r)) : INFINITY;
     const double allowed = 2.0 * recorded_residual + 16.0 * DBL_EPSILON * largest;
     if (!(residual <= allowed))
         return set_message(msg, size, false,
                            "the state's constraint residual is %.3g, above the %.3g it records: "
-                           "its bodies do not satisfy the joints", residual, recorded_residual);
+                           "its bodies do not satisfy the joints",
+                           residual, recorded_residual);
     return true;
 }
 
@@ -133,21 +136,26 @@ bool load_state(State &s, const unsigned char *in, size_t size, char *msg, size_
     Counts c;
     int32_t flags[2];
     if (size != saved_state_size(s) || std::memcmp(in, kStateTag, sizeof kStateTag) != 0)
-        return set_message(msg, msg_size, false, "the bytes (%zu) are not a saved state of this "
-                           "model (%zu bytes, tag MBSSTAT1)", size, saved_state_size(s));
+        return set_message(msg, msg_size, false,
+                           "the bytes (%zu) are not a saved state of this "
+                           "model (%zu bytes, tag MBSSTAT1)",
+                           size, saved_state_size(s));
     in += sizeof kStateTag;
     std::memcpy(&c, in, sizeof c);
     in += sizeof c;
     if (c.q != expected.q || c.lambda != expected.lambda || c.drive != expected.drive)
-        return set_message(msg, msg_size, false, "the saved state is of a mechanism of another shape");
+        return set_message(msg, msg_size, false,
+                           "the saved state is of a mechanism of another shape");
     std::memcpy(flags, in, sizeof flags);
     in += sizeof flags;
     for (size_t i = 0; i < doubles(c); ++i) {
         double x;
         std::memcpy(&x, in + i * sizeof x, sizeof x);
         if (!std::isfinite(x))  // a corrupt state never reaches the solver
-            return set_message(msg, msg_size, false, "value %zu of the saved state is %g: every "
-                               "value must be finite", i, x);
+            return set_message(msg, msg_size, false,
+                               "value %zu of the saved state is %g: every "
+                               "value must be finite",
+                               i, x);
     }
     if ((flags[0] != 0 && flags[0] != 1) || flags[1] < 0)
         return set_message(msg, msg_size, false, "the saved state's flags (%d, %d) are corrupt",

@@ -15,9 +15,9 @@ class PositionSolver;
 struct SolverOptions {
     double tolerance = MBS_DEFAULT_TOLERANCE;  // max-norm of the residual
     int max_iterations = MBS_DEFAULT_MAX_ITERATIONS;
-    bool modified_newton = false;   // keep the Jacobian across Newton iterations
+    bool modified_newton = false;  // keep the Jacobian across Newton iterations
     LinearSolverKind linear = LinearSolverKind::Automatic;
-    bool kinsol_dense = false;      // KINSOL's own dense matrix and solver (a baseline)
+    bool kinsol_dense = false;  // KINSOL's own dense matrix and solver (a baseline)
 };
 
 struct SolveStats {
@@ -37,7 +37,7 @@ struct State {
     std::vector<double> q, q_dot, q_ddot, lambda;
     std::vector<DriverValue> drive;
     double time = 0;
-    bool has_history = false;       // q, q_dot, q_ddot hold the solution at `time`
+    bool has_history = false;  // q, q_dot, q_ddot hold the solution at `time`
     SolveStats stats;
     char message[MBS_MESSAGE_SIZE] = "";
 
@@ -47,10 +47,10 @@ struct State {
     std::vector<double> load_q, load_phi;
     std::vector<DriverValue> load_drive;
     std::unique_ptr<LinearSolver> linear;
-    bool factor_current = false;    // linear holds the factorisation at q
-    bool values_current = false;    // values hold Phi_q at q
+    bool factor_current = false;  // linear holds the factorisation at q
+    bool values_current = false;  // values hold Phi_q at q
     std::unique_ptr<PositionSolver> newton;
-    SolverOptions newton_options;   // the options the Newton solver is configured with
+    SolverOptions newton_options;  // the options the Newton solver is configured with
 };
 
 // Copies the state (not the workspaces) of src into dst, both of the same mechanism.

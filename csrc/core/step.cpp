@@ -56,7 +56,7 @@ bool all_finite(const std::vector<double> &v) {
 // tell which: the common, finite case costs one sweep.
 template <class AssembleRhs>
 mbs_status check_finite(State &s, std::vector<double> &v, const char *what,
-                            AssembleRhs assemble_rhs) {
+                        AssembleRhs assemble_rhs) {
     if (all_finite(v)) return MBS_OK;
     const double kOutOfRange = 1e150;  // within 1e4 of where squares overflow (1.3e154)
     for (size_t i = 0; i < v.size(); ++i) {
@@ -84,10 +84,8 @@ mbs_status solve_linear(State &s, std::vector<double> &x, const char *what,
     const mbs_status st = ensure_factor(s);
     if (st != MBS_OK) return st;
     assemble_rhs();
-    if (kTransposed)
-        s.linear->solve_transposed(x.data());
-    else
-        s.linear->solve(x.data());
+    if (kTransposed) s.linear->solve_transposed(x.data());
+    else s.linear->solve(x.data());
     return check_finite(s, x, what, assemble_rhs);
 }
 

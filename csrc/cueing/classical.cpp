@@ -186,8 +186,8 @@ void classical_step(const ClassicalDesign &d, ClassicalSteps &steps, ClassicalSt
     e.tilt_limited = tilt_targets(d, low[0], low[1], target);
     for (int i = 0; i < 2; ++i) {  // roll, pitch
         double tilt[3];
-        e.tilt_limited = rate_limited(s.tilt_angle[i], target[i], d.tilt_rate_max, dt, tilt) ||
-                         e.tilt_limited;
+        e.tilt_limited =
+            rate_limited(s.tilt_angle[i], target[i], d.tilt_rate_max, dt, tilt) || e.tilt_limited;
         s.tilt_angle[i] = tilt[0];
         e.q[3 + i] += tilt[0], e.q_dot[3 + i] += tilt[1], e.q_ddot[3 + i] += tilt[2];
     }

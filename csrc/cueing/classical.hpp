@@ -15,9 +15,9 @@ struct ClassicalDesign {
     double translation_gain[3];  // k_i
     double tilt_gain[2];         // k_x w_l^2, k_y w_l^2
     double rotation_gain[3];
-    double gravity;              // g [m/s2], the rest value of the specific force's z
+    double gravity;  // g [m/s2], the rest value of the specific force's z
     double tilt_max, tilt_rate_max;
-    double head[3];              // solvers' z-up platform frame
+    double head[3];  // solvers' z-up platform frame
 };
 
 // The three discretised filters for the last dt (a cache, not state: a step of another dt

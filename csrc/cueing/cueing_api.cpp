@@ -22,7 +22,7 @@ namespace {
 // What a cueing object carries from one sample to the next: all of it plain numbers.
 struct CueingState {
     stewart::cueing::ClassicalState classical;
-    double scale, scale_rate;  // the limiter's s and s' at the last sample
+    double scale, scale_rate;          // the limiter's s and s' at the last sample
     stewart::cueing::LegState output;  // the output's motion (the leg limiter's), from home
 };
 
@@ -109,8 +109,10 @@ bool make_leg_solver(stewart_cueing &c, char *msg, size_t size) {
     if (!c.leg_limits_given) return true;
     stewart_inverse_options io;
     stewart_inverse_options_default(&io);
-    io.fidelity = (c.leg_limits_given & STEWART_CUEING_LEG_FORCE) ? STEWART_MASSLESS : STEWART_KINEMATIC;
-    io.warn_condition = io.singular_condition = std::fmax(c.options.warn_condition, io.warn_condition);
+    io.fidelity =
+        (c.leg_limits_given & STEWART_CUEING_LEG_FORCE) ? STEWART_MASSLESS : STEWART_KINEMATIC;
+    io.warn_condition = io.singular_condition =
+        std::fmax(c.options.warn_condition, io.warn_condition);
     c.legs = stewart_inverse_create(c.model, &io, msg, size);
     return c.legs != nullptr;
 }

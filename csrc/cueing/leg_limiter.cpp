@@ -32,8 +32,8 @@ struct EndState {
 
 // The legs' lengths, rates and accelerations at home + x moving at x_dot, x_ddot; false when a
 // leg has no length (no direction: nothing vouches for it).
-bool legs_at(const LegLimiter &l, const double x[6], const double x_dot[6],
-             const double x_ddot[6], LegKinematics &legs) {
+bool legs_at(const LegLimiter &l, const double x[6], const double x_dot[6], const double x_ddot[6],
+             LegKinematics &legs) {
     double q[6];
     for (int i = 0; i < 6; ++i) q[i] = l.limiter->home[i] + x[i];
     char unused[2];
@@ -241,8 +241,8 @@ LegLimiter leg_limiter(const Limiter &limiter, const PlatformGeometry &geometry,
     return l;
 }
 
-bool leg_limited_step(const LegLimiter &l, const stewart_pose &desired, double dt,
-                      LegState &state, stewart_pose &platform) {
+bool leg_limited_step(const LegLimiter &l, const stewart_pose &desired, double dt, LegState &state,
+                      stewart_pose &platform) {
     EndState cue;
     for (int i = 0; i < 6; ++i) {
         cue.q[i] = desired.q[i] - l.limiter->home[i];

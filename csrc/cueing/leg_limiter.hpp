@@ -42,8 +42,8 @@ LegLimiter leg_limiter(const Limiter &limiter, const PlatformGeometry &geometry,
 
 // One step of dt toward the pose limiter's platform pose `desired` (solvers' frame, with its
 // rates and accelerations): the output platform pose, true when it left `desired`.
-bool leg_limited_step(const LegLimiter &l, const stewart_pose &desired, double dt,
-                      LegState &state, stewart_pose &platform);
+bool leg_limited_step(const LegLimiter &l, const stewart_pose &desired, double dt, LegState &state,
+                      stewart_pose &platform);
 
 }  // namespace cueing
 }  // namespace stewart

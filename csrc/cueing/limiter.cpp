@@ -48,7 +48,8 @@ double cubic_end_accel(double s0, double v0, double s1, double v1, double dt) {
 // still stops at the goal under the acceleration bound, reached as far as the bound allows.
 Scale smooth_step(const Limiter &l, double s0, double v0, double goal, double dt) {
     const double d = goal - s0;
-    const double v_goal = std::copysign(std::min(l.rate, std::sqrt(2.0 * l.accel * std::fabs(d))), d);
+    const double v_goal =
+        std::copysign(std::min(l.rate, std::sqrt(2.0 * l.accel * std::fabs(d))), d);
     const double a = std::clamp((v_goal - v0) / dt, -l.accel, l.accel);
     Scale s{s0 + v0 * dt + 0.5 * a * dt * dt, v0 + a * dt, a, false};
     if (s.value > 1.0 || s.value < 0.0) {  // at an end of [0, 1]: stop there
@@ -92,7 +93,8 @@ Scale limited_scale(const Limiter &l, const Excursion &e, double last, double la
         for (int i = 0; i < 6; ++i) ahead[i] = e.q[i] + T * e.q_dot[i] + 0.5 * T * T * e.q_ddot[i];
         goal = std::min(goal, largest_within(l, ahead, 1.0, last, kGoalTolerance));
     }
-    Scale s = dt > 0.0 ? smooth_step(l, last, last_rate, goal, dt) : Scale{last, last_rate, 0.0, false};
+    Scale s =
+        dt > 0.0 ? smooth_step(l, last, last_rate, goal, dt) : Scale{last, last_rate, 0.0, false};
     // The final pose is always a checked one: `now` was, any other scale is checked (the poses
     // within the limits along the excursion need not be an interval).
     if (s.value == now || within(l, e.q, s.value)) return s;

@@ -37,8 +37,7 @@ bool caller_pose(const Limiter &l, const stewart_pose &platform, int derivatives
 bool within(const Limiter &l, const double e[6], double s);
 
 // The scale at the end of a step of dt from (last, last_rate), for the excursion e.
-Scale limited_scale(const Limiter &l, const Excursion &e, double last, double last_rate,
-                    double dt);
+Scale limited_scale(const Limiter &l, const Excursion &e, double last, double last_rate, double dt);
 
 }  // namespace cueing
 }  // namespace stewart

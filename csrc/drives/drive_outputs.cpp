@@ -62,8 +62,8 @@ bool drive_outputs_finite(const stewart_inverse_output &o) {
 #define PUT(name, member, count, type, unit, description) put_row(out.name, j, o.member);
 
 void batch_drive_zeros(const stewart_inverse_batch_outputs &out, size_t first, size_t last) {
-#define ZEROS(name, member, count, type, unit, description)                                       \
-    if (out.name)                                                                                  \
+#define ZEROS(name, member, count, type, unit, description) \
+    if (out.name)                                           \
         std::memset(out.name + first * (count), 0, (last - first) * (count) * sizeof(type));
     STEWART_INVERSE_DRIVE_OUTPUT_TABLE(ZEROS)
 #undef ZEROS
@@ -87,8 +87,8 @@ bool batch_drive_row(const LegDrive (&drive)[STEWART_LEGS], const stewart_params
 namespace {
 
 // d current / dt at row j of the solved run [first, last) (numpy.gradient, edge_order 1).
-double current_rate_at(const double *current, const double *t, size_t first, size_t last,
-                       size_t j, int k) {
+double current_rate_at(const double *current, const double *t, size_t first, size_t last, size_t j,
+                       int k) {
     auto i = [&](size_t row) { return current[6 * row + k]; };
     if (last - first < 2) return 0;
     if (j == first) return (i(j + 1) - i(j)) / (t[j + 1] - t[j]);
@@ -124,7 +124,10 @@ size_t trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const ste
                                 size_t n, const double *t,
                                 const stewart_inverse_batch_outputs &out) {
     for (size_t first = 0; first < n;) {
-        if (out.status[first] != STEWART_OK) { ++first; continue; }
+        if (out.status[first] != STEWART_OK) {
+            ++first;
+            continue;
+        }
         size_t last = first + 1;
         while (last < n && out.status[last] == STEWART_OK) ++last;
         for (size_t j = first; j < last; ++j) {
@@ -175,7 +178,8 @@ stewart_status jerk_current_rates(const LegDrive (&drive)[STEWART_LEGS], const s
         if (!set_current_rates(drive, p, out, j, rate))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "row %zu: its jerk makes a current's rate or the voltage overflow: "
-                               "give jerks (q_dddot) of the size the motion has", j);
+                               "give jerks (q_dddot) of the size the motion has",
+                               j);
     }
     return STEWART_OK;
 }

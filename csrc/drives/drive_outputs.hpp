@@ -33,7 +33,8 @@ bool batch_drive_row(const LegDrive (&drive)[STEWART_LEGS], const stewart_params
 // row whose rates, voltages or powers overflow (times too close for the currents' change), n if
 // none.
 size_t trajectory_current_rates(const LegDrive (&drive)[STEWART_LEGS], const stewart_params &p,
-                              size_t n, const double *t, const stewart_inverse_batch_outputs &out);
+                                size_t n, const double *t,
+                                const stewart_inverse_batch_outputs &out);
 
 // Row j's current rates (0 on a leg without a drive) into its current_rate, voltage (with
 // L dI/dt), electrical_power and voltage_max_legs; false if one of them is not finite.
@@ -49,4 +50,3 @@ stewart_status jerk_current_rates(const LegDrive (&drive)[STEWART_LEGS], const s
                                   const stewart_inverse_batch_outputs &out, char *msg, size_t size);
 
 }  // namespace stewart
-

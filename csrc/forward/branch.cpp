@@ -30,11 +30,13 @@ BranchSides branch_sides(const PlatformGeometry &g, double home_height) {
     constexpr double kHorizontal = 1e-3;
     BranchSides sides;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const Eigen::Vector3d leg = (Eigen::Vector3d(0, 0, home_height) + g.platform_points.col(k) -
-                                     g.base_points.col(k)).normalized();
-        const Eigen::Vector3d side = leg.z() > kHorizontal    ? Eigen::Vector3d::UnitZ()
-                                     : leg.z() < -kHorizontal ? Eigen::Vector3d(-Eigen::Vector3d::UnitZ())
-                                                              : leg;
+        const Eigen::Vector3d leg =
+            (Eigen::Vector3d(0, 0, home_height) + g.platform_points.col(k) - g.base_points.col(k))
+                .normalized();
+        const Eigen::Vector3d side = leg.z() > kHorizontal ? Eigen::Vector3d::UnitZ()
+                                     : leg.z() < -kHorizontal
+                                         ? Eigen::Vector3d(-Eigen::Vector3d::UnitZ())
+                                         : leg;
         sides.base.col(k) = side;
         sides.platform.col(k) = side;  // the platform frame is the world's at home
         sides.vertical[k] = side == Eigen::Vector3d::UnitZ()    ? 1
@@ -102,8 +104,8 @@ LengthPairBounds length_pair_bounds(const PlatformGeometry &g) {
     return b;
 }
 
-stewart_status check_length_pairs(const LengthPairBounds &bounds,
-                                  const double length[STEWART_LEGS], char *msg, size_t size) {
+stewart_status check_length_pairs(const LengthPairBounds &bounds, const double length[STEWART_LEGS],
+                                  char *msg, size_t size) {
     // The common case first: every pair inside its bounds, two pairs at a time (the last lane
     // repeats the last pair).
     static constexpr int first[15] = {0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 3, 3, 4};
@@ -130,8 +132,8 @@ stewart_status check_length_pairs(const LengthPairBounds &bounds,
                 return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                    "no pose has these lengths: legs %d and %d are too short "
                                    "together, L%d + L%d = %g m < %g m, the least their attachment "
-                                   "points allow", i + 1, j + 1, i + 1, j + 1, L_i + L_j,
-                                   bounds.sum[p]);
+                                   "points allow",
+                                   i + 1, j + 1, i + 1, j + 1, L_i + L_j, bounds.sum[p]);
             }
             if (std::fabs(L_i - L_j) > bounds.largest_difference[p]) {
                 ++violations[i];
@@ -148,8 +150,7 @@ stewart_status check_length_pairs(const LengthPairBounds &bounds,
                            "no pose has these lengths: leg %d (L%d = %g m) differs from %d other "
                            "legs by more than the geometry allows (e.g. |L%d - L%d| = %g m > %g m)",
                            blamed + 1, blamed + 1, length[blamed], violations[blamed], first_i + 1,
-                           first_j + 1, std::fabs(length[first_i] - length[first_j]),
-                           first_bound);
+                           first_j + 1, std::fabs(length[first_i] - length[first_j]), first_bound);
     return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                        "no pose has these lengths: legs %d and %d differ by |L%d - L%d| = %g m, "
                        "more than the %g m their attachment points allow",

@@ -46,7 +46,7 @@ struct LengthPairBounds {
 LengthPairBounds length_pair_bounds(const PlatformGeometry &g);
 
 // STEWART_ERR_UNREACHABLE (message names the leg, or the pair) when two lengths break a bound.
-stewart_status check_length_pairs(const LengthPairBounds &bounds,
-                                  const double length[STEWART_LEGS], char *msg, size_t size);
+stewart_status check_length_pairs(const LengthPairBounds &bounds, const double length[STEWART_LEGS],
+                                  char *msg, size_t size);
 
 }  // namespace stewart

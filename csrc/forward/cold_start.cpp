@@ -12,8 +12,9 @@ namespace {
 void home_readings(const stewart_model &m, double reading[6]) {
     const Eigen::Vector3d up(0.0, 0.0, m.params.home_height);
     for (int k = 0; k < 6; ++k)
-        reading[k] = (m.geometry.platform_points.col(k) + up - m.geometry.base_points.col(k)).norm() -
-                     m.params.length_offset[k];
+        reading[k] =
+            (m.geometry.platform_points.col(k) + up - m.geometry.base_points.col(k)).norm() -
+            m.params.length_offset[k];
 }
 
 // Walks the lengths from home's readings to input's in `steps` equal steps, each solve tracking

@@ -19,8 +19,8 @@ double largest_arm(const PlatformGeometry &g) {
     return arm;
 }
 
-ProvenStep proven_step(const PlatformGeometry &g, double inverse_norm1, double shortest,
-                       double arm, double tolerance) {
+ProvenStep proven_step(const PlatformGeometry &g, double inverse_norm1, double shortest, double arm,
+                       double tolerance) {
     // Pose increments u = (dp, r_t phi), phi the rotation vector of R R0^T. beta = |J^-1|_1
     // and gamma = how fast a row of J turns per unit of |u| (its axis n by |d(leg)| / L, its
     // moment arm by the arm and n): the Kantorovich form with these estimates, which leave out
@@ -44,7 +44,8 @@ ProvenStep proven_step(const PlatformGeometry &g, double inverse_norm1, double s
 double pose_distance(const PlatformGeometry &g, const double a[6], const double b[6]) {
     // The angle from |R_a - R_b|_F = 2 sqrt2 sin(angle / 2): exact to rounding for small angles
     // (acos of the trace loses half the digits there).
-    const double chord = (rotation_from_rpy(a[3], a[4], a[5]) - rotation_from_rpy(b[3], b[4], b[5])).norm();
+    const double chord =
+        (rotation_from_rpy(a[3], a[4], a[5]) - rotation_from_rpy(b[3], b[4], b[5])).norm();
     double d = g.characteristic_length * 2.0 * std::asin(std::min(1.0, chord / std::sqrt(8.0)));
     for (int i = 0; i < 3; ++i) d = std::max(d, std::fabs(a[i] - b[i]));
     return d;
@@ -64,7 +65,8 @@ bool continue_lengths(const PlatformGeometry &g, ForwardNewton &newton, const do
     LegFactors factors;
     double norm1;
     if (!factor_legs(g, legs, factors, norm1)) {
-        set_message(msg, size, STEWART_ERR_SINGULAR, "the path of lengths starts at a singular pose");
+        set_message(msg, size, STEWART_ERR_SINGULAR,
+                    "the path of lengths starts at a singular pose");
         return false;
     }
     const int sign = determinant_sign(factors);
@@ -97,7 +99,8 @@ bool continue_lengths(const PlatformGeometry &g, ForwardNewton &newton, const do
     if (t >= 1) return true;
     set_message(msg, size, STEWART_ERR_SINGULAR,
                 "the straight path of lengths from home meets a singular pose (or passes so near "
-                "one that steps of 1/65536 of the way do not pass it), %.3g of the way", t);
+                "one that steps of 1/65536 of the way do not pass it), %.3g of the way",
+                t);
     return false;
 }
 

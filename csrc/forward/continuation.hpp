@@ -17,8 +17,8 @@ struct ProvenStep {
     double radius = 0;      // [m, the rotation as platform radius times angle]
 };
 // inverse_norm1: |J^-1|_1 at x0; shortest: its shortest leg; arm: the largest |b_k| / r_t.
-ProvenStep proven_step(const PlatformGeometry &g, double inverse_norm1, double shortest,
-                       double arm, double tolerance);
+ProvenStep proven_step(const PlatformGeometry &g, double inverse_norm1, double shortest, double arm,
+                       double tolerance);
 // The largest |b_k| / r_t of the geometry.
 double largest_arm(const PlatformGeometry &g);
 

@@ -66,9 +66,10 @@ stewart_status velocity_leg_accelerations(const stewart::PlatformGeometry &g, co
     const Eigen::Vector3d rate(q_dot[3], q_dot[4], q_dot[5]);
     const Eigen::Vector3d omega =
         stewart::angle_rate_matrix(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw) * rate;
-    const Eigen::Vector3d alpha = stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch,
-                                                                 t.cos_yaw, t.sin_yaw, rate[1],
-                                                                 rate[2]) * rate;
+    const Eigen::Vector3d alpha =
+        stewart::angle_rate_matrix_dot(t.cos_pitch, t.sin_pitch, t.cos_yaw, t.sin_yaw, rate[1],
+                                       rate[2]) *
+        rate;
     // Written out, two legs at a time (forward/leg_pairs.hpp: each lane the scalar arithmetic).
     const double w0 = omega[0], w1 = omega[1], w2 = omega[2];
     const double e0 = alpha[0], e1 = alpha[1], e2 = alpha[2];
@@ -114,7 +115,8 @@ stewart_status check_found(const stewart_pose &pose, const char *what, char *msg
             if (!std::isfinite(v[i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                    "the %s found overflows (%s is %g): the inputs are out of "
-                                   "range", what, stewart::kPoseNames[i], v[i]);
+                                   "range",
+                                   what, stewart::kPoseNames[i], v[i]);
     return STEWART_OK;
 }
 
@@ -134,8 +136,8 @@ stewart_status cardan_lengths(const stewart_model &m, const double reading[6], d
         if (!(length[k] > 0 && length[k] < 1e150))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "L%d + length_offset[%d] = %g + %g m: a Cardan-to-Cardan length "
-                               "must be > 0 and < 1e150 m", k + 1, k + 1, reading[k],
-                               p.length_offset[k]);
+                               "must be > 0 and < 1e150 m",
+                               k + 1, k + 1, reading[k], p.length_offset[k]);
     return STEWART_OK;
 }
 
@@ -153,7 +155,8 @@ stewart_status shown_pose(const stewart_model &m, const stewart_forward_output &
         stewart::tool_pose(m.frames, out.pose, 0, tool.pose);
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the tool frame's pitch in the user frame = %g rad is at +-90 deg: its "
-                           "roll and yaw rates are not defined there", tool.pose.q[4]);
+                           "roll and yaw rates are not defined there",
+                           tool.pose.q[4]);
     }
     const stewart_status s = check_found(tool.pose, "tool's pose", msg, size);
     if (s != STEWART_OK) return s;
@@ -196,10 +199,10 @@ struct Found {
     int start = 0;
     int branch = 0;
     double jump = 0;
-    stewart::LegFactors factors;  // the leg Jacobian at q, factored
-    double condition = 0;         // its 1-norm condition number
+    stewart::LegFactors factors;                     // the leg Jacobian at q, factored
+    double condition = 0;                            // its 1-norm condition number
     double angles[3], cos_angles[3], sin_angles[3];  // of the Newton iterate (before the wrap)
-    stewart::LegVectors points;  // the platform points, world
+    stewart::LegVectors points;                      // the platform points, world
     stewart::Vector6 residual;
     stewart::ProvenStep step;  // at q (tolerance 0)
 };
@@ -208,9 +211,7 @@ struct Found {
 void start_pose(const stewart_model &m, const stewart::ForwardState &f, int start, double time,
                 const double *guess, double q[6]) {
     switch (start) {
-        case STEWART_START_GUESS:
-            std::memcpy(q, guess, 6 * sizeof(double));
-            return;
+        case STEWART_START_GUESS: std::memcpy(q, guess, 6 * sizeof(double)); return;
         case STEWART_START_PREDICTOR: {  // (two coordinates at a time, each the scalar formula)
             using stewart::load_pair;
             const double dt = time - f.time, half_dt2 = 0.5 * dt * dt;
@@ -219,15 +220,13 @@ void start_pose(const stewart_model &m, const stewart::ForwardState &f, int star
                 const stewart::Pair rate =
                     f.has_rates ? load_pair(f.q_dot + i)
                                 : (last - load_pair(f.previous_q + i)) / (f.time - f.previous_time);
-                const stewart::Pair accel = f.has_accels ? half_dt2 * load_pair(f.q_ddot + i)
-                                                         : stewart::Pair{0.0, 0.0};
+                const stewart::Pair accel =
+                    f.has_accels ? half_dt2 * load_pair(f.q_ddot + i) : stewart::Pair{0.0, 0.0};
                 stewart::store_pair(q + i, last + dt * rate + accel);
             }
             return;
         }
-        case STEWART_START_LAST:
-            std::memcpy(q, f.q, 6 * sizeof(double));
-            return;
+        case STEWART_START_LAST: std::memcpy(q, f.q, 6 * sizeof(double)); return;
         default:
             for (int i = 0; i < 6; ++i) q[i] = 0;
             q[2] = m.params.home_height;
@@ -238,8 +237,8 @@ void start_pose(const stewart_model &m, const stewart::ForwardState &f, int star
 // STEWART_ERR_SINGULAR if the pose is singular for the inverse side's threshold or the lengths
 // do not determine it, else OK with the branch bits set.
 stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
-                       const stewart_forward_options &o, const stewart::LegsAt &at,
-                       bool tracking, Found &x, char *msg, size_t size) {
+                       const stewart_forward_options &o, const stewart::LegsAt &at, bool tracking,
+                       Found &x, char *msg, size_t size) {
     const stewart::PlatformGeometry &g = m.geometry;
     x.residual = at.residual;
     for (int i = 0; i < 3; ++i) x.angles[i] = at.q[3 + i];
@@ -266,7 +265,8 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
                            "these lengths are at (or next to) a singular pose: leg Jacobian "
                            "condition number %g, so lengths known to the tolerance %g m do not "
                            "determine the pose (condition^2 tolerance / platform_radius = %g > "
-                           "0.5)", condition, o.tolerance, h);
+                           "0.5)",
+                           condition, o.tolerance, h);
     // The platform points, two legs at a time; the jump as the largest squared distance (the sum
     // in Eigen's order), then one square root (monotonic and correctly rounded): bit for bit
     // Eigen's colwise().norm().maxCoeff().
@@ -283,9 +283,9 @@ stewart_status examine(const stewart_model &m, const stewart::ForwardState &f,
         const Pair squared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         farthest = std::max(farthest, std::max(squared[0], squared[1]));
     }
-    x.branch = stewart::assembly_branch(g, m.forward.sides, at.rotation, x.points,
-                                        stewart::determinant_sign(x.factors),
-                                        m.forward.working_sign);
+    x.branch =
+        stewart::assembly_branch(g, m.forward.sides, at.rotation, x.points,
+                                 stewart::determinant_sign(x.factors), m.forward.working_sign);
     if (tracking) {
         x.jump = std::sqrt(farthest);
         if (x.jump > m.forward.shortest_stroke_range) x.branch |= STEWART_BRANCH_JUMP;
@@ -318,20 +318,20 @@ stewart_status derivatives(const stewart_model &m, const Found &x, const double 
         stewart::PitchYawTrig at;
         sincos_near(q[4], x.angles[1], x.sin_angles[1], x.cos_angles[1], &at.sin_pitch,
                     &at.cos_pitch);
-        sincos_near(q[5], x.angles[2], x.sin_angles[2], x.cos_angles[2], &at.sin_yaw,
-                    &at.cos_yaw);
+        sincos_near(q[5], x.angles[2], x.sin_angles[2], x.cos_angles[2], &at.sin_yaw, &at.cos_yaw);
         if (!stewart::pose_rates_from(x.factors, at, rates, out.pose.q_dot))
             return set_message(msg, size, STEWART_ERR_SINGULAR,
                                "pitch = %g rad is at +-90 deg: the roll and yaw rates are not "
-                               "defined there", q[4]);
+                               "defined there",
+                               q[4]);
         if (accels) {
             // L_ddot = J (a, c alpha_E) + the part of the leg accelerations from the velocities
             // alone: the leg accelerations at zero pose accelerations.
             double sin_roll, cos_roll, moving[6];
-            sincos_near(q[3], x.angles[0], x.sin_angles[0], x.cos_angles[0], &sin_roll,
-                        &cos_roll);
-            const stewart_status s = velocity_leg_accelerations(
-                m.geometry, q, out.pose.q_dot, cos_roll, sin_roll, at, moving, msg, size);
+            sincos_near(q[3], x.angles[0], x.sin_angles[0], x.cos_angles[0], &sin_roll, &cos_roll);
+            const stewart_status s =
+                velocity_leg_accelerations(m.geometry, q, out.pose.q_dot, cos_roll, sin_roll, at,
+                                           moving, msg, size);
             if (s != STEWART_OK) return s;
             double rhs[6];
             for (int k = 0; k < 6; ++k) rhs[k] = accels[k] - moving[k];
@@ -386,8 +386,8 @@ stewart_status prove(const stewart_model &m, stewart::ForwardState &f,
         const double *from = tracking ? f.q : home;
         double moved = 0;
         for (int i = 0; i < 3; ++i) moved = std::max(moved, std::fabs(x.q[i] - from[i]));
-        const double turned = std::fabs(x.q[3] - from[3]) + std::fabs(x.q[4] - from[4]) +
-                              std::fabs(x.q[5] - from[5]);
+        const double turned =
+            std::fabs(x.q[3] - from[3]) + std::fabs(x.q[4] - from[4]) + std::fabs(x.q[5] - from[5]);
         if (change + o.tolerance <= step.max_change &&
             std::max(moved, g.characteristic_length * turned) < step.radius)
             return STEWART_OK;
@@ -400,16 +400,18 @@ stewart_status prove(const stewart_model &m, stewart::ForwardState &f,
     int steps = 0;
     char why[STEWART_MESSAGE_SIZE];
     // From the last pose along the straight path of lengths (tracking), then from home.
-    if (tracking && stewart::continue_lengths(g, *f.newton, f.q, f.lengths, lengths, o.tolerance,
-                                              reached, steps, why, sizeof why) &&
+    if (tracking &&
+        stewart::continue_lengths(g, *f.newton, f.q, f.lengths, lengths, o.tolerance, reached,
+                                  steps, why, sizeof why) &&
         stewart::pose_distance(g, reached, x.q) <= same)
         return STEWART_OK;
-    if (!stewart::continue_lengths(g, *f.newton, home, m.forward.home_lengths, lengths,
-                                   o.tolerance, reached, steps, why, sizeof why))
+    if (!stewart::continue_lengths(g, *f.newton, home, m.forward.home_lengths, lengths, o.tolerance,
+                                   reached, steps, why, sizeof why))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the pose found cannot be proven to be the one these lengths lead to: "
                            "%s; track the machine from a proven pose (samples close enough), or "
-                           "give a guess", why);
+                           "give a guess",
+                           why);
     if (stewart::pose_distance(g, reached, x.q) <= same) return STEWART_OK;
     if (!from_home) {
         x.branch |= STEWART_BRANCH_UNPROVEN;
@@ -431,7 +433,8 @@ stewart_status forward_constants(const PlatformGeometry &g, const stewart_params
                                  ForwardConstants &f, char *msg, size_t size) {
     f.shortest_stroke_range = p.stroke_max[0] - p.stroke_min[0];
     for (int k = 1; k < STEWART_LEGS; ++k)
-        f.shortest_stroke_range = std::min(f.shortest_stroke_range, p.stroke_max[k] - p.stroke_min[k]);
+        f.shortest_stroke_range =
+            std::min(f.shortest_stroke_range, p.stroke_max[k] - p.stroke_min[k]);
     f.sides = branch_sides(g, p.home_height);
     stewart_pose home{};
     home.q[2] = p.home_height;
@@ -462,7 +465,7 @@ stewart_status forward_constants(const PlatformGeometry &g, const stewart_params
 namespace {
 
 constexpr unsigned kHistoryMagic = 0x53544657u;  // "STFW"
-constexpr unsigned kHistoryVersion = 3;  // 2: the chord's factors; 3: lengths, proven step
+constexpr unsigned kHistoryVersion = 3;          // 2: the chord's factors; 3: lengths, proven step
 // times, q, q_dot, q_ddot, previous_q, points; the chord's LU, pitch and yaw trig, scale
 constexpr size_t kHistoryDoubles = 2 + 6 * 4 + 18 + 36 + 4 + 1 + 6 + 2;
 constexpr size_t kHistoryFlags = 5 + 6;  // has_pose .. has_chord; the chord's pivots
@@ -512,8 +515,9 @@ bool forward_history_load(ForwardState &f, const unsigned char *buffer, size_t s
         header[2] != forward_history_size() || size < forward_history_size()) {
         set_message(msg, msg_size, STEWART_ERR_ARGUMENT,
                     "not a forward history of this version (magic %#x, version %u, %u of %zu "
-                    "bytes; expected %#x, %u, %zu)", header[0], header[1], header[2], size,
-                    kHistoryMagic, kHistoryVersion, forward_history_size());
+                    "bytes; expected %#x, %u, %zu)",
+                    header[0], header[1], header[2], size, kHistoryMagic, kHistoryVersion,
+                    forward_history_size());
         return false;
     }
     const unsigned char *flags = buffer + kHistoryHeader;
@@ -677,7 +681,8 @@ stewart_status check_input(const stewart_model &m, const stewart_forward_input &
     if (input.derivatives < 0 || input.derivatives > 2)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "derivatives is %d: it must be 0 (lengths), 1 (and rates) or 2 (and "
-                           "accelerations)", input.derivatives);
+                           "accelerations)",
+                           input.derivatives);
     in.time = input.time;
     in.rates = input.derivatives >= 1 ? input.lengths.length_rate : nullptr;
     in.accels = input.derivatives >= 2 ? input.lengths.length_accel : nullptr;
@@ -689,8 +694,7 @@ stewart_status check_input(const stewart_model &m, const stewart_forward_input &
     // The lengths given are the sensors' readings; the Cardan-to-Cardan ones add the offsets.
     if ((s = cardan_lengths(m, input.lengths.length, in.lengths, msg, size)) != STEWART_OK)
         return s;
-    if (in.rates && (s = check_values(in.rates, "L_dot", false, msg, size)) != STEWART_OK)
-        return s;
+    if (in.rates && (s = check_values(in.rates, "L_dot", false, msg, size)) != STEWART_OK) return s;
     if (in.accels && (s = check_values(in.accels, "L_ddot", false, msg, size)) != STEWART_OK)
         return s;
     if (in.guess)
@@ -705,8 +709,8 @@ stewart_status check_input(const stewart_model &m, const stewart_forward_input &
             if (!std::isfinite(in.platform_guess[i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                    "guess %s = %g is out of range: the platform's pose it gives "
-                                   "(tool and user frames) overflows", stewart::kPoseNames[i],
-                                   in.guess[i]);
+                                   "(tool and user frames) overflows",
+                                   stewart::kPoseNames[i], in.guess[i]);
         in.guess = in.platform_guess;
     }
     return stewart::check_length_pairs(m.forward.pair_bounds, in.lengths, msg, size);
@@ -769,22 +773,20 @@ void solve_from_starts(const stewart_model &m, stewart::ForwardState &f,
             starts[k] == STEWART_START_PREDICTOR && f.has_chord ? &f.chord : nullptr;
         const double drift = chord ? chord_drift(m, f, start_q) : 0;
         stewart_status &error = a.last_error;
-        error = f.newton->solve(m.geometry, in.lengths, o.tolerance, o.max_iterations, chord,
-                                drift, x.q, stats, msg, size);
+        error = f.newton->solve(m.geometry, in.lengths, o.tolerance, o.max_iterations, chord, drift,
+                                x.q, stats, msg, size);
         a.iterations += stats.iterations;
-        if (error == STEWART_OK)
-            error = examine(m, f, o, f.newton->last(), tracking, x, msg, size);
+        if (error == STEWART_OK) error = examine(m, f, o, f.newton->last(), tracking, x, msg, size);
         else if (std::isfinite(stats.residual) &&  // Newton creeping toward a singular pose
-                 examine(m, f, o, f.newton->last(), tracking, x, msg, size) ==
-                     STEWART_ERR_SINGULAR)
+                 examine(m, f, o, f.newton->last(), tracking, x, msg, size) == STEWART_ERR_SINGULAR)
             error = STEWART_ERR_SINGULAR;
         if (error != STEWART_OK) continue;
         // Angles within half a turn of the start's: the same rotation, the continuous angles.
         // (Inside half a turn the remainder is the difference itself, exactly: no libm call.)
         for (int i = 3; i < 6; ++i) {
             const double turned = x.q[i] - start_q[i];
-            x.q[i] = start_q[i] +
-                     (std::fabs(turned) < kPi ? turned : std::remainder(turned, 2 * kPi));
+            x.q[i] =
+                start_q[i] + (std::fabs(turned) < kPi ? turned : std::remainder(turned, 2 * kPi));
         }
         x.start = starts[k];
         if (x.branch == 0) a.chosen = a.n_found;
@@ -833,8 +835,8 @@ stewart_status answer(const stewart_model &m, stewart::ForwardState &f,
         result.warnings |= STEWART_WARN_OTHER_BRANCH;
         return set_message(msg, size, STEWART_ERR_OTHER_BRANCH,
                            "the pose found from the %s is on another assembly mode: %s (z = %g "
-                           "m); not taken as the answer", start_name(x.start),
-                           branch_reason(x.branch), x.q[2]);
+                           "m); not taken as the answer",
+                           start_name(x.start), branch_reason(x.branch), x.q[2]);
     }
     remember(f, x, out, in.lengths, in.time, in.guess != nullptr, in.rates != nullptr,
              in.accels != nullptr);

@@ -10,5 +10,5 @@ struct stewart_forward {
     const stewart_model *model;
     stewart_forward_options options;
     mutable char message[STEWART_MESSAGE_SIZE];  // a refused save (const) says why too
-    stewart::ForwardState state;  // its Newton solver and tracking history
+    stewart::ForwardState state;                 // its Newton solver and tracking history
 };

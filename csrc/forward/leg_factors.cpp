@@ -17,8 +17,8 @@ void evaluate_legs(const PlatformGeometry &g, const double q[6], const double ta
     ::sincos(q[3], &c.sin_roll, &c.cos_roll);  // (libm's sin and cos, one call)
     ::sincos(q[4], &c.sin_pitch, &c.cos_pitch);
     ::sincos(q[5], &c.sin_yaw, &c.cos_yaw);
-    c.rotation = rotation_from_trig(c.cos_roll, c.sin_roll, c.cos_pitch, c.sin_pitch, c.cos_yaw,
-                                    c.sin_yaw);
+    c.rotation =
+        rotation_from_trig(c.cos_roll, c.sin_roll, c.cos_pitch, c.sin_pitch, c.cos_yaw, c.sin_yaw);
     const Eigen::Matrix3d &R = c.rotation;
     const double r00 = R(0, 0), r01 = R(0, 1), r02 = R(0, 2), r10 = R(1, 0), r11 = R(1, 1),
                  r12 = R(1, 2), r20 = R(2, 0), r21 = R(2, 1), r22 = R(2, 2);
@@ -47,8 +47,12 @@ bool factor_legs(const PlatformGeometry &g, const LegsAt &at, LegFactors &f, dou
                    n2 = load_pair(&at.axis[2][k]);
         const Pair r0 = load_pair(&at.arm[0][k]), r1 = load_pair(&at.arm[1][k]),
                    r2 = load_pair(&at.arm[2][k]);
-        const Pair row[6] = {n0, n1, n2, (r1 * n2 - r2 * n1) * inv_scale,
-                             (r2 * n0 - r0 * n2) * inv_scale, (r0 * n1 - r1 * n0) * inv_scale};
+        const Pair row[6] = {n0,
+                             n1,
+                             n2,
+                             (r1 * n2 - r2 * n1) * inv_scale,
+                             (r2 * n0 - r0 * n2) * inv_scale,
+                             (r0 * n1 - r1 * n0) * inv_scale};
 #pragma GCC unroll 6
         for (int i = 0; i < 6; ++i) f.lu[6 * k + i] = row[i][0], f.lu[6 * k + 6 + i] = row[i][1];
     }
@@ -104,7 +108,8 @@ double inverse_norm1(const LegFactors &f) {
 #pragma GCC unroll 6
     for (int i = 0; i < 6; ++i)
 #pragma GCC unroll 3
-        for (int h = 0; h < 3; ++h) x[i][h] = Pair{2 * h == i ? 1.0 : 0.0, 2 * h + 1 == i ? 1.0 : 0.0};
+        for (int h = 0; h < 3; ++h)
+            x[i][h] = Pair{2 * h == i ? 1.0 : 0.0, 2 * h + 1 == i ? 1.0 : 0.0};
 #pragma GCC unroll 6
     for (int k = 0; k < 6; ++k)
 #pragma GCC unroll 6

@@ -25,8 +25,7 @@ struct LegsAt {
 };
 
 // The legs at pose q and the residual L(q) - target, into c.
-void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[6],
-                   LegsAt &c);
+void evaluate_legs(const PlatformGeometry &g, const double q[6], const double target[6], LegsAt &c);
 
 // LU (partial pivoting, row-major) of the leg Jacobian J, row k = (n_k, (R b_k x n_k) / c): the
 // leg rates from the twist (v, c omega); with the pitch and yaw where it was taken, which map the
@@ -49,8 +48,7 @@ bool factor_legs(const PlatformGeometry &g, const LegsAt &at, LegFactors &f, dou
 // Pose-coordinate rates (x, y, z, roll, pitch, yaw) whose leg rates are v: the twist J^-1 v,
 // its angular velocity to angle rates at the pitch and yaw of `at` (kinematics/motion.hpp
 // angle_rates_of). False at pitch = +-90 deg (out undefined).
-bool pose_rates_from(const LegFactors &f, const PitchYawTrig &at, const double v[6],
-                     double out[6]);
+bool pose_rates_from(const LegFactors &f, const PitchYawTrig &at, const double v[6], double out[6]);
 
 // The 1-norm of J^-1 (its largest column sum): cond_1(J) = norm1 * this.
 double inverse_norm1(const LegFactors &f);

@@ -92,8 +92,7 @@ double evaluate_residual(Impl &im, const double *u, double *f) {
 // KINSOL's residual callback; 1 (recoverable: KINSOL steps shorter) if not finite.
 int residual_fn(N_Vector u, N_Vector f, void *user) {
     Impl &im = *static_cast<Impl *>(user);
-    return std::isfinite(evaluate_residual(im, NV_DATA_S(u), NV_DATA_S(f))) ? 0
-                                                                                                : 1;
+    return std::isfinite(evaluate_residual(im, NV_DATA_S(u), NV_DATA_S(f))) ? 0 : 1;
 }
 
 // KINSOL's Jacobian callback: the legs at u (the factoring is the linear solver's set-up).
@@ -115,14 +114,13 @@ int solver_setup(SUNLinearSolver S, SUNMatrix) {
     double norm1;
     im.active = &im.factors;
     return factor_legs(*im.geometry, im.cache, im.factors, norm1) ? SUNLS_SUCCESS
-                                                                   : SUNLS_LUFACT_FAIL;
+                                                                  : SUNLS_LUFACT_FAIL;
 }
 // x = (dL/dq)^-1 b with the factors; recoverable failure (KINSOL sets up afresh if the factors
 // were the chord's) at pitch +-90 deg.
 int solver_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
     Impl &im = *static_cast<Impl *>(S->content);
-    return pose_rates_from(*im.active, im.active->trig, NV_DATA_S(b),
-                           NV_DATA_S(x))
+    return pose_rates_from(*im.active, im.active->trig, NV_DATA_S(b), NV_DATA_S(x))
                ? SUNLS_SUCCESS
                : SUNLS_PACKAGE_FAIL_REC;
 }
@@ -143,8 +141,8 @@ ForwardNewton::ForwardNewton() : impl_(new (std::nothrow) Impl) {
     N_VConst(1.0, im.scale.get());
     SUNMatrix matrix = nullptr;
     SUNLinearSolver linear = nullptr;
-    const bool made = mbs::make_custom_linear_solver(context, &im, solver_setup, solver_solve,
-                                                     matrix, linear);
+    const bool made =
+        mbs::make_custom_linear_solver(context, &im, solver_setup, solver_solve, matrix, linear);
     im.matrix.reset(matrix);
     im.linear.reset(linear);
     if (!made) return;
@@ -169,7 +167,8 @@ ForwardNewton::~ForwardNewton() { delete impl_; }
 
 stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double target[kN],
                                     double tolerance, int max_iterations, const LegFactors *chord,
-                                    double drift, double q[6], NewtonStats &stats, char *msg, size_t size) {
+                                    double drift, double q[6], NewtonStats &stats, char *msg,
+                                    size_t size) {
     Impl &im = *impl_;
     im.geometry = &g;
     im.target = target;
@@ -228,7 +227,8 @@ stewart_status ForwardNewton::solve(const PlatformGeometry &g, const double targ
     if (flag == KIN_LSETUP_FAIL || flag == KIN_LINSOLV_NO_RECOVERY)
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the length Jacobian is singular at a Newton iterate (KINSOL flag %d "
-                           "after %ld iterations)", flag, iterations);
+                           "after %ld iterations)",
+                           flag, iterations);
     return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                        "Newton did not converge: leg %d is still %g m off its measured length "
                        "after %ld iterations (tolerance %g m; KINSOL flag %d%s%s)",

@@ -9,10 +9,10 @@
 namespace stewart {
 
 struct NewtonStats {
-    int iterations = 0;     // KINSOL nonlinear iterations
-    double residual = 0;    // max-norm of L(q) - L_measured at the last iterate [m]
-    int worst_leg = 0;      // leg (0-based) with the largest |residual| there
-    int flag = 0;           // KINSOL's return flag
+    int iterations = 0;   // KINSOL nonlinear iterations
+    double residual = 0;  // max-norm of L(q) - L_measured at the last iterate [m]
+    int worst_leg = 0;    // leg (0-based) with the largest |residual| there
+    int flag = 0;         // KINSOL's return flag
 };
 
 class ForwardNewton {

@@ -146,9 +146,10 @@ stewart_params in_length_unit(const stewart_params &si, double L0) {
     for (int i = 0; i < stewart_param_count(); ++i) {
         const char *unit = stewart_param(i)->unit;
         const double factor = !std::strcmp(unit, "m") || !std::strcmp(unit, "m/s2") ? 1.0 / L0
-                              : !std::strcmp(unit, "kg.m2")                          ? 1.0 / (L0 * L0)
-                                                                                     : 1.0;
-        for (int e = 0; e < stewart_param(i)->count; ++e) *stewart_param_element(&p, i, e) *= factor;
+                              : !std::strcmp(unit, "kg.m2") ? 1.0 / (L0 * L0)
+                                                            : 1.0;
+        for (int e = 0; e < stewart_param(i)->count; ++e)
+            *stewart_param_element(&p, i, e) *= factor;
     }
     return p;
 }
@@ -157,7 +158,8 @@ stewart_params in_length_unit(const stewart_params &si, double L0) {
 
 double length_unit(const stewart_params &p) {
     const JointGeometry joints = joint_geometry(p);
-    const double size = std::max({joints.base_size, joints.platform_size, std::fabs(p.home_height)});
+    const double size =
+        std::max({joints.base_size, joints.platform_size, std::fabs(p.home_height)});
     int exponent = 0;
     const double mantissa = std::frexp(2.0 * size, &exponent);  // 2 size = mantissa 2^exponent
     return std::ldexp(1.0, mantissa == 0.5 ? exponent - 1 : exponent);
@@ -224,15 +226,17 @@ std::unique_ptr<mbs_model> build_full_platform(const stewart_params &si, FullDri
         const Vec3 plate_point = l.axes.transpose() * (l.geometry.platform_points.col(k) - l.com);
         const Vec3 plate_arm = l.axes.transpose() * l.platform_arm.col(k);
         const Vec3 cyl_end(0, 0, -p.cylinder_com), pis_end(0, 0, p.piston_com);
-        l.base_cardan[k] = b.cardan(l.base, base_point, l.base_arm.col(k), l.cylinder[k], cyl_end,
-                                    ex);
-        if (b.cardan(l.platform, plate_point, plate_arm, l.piston[k], pis_end, ex) < 0) return nullptr;
+        l.base_cardan[k] =
+            b.cardan(l.base, base_point, l.base_arm.col(k), l.cylinder[k], cyl_end, ex);
+        if (b.cardan(l.platform, plate_point, plate_arm, l.piston[k], pis_end, ex) < 0)
+            return nullptr;
         l.cylindrical[k] = b.cylindrical(l.cylinder[k], cyl_end, ez, l.piston[k], pis_end, ez);
         if (l.base_cardan[k] < 0 || l.cylindrical[k] < 0) return nullptr;
     }
     if (drive == FullDrive::ActuatorLengths) {
         for (int k = 0; k < STEWART_LEGS; ++k)
-            if ((l.driver_joint[k] = b.distance_driver(l.cylindrical[k], nullptr)) < 0) return nullptr;
+            if ((l.driver_joint[k] = b.distance_driver(l.cylindrical[k], nullptr)) < 0)
+                return nullptr;
     } else if ((l.pose_joint = b.pose_driver(l.platform, nullptr)) < 0) {
         return nullptr;
     }
@@ -295,8 +299,8 @@ void full_set_drivers(const FullLayout &l, const Motion &mo, const LegKinematics
     const Vec3 r = mo.position + c;
     const Vec3 v = mo.velocity + mo.omega.cross(c);
     const Vec3 a = mo.acceleration + mo.alpha.cross(c) + mo.omega.cross(mo.omega.cross(c));
-    const Vec4 p = same_side(mbs::euler_parameters(mo.rotation * l.axes),
-                             mbs::body_p(s.q.data(), l.platform));
+    const Vec4 p =
+        same_side(mbs::euler_parameters(mo.rotation * l.axes), mbs::body_p(s.q.data(), l.platform));
     const mbs::Mat34 E = mbs::E_matrix(p.data());
     const Vec4 p_dot = 0.5 * E.transpose() * mo.omega;
     const Vec4 p_ddot = 0.5 * E.transpose() * mo.alpha - p_dot.squaredNorm() * p;
@@ -359,13 +363,13 @@ stewart_status full_solve(const FullLayout &l, mbs::State &s, const stewart_inve
         const double L = d.norm(), L_dot = d.dot(d_dot) / L;
         out.lengths.length[k] = L * L0;
         out.lengths.length_rate[k] = L_dot * L0;
-        out.lengths.length_accel[k] = (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L * L0;
+        out.lengths.length_accel[k] =
+            (d_dot.squaredNorm() + d.dot(d_ddot) - L_dot * L_dot) / L * L0;
     }
     if (l.drive == FullDrive::ActuatorLengths)
         for (int k = 0; k < STEWART_LEGS; ++k)
             out.force[k] = -s.lambda[m.first_row[l.driver_joint[k]]] * L0;
-    else
-        thesis_forces(l, s, out.force);  // in units of L0 N, scaled below
+    else thesis_forces(l, s, out.force);  // in units of L0 N, scaled below
 
     // The wrench of the base Cardans on the base, about the world origin. The base is massless
     // and joined by them alone, so it is the ground's on the base reversed: the reaction of the

@@ -27,9 +27,9 @@ struct FullLayout {
     Eigen::Vector3d com;             // platform body origin (lumped centre of mass), plate frame
     Eigen::Matrix3d axes;            // platform body axes (principal) in the plate frame
     double cylinder_com = 0, piston_com = 0;
-    Matrix36 base_arm;      // Cardan cross arm on the base, world (kinematics/joints.hpp)
-    Matrix36 platform_arm;  // Cardan cross arm on the platform, plate frame
-    PlatformGeometry geometry;       // in the length unit
+    Matrix36 base_arm;          // Cardan cross arm on the base, world (kinematics/joints.hpp)
+    Matrix36 platform_arm;      // Cardan cross arm on the platform, plate frame
+    PlatformGeometry geometry;  // in the length unit
     // The mechanism's lengths are in units of length_unit m: the power of two L0 with
     // max(base size, platform size, home_height) / L0 in (0.25, 0.5] (the sizes are the radii, or
     // the farthest joint from each frame's origin: JointGeometry; L0 = 1 for the thesis

@@ -15,8 +15,9 @@ using stewart::set_message;
 extern "C" stewart_inverse *stewart_inverse_create(const stewart_model *m,
                                                    const stewart_inverse_options *o, char *msg,
                                                    size_t size) {
-    stewart_inverse *d = stewart::new_object_for<stewart_inverse>(
-        m, o, stewart_inverse_options_check, "inverse solver", msg, size);
+    stewart_inverse *d =
+        stewart::new_object_for<stewart_inverse>(m, o, stewart_inverse_options_check,
+                                                 "inverse solver", msg, size);
     if (!d) return nullptr;
     d->full.reset(new (std::nothrow) mbs_data(m->full.get(), mbs::SolverOptions()));
     if (!d->full || !d->full->state.ok()) {
@@ -93,12 +94,13 @@ namespace {
 const char *first_non_finite(const stewart_inverse_output &o) {
     static const char *const names[4] = {"length", "length_rate", "length_accel", "force"};
     const double *groups[4] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel,
-                              o.force};
+                               o.force};
     for (int g = 0; g < 4; ++g)
         for (int k = 0; k < STEWART_LEGS; ++k)
             if (!std::isfinite(groups[g][k])) return names[g];
     for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(o.base_force[i]) || !std::isfinite(o.base_torque[i])) return "base wrench";
+        if (!std::isfinite(o.base_force[i]) || !std::isfinite(o.base_torque[i]))
+            return "base wrench";
     if (!std::isfinite(o.condition)) return "condition";
     return nullptr;
 }
@@ -131,9 +133,9 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     stewart_status s;
     if ((s = stewart::check_pose(*pose, msg, size)) != STEWART_OK) return s;
     // The pose given is the tool's in the user frame: the platform's in the base frame moves so.
-    const stewart::Motion motion =
-        m->frames.identity ? stewart::motion_of_pose(*pose)
-                           : stewart::platform_motion_of_pose(m->frames, *pose);
+    const stewart::Motion motion = m->frames.identity
+                                       ? stewart::motion_of_pose(*pose)
+                                       : stewart::platform_motion_of_pose(m->frames, *pose);
     if (!m->frames.identity && !stewart::motion_finite(motion))
         return stewart::input_out_of_range(*pose, 0, 2, "platform's motion (tool and user frames)",
                                            msg, size);
@@ -147,8 +149,7 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
         out.lengths.length_accel[k] = legs.accel[k];
     }
     switch (o->fidelity) {
-        case STEWART_KINEMATIC:
-            break;
+        case STEWART_KINEMATIC: break;
         case STEWART_MASSLESS:
             s = stewart::massless_forces(m->geometry, m->platform, m->gravity, motion, legs,
                                          o->singular_condition, out, msg, size);
@@ -164,8 +165,8 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
             stewart::LegJacobian jacobian;
             stewart::leg_jacobian(m->geometry, legs, jacobian);
             out.condition = jacobian.condition;
-            if ((s = stewart::check_condition(out.condition, o->singular_condition, msg,
-                                              size)) != STEWART_OK)
+            if ((s = stewart::check_condition(out.condition, o->singular_condition, msg, size)) !=
+                STEWART_OK)
                 break;
             s = stewart::full_solve(m->full_layout, d->full->state, *o, motion, legs, out, msg,
                                     size);
@@ -178,17 +179,19 @@ extern "C" stewart_status stewart_inverse_solve(stewart_inverse *d,
     if (s != STEWART_OK) return s;
     if (const char *name = first_non_finite(out)) {
         // The outputs of the positions, the rates, or of rates and accelerations.
-        const int last_row = !std::strcmp(name, "length") ? 0 : !std::strcmp(name, "length_rate") ? 1 : 2;
+        const int last_row = !std::strcmp(name, "length")        ? 0
+                             : !std::strcmp(name, "length_rate") ? 1
+                                                                 : 2;
         return stewart::input_out_of_range(*pose, last_row > 0 ? 1 : 0, last_row, name, msg, size);
     }
     stroke_and_condition_warnings(m->params, *o, out);  // on the Cardan-to-Cardan lengths
-    if (m->length_offsets)  // the sensors read length - offset
+    if (m->length_offsets)                              // the sensors read length - offset
         for (int k = 0; k < STEWART_LEGS; ++k) out.lengths.length[k] -= m->params.length_offset[k];
     if (m->drives) {  // on the readings: the motor's encoder turns with the sensor's length
         stewart::fill_drive_outputs(m->drive, m->params, out);
         if (!stewart::drive_outputs_finite(out))
-            return stewart::input_out_of_range(*pose, 0, 2, "motor torque, current or voltage",
-                                               msg, size);
+            return stewart::input_out_of_range(*pose, 0, 2, "motor torque, current or voltage", msg,
+                                               size);
     }
     stewart::base_wrench_to_given_frame(m->frames, out.base_force, out.base_torque);
     *output = out;

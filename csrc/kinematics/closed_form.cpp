@@ -97,12 +97,12 @@ void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacob
                         : HUGE_VAL;
 }
 
-stewart_status check_leg_length(int leg, double length, double min_length, char *msg,
-                                size_t size) {
+stewart_status check_leg_length(int leg, double length, double min_length, char *msg, size_t size) {
     if (length > min_length) return STEWART_OK;
     return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                        "leg %d has length %g m at this pose: its platform point lies on its base "
-                       "point", leg + 1, length);
+                       "point",
+                       leg + 1, length);
 }
 
 stewart_status check_condition(double condition, double singular_condition, char *msg,
@@ -110,7 +110,8 @@ stewart_status check_condition(double condition, double singular_condition, char
     if (condition <= singular_condition) return STEWART_OK;
     return set_message(msg, size, STEWART_ERR_SINGULAR,
                        "leg Jacobian is singular at this pose: condition number %g exceeds "
-                       "singular_condition %g", condition, singular_condition);
+                       "singular_condition %g",
+                       condition, singular_condition);
 }
 
 void base_wrench_from_axial(const PlatformGeometry &g, const LegKinematics &legs,
@@ -133,13 +134,12 @@ stewart_status massless_forces(const PlatformGeometry &g, const LumpedBody &body
                                stewart_inverse_output &out, char *msg, size_t size) {
     // Newton-Euler for the lumped body; moments taken about the platform origin.
     const Eigen::Vector3d c = m.rotation * body.com;
-    const Eigen::Vector3d a_c =
-        m.acceleration + m.alpha.cross(c) + m.omega.cross(m.omega.cross(c));
+    const Eigen::Vector3d a_c = m.acceleration + m.alpha.cross(c) + m.omega.cross(m.omega.cross(c));
     const Eigen::Matrix3d I_world = m.rotation * body.inertia * m.rotation.transpose();
     Vector6 wrench;
     wrench.head<3>() = body.mass * (a_c - gravity);
-    wrench.tail<3>() = I_world * m.alpha + m.omega.cross(I_world * m.omega) +
-                       c.cross(wrench.head<3>());
+    wrench.tail<3>() =
+        I_world * m.alpha + m.omega.cross(I_world * m.omega) + c.cross(wrench.head<3>());
 
     LegJacobian J;
     leg_jacobian(g, legs, J);

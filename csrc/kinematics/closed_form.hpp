@@ -34,8 +34,8 @@ LumpedBody lumped_platform(const stewart_params &p);
 
 // Per-leg kinematics along a pose.
 struct LegKinematics {
-    Matrix36 arm;       // R b_k: platform point relative to the platform origin, world
-    Matrix36 axis;      // unit vector n_k from base point toward platform point
+    Matrix36 arm;   // R b_k: platform point relative to the platform origin, world
+    Matrix36 axis;  // unit vector n_k from base point toward platform point
     Vector6 length, rate, accel;
 };
 
@@ -45,8 +45,7 @@ stewart_status leg_kinematics(const PlatformGeometry &g, const Motion &m, LegKin
 
 // STEWART_ERR_UNREACHABLE (message names the leg and its length) unless length > min_length: a
 // leg of (nearly) zero length has no direction, so no force or rate can be defined.
-stewart_status check_leg_length(int leg, double length, double min_length, char *msg,
-                                size_t size);
+stewart_status check_leg_length(int leg, double length, double min_length, char *msg, size_t size);
 
 // The leg Jacobian J maps the platform twist (v, omega) at its origin to the leg rates L_dot.
 // Its angular columns are divided by the characteristic length (the platform radius), so that
@@ -54,14 +53,13 @@ stewart_status check_leg_length(int leg, double length, double min_length, char 
 struct LegJacobian {
     Matrix6 transposed;  // column k = (n_k, (R b_k) x n_k / length)
     Matrix6 inverse_transposed;
-    double condition;    // 1-norm condition number; +inf if singular
+    double condition;  // 1-norm condition number; +inf if singular
 };
 void leg_jacobian(const PlatformGeometry &g, const LegKinematics &legs, LegJacobian &out);
 
 // STEWART_ERR_SINGULAR (message names both numbers) unless condition <= singular_condition: the
 // pose check of the force levels, shared so that every caller gives the same verdict.
-stewart_status check_condition(double condition, double singular_condition, char *msg,
-                               size_t size);
+stewart_status check_condition(double condition, double singular_condition, char *msg, size_t size);
 
 // Massless legs: solves J^T F = wrench needed by Newton-Euler for the lumped body, fills
 // force, condition and the base wrench. STEWART_ERR_SINGULAR if the condition number is above

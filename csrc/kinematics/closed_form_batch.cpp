@@ -59,7 +59,7 @@ VectorPath fastest_vector_path() {
 VectorPath batch_vector_path(int fidelity) {
     const VectorPath fastest = fastest_vector_path();
     return fastest == VectorPath::avx512vl && fidelity == STEWART_MASSLESS ? VectorPath::avx2
-                                                                          : fastest;
+                                                                           : fastest;
 }
 
 bool vector_path_available(VectorPath path) {  // (each path's CPU runs the ones before it)

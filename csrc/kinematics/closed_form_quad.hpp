@@ -16,8 +16,8 @@ struct QuadModel {
     // limits and the length offsets.
     alignas(32) double base[3][6][4], platform[3][6][4];
     alignas(32) double stroke_min[6][4], stroke_max[6][4], length_offset[6][4];
-    double min_length;                  // PlatformGeometry::min_length [m]
-    double characteristic_length;       // scales the Jacobian's angular rows [m]
+    double min_length;                               // PlatformGeometry::min_length [m]
+    double characteristic_length;                    // scales the Jacobian's angular rows [m]
     double mass, com[3], inertia[3][3], gravity[3];  // the lumped platform (LumpedBody)
     double warn_condition, singular_condition;
     // The rows of J^T in the order partial pivoting gives them at the home pose (lu6_factor):

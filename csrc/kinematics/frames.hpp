@@ -19,11 +19,11 @@ struct Frames {
     bool identity = true;  // frames identity, order 0, z up: no transform at all (bit for bit)
     bool turns = false;    // a frame turned or the angles converted (else they pass through)
     int rotation_order = kRotationZYX;  // of the caller's angles (the frames' own included)
-    bool z_down = false;    // frame_convention 1: base and platform frames z down (user_rotation
-                            // and tool_rotation hold the 180 deg turn about x)
-    Eigen::Vector3d user_origin = Eigen::Vector3d::Zero();  // base frame
+    bool z_down = false;  // frame_convention 1: base and platform frames z down (user_rotation
+                          // and tool_rotation hold the 180 deg turn about x)
+    Eigen::Vector3d user_origin = Eigen::Vector3d::Zero();        // base frame
     Eigen::Matrix3d user_rotation = Eigen::Matrix3d::Identity();  // user axes to base axes
-    Eigen::Vector3d tool_origin = Eigen::Vector3d::Zero();  // platform frame
+    Eigen::Vector3d tool_origin = Eigen::Vector3d::Zero();        // platform frame
     Eigen::Matrix3d tool_rotation = Eigen::Matrix3d::Identity();  // tool axes to platform axes
     // Roll and yaw of the tool minus the platform's at zero platform rotation: the tool's roll and
     // yaw are taken on the branch nearest to the platform's (continuous) angles plus these.
@@ -58,8 +58,7 @@ MotionT<S> platform_motion(const Frames &f, const MotionT<S> &tool) {
     const Eigen::Matrix<S, 3, 1> arm = m.rotation * f.tool_origin.template cast<S>();
     m.position = f.user_origin.template cast<S>() + U * tool.position - arm;
     m.velocity = U * tool.velocity - m.omega.cross(arm);
-    m.acceleration = U * tool.acceleration - m.alpha.cross(arm) -
-                     m.omega.cross(m.omega.cross(arm));
+    m.acceleration = U * tool.acceleration - m.alpha.cross(arm) - m.omega.cross(m.omega.cross(arm));
     return m;
 }
 extern template Motion platform_motion<double>(const Frames &f, const Motion &tool);

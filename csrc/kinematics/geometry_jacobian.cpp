@@ -41,7 +41,7 @@ stewart_status geometry_jacobian(const CalibrationGeometry &g, const double pose
         const Eigen::Vector3d d = user.origin + from_user - g.base_points.col(k);
         const double L = d.norm();
         if (!(L > g.min_length)) return check_leg_length(k, L, g.min_length, msg, size);
-        const Eigen::Vector3d n = d / L;                                  // base frame
+        const Eigen::Vector3d n = d / L;  // base frame
         const Eigen::Vector3d n_platform = platform_to_base.transpose() * n;
         const Eigen::Vector3d n_user = user.rotation.transpose() * n;
         out.length[k] = L;

@@ -27,14 +27,14 @@ struct CalibrationGeometry {
 // Row k of each block is d reading_k / d (that parameter's elements); a leg's reading depends on
 // its own joints and offset only, so the joint blocks keep leg k's three columns in row k.
 struct GeometryJacobian {
-    Vector6 length;          // joint-to-joint |p + R b_k - a_k| [m]
-    Vector6 reading;         // length - length_offset: what leg k's sensor reads [m]
-    Matrix63 base_joint;     // d reading_k / d a_k (x, y, z)
-    Matrix63 platform_joint; // d reading_k / d b_k (x, y, z)
-    Vector6 length_offset;   // d reading_k / d o_k = -1
-    Matrix6 tool_frame;      // d reading_k / d tool_frame (x, y, z, roll, pitch, yaw)
-    Matrix6 user_frame;      // d reading_k / d user_frame
-    Matrix6 pose;            // d reading_k / d pose of the tool frame in the user frame
+    Vector6 length;           // joint-to-joint |p + R b_k - a_k| [m]
+    Vector6 reading;          // length - length_offset: what leg k's sensor reads [m]
+    Matrix63 base_joint;      // d reading_k / d a_k (x, y, z)
+    Matrix63 platform_joint;  // d reading_k / d b_k (x, y, z)
+    Vector6 length_offset;    // d reading_k / d o_k = -1
+    Matrix6 tool_frame;       // d reading_k / d tool_frame (x, y, z, roll, pitch, yaw)
+    Matrix6 user_frame;       // d reading_k / d user_frame
+    Matrix6 pose;             // d reading_k / d pose of the tool frame in the user frame
 };
 
 // Readings and derivatives at `pose` (x, y, z, roll, pitch, yaw of the tool frame in the user

@@ -28,7 +28,9 @@ bool coincide(const Matrix36 &points, int i, int j, double side_size) {
 
 bool is_joints(const stewart_params &p) { return p.geometry == 1.0; }
 
-Vec3 triple(const double *values, int k) { return Vec3(values[3 * k], values[3 * k + 1], values[3 * k + 2]); }
+Vec3 triple(const double *values, int k) {
+    return Vec3(values[3 * k], values[3 * k + 1], values[3 * k + 2]);
+}
 
 // One side's joints and arms. Geometry 0: on the circle, the tangent from the angle (as the
 // thesis); geometry 1: as given, the tangent from the joint's azimuth.
@@ -58,10 +60,8 @@ void fill_side(bool joints, double radius, const double *angle, const double *po
 // "base_joint[4..6]" or "base_angle[2]": the field(s) that place joint k of a side.
 std::string joint_field(bool joints, const char *side, int k) {
     char text[48];
-    if (joints)
-        std::snprintf(text, sizeof text, "%s_joint[%d..%d]", side, 3 * k + 1, 3 * k + 3);
-    else
-        std::snprintf(text, sizeof text, "%s_angle[%d]", side, k + 1);
+    if (joints) std::snprintf(text, sizeof text, "%s_joint[%d..%d]", side, 3 * k + 1, 3 * k + 3);
+    else std::snprintf(text, sizeof text, "%s_angle[%d]", side, k + 1);
     return text;
 }
 
@@ -96,7 +96,8 @@ stewart_status check_side(const stewart_params &p, const JointGeometry &g, bool 
                                "axis are not defined: give %s",
                                joint_field(joints, side, k).c_str(),
                                vector_text(points.col(k)).c_str(), field);
-        const Vec3 leg = Vec3(0, 0, p.home_height) + g.platform_points.col(k) - g.base_points.col(k);
+        const Vec3 leg =
+            Vec3(0, 0, p.home_height) + g.platform_points.col(k) - g.base_points.col(k);
         const double length = leg.norm();
         if (!(length > kCoincident * (g.base_size + g.platform_size + std::fabs(p.home_height))))
             return set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -122,10 +123,10 @@ stewart_status check_side(const stewart_params &p, const JointGeometry &g, bool 
 JointGeometry joint_geometry(const stewart_params &p) {
     JointGeometry g;
     const bool joints = is_joints(p);
-    fill_side(joints, p.base_radius, p.base_angle, p.base_joint, p.base_cardan_axis,
-              g.base_points, g.base_arms, g.base_size);
-    fill_side(joints, p.platform_radius, p.platform_angle, p.platform_joint,
-              p.platform_cardan_axis, g.platform_points, g.platform_arms, g.platform_size);
+    fill_side(joints, p.base_radius, p.base_angle, p.base_joint, p.base_cardan_axis, g.base_points,
+              g.base_arms, g.base_size);
+    fill_side(joints, p.platform_radius, p.platform_angle, p.platform_joint, p.platform_cardan_axis,
+              g.platform_points, g.platform_arms, g.platform_size);
     return g;
 }
 
@@ -134,7 +135,8 @@ stewart_status check_joint_geometry(const stewart_params &p, char *msg, size_t s
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "geometry = %s must be 0 (joints on the circles of base_radius, "
                            "base_angle, platform_radius, platform_angle) or 1 (base_joint and "
-                           "platform_joint as given)", ExactText(p.geometry).c_str());
+                           "platform_joint as given)",
+                           ExactText(p.geometry).c_str());
     const JointGeometry g = joint_geometry(p);
     // Two legs may share a joint on one side (genhexkins' default base, 6-3 platforms), not on
     // both: the same leg twice leaves the platform free (the leg Jacobian is singular everywhere).
@@ -145,8 +147,8 @@ stewart_status check_joint_geometry(const stewart_params &p, char *msg, size_t s
                 coincide(g.platform_points, j, k, g.platform_size))
                 return set_message(msg, size, STEWART_ERR_PARAMETER,
                                    "legs %d and %d are one leg: %s and %s at %s m, %s and %s at "
-                                   "%s m; the platform is then free at every pose", j + 1, k + 1,
-                                   joint_field(joints, "base", j).c_str(),
+                                   "%s m; the platform is then free at every pose",
+                                   j + 1, k + 1, joint_field(joints, "base", j).c_str(),
                                    joint_field(joints, "base", k).c_str(),
                                    vector_text(g.base_points.col(k)).c_str(),
                                    joint_field(joints, "platform", j).c_str(),

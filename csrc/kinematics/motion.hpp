@@ -39,9 +39,8 @@ template <class S>
 Eigen::Matrix<S, 3, 3> rotation_from_trig(const S &cr, const S &sr, const S &cp, const S &sp,
                                           const S &cy, const S &sy) {
     Eigen::Matrix<S, 3, 3> R;
-    R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
-         sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
-         -sp,     cp * sr,                cp * cr;
+    R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, sy * cp, sy * sp * sr + cy * cr,
+        sy * sp * cr - cy * sr, -sp, cp * sr, cp * cr;
     return R;
 }
 
@@ -50,9 +49,7 @@ Eigen::Matrix<S, 3, 3> rotation_from_trig(const S &cr, const S &sr, const S &cp,
 template <class S>
 Eigen::Matrix<S, 3, 3> angle_rate_matrix(const S &cp, const S &sp, const S &cy, const S &sy) {
     Eigen::Matrix<S, 3, 3> E;
-    E << cy * cp, -sy, S(0),
-         sy * cp,  cy, S(0),
-         -sp,      S(0), S(1);
+    E << cy * cp, -sy, S(0), sy * cp, cy, S(0), -sp, S(0), S(1);
     return E;
 }
 
@@ -63,9 +60,8 @@ Eigen::Matrix<S, 3, 3> angle_rate_matrix_dot(const S &cp, const S &sp, const S &
                                              const S &pitch_rate, const S &yaw_rate) {
     const S pd = pitch_rate, yd = yaw_rate;
     Eigen::Matrix<S, 3, 3> E_dot;
-    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, S(0),
-              cy * yd * cp - sy * sp * pd, -sy * yd, S(0),
-             -cp * pd,                      S(0),    S(0);
+    E_dot << -sy * yd * cp - cy * sp * pd, -cy * yd, S(0), cy * yd * cp - sy * sp * pd, -sy * yd,
+        S(0), -cp * pd, S(0), S(0);
     return E_dot;
 }
 
@@ -88,8 +84,8 @@ inline void nearest_turns(const double near[3], double angles[3]) {
 template <class S>
 bool angle_rates_of(const S q[6], const Eigen::Matrix<S, 3, 1> &omega, S out[3],
                     double min_cos_pitch = 1e-12) {
-    using std::cos;
     using std::abs;
+    using std::cos;
     using std::sin;
     const S sp = sin(q[4]), cp = cos(q[4]);
     const S sy = sin(q[5]), cy = cos(q[5]);
@@ -156,10 +152,11 @@ MotionT<S> motion_from_matrices(const S q[6], const S q_dot[6], const S q_ddot[6
 template <class S>
 MotionT<S> motion_of_pose(const S q[6], const S q_dot[6], const S q_ddot[6]) {
     const AngleTrig<S> t = angle_trig(q);
-    return motion_from_matrices<S>(
-        q, q_dot, q_ddot, rotation_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy),
-        angle_rate_matrix(t.cp, t.sp, t.cy, t.sy),
-        angle_rate_matrix_dot(t.cp, t.sp, t.cy, t.sy, q_dot[4], q_dot[5]));
+    return motion_from_matrices<S>(q, q_dot, q_ddot,
+                                   rotation_from_trig(t.cr, t.sr, t.cp, t.sp, t.cy, t.sy),
+                                   angle_rate_matrix(t.cp, t.sp, t.cy, t.sy),
+                                   angle_rate_matrix_dot(t.cp, t.sp, t.cy, t.sy, q_dot[4],
+                                                         q_dot[5]));
 }
 
 // The motion of the platform frame at pose (its q, q_dot, q_ddot).

@@ -21,9 +21,8 @@ template <class S>
 Eigen::Matrix<S, 3, 3> rotation_xyz_from_trig(const S &cr, const S &sr, const S &cp, const S &sp,
                                               const S &cy, const S &sy) {
     Eigen::Matrix<S, 3, 3> R;
-    R << cp * cy,                -cp * sy,                sp,
-         cr * sy + sr * sp * cy,  cr * cy - sr * sp * sy, -sr * cp,
-         sr * sy - cr * sp * cy,  sr * cy + cr * sp * sy,  cr * cp;
+    R << cp * cy, -cp * sy, sp, cr * sy + sr * sp * cy, cr * cy - sr * sp * sy, -sr * cp,
+        sr * sy - cr * sp * cy, sr * cy + cr * sp * sy, cr * cp;
     return R;
 }
 
@@ -31,22 +30,18 @@ Eigen::Matrix<S, 3, 3> rotation_xyz_from_trig(const S &cr, const S &sr, const S 
 template <class S>
 Eigen::Matrix<S, 3, 3> angle_rate_matrix_xyz(const S &cr, const S &sr, const S &cp, const S &sp) {
     Eigen::Matrix<S, 3, 3> E;
-    E << S(1), S(0), sp,
-         S(0), cr,   -sr * cp,
-         S(0), sr,    cr * cp;
+    E << S(1), S(0), sp, S(0), cr, -sr * cp, S(0), sr, cr * cp;
     return E;
 }
 
 // dE/dt for R = Rx Ry Rz at roll and pitch moving at roll_rate and pitch_rate.
 template <class S>
-Eigen::Matrix<S, 3, 3> angle_rate_matrix_xyz_dot(const S &cr, const S &sr, const S &cp,
-                                                 const S &sp, const S &roll_rate,
-                                                 const S &pitch_rate) {
+Eigen::Matrix<S, 3, 3> angle_rate_matrix_xyz_dot(const S &cr, const S &sr, const S &cp, const S &sp,
+                                                 const S &roll_rate, const S &pitch_rate) {
     const S rd = roll_rate, pd = pitch_rate;
     Eigen::Matrix<S, 3, 3> E_dot;
-    E_dot << S(0), S(0),     cp * pd,
-             S(0), -sr * rd, -cr * cp * rd + sr * sp * pd,
-             S(0),  cr * rd, -sr * cp * rd - cr * sp * pd;
+    E_dot << S(0), S(0), cp * pd, S(0), -sr * rd, -cr * cp * rd + sr * sp * pd, S(0), cr * rd,
+        -sr * cp * rd - cr * sp * pd;
     return E_dot;
 }
 
@@ -95,9 +90,11 @@ Eigen::Matrix<S, 3, 1> angle_rate_bias_in_order(int order, const S q[6], const S
     const Eigen::Matrix<S, 3, 1> r(rate[0], rate[1], rate[2]);
     if (order != kRotationXYZ)
         return angle_rate_matrix_dot<S>(cos(q[4]), sin(q[4]), cos(q[5]), sin(q[5]), rate[1],
-                                        rate[2]) * r;
+                                        rate[2]) *
+               r;
     return angle_rate_matrix_xyz_dot<S>(cos(q[3]), sin(q[3]), cos(q[4]), sin(q[4]), rate[0],
-                                        rate[1]) * r;
+                                        rate[1]) *
+           r;
 }
 
 // The angles (in `order`) of R: pitch in [-pi/2, pi/2], roll and yaw on the branch nearest to

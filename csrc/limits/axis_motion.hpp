@@ -22,10 +22,10 @@ AxisMotion axis_motion(const Frames &frames, const double q[6], int axis, double
 
 // The legs at one platform pose (base frame), computed as check_platform_limits does.
 struct LegState {
-    Eigen::Matrix3d rotation;   // platform to world
-    LegKinematics kinematics;   // arms R b_k, unit leg vectors, lengths (rates unused)
-    Matrix36 top;               // platform joint centres, world [m]
-    bool has_direction;         // every leg longer than the geometry's min_length
+    Eigen::Matrix3d rotation;  // platform to world
+    LegKinematics kinematics;  // arms R b_k, unit leg vectors, lengths (rates unused)
+    Matrix36 top;              // platform joint centres, world [m]
+    bool has_direction;        // every leg longer than the geometry's min_length
 };
 // The legs at the platform pose `platform` (x, y, z, roll, pitch, yaw; base frame).
 void leg_state(const LimitConstants &c, const double platform[6], LegState &out);

@@ -140,7 +140,8 @@ struct Side {
             // Past a grazing check, the condition's bound restarts from the Jacobian there.
             if (with_condition)
                 condition_until =
-                    t + std::min(condition_radius(c, now.legs, rates, jacobian, motion), rates.reach);
+                    t +
+                    std::min(condition_radius(c, now.legs, rates, jacobian, motion), rates.reach);
         }
         // Out of steps: the proof reaches no further; the class that held the steps holds it.
         beyond = now.check;
@@ -168,9 +169,9 @@ struct Side {
             }
         }
         beyond = here.check;
-        const int limit = stroke_leg    ? STEWART_LIMIT_STROKE
-                          : axis_ends   ? STEWART_LIMIT_AXIS
-                                        : STEWART_LIMIT_NONE;
+        const int limit = stroke_leg  ? STEWART_LIMIT_STROKE
+                          : axis_ends ? STEWART_LIMIT_AXIS
+                                      : STEWART_LIMIT_NONE;
         beyond.first = limit;
         if (limit != STEWART_LIMIT_NONE) {
             beyond.leg[limit - 1] = limit == STEWART_LIMIT_AXIS ? axis + 1 : stroke_leg;

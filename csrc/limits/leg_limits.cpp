@@ -68,8 +68,8 @@ bool leg_jerks(const LimitConstants &c, const stewart_limits_input &in, double j
                            Eigen::Map<const Vector3d>(in.q_ddot),
                            Eigen::Map<const Vector3d>(in.q_dddot)};
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const Vector3d arm = f.tool_rotation.transpose() *
-                             (c.geometry.platform_points.col(k) - f.tool_origin);
+        const Vector3d arm =
+            f.tool_rotation.transpose() * (c.geometry.platform_points.col(k) - f.tool_origin);
         Vector3d l[4];
         for (int n = 0; n < 4; ++n) l[n] = f.user_rotation * (p[n] + R[n] * arm);
         l[0] += f.user_origin - c.geometry.base_points.col(k);
@@ -113,8 +113,8 @@ stewart_status check_leg_limits(const LimitConstants &c, const stewart_limits_in
         std::copy(in.q, in.q + 6, pose.q);
         std::copy(in.q_dot, in.q_dot + 6, pose.q_dot);
         if (in.derivatives >= 2) std::copy(in.q_ddot, in.q_ddot + 6, pose.q_ddot);
-        const Motion motion = c.frames.identity ? motion_of_pose(pose)
-                                                : platform_motion_of_pose(c.frames, pose);
+        const Motion motion =
+            c.frames.identity ? motion_of_pose(pose) : platform_motion_of_pose(c.frames, pose);
         LegKinematics legs;
         const stewart_status s = leg_kinematics(c.geometry, motion, legs, msg, size);
         if (s != STEWART_OK) return s;
@@ -122,9 +122,9 @@ stewart_status check_leg_limits(const LimitConstants &c, const stewart_limits_in
         if (in.derivatives >= 3 && !leg_jerks(c, in, jerk))
             return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                "a leg has zero length at this pose: its jerk is not defined");
-        const bool finite = legs.rate.allFinite() && legs.accel.allFinite() &&
-                            std::all_of(jerk, jerk + STEWART_LEGS,
-                                        [](double v) { return std::isfinite(v); });
+        const bool finite =
+            legs.rate.allFinite() && legs.accel.allFinite() &&
+            std::all_of(jerk, jerk + STEWART_LEGS, [](double v) { return std::isfinite(v); });
         if (!finite)
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "the legs' rates overflow at these pose derivatives: give "

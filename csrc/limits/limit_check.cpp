@@ -49,8 +49,8 @@ constexpr double kInterferenceSlack = 1e-9;
 
 // The cosine above which a joint of this limit is inside it for sure (see kJointCosineSlack).
 double inside_cosine(double limit) {
-    if (!(limit > 0.0)) return HUGE_VAL;          // fails at every angle (or NaN): never skipped
-    if (limit >= M_PI) return -HUGE_VAL;          // atan2 never exceeds fl(pi): never fails
+    if (!(limit > 0.0)) return HUGE_VAL;  // fails at every angle (or NaN): never skipped
+    if (limit >= M_PI) return -HUGE_VAL;  // atan2 never exceeds fl(pi): never fails
     return std::cos(limit) + kJointCosineSlack;
 }
 
@@ -79,8 +79,8 @@ void joint_margins(const double limit[STEWART_LEGS], bool uniform, const Matrix3
                    const double cosine[STEWART_LEGS], stewart_limits_output &out, int index,
                    bool every_leg) {
     auto margin = [&](int k) {
-        const Eigen::Vector3d u =
-            rotation ? Eigen::Vector3d(*rotation * neutral.col(k)) : Eigen::Vector3d(neutral.col(k));
+        const Eigen::Vector3d u = rotation ? Eigen::Vector3d(*rotation * neutral.col(k))
+                                           : Eigen::Vector3d(neutral.col(k));
         return limit[k] - angle_between(axis.col(k), u);
     };
     if (!uniform || every_leg) {
@@ -127,7 +127,8 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
     c.longest_arm = 0.0;
     c.platform_radius = 0.0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const Eigen::Vector3d leg = home + geometry.platform_points.col(k) - geometry.base_points.col(k);
+        const Eigen::Vector3d leg =
+            home + geometry.platform_points.col(k) - geometry.base_points.col(k);
         // A leg of zero length at home has no direction: z up stands in for it.
         const Eigen::Vector3d at_home = unit_or(leg.data(), 0, Eigen::Vector3d::UnitZ());
         c.base_neutral.col(k) = unit_or(p.base_joint_neutral, k, at_home);
@@ -140,11 +141,11 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
         c.platform_inside_cosine[k] = inside_cosine(c.platform_joint_limit[k]);
         c.shortest_stroke_min = std::min(c.shortest_stroke_min, c.stroke_min[k]);
         c.platform_radius = std::max(c.platform_radius, geometry.platform_points.col(k).norm());
-        c.longest_arm = std::max(
-            c.longest_arm, (geometry.platform_points.col(k) - c.frames.tool_origin).norm());
+        c.longest_arm = std::max(c.longest_arm,
+                                 (geometry.platform_points.col(k) - c.frames.tool_origin).norm());
     }
-    c.uniform_base_limit = std::equal(c.base_joint_limit + 1, c.base_joint_limit + STEWART_LEGS,
-                                      c.base_joint_limit);
+    c.uniform_base_limit =
+        std::equal(c.base_joint_limit + 1, c.base_joint_limit + STEWART_LEGS, c.base_joint_limit);
     c.uniform_platform_limit =
         std::equal(c.platform_joint_limit + 1, c.platform_joint_limit + STEWART_LEGS,
                    c.platform_joint_limit);
@@ -154,16 +155,16 @@ LimitConstants limit_constants(const stewart_params &p, const PlatformGeometry &
     c.body_length = p.leg_body_length;
     c.rod_radius = p.leg_rod_length > 0.0 ? 0.5 * p.leg_rod_diameter : 0.0;
     c.rod_length = p.leg_rod_length;
-    c.interference_reach =
-        c.shaped ? 2.0 * std::max(c.body_radius, c.rod_radius) : c.leg_diameter;
+    c.interference_reach = c.shaped ? 2.0 * std::max(c.body_radius, c.rod_radius) : c.leg_diameter;
     for (int i = 0; i < STEWART_LEGS; ++i)
         for (int j = 0; j < STEWART_LEGS; ++j)
             c.shares_joint[i][j] =
                 i != j &&
                 (one_joint((geometry.base_points.col(i) - geometry.base_points.col(j)).norm(),
                            joint_thickness(p, true), geometry.min_length) ||
-                 one_joint((geometry.platform_points.col(i) - geometry.platform_points.col(j)).norm(),
-                           joint_thickness(p, false), geometry.min_length));
+                 one_joint(
+                     (geometry.platform_points.col(i) - geometry.platform_points.col(j)).norm(),
+                     joint_thickness(p, false), geometry.min_length));
     for (int i = 0; i < 6; ++i) {
         c.axis_min[i] = p.axis_min[i];
         c.axis_max[i] = p.axis_max[i];
@@ -204,12 +205,14 @@ double leg_pair_margin(const LimitConstants &c, int i, int j, const Matrix36 &to
     auto parts = [&](int k, Part out[2]) {
         int n = 0;
         if (c.body_length > 0.0)
-            out[n++] = {base.col(k),
-                        Eigen::Vector3d(base.col(k) + std::min(c.body_length, length[k]) * axis.col(k)),
-                        c.body_radius};
+            out[n++] = {
+                base.col(k),
+                Eigen::Vector3d(base.col(k) + std::min(c.body_length, length[k]) * axis.col(k)),
+                c.body_radius};
         if (c.rod_length > 0.0)
-            out[n++] = {Eigen::Vector3d(top.col(k) - std::min(c.rod_length, length[k]) * axis.col(k)),
-                        top.col(k), c.rod_radius};
+            out[n++] = {
+                Eigen::Vector3d(top.col(k) - std::min(c.rod_length, length[k]) * axis.col(k)),
+                top.col(k), c.rod_radius};
         return n;
     };
     Part a[2], b[2];
@@ -247,8 +250,8 @@ stewart_status check_limit_parameters(const stewart_params &p, char *msg, size_t
         if (!(p.axis_min[i] <= p.axis_max[i]))
             return set_message(msg, size, STEWART_ERR_PARAMETER,
                                "software position limits of %s: axis_min[%d] = %s must not be "
-                               "above axis_max[%d] = %s", kAxes[i], i + 1,
-                               ExactText(p.axis_min[i]).c_str(), i + 1,
+                               "above axis_max[%d] = %s",
+                               kAxes[i], i + 1, ExactText(p.axis_min[i]).c_str(), i + 1,
                                ExactText(p.axis_max[i]).c_str());
     const struct {
         const char *name;
@@ -277,11 +280,10 @@ stewart_status check_limit_parameters(const stewart_params &p, char *msg, size_t
         double thickness;
         const char *field;
     };
-    const Side sides[] = {
-        {"base", g.base_points, joint_thickness(p, true),
-         shaped ? "leg_body_diameter" : "leg_diameter"},
-        {"platform", g.platform_points, joint_thickness(p, false),
-         shaped ? "leg_rod_diameter" : "leg_diameter"}};
+    const Side sides[] = {{"base", g.base_points, joint_thickness(p, true),
+                           shaped ? "leg_body_diameter" : "leg_diameter"},
+                          {"platform", g.platform_points, joint_thickness(p, false),
+                           shaped ? "leg_rod_diameter" : "leg_diameter"}};
     for (const Side &side : sides) {
         if (!(side.thickness > 0.0)) continue;
         for (int i = 0; i < STEWART_LEGS; ++i)
@@ -353,8 +355,8 @@ namespace {
 struct PlatformLegs {
     Eigen::Matrix3d R;
     LegKinematics legs;
-    Matrix36 top;     // platform joint centres, world
-    Matrix36 middle;  // the legs' midpoints, world
+    Matrix36 top;                                               // platform joint centres, world
+    Matrix36 middle;                                            // the legs' midpoints, world
     double base_cos[STEWART_LEGS], platform_cos[STEWART_LEGS];  // of the angle to the neutral
     bool has_direction;
 };
@@ -374,7 +376,8 @@ void platform_legs(const LimitConstants &c, const Eigen::Vector3d &position,
         // A leg of (nearly) zero length has no direction: its joints are as far out as can be.
         const bool defined = L > g.min_length;
         l.has_direction = l.has_direction && defined;
-        const Eigen::Vector3d n = defined ? Eigen::Vector3d(d / L) : Eigen::Vector3d(-c.base_neutral.col(k));
+        const Eigen::Vector3d n =
+            defined ? Eigen::Vector3d(d / L) : Eigen::Vector3d(-c.base_neutral.col(k));
         l.legs.axis.col(k) = n;
         l.legs.length[k] = L;
         l.base_cos[k] = n.dot(c.base_neutral.col(k));
@@ -390,8 +393,7 @@ void platform_legs(const LimitConstants &c, const double q[6], PlatformLegs &l) 
 // The sphere bound: the two legs' segments are at least this far apart (their midpoints'
 // distance less both half lengths); a pair is measured only if it may beat `closest`.
 double sphere_gap(const PlatformLegs &l, int i, int j) {
-    return (l.middle.col(i) - l.middle.col(j)).norm() -
-           0.5 * (l.legs.length[i] + l.legs.length[j]);
+    return (l.middle.col(i) - l.middle.col(j)).norm() - 0.5 * (l.legs.length[i] + l.legs.length[j]);
 }
 
 // The interference margin of legs i and j.
@@ -401,13 +403,13 @@ double leg_margin(const LimitConstants &c, const PlatformLegs &l, int i, int j) 
 
 // True if a joint class fails: joint_margins' verdict, the arc only where the cosine leaves
 // doubt (below `inside`; with one limit only the widest leg's, as joint_margins).
-bool joint_fails(const double limit[STEWART_LEGS], const double inside[STEWART_LEGS],
-                 bool uniform, const Matrix36 &axis, const Matrix36 &neutral,
-                 const Eigen::Matrix3d *rotation, const double cosine[STEWART_LEGS]) {
+bool joint_fails(const double limit[STEWART_LEGS], const double inside[STEWART_LEGS], bool uniform,
+                 const Matrix36 &axis, const Matrix36 &neutral, const Eigen::Matrix3d *rotation,
+                 const double cosine[STEWART_LEGS]) {
     auto fails = [&](int k) {
         if (cosine[k] >= inside[k]) return false;
-        const Eigen::Vector3d u =
-            rotation ? Eigen::Vector3d(*rotation * neutral.col(k)) : Eigen::Vector3d(neutral.col(k));
+        const Eigen::Vector3d u = rotation ? Eigen::Vector3d(*rotation * neutral.col(k))
+                                           : Eigen::Vector3d(neutral.col(k));
         return limit[k] - angle_between(axis.col(k), u) < 0.0;
     };
     if (uniform)
@@ -512,7 +514,8 @@ inline bool spares(const LimitConstants &c, const LimitClearance &clearance,
     const double pair_motion = (c.shaped ? 4.0 : 2.0) * delta;
     return shortest > c.geometry.min_length + kClearanceSlack &&
            clearance.interference >= pair_motion + kClearanceSlack &&
-           clearance.joint_cosine >= 2.0 * delta / clearance.shortest_leg + turned + kClearanceSlack;
+           clearance.joint_cosine >=
+               2.0 * delta / clearance.shortest_leg + turned + kClearanceSlack;
 }
 
 }  // namespace
@@ -558,9 +561,8 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
     }
     joint_margins(c.base_joint_limit, c.uniform_base_limit, legs.axis, c.base_neutral, nullptr,
                   l.base_cos, out, STEWART_LIMIT_BASE_JOINT - 1, every_leg);
-    joint_margins(c.platform_joint_limit, c.uniform_platform_limit, legs.axis,
-                  c.platform_neutral, &l.R, l.platform_cos, out, STEWART_LIMIT_PLATFORM_JOINT - 1,
-                  every_leg);
+    joint_margins(c.platform_joint_limit, c.uniform_platform_limit, legs.axis, c.platform_neutral,
+                  &l.R, l.platform_cos, out, STEWART_LIMIT_PLATFORM_JOINT - 1, every_leg);
     // Every pair: legs that are not neighbours meet too when the platform turns far enough.
     // Neighbours first, then a pair only if the spheres around the two legs can be closer than
     // the closest pair so far (every_leg: than the closest pair so far of either leg).
@@ -576,8 +578,7 @@ void check_platform_limits(const LimitConstants &c, const double q[6], stewart_l
     for (const LegPair &pair : kPairs) {
         const int i = pair.first, j = pair.second;
         if (c.shares_joint[i][j]) continue;
-        const double bound =
-            every_leg ? std::max(leg_closest[i], leg_closest[j]) : closest;
+        const double bound = every_leg ? std::max(leg_closest[i], leg_closest[j]) : closest;
         if (sphere_gap(l, i, j) - reach >= bound) continue;
         const double margin = leg_margin(c, l, i, j);
         const double d = margin + offset;

@@ -12,10 +12,10 @@ namespace stewart {
 
 // Everything the check needs from the parameters, per leg so that any geometry fits.
 struct LimitConstants {
-    PlatformGeometry geometry;       // joint centres, characteristic length (the Jacobian's)
-    Frames frames;                   // poses checked are the tool frame's in the user frame
-    Matrix36 base_neutral;           // unit neutral axes, base frame
-    Matrix36 platform_neutral;       // unit neutral axes, platform frame
+    PlatformGeometry geometry;  // joint centres, characteristic length (the Jacobian's)
+    Frames frames;              // poses checked are the tool frame's in the user frame
+    Matrix36 base_neutral;      // unit neutral axes, base frame
+    Matrix36 platform_neutral;  // unit neutral axes, platform frame
     double stroke_min[STEWART_LEGS], stroke_max[STEWART_LEGS];
     double base_joint_limit[STEWART_LEGS], platform_joint_limit[STEWART_LEGS];
     bool uniform_base_limit, uniform_platform_limit;  // one joint limit for all legs
@@ -37,10 +37,10 @@ struct LimitConstants {
     // The leg classes' limits (speed, acceleration, jerk, force; class STEWART_LIMIT_LEG_SPEED
     // + i), per leg, +inf where the parameter is 0 (none).
     double leg_limit[4][STEWART_LEGS];
-    double shortest_stroke_min;      // min_k stroke_min[k]: the shortest leg within the stroke
-    double longest_arm;              // max_k |b_k - tool origin|: the fastest platform joint per
-                                     // rad of a tool angle [m]
-    double platform_radius;          // max_k |b_k|, platform frame [m]
+    double shortest_stroke_min;  // min_k stroke_min[k]: the shortest leg within the stroke
+    double longest_arm;          // max_k |b_k - tool origin|: the fastest platform joint per
+                                 // rad of a tool angle [m]
+    double platform_radius;      // max_k |b_k|, platform frame [m]
     // A leg whose cosine to its neutral axis is at least this is inside its joint limit for sure
     // (platform_limit_failures skips its arc): cos(limit) + kJointCosineSlack, -inf for limits
     // >= pi, +inf (never skipped) for limits <= 0.
@@ -101,7 +101,7 @@ void check_limits(const LimitConstants &c, const double q[6], stewart_limits_out
 // into out (margin, leg, leg_margin; +inf where not given or no limit), then first and failed
 // again. Errors as stewart_limits_check's for the derivatives (leg_limits.cpp).
 stewart_status check_leg_limits(const LimitConstants &c, const stewart_limits_input &in,
-                                 stewart_limits_output &out, char *msg, size_t size);
+                                stewart_limits_output &out, char *msg, size_t size);
 
 // `first` (the failing class of lowest number, or none) and `failed` (a bit per failing class)
 // from the margins: every class fails below 0, interference also at 0 (legs that touch) when it

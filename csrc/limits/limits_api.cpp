@@ -44,7 +44,8 @@ stewart_status check_leg_data(stewart_limits *limits, const stewart_limits_input
     if (in.derivatives < 0 || in.derivatives > 3)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "derivatives = %d: it must be 0 (the pose alone), 1 (and q_dot), 2 "
-                           "(and q_ddot) or 3 (and q_dddot)", in.derivatives);
+                           "(and q_ddot) or 3 (and q_dddot)",
+                           in.derivatives);
     if (in.has_force != 0 && in.has_force != 1)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "has_force = %d: it must be 0 (no forces) or 1", in.has_force);
@@ -73,8 +74,9 @@ extern "C" {
 stewart_limits *stewart_limits_create(const stewart_model *model,
                                       const stewart_limits_options *options, char *msg,
                                       size_t size) {
-    stewart_limits *limits = stewart::new_object_for<stewart_limits>(
-        model, options, stewart_limits_options_check, "limits object", msg, size);
+    stewart_limits *limits =
+        stewart::new_object_for<stewart_limits>(model, options, stewart_limits_options_check,
+                                                "limits object", msg, size);
     if (!limits) return nullptr;
     limits->message[0] = '\0';
     limits->constants =

@@ -163,8 +163,8 @@ double condition_radius(const LimitConstants &c, const LegState &legs, const Leg
     // J^T(t + h) is J^T (I + X) with X = J^-T (h D + R), or (I + Z) J^T with Z = (h D + R)
     // J^-T: either bounds ||J^-T(t + h)|| by ||J^-T|| / (1 - ||X or Z||), so the smaller rate
     // serves (near parallel legs one can be far below the other).
-    const Matrix6 right = jacobian.inverse_transposed * rate;                // J^-T D
-    const Matrix6 left = rate * jacobian.inverse_transposed;                 // D J^-T
+    const Matrix6 right = jacobian.inverse_transposed * rate;  // J^-T D
+    const Matrix6 left = rate * jacobian.inverse_transposed;   // D J^-T
     // (b M / 2) h^2 + (g + S b / w) h - (1 - cond / w) <= 0, g = min(||J^-T D||, ||D J^-T||).
     const double linear =
         std::min(infinity_norm(right), infinity_norm(left)) + speed * inverse_norm / warn;

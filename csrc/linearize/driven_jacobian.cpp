@@ -34,7 +34,7 @@ void stop_partials(const plant::DriveModel &dm, int k, double L, double v, LegLa
         return;
     }
     const double spring = k_s * depth, damper = d_s * speed;
-    double push_depth = k_s, push_speed = d_s;  // push = spring + damper
+    double push_depth = k_s, push_speed = d_s;                  // push = spring + damper
     if (damper > spring) push_depth = 2 * k_s, push_speed = 0;  // push = 2 spring
     if (damper < -spring) push_depth = 0, push_speed = 0;       // push = 0
     law.kink |= std::fabs(damper) == spring && spring > 0;
@@ -68,8 +68,8 @@ bool leg_law(const plant::DriveModel &dm, int k, const plant::Evaluation &e, dou
     const double ideal = e.drive.ideal_force[k], nut = e.drive.nut_force[k];
     const double root = std::sqrt(v * v + vs * vs);
     const double s = v / root, s_slope = vs * vs / (root * root * root);
-    const double forward_slope = d.efficiency - 1.0;               // de/dx, x > 0
-    const double back_slope = -(1.0 / d.back_efficiency - 1.0);    // de/dx, x < 0
+    const double forward_slope = d.efficiency - 1.0;                           // de/dx, x > 0
+    const double back_slope = -(1.0 / d.back_efficiency - 1.0);                // de/dx, x < 0
     const bool lossy = screw_force_factor(d, s) != screw_force_factor(d, -s);  // the plant's test
     const double sign = ideal >= 0 ? 1.0 : -1.0, x = sign * s;
     const double factor = screw_force_factor(d, x);
@@ -165,8 +165,10 @@ bool driven_jacobian(const plant::DynamicsModel &force_model, const plant::Dynam
         out.leg_force[k] = e.drive.leg_force[k];
     }
     // dq_ddot = P_x dx + P_F dF: (I - P_F force_a) dq_ddot = P_x dx + P_F (force_x dx + ...).
-    const Eigen::Map<const Eigen::Matrix<double, 6, 12, Eigen::RowMajor>> P_x(&p.q_ddot_wrt_state[0][0]);
-    const Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> P_F(&p.q_ddot_wrt_force[0][0]);
+    const Eigen::Map<const Eigen::Matrix<double, 6, 12, Eigen::RowMajor>> P_x(
+        &p.q_ddot_wrt_state[0][0]);
+    const Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> P_F(
+        &p.q_ddot_wrt_force[0][0]);
     const Eigen::PartialPivLU<Matrix6> loop(Matrix6::Identity() - P_F * force_a);
     const Matrix6x12 accel_x = loop.solve(P_x + P_F * force_x);
     const Matrix6 accel_u = loop.solve(P_F * force_u), accel_i = loop.solve(P_F * force_i);

@@ -47,8 +47,8 @@ stewart_status check_finite(const double *values, int n, const char *name, int f
                             char *msg, size_t size) {
     for (int i = 0; i < n; ++i)
         if (!std::isfinite(values[i]))
-            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s[%d] = %g must be finite",
-                               name, first_index + i, values[i]);
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s[%d] = %g must be finite", name,
+                               first_index + i, values[i]);
     return STEWART_OK;
 }
 
@@ -59,8 +59,8 @@ stewart_status check_overflow(const double *values, size_t bytes, char *msg, siz
         if (!std::isfinite(values[i]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "the linearisation overflows at this operating point (its value "
-                               "%zu is %g): the inputs are beyond the plant's range", i,
-                               values[i]);
+                               "%zu is %g): the inputs are beyond the plant's range",
+                               i, values[i]);
     return STEWART_OK;
 }
 
@@ -70,11 +70,13 @@ stewart_status failure(const lin::Failure &why, double pitch, char *msg, size_t 
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "leg %d's power flow turns here (the plant's screw force flips with "
                            "its own efficiency): the driven plant has no derivative at this "
-                           "point; linearise a little away from it", why.unsettled_leg + 1);
+                           "point; linearise a little away from it",
+                           why.unsettled_leg + 1);
     if (why.pitch)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "pitch = %g rad is at +-90 degrees, where roll and yaw rates are "
-                           "undefined", pitch);
+                           "undefined",
+                           pitch);
     if (why.fault == plant::LegFault::ZeroLength)
         return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                            "leg %d has zero length at this pose", why.leg + 1);
@@ -135,8 +137,9 @@ bool base_wrench(const stewart_linearize &l, const stewart_pose &pose, double fo
 extern "C" stewart_linearize *stewart_linearize_create(const stewart_model *model,
                                                        const stewart_linearize_options *options,
                                                        char *msg, size_t size) {
-    stewart_linearize *l = stewart::new_object_for<stewart_linearize>(
-        model, options, stewart_linearize_options_check, "linearisation", msg, size);
+    stewart_linearize *l =
+        stewart::new_object_for<stewart_linearize>(model, options, stewart_linearize_options_check,
+                                                   "linearisation", msg, size);
     if (!l) return nullptr;
     l->dynamics = plant::dynamics_model(*model, options->fidelity);
     clear_message(msg, size);
@@ -171,8 +174,7 @@ extern "C" size_t stewart_linearize_state_size(const stewart_linearize *l) {
 extern "C" stewart_status stewart_linearize_save(const stewart_linearize *l, void *buffer,
                                                  size_t size) {
     if (!l) return STEWART_ERR_ARGUMENT;
-    if (!buffer || size < sizeof(SavedState))
-        return STEWART_ERR_ARGUMENT;
+    if (!buffer || size < sizeof(SavedState)) return STEWART_ERR_ARGUMENT;
     const SavedState s{kMagic, kVersion, l->options.fidelity};
     std::memcpy(buffer, &s, sizeof s);
     return STEWART_OK;
@@ -191,7 +193,8 @@ extern "C" stewart_status stewart_linearize_load(stewart_linearize *l, const voi
     if (s.magic != kMagic || s.version != kVersion)
         return set_message(msg, sizeof l->message, STEWART_ERR_ARGUMENT,
                            "state: not a linearisation's state of this version (magic %#x, "
-                           "version %u)", s.magic, s.version);
+                           "version %u)",
+                           s.magic, s.version);
     stewart_linearize_options o{s.fidelity};
     char why[STEWART_MESSAGE_SIZE];
     if (stewart_linearize_options_check(&o, why, sizeof why) != STEWART_OK)
@@ -247,8 +250,9 @@ extern "C" stewart_status stewart_linearize_plant(stewart_linearize *l,
                       offsetof(stewart_linearize_output, state_rate) + sizeof o.state_rate +
                           sizeof o.output + sizeof o.A + sizeof o.B + sizeof o.C + sizeof o.D,
                   "the checked values are contiguous");
-    if ((s = check_overflow(&o.state_rate[0], sizeof o.state_rate + sizeof o.output + sizeof o.A +
-                                                  sizeof o.B + sizeof o.C + sizeof o.D,
+    if ((s = check_overflow(&o.state_rate[0],
+                            sizeof o.state_rate + sizeof o.output + sizeof o.A + sizeof o.B +
+                                sizeof o.C + sizeof o.D,
                             msg, size)) != STEWART_OK)
         return s;
     *out = o;
@@ -315,14 +319,15 @@ stewart_status force_rows(const stewart_linearize &l, const stewart_pose &pose,
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the legs cannot hold this pose: the map from forces to pose "
                            "accelerations is singular (reciprocal condition %g), a singular "
-                           "pose; linearise about a pose within the limits", rcond);
+                           "pose; linearise about a pose within the limits",
+                           rcond);
     const Eigen::Matrix<double, 6, 1> force = lu.solve(missing);
     double force_values[STEWART_LEGS];
     for (int k = 0; k < STEWART_LEGS; ++k) force_values[k] = force[k];
     lin::plant_rate_add_force(rate, force_values);
     lin::PlantJacobian at_force;
-    if (!lin::plant_jacobian(l.dynamics, frames, pose.q, pose.q_dot, force_values, rate,
-                             at_force, why))
+    if (!lin::plant_jacobian(l.dynamics, frames, pose.q, pose.q_dot, force_values, rate, at_force,
+                             why))
         return failure(why, pose.q[4], msg, size);
     const Eigen::Map<const Eigen::Matrix<double, 6, 12, Eigen::RowMajor>> accel_wrt_state(
         &at_force.q_ddot_wrt_state[0][0]);
@@ -361,8 +366,9 @@ stewart_status inverse_rows(const stewart_linearize &l, const stewart_pose &pose
                       offsetof(stewart_linearize_inverse_output, lengths) +
                           sizeof(stewart_lengths) + 12 * sizeof(double),
                   "the checked values are contiguous");
-    if ((s = check_overflow(&o.lengths.length[0], sizeof o.lengths + sizeof o.force +
-                                                       6 * sizeof(double) + sizeof o.jacobian,
+    if ((s = check_overflow(&o.lengths.length[0],
+                            sizeof o.lengths + sizeof o.force + 6 * sizeof(double) +
+                                sizeof o.jacobian,
                             msg, size)) != STEWART_OK)
         return s;
     o.stroke_legs = stroke_legs_of(l.model->params, o.lengths.length);
@@ -443,8 +449,8 @@ extern "C" stewart_status stewart_linearize_driven(stewart_linearize *l,
                            plant_options->input, STEWART_PLANT_INPUT_CURRENT,
                            STEWART_PLANT_INPUT_VOLTAGE);
     if (!(plant_options->smoothing_speed > 0))
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "smoothing_speed = %g must be > 0", plant_options->smoothing_speed);
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "smoothing_speed = %g must be > 0",
+                           plant_options->smoothing_speed);
     plant::DynamicsModel driven = l->dynamics;
     stewart_status s =
         plant::drive_model(l->model->params, *plant_options, driven.drives, msg, size);
@@ -464,13 +470,13 @@ extern "C" stewart_status stewart_linearize_driven(stewart_linearize *l,
     stewart_linearize_driven_output o;
     driven_output(*l, *in, p, o);
     static_assert(offsetof(stewart_linearize_driven_output, leg_force) + sizeof o.leg_force ==
-                      offsetof(stewart_linearize_driven_output, state_rate) +
-                          sizeof o.state_rate + sizeof o.output + sizeof o.A + sizeof o.B +
-                          sizeof o.C + sizeof o.D + sizeof o.leg_force,
+                      offsetof(stewart_linearize_driven_output, state_rate) + sizeof o.state_rate +
+                          sizeof o.output + sizeof o.A + sizeof o.B + sizeof o.C + sizeof o.D +
+                          sizeof o.leg_force,
                   "the checked values are contiguous");
-    if ((s = check_overflow(&o.state_rate[0], sizeof o.state_rate + sizeof o.output + sizeof o.A +
-                                                  sizeof o.B + sizeof o.C + sizeof o.D +
-                                                  sizeof o.leg_force,
+    if ((s = check_overflow(&o.state_rate[0],
+                            sizeof o.state_rate + sizeof o.output + sizeof o.A + sizeof o.B +
+                                sizeof o.C + sizeof o.D + sizeof o.leg_force,
                             msg, size)) != STEWART_OK)
         return s;
     *out = o;

@@ -7,8 +7,7 @@ namespace {
 
 // The six values of v, each the variable of direction first + i.
 void seed(const double v[6], int first, Dual out[6]) {
-    for (int i = 0; i < 6; ++i)
-        out[i] = Dual(v[i], DualDerivatives::Unit(first + i));
+    for (int i = 0; i < 6; ++i) out[i] = Dual(v[i], DualDerivatives::Unit(first + i));
 }
 
 // The platform's motion (base frame) at the tool's pose (user frame) q with rates and

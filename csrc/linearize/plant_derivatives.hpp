@@ -33,16 +33,15 @@ bool plant_point(const plant::DynamicsModel &d, const double q[6], const double 
 // user frame, frames f), each with its derivatives along directions 0-5 q, 6-11 q_dot, 12-17
 // q_ddot.
 bool leg_lengths(const plant::LegParameters &p, const Frames &f, const double q[6],
-                 const double q_dot[6],
-                 const double q_ddot[6], Dual length[STEWART_LEGS], Dual rate[STEWART_LEGS],
-                 Dual accel[STEWART_LEGS], Failure &why);
+                 const double q_dot[6], const double q_ddot[6], Dual length[STEWART_LEGS],
+                 Dual rate[STEWART_LEGS], Dual accel[STEWART_LEGS], Failure &why);
 
 // The wrench the moving bodies put on the base (plant/plant_equations.hpp: base_wrench; base
 // frame) when the tool moves with the pose (q, q_dot, q_ddot), with its derivatives along the
 // directions of leg_lengths.
 bool pose_base_wrench(const plant::DynamicsModel &d, const Frames &f, const double q[6],
-                      const double q_dot[6],
-                      const double q_ddot[6], Dual force[3], Dual torque[3], Failure &why);
+                      const double q_dot[6], const double q_ddot[6], Dual force[3], Dual torque[3],
+                      Failure &why);
 
 }  // namespace lin
 }  // namespace stewart

@@ -139,7 +139,8 @@ bool plant_jacobian(const plant::DynamicsModel &d, const Frames &f, const double
         out.q_ddot[i] = q_ddot[i].value();
         for (int j = 0; j < kStateDirections; ++j)
             out.q_ddot_wrt_state[i][j] = q_ddot[i].derivatives()[j];
-        for (int k = 0; k < STEWART_LEGS; ++k) out.q_ddot_wrt_force[i][k] = r.q_ddot_wrt_force[i][k];
+        for (int k = 0; k < STEWART_LEGS; ++k)
+            out.q_ddot_wrt_force[i][k] = r.q_ddot_wrt_force[i][k];
     }
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const plant::LegConfigurationT<StateDual> &leg = ed.legs[k];

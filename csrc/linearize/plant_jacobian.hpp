@@ -21,10 +21,10 @@ namespace lin {
 // The plant's pose accelerations at x = (q, q_dot) in plain numbers, affine in the forces: the
 // first stage of plant_jacobian, and all the inverse side needs to find the forces.
 struct PlantRate {
-    Motion platform;                          // base frame; accelerations not used
-    Eigen::Vector3d angle_bias;               // E_dot angles_dot of the tool's angles
+    Motion platform;                               // base frame; accelerations not used
+    Eigen::Vector3d angle_bias;                    // E_dot angles_dot of the tool's angles
     Eigen::LLT<Eigen::Matrix<double, 6, 6>> mass;  // M factored
-    Eigen::Matrix<double, 6, 1> twist_rate;   // the platform's (v_dot, omega_dot), base frame
+    Eigen::Matrix<double, 6, 1> twist_rate;        // the platform's (v_dot, omega_dot), base frame
     Eigen::Matrix<double, 6, 6> twist_rate_wrt_force;  // M^-1 J^T
     double q_ddot[6];
     double q_ddot_wrt_force[6][STEWART_LEGS];

@@ -28,7 +28,7 @@ using plant::kMinCosPitch;
 // The plant's range (docs/forward-dynamics.md section 4): speeds far beyond any platform's, below
 // which a 1 ms step stays within the default max_internal_steps; continuous roll and yaw within
 // +-1e12 rad, where 2 pi still has digits to spare.
-constexpr double kMaxSpeed = 1e3;   // [m/s] of the platform origin, [rad/s] of omega
+constexpr double kMaxSpeed = 1e3;       // [m/s] of the platform origin, [rad/s] of omega
 constexpr double kMaxTurnAngle = 1e12;  // [rad]
 // The smallest first internal step a step may start with: below it SUNDIALS' products of step
 // sizes underflow (a saved hint of 4.9e-324 s left ARKODE unable to step).
@@ -83,7 +83,8 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity) {
 namespace {
 
 // The warnings a plant sets.
-constexpr int kPlantWarnings = STEWART_WARN_STROKE | STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE;
+constexpr int kPlantWarnings =
+    STEWART_WARN_STROKE | STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE;
 
 // omega = E(pitch, yaw) * (roll, pitch, yaw)_dot (kinematics/motion.hpp).
 plant::Mat3 rate_matrix(double pitch, double yaw) {
@@ -109,8 +110,8 @@ int leg_outputs(const stewart_plant &p, const stewart::Motion &m, double length[
 // Every leg's vector p + R b_k - a_k at the platform's motion m (Eigen's arithmetic).
 void leg_vectors(const stewart_plant &p, const stewart::Motion &m, double d[STEWART_LEGS][3]) {
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        const plant::Vec3 &a = p.dynamics.legs.base_points.col(k), &b =
-            p.dynamics.legs.platform_points.col(k);
+        const plant::Vec3 &a = p.dynamics.legs.base_points.col(k),
+                          &b = p.dynamics.legs.platform_points.col(k);
         const plant::Vec3 v = m.position + m.rotation * b - a;
         for (int i = 0; i < 3; ++i) d[k][i] = v[i];
     }
@@ -125,7 +126,8 @@ int limit_warnings(const stewart_plant &p, const stewart::Motion &m,
     const int failed =
         clearance ? stewart::platform_limit_failures(p.limits, m.position, m.rotation, *clearance)
                   : stewart::platform_limit_failures(p.limits, m.position, m.rotation);
-    const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
+    const int joints =
+        1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
     return (failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
            (failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
 }
@@ -168,8 +170,8 @@ stewart_status check_finite(const double *values, const char *name, char *msg, s
     if (zero_if_finite(values, STEWART_LEGS) == 0) return STEWART_OK;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(values[k]))
-            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s[%d] = %g must be finite",
-                               name, k + 1, values[k]);
+            return set_message(msg, size, STEWART_ERR_ARGUMENT, "%s[%d] = %g must be finite", name,
+                               k + 1, values[k]);
     return STEWART_OK;
 }
 
@@ -185,7 +187,8 @@ stewart_status check_range(const double y[plant::kStates], const double angles[3
     if (!(omega.norm() <= kMaxSpeed))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "%s: the angular speed |omega| = %g rad/s is beyond the plant's range "
-                           "(%g rad/s)", what, omega.norm(), kMaxSpeed);
+                           "(%g rad/s)",
+                           what, omega.norm(), kMaxSpeed);
     for (int i : {0, 2})
         if (!(std::fabs(angles[i]) <= kMaxTurnAngle))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -201,8 +204,8 @@ bool angles_match(const double y[plant::kStates], const double saved[3]) {
     const double zero[3] = {0, 0, 0};
     stewart::angles_of_rotation(plant::motion_of_state(y).rotation, zero, principal);
     for (int i = 0; i < 3; ++i) {
-        const double off = i == 1 ? saved[i] - principal[i]
-                                  : std::remainder(saved[i] - principal[i], 2 * M_PI);
+        const double off =
+            i == 1 ? saved[i] - principal[i] : std::remainder(saved[i] - principal[i], 2 * M_PI);
         if (!(std::fabs(off) <= 1e-9 + 8 * DBL_EPSILON * std::fabs(saved[i]))) return false;
     }
     return true;
@@ -281,8 +284,9 @@ extern "C" void stewart_plant_options_default(stewart_plant_options *o) {
 extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
                                                const stewart_plant_options *options, char *msg,
                                                size_t size) {
-    stewart_plant *p = stewart::new_object_for<stewart_plant>(
-        model, options, stewart_plant_options_check, "plant", msg, size);
+    stewart_plant *p =
+        stewart::new_object_for<stewart_plant>(model, options, stewart_plant_options_check, "plant",
+                                               msg, size);
     if (!p) return nullptr;
     p->limits = stewart::limit_constants(model->params, model->geometry, HUGE_VAL);
     p->dynamics = plant::dynamics_model(*model, options->fidelity);
@@ -311,8 +315,8 @@ extern "C" stewart_plant *stewart_plant_create(const stewart_model *model,
         set_message(msg, size, STEWART_ERR_PARAMETER,
                     "a first step at rest at the home pose fails with these parameters and "
                     "options (gravity = (%g, %g, %g) m/s2, relative_tolerance = %g, "
-                    "absolute_tolerance = %g): %s", model->params.gravity[0],
-                    model->params.gravity[1], model->params.gravity[2],
+                    "absolute_tolerance = %g): %s",
+                    model->params.gravity[0], model->params.gravity[1], model->params.gravity[2],
                     options->relative_tolerance, options->absolute_tolerance, why);
         delete p;
         return nullptr;
@@ -377,8 +381,8 @@ extern "C" stewart_status stewart_plant_set_state(stewart_plant *p, double time,
         if (!std::isfinite(platform_q[i]) || !std::isfinite(platform_rate[i]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "%s0 = %g, %s_dot0 = %g are out of range: the platform's pose or "
-                               "rates they give (tool and user frames) overflow", kPoseNames[i],
-                               pose[i], kPoseNames[i], rate[i]);
+                               "rates they give (tool and user frames) overflow",
+                               kPoseNames[i], pose[i], kPoseNames[i], rate[i]);
     return start_at(*p, time, platform_q, platform_rate);
 }
 
@@ -397,7 +401,8 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     if (!omega.allFinite())
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "roll_dot0, pitch_dot0, yaw_dot0 = %g, %g, %g rad/s overflow the "
-                           "angular velocity", rate[3], rate[4], rate[5]);
+                           "angular velocity",
+                           rate[3], rate[4], rate[5]);
     double y[plant::kMaxStates] = {0};  // the windings start without current
     const Eigen::Quaterniond q(R);
     const double yq[7] = {pose[0], pose[1], pose[2], q.w(), q.x(), q.y(), q.z()};
@@ -412,10 +417,10 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     if (!plant::twist_rate(p->dynamics, plant::motion_of_state(y), zero, e))
         return set_message(msg, size,
                            e.fault == plant::LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
-                                                               : STEWART_ERR_SINGULAR,
+                                                                  : STEWART_ERR_SINGULAR,
                            "the start pose is singular: leg %d %s", e.fault_leg + 1,
                            e.fault == plant::LegFault::ZeroLength ? "has zero length"
-                                                               : "lies along a Cardan arm");
+                                                                  : "lies along a Cardan arm");
     p->time = time;
     p->step_end_valid = false;
     for (int i = 0; i < plant::kMaxStates; ++i) p->y[i] = y[i];
@@ -425,8 +430,8 @@ stewart_status start_at(stewart_plant &plant, double time, const double pose[6],
     double length[6], length_rate[6];
     msg[0] = '\0';
     const stewart::Motion m = plant::motion_of_state(y);
-    p->warnings = (leg_outputs(*p, m, length, length_rate) ? STEWART_WARN_STROKE : 0) |
-                  limit_warnings(*p, m);
+    p->warnings =
+        (leg_outputs(*p, m, length, length_rate) ? STEWART_WARN_STROKE : 0) | limit_warnings(*p, m);
     return STEWART_OK;
 }
 
@@ -442,18 +447,18 @@ struct LegOutputs {
 // stewart_plant_output_get with what the step already knows (defined below it).
 stewart_status output_of(const stewart_plant *p, const double *force,
                          const plant::Evaluation *known, int limit_bits, const LegOutputs *legs,
-                         stewart_plant_output *out,
-                         const stewart::Motion *state_motion = nullptr);
+                         stewart_plant_output *out, const stewart::Motion *state_motion = nullptr);
 
 // STEWART_OK, or STEWART_ERR_ARGUMENT saying what of a step's input is refused: the choice of
 // derivatives, a step h that does not advance time or takes it out of range, a force or force
 // rate that is not finite.
-stewart_status check_step_input(const stewart_plant &p, const stewart_plant_input &input,
-                                char *msg, size_t size) {
+stewart_status check_step_input(const stewart_plant &p, const stewart_plant_input &input, char *msg,
+                                size_t size) {
     if (input.derivatives != 0 && input.derivatives != 1)
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "derivatives is %d: it must be 0 (forces linear over the step) or 1 "
-                           "(cubic Hermite with the force rates)", input.derivatives);
+                           "(cubic Hermite with the force rates)",
+                           input.derivatives);
     const double h = input.h;
     if (!(h > 0 && std::isfinite(h)))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
@@ -461,7 +466,8 @@ stewart_status check_step_input(const stewart_plant &p, const stewart_plant_inpu
     if (!(h >= kMinStepSize && p.time + h > p.time))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s does not advance time t = %.17g s (h must "
-                           "be >= %g s and above the resolution of t)", h, p.time, kMinStepSize);
+                           "be >= %g s and above the resolution of t)",
+                           h, p.time, kMinStepSize);
     if (!(std::fabs(p.time + h) <= kMaxTime))
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "communication step h = %g s takes time beyond %g s", h, kMaxTime);
@@ -472,8 +478,7 @@ stewart_status check_step_input(const stewart_plant &p, const stewart_plant_inpu
     if (input.derivatives &&
         ((s = check_finite(input.force_rate_start, "dF/dt (start of step)", msg, size)) !=
              STEWART_OK ||
-         (s = check_finite(input.force_rate_end, "dF/dt (end of step)", msg, size)) !=
-             STEWART_OK))
+         (s = check_finite(input.force_rate_end, "dF/dt (end of step)", msg, size)) != STEWART_OK))
         return s;
     return STEWART_OK;
 }
@@ -516,8 +521,7 @@ void record_statistics(const stewart_plant_statistics &last, stewart_plant_stati
 // m. The legs at the step's start are the last step's end legs when it left them; end_legs gets
 // the legs at m.
 stewart_status check_legs_kept_direction(const stewart_plant &p, const stewart::Motion &m,
-                                         double end_legs[STEWART_LEGS][3], char *msg,
-                                         size_t size) {
+                                         double end_legs[STEWART_LEGS][3], char *msg, size_t size) {
     double start_legs[STEWART_LEGS][3];
     if (p.step_end_valid) std::memcpy(start_legs, p.leg_vectors, sizeof start_legs);
     else leg_vectors(p, plant::motion_of_state(p.y), start_legs);
@@ -546,15 +550,15 @@ stewart_status end_angles(const stewart_plant &p, const double *y, double princi
     if (!(std::fabs(std::cos(angles[1])) > kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "the motion reaches pitch = %g rad (+-90 degrees), where roll and yaw "
-                           "are undefined", angles[1]);
+                           "are undefined",
+                           angles[1]);
     return check_range(y, angles, "the forces are out of range: after the step", msg, size);
 }
 
 // The legs' lengths, rates and stroke bits at the step's end m (refused if one overflows), and
 // the step's warnings.
-stewart_status end_legs_and_warnings(stewart_plant &p, const stewart::Motion &m,
-                                     LegOutputs &legs, int &limit_bits, int &warnings, char *msg,
-                                     size_t size) {
+stewart_status end_legs_and_warnings(stewart_plant &p, const stewart::Motion &m, LegOutputs &legs,
+                                     int &limit_bits, int &warnings, char *msg, size_t size) {
     limit_bits = limit_warnings(p, m, &p.limit_clearance);
     legs.stroke_legs = leg_outputs(p, m, legs.length, legs.rate);
     warnings = (legs.stroke_legs ? STEWART_WARN_STROKE : 0) | limit_bits;
@@ -562,7 +566,8 @@ stewart_status end_legs_and_warnings(stewart_plant &p, const stewart::Motion &m,
         if (!std::isfinite(legs.length[k]) || !std::isfinite(legs.rate[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                "the forces are out of range: leg %d's length or rate overflows "
-                               "after the step", k + 1);
+                               "after the step",
+                               k + 1);
     return STEWART_OK;
 }
 
@@ -630,7 +635,7 @@ extern "C" stewart_status stewart_plant_step(stewart_plant *p, const stewart_pla
 
 // The legs' forces and drive outputs of o at the evaluation e of the inputs.
 void plant_drive_outputs(const stewart_plant &p, const double *input, const plant::Evaluation &e,
-                   stewart_plant_output &o) {
+                         stewart_plant_output &o) {
     const plant::DriveModel &dm = p.dynamics.drives;
     if (dm.input == STEWART_PLANT_INPUT_FORCE) {
         std::memcpy(o.force, input, sizeof o.force);
@@ -665,8 +670,7 @@ namespace {
 // state_motion: motion_of_state(p->y) (the step's, or nullptr).
 stewart_status output_of(const stewart_plant *p, const double *force,
                          const plant::Evaluation *known, int limit_bits, const LegOutputs *legs,
-                         stewart_plant_output *out,
-                         const stewart::Motion *state_motion) {
+                         stewart_plant_output *out, const stewart::Motion *state_motion) {
     plant::Evaluation e;
     stewart::Motion m;
     const stewart_status s = all_bodies(*p, force, e, nullptr, known, &m, state_motion);
@@ -834,8 +838,8 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
         header[2] != bytes)
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "not a saved plant state of this version (%zu bytes, magic %#x, "
-                           "version %u; expected %zu bytes, %#x, %u)", size, header[0], header[1],
-                           bytes, kStateMagic, kStateVersion);
+                           "version %u; expected %zu bytes, %#x, %u)",
+                           size, header[0], header[1], bytes, kStateMagic, kStateVersion);
     double state[kMaxSavedDoubles];
     std::memcpy(state, static_cast<const unsigned char *>(buffer) + kStateHeader,
                 kSaved * sizeof(double));
@@ -852,22 +856,24 @@ extern "C" stewart_status stewart_plant_load(stewart_plant *p, const void *buffe
     const double zero[STEWART_LEGS] = {0};
     if (!(std::fabs(q_norm - 1) < 1e-9) || !(std::fabs(std::cos(angles[1])) > kMinCosPitch) ||
         !(warnings >= 0 && warnings <= kPlantWarnings &&
-          (static_cast<int>(warnings) & ~kPlantWarnings) == 0 && warnings == std::floor(warnings)) ||
+          (static_cast<int>(warnings) & ~kPlantWarnings) == 0 &&
+          warnings == std::floor(warnings)) ||
         !(hint == 0 || hint >= kMinStepSize) ||
         !(e.winding_current = y + plant::kStates,
           plant::twist_rate(p->dynamics, plant::motion_of_state(y), zero, e)))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "saved plant state is not one a step leaves (quaternion norm %g, pitch "
                            "%g rad, warnings %g, step hint %g s (0 or >= %g s), or a singular "
-                           "pose)", q_norm, angles[1], warnings, hint, kMinStepSize);
+                           "pose)",
+                           q_norm, angles[1], warnings, hint, kMinStepSize);
     if (!(std::fabs(state[0]) <= kMaxTime))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "saved plant state: time = %g s is beyond +-%g s", state[0], kMaxTime);
     if (!angles_match(y, angles))
         return set_message(p->message, sizeof p->message, STEWART_ERR_ARGUMENT,
                            "saved plant state is not one a step leaves: roll, pitch, yaw = %g, %g, "
-                           "%g rad are not the angles of its quaternion", angles[0], angles[1],
-                           angles[2]);
+                           "%g rad are not the angles of its quaternion",
+                           angles[0], angles[1], angles[2]);
     if (check_range(y, angles, "saved plant state", p->message, sizeof p->message) != STEWART_OK)
         return STEWART_ERR_ARGUMENT;
     const double *in = state;

@@ -39,8 +39,8 @@ enum class LegFault { None, ZeroLength, LockedBaseCardan, LockedPlatformCardan }
 // y = n x x, z = n: the cross arm of each Cardan is perpendicular to the plate's arm s).
 template <class S>
 struct LegConfigurationT {
-    Vec3T<S> arm;         // R b_k
-    Vec3T<S> n;           // unit axis, base toward platform
+    Vec3T<S> arm;  // R b_k
+    Vec3T<S> n;    // unit axis, base toward platform
     S length;
     S inverse_length;
     Vec3T<S> piston_arm;  // R s_k of the platform Cardan (the base arm is fixed)

@@ -45,8 +45,8 @@ void frame_rates(const Vec3T<S> &n, const AxisRates<S> &nr, const Vec3T<S> &s,
     const Vec3T<S> y_cross_s = y.cross(s);
     const S w = (-x.dot(s_dot) + y_cross_s.dot(nr.n_dot)) * inv_mu;
     const S numerator_dot = -x_dot.dot(s_dot) - x.dot(s_ddot) +
-                                 (y_dot.cross(s) + y.cross(s_dot)).dot(nr.n_dot) +
-                                 y_cross_s.dot(nr.n_ddot);
+                            (y_dot.cross(s) + y.cross(s_dot)).dot(nr.n_dot) +
+                            y_cross_s.dot(nr.n_ddot);
     const S w_dot = (numerator_dot - w * mu_dot) * inv_mu;
     omega = n.cross(nr.n_dot) + w * n;
     alpha = n.cross(nr.n_ddot) + w_dot * n + w * nr.n_dot;
@@ -110,8 +110,8 @@ void leg_body_motion(const LegParameters &p, int k, const LegConfigurationT<S> &
     cyl.acceleration = p.cylinder_com * nr.n_ddot;
     cyl.rotation = leg_axes(c.cylinder_x, c.n);
     const Vec3T<S> zero = Vec3T<S>::Zero();
-    frame_rates<S>(c.n, nr, p.base_arm.col(k).template cast<S>(), zero, zero, c.cylinder_x, c.cylinder_sin, cyl.omega,
-                cyl.alpha);
+    frame_rates<S>(c.n, nr, p.base_arm.col(k).template cast<S>(), zero, zero, c.cylinder_x,
+                   c.cylinder_sin, cyl.omega, cyl.alpha);
 
     pis.position = P - p.piston_com * c.n;
     pis.velocity = P_dot - p.piston_com * nr.n_dot;
@@ -161,12 +161,12 @@ void leg_point_forces(const LegParameters &p, int k, const LegConfigurationT<S> 
 }
 
 // Explicit instantiation for the scalar S (inside namespace stewart::plant).
-#define STEWART_PLANT_BODIES_INSTANTIATE(S)                                                       \
-    template LegFault leg_configuration<S>(const LegParameters &, int, const Vec3T<S> &,          \
-                                           const Mat3T<S> &, LegConfigurationT<S> &, bool);       \
-    template void leg_body_motion<S>(const LegParameters &, int, const LegConfigurationT<S> &,    \
-                                     const MotionT<S> &, MotionT<S> &, MotionT<S> &);             \
-    template void leg_acceleration_map<S>(const LegParameters &, int,                             \
+#define STEWART_PLANT_BODIES_INSTANTIATE(S)                                                    \
+    template LegFault leg_configuration<S>(const LegParameters &, int, const Vec3T<S> &,       \
+                                           const Mat3T<S> &, LegConfigurationT<S> &, bool);    \
+    template void leg_body_motion<S>(const LegParameters &, int, const LegConfigurationT<S> &, \
+                                     const MotionT<S> &, MotionT<S> &, MotionT<S> &);          \
+    template void leg_acceleration_map<S>(const LegParameters &, int,                          \
                                           const LegConfigurationT<S> &, LegAccelerationMapT<S> &);
 
 }  // namespace plant

@@ -106,14 +106,15 @@ stewart_status evaluate(const stewart_plant &p, const stewart::Motion &m, const 
                        e.fault == plant::LegFault::ZeroLength ? STEWART_ERR_UNREACHABLE
                                                               : STEWART_ERR_SINGULAR,
                        "leg %d %s at x, y, z = %g, %g, %g m, roll, pitch, yaw = %g, %g, %g "
-                       "rad (L[%d] = %g m)", k + 1, fault_text(e.fault), pose.q[0], pose.q[1],
-                       pose.q[2], pose.q[3], pose.q[4], pose.q[5], k + 1, d.norm());
+                       "rad (L[%d] = %g m)",
+                       k + 1, fault_text(e.fault), pose.q[0], pose.q[1], pose.q[2], pose.q[3],
+                       pose.q[4], pose.q[5], k + 1, d.norm());
 }
 
 // The platform's accelerations from the evaluation e: into m (its twist rate) and pose.q_ddot
 // (the angles' second derivatives), and the base wrench of the bodies' motions into o.
-void platform_accelerations(const stewart_plant &p, const plant::Evaluation &e,
-                            stewart_pose &pose, stewart::Motion &m, stewart_plant_output &o) {
+void platform_accelerations(const stewart_plant &p, const plant::Evaluation &e, stewart_pose &pose,
+                            stewart::Motion &m, stewart_plant_output &o) {
     // alpha = E angles_ddot + E_dot angles_dot, so angles_ddot = E^-1 (alpha - E_dot angles_dot).
     const double pitch = pose.q[4];
     const plant::Vec3 alpha = e.twist_rate.tail<3>();
@@ -138,16 +139,16 @@ void platform_accelerations(const stewart_plant &p, const plant::Evaluation &e,
 // STEWART_OK, or STEWART_ERR_ARGUMENT when a derivative or output overflowed.
 stewart_status check_outputs_finite(const stewart_plant_output &o, const double *force,
                                     const stewart_pose &pose, char *msg, size_t size) {
-    const double *values[6] = {o.pose.q_ddot, o.lengths.length, o.lengths.length_rate,
-                               o.lengths.length_accel, o.base_force, o.base_torque};
+    const double *values[6] = {o.pose.q_ddot,          o.lengths.length, o.lengths.length_rate,
+                               o.lengths.length_accel, o.base_force,     o.base_torque};
     const int counts[6] = {6, STEWART_LEGS, STEWART_LEGS, STEWART_LEGS, 3, 3};
     for (int g = 0; g < 6; ++g)
         for (int i = 0; i < counts[g]; ++i)
             if (!std::isfinite(values[g][i]))
                 return set_message(msg, size, STEWART_ERR_ARGUMENT,
                                    "the state or forces are out of range: the derivatives or "
-                                   "outputs overflow (F[1] = %g N, x_dot = %g m/s)", force[0],
-                                   pose.q_dot[0]);
+                                   "outputs overflow (F[1] = %g N, x_dot = %g m/s)",
+                                   force[0], pose.q_dot[0]);
     return STEWART_OK;
 }
 
@@ -169,14 +170,16 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
     if (!(std::fabs(std::cos(in->pose.q[4])) > plant::kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "pitch = %.17g rad is at +-90 degrees, where roll and yaw rates are "
-                           "undefined", in->pose.q[4]);
+                           "undefined",
+                           in->pose.q[4]);
     stewart_pose pose{};
     if ((s = platform_pose_of(*p, in->pose, pose, msg, size)) != STEWART_OK) return s;
     stewart::Motion m = stewart::motion_of_pose(pose);
     if (!m.omega.allFinite())
         return set_message(msg, size, STEWART_ERR_ARGUMENT,
                            "roll_dot, pitch_dot, yaw_dot = %g, %g, %g rad/s overflow the angular "
-                           "velocity", pose.q_dot[3], pose.q_dot[4], pose.q_dot[5]);
+                           "velocity",
+                           pose.q_dot[3], pose.q_dot[4], pose.q_dot[5]);
     plant::Evaluation e;
     if ((s = evaluate(*p, m, in->force, pose, e, msg, size)) != STEWART_OK) return s;
     stewart_plant_output o{};
@@ -191,7 +194,8 @@ extern "C" stewart_status stewart_plant_derivatives(stewart_plant *p,
     if (!frames.identity && !stewart::tool_pose(frames, pose, 2, tool, plant::kMinCosPitch))
         return set_message(msg, size, STEWART_ERR_SINGULAR,
                            "pitch = %.17g rad is at +-90 degrees, where roll and yaw rates are "
-                           "undefined", in->pose.q[4]);
+                           "undefined",
+                           in->pose.q[4]);
     std::memcpy(o.pose.q_ddot, tool.q_ddot, sizeof o.pose.q_ddot);
     o.stroke_legs = leg_motion(*p, m, o.lengths);
     if (p->model->length_offsets)  // the sensors read Cardan-to-Cardan length - offset

@@ -56,8 +56,8 @@ struct LegDriveRow {
 
 }  // namespace
 
-stewart_status drive_model(const stewart_params &p, const stewart_plant_options &o,
-                           DriveModel &d, char *msg, size_t size) {
+stewart_status drive_model(const stewart_params &p, const stewart_plant_options &o, DriveModel &d,
+                           char *msg, size_t size) {
     d = DriveModel();
     if (o.input == STEWART_PLANT_INPUT_FORCE) return STEWART_OK;
     const char *input = o.input == STEWART_PLANT_INPUT_CURRENT ? "current" : "voltage";
@@ -98,16 +98,15 @@ stewart_status drive_model(const stewart_params &p, const stewart_plant_options 
     return STEWART_OK;
 }
 
-void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS],
-                   const Evaluation &e, double rates[STEWART_LEGS]) {
+void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS], const Evaluation &e,
+                   double rates[STEWART_LEGS]) {
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegDrive &drive = d.drives.legs[k];
         const double omega = drive.motor_per_leg * e.drive.length_rate[k];
-        rates[k] = drive.inductance > 0
-                       ? (voltage[k] - drive.resistance * e.drive.current[k] -
-                          drive.torque_constant * omega) /
-                             drive.inductance
-                       : 0.0;
+        rates[k] = drive.inductance > 0 ? (voltage[k] - drive.resistance * e.drive.current[k] -
+                                           drive.torque_constant * omega) /
+                                              drive.inductance
+                                        : 0.0;
     }
 }
 
@@ -133,11 +132,10 @@ namespace {
         r.a = leg.n.dot(m.omega.cross(m.omega.cross(leg.arm))) +
               (P_dot.squaredNorm() - L_dot * L_dot) * leg.inverse_length;
         const double omega = drive.motor_per_leg * L_dot;
-        const double current =
-            dm.input == STEWART_PLANT_INPUT_CURRENT ? input[k]
-            : drive.inductance > 0                   ? e.winding_current[k]  // a state
-                                                    : (input[k] - drive.torque_constant * omega) /
-                                                          drive.resistance;
+        const double current = dm.input == STEWART_PLANT_INPUT_CURRENT ? input[k]
+                               : drive.inductance > 0
+                                   ? e.winding_current[k]  // a state
+                                   : (input[k] - drive.torque_constant * omega) / drive.resistance;
         r.reflected = dm.reflected_mass[k];
         r.bias = drive.motor_per_leg * drive.torque_constant * current - r.reflected * r.a;
         const double friction = friction_force(drive, L_dot, vs);
@@ -162,8 +160,7 @@ namespace {
                                                     const double rhs[6],
                                                     const LegDriveRow rows[STEWART_LEGS],
                                                     int sign[STEWART_LEGS], Evaluation &e,
-                                                    double nu_dot[6],
-                                                    double factor[STEWART_LEGS]) {
+                                                    double nu_dot[6], double factor[STEWART_LEGS]) {
     bool any_lossy = false;
     for (int k = 0; k < STEWART_LEGS; ++k) any_lossy |= rows[k].lossy;
     double weight[STEWART_LEGS], j[STEWART_LEGS][6];

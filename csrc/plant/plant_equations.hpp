@@ -41,8 +41,8 @@ struct DynamicsModel {
     LegParameters legs;
     bool with_legs = true;
     double platform_mass = 0;
-    Vec3 platform_com;        // plate frame
-    Mat3 platform_inertia;    // about the centre of mass, plate frame
+    Vec3 platform_com;      // plate frame
+    Mat3 platform_inertia;  // about the centre of mass, plate frame
     Mat3 platform_inertia_inverse;
     double cylinder_mass = 0, piston_mass = 0;
     Vec3 cylinder_inertia, piston_inertia;  // principal, leg-body axes
@@ -65,9 +65,9 @@ DynamicsModel dynamics_model(const stewart_model &model, int fidelity);
 // (n_ddot += N P_acc, P_ddot += P_acc, the cylinder's w_dot += h_cylinder . P_acc, the piston's
 // w_dot += h_piston . P_acc - spin . alpha).
 struct LegRateTerms {
-    Vec3 n_dot, n_ddot, P_ddot;         // the axis's rates, the platform point's acceleration
-    Vec3 h_cylinder, h_piston, spin;    // the spins' acceleration maps
-    double w_cylinder, w_piston;        // the bodies' spins about the leg
+    Vec3 n_dot, n_ddot, P_ddot;           // the axis's rates, the platform point's acceleration
+    Vec3 h_cylinder, h_piston, spin;      // the spins' acceleration maps
+    double w_cylinder, w_piston;          // the bodies' spins about the leg
     double w_dot_cylinder, w_dot_piston;  // their rates' velocity-product parts
 };
 
@@ -87,7 +87,7 @@ template <class S>
 struct EvaluationT {
     LegConfigurationT<S> legs[STEWART_LEGS];
     LegFault fault = LegFault::None;
-    int fault_leg = -1;                  // 0-based
+    int fault_leg = -1;                 // 0-based
     Eigen::Matrix<S, 6, 1> twist_rate;  // (v_dot, omega_dot) at the platform origin, world
     // Asked of the closed-form right-hand side (double, axisymmetric leg bodies): keep its leg
     // terms in `kept` (the plant's integrator asks at the step's end, whose outputs reuse them);
@@ -146,18 +146,18 @@ bool reduced_equations(const DynamicsModel &d, const Motion &m, const double for
 
 // x = (M + sum_k weight_k j_k j_k^T)^-1 rhs, M symmetric positive definite by its upper triangle
 // and the weights >= 0 (the six legs' rank-one terms), by the written-out LDL^T.
-void solve_with_rank_ones(const double M[6][6], const double rhs[6],
-                          const double (*j)[6], const double *weight, double x[6]);
+void solve_with_rank_ones(const double M[6][6], const double rhs[6], const double (*j)[6],
+                          const double *weight, double x[6]);
 
 // The drives of a plant with these options (input FORCE: none). STEWART_ERR_PARAMETER, with a
 // message naming the leg and the parameter, for a drive the plant cannot take.
-stewart_status drive_model(const stewart_params &p, const stewart_plant_options &o,
-                           DriveModel &d, char *msg, size_t size);
+stewart_status drive_model(const stewart_params &p, const stewart_plant_options &o, DriveModel &d,
+                           char *msg, size_t size);
 
 // d/dt of the windings' currents at the evaluation e of a driven state under the voltages:
 // (V - R i - k_t omega) / L for a leg with an inductance, 0 for the others.
-void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS],
-                   const Evaluation &e, double rates[STEWART_LEGS]);
+void winding_rates(const DynamicsModel &d, const double voltage[STEWART_LEGS], const Evaluation &e,
+                   double rates[STEWART_LEGS]);
 
 // twist_rate for a plant driven by currents or voltages (d.drives.input not FORCE): input holds
 // each leg's current [A] or voltage [V]; the leg forces follow from the drives' law
@@ -179,9 +179,8 @@ bool massless_twist_rate(const DynamicsModel &d, const Motion &m, const double f
 // twist rate with slope -M (what the linearisation differentiates). False (fault set) as
 // twist_rate. Instantiated for the linearisation's 12-direction dual (linearize/plant_dual.cpp).
 template <class S>
-bool motion_residual(const DynamicsModel &d, const MotionT<S> &m,
-                     const double force[STEWART_LEGS], EvaluationT<S> &e,
-                     Eigen::Matrix<S, 6, 1> &residual);
+bool motion_residual(const DynamicsModel &d, const MotionT<S> &m, const double force[STEWART_LEGS],
+                     EvaluationT<S> &e, Eigen::Matrix<S, 6, 1> &residual);
 
 // The 13 moving bodies (platform, cylinders, pistons) for m including its accelerations; the leg
 // bodies are left untouched for the massless model. e must hold the configuration of m.

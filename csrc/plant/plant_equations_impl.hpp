@@ -57,8 +57,8 @@ void leg_forces(const DynamicsModel &d, const LegConfigurationT<S> &leg,
 // biases, so their share is first formed in u (3 x 3 blocks) and then mapped to the twist rate
 // by u = S nu_dot, S = [I, K; 0, I], K = -[arm]x.
 template <class S>
-void add_leg(const DynamicsModel &d, const LegConfigurationT<S> &leg, int k,
-             const MotionT<S> &cyl, const MotionT<S> &pis, Matrix66T<S> &M, Vector6T<S> &rhs) {
+void add_leg(const DynamicsModel &d, const LegConfigurationT<S> &leg, int k, const MotionT<S> &cyl,
+             const MotionT<S> &pis, Matrix66T<S> &M, Vector6T<S> &rhs) {
     LegAccelerationMapT<S> map;
     leg_acceleration_map(d.legs, k, leg, map);
     const Mat3T<S> I_cyl = world_inertia(cyl.rotation, d.cylinder_inertia);
@@ -67,7 +67,7 @@ void add_leg(const DynamicsModel &d, const LegConfigurationT<S> &leg, int k,
     const Mat3T<S> piston_linear = Mat3T<S>::Identity() - cp * map.N;
     // u-space mass blocks: A (P_ddot, P_ddot), B (P_ddot, alpha), C (alpha, alpha).
     Mat3T<S> A = (d.cylinder_mass * cc * cc) * (map.N * map.N) +
-             d.piston_mass * piston_linear.transpose() * piston_linear;
+                 d.piston_mass * piston_linear.transpose() * piston_linear;
     A.noalias() += map.cylinder_alpha.transpose() * I_cyl * map.cylinder_alpha;
     A.noalias() += map.piston_alpha.transpose() * I_pis * map.piston_alpha;
     const Vec3T<S> I_pis_n = I_pis * leg.n;
@@ -190,9 +190,8 @@ bool twist_rate(const DynamicsModel &d, const MotionT<S> &m, const S force[STEWA
 }
 
 template <class S>
-bool motion_residual(const DynamicsModel &d, const MotionT<S> &m,
-                     const double force[STEWART_LEGS], EvaluationT<S> &e,
-                     Eigen::Matrix<S, 6, 1> &residual) {
+bool motion_residual(const DynamicsModel &d, const MotionT<S> &m, const double force[STEWART_LEGS],
+                     EvaluationT<S> &e, Eigen::Matrix<S, 6, 1> &residual) {
     // The platform: its applied minus inertial force at the centre of mass c, moments about the
     // origin (twist_rate's platform rows with the twist rate moved to the right).
     const Vec3T<S> c = m.rotation * d.platform_com.template cast<S>();
@@ -266,20 +265,20 @@ void base_wrench(const DynamicsModel &d, const MotionT<S> bodies[13], Vec3T<S> &
 
 
 // Explicit instantiation for the scalar S (inside namespace stewart::plant).
-#define STEWART_PLANT_EQUATIONS_INSTANTIATE(S)                                                    \
-    template bool reduced_equations<S>(const DynamicsModel &, const MotionT<S> &, const S *,      \
-                                       EvaluationT<S> &, Eigen::Matrix<S, 6, 6> &,                \
-                                       Eigen::Matrix<S, 6, 1> &);                                 \
-    template bool twist_rate<S>(const DynamicsModel &, const MotionT<S> &, const S *,             \
-                                EvaluationT<S> &);                                                \
-    template void body_motions<S>(const DynamicsModel &, const MotionT<S> &,                      \
-                                  const EvaluationT<S> &, MotionT<S>[13]);                        \
-    template void base_wrench<S>(const DynamicsModel &, const MotionT<S>[13], Vec3T<S> &,         \
+#define STEWART_PLANT_EQUATIONS_INSTANTIATE(S)                                               \
+    template bool reduced_equations<S>(const DynamicsModel &, const MotionT<S> &, const S *, \
+                                       EvaluationT<S> &, Eigen::Matrix<S, 6, 6> &,           \
+                                       Eigen::Matrix<S, 6, 1> &);                            \
+    template bool twist_rate<S>(const DynamicsModel &, const MotionT<S> &, const S *,        \
+                                EvaluationT<S> &);                                           \
+    template void body_motions<S>(const DynamicsModel &, const MotionT<S> &,                 \
+                                  const EvaluationT<S> &, MotionT<S>[13]);                   \
+    template void base_wrench<S>(const DynamicsModel &, const MotionT<S>[13], Vec3T<S> &,    \
                                  Vec3T<S> &);
 
 // Explicit instantiation of motion_residual for the scalar S (inside namespace stewart::plant).
-#define STEWART_PLANT_RESIDUAL_INSTANTIATE(S)                                                     \
-    template bool motion_residual<S>(const DynamicsModel &, const MotionT<S> &, const double *,   \
+#define STEWART_PLANT_RESIDUAL_INSTANTIATE(S)                                                   \
+    template bool motion_residual<S>(const DynamicsModel &, const MotionT<S> &, const double *, \
                                      EvaluationT<S> &, Eigen::Matrix<S, 6, 1> &);
 
 }  // namespace plant

@@ -18,10 +18,10 @@ namespace plant {
 
 namespace {
 
-constexpr double kUnitRoundoff = DBL_EPSILON;  // SUNDIALS' UNIT_ROUNDOFF for double
-constexpr double kFuzzFactor = 100.0;          // FUZZ_FACTOR
+constexpr double kUnitRoundoff = DBL_EPSILON;                // SUNDIALS' UNIT_ROUNDOFF for double
+constexpr double kFuzzFactor = 100.0;                        // FUZZ_FACTOR
 constexpr double kOneMinus = 0.999999, kOnePlus = 1.000001;  // ONEMSM, ONEPSM
-constexpr double kTiny = 1e-10;                // TINY
+constexpr double kTiny = 1e-10;                              // TINY
 // ERKStep's step-size control: ERKStepSetDefaults over arkSetDefaults (arkode_adapt_impl.h)
 constexpr double kBias = 1.2, kSafety = 0.99, kGrowth = 25.0, kPiK1 = 0.8, kPiK2 = 0.31;
 constexpr double kEtaFirst = 10000.0, kEtaErrorFail = 0.3, kEtaMin = 0.1, kCfl = 0.5;
@@ -107,8 +107,8 @@ double adapt_ratio(const ErkTable &table, double h, double dsm, double error_his
         std::fabs(h_acc) < std::fabs(h * kFixedUpper * kOnePlus))
         h_acc = h;
     double eta = h_acc / h;
-    eta = std::max(eta, 0.0 / std::fabs(h));                 // hmin = 0
-    eta /= std::max(1.0, std::fabs(h) * 0.0 * eta);         // hmax_inv = 0
+    eta = std::max(eta, 0.0 / std::fabs(h));         // hmin = 0
+    eta /= std::max(1.0, std::fabs(h) * 0.0 * eta);  // hmax_inv = 0
     return eta;
 }
 
@@ -197,9 +197,9 @@ bool step_passing_error_test(const ErkTable &table, bool fixed, ErkWork &w, Step
 // the new state, which becomes w.yn. False when the root function or the right-hand side
 // refuses the new state: ARKODE's to repeat.
 template <int N>
-bool complete_step(const ErkControl &control, ErkWork &w, const StepController &k,
-                   double t_stop, ErkRhs rhs, ErkRoot root, void *user, ErkResult &r,
-                   double &t_cur, double &roundoff) {
+bool complete_step(const ErkControl &control, ErkWork &w, const StepController &k, double t_stop,
+                   ErkRhs rhs, ErkRoot root, void *user, ErkResult &r, double &t_cur,
+                   double &roundoff) {
     t_cur = k.tn + k.h;
     roundoff = kFuzzFactor * kUnitRoundoff * (std::fabs(t_cur) + std::fabs(k.h));
     if (std::fabs(t_cur - t_stop) <= roundoff) t_cur = t_stop;
@@ -238,8 +238,8 @@ void interpolate(const ErkWork &w, double t_out, double tn, double h, double *y_
 
 template <int N>
 ErkResult advance_states(const ErkTable &table, const ErkControl &control, ErkWork &w,
-                         double h_comm, const double *y0, double g_start, ErkRhs rhs,
-                         ErkRoot root, void *user, double *y_out) {
+                         double h_comm, const double *y0, double g_start, ErkRhs rhs, ErkRoot root,
+                         void *user, double *y_out) {
     ErkResult r;
     const bool fixed = control.fixed_steps > 0;
     const double h_in = fixed ? h_comm / control.fixed_steps : control.first_step;
@@ -293,14 +293,13 @@ ErkResult advance_states(const ErkTable &table, const ErkControl &control, ErkWo
 
 }  // namespace
 
-ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &w,
-                      double h_comm, const double *y0, double g_start, ErkRhs rhs,
-                      ErkRoot root, void *user, double *y_out, int states) {
-    return states == kStates
-               ? advance_states<kStates>(table, control, w, h_comm, y0, g_start, rhs, root, user,
-                                         y_out)
-               : advance_states<kMaxStates>(table, control, w, h_comm, y0, g_start, rhs, root,
-                                            user, y_out);
+ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &w, double h_comm,
+                      const double *y0, double g_start, ErkRhs rhs, ErkRoot root, void *user,
+                      double *y_out, int states) {
+    return states == kStates ? advance_states<kStates>(table, control, w, h_comm, y0, g_start, rhs,
+                                                       root, user, y_out)
+                             : advance_states<kMaxStates>(table, control, w, h_comm, y0, g_start,
+                                                          rhs, root, user, y_out);
 }
 
 }  // namespace plant

@@ -31,10 +31,10 @@ using ErkProject = void (*)(double *y);
 
 // How a communication step is divided, as the ERKStep options the plant sets.
 struct ErkControl {
-    int fixed_steps = 0;       // N equal steps (ERKStepSetFixedStep(h / N)); 0: adaptive
-    double first_step = 0;     // adaptive: ERKStepSetInitStep, > 0
+    int fixed_steps = 0;    // N equal steps (ERKStepSetFixedStep(h / N)); 0: adaptive
+    double first_step = 0;  // adaptive: ERKStepSetInitStep, > 0
     double relative_tolerance = 0, absolute_tolerance = 0;  // ERKStepSStolerances
-    long max_steps = 0;        // ERKStepSetMaxNumSteps
+    long max_steps = 0;                                     // ERKStepSetMaxNumSteps
     // Not ARKODE's (both off in its copy): the work's F[0] already holds the right-hand side at
     // (0, y0) (the last step's end evaluation, carried; rhs_evaluations counts it all the same,
     // as ARKODE would); and the state that reaches the stop time projected before its end
@@ -50,9 +50,9 @@ using ErkRoot = double (*)(const double *y, void *user);
 
 // The vectors of one communication step, made once (a step allocates nothing).
 struct ErkWork {
-    double F[kMaxErkStages][kMaxStates];       // stage derivatives; F[0] at the step's start
-    double yn[kMaxStates], ycur[kMaxStates];   // the step's start, the stage or new state
-    double yold[kMaxStates], fold[kMaxStates]; // the last step's start and its derivative
+    double F[kMaxErkStages][kMaxStates];        // stage derivatives; F[0] at the step's start
+    double yn[kMaxStates], ycur[kMaxStates];    // the step's start, the stage or new state
+    double yold[kMaxStates], fold[kMaxStates];  // the last step's start and its derivative
     double weight[kMaxStates], error[kMaxStates];
 };
 
@@ -73,8 +73,8 @@ struct ErkResult {
 // control.project_end, at (h_comm, y_out) (end_projected).
 // states: kStates or kMaxStates, the length of y0, y_out and the right-hand side's vectors.
 ErkResult erk_advance(const ErkTable &table, const ErkControl &control, ErkWork &work,
-                      double h_comm, const double *y0, double g_start, ErkRhs rhs,
-                      ErkRoot root, void *user, double *y_out, int states = kStates);
+                      double h_comm, const double *y0, double g_start, ErkRhs rhs, ErkRoot root,
+                      void *user, double *y_out, int states = kStates);
 
 }  // namespace plant
 }  // namespace stewart

@@ -74,8 +74,8 @@ struct Spin {
         const double omega_x = x.dot(omega_s), omega_y = y.dot(omega_s), omega_n = n.dot(omega_s);
         r.w = ratio * (nu_x - omega_y) + omega_n;
         const double s_omega = mu * nu_x + sigma * r.w;
-        e_dot_relative = (s_omega - (sigma * omega_n + mu * omega_y)) * omega_x +
-                         (nu_y + omega_x) * s_omega;
+        e_dot_relative =
+            (s_omega - (sigma * omega_n + mu * omega_y)) * omega_x + (nu_y + omega_x) * s_omega;
     } else {
         r.w = ratio * nu_x;
         e_dot_relative = nu_y * (mu * nu_x + sigma * r.w);
@@ -92,7 +92,7 @@ struct LegRates {
 };
 
 [[gnu::always_inline]] inline LegRates leg_rates(const LegConfiguration &leg, const Motion &m,
-                                                   bool accelerating) {
+                                                 bool accelerating) {
     LegRates r;
     const Vec3 &n = leg.n, &arm = leg.arm;
     r.P_dot = m.velocity + m.omega.cross(arm);
@@ -121,8 +121,8 @@ template <bool Keep>
     const Vec3 &P_ddot = r.P_ddot, &n_dot = r.n_dot, &n_ddot = r.n_ddot;
     const Spin cyl = spin_of(n, n_dot, n_ddot, d.legs.base_arm.col(k), m.omega, false,
                              leg.cylinder_x, leg.cylinder_sin);
-    const Spin pis = spin_of(n, n_dot, n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
-                             leg.piston_sin);
+    const Spin pis =
+        spin_of(n, n_dot, n_ddot, leg.piston_arm, m.omega, true, leg.piston_x, leg.piston_sin);
     const double w_c = cyl.w, w_dot_c = cyl.w_dot, w_p = pis.w, w_dot_p = pis.w_dot;
     const Vec3 h_c = cyl.g * inv_L, h_p = pis.g * inv_L;  // N g (g is normal to n)
     const Vec3 &spin = pis.spin;
@@ -158,8 +158,8 @@ template <bool Keep>
     }
 
     // The mass: the point mass and the rank-one terms, each mapped by S^T (p, r) = (p, arm x p + r).
-    const double s_perp = (m_c * cc * cc + m_p * cp * cp + a_c + a_p) * inv_L * inv_L -
-                          2.0 * m_p * cp * inv_L;
+    const double s_perp =
+        (m_c * cc * cc + m_p * cp * cp + a_c + a_p) * inv_L * inv_L - 2.0 * m_p * cp * inv_L;
     point_mass = m_p + s_perp;
     double j[6];
     const Vec3 arm_n = arm.cross(n), arm_h_c = arm.cross(h_c), arm_h_p = arm.cross(h_p) - spin;
@@ -291,9 +291,9 @@ struct LegAccelerations {
 // gravity), from the axis's rates and the bodies' spins: I alpha + omega x I omega of a body is
 // a n x n_ddot + c w_dot n + c w n_dot (plant_full_rhs.cpp's header).
 [[gnu::always_inline]] inline void subtract_leg_wrench(const DynamicsModel &d, int k,
-                                                       const LegConfiguration &leg,
-                                                       const Motion &m, const LegAccelerations &r,
-                                                       Vec3 &force, Vec3 &torque) {
+                                                       const LegConfiguration &leg, const Motion &m,
+                                                       const LegAccelerations &r, Vec3 &force,
+                                                       Vec3 &torque) {
     const Vec3 &n = leg.n;
     const double cc = d.legs.cylinder_com, cp = d.legs.piston_com;
     const double a_c = d.cylinder_inertia[0], c_c = d.cylinder_inertia[2];
@@ -315,8 +315,8 @@ LegAccelerations leg_accelerations(const DynamicsModel &d, int k, const LegConfi
     const LegRates r = leg_rates(leg, m, true);
     const Spin cyl = spin_of(n, r.n_dot, r.n_ddot, d.legs.base_arm.col(k), m.omega, false,
                              leg.cylinder_x, leg.cylinder_sin);
-    const Spin pis = spin_of(n, r.n_dot, r.n_ddot, leg.piston_arm, m.omega, true, leg.piston_x,
-                             leg.piston_sin);
+    const Spin pis =
+        spin_of(n, r.n_dot, r.n_ddot, leg.piston_arm, m.omega, true, leg.piston_x, leg.piston_sin);
     // the piston's: the platform arm's alpha x s
     const double w_dot_p = pis.w_dot - pis.spin.dot(m.alpha);
     return {r.n_dot, r.n_ddot, r.P_ddot, cyl.w, cyl.w_dot, pis.w, w_dot_p};
@@ -415,8 +415,8 @@ void base_wrench(const DynamicsModel &d, const Motion &m, const Evaluation &e, V
     torque = -((m.position + c).cross(f) + I * m.alpha + m.omega.cross(I * m.omega));
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const LegConfiguration &leg = e.legs[k];
-        const LegAccelerations r = kept ? leg_accelerations(e.kept.legs[k], leg, m)
-                                        : leg_accelerations(d, k, leg, m);
+        const LegAccelerations r =
+            kept ? leg_accelerations(e.kept.legs[k], leg, m) : leg_accelerations(d, k, leg, m);
         subtract_leg_wrench(d, k, leg, m, r, force, torque);
     }
 }

@@ -182,8 +182,8 @@ bool crosses_pitch_limit(const double before[3], const double after[3]) {
         return std::fabs(std::fabs(a) <= M_PI ? a : std::remainder(a, 2 * M_PI));
     };
     const double other_pitch = (after[1] >= 0 ? M_PI : -M_PI) - after[1];
-    const double direct = turn(after[0] - before[0]) + std::fabs(after[1] - before[1]) +
-                          turn(after[2] - before[2]);
+    const double direct =
+        turn(after[0] - before[0]) + std::fabs(after[1] - before[1]) + turn(after[2] - before[2]);
     const double other = turn(after[0] + M_PI - before[0]) + std::fabs(other_pitch - before[1]) +
                          turn(after[2] + M_PI - before[2]);
     return other < direct;
@@ -206,8 +206,7 @@ bool near_level_turn(const double start[kStates], double start_pitch, const doub
     const double start_norm = q0[0] * q0[0] + q0[1] * q0[1] + q0[2] * q0[2] + q0[3] * q0[3];
     const double dot = q[0] * q0[0] + q[1] * q0[1] + q[2] * q0[2] + q[3] * q0[3];
     // finite and non-zero quaternions (their angles are finite), within the turn
-    return squared_norm > 0 && squared_norm < HUGE_VAL && start_norm > 0 &&
-           start_norm < HUGE_VAL &&
+    return squared_norm > 0 && squared_norm < HUGE_VAL && start_norm > 0 && start_norm < HUGE_VAL &&
            dot * dot >= kNearTurnHalfCosSquared * squared_norm * start_norm;
 }
 
@@ -414,8 +413,7 @@ bool make_state_vector(IntegratorImpl &im, char *msg, size_t size) {
                false;
     // Fused vector operations: one loop per linear combination in the Runge-Kutta stages.
     if (N_VEnableFusedOps_Serial(im.y, SUNTRUE) != 0)
-        return set_message(msg, size, STEWART_ERR_MEMORY, "N_VEnableFusedOps_Serial failed"),
-               false;
+        return set_message(msg, size, STEWART_ERR_MEMORY, "N_VEnableFusedOps_Serial failed"), false;
     im.y->ops->nvlinearcombination = linear_combination;  // clones copy the operations
     N_VConst(0.0, im.y);
     NV_Ith_S(im.y, 3) = 1.0;
@@ -441,9 +439,8 @@ bool init_arkode(IntegratorImpl &im, const stewart_plant_options &o, bool writte
     if ((flag = ERKStepSetErrHandlerFn(im.arkode, error_handler, &im)) != ARK_SUCCESS ||
         (flag = ERKStepSetUserData(im.arkode, &im)) != ARK_SUCCESS ||
         (flag = ERKStepSetTableNum(im.arkode, o.method == STEWART_PLANT_ERK
-                                                      ? ARKODE_ZONNEVELD_5_3_4
-                                                      : ARKODE_DORMAND_PRINCE_7_4_5)) !=
-            ARK_SUCCESS ||
+                                                  ? ARKODE_ZONNEVELD_5_3_4
+                                                  : ARKODE_DORMAND_PRINCE_7_4_5)) != ARK_SUCCESS ||
         (flag = ERKStepSStolerances(im.arkode, o.relative_tolerance, o.absolute_tolerance)) !=
             ARK_SUCCESS ||
         (flag = ERKStepSetMaxNumSteps(im.arkode, o.max_internal_steps)) != ARK_SUCCESS ||
@@ -475,8 +472,7 @@ bool init_cvode(IntegratorImpl &im, const stewart_plant_options &o, char *msg, s
                false;
     if (bdf) {
         im.matrix.reset(SUNDenseMatrix(im.n, im.n, im.context.get()));
-        if (im.matrix)
-            im.linear.reset(SUNLinSol_Dense(im.y, im.matrix.get(), im.context.get()));
+        if (im.matrix) im.linear.reset(SUNLinSol_Dense(im.y, im.matrix.get(), im.context.get()));
         if (!im.linear ||
             (flag = CVodeSetLinearSolver(im.cvode, im.linear.get(), im.matrix.get())) !=
                 CVLS_SUCCESS ||
@@ -522,8 +518,7 @@ void start_advance(IntegratorImpl &im, const double *y, const ForceProfile &forc
     each_state(im.n, [&](int i) { v[i] = y[i]; });
     if (start_angles)
         for (int i = 0; i < 3; ++i) im.reference_angles[i] = start_angles[i];
-    else
-        principal_angles(y, im.reference_angles);
+    else principal_angles(y, im.reference_angles);
     each_state(im.n, [&](int i) { im.start_state[i] = y[i]; });
 }
 
@@ -532,18 +527,15 @@ void start_advance(IntegratorImpl &im, const double *y, const ForceProfile &forc
 // rollback repeats it exactly). Fixed steps: h / N each, no error test (ARKODE's fixed-step
 // mode; the stop time cuts the last one to end at h exactly).
 double first_step_size(const IntegratorImpl &im, double h, double step_hint) {
-    return im.fixed_steps > 0 ? h / im.fixed_steps
-           : step_hint > 0 && step_hint < h ? step_hint
-                                            : h;
+    return im.fixed_steps > 0 ? h / im.fixed_steps : step_hint > 0 && step_hint < h ? step_hint : h;
 }
 
 // ERK 4(3) by the written-out copy of ARKODE's step: the same bits, or nothing done. True when
 // it took the whole step: the end state in im.y's array, the counters in stats, the next step's
 // size in step_hint, and projected whether the end state's quaternion is normalised already.
 // False when it handed the step back: im.y's array is y again, for ARKODE to take the step.
-bool written_out_step(IntegratorImpl &im, const double *y, const ForceProfile &forces,
-                      double first, stewart_plant_statistics &stats, double &step_hint,
-                      bool &projected) {
+bool written_out_step(IntegratorImpl &im, const double *y, const ForceProfile &forces, double first,
+                      stewart_plant_statistics &stats, double &step_hint, bool &projected) {
     double *v = N_VGetArrayPointer(im.y);
     ErkControl control;
     control.fixed_steps = im.fixed_steps;
@@ -572,8 +564,7 @@ bool written_out_step(IntegratorImpl &im, const double *y, const ForceProfile &f
     each_state(im.n, [&](int i) { im.last_y[i] = im.work.yn[i]; });
     if (im.last_tau == forces.h)  // what at(h) returns, without the call
         for (int k = 0; k < STEWART_LEGS; ++k) im.last_force[k] = forces.end[k];
-    else if (im.last_tau >= 0)
-        forces.at(im.last_tau, im.last_force);
+    else if (im.last_tau >= 0) forces.at(im.last_tau, im.last_force);
     stats.steps = r.steps;
     stats.rhs_evaluations = r.rhs_evaluations;
     stats.error_test_failures = r.error_test_failures;
@@ -616,9 +607,12 @@ stewart_status run_arkode(IntegratorImpl &im, double h, double first, RunEnd &en
                                    : ERKStepSetInitStep(im.arkode, first)) != ARK_SUCCESS)
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "ARKODE restart failed: %s %s",
                            flag_name(flag), im.cvode_message);
-    evolve_past_roots(im, ARK_ROOT_RETURN, [&](sunrealtype *t_reached) {
-        return ERKStepEvolve(im.arkode, h, im.y, t_reached, ARK_NORMAL);
-    }, end);
+    evolve_past_roots(
+        im, ARK_ROOT_RETURN,
+        [&](sunrealtype *t_reached) {
+            return ERKStepEvolve(im.arkode, h, im.y, t_reached, ARK_NORMAL);
+        },
+        end);
     long n;
     if (ERKStepGetNumSteps(im.arkode, &n) == ARK_SUCCESS) stats.steps = n;
     if (ERKStepGetNumErrTestFails(im.arkode, &n) == ARK_SUCCESS) stats.error_test_failures = n;
@@ -634,16 +628,17 @@ stewart_status run_arkode(IntegratorImpl &im, double h, double first, RunEnd &en
 }
 
 // CVODE over [0, h] from im.y (restarted there): its counters into stats.
-stewart_status run_cvode(IntegratorImpl &im, double h, RunEnd &end,
-                         stewart_plant_statistics &stats, char *msg, size_t size) {
+stewart_status run_cvode(IntegratorImpl &im, double h, RunEnd &end, stewart_plant_statistics &stats,
+                         char *msg, size_t size) {
     int flag;
     if ((flag = CVodeReInit(im.cvode, 0.0, im.y)) != CV_SUCCESS ||
         (flag = CVodeSetStopTime(im.cvode, h)) != CV_SUCCESS)
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED, "CVODE restart failed: %s %s",
                            flag_name(flag), im.cvode_message);
-    evolve_past_roots(im, CV_ROOT_RETURN, [&](sunrealtype *t_reached) {
-        return CVode(im.cvode, h, im.y, t_reached, CV_NORMAL);
-    }, end);
+    evolve_past_roots(
+        im, CV_ROOT_RETURN,
+        [&](sunrealtype *t_reached) { return CVode(im.cvode, h, im.y, t_reached, CV_NORMAL); },
+        end);
     long n;
     if (CVodeGetNumSteps(im.cvode, &n) == CV_SUCCESS) stats.steps = n;
     if (CVodeGetNumRhsEvals(im.cvode, &n) == CV_SUCCESS) stats.rhs_evaluations = n;
@@ -661,8 +656,8 @@ stewart_status run_cvode(IntegratorImpl &im, double h, RunEnd &end,
 // Why a run from y did not take the whole step [0, h] (STEWART_OK when it did): a crossing of
 // pitch +-90 degrees, a leg driven toward zero length, a singular pose, accelerations out of
 // range, or the integrator's own failure or stop short of h.
-stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
-                           const RunEnd &end, char *msg, size_t size) {
+stewart_status run_failure(const IntegratorImpl &im, const double *y, double h, const RunEnd &end,
+                           char *msg, size_t size) {
     const double *v = N_VGetArrayPointer(im.y);
     const char *module = im.arkode ? "ARKODE" : "CVODE";
     const double t_reached = static_cast<double>(end.t_reached);
@@ -679,7 +674,8 @@ stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
         if (leg >= 0)
             return set_message(msg, size, STEWART_ERR_UNREACHABLE,
                                "unreachable, leg %d: the motion drives it toward zero length "
-                               "(%.3g m near t + %g s)", leg + 1, length, t_reached);
+                               "(%.3g m near t + %g s)",
+                               leg + 1, length, t_reached);
     }
     if (flag < 0) {
         if (im.fault != LegFault::None)
@@ -691,7 +687,8 @@ stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
         if (im.non_finite)
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                "the accelerations are not finite or above 1e100 near t + %g s "
-                               "(forces or motion out of range)", t_reached);
+                               "(forces or motion out of range)",
+                               t_reached);
         if (im.arkode && im.model->drives.inductive) {  // the usual cause, and its cure
             double tau = HUGE_VAL;
             for (const LegDrive &d : im.model->drives.legs)
@@ -699,12 +696,12 @@ stewart_status run_failure(const IntegratorImpl &im, const double *y, double h,
             // first, so that a caller's longer prefix leaves it whole
             return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
                                "stiff windings (L/R = %g s: take method = bdf): %s failed at t + "
-                               "%g s with %s: %s", tau, module, t_reached, flag_name(flag),
-                               im.cvode_message);
+                               "%g s with %s: %s",
+                               tau, module, t_reached, flag_name(flag), im.cvode_message);
         }
         return set_message(msg, size, STEWART_ERR_NOT_CONVERGED,
-                           "%s failed at t + %g s with %s: %s", module, t_reached,
-                           flag_name(flag), im.cvode_message);
+                           "%s failed at t + %g s with %s: %s", module, t_reached, flag_name(flag),
+                           im.cvode_message);
     }
     // a solver's success short of the end would be a step not taken (found with a saved step
     // hint of 4.9e-324 s)

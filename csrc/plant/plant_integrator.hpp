@@ -63,8 +63,8 @@ public:
     // step_hint: the first internal step to try (0: the integrator estimates it); on success,
     // the step the integrator would take next (explicit Runge-Kutta only; CVODE ignores it).
     // start_angles: principal_angles(y) if the caller has them (or nullptr).
-    stewart_status advance(double *y, const ForceProfile &forces, double &step_hint,
-                           char *msg, size_t size, const double *start_angles = nullptr);
+    stewart_status advance(double *y, const ForceProfile &forces, double &step_hint, char *msg,
+                           size_t size, const double *start_angles = nullptr);
     // The right-hand side's last evaluation if it was at the end of the last successful
     // advance() (tau = h, the end forces, the state the integrator returned: before the
     // quaternion's normalisation, or after it with carry_end), else nullptr: the step's outputs reuse it instead of

@@ -34,13 +34,13 @@ inline double row_sum(int i, double x0, double x1, double x2) {
 
 // A v for a column-major 3 x 3 A, as Eigen's product.
 inline void times(const Mat3 &A, const double v[3], double r[3]) {
-    #pragma GCC unroll 3
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) r[i] = row_sum(i, A(i, 0) * v[0], A(i, 1) * v[1], A(i, 2) * v[2]);
 }
 
 // A^T v, as Eigen's product of the transposed (row-major) A: every row from the left.
 inline void times_transposed(const Mat3 &A, const double v[3], double r[3]) {
-    #pragma GCC unroll 3
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) r[i] = A(0, i) * v[0] + A(1, i) * v[1] + A(2, i) * v[2];
 }
 
@@ -57,25 +57,25 @@ struct LegLanes {
 // (-fvect-cost-model in csrc/CMakeLists.txt), each lane the same IEEE operations in the same
 // order as one leg alone, so the same bits.
 [[gnu::always_inline]] inline void leg_lanes(const DynamicsModel &d, const Mat3 &R,
-                                             const Vec3 &position,
-                                             const double force[STEWART_LEGS], LegLanes &l) {
-    const double(&b)[3][STEWART_LEGS] = d.platform_point_rows;
+                                             const Vec3 &position, const double force[STEWART_LEGS],
+                                             LegLanes &l) {
+    const double (&b)[3][STEWART_LEGS] = d.platform_point_rows;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         double dv[3];
-        #pragma GCC unroll 3
+#pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
             l.arm[i][k] = R(i, 0) * b[0][k] + R(i, 1) * b[1][k] + R(i, 2) * b[2][k];
             dv[i] = position[i] + l.arm[i][k] - d.base_point_rows[i][k];
         }
         l.length[k] = std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
         l.inverse_length[k] = 1.0 / l.length[k];
-        #pragma GCC unroll 3
+#pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) l.n[i][k] = dv[i] * l.inverse_length[k];
         // arm x n, as cross()
         l.moment[0][k] = l.arm[1][k] * l.n[2][k] - l.arm[2][k] * l.n[1][k];
         l.moment[1][k] = l.arm[2][k] * l.n[0][k] - l.arm[0][k] * l.n[2][k];
         l.moment[2][k] = l.arm[0][k] * l.n[1][k] - l.arm[1][k] * l.n[0][k];
-        #pragma GCC unroll 3
+#pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
             l.axial[i][k] = force[k] * l.n[i][k];
             l.moment[i][k] = force[k] * l.moment[i][k];
@@ -88,7 +88,7 @@ struct LegLanes {
 [[gnu::always_inline]] inline void sum_legs(const LegLanes &l, double legs_force[3],
                                             double legs_moment[3], Evaluation &e) {
     for (int k = 0; k < STEWART_LEGS; ++k) {
-        #pragma GCC unroll 3
+#pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
             legs_force[i] += l.axial[i][k];
             legs_moment[i] += l.moment[i][k];
@@ -96,7 +96,7 @@ struct LegLanes {
     }
     for (int k = 0; k < STEWART_LEGS && e.fill_legs; ++k) {
         LegConfiguration &leg = e.legs[k];
-        #pragma GCC unroll 3
+#pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) {
             leg.arm[i] = l.arm[i][k];
             leg.n[i] = l.n[i][k];
@@ -116,10 +116,10 @@ struct LegLanes {
                                                    const double legs_moment[3], Evaluation &e) {
     double c_F[3], moment[3], local[3], local_alpha[3], alpha[3], alpha_c[3], wc[3], wwc[3];
     cross(c, legs_force, c_F);
-    #pragma GCC unroll 3
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) moment[i] = legs_moment[i] - c_F[i];
     times_transposed(R, moment, local);
-    #pragma GCC unroll 3
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) local[i] -= gyroscopic[i];
     times(d.platform_inertia_inverse, local, local_alpha);
     times(R, local_alpha, alpha);
@@ -127,7 +127,7 @@ struct LegLanes {
     cross(w, c, wc);
     cross(w, wc, wwc);
     const double inverse_mass = 1.0 / d.platform_mass;
-    #pragma GCC unroll 3
+#pragma GCC unroll 3
     for (int i = 0; i < 3; ++i) {
         e.twist_rate[i] = d.gravity[i] + legs_force[i] * inverse_mass - wwc[i] - alpha_c[i];
         e.twist_rate[3 + i] = alpha[i];

@@ -15,7 +15,10 @@ namespace {
 // forms, no surrogates, nothing above U+10FFFF (RFC 3629).
 size_t utf8_length(const unsigned char *at, const unsigned char *end) {
     const unsigned char c = at[0];
-    const size_t n = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+    const size_t n = c >= 0xC2 && c <= 0xDF   ? 2
+                     : c >= 0xE0 && c <= 0xEF ? 3
+                     : c >= 0xF0 && c <= 0xF4 ? 4
+                                              : 0;
     if (n == 0 || static_cast<size_t>(end - at) < n) return 0;
     for (size_t i = 1; i < n; ++i)
         if ((at[i] & 0xC0) != 0x80) return 0;
@@ -27,13 +30,14 @@ size_t utf8_length(const unsigned char *at, const unsigned char *end) {
 
 // A recursive-descent reader of exactly the subset; error() keeps the first problem and where.
 class Reader {
-  public:
+public:
     Reader(const char *text, size_t length, const char *object_field)
         : end_(text + length), at_(text), line_start_(text), object_field_(object_field) {}
 
     bool object(std::vector<JsonField> &fields) {
         std::unordered_set<std::string> names;  // a hash set: linear in the number of fields
-        if (end_ - at_ >= 3 && !std::memcmp(at_, "\xEF\xBB\xBF", 3)) at_ += 3, line_start_ = at_;  // an editor's BOM
+        if (end_ - at_ >= 3 && !std::memcmp(at_, "\xEF\xBB\xBF", 3))
+            at_ += 3, line_start_ = at_;  // an editor's BOM
         space();
         if (!take('{')) return error("a platform file is one JSON object: expected '{'");
         space();
@@ -54,7 +58,9 @@ class Reader {
             fields.push_back(std::move(f));
             space();
             if (take('}')) return finish();
-            if (!take(',')) return error("expected ',' or '}' after the value of \"" + fields.back().name + "\"");
+            if (!take(','))
+                return error("expected ',' or '}' after the value of \"" + fields.back().name +
+                             "\"");
         }
     }
 
@@ -62,7 +68,7 @@ class Reader {
     int line() const { return at_line_; }
     int column_of_error() const { return at_column_; }
 
-  private:
+private:
     bool finish() {
         space();
         return at_ == end_ || error("unexpected text after the object's closing '}'");
@@ -101,7 +107,9 @@ class Reader {
             if (c >= 0x80) {  // a UTF-8 sequence, copied whole
                 const size_t n = utf8_length(reinterpret_cast<const unsigned char *>(at_),
                                              reinterpret_cast<const unsigned char *>(end_));
-                if (n == 0) return error("a platform file is UTF-8: a byte that is not UTF-8 inside a string");
+                if (n == 0)
+                    return error(
+                        "a platform file is UTF-8: a byte that is not UTF-8 inside a string");
                 out.append(at_, n);
                 at_ += n;
                 continue;
@@ -152,7 +160,8 @@ class Reader {
             space();
             if (!take(':')) return error("expected ':' after \"" + m.first + "\" in " + field);
             space();
-            if (at_ == end_ || *at_ != '"') return error(field + "." + m.first + ": expected a string");
+            if (at_ == end_ || *at_ != '"')
+                return error(field + "." + m.first + ": expected a string");
             if (!string(m.second)) return false;
             for (const auto &seen : v.members)  // a handful of members
                 if (seen.first == m.first) return error(field + "." + m.first + " is given twice");

@@ -17,8 +17,8 @@ struct JsonItem {
 
 struct JsonValue {
     enum Kind { Number, List, Text, Object } kind = Number;
-    std::vector<JsonItem> items;                                // Number: one; List: each
-    std::string text;                                           // Text
+    std::vector<JsonItem> items;                               // Number: one; List: each
+    std::string text;                                          // Text
     std::vector<std::pair<std::string, std::string>> members;  // Object
 };
 
@@ -32,7 +32,6 @@ struct JsonField {
 // and where it is in line, column. A name given twice (spelt the same) is a problem; an object
 // is read only as the value of a field named object_field.
 bool read_json_fields(const char *text, size_t length, const char *object_field,
-                      std::vector<JsonField> &fields, std::string &message, int &line,
-                      int &column);
+                      std::vector<JsonField> &fields, std::string &message, int &line, int &column);
 
 }  // namespace stewart

@@ -17,12 +17,16 @@ namespace {
 
 // How an option is stored: a double, an int or a long (the plant's max_internal_steps).
 enum class Storage { real, int_, long_ };
-template <class T> constexpr Storage storage_of() {
+template <class T>
+constexpr Storage storage_of() {
     return std::is_same<T, int>::value    ? Storage::int_
            : std::is_same<T, long>::value ? Storage::long_
                                           : Storage::real;
 }
-template <class T> constexpr int is_integer_type() { return storage_of<T>() != Storage::real; }
+template <class T>
+constexpr int is_integer_type() {
+    return storage_of<T>() != Storage::real;
+}
 
 // Where an option of a table lives in its struct.
 struct Field {
@@ -66,14 +70,20 @@ stewart_status fixed_steps_explicit(const void *options, char *msg, size_t size)
     return STEWART_OK;
 }
 
-#define INFO(id, name, type, unit, min, min_closed, max, max_closed, fallback, text)             \
+#define INFO(id, name, type, unit, min, min_closed, max, max_closed, fallback, text) \
     {id, #name, is_integer_type<type>(), unit, text, min, max, min_closed, max_closed, fallback},
-#define INVERSE_FIELD(id, name, type, ...) {offsetof(stewart_inverse_options, name), storage_of<type>()},
-#define FORWARD_FIELD(id, name, type, ...) {offsetof(stewart_forward_options, name), storage_of<type>()},
-#define PLANT_FIELD(id, name, type, ...) {offsetof(stewart_plant_options, name), storage_of<type>()},
-#define LINEARIZE_FIELD(id, name, type, ...) {offsetof(stewart_linearize_options, name), storage_of<type>()},
-#define LIMITS_FIELD(id, name, type, ...) {offsetof(stewart_limits_options, name), storage_of<type>()},
-#define CUEING_FIELD(id, name, type, ...) {offsetof(stewart_cueing_options, name), storage_of<type>()},
+#define INVERSE_FIELD(id, name, type, ...) \
+    {offsetof(stewart_inverse_options, name), storage_of<type>()},
+#define FORWARD_FIELD(id, name, type, ...) \
+    {offsetof(stewart_forward_options, name), storage_of<type>()},
+#define PLANT_FIELD(id, name, type, ...) \
+    {offsetof(stewart_plant_options, name), storage_of<type>()},
+#define LINEARIZE_FIELD(id, name, type, ...) \
+    {offsetof(stewart_linearize_options, name), storage_of<type>()},
+#define LIMITS_FIELD(id, name, type, ...) \
+    {offsetof(stewart_limits_options, name), storage_of<type>()},
+#define CUEING_FIELD(id, name, type, ...) \
+    {offsetof(stewart_cueing_options, name), storage_of<type>()},
 const stewart_option_info kInverseInfo[] = {STEWART_OPTION_TABLE(INFO)};
 const Field kInverseFields[] = {STEWART_OPTION_TABLE(INVERSE_FIELD)};
 const stewart_option_info kForwardInfo[] = {STEWART_FORWARD_OPTION_TABLE(INFO)};
@@ -141,14 +151,14 @@ static_assert(sizeof(LimitsMirror) == sizeof(stewart_limits_options),
               "STEWART_LIMITS_OPTION_TABLE lists every field");
 static_assert(sizeof(CueingMirror) == sizeof(stewart_cueing_options),
               "STEWART_CUEING_OPTION_TABLE lists every field");
-#define SAME(Options, Mirror, name, type)                                                        \
-    static_assert(offsetof(Mirror, name) == offsetof(Options, name) &&                           \
-                      std::is_same<decltype(Options::name), type>::value,                        \
+#define SAME(Options, Mirror, name, type)                                 \
+    static_assert(offsetof(Mirror, name) == offsetof(Options, name) &&    \
+                      std::is_same<decltype(Options::name), type>::value, \
                   #name ": place and type as in " #Options);
 #define SAME_INVERSE(id, name, type, ...) SAME(stewart_inverse_options, InverseMirror, name, type)
 #define SAME_FORWARD(id, name, type, ...) SAME(stewart_forward_options, ForwardMirror, name, type)
 #define SAME_PLANT(id, name, type, ...) SAME(stewart_plant_options, PlantMirror, name, type)
-#define SAME_LINEARIZE(id, name, type, ...)                                                      \
+#define SAME_LINEARIZE(id, name, type, ...) \
     SAME(stewart_linearize_options, LinearizeMirror, name, type)
 #define SAME_LIMITS(id, name, type, ...) SAME(stewart_limits_options, LimitsMirror, name, type)
 #define SAME_CUEING(id, name, type, ...) SAME(stewart_cueing_options, CueingMirror, name, type)
@@ -176,20 +186,24 @@ int find(const Table &t, const char *name) {
     return -1;
 }
 
-template <class T> T load(const char *at) {
+template <class T>
+T load(const char *at) {
     T v;
     std::memcpy(&v, at, sizeof v);
     return v;
 }
 
-template <class T> void store(char *at, T v) { std::memcpy(at, &v, sizeof v); }
+template <class T>
+void store(char *at, T v) {
+    std::memcpy(at, &v, sizeof v);
+}
 
 double get(const Table &t, const void *o, int i) {
     const char *at = static_cast<const char *>(o) + t.field[i].offset;
     switch (t.field[i].storage) {
-    case Storage::int_: return load<int>(at);
-    case Storage::long_: return static_cast<double>(load<long>(at));
-    case Storage::real: break;
+        case Storage::int_: return load<int>(at);
+        case Storage::long_: return static_cast<double>(load<long>(at));
+        case Storage::real: break;
     }
     return load<double>(at);
 }
@@ -199,9 +213,9 @@ double get(const Table &t, const void *o, int i) {
 void put(const Table &t, void *o, int i, double value) {
     char *at = static_cast<char *>(o) + t.field[i].offset;
     switch (t.field[i].storage) {
-    case Storage::int_: return store(at, static_cast<int>(value));
-    case Storage::long_: return store(at, static_cast<long>(value));
-    case Storage::real: return store(at, value);
+        case Storage::int_: return store(at, static_cast<int>(value));
+        case Storage::long_: return store(at, static_cast<long>(value));
+        case Storage::real: return store(at, value);
     }
 }
 
@@ -225,7 +239,8 @@ stewart_status refuse(const Table &t, int i, double value, char *msg, size_t siz
                            "integrators' error test fails on rounding alone)",
                            ExactText(value).c_str(), ExactText(info.min).c_str());
     char range[96];
-    stewart::describe_range(info.min, info.min_closed, info.max, info.max_closed, range, sizeof range);
+    stewart::describe_range(info.min, info.min_closed, info.max, info.max_closed, range,
+                            sizeof range);
     return set_message(msg, size, STEWART_ERR_PARAMETER, "%s = %s must be %s (%s)", info.name,
                        ExactText(value).c_str(), range, info.description);
 }
@@ -271,24 +286,24 @@ stewart_status check(const Table &t, const void *o, char *msg, size_t size) {
 // The C API of one direction's option table, the same over every table:
 // stewart_<direction>_option_count, _option, _option_find, _option_get, _option_set and
 // _options_check; and _options_default (the plant's is in plant_api.cpp).
-#define OPTION_TABLE_API(direction, table)                                                       \
-    int stewart_##direction##_option_count(void) { return table.count; }                         \
-    const stewart_option_info *stewart_##direction##_option(int i) { return option(table, i); }  \
-    int stewart_##direction##_option_find(const char *name) { return find(table, name); }        \
-    double stewart_##direction##_option_get(const stewart_##direction##_options *o, int i) {     \
-        return o && option(table, i) ? get(table, o, i) : 0;                                     \
-    }                                                                                            \
-    stewart_status stewart_##direction##_option_set(stewart_##direction##_options *o, int i,     \
-                                                    double value, char *msg, size_t size) {      \
-        return set(table, o, i, value, msg, size);                                               \
-    }                                                                                            \
-    stewart_status stewart_##direction##_options_check(const stewart_##direction##_options *o,   \
-                                                       char *msg, size_t size) {                 \
-        return check(table, o, msg, size);                                                       \
+#define OPTION_TABLE_API(direction, table)                                                      \
+    int stewart_##direction##_option_count(void) { return table.count; }                        \
+    const stewart_option_info *stewart_##direction##_option(int i) { return option(table, i); } \
+    int stewart_##direction##_option_find(const char *name) { return find(table, name); }       \
+    double stewart_##direction##_option_get(const stewart_##direction##_options *o, int i) {    \
+        return o && option(table, i) ? get(table, o, i) : 0;                                    \
+    }                                                                                           \
+    stewart_status stewart_##direction##_option_set(stewart_##direction##_options *o, int i,    \
+                                                    double value, char *msg, size_t size) {     \
+        return set(table, o, i, value, msg, size);                                              \
+    }                                                                                           \
+    stewart_status stewart_##direction##_options_check(const stewart_##direction##_options *o,  \
+                                                       char *msg, size_t size) {                \
+        return check(table, o, msg, size);                                                      \
     }
-#define OPTION_TABLE_DEFAULTS(direction, table)                                                  \
-    void stewart_##direction##_options_default(stewart_##direction##_options *o) {               \
-        if (o) defaults(table, o);                                                               \
+#define OPTION_TABLE_DEFAULTS(direction, table)                                    \
+    void stewart_##direction##_options_default(stewart_##direction##_options *o) { \
+        if (o) defaults(table, o);                                                 \
     }
 
 extern "C" {

@@ -24,10 +24,10 @@ namespace {
 
 // Each parameter's defaults, as an array of its count doubles.
 #define DEFAULTS(id, name, count, unit, display, min, min_closed, max, max_closed, defaults, text) \
-    constexpr double kDefault_##name[] = {STEWART_UNPAREN defaults};                          \
-    static_assert(sizeof kDefault_##name == (count) * sizeof(double),                          \
-                  #name ": one default per element");                                          \
-    static_assert(sizeof(stewart_params::name) == (count) * sizeof(double),                    \
+    constexpr double kDefault_##name[] = {STEWART_UNPAREN defaults};                               \
+    static_assert(sizeof kDefault_##name == (count) * sizeof(double),                              \
+                  #name ": one default per element");                                              \
+    static_assert(sizeof(stewart_params::name) == (count) * sizeof(double),                        \
                   #name ": the table's count is the field's");
 STEWART_PARAM_TABLE(DEFAULTS)
 #undef DEFAULTS
@@ -37,8 +37,9 @@ constexpr bool same_text(const char *a, const char *b) {
 }
 // A pose is marked twice, by its count's name (for the FMU's preprocessor) and its unit (at run
 // time): the two agree.
-#define POSE_MARKS(id, name, count, unit, ...)                                                  \
-    static_assert(same_text(#count, "STEWART_POSE_ELEMENTS") == same_text(unit, STEWART_POSE_UNIT), \
+#define POSE_MARKS(id, name, count, unit, ...)                  \
+    static_assert(same_text(#count, "STEWART_POSE_ELEMENTS") == \
+                      same_text(unit, STEWART_POSE_UNIT),       \
                   #name ": a pose has count STEWART_POSE_ELEMENTS and unit STEWART_POSE_UNIT");
 STEWART_PARAM_TABLE(POSE_MARKS)
 #undef POSE_MARKS
@@ -65,7 +66,8 @@ constexpr bool table_matches_struct() {
     }
     return offset == sizeof(stewart_params);
 }
-static_assert(table_matches_struct(), "STEWART_PARAM_TABLE must list stewart_params' fields in order");
+static_assert(table_matches_struct(),
+              "STEWART_PARAM_TABLE must list stewart_params' fields in order");
 
 const char *const kAxis[3] = {"x", "y", "z"};
 const char *const kPoseAxis[6] = {"x", "y", "z", "roll", "pitch", "yaw"};
@@ -75,13 +77,13 @@ bool is_pose(const stewart_param_info &p) { return !std::strcmp(p.unit, STEWART_
 // Per-leg parameters that a single value (the bare name, e.g. "stroke_min") fills for all six
 // legs: the legs of most machines are alike (the strokes were scalars in earlier releases).
 const char *const kScalarFills[] = {
-    "stroke_min", "stroke_max",
-    "screw_lead", "gear_ratio", "rotor_inertia", "screw_inertia", "screw_efficiency",
-    "screw_back_efficiency", "torque_constant", "winding_resistance", "winding_inductance",
-    "coulomb_friction", "viscous_friction", "stribeck_friction", "stribeck_speed",
-    "end_stop_stiffness", "end_stop_damping", "leg_stiffness", "leg_damping", "current_max",
-    "voltage_max", "motor_speed_max", "leg_speed_max", "leg_accel_max", "leg_jerk_max",
-    "leg_force_max"};
+    "stroke_min",       "stroke_max",         "screw_lead",         "gear_ratio",
+    "rotor_inertia",    "screw_inertia",      "screw_efficiency",   "screw_back_efficiency",
+    "torque_constant",  "winding_resistance", "winding_inductance", "coulomb_friction",
+    "viscous_friction", "stribeck_friction",  "stribeck_speed",     "end_stop_stiffness",
+    "end_stop_damping", "leg_stiffness",      "leg_damping",        "current_max",
+    "voltage_max",      "motor_speed_max",    "leg_speed_max",      "leg_accel_max",
+    "leg_jerk_max",     "leg_force_max"};
 
 // The element index of "[k]" (k = 1..count, no leading zero, then the end), or -1.
 int element_index(const char *bracket, int count) {
@@ -97,7 +99,7 @@ int element_index(const char *bracket, int count) {
 size_t edit_distance(const char *a, const char *b) {
     const size_t n = std::strcspn(a, "["), m = std::strlen(b);
     size_t row[64];
-    if (n >= 64 || m >= 64) return n > m ? n : m; // no field name is that long: far from all
+    if (n >= 64 || m >= 64) return n > m ? n : m;  // no field name is that long: far from all
     for (size_t j = 0; j <= m; ++j) row[j] = j;
     for (size_t i = 1; i <= n; ++i) {
         size_t diagonal = row[0];
@@ -121,8 +123,8 @@ struct Magnitude {
     double max;
 };
 const Magnitude kMagnitudes[] = {
-    {"base_radius", 1e6}, {"platform_radius", 1e6}, {"base_joint", 1e6},
-    {"platform_joint", 1e6}, {"home_height", 1e6}, {"gravity", 1e4},
+    {"base_radius", 1e6},    {"platform_radius", 1e6}, {"base_joint", 1e6},
+    {"platform_joint", 1e6}, {"home_height", 1e6},     {"gravity", 1e4},
 };
 // A side's joints closer to its origin than this all (a radius, or the largest |joint|) are a
 // unit mistake too: their differences would square to nothing.
@@ -147,8 +149,8 @@ stewart_status check_magnitudes(stewart_params &p, char *msg, size_t size) {
                 const char *unit = stewart_param_element_unit(i, e);
                 return set_message(msg, size, STEWART_ERR_PARAMETER,
                                    "%s = %s %s is beyond any machine: its magnitude must be at "
-                                   "most %g %s (check the units)", name, ExactText(value).c_str(),
-                                   unit, m.max, unit);
+                                   "most %g %s (check the units)",
+                                   name, ExactText(value).c_str(), unit, m.max, unit);
             }
         }
     return STEWART_OK;
@@ -163,7 +165,8 @@ stewart_status check_side_sizes(const stewart_params &p, char *msg, size_t size)
         double reach = side ? p.platform_radius : p.base_radius;
         if (joints) {
             reach = 0;
-            for (double x : side ? p.platform_joint : p.base_joint) reach = std::max(reach, std::fabs(x));
+            for (double x : side ? p.platform_joint : p.base_joint)
+                reach = std::max(reach, std::fabs(x));
         }
         if (reach > 0 && reach < kSmallestSide)
             return set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -181,7 +184,12 @@ stewart_status check_side_sizes(const stewart_params &p, char *msg, size_t size)
 // (elsewhere they would be ignored), friction and end stops too; a Stribeck peak has its speed;
 // damping has its spring; no leg compliance (not modelled).
 stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t size) {
-    struct Field { const char *name; const double *value; double neutral; const char *unit; };
+    struct Field {
+        const char *name;
+        const double *value;
+        double neutral;
+        const char *unit;
+    };
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const int leg = k + 1;
         const bool drive = p.screw_lead[k] > 0;
@@ -193,14 +201,16 @@ stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t
                                leg, ExactText(p.torque_constant[k]).c_str(), leg, leg,
                                ExactText(p.screw_lead[k]).c_str());
         const Field motor[] = {
-            {"gear_ratio", p.gear_ratio, 1, ""}, {"rotor_inertia", p.rotor_inertia, 0, " kg.m2"},
+            {"gear_ratio", p.gear_ratio, 1, ""},
+            {"rotor_inertia", p.rotor_inertia, 0, " kg.m2"},
             {"screw_inertia", p.screw_inertia, 0, " kg.m2"},
             {"screw_efficiency", p.screw_efficiency, 1, ""},
             {"screw_back_efficiency", p.screw_back_efficiency, 1, ""},
             {"torque_constant", p.torque_constant, 0, " N.m/A"},
             {"winding_resistance", p.winding_resistance, 0, " Ohm"},
             {"winding_inductance", p.winding_inductance, 0, " H"},
-            {"current_max", p.current_max, 0, " A"}, {"voltage_max", p.voltage_max, 0, " V"},
+            {"current_max", p.current_max, 0, " A"},
+            {"voltage_max", p.voltage_max, 0, " V"},
             {"motor_speed_max", p.motor_speed_max, 0, " rad/s"},
             // friction and end stops act through the drive (with force input the plant takes
             // the leg's whole axial force as given)
@@ -214,22 +224,23 @@ stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t
             if (!drive && f.value[k] != f.neutral)
                 return set_message(msg, size, STEWART_ERR_PARAMETER,
                                    "%s[%d] = %s%s, but leg %d has no drive (screw_lead[%d] = 0): "
-                                   "give its screw_lead, or leave %s[%d] at %g", f.name, leg,
-                                   ExactText(f.value[k]).c_str(), f.unit, leg, leg, f.name, leg,
-                                   f.neutral);
+                                   "give its screw_lead, or leave %s[%d] at %g",
+                                   f.name, leg, ExactText(f.value[k]).c_str(), f.unit, leg, leg,
+                                   f.name, leg, f.neutral);
         if (p.stribeck_friction[k] > p.coulomb_friction[k] && !(p.stribeck_speed[k] > 0))
             return set_message(msg, size, STEWART_ERR_PARAMETER,
                                "stribeck_speed[%d] = %s m/s: leg %d has a Stribeck peak "
                                "(stribeck_friction[%d] = %s N > coulomb_friction[%d] = %s N), "
-                               "which needs the speed over which it falls, > 0", leg,
-                               ExactText(p.stribeck_speed[k]).c_str(), leg, leg,
+                               "which needs the speed over which it falls, > 0",
+                               leg, ExactText(p.stribeck_speed[k]).c_str(), leg, leg,
                                ExactText(p.stribeck_friction[k]).c_str(), leg,
                                ExactText(p.coulomb_friction[k]).c_str());
         if (p.leg_stiffness[k] != 0 || p.leg_damping[k] != 0)
             return set_message(msg, size, STEWART_ERR_PARAMETER,
                                "leg_stiffness[%d] = %s N/m, leg_damping[%d] = %s N.s/m: the legs' "
                                "axial compliance is not modelled yet (every leg is rigid); leave "
-                               "both at 0", leg, ExactText(p.leg_stiffness[k]).c_str(), leg,
+                               "both at 0",
+                               leg, ExactText(p.leg_stiffness[k]).c_str(), leg,
                                ExactText(p.leg_damping[k]).c_str());
         struct Damper {
             const char *name, *spring_name;
@@ -241,8 +252,9 @@ stewart_status check_drive_parameters(const stewart_params &p, char *msg, size_t
             if (d.damping[k] > 0 && !(d.spring[k] > 0))
                 return set_message(msg, size, STEWART_ERR_PARAMETER,
                                    "%s[%d] = %s N.s/m without a spring (%s[%d] = 0): give the "
-                                   "stiffness, or leave the damping at 0", d.name, leg,
-                                   ExactText(d.damping[k]).c_str(), d.spring_name, leg);
+                                   "stiffness, or leave the damping at 0",
+                                   d.name, leg, ExactText(d.damping[k]).c_str(), d.spring_name,
+                                   leg);
     }
     return STEWART_OK;
 }
@@ -257,12 +269,14 @@ stewart_status check_drive_overflow(const stewart_params &p, char *msg, size_t s
         const double inertia = p.rotor_inertia[k] + p.screw_inertia[k] / (N * N);
         if (std::isfinite(ratio) && std::isfinite(inertia * ratio * ratio)) continue;
         const int leg = k + 1;
-        return set_message(msg, size, STEWART_ERR_PARAMETER,
-                           "screw_lead[%d] = %s m, gear_ratio[%d] = %s: the motor turns %g rad "
-                           "per metre of leg (2 pi N / lead) and its inertia reflects to %g kg on "
-                           "the leg, beyond a double; give the lead in metres and the gear as motor "
-                           "turns per screw turn", leg, ExactText(p.screw_lead[k]).c_str(), leg,
-                           ExactText(N).c_str(), ratio, inertia * ratio * ratio);
+        return set_message(
+            msg, size, STEWART_ERR_PARAMETER,
+            "screw_lead[%d] = %s m, gear_ratio[%d] = %s: the motor turns %g rad "
+            "per metre of leg (2 pi N / lead) and its inertia reflects to %g kg on "
+            "the leg, beyond a double; give the lead in metres and the gear as motor "
+            "turns per screw turn",
+            leg, ExactText(p.screw_lead[k]).c_str(), leg, ExactText(N).c_str(), ratio,
+            inertia * ratio * ratio);
     }
     return STEWART_OK;
 }
@@ -321,10 +335,12 @@ int stewart_param_element_description(int i, int e, char *text, size_t size) {
     const stewart_param_info *p = stewart_param(i);
     if (!p || e < 0 || e >= p->count) return -1;
     if (is_pose(*p)) return std::snprintf(text, size, "%s %s", p->description, kPoseAxis[e]);
-    if (p->count == STEWART_LEGS) return std::snprintf(text, size, "%s of leg %d", p->description, e + 1);
+    if (p->count == STEWART_LEGS)
+        return std::snprintf(text, size, "%s of leg %d", p->description, e + 1);
     if (p->count == 3) return std::snprintf(text, size, "%s %s", p->description, kAxis[e]);
     if (p->count == 3 * STEWART_LEGS)
-        return std::snprintf(text, size, "%s %s of leg %d", p->description, kAxis[e % 3], e / 3 + 1);
+        return std::snprintf(text, size, "%s %s of leg %d", p->description, kAxis[e % 3],
+                             e / 3 + 1);
     return std::snprintf(text, size, "%s", p->description);
 }
 
@@ -373,7 +389,10 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
             if (s != STEWART_OK) return s;
         }
 
-    struct Named { const char *name; const double *I; };
+    struct Named {
+        const char *name;
+        const double *I;
+    };
     const Named inertias[] = {{"platform_inertia", p->platform_inertia},
                               {"payload_inertia", p->payload_inertia},
                               {"cylinder_inertia", p->cylinder_inertia},
@@ -390,7 +409,8 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
         if (!(p->stroke_max[k] > p->stroke_min[k]))
             return set_message(msg, size, STEWART_ERR_PARAMETER,
                                "stroke limits of leg %d [%s, %s] m must satisfy stroke_min[%d] < "
-                               "stroke_max[%d]", k + 1, ExactText(p->stroke_min[k]).c_str(),
+                               "stroke_max[%d]",
+                               k + 1, ExactText(p->stroke_min[k]).c_str(),
                                ExactText(p->stroke_max[k]).c_str(), k + 1, k + 1);
     if (p->rotation_order != 0.0 && p->rotation_order != 1.0)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -400,7 +420,8 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
     if (p->frame_convention != 0.0 && p->frame_convention != 1.0)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "frame_convention = %s must be 0 (z up) or 1 (z down, x forward, y "
-                           "right)", ExactText(p->frame_convention).c_str());
+                           "right)",
+                           ExactText(p->frame_convention).c_str());
     stewart_status s = check_magnitudes(values, msg, size);
     if (s == STEWART_OK) s = check_side_sizes(*p, msg, size);
     // The circles of geometry 0 lie in z = 0 of each frame: the platform is above the base. Joints
@@ -409,7 +430,8 @@ stewart_status stewart_params_check(const stewart_params *p, char *msg, size_t s
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "home_height = %s m must be > 0 with geometry 0 (the joints' circles "
                            "in z = 0 of each frame); with geometry 1 (joints as coordinates) any "
-                           "origin, so any home_height, is taken", ExactText(p->home_height).c_str());
+                           "origin, so any home_height, is taken",
+                           ExactText(p->home_height).c_str());
     // Singular everywhere first: joints at one point also fail the Cardans' checks, which would
     // name a consequence instead.
     if (s == STEWART_OK && (p->geometry == 0.0 || p->geometry == 1.0))
@@ -432,7 +454,8 @@ stewart_status stewart_params_set(stewart_params *p, const char *name, double va
     if (i < 0)
         for (int k = 0; k < kParamCount; ++k)
             if (!std::strcmp(name, kParams[k].name) && stewart_param_fills_from_scalar(k)) {
-                for (int leg = 0; leg < kParams[k].count; ++leg) *stewart_param_element(p, k, leg) = value;
+                for (int leg = 0; leg < kParams[k].count; ++leg)
+                    *stewart_param_element(p, k, leg) = value;
                 return stewart::clear_message(msg, size);
             }
     if (i < 0) {

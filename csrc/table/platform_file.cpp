@@ -34,8 +34,8 @@ using stewart::JsonValue;
 struct Target {
     const char *name;
     int count;
-    bool fills;    // one number given by the bare name fills every element
-    int param;     // the table's index, or -1
+    bool fills;  // one number given by the bare name fills every element
+    int param;   // the table's index, or -1
     double *values;
     std::vector<int> owner;  // the field that gave each element, or -1
 };
@@ -52,7 +52,8 @@ std::string shown(const JsonField &f) {
 }
 
 std::string element_name(const Target &t, int e) {
-    return t.count == 1 ? std::string(t.name) : std::string(t.name) + "[" + std::to_string(e + 1) + "]";
+    return t.count == 1 ? std::string(t.name)
+                        : std::string(t.name) + "[" + std::to_string(e + 1) + "]";
 }
 
 const char *element_unit(const Target &t, int e) {
@@ -88,13 +89,16 @@ bool item_value(const JsonItem &x, const char *si, const stewart::FileUnits &uni
     } else {
         std::string number, unit;
         if (!stewart::split_quantity(x.text, number, unit) || unit.empty())
-            return why = what + " = \"" + x.text + "\" must be a number, or a number and its unit "
-                         "(\"12.5 mm\")", false;
+            return why = what + " = \"" + x.text +
+                         "\" must be a number, or a number and its unit "
+                         "(\"12.5 mm\")",
+                   false;
         const stewart::Unit *u = stewart::find_unit(unit);
         const bool same_kind = u && !std::strcmp(u->si, si);
         if (!same_kind && unit != si)
             return why = what + " = \"" + x.text + "\": " + unit + " is not a unit of " + what +
-                         " [" + si + "]; write it in " + stewart::units_for(si), false;
+                         " [" + si + "]; write it in " + stewart::units_for(si),
+                   false;
         out = stewart::to_si(number, same_kind ? u : nullptr);
     }
     if (!std::isfinite(out))
@@ -104,7 +108,8 @@ bool item_value(const JsonItem &x, const char *si, const stewart::FileUnits &uni
 
 // Whether the file wrote x in other units than the element's SI ones.
 bool converted(const JsonItem &x, const char *si, const stewart::FileUnits &units) {
-    return x.quoted || (!std::strcmp(si, "m") && units.length) || (!std::strcmp(si, "rad") && units.angle);
+    return x.quoted || (!std::strcmp(si, "m") && units.length) ||
+           (!std::strcmp(si, "rad") && units.angle);
 }
 
 // Puts field f (the index-th) into its target's elements, each checked against the table and
@@ -123,20 +128,25 @@ bool apply(const std::vector<JsonField> &fields, int index, std::vector<Target> 
     }
     const bool whole = element < 0;
     const JsonValue &v = f.value;
-    if (v.kind == JsonValue::Object)
-        return why = f.name + ": objects are not values here", false;
+    if (v.kind == JsonValue::Object) return why = f.name + ": objects are not values here", false;
     if (v.kind == JsonValue::List) {
-        if (!whole || t->count == 1) return why = f.name + " = " + shown(f) + " must be one number", false;
+        if (!whole || t->count == 1)
+            return why = f.name + " = " + shown(f) + " must be one number", false;
         if (static_cast<int>(v.items.size()) != t->count)
             return why = f.name + " has " + std::to_string(v.items.size()) + " values: it needs " +
                          std::to_string(t->count) + ", " + f.name + "[1].." + f.name + "[" +
-                         std::to_string(t->count) + "]", false;
+                         std::to_string(t->count) + "]",
+                   false;
     } else if (whole && t->count > 1 && !t->fills) {
         return why = f.name + " = " + shown(f) + " must be a list of its " +
-                     std::to_string(t->count) + " values", false;
+                     std::to_string(t->count) + " values",
+               false;
     }
-    const JsonItem single{v.kind == JsonValue::Text ? v.text : v.kind == JsonValue::Number ? v.items[0].text : "",
-                          v.kind == JsonValue::Text || (v.kind == JsonValue::Number && v.items[0].quoted)};
+    const JsonItem single{
+        v.kind == JsonValue::Text     ? v.text
+        : v.kind == JsonValue::Number ? v.items[0].text
+                                      : "",
+        v.kind == JsonValue::Text || (v.kind == JsonValue::Number && v.items[0].quoted)};
     const int first = whole ? 0 : element, last = whole ? t->count : element + 1;
     for (int e = first; e < last; ++e) {
         const JsonItem &x = v.kind == JsonValue::List ? v.items[static_cast<size_t>(e)] : single;
@@ -146,13 +156,16 @@ bool apply(const std::vector<JsonField> &fields, int index, std::vector<Target> 
         char message[STEWART_MESSAGE_SIZE];
         if (t->param >= 0 &&
             stewart_param_check_value(t->param, e, value, message, sizeof message) != STEWART_OK)
-            return why = std::string(message) + (converted(x, element_unit(*t, e), units) ?
-                                                     " (the file's " + x.text + ")" : ""), false;
+            return why = std::string(message) + (converted(x, element_unit(*t, e), units)
+                                                     ? " (the file's " + x.text + ")"
+                                                     : ""),
+                   false;
         const int owner = t->owner[static_cast<size_t>(e)];
         if (owner >= 0)
             return why = name + " is given twice: by \"" + fields[static_cast<size_t>(owner)].name +
                          "\" at line " + std::to_string(fields[static_cast<size_t>(owner)].line) +
-                         " and by \"" + f.name + "\"", false;
+                         " and by \"" + f.name + "\"",
+                   false;
         t->owner[static_cast<size_t>(e)] = index;
         t->values[e] = value;
     }
@@ -163,18 +176,23 @@ bool apply(const std::vector<JsonField> &fields, int index, std::vector<Target> 
 // one whose parameter is in m or rad.
 bool read_file_units(const JsonField &f, stewart::FileUnits &units, std::string &why) {
     if (f.value.kind != JsonValue::Object)
-        return why = "units = " + shown(f) + " must be an object: {\"length\": \"mm\", \"angle\": "
-                     "\"deg\"}", false;
+        return why = "units = " + shown(f) +
+                     " must be an object: {\"length\": \"mm\", \"angle\": "
+                     "\"deg\"}",
+               false;
     for (const auto &m : f.value.members) {
         const bool length = m.first == "length";
         if (!length && m.first != "angle")
-            return why = "units." + m.first + ": a file gives the units of \"length\" and "
-                         "\"angle\" only (masses, inertias and gravity are SI: kg, kg.m2, m/s2)", false;
+            return why = "units." + m.first +
+                         ": a file gives the units of \"length\" and "
+                         "\"angle\" only (masses, inertias and gravity are SI: kg, kg.m2, m/s2)",
+                   false;
         const char *si = length ? "m" : "rad";
         const stewart::Unit *u = stewart::find_unit(m.second);
         if (!u || std::strcmp(u->si, si))
             return why = "units." + m.first + " = \"" + m.second + "\" is not a unit of " +
-                         m.first + ": one of " + stewart::units_for(si), false;
+                         m.first + ": one of " + stewart::units_for(si),
+                   false;
         (length ? units.length : units.angle) = u;
     }
     return true;
@@ -202,30 +220,37 @@ bool strokes_from_travel(const std::vector<JsonField> &fields, std::vector<Targe
     p.field = given;
     const int absolute = std::max(first_owner(lo), first_owner(hi));
     if (absolute >= 0)
-        return p.why = "the strokes are given twice, as \"" + fields[static_cast<size_t>(absolute)].name +
-                       "\" (line " + std::to_string(fields[static_cast<size_t>(absolute)].line) +
-                       ") and as \"" + fields[static_cast<size_t>(given)].name +
+        return p.why = "the strokes are given twice, as \"" +
+                       fields[static_cast<size_t>(absolute)].name + "\" (line " +
+                       std::to_string(fields[static_cast<size_t>(absolute)].line) + ") and as \"" +
+                       fields[static_cast<size_t>(given)].name +
                        "\": give stroke_min and stroke_max, or stroke_neutral and stroke_travel",
                false;
     for (const Target *t : {&neutral, &travel})
         for (int e = 0; e < t->count; ++e)
             if (t->owner[static_cast<size_t>(e)] < 0)
                 return p.why = "the file gives \"" + fields[static_cast<size_t>(given)].name +
-                               "\" but not " + element_name(*t, e) + ": stroke_neutral and "
-                               "stroke_travel go together, for every leg", false;
+                               "\" but not " + element_name(*t, e) +
+                               ": stroke_neutral and "
+                               "stroke_travel go together, for every leg",
+                       false;
     char message[STEWART_MESSAGE_SIZE];
     for (int k = 0; k < STEWART_LEGS; ++k) {
         const std::string leg = "[" + std::to_string(k + 1) + "]";
         if (!(travel.values[k] > 0))
-            return p.why = "stroke_travel" + leg + " = " + stewart::ExactText(travel.values[k]).c_str() +
-                           " m must be > 0: leg " + std::to_string(k + 1) +
-                           " moves stroke_neutral ± stroke_travel", false;
-        const double ends[2] = {neutral.values[k] - travel.values[k], neutral.values[k] + travel.values[k]};
+            return p.why = "stroke_travel" + leg + " = " +
+                           stewart::ExactText(travel.values[k]).c_str() + " m must be > 0: leg " +
+                           std::to_string(k + 1) + " moves stroke_neutral ± stroke_travel",
+                   false;
+        const double ends[2] = {neutral.values[k] - travel.values[k],
+                                neutral.values[k] + travel.values[k]};
         for (int end = 0; end < 2; ++end) {
             Target &to = end ? hi : lo;
-            if (stewart_param_check_value(to.param, k, ends[end], message, sizeof message) != STEWART_OK)
+            if (stewart_param_check_value(to.param, k, ends[end], message, sizeof message) !=
+                STEWART_OK)
                 return p.why = std::string("stroke_neutral") + leg + (end ? " + " : " - ") +
-                               "stroke_travel" + leg + ": " + message, false;
+                               "stroke_travel" + leg + ": " + message,
+                       false;
             to.values[k] = ends[end];
             to.owner[static_cast<size_t>(k)] = given;
         }
@@ -250,15 +275,19 @@ bool joints_complete(const std::vector<JsonField> &fields, const Target &geometr
     for (const Target *side : {&base, &platform}) {
         int missing = 0, first = -1;
         for (int e = 0; e < side->count; ++e)
-            if (side->owner[static_cast<size_t>(e)] < 0) missing += 1, first = first < 0 ? e : first;
+            if (side->owner[static_cast<size_t>(e)] < 0)
+                missing += 1, first = first < 0 ? e : first;
         if (missing == side->count)
             return p.why = std::string("the file gives geometry = 1 but not ") + side->name +
-                           ": a platform file gives all its joints", false;
+                           ": a platform file gives all its joints",
+                   false;
         if (missing > 0)
-            return p.why = std::string("the file gives geometry = 1 and only some of ") +
-                           side->name + ": " + element_name(*side, first) +
-                           (missing > 1 ? " and " + std::to_string(missing - 1) + " more are" : " is") +
-                           " missing; with geometry 1 a file gives every joint coordinate", false;
+            return p.why =
+                       std::string("the file gives geometry = 1 and only some of ") + side->name +
+                       ": " + element_name(*side, first) +
+                       (missing > 1 ? " and " + std::to_string(missing - 1) + " more are" : " is") +
+                       " missing; with geometry 1 a file gives every joint coordinate",
+                   false;
     }
     return true;
 }
@@ -299,7 +328,8 @@ bool apply_fields(const std::vector<JsonField> &fields, stewart_params &params,
     auto target = [&](const char *name) -> Target & {
         return targets[static_cast<size_t>(stewart_param_find(name, nullptr))];
     };
-    if (!strokes_from_travel(fields, targets, target("stroke_min[1]"), target("stroke_max[1]"), p) ||
+    if (!strokes_from_travel(fields, targets, target("stroke_min[1]"), target("stroke_max[1]"),
+                             p) ||
         !joints_complete(fields, target("geometry"), target("base_joint[1]"),
                          target("platform_joint[1]"), p))
         return false;
@@ -311,21 +341,22 @@ bool apply_fields(const std::vector<JsonField> &fields, stewart_params &params,
 }  // namespace
 
 extern "C" stewart_status stewart_params_read_json(stewart_params *params, const char *text,
-                                                   size_t length, unsigned char *given,
-                                                   char *msg, size_t size) {
+                                                   size_t length, unsigned char *given, char *msg,
+                                                   size_t size) {
     if (!params || !text) return set_message(msg, size, STEWART_ERR_ARGUMENT, "NULL argument");
     if (length > STEWART_PLATFORM_FILE_MAX_BYTES)
         return set_message(msg, size, STEWART_ERR_PARAMETER,
                            "%zu bytes: a platform file has at most %d bytes", length,
                            STEWART_PLATFORM_FILE_MAX_BYTES);
     if (std::memchr(text, '\0', length))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "a platform file is text: it holds a NUL byte");
+        return set_message(msg, size, STEWART_ERR_PARAMETER,
+                           "a platform file is text: it holds a NUL byte");
     std::vector<JsonField> fields;
     std::string why;
     int line = 0, column = 0;
     if (!stewart::read_json_fields(text, length, "units", fields, why, line, column))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "line %d column %d: %s", line,
-                           column, why.c_str());
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "line %d column %d: %s", line, column,
+                           why.c_str());
     stewart_params result = *params;  // params change only if every field is good
     std::vector<unsigned char> set(static_cast<size_t>(stewart_param_count()), 0);
     Problem p;
@@ -354,7 +385,8 @@ const char *file_kind(mode_t mode) {
 // with why. Opened without blocking: a FIFO with no writer is refused at once, not waited on.
 bool read_regular_file(const char *path, std::string &text, std::string &why) {
     const int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0) return why = "cannot open the file: " + std::generic_category().message(errno), false;
+    if (fd < 0)
+        return why = "cannot open the file: " + std::generic_category().message(errno), false;
     struct stat st;
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         why = std::string("is ") + file_kind(st.st_mode) + ": a platform file is a regular file";
@@ -425,8 +457,8 @@ extern "C" stewart_status stewart_platform_file_units(const char *path, stewart_
     if (!read_regular_file(path, text, why))
         return set_message(msg, size, STEWART_ERR_PARAMETER, "%s", why.c_str());
     if (!stewart::read_json_fields(text.data(), text.size(), "units", fields, why, line, column))
-        return set_message(msg, size, STEWART_ERR_PARAMETER, "line %d column %d: %s", line,
-                           column, why.c_str());
+        return set_message(msg, size, STEWART_ERR_PARAMETER, "line %d column %d: %s", line, column,
+                           why.c_str());
     UnitVotes length, angle;
     for (const JsonField &f : fields) {
         for (const auto &m : f.value.members) {  // "units": {"length": "mm", ...}

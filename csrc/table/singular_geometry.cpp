@@ -47,8 +47,9 @@ stewart_status check_not_singular_everywhere(const stewart_params &p, char *msg,
         const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 6>> svd(spread, Eigen::ComputeFullU);
         const Eigen::Vector3d sigma = svd.singularValues();
         const char *name = side ? "platform" : "base";
-        const char *fields = joints ? (side ? "platform_joint" : "base_joint")
-                                    : (side ? "platform_radius, platform_angle" : "base_radius, base_angle");
+        const char *fields =
+            joints ? (side ? "platform_joint" : "base_joint")
+                   : (side ? "platform_radius, platform_angle" : "base_radius, base_angle");
         const char *frame = side ? "platform frame" : "base frame";
         if (sigma[0] <= kOnLine * scale)
             return set_message(msg, size, STEWART_ERR_PARAMETER,
@@ -61,7 +62,8 @@ stewart_status check_not_singular_everywhere(const stewart_params &p, char *msg,
                                "the platform turns freely about it at every pose (singular "
                                "everywhere); no leg's length changes with that rotation",
                                fields, name, point_text(centre, scale).c_str(),
-                               point_text(line_direction(svd.matrixU().col(0)), 1.0).c_str(), frame);
+                               point_text(line_direction(svd.matrixU().col(0)), 1.0).c_str(),
+                               frame);
     }
     return STEWART_OK;
 }

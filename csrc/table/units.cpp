@@ -11,11 +11,16 @@ namespace {
 
 // Inches are exactly 0.0254 m; degrees convert as the table's own STEWART_DEG does.
 const Unit kUnits[] = {
-    {"m", "m", 0, 1.0, 1.0},           {"cm", "m", -2, 1.0, 1e2},
-    {"mm", "m", -3, 1.0, 1e3},         {"um", "m", -6, 1.0, 1e6},
-    {"\xC2\xB5m", "m", -6, 1.0, 1e6},  {"nm", "m", -9, 1.0, 1e9},
-    {"in", "m", 0, 0.0254, 1.0 / 0.0254}, {"rad", "rad", 0, 1.0, 1.0},
-    {"mrad", "rad", -3, 1.0, 1e3},     {"urad", "rad", -6, 1.0, 1e6},
+    {"m", "m", 0, 1.0, 1.0},
+    {"cm", "m", -2, 1.0, 1e2},
+    {"mm", "m", -3, 1.0, 1e3},
+    {"um", "m", -6, 1.0, 1e6},
+    {"\xC2\xB5m", "m", -6, 1.0, 1e6},
+    {"nm", "m", -9, 1.0, 1e9},
+    {"in", "m", 0, 0.0254, 1.0 / 0.0254},
+    {"rad", "rad", 0, 1.0, 1.0},
+    {"mrad", "rad", -3, 1.0, 1e3},
+    {"urad", "rad", -6, 1.0, 1e6},
     {"\xC2\xB5rad", "rad", -6, 1.0, 1e6},
     {"deg", "rad", 0, STEWART_PI / 180.0, 180.0 / STEWART_PI},
 };
@@ -80,7 +85,8 @@ double to_si(const std::string &number, const Unit *unit) {
             if (c >= '0' && c <= '9' && exponent < 100000) exponent = 10 * exponent + (c - '0');
         if (minus) exponent = -exponent;
     }
-    const std::string shifted = number.substr(0, e) + "e" + std::to_string(exponent + unit->decimal_shift);
+    const std::string shifted =
+        number.substr(0, e) + "e" + std::to_string(exponent + unit->decimal_shift);
     read_double(shifted, value);
     return value * unit->factor;
 }

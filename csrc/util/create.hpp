@@ -43,8 +43,8 @@ stewart_status call_arguments_ok(T *object, const void *first, const void *secon
                                  const char *names) {
     if (!object) return STEWART_ERR_ARGUMENT;
     if (!first || !second)
-        return set_message(object->message, sizeof object->message, STEWART_ERR_ARGUMENT,
-                           "NULL %s", names);
+        return set_message(object->message, sizeof object->message, STEWART_ERR_ARGUMENT, "NULL %s",
+                           names);
     return STEWART_OK;
 }
 

@@ -18,7 +18,10 @@ inline long decimal_magnitude(std::string_view text) {
     long digits = 0, leading_zeros = 0;
     bool before_point = true, nonzero = false;
     for (; i < text.size() && text[i] != 'e' && text[i] != 'E'; ++i) {
-        if (text[i] == '.') { before_point = false; continue; }
+        if (text[i] == '.') {
+            before_point = false;
+            continue;
+        }
         if (text[i] != '0') nonzero = true;
         if (before_point && nonzero) ++digits;
         if (!before_point && !nonzero) ++leading_zeros;

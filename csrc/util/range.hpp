@@ -33,8 +33,7 @@ struct ExactText {
 inline void describe_range(double min, bool min_closed, double max, bool max_closed, char *out,
                            size_t size) {
     const bool no_min = min == -DBL_MAX && min_closed, no_max = max == DBL_MAX && max_closed;
-    if (no_min && no_max)
-        std::snprintf(out, size, "finite");
+    if (no_min && no_max) std::snprintf(out, size, "finite");
     else if (no_max)
         std::snprintf(out, size, "%s %s", min_closed ? ">=" : ">", ExactText(min).c_str());
     else if (no_min)

@@ -22,7 +22,8 @@ extern "C" mbs_model *slider_crank_create(const slider_crank_params *p, slider_c
     }
     if (!(p->crank_length > 0 && p->rod_length > p->crank_length)) {
         if (msg && size)
-            std::snprintf(msg, size, "crank_length = %.17g, rod_length = %.17g: need 0 < crank < rod",
+            std::snprintf(msg, size,
+                          "crank_length = %.17g, rod_length = %.17g: need 0 < crank < rod",
                           p->crank_length, p->rod_length);
         return nullptr;
     }
@@ -51,8 +52,10 @@ extern "C" mbs_model *slider_crank_create(const slider_crank_params *p, slider_c
     const int ok =
         mbs_fix_body(m, l->ground) == MBS_OK && l->crank_bearing >= 0 &&
         mbs_add_spherical(m, l->crank, crank_pin, l->rod, rod_start) >= 0 &&
-        (l->rod_slider_cardan = mbs_add_cardan(m, l->rod, rod_end, ey, l->slider, origin, ez)) >= 0 &&
-        (l->slider_guide = mbs_add_prismatic(m, l->ground, origin, ex, l->slider, origin, ex)) >= 0 &&
+        (l->rod_slider_cardan = mbs_add_cardan(m, l->rod, rod_end, ey, l->slider, origin, ez)) >=
+            0 &&
+        (l->slider_guide = mbs_add_prismatic(m, l->ground, origin, ex, l->slider, origin, ex)) >=
+            0 &&
         (l->crank_driver_joint = mbs_add_angle_driver(m, l->crank_bearing, &l->crank_driver)) >= 0;
     if (!ok) {
         if (msg && size) std::snprintf(msg, size, "slider-crank: %s", mbs_model_message(m));

@@ -21,9 +21,9 @@ typedef struct slider_crank_params {
 } slider_crank_params;
 
 typedef struct slider_crank_layout {
-    int ground, crank, rod, slider;  /* body indices */
-    int crank_driver;                /* driver slot of the crank angle (from the x axis) */
-    int crank_driver_joint;          /* its joint: multiplier row mbs_joint_first_row(...) */
+    int ground, crank, rod, slider; /* body indices */
+    int crank_driver;               /* driver slot of the crank angle (from the x axis) */
+    int crank_driver_joint;         /* its joint: multiplier row mbs_joint_first_row(...) */
     int crank_bearing, rod_slider_cardan, slider_guide; /* joints: revolute (ground, crank),
                                       Cardan (rod, slider), prismatic (ground, slider) */
 } slider_crank_layout;

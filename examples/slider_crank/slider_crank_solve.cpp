@@ -10,10 +10,9 @@
 namespace {
 
 int usage(FILE *to) {
-    std::fprintf(to,
-                 "usage: slider-crank-solve [--rpm 10] [--turns 2] [--dt 0.01] OUT.csv\n"
-                 "  OUT.csv: t,crank_angle,slider_x,slider_v,slider_a,crank_torque,iterations,"
-                 "residual [SI units]\n");
+    std::fprintf(to, "usage: slider-crank-solve [--rpm 10] [--turns 2] [--dt 0.01] OUT.csv\n"
+                     "  OUT.csv: t,crank_angle,slider_x,slider_v,slider_a,crank_torque,iterations,"
+                     "residual [SI units]\n");
     return to == stderr ? 2 : 0;
 }
 
@@ -36,7 +35,8 @@ int main(int argc, char **argv) {
         if (!std::strcmp(argv[i], "--help")) return usage(stdout);
         if (target) {
             if (i + 1 >= argc || !parse_positive(argv[++i], *target)) {
-                std::fprintf(stderr, "slider-crank-solve: %s needs a positive number\n", argv[i - 1]);
+                std::fprintf(stderr, "slider-crank-solve: %s needs a positive number\n",
+                             argv[i - 1]);
                 return 2;
             }
         } else if (argv[i][0] == '-' || out_path) {
@@ -89,8 +89,8 @@ int main(int argc, char **argv) {
         std::fprintf(out, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d,%.3g,%.17g,%.17g,%.17g\n", t,
                      omega * t, mbs_q(data)[slider], mbs_q_dot(data)[slider],
                      mbs_q_ddot(data)[slider], mbs_lambda(data)[torque_row], mbs_iterations(data),
-                     mbs_residual(data), mbs_energy(data, mbs_q(data), mbs_q_dot(data)),
-                     bearing[0], bearing[1]);
+                     mbs_residual(data), mbs_energy(data, mbs_q(data), mbs_q_dot(data)), bearing[0],
+                     bearing[1]);
     }
     std::fclose(out);
     mbs_data_free(data);

@@ -52,7 +52,8 @@ static void test_slider_closed_form(void) {
         const double x = r * c + D;
         const double x_dot = -omega * r * s * (1 + r * c / D);
         const double x_ddot =
-            -omega * omega * (r * c + r * r * (c * c - s * s) / D + pow(r * r * s * c, 2) / pow(D, 3));
+            -omega * omega *
+            (r * c + r * r * (c * c - s * s) / D + pow(r * r * s * c, 2) / pow(D, 3));
         const int b = MBS_BODY_R(layout.slider);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, x, mbs_q(data)[b]);
         TEST_ASSERT_DOUBLE_WITHIN(1e-11, 0.0, mbs_q(data)[b + 1]);
@@ -185,7 +186,8 @@ static void test_modified_newton(void) {
         step(data, t);
         mbs_set_driver(other, layout.crank_driver, omega * t, omega, 0.0);
         TEST_ASSERT_EQUAL(MBS_OK, mbs_step(other, t, &modified));
-        for (int k = 0; k < NQ; ++k) TEST_ASSERT_DOUBLE_WITHIN(1e-11, mbs_q(data)[k], mbs_q(other)[k]);
+        for (int k = 0; k < NQ; ++k)
+            TEST_ASSERT_DOUBLE_WITHIN(1e-11, mbs_q(data)[k], mbs_q(other)[k]);
     }
     mbs_data_free(other);
 }

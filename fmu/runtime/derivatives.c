@@ -19,13 +19,16 @@ static int is_state(unsigned vr) {
     return 0;
 }
 #else
-static int is_state(unsigned vr) { (void)vr; return 0; }
+static int is_state(unsigned vr) {
+    (void)vr;
+    return 0;
+}
 #endif
 
 /* FMU_OK if every vr[i] is a Real variable of the causality (or, with states_too, a state), else
  * Error naming it. */
-static fmu_status check_all(fmu_instance *inst, const char *function, const unsigned vr[],
-                            size_t n, fmu_causality causality, int states_too, const char *what) {
+static fmu_status check_all(fmu_instance *inst, const char *function, const unsigned vr[], size_t n,
+                            fmu_causality causality, int states_too, const char *what) {
     for (size_t i = 0; i < n; ++i) {
         const fmu_variable *var = fmu_variable_by_vr(vr[i]);
         if (states_too && var && is_state(vr[i])) continue;
@@ -43,13 +46,13 @@ static fmu_status check_request(fmu_instance *inst, const unsigned unknown[], si
                                 const unsigned known[], size_t n_known, const double seed[],
                                 size_t n_seed, double sensitivity[], size_t n_sensitivity,
                                 const char *function) {
-    if (fmu_check_call(inst, CALL_GET_DIRECTIONAL_DERIVATIVE, function) != FMU_OK)
-        return FMU_ERROR;
+    if (fmu_check_call(inst, CALL_GET_DIRECTIONAL_DERIVATIVE, function) != FMU_OK) return FMU_ERROR;
     if ((n_unknown > 0 && !unknown) || (n_known > 0 && !known) || (n_seed > 0 && !seed) ||
         (n_sensitivity > 0 && !sensitivity)) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "%s: an array of value references, seeds or sensitivities is NULL for a nonzero "
-                "count", function);
+                "count",
+                function);
         return FMU_ERROR;
     }
     if (check_all(inst, function, unknown, n_unknown, FMU_OUTPUT_VAR, 0, "output") != FMU_OK ||
@@ -64,17 +67,22 @@ static fmu_status check_request(fmu_instance *inst, const unsigned unknown[], si
 #endif
 
 fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unknown[],
-                                          size_t n_unknown, const unsigned known[],
-                                          size_t n_known, const double seed[],
-                                          double sensitivity[], const char *function) {
+                                          size_t n_unknown, const unsigned known[], size_t n_known,
+                                          const double seed[], double sensitivity[],
+                                          const char *function) {
 #if FMU_PROVIDES_DIRECTIONAL_DERIVATIVE
     const fmu_status checked = check_request(inst, unknown, n_unknown, known, n_known, seed,
                                              n_known, sensitivity, n_unknown, function);
     if (checked != FMU_OK) return checked;
-    return model_directional_derivative(inst, unknown, n_unknown, known, n_known, seed,
-                                        sensitivity, function);
+    return model_directional_derivative(inst, unknown, n_unknown, known, n_known, seed, sensitivity,
+                                        function);
 #else
-    (void)unknown; (void)n_unknown; (void)known; (void)n_known; (void)seed; (void)sensitivity;
+    (void)unknown;
+    (void)n_unknown;
+    (void)known;
+    (void)n_known;
+    (void)seed;
+    (void)sensitivity;
     if (inst) fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s is not supported by this FMU", function);
     return FMU_ERROR;
 #endif
@@ -109,7 +117,12 @@ fmu_status fmu_get_adjoint_derivative(fmu_instance *inst, const unsigned unknown
     }
     return worst;
 #else
-    (void)unknown; (void)n_unknown; (void)known; (void)n_known; (void)seed; (void)sensitivity;
+    (void)unknown;
+    (void)n_unknown;
+    (void)known;
+    (void)n_known;
+    (void)seed;
+    (void)sensitivity;
     if (inst) fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s is not supported by this FMU", function);
     return FMU_ERROR;
 #endif

@@ -18,9 +18,9 @@ extern "C" {
  * or a Model Exchange unit's state (else Error naming it). `function` names the caller
  * in messages. */
 fmu_status fmu_get_directional_derivative(fmu_instance *inst, const unsigned unknown[],
-                                          size_t n_unknown, const unsigned known[],
-                                          size_t n_known, const double seed[],
-                                          double sensitivity[], const char *function);
+                                          size_t n_unknown, const unsigned known[], size_t n_known,
+                                          const double seed[], double sensitivity[],
+                                          const char *function);
 
 /* sensitivity[j] = sum_i seed[i] * d unknown[i] / d known[j] (FMI 3's adjoint: one seed per
  * unknown, one sensitivity per known), from one directional derivative per known; the same

@@ -24,7 +24,8 @@ static fmu_status check_step(fmu_instance *inst, double t, double h) {
     if (!(isfinite(t) && isfinite(h) && h > 0)) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: currentCommunicationPoint = %g and communicationStepSize = %g must be "
-                "finite and the step > 0", t, h);
+                "finite and the step > 0",
+                t, h);
         return FMU_ERROR;
     }
     if (!(t + h > t && isfinite(t + h))) {
@@ -32,14 +33,15 @@ static fmu_status check_step(fmu_instance *inst, double t, double h) {
          * would make it infinite. Neither is a step. */
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: communicationStepSize = %g does not advance currentCommunicationPoint = "
-                "%.17g (t + h = %.17g): the step is below the resolution of t or overflows", h, t,
-                t + h);
+                "%.17g (t + h = %.17g): the step is below the resolution of t or overflows",
+                h, t, t + h);
         return FMU_ERROR;
     }
     if (v->has_stepped && !(t > v->last_step_point)) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: currentCommunicationPoint = %.17g is not after the last accepted "
-                "communication point %.17g", t, v->last_step_point);
+                "communication point %.17g",
+                t, v->last_step_point);
         return FMU_ERROR;
     }
     /* A master may pass t a few roundings off the unit's own time (start + n h against the sum
@@ -48,7 +50,8 @@ static fmu_status check_step(fmu_instance *inst, double t, double h) {
     if (t < v->time - time_slack(v)) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "DoStep: currentCommunicationPoint = %.17g is before the unit's time %.17g (the "
-                "end of the last step); to go back, restore an FMU state", t, v->time);
+                "end of the last step); to go back, restore an FMU state",
+                t, v->time);
         return FMU_ERROR;
     }
     return FMU_OK;
@@ -81,8 +84,7 @@ fmu_status fmu_run_step(fmu_instance *inst, double t, double h) {
         v->outputs_current = 0;
     }
     const fmu_status s = model_do_step(inst, t, h);
-    if (s == FMU_OK || s == FMU_WARNING)
-        return fmu_step_accepted(v, t, h, s);
+    if (s == FMU_OK || s == FMU_WARNING) return fmu_step_accepted(v, t, h, s);
     return fmu_step_not_taken(inst, t, s, time_before, outputs_current_before);
 }
 

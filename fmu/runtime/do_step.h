@@ -57,8 +57,8 @@ fmu_status fmu_do_step_reporting_otherwise(fmu_instance *inst, double t, double 
 static inline int fmu_usual_call(const fmu_instance *inst, double t, double h) {
     if (!inst) return 0;
     const double end = t + h;
-    return (FMU_MODEL_USUAL_STEP || inst->v.mode == MODE_STEP) && end > t &&
-           !(end >= HUGE_VAL) && t >= inst->v.time;
+    return (FMU_MODEL_USUAL_STEP || inst->v.mode == MODE_STEP) && end > t && !(end >= HUGE_VAL) &&
+           t >= inst->v.time;
 }
 
 /* Checks the step (t, h) against the unit's time, then runs the model's step rules: the usual

@@ -19,24 +19,24 @@
 #ifndef STEWART_FMU_ELEMENTS_H
 #define STEWART_FMU_ELEMENTS_H
 
-#define FMU_PARAM_FROM_TABLE(id, name, count, unit, display, min, min_closed, max, max_closed,  \
-                             defaults, description)                                             \
+#define FMU_PARAM_FROM_TABLE(id, name, count, unit, display, min, min_closed, max, max_closed, \
+                             defaults, description)                                            \
     FMU_ELEMENTS_##count(id, name, unit, display, description)
 
 #define FMU_ELEMENTS_1(id, name, unit, display, description) \
     FMU_PARAM(id, name, #name, name, unit, display, description)
 #define FMU_ELEMENT_(id, e, k, name, unit, display, description) \
     FMU_PARAM((id) + e, name##_##k, #name "[" #k "]", name[e], unit, display, description)
-#define FMU_ELEMENTS_3(id, name, unit, display, description)         \
-    FMU_ELEMENT_(id, 0, 1, name, unit, display, description " x")    \
-    FMU_ELEMENT_(id, 1, 2, name, unit, display, description " y")    \
+#define FMU_ELEMENTS_3(id, name, unit, display, description)      \
+    FMU_ELEMENT_(id, 0, 1, name, unit, display, description " x") \
+    FMU_ELEMENT_(id, 1, 2, name, unit, display, description " y") \
     FMU_ELEMENT_(id, 2, 3, name, unit, display, description " z")
-#define FMU_ELEMENTS_6(id, name, unit, display, description)               \
-    FMU_ELEMENT_(id, 0, 1, name, unit, display, description " of leg 1")   \
-    FMU_ELEMENT_(id, 1, 2, name, unit, display, description " of leg 2")   \
-    FMU_ELEMENT_(id, 2, 3, name, unit, display, description " of leg 3")   \
-    FMU_ELEMENT_(id, 3, 4, name, unit, display, description " of leg 4")   \
-    FMU_ELEMENT_(id, 4, 5, name, unit, display, description " of leg 5")   \
+#define FMU_ELEMENTS_6(id, name, unit, display, description)             \
+    FMU_ELEMENT_(id, 0, 1, name, unit, display, description " of leg 1") \
+    FMU_ELEMENT_(id, 1, 2, name, unit, display, description " of leg 2") \
+    FMU_ELEMENT_(id, 2, 3, name, unit, display, description " of leg 3") \
+    FMU_ELEMENT_(id, 3, 4, name, unit, display, description " of leg 4") \
+    FMU_ELEMENT_(id, 4, 5, name, unit, display, description " of leg 5") \
     FMU_ELEMENT_(id, 5, 6, name, unit, display, description " of leg 6")
 
 /* A pose (count STEWART_POSE_ELEMENTS in the table): x, y, z in m,
@@ -44,24 +44,24 @@
 #define FMU_POSE_ELEMENT_(id, e, k, name, axis, unit, display, description) \
     FMU_PARAM((id) + e, name##_##k, #name "[" #k "]", name[e], unit, display, description " " axis)
 #define FMU_ELEMENTS_STEWART_POSE_ELEMENTS(id, name, unit, display, description) \
-    FMU_POSE_ELEMENT_(id, 0, 1, name, "x", "m", "", description)                   \
-    FMU_POSE_ELEMENT_(id, 1, 2, name, "y", "m", "", description)                   \
-    FMU_POSE_ELEMENT_(id, 2, 3, name, "z", "m", "", description)                   \
-    FMU_POSE_ELEMENT_(id, 3, 4, name, "roll", "rad", "deg", description)           \
-    FMU_POSE_ELEMENT_(id, 4, 5, name, "pitch", "rad", "deg", description)          \
+    FMU_POSE_ELEMENT_(id, 0, 1, name, "x", "m", "", description)                 \
+    FMU_POSE_ELEMENT_(id, 1, 2, name, "y", "m", "", description)                 \
+    FMU_POSE_ELEMENT_(id, 2, 3, name, "z", "m", "", description)                 \
+    FMU_POSE_ELEMENT_(id, 3, 4, name, "roll", "rad", "deg", description)         \
+    FMU_POSE_ELEMENT_(id, 4, 5, name, "pitch", "rad", "deg", description)        \
     FMU_POSE_ELEMENT_(id, 5, 6, name, "yaw", "rad", "deg", description)
 /* x, y, z of legs 1..6 (joint coordinates and Cardan axes). */
-#define FMU_ELEMENTS_18(id, name, unit, display, description) \
-    FMU_ELEMENT_(id, 0, 1, name, unit, display, description " x of leg 1") \
-    FMU_ELEMENT_(id, 1, 2, name, unit, display, description " y of leg 1") \
-    FMU_ELEMENT_(id, 2, 3, name, unit, display, description " z of leg 1") \
-    FMU_ELEMENT_(id, 3, 4, name, unit, display, description " x of leg 2") \
-    FMU_ELEMENT_(id, 4, 5, name, unit, display, description " y of leg 2") \
-    FMU_ELEMENT_(id, 5, 6, name, unit, display, description " z of leg 2") \
-    FMU_ELEMENT_(id, 6, 7, name, unit, display, description " x of leg 3") \
-    FMU_ELEMENT_(id, 7, 8, name, unit, display, description " y of leg 3") \
-    FMU_ELEMENT_(id, 8, 9, name, unit, display, description " z of leg 3") \
-    FMU_ELEMENT_(id, 9, 10, name, unit, display, description " x of leg 4") \
+#define FMU_ELEMENTS_18(id, name, unit, display, description)                \
+    FMU_ELEMENT_(id, 0, 1, name, unit, display, description " x of leg 1")   \
+    FMU_ELEMENT_(id, 1, 2, name, unit, display, description " y of leg 1")   \
+    FMU_ELEMENT_(id, 2, 3, name, unit, display, description " z of leg 1")   \
+    FMU_ELEMENT_(id, 3, 4, name, unit, display, description " x of leg 2")   \
+    FMU_ELEMENT_(id, 4, 5, name, unit, display, description " y of leg 2")   \
+    FMU_ELEMENT_(id, 5, 6, name, unit, display, description " z of leg 2")   \
+    FMU_ELEMENT_(id, 6, 7, name, unit, display, description " x of leg 3")   \
+    FMU_ELEMENT_(id, 7, 8, name, unit, display, description " y of leg 3")   \
+    FMU_ELEMENT_(id, 8, 9, name, unit, display, description " z of leg 3")   \
+    FMU_ELEMENT_(id, 9, 10, name, unit, display, description " x of leg 4")  \
     FMU_ELEMENT_(id, 10, 11, name, unit, display, description " y of leg 4") \
     FMU_ELEMENT_(id, 11, 12, name, unit, display, description " z of leg 4") \
     FMU_ELEMENT_(id, 12, 13, name, unit, display, description " x of leg 5") \
@@ -73,8 +73,8 @@
 
 /* Options: int and long ones are Integer parameters with the table's range, double ones Real
  * (field: the option's name in the model's options struct). */
-#define FMU_OPTION_FROM_TABLE(id, name, type, unit, min, min_closed, max, max_closed, start,     \
-                              description)                                                      \
+#define FMU_OPTION_FROM_TABLE(id, name, type, unit, min, min_closed, max, max_closed, start, \
+                              description)                                                   \
     FMU_OPTION_FROM_TABLE_##type(id, name, unit, min, max, start, description)
 #define FMU_OPTION_FROM_TABLE_int(id, name, unit, min, max, start, description) \
     FMU_OPTION_INT(id, name, #name, start, min, max, description)
@@ -84,8 +84,8 @@
 
 /* The plant's options (STEWART_PLANT_OPTION_TABLE): the same, with the Real ones bound to
  * options.<name> of the model's settings (plant_settings, fmu/models/plant/config.h). */
-#define FMU_PLANT_OPTION_FROM_TABLE(id, name, type, unit, min, min_closed, max, max_closed,      \
-                                    start, description)                                         \
+#define FMU_PLANT_OPTION_FROM_TABLE(id, name, type, unit, min, min_closed, max, max_closed, start, \
+                                    description)                                                   \
     FMU_PLANT_OPTION_FROM_TABLE_##type(id, name, unit, min, max, start, description)
 #define FMU_PLANT_OPTION_FROM_TABLE_int FMU_OPTION_FROM_TABLE_int
 #define FMU_PLANT_OPTION_FROM_TABLE_long FMU_OPTION_FROM_TABLE_int

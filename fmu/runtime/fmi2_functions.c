@@ -58,7 +58,10 @@ void fmi2FreeInstance(fmi2Component c) { fmu_free(INST); }
 
 fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined, fmi2Real tolerance,
                                fmi2Real startTime, fmi2Boolean stopTimeDefined, fmi2Real stopTime) {
-    (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
+    (void)toleranceDefined;
+    (void)tolerance;
+    (void)stopTimeDefined;
+    (void)stopTime;
     CALL(fmu_setup_experiment(INST, startTime));
 }
 
@@ -87,16 +90,20 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 }
 
 /* Types without variables: only the empty call succeeds. */
-#define NO_VARIABLES(Name, Type)                                                         \
-    fmi2Status fmi2Get##Name(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,       \
-                             Type value[]) {                                                    \
-        (void)vr; (void)value;                                                                  \
-        return nvr == 0 ? fmi2OK : unsupported(c, "fmi2Get" #Name " (there are no " #Name " variables)"); \
-    }                                                                                           \
-    fmi2Status fmi2Set##Name(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,       \
-                             const Type value[]) {                                              \
-        (void)vr; (void)value;                                                                  \
-        return nvr == 0 ? fmi2OK : unsupported(c, "fmi2Set" #Name " (there are no " #Name " variables)"); \
+#define NO_VARIABLES(Name, Type)                                                                 \
+    fmi2Status fmi2Get##Name(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,         \
+                             Type value[]) {                                                     \
+        (void)vr;                                                                                \
+        (void)value;                                                                             \
+        return nvr == 0 ? fmi2OK                                                                 \
+                        : unsupported(c, "fmi2Get" #Name " (there are no " #Name " variables)"); \
+    }                                                                                            \
+    fmi2Status fmi2Set##Name(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,         \
+                             const Type value[]) {                                               \
+        (void)vr;                                                                                \
+        (void)value;                                                                             \
+        return nvr == 0 ? fmi2OK                                                                 \
+                        : unsupported(c, "fmi2Set" #Name " (there are no " #Name " variables)"); \
     }
 NO_VARIABLES(Boolean, fmi2Boolean)
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -145,14 +152,18 @@ fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference
     CALL(fmu_set_input_derivatives(INST, vr, nvr, order, value));
 }
 
-fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[],
-                                        size_t nvr, const fmi2Integer order[], fmi2Real value[]) {
-    (void)vr; (void)nvr; (void)order; (void)value;
+fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                        const fmi2Integer order[], fmi2Real value[]) {
+    (void)vr;
+    (void)nvr;
+    (void)order;
+    (void)value;
     return unsupported(c, "fmi2GetRealOutputDerivatives (maxOutputDerivativeOrder = 0)");
 }
 
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
-                      fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
+                      fmi2Real communicationStepSize,
+                      fmi2Boolean noSetFMUStatePriorToCurrentPoint) {
     (void)noSetFMUStatePriorToCurrentPoint;
     CALL(fmu_do_step(INST, currentCommunicationPoint, communicationStepSize));
 }
@@ -168,12 +179,14 @@ fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *va
 }
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value) {
-    if (s != fmi2LastSuccessfulTime) return unsupported(c, "fmi2GetRealStatus for this status kind");
+    if (s != fmi2LastSuccessfulTime)
+        return unsupported(c, "fmi2GetRealStatus for this status kind");
     CALL(fmu_get_last_successful_time(INST, value));
 }
 
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value) {
-    (void)s; (void)value;
+    (void)s;
+    (void)value;
     return unsupported(c, "fmi2GetIntegerStatus");
 }
 
@@ -186,6 +199,7 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
 }
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value) {
-    (void)s; (void)value;
+    (void)s;
+    (void)value;
     return unsupported(c, "fmi2GetStringStatus");
 }

@@ -27,7 +27,8 @@ fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c) {
     CALL(fmu_enter_continuous_time_mode(INST));
 }
 
-fmi2Status fmi2CompletedIntegratorStep(fmi2Component c, fmi2Boolean noSetFMUStatePriorToCurrentPoint,
+fmi2Status fmi2CompletedIntegratorStep(fmi2Component c,
+                                       fmi2Boolean noSetFMUStatePriorToCurrentPoint,
                                        fmi2Boolean *enterEventMode,
                                        fmi2Boolean *terminateSimulation) {
     (void)noSetFMUStatePriorToCurrentPoint;

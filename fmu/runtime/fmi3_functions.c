@@ -70,13 +70,16 @@ fmi3Instance fmi3InstantiateCoSimulation(
     size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
     fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate) {
     (void)resourcePath; /* the unit needs no resources */
-    (void)visible; (void)earlyReturnAllowed;
-    (void)requiredIntermediateVariables; (void)nRequiredIntermediateVariables;
+    (void)visible;
+    (void)earlyReturnAllowed;
+    (void)requiredIntermediateVariables;
+    (void)nRequiredIntermediateVariables;
     (void)intermediateUpdate;
     return instantiate(instanceName, instantiationToken, 0, loggingOn, instanceEnvironment,
                        logMessage,
                        eventModeUsed && !FMU_MODEL_EXCHANGE
-                           ? "this FMU has no event mode (hasEventMode = false)" : NULL);
+                           ? "this FMU has no event mode (hasEventMode = false)"
+                           : NULL);
 }
 
 fmi3Instance fmi3InstantiateScheduledExecution(
@@ -84,8 +87,14 @@ fmi3Instance fmi3InstantiateScheduledExecution(
     fmi3Boolean visible, fmi3Boolean loggingOn, fmi3InstanceEnvironment instanceEnvironment,
     fmi3LogMessageCallback logMessage, fmi3ClockUpdateCallback clockUpdate,
     fmi3LockPreemptionCallback lockPreemption, fmi3UnlockPreemptionCallback unlockPreemption) {
-    (void)instanceName; (void)instantiationToken; (void)resourcePath; (void)visible;
-    (void)loggingOn; (void)clockUpdate; (void)lockPreemption; (void)unlockPreemption;
+    (void)instanceName;
+    (void)instantiationToken;
+    (void)resourcePath;
+    (void)visible;
+    (void)loggingOn;
+    (void)clockUpdate;
+    (void)lockPreemption;
+    (void)unlockPreemption;
     if (logMessage)
         logMessage(instanceEnvironment, fmi3Error, "logStatusError",
                    "this FMU supports co-simulation only");
@@ -97,7 +106,10 @@ void fmi3FreeInstance(fmi3Instance instance) { fmu_free(INST); }
 fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined,
                                        fmi3Float64 tolerance, fmi3Float64 startTime,
                                        fmi3Boolean stopTimeDefined, fmi3Float64 stopTime) {
-    (void)toleranceDefined; (void)tolerance; (void)stopTimeDefined; (void)stopTime;
+    (void)toleranceDefined;
+    (void)tolerance;
+    (void)stopTimeDefined;
+    (void)stopTime;
     CALL(fmu_enter_initialization(INST, 1, startTime));
 }
 
@@ -111,8 +123,10 @@ fmi3Status fmi3Reset(fmi3Instance instance) { CALL(fmu_reset(INST)); }
 static fmi3Status check_counts(fmi3Instance instance, const char *f, size_t nvr, size_t nv) {
     if (nvr == nv) return fmi3OK;
     if (instance)
-        fmu_log(INST, FMU_ERROR, LOG_ERROR, "%s: nValues = %zu must equal nValueReferences = %zu "
-                "(all variables are scalars)", f, nv, nvr);
+        fmu_log(INST, FMU_ERROR, LOG_ERROR,
+                "%s: nValues = %zu must equal nValueReferences = %zu "
+                "(all variables are scalars)",
+                f, nv, nvr);
     return fmi3Error;
 }
 
@@ -141,16 +155,20 @@ fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference vr[], si
 }
 
 /* Types without variables: only the empty call succeeds. */
-#define NO_VARIABLES_GET(Name, Type)                                                            \
-    fmi3Status fmi3Get##Name(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, \
-                             Type values[], size_t nValues) {                                   \
-        (void)vr; (void)values; (void)nValues;                                                  \
+#define NO_VARIABLES_GET(Name, Type)                                                              \
+    fmi3Status fmi3Get##Name(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,    \
+                             Type values[], size_t nValues) {                                     \
+        (void)vr;                                                                                 \
+        (void)values;                                                                             \
+        (void)nValues;                                                                            \
         return nvr == 0 ? fmi3OK : unsupported(instance, "fmi3Get" #Name " (no such variables)"); \
     }
-#define NO_VARIABLES_SET(Name, Type)                                                            \
-    fmi3Status fmi3Set##Name(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr, \
-                             const Type values[], size_t nValues) {                             \
-        (void)vr; (void)values; (void)nValues;                                                  \
+#define NO_VARIABLES_SET(Name, Type)                                                              \
+    fmi3Status fmi3Set##Name(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,    \
+                             const Type values[], size_t nValues) {                               \
+        (void)vr;                                                                                 \
+        (void)values;                                                                             \
+        (void)nValues;                                                                            \
         return nvr == 0 ? fmi3OK : unsupported(instance, "fmi3Set" #Name " (no such variables)"); \
     }
 #define NO_VARIABLES(Name, Type) NO_VARIABLES_GET(Name, Type) NO_VARIABLES_SET(Name, Type)
@@ -177,28 +195,37 @@ fmi3Status fmi3SetString(fmi3Instance instance, const fmi3ValueReference vr[], s
 
 fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                          size_t valueSizes[], fmi3Binary values[], size_t nValues) {
-    (void)vr; (void)valueSizes; (void)values; (void)nValues;
+    (void)vr;
+    (void)valueSizes;
+    (void)values;
+    (void)nValues;
     return nvr == 0 ? fmi3OK : unsupported(instance, "fmi3GetBinary (no such variables)");
 }
 fmi3Status fmi3SetBinary(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                          const size_t valueSizes[], const fmi3Binary values[], size_t nValues) {
-    (void)vr; (void)valueSizes; (void)values; (void)nValues;
+    (void)vr;
+    (void)valueSizes;
+    (void)values;
+    (void)nValues;
     return nvr == 0 ? fmi3OK : unsupported(instance, "fmi3SetBinary (no such variables)");
 }
 fmi3Status fmi3GetClock(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                         fmi3Clock values[]) {
-    (void)vr; (void)values;
+    (void)vr;
+    (void)values;
     return nvr == 0 ? fmi3OK : unsupported(instance, "fmi3GetClock (no clocks)");
 }
 fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                         const fmi3Clock values[]) {
-    (void)vr; (void)values;
+    (void)vr;
+    (void)values;
     return nvr == 0 ? fmi3OK : unsupported(instance, "fmi3SetClock (no clocks)");
 }
 
 fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance instance, fmi3ValueReference vr,
                                                size_t *nDependencies) {
-    (void)vr; (void)nDependencies;
+    (void)vr;
+    (void)nDependencies;
     return unsupported(instance, "fmi3GetNumberOfVariableDependencies");
 }
 fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference dependent,
@@ -206,8 +233,12 @@ fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference
                                        fmi3ValueReference independents[],
                                        size_t elementIndicesOfIndependents[],
                                        fmi3DependencyKind dependencyKinds[], size_t nDependencies) {
-    (void)dependent; (void)elementIndicesOfDependent; (void)independents;
-    (void)elementIndicesOfIndependents; (void)dependencyKinds; (void)nDependencies;
+    (void)dependent;
+    (void)elementIndicesOfDependent;
+    (void)independents;
+    (void)elementIndicesOfIndependents;
+    (void)dependencyKinds;
+    (void)nDependencies;
     return unsupported(instance, "fmi3GetVariableDependencies");
 }
 
@@ -240,8 +271,8 @@ static int derivative_counts_ok(fmi3Instance instance, const char *function, siz
                                 size_t n_sensitive, const char *sensitivity_of) {
     if (!instance || (nSeed == n_seeded && nSensitivity == n_sensitive)) return 1;
     fmu_log(INST, FMU_ERROR, LOG_ERROR,
-            "%s: nSeed = %zu must equal %s = %zu and nSensitivity = %zu %s = %zu", function,
-            nSeed, seed_of, n_seeded, nSensitivity, sensitivity_of, n_sensitive);
+            "%s: nSeed = %zu must equal %s = %zu and nSensitivity = %zu %s = %zu", function, nSeed,
+            seed_of, n_seeded, nSensitivity, sensitivity_of, n_sensitive);
     return 0;
 }
 
@@ -264,8 +295,8 @@ fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueRefere
     if (!derivative_counts_ok(instance, "fmi3GetAdjointDerivative", nSeed, nUnknowns, "nUnknowns",
                               nSensitivity, nKnowns, "nKnowns"))
         return fmi3Error;
-    CALL(fmu_get_adjoint_derivative(INST, unknowns, nUnknowns, knowns, nKnowns, seed,
-                                    sensitivity, "fmi3GetAdjointDerivative"));
+    CALL(fmu_get_adjoint_derivative(INST, unknowns, nUnknowns, knowns, nKnowns, seed, sensitivity,
+                                    "fmi3GetAdjointDerivative"));
 }
 
 fmi3Status fmi3EnterConfigurationMode(fmi3Instance instance) {
@@ -276,43 +307,65 @@ fmi3Status fmi3ExitConfigurationMode(fmi3Instance instance) {
 }
 fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                   fmi3Float64 intervals[], fmi3IntervalQualifier qualifiers[]) {
-    (void)vr; (void)nvr; (void)intervals; (void)qualifiers;
+    (void)vr;
+    (void)nvr;
+    (void)intervals;
+    (void)qualifiers;
     return unsupported(instance, "fmi3GetIntervalDecimal");
 }
 fmi3Status fmi3GetIntervalFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                    fmi3UInt64 counters[], fmi3UInt64 resolutions[],
                                    fmi3IntervalQualifier qualifiers[]) {
-    (void)vr; (void)nvr; (void)counters; (void)resolutions; (void)qualifiers;
+    (void)vr;
+    (void)nvr;
+    (void)counters;
+    (void)resolutions;
+    (void)qualifiers;
     return unsupported(instance, "fmi3GetIntervalFraction");
 }
 fmi3Status fmi3GetShiftDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                fmi3Float64 shifts[]) {
-    (void)vr; (void)nvr; (void)shifts;
+    (void)vr;
+    (void)nvr;
+    (void)shifts;
     return unsupported(instance, "fmi3GetShiftDecimal");
 }
 fmi3Status fmi3GetShiftFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                 fmi3UInt64 counters[], fmi3UInt64 resolutions[]) {
-    (void)vr; (void)nvr; (void)counters; (void)resolutions;
+    (void)vr;
+    (void)nvr;
+    (void)counters;
+    (void)resolutions;
     return unsupported(instance, "fmi3GetShiftFraction");
 }
 fmi3Status fmi3SetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                   const fmi3Float64 intervals[]) {
-    (void)vr; (void)nvr; (void)intervals;
+    (void)vr;
+    (void)nvr;
+    (void)intervals;
     return unsupported(instance, "fmi3SetIntervalDecimal");
 }
 fmi3Status fmi3SetIntervalFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                    const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
-    (void)vr; (void)nvr; (void)counters; (void)resolutions;
+    (void)vr;
+    (void)nvr;
+    (void)counters;
+    (void)resolutions;
     return unsupported(instance, "fmi3SetIntervalFraction");
 }
 fmi3Status fmi3SetShiftDecimal(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                const fmi3Float64 shifts[]) {
-    (void)vr; (void)nvr; (void)shifts;
+    (void)vr;
+    (void)nvr;
+    (void)shifts;
     return unsupported(instance, "fmi3SetShiftDecimal");
 }
 fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
                                 const fmi3UInt64 counters[], const fmi3UInt64 resolutions[]) {
-    (void)vr; (void)nvr; (void)counters; (void)resolutions;
+    (void)vr;
+    (void)nvr;
+    (void)counters;
+    (void)resolutions;
     return unsupported(instance, "fmi3SetShiftFraction");
 }
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance) {
@@ -323,9 +376,14 @@ fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance) {
 fmi3Status fmi3EnterStepMode(fmi3Instance instance) {
     return unsupported(instance, "fmi3EnterStepMode (no event mode)");
 }
-fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueReference vr[], size_t nvr,
-                                    const fmi3Int32 orders[], fmi3Float64 values[], size_t nValues) {
-    (void)vr; (void)nvr; (void)orders; (void)values; (void)nValues;
+fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance, const fmi3ValueReference vr[],
+                                    size_t nvr, const fmi3Int32 orders[], fmi3Float64 values[],
+                                    size_t nValues) {
+    (void)vr;
+    (void)nvr;
+    (void)orders;
+    (void)values;
+    (void)nValues;
     return unsupported(instance, "fmi3GetOutputDerivatives (maxOutputDerivativeOrder = 0)");
 }
 
@@ -341,7 +399,9 @@ static fmi3Status do_step_otherwise(fmi3Instance instance, fmi3Float64 currentCo
                                     fmi3Boolean *eventHandlingNeeded,
                                     fmi3Boolean *terminateSimulation, fmi3Boolean *earlyReturn,
                                     fmi3Float64 *lastSuccessfulTime) {
-    (void)noSetFMUStatePriorToCurrentPoint; (void)eventHandlingNeeded; (void)terminateSimulation;
+    (void)noSetFMUStatePriorToCurrentPoint;
+    (void)eventHandlingNeeded;
+    (void)terminateSimulation;
     (void)earlyReturn;
     CALL(fmu_do_step_reporting_otherwise(INST, currentCommunicationPoint, communicationStepSize,
                                          lastSuccessfulTime));
@@ -355,7 +415,8 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     if (eventHandlingNeeded) *eventHandlingNeeded = fmi3False;
     if (terminateSimulation) *terminateSimulation = fmi3False;
     if (earlyReturn) *earlyReturn = fmi3False;
-    if (lastSuccessfulTime && fmu_usual_call(INST, currentCommunicationPoint, communicationStepSize))
+    if (lastSuccessfulTime &&
+        fmu_usual_call(INST, currentCommunicationPoint, communicationStepSize))
         CALL(fmu_usual_step_reporting(INST, currentCommunicationPoint, communicationStepSize,
                                       lastSuccessfulTime));
     return do_step_otherwise(instance, currentCommunicationPoint, communicationStepSize,
@@ -365,6 +426,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
 
 fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,
                                       fmi3Float64 activationTime) {
-    (void)clockReference; (void)activationTime;
+    (void)clockReference;
+    (void)activationTime;
     return unsupported(instance, "fmi3ActivateModelPartition");
 }

@@ -18,8 +18,8 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
     const fmu_status s = fmu_new_discrete_states(INST);
     if (s == FMU_OK || s == FMU_WARNING) { /* Warning: outputs valid */
         fmi3Boolean *flags[5] = {discreteStatesNeedUpdate, terminateSimulation,
-                                 nominalsOfContinuousStatesChanged,
-                                 valuesOfContinuousStatesChanged, nextEventTimeDefined};
+                                 nominalsOfContinuousStatesChanged, valuesOfContinuousStatesChanged,
+                                 nextEventTimeDefined};
         for (int i = 0; i < 5; ++i)
             if (flags[i]) *flags[i] = fmi3False;
         if (nextEventTime) *nextEventTime = 0.0;

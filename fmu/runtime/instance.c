@@ -131,8 +131,7 @@ fmu_status fmu_get_step_status(fmu_instance *inst, int *status) {
 }
 
 fmu_status fmu_get_last_successful_time(fmu_instance *inst, double *time) {
-    if (fmu_check_call(inst, CALL_GET_STATUS, "GetRealStatus") != FMU_OK || !time)
-        return FMU_ERROR;
+    if (fmu_check_call(inst, CALL_GET_STATUS, "GetRealStatus") != FMU_OK || !time) return FMU_ERROR;
     *time = inst->v.last_successful_time;
     return FMU_OK;
 }

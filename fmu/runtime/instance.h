@@ -20,7 +20,13 @@ extern "C" {
 #endif
 
 /* Same numbering as fmi2Status and fmi3Status. */
-typedef enum { FMU_OK = 0, FMU_WARNING = 1, FMU_DISCARD = 2, FMU_ERROR = 3, FMU_FATAL = 4 } fmu_status;
+typedef enum {
+    FMU_OK = 0,
+    FMU_WARNING = 1,
+    FMU_DISCARD = 2,
+    FMU_ERROR = 3,
+    FMU_FATAL = 4
+} fmu_status;
 
 /* Mode of an instance (bit flags, so a call can list the modes it is allowed in). */
 typedef enum {
@@ -61,19 +67,19 @@ typedef enum { FMU_VERSION_2 = 2, FMU_VERSION_3 = 3 } fmu_version;
  * Serialised as is; the last two members stay last_successful_time and mode (tests corrupt
  * them by offset). */
 typedef struct fmu_values {
-    double real[FMU_NVR];      /* Real variables by value reference */
-    int32_t integer[FMU_NVR];  /* Integer variables by value reference */
-    model_values model;        /* the model's own plain values (config.h) */
-    double time;               /* communication point the current inputs belong to */
-    double last_step_point;    /* communication point of the last accepted step */
-    int has_stepped;           /* a step has been accepted since initialisation */
-    int outputs_current;       /* the outputs belong to the current inputs and time (1) */
-    int inputs_unchecked;      /* 0: every input is finite (the step need not look); set when a
+    double real[FMU_NVR];     /* Real variables by value reference */
+    int32_t integer[FMU_NVR]; /* Integer variables by value reference */
+    model_values model;       /* the model's own plain values (config.h) */
+    double time;              /* communication point the current inputs belong to */
+    double last_step_point;   /* communication point of the last accepted step */
+    int has_stepped;          /* a step has been accepted since initialisation */
+    int outputs_current;      /* the outputs belong to the current inputs and time (1) */
+    int inputs_unchecked;     /* 0: every input is finite (the step need not look); set when a
                                   value that is not finite is set or restored, cleared by the
                                   model's scan of its inputs */
-    int last_step_status;      /* what the last doStep returned (fmi2GetStatus) */
+    int last_step_status;     /* what the last doStep returned (fmi2GetStatus) */
     double last_successful_time;
-    int mode;                  /* fmu_mode */
+    int mode; /* fmu_mode */
 } fmu_values;
 
 /* A step's end (t + h) and t, side by side as the unit's time and last step point are. */
@@ -89,11 +95,11 @@ typedef void (*fmu_log_fn)(const void *callbacks, void *environment, const char 
 
 struct fmu_instance {
     fmu_values v;
-    model_resources res;       /* the model's resources (config.h), freed by model_free */
+    model_resources res; /* the model's resources (config.h), freed by model_free */
     fmu_version version;
     char *name;
     fmu_log_fn log_fn;
-    const void *callbacks;     /* fmi2CallbackFunctions* (FMI 2) or the log callback (FMI 3) */
+    const void *callbacks; /* fmi2CallbackFunctions* (FMI 2) or the log callback (FMI 3) */
     void *environment;
     int logging_on;
     int category_on[FMU_N_LOG_CATEGORIES];
@@ -179,8 +185,8 @@ static inline fmu_status fmu_step_accepted_kept(fmu_values *v, const fmu_step_sp
  * by side, read as one. */
 static inline int fmu_outputs_current_or_inputs_unchecked(const fmu_values *v) {
     _Static_assert(offsetof(fmu_values, inputs_unchecked) ==
-                       offsetof(fmu_values, outputs_current) + sizeof(int) &&
-                   sizeof(int) == sizeof(uint32_t),
+                           offsetof(fmu_values, outputs_current) + sizeof(int) &&
+                       sizeof(int) == sizeof(uint32_t),
                    "outputs_current and inputs_unchecked no longer lie side by side");
     uint64_t both;
     memcpy(&both, (const unsigned char *)v + offsetof(fmu_values, outputs_current), sizeof both);

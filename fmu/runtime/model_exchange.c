@@ -36,8 +36,10 @@ static fmu_status check_me_call(fmu_instance *inst, fmu_call call, const char *f
 static fmu_status check_array(fmu_instance *inst, const char *function, const void *array,
                               size_t n) {
     if (n != FMU_N_STATES) {
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: the array has %zu elements, the unit has %d "
-                "continuous states", function, n, FMU_N_STATES);
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "%s: the array has %zu elements, the unit has %d "
+                "continuous states",
+                function, n, FMU_N_STATES);
         return FMU_ERROR;
     }
     if (n > 0 && !array) {
@@ -106,9 +108,10 @@ fmu_status fmu_set_continuous_states(fmu_instance *inst, const double x[], size_
         return FMU_ERROR;
     for (size_t i = 0; i < n; ++i)
         if (!isfinite(x[i])) {
-            fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "SetContinuousStates: state %s = %g is not "
-                    "finite; the states are not changed", fmu_variable_by_vr(FMU_STATE_VR(i))->name,
-                    x[i]);
+            fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                    "SetContinuousStates: state %s = %g is not "
+                    "finite; the states are not changed",
+                    fmu_variable_by_vr(FMU_STATE_VR(i))->name, x[i]);
             return FMU_DISCARD;
         }
     for (size_t i = 0; i < n; ++i) inst->v.real[FMU_STATE_VR(i)] = x[i];

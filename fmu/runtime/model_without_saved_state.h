@@ -10,10 +10,12 @@
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
                                        const int order[], const double value[]) {
-    (void)vr; (void)order; (void)value;
+    (void)vr;
+    (void)order;
+    (void)value;
     if (n == 0) return FMU_OK;
-    fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetRealInputDerivatives: " FMU_MODEL_IDENTIFIER
-            " takes no input derivatives");
+    fmu_log(inst, FMU_ERROR, LOG_ERROR,
+            "SetRealInputDerivatives: " FMU_MODEL_IDENTIFIER " takes no input derivatives");
     return FMU_ERROR;
 }
 
@@ -23,12 +25,14 @@ size_t model_state_size(const fmu_instance *inst) {
 }
 
 fmu_status model_save(const fmu_instance *inst, unsigned char *out, size_t size) {
-    (void)inst; (void)out;
+    (void)inst;
+    (void)out;
     return size == 0 ? FMU_OK : FMU_ERROR;
 }
 
 fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) {
-    (void)inst; (void)in;
+    (void)inst;
+    (void)in;
     return size == 0 ? FMU_OK : FMU_ERROR;
 }
 

@@ -12,7 +12,7 @@
 
 struct fmu_snapshot {
     fmu_values v;
-    unsigned char *bytes;      /* the model's saved resources (model_save), size bytes */
+    unsigned char *bytes; /* the model's saved resources (model_save), size bytes */
     size_t size;
     size_t capacity;
 };
@@ -99,9 +99,10 @@ fmu_status fmu_serialize_state(fmu_instance *inst, const fmu_snapshot *s, unsign
                                size_t size) {
     if (fmu_check_call(inst, CALL_SERIALIZE, "SerializeFMUState") != FMU_OK) return FMU_ERROR;
     if (!s || !out || size < HEADER + s->size) {
-        fmu_log(inst, FMU_ERROR, LOG_ERROR,
-                "SerializeFMUState: %s", !s ? "the state is NULL" : !out ? "the buffer is NULL"
-                : "the buffer is smaller than SerializedFMUStateSize");
+        fmu_log(inst, FMU_ERROR, LOG_ERROR, "SerializeFMUState: %s",
+                !s     ? "the state is NULL"
+                : !out ? "the buffer is NULL"
+                       : "the buffer is smaller than SerializedFMUStateSize");
         return FMU_ERROR;
     }
     const uint64_t n = sizeof(fmu_values), data_size = s->size;
@@ -135,8 +136,7 @@ static const char *corrupt_values(const fmu_values *v) {
     if ((v->outputs_current & ~1) || (v->has_stepped & ~1) || (v->inputs_unchecked & ~1) ||
         v->last_step_status < FMU_OK || v->last_step_status > FMU_ERROR)
         return "a flag is out of range";
-    if (!isfinite(v->time) || !isfinite(v->last_successful_time) ||
-        !isfinite(v->last_step_point))
+    if (!isfinite(v->time) || !isfinite(v->last_successful_time) || !isfinite(v->last_step_point))
         return "time is not finite";
     if (v->real[fmu_time_vr] != v->time) return "the time variable is not the unit's time";
     if (v->has_stepped && !(v->last_step_point < v->time))
@@ -153,8 +153,7 @@ static const fmu_variable *outside_declared_range(const fmu_values *v) {
     for (size_t j = 0; j < fmu_n_variables; ++j) {
         const fmu_variable *var = &fmu_variables[j];
         if (var->causality != FMU_INPUT_VAR && var->causality != FMU_PARAMETER_VAR) continue;
-        if (!fmu_within_range(var, var->type == FMU_REAL ? v->real[var->vr]
-                                                         : v->integer[var->vr]))
+        if (!fmu_within_range(var, var->type == FMU_REAL ? v->real[var->vr] : v->integer[var->vr]))
             return var;
     }
     return NULL;
@@ -181,8 +180,9 @@ fmu_status fmu_deserialize_state(fmu_instance *inst, const unsigned char *in, si
     const fmu_variable *outside = corrupt ? NULL : outside_declared_range(&v);
     if (outside) {
         const double x = outside->type == FMU_REAL ? v.real[outside->vr] : v.integer[outside->vr];
-        fmu_log(inst, FMU_ERROR, LOG_ERROR, "DeserializeFMUState: corrupt state: "
-                FMU_OUT_OF_RANGE_FORMAT, outside->name, x, outside->min, outside->max);
+        fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                "DeserializeFMUState: corrupt state: " FMU_OUT_OF_RANGE_FORMAT, outside->name, x,
+                outside->min, outside->max);
         return FMU_ERROR;
     }
     if (!corrupt) corrupt = model_check_state(inst, &v, in + HEADER, data_size, why, sizeof why);

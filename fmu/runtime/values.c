@@ -107,9 +107,9 @@ static fmu_status check_settable(fmu_instance *inst, const char *what, const uns
         if (type == FMU_STRING) continue; /* a path or a name: no range */
         const double x = given(type, value, i);
         if (!fmu_within_range(var, x)) {
-            fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s: " FMU_OUT_OF_RANGE_FORMAT
-                    " (none of this call's values is set)", what, var->name, x, var->min,
-                    var->max);
+            fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                    "%s: " FMU_OUT_OF_RANGE_FORMAT " (none of this call's values is set)", what,
+                    var->name, x, var->min, var->max);
             return FMU_ERROR;
         }
     }
@@ -170,8 +170,7 @@ fmu_status fmu_set_input_derivatives(fmu_instance *inst, const unsigned vr[], si
                                      const int order[], const double value[]) {
     if (fmu_check_call(inst, CALL_SET_INPUT_DERIVATIVES, "SetRealInputDerivatives") != FMU_OK)
         return FMU_ERROR;
-    if (n > 0 && (!vr || !order || !value))
-        return null_arrays(inst, "SetRealInputDerivatives");
+    if (n > 0 && (!vr || !order || !value)) return null_arrays(inst, "SetRealInputDerivatives");
     const fmu_status s = model_set_input_derivatives(inst, vr, n, order, value);
     if (s == FMU_OK && n > 0) inst->v.outputs_current = 0;
     return s;

@@ -65,9 +65,9 @@ typedef struct fmu_variable {
     const char *name;
     fmu_type type;
     fmu_causality causality;
-    const char *unit;          /* "" if none */
-    const char *display_unit;  /* "" if none */
-    int has_range;             /* min and max below apply (integers) */
+    const char *unit;         /* "" if none */
+    const char *display_unit; /* "" if none */
+    int has_range;            /* min and max below apply (integers) */
     long min, max;
     const char *description;
 } fmu_variable;

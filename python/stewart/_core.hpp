@@ -69,7 +69,8 @@ struct MessageBuffer {
 };
 
 // One direction's option table (stewart/stewart_table.h) and its calls.
-template <typename Options> struct OptionTable {
+template <typename Options>
+struct OptionTable {
     const char *kind;  // in the message for an unknown name
     void (*defaults)(Options *);
     int (*find)(const char *);
@@ -152,7 +153,7 @@ private:
 using OptionValues = std::vector<std::pair<std::string, double>>;
 using InversePool = SolverPool<stewart_inverse, OptionValues>;
 using ForwardPool = SolverPool<stewart_forward, OptionValues>;
-using LinearizePool = SolverPool<stewart_linearize, int>;  // by fidelity
+using LinearizePool = SolverPool<stewart_linearize, int>;              // by fidelity
 using LimitsPool = SolverPool<stewart_limits, std::optional<double>>;  // by warn_condition
 
 // A solver taken from its pool (or, when the pool has none made with key, made by the caller
@@ -228,11 +229,12 @@ T *table_column(const nb::dict &outputs, const char *name, size_t n, int count,
     if (!nb::try_cast<Array>(a, array, false))
         fail((std::string("output ") + name + " must be a C-ordered array of " + dtype_name<T>())
                  .c_str());
-    const bool shaped = count == 1 ? array.ndim() == 1
-                                   : array.ndim() == 2 && array.shape(1) == size_t(count);
+    const bool shaped =
+        count == 1 ? array.ndim() == 1 : array.ndim() == 2 && array.shape(1) == size_t(count);
     if (!shaped || array.shape(0) != n)
         fail((std::string("output ") + name + " must have " + std::to_string(n) + " rows of " +
-              std::to_string(count) + " values").c_str());
+              std::to_string(count) + " values")
+                 .c_str());
     held.push_back(a);
     return array.data();
 }
@@ -260,7 +262,8 @@ public:
             if (size_t(o) % columns[i].align != 0 || size_t(o) > bytes ||
                 rows > (bytes - size_t(o)) / columns[i].row_bytes)
                 fail(("placement column " + std::to_string(i) + " at " + std::to_string(o) +
-                      " is misaligned or beyond the block").c_str());
+                      " is misaligned or beyond the block")
+                         .c_str());
             align_ = std::max(align_, columns[i].align);
             spans.emplace_back(size_t(o), size_t(o) + rows * columns[i].row_bytes);
         }
@@ -289,49 +292,49 @@ private:
 };
 
 // A Placement::ColumnSize per column of an output table.
-#define STEWART_PLACEMENT_COLUMN(name, member, count, type, unit, description)                    \
+#define STEWART_PLACEMENT_COLUMN(name, member, count, type, unit, description) \
     Placement::ColumnSize{size_t(count) * sizeof(type), alignof(type)},
 
 // The batch outputs of a direction's table bound to the arrays of outputs (name -> array).
-#define STEWART_BIND_COLUMN(name, member, count, type, unit, description)                         \
+#define STEWART_BIND_COLUMN(name, member, count, type, unit, description) \
     o.name = table_column<type>(outputs, #name, n, count, held);
 
 // A batch's outputs (one pointer per column of its X-macro table, at row 0) moved on to row
 // `first`: where a batch over rows first.. of the arrays writes.
-#define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description)                        \
+#define STEWART_SHIFT_COLUMN(name, member, count, type, unit, description) \
     if (o.name) o.name += first * (count);
 
 // A batch's output bound to its column of a block (Placement).
-#define STEWART_PLACE_COLUMN(name, member, count, type, unit, description)                        \
+#define STEWART_PLACE_COLUMN(name, member, count, type, unit, description) \
     o.name = placement.column<type>(data, i++);
 
 // A direction's place_outputs (its batch outputs bound to a block's columns), placement_columns
 // (its table's ColumnSize, then status's) and from_row (moved on to row first), from its output
 // table.
-#define STEWART_OUTPUT_BINDINGS(Outputs, TABLE)                                                  \
-    Outputs place_outputs(Outputs o, uint8_t *data, const Placement &placement) {                \
-        size_t i = 0;                                                                            \
-        TABLE(STEWART_PLACE_COLUMN)                                                              \
-        o.status = placement.column<int>(data, i);                                               \
-        return o;                                                                                \
-    }                                                                                            \
-    const std::vector<Placement::ColumnSize> &placement_columns() {                              \
-        static const std::vector<Placement::ColumnSize> columns = {                              \
-            TABLE(STEWART_PLACEMENT_COLUMN) Placement::ColumnSize{sizeof(int), alignof(int)}};   \
-        return columns;                                                                          \
-    }                                                                                            \
-    Outputs from_row(Outputs o, size_t first) {                                                  \
-        TABLE(STEWART_SHIFT_COLUMN)                                                              \
-        o.status += first;                                                                       \
-        return o;                                                                                \
+#define STEWART_OUTPUT_BINDINGS(Outputs, TABLE)                                                \
+    Outputs place_outputs(Outputs o, uint8_t *data, const Placement &placement) {              \
+        size_t i = 0;                                                                          \
+        TABLE(STEWART_PLACE_COLUMN)                                                            \
+        o.status = placement.column<int>(data, i);                                             \
+        return o;                                                                              \
+    }                                                                                          \
+    const std::vector<Placement::ColumnSize> &placement_columns() {                            \
+        static const std::vector<Placement::ColumnSize> columns = {                            \
+            TABLE(STEWART_PLACEMENT_COLUMN) Placement::ColumnSize{sizeof(int), alignof(int)}}; \
+        return columns;                                                                        \
+    }                                                                                          \
+    Outputs from_row(Outputs o, size_t first) {                                                \
+        TABLE(STEWART_SHIFT_COLUMN)                                                            \
+        o.status += first;                                                                     \
+        return o;                                                                              \
     }
 
 // A direction's bind_outputs: its batch outputs bound to the arrays of outputs (name -> array).
-#define STEWART_OUTPUTS_BY_NAME(Outputs, TABLE)                                                  \
-    Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n,                           \
-                         std::vector<nb::object> &held) {                                        \
-        TABLE(STEWART_BIND_COLUMN)                                                               \
-        return o;                                                                                \
+#define STEWART_OUTPUTS_BY_NAME(Outputs, TABLE)                        \
+    Outputs bind_outputs(Outputs o, const nb::dict &outputs, size_t n, \
+                         std::vector<nb::object> &held) {              \
+        TABLE(STEWART_BIND_COLUMN)                                     \
+        return o;                                                      \
     }
 
 // Runs batch(messages, first_failed) -> status over rows [first, stop) of solver with the GIL

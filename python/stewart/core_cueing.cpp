@@ -14,8 +14,8 @@ namespace stewart_core {
 namespace {
 
 const OptionTable<stewart_cueing_options> kCueingOptions = {
-    "cueing", stewart_cueing_options_default, stewart_cueing_option_find,
-    stewart_cueing_option_set, stewart_cueing_options_check};
+    "cueing", stewart_cueing_options_default, stewart_cueing_option_find, stewart_cueing_option_set,
+    stewart_cueing_options_check};
 
 // Owns a cueing object for the length of one call.
 struct CueingObject {
@@ -120,9 +120,9 @@ void platform_motion(const Model &model, Poses pose, Poses rate, Poses accel,
 }  // namespace
 
 void bind_cueing(nb::module_ &m) {
-    m.def("platform_motion", &platform_motion, nb::arg("model"), nb::arg("pose"),
-          nb::arg("rate"), nb::arg("accel"), nb::arg("position"), nb::arg("velocity"),
-          nb::arg("acceleration"), nb::arg("rotation"), nb::arg("omega"), nb::arg("alpha"));
+    m.def("platform_motion", &platform_motion, nb::arg("model"), nb::arg("pose"), nb::arg("rate"),
+          nb::arg("accel"), nb::arg("position"), nb::arg("velocity"), nb::arg("acceleration"),
+          nb::arg("rotation"), nb::arg("omega"), nb::arg("alpha"));
     // The model's gravity [m/s2] in the z-up world (base) frame, whatever the frame convention.
     m.def("model_gravity", [](const Model &model) {
         const double *g = stewart_model_params(model.get())->gravity;

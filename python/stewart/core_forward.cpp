@@ -48,22 +48,25 @@ public:
         if (cold_)
             return run_rows(forward_.solver, stewart_forward_message, first, stop, max_messages,
                             [&](stewart_batch_messages *messages, size_t *first_failed) {
-                return stewart_forward_batch_cold(
-                    forward_.solver, stop - first, lengths_.data() + 6 * first,
-                    rates_ ? rates_->data() + 6 * first : nullptr,
-                    accels_ ? accels_->data() + 6 * first : nullptr,
-                    guess_ ? guess_->data() + 6 * first : nullptr, &out, messages, first_failed);
-            });
+                                return stewart_forward_batch_cold(
+                                    forward_.solver, stop - first, lengths_.data() + 6 * first,
+                                    rates_ ? rates_->data() + 6 * first : nullptr,
+                                    accels_ ? accels_->data() + 6 * first : nullptr,
+                                    guess_ ? guess_->data() + 6 * first : nullptr, &out, messages,
+                                    first_failed);
+                            });
         const double *guess = guess_ && first == 0 ? guess_->data() : nullptr;
         return run_rows(forward_.solver, stewart_forward_message, first, stop, max_messages,
                         [&](stewart_batch_messages *messages, size_t *first_failed) {
-            return stewart_forward_batch(forward_.solver, stop - first,
-                                         time_ ? time_->data() + first : nullptr,
-                                         lengths_.data() + 6 * first,
-                                         rates_ ? rates_->data() + 6 * first : nullptr,
-                                         accels_ ? accels_->data() + 6 * first : nullptr, guess,
-                                         &out, messages, first_failed);
-        });
+                            return stewart_forward_batch(forward_.solver, stop - first,
+                                                         time_ ? time_->data() + first : nullptr,
+                                                         lengths_.data() + 6 * first,
+                                                         rates_ ? rates_->data() + 6 * first
+                                                                : nullptr,
+                                                         accels_ ? accels_->data() + 6 * first
+                                                                 : nullptr,
+                                                         guess, &out, messages, first_failed);
+                        });
     }
 
 private:
@@ -87,26 +90,28 @@ private:
 // as their block and its placement (made by forward_placement; bound by their offsets).
 void bind_forward(nb::module_ &m) {
     nb::class_<ForwardRun>(m, "ForwardRun")
-        .def("__init__",
-             [](ForwardRun *self, const Model &model, Poses lengths, std::optional<Poses> rates,
-                std::optional<Poses> accels, std::optional<Times> time,
-                std::optional<Column<const double>> guess, bool cold, const OptionValues &options,
-                Column<uint8_t> block, const Placement &placement) {
-                 uint8_t *data = placement.data(block, lengths.shape(0));
-                 new (self) ForwardRun(model, lengths, rates, accels, time, guess, cold, options,
-                                       place_outputs({}, data, placement), {nb::cast(block)});
-             },
-             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"),
-             nb::arg("rates").none(), nb::arg("accels").none(), nb::arg("time").none(),
-             nb::arg("guess").none(), nb::arg("cold"), nb::arg("options"), nb::arg("block"),
-             nb::arg("placement"))
-        .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"),
-             nb::arg("max_messages"));
+        .def(
+            "__init__",
+            [](ForwardRun *self, const Model &model, Poses lengths, std::optional<Poses> rates,
+               std::optional<Poses> accels, std::optional<Times> time,
+               std::optional<Column<const double>> guess, bool cold, const OptionValues &options,
+               Column<uint8_t> block, const Placement &placement) {
+                uint8_t *data = placement.data(block, lengths.shape(0));
+                new (self) ForwardRun(model, lengths, rates, accels, time, guess, cold, options,
+                                      place_outputs({}, data, placement), {nb::cast(block)});
+            },
+            nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("lengths"), nb::arg("rates").none(),
+            nb::arg("accels").none(), nb::arg("time").none(), nb::arg("guess").none(),
+            nb::arg("cold"), nb::arg("options"), nb::arg("block"), nb::arg("placement"))
+        .def("rows", &ForwardRun::rows, nb::arg("first"), nb::arg("stop"), nb::arg("max_messages"));
     // Where a new result's arrays lie in its block: for rows rows, a block of bytes bytes, the
     // byte offset of each forward output column then status's (-1: a column left alone).
-    m.def("forward_placement", [](size_t rows, size_t bytes, std::vector<long> offsets) {
-        return Placement(placement_columns(), rows, bytes, std::move(offsets));
-    }, nb::arg("rows"), nb::arg("bytes"), nb::arg("offsets"));
+    m.def(
+        "forward_placement",
+        [](size_t rows, size_t bytes, std::vector<long> offsets) {
+            return Placement(placement_columns(), rows, bytes, std::move(offsets));
+        },
+        nb::arg("rows"), nb::arg("bytes"), nb::arg("offsets"));
 }
 
 }  // namespace stewart_core

@@ -20,12 +20,11 @@ STEWART_OUTPUTS_BY_NAME(stewart_inverse_batch_outputs, STEWART_INVERSE_OUTPUT_TA
 class InverseRun {
 public:
     // out: the batch outputs, bound to arrays that held keeps alive.
-    InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot,
-               std::optional<Poses> q_ddot, const OptionValues &option_values,
-               stewart_inverse_batch_outputs out, std::vector<nb::object> held)
+    InverseRun(const Model &model, Poses q, std::optional<Poses> q_dot, std::optional<Poses> q_ddot,
+               const OptionValues &option_values, stewart_inverse_batch_outputs out,
+               std::vector<nb::object> held)
         : model_(model.get()), n_(q.shape(0)), q_(q), q_dot_(q_dot), q_ddot_(q_ddot),
-          held_(std::move(held)), out_(out),
-          inverse_(model.inverse_pool(), option_values) {
+          held_(std::move(held)), out_(out), inverse_(model.inverse_pool(), option_values) {
         if ((q_dot && q_dot->shape(0) != n_) || (q_ddot && q_ddot->shape(0) != n_))
             fail("rates and accels must have as many rows as the poses");
         if (inverse_.solver) return;
@@ -41,11 +40,12 @@ public:
         const stewart_inverse_batch_outputs out = from_row(out_, first);
         return run_rows(inverse_.solver, stewart_inverse_message, first, stop, max_messages,
                         [&](stewart_batch_messages *messages, size_t *first_failed) {
-            return stewart_inverse_batch(inverse_.solver, stop - first, q_.data() + 6 * first,
-                                         q_dot_ ? q_dot_->data() + 6 * first : nullptr,
-                                         q_ddot_ ? q_ddot_->data() + 6 * first : nullptr, &out,
-                                         messages, first_failed);
-        });
+                            return stewart_inverse_batch(
+                                inverse_.solver, stop - first, q_.data() + 6 * first,
+                                q_dot_ ? q_dot_->data() + 6 * first : nullptr,
+                                q_ddot_ ? q_ddot_->data() + 6 * first : nullptr, &out, messages,
+                                first_failed);
+                        });
     }
 
     // Along a trajectory at times t (n): the drives' current rates and the voltages with them
@@ -63,10 +63,11 @@ public:
     void current_rates_from_jerks(int fidelity, Poses q_dddot) {
         if (q_dddot.shape(0) != n_) fail("jerks must have as many rows as the poses");
         char message[STEWART_MESSAGE_SIZE];
-        if (stewart_inverse_batch_current_rates_from_jerks(
-                model_, fidelity, n_, q_.data(), q_dot_ ? q_dot_->data() : nullptr,
-                q_ddot_ ? q_ddot_->data() : nullptr, q_dddot.data(), &out_, message,
-                sizeof message) != STEWART_OK)
+        if (stewart_inverse_batch_current_rates_from_jerks(model_, fidelity, n_, q_.data(),
+                                                           q_dot_ ? q_dot_->data() : nullptr,
+                                                           q_ddot_ ? q_ddot_->data() : nullptr,
+                                                           q_dddot.data(), &out_, message,
+                                                           sizeof message) != STEWART_OK)
             fail(message);
     }
 
@@ -90,40 +91,44 @@ private:
 // overloads in order, converting every argument, and a new result is the common call.
 void bind_inverse(nb::module_ &m) {
     nb::class_<InverseRun>(m, "InverseRun")
-        .def("__init__",
-             [](InverseRun *self, const Model &model, Poses q, std::optional<Poses> q_dot,
-                std::optional<Poses> q_ddot, const OptionValues &options, Column<uint8_t> block,
-                const Placement &placement) {
-                 uint8_t *data = placement.data(block, q.shape(0));
-                 new (self) InverseRun(model, q, q_dot, q_ddot, options,
-                                       place_outputs({}, data, placement), {nb::cast(block)});
-             },
-             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
-             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("block"), nb::arg("placement"))
-        .def("__init__",
-             [](InverseRun *self, const Model &model, Poses q, std::optional<Poses> q_dot,
-                std::optional<Poses> q_ddot, const OptionValues &options, const nb::dict &outputs,
-                Column<int> status) {
-                 const size_t n = q.shape(0);
-                 if (status.shape(0) != n) fail("output arrays must have as many rows as the poses");
-                 std::vector<nb::object> held;
-                 stewart_inverse_batch_outputs out = bind_outputs({}, outputs, n, held);
-                 out.status = status.data();
-                 held.push_back(nb::cast(status));
-                 new (self) InverseRun(model, q, q_dot, q_ddot, options, out, std::move(held));
-             },
-             nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
-             nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
-        .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"),
-             nb::arg("max_messages"))
+        .def(
+            "__init__",
+            [](InverseRun *self, const Model &model, Poses q, std::optional<Poses> q_dot,
+               std::optional<Poses> q_ddot, const OptionValues &options, Column<uint8_t> block,
+               const Placement &placement) {
+                uint8_t *data = placement.data(block, q.shape(0));
+                new (self) InverseRun(model, q, q_dot, q_ddot, options,
+                                      place_outputs({}, data, placement), {nb::cast(block)});
+            },
+            nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
+            nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("block"), nb::arg("placement"))
+        .def(
+            "__init__",
+            [](InverseRun *self, const Model &model, Poses q, std::optional<Poses> q_dot,
+               std::optional<Poses> q_ddot, const OptionValues &options, const nb::dict &outputs,
+               Column<int> status) {
+                const size_t n = q.shape(0);
+                if (status.shape(0) != n) fail("output arrays must have as many rows as the poses");
+                std::vector<nb::object> held;
+                stewart_inverse_batch_outputs out = bind_outputs({}, outputs, n, held);
+                out.status = status.data();
+                held.push_back(nb::cast(status));
+                new (self) InverseRun(model, q, q_dot, q_ddot, options, out, std::move(held));
+            },
+            nb::keep_alive<1, 2>(), nb::arg("model"), nb::arg("q"), nb::arg("q_dot").none(),
+            nb::arg("q_ddot").none(), nb::arg("options"), nb::arg("outputs"), nb::arg("status"))
+        .def("rows", &InverseRun::rows, nb::arg("first"), nb::arg("stop"), nb::arg("max_messages"))
         .def("current_rates", &InverseRun::current_rates, nb::arg("t"))
-        .def("current_rates_from_jerks", &InverseRun::current_rates_from_jerks,
-             nb::arg("fidelity"), nb::arg("q_dddot"));
+        .def("current_rates_from_jerks", &InverseRun::current_rates_from_jerks, nb::arg("fidelity"),
+             nb::arg("q_dddot"));
     // Where a new result's arrays lie in its block: for rows rows, a block of bytes bytes, the
     // byte offset of each inverse output column then status's (-1: a column left alone).
-    m.def("inverse_placement", [](size_t rows, size_t bytes, std::vector<long> offsets) {
-        return Placement(placement_columns(), rows, bytes, std::move(offsets));
-    }, nb::arg("rows"), nb::arg("bytes"), nb::arg("offsets"));
+    m.def(
+        "inverse_placement",
+        [](size_t rows, size_t bytes, std::vector<long> offsets) {
+            return Placement(placement_columns(), rows, bytes, std::move(offsets));
+        },
+        nb::arg("rows"), nb::arg("bytes"), nb::arg("offsets"));
 }
 
 }  // namespace stewart_core

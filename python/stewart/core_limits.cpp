@@ -35,9 +35,8 @@ void limits_check(const Model &model, Poses q, std::optional<Poses> rates,
                   Rows<int, STEWART_LIMIT_CLASSES> leg, Rows<int, STEWART_LIMIT_CLASSES> other_leg,
                   Column<double> condition, Rows<double, STEWART_LIMIT_CLASSES * 6> leg_margin) {
     const size_t n = q.shape(0);
-    if (first.shape(0) != n || failed.shape(0) != n || margin.shape(0) != n ||
-        leg.shape(0) != n || other_leg.shape(0) != n || condition.shape(0) != n ||
-        leg_margin.shape(0) != n)
+    if (first.shape(0) != n || failed.shape(0) != n || margin.shape(0) != n || leg.shape(0) != n ||
+        other_leg.shape(0) != n || condition.shape(0) != n || leg_margin.shape(0) != n)
         fail("output arrays must have as many rows as the poses");
     for (const auto *rows : {&rates, &accels, &jerks, &forces})
         if (*rows && (*rows)->shape(0) != n)
@@ -77,13 +76,16 @@ void limits_check(const Model &model, Poses q, std::optional<Poses> rates,
         }
     }
     if (bad < n)
-        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.lease.solver)).c_str());
+        fail(("poses row " + std::to_string(bad) + ": " +
+              stewart_limits_message(object.lease.solver))
+                 .c_str());
 }
 
 // The axis ranges of every row of q: ends (min of the six axes, then max), the class at each
 // end and its leg and other leg, in the same order.
-void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condition, Rows<double, 12> ends,
-                   Rows<int, 12> limit, Rows<int, 12> leg, Rows<int, 12> other_leg) {
+void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condition,
+                   Rows<double, 12> ends, Rows<int, 12> limit, Rows<int, 12> leg,
+                   Rows<int, 12> other_leg) {
     const size_t n = q.shape(0);
     if (ends.shape(0) != n || limit.shape(0) != n || leg.shape(0) != n || other_leg.shape(0) != n)
         fail("output arrays must have as many rows as the poses");
@@ -112,7 +114,9 @@ void limits_ranges(const Model &model, Poses q, std::optional<double> warn_condi
         }
     }
     if (bad < n)
-        fail(("poses row " + std::to_string(bad) + ": " + stewart_limits_message(object.lease.solver)).c_str());
+        fail(("poses row " + std::to_string(bad) + ": " +
+              stewart_limits_message(object.lease.solver))
+                 .c_str());
 }
 
 // The home check of stewart_check.h: its numbers and its text (lengths in length_unit, angles in
@@ -128,7 +132,8 @@ nb::dict check_home(const Model &model, std::optional<double> warn_condition,
         fail(message);
     const char *length = length_unit.c_str(), *angle = angle_unit.c_str();
     const size_t needed = stewart_check_text_in(&r, length, angle, nullptr, 0);
-    if (needed == 0) fail(("not a length and an angle unit: " + length_unit + ", " + angle_unit).c_str());
+    if (needed == 0)
+        fail(("not a length and an angle unit: " + length_unit + ", " + angle_unit).c_str());
     std::string text(needed + 1, '\0');
     stewart_check_text_in(&r, length, angle, text.data(), text.size());
     text.resize(text.size() - 1);

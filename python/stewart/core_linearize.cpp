@@ -117,17 +117,17 @@ std::tuple<int, std::string, int, int, int> linearize_driven(
 }  // namespace
 
 void bind_linearize(nb::module_ &m) {
-    m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"),
-          nb::arg("q"), nb::arg("q_dot"), nb::arg("force"), nb::arg("state_rate"),
-          nb::arg("output"), nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("D"));
+    m.def("linearize_plant", &linearize_plant, nb::arg("model"), nb::arg("fidelity"), nb::arg("q"),
+          nb::arg("q_dot"), nb::arg("force"), nb::arg("state_rate"), nb::arg("output"),
+          nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("D"));
     m.def("linearize_driven", &linearize_driven, nb::arg("model"), nb::arg("fidelity"),
           nb::arg("input"), nb::arg("smoothing_speed"), nb::arg("q"), nb::arg("q_dot"),
           nb::arg("inputs"), nb::arg("current"), nb::arg("state_rate"), nb::arg("output"),
           nb::arg("A"), nb::arg("B"), nb::arg("C"), nb::arg("D"), nb::arg("leg_force"));
     m.def("linearize_inverse", &linearize_inverse, nb::arg("model"), nb::arg("fidelity"),
           nb::arg("q"), nb::arg("q_dot"), nb::arg("q_ddot"), nb::arg("length"),
-          nb::arg("length_rate"), nb::arg("length_accel"), nb::arg("force"),
-          nb::arg("base_force"), nb::arg("base_torque"), nb::arg("jacobian"));
+          nb::arg("length_rate"), nb::arg("length_accel"), nb::arg("force"), nb::arg("base_force"),
+          nb::arg("base_torque"), nb::arg("jacobian"));
 }
 
 }  // namespace stewart_core

@@ -21,9 +21,9 @@ std::pair<long, std::string> geometry_jacobian_rows(
     Rows<double, 18> base_joint, Rows<double, 18> platform_joint, Rows<double, 36> tool_frame,
     Rows<double, 36> user_frame, Rows<double, 36> pose) {
     const size_t n = poses.shape(0);
-    for (size_t rows : {length.shape(0), reading.shape(0), base_joint.shape(0),
-                        platform_joint.shape(0), tool_frame.shape(0), user_frame.shape(0),
-                        pose.shape(0)})
+    for (size_t rows :
+         {length.shape(0), reading.shape(0), base_joint.shape(0), platform_joint.shape(0),
+          tool_frame.shape(0), user_frame.shape(0), pose.shape(0)})
         if (rows != n) fail("output arrays must have as many rows as the poses");
     char message[STEWART_MESSAGE_SIZE];
     stewart_geometry_jacobian_output out;
@@ -70,8 +70,7 @@ Model::Model(const std::vector<std::pair<std::string, double>> &assignments) {
     stewart_params_default(&params);
     char message[STEWART_MESSAGE_SIZE];
     for (const auto &[name, value] : assignments)
-        if (stewart_params_set(&params, name.c_str(), value, message, sizeof message) !=
-            STEWART_OK)
+        if (stewart_params_set(&params, name.c_str(), value, message, sizeof message) != STEWART_OK)
             fail(message);
     model_ = stewart_model_create(&params, message, sizeof message);
     if (!model_) fail(message);
@@ -123,7 +122,8 @@ void bind_platform_files(nb::module_ &m) {
     // elements in SI; ValueError with the library's message (line, column, field and value) if
     // any field is bad, or the path is not a regular file of at most the size cap.
     m.def("read_platform_file", [](const std::string &path) {
-        return platform_fields([&](stewart_params *p, unsigned char *given, char *message, size_t size) {
+        return platform_fields([&](stewart_params *p, unsigned char *given, char *message,
+                                   size_t size) {
             return stewart_params_read_json_file(p, path.c_str(), given, message, size);
         });
     });
@@ -133,18 +133,20 @@ void bind_platform_files(nb::module_ &m) {
     m.def("platform_file_units", [](const std::string &path) {
         stewart_file_units units;
         char message[STEWART_MESSAGE_SIZE];
-        if (stewart_platform_file_units(path.c_str(), &units, message, sizeof message) != STEWART_OK)
+        if (stewart_platform_file_units(path.c_str(), &units, message, sizeof message) !=
+            STEWART_OK)
             fail(message);
         return std::make_pair(std::string(units.length), std::string(units.angle));
     });
     // (SI unit, what an SI value is multiplied by to be in name), or None for a name that is no
     // unit (stewart_unit_per_si).
-    m.def("unit_per_si", [](const std::string &name) -> std::optional<std::pair<std::string, double>> {
-        double per_si = 0;
-        const char *si = stewart_unit_per_si(name.c_str(), &per_si);
-        if (!si) return std::nullopt;
-        return std::make_pair(std::string(si), per_si);
-    });
+    m.def("unit_per_si",
+          [](const std::string &name) -> std::optional<std::pair<std::string, double>> {
+              double per_si = 0;
+              const char *si = stewart_unit_per_si(name.c_str(), &per_si);
+              if (!si) return std::nullopt;
+              return std::make_pair(std::string(si), per_si);
+          });
 }
 
 // The library's parameter table.
@@ -154,8 +156,8 @@ void bind_parameter_table(nb::module_ &m) {
         stewart_params scratch;
         stewart_params_default(&scratch);
         char message[STEWART_MESSAGE_SIZE];
-        const bool known = stewart_params_set(&scratch, name.c_str(), 0.0, message,
-                                              sizeof message) == STEWART_OK;
+        const bool known =
+            stewart_params_set(&scratch, name.c_str(), 0.0, message, sizeof message) == STEWART_OK;
         return std::make_pair(known, std::string(known ? "" : message));
     });
     // The library's parameter table: one dict per parameter (name, count, unit, description,

@@ -72,11 +72,11 @@ public:
             nb::gil_scoped_release release;
             size_t row = 0;
             stewart_batch_messages messages = {1, 0, &row, message};
-            status = stewart_plant_batch_rows(plant_.solver, n_, first, stop, time_.data(),
-                                              force_.data(),
-                                              start_pose_ ? start_pose_->data() : nullptr,
-                                              start_rate_ ? start_rate_->data() : nullptr, &out_,
-                                              &messages, &first_failed);
+            status =
+                stewart_plant_batch_rows(plant_.solver, n_, first, stop, time_.data(),
+                                         force_.data(), start_pose_ ? start_pose_->data() : nullptr,
+                                         start_rate_ ? start_rate_->data() : nullptr, &out_,
+                                         &messages, &first_failed);
         }
         if (status == STEWART_ERR_MEMORY && first_failed == stop) throw std::bad_alloc();
         return {status, first_failed, std::string(message)};

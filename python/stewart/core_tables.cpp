@@ -32,7 +32,7 @@ nb::list option_table(int (*count)(), const stewart_option_info *(*option)(int))
 // row, numpy dtype, unit, description. Python makes the result arrays from these, so a column
 // added to a table reaches the result classes without a binding change.
 using ColumnInfo = std::tuple<std::string, int, std::string, std::string, std::string>;
-#define STEWART_COLUMN_INFO(name, member, count, type, unit, description)                         \
+#define STEWART_COLUMN_INFO(name, member, count, type, unit, description) \
     ColumnInfo{#name, count, dtype_name<type>(), unit, description},
 std::vector<ColumnInfo> inverse_columns() {
     return {STEWART_INVERSE_OUTPUT_TABLE(STEWART_COLUMN_INFO)};
@@ -55,21 +55,30 @@ void bind_tables(nb::module_ &m) {
           "(name, values per row, dtype, unit, description) of each forward output column");
     m.def("plant_columns", &plant_columns,
           "(name, values per row, dtype, unit, description) of each plant output column");
-    m.def("option_table", [](const std::string &direction) {
-        if (direction == "inverse") return option_table(stewart_inverse_option_count, stewart_inverse_option);
-        if (direction == "forward") return option_table(stewart_forward_option_count, stewart_forward_option);
-        if (direction == "plant") return option_table(stewart_plant_option_count, stewart_plant_option);
-        if (direction == "cueing") return option_table(stewart_cueing_option_count, stewart_cueing_option);
-        fail(("no option table '" + direction + "': inverse, forward, plant or cueing").c_str());
-    }, nb::arg("direction"),
-          "The library's option table of a direction (inverse, forward, plant, cueing): one dict per "
-          "option (name, id, integer, unit, min, max, min_closed, max_closed, default, "
-          "description)");
+    m.def(
+        "option_table",
+        [](const std::string &direction) {
+            if (direction == "inverse")
+                return option_table(stewart_inverse_option_count, stewart_inverse_option);
+            if (direction == "forward")
+                return option_table(stewart_forward_option_count, stewart_forward_option);
+            if (direction == "plant")
+                return option_table(stewart_plant_option_count, stewart_plant_option);
+            if (direction == "cueing")
+                return option_table(stewart_cueing_option_count, stewart_cueing_option);
+            fail(
+                ("no option table '" + direction + "': inverse, forward, plant or cueing").c_str());
+        },
+        nb::arg("direction"),
+        "The library's option table of a direction (inverse, forward, plant, cueing): one dict per "
+        "option (name, id, integer, unit, min, max, min_closed, max_closed, default, "
+        "description)");
     nb::class_<Placement>(m, "Placement",
                           "Where a result's arrays lie in its block (made by inverse_placement, "
                           "forward_placement)")
         .def_prop_ro("rows", &Placement::rows);
-    m.def("status_name", [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
+    m.def("status_name",
+          [](int s) { return std::string(stewart_status_name(static_cast<stewart_status>(s))); });
     m.attr("BATCH_NOT_RUN") = STEWART_BATCH_NOT_RUN;
 }
 

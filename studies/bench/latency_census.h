@@ -17,11 +17,11 @@ enum { census_capacity = 1 << 20 };
 
 /* The gaps seen over `seconds` seconds, longest first. */
 typedef struct {
-    double seconds;     /* how long the loop ran [s] */
-    double threshold;   /* the shortest gap recorded [ns] */
-    long count;         /* gaps recorded */
-    long missed;        /* gaps beyond the capacity, not recorded */
-    double *gap;        /* [count] longest first [ns] */
+    double seconds;   /* how long the loop ran [s] */
+    double threshold; /* the shortest gap recorded [ns] */
+    long count;       /* gaps recorded */
+    long missed;      /* gaps beyond the capacity, not recorded */
+    double *gap;      /* [count] longest first [ns] */
 } census;
 
 /* qsort's comparison of two doubles, descending. */

@@ -215,7 +215,8 @@ struct Fmu : latency_step {
     fmi2SetRealTYPE *set_real = nullptr;
     fmi2DoStepTYPE *do_step = nullptr;
     fmi2FreeInstanceTYPE *free_instance = nullptr;
-    template <class F> F *symbol(const char *name) {
+    template <class F>
+    F *symbol(const char *name) {
         return reinterpret_cast<F *>(dlsym(lib, name));
     }
     // Loads and instantiates; parameters (vr, integer value) are set before initialisation.
@@ -283,8 +284,7 @@ struct FmuPlant : Fmu {
     fmi2FMUstate start = nullptr;
     bool build(const char *dir, char *msg, size_t size) {
         if (!home_static_forces(force, msg, size) ||
-            !Fmu::build(dir, "StewartPlant", fmi2CoSimulation, nullptr, nullptr, 0, msg,
-                               size))
+            !Fmu::build(dir, "StewartPlant", fmi2CoSimulation, nullptr, nullptr, 0, msg, size))
             return false;
         return symbol<fmi2GetFMUstateTYPE>("fmi2GetFMUstate")(c, &start) == fmi2OK;
     }
@@ -314,7 +314,9 @@ struct FmuController : Fmu {
         unsigned vr[30];
         for (unsigned i = 0; i < 30; ++i) {
             vr[i] = i;  // L_ref, L_dot_ref, F_ff, L, L_dot
-            in[i] = (i / 6 == 2 ? 200.0 : i / 6 == 0 || i / 6 == 3 ? 0.56 : 0.0) +
+            in[i] = (i / 6 == 2                 ? 200.0
+                     : i / 6 == 0 || i / 6 == 3 ? 0.56
+                                                : 0.0) +
                     1e-3 * std::sin(n * kStep + i);
         }
         set_real(c, vr, 30, in);
@@ -337,8 +339,7 @@ struct FmuPlantME : Fmu {
     fmi2GetDerivativesTYPE *derivatives = nullptr;
     bool build(const char *dir, char *msg, size_t size) {
         if (!home_static_forces(force, msg, size) ||
-            !Fmu::build(dir, "StewartPlantME", fmi2ModelExchange, nullptr, nullptr, 0,
-                               msg, size))
+            !Fmu::build(dir, "StewartPlantME", fmi2ModelExchange, nullptr, nullptr, 0, msg, size))
             return false;
         fmi2EventInfo info{};
         symbol<fmi2NewDiscreteStatesTYPE>("fmi2NewDiscreteStates")(c, &info);
@@ -382,7 +383,8 @@ const char *const kNames[] = {
 constexpr int kCount = sizeof kNames / sizeof kNames[0];
 
 // A built workload or nullptr (the message says why).
-template <class T> latency_step *made(T *s, bool ok) {
+template <class T>
+latency_step *made(T *s, bool ok) {
     if (ok) return s;
     delete s;
     return nullptr;
@@ -399,18 +401,66 @@ extern "C" latency_step *latency_step_create(int i, const char *dir, char *msg, 
     switch (i) {
         case 0: s = new (std::nothrow) Empty; break;
         case 1: s = new (std::nothrow) FixedWork; break;
-        case 2: { auto *w = new InverseFull; s = made(w, w->build(msg, size)); break; }
-        case 3: { auto *w = new ForwardTracking; s = made(w, w->build(msg, size)); break; }
-        case 4: { auto *w = new PlantStep(STEWART_MASSLESS); s = made(w, w->build(msg, size)); break; }
-        case 5: { auto *w = new PlantStep(STEWART_FULL); s = made(w, w->build(msg, size)); break; }
-        case 6: { auto *w = new PlantDerivatives; s = made(w, w->build(msg, size)); break; }
-        case 7: { auto *w = new FmuInverse; s = made(w, w->build(dir, msg, size)); break; }
-        case 8: { auto *w = new FmuPlant; s = made(w, w->build(dir, msg, size)); break; }
-        case 9: { auto *w = new FmuController; s = made(w, w->build(dir, msg, size)); break; }
-        case 10: { auto *w = new FmuScene; s = made(w, w->build(dir, msg, size)); break; }
-        case 11: { auto *w = new FmuPlantME; s = made(w, w->build(dir, msg, size)); break; }
-        case 12: { auto *w = new PlantStep(STEWART_FULL, 1); s = made(w, w->build(msg, size)); break; }
-        case 13: { auto *w = new PlantStep(STEWART_FULL, 2); s = made(w, w->build(msg, size)); break; }
+        case 2: {
+            auto *w = new InverseFull;
+            s = made(w, w->build(msg, size));
+            break;
+        }
+        case 3: {
+            auto *w = new ForwardTracking;
+            s = made(w, w->build(msg, size));
+            break;
+        }
+        case 4: {
+            auto *w = new PlantStep(STEWART_MASSLESS);
+            s = made(w, w->build(msg, size));
+            break;
+        }
+        case 5: {
+            auto *w = new PlantStep(STEWART_FULL);
+            s = made(w, w->build(msg, size));
+            break;
+        }
+        case 6: {
+            auto *w = new PlantDerivatives;
+            s = made(w, w->build(msg, size));
+            break;
+        }
+        case 7: {
+            auto *w = new FmuInverse;
+            s = made(w, w->build(dir, msg, size));
+            break;
+        }
+        case 8: {
+            auto *w = new FmuPlant;
+            s = made(w, w->build(dir, msg, size));
+            break;
+        }
+        case 9: {
+            auto *w = new FmuController;
+            s = made(w, w->build(dir, msg, size));
+            break;
+        }
+        case 10: {
+            auto *w = new FmuScene;
+            s = made(w, w->build(dir, msg, size));
+            break;
+        }
+        case 11: {
+            auto *w = new FmuPlantME;
+            s = made(w, w->build(dir, msg, size));
+            break;
+        }
+        case 12: {
+            auto *w = new PlantStep(STEWART_FULL, 1);
+            s = made(w, w->build(msg, size));
+            break;
+        }
+        case 13: {
+            auto *w = new PlantStep(STEWART_FULL, 2);
+            s = made(w, w->build(msg, size));
+            break;
+        }
         default: std::snprintf(msg, size, "no workload %d", i);
     }
     // warm up: the first calls touch memory and fill caches (and SUNDIALS' lazy workspaces); the

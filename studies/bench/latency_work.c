@@ -48,8 +48,9 @@ static int report(int w, const char *fmu_dir, long n, double *time, double *rhs,
     latency_step_free(s);
     printf("## %s: %ld calls, %ld failed; %.3f internal steps, %.4f rejected steps per call\n\n",
            latency_step_name(w), n, failed, (double)steps_total / n, (double)rejected_total / n);
-    printf("| RHS per call | calls | share | median time [us] | right after a rewind | "
-           "within 5 calls after one | after a call of > 1 step |\n|---|---|---|---|---|---|---|\n");
+    printf(
+        "| RHS per call | calls | share | median time [us] | right after a rewind | "
+        "within 5 calls after one | after a call of > 1 step |\n|---|---|---|---|---|---|---|\n");
     /* per class: the calls, then their times gathered for the median */
     for (int r = 0; r < kMaxRhs; ++r) count[r] = 0;
     for (long i = 0; i < n; ++i) count[(int)rhs[i] < kMaxRhs ? (int)rhs[i] : kMaxRhs - 1]++;
@@ -95,7 +96,8 @@ int main(int argc, char **argv) {
     }
     int status = 0;
     if (argc > 3)
-        for (int a = 3; a < argc; ++a) status |= report(atoi(argv[a]), argv[1], n, time, rhs, steps, count);
+        for (int a = 3; a < argc; ++a)
+            status |= report(atoi(argv[a]), argv[1], n, time, rhs, steps, count);
     else
         for (int w = 4; w <= 5; ++w) status |= report(w, argv[1], n, time, rhs, steps, count);
     free(time);

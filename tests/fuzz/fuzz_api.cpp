@@ -25,10 +25,10 @@
 namespace {
 
 void require_finite(const stewart_inverse_output &o) {
-    const double *all[] = {o.lengths.length, o.lengths.length_rate, o.lengths.length_accel, o.force,
-                           o.motor_angle, o.motor_speed, o.motor_accel, o.motor_torque,
-                           o.current, o.current_rate, o.voltage, o.electrical_power,
-                           o.motor_power};
+    const double *all[] = {
+        o.lengths.length, o.lengths.length_rate, o.lengths.length_accel, o.force,   o.motor_angle,
+        o.motor_speed,    o.motor_accel,         o.motor_torque,         o.current, o.current_rate,
+        o.voltage,        o.electrical_power,    o.motor_power};
     for (const double *g : all)
         for (int k = 0; k < STEWART_LEGS; ++k)
             if (!std::isfinite(g[k])) std::abort();
@@ -157,12 +157,12 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
     const uint8_t choice = in.byte();
     options.fidelity = (choice & 1) ? STEWART_FULL : STEWART_MASSLESS;
     if (choice & 2) options.fidelity = static_cast<int8_t>(in.byte());  // mostly invalid
-    options.method = (choice >> 2) % 5;                                    // 4 is invalid
+    options.method = (choice >> 2) % 5;                                 // 4 is invalid
     if (choice & 0x20) options.relative_tolerance = in.value();
     if (choice & 0x40) options.absolute_tolerance = in.value();
-    options.max_internal_steps =
-        (choice & 0x80) ? static_cast<int8_t>(in.byte()) % kPlantMaxInternalSteps
-                        : kPlantMaxInternalSteps;
+    options.max_internal_steps = (choice & 0x80)
+                                     ? static_cast<int8_t>(in.byte()) % kPlantMaxInternalSteps
+                                     : kPlantMaxInternalSteps;
     char message[STEWART_MESSAGE_SIZE];
     stewart_plant *plant = stewart_plant_create(model, &options, message, sizeof message);
     if (!plant) {  // refused options (or a singular home pose): a message says why
@@ -180,79 +180,81 @@ void fuzz_plant(Reader &in, const stewart_model *model) {
         stewart_status s = STEWART_OK;
         stewart_plant_output out;
         switch (what % 6) {
-        case 0: {  // a start state near home, or raw values
-            double pose[6], rate[6];
-            for (int i = 0; i < 6; ++i) {
-                pose[i] = (what & 8) ? in.value() : (i == 2 ? home_height : 0) + in.value() / 20;
-                rate[i] = (what & 16) ? in.value() : 0;
+            case 0: {  // a start state near home, or raw values
+                double pose[6], rate[6];
+                for (int i = 0; i < 6; ++i) {
+                    pose[i] =
+                        (what & 8) ? in.value() : (i == 2 ? home_height : 0) + in.value() / 20;
+                    rate[i] = (what & 16) ? in.value() : 0;
+                }
+                s = stewart_plant_set_state(plant, (what & 32) ? in.value() : 0, pose, rate);
+                break;
             }
-            s = stewart_plant_set_state(plant, (what & 32) ? in.value() : 0, pose, rate);
-            break;
-        }
-        case 1:
-        case 2: {  // a step: raw or moderate forces and step size, linear or Hermite profile
-            for (int k = 0; k < STEWART_LEGS; ++k) {
-                step.force_start[k] = (what & 8) ? in.value() : 200 + 100 * in.value();
-                step.force_end[k] = (what & 16) ? in.value() : step.force_start[k];
-                step.force_rate_start[k] = in.value();
-                step.force_rate_end[k] = in.value();
+            case 1:
+            case 2: {  // a step: raw or moderate forces and step size, linear or Hermite profile
+                for (int k = 0; k < STEWART_LEGS; ++k) {
+                    step.force_start[k] = (what & 8) ? in.value() : 200 + 100 * in.value();
+                    step.force_end[k] = (what & 16) ? in.value() : step.force_start[k];
+                    step.force_rate_start[k] = in.value();
+                    step.force_rate_end[k] = in.value();
+                }
+                step.h = (what & 32) ? in.value() : 1e-3;
+                step.derivatives = (what & 64) ? 1 : 0;
+                s = stewart_plant_step(plant, &step, &out);
+                if (s == STEWART_OK) require_finite_values(&out.time, kOutputDoubles);
+                if (s == STEWART_OK && checked_output(plant, nullptr, out) != STEWART_OK)
+                    std::abort();
+                stewart_plant_statistics stats;
+                stewart_plant_statistics_get(plant, &stats);
+                if (stats.steps < 0 || stats.steps > kPlantMaxInternalSteps) std::abort();
+                break;
             }
-            step.h = (what & 32) ? in.value() : 1e-3;
-            step.derivatives = (what & 64) ? 1 : 0;
-            s = stewart_plant_step(plant, &step, &out);
-            if (s == STEWART_OK) require_finite_values(&out.time, kOutputDoubles);
-            if (s == STEWART_OK && checked_output(plant, nullptr, out) != STEWART_OK) std::abort();
-            stewart_plant_statistics stats;
-            stewart_plant_statistics_get(plant, &stats);
-            if (stats.steps < 0 || stats.steps > kPlantMaxInternalSteps) std::abort();
-            break;
-        }
-        case 3: {  // outputs and reactions under other forces, and the bodies
-            for (int k = 0; k < STEWART_LEGS; ++k) force[k] = in.value();
-            const double *f = (what & 8) ? force : nullptr;
-            s = checked_output(plant, f, out);
-            stewart_plant_reactions reactions;
-            const stewart_status r = stewart_plant_reactions_get(plant, f, &reactions);
-            if (!known_status(r)) std::abort();
-            if (r == STEWART_OK)
-                require_finite_values(&reactions.base_cardan_force[0][0],
-                                      sizeof reactions / sizeof(double));
-            stewart_plant_body bodies[STEWART_PLANT_BODIES];
-            const stewart_status b = stewart_plant_bodies(plant, bodies);
-            if (!known_status(b)) std::abort();
-            if (b == STEWART_OK)
-                require_finite_values(bodies[0].position, kBodyDoubles);
-            break;
-        }
-        case 4: {  // save, load back unchanged: the same outputs bit for bit
-            stewart_plant_output before, after;
-            const bool had_output = checked_output(plant, nullptr, before) == STEWART_OK;
-            if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
-            if (stewart_plant_load(plant, saved, state_size) != STEWART_OK) std::abort();
-            stewart_plant *copy = stewart_plant_create(model, &options, message, sizeof message);
-            if (!copy || stewart_plant_copy(copy, plant) != STEWART_OK) std::abort();
-            stewart_plant_free(copy);
-            const size_t bytes = kOutputDoubles * sizeof(double);
-            if (had_output && (checked_output(plant, nullptr, after) != STEWART_OK ||
-                               std::memcmp(&before.time, &after.time, bytes) != 0))
-                std::abort();
-            break;
-        }
-        case 5: {  // save, corrupt values (or the size), load: refused or a usable state
-            if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
-            const int edits = 1 + (what >> 3) % 4;
-            const size_t doubles = state_size / sizeof(double);  // the header's bytes aside
-            for (int e = 0; e < edits; ++e) {
-                const double value = in.value();
-                std::memcpy(saved + state_size - sizeof(double) * (1 + in.byte() % doubles),
-                            &value, sizeof value);
+            case 3: {  // outputs and reactions under other forces, and the bodies
+                for (int k = 0; k < STEWART_LEGS; ++k) force[k] = in.value();
+                const double *f = (what & 8) ? force : nullptr;
+                s = checked_output(plant, f, out);
+                stewart_plant_reactions reactions;
+                const stewart_status r = stewart_plant_reactions_get(plant, f, &reactions);
+                if (!known_status(r)) std::abort();
+                if (r == STEWART_OK)
+                    require_finite_values(&reactions.base_cardan_force[0][0],
+                                          sizeof reactions / sizeof(double));
+                stewart_plant_body bodies[STEWART_PLANT_BODIES];
+                const stewart_status b = stewart_plant_bodies(plant, bodies);
+                if (!known_status(b)) std::abort();
+                if (b == STEWART_OK) require_finite_values(bodies[0].position, kBodyDoubles);
+                break;
             }
-            const size_t count = (what & 0x80) ? state_size - 1 + in.byte() % 3 : state_size;
-            s = stewart_plant_load(plant, saved, count);
-            if (s != STEWART_OK && s != STEWART_ERR_ARGUMENT) std::abort();
-            if (s == STEWART_OK) checked_output(plant, nullptr, out);
-            break;
-        }
+            case 4: {  // save, load back unchanged: the same outputs bit for bit
+                stewart_plant_output before, after;
+                const bool had_output = checked_output(plant, nullptr, before) == STEWART_OK;
+                if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
+                if (stewart_plant_load(plant, saved, state_size) != STEWART_OK) std::abort();
+                stewart_plant *copy =
+                    stewart_plant_create(model, &options, message, sizeof message);
+                if (!copy || stewart_plant_copy(copy, plant) != STEWART_OK) std::abort();
+                stewart_plant_free(copy);
+                const size_t bytes = kOutputDoubles * sizeof(double);
+                if (had_output && (checked_output(plant, nullptr, after) != STEWART_OK ||
+                                   std::memcmp(&before.time, &after.time, bytes) != 0))
+                    std::abort();
+                break;
+            }
+            case 5: {  // save, corrupt values (or the size), load: refused or a usable state
+                if (stewart_plant_save(plant, saved, state_size) != STEWART_OK) std::abort();
+                const int edits = 1 + (what >> 3) % 4;
+                const size_t doubles = state_size / sizeof(double);  // the header's bytes aside
+                for (int e = 0; e < edits; ++e) {
+                    const double value = in.value();
+                    std::memcpy(saved + state_size - sizeof(double) * (1 + in.byte() % doubles),
+                                &value, sizeof value);
+                }
+                const size_t count = (what & 0x80) ? state_size - 1 + in.byte() % 3 : state_size;
+                s = stewart_plant_load(plant, saved, count);
+                if (s != STEWART_OK && s != STEWART_ERR_ARGUMENT) std::abort();
+                if (s == STEWART_OK) checked_output(plant, nullptr, out);
+                break;
+            }
         }
         if (!known_status(s)) std::abort();
         require_message(plant);
@@ -325,7 +327,8 @@ void fuzz_cueing(Reader &in, const stewart_model *model) {
         stewart_cueing_input input{};
         input.dt = (what & 1) ? in.value() : 1e-3 * (in.byte() % 50);
         for (int i = 0; i < 3; ++i) {
-            input.specific_force[i] = (what & 2) ? in.value() : in.value() / 1e3 + (i == 2 ? 9.81 : 0);
+            input.specific_force[i] =
+                (what & 2) ? in.value() : in.value() / 1e3 + (i == 2 ? 9.81 : 0);
             input.angular_velocity[i] = (what & 4) ? in.value() : in.value() / 1e3;
         }
         if ((what & 8) && size <= sizeof state) {

@@ -80,9 +80,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 u.input_derivative(vr, order, in.value());
                 break;
             }
-            case 12:
-                random_debug_logging(u, in.byte());
-                break;
+            case 12: random_debug_logging(u, in.byte()); break;
             case 13: {  // read every Real variable (inputs and parameters may hold what was set)
                 std::vector<double> all(reals.size());
                 u.get_real(reals.data(), all.size(), all.data());

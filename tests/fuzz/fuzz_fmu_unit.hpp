@@ -22,13 +22,13 @@ namespace {
 void logger(fmi2ComponentEnvironment, fmi2String name, fmi2Status status, fmi2String category,
             fmi2String message, ...) {
     // Touch every byte: an unterminated or freed string trips AddressSanitizer here.
-    volatile size_t n = std::strlen(name ? name : "") + std::strlen(category) + std::strlen(message);
+    volatile size_t n =
+        std::strlen(name ? name : "") + std::strlen(category) + std::strlen(message);
     (void)n;
     if (status < fmi2OK || status > fmi2Pending) std::abort();
 }
 
-void logger3(fmi3InstanceEnvironment, fmi3Status status, fmi3String category,
-             fmi3String message) {
+void logger3(fmi3InstanceEnvironment, fmi3Status status, fmi3String category, fmi3String message) {
     volatile size_t n = std::strlen(category) + std::strlen(message);
     (void)n;
     if (status < fmi3OK || status > fmi3Fatal) std::abort();
@@ -44,7 +44,8 @@ void tables() {
     for (size_t i = 0; i < fmu_n_variables; ++i) {
         const fmu_variable &v = fmu_variables[i];
         (v.type == FMU_REAL ? reals : integers).push_back(v.vr);
-        if (v.type == FMU_REAL && (v.causality == FMU_OUTPUT_VAR || v.causality == FMU_INDEPENDENT_VAR))
+        if (v.type == FMU_REAL &&
+            (v.causality == FMU_OUTPUT_VAR || v.causality == FMU_INDEPENDENT_VAR))
             real_outputs.push_back(v.vr);
     }
 }
@@ -61,19 +62,18 @@ struct Unit {
     void *c;
     fmi2CallbackFunctions cb2;
 
-    Unit(bool fmi3, bool logging) : v3(fmi3), c(nullptr), cb2{logger, alloc, std::free, nullptr, nullptr} {
+    Unit(bool fmi3, bool logging)
+        : v3(fmi3), c(nullptr), cb2{logger, alloc, std::free, nullptr, nullptr} {
 #if defined(FMU_MODEL_EXCHANGE) && FMU_MODEL_EXCHANGE  // a Model Exchange model (plant_me)
         if (v3)
             c = fmi3InstantiateModelExchange("fuzz", FMU_GUID, "", fmi3False, logging, nullptr,
                                              logger3);
-        else
-            c = fmi2Instantiate("fuzz", fmi2ModelExchange, FMU_GUID, "", &cb2, fmi2False, logging);
+        else c = fmi2Instantiate("fuzz", fmi2ModelExchange, FMU_GUID, "", &cb2, fmi2False, logging);
 #else
         if (v3)
             c = fmi3InstantiateCoSimulation("fuzz", FMU_GUID, "", fmi3False, logging, fmi3False,
                                             fmi3False, nullptr, 0, nullptr, logger3, nullptr);
-        else
-            c = fmi2Instantiate("fuzz", fmi2CoSimulation, FMU_GUID, "", &cb2, fmi2False, logging);
+        else c = fmi2Instantiate("fuzz", fmi2CoSimulation, FMU_GUID, "", &cb2, fmi2False, logging);
 #endif
         if (!c) std::abort();
     }
@@ -110,27 +110,39 @@ struct Unit {
     }
     int enter_init(double t) {
         return known(v3 ? (int)fmi3EnterInitializationMode(c, fmi3False, 0, t, fmi3False, 0)
-                  : (int)fmi2EnterInitializationMode(c));
+                        : (int)fmi2EnterInitializationMode(c));
     }
-    int exit_init() { return known(v3 ? (int)fmi3ExitInitializationMode(c) : (int)fmi2ExitInitializationMode(c)); }
+    int exit_init() {
+        return known(v3 ? (int)fmi3ExitInitializationMode(c) : (int)fmi2ExitInitializationMode(c));
+    }
     int reset() { return known(v3 ? (int)fmi3Reset(c) : (int)fmi2Reset(c)); }
     int terminate() { return known(v3 ? (int)fmi3Terminate(c) : (int)fmi2Terminate(c)); }
-    int get_state(void **s) { return known(v3 ? (int)fmi3GetFMUState(c, s) : (int)fmi2GetFMUstate(c, s)); }
-    int set_state(void *s) { return known(v3 ? (int)fmi3SetFMUState(c, s) : (int)fmi2SetFMUstate(c, s)); }
-    int free_state(void **s) { return known(v3 ? (int)fmi3FreeFMUState(c, s) : (int)fmi2FreeFMUstate(c, s)); }
+    int get_state(void **s) {
+        return known(v3 ? (int)fmi3GetFMUState(c, s) : (int)fmi2GetFMUstate(c, s));
+    }
+    int set_state(void *s) {
+        return known(v3 ? (int)fmi3SetFMUState(c, s) : (int)fmi2SetFMUstate(c, s));
+    }
+    int free_state(void **s) {
+        return known(v3 ? (int)fmi3FreeFMUState(c, s) : (int)fmi2FreeFMUstate(c, s));
+    }
     int state_size(void *s, size_t *n) {
-        return known(v3 ? (int)fmi3SerializedFMUStateSize(c, s, n) : (int)fmi2SerializedFMUstateSize(c, s, n));
+        return known(v3 ? (int)fmi3SerializedFMUStateSize(c, s, n)
+                        : (int)fmi2SerializedFMUstateSize(c, s, n));
     }
     int serialize(void *s, std::vector<uint8_t> &buf) {
         return known(v3 ? (int)fmi3SerializeFMUState(c, s, buf.data(), buf.size())
-                  : (int)fmi2SerializeFMUstate(c, s, reinterpret_cast<fmi2Byte *>(buf.data()), buf.size()));
+                        : (int)fmi2SerializeFMUstate(c, s, reinterpret_cast<fmi2Byte *>(buf.data()),
+                                                     buf.size()));
     }
     int deserialize(const std::vector<uint8_t> &buf, size_t n, void **s) {
         return known(v3 ? (int)fmi3DeserializeFMUState(c, buf.data(), n, s)
-                  : (int)fmi2DeSerializeFMUstate(c, reinterpret_cast<const fmi2Byte *>(buf.data()), n, s));
+                        : (int)fmi2DeSerializeFMUstate(
+                              c, reinterpret_cast<const fmi2Byte *>(buf.data()), n, s));
     }
     int debug_logging(bool on, size_t n, const char *const *cats) {
-        return known(v3 ? (int)fmi3SetDebugLogging(c, on, n, cats) : (int)fmi2SetDebugLogging(c, on, n, cats));
+        return known(v3 ? (int)fmi3SetDebugLogging(c, on, n, cats)
+                        : (int)fmi2SetDebugLogging(c, on, n, cats));
     }
     int input_derivative(unsigned vr, int order, double v) {
         if (v3) return 0;  // FMI 3 co-simulation has no input derivatives
@@ -206,7 +218,8 @@ struct StateProbe {
         if (!state || u.set_state(state) != 0 || outputs.empty()) return;
         std::vector<double> now;
         check(u, &now);
-        if (!now.empty() && std::memcmp(now.data(), outputs.data(), now.size() * sizeof(double)) != 0)
+        if (!now.empty() &&
+            std::memcmp(now.data(), outputs.data(), now.size() * sizeof(double)) != 0)
             std::abort();
     }
     void free(Unit &u) {
@@ -250,12 +263,9 @@ void corrupted_round_trip(Unit &u, void *state, Reader &in, OutputCheck check) {
 // roll back to it (the same outputs bit for bit), or a corrupted serialise / deserialise round
 // trip of it.
 void state_operation(StateProbe &probe, int op, Unit &u, Reader &in, OutputCheck check) {
-    if (op == 6)
-        probe.take(u, check);
-    else if (op == 7)
-        probe.roll_back(u, check);
-    else if (probe.state)
-        corrupted_round_trip(u, probe.state, in, check);
+    if (op == 6) probe.take(u, check);
+    else if (op == 7) probe.roll_back(u, check);
+    else if (probe.state) corrupted_round_trip(u, probe.state, in, check);
 }
 
 // The operations every FMU target's input shares: 0 SetReal of any Real variable, 2 SetInteger
@@ -267,29 +277,19 @@ template <class Prepare>
 bool shared_operation(int op, Unit &u, Reader &in, StateProbe &probe, double &t, int small,
                       OutputCheck check, Prepare prepare) {
     switch (op) {
-        case 0:
-            random_set_real(u, in);
-            return true;
-        case 2:
-            random_set_integer(u, in, small);
-            return true;
-        case 4:
-            check(u, nullptr);
-            return true;
+        case 0: random_set_real(u, in); return true;
+        case 2: random_set_integer(u, in, small); return true;
+        case 4: check(u, nullptr); return true;
         case 6:
         case 7:
-        case 8:
-            state_operation(probe, op, u, in, check);
-            return true;
+        case 8: state_operation(probe, op, u, in, check); return true;
         case 9:
             u.reset();
             prepare();
             u.setup(0.0);
             t = 0;
             return true;
-        case 10:
-            u.terminate();
-            return true;
+        case 10: u.terminate(); return true;
         case 11:
             t = in.value();
             prepare();

@@ -96,7 +96,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                     // The unit follows the master's clock (fmu/runtime/instance.c): t0 may be a
                     // rounding off its time, never more (a gap is an Error, not a Discard).
                     if (last != t0) std::abort();
-                    const double rounding = 32 * DBL_EPSILON * std::fmax(std::fabs(t0), std::fabs(before));
+                    const double rounding =
+                        32 * DBL_EPSILON * std::fmax(std::fabs(t0), std::fabs(before));
                     if (std::isfinite(before) && std::fabs(t0 - before) > rounding) std::abort();
                     if (u.get_int(&vr_status, 1, &status) == 0 && status != 3) std::abort();
                 }
@@ -108,9 +109,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 u.input_derivative(vr, order, 1e3 * in.value());
                 break;
             }
-            case 12:
-                random_debug_logging(u, in.byte());
-                break;
+            case 12: random_debug_logging(u, in.byte()); break;
         }
     }
     check_outputs(u);

@@ -30,10 +30,12 @@ constexpr size_t kStates = 12;  // x .. yaw, x_dot .. yaw_dot (plant_me/config.h
 
 // The Model Exchange calls on either layer; each returns a known status.
 int get_states(Unit &u, double *x, size_t n) {
-    return known(u.v3 ? (int)fmi3GetContinuousStates(u.c, x, n) : (int)fmi2GetContinuousStates(u.c, x, n));
+    return known(u.v3 ? (int)fmi3GetContinuousStates(u.c, x, n)
+                      : (int)fmi2GetContinuousStates(u.c, x, n));
 }
 int set_states(Unit &u, const double *x, size_t n) {
-    return known(u.v3 ? (int)fmi3SetContinuousStates(u.c, x, n) : (int)fmi2SetContinuousStates(u.c, x, n));
+    return known(u.v3 ? (int)fmi3SetContinuousStates(u.c, x, n)
+                      : (int)fmi2SetContinuousStates(u.c, x, n));
 }
 int get_derivatives(Unit &u, double *dx, size_t n) {
     return known(u.v3 ? (int)fmi3GetContinuousStateDerivatives(u.c, dx, n)
@@ -72,12 +74,14 @@ void event_call(Unit &u, uint8_t b) {
             }
             break;
         case 2:
-            known(u.v3 ? (int)fmi3EnterContinuousTimeMode(u.c) : (int)fmi2EnterContinuousTimeMode(u.c));
+            known(u.v3 ? (int)fmi3EnterContinuousTimeMode(u.c)
+                       : (int)fmi2EnterContinuousTimeMode(u.c));
             break;
         case 3: completed_step(u); break;
         case 4: {
-            const int s = known(u.v3 ? (int)fmi3GetNominalsOfContinuousStates(u.c, values, kStates)
-                                     : (int)fmi2GetNominalsOfContinuousStates(u.c, values, kStates));
+            const int s =
+                known(u.v3 ? (int)fmi3GetNominalsOfContinuousStates(u.c, values, kStates)
+                           : (int)fmi2GetNominalsOfContinuousStates(u.c, values, kStates));
             if (s == 0)
                 for (size_t i = 0; i < kStates; ++i)
                     if (!(values[i] > 0) || !std::isfinite(values[i])) std::abort();
@@ -85,7 +89,8 @@ void event_call(Unit &u, uint8_t b) {
         }
         case 5:
             if ((u.v3 ? (int)fmi3GetEventIndicators(u.c, values, n)
-                      : (int)fmi2GetEventIndicators(u.c, values, n)) == 0 && n != 0)
+                      : (int)fmi2GetEventIndicators(u.c, values, n)) == 0 &&
+                n != 0)
                 std::abort();
             break;
     }
@@ -174,12 +179,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
                 if (set_time(u, (flags & 16) ? t + v : v) == 0) t = (flags & 16) ? t + v : v;
                 break;
             }
-            case 5:
-                change_states(u, in);
-                break;
-            case 12:
-                event_call(u, in.byte());
-                break;
+            case 5: change_states(u, in); break;
+            case 12: event_call(u, in.byte()); break;
             case 14: {  // a few explicit Euler steps (1 .. 16) of any size
                 const int count = 1 + in.byte() % 16;
                 euler(u, t, count, in.value());

@@ -30,8 +30,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *bytes, size_t size) {
         if (given[static_cast<size_t>(i)] > 1) std::abort();  // every entry written
         for (int e = 0; e < stewart_param(i)->count; ++e) {
             const double value = *stewart_param_element(&p, i, e);
-            if (stewart_param_check_value(i, e, value, message, sizeof message) != STEWART_OK) std::abort();
-            if (!given[static_cast<size_t>(i)] && value != *stewart_param_element(&before, i, e)) std::abort();
+            if (stewart_param_check_value(i, e, value, message, sizeof message) != STEWART_OK)
+                std::abort();
+            if (!given[static_cast<size_t>(i)] && value != *stewart_param_element(&before, i, e))
+                std::abort();
         }
     }
     stewart_model *model = stewart_model_create(&p, message, sizeof message);

@@ -74,13 +74,17 @@ static int unit_load(unit *u, void *lib, int version) {
     if (!u->v3) {
         u->f2 = fmi2_api_load(lib);
         static const fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
-        u->c = u->f2.instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, fmi2False, fmi2False);
+        u->c =
+            u->f2.instantiate("bench", fmi2CoSimulation, FMU_GUID, "", &cb, fmi2False, fmi2False);
         return u->c != NULL;
     }
-    u->f3.instantiate = (fmi3InstantiateCoSimulationTYPE *)importer_symbol(lib, "fmi3InstantiateCoSimulation");
+    u->f3.instantiate =
+        (fmi3InstantiateCoSimulationTYPE *)importer_symbol(lib, "fmi3InstantiateCoSimulation");
     u->f3.free_instance = (fmi3FreeInstanceTYPE *)importer_symbol(lib, "fmi3FreeInstance");
-    u->f3.enter = (fmi3EnterInitializationModeTYPE *)importer_symbol(lib, "fmi3EnterInitializationMode");
-    u->f3.exit_init = (fmi3ExitInitializationModeTYPE *)importer_symbol(lib, "fmi3ExitInitializationMode");
+    u->f3.enter =
+        (fmi3EnterInitializationModeTYPE *)importer_symbol(lib, "fmi3EnterInitializationMode");
+    u->f3.exit_init =
+        (fmi3ExitInitializationModeTYPE *)importer_symbol(lib, "fmi3ExitInitializationMode");
     u->f3.set_int = (fmi3SetInt32TYPE *)importer_symbol(lib, "fmi3SetInt32");
     u->f3.set_real = (fmi3SetFloat64TYPE *)importer_symbol(lib, "fmi3SetFloat64");
     u->f3.get_real = (fmi3GetFloat64TYPE *)importer_symbol(lib, "fmi3GetFloat64");
@@ -165,7 +169,10 @@ int main(int argc, char **argv) {
     }
 
     void *lib = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
-    if (!lib) { fprintf(stderr, "fmu_bench: %s\n", dlerror()); return 2; }
+    if (!lib) {
+        fprintf(stderr, "fmu_bench: %s\n", dlerror());
+        return 2;
+    }
     unit u;
     if (!unit_load(&u, lib, version)) return 1;
     const fmi2ValueReference ivr[4] = {VR_fidelity, VR_derivatives, VR_modified_newton,
@@ -179,8 +186,8 @@ int main(int argc, char **argv) {
     for (int i = 0; i < 24; ++i) out_vr[i] = first_out[i / 6] + i % 6;
     const fmi2ValueReference int_out[2] = {VR_newton_iterations, VR_status};
     /* with --out also the rest of the Real outputs (read only then: the timed loop stays) */
-    const fmi2ValueReference more_vr[8] = {VR_condition, VR_residual, VR_base_force_1,
-                                           VR_base_force_2, VR_base_force_3, VR_base_torque_1,
+    const fmi2ValueReference more_vr[8] = {VR_condition,     VR_residual,     VR_base_force_1,
+                                           VR_base_force_2,  VR_base_force_3, VR_base_torque_1,
                                            VR_base_torque_2, VR_base_torque_3};
 
     for (int i = 0; i < n_sets; ++i) {
@@ -197,14 +204,16 @@ int main(int argc, char **argv) {
         const fmi2ValueReference vr = var->vr;
         const double value = atof(eq + 1);
         const fmi2Integer int_value = (fmi2Integer)value;
-        if ((var->type == FMU_REAL ? set_reals(&u, &vr, 1, &value) : set_ints(&u, &vr, 1, &int_value)) != fmi2OK) {
+        if ((var->type == FMU_REAL ? set_reals(&u, &vr, 1, &value)
+                                   : set_ints(&u, &vr, 1, &int_value)) != fmi2OK) {
             fprintf(stderr, "fmu_bench: --set %s refused\n", sets[i]);
             return 2;
         }
     }
     double q[18];
     pose_at(&sc, 0.0, q);
-    int ok = set_ints(&u, ivr, 4, ival) == fmi2OK && set_reals(&u, &tol_vr, 1, &tolerance) == fmi2OK &&
+    int ok = set_ints(&u, ivr, 4, ival) == fmi2OK &&
+             set_reals(&u, &tol_vr, 1, &tolerance) == fmi2OK &&
              set_reals(&u, in_vr, 18, q) == fmi2OK && initialise(&u);
     if (!ok) {
         fprintf(stderr, "fmu_bench: initialisation failed\n");

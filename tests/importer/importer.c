@@ -23,7 +23,8 @@
 #include "variables.h"
 
 #define GUID FMU_GUID
-#define N_OUT 98 /* Real outputs: 32, the 18 limit outputs (limit_margin, range_min, range_max) and
+#define N_OUT \
+    98 /* Real outputs: 32, the 18 limit outputs (limit_margin, range_min, range_max) and
                      the 48 drive outputs (motor_angle .. motor_power, 8 of six legs) */
 
 /* Every Real output, in table order (L[1..6] first), from the FMU's own variable table. */
@@ -31,10 +32,16 @@ static void real_outputs(unsigned vr[N_OUT]) {
     int n = 0;
     for (size_t i = 0; i < fmu_n_variables; ++i)
         if (fmu_variables[i].causality == FMU_OUTPUT_VAR && fmu_variables[i].type == FMU_REAL) {
-            if (n == N_OUT) { fprintf(stderr, "importer: more than %d Real outputs\n", N_OUT); exit(2); }
+            if (n == N_OUT) {
+                fprintf(stderr, "importer: more than %d Real outputs\n", N_OUT);
+                exit(2);
+            }
             vr[n++] = fmu_variables[i].vr;
         }
-    if (n != N_OUT) { fprintf(stderr, "importer: %d Real outputs, expected %d\n", n, N_OUT); exit(2); }
+    if (n != N_OUT) {
+        fprintf(stderr, "importer: %d Real outputs, expected %d\n", n, N_OUT);
+        exit(2);
+    }
 }
 
 /* ---- allocation counter: the executable's definitions interpose on the FMU's calls (glibc).
@@ -70,12 +77,12 @@ void *realloc(void *p, size_t n) {
 #endif
 
 static int failures = 0;
-#define CHECK(cond, ...)                                      \
-    do {                                                      \
-        if (!(cond) && ++failures <= 10) {                    \
+#define CHECK(cond, ...)                                       \
+    do {                                                       \
+        if (!(cond) && ++failures <= 10) {                     \
             fprintf(stderr, "importer: FAILED: " __VA_ARGS__); \
-            fputc('\n', stderr);                              \
-        }                                                     \
+            fputc('\n', stderr);                               \
+        }                                                      \
     } while (0)
 
 /* Combined manoeuvre: heave, roll, pitch and yaw at once (half the thesis amplitudes, so that
@@ -84,16 +91,20 @@ static void pose_at(double t, double q[18]) {
     const double w = 5.0, a = 0.02, b = 3.14159265358979323846 / 36;
     const double s = sin(w * t), c = cos(w * t);
     memset(q, 0, 18 * sizeof(double));
-    q[2] = 0.5 + a * s;            q[8] = a * w * c;      q[14] = -a * w * w * s;
+    q[2] = 0.5 + a * s;
+    q[8] = a * w * c;
+    q[14] = -a * w * w * s;
     for (int i = 3; i < 6; ++i) {
-        q[i] = b * s;              q[i + 6] = b * w * c;  q[i + 12] = -b * w * w * s;
+        q[i] = b * s;
+        q[i + 6] = b * w * c;
+        q[i + 12] = -b * w * w * s;
     }
 }
 
 typedef struct {
-    double step_us;   /* median doStep */
-    double cycle_us;  /* median set + doStep + get */
-    int ran;          /* 0: fidelity unsupported in this build */
+    double step_us;  /* median doStep */
+    double cycle_us; /* median set + doStep + get */
+    int ran;         /* 0: fidelity unsupported in this build */
 } timing;
 
 /* ------------------------------------------------------------------ FMI 2 */
@@ -101,7 +112,8 @@ typedef struct {
 static void logger2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                     fmi2String category, fmi2String message, ...) {
     (void)env;
-    if (status != fmi2OK) fprintf(stderr, "  [fmi2 %s %d %s] %s\n", name, status, category, message);
+    if (status != fmi2OK)
+        fprintf(stderr, "  [fmi2 %s %d %s] %s\n", name, status, category, message);
 }
 
 static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, double *outputs) {
@@ -109,7 +121,8 @@ static timing run_fmi2(void *lib, int fidelity, int derivatives, int steps, doub
 
     timing tm = {0, 0, 0};
     const fmi2CallbackFunctions cb = {logger2, calloc, free, NULL, NULL};
-    fmi2Component c = f.instantiate("importer", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
+    fmi2Component c =
+        f.instantiate("importer", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
     CHECK(c != NULL, "fmi2Instantiate");
     if (!c) return tm;
     const fmi2ValueReference pvr[2] = {VR_fidelity, VR_derivatives};
@@ -168,7 +181,8 @@ static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String c
 }
 
 static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, double *outputs) {
-    fmi3InstantiateCoSimulationTYPE *instantiate = importer_symbol(lib, "fmi3InstantiateCoSimulation");
+    fmi3InstantiateCoSimulationTYPE *instantiate =
+        importer_symbol(lib, "fmi3InstantiateCoSimulation");
     fmi3FreeInstanceTYPE *free_instance = importer_symbol(lib, "fmi3FreeInstance");
     fmi3EnterInitializationModeTYPE *enter = importer_symbol(lib, "fmi3EnterInitializationMode");
     fmi3ExitInitializationModeTYPE *exit_init = importer_symbol(lib, "fmi3ExitInitializationMode");
@@ -238,13 +252,16 @@ static timing run_fmi3(void *lib, int fidelity, int derivatives, int steps, doub
 /* The last message a ranges instance logged (its environment is this buffer). */
 static void remember2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
                       fmi2String category, fmi2String message, ...) {
-    (void)name; (void)status; (void)category;
+    (void)name;
+    (void)status;
+    (void)category;
     snprintf((char *)env, 512, "%s", message);
 }
 
 static void remember3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
                       fmi3String message) {
-    (void)status; (void)category;
+    (void)status;
+    (void)category;
     snprintf((char *)env, 512, "%s", message);
 }
 
@@ -311,8 +328,8 @@ static void *range_instance(const range_api *a, char *message, fmi2CallbackFunct
     }
     *cb = (fmi2CallbackFunctions){remember2, calloc, free, NULL, message};
     void *c = a->f2.instantiate("ranges", fmi2CoSimulation, GUID, "", cb, fmi2False, fmi2True);
-    if (c && (a->f2.setup(c, fmi2False, 0, 0.0, fmi2False, 0) != fmi2OK ||
-              a->f2.enter(c) != fmi2OK))
+    if (c &&
+        (a->f2.setup(c, fmi2False, 0, 0.0, fmi2False, 0) != fmi2OK || a->f2.enter(c) != fmi2OK))
         c = NULL;
     return c;
 }
@@ -351,11 +368,20 @@ int main(int argc, char **argv) {
     }
     const int steps = argc > 4 ? atoi(argv[4]) : 20000;
     void *lib2 = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
-    if (!lib2) { fprintf(stderr, "importer: %s\n", dlerror()); return 2; }
+    if (!lib2) {
+        fprintf(stderr, "importer: %s\n", dlerror());
+        return 2;
+    }
     void *lib3 = dlopen(argv[2], RTLD_NOW | RTLD_LOCAL);
-    if (!lib3) { fprintf(stderr, "importer: %s\n", dlerror()); return 2; }
+    if (!lib3) {
+        fprintf(stderr, "importer: %s\n", dlerror());
+        return 2;
+    }
     FILE *out = argc > 3 ? fopen(argv[3], "w") : NULL;
-    if (argc > 3 && !out) { fprintf(stderr, "importer: cannot write %s\n", argv[3]); return 2; }
+    if (argc > 3 && !out) {
+        fprintf(stderr, "importer: cannot write %s\n", argv[3]);
+        return 2;
+    }
 
     const int ranged = check_declared_ranges(lib2, 0);
     CHECK(ranged > 0 && check_declared_ranges(lib3, 1) == ranged,
@@ -375,9 +401,11 @@ int main(int argc, char **argv) {
             const char *src = der ? "inputs" : "fd";
             if (!a.ran) {
                 printf("%-6s %-10s %-12s %10s %10s\n", "2+3", level[fid], src, "n/a", "n/a");
-                if (out) fprintf(out, "fmi2 fidelity=%s derivatives=%s unsupported\n"
-                                      "fmi3 fidelity=%s derivatives=%s unsupported\n",
-                                 level[fid], src, level[fid], src);
+                if (out)
+                    fprintf(out,
+                            "fmi2 fidelity=%s derivatives=%s unsupported\n"
+                            "fmi3 fidelity=%s derivatives=%s unsupported\n",
+                            level[fid], src, level[fid], src);
                 continue;
             }
             /* same outputs from both versions, bit for bit, all finite; lengths near 0.56 m */
@@ -396,19 +424,21 @@ int main(int argc, char **argv) {
             printf("%-6s %-10s %-12s %10.3f %10.3f\n", "2", level[fid], src, a.step_us, a.cycle_us);
             printf("%-6s %-10s %-12s %10.3f %10.3f\n", "3", level[fid], src, b.step_us, b.cycle_us);
             if (out)
-                fprintf(out, "fmi2 fidelity=%s derivatives=%s doStep_us=%.3f cycle_us=%.3f\n"
-                             "fmi3 fidelity=%s derivatives=%s doStep_us=%.3f cycle_us=%.3f\n",
+                fprintf(out,
+                        "fmi2 fidelity=%s derivatives=%s doStep_us=%.3f cycle_us=%.3f\n"
+                        "fmi3 fidelity=%s derivatives=%s doStep_us=%.3f cycle_us=%.3f\n",
                         level[fid], src, a.step_us, a.cycle_us, level[fid], src, b.step_us,
                         b.cycle_us);
         }
 #if COUNT_ALLOCATIONS
     CHECK(allocations == 0, "%ld heap allocations during the steps", allocations);
     printf("heap allocations during the steps: %ld\n", allocations);
-    {   /* the counter works: instantiation does allocate */
+    { /* the counter works: instantiation does allocate */
         const fmi2_api f = fmi2_api_load(lib2);
         const fmi2CallbackFunctions cb = {logger2, calloc, free, NULL, NULL};
         counting = 1;
-        fmi2Component c = f.instantiate("probe", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
+        fmi2Component c =
+            f.instantiate("probe", fmi2CoSimulation, GUID, "", &cb, fmi2False, fmi2False);
         counting = 0;
         CHECK(c != NULL && allocations > 0, "the allocation counter does not see the FMU's calls");
         f.free_instance(c);

@@ -42,8 +42,10 @@ static inline fmi2_api fmi2_api_load(void *lib) {
     f.instantiate = (fmi2InstantiateTYPE *)importer_symbol(lib, "fmi2Instantiate");
     f.free_instance = (fmi2FreeInstanceTYPE *)importer_symbol(lib, "fmi2FreeInstance");
     f.setup = (fmi2SetupExperimentTYPE *)importer_symbol(lib, "fmi2SetupExperiment");
-    f.enter = (fmi2EnterInitializationModeTYPE *)importer_symbol(lib, "fmi2EnterInitializationMode");
-    f.exit_init = (fmi2ExitInitializationModeTYPE *)importer_symbol(lib, "fmi2ExitInitializationMode");
+    f.enter =
+        (fmi2EnterInitializationModeTYPE *)importer_symbol(lib, "fmi2EnterInitializationMode");
+    f.exit_init =
+        (fmi2ExitInitializationModeTYPE *)importer_symbol(lib, "fmi2ExitInitializationMode");
     f.set_int = (fmi2SetIntegerTYPE *)importer_symbol(lib, "fmi2SetInteger");
     f.set_real = (fmi2SetRealTYPE *)importer_symbol(lib, "fmi2SetReal");
     f.get_real = (fmi2GetRealTYPE *)importer_symbol(lib, "fmi2GetReal");

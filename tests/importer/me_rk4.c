@@ -41,14 +41,17 @@ static void check(int status, const char *call) {
 }
 
 static void log_fmi2(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
-                 fmi2String category, fmi2String message, ...) {
-    (void)env; (void)name; (void)status;
+                     fmi2String category, fmi2String message, ...) {
+    (void)env;
+    (void)name;
+    (void)status;
     fprintf(stderr, "[%s] %s\n", category, message);
 }
 
 static void log_fmi3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String category,
-                 fmi3String message) {
-    (void)env; (void)status;
+                     fmi3String message) {
+    (void)env;
+    (void)status;
     fprintf(stderr, "[%s] %s\n", category, message);
 }
 
@@ -97,8 +100,8 @@ static int derivatives3(void *c, double *dx, size_t n) {
 
 /* Instantiated, parameters set, initialised, through event mode into continuous-time mode. */
 static master start(int version, int fidelity, const double x0[N]) {
-    master m = {version, NULL, set_real2, get_real2, set_time2, set_states2, get_states2,
-                derivatives2};
+    master m = {version,   NULL,        set_real2,   get_real2,
+                set_time2, set_states2, get_states2, derivatives2};
     static fmi2CallbackFunctions callbacks = {log_fmi2, calloc, free, NULL, NULL};
     if (version == 3) {
         m.set_real = set_real3;

@@ -87,10 +87,10 @@ int main(int argc, char **argv) {
         fprintf(stderr, "KIND = %s must be own, other or both\n", kind);
         return 2;
     }
-    const double own = both || !strcmp(kind, "own") ? median_deserialise(&u, own_bytes, n, calls) : 0;
-    const double foreign = both || !strcmp(kind, "other")
-                               ? median_deserialise(&u, other_bytes, n_other, calls)
-                               : 0;
+    const double own =
+        both || !strcmp(kind, "own") ? median_deserialise(&u, own_bytes, n, calls) : 0;
+    const double foreign =
+        both || !strcmp(kind, "other") ? median_deserialise(&u, other_bytes, n_other, calls) : 0;
     unit_free(&u);
     unit_free(&other);
     if (own < 0 || foreign < 0) return 1;

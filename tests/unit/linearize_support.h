@@ -15,7 +15,9 @@
 
 /* A block of a Jacobian (one group of rows by one group of columns of one unit each): the
  * largest |exact - difference| and the largest |exact|. */
-typedef struct { double error, scale; } block_error;
+typedef struct {
+    double error, scale;
+} block_error;
 /* Adds one entry to the block. */
 void block_add(block_error *e, double exact, double difference);
 /* The block's error relative to its scale, where the rounding of the central difference

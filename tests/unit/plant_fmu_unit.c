@@ -28,12 +28,12 @@ static void logger3(fmi3InstanceEnvironment env, fmi3Status status, fmi3String c
 /* Instantiates (logging on), sets the fidelity, the forces and n Real parameters, and initialises
  * at t0; 0 if a call failed (no Unity assertion: threads call it too). */
 int unit_open_at(unit *u, int v3, int fidelity, const double force[6], double t0, size_t n,
-                        const unsigned *vr, const double *value) {
+                 const unsigned *vr, const double *value) {
     memset(u, 0, sizeof *u);
     u->v3 = v3;
     u->cb2 = (fmi2CallbackFunctions){logger2, calloc, free, NULL, &u->log};
-    const unsigned fidelity_vr = VR_fidelity, force_vr[6] = {VR_F_1, VR_F_2, VR_F_3,
-                                                             VR_F_4, VR_F_5, VR_F_6};
+    const unsigned fidelity_vr = VR_fidelity,
+                   force_vr[6] = {VR_F_1, VR_F_2, VR_F_3, VR_F_4, VR_F_5, VR_F_6};
     const int32_t fidelity_value = fidelity;
     if (v3) {
         u->c = fmi3InstantiateCoSimulation("plant", FMU_GUID, "", fmi3False, fmi3True, fmi3False,
@@ -49,7 +49,8 @@ int unit_open_at(unit *u, int v3, int fidelity, const double force[6], double t0
            fmi2SetReal(u->c, force_vr, 6, force) == fmi2OK &&
            (n == 0 || fmi2SetReal(u->c, vr, n, value) == fmi2OK) &&
            fmi2SetupExperiment(u->c, fmi2False, 0, t0, fmi2False, 0) == fmi2OK &&
-           fmi2EnterInitializationMode(u->c) == fmi2OK && fmi2ExitInitializationMode(u->c) == fmi2OK;
+           fmi2EnterInitializationMode(u->c) == fmi2OK &&
+           fmi2ExitInitializationMode(u->c) == fmi2OK;
 }
 
 /* unit_open_at at t = 0 with the default parameters. */
@@ -74,7 +75,8 @@ void unit_free(unit *u) {
 
 int set_forces(unit *u, const double force[6]) {
     const unsigned vr[6] = {VR_F_1, VR_F_2, VR_F_3, VR_F_4, VR_F_5, VR_F_6};
-    return u->v3 ? (int)fmi3SetFloat64(u->c, vr, 6, force, 6) : (int)fmi2SetReal(u->c, vr, 6, force);
+    return u->v3 ? (int)fmi3SetFloat64(u->c, vr, 6, force, 6)
+                 : (int)fmi2SetReal(u->c, vr, 6, force);
 }
 
 /* FMI 2 only: order-1 derivatives of the six forces for the next step. */
@@ -140,4 +142,3 @@ void static_forces(int fidelity, double force[6]) {
     stewart_inverse_free(data);
     stewart_model_free(model);
 }
-

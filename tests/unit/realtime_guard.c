@@ -24,19 +24,19 @@ static volatile long lock_calls = 0;
 
 /* ---- locks: every entry point counted while counting, then the C library's own ---- */
 
-#define INTERPOSE(ret, name, params, args)                                  \
-    ret name params {                                                       \
-        static ret(*real) params = NULL;                                    \
-        if (!real) real = (ret(*) params)dlsym(RTLD_NEXT, #name);           \
-        if (realtime_counting) ++lock_calls;                                \
-        return real args;                                                   \
+#define INTERPOSE(ret, name, params, args)                        \
+    ret name params {                                             \
+        static ret(*real) params = NULL;                          \
+        if (!real) real = (ret(*) params)dlsym(RTLD_NEXT, #name); \
+        if (realtime_counting) ++lock_calls;                      \
+        return real args;                                         \
     }
-INTERPOSE(int, pthread_mutex_lock, (pthread_mutex_t *m), (m))
-INTERPOSE(int, pthread_mutex_trylock, (pthread_mutex_t *m), (m))
-INTERPOSE(int, pthread_rwlock_rdlock, (pthread_rwlock_t *l), (l))
-INTERPOSE(int, pthread_rwlock_wrlock, (pthread_rwlock_t *l), (l))
-INTERPOSE(int, pthread_spin_lock, (pthread_spinlock_t *l), (l))
-INTERPOSE(int, sem_wait, (sem_t *s), (s))
+INTERPOSE(int, pthread_mutex_lock, (pthread_mutex_t * m), (m))
+INTERPOSE(int, pthread_mutex_trylock, (pthread_mutex_t * m), (m))
+INTERPOSE(int, pthread_rwlock_rdlock, (pthread_rwlock_t * l), (l))
+INTERPOSE(int, pthread_rwlock_wrlock, (pthread_rwlock_t * l), (l))
+INTERPOSE(int, pthread_spin_lock, (pthread_spinlock_t * l), (l))
+INTERPOSE(int, sem_wait, (sem_t * s), (s))
 
 /* Resolves the C library's functions before any counting (dlsym may allocate). */
 static void resolve_locks(void) {
@@ -64,9 +64,9 @@ static void resolve_locks(void) {
 typedef struct guarded {
     void (*body)(void *);
     void *arg;
-    volatile int listener;  /* the filter's notification fd (-1 until set, -2 on failure) */
+    volatile int listener; /* the filter's notification fd (-1 until set, -2 on failure) */
     volatile int done;
-    int error;              /* errno of a failed filter installation */
+    int error; /* errno of a failed filter installation */
 } guarded;
 
 static void *guarded_thread(void *p) {
@@ -76,8 +76,8 @@ static void *guarded_thread(void *p) {
     struct sock_fprog prog = {sizeof code / sizeof code[0], code};
     int fd = -1;
     if (prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) == 0)
-        fd = (int)syscall(SYS_seccomp, SECCOMP_SET_MODE_FILTER,
-                          SECCOMP_FILTER_FLAG_NEW_LISTENER, &prog);
+        fd = (int)syscall(SYS_seccomp, SECCOMP_SET_MODE_FILTER, SECCOMP_FILTER_FLAG_NEW_LISTENER,
+                          &prog);
     if (fd < 0) {
         g->error = errno;
         __atomic_store_n(&g->listener, -2, __ATOMIC_SEQ_CST);
@@ -107,8 +107,10 @@ int realtime_guard_run(void (*body)(void *), void *arg, realtime_counts *counts,
     while ((fd = __atomic_load_n(&g.listener, __ATOMIC_SEQ_CST)) == -1) sched_yield();
     if (fd == -2) {
         pthread_join(thread, NULL);
-        snprintf(message, size, "seccomp user notification is not available here (%s): the "
-                 "system-call check needs Linux >= 5.5 and seccomp allowed", strerror(g.error));
+        snprintf(message, size,
+                 "seccomp user notification is not available here (%s): the "
+                 "system-call check needs Linux >= 5.5 and seccomp allowed",
+                 strerror(g.error));
         return -1;
     }
     /* answer every notification (let the call proceed) until no thread uses the filter any more

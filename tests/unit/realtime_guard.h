@@ -16,7 +16,7 @@ extern volatile int realtime_counting;
 
 typedef struct realtime_counts {
     long locks, syscalls;
-    int first_syscall;  /* number of the first system call counted, -1 if none */
+    int first_syscall; /* number of the first system call counted, -1 if none */
 } realtime_counts;
 
 /* Runs body(arg) in a new thread whose every system call the calling thread sees; counts what

@@ -46,7 +46,9 @@ static void test_nan_and_inf_pose_components_are_named(void) {
             double *v = row == 0 ? pose.q : row == 1 ? pose.q_dot : pose.q_ddot;
             v[i] = (i % 2) ? NAN : -INFINITY;
             snprintf(expected, sizeof expected, "%s%s is", names[i],
-                     row == 0 ? "" : row == 1 ? "_dot" : "_ddot");
+                     row == 0   ? ""
+                     : row == 1 ? "_dot"
+                                : "_ddot");
             assert_rejected(&pose, STEWART_MASSLESS, STEWART_ERR_ARGUMENT, expected);
         }
 }
@@ -86,18 +88,39 @@ static void expect_bad_params(const stewart_params *p, const char *mention) {
 
 static void test_invalid_parameters_are_named(void) {
     stewart_params p;
-    stewart_params_default(&p); p.base_radius = 0;          expect_bad_params(&p, "base_radius = 0");
-    stewart_params_default(&p); p.platform_radius = -1;     expect_bad_params(&p, "platform_radius = -1");
-    stewart_params_default(&p); p.platform_mass = 0;        expect_bad_params(&p, "platform_mass = 0");
-    stewart_params_default(&p); p.payload_mass = -5;        expect_bad_params(&p, "payload_mass = -5");
-    stewart_params_default(&p); p.piston_mass = -1;         expect_bad_params(&p, "piston_mass");
-    stewart_params_default(&p); p.gravity[2] = NAN;         expect_bad_params(&p, "gravity[3]");
-    stewart_params_default(&p); p.platform_angle[4] = INFINITY; expect_bad_params(&p, "platform_angle[5]");
-    stewart_params_default(&p); p.platform_inertia[2] = 0;  expect_bad_params(&p, "platform_inertia");
+    stewart_params_default(&p);
+    p.base_radius = 0;
+    expect_bad_params(&p, "base_radius = 0");
+    stewart_params_default(&p);
+    p.platform_radius = -1;
+    expect_bad_params(&p, "platform_radius = -1");
+    stewart_params_default(&p);
+    p.platform_mass = 0;
+    expect_bad_params(&p, "platform_mass = 0");
+    stewart_params_default(&p);
+    p.payload_mass = -5;
+    expect_bad_params(&p, "payload_mass = -5");
+    stewart_params_default(&p);
+    p.piston_mass = -1;
+    expect_bad_params(&p, "piston_mass");
+    stewart_params_default(&p);
+    p.gravity[2] = NAN;
+    expect_bad_params(&p, "gravity[3]");
+    stewart_params_default(&p);
+    p.platform_angle[4] = INFINITY;
+    expect_bad_params(&p, "platform_angle[5]");
+    stewart_params_default(&p);
+    p.platform_inertia[2] = 0;
+    expect_bad_params(&p, "platform_inertia");
     /* principal moments that break the triangle inequality are no rigid body's */
-    stewart_params_default(&p); p.payload_inertia[0] = 1; p.payload_inertia[1] = 1;
-    p.payload_inertia[2] = 3;                                expect_bad_params(&p, "payload_inertia");
-    stewart_params_default(&p); p.stroke_max[3] = p.stroke_min[3]; expect_bad_params(&p, "stroke_max[4]");
+    stewart_params_default(&p);
+    p.payload_inertia[0] = 1;
+    p.payload_inertia[1] = 1;
+    p.payload_inertia[2] = 3;
+    expect_bad_params(&p, "payload_inertia");
+    stewart_params_default(&p);
+    p.stroke_max[3] = p.stroke_min[3];
+    expect_bad_params(&p, "stroke_max[4]");
     TEST_ASSERT_NULL(stewart_model_create(NULL, msg, sizeof msg));
 }
 
@@ -133,13 +156,15 @@ static void test_invalid_options_and_null_arguments(void) {
  * is accepted and met along the combined manoeuvre (lengths still the closed form). */
 static void test_tolerance_below_machine_precision(void) {
     const double refused[3] = {1e-16, 1e-17, DBL_EPSILON};
-    const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17", "tolerance = 2.220446049250313e-16"};
+    const char *named[3] = {"tolerance = 1e-16", "tolerance = 1e-17",
+                            "tolerance = 2.220446049250313e-16"};
     stewart_pose home = {{0, 0, 0.5, 0, 0, 0}, {0}, {0}};
     stewart_inverse_output out;
     for (int i = 0; i < 3; ++i) {
         stewart_inverse_options o = test_options(STEWART_FULL);
         o.tolerance = refused[i];
-        TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
+        TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                              stewart_inverse_options_check(&o, msg, sizeof msg));
         assert_contains(msg, named[i]);
         assert_contains(msg, "use at least 2.5e-16");
         TEST_ASSERT_NULL(stewart_inverse_create(model, &o, msg, sizeof msg));
@@ -147,14 +172,16 @@ static void test_tolerance_below_machine_precision(void) {
     }
     stewart_inverse_options o = test_options(STEWART_FULL);
     o.tolerance = 2.5e-16;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_options_check(&o, msg, sizeof msg), msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_options_check(&o, msg, sizeof msg),
+                                  msg);
     for (int i = 0; i < 300; ++i) {
         stewart_pose pose = combined_pose(0.01 * i);
         TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_as(data, &o, &pose, &out),
                                       stewart_inverse_message(data));
         TEST_ASSERT_TRUE(out.residual <= 2.5e-16);
         for (int k = 0; k < 6; ++k)
-            TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &pose, k), out.lengths.length[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12, closed_form_length(&params, &pose, k),
+                                      out.lengths.length[k]);
     }
 }
 
@@ -163,14 +190,17 @@ static void test_tolerance_below_machine_precision(void) {
 static void test_iteration_cap_is_bounded(void) {
     stewart_inverse_options o = test_options(STEWART_FULL);
     o.max_iterations = 1001;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_inverse_options_check(&o, msg, sizeof msg));
     assert_contains(msg, "max_iterations = 1001");
     o.max_iterations = 1000;
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_options_check(&o, msg, sizeof msg), msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_options_check(&o, msg, sizeof msg),
+                                  msg);
     stewart_forward_options f;
     stewart_forward_options_default(&f);
     f.max_iterations = 2147483647;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_forward_options_check(&f, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_forward_options_check(&f, msg, sizeof msg));
     assert_contains(msg, "max_iterations = 2147483647");
 }
 
@@ -201,13 +231,18 @@ static void test_overflowing_rates_name_the_input(void) {
                     stewart_inverse_output out;
                     const stewart_status s = solve_as(data, &o, &pose, &out);
                     if (s == STEWART_OK) { /* solvable: the outputs are finite */
-                        for (int k = 0; k < 6; ++k) TEST_ASSERT_TRUE(isfinite(out.force[k]) && isfinite(out.lengths.length_accel[k]));
+                        for (int k = 0; k < 6; ++k)
+                            TEST_ASSERT_TRUE(isfinite(out.force[k]) &&
+                                             isfinite(out.lengths.length_accel[k]));
                         continue;
                     }
-                    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_ARGUMENT, s, stewart_inverse_message(data));
+                    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_ARGUMENT, s,
+                                                  stewart_inverse_message(data));
                     assert_contains(stewart_inverse_message(data), expected);
-                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "q_d"), stewart_inverse_message(data));
-                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "lambda"), stewart_inverse_message(data));
+                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "q_d"),
+                                             stewart_inverse_message(data));
+                    TEST_ASSERT_NULL_MESSAGE(strstr(stewart_inverse_message(data), "lambda"),
+                                             stewart_inverse_message(data));
                 }
     /* x_dot = DBL_MAX, the probe's case, is refused at the full level */
     stewart_pose pose = {{0, 0, 0.5, 0, 0, 0}, {DBL_MAX, 0, 0, 0, 0, 0}, {0}};

@@ -45,16 +45,19 @@ static stewart_pose pose_of_row(int j) {
 
 static void test_solve_batch_equals_the_loop(void) {
     fill_rows();
-    q[5][0] = NAN;   /* a bad row: the rows after it are still solved */
-    q_dot[9][1] = INFINITY;  /* a bad rate */
+    q[5][0] = NAN;          /* a bad row: the rows after it are still solved */
+    q_dot[9][1] = INFINITY; /* a bad rate */
     stewart_inverse_options o;
     stewart_inverse_options_default(&o);
     o.fidelity = STEWART_FULL;
     double length[ROWS][6], force[ROWS][6], condition[ROWS];
     int status[ROWS], iterations[ROWS], stroke_legs[ROWS];
-    const stewart_inverse_batch_outputs out = {.length = &length[0][0], .force = &force[0][0],
-                                               .condition = condition, .iterations = iterations,
-                                               .stroke_legs = stroke_legs, .status = status};
+    const stewart_inverse_batch_outputs out = {.length = &length[0][0],
+                                               .force = &force[0][0],
+                                               .condition = condition,
+                                               .iterations = iterations,
+                                               .stroke_legs = stroke_legs,
+                                               .status = status};
     size_t rows[4], first_failed = 0;
     char text[4 * STEWART_MESSAGE_SIZE];
     stewart_batch_messages messages = {4, 0, rows, text};
@@ -106,22 +109,25 @@ static void test_forward_batch_equals_the_loop(void) {
     fill_rows();
     double L[ROWS][6], L_dot[ROWS][6], L_ddot[ROWS][6];
     leg_motion(L, L_dot, L_ddot);
-    L[7][3] = INFINITY;              /* a bad measurement */
-    L[12][0] = L[12][1] = L[12][2] = L[12][3] = L[12][4] = L[12][5] = 0.1;  /* unreachable */
+    L[7][3] = INFINITY;                                                    /* a bad measurement */
+    L[12][0] = L[12][1] = L[12][2] = L[12][3] = L[12][4] = L[12][5] = 0.1; /* unreachable */
     stewart_forward_options o;
     stewart_forward_options_default(&o);
     double pose[ROWS][6], rate[ROWS][6], accel[ROWS][6], residual[ROWS];
     int status[ROWS], iterations[ROWS], start[ROWS], branch[ROWS];
-    const stewart_forward_batch_outputs out = {.pose = &pose[0][0], .pose_rate = &rate[0][0],
-                                               .pose_accel = &accel[0][0], .residual = residual,
-                                               .iterations = iterations, .branch = branch,
-                                               .start = start, .status = status};
+    const stewart_forward_batch_outputs out = {.pose = &pose[0][0],
+                                               .pose_rate = &rate[0][0],
+                                               .pose_accel = &accel[0][0],
+                                               .residual = residual,
+                                               .iterations = iterations,
+                                               .branch = branch,
+                                               .start = start,
+                                               .status = status};
     size_t first_failed = 0;
     stewart_forward *batch = stewart_forward_create(model, &o, NULL, 0);
     TEST_ASSERT_NOT_NULL(batch);
-    const stewart_status s =
-        stewart_forward_batch(batch, ROWS, times, &L[0][0], &L_dot[0][0], &L_ddot[0][0], NULL,
-                              &out, NULL, &first_failed);
+    const stewart_status s = stewart_forward_batch(batch, ROWS, times, &L[0][0], &L_dot[0][0],
+                                                   &L_ddot[0][0], NULL, &out, NULL, &first_failed);
     stewart_forward_free(batch);
     TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK, s);
     TEST_ASSERT_EQUAL_size_t(7, first_failed);
@@ -175,13 +181,15 @@ static void simulate_equals_the_loop(int fidelity) {
     double pose[ROWS][6], rate[ROWS][6], length[ROWS][6];
     long steps[ROWS];
     int status[ROWS];
-    const stewart_plant_batch_outputs out = {.pose = &pose[0][0], .pose_rate = &rate[0][0],
-                                             .length = &length[0][0], .steps = steps,
+    const stewart_plant_batch_outputs out = {.pose = &pose[0][0],
+                                             .pose_rate = &rate[0][0],
+                                             .length = &length[0][0],
+                                             .steps = steps,
                                              .status = status};
     stewart_plant *batch = plant_of(fidelity), *loop = plant_of(fidelity);
     size_t first_failed = 0;
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_batch(batch, ROWS, times, &F[0][0], start,
-                                                          NULL, &out, NULL, &first_failed));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_batch(batch, ROWS, times, &F[0][0], start, NULL,
+                                                          &out, NULL, &first_failed));
     TEST_ASSERT_EQUAL_size_t(ROWS, first_failed);
     const double at_rest[6] = {0};
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_set_state(loop, times[0], start, at_rest));
@@ -212,7 +220,9 @@ static void simulate_equals_the_loop(int fidelity) {
 static void test_simulate_batch_equals_the_loop_massless(void) {
     simulate_equals_the_loop(STEWART_MASSLESS);
 }
-static void test_simulate_batch_equals_the_loop_full(void) { simulate_equals_the_loop(STEWART_FULL); }
+static void test_simulate_batch_equals_the_loop_full(void) {
+    simulate_equals_the_loop(STEWART_FULL);
+}
 
 static void test_refused_step_stops_the_run(void) {
     fill_rows();
@@ -235,8 +245,7 @@ static void test_refused_step_stops_the_run(void) {
     TEST_ASSERT_EQUAL_size_t(10, first_failed);
     TEST_ASSERT_NOT_NULL(strstr(message, "row 10"));
     for (int j = 0; j < ROWS; ++j)
-        TEST_ASSERT_EQUAL_INT(j < 10 ? STEWART_OK : j == 10 ? s : STEWART_BATCH_NOT_RUN,
-                              status[j]);
+        TEST_ASSERT_EQUAL_INT(j < 10 ? STEWART_OK : j == 10 ? s : STEWART_BATCH_NOT_RUN, status[j]);
     for (int i = 0; i < 6; ++i) TEST_ASSERT_EQUAL_DOUBLE(0.0, pose[ROWS - 1][i]);
     /* the plant stays at row 9 and is usable: a run from there goes on */
     stewart_plant_output now;
@@ -246,9 +255,8 @@ static void test_refused_step_stops_the_run(void) {
     /* a time that does not increase is refused at its row */
     times[3] = times[2];
     F[10][4] = 0;
-    TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK,
-                              stewart_plant_batch(plant, ROWS, times, &F[0][0], NULL, NULL,
-                                                  &out, NULL, &first_failed));
+    TEST_ASSERT_NOT_EQUAL_INT(STEWART_OK, stewart_plant_batch(plant, ROWS, times, &F[0][0], NULL,
+                                                              NULL, &out, NULL, &first_failed));
     TEST_ASSERT_EQUAL_size_t(3, first_failed);
     TEST_ASSERT_EQUAL_INT(STEWART_BATCH_NOT_RUN, status[4]);
     stewart_plant_free(plant);
@@ -266,8 +274,10 @@ static void test_plant_batch_in_slices_equals_one_batch(void) {
     int status[2][ROWS];
     stewart_plant_batch_outputs out[2];
     for (int i = 0; i < 2; ++i)
-        out[i] = (stewart_plant_batch_outputs){.pose = &pose[i][0][0], .pose_rate = &rate[i][0][0],
-                                               .steps = steps[i], .status = status[i]};
+        out[i] = (stewart_plant_batch_outputs){.pose = &pose[i][0][0],
+                                               .pose_rate = &rate[i][0][0],
+                                               .steps = steps[i],
+                                               .status = status[i]};
     for (int refused = 0; refused < 2; ++refused) {
         F[17][2] = refused ? INFINITY : F[17][3];
         stewart_plant *whole = plant_of(STEWART_FULL), *sliced = plant_of(STEWART_FULL);

@@ -244,8 +244,8 @@ void compare(const stewart_model *m, int fidelity, stewart::VectorPath path, boo
         }
     }
     // The rows cover what they should: failures, outside the stroke, and (massless) warnings.
-    std::printf("%zu rows: %zu failed, %zu outside the stroke, %zu near-singular\n", rows.n,
-                failed, stroked, warned);
+    std::printf("%zu rows: %zu failed, %zu outside the stroke, %zu near-singular\n", rows.n, failed,
+                stroked, warned);
     TEST_ASSERT_TRUE(failed >= 12);
     TEST_ASSERT_TRUE(stroked > 100);
     if (fidelity == STEWART_MASSLESS && !exact && singular_condition == 0)
@@ -312,8 +312,8 @@ void on_every_kernel(stewart_model *m, bool exact) {
             compare(m, fidelity, path, exact, kinematic_error, force_error);
             std::printf("%s kernel, %s: largest relative difference %.2g (lengths, rates, "
                         "accelerations), %.2g x condition (forces, base wrench)\n",
-                        kernel_name(path),
-                        fidelity ? "massless" : "kinematic", kinematic_error, force_error);
+                        kernel_name(path), fidelity ? "massless" : "kinematic", kinematic_error,
+                        force_error);
         }
     stewart_model_free(m);
 }
@@ -395,8 +395,11 @@ static void test_any_row_order_gives_the_same_forces(void) {
     stewart_inverse_free(d);
     const stewart::QuadModel home =
         stewart::quad_model(m->geometry, m->platform, m->gravity, m->params, o);
-    const int orders[5][6] = {{0, 1, 2, 3, 4, 5}, {5, 4, 3, 2, 1, 0}, {1, 2, 3, 4, 5, 0},
-                              {3, 4, 5, 0, 1, 2}, {2, 0, 1, 5, 3, 4}};
+    const int orders[5][6] = {{0, 1, 2, 3, 4, 5},
+                              {5, 4, 3, 2, 1, 0},
+                              {1, 2, 3, 4, 5, 0},
+                              {3, 4, 5, 0, 1, 2},
+                              {2, 0, 1, 5, 3, 4}};
     std::vector<double> force(6 * n), condition(n);
     stewart_inverse_batch_outputs out{};
     out.force = force.data(), out.condition = condition.data();

@@ -44,20 +44,23 @@ void setUp(void) {
     add_body("base", Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity());
     for (int side = 0; side < 2; ++side)
         for (int k = 0; k < 6; ++k) {
-            Eigen::Matrix3d A;  /* z along the leg, x along the Cardan arm's perpendicular */
+            Eigen::Matrix3d A; /* z along the leg, x along the Cardan arm's perpendicular */
             A.col(2) = n[k];
             A.col(0) = (side ? arm_b[k] : arm_a[k]).cross(n[k]).normalized();
             A.col(1) = n[k].cross(A.col(0));
-            const Eigen::Vector3d end = side ? Eigen::Vector3d(b[k] + Eigen::Vector3d(0, 0, height) - com * n[k])
-                                             : Eigen::Vector3d(a[k] + com * n[k]);
+            const Eigen::Vector3d end =
+                side ? Eigen::Vector3d(b[k] + Eigen::Vector3d(0, 0, height) - com * n[k])
+                     : Eigen::Vector3d(a[k] + com * n[k]);
             add_body(side ? "piston" : "cylinder", end, A);
         }
     add_body("platform", Eigen::Vector3d(0, 0, height), Eigen::Matrix3d::Identity());
     TEST_ASSERT_EQUAL(MBS_OK, mbs_fix_body(model, 0));
     const double ex[3] = {1, 0, 0}, ez[3] = {0, 0, 1}, low[3] = {0, 0, -com}, high[3] = {0, 0, com};
     for (int k = 0; k < 6; ++k) {
-        TEST_ASSERT_TRUE(mbs_add_cardan(model, 0, a[k].data(), arm_a[k].data(), 1 + k, low, ex) >= 0);
-        TEST_ASSERT_TRUE(mbs_add_cardan(model, 13, b[k].data(), arm_b[k].data(), 7 + k, high, ex) >= 0);
+        TEST_ASSERT_TRUE(mbs_add_cardan(model, 0, a[k].data(), arm_a[k].data(), 1 + k, low, ex) >=
+                         0);
+        TEST_ASSERT_TRUE(mbs_add_cardan(model, 13, b[k].data(), arm_b[k].data(), 7 + k, high, ex) >=
+                         0);
         const int cylindrical = mbs_add_cylindrical(model, 1 + k, low, ez, 7 + k, high, ez);
         TEST_ASSERT_TRUE(mbs_add_distance_driver(model, cylindrical, NULL) >= 0);
     }
@@ -152,7 +155,8 @@ static void test_fallback_when_a_planned_pivot_is_tiny(void) {
         for (int k = 0; k < (int)g.cols.size() && !changed; ++k) {
             if (g.program.below_start[k + 1] == g.program.below_start[k]) continue;
             for (size_t v = 0; v < g.value_dest.size(); ++v)
-                if (g.value_dest[v] == g.offset + k * width + k && values[g.value_index[v]] != 0.0) {
+                if (g.value_dest[v] == g.offset + k * width + k &&
+                    values[g.value_index[v]] != 0.0) {
                     values[g.value_index[v]] *= 1e-5;
                     ++changed;
                     break;
@@ -211,12 +215,13 @@ static void test_paired_joints_write_the_separate_rows(void) {
                                   ? block + MBS_BODY_COORDINATES * m.joint_info[k]->equations
                                   : nullptr;
             mbs::evaluate_joint(m, (int)k, q.data(), nullptr, drive.data(),
-                                mbs::JointOutput{phi_alone.data() + m.first_row[k], block,
-                                                 block_j, nullptr, nullptr});
+                                mbs::JointOutput{phi_alone.data() + m.first_row[k], block, block_j,
+                                                 nullptr, nullptr});
         }
         TEST_ASSERT_EQUAL_MEMORY(phi_alone.data(), phi.data(), phi.size() * sizeof(double));
         TEST_ASSERT_EQUAL_MEMORY(phi_alone.data(), phi_only.data(), phi.size() * sizeof(double));
-        TEST_ASSERT_EQUAL_MEMORY(values_alone.data(), values.data(), values.size() * sizeof(double));
+        TEST_ASSERT_EQUAL_MEMORY(values_alone.data(), values.data(),
+                                 values.size() * sizeof(double));
     }
 }
 
@@ -266,7 +271,8 @@ static void test_lanes_equal_one_group_at_a_time(void) {
         for (int k = 0; k < count; ++k) {
             auto lanes = mbs::make_block_solver(m, kernels[k]);
             TEST_ASSERT_TRUE(lanes->factor(values.data()));
-            TEST_ASSERT_EQUAL_MESSAGE(trial == 5 ? 1 : 0, (int)lanes->fallbacks(), kernels[k]->name);
+            TEST_ASSERT_EQUAL_MESSAGE(trial == 5 ? 1 : 0, (int)lanes->fallbacks(),
+                                      kernels[k]->name);
             std::vector<double> x = rhs, y = rhs;
             lanes->solve(x.data());
             lanes->solve_transposed(y.data());

@@ -15,8 +15,9 @@ void setUp(void) {}
 void tearDown(void) { use_decimal_point(); }
 
 static void test_param_values_read_as_written(void) {
-    TEST_ASSERT_TRUE_MESSAGE(use_decimal_comma(STEWART_TEST_LOCALE_DIR),
-                             "no de_DE.UTF-8 locale, and localedef could not build one (Debian: locales)");
+    TEST_ASSERT_TRUE_MESSAGE(
+        use_decimal_comma(STEWART_TEST_LOCALE_DIR),
+        "no de_DE.UTF-8 locale, and localedef could not build one (Debian: locales)");
     std::string name;
     double value = 0;
     TEST_ASSERT_TRUE(stewart::parse_assignment("test", "payload_mass=12.5", name, value));
@@ -33,9 +34,11 @@ static void test_param_values_read_as_written(void) {
 
 static void test_csv_rows_read_as_written(void) {
     const std::string dir = STEWART_TEST_LOCALE_DIR;
-    const std::string poses = dir + "/cli_numbers_poses.csv", lengths = dir + "/cli_numbers_lengths.csv";
-    TEST_ASSERT_TRUE_MESSAGE(use_decimal_comma(STEWART_TEST_LOCALE_DIR),
-                             "no de_DE.UTF-8 locale, and localedef could not build one (Debian: locales)");
+    const std::string poses = dir + "/cli_numbers_poses.csv",
+                      lengths = dir + "/cli_numbers_lengths.csv";
+    TEST_ASSERT_TRUE_MESSAGE(
+        use_decimal_comma(STEWART_TEST_LOCALE_DIR),
+        "no de_DE.UTF-8 locale, and localedef could not build one (Debian: locales)");
     FILE *f = std::fopen(poses.c_str(), "w");
     TEST_ASSERT_NOT_NULL(f);
     std::fputs("t,x,y,z,roll,pitch,yaw\n0,0.0125,0,0.5,0,0,0\n0.1, 0.0125 ,0,0.51,0.02,0,0\n", f);
@@ -51,14 +54,17 @@ static void test_csv_rows_read_as_written(void) {
     // forward kinematics reads its lengths (the thesis' home: 0.5631 m) and solves the rows
     f = std::fopen(lengths.c_str(), "w");
     TEST_ASSERT_NOT_NULL(f);
-    std::fputs("t,L1,L2,L3,L4,L5,L6\n0,0.5,0.5,0.5,0.5,0.5,0.5\n0.1,0.505,0.505,0.505,0.505,0.505,0.505\n", f);
+    std::fputs(
+        "t,L1,L2,L3,L4,L5,L6\n0,0.5,0.5,0.5,0.5,0.5,0.5\n0.1,0.505,0.505,0.505,0.505,0.505,0.505\n",
+        f);
     std::fclose(f);
     stewart_params params;
     stewart_params_default(&params);
     stewart_forward_options options;
     stewart_forward_options_default(&options);
-    TEST_ASSERT_EQUAL_INT(0, stewart::run_forward(lengths.c_str(), (dir + "/cli_numbers_out.csv").c_str(),
-                                                  params, options, nullptr));
+    TEST_ASSERT_EQUAL_INT(0, stewart::run_forward(lengths.c_str(),
+                                                  (dir + "/cli_numbers_out.csv").c_str(), params,
+                                                  options, nullptr));
 }
 
 int main(void) {

@@ -60,25 +60,32 @@ static void test_option_table_ranges(void) {
         for (int side = 0; side < 2; ++side) {
             const double end = ends[side], outward = side ? 1.0 : -1.0;
             if (fabs(end) >= DBL_MAX) continue;
-            const double inside = closed[side] ? end
+            const double inside = closed[side]       ? end
                                   : info->is_integer ? end - outward
                                                      : nextafter(end, -outward * INFINITY);
             const double outside = info->is_integer ? end + outward
                                    : closed[side]   ? nextafter(end, outward * INFINITY)
                                                     : end;
             stewart_cueing_options o = d;
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_cueing_option_set(&o, i, inside, msg, sizeof msg), info->name);
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_cueing_options_check(&o, msg, sizeof msg), msg);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
+                                          stewart_cueing_option_set(&o, i, inside, msg, sizeof msg),
+                                          info->name);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
+                                          stewart_cueing_options_check(&o, msg, sizeof msg), msg);
             stewart_cueing *c = stewart_cueing_create(model, &o, msg, sizeof msg);
             if (!strcmp(info->name, "warn_condition") && side == 0) {
                 /* a condition limit of 1 puts home (condition 11.4) beyond it: refused so */
                 TEST_ASSERT_NULL(c);
-                TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "home pose is beyond the condition limit"), msg);
+                TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "home pose is beyond the condition limit"),
+                                             msg);
             } else {
                 TEST_ASSERT_NOT_NULL_MESSAGE(c, msg);
             }
             stewart_cueing_free(c);
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, stewart_cueing_option_set(&o, i, outside, msg, sizeof msg), info->name);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER,
+                                          stewart_cueing_option_set(&o, i, outside, msg,
+                                                                    sizeof msg),
+                                          info->name);
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, info->name), msg);
         }
     }
@@ -104,7 +111,8 @@ static void test_options_are_refused_by_name(void) {
     stewart_cueing_options_default(&o);
     const int i = stewart_cueing_option_find("rotation_filter_order");
     TEST_ASSERT_TRUE(i >= 0);
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_cueing_option_set(&o, i, 3, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_cueing_option_set(&o, i, 3, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_cueing_option_set(&o, i, 1, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(1, o.rotation_filter_order);
 }
@@ -322,7 +330,8 @@ static void test_bad_input_is_refused_and_changes_nothing(void) {
     bad = in;
     bad.specific_force[0] = 1e300;
     if (stewart_cueing_step(c, &bad, &b) == STEWART_OK)
-        for (int i = 0; i < 6; ++i) TEST_ASSERT_TRUE(isfinite(b.pose.q[i]) && isfinite(b.pose.q_ddot[i]));
+        for (int i = 0; i < 6; ++i)
+            TEST_ASSERT_TRUE(isfinite(b.pose.q[i]) && isfinite(b.pose.q_ddot[i]));
     stewart_cueing_free(c);
 }
 

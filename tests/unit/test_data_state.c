@@ -92,7 +92,8 @@ static void expect_refused(const unsigned char *saved, size_t size, int coordina
     stewart_inverse *reference = test_inverse(model);
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_copy(reference, data));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_inverse_load(data, bytes, size));
-    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_inverse_message(data), mention), stewart_inverse_message(data));
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_inverse_message(data), mention),
+                                 stewart_inverse_message(data));
     stewart_inverse_output a, b;
     run(data, 0.06, 20, &a);
     run(reference, 0.06, 20, &b);
@@ -123,7 +124,8 @@ static void test_states_that_do_not_fit_the_model_are_refused(void) {
     memcpy(&z, bytes + q_at + (MBS_BODY_R(13) + 2) * sizeof z, sizeof z);
     expect_refused(bytes, size, MBS_BODY_R(13) + 2, z + 1e-6, "residual");
     /* the state as saved still loads */
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_load(data, bytes, size), stewart_inverse_message(data));
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_load(data, bytes, size),
+                                  stewart_inverse_message(data));
     free(bytes);
 }
 

@@ -61,7 +61,7 @@ static void test_the_published_reflected_mass(void) {
     stewart_params p;
     stewart_params_default(&p);
     looms_drives(&p);
-    p.screw_lead[5] = 0;  /* leg 6 without a drive */
+    p.screw_lead[5] = 0; /* leg 6 without a drive */
     p.gear_ratio[5] = 1, p.rotor_inertia[5] = 0, p.torque_constant[5] = 0;
     p.winding_resistance[5] = p.winding_inductance[5] = 0;
     p.screw_efficiency[5] = p.screw_back_efficiency[5] = 1;
@@ -106,9 +106,9 @@ static void test_drives_change_no_other_column_and_none_gives_zeros(void) {
             TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_solve(a, &in, &oa));
             TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_solve(b, &in, &ob));
             assert_same_legs(&oa, &ob);
-            const double *columns[] = {oa.motor_angle, oa.motor_speed, oa.motor_accel,
-                                       oa.motor_torque, oa.current, oa.current_rate, oa.voltage,
-                                       oa.electrical_power, oa.motor_power};
+            const double *columns[] = {oa.motor_angle,  oa.motor_speed,      oa.motor_accel,
+                                       oa.motor_torque, oa.current,          oa.current_rate,
+                                       oa.voltage,      oa.electrical_power, oa.motor_power};
             for (size_t c = 0; c < sizeof columns / sizeof columns[0]; ++c)
                 TEST_ASSERT_EQUAL_MEMORY(zeros, columns[c], sizeof zeros);
             TEST_ASSERT_EQUAL_INT(0, oa.current_max_legs | oa.voltage_max_legs |
@@ -121,9 +121,8 @@ static void test_drives_change_no_other_column_and_none_gives_zeros(void) {
 }
 
 static double t[ROWS], q[ROWS][6], qd[ROWS][6], qdd[ROWS][6];
-static double current[ROWS][6], rate[ROWS][6], voltage[ROWS][6], torque[ROWS][6],
-    speed[ROWS][6], power[ROWS][6], force[ROWS][6], length[ROWS][6], length_rate[ROWS][6],
-    length_accel[ROWS][6];
+static double current[ROWS][6], rate[ROWS][6], voltage[ROWS][6], torque[ROWS][6], speed[ROWS][6],
+    power[ROWS][6], force[ROWS][6], length[ROWS][6], length_rate[ROWS][6], length_accel[ROWS][6];
 static int status[ROWS], volt_legs[ROWS];
 
 static stewart_inverse_batch_outputs batch_columns(void) {
@@ -159,7 +158,7 @@ static void test_the_batch_gives_the_solves_drive_columns(void) {
         memcpy(in.pose.q_ddot, qdd[j], sizeof qdd[j]);
         stewart_inverse_output o;
         TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_solve(inv, &in, &o));
-        for (int k = 0; k < 6; ++k) {  /* the vector kernel's forces: the solve's to rounding */
+        for (int k = 0; k < 6; ++k) { /* the vector kernel's forces: the solve's to rounding */
             TEST_ASSERT_DOUBLE_WITHIN(1e-11 * (1 + fabs(o.motor_torque[k])), o.motor_torque[k],
                                       torque[j][k]);
             TEST_ASSERT_DOUBLE_WITHIN(1e-11 * (1 + fabs(o.voltage[k])), o.voltage[k],
@@ -171,8 +170,8 @@ static void test_the_batch_gives_the_solves_drive_columns(void) {
      * the ends, and the voltage gains L dI/dt. */
     double before[ROWS][6];
     memcpy(before, voltage, sizeof before);
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_batch_current_rates(m, ROWS, t, &out,
-                                                                          message, sizeof message));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_batch_current_rates(m, ROWS, t, &out, message,
+                                                                          sizeof message));
     for (int j = 0; j < ROWS; ++j)
         for (int k = 0; k < 6; ++k) {
             const double expected =

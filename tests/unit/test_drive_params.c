@@ -25,8 +25,7 @@ static stewart_params with_drives(void) {
 static void assert_refused(const stewart_params *p, const char *const *texts, int count) {
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_params_check(p, message, sizeof message));
     for (int i = 0; i < count; ++i)
-        if (!strstr(message, texts[i]))
-            TEST_FAIL_MESSAGE(message);
+        if (!strstr(message, texts[i])) TEST_FAIL_MESSAGE(message);
 }
 
 static void test_a_drive_with_every_parameter_is_taken(void) {
@@ -36,7 +35,7 @@ static void test_a_drive_with_every_parameter_is_taken(void) {
         p.rotor_inertia[k] = 1.37e-4;
         p.screw_inertia[k] = 2e-5;
         p.screw_efficiency[k] = 0.9;
-        p.screw_back_efficiency[k] = 0.0;  /* self-locking */
+        p.screw_back_efficiency[k] = 0.0; /* self-locking */
         p.winding_resistance[k] = 1.2;
         p.winding_inductance[k] = 3e-3;
         p.coulomb_friction[k] = 50;
@@ -51,7 +50,7 @@ static void test_a_drive_with_every_parameter_is_taken(void) {
     }
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_params_check(&p, message, sizeof message),
                                   message);
-    p.stribeck_friction[2] = 30;  /* below coulomb: no peak, no speed needed */
+    p.stribeck_friction[2] = 30; /* below coulomb: no peak, no speed needed */
     p.stribeck_speed[2] = 0;
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_params_check(&p, message, sizeof message),
                                   message);
@@ -78,7 +77,11 @@ static void test_a_drive_needs_a_torque_constant(void) {
 }
 
 static void test_motor_parameters_need_a_drive(void) {
-    struct { const char *name; double value; const char *text; } cases[] = {
+    struct {
+        const char *name;
+        double value;
+        const char *text;
+    } cases[] = {
         {"gear_ratio[2]", 3, "gear_ratio[2] = 3, but leg 2 has no drive"},
         {"rotor_inertia[2]", 1.37e-4, "rotor_inertia[2] = 0.000137 kg.m2, but leg 2"},
         {"screw_efficiency[2]", 0.9, "screw_efficiency[2] = 0.9, but leg 2"},
@@ -125,7 +128,7 @@ static void test_damping_needs_its_spring(void) {
 
 static void test_efficiencies_out_of_range_are_refused_by_name(void) {
     stewart_params p = with_drives();
-    p.screw_efficiency[2] = 0;  /* (0, 1]: a screw that passes no power forward */
+    p.screw_efficiency[2] = 0; /* (0, 1]: a screw that passes no power forward */
     const char *zero[] = {"screw_efficiency[3] = 0"};
     assert_refused(&p, zero, 1);
     p.screw_efficiency[2] = 1.1;

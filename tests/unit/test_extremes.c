@@ -39,7 +39,8 @@ static void test_yaw_singularity_sweep(void) {
     /* and the next pose is solved as if nothing happened */
     stewart_pose home = yawed(0);
     stewart_inverse_output good = solve_ok(data, STEWART_MASSLESS, &home);
-    TEST_ASSERT_DOUBLE_WITHIN(1e-9, params.platform_mass * 9.81 * good.lengths.length[0] / 3.0, good.force[0]);
+    TEST_ASSERT_DOUBLE_WITHIN(1e-9, params.platform_mass * 9.81 * good.lengths.length[0] / 3.0,
+                              good.force[0]);
 }
 
 /* Geometry scaled by s with the same mass: lengths scale by s, static forces do not change
@@ -54,7 +55,7 @@ static void test_scaled_platform_is_similar(void) {
         params.base_radius *= s;
         params.platform_radius *= s;
         params.home_height *= s;
-        params.leg_diameter *= s;  /* legs thicker than the joints are apart are refused */
+        params.leg_diameter *= s; /* legs thicker than the joints are apart are refused */
         for (int k = 0; k < 6; ++k) params.stroke_min[k] *= s, params.stroke_max[k] *= s;
         /* the inertia of the disc scales as s^2 (it plays no part at rest) */
         for (int j = 0; j < 3; ++j) params.platform_inertia[j] *= s * s;
@@ -63,8 +64,10 @@ static void test_scaled_platform_is_similar(void) {
         for (int j = 0; j < 3; ++j) p.q[j] *= s;
         stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &p);
         for (int k = 0; k < 6; ++k) {
-            TEST_ASSERT_DOUBLE_WITHIN(1e-13 * s, s * reference.lengths.length[k], out.lengths.length[k]);
-            TEST_ASSERT_DOUBLE_WITHIN(1e-9 * fabs(reference.force[k]), reference.force[k], out.force[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-13 * s, s * reference.lengths.length[k],
+                                      out.lengths.length[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-9 * fabs(reference.force[k]), reference.force[k],
+                                      out.force[k]);
         }
         TEST_ASSERT_EQUAL_INT(0, out.warnings);
     }
@@ -97,7 +100,8 @@ static void test_stroke_limits_flag_without_failing(void) {
     for (int i = 0; i < 4; ++i) {
         stewart_pose p = {{0, 0, z[i], 0, 0, 0}, {0}, {0}};
         stewart_inverse_output out = solve_ok(data, STEWART_MASSLESS, &p);
-        TEST_ASSERT_EQUAL_INT(flagged[i] ? STEWART_WARN_STROKE : 0, out.warnings & STEWART_WARN_STROKE);
+        TEST_ASSERT_EQUAL_INT(flagged[i] ? STEWART_WARN_STROKE : 0,
+                              out.warnings & STEWART_WARN_STROKE);
     }
 }
 

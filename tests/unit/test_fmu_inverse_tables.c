@@ -23,7 +23,11 @@ void tearDown(void) {}
 static char last_message[1024];
 static void remember(const void *callbacks, void *environment, const char *instance_name,
                      fmu_status status, const char *category, const char *message) {
-    (void)callbacks; (void)environment; (void)instance_name; (void)status; (void)category;
+    (void)callbacks;
+    (void)environment;
+    (void)instance_name;
+    (void)status;
+    (void)category;
     snprintf(last_message, sizeof last_message, "%s", message);
 }
 
@@ -68,10 +72,8 @@ static void test_every_option_reaches_the_solver(void) {
         /* from the start options, so that option i is the one difference the unit must see */
         initialise(inst, 0, NULL, NULL, 0, NULL, NULL);
         const stewart_model *model = inst->res.model;
-        if (info->is_integer)
-            initialise(inst, 1, &vr, &as_integer, 0, NULL, NULL);
-        else
-            initialise(inst, 0, NULL, NULL, 1, &vr, &value);
+        if (info->is_integer) initialise(inst, 1, &vr, &as_integer, 0, NULL, NULL);
+        else initialise(inst, 0, NULL, NULL, 1, &vr, &value);
         const stewart_inverse_options *now = stewart_inverse_options_of(inst->res.inverse);
         for (int j = 0; j < n; ++j) { /* option i changed in the solver, the others not */
             char what[96];
@@ -132,19 +134,18 @@ static void test_every_column_reaches_its_outputs(void) {
     stewart_inverse_output out;
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_solve(d, &in, &out));
     int shown = 0;
-#define CHECK_COLUMN(name, member, count, type, unit, description)                             \
-    {                                                                                          \
-        const int first = first_of(#name);                                                     \
-        const type *from = (const type *)(const void *)&out.member;                            \
-        for (int e = 0; first >= 0 && e < count; ++e, ++shown) {                               \
-            char what[64];                                                                     \
-            snprintf(what, sizeof what, "column %s element %d", #name, e);                     \
-            if (IS_DOUBLE_##type)                                                              \
-                TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&from[e], &real[first + e], sizeof(double),   \
-                                                 what);                                        \
-            else                                                                               \
-                TEST_ASSERT_EQUAL_INT_MESSAGE((int)from[e], integer[first + e], what);         \
-        }                                                                                      \
+#define CHECK_COLUMN(name, member, count, type, unit, description)                           \
+    {                                                                                        \
+        const int first = first_of(#name);                                                   \
+        const type *from = (const type *)(const void *)&out.member;                          \
+        for (int e = 0; first >= 0 && e < count; ++e, ++shown) {                             \
+            char what[64];                                                                   \
+            snprintf(what, sizeof what, "column %s element %d", #name, e);                   \
+            if (IS_DOUBLE_##type)                                                            \
+                TEST_ASSERT_EQUAL_MEMORY_MESSAGE(&from[e], &real[first + e], sizeof(double), \
+                                                 what);                                      \
+            else TEST_ASSERT_EQUAL_INT_MESSAGE((int)from[e], integer[first + e], what);      \
+        }                                                                                    \
     }
 #define IS_DOUBLE_double 1
 #define IS_DOUBLE_int 0

@@ -118,12 +118,15 @@ static void test_every_column_is_shown_as_the_table_says(void) {
     read_outputs();
     columns_seen = 0;
 #if defined(FMU_MODEL_PLANT)
-#define CHECK_OUT(name, member, count, type, unit, d) CHECK_COLUMN(out., name, member, count, type, unit, d)
-#define CHECK_STATS(name, member, count, type, unit, d) CHECK_COLUMN(stats., name, member, count, type, unit, d)
+#define CHECK_OUT(name, member, count, type, unit, d) \
+    CHECK_COLUMN(out., name, member, count, type, unit, d)
+#define CHECK_STATS(name, member, count, type, unit, d) \
+    CHECK_COLUMN(stats., name, member, count, type, unit, d)
     STEWART_PLANT_OUTPUT_TABLE(CHECK_OUT)
     STEWART_PLANT_STEP_TABLE(CHECK_STATS)
 #else
-#define CHECK_ROOT(name, member, count, type, unit, d) CHECK_COLUMN(, name, member, count, type, unit, d)
+#define CHECK_ROOT(name, member, count, type, unit, d) \
+    CHECK_COLUMN(, name, member, count, type, unit, d)
 #if defined(FMU_MODEL_INVERSE)
     STEWART_INVERSE_OUTPUT_TABLE(CHECK_ROOT)
 #else

@@ -87,12 +87,14 @@ static void check_round_trip(const stewart_forward_output *r, const stewart_pose
     if (!derivatives) return;
     snprintf(text, sizeof text, "rate error %.3g of %.3g",
              max_abs_diff(r->pose.q_dot, truth->q_dot, 6), max_abs(truth->q_dot, 6));
-    TEST_ASSERT_TRUE_MESSAGE(
-        max_abs_diff(r->pose.q_dot, truth->q_dot, 6) <= 1e-9 * fmax(max_abs(truth->q_dot, 6), 1e-6), text);
+    TEST_ASSERT_TRUE_MESSAGE(max_abs_diff(r->pose.q_dot, truth->q_dot, 6) <=
+                                 1e-9 * fmax(max_abs(truth->q_dot, 6), 1e-6),
+                             text);
     snprintf(text, sizeof text, "acceleration error %.3g of %.3g",
              max_abs_diff(r->pose.q_ddot, truth->q_ddot, 6), max_abs(truth->q_ddot, 6));
-    TEST_ASSERT_TRUE_MESSAGE(
-        max_abs_diff(r->pose.q_ddot, truth->q_ddot, 6) <= 1e-9 * fmax(max_abs(truth->q_ddot, 6), 1e-6), text);
+    TEST_ASSERT_TRUE_MESSAGE(max_abs_diff(r->pose.q_ddot, truth->q_ddot, 6) <=
+                                 1e-9 * fmax(max_abs(truth->q_ddot, 6), 1e-6),
+                             text);
 }
 
 /* stewart_forward_solve on the fixture's solver with the inputs as arrays (rates, accels and
@@ -183,15 +185,15 @@ static void track(stewart_pose (*manoeuvre)(int, double), int component, int der
         TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, forward(&legs, t, derivatives, NULL, &r),
                                       stewart_forward_message(forward_solver));
         /* Without rates the predictor needs two poses: the second sample starts from the first. */
-        TEST_ASSERT_EQUAL_INT(i == 0                     ? STEWART_START_HOME
+        TEST_ASSERT_EQUAL_INT(i == 0                 ? STEWART_START_HOME
                               : derivatives || i > 1 ? STEWART_START_PREDICTOR
                                                      : STEWART_START_LAST,
                               r.start);
         check_round_trip(&r, &truth, derivatives);
         if (i > 0 && r.iterations > worst_iterations) worst_iterations = r.iterations;
     }
-    printf("tracking component %d (derivatives %d): at most %d iterations per sample\n",
-           component, derivatives, worst_iterations);
+    printf("tracking component %d (derivatives %d): at most %d iterations per sample\n", component,
+           derivatives, worst_iterations);
 }
 
 static stewart_pose combined(int component, double t) {
@@ -217,7 +219,8 @@ static void test_mirror_pose_is_another_branch_never_returned_from_home(void) {
         stewart_pose mirror = truth;
         for (int j = 2; j < 5; ++j) mirror.q[j] = -truth.q[j];
         for (int k = 0; k < 6; ++k)
-            TEST_ASSERT_DOUBLE_WITHIN(1e-14, legs.lengths.length[k], closed_form_length(&params, &mirror, k));
+            TEST_ASSERT_DOUBLE_WITHIN(1e-14, legs.lengths.length[k],
+                                      closed_form_length(&params, &mirror, k));
         double guess[6];
         for (int j = 0; j < 6; ++j) guess[j] = mirror.q[j] + uniform(-0.02, 0.02);
         stewart_forward_output r;
@@ -277,7 +280,8 @@ static void test_singular_pose_fails_and_the_next_measurement_recovers(void) {
                 ++warned;
             }
         } else {
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_SINGULAR, s, stewart_forward_message(forward_solver));
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_SINGULAR, s,
+                                          stewart_forward_message(forward_solver));
             TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "condition"));
             TEST_ASSERT_EQUAL_MEMORY(&untouched, &r, sizeof r);
         }
@@ -344,17 +348,14 @@ static void test_bad_input_is_named_and_the_block_stays_usable(void) {
     double bad[6];
     memcpy(bad, legs.lengths.length, sizeof bad);
     bad[2] = NAN;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
-                          forward_arrays(0, bad, NULL, NULL, NULL, &r));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, forward_arrays(0, bad, NULL, NULL, NULL, &r));
     TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "L3"));
     bad[2] = -0.5;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
-                          forward_arrays(0, bad, NULL, NULL, NULL, &r));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, forward_arrays(0, bad, NULL, NULL, NULL, &r));
     TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "L3"));
     double rates[6] = {0, INFINITY, 0, 0, 0, 0};
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, forward_arrays(0,
-                                                                      legs.lengths.length, rates, NULL,
-                                                                      NULL, &r));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          forward_arrays(0, legs.lengths.length, rates, NULL, NULL, &r));
     TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "L_dot2"));
     stewart_forward_input in = {0, legs.lengths, 3, 0, {0}};
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_solve(forward_solver, &in, &r));
@@ -391,7 +392,8 @@ static void test_forward_pose_agrees_with_the_length_driven_mechanism(void) {
         const stewart_pose pose = combined_pose(t);
         const stewart_inverse_output legs = solve_ok(data, STEWART_KINEMATIC, &pose);
         for (int k = 0; k < 6; ++k)
-            mbs_set_driver(mech, k, legs.lengths.length[k], legs.lengths.length_rate[k], legs.lengths.length_accel[k]);
+            mbs_set_driver(mech, k, legs.lengths.length[k], legs.lengths.length_rate[k],
+                           legs.lengths.length_accel[k]);
         TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, mbs_step(mech, t, &mo), mbs_data_message(mech));
         stewart_forward_output r;
         TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs, t, 1, NULL, &r));
@@ -401,13 +403,15 @@ static void test_forward_pose_agrees_with_the_length_driven_mechanism(void) {
         for (int b = 1; b < 14; ++b) {
             const double *e = q + 7 * b + 3, *e_ref = ref + 7 * b + 3;
             worst_position = fmax(worst_position, max_abs_diff(q + 7 * b, ref + 7 * b, 3));
-            const double dot = e[0] * e_ref[0] + e[1] * e_ref[1] + e[2] * e_ref[2] + e[3] * e_ref[3];
+            const double dot =
+                e[0] * e_ref[0] + e[1] * e_ref[1] + e[2] * e_ref[2] + e[3] * e_ref[3];
             for (int c = 0; c < 4; ++c)
                 worst_rotation = fmax(worst_rotation, fabs(e[c] - (dot < 0 ? -1 : 1) * e_ref[c]));
         }
     }
     printf("forward pose vs the length-driven 14-body mechanism: body positions within %.3g m, "
-           "Euler parameters within %.3g\n", worst_position, worst_rotation);
+           "Euler parameters within %.3g\n",
+           worst_position, worst_rotation);
     mbs_data_free(mech);
     TEST_ASSERT_TRUE(worst_position <= 1e-11);
     TEST_ASSERT_TRUE(worst_rotation <= 1e-12);
@@ -424,7 +428,8 @@ static void test_rollback_restores_the_tracking_history(void) {
         legs[j] = solve_ok(data, STEWART_KINEMATIC, &p);
     }
     stewart_forward_output r;
-    for (int j = 0; j < 6; ++j) TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[j], 0.01 * j, 1, NULL, &r));
+    for (int j = 0; j < 6; ++j)
+        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[j], 0.01 * j, 1, NULL, &r));
     unsigned char bytes[1024];
     const size_t size = stewart_forward_state_size(forward_solver);
     TEST_ASSERT_TRUE(size > 0 && size <= sizeof bytes);
@@ -434,7 +439,8 @@ static void test_rollback_restores_the_tracking_history(void) {
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_copy(copy, forward_solver));
     stewart_forward_output first[3], again[3], from_copy[3];
     for (int j = 0; j < 3; ++j)
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &first[j]));
+        TEST_ASSERT_EQUAL_INT(STEWART_OK,
+                              forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &first[j]));
     TEST_ASSERT_EQUAL_INT(STEWART_START_PREDICTOR, first[0].start);
     /* without a rollback the same measurement is solved from another history */
     stewart_forward_output moved_on;
@@ -459,19 +465,23 @@ static void test_rollback_restores_the_tracking_history(void) {
     memcpy(bad + size - sizeof nan, &nan, sizeof nan);
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bad, size));
     TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "finite"));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_load(forward_solver, bytes, size - 1));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_save(forward_solver, bad, size - 1));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_forward_load(forward_solver, bytes, size - 1));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_forward_save(forward_solver, bad, size - 1));
     TEST_ASSERT_NOT_NULL(strstr(stewart_forward_message(forward_solver), "the state needs"));
     /* loaded back: the three solves again, bit for bit */
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_load(forward_solver, bytes, size));
     for (int j = 0; j < 3; ++j)
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &again[j]));
+        TEST_ASSERT_EQUAL_INT(STEWART_OK,
+                              forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &again[j]));
     TEST_ASSERT_EQUAL_MEMORY(first, again, sizeof first);
     /* and from the copy */
     stewart_forward *kept = forward_solver;
     forward_solver = copy;
     for (int j = 0; j < 3; ++j)
-        TEST_ASSERT_EQUAL_INT(STEWART_OK, forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &from_copy[j]));
+        TEST_ASSERT_EQUAL_INT(STEWART_OK,
+                              forward(&legs[6 + j], 0.01 * (6 + j), 1, NULL, &from_copy[j]));
     forward_solver = kept;
     TEST_ASSERT_EQUAL_MEMORY(first, from_copy, sizeof first);
     stewart_forward_free(copy);
@@ -515,8 +525,8 @@ static void test_chord_step_gives_exact_newtons_answer(void) {
     }
     forward_solver = kept;
     stewart_forward_free(exact);
-    printf("chord vs exact Newton: pose %.3g, rates %.3g, accelerations %.3g\n", worst[0],
-           worst[1], worst[2]);
+    printf("chord vs exact Newton: pose %.3g, rates %.3g, accelerations %.3g\n", worst[0], worst[1],
+           worst[2]);
     TEST_ASSERT_TRUE(worst[0] <= 1e-14);
     TEST_ASSERT_TRUE(worst[1] <= 1e-11);
     TEST_ASSERT_TRUE(worst[2] <= 1e-10);

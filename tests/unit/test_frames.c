@@ -86,9 +86,11 @@ static void tool_pose_by_hand(const double tool[6], const double user[6], const 
     rpy_to_matrix(user + 3, Ru);
     rpy_to_matrix(tool + 3, Rd);
     double o[3];
-    for (int i = 0; i < 3; ++i) o[i] = q[i] + Rp[i][0] * tool[0] + Rp[i][1] * tool[1] + Rp[i][2] * tool[2];
     for (int i = 0; i < 3; ++i)
-        out[i] = Ru[0][i] * (o[0] - user[0]) + Ru[1][i] * (o[1] - user[1]) + Ru[2][i] * (o[2] - user[2]);
+        o[i] = q[i] + Rp[i][0] * tool[0] + Rp[i][1] * tool[1] + Rp[i][2] * tool[2];
+    for (int i = 0; i < 3; ++i)
+        out[i] =
+            Ru[0][i] * (o[0] - user[0]) + Ru[1][i] * (o[1] - user[1]) + Ru[2][i] * (o[2] - user[2]);
     multiply(Rp, 0, Rd, RpRd);
     multiply(Ru, 1, RpRd, Rt);
     const double near[3] = {q[3] + tool[3] - user[3], 0, q[5] + tool[5] - user[5]};
@@ -285,7 +287,7 @@ static void test_tool_yaw_is_continuous_across_pi(void) {
         last_yaw = out.pose.q[5];
         if (out.pose.q[5] > largest) largest = out.pose.q[5];
     }
-    TEST_ASSERT_TRUE(largest > M_PI);  /* it did cross pi */
+    TEST_ASSERT_TRUE(largest > M_PI); /* it did cross pi */
     stewart_forward_free(f);
     stewart_model_free(m);
 }
@@ -348,7 +350,7 @@ static void test_plant_outputs_the_tool_pose(void) {
         for (int c = 0; c < 6; ++c) assert_close(by_hand[c], out_b.pose.q[c], 1e-9, "plant pose");
         for (int k = 0; k < 6; ++k)
             assert_close(out_a.lengths.length[k], out_b.lengths.length[k], 1e-9, "plant length");
-        if (i >= 3)  /* the rates at the previous step: central differences of the poses */
+        if (i >= 3) /* the rates at the previous step: central differences of the poses */
             for (int c = 0; c < 6; ++c)
                 assert_close((by_hand[c] - previous[c]) / (2 * h), last_b.pose.q_dot[c], 1e-6,
                              "plant pose rate");
@@ -413,16 +415,19 @@ static void test_tool_pitch_at_90_degrees(void) {
     stewart_pose at_90 = {{0, 0, plain.home_height, 0, M_PI / 2, 0}, {0.1, 0, 0, 0.2, 0, 0.3}, {0}};
     stewart_inverse *d = test_inverse(m);
     stewart_inverse_output inv;
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_inverse_solve(d, &(stewart_inverse_input){at_90}, &inv),
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK,
+                              stewart_inverse_solve(d, &(stewart_inverse_input){at_90}, &inv),
                               stewart_inverse_message(d));
-    for (int k = 0; k < 6; ++k) assert_close(legs.lengths.length[k], inv.lengths.length[k], 1e-14, "length");
+    for (int k = 0; k < 6; ++k)
+        assert_close(legs.lengths.length[k], inv.lengths.length[k], 1e-14, "length");
     stewart_inverse_free(d);
     /* the plant at home: no output with rates, a step refused with a message */
     stewart_plant *plant = test_plant(m, STEWART_MASSLESS, 1e-10, 1e-12);
     stewart_plant_output po;
     TEST_ASSERT_EQUAL(STEWART_ERR_SINGULAR, stewart_plant_output_get(plant, NULL, &po));
     const double force[6] = {0};
-    TEST_ASSERT_EQUAL(STEWART_ERR_SINGULAR, plant_step_arrays(plant, 1e-4, force, force, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_SINGULAR,
+                      plant_step_arrays(plant, 1e-4, force, force, NULL, NULL));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_plant_message(plant), "tool frame's pitch"),
                                  stewart_plant_message(plant));
     TEST_ASSERT_EQUAL_DOUBLE(0, stewart_plant_time(plant));
@@ -470,7 +475,7 @@ static void test_bad_frames_and_offsets_are_refused_by_name(void) {
 static void test_pose_overflowing_through_the_frames_is_refused(void) {
     stewart_inverse *d = test_inverse(framed_model);
     stewart_pose pose = combined_pose(0);
-    pose.q_dot[5] = 1e200;  /* omega x (omega x r): (1e200)^2 overflows */
+    pose.q_dot[5] = 1e200; /* omega x (omega x r): (1e200)^2 overflows */
     pose.q_ddot[5] = 0;
     stewart_inverse_output out;
     memset(&out, 0x5a, sizeof out);
@@ -515,7 +520,7 @@ static void test_length_offset_readings(void) {
     stewart_forward_input in = {0};
     const stewart_pose home = {{0, 0, plain.home_height, 0, 0, 0}, {0}, {0}};
     for (int k = 0; k < 6; ++k) in.lengths.length[k] = closed_form_length(&plain, &home, k);
-    in.lengths.length[5] = -0.05;  /* leg 6: offset -0.1 m makes -0.15 m */
+    in.lengths.length[5] = -0.05; /* leg 6: offset -0.1 m makes -0.15 m */
     stewart_forward_output out;
     TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_forward_solve(f, &in, &out));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(stewart_forward_message(f), "L6 + length_offset[6]"),
@@ -535,8 +540,8 @@ static void test_length_offset_readings(void) {
     stewart_plant_output po;
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &po));
     for (int k = 0; k < 6; ++k)
-        assert_close(closed_form_length(&plain, &home, k) - kOffset[k], po.lengths.length[k],
-                     1e-14, "plant reading");
+        assert_close(closed_form_length(&plain, &home, k) - kOffset[k], po.lengths.length[k], 1e-14,
+                     "plant reading");
     TEST_ASSERT_EQUAL_INT(0, po.stroke_legs);
     stewart_plant_free(plant);
     stewart_forward_free(f);

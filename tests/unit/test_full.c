@@ -22,7 +22,8 @@ static void test_lengths_match_closed_form(void) {
             stewart_pose pose = manoeuvre(which[w], 0.1 * i);
             stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
             for (int k = 0; k < 6; ++k)
-                TEST_ASSERT_DOUBLE_WITHIN(1e-11, closed_form_length(&params, &pose, k), out.lengths.length[k]);
+                TEST_ASSERT_DOUBLE_WITHIN(1e-11, closed_form_length(&params, &pose, k),
+                                          out.lengths.length[k]);
             TEST_ASSERT_TRUE(out.residual <= 1e-12);
             TEST_ASSERT_TRUE(out.iterations <= 2);
         }
@@ -40,7 +41,8 @@ static void world_rate(const double *p, const double *y, double w[3]) {
     w[2] = 2 * (-p[3] * y[0] - p[2] * y[1] + p[1] * y[2] + p[0] * y[3]);
 }
 static void cross(const double a[3], const double b[3], double c[3]) {
-    c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2], c[2] = a[0] * b[1] - a[1] * b[0];
+    c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2],
+    c[2] = a[0] * b[1] - a[1] * b[0];
 }
 /* Position, velocity and acceleration of the point u (body frame) of body b. */
 static void body_point(const double *q, const double *v, const double *a, int b, const double u[3],
@@ -76,15 +78,18 @@ static void test_lengths_are_the_solved_bodies(void) {
         stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
         const double *q = mbs_q(mech), *v = mbs_q_dot(mech), *a = mbs_q_ddot(mech);
         for (int k = 0; k < 6; ++k) {
-            const double uc[3] = {0, 0, -params.cylinder_com / L0}, up[3] = {0, 0, params.piston_com / L0};
+            const double uc[3] = {0, 0, -params.cylinder_com / L0},
+                         up[3] = {0, 0, params.piston_com / L0};
             double xc[3], vc[3], ac[3], xp[3], vp[3], ap[3], d[3], dd[3], ddd[3];
             body_point(q, v, a, 1 + k, uc, xc, vc, ac);
             body_point(q, v, a, 7 + k, up, xp, vp, ap);
-            for (int c = 0; c < 3; ++c) d[c] = xp[c] - xc[c], dd[c] = vp[c] - vc[c], ddd[c] = ap[c] - ac[c];
+            for (int c = 0; c < 3; ++c)
+                d[c] = xp[c] - xc[c], dd[c] = vp[c] - vc[c], ddd[c] = ap[c] - ac[c];
             const double L = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             const double L_dot = (d[0] * dd[0] + d[1] * dd[1] + d[2] * dd[2]) / L;
-            const double L_ddot = (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2] +
-                                   d[0] * ddd[0] + d[1] * ddd[1] + d[2] * ddd[2] - L_dot * L_dot) / L;
+            const double L_ddot = (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2] + d[0] * ddd[0] +
+                                   d[1] * ddd[1] + d[2] * ddd[2] - L_dot * L_dot) /
+                                  L;
             expect_relative(L * L0, out.lengths.length[k], 1e-12);
             expect_relative(L_dot * L0, out.lengths.length_rate[k], 1e-12);
             expect_relative(L_ddot * L0, out.lengths.length_accel[k], 1e-12);
@@ -125,7 +130,8 @@ static void test_weightless_legs_with_offset_payload(void) {
     for (int i = 0; i < 3; ++i) params.cylinder_inertia[i] = params.piston_inertia[i] = 0;
     params.payload_mass = 40;
     params.payload_com[0] = 0.1, params.payload_com[1] = -0.05, params.payload_com[2] = 0.2;
-    params.payload_inertia[0] = 1.0, params.payload_inertia[1] = 1.5, params.payload_inertia[2] = 2.0;
+    params.payload_inertia[0] = 1.0, params.payload_inertia[1] = 1.5,
+    params.payload_inertia[2] = 2.0;
     rebuild_platform();
     compare_with_massless();
 }
@@ -180,7 +186,8 @@ static void test_power_balance(void) {
 static void test_thesis_formulation_agrees(void) {
     params.payload_mass = 25;
     params.payload_com[0] = -0.05, params.payload_com[2] = 0.1;
-    params.payload_inertia[0] = 0.5, params.payload_inertia[1] = 0.7, params.payload_inertia[2] = 0.9;
+    params.payload_inertia[0] = 0.5, params.payload_inertia[1] = 0.7,
+    params.payload_inertia[2] = 0.9;
     rebuild_platform();
     for (int w = 2; w <= 6; ++w)
         for (int i = 0; i <= 120; i += 8) {
@@ -188,7 +195,8 @@ static void test_thesis_formulation_agrees(void) {
             stewart_inverse_output out = solve_ok(data, STEWART_FULL, &pose);
             double thesis[6];
             char msg[STEWART_MESSAGE_SIZE];
-            TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, thesis, msg, sizeof msg), msg);
+            TEST_ASSERT_EQUAL_MESSAGE(
+                STEWART_OK, stewart_thesis_forces(&params, &pose, thesis, msg, sizeof msg), msg);
             for (int k = 0; k < 6; ++k) expect_relative(out.force[k], thesis[k], 1e-9);
         }
 }
@@ -242,7 +250,8 @@ static double jacobian_det_ratio(const stewart_pose *pose) {
                              params.base_radius * sin(params.base_angle[k]), 0};
         double arm[3], n[3];
         for (int i = 0; i < 3; ++i) arm[i] = R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2];
-        for (int i = 0; i < 3; ++i) n[i] = (pose->q[i] + arm[i] - a[i]) / closed_form_length(&params, pose, k);
+        for (int i = 0; i < 3; ++i)
+            n[i] = (pose->q[i] + arm[i] - a[i]) / closed_form_length(&params, pose, k);
         J[k][0] = n[0], J[k][1] = n[1], J[k][2] = n[2];
         J[k][3] = (arm[1] * n[2] - arm[2] * n[1]) / params.platform_radius;
         J[k][4] = (arm[2] * n[0] - arm[0] * n[2]) / params.platform_radius;
@@ -295,7 +304,8 @@ static void test_thesis_forces_refuse_a_singular_pose(void) {
     pose.q[5] = M_PI / 2 - 0.1;
     TEST_ASSERT_TRUE(jacobian_det_ratio(&pose) > 1e-3);
     out = solve_ok(data, STEWART_FULL, &pose);
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, force, msg, sizeof msg), msg);
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK,
+                              stewart_thesis_forces(&params, &pose, force, msg, sizeof msg), msg);
     for (int k = 0; k < 6; ++k) expect_relative(out.force[k], force[k], 1e-9);
 }
 
@@ -307,7 +317,8 @@ static void test_thesis_forces_never_overflow(void) {
     stewart_pose pose = {{0, 0, 0.5, 0, 0, M_PI / 2 - 1e-6}, {0}, {0, 0, 1e298, 0, 0, 0}};
     double force[6];
     char msg[STEWART_MESSAGE_SIZE] = "";
-    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK, stewart_thesis_forces(&params, &pose, force, msg, sizeof msg), msg);
+    TEST_ASSERT_EQUAL_MESSAGE(STEWART_OK,
+                              stewart_thesis_forces(&params, &pose, force, msg, sizeof msg), msg);
     double largest = 0;
     for (int k = 0; k < 6; ++k) largest = fmax(largest, fabs(force[k]));
     TEST_ASSERT_TRUE(largest > 1e305 && largest < 1e306);
@@ -392,7 +403,8 @@ static void test_rates_against_finite_differences(void) {
     for (int i = 0; i <= 120; i += 11)
         for (int which = 0; which < 2; ++which) {
             const double t = 0.1 * i, h = steps[which];
-            stewart_pose pose = combined_pose(t), pp = combined_pose(t + h), pm = combined_pose(t - h);
+            stewart_pose pose = combined_pose(t), pp = combined_pose(t + h),
+                         pm = combined_pose(t - h);
             solve_ok(data, STEWART_FULL, &pose);
             const mbs_data *md = stewart_inverse_mechanism(data);
             memcpy(q0, mbs_q(md), sizeof q0);
@@ -405,10 +417,8 @@ static void test_rates_against_finite_differences(void) {
             solve_ok(side, STEWART_FULL, &pm);
             memcpy(qm, mbs_q(stewart_inverse_mechanism(side)), sizeof qm);
             for (int k = 0; k < 98; ++k) {
-                if (which == 0)
-                    TEST_ASSERT_DOUBLE_WITHIN(1e-7, (qp[k] - qm[k]) / (2 * h), v[k]);
-                else
-                    TEST_ASSERT_DOUBLE_WITHIN(1e-5, (qp[k] - 2 * q0[k] + qm[k]) / (h * h), a[k]);
+                if (which == 0) TEST_ASSERT_DOUBLE_WITHIN(1e-7, (qp[k] - qm[k]) / (2 * h), v[k]);
+                else TEST_ASSERT_DOUBLE_WITHIN(1e-5, (qp[k] - 2 * q0[k] + qm[k]) / (h * h), a[k]);
             }
         }
     stewart_inverse_free(side);
@@ -449,8 +459,7 @@ static void test_instances_side_by_side(void) {
     heavy.payload_mass = 60;
     heavy.piston_mass = 0.5;
     stewart_model *other = test_model(&heavy);
-    stewart_inverse *a = test_inverse(model), *b = test_inverse(other),
-                 *c = test_inverse(model);
+    stewart_inverse *a = test_inverse(model), *b = test_inverse(other), *c = test_inverse(model);
     stewart_inverse_output alone_a[20], alone_b[20];
     for (int i = 0; i < 20; ++i) {
         stewart_pose pose = combined_pose(0.05 * i);
@@ -484,7 +493,8 @@ static void test_newton_from_home(void) {
     stewart_pose target = {{0.03, -0.02, 0.53, 0.12, -0.08, 0.15}, {0}, {0}};
     double L[6];
     for (int k = 0; k < 6; ++k) L[k] = closed_form_length(&params, &target, k);
-    const mbs_linear_solver kinds[3] = {MBS_LINEAR_AUTOMATIC, MBS_LINEAR_DENSE, MBS_LINEAR_KINSOL_DENSE};
+    const mbs_linear_solver kinds[3] = {MBS_LINEAR_AUTOMATIC, MBS_LINEAR_DENSE,
+                                        MBS_LINEAR_KINSOL_DENSE};
     double lambda0[98];
     for (int kind = 0; kind < 3; ++kind)
         for (int modified = 0; modified <= 1; ++modified) {
@@ -500,9 +510,9 @@ static void test_newton_from_home(void) {
             TEST_ASSERT_TRUE(mbs_residual(d) <= 1e-12);
             const double *q = mbs_q(d);
             /* The platform (body 13, centre of mass at the plate centre here) reaches the pose. */
-            for (int i = 0; i < 3; ++i) TEST_ASSERT_DOUBLE_WITHIN(1e-10, target.q[i], q[MBS_BODY_R(13) + i]);
-            if (kind == 0 && modified == 0)
-                memcpy(lambda0, mbs_lambda(d), sizeof lambda0);
+            for (int i = 0; i < 3; ++i)
+                TEST_ASSERT_DOUBLE_WITHIN(1e-10, target.q[i], q[MBS_BODY_R(13) + i]);
+            if (kind == 0 && modified == 0) memcpy(lambda0, mbs_lambda(d), sizeof lambda0);
             else
                 for (int i = 0; i < 98; ++i) expect_relative(lambda0[i], mbs_lambda(d)[i], 1e-9);
             mbs_data_free(d);
@@ -519,7 +529,8 @@ static void test_newton_capped_is_not_converged(void) {
     for (int cap = 1; cap <= 4; ++cap) {
         mbs_data *d = mbs_data_create(mech, MBS_LINEAR_AUTOMATIC);
         TEST_ASSERT_NOT_NULL(d);
-        for (int k = 0; k < 6; ++k) mbs_set_driver(d, k, closed_form_length(&params, &target, k), 0, 0);
+        for (int k = 0; k < 6; ++k)
+            mbs_set_driver(d, k, closed_form_length(&params, &target, k), 0, 0);
         mbs_options o;
         mbs_options_default(&o);
         o.max_iterations = cap;
@@ -529,7 +540,8 @@ static void test_newton_capped_is_not_converged(void) {
         if (cap < 4) {
             TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_ERR_NOT_CONVERGED, s, mbs_data_message(d));
             TEST_ASSERT_TRUE(r > o.tolerance);
-            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(mbs_data_message(d), "not converged"), mbs_data_message(d));
+            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(mbs_data_message(d), "not converged"),
+                                         mbs_data_message(d));
         } else {
             TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, s, mbs_data_message(d));
             TEST_ASSERT_TRUE(r <= o.tolerance);

@@ -34,7 +34,9 @@ static void cross(const double a[3], const double b[3], double out[3]) {
                          a[0] * b[1] - a[1] * b[0]};
     memcpy(out, c, sizeof c);
 }
-static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double dot(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 static double norm(const double a[3]) { return sqrt(dot(a, a)); }
 
 /* R v for R row-major [3][3]. */
@@ -82,7 +84,8 @@ static void random_platform(stewart_params *p) {
                 const double r1 = rb * uniform(0.9, 1.1), r2 = rp * uniform(0.9, 1.1);
                 p->base_joint[3 * k] = r1 * cos(ab), p->base_joint[3 * k + 1] = r1 * sin(ab);
                 p->base_joint[3 * k + 2] = uniform(-0.08, 0.08);
-                p->platform_joint[3 * k] = r2 * cos(ap), p->platform_joint[3 * k + 1] = r2 * sin(ap);
+                p->platform_joint[3 * k] = r2 * cos(ap),
+                                      p->platform_joint[3 * k + 1] = r2 * sin(ap);
                 p->platform_joint[3 * k + 2] = uniform(-0.08, 0.08);
             }
         }
@@ -162,16 +165,15 @@ static void body_at(const stewart_params *p, const stewart_pose *pose, int body,
     for (int i = 0; i < 3; ++i) P[i] = pose->q[i] + b[i], n[i] = P[i] - p->base_joint[3 * k + i];
     const double L = norm(n);
     for (int i = 0; i < 3; ++i) n[i] /= L;
-    if (piston)
-        rotate(R, p->platform_cardan_axis + 3 * k, s);
-    else
-        memcpy(s, p->base_cardan_axis + 3 * k, sizeof s);
+    if (piston) rotate(R, p->platform_cardan_axis + 3 * k, s);
+    else memcpy(s, p->base_cardan_axis + 3 * k, sizeof s);
     cross(s, n, x);
     const double lx = norm(x);
     for (int i = 0; i < 3; ++i) x[i] /= lx;
     cross(n, x, y);
     for (int i = 0; i < 3; ++i) {
-        r[i] = piston ? P[i] - p->piston_com * n[i] : p->base_joint[3 * k + i] + p->cylinder_com * n[i];
+        r[i] = piston ? P[i] - p->piston_com * n[i]
+                      : p->base_joint[3 * k + i] + p->cylinder_com * n[i];
         A[i][0] = x[i], A[i][1] = y[i], A[i][2] = n[i];
     }
 }
@@ -298,9 +300,12 @@ static void test_lengths_and_forward_round_trip(void) {
         const stewart_pose ahead2 = pose_at(&pose, h2), behind2 = pose_at(&pose, -h2);
         for (int k = 0; k < 6; ++k) {
             const double L = closed_form_length(&p, &pose, k);
-            const double rate = (closed_form_length(&p, &ahead1, k) - closed_form_length(&p, &behind1, k)) / (2 * h1);
-            const double accel = (closed_form_length(&p, &ahead2, k) - 2 * L +
-                                  closed_form_length(&p, &behind2, k)) / (h2 * h2);
+            const double rate =
+                (closed_form_length(&p, &ahead1, k) - closed_form_length(&p, &behind1, k)) /
+                (2 * h1);
+            const double accel =
+                (closed_form_length(&p, &ahead2, k) - 2 * L + closed_form_length(&p, &behind2, k)) /
+                (h2 * h2);
             worst_length = fmax(worst_length, fabs(out.lengths.length[k] - L));
             worst_rate = fmax(worst_rate, fabs(out.lengths.length_rate[k] - rate));
             worst_accel = fmax(worst_accel, fabs(out.lengths.length_accel[k] - accel));
@@ -315,19 +320,22 @@ static void test_lengths_and_forward_round_trip(void) {
         memset(&in, 0, sizeof in);
         memcpy(in.lengths.length, out.lengths.length, sizeof in.lengths.length);
         stewart_forward_output back;
-        if (stewart_forward_solve(f, &in, &back) != STEWART_OK) TEST_FAIL_MESSAGE(stewart_forward_message(f));
+        if (stewart_forward_solve(f, &in, &back) != STEWART_OK)
+            TEST_FAIL_MESSAGE(stewart_forward_message(f));
         TEST_ASSERT_EQUAL_INT_MESSAGE(0, back.branch, "the pose is on the working assembly mode");
-        for (int i = 0; i < 3; ++i) worst_position = fmax(worst_position, fabs(back.pose.q[i] - pose.q[i]));
-        for (int i = 3; i < 6; ++i) worst_angle = fmax(worst_angle, fabs(back.pose.q[i] - pose.q[i]));
+        for (int i = 0; i < 3; ++i)
+            worst_position = fmax(worst_position, fabs(back.pose.q[i] - pose.q[i]));
+        for (int i = 3; i < 6; ++i)
+            worst_angle = fmax(worst_angle, fabs(back.pose.q[i] - pose.q[i]));
         stewart_forward_free(f);
         stewart_inverse_free(d);
         stewart_model_free(m);
     }
     printf("10^4 geometries: length %.3g m, rate %.3g m/s, accel %.3g m/s2 from the closed form; "
-           "forward round trip %.3g m, %.3g rad\n", worst_length, worst_rate, worst_accel,
-           worst_position, worst_angle);
+           "forward round trip %.3g m, %.3g rad\n",
+           worst_length, worst_rate, worst_accel, worst_position, worst_angle);
     TEST_ASSERT_TRUE(worst_length <= 1e-14);
-    TEST_ASSERT_TRUE(worst_rate <= 1e-8);   /* the differences' own error */
+    TEST_ASSERT_TRUE(worst_rate <= 1e-8); /* the differences' own error */
     TEST_ASSERT_TRUE(worst_accel <= 1e-5);
     TEST_ASSERT_TRUE(worst_position <= 1e-12);
     TEST_ASSERT_TRUE(worst_angle <= 1e-12);
@@ -350,10 +358,10 @@ static void test_forces_by_virtual_work_and_massless_limit(void) {
         double scale = 1;
         for (int k = 0; k < 6; ++k) scale = fmax(scale, fabs(full.force[k]));
         for (int i = 0; i < 6; ++i) {
-            const double full_error = actuator_work(&p, &pose, full.force, i) -
-                                      inertia_and_weight(&p, &pose, i, 1);
-            const double massless_error = actuator_work(&p, &pose, massless.force, i) -
-                                          inertia_and_weight(&p, &pose, i, 0);
+            const double full_error =
+                actuator_work(&p, &pose, full.force, i) - inertia_and_weight(&p, &pose, i, 1);
+            const double massless_error =
+                actuator_work(&p, &pose, massless.force, i) - inertia_and_weight(&p, &pose, i, 0);
             worst_full = fmax(worst_full, fabs(full_error) / scale);
             worst_massless = fmax(worst_massless, fabs(massless_error) / scale);
         }
@@ -365,13 +373,15 @@ static void test_forces_by_virtual_work_and_massless_limit(void) {
             stewart_params light = p;
             const double factor = step == 0 ? 1e-3 : 1e-6;
             light.cylinder_mass *= factor, light.piston_mass *= factor;
-            for (int i = 0; i < 3; ++i) light.cylinder_inertia[i] *= factor, light.piston_inertia[i] *= factor;
+            for (int i = 0; i < 3; ++i)
+                light.cylinder_inertia[i] *= factor, light.piston_inertia[i] *= factor;
             stewart_model *lm = test_model(&light);
             stewart_inverse *ld = test_inverse(lm);
             const stewart_inverse_output a = solve_at(ld, STEWART_FULL, 1e-14, &pose);
             const stewart_inverse_output b = solve_at(ld, STEWART_MASSLESS, 1e-14, &pose);
             difference[step] = 0;
-            for (int k = 0; k < 6; ++k) difference[step] = fmax(difference[step], fabs(a.force[k] - b.force[k]));
+            for (int k = 0; k < 6; ++k)
+                difference[step] = fmax(difference[step], fabs(a.force[k] - b.force[k]));
             stewart_inverse_free(ld);
             stewart_model_free(lm);
         }
@@ -379,8 +389,8 @@ static void test_forces_by_virtual_work_and_massless_limit(void) {
         worst_ratio = fmax(worst_ratio, difference[1] / difference[0]);
     }
     printf("200 geometries: virtual work residual / max|F|: full %.3g, massless %.3g; "
-           "legs 1e-6 vs 1e-3 of their mass: force difference ratio %.3g\n", worst_full,
-           worst_massless, worst_ratio);
+           "legs 1e-6 vs 1e-3 of their mass: force difference ratio %.3g\n",
+           worst_full, worst_massless, worst_ratio);
     TEST_ASSERT_TRUE(worst_full <= 1e-6);
     TEST_ASSERT_TRUE(worst_massless <= 1e-6);
     TEST_ASSERT_TRUE(worst_ratio <= 2e-3);
@@ -440,7 +450,8 @@ static void test_plant_round_trip(void) {
                 if (stewart_plant_step(plant, &in, &out) != STEWART_OK)
                     TEST_FAIL_MESSAGE(stewart_plant_message(plant));
                 for (int i = 0; i < 6; ++i)
-                    worst = fmax(worst, fabs(out.pose.q[i] - (centre.q[i] + amplitude[i] * sin(w[i] * t))));
+                    worst = fmax(worst, fabs(out.pose.q[i] -
+                                             (centre.q[i] + amplitude[i] * sin(w[i] * t))));
             }
             memcpy(F0, F[1], sizeof F0), memcpy(R0, R, sizeof R0);
         }
@@ -525,7 +536,8 @@ static void test_a_hanging_platform_has_its_own_working_mode(void) {
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_OTHER_BRANCH, stewart_forward_solve(f, &in, &out));
     TEST_ASSERT_DOUBLE_WITHIN(1e-12, 1.5, out.pose.q[2]);
     TEST_ASSERT_EQUAL_INT(STEWART_BRANCH_BELOW_BASE | STEWART_BRANCH_PLATFORM_CARDAN,
-                          out.branch & (STEWART_BRANCH_BELOW_BASE | STEWART_BRANCH_PLATFORM_CARDAN));
+                          out.branch &
+                              (STEWART_BRANCH_BELOW_BASE | STEWART_BRANCH_PLATFORM_CARDAN));
     stewart_forward_free(f);
     stewart_inverse_free(d);
     stewart_model_free(m);
@@ -544,13 +556,15 @@ static void test_bad_geometries_are_refused_by_name(void) {
     stewart_params_default(&p), p.geometry = 0.5, expect_refused(&p, "geometry = 0.5");
     stewart_params_default(&p), p.geometry = 2, expect_refused(&p, "geometry = 2");
     /* a Cardan axis neither zero nor unit */
-    stewart_params_default(&p), p.base_cardan_axis[3] = 0.5, expect_refused(&p, "base_cardan_axis[4..6]");
+    stewart_params_default(&p), p.base_cardan_axis[3] = 0.5,
+                                expect_refused(&p, "base_cardan_axis[4..6]");
     stewart_params_default(&p), p.geometry = 1, p.platform_cardan_axis[17] = 0.9;
     expect_refused(&p, "platform_cardan_axis[16..18]");
     /* a Cardan axis along its leg at home */
     stewart_params_default(&p);
     double leg[3];
-    for (int i = 0; i < 3; ++i) leg[i] = p.platform_joint[3 + i] + (i == 2 ? p.home_height : 0) - p.base_joint[3 + i];
+    for (int i = 0; i < 3; ++i)
+        leg[i] = p.platform_joint[3 + i] + (i == 2 ? p.home_height : 0) - p.base_joint[3 + i];
     for (int i = 0; i < 3; ++i) p.base_cardan_axis[3 + i] = leg[i] / norm(leg);
     p.geometry = 1, expect_refused(&p, "base_cardan_axis[4..6]");
     /* one leg twice (both ends coincide) */
@@ -558,14 +572,16 @@ static void test_bad_geometries_are_refused_by_name(void) {
     memcpy(p.base_joint + 6, p.base_joint + 3, 3 * sizeof(double));
     memcpy(p.platform_joint + 6, p.platform_joint + 3, 3 * sizeof(double));
     expect_refused(&p, "legs 2 and 3 are one leg");
-    stewart_params_default(&p), p.base_angle[4] = p.base_angle[3], p.platform_angle[4] = p.platform_angle[3];
+    stewart_params_default(&p), p.base_angle[4] = p.base_angle[3],
+                                p.platform_angle[4] = p.platform_angle[3];
     expect_refused(&p, "base_angle[4] and base_angle[5]");
     /* a joint on the z axis with the default (tangent) arm */
     stewart_params_default(&p), p.geometry = 1, p.platform_joint[0] = p.platform_joint[1] = 0;
     expect_refused(&p, "platform_joint[1..3]");
     /* a leg of zero length at home */
     stewart_params_default(&p), p.geometry = 1;
-    for (int i = 0; i < 3; ++i) p.platform_joint[i] = p.base_joint[i] - (i == 2 ? p.home_height : 0);
+    for (int i = 0; i < 3; ++i)
+        p.platform_joint[i] = p.base_joint[i] - (i == 2 ? p.home_height : 0);
     expect_refused(&p, "leg 1 has length 0");
     /* per-leg strokes, and a non-finite joint coordinate */
     stewart_params_default(&p), p.stroke_min[5] = 0.8, expect_refused(&p, "stroke_min[6]");
@@ -590,9 +606,12 @@ static void test_bare_stroke_names_fill_every_leg(void) {
     TEST_ASSERT_EQUAL_DOUBLE(0.4, p.stroke_min[3]);
     TEST_ASSERT_EQUAL_DOUBLE(0.25, p.base_joint[17]);
     /* other arrays keep needing their element */
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_params_set(&p, "base_joint", 0.1, msg, sizeof msg));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_params_set(&p, "base_joint[19]", 0.1, msg, sizeof msg));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_params_set(&p, "base_joint[01]", 0.1, msg, sizeof msg));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      stewart_params_set(&p, "base_joint", 0.1, msg, sizeof msg));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      stewart_params_set(&p, "base_joint[19]", 0.1, msg, sizeof msg));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      stewart_params_set(&p, "base_joint[01]", 0.1, msg, sizeof msg));
 }
 
 int main(void) {

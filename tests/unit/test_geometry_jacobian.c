@@ -35,7 +35,8 @@ static void test_readings_and_pose_derivatives(void) {
                 plus.q[j] += h;
                 minus.q[j] -= h;
                 const double fd = (closed_form_length(&params, &plus, k) -
-                                   closed_form_length(&params, &minus, k)) / (2 * h);
+                                   closed_form_length(&params, &minus, k)) /
+                                  (2 * h);
                 TEST_ASSERT_DOUBLE_WITHIN(1e-8, fd, out.pose[k][j]);
             }
         }
@@ -77,7 +78,11 @@ static void test_bad_arguments_are_named(void) {
     TEST_ASSERT_EQUAL_STRING("model is NULL", message);
     /* A platform joint on its base joint: the leg has no direction. */
     double on_base[6] = {0.5 - 0.5 * cos(params.platform_angle[0]),
-                         -0.5 * sin(params.platform_angle[0]), 0, 0, 0, 0};
+                         -0.5 * sin(params.platform_angle[0]),
+                         0,
+                         0,
+                         0,
+                         0};
     TEST_ASSERT_EQUAL(STEWART_ERR_UNREACHABLE,
                       stewart_geometry_jacobian(model, on_base, &out, message, sizeof message));
     TEST_ASSERT_NOT_NULL(strstr(message, "leg 1 has length"));

@@ -29,7 +29,18 @@ static void random_configuration(double *q) {
     }
 }
 
-enum kind { SPHERICAL, CARDAN, CYLINDRICAL, REVOLUTE, PRISMATIC, WELD, DISTANCE, ANGLE, POSE, FIXED };
+enum kind {
+    SPHERICAL,
+    CARDAN,
+    CYLINDRICAL,
+    REVOLUTE,
+    PRISMATIC,
+    WELD,
+    DISTANCE,
+    ANGLE,
+    POSE,
+    FIXED
+};
 
 /* Two free bodies, the joint under test, and coordinate drivers to make the system square. */
 static mbs_model *build(enum kind k, int *drivers) {
@@ -45,7 +56,9 @@ static mbs_model *build(enum kind k, int *drivers) {
     switch (k) {
         case SPHERICAL: n = mbs_add_spherical(m, bi, u_i, bj, u_j) >= 0 ? 3 : -1; break;
         case CARDAN: n = mbs_add_cardan(m, bi, u_i, s_i, bj, u_j, s_j) >= 0 ? 4 : -1; break;
-        case CYLINDRICAL: n = mbs_add_cylindrical(m, bi, u_i, s_i, bj, u_j, s_j) >= 0 ? 4 : -1; break;
+        case CYLINDRICAL:
+            n = mbs_add_cylindrical(m, bi, u_i, s_i, bj, u_j, s_j) >= 0 ? 4 : -1;
+            break;
         case REVOLUTE: n = mbs_add_revolute(m, bi, u_i, s_i, bj, u_j, s_j) >= 0 ? 5 : -1; break;
         case PRISMATIC: n = mbs_add_prismatic(m, bi, u_i, s_i, bj, u_j, s_j) >= 0 ? 5 : -1; break;
         case WELD: n = mbs_add_weld(m, bi, u_i, bj, u_j) >= 0 ? 6 : -1; break;
@@ -57,15 +70,18 @@ static mbs_model *build(enum kind k, int *drivers) {
             joint = mbs_add_revolute(m, bi, u_i, s_i, bj, u_j, s_j);
             n = mbs_add_angle_driver(m, joint, &slot) >= 0 ? 6 : -1;
             break;
-        case POSE: n = mbs_add_pose_driver(m, bj, &slot) >= 0 ? 6 : -1; break; /* 7 - its normalisation */
-        case FIXED: n = mbs_fix_body(m, bi) == MBS_OK ? 6 : -1; break;     /* 7 - its normalisation */
+        case POSE:
+            n = mbs_add_pose_driver(m, bj, &slot) >= 0 ? 6 : -1;
+            break;                                                     /* 7 - its normalisation */
+        case FIXED: n = mbs_fix_body(m, bi) == MBS_OK ? 6 : -1; break; /* 7 - its normalisation */
     }
     TEST_ASSERT_TRUE_MESSAGE(n > 0, mbs_model_message(m));
     *drivers = (slot >= 0) ? (k == POSE ? 7 : 1) : 0;
     /* Fill with coordinate drivers: 2 normalisations + n equations + fill = 14. */
     for (int c = 0; c < 12 - n; ++c) {
         int s;
-        TEST_ASSERT_TRUE(mbs_add_coordinate_driver(m, (c < 7 && k != FIXED) ? bi : bj, c % 7, &s) >= 0);
+        TEST_ASSERT_TRUE(mbs_add_coordinate_driver(m, (c < 7 && k != FIXED) ? bi : bj, c % 7, &s) >=
+                         0);
         ++*drivers;
     }
     char msg[MBS_MESSAGE_SIZE];

@@ -26,9 +26,11 @@ static void test_translated_lengths_by_hand(void) {
     stewart_pose pose = {{0.07, 0, 0.45, 0, 0, 0}, {0}, {0}};
     stewart_inverse_output out = solve_ok(data, STEWART_KINEMATIC, &pose);
     for (int k = 0; k < 6; ++k) {
-        const double dx = 0.07 + 0.5 * cos(params.platform_angle[k]) - 0.5 * cos(params.base_angle[k]);
+        const double dx =
+            0.07 + 0.5 * cos(params.platform_angle[k]) - 0.5 * cos(params.base_angle[k]);
         const double dy = 0.5 * sin(params.platform_angle[k]) - 0.5 * sin(params.base_angle[k]);
-        TEST_ASSERT_DOUBLE_WITHIN(1e-15, sqrt(dx * dx + dy * dy + 0.45 * 0.45), out.lengths.length[k]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-15, sqrt(dx * dx + dy * dy + 0.45 * 0.45),
+                                  out.lengths.length[k]);
     }
 }
 
@@ -40,8 +42,10 @@ static void test_yaw_manoeuvre_symmetry(void) {
         for (int k = 2; k < 6; ++k) {
             const int first = k % 2;
             TEST_ASSERT_DOUBLE_WITHIN(1e-14, out.lengths.length[first], out.lengths.length[k]);
-            TEST_ASSERT_DOUBLE_WITHIN(1e-13, out.lengths.length_rate[first], out.lengths.length_rate[k]);
-            TEST_ASSERT_DOUBLE_WITHIN(1e-12, out.lengths.length_accel[first], out.lengths.length_accel[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-13, out.lengths.length_rate[first],
+                                      out.lengths.length_rate[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12, out.lengths.length_accel[first],
+                                      out.lengths.length_accel[k]);
             TEST_ASSERT_DOUBLE_WITHIN(1e-9, out.force[first], out.force[k]);
         }
         /* and legs 1 and 2 mirror each other: yaw psi on one is -psi on the other. */
@@ -63,7 +67,8 @@ static void test_rates_match_finite_differences(void) {
         stewart_inverse_output op = solve_ok(data, STEWART_KINEMATIC, &pp);
         for (int k = 0; k < 6; ++k) {
             const double rate_fd = (op.lengths.length[k] - om.lengths.length[k]) / (2 * h);
-            const double accel_fd = (op.lengths.length_rate[k] - om.lengths.length_rate[k]) / (2 * h);
+            const double accel_fd =
+                (op.lengths.length_rate[k] - om.lengths.length_rate[k]) / (2 * h);
             TEST_ASSERT_DOUBLE_WITHIN(1e-9, rate_fd, o0.lengths.length_rate[k]);
             TEST_ASSERT_DOUBLE_WITHIN(1e-8, accel_fd, o0.lengths.length_accel[k]);
         }

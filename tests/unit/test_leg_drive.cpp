@@ -38,7 +38,7 @@ static void test_parameters_of_a_leg(void) {
     const stewart::LegDrive d = stewart::leg_drive(p, 2);
     TEST_ASSERT_DOUBLE_WITHIN(1e-9, 2 * M_PI * 3 / 0.005, d.motor_per_leg);
     TEST_ASSERT_DOUBLE_WITHIN(1e-18, 1.37e-4 + 9e-4 / 9, d.inertia);  // the screw's through N^2
-    TEST_ASSERT_EQUAL_DOUBLE(30.0, d.breakaway);  // at least coulomb: no peak
+    TEST_ASSERT_EQUAL_DOUBLE(30.0, d.breakaway);                      // at least coulomb: no peak
     TEST_ASSERT_DOUBLE_WITHIN(0.005, 1947.08 + 1e-4 * 3769.91 * 3769.91,
                               stewart::reflected_mass(d));
 }
@@ -101,8 +101,8 @@ static void test_the_rates_are_the_laws_derivatives(void) {
     d.inertia = 2e-4, d.efficiency = 0.8, d.back_efficiency = 0.6;
     const double h = 1e-7;
     for (double v : {-0.3, -0.012, -0.004, 0.003, 0.02, 0.2}) {
-        const double slope = (stewart::friction_force(d, v + h, 0) -
-                              stewart::friction_force(d, v - h, 0)) / (2 * h);
+        const double slope =
+            (stewart::friction_force(d, v + h, 0) - stewart::friction_force(d, v - h, 0)) / (2 * h);
         TEST_ASSERT_DOUBLE_WITHIN(1e-5 * (1 + std::fabs(slope)), slope,
                                   stewart::friction_slope(d, v));
         // F(t) = F0 + F1 t, L'(t) = v + a t, L''(t) = a + j t: d torque / dt at t = 0

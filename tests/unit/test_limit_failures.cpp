@@ -194,8 +194,8 @@ void test_rotation_verdicts(void) {
             q[2] += params.home_height;
         },
         [&](const double q[6], const Eigen::Matrix3d &R) {
-            return stewart::platform_limit_failures(thesis_limits, Eigen::Vector3d(q[0], q[1], q[2]),
-                                                    R);
+            return stewart::platform_limit_failures(thesis_limits,
+                                                    Eigen::Vector3d(q[0], q[1], q[2]), R);
         });
     int differing = 0;
     const double offsets[] = {-1e-9, -1e-11, -1e-12, 0.0, 1e-12, 1e-11, 1e-9};
@@ -217,14 +217,16 @@ void test_rotation_verdicts(void) {
                 edge.leg_diameter = 0.0;
                 const int index = (which == 0   ? STEWART_LIMIT_BASE_JOINT
                                    : which == 1 ? STEWART_LIMIT_PLATFORM_JOINT
-                                                : STEWART_LIMIT_INTERFERENCE) - 1;
+                                                : STEWART_LIMIT_INTERFERENCE) -
+                                  1;
                 const double value = which < 2 ? M_PI - out.margin[index] : out.margin[index];
-                (which == 0 ? edge.base_joint_limit
-                 : which == 1 ? edge.platform_joint_limit : edge.leg_diameter) = value + offset;
+                (which == 0   ? edge.base_joint_limit
+                 : which == 1 ? edge.platform_joint_limit
+                              : edge.leg_diameter) = value + offset;
                 const stewart::LimitConstants ce = stewart::limit_constants(edge, g, HUGE_VAL);
-                const bool same = stewart::platform_limit_failures(
-                                      ce, Eigen::Vector3d(q[0], q[1], q[2]), R) ==
-                                  full_verdict(ce, q);
+                const bool same =
+                    stewart::platform_limit_failures(ce, Eigen::Vector3d(q[0], q[1], q[2]), R) ==
+                    full_verdict(ce, q);
                 ++checks;
                 if (offset == 0.0) at_rounding += !same;
                 else differing += !same;
@@ -268,7 +270,8 @@ void test_clearance(void) {
                 q = Eigen::Quaterniond(Eigen::AngleAxisd(0.01 * back.angle(), back.axis())) * q;
                 if (axis.norm() > 1e-3)
                     q = Eigen::Quaterniond(Eigen::AngleAxisd(step * uniform(rng, 0, 1.7),
-                                                             axis.normalized())) * q;
+                                                             axis.normalized())) *
+                        q;
                 q.normalize();
                 const Eigen::Matrix3d R = q.toRotationMatrix();
                 const Eigen::Vector3d before = clearance.position;
@@ -325,9 +328,8 @@ void worst_bound_ratios(const stewart::LimitConstants &c, double home_height, ui
         for (int k = 0; k < STEWART_LEGS; ++k) {
             const double turn_allowed = 2 * delta / length[0][k];
             const double base_move = std::fabs((n[1][k] - n[0][k]).dot(c.base_neutral.col(k)));
-            const double platform_move =
-                std::fabs(n[1][k].dot(R[1] * c.platform_neutral.col(k)) -
-                          n[0][k].dot(R[0] * c.platform_neutral.col(k)));
+            const double platform_move = std::fabs(n[1][k].dot(R[1] * c.platform_neutral.col(k)) -
+                                                   n[0][k].dot(R[0] * c.platform_neutral.col(k)));
             worst[0] = std::fmax(worst[0], std::fabs(length[1][k] - length[0][k]) / delta);
             worst[1] = std::fmax(worst[1], base_move / turn_allowed);
             worst[2] = std::fmax(worst[2], platform_move / (turn_allowed + turned));
@@ -336,8 +338,10 @@ void worst_bound_ratios(const stewart::LimitConstants &c, double home_height, ui
             for (int j = i + 1; j < STEWART_LEGS; ++j) {
                 double distance[2], gap[2];
                 for (int s = 0; s < 2; ++s) {
-                    distance[s] = std::sqrt(stewart::segment_distance_squared(
-                        g.base_points.col(i), top[s][i], g.base_points.col(j), top[s][j]));
+                    distance[s] =
+                        std::sqrt(stewart::segment_distance_squared(g.base_points.col(i), top[s][i],
+                                                                    g.base_points.col(j),
+                                                                    top[s][j]));
                     const Eigen::Vector3d mi = 0.5 * (g.base_points.col(i) + top[s][i]),
                                           mj = 0.5 * (g.base_points.col(j) + top[s][j]);
                     gap[s] = (mi - mj).norm() - 0.5 * (length[s][i] + length[s][j]);
@@ -409,8 +413,9 @@ int spared_failures(const stewart::LimitConstants &c, double home_height, uint64
         if (!there.valid) continue;
         least_left[0] = std::fmin(least_left[0], there.joint_cosine / clearance.joint_cosine);
         least_left[1] = std::fmin(least_left[1], there.interference / clearance.interference);
-        least_left[2] = std::fmin(least_left[2], (there.shortest_leg - c.geometry.min_length) /
-                                                     (clearance.shortest_leg - c.geometry.min_length));
+        least_left[2] =
+            std::fmin(least_left[2], (there.shortest_leg - c.geometry.min_length) /
+                                         (clearance.shortest_leg - c.geometry.min_length));
     }
     return failures;
 }
@@ -434,9 +439,9 @@ void test_clearance_edge(void) {
     uint64_t rng = 6502;
     for (const stewart_params &set : {params, crossing, shaped}) {
         const stewart::PlatformGeometry g = stewart::platform_geometry(set);
-        const stewart::LimitConstants constants[3] = {
-            stewart::limit_constants(set, g, HUGE_VAL), per_leg_limits(set, g, true, per_leg),
-            per_leg_limits(set, g, false, per_leg)};
+        const stewart::LimitConstants constants[3] = {stewart::limit_constants(set, g, HUGE_VAL),
+                                                      per_leg_limits(set, g, true, per_leg),
+                                                      per_leg_limits(set, g, false, per_leg)};
         for (const stewart::LimitConstants &c : constants) {
             int spared = 0;
             double least_left[3] = {1, 1, 1};

@@ -57,9 +57,9 @@ static void test_options_and_arguments_are_refused_by_name(void) {
 }
 
 static void test_class_names(void) {
-    const char *names[] = {"none", "stroke", "base_joint", "platform_joint", "interference",
-                           "condition", "axis", "leg_speed", "leg_accel", "leg_jerk",
-                           "leg_force"};
+    const char *names[] = {"none",         "stroke",    "base_joint", "platform_joint",
+                           "interference", "condition", "axis",       "leg_speed",
+                           "leg_accel",    "leg_jerk",  "leg_force"};
     TEST_ASSERT_EQUAL_INT(sizeof names / sizeof names[0], STEWART_LIMIT_CLASSES + 1);
     for (int c = 0; c <= STEWART_LIMIT_CLASSES; ++c)
         TEST_ASSERT_EQUAL_STRING(names[c], stewart_limit_class_name(c));
@@ -81,9 +81,10 @@ static void test_leg_class_data_is_refused_by_name(void) {
         int derivatives, has_force, component;
         double value;
         const char *named;
-    } bad[] = {{4, 0, -1, 0, "derivatives = 4"},      {-1, 0, -1, 0, "derivatives = -1"},
-               {0, 2, -1, 0, "has_force = 2"},         {1, 0, 4, NAN, "pitch_dot is nan"},
-               {3, 0, 17, INFINITY, "yaw_dddot is inf"}, {0, 1, 18 + 2, -INFINITY, "force[3] is -inf"}};
+    } bad[] = {
+        {4, 0, -1, 0, "derivatives = 4"},         {-1, 0, -1, 0, "derivatives = -1"},
+        {0, 2, -1, 0, "has_force = 2"},           {1, 0, 4, NAN, "pitch_dot is nan"},
+        {3, 0, 17, INFINITY, "yaw_dddot is inf"}, {0, 1, 18 + 2, -INFINITY, "force[3] is -inf"}};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
         stewart_limits_input b = in;
         b.derivatives = bad[i].derivatives;

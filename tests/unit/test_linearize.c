@@ -62,7 +62,8 @@ static stewart_pose edge_pose(uint64_t *rng) {
     for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (inside + outside);
         for (int i = 0; i < 6; ++i) p.q[i] = home.q[i] + mid * direction[i];
-        if (within_stroke(&p)) inside = mid; else outside = mid;
+        if (within_stroke(&p)) inside = mid;
+        else outside = mid;
     }
     for (int i = 0; i < 6; ++i) p.q[i] = home.q[i] + 0.999 * inside * direction[i];
     return p;
@@ -94,9 +95,19 @@ static double check_plant_point(stewart_linearize *l, const stewart_linearize_in
     for (int j = 0; j < 18; ++j) {
         stewart_linearize_input plus = *in, minus = *in;
         double h;
-        if (j < 6) { h = kStepState; plus.pose.q[j] += h; minus.pose.q[j] -= h; }
-        else if (j < 12) { h = kStepState; plus.pose.q_dot[j - 6] += h; minus.pose.q_dot[j - 6] -= h; }
-        else { h = kStepForce; plus.force[j - 12] += h; minus.force[j - 12] -= h; }
+        if (j < 6) {
+            h = kStepState;
+            plus.pose.q[j] += h;
+            minus.pose.q[j] -= h;
+        } else if (j < 12) {
+            h = kStepState;
+            plus.pose.q_dot[j - 6] += h;
+            minus.pose.q_dot[j - 6] -= h;
+        } else {
+            h = kStepForce;
+            plus.force[j - 12] += h;
+            minus.force[j - 12] -= h;
+        }
         const stewart_linearize_output a = plant_ok(l, &plus), b = plant_ok(l, &minus);
         for (int i = 0; i < 12; ++i) {
             const double difference = (a.state_rate[i] - b.state_rate[i]) / (2 * h);
@@ -137,14 +148,18 @@ static void plant_against_differences(int fidelity, int edge) {
         const double e = check_plant_point(l, &in);
         if (e > worst) worst = e;
     }
-    printf("fidelity %d%s: A, B, C against central differences, worst block error %.2e\n",
-           fidelity, edge ? " near the stroke limits" : "", worst);
+    printf("fidelity %d%s: A, B, C against central differences, worst block error %.2e\n", fidelity,
+           edge ? " near the stroke limits" : "", worst);
     TEST_ASSERT_LESS_THAN_DOUBLE(kRelative, worst);
     stewart_linearize_free(l);
 }
 
-static void test_plant_massless_against_differences(void) { plant_against_differences(STEWART_MASSLESS, 0); }
-static void test_plant_full_against_differences(void) { plant_against_differences(STEWART_FULL, 0); }
+static void test_plant_massless_against_differences(void) {
+    plant_against_differences(STEWART_MASSLESS, 0);
+}
+static void test_plant_full_against_differences(void) {
+    plant_against_differences(STEWART_FULL, 0);
+}
 static void test_plant_massless_near_edge(void) { plant_against_differences(STEWART_MASSLESS, 1); }
 static void test_plant_full_near_edge(void) { plant_against_differences(STEWART_FULL, 1); }
 
@@ -196,8 +211,10 @@ static void inverse_against_differences(int fidelity, int edge) {
             const double e = fabs(exact.force[k] - reference.force[k]);
             if (e > worst_value) worst_value = e;
             TEST_ASSERT_DOUBLE_WITHIN(1e-12, reference.lengths.length[k], exact.lengths.length[k]);
-            TEST_ASSERT_DOUBLE_WITHIN(1e-12, reference.lengths.length_rate[k], exact.lengths.length_rate[k]);
-            TEST_ASSERT_DOUBLE_WITHIN(1e-11, reference.lengths.length_accel[k], exact.lengths.length_accel[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12, reference.lengths.length_rate[k],
+                                      exact.lengths.length_rate[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-11, reference.lengths.length_accel[k],
+                                      exact.lengths.length_accel[k]);
         }
         worst_value /= force_scale;
         for (int i = 0; i < 3; ++i) {
@@ -215,8 +232,12 @@ static void inverse_against_differences(int fidelity, int edge) {
     TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, worst_value);
     stewart_linearize_free(l);
 }
-static void test_inverse_massless_against_differences(void) { inverse_against_differences(STEWART_MASSLESS, 0); }
-static void test_inverse_full_against_differences(void) { inverse_against_differences(STEWART_FULL, 0); }
+static void test_inverse_massless_against_differences(void) {
+    inverse_against_differences(STEWART_MASSLESS, 0);
+}
+static void test_inverse_full_against_differences(void) {
+    inverse_against_differences(STEWART_FULL, 0);
+}
 static void test_inverse_full_near_edge(void) { inverse_against_differences(STEWART_FULL, 1); }
 
 /* dL/dq written out: dL_k/dp = n_k, dL_k/d(angles) = ((R b_k) x n_k) . E columns, with
@@ -230,12 +251,14 @@ static void test_leg_jacobian_written_out(void) {
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_linearize_inverse(l, &pose, &out));
         double R[3][3];
         pose_rotation(&pose, R);
-        const double cp = cos(pose.q[4]), sp = sin(pose.q[4]), cy = cos(pose.q[5]), sy = sin(pose.q[5]);
+        const double cp = cos(pose.q[4]), sp = sin(pose.q[4]), cy = cos(pose.q[5]),
+                     sy = sin(pose.q[5]);
         const double E[3][3] = {{cy * cp, -sy, 0}, {sy * cp, cy, 0}, {-sp, 0, 1}};
         for (int k = 0; k < 6; ++k) {
             const double ba = params.base_angle[k], pa = params.platform_angle[k];
             const double a[3] = {params.base_radius * cos(ba), params.base_radius * sin(ba), 0};
-            const double b[3] = {params.platform_radius * cos(pa), params.platform_radius * sin(pa), 0};
+            const double b[3] = {params.platform_radius * cos(pa), params.platform_radius * sin(pa),
+                                 0};
             double arm[3], d[3], L = 0;
             for (int i = 0; i < 3; ++i) {
                 arm[i] = R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2];
@@ -248,7 +271,8 @@ static void test_leg_jacobian_written_out(void) {
                                  arm[0] * nn[1] - arm[1] * nn[0]};
             double row[6];
             for (int i = 0; i < 3; ++i) row[i] = nn[i];
-            for (int j = 0; j < 3; ++j) row[3 + j] = m[0] * E[0][j] + m[1] * E[1][j] + m[2] * E[2][j];
+            for (int j = 0; j < 3; ++j)
+                row[3 + j] = m[0] * E[0][j] + m[1] * E[1][j] + m[2] * E[2][j];
             for (int j = 0; j < 6; ++j) {
                 TEST_ASSERT_DOUBLE_WITHIN(1e-13, row[j], out.jacobian[k][j]);
                 TEST_ASSERT_DOUBLE_WITHIN(1e-13, row[j], out.jacobian[6 + k][6 + j]);
@@ -269,7 +293,8 @@ static void test_life_cycle_and_bad_input(void) {
     TEST_ASSERT_NOT_NULL(strstr(message, "fidelity = 0"));
     TEST_ASSERT_NULL(stewart_linearize_create(NULL, &o, message, sizeof message));
 
-    stewart_linearize *full = linearize_make(STEWART_FULL), *massless = linearize_make(STEWART_MASSLESS);
+    stewart_linearize *full = linearize_make(STEWART_FULL),
+                      *massless = linearize_make(STEWART_MASSLESS);
     uint64_t rng = 1;
     stewart_linearize_input in;
     in.pose = random_pose(&rng);
@@ -280,11 +305,13 @@ static void test_life_cycle_and_bad_input(void) {
     unsigned char bytes[64];
     TEST_ASSERT_TRUE(stewart_linearize_state_size(full) <= sizeof bytes);
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_linearize_save(full, bytes, sizeof bytes));
-    TEST_ASSERT_EQUAL(STEWART_OK, stewart_linearize_load(massless, bytes, stewart_linearize_state_size(full)));
+    TEST_ASSERT_EQUAL(STEWART_OK,
+                      stewart_linearize_load(massless, bytes, stewart_linearize_state_size(full)));
     stewart_linearize_output again = plant_ok(massless, &in);
     TEST_ASSERT_EQUAL_MEMORY(&reference, &again, sizeof again);
     bytes[0] ^= 1;
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, stewart_linearize_load(massless, bytes, stewart_linearize_state_size(full)));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      stewart_linearize_load(massless, bytes, stewart_linearize_state_size(full)));
     TEST_ASSERT_NOT_NULL(strstr(stewart_linearize_message(massless), "not a linearisation"));
     again = plant_ok(massless, &in); /* unchanged, still usable */
     TEST_ASSERT_EQUAL_MEMORY(&reference, &again, sizeof again);
@@ -311,8 +338,10 @@ static void test_life_cycle_and_bad_input(void) {
     /* a zero-length leg: the platform point on its base point */
     bad = in;
     for (int i = 0; i < 6; ++i) bad.pose.q[i] = 0;
-    bad.pose.q[0] = params.base_radius * cos(params.base_angle[0]) - params.platform_radius * cos(params.platform_angle[0]);
-    bad.pose.q[1] = params.base_radius * sin(params.base_angle[0]) - params.platform_radius * sin(params.platform_angle[0]);
+    bad.pose.q[0] = params.base_radius * cos(params.base_angle[0]) -
+                    params.platform_radius * cos(params.platform_angle[0]);
+    bad.pose.q[1] = params.base_radius * sin(params.base_angle[0]) -
+                    params.platform_radius * sin(params.platform_angle[0]);
     TEST_ASSERT_EQUAL(STEWART_ERR_UNREACHABLE, stewart_linearize_plant(massless, &bad, &untouched));
     TEST_ASSERT_EQUAL_HEX8(0x5a, ((unsigned char *)&untouched)[100]);
     again = plant_ok(full, &in);

@@ -45,7 +45,8 @@ static void read_platform(const char *name, stewart_params *p) {
     fclose(f);
     TEST_ASSERT_TRUE(n < sizeof text);
     stewart_params_default(p);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_params_read_json(p, text, n, NULL, msg, sizeof msg), msg);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
+                                  stewart_params_read_json(p, text, n, NULL, msg, sizeof msg), msg);
 }
 
 /* The shipped files' drives have neither friction nor a winding: the test's own, to exercise
@@ -101,8 +102,8 @@ static void operating_point(const stewart_params *p, int moving, double x[12]) {
 }
 
 /* A, B and the state rate against central differences of the plant's right-hand side. */
-static void check_against_plant(const stewart_params *p, const char *name, int fidelity,
-                                int input, int moving) {
+static void check_against_plant(const stewart_params *p, const char *name, int fidelity, int input,
+                                int moving) {
     char msg[STEWART_MESSAGE_SIZE], what[256];
     stewart_model *m = stewart_model_create(p, msg, sizeof msg);
     TEST_ASSERT_NOT_NULL_MESSAGE(m, msg);
@@ -121,7 +122,7 @@ static void check_against_plant(const stewart_params *p, const char *name, int f
     operating_point(p, moving, x);
     memcpy(in.pose.q, x, sizeof in.pose.q);
     memcpy(in.pose.q_dot, x + 6, sizeof in.pose.q_dot);
-    for (int k = 0; k < 6; ++k)  /* a few amperes, or volts of the order R i */
+    for (int k = 0; k < 6; ++k) /* a few amperes, or volts of the order R i */
         u[k] = in.input[k] = (input == STEWART_PLANT_INPUT_CURRENT ? 1.0 : 0.8) * (2.0 + 0.5 * k);
     stewart_linearize_driven_output o;
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_linearize_driven(l, &po, &in, &o),
@@ -156,9 +157,11 @@ static void check_against_plant(const stewart_params *p, const char *name, int f
     const double state_error =
         block_relative(by_state, rate_scale, moving ? kStepState : kStepRest);
     const double input_error = block_relative(by_input, rate_scale, kStepInput);
-    snprintf(what, sizeof what, "%s fidelity %d input %d moving %d: A %.3g, B %.3g beyond rounding (raw %.3g, %.3g; "
-             "scales %.3g, %.3g)", name, fidelity, input, moving, state_error, input_error,
-             by_state.error, by_input.error, by_state.scale, by_input.scale);
+    snprintf(what, sizeof what,
+             "%s fidelity %d input %d moving %d: A %.3g, B %.3g beyond rounding (raw %.3g, %.3g; "
+             "scales %.3g, %.3g)",
+             name, fidelity, input, moving, state_error, input_error, by_state.error,
+             by_input.error, by_state.scale, by_input.scale);
     printf("%s\n", what);
     TEST_ASSERT_TRUE_MESSAGE(state_error < kRelative && input_error < kRelative, what);
     /* At rest every leg with a screw force has the efficiency's kink (0.9 forward, 0.8889 back:
@@ -189,12 +192,12 @@ static void test_shipped_drives_against_differences(void) {
         add_winding_and_friction(&wound, 0.0);
         for (int fidelity = STEWART_MASSLESS; fidelity <= STEWART_FULL; ++fidelity)
             for (int moving = 0; moving <= 1; ++moving) {
-                check_against_plant(&shipped, entry->d_name, fidelity,
-                                    STEWART_PLANT_INPUT_CURRENT, moving);
-                check_against_plant(&wound, entry->d_name, fidelity,
-                                    STEWART_PLANT_INPUT_CURRENT, moving);
-                check_against_plant(&wound, entry->d_name, fidelity,
-                                    STEWART_PLANT_INPUT_VOLTAGE, moving);
+                check_against_plant(&shipped, entry->d_name, fidelity, STEWART_PLANT_INPUT_CURRENT,
+                                    moving);
+                check_against_plant(&wound, entry->d_name, fidelity, STEWART_PLANT_INPUT_CURRENT,
+                                    moving);
+                check_against_plant(&wound, entry->d_name, fidelity, STEWART_PLANT_INPUT_VOLTAGE,
+                                    moving);
             }
     }
     closedir(dir);
@@ -237,7 +240,8 @@ static void test_winding_rows_closed_form(void) {
     stewart_linearize_driven_output o, oc;
     TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_linearize_driven(l, &voltage, &in, &o),
                                   stewart_linearize_message(l));
-    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_linearize_driven(l, &current, &by_current, &oc),
+    TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
+                                  stewart_linearize_driven(l, &current, &by_current, &oc),
                                   stewart_linearize_message(l));
     TEST_ASSERT_EQUAL_INT(18, o.states);
     double fastest = 0;
@@ -255,21 +259,24 @@ static void test_winding_rows_closed_form(void) {
         }
         for (int j = 0; j < 12; ++j) {
             const double expected = -kt * c / Lw * o.C[18 + k][j];
-            TEST_ASSERT_DOUBLE_WITHIN(1e-12 * (fabs(expected) + kt * c / Lw), expected, o.A[12 + k][j]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12 * (fabs(expected) + kt * c / Lw), expected,
+                                      o.A[12 + k][j]);
         }
     }
-    TEST_ASSERT_TRUE(fastest > 1e-2);  /* the back-EMF term is there */
+    TEST_ASSERT_TRUE(fastest > 1e-2); /* the back-EMF term is there */
     double scale_a = 0, scale_b = 0;
     for (int i = 6; i < 12; ++i) {
         for (int j = 0; j < 12; ++j) scale_a = fmax(scale_a, fabs(oc.A[i][j]));
         for (int k = 0; k < 6; ++k) scale_b = fmax(scale_b, fabs(oc.B[i][k]));
     }
     for (int i = 6; i < 12; ++i) {
-        TEST_ASSERT_DOUBLE_WITHIN(1e-12 * fabs(oc.state_rate[i]) + 1e-12, oc.state_rate[i], o.state_rate[i]);
-        for (int j = 0; j < 12; ++j) TEST_ASSERT_DOUBLE_WITHIN(1e-12 * scale_a, oc.A[i][j], o.A[i][j]);
+        TEST_ASSERT_DOUBLE_WITHIN(1e-12 * fabs(oc.state_rate[i]) + 1e-12, oc.state_rate[i],
+                                  o.state_rate[i]);
+        for (int j = 0; j < 12; ++j)
+            TEST_ASSERT_DOUBLE_WITHIN(1e-12 * scale_a, oc.A[i][j], o.A[i][j]);
         for (int k = 0; k < 6; ++k) {
             TEST_ASSERT_DOUBLE_WITHIN(1e-12 * scale_b, oc.B[i][k], o.A[i][12 + k]);
-            TEST_ASSERT_EQUAL_DOUBLE(0.0, o.B[i][k]);  /* the voltage acts through the current */
+            TEST_ASSERT_EQUAL_DOUBLE(0.0, o.B[i][k]); /* the voltage acts through the current */
         }
     }
     stewart_linearize_free(l);

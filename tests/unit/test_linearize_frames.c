@@ -49,7 +49,8 @@ static void tool_home(double q[6]) {
     double Rt[3][3];
     for (int i = 0; i < 3; ++i) {
         q[i] = U[0][i] * p[0] + U[1][i] * p[1] + U[2][i] * p[2];
-        for (int j = 0; j < 3; ++j) Rt[i][j] = U[0][i] * T[0][j] + U[1][i] * T[1][j] + U[2][i] * T[2][j];
+        for (int j = 0; j < 3; ++j)
+            Rt[i][j] = U[0][i] * T[0][j] + U[1][i] * T[1][j] + U[2][i] * T[2][j];
     }
     q[3] = atan2(Rt[2][1], Rt[2][2]);
     q[4] = -asin(Rt[2][0]);
@@ -100,7 +101,8 @@ static void plant_values(stewart_plant *p, const stewart_linearize_input *in, do
 static void expect_close(const char *check, int fidelity, double second_step, double worst,
                          double worst_value) {
     printf("frames, fidelity %d: %s (steps %g, %g), worst block error %.2e; values against its "
-           "%.2e\n", fidelity, check, kStepState, second_step, worst, worst_value);
+           "%.2e\n",
+           fidelity, check, kStepState, second_step, worst, worst_value);
     TEST_ASSERT_LESS_THAN_DOUBLE(kRelative, worst);
     TEST_ASSERT_LESS_THAN_DOUBLE(1e-9, worst_value);
 }
@@ -135,9 +137,19 @@ static void plant_against_differences(int fidelity) {
         for (int j = 0; j < 18; ++j) {
             stewart_linearize_input plus = in, minus = in;
             double h;
-            if (j < 6) { h = kStepState; plus.pose.q[j] += h; minus.pose.q[j] -= h; }
-            else if (j < 12) { h = kStepState; plus.pose.q_dot[j - 6] += h; minus.pose.q_dot[j - 6] -= h; }
-            else { h = kStepForce; plus.force[j - 12] += h; minus.force[j - 12] -= h; }
+            if (j < 6) {
+                h = kStepState;
+                plus.pose.q[j] += h;
+                minus.pose.q[j] -= h;
+            } else if (j < 12) {
+                h = kStepState;
+                plus.pose.q_dot[j - 6] += h;
+                minus.pose.q_dot[j - 6] -= h;
+            } else {
+                h = kStepForce;
+                plus.force[j - 12] += h;
+                minus.force[j - 12] -= h;
+            }
             double up[18], down[18];
             plant_values(plant, &plus, up);
             plant_values(plant, &minus, down);
@@ -151,7 +163,8 @@ static void plant_against_differences(int fidelity) {
         }
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) {
-                const double e = block_relative(blocks[r][c], scale[r], c < 2 ? kStepState : kStepForce);
+                const double e =
+                    block_relative(blocks[r][c], scale[r], c < 2 ? kStepState : kStepForce);
                 if (e > worst) worst = e;
             }
         for (int i = 0; i < 6; ++i) /* the identity rows */
@@ -197,11 +210,14 @@ static void inverse_against_differences(int fidelity) {
                                  exact.lengths.length_rate[k] - reference.lengths.length_rate[k],
                                  exact.lengths.length_accel[k] - reference.lengths.length_accel[k],
                                  exact.force[k] - reference.force[k]};
-            for (int r = 0; r < 4; ++r) worst_value = fmax(worst_value, fabs(e[r]) / value_scale[r]);
+            for (int r = 0; r < 4; ++r)
+                worst_value = fmax(worst_value, fabs(e[r]) / value_scale[r]);
         }
         for (int i = 0; i < 3; ++i) {
-            worst_value = fmax(worst_value, fabs(exact.base_force[i] - reference.base_force[i]) / value_scale[4]);
-            worst_value = fmax(worst_value, fabs(exact.base_torque[i] - reference.base_torque[i]) / value_scale[5]);
+            worst_value = fmax(worst_value, fabs(exact.base_force[i] - reference.base_force[i]) /
+                                                value_scale[4]);
+            worst_value = fmax(worst_value, fabs(exact.base_torque[i] - reference.base_torque[i]) /
+                                                value_scale[5]);
         }
         const double e = inverse_jacobian_error(&exact, &pose, fidelity);
         if (e > worst) worst = e;
@@ -210,7 +226,9 @@ static void inverse_against_differences(int fidelity) {
                  kStepAccel, worst, worst_value);
     stewart_linearize_free(l);
 }
-static void test_inverse_massless_with_frames(void) { inverse_against_differences(STEWART_MASSLESS); }
+static void test_inverse_massless_with_frames(void) {
+    inverse_against_differences(STEWART_MASSLESS);
+}
 static void test_inverse_full_with_frames(void) { inverse_against_differences(STEWART_FULL); }
 
 int main(void) {

@@ -70,7 +70,8 @@ static void expect_linearize(double value, int accepted) {
     stewart_linearize_options o;
     stewart_linearize_options_default(&o);
     snprintf(said, sizeof said, "fidelity = %g", value);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(want, stewart_linearize_option_set(&o, 0, value, msg, sizeof msg), said);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(want, stewart_linearize_option_set(&o, 0, value, msg, sizeof msg),
+                                  said);
     if (!accepted) TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, said), msg);
     o.fidelity = (int)value;
     TEST_ASSERT_EQUAL_INT_MESSAGE(want, stewart_linearize_options_check(&o, msg, sizeof msg), said);
@@ -86,7 +87,8 @@ static void expect_limits(double value, int accepted) {
     stewart_limits_options o;
     stewart_limits_options_default(&o);
     snprintf(said, sizeof said, "warn_condition = %.17g", value);
-    TEST_ASSERT_EQUAL_INT_MESSAGE(want, stewart_limits_option_set(&o, 0, value, msg, sizeof msg), said);
+    TEST_ASSERT_EQUAL_INT_MESSAGE(want, stewart_limits_option_set(&o, 0, value, msg, sizeof msg),
+                                  said);
     o.warn_condition = value;
     TEST_ASSERT_EQUAL_INT_MESSAGE(want, stewart_limits_options_check(&o, msg, sizeof msg), said);
     if (!accepted) TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "warn_condition = "), msg);
@@ -113,8 +115,10 @@ static void test_ranges_are_the_checks(void) {
     expect_limits(INFINITY, 0);
     expect_limits(NAN, 0);
     char msg[STEWART_MESSAGE_SIZE];
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_limits_options_check(NULL, msg, sizeof msg));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_linearize_options_check(NULL, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_limits_options_check(NULL, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_linearize_options_check(NULL, msg, sizeof msg));
 }
 
 int main(void) {

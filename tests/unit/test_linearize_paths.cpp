@@ -45,8 +45,8 @@ void paths_agree(int fidelity) {
     uint64_t rng = 0x9a7b5u + static_cast<uint64_t>(fidelity);
     // q_ddot, A's q and q_dot blocks, B, C's L and L_dot rows.
     Block blocks[6];
-    const char *names[6] = {"q_ddot", "dq_ddot/dq", "dq_ddot/dq_dot", "dq_ddot/dF", "dL/dx",
-                            "dL_dot/dx"};
+    const char *names[6] = {"q_ddot",     "dq_ddot/dq", "dq_ddot/dq_dot",
+                            "dq_ddot/dF", "dL/dx",      "dL_dot/dx"};
     for (int n = 0; n < 50; ++n) {
         const double q_half[6] = {0.08, 0.08, 0.05, 0.12, 0.12, 0.2};
         double q[6], q_dot[6], force[STEWART_LEGS];
@@ -71,8 +71,7 @@ void paths_agree(int fidelity) {
         }
         for (int k = 0; k < STEWART_LEGS; ++k) {
             TEST_ASSERT_EQUAL_DOUBLE(reference.length[k].value(), fast.length[k]);
-            TEST_ASSERT_DOUBLE_WITHIN(1e-15, reference.length_rate[k].value(),
-                                      fast.length_rate[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-15, reference.length_rate[k].value(), fast.length_rate[k]);
             for (int j = 0; j < 12; ++j) {
                 blocks[4].add(fast.length_wrt_state[k][j], reference.length[k].derivatives()[j]);
                 blocks[5].add(fast.length_rate_wrt_state[k][j],
@@ -86,8 +85,8 @@ void paths_agree(int fidelity) {
         }
     }
     for (int b = 0; b < 6; ++b) {
-        std::printf("fidelity %d: %-15s fast against reference %.1e relative\n", fidelity,
-                    names[b], blocks[b].relative());
+        std::printf("fidelity %d: %-15s fast against reference %.1e relative\n", fidelity, names[b],
+                    blocks[b].relative());
         TEST_ASSERT_LESS_THAN_DOUBLE_MESSAGE(kRelative, blocks[b].relative(), names[b]);
     }
 }

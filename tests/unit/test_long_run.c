@@ -29,10 +29,12 @@ static void test_no_drift_over_a_long_run(void) {
             if (i >= steps / 2) worst_late_norm = fmax(worst_late_norm, err);
         }
         for (int k = 0; k < 6; ++k)
-            worst_length = fmax(worst_length, fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k)));
+            worst_length = fmax(worst_length, fabs(out.lengths.length[k] -
+                                                   closed_form_length(&params, &pose, k)));
     }
-    printf("%ld steps: max | |p|^2 - 1 | = %.3g (second half %.3g), max |L - closed form| = %.3g m\n",
-           steps, worst_norm, worst_late_norm, worst_length);
+    printf(
+        "%ld steps: max | |p|^2 - 1 | = %.3g (second half %.3g), max |L - closed form| = %.3g m\n",
+        steps, worst_norm, worst_late_norm, worst_length);
     TEST_ASSERT_TRUE(worst_norm <= 1e-12);
     TEST_ASSERT_TRUE(worst_length <= 1e-11);
 }
@@ -55,20 +57,26 @@ static void test_forward_kinematics_by_newton_over_a_long_run(void) {
         const stewart_pose pose = combined_pose(t);
         const stewart_inverse_output legs = solve_ok(data, STEWART_KINEMATIC, &pose);
         for (int k = 0; k < 6; ++k)
-            mbs_set_driver(mech, k, legs.lengths.length[k], legs.lengths.length_rate[k], legs.lengths.length_accel[k]);
+            mbs_set_driver(mech, k, legs.lengths.length[k], legs.lengths.length_rate[k],
+                           legs.lengths.length_accel[k]);
         TEST_ASSERT_EQUAL_INT_MESSAGE(MBS_OK, mbs_step(mech, t, &o), mbs_data_message(mech));
-        if (i > 0 && mbs_iterations(mech) > worst_iterations) worst_iterations = mbs_iterations(mech);
+        if (i > 0 && mbs_iterations(mech) > worst_iterations)
+            worst_iterations = mbs_iterations(mech);
         if (i % 1000 != 0 && i != steps - 1) continue;
         solve_ok(data, STEWART_FULL, &pose);
         const double *q = mbs_q(mech), *ref = mbs_q(stewart_inverse_mechanism(data));
         for (int b = 1; b < 14; ++b) {
             const double *r = q + MBS_BODY_R(b), *r_ref = ref + MBS_BODY_R(b);
             const double *e = q + MBS_BODY_P(b), *e_ref = ref + MBS_BODY_P(b);
-            for (int c = 0; c < 3; ++c) worst_position = fmax(worst_position, fabs(r[c] - r_ref[c]));
-            const double dot = e[0] * e_ref[0] + e[1] * e_ref[1] + e[2] * e_ref[2] + e[3] * e_ref[3];
+            for (int c = 0; c < 3; ++c)
+                worst_position = fmax(worst_position, fabs(r[c] - r_ref[c]));
+            const double dot =
+                e[0] * e_ref[0] + e[1] * e_ref[1] + e[2] * e_ref[2] + e[3] * e_ref[3];
             const double sign = dot < 0 ? -1.0 : 1.0; /* p and -p: the same rotation */
-            for (int c = 0; c < 4; ++c) worst_rotation = fmax(worst_rotation, fabs(e[c] - sign * e_ref[c]));
-            worst_norm = fmax(worst_norm, fabs(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] - 1));
+            for (int c = 0; c < 4; ++c)
+                worst_rotation = fmax(worst_rotation, fabs(e[c] - sign * e_ref[c]));
+            worst_norm =
+                fmax(worst_norm, fabs(e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3] - 1));
         }
     }
     printf("%ld steps by forward kinematics: max | |p|^2 - 1 | = %.3g, max body position error "

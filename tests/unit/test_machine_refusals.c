@@ -59,18 +59,21 @@ static void test_base_joints_at_one_point_or_on_a_line(void) {
     const stewart_pose pose = {{0.02, -0.01, 0.55, 0.1, -0.05, 0.2}, {0}, {0}};
     const double c[2] = {0.1, 0.05};
     stewart_params p = thesis_joints();
-    for (int k = 0; k < 6; ++k) p.base_joint[3 * k] = c[0], p.base_joint[3 * k + 1] = c[1], p.base_joint[3 * k + 2] = 0;
+    for (int k = 0; k < 6; ++k)
+        p.base_joint[3 * k] = c[0], p.base_joint[3 * k + 1] = c[1], p.base_joint[3 * k + 2] = 0;
     expect_model_refused(&p, "base_joint: the six base joints are at one point, (0.1, 0.05, 0) m");
     stewart_pose turned = turned_about_base_line(&pose, c, 0.3);
     TEST_ASSERT_DOUBLE_WITHIN(1e-14, 0.0, length_change(&p, &pose, &turned));
     /* on the vertical line through c, at six heights */
     for (int k = 0; k < 6; ++k) p.base_joint[3 * k + 2] = 0.02 * k;
-    expect_model_refused(&p, "base_joint: the six base joints lie on one line, through (0.1, 0.05, 0.05) m along (0, 0, 1) (base frame): the platform turns freely about it at every pose");
+    expect_model_refused(
+        &p, "base_joint: the six base joints lie on one line, through (0.1, 0.05, 0.05) m along "
+            "(0, 0, 1) (base frame): the platform turns freely about it at every pose");
     turned = turned_about_base_line(&pose, c, -0.4);
     TEST_ASSERT_DOUBLE_WITHIN(1e-14, 0.0, length_change(&p, &pose, &turned));
     /* off the line by 1 mm: no longer singular everywhere, made */
     p.base_joint[0] += 1e-3;
-    p.base_joint[3] += 1e-3;  /* legs 1 and 2 apart from legs 3..6, with Cardan axes off z */
+    p.base_joint[3] += 1e-3; /* legs 1 and 2 apart from legs 3..6, with Cardan axes off z */
     for (int k = 0; k < 6; ++k) p.base_cardan_axis[3 * k] = 1;
     expect_model_made(&p);
     TEST_ASSERT_TRUE(length_change(&p, &pose, &turned) > 1e-6);
@@ -80,7 +83,8 @@ static void test_platform_joints_on_a_line(void) {
     stewart_params p = thesis_joints();
     /* along x of the platform frame through (0, 0.05, -0.1) */
     for (int k = 0; k < 6; ++k)
-        p.platform_joint[3 * k] = 0.1 * k - 0.25, p.platform_joint[3 * k + 1] = 0.05, p.platform_joint[3 * k + 2] = -0.1;
+        p.platform_joint[3 * k] = 0.1 * k - 0.25, p.platform_joint[3 * k + 1] = 0.05,
+                             p.platform_joint[3 * k + 2] = -0.1;
     expect_model_refused(&p, "platform_joint: the six platform joints lie on one line");
     /* geometry 0: six base angles alike put the six joints at one point */
     stewart_params q;
@@ -90,13 +94,15 @@ static void test_platform_joints_on_a_line(void) {
 }
 
 /* A file of the thesis' joints times scale (and its other fields as given). */
-static stewart_status read_scaled(double scale, const char *extra, stewart_params *p, char *msg, size_t size) {
+static stewart_status read_scaled(double scale, const char *extra, stewart_params *p, char *msg,
+                                  size_t size) {
     char text[4096];
     size_t n = (size_t)snprintf(text, sizeof text, "{\"geometry\": 1%s", extra);
     stewart_params d;
     stewart_params_default(&d);
     for (int side = 0; side < 2; ++side) {
-        n += (size_t)snprintf(text + n, sizeof text - n, ", \"%s\": [", side ? "platform_joint" : "base_joint");
+        n += (size_t)snprintf(text + n, sizeof text - n, ", \"%s\": [",
+                              side ? "platform_joint" : "base_joint");
         for (int i = 0; i < 18; ++i)
             n += (size_t)snprintf(text + n, sizeof text - n, "%s%.17g", i ? ", " : "",
                                   scale * (side ? d.platform_joint[i] : d.base_joint[i]));
@@ -108,22 +114,27 @@ static stewart_status read_scaled(double scale, const char *extra, stewart_param
 }
 
 static void test_magnitudes_past_any_machine_are_named(void) {
-    struct { double scale; const char *extra, *words; } cases[] = {
-        {1e300, "", "base_joint[1] = 5e+299 m is beyond any machine: its magnitude must be at most 1e+06 m"},
+    struct {
+        double scale;
+        const char *extra, *words;
+    } cases[] = {
+        {1e300, "",
+         "base_joint[1] = 5e+299 m is beyond any machine: its magnitude must be at most 1e+06 m"},
         {1e-300, "", "base_joint: every base joint is within 5e-301 m of its frame's origin"},
         {1.0, ", \"home_height\": 1e308", "home_height = 1e+308 m is beyond any machine"},
-        {1.0, ", \"gravity[3]\": 1e308", "gravity[3] = 1e+308 m/s2 is beyond any machine: its magnitude must be at most 10000 m/s2"},
+        {1.0, ", \"gravity[3]\": 1e308",
+         "gravity[3] = 1e+308 m/s2 is beyond any machine: its magnitude must be at most 10000 "
+         "m/s2"},
         {1.0, ", \"gravity[3]\": -9.81", NULL},
-        {2e3, ", \"home_height\": 1e3, \"stroke_max\": 2e3", NULL},  /* a 1 km machine is made */
+        {2e3, ", \"home_height\": 1e3, \"stroke_max\": 2e3", NULL}, /* a 1 km machine is made */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         stewart_params p;
         char msg[STEWART_MESSAGE_SIZE];
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, read_scaled(cases[i].scale, cases[i].extra, &p, msg, sizeof msg), msg);
-        if (cases[i].words)
-            expect_model_refused(&p, cases[i].words);
-        else
-            expect_model_made(&p);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            STEWART_OK, read_scaled(cases[i].scale, cases[i].extra, &p, msg, sizeof msg), msg);
+        if (cases[i].words) expect_model_refused(&p, cases[i].words);
+        else expect_model_made(&p);
     }
 }
 

@@ -30,8 +30,8 @@ static void test_heave_closed_form(void) {
         const double z = pose.q[2];
         const double expected = params.platform_mass * (9.81 + pose.q_ddot[2]) / (6 * z);
         for (int k = 0; k < 6; ++k)
-            TEST_ASSERT_DOUBLE_WITHIN(1e-9 * expected * out.lengths.length[k], expected * out.lengths.length[k],
-                                      out.force[k]);
+            TEST_ASSERT_DOUBLE_WITHIN(1e-9 * expected * out.lengths.length[k],
+                                      expected * out.lengths.length[k], out.force[k]);
     }
 }
 
@@ -51,7 +51,8 @@ static void test_static_offset_payload_balances(void) {
     const double c = cos(yaw), s = sin(yaw), g = 9.81;
     double f[3] = {0, 0, 0}, moment[3] = {0, 0, 0};
     for (int k = 0; k < 6; ++k) {
-        const double bx = 0.5 * cos(params.platform_angle[k]), by = 0.5 * sin(params.platform_angle[k]);
+        const double bx = 0.5 * cos(params.platform_angle[k]),
+                     by = 0.5 * sin(params.platform_angle[k]);
         const double P[3] = {x + c * bx - s * by, y + s * bx + c * by, z};
         const double A[3] = {0.5 * cos(params.base_angle[k]), 0.5 * sin(params.base_angle[k]), 0};
         double n[3] = {P[0] - A[0], P[1] - A[1], P[2] - A[2]};
@@ -98,7 +99,8 @@ static double platform_energy(double t, double h) {
         }
     const double w[3] = {W[2][1], W[0][2], W[1][0]};
     const double m = params.platform_mass;
-    double ke = 0.5 * m * (p.q_dot[0] * p.q_dot[0] + p.q_dot[1] * p.q_dot[1] + p.q_dot[2] * p.q_dot[2]);
+    double ke =
+        0.5 * m * (p.q_dot[0] * p.q_dot[0] + p.q_dot[1] * p.q_dot[1] + p.q_dot[2] * p.q_dot[2]);
     for (int i = 0; i < 3; ++i) ke += 0.5 * params.platform_inertia[i] * w[i] * w[i];
     return ke + m * 9.81 * p.q[2];
 }

@@ -20,7 +20,8 @@ static void thesis_platform(stewart_params *p) {
     memset(p, 0, sizeof *p);
     p->base_radius = 0.5;
     p->platform_radius = 0.5;
-    for (int k = 0; k < 6; ++k) p->base_angle[k] = beta[k] * deg, p->platform_angle[k] = tau[k] * deg;
+    for (int k = 0; k < 6; ++k)
+        p->base_angle[k] = beta[k] * deg, p->platform_angle[k] = tau[k] * deg;
     p->home_height = 0.5;
     /* geometry 0 (circles); the joints' defaults are the same joints as coordinates, the arms
      * zero (tangential) */
@@ -134,16 +135,19 @@ static void test_ranges_refuse_by_name(void) {
         const stewart_param_info *info = stewart_param(i);
         for (int e = 0; e < info->count; ++e) {
             stewart_param_element_name(i, e, name, sizeof name);
-            TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_param_check_value(i, e, NAN, msg, sizeof msg));
+            TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                                  stewart_param_check_value(i, e, NAN, msg, sizeof msg));
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, name), msg);
             TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
                                   stewart_param_check_value(i, e, INFINITY, msg, sizeof msg));
             const double below = info->min_closed ? nextafter(info->min, -INFINITY) : info->min;
             TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER,
-                                          stewart_param_check_value(i, e, below, msg, sizeof msg), name);
+                                          stewart_param_check_value(i, e, below, msg, sizeof msg),
+                                          name);
             const double inside = info->min_closed ? info->min : nextafter(info->min, INFINITY);
             TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
-                                          stewart_param_check_value(i, e, inside, msg, sizeof msg), msg);
+                                          stewart_param_check_value(i, e, inside, msg, sizeof msg),
+                                          msg);
         }
     }
     /* the value is printed with every digit it needs */
@@ -174,7 +178,9 @@ static void test_options_table(void) {
         const stewart_option_info *info = stewart_inverse_option(i);
         TEST_ASSERT_EQUAL_INT(i, stewart_inverse_option_find(info->name));
         TEST_ASSERT_EQUAL_DOUBLE(info->default_value, stewart_inverse_option_get(&o, i));
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_inverse_option_set(&from_table, i, info->default_value, msg, sizeof msg), msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            STEWART_OK,
+            stewart_inverse_option_set(&from_table, i, info->default_value, msg, sizeof msg), msg);
     }
     /* field by field (the struct has padding) */
     TEST_ASSERT_EQUAL_INT(o.fidelity, from_table.fidelity);
@@ -192,31 +198,39 @@ static void test_options_table(void) {
     TEST_ASSERT_EQUAL_DOUBLE(1e10, o.singular_condition);
     /* ids are the FMU's value references; 201 (derivatives) is the FMU's own */
     TEST_ASSERT_EQUAL_INT(200, stewart_inverse_option(stewart_inverse_option_find("fidelity"))->id);
-    TEST_ASSERT_EQUAL_INT(206, stewart_inverse_option(stewart_inverse_option_find("singular_condition"))->id);
+    TEST_ASSERT_EQUAL_INT(
+        206, stewart_inverse_option(stewart_inverse_option_find("singular_condition"))->id);
     TEST_ASSERT_EQUAL_INT(-1, stewart_inverse_option_find("derivatives"));
     /* integers take whole numbers only, within range; a refusal leaves the options unchanged */
     const int it = stewart_inverse_option_find("max_iterations");
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_option_set(&o, it, 2.5, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_inverse_option_set(&o, it, 2.5, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "max_iterations = 2.5"), msg);
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_option_set(&o, it, 0, msg, sizeof msg));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_option_set(&o, it, 3e9, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_inverse_option_set(&o, it, 0, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_inverse_option_set(&o, it, 3e9, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(20, o.max_iterations);
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_inverse_option_set(&o, it, 7, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(7, o.max_iterations);
     o.warn_condition = 1e11;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_inverse_options_check(&o, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_inverse_options_check(&o, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "warn = 1e+11, singular = 1e+10"), msg);
     /* forward kinematics' options keep the same rule across fields, after their ranges */
     stewart_forward_options f;
     stewart_forward_options_default(&f);
     TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_forward_options_check(&f, msg, sizeof msg));
     f.warn_condition = 2 * f.singular_condition;
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_forward_options_check(&f, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_forward_options_check(&f, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "warn_condition <= singular_condition"), msg);
     f.tolerance = -1; /* a range is checked before the rule */
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_forward_options_check(&f, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_forward_options_check(&f, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "tolerance = -1"), msg);
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_forward_options_check(NULL, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_forward_options_check(NULL, msg, sizeof msg));
 }
 
 int main(void) {

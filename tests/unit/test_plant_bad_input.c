@@ -10,15 +10,14 @@
 #include "test_support.h"
 #include "unity.h"
 
-static void saved(const stewart_plant *p, double *state) {
-    plant_save_doubles(p, state);
-}
+static void saved(const stewart_plant *p, double *state) { plant_save_doubles(p, state); }
 
 static void expect_refused(stewart_status expected, stewart_status got, const char *fragment) {
     TEST_ASSERT_EQUAL_MESSAGE(expected, got, stewart_plant_message(plant));
     if (!strstr(stewart_plant_message(plant), fragment)) {
         char text[STEWART_MESSAGE_SIZE + 64];
-        snprintf(text, sizeof text, "message '%s' lacks '%s'", stewart_plant_message(plant), fragment);
+        snprintf(text, sizeof text, "message '%s' lacks '%s'", stewart_plant_message(plant),
+                 fragment);
         TEST_FAIL_MESSAGE(text);
     }
 }
@@ -29,7 +28,8 @@ static void expect_state(const double *expected) {
     TEST_ASSERT_EQUAL_MEMORY(expected, now, sizeof(double) * plant_state_doubles());
     stewart_plant_output out;
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
-    for (int i = 0; i < 6; ++i) TEST_ASSERT_TRUE(isfinite(out.pose.q[i]) && isfinite(out.pose.q_dot[i]));
+    for (int i = 0; i < 6; ++i)
+        TEST_ASSERT_TRUE(isfinite(out.pose.q[i]) && isfinite(out.pose.q_dot[i]));
 }
 
 static void test_non_finite_inputs_refused(void) {
@@ -53,10 +53,10 @@ static void test_non_finite_inputs_refused(void) {
                    "derivatives is 2");
     /* Finite but absurd: accelerations overflow. */
     const double huge[6] = {1e308, -1e308, 1e308, -1e308, 1e308, -1e308};
-    expect_refused(STEWART_ERR_NOT_CONVERGED, plant_step_arrays(plant, 1e-3, huge, huge, NULL, NULL),
-                   "out of range");
+    expect_refused(STEWART_ERR_NOT_CONVERGED,
+                   plant_step_arrays(plant, 1e-3, huge, huge, NULL, NULL), "out of range");
     expect_state(before);
-    step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);  /* still usable */
+    step_ok(plant, 1e-3, kZero, kZero, NULL, NULL); /* still usable */
 }
 
 static void test_bad_start_state_refused(void) {
@@ -65,7 +65,8 @@ static void test_bad_start_state_refused(void) {
     double pose[6] = {0, 0, 0.5, 0, 0, 0};
     const double rate[6] = {0};
     pose[3] = NAN;
-    expect_refused(STEWART_ERR_ARGUMENT, stewart_plant_set_state(plant, 0, pose, rate), "roll0 = nan");
+    expect_refused(STEWART_ERR_ARGUMENT, stewart_plant_set_state(plant, 0, pose, rate),
+                   "roll0 = nan");
     pose[3] = 0, pose[4] = M_PI / 2;
     expect_refused(STEWART_ERR_ARGUMENT, stewart_plant_set_state(plant, 0, pose, rate), "pitch0");
     /* Leg 1's platform point on its base point: yaw 30 degrees, z = 0. */
@@ -125,7 +126,8 @@ static void test_options_checked(void) {
     o.absolute_tolerance = 0;
     TEST_ASSERT_EQUAL(STEWART_ERR_PARAMETER, stewart_plant_options_check(&o, msg, sizeof msg));
     TEST_ASSERT_NULL(stewart_plant_create(NULL, &o, msg, sizeof msg));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_step_arrays(NULL, 1e-3, kZero, kZero, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      plant_step_arrays(NULL, 1e-3, kZero, kZero, NULL, NULL));
 }
 
 /* Leaving the stroke is a warning naming the leg; the step itself succeeds. */
@@ -133,7 +135,7 @@ static void test_stroke_warning_names_leg(void) {
     stewart_plant_output out;
     int warned = 0;
     for (int i = 0; i < 1000 && !warned; ++i) {
-        step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);  /* falls under gravity */
+        step_ok(plant, 1e-3, kZero, kZero, NULL, NULL); /* falls under gravity */
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         warned = out.warnings & STEWART_WARN_STROKE;
     }
@@ -172,7 +174,8 @@ static void test_rollback_and_independent_plants(void) {
     double now[32];
     saved(plant, now);
     state[3] = NAN;
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_load_doubles(plant, state, plant_state_doubles()));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      plant_load_doubles(plant, state, plant_state_doubles()));
     saved(plant, state);
     for (int i = 4; i <= 7; ++i) state[i] = 0; /* no quaternion */
     expect_refused(STEWART_ERR_ARGUMENT, plant_load_doubles(plant, state, plant_state_doubles()),

@@ -45,8 +45,8 @@ static void free_motion_keeps_kinetic_energy(int fidelity) {
     stewart_plant_statistics st;
     stewart_plant_statistics_get(plant, &st);
     printf("free motion, fidelity %d: T0 = %.6g J, max |T - T0| / T0 = %.3g over 10 s "
-           "(%ld steps, %ld rhs)\n", fidelity, T0, worst / T0, st.total_steps,
-           st.total_rhs_evaluations);
+           "(%ld steps, %ld rhs)\n",
+           fidelity, T0, worst / T0, st.total_steps, st.total_rhs_evaluations);
     TEST_ASSERT_TRUE(worst <= 1e-9 * T0);
     stewart_plant_free(plant);
 }
@@ -65,7 +65,7 @@ static void test_free_motion_keeps_kinetic_energy_massless(void) {
 static void test_fall_keeps_total_energy(void) {
     model = test_model(&params);
     stewart_plant *plant = test_plant(model, STEWART_FULL, 1e-13, 1e-15);
-    const double rate[6] = {0.01, 0.02, 0.8, 0.1, -0.05, 0.2};  /* thrown upward first */
+    const double rate[6] = {0.01, 0.02, 0.8, 0.1, -0.05, 0.2}; /* thrown upward first */
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 0, kStartPose, rate));
     double T0, U0, T, U, worst = 0, t = 0;
     plant_energy(&params, plant, STEWART_FULL, &T0, &U0);
@@ -91,7 +91,7 @@ static void power_balance(int fidelity) {
     model = test_model(&params);
     stewart_plant *plant = test_plant(model, fidelity, 1e-13, 1e-15);
     const double h = 1e-4;
-    const int steps = 10000;  /* 1 s */
+    const int steps = 10000; /* 1 s */
     double T0, U0, T, U, work = 0, power_prev = 0, f_prev[6];
     plant_energy(&params, plant, fidelity, &T0, &U0);
     /* The static forces at home (inverse side) plus sinusoids of 1 %. */
@@ -102,8 +102,7 @@ static void power_balance(int fidelity) {
     for (int i = 0; i <= steps; ++i) {
         const double t = i * h;
         double f[6], power = 0;
-        for (int k = 0; k < 6; ++k)
-            f[k] = statics.force[k] * (1.0 + 0.01 * sin((2.0 + k) * t + k));
+        for (int k = 0; k < 6; ++k) f[k] = statics.force[k] * (1.0 + 0.01 * sin((2.0 + k) * t + k));
         if (i > 0) step_ok(plant, h, f_prev, f, NULL, NULL);
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, f, &out));
@@ -112,7 +111,8 @@ static void power_balance(int fidelity) {
         /* Simpson over [t - 2h, t] on every second point; power_prev holds the middle one. */
         static double power_first;
         if (i == 0) power_first = power;
-        else if (i % 2 == 0) work += h / 3.0 * (power_first + 4.0 * power_prev + power), power_first = power;
+        else if (i % 2 == 0)
+            work += h / 3.0 * (power_first + 4.0 * power_prev + power), power_first = power;
         power_prev = power;
     }
     plant_energy(&params, plant, fidelity, &T, &U);
@@ -143,7 +143,8 @@ static void equilibrium(int fidelity, const double pose_q[6], double seconds, do
         stewart_plant_output out;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         for (int c = 0; c < 3; ++c)
-            if (fabs(out.pose.q[c] - pose.q[c]) > worst) worst = fabs(out.pose.q[c] - pose.q[c]), worst_t = out.time;
+            if (fabs(out.pose.q[c] - pose.q[c]) > worst)
+                worst = fabs(out.pose.q[c] - pose.q[c]), worst_t = out.time;
     }
     printf("equilibrium, fidelity %d: max displacement %.3g m (at t = %g s) over %g s\n", fidelity,
            worst, worst_t, seconds);
@@ -206,7 +207,8 @@ static void test_leg_bodies_on_their_joints(void) {
         for (int b = 0; b < STEWART_PLANT_BODIES; ++b) before[b] = after[b];
     }
     printf("leg bodies: joint error %.3g, velocity vs difference %.3g m/s, omega vs difference "
-           "%.3g rad/s\n", worst_joint, worst_velocity, worst_omega);
+           "%.3g rad/s\n",
+           worst_joint, worst_velocity, worst_omega);
     TEST_ASSERT_TRUE(worst_joint <= 1e-12);
     TEST_ASSERT_TRUE(worst_velocity <= 1e-8);
     TEST_ASSERT_TRUE(worst_omega <= 1e-8);
@@ -249,7 +251,8 @@ static void test_integrators_agree(void) {
     double worst = 0;
     for (int method = 1; method < 4; ++method)
         for (int c = 0; c < 6; ++c)
-            if (fabs(pose[method][c] - pose[0][c]) > worst) worst = fabs(pose[method][c] - pose[0][c]);
+            if (fabs(pose[method][c] - pose[0][c]) > worst)
+                worst = fabs(pose[method][c] - pose[0][c]);
     printf("integrators: max pose difference %.3g after 0.5 s\n", worst);
     TEST_ASSERT_TRUE(worst <= 1e-9);
 }
@@ -286,7 +289,7 @@ static void solve6(double A[6][6], double b[6]) {
  * lambda^2 (power iteration) gives dq(t) = dq(0) cosh(lambda t) along its eigenvector. The
  * plant, started there, must follow it. */
 static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
-    stewart_params_default(&params);  /* the thesis legs; the massless level */
+    stewart_params_default(&params); /* the thesis legs; the massless level */
     model = test_model(&params);
     stewart_inverse *data = test_inverse(model);
     stewart_pose pose = {{0, 0, params.home_height, 0, 0, 0}, {0}, {0}};
@@ -334,8 +337,8 @@ static void test_equilibrium_is_a_saddle_at_the_predicted_rate(void) {
             worst = fabs(out.pose.q[c] - pose.q[c] - expected);
     }
     printf("saddle: fastest divergence %.4f 1/s predicted by the inverse side; after 2 s the plant "
-           "is off the prediction by %.3g of the %.3g m grown\n", lambda, worst / (eps * cosh(2 * lambda)),
-           eps * cosh(2 * lambda));
+           "is off the prediction by %.3g of the %.3g m grown\n",
+           lambda, worst / (eps * cosh(2 * lambda)), eps * cosh(2 * lambda));
     TEST_ASSERT_TRUE(lambda > 4.0); /* a saddle: 1e-16 grows past 1e-12 within 2 to 3 s */
     TEST_ASSERT_TRUE(worst <= 1e-3 * eps * cosh(2 * lambda));
     stewart_plant_free(plant);
@@ -386,10 +389,10 @@ static void joint_reactions_balance(int fidelity) {
         for (int k = 0; k < 6; ++k) f_prev[k] = f[k];
     }
     printf("joint reactions, fidelity %d: base wrench %.3g N or N m off the momentum balance, "
-           "platform %.3g N off Newton's law (differences of velocities)\n", fidelity, worst_base,
-           worst_platform);
+           "platform %.3g N off Newton's law (differences of velocities)\n",
+           fidelity, worst_base, worst_platform);
     TEST_ASSERT_TRUE(worst_base <= 1e-9);
-    TEST_ASSERT_TRUE(worst_platform <= 1e-3);  /* of about 1040 N of weight */
+    TEST_ASSERT_TRUE(worst_platform <= 1e-3); /* of about 1040 N of weight */
     stewart_plant_free(plant);
 }
 

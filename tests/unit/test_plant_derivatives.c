@@ -47,14 +47,16 @@ static void inverse_round_trip(const stewart_model *model, int fidelity, double 
                                   stewart_plant_message(plant));
         TEST_ASSERT_EQUAL_DOUBLE_ARRAY(in.pose.q_dot, out.pose.q_dot, 6);
         worst[0] = fmax(worst[0], error(out.pose.q_ddot, in.pose.q_ddot, 6));
-        worst[1] = fmax(worst[1], fmax(error(out.lengths.length, legs.lengths.length, 6),
-                                       error(out.lengths.length_rate, legs.lengths.length_rate, 6)));
+        worst[1] =
+            fmax(worst[1], fmax(error(out.lengths.length, legs.lengths.length, 6),
+                                error(out.lengths.length_rate, legs.lengths.length_rate, 6)));
         worst[2] = fmax(worst[2], error(out.lengths.length_accel, legs.lengths.length_accel, 6));
         worst[3] = fmax(worst[3], fmax(error(out.base_force, legs.base_force, 3),
                                        error(out.base_torque, legs.base_torque, 3)));
     }
     printf("fidelity %d: accelerations %.2g, lengths and rates %.2g, length accelerations %.2g, "
-           "base wrench %.2g (relative)\n", fidelity, worst[0], worst[1], worst[2], worst[3]);
+           "base wrench %.2g (relative)\n",
+           fidelity, worst[0], worst[1], worst[2], worst[3]);
     TEST_ASSERT_TRUE(worst[0] < tolerance);
     TEST_ASSERT_TRUE(worst[1] < 1e-12);
     TEST_ASSERT_TRUE(worst[2] < tolerance);
@@ -75,8 +77,8 @@ static void test_the_inverse_sides_forces_give_back_the_accelerations(void) {
 
 static void test_free_fall_without_forces_or_leg_mass(void) {
     stewart_plant *plant = test_plant(model, STEWART_MASSLESS, 1e-10, 1e-12);
-    stewart_plant_derivative_input d = {0, {{0.01, -0.02, 0.45, 0.1, -0.2, 0.3},
-                                            {0.1, 0.2, -0.3, 0, 0, 0}, {0}}, {0}};
+    stewart_plant_derivative_input d = {
+        0, {{0.01, -0.02, 0.45, 0.1, -0.2, 0.3}, {0.1, 0.2, -0.3, 0, 0, 0}, {0}}, {0}};
     stewart_plant_output out;
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_derivatives(plant, &d, &out));
     const double g[6] = {0, 0, -9.81, 0, 0, 0};

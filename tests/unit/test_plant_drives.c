@@ -59,7 +59,9 @@ static stewart_plant *driven_plant(int fidelity, int input, double smoothing_spe
 }
 
 /* The drive's law as docs/forward-dynamics.md states it, written here. */
-static double motor_per_leg(int k) { return 2 * M_PI * params.gear_ratio[k] / params.screw_lead[k]; }
+static double motor_per_leg(int k) {
+    return 2 * M_PI * params.gear_ratio[k] / params.screw_lead[k];
+}
 static double motor_inertia(int k) {
     const double N = params.gear_ratio[k];
     return params.rotor_inertia[k] + params.screw_inertia[k] / (N * N);
@@ -109,7 +111,8 @@ static double vertical_accel(double z, double z_dot, double u, int voltage, doub
     const double L_dot = at0.lengths.length_rate[k], a = at0.lengths.length_accel[k];
     const double n_z = at1.lengths.length_accel[k] - a;
     const double F0 = at0.force[k], F1 = at1.force[k] - F0;
-    const double c = motor_per_leg(k), m_r = motor_inertia(k) * c * c, kt = params.torque_constant[k];
+    const double c = motor_per_leg(k), m_r = motor_inertia(k) * c * c,
+                 kt = params.torque_constant[k];
     const double i = voltage ? (u - kt * c * L_dot) / params.winding_resistance[k] : u;
     const double f = friction(k, L_dot, vs), s = smooth(L_dot, vs);
     for (int sign = 1; sign >= -1; sign -= 2) {
@@ -224,9 +227,10 @@ static energy_point energy_at(const stewart_plant *plant, int fidelity, double v
         const double eff = efficiency(k, (nut >= 0 ? 1 : -1) * smooth(v, vs));
         /* friction loss f v; screw loss F_i v - F_nut v = (1/e - 1) F_nut v */
         /* the stop's damper: its power less the spring's (d/dt of the energy stored above) */
-        const double spring_power = L > params.stroke_max[k]   ? kst * (L - params.stroke_max[k]) * v
-                                    : L < params.stroke_min[k] ? -kst * (params.stroke_min[k] - L) * v
-                                                               : 0;
+        const double spring_power = L > params.stroke_max[k] ? kst * (L - params.stroke_max[k]) * v
+                                    : L < params.stroke_min[k]
+                                        ? -kst * (params.stroke_min[k] - L) * v
+                                        : 0;
         e.loss_power += f * v + (1 / eff - 1) * nut * v - stop * v - spring_power;
     }
     return e;
@@ -238,9 +242,8 @@ static energy_point energy_at(const stewart_plant *plant, int fidelity, double v
  * run, relative to the energy moved (the integrated |motor power|); *max_penetration: the
  * largest length beyond stroke_max over the second half of the run. amplitude 0: no loop, the
  * current held at `hold`. */
-static double power_balance(int fidelity, int input, double seconds, double hold,
-                            double amplitude, double vs, int kPanels, double *max_penetration,
-                            double *unaccounted) {
+static double power_balance(int fidelity, int input, double seconds, double hold, double amplitude,
+                            double vs, int kPanels, double *max_penetration, double *unaccounted) {
     model = test_model(&params);
     stewart_plant *plant = driven_plant(fidelity, input, vs);
     stewart_plant_output out;
@@ -250,7 +253,8 @@ static double power_balance(int fidelity, int input, double seconds, double hold
     const double h = 1e-3;
     double i_now[6], i_next[6];
     for (int k = 0; k < 6; ++k)
-        i_now[k] = input == STEWART_PLANT_INPUT_VOLTAGE ? params.winding_resistance[k] * hold : hold;
+        i_now[k] =
+            input == STEWART_PLANT_INPUT_VOLTAGE ? params.winding_resistance[k] * hold : hold;
     energy_point e0 = energy_at(plant, fidelity, vs, input);
     const double stored0 = e0.stored;
     double in = 0, lost = 0, moved = 0, worst = 0;
@@ -261,7 +265,7 @@ static double power_balance(int fidelity, int input, double seconds, double hold
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         for (int k = 0; k < 6; ++k) {
             const double ref = L0[k] + amplitude * sin(2 * M_PI * 0.5 * (t + h) + k);
-            i_next[k] = amplitude == 0 ? hold  /* no loop: held at that current */
+            i_next[k] = amplitude == 0 ? hold /* no loop: held at that current */
                                        : hold + 40 * (ref - out.lengths.length[k]) -
                                              4 * out.lengths.length_rate[k];
             if (input == STEWART_PLANT_INPUT_VOLTAGE) /* that current, and the back-EMF */
@@ -291,7 +295,8 @@ static double power_balance(int fidelity, int input, double seconds, double hold
         if (miss > worst) worst = miss;
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_output_get(plant, NULL, &out));
         for (int k = 0; k < 6; ++k) {
-            const double over = out.lengths.length[k] + params.length_offset[k] - params.stroke_max[k];
+            const double over =
+                out.lengths.length[k] + params.length_offset[k] - params.stroke_max[k];
             if (t >= 0.5 * seconds && over > *max_penetration) *max_penetration = over;
         }
         e0 = e1;
@@ -307,15 +312,15 @@ static double power_balance(int fidelity, int input, double seconds, double hold
 
 static void test_power_balance_full(void) {
     double penetration, unaccounted;
-    const double miss = power_balance(STEWART_FULL, STEWART_PLANT_INPUT_CURRENT, 10, 0.45, 0.01, 1e-2, 4, &penetration,
-                                      &unaccounted);
+    const double miss = power_balance(STEWART_FULL, STEWART_PLANT_INPUT_CURRENT, 10, 0.45, 0.01,
+                                      1e-2, 4, &penetration, &unaccounted);
     TEST_ASSERT_TRUE(miss < 1e-9);
 }
 
 static void test_power_balance_massless_default_smoothing(void) {
     double penetration, unaccounted;
-    const double miss = power_balance(STEWART_MASSLESS, STEWART_PLANT_INPUT_CURRENT, 10, 0.45, 0.01, 1e-4, 4, &penetration,
-                                      &unaccounted);
+    const double miss = power_balance(STEWART_MASSLESS, STEWART_PLANT_INPUT_CURRENT, 10, 0.45, 0.01,
+                                      1e-4, 4, &penetration, &unaccounted);
     TEST_ASSERT_TRUE(miss < 1e-7);
 }
 
@@ -352,7 +357,7 @@ static void test_winding_current_follows_the_rl_law(void) {
         TEST_ASSERT_DOUBLE_WITHIN(1e-15, 1.0, out.voltage[0]);
     }
     printf("RL law: winding current within %.3g relative over 50 us\n", worst);
-    TEST_ASSERT_TRUE(worst < 1e-3);  /* the back-EMF's share */
+    TEST_ASSERT_TRUE(worst < 1e-3); /* the back-EMF's share */
     /* a saved state holds the currents: a rollback repeats the next step bit for bit */
     unsigned char saved[512];
     TEST_ASSERT_TRUE(stewart_plant_state_size(plant) <= sizeof saved);
@@ -381,11 +386,12 @@ static void test_end_stop_holds_full_current(void) {
         params.end_stop_damping[k] = 5e5; /* about critical with the reflected mass */
     }
     double penetration, unaccounted;
-    const double miss = power_balance(STEWART_FULL, STEWART_PLANT_INPUT_CURRENT, 1.0, i_max, 0.0, 1e-2, 16, &penetration,
-                                      &unaccounted);
+    const double miss = power_balance(STEWART_FULL, STEWART_PLANT_INPUT_CURRENT, 1.0, i_max, 0.0,
+                                      1e-2, 16, &penetration, &unaccounted);
     const double F = motor_per_leg(0) * params.torque_constant[0] * i_max;
     printf("end stop: penetration %.9g m, F/k = %.9g m; energy in - losses - stored at the end "
-           "%.6g J; worst relative %.3g\n", penetration, F / 1e8, unaccounted, miss);
+           "%.6g J; worst relative %.3g\n",
+           penetration, F / 1e8, unaccounted, miss);
     TEST_ASSERT_TRUE(penetration > 0);
     TEST_ASSERT_TRUE(penetration <= F / 1e8 + 1e-9);
     /* the contact's kinks (the spring at delta = 0, the damper's limits) leave Simpson at

@@ -141,8 +141,9 @@ void written_out_equals_arkode(int fidelity, int fixed_steps, bool carry_end) {
         }
     }
     std::printf("fidelity %d, fixed steps %d%s: %ld calls equal bit for bit (%ld of more than one "
-                "step, %ld rejected steps, %ld starts carried)\n", fidelity, fixed_steps,
-                carry_end ? ", carry_end" : "", calls, multi_step_calls, rejections, carried);
+                "step, %ld rejected steps, %ld starts carried)\n",
+                fidelity, fixed_steps, carry_end ? ", carry_end" : "", calls, multi_step_calls,
+                rejections, carried);
     TEST_ASSERT_TRUE(calls == 1000);
     if (fixed_steps == 0) TEST_ASSERT_TRUE(multi_step_calls > 0 && rejections > 0);
 }

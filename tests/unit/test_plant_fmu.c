@@ -52,7 +52,8 @@ static void at_rest(int v3, int fidelity) {
     for (int c = 0; c < 6; ++c) {
         pose_error = fmax(pose_error, fabs(s.real[c] - home.q[c]));
         rate_error = fmax(rate_error, fabs(s.real[6 + c]));
-        length_error = fmax(length_error, fabs(s.real[12 + c] - closed_form_length(&params, &home, c)));
+        length_error =
+            fmax(length_error, fabs(s.real[12 + c] - closed_form_length(&params, &home, c)));
     }
     /* the weight of the moving bodies: the platform, and at full fidelity the twelve leg bodies */
     double mass = params.platform_mass + params.payload_mass;
@@ -62,8 +63,8 @@ static void at_rest(int v3, int fidelity) {
     double wrench_error = 0;
     for (int i = 0; i < 3; ++i) wrench_error = fmax(wrench_error, fabs(s.real[24 + i] - weight[i]));
     printf("at rest (FMI %d, fidelity %d), 1 s: pose %.3g, rates %.3g, lengths %.3g, base force "
-           "%.3g N off the weight %.6g N\n", v3 ? 3 : 2, fidelity, pose_error, rate_error,
-           length_error, wrench_error, weight[2]);
+           "%.3g N off the weight %.6g N\n",
+           v3 ? 3 : 2, fidelity, pose_error, rate_error, length_error, wrench_error, weight[2]);
     TEST_ASSERT_TRUE(pose_error <= 1e-12);
     TEST_ASSERT_TRUE(rate_error <= 1e-11);
     TEST_ASSERT_TRUE(length_error <= 1e-12);
@@ -107,9 +108,11 @@ static void rollback(int v3) {
     snapshot warm_up[100], first[50], again[50], elsewhere[50];
     run_steps(&u, statics, 0, 100, warm_up); /* move away from rest */
     void *state = NULL;
-    TEST_ASSERT_EQUAL(fmi2OK, v3 ? (int)fmi3GetFMUState(u.c, &state) : (int)fmi2GetFMUstate(u.c, &state));
+    TEST_ASSERT_EQUAL(fmi2OK,
+                      v3 ? (int)fmi3GetFMUState(u.c, &state) : (int)fmi2GetFMUstate(u.c, &state));
     run_steps(&u, statics, 100, 50, first);
-    TEST_ASSERT_EQUAL(fmi2OK, v3 ? (int)fmi3SetFMUState(u.c, state) : (int)fmi2SetFMUstate(u.c, state));
+    TEST_ASSERT_EQUAL(fmi2OK,
+                      v3 ? (int)fmi3SetFMUState(u.c, state) : (int)fmi2SetFMUstate(u.c, state));
     run_steps(&u, statics, 100, 50, again);
     size_t size = 0;
     TEST_ASSERT_EQUAL(fmi2OK, v3 ? (int)fmi3SerializedFMUStateSize(u.c, state, &size)
@@ -118,10 +121,13 @@ static void rollback(int v3) {
     TEST_ASSERT_EQUAL(fmi2OK, v3 ? (int)fmi3SerializeFMUState(u.c, state, bytes, size)
                                  : (int)fmi2SerializeFMUstate(u.c, state, (fmi2Byte *)bytes, size));
     void *copy = NULL;
-    TEST_ASSERT_EQUAL(fmi2OK, v3 ? (int)fmi3DeserializeFMUState(other.c, bytes, size, &copy)
-                                 : (int)fmi2DeSerializeFMUstate(other.c, (fmi2Byte *)bytes, size, &copy));
-    TEST_ASSERT_EQUAL_MESSAGE(fmi2OK, v3 ? (int)fmi3SetFMUState(other.c, copy)
-                                         : (int)fmi2SetFMUstate(other.c, copy), other.log.last);
+    TEST_ASSERT_EQUAL(fmi2OK,
+                      v3 ? (int)fmi3DeserializeFMUState(other.c, bytes, size, &copy)
+                         : (int)fmi2DeSerializeFMUstate(other.c, (fmi2Byte *)bytes, size, &copy));
+    TEST_ASSERT_EQUAL_MESSAGE(fmi2OK,
+                              v3 ? (int)fmi3SetFMUState(other.c, copy)
+                                 : (int)fmi2SetFMUstate(other.c, copy),
+                              other.log.last);
     run_steps(&other, statics, 100, 50, elsewhere);
     for (int i = 0; i < 50; ++i) {
         assert_same_bits(&first[i], &again[i], "rolled back in memory");

@@ -22,8 +22,8 @@ void tearDown(void) {}
  * so neither clock's rounding adds up over a run. */
 static void free_run(int v3, double t0, double h, double seconds, int counted) {
     const double zero[6] = {0}, velocity[3] = {1e-3, -5e-4, 2e-4};
-    const unsigned vr[6] = {VR_gravity_1, VR_gravity_2, VR_gravity_3, VR_x_dot0, VR_y_dot0,
-                            VR_z_dot0};
+    const unsigned vr[6] = {VR_gravity_1, VR_gravity_2, VR_gravity_3,
+                            VR_x_dot0,    VR_y_dot0,    VR_z_dot0};
     const double value[6] = {0, 0, 0, velocity[0], velocity[1], velocity[2]};
     unit u;
     TEST_ASSERT_TRUE_MESSAGE(unit_open_at(&u, v3, STEWART_MASSLESS, zero, t0, 6, vr, value),
@@ -50,7 +50,8 @@ static void free_run(int v3, double t0, double h, double seconds, int counted) {
     double error = 0;
     for (int c = 0; c < 3; ++c) error = fmax(error, fabs(s.real[c] - expected[c]));
     printf("FMI %d, t0 = %g s, h = %g s, %s clock: %ld steps OK, position %.3g m off uniform "
-           "motion\n", v3 ? 3 : 2, t0, h, counted ? "t0 + n h" : "t += h", n, error);
+           "motion\n",
+           v3 ? 3 : 2, t0, h, counted ? "t0 + n h" : "t += h", n, error);
     TEST_ASSERT_TRUE(error <= 1e-9);
     unit_free(&u);
 }

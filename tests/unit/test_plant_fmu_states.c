@@ -18,7 +18,7 @@
 
 #define FIRST_PARAM 210 /* the geometry and masses: value references 210..259 */
 #define LAST_PARAM 259
-#define TRIALS 1500     /* per FMI version */
+#define TRIALS 1500 /* per FMI version */
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -46,8 +46,7 @@ static void corrupt(uint64_t *rng, unsigned char *bytes, size_t n, size_t plant_
             memcpy(bytes + at, &v, sizeof v);
             return;
         }
-        default:
-            bytes[values + (r >> 8) % (n - values)] ^= (unsigned char)(1 + (r >> 40) % 255);
+        default: bytes[values + (r >> 8) % (n - values)] ^= (unsigned char)(1 + (r >> 40) % 255);
     }
 }
 
@@ -63,8 +62,8 @@ static void free_state(unit *u, void **s) {
 }
 static size_t serialise(unit *u, void *s, unsigned char *bytes, size_t capacity) {
     size_t n = 0;
-    const int ok = u->v3 ? fmi3SerializedFMUStateSize(u->c, s, &n) == fmi3OK &&
-                               n <= capacity && fmi3SerializeFMUState(u->c, s, bytes, n) == fmi3OK
+    const int ok = u->v3 ? fmi3SerializedFMUStateSize(u->c, s, &n) == fmi3OK && n <= capacity &&
+                               fmi3SerializeFMUState(u->c, s, bytes, n) == fmi3OK
                          : fmi2SerializedFMUstateSize(u->c, s, &n) == fmi2OK && n <= capacity &&
                                fmi2SerializeFMUstate(u->c, s, (fmi2Byte *)bytes, n) == fmi2OK;
     TEST_ASSERT_TRUE_MESSAGE(ok, u->log.last);
@@ -90,13 +89,14 @@ static int32_t get_int(unit *u, unsigned vr) {
 /* Reset, initialise at 0 and step once: the unit is usable again. */
 static int recovers(unit *u, const double force[6]) {
     double last;
-    const int init = u->v3 ? fmi3Reset(u->c) == fmi3OK &&
-                                 fmi3EnterInitializationMode(u->c, fmi3False, 0, 0, fmi3False, 0) ==
-                                     fmi3OK && fmi3ExitInitializationMode(u->c) == fmi3OK
-                           : fmi2Reset(u->c) == fmi2OK &&
-                                 fmi2SetupExperiment(u->c, fmi2False, 0, 0, fmi2False, 0) == fmi2OK &&
-                                 fmi2EnterInitializationMode(u->c) == fmi2OK &&
-                                 fmi2ExitInitializationMode(u->c) == fmi2OK;
+    const int init =
+        u->v3 ? fmi3Reset(u->c) == fmi3OK &&
+                    fmi3EnterInitializationMode(u->c, fmi3False, 0, 0, fmi3False, 0) == fmi3OK &&
+                    fmi3ExitInitializationMode(u->c) == fmi3OK
+              : fmi2Reset(u->c) == fmi2OK &&
+                    fmi2SetupExperiment(u->c, fmi2False, 0, 0, fmi2False, 0) == fmi2OK &&
+                    fmi2EnterInitializationMode(u->c) == fmi2OK &&
+                    fmi2ExitInitializationMode(u->c) == fmi2OK;
     return init && set_forces(u, force) == 0 && do_step_status(u, 0, STEP, &last) == 0;
 }
 
@@ -192,7 +192,8 @@ static void random_corrupt_states(int v3) {
                        v3 ? 3 : 2, trial, first, n, why);
             }
         }
-        if (set_state(&u, state) != 0) TEST_ASSERT_TRUE(recovers(&u, force) && set_state(&u, state) == 0);
+        if (set_state(&u, state) != 0)
+            TEST_ASSERT_TRUE(recovers(&u, force) && set_state(&u, state) == 0);
     }
     printf("FMI %d, random corrupt FMU states: %d refused, %d accepted, %d failures\n", v3 ? 3 : 2,
            refused, accepted, failures);
@@ -359,7 +360,9 @@ static void test_messages_name_the_cause(void) {
         const double gravity = -1e300;
         memcpy(bytes + 16 + VR_gravity_3 * sizeof(double), &gravity, sizeof gravity);
         TEST_ASSERT_EQUAL(fmi2Error, deserialise(&u, bytes, n, &other));
-        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(u.log.last, "gravity[3] = -1e+300 m/s2 is beyond any machine"), u.log.last);
+        TEST_ASSERT_NOT_NULL_MESSAGE(strstr(u.log.last,
+                                            "gravity[3] = -1e+300 m/s2 is beyond any machine"),
+                                     u.log.last);
         free_state(&u, &state);
         unit_free(&u);
         const unsigned vr = VR_absolute_tolerance;

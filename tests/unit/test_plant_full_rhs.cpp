@@ -141,8 +141,7 @@ double compare_steps(const plant::DynamicsModel &d) {
     char message[STEWART_MESSAGE_SIZE];
     plant::Integrator fast, reference;
     TEST_ASSERT_TRUE_MESSAGE(fast.init(&d, o, message, sizeof message), message);
-    TEST_ASSERT_TRUE_MESSAGE(reference.init(&reference_model, o, message, sizeof message),
-                             message);
+    TEST_ASSERT_TRUE_MESSAGE(reference.init(&reference_model, o, message, sizeof message), message);
     uint64_t rng = 2024;
     double worst = 0;
     for (int n = 0; n < 500; ++n) {
@@ -261,7 +260,8 @@ void test_thesis_platform(void) {
 void payload_off_centre(stewart_params &params) {
     params.payload_mass = 37.5;
     const double com[3] = {0.07, -0.04, 0.12}, inertia[3] = {1.3, 0.9, 2.1};
-    for (int i = 0; i < 3; ++i) params.payload_com[i] = com[i], params.payload_inertia[i] = inertia[i];
+    for (int i = 0; i < 3; ++i)
+        params.payload_com[i] = com[i], params.payload_inertia[i] = inertia[i];
 }
 
 void test_payload_off_centre(void) {

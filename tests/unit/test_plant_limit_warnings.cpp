@@ -71,14 +71,15 @@ void run_path(int fidelity, Counts &counts) {
                                       stewart_plant_message(plant));
         TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_output_get(plant, nullptr, &exact));
         ++counts.steps;
-        counts.differing += (stepped.warnings & kLimitWarnings) != (exact.warnings & kLimitWarnings);
+        counts.differing +=
+            (stepped.warnings & kLimitWarnings) != (exact.warnings & kLimitWarnings);
         counts.joint += (exact.warnings & STEWART_WARN_JOINT_LIMIT) != 0;
         counts.interference += (exact.warnings & STEWART_WARN_INTERFERENCE) != 0;
         counts.clear += (exact.warnings & kLimitWarnings) == 0;
         counts.changes += (exact.warnings & kLimitWarnings) != last;
         last = exact.warnings & kLimitWarnings;
-        counts.spared += kept && plant->limit_clearance.valid &&
-                         plant->limit_clearance.position == kept_at;
+        counts.spared +=
+            kept && plant->limit_clearance.valid && plant->limit_clearance.position == kept_at;
     }
     stewart_plant_free(plant);
     stewart_model_free(model);
@@ -97,7 +98,7 @@ void test_warnings_along_path(void) {
         TEST_ASSERT_TRUE(c.joint > c.steps / 20);         // the path crosses the joint limits
         TEST_ASSERT_TRUE(c.interference > c.steps / 20);  // and the legs' interference
         TEST_ASSERT_TRUE(c.clear > c.steps / 10);         // and comes back inside them
-        TEST_ASSERT_TRUE(c.changes > 20);                  // many times
+        TEST_ASSERT_TRUE(c.changes > 20);                 // many times
         TEST_ASSERT_TRUE(c.spared > c.steps / 10);        // where the clearance spares checks
     }
 }

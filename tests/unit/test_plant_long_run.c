@@ -45,10 +45,12 @@ static void test_leg_joints_hold_over_a_long_closed_loop_run(void) {
         TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_bodies(plant, bodies));
         worst_joint = fmax(worst_joint, leg_joint_error(&params, out.pose.q, bodies));
         const stewart_pose next = combined_pose(h * (double)(i + 1));
-        for (int c = 0; c < 6; ++c) worst_tracking = fmax(worst_tracking, fabs(out.pose.q[c] - next.q[c]));
+        for (int c = 0; c < 6; ++c)
+            worst_tracking = fmax(worst_tracking, fabs(out.pose.q[c] - next.q[c]));
     }
     printf("%ld closed-loop plant steps of 1 ms: max leg joint error %.3g, max tracking error "
-           "%.3g (m, rad)\n", steps, worst_joint, worst_tracking);
+           "%.3g (m, rad)\n",
+           steps, worst_joint, worst_tracking);
     TEST_ASSERT_TRUE(worst_joint <= 1e-12);
     TEST_ASSERT_TRUE(worst_tracking <= 1e-3); /* the loop stays closed: the run is meaningful */
     stewart_plant_free(plant);

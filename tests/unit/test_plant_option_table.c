@@ -21,7 +21,10 @@ static void test_defaults_are_the_plants(void) {
     char msg[STEWART_MESSAGE_SIZE];
     for (int i = 0; i < stewart_plant_option_count(); ++i) {
         const stewart_option_info *info = stewart_plant_option(i);
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_plant_option_set(&from_table, i, info->default_value, msg, sizeof msg), msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
+                                      stewart_plant_option_set(&from_table, i, info->default_value,
+                                                               msg, sizeof msg),
+                                      msg);
         TEST_ASSERT_EQUAL_DOUBLE(stewart_plant_option_get(&plant, i), info->default_value);
     }
     /* field by field (the struct may have padding) */
@@ -41,8 +44,9 @@ static void test_defaults_are_the_plants(void) {
 }
 
 static void test_names_unique_and_ids_the_fmus(void) {
-    const char *names[] = {"fidelity", "method", "relative_tolerance", "absolute_tolerance",
-                           "max_internal_steps", "fixed_steps", "input", "smoothing_speed"};
+    const char *names[] = {
+        "fidelity",    "method", "relative_tolerance", "absolute_tolerance", "max_internal_steps",
+        "fixed_steps", "input",  "smoothing_speed"};
     TEST_ASSERT_EQUAL_INT(8, stewart_plant_option_count());
     for (int i = 0; i < stewart_plant_option_count(); ++i) {
         const stewart_option_info *info = stewart_plant_option(i);
@@ -50,7 +54,8 @@ static void test_names_unique_and_ids_the_fmus(void) {
         TEST_ASSERT_EQUAL_INT(i, stewart_plant_option_find(info->name));
         /* the StewartPlant FMU's value references (fmu/models/plant/variables.def) */
         TEST_ASSERT_EQUAL_INT(200 + i, info->id);
-        for (int j = 0; j < i; ++j) TEST_ASSERT_TRUE(strcmp(info->name, stewart_plant_option(j)->name) != 0);
+        for (int j = 0; j < i; ++j)
+            TEST_ASSERT_TRUE(strcmp(info->name, stewart_plant_option(j)->name) != 0);
     }
     TEST_ASSERT_NULL(stewart_plant_option(-1));
     TEST_ASSERT_NULL(stewart_plant_option(stewart_plant_option_count()));
@@ -70,14 +75,14 @@ static stewart_status check_with(int i, double value) {
     stewart_plant_options o;
     stewart_plant_options_default(&o);
     switch (i) {
-    case 0: o.fidelity = (int)value; break;
-    case 1: o.method = (int)value; break;
-    case 2: o.relative_tolerance = value; break;
-    case 3: o.absolute_tolerance = value; break;
-    case 4: o.max_internal_steps = (long)value; break;
-    case 5: o.fixed_steps = (int)value; break;
-    case 6: o.input = (int)value; break;
-    default: o.smoothing_speed = value; break;
+        case 0: o.fidelity = (int)value; break;
+        case 1: o.method = (int)value; break;
+        case 2: o.relative_tolerance = value; break;
+        case 3: o.absolute_tolerance = value; break;
+        case 4: o.max_internal_steps = (long)value; break;
+        case 5: o.fixed_steps = (int)value; break;
+        case 6: o.input = (int)value; break;
+        default: o.smoothing_speed = value; break;
     }
     return stewart_plant_options_check(&o, msg_of_check, sizeof msg_of_check);
 }
@@ -102,23 +107,31 @@ static void test_ranges_are_the_checks(void) {
         const int closed[2] = {info->min_closed, info->max_closed};
         for (int side = 0; side < 2; ++side) {
             if (ends[side] == DBL_MAX) continue; /* "finite": tested below */
-            const double inside = closed[side] ? ends[side] : beyond(info, ends[side], -outward[side]);
-            const double outside = closed[side] ? beyond(info, ends[side], outward[side]) : ends[side];
+            const double inside =
+                closed[side] ? ends[side] : beyond(info, ends[side], -outward[side]);
+            const double outside =
+                closed[side] ? beyond(info, ends[side], outward[side]) : ends[side];
             stewart_plant_options o;
             stewart_plant_options_default(&o);
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, stewart_plant_option_set(&o, i, inside, msg, sizeof msg), msg);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
+                                          stewart_plant_option_set(&o, i, inside, msg, sizeof msg),
+                                          msg);
             TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, check_with(i, inside), info->name);
-            TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, i, outside, msg, sizeof msg));
+            TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                                  stewart_plant_option_set(&o, i, outside, msg, sizeof msg));
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, info->name), msg);
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, check_with(i, outside), info->name);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_ERR_PARAMETER, check_with(i, outside),
+                                          info->name);
             TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, info->name), msg_of_check);
         }
     }
     stewart_plant_options o;
     stewart_plant_options_default(&o);
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, 3, INFINITY, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_plant_option_set(&o, 3, INFINITY, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, check_with(3, INFINITY));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, 2, NAN, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_plant_option_set(&o, 2, NAN, msg, sizeof msg));
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, check_with(2, NAN));
 }
 
@@ -131,7 +144,8 @@ static void test_check_says_why(void) {
     expect_refused(4, 0, "0");
     expect_refused(5, 1001, "1001");
     expect_refused(3, 1e-21, "1e-21");
-    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, "error test fails on rounding"), msg_of_check);
+    TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, "error test fails on rounding"),
+                                 msg_of_check);
     expect_refused(3, INFINITY, "inf");
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg_of_check, "finite"), msg_of_check);
     /* fixed steps with each method: only the explicit ones (2, 3) take them */
@@ -143,7 +157,8 @@ static void test_check_says_why(void) {
         char msg[STEWART_MESSAGE_SIZE];
         const stewart_status s = stewart_plant_options_check(&o, msg, sizeof msg);
         TEST_ASSERT_EQUAL_INT_MESSAGE(method >= 2 ? STEWART_OK : STEWART_ERR_PARAMETER, s, msg);
-        if (method < 2) TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "fixed_steps = 4 needs method 2 or 3"), msg);
+        if (method < 2)
+            TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "fixed_steps = 4 needs method 2 or 3"), msg);
     }
     char msg[STEWART_MESSAGE_SIZE];
     TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_options_check(NULL, msg, sizeof msg));
@@ -154,19 +169,24 @@ static void test_setter_refuses_naming_the_value(void) {
     stewart_plant_options_default(&o);
     char msg[STEWART_MESSAGE_SIZE];
     const int fixed = stewart_plant_option_find("fixed_steps");
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, fixed, 2.5, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_plant_option_set(&o, fixed, 2.5, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "fixed_steps = 2.5"), msg);
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "whole number"), msg);
     TEST_ASSERT_EQUAL_INT(0, o.fixed_steps);
     const int rtol = stewart_plant_option_find("relative_tolerance");
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER, stewart_plant_option_set(&o, rtol, 1.5, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_PARAMETER,
+                          stewart_plant_option_set(&o, rtol, 1.5, msg, sizeof msg));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(msg, "relative_tolerance = 1.5"), msg);
     TEST_ASSERT_EQUAL_DOUBLE(1e-10, o.relative_tolerance);
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_option_set(&o, 99, 1, msg, sizeof msg));
-    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_option_set(NULL, fixed, 1, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_plant_option_set(&o, 99, 1, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                          stewart_plant_option_set(NULL, fixed, 1, msg, sizeof msg));
     /* a long option holds the largest value the table allows, exactly */
     const int steps = stewart_plant_option_find("max_internal_steps");
-    TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_option_set(&o, steps, 2147483647.0, msg, sizeof msg));
+    TEST_ASSERT_EQUAL_INT(STEWART_OK,
+                          stewart_plant_option_set(&o, steps, 2147483647.0, msg, sizeof msg));
     TEST_ASSERT_TRUE(o.max_internal_steps == 2147483647L);
     TEST_ASSERT_EQUAL_DOUBLE(2147483647.0, stewart_plant_option_get(&o, steps));
     TEST_ASSERT_EQUAL_DOUBLE(0.0, stewart_plant_option_get(NULL, steps));

@@ -67,8 +67,8 @@ double norm3(const double *v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2
 // The scale of a twist rate's terms: |g| + (sum |F| + |the centripetal and angular terms|) for
 // the linear part, |I^-1| (sum |F| |arm| + |w|^2 |I|) for the angular part, over the platform.
 void rate_scales(const plant::DynamicsModel &d, const stewart::Motion &m,
-                 const plant::Evaluation &e,
-                 const double force[STEWART_LEGS], double &linear, double &angular) {
+                 const plant::Evaluation &e, const double force[STEWART_LEGS], double &linear,
+                 double &angular) {
     double forces = 0, moments = 0;
     for (int k = 0; k < STEWART_LEGS; ++k) {
         forces += std::fabs(force[k]);
@@ -83,8 +83,7 @@ void rate_scales(const plant::DynamicsModel &d, const stewart::Motion &m,
 
 // Both evaluations of one state: the number of values out of their bounds; worst updated.
 int differences(const plant::DynamicsModel &d, const double y[plant::kStates],
-                const double force[6],
-                Worst &worst) {
+                const double force[6], Worst &worst) {
     const stewart::Motion m = plant::motion_of_state(y);
     plant::Evaluation generic, written;
     const bool a = plant::twist_rate<double>(d, m, force, generic);
@@ -95,8 +94,8 @@ int differences(const plant::DynamicsModel &d, const double y[plant::kStates],
     double linear, angular;
     rate_scales(d, m, generic, force, linear, angular);
     for (int i = 0; i < 6; ++i) {
-        const double off = std::fabs(generic.twist_rate[i] - written.twist_rate[i]) /
-                           (i < 3 ? linear : angular);
+        const double off =
+            std::fabs(generic.twist_rate[i] - written.twist_rate[i]) / (i < 3 ? linear : angular);
         worst.rate = std::fmax(worst.rate, off);
         count += !(off <= kRateBound);
     }
@@ -173,9 +172,9 @@ int step_differences(const plant::DynamicsModel &d, const double y[plant::kState
     bool done[2];
     for (int written = 0; written < 2; ++written) {
         StepModel s{&d, force, written != 0};
-        done[written] =
-            plant::erk_advance(table, control, work, 1e-3, y, 1, state_rate, no_root, &s,
-                               out[written]).done;
+        done[written] = plant::erk_advance(table, control, work, 1e-3, y, 1, state_rate, no_root,
+                                           &s, out[written])
+                            .done;
     }
     // a leg through zero length: the step fails by both formulations or by neither
     if (done[0] != done[1]) return 1;
@@ -225,7 +224,8 @@ void check_model(const stewart_params &params) {
     TEST_ASSERT_EQUAL_INT(0, e.fault_leg);
     stewart_model_free(model);
     std::printf("twist rate off by %.3g of its scale, one step by %.3g of the state's, the base "
-                "wrench by %.3g of its scale\n", worst.rate, worst.step, worst.wrench);
+                "wrench by %.3g of its scale\n",
+                worst.rate, worst.step, worst.wrench);
     TEST_ASSERT_EQUAL_INT(0, differing);
     TEST_ASSERT_EQUAL_INT(0, step_differing);
 }
@@ -263,7 +263,8 @@ void test_pitch_pre_test(void) {
         const Eigen::Quaterniond q1 = turn * q0;
         const double s0 = std::pow(10.0, uniform(rng, -2, 2)), s1 = uniform(rng, -3, 3);
         double start[plant::kStates] = {0}, y[plant::kStates] = {0};
-        const double c0[4] = {q0.w(), q0.x(), q0.y(), q0.z()}, c1[4] = {q1.w(), q1.x(), q1.y(), q1.z()};
+        const double c0[4] = {q0.w(), q0.x(), q0.y(), q0.z()},
+                     c1[4] = {q1.w(), q1.x(), q1.y(), q1.z()};
         for (int i = 0; i < 4; ++i) start[3 + i] = s0 * c0[i], y[3 + i] = s1 * c1[i];
         double before[3], after[3];
         plant::principal_angles(start, before);
@@ -299,11 +300,11 @@ void test_angle_rates_of_rotation(void) {
         plant::principal_angles(y, angles);
         angles[2] += 2 * M_PI * std::round(uniform(rng, -3, 3));  // a continuous yaw
         const double cp = std::cos(angles[1]);
-        const plant::Vec3 old_rates = stewart::angle_rate_matrix(cp, std::sin(angles[1]),
-                                                              std::cos(angles[2]),
-                                                              std::sin(angles[2]))
-                                       .inverse() *
-                                   m.omega;
+        const plant::Vec3 old_rates =
+            stewart::angle_rate_matrix(cp, std::sin(angles[1]), std::cos(angles[2]),
+                                       std::sin(angles[2]))
+                .inverse() *
+            m.omega;
         double rates[3];
         stewart::angle_rates_of_rotation(m.rotation, m.omega, rates);
         const double scale = m.omega.norm() / cp;
@@ -332,8 +333,8 @@ void test_angle_rates_of_rotation(void) {
     }
     std::printf("angle rates from the rotation: off by %.3g of |w| / cos(pitch) within 1.3 rad "
                 "of level, %.3g of it times cos(pitch)^2 anywhere; from the exact rates %.3g "
-                "(the angles' formulation %.3g) of it times cos(pitch)\n", worst_level, worst,
-                worst_exact_new, worst_exact_old);
+                "(the angles' formulation %.3g) of it times cos(pitch)\n",
+                worst_level, worst, worst_exact_new, worst_exact_old);
     TEST_ASSERT_EQUAL_INT(0, over);
 }
 
@@ -348,7 +349,8 @@ void test_payload_off_centre(void) {
     stewart_params_default(&params);
     params.payload_mass = 37.5;
     const double com[3] = {0.07, -0.04, 0.12}, inertia[3] = {1.3, 0.9, 2.1};
-    for (int i = 0; i < 3; ++i) params.payload_com[i] = com[i], params.payload_inertia[i] = inertia[i];
+    for (int i = 0; i < 3; ++i)
+        params.payload_com[i] = com[i], params.payload_inertia[i] = inertia[i];
     check_model(params);
 }
 
@@ -419,7 +421,8 @@ void test_carried_start_values(void) {
             refused.h = -1e-3;
             stewart_plant_output unused;
             TEST_ASSERT_TRUE(carried->step_end_valid);
-            TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT, stewart_plant_step(carried, &refused, &unused));
+            TEST_ASSERT_EQUAL_INT(STEWART_ERR_ARGUMENT,
+                                  stewart_plant_step(carried, &refused, &unused));
             TEST_ASSERT_TRUE(carried->step_end_valid);
         }
         TEST_ASSERT_EQUAL_INT(STEWART_OK, stewart_plant_save(carried, saved, size));

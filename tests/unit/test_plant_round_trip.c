@@ -52,10 +52,14 @@ static void round_trip(int fidelity, double seconds, double bound) {
                 if (dt > worst_wrench) worst_wrench = dt;
             }
             for (int k = 0; k < 6; ++k) {
-                if (fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k)) > worst_length)
-                    worst_length = fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k));
-                if (fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]) > worst_length)
-                    worst_length = fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]);
+                if (fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k)) >
+                    worst_length)
+                    worst_length =
+                        fabs(out.lengths.length[k] - closed_form_length(&params, &pose, k));
+                if (fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]) >
+                    worst_length)
+                    worst_length =
+                        fabs(out.lengths.length_rate[k] - inverse.lengths.length_rate[k]);
             }
         }
         for (int c = 0; c < 6; ++c) {
@@ -70,8 +74,9 @@ static void round_trip(int fidelity, double seconds, double bound) {
     stewart_plant_statistics_get(plant, &st);
     printf("round trip, fidelity %d: max pose error %.3g (at t = %.4g s), max rate error %.3g, "
            "base wrench against the inverse side's %.3g N or N m, lengths and rates %.3g, "
-           "over %g s (%ld internal steps, %ld rhs)\n", fidelity, worst, worst_t, worst_rate,
-           worst_wrench, worst_length, seconds, st.total_steps, st.total_rhs_evaluations);
+           "over %g s (%ld internal steps, %ld rhs)\n",
+           fidelity, worst, worst_t, worst_rate, worst_wrench, worst_length, seconds,
+           st.total_steps, st.total_rhs_evaluations);
     TEST_ASSERT_TRUE(worst <= bound);
     TEST_ASSERT_TRUE(worst_rate <= 10 * bound);
     TEST_ASSERT_TRUE(worst_length <= 10 * bound);

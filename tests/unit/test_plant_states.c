@@ -22,9 +22,7 @@ static size_t state_size(void) {
     return plant_state_doubles();
 }
 
-static void save(const stewart_plant *p, double *state) {
-    plant_save_doubles(p, state);
-}
+static void save(const stewart_plant *p, double *state) { plant_save_doubles(p, state); }
 
 /* Fails unless the message of the plant holds the fragment. */
 static void expect_message(const stewart_plant *p, const char *fragment) {
@@ -76,16 +74,19 @@ static void test_step_hint_below_any_step_refused(void) {
 /* A step that does not advance time is refused naming h: subnormal at t = 0, below the
  * resolution of t at t = 100 s. */
 static void test_step_that_does_not_advance_time_refused(void) {
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_step_arrays(plant, 4.9e-324, kZero, kZero, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      plant_step_arrays(plant, 4.9e-324, kZero, kZero, NULL, NULL));
     expect_message(plant, "h = 4.94066e-324 s does not advance time");
     const double home[6] = {0, 0, params.home_height, 0, 0, 0};
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 100.0, home, kZero));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_step_arrays(plant, 1e-15, kZero, kZero, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      plant_step_arrays(plant, 1e-15, kZero, kZero, NULL, NULL));
     expect_message(plant, "h = 1e-15 s does not advance time t = 100");
     step_ok(plant, 1e-3, kZero, kZero, NULL, NULL);
     /* the plant's clock ends at 1e10 s: no step takes it beyond (a load would refuse the state) */
     TEST_ASSERT_EQUAL(STEWART_OK, stewart_plant_set_state(plant, 1e10 - 1e-4, home, kZero));
-    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT, plant_step_arrays(plant, 1e-3, kZero, kZero, NULL, NULL));
+    TEST_ASSERT_EQUAL(STEWART_ERR_ARGUMENT,
+                      plant_step_arrays(plant, 1e-3, kZero, kZero, NULL, NULL));
     expect_message(plant, "takes time beyond 1e+10 s");
 }
 
@@ -156,7 +157,8 @@ static void test_leg_driven_to_zero_length_is_unreachable(void) {
         save(plant, before);
         s = plant_step_arrays(plant, 1e-3, pull, pull, NULL, NULL);
     }
-    printf("leg driven to zero length: %s: %s\n", stewart_status_name(s), stewart_plant_message(plant));
+    printf("leg driven to zero length: %s: %s\n", stewart_status_name(s),
+           stewart_plant_message(plant));
     TEST_ASSERT_EQUAL(STEWART_ERR_UNREACHABLE, s);
     expect_message(plant, "unreachable, leg ");
     save(plant, after);
@@ -172,7 +174,8 @@ static void test_tolerance_no_plant_can_use_refused(void) {
     stewart_plant_options_default(&o);
     char message[STEWART_MESSAGE_SIZE];
     o.absolute_tolerance = 1e-300;
-    TEST_ASSERT_EQUAL(STEWART_ERR_PARAMETER, stewart_plant_options_check(&o, message, sizeof message));
+    TEST_ASSERT_EQUAL(STEWART_ERR_PARAMETER,
+                      stewart_plant_options_check(&o, message, sizeof message));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(message, "absolute_tolerance = 1e-300"), message);
     TEST_ASSERT_NULL(stewart_plant_create(model, &o, message, sizeof message));
     TEST_ASSERT_NOT_NULL_MESSAGE(strstr(message, "absolute_tolerance = 1e-300"), message);
@@ -307,7 +310,7 @@ void test_fixed_steps_do_fixed_work_near_the_adaptive_result(void) {
     static_forces(force);
     double worst[3] = {0, 0, 0};
     for (int n_fixed = 0; n_fixed <= 2; ++n_fixed) {
-        stewart_plant_options o = test_plant_options(STEWART_FULL);  /* the default fidelity */
+        stewart_plant_options o = test_plant_options(STEWART_FULL); /* the default fidelity */
         o.fixed_steps = n_fixed;
         stewart_plant *p = test_plant_with(model, &o);
         stewart_plant_output out;

@@ -18,13 +18,14 @@ stewart_plant *test_plant(const stewart_model *model, int fidelity, double rtol,
 /* 1/2 m v.v + 1/2 w.(A I A^T) w, and -m g.r, for one body with principal inertia I. */
 static void body_energy(const stewart_plant_body *b, double mass, const double inertia[3],
                         const double gravity[3], double *kinetic, double *potential) {
-    double w_body[3];  /* omega in the body axes: A^T w */
+    double w_body[3]; /* omega in the body axes: A^T w */
     for (int j = 0; j < 3; ++j)
         w_body[j] = b->rotation[0 * 3 + j] * b->omega[0] + b->rotation[1 * 3 + j] * b->omega[1] +
                     b->rotation[2 * 3 + j] * b->omega[2];
     double t = 0, u = 0;
     for (int i = 0; i < 3; ++i) {
-        t += 0.5 * mass * b->velocity[i] * b->velocity[i] + 0.5 * inertia[i] * w_body[i] * w_body[i];
+        t +=
+            0.5 * mass * b->velocity[i] * b->velocity[i] + 0.5 * inertia[i] * w_body[i] * w_body[i];
         u -= mass * gravity[i] * b->position[i];
     }
     *kinetic += t;
@@ -97,7 +98,8 @@ double leg_joint_error(const stewart_params *params, const double pose_q[6],
         const double b[3] = {params->platform_radius * cos(params->platform_angle[k]),
                              params->platform_radius * sin(params->platform_angle[k]), 0};
         const double s_base[3] = {-sin(params->base_angle[k]), cos(params->base_angle[k]), 0};
-        const double s_plate[3] = {-sin(params->platform_angle[k]), cos(params->platform_angle[k]), 0};
+        const double s_plate[3] = {-sin(params->platform_angle[k]), cos(params->platform_angle[k]),
+                                   0};
         double s_plate_world[3], gap[3];
         for (int r = 0; r < 3; ++r) {
             const double P = pose.q[r] + R[r][0] * b[0] + R[r][1] * b[1];
@@ -138,7 +140,9 @@ static size_t header_bytes(const stewart_plant *plant) {
     return stewart_plant_state_size(plant) - sizeof(double) * plant_state_doubles();
 }
 
-size_t plant_state_doubles(void) { return 25; } /* time, 13 state values, 3 angles, 6 forces, warnings, step hint */
+size_t plant_state_doubles(void) {
+    return 25;
+} /* time, 13 state values, 3 angles, 6 forces, warnings, step hint */
 
 void plant_save_doubles(const stewart_plant *plant, double *state) {
     unsigned char bytes[1024];
@@ -171,8 +175,8 @@ double base_wrench_error(const stewart_params *params, const stewart_plant_react
             force -= fb[a];
             torque -= moment[a] + r->base_cardan_torque[k][a];
         }
-        worst = fmax(worst, fmax(fabs(force - out->base_force[a]),
-                                 fabs(torque - out->base_torque[a])));
+        worst =
+            fmax(worst, fmax(fabs(force - out->base_force[a]), fabs(torque - out->base_torque[a])));
     }
     return worst;
 }

@@ -59,8 +59,9 @@ static void test_the_guard_sees_an_allocation_a_lock_and_a_system_call(void) {
     job j = {NULL, 0, 0};
     realtime_counts counts;
     char message[256];
-    TEST_ASSERT_EQUAL_MESSAGE(0, realtime_guard_run(misbehave, &j, &counts, message,
-                                                    sizeof message), message);
+    TEST_ASSERT_EQUAL_MESSAGE(0,
+                              realtime_guard_run(misbehave, &j, &counts, message, sizeof message),
+                              message);
     TEST_ASSERT_EQUAL(1, j.allocations);
     TEST_ASSERT_EQUAL(1, counts.locks);
     TEST_ASSERT_EQUAL(1, counts.syscalls);
@@ -73,12 +74,14 @@ static void test_no_step_allocates_locks_or_makes_a_system_call(void) {
         TEST_ASSERT_NOT_NULL_MESSAGE(s, message);
         job j = {s, 0, 0};
         realtime_counts counts;
-        TEST_ASSERT_EQUAL_MESSAGE(0, realtime_guard_run(run_calls, &j, &counts, message,
-                                                        sizeof message), message);
+        TEST_ASSERT_EQUAL_MESSAGE(
+            0, realtime_guard_run(run_calls, &j, &counts, message, sizeof message), message);
         latency_step_free(s);
-        snprintf(message, sizeof message, "%s: %ld failed calls, %ld allocations, %ld locks, "
-                 "%ld system calls (the first: number %d)", latency_step_name(w), j.failures,
-                 j.allocations, counts.locks, counts.syscalls, counts.first_syscall);
+        snprintf(message, sizeof message,
+                 "%s: %ld failed calls, %ld allocations, %ld locks, "
+                 "%ld system calls (the first: number %d)",
+                 latency_step_name(w), j.failures, j.allocations, counts.locks, counts.syscalls,
+                 counts.first_syscall);
         printf("%s\n", message);
         TEST_ASSERT_EQUAL_MESSAGE(0, j.failures, message);
         TEST_ASSERT_EQUAL_MESSAGE(0, j.allocations, message);

@@ -39,8 +39,8 @@ static stewart_pose pose_at(double s, int tilted) {
 
 static double tolerance = 1e-12;
 
-static stewart_status solve_at(double s, int tilted, stewart_fidelity f, stewart_inverse_output *out,
-                               char *message, size_t size) {
+static stewart_status solve_at(double s, int tilted, stewart_fidelity f,
+                               stewart_inverse_output *out, char *message, size_t size) {
     const stewart_params p = scaled(s);
     stewart_model *m = test_model(&p);
     stewart_inverse *d = test_inverse(m);
@@ -62,17 +62,27 @@ static void check_scales(void) {
     char msg[2 * STEWART_MESSAGE_SIZE];
     for (int tilted = 0; tilted <= 1; ++tilted) {
         stewart_inverse_output reference;
-        TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_at(1, tilted, STEWART_FULL, &reference, msg, sizeof msg), msg);
+        TEST_ASSERT_EQUAL_INT_MESSAGE(
+            STEWART_OK, solve_at(1, tilted, STEWART_FULL, &reference, msg, sizeof msg), msg);
         double largest = 0;
         for (int k = 0; k < 6; ++k) largest = fmax(largest, fabs(reference.force[k]));
         for (size_t i = 0; i < sizeof scales / sizeof scales[0]; ++i) {
             stewart_inverse_output full, massless;
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_at(scales[i], tilted, STEWART_FULL, &full, msg, sizeof msg), msg);
-            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK, solve_at(scales[i], tilted, STEWART_MASSLESS, &massless, msg, sizeof msg), msg);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(
+                STEWART_OK, solve_at(scales[i], tilted, STEWART_FULL, &full, msg, sizeof msg), msg);
+            TEST_ASSERT_EQUAL_INT_MESSAGE(STEWART_OK,
+                                          solve_at(scales[i], tilted, STEWART_MASSLESS, &massless,
+                                                   msg, sizeof msg),
+                                          msg);
             for (int k = 0; k < 6; ++k) {
-                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-7 * largest, reference.force[k], full.force[k], msg);
-                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(legs_weight, massless.force[k], full.force[k], msg);
-                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-9 * scales[i], 0.5 * scales[i] * reference.lengths.length[k] / 0.5, full.lengths.length[k], msg);
+                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-7 * largest, reference.force[k], full.force[k],
+                                                  msg);
+                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(legs_weight, massless.force[k], full.force[k],
+                                                  msg);
+                TEST_ASSERT_DOUBLE_WITHIN_MESSAGE(1e-9 * scales[i],
+                                                  0.5 * scales[i] * reference.lengths.length[k] /
+                                                      0.5,
+                                                  full.lengths.length[k], msg);
             }
         }
     }

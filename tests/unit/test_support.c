@@ -46,10 +46,8 @@ stewart_pose combined_pose(double t) {
 stewart_pose thesis_pose(int component, double t) {
     stewart_pose p = {{0}, {0}, {0}};
     p.q[2] = 0.5;
-    if (component == 2)
-        sinusoid(&p, 2, 0.5, 0.04, 5.0, 0.0, t);
-    else
-        sinusoid(&p, component, 0.0, M_PI / 18.0, 5.0, 0.0, t);
+    if (component == 2) sinusoid(&p, 2, 0.5, 0.04, 5.0, 0.0, t);
+    else sinusoid(&p, component, 0.0, M_PI / 18.0, 5.0, 0.0, t);
     return p;
 }
 
@@ -69,7 +67,8 @@ double closed_form_length(const stewart_params *params, const stewart_pose *pose
     double b[3] = {params->platform_radius * cos(params->platform_angle[k]),
                    params->platform_radius * sin(params->platform_angle[k]), 0};
     if (params->geometry == 1) /* the joints as given (docs/geometry.md) */
-        for (int i = 0; i < 3; ++i) a[i] = params->base_joint[3 * k + i], b[i] = params->platform_joint[3 * k + i];
+        for (int i = 0; i < 3; ++i)
+            a[i] = params->base_joint[3 * k + i], b[i] = params->platform_joint[3 * k + i];
     double d2 = 0;
     for (int i = 0; i < 3; ++i) {
         const double d = pose->q[i] + R[i][0] * b[0] + R[i][1] * b[1] + R[i][2] * b[2] - a[i];
@@ -143,9 +142,9 @@ uint64_t test_random(uint64_t *s) {
 }
 
 double corrupted_value(uint64_t *rng, double v) {
-    static const double specials[] = {0.0, -0.0, 1.0, -1.0, 0.5, 1e15, -1e15, 1e300, DBL_MAX,
-                                      -DBL_MAX, 4.9e-324, DBL_MIN, 1e-300, NAN, INFINITY,
-                                      -INFINITY, 100.0, 3.0, 1e6};
+    static const double specials[] = {
+        0.0,      -0.0,    1.0,    -1.0, 0.5,      1e15,      -1e15, 1e300, DBL_MAX, -DBL_MAX,
+        4.9e-324, DBL_MIN, 1e-300, NAN,  INFINITY, -INFINITY, 100.0, 3.0,   1e6};
     const uint64_t r = test_random(rng);
     switch (r % 6) {
         case 0: { /* one bit flipped */

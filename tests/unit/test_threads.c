@@ -48,7 +48,7 @@ static void digest_int(uint64_t *h, int value) {
  * between the commanded pose and the pose forward kinematics found from the lengths. */
 typedef struct job_result {
     uint64_t inverse, forward, plant, fmu;
-    int failed_step;      /* -1 if every call returned OK */
+    int failed_step; /* -1 if every call returned OK */
     char failure[160];
     double forward_pose_error;
     long plant_rhs_evaluations;
@@ -237,10 +237,8 @@ static void *run_job(void *arg) {
 static void run_all(job jobs[JOBS], int threaded) {
     pthread_t threads[JOBS];
     for (int i = 0; i < JOBS; ++i) {
-        if (!threaded)
-            run_job(&jobs[i]);
-        else
-            TEST_ASSERT_EQUAL_INT(0, pthread_create(&threads[i], NULL, run_job, &jobs[i]));
+        if (!threaded) run_job(&jobs[i]);
+        else TEST_ASSERT_EQUAL_INT(0, pthread_create(&threads[i], NULL, run_job, &jobs[i]));
     }
     for (int i = 0; i < JOBS && threaded; ++i)
         TEST_ASSERT_EQUAL_INT(0, pthread_join(threads[i], NULL));
@@ -274,8 +272,9 @@ static void test_threads_match_sequential_runs_bit_for_bit(void) {
         TEST_ASSERT_TRUE_MESSAGE(s->forward_pose_error < 1e-9,
                                  "forward pose differs from the command");
         printf("job %d: inverse fidelity %d, plant fidelity %d method %d: %d steps, forward pose "
-               "error %.3g, plant rhs evaluations %ld\n", i, i % 3, (i % 2) ? 1 : 2, i % 4, steps,
-               s->forward_pose_error, s->plant_rhs_evaluations);
+               "error %.3g, plant rhs evaluations %ld\n",
+               i, i % 3, (i % 2) ? 1 : 2, i % 4, steps, s->forward_pose_error,
+               s->plant_rhs_evaluations);
         snprintf(what, sizeof what, "job %d: threaded results differ from the sequential run", i);
         TEST_ASSERT_TRUE_MESSAGE(s->inverse == t->inverse, what);
         TEST_ASSERT_TRUE_MESSAGE(s->forward == t->forward, what);

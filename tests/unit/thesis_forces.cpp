@@ -30,12 +30,15 @@ extern "C" stewart_status stewart_thesis_forces(const stewart_params *p, const s
         return s;
 
     FullLayout layout;
-    std::unique_ptr<mbs_model> model = build_full_platform(*p, FullDrive::PlatformPose, layout, msg, size);
+    std::unique_ptr<mbs_model> model =
+        build_full_platform(*p, FullDrive::PlatformPose, layout, msg, size);
     if (!model) return STEWART_ERR_PARAMETER;
     mbs_data data(model.get(), mbs::SolverOptions());
-    if (!data.state.ok()) return set_message(msg, size, STEWART_ERR_MEMORY, "%s", data.state.message);
+    if (!data.state.ok())
+        return set_message(msg, size, STEWART_ERR_MEMORY, "%s", data.state.message);
     stewart_inverse_output out{};
-    if ((s = full_solve(layout, data.state, o, motion, legs, out, msg, size)) != STEWART_OK) return s;
+    if ((s = full_solve(layout, data.state, o, motion, legs, out, msg, size)) != STEWART_OK)
+        return s;
     for (int k = 0; k < STEWART_LEGS; ++k)
         if (!std::isfinite(out.force[k]))
             return set_message(msg, size, STEWART_ERR_ARGUMENT,

@@ -9,7 +9,8 @@ static void drive_coordinate(const JointInput &in, const JointOutput &out, int r
     if (out.phi_t) out.phi_t[row] = -f.rate;
     if (out.gamma) out.gamma[row] = f.accel;
     if (out.jac_i)
-        for (int k = 0; k < 7; ++k) out.jac_i[MBS_BODY_COORDINATES * row + k] = (k == c) ? 1.0 : 0.0;
+        for (int k = 0; k < 7; ++k)
+            out.jac_i[MBS_BODY_COORDINATES * row + k] = (k == c) ? 1.0 : 0.0;
 }
 
 static void evaluate_coordinate_driver(const JointInput &in, const JointOutput &out) {

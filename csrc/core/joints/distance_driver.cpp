@@ -9,7 +9,6 @@ static void evaluate_distance_driver(const JointInput &in, const JointOutput &ou
     dot2(in, RowWriter{out}, 0, in.def.axis_i[2], separation(in, out), in.drive);
 }
 
-extern const JointTypeInfo kDistanceDriver = {"distance driver", 1, 1, 2,
-                                              evaluate_distance_driver};
+extern const JointTypeInfo kDistanceDriver = {"distance driver", 1, 1, 2, evaluate_distance_driver};
 
 }  // namespace mbs

@@ -9,7 +9,8 @@ static void evaluate_fixed_body(const JointInput &in, const JointOutput &out) {
         if (out.phi_t) out.phi_t[k] = 0.0;
         if (out.gamma) out.gamma[k] = 0.0;
         if (out.jac_i)
-            for (int c = 0; c < 7; ++c) out.jac_i[MBS_BODY_COORDINATES * k + c] = (c == k) ? 1.0 : 0.0;
+            for (int c = 0; c < 7; ++c)
+                out.jac_i[MBS_BODY_COORDINATES * k + c] = (c == k) ? 1.0 : 0.0;
     }
 }
 

@@ -35,9 +35,15 @@ inline Attached attach(const BodyFrame &f, bool rates, const Vec3 &u) {
 // Writes row `row` of the outputs; jacobian rows as 7-vectors (r part, p part).
 struct RowWriter {
     const JointOutput &out;
-    void phi(int row, double value) const { if (out.phi) out.phi[row] = value; }
-    void gamma(int row, double value) const { if (out.gamma) out.gamma[row] = value; }
-    void phi_t(int row, double value) const { if (out.phi_t) out.phi_t[row] = value; }
+    void phi(int row, double value) const {
+        if (out.phi) out.phi[row] = value;
+    }
+    void gamma(int row, double value) const {
+        if (out.gamma) out.gamma[row] = value;
+    }
+    void phi_t(int row, double value) const {
+        if (out.phi_t) out.phi_t[row] = value;
+    }
     bool want_jac() const { return out.jac_i != nullptr; }
     // Row `row` of a body's Jacobian block (rows of its 7 coordinates).
     double *jac_i(int row) const { return out.jac_i + MBS_BODY_COORDINATES * row; }

@@ -43,7 +43,7 @@ typedef enum stewart_status {
     STEWART_ERR_NOT_CONVERGED = -5, /* the position Newton problem did not converge */
     STEWART_ERR_UNSUPPORTED = -6,   /* the requested fidelity level is not available */
     STEWART_ERR_MEMORY = -7,
-    STEWART_ERR_OTHER_BRANCH = -8   /* forward kinematics reached another assembly mode than the
+    STEWART_ERR_OTHER_BRANCH = -8 /* forward kinematics reached another assembly mode than the
                                        working one (stewart_forward.h) */
 } stewart_status;
 
@@ -69,41 +69,41 @@ enum {
  * mass, on the axes of its frame (platform frame for platform and payload; for the leg bodies
  * x along the Cardan cross arm, z along the leg axis from base toward platform). */
 typedef struct stewart_params {
-    double base_radius;                     /* r_b [m] */
-    double platform_radius;                 /* r_t [m] */
-    double base_angle[STEWART_LEGS];        /* beta_k [rad] */
-    double platform_angle[STEWART_LEGS];    /* tau_k [rad], in the platform frame */
-    double home_height;                     /* z of the home pose [m] */
+    double base_radius;                  /* r_b [m] */
+    double platform_radius;              /* r_t [m] */
+    double base_angle[STEWART_LEGS];     /* beta_k [rad] */
+    double platform_angle[STEWART_LEGS]; /* tau_k [rad], in the platform frame */
+    double home_height;                  /* z of the home pose [m] */
     /* Which joints the model uses: 0 the circles above (the default), 1 the coordinates below. */
     double geometry;
-    double base_joint[3 * STEWART_LEGS];     /* a_k = (x, y, z) of leg k at 3(k-1) [m], base frame */
+    double base_joint[3 * STEWART_LEGS]; /* a_k = (x, y, z) of leg k at 3(k-1) [m], base frame */
     double platform_joint[3 * STEWART_LEGS]; /* b_k [m], platform frame */
     /* The fixed arm of each Cardan (base frame / platform frame), a unit vector; the zero vector
      * (the default) is the horizontal tangent at the joint's azimuth, the thesis' choice. */
     double base_cardan_axis[3 * STEWART_LEGS];
     double platform_cardan_axis[3 * STEWART_LEGS];
-    double gravity[3];                      /* [m/s^2], world frame */
+    double gravity[3]; /* [m/s^2], world frame */
 
-    double platform_mass;                   /* [kg] */
-    double platform_com[3];                 /* platform centre of mass, platform frame [m] */
-    double platform_inertia[3];             /* [kg m^2] */
-    double payload_mass;                    /* [kg], 0 for none */
-    double payload_com[3];                  /* payload centre of mass, platform frame [m] */
-    double payload_inertia[3];              /* [kg m^2] */
+    double platform_mass;       /* [kg] */
+    double platform_com[3];     /* platform centre of mass, platform frame [m] */
+    double platform_inertia[3]; /* [kg m^2] */
+    double payload_mass;        /* [kg], 0 for none */
+    double payload_com[3];      /* payload centre of mass, platform frame [m] */
+    double payload_inertia[3];  /* [kg m^2] */
 
-    double cylinder_mass;                   /* lower leg body, on the base Cardan [kg] */
-    double cylinder_inertia[3];             /* [kg m^2] */
-    double cylinder_com;                    /* from the base Cardan centre along the leg [m] */
-    double piston_mass;                     /* upper leg body, on the platform Cardan [kg] */
-    double piston_inertia[3];               /* [kg m^2] */
-    double piston_com;                      /* from the platform Cardan centre toward the base [m] */
+    double cylinder_mass;       /* lower leg body, on the base Cardan [kg] */
+    double cylinder_inertia[3]; /* [kg m^2] */
+    double cylinder_com;        /* from the base Cardan centre along the leg [m] */
+    double piston_mass;         /* upper leg body, on the platform Cardan [kg] */
+    double piston_inertia[3];   /* [kg m^2] */
+    double piston_com;          /* from the platform Cardan centre toward the base [m] */
 
-    double stroke_min[STEWART_LEGS];        /* shortest allowed actuator length per leg [m] */
-    double stroke_max[STEWART_LEGS];        /* longest allowed actuator length per leg [m] */
+    double stroke_min[STEWART_LEGS]; /* shortest allowed actuator length per leg [m] */
+    double stroke_max[STEWART_LEGS]; /* longest allowed actuator length per leg [m] */
 
-    double tool_frame[6];   /* pose (x, y, z [m], roll, pitch, yaw [rad]) of the tool frame in the
+    double tool_frame[6]; /* pose (x, y, z [m], roll, pitch, yaw [rad]) of the tool frame in the
                                platform frame; poses given and returned are the tool frame's */
-    double user_frame[6];   /* pose of the user frame in the base frame; poses given and returned
+    double user_frame[6]; /* pose of the user frame in the base frame; poses given and returned
                                are in it (docs/api.md, "Tool and user frames") */
     /* The convention of every pose given and returned, the frames' included (docs/geometry.md,
      * "Rotation order and frames"): */
@@ -116,19 +116,19 @@ typedef struct stewart_params {
                                lengths given and returned are readings */
 
     /* Limits a controller checks (stewart/stewart_limits.h, docs/limits.md). */
-    double base_joint_limit;                /* largest angle of a leg from its base joint's
+    double base_joint_limit;                         /* largest angle of a leg from its base joint's
                                                neutral axis [rad] */
-    double platform_joint_limit;            /* the same at the platform joint [rad] */
+    double platform_joint_limit;                     /* the same at the platform joint [rad] */
     double base_joint_neutral[3 * STEWART_LEGS];     /* x1, y1, z1, ..., z6: base frame; zero:
                                                         the leg's direction at home */
     double platform_joint_neutral[3 * STEWART_LEGS]; /* the same, platform frame */
-    double leg_diameter;                    /* legs whose axes come closer interfere, when
+    double leg_diameter;                             /* legs whose axes come closer interfere, when
                                                neither body nor rod length is given [m] */
-    double leg_body_diameter;               /* actuator body: a cylinder from the base joint [m] */
-    double leg_body_length;                 /* its length (0: no body) [m] */
-    double leg_rod_diameter;                /* actuator rod: a cylinder from the platform joint [m] */
-    double leg_rod_length;                  /* its length (0: no rod) [m] */
-    double axis_min[6];     /* software position limits of the tool pose in the user frame (x, y,
+    double leg_body_diameter; /* actuator body: a cylinder from the base joint [m] */
+    double leg_body_length;   /* its length (0: no body) [m] */
+    double leg_rod_diameter;  /* actuator rod: a cylinder from the platform joint [m] */
+    double leg_rod_length;    /* its length (0: no rod) [m] */
+    double axis_min[6];       /* software position limits of the tool pose in the user frame (x, y,
                                z [m], roll, pitch, yaw [rad]); -DBL_MAX / DBL_MAX: none */
     double axis_max[6];
 
@@ -156,26 +156,26 @@ typedef struct stewart_params {
     double motor_speed_max[STEWART_LEGS];       /* [rad/s], 0: none */
 
     /* Leg motion limits a move or a cue stays within (0: no limit of that kind). */
-    double leg_speed_max[STEWART_LEGS];         /* [m/s] */
-    double leg_accel_max[STEWART_LEGS];         /* [m/s^2] */
-    double leg_jerk_max[STEWART_LEGS];          /* [m/s^3] */
-    double leg_force_max[STEWART_LEGS];         /* pushing or pulling [N] */
+    double leg_speed_max[STEWART_LEGS]; /* [m/s] */
+    double leg_accel_max[STEWART_LEGS]; /* [m/s^2] */
+    double leg_jerk_max[STEWART_LEGS];  /* [m/s^3] */
+    double leg_force_max[STEWART_LEGS]; /* pushing or pulling [N] */
 } stewart_params;
 
 /* Inverse solver settings; stewart_inverse_options_default gives the values documented here. */
 typedef struct stewart_inverse_options {
-    int fidelity;                /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
-    double tolerance;            /* Newton residual tolerance (full level), max-norm, relative to
+    int fidelity; /* a stewart_fidelity (int: any value a caller passes is checked); STEWART_MASSLESS */
+    double tolerance;          /* Newton residual tolerance (full level), max-norm, relative to
                                     the platform's size: lengths are measured in units of L0, the
                                     power of two with max(base size, platform size,
                                     home_height) / L0 in (0.25, 0.5] (the sizes: the radii, or
                                     the farthest joints, docs/geometry.md; 1 m for the thesis
                                     platform; stewart_model_length_unit). 1e-12; >= 2.5e-16 (the
                                     residual floors at about 2.2e-16 L0) */
-    int max_iterations;          /* Newton iteration cap (full level); 20 */
-    int modified_newton;         /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
-    double warn_condition;       /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
-    double singular_condition;   /* condition above which the solve fails as singular; 1e10 */
+    int max_iterations;        /* Newton iteration cap (full level); 20 */
+    int modified_newton;       /* 0: exact Newton; 1: Jacobian kept over a step (full); 0 */
+    double warn_condition;     /* condition above which STEWART_WARN_NEAR_SINGULAR is set; 1e3 */
+    double singular_condition; /* condition above which the solve fails as singular; 1e10 */
 } stewart_inverse_options;
 
 /* Platform pose and its first and second time derivatives, each ordered
@@ -188,9 +188,9 @@ typedef struct stewart_pose {
 
 /* Actuator lengths and their first and second time derivatives, leg k at index k-1. */
 typedef struct stewart_lengths {
-    double length[STEWART_LEGS];        /* L_k [m] */
-    double length_rate[STEWART_LEGS];   /* dL_k/dt [m/s] */
-    double length_accel[STEWART_LEGS];  /* d2L_k/dt2 [m/s^2] */
+    double length[STEWART_LEGS];       /* L_k [m] */
+    double length_rate[STEWART_LEGS];  /* dL_k/dt [m/s] */
+    double length_accel[STEWART_LEGS]; /* d2L_k/dt2 [m/s^2] */
 } stewart_lengths;
 
 /* What an inverse solve takes: the pose and its derivatives. */
@@ -202,15 +202,15 @@ typedef struct stewart_inverse_input {
 typedef struct stewart_inverse_output {
     stewart_lengths lengths;    /* actuator lengths, rates and accelerations */
     double force[STEWART_LEGS]; /* F_k [N], > 0 pushes the platform away; 0 if kinematic */
-    double condition;       /* 1-norm condition number of the leg Jacobian, its angular columns
+    double condition;           /* 1-norm condition number of the leg Jacobian, its angular columns
                                scaled by the platform radius (dimensionless); 0 if kinematic */
-    int iterations;         /* Newton iterations of the position problem; 0 below full level */
-    double residual;        /* max-norm of the constraint residual after the solve [m]
+    int iterations;             /* Newton iterations of the position problem; 0 below full level */
+    double residual;            /* max-norm of the constraint residual after the solve [m]
                                (tolerance x L0 at most) */
-    double base_force[3];   /* force the legs put on the base, world frame [N] */
-    double base_torque[3];  /* torque of that wrench about the world origin [N m] */
-    int warnings;           /* STEWART_WARN_* bits */
-    int stroke_legs;        /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
+    double base_force[3];       /* force the legs put on the base, world frame [N] */
+    double base_torque[3];      /* torque of that wrench about the world origin [N m] */
+    int warnings;               /* STEWART_WARN_* bits */
+    int stroke_legs;            /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 
     /* Each leg's drive (docs/drives.md), leg k at index k-1; 0 on a leg without a drive
      * (screw_lead 0). The motor angle grows as the leg extends; a positive torque extends it. */

@@ -38,10 +38,10 @@ typedef struct stewart_inverse_batch_outputs {
 
 /* The messages of the first failing rows, in row order (optional). */
 typedef struct stewart_batch_messages {
-    size_t capacity;  /* how many messages rows and text can hold */
-    size_t count;     /* set by the batch: messages written, at most capacity */
-    size_t *rows;     /* capacity entries: the row (from 0) each message belongs to */
-    char *text;       /* capacity x STEWART_MESSAGE_SIZE characters, one message each */
+    size_t capacity; /* how many messages rows and text can hold */
+    size_t count;    /* set by the batch: messages written, at most capacity */
+    size_t *rows;    /* capacity entries: the row (from 0) each message belongs to */
+    char *text;      /* capacity x STEWART_MESSAGE_SIZE characters, one message each */
 } stewart_batch_messages;
 
 /* Solves rows 0..n-1 of q (n x 6), with q_dot and q_ddot (n x 6 each, NULL for zero), in order,
@@ -116,9 +116,9 @@ stewart_status stewart_forward_batch(stewart_forward *forward, size_t n, const d
  * guesses (n x 6) is not NULL, else from the home pose (walking from home's lengths when that
  * start lands on another assembly mode). rates and accels as stewart_forward_batch. Returns as
  * stewart_inverse_batch. */
-stewart_status stewart_forward_batch_cold(stewart_forward *forward, size_t n,
-                                          const double *lengths, const double *rates,
-                                          const double *accels, const double *guesses,
+stewart_status stewart_forward_batch_cold(stewart_forward *forward, size_t n, const double *lengths,
+                                          const double *rates, const double *accels,
+                                          const double *guesses,
                                           const stewart_forward_batch_outputs *outputs,
                                           stewart_batch_messages *messages, size_t *first_failed);
 

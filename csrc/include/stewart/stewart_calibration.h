@@ -21,15 +21,15 @@ extern "C" {
 /* Readings at one pose and their derivatives; row k is leg k+1's reading. A leg's reading
  * depends on its own two joints and offset only, so those blocks keep leg k's columns alone. */
 typedef struct stewart_geometry_jacobian_output {
-    double length[STEWART_LEGS];             /* joint-to-joint length L_k [m] */
-    double reading[STEWART_LEGS];            /* L_k - length_offset_k: the sensor's reading [m] */
-    double base_joint[STEWART_LEGS][3];      /* d reading_k / d base joint of leg k (x, y, z) */
-    double platform_joint[STEWART_LEGS][3];  /* d reading_k / d platform joint of leg k */
-    double length_offset[STEWART_LEGS];      /* d reading_k / d length_offset_k (-1) */
-    double tool_frame[STEWART_LEGS][6];      /* d reading_k / d tool_frame (x, y, z [1], angles
+    double length[STEWART_LEGS];            /* joint-to-joint length L_k [m] */
+    double reading[STEWART_LEGS];           /* L_k - length_offset_k: the sensor's reading [m] */
+    double base_joint[STEWART_LEGS][3];     /* d reading_k / d base joint of leg k (x, y, z) */
+    double platform_joint[STEWART_LEGS][3]; /* d reading_k / d platform joint of leg k */
+    double length_offset[STEWART_LEGS];     /* d reading_k / d length_offset_k (-1) */
+    double tool_frame[STEWART_LEGS][6];     /* d reading_k / d tool_frame (x, y, z [1], angles
                                                 [m/rad]) */
-    double user_frame[STEWART_LEGS][6];      /* d reading_k / d user_frame */
-    double pose[STEWART_LEGS][6];            /* d reading_k / d pose: the inverse Jacobian in the
+    double user_frame[STEWART_LEGS][6];     /* d reading_k / d user_frame */
+    double pose[STEWART_LEGS][6];           /* d reading_k / d pose: the inverse Jacobian in the
                                                 user frame, per angle rate */
 } stewart_geometry_jacobian_output;
 

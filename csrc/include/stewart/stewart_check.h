@@ -29,23 +29,22 @@ extern "C" {
 
 /* What the check of a model's home pose finds. */
 typedef struct stewart_check_report {
-    double home[6];          /* the home pose as poses are given (the tool in the user frame) */
-    double length[6];        /* each leg's joint-to-joint length at home [m] */
-    double stroke_min[6];    /* each leg's stroke [m] */
+    double home[6];       /* the home pose as poses are given (the tool in the user frame) */
+    double length[6];     /* each leg's joint-to-joint length at home [m] */
+    double stroke_min[6]; /* each leg's stroke [m] */
     double stroke_max[6];
-    double joint_spread;     /* the largest distance between two joints of one plate [m] */
+    double joint_spread;          /* the largest distance between two joints of one plate [m] */
     stewart_limits_output limits; /* the limit check at home */
     stewart_axis_ranges ranges;   /* each axis' range from home, the other five held */
-    int crossing[2];         /* the first two legs that cross (1..6), else 0, 0 */
-    int hints;               /* STEWART_CHECK_* bits */
-    int valid;               /* 1: home is within every limit; 0: it is not */
+    int crossing[2];              /* the first two legs that cross (1..6), else 0, 0 */
+    int hints;                    /* STEWART_CHECK_* bits */
+    int valid;                    /* 1: home is within every limit; 0: it is not */
 } stewart_check_report;
 
 /* Checks model's home pose with the limits of options (NULL: stewart_limits_options_default).
  * STEWART_ERR_ARGUMENT for a NULL model or report, STEWART_ERR_PARAMETER for a bad option,
  * STEWART_ERR_MEMORY; the message says which. An invalid home is not an error: report->valid. */
-stewart_status stewart_check_home(const stewart_model *model,
-                                  const stewart_limits_options *options,
+stewart_status stewart_check_home(const stewart_model *model, const stewart_limits_options *options,
                                   stewart_check_report *report, char *message, size_t size);
 
 /* The report as lines of text (each leg against its stroke, the margins, the axis ranges, the

@@ -68,45 +68,45 @@ typedef enum stewart_cueing_algorithm {
 /* Settings of a cueing object, in the order of STEWART_CUEING_OPTION_TABLE (stewart_table.h,
  * where each one's range and default are); stewart_cueing_options_default gives the defaults. */
 typedef struct stewart_cueing_options {
-    int algorithm;                     /* stewart_cueing_algorithm */
+    int algorithm;                               /* stewart_cueing_algorithm */
     double surge_scale, sway_scale, heave_scale; /* k_x, k_y, k_z of the specific force [1] */
     double roll_scale, pitch_scale, yaw_scale;   /* k of the angular velocity [1] */
-    int translation_order;             /* 2 or 3: the high-pass order of the translation */
-    double translation_frequency;      /* w [rad/s] */
-    double translation_damping;        /* zeta [1] */
+    int translation_order;                /* 2 or 3: the high-pass order of the translation */
+    double translation_frequency;         /* w [rad/s] */
+    double translation_damping;           /* zeta [1] */
     double translation_washout_frequency; /* w_b [rad/s] of order 3 */
-    double tilt_frequency;             /* w_l [rad/s] of the tilt low-pass */
-    double tilt_damping;               /* zeta_l [1] */
-    double tilt_max;                   /* largest tilt angle [rad] */
-    double tilt_rate_max;              /* largest tilt rate [rad/s] */
-    int rotation_filter_order;         /* 1 or 2: the high-pass order of the rotation */
-    double rotation_frequency;         /* w_r [rad/s] */
-    double rotation_damping;           /* zeta_r [1] (order 2) */
-    double head_x, head_y, head_z;     /* the head in the machine's platform frame [m] */
-    double limiter_rate;               /* largest rate of the limiter's scale [1/s] */
-    double limiter_lookahead;          /* how far ahead the limiter looks [s] */
-    double limiter_accel;              /* largest acceleration of the limiter's scale [1/s2] */
-    double warn_condition;             /* the condition limit, as the limits' option [1] */
+    double tilt_frequency;                /* w_l [rad/s] of the tilt low-pass */
+    double tilt_damping;                  /* zeta_l [1] */
+    double tilt_max;                      /* largest tilt angle [rad] */
+    double tilt_rate_max;                 /* largest tilt rate [rad/s] */
+    int rotation_filter_order;            /* 1 or 2: the high-pass order of the rotation */
+    double rotation_frequency;            /* w_r [rad/s] */
+    double rotation_damping;              /* zeta_r [1] (order 2) */
+    double head_x, head_y, head_z;        /* the head in the machine's platform frame [m] */
+    double limiter_rate;                  /* largest rate of the limiter's scale [1/s] */
+    double limiter_lookahead;             /* how far ahead the limiter looks [s] */
+    double limiter_accel;                 /* largest acceleration of the limiter's scale [1/s2] */
+    double warn_condition;                /* the condition limit, as the limits' option [1] */
 } stewart_cueing_options;
 
 /* One sample: the vehicle's specific force and angular velocity, held over the dt seconds that
  * end at this sample (dt = 0: no time passes, e.g. the first sample of a run). */
 typedef struct stewart_cueing_input {
-    double dt;                   /* [s], >= 0 */
-    double specific_force[3];    /* [m/s2], vehicle frame at the head, z up */
-    double angular_velocity[3];  /* [rad/s], vehicle frame */
+    double dt;                  /* [s], >= 0 */
+    double specific_force[3];   /* [m/s2], vehicle frame at the head, z up */
+    double angular_velocity[3]; /* [rad/s], vehicle frame */
 } stewart_cueing_input;
 
 /* What a step gives: the pose as the inverse solver takes it (the tool in the user frame) at the
  * end of the step, with its exact rates and accelerations (accelerations with the input held). */
 typedef struct stewart_cueing_output {
     stewart_pose pose;
-    double scale;       /* the limiter's scale s of the excursion from home, in [0, 1] */
-    int limited;        /* 1: the limiter scaled the cue down at this sample (s < 1), or the
+    double scale;     /* the limiter's scale s of the excursion from home, in [0, 1] */
+    int limited;      /* 1: the limiter scaled the cue down at this sample (s < 1), or the
                            output left the scaled cue for the legs' speed and acceleration limits */
-    int cut;            /* 1: the smooth motion of s did not suffice and s was cut at once */
-    int tilt_limited;   /* 1: a tilt angle met tilt_max or tilt_rate_max at this sample */
-    int leg_limits;     /* the legs' motion limits the pose breaks, checked when given: bit 1 a
+    int cut;          /* 1: the smooth motion of s did not suffice and s was cut at once */
+    int tilt_limited; /* 1: a tilt angle met tilt_max or tilt_rate_max at this sample */
+    int leg_limits;   /* the legs' motion limits the pose breaks, checked when given: bit 1 a
                            leg's speed beyond leg_speed_max, 2 its acceleration beyond
                            leg_accel_max (both enforced: set only when the pose limits left no
                            motion within them), 4 its force (massless legs) beyond

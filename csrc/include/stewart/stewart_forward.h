@@ -28,17 +28,17 @@ extern "C" {
 
 /* Bits of stewart_forward_output.branch: why a pose is not on the working assembly mode. */
 enum {
-    STEWART_BRANCH_BELOW_BASE = 1,       /* a leg leaves its base Cardan on the other side than at
+    STEWART_BRANCH_BELOW_BASE = 1,      /* a leg leaves its base Cardan on the other side than at
                                             home: downward for a leg rising at home (mirror pose) */
-    STEWART_BRANCH_PLATFORM_CARDAN = 2,  /* a leg reaches its platform Cardan from the other side
+    STEWART_BRANCH_PLATFORM_CARDAN = 2, /* a leg reaches its platform Cardan from the other side
                                             than at home (from above, for a rising leg) */
-    STEWART_BRANCH_FLIPPED = 4,          /* the platform's normal points down */
-    STEWART_BRANCH_JUMP = 8,             /* tracking: a platform point moved farther than the
+    STEWART_BRANCH_FLIPPED = 4,         /* the platform's normal points down */
+    STEWART_BRANCH_JUMP = 8,            /* tracking: a platform point moved farther than the
                                             shortest stroke range (stroke_max[k] - stroke_min[k])
                                             since the last pose */
-    STEWART_BRANCH_SINGULARITY = 16,     /* the leg Jacobian's determinant has the other sign
+    STEWART_BRANCH_SINGULARITY = 16,    /* the leg Jacobian's determinant has the other sign
                                             than at home: a singular pose lies in between */
-    STEWART_BRANCH_UNPROVEN = 32         /* passes the checks above, but is neither a proven
+    STEWART_BRANCH_UNPROVEN = 32        /* passes the checks above, but is neither a proven
                                             step from the last pose nor the pose reached from
                                             home along the straight path of lengths: the lengths
                                             have several such poses */
@@ -64,28 +64,28 @@ typedef struct stewart_forward_options {
 
 /* What a forward solve takes. */
 typedef struct stewart_forward_input {
-    double time;              /* [s]: the tracking predictor advances the last pose to it */
-    stewart_lengths lengths;  /* measured lengths; their rates and accelerations as derivatives
+    double time;             /* [s]: the tracking predictor advances the last pose to it */
+    stewart_lengths lengths; /* measured lengths; their rates and accelerations as derivatives
                                  says */
-    int derivatives;          /* 0: lengths only; 1: and length_rate; 2: and length_accel too */
-    int use_guess;            /* 1: start from guess and forget the history; 0: track */
-    double guess[6];          /* start pose (x, y, z, roll, pitch, yaw) if use_guess */
+    int derivatives;         /* 0: lengths only; 1: and length_rate; 2: and length_accel too */
+    int use_guess;           /* 1: start from guess and forget the history; 0: track */
+    double guess[6];         /* start pose (x, y, z, roll, pitch, yaw) if use_guess */
 } stewart_forward_input;
 
 /* What a forward solve gives. */
 typedef struct stewart_forward_output {
-    stewart_pose pose;   /* q; q_dot if rates were given, q_ddot if accelerations were (else 0) */
-    double residual;     /* max |L_k(q) - L_k measured| at the last Newton iterate [m]; the pose
+    stewart_pose pose; /* q; q_dot if rates were given, q_ddot if accelerations were (else 0) */
+    double residual;   /* max |L_k(q) - L_k measured| at the last Newton iterate [m]; the pose
                             returned carries one more correction with the exact Jacobian */
-    double condition;    /* leg Jacobian condition number at the pose, as the inverse output's */
-    double jump;         /* largest platform-point displacement from the last pose [m] (0 if
+    double condition;  /* leg Jacobian condition number at the pose, as the inverse output's */
+    double jump;       /* largest platform-point displacement from the last pose [m] (0 if
                             no history) */
-    int iterations;      /* KINSOL Newton iterations, over every start tried */
-    int warnings;        /* STEWART_WARN_STROKE (a measured length outside the stroke),
+    int iterations;    /* KINSOL Newton iterations, over every start tried */
+    int warnings;      /* STEWART_WARN_STROKE (a measured length outside the stroke),
                             STEWART_WARN_NEAR_SINGULAR, STEWART_WARN_OTHER_BRANCH */
-    int stroke_legs;     /* bit k set: measured length k+1 is outside [stroke_min, stroke_max] */
-    int branch;          /* STEWART_BRANCH_* bits; 0 on the working assembly mode */
-    int start;           /* STEWART_START_* the solution was reached from */
+    int stroke_legs;   /* bit k set: measured length k+1 is outside [stroke_min, stroke_max] */
+    int branch;        /* STEWART_BRANCH_* bits; 0 on the working assembly mode */
+    int start;         /* STEWART_START_* the solution was reached from */
 } stewart_forward_output;
 
 typedef struct stewart_forward stewart_forward;
@@ -93,8 +93,8 @@ typedef struct stewart_forward stewart_forward;
 /* The defaults documented at stewart_forward_options. */
 void stewart_forward_options_default(stewart_forward_options *options);
 /* STEWART_OK, or STEWART_ERR_PARAMETER with a message naming the option and its value. */
-stewart_status stewart_forward_options_check(const stewart_forward_options *options,
-                                             char *message, size_t size);
+stewart_status stewart_forward_options_check(const stewart_forward_options *options, char *message,
+                                             size_t size);
 
 /* A forward solver for model (which must outlive it) with a copy of options: NULL if the options
  * are invalid, an argument is NULL, the model's working assembly mode is undefined or memory is

@@ -70,12 +70,12 @@ typedef struct stewart_limits_options {
  * The axis ranges use q only. */
 typedef struct stewart_limits_input {
     double q[6];
-    int derivatives;     /* how many derivatives of q follow: 0 none, 1 q_dot (leg speed),
+    int derivatives;            /* how many derivatives of q follow: 0 none, 1 q_dot (leg speed),
                             2 and q_ddot (leg acceleration), 3 and q_dddot (leg jerk) */
-    double q_dot[6];     /* dq/dt [m/s, rad/s] */
-    double q_ddot[6];    /* d2q/dt2 [m/s^2, rad/s^2] */
-    double q_dddot[6];   /* d3q/dt3 [m/s^3, rad/s^3] */
-    int has_force;       /* 1: force holds the legs' forces (leg force class); 0: none */
+    double q_dot[6];            /* dq/dt [m/s, rad/s] */
+    double q_ddot[6];           /* d2q/dt2 [m/s^2, rad/s^2] */
+    double q_dddot[6];          /* d3q/dt3 [m/s^3, rad/s^3] */
+    int has_force;              /* 1: force holds the legs' forces (leg force class); 0: none */
     double force[STEWART_LEGS]; /* F_k [N] (the inverse's; its sign is not used) */
 } stewart_limits_input;
 
@@ -102,9 +102,9 @@ typedef struct stewart_limits_output {
  * surely longer than stroke_max. A side whose proof runs out of steps before any limit ends at
  * its last proven pose with the class that held its steps. */
 typedef struct stewart_axis_ranges {
-    double min[6], max[6];      /* the interval [pose units] */
-    int min_limit[6], max_limit[6]; /* the class met at each end (NONE: the search's end) */
-    int min_leg[6], max_leg[6];     /* its leg (1..6; axis: the axis; 0 for NONE) */
+    double min[6], max[6];                  /* the interval [pose units] */
+    int min_limit[6], max_limit[6];         /* the class met at each end (NONE: the search's end) */
+    int min_leg[6], max_leg[6];             /* its leg (1..6; axis: the axis; 0 for NONE) */
     int min_other_leg[6], max_other_leg[6]; /* interference: the pair's other leg; else 0 */
 } stewart_axis_ranges;
 

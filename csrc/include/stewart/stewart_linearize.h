@@ -31,11 +31,11 @@
 extern "C" {
 #endif
 
-#define STEWART_LINEARIZE_STATES 12   /* x = (q, q_dot) */
-#define STEWART_LINEARIZE_INPUTS 6    /* u = (F_1 .. F_6) */
-#define STEWART_LINEARIZE_OUTPUTS 24  /* y = (q, q_dot, L, L_dot) */
-#define STEWART_LINEARIZE_INVERSE_ROWS 30     /* (L, L_dot, L_ddot, F, base_force, base_torque) */
-#define STEWART_LINEARIZE_INVERSE_COLUMNS 18  /* (q, q_dot, q_ddot) */
+#define STEWART_LINEARIZE_STATES 12          /* x = (q, q_dot) */
+#define STEWART_LINEARIZE_INPUTS 6           /* u = (F_1 .. F_6) */
+#define STEWART_LINEARIZE_OUTPUTS 24         /* y = (q, q_dot, L, L_dot) */
+#define STEWART_LINEARIZE_INVERSE_ROWS 30    /* (L, L_dot, L_ddot, F, base_force, base_torque) */
+#define STEWART_LINEARIZE_INVERSE_COLUMNS 18 /* (q, q_dot, q_ddot) */
 
 typedef struct stewart_linearize stewart_linearize;
 
@@ -46,41 +46,41 @@ typedef struct stewart_linearize_options {
 
 /* The operating point of stewart_linearize_plant. */
 typedef struct stewart_linearize_input {
-    stewart_pose pose;              /* q and q_dot (q_ddot is not used: it follows from F) */
-    double force[STEWART_LEGS];     /* F_k [N], > 0 pushes platform and base apart */
+    stewart_pose pose;          /* q and q_dot (q_ddot is not used: it follows from F) */
+    double force[STEWART_LEGS]; /* F_k [N], > 0 pushes platform and base apart */
 } stewart_linearize_input;
 
 /* The plant linearised; matrices row-major, rows and columns in the order of x, u and y above. */
 typedef struct stewart_linearize_output {
-    double state_rate[STEWART_LINEARIZE_STATES];   /* f(x, u) = (q_dot, q_ddot) */
-    double output[STEWART_LINEARIZE_OUTPUTS];      /* g(x) = (q, q_dot, L, L_dot) */
-    double A[STEWART_LINEARIZE_STATES][STEWART_LINEARIZE_STATES];   /* df/dx */
-    double B[STEWART_LINEARIZE_STATES][STEWART_LINEARIZE_INPUTS];   /* df/du */
-    double C[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_STATES];  /* dg/dx */
-    double D[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_INPUTS];  /* dg/du (zero) */
-    int warnings;     /* STEWART_WARN_STROKE */
-    int stroke_legs;  /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
+    double state_rate[STEWART_LINEARIZE_STATES];                   /* f(x, u) = (q_dot, q_ddot) */
+    double output[STEWART_LINEARIZE_OUTPUTS];                      /* g(x) = (q, q_dot, L, L_dot) */
+    double A[STEWART_LINEARIZE_STATES][STEWART_LINEARIZE_STATES];  /* df/dx */
+    double B[STEWART_LINEARIZE_STATES][STEWART_LINEARIZE_INPUTS];  /* df/du */
+    double C[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_STATES]; /* dg/dx */
+    double D[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_INPUTS]; /* dg/du (zero) */
+    int warnings;                                                  /* STEWART_WARN_STROKE */
+    int stroke_legs; /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_linearize_output;
 
 /* The inverse side at a pose (q, q_dot, q_ddot): the lengths, the forces of the fidelity
  * (massless legs, or the full model's legs with mass), the base wrench, and their Jacobian. */
 typedef struct stewart_linearize_inverse_output {
-    stewart_lengths lengths;      /* L, L_dot, L_ddot */
-    double force[STEWART_LEGS];   /* F [N] */
-    double base_force[3];         /* force the moving bodies put on the base, world [N] */
-    double base_torque[3];        /* its torque about the world origin [N m] */
+    stewart_lengths lengths;    /* L, L_dot, L_ddot */
+    double force[STEWART_LEGS]; /* F [N] */
+    double base_force[3];       /* force the moving bodies put on the base, world [N] */
+    double base_torque[3];      /* its torque about the world origin [N m] */
     /* d(L, L_dot, L_ddot, F, base_force, base_torque) / d(q, q_dot, q_ddot), row-major */
     double jacobian[STEWART_LINEARIZE_INVERSE_ROWS][STEWART_LINEARIZE_INVERSE_COLUMNS];
-    int warnings;     /* STEWART_WARN_STROKE */
-    int stroke_legs;  /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
+    int warnings;    /* STEWART_WARN_STROKE */
+    int stroke_legs; /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
 } stewart_linearize_inverse_output;
 
 /* The base wrench alone at a pose (q, q_dot, q_ddot) with its Jacobian: rows 24-29 of
  * stewart_linearize_inverse's, without the forces (one dual evaluation: the Model Exchange plant's
  * base-wrench derivatives compose it with the plant's A and B). */
 typedef struct stewart_linearize_wrench_output {
-    double base_force[3];   /* force the moving bodies put on the base, world [N] */
-    double base_torque[3];  /* its torque about the world origin [N m] */
+    double base_force[3];  /* force the moving bodies put on the base, world [N] */
+    double base_torque[3]; /* its torque about the world origin [N m] */
     /* d(base_force, base_torque) / d(q, q_dot, q_ddot), row-major */
     double jacobian[6][STEWART_LINEARIZE_INVERSE_COLUMNS];
 } stewart_linearize_wrench_output;
@@ -158,14 +158,14 @@ stewart_status stewart_linearize_base_wrench(stewart_linearize *l, const stewart
 #define STEWART_WARN_NOT_SMOOTH 32
 
 typedef struct stewart_linearize_driven_input {
-    stewart_pose pose;             /* q and q_dot (q_ddot is not used) */
-    double input[STEWART_LEGS];    /* the motors' currents [A] or voltages [V] */
-    double current[STEWART_LEGS];  /* the windings' currents [A] (states with an inductance;
+    stewart_pose pose;            /* q and q_dot (q_ddot is not used) */
+    double input[STEWART_LEGS];   /* the motors' currents [A] or voltages [V] */
+    double current[STEWART_LEGS]; /* the windings' currents [A] (states with an inductance;
                                       not used otherwise) */
 } stewart_linearize_driven_input;
 
 typedef struct stewart_linearize_driven_output {
-    int states; /* 12, or 18 with the windings' currents */
+    int states;                                         /* 12, or 18 with the windings' currents */
     double state_rate[STEWART_LINEARIZE_DRIVEN_STATES]; /* (q_dot, q_ddot[, di/dt]) */
     double output[STEWART_LINEARIZE_OUTPUTS];           /* (q, q_dot, L, L_dot) */
     /* rows and columns beyond `states` are zero */
@@ -174,8 +174,8 @@ typedef struct stewart_linearize_driven_output {
     double C[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_DRIVEN_STATES];
     double D[STEWART_LINEARIZE_OUTPUTS][STEWART_LINEARIZE_INPUTS]; /* zero */
     double leg_force[STEWART_LEGS]; /* the drives' axial forces on the mechanism [N] */
-    int warnings;        /* STEWART_WARN_STROKE, STEWART_WARN_NOT_SMOOTH */
-    int stroke_legs;     /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
+    int warnings;                   /* STEWART_WARN_STROKE, STEWART_WARN_NOT_SMOOTH */
+    int stroke_legs;                /* bit k set: leg k+1 is outside [stroke_min, stroke_max] */
     int not_smooth_legs; /* bit k set: leg k+1's derivatives are the one-sided ones' mean */
 } stewart_linearize_driven_output;
 

@@ -43,19 +43,19 @@ typedef enum stewart_plant_input_kind {
 
 /* Integrator settings; stewart_plant_options_default gives the values documented here. */
 typedef struct stewart_plant_options {
-    int fidelity;            /* STEWART_MASSLESS or STEWART_FULL; STEWART_FULL */
-    int method;              /* a stewart_plant_method; STEWART_PLANT_ERK */
+    int fidelity;              /* STEWART_MASSLESS or STEWART_FULL; STEWART_FULL */
+    int method;                /* a stewart_plant_method; STEWART_PLANT_ERK */
     double relative_tolerance; /* CVODE reltol; 1e-10 */
     double absolute_tolerance; /* CVODE abstol, on every state [m, -, m/s, rad/s]; 1e-12 */
-    long max_internal_steps; /* CVODE steps allowed within one communication step; 10000 */
-    int fixed_steps;         /* 0: adaptive steps (the tolerances); N in 1..1000: N equal steps of
+    long max_internal_steps;   /* CVODE steps allowed within one communication step; 10000 */
+    int fixed_steps;           /* 0: adaptive steps (the tolerances); N in 1..1000: N equal steps of
                                 the explicit Runge-Kutta method per communication step, no error
                                 control (a fixed amount of work, ERK and ERK5 only: 5N + 1
                                 right-hand sides per step with ERK, 6N + 2 with ERK5); 0 */
-    int input;               /* a stewart_plant_input_kind: what the step's force_start/force_end
+    int input;                 /* a stewart_plant_input_kind: what the step's force_start/force_end
                                 arrays carry per leg (forces, motor currents or motor voltages);
                                 STEWART_PLANT_INPUT_FORCE */
-    double smoothing_speed;  /* [m/s] leg speed below which friction and the screw's losses fade
+    double smoothing_speed;    /* [m/s] leg speed below which friction and the screw's losses fade
                                 out (v / sqrt(v^2 + smoothing_speed^2)); 1e-4 */
 } stewart_plant_options;
 
@@ -65,21 +65,21 @@ typedef struct stewart_plant_options {
    evaluation as ARKODE would have made it, so a step repeated after a rollback counts the same. */
 typedef struct stewart_plant_statistics {
     long steps, rhs_evaluations, nonlinear_iterations, error_test_failures, jacobian_evaluations;
-    long total_steps, total_rhs_evaluations, total_nonlinear_iterations,
-        total_error_test_failures, total_jacobian_evaluations;
-    int last_order;          /* method order of the last internal step */
-    double last_step_size;   /* [s] */
+    long total_steps, total_rhs_evaluations, total_nonlinear_iterations, total_error_test_failures,
+        total_jacobian_evaluations;
+    int last_order;        /* method order of the last internal step */
+    double last_step_size; /* [s] */
 } stewart_plant_statistics;
 
 /* What a step takes: its length and the actuator forces over it. */
 typedef struct stewart_plant_input {
-    double h;                                /* communication step [s], > 0 */
-    double force_start[STEWART_LEGS];        /* F_k at the current time t [N] */
-    double force_end[STEWART_LEGS];          /* F_k at t + h [N] */
-    int derivatives;                         /* 0: forces linear over the step; 1: cubic Hermite
+    double h;                              /* communication step [s], > 0 */
+    double force_start[STEWART_LEGS];      /* F_k at the current time t [N] */
+    double force_end[STEWART_LEGS];        /* F_k at t + h [N] */
+    int derivatives;                       /* 0: forces linear over the step; 1: cubic Hermite
                                                 with the rates below */
-    double force_rate_start[STEWART_LEGS];   /* dF_k/dt at t [N/s] (derivatives = 1) */
-    double force_rate_end[STEWART_LEGS];     /* dF_k/dt at t + h [N/s] (derivatives = 1) */
+    double force_rate_start[STEWART_LEGS]; /* dF_k/dt at t [N/s] (derivatives = 1) */
+    double force_rate_end[STEWART_LEGS];   /* dF_k/dt at t + h [N/s] (derivatives = 1) */
 } stewart_plant_input;
 
 /* What a step gives: the state at its end (or, from stewart_plant_output_get, the current one). */
@@ -101,9 +101,9 @@ typedef struct stewart_plant_output {
     double motor_speed[STEWART_LEGS];      /* omega = 2 pi N L_dot / lead [rad/s] */
     double motor_torque[STEWART_LEGS];     /* k_t i [N m] */
     double electrical_power[STEWART_LEGS]; /* voltage * current [W], < 0: the drive regenerates */
-    int current_max_legs;  /* bit k set: |current| of leg k+1 above its current_max (> 0) */
-    int voltage_max_legs;  /* bit k set: |voltage| above voltage_max (> 0) */
-    int motor_speed_max_legs;    /* bit k set: |motor_speed| above motor_speed_max (> 0) */
+    int current_max_legs;     /* bit k set: |current| of leg k+1 above its current_max (> 0) */
+    int voltage_max_legs;     /* bit k set: |voltage| above voltage_max (> 0) */
+    int motor_speed_max_legs; /* bit k set: |motor_speed| above motor_speed_max (> 0) */
 } stewart_plant_output;
 
 /* One moving body at the current state, world frame: its centre of mass, orientation (columns =
@@ -180,10 +180,10 @@ stewart_status stewart_plant_output_get(const stewart_plant *plant,
 /* What the derivative call takes: a state of its own (the plant's is neither used nor changed)
  * and the forces acting on it. */
 typedef struct stewart_plant_derivative_input {
-    double time;                 /* [s], copied to the output (the equations do not depend on it) */
-    stewart_pose pose;           /* q and q_dot: the state (the tool's pose in the user frame, as
+    double time;                /* [s], copied to the output (the equations do not depend on it) */
+    stewart_pose pose;          /* q and q_dot: the state (the tool's pose in the user frame, as
                                     every pose the plant takes); q_ddot is ignored */
-    double force[STEWART_LEGS];  /* F_k [N] */
+    double force[STEWART_LEGS]; /* F_k [N] */
 } stewart_plant_derivative_input;
 
 /* The right-hand side of the equations of motion at the input's state, for a master that

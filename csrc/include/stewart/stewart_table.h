@@ -400,14 +400,14 @@ stewart_status stewart_param_check_value(int i, int e, double value, char *messa
 
 /* One option of the table. */
 typedef struct stewart_option_info {
-    int id;                     /* stable id (= FMU value reference) */
-    const char *name;           /* field name in its options struct */
-    int is_integer;             /* 1: an int or long field, 0: a double */
-    const char *unit;           /* "1" for dimensionless reals, "" for integers */
+    int id;           /* stable id (= FMU value reference) */
+    const char *name; /* field name in its options struct */
+    int is_integer;   /* 1: an int or long field, 0: a double */
+    const char *unit; /* "1" for dimensionless reals, "" for integers */
     const char *description;
-    double min, max;            /* valid range */
+    double min, max; /* valid range */
     int min_closed, max_closed;
-    double default_value;       /* the default (stewart_*_options_default's) */
+    double default_value; /* the default (stewart_*_options_default's) */
 } stewart_option_info;
 
 /* The options of the inverse solver (STEWART_OPTION_TABLE), of forward kinematics
@@ -442,8 +442,8 @@ int stewart_plant_option_find(const char *name);
 int stewart_linearize_option_count(void);
 const stewart_option_info *stewart_linearize_option(int i);
 double stewart_linearize_option_get(const stewart_linearize_options *options, int i);
-stewart_status stewart_linearize_option_set(stewart_linearize_options *options, int i,
-                                            double value, char *message, size_t size);
+stewart_status stewart_linearize_option_set(stewart_linearize_options *options, int i, double value,
+                                            char *message, size_t size);
 int stewart_linearize_option_find(const char *name);
 
 int stewart_limits_option_count(void);

@@ -19,15 +19,14 @@ cascade_result cascade_leg(const cascade_drive *d, const cascade_gains *g,
                            const double in[CASCADE_INPUTS], double z) {
     cascade_result r = {0};
     const double c = d->motor_per_leg, kt = d->torque_constant;
-    const double command = c * in[CASCADE_L_DOT_REF] +
-                           g->position * c * (in[CASCADE_L_REF] - in[CASCADE_L]);
+    const double command =
+        c * in[CASCADE_L_DOT_REF] + g->position * c * (in[CASCADE_L_REF] - in[CASCADE_L]);
     const double omega_cmd = within(command, d->motor_speed_max, &r.speed_limited);
     r.speed_error = omega_cmd - c * in[CASCADE_L_DOT];
     const double integral = g->integral_time > 0 ? z / g->integral_time : 0.0;
     const double torque = g->speed * (r.speed_error + integral);
-    r.current = within(in[CASCADE_FEED_FORWARD] + torque / kt, d->current_max,
-                       &r.current_limited);
-    if (r.current_limited) return r; /* the slopes stay 0 */
+    r.current = within(in[CASCADE_FEED_FORWARD] + torque / kt, d->current_max, &r.current_limited);
+    if (r.current_limited) return r;        /* the slopes stay 0 */
     const double per_speed = g->speed / kt; /* d current / d omega_cmd */
     r.slope[CASCADE_FEED_FORWARD] = 1.0;
     r.slope[CASCADE_L_DOT] = -per_speed * c;

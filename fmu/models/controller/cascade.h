@@ -30,8 +30,14 @@ typedef struct cascade_gains {
 } cascade_gains;
 
 /* The leg's five inputs, in the controller's input order. */
-enum { CASCADE_L_REF, CASCADE_L_DOT_REF, CASCADE_FEED_FORWARD, CASCADE_L, CASCADE_L_DOT,
-       CASCADE_INPUTS };
+enum {
+    CASCADE_L_REF,
+    CASCADE_L_DOT_REF,
+    CASCADE_FEED_FORWARD,
+    CASCADE_L,
+    CASCADE_L_DOT,
+    CASCADE_INPUTS
+};
 
 /* One evaluation: the current command, the speed error the integral takes, which limit holds,
  * and d current / d input (0 for the inputs a limit cuts off). */

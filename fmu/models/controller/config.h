@@ -10,7 +10,7 @@
 #define FMU_MODEL_IDENTIFIER "StewartController"
 #define FMU_GUID "{4a9d2e71-c05b-4f3a-9e18-6b7c2d5f8a13}"
 #define FMU_NVR 301
-#define FMU_MODEL_DESCRIPTION_TEXT                                                             \
+#define FMU_MODEL_DESCRIPTION_TEXT                                                              \
     "Stewart platform leg controller: F = F_ff + kp (L_ref - L) + kd (L_dot_ref - L_dot) per "  \
     "leg (output = 0), or the motor currents of a position, speed and current cascade "         \
     "(output = 1); the reference and feed-forward from the inverse unit, L and L_dot from the " \
@@ -22,7 +22,7 @@
 #define FMU_PROVIDES_DIRECTIONAL_DERIVATIVE 1
 /* The model structure: F[k] depends on leg k's five inputs only (the inputs come in blocks of
  * six, one per leg); status checks every input. */
-#define FMU_OUTPUT_DEPENDS_ON(out, in)                                                            \
+#define FMU_OUTPUT_DEPENDS_ON(out, in) \
     ((out) >= VR_F_1 && (out) <= VR_F_6 ? ((in) - VR_L_ref_1) % 6 == (out) - VR_F_1 : 1)
 
 /* Plain values: the cascade's state and what the outputs' last evaluation returned. */

@@ -45,22 +45,22 @@ static const char *refused_parameter(const fmu_values *v, unsigned *vr) {
         return "output is 0 (force) or 1 (current)";
     }
     for (size_t i = 0; i < sizeof kNonNegative / sizeof *kNonNegative; ++i)
-        if (!(isfinite(v->real[*vr = kNonNegative[i]]) && v->real[*vr] >= 0.0))
+        if (!(isfinite(v->real[ *vr = kNonNegative[i]]) && v->real[*vr] >= 0.0))
             return "a gain must be finite and >= 0";
     for (int k = 0; k < LEGS; ++k)
         for (size_t i = 0; i < sizeof kLimits / sizeof *kLimits; ++i)
-            if (!(isfinite(v->real[*vr = kLimits[i] + k]) && v->real[*vr] >= 0.0))
+            if (!(isfinite(v->real[ *vr = kLimits[i] + k]) && v->real[*vr] >= 0.0))
                 return "a drive limit must be finite and >= 0 (0: none)";
     if (!controller_current_mode(v)) return NULL;
-    if (!(v->real[*vr = VR_speed_gain] > 0))
+    if (!(v->real[ *vr = VR_speed_gain] > 0))
         return "output = 1 (current) needs a speed gain > 0 (docs/drives.md: tuning the cascade)";
     for (int k = 0; k < LEGS; ++k)
         for (size_t i = 0; i < sizeof kDrive / sizeof *kDrive; ++i)
-            if (!(isfinite(v->real[*vr = kDrive[i] + k]) && v->real[*vr] > 0.0))
+            if (!(isfinite(v->real[ *vr = kDrive[i] + k]) && v->real[*vr] > 0.0))
                 return "output = 1 (current) needs a drive on every leg: screw_lead, gear_ratio "
                        "and torque_constant finite and > 0, as the platform's";
-    for (int k = 0; k < LEGS; ++k)  /* else every command of the leg is NaN, blamed on inputs */
-        if (!isfinite(cascade_motor_per_leg(v->real[*vr = VR_screw_lead_1 + k],
+    for (int k = 0; k < LEGS; ++k) /* else every command of the leg is NaN, blamed on inputs */
+        if (!isfinite(cascade_motor_per_leg(v->real[ *vr = VR_screw_lead_1 + k],
                                             v->real[VR_gear_ratio_1 + k])))
             return "output = 1 (current): 2 pi gear_ratio / screw_lead overflows a double; give "
                    "the lead in metres, as the platform's";
@@ -78,8 +78,8 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
 }
 
 void controller_drive(const fmu_values *v, int k, cascade_drive *d, cascade_gains *g) {
-    d->motor_per_leg = cascade_motor_per_leg(v->real[VR_screw_lead_1 + k],
-                                             v->real[VR_gear_ratio_1 + k]);
+    d->motor_per_leg =
+        cascade_motor_per_leg(v->real[VR_screw_lead_1 + k], v->real[VR_gear_ratio_1 + k]);
     d->torque_constant = v->real[VR_torque_constant_1 + k];
     d->current_max = v->real[VR_current_max_1 + k];
     d->motor_speed_max = v->real[VR_motor_speed_max_1 + k];
@@ -112,9 +112,10 @@ static fmu_status evaluate(fmu_instance *inst, cascade_result r[LEGS]) {
     fmu_values *v = &inst->v;
     for (unsigned vr = VR_L_ref_1; vr <= VR_L_dot_6; ++vr)
         if (!isfinite(v->real[vr])) {
-            fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "t = %.17g: input %s = %g is not finite; F "
-                    "keeps its last valid value", v->time, fmu_variable_by_vr(vr)->name,
-                    v->real[vr]);
+            fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                    "t = %.17g: input %s = %g is not finite; F "
+                    "keeps its last valid value",
+                    v->time, fmu_variable_by_vr(vr)->name, v->real[vr]);
             v->integer[VR_status] = 3;
             return v->model.solve_status = FMU_DISCARD;
         }
@@ -124,8 +125,10 @@ static fmu_status evaluate(fmu_instance *inst, cascade_result r[LEGS]) {
     for (int k = 0; k < LEGS; ++k) {
         out[k] = command(v, k, &r[k]);
         if (!isfinite(out[k])) {
-            fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "t = %.17g: F[%d] overflows (inputs too "
-                    "large for the gains); F keeps its last valid value", v->time, k + 1);
+            fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                    "t = %.17g: F[%d] overflows (inputs too "
+                    "large for the gains); F keeps its last valid value",
+                    v->time, k + 1);
             v->integer[VR_status] = 3;
             return v->model.solve_status = FMU_DISCARD;
         }
@@ -157,7 +160,7 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     controller_drive(v, 0, &unused, &g);
     for (int k = 0; k < LEGS; ++k)
         v->model.speed_integral[k] = cascade_integrate(&r[k], &g, before[k], h);
-    if (evaluate(inst, NULL) == FMU_OK) return FMU_OK; /* the outputs at t + h */
+    if (evaluate(inst, NULL) == FMU_OK) return FMU_OK;      /* the outputs at t + h */
     memcpy(v->model.speed_integral, before, sizeof before); /* refused: the state stays at t */
     v->outputs_current = 1;
     return FMU_DISCARD;
@@ -165,7 +168,10 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
 
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
-    (void)inst; (void)in; (void)why; (void)why_size;
+    (void)inst;
+    (void)in;
+    (void)why;
+    (void)why_size;
     if (size != 0) return "the controller has no saved resources";
     for (int k = 0; k < LEGS; ++k)
         if (!isfinite(v->real[VR_F_1 + k])) return "an output is not finite";

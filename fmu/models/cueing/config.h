@@ -23,8 +23,8 @@
 /* Every value reference is below this bound (checked at compile time in variables.c). */
 #define FMU_NVR 826
 
-#define FMU_MODEL_DESCRIPTION_TEXT                                                             \
-    "Stewart platform motion cueing (classical washout with tilt coordination and a limiter "   \
+#define FMU_MODEL_DESCRIPTION_TEXT                                                               \
+    "Stewart platform motion cueing (classical washout with tilt coordination and a limiter "    \
     "on the machine's exact limits): the vehicle's specific force and angular velocity in, the " \
     "platform's pose, pose rates and accelerations out"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"10\" stepSize=\"0.001\""
@@ -42,8 +42,8 @@ typedef struct model_values {
 /* The model's resources: built at the end of initialisation; the cueing object's state travels
  * through model_save / model_load, never as plain bytes. */
 typedef struct model_resources {
-    stewart_model *model;     /* built from `params` */
-    stewart_cueing *cueing;   /* on `model`, with `options` */
+    stewart_model *model;   /* built from `params` */
+    stewart_cueing *cueing; /* on `model`, with `options` */
     stewart_params params;
     stewart_cueing_options options;
     char message[2 * STEWART_MESSAGE_SIZE];

@@ -55,8 +55,8 @@ static fmu_status build_cueing(fmu_instance *inst, const stewart_params *p,
     model_resources *r = &inst->res;
     const int new_model = !r->model || memcmp(p, &r->params, sizeof *p) != 0;
     if (!new_model && r->cueing && fmu_same_table_options(o, &r->options)) return FMU_OK;
-    stewart_model *m = new_model ? stewart_model_create(p, r->message, sizeof r->message)
-                                 : r->model;
+    stewart_model *m =
+        new_model ? stewart_model_create(p, r->message, sizeof r->message) : r->model;
     stewart_cueing *c = m ? stewart_cueing_create(m, o, r->message, sizeof r->message) : NULL;
     if (!c) {
         if (new_model) stewart_model_free(m);
@@ -103,7 +103,8 @@ static fmu_status cue(fmu_instance *inst, double dt) {
     if (stewart_cueing_step(inst->res.cueing, &in, &out) != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: step refused: %s; the state stays at t, outputs keep their last "
-                "valid values", v->time, stewart_cueing_message(inst->res.cueing));
+                "valid values",
+                v->time, stewart_cueing_message(inst->res.cueing));
         v->integer[VR_status] = 3;
         v->model.solve_status = FMU_DISCARD;
         v->outputs_current = 1;
@@ -162,7 +163,9 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
 
 fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], size_t n,
                                        const int order[], const double value[]) {
-    (void)vr; (void)order; (void)value;
+    (void)vr;
+    (void)order;
+    (void)value;
     if (n == 0) return FMU_OK;
     fmu_log(inst, FMU_ERROR, LOG_ERROR,
             "SetRealInputDerivatives: StewartCueing takes no input derivatives");

@@ -24,8 +24,8 @@
 /* Every value reference is below this bound (checked at compile time in variables.c). */
 #define FMU_NVR 1058
 
-#define FMU_MODEL_DESCRIPTION_TEXT                                                              \
-    "Stewart platform inverse kinematics and inverse dynamics: actuator lengths, rates, "       \
+#define FMU_MODEL_DESCRIPTION_TEXT                                                        \
+    "Stewart platform inverse kinematics and inverse dynamics: actuator lengths, rates, " \
     "accelerations and forces for a prescribed platform pose"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.1\""
 /* FMI 2 canInterpolateInputs: the model takes input derivatives (model_set_input_derivatives). */
@@ -44,50 +44,50 @@
  * pose and its rates; the rest (accelerations, forces, base wrench, the drives' torques,
  * currents, voltages and powers, and status, which checks that every input is finite) on every
  * input. */
-#define FMU_OUTPUT_DEPENDS_ON(out, in)                                                            \
-    ((out) >= VR_L_1 && (out) <= VR_L_6                 ? (in) <= VR_yaw                          \
-     : (out) >= VR_L_dot_1 && (out) <= VR_L_dot_6       ? (in) <= VR_yaw_dot                      \
-     : (out) == VR_condition || (out) == VR_residual || (out) == VR_newton_iterations             \
-         ? (in) <= VR_yaw                                                                         \
-     : (out) >= VR_motor_angle_1 && (out) <= VR_motor_angle_6 ? (in) <= VR_yaw                  \
-     : (out) >= VR_motor_speed_1 && (out) <= VR_motor_speed_6 ? (in) <= VR_yaw_dot               \
-     : (out) >= VR_motor_angle_1 ? 1 /* the drives' torques, currents, powers: every input */     \
-     : (out) >= VR_limit_class ? (in) <= VR_yaw /* the limits: the pose's */                      \
-         : 1)
+#define FMU_OUTPUT_DEPENDS_ON(out, in)                                                        \
+    ((out) >= VR_L_1 && (out) <= VR_L_6           ? (in) <= VR_yaw                            \
+     : (out) >= VR_L_dot_1 && (out) <= VR_L_dot_6 ? (in) <= VR_yaw_dot                        \
+     : (out) == VR_condition || (out) == VR_residual || (out) == VR_newton_iterations         \
+         ? (in) <= VR_yaw                                                                     \
+     : (out) >= VR_motor_angle_1 && (out) <= VR_motor_angle_6 ? (in) <= VR_yaw                \
+     : (out) >= VR_motor_speed_1 && (out) <= VR_motor_speed_6 ? (in) <= VR_yaw_dot            \
+     : (out) >= VR_motor_angle_1 ? 1 /* the drives' torques, currents, powers: every input */ \
+     : (out) >= VR_limit_class   ? (in) <= VR_yaw /* the limits: the pose's */                \
+                                 : 1)
 
 /* A communication point of the finite-difference history: its pose (with the rates a usual step
  * solved it with: the library's input as it stands), and the chord to it from the point before,
  * kept so that the next step's quadratic does not difference the older pose again (the same
  * quotient, bit for bit). */
 typedef struct fd_point {
-    stewart_pose pose;         /* q at t (q_dot, q_ddot: what a usual step solved with) */
-    double slope[6];           /* (q - q before) / interval, with two points committed */
-    double t;                  /* the communication point */
-    double interval;           /* t - t before, with two points committed */
-    double padding[6];         /* zero: 256 bytes, so that a slot's offset is its index shifted */
+    stewart_pose pose; /* q at t (q_dot, q_ddot: what a usual step solved with) */
+    double slope[6];   /* (q - q before) / interval, with two points committed */
+    double t;          /* the communication point */
+    double interval;   /* t - t before, with two points committed */
+    double padding[6]; /* zero: 256 bytes, so that a slot's offset is its index shifted */
 } fd_point;
 
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
 typedef struct model_values {
-    int n_history;             /* points committed at earlier communication points (0..2): one,
+    int n_history; /* points committed at earlier communication points (0..2): one,
                                   or one with its chord from the one before */
-    int newer;                 /* history[newer] is the last point; the other slot is where a
+    int newer;     /* history[newer] is the last point; the other slot is where a
                                   usual step writes its own before the solve (0 or 1) */
     fd_point history[2];
-    int input_derivatives;     /* fmi2SetRealInputDerivatives called since the last step */
-    int solve_status;          /* fmu_status of the solve the outputs come from */
-    int advance_discarded;     /* the outputs stand after a Taylor advance that was discarded */
-    int usual_route;           /* the usual step's route (usual_step.c: model_usual_steps;
+    int input_derivatives; /* fmi2SetRealInputDerivatives called since the last step */
+    int solve_status;      /* fmu_status of the solve the outputs come from */
+    int advance_discarded; /* the outputs stand after a Taylor advance that was discarded */
+    int usual_route;       /* the usual step's route (usual_step.c: model_usual_steps;
                                   step_rules.c: inverse_settle_usual_route) */
 } model_values;
 
 /* The model's resources: built at the end of initialisation, never part of a state's plain
  * bytes (the solver data block travels through model_save / model_load). */
 typedef struct model_resources {
-    stewart_model *model;      /* built from the parameters when initialisation ends */
-    stewart_inverse *inverse;  /* made with `options` for `model` */
-    stewart_limits *limits;    /* the limit check and axis ranges for `model` (limit_outputs) */
-    stewart_params params;     /* the parameters `model` was built from */
+    stewart_model *model;     /* built from the parameters when initialisation ends */
+    stewart_inverse *inverse; /* made with `options` for `model` */
+    stewart_limits *limits;   /* the limit check and axis ranges for `model` (limit_outputs) */
+    stewart_params params;    /* the parameters `model` was built from */
     stewart_inverse_options options;
     stewart_linearize *linearize; /* for directional derivatives: made for `model` when first
                                      asked, with the fidelity of its forces */

@@ -95,7 +95,8 @@ static fmu_status check_gradient(fmu_instance *inst, const double q[6], check_va
         if (!isfinite(gradient[j])) {
             fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                     "t = %.17g: %s: no derivative of the %s at this pose (singular leg "
-                    "Jacobian)", inst->v.time, function,
+                    "Jacobian)",
+                    inst->v.time, function,
                     value == condition_of ? "condition number" : "limit margins");
             return FMU_DISCARD;
         }
@@ -123,8 +124,8 @@ static fmu_status range_gradient(fmu_instance *inst, const double q[6], int axis
         memcpy(in.q, q, sizeof in.q);
         if (stewart_limits_check(inst->res.limits, &in, &at->here) != STEWART_OK ||
             stewart_limits_ranges(inst->res.limits, &in, &at->ranges) != STEWART_OK) {
-            fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "t = %.17g: %s: %s", inst->v.time,
-                    function, stewart_limits_message(inst->res.limits));
+            fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "t = %.17g: %s: %s", inst->v.time, function,
+                    stewart_limits_message(inst->res.limits));
             return FMU_DISCARD;
         }
         at->made = 1;
@@ -144,8 +145,8 @@ static fmu_status range_gradient(fmu_instance *inst, const double q[6], int axis
     if (!(fabs(m[axis]) > 0)) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: %s: the %s limit touches the range of axis %d at its end without "
-                "crossing it: the end has no derivative", inst->v.time, function,
-                stewart_limit_class_name(limit), axis + 1);
+                "crossing it: the end has no derivative",
+                inst->v.time, function, stewart_limit_class_name(limit), axis + 1);
         return FMU_DISCARD;
     }
     for (int j = 0; j < 6; ++j)
@@ -157,8 +158,8 @@ static fmu_status range_gradient(fmu_instance *inst, const double q[6], int axis
  * parameters make them: zero where they are constant (no limit outputs, no condition at
  * fidelity 0). The residual of the exact solution is zero at every pose: what the output shows
  * is the solver's leftover, whose derivative is zero. */
-static fmu_status pose_gradient(fmu_instance *inst, unsigned vr, const double q[6],
-                                pose_ranges *at, double gradient[6], const char *function) {
+static fmu_status pose_gradient(fmu_instance *inst, unsigned vr, const double q[6], pose_ranges *at,
+                                double gradient[6], const char *function) {
     const fmu_values *v = &inst->v;
     const long level = v->integer[VR_limit_outputs];
     memset(gradient, 0, 6 * sizeof gradient[0]);
@@ -192,10 +193,8 @@ static double jacobian_sensitivity(const fmu_instance *inst,
     double sum = 0;
     for (size_t j = 0; j < n_known; ++j) {
         const unsigned c = known[j] - VR_x; /* the inputs are q, q_dot, q_ddot in order */
-        if (from_inputs)
-            sum += d[c] * seed[j];
-        else if (c < 6)
-            sum += (d[c] + rate_weight * d[6 + c] + accel_weight * d[12 + c]) * seed[j];
+        if (from_inputs) sum += d[c] * seed[j];
+        else if (c < 6) sum += (d[c] + rate_weight * d[6 + c] + accel_weight * d[12 + c]) * seed[j];
     }
     return sum;
 }

@@ -21,7 +21,7 @@ void model_start_values(fmu_values *v) {
     fmu_params_to_values(v, &p);
     fmu_table_options_to_values(v, &o);
     v->integer[VR_fidelity] = STEWART_FULL; /* the FMU's default; the library's is massless */
-    v->integer[VR_status] = 3; /* nothing solved yet */
+    v->integer[VR_status] = 3;              /* nothing solved yet */
 }
 
 void inverse_params_from_values(const fmu_values *v, stewart_params *p) {
@@ -42,13 +42,15 @@ static fmu_status check_unit_options(fmu_instance *inst) {
     if (v->integer[VR_limit_outputs] < 0 || v->integer[VR_limit_outputs] > 2) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "invalid parameter limit_outputs = %d: it must be 0 (none), 1 (the limit check) "
-                "or 2 (and the axis ranges)", (int)v->integer[VR_limit_outputs]);
+                "or 2 (and the axis ranges)",
+                (int)v->integer[VR_limit_outputs]);
         return FMU_ERROR;
     }
     if (v->integer[VR_derivatives] != 0 && v->integer[VR_derivatives] != 1) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "invalid parameter derivatives = %d: it must be 0 (finite differences) or 1 "
-                "(the *_dot and *_ddot inputs)", (int)v->integer[VR_derivatives]);
+                "(the *_dot and *_ddot inputs)",
+                (int)v->integer[VR_derivatives]);
         return FMU_ERROR;
     }
     return FMU_OK;
@@ -59,8 +61,8 @@ static fmu_status check_unit_options(fmu_instance *inst) {
 static fmu_status build_solver(fmu_instance *inst, const stewart_params *p,
                                const stewart_inverse_options *o, int new_model) {
     model_resources *r = &inst->res;
-    stewart_model *m = new_model ? stewart_model_create(p, r->message, sizeof r->message)
-                                 : r->model;
+    stewart_model *m =
+        new_model ? stewart_model_create(p, r->message, sizeof r->message) : r->model;
     if (!m) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter: %s", r->message);
         return FMU_ERROR;
@@ -80,9 +82,10 @@ static fmu_status build_solver(fmu_instance *inst, const stewart_params *p,
         stewart_model_free(r->model);
         r->model = m;
         r->params = *p;
-        fmu_log(inst, FMU_OK, LOG_EVENTS, "model built from the parameters (fidelity %d, "
-                "derivatives %d)", (int)inst->v.integer[VR_fidelity],
-                (int)inst->v.integer[VR_derivatives]);
+        fmu_log(inst, FMU_OK, LOG_EVENTS,
+                "model built from the parameters (fidelity %d, "
+                "derivatives %d)",
+                (int)inst->v.integer[VR_fidelity], (int)inst->v.integer[VR_derivatives]);
     }
     return FMU_OK;
 }

@@ -46,8 +46,8 @@ fmu_status inverse_solved_checking(fmu_instance *inst, double time, const double
 fmu_status inverse_refused(fmu_instance *inst, double time, const stewart_pose *pose,
                            stewart_status s);
 /* The same for a pose whose rates are not finite differences (a Taylor advance). */
-fmu_status inverse_not_solved_by_library(fmu_instance *inst, double time,
-                                         const stewart_pose *pose, stewart_status s);
+fmu_status inverse_not_solved_by_library(fmu_instance *inst, double time, const stewart_pose *pose,
+                                         stewart_status s);
 /* The value reference of the first input that is not finite, or -1. */
 int inverse_first_nonfinite_input(const fmu_values *v);
 /* Discard naming the first input that is not finite, if there is one (FMU_OK if none). */

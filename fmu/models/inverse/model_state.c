@@ -79,8 +79,8 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
                               size_t size, char *why, size_t why_size) {
     const model_values *m = &v->model;
     if (m->n_history < 0 || m->n_history > 2) return "finite-difference history is not 0..2 poses";
-    if ((m->input_derivatives & ~1) || (m->advance_discarded & ~1) ||
-        m->solve_status < FMU_OK || m->solve_status > FMU_ERROR)
+    if ((m->input_derivatives & ~1) || (m->advance_discarded & ~1) || m->solve_status < FMU_OK ||
+        m->solve_status > FMU_ERROR)
         return "a flag is out of range";
     if (m->newer & ~1) return "finite-difference history's newer point is not 0 or 1";
     /* (points are committed by accepted steps: the hold step relies on it, usual_step.c
@@ -105,7 +105,8 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
         return "option derivatives is out of range";
     stewart_inverse_options o;
     inverse_options_from_values(v, &o);
-    if (stewart_inverse_options_check(&o, NULL, 0) != STEWART_OK) return "an option is out of range";
+    if (stewart_inverse_options_check(&o, NULL, 0) != STEWART_OK)
+        return "an option is out of range";
     stewart_params p;
     inverse_params_from_values(v, &p);
     if (stewart_params_check(&p, NULL, 0) != STEWART_OK) return "a parameter is invalid";

@@ -95,10 +95,8 @@ static fmu_status map_solve_error(stewart_status s) {
         case STEWART_ERR_ARGUMENT:
         case STEWART_ERR_SINGULAR:
         case STEWART_ERR_UNREACHABLE:
-        case STEWART_ERR_NOT_CONVERGED:
-            return FMU_DISCARD;
-        default:
-            return FMU_ERROR;
+        case STEWART_ERR_NOT_CONVERGED: return FMU_DISCARD;
+        default: return FMU_ERROR;
     }
 }
 
@@ -130,8 +128,8 @@ fmu_status inverse_check_inputs(fmu_instance *inst, double time) {
         return FMU_OK;
     }
     fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
-            "t = %.17g: input %s = %g is not finite; outputs keep their last valid values",
-            time, fmu_variable_by_vr((unsigned)bad)->name, v->real[bad]);
+            "t = %.17g: input %s = %g is not finite; outputs keep their last valid values", time,
+            fmu_variable_by_vr((unsigned)bad)->name, v->real[bad]);
     return not_solved(v, FMU_DISCARD);
 }
 
@@ -176,7 +174,8 @@ static void warn_stroke(const fmu_instance *inst, double time, int stroke_legs) 
 }
 
 /* Logs the axis past its software position limit (axis_min, axis_max); FMU_WARNING. */
-static fmu_status warn_axis(const fmu_instance *inst, double time, const stewart_limits_output *check) {
+static fmu_status warn_axis(const fmu_instance *inst, double time,
+                            const stewart_limits_output *check) {
     static const char *const axes[] = {"x", "y", "z", "roll", "pitch", "yaw"};
     const int axis = check->leg[STEWART_LIMIT_AXIS - 1];
     fmu_log(inst, FMU_WARNING, LOG_WARNING,
@@ -220,13 +219,14 @@ static fmu_status limit_outputs(fmu_instance *inst, double time, const double q[
                         c == STEWART_LIMIT_BASE_JOINT ? "base joint" : "platform joint",
                         values.check.leg[i], -values.check.margin[i]);
         }
-    if (values.check.failed & (1 << (STEWART_LIMIT_AXIS - 1))) fs = warn_axis(inst, time, &values.check);
+    if (values.check.failed & (1 << (STEWART_LIMIT_AXIS - 1)))
+        fs = warn_axis(inst, time, &values.check);
     return fs;
 }
 
 /* The library's refusal of the pose at `time`: Discard or Error, logged. */
-fmu_status inverse_not_solved_by_library(fmu_instance *inst, double time,
-                                         const stewart_pose *pose, stewart_status s) {
+fmu_status inverse_not_solved_by_library(fmu_instance *inst, double time, const stewart_pose *pose,
+                                         stewart_status s) {
     const fmu_status fs = map_solve_error(s);
     fmu_log(inst, fs, fs == FMU_DISCARD ? LOG_DISCARD : LOG_ERROR,
             "t = %.17g: pose (x, y, z, roll, pitch, yaw) = (%g, %g, %g, %g, %g, %g) not solved "
@@ -277,8 +277,8 @@ fmu_status inverse_solved(fmu_instance *inst, double time, const double q[6],
 
 /* (finite differences that are not finite are named as the FMU's: the library refuses them
  * before any work, since it checks its pose first, so they are looked for only now) */
-FMU_RARE_PATH fmu_status inverse_refused(fmu_instance *inst, double time,
-                                         const stewart_pose *pose, stewart_status s) {
+FMU_RARE_PATH fmu_status inverse_refused(fmu_instance *inst, double time, const stewart_pose *pose,
+                                         stewart_status s) {
     if (!taylor_mode(&inst->v))
         for (int i = 0; i < 6; ++i)
             if (!isfinite(pose->q_dot[i]) || !isfinite(pose->q_ddot[i]))

@@ -34,7 +34,9 @@ typedef double aligned_pair __attribute__((vector_size(2 * sizeof(double)), may_
 static inline double_pair load_aligned_pair(const double *p) { return *(const aligned_pair *)p; }
 #else
 #define PAIRED_ARITHMETIC 0
-typedef struct double_pair { double e[2]; } double_pair;
+typedef struct double_pair {
+    double e[2];
+} double_pair;
 
 /* The pair at p. */
 static inline double_pair load_pair(const double *p) {
@@ -51,14 +53,17 @@ static inline void store_pair(double *p, double_pair r) { memcpy(p, &r, sizeof r
 _Static_assert(sizeof(fd_point) == 256, "a history slot is no longer 256 bytes");
 /* The pose inputs' pairs and the history slots' pose and chord pairs lie on 16 bytes in an
  * instance that calloc aligns for any type (load_aligned_pair). */
-_Static_assert(_Alignof(max_align_t) >= 16 &&
-                   (offsetof(fmu_instance, v) + offsetof(fmu_values, real) +
-                    VR_x * sizeof(double)) % 16 == 0 && (VR_x_dot - VR_x) % 2 == 0 &&
-                   (VR_x_ddot - VR_x) % 2 == 0 &&
-                   (offsetof(fmu_instance, v) + offsetof(fmu_values, model) +
-                    offsetof(model_values, history)) % 16 == 0 &&
-                   offsetof(fd_point, pose) % 16 == 0 && offsetof(fd_point, slope) % 16 == 0,
-               "the pose inputs' or the history's pairs no longer lie on 16 bytes");
+_Static_assert(
+    _Alignof(max_align_t) >= 16 &&
+        (offsetof(fmu_instance, v) + offsetof(fmu_values, real) + VR_x * sizeof(double)) % 16 ==
+            0 &&
+        (VR_x_dot - VR_x) % 2 == 0 && (VR_x_ddot - VR_x) % 2 == 0 &&
+        (offsetof(fmu_instance, v) + offsetof(fmu_values, model) +
+         offsetof(model_values, history)) %
+                16 ==
+            0 &&
+        offsetof(fd_point, pose) % 16 == 0 && offsetof(fd_point, slope) % 16 == 0,
+    "the pose inputs' or the history's pairs no longer lie on 16 bytes");
 _Static_assert(VR_x_dot == VR_x + 6 && VR_x_ddot == VR_x + 12 &&
                    offsetof(stewart_pose, q_dot) == 6 * sizeof(double) &&
                    offsetof(stewart_pose, q_ddot) == 12 * sizeof(double) &&
@@ -139,8 +144,9 @@ static ALWAYS_INLINE fmu_status advance_in_place(fmu_instance *inst, double h) {
 #endif
     stewart_inverse_output out;
     out.warnings = 0; /* (read with the status, also when the library leaves out unwritten) */
-    const stewart_status s = stewart_inverse_solve(
-        inst->res.inverse, (const stewart_inverse_input *)(const void *)pose, &out);
+    const stewart_status s =
+        stewart_inverse_solve(inst->res.inverse, (const stewart_inverse_input *)(const void *)pose,
+                              &out);
     if (refused_or_warned(s, &out)) return advance_not_plain(inst, inst->step.end, at_t, s, &out);
     return inverse_solved_plain(inst, &out);
 }
@@ -213,8 +219,9 @@ static ALWAYS_INLINE fmu_status hold_with_quadratic(fmu_instance *inst, double t
     next->interval = h2;
     stewart_inverse_output out;
     out.warnings = 0; /* (read with the status, also when the library leaves out unwritten) */
-    const stewart_status s = stewart_inverse_solve(
-        inst->res.inverse, (const stewart_inverse_input *)(const void *)&next->pose, &out);
+    const stewart_status s =
+        stewart_inverse_solve(inst->res.inverse,
+                              (const stewart_inverse_input *)(const void *)&next->pose, &out);
     if (refused_or_warned(s, &out)) return hold_not_plain(inst, s, &out);
     m->newer ^= 1; /* the history is full already */
     return inverse_solved_plain(inst, &out);
@@ -252,8 +259,7 @@ static inline void keep_step(fmu_instance *inst, double t, double end) {
 #endif
 }
 
-OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h,
-                                               double end) {
+OWN_FRAME static fmu_status usual_advance_step(fmu_instance *inst, double t, double h, double end) {
     keep_step(inst, t, end);
     return step_end(inst, advance_in_place(inst, h), 0);
 }

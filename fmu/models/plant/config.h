@@ -26,7 +26,7 @@
 /* Every value reference is below this bound (checked at compile time in variables.c). */
 #define FMU_NVR 786
 
-#define FMU_MODEL_DESCRIPTION_TEXT                                                             \
+#define FMU_MODEL_DESCRIPTION_TEXT                                                               \
     "Stewart platform forward dynamics (the plant): the six actuator forces in, the platform's " \
     "motion, leg lengths and rates and the base wrench out"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" stepSize=\"0.001\""
@@ -39,8 +39,7 @@
 
 /* Integrator counters summed over accepted steps (part of the state: a rollback restores them). */
 typedef struct plant_totals {
-    int64_t steps, rhs_evaluations, nonlinear_iterations, error_test_failures,
-        jacobian_evaluations;
+    int64_t steps, rhs_evaluations, nonlinear_iterations, error_test_failures, jacobian_evaluations;
 } plant_totals;
 
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
@@ -62,8 +61,8 @@ typedef struct plant_settings {
 /* The model's resources: built at the end of initialisation; the plant's state travels through
  * model_save / model_load, never as plain bytes. */
 typedef struct model_resources {
-    stewart_model *model;           /* built from `params` */
-    stewart_plant *plant;           /* on `model`, with `options` */
+    stewart_model *model; /* built from `params` */
+    stewart_plant *plant; /* on `model`, with `options` */
     stewart_params params;
     stewart_plant_options options;
     /* on `model`, with `checker_options`: where deserialised states with the instance's

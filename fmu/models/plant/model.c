@@ -64,10 +64,10 @@ const char *plant_check_settings(const fmu_values *v, char *why, size_t size) {
         snprintf(why, size, "%s", message);
         return why;
     }
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc)                                  \
-    if (!isfinite(v->real[vr])) {                                                         \
-        snprintf(why, size, name " = %g must be finite", v->real[vr]);                    \
-        return why;                                                                       \
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc)               \
+    if (!isfinite(v->real[vr])) {                                      \
+        snprintf(why, size, name " = %g must be finite", v->real[vr]); \
+        return why;                                                    \
     }
 #include "variables.def"
     stewart_params p;
@@ -111,8 +111,8 @@ static fmu_status build_plant(fmu_instance *inst, const stewart_params *p,
     model_resources *r = &inst->res;
     const int new_model = !r->model || memcmp(p, &r->params, sizeof *p) != 0;
     if (!new_model && r->plant && !memcmp(o, &r->options, sizeof *o)) return FMU_OK;
-    stewart_model *m = new_model ? stewart_model_create(p, r->message, sizeof r->message)
-                                 : r->model;
+    stewart_model *m =
+        new_model ? stewart_model_create(p, r->message, sizeof r->message) : r->model;
     stewart_plant *plant = m ? stewart_plant_create(m, o, r->message, sizeof r->message) : NULL;
     if (!plant) {
         if (new_model) stewart_model_free(m);
@@ -156,9 +156,10 @@ fmu_status model_start(fmu_instance *inst) {
     if (stewart_plant_set_state(r->plant, v->time, s.pose0, s.rate0) != STEWART_OK) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "invalid parameter: start state x0..yaw0 = (%g, %g, %g, %g, %g, %g), "
-                "x_dot0..yaw_dot0 = (%g, %g, %g, %g, %g, %g): %s", s.pose0[0], s.pose0[1],
-                s.pose0[2], s.pose0[3], s.pose0[4], s.pose0[5], s.rate0[0], s.rate0[1],
-                s.rate0[2], s.rate0[3], s.rate0[4], s.rate0[5], stewart_plant_message(r->plant));
+                "x_dot0..yaw_dot0 = (%g, %g, %g, %g, %g, %g): %s",
+                s.pose0[0], s.pose0[1], s.pose0[2], s.pose0[3], s.pose0[4], s.pose0[5], s.rate0[0],
+                s.rate0[1], s.rate0[2], s.rate0[3], s.rate0[4], s.rate0[5],
+                stewart_plant_message(r->plant));
         return FMU_ERROR;
     }
     /* A fresh start's bookkeeping; input derivatives the master set before the end of
@@ -200,14 +201,16 @@ static int bad_force(fmu_instance *inst, double t) {
         if (!isfinite(f)) {
             fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                     "t = %.17g: input %s = %g is not finite; the state stays at t, outputs keep "
-                    "their last valid values", t, name, f);
+                    "their last valid values",
+                    t, name, f);
             return 1;
         }
         if (v->model.input_derivatives && !isfinite(rate)) {
             fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                     "t = %.17g: input derivative d%s/dt = %g is not finite; the state stays at "
                     "t, outputs keep their last valid values; the input derivatives are cleared "
-                    "(forces held unless set again)", t, name, rate);
+                    "(forces held unless set again)",
+                    t, name, rate);
             clear_input_derivatives(&v->model);
             return 1;
         }
@@ -234,7 +237,8 @@ static fmu_status stroke_status(fmu_instance *inst, const stewart_plant_output *
         if (!(inst->v.model.legs_outside & (1 << k)))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %.9g m left the stroke [%g, %g] m (end stops are not "
-                    "modelled)", inst->v.time, k + 1, out->lengths.length[k], p->stroke_min[k],
+                    "modelled)",
+                    inst->v.time, k + 1, out->lengths.length[k], p->stroke_min[k],
                     p->stroke_max[k]);
     }
     inst->v.model.legs_outside = outside;
@@ -271,7 +275,8 @@ static fmu_status evaluate(fmu_instance *inst, const stewart_plant_output *after
     } else if (stewart_plant_output_get(r->plant, &v->real[VR_F_1], &o.out) != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: the outputs overflow at this state under these forces; outputs keep "
-                "their last valid values", v->time);
+                "their last valid values",
+                v->time);
         return refused(v);
     }
     stewart_plant_statistics_get(r->plant, &o.stats);
@@ -321,7 +326,8 @@ static fmu_status check_continuous(fmu_instance *inst, double t, double *end) {
     fmu_log(inst, FMU_ERROR, LOG_ERROR,
             "DoStep: currentCommunicationPoint = %.17g is not the plant's time %.17g (the end of "
             "its last step; they differ by %.3g s, more than the rounding of a clock): the plant "
-            "cannot skip time; restore an FMU state or reset", t, *end, t - *end);
+            "cannot skip time; restore an FMU state or reset",
+            t, *end, t - *end);
     return FMU_ERROR;
 }
 
@@ -340,7 +346,8 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
             fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                     "t = %.17g: F[%d] extrapolated to t + h = %.17g overflows (F = %g, dF/dt = "
                     "%g); the state stays at t; the input derivatives are cleared (forces held "
-                    "unless set again)", t, k + 1, t + h, f0[k], m->force_rate[k]);
+                    "unless set again)",
+                    t, k + 1, t + h, f0[k], m->force_rate[k]);
             clear_input_derivatives(m);
             return refused(v);
         }
@@ -356,8 +363,8 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
     if (s != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g, h = %g: step refused (%s): %s; the state stays at t, outputs keep "
-                "their last valid values", t, h, stewart_status_name(s),
-                stewart_plant_message(r->plant));
+                "their last valid values",
+                t, h, stewart_status_name(s), stewart_plant_message(r->plant));
         return refused(v);
     }
     /* accepted: the forces read their values at t + h; derivatives served this step only */
@@ -380,7 +387,8 @@ fmu_status model_set_input_derivatives(fmu_instance *inst, const unsigned vr[], 
         if (vr[i] > VR_F_6 || order[i] != 1) {
             fmu_log(inst, FMU_ERROR, LOG_ERROR,
                     "SetRealInputDerivatives: derivative of order %d of value reference %u is not "
-                    "supported (order 1 of F[1..6])", order[i], vr[i]);
+                    "supported (order 1 of F[1..6])",
+                    order[i], vr[i]);
             return FMU_ERROR;
         }
     if (n > 0 && !v->model.input_derivatives)

@@ -35,7 +35,7 @@ fmu_status model_load(fmu_instance *inst, const unsigned char *in, size_t size) 
     if (load_bytes(inst->res.plant, in, size) != STEWART_OK) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "SetFMUState: the state's plant data is refused: %s",
                 *stewart_plant_message(inst->res.plant) ? stewart_plant_message(inst->res.plant)
-                                                         : "wrong size");
+                                                        : "wrong size");
         return FMU_ERROR;
     }
     return FMU_OK;
@@ -76,7 +76,8 @@ static const char *mismatch(const fmu_values *v, const stewart_plant *plant,
             outside |= 1 << k;
     if (outside != v->model.legs_outside || (status == 1) != (outside != 0))
         return "the stroke flags or status do not match the leg lengths";
-    if (v->model.limit_warnings != (out.warnings & (STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE)))
+    if (v->model.limit_warnings !=
+        (out.warnings & (STEWART_WARN_JOINT_LIMIT | STEWART_WARN_INTERFERENCE)))
         return "the joint-limit and interference flags do not match the pose";
     return NULL;
 }
@@ -118,9 +119,8 @@ static const char *check_plant_data(fmu_instance *inst, const fmu_values *v,
         plant = kept_checker(r, &s.options, message, sizeof message);
     } else {
         own_model = stewart_model_create(&p, message, sizeof message);
-        plant = own_plant = own_model ? stewart_plant_create(own_model, &s.options, message,
-                                                             sizeof message)
-                                      : NULL;
+        plant = own_plant =
+            own_model ? stewart_plant_create(own_model, &s.options, message, sizeof message) : NULL;
     }
     const char *result = NULL;
     if (!plant) {
@@ -157,7 +157,8 @@ const char *model_check_state(fmu_instance *inst, const fmu_values *v, const uns
     if (v->integer[VR_status] < 0 || v->integer[VR_status] > 3) return "status is not 0..3";
     for (int vr = VR_steps; vr <= VR_last_order; ++vr)
         if (v->integer[vr] < 0) return "an integrator statistic is negative";
-    if (!fmu_after_initialization(v)) return NULL; /* plant data, if any, is not used (model_load) */
+    if (!fmu_after_initialization(v))
+        return NULL; /* plant data, if any, is not used (model_load) */
     if (plant_check_settings(v, why, why_size)) return why;
     if (size == 0) return "no plant data after initialisation";
     return check_plant_data(inst, v, in, size, why, why_size);

@@ -25,9 +25,9 @@
  * plant's. */
 #define FMU_NVR 786
 
-#define FMU_MODEL_DESCRIPTION_TEXT                                                              \
+#define FMU_MODEL_DESCRIPTION_TEXT                                                               \
     "Stewart platform forward dynamics as Model Exchange: the six actuator forces in; the pose " \
-    "and its rates are the continuous states, their derivatives the pose rates and "            \
+    "and its rates are the continuous states, their derivatives the pose rates and "             \
     "accelerations; leg lengths and rates and the base wrench out"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"1\" tolerance=\"1e-10\""
 #define FMU_CAN_INTERPOLATE_INPUTS 0
@@ -53,11 +53,11 @@
  * derivative depends on, over every value of the parameters. A state (and x' = x_dot) on itself,
  * the lengths on the pose, their rates on the pose and its rates; the accelerations, the base
  * wrench and status (which also tells a refused force) on every state and force. */
-#define FMU_ME_DEPENDS_ON(unknown, known)                                                         \
-    ((unknown) >= VR_x && (unknown) <= VR_yaw_dot   ? (known) == (unknown)                        \
-     : (unknown) >= VR_L_1 && (unknown) <= VR_L_6   ? (known) >= VR_x && (known) <= VR_yaw        \
-     : (unknown) >= VR_L_dot_1 && (unknown) <= VR_L_dot_6                                         \
-         ? (known) >= VR_x && (known) <= VR_yaw_dot                                               \
+#define FMU_ME_DEPENDS_ON(unknown, known)                                                \
+    ((unknown) >= VR_x && (unknown) <= VR_yaw_dot ? (known) == (unknown)                 \
+     : (unknown) >= VR_L_1 && (unknown) <= VR_L_6 ? (known) >= VR_x && (known) <= VR_yaw \
+     : (unknown) >= VR_L_dot_1 && (unknown) <= VR_L_dot_6                                \
+         ? (known) >= VR_x && (known) <= VR_yaw_dot                                      \
          : 1)
 
 /* The model's plain values: part of every FMU state, copied and serialised as bytes. */
@@ -68,9 +68,9 @@ typedef struct plant_me_start {
 } plant_me_start;
 
 typedef struct model_values {
-    int solve_status; /* fmu_status of the outputs' last refresh */
-    int stroke_legs;  /* bit k: leg k+1 outside its stroke at the last refresh */
-    int legs_outside; /* the same at the last accepted state (reported) */
+    int solve_status;   /* fmu_status of the outputs' last refresh */
+    int stroke_legs;    /* bit k: leg k+1 outside its stroke at the last refresh */
+    int legs_outside;   /* the same at the last accepted state (reported) */
     int limit_warnings; /* STEWART_WARN_JOINT_LIMIT, _INTERFERENCE at the last accepted state */
 } model_values;
 
@@ -87,14 +87,14 @@ typedef struct plant_me_derivatives {
 /* The model's resources: built at the end of initialisation from the parameters. The plant
  * object only evaluates the equations (stewart_plant_derivatives); its own state is unused. */
 typedef struct model_resources {
-    stewart_model *model;  /* built from `params` */
-    stewart_plant *plant;  /* on `model`, with `fidelity` */
+    stewart_model *model;         /* built from `params` */
+    stewart_plant *plant;         /* on `model`, with `fidelity` */
     stewart_linearize *linearize; /* the same: the directional derivatives (derivatives.c) */
-    stewart_limits *limits; /* on `model`: joint limits and interference at accepted states */
+    stewart_limits *limits;       /* on `model`: joint limits and interference at accepted states */
     plant_me_derivatives derivatives; /* of `linearize`; cleared when it is rebuilt */
     stewart_params params;
     int fidelity;
-    int input;  /* stewart_plant_options.input of `plant` */
+    int input;              /* stewart_plant_options.input of `plant` */
     double smoothing_speed; /* stewart_plant_options.smoothing_speed of `plant` */
     char message[2 * STEWART_MESSAGE_SIZE];
 } model_resources;

@@ -99,7 +99,8 @@ static stewart_status linearise_driven(fmu_instance *inst, const stewart_lineari
         memcpy(out->B[i], d->B[i], sizeof out->B[i]);
     }
     memcpy(out->output, d->output, sizeof out->output);
-    for (int r = 0; r < STEWART_LINEARIZE_OUTPUTS; ++r) memcpy(out->C[r], d->C[r], sizeof out->C[r]);
+    for (int r = 0; r < STEWART_LINEARIZE_OUTPUTS; ++r)
+        memcpy(out->C[r], d->C[r], sizeof out->C[r]);
     out->warnings = d->warnings;
     out->stroke_legs = d->stroke_legs;
     return STEWART_OK;

@@ -57,8 +57,8 @@ fmu_status model_apply_parameters(fmu_instance *inst) {
     o.fidelity = fidelity;
     o.input = input;
     o.smoothing_speed = settings.smoothing_speed;
-    stewart_model *m = new_model ? stewart_model_create(&p, r->message, sizeof r->message)
-                                 : r->model;
+    stewart_model *m =
+        new_model ? stewart_model_create(&p, r->message, sizeof r->message) : r->model;
     stewart_plant *plant = m ? stewart_plant_create(m, &o, r->message, sizeof r->message) : NULL;
     stewart_linearize_options lo;
     stewart_linearize_options_default(&lo);
@@ -104,9 +104,9 @@ fmu_status model_start(fmu_instance *inst) {
     if (stewart_plant_set_state(inst->res.plant, 0.0, s.pose0, s.rate0) != STEWART_OK) {
         fmu_log(inst, FMU_ERROR, LOG_ERROR,
                 "invalid parameter: start state x0..yaw0 = (%g, %g, %g, %g, %g, %g), "
-                "x_dot0..yaw_dot0 = (%g, %g, %g, %g, %g, %g): %s", s.pose0[0], s.pose0[1],
-                s.pose0[2], s.pose0[3], s.pose0[4], s.pose0[5], s.rate0[0], s.rate0[1],
-                s.rate0[2], s.rate0[3], s.rate0[4], s.rate0[5],
+                "x_dot0..yaw_dot0 = (%g, %g, %g, %g, %g, %g): %s",
+                s.pose0[0], s.pose0[1], s.pose0[2], s.pose0[3], s.pose0[4], s.pose0[5], s.rate0[0],
+                s.rate0[1], s.rate0[2], s.rate0[3], s.rate0[4], s.rate0[5],
                 stewart_plant_message(inst->res.plant));
         return FMU_ERROR;
     }
@@ -150,7 +150,8 @@ fmu_status model_refresh_outputs(fmu_instance *inst) {
     if (s != STEWART_OK) {
         fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
                 "t = %.17g: no derivatives at this state (%s): %s; outputs keep their last valid "
-                "values", v->time, stewart_status_name(s), stewart_plant_message(inst->res.plant));
+                "values",
+                v->time, stewart_status_name(s), stewart_plant_message(inst->res.plant));
         v->integer[VR_status] = 3;
         v->model.solve_status = FMU_DISCARD;
         return FMU_DISCARD;
@@ -175,8 +176,8 @@ static int report_stroke(fmu_instance *inst) {
         if ((outside & (1 << k)) && !(v->model.legs_outside & (1 << k)))
             fmu_log(inst, FMU_WARNING, LOG_WARNING,
                     "t = %.17g: L[%d] = %.9g m left the stroke [%g, %g] m (end stops are not "
-                    "modelled)", v->time, k + 1, v->real[VR_L_1 + k], p->stroke_min[k],
-                    p->stroke_max[k]);
+                    "modelled)",
+                    v->time, k + 1, v->real[VR_L_1 + k], p->stroke_min[k], p->stroke_max[k]);
     return outside;
 }
 
@@ -195,9 +196,11 @@ static int report_limits(fmu_instance *inst) {
     for (int i = 0; i < 6; ++i) in.q[i] = v->real[VR_x + i];
     stewart_limits_output o;
     if (stewart_limits_check(inst->res.limits, &in, &o) != STEWART_OK) return 0; /* finite here */
-    const int joints = 1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
-    const int now = (o.failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
-                    (o.failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
+    const int joints =
+        1 << (STEWART_LIMIT_BASE_JOINT - 1) | 1 << (STEWART_LIMIT_PLATFORM_JOINT - 1);
+    const int now =
+        (o.failed & joints ? STEWART_WARN_JOINT_LIMIT : 0) |
+        (o.failed & 1 << (STEWART_LIMIT_INTERFERENCE - 1) ? STEWART_WARN_INTERFERENCE : 0);
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i)
         if ((now & kinds[i].bit) && !(v->model.limit_warnings & kinds[i].bit))
             fmu_log(inst, FMU_WARNING, LOG_WARNING, "t = %.17g: %s (contacts are not modelled)",
@@ -215,7 +218,8 @@ fmu_status model_accepted_state(fmu_instance *inst) {
 }
 
 fmu_status model_do_step(fmu_instance *inst, double t, double h) {
-    (void)t; (void)h;
+    (void)t;
+    (void)h;
     fmu_log(inst, FMU_ERROR, LOG_ERROR, "DoStep: " FMU_MODEL_IDENTIFIER " is Model Exchange only");
     return FMU_ERROR;
 }
@@ -228,7 +232,8 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
 
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
-    (void)inst; (void)in;
+    (void)inst;
+    (void)in;
     if (size != 0) return "the state has model data, this model has none";
     const int solve = v->model.solve_status;
     if (solve != FMU_OK && solve != FMU_DISCARD) return "a flag is out of range";

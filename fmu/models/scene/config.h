@@ -12,9 +12,9 @@
 #define FMU_MODEL_IDENTIFIER "StewartScene"
 #define FMU_GUID "{093d0d08-9403-4ce0-a0e6-2d2b7c5c7852}"
 #define FMU_NVR 301
-#define FMU_MODEL_DESCRIPTION_TEXT                                                             \
-    "Stewart platform scene player: pose, pose rates and accelerations of a sum of one "        \
-    "sinusoid per component (scenes/*.json), exact at every communication point, or of a "     \
+#define FMU_MODEL_DESCRIPTION_TEXT                                                         \
+    "Stewart platform scene player: pose, pose rates and accelerations of a sum of one "   \
+    "sinusoid per component (scenes/*.json), exact at every communication point, or of a " \
     "trajectory file (a planned move) interpolated by quintic Hermite"
 #define FMU_DEFAULT_EXPERIMENT "startTime=\"0\" stopTime=\"12\" stepSize=\"0.001\""
 #define FMU_CAN_INTERPOLATE_INPUTS 0

@@ -28,9 +28,11 @@ static fmu_status load_trajectory(fmu_instance *inst) {
     if (!*path) return FMU_OK;
     for (int i = 0; i < 6; ++i)
         if (inst->v.real[VR_x_amplitude + 4 * i] != 0.0) {
-            fmu_log(inst, FMU_ERROR, LOG_ERROR, "%s = %g and trajectory_file \"%s\" are both "
+            fmu_log(inst, FMU_ERROR, LOG_ERROR,
+                    "%s = %g and trajectory_file \"%s\" are both "
                     "given: the player plays the file or the sinusoids; set the amplitudes to 0 "
-                    "or trajectory_file to \"\"", fmu_variable_by_vr(VR_x_amplitude + 4 * i)->name,
+                    "or trajectory_file to \"\"",
+                    fmu_variable_by_vr(VR_x_amplitude + 4 * i)->name,
                     inst->v.real[VR_x_amplitude + 4 * i], path);
             return FMU_ERROR;
         }
@@ -46,11 +48,11 @@ static fmu_status load_trajectory(fmu_instance *inst) {
 }
 
 fmu_status model_apply_parameters(fmu_instance *inst) {
-#define FMU_OPTION_REAL(vr, id, name, field, unit, desc)                                    \
-    if (!isfinite(inst->v.real[vr])) {                                                      \
+#define FMU_OPTION_REAL(vr, id, name, field, unit, desc)                                       \
+    if (!isfinite(inst->v.real[vr])) {                                                         \
         fmu_log(inst, FMU_ERROR, LOG_ERROR, "invalid parameter " name " = %g: must be finite", \
-                inst->v.real[vr]);                                                          \
-        return FMU_ERROR;                                                                   \
+                inst->v.real[vr]);                                                             \
+        return FMU_ERROR;                                                                      \
     }
 #include "variables.def"
     return load_trajectory(inst);
@@ -73,18 +75,20 @@ static fmu_status evaluate_trajectory(fmu_instance *inst, double t) {
     switch (trajectory_at(rows, inst->res.n, t, out)) {
         case TRAJECTORY_ON: write_outputs(&inst->v, out); return FMU_OK;
         case TRAJECTORY_BEFORE:
-            fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "t = %.17g is before the first row of "
-                    "trajectory_file \"%s\" (t = %.17g); outputs keep their last values", t,
-                    inst->res.path, rows[0]);
+            fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+                    "t = %.17g is before the first row of "
+                    "trajectory_file \"%s\" (t = %.17g); outputs keep their last values",
+                    t, inst->res.path, rows[0]);
             return FMU_DISCARD;
         case TRAJECTORY_PAST: break;
     }
-    fmu_log(inst, FMU_DISCARD, LOG_DISCARD, "t = %.17g is past the last row of trajectory_file "
+    fmu_log(inst, FMU_DISCARD, LOG_DISCARD,
+            "t = %.17g is past the last row of trajectory_file "
             "\"%s\" (t = %.17g), which does not end at rest (x_dot %g, y_dot %g, z_dot %g, "
             "roll_dot %g, pitch_dot %g, yaw_dot %g, and the accelerations): holding its pose would "
             "jump the rates; end the file at rest or stop at its last row; outputs keep their "
-            "last values", t, inst->res.path, last[0], last[7], last[8], last[9], last[10],
-            last[11], last[12]);
+            "last values",
+            t, inst->res.path, last[0], last[7], last[8], last[9], last[10], last[11], last[12]);
     return FMU_DISCARD;
 }
 
@@ -133,7 +137,10 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) { return evalua
 
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
-    (void)inst; (void)in; (void)why; (void)why_size;
+    (void)inst;
+    (void)in;
+    (void)why;
+    (void)why_size;
     if (size != 0) return "the scene player has no saved resources";
     if (!memchr(v->model.trajectory_file, '\0', sizeof v->model.trajectory_file))
         return "trajectory_file is not a terminated string";

@@ -13,9 +13,9 @@
 #include "logging.h"
 
 static const char *const kColumns[TRAJECTORY_COLUMNS] = {
-    "t",     "x",     "y",        "z",         "roll",    "pitch",    "yaw",
-    "x_dot", "y_dot", "z_dot",    "roll_dot",  "pitch_dot", "yaw_dot",
-    "x_ddot", "y_ddot", "z_ddot", "roll_ddot", "pitch_ddot", "yaw_ddot"};
+    "t",      "x",      "y",         "z",          "roll",      "pitch",   "yaw",
+    "x_dot",  "y_dot",  "z_dot",     "roll_dot",   "pitch_dot", "yaw_dot", "x_ddot",
+    "y_ddot", "z_ddot", "roll_ddot", "pitch_ddot", "yaw_ddot"};
 
 enum { MAX_FIELDS = 256 };
 
@@ -36,8 +36,7 @@ static fmu_status refuse(reader *r, long line, const char *fmt, const char *a, c
     if (line > 0)
         fmu_log(r->inst, FMU_ERROR, LOG_ERROR, "trajectory_file \"%s\", line %ld: %s", r->path,
                 line, why);
-    else
-        fmu_log(r->inst, FMU_ERROR, LOG_ERROR, "trajectory_file \"%s\": %s", r->path, why);
+    else fmu_log(r->inst, FMU_ERROR, LOG_ERROR, "trajectory_file \"%s\": %s", r->path, why);
     return FMU_ERROR;
 }
 
@@ -82,9 +81,11 @@ static fmu_status read_header(reader *r, char *line, long number) {
         }
     }
     if (*missing)
-        return refuse(r, number, "the header has no column %s: give t, x, y, z, roll, pitch, yaw, "
+        return refuse(r, number,
+                      "the header has no column %s: give t, x, y, z, roll, pitch, yaw, "
                       "their rates x_dot .. yaw_dot and accelerations x_ddot .. yaw_ddot (the "
-                      "table scripts/move.py writes)", missing, "");
+                      "table scripts/move.py writes)",
+                      missing, "");
     return FMU_OK;
 }
 
@@ -154,8 +155,8 @@ static fmu_status read_lines(reader *r, FILE *file) {
         have_header = 1;
     }
     if (s == FMU_OK && ferror(file))
-        s = refuse(r, number + 1, "cannot be read: %s", errno == EISDIR ? "it is a directory"
-                   : "a read error", "");
+        s = refuse(r, number + 1, "cannot be read: %s",
+                   errno == EISDIR ? "it is a directory" : "a read error", "");
     free(line);
     if (s == FMU_OK && !have_header)
         s = refuse(r, 0, "the file is empty: give a header and at least one row", "", "");
@@ -224,7 +225,8 @@ trajectory_where trajectory_at(const double *rows, size_t n, double t, double ou
     size_t lo = 0, hi = n - 1; /* rows[lo].t <= t < rows[hi].t */
     while (hi - lo > 1) {
         const size_t mid = lo + (hi - lo) / 2;
-        if (rows[mid * TRAJECTORY_COLUMNS] <= t) lo = mid; else hi = mid;
+        if (rows[mid * TRAJECTORY_COLUMNS] <= t) lo = mid;
+        else hi = mid;
     }
     const double *r0 = rows + lo * TRAJECTORY_COLUMNS, *r1 = r0 + TRAJECTORY_COLUMNS;
     if (t == r0[0]) {

@@ -45,9 +45,11 @@ fmu_status model_do_step(fmu_instance *inst, double t, double h) {
 
 const char *model_check_state(fmu_instance *inst, const fmu_values *v, const unsigned char *in,
                               size_t size, char *why, size_t why_size) {
-    (void)inst; (void)in; (void)why; (void)why_size;
+    (void)inst;
+    (void)in;
+    (void)why;
+    (void)why_size;
     if (size != 0) return "the integrator has no saved resources";
     if (!isfinite(v->model.y) || v->model.steps < 0) return "the state y or the step count is bad";
     return NULL;
 }
-

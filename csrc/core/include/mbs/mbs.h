@@ -54,14 +54,15 @@ typedef enum mbs_linear_solver {
     MBS_LINEAR_AUTOMATIC = 0, /* bordered-block LU if the structure is there, else dense LU */
     MBS_LINEAR_DENSE = 1,     /* our dense LU behind KINSOL */
     MBS_LINEAR_BLOCK = 2,     /* bordered-block LU, or mbs_data_create fails */
-    MBS_LINEAR_KINSOL_DENSE = 3 /* KINSOL's SUNDenseMatrix + SUNLinSol_Dense for Newton (baseline) */
+    MBS_LINEAR_KINSOL_DENSE =
+        3 /* KINSOL's SUNDenseMatrix + SUNLinSol_Dense for Newton (baseline) */
 } mbs_linear_solver;
 
 typedef struct mbs_options {
-    double tolerance;        /* max-norm of the position residual; MBS_DEFAULT_TOLERANCE */
-    int max_iterations;      /* MBS_DEFAULT_MAX_ITERATIONS */
-    int modified_newton;     /* 0 exact Newton, 1 Jacobian kept across iterations; 0 */
-    int use_predictor;       /* 1: start Newton from q + h q_dot + h^2/2 q_ddot; 1 */
+    double tolerance;    /* max-norm of the position residual; MBS_DEFAULT_TOLERANCE */
+    int max_iterations;  /* MBS_DEFAULT_MAX_ITERATIONS */
+    int modified_newton; /* 0 exact Newton, 1 Jacobian kept across iterations; 0 */
+    int use_predictor;   /* 1: start Newton from q + h q_dot + h^2/2 q_ddot; 1 */
 } mbs_options;
 
 void mbs_options_default(mbs_options *options);
@@ -85,13 +86,13 @@ mbs_status mbs_fix_body(mbs_model *model, int body);
 int mbs_add_spherical(mbs_model *m, int body_i, const double u_i[3], int body_j,
                       const double u_j[3]);
 /* Cross arms s_i (on body i) and s_j (on body j) stay perpendicular. */
-int mbs_add_cardan(mbs_model *m, int body_i, const double u_i[3], const double s_i[3],
-                   int body_j, const double u_j[3], const double s_j[3]);
+int mbs_add_cardan(mbs_model *m, int body_i, const double u_i[3], const double s_i[3], int body_j,
+                   const double u_j[3], const double s_j[3]);
 /* Axes v_i and v_j stay collinear through the points; the distance along it is free. */
 int mbs_add_cylindrical(mbs_model *m, int body_i, const double u_i[3], const double v_i[3],
                         int body_j, const double u_j[3], const double v_j[3]);
-int mbs_add_revolute(mbs_model *m, int body_i, const double u_i[3], const double v_i[3],
-                     int body_j, const double u_j[3], const double v_j[3]);
+int mbs_add_revolute(mbs_model *m, int body_i, const double u_i[3], const double v_i[3], int body_j,
+                     const double u_j[3], const double v_j[3]);
 /* As cylindrical, and the relative rotation about the axis stays as in the reference. */
 int mbs_add_prismatic(mbs_model *m, int body_i, const double u_i[3], const double v_i[3],
                       int body_j, const double u_j[3], const double v_j[3]);
@@ -141,12 +142,12 @@ long mbs_linear_fallbacks(const mbs_data *d);
 /* Force and torque (world frame; torque about the body's centre of mass) that a joint puts on
  * its body i (side 0) or body j (side 1). */
 mbs_status mbs_joint_reaction(const mbs_data *d, int joint, int side, double force[3],
-                                  double torque[3]);
+                              double torque[3]);
 
 /* Diagnostics: Phi, Phi_q (dense, row-major equations x coordinates), Phi_t and gamma at any q
  * and q_dot with the current driver values. Any output may be NULL; q_dot only for gamma. */
 mbs_status mbs_evaluate(const mbs_data *d, const double *q, const double *q_dot, double *phi,
-                            double *jacobian, double *phi_t, double *gamma);
+                        double *jacobian, double *phi_t, double *gamma);
 /* Kinetic plus potential energy of all bodies at q, q_dot. */
 double mbs_energy(const mbs_data *d, const double *q, const double *q_dot);
 
