@@ -70,6 +70,25 @@ std::vector<double> finite_difference(const std::vector<double> &t, const std::v
     return d;
 }
 
+namespace {
+
+// The rates (have[1] false) and accelerations (have[2] false) a file leaves out, by finite
+// differences of its poses along t.
+void differentiate_missing(const bool have[4], PoseTable &table) {
+    for (int r = 1; r < 3; ++r) {
+        if (have[r]) continue;
+        for (int i = 0; i < 6; ++i) {
+            std::vector<double> f(table.t.size());
+            for (size_t j = 0; j < f.size(); ++j) f[j] = table.poses[j].q[i];
+            const std::vector<double> d = finite_difference(table.t, f, r);
+            for (size_t j = 0; j < f.size(); ++j)
+                (r == 1 ? table.poses[j].q_dot : table.poses[j].q_ddot)[i] = d[j];
+        }
+    }
+}
+
+}  // namespace
+
 std::string read_pose_table(const std::string &path, PoseTable &table, MissingDerivatives missing) {
     const bool at_rest = missing == MissingDerivatives::kZero;
     std::ifstream in(path);
@@ -138,17 +157,7 @@ std::string read_pose_table(const std::string &path, PoseTable &table, MissingDe
             for (int i = 0; i < 6; ++i) table.jerks.push_back(v[col[3][i]]);
     }
     if (table.t.empty()) return path + " has no data rows";
-
-    for (int r = 1; r < 3 && !at_rest; ++r) {
-        if (have[r]) continue;
-        for (int i = 0; i < 6; ++i) {
-            std::vector<double> f(table.t.size());
-            for (size_t j = 0; j < f.size(); ++j) f[j] = table.poses[j].q[i];
-            const std::vector<double> d = finite_difference(table.t, f, r);
-            for (size_t j = 0; j < f.size(); ++j)
-                (r == 1 ? table.poses[j].q_dot : table.poses[j].q_ddot)[i] = d[j];
-        }
-    }
+    if (!at_rest) differentiate_missing(have, table);
     return "";
 }
 
