@@ -405,8 +405,9 @@ def test_script_command_line(tmp_path):
             (drives + ["--speed-gain", "1"], "for --drive current only"),
             (drives + ["--drive", "current", "--speed-gain", "0"], "--speed-gain = 0"),
             # these crashed (IndexError, an FMI error) or ran no step and printed inf
-            (drives + ["--drive", "current", "--duration", "-1"], "--duration = -1 s must be"),
-            (drives + ["--drive", "current", "--step", "0"], "--step = 0 s: the communication"),
+            (drives + ["--drive", "current", "--duration", "-1"],
+             "--duration: -1: give a finite time > 0"),
+            (drives + ["--drive", "current", "--step", "0"], "--step: 0: give a finite time > 0"),
             (drives + ["--drive", "current", "--duration", "0.0005"], "shorter than one --step")):
         refused = subprocess.run(script + extra, capture_output=True, text=True)
         assert refused.returncode != 0 and words in refused.stderr, (extra, refused.stderr)
