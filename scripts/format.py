@@ -56,9 +56,14 @@ def find_clang_format():
 
 def source_files(root):
     """The C and C++ sources under root, relative paths, sorted."""
+    listed = None
     if (root / ".git").exists():
-        listed = subprocess.run(["git", "-C", str(root), "ls-files", "-z"], capture_output=True,
-                                text=True, check=True).stdout.split("\0")
+        try:  # git may be missing, or refuse a checkout another user owns: walk the tree then
+            listed = subprocess.run(["git", "-C", str(root), "ls-files", "-z"],
+                                    capture_output=True, text=True, check=True).stdout.split("\0")
+        except (OSError, subprocess.CalledProcessError):
+            listed = None
+    if listed is not None:
         paths = [Path(p) for p in listed if p]
     else:
         paths = []

@@ -160,7 +160,8 @@ fmu_status fmu_set_string(fmu_instance *inst, const unsigned vr[], size_t n,
                     FMU_STRING_SIZE - 1);
             return FMU_ERROR;
         }
-    for (size_t i = 0; i < n; ++i) strcpy(model_string(&inst->v, vr[i]), value[i]);
+    for (size_t i = 0; i < n; ++i) /* memmove: a master may pass back GetString's own pointer */
+        memmove(model_string(&inst->v, vr[i]), value[i], strlen(value[i]) + 1);
     if (n > 0) inst->v.outputs_current = 0;
 #endif
     return FMU_OK;

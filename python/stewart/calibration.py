@@ -471,10 +471,13 @@ def _round_up(value: float) -> str:
     if not (math.isfinite(value) and value > 0):
         return f"{value:g}"
     digits = 1 - math.floor(math.log10(value))
-    steps = math.ceil(value * 10 ** digits)
-    while float(f"{steps / 10 ** digits:g}") < value:
+    scale = 10.0 ** -digits  # the second significant digit's unit
+    if not scale > 0:  # below the smallest double's second digit
+        return f"{value:g}"
+    steps = math.ceil(value / scale)
+    while float(f"{steps * scale:g}") < value:
         steps += 1
-    return f"{steps / 10 ** digits:g}"
+    return f"{steps * scale:g}"
 
 
 def _ranges(names: list[str]) -> str:

@@ -117,7 +117,9 @@ static fmu_status evaluate(fmu_instance *inst, double t) {
     return FMU_OK;
 }
 
-void model_reset(fmu_instance *inst) { (void)inst; }
+/* A reset forgets the file's rows: the next initialisation reads the file again (it may have
+ * been written anew under the same name). */
+void model_reset(fmu_instance *inst) { model_free(inst); }
 
 void model_free(fmu_instance *inst) {
     free(inst->res.rows);
